@@ -1,0 +1,11 @@
+// The subcommands of the `shellcontract` tool. Each parses its own options and returns the
+// process exit code (README.md, "Exit codes"). cli/ holds no physics and no geometry.
+#pragma once
+
+namespace shellcontract::cli {
+
+int command_run(int argc, char** argv);        ///< shellcontract run IN -o OUT [options]
+int command_check(int argc, char** argv);      ///< shellcontract check IN
+int command_bench_ccd(int argc, char** argv);  ///< shellcontract bench ccd --queries DIR
+
+}  // namespace shellcontract::cli

@@ -1,0 +1,36 @@
+// Saint Venant-Kirchhoff membrane (paper section 3.1, eq. (1); math-spec 6.1).
+#pragma once
+
+#include "shellcontract/material/material.hpp"
+
+namespace shellcontract {
+
+/// psi = mu |E|_F^2 + lambda/2 tr(E)^2 with Green strain E = (F^T F - I)/2;
+/// P = F (2 mu E + lambda tr(E) I). Depends on F only through C = F^T F.
+class Stvk final : public MembraneMaterial {
+ public:
+  explicit Stvk(const MaterialParams& p) : mu_(p.mu), lambda_(p.lambda) {}
+
+  std::string name() const override { return "stvk"; }
+  bool frame_dependent() const override { return false; }
+
+  double psi(const Mat2& F, const ElementMaterialData&) const override {
+    const Mat2 E = green_strain(F);
+    const double tr = E.trace();
+    return mu_ * E.squaredNorm() + 0.5 * lambda_ * tr * tr;
+  }
+
+  Mat2 pk1(const Mat2& F, const ElementMaterialData&) const override {
+    const Mat2 E = green_strain(F);
+    return F * (2.0 * mu_ * E + lambda_ * E.trace() * Mat2::Identity());
+  }
+
+ private:
+  static Mat2 green_strain(const Mat2& F) {
+    return 0.5 * (F.transpose() * F - Mat2::Identity());
+  }
+  double mu_;
+  double lambda_;
+};
+
+}  // namespace shellcontract

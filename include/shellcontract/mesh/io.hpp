@@ -1,0 +1,40 @@
+// Reading, checking and writing meshes (design.md, data flow: read -> check input).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/mesh/surface_mesh.hpp"
+
+namespace shellcontract {
+
+/// What the input check found and did. Warnings are for the user (printed on stderr by the CLI).
+struct InputReport {
+  std::size_t vertices = 0;
+  std::size_t faces = 0;            ///< after triangulation
+  std::size_t triangulated_faces = 0;  ///< input polygons with more than 3 vertices that were split
+  std::vector<std::size_t> zero_area_faces;  ///< face indices (output order) with ~zero area
+  bool reoriented = false;          ///< the mesh was inside-out and its faces were flipped
+  std::size_t components = 0;       ///< connected components
+  double volume = 0.0;              ///< enclosed volume after reorientation (input units)
+  std::vector<std::string> warnings;
+};
+
+/// Reads OFF/OBJ/PLY/STL (by extension) through CGAL IO and checks that the mesh is a closed,
+/// manifold triangle mesh with finite coordinates. Polygons are triangulated (with a warning);
+/// an inside-out mesh is reoriented (with a warning); zero-area faces are reported.
+/// @throws InputError naming the file and the problem (and the face, vertex or line where known)
+Mesh read_input_mesh(const std::string& path, InputReport* report = nullptr);
+
+/// Writes the mesh connectivity with the vertex positions x (row i = vertex i, input units),
+/// keeping vertex and face order. Written to a temporary file in the same folder, then renamed,
+/// so a failure never leaves a partial file.
+/// @throws UsageError if the file cannot be written or the extension is unknown
+void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x);
+
+/// Writes text to path atomically (temporary file + rename). @throws UsageError on failure
+void write_text_atomic(const std::string& path, const std::string& text);
+
+}  // namespace shellcontract
