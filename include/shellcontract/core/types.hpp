@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products
 
 namespace shellcontract {
 
@@ -20,5 +21,8 @@ using Vec12 = Eigen::Matrix<double, 12, 1>;
 
 /// Vertex positions, one row per vertex, indexed by the mesh vertex index (#V by 3).
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// Triangle vertex ids, one row per face, counter-clockwise seen from outside (#F by 3).
+using Faces = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
 }  // namespace shellcontract

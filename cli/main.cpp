@@ -1,0 +1,52 @@
+// shellcontract: contract a closed triangle mesh like a thin elastic shell under outside air
+// pressure (Sun et al., J. Software 2020). This file only dispatches to the subcommands.
+#include <cstring>
+#include <iostream>
+#include <string>
+
+#include "commands.hpp"
+
+namespace {
+
+constexpr const char* USAGE = R"(usage: shellcontract <command> [options]
+
+commands:
+  run INPUT -o OUTPUT [options]    contract a closed mesh (see 'shellcontract run --help')
+  check INPUT                      report whether a mesh can be used, and why not
+  bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
+
+  shellcontract <command> --help   options of one command
+  shellcontract --version
+
+exit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed (NaN or blow-up),
+            4 new self-intersections found by validation
+)";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << USAGE;
+    return 1;
+  }
+  const std::string command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::cout << USAGE;
+    return 0;
+  }
+  if (command == "--version") {
+    std::cout << "shellcontract 0.1.0\n";
+    return 0;
+  }
+  // Subcommands see their own name as argv[0].
+  if (command == "run") return shellcontract::cli::command_run(argc - 1, argv + 1);
+  if (command == "check") return shellcontract::cli::command_check(argc - 1, argv + 1);
+  if (command == "bench") {
+    if (argc >= 3 && std::strcmp(argv[2], "ccd") == 0)
+      return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);
+    std::cerr << "shellcontract bench: expected 'ccd' (try 'shellcontract bench ccd --help')\n";
+    return 1;
+  }
+  std::cerr << "shellcontract: unknown command '" << command << "'\n\n" << USAGE;
+  return 1;
+}

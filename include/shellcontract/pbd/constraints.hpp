@@ -1,0 +1,51 @@
+// Flat per-constraint records the solver iterates over (one contiguous array per kind).
+// They are packed once from the rest-state property maps (sim/rest_state) and hold only what a
+// projection reads, so a sweep streams through memory.
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "shellcontract/bending/dihedral_bending.hpp"
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/material/material.hpp"
+
+namespace shellcontract {
+
+/// Membrane (E_S) constraint of one non-degenerate face (math-spec 4, 9.1).
+struct MembraneConstraint {
+  std::array<int, 3> v;  ///< vertex ids (j1, j2, j3), counter-clockwise from outside
+  Mat2 Dm_inv;           ///< rest Dm^-1 (math-spec 4.1)
+  double rest_area;      ///< Abar
+  double max_step;       ///< PBD step clamp beta_max * shortest rest edge (math-spec 9.1d)
+  ElementMaterialData data;  ///< fibre direction (anisotropic energies only)
+};
+
+/// Isometric bending hinge (math-spec 8.2). Stencil order of bending/hinge.hpp.
+struct IsometricHingeConstraint {
+  std::array<int, 4> v;
+  Eigen::Vector4d K;      ///< rest cotangent weights
+  double three_over_area; ///< 3 / (A0 + A1), rest areas
+  double max_step;        ///< beta_max * shortest rest edge of the stencil
+};
+
+/// Rest-aware dihedral hinge (math-spec 8.3).
+struct DihedralHingeConstraint {
+  std::array<int, 4> v;
+  DihedralBendingRest rest;
+  double max_step;
+};
+
+/// Every constraint of a scene, in the fixed Gauss-Seidel order of math-spec 9.4
+/// (membranes, then hinges, then anisotropic faces).
+struct ConstraintSet {
+  std::vector<MembraneConstraint> membranes;
+  std::vector<IsometricHingeConstraint> isometric_hinges;
+  std::vector<DihedralHingeConstraint> dihedral_hinges;
+  std::vector<MembraneConstraint> anisotropic;  ///< E_A faces (issue: anisotropic regions)
+};
+
+/// beta_max of the PBD step clamp (math-spec 9.1d, 14).
+inline constexpr double STEP_CLAMP_FACTOR = 0.2;
+
+}  // namespace shellcontract

@@ -1,0 +1,61 @@
+// The constraint solver: nonlinear Gauss-Seidel over every constraint in a fixed order
+// (paper Steps 3-5, math-spec 2 step 2 and 9.4), in PBD or XPBD mode.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/material/material.hpp"
+#include "shellcontract/material/registry.hpp"
+#include "shellcontract/pbd/constraints.hpp"
+
+namespace shellcontract {
+
+/// pbd: the paper's energy-as-constraint projection (C = E); xpbd: C = sqrt(2E) with compliance,
+/// so stiffness has physical meaning (math-spec 9.1, 9.2; design.md "Two solver modes").
+enum class SolverKind { Pbd, Xpbd };
+
+/// Solver settings (defaults: the paper's values where it gives them, math-spec 14).
+struct SolverSettings {
+  SolverKind kind = SolverKind::Pbd;
+  int iterations = 5;        ///< Gauss-Seidel sweeps per step (paper: 5)
+  double k_bending = 0.01;   ///< k_B: PBD correction multiplier / XPBD energy scale (9.5)
+  double dt = 0.01;          ///< time step (normalized units), used by XPBD's alpha/dt^2
+};
+
+/// Sum of each kind of constraint energy at a configuration.
+struct ConstraintEnergies {
+  double membrane = 0.0;     ///< sum Abar psi over membrane faces
+  double bending = 0.0;      ///< k_B E_B (isometric) or k_B kappa (theta - theta_bar)^2 (dihedral)
+  double anisotropic = 0.0;  ///< sum Abar psi_A over anisotropic faces
+};
+
+/// Projects all constraints of a scene. Built by make_constraint_solver.
+class ConstraintSolver {
+ public:
+  virtual ~ConstraintSolver() = default;
+
+  /// Runs settings.iterations sweeps (membranes, isometric hinges, dihedral hinges,
+  /// anisotropic faces; each in array order), updating x in place. XPBD multipliers start at 0.
+  /// @param x         #V by 3 positions (normalized units), predicted positions on entry
+  /// @param inv_mass  #V inverse masses (0 = pinned)
+  virtual void solve(Positions& x, const Eigen::VectorXd& inv_mass) = 0;
+
+  /// Energies of every constraint kind at x (no projection).
+  virtual ConstraintEnergies energies(const Positions& x) const = 0;
+
+  /// The constraints being projected.
+  virtual const ConstraintSet& constraints() const = 0;
+};
+
+/// Builds a solver for the given membrane material. Constraints with degenerate rest data must
+/// already be excluded from the set.
+std::unique_ptr<ConstraintSolver> make_constraint_solver(MaterialKind material,
+                                                         const MaterialParams& params,
+                                                         ConstraintSet constraints,
+                                                         const SolverSettings& settings);
+
+}  // namespace shellcontract

@@ -1,0 +1,39 @@
+// Plain option structs of a simulation run. Defaults are the paper's values where it gives
+// them, otherwise ours (math-spec 14); README.md "Options" documents how they were chosen.
+#pragma once
+
+#include <string>
+
+#include "shellcontract/material/material.hpp"
+#include "shellcontract/material/registry.hpp"
+#include "shellcontract/pbd/solver.hpp"
+#include "shellcontract/sim/pressure.hpp"
+
+namespace shellcontract {
+
+/// isometric: the paper's flat-rest model (math-spec 8.2); dihedral: rest-aware (8.3).
+enum class BendingModel { Isometric, Dihedral, None };
+
+/// area: m_i = rho_A sum Abar_j / 3 (math-spec 1.4, default); unit: m_i = 1.
+enum class MassModel { AreaLumped, Unit };
+
+/// Default over-pressure in normalized units. Chosen by measurement (README "Choosing the
+/// defaults"): the default run visibly contracts the paper's meshes without blowing up.
+inline constexpr double DEFAULT_PRESSURE = 1.0;
+
+/// Options of one contraction run. Lengths are in normalized units (bounding-box diagonal 1).
+struct SimOptions {
+  double pressure = DEFAULT_PRESSURE;            ///< P, normalized units
+  PressureModel pressure_model = PressureModel::EnergyConsistent;
+  int frames = 200;                              ///< number of time steps
+  double dt = 0.01;                              ///< time step (math-spec 14)
+  SolverSettings solver;                         ///< pbd/xpbd, iterations (5), k_B (0.01)
+  MaterialKind material = MaterialKind::Stvk;
+  MaterialParams material_params;
+  BendingModel bending = BendingModel::Isometric;
+  MassModel mass = MassModel::AreaLumped;
+  double density = 1.0;                          ///< rho_A, mass per normalized area
+  double stop_volume_ratio = 0.0;                ///< epsilon: stop when V/V0 < epsilon (0 = off)
+};
+
+}  // namespace shellcontract

@@ -1,0 +1,72 @@
+// The library's one entry point for a contraction run (design.md data flow): normalized rest
+// state, then the time loop of math-spec 2 (paper Steps 1-7).
+#pragma once
+
+#include <memory>
+
+#include <Eigen/Core>
+
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/mesh/normalization.hpp"
+#include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/pbd/solver.hpp"
+#include "shellcontract/sim/config.hpp"
+#include "shellcontract/sim/rest_state.hpp"
+
+namespace shellcontract {
+
+/// Per-step measurements (one CSV row of the run log).
+struct FrameMetrics {
+  int frame = 0;                 ///< 1-based index of the step just taken
+  double time = 0.0;             ///< simulated time after the step (normalized units)
+  double volume_ratio = 1.0;     ///< V / V0, V from CGAL PMP::volume
+  ConstraintEnergies energies;   ///< after the step
+  double max_displacement = 0.0; ///< max_i |x_i^{n+1} - x_i^n| (normalized units)
+  double step_seconds = 0.0;     ///< wall time of the step (predict + solve + velocity update)
+};
+
+/// Runs the contraction of one closed mesh.
+class Simulator {
+ public:
+  /// Copies and normalizes the mesh and builds the rest state and the constraints.
+  /// @param input  a checked, closed, outward-oriented triangle mesh (read_input_mesh), any units
+  /// @throws UsageError for invalid options, InputError for an unusable mesh
+  Simulator(const Mesh& input, const SimOptions& options);
+  ~Simulator();
+
+  /// One time step: predict with the pressure force, project constraints, update velocities.
+  /// @throws SimulationError on non-finite positions; the state is then left at the last good step
+  FrameMetrics step();
+
+  /// True when the frame count is reached or V/V0 fell below options.stop_volume_ratio.
+  bool finished() const;
+
+  int frame() const { return frame_; }
+  double volume_ratio() const { return volume_ratio_; }
+  /// Current positions, normalized units, row i = vertex i.
+  const Positions& positions() const { return x_; }
+  /// Current positions scaled back to the input's units.
+  Positions positions_in_input_units() const { return denormalize(x_, normalization_); }
+  /// The normalized rest mesh with the rest-state property maps.
+  const Mesh& rest_mesh() const { return *mesh_; }
+  const Normalization& normalization() const { return normalization_; }
+  const RestStateReport& rest_report() const { return rest_report_; }
+  const SimOptions& options() const { return options_; }
+  /// Energies at the current positions.
+  ConstraintEnergies energies() const { return solver_->energies(x_); }
+
+ private:
+  SimOptions options_;
+  std::unique_ptr<Mesh> mesh_;
+  Normalization normalization_;
+  RestStateReport rest_report_;
+  Faces faces_;
+  Eigen::VectorXd inv_mass_;
+  std::unique_ptr<ConstraintSolver> solver_;
+  Positions x_, v_, x_pred_, force_;
+  double rest_volume_ = 0.0;
+  double volume_ratio_ = 1.0;
+  int frame_ = 0;
+};
+
+}  // namespace shellcontract

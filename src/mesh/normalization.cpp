@@ -1,0 +1,29 @@
+#include "shellcontract/mesh/normalization.hpp"
+
+#include <cmath>
+
+#include "shellcontract/core/error.hpp"
+
+namespace shellcontract {
+
+Normalization compute_normalization(const Positions& x) {
+  if (x.rows() == 0) throw InputError("cannot normalize an empty mesh");
+  const Vec3 lo = x.colwise().minCoeff().transpose();
+  const Vec3 hi = x.colwise().maxCoeff().transpose();
+  Normalization n;
+  n.center = 0.5 * (lo + hi);
+  n.scale = (hi - lo).norm();
+  if (!std::isfinite(n.scale) || !(n.scale > 0.0))
+    throw InputError("the mesh has a zero or non-finite bounding-box diagonal");
+  return n;
+}
+
+Positions normalize(const Positions& x, const Normalization& n) {
+  return ((x.rowwise() - n.center.transpose()) / n.scale).eval();
+}
+
+Positions denormalize(const Positions& x, const Normalization& n) {
+  return ((x * n.scale).rowwise() + n.center.transpose()).eval();
+}
+
+}  // namespace shellcontract

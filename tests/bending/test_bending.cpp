@@ -1,0 +1,177 @@
+// Bending kernels (math-spec 8, 13 "Bending"): cotangent weights, FD gradients, the isometric
+// fold closed form, the dihedral angle's sign, branch cut and degenerate guards.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "shellcontract/bending/dihedral_bending.hpp"
+#include "shellcontract/bending/isometric_bending.hpp"
+#include "support/random_geometry.hpp"
+
+namespace shellcontract {
+namespace {
+
+using Stencil = std::array<Vec3, 4>;
+constexpr double PI = 3.14159265358979323846;
+
+/// A hinge along the x axis: x0 = (-a,0,0), x1 = (b,0,0); face A's tip in the xy plane at +y,
+/// face B's tip rotated by the fold angle phi about the x axis (phi = 0: flat).
+Stencil folded_hinge(double phi, double a = 0.4, double b = 0.6, double yA = 0.7, double yB = 0.5) {
+  return {Vec3(-a, 0, 0), Vec3(b, 0, 0), Vec3(0.1, yA, 0),
+          Vec3(-0.2, -yB * std::cos(phi), -yB * std::sin(phi))};
+}
+
+template <class EnergyFn>
+std::array<Vec3, 4> fd(EnergyFn E, const Stencil& x, double h) {
+  std::array<Vec3, 4> g;
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) {
+      Stencil p = x, m = x;
+      p[i](k) += h;
+      m[i](k) -= h;
+      g[i](k) = (E(p) - E(m)) / (2 * h);
+    }
+  return g;
+}
+
+double rel(const std::array<Vec3, 4>& a, const std::array<Vec3, 4>& b) {
+  double num = 0, den = 0;
+  for (int i = 0; i < 4; ++i) {
+    num += (a[i] - b[i]).squaredNorm();
+    den += b[i].squaredNorm();
+  }
+  return std::sqrt(num / den);
+}
+
+TEST(GuardedCotangent, KnownAnglesClampAndZeroLength) {
+  EXPECT_NEAR(guarded_cotangent(Vec3(1, 0, 0), Vec3(1, 1, 0)), 1.0, 1e-15);
+  EXPECT_NEAR(guarded_cotangent(Vec3(1, 0, 0), Vec3(0, 2, 0)), 0.0, 1e-15);
+  EXPECT_NEAR(guarded_cotangent(Vec3(1, 0, 0), Vec3(-1, std::sqrt(3.0), 0)), -1 / std::sqrt(3.0), 1e-15);
+  EXPECT_EQ(guarded_cotangent(Vec3(1, 0, 0), Vec3(1, 1e-9, 0)), MAX_COTANGENT);
+  EXPECT_EQ(guarded_cotangent(Vec3(1, 0, 0), Vec3(2, 0, 0)), MAX_COTANGENT);   // parallel
+  EXPECT_EQ(guarded_cotangent(Vec3(1, 0, 0), Vec3(-2, 0, 0)), -MAX_COTANGENT); // antiparallel
+  EXPECT_EQ(guarded_cotangent(Vec3::Zero(), Vec3(1, 0, 0)), 0.0);
+  EXPECT_NEAR(MAX_COTANGENT, 1.0 / std::tan(PI / 180.0), 1e-12);
+}
+
+TEST(IsometricBending, WeightsSumToZeroAndFlatHingeHasZeroEnergy) {
+  const Stencil x = folded_hinge(0.0);
+  const IsometricBendingRest r = isometric_bending_rest(x[0], x[1], x[2], x[3]);
+  EXPECT_NEAR(r.K.sum(), 0.0, 1e-14);
+  EXPECT_GT(r.K.norm(), 1.0);
+  EXPECT_LE(isometric_bending_h(r, x[0], x[1], x[2], x[3]).norm(), 1e-14);
+  EXPECT_LE(isometric_bending_energy(r, x[0], x[1], x[2], x[3]), 1e-28);
+  // Cotangents of interior angles: for a right isosceles face the weight is known.
+  const Stencil s{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, -1, 0)};
+  const IsometricBendingRest q = isometric_bending_rest(s[0], s[1], s[2], s[3]);
+  // c01 (at x1, face A) = cot 45 = 1, c02 (at x0, face A) = cot 90 = 0,
+  // c03 (at x0, face B) = cot 45 = 1, c04 (at x1, face B) = cot 90 = 0.
+  EXPECT_NEAR(q.K(0), 1.0, 1e-15);
+  EXPECT_NEAR(q.K(1), 1.0, 1e-15);
+  EXPECT_NEAR(q.K(2), -1.0, 1e-15);
+  EXPECT_NEAR(q.K(3), -1.0, 1e-15);
+}
+
+TEST(IsometricBending, IsometricFoldMatchesClosedForm) {
+  const Stencil flat = folded_hinge(0.0);
+  const IsometricBendingRest r = isometric_bending_rest(flat[0], flat[1], flat[2], flat[3]);
+  const double e0 = (flat[1] - flat[0]).norm();
+  for (double theta : {0.0, 0.3, 1.0, 2.0, 3.0}) {
+    const Stencil x = folded_hinge(theta);
+    // math-spec 8.2: E_B = 6 |e0|^2 sin^2(theta/2) / (A0 + A1); area_sum = A0 + A1.
+    const double closed = 6 * e0 * e0 * std::pow(std::sin(theta / 2), 2) / r.area_sum;
+    EXPECT_NEAR(isometric_bending_energy(r, x[0], x[1], x[2], x[3]), closed, 1e-12 * (1 + closed))
+        << "theta " << theta;
+  }
+}
+
+TEST(IsometricBending, GradientMatchesFiniteDifferencesAndConservesMomentum) {
+  std::mt19937 rng(5);
+  for (int t = 0; t < 30; ++t) {
+    const Stencil rest = folded_hinge(0.5 * t / 30.0);
+    const IsometricBendingRest r = isometric_bending_rest(rest[0], rest[1], rest[2], rest[3]);
+    Stencil x;
+    for (int i = 0; i < 4; ++i) x[i] = rest[i] + 0.2 * test::random_vec3(rng);
+    auto E = [&](const Stencil& y) { return isometric_bending_energy(r, y[0], y[1], y[2], y[3]); };
+    const auto g = isometric_bending_gradient(r, x[0], x[1], x[2], x[3]);
+    ASSERT_GT(g[0].norm(), 1e-8);
+    EXPECT_LE(rel(g, fd(E, x, 1e-6)), 1e-6);
+    Vec3 force = Vec3::Zero();
+    for (const Vec3& gi : g) force += gi;
+    EXPECT_LE(force.norm(), 1e-12 * g[0].norm());
+  }
+}
+
+TEST(IsometricBending, CurvedRestHingeIsNotAtRest) {
+  // Documented property of the paper's model (math-spec 8.2): a hinge bent by 0.5 rad has
+  // positive energy at its own rest shape.
+  const Stencil bent = folded_hinge(0.5);
+  const IsometricBendingRest r = isometric_bending_rest(bent[0], bent[1], bent[2], bent[3]);
+  EXPECT_GT(isometric_bending_energy(r, bent[0], bent[1], bent[2], bent[3]), 0.01);
+}
+
+TEST(DihedralAngle, SignFlatAndConvexFold) {
+  double theta = 1;
+  const Stencil flat = folded_hinge(0.0);
+  ASSERT_TRUE(dihedral_angle(flat[0], flat[1], flat[2], flat[3], theta));
+  EXPECT_NEAR(theta, 0.0, 1e-15);
+  // folded_hinge(phi) with phi > 0 turns face B's tip to -z: with face A's outward normal +z
+  // (A = (x0, x1, x2) counter-clockwise seen from +z) the hinge is convex seen from outside.
+  for (double phi : {0.3, 1.0, 2.5}) {
+    const Stencil x = folded_hinge(phi);
+    ASSERT_TRUE(dihedral_angle(x[0], x[1], x[2], x[3], theta));
+    EXPECT_NEAR(theta, phi, 1e-12) << phi;
+    const Stencil y = folded_hinge(-phi);
+    ASSERT_TRUE(dihedral_angle(y[0], y[1], y[2], y[3], theta));
+    EXPECT_NEAR(theta, -phi, 1e-12) << -phi;
+  }
+}
+
+TEST(DihedralAngle, GradientMatchesFiniteDifferences) {
+  std::mt19937 rng(6);
+  for (int t = 0; t < 30; ++t) {
+    Stencil x = folded_hinge(-2.5 + 5.0 * t / 30.0);
+    for (int i = 0; i < 4; ++i) x[i] += 0.05 * test::random_vec3(rng);
+    double theta;
+    std::array<Vec3, 4> g;
+    ASSERT_TRUE(dihedral_angle_gradient(x[0], x[1], x[2], x[3], theta, g));
+    auto th = [](const Stencil& y) {
+      double a;
+      dihedral_angle(y[0], y[1], y[2], y[3], a);
+      return a;
+    };
+    EXPECT_LE(rel(g, fd(th, x, 1e-7)), 1e-6) << "trial " << t;
+  }
+}
+
+TEST(DihedralBending, ZeroAtRestFiniteDifferencesAndBranchCut) {
+  std::mt19937 rng(7);
+  const Stencil rest = folded_hinge(0.8);
+  const DihedralBendingRest r = dihedral_bending_rest(rest[0], rest[1], rest[2], rest[3]);
+  EXPECT_NEAR(r.rest_angle, 0.8, 1e-12);
+  EXPECT_LE(dihedral_bending_energy(r, 0.7, rest[0], rest[1], rest[2], rest[3]), 1e-28);
+  for (const Vec3& g : dihedral_bending_gradient(r, 0.7, rest[0], rest[1], rest[2], rest[3]))
+    EXPECT_LE(g.norm(), 1e-14);
+  Stencil x = rest;
+  for (int i = 0; i < 4; ++i) x[i] += 0.1 * test::random_vec3(rng);
+  auto E = [&](const Stencil& y) { return dihedral_bending_energy(r, 0.7, y[0], y[1], y[2], y[3]); };
+  EXPECT_LE(rel(dihedral_bending_gradient(r, 0.7, x[0], x[1], x[2], x[3]), fd(E, x, 1e-7)), 1e-6);
+  // Across the branch cut: rest near +pi, current near -pi is a small difference.
+  EXPECT_NEAR(wrapped_angle_difference(-PI + 0.1, PI - 0.1), 0.2, 1e-12);
+  EXPECT_NEAR(wrapped_angle_difference(PI - 0.1, -PI + 0.1), -0.2, 1e-12);
+}
+
+TEST(DihedralBending, CollapsedFaceIsSkipped) {
+  Stencil x = folded_hinge(0.5);
+  x[2] = 0.5 * (x[0] + x[1]);  // face A collapses onto the edge
+  double theta = 1;
+  std::array<Vec3, 4> g;
+  EXPECT_FALSE(dihedral_angle_gradient(x[0], x[1], x[2], x[3], theta, g));
+  for (const Vec3& gi : g) EXPECT_EQ(gi.norm(), 0.0);
+  const DihedralBendingRest r{0.3, 1.0};
+  EXPECT_EQ(dihedral_bending_energy(r, 1.0, x[0], x[1], x[2], x[3]), 0.0);
+}
+
+}  // namespace
+}  // namespace shellcontract

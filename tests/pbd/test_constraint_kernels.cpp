@@ -1,0 +1,196 @@
+// One-constraint projections (math-spec 9, 13 "Pipeline" momentum, 9.1 properties).
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "shellcontract/bending/isometric_bending.hpp"
+#include "shellcontract/material/stvk.hpp"
+#include "shellcontract/pbd/constraint_kernels.hpp"
+#include "support/random_geometry.hpp"
+
+namespace shellcontract {
+namespace {
+
+struct Stencil {
+  std::vector<double> x;  // 3 per vertex
+  std::vector<double> w;
+};
+
+MembraneConstraint membrane_on(const std::vector<Vec3>& rest) {
+  const TriangleRest r = triangle_rest(rest[0], rest[1], rest[2]);
+  MembraneConstraint c;
+  c.v = {0, 1, 2};
+  c.Dm_inv = r.Dm_inv;
+  c.rest_area = r.area;
+  c.max_step = 1e9;  // no clamp unless a test sets one
+  return c;
+}
+
+Stencil deformed(const std::vector<Vec3>& rest, std::mt19937& rng, double noise) {
+  Stencil s;
+  std::uniform_real_distribution<double> mass(0.5, 2.0);
+  for (const Vec3& p : rest) {
+    const Vec3 q = p + noise * test::random_vec3(rng);
+    s.x.insert(s.x.end(), {q.x(), q.y(), q.z()});
+    s.w.push_back(1.0 / mass(rng));
+  }
+  return s;
+}
+
+Vec3 at(const Stencil& s, int i) { return Vec3(s.x[3 * i], s.x[3 * i + 1], s.x[3 * i + 2]); }
+
+ProjectionContext context(Stencil& s) {
+  ProjectionContext ctx;
+  ctx.x = s.x.data();
+  ctx.w = s.w.data();
+  return ctx;
+}
+
+TEST(MembraneProjection, ConservesMomentumAndReducesEnergy) {
+  std::mt19937 rng(11);
+  for (int t = 0; t < 20; ++t) {
+    const std::vector<Vec3> rest{test::random_vec3(rng), test::random_vec3(rng), test::random_vec3(rng)};
+    const MembraneConstraint c = membrane_on(rest);
+    Stencil s = deformed(rest, rng, 0.1);
+    const Stencil before = s;
+    const Stvk m(MaterialParams{1.0, 1.0});
+    ProjectionContext ctx = context(s);
+    auto E = [&](const Stencil& q) {
+      double e;
+      Vec3 g1, g2, g3;
+      element_energy_gradient(m, ElementMaterialData{}, at(q, 0), at(q, 1), at(q, 2),
+                              triangle_rest(rest[0], rest[1], rest[2]), 1.0, e, g1, g2, g3);
+      return e;
+    };
+    ASSERT_TRUE(project_membrane(m, c, 1.0, ctx, nullptr));
+    Vec3 momentum = Vec3::Zero();
+    double moved = 0;
+    for (int i = 0; i < 3; ++i) {
+      momentum += (at(s, i) - at(before, i)) / s.w[i];
+      moved += (at(s, i) - at(before, i)).norm();
+    }
+    ASSERT_GT(moved, 0.0);
+    EXPECT_LE(momentum.norm(), 1e-14 * (1 + moved)) << "trial " << t;
+    EXPECT_LT(E(s), E(before)) << "trial " << t;
+  }
+}
+
+TEST(MembraneProjection, PbdIsInvariantToEnergyScaleAndXpbdRigidLimitIsTwicePbd) {
+  // math-spec 9.1(a): scaling E by alpha leaves the PBD step unchanged. 9.1(c)/9.2: with zero
+  // compliance, XPBD on C = sqrt(2E) takes exactly twice the PBD(C = E) step.
+  std::mt19937 rng(12);
+  const std::vector<Vec3> rest{Vec3(0, 0, 0), Vec3(1, 0.1, 0), Vec3(0.2, 0.9, 0.1)};
+  const MembraneConstraint c = membrane_on(rest);
+  const Stencil start = deformed(rest, rng, 0.15);
+  std::vector<std::vector<double>> steps;
+  for (double alpha : {1e-3, 1.0, 1e4}) {
+    Stencil s = start;
+    ProjectionContext ctx = context(s);
+    project_membrane(Stvk(MaterialParams{alpha * 1.0, alpha * 0.5}), c, 1.0, ctx, nullptr);
+    steps.push_back(s.x);
+  }
+  for (std::size_t k = 0; k < start.x.size(); ++k) {
+    const double d = steps[1][k] - start.x[k];
+    EXPECT_NEAR(steps[0][k] - start.x[k], d, 1e-13);
+    EXPECT_NEAR(steps[2][k] - start.x[k], d, 1e-13);
+  }
+  Stencil s = start;
+  ProjectionContext ctx = context(s);
+  ctx.alpha_tilde = 0.0;
+  double lambda = 0.0;
+  project_membrane(Stvk(MaterialParams{1.0, 0.5}), c, 1.0, ctx, &lambda);
+  for (std::size_t k = 0; k < start.x.size(); ++k)
+    EXPECT_NEAR(s.x[k] - start.x[k], 2.0 * (steps[1][k] - start.x[k]), 1e-13);
+  EXPECT_LT(lambda, 0.0);
+}
+
+TEST(MembraneProjection, RestIsSkippedPinnedVertexNeverMovesAndClampHolds) {
+  std::mt19937 rng(13);
+  const std::vector<Vec3> rest{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  MembraneConstraint c = membrane_on(rest);
+  const Stvk m(MaterialParams{});
+  Stencil s = deformed(rest, rng, 0.0);
+  ProjectionContext ctx = context(s);
+  ctx.energy_floor = 1e-16;
+  EXPECT_FALSE(project_membrane(m, c, 1.0, ctx, nullptr));
+
+  Stencil p = deformed(rest, rng, 0.3);
+  p.w[1] = 0.0;
+  const Vec3 pinned = at(p, 1);
+  c.max_step = 1e-3;
+  ProjectionContext pc = context(p);
+  const Stencil before = p;
+  ASSERT_TRUE(project_membrane(m, c, 1.0, pc, nullptr));
+  EXPECT_EQ(at(p, 1), pinned);
+  double longest = 0;
+  for (int i = 0; i < 3; ++i) longest = std::max(longest, (at(p, i) - at(before, i)).norm());
+  EXPECT_NEAR(longest, 1e-3, 1e-15) << "a large step is clamped to exactly max_step";
+}
+
+TEST(MembraneProjection, StationaryPointWithPositiveEnergyIsSkipped) {
+  // StVK at F = 0 (all vertices coincide): E > 0, gradient 0 (math-spec 9.1d).
+  const std::vector<Vec3> rest{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  const MembraneConstraint c = membrane_on(rest);
+  Stencil s{{0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5}, {1, 1, 1}};
+  ProjectionContext ctx = context(s);
+  EXPECT_FALSE(project_membrane(Stvk(MaterialParams{}), c, 1.0, ctx, nullptr));
+  for (double v : s.x) EXPECT_EQ(v, 0.5);
+}
+
+IsometricHingeConstraint hinge_on(const std::vector<Vec3>& rest) {
+  const IsometricBendingRest r = isometric_bending_rest(rest[0], rest[1], rest[2], rest[3]);
+  return {{0, 1, 2, 3}, r.K, 3.0 / r.area_sum, 1e9};
+}
+
+TEST(IsometricHingeProjection, UnitStiffnessHalvesHAndConservesMomentum) {
+  std::mt19937 rng(14);
+  const std::vector<Vec3> flat{Vec3(-0.4, 0, 0), Vec3(0.6, 0, 0), Vec3(0.1, 0.7, 0), Vec3(-0.2, -0.5, 0)};
+  const IsometricHingeConstraint c = hinge_on(flat);
+  Stencil s = deformed(flat, rng, 0.2);
+  const Stencil before = s;
+  ProjectionContext ctx = context(s);
+  auto h = [&](const Stencil& q) {
+    return Vec3(c.K(0) * at(q, 0) + c.K(1) * at(q, 1) + c.K(2) * at(q, 2) + c.K(3) * at(q, 3));
+  };
+  ASSERT_GT(h(before).norm(), 1e-3);
+  ASSERT_TRUE(project_isometric_hinge(c, 1.0, ctx, nullptr));
+  EXPECT_LE((h(s) - 0.5 * h(before)).norm(), 1e-13);
+  Vec3 momentum = Vec3::Zero();
+  for (int i = 0; i < 4; ++i) momentum += (at(s, i) - at(before, i)) / s.w[i];
+  EXPECT_LE(momentum.norm(), 1e-14);
+}
+
+TEST(IsometricHingeProjection, XpbdRigidLimitZeroesH) {
+  // alpha_tilde = 0: the vector constraint C = sqrt(beta) h is linear, so one projection
+  // solves it exactly (h -> 0).
+  std::mt19937 rng(15);
+  const std::vector<Vec3> flat{Vec3(-0.4, 0, 0), Vec3(0.6, 0, 0), Vec3(0.1, 0.7, 0), Vec3(-0.2, -0.5, 0)};
+  const IsometricHingeConstraint c = hinge_on(flat);
+  Stencil s = deformed(flat, rng, 0.2);
+  ProjectionContext ctx = context(s);
+  double lambda[3] = {0, 0, 0};
+  ASSERT_TRUE(project_isometric_hinge(c, 0.3, ctx, lambda));
+  const Vec3 h = c.K(0) * at(s, 0) + c.K(1) * at(s, 1) + c.K(2) * at(s, 2) + c.K(3) * at(s, 3);
+  EXPECT_LE(h.norm(), 1e-13);
+}
+
+TEST(DihedralHingeProjection, ReducesAngleErrorAndConservesMomentum) {
+  std::mt19937 rng(16);
+  const std::vector<Vec3> rest{Vec3(-0.4, 0, 0), Vec3(0.6, 0, 0), Vec3(0.1, 0.7, 0), Vec3(-0.2, -0.4, -0.3)};
+  DihedralHingeConstraint c{{0, 1, 2, 3}, dihedral_bending_rest(rest[0], rest[1], rest[2], rest[3]), 1e9};
+  Stencil s = deformed(rest, rng, 0.15);
+  const Stencil before = s;
+  ProjectionContext ctx = context(s);
+  double th0, th1;
+  dihedral_angle(at(before, 0), at(before, 1), at(before, 2), at(before, 3), th0);
+  ASSERT_TRUE(project_dihedral_hinge(c, 1.0, ctx, nullptr));
+  dihedral_angle(at(s, 0), at(s, 1), at(s, 2), at(s, 3), th1);
+  EXPECT_LT(std::abs(th1 - c.rest.rest_angle), std::abs(th0 - c.rest.rest_angle));
+  Vec3 momentum = Vec3::Zero();
+  for (int i = 0; i < 4; ++i) momentum += (at(s, i) - at(before, i)) / s.w[i];
+  EXPECT_LE(momentum.norm(), 1e-13);
+}
+
+}  // namespace
+}  // namespace shellcontract
