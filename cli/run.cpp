@@ -1,0 +1,235 @@
+// shellcontract run: read, check, contract, write (design.md data flow).
+#include <boost/program_options.hpp>
+#include <chrono>
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "json_writer.hpp"
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/material/registry.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/simulator.hpp"
+
+namespace po = boost::program_options;
+
+namespace shellcontract::cli {
+namespace {
+
+SolverKind parse_solver(const std::string& s) {
+  if (s == "pbd") return SolverKind::Pbd;
+  if (s == "xpbd") return SolverKind::Xpbd;
+  throw UsageError("unknown solver '" + s + "' (expected pbd or xpbd)");
+}
+
+BendingModel parse_bending(const std::string& s) {
+  if (s == "isometric") return BendingModel::Isometric;
+  if (s == "dihedral") return BendingModel::Dihedral;
+  if (s == "none") return BendingModel::None;
+  throw UsageError("unknown bending model '" + s + "' (expected isometric, dihedral or none)");
+}
+
+PressureModel parse_pressure_model(const std::string& s) {
+  if (s == "energy") return PressureModel::EnergyConsistent;
+  if (s == "paper") return PressureModel::Paper;
+  throw UsageError("unknown pressure model '" + s + "' (expected energy or paper)");
+}
+
+MassModel parse_mass(const std::string& s) {
+  if (s == "area") return MassModel::AreaLumped;
+  if (s == "unit") return MassModel::Unit;
+  throw UsageError("unknown mass model '" + s + "' (expected area or unit)");
+}
+
+std::string join(const std::vector<std::string>& v) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? "|" : "") + v[i];
+  return out;
+}
+
+const char* CSV_HEADER =
+    "frame,time,volume_ratio,energy_membrane,energy_bending,energy_anisotropic,"
+    "max_displacement,step_ms\n";
+
+std::string csv_row(const FrameMetrics& m) {
+  std::ostringstream o;
+  o << std::setprecision(17) << m.frame << ',' << m.time << ',' << m.volume_ratio << ','
+    << m.energies.membrane << ',' << m.energies.bending << ',' << m.energies.anisotropic << ','
+    << m.max_displacement << ',' << m.step_seconds * 1e3 << '\n';
+  return o.str();
+}
+
+}  // namespace
+
+int command_run(int argc, char** argv) {
+  std::string input, output, log_path, summary_path, solver = "pbd", material = "stvk",
+                                                     bending = "isometric", pressure_model = "energy",
+                                                     mass = "area";
+  SimOptions opt;
+  double young = 0, poisson = 0.3, thickness = 0;
+  bool quiet = false;
+
+  po::options_description desc(
+      "usage: shellcontract run INPUT -o OUTPUT [options]\n\n"
+      "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL) like a thin elastic shell under an\n"
+      "outside pressure. The mesh is normalized to a unit bounding-box diagonal for the\n"
+      "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
+      "Output keeps the input's vertex and face order.\n\noptions");
+  desc.add_options()
+      ("help,h", "show this help")
+      ("output,o", po::value(&output), "output mesh (format from the extension)")
+      ("pressure,p", po::value(&opt.pressure)->default_value(opt.pressure),
+       "outside over-pressure P (normalized units; > 0 compresses)")
+      ("pressure-model", po::value(&pressure_model)->default_value(pressure_model),
+       "energy: f = -P dV/dx (no net force); paper: P * area * unit vertex normal")
+      ("frames,n", po::value(&opt.frames)->default_value(opt.frames), "number of time steps")
+      ("dt", po::value(&opt.dt)->default_value(opt.dt), "time step (normalized units)")
+      ("iterations", po::value(&opt.solver.iterations)->default_value(opt.solver.iterations),
+       "Gauss-Seidel sweeps per step (paper: 5)")
+      ("solver", po::value(&solver)->default_value(solver),
+       "pbd: the paper's energy-as-constraint projection; xpbd: compliant, physical stiffness")
+      ("material", po::value(&material)->default_value(material),
+       ("membrane material: " + join(material_names())).c_str())
+      ("mu", po::value(&opt.material_params.mu)->default_value(opt.material_params.mu),
+       "Lame mu (energy per normalized area); in pbd mode only lambda/mu matters")
+      ("lambda", po::value(&opt.material_params.lambda)->default_value(opt.material_params.lambda),
+       "plane-stress Lame lambda")
+      ("c10", po::value(&opt.material_params.c10)->default_value(opt.material_params.c10),
+       "Mooney-Rivlin C10")
+      ("c01", po::value(&opt.material_params.c01)->default_value(opt.material_params.c01),
+       "Mooney-Rivlin C01")
+      ("young", po::value(&young), "Young's modulus E (with --thickness): sets mu and lambda")
+      ("poisson", po::value(&poisson)->default_value(poisson), "Poisson ratio (with --young)")
+      ("thickness", po::value(&thickness), "shell thickness h (with --young)")
+      ("bending", po::value(&bending)->default_value(bending),
+       "isometric (paper, flat rest) | dihedral (rest-aware) | none")
+      ("k-b", po::value(&opt.solver.k_bending)->default_value(opt.solver.k_bending),
+       "bending k_B: pbd correction multiplier in [0,1]; xpbd energy scale")
+      ("mass", po::value(&mass)->default_value(mass), "area: lumped by rest area; unit: m = 1")
+      ("density", po::value(&opt.density)->default_value(opt.density), "areal density rho_A")
+      ("stop-volume-ratio", po::value(&opt.stop_volume_ratio)->default_value(0.0),
+       "stop when V/V0 falls below this (0 = run all frames)")
+      ("log", po::value(&log_path), "per-frame CSV log")
+      ("summary", po::value(&summary_path), "JSON summary of the run")
+      ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
+  po::options_description hidden;
+  hidden.add_options()("input", po::value(&input));
+  po::options_description all;
+  all.add(desc).add(hidden);
+  po::positional_options_description pos;
+  pos.add("input", 1);
+
+  try {
+    po::variables_map vm;
+    po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
+    if (vm.count("help")) {
+      std::cout << desc << "\nexit codes: 0 success, 1 bad usage, 2 bad input mesh, "
+                           "3 simulation failed (last good state written)\n";
+      return 0;
+    }
+    po::notify(vm);
+    if (input.empty()) throw UsageError("missing INPUT mesh");
+    if (output.empty()) throw UsageError("missing -o OUTPUT");
+    opt.solver.kind = parse_solver(solver);
+    opt.material = parse_material_kind(material);
+    opt.bending = parse_bending(bending);
+    opt.pressure_model = parse_pressure_model(pressure_model);
+    opt.mass = parse_mass(mass);
+    if (vm.count("young") || vm.count("thickness")) {
+      if (!vm.count("young") || !vm.count("thickness"))
+        throw UsageError("--young needs --thickness (and the other way round)");
+      const MaterialParams lame = membrane_lame_from_young(young, poisson, thickness);
+      opt.material_params.mu = lame.mu;
+      opt.material_params.lambda = lame.lambda;
+    }
+  } catch (const po::error& e) {
+    std::cerr << "shellcontract run: " << e.what() << "\n(see 'shellcontract run --help')\n";
+    return static_cast<int>(ExitCode::BadUsage);
+  } catch (const UsageError& e) {
+    std::cerr << "shellcontract run: " << e.what() << "\n(see 'shellcontract run --help')\n";
+    return static_cast<int>(ExitCode::BadUsage);
+  }
+
+  try {
+    InputReport report;
+    const Mesh mesh = read_input_mesh(input, &report);
+    for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
+    Simulator sim(mesh, opt);
+    if (sim.rest_report().degenerate_faces > 0)
+      std::cerr << "warning: " << sim.rest_report().degenerate_faces
+                << " degenerate faces carry no membrane energy; " << sim.rest_report().inactive_hinges
+                << " hinges touching them are inactive\n";
+
+    std::string csv = CSV_HEADER;
+    const auto start = std::chrono::steady_clock::now();
+    auto last_report = start;
+    std::string status = "ok";
+    std::string failure;
+    double min_ratio = 1.0;
+    while (!sim.finished()) {
+      FrameMetrics m;
+      try {
+        m = sim.step();
+      } catch (const SimulationError& e) {
+        status = "failed";
+        failure = e.what();
+        break;
+      }
+      min_ratio = std::min(min_ratio, m.volume_ratio);
+      csv += csv_row(m);
+      const auto now = std::chrono::steady_clock::now();
+      if (!quiet && (std::chrono::duration<double>(now - last_report).count() > 1.0 ||
+                     sim.finished())) {
+        std::cerr << "frame " << m.frame << "/" << opt.frames << "  V/V0 " << std::setprecision(6)
+                  << m.volume_ratio << "  " << std::setprecision(3)
+                  << std::chrono::duration<double>(now - start).count() << " s\n";
+        last_report = now;
+      }
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    write_mesh_atomic(output, mesh, sim.positions_in_input_units());
+    if (!log_path.empty()) write_text_atomic(log_path, csv);
+    if (!summary_path.empty()) {
+      JsonObject options;
+      options.add("pressure", opt.pressure).add("pressure_model", pressure_model)
+          .add("frames", opt.frames).add("dt", opt.dt).add("iterations", opt.solver.iterations)
+          .add("solver", solver).add("material", material).add("mu", opt.material_params.mu)
+          .add("lambda", opt.material_params.lambda).add("bending", bending)
+          .add("k_b", opt.solver.k_bending).add("mass", mass).add("density", opt.density)
+          .add("stop_volume_ratio", opt.stop_volume_ratio);
+      JsonObject summary;
+      summary.add("status", status).add("failure", failure).add("input", input).add("output", output)
+          .add("vertices", report.vertices).add("faces", report.faces)
+          .add("components", report.components).add("reoriented", report.reoriented)
+          .add("degenerate_faces", sim.rest_report().degenerate_faces)
+          .add("normalization_scale", sim.normalization().scale).add("options", options)
+          .add("frames_run", sim.frame()).add("final_volume_ratio", sim.volume_ratio())
+          .add("min_volume_ratio", min_ratio).add("wall_seconds", seconds)
+          .add("mean_step_ms", sim.frame() > 0 ? 1e3 * seconds / sim.frame() : 0.0)
+          .add("warnings", report.warnings);
+      write_text_atomic(summary_path, summary.str() + "\n");
+    }
+    if (status != "ok") {
+      std::cerr << "shellcontract run: simulation failed: " << failure
+                << "\nthe last good state (frame " << sim.frame() << ") was written to " << output << '\n';
+      return static_cast<int>(ExitCode::SimulationFailed);
+    }
+    if (!quiet)
+      std::cerr << "wrote " << output << ": " << sim.frame() << " frames, V/V0 = "
+                << std::setprecision(6) << sim.volume_ratio() << '\n';
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << "shellcontract run: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::BadInput);
+  } catch (const UsageError& e) {
+    std::cerr << "shellcontract run: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::BadUsage);
+  }
+}
+
+}  // namespace shellcontract::cli

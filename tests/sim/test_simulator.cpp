@@ -1,0 +1,169 @@
+// Whole-loop properties of the simulator (math-spec 2, 13 "Pipeline"; issue acceptance: rest
+// state, scale invariance, contraction trend, bad options, blow-up handling).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/rest_state.hpp"
+#include "shellcontract/sim/simulator.hpp"
+#include "support/cgal_mesh.hpp"
+
+namespace shellcontract {
+namespace {
+
+Mesh sphere(int level = 2, double r = 1.0) { return test::to_surface_mesh(test::icosphere(level, r)); }
+
+std::vector<double> run_ratios(const Mesh& mesh, const SimOptions& opt) {
+  Simulator sim(mesh, opt);
+  std::vector<double> r;
+  while (!sim.finished()) r.push_back(sim.step().volume_ratio);
+  return r;
+}
+
+TEST(Simulator, FaceOrderOfTheConstraintsIsTheInputOrder) {
+  const test::TriMesh fixture = test::icosphere(1);
+  const Mesh mesh = test::to_surface_mesh(fixture);
+  const Faces F = faces_array(mesh);
+  ASSERT_EQ(F.rows(), fixture.faces.rows());
+  EXPECT_EQ(F, fixture.faces);
+}
+
+TEST(Simulator, DihedralModelAtZeroPressureStaysAtRest) {
+  SimOptions opt;
+  opt.pressure = 0.0;
+  opt.bending = BendingModel::Dihedral;
+  opt.frames = 200;
+  Simulator sim(sphere(), opt);
+  const Positions x0 = sim.positions();
+  while (!sim.finished()) sim.step();
+  EXPECT_LE(std::abs(sim.volume_ratio() - 1.0), 1e-9);
+  EXPECT_LE((sim.positions() - x0).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+TEST(Simulator, IsometricModelAtZeroPressureDriftsTowardFlat) {
+  // The paper's flat-rest bending is not at rest on a curved shell (math-spec 8.2, 12.3): with
+  // no pressure the sphere still changes. README "Rest drift" quotes the measured size.
+  SimOptions opt;
+  opt.pressure = 0.0;
+  opt.frames = 200;
+  const std::vector<double> r = run_ratios(sphere(), opt);
+  const double drift = std::abs(r.back() - 1.0);
+  RecordProperty("isometric_rest_drift", std::to_string(drift));
+  EXPECT_GT(drift, 1e-6);
+}
+
+TEST(Simulator, ScaleInvariance) {
+  // The same run on a mesh scaled by 1e-4 and by 1e4 (and moved) gives the same normalized
+  // result (design.md "Units and scale").
+  test::TriMesh small = test::icosphere(3, 1e-4), large = test::icosphere(3, 1e4);
+  small.x.rowwise() += Eigen::RowVector3d(3e-4, -1e-4, 2e-4);
+  large.x.rowwise() += Eigen::RowVector3d(-5e4, 2e4, 1e4);
+  SimOptions opt;
+  opt.frames = 100;
+  opt.pressure = 3.0;  // a sphere resists uniform pressure; this one buckles and deforms
+  Simulator a(test::to_surface_mesh(small), opt), b(test::to_surface_mesh(large), opt);
+  while (!a.finished()) {
+    a.step();
+    b.step();
+  }
+  ASSERT_LT(a.volume_ratio(), 0.99) << "the run must actually deform";
+  EXPECT_LE(std::abs(a.volume_ratio() - b.volume_ratio()) / a.volume_ratio(), 1e-9);
+  EXPECT_LE((a.positions() - b.positions()).cwiseAbs().maxCoeff(), 1e-9);
+  // Output is scaled back to the input units: normalized * scale + centre.
+  const double scale_ratio = b.normalization().scale / a.normalization().scale;
+  EXPECT_NEAR(scale_ratio, 1e8, 1e8 * 1e-12);
+  EXPECT_LE((a.positions_in_input_units().rowwise() - Eigen::RowVector3d(3e-4, -1e-4, 2e-4))
+                .cwiseAbs().maxCoeff(), 1e-4);
+}
+
+TEST(Simulator, ContractionTrendsDownAndStiffBendingContractsLess) {
+  // math-spec 13 pipeline smoke test and the paper's Fig. 17 ordering, on a fine sphere under a
+  // pressure above its buckling load. (Strict per-frame monotonicity on the paper's meshes is
+  // tested in test_paper_meshes.cpp.)
+  SimOptions soft;
+  soft.frames = 100;
+  soft.pressure = 3.0;
+  const std::vector<double> r_soft = run_ratios(sphere(3), soft);
+  EXPECT_LT(r_soft[49], r_soft[0]);
+  EXPECT_LT(r_soft[99], r_soft[49]);
+  EXPECT_LT(r_soft.back(), 0.9);
+  SimOptions stiff = soft;
+  stiff.solver.k_bending = 1.0;
+  const std::vector<double> r_stiff = run_ratios(sphere(3), stiff);
+  EXPECT_GT(r_stiff.back(), r_soft.back());
+}
+
+TEST(Simulator, XpbdContractsAndStifferMaterialContractsLess) {
+  SimOptions opt;
+  opt.solver.kind = SolverKind::Xpbd;
+  opt.frames = 60;
+  opt.material_params.mu = 1.0;
+  opt.material_params.lambda = 1.0;
+  const double soft = run_ratios(sphere(2), opt).back();
+  opt.material_params.mu = 100.0;
+  opt.material_params.lambda = 100.0;
+  const double stiff = run_ratios(sphere(2), opt).back();
+  EXPECT_LT(soft, 0.99);
+  EXPECT_GT(stiff, soft);
+}
+
+TEST(Simulator, StopsWhenVolumeRatioFallsBelowEpsilon) {
+  SimOptions opt;
+  opt.frames = 10000;
+  opt.pressure = 3.0;
+  opt.stop_volume_ratio = 0.9;
+  Simulator sim(sphere(3), opt);
+  double previous = 1.0;
+  while (!sim.finished()) {
+    EXPECT_GE(previous, 0.9) << "stepped on after V/V0 fell below epsilon";
+    previous = sim.step().volume_ratio;
+  }
+  EXPECT_LT(sim.volume_ratio(), 0.9);
+  EXPECT_LT(sim.frame(), 10000);
+}
+
+TEST(Simulator, RejectsInvalidOptions) {
+  const Mesh mesh = sphere(1);
+  auto expect_usage = [&](auto modify) {
+    SimOptions opt;
+    modify(opt);
+    EXPECT_THROW(Simulator(mesh, opt), UsageError);
+  };
+  expect_usage([](SimOptions& o) { o.dt = 0.0; });
+  expect_usage([](SimOptions& o) { o.dt = std::nan(""); });
+  expect_usage([](SimOptions& o) { o.frames = -1; });
+  expect_usage([](SimOptions& o) { o.solver.k_bending = 2.0; });
+  expect_usage([](SimOptions& o) { o.density = 0.0; });
+  expect_usage([](SimOptions& o) { o.stop_volume_ratio = 1.5; });
+  expect_usage([](SimOptions& o) { o.pressure = INFINITY; });
+}
+
+TEST(Simulator, BlowUpIsReportedAndLastGoodStateKept) {
+  SimOptions opt;
+  opt.pressure = 1e308;  // the first prediction overflows to infinity
+  opt.frames = 5;
+  Simulator sim(sphere(1), opt);
+  const Positions x0 = sim.positions();
+  EXPECT_THROW(sim.step(), SimulationError);
+  EXPECT_EQ(sim.frame(), 0);
+  EXPECT_EQ(sim.positions(), x0);
+}
+
+TEST(Simulator, DegenerateFaceIsInactiveAndRunStaysFinite) {
+  // Move one vertex of a sphere onto the midpoint of an opposite edge of one of its faces:
+  // that face has zero rest area (math-spec 11).
+  test::TriMesh m = test::icosphere(2);
+  const int a = m.faces(0, 0), b = m.faces(0, 1), c = m.faces(0, 2);
+  m.x.row(c) = 0.5 * (m.x.row(a) + m.x.row(b));
+  SimOptions opt;
+  opt.frames = 50;
+  Simulator sim(test::to_surface_mesh(m), opt);
+  EXPECT_GE(sim.rest_report().degenerate_faces, 1u);
+  while (!sim.finished()) sim.step();
+  EXPECT_TRUE(sim.positions().allFinite());
+  EXPECT_LT(sim.volume_ratio(), 1.0);
+}
+
+}  // namespace
+}  // namespace shellcontract
