@@ -1,0 +1,181 @@
+// Typed tests over every membrane and anisotropic model (style.md 5, HOBAK's loop over all
+// materials): PK1 against central differences of psi with an eps sweep, zero energy and stress
+// at the model's rest state, rotation invariance (and its failure for Linear), PK1 equivariance,
+// and frame_dependent() against the model's actual sensitivity to the orientation s.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <type_traits>
+
+#include "material_cases.hpp"
+#include "shellcontract/material/active_fiber.hpp"
+#include "shellcontract/material/anisotropic_arap.hpp"
+#include "shellcontract/material/anisotropic_sqrt.hpp"
+#include "shellcontract/material/anisotropic_stvk.hpp"
+#include "shellcontract/material/corotated.hpp"
+#include "shellcontract/material/linear.hpp"
+#include "shellcontract/material/mooney_rivlin.hpp"
+#include "shellcontract/material/stvk.hpp"
+#include "support/fd_check.hpp"
+
+namespace shellcontract {
+namespace {
+
+using test::FCase;
+using test::material_cases;
+using test::rot2;
+
+/// Relative PK1-vs-FD tolerance (math-spec 13 item 2).
+constexpr double FD_TOL = 1e-6;
+
+/// What each model is expected to be; written from the math-spec, not from the code.
+template <class M>
+struct Expect {
+  static constexpr bool rotation_invariant = true;  // math-spec 4.4
+  static constexpr bool frame_dependent = false;    // depends on C = F^T F only
+  /// The model's rest state for fibre a (F = I unless stated).
+  static Mat2 rest(const Vec2&) { return Mat2::Identity(); }
+};
+template <>
+struct Expect<Linear> {
+  static constexpr bool rotation_invariant = false;  // math-spec 6.3
+  static constexpr bool frame_dependent = true;
+  static Mat2 rest(const Vec2&) { return Mat2::Identity(); }
+};
+template <>
+struct Expect<Corotated> {
+  static constexpr bool rotation_invariant = true;
+  static constexpr bool frame_dependent = true;  // rho^2 = tr C + 2 det F
+  static Mat2 rest(const Vec2&) { return Mat2::Identity(); }
+};
+template <>
+struct Expect<AnisotropicArap> {
+  static constexpr bool rotation_invariant = true;
+  static constexpr bool frame_dependent = true;  // sigma = sign(I5 + det F)
+  static Mat2 rest(const Vec2&) { return Mat2::Identity(); }
+};
+template <>
+struct Expect<ActiveFiber> {
+  static constexpr bool rotation_invariant = true;
+  static constexpr bool frame_dependent = true;  // sigma = sign(I5 + det F)
+  /// Rest at the target stretch: F a = gamma a, F a_perp = a_perp (math-spec 7).
+  static Mat2 rest(const Vec2& a) {
+    return Mat2::Identity() + (test::test_params().fiber_target - 1.0) * a * a.transpose();
+  }
+};
+
+template <class M>
+class MaterialTest : public ::testing::Test {
+ protected:
+  const M model{test::test_params()};
+  const std::vector<FCase> cases = material_cases();
+};
+
+using AllModels = ::testing::Types<Stvk, Corotated, Linear, MooneyRivlin, AnisotropicArap,
+                                   AnisotropicStvk, AnisotropicSqrt, ActiveFiber>;
+TYPED_TEST_SUITE(MaterialTest, AllModels);
+
+TYPED_TEST(MaterialTest, Pk1MatchesCentralDifferencesOfPsi) {
+  std::map<std::string, int> compared, total;
+  for (const FCase& c : this->cases) {
+    ++total[c.label];
+    if (!test::fd_smooth(c)) continue;
+    SCOPED_TRACE(c.describe());
+    const ElementMaterialData d = c.data();
+    const Mat2 P = this->model.pk1(c.F, d);
+    // Zero must not match zero: every kept case is a stressed state for every model.
+    ASSERT_GT(P.norm(), 1e-6) << "analytic PK1 is (near) zero";
+    const auto psi = [&](const Mat2& X) { return this->model.psi(X, d); };
+    const test::FdSweep sweep = test::fd_sweep(psi, c.F, P);
+    EXPECT_LE(sweep.best_error, FD_TOL) << sweep.report();
+    ++compared[c.label];
+  }
+  int n_compared = 0;
+  for (const auto& entry : compared) n_compared += entry.second;
+  this->RecordProperty("fd_cases_compared", n_compared);
+  std::printf("[ info     ] %d of %zu cases compared\n", n_compared, this->cases.size());
+  // The smoothness filter must leave every category in play (else the test proves little).
+  for (const auto& [label, n] : total) {
+    EXPECT_GE(compared[label], (n + 1) / 2) << "category " << label << " mostly filtered out";
+  }
+}
+
+TYPED_TEST(MaterialTest, ZeroEnergyAndStressAtRest) {
+  const double mu = test::test_params().mu;
+  for (double t : {0.0, 0.3, 1.0, 2.0}) {
+    ElementMaterialData d;
+    d.fiber = Vec2(std::cos(t), std::sin(t));
+    const Mat2 F = Expect<TypeParam>::rest(d.fiber);
+    SCOPED_TRACE("rest F = " + test::matrix_string(F) + ", a = " + test::matrix_string(d.fiber));
+    EXPECT_LE(std::abs(this->model.psi(F, d)), 1e-12 * mu);
+    EXPECT_LE(this->model.pk1(F, d).norm(), 1e-12 * mu);
+  }
+}
+
+TYPED_TEST(MaterialTest, RotationInvarianceMatchesContract) {
+  // psi(Q F) = psi(F) and P(Q F) = Q P(F) for Q in SO(2) (math-spec 4.4); Linear must FAIL it.
+  double worst_psi = 0.0, worst_pk1 = 0.0;
+  int k = 0;
+  for (const FCase& c : this->cases) {
+    const Mat2 Q = rot2(0.7 + 0.37 * (k++));
+    const ElementMaterialData d = c.data();
+    const double psi0 = this->model.psi(c.F, d);
+    const double psi1 = this->model.psi(Q * c.F, d);
+    const Mat2 P0 = this->model.pk1(c.F, d);
+    const Mat2 P1 = this->model.pk1(Q * c.F, d);
+    const double e_psi = std::abs(psi1 - psi0) / std::max(1.0, std::abs(psi0));
+    const double e_pk1 = (P1 - Q * P0).norm() / std::max(1.0, P0.norm());
+    worst_psi = std::max(worst_psi, e_psi);
+    worst_pk1 = std::max(worst_pk1, e_pk1);
+    if (Expect<TypeParam>::rotation_invariant) {
+      SCOPED_TRACE(c.describe() + ", Q = " + test::matrix_string(Q));
+      EXPECT_LE(e_psi, 1e-12);
+      EXPECT_LE(e_pk1, 1e-12);
+    }
+  }
+  if (!Expect<TypeParam>::rotation_invariant) {
+    EXPECT_GT(worst_psi, 1e-3) << "Linear is documented as not rotation-invariant";
+    EXPECT_GT(worst_pk1, 1e-3);
+  }
+}
+
+TYPED_TEST(MaterialTest, FrameDependentFlagMatchesReflectionSensitivity) {
+  // M F with M = diag(1, -1) has the same C = F^T F but the opposite det: the orientation s
+  // flipped (math-spec 4.2). C-only models must not notice; frame-dependent ones must, on some
+  // case. This pins the documented meaning of frame_dependent().
+  EXPECT_EQ(this->model.frame_dependent(), Expect<TypeParam>::frame_dependent);
+  const Mat2 M = Vec2(1.0, -1.0).asDiagonal();
+  double worst = 0.0;
+  for (const FCase& c : this->cases) {
+    const ElementMaterialData d = c.data();
+    const double psi0 = this->model.psi(c.F, d);
+    const double e = std::abs(this->model.psi(M * c.F, d) - psi0) / std::max(1.0, std::abs(psi0));
+    worst = std::max(worst, e);
+    if (!Expect<TypeParam>::frame_dependent) {
+      SCOPED_TRACE(c.describe());
+      EXPECT_LE(e, 1e-12);
+    }
+  }
+  if (Expect<TypeParam>::frame_dependent) {
+    EXPECT_GT(worst, 1e-3) << "documented as frame-dependent but blind to the orientation s";
+  }
+}
+
+TYPED_TEST(MaterialTest, VirtualAndConcreteCallsAgree) {
+  // The solver calls the concrete type, tools call through the interface: same numbers.
+  const MembraneMaterial& base = this->model;
+  for (const FCase& c : this->cases) {
+    SCOPED_TRACE(c.describe());
+    const ElementMaterialData d = c.data();
+    EXPECT_EQ(base.psi(c.F, d), this->model.psi(c.F, d));
+    EXPECT_EQ(base.pk1(c.F, d), this->model.pk1(c.F, d));
+    EXPECT_TRUE(std::isfinite(base.psi(c.F, d)));
+    EXPECT_TRUE(base.pk1(c.F, d).allFinite());
+  }
+}
+
+}  // namespace
+}  // namespace shellcontract
