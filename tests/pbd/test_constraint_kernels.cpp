@@ -194,3 +194,32 @@ TEST(DihedralHingeProjection, ReducesAngleErrorAndConservesMomentum) {
 
 }  // namespace
 }  // namespace shellcontract
+
+namespace shellcontract {
+namespace {
+
+TEST(MembraneCForm, AgreesWithTheFrameLiftIncludingCollapsedTriangles) {
+  // math-spec 4.4: for energies of C alone, P3 = F S equals p^T Pbar. The solver's fast path
+  // (C-form) must give the same energy and gradient as fem/triangle_element's frame path.
+  std::mt19937 rng(17);
+  const Stvk m(MaterialParams{1.3, 0.4});
+  for (int t = 0; t < 40; ++t) {
+    const std::vector<Vec3> rest{test::random_vec3(rng), test::random_vec3(rng), test::random_vec3(rng)};
+    const MembraneConstraint c = membrane_on(rest);
+    std::vector<Vec3> x(3);
+    for (int i = 0; i < 3; ++i) x[i] = 0.7 * rest[i] + 0.3 * test::random_vec3(rng);
+    if (t == 0) x[2] = 0.5 * (x[0] + x[1]);  // collinear: frame not regular
+    std::array<Vec3, 3> g_c, g_f;
+    const double E_c = membrane_energy_gradient_cform(m, c, x[0], x[1], x[2], g_c);
+    double E_f;
+    element_energy_gradient(m, ElementMaterialData{}, x[0], x[1], x[2],
+                            triangle_rest(rest[0], rest[1], rest[2]), 1.0, E_f, g_f[0], g_f[1], g_f[2]);
+    ASSERT_GT(E_f, 0.0);
+    EXPECT_NEAR(E_c, E_f, 1e-12 * E_f) << "trial " << t;
+    for (int i = 0; i < 3; ++i)
+      EXPECT_LE((g_c[i] - g_f[i]).norm(), 1e-11 * (1.0 + g_f[i].norm())) << "trial " << t << " vertex " << i;
+  }
+}
+
+}  // namespace
+}  // namespace shellcontract

@@ -25,6 +25,19 @@ class Stvk final : public MembraneMaterial {
     return F * (2.0 * mu_ * E + lambda_ * E.trace() * Mat2::Identity());
   }
 
+  /// C-form (math-spec 4.4 "shortcut"): psi and the second Piola-Kirchhoff stress
+  /// S = 2 dpsi/dC = 2 mu E + lambda tr(E) I from C = F^T F, so that P3 = F S needs no frame.
+  /// The PBD kernel uses this path when a material provides it.
+  double psi_second_pk(const Mat2& C, const ElementMaterialData&, Mat2& S) const {
+    const double e00 = 0.5 * (C(0, 0) - 1.0), e11 = 0.5 * (C(1, 1) - 1.0);
+    const double e01 = 0.5 * C(0, 1);
+    const double tr = e00 + e11;
+    S(0, 0) = 2.0 * mu_ * e00 + lambda_ * tr;
+    S(1, 1) = 2.0 * mu_ * e11 + lambda_ * tr;
+    S(0, 1) = S(1, 0) = 2.0 * mu_ * e01;
+    return mu_ * (e00 * e00 + e11 * e11 + 2.0 * e01 * e01) + 0.5 * lambda_ * tr * tr;
+  }
+
  private:
   static Mat2 green_strain(const Mat2& F) {
     return 0.5 * (F.transpose() * F - Mat2::Identity());

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 #include "shellcontract/fem/triangle_element.hpp"
 #include "shellcontract/pbd/constraints.hpp"
@@ -35,6 +37,35 @@ inline void apply_step(double* x, const double* w, const std::array<int, N>& v,
 }
 }  // namespace detail
 
+/// True when material M offers the frame-free C-form psi_second_pk(C, data, S) (math-spec 4.4).
+template <class M, class = void>
+struct has_second_pk : std::false_type {};
+template <class M>
+struct has_second_pk<M, std::void_t<decltype(std::declval<const M&>().psi_second_pk(
+                            std::declval<const Mat2&>(), std::declval<const ElementMaterialData&>(),
+                            std::declval<Mat2&>()))>> : std::true_type {};
+
+/// Energy and vertex gradients of a membrane element through the C-form: F = Ds Dm^-1 (3x2),
+/// C = F^T F, P3 = F S, [g1 g2] = Abar P3 Dm^-T (math-spec 4.4). No frame, no square root; exact
+/// also for a collapsed current triangle. @return E
+template <class M>
+inline double membrane_energy_gradient_cform(const M& material, const MembraneConstraint& c,
+                                             const Vec3& x1, const Vec3& x2, const Vec3& x3,
+                                             std::array<Vec3, 3>& g) {
+  Eigen::Matrix<double, 3, 2> Ds;
+  Ds.col(0) = x1 - x3;
+  Ds.col(1) = x2 - x3;
+  const Eigen::Matrix<double, 3, 2> F = Ds * c.Dm_inv;
+  const Mat2 C = F.transpose() * F;
+  Mat2 S;
+  const double psi = material.psi_second_pk(C, c.data, S);
+  const Eigen::Matrix<double, 3, 2> H = c.rest_area * (F * S) * c.Dm_inv.transpose();
+  g[0] = H.col(0);
+  g[1] = H.col(1);
+  g[2] = -g[0] - g[1];
+  return c.rest_area * psi;
+}
+
 /// Projects one membrane (or anisotropic) constraint with material M.
 /// PBD (lambda == nullptr): dx_i = -k E/G w_i g_i, G = sum w_i |g_i|^2 (math-spec 9.1), with the
 /// skip and clamp guards of 9.1(d). XPBD (lambda != nullptr): C = sqrt(2E), division-free update
@@ -46,13 +77,20 @@ inline bool project_membrane(const M& material, const MembraneConstraint& c, dou
   const Vec3 x1 = detail::vertex(ctx.x, c.v[0]);
   const Vec3 x2 = detail::vertex(ctx.x, c.v[1]);
   const Vec3 x3 = detail::vertex(ctx.x, c.v[2]);
-  TriangleFrame fr;
-  if (!triangle_frame(x1, x2, x3, c.Dm_inv, c.rest_area, ctx.orientation, fr)) return false;
-  if (!fr.regular && material.frame_dependent()) return false;  // math-spec 11
-  const double E = c.rest_area * material.psi(fr.F, c.data);
-  if (!(E > ctx.energy_floor * c.rest_area)) return false;  // also rejects NaN
   std::array<Vec3, 3> g;
-  lift_gradient(fr, material.pk1(fr.F, c.data), c.Dm_inv, c.rest_area, g[0], g[1], g[2]);
+  double E;
+  if constexpr (has_second_pk<M>::value) {
+    // The orientation s does not matter for energies of C alone (math-spec 4.4).
+    E = membrane_energy_gradient_cform(material, c, x1, x2, x3, g);
+    if (!(E > ctx.energy_floor * c.rest_area)) return false;  // also rejects NaN
+  } else {
+    TriangleFrame fr;
+    if (!triangle_frame(x1, x2, x3, c.Dm_inv, c.rest_area, ctx.orientation, fr)) return false;
+    if (!fr.regular && material.frame_dependent()) return false;  // math-spec 11
+    E = c.rest_area * material.psi(fr.F, c.data);
+    if (!(E > ctx.energy_floor * c.rest_area)) return false;  // also rejects NaN
+    lift_gradient(fr, material.pk1(fr.F, c.data), c.Dm_inv, c.rest_area, g[0], g[1], g[2]);
+  }
   const double G = ctx.w[c.v[0]] * g[0].squaredNorm() + ctx.w[c.v[1]] * g[1].squaredNorm() +
                    ctx.w[c.v[2]] * g[2].squaredNorm();
   if (!(G > 1e-300)) return false;  // stationary point with E > 0 (math-spec 9.1d)
