@@ -320,6 +320,14 @@ TEST(FiberGuard, ZeroPk1BelowTheThresholdAndBoundedAbove) {
     EXPECT_NEAR(astvk.pk1(F, d).norm(), 2 * muA * (1 - r * r) * r, 1e-15);
     EXPECT_NEAR(astvk.psi(F, d), 0.5 * muA * (r * r - 1) * (r * r - 1), 1e-15);
   }
+  // The C-form hook has the same guard, and survives a slightly negative a^T C a (round-off).
+  for (double i5 : {0.0, -1e-18, 1e-20}) {
+    const Mat2 C = Vec2(i5, 1.3).asDiagonal();
+    Mat2 S;
+    const double psi = sq.psi_second_pk(C, FIBER_X, S);
+    EXPECT_EQ(S, Mat2::Zero()) << "a^T C a = " << i5;
+    EXPECT_NEAR(psi, 0.5 * muA, 1e-9) << "a^T C a = " << i5;
+  }
   // Just above the threshold the ARAP/Sqrt PK1 is bounded by mu_A (1 + 1/|Fa|) |Fa| ~ mu_A.
   const Mat2 F = Vec2(2 * FIBER_MIN_STRETCH, 0.0) * a.transpose() + Vec2(0.3, 1.1) * a_perp.transpose();
   const ElementMaterialData d{a};

@@ -9,6 +9,7 @@
 #include <map>
 #include <string>
 #include <type_traits>
+#include <utility>
 
 #include "material_cases.hpp"
 #include "shellcontract/material/active_fiber.hpp"
@@ -66,6 +67,22 @@ struct Expect<ActiveFiber> {
     return Mat2::Identity() + (test::test_params().fiber_target - 1.0) * a * a.transpose();
   }
 };
+
+/// True when M offers the frame-free C-form psi_second_pk(C, data, S) that the PBD kernel
+/// prefers (pbd/constraint_kernels.hpp has_second_pk; redeclared here so the material tests do
+/// not depend on pbd/).
+template <class M, class = void>
+struct HasCForm : std::false_type {};
+template <class M>
+struct HasCForm<M, std::void_t<decltype(std::declval<const M&>().psi_second_pk(
+                       std::declval<const Mat2&>(), std::declval<const ElementMaterialData&>(),
+                       std::declval<Mat2&>()))>> : std::true_type {};
+
+/// Models expected to offer the C-form: the C-only energies except Mooney-Rivlin, whose clamped
+/// S diverges at det C = 0 (see mooney_rivlin.hpp).
+template <class M>
+constexpr bool EXPECT_C_FORM = std::is_same_v<M, Stvk> || std::is_same_v<M, AnisotropicStvk> ||
+                               std::is_same_v<M, AnisotropicSqrt>;
 
 template <class M>
 class MaterialTest : public ::testing::Test {
@@ -161,6 +178,26 @@ TYPED_TEST(MaterialTest, FrameDependentFlagMatchesReflectionSensitivity) {
   }
   if (Expect<TypeParam>::frame_dependent) {
     EXPECT_GT(worst, 1e-3) << "documented as frame-dependent but blind to the orientation s";
+  }
+}
+
+TYPED_TEST(MaterialTest, CFormHookAgreesWithTheFForm) {
+  // psi_second_pk(F^T F) must give psi(F) and P = F S (math-spec 4.4), on every case including
+  // inverted and near-degenerate ones (the C-path is what the kernel runs on collapsed triangles).
+  EXPECT_EQ(HasCForm<TypeParam>::value, EXPECT_C_FORM<TypeParam>);
+  if constexpr (HasCForm<TypeParam>::value) {
+    ASSERT_FALSE(this->model.frame_dependent()) << "a C-form model cannot be frame-dependent";
+    for (const FCase& c : this->cases) {
+      SCOPED_TRACE(c.describe());
+      const ElementMaterialData d = c.data();
+      Mat2 S = Mat2::Constant(std::nan(""));
+      const double psi_c = this->model.psi_second_pk(c.F.transpose() * c.F, d, S);
+      const double psi_f = this->model.psi(c.F, d);
+      const Mat2 P = this->model.pk1(c.F, d);
+      EXPECT_NEAR(psi_c, psi_f, 1e-13 * (1.0 + std::abs(psi_f)));
+      EXPECT_LE((S - S.transpose()).norm(), 1e-14 * (1.0 + S.norm()));
+      EXPECT_LE((c.F * S - P).norm(), 1e-13 * (1.0 + P.norm()));
+    }
   }
 }
 

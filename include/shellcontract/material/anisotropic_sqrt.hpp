@@ -2,6 +2,7 @@
 // script; paper section 3.3; math-spec 7).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "shellcontract/material/material.hpp"
@@ -36,6 +37,24 @@ class AnisotropicSqrt final : public MembraneMaterial {
     const double len = Fa.norm();
     if (len < FIBER_MIN_STRETCH) return Mat2::Zero();  // direction undefined (math-spec 11)
     return mu_ * (1.0 - 1.0 / len) * Fa * d.fiber.transpose();
+  }
+
+  /// C-form (math-spec 4.4 shortcut, same hook as Stvk::psi_second_pk): psi and the second
+  /// Piola-Kirchhoff stress S = 2 dpsi/dC = mu_A (1 - 1/sqrt(I5)) a a^T from C = F^T F (2x2, rest
+  /// frame), I5 = a^T C a, so that P3 = F S needs no current frame. Same guard as pk1(): S = 0
+  /// when sqrt(I5) < FIBER_MIN_STRETCH (I5 is clamped at 0 against round-off first).
+  /// @param C  right Cauchy-Green tensor (2x2, symmetric); @param d  d.fiber: unit a
+  /// @param S  output, symmetric 2x2; @return psi
+  double psi_second_pk(const Mat2& C, const ElementMaterialData& d, Mat2& S) const {
+    const Vec2& a = d.fiber;
+    const double len = std::sqrt(std::max(0.0, a.dot(C * a)));
+    if (len < FIBER_MIN_STRETCH) {
+      S.setZero();  // direction undefined (math-spec 11)
+    } else {
+      S = (mu_ * (1.0 - 1.0 / len)) * a * a.transpose();
+    }
+    const double t = len - 1.0;
+    return 0.5 * mu_ * t * t;
   }
 
  private:

@@ -34,6 +34,18 @@ class AnisotropicStvk final : public MembraneMaterial {
     return 2.0 * mu_ * (Fa.squaredNorm() - 1.0) * Fa * d.fiber.transpose();
   }
 
+  /// C-form (math-spec 4.4 shortcut, same hook as Stvk::psi_second_pk): psi and the second
+  /// Piola-Kirchhoff stress S = 2 dpsi/dC = 2 mu_A (I5 - 1) a a^T from C = F^T F (2x2, rest
+  /// frame), I5 = a^T C a, so that P3 = F S needs no current frame.
+  /// @param C  right Cauchy-Green tensor (2x2, symmetric); @param d  d.fiber: unit a
+  /// @param S  output, symmetric 2x2; @return psi
+  double psi_second_pk(const Mat2& C, const ElementMaterialData& d, Mat2& S) const {
+    const Vec2& a = d.fiber;
+    const double t = a.dot(C * a) - 1.0;
+    S = (2.0 * mu_ * t) * a * a.transpose();
+    return 0.5 * mu_ * t * t;
+  }
+
  private:
   double mu_;
 };

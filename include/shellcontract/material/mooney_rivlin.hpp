@@ -28,6 +28,11 @@ inline constexpr double MOONEY_RIVLIN_MIN_ABS_J = 1e-6;
 /// barrier slope at |J| = J0). psi is then finite at J = 0 (at most ~3 C10 / J0^2), C1 across
 /// |J| = J0, and P keeps pushing |J| up instead of blowing up or vanishing. At J = 0 exactly
 /// sign(J) = +1 is used (psi has a kink there; the subgradient choice is arbitrary).
+///
+/// No C-form psi_second_pk() (the frame-free hook Stvk offers the PBD kernel): under the clamp
+/// dpsi/d(det C) ~ 1/(J0^3 |J|) diverges as det C -> 0 while P = F S stays finite, so S is
+/// unusable exactly where the C-path would be needed (collapsed triangles). The F-form is exact
+/// on the collapsed-triangle frame too, since psi depends on C only.
 class MooneyRivlin final : public MembraneMaterial {
  public:
   /// @param p  uses c10 and c01 (energy per unit rest area)
