@@ -19,8 +19,8 @@ MaterialParams membrane_lame_from_young(double young, double poisson, double thi
   if (!(young > 0.0) || !std::isfinite(young) || !(thickness > 0.0) || !std::isfinite(thickness) ||
       !(poisson > -1.0 && poisson < 1.0)) {
     std::ostringstream msg;
-    msg << "membrane_lame_from_young: need E > 0, h > 0 and -1 < nu < 1 (finite), got E = "
-        << young << ", nu = " << poisson << ", h = " << thickness;
+    msg << "membrane_lame_from_young: need E > 0, h > 0 and -1 < nu < 1 (finite), got E = " << young
+        << ", nu = " << poisson << ", h = " << thickness;
     throw UsageError(msg.str());
   }
   MaterialParams p;

@@ -61,7 +61,9 @@ inline std::vector<FCase> material_cases() {
   std::mt19937 rng(20200610);
   constexpr double PI = 3.14159265358979323846;
   std::uniform_real_distribution<double> angle(-PI, PI);
-  auto uni = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto uni = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   auto unit = [&] {
     const double t = angle(rng);
     return Vec2(std::cos(t), std::sin(t));
@@ -80,9 +82,12 @@ inline std::vector<FCase> material_cases() {
     F << uni(-1.5, 1.5), uni(-1.5, 1.5), uni(-1.5, 1.5), uni(-1.5, 1.5);
     out.push_back({"random", F, unit()});
   }
-  for (int k = 0; k < 10; ++k) out.push_back({"compressed", svd_form(uni(0.2, 0.9), uni(0.2, 0.9)), unit()});
-  for (int k = 0; k < 10; ++k) out.push_back({"stretched", svd_form(uni(1.1, 2.0), uni(1.1, 2.0)), unit()});
-  for (int k = 0; k < 15; ++k) out.push_back({"inverted", svd_form(uni(0.2, 2.0), -uni(0.2, 2.0)), unit()});
+  for (int k = 0; k < 10; ++k)
+    out.push_back({"compressed", svd_form(uni(0.2, 0.9), uni(0.2, 0.9)), unit()});
+  for (int k = 0; k < 10; ++k)
+    out.push_back({"stretched", svd_form(uni(1.1, 2.0), uni(1.1, 2.0)), unit()});
+  for (int k = 0; k < 15; ++k)
+    out.push_back({"inverted", svd_form(uni(0.2, 2.0), -uni(0.2, 2.0)), unit()});
   for (int k = 0; k < 10; ++k) {  // |det F| ~ 1e-4: a nearly collapsed triangle, both signs
     const double sgn = (k % 2 == 0) ? 1.0 : -1.0;
     out.push_back({"near-degenerate", svd_form(uni(0.5, 1.5), sgn * uni(1e-4, 9e-4)), unit()});

@@ -130,7 +130,8 @@ TEST(AnisotropicArap, EnergyJumpsAcrossTheSignSurface) {
 
 /// A random 2x3 p with orthonormal rows (the current frame), from the case index.
 Mat23 frame_rows(int k) {
-  const Mat3 Q = Eigen::AngleAxisd(0.4 + 0.9 * k, Vec3(1.0, 2.0 + k, -1.0).normalized()).toRotationMatrix();
+  const Mat3 Q =
+      Eigen::AngleAxisd(0.4 + 0.9 * k, Vec3(1.0, 2.0 + k, -1.0).normalized()).toRotationMatrix();
   return Q.topRows<2>();
 }
 
@@ -309,9 +310,9 @@ TEST(FiberGuard, ZeroPk1BelowTheThresholdAndBoundedAbove) {
     const ElementMaterialData d{a};
     SCOPED_TRACE("F = " + matrix_string(F));
     const double sigma = fiber_sign(F, a);
-    for (const MembraneMaterial* m : {static_cast<const MembraneMaterial*>(&arap),
-                                      static_cast<const MembraneMaterial*>(&sq),
-                                      static_cast<const MembraneMaterial*>(&active)}) {
+    for (const MembraneMaterial* m :
+         {static_cast<const MembraneMaterial*>(&arap), static_cast<const MembraneMaterial*>(&sq),
+          static_cast<const MembraneMaterial*>(&active)}) {
       EXPECT_EQ(m->pk1(F, d), Mat2::Zero()) << m->name();
     }
     EXPECT_NEAR(arap.psi(F, d), 0.5 * muA * (r - sigma) * (r - sigma), 1e-15);
@@ -329,7 +330,8 @@ TEST(FiberGuard, ZeroPk1BelowTheThresholdAndBoundedAbove) {
     EXPECT_NEAR(psi, 0.5 * muA, 1e-9) << "a^T C a = " << i5;
   }
   // Just above the threshold the ARAP/Sqrt PK1 is bounded by mu_A (1 + 1/|Fa|) |Fa| ~ mu_A.
-  const Mat2 F = Vec2(2 * FIBER_MIN_STRETCH, 0.0) * a.transpose() + Vec2(0.3, 1.1) * a_perp.transpose();
+  const Mat2 F =
+      Vec2(2 * FIBER_MIN_STRETCH, 0.0) * a.transpose() + Vec2(0.3, 1.1) * a_perp.transpose();
   const ElementMaterialData d{a};
   EXPECT_NEAR(sq.pk1(F, d).norm(), muA * (1 - 2 * FIBER_MIN_STRETCH), 1e-12);
   EXPECT_TRUE(arap.pk1(F, d).allFinite());
@@ -363,8 +365,9 @@ TEST(ActiveFiber, IdentityIsNotRestWhenGammaBelowOneAndGammaOneIsArap) {
   const ElementMaterialData d{Vec2(0.6, 0.8)};
   // At F = I the fibre is too long: psi = mu/2 (1 - gamma)^2, P = mu (1 - gamma) a a^T (pulls).
   EXPECT_NEAR(active.psi(Mat2::Identity(), d), 0.5 * muA * (1 - g) * (1 - g), 1e-15);
-  EXPECT_LE((active.pk1(Mat2::Identity(), d) - muA * (1 - g) * d.fiber * d.fiber.transpose()).norm(),
-            1e-15);
+  EXPECT_LE(
+      (active.pk1(Mat2::Identity(), d) - muA * (1 - g) * d.fiber * d.fiber.transpose()).norm(),
+      1e-15);
   MaterialParams one = PARAMS;
   one.fiber_target = 1.0;
   const ActiveFiber unit_target(one);

@@ -1,9 +1,8 @@
 // Rotation-variant polar decomposition, I4 closed form and the robust sign (math-spec 5, 13).
 #include <gtest/gtest.h>
 
-#include <cmath>
-
 #include <Eigen/SVD>
+#include <cmath>
 
 #include "material_cases.hpp"
 #include "shellcontract/material/polar2.hpp"
@@ -125,7 +124,7 @@ TEST(FiberInvariants, TieRuleGivesPlusOne) {
   ASSERT_LE(std::abs(fiber_i5(F, a) + F.determinant()), 1e-15);
   EXPECT_EQ(fiber_sign(F, a), 1.0);
   // Off the tie on either side the sign follows I5 + det F.
-  EXPECT_EQ(fiber_sign(Mat2(Vec2(-2.0, 0.5 - 1e-6).asDiagonal()), a), 1.0);   // det up: I5 + det > 0
+  EXPECT_EQ(fiber_sign(Mat2(Vec2(-2.0, 0.5 - 1e-6).asDiagonal()), a), 1.0);  // det up: I5 + det > 0
   EXPECT_EQ(fiber_sign(Mat2(Vec2(-2.0, 0.5 + 1e-6).asDiagonal()), a), -1.0);  // I5 + det < 0
   // F = 0: I5 = det = 0 is a tie as well.
   EXPECT_EQ(fiber_sign(Mat2::Zero(), a), 1.0);

@@ -73,9 +73,9 @@ TEST(Registry, UnknownNamesThrowAndListTheValidOnes) {
 
 TEST(Registry, WithMaterialPassesTheConcreteTypeAndTheParameters) {
   const auto expect_type = [](MaterialKind k, const std::type_info& t) {
-    EXPECT_EQ(with_material(k, PARAMS,
-                            [](const auto& m) -> const std::type_info& { return typeid(m); }),
-              t)
+    EXPECT_EQ(
+        with_material(k, PARAMS, [](const auto& m) -> const std::type_info& { return typeid(m); }),
+        t)
         << to_string(k);
   };
   expect_type(MaterialKind::Stvk, typeid(Stvk));
@@ -91,7 +91,8 @@ TEST(Registry, WithMaterialPassesTheConcreteTypeAndTheParameters) {
   const test::FCase c = test::material_cases().front();
   for (const std::string& n : material_names()) {
     const MaterialKind k = parse_material_kind(n);
-    const double via = with_material(k, PARAMS, [&](const auto& m) { return m.psi(c.F, c.data()); });
+    const double via =
+        with_material(k, PARAMS, [&](const auto& m) { return m.psi(c.F, c.data()); });
     EXPECT_EQ(via, make_material(k, PARAMS)->psi(c.F, c.data())) << n;
     EXPECT_GT(via, 0.0) << n;
   }

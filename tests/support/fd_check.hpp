@@ -2,14 +2,13 @@
 // (HOBAK's convergenceTest habit: the best step of the sweep must reach the tolerance).
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <iomanip>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace shellcontract::test {
 
@@ -37,7 +36,7 @@ struct FdSweep {
   std::vector<double> rel_errors;  ///< |G - G_fd(h)|_F / |G|_F for each step
   double best_error = std::numeric_limits<double>::infinity();
   double best_step = 0.0;
-  double analytic_norm = 0.0;      ///< |G|_F (callers require it to be nonzero)
+  double analytic_norm = 0.0;  ///< |G|_F (callers require it to be nonzero)
 
   /// Human-readable table of the sweep, for failure messages.
   std::string report() const {
@@ -49,9 +48,7 @@ struct FdSweep {
 };
 
 /// The default steps: 1e-3 down to 1e-9 (entries of F are O(1) in the material tests).
-inline std::vector<double> default_fd_steps() {
-  return {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9};
-}
+inline std::vector<double> default_fd_steps() { return {1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9}; }
 
 /// Compares an analytic gradient G of f at X with central differences for every step in `steps`,
 /// relative to |G|_F. The caller checks best_error against its tolerance and analytic_norm > 0.

@@ -10,9 +10,9 @@
 namespace shellcontract {
 
 /// psi = mu_A/2 (sqrt(I5) - sigma)^2, P = mu_A (1 - sigma / sqrt(I5)) F a a^T, with
-/// I5 = |F a|^2, sigma = sign(I4) from fiber_sign() (math-spec 5) and a = ElementMaterialData::fiber
-/// (unit, rest frame). sigma is piecewise constant, so P is the exact derivative away from the
-/// surface I4 = 0, where psi jumps by 2 mu_A sqrt(I5) (math-spec 7).
+/// I5 = |F a|^2, sigma = sign(I4) from fiber_sign() (math-spec 5) and a =
+/// ElementMaterialData::fiber (unit, rest frame). sigma is piecewise constant, so P is the exact
+/// derivative away from the surface I4 = 0, where psi jumps by 2 mu_A sqrt(I5) (math-spec 7).
 ///
 /// frame_dependent() is true: sigma = sign(I5 + det F) depends on the sign of det Fbar, i.e. on
 /// the orientation s of the current frame (math-spec 4.2, 5). With s = +1, sigma = +1 and the

@@ -15,7 +15,8 @@ namespace shellcontract {
 /// frame_dependent() is true: rho^2 = tr C + 2 det F depends on the sign of det Fbar, i.e. on
 /// the orientation s of the current frame (math-spec 4.2), not on C alone. An inverted triangle
 /// (s = -1) therefore has a different energy than its mirror image, which is what makes the model
-/// inversion-aware, and a collapsed triangle with an undefined frame must be skipped (math-spec 11).
+/// inversion-aware, and a collapsed triangle with an undefined frame must be skipped (math-spec
+/// 11).
 ///
 /// Singular spot: rho -> 0 (F = [[u, v], [v, -u]]). psi is continuous there
 /// (|F - R|^2 = |F|^2 - 2 rho + 2 for every R in the family) but not differentiable; polar2's

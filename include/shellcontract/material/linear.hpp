@@ -35,9 +35,7 @@ class Linear final : public MembraneMaterial {
   }
 
  private:
-  static Mat2 small_strain(const Mat2& F) {
-    return 0.5 * (F + F.transpose()) - Mat2::Identity();
-  }
+  static Mat2 small_strain(const Mat2& F) { return 0.5 * (F + F.transpose()) - Mat2::Identity(); }
   double mu_;
   double lambda_;
 };
