@@ -1,0 +1,142 @@
+// CCD broad phase: swept, inflated axis-aligned boxes over one normalized time step, and the
+// vertex-face (VF) and edge-edge (EE) pairs whose boxes overlap (math-spec 10.1-10.2). The
+// narrow phase (collision/ccd) runs only on these pairs.
+//
+// Eigen and std only. CGAL's box_intersection_d is used inside src/collision/broad_phase*.cpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "shellcontract/core/types.hpp"
+
+namespace shellcontract {
+
+/// Unique mesh edges, one row per edge, smaller vertex id first (#E by 2).
+using Edges = Eigen::Matrix<int, Eigen::Dynamic, 2, Eigen::RowMajor>;
+
+/// Edge ids of each face's three sides (#F by 3): column k is the side from corner k to corner
+/// (k+1) mod 3.
+using FaceEdges = Eigen::Matrix<int, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// Connectivity the broad phase needs; built once per mesh by make_collision_topology and reused
+/// every step (positions change, connectivity does not).
+struct CollisionTopology {
+  Faces faces;           ///< #F by 3 vertex ids (a copy of the input)
+  Edges edges;           ///< #E by 2, edges(e, 0) < edges(e, 1), rows sorted lexicographically
+  FaceEdges face_edges;  ///< #F by 3 edge ids, see FaceEdges
+  int num_vertices = 0;  ///< #V; every vertex 0..#V-1 is a VF candidate, referenced or not
+  /// VF pairs with the vertex not a corner of the face: #V #F - 3 #F (paper Table 2 "no culling").
+  std::int64_t all_vertex_face_pairs = 0;
+  /// EE pairs a < b sharing no vertex: #E(#E-1)/2 - sum_v deg(v)(deg(v)-1)/2.
+  std::int64_t all_edge_edge_pairs = 0;
+};
+
+/// Builds the unique edges and face-edge incidence of a triangle mesh.
+/// @param faces         #F by 3 vertex ids in [0, num_vertices), three distinct ids per face
+/// @param num_vertices  #V, the number of rows of the position arrays that will be passed later
+/// @return the topology; edge ids are deterministic (lexicographic order of (min id, max id))
+/// @throws InputError if a face has an id out of range or a repeated corner
+/// @throws UsageError if num_vertices < 0
+/// \note The mesh need not be closed or manifold: the broad phase only needs ids.
+CollisionTopology make_collision_topology(const Faces& faces, int num_vertices);
+
+/// Broad-phase algorithm. All of them return exactly the same pairs (tests compare each with
+/// brute force); they differ only in speed.
+enum class BroadPhaseMethod {
+  /// CGAL box_intersection_d on primitive boxes: vertex boxes against face boxes (bipartite
+  /// mode), edge boxes against themselves (complete mode). The default: fastest on bear.
+  PrimitiveBoxes,
+  /// CGAL box_intersection_d on face boxes (complete mode), then the 6 VF and 9 EE pairs of every
+  /// overlapping face pair, box-tested and deduplicated (math-spec 10.2, the paper's way).
+  FacePairs,
+};
+
+/// The method find_candidates uses when none is given.
+static constexpr BroadPhaseMethod DEFAULT_BROAD_PHASE_METHOD = BroadPhaseMethod::PrimitiveBoxes;
+
+namespace detail {
+/// A swept box with an id, in the form CGAL's Box_traits_d reads (min_coord, max_coord, id,
+/// dimension). Internal; in the header only so CandidatePairs can own the buffers.
+struct BroadPhaseBox {
+  using NT = double;
+  using ID = std::size_t;
+  std::array<double, 3> lo;
+  std::array<double, 3> hi;
+  std::size_t box_id;
+  double min_coord(int d) const { return lo[static_cast<std::size_t>(d)]; }
+  double max_coord(int d) const { return hi[static_cast<std::size_t>(d)]; }
+  std::size_t id() const { return box_id; }
+  static int dimension() { return 3; }
+};
+
+/// Scratch buffers reused between calls, so a steady-state call does not allocate.
+struct BroadPhaseScratch {
+  std::vector<BroadPhaseBox> vertex_boxes;  ///< indexed by vertex id
+  std::vector<BroadPhaseBox> face_boxes;    ///< indexed by face id
+  std::vector<BroadPhaseBox> edge_boxes;    ///< indexed by edge id
+  std::vector<BroadPhaseBox> work_a;        ///< copies CGAL may reorder
+  std::vector<BroadPhaseBox> work_b;
+  std::vector<std::uint64_t> vf_keys;       ///< packed (vertex << 32 | face) pair keys
+  std::vector<std::uint64_t> ee_keys;       ///< packed (edge a << 32 | edge b) pair keys
+};
+}  // namespace detail
+
+/// Candidate pairs for the narrow phase. Reuse one object across steps: the vectors keep their
+/// capacity.
+struct CandidatePairs {
+  /// (vertex id, face id), the vertex not a corner of the face; sorted, unique.
+  std::vector<std::array<int, 2>> vertex_face;
+  /// (edge id a, edge id b), a < b, the edges share no vertex; sorted, unique.
+  std::vector<std::array<int, 2>> edge_edge;
+  /// Internal buffers; not part of the result.
+  detail::BroadPhaseScratch scratch;
+};
+
+/// Counters of one find_candidates call (for logs and the paper's Table 2).
+struct BroadPhaseStats {
+  std::int64_t no_culling_vertex_face = 0;  ///< topo.all_vertex_face_pairs
+  std::int64_t no_culling_edge_edge = 0;    ///< topo.all_edge_edge_pairs
+  /// Overlapping box pairs the box search reported, adjacent ones included. PrimitiveBoxes:
+  /// VF + EE primitive box pairs. FacePairs: face box pairs.
+  std::int64_t box_overlaps = 0;
+  std::int64_t vertex_face = 0;  ///< VF pairs emitted
+  std::int64_t edge_edge = 0;    ///< EE pairs emitted
+  double seconds = 0.0;          ///< wall time of the call, s
+};
+
+/// Finds every VF and EE pair whose swept, inflated boxes overlap (math-spec 10.2).
+///
+/// A vertex's swept box is the min/max of its start and end positions (the straight trajectory of
+/// math-spec 10.1 stays inside it for t in [0,1]); a face's or edge's box is the min/max over its
+/// vertices' start and end positions. Each box is grown by `inflation` on every side, and two
+/// boxes overlap if their closed intervals intersect on all three axes (touching counts).
+///
+/// @param x0         #V by 3 start positions x^n (caller's length units)
+/// @param x1         #V by 3 end positions x^* (same units)
+/// @param topo       from make_collision_topology for this mesh; topo.num_vertices == #V
+/// @param inflation  added to each side of every box, >= 0, same units as x. Boxes of two
+///                   primitives closer than `inflation` (Euclidean) at some common time always
+///                   overlap; pass the contact tolerance tau (math-spec 10.6) or delta (10.7).
+/// @param out        receives the pairs (previous contents are discarded, capacity is reused)
+/// @param stats      optional counters of this call; may be nullptr
+/// @param method     algorithm; every method gives the same pairs
+/// @pre positions are finite
+/// @throws UsageError on a row-count mismatch or a negative or non-finite inflation
+void find_candidates(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
+                     double inflation, CandidatePairs& out, BroadPhaseStats* stats = nullptr,
+                     BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD);
+
+/// Fast conservative step check: does find_candidates have at least one pair to report?
+/// Stops at the first non-adjacent overlapping VF or EE box pair, so a `false` answer (nothing
+/// can collide this step, skip the narrow phase) costs one box search and a `true` answer usually
+/// much less.
+/// @param x0, x1, topo, inflation  as for find_candidates
+/// @param scratch    buffers reused between calls (e.g. the scratch of a CandidatePairs)
+/// @return true iff find_candidates would emit at least one VF or EE pair
+/// @throws UsageError as find_candidates
+bool has_any_candidate(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
+                       double inflation, detail::BroadPhaseScratch& scratch);
+
+}  // namespace shellcontract

@@ -1,0 +1,371 @@
+// CCD broad phase (math-spec 10.1-10.2) against brute force: every method must return exactly
+// the pairs that the box test over all VF and EE pairs returns (ipc-toolkit's
+// brute_force_comparison habit, style.md section 3).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellcontract/collision/broad_phase.hpp"
+#include "shellcontract/core/error.hpp"
+#include "support/mesh_fixtures.hpp"
+#include "support/random_geometry.hpp"
+
+namespace shellcontract {
+namespace {
+
+using Pairs = std::vector<std::array<int, 2>>;
+using test::TriMesh;
+
+const std::array<BroadPhaseMethod, 2> METHODS = {BroadPhaseMethod::PrimitiveBoxes,
+                                                 BroadPhaseMethod::FacePairs};
+
+std::string method_name(BroadPhaseMethod m) {
+  return m == BroadPhaseMethod::PrimitiveBoxes ? "PrimitiveBoxes" : "FacePairs";
+}
+
+/// Edges from the faces, written independently of the library: unique (min, max), sorted.
+std::vector<std::array<int, 2>> reference_edges(const Faces& faces) {
+  std::set<std::array<int, 2>> s;
+  for (Eigen::Index f = 0; f < faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(f, k), b = faces(f, (k + 1) % 3);
+      s.insert({std::min(a, b), std::max(a, b)});
+    }
+  return {s.begin(), s.end()};
+}
+
+/// Swept box of a vertex list, computed directly from all start and end coordinates.
+struct Box {
+  double lo[3], hi[3];
+};
+Box swept_box(const Positions& x0, const Positions& x1, std::initializer_list<int> verts,
+              double inflation) {
+  Box b;
+  for (int d = 0; d < 3; ++d) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (int v : verts) {
+      lo = std::min({lo, x0(v, d), x1(v, d)});
+      hi = std::max({hi, x0(v, d), x1(v, d)});
+    }
+    b.lo[d] = lo - inflation;
+    b.hi[d] = hi + inflation;
+  }
+  return b;
+}
+bool boxes_overlap(const Box& a, const Box& b) {
+  for (int d = 0; d < 3; ++d)
+    if (a.lo[d] > b.hi[d] || b.lo[d] > a.hi[d]) return false;
+  return true;
+}
+
+/// The oracle: every VF and EE pair, adjacency excluded, same closed box test.
+struct BruteForce {
+  Pairs vertex_face, edge_edge;
+  std::int64_t all_vf = 0, all_ee = 0;  // pairs tested = Table 2 "no culling"
+};
+BruteForce brute_force(const Positions& x0, const Positions& x1, const Faces& faces,
+                       double inflation) {
+  BruteForce r;
+  const auto edges = reference_edges(faces);
+  for (int v = 0; v < static_cast<int>(x0.rows()); ++v) {
+    const Box vb = swept_box(x0, x1, {v}, inflation);
+    for (int f = 0; f < static_cast<int>(faces.rows()); ++f) {
+      if (faces(f, 0) == v || faces(f, 1) == v || faces(f, 2) == v) continue;
+      ++r.all_vf;
+      if (boxes_overlap(vb, swept_box(x0, x1, {faces(f, 0), faces(f, 1), faces(f, 2)}, inflation)))
+        r.vertex_face.push_back({v, f});
+    }
+  }
+  for (int a = 0; a < static_cast<int>(edges.size()); ++a)
+    for (int b = a + 1; b < static_cast<int>(edges.size()); ++b) {
+      const auto& ea = edges[static_cast<std::size_t>(a)];
+      const auto& eb = edges[static_cast<std::size_t>(b)];
+      if (ea[0] == eb[0] || ea[0] == eb[1] || ea[1] == eb[0] || ea[1] == eb[1]) continue;
+      ++r.all_ee;
+      if (boxes_overlap(swept_box(x0, x1, {ea[0], ea[1]}, inflation),
+                        swept_box(x0, x1, {eb[0], eb[1]}, inflation)))
+        r.edge_edge.push_back({a, b});
+    }
+  return r;
+}
+
+std::string first_difference(const Pairs& got, const Pairs& want) {
+  std::ostringstream os;
+  Pairs missing, extra;
+  std::set_difference(want.begin(), want.end(), got.begin(), got.end(),
+                      std::back_inserter(missing));
+  std::set_difference(got.begin(), got.end(), want.begin(), want.end(),
+                      std::back_inserter(extra));
+  os << got.size() << " pairs, brute force " << want.size() << "; missing " << missing.size()
+     << ", extra " << extra.size();
+  if (!missing.empty()) os << " (first missing " << missing[0][0] << "," << missing[0][1] << ")";
+  if (!extra.empty()) os << " (first extra " << extra[0][0] << "," << extra[0][1] << ")";
+  return os.str();
+}
+
+/// Runs every method and compares with brute force; returns the oracle for further checks.
+BruteForce expect_all_methods_match(const Positions& x0, const Positions& x1, const Faces& faces,
+                                    double inflation, const std::string& label) {
+  const BruteForce want = brute_force(x0, x1, faces, inflation);
+  const CollisionTopology topo = make_collision_topology(faces, static_cast<int>(x0.rows()));
+  for (BroadPhaseMethod m : METHODS) {
+    CandidatePairs got;
+    BroadPhaseStats stats;
+    find_candidates(x0, x1, topo, inflation, got, &stats, m);
+    const std::string where = label + ", method " + method_name(m) +
+                              ", inflation " + std::to_string(inflation);
+    EXPECT_TRUE(got.vertex_face == want.vertex_face)
+        << where << ": VF " << first_difference(got.vertex_face, want.vertex_face);
+    EXPECT_TRUE(got.edge_edge == want.edge_edge)
+        << where << ": EE " << first_difference(got.edge_edge, want.edge_edge);
+    EXPECT_EQ(stats.no_culling_vertex_face, want.all_vf) << where;
+    EXPECT_EQ(stats.no_culling_edge_edge, want.all_ee) << where;
+    EXPECT_EQ(stats.vertex_face, static_cast<std::int64_t>(want.vertex_face.size())) << where;
+    EXPECT_EQ(stats.edge_edge, static_cast<std::int64_t>(want.edge_edge.size())) << where;
+    // The box search reports adjacent pairs too, so it is at least the number emitted.
+    EXPECT_GE(stats.box_overlaps, m == BroadPhaseMethod::PrimitiveBoxes
+                                      ? stats.vertex_face + stats.edge_edge
+                                      : std::int64_t{1})
+        << where;
+    EXPECT_GE(stats.seconds, 0.0) << where;
+    EXPECT_EQ(has_any_candidate(x0, x1, topo, inflation, got.scratch),
+              !want.vertex_face.empty() || !want.edge_edge.empty())
+        << where;
+  }
+  return want;
+}
+
+Positions random_motion(const Positions& x0, double scale, std::mt19937& rng) {
+  Positions x1 = x0;
+  for (Eigen::Index v = 0; v < x1.rows(); ++v)
+    x1.row(v) += test::random_vec3(rng, scale).transpose();
+  return x1;
+}
+
+TriMesh combine(const TriMesh& a, const TriMesh& b) {
+  TriMesh m;
+  m.x.resize(a.x.rows() + b.x.rows(), 3);
+  m.x << a.x, b.x;
+  m.faces.resize(a.faces.rows() + b.faces.rows(), 3);
+  m.faces << a.faces, (b.faces.array() + static_cast<int>(a.x.rows())).matrix();
+  return m;
+}
+
+Positions translated(const Positions& x, const Vec3& t) {
+  Positions y = x;
+  y.rowwise() += t.transpose();
+  return y;
+}
+
+// ------------------------------------------------------------------ topology
+
+TEST(CollisionTopology, EdgesAreUniqueSortedAndMatchFaceSides) {
+  const TriMesh m = test::icosphere(1);
+  const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
+  const auto want = reference_edges(m.faces);
+  ASSERT_EQ(topo.edges.rows(), 120);  // closed icosphere level 1: E = 3F/2 = 120
+  ASSERT_EQ(static_cast<std::size_t>(topo.edges.rows()), want.size());
+  for (Eigen::Index e = 0; e < topo.edges.rows(); ++e) {
+    EXPECT_EQ(topo.edges(e, 0), want[static_cast<std::size_t>(e)][0]) << "edge " << e;
+    EXPECT_EQ(topo.edges(e, 1), want[static_cast<std::size_t>(e)][1]) << "edge " << e;
+  }
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int e = topo.face_edges(f, k);
+      const int a = m.faces(f, k), b = m.faces(f, (k + 1) % 3);
+      EXPECT_EQ(topo.edges(e, 0), std::min(a, b)) << "face " << f << " side " << k;
+      EXPECT_EQ(topo.edges(e, 1), std::max(a, b)) << "face " << f << " side " << k;
+    }
+  // No-culling counts against direct enumeration (zero motion: every box test is irrelevant).
+  const BruteForce bf = brute_force(m.x, m.x, m.faces, 0.0);
+  EXPECT_EQ(topo.all_vertex_face_pairs, bf.all_vf);
+  EXPECT_EQ(topo.all_edge_edge_pairs, bf.all_ee);
+}
+
+TEST(CollisionTopology, RejectsBadFaces) {
+  Faces out_of_range(1, 3);
+  out_of_range << 0, 1, 3;
+  EXPECT_THROW(make_collision_topology(out_of_range, 3), InputError);
+  Faces negative(1, 3);
+  negative << 0, -1, 2;
+  EXPECT_THROW(make_collision_topology(negative, 3), InputError);
+  Faces repeated(1, 3);
+  repeated << 0, 1, 1;
+  EXPECT_THROW(make_collision_topology(repeated, 3), InputError);
+  Faces ok(1, 3);
+  ok << 0, 1, 2;
+  EXPECT_THROW(make_collision_topology(ok, -1), UsageError);
+  EXPECT_NO_THROW(make_collision_topology(ok, 3));
+}
+
+// ------------------------------------------------------------------ brute-force comparisons
+
+TEST(BroadPhase, ZeroMotionUnperturbedIcosphereWithTouchingBoxes) {
+  // Icosphere coordinates repeat exactly (symmetry), so many boxes only touch: this checks that
+  // every method treats boxes as closed, like the brute force.
+  for (int levels : {0, 1, 2}) {
+    const TriMesh m = test::icosphere(levels);
+    for (double inflation : {0.0, 1e-3}) {
+      const BruteForce bf = expect_all_methods_match(
+          m.x, m.x, m.faces, inflation, "icosphere " + std::to_string(levels) + ", zero motion");
+      // Non-trivial comparison: neighbouring edges' boxes overlap. (VF boxes do not: on a
+      // convex polyhedron at rest a vertex is extreme, outside the boxes of the faces around it;
+      // the moving cases below cover VF.)
+      if (levels > 0) {
+        EXPECT_FALSE(bf.edge_edge.empty()) << "levels " << levels;
+      }
+    }
+  }
+}
+
+TEST(BroadPhase, RandomMotionsSmallToLarge) {
+  std::mt19937 rng(20200531);
+  for (int levels : {1, 2}) {
+    const TriMesh m = test::icosphere(levels);
+    for (int trial = 0; trial < 4; ++trial) {
+      // Jitter the start so that coordinates are generic (and, for the larger jitter, the surface
+      // is locally concave so that VF boxes overlap even at small motion), then move.
+      const double jitter = trial % 2 == 0 ? 0.02 : 0.15;
+      const Positions x0 = random_motion(m.x, jitter, rng);
+      for (double scale : {0.0, 1e-3, 0.05, 0.3, 1.5}) {
+        const Positions x1 = random_motion(x0, scale, rng);
+        for (double inflation : {0.0, 1e-4, 0.02}) {
+          std::ostringstream label;
+          label << "icosphere " << levels << ", trial " << trial << ", jitter " << jitter
+                << ", motion " << scale;
+          const BruteForce bf = expect_all_methods_match(x0, x1, m.faces, inflation, label.str());
+          EXPECT_FALSE(bf.edge_edge.empty()) << label.str();
+          if (scale >= 0.3 || (jitter > 0.1 && levels == 2)) {
+            EXPECT_FALSE(bf.vertex_face.empty()) << label.str();
+          }
+          // Large motions make (almost) everything a candidate; the test must cover that regime.
+          if (scale == 1.5) {
+            EXPECT_GT(static_cast<double>(bf.vertex_face.size()),
+                      0.2 * static_cast<double>(bf.all_vf))
+                << label.str();
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(BroadPhase, TwoSpheresPushedIntoEachOther) {
+  // Two unit spheres 0.1 apart move 0.25 towards each other each, ending 0.4 interpenetrated.
+  const TriMesh s = test::icosphere(2);
+  const TriMesh both = combine(s, s);
+  const int nv = static_cast<int>(s.x.rows());
+  const int nf = static_cast<int>(s.faces.rows());
+  Positions x0(2 * nv, 3), x1(2 * nv, 3);
+  x0 << translated(s.x, Vec3(-1.05, 0, 0)), translated(s.x, Vec3(1.05, 0, 0));
+  x1 << translated(s.x, Vec3(-0.8, 0, 0)), translated(s.x, Vec3(0.8, 0, 0));
+  for (double inflation : {0.0, 1e-3}) {
+    const BruteForce bf = expect_all_methods_match(x0, x1, both.faces, inflation, "two spheres");
+    // There must be pairs between the spheres (vertex of one, face of the other).
+    const auto cross = std::count_if(bf.vertex_face.begin(), bf.vertex_face.end(),
+                                     [&](const std::array<int, 2>& p) {
+                                       return (p[0] < nv) != (p[1] < nf);
+                                     });
+    EXPECT_GT(cross, 0) << "inflation " << inflation;
+  }
+  // Far apart and still: only pairs within each sphere, none between them.
+  const Positions far0 =
+      (Positions(2 * nv, 3) << translated(s.x, Vec3(-5, 0, 0)), translated(s.x, Vec3(5, 0, 0)))
+          .finished();
+  const BruteForce apart = expect_all_methods_match(far0, far0, both.faces, 1e-3, "apart");
+  for (const auto& p : apart.vertex_face) EXPECT_EQ(p[0] < nv, p[1] < nf);
+}
+
+TEST(BroadPhase, FacePairsKeepsPairsWhoseFacesAllShareAVertex) {
+  // In a tetrahedron every two faces share a vertex, so math-spec 10.2's "face pairs that share
+  // no vertex" would yield nothing, yet opposite edges and vertex/opposite face do overlap here.
+  Positions x(4, 3);
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  Faces f(4, 3);
+  f << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  const BruteForce bf = expect_all_methods_match(x, x, f, 0.0, "tetrahedron");
+  // Only the origin lies in its opposite face's box [0,1]^3 (face 3); every other vertex is at
+  // x, y or z = 1 while its opposite face lies in that coordinate's 0 plane.
+  EXPECT_TRUE(bf.vertex_face == (Pairs{{0, 3}}));
+  // The three opposite edge pairs have touching boxes, e.g. (0,1) and (2,3) both contain 0.
+  EXPECT_EQ(bf.edge_edge.size(), 3u);
+}
+
+TEST(BroadPhase, RandomTetrahedraBothAnswersOfTheEarlyExit) {
+  // Random small meshes: some have no candidate at all, some do; has_any_candidate must agree
+  // with brute force on both (checked inside expect_all_methods_match).
+  std::mt19937 rng(7);
+  Faces f(4, 3);
+  f << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  int empty = 0, nonempty = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    Positions x0(4, 3);
+    for (int v = 0; v < 4; ++v) x0.row(v) = test::random_vec3(rng).transpose();
+    const Positions x1 = random_motion(x0, 0.05, rng);
+    const BruteForce bf =
+        expect_all_methods_match(x0, x1, f, 0.01, "tetrahedron " + std::to_string(trial));
+    (bf.vertex_face.empty() && bf.edge_edge.empty() ? empty : nonempty) += 1;
+  }
+  EXPECT_GT(empty, 0);
+  EXPECT_GT(nonempty, 0);
+}
+
+// ------------------------------------------------------------------ contract checks
+
+TEST(BroadPhase, InflationIsAddedOnEverySide) {
+  // Triangle 0 in z = 0; triangle 1 lies in z = h above it, shifted so that only the z gap
+  // separates the boxes. Each box grows by `inflation`, so the pair appears iff h <= 2 inflation.
+  Positions x(6, 3);
+  Faces f(2, 3);
+  f << 0, 1, 2, 3, 4, 5;
+  const double inflation = 0.01;
+  for (double h : {0.5 * inflation, 1.9 * inflation, 2.1 * inflation}) {
+    x << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.2, 0.2, h, 0.3, 0.2, h, 0.2, 0.3, h;
+    const CollisionTopology topo = make_collision_topology(f, 6);
+    for (BroadPhaseMethod m : METHODS) {
+      CandidatePairs out;
+      find_candidates(x, x, topo, inflation, out, nullptr, m);
+      const bool hit = std::find(out.vertex_face.begin(), out.vertex_face.end(),
+                                 std::array<int, 2>{3, 0}) != out.vertex_face.end();
+      EXPECT_EQ(hit, h <= 2 * inflation) << "h " << h << ", " << method_name(m);
+    }
+  }
+}
+
+TEST(BroadPhase, ReusedOutputHoldsOnlyTheLatestCall) {
+  std::mt19937 rng(3);
+  const TriMesh m = test::icosphere(2);
+  const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
+  const Positions big = random_motion(m.x, 1.0, rng);
+  const BruteForce want = brute_force(m.x, m.x, m.faces, 0.0);
+  for (BroadPhaseMethod method : METHODS) {
+    CandidatePairs out;
+    find_candidates(m.x, big, topo, 0.0, out, nullptr, method);
+    ASSERT_GT(out.vertex_face.size(), want.vertex_face.size());  // the first call is larger
+    find_candidates(m.x, m.x, topo, 0.0, out, nullptr, method);
+    EXPECT_TRUE(out.vertex_face == want.vertex_face) << method_name(method);
+    EXPECT_TRUE(out.edge_edge == want.edge_edge) << method_name(method);
+  }
+}
+
+TEST(BroadPhase, RejectsMismatchedInput) {
+  const TriMesh m = test::icosphere(0);
+  const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
+  CandidatePairs out;
+  const Positions shorter = m.x.topRows(m.x.rows() - 1);
+  EXPECT_THROW(find_candidates(m.x, shorter, topo, 0.0, out), UsageError);
+  EXPECT_THROW(find_candidates(shorter, m.x, topo, 0.0, out), UsageError);
+  EXPECT_THROW(find_candidates(m.x, m.x, topo, -1e-3, out), UsageError);
+  EXPECT_THROW(find_candidates(m.x, m.x, topo, std::nan(""), out), UsageError);
+  EXPECT_THROW(has_any_candidate(m.x, shorter, topo, 0.0, out.scratch), UsageError);
+}
+
+}  // namespace
+}  // namespace shellcontract
