@@ -1,0 +1,158 @@
+// Time per CCD broad-phase call (math-spec 10.2) for each BroadPhaseMethod, with the candidate
+// counts of the paper's Table 2 (no culling, box overlaps, emitted VF / EE pairs).
+// Scene: the mesh scaled to bounding-box diagonal 1 (math-spec 1.2), moved by one realistic
+// contraction step: x1 = c + 0.99 (x0 - c) + noise (c = centroid, noise 1e-3 x mean edge length
+// per coordinate), inflation 1e-4 x diagonal (the paper's delta in normalized units).
+// Usage: bench_broad_phase [--mesh=PATH] [google-benchmark flags]
+// Default mesh: data/meshes/bear.off (scripts/fetch_paper_meshes.sh); if it is missing, an
+// icosphere with 5 subdivision levels (10242 vertices) is used instead.
+#include <benchmark/benchmark.h>
+
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <random>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "../tests/support/mesh_fixtures.hpp"
+#include "shellcontract/collision/broad_phase.hpp"
+
+namespace {
+
+using namespace shellcontract;
+
+std::string g_mesh = std::string(SHELLCONTRACT_PAPER_MESH_DIR) + "/bear.off";
+
+/// Minimal OFF reader (triangles only; polygons are fanned): enough for the paper meshes.
+test::TriMesh read_off(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open " + path);
+  // Tokens without comments.
+  std::stringstream body;
+  for (std::string line; std::getline(in, line);) body << line.substr(0, line.find('#')) << '\n';
+  std::string magic;
+  body >> magic;
+  if (magic != "OFF") throw std::runtime_error(path + ": not an OFF file");
+  long nv = 0, nf = 0, ne = 0;
+  body >> nv >> nf >> ne;
+  test::TriMesh m;
+  m.x.resize(nv, 3);
+  for (long i = 0; i < nv; ++i) body >> m.x(i, 0) >> m.x(i, 1) >> m.x(i, 2);
+  std::vector<std::array<int, 3>> tris;
+  for (long j = 0; j < nf; ++j) {
+    int k = 0;
+    body >> k;
+    std::vector<int> ids(static_cast<std::size_t>(k));
+    for (int& id : ids) body >> id;
+    for (int t = 1; t + 1 < k; ++t)
+      tris.push_back({ids[0], ids[static_cast<std::size_t>(t)], ids[static_cast<std::size_t>(t) + 1]});
+  }
+  if (!body) throw std::runtime_error(path + ": truncated OFF file");
+  m.faces.resize(static_cast<Eigen::Index>(tris.size()), 3);
+  for (std::size_t j = 0; j < tris.size(); ++j)
+    m.faces.row(static_cast<Eigen::Index>(j)) << tris[j][0], tris[j][1], tris[j][2];
+  return m;
+}
+
+struct Scene {
+  std::string name;
+  CollisionTopology topo;
+  Positions x0, x1;
+  double inflation = 0.0;
+};
+
+const Scene& scene() {
+  static const Scene s = [] {
+    Scene sc;
+    test::TriMesh m;
+    if (std::ifstream(g_mesh).good()) {
+      m = read_off(g_mesh);
+      sc.name = g_mesh;
+    } else {
+      std::cerr << "bench_broad_phase: " << g_mesh << " not found, using icosphere level 5\n";
+      m = test::icosphere(5);
+      sc.name = "icosphere(5)";
+    }
+    const Vec3 lo = m.x.colwise().minCoeff().transpose(), hi = m.x.colwise().maxCoeff().transpose();
+    sc.x0 = m.x / (hi - lo).norm();  // diagonal 1 (math-spec 1.2)
+    sc.topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
+    double mean_edge = 0.0;
+    for (Eigen::Index e = 0; e < sc.topo.edges.rows(); ++e)
+      mean_edge += (sc.x0.row(sc.topo.edges(e, 0)) - sc.x0.row(sc.topo.edges(e, 1))).norm();
+    mean_edge /= static_cast<double>(sc.topo.edges.rows());
+    const Eigen::RowVector3d c = sc.x0.colwise().mean();
+    std::mt19937 rng(1);
+    std::normal_distribution<double> noise(0.0, 1e-3 * mean_edge);
+    sc.x1 = (0.99 * (sc.x0.rowwise() - c)).rowwise() + c;
+    for (Eigen::Index i = 0; i < sc.x1.size(); ++i) sc.x1.data()[i] += noise(rng);
+    sc.inflation = 1e-4;  // x diagonal (= 1)
+    std::cerr << "bench_broad_phase: " << sc.name << ": " << sc.x0.rows() << " vertices, "
+              << sc.topo.faces.rows() << " faces, " << sc.topo.edges.rows()
+              << " edges, mean edge " << mean_edge << " (diagonal 1)\n";
+    return sc;
+  }();
+  return s;
+}
+
+void BM_FindCandidates(benchmark::State& state, BroadPhaseMethod method) {
+  const Scene& sc = scene();
+  CandidatePairs out;
+  BroadPhaseStats stats;
+  for (auto _ : state) {
+    find_candidates(sc.x0, sc.x1, sc.topo, sc.inflation, out, &stats, method);
+    benchmark::DoNotOptimize(out.vertex_face.data());
+    benchmark::DoNotOptimize(out.edge_edge.data());
+  }
+  state.counters["no_culling_vf"] = static_cast<double>(stats.no_culling_vertex_face);
+  state.counters["no_culling_ee"] = static_cast<double>(stats.no_culling_edge_edge);
+  state.counters["box_overlaps"] = static_cast<double>(stats.box_overlaps);
+  state.counters["vf"] = static_cast<double>(stats.vertex_face);
+  state.counters["ee"] = static_cast<double>(stats.edge_edge);
+}
+
+/// The early-exit check on the same step (it finds a pair, so this is its "true" time).
+void BM_HasAnyCandidate(benchmark::State& state) {
+  const Scene& sc = scene();
+  detail::BroadPhaseScratch scratch;
+  bool any = false;
+  for (auto _ : state) {
+    any = has_any_candidate(sc.x0, sc.x1, sc.topo, sc.inflation, scratch);
+    benchmark::DoNotOptimize(any);
+  }
+  state.counters["any"] = any ? 1.0 : 0.0;
+}
+
+BENCHMARK_CAPTURE(BM_FindCandidates, PrimitiveBoxes, BroadPhaseMethod::PrimitiveBoxes)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FindCandidates, FacePairs, BroadPhaseMethod::FacePairs)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_FindCandidates, Bvh, BroadPhaseMethod::Bvh)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_HasAnyCandidate)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Our own flag first, then Google Benchmark's.
+  for (int i = 1; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--mesh=", 7) == 0) {
+      g_mesh = argv[i] + 7;
+      for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
+      --argc;
+      --i;
+    }
+  }
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  try {
+    scene();
+  } catch (const std::exception& e) {
+    std::cerr << "bench_broad_phase: cannot load " << g_mesh << ": " << e.what() << "\n";
+    return 2;
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
