@@ -45,6 +45,23 @@ MassModel parse_mass(const std::string& s) {
   throw UsageError("unknown mass model '" + s + "' (expected area or unit)");
 }
 
+InwardTerm parse_inward(const std::string& s) {
+  if (s == "projection") return InwardTerm::Projection;
+  if (s == "force") return InwardTerm::Force;
+  if (s == "none") return InwardTerm::None;
+  throw UsageError("unknown inward term '" + s + "' (expected projection, force or none)");
+}
+
+Vec3 parse_direction(const std::string& s) {
+  Vec3 d;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(s);
+  if (!(in >> d.x() >> c1 >> d.y() >> c2 >> d.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
+      !d.allFinite() || d.norm() == 0.0)
+    throw UsageError("--fiber expects 'centre' or a nonzero direction X,Y,Z, got '" + s + "'");
+  return d;
+}
+
 std::string join(const std::vector<std::string>& v) {
   std::string out;
   for (std::size_t i = 0; i < v.size(); ++i) out += (i ? "|" : "") + v[i];
@@ -70,6 +87,7 @@ int command_run(int argc, char** argv) {
                                                      bending = "isometric", pressure_model = "energy",
                                                      mass = "area";
   SimOptions opt;
+  std::string aniso = "none", regions_arg = "auto", inward = "projection", fiber = "centre";
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
 
@@ -111,8 +129,27 @@ int command_run(int argc, char** argv) {
        "bending k_B: pbd correction multiplier in [0,1]; xpbd energy scale")
       ("mass", po::value(&mass)->default_value(mass), "area: lumped by rest area; unit: m = 1")
       ("density", po::value(&opt.density)->default_value(opt.density), "areal density rho_A")
+      ("damping", po::value(&opt.damping)->default_value(opt.damping),
+       "fraction of the velocity removed per step, in [0, 1) (the paper has none)")
       ("stop-volume-ratio", po::value(&opt.stop_volume_ratio)->default_value(0.0),
        "stop when V/V0 falls below this (0 = run all frames)")
+      ("aniso", po::value(&aniso)->default_value(aniso),
+       ("anisotropic energy on the regions: " + join(aniso_names())).c_str())
+      ("regions", po::value(&regions_arg)->default_value(regions_arg),
+       "faces that get the anisotropic energy: auto (spherical regions by curvature), a file "
+       "(one line per region, 0-based face ids), or none")
+      ("k-a", po::value(&opt.anisotropy.kappa_a)->default_value(opt.anisotropy.kappa_a),
+       "kappa_A: the inward term is k_A = kappa_A mu_A sqrt(face rest area)")
+      ("inward", po::value(&inward)->default_value(inward),
+       "where k_A acts: projection (paper, pbd) | force (explicit inward force) | none")
+      ("mu-a", po::value(&opt.material_params.mu_aniso)->default_value(opt.material_params.mu_aniso),
+       "anisotropic fibre stiffness mu_A")
+      ("fiber-target", po::value(&opt.material_params.fiber_target)->default_value(opt.material_params.fiber_target),
+       "active-fiber target stretch gamma in (0, 1]")
+      ("fiber", po::value(&fiber)->default_value(fiber),
+       "fibre direction: centre (toward the region centre) or X,Y,Z (one direction for all)")
+      ("inversion-aware", po::bool_switch(&opt.solver.inversion_aware),
+       "orientation s = sign(n . n_ref) for the anisotropic faces (ARAP then differs from sqrt)")
       ("log", po::value(&log_path), "per-frame CSV log")
       ("summary", po::value(&summary_path), "JSON summary of the run")
       ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
@@ -139,6 +176,12 @@ int command_run(int argc, char** argv) {
     opt.bending = parse_bending(bending);
     opt.pressure_model = parse_pressure_model(pressure_model);
     opt.mass = parse_mass(mass);
+    opt.solver.aniso = parse_aniso_kind(aniso);
+    opt.inward_term = parse_inward(inward);
+    if (fiber != "centre") {
+      opt.anisotropy.fiber_mode = FiberMode::User;
+      opt.anisotropy.user_direction = parse_direction(fiber);
+    }
     if (vm.count("young") || vm.count("thickness")) {
       if (!vm.count("young") || !vm.count("thickness"))
         throw UsageError("--young needs --thickness (and the other way round)");

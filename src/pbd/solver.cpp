@@ -1,5 +1,6 @@
 #include "shellcontract/pbd/solver.hpp"
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -12,22 +13,30 @@ namespace {
 /// Skip threshold of math-spec 9.1(d): E <= 1e-16 mu Abar.
 constexpr double ENERGY_FLOOR_RELATIVE = 1e-16;
 
-/// The solver for one concrete membrane material type M: the template makes the per-element
-/// material calls direct and inlinable (material.hpp).
-template <class M>
+Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
+
+/// The solver for one concrete membrane material M and anisotropic energy A: the template makes
+/// the per-element material calls direct and inlinable (material.hpp).
+template <class M, class A>
 class GaussSeidelSolver final : public ConstraintSolver {
  public:
-  GaussSeidelSolver(M material, double energy_scale, ConstraintSet set,
-                    const SolverSettings& settings)
+  GaussSeidelSolver(M material, A aniso, double energy_scale, ConstraintSet set,
+                    const SolverSettings& settings, Faces faces)
       : material_(std::move(material)),
+        aniso_(std::move(aniso)),
         set_(std::move(set)),
         settings_(settings),
+        faces_(std::move(faces)),
         energy_floor_(ENERGY_FLOOR_RELATIVE * energy_scale) {
     if (settings_.kind == SolverKind::Xpbd) {
       lambda_membrane_.resize(set_.membranes.size());
       lambda_isometric_.resize(3 * set_.isometric_hinges.size());
       lambda_dihedral_.resize(set_.dihedral_hinges.size());
+      lambda_aniso_.resize(set_.anisotropic.size());
     }
+    aniso_normal_.resize(set_.anisotropic.size(), Vec3::Zero());
+    aniso_orientation_.resize(set_.anisotropic.size(), 1.0);
+    set_.anisotropic_k_a.resize(set_.anisotropic.size(), 0.0);
   }
 
   void solve(Positions& x, const Eigen::VectorXd& inv_mass) override {
@@ -41,7 +50,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
       std::fill(lambda_membrane_.begin(), lambda_membrane_.end(), 0.0);
       std::fill(lambda_isometric_.begin(), lambda_isometric_.end(), 0.0);
       std::fill(lambda_dihedral_.begin(), lambda_dihedral_.end(), 0.0);
+      std::fill(lambda_aniso_.begin(), lambda_aniso_.end(), 0.0);
     }
+    if (!set_.anisotropic.empty()) freeze_anisotropic_frames(x);
+    const bool paper_k_a = !xpbd && settings_.k_a_in_projection;
     const double kb = settings_.k_bending;
     for (int it = 0; it < settings_.iterations; ++it) {
       for (std::size_t i = 0; i < set_.membranes.size(); ++i)
@@ -53,38 +65,95 @@ class GaussSeidelSolver final : public ConstraintSolver {
       for (std::size_t i = 0; i < set_.dihedral_hinges.size(); ++i)
         project_dihedral_hinge(set_.dihedral_hinges[i], kb, ctx,
                                xpbd ? &lambda_dihedral_[i] : nullptr);
+      for (std::size_t i = 0; i < set_.anisotropic.size(); ++i) {
+        ProjectionContext c = ctx;
+        c.orientation = aniso_orientation_[i];
+        if (paper_k_a)
+          project_anisotropic_paper(aniso_, set_.anisotropic[i], set_.anisotropic_k_a[i],
+                                    aniso_normal_[i], c);
+        else
+          project_membrane(aniso_, set_.anisotropic[i], 1.0, c, xpbd ? &lambda_aniso_[i] : nullptr);
+      }
     }
   }
 
   ConstraintEnergies energies(const Positions& x) const override {
     ConstraintEnergies e;
-    auto X = [&](int i) { return Vec3(x.row(i).transpose()); };
-    for (const MembraneConstraint& c : set_.membranes) {
-      TriangleFrame fr;
-      if (!triangle_frame(X(c.v[0]), X(c.v[1]), X(c.v[2]), c.Dm_inv, c.rest_area, 1.0, fr)) continue;
-      if (!fr.regular && material_.frame_dependent()) continue;
-      e.membrane += c.rest_area * material_.psi(fr.F, c.data);
-    }
+    e.membrane = membrane_energy(material_, set_.membranes, x, nullptr);
+    e.anisotropic = membrane_energy(aniso_, set_.anisotropic, x, &aniso_orientation_);
     for (const IsometricHingeConstraint& c : set_.isometric_hinges) {
-      const Vec3 h = c.K(0) * X(c.v[0]) + c.K(1) * X(c.v[1]) + c.K(2) * X(c.v[2]) + c.K(3) * X(c.v[3]);
+      const Vec3 h = c.K(0) * row(x, c.v[0]) + c.K(1) * row(x, c.v[1]) + c.K(2) * row(x, c.v[2]) +
+                     c.K(3) * row(x, c.v[3]);
       e.bending += settings_.k_bending * 0.5 * c.three_over_area * h.squaredNorm();
     }
     for (const DihedralHingeConstraint& c : set_.dihedral_hinges)
-      e.bending += dihedral_bending_energy(c.rest, settings_.k_bending, X(c.v[0]), X(c.v[1]),
-                                           X(c.v[2]), X(c.v[3]));
+      e.bending += dihedral_bending_energy(c.rest, settings_.k_bending, row(x, c.v[0]),
+                                           row(x, c.v[1]), row(x, c.v[2]), row(x, c.v[3]));
     return e;
   }
 
   const ConstraintSet& constraints() const override { return set_; }
 
  private:
+  template <class Model>
+  static double membrane_energy(const Model& m, const std::vector<MembraneConstraint>& set,
+                                const Positions& x, const std::vector<double>* orientation) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const MembraneConstraint& c = set[i];
+      TriangleFrame fr;
+      const double s = orientation ? (*orientation)[i] : 1.0;
+      if (!triangle_frame(row(x, c.v[0]), row(x, c.v[1]), row(x, c.v[2]), c.Dm_inv, c.rest_area, s, fr))
+        continue;
+      if (!fr.regular && m.frame_dependent()) continue;
+      sum += c.rest_area * m.psi(fr.F, c.data);
+    }
+    return sum;
+  }
+
+  /// Freezes, for the solve, each anisotropic face's unit normal (for the k_A term, math-spec
+  /// 9.3 R) and, in the inversion-aware mode, its orientation s = sign(n . n_ref) with n_ref the
+  /// normalized sum of the area-weighted vertex normals of its corners (math-spec 4.2).
+  void freeze_anisotropic_frames(const Positions& x) {
+    for (std::size_t i = 0; i < set_.anisotropic.size(); ++i) {
+      const auto& v = set_.anisotropic[i].v;
+      const Vec3 N = (row(x, v[0]) - row(x, v[2])).cross(row(x, v[1]) - row(x, v[2]));
+      const double len = N.norm();
+      aniso_normal_[i] = len > 0.0 ? Vec3(N / len) : Vec3::Zero();  // collapsed: no inward push
+    }
+    if (!settings_.inversion_aware || faces_.rows() == 0) return;
+    vertex_normal_.setZero(x.rows(), 3);
+    for (Eigen::Index j = 0; j < faces_.rows(); ++j) {
+      const Vec3 N = (row(x, faces_(j, 0)) - row(x, faces_(j, 2)))
+                         .cross(row(x, faces_(j, 1)) - row(x, faces_(j, 2)));
+      for (int k = 0; k < 3; ++k) vertex_normal_.row(faces_(j, k)) += N.transpose();
+    }
+    for (std::size_t i = 0; i < set_.anisotropic.size(); ++i) {
+      const auto& v = set_.anisotropic[i].v;
+      Vec3 ref = Vec3::Zero();
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 nv = row(vertex_normal_, v[k]);
+        const double len = nv.norm();
+        if (len > 0.0) ref += nv / len;
+      }
+      // Tie (n . n_ref = 0, or no reference) counts as not inverted (math-spec 5 tie rule).
+      aniso_orientation_[i] = aniso_normal_[i].dot(ref) < 0.0 ? -1.0 : 1.0;
+    }
+  }
+
   M material_;
+  A aniso_;
   ConstraintSet set_;
   SolverSettings settings_;
+  Faces faces_;
   double energy_floor_;
   std::vector<double> lambda_membrane_;
   std::vector<double> lambda_isometric_;
   std::vector<double> lambda_dihedral_;
+  std::vector<double> lambda_aniso_;
+  std::vector<Vec3> aniso_normal_;
+  std::vector<double> aniso_orientation_;
+  Positions vertex_normal_;
 };
 
 }  // namespace
@@ -92,11 +161,18 @@ class GaussSeidelSolver final : public ConstraintSolver {
 std::unique_ptr<ConstraintSolver> make_constraint_solver(MaterialKind material,
                                                          const MaterialParams& params,
                                                          ConstraintSet constraints,
-                                                         const SolverSettings& settings) {
-  const double energy_scale = std::max({params.mu, params.lambda, 2.0 * (params.c10 + params.c01)});
+                                                         const SolverSettings& settings,
+                                                         const Faces& faces) {
+  const double energy_scale =
+      std::max({params.mu, params.lambda, 2.0 * (params.c10 + params.c01), params.mu_aniso});
+  if (settings.aniso == AnisoKind::None) constraints.anisotropic.clear();
   return with_material(material, params, [&](const auto& m) -> std::unique_ptr<ConstraintSolver> {
-    using M = std::decay_t<decltype(m)>;
-    return std::make_unique<GaussSeidelSolver<M>>(m, energy_scale, std::move(constraints), settings);
+    return with_aniso(settings.aniso, params, [&](const auto& a) -> std::unique_ptr<ConstraintSolver> {
+      using M = std::decay_t<decltype(m)>;
+      using A = std::decay_t<decltype(a)>;
+      return std::make_unique<GaussSeidelSolver<M, A>>(m, a, energy_scale, std::move(constraints),
+                                                       settings, faces);
+    });
   });
 }
 

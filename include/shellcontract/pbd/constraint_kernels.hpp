@@ -106,6 +106,40 @@ inline bool project_membrane(const M& material, const MembraneConstraint& c, dou
   return true;
 }
 
+/// Projects one anisotropic (E_A) constraint with the paper's inward term (math-spec 9.3, PF):
+/// dx_i = -(E_A / Gt) w_i (g_i + k_A n), Gt = sum w_i |g_i|^2 + k_A^2 sum w_i, where n is the
+/// face's unit outward normal frozen for the solve. The cross term vanishes because every g_i
+/// is in-plane (math-spec 4.4). Zero at rest (E_A = 0 gate). With k_A = 0 this is
+/// project_membrane.
+template <class A>
+inline bool project_anisotropic_paper(const A& material, const MembraneConstraint& c, double k_a,
+                                      const Vec3& n, const ProjectionContext& ctx) {
+  if (k_a == 0.0) return project_membrane(material, c, 1.0, ctx, nullptr);
+  const Vec3 x1 = detail::vertex(ctx.x, c.v[0]);
+  const Vec3 x2 = detail::vertex(ctx.x, c.v[1]);
+  const Vec3 x3 = detail::vertex(ctx.x, c.v[2]);
+  std::array<Vec3, 3> g;
+  double E;
+  if constexpr (has_second_pk<A>::value) {
+    E = membrane_energy_gradient_cform(material, c, x1, x2, x3, g);
+  } else {
+    TriangleFrame fr;
+    if (!triangle_frame(x1, x2, x3, c.Dm_inv, c.rest_area, ctx.orientation, fr)) return false;
+    if (!fr.regular && material.frame_dependent()) return false;
+    E = c.rest_area * material.psi(fr.F, c.data);
+    lift_gradient(fr, material.pk1(fr.F, c.data), c.Dm_inv, c.rest_area, g[0], g[1], g[2]);
+  }
+  if (!(E > ctx.energy_floor * c.rest_area)) return false;
+  double G = 0.0;  // = sum w |g|^2 + k_A^2 sum w: the cross term is zero (g in-plane)
+  for (int i = 0; i < 3; ++i) {
+    g[i] += k_a * n;
+    G += ctx.w[c.v[i]] * g[i].squaredNorm();
+  }
+  if (!(G > 1e-300)) return false;
+  detail::apply_step<3>(ctx.x, ctx.w, c.v, g, E / G, c.max_step);
+  return true;
+}
+
 /// Projects one isometric bending hinge. PBD closed form (math-spec 8.2):
 /// dx_i = -k_B w_i K_i h / (2 sum_l w_l K_l^2), smooth at flat hinges. XPBD vector form with
 /// beta = 3 k_B / (A0 + A1), C = sqrt(beta) h, lambda in R^3 (math-spec 8.2).

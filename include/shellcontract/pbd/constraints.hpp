@@ -42,7 +42,10 @@ struct ConstraintSet {
   std::vector<MembraneConstraint> membranes;
   std::vector<IsometricHingeConstraint> isometric_hinges;
   std::vector<DihedralHingeConstraint> dihedral_hinges;
-  std::vector<MembraneConstraint> anisotropic;  ///< E_A faces (issue: anisotropic regions)
+  std::vector<MembraneConstraint> anisotropic;  ///< E_A faces of the selected regions (math-spec 7)
+  /// k_A of each anisotropic face (force units, math-spec 9.3), same order as `anisotropic`;
+  /// used only by the paper's in-projection inward term.
+  std::vector<double> anisotropic_k_a;
 };
 
 /// beta_max of the PBD step clamp (math-spec 9.1d, 14).

@@ -24,6 +24,13 @@ struct SolverSettings {
   int iterations = 5;        ///< Gauss-Seidel sweeps per step (paper: 5)
   double k_bending = 0.01;   ///< k_B: PBD correction multiplier / XPBD energy scale (9.5)
   double dt = 0.01;          ///< time step (normalized units), used by XPBD's alpha/dt^2
+  AnisoKind aniso = AnisoKind::None;  ///< E_A model on ConstraintSet::anisotropic
+  /// Paper's k_A term inside the E_A projection (math-spec 9.3; PBD only). When false, k_A is
+  /// applied as an explicit force by the simulator (math-spec 9.2 R) or not at all.
+  bool k_a_in_projection = true;
+  /// Inversion-aware orientation s = sign(n . n_ref) for the E_A faces (math-spec 4.2 option);
+  /// default s = +1.
+  bool inversion_aware = false;
 };
 
 /// Sum of each kind of constraint energy at a configuration.
@@ -51,11 +58,13 @@ class ConstraintSolver {
   virtual const ConstraintSet& constraints() const = 0;
 };
 
-/// Builds a solver for the given membrane material. Constraints with degenerate rest data must
-/// already be excluded from the set.
+/// Builds a solver for the given membrane material and the anisotropic energy of
+/// settings.aniso. Constraints with degenerate rest data must already be excluded from the set.
+/// @param faces  #F by 3 faces (for the vertex normals of the inversion-aware mode)
 std::unique_ptr<ConstraintSolver> make_constraint_solver(MaterialKind material,
                                                          const MaterialParams& params,
                                                          ConstraintSet constraints,
-                                                         const SolverSettings& settings);
+                                                         const SolverSettings& settings,
+                                                         const Faces& faces = Faces());
 
 }  // namespace shellcontract

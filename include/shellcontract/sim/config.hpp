@@ -7,6 +7,7 @@
 #include "shellcontract/material/material.hpp"
 #include "shellcontract/material/registry.hpp"
 #include "shellcontract/pbd/solver.hpp"
+#include "shellcontract/sim/anisotropy.hpp"
 #include "shellcontract/sim/pressure.hpp"
 
 namespace shellcontract {
@@ -14,13 +15,18 @@ namespace shellcontract {
 /// isometric: the paper's flat-rest model (math-spec 8.2); dihedral: rest-aware (8.3).
 enum class BendingModel { Isometric, Dihedral, None };
 
+/// Where the anisotropic regions' k_A inward term acts: inside the E_A projection (the paper,
+/// math-spec 9.3; PBD only, in XPBD it becomes Force), as an explicit inward force
+/// f_i = -sum k_A n_j in the prediction (math-spec 9.2 R), or not at all.
+enum class InwardTerm { Projection, Force, None };
+
 /// area: m_i = rho_A sum Abar_j / 3 (math-spec 1.4, default); unit: m_i = 1.
 enum class MassModel { AreaLumped, Unit };
 
 /// Default over-pressure in normalized units. Chosen by measurement (README "Choosing the
 /// defaults"): with DEFAULT_DAMPING, 200 default frames contract eight, hand, elk and bear
 /// visibly and monotonically without blowing up.
-inline constexpr double DEFAULT_PRESSURE = 1.0;
+inline constexpr double DEFAULT_PRESSURE = 2.0;
 
 /// Default fraction of the velocity removed per step. The paper has no damping; without it the
 /// undamped PBD shell rings (V/V0 oscillates around its quasi-static path, README measurement).
@@ -40,6 +46,8 @@ struct SimOptions {
   double density = 1.0;                          ///< rho_A, mass per normalized area
   double stop_volume_ratio = 0.0;                ///< epsilon: stop when V/V0 < epsilon (0 = off)
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
+  AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
+  InwardTerm inward_term = InwardTerm::Projection;
 };
 
 /// A step that moves a vertex farther than this (normalized units: the mesh's bounding-box

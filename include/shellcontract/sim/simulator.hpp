@@ -51,6 +51,7 @@ class Simulator {
   const Mesh& rest_mesh() const { return *mesh_; }
   const Normalization& normalization() const { return normalization_; }
   const RestStateReport& rest_report() const { return rest_report_; }
+  const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
   const SimOptions& options() const { return options_; }
   /// Energies at the current positions.
   ConstraintEnergies energies() const { return solver_->energies(x_); }
@@ -60,7 +61,10 @@ class Simulator {
   std::unique_ptr<Mesh> mesh_;
   Normalization normalization_;
   RestStateReport rest_report_;
+  AnisotropyReport anisotropy_report_;
   Faces faces_;
+  Faces inward_faces_;           ///< anisotropic faces that get the explicit k_A force
+  Eigen::VectorXd inward_k_a_;   ///< their k_A
   Eigen::VectorXd inv_mass_;
   std::unique_ptr<ConstraintSolver> solver_;
   Positions x_, v_, x_pred_, force_;

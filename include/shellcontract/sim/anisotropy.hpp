@@ -1,0 +1,50 @@
+// Anisotropic regions (paper section 3.3, math-spec 7): which faces carry E_A, their fibre
+// directions in the rest frame, and k_A.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/pbd/constraints.hpp"
+
+namespace shellcontract {
+
+/// How the fibre direction a of a region face is chosen (the paper never gives one).
+enum class FiberMode {
+  /// Tangent direction from the face toward its region's area-weighted centre: shortening along
+  /// it pulls the region together (default; README "Fibre direction" gives the measurement).
+  TowardCentre,
+  /// One user 3D direction d for every face: a = normalize(d . T1, d . T2) (math-spec 7).
+  User,
+};
+
+/// Options of the anisotropic regions.
+struct AnisotropyOptions {
+  std::vector<std::vector<int>> regions;  ///< face ids (input order) of each region
+  FiberMode fiber_mode = FiberMode::TowardCentre;
+  Vec3 user_direction = Vec3::UnitX();    ///< FiberMode::User only
+  double kappa_a = 0.1;                   ///< k_A = kappa_A mu_A sqrt(Abar_j) (math-spec 9.3, 14)
+  double mu_aniso = 1.0;                  ///< mu_A, for k_A
+};
+
+/// What building the anisotropic constraints did, for the log.
+struct AnisotropyReport {
+  std::size_t faces = 0;            ///< faces with an E_A constraint
+  std::size_t fallback_fibers = 0;  ///< faces where the direction was undefined: a = (1, 0)
+};
+
+/// Appends one E_A constraint per non-degenerate region face to set.anisotropic (with its fibre
+/// in ElementMaterialData::fiber) and its k_A to set.anisotropic_k_a.
+/// @pre build_rest_state(mesh) was called (reads f:triangle_rest)
+/// @throws InputError for a face id out of range
+AnisotropyReport add_anisotropic_constraints(const Mesh& mesh, const AnisotropyOptions& options,
+                                             ConstraintSet& set);
+
+/// Unit fibre direction in a face's rest frame from a 3D direction d (math-spec 7):
+/// normalize(d . T1, d . T2), or (1, 0) when that 2-vector is shorter than 1e-3 |d|.
+/// @param fallback  set to true when the fallback was taken
+Vec2 fiber_in_rest_frame(const Vec3& d, const Vec3& T1, const Vec3& T2, bool& fallback);
+
+}  // namespace shellcontract

@@ -1,0 +1,73 @@
+#include "shellcontract/sim/anisotropy.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/fem/triangle_element.hpp"
+#include "shellcontract/mesh/properties.hpp"
+
+namespace shellcontract {
+
+Vec2 fiber_in_rest_frame(const Vec3& d, const Vec3& T1, const Vec3& T2, bool& fallback) {
+  const Vec2 a(d.dot(T1), d.dot(T2));
+  const double len = a.norm();
+  fallback = !(len >= 1e-3 * d.norm()) || !(len > 0.0);
+  return fallback ? Vec2(1.0, 0.0) : Vec2(a / len);
+}
+
+AnisotropyReport add_anisotropic_constraints(const Mesh& mesh, const AnisotropyOptions& options,
+                                             ConstraintSet& set) {
+  AnisotropyReport report;
+  const auto rest = property::get_map<FaceIndex, TriangleRest>(mesh, property::TRIANGLE_REST);
+  const int nf = static_cast<int>(mesh.number_of_faces());
+  auto corners = [&](int f) {
+    std::array<int, 3> v;
+    int k = 0;
+    for (VertexIndex u : CGAL::vertices_around_face(mesh.halfedge(FaceIndex(f)), mesh))
+      v[k++] = static_cast<int>(u.idx());
+    return v;
+  };
+  auto point = [&](int v) {
+    const Point3& p = mesh.point(VertexIndex(v));
+    return Vec3(p.x(), p.y(), p.z());
+  };
+  for (std::size_t r = 0; r < options.regions.size(); ++r) {
+    const std::vector<int>& region = options.regions[r];
+    // Area-weighted rest centroid of the region.
+    Vec3 centre = Vec3::Zero();
+    double area = 0.0;
+    for (int f : region) {
+      if (f < 0 || f >= nf)
+        throw InputError("region " + std::to_string(r) + ": face " + std::to_string(f) +
+                         " is out of range (the mesh has " + std::to_string(nf) + " faces)");
+      const auto v = corners(f);
+      const double A = rest[FaceIndex(f)].area;
+      centre += A * (point(v[0]) + point(v[1]) + point(v[2])) / 3.0;
+      area += A;
+    }
+    if (area > 0.0) centre /= area;
+    for (int f : region) {
+      const TriangleRest& tr = rest[FaceIndex(f)];
+      if (tr.degenerate) continue;
+      const auto v = corners(f);
+      MembraneConstraint c;
+      c.v = v;
+      c.Dm_inv = tr.Dm_inv;
+      c.rest_area = tr.area;
+      c.max_step = STEP_CLAMP_FACTOR * tr.min_edge;
+      const Vec3 d = options.fiber_mode == FiberMode::User
+                         ? options.user_direction
+                         : Vec3(centre - (point(v[0]) + point(v[1]) + point(v[2])) / 3.0);
+      bool fallback = false;
+      c.data.fiber = fiber_in_rest_frame(d, tr.T1, tr.T2, fallback);
+      if (fallback) ++report.fallback_fibers;
+      set.anisotropic.push_back(c);
+      set.anisotropic_k_a.push_back(options.kappa_a * options.mu_aniso * std::sqrt(tr.area));
+      ++report.faces;
+    }
+  }
+  return report;
+}
+
+}  // namespace shellcontract

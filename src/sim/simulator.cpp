@@ -1,0 +1,119 @@
+#include "shellcontract/sim/simulator.hpp"
+
+#include <chrono>
+#include <utility>
+#include <cmath>
+#include <string>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/validation/volume.hpp"
+
+namespace shellcontract {
+namespace {
+void check_options(const SimOptions& o) {
+  auto fail = [](const std::string& what) { throw UsageError(what); };
+  if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("time step must be positive and finite");
+  if (o.frames < 0) fail("frame count must be >= 0");
+  if (o.solver.iterations < 0) fail("iterations must be >= 0");
+  if (!std::isfinite(o.pressure)) fail("pressure must be finite");
+  if (!(o.solver.k_bending >= 0.0) || !std::isfinite(o.solver.k_bending)) fail("k_B must be >= 0");
+  if (o.solver.kind == SolverKind::Pbd && o.solver.k_bending > 1.0)
+    fail("in PBD mode k_B is a correction multiplier and must be in [0, 1]");
+  if (!(o.density > 0.0)) fail("density must be positive");
+  if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("damping must be in [0, 1)");
+  if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
+    fail("stop volume ratio must be in [0, 1)");
+}
+}  // namespace
+
+Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(options) {
+  check_options(options_);
+  options_.solver.dt = options_.dt;
+  if (input.has_garbage()) throw UsageError("Simulator: the input mesh has garbage");
+  mesh_ = std::make_unique<Mesh>(input);
+  normalization_ = compute_normalization(positions_from_mesh(*mesh_));
+  x_ = normalize(positions_from_mesh(*mesh_), normalization_);
+  for (VertexIndex v : mesh_->vertices()) {
+    const auto r = x_.row(v.idx());
+    mesh_->point(v) = Point3(r(0), r(1), r(2));
+  }
+  rest_report_ = build_rest_state(*mesh_, options_.mass, options_.density);
+  faces_ = faces_array(*mesh_);
+  inv_mass_ = inverse_masses(*mesh_);
+  ConstraintSet constraints = pack_constraints(*mesh_, options_.bending);
+  if (options_.solver.aniso != AnisoKind::None) {
+    AnisotropyOptions a = options_.anisotropy;
+    a.mu_aniso = options_.material_params.mu_aniso;
+    if (options_.inward_term == InwardTerm::None) a.kappa_a = 0.0;
+    anisotropy_report_ = add_anisotropic_constraints(*mesh_, a, constraints);
+    if (options_.inward_term == InwardTerm::Force ||
+        (options_.inward_term == InwardTerm::Projection && options_.solver.kind == SolverKind::Xpbd)) {
+      inward_faces_.resize(static_cast<Eigen::Index>(constraints.anisotropic.size()), 3);
+      inward_k_a_ = Eigen::Map<const Eigen::VectorXd>(constraints.anisotropic_k_a.data(),
+                                                      static_cast<Eigen::Index>(constraints.anisotropic_k_a.size()));
+      for (std::size_t i = 0; i < constraints.anisotropic.size(); ++i)
+        for (int k = 0; k < 3; ++k)
+          inward_faces_(static_cast<Eigen::Index>(i), k) = constraints.anisotropic[i].v[k];
+    }
+  }
+  options_.solver.k_a_in_projection = options_.inward_term == InwardTerm::Projection;
+  solver_ = make_constraint_solver(options_.material, options_.material_params,
+                                   std::move(constraints), options_.solver, faces_);
+  v_ = Positions::Zero(x_.rows(), 3);
+  rest_volume_ = enclosed_volume(*mesh_, x_);
+  if (!(rest_volume_ > 0.0))
+    throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) + ")");
+}
+
+Simulator::~Simulator() = default;
+
+bool Simulator::finished() const {
+  return frame_ >= options_.frames ||
+         (options_.stop_volume_ratio > 0.0 && volume_ratio_ < options_.stop_volume_ratio);
+}
+
+FrameMetrics Simulator::step() {
+  const auto start = std::chrono::steady_clock::now();
+  const double dt = options_.dt;
+  // Step 1 (math-spec 2): symplectic Euler with the explicit pressure force at x^n.
+  pressure_forces(x_, faces_, options_.pressure, options_.pressure_model, force_);
+  // Explicit k_A inward force on the anisotropic faces (math-spec 9.2 R): -k_A n_j per corner.
+  for (Eigen::Index j = 0; j < inward_faces_.rows(); ++j) {
+    const int a = inward_faces_(j, 0), b = inward_faces_(j, 1), c = inward_faces_(j, 2);
+    const Vec3 xc = x_.row(c);
+    const Vec3 N = (Vec3(x_.row(a)) - xc).cross(Vec3(x_.row(b)) - xc);
+    const double len = N.norm();
+    if (!(len > 0.0)) continue;  // collapsed face: no normal, no push
+    const Eigen::RowVector3d f = (-inward_k_a_(j) / len) * N.transpose();
+    force_.row(a) += f;
+    force_.row(b) += f;
+    force_.row(c) += f;
+  }
+  x_pred_ = x_ + dt * (v_ + dt * (force_.array().colwise() * inv_mass_.array()).matrix());
+  // Step 2: constraint projection (Gauss-Seidel sweeps).
+  solver_->solve(x_pred_, inv_mass_);
+  if (!x_pred_.allFinite())
+    throw SimulationError("non-finite positions at step " + std::to_string(frame_ + 1));
+  FrameMetrics m;
+  m.max_displacement = (x_pred_ - x_).rowwise().norm().maxCoeff();
+  if (m.max_displacement > BLOWUP_DISPLACEMENT)
+    throw SimulationError("blow-up at step " + std::to_string(frame_ + 1) + ": a vertex moved " +
+                          std::to_string(m.max_displacement) +
+                          " (normalized units, the whole mesh is 1) in one step");
+  // Steps 4-5: accept and update velocities; damping removes a fixed fraction of the velocity
+  // per step (Mueller et al. 2007, section 3.5 uses a similar global damping).
+  v_ = (1.0 - options_.damping) * (x_pred_ - x_) / dt;
+  x_.swap(x_pred_);
+  const auto stop = std::chrono::steady_clock::now();
+  ++frame_;
+  volume_ratio_ = enclosed_volume(*mesh_, x_) / rest_volume_;
+  m.frame = frame_;
+  m.time = frame_ * dt;
+  m.volume_ratio = volume_ratio_;
+  m.energies = solver_->energies(x_);
+  m.step_seconds = std::chrono::duration<double>(stop - start).count();
+  return m;
+}
+
+}  // namespace shellcontract
