@@ -1,0 +1,21 @@
+// Enclosed volume of a closed triangle mesh at given positions (CGAL PMP::volume through an
+// EigenPointMap, so that no mesh copy is made; style.md section 3).
+#pragma once
+
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/mesh/surface_mesh.hpp"
+
+namespace shellcontract {
+
+/// Signed volume enclosed by the mesh when its vertices are at x.
+/// PMP::volume only asserts closedness (and the assertion vanishes in release builds), so this
+/// wrapper checks the preconditions itself.
+/// @param mesh  triangle mesh, connectivity only is used (its own points are ignored)
+/// @param x     #V by 3 positions, row i = vertex i, any length unit L
+/// @pre !mesh.has_garbage(), x.rows() == number of vertices
+/// @return the volume in L^3; positive for outward-oriented faces, negative when inside-out
+/// @throws InputError "not a triangle mesh" or "not closed" (with the border edge count)
+/// @throws std::invalid_argument if x has the wrong number of rows or the mesh has garbage
+double enclosed_volume(const Mesh& mesh, const Positions& x);
+
+}  // namespace shellcontract

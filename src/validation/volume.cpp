@@ -1,0 +1,33 @@
+// enclosed_volume: PMP::volume with the position array as vertex point map.
+#include "shellcontract/validation/volume.hpp"
+
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/boost/graph/helpers.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+
+namespace shellcontract {
+
+double enclosed_volume(const Mesh& mesh, const Positions& x) {
+  if (mesh.has_garbage())
+    throw std::invalid_argument("enclosed_volume: the mesh has removed elements; call collect_garbage() first");
+  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
+    throw std::invalid_argument("enclosed_volume: " + std::to_string(x.rows()) + " position rows for " +
+                                std::to_string(mesh.number_of_vertices()) + " vertices");
+  if (!CGAL::is_triangle_mesh(mesh)) throw InputError("enclosed_volume: not a triangle mesh");
+  if (!CGAL::is_closed(mesh)) {
+    std::size_t border = 0;
+    for (const EdgeIndex e : mesh.edges())
+      if (mesh.is_border(e)) ++border;
+    throw InputError("enclosed_volume: the mesh is not closed (" + std::to_string(border) +
+                     " border edges), so it encloses no volume");
+  }
+  namespace PMP = CGAL::Polygon_mesh_processing;
+  return PMP::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(x)));
+}
+
+}  // namespace shellcontract
