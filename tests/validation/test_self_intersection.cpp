@@ -1,0 +1,74 @@
+// self_intersecting_pairs / does_self_intersect / new_self_intersections on positions x.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <string>
+
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/validation/self_intersection.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+std::string mesh_path(const std::string& name) { return std::string(test::MESH_DIR) + "/" + name; }
+
+TEST(SelfIntersection, IcosphereHasNone) {
+  for (const char* name : {"ico1.off", "ico2.off", "ico3.off", "torus.off", "bumpy_sphere.off", "two_sheet.off"}) {
+    const Mesh mesh = read_input_mesh(mesh_path(name));
+    const Positions x = positions_from_mesh(mesh);
+    EXPECT_TRUE(self_intersecting_pairs(mesh, x).empty()) << name;
+    EXPECT_FALSE(does_self_intersect(mesh, x)) << name;
+  }
+}
+
+TEST(SelfIntersection, PushedThroughVertexIsFoundOnPositionsOnly) {
+  const Mesh mesh = read_input_mesh(mesh_path("ico2.off"));
+  const Positions rest = positions_from_mesh(mesh);
+  Positions x = rest;
+  // Vertex 0 pushed through the centre and out of the opposite side (to 1.5 radii): its fan of
+  // faces now pierces the far side of the sphere. (Stopping inside, say at -0.9 r, would not
+  // intersect anything: the fan would only cut through the empty interior.)
+  const VertexIndex v0(0);
+  x.row(0) = -1.5 * rest.row(0);
+  const std::vector<FacePair> pairs = self_intersecting_pairs(mesh, x);
+  ASSERT_FALSE(pairs.empty());
+  EXPECT_TRUE(does_self_intersect(mesh, x));
+  // Every pair involves one of the faces around the moved vertex (nothing else moved).
+  std::vector<FaceIndex> fan;
+  for (const FaceIndex f : faces_around_target(mesh.halfedge(v0), mesh)) fan.push_back(f);
+  for (const FacePair& p : pairs) {
+    EXPECT_LT(p.first, p.second);
+    const bool touches = std::find(fan.begin(), fan.end(), p.first) != fan.end() ||
+                         std::find(fan.begin(), fan.end(), p.second) != fan.end();
+    EXPECT_TRUE(touches) << "pair " << p.first << "-" << p.second << " does not touch vertex 0's faces";
+  }
+  // The rest positions (and the mesh's own points, untouched) still have none: the map is used.
+  EXPECT_TRUE(self_intersecting_pairs(mesh, rest).empty());
+  EXPECT_FALSE(does_self_intersect(mesh, rest));
+  // New against an empty baseline = all; against itself = none.
+  EXPECT_EQ(new_self_intersections(mesh, x, {}), pairs.size());
+  EXPECT_EQ(new_self_intersections(mesh, x, pairs), 0u);
+  // A baseline given in the other order still matches.
+  std::vector<FacePair> swapped;
+  for (const FacePair& p : pairs) swapped.emplace_back(p.second, p.first);
+  EXPECT_EQ(new_self_intersections(mesh, x, swapped), 0u);
+}
+
+TEST(SelfIntersection, ElkHasSevenPreExistingPairs) {
+  const std::string path = std::string(test::PAPER_MESH_DIR) + "/elk.off";
+  if (!std::filesystem::exists(path))
+    GTEST_SKIP() << path << " is absent: run scripts/fetch_paper_meshes.sh (it extracts the paper's "
+                 << "models from Debian's libcgal-demo data)";
+  const Mesh mesh = read_input_mesh(path);
+  const Positions x = positions_from_mesh(mesh);
+  const std::vector<FacePair> pairs = self_intersecting_pairs(mesh, x);
+  EXPECT_EQ(pairs.size(), 7u);  // design.md, Test meshes
+  EXPECT_TRUE(does_self_intersect(mesh, x));
+  EXPECT_EQ(new_self_intersections(mesh, x, pairs), 0u);
+}
+
+}  // namespace
+}  // namespace shellcontract
