@@ -1,0 +1,135 @@
+// `shellcontract check` as a user runs it: exit codes and messages (design.md, Exit codes).
+// Runs the built executable (SHELLCONTRACT_CLI_PATH); skipped when it has not been built.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "test_paths.hpp"
+
+namespace {
+
+struct RunResult {
+  int exit_code = -1;
+  std::string output;  ///< stdout and stderr together
+};
+
+std::string quoted(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+RunResult run_cli(const std::vector<std::string>& args) {
+  std::string cmd = quoted(SHELLCONTRACT_CLI_PATH);
+  for (const std::string& a : args) cmd += " " + quoted(a);
+  cmd += " 2>&1";
+  RunResult r;
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  std::size_t n = 0;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+class CliCheck : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!std::filesystem::exists(SHELLCONTRACT_CLI_PATH))
+      GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " has not been built yet";
+  }
+};
+
+std::string mesh_path(const std::string& name) { return std::string(shellcontract::test::MESH_DIR) + "/" + name; }
+
+/// The number printed right after `key` in `text`; NaN if the key is absent.
+double number_after(const std::string& text, const std::string& key) {
+  const std::size_t at = text.find(key);
+  if (at == std::string::npos) return std::nan("");
+  return std::stod(text.substr(at + key.size()));
+}
+
+TEST_F(CliCheck, UnitCubeIsUsableWithKnownCounts) {
+  const RunResult r = run_cli({"check", mesh_path("cube.off")});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  for (const char* s : {"vertices: 8\n", "faces: 12\n", "edges: 18\n", "components: 1\n", "euler_characteristic: 2\n",
+                        "genus: 0\n", "closed: yes\n", "manifold: yes\n", "self_intersecting_pairs: 0\n", "usable: yes\n"})
+    EXPECT_NE(r.output.find(s), std::string::npos) << "missing '" << s << "' in:\n" << r.output;
+  // Volume 1 and diagonal sqrt(3) (printed with 17 digits; compared up to rounding).
+  EXPECT_NEAR(number_after(r.output, "\nvolume: "), 1.0, 1e-14) << r.output;
+  EXPECT_NEAR(number_after(r.output, "\nbounding_box_diagonal: "), std::sqrt(3.0), 1e-14) << r.output;
+}
+
+TEST_F(CliCheck, TorusHasGenusOne) {
+  const RunResult r = run_cli({"check", mesh_path("torus.off")});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("euler_characteristic: 0\n"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("genus: 1\n"), std::string::npos) << r.output;
+}
+
+TEST_F(CliCheck, JsonReportsZeroAreaFace) {
+  const RunResult r = run_cli({"check", mesh_path("zero_area_face.off"), "--json"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\"zero_area_faces\": [13]"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"vertices\": 9"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("warning: 1 faces have (nearly) zero area: 13"), std::string::npos) << r.output;
+}
+
+TEST_F(CliCheck, BadUsageExitsOne) {
+  EXPECT_EQ(run_cli({"check"}).exit_code, 1);
+  EXPECT_EQ(run_cli({"check", "--no-such-option", mesh_path("cube.off")}).exit_code, 1);
+  const RunResult help = run_cli({"check", "--help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_NE(help.output.find("--json"), std::string::npos) << help.output;
+}
+
+struct BadFile {
+  const char* file;
+  std::vector<std::string> message;  ///< problem name, then where (meshes/README.md, bad/)
+};
+
+void PrintTo(const BadFile& b, std::ostream* os) { *os << b.file; }
+
+class CliCheckBad : public ::testing::TestWithParam<BadFile> {
+ protected:
+  void SetUp() override {
+    if (!std::filesystem::exists(SHELLCONTRACT_CLI_PATH))
+      GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " has not been built yet";
+  }
+};
+
+TEST_P(CliCheckBad, ExitsTwoWithMessage) {
+  const std::string path = mesh_path(std::string("bad/") + GetParam().file);
+  const RunResult r = run_cli({"check", path});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(path), std::string::npos) << "file not named in:\n" << r.output;
+  for (const std::string& s : GetParam().message)
+    EXPECT_NE(r.output.find(s), std::string::npos) << "missing '" << s << "' in:\n" << r.output;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, CliCheckBad,
+    ::testing::Values(
+        BadFile{"empty.off", {"empty file"}},
+        BadFile{"truncated.off", {"truncated file", "face 5 (line 16)"}},
+        BadFile{"garbage.off", {"parse error", "line 1"}},
+        BadFile{"nan.off", {"non-finite coordinate", "vertex 3 (line 6)"}},
+        BadFile{"index_out_of_range.off", {"vertex index out of range", "face 4 (line 15)", "vertex 8"}},
+        BadFile{"repeated_vertex.off", {"degenerate face", "face 7 (line 18)"}},
+        BadFile{"duplicate_face.off", {"duplicate face", "face 12 (line 23)"}},
+        BadFile{"open_sheet.off", {"open boundary", "vertex 0 and vertex 1"}},
+        BadFile{"nonmanifold_edge.off", {"non-manifold edge", "edge (0, 1)"}},
+        BadFile{"nonmanifold_vertex.off", {"non-manifold vertex", "vertex 0"}},
+        BadFile{"cube.xyz", {"unknown extension"}},
+        BadFile{"missing.off", {"cannot open file"}}));
+
+}  // namespace
