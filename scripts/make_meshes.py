@@ -416,6 +416,10 @@ def main():
     dup = off_text(cube_v, cube_f + [cube_f[2]])
     bad("duplicate_face.off", dup, "duplicate face (face 12 repeats face 2)")
     bad("cube.xyz", "0 0 0\n1 0 0\n", "unknown extension (.xyz)")
+    flip = list(cube_f)
+    flip[5] = (flip[5][0], flip[5][2], flip[5][1])  # face 5 reversed: it agrees with no neighbour
+    bad("inconsistent_orientation.off", off_text(cube_v, flip),
+        "inconsistent orientation (faces 2 and 5, lines 13 and 16, both traverse edge (4, 5))")
 
     # ------------------------------------------------------------------ README
     ico_note = ("Icosphere (and other 'computed') volumes are the divergence-theorem sum "
@@ -452,7 +456,9 @@ def main():
             "- `cube_quads`: the unit cube as 6 quads; read_input_mesh fan-triangulates them (12 triangles, warning).",
             "- `zero_area_face`: the unit cube whose bottom diagonal (0,2) has its midpoint (vertex 8) on "
             "one side only; face 13 = (0, 2, 8) is a zero-area sliver that closes the surface. "
-            "read_input_mesh reports face 13 in `zero_area_faces` with a warning.",
+            "read_input_mesh reports face 13 in `zero_area_faces` with a warning. The sliver lies on the "
+            "diagonal, so CGAL's self-intersection test also reports pairs here (faces touching the "
+            "diagonal beyond a shared vertex, and the degenerate face with itself).",
             "", "## bad/ (inputs that read_input_mesh and `shellcontract check` must refuse, exit code 2)", "",
             "| file | problem |", "|---|---|"]
     out += [f"| {n} | {p} |" for n, p in bad_rows]

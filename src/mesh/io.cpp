@@ -450,7 +450,7 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
           fail(path, "non-manifold edge", "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " + std::to_string(uses.size()) + " faces (" + fs_list + "), at most 2 allowed");
         }
         if (uses[0].forward == uses[1].forward)
-          fail(path, "inconsistent orientation", "faces " + std::to_string(uses[0].face) + " and " + std::to_string(uses[1].face) + " traverse " + edge + " in the same direction");
+          fail(path, "inconsistent orientation", face_name(uses[0].face) + " and " + face_name(uses[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
       }
   }
 

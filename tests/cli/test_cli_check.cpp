@@ -129,6 +129,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadFile{"open_sheet.off", {"open boundary", "vertex 0 and vertex 1"}},
         BadFile{"nonmanifold_edge.off", {"non-manifold edge", "edge (0, 1)"}},
         BadFile{"nonmanifold_vertex.off", {"non-manifold vertex", "vertex 0"}},
+        BadFile{"inconsistent_orientation.off", {"inconsistent orientation", "face 2 (line 13)"}},
         BadFile{"cube.xyz", {"unknown extension"}},
         BadFile{"missing.off", {"cannot open file"}}));
 

@@ -359,6 +359,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadCase{"open_sheet.off", {"open boundary", "edge (", "face 0", "vertex 0"}},
         BadCase{"nonmanifold_edge.off", {"non-manifold edge", "edge (0, 1)", "4 faces"}},
         BadCase{"nonmanifold_vertex.off", {"non-manifold vertex", "vertex 0 (line 4)", "several fans"}},
+        BadCase{"inconsistent_orientation.off", {"inconsistent orientation", "face 2 (line 13)", "face 5 (line 16)", "edge (4, 5)"}},
         BadCase{"cube.xyz", {"unknown extension", ".xyz"}},
         BadCase{"no_such_file.off", {"cannot open file", "no such file"}}));
 
