@@ -209,14 +209,14 @@ struct FaceNamer {
     std::string s = "face " + std::to_string(f);
     const std::size_t p = (*origin)[f];
     if (p != f) s += " (part of input polygon " + std::to_string(p) + ")";
-    if (!lines->face_line.empty()) s += " (line " + std::to_string(lines->face_line[p]) + ")";
+    if (p < lines->face_line.size()) s += " (line " + std::to_string(lines->face_line[p]) + ")";
     return s;
   }
 };
 
 std::string vertex_name(std::size_t v, const OffLines& lines) {
   std::string s = "vertex " + std::to_string(v);
-  if (!lines.vertex_line.empty()) s += " (line " + std::to_string(lines.vertex_line[v]) + ")";
+  if (v < lines.vertex_line.size()) s += " (line " + std::to_string(lines.vertex_line[v]) + ")";
   return s;
 }
 
@@ -367,7 +367,7 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   std::size_t split = 0;
   auto polygon_name = [&](std::size_t i) {
     std::string s = "face " + std::to_string(i);
-    if (!lines.face_line.empty()) s += " (line " + std::to_string(lines.face_line[i]) + ")";
+    if (i < lines.face_line.size()) s += " (line " + std::to_string(lines.face_line[i]) + ")";
     return s;
   };
   for (std::size_t i = 0; i < polygons.size(); ++i) {
@@ -465,7 +465,8 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
       std::size_t steps = 0, cur = l[0].second;
       while (cur != l[0].first && steps <= l.size()) {
         const auto it = std::find_if(l.begin(), l.end(), [cur](const auto& e) { return e.first == cur; });
-        cur = it->second;  // exists: every edge at v has two faces
+        if (it == l.end()) break;  // cannot happen after the edge checks; never dereference end
+        cur = it->second;
         ++steps;
       }
       if (steps + 1 != l.size())
