@@ -45,6 +45,13 @@ MassModel parse_mass(const std::string& s) {
   throw UsageError("unknown mass model '" + s + "' (expected area or unit)");
 }
 
+ValidateMode parse_validate(const std::string& s) {
+  if (s == "off") return ValidateMode::Off;
+  if (s == "end") return ValidateMode::End;
+  if (s == "every-frame") return ValidateMode::EveryFrame;
+  throw UsageError("unknown validation mode '" + s + "' (expected off, end or every-frame)");
+}
+
 InwardTerm parse_inward(const std::string& s) {
   if (s == "projection") return InwardTerm::Projection;
   if (s == "force") return InwardTerm::Force;
@@ -70,15 +77,54 @@ std::string join(const std::vector<std::string>& v) {
 
 const char* CSV_HEADER =
     "frame,time,volume_ratio,energy_membrane,energy_bending,energy_anisotropic,"
-    "max_displacement,step_ms\n";
+    "max_displacement,step_ms,solve_ms,ccd_ms,candidates,contacts,collision_rounds,"
+    "failsafe_vertices,new_intersections\n";
 
 std::string csv_row(const FrameMetrics& m) {
   std::ostringstream o;
   o << std::setprecision(17) << m.frame << ',' << m.time << ',' << m.volume_ratio << ','
     << m.energies.membrane << ',' << m.energies.bending << ',' << m.energies.anisotropic << ','
-    << m.max_displacement << ',' << m.step_seconds * 1e3 << '\n';
+    << m.max_displacement << ',' << m.step_seconds * 1e3 << ',' << m.solve_seconds * 1e3 << ','
+    << m.collision.total_seconds() * 1e3 << ',' << m.collision.pairs_broad << ','
+    << m.collision.contacts << ',' << m.collision.rounds << ',' << m.collision.failsafe_vertices
+    << ',' << m.new_intersections << '\n';
   return o.str();
 }
+
+/// Per-stage sums over the run: the paper's Table 2 columns (candidate pairs without culling,
+/// after the broad phase, after the filter, cubic solves, and the time of each stage per step).
+struct CollisionTotals {
+  double no_culling = 0, broad = 0, filtered = 0, tests = 0, contacts = 0, failsafe = 0;
+  double broad_s = 0, filter_s = 0, narrow_s = 0, response_s = 0, solve_s = 0, step_s = 0;
+  void add(const FrameMetrics& m) {
+    const CollisionStepStats& c = m.collision;
+    no_culling += static_cast<double>(c.pairs_no_culling);
+    broad += static_cast<double>(c.pairs_broad);
+    filtered += static_cast<double>(c.pairs_filtered);
+    tests += static_cast<double>(c.narrow_tests);
+    contacts += static_cast<double>(c.contacts);
+    failsafe += static_cast<double>(c.failsafe_vertices);
+    broad_s += c.broad_seconds;
+    filter_s += c.filter_seconds;
+    narrow_s += c.narrow_seconds;
+    response_s += c.response_seconds;
+    solve_s += m.solve_seconds;
+    step_s += m.step_seconds;
+  }
+  /// Means per step.
+  JsonObject json(int frames) const {
+    const double n = frames > 0 ? frames : 1;
+    JsonObject o;
+    o.add("pairs_no_culling_per_step", no_culling / n).add("pairs_after_broad_phase_per_step", broad / n)
+        .add("pairs_after_filter_per_step", filtered / n).add("cubic_solves_per_step", tests / n)
+        .add("contacts_per_step", contacts / n).add("failsafe_vertices_total", failsafe)
+        .add("broad_phase_ms_per_step", 1e3 * broad_s / n).add("filter_ms_per_step", 1e3 * filter_s / n)
+        .add("narrow_phase_ms_per_step", 1e3 * narrow_s / n).add("response_ms_per_step", 1e3 * response_s / n)
+        .add("collision_ms_per_step", 1e3 * (broad_s + filter_s + narrow_s + response_s) / n)
+        .add("constraint_solve_ms_per_step", 1e3 * solve_s / n).add("step_ms", 1e3 * step_s / n);
+    return o;
+  }
+};
 
 }  // namespace
 
@@ -87,6 +133,7 @@ int command_run(int argc, char** argv) {
                                                      bending = "isometric", pressure_model = "energy",
                                                      mass = "area";
   SimOptions opt;
+  std::string collisions = "on", validate = "off";
   std::string aniso = "none", regions_arg = "auto", inward = "projection", fiber = "centre";
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
@@ -150,6 +197,15 @@ int command_run(int argc, char** argv) {
        "fibre direction: centre (toward the region centre) or X,Y,Z (one direction for all)")
       ("inversion-aware", po::bool_switch(&opt.solver.inversion_aware),
        "orientation s = sign(n . n_ref) for the anisotropic faces (ARAP then differs from sqrt)")
+      ("collisions", po::value(&collisions)->default_value(collisions),
+       "on: continuous collision detection and response, the result never passes through "
+       "itself; off: faster")
+      ("delta", po::value(&opt.collision.delta)->default_value(opt.collision.delta),
+       "contact distance (normalized units); closer primitives are pushed apart to 2 delta")
+      ("collision-rounds", po::value(&opt.collision.rounds)->default_value(opt.collision.rounds),
+       "detection/response rounds per step before the fail-safe")
+      ("validate", po::value(&validate)->default_value(validate),
+       "CGAL self-intersection check: off | end | every-frame (exit code 4 if new ones)")
       ("log", po::value(&log_path), "per-frame CSV log")
       ("summary", po::value(&summary_path), "JSON summary of the run")
       ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
@@ -177,6 +233,10 @@ int command_run(int argc, char** argv) {
     opt.pressure_model = parse_pressure_model(pressure_model);
     opt.mass = parse_mass(mass);
     opt.solver.aniso = parse_aniso_kind(aniso);
+    if (collisions != "on" && collisions != "off")
+      throw UsageError("--collisions expects on or off, got '" + collisions + "'");
+    opt.collisions = collisions == "on";
+    opt.validate = parse_validate(validate);
     opt.inward_term = parse_inward(inward);
     if (fiber != "centre") {
       opt.anisotropy.fiber_mode = FiberMode::User;
@@ -213,6 +273,8 @@ int command_run(int argc, char** argv) {
     std::string status = "ok";
     std::string failure;
     double min_ratio = 1.0;
+    CollisionTotals totals;
+    long new_intersections = -1;
     while (!sim.finished()) {
       FrameMetrics m;
       try {
@@ -223,6 +285,13 @@ int command_run(int argc, char** argv) {
         break;
       }
       min_ratio = std::min(min_ratio, m.volume_ratio);
+      totals.add(m);
+      if (m.new_intersections >= 0) new_intersections = m.new_intersections;
+      if (opt.validate == ValidateMode::EveryFrame && m.new_intersections > 0 && status == "ok") {
+        status = "new self-intersections";
+        failure = std::to_string(m.new_intersections) + " new self-intersecting face pairs at frame " +
+                  std::to_string(m.frame);
+      }
       csv += csv_row(m);
       const auto now = std::chrono::steady_clock::now();
       if (!quiet && (std::chrono::duration<double>(now - last_report).count() > 1.0 ||
@@ -254,8 +323,17 @@ int command_run(int argc, char** argv) {
           .add("frames_run", sim.frame()).add("final_volume_ratio", sim.volume_ratio())
           .add("min_volume_ratio", min_ratio).add("wall_seconds", seconds)
           .add("mean_step_ms", sim.frame() > 0 ? 1e3 * seconds / sim.frame() : 0.0)
+          .add("collisions", opt.collisions).add("excluded_contact_pairs", sim.excluded_contact_pairs())
+          .add("new_intersections", static_cast<int>(new_intersections))
+          .add("table2", totals.json(sim.frame()))
           .add("warnings", report.warnings);
       write_text_atomic(summary_path, summary.str() + "\n");
+    }
+    if (status == "new self-intersections" || (new_intersections > 0 && status == "ok")) {
+      std::cerr << "shellcontract run: validation found new self-intersections: "
+                << (failure.empty() ? std::to_string(new_intersections) + " face pairs at the end" : failure)
+                << '\n';
+      return static_cast<int>(ExitCode::NewSelfIntersections);
     }
     if (status != "ok") {
       std::cerr << "shellcontract run: simulation failed: " << failure

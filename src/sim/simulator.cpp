@@ -7,6 +7,7 @@
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/validation/self_intersection.hpp"
 #include "shellcontract/validation/volume.hpp"
 
 namespace shellcontract {
@@ -22,6 +23,8 @@ void check_options(const SimOptions& o) {
     fail("in PBD mode k_B is a correction multiplier and must be in [0, 1]");
   if (!(o.density > 0.0)) fail("density must be positive");
   if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("damping must be in [0, 1)");
+  if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta)) fail("contact distance delta must be positive");
+  if (o.collision.rounds < 0) fail("collision rounds must be >= 0");
   if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
     fail("stop volume ratio must be in [0, 1)");
 }
@@ -60,6 +63,8 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   options_.solver.k_a_in_projection = options_.inward_term == InwardTerm::Projection;
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
+  if (options_.collisions) collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
+  if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
   v_ = Positions::Zero(x_.rows(), 3);
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
@@ -92,10 +97,14 @@ FrameMetrics Simulator::step() {
   }
   x_pred_ = x_ + dt * (v_ + dt * (force_.array().colwise() * inv_mass_.array()).matrix());
   // Step 2: constraint projection (Gauss-Seidel sweeps).
+  FrameMetrics m;
+  const auto solve_start = std::chrono::steady_clock::now();
   solver_->solve(x_pred_, inv_mass_);
+  m.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
   if (!x_pred_.allFinite())
     throw SimulationError("non-finite positions at step " + std::to_string(frame_ + 1));
-  FrameMetrics m;
+  // Step 3: continuous collision detection and response between x^n and x*.
+  if (collision_) collision_->resolve(x_, x_pred_, inv_mass_, m.collision);
   m.max_displacement = (x_pred_ - x_).rowwise().norm().maxCoeff();
   if (m.max_displacement > BLOWUP_DISPLACEMENT)
     throw SimulationError("blow-up at step " + std::to_string(frame_ + 1) + ": a vertex moved " +
@@ -113,7 +122,21 @@ FrameMetrics Simulator::step() {
   m.volume_ratio = volume_ratio_;
   m.energies = solver_->energies(x_);
   m.step_seconds = std::chrono::duration<double>(stop - start).count();
+  if (options_.validate == ValidateMode::EveryFrame ||
+      (options_.validate == ValidateMode::End && finished()))
+    m.new_intersections = static_cast<long>(count_new_intersections());
   return m;
+}
+
+std::size_t Simulator::input_intersections() const {
+  // The rest mesh's own points are the input positions (normalized), whatever x_ is now.
+  if (!baseline_intersections_) baseline_intersections_ = self_intersecting_pairs(*mesh_, positions_from_mesh(*mesh_));
+  return baseline_intersections_->size();
+}
+
+std::size_t Simulator::count_new_intersections() const {
+  input_intersections();
+  return new_self_intersections(*mesh_, x_, *baseline_intersections_);
 }
 
 }  // namespace shellcontract

@@ -6,6 +6,7 @@
 
 #include "shellcontract/material/material.hpp"
 #include "shellcontract/material/registry.hpp"
+#include "shellcontract/collision/self_collision.hpp"
 #include "shellcontract/pbd/solver.hpp"
 #include "shellcontract/sim/anisotropy.hpp"
 #include "shellcontract/sim/pressure.hpp"
@@ -19,6 +20,9 @@ enum class BendingModel { Isometric, Dihedral, None };
 /// math-spec 9.3; PBD only, in XPBD it becomes Force), as an explicit inward force
 /// f_i = -sum k_A n_j in the prediction (math-spec 9.2 R), or not at all.
 enum class InwardTerm { Projection, Force, None };
+
+/// When CGAL's self-intersection test checks the result (new intersections vs the input's).
+enum class ValidateMode { Off, End, EveryFrame };
 
 /// area: m_i = rho_A sum Abar_j / 3 (math-spec 1.4, default); unit: m_i = 1.
 enum class MassModel { AreaLumped, Unit };
@@ -48,6 +52,11 @@ struct SimOptions {
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
   AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
   InwardTerm inward_term = InwardTerm::Projection;
+  /// Continuous collision detection and response (paper section 4). On by default: users expect
+  /// a result that never passes through itself (design.md).
+  bool collisions = true;
+  CollisionOptions collision;                    ///< delta, rounds, broad-phase method
+  ValidateMode validate = ValidateMode::Off;
 };
 
 /// A step that moves a vertex farther than this (normalized units: the mesh's bounding-box

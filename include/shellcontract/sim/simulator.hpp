@@ -3,6 +3,9 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -22,7 +25,12 @@ struct FrameMetrics {
   double volume_ratio = 1.0;     ///< V / V0, V from CGAL PMP::volume
   ConstraintEnergies energies;   ///< after the step
   double max_displacement = 0.0; ///< max_i |x_i^{n+1} - x_i^n| (normalized units)
-  double step_seconds = 0.0;     ///< wall time of the step (predict + solve + velocity update)
+  double step_seconds = 0.0;     ///< wall time of the step (predict, solve, collisions, velocity)
+  double solve_seconds = 0.0;    ///< wall time of the constraint projection alone
+  CollisionStepStats collision;  ///< zero when collisions are off
+  /// New self-intersections (face pairs not intersecting in the input) found by CGAL at this
+  /// frame; -1 when not validated at this frame.
+  long new_intersections = -1;
 };
 
 /// Runs the contraction of one closed mesh.
@@ -52,6 +60,12 @@ class Simulator {
   const Normalization& normalization() const { return normalization_; }
   const RestStateReport& rest_report() const { return rest_report_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
+  /// Face pairs that already intersect in the input (the validation baseline).
+  std::size_t input_intersections() const;
+  /// Primitive pairs the collision handling ignores because they touch in the rest state.
+  std::size_t excluded_contact_pairs() const { return collision_ ? collision_->excluded_pairs() : 0; }
+  /// CGAL self-intersection check of the current positions: face pairs not in the input's set.
+  std::size_t count_new_intersections() const;
   const SimOptions& options() const { return options_; }
   /// Energies at the current positions.
   ConstraintEnergies energies() const { return solver_->energies(x_); }
@@ -67,6 +81,9 @@ class Simulator {
   Eigen::VectorXd inward_k_a_;   ///< their k_A
   Eigen::VectorXd inv_mass_;
   std::unique_ptr<ConstraintSolver> solver_;
+  std::unique_ptr<SelfCollision> collision_;
+  /// Input's intersecting face pairs, computed on first use (validation only).
+  mutable std::optional<std::vector<std::pair<FaceIndex, FaceIndex>>> baseline_intersections_;
   Positions x_, v_, x_pred_, force_;
   double rest_volume_ = 0.0;
   double volume_ratio_ = 1.0;
