@@ -1,0 +1,156 @@
+// Collision response and the per-step pipeline (math-spec 10.8, 13 "CCD" last item; issue
+// "self-collision" items 4-5).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "shellcontract/collision/ccd.hpp"
+#include "shellcontract/collision/contact.hpp"
+#include "shellcontract/collision/self_collision.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// Two separate triangles: face 0 = (0,1,2) in the plane z = 0, face 1 = (3,4,5) above it.
+struct TwoTriangles {
+  Faces faces;
+  Positions x0, x1;
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(6);
+  TwoTriangles() {
+    faces.resize(2, 3);
+    faces << 0, 1, 2, 3, 4, 5;
+    x0.resize(6, 3);
+    x0 << 0, 0, 0, 1, 0, 0, 0, 1, 0,        // lower triangle
+        0.2, 0.2, 0.1, 1.2, 0.2, 0.1, 0.2, 1.2, 0.1;  // upper triangle, 0.1 above
+    x1 = x0;
+  }
+};
+
+/// True if any VF or EE pair of different triangles touches during x0 -> x1 (tolerance 0).
+bool any_contact(const TwoTriangles& t, const Positions& x1) {
+  auto X = [](const Positions& x, int i) { return Vec3(x.row(i).transpose()); };
+  for (int a = 0; a < 2; ++a) {
+    const int b = 1 - a;
+    for (int k = 0; k < 3; ++k) {
+      const int p = t.faces(a, k);
+      CcdStencil s0{X(t.x0, p), X(t.x0, t.faces(b, 0)), X(t.x0, t.faces(b, 1)), X(t.x0, t.faces(b, 2))};
+      CcdStencil s1{X(x1, p), X(x1, t.faces(b, 0)), X(x1, t.faces(b, 1)), X(x1, t.faces(b, 2))};
+      if (vertex_face_ccd(s0, s1).hit) return true;
+    }
+  }
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) {
+      const int a0 = t.faces(0, i), a1 = t.faces(0, (i + 1) % 3);
+      const int b0 = t.faces(1, j), b1 = t.faces(1, (j + 1) % 3);
+      CcdStencil s0{X(t.x0, a0), X(t.x0, a1), X(t.x0, b0), X(t.x0, b1)};
+      CcdStencil s1{X(x1, a0), X(x1, a1), X(x1, b0), X(x1, b1)};
+      if (edge_edge_ccd(s0, s1).hit) return true;
+    }
+  return false;
+}
+
+TEST(ContactProjection, SatisfiesTheSignedConstraintAndConservesMomentum) {
+  // A vertex that started above a triangle and ended 0.02 below it: after one projection it is
+  // at the target separation on its starting side, and sum m dx = 0 (the weights sum to zero).
+  Positions x(4, 3);
+  x << 0.3, 0.3, -0.02, 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  const Eigen::Vector4d w(1.0, 0.5, 2.0, 1.5);
+  Contact c;
+  c.kind = CcdPrimitive::VertexFace;
+  c.v = {0, 1, 2, 3};
+  c.weights << 1.0, -0.4, -0.3, -0.3;  // closest point 0.4 x1 + 0.3 x2 + 0.3 x3 = (0.3, 0.3, 0)
+  c.normal = Vec3::UnitZ();
+  c.side = 1.0;  // it started above the triangle
+  const Positions before = x;
+  ASSERT_TRUE(project_contact(c, 0.01, x.data(), w.data()));
+  Vec3 gap = Vec3::Zero(), momentum = Vec3::Zero();
+  for (int k = 0; k < 4; ++k) {
+    gap += c.weights(k) * Vec3(x.row(k).transpose());
+    momentum += (Vec3(x.row(k).transpose()) - Vec3(before.row(k).transpose())) / w(k);
+  }
+  EXPECT_NEAR(gap.z(), 0.01, 1e-15);
+  EXPECT_LE(momentum.norm(), 1e-15);
+  const Positions after = x;
+  project_contact(c, 0.01, x.data(), w.data());
+  EXPECT_LE((x - after).cwiseAbs().maxCoeff(), 1e-16) << "satisfied (up to rounding): no motion";
+  c.side = -1.0;  // the same geometry seen from the other side is deeply violated
+  ASSERT_TRUE(project_contact(c, 0.01, x.data(), w.data()));
+  gap.setZero();
+  for (int k = 0; k < 4; ++k) gap += c.weights(k) * Vec3(x.row(k).transpose());
+  EXPECT_NEAR(gap.z(), -0.01, 1e-15);
+}
+
+TEST(ContactProjection, PinnedVerticesStayAndAllPinnedDoesNothing) {
+  Positions x(4, 3);
+  x << 0.3, 0.3, -0.02, 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  Contact c;
+  c.v = {0, 1, 2, 3};
+  c.weights << 1.0, -0.4, -0.3, -0.3;
+  const Eigen::Vector4d pinned_face(1.0, 0.0, 0.0, 0.0);
+  const Positions before = x;
+  ASSERT_TRUE(project_contact(c, 0.01, x.data(), pinned_face.data()));
+  EXPECT_EQ(x.bottomRows(3), before.bottomRows(3));
+  EXPECT_NEAR(x(0, 2), 0.01, 1e-15);
+  const Eigen::Vector4d all_pinned = Eigen::Vector4d::Zero();
+  EXPECT_FALSE(project_contact(c, 0.05, x.data(), all_pinned.data()));
+}
+
+TEST(SelfCollision, ResponseStopsAVertexPassingThroughAFace) {
+  TwoTriangles t;
+  // The upper triangle drops 0.3: without handling it passes through the lower one.
+  t.x1.bottomRows(3).col(2).array() -= 0.3;
+  ASSERT_TRUE(any_contact(t, t.x1));
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  SelfCollision sc(t.faces, t.x0, opt);
+  Positions x1 = t.x1;
+  CollisionStepStats stats;
+  sc.resolve(t.x0, x1, t.w, stats);
+  EXPECT_GT(stats.contacts, 0);
+  EXPECT_FALSE(any_contact(t, x1));
+  // The upper triangle is still above the lower one where they overlap.
+  EXPECT_GT(x1(3, 2), 0.0);
+}
+
+TEST(SelfCollision, FailSafeRevertsWhenTheResponseCannotAct) {
+  TwoTriangles t;
+  t.x1.bottomRows(3).col(2).array() -= 0.3;
+  t.w.setZero();  // every vertex pinned: the response cannot move anything
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  SelfCollision sc(t.faces, t.x0, opt);
+  Positions x1 = t.x1;
+  CollisionStepStats stats;
+  sc.resolve(t.x0, x1, t.w, stats);
+  EXPECT_GT(stats.failsafe_vertices, 0);
+  EXPECT_FALSE(any_contact(t, x1));
+}
+
+TEST(SelfCollision, FarApartAndZeroMotionIsLeftAlone) {
+  TwoTriangles t;
+  t.x1.bottomRows(3).col(0).array() += 0.01;  // slide sideways, 0.1 apart
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  SelfCollision sc(t.faces, t.x0, opt);
+  Positions x1 = t.x1;
+  CollisionStepStats stats;
+  sc.resolve(t.x0, x1, t.w, stats);
+  EXPECT_EQ(x1, t.x1);
+  EXPECT_EQ(stats.contacts, 0);
+  EXPECT_EQ(stats.rounds, 1);
+}
+
+TEST(SelfCollision, PairsTouchingAtRestAreExcluded) {
+  TwoTriangles t;
+  t.x0.bottomRows(3).col(2).setZero();  // the upper triangle lies in the lower one's plane
+  t.x1 = t.x0;
+  SelfCollision sc(t.faces, t.x0, CollisionOptions{});
+  EXPECT_GT(sc.excluded_pairs(), 0u);
+  Positions x1 = t.x1;
+  CollisionStepStats stats;
+  sc.resolve(t.x0, x1, t.w, stats);
+  EXPECT_EQ(x1, t.x1) << "excluded pairs are not pushed apart";
+}
+
+}  // namespace
+}  // namespace shellcontract
