@@ -12,7 +12,7 @@ constexpr const char* USAGE = R"(usage: shellcontract <command> [options]
 
 commands:
   run INPUT -o OUTPUT [options]    contract a closed mesh (see 'shellcontract run --help')
-  check INPUT                      report whether a mesh can be used, and why not
+  check INPUT [--json]             report whether a mesh can be used, and why not
   bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
 
   shellcontract <command> --help   options of one command
