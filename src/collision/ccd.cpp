@@ -432,7 +432,45 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
   int top = 0;
   stack[top++] = Interval{0.0, 1.0, {bb.b[0], bb.b[1], bb.b[2], bb.b[3]}, bb.err, 0};
   CcdStencil xa, xb, xm;
-  Vec3 da[4], db[4];
+  Closest cm;  // closest points at the midpoint of the last interval tested by `excluded`
+
+  // Steps 1 and 2 on one interval: true if no contact within tau is possible in it (rigorous).
+  // Leaves the positions at ta, tb, tm in xa, xb, xm and the closest points at tm in cm.
+  auto excluded = [&](const Interval& iv) {
+    // 1. Coplanarity cull.
+    if (one_sign(iv.b, iv.err + tau_term)) return true;
+    // 2a. Separating axes x, y, z over the hull of the differences at ta and tb.
+    Vec3 da[4], db[4];
+    positions_at(q, iv.ta, xa);
+    positions_at(q, iv.tb, xb);
+    const int nd = differences(kind, xa, da);
+    differences(kind, xb, db);
+    for (int ax = 0; ax < 3; ++ax) {
+      double lo = da[0][ax], hi = da[0][ax];
+      for (int k = 0; k < nd; ++k) {
+        lo = std::min({lo, da[k][ax], db[k][ax]});
+        hi = std::max({hi, da[k][ax], db[k][ax]});
+      }
+      if (lo > axis_gap || hi < -axis_gap) return true;
+    }
+    // 2b. Separating axis along the closest-point direction at the midpoint.
+    positions_at(q, 0.5 * (iv.ta + iv.tb), xm);
+    cm = closest_at(kind, xm);
+    const Vec3& d = cm.direction;
+    const double dn = d.norm();
+    if (!(dn > 0.0)) return false;
+    double smin = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < nd; ++k) smin = std::min({smin, da[k].dot(d), db[k].dot(d)});
+    return smin > sat_gap * dn * (1.0 + 8.0 * U);
+  };
+
+  auto halves = [&](const Interval& iv, Interval& l, Interval& r) {
+    l = r = iv;
+    split_half(iv.b, l.b, r.b);
+    l.tb = r.ta = 0.5 * (iv.ta + iv.tb);
+    l.err = r.err = iv.err + split_err;
+    l.depth = r.depth = iv.depth + 1;
+  };
 
   bool fast_path_tried = false;
   auto accept = [&](const Interval& iv, CcdHitReason reason, bool certain, double tc) {
@@ -449,8 +487,7 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
     if (++res.intervals > max_intervals)
       return accept(iv, CcdHitReason::Budget, false, 0.5 * (iv.ta + iv.tb));
 
-    // 1. Coplanarity cull.
-    if (one_sign(iv.b, iv.err + tau_term)) continue;
+    if (one_sign(iv.b, iv.err + tau_term)) continue;  // step 1, before the fast path
 
     // Fast path (tried once per query): if the Bernstein coefficients all have certain signs
     // with exactly one sign change, f has exactly one root t* in I (Descartes' rule for the
@@ -464,8 +501,8 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
       const double m = iv.err;
       const bool certain_signs = std::abs(iv.b[0]) > m && std::abs(iv.b[1]) > m &&
                                  std::abs(iv.b[2]) > m && std::abs(iv.b[3]) > m;
-      const int changes = (iv.b[0] > 0) != (iv.b[1] > 0) ? 1 : 0;
-      const int variations = changes + ((iv.b[1] > 0) != (iv.b[2] > 0)) + ((iv.b[2] > 0) != (iv.b[3] > 0));
+      const int variations = ((iv.b[0] > 0) != (iv.b[1] > 0)) + ((iv.b[1] > 0) != (iv.b[2] > 0)) +
+                             ((iv.b[2] > 0) != (iv.b[3] > 0));
       if (certain_signs && variations == 1) {
         fast_path_tried = true;
         const double s = root_estimate(iv.b);
@@ -487,36 +524,36 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
       }
     }
 
-    // 2a. Separating axes x, y, z over the hull of the differences at ta and tb.
-    positions_at(q, iv.ta, xa);
-    positions_at(q, iv.tb, xb);
-    const int nd = differences(kind, xa, da);
-    differences(kind, xb, db);
-    bool separated = false;
-    for (int ax = 0; ax < 3 && !separated; ++ax) {
-      double lo = da[0][ax], hi = da[0][ax];
-      for (int k = 0; k < nd; ++k) {
-        lo = std::min({lo, da[k][ax], db[k][ax]});
-        hi = std::max({hi, da[k][ax], db[k][ax]});
-      }
-      separated = lo > axis_gap || hi < -axis_gap;
-    }
-    if (separated) continue;
-
-    // 3a. Distance at the midpoint.
+    if (excluded(iv)) continue;
     const double tm = 0.5 * (iv.ta + iv.tb);
-    positions_at(q, tm, xm);
-    const Closest cm = closest_at(kind, xm);
-    if (cm.distance <= tau + dist_slack)
-      return accept(iv, CcdHitReason::Distance, cm.distance + 2.0 * dist_slack <= tau, tm);
 
-    // 2b. Separating axis along the closest-point direction at the midpoint.
-    const Vec3& d = cm.direction;
-    const double dn = d.norm();
-    if (dn > 0.0) {
-      double smin = std::numeric_limits<double>::infinity();
-      for (int k = 0; k < nd; ++k) smin = std::min({smin, da[k].dot(d), db[k].dot(d)});
-      if (smin > sat_gap * dn * (1.0 + 8.0 * U)) continue;
+    // 3a. Distance at the midpoint within tau (+ rounding): a hit. Every time before ta is
+    // excluded, but [ta, tm) is not examined yet: unless the contact is already at ta, tighten
+    // toi by a greedy descent that keeps the earliest half that cannot be excluded (16 levels).
+    if (cm.distance <= tau + dist_slack) {
+      const bool certain = cm.distance + 2.0 * dist_slack <= tau;
+      positions_at(q, iv.ta, xa);
+      const Closest c0 = closest_at(kind, xa);
+      if (c0.distance <= tau + dist_slack) return accept(iv, CcdHitReason::Distance, certain, iv.ta);
+      Interval j, l, r, dummy;
+      halves(iv, j, dummy);  // [ta, tm]
+      for (int level = 0; level < 16; ++level) {
+        halves(j, l, r);
+        if (!excluded(l)) {
+          j = l;
+        } else if (!excluded(r)) {
+          j = r;
+        } else {
+          j.ta = j.tb;  // both excluded: the contact is at the right end, tm
+          break;
+        }
+      }
+      res.hit = true;
+      res.certain = certain;
+      res.reason = CcdHitReason::Distance;
+      res.toi = j.ta;
+      fill_contact(q, tm, res);
+      return res;
     }
 
     // 3b. Certificate: sign change of f on I and a strict inside/crossing configuration.
@@ -534,11 +571,8 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
     // 4. Leaf: conservative hit. Else bisect, earliest half on top.
     if (iv.depth >= max_depth || motion * (iv.tb - iv.ta) <= 8.0 * U * M)
       return accept(iv, CcdHitReason::Undecided, false, tm);
-    Interval l = iv, r = iv;
-    split_half(iv.b, l.b, r.b);
-    l.tb = r.ta = tm;
-    l.err = r.err = iv.err + split_err;
-    l.depth = r.depth = iv.depth + 1;
+    Interval l, r;
+    halves(iv, l, r);
     stack[top++] = r;
     stack[top++] = l;
   }
