@@ -2,8 +2,6 @@
 // Runs the built executable (SHELLCONTRACT_CLI_PATH); skipped when it has not been built.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -11,35 +9,13 @@
 #include <string>
 #include <vector>
 
+#include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 
 namespace {
 
-struct RunResult {
-  int exit_code = -1;
-  std::string output;  ///< stdout and stderr together
-};
-
-std::string quoted(const std::string& s) {
-  std::string q = "'";
-  for (char c : s) q += (c == '\'') ? std::string("'\\''") : std::string(1, c);
-  return q + "'";
-}
-
-RunResult run_cli(const std::vector<std::string>& args) {
-  std::string cmd = quoted(SHELLCONTRACT_CLI_PATH);
-  for (const std::string& a : args) cmd += " " + quoted(a);
-  cmd += " 2>&1";
-  RunResult r;
-  FILE* pipe = ::popen(cmd.c_str(), "r");
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  std::size_t n = 0;
-  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
-  const int status = ::pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
+using shellcontract::test::RunResult;
+using shellcontract::test::run_cli;
 
 class CliCheck : public ::testing::Test {
  protected:

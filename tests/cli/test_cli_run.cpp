@@ -1,0 +1,112 @@
+// `shellcontract run` as a user runs it: exit codes, messages, outputs written atomically and in
+// the input's order (README "Exit codes", "Outputs").
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "shellcontract/mesh/io.hpp"
+#include "support/cli_runner.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_cli;
+
+class CliRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_cli_run_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string mesh(const std::string& name) { return std::string(test::MESH_DIR) + "/" + name; }
+  std::string out(const std::string& name) { return (dir_ / name).string(); }
+  fs::path dir_;
+};
+
+TEST_F(CliRun, ContractsAndWritesMeshLogAndSummaryInInputOrder) {
+  const auto r = run_cli({"run", mesh("ico2.off"), "-o", out("o.off"), "--frames", "20", "--log",
+                          out("log.csv"), "--summary", out("s.json"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  InputReport in_report, out_report;
+  const Mesh in = read_input_mesh(mesh("ico2.off"), &in_report);
+  const Mesh result = read_input_mesh(out("o.off"), &out_report);
+  ASSERT_EQ(result.number_of_vertices(), in.number_of_vertices());
+  ASSERT_EQ(result.number_of_faces(), in.number_of_faces());
+  for (FaceIndex f : in.faces()) {
+    std::vector<int> a, b;
+    for (VertexIndex v : CGAL::vertices_around_face(in.halfedge(f), in)) a.push_back(int(v.idx()));
+    for (VertexIndex v : CGAL::vertices_around_face(result.halfedge(f), result)) b.push_back(int(v.idx()));
+    ASSERT_EQ(a, b) << "face " << f.idx();
+  }
+  EXPECT_LT(out_report.volume, in_report.volume) << "the shell contracted";
+  std::ifstream log(out("log.csv"));
+  std::string header, line;
+  std::getline(log, header);
+  EXPECT_EQ(header.rfind("frame,time,volume_ratio,", 0), 0u) << header;
+  int rows = 0;
+  while (std::getline(log, line)) ++rows;
+  EXPECT_EQ(rows, 20);
+  std::stringstream json;
+  json << std::ifstream(out("s.json")).rdbuf();
+  EXPECT_NE(json.str().find("\"frames_run\": 20"), std::string::npos) << json.str();
+  // No temporary files left behind.
+  int files = 0;
+  for (const auto& e : fs::directory_iterator(dir_)) files += e.is_regular_file();
+  EXPECT_EQ(files, 3);
+}
+
+TEST_F(CliRun, BadInputIsExitCode2WithTheProblemNamedAndNoOutput) {
+  struct Case {
+    const char* file;
+    const char* message;
+  };
+  for (const Case& c : {Case{"bad/open_sheet.off", "boundary"}, Case{"bad/nan.off", "finite"},
+                        Case{"bad/truncated.off", "truncated"}, Case{"bad/empty.off", "empty"},
+                        Case{"bad/nonmanifold_edge.off", "non-manifold edge"},
+                        Case{"bad/nonmanifold_vertex.off", "non-manifold vertex"},
+                        Case{"bad/garbage.off", "bad/garbage.off"},
+                        Case{"bad/index_out_of_range.off", "out of range"}}) {
+    const auto r = run_cli({"run", mesh(c.file), "-o", out("o.off"), "-q"});
+    EXPECT_EQ(r.exit_code, 2) << c.file << ": " << r.output;
+    EXPECT_NE(r.output.find(c.message), std::string::npos) << c.file << ": " << r.output;
+    EXPECT_FALSE(fs::exists(out("o.off"))) << c.file;
+  }
+}
+
+TEST_F(CliRun, BadUsageIsExitCode1) {
+  EXPECT_EQ(run_cli({"run", mesh("ico1.off")}).exit_code, 1);  // no -o
+  EXPECT_EQ(run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--solver", "magic"}).exit_code, 1);
+  EXPECT_EQ(run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--dt", "-1"}).exit_code, 1);
+  EXPECT_EQ(run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--no-such-option"}).exit_code, 1);
+  const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("missing_dir/o.off"), "--frames", "1"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_FALSE(fs::exists(out("missing_dir")));
+}
+
+TEST_F(CliRun, BlowUpIsExitCode3AndTheLastGoodStateIsWritten) {
+  const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--pressure", "1e300",
+                          "--collisions", "off", "-q"});
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("last good state"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out("o.off")));
+}
+
+TEST_F(CliRun, HelpListsTheOptions) {
+  const auto r = run_cli({"run", "--help"});
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* opt : {"--pressure", "--frames", "--dt", "--solver", "--material", "--bending",
+                          "--k-b", "--collisions", "--validate", "--aniso", "--log", "--summary"})
+    EXPECT_NE(r.output.find(opt), std::string::npos) << opt;
+}
+
+}  // namespace
+}  // namespace shellcontract
