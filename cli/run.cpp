@@ -11,7 +11,9 @@
 #include "commands.hpp"
 #include "json_writer.hpp"
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/material/registry.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/simulator.hpp"
 
@@ -134,9 +136,10 @@ int command_run(int argc, char** argv) {
                                                      mass = "area";
   SimOptions opt;
   std::string collisions = "on", validate = "off";
-  std::string aniso = "none", regions_arg = "auto", inward = "projection", fiber = "centre";
+  std::string aniso = "none", regions_arg = "auto", inward = "force", fiber = "centre";
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
+  bool measure_regions = false;
 
   po::options_description desc(
       "usage: shellcontract run INPUT -o OUTPUT [options]\n\n"
@@ -188,13 +191,18 @@ int command_run(int argc, char** argv) {
       ("k-a", po::value(&opt.anisotropy.kappa_a)->default_value(opt.anisotropy.kappa_a),
        "kappa_A: the inward term is k_A = kappa_A mu_A sqrt(face rest area)")
       ("inward", po::value(&inward)->default_value(inward),
-       "where k_A acts: projection (paper, pbd) | force (explicit inward force) | none")
+       "inward term on the regions: projection (the paper's k_A, pbd) | force (local extra "
+       "pressure --region-pressure) | none")
+      ("region-pressure", po::value(&opt.region_pressure)->default_value(opt.region_pressure),
+       "P_A, extra pressure on the regions with --inward force (normalized units)")
       ("mu-a", po::value(&opt.material_params.mu_aniso)->default_value(opt.material_params.mu_aniso),
        "anisotropic fibre stiffness mu_A")
       ("fiber-target", po::value(&opt.material_params.fiber_target)->default_value(opt.material_params.fiber_target),
        "active-fiber target stretch gamma in (0, 1]")
       ("fiber", po::value(&fiber)->default_value(fiber),
        "fibre direction: centre (toward the region centre) or X,Y,Z (one direction for all)")
+      ("measure-regions", po::bool_switch(&measure_regions),
+       "select the regions even without --aniso, to report how far they sink in (summary)")
       ("inversion-aware", po::bool_switch(&opt.solver.inversion_aware),
        "orientation s = sign(n . n_ref) for the anisotropic faces (ARAP then differs from sqrt)")
       ("collisions", po::value(&collisions)->default_value(collisions),
@@ -261,6 +269,19 @@ int command_run(int argc, char** argv) {
     InputReport report;
     const Mesh mesh = read_input_mesh(input, &report);
     for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
+    // Regions: where the anisotropic energy acts (and where its effect is measured).
+    if (regions_arg == "auto") {
+      if (opt.solver.aniso != AnisoKind::None || measure_regions) {
+        RegionReport region_report;
+        opt.anisotropy.regions = regions_from_face_ids(
+            select_spherical_regions(mesh, positions_from_mesh(mesh), RegionOptions{}, &region_report));
+        if (!quiet)
+          std::cerr << "regions: " << opt.anisotropy.regions.size()
+                    << " spherical regions selected by curvature\n";
+      }
+    } else if (regions_arg != "none") {
+      opt.anisotropy.regions = read_region_file(regions_arg, mesh.number_of_faces());
+    }
     Simulator sim(mesh, opt);
     if (sim.rest_report().degenerate_faces > 0)
       std::cerr << "warning: " << sim.rest_report().degenerate_faces
@@ -325,6 +346,9 @@ int command_run(int argc, char** argv) {
           .add("mean_step_ms", sim.frame() > 0 ? 1e3 * seconds / sim.frame() : 0.0)
           .add("collisions", opt.collisions).add("excluded_contact_pairs", sim.excluded_contact_pairs())
           .add("new_intersections", static_cast<int>(new_intersections))
+          .add("regions", opt.anisotropy.regions.size())
+          .add("anisotropic_faces", sim.anisotropy_report().faces)
+          .add("region_inward_displacement", sim.region_inward_displacement())
           .add("table2", totals.json(sim.frame()))
           .add("warnings", report.warnings);
       write_text_atomic(summary_path, summary.str() + "\n");

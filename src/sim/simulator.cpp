@@ -1,5 +1,6 @@
 #include "shellcontract/sim/simulator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <utility>
 #include <cmath>
@@ -23,6 +24,7 @@ void check_options(const SimOptions& o) {
     fail("in PBD mode k_B is a correction multiplier and must be in [0, 1]");
   if (!(o.density > 0.0)) fail("density must be positive");
   if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("damping must be in [0, 1)");
+  if (!std::isfinite(o.region_pressure)) fail("region pressure must be finite");
   if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta)) fail("contact distance delta must be positive");
   if (o.collision.rounds < 0) fail("collision rounds must be >= 0");
   if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
@@ -53,8 +55,6 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
     if (options_.inward_term == InwardTerm::Force ||
         (options_.inward_term == InwardTerm::Projection && options_.solver.kind == SolverKind::Xpbd)) {
       inward_faces_.resize(static_cast<Eigen::Index>(constraints.anisotropic.size()), 3);
-      inward_k_a_ = Eigen::Map<const Eigen::VectorXd>(constraints.anisotropic_k_a.data(),
-                                                      static_cast<Eigen::Index>(constraints.anisotropic_k_a.size()));
       for (std::size_t i = 0; i < constraints.anisotropic.size(); ++i)
         for (int k = 0; k < 3; ++k)
           inward_faces_(static_cast<Eigen::Index>(i), k) = constraints.anisotropic[i].v[k];
@@ -66,6 +66,28 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   if (options_.collisions) collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
   if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
   v_ = Positions::Zero(x_.rows(), 3);
+  rest_x_ = x_;
+  // Region vertices and their rest normals, for region_inward_displacement().
+  if (!options_.anisotropy.regions.empty()) {
+    Positions vertex_normal = Positions::Zero(x_.rows(), 3);
+    for (Eigen::Index j = 0; j < faces_.rows(); ++j) {
+      const Vec3 xc = x_.row(faces_(j, 2));
+      const Vec3 N = (Vec3(x_.row(faces_(j, 0))) - xc).cross(Vec3(x_.row(faces_(j, 1))) - xc);
+      for (int k = 0; k < 3; ++k) vertex_normal.row(faces_(j, k)) += N.transpose();
+    }
+    for (const std::vector<int>& region : options_.anisotropy.regions)
+      for (int f : region)
+        if (f >= 0 && f < faces_.rows())
+          for (int k = 0; k < 3; ++k) region_vertices_.push_back(faces_(f, k));
+    std::sort(region_vertices_.begin(), region_vertices_.end());
+    region_vertices_.erase(std::unique(region_vertices_.begin(), region_vertices_.end()), region_vertices_.end());
+    region_normals_.resize(static_cast<Eigen::Index>(region_vertices_.size()), 3);
+    for (std::size_t i = 0; i < region_vertices_.size(); ++i) {
+      const Vec3 n = vertex_normal.row(region_vertices_[i]);
+      const double len = n.norm();
+      region_normals_.row(static_cast<Eigen::Index>(i)) = len > 0.0 ? Eigen::RowVector3d(n.transpose() / len) : Eigen::RowVector3d::Zero();
+    }
+  }
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
     throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) + ")");
@@ -83,17 +105,12 @@ FrameMetrics Simulator::step() {
   const double dt = options_.dt;
   // Step 1 (math-spec 2): symplectic Euler with the explicit pressure force at x^n.
   pressure_forces(x_, faces_, options_.pressure, options_.pressure_model, force_);
-  // Explicit k_A inward force on the anisotropic faces (math-spec 9.2 R): -k_A n_j per corner.
-  for (Eigen::Index j = 0; j < inward_faces_.rows(); ++j) {
-    const int a = inward_faces_(j, 0), b = inward_faces_(j, 1), c = inward_faces_(j, 2);
-    const Vec3 xc = x_.row(c);
-    const Vec3 N = (Vec3(x_.row(a)) - xc).cross(Vec3(x_.row(b)) - xc);
-    const double len = N.norm();
-    if (!(len > 0.0)) continue;  // collapsed face: no normal, no push
-    const Eigen::RowVector3d f = (-inward_k_a_(j) / len) * N.transpose();
-    force_.row(a) += f;
-    force_.row(b) += f;
-    force_.row(c) += f;
+  // Local extra pressure on the anisotropic faces (math-spec 9.2 R, the physically meaningful
+  // replacement of the paper's k_A): f_i = -(P_A / 6) sum N_j over the region faces around i.
+  if (inward_faces_.rows() > 0) {
+    pressure_forces(x_, inward_faces_, options_.region_pressure, PressureModel::EnergyConsistent,
+                    region_force_);
+    force_ += region_force_;
   }
   x_pred_ = x_ + dt * (v_ + dt * (force_.array().colwise() * inv_mass_.array()).matrix());
   // Step 2: constraint projection (Gauss-Seidel sweeps).
@@ -126,6 +143,16 @@ FrameMetrics Simulator::step() {
       (options_.validate == ValidateMode::End && finished()))
     m.new_intersections = static_cast<long>(count_new_intersections());
   return m;
+}
+
+double Simulator::region_inward_displacement() const {
+  if (region_vertices_.empty()) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < region_vertices_.size(); ++i) {
+    const int v = region_vertices_[i];
+    sum -= (x_.row(v) - rest_x_.row(v)).dot(region_normals_.row(static_cast<Eigen::Index>(i)));
+  }
+  return sum / static_cast<double>(region_vertices_.size());
 }
 
 std::size_t Simulator::input_intersections() const {

@@ -16,10 +16,15 @@ namespace shellcontract {
 /// isometric: the paper's flat-rest model (math-spec 8.2); dihedral: rest-aware (8.3).
 enum class BendingModel { Isometric, Dihedral, None };
 
-/// Where the anisotropic regions' k_A inward term acts: inside the E_A projection (the paper,
-/// math-spec 9.3; PBD only, in XPBD it becomes Force), as an explicit inward force
-/// f_i = -sum k_A n_j in the prediction (math-spec 9.2 R), or not at all.
+/// The inward term of the anisotropic regions: the paper's k_A inside the E_A projection
+/// (math-spec 9.3; PBD only, in XPBD it becomes Force), a local extra pressure P_A on the region
+/// faces, f_i = -(P_A/6) sum N_j, applied in the prediction (math-spec 9.2 R: a real force with an
+/// energy, momentum-consistent, independent of the mesh resolution), or nothing.
 enum class InwardTerm { Projection, Force, None };
+
+/// Default local extra pressure P_A on the anisotropic regions (InwardTerm::Force), normalized
+/// units; README "Anisotropic regions" gives the measurement behind it.
+inline constexpr double DEFAULT_REGION_PRESSURE = 2.0;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
 enum class ValidateMode { Off, End, EveryFrame };
@@ -51,7 +56,8 @@ struct SimOptions {
   double stop_volume_ratio = 0.0;                ///< epsilon: stop when V/V0 < epsilon (0 = off)
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
   AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
-  InwardTerm inward_term = InwardTerm::Projection;
+  InwardTerm inward_term = InwardTerm::Force;
+  double region_pressure = DEFAULT_REGION_PRESSURE;  ///< P_A of InwardTerm::Force (normalized)
   /// Continuous collision detection and response (paper section 4). On by default: users expect
   /// a result that never passes through itself (design.md).
   bool collisions = true;

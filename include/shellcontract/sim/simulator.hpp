@@ -66,6 +66,11 @@ class Simulator {
   std::size_t excluded_contact_pairs() const { return collision_ ? collision_->excluded_pairs() : 0; }
   /// CGAL self-intersection check of the current positions: face pairs not in the input's set.
   std::size_t count_new_intersections() const;
+  /// How far the anisotropic regions sank in: the mean over the vertices of every region
+  /// (options.anisotropy.regions, whether or not E_A is on) of -(x_i - xbar_i) . nbar_i, with
+  /// nbar_i the rest area-weighted unit vertex normal (normalized units; > 0 = moved inward).
+  /// 0 when there are no regions. The paper's Fig. 20 measure (issue acceptance).
+  double region_inward_displacement() const;
   const SimOptions& options() const { return options_; }
   /// Energies at the current positions.
   ConstraintEnergies energies() const { return solver_->energies(x_); }
@@ -77,14 +82,17 @@ class Simulator {
   RestStateReport rest_report_;
   AnisotropyReport anisotropy_report_;
   Faces faces_;
-  Faces inward_faces_;           ///< anisotropic faces that get the explicit k_A force
-  Eigen::VectorXd inward_k_a_;   ///< their k_A
+  Faces inward_faces_;           ///< anisotropic faces that get the local extra pressure
+  Positions region_force_;       ///< its forces (buffer)
   Eigen::VectorXd inv_mass_;
   std::unique_ptr<ConstraintSolver> solver_;
   std::unique_ptr<SelfCollision> collision_;
   /// Input's intersecting face pairs, computed on first use (validation only).
   mutable std::optional<std::vector<std::pair<FaceIndex, FaceIndex>>> baseline_intersections_;
   Positions x_, v_, x_pred_, force_;
+  Positions rest_x_;                  ///< normalized rest positions
+  std::vector<int> region_vertices_;  ///< vertices of the regions, sorted, unique
+  Positions region_normals_;          ///< their rest unit normals, same order
   double rest_volume_ = 0.0;
   double volume_ratio_ = 1.0;
   int frame_ = 0;
