@@ -1,0 +1,285 @@
+// Spherical-region selection against known bump faces (meshes/bumpy_sphere.bumps.txt, written
+// by scripts/make_meshes.py from the construction, not by this code), the plain-sphere decision,
+// scale invariance, and the region face-list file format.
+#include <gtest/gtest.h>
+#include <unistd.h>  // getpid: one temporary folder per test process
+
+#include <algorithm>
+#include <cstdio>
+#include <iterator>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/properties.hpp"
+#include "support/cgal_mesh.hpp"
+#include "support/mesh_fixtures.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string mesh_path(const std::string& name) { return std::string(test::MESH_DIR) + "/" + name; }
+
+/// A fresh path in the test's temporary folder.
+std::string temp_path(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("shellcontract_test_regions_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return (dir / name).string();
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+}
+
+/// Faces sharing at least a vertex with `faces`, including them.
+std::set<int> with_vertex_neighbours(const Mesh& mesh, const std::vector<int>& faces) {
+  std::set<int> out;
+  for (int f : faces)
+    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(FaceIndex(f)), mesh))
+      for (FaceIndex g : CGAL::faces_around_target(mesh.halfedge(v), mesh)) out.insert(static_cast<int>(g.idx()));
+  return out;
+}
+
+class BumpySphere : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(fs::exists(mesh_path("bumpy_sphere.off"))) << "meshes/bumpy_sphere.off is part of the repository";
+    mesh_ = read_input_mesh(mesh_path("bumpy_sphere.off"));
+    x_ = positions_from_mesh(mesh_);
+    bumps_ = read_region_file(mesh_path("bumpy_sphere.bumps.txt"), mesh_.number_of_faces());
+  }
+  Mesh mesh_;
+  Positions x_;
+  std::vector<std::vector<int>> bumps_;
+};
+
+TEST_F(BumpySphere, SidecarHasTheFaceCountsOfTheReadme) {
+  ASSERT_EQ(bumps_.size(), 3u);
+  EXPECT_EQ(bumps_[0].size(), 88u);
+  EXPECT_EQ(bumps_[1].size(), 45u);
+  EXPECT_EQ(bumps_[2].size(), 19u);
+}
+
+TEST_F(BumpySphere, EachBumpIsRecoveredAndNothingElse) {
+  RegionReport report;
+  const std::vector<int> region = select_spherical_regions(mesh_, x_, RegionOptions{}, &report);
+  ASSERT_EQ(region.size(), mesh_.number_of_faces());
+  ASSERT_EQ(report.regions.size(), 3u) << "one region per bump";
+
+  std::set<int> matched_ids;
+  std::set<int> allowed;  // the bumps and the one band of faces that straddle their rims
+  for (std::size_t b = 0; b < bumps_.size(); ++b) {
+    const std::set<int> truth(bumps_[b].begin(), bumps_[b].end());
+    // The region with the most faces on this bump.
+    std::vector<int> overlap(report.regions.size(), 0);
+    for (int f : bumps_[b])
+      if (region[static_cast<std::size_t>(f)] >= 0) ++overlap[static_cast<std::size_t>(region[static_cast<std::size_t>(f)])];
+    const int id = static_cast<int>(std::max_element(overlap.begin(), overlap.end()) - overlap.begin());
+    std::size_t intersection = 0, uni = truth.size();
+    for (std::size_t f = 0; f < region.size(); ++f)
+      if (region[f] == id) (truth.count(static_cast<int>(f)) ? ++intersection : ++uni);
+    const double iou = static_cast<double>(intersection) / static_cast<double>(uni);
+    EXPECT_GE(iou, 0.8) << "bump " << b << " (" << truth.size() << " faces): region " << id << " IoU " << iou;
+    EXPECT_TRUE(matched_ids.insert(id).second) << "bump " << b << " shares region " << id << " with another bump";
+    const std::set<int> near = with_vertex_neighbours(mesh_, bumps_[b]);
+    allowed.insert(near.begin(), near.end());
+  }
+  for (std::size_t f = 0; f < region.size(); ++f)
+    if (region[f] >= 0) {
+      EXPECT_TRUE(allowed.count(static_cast<int>(f))) << "face " << f << " selected away from every bump";
+    }
+
+  // Ids ordered by decreasing area; the summaries agree with the ids.
+  for (std::size_t r = 0; r + 1 < report.regions.size(); ++r)
+    EXPECT_GE(report.regions[r].area, report.regions[r + 1].area);
+  for (std::size_t r = 0; r < report.regions.size(); ++r)
+    EXPECT_EQ(report.regions[r].faces,
+              static_cast<std::size_t>(std::count(region.begin(), region.end(), static_cast<int>(r))));
+  // The base sphere has radius 0.5: H_ref is its curvature 2 (more than half of the area).
+  EXPECT_NEAR(report.reference_mean_curvature, 2.0, 0.02);
+}
+
+TEST_F(BumpySphere, ResultDoesNotDependOnScale) {
+  const std::vector<int> unit = select_spherical_regions(mesh_, x_, RegionOptions{});
+  for (double s : {1e-3, 1e3}) {
+    const Positions scaled = s * x_;
+    EXPECT_EQ(select_spherical_regions(mesh_, scaled, RegionOptions{}), unit) << "scale " << s;
+  }
+}
+
+TEST_F(BumpySphere, StoreRegionsWritesTheFaceMap) {
+  const std::vector<int> region = select_spherical_regions(mesh_, x_, RegionOptions{});
+  store_regions(mesh_, region);
+  store_regions(mesh_, region);  // overwriting is allowed
+  const auto map = property::get_map<FaceIndex, int>(mesh_, property::REGION);
+  for (FaceIndex f : mesh_.faces()) EXPECT_EQ(map[f], region[f.idx()]);
+}
+
+TEST_F(BumpySphere, ColouredPlyIsReadableWithTheSameFaces) {
+  const std::vector<int> region = select_spherical_regions(mesh_, x_, RegionOptions{});
+  const CurvatureField c = compute_curvature(mesh_, x_);
+  const std::string path = temp_path("bumps.ply");
+  write_region_ply(path, mesh_, x_, region, &c);
+  const Mesh back = read_input_mesh(path);
+  ASSERT_EQ(back.number_of_faces(), mesh_.number_of_faces());
+  const Positions xb = positions_from_mesh(back);
+  EXPECT_EQ(xb, x_);  // 17 digits: lossless
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("property int region"), std::string::npos);
+  EXPECT_NE(text.find("property double mean_curvature"), std::string::npos);
+  EXPECT_NE(text.find("property double gaussian_curvature"), std::string::npos);
+}
+
+TEST(RegionSelection, PlainSphereHasNoRegion) {
+  // Decision: a local spherical structure must be clearly more curved than the rest of the
+  // surface. On a plain sphere every vertex has H = H_ref, so nothing is selected (the
+  // anisotropic energy would then act on the whole shell, which is not "local").
+  for (int level : {2, 3, 4}) {
+    const test::TriMesh m = test::icosphere(level, 0.5);
+    const Mesh mesh = test::to_surface_mesh(m);
+    RegionReport report;
+    const std::vector<int> region = select_spherical_regions(mesh, m.x, RegionOptions{}, &report);
+    EXPECT_EQ(std::count(region.begin(), region.end(), -1), static_cast<long>(region.size())) << "level " << level;
+    EXPECT_EQ(report.seed_vertices, 0u) << "level " << level;
+    EXPECT_NEAR(report.reference_mean_curvature, 2.0, 0.02);
+  }
+  const Mesh uv = read_input_mesh(mesh_path("uv_sphere.off"));
+  const std::vector<int> region = select_spherical_regions(uv, positions_from_mesh(uv), RegionOptions{});
+  EXPECT_EQ(std::count(region.begin(), region.end(), -1), static_cast<long>(region.size()));
+}
+
+TEST(RegionSelection, WholeSphereWithoutContrastIsDroppedAsNotLocal) {
+  // With the contrast lowered below 1 every vertex seeds and the whole sphere is one patch of
+  // area fraction 1 > max_area_fraction: it is counted as dropped, not returned.
+  const test::TriMesh m = test::icosphere(3, 1.0);
+  const Mesh mesh = test::to_surface_mesh(m);
+  RegionOptions options;
+  options.min_curvature_contrast = 0.9;
+  RegionReport report;
+  const std::vector<int> region = select_spherical_regions(mesh, m.x, options, &report);
+  EXPECT_EQ(report.seed_vertices, static_cast<std::size_t>(m.x.rows()));
+  EXPECT_EQ(report.dropped_large, 1u);
+  EXPECT_EQ(std::count(region.begin(), region.end(), -1), static_cast<long>(region.size()));
+  options.max_area_fraction = 1.0;  // a user who asks for it gets the whole sphere as region 0
+  const std::vector<int> all = select_spherical_regions(mesh, m.x, options, &report);
+  EXPECT_EQ(std::count(all.begin(), all.end(), 0), static_cast<long>(all.size()));
+  EXPECT_NEAR(report.regions.at(0).area_fraction, 1.0, 1e-12);
+}
+
+TEST(RegionSelection, FlatSidedMeshesHaveNoRegion) {
+  // A cube and a torus have no spherical structure: corners are single vertices (no sphere to
+  // fit), a torus has no umbilic convex patch more curved than its median.
+  for (const char* name : {"cube.off", "torus.off", "octahedron.off"}) {
+    const Mesh mesh = read_input_mesh(mesh_path(name));
+    const std::vector<int> region = select_spherical_regions(mesh, positions_from_mesh(mesh), RegionOptions{});
+    EXPECT_EQ(std::count(region.begin(), region.end(), -1), static_cast<long>(region.size())) << name;
+  }
+}
+
+TEST(RegionSelection, BadOptionsAreUsageErrors) {
+  const test::TriMesh m = test::icosphere(1, 1.0);
+  const Mesh mesh = test::to_surface_mesh(m);
+  RegionOptions o;
+  o.smoothing_rings = -1;
+  EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
+  o = RegionOptions{};
+  o.fit_distance_tolerance = -0.1;
+  EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
+}
+
+TEST(RegionFile, RoundTrip) {
+  const std::vector<int> ids{-1, 1, 0, 0, -1, 2, 1, -1, 2, 0};
+  const std::string path = temp_path("round_trip.txt");
+  write_region_file(path, ids);
+  std::ifstream in(path);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "2 3 9\n1 6\n5 8\n");  // the documented format, faces ascending
+  const std::vector<std::vector<int>> regions = read_region_file(path, ids.size());
+  EXPECT_EQ(face_ids_from_regions(regions, ids.size()), ids);
+  EXPECT_EQ(regions_from_face_ids(ids), regions);
+}
+
+TEST(RegionFile, CommentsBlankLinesTabsAndCrlfAreAccepted) {
+  const std::string path = temp_path("comments.txt");
+  write_file(path, "# bumps\n\n4\t2 7\r\n   \n3\n");
+  const std::vector<std::vector<int>> regions = read_region_file(path, 8);
+  ASSERT_EQ(regions.size(), 2u);
+  EXPECT_EQ(regions[0], (std::vector<int>{4, 2, 7}));
+  EXPECT_EQ(regions[1], (std::vector<int>{3}));
+}
+
+/// Expects read_region_file to throw InputError whose message contains `where` and `what`.
+void expect_bad_file(const std::string& name, const std::string& text, std::size_t num_faces,
+                     const std::string& where, const std::string& what) {
+  const std::string path = temp_path(name);
+  write_file(path, text);
+  try {
+    read_region_file(path, num_faces);
+    ADD_FAILURE() << name << ": no error for\n" << text;
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find(path + ":" + where + ":"), std::string::npos) << name << ": " << msg;
+    EXPECT_NE(msg.find(what), std::string::npos) << name << ": " << msg;
+  }
+}
+
+TEST(RegionFile, BadFilesNameTheLine) {
+  expect_bad_file("not_integer.txt", "1 2 3\n4 five 6\n", 10, "2", "'five' is not a face index");
+  expect_bad_file("fraction.txt", "1 2.5\n", 10, "1", "'2.5' is not a face index");
+  expect_bad_file("negative.txt", "1\n\n-1\n", 10, "3", "'-1' is not a face index");
+  expect_bad_file("out_of_range.txt", "0 1\n2 3\n9 10\n", 10, "3", "face 10 is out of range");
+  expect_bad_file("huge.txt", "99999999999999999999999\n", 10, "1", "out of range");
+  expect_bad_file("duplicate.txt", "0 1\n2 1\n", 10, "2", "face 1 is already listed on line 1");
+}
+
+TEST(RegionFile, MissingFileIsAnInputError) {
+  EXPECT_THROW(read_region_file(temp_path("does_not_exist.txt"), 10), InputError);
+}
+
+TEST(RegionFile, IdsWithAGapCannotBeWritten) {
+  EXPECT_THROW(write_region_file(temp_path("gap.txt"), {0, 2, -1}), UsageError);
+  EXPECT_THROW(face_ids_from_regions({{0, 1}, {1}}, 3), UsageError);
+  EXPECT_THROW(face_ids_from_regions({{3}}, 3), UsageError);
+}
+
+TEST(RegionSelection, PaperMeshesReport) {
+  // No ground truth for these: print what is found (count, faces, area fraction) and check
+  // only the contract (ids 0..n-1, sizes within the area bounds, summaries consistent).
+  int found = 0;
+  for (const char* name : {"hand", "bear"}) {
+    const std::string path = std::string(test::PAPER_MESH_DIR) + "/" + name + ".off";
+    if (!fs::exists(path)) continue;
+    ++found;
+    const Mesh mesh = read_input_mesh(path);
+    RegionReport report;
+    const RegionOptions options;
+    const std::vector<int> region = select_spherical_regions(mesh, positions_from_mesh(mesh), options, &report);
+    std::cout << name << ": " << report.regions.size() << " regions (H_ref " << report.reference_mean_curvature
+              << ", " << report.seed_vertices << " seed vertices, " << report.dropped_small << " small patches dropped)\n";
+    for (std::size_t r = 0; r < report.regions.size(); ++r) {
+      const RegionSummary& s = report.regions[r];
+      std::cout << "  region " << r << ": " << s.faces << " faces, area fraction " << s.area_fraction << ", contrast "
+                << s.contrast << '\n';
+      EXPECT_GE(s.area_fraction, options.min_area_fraction) << name << " region " << r;
+      EXPECT_LE(s.area_fraction, options.max_area_fraction) << name << " region " << r;
+      EXPECT_EQ(s.faces, static_cast<std::size_t>(std::count(region.begin(), region.end(), static_cast<int>(r))));
+    }
+    for (int id : region) EXPECT_LT(id, static_cast<int>(report.regions.size()));
+  }
+  if (found == 0) GTEST_SKIP() << "no paper meshes in " << test::PAPER_MESH_DIR << "; run scripts/fetch_paper_meshes.sh";
+}
+
+}  // namespace
+}  // namespace shellcontract
