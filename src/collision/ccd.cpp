@@ -56,6 +56,10 @@ constexpr double U = std::numeric_limits<double>::epsilon() / 2.0;
 constexpr double TINY = std::numeric_limits<double>::min();
 /// Parallel-edge threshold of math-spec 10.6 (on sin^2 of the angle).
 constexpr double PARALLEL_SIN2 = 1e-12;
+/// Absolute term added to every rounding bound. The relative model (gamma_k) fails only when
+/// results underflow, where each operation can add an absolute error up to 2^-1075; a few dozen
+/// operations stay far below 1e-300, and no realistic geometry comes near it.
+constexpr double UNDERFLOW_FLOOR = 1e-300;
 
 /// The three vectors of math-spec 10.3, relative to one stencil point.
 struct RelativeVectors {
@@ -98,7 +102,7 @@ BernsteinBound bernstein_with_bound(CcdPrimitive kind, const CcdStencil& x0, con
   double a = std::max(det3_abs(u0, v0, w0), det3_abs(u1, v1, w1));
   a = std::max(a, (det3_abs(u1, v0, w0) + det3_abs(u0, v1, w0) + det3_abs(u0, v0, w1)) / 3.0);
   a = std::max(a, (det3_abs(u1, v1, w0) + det3_abs(u1, v0, w1) + det3_abs(u0, v1, w1)) / 3.0);
-  out.err = 16.0 * U * a;
+  out.err = 16.0 * U * a + UNDERFLOW_FLOOR;
   for (double b : out.b) out.max_abs = std::max(out.max_abs, std::abs(b));
   return out;
 }
@@ -213,7 +217,7 @@ bool crossing_certificate(CcdPrimitive kind, const CcdStencil& xa, const CcdSten
                           const Vec3& n, double M) {
   const double nn = n.norm();
   if (!(nn > 0.0)) return false;
-  const double err = 320.0 * U * M * M * nn * (1.0 + 1e-9);
+  const double err = 320.0 * U * M * M * nn * (1.0 + 1e-9) + UNDERFLOW_FLOOR;
   if (kind == CcdPrimitive::VertexFace) {
     int s[3];
     for (int i = 0; i < 3; ++i) {
@@ -414,8 +418,8 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
   //    d is within 12 sqrt3 u M |d| + gamma_3 2 sqrt3 M |d| < 32 u M |d| of the exact value; 48
   //    leaves room for the rounding of the threshold itself;
   //  * one coordinate of D: 12 u M, used for the axis tests (16 with room).
-  const double axis_gap = (tau + 16.0 * U * M) * (1.0 + 4.0 * U);
-  const double sat_gap = tau + 48.0 * U * M;
+  const double axis_gap = (tau + 16.0 * U * M) * (1.0 + 4.0 * U) + UNDERFLOW_FLOOR;
+  const double sat_gap = tau + 48.0 * U * M + UNDERFLOW_FLOOR;
   // The computed distance is not a certified bound, so it only accepts (never excludes): up to
   // this much above tau it is treated as touching.
   const double dist_slack = 64.0 * U * M;
