@@ -29,17 +29,27 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
     : topo_(make_collision_topology(faces, static_cast<int>(rest.rows()))), options_(options) {
   // Pairs that touch (distance 0) in the rest state cannot be separated by a response that
   // keeps each pair on its starting side: exclude them for the whole run.
-  find_candidates(rest, rest, topo_, 0.0, candidates_, nullptr, options_.method);
+  find_candidates(rest, rest, topo_, options_.delta, candidates_, nullptr, options_.method);
   std::vector<Contact> touching;
-  detect(rest, rest, 0.0, touching, nullptr, false);
+  detect(rest, rest, 0.0, touching, nullptr, false, false);
   for (const Contact& c : touching)
     (c.kind == CcdPrimitive::VertexFace ? excluded_vf_ : excluded_ee_).push_back(c.pair);
   std::sort(excluded_vf_.begin(), excluded_vf_.end());
   std::sort(excluded_ee_.begin(), excluded_ee_.end());
+  // Pairs closer than delta (but not touching) in the rest state are the input's own thin
+  // features: the response leaves them at their rest distance (a shell at rest stays at rest),
+  // but the fail-safe still keeps them from crossing.
+  std::vector<Contact> near;
+  detect(rest, rest, options_.delta, near, nullptr, false, false);
+  for (const Contact& c : near)
+    (c.kind == CcdPrimitive::VertexFace ? near_vf_ : near_ee_).push_back(c.pair);
+  std::sort(near_vf_.begin(), near_vf_.end());
+  std::sort(near_ee_.begin(), near_ee_.end());
 }
 
 void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
-                           std::vector<Contact>& out, CollisionStepStats* stats, bool count_stage) {
+                           std::vector<Contact>& out, CollisionStepStats* stats, bool count_stage,
+                           bool skip_near) {
   CcdOptions ccd;
   ccd.tolerance = tol;
   std::int64_t filtered = 0, tests = 0;
@@ -70,13 +80,13 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
     out.push_back(c);
   };
   for (const auto& p : candidates_.vertex_face) {
-    if (contains(excluded_vf_, p)) continue;
+    if (contains(excluded_vf_, p) || (skip_near && contains(near_vf_, p))) continue;
     const int f = p[1];
     test(CcdPrimitive::VertexFace, p,
          {p[0], topo_.faces(f, 0), topo_.faces(f, 1), topo_.faces(f, 2)});
   }
   for (const auto& p : candidates_.edge_edge) {
-    if (contains(excluded_ee_, p)) continue;
+    if (contains(excluded_ee_, p) || (skip_near && contains(near_ee_, p))) continue;
     test(CcdPrimitive::EdgeEdge, p,
          {topo_.edges(p[0], 0), topo_.edges(p[0], 1), topo_.edges(p[1], 0), topo_.edges(p[1], 1)});
   }
@@ -101,7 +111,7 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
       stats.pairs_broad = bs.vertex_face + bs.edge_edge;
     }
     contacts_.clear();
-    detect(x0, x1, delta, contacts_, &stats, round == 0);
+    detect(x0, x1, delta, contacts_, &stats, round == 0, true);
     ++stats.rounds;
     moved = false;
     if (contacts_.empty()) return;  // no contact within delta: the step is free
@@ -121,7 +131,7 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
   }
   for (;;) {
     contacts_.clear();
-    detect(x0, x1, 0.0, contacts_, &stats, false);
+    detect(x0, x1, 0.0, contacts_, &stats, false, false);
     if (contacts_.empty()) return;
     std::int64_t reverted = 0;
     for (const Contact& c : contacts_)

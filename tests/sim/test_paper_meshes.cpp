@@ -23,7 +23,10 @@ class PaperMesh : public ::testing::TestWithParam<std::string> {
                    << "paper's models from Debian's libcgal-demo data)";
     mesh_ = read_input_mesh(path_);
   }
-  std::vector<double> run(const SimOptions& opt) {
+  /// Runs with collision handling off: these are the acceptance points of the solver alone
+  /// (collisions have their own scenario tests).
+  std::vector<double> run(SimOptions opt) {
+    opt.collisions = false;
     Simulator sim(mesh_, opt);
     std::vector<double> r;
     while (!sim.finished()) {

@@ -44,8 +44,9 @@ struct CollisionStepStats {
 class SelfCollision {
  public:
   /// @param faces     #F by 3 faces
-  /// @param rest      #V by 3 rest positions: primitive pairs that already touch or intersect
-  ///                  there (e.g. the 7 face pairs of elk.off) are excluded from then on
+  /// @param rest      #V by 3 rest positions: primitive pairs that already touch there are
+  ///                  excluded from then on; pairs closer than delta there get no response push
+  ///                  (the rest state is kept) but are still kept from crossing
   /// @param options   see CollisionOptions
   SelfCollision(const Faces& faces, const Positions& rest, const CollisionOptions& options);
 
@@ -62,15 +63,18 @@ class SelfCollision {
   const CollisionTopology& topology() const { return topo_; }
 
  private:
-  /// Narrow phase over the current candidates with tolerance tol; appends contacts.
+  /// Narrow phase over the current candidates with tolerance tol; appends contacts. Excluded
+  /// pairs are skipped, and with skip_near also the pairs closer than delta at rest.
   void detect(const Positions& x0, const Positions& x1, double tol, std::vector<Contact>& out,
-              CollisionStepStats* stats, bool count_stage);
+              CollisionStepStats* stats, bool count_stage, bool skip_near);
 
   CollisionTopology topo_;
   CollisionOptions options_;
   CandidatePairs candidates_;
   std::vector<std::array<int, 2>> excluded_vf_;  ///< sorted
   std::vector<std::array<int, 2>> excluded_ee_;  ///< sorted
+  std::vector<std::array<int, 2>> near_vf_;      ///< closer than delta at rest, sorted
+  std::vector<std::array<int, 2>> near_ee_;      ///< closer than delta at rest, sorted
   std::vector<Contact> contacts_;
 };
 
