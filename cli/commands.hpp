@@ -7,5 +7,6 @@ namespace shellcontract::cli {
 int command_run(int argc, char** argv);        ///< shellcontract run IN -o OUT [options]
 int command_check(int argc, char** argv);      ///< shellcontract check IN
 int command_bench_ccd(int argc, char** argv);  ///< shellcontract bench ccd --queries DIR
+int command_regions(int argc, char** argv);    ///< shellcontract regions IN -o OUT.ply
 
 }  // namespace shellcontract::cli

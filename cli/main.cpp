@@ -13,6 +13,7 @@ constexpr const char* USAGE = R"(usage: shellcontract <command> [options]
 commands:
   run INPUT -o OUTPUT [options]    contract a closed mesh (see 'shellcontract run --help')
   check INPUT [--json]             report whether a mesh can be used, and why not
+  regions INPUT -o OUT.ply         the spherical regions that --regions auto would choose
   bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
 
   shellcontract <command> --help   options of one command
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   // Subcommands see their own name as argv[0].
   if (command == "run") return shellcontract::cli::command_run(argc - 1, argv + 1);
   if (command == "check") return shellcontract::cli::command_check(argc - 1, argv + 1);
+  if (command == "regions") return shellcontract::cli::command_regions(argc - 1, argv + 1);
   if (command == "bench") {
     if (argc >= 3 && std::strcmp(argv[2], "ccd") == 0)
       return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);

@@ -3,6 +3,8 @@
 // output), 2 bad input mesh.
 #include <boost/program_options.hpp>
 
+#include "commands.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
@@ -20,7 +22,6 @@
 
 namespace shellcontract::cli {
 
-int command_regions(int argc, char** argv);  // declared here until cli/commands.hpp has it
 
 namespace {
 
