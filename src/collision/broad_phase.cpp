@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "shellcontract/core/error.hpp"
@@ -358,6 +359,443 @@ std::int64_t bvh_pairs(const CollisionTopology& topo, CandidatePairs& out) {
   return reported;
 }
 
+// ------------------------------------------------------------------ Grid method
+
+/// Cell size over the median swept-box extent (the largest side of a face or edge box).
+/// On bear (bench_broad_phase, CPU ms per call): 0.6: 11.7, 1.0: 10.0, 1.5: 8.3, 2: 8.3, 3: 8.6
+/// (smaller cells put each box in more cells; larger ones test more pairs per cell).
+constexpr double GRID_CELL_FACTOR = 1.5;
+/// Boxes sampled for the median extent; a sample keeps it O(1) and robust to a few huge boxes
+/// (e.g. one vertex that flies off), which would drag a mean up.
+constexpr std::size_t GRID_EXTENT_SAMPLES = 1024;
+/// At most this many cells per box on average: caps the cell count (memory, the counting-sort
+/// passes) when the boxes are tiny compared with the scene.
+constexpr std::size_t GRID_CELLS_PER_BOX = 2;
+/// At most this many (box, cell) entries per box on average; beyond it the cell size is doubled.
+constexpr std::size_t GRID_ENTRIES_PER_BOX = 16;
+/// If the per-cell pair loops would visit more than this many entry pairs per box (every box in
+/// a few cells: boxes spread over a huge range, or nearly all of the scene overlapping), the
+/// grid degenerates towards brute force, so PrimitiveBoxes runs instead (same result).
+constexpr std::int64_t GRID_WORK_PER_BOX = 256;
+/// Ids are stored as gid << 3 | flags in 32 bits.
+constexpr std::size_t GRID_MAX_BOXES = std::size_t{1} << 29;
+/// Cells per axis fit the 16-bit fields of detail::GridRange.
+constexpr double GRID_MAX_DIM = 65535.0;
+
+/// Entry flags: bit d is set iff the cell is the box's first cell on axis d. Two overlapping
+/// boxes meet in every cell of the intersection of their cell ranges; we emit the pair only in
+/// the cell max(first cell of a, first cell of b) (per axis), i.e. where on every axis at least
+/// one of the two is in its first cell: (flags_a | flags_b) == 7. Each pair is emitted once, no
+/// hash set needed.
+constexpr std::uint32_t GRID_ALL_FIRST = 7;
+
+/// Uniform grid over the bounding box of all swept boxes. coord() is monotone in x (a rounded
+/// subtraction, a multiplication by a positive number, a clamp, a truncation of a non-negative
+/// value), so if two boxes' closed intervals overlap on an axis, so do their cell ranges: no pair
+/// is lost to rounding, and the exact double box test decides. Monotone also means the cell range
+/// of a union of boxes is the union (min/max) of their cell ranges.
+struct Grid {
+  std::array<double, 3> origin{};
+  double inv_h = 1.0;
+  std::array<std::size_t, 3> dims{1, 1, 1};
+
+  std::uint16_t coord(double x, std::size_t d) const {
+    const double t = std::min((x - origin[d]) * inv_h, static_cast<double>(dims[d] - 1));
+    return static_cast<std::uint16_t>(std::max(t, 0.0));
+  }
+  std::size_t cells() const { return dims[0] * dims[1] * dims[2]; }
+};
+
+/// Grid with cell size h over [lo, hi], at most max_cells cells (h grows if needed).
+Grid make_grid(const std::array<double, 3>& lo, const std::array<double, 3>& hi, double h,
+               std::size_t max_cells) {
+  Grid g;
+  g.origin = lo;
+  for (;;) {
+    std::size_t n = 1;
+    for (std::size_t d = 0; d < 3; ++d) {
+      // Clamped in double first: (hi - lo) / h may exceed any integer for a tiny h.
+      const double cells = std::min(std::floor((hi[d] - lo[d]) / h) + 1.0, GRID_MAX_DIM);
+      g.dims[d] = static_cast<std::size_t>(cells);
+      n *= g.dims[d];
+    }
+    if (n <= max_cells) break;
+    h *= std::max(1.01, std::cbrt(static_cast<double>(n) / static_cast<double>(max_cells)));
+  }
+  g.inv_h = 1.0 / h;
+  return g;
+}
+
+/// Largest float <= x (the conversion rounds to nearest; step down if it went up). Infinite
+/// results are still bounds: e.g. x = 1e300 gives FLT_MAX <= x.
+float round_down(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                                    : f;
+}
+float round_up(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) < x ? std::nextafter(f, std::numeric_limits<float>::infinity())
+                                    : f;
+}
+
+/// Per-primitive data of the grid, derived from the per-vertex data on the fly: stored face and
+/// edge boxes would be 2-5 MB per call and memory traffic dominated earlier versions, while the
+/// vertex arrays and the topology stay in cache.
+struct GridPrimitives {
+  const CollisionTopology& topo;
+  const detail::BroadPhaseScratch& s;
+  std::size_t nv, nf;
+
+  /// Vertex ids: vertex {v, -1, -1}, face {a, b, c}, edge {a, b, -2} (-2: never equal to an id
+  /// nor to a vertex's -1), so one set of comparisons tests adjacency for VF and EE.
+  std::array<int, 3> ids(std::size_t gid) const {
+    if (gid < nv) return {static_cast<int>(gid), -1, -1};
+    if (gid < nv + nf) {
+      const Eigen::Index f = static_cast<Eigen::Index>(gid - nv);
+      return {topo.faces(f, 0), topo.faces(f, 1), topo.faces(f, 2)};
+    }
+    const Eigen::Index e = static_cast<Eigen::Index>(gid - nv - nf);
+    return {topo.edges(e, 0), topo.edges(e, 1), -2};
+  }
+  static int corners(const std::array<int, 3>& v) { return v[1] < 0 ? 1 : v[2] < 0 ? 2 : 3; }
+
+  detail::GridRange range(const std::array<int, 3>& v) const {
+    detail::GridRange r = s.grid_vertex_ranges[static_cast<std::size_t>(v[0])];
+    for (int k = 1; k < corners(v); ++k) {
+      const detail::GridRange& q = s.grid_vertex_ranges[static_cast<std::size_t>(v[k])];
+      for (std::size_t d = 0; d < 3; ++d) {
+        r.lo[d] = std::min(r.lo[d], q.lo[d]);
+        r.hi[d] = std::max(r.hi[d], q.hi[d]);
+      }
+    }
+    return r;
+  }
+  detail::GridFloatBox float_box(const std::array<int, 3>& v) const {
+    detail::GridFloatBox b = s.grid_vertex_floats[static_cast<std::size_t>(v[0])];
+    for (int k = 1; k < corners(v); ++k) {
+      const detail::GridFloatBox& q = s.grid_vertex_floats[static_cast<std::size_t>(v[k])];
+      for (std::size_t d = 0; d < 3; ++d) {
+        b.lo[d] = std::min(b.lo[d], q.lo[d]);
+        b.hi[d] = std::max(b.hi[d], q.hi[d]);
+      }
+    }
+    return b;
+  }
+  /// The exact box: the same arithmetic as build_boxes, bit-identical to the other methods'.
+  detail::GridVertexBox box(const std::array<int, 3>& v) const {
+    detail::GridVertexBox b = s.grid_vertex_boxes[static_cast<std::size_t>(v[0])];
+    for (int k = 1; k < corners(v); ++k) {
+      const detail::GridVertexBox& q = s.grid_vertex_boxes[static_cast<std::size_t>(v[k])];
+      for (std::size_t d = 0; d < 3; ++d) {
+        b.lo[d] = std::min(b.lo[d], q.lo[d]);
+        b.hi[d] = std::max(b.hi[d], q.hi[d]);
+      }
+    }
+    return b;
+  }
+};
+
+bool overlap(const detail::GridVertexBox& a, const detail::GridVertexBox& b) {
+  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
+         a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+}
+
+/// Calls visit(cell index, flags, valid) for the cells of a range. Ranges of at most 2 cells per
+/// axis (nearly all, with cells about as large as the boxes) take a fixed 2x2x2 pattern with
+/// `valid` false for the cells outside the range, so there are no data-dependent branches;
+/// visit must do nothing for invalid cells (whose index is then the range's first cell).
+template <class Visit>
+void for_each_cell(const Grid& g, const detail::GridRange& r, Visit visit) {
+  const std::size_t sx = 1, sy = g.dims[0], sz = g.dims[0] * g.dims[1];
+  const std::size_t first = r.lo[0] * sx + r.lo[1] * sy + r.lo[2] * sz;
+  const unsigned dx = r.hi[0] - r.lo[0], dy = r.hi[1] - r.lo[1], dz = r.hi[2] - r.lo[2];
+  if ((dx | dy | dz) <= 1) {
+    for (unsigned corner = 0; corner < 8; ++corner) {
+      const unsigned ox = corner & 1u, oy = (corner >> 1) & 1u, oz = corner >> 2;
+      const bool valid = ox <= dx && oy <= dy && oz <= dz;
+      const std::size_t c = first + (valid ? ox * sx + oy * sy + oz * sz : 0);
+      visit(c, (ox ^ 1u) | (oy ^ 1u) << 1 | (oz ^ 1u) << 2, valid);
+    }
+    return;
+  }
+  for (std::size_t z = r.lo[2]; z <= r.hi[2]; ++z)
+    for (std::size_t y = r.lo[1]; y <= r.hi[1]; ++y) {
+      const std::size_t row = z * sz + y * sy;
+      const std::uint32_t fyz = (y == r.lo[1] ? 2u : 0u) | (z == r.lo[2] ? 4u : 0u);
+      for (std::size_t x = r.lo[0]; x <= r.hi[0]; ++x)
+        visit(row + x, fyz | (x == r.lo[0] ? 1u : 0u), true);
+    }
+}
+
+/// LSD radix sort of keys whose values are below 2^bits (11-bit digits). Faster than std::sort
+/// for the ~10^4-10^5 keys here. No deduplication: the grid emits each pair once.
+void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp, int bits) {
+  constexpr int DIGIT = 11;
+  constexpr std::size_t RADIX = std::size_t{1} << DIGIT;
+  tmp.resize(keys.size());
+  std::array<std::size_t, RADIX> count{};
+  for (int shift = 0; shift < bits; shift += DIGIT) {
+    count.fill(0);
+    for (const std::uint64_t k : keys) ++count[(k >> shift) & (RADIX - 1)];
+    std::size_t sum = 0;
+    for (std::size_t& c : count) {
+      const std::size_t n = c;
+      c = sum;
+      sum += n;
+    }
+    for (const std::uint64_t k : keys) tmp[count[(k >> shift) & (RADIX - 1)]++] = k;
+    keys.swap(tmp);
+  }
+}
+
+int bit_width(std::uint64_t v) {
+  int n = 0;
+  while (v != 0) {
+    ++n;
+    v >>= 1;
+  }
+  return n;
+}
+
+/// Sorts keys a << shift | b and unpacks them into (a, b) pairs.
+void grid_keys_to_pairs(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp,
+                        int shift, int bits, std::vector<std::array<int, 2>>& pairs) {
+  radix_sort(keys, tmp, bits);
+  const std::uint64_t mask = (std::uint64_t{1} << shift) - 1;
+  pairs.resize(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i)
+    pairs[i] = {static_cast<int>(keys[i] >> shift), static_cast<int>(keys[i] & mask)};
+}
+
+/// Item i of the current cell against items [j0, j1): mask[j] = 1 iff the pair passes the dedupe
+/// flags, the float box test and the adjacency test. Plain loops over structure-of-arrays data,
+/// written so that the compiler vectorizes them (no branches, 32-bit lanes throughout); they are
+/// the hot loop (~10^6 pairs on bear). Adds the number of flag-and-box hits (adjacent pairs
+/// included) to `hits`, for the statistics; returns whether any mask is set (most rows have
+/// none, and then the caller skips its scan).
+bool cell_masks(const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1,
+                std::uint32_t* mask, std::int64_t& hits) {
+  const float lx = cell.lo[0][i], ly = cell.lo[1][i], lz = cell.lo[2][i];
+  const float hx = cell.hi[0][i], hy = cell.hi[1][i], hz = cell.hi[2][i];
+  const std::uint32_t fi = cell.flags[i];
+  const int a = cell.v[0][i], b = cell.v[1][i], c = cell.v[2][i];
+  const float* __restrict qlx = cell.lo[0].data();
+  const float* __restrict qly = cell.lo[1].data();
+  const float* __restrict qlz = cell.lo[2].data();
+  const float* __restrict qhx = cell.hi[0].data();
+  const float* __restrict qhy = cell.hi[1].data();
+  const float* __restrict qhz = cell.hi[2].data();
+  const std::uint32_t* __restrict qf = cell.flags.data();
+  const int* __restrict qa = cell.v[0].data();
+  const int* __restrict qb = cell.v[1].data();
+  const int* __restrict qc = cell.v[2].data();
+  std::uint32_t box_hits = 0, any = 0;
+  for (std::size_t j = j0; j < j1; ++j) {
+    const std::uint32_t box = static_cast<std::uint32_t>(
+        ((fi | qf[j]) == GRID_ALL_FIRST) & (lx <= qhx[j]) & (qlx[j] <= hx) & (ly <= qhy[j]) &
+        (qly[j] <= hy) & (lz <= qhz[j]) & (qlz[j] <= hz));
+    // Adjacent iff a vertex id is shared; the -1/-2 placeholders never match (see ids()).
+    const std::uint32_t apart = static_cast<std::uint32_t>(
+        (a != qa[j]) & (a != qb[j]) & (a != qc[j]) & (b != qa[j]) & (b != qb[j]) &
+        (c != qa[j]) & (c != qb[j]));
+    box_hits += box;
+    mask[j] = box & apart;
+    any |= box & apart;
+  }
+  hits += box_hits;
+  return any != 0;
+}
+
+void build_grid_vertex_boxes(const Positions& x0, const Positions& x1, double inflation,
+                             std::vector<detail::GridVertexBox>& boxes) {
+  boxes.resize(static_cast<std::size_t>(x0.rows()));
+  for (Eigen::Index v = 0; v < x0.rows(); ++v) {
+    detail::GridVertexBox& b = boxes[static_cast<std::size_t>(v)];
+    for (Eigen::Index d = 0; d < 3; ++d) {
+      const double a = x0(v, d), c = x1(v, d);
+      b.lo[static_cast<std::size_t>(d)] = std::min(a, c) - inflation;
+      b.hi[static_cast<std::size_t>(d)] = std::max(a, c) + inflation;
+    }
+  }
+}
+
+/// Method Grid (x0, x1 already in s.grid_vertex_boxes). Returns -1 (nothing done) if the grid
+/// would degenerate (see GRID_WORK_PER_BOX), otherwise the number of box pairs that overlap after
+/// rounding outward to float, adjacent ones included (VF, plus EE once per unordered pair).
+std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
+  BroadPhaseScratch& s = out.scratch;
+  const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
+  const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
+  const std::size_t ne = static_cast<std::size_t>(topo.edges.rows());
+  const std::size_t nboxes = nv + nf + ne;
+  out.vertex_face.clear();
+  out.edge_edge.clear();
+  if (nv == 0) return 0;
+  if (nboxes >= GRID_MAX_BOXES) return -1;
+  const GridPrimitives prim{topo, s, nv, nf};
+  const std::vector<detail::GridVertexBox>& vbox = s.grid_vertex_boxes;
+
+  // Scene bounds: every face and edge box is a union of vertex boxes.
+  std::array<double, 3> lo = vbox[0].lo, hi = vbox[0].hi;
+  for (const detail::GridVertexBox& b : vbox)
+    for (std::size_t d = 0; d < 3; ++d) {
+      lo[d] = std::min(lo[d], b.lo[d]);
+      hi[d] = std::max(hi[d], b.hi[d]);
+    }
+
+  // Cell size from the median largest side of a deterministic sample of face and edge boxes.
+  s.extent_sample.clear();
+  const std::size_t stride = std::max<std::size_t>(1, (nf + ne) / GRID_EXTENT_SAMPLES);
+  for (std::size_t i = nv; i < nboxes; i += stride) {
+    const detail::GridVertexBox b = prim.box(prim.ids(i));
+    s.extent_sample.push_back(std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]}));
+  }
+  double h = 0.0;
+  if (!s.extent_sample.empty()) {
+    const auto mid =
+        s.extent_sample.begin() + static_cast<std::ptrdiff_t>(s.extent_sample.size() / 2);
+    std::nth_element(s.extent_sample.begin(), mid, s.extent_sample.end());
+    h = GRID_CELL_FACTOR * *mid;
+  }
+  const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  // Degenerate extents (points: no motion, no inflation, zero-length edges) or no primitives.
+  if (!(h > 0.0)) h = span > 0.0 ? span : 1.0;
+
+  // Float boxes relative to the scene minimum (better precision than absolute coordinates).
+  // Each double is rounded outward after the subtraction; the rounded subtraction is monotone,
+  // so whenever two double boxes overlap, so do their float boxes: the float test only culls.
+  s.grid_vertex_floats.resize(nv);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (std::size_t d = 0; d < 3; ++d) {
+      s.grid_vertex_floats[v].lo[d] = round_down(vbox[v].lo[d] - lo[d]);
+      s.grid_vertex_floats[v].hi[d] = round_up(vbox[v].hi[d] - lo[d]);
+    }
+
+  // Count the (cell, box) entries per cell; double the cell size while there are too many.
+  const std::size_t max_cells = std::max<std::size_t>(64, GRID_CELLS_PER_BOX * nboxes);
+  Grid g;
+  std::vector<std::uint32_t>& start = s.cell_start;
+  std::size_t entries = 0;
+  for (;;) {
+    g = make_grid(lo, hi, h, max_cells);
+    s.grid_vertex_ranges.resize(nv);
+    for (std::size_t v = 0; v < nv; ++v)
+      for (std::size_t d = 0; d < 3; ++d) {
+        s.grid_vertex_ranges[v].lo[d] = g.coord(vbox[v].lo[d], d);
+        s.grid_vertex_ranges[v].hi[d] = g.coord(vbox[v].hi[d], d);
+      }
+    // start[c + 1] counts cell c; the extra last slot absorbs the invalid visits.
+    start.assign(g.cells() + 2, 0);
+    std::uint32_t* count = start.data() + 1;
+    s.grid_ranges.resize(nboxes);
+    for (std::size_t i = 0; i < nboxes; ++i) {
+      s.grid_ranges[i] = prim.range(prim.ids(i));
+      for_each_cell(g, s.grid_ranges[i],
+                    [&](std::size_t c, std::uint32_t, bool valid) { count[c] += valid; });
+    }
+    entries = 0;
+    for (std::size_t c = 1; c <= g.cells(); ++c) entries += start[c];
+    if (entries <= GRID_ENTRIES_PER_BOX * nboxes || g.cells() == 1) break;
+    h = 2.0 / g.inv_h;
+  }
+  std::int64_t work = 0;
+  for (std::size_t c = 1; c <= g.cells(); ++c) {
+    const std::int64_t k = start[c];
+    work += k * (k - 1) / 2;
+  }
+  if (work > GRID_WORK_PER_BOX * static_cast<std::int64_t>(nboxes)) return -1;
+  start.pop_back();
+  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
+  // Counting-sort scatter. Invalid visits write to a sink slot past the end (cursor cells()),
+  // which keeps the 2x2x2 pattern branch-free. Boxes go in in id order and the sort is stable,
+  // so each cell lists its vertices, then faces, then edges, each by increasing id.
+  s.cell_fill.assign(start.begin(), start.end());
+  s.cell_entries.resize(entries + 1);
+  {
+    std::uint32_t* fill = s.cell_fill.data();
+    std::uint32_t* entry = s.cell_entries.data();
+    const std::size_t sink = g.cells();
+    fill[sink] = static_cast<std::uint32_t>(entries);
+    for (std::size_t i = 0; i < nboxes; ++i) {
+      const std::uint32_t tag = static_cast<std::uint32_t>(i) << 3;
+      for_each_cell(g, s.grid_ranges[i], [&](std::size_t c, std::uint32_t flags, bool valid) {
+                      const std::size_t slot = valid ? c : sink;
+                      entry[fill[slot]] = tag | flags;
+                      fill[slot] += valid;
+                    });
+    }
+  }
+
+  // Per cell: gather the items (float boxes, vertex ids, flags) into structure-of-arrays
+  // buffers, build the candidate masks (cell_masks), and confirm the rare survivors with the
+  // exact double boxes.
+  std::int64_t reported = 0;
+  const int vf_shift = std::max(1, bit_width(nf));
+  const int ee_shift = std::max(1, bit_width(ne));
+  s.vf_keys.clear();
+  s.ee_keys.clear();
+  const std::uint32_t* entry = s.cell_entries.data();
+  detail::GridCell& cell = s.cell;
+  for (std::size_t c = 0; c < g.cells(); ++c) {
+    const std::uint32_t b = start[c], e = start[c + 1];
+    if (e - b < 2) continue;
+    const std::size_t k = e - b;
+    if (cell.flags.size() < k) {
+      for (std::size_t d = 0; d < 3; ++d) {
+        cell.lo[d].resize(k);
+        cell.hi[d].resize(k);
+        cell.v[d].resize(k);
+      }
+      cell.flags.resize(k);
+      cell.gid.resize(k);
+      cell.mask.resize(k);
+    }
+    std::size_t fb = 0, eb = 0;
+    for (std::size_t t = 0; t < k; ++t) {
+      const std::uint32_t tag = entry[b + t];
+      const std::size_t gid = tag >> 3;
+      const std::array<int, 3> v = prim.ids(gid);
+      const detail::GridFloatBox fbox = prim.float_box(v);
+      for (std::size_t d = 0; d < 3; ++d) {
+        cell.lo[d][t] = fbox.lo[d];
+        cell.hi[d][t] = fbox.hi[d];
+        cell.v[d][t] = v[d];
+      }
+      cell.flags[t] = tag & GRID_ALL_FIRST;
+      cell.gid[t] = static_cast<std::uint32_t>(gid);
+      fb += gid < nv;
+      eb += gid < nv + nf;
+    }
+    std::uint32_t* mask = cell.mask.data();
+    for (std::size_t i = 0; i < fb && eb > fb; ++i) {
+      if (!cell_masks(cell, i, fb, eb, mask, reported)) continue;
+      for (std::size_t j = fb; j < eb; ++j) {
+        if (mask[j] == 0) continue;
+        const std::array<int, 3> fv = {cell.v[0][j], cell.v[1][j], cell.v[2][j]};
+        const int vi = cell.v[0][i];
+        if (!overlap(vbox[static_cast<std::size_t>(vi)], prim.box(fv))) continue;
+        s.vf_keys.push_back(static_cast<std::uint64_t>(vi) << vf_shift | (cell.gid[j] - nv));
+      }
+    }
+    for (std::size_t i = eb; i + 1 < k; ++i) {
+      if (!cell_masks(cell, i, i + 1, k, mask, reported)) continue;
+      const detail::GridVertexBox pbox = prim.box({cell.v[0][i], cell.v[1][i], -2});
+      const std::uint64_t high = static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift;
+      for (std::size_t j = i + 1; j < k; ++j) {
+        if (mask[j] == 0) continue;
+        if (!overlap(pbox, prim.box({cell.v[0][j], cell.v[1][j], -2}))) continue;
+        // Entries of a cell are in increasing id order, so a < b.
+        s.ee_keys.push_back(high | (cell.gid[j] - nv - nf));
+      }
+    }
+  }
+  grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv), out.vertex_face);
+  grid_keys_to_pairs(s.ee_keys, s.sort_tmp, ee_shift, 2 * ee_shift, out.edge_edge);
+  return reported;
+}
+
+
 /// Thrown by has_any_candidate's callbacks to stop CGAL's search at the first pair.
 struct CandidateFound {};
 
@@ -423,8 +861,13 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
                      BroadPhaseMethod method) {
   const auto start = std::chrono::steady_clock::now();
   check_inputs(x0, x1, topo, inflation);
-  build_boxes(x0, x1, topo, inflation, out.scratch, true, true);
+  // Grid keeps only vertex boxes (GridVertexBox); the others share BroadPhaseBox.
+  if (method == BroadPhaseMethod::Grid)
+    build_grid_vertex_boxes(x0, x1, inflation, out.scratch.grid_vertex_boxes);
+  else
+    build_boxes(x0, x1, topo, inflation, out.scratch, true, true);
   std::int64_t reported = 0;
+  BroadPhaseMethod ran = method;
   switch (method) {
     case BroadPhaseMethod::PrimitiveBoxes:
       reported = primitive_boxes(topo, out);
@@ -435,11 +878,20 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
     case BroadPhaseMethod::Bvh:
       reported = bvh_pairs(topo, out);
       break;
+    case BroadPhaseMethod::Grid:
+      reported = grid_pairs(topo, out);
+      if (reported < 0) {
+        ran = BroadPhaseMethod::PrimitiveBoxes;
+        build_boxes(x0, x1, topo, inflation, out.scratch, true, true);
+        reported = primitive_boxes(topo, out);
+      }
+      break;
   }
   if (stats) {
     stats->no_culling_vertex_face = topo.all_vertex_face_pairs;
     stats->no_culling_edge_edge = topo.all_edge_edge_pairs;
     stats->box_overlaps = reported;
+    stats->method_run = ran;
     stats->vertex_face = static_cast<std::int64_t>(out.vertex_face.size());
     stats->edge_edge = static_cast<std::int64_t>(out.edge_edge.size());
     stats->seconds =

@@ -23,8 +23,9 @@ namespace {
 using Pairs = std::vector<std::array<int, 2>>;
 using test::TriMesh;
 
-const std::array<BroadPhaseMethod, 3> METHODS = {
-    BroadPhaseMethod::PrimitiveBoxes, BroadPhaseMethod::FacePairs, BroadPhaseMethod::Bvh};
+const std::array<BroadPhaseMethod, 4> METHODS = {BroadPhaseMethod::PrimitiveBoxes,
+                                                  BroadPhaseMethod::FacePairs,
+                                                  BroadPhaseMethod::Bvh, BroadPhaseMethod::Grid};
 
 std::string method_name(BroadPhaseMethod m) {
   switch (m) {
@@ -34,6 +35,8 @@ std::string method_name(BroadPhaseMethod m) {
       return "FacePairs";
     case BroadPhaseMethod::Bvh:
       return "Bvh";
+    case BroadPhaseMethod::Grid:
+      return "Grid";
   }
   return "?";
 }
@@ -118,6 +121,11 @@ std::string first_difference(const Pairs& got, const Pairs& want) {
   return os.str();
 }
 
+/// How often Grid ran its own algorithm and how often it fell back to PrimitiveBoxes, over all
+/// comparisons of this test binary (tests below check that both paths are exercised).
+int g_grid_runs = 0;
+int g_grid_fallbacks = 0;
+
 /// Runs every method and compares with brute force; returns the oracle for further checks.
 BruteForce expect_all_methods_match(const Positions& x0, const Positions& x1, const Faces& faces,
                                     double inflation, const std::string& label) {
@@ -143,6 +151,11 @@ BruteForce expect_all_methods_match(const Positions& x0, const Positions& x1, co
                                       : std::int64_t{1})
         << where;
     EXPECT_GE(stats.seconds, 0.0) << where;
+    if (m == BroadPhaseMethod::Grid) {
+      ++(stats.method_run == BroadPhaseMethod::Grid ? g_grid_runs : g_grid_fallbacks);
+    } else {
+      EXPECT_EQ(stats.method_run, m) << where;
+    }
     EXPECT_EQ(has_any_candidate(x0, x1, topo, inflation, got.scratch),
               !want.vertex_face.empty() || !want.edge_edge.empty())
         << where;
@@ -235,6 +248,7 @@ TEST(BroadPhase, ZeroMotionUnperturbedIcosphereWithTouchingBoxes) {
 
 TEST(BroadPhase, RandomMotionsSmallToLarge) {
   std::mt19937 rng(20200531);
+  const int grid_runs_before = g_grid_runs;
   for (int levels : {1, 2}) {
     const TriMesh m = test::icosphere(levels);
     for (int trial = 0; trial < 4; ++trial) {
@@ -263,6 +277,8 @@ TEST(BroadPhase, RandomMotionsSmallToLarge) {
       }
     }
   }
+  // The comparisons above must have exercised Grid's own algorithm, not only its fallback.
+  EXPECT_GT(g_grid_runs - grid_runs_before, 100);
 }
 
 TEST(BroadPhase, TwoSpheresPushedIntoEachOther) {
@@ -323,6 +339,32 @@ TEST(BroadPhase, RandomTetrahedraBothAnswersOfTheEarlyExit) {
   }
   EXPECT_GT(empty, 0);
   EXPECT_GT(nonempty, 0);
+}
+
+TEST(BroadPhase, GridFarFromTheOriginAndFallback) {
+  // Coordinates near 1e5 with tiny boxes: Grid's float prefilter works relative to the scene
+  // minimum, so it must still agree with brute force, touching boxes included (zero motion).
+  const TriMesh s = test::icosphere(2);
+  const Positions far = translated(s.x, Vec3(1e5, -2e5, 3e5));
+  const int fallbacks_before = g_grid_fallbacks, runs_before = g_grid_runs;
+  expect_all_methods_match(far, far, s.faces, 0.0, "icosphere at 1e5, zero motion");
+  std::mt19937 rng(11);
+  expect_all_methods_match(far, random_motion(far, 0.01, rng), s.faces, 1e-4,
+                           "icosphere at 1e5, small motion");
+  EXPECT_EQ(g_grid_runs - runs_before, 2);
+
+  // A tiny tetrahedron 1e6 away: the grid's cell count cap makes the sphere fall into a few
+  // cells, so Grid must take its fallback, and still match brute force.
+  TriMesh tet;
+  tet.x.resize(4, 3);
+  tet.x << 0, 0, 0, 1e-3, 0, 0, 0, 1e-3, 0, 0, 0, 1e-3;
+  tet.faces.resize(4, 3);
+  tet.faces << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  tet.x = translated(tet.x, Vec3(1e6, 1e6, 1e6));
+  const TriMesh both = combine(test::icosphere(3), tet);
+  expect_all_methods_match(both.x, random_motion(both.x, 1e-3, rng), both.faces, 1e-3,
+                           "icosphere and a far tetrahedron");
+  EXPECT_EQ(g_grid_fallbacks - fallbacks_before, 1);
 }
 
 // ------------------------------------------------------------------ contract checks

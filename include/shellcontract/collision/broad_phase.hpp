@@ -46,7 +46,7 @@ CollisionTopology make_collision_topology(const Faces& faces, int num_vertices);
 /// brute force); they differ only in speed.
 enum class BroadPhaseMethod {
   /// CGAL box_intersection_d on primitive boxes: vertex boxes against face boxes (bipartite
-  /// mode), edge boxes against themselves (complete mode). The default: fastest on bear.
+  /// mode), edge boxes against themselves (complete mode).
   PrimitiveBoxes,
   /// CGAL box_intersection_d on face boxes (complete mode), then the 6 VF and 9 EE pairs of every
   /// overlapping face pair, box-tested and deduplicated (math-spec 10.2, the paper's way).
@@ -55,10 +55,18 @@ enum class BroadPhaseMethod {
   /// over edge boxes; one query per vertex box and per edge box. Output comes out grouped by
   /// the first id, so only short runs need sorting and nothing needs deduplicating.
   Bvh,
+  /// Uniform grid (cell size 1.5 x the median face/edge box extent) filled by a counting sort;
+  /// in each cell, vertex boxes against face boxes and edge boxes against each other, each pair
+  /// emitted only in the first cell the two boxes share (no hash set), culled by a vectorized
+  /// test on boxes rounded outward to float, confirmed by the exact double test; then a radix
+  /// sort. Falls back to PrimitiveBoxes when the boxes are so large or spread out that the grid
+  /// would degenerate towards brute force (BroadPhaseStats::method_run says which ran).
+  /// The default: fastest on bear (bench_broad_phase).
+  Grid,
 };
 
 /// The method find_candidates uses when none is given (the fastest on bear, bench_broad_phase).
-static constexpr BroadPhaseMethod DEFAULT_BROAD_PHASE_METHOD = BroadPhaseMethod::PrimitiveBoxes;
+static constexpr BroadPhaseMethod DEFAULT_BROAD_PHASE_METHOD = BroadPhaseMethod::Grid;
 
 namespace detail {
 /// A swept box with an id, in the form CGAL's Box_traits_d reads (min_coord, max_coord, id,
@@ -84,6 +92,33 @@ struct BvhNode {
   int count = 0;  ///< leaf: number of items (> 0); inner node: 0
 };
 
+/// Grid method: a vertex's swept box (face and edge boxes are recomputed from these).
+struct GridVertexBox {
+  std::array<double, 3> lo;
+  std::array<double, 3> hi;
+};
+
+/// Grid method: the cells a box covers, inclusive, per axis.
+struct GridRange {
+  std::array<std::uint16_t, 3> lo;
+  std::array<std::uint16_t, 3> hi;
+};
+
+/// Grid method: a swept box rounded outward to float, relative to the scene minimum.
+struct GridFloatBox {
+  std::array<float, 3> lo;
+  std::array<float, 3> hi;
+};
+
+/// Grid method: the boxes of one cell as structure-of-arrays buffers (for vectorized tests).
+struct GridCell {
+  std::array<std::vector<float>, 3> lo, hi;  ///< float boxes, per axis
+  std::array<std::vector<int>, 3> v;         ///< vertex ids (see GridPrimitives::ids)
+  std::vector<std::uint32_t> flags;          ///< bit d: the box's first cell on axis d
+  std::vector<std::uint32_t> gid;            ///< vertex id, V + face id or V + F + edge id
+  std::vector<std::uint32_t> mask;           ///< candidate mask of the current row
+};
+
 /// Scratch buffers reused between calls, so a steady-state call does not allocate.
 struct BroadPhaseScratch {
   std::vector<BroadPhaseBox> vertex_boxes;  ///< indexed by vertex id
@@ -98,6 +133,16 @@ struct BroadPhaseScratch {
   std::vector<BvhNode> edge_tree;           ///< Bvh method: tree over edge boxes
   std::vector<int> edge_order;              ///< edge ids in leaf order
   std::vector<int> stack;                   ///< traversal stack
+  std::vector<GridVertexBox> grid_vertex_boxes;  ///< Grid method: indexed by vertex id
+  std::vector<GridFloatBox> grid_vertex_floats;  ///< Grid: float vertex boxes
+  std::vector<GridRange> grid_vertex_ranges;     ///< Grid: cell ranges of the vertex boxes
+  std::vector<GridRange> grid_ranges;            ///< Grid: of vertex, face, then edge boxes
+  GridCell cell;                                 ///< Grid: the boxes of the current cell
+  std::vector<double> extent_sample;        ///< Grid: box extents for the cell size
+  std::vector<std::uint32_t> cell_start;    ///< Grid: CSR offsets per cell
+  std::vector<std::uint32_t> cell_fill;     ///< Grid: fill cursors of the counting sort
+  std::vector<std::uint32_t> cell_entries;  ///< Grid: box id << 3 | first-cell flags
+  std::vector<std::uint64_t> sort_tmp;      ///< Grid: radix sort buffer
 };
 }  // namespace detail
 
@@ -118,8 +163,12 @@ struct BroadPhaseStats {
   std::int64_t no_culling_edge_edge = 0;    ///< topo.all_edge_edge_pairs
   /// Overlapping box pairs the box search reported, adjacent ones included. PrimitiveBoxes:
   /// VF + EE primitive box pairs. FacePairs: face box pairs. Bvh: VF box pairs plus EE box
-  /// pairs with a < b.
+  /// pairs with a < b. Grid: VF plus EE (a < b) pairs whose boxes overlap after rounding outward
+  /// to float (a superset of the exact overlaps, in practice equal).
   std::int64_t box_overlaps = 0;
+  /// The algorithm that ran: the requested one, except that Grid falls back to PrimitiveBoxes
+  /// when its grid would degenerate (see BroadPhaseMethod::Grid).
+  BroadPhaseMethod method_run = DEFAULT_BROAD_PHASE_METHOD;
   std::int64_t vertex_face = 0;  ///< VF pairs emitted
   std::int64_t edge_edge = 0;    ///< EE pairs emitted
   double seconds = 0.0;          ///< wall time of the call, s
