@@ -15,6 +15,7 @@
 #include "shellcontract/material/registry.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/fields.hpp"
 #include "shellcontract/sim/simulator.hpp"
 
 namespace po = boost::program_options;
@@ -45,6 +46,14 @@ MassModel parse_mass(const std::string& s) {
   if (s == "area") return MassModel::AreaLumped;
   if (s == "unit") return MassModel::Unit;
   throw UsageError("unknown mass model '" + s + "' (expected area or unit)");
+}
+
+FieldColour parse_field_colour(const std::string& s) {
+  if (s == "mean") return FieldColour::MeanCurvature;
+  if (s == "gaussian") return FieldColour::GaussianCurvature;
+  if (s == "pressure") return FieldColour::Pressure;
+  if (s == "energy") return FieldColour::EnergyDensity;
+  throw UsageError("unknown --fields-colour '" + s + "' (expected mean, gaussian, pressure or energy)");
 }
 
 ValidateMode parse_validate(const std::string& s) {
@@ -140,6 +149,7 @@ int command_run(int argc, char** argv) {
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
   bool measure_regions = false;
+  std::string fields_prefix, fields_colour = "mean";
 
   po::options_description desc(
       "usage: shellcontract run INPUT -o OUTPUT [options]\n\n"
@@ -214,6 +224,11 @@ int command_run(int argc, char** argv) {
        "detection/response rounds per step before the fail-safe")
       ("validate", po::value(&validate)->default_value(validate),
        "CGAL self-intersection check: off | end | every-frame (exit code 4 if new ones)")
+      ("fields", po::value(&fields_prefix),
+       "write PREFIX_start.ply and PREFIX_end.ply: per-vertex mean and Gaussian curvature, "
+       "pressure load and elastic energy density, coloured by --fields-colour")
+      ("fields-colour", po::value(&fields_colour)->default_value(fields_colour),
+       "mean | gaussian | pressure | energy: blue-white-red over the 2nd-98th percentile")
       ("log", po::value(&log_path), "per-frame CSV log")
       ("summary", po::value(&summary_path), "JSON summary of the run")
       ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
@@ -288,6 +303,10 @@ int command_run(int argc, char** argv) {
                 << " degenerate faces carry no membrane energy; " << sim.rest_report().inactive_hinges
                 << " hinges touching them are inactive\n";
 
+    const FieldColour colour = parse_field_colour(fields_colour);
+    if (!fields_prefix.empty())
+      write_fields_ply(fields_prefix + "_start.ply", sim, sim.positions_in_input_units(),
+                       compute_vertex_fields(sim), colour);
     std::string csv = CSV_HEADER;
     const auto start = std::chrono::steady_clock::now();
     auto last_report = start;
@@ -326,6 +345,9 @@ int command_run(int argc, char** argv) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     write_mesh_atomic(output, mesh, sim.positions_in_input_units());
+    if (!fields_prefix.empty())
+      write_fields_ply(fields_prefix + "_end.ply", sim, sim.positions_in_input_units(),
+                       compute_vertex_fields(sim), colour);
     if (!log_path.empty()) write_text_atomic(log_path, csv);
     if (!summary_path.empty()) {
       JsonObject options;

@@ -94,7 +94,30 @@ class GaussSeidelSolver final : public ConstraintSolver {
 
   const ConstraintSet& constraints() const override { return set_; }
 
+  Eigen::VectorXd face_energies(const Positions& x, Eigen::Index num_faces) const override {
+    Eigen::VectorXd e = Eigen::VectorXd::Zero(num_faces);
+    add_face_energies(material_, set_.membranes, x, nullptr, e);
+    add_face_energies(aniso_, set_.anisotropic, x, &aniso_orientation_, e);
+    return e;
+  }
+
  private:
+  template <class Model>
+  static void add_face_energies(const Model& m, const std::vector<MembraneConstraint>& set,
+                                const Positions& x, const std::vector<double>* orientation,
+                                Eigen::VectorXd& e) {
+    for (std::size_t i = 0; i < set.size(); ++i) {
+      const MembraneConstraint& c = set[i];
+      if (c.face < 0 || c.face >= e.size()) continue;
+      TriangleFrame fr;
+      const double s = orientation ? (*orientation)[i] : 1.0;
+      if (!triangle_frame(row(x, c.v[0]), row(x, c.v[1]), row(x, c.v[2]), c.Dm_inv, c.rest_area, s, fr))
+        continue;
+      if (!fr.regular && m.frame_dependent()) continue;
+      e(c.face) += c.rest_area * m.psi(fr.F, c.data);
+    }
+  }
+
   template <class Model>
   static double membrane_energy(const Model& m, const std::vector<MembraneConstraint>& set,
                                 const Positions& x, const std::vector<double>* orientation) {

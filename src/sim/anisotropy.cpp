@@ -56,6 +56,7 @@ AnisotropyReport add_anisotropic_constraints(const Mesh& mesh, const AnisotropyO
       c.Dm_inv = tr.Dm_inv;
       c.rest_area = tr.area;
       c.max_step = STEP_CLAMP_FACTOR * tr.min_edge;
+      c.face = f;
       const Vec3 d = options.fiber_mode == FiberMode::User
                          ? options.user_direction
                          : Vec3(centre - (point(v[0]) + point(v[1]) + point(v[2])) / 3.0);

@@ -89,6 +89,7 @@ ConstraintSet pack_constraints(const Mesh& mesh, BendingModel bending) {
     c.Dm_inv = r.Dm_inv;
     c.rest_area = r.area;
     c.max_step = STEP_CLAMP_FACTOR * r.min_edge;
+    c.face = static_cast<int>(f.idx());
     set.membranes.push_back(c);
   }
   if (bending == BendingModel::None) return set;

@@ -19,6 +19,7 @@ struct MembraneConstraint {
   double rest_area;      ///< Abar
   double max_step;       ///< PBD step clamp beta_max * shortest rest edge (math-spec 9.1d)
   ElementMaterialData data;  ///< fibre direction (anisotropic energies only)
+  int face = -1;             ///< mesh face index (for per-face output)
 };
 
 /// Isometric bending hinge (math-spec 8.2). Stencil order of bending/hinge.hpp.

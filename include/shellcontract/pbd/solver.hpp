@@ -54,6 +54,11 @@ class ConstraintSolver {
   /// Energies of every constraint kind at x (no projection).
   virtual ConstraintEnergies energies(const Positions& x) const = 0;
 
+  /// Membrane plus anisotropic elastic energy of every face at x (0 for faces without a
+  /// constraint), indexed by MembraneConstraint::face.
+  /// @param num_faces  #F of the mesh
+  virtual Eigen::VectorXd face_energies(const Positions& x, Eigen::Index num_faces) const = 0;
+
   /// The constraints being projected.
   virtual const ConstraintSet& constraints() const = 0;
 };

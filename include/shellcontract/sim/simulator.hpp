@@ -74,6 +74,10 @@ class Simulator {
   const SimOptions& options() const { return options_; }
   /// Energies at the current positions.
   ConstraintEnergies energies() const { return solver_->energies(x_); }
+  /// Elastic (membrane + anisotropic) energy of each face at the current positions.
+  Eigen::VectorXd face_energies() const { return solver_->face_energies(x_, faces_.rows()); }
+  /// Normalized rest positions.
+  const Positions& rest_positions() const { return rest_x_; }
 
  private:
   SimOptions options_;

@@ -1,0 +1,106 @@
+#include "shellcontract/sim/fields.hpp"
+
+#include <algorithm>
+#include <iomanip>
+#include <sstream>
+#include <vector>
+
+#include "shellcontract/geometry/curvature.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/pressure.hpp"
+#include "shellcontract/sim/rest_state.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// Value at fraction q of the sorted values (nearest rank).
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const std::size_t k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+/// One-ring area sums of a per-face quantity and of the face areas at positions x.
+void ring_sums(const Faces& F, const Positions& x, const Eigen::VectorXd& per_face,
+               Eigen::VectorXd& value, Eigen::VectorXd& area) {
+  value = Eigen::VectorXd::Zero(x.rows());
+  area = Eigen::VectorXd::Zero(x.rows());
+  for (Eigen::Index j = 0; j < F.rows(); ++j) {
+    const Vec3 xc = x.row(F(j, 2));
+    const double A = 0.5 * (Vec3(x.row(F(j, 0))) - xc).cross(Vec3(x.row(F(j, 1))) - xc).norm();
+    for (int k = 0; k < 3; ++k) {
+      value(F(j, k)) += per_face.size() ? per_face(j) : 0.0;
+      area(F(j, k)) += A;
+    }
+  }
+}
+
+}  // namespace
+
+VertexFields compute_vertex_fields(const Simulator& sim) {
+  const Mesh& mesh = sim.rest_mesh();
+  const Positions& x = sim.positions();
+  const Faces F = faces_array(mesh);
+  VertexFields out;
+  const CurvatureField c = compute_curvature(mesh, x);
+  out.mean_curvature = c.mean;
+  out.gaussian_curvature = c.gaussian;
+  Positions f;
+  pressure_forces(x, F, sim.options().pressure, sim.options().pressure_model, f);
+  Eigen::VectorXd unused, area;
+  ring_sums(F, x, Eigen::VectorXd(), unused, area);
+  out.pressure = Eigen::VectorXd::Zero(x.rows());
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (area(i) > 0.0) out.pressure(i) = f.row(i).norm() / (area(i) / 3.0);  // guard: isolated
+  // Energy density: one-ring energy over one-ring REST area (energies are per rest area).
+  Eigen::VectorXd ring_energy, rest_area;
+  ring_sums(F, sim.rest_positions(), sim.face_energies(), ring_energy, rest_area);
+  out.energy_density = Eigen::VectorXd::Zero(x.rows());
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (rest_area(i) > 0.0) out.energy_density(i) = ring_energy(i) / rest_area(i);
+  return out;
+}
+
+Eigen::Vector3i field_colour(double t) {
+  t = std::clamp(t, 0.0, 1.0);
+  if (t < 0.5) {
+    const int w = static_cast<int>(255.0 * (t / 0.5) + 0.5);
+    return Eigen::Vector3i(w, w, 255);
+  }
+  const int w = static_cast<int>(255.0 * ((1.0 - t) / 0.5) + 0.5);
+  return Eigen::Vector3i(255, w, w);
+}
+
+void write_fields_ply(const std::string& path, const Simulator& sim, const Positions& x,
+                      const VertexFields& fields, FieldColour colour) {
+  const Faces F = faces_array(sim.rest_mesh());
+  const Eigen::VectorXd& c = colour == FieldColour::MeanCurvature       ? fields.mean_curvature
+                             : colour == FieldColour::GaussianCurvature ? fields.gaussian_curvature
+                             : colour == FieldColour::Pressure          ? fields.pressure
+                                                                        : fields.energy_density;
+  const std::vector<double> values(c.data(), c.data() + c.size());
+  const double lo = percentile(values, 0.02), hi = percentile(values, 0.98);
+  std::ostringstream o;
+  o << std::setprecision(17);
+  o << "ply\nformat ascii 1.0\ncomment shellcontract fields; colour = field mapped from its 2nd to "
+       "98th percentile ["
+    << lo << ", " << hi << "] onto blue-white-red\nelement vertex " << x.rows()
+    << "\nproperty double x\nproperty double y\nproperty double z\n"
+       "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+       "property float mean_curvature\nproperty float gaussian_curvature\n"
+       "property float pressure\nproperty float energy_density\n"
+    << "element face " << F.rows() << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const double t = hi > lo ? (c(i) - lo) / (hi - lo) : 0.5;  // constant field: white
+    const Eigen::Vector3i rgb = field_colour(t);
+    o << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << ' ' << rgb(0) << ' ' << rgb(1) << ' '
+      << rgb(2) << ' ' << static_cast<float>(fields.mean_curvature(i)) << ' '
+      << static_cast<float>(fields.gaussian_curvature(i)) << ' ' << static_cast<float>(fields.pressure(i))
+      << ' ' << static_cast<float>(fields.energy_density(i)) << '\n';
+  }
+  for (Eigen::Index j = 0; j < F.rows(); ++j) o << "3 " << F(j, 0) << ' ' << F(j, 1) << ' ' << F(j, 2) << '\n';
+  write_text_atomic(path, o.str());
+}
+
+}  // namespace shellcontract
