@@ -97,9 +97,43 @@ TEST(IsometricBending, GradientMatchesFiniteDifferencesAndConservesMomentum) {
     const auto g = isometric_bending_gradient(r, x[0], x[1], x[2], x[3]);
     ASSERT_GT(g[0].norm(), 1e-8);
     EXPECT_LE(rel(g, fd(E, x, 1e-6)), 1e-6);
-    Vec3 force = Vec3::Zero();
-    for (const Vec3& gi : g) force += gi;
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    for (int i = 0; i < 4; ++i) {
+      force += g[i];
+      torque += x[i].cross(g[i]);
+    }
     EXPECT_LE(force.norm(), 1e-12 * g[0].norm());
+    // h is translation invariant and rotates with the stencil: E_B is rigid-motion invariant,
+    // so its forces exert no net torque.
+    EXPECT_LE(torque.norm(), 1e-11 * g[0].norm());
+  }
+}
+
+TEST(DihedralBending, ForcesHaveNoNetForceOrTorqueAndAreRotationInvariant) {
+  std::mt19937 rng(8);
+  for (int t = 0; t < 20; ++t) {
+    const Stencil rest = folded_hinge(0.3);
+    const DihedralBendingRest r = dihedral_bending_rest(rest[0], rest[1], rest[2], rest[3]);
+    Stencil x;
+    for (int i = 0; i < 4; ++i) x[i] = rest[i] + 0.1 * test::random_vec3(rng);
+    const auto g = dihedral_bending_gradient(r, 0.5, x[0], x[1], x[2], x[3]);
+    double scale = 0;
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    for (int i = 0; i < 4; ++i) {
+      scale = std::max(scale, g[i].norm());
+      force += g[i];
+      torque += x[i].cross(g[i]);
+    }
+    ASSERT_GT(scale, 0.0);
+    EXPECT_LE(force.norm(), 1e-12 * scale);
+    EXPECT_LE(torque.norm(), 1e-11 * scale);
+    const Mat3 Q = test::random_rotation(rng);
+    Stencil y;
+    for (int i = 0; i < 4; ++i) y[i] = Q * x[i] + Vec3(1, -2, 3);
+    EXPECT_NEAR(dihedral_bending_energy(r, 0.5, y[0], y[1], y[2], y[3]),
+                dihedral_bending_energy(r, 0.5, x[0], x[1], x[2], x[3]), 1e-12);
+    const auto gy = dihedral_bending_gradient(r, 0.5, y[0], y[1], y[2], y[3]);
+    for (int i = 0; i < 4; ++i) EXPECT_LE((gy[i] - Q * g[i]).norm(), 1e-10 * scale);
   }
 }
 

@@ -24,7 +24,7 @@ enum class InwardTerm { Projection, Force, None };
 
 /// Default local extra pressure P_A on the anisotropic regions (InwardTerm::Force), normalized
 /// units; README "Anisotropic regions" gives the measurement behind it.
-inline constexpr double DEFAULT_REGION_PRESSURE = 2.0;
+inline constexpr double DEFAULT_REGION_PRESSURE = 3.0;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
 enum class ValidateMode { Off, End, EveryFrame };
