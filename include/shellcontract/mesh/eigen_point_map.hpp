@@ -20,6 +20,9 @@ class EigenPointMap {
   using category = boost::readable_property_map_tag;
 
   explicit EigenPointMap(const Positions& x) : x_(&x) {}
+  /// Unbound map: CGAL default-constructs property maps in some algorithms (e.g. the Hausdorff
+  /// distance) before assigning them; get() on an unbound map is not allowed.
+  EigenPointMap() = default;
 
   friend Point3 get(const EigenPointMap& m, VertexIndex v) {
     const auto row = m.x_->row(static_cast<Eigen::Index>(v.idx()));
@@ -27,7 +30,7 @@ class EigenPointMap {
   }
 
  private:
-  const Positions* x_;
+  const Positions* x_ = nullptr;
 };
 
 /// Copies the mesh points into a Positions array (row i = vertex i).
