@@ -1,0 +1,316 @@
+// shellcontract bench error: speed against error of the constraint solver (design.md "Speed
+// against error"). Runs a ladder of solver settings on one mesh, compares each run with a
+// reference run of the same model (sim/error_ladder.hpp says which), prints a table, writes a
+// CSV and draws the plot with gnuplot.
+//
+// Exit codes: 0 success, 1 bad usage (unknown option, bad list, unwritable output, gnuplot
+// missing or failing), 2 bad input mesh, 3 a reference run failed (blow-up).
+#include <algorithm>
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <unistd.h>
+#include <vector>
+
+#include "commands.hpp"
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/error_ladder.hpp"
+
+namespace po = boost::program_options;
+
+namespace shellcontract::cli {
+namespace {
+
+constexpr const char* BENCH_ERROR_USAGE = R"(usage: shellcontract bench error INPUT [options]
+
+Speed against error of the constraint solver on one mesh. Every run simulates the same time
+(--frames x --dt) with the default physics (pressure, StVK, isometric bending, damping) and is
+compared at the end with a reference run of the same model:
+  xpbd rungs: against XPBD with --ref-iterations sweeps and --ref-substeps substeps per step
+              (XPBD converges to one physical model as the step shrinks);
+  pbd rungs:  against PBD with --pbd-ref-iterations sweeps at the base step (PBD's stiffness
+              depends on the step, so a smaller step is another model; PBD rungs use substeps 1
+              unless --pbd-substeps).
+A substep divides the step by k and runs k times as many steps; the damping is rescaled so the
+same fraction of velocity is removed per unit time. Collision handling is off unless
+--collisions on. Errors are in normalized units (bounding-box diagonal 1):
+  hausdorff    symmetric Hausdorff distance to the reference surface (CGAL, bounded error)
+  max_vertex   max_i |x_i - x_i_ref|
+  dV           |V/V0 - (V/V0)_ref|
+  dE_rel       constraint residual: |E - E_ref| / E_ref, E = total constraint energy
+  ms_per_step  median over the steps of the wall time of one step (all its substeps)
+The reference check reruns each reference with half its step (xpbd) or twice its iterations
+(pbd); it is converged when that change is smaller than the smallest hausdorff of the table.)";
+
+/// Parses "1,2,5" into integers >= 1.
+std::vector<int> parse_list(const std::string& list, const char* option) {
+  std::vector<int> out;
+  std::stringstream ss(list);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    std::size_t used = 0;
+    int v = 0;
+    try {
+      v = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      throw UsageError(std::string(option) + ": '" + item + "' is not an integer");
+    }
+    if (used != item.size() || v < 1)
+      throw UsageError(std::string(option) + ": '" + item + "' is not an integer >= 1");
+    out.push_back(v);
+  }
+  if (out.empty()) throw UsageError(std::string(option) + ": empty list");
+  return out;
+}
+
+std::string fmt(double v, int precision = 3) {
+  if (std::isnan(v)) return "failed";
+  std::ostringstream s;
+  s << std::setprecision(precision) << v;
+  return s.str();
+}
+
+void print_rows(const std::vector<ErrorLadderRow>& rows, std::ostream& os) {
+  os << std::left << std::setw(6) << "solver" << std::right << std::setw(6) << "iter"
+     << std::setw(5) << "sub" << std::setw(13) << "ms_per_step" << std::setw(12) << "hausdorff"
+     << std::setw(12) << "max_vertex" << std::setw(9) << "V/V0" << std::setw(11) << "dV"
+     << std::setw(11) << "dE_rel" << '\n';
+  for (const ErrorLadderRow& r : rows) {
+    os << std::left << std::setw(6) << ladder_solver_name(r.solver) << std::right << std::setw(6)
+       << r.iterations << std::setw(5) << r.substeps << std::setw(13) << fmt(r.ms_per_step)
+       << std::setw(12) << fmt(r.hausdorff) << std::setw(12) << fmt(r.max_vertex_error)
+       << std::setw(9) << fmt(r.volume_ratio, 4) << std::setw(11) << fmt(r.volume_error)
+       << std::setw(11) << fmt(r.energy_error) << '\n';
+  }
+}
+
+void print_checks(const std::vector<ReferenceCheck>& checks, std::ostream& os) {
+  for (const ReferenceCheck& c : checks) {
+    os << ladder_solver_name(c.solver) << " reference (" << c.iterations << " iterations, "
+       << c.substeps << " substeps) vs (" << c.refined_iterations << " iterations, "
+       << c.refined_substeps << " substeps): ";
+    if (c.failed) {
+      os << "refined run failed: " << c.failure << '\n';
+      continue;
+    }
+    os << "hausdorff " << fmt(c.hausdorff) << ", dV " << fmt(c.volume_error) << ", dE_rel "
+       << fmt(c.energy_error) << "; smallest rung hausdorff " << fmt(c.smallest_rung_hausdorff)
+       << ", dV " << fmt(c.smallest_rung_volume_error) << " -> " << (c.converged ? "converged" : "NOT converged") << '\n';
+  }
+}
+
+/// CSV: one row per rung ("rung"), per reference ("reference", errors 0) and per reference
+/// check ("reference_check": the refined run's errors against the reference, at the
+/// reference's ms_per_step). Full precision, so the table can be recomputed.
+std::string to_csv(const ErrorLadderResult& res) {
+  std::ostringstream s;
+  s << std::setprecision(10);
+  s << "row_type,solver,iterations,substeps,frames,dt,failed,ms_per_step,hausdorff,"
+       "max_vertex_error,volume_ratio,volume_error,energy_error\n";
+  auto row = [&](const char* type, const ErrorLadderRow& r) {
+    s << type << ',' << ladder_solver_name(r.solver) << ',' << r.iterations << ',' << r.substeps
+      << ',' << res.frames << ',' << res.dt << ',' << (r.failed ? 1 : 0) << ',' << r.ms_per_step
+      << ',' << r.hausdorff << ',' << r.max_vertex_error << ',' << r.volume_ratio << ','
+      << r.volume_error << ',' << r.energy_error << '\n';
+  };
+  for (const ErrorLadderRow& r : res.rows) row("rung", r);
+  for (const ErrorLadderRow& r : res.reference_rows) row("reference", r);
+  for (const ReferenceCheck& c : res.references) {
+    s << "reference_check," << ladder_solver_name(c.solver) << ',' << c.refined_iterations << ','
+      << c.refined_substeps << ',' << res.frames << ',' << res.dt << ',' << (c.failed ? 1 : 0)
+      << ',' << c.ms_per_step << ',' << c.hausdorff << ",," << ',' << c.volume_error << ','
+      << c.energy_error << '\n';
+  }
+  return s.str();
+}
+
+/// gnuplot commands drawing hausdorff (log) against ms_per_step (log) from the CSV: one line per
+/// solver and substep count (points labelled by iterations), and each reference's own error
+/// (its check) as a star. The same plot as scripts/plot_speed_error.sh.
+std::string gnuplot_script(const std::string& csv, const std::string& out, const std::string& title,
+                           const ErrorLadderResult& res) {
+  const bool svg = std::filesystem::path(out).extension() == ".svg";
+  std::ostringstream g;
+  g << (svg ? "set terminal svg size 900,640 dynamic font 'sans,12'\n"
+            : "set terminal pngcairo size 900,640 font 'sans,11'\n");
+  g << "set output '" << out << "'\n"
+    << "set datafile separator ','\n"
+    << "set logscale xy\n"
+    << "set grid\n"
+    << "set key below\n"
+    << "set xlabel 'wall time per step (ms, median)'\n"
+    << "set ylabel 'Hausdorff distance to the reference (normalized units)'\n"
+    << "set title '" << title << "' noenhanced\n";
+  // Series: (solver, substeps) pairs present among the rungs, in run order.
+  std::vector<std::pair<SolverKind, int>> series;
+  for (const ErrorLadderRow& r : res.rows) {
+    const std::pair<SolverKind, int> k{r.solver, r.substeps};
+    if (std::find(series.begin(), series.end(), k) == series.end()) series.push_back(k);
+  }
+  g << "plot ";
+  int style = 1;
+  for (const auto& [kind, sub] : series) {
+    const std::string name = ladder_solver_name(kind);
+    const std::string sel = "(strcol(1) eq 'rung' && strcol(2) eq '" + name +
+                            "' && $4 == " + std::to_string(sub) + " && $9 > 0 ? $9 : 1/0)";
+    g << "'" << csv << "' skip 1 using 8:" << sel << " with linespoints lt " << style
+      << " pt 7 title '" << name << ", " << sub << (sub == 1 ? " substep" : " substeps")
+      << "', \\\n     '" << csv << "' skip 1 using 8:" << sel
+      << ":3 with labels offset char 0.8,0.6 font ',8' tc lt " << style << " notitle, \\\n     ";
+    ++style;
+  }
+  g << "'" << csv << "' skip 1 using 8:(strcol(1) eq 'reference_check' && $9 > 0 ? $9 : 1/0)"
+    << " with points pt 3 ps 2 lc rgb 'black' title 'each reference vs its refinement (its own error)', \\\n     '"
+    << csv << "' skip 1 using 8:(strcol(1) eq 'reference_check' && $9 > 0 ? $9 : 1/0):(strcol(2).' reference')"
+    << " with labels offset char 0,-1 font ',8' notitle\n";
+  return g.str();
+}
+
+bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
+
+}  // namespace
+
+int command_bench_error(int argc, char** argv) {
+  std::string input, csv, plot, solver = "both", iterations = "1,2,5,10,20,50", substeps = "1,2,4";
+  std::string collisions = "off";
+  ErrorLadderOptions opt;
+  SimOptions base;
+  bool no_check = false, quiet = false;
+  po::options_description visible("options");
+  visible.add_options()
+      ("help,h", "show this help")
+      ("frames,n", po::value<int>(&opt.frames)->default_value(opt.frames), "base steps simulated (time = frames x dt)")
+      ("dt", po::value<double>(&base.dt)->default_value(base.dt), "base time step (normalized units)")
+      ("pressure,p", po::value<double>(&base.pressure)->default_value(base.pressure), "outside over-pressure P")
+      ("solver", po::value<std::string>(&solver)->default_value(solver), "pbd|xpbd|both")
+      ("iterations", po::value<std::string>(&iterations)->default_value(iterations), "Gauss-Seidel sweeps of the rungs (list)")
+      ("substeps", po::value<std::string>(&substeps)->default_value(substeps), "substeps of the rungs (list)")
+      ("pbd-substeps", po::bool_switch(&opt.pbd_substeps), "also run PBD rungs with substeps > 1")
+      ("ref-iterations", po::value<int>(&opt.xpbd_reference_iterations)->default_value(opt.xpbd_reference_iterations), "XPBD reference sweeps per substep")
+      ("ref-substeps", po::value<int>(&opt.xpbd_reference_substeps)->default_value(opt.xpbd_reference_substeps), "XPBD reference substeps")
+      ("pbd-ref-iterations", po::value<int>(&opt.pbd_reference_iterations)->default_value(opt.pbd_reference_iterations), "PBD reference sweeps")
+      ("collisions", po::value<std::string>(&collisions)->default_value(collisions), "on|off: collision handling in every run")
+      ("no-check", po::bool_switch(&no_check), "skip the reference convergence check")
+      ("csv", po::value<std::string>(&csv), "write the table as CSV")
+      ("plot", po::value<std::string>(&plot), "draw error against time with gnuplot (.png or .svg)")
+      ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
+  po::options_description hidden;
+  hidden.add_options()("input", po::value<std::string>(&input), "input mesh");
+  po::options_description all;
+  all.add(visible).add(hidden);
+  po::positional_options_description positional;
+  positional.add("input", 1);
+  auto usage_error = [](const std::string& what) {
+    std::cerr << "shellcontract bench error: " << what << "\n(see 'shellcontract bench error --help')\n";
+    return static_cast<int>(ExitCode::BadUsage);
+  };
+  try {
+    po::variables_map vm;
+    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
+    po::notify(vm);
+    if (vm.count("help")) {
+      std::cout << BENCH_ERROR_USAGE << "\n\n" << visible << '\n';
+      return static_cast<int>(ExitCode::Success);
+    }
+    if (input.empty()) throw UsageError("missing INPUT mesh");
+    if (solver == "pbd") opt.solvers = {SolverKind::Pbd};
+    else if (solver == "xpbd") opt.solvers = {SolverKind::Xpbd};
+    else if (solver == "both") opt.solvers = {SolverKind::Pbd, SolverKind::Xpbd};
+    else throw UsageError("--solver: expected pbd, xpbd or both, got '" + solver + "'");
+    if (collisions != "on" && collisions != "off")
+      throw UsageError("--collisions: expected on or off, got '" + collisions + "'");
+    opt.collisions = collisions == "on";
+    opt.iterations = parse_list(iterations, "--iterations");
+    opt.substeps = parse_list(substeps, "--substeps");
+    opt.check_reference = !no_check;
+    if (opt.frames < 1) throw UsageError("--frames must be >= 1");
+    if (opt.xpbd_reference_iterations < 1 || opt.xpbd_reference_substeps < 1 || opt.pbd_reference_iterations < 1)
+      throw UsageError("reference iterations and substeps must be >= 1");
+    if (!(base.dt > 0.0) || !std::isfinite(base.dt)) throw UsageError("--dt must be positive");
+    if (!plot.empty()) {
+      const auto ext = std::filesystem::path(plot).extension();
+      if (ext != ".png" && ext != ".svg") throw UsageError("--plot: expected a .png or .svg file, got '" + plot + "'");
+      // Checked before the (long) runs, not after.
+      if (!gnuplot_available())
+        throw UsageError("--plot needs gnuplot, which is not installed (Debian: apt-get install gnuplot-nox)");
+    }
+  } catch (const po::error& e) {
+    return usage_error(e.what());
+  } catch (const UsageError& e) {
+    return usage_error(e.what());
+  }
+
+  Mesh mesh;
+  try {
+    InputReport report;
+    mesh = read_input_mesh(input, &report);
+    if (!quiet)
+      for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
+  } catch (const InputError& e) {
+    std::cerr << "shellcontract bench error: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::BadInput);
+  }
+
+  if (!quiet) opt.progress = [](const std::string& s) { std::cerr << "  " << s << '\n'; };
+  ErrorLadderResult res;
+  try {
+    res = run_error_ladder(mesh, base, opt);
+  } catch (const InputError& e) {
+    std::cerr << "shellcontract bench error: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::BadInput);
+  } catch (const UsageError& e) {
+    return usage_error(e.what());
+  } catch (const SimulationError& e) {
+    std::cerr << "shellcontract bench error: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::SimulationFailed);
+  }
+
+  std::cout << input << ": " << mesh.number_of_faces() << " faces, " << res.frames
+            << " steps of dt " << res.dt << " (simulated time " << res.simulated_time
+            << "), collisions " << collisions << "\n\n";
+  print_rows(res.rows, std::cout);
+  std::cout << "\nreferences (errors 0 by definition):\n";
+  print_rows(res.reference_rows, std::cout);
+  if (!res.references.empty()) {
+    std::cout << "\nreference check:\n";
+    print_checks(res.references, std::cout);
+  }
+
+  try {
+    std::string data_file = csv;
+    const std::string text = to_csv(res);
+    if (!csv.empty()) write_text_atomic(csv, text);
+    if (!plot.empty()) {
+      // gnuplot reads the CSV; without --csv it goes to a temporary file removed afterwards.
+      if (data_file.empty()) {
+        data_file = (std::filesystem::temp_directory_path() /
+                     ("shellcontract_bench_error_" + std::to_string(::getpid()) + ".csv")).string();
+        write_text_atomic(data_file, text);
+      }
+      const std::string title = std::filesystem::path(input).filename().string() + ": " +
+                                std::to_string(res.frames) + " steps, dt " + fmt(res.dt);
+      const std::string script = gnuplot_script(data_file, plot, title, res);
+      FILE* pipe = ::popen("gnuplot", "w");
+      int status = -1;
+      if (pipe) {
+        std::fwrite(script.data(), 1, script.size(), pipe);
+        status = ::pclose(pipe);
+      }
+      if (csv.empty()) std::filesystem::remove(data_file);
+      if (status != 0) throw UsageError("gnuplot failed to draw '" + plot + "'");
+      if (!quiet) std::cerr << "plot written to " << plot << '\n';
+    }
+  } catch (const UsageError& e) {
+    return usage_error(e.what());
+  }
+  return static_cast<int>(ExitCode::Success);
+}
+
+}  // namespace shellcontract::cli

@@ -1,0 +1,47 @@
+#!/bin/sh
+# Redraws the speed-against-error plot from a CSV written by `shellcontract bench error --csv`
+# (the same plot as its --plot option), without rerunning the ladder.
+#   usage: scripts/plot_speed_error.sh RESULTS.csv OUT.png|OUT.svg [TITLE]
+# Needs gnuplot (Debian: gnuplot-nox, installed by scripts/install_deps.sh).
+set -eu
+if [ $# -lt 2 ]; then
+  echo "usage: $0 RESULTS.csv OUT.png|OUT.svg [TITLE]" >&2
+  exit 1
+fi
+csv=$1
+out=$2
+title=${3:-$(basename "$csv")}
+command -v gnuplot >/dev/null 2>&1 || { echo "$0: gnuplot is not installed (apt-get install gnuplot-nox)" >&2; exit 1; }
+[ -r "$csv" ] || { echo "$0: cannot read $csv" >&2; exit 1; }
+case $out in
+  *.svg) terminal="svg size 900,640 dynamic font 'sans,12'" ;;
+  *.png) terminal="pngcairo size 900,640 font 'sans,11'" ;;
+  *) echo "$0: output must end in .png or .svg" >&2; exit 1 ;;
+esac
+# One line per (solver, substeps) among the rungs, in file order (columns: row_type, solver,
+# iterations, substeps, ..., ms_per_step = 8, hausdorff = 9).
+series=$(awk -F, '$1 == "rung" && !seen[$2 "," $4]++ { print $2 "," $4 }' "$csv")
+plot=""
+lt=1
+for s in $series; do
+  solver=${s%,*}
+  sub=${s#*,}
+  if [ "$sub" = 1 ]; then unit=substep; else unit=substeps; fi
+  sel="(strcol(1) eq 'rung' && strcol(2) eq '$solver' && \$4 == $sub && \$9 > 0 ? \$9 : 1/0)"
+  plot="$plot'$csv' skip 1 using 8:$sel with linespoints lt $lt pt 7 title '$solver, $sub $unit', '$csv' skip 1 using 8:$sel:3 with labels offset char 0.8,0.6 font ',8' tc lt $lt notitle, "
+  lt=$((lt + 1))
+done
+ref="(strcol(1) eq 'reference_check' && \$9 > 0 ? \$9 : 1/0)"
+plot="$plot'$csv' skip 1 using 8:$ref with points pt 3 ps 2 lc rgb 'black' title 'each reference vs its refinement (its own error)', '$csv' skip 1 using 8:$ref:(strcol(2).' reference') with labels offset char 0,-1 font ',8' notitle"
+gnuplot <<GP
+set terminal $terminal
+set output '$out'
+set datafile separator ','
+set logscale xy
+set grid
+set key below
+set xlabel 'wall time per step (ms, median)'
+set ylabel 'Hausdorff distance to the reference (normalized units)'
+set title '$title' noenhanced
+plot $plot
+GP

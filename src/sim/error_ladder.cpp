@@ -1,0 +1,193 @@
+// run_error_ladder: references, rungs and the reference convergence check (error_ladder.hpp).
+#include "shellcontract/sim/error_ladder.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/validation/hausdorff.hpp"
+
+namespace shellcontract {
+
+const char* ladder_solver_name(SolverKind kind) { return kind == SolverKind::Pbd ? "pbd" : "xpbd"; }
+
+namespace {
+
+/// The end state of one run.
+struct RunResult {
+  bool failed = false;
+  std::string failure;
+  double ms_per_step = 0.0;
+  Positions x;
+  double volume_ratio = 1.0;
+  double energy = 0.0;
+};
+
+double total_energy(const ConstraintEnergies& e) { return e.membrane + e.bending + e.anisotropic; }
+
+/// Runs frames base steps of `base` with the given solver, iterations and substeps.
+RunResult run_one(const Mesh& mesh, const SimOptions& base, SolverKind kind, int iterations,
+                  int substeps, int frames, bool collisions) {
+  SimOptions o = base;
+  o.solver.kind = kind;
+  o.solver.iterations = iterations;
+  o.dt = base.dt / substeps;
+  o.solver.dt = o.dt;
+  o.frames = frames * substeps;
+  // Same fraction of velocity removed per unit time as the base run (file comment of the header).
+  o.damping = 1.0 - std::pow(1.0 - base.damping, 1.0 / substeps);
+  o.collisions = collisions;
+  o.validate = ValidateMode::Off;
+  o.stop_volume_ratio = 0.0;
+  Simulator sim(mesh, o);
+  RunResult r;
+  std::vector<double> frame_ms;
+  frame_ms.reserve(static_cast<std::size_t>(frames));
+  try {
+    for (int f = 0; f < frames; ++f) {
+      double seconds = 0.0;
+      for (int s = 0; s < substeps; ++s) seconds += sim.step().step_seconds;
+      frame_ms.push_back(1e3 * seconds);
+    }
+  } catch (const SimulationError& e) {
+    r.failed = true;
+    r.failure = e.what();
+  }
+  if (!frame_ms.empty()) {
+    // Median, not mean: the machine is shared and a few slow steps should not decide the rung.
+    auto mid = frame_ms.begin() + static_cast<std::ptrdiff_t>(frame_ms.size() / 2);
+    std::nth_element(frame_ms.begin(), mid, frame_ms.end());
+    r.ms_per_step = *mid;
+  }
+  r.x = sim.positions();
+  r.volume_ratio = sim.volume_ratio();
+  r.energy = total_energy(sim.energies());
+  return r;
+}
+
+void require_positive(const std::vector<int>& v, const char* what) {
+  if (v.empty()) throw UsageError(std::string("error ladder: empty list of ") + what);
+  for (int k : v)
+    if (k < 1) throw UsageError(std::string("error ladder: ") + what + " must be >= 1");
+}
+
+double relative(double a, double ref) {
+  const double d = std::abs(a - ref);
+  return ref != 0.0 ? d / std::abs(ref) : d;
+}
+
+}  // namespace
+
+ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
+                                   const ErrorLadderOptions& opt) {
+  if (opt.frames < 1) throw UsageError("error ladder: frames must be >= 1");
+  if (opt.solvers.empty()) throw UsageError("error ladder: no solver");
+  require_positive(opt.iterations, "iterations");
+  require_positive(opt.substeps, "substeps");
+  require_positive({opt.xpbd_reference_iterations, opt.xpbd_reference_substeps,
+                    opt.pbd_reference_iterations},
+                   "reference iterations and substeps");
+  if (!(opt.hausdorff_error_bound > 0.0)) throw UsageError("error ladder: Hausdorff bound must be > 0");
+
+  auto say = [&](const std::string& s) {
+    if (opt.progress) opt.progress(s);
+  };
+  ErrorLadderResult result;
+  result.frames = opt.frames;
+  result.dt = base.dt;
+  result.simulated_time = opt.frames * base.dt;
+
+  // The rest mesh of a Simulator is the normalized, triangulated input: the surface every
+  // position array of the runs belongs to (all runs normalize the same input identically).
+  SimOptions probe = base;  // only the rest mesh is needed: no collision structures
+  probe.collisions = false;
+  probe.validate = ValidateMode::Off;
+  const Mesh surface = Simulator(mesh, probe).rest_mesh();
+
+  auto compare = [&](const RunResult& run, const RunResult& ref, ErrorLadderRow& row) {
+    row.ms_per_step = run.ms_per_step;
+    row.volume_ratio = run.volume_ratio;
+    row.energy = run.energy;
+    if (run.failed) {
+      row.failed = true;
+      row.failure = run.failure;
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      row.hausdorff = row.max_vertex_error = row.volume_error = row.energy_error = nan;
+      return;
+    }
+    row.hausdorff = symmetric_hausdorff_distance(surface, run.x, ref.x, opt.hausdorff_error_bound);
+    row.max_vertex_error = max_vertex_distance(run.x, ref.x);
+    row.volume_error = std::abs(run.volume_ratio - ref.volume_ratio);
+    row.energy_error = relative(run.energy, ref.energy);
+  };
+  auto describe = [](SolverKind k, int it, int sub) {
+    std::ostringstream s;
+    s << ladder_solver_name(k) << " iterations " << it << " substeps " << sub;
+    return s.str();
+  };
+
+  for (SolverKind kind : opt.solvers) {
+    const bool xpbd = kind == SolverKind::Xpbd;
+    const int ref_it = xpbd ? opt.xpbd_reference_iterations : opt.pbd_reference_iterations;
+    const int ref_sub = xpbd ? opt.xpbd_reference_substeps : 1;
+    say("reference " + describe(kind, ref_it, ref_sub));
+    const RunResult ref = run_one(mesh, base, kind, ref_it, ref_sub, opt.frames, opt.collisions);
+    if (ref.failed) throw SimulationError("error ladder: the reference (" + describe(kind, ref_it, ref_sub) + ") failed: " + ref.failure);
+    ErrorLadderRow ref_row;
+    ref_row.solver = kind;
+    ref_row.iterations = ref_it;
+    ref_row.substeps = ref_sub;
+    compare(ref, ref, ref_row);
+    result.reference_rows.push_back(ref_row);
+
+    double smallest = std::numeric_limits<double>::infinity();
+    double smallest_dv = std::numeric_limits<double>::infinity();
+    const std::vector<int> subs = xpbd || opt.pbd_substeps ? opt.substeps : std::vector<int>{1};
+    for (int sub : subs) {
+      for (int it : opt.iterations) {
+        say("rung " + describe(kind, it, sub));
+        ErrorLadderRow row;
+        row.solver = kind;
+        row.iterations = it;
+        row.substeps = sub;
+        compare(run_one(mesh, base, kind, it, sub, opt.frames, opt.collisions), ref, row);
+        if (!row.failed && !(it == ref_it && sub == ref_sub)) {
+          smallest = std::min(smallest, row.hausdorff);
+          smallest_dv = std::min(smallest_dv, row.volume_error);
+        }
+        result.rows.push_back(row);
+      }
+    }
+
+    if (opt.check_reference) {
+      ReferenceCheck c;
+      c.solver = kind;
+      c.iterations = ref_it;
+      c.substeps = ref_sub;
+      // Halving the step is a change of model for PBD, so its reference is refined in iterations.
+      c.refined_iterations = xpbd ? ref_it : 2 * ref_it;
+      c.refined_substeps = xpbd ? 2 * ref_sub : ref_sub;
+      c.ms_per_step = ref.ms_per_step;
+      say("reference check " + describe(kind, c.refined_iterations, c.refined_substeps));
+      const RunResult fine = run_one(mesh, base, kind, c.refined_iterations, c.refined_substeps,
+                                     opt.frames, opt.collisions);
+      ErrorLadderRow d;
+      compare(fine, ref, d);
+      c.failed = d.failed;
+      c.failure = d.failure;
+      c.hausdorff = d.hausdorff;
+      c.volume_error = d.volume_error;
+      c.energy_error = d.energy_error;
+      c.smallest_rung_hausdorff = smallest;
+      c.smallest_rung_volume_error = smallest_dv;
+      c.converged = !c.failed && c.hausdorff < smallest;
+      result.references.push_back(c);
+    }
+  }
+  return result;
+}
+
+}  // namespace shellcontract
