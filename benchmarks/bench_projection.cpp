@@ -1,18 +1,29 @@
-// Nanoseconds per constraint projection (issue: end-to-end contraction, acceptance "benchmark").
-// Single thread, one Gauss-Seidel sweep over every membrane / bending constraint of a mesh in a
-// compressed state, positions restored (untimed) before each sweep so every projection does
-// real work. Usage: bench_projection [--mesh=PATH] [google-benchmark flags]
+// Nanoseconds per constraint projection (issue: end-to-end contraction, acceptance "benchmark";
+// issue "parallel constraint projection").
+// One Gauss-Seidel sweep over every membrane / bending constraint of a mesh in a compressed
+// state, positions restored (untimed) before each sweep so every projection does real work.
+//  - BM_<kind>Pbd: the kernel in the paper's array order, single thread.
+//  - BM_<kind>PbdColouredOrder: the same kernel over the constraints grouped by colour, single
+//    thread (consecutive projections share no vertex, so they overlap in the CPU pipeline).
+//  - BM_<kind>SolverSweep/<order>/<threads>: one sweep of the real solver (ConstraintSolver with
+//    iterations = 1 and only that kind), order 0 = Sequential, 1 = Coloured, wall-clock time;
+//    the speed-up of 2 threads is the ratio of the Coloured /1 and /2 times.
+// Usage: bench_projection [--mesh=PATH] [google-benchmark flags]
 // Default mesh: data/meshes/bear.off (scripts/fetch_paper_meshes.sh).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cstring>
 #include <iostream>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "shellcontract/material/stvk.hpp"
 #include "shellcontract/mesh/io.hpp"
+#include "shellcontract/pbd/colouring.hpp"
 #include "shellcontract/pbd/constraint_kernels.hpp"
+#include "shellcontract/pbd/solver.hpp"
 #include "shellcontract/sim/simulator.hpp"
 
 namespace {
@@ -90,9 +101,77 @@ void BM_DihedralBendingPbd(benchmark::State& state) {
   });
 }
 
+void BM_MembraneStvkPbdColouredOrder(benchmark::State& state) {
+  std::vector<MembraneConstraint> c = scene().membranes_and_isometric.membranes;
+  const Colouring col = colour_constraints(c);
+  apply_order(c, col.order);
+  std::vector<PackedMembrane> packed;
+  for (const MembraneConstraint& k : c) packed.push_back(pack_membrane(k));
+  const Stvk m(MaterialParams{});
+  const ElementMaterialData iso;
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+    for (const PackedMembrane& k : packed) project_membrane(m, k, iso, 1.0, ctx, nullptr);
+  });
+  state.counters["colours"] = col.num_colours();
+}
+
+void BM_IsometricBendingPbdColouredOrder(benchmark::State& state) {
+  std::vector<IsometricHingeConstraint> c = scene().membranes_and_isometric.isometric_hinges;
+  const Colouring col = colour_constraints(c);
+  apply_order(c, col.order);
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+    for (const IsometricHingeConstraint& k : c) project_isometric_hinge(k, 0.01, ctx, nullptr);
+  });
+  state.counters["colours"] = col.num_colours();
+}
+
+/// One sweep of the real solver over `set` (a single constraint kind), state.range(0) = order
+/// (0 Sequential, 1 Coloured), state.range(1) = threads.
+void solver_sweep(benchmark::State& state, const ConstraintSet& set) {
+  const Scene& sc = scene();
+  SolverSettings settings;
+  settings.iterations = 1;
+  settings.order = state.range(0) == 0 ? ConstraintOrder::Sequential : ConstraintOrder::Coloured;
+  settings.threads = static_cast<int>(state.range(1));
+  const auto solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, set, settings);
+  Positions x = sc.x;
+  solver->solve(x, sc.w);  // warm-up: TBB starts its worker threads on first use
+  for (auto _ : state) {
+    state.PauseTiming();
+    x = sc.x;
+    state.ResumeTiming();
+    solver->solve(x, sc.w);
+    benchmark::ClobberMemory();
+  }
+  const std::size_t count = set.membranes.size() + set.isometric_hinges.size();
+  const ColourCounts colours = solver->colour_counts();
+  state.counters["colours"] = colours.membrane + colours.isometric;
+  state.counters["per_projection"] = benchmark::Counter(
+      static_cast<double>(count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void BM_MembraneStvkSolverSweep(benchmark::State& state) {
+  ConstraintSet set;
+  set.membranes = scene().membranes_and_isometric.membranes;
+  solver_sweep(state, set);
+}
+
+void BM_IsometricBendingSolverSweep(benchmark::State& state) {
+  ConstraintSet set;
+  set.isometric_hinges = scene().membranes_and_isometric.isometric_hinges;
+  solver_sweep(state, set);
+}
+
 BENCHMARK(BM_MembraneStvkPbd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IsometricBendingPbd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DihedralBendingPbd)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneStvkPbdColouredOrder)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_IsometricBendingPbdColouredOrder)->Unit(benchmark::kMicrosecond);
+// {order, threads}: Sequential (threads unused), Coloured on 1 and 2 threads.
+BENCHMARK(BM_MembraneStvkSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
+    ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_IsometricBendingSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
+    ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace
 

@@ -47,63 +47,121 @@ struct has_second_pk<M, std::void_t<decltype(std::declval<const M&>().psi_second
 
 /// Energy and vertex gradients of a membrane element through the C-form: F = Ds Dm^-1 (3x2),
 /// C = F^T F, P3 = F S, [g1 g2] = Abar P3 Dm^-T (math-spec 4.4). No frame, no square root; exact
-/// also for a collapsed current triangle. @return E
+/// also for a collapsed current triangle. Written out for the upper-triangular Dm^-1 of
+/// PackedMembrane (the solver's inner loop). @return E
+template <class M>
+inline double membrane_energy_gradient_cform(const M& material, const PackedMembrane& c,
+                                             const ElementMaterialData& data, const Vec3& x1,
+                                             const Vec3& x2, const Vec3& x3,
+                                             std::array<Vec3, 3>& g) {
+  const Vec3 e1 = x1 - x3;
+  const Vec3 e2 = x2 - x3;
+  const Vec3 f0 = e1 * c.dm00;                  // F = [e1 e2] Dm^-1, Dm^-1(1, 0) = 0
+  const Vec3 f1 = e1 * c.dm01 + e2 * c.dm11;
+  Mat2 C;
+  C(0, 0) = f0.dot(f0);
+  C(1, 1) = f1.dot(f1);
+  C(0, 1) = C(1, 0) = f0.dot(f1);
+  Mat2 S;
+  const double psi = material.psi_second_pk(C, data, S);
+  const Vec3 p0 = f0 * S(0, 0) + f1 * S(1, 0);  // P3 = F S
+  const Vec3 p1 = f0 * S(0, 1) + f1 * S(1, 1);
+  g[0] = c.rest_area * (p0 * c.dm00 + p1 * c.dm01);  // Abar P3 Dm^-T
+  g[1] = c.rest_area * (p1 * c.dm11);
+  g[2] = -g[0] - g[1];
+  return c.rest_area * psi;
+}
+
+/// The C-form for a MembraneConstraint (see the PackedMembrane overload).
+/// \pre c.Dm_inv(1, 0) == 0, as triangle_rest makes it.
 template <class M>
 inline double membrane_energy_gradient_cform(const M& material, const MembraneConstraint& c,
                                              const Vec3& x1, const Vec3& x2, const Vec3& x3,
                                              std::array<Vec3, 3>& g) {
-  Eigen::Matrix<double, 3, 2> Ds;
-  Ds.col(0) = x1 - x3;
-  Ds.col(1) = x2 - x3;
-  const Eigen::Matrix<double, 3, 2> F = Ds * c.Dm_inv;
-  const Mat2 C = F.transpose() * F;
-  Mat2 S;
-  const double psi = material.psi_second_pk(C, c.data, S);
-  const Eigen::Matrix<double, 3, 2> H = c.rest_area * (F * S) * c.Dm_inv.transpose();
-  g[0] = H.col(0);
-  g[1] = H.col(1);
-  g[2] = -g[0] - g[1];
-  return c.rest_area * psi;
+  return membrane_energy_gradient_cform(material, pack_membrane(c), c.data, x1, x2, x3, g);
 }
+
+namespace detail {
+/// Energy E and vertex gradients g of a membrane element for any material: the C-form when
+/// the material has one, else the current frame and the lift (math-spec 4.2-4.4).
+/// @return false when the element must be skipped (no frame, or a frame-dependent material on
+///         an irregular frame, math-spec 11)
+template <class M>
+inline bool membrane_energy_gradient(const M& material, const PackedMembrane& c,
+                                     const ElementMaterialData& data, double orientation,
+                                     const Vec3& x1, const Vec3& x2, const Vec3& x3,
+                                     std::array<Vec3, 3>& g, double& E) {
+  if constexpr (has_second_pk<M>::value) {
+    // The orientation s does not matter for energies of C alone (math-spec 4.4).
+    (void)orientation;
+    E = membrane_energy_gradient_cform(material, c, data, x1, x2, x3, g);
+    return true;
+  } else {
+    Mat2 Dm_inv;
+    Dm_inv << c.dm00, c.dm01, 0.0, c.dm11;
+    TriangleFrame fr;
+    if (!triangle_frame(x1, x2, x3, Dm_inv, c.rest_area, orientation, fr)) return false;
+    if (!fr.regular && material.frame_dependent()) return false;  // math-spec 11
+    E = c.rest_area * material.psi(fr.F, data);
+    lift_gradient(fr, material.pk1(fr.F, data), Dm_inv, c.rest_area, g[0], g[1], g[2]);
+    return true;
+  }
+}
+}  // namespace detail
 
 /// Projects one membrane (or anisotropic) constraint with material M.
 /// PBD (lambda == nullptr): dx_i = -k E/G w_i g_i, G = sum w_i |g_i|^2 (math-spec 9.1), with the
 /// skip and clamp guards of 9.1(d). XPBD (lambda != nullptr): C = sqrt(2E), division-free update
 /// sigma = C (C + at lambda) / (G + at C^2), dx_i = -sigma w_i g_i, lambda += -C sigma (9.2).
+/// Every input is read into locals before the first store: ctx.x could alias the record or w
+/// as far as the compiler knows, and would otherwise force reloads after each vertex update.
+/// @param data  fibre direction (anisotropic energies; isotropic ones ignore it)
 /// @return true if the positions were changed.
 template <class M>
-inline bool project_membrane(const M& material, const MembraneConstraint& c, double stiffness,
+inline bool project_membrane(const M& material, const PackedMembrane& c,
+                             const ElementMaterialData& data, double stiffness,
                              const ProjectionContext& ctx, double* lambda) {
-  const Vec3 x1 = detail::vertex(ctx.x, c.v[0]);
-  const Vec3 x2 = detail::vertex(ctx.x, c.v[1]);
-  const Vec3 x3 = detail::vertex(ctx.x, c.v[2]);
+  double* const x = ctx.x;
+  const int i0 = c.v[0], i1 = c.v[1], i2 = c.v[2];
+  const double max_step = c.max_step;
   std::array<Vec3, 3> g;
   double E;
-  if constexpr (has_second_pk<M>::value) {
-    // The orientation s does not matter for energies of C alone (math-spec 4.4).
-    E = membrane_energy_gradient_cform(material, c, x1, x2, x3, g);
-    if (!(E > ctx.energy_floor * c.rest_area)) return false;  // also rejects NaN
-  } else {
-    TriangleFrame fr;
-    if (!triangle_frame(x1, x2, x3, c.Dm_inv, c.rest_area, ctx.orientation, fr)) return false;
-    if (!fr.regular && material.frame_dependent()) return false;  // math-spec 11
-    E = c.rest_area * material.psi(fr.F, c.data);
-    if (!(E > ctx.energy_floor * c.rest_area)) return false;  // also rejects NaN
-    lift_gradient(fr, material.pk1(fr.F, c.data), c.Dm_inv, c.rest_area, g[0], g[1], g[2]);
-  }
-  const double G = ctx.w[c.v[0]] * g[0].squaredNorm() + ctx.w[c.v[1]] * g[1].squaredNorm() +
-                   ctx.w[c.v[2]] * g[2].squaredNorm();
+  if (!detail::membrane_energy_gradient(material, c, data, ctx.orientation, detail::vertex(x, i0),
+                                        detail::vertex(x, i1), detail::vertex(x, i2), g, E))
+    return false;
+  if (!(E > ctx.energy_floor * c.rest_area)) return false;  // also rejects NaN
+  const double w0 = ctx.w[i0], w1 = ctx.w[i1], w2 = ctx.w[i2];
+  const double n0 = g[0].squaredNorm(), n1 = g[1].squaredNorm(), n2 = g[2].squaredNorm();
+  const double G = w0 * n0 + w1 * n1 + w2 * n2;
   if (!(G > 1e-300)) return false;  // stationary point with E > 0 (math-spec 9.1d)
   if (lambda == nullptr) {
-    detail::apply_step<3>(ctx.x, ctx.w, c.v, g, stiffness * E / G, c.max_step);
+    // detail::apply_step with the |g_i|^2 above reused.
+    double scale = stiffness * E / G;
+    double longest_sq = std::max(0.0, (scale * w0) * (scale * w0) * n0);
+    longest_sq = std::max(longest_sq, (scale * w1) * (scale * w1) * n1);
+    longest_sq = std::max(longest_sq, (scale * w2) * (scale * w2) * n2);
+    if (longest_sq > max_step * max_step) scale *= max_step / std::sqrt(longest_sq);
+    detail::vertex(x, i0) -= (scale * w0) * g[0];
+    detail::vertex(x, i1) -= (scale * w1) * g[1];
+    detail::vertex(x, i2) -= (scale * w2) * g[2];
     return true;
   }
   const double C = std::sqrt(2.0 * E);
   const double at = ctx.alpha_tilde;
   const double sigma = C * (C + at * *lambda) / (G + at * C * C);
   *lambda -= C * sigma;
-  for (int i = 0; i < 3; ++i) detail::vertex(ctx.x, c.v[i]) -= (sigma * ctx.w[c.v[i]]) * g[i];
+  detail::vertex(x, i0) -= (sigma * w0) * g[0];
+  detail::vertex(x, i1) -= (sigma * w1) * g[1];
+  detail::vertex(x, i2) -= (sigma * w2) * g[2];
   return true;
+}
+
+/// Projects one MembraneConstraint (see the PackedMembrane overload, which it calls).
+/// \pre c.Dm_inv(1, 0) == 0, as triangle_rest makes it.
+template <class M>
+inline bool project_membrane(const M& material, const MembraneConstraint& c, double stiffness,
+                             const ProjectionContext& ctx, double* lambda) {
+  return project_membrane(material, pack_membrane(c), c.data, stiffness, ctx, lambda);
 }
 
 /// Projects one anisotropic (E_A) constraint with the paper's inward term (math-spec 9.3, PF):
@@ -112,23 +170,16 @@ inline bool project_membrane(const M& material, const MembraneConstraint& c, dou
 /// is in-plane (math-spec 4.4). Zero at rest (E_A = 0 gate). With k_A = 0 this is
 /// project_membrane.
 template <class A>
-inline bool project_anisotropic_paper(const A& material, const MembraneConstraint& c, double k_a,
-                                      const Vec3& n, const ProjectionContext& ctx) {
-  if (k_a == 0.0) return project_membrane(material, c, 1.0, ctx, nullptr);
-  const Vec3 x1 = detail::vertex(ctx.x, c.v[0]);
-  const Vec3 x2 = detail::vertex(ctx.x, c.v[1]);
-  const Vec3 x3 = detail::vertex(ctx.x, c.v[2]);
+inline bool project_anisotropic_paper(const A& material, const PackedMembrane& c,
+                                      const ElementMaterialData& data, double k_a, const Vec3& n,
+                                      const ProjectionContext& ctx) {
+  if (k_a == 0.0) return project_membrane(material, c, data, 1.0, ctx, nullptr);
   std::array<Vec3, 3> g;
   double E;
-  if constexpr (has_second_pk<A>::value) {
-    E = membrane_energy_gradient_cform(material, c, x1, x2, x3, g);
-  } else {
-    TriangleFrame fr;
-    if (!triangle_frame(x1, x2, x3, c.Dm_inv, c.rest_area, ctx.orientation, fr)) return false;
-    if (!fr.regular && material.frame_dependent()) return false;
-    E = c.rest_area * material.psi(fr.F, c.data);
-    lift_gradient(fr, material.pk1(fr.F, c.data), c.Dm_inv, c.rest_area, g[0], g[1], g[2]);
-  }
+  if (!detail::membrane_energy_gradient(material, c, data, ctx.orientation,
+                                        detail::vertex(ctx.x, c.v[0]), detail::vertex(ctx.x, c.v[1]),
+                                        detail::vertex(ctx.x, c.v[2]), g, E))
+    return false;
   if (!(E > ctx.energy_floor * c.rest_area)) return false;
   double G = 0.0;  // = sum w |g|^2 + k_A^2 sum w: the cross term is zero (g in-plane)
   for (int i = 0; i < 3; ++i) {
@@ -140,34 +191,54 @@ inline bool project_anisotropic_paper(const A& material, const MembraneConstrain
   return true;
 }
 
+/// The paper's E_A projection for a MembraneConstraint (fibre from c.data).
+/// \pre c.Dm_inv(1, 0) == 0, as triangle_rest makes it.
+template <class A>
+inline bool project_anisotropic_paper(const A& material, const MembraneConstraint& c, double k_a,
+                                      const Vec3& n, const ProjectionContext& ctx) {
+  return project_anisotropic_paper(material, pack_membrane(c), c.data, k_a, n, ctx);
+}
+
 /// Projects one isometric bending hinge. PBD closed form (math-spec 8.2):
 /// dx_i = -k_B w_i K_i h / (2 sum_l w_l K_l^2), smooth at flat hinges. XPBD vector form with
 /// beta = 3 k_B / (A0 + A1), C = sqrt(beta) h, lambda in R^3 (math-spec 8.2).
+/// Inputs are read into locals first (see project_membrane: x may alias them for the compiler).
 /// @param lambda  nullptr for PBD, else 3 doubles of accumulated multiplier
 inline bool project_isometric_hinge(const IsometricHingeConstraint& c, double k_bending,
                                     const ProjectionContext& ctx, double* lambda) {
-  const double* w = ctx.w;
-  const Vec3 h = c.K(0) * detail::vertex(ctx.x, c.v[0]) + c.K(1) * detail::vertex(ctx.x, c.v[1]) +
-                 c.K(2) * detail::vertex(ctx.x, c.v[2]) + c.K(3) * detail::vertex(ctx.x, c.v[3]);
-  const double wK2 = w[c.v[0]] * c.K(0) * c.K(0) + w[c.v[1]] * c.K(1) * c.K(1) +
-                     w[c.v[2]] * c.K(2) * c.K(2) + w[c.v[3]] * c.K(3) * c.K(3);
+  double* const x = ctx.x;
+  const int i0 = c.v[0], i1 = c.v[1], i2 = c.v[2], i3 = c.v[3];
+  const double K0 = c.K(0), K1 = c.K(1), K2 = c.K(2), K3 = c.K(3);
+  const double max_step = c.max_step, three_over_area = c.three_over_area;
+  const double w0 = ctx.w[i0], w1 = ctx.w[i1], w2 = ctx.w[i2], w3 = ctx.w[i3];
+  const Vec3 h = K0 * detail::vertex(x, i0) + K1 * detail::vertex(x, i1) +
+                 K2 * detail::vertex(x, i2) + K3 * detail::vertex(x, i3);
+  const double wK2 = w0 * K0 * K0 + w1 * K1 * K1 + w2 * K2 * K2 + w3 * K3 * K3;
   if (!(wK2 > 1e-300)) return false;  // every stencil vertex pinned, or K = 0 (inactive hinge)
   if (lambda == nullptr) {
     const Vec3 base = h * (k_bending / (2.0 * wK2));
     // The clamp of 9.1(d): the largest |dx_i| is max_i w_i |K_i| |base|.
-    double longest = 0.0;
-    for (int i = 0; i < 4; ++i) longest = std::max(longest, w[c.v[i]] * std::abs(c.K(i)));
+    double longest = std::max(0.0, w0 * std::abs(K0));
+    longest = std::max(longest, w1 * std::abs(K1));
+    longest = std::max(longest, w2 * std::abs(K2));
+    longest = std::max(longest, w3 * std::abs(K3));
     longest *= base.norm();
-    const double shrink = longest > c.max_step ? c.max_step / longest : 1.0;
-    for (int i = 0; i < 4; ++i) detail::vertex(ctx.x, c.v[i]) -= (shrink * w[c.v[i]] * c.K(i)) * base;
+    const double shrink = longest > max_step ? max_step / longest : 1.0;
+    detail::vertex(x, i0) -= (shrink * w0 * K0) * base;
+    detail::vertex(x, i1) -= (shrink * w1 * K1) * base;
+    detail::vertex(x, i2) -= (shrink * w2 * K2) * base;
+    detail::vertex(x, i3) -= (shrink * w3 * K3) * base;
     return true;
   }
-  const double beta = k_bending * c.three_over_area;
+  const double beta = k_bending * three_over_area;
   const double sqrt_beta = std::sqrt(beta);
   Eigen::Map<Vec3> lam(lambda);
   const Vec3 dlam = (-sqrt_beta * h - ctx.alpha_tilde * lam) / (beta * wK2 + ctx.alpha_tilde);
   lam += dlam;
-  for (int i = 0; i < 4; ++i) detail::vertex(ctx.x, c.v[i]) += (w[c.v[i]] * sqrt_beta * c.K(i)) * dlam;
+  detail::vertex(x, i0) += (w0 * sqrt_beta * K0) * dlam;
+  detail::vertex(x, i1) += (w1 * sqrt_beta * K1) * dlam;
+  detail::vertex(x, i2) += (w2 * sqrt_beta * K2) * dlam;
+  detail::vertex(x, i3) += (w3 * sqrt_beta * K3) * dlam;
   return true;
 }
 

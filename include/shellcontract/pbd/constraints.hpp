@@ -22,6 +22,24 @@ struct MembraneConstraint {
   int face = -1;             ///< mesh face index (for per-face output)
 };
 
+/// The solver's compact copy of a MembraneConstraint (56 bytes instead of 88): what one
+/// projection reads, contiguous, in sweep order. Dm^-1 is upper triangular because the rest
+/// frame puts edge j1 - j3 on the first axis (math-spec 4.1), so 3 doubles hold it. The fibre
+/// direction lives in a side array, only for anisotropic faces.
+struct PackedMembrane {
+  std::array<int, 3> v;  ///< vertex ids (j1, j2, j3)
+  int face;              ///< mesh face index (kept so the record is 8-byte aligned anyway)
+  double dm00, dm01, dm11;  ///< Dm^-1 = [[dm00, dm01], [0, dm11]]
+  double rest_area;         ///< Abar
+  double max_step;          ///< PBD step clamp (math-spec 9.1d)
+};
+
+/// Packs c. \pre c.Dm_inv(1, 0) == 0 (as triangle_rest makes it); that entry is not stored.
+inline PackedMembrane pack_membrane(const MembraneConstraint& c) {
+  return PackedMembrane{c.v, c.face, c.Dm_inv(0, 0), c.Dm_inv(0, 1), c.Dm_inv(1, 1), c.rest_area,
+                        c.max_step};
+}
+
 /// Isometric bending hinge (math-spec 8.2). Stencil order of bending/hinge.hpp.
 struct IsometricHingeConstraint {
   std::array<int, 4> v;

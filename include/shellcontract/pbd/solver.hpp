@@ -18,6 +18,16 @@ namespace shellcontract {
 /// so stiffness has physical meaning (math-spec 9.1, 9.2; design.md "Two solver modes").
 enum class SolverKind { Pbd, Xpbd };
 
+/// Order of the Gauss-Seidel sweep inside each kind of constraint (math-spec 9.4).
+enum class ConstraintOrder {
+  /// Array order of the ConstraintSet (the paper's sequential Gauss-Seidel), single thread.
+  Sequential,
+  /// Constraints grouped by a greedy vertex colouring (no two of one colour share a vertex),
+  /// colours in sequence, each colour's constraints in parallel (TBB). A different but equally
+  /// valid Gauss-Seidel order; its result does not depend on the number of threads (bit-identical).
+  Coloured,
+};
+
 /// Solver settings (defaults: the paper's values where it gives them, math-spec 14).
 struct SolverSettings {
   SolverKind kind = SolverKind::Pbd;
@@ -31,6 +41,19 @@ struct SolverSettings {
   /// Inversion-aware orientation s = sign(n . n_ref) for the E_A faces (math-spec 4.2 option);
   /// default s = +1.
   bool inversion_aware = false;
+  /// Sweep order; Sequential keeps the paper's order and results.
+  ConstraintOrder order = ConstraintOrder::Sequential;
+  /// Threads of the Coloured order (0 = TBB's default, the machine's cores); ignored by
+  /// Sequential. Must be >= 0.
+  int threads = 0;
+};
+
+/// Number of colours of each constraint kind (all 0 in the Sequential order).
+struct ColourCounts {
+  int membrane = 0;
+  int isometric = 0;
+  int dihedral = 0;
+  int anisotropic = 0;
 };
 
 /// Sum of each kind of constraint energy at a configuration.
@@ -46,7 +69,8 @@ class ConstraintSolver {
   virtual ~ConstraintSolver() = default;
 
   /// Runs settings.iterations sweeps (membranes, isometric hinges, dihedral hinges,
-  /// anisotropic faces; each in array order), updating x in place. XPBD multipliers start at 0.
+  /// anisotropic faces; each in array order, or colour by colour in the Coloured order),
+  /// updating x in place. XPBD multipliers start at 0. Allocates nothing (after the first call).
   /// @param x         #V by 3 positions (normalized units), predicted positions on entry
   /// @param inv_mass  #V inverse masses (0 = pinned)
   virtual void solve(Positions& x, const Eigen::VectorXd& inv_mass) = 0;
@@ -59,13 +83,18 @@ class ConstraintSolver {
   /// @param num_faces  #F of the mesh
   virtual Eigen::VectorXd face_energies(const Positions& x, Eigen::Index num_faces) const = 0;
 
-  /// The constraints being projected.
+  /// The constraints being projected, in sweep order (grouped by colour in the Coloured order;
+  /// MembraneConstraint::face still names each face).
   virtual const ConstraintSet& constraints() const = 0;
+
+  /// Colours used per constraint kind (Coloured order; zeros for Sequential).
+  virtual ColourCounts colour_counts() const = 0;
 };
 
 /// Builds a solver for the given membrane material and the anisotropic energy of
 /// settings.aniso. Constraints with degenerate rest data must already be excluded from the set.
 /// @param faces  #F by 3 faces (for the vertex normals of the inversion-aware mode)
+/// @throws std::invalid_argument if settings.threads < 0
 std::unique_ptr<ConstraintSolver> make_constraint_solver(MaterialKind material,
                                                          const MaterialParams& params,
                                                          ConstraintSet constraints,
