@@ -15,6 +15,7 @@ commands:
   check INPUT [--json]             report whether a mesh can be used, and why not
   regions INPUT -o OUT.ply         the spherical regions that --regions auto would choose
   bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
+  bench error INPUT [options]      speed against error of the solver (table, CSV, gnuplot plot)
 
   shellcontract <command> --help   options of one command
   shellcontract --version
@@ -46,7 +47,9 @@ int main(int argc, char** argv) {
   if (command == "bench") {
     if (argc >= 3 && std::strcmp(argv[2], "ccd") == 0)
       return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);
-    std::cerr << "shellcontract bench: expected 'ccd' (try 'shellcontract bench ccd --help')\n";
+    if (argc >= 3 && std::strcmp(argv[2], "error") == 0)
+      return shellcontract::cli::command_bench_error(argc - 2, argv + 2);
+    std::cerr << "shellcontract bench: expected 'ccd' or 'error' (try 'shellcontract bench error --help')\n";
     return 1;
   }
   std::cerr << "shellcontract: unknown command '" << command << "'\n\n" << USAGE;

@@ -144,7 +144,7 @@ int command_run(int argc, char** argv) {
                                                      bending = "isometric", pressure_model = "energy",
                                                      mass = "area";
   SimOptions opt;
-  std::string collisions = "on", validate = "off";
+  std::string collisions = "on", validate = "off", order = "sequential";
   std::string aniso = "none", regions_arg = "auto", inward = "force", fiber = "centre";
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
@@ -168,6 +168,11 @@ int command_run(int argc, char** argv) {
       ("dt", po::value(&opt.dt)->default_value(opt.dt), "time step (normalized units)")
       ("iterations", po::value(&opt.solver.iterations)->default_value(opt.solver.iterations),
        "Gauss-Seidel sweeps per step (paper: 5)")
+      ("order", po::value(&order)->default_value(order),
+       "sequential: the paper's Gauss-Seidel order; coloured: parallel by colour, bit-identical "
+       "for any thread count")
+      ("threads", po::value(&opt.solver.threads)->default_value(opt.solver.threads),
+       "threads of the coloured order (0 = all cores)")
       ("solver", po::value(&solver)->default_value(solver),
        "pbd: the paper's energy-as-constraint projection; xpbd: compliant, physical stiffness")
       ("material", po::value(&material)->default_value(material),
@@ -251,6 +256,12 @@ int command_run(int argc, char** argv) {
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
     opt.solver.kind = parse_solver(solver);
+    if (order == "sequential")
+      opt.solver.order = ConstraintOrder::Sequential;
+    else if (order == "coloured")
+      opt.solver.order = ConstraintOrder::Coloured;
+    else
+      throw UsageError("--order must be sequential or coloured, got '" + order + "'");
     opt.material = parse_material_kind(material);
     opt.bending = parse_bending(bending);
     opt.pressure_model = parse_pressure_model(pressure_model);
@@ -353,7 +364,7 @@ int command_run(int argc, char** argv) {
       JsonObject options;
       options.add("pressure", opt.pressure).add("pressure_model", pressure_model)
           .add("frames", opt.frames).add("dt", opt.dt).add("iterations", opt.solver.iterations)
-          .add("solver", solver).add("material", material).add("mu", opt.material_params.mu)
+          .add("solver", solver).add("order", order).add("threads", opt.solver.threads).add("material", material).add("mu", opt.material_params.mu)
           .add("lambda", opt.material_params.lambda).add("bending", bending)
           .add("k_b", opt.solver.k_bending).add("mass", mass).add("density", opt.density)
           .add("stop_volume_ratio", opt.stop_volume_ratio);

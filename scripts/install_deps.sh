@@ -9,6 +9,7 @@ PACKAGES=(
   libboost-dev libboost-program-options-dev libboost-graph-dev
   libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  gnuplot-nox
 )
 
 missing=()

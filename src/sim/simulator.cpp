@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
-#include <utility>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
@@ -18,6 +18,7 @@ void check_options(const SimOptions& o) {
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("time step must be positive and finite");
   if (o.frames < 0) fail("frame count must be >= 0");
   if (o.solver.iterations < 0) fail("iterations must be >= 0");
+  if (o.solver.threads < 0) fail("threads must be >= 0");
   if (!std::isfinite(o.pressure)) fail("pressure must be finite");
   if (!(o.solver.k_bending >= 0.0) || !std::isfinite(o.solver.k_bending)) fail("k_B must be >= 0");
   if (o.solver.kind == SolverKind::Pbd && o.solver.k_bending > 1.0)
