@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "usage_error.hpp"
 #include "json_writer.hpp"
 #include "shellcontract/collision/ccd_benchmark.hpp"
 #include "shellcontract/core/error.hpp"
@@ -186,11 +187,9 @@ int command_bench_ccd(int argc, char** argv) {
     if (!json_path.empty()) write_atomically(json_path, rows_json(dir, opt, repeat, rows));
     return static_cast<int>(ExitCode::Success);
   } catch (const po::error& e) {
-    std::cerr << "shellcontract bench ccd: " << e.what() << "\n(try 'shellcontract bench ccd --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("bench ccd", e.what());
   } catch (const UsageError& e) {
-    std::cerr << "shellcontract bench ccd: " << e.what() << '\n';
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("bench ccd", e.what());
   } catch (const InputError& e) {
     std::cerr << "shellcontract bench ccd: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadInput);

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "usage_error.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/error_ladder.hpp"
@@ -207,10 +208,6 @@ int command_bench_error(int argc, char** argv) {
   all.add(visible).add(hidden);
   po::positional_options_description positional;
   positional.add("input", 1);
-  auto usage_error = [](const std::string& what) {
-    std::cerr << "shellcontract bench error: " << what << "\n(see 'shellcontract bench error --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
-  };
   try {
     po::variables_map vm;
     po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
@@ -242,9 +239,9 @@ int command_bench_error(int argc, char** argv) {
         throw UsageError("--plot needs gnuplot, which is not installed (Debian: apt-get install gnuplot-nox)");
     }
   } catch (const po::error& e) {
-    return usage_error(e.what());
+    return usage_error("bench error", e.what());
   } catch (const UsageError& e) {
-    return usage_error(e.what());
+    return usage_error("bench error", e.what());
   }
 
   Mesh mesh;
@@ -266,7 +263,7 @@ int command_bench_error(int argc, char** argv) {
     std::cerr << "shellcontract bench error: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadInput);
   } catch (const UsageError& e) {
-    return usage_error(e.what());
+    return usage_error("bench error", e.what());
   } catch (const SimulationError& e) {
     std::cerr << "shellcontract bench error: " << e.what() << '\n';
     return static_cast<int>(ExitCode::SimulationFailed);
@@ -308,7 +305,7 @@ int command_bench_error(int argc, char** argv) {
       if (!quiet) std::cerr << "plot written to " << plot << '\n';
     }
   } catch (const UsageError& e) {
-    return usage_error(e.what());
+    return usage_error("bench error", e.what());
   }
   return static_cast<int>(ExitCode::Success);
 }

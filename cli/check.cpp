@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "usage_error.hpp"
 #include "json_writer.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
@@ -67,11 +68,9 @@ int command_check(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("missing INPUT mesh");
   } catch (const po::error& e) {
-    std::cerr << "shellcontract check: " << e.what() << "\n(see 'shellcontract check --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("check", e.what());
   } catch (const UsageError& e) {
-    std::cerr << "shellcontract check: " << e.what() << "\n(see 'shellcontract check --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("check", e.what());
   }
 
   try {

@@ -4,6 +4,7 @@
 #include <boost/program_options.hpp>
 
 #include "commands.hpp"
+#include "usage_error.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -95,11 +96,9 @@ int command_regions(int argc, char** argv) {
     if (!(options.fit_distance_tolerance >= 0.0) || !(options.fit_normal_tolerance_deg >= 0.0))
       throw UsageError("--fit-distance and --fit-normal-deg must be >= 0");
   } catch (const po::error& e) {
-    std::cerr << "shellcontract regions: " << e.what() << "\n(see 'shellcontract regions --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("regions", e.what());
   } catch (const UsageError& e) {
-    std::cerr << "shellcontract regions: " << e.what() << "\n(see 'shellcontract regions --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("regions", e.what());
   }
 
   try {

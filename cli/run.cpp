@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "usage_error.hpp"
 #include "json_writer.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
@@ -284,11 +285,9 @@ int command_run(int argc, char** argv) {
       opt.material_params.lambda = lame.lambda;
     }
   } catch (const po::error& e) {
-    std::cerr << "shellcontract run: " << e.what() << "\n(see 'shellcontract run --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("run", e.what());
   } catch (const UsageError& e) {
-    std::cerr << "shellcontract run: " << e.what() << "\n(see 'shellcontract run --help')\n";
-    return static_cast<int>(ExitCode::BadUsage);
+    return usage_error("run", e.what());
   }
 
   try {
