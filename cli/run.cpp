@@ -312,6 +312,10 @@ int command_run(int argc, char** argv) {
       std::cerr << "warning: " << sim.rest_report().degenerate_faces
                 << " degenerate faces carry no membrane energy; " << sim.rest_report().inactive_hinges
                 << " hinges touching them are inactive\n";
+    if (sim.rest_report().clamped_cotangents > 0)
+      std::cerr << "warning: " << sim.rest_report().clamped_cotangents
+                << " rest angles below 1 or above 179 degrees: their bending cotangents were "
+                   "clamped to +-cot(1 degree)\n";
 
     const FieldColour colour = parse_field_colour(fields_colour);
     if (!fields_prefix.empty())

@@ -69,9 +69,9 @@ RestStateReport build_rest_state(Mesh& mesh, MassModel mass, double density) {
       continue;  // hinge stays {-1,...}: inactive
     }
     hinge[e] = s;
-    iso[e] = isometric_bending_rest(x0, x1, x2, x3);
-    for (int i = 0; i < 4; ++i)
-      if (std::abs(iso[e].K(i)) >= 2.0 * MAX_COTANGENT - 1e-9) ++report.clamped_cotangents;
+    int clamped = 0;
+    iso[e] = isometric_bending_rest(x0, x1, x2, x3, &clamped);
+    report.clamped_cotangents += static_cast<std::size_t>(clamped);
     dih[e] = dihedral_bending_rest(x0, x1, x2, x3);
   }
   return report;

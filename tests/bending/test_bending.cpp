@@ -73,6 +73,20 @@ TEST(IsometricBending, WeightsSumToZeroAndFlatHingeHasZeroEnergy) {
   EXPECT_NEAR(q.K(3), -1.0, 1e-15);
 }
 
+TEST(IsometricBending, SliverRestAnglesAreClampedAndCounted) {
+  // Face A has an angle of ~0.06 degrees at x1: its cotangent is clamped (math-spec 11).
+  const Stencil s{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.001, 0.001, 0), Vec3(0.5, -0.5, 0)};
+  int clamped = 0;
+  const IsometricBendingRest r = isometric_bending_rest(s[0], s[1], s[2], s[3], &clamped);
+  EXPECT_EQ(clamped, 1);
+  EXPECT_TRUE(r.K.allFinite());
+  EXPECT_NEAR(r.K.sum(), 0.0, 1e-12);
+  int none = 0;
+  const Stencil flat = folded_hinge(0.0);
+  isometric_bending_rest(flat[0], flat[1], flat[2], flat[3], &none);
+  EXPECT_EQ(none, 0);
+}
+
 TEST(IsometricBending, IsometricFoldMatchesClosedForm) {
   const Stencil flat = folded_hinge(0.0);
   const IsometricBendingRest r = isometric_bending_rest(flat[0], flat[1], flat[2], flat[3]);

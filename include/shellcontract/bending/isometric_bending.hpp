@@ -19,8 +19,10 @@ struct IsometricBendingRest {
 };
 
 /// Computes K and A0 + A1 from the rest positions (math-spec 8.1, interior angles).
+/// @param clamped  if not null, incremented once per rest cotangent that was clamped to
+///                 +-cot(1 degree) (an angle below 1 or above 179 degrees, math-spec 11)
 IsometricBendingRest isometric_bending_rest(const Vec3& x0, const Vec3& x1, const Vec3& x2,
-                                            const Vec3& x3);
+                                            const Vec3& x3, int* clamped = nullptr);
 
 /// h(x) = sum_i K_i x_i.
 inline Vec3 isometric_bending_h(const IsometricBendingRest& r, const Vec3& x0, const Vec3& x1,
