@@ -31,7 +31,7 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
   // keeps each pair on its starting side: exclude them for the whole run.
   find_candidates(rest, rest, topo_, options_.delta, candidates_, nullptr, options_.method);
   std::vector<Contact> touching;
-  detect(rest, rest, 0.0, touching, nullptr, false, false);
+  detect(rest, rest, 0.0, touching, nullptr, false, NearPairs::Include);
   for (const Contact& c : touching)
     (c.kind == CcdPrimitive::VertexFace ? excluded_vf_ : excluded_ee_).push_back(c.pair);
   std::sort(excluded_vf_.begin(), excluded_vf_.end());
@@ -40,7 +40,7 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
   // features: the response leaves them at their rest distance (a shell at rest stays at rest),
   // but the fail-safe still keeps them from crossing.
   std::vector<Contact> near;
-  detect(rest, rest, options_.delta, near, nullptr, false, false);
+  detect(rest, rest, options_.delta, near, nullptr, false, NearPairs::Include);
   for (const Contact& c : near)
     (c.kind == CcdPrimitive::VertexFace ? near_vf_ : near_ee_).push_back(c.pair);
   std::sort(near_vf_.begin(), near_vf_.end());
@@ -49,9 +49,12 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
 
 void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
                            std::vector<Contact>& out, CollisionStepStats* stats, bool count_stage,
-                           bool skip_near) {
+                           NearPairs near) {
   CcdOptions ccd;
   ccd.tolerance = tol;
+  auto wanted = [near](bool is_near) {
+    return near == NearPairs::Include || (near == NearPairs::Skip ? !is_near : is_near);
+  };
   std::int64_t filtered = 0, tests = 0;
   double filter_s = 0.0, narrow_s = 0.0;
   auto test = [&](CcdPrimitive kind, const std::array<int, 2>& pair, const std::array<int, 4>& v) {
@@ -80,13 +83,13 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
     out.push_back(c);
   };
   for (const auto& p : candidates_.vertex_face) {
-    if (contains(excluded_vf_, p) || (skip_near && contains(near_vf_, p))) continue;
+    if (contains(excluded_vf_, p) || !wanted(contains(near_vf_, p))) continue;
     const int f = p[1];
     test(CcdPrimitive::VertexFace, p,
          {p[0], topo_.faces(f, 0), topo_.faces(f, 1), topo_.faces(f, 2)});
   }
   for (const auto& p : candidates_.edge_edge) {
-    if (contains(excluded_ee_, p) || (skip_near && contains(near_ee_, p))) continue;
+    if (contains(excluded_ee_, p) || !wanted(contains(near_ee_, p))) continue;
     test(CcdPrimitive::EdgeEdge, p,
          {topo_.edges(p[0], 0), topo_.edges(p[0], 1), topo_.edges(p[1], 0), topo_.edges(p[1], 1)});
   }
@@ -111,10 +114,17 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
       stats.pairs_broad = bs.vertex_face + bs.edge_edge;
     }
     contacts_.clear();
-    detect(x0, x1, delta, contacts_, &stats, round == 0, true);
+    detect(x0, x1, delta, contacts_, &stats, round == 0, NearPairs::Skip);
     ++stats.rounds;
     moved = false;
-    if (contacts_.empty()) return;  // no contact within delta: the step is free
+    if (contacts_.empty()) {
+      // No contact within delta among the pairs the response handles. The pairs that were
+      // closer than delta at rest get no push, but they must not cross either.
+      if (near_vf_.empty() && near_ee_.empty()) return;
+      detect(x0, x1, 0.0, contacts_, &stats, false, NearPairs::Only);
+      if (contacts_.empty()) return;  // the step is free
+      break;                          // a near pair would touch: the fail-safe handles it
+    }
     stats.contacts += static_cast<std::int64_t>(contacts_.size());
     const auto t0 = Clock::now();
     for (const Contact& c : contacts_)
@@ -131,7 +141,7 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
   }
   for (;;) {
     contacts_.clear();
-    detect(x0, x1, 0.0, contacts_, &stats, false, false);
+    detect(x0, x1, 0.0, contacts_, &stats, false, NearPairs::Include);
     if (contacts_.empty()) return;
     std::int64_t reverted = 0;
     for (const Contact& c : contacts_)

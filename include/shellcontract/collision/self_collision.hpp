@@ -63,10 +63,13 @@ class SelfCollision {
   const CollisionTopology& topology() const { return topo_; }
 
  private:
+  /// Which of the pairs that were closer than delta at rest a detection pass tests.
+  enum class NearPairs { Include, Skip, Only };
+
   /// Narrow phase over the current candidates with tolerance tol; appends contacts. Excluded
-  /// pairs are skipped, and with skip_near also the pairs closer than delta at rest.
+  /// (touching at rest) pairs are always skipped.
   void detect(const Positions& x0, const Positions& x1, double tol, std::vector<Contact>& out,
-              CollisionStepStats* stats, bool count_stage, bool skip_near);
+              CollisionStepStats* stats, bool count_stage, NearPairs near);
 
   CollisionTopology topo_;
   CollisionOptions options_;
