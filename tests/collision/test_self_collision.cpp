@@ -140,6 +140,26 @@ TEST(SelfCollision, FarApartAndZeroMotionIsLeftAlone) {
   EXPECT_EQ(stats.rounds, 1);
 }
 
+TEST(SelfCollision, PairsCloserThanDeltaAtRestAreNotPushedButNeverCross) {
+  // Regression: with delta = 0.5 every pair of the two triangles (0.1 apart) is "near at
+  // rest". Standing still they must not be pushed apart; moving through each other they must be
+  // stopped (the first version returned early without testing near pairs at all).
+  TwoTriangles t;
+  CollisionOptions opt;
+  opt.delta = 0.5;
+  SelfCollision sc(t.faces, t.x0, opt);
+  Positions still = t.x1;
+  CollisionStepStats stats;
+  sc.resolve(t.x0, still, t.w, stats);
+  EXPECT_EQ(still, t.x1) << "a shell at rest stays at rest";
+  t.x1.bottomRows(3).col(2).array() -= 0.3;
+  ASSERT_TRUE(any_contact(t, t.x1));
+  Positions x1 = t.x1;
+  sc.resolve(t.x0, x1, t.w, stats);
+  EXPECT_FALSE(any_contact(t, x1));
+  EXPECT_GT(stats.failsafe_vertices, 0) << "only the fail-safe acts on near pairs";
+}
+
 TEST(SelfCollision, PairsTouchingAtRestAreExcluded) {
   TwoTriangles t;
   t.x0.bottomRows(3).col(2).setZero();  // the upper triangle lies in the lower one's plane
