@@ -1,6 +1,6 @@
 // Issue "self-collision", acceptance: the paper's meshes and the two-sheet mesh contracted with
 // strong pressure for 300 frames with collisions on. CGAL finds no new self-intersection at any
-// frame, and the shell still contracts (V/V0 <= 0.7 at frame 300). Label "long" (minutes).
+// frame, and the shell still contracts (V/V0 <= 0.7 at frame 300). Label "scenario" (~80 s).
 #include <gtest/gtest.h>
 
 #include <filesystem>
