@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "usage_error.hpp"
+#include "command_line.hpp"
 #include "json_writer.hpp"
 #include "shellcontract/collision/ccd_benchmark.hpp"
 #include "shellcontract/core/error.hpp"

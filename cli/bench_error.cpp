@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "usage_error.hpp"
+#include "command_line.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/error_ladder.hpp"
@@ -202,16 +202,8 @@ int command_bench_error(int argc, char** argv) {
       ("csv", po::value<std::string>(&csv), "write the table as CSV")
       ("plot", po::value<std::string>(&plot), "draw error against time with gnuplot (.png or .svg)")
       ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
-  po::options_description hidden;
-  hidden.add_options()("input", po::value<std::string>(&input), "input mesh");
-  po::options_description all;
-  all.add(visible).add(hidden);
-  po::positional_options_description positional;
-  positional.add("input", 1);
   try {
-    po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-    po::notify(vm);
+    const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
       std::cout << BENCH_ERROR_USAGE << "\n\n" << visible << '\n';
       return static_cast<int>(ExitCode::Success);

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "usage_error.hpp"
+#include "command_line.hpp"
 #include "json_writer.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
@@ -52,16 +52,8 @@ int command_check(int argc, char** argv) {
   visible.add_options()
       ("help,h", "show this help")
       ("json", po::bool_switch(&json), "print the report as a JSON object on stdout");
-  po::options_description hidden;
-  hidden.add_options()("input", po::value<std::string>(&input), "input mesh");
-  po::options_description all;
-  all.add(visible).add(hidden);
-  po::positional_options_description positional;
-  positional.add("input", 1);
   try {
-    po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-    po::notify(vm);
+    const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
       std::cout << CHECK_USAGE << '\n' << visible << '\n';
       return static_cast<int>(ExitCode::Success);

@@ -4,7 +4,7 @@
 #include <boost/program_options.hpp>
 
 #include "commands.hpp"
-#include "usage_error.hpp"
+#include "command_line.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -75,16 +75,8 @@ int command_regions(int argc, char** argv) {
        "drop regions smaller than this fraction of the total area")
       ("max-area-fraction", po::value(&options.max_area_fraction)->default_value(options.max_area_fraction),
        "drop regions larger than this fraction of the total area (not local)");
-  po::options_description hidden;
-  hidden.add_options()("input", po::value(&input), "input mesh");
-  po::options_description all;
-  all.add(visible).add(hidden);
-  po::positional_options_description positional;
-  positional.add("input", 1);
   try {
-    po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-    po::notify(vm);
+    const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
       std::cout << REGIONS_USAGE << '\n' << visible << '\n';
       return static_cast<int>(ExitCode::Success);

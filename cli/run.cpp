@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "usage_error.hpp"
+#include "command_line.hpp"
 #include "json_writer.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
@@ -238,22 +238,13 @@ int command_run(int argc, char** argv) {
       ("log", po::value(&log_path), "per-frame CSV log")
       ("summary", po::value(&summary_path), "JSON summary of the run")
       ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
-  po::options_description hidden;
-  hidden.add_options()("input", po::value(&input));
-  po::options_description all;
-  all.add(desc).add(hidden);
-  po::positional_options_description pos;
-  pos.add("input", 1);
-
   try {
-    po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
+    const po::variables_map vm = parse_command_line(argc, argv, desc, input);
     if (vm.count("help")) {
       std::cout << desc << "\nexit codes: 0 success, 1 bad usage, 2 bad input mesh, "
                            "3 simulation failed (last good state written)\n";
       return 0;
     }
-    po::notify(vm);
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
     opt.solver.kind = parse_solver(solver);
