@@ -9,5 +9,6 @@ int command_check(int argc, char** argv);      ///< shellcontract check IN
 int command_bench_ccd(int argc, char** argv);  ///< shellcontract bench ccd --queries DIR
 int command_regions(int argc, char** argv);    ///< shellcontract regions IN -o OUT.ply
 int command_bench_error(int argc, char** argv);  ///< shellcontract bench error IN [options]
+int command_reconstruct(int argc, char** argv);  ///< shellcontract reconstruct PTS -o OUT
 
 }  // namespace shellcontract::cli

@@ -14,6 +14,7 @@ commands:
   run INPUT -o OUTPUT [options]    contract a closed mesh (see 'shellcontract run --help')
   check INPUT [--json]             report whether a mesh can be used, and why not
   regions INPUT -o OUT.ply         the spherical regions that --regions auto would choose
+  reconstruct POINTS -o OUT        closed surface from an oriented point set (the kitten)
   bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
   bench error INPUT [options]      speed against error of the solver (table, CSV, gnuplot plot)
 
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
   if (command == "run") return shellcontract::cli::command_run(argc - 1, argv + 1);
   if (command == "check") return shellcontract::cli::command_check(argc - 1, argv + 1);
   if (command == "regions") return shellcontract::cli::command_regions(argc - 1, argv + 1);
+  if (command == "reconstruct") return shellcontract::cli::command_reconstruct(argc - 1, argv + 1);
   if (command == "bench") {
     if (argc >= 3 && std::strcmp(argv[2], "ccd") == 0)
       return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);
