@@ -173,7 +173,8 @@ int command_run(int argc, char** argv) {
        "sequential: the paper's Gauss-Seidel order; coloured: parallel by colour, bit-identical "
        "for any thread count")
       ("threads", po::value(&opt.solver.threads)->default_value(opt.solver.threads),
-       "threads of the coloured order (0 = all cores)")
+       "threads of the coloured order and of the collision handling (0 = all cores); "
+       "results do not depend on it")
       ("solver", po::value(&solver)->default_value(solver),
        "pbd: the paper's energy-as-constraint projection; xpbd: compliant, physical stiffness")
       ("material", po::value(&material)->default_value(material),
@@ -262,6 +263,7 @@ int command_run(int argc, char** argv) {
     if (collisions != "on" && collisions != "off")
       throw UsageError("--collisions expects on or off, got '" + collisions + "'");
     opt.collisions = collisions == "on";
+    opt.collision.threads = opt.solver.threads;
     opt.validate = parse_validate(validate);
     opt.inward_term = parse_inward(inward);
     if (fiber != "centre") {

@@ -2,6 +2,7 @@
 #include "shellcontract/collision/broad_phase.hpp"
 
 #include <CGAL/box_intersection_d.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <chrono>
@@ -377,6 +378,9 @@ constexpr std::size_t GRID_ENTRIES_PER_BOX = 16;
 /// a few cells: boxes spread over a huge range, or nearly all of the scene overlapping), the
 /// grid degenerates towards brute force, so PrimitiveBoxes runs instead (same result).
 constexpr std::int64_t GRID_WORK_PER_BOX = 256;
+/// The per-cell pair loops run as this many chunks of cells (about equal entry counts each), in
+/// parallel with TBB; more chunks than threads balance the load.
+constexpr std::size_t GRID_CHUNKS = 32;
 /// Ids are stored as gid << 3 | flags in 32 bits.
 constexpr std::size_t GRID_MAX_BOXES = std::size_t{1} << 29;
 /// Cells per axis fit the 16-bit fields of detail::GridRange.
@@ -729,66 +733,84 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
 
   // Per cell: gather the items (float boxes, vertex ids, flags) into structure-of-arrays
   // buffers, build the candidate masks (cell_masks), and confirm the rare survivors with the
-  // exact double boxes.
-  std::int64_t reported = 0;
+  // exact double boxes. Cells are split into GRID_CHUNKS chunks of about equal entry counts,
+  // processed in parallel, each into its own key buffers; the radix sort afterwards puts the
+  // keys in one order whatever the thread count (each pair is emitted exactly once).
   const int vf_shift = std::max(1, bit_width(nf));
   const int ee_shift = std::max(1, bit_width(ne));
+  s.chunks.resize(GRID_CHUNKS);
+  s.chunk_cells.assign(GRID_CHUNKS + 1, g.cells());
+  s.chunk_cells[0] = 0;
+  for (std::size_t c = 0, k = 1; c < g.cells() && k < GRID_CHUNKS; ++c)
+    while (k < GRID_CHUNKS && start[c] >= entries * k / GRID_CHUNKS) s.chunk_cells[k++] = c;
+  const std::uint32_t* entry = s.cell_entries.data();
+  tbb::parallel_for(std::size_t{0}, GRID_CHUNKS, [&](std::size_t chunk) {
+    detail::GridChunk& out_chunk = s.chunks[chunk];
+    out_chunk.vf_keys.clear();
+    out_chunk.ee_keys.clear();
+    out_chunk.reported = 0;
+    detail::GridCell& cell = out_chunk.cell;
+    for (std::size_t c = s.chunk_cells[chunk]; c < s.chunk_cells[chunk + 1]; ++c) {
+      const std::uint32_t b = start[c], e = start[c + 1];
+      if (e - b < 2) continue;
+      const std::size_t k = e - b;
+      if (cell.flags.size() < k) {
+        for (std::size_t d = 0; d < 3; ++d) {
+          cell.lo[d].resize(k);
+          cell.hi[d].resize(k);
+          cell.v[d].resize(k);
+        }
+        cell.flags.resize(k);
+        cell.gid.resize(k);
+        cell.mask.resize(k);
+      }
+      std::size_t fb = 0, eb = 0;
+      for (std::size_t t = 0; t < k; ++t) {
+        const std::uint32_t tag = entry[b + t];
+        const std::size_t gid = tag >> 3;
+        const std::array<int, 3> v = prim.ids(gid);
+        const detail::GridFloatBox fbox = prim.float_box(v);
+        for (std::size_t d = 0; d < 3; ++d) {
+          cell.lo[d][t] = fbox.lo[d];
+          cell.hi[d][t] = fbox.hi[d];
+          cell.v[d][t] = v[d];
+        }
+        cell.flags[t] = tag & GRID_ALL_FIRST;
+        cell.gid[t] = static_cast<std::uint32_t>(gid);
+        fb += gid < nv;
+        eb += gid < nv + nf;
+      }
+      std::uint32_t* mask = cell.mask.data();
+      for (std::size_t i = 0; i < fb && eb > fb; ++i) {
+        if (!cell_masks(cell, i, fb, eb, mask, out_chunk.reported)) continue;
+        for (std::size_t j = fb; j < eb; ++j) {
+          if (mask[j] == 0) continue;
+          const std::array<int, 3> fv = {cell.v[0][j], cell.v[1][j], cell.v[2][j]};
+          const int vi = cell.v[0][i];
+          if (!overlap(vbox[static_cast<std::size_t>(vi)], prim.box(fv))) continue;
+          out_chunk.vf_keys.push_back(static_cast<std::uint64_t>(vi) << vf_shift | (cell.gid[j] - nv));
+        }
+      }
+      for (std::size_t i = eb; i + 1 < k; ++i) {
+        if (!cell_masks(cell, i, i + 1, k, mask, out_chunk.reported)) continue;
+        const detail::GridVertexBox pbox = prim.box({cell.v[0][i], cell.v[1][i], -2});
+        const std::uint64_t high = static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift;
+        for (std::size_t j = i + 1; j < k; ++j) {
+          if (mask[j] == 0) continue;
+          if (!overlap(pbox, prim.box({cell.v[0][j], cell.v[1][j], -2}))) continue;
+          // Entries of a cell are in increasing id order, so a < b.
+          out_chunk.ee_keys.push_back(high | (cell.gid[j] - nv - nf));
+        }
+      }
+    }
+  });
+  std::int64_t reported = 0;
   s.vf_keys.clear();
   s.ee_keys.clear();
-  const std::uint32_t* entry = s.cell_entries.data();
-  detail::GridCell& cell = s.cell;
-  for (std::size_t c = 0; c < g.cells(); ++c) {
-    const std::uint32_t b = start[c], e = start[c + 1];
-    if (e - b < 2) continue;
-    const std::size_t k = e - b;
-    if (cell.flags.size() < k) {
-      for (std::size_t d = 0; d < 3; ++d) {
-        cell.lo[d].resize(k);
-        cell.hi[d].resize(k);
-        cell.v[d].resize(k);
-      }
-      cell.flags.resize(k);
-      cell.gid.resize(k);
-      cell.mask.resize(k);
-    }
-    std::size_t fb = 0, eb = 0;
-    for (std::size_t t = 0; t < k; ++t) {
-      const std::uint32_t tag = entry[b + t];
-      const std::size_t gid = tag >> 3;
-      const std::array<int, 3> v = prim.ids(gid);
-      const detail::GridFloatBox fbox = prim.float_box(v);
-      for (std::size_t d = 0; d < 3; ++d) {
-        cell.lo[d][t] = fbox.lo[d];
-        cell.hi[d][t] = fbox.hi[d];
-        cell.v[d][t] = v[d];
-      }
-      cell.flags[t] = tag & GRID_ALL_FIRST;
-      cell.gid[t] = static_cast<std::uint32_t>(gid);
-      fb += gid < nv;
-      eb += gid < nv + nf;
-    }
-    std::uint32_t* mask = cell.mask.data();
-    for (std::size_t i = 0; i < fb && eb > fb; ++i) {
-      if (!cell_masks(cell, i, fb, eb, mask, reported)) continue;
-      for (std::size_t j = fb; j < eb; ++j) {
-        if (mask[j] == 0) continue;
-        const std::array<int, 3> fv = {cell.v[0][j], cell.v[1][j], cell.v[2][j]};
-        const int vi = cell.v[0][i];
-        if (!overlap(vbox[static_cast<std::size_t>(vi)], prim.box(fv))) continue;
-        s.vf_keys.push_back(static_cast<std::uint64_t>(vi) << vf_shift | (cell.gid[j] - nv));
-      }
-    }
-    for (std::size_t i = eb; i + 1 < k; ++i) {
-      if (!cell_masks(cell, i, i + 1, k, mask, reported)) continue;
-      const detail::GridVertexBox pbox = prim.box({cell.v[0][i], cell.v[1][i], -2});
-      const std::uint64_t high = static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift;
-      for (std::size_t j = i + 1; j < k; ++j) {
-        if (mask[j] == 0) continue;
-        if (!overlap(pbox, prim.box({cell.v[0][j], cell.v[1][j], -2}))) continue;
-        // Entries of a cell are in increasing id order, so a < b.
-        s.ee_keys.push_back(high | (cell.gid[j] - nv - nf));
-      }
-    }
+  for (const detail::GridChunk& chunk : s.chunks) {
+    reported += chunk.reported;
+    s.vf_keys.insert(s.vf_keys.end(), chunk.vf_keys.begin(), chunk.vf_keys.end());
+    s.ee_keys.insert(s.ee_keys.end(), chunk.ee_keys.begin(), chunk.ee_keys.end());
   }
   grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv), out.vertex_face);
   grid_keys_to_pairs(s.ee_keys, s.sort_tmp, ee_shift, 2 * ee_shift, out.edge_edge);

@@ -7,6 +7,7 @@
 #include "shellcontract/collision/ccd.hpp"
 #include "shellcontract/collision/contact.hpp"
 #include "shellcontract/collision/self_collision.hpp"
+#include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {
 namespace {
@@ -137,7 +138,10 @@ TEST(SelfCollision, FarApartAndZeroMotionIsLeftAlone) {
   sc.resolve(t.x0, x1, t.w, stats);
   EXPECT_EQ(x1, t.x1);
   EXPECT_EQ(stats.contacts, 0);
-  EXPECT_EQ(stats.rounds, 1);
+  // No swept box comes near another: no candidate pair, so no narrow phase runs at all.
+  EXPECT_EQ(stats.pairs_broad, 0);
+  EXPECT_EQ(stats.narrow_tests, 0);
+  EXPECT_EQ(stats.rounds, 0);
 }
 
 TEST(SelfCollision, PairsCloserThanDeltaAtRestAreNotPushedButNeverCross) {
@@ -170,6 +174,93 @@ TEST(SelfCollision, PairsTouchingAtRestAreExcluded) {
   CollisionStepStats stats;
   sc.resolve(t.x0, x1, t.w, stats);
   EXPECT_EQ(x1, t.x1) << "excluded pairs are not pushed apart";
+}
+
+/// Brute force over every non-adjacent VF and EE pair of a mesh (no broad phase): the number of
+/// pairs that touch during x0 -> x1 (tolerance 0).
+int brute_force_contacts(const Faces& faces, const Positions& x0, const Positions& x1) {
+  const CollisionTopology topo = make_collision_topology(faces, static_cast<int>(x0.rows()));
+  auto X = [](const Positions& x, int i) { return Vec3(x.row(i).transpose()); };
+  auto stencils = [&](const std::array<int, 4>& v, CcdStencil& s0, CcdStencil& s1) {
+    for (int k = 0; k < 4; ++k) {
+      s0[static_cast<std::size_t>(k)] = X(x0, v[static_cast<std::size_t>(k)]);
+      s1[static_cast<std::size_t>(k)] = X(x1, v[static_cast<std::size_t>(k)]);
+    }
+  };
+  int hits = 0;
+  CcdStencil s0, s1;
+  for (int v = 0; v < x0.rows(); ++v)
+    for (Eigen::Index f = 0; f < faces.rows(); ++f) {
+      if (faces(f, 0) == v || faces(f, 1) == v || faces(f, 2) == v) continue;
+      stencils({v, faces(f, 0), faces(f, 1), faces(f, 2)}, s0, s1);
+      hits += vertex_face_ccd(s0, s1).hit;
+    }
+  for (Eigen::Index a = 0; a < topo.edges.rows(); ++a)
+    for (Eigen::Index b = a + 1; b < topo.edges.rows(); ++b) {
+      const std::array<int, 4> v{topo.edges(a, 0), topo.edges(a, 1), topo.edges(b, 0), topo.edges(b, 1)};
+      if (v[0] == v[2] || v[0] == v[3] || v[1] == v[2] || v[1] == v[3]) continue;
+      stencils(v, s0, s1);
+      hits += edge_edge_ccd(s0, s1).hit;
+    }
+  return hits;
+}
+
+/// Steps of a sphere crushed flat through itself with random jitter: every step's motion makes
+/// the top pass through the bottom and many pairs cross, so the response pushes vertices far
+/// (more than the reuse margin: the re-broad-phase path runs) and the incremental rounds and
+/// fail-safe must find every pair. Returns the positions after each step.
+std::vector<Positions> crush_sphere(int threads, int rounds, std::vector<CollisionStepStats>* all_stats) {
+  const test::TriMesh sphere = test::icosphere(2);
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  opt.threads = threads;
+  opt.rounds = rounds;
+  SelfCollision sc(sphere.faces, sphere.x, opt);
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(sphere.x.rows());
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  Positions x0 = sphere.x;
+  std::vector<Positions> out;
+  for (int step = 0; step < 6; ++step) {
+    Positions x1 = x0;
+    for (Eigen::Index i = 0; i < x1.rows(); ++i) {
+      x1(i, 2) = -0.6 * x0(i, 2);  // the poles swap sides: top and bottom pass through
+      for (int d = 0; d < 3; ++d) x1(i, d) += jitter(rng);
+    }
+    CollisionStepStats stats;
+    sc.resolve(x0, x1, w, stats);
+    if (all_stats) all_stats->push_back(stats);
+    EXPECT_EQ(brute_force_contacts(sphere.faces, x0, x1), 0) << "step " << step;
+    out.push_back(x1);
+    x0 = x1;
+  }
+  return out;
+}
+
+TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) {
+  for (int rounds : {5, 1}) {
+    SCOPED_TRACE("rounds " + std::to_string(rounds));
+    std::vector<CollisionStepStats> stats;
+    const std::vector<Positions> one = crush_sphere(1, rounds, &stats);
+    std::int64_t contacts = 0, failsafe = 0;
+    int rebuilds = 0;
+    for (const CollisionStepStats& s : stats) {
+      contacts += s.contacts;
+      failsafe += s.failsafe_vertices;
+      rebuilds += s.broad_phase_calls > 1;
+    }
+    // The scenario exercises every path: response rounds, re-broad-phase (5 rounds), and the
+    // fail-safe (1 round is too few to resolve every crossing).
+    EXPECT_GT(contacts, 0);
+    if (rounds > 1) {
+      EXPECT_GT(rebuilds, 0);
+    } else {
+      EXPECT_GT(failsafe, 0);
+    }
+    const std::vector<Positions> two = crush_sphere(2, rounds, nullptr);
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "step " << i;
+  }
 }
 
 }  // namespace

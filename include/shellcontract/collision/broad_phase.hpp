@@ -119,6 +119,14 @@ struct GridCell {
   std::vector<std::uint32_t> mask;           ///< candidate mask of the current row
 };
 
+/// Grid method: one chunk of cells processed by one task, with its own buffers.
+struct GridChunk {
+  GridCell cell;                         ///< the boxes of the current cell
+  std::vector<std::uint64_t> vf_keys;    ///< pairs found in this chunk (see BroadPhaseScratch)
+  std::vector<std::uint64_t> ee_keys;
+  std::int64_t reported = 0;             ///< float box overlaps (statistics)
+};
+
 /// Scratch buffers reused between calls, so a steady-state call does not allocate.
 struct BroadPhaseScratch {
   std::vector<BroadPhaseBox> vertex_boxes;  ///< indexed by vertex id
@@ -137,7 +145,8 @@ struct BroadPhaseScratch {
   std::vector<GridFloatBox> grid_vertex_floats;  ///< Grid: float vertex boxes
   std::vector<GridRange> grid_vertex_ranges;     ///< Grid: cell ranges of the vertex boxes
   std::vector<GridRange> grid_ranges;            ///< Grid: of vertex, face, then edge boxes
-  GridCell cell;                                 ///< Grid: the boxes of the current cell
+  std::vector<GridChunk> chunks;                 ///< Grid: per-chunk buffers of the cell loop
+  std::vector<std::size_t> chunk_cells;          ///< Grid: first cell of each chunk, then #cells
   std::vector<double> extent_sample;        ///< Grid: box extents for the cell size
   std::vector<std::uint32_t> cell_start;    ///< Grid: CSR offsets per cell
   std::vector<std::uint32_t> cell_fill;     ///< Grid: fill cursors of the counting sort

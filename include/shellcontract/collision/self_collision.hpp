@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -21,16 +22,21 @@ struct CollisionOptions {
   double delta = 1e-4;
   int rounds = 5;  ///< N_c detection/response rounds before the fail-safe (math-spec 10.8)
   BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD;
+  /// Threads of the filter and narrow phase (0 = all cores). Results do not depend on it.
+  int threads = 0;
 };
 
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
 struct CollisionStepStats {
   std::int64_t pairs_no_culling = 0;  ///< all non-adjacent VF + EE pairs
-  std::int64_t pairs_broad = 0;       ///< after the broad phase (first round)
+  /// After the broad phase (first call of the step), boxes inflated by delta plus the reuse
+  /// margin (see SelfCollision::resolve).
+  std::int64_t pairs_broad = 0;
   std::int64_t pairs_filtered = 0;    ///< left after the non-penetration filter (first round)
   std::int64_t narrow_tests = 0;      ///< narrow-phase (cubic) tests run, all rounds
   std::int64_t contacts = 0;          ///< contacts found, all rounds
   int rounds = 0;                     ///< detection rounds run
+  int broad_phase_calls = 0;          ///< 1, plus one per margin escape (see resolve)
   std::int64_t failsafe_vertices = 0; ///< vertices reverted to their start position
   std::int64_t unresolved = 0;        ///< static pairs still reported after the fail-safe
   double broad_seconds = 0.0;
@@ -49,11 +55,21 @@ class SelfCollision {
   ///                  (the rest state is kept) but are still kept from crossing
   /// @param options   see CollisionOptions
   SelfCollision(const Faces& faces, const Positions& rest, const CollisionOptions& options);
+  ~SelfCollision();
+  SelfCollision(const SelfCollision&) = delete;
+  SelfCollision& operator=(const SelfCollision&) = delete;
 
   /// Changes the end positions x1 of the step x0 -> x1 so that no pair that is not excluded
   /// touches at any t in [0,1]: response rounds (math-spec 10.8), then the fail-safe, which
   /// reverts the vertices of each still-touching pair to x0 until none is left. If x0 is free of
   /// contacts (true by induction from the rest state), so is the result.
+  ///
+  /// Work is incremental. One broad phase per step, with boxes inflated by delta plus a margin
+  /// m, is a superset of the candidates of every later round as long as no vertex moves farther
+  /// than m/2 from where it was at that broad phase (a vertex that does triggers a new one).
+  /// After round 0 only the pairs with a vertex that the previous response moved are tested
+  /// again: the others' positions, hence their answers, have not changed. The fail-safe tests
+  /// the pairs not known to be free at their current positions.
   /// @param w  inverse masses (pinned vertices are not moved by the response)
   void resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w, CollisionStepStats& stats);
 
@@ -63,17 +79,42 @@ class SelfCollision {
   const CollisionTopology& topology() const { return topo_; }
 
  private:
-  /// Which of the pairs that were closer than delta at rest a detection pass tests.
-  enum class NearPairs { Include, Skip, Only };
+  /// A candidate VF or EE pair of the current broad phase, ready for the narrow phase.
+  struct PairRecord {
+    std::array<int, 4> v;     ///< vertex ids in the CCD stencil order (ccd.hpp)
+    std::array<int, 2> pair;  ///< (vertex, face) or (edge a, edge b)
+    CcdPrimitive kind;
+    bool near;                ///< closer than delta at rest: no response push, fail-safe only
+  };
 
-  /// Narrow phase over the current candidates with tolerance tol; appends contacts. Excluded
-  /// (touching at rest) pairs are always skipped.
-  void detect(const Positions& x0, const Positions& x1, double tol, std::vector<Contact>& out,
-              CollisionStepStats* stats, bool count_stage, NearPairs near);
+  /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
+  /// dropped) and marks every pair stale. x1 becomes the reference for the margin check.
+  void broad_phase(const Positions& x0, const Positions& x1, CollisionStepStats& stats);
+
+  /// Filter and narrow phase with tolerance tol on the pairs listed in tests_ (indices into
+  /// pairs_), in parallel; afterwards free_ and stale_ of those pairs are updated and contacts_
+  /// holds their hits in the order of tests_ (so the result does not depend on the threads).
+  void detect(const Positions& x0, const Positions& x1, double tol, CollisionStepStats& stats,
+              bool count_stage);
+
+  /// Marks stale every pair with a vertex in moved_, then clears moved_.
+  void mark_moved_pairs_stale();
 
   CollisionTopology topo_;
   CollisionOptions options_;
   CandidatePairs candidates_;
+  std::vector<PairRecord> pairs_;        ///< candidates of the last broad phase
+  std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
+  std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
+  std::vector<std::uint32_t> tests_;     ///< pairs to test in the next detect()
+  std::vector<std::uint32_t> survivors_; ///< tests_ entries the filter did not cull
+  std::vector<std::uint8_t> hit_;        ///< per tests_ entry: the narrow phase reported a hit
+  std::vector<Contact> found_;           ///< per tests_ entry: the contact, if hit_
+  std::vector<std::uint8_t> moved_;      ///< per vertex: moved by the response or the fail-safe
+  std::vector<int> moved_list_;          ///< the vertices with moved_ set
+  Positions reference_;                  ///< x1 at the last broad phase (margin check)
+  struct Workers;                        ///< the thread arena (TBB stays in the .cpp)
+  std::unique_ptr<Workers> workers_;
   std::vector<std::array<int, 2>> excluded_vf_;  ///< sorted
   std::vector<std::array<int, 2>> excluded_ee_;  ///< sorted
   std::vector<std::array<int, 2>> near_vf_;      ///< closer than delta at rest, sorted
