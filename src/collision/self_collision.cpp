@@ -149,6 +149,7 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   if (found_.size() < n) found_.resize(n);
   CcdOptions ccd;
   ccd.tolerance = tol;
+  ccd.tighten_toi = false;  // the response uses the contact data, not the time of impact
   workers_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, DETECT_GRAIN / 8),
                       [&](const tbb::blocked_range<std::size_t>& r) {

@@ -434,6 +434,42 @@ TEST(Ccd, TimeOfImpactIsALowerBoundAndMissesAreSeparated) {
   EXPECT_GT(misses, 100);
 }
 
+TEST(Ccd, UntightenedTimeOfImpactKeepsTheAnswerAndTheContactData) {
+  // tighten_toi = false (what the collision response uses) may only loosen toi: same hit,
+  // reason, contact data; toi still a lower bound (no sampled time before it within tau) and
+  // not above the tightened one. Random motions with a large tau make many distance hits.
+  std::mt19937 rng(606);
+  const double tau = 0.05;
+  CcdOptions tight, loose;
+  tight.tolerance = loose.tolerance = tau;
+  loose.tighten_toi = false;
+  int distance_hits_after_start = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const CcdPrimitive kind = KINDS[trial % 2];
+    CcdStencil x0, x1;
+    for (int k = 0; k < 4; ++k) {
+      x0[k] = test::random_vec3(rng);
+      x1[k] = x0[k] + test::random_vec3(rng, 0.8);
+    }
+    const CcdResult a = primitive_ccd(kind, x0, x1, tight);
+    const CcdResult b = primitive_ccd(kind, x0, x1, loose);
+    ASSERT_EQ(a.hit, b.hit) << "trial " << trial;
+    if (!a.hit) continue;
+    EXPECT_EQ(a.reason, b.reason) << "trial " << trial;
+    EXPECT_EQ(a.weights, b.weights) << "trial " << trial;
+    EXPECT_EQ(a.normal, b.normal) << "trial " << trial;
+    EXPECT_EQ(a.side, b.side) << "trial " << trial;
+    EXPECT_LE(b.toi, a.toi) << "trial " << trial;
+    distance_hits_after_start += a.reason == CcdHitReason::Distance && b.toi < a.toi;
+    for (int s = 0; s <= 200; ++s) {
+      const double t = double(s) / 200;
+      if (t >= b.toi) break;
+      ASSERT_GT(distance_at(kind, x0, x1, t), tau * (1 - 1e-9)) << "trial " << trial << " t=" << t;
+    }
+  }
+  EXPECT_GT(distance_hits_after_start, 50) << "the cases must exercise the untightened path";
+}
+
 TEST(Ccd, NonFiniteInputIsReportedConservatively) {
   CcdStencil x0 = {Vec3(0, 0, 1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
   CcdStencil x1 = x0;

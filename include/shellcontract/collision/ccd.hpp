@@ -48,6 +48,12 @@ struct CcdOptions {
   int max_depth = DEFAULT_CCD_MAX_DEPTH;
   /// Cap on examined time intervals per query (>= 1). Default DEFAULT_CCD_MAX_INTERVALS.
   int max_intervals = DEFAULT_CCD_MAX_INTERVALS;
+  /// For a hit decided by distance (CcdHitReason::Distance) after t = 0: tighten the lower bound
+  /// toi by a greedy descent over [ta, tm] (up to 32 more interval tests, most of the cost of
+  /// such a query). Off, toi is the start of the deciding interval, still a valid lower bound;
+  /// hit, weights, normal and side are the same either way. The collision response does not
+  /// use toi and turns it off.
+  bool tighten_toi = true;
 };
 
 /// How a hit was decided (for statistics and for callers that want certainty).
