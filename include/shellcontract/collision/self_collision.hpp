@@ -29,10 +29,9 @@ struct CollisionOptions {
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
 struct CollisionStepStats {
   std::int64_t pairs_no_culling = 0;  ///< all non-adjacent VF + EE pairs
-  /// After the broad phase (first call of the step), boxes inflated by delta plus the reuse
-  /// margin (see SelfCollision::resolve).
-  std::int64_t pairs_broad = 0;
+  std::int64_t pairs_broad = 0;       ///< after the step's first broad phase (inflation delta)
   std::int64_t pairs_filtered = 0;    ///< left after the non-penetration filter (first round)
+  std::int64_t filter_tests = 0;      ///< non-penetration filter evaluations, all passes
   std::int64_t narrow_tests = 0;      ///< narrow-phase (cubic) tests run, all rounds
   std::int64_t contacts = 0;          ///< contacts found, all rounds
   int rounds = 0;                     ///< detection rounds run
@@ -64,9 +63,10 @@ class SelfCollision {
   /// reverts the vertices of each still-touching pair to x0 until none is left. If x0 is free of
   /// contacts (true by induction from the rest state), so is the result.
   ///
-  /// Work is incremental. One broad phase per step, with boxes inflated by delta plus a margin
-  /// m, is a superset of the candidates of every later round as long as no vertex moves farther
-  /// than m/2 from where it was at that broad phase (a vertex that does triggers a new one).
+  /// Work is incremental. A broad phase with boxes inflated by delta plus a margin m gives a
+  /// superset of the candidates of every later round as long as no vertex moves farther than
+  /// m/2 from where it was at that broad phase; a vertex that does triggers a new one (the
+  /// step's first has m = 0, the next ones m = 8 delta: see self_collision.cpp).
   /// After round 0 only the pairs with a vertex that the previous response moved are tested
   /// again: the others' positions, hence their answers, have not changed. The fail-safe tests
   /// the pairs not known to be free at their current positions.
@@ -113,6 +113,7 @@ class SelfCollision {
   std::vector<std::uint8_t> moved_;      ///< per vertex: moved by the response or the fail-safe
   std::vector<int> moved_list_;          ///< the vertices with moved_ set
   Positions reference_;                  ///< x1 at the last broad phase (margin check)
+  double margin_ = 0.0;                  ///< reuse margin of the last broad phase
   struct Workers;                        ///< the thread arena (TBB stays in the .cpp)
   std::unique_ptr<Workers> workers_;
   std::vector<std::array<int, 2>> excluded_vf_;  ///< sorted
