@@ -60,10 +60,13 @@ const Scene& scene() {
   return s;
 }
 
+/// Times sweep(ctx, xw) with the state reset (untimed) before each sweep; xw holds the padded
+/// rows of the batched kernels (x and w packed into it).
 template <class Sweep>
 void run_sweeps(benchmark::State& state, std::size_t count, Sweep sweep) {
   const Scene& sc = scene();
   Positions x = sc.x;
+  std::vector<PaddedVertex> xw(static_cast<std::size_t>(x.rows()));
   ProjectionContext ctx;
   ctx.x = x.data();
   ctx.w = sc.w.data();
@@ -71,8 +74,9 @@ void run_sweeps(benchmark::State& state, std::size_t count, Sweep sweep) {
   for (auto _ : state) {
     state.PauseTiming();
     x = sc.x;
+    pack_padded(x.data(), sc.w.data(), 0, xw.size(), xw.data());
     state.ResumeTiming();
-    sweep(ctx);
+    sweep(ctx, xw.data());
     benchmark::ClobberMemory();
   }
   state.counters["constraints"] = static_cast<double>(count);
@@ -83,21 +87,21 @@ void run_sweeps(benchmark::State& state, std::size_t count, Sweep sweep) {
 void BM_MembraneStvkPbd(benchmark::State& state) {
   const auto& c = scene().membranes_and_isometric.membranes;
   const Stvk m(MaterialParams{});
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx, PaddedVertex*) {
     for (const MembraneConstraint& k : c) project_membrane(m, k, 1.0, ctx, nullptr);
   });
 }
 
 void BM_IsometricBendingPbd(benchmark::State& state) {
   const auto& c = scene().membranes_and_isometric.isometric_hinges;
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx, PaddedVertex*) {
     for (const IsometricHingeConstraint& k : c) project_isometric_hinge(k, 0.01, ctx, nullptr);
   });
 }
 
 void BM_DihedralBendingPbd(benchmark::State& state) {
   const auto& c = scene().dihedral.dihedral_hinges;
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx, PaddedVertex*) {
     for (const DihedralHingeConstraint& k : c) project_dihedral_hinge(k, 0.01, ctx, nullptr);
   });
 }
@@ -125,8 +129,8 @@ void BM_MembraneStvkPbdColouredOrder(benchmark::State& state) {
   const ColouredBatches<MembraneBatch> b = coloured_membrane_batches();
   const Stvk m(MaterialParams{});
   const BatchIsa isa = state.range(0) == 0 ? BatchIsa::Scalar : BatchIsa::Auto;
-  run_sweeps(state, scene().membranes_and_isometric.membranes.size(), [&](const ProjectionContext& ctx) {
-    project_stvk_membrane_batches(m, b.batches.data(), b.batches.size(), ctx, nullptr, isa);
+  run_sweeps(state, scene().membranes_and_isometric.membranes.size(), [&](const ProjectionContext& ctx, PaddedVertex* xw) {
+    project_stvk_membrane_batches(m, b.batches.data(), b.batches.size(), xw, ctx, nullptr, isa);
   });
   state.counters["colours"] = b.num_colours();
   state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();
@@ -135,8 +139,8 @@ void BM_MembraneStvkPbdColouredOrder(benchmark::State& state) {
 void BM_IsometricBendingPbdColouredOrder(benchmark::State& state) {
   const ColouredBatches<IsometricBatch> b = coloured_isometric_batches();
   const BatchIsa isa = state.range(0) == 0 ? BatchIsa::Scalar : BatchIsa::Auto;
-  run_sweeps(state, scene().membranes_and_isometric.isometric_hinges.size(), [&](const ProjectionContext& ctx) {
-    project_isometric_hinge_batches(b.batches.data(), b.batches.size(), 0.01, ctx, nullptr, isa);
+  run_sweeps(state, scene().membranes_and_isometric.isometric_hinges.size(), [&](const ProjectionContext& ctx, PaddedVertex* xw) {
+    project_isometric_hinge_batches(b.batches.data(), b.batches.size(), 0.01, xw, ctx, nullptr, isa);
   });
   state.counters["colours"] = b.num_colours();
   state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();

@@ -64,21 +64,52 @@ IsometricHingeConstraint lane_record(const IsometricBatch& b, int k) {
   return c;
 }
 
+/// One lane through the scalar kernel: its stencil is copied out of xw into a local (x, w) pair
+/// (vertices 0..N-1), projected, and copied back, so the arithmetic is the kernel's own.
+template <int N, class Project>
+void project_lane(PaddedVertex* xw, const int (&v)[N][BATCH_LANES], int k, const ProjectionContext& ctx,
+                  Project project) {
+  double x[3 * N], w[N];
+  for (int j = 0; j < N; ++j) {
+    const PaddedVertex& p = xw[v[j][k]];
+    x[3 * j] = p.x, x[3 * j + 1] = p.y, x[3 * j + 2] = p.z;
+    w[j] = p.w;
+  }
+  ProjectionContext local = ctx;
+  local.x = x;
+  local.w = w;
+  project(local);
+  for (int j = 0; j < N; ++j) {
+    PaddedVertex& p = xw[v[j][k]];
+    p.x = x[3 * j], p.y = x[3 * j + 1], p.z = x[3 * j + 2];
+  }
+}
+
 void membrane_batches_scalar(const Stvk& material, const MembraneBatch* batches, std::size_t count,
-                             const ProjectionContext& ctx, double* lambda) {
+                             PaddedVertex* xw, const ProjectionContext& ctx, double* lambda) {
   const ElementMaterialData isotropic{};
   for (std::size_t b = 0; b < count; ++b)
-    for (int k = 0; k < batches[b].count; ++k)
-      project_membrane(material, lane_record(batches[b], k), isotropic, 1.0, ctx,
-                       lambda ? lambda + BATCH_LANES * b + k : nullptr);
+    for (int k = 0; k < batches[b].count; ++k) {
+      PackedMembrane c = lane_record(batches[b], k);
+      c.v = {0, 1, 2};  // the local stencil of project_lane
+      double* lam = lambda ? lambda + BATCH_LANES * b + k : nullptr;
+      project_lane<3>(xw, batches[b].v, k, ctx, [&](const ProjectionContext& local) {
+        project_membrane(material, c, isotropic, 1.0, local, lam);
+      });
+    }
 }
 
 void isometric_batches_scalar(const IsometricBatch* batches, std::size_t count, double k_bending,
-                              const ProjectionContext& ctx, double* lambda) {
+                              PaddedVertex* xw, const ProjectionContext& ctx, double* lambda) {
   for (std::size_t b = 0; b < count; ++b)
-    for (int k = 0; k < batches[b].count; ++k)
-      project_isometric_hinge(lane_record(batches[b], k), k_bending, ctx,
-                              lambda ? lambda + 3 * (BATCH_LANES * b + k) : nullptr);
+    for (int k = 0; k < batches[b].count; ++k) {
+      IsometricHingeConstraint c = lane_record(batches[b], k);
+      c.v = {0, 1, 2, 3};
+      double* lam = lambda ? lambda + 3 * (BATCH_LANES * b + k) : nullptr;
+      project_lane<4>(xw, batches[b].v, k, ctx, [&](const ProjectionContext& local) {
+        project_isometric_hinge(c, k_bending, local, lam);
+      });
+    }
 }
 
 #if SHELLCONTRACT_BATCH_AVX2
@@ -109,9 +140,42 @@ SC_AVX2_INLINE V3 masked(const V3& a, V mask) {
 /// Ordered a > b: false on NaN, like the scalar kernels' !(a > b) guards.
 SC_AVX2_INLINE V greater(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
 
-/// Rows x[3 v[k] .. 3 v[k] + 2] of the four lanes, transposed to (X, Y, Z) registers: the x, y
-/// pairs go through two 128-bit loads per register pair and one unpack, z through scalar loads.
-SC_AVX2_INLINE V3 gather(const double* x, const int* v) {
+/// Four lanes of a padded vertex: the position and the inverse mass w.
+struct V4 {
+  V3 x;
+  V w;
+};
+
+/// Rows xw[v[k]] of the four lanes, transposed to (X, Y, Z, W) registers: four 128-bit loads
+/// into the low halves, four into the high halves (lanes 2 and 3), four unpacks.
+SC_AVX2_INLINE V4 gather(const PaddedVertex* xw, const int* v) {
+  const double* p0 = &xw[v[0]].x;
+  const double* p1 = &xw[v[1]].x;
+  const double* p2 = &xw[v[2]].x;
+  const double* p3 = &xw[v[3]].x;
+  const V xy02 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p0)), _mm_load_pd(p2), 1);
+  const V xy13 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p1)), _mm_load_pd(p3), 1);
+  const V zw02 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p0 + 2)), _mm_load_pd(p2 + 2), 1);
+  const V zw13 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p1 + 2)), _mm_load_pd(p3 + 2), 1);
+  return {{_mm256_unpacklo_pd(xy02, xy13), _mm256_unpackhi_pd(xy02, xy13), _mm256_unpacklo_pd(zw02, zw13)},
+          _mm256_unpackhi_pd(zw02, zw13)};
+}
+
+/// Inverse of gather for the first `count` lanes, one aligned 256-bit store per vertex (w is
+/// written back unchanged). Padding lanes are never written.
+SC_AVX2_INLINE void scatter(PaddedVertex* xw, const int* v, int count, const V3& a, V w) {
+  const V xy02 = _mm256_unpacklo_pd(a.x, a.y);  // x0 y0 x2 y2
+  const V xy13 = _mm256_unpackhi_pd(a.x, a.y);  // x1 y1 x3 y3
+  const V zw02 = _mm256_unpacklo_pd(a.z, w);    // z0 w0 z2 w2
+  const V zw13 = _mm256_unpackhi_pd(a.z, w);    // z1 w1 z3 w3
+  _mm256_store_pd(&xw[v[0]].x, _mm256_permute2f128_pd(xy02, zw02, 0x20));
+  if (count > 1) _mm256_store_pd(&xw[v[1]].x, _mm256_permute2f128_pd(xy13, zw13, 0x20));
+  if (count > 2) _mm256_store_pd(&xw[v[2]].x, _mm256_permute2f128_pd(xy02, zw02, 0x31));
+  if (count > 3) _mm256_store_pd(&xw[v[3]].x, _mm256_permute2f128_pd(xy13, zw13, 0x31));
+}
+
+/// Rows x[3 v[k] .. 3 v[k] + 2] of a 3-stride array (the XPBD hinge multipliers).
+SC_AVX2_INLINE V3 gather3(const double* x, const int* v) {
   const double* p0 = x + 3 * static_cast<std::ptrdiff_t>(v[0]);
   const double* p1 = x + 3 * static_cast<std::ptrdiff_t>(v[1]);
   const double* p2 = x + 3 * static_cast<std::ptrdiff_t>(v[2]);
@@ -124,50 +188,41 @@ SC_AVX2_INLINE V3 gather(const double* x, const int* v) {
           _mm256_insertf128_pd(_mm256_castpd128_pd256(z01), z23, 1)};
 }
 
-/// Inverse of gather for the first `count` lanes (padding lanes are never written).
-SC_AVX2_INLINE void scatter(double* x, const int* v, int count, const V3& a) {
-  const V xy02 = _mm256_unpacklo_pd(a.x, a.y);  // x0 y0 x2 y2
-  const V xy13 = _mm256_unpackhi_pd(a.x, a.y);  // x1 y1 x3 y3
+/// Inverse of gather3 (all four rows).
+SC_AVX2_INLINE void scatter3(double* x, const int* v, const V3& a) {
+  const V xy02 = _mm256_unpacklo_pd(a.x, a.y);
+  const V xy13 = _mm256_unpackhi_pd(a.x, a.y);
   const __m128d z01 = _mm256_castpd256_pd128(a.z);
   const __m128d z23 = _mm256_extractf128_pd(a.z, 1);
-  double* p = x + 3 * static_cast<std::ptrdiff_t>(v[0]);
-  _mm_storeu_pd(p, _mm256_castpd256_pd128(xy02));
-  _mm_store_sd(p + 2, z01);
-  if (count > 1) {
-    p = x + 3 * static_cast<std::ptrdiff_t>(v[1]);
-    _mm_storeu_pd(p, _mm256_castpd256_pd128(xy13));
-    _mm_storeh_pd(p + 2, z01);
-  }
-  if (count > 2) {
-    p = x + 3 * static_cast<std::ptrdiff_t>(v[2]);
-    _mm_storeu_pd(p, _mm256_extractf128_pd(xy02, 1));
-    _mm_store_sd(p + 2, z23);
-  }
-  if (count > 3) {
-    p = x + 3 * static_cast<std::ptrdiff_t>(v[3]);
-    _mm_storeu_pd(p, _mm256_extractf128_pd(xy13, 1));
-    _mm_storeh_pd(p + 2, z23);
-  }
+  double* p0 = x + 3 * static_cast<std::ptrdiff_t>(v[0]);
+  double* p1 = x + 3 * static_cast<std::ptrdiff_t>(v[1]);
+  double* p2 = x + 3 * static_cast<std::ptrdiff_t>(v[2]);
+  double* p3 = x + 3 * static_cast<std::ptrdiff_t>(v[3]);
+  _mm_storeu_pd(p0, _mm256_castpd256_pd128(xy02));
+  _mm_store_sd(p0 + 2, z01);
+  _mm_storeu_pd(p1, _mm256_castpd256_pd128(xy13));
+  _mm_storeh_pd(p1 + 2, z01);
+  _mm_storeu_pd(p2, _mm256_extractf128_pd(xy02, 1));
+  _mm_store_sd(p2 + 2, z23);
+  _mm_storeu_pd(p3, _mm256_extractf128_pd(xy13, 1));
+  _mm_storeh_pd(p3 + 2, z23);
 }
 
 /// Lane k reads row k of a 4 by 3 block (the XPBD hinge multipliers of one batch).
 constexpr int LANE_IDS[BATCH_LANES] = {0, 1, 2, 3};
 
-SC_AVX2_INLINE V gather_scalar(const double* w, const int* v) {
-  return _mm256_set_pd(w[v[3]], w[v[2]], w[v[1]], w[v[0]]);
-}
-
 /// project_membrane for StVK, four lanes at a time; each line mirrors constraint_kernels.hpp.
 void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* batches,
-                           std::size_t count, const ProjectionContext& ctx, double* lambda) {
-  double* const x = ctx.x;
-  const double* const w = ctx.w;
+                           std::size_t count, PaddedVertex* xw, const ProjectionContext& ctx,
+                           double* lambda) {
   const V one = splat(1.0), half = splat(0.5), two = splat(2.0);
   const V vmu = splat(mu), two_mu = splat(2.0 * mu), vlam = splat(lambda_lame);
   const V floor = splat(ctx.energy_floor), tiny = splat(1e-300), at = splat(ctx.alpha_tilde);
   for (std::size_t b = 0; b < count; ++b) {
     const MembraneBatch& c = batches[b];
-    const V3 x1 = gather(x, c.v[0]), x2 = gather(x, c.v[1]), x3 = gather(x, c.v[2]);
+    const V4 r1 = gather(xw, c.v[0]), r2 = gather(xw, c.v[1]), r3 = gather(xw, c.v[2]);
+    const V3 &x1 = r1.x, &x2 = r2.x, &x3 = r3.x;
+    const V w0 = r1.w, w1 = r2.w, w2 = r3.w;
     const V dm00 = _mm256_load_pd(c.dm00), dm01 = _mm256_load_pd(c.dm01);
     const V dm11 = _mm256_load_pd(c.dm11), area = _mm256_load_pd(c.rest_area);
     // C-form (math-spec 4.4): F = [e1 e2] Dm^-1, C = F^T F, S = 2 mu E + lambda tr(E) I.
@@ -184,7 +239,6 @@ void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* b
     const V3 g1 = (p1 * dm11) * area;
     const V3 g2 = V3{-g0.x - g1.x, -g0.y - g1.y, -g0.z - g1.z};
     const V E = area * psi;
-    const V w0 = gather_scalar(w, c.v[0]), w1 = gather_scalar(w, c.v[1]), w2 = gather_scalar(w, c.v[2]);
     const V n0 = dot(g0, g0), n1 = dot(g1, g1), n2 = dot(g2, g2);
     const V G = w0 * n0 + w1 * n1 + w2 * n2;
     // The skips of math-spec 9.1(d), per lane; padding lanes have E = 0.
@@ -207,17 +261,15 @@ void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* b
       sigma = C * (C + at * l) / (G + at * C * C);
       _mm256_storeu_pd(lam, _mm256_blendv_pd(l, l - C * sigma, active));
     }
-    scatter(x, c.v[0], c.count, x1 - masked(g0 * (sigma * w0), active));
-    scatter(x, c.v[1], c.count, x2 - masked(g1 * (sigma * w1), active));
-    scatter(x, c.v[2], c.count, x3 - masked(g2 * (sigma * w2), active));
+    scatter(xw, c.v[0], c.count, x1 - masked(g0 * (sigma * w0), active), w0);
+    scatter(xw, c.v[1], c.count, x2 - masked(g1 * (sigma * w1), active), w1);
+    scatter(xw, c.v[2], c.count, x3 - masked(g2 * (sigma * w2), active), w2);
   }
 }
 
 /// project_isometric_hinge, four lanes at a time (math-spec 8.2).
 void isometric_batches_avx2(const IsometricBatch* batches, std::size_t count, double k_bending,
-                            const ProjectionContext& ctx, double* lambda) {
-  double* const x = ctx.x;
-  const double* const w = ctx.w;
+                            PaddedVertex* xw, const ProjectionContext& ctx, double* lambda) {
   const V one = splat(1.0), tiny = splat(1e-300), at = splat(ctx.alpha_tilde);
   const V kb = splat(k_bending), two = splat(2.0);
   const V sign = splat(-0.0);
@@ -226,8 +278,9 @@ void isometric_batches_avx2(const IsometricBatch* batches, std::size_t count, do
     V3 xs[4];
     V ws[4], K[4];
     for (int j = 0; j < 4; ++j) {
-      xs[j] = gather(x, c.v[j]);
-      ws[j] = gather_scalar(w, c.v[j]);
+      const V4 r = gather(xw, c.v[j]);
+      xs[j] = r.x;
+      ws[j] = r.w;
       K[j] = _mm256_load_pd(c.K[j]);
     }
     const V3 h = xs[0] * K[0] + xs[1] * K[1] + xs[2] * K[2] + xs[3] * K[3];
@@ -251,20 +304,20 @@ void isometric_batches_avx2(const IsometricBatch* batches, std::size_t count, do
         shrink = _mm256_blendv_pd(one, max_step / longest, greater(longest, max_step));
       }
       for (int j = 0; j < 4; ++j)
-        scatter(x, c.v[j], c.count, xs[j] - masked(base * (shrink * ws[j] * K[j]), active));
+        scatter(xw, c.v[j], c.count, xs[j] - masked(base * (shrink * ws[j] * K[j]), active), ws[j]);
       continue;
     }
     // XPBD vector form: C = sqrt(beta) h, beta = 3 k_B / (A0 + A1) (math-spec 8.2).
     double* lam = lambda + 3 * BATCH_LANES * b;
-    const V3 l = gather(lam, LANE_IDS);
+    const V3 l = gather3(lam, LANE_IDS);
     const V beta = kb * _mm256_load_pd(c.three_over_area);
     const V sqrt_beta = _mm256_sqrt_pd(_mm256_max_pd(beta, _mm256_setzero_pd()));
     const V denom = beta * wK2 + at;
     const V3 dlam{(-sqrt_beta * h.x - at * l.x) / denom, (-sqrt_beta * h.y - at * l.y) / denom,
                   (-sqrt_beta * h.z - at * l.z) / denom};
-    scatter(lam, LANE_IDS, BATCH_LANES, l + masked(dlam, active));
+    scatter3(lam, LANE_IDS, l + masked(dlam, active));
     for (int j = 0; j < 4; ++j)
-      scatter(x, c.v[j], c.count, xs[j] + masked(dlam * (ws[j] * sqrt_beta * K[j]), active));
+      scatter(xw, c.v[j], c.count, xs[j] + masked(dlam * (ws[j] * sqrt_beta * K[j]), active), ws[j]);
   }
 }
 
@@ -307,30 +360,42 @@ bool batch_avx2_available() {
 #endif
 }
 
+void pack_padded(const double* x, const double* w, std::size_t begin, std::size_t end, PaddedVertex* xw) {
+  for (std::size_t i = begin; i < end; ++i) xw[i] = PaddedVertex{x[3 * i], x[3 * i + 1], x[3 * i + 2], w[i]};
+}
+
+void unpack_padded(const PaddedVertex* xw, std::size_t begin, std::size_t end, double* x) {
+  for (std::size_t i = begin; i < end; ++i) {
+    x[3 * i] = xw[i].x;
+    x[3 * i + 1] = xw[i].y;
+    x[3 * i + 2] = xw[i].z;
+  }
+}
+
 void project_stvk_membrane_batches(const Stvk& material, const MembraneBatch* batches,
-                                   std::size_t count, const ProjectionContext& ctx, double* lambda,
-                                   BatchIsa isa) {
+                                   std::size_t count, PaddedVertex* xw,
+                                   const ProjectionContext& ctx, double* lambda, BatchIsa isa) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (isa == BatchIsa::Auto && batch_avx2_available()) {
-    membrane_batches_avx2(material.mu(), material.lambda(), batches, count, ctx, lambda);
+    membrane_batches_avx2(material.mu(), material.lambda(), batches, count, xw, ctx, lambda);
     return;
   }
 #endif
   (void)isa;
-  membrane_batches_scalar(material, batches, count, ctx, lambda);
+  membrane_batches_scalar(material, batches, count, xw, ctx, lambda);
 }
 
 void project_isometric_hinge_batches(const IsometricBatch* batches, std::size_t count,
-                                     double k_bending, const ProjectionContext& ctx, double* lambda,
-                                     BatchIsa isa) {
+                                     double k_bending, PaddedVertex* xw,
+                                     const ProjectionContext& ctx, double* lambda, BatchIsa isa) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (isa == BatchIsa::Auto && batch_avx2_available()) {
-    isometric_batches_avx2(batches, count, k_bending, ctx, lambda);
+    isometric_batches_avx2(batches, count, k_bending, xw, ctx, lambda);
     return;
   }
 #endif
   (void)isa;
-  isometric_batches_scalar(batches, count, k_bending, ctx, lambda);
+  isometric_batches_scalar(batches, count, k_bending, xw, ctx, lambda);
 }
 
 }  // namespace shellcontract

@@ -43,7 +43,15 @@ enum SweepKind : int {
   ISOMETRIC,          ///< isometric hinges one by one
   DIHEDRAL,
   ANISOTROPIC,
+  PACK,    ///< vertices: positions and inverse masses into the batches' padded rows
+  UNPACK,  ///< vertices: positions back from the padded rows
 };
+
+/// Vertices per chunk of a PACK or UNPACK phase.
+constexpr std::size_t VERTEX_GRAIN = 1024;
+
+/// True for the kinds that work on the padded rows (PaddedVertex) instead of x.
+bool padded_kind(int kind) { return kind == MEMBRANE_BATCHES || kind == ISOMETRIC_BATCHES; }
 
 /// The solver for one concrete membrane material M and anisotropic energy A: the template makes
 /// the per-element material calls direct and inlinable (material.hpp).
@@ -105,7 +113,6 @@ class GaussSeidelSolver final : public ConstraintSolver {
     }
     aniso_normal_.resize(set_.anisotropic.size(), Vec3::Zero());
     aniso_orientation_.resize(set_.anisotropic.size(), 1.0);
-    if (coloured_) schedule_ = ColourSchedule(sweep_phases(), settings_.iterations, arena_->max_concurrency());
   }
 
   void solve(Positions& x, const Eigen::VectorXd& inv_mass) override {
@@ -158,8 +165,11 @@ class GaussSeidelSolver final : public ConstraintSolver {
   }
 
   /// Phases of one sweep in math-spec 9.4 order (membranes, isometric hinges, dihedral hinges,
-  /// anisotropic faces), one per colour, each kind through its batches when it has them.
-  std::vector<ColourPhase> sweep_phases() const {
+  /// anisotropic faces), one per colour, each kind through its batches when it has them, with a
+  /// PACK or UNPACK phase wherever the sweep moves between x and the padded rows. A sweep starts
+  /// in the state its last phase leaves (solve_impl packs before the first sweep and unpacks
+  /// after the last one as needed).
+  std::vector<ColourPhase> sweep_phases(std::size_t num_vertices) const {
     std::vector<ColourPhase> phases;
     auto add = [&](SweepKind kind, const ColourOffsets& colours, std::size_t grain) {
       for (std::size_t c = 0; c + 1 < colours.size(); ++c)
@@ -175,11 +185,23 @@ class GaussSeidelSolver final : public ConstraintSolver {
       add(ISOMETRIC, isometric_colours_, COLOUR_GRAIN);
     add(DIHEDRAL, dihedral_colours_, COLOUR_GRAIN);
     add(ANISOTROPIC, aniso_colours_, COLOUR_GRAIN);
-    return phases;
+    std::vector<ColourPhase> out;
+    for (std::size_t p = 0; p < phases.size(); ++p) {
+      // The state before phase p: the previous phase's, or (p = 0) the last phase's.
+      const bool before = padded_kind(phases[p == 0 ? phases.size() - 1 : p - 1].kind);
+      const bool now = padded_kind(phases[p].kind);
+      if (p > 0 && before != now) out.push_back({now ? PACK : UNPACK, 0, num_vertices, VERTEX_GRAIN});
+      out.push_back(phases[p]);
+    }
+    // Back to the state the first phase expects, for the next sweep.
+    if (!phases.empty() && padded_kind(phases.front().kind) != padded_kind(phases.back().kind))
+      out.push_back({padded_kind(phases.front().kind) ? PACK : UNPACK, 0, num_vertices, VERTEX_GRAIN});
+    return out;
   }
 
   /// Projects items [b, e) of one kind in order (constraints, or batches of four).
   void project_range(int kind, std::size_t b, std::size_t e, const ProjectionContext& ctx) {
+    PaddedVertex* const xw = padded_.data();
     const bool xpbd = settings_.kind == SolverKind::Xpbd;
     const double kb = settings_.k_bending;
     const ElementMaterialData isotropic{};  // isotropic membranes ignore the fibre
@@ -187,7 +209,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
     switch (kind) {
       case MEMBRANE_BATCHES:
         if constexpr (std::is_same_v<M, Stvk>)
-          project_stvk_membrane_batches(material_, &membrane_batches_.batches[b], e - b, ctx,
+          project_stvk_membrane_batches(material_, &membrane_batches_.batches[b], e - b, xw, ctx,
                                         xpbd ? &lambda_membrane_[BATCH_LANES * b] : nullptr);
         break;
       case MEMBRANES:
@@ -199,7 +221,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
             project_membrane(material_, packed_membranes_[i], isotropic, 1.0, ctx, nullptr);
         break;
       case ISOMETRIC_BATCHES:
-        project_isometric_hinge_batches(&isometric_batches_.batches[b], e - b, kb, ctx,
+        project_isometric_hinge_batches(&isometric_batches_.batches[b], e - b, kb, xw, ctx,
                                         xpbd ? &lambda_isometric_[3 * BATCH_LANES * b] : nullptr);
         break;
       case ISOMETRIC:
@@ -227,6 +249,12 @@ class GaussSeidelSolver final : public ConstraintSolver {
                              xpbd ? &lambda_aniso_[i] : nullptr);
         }
         break;
+      case PACK:
+        pack_padded(ctx.x, ctx.w, b, e, xw);
+        break;
+      case UNPACK:
+        unpack_padded(xw, b, e, ctx.x);
+        break;
       default:
         break;
     }
@@ -247,7 +275,19 @@ class GaussSeidelSolver final : public ConstraintSolver {
     }
     if (!set_.anisotropic.empty()) freeze_anisotropic_frames(x);
     if (coloured_) {
+      const std::size_t n = static_cast<std::size_t>(x.rows());
+      if (!schedule_built_ || n != padded_.size()) {  // first call (or a new vertex count)
+        const std::vector<ColourPhase> phases = sweep_phases(n);
+        schedule_ = ColourSchedule(phases, settings_.iterations, arena_->max_concurrency());
+        padded_.resize(n);
+        first_padded_ = !phases.empty() && padded_kind(phases.front().kind);
+        last_padded_ = !phases.empty() && (phases.back().kind == PACK ||
+                                           (phases.back().kind != UNPACK && padded_kind(phases.back().kind)));
+        schedule_built_ = true;
+      }
+      if (first_padded_) pack_padded(ctx.x, ctx.w, 0, n, padded_.data());
       schedule_.run([&](int kind, std::size_t b, std::size_t e) { project_range(kind, b, e, ctx); });
+      if (last_padded_) unpack_padded(padded_.data(), 0, n, ctx.x);
       return;
     }
     for (int it = 0; it < settings_.iterations; ++it) {
@@ -339,7 +379,11 @@ class GaussSeidelSolver final : public ConstraintSolver {
   std::vector<PackedMembrane> packed_aniso_;      ///< set_.anisotropic, packed, same order
   std::vector<ElementMaterialData> aniso_data_;   ///< fibre of each anisotropic face
   std::unique_ptr<tbb::task_arena> arena_;        ///< Coloured order only: settings.threads
-  ColourSchedule schedule_;                       ///< Coloured order only: the phases of a solve
+  ColourSchedule schedule_;          ///< Coloured order only: the phases of a solve (first solve)
+  bool schedule_built_ = false;
+  bool first_padded_ = false;        ///< a sweep starts on padded_ (pack before the first)
+  bool last_padded_ = false;         ///< a sweep ends on padded_ (unpack after the last)
+  std::vector<PaddedVertex> padded_; ///< Coloured order: the batches' state (x, y, z, w rows)
   ColouredBatches<MembraneBatch> membrane_batches_;    ///< Coloured order, StVK only
   ColouredBatches<IsometricBatch> isometric_batches_;  ///< Coloured order only
 };

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -28,6 +29,13 @@ struct Scene {
   std::vector<double> w;
   std::vector<std::size_t> colours;  ///< colour offsets
 };
+
+/// The padded rows (x, y, z, w) of a scene's start state.
+std::vector<PaddedVertex> padded(const Scene& s) {
+  std::vector<PaddedVertex> xw(s.w.size());
+  pack_padded(s.x0.data(), s.w.data(), 0, xw.size(), xw.data());
+  return xw;
+}
 
 /// Largest |x - ref| over every coordinate, against the tolerance 1e-12 |ref - x0| + 4 ulp(x0):
 /// the AVX2 path may differ from the scalar one by rounding only (FMA), relative to the step.
@@ -117,9 +125,12 @@ std::vector<double> batched_membranes(const Stvk& m, const MembraneScene& s, Bat
                                       std::vector<double>* lambda) {
   const ColouredBatches<MembraneBatch> b = make_membrane_batches(s.records, s.colours);
   std::vector<double> x = s.x0;
+  std::vector<PaddedVertex> xw = padded(s);
   const ProjectionContext ctx = context(x, s.w);
   std::vector<double> lam(BATCH_LANES * b.batches.size(), 0.0);
-  project_stvk_membrane_batches(m, b.batches.data(), b.batches.size(), ctx, lambda ? lam.data() : nullptr, isa);
+  project_stvk_membrane_batches(m, b.batches.data(), b.batches.size(), xw.data(), ctx,
+                                lambda ? lam.data() : nullptr, isa);
+  unpack_padded(xw.data(), 0, xw.size(), x.data());
   if (lambda) {  // back to constraint order: batch lanes of each colour in sequence
     lambda->clear();
     for (const MembraneBatch& batch : b.batches)
@@ -172,6 +183,20 @@ TEST(MembraneBatches, SkippedLanesAreUntouchedAndTheClampHolds) {
     longest = std::max(longest, std::hypot(x[3 * i] - s.x0[3 * i], x[3 * i + 1] - s.x0[3 * i + 1],
                                            x[3 * i + 2] - s.x0[3 * i + 2]));
   EXPECT_NEAR(longest, 1e-3, 1e-15) << "the clamp must bind on the clamped constraints";
+}
+
+TEST(PaddedVertices, PackAndUnpackRoundTripAndRowsAre32ByteAligned) {
+  const std::vector<double> x{1, 2, 3, 4, 5, 6, 7, 8, 9}, w{0.5, 0.0, 2.0};
+  std::vector<PaddedVertex> xw(3);
+  pack_padded(x.data(), w.data(), 0, 3, xw.data());
+  EXPECT_EQ(xw[1].x, 4.0);
+  EXPECT_EQ(xw[1].z, 6.0);
+  EXPECT_EQ(xw[2].w, 2.0);
+  EXPECT_EQ(sizeof(PaddedVertex), 32u);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(xw.data()) % 32, 0u) << "aligned 256-bit loads need it";
+  std::vector<double> back(9, 0.0);
+  unpack_padded(xw.data(), 1, 3, back.data());  // a sub-range: vertex 0 untouched
+  EXPECT_EQ(back, (std::vector<double>{0, 0, 0, 4, 5, 6, 7, 8, 9}));
 }
 
 TEST(MembraneBatches, LayoutPadsEachColoursLastBatchWithLaneZero) {
@@ -246,9 +271,12 @@ std::vector<double> scalar_hinges(const HingeScene& s, double kb, std::vector<do
 std::vector<double> batched_hinges(const HingeScene& s, double kb, BatchIsa isa, std::vector<double>* lambda) {
   const ColouredBatches<IsometricBatch> b = make_isometric_batches(s.records, s.colours);
   std::vector<double> x = s.x0;
+  std::vector<PaddedVertex> xw = padded(s);
   const ProjectionContext ctx = context(x, s.w);
   std::vector<double> lam(3 * BATCH_LANES * b.batches.size(), 0.0);
-  project_isometric_hinge_batches(b.batches.data(), b.batches.size(), kb, ctx, lambda ? lam.data() : nullptr, isa);
+  project_isometric_hinge_batches(b.batches.data(), b.batches.size(), kb, xw.data(), ctx,
+                                  lambda ? lam.data() : nullptr, isa);
+  unpack_padded(xw.data(), 0, xw.size(), x.data());
   if (lambda) {
     lambda->clear();
     for (std::size_t j = 0; j < b.batches.size(); ++j)

@@ -2,7 +2,9 @@
 // projected together, one per SIMD lane. Constraints of a colour share no vertex, so the four
 // lanes are independent and a batch gives the same result as projecting its four constraints one
 // after the other with the same arithmetic. The rest data is stored structure-of-arrays per batch
-// (flat per-colour arrays, no pointers) so that a sweep streams through memory.
+// (flat per-colour arrays, no pointers) so that a sweep streams through memory. The state is
+// read from and written to PaddedVertex rows (x, y, z, w): one aligned 256-bit load or store per
+// vertex instead of a 2 + 1 split and a separate inverse-mass gather.
 //
 // Two implementations, chosen once per process:
 //  - AVX2 + FMA (x86-64 CPUs that have both; function-level target attribute, so the default
@@ -24,6 +26,18 @@ namespace shellcontract {
 
 /// Constraints per batch: one 256-bit register of doubles.
 inline constexpr int BATCH_LANES = 4;
+
+/// One vertex of the batched kernels' state: position and inverse mass, one 32-byte row.
+struct alignas(32) PaddedVertex {
+  double x, y, z;  ///< position (normalized units)
+  double w;        ///< inverse mass (0 = pinned)
+};
+
+/// Copies vertices [begin, end) of positions x (3 per vertex) and inverse masses w into xw.
+void pack_padded(const double* x, const double* w, std::size_t begin, std::size_t end, PaddedVertex* xw);
+
+/// Copies the positions of vertices [begin, end) of xw back to x (3 per vertex).
+void unpack_padded(const PaddedVertex* xw, std::size_t begin, std::size_t end, double* x);
 
 /// Four membrane constraints of one colour (PackedMembrane fields, lane k = k-th constraint).
 /// Lanes at or past `count` are padding: lane 0's vertex ids (so every read stays in bounds and
@@ -80,17 +94,21 @@ bool batch_avx2_available();
 /// guards of math-spec 9.1(d) when lambda == nullptr, else XPBD (9.2) with one multiplier per
 /// lane at lambda[4 b + k] for batch b. Same contract per lane as project_membrane with
 /// stiffness 1 and ElementMaterialData{} (StVK is isotropic).
+/// @param xw   positions and inverse masses, updated in place
+/// @param ctx  energy_floor and alpha_tilde (its x and w are not used: xw holds the state)
 /// \pre no two real lanes of a batch share a vertex (one colour)
 void project_stvk_membrane_batches(const Stvk& material, const MembraneBatch* batches,
-                                   std::size_t count, const ProjectionContext& ctx, double* lambda,
+                                   std::size_t count, PaddedVertex* xw,
+                                   const ProjectionContext& ctx, double* lambda,
                                    BatchIsa isa = BatchIsa::Auto);
 
 /// Projects `count` isometric hinge batches in order (project_isometric_hinge per lane, math-spec
 /// 8.2): PBD when lambda == nullptr, else XPBD with the 3-vector multiplier of lane k of batch b
-/// at lambda[12 b + 3 k .. 12 b + 3 k + 2].
+/// at lambda[12 b + 3 k .. 12 b + 3 k + 2]. xw and ctx as for project_stvk_membrane_batches.
 /// \pre no two real lanes of a batch share a vertex (one colour)
 void project_isometric_hinge_batches(const IsometricBatch* batches, std::size_t count,
-                                     double k_bending, const ProjectionContext& ctx, double* lambda,
+                                     double k_bending, PaddedVertex* xw,
+                                     const ProjectionContext& ctx, double* lambda,
                                      BatchIsa isa = BatchIsa::Auto);
 
 }  // namespace shellcontract
