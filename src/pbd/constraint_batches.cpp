@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cstddef>
 #include <stdexcept>
+#include <tuple>
 
-// The AVX2 path needs GCC-compatible vector extensions (operators on __m256d) and x86-64.
-#if defined(__GNUC__) && defined(__x86_64__)
+// The AVX2 path needs GCC's vector operators on __m256d, its target pragma and x86-64 (the
+// project's compiler is g++ 12; others get the scalar path).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
 #define SHELLCONTRACT_BATCH_AVX2 1
 #include <immintrin.h>
 #else
