@@ -22,6 +22,7 @@
 #include "shellcontract/material/stvk.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/pbd/colouring.hpp"
+#include "shellcontract/pbd/constraint_batches.hpp"
 #include "shellcontract/pbd/constraint_kernels.hpp"
 #include "shellcontract/pbd/solver.hpp"
 #include "shellcontract/sim/simulator.hpp"
@@ -59,10 +60,13 @@ const Scene& scene() {
   return s;
 }
 
+/// Times sweep(ctx, xw) with the state reset (untimed) before each sweep; xw holds the padded
+/// rows of the batched kernels (x and w packed into it).
 template <class Sweep>
 void run_sweeps(benchmark::State& state, std::size_t count, Sweep sweep) {
   const Scene& sc = scene();
   Positions x = sc.x;
+  std::vector<PaddedVertex> xw(static_cast<std::size_t>(x.rows()));
   ProjectionContext ctx;
   ctx.x = x.data();
   ctx.w = sc.w.data();
@@ -70,8 +74,9 @@ void run_sweeps(benchmark::State& state, std::size_t count, Sweep sweep) {
   for (auto _ : state) {
     state.PauseTiming();
     x = sc.x;
+    pack_padded(x.data(), sc.w.data(), 0, xw.size(), xw.data());
     state.ResumeTiming();
-    sweep(ctx);
+    sweep(ctx, xw.data());
     benchmark::ClobberMemory();
   }
   state.counters["constraints"] = static_cast<double>(count);
@@ -82,55 +87,71 @@ void run_sweeps(benchmark::State& state, std::size_t count, Sweep sweep) {
 void BM_MembraneStvkPbd(benchmark::State& state) {
   const auto& c = scene().membranes_and_isometric.membranes;
   const Stvk m(MaterialParams{});
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx, PaddedVertex*) {
     for (const MembraneConstraint& k : c) project_membrane(m, k, 1.0, ctx, nullptr);
   });
 }
 
 void BM_IsometricBendingPbd(benchmark::State& state) {
   const auto& c = scene().membranes_and_isometric.isometric_hinges;
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx, PaddedVertex*) {
     for (const IsometricHingeConstraint& k : c) project_isometric_hinge(k, 0.01, ctx, nullptr);
   });
 }
 
 void BM_DihedralBendingPbd(benchmark::State& state) {
   const auto& c = scene().dihedral.dihedral_hinges;
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx, PaddedVertex*) {
     for (const DihedralHingeConstraint& k : c) project_dihedral_hinge(k, 0.01, ctx, nullptr);
   });
 }
 
-void BM_MembraneStvkPbdColouredOrder(benchmark::State& state) {
+/// Membranes grouped by colour and packed into SIMD batches, as the Coloured solver holds them.
+ColouredBatches<MembraneBatch> coloured_membrane_batches() {
   std::vector<MembraneConstraint> c = scene().membranes_and_isometric.membranes;
   const Colouring col = colour_constraints(c);
   apply_order(c, col.order);
   std::vector<PackedMembrane> packed;
   for (const MembraneConstraint& k : c) packed.push_back(pack_membrane(k));
-  const Stvk m(MaterialParams{});
-  const ElementMaterialData iso;
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
-    for (const PackedMembrane& k : packed) project_membrane(m, k, iso, 1.0, ctx, nullptr);
-  });
-  state.counters["colours"] = col.num_colours();
+  return make_membrane_batches(packed, col.offsets);
 }
 
-void BM_IsometricBendingPbdColouredOrder(benchmark::State& state) {
+ColouredBatches<IsometricBatch> coloured_isometric_batches() {
   std::vector<IsometricHingeConstraint> c = scene().membranes_and_isometric.isometric_hinges;
   const Colouring col = colour_constraints(c);
   apply_order(c, col.order);
-  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx) {
-    for (const IsometricHingeConstraint& k : c) project_isometric_hinge(k, 0.01, ctx, nullptr);
+  return make_isometric_batches(c, col.offsets);
+}
+
+/// state.range(0) = 0: the scalar kernels in colour order; 1: the batched path the solver runs
+/// (AVX2 + FMA when the CPU has them, counter avx2 = 1).
+void BM_MembraneStvkPbdColouredOrder(benchmark::State& state) {
+  const ColouredBatches<MembraneBatch> b = coloured_membrane_batches();
+  const Stvk m(MaterialParams{});
+  const BatchIsa isa = state.range(0) == 0 ? BatchIsa::Scalar : BatchIsa::Auto;
+  run_sweeps(state, scene().membranes_and_isometric.membranes.size(), [&](const ProjectionContext& ctx, PaddedVertex* xw) {
+    project_stvk_membrane_batches(m, b.batches.data(), b.batches.size(), xw, ctx, nullptr, isa);
   });
-  state.counters["colours"] = col.num_colours();
+  state.counters["colours"] = b.num_colours();
+  state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();
+}
+
+void BM_IsometricBendingPbdColouredOrder(benchmark::State& state) {
+  const ColouredBatches<IsometricBatch> b = coloured_isometric_batches();
+  const BatchIsa isa = state.range(0) == 0 ? BatchIsa::Scalar : BatchIsa::Auto;
+  run_sweeps(state, scene().membranes_and_isometric.isometric_hinges.size(), [&](const ProjectionContext& ctx, PaddedVertex* xw) {
+    project_isometric_hinge_batches(b.batches.data(), b.batches.size(), 0.01, xw, ctx, nullptr, isa);
+  });
+  state.counters["colours"] = b.num_colours();
+  state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();
 }
 
 /// One sweep of the real solver over `set` (a single constraint kind), state.range(0) = order
 /// (0 Sequential, 1 Coloured), state.range(1) = threads.
-void solver_sweep(benchmark::State& state, const ConstraintSet& set) {
+void solver_sweep(benchmark::State& state, const ConstraintSet& set, int iterations = 1) {
   const Scene& sc = scene();
   SolverSettings settings;
-  settings.iterations = 1;
+  settings.iterations = iterations;
   settings.order = state.range(0) == 0 ? ConstraintOrder::Sequential : ConstraintOrder::Coloured;
   settings.threads = static_cast<int>(state.range(1));
   const auto solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, set, settings);
@@ -147,7 +168,8 @@ void solver_sweep(benchmark::State& state, const ConstraintSet& set) {
   const ColourCounts colours = solver->colour_counts();
   state.counters["colours"] = colours.membrane + colours.isometric;
   state.counters["per_projection"] = benchmark::Counter(
-      static_cast<double>(count), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+      static_cast<double>(count * iterations),
+      benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 void BM_MembraneStvkSolverSweep(benchmark::State& state) {
@@ -162,15 +184,25 @@ void BM_IsometricBendingSolverSweep(benchmark::State& state) {
   solver_sweep(state, set);
 }
 
+/// The solve of one time step: membranes and isometric hinges, 5 iterations (the defaults).
+void BM_SolverStep(benchmark::State& state) {
+  ConstraintSet set;
+  set.membranes = scene().membranes_and_isometric.membranes;
+  set.isometric_hinges = scene().membranes_and_isometric.isometric_hinges;
+  solver_sweep(state, set, 5);
+}
+
 BENCHMARK(BM_MembraneStvkPbd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IsometricBendingPbd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DihedralBendingPbd)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_MembraneStvkPbdColouredOrder)->Unit(benchmark::kMicrosecond);
-BENCHMARK(BM_IsometricBendingPbdColouredOrder)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneStvkPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_IsometricBendingPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
 // {order, threads}: Sequential (threads unused), Coloured on 1 and 2 threads.
 BENCHMARK(BM_MembraneStvkSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
     ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IsometricBendingSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
+    ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_SolverStep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
     ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 
 }  // namespace

@@ -3,16 +3,17 @@
 #include <algorithm>
 #include <memory>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 #include "shellcontract/bending/isometric_bending.hpp"
+#include "shellcontract/material/stvk.hpp"
+#include "shellcontract/pbd/colour_schedule.hpp"
 #include "shellcontract/pbd/colouring.hpp"
+#include "shellcontract/pbd/constraint_batches.hpp"
 #include "shellcontract/pbd/constraint_kernels.hpp"
 
 namespace shellcontract {
@@ -23,14 +24,34 @@ constexpr double ENERGY_FLOOR_RELATIVE = 1e-16;
 
 Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 
-/// Constraints per TBB task in the Coloured order. A membrane projection takes ~10 ns, so a
-/// chunk is a few microseconds of work, well above the cost of spawning it; colours smaller than
-/// two chunks run on the calling thread.
+/// Smallest chunk of constraints a thread claims in the Coloured order (ColourSchedule). A
+/// projection takes ~10 ns, so a chunk is a few microseconds of work, well above the cost of a
+/// claim.
 constexpr std::size_t COLOUR_GRAIN = 256;
+/// COLOUR_GRAIN in batches of BATCH_LANES constraints.
+constexpr std::size_t BATCH_GRAIN = COLOUR_GRAIN / BATCH_LANES;
 
 /// Colour ranges of one constraint kind: constraint k of colour c lies in
 /// [offsets[c], offsets[c + 1]). The Sequential order is one range over everything.
 using ColourOffsets = std::vector<std::size_t>;
+
+/// What a range of a sweep projects (ColourPhase::kind).
+enum SweepKind : int {
+  MEMBRANE_BATCHES,   ///< batches of StVK membranes (Coloured order)
+  MEMBRANES,          ///< membranes one by one
+  ISOMETRIC_BATCHES,  ///< batches of isometric hinges (Coloured order)
+  ISOMETRIC,          ///< isometric hinges one by one
+  DIHEDRAL,
+  ANISOTROPIC,
+  PACK,    ///< vertices: positions and inverse masses into the batches' padded rows
+  UNPACK,  ///< vertices: positions back from the padded rows
+};
+
+/// Vertices per chunk of a PACK or UNPACK phase.
+constexpr std::size_t VERTEX_GRAIN = 1024;
+
+/// True for the kinds that work on the padded rows (PaddedVertex) instead of x.
+bool padded_kind(int kind) { return kind == MEMBRANE_BATCHES || kind == ISOMETRIC_BATCHES; }
 
 /// The solver for one concrete membrane material M and anisotropic energy A: the template makes
 /// the per-element material calls direct and inlinable (material.hpp).
@@ -68,6 +89,13 @@ class GaussSeidelSolver final : public ConstraintSolver {
     }
     packed_membranes_.reserve(set_.membranes.size());
     for (const MembraneConstraint& c : set_.membranes) packed_membranes_.push_back(pack_membrane(c));
+    if (coloured_) {
+      // Coloured order: StVK membranes and isometric hinges are projected four per SIMD batch
+      // (constraint_batches.hpp); the other kinds and materials keep the per-constraint kernels.
+      if constexpr (std::is_same_v<M, Stvk>)
+        membrane_batches_ = make_membrane_batches(packed_membranes_, membrane_colours_);
+      isometric_batches_ = make_isometric_batches(set_.isometric_hinges, isometric_colours_);
+    }
     packed_aniso_.reserve(set_.anisotropic.size());
     aniso_data_.reserve(set_.anisotropic.size());
     for (const MembraneConstraint& c : set_.anisotropic) {
@@ -75,8 +103,11 @@ class GaussSeidelSolver final : public ConstraintSolver {
       aniso_data_.push_back(c.data);
     }
     if (settings_.kind == SolverKind::Xpbd) {
-      lambda_membrane_.resize(set_.membranes.size());
-      lambda_isometric_.resize(3 * set_.isometric_hinges.size());
+      // Batched kinds keep BATCH_LANES multipliers per batch, padding lanes included.
+      lambda_membrane_.resize(std::max(set_.membranes.size(),
+                                       BATCH_LANES * membrane_batches_.batches.size()));
+      lambda_isometric_.resize(3 * std::max(set_.isometric_hinges.size(),
+                                            BATCH_LANES * isometric_batches_.batches.size()));
       lambda_dihedral_.resize(set_.dihedral_hinges.size());
       lambda_aniso_.resize(set_.anisotropic.size());
     }
@@ -133,20 +164,99 @@ class GaussSeidelSolver final : public ConstraintSolver {
     return std::move(c.offsets);
   }
 
-  /// Runs body(begin, end) over every range of `colours` in sequence: directly in the
-  /// Sequential order, split over the arena's threads within each colour in the Coloured order.
-  /// Constraints of one colour share no vertex, so how a colour is split does not change a bit.
-  template <class Body>
-  void sweep(const ColourOffsets& colours, const Body& body) const {
-    for (std::size_t c = 0; c + 1 < colours.size(); ++c) {
-      const std::size_t begin = colours[c], end = colours[c + 1];
-      if (!coloured_ || end - begin < 2 * COLOUR_GRAIN) {
-        body(begin, end);
-        continue;
-      }
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(begin, end, COLOUR_GRAIN),
-                        [&](const tbb::blocked_range<std::size_t>& r) { body(r.begin(), r.end()); },
-                        tbb::static_partitioner());
+  /// Phases of one sweep in math-spec 9.4 order (membranes, isometric hinges, dihedral hinges,
+  /// anisotropic faces), one per colour, each kind through its batches when it has them, with a
+  /// PACK or UNPACK phase wherever the sweep moves between x and the padded rows. A sweep starts
+  /// in the state its last phase leaves (solve_impl packs before the first sweep and unpacks
+  /// after the last one as needed).
+  std::vector<ColourPhase> sweep_phases(std::size_t num_vertices) const {
+    std::vector<ColourPhase> phases;
+    auto add = [&](SweepKind kind, const ColourOffsets& colours, std::size_t grain) {
+      for (std::size_t c = 0; c + 1 < colours.size(); ++c)
+        if (colours[c + 1] > colours[c]) phases.push_back({kind, colours[c], colours[c + 1], grain});
+    };
+    if (!membrane_batches_.batches.empty())
+      add(MEMBRANE_BATCHES, membrane_batches_.offsets, BATCH_GRAIN);
+    else
+      add(MEMBRANES, membrane_colours_, COLOUR_GRAIN);
+    if (!isometric_batches_.batches.empty())
+      add(ISOMETRIC_BATCHES, isometric_batches_.offsets, BATCH_GRAIN);
+    else
+      add(ISOMETRIC, isometric_colours_, COLOUR_GRAIN);
+    add(DIHEDRAL, dihedral_colours_, COLOUR_GRAIN);
+    add(ANISOTROPIC, aniso_colours_, COLOUR_GRAIN);
+    std::vector<ColourPhase> out;
+    for (std::size_t p = 0; p < phases.size(); ++p) {
+      // The state before phase p: the previous phase's, or (p = 0) the last phase's.
+      const bool before = padded_kind(phases[p == 0 ? phases.size() - 1 : p - 1].kind);
+      const bool now = padded_kind(phases[p].kind);
+      if (p > 0 && before != now) out.push_back({now ? PACK : UNPACK, 0, num_vertices, VERTEX_GRAIN});
+      out.push_back(phases[p]);
+    }
+    // Back to the state the first phase expects, for the next sweep.
+    if (!phases.empty() && padded_kind(phases.front().kind) != padded_kind(phases.back().kind))
+      out.push_back({padded_kind(phases.front().kind) ? PACK : UNPACK, 0, num_vertices, VERTEX_GRAIN});
+    return out;
+  }
+
+  /// Projects items [b, e) of one kind in order (constraints, or batches of four).
+  void project_range(int kind, std::size_t b, std::size_t e, const ProjectionContext& ctx) {
+    PaddedVertex* const xw = padded_.data();
+    const bool xpbd = settings_.kind == SolverKind::Xpbd;
+    const double kb = settings_.k_bending;
+    const ElementMaterialData isotropic{};  // isotropic membranes ignore the fibre
+    // The xpbd tests are outside the inner loops so each loop body is branch-free.
+    switch (kind) {
+      case MEMBRANE_BATCHES:
+        if constexpr (std::is_same_v<M, Stvk>)
+          project_stvk_membrane_batches(material_, &membrane_batches_.batches[b], e - b, xw, ctx,
+                                        xpbd ? &lambda_membrane_[BATCH_LANES * b] : nullptr);
+        break;
+      case MEMBRANES:
+        if (xpbd)
+          for (std::size_t i = b; i < e; ++i)
+            project_membrane(material_, packed_membranes_[i], isotropic, 1.0, ctx, &lambda_membrane_[i]);
+        else
+          for (std::size_t i = b; i < e; ++i)
+            project_membrane(material_, packed_membranes_[i], isotropic, 1.0, ctx, nullptr);
+        break;
+      case ISOMETRIC_BATCHES:
+        project_isometric_hinge_batches(&isometric_batches_.batches[b], e - b, kb, xw, ctx,
+                                        xpbd ? &lambda_isometric_[3 * BATCH_LANES * b] : nullptr);
+        break;
+      case ISOMETRIC:
+        if (xpbd)
+          for (std::size_t i = b; i < e; ++i)
+            project_isometric_hinge(set_.isometric_hinges[i], kb, ctx, &lambda_isometric_[3 * i]);
+        else
+          for (std::size_t i = b; i < e; ++i)
+            project_isometric_hinge(set_.isometric_hinges[i], kb, ctx, nullptr);
+        break;
+      case DIHEDRAL:
+        for (std::size_t i = b; i < e; ++i)
+          project_dihedral_hinge(set_.dihedral_hinges[i], kb, ctx,
+                                 xpbd ? &lambda_dihedral_[i] : nullptr);
+        break;
+      case ANISOTROPIC:
+        for (std::size_t i = b; i < e; ++i) {
+          ProjectionContext c = ctx;
+          c.orientation = aniso_orientation_[i];
+          if (!xpbd && settings_.k_a_in_projection)
+            project_anisotropic_paper(aniso_, packed_aniso_[i], aniso_data_[i],
+                                      set_.anisotropic_k_a[i], aniso_normal_[i], c);
+          else
+            project_membrane(aniso_, packed_aniso_[i], aniso_data_[i], 1.0, c,
+                             xpbd ? &lambda_aniso_[i] : nullptr);
+        }
+        break;
+      case PACK:
+        pack_padded(ctx.x, ctx.w, b, e, xw);
+        break;
+      case UNPACK:
+        unpack_padded(xw, b, e, ctx.x);
+        break;
+      default:
+        break;
     }
   }
 
@@ -164,44 +274,27 @@ class GaussSeidelSolver final : public ConstraintSolver {
       std::fill(lambda_aniso_.begin(), lambda_aniso_.end(), 0.0);
     }
     if (!set_.anisotropic.empty()) freeze_anisotropic_frames(x);
-    const bool paper_k_a = !xpbd && settings_.k_a_in_projection;
-    const double kb = settings_.k_bending;
-    const ElementMaterialData isotropic{};  // isotropic membranes ignore the fibre
+    if (coloured_) {
+      const std::size_t n = static_cast<std::size_t>(x.rows());
+      if (!schedule_built_ || n != padded_.size()) {  // first call (or a new vertex count)
+        const std::vector<ColourPhase> phases = sweep_phases(n);
+        schedule_ = ColourSchedule(phases, settings_.iterations, arena_->max_concurrency());
+        padded_.resize(n);
+        first_padded_ = !phases.empty() && padded_kind(phases.front().kind);
+        last_padded_ = !phases.empty() && (phases.back().kind == PACK ||
+                                           (phases.back().kind != UNPACK && padded_kind(phases.back().kind)));
+        schedule_built_ = true;
+      }
+      if (first_padded_) pack_padded(ctx.x, ctx.w, 0, n, padded_.data());
+      schedule_.run([&](int kind, std::size_t b, std::size_t e) { project_range(kind, b, e, ctx); });
+      if (last_padded_) unpack_padded(padded_.data(), 0, n, ctx.x);
+      return;
+    }
     for (int it = 0; it < settings_.iterations; ++it) {
-      // The xpbd test is outside the inner loops so each loop body is branch-free.
-      sweep(membrane_colours_, [&](std::size_t b, std::size_t e) {
-        if (xpbd)
-          for (std::size_t i = b; i < e; ++i)
-            project_membrane(material_, packed_membranes_[i], isotropic, 1.0, ctx, &lambda_membrane_[i]);
-        else
-          for (std::size_t i = b; i < e; ++i)
-            project_membrane(material_, packed_membranes_[i], isotropic, 1.0, ctx, nullptr);
-      });
-      sweep(isometric_colours_, [&](std::size_t b, std::size_t e) {
-        if (xpbd)
-          for (std::size_t i = b; i < e; ++i)
-            project_isometric_hinge(set_.isometric_hinges[i], kb, ctx, &lambda_isometric_[3 * i]);
-        else
-          for (std::size_t i = b; i < e; ++i)
-            project_isometric_hinge(set_.isometric_hinges[i], kb, ctx, nullptr);
-      });
-      sweep(dihedral_colours_, [&](std::size_t b, std::size_t e) {
-        for (std::size_t i = b; i < e; ++i)
-          project_dihedral_hinge(set_.dihedral_hinges[i], kb, ctx,
-                                 xpbd ? &lambda_dihedral_[i] : nullptr);
-      });
-      sweep(aniso_colours_, [&](std::size_t b, std::size_t e) {
-        for (std::size_t i = b; i < e; ++i) {
-          ProjectionContext c = ctx;
-          c.orientation = aniso_orientation_[i];
-          if (paper_k_a)
-            project_anisotropic_paper(aniso_, packed_aniso_[i], aniso_data_[i],
-                                      set_.anisotropic_k_a[i], aniso_normal_[i], c);
-          else
-            project_membrane(aniso_, packed_aniso_[i], aniso_data_[i], 1.0, c,
-                             xpbd ? &lambda_aniso_[i] : nullptr);
-        }
-      });
+      project_range(MEMBRANES, 0, set_.membranes.size(), ctx);
+      project_range(ISOMETRIC, 0, set_.isometric_hinges.size(), ctx);
+      project_range(DIHEDRAL, 0, set_.dihedral_hinges.size(), ctx);
+      project_range(ANISOTROPIC, 0, set_.anisotropic.size(), ctx);
     }
   }
 
@@ -286,6 +379,13 @@ class GaussSeidelSolver final : public ConstraintSolver {
   std::vector<PackedMembrane> packed_aniso_;      ///< set_.anisotropic, packed, same order
   std::vector<ElementMaterialData> aniso_data_;   ///< fibre of each anisotropic face
   std::unique_ptr<tbb::task_arena> arena_;        ///< Coloured order only: settings.threads
+  ColourSchedule schedule_;          ///< Coloured order only: the phases of a solve (first solve)
+  bool schedule_built_ = false;
+  bool first_padded_ = false;        ///< a sweep starts on padded_ (pack before the first)
+  bool last_padded_ = false;         ///< a sweep ends on padded_ (unpack after the last)
+  std::vector<PaddedVertex> padded_; ///< Coloured order: the batches' state (x, y, z, w rows)
+  ColouredBatches<MembraneBatch> membrane_batches_;    ///< Coloured order, StVK only
+  ColouredBatches<IsometricBatch> isometric_batches_;  ///< Coloured order only
 };
 
 }  // namespace

@@ -12,6 +12,8 @@ class Stvk final : public MembraneMaterial {
   explicit Stvk(const MaterialParams& p) : mu_(p.mu), lambda_(p.lambda) {}
 
   std::string name() const override { return "stvk"; }
+  double mu() const { return mu_; }          ///< Lame mu (energy per unit rest area)
+  double lambda() const { return lambda_; }  ///< plane-stress Lame lambda
   bool frame_dependent() const override { return false; }
 
   double psi(const Mat2& F, const ElementMaterialData&) const override {

@@ -1,0 +1,325 @@
+// Batched projections of the Coloured order (constraint_batches.hpp).
+// A batch of four constraints of one colour must give what the scalar kernels give projecting
+// them one after the other: bit for bit on the scalar path, to 1e-12 of the step on the AVX2 +
+// FMA path (the only difference is fused multiply-adds), including the guarded cases of
+// math-spec 9.1(d) and 11 (rest state, pinned vertices, collapsed and inverted triangles,
+// stationary points, the step clamp) and the padding lanes of a colour's last batch.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+#include "shellcontract/bending/isometric_bending.hpp"
+#include "shellcontract/fem/triangle_element.hpp"
+#include "shellcontract/pbd/constraint_batches.hpp"
+#include "support/random_geometry.hpp"
+
+namespace shellcontract {
+namespace {
+
+constexpr double ALPHA_TILDE = 1e4;  // dt = 0.01, alpha = 1 (math-spec 9.2)
+
+/// Scene of n constraints in two colours over disjoint-in-colour vertex sets.
+struct Scene {
+  std::vector<double> x0;           ///< 3 per vertex
+  std::vector<double> w;
+  std::vector<std::size_t> colours;  ///< colour offsets
+};
+
+/// The padded rows (x, y, z, w) of a scene's start state.
+std::vector<PaddedVertex> padded(const Scene& s) {
+  std::vector<PaddedVertex> xw(s.w.size());
+  pack_padded(s.x0.data(), s.w.data(), 0, xw.size(), xw.data());
+  return xw;
+}
+
+/// Largest |x - ref| over every coordinate, against the tolerance 1e-12 |ref - x0| + 4 ulp(x0):
+/// the AVX2 path may differ from the scalar one by rounding only (FMA), relative to the step.
+void expect_close_to_step(const std::vector<double>& x, const std::vector<double>& ref,
+                          const std::vector<double>& x0, const char* what) {
+  const double eps = std::numeric_limits<double>::epsilon();
+  double moved = 0.0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    moved = std::max(moved, std::abs(ref[i] - x0[i]));
+    EXPECT_LE(std::abs(x[i] - ref[i]), 1e-12 * std::abs(ref[i] - x0[i]) + 4 * eps * std::abs(x0[i]))
+        << what << ": coordinate " << i << " batched " << x[i] << " scalar " << ref[i] << " start " << x0[i];
+  }
+  EXPECT_GT(moved, 1e-9) << what << ": the projections must move something";
+}
+
+// ------------------------------------------------------------------ membranes
+
+struct MembraneScene : Scene {
+  std::vector<PackedMembrane> records;  ///< grouped by colour
+};
+
+PackedMembrane packed_on(const Vec3& a, const Vec3& b, const Vec3& c, std::array<int, 3> v) {
+  const TriangleRest r = triangle_rest(a, b, c);
+  MembraneConstraint m;
+  m.v = v;
+  m.Dm_inv = r.Dm_inv;
+  m.rest_area = r.area;
+  m.max_step = 1e9;
+  return pack_membrane(m);
+}
+
+/// n triangles (3k, 3k+1, 3k+2) in colour 0, then n triangles (3k+1, 3(k+1)+2, 3(k+2)) in
+/// colour 1 (indices mod 3n): no two of a colour share a vertex, colour 1 reads colour 0's
+/// results. The first constraints are the special cases named below.
+MembraneScene membrane_scene(int n, std::mt19937& rng) {
+  MembraneScene s;
+  std::vector<Vec3> rest(3 * n);
+  for (Vec3& p : rest) p = test::random_vec3(rng);
+  std::uniform_real_distribution<double> mass(0.5, 2.0);
+  for (int i = 0; i < 3 * n; ++i) {
+    const Vec3 q = 0.8 * rest[i] + 0.15 * test::random_vec3(rng);
+    s.x0.insert(s.x0.end(), {q.x(), q.y(), q.z()});
+    s.w.push_back(1.0 / mass(rng));
+  }
+  auto set = [&](int i, const Vec3& p) { for (int d = 0; d < 3; ++d) s.x0[3 * i + d] = p(d); };
+  for (int k = 0; k < n; ++k)
+    s.records.push_back(packed_on(rest[3 * k], rest[3 * k + 1], rest[3 * k + 2], {3 * k, 3 * k + 1, 3 * k + 2}));
+  // Special cases in colour 0 (each touches only its own three vertices there).
+  for (int i = 0; i < 3; ++i) set(i, rest[i]);                      // 0: at rest, E = 0: skipped
+  s.w[3] = s.w[4] = s.w[5] = 0.0;                                   // 1: all pinned, G = 0: skipped
+  s.w[6] = 0.0;                                                     // 2: one pinned vertex
+  set(11, 0.5 * (Vec3(s.x0[27], s.x0[28], s.x0[29]) + Vec3(s.x0[30], s.x0[31], s.x0[32])));  // 3: collinear
+  {                                                                 // 4: inverted (two corners swapped)
+    for (int d = 0; d < 3; ++d) std::swap(s.x0[36 + d], s.x0[39 + d]);
+  }
+  for (int i = 15; i < 18; ++i) set(i, Vec3(0.3, -0.2, 0.1));       // 5: collapsed to a point (F = 0)
+  s.records[6].max_step = 1e-3;                                     // 6: the clamp acts
+  s.records[7].max_step = 1e-3;
+  for (int k = 0; k < n; ++k) {
+    const int a = 3 * k + 1, b = 3 * ((k + 1) % n) + 2, c = 3 * ((k + 2) % n);
+    s.records.push_back(packed_on(rest[a], rest[b], rest[c], {a, b, c}));
+  }
+  s.colours = {0, static_cast<std::size_t>(n), static_cast<std::size_t>(2 * n)};
+  return s;
+}
+
+ProjectionContext context(std::vector<double>& x, const std::vector<double>& w) {
+  ProjectionContext ctx;
+  ctx.x = x.data();
+  ctx.w = w.data();
+  ctx.energy_floor = 1e-16;
+  ctx.alpha_tilde = ALPHA_TILDE;
+  return ctx;
+}
+
+/// Scalar reference: project_membrane over the records in order.
+std::vector<double> scalar_membranes(const Stvk& m, const MembraneScene& s, std::vector<double>* lambda) {
+  std::vector<double> x = s.x0;
+  const ProjectionContext ctx = context(x, s.w);
+  if (lambda) lambda->assign(s.records.size(), 0.0);
+  for (std::size_t i = 0; i < s.records.size(); ++i)
+    project_membrane(m, s.records[i], ElementMaterialData{}, 1.0, ctx, lambda ? &(*lambda)[i] : nullptr);
+  return x;
+}
+
+std::vector<double> batched_membranes(const Stvk& m, const MembraneScene& s, BatchIsa isa,
+                                      std::vector<double>* lambda) {
+  const ColouredBatches<MembraneBatch> b = make_membrane_batches(s.records, s.colours);
+  std::vector<double> x = s.x0;
+  std::vector<PaddedVertex> xw = padded(s);
+  const ProjectionContext ctx = context(x, s.w);
+  std::vector<double> lam(BATCH_LANES * b.batches.size(), 0.0);
+  project_stvk_membrane_batches(m, b.batches.data(), b.batches.size(), xw.data(), ctx,
+                                lambda ? lam.data() : nullptr, isa);
+  unpack_padded(xw.data(), 0, xw.size(), x.data());
+  if (lambda) {  // back to constraint order: batch lanes of each colour in sequence
+    lambda->clear();
+    for (const MembraneBatch& batch : b.batches)
+      for (int k = 0; k < batch.count; ++k) lambda->push_back(lam[BATCH_LANES * (&batch - b.batches.data()) + k]);
+  }
+  return x;
+}
+
+TEST(MembraneBatches, MatchTheScalarKernelPbdAndXpbd) {
+  RecordProperty("avx2", batch_avx2_available() ? 1 : 0);
+  std::mt19937 rng(31);
+  const Stvk m(MaterialParams{1.3, 0.7});
+  for (int n : {9, 13, 16}) {  // 9 and 13: padding lanes in every colour's last batch
+    const MembraneScene s = membrane_scene(n, rng);
+    for (bool xpbd : {false, true}) {
+      std::vector<double> lam_ref, lam_scalar, lam_auto;
+      const std::vector<double> ref = scalar_membranes(m, s, xpbd ? &lam_ref : nullptr);
+      // Scalar path: the same kernels lane by lane, bit for bit.
+      const std::vector<double> scalar = batched_membranes(m, s, BatchIsa::Scalar, xpbd ? &lam_scalar : nullptr);
+      EXPECT_EQ(scalar, ref) << "n " << n << (xpbd ? " xpbd" : " pbd");
+      EXPECT_EQ(lam_scalar, lam_ref);
+      const std::vector<double> fast = batched_membranes(m, s, BatchIsa::Auto, xpbd ? &lam_auto : nullptr);
+      expect_close_to_step(fast, ref, s.x0, xpbd ? "xpbd" : "pbd");
+      for (std::size_t i = 0; i < lam_ref.size(); ++i)
+        EXPECT_LE(std::abs(lam_auto[i] - lam_ref[i]), 1e-12 * std::abs(lam_ref[i])) << "lambda " << i;
+      // Guarded cases of colour 0 that colour 1 does not touch: exactly unchanged.
+      for (int i : {3, 4, 5}) {  // all pinned
+        for (int d = 0; d < 3; ++d) EXPECT_EQ(fast[3 * i + d], s.x0[3 * i + d]) << "pinned vertex " << i;
+      }
+    }
+  }
+}
+
+TEST(MembraneBatches, SkippedLanesAreUntouchedAndTheClampHolds) {
+  std::mt19937 rng(32);
+  const Stvk m(MaterialParams{1.0, 1.0});
+  MembraneScene s = membrane_scene(8, rng);
+  s.records.resize(8);  // colour 0 only: every result comes from one projection
+  s.colours = {0, 8};
+  std::vector<double> x = batched_membranes(m, s, BatchIsa::Auto, nullptr);
+  for (int i : {0, 1, 2, 3, 4, 5, 6, 15, 16, 17})  // rest, all pinned, pinned corner, F = 0
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(x[3 * i + d], s.x0[3 * i + d]) << "vertex " << i;
+  for (int i = 18; i < 24; ++i) {  // constraints 6 and 7: clamped to max_step = 1e-3
+    const double step = std::hypot(x[3 * i] - s.x0[3 * i], x[3 * i + 1] - s.x0[3 * i + 1],
+                                   x[3 * i + 2] - s.x0[3 * i + 2]);
+    EXPECT_LE(step, 1e-3 * (1 + 1e-12)) << "vertex " << i;
+  }
+  double longest = 0.0;
+  for (int i = 18; i < 24; ++i)
+    longest = std::max(longest, std::hypot(x[3 * i] - s.x0[3 * i], x[3 * i + 1] - s.x0[3 * i + 1],
+                                           x[3 * i + 2] - s.x0[3 * i + 2]));
+  EXPECT_NEAR(longest, 1e-3, 1e-15) << "the clamp must bind on the clamped constraints";
+}
+
+TEST(PaddedVertices, PackAndUnpackRoundTripAndRowsAre32ByteAligned) {
+  const std::vector<double> x{1, 2, 3, 4, 5, 6, 7, 8, 9}, w{0.5, 0.0, 2.0};
+  std::vector<PaddedVertex> xw(3);
+  pack_padded(x.data(), w.data(), 0, 3, xw.data());
+  EXPECT_EQ(xw[1].x, 4.0);
+  EXPECT_EQ(xw[1].z, 6.0);
+  EXPECT_EQ(xw[2].w, 2.0);
+  EXPECT_EQ(sizeof(PaddedVertex), 32u);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(xw.data()) % 32, 0u) << "aligned 256-bit loads need it";
+  std::vector<double> back(9, 0.0);
+  unpack_padded(xw.data(), 1, 3, back.data());  // a sub-range: vertex 0 untouched
+  EXPECT_EQ(back, (std::vector<double>{0, 0, 0, 4, 5, 6, 7, 8, 9}));
+}
+
+TEST(MembraneBatches, LayoutPadsEachColoursLastBatchWithLaneZero) {
+  std::mt19937 rng(33);
+  MembraneScene s = membrane_scene(10, rng);
+  s.records.resize(10);
+  const ColouredBatches<MembraneBatch> b = make_membrane_batches(s.records, {0, 5, 9, 10});
+  ASSERT_EQ(b.num_colours(), 3);
+  EXPECT_EQ(b.offsets, (std::vector<std::size_t>{0, 2, 3, 4}));
+  ASSERT_EQ(b.batches.size(), 4u);
+  EXPECT_EQ(b.batches[0].count, 4);
+  EXPECT_EQ(b.batches[1].count, 1);
+  EXPECT_EQ(b.batches[2].count, 4);
+  EXPECT_EQ(b.batches[3].count, 1);
+  const MembraneBatch& last = b.batches[1];  // record 4, then padding
+  for (int k = 0; k < BATCH_LANES; ++k) {
+    for (int j = 0; j < 3; ++j) EXPECT_EQ(last.v[j][k], s.records[4].v[j]);
+    if (k > 0) {
+      EXPECT_EQ(last.rest_area[k], 0.0);
+      EXPECT_EQ(last.dm00[k], 0.0);
+    }
+  }
+  EXPECT_EQ(b.batches[2].dm01[3], s.records[8].dm01);
+  EXPECT_THROW(make_membrane_batches(s.records, {0, 5}), std::invalid_argument);
+  EXPECT_THROW(make_membrane_batches(s.records, {0, 6, 5, 10}), std::invalid_argument);
+}
+
+// ------------------------------------------------------------------ isometric hinges
+
+struct HingeScene : Scene {
+  std::vector<IsometricHingeConstraint> records;
+};
+
+IsometricHingeConstraint hinge_on(const std::vector<Vec3>& rest, std::array<int, 4> v) {
+  const IsometricBendingRest r =
+      isometric_bending_rest(rest[v[0]], rest[v[1]], rest[v[2]], rest[v[3]]);
+  return {v, r.K, 3.0 / r.area_sum, 1e9};
+}
+
+/// Hinges (4k .. 4k+3) in colour 0, then (4k+1, 4(k+1)+2, 4(k+2)+3, 4(k+3)) in colour 1. The
+/// rest stencils are random (curved, so flat-rest bending has work everywhere).
+HingeScene hinge_scene(int n, std::mt19937& rng) {
+  HingeScene s;
+  std::vector<Vec3> rest(4 * n);
+  for (Vec3& p : rest) p = test::random_vec3(rng);
+  std::uniform_real_distribution<double> mass(0.5, 2.0);
+  for (int i = 0; i < 4 * n; ++i) {
+    const Vec3 q = rest[i] + 0.1 * test::random_vec3(rng);
+    s.x0.insert(s.x0.end(), {q.x(), q.y(), q.z()});
+    s.w.push_back(1.0 / mass(rng));
+  }
+  for (int k = 0; k < n; ++k) s.records.push_back(hinge_on(rest, {4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3}));
+  s.w[0] = s.w[1] = s.w[2] = s.w[3] = 0.0;  // 0: all pinned: skipped
+  s.w[5] = 0.0;                             // 1: one pinned vertex
+  s.records[2].K.setZero();                 // 2: inactive hinge (K = 0): skipped
+  s.records[3].max_step = 1e-4;             // 3: the clamp acts
+  for (int k = 0; k < n; ++k)
+    s.records.push_back(hinge_on(rest, {4 * k + 1, 4 * ((k + 1) % n) + 2, 4 * ((k + 2) % n) + 3, 4 * ((k + 3) % n)}));
+  s.colours = {0, static_cast<std::size_t>(n), static_cast<std::size_t>(2 * n)};
+  return s;
+}
+
+std::vector<double> scalar_hinges(const HingeScene& s, double kb, std::vector<double>* lambda) {
+  std::vector<double> x = s.x0;
+  const ProjectionContext ctx = context(x, s.w);
+  if (lambda) lambda->assign(3 * s.records.size(), 0.0);
+  for (std::size_t i = 0; i < s.records.size(); ++i)
+    project_isometric_hinge(s.records[i], kb, ctx, lambda ? &(*lambda)[3 * i] : nullptr);
+  return x;
+}
+
+std::vector<double> batched_hinges(const HingeScene& s, double kb, BatchIsa isa, std::vector<double>* lambda) {
+  const ColouredBatches<IsometricBatch> b = make_isometric_batches(s.records, s.colours);
+  std::vector<double> x = s.x0;
+  std::vector<PaddedVertex> xw = padded(s);
+  const ProjectionContext ctx = context(x, s.w);
+  std::vector<double> lam(3 * BATCH_LANES * b.batches.size(), 0.0);
+  project_isometric_hinge_batches(b.batches.data(), b.batches.size(), kb, xw.data(), ctx,
+                                  lambda ? lam.data() : nullptr, isa);
+  unpack_padded(xw.data(), 0, xw.size(), x.data());
+  if (lambda) {
+    lambda->clear();
+    for (std::size_t j = 0; j < b.batches.size(); ++j)
+      for (int k = 0; k < b.batches[j].count; ++k)
+        for (int d = 0; d < 3; ++d) lambda->push_back(lam[3 * (BATCH_LANES * j + k) + d]);
+  }
+  return x;
+}
+
+TEST(IsometricBatches, MatchTheScalarKernelPbdAndXpbd) {
+  std::mt19937 rng(34);
+  for (int n : {7, 12, 15}) {
+    const HingeScene s = hinge_scene(n, rng);
+    for (double kb : {0.01, 1.0}) {
+      for (bool xpbd : {false, true}) {
+        std::vector<double> lam_ref, lam_scalar, lam_auto;
+        const std::vector<double> ref = scalar_hinges(s, kb, xpbd ? &lam_ref : nullptr);
+        const std::vector<double> scalar = batched_hinges(s, kb, BatchIsa::Scalar, xpbd ? &lam_scalar : nullptr);
+        EXPECT_EQ(scalar, ref) << "n " << n << " k_B " << kb << (xpbd ? " xpbd" : " pbd");
+        EXPECT_EQ(lam_scalar, lam_ref);
+        const std::vector<double> fast = batched_hinges(s, kb, BatchIsa::Auto, xpbd ? &lam_auto : nullptr);
+        expect_close_to_step(fast, ref, s.x0, xpbd ? "xpbd" : "pbd");
+        for (std::size_t i = 0; i < lam_ref.size(); ++i)
+          EXPECT_LE(std::abs(lam_auto[i] - lam_ref[i]), 1e-12 * std::abs(lam_ref[i])) << "lambda " << i;
+      }
+    }
+  }
+}
+
+TEST(IsometricBatches, SkippedLanesAreUntouchedAndTheClampHolds) {
+  std::mt19937 rng(35);
+  HingeScene s = hinge_scene(6, rng);
+  s.records.resize(6);
+  s.colours = {0, 6};
+  const std::vector<double> x = batched_hinges(s, 1.0, BatchIsa::Auto, nullptr);
+  for (int i : {0, 1, 2, 3, 5, 8, 9, 10, 11})  // all pinned, the pinned corner, K = 0
+    for (int d = 0; d < 3; ++d) EXPECT_EQ(x[3 * i + d], s.x0[3 * i + d]) << "vertex " << i;
+  double longest = 0.0;
+  for (int i = 12; i < 16; ++i)
+    longest = std::max(longest, std::hypot(x[3 * i] - s.x0[3 * i], x[3 * i + 1] - s.x0[3 * i + 1],
+                                           x[3 * i + 2] - s.x0[3 * i + 2]));
+  EXPECT_NEAR(longest, 1e-4, 1e-15) << "hinge 3 is clamped to max_step";
+}
+
+}  // namespace
+}  // namespace shellcontract
