@@ -539,31 +539,28 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
       positions_at(q, iv.ta, xa);
       const Closest c0 = closest_at(kind, xa);
       if (c0.distance <= tau + dist_slack) return accept(iv, CcdHitReason::Distance, certain, iv.ta);
-      if (!options.tighten_toi) {
-        res.hit = true;
-        res.certain = certain;
-        res.reason = CcdHitReason::Distance;
-        res.toi = iv.ta;
-        fill_contact(q, tm, res);
-        return res;
-      }
-      Interval j, l, r, dummy;
-      halves(iv, j, dummy);  // [ta, tm]
-      for (int level = 0; level < 16; ++level) {
-        halves(j, l, r);
-        if (!excluded(l)) {
-          j = l;
-        } else if (!excluded(r)) {
-          j = r;
-        } else {
-          j.ta = j.tb;  // both excluded: the contact is at the right end, tm
-          break;
+      // Without tightening, ta itself is the lower bound (every earlier time is excluded).
+      double toi = iv.ta;
+      if (options.tighten_toi) {
+        Interval j, l, r, dummy;
+        halves(iv, j, dummy);  // [ta, tm]
+        for (int level = 0; level < 16; ++level) {
+          halves(j, l, r);
+          if (!excluded(l)) {
+            j = l;
+          } else if (!excluded(r)) {
+            j = r;
+          } else {
+            j.ta = j.tb;  // both excluded: the contact is at the right end, tm
+            break;
+          }
         }
+        toi = j.ta;
       }
       res.hit = true;
       res.certain = certain;
       res.reason = CcdHitReason::Distance;
-      res.toi = j.ta;
+      res.toi = toi;
       fill_contact(q, tm, res);
       return res;
     }

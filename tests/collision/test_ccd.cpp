@@ -402,6 +402,14 @@ TEST(Ccd, NeverMissesAConstructedExactContact) {
   EXPECT_GT(n_decided, n_generic * 9 / 10);
 }
 
+/// Random start positions in the unit cube and a random motion of up to 0.8 per coordinate.
+void random_motion(std::mt19937& rng, CcdStencil& x0, CcdStencil& x1) {
+  for (int k = 0; k < 4; ++k) {
+    x0[k] = test::random_vec3(rng);
+    x1[k] = x0[k] + test::random_vec3(rng, 0.8);
+  }
+}
+
 TEST(Ccd, TimeOfImpactIsALowerBoundAndMissesAreSeparated) {
   // Random motions: for a hit, no sampled time before toi may be in contact (distance must stay
   // above tau there); for a miss, no sampled time may be within tau.
@@ -413,10 +421,7 @@ TEST(Ccd, TimeOfImpactIsALowerBoundAndMissesAreSeparated) {
   for (int trial = 0; trial < 2000; ++trial) {
     const CcdPrimitive kind = KINDS[trial % 2];
     CcdStencil x0, x1;
-    for (int k = 0; k < 4; ++k) {
-      x0[k] = test::random_vec3(rng);
-      x1[k] = x0[k] + test::random_vec3(rng, 0.8);
-    }
+    random_motion(rng, x0, x1);
     const CcdResult r = primitive_ccd(kind, x0, x1, opt);
     (r.hit ? hits : misses)++;
     const int samples = 400;
@@ -447,10 +452,7 @@ TEST(Ccd, UntightenedTimeOfImpactKeepsTheAnswerAndTheContactData) {
   for (int trial = 0; trial < 2000; ++trial) {
     const CcdPrimitive kind = KINDS[trial % 2];
     CcdStencil x0, x1;
-    for (int k = 0; k < 4; ++k) {
-      x0[k] = test::random_vec3(rng);
-      x1[k] = x0[k] + test::random_vec3(rng, 0.8);
-    }
+    random_motion(rng, x0, x1);
     const CcdResult a = primitive_ccd(kind, x0, x1, tight);
     const CcdResult b = primitive_ccd(kind, x0, x1, loose);
     ASSERT_EQ(a.hit, b.hit) << "trial " << trial;

@@ -22,7 +22,8 @@ struct CollisionOptions {
   double delta = 1e-4;
   int rounds = 5;  ///< N_c detection/response rounds before the fail-safe (math-spec 10.8)
   BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD;
-  /// Threads of the filter and narrow phase (0 = all cores). Results do not depend on it.
+  /// Threads of the broad phase's cell loop, the filter and the narrow phase (0 = all cores).
+  /// Results do not depend on it.
   int threads = 0;
 };
 
