@@ -107,6 +107,7 @@ std::string csv_row(const FrameMetrics& m) {
 /// after the broad phase, after the filter, cubic solves, and the time of each stage per step).
 struct CollisionTotals {
   double no_culling = 0, broad = 0, filtered = 0, tests = 0, contacts = 0, failsafe = 0;
+  double broad_calls = 0, filter_tests = 0, rounds = 0;
   double broad_s = 0, filter_s = 0, narrow_s = 0, response_s = 0, solve_s = 0, step_s = 0;
   void add(const FrameMetrics& m) {
     const CollisionStepStats& c = m.collision;
@@ -116,6 +117,9 @@ struct CollisionTotals {
     tests += static_cast<double>(c.narrow_tests);
     contacts += static_cast<double>(c.contacts);
     failsafe += static_cast<double>(c.failsafe_vertices);
+    broad_calls += c.broad_phase_calls;
+    filter_tests += static_cast<double>(c.filter_tests);
+    rounds += c.rounds;
     broad_s += c.broad_seconds;
     filter_s += c.filter_seconds;
     narrow_s += c.narrow_seconds;
@@ -130,6 +134,8 @@ struct CollisionTotals {
     o.add("pairs_no_culling_per_step", no_culling / n).add("pairs_after_broad_phase_per_step", broad / n)
         .add("pairs_after_filter_per_step", filtered / n).add("cubic_solves_per_step", tests / n)
         .add("contacts_per_step", contacts / n).add("failsafe_vertices_total", failsafe)
+        .add("broad_phase_calls_per_step", broad_calls / n).add("filter_tests_per_step", filter_tests / n)
+        .add("rounds_per_step", rounds / n)
         .add("broad_phase_ms_per_step", 1e3 * broad_s / n).add("filter_ms_per_step", 1e3 * filter_s / n)
         .add("narrow_phase_ms_per_step", 1e3 * narrow_s / n).add("response_ms_per_step", 1e3 * response_s / n)
         .add("collision_ms_per_step", 1e3 * (broad_s + filter_s + narrow_s + response_s) / n)
@@ -145,7 +151,7 @@ int command_run(int argc, char** argv) {
                                                      bending = "isometric", pressure_model = "energy",
                                                      mass = "area";
   SimOptions opt;
-  std::string collisions = "on", validate = "off", order = "sequential";
+  std::string collisions = "on", validate = "off", order = "sequential", warm_start = "on";
   std::string aniso = "none", regions_arg = "auto", inward = "force", fiber = "centre";
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
@@ -229,6 +235,9 @@ int command_run(int argc, char** argv) {
        "contact distance (normalized units); closer primitives are pushed apart to 2 delta")
       ("collision-rounds", po::value(&opt.collision.rounds)->default_value(opt.collision.rounds),
        "detection/response rounds per step before the fail-safe")
+      ("warm-start", po::value(&warm_start)->default_value(warm_start),
+       "on: push along the previous step's contacts before detection (resting contact, fewer "
+       "detections); off: every step's contacts come from detection alone")
       ("validate", po::value(&validate)->default_value(validate),
        "CGAL self-intersection check: off | end | every-frame (exit code 4 if new ones)")
       ("fields", po::value(&fields_prefix),
@@ -263,6 +272,9 @@ int command_run(int argc, char** argv) {
     if (collisions != "on" && collisions != "off")
       throw UsageError("--collisions expects on or off, got '" + collisions + "'");
     opt.collisions = collisions == "on";
+    if (warm_start != "on" && warm_start != "off")
+      throw UsageError("--warm-start expects on or off, got '" + warm_start + "'");
+    opt.collision.warm_start = warm_start == "on";
     opt.collision.threads = opt.solver.threads;
     opt.validate = parse_validate(validate);
     opt.inward_term = parse_inward(inward);
@@ -363,7 +375,8 @@ int command_run(int argc, char** argv) {
           .add("solver", solver).add("order", order).add("threads", opt.solver.threads).add("material", material).add("mu", opt.material_params.mu)
           .add("lambda", opt.material_params.lambda).add("bending", bending)
           .add("k_b", opt.solver.k_bending).add("mass", mass).add("density", opt.density)
-          .add("stop_volume_ratio", opt.stop_volume_ratio);
+          .add("stop_volume_ratio", opt.stop_volume_ratio).add("delta", opt.collision.delta)
+          .add("collision_rounds", opt.collision.rounds).add("warm_start", warm_start);
       JsonObject summary;
       summary.add("status", status).add("failure", failure).add("input", input).add("output", output)
           .add("vertices", report.vertices).add("faces", report.faces)

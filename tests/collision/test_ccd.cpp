@@ -141,6 +141,75 @@ TEST(NonpenetrationFilter, ToleranceKeepsNearMissesWithinTau) {
   EXPECT_FALSE(nonpenetration_filter_culls(CcdPrimitive::VertexFace, x0, x1, 2.0 * tau));
 }
 
+TEST(SweptBoxes, CullOnlyPairsFartherThanTauAtEverySampledTime) {
+  // Random stencils with motions and tolerances of many sizes. A culled pair must be farther than
+  // tau at every sampled time (the box gap bounds the distance from below); and the test must cull
+  // a good share, so that it can fail in both directions.
+  std::mt19937 rng(404);
+  std::uniform_real_distribution<double> exponent(-4.0, 0.0);
+  int culled = 0;
+  const int n = 20000, samples = 16;
+  for (int trial = 0; trial < n; ++trial) {
+    const CcdPrimitive kind = KINDS[trial % 2];
+    const double scale = std::pow(10.0, exponent(rng));
+    const double tau = trial % 5 == 0 ? 0.0 : std::pow(10.0, exponent(rng)) * 0.5;
+    CcdStencil x0, x1;
+    const Vec3 shift = scale * test::random_vec3(rng, 2.0);
+    for (int k = 0; k < 4; ++k) {
+      x0[k] = scale * test::random_vec3(rng) + (k >= (kind == CcdPrimitive::VertexFace ? 1 : 2) ? shift : Vec3::Zero());
+      x1[k] = x0[k] + scale * test::random_vec3(rng, 0.5);
+    }
+    const bool culls = swept_boxes_apart(kind, x0, x1, tau);
+    culled += culls;
+    if (!culls) continue;
+    for (int s = 0; s <= samples; ++s)
+      ASSERT_GT(distance_at(kind, x0, x1, double(s) / samples), tau) << "trial " << trial << describe(x0, x1);
+  }
+  EXPECT_GT(culled, n / 4);
+  EXPECT_LT(culled, n - n / 10);
+}
+
+TEST(SweptBoxes, AGapOfExactlyTauIsKeptAndOneUlpMoreWithoutToleranceIsCulled) {
+  // Static triangle in [0,1]^2 x {0}; the vertex moves along y at x = 1 + gap.
+  const CcdStencil face = {Vec3::Zero(), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  auto stencils = [&](double x, CcdStencil& x0, CcdStencil& x1) {
+    x0 = face;
+    x1 = face;
+    x0[0] = Vec3(x, 0.2, 0.0);
+    x1[0] = Vec3(x, 0.4, 0.0);
+  };
+  CcdStencil x0, x1;
+  const double tau = 0.25;  // 1 + tau is exact
+  stencils(1.0 + tau, x0, x1);
+  EXPECT_FALSE(swept_boxes_apart(CcdPrimitive::VertexFace, x0, x1, tau));  // distance exactly tau
+  stencils(1.0 + tau + 1e-9, x0, x1);
+  EXPECT_TRUE(swept_boxes_apart(CcdPrimitive::VertexFace, x0, x1, tau));
+  stencils(1.0, x0, x1);
+  EXPECT_FALSE(swept_boxes_apart(CcdPrimitive::VertexFace, x0, x1, 0.0));  // touching
+  stencils(std::nextafter(1.0, 2.0), x0, x1);
+  EXPECT_TRUE(swept_boxes_apart(CcdPrimitive::VertexFace, x0, x1, 0.0));
+  // Edge-edge: the same gap on the z axis.
+  const CcdStencil ee = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0, 1.0 + tau), Vec3(0, 1, 1.0 + tau)};
+  CcdStencil ee1 = ee;
+  ee1[0].z() = ee1[1].z() = 1.0;  // edge a rises to z = 1 at t = 1: gap tau
+  EXPECT_FALSE(swept_boxes_apart(CcdPrimitive::EdgeEdge, ee, ee1, tau));
+  EXPECT_TRUE(swept_boxes_apart(CcdPrimitive::EdgeEdge, ee, ee1, 0.5 * tau));
+}
+
+TEST(SweptBoxes, NonFiniteInputIsNeverCulled) {
+  CcdStencil x0 = {Vec3(5, 5, 5), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  CcdStencil x1 = x0;
+  EXPECT_TRUE(swept_boxes_apart(CcdPrimitive::VertexFace, x0, x1, 0.0));
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    x1[0].z() = bad;
+    EXPECT_FALSE(swept_boxes_apart(CcdPrimitive::VertexFace, x0, x1, 0.0));
+    x1[0].z() = 5.0;
+    x1[2].x() = bad;
+    EXPECT_FALSE(swept_boxes_apart(CcdPrimitive::VertexFace, x0, x1, 0.0));
+    x1[2].x() = 1.0;
+  }
+}
+
 // ----------------------------------------------------------------------- known answers
 
 TEST(VertexFaceCcd, VertexThroughTriangleCentreAtConstantSpeed) {

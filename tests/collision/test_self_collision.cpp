@@ -113,6 +113,41 @@ TEST(SelfCollision, ResponseStopsAVertexPassingThroughAFace) {
   EXPECT_GT(x1(3, 2), 0.0);
 }
 
+TEST(SelfCollision, WarmStartKeepsARestingContactWithoutNewDetections) {
+  // The lower triangle is pinned; the upper one starts 2.5 delta above it and is pressed down by
+  // 3 delta every step (a resting contact under load). Step 1 finds the contacts and pushes the
+  // upper triangle back to 2 delta. From step 2 on, the warm start re-projects those contacts
+  // before detection, so detection finds (nearly) nothing; without it every step finds them all
+  // again. Both must stay free of contacts.
+  const double delta = 1e-3;
+  std::array<std::int64_t, 2> later_contacts{};
+  for (const bool warm : {false, true}) {
+    SCOPED_TRACE(warm ? "warm start" : "no warm start");
+    TwoTriangles t;
+    t.x0.bottomRows(3).col(2).setConstant(2.5 * delta);
+    t.w.head(3).setZero();
+    CollisionOptions opt;
+    opt.delta = delta;
+    opt.warm_start = warm;
+    SelfCollision sc(t.faces, t.x0, opt);
+    for (int step = 0; step < 4; ++step) {
+      Positions x1 = t.x0;
+      x1.bottomRows(3).col(2).array() -= 3.0 * delta;
+      CollisionStepStats stats;
+      sc.resolve(t.x0, x1, t.w, stats);
+      EXPECT_FALSE(any_contact(t, x1)) << "step " << step;
+      if (step == 0) {
+        EXPECT_GT(stats.contacts, 0);
+      }
+      if (step > 0) later_contacts[warm] += stats.contacts;
+      EXPECT_GT(x1(3, 2), 0.0);
+      t.x0 = x1;
+    }
+  }
+  EXPECT_GE(later_contacts[false], 3);
+  EXPECT_LT(later_contacts[true], later_contacts[false]);
+}
+
 TEST(SelfCollision, FailSafeRevertsWhenTheResponseCannotAct) {
   TwoTriangles t;
   t.x1.bottomRows(3).col(2).array() -= 0.3;
@@ -209,12 +244,14 @@ int brute_force_contacts(const Faces& faces, const Positions& x0, const Position
 /// the top pass through the bottom and many pairs cross, so the response pushes vertices far
 /// (more than the reuse margin: the re-broad-phase path runs) and the incremental rounds and
 /// fail-safe must find every pair. Returns the positions after each step.
-std::vector<Positions> crush_sphere(int threads, int rounds, std::vector<CollisionStepStats>* all_stats) {
+std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
+                                    std::vector<CollisionStepStats>* all_stats) {
   const test::TriMesh sphere = test::icosphere(2);
   CollisionOptions opt;
   opt.delta = 1e-3;
   opt.threads = threads;
   opt.rounds = rounds;
+  opt.warm_start = warm_start;
   SelfCollision sc(sphere.faces, sphere.x, opt);
   const Eigen::VectorXd w = Eigen::VectorXd::Ones(sphere.x.rows());
   std::mt19937 rng(7);
@@ -238,10 +275,11 @@ std::vector<Positions> crush_sphere(int threads, int rounds, std::vector<Collisi
 }
 
 TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) {
+  for (const bool warm : {true, false})
   for (int rounds : {5, 1}) {
-    SCOPED_TRACE("rounds " + std::to_string(rounds));
+    SCOPED_TRACE("rounds " + std::to_string(rounds) + (warm ? ", warm start" : ""));
     std::vector<CollisionStepStats> stats;
-    const std::vector<Positions> one = crush_sphere(1, rounds, &stats);
+    const std::vector<Positions> one = crush_sphere(1, rounds, warm, &stats);
     std::int64_t contacts = 0, failsafe = 0;
     int rebuilds = 0;
     for (const CollisionStepStats& s : stats) {
@@ -257,7 +295,7 @@ TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) 
     } else {
       EXPECT_GT(failsafe, 0);
     }
-    const std::vector<Positions> two = crush_sphere(2, rounds, nullptr);
+    const std::vector<Positions> two = crush_sphere(2, rounds, warm, nullptr);
     ASSERT_EQ(one.size(), two.size());
     for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "step " << i;
   }

@@ -166,4 +166,19 @@ std::array<double, 4> bernstein_from_power(const std::array<double, 4>& c);
 bool nonpenetration_filter_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
                                  double tolerance = 0.0);
 
+/// Swept-box cull (math-spec 10.2, per pair): true only if the boxes around the two primitives'
+/// start and end positions (VF: the vertex against the face; EE: edge against edge) are more than
+/// tau apart on some axis, with the rounding of the gap bounded. Then their distance exceeds tau at
+/// every time in [0,1] (linear motion stays inside the swept box). Costs a few nanoseconds and
+/// runs before the non-penetration filter, so pairs a broad phase with a reuse margin kept (boxes
+/// inflated by more than tau) leave cheaply.
+/// @param kind       stencil order
+/// @param x0         positions at t = 0
+/// @param x1         positions at t = 1
+/// @param tolerance  tau >= 0 in the same length unit
+/// @return true if the pair can be culled (no contact within tau in [0,1]); false for non-finite
+///         input
+bool swept_boxes_apart(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                       double tolerance = 0.0);
+
 }  // namespace shellcontract

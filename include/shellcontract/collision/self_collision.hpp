@@ -25,6 +25,11 @@ struct CollisionOptions {
   /// Threads of the broad phase's cell loop, the filter and the narrow phase (0 = all cores).
   /// Results do not depend on it.
   int threads = 0;
+  /// Warm start: before detection, push the end positions apart along the frozen frames of the
+  /// previous step's contacts (resting contact persists from step to step), so that detection
+  /// finds and pushes fewer pairs. Detection and the fail-safe still decide; off gives the plain
+  /// per-step response of math-spec 10.8.
+  bool warm_start = true;
 };
 
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
@@ -64,13 +69,18 @@ class SelfCollision {
   /// reverts the vertices of each still-touching pair to x0 until none is left. If x0 is free of
   /// contacts (true by induction from the rest state), so is the result.
   ///
+  /// With CollisionOptions::warm_start, the previous step's contacts are first projected on x1
+  /// (their frozen frames), so a resting contact is not detected and pushed again every step.
+  ///
   /// Work is incremental. A broad phase with boxes inflated by delta plus a margin m gives a
-  /// superset of the candidates of every later round as long as no vertex moves farther than
-  /// m/2 from where it was at that broad phase; a vertex that does triggers a new one (the
-  /// step's first has m = 0, the next ones m = 8 delta: see self_collision.cpp).
-  /// After round 0 only the pairs with a vertex that the previous response moved are tested
-  /// again: the others' positions, hence their answers, have not changed. The fail-safe tests
-  /// the pairs not known to be free at their current positions.
+  /// superset of the candidates of every later round as long as no vertex leaves its swept box
+  /// of that broad phase grown by m/2; a vertex that does triggers a new one (the step's first
+  /// has m = 0, the next ones m = 8 delta: see self_collision.cpp), in which the pairs the last
+  /// one had keep their answers unless a vertex of theirs moved. After round 0 only the pairs
+  /// with a vertex that the previous response moved are tested again: the others' positions,
+  /// hence their answers, have not changed. The fail-safe tests the pairs not known to be free
+  /// at their current positions. Before the filter, each pair's own swept boxes are compared
+  /// (swept_boxes_apart): pairs kept only by a margin leave for a few nanoseconds.
   /// @param w  inverse masses (pinned vertices are not moved by the response)
   void resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w, CollisionStepStats& stats);
 
@@ -89,14 +99,20 @@ class SelfCollision {
   };
 
   /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
-  /// dropped) and marks every pair stale. x1 becomes the reference for the margin check.
-  void broad_phase(const Positions& x0, const Positions& x1, CollisionStepStats& stats);
+  /// dropped). New pairs are stale; with carry_over (a rebuild within the step, same x0), pairs
+  /// the previous pairs_ had keep their stale_ and free_ flags. The swept boxes of (x0, x1) grown
+  /// by margin / 2 become the regions of the escape check.
+  void broad_phase(const Positions& x0, const Positions& x1, CollisionStepStats& stats,
+                   bool carry_over);
 
   /// Filter and narrow phase with tolerance tol on the pairs listed in tests_ (indices into
   /// pairs_), in parallel; afterwards free_ and stale_ of those pairs are updated and contacts_
   /// holds their hits in the order of tests_ (so the result does not depend on the threads).
   void detect(const Positions& x0, const Positions& x1, double tol, CollisionStepStats& stats,
               bool count_stage);
+
+  /// Projects the last step's contacts on x1 once (see CollisionOptions::warm_start).
+  void warm_start(Positions& x1, const Eigen::VectorXd& w) const;
 
   /// Marks stale every pair with a vertex in moved_, then clears moved_.
   void mark_moved_pairs_stale();
@@ -107,13 +123,16 @@ class SelfCollision {
   std::vector<PairRecord> pairs_;        ///< candidates of the last broad phase
   std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
+  std::vector<PairRecord> old_pairs_;    ///< pairs_, stale_, free_ of the previous broad phase
+  std::vector<std::uint8_t> old_stale_;  ///< (carry-over of a rebuild)
+  std::vector<std::uint8_t> old_free_;
   std::vector<std::uint32_t> tests_;     ///< pairs to test in the next detect()
   std::vector<std::uint32_t> survivors_; ///< tests_ entries the filter did not cull
   std::vector<std::uint8_t> hit_;        ///< per tests_ entry: the narrow phase reported a hit
   std::vector<Contact> found_;           ///< per tests_ entry: the contact, if hit_
   std::vector<std::uint8_t> moved_;      ///< per vertex: moved by the response or the fail-safe
   std::vector<int> moved_list_;          ///< the vertices with moved_ set
-  Positions reference_;                  ///< x1 at the last broad phase (margin check)
+  Positions reference_lo_, reference_hi_; ///< where each vertex may go before a rebuild
   double margin_ = 0.0;                  ///< reuse margin of the last broad phase
   struct Workers;                        ///< the thread arena (TBB stays in the .cpp)
   std::unique_ptr<Workers> workers_;
@@ -122,6 +141,7 @@ class SelfCollision {
   std::vector<std::array<int, 2>> near_vf_;      ///< closer than delta at rest, sorted
   std::vector<std::array<int, 2>> near_ee_;      ///< closer than delta at rest, sorted
   std::vector<Contact> contacts_;
+  std::vector<Contact> previous_contacts_;  ///< every contact of the last step (warm start)
 };
 
 }  // namespace shellcontract
