@@ -168,8 +168,9 @@ std::int64_t primitive_boxes(const CollisionTopology& topo, CandidatePairs& out)
 /// link) would otherwise be lost, and the result would differ from the primitive-box definition.
 /// Each primitive pair is box-tested itself, so the result equals PrimitiveBoxes exactly: a
 /// primitive's box lies inside each of its faces' boxes, so every overlapping primitive pair has
-/// an overlapping face pair (two different faces, since adjacent pairs are excluded).
-/// @return number of overlapping face box pairs
+/// an overlapping face pair (two different faces, since adjacent pairs are excluded). Vertices
+/// no face references are in no face pair: they are searched against the faces separately.
+/// @return number of overlapping face box pairs (and unreferenced-vertex / face box pairs)
 std::int64_t face_pairs(const CollisionTopology& topo, CandidatePairs& out) {
   BroadPhaseScratch& s = out.scratch;
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
@@ -204,6 +205,19 @@ std::int64_t face_pairs(const CollisionTopology& topo, CandidatePairs& out) {
                  }
                }
              });
+  // Vertices no face references are in no face pair: their own bipartite search.
+  if (!topo.orphan_vertices.empty()) {
+    std::vector<BroadPhaseBox> orphans;
+    orphans.reserve(topo.orphan_vertices.size());
+    for (int v : topo.orphan_vertices) orphans.push_back(s.vertex_boxes[static_cast<std::size_t>(v)]);
+    box_search(orphans, s.face_boxes, CGAL::Box_intersection_d::BIPARTITE, s,
+               [&](const BroadPhaseBox& a, const BroadPhaseBox& b) {
+                 ++reported;
+                 const BroadPhaseBox& vb = a.box_id < nv ? a : b;
+                 const BroadPhaseBox& fb = a.box_id < nv ? b : a;
+                 s.vf_keys.push_back(pack(static_cast<int>(vb.box_id), static_cast<int>(fb.box_id - nv)));
+               });
+  }
   keys_to_pairs(s.vf_keys, out.vertex_face);
   keys_to_pairs(s.ee_keys, out.edge_edge);
   return reported;
@@ -869,6 +883,12 @@ CollisionTopology make_collision_topology(const Faces& faces, int num_vertices) 
     ++degree[static_cast<std::size_t>(topo.edges(e, 0))];
     ++degree[static_cast<std::size_t>(topo.edges(e, 1))];
   }
+
+  std::vector<std::uint8_t> referenced(static_cast<std::size_t>(num_vertices), 0);
+  for (Eigen::Index f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) referenced[static_cast<std::size_t>(faces(f, k))] = 1;
+  for (int v = 0; v < num_vertices; ++v)
+    if (!referenced[static_cast<std::size_t>(v)]) topo.orphan_vertices.push_back(v);
 
   // Table 2 "no culling": every pair a brute-force narrow phase would test.
   topo.all_vertex_face_pairs = static_cast<std::int64_t>(num_vertices) * nf - 3 * nf;

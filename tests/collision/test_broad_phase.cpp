@@ -367,6 +367,27 @@ TEST(BroadPhase, GridFarFromTheOriginAndFallback) {
   EXPECT_EQ(g_grid_fallbacks - fallbacks_before, 1);
 }
 
+TEST(BroadPhase, VerticesNoFaceReferencesAreStillVertexFaceCandidates) {
+  // Face-pair methods find VF pairs through the faces around the vertex; a vertex without faces
+  // has none and needs its own search. Place 40 of them on and near the sphere, moving.
+  const TriMesh s = test::icosphere(2);
+  const int nv = static_cast<int>(s.x.rows());
+  std::mt19937 rng(5);
+  Positions x(nv + 40, 3);
+  x.topRows(nv) = s.x;
+  for (int i = 0; i < 40; ++i) x.row(nv + i) = s.x.row(i * 3) * (0.97 + 0.0015 * i);
+  const CollisionTopology topo = make_collision_topology(s.faces, nv + 40);
+  ASSERT_EQ(topo.orphan_vertices.size(), 40u);
+  EXPECT_EQ(topo.orphan_vertices.front(), nv);
+  for (double motion : {0.0, 0.01, 0.05})
+    expect_all_methods_match(x, random_motion(x, motion, rng), s.faces, 1e-3,
+                             "icosphere and 40 unreferenced vertices, motion " + std::to_string(motion));
+  // Some of them must be candidates, or the case is not exercised.
+  const BruteForce bf = brute_force(x, x, s.faces, 1e-3);
+  EXPECT_TRUE(std::any_of(bf.vertex_face.begin(), bf.vertex_face.end(),
+                          [&](const std::array<int, 2>& p) { return p[0] >= nv; }));
+}
+
 // ------------------------------------------------------------------ contract checks
 
 TEST(BroadPhase, InflationIsAddedOnEverySide) {

@@ -27,6 +27,7 @@ struct CollisionTopology {
   Edges edges;           ///< #E by 2, edges(e, 0) < edges(e, 1), rows sorted lexicographically
   FaceEdges face_edges;  ///< #F by 3 edge ids, see FaceEdges
   int num_vertices = 0;  ///< #V; every vertex 0..#V-1 is a VF candidate, referenced or not
+  std::vector<int> orphan_vertices;  ///< the vertices no face references, increasing
   /// VF pairs with the vertex not a corner of the face: #V #F - 3 #F (paper Table 2 "no culling").
   std::int64_t all_vertex_face_pairs = 0;
   /// EE pairs a < b sharing no vertex: #E(#E-1)/2 - sum_v deg(v)(deg(v)-1)/2.
