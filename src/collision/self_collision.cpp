@@ -17,28 +17,21 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 
-/// Sort key of a candidate pair: the VF pairs by (vertex, face), then the EE pairs by (a, b), the
-/// order find_candidates and for_each_pair produce.
-std::uint64_t pair_key(CcdPrimitive kind, const std::array<int, 2>& pair) {
-  return static_cast<std::uint64_t>(kind == CcdPrimitive::EdgeEdge) << 63 |
-         static_cast<std::uint64_t>(pair[0]) << 32 | static_cast<std::uint64_t>(pair[1]);
-}
 
 /// Response target: contacts closer than delta are pushed to RESPONSE_FACTOR * delta, so that a
 /// resolved pair is not detected again in the next round (detection thickness < response
 /// thickness, as in Bridson et al. 2002).
 constexpr double RESPONSE_FACTOR = 2.0;
 
-/// Reuse margins (see resolve). The step's first broad phase has none (boxes inflated by delta
-/// only): its pairs are all tested in round 0 anyway. Round 0's pushes then move vertices by up
-/// to ~20 delta on bear (deep crossings), so in a contact-rich step the candidates must be found
-/// again; that second broad phase gets margin m = REBUILD_MARGIN_FACTOR * delta, because later
-/// pushes are small (at most ~2 delta on bear) and it then serves the remaining rounds and the
-/// fail-safe. Measured on bear, 200 default frames (broad phases per step, filter tests per
-/// step): m = 2 delta 2.50, 192k; 4 delta 2.37, 221k; 8 delta 1.99, 230k; 12 delta 1.94, 294k;
-/// a margin on the first call too (4 delta) 2.36, 268k; the earlier one-per-round scheme ~4.
-constexpr double FIRST_MARGIN_FACTOR = 0.0;
-constexpr double REBUILD_MARGIN_FACTOR = 8.0;
+/// Region margin (see resolve): the step's one broad phase inflates the swept boxes by
+/// delta + m with m = REGION_MARGIN_FACTOR * delta, and every vertex then stays inside its swept
+/// box grown by m/2 (the response is clamped to it; the other half is a wide gap over rounding).
+/// Measured on bear, 200 default frames, warm start on (per step: filter tests, rounds; fail-safe
+/// vertices over the run; collision ms per step, one run each, a second job on the machine):
+/// m = 0: 94k, 4.6, 25, 45.7; m = 2 delta: 128k, 3.7, 0, 49.2; 4 delta: 166k, 3.2, 0, 48.8.
+/// Before the clamp, a push out of the region meant a second broad phase with a margin of 8 delta
+/// (1.93 per step): 196k, 2.8, 0, 78.9 in the same conditions.
+constexpr double REGION_MARGIN_FACTOR = 2.0;
 
 /// Warm start: a previous contact is projected again only while its contact points have slid
 /// apart (tangentially) by at most this many push distances (2 delta each): farther, the frozen
@@ -108,27 +101,17 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
 
 SelfCollision::~SelfCollision() = default;
 
-void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, CollisionStepStats& stats,
-                                bool carry_over) {
+void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double margin,
+                                CollisionStepStats& stats) {
   BroadPhaseStats bs;
   workers_->arena.execute([&] {
-    find_candidates(x0, x1, topo_, options_.delta + margin_, candidates_, &bs,
-                    options_.method);
+    find_candidates(x0, x1, topo_, options_.delta + margin, candidates_, &bs, options_.method);
   });
   const auto t0 = Clock::now();
-  // Every list below is sorted by pair_key, and so are the candidates in for_each_pair order,
-  // so one merge pass replaces a search per candidate.
-  if (carry_over) {
-    old_pairs_.swap(pairs_);
-    old_stale_.swap(stale_);
-    old_free_.swap(free_);
-  } else {
-    old_pairs_.clear();
-  }
+  // The excluded and near lists are sorted like the candidates in for_each_pair order, so one
+  // merge pass replaces a search per candidate.
   pairs_.clear();
-  stale_.clear();
-  free_.clear();
-  std::size_t ex_vf = 0, ex_ee = 0, nr_vf = 0, nr_ee = 0, old = 0;
+  std::size_t ex_vf = 0, ex_ee = 0, nr_vf = 0, nr_ee = 0;
   auto advance = [](const std::vector<std::array<int, 2>>& list, std::size_t& at,
                     const std::array<int, 2>& pair) {
     while (at < list.size() && list[at] < pair) ++at;
@@ -138,25 +121,16 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, Collis
                                         const std::array<int, 4>& v) {
     const bool vf = kind == CcdPrimitive::VertexFace;
     if (advance(vf ? excluded_vf_ : excluded_ee_, vf ? ex_vf : ex_ee, pair)) return;
-    const bool near = advance(vf ? near_vf_ : near_ee_, vf ? nr_vf : nr_ee, pair);
-    pairs_.push_back(PairRecord{v, pair, kind, near});
-    // A pair the last broad phase had keeps its state: x0 is the same, and stale_ says whether
-    // a vertex moved since its last test (mark_moved_pairs_stale ran before this call).
-    const std::uint64_t key = pair_key(kind, pair);
-    while (old < old_pairs_.size() && pair_key(old_pairs_[old].kind, old_pairs_[old].pair) < key) ++old;
-    const bool known = old < old_pairs_.size() && pair_key(old_pairs_[old].kind, old_pairs_[old].pair) == key;
-    stale_.push_back(known ? old_stale_[old] : 1);
-    free_.push_back(known ? old_free_[old] : 0);
+    pairs_.push_back(PairRecord{v, pair, kind, advance(vf ? near_vf_ : near_ee_, vf ? nr_vf : nr_ee, pair)});
   });
-  // The region each vertex may move in without leaving its inflated box: its swept box grown by
-  // half the margin (the other half is a wide safety gap over rounding).
-  reference_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin_;
-  reference_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin_;
+  stale_.assign(pairs_.size(), 1);
+  free_.assign(pairs_.size(), 0);
+  region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
+  region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
   stats.broad_seconds += bs.seconds + since(t0);
-  if (stats.broad_phase_calls++ == 0) {
-    stats.pairs_no_culling = bs.no_culling_vertex_face + bs.no_culling_edge_edge;
-    stats.pairs_broad = bs.vertex_face + bs.edge_edge;
-  }
+  ++stats.broad_phase_calls;
+  stats.pairs_no_culling = bs.no_culling_vertex_face + bs.no_culling_edge_edge;
+  stats.pairs_broad = bs.vertex_face + bs.edge_edge;
 }
 
 void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
@@ -252,14 +226,13 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
                             CollisionStepStats& stats) {
   stats = CollisionStepStats{};
   const double delta = options_.delta;
-  margin_ = FIRST_MARGIN_FACTOR * delta;
   if (options_.warm_start) {
     const auto t0 = Clock::now();
     warm_start(x1, w);
     stats.response_seconds += since(t0);
   }
   previous_contacts_.clear();
-  broad_phase(x0, x1, stats, false);
+  broad_phase(x0, x1, REGION_MARGIN_FACTOR * delta, stats);
   auto mark = [&](int v) {
     if (moved_[static_cast<std::size_t>(v)]) return;
     moved_[static_cast<std::size_t>(v)] = 1;
@@ -278,29 +251,18 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
     stats.contacts += static_cast<std::int64_t>(contacts_.size());
     previous_contacts_.insert(previous_contacts_.end(), contacts_.begin(), contacts_.end());
     const auto t0 = Clock::now();
-    bool escaped = false;
     for (const Contact& c : contacts_) {
       if (!project_contact(c, RESPONSE_FACTOR * delta, x1.data(), w.data())) continue;
       for (int v : c.v) {
         mark(v);
-        // Outside its swept box of the last broad phase grown by half the margin, a vertex may
-        // have left the inflated boxes of that broad phase; the other half is a wide safety gap
-        // over rounding. With no margin, containment in the box itself is exact (min, max and
-        // the subtraction of delta are monotone), and a push back along the path never escapes.
-        escaped |= (x1.row(v).array() < reference_lo_.row(v).array()).any() ||
-                   (x1.row(v).array() > reference_hi_.row(v).array()).any();
+        // Clamped to its region, a vertex keeps every pair it can form inside the candidates of
+        // the step's broad phase, so no second one is needed; a push it cannot complete is left
+        // to the pair's other vertices in the next round, or to the fail-safe.
+        x1.row(v) = x1.row(v).cwiseMax(region_lo_.row(v)).cwiseMin(region_hi_.row(v));
       }
     }
     stats.response_seconds += since(t0);
-    if (escaped) {
-      margin_ = REBUILD_MARGIN_FACTOR * delta;
-      // The boxes of the last broad phase may no longer contain the moved primitives: find the
-      // candidates again; pairs it already had keep their answers unless a vertex moved.
-      mark_moved_pairs_stale();
-      broad_phase(x0, x1, stats, true);
-    } else {
-      mark_moved_pairs_stale();
-    }
+    mark_moved_pairs_stale();
   }
   // Fail-safe (math-spec 10.8): test, with tolerance 0, every pair not known to be free at its
   // current positions (stale, hit in a round, or near at rest), and revert the vertices of each

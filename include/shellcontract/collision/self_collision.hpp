@@ -35,13 +35,13 @@ struct CollisionOptions {
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
 struct CollisionStepStats {
   std::int64_t pairs_no_culling = 0;  ///< all non-adjacent VF + EE pairs
-  std::int64_t pairs_broad = 0;       ///< after the step's first broad phase (inflation delta)
-  std::int64_t pairs_filtered = 0;    ///< left after the non-penetration filter (first round)
+  std::int64_t pairs_broad = 0;       ///< after the broad phase (inflation delta + region margin)
+  std::int64_t pairs_filtered = 0;    ///< left after the box cull and the filter (first round)
   std::int64_t filter_tests = 0;      ///< non-penetration filter evaluations, all passes
   std::int64_t narrow_tests = 0;      ///< narrow-phase (cubic) tests run, all rounds
   std::int64_t contacts = 0;          ///< contacts found, all rounds
   int rounds = 0;                     ///< detection rounds run
-  int broad_phase_calls = 0;          ///< 1, plus one per margin escape (see resolve)
+  int broad_phase_calls = 0;          ///< broad phases run (one per step, see resolve)
   std::int64_t failsafe_vertices = 0; ///< vertices reverted to their start position
   std::int64_t unresolved = 0;        ///< static pairs still reported after the fail-safe
   double broad_seconds = 0.0;
@@ -72,15 +72,15 @@ class SelfCollision {
   /// With CollisionOptions::warm_start, the previous step's contacts are first projected on x1
   /// (their frozen frames), so a resting contact is not detected and pushed again every step.
   ///
-  /// Work is incremental. A broad phase with boxes inflated by delta plus a margin m gives a
-  /// superset of the candidates of every later round as long as no vertex leaves its swept box
-  /// of that broad phase grown by m/2; a vertex that does triggers a new one (the step's first
-  /// has m = 0, the next ones m = 8 delta: see self_collision.cpp), in which the pairs the last
-  /// one had keep their answers unless a vertex of theirs moved. After round 0 only the pairs
-  /// with a vertex that the previous response moved are tested again: the others' positions,
-  /// hence their answers, have not changed. The fail-safe tests the pairs not known to be free
-  /// at their current positions. Before the filter, each pair's own swept boxes are compared
-  /// (swept_boxes_apart): pairs kept only by a margin leave for a few nanoseconds.
+  /// Work is incremental. One broad phase per step, on the swept boxes inflated by delta plus a
+  /// margin m (2 delta), gives the candidates of every round and of the fail-safe, because the
+  /// response is clamped so that no vertex leaves its swept box grown by m/2 (a push it cannot
+  /// complete is finished by the pair's other vertices in a later round, or by the fail-safe,
+  /// whose revert to x0 stays inside too). After round 0 only the pairs with a vertex that the
+  /// previous response moved are tested again: the others' positions, hence their answers, have
+  /// not changed. The fail-safe tests the pairs not known to be free at their current
+  /// positions. Before the filter, each pair's own swept boxes are compared (swept_boxes_apart):
+  /// pairs kept only by the margin leave for a few nanoseconds.
   /// @param w  inverse masses (pinned vertices are not moved by the response)
   void resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w, CollisionStepStats& stats);
 
@@ -99,11 +99,10 @@ class SelfCollision {
   };
 
   /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
-  /// dropped). New pairs are stale; with carry_over (a rebuild within the step, same x0), pairs
-  /// the previous pairs_ had keep their stale_ and free_ flags. The swept boxes of (x0, x1) grown
-  /// by margin / 2 become the regions of the escape check.
-  void broad_phase(const Positions& x0, const Positions& x1, CollisionStepStats& stats,
-                   bool carry_over);
+  /// dropped), every pair stale. The swept boxes of (x0, x1) grown by margin / 2 become the
+  /// regions the response keeps each vertex in.
+  void broad_phase(const Positions& x0, const Positions& x1, double margin,
+                   CollisionStepStats& stats);
 
   /// Filter and narrow phase with tolerance tol on the pairs listed in tests_ (indices into
   /// pairs_), in parallel; afterwards free_ and stale_ of those pairs are updated and contacts_
@@ -123,17 +122,13 @@ class SelfCollision {
   std::vector<PairRecord> pairs_;        ///< candidates of the last broad phase
   std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
-  std::vector<PairRecord> old_pairs_;    ///< pairs_, stale_, free_ of the previous broad phase
-  std::vector<std::uint8_t> old_stale_;  ///< (carry-over of a rebuild)
-  std::vector<std::uint8_t> old_free_;
   std::vector<std::uint32_t> tests_;     ///< pairs to test in the next detect()
   std::vector<std::uint32_t> survivors_; ///< tests_ entries the filter did not cull
   std::vector<std::uint8_t> hit_;        ///< per tests_ entry: the narrow phase reported a hit
   std::vector<Contact> found_;           ///< per tests_ entry: the contact, if hit_
   std::vector<std::uint8_t> moved_;      ///< per vertex: moved by the response or the fail-safe
   std::vector<int> moved_list_;          ///< the vertices with moved_ set
-  Positions reference_lo_, reference_hi_; ///< where each vertex may go before a rebuild
-  double margin_ = 0.0;                  ///< reuse margin of the last broad phase
+  Positions region_lo_, region_hi_;      ///< per vertex, the box the response keeps it in
   struct Workers;                        ///< the thread arena (TBB stays in the .cpp)
   std::unique_ptr<Workers> workers_;
   std::vector<std::array<int, 2>> excluded_vf_;  ///< sorted
