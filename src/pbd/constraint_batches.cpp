@@ -40,6 +40,7 @@ ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
     for (std::size_t first = colour_offsets[c]; first < end; first += BATCH_LANES) {
       Batch b{};
       b.count = static_cast<int>(std::min<std::size_t>(BATCH_LANES, end - first));
+      b.same_colour_next = first + BATCH_LANES < end;
       for (int k = 0; k < BATCH_LANES; ++k) {
         const Record& r = records[first + (k < b.count ? k : 0)];
         for (int j = 0; j < N; ++j) b.v[j][k] = r.v[j];
@@ -220,9 +221,20 @@ void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* b
   const V one = splat(1.0), half = splat(0.5), two = splat(2.0);
   const V vmu = splat(mu), two_mu = splat(2.0 * mu), vlam = splat(lambda_lame);
   const V floor = splat(ctx.energy_floor), tiny = splat(1e-300), at = splat(ctx.alpha_tilde);
+  // Software pipelining: the rows of batch b + 1 are loaded before the stores of batch b when
+  // the two are of the same colour (same_colour_next: they share no vertex, so the rows read are
+  // the same either way), else after them. Loads that follow the previous batch's stores in
+  // program order start later; about 7% faster on bear (A/B, see the commit message).
+  V4 next1, next2, next3;
+  auto load_next = [&](const MembraneBatch& c) {
+    next1 = gather(xw, c.v[0]), next2 = gather(xw, c.v[1]), next3 = gather(xw, c.v[2]);
+  };
+  if (count > 0) load_next(batches[0]);
   for (std::size_t b = 0; b < count; ++b) {
     const MembraneBatch& c = batches[b];
-    const V4 r1 = gather(xw, c.v[0]), r2 = gather(xw, c.v[1]), r3 = gather(xw, c.v[2]);
+    const V4 r1 = next1, r2 = next2, r3 = next3;
+    const bool early = b + 1 < count && c.same_colour_next;
+    const bool late = b + 1 < count && !c.same_colour_next;
     const V3 &x1 = r1.x, &x2 = r2.x, &x3 = r3.x;
     const V w0 = r1.w, w1 = r2.w, w2 = r3.w;
     const V dm00 = _mm256_load_pd(c.dm00), dm01 = _mm256_load_pd(c.dm01);
@@ -245,27 +257,30 @@ void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* b
     const V G = w0 * n0 + w1 * n1 + w2 * n2;
     // The skips of math-spec 9.1(d), per lane; padding lanes have E = 0.
     const V active = _mm256_and_pd(greater(E, floor * area), greater(G, tiny));
-    if (_mm256_movemask_pd(active) == 0) continue;
-    V sigma;  // dx_i = -sigma w_i g_i
-    if (lambda == nullptr) {
-      sigma = E / G;
-      const V a0 = sigma * w0, a1 = sigma * w1, a2 = sigma * w2;
-      const V longest_sq = _mm256_max_pd(_mm256_max_pd(a0 * a0 * n0, a1 * a1 * n1), a2 * a2 * n2);
-      const V max_step = _mm256_load_pd(c.max_step);
-      const V clamp = greater(longest_sq, max_step * max_step);
-      if (_mm256_movemask_pd(_mm256_and_pd(clamp, active)) != 0)  // the clamp is rare
-        sigma = _mm256_blendv_pd(sigma, sigma * (max_step / _mm256_sqrt_pd(longest_sq)), clamp);
-    } else {
-      // XPBD, division-free form of math-spec 9.2 with C = sqrt(2E) (E > 0 on active lanes).
-      double* lam = lambda + BATCH_LANES * b;
-      const V l = _mm256_loadu_pd(lam);
-      const V C = _mm256_sqrt_pd(_mm256_max_pd(two * E, _mm256_setzero_pd()));
-      sigma = C * (C + at * l) / (G + at * C * C);
-      _mm256_storeu_pd(lam, _mm256_blendv_pd(l, l - C * sigma, active));
+    if (early) load_next(batches[b + 1]);
+    if (_mm256_movemask_pd(active) != 0) {
+      V sigma;  // dx_i = -sigma w_i g_i
+      if (lambda == nullptr) {
+        sigma = E / G;
+        const V a0 = sigma * w0, a1 = sigma * w1, a2 = sigma * w2;
+        const V longest_sq = _mm256_max_pd(_mm256_max_pd(a0 * a0 * n0, a1 * a1 * n1), a2 * a2 * n2);
+        const V max_step = _mm256_load_pd(c.max_step);
+        const V clamp = greater(longest_sq, max_step * max_step);
+        if (_mm256_movemask_pd(_mm256_and_pd(clamp, active)) != 0)  // the clamp is rare
+          sigma = _mm256_blendv_pd(sigma, sigma * (max_step / _mm256_sqrt_pd(longest_sq)), clamp);
+      } else {
+        // XPBD, division-free form of math-spec 9.2 with C = sqrt(2E) (E > 0 on active lanes).
+        double* lam = lambda + BATCH_LANES * b;
+        const V l = _mm256_loadu_pd(lam);
+        const V C = _mm256_sqrt_pd(_mm256_max_pd(two * E, _mm256_setzero_pd()));
+        sigma = C * (C + at * l) / (G + at * C * C);
+        _mm256_storeu_pd(lam, _mm256_blendv_pd(l, l - C * sigma, active));
+      }
+      scatter(xw, c.v[0], c.count, x1 - masked(g0 * (sigma * w0), active), w0);
+      scatter(xw, c.v[1], c.count, x2 - masked(g1 * (sigma * w1), active), w1);
+      scatter(xw, c.v[2], c.count, x3 - masked(g2 * (sigma * w2), active), w2);
     }
-    scatter(xw, c.v[0], c.count, x1 - masked(g0 * (sigma * w0), active), w0);
-    scatter(xw, c.v[1], c.count, x2 - masked(g1 * (sigma * w1), active), w1);
-    scatter(xw, c.v[2], c.count, x3 - masked(g2 * (sigma * w2), active), w2);
+    if (late) load_next(batches[b + 1]);
   }
 }
 

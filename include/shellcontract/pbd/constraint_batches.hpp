@@ -48,6 +48,8 @@ struct alignas(32) MembraneBatch {
   double max_step[BATCH_LANES];                                    ///< clamp (math-spec 9.1d)
   int v[3][BATCH_LANES];  ///< v[j][k]: vertex j of lane k
   int count;              ///< real lanes, 1..4
+  int same_colour_next;   ///< 1 when batch + 1 is of the same colour (shares no vertex with this
+                          ///< one: the AVX2 kernel loads its rows before this batch's stores)
 };
 
 /// Four isometric hinges of one colour (IsometricHingeConstraint fields, stencil order of
@@ -58,6 +60,7 @@ struct alignas(32) IsometricBatch {
   double max_step[BATCH_LANES];        ///< clamp (math-spec 9.1d)
   int v[4][BATCH_LANES];
   int count;
+  int same_colour_next;  ///< as in MembraneBatch
 };
 
 /// Batches of one constraint kind grouped by colour: colour c owns batches
