@@ -23,15 +23,18 @@ Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 /// thickness, as in Bridson et al. 2002).
 constexpr double RESPONSE_FACTOR = 2.0;
 
-/// Region margin (see resolve): the step's one broad phase inflates the swept boxes by
-/// delta + m with m = REGION_MARGIN_FACTOR * delta, and every vertex then stays inside its swept
-/// box grown by m/2 (the response is clamped to it; the other half is a wide gap over rounding).
-/// Measured on bear, 200 default frames, warm start on (per step: filter tests, rounds; fail-safe
-/// vertices over the run; collision ms per step, one run each, a second job on the machine):
-/// m = 0: 94k, 4.6, 25, 45.7; m = 2 delta: 128k, 3.7, 0, 49.2; 4 delta: 166k, 3.2, 0, 48.8.
-/// Before the clamp, a push out of the region meant a second broad phase with a margin of 8 delta
-/// (1.93 per step): 196k, 2.8, 0, 78.9 in the same conditions.
-constexpr double REGION_MARGIN_FACTOR = 2.0;
+/// Region margin (CollisionOptions::region_margin, see resolve): the step's one broad phase
+/// inflates the swept boxes by delta + m with m = region_margin * delta, and every vertex then
+/// stays inside its swept box grown by m/2 (the response is clamped to it; the other half is a wide gap over rounding).
+/// A small region clamps more pushes, which later rounds or the fail-safe must finish; a large
+/// one gives more candidates. Measured (this machine, quiet, warm start on): bear default run,
+/// per step filter tests / rounds / collision ms, fail-safe vertices over the run; and hand at
+/// P = 4 for 300 frames, fail-safe vertices:
+///   m = 2 delta: 128k / 3.65 / 30.5 ms, 0; hand 2004
+///   m = 4 delta: 166k / 3.17 / 31.3-32.7 ms, 0; hand 1032
+///   m = 8 delta: 257k / 2.96 / 37.2 ms, 0; hand 266
+/// The scheme before the clamp (a second broad phase with an 8 delta margin whenever a push left
+/// the region, 1.93 per step on bear): 196k / 2.81 / 49.8 ms, 0; hand 32.
 
 /// Warm start: a previous contact is projected again only while its contact points have slid
 /// apart (tangentially) by at most this many push distances (2 delta each): farther, the frozen
@@ -232,7 +235,7 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
     stats.response_seconds += since(t0);
   }
   previous_contacts_.clear();
-  broad_phase(x0, x1, REGION_MARGIN_FACTOR * delta, stats);
+  broad_phase(x0, x1, options_.region_margin * delta, stats);
   auto mark = [&](int v) {
     if (moved_[static_cast<std::size_t>(v)]) return;
     moved_[static_cast<std::size_t>(v)] = 1;

@@ -28,6 +28,8 @@ void check_options(const SimOptions& o) {
   if (!std::isfinite(o.region_pressure)) fail("region pressure must be finite");
   if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta)) fail("contact distance delta must be positive");
   if (o.collision.rounds < 0) fail("collision rounds must be >= 0");
+  if (!(o.collision.region_margin >= 0.0) || !std::isfinite(o.collision.region_margin))
+    fail("collision region margin must be >= 0");
   if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
     fail("stop volume ratio must be in [0, 1)");
 }

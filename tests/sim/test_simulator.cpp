@@ -137,6 +137,10 @@ TEST(Simulator, RejectsInvalidOptions) {
   expect_usage([](SimOptions& o) { o.density = 0.0; });
   expect_usage([](SimOptions& o) { o.stop_volume_ratio = 1.5; });
   expect_usage([](SimOptions& o) { o.pressure = INFINITY; });
+  expect_usage([](SimOptions& o) { o.collision.delta = 0.0; });
+  expect_usage([](SimOptions& o) { o.collision.rounds = -1; });
+  expect_usage([](SimOptions& o) { o.collision.region_margin = -1.0; });
+  expect_usage([](SimOptions& o) { o.collision.region_margin = std::nan(""); });
 }
 
 TEST(Simulator, BlowUpIsReportedAndLastGoodStateKept) {

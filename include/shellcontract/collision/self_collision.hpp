@@ -30,6 +30,10 @@ struct CollisionOptions {
   /// finds and pushes fewer pairs. Detection and the fail-safe still decide; off gives the plain
   /// per-step response of math-spec 10.8.
   bool warm_start = true;
+  /// m / delta >= 0: the step's broad phase inflates by delta + m, and the response keeps each
+  /// vertex within m/2 of its swept box (see SelfCollision::resolve; measurements in
+  /// self_collision.cpp).
+  double region_margin = 4.0;
 };
 
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
@@ -73,10 +77,10 @@ class SelfCollision {
   /// (their frozen frames), so a resting contact is not detected and pushed again every step.
   ///
   /// Work is incremental. One broad phase per step, on the swept boxes inflated by delta plus a
-  /// margin m (2 delta), gives the candidates of every round and of the fail-safe, because the
-  /// response is clamped so that no vertex leaves its swept box grown by m/2 (a push it cannot
-  /// complete is finished by the pair's other vertices in a later round, or by the fail-safe,
-  /// whose revert to x0 stays inside too). After round 0 only the pairs with a vertex that the
+  /// margin m (CollisionOptions::region_margin), gives the candidates of every round and of the
+  /// fail-safe, because the response is clamped so that no vertex leaves its swept box grown by
+  /// m/2 (a push it cannot complete is finished by the pair's other vertices in a later round, or
+  /// by the fail-safe, whose revert to x0 stays inside too). After round 0 only the pairs with a vertex that the
   /// previous response moved are tested again: the others' positions, hence their answers, have
   /// not changed. The fail-safe tests the pairs not known to be free at their current
   /// positions. Before the filter, each pair's own swept boxes are compared (swept_boxes_apart):
