@@ -642,25 +642,27 @@ bool nonpenetration_filter_culls(CcdPrimitive kind, const CcdStencil& x0, const 
 
 bool swept_boxes_apart(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
                        double tolerance) {
-  // Primitive A is stencil points [0, split), B is [split, 4).
-  const int split = kind == CcdPrimitive::VertexFace ? 1 : 2;
+  // Non-finite input is never culled. x * 0 is NaN for an infinite or NaN x and 0 otherwise, so
+  // one sum tests all 24 coordinates (an overflowing sum only makes the test answer "keep").
+  double probe = 0.0;
+  for (int k = 0; k < 4; ++k) probe += (x0[k].sum() + x1[k].sum()) * 0.0;
+  if (!(probe == 0.0)) return false;
   const double tau = tolerance > 0.0 ? tolerance : 0.0;
   // A computed gap g = fl(d) has |g - d| <= u |d|, so g > tau (1 + 4u) (itself rounded by at most
   // one ulp) gives d >= g (1 - u) > tau. For tau = 0 the test is g > 0, whose sign is exact.
   const double limit = tau * (1.0 + 4.0 * U);
-  for (int k = 0; k < 4; ++k)
-    if (!x0[k].allFinite() || !x1[k].allFinite()) return false;
+  // Primitive A is stencil points [0, split), B is [split, 4).
+  const int split = kind == CcdPrimitive::VertexFace ? 1 : 2;
   for (int d = 0; d < 3; ++d) {
-    double alo = std::min(x0[0][d], x1[0][d]), ahi = std::max(x0[0][d], x1[0][d]);
-    for (int k = 1; k < split; ++k) {
-      alo = std::min({alo, x0[k][d], x1[k][d]});
-      ahi = std::max({ahi, x0[k][d], x1[k][d]});
+    double lo[4], hi[4];
+    for (int k = 0; k < 4; ++k) {
+      lo[k] = std::min(x0[k][d], x1[k][d]);
+      hi[k] = std::max(x0[k][d], x1[k][d]);
     }
-    double blo = std::min(x0[split][d], x1[split][d]), bhi = std::max(x0[split][d], x1[split][d]);
-    for (int k = split + 1; k < 4; ++k) {
-      blo = std::min({blo, x0[k][d], x1[k][d]});
-      bhi = std::max({bhi, x0[k][d], x1[k][d]});
-    }
+    const double alo = split == 1 ? lo[0] : std::min(lo[0], lo[1]);
+    const double ahi = split == 1 ? hi[0] : std::max(hi[0], hi[1]);
+    const double blo = split == 1 ? std::min({lo[1], lo[2], lo[3]}) : std::min(lo[2], lo[3]);
+    const double bhi = split == 1 ? std::max({hi[1], hi[2], hi[3]}) : std::max(hi[2], hi[3]);
     if (blo - ahi > limit || alo - bhi > limit) return true;
   }
   return false;
