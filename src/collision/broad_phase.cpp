@@ -2,7 +2,10 @@
 #include "shellcontract/collision/broad_phase.hpp"
 
 #include <CGAL/box_intersection_d.h>
+#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -395,6 +398,10 @@ constexpr std::int64_t GRID_WORK_PER_BOX = 256;
 /// The per-cell pair loops run as this many chunks of cells (about equal entry counts each), in
 /// parallel with TBB; more chunks than threads balance the load.
 constexpr std::size_t GRID_CHUNKS = 32;
+/// Parts of the grid's counting sort: at most this many (one per thread of the arena).
+constexpr std::size_t GRID_MAX_PARTS = 8;
+/// Vertices per task of the grid's per-vertex loops.
+constexpr std::size_t GRID_VERTEX_GRAIN = 2048;
 /// Ids are stored as gid << 3 | flags in 32 bits.
 constexpr std::size_t GRID_MAX_BOXES = std::size_t{1} << 29;
 /// Cells per axis fit the 16-bit fields of detail::GridRange.
@@ -684,66 +691,95 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
   // Each double is rounded outward after the subtraction; the rounded subtraction is monotone,
   // so whenever two double boxes overlap, so do their float boxes: the float test only culls.
   s.grid_vertex_floats.resize(nv);
-  for (std::size_t v = 0; v < nv; ++v)
-    for (std::size_t d = 0; d < 3; ++d) {
-      s.grid_vertex_floats[v].lo[d] = round_down(vbox[v].lo[d] - lo[d]);
-      s.grid_vertex_floats[v].hi[d] = round_up(vbox[v].hi[d] - lo[d]);
-    }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, GRID_VERTEX_GRAIN),
+                    [&](const tbb::blocked_range<std::size_t>& r) {
+                      for (std::size_t v = r.begin(); v < r.end(); ++v)
+                        for (std::size_t d = 0; d < 3; ++d) {
+                          s.grid_vertex_floats[v].lo[d] = round_down(vbox[v].lo[d] - lo[d]);
+                          s.grid_vertex_floats[v].hi[d] = round_up(vbox[v].hi[d] - lo[d]);
+                        }
+                    });
+
+  // The counting sort below runs in `parts` parts, each over a contiguous range of box ids with
+  // its own counters; part p's entries of a cell follow those of parts < p, so every cell lists
+  // its boxes in id order whatever the number of parts (and threads).
+  const std::size_t parts = std::clamp<std::size_t>(
+      static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()), 1, GRID_MAX_PARTS);
+  auto part_begin = [&](std::size_t p) { return nboxes * p / parts; };
 
   // Count the (cell, box) entries per cell; double the cell size while there are too many.
   const std::size_t max_cells = std::max<std::size_t>(64, GRID_CELLS_PER_BOX * nboxes);
   Grid g;
   std::vector<std::uint32_t>& start = s.cell_start;
   std::size_t entries = 0;
+  s.grid_ranges.resize(nboxes);
   for (;;) {
     g = make_grid(lo, hi, h, max_cells);
+    const std::size_t ncell = g.cells();
     s.grid_vertex_ranges.resize(nv);
-    for (std::size_t v = 0; v < nv; ++v)
-      for (std::size_t d = 0; d < 3; ++d) {
-        s.grid_vertex_ranges[v].lo[d] = g.coord(vbox[v].lo[d], d);
-        s.grid_vertex_ranges[v].hi[d] = g.coord(vbox[v].hi[d], d);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, GRID_VERTEX_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v < r.end(); ++v)
+                          for (std::size_t d = 0; d < 3; ++d) {
+                            s.grid_vertex_ranges[v].lo[d] = g.coord(vbox[v].lo[d], d);
+                            s.grid_vertex_ranges[v].hi[d] = g.coord(vbox[v].hi[d], d);
+                          }
+                      });
+    // Part p counts cell c in cell_count[p * (ncell + 1) + c]; the extra slot per part absorbs
+    // the invalid visits of the 2x2x2 pattern.
+    s.cell_count.assign(parts * (ncell + 1), 0);
+    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t p) {
+      std::uint32_t* count = s.cell_count.data() + p * (ncell + 1);
+      for (std::size_t i = part_begin(p); i < part_begin(p + 1); ++i) {
+        s.grid_ranges[i] = prim.range(prim.ids(i));
+        for_each_cell(g, s.grid_ranges[i],
+                      [&](std::size_t c, std::uint32_t, bool valid) { count[c] += valid; });
       }
-    // start[c + 1] counts cell c; the extra last slot absorbs the invalid visits.
-    start.assign(g.cells() + 2, 0);
-    std::uint32_t* count = start.data() + 1;
-    s.grid_ranges.resize(nboxes);
-    for (std::size_t i = 0; i < nboxes; ++i) {
-      s.grid_ranges[i] = prim.range(prim.ids(i));
-      for_each_cell(g, s.grid_ranges[i],
-                    [&](std::size_t c, std::uint32_t, bool valid) { count[c] += valid; });
+    });
+    start.assign(ncell + 1, 0);
+    for (std::size_t p = 0; p < parts; ++p) {
+      const std::uint32_t* count = s.cell_count.data() + p * (ncell + 1);
+      for (std::size_t c = 0; c < ncell; ++c) start[c + 1] += count[c];
     }
     entries = 0;
-    for (std::size_t c = 1; c <= g.cells(); ++c) entries += start[c];
-    if (entries <= GRID_ENTRIES_PER_BOX * nboxes || g.cells() == 1) break;
+    for (std::size_t c = 1; c <= ncell; ++c) entries += start[c];
+    if (entries <= GRID_ENTRIES_PER_BOX * nboxes || ncell == 1) break;
     h = 2.0 / g.inv_h;
   }
+  const std::size_t ncell = g.cells();
   std::int64_t work = 0;
-  for (std::size_t c = 1; c <= g.cells(); ++c) {
+  for (std::size_t c = 1; c <= ncell; ++c) {
     const std::int64_t k = start[c];
     work += k * (k - 1) / 2;
   }
   if (work > GRID_WORK_PER_BOX * static_cast<std::int64_t>(nboxes)) return -1;
-  start.pop_back();
-  for (std::size_t c = 1; c < start.size(); ++c) start[c] += start[c - 1];
-  // Counting-sort scatter. Invalid visits write to a sink slot past the end (cursor cells()),
-  // which keeps the 2x2x2 pattern branch-free. Boxes go in in id order and the sort is stable,
-  // so each cell lists its vertices, then faces, then edges, each by increasing id.
-  s.cell_fill.assign(start.begin(), start.end());
-  s.cell_entries.resize(entries + 1);
-  {
-    std::uint32_t* fill = s.cell_fill.data();
+  for (std::size_t c = 1; c <= ncell; ++c) start[c] += start[c - 1];
+  // Counting-sort scatter. Part p's cursor of cell c starts after the entries of parts < p;
+  // invalid visits write to the part's own sink slot past the end (cursor ncell), which keeps
+  // the 2x2x2 pattern branch-free. Boxes go in in id order within each part, so each cell lists
+  // its vertices, then faces, then edges, each by increasing id.
+  s.cell_fill.resize(parts * (ncell + 1));
+  for (std::size_t c = 0; c < ncell; ++c) {
+    std::uint32_t cursor = start[c];
+    for (std::size_t p = 0; p < parts; ++p) {
+      s.cell_fill[p * (ncell + 1) + c] = cursor;
+      cursor += s.cell_count[p * (ncell + 1) + c];
+    }
+  }
+  s.cell_entries.resize(entries + parts);
+  tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t p) {
+    std::uint32_t* fill = s.cell_fill.data() + p * (ncell + 1);
     std::uint32_t* entry = s.cell_entries.data();
-    const std::size_t sink = g.cells();
-    fill[sink] = static_cast<std::uint32_t>(entries);
-    for (std::size_t i = 0; i < nboxes; ++i) {
+    fill[ncell] = static_cast<std::uint32_t>(entries + p);
+    for (std::size_t i = part_begin(p); i < part_begin(p + 1); ++i) {
       const std::uint32_t tag = static_cast<std::uint32_t>(i) << 3;
       for_each_cell(g, s.grid_ranges[i], [&](std::size_t c, std::uint32_t flags, bool valid) {
-                      const std::size_t slot = valid ? c : sink;
+                      const std::size_t slot = valid ? c : ncell;
                       entry[fill[slot]] = tag | flags;
                       fill[slot] += valid;
                     });
     }
-  }
+  });
 
   // Per cell: gather the items (float boxes, vertex ids, flags) into structure-of-arrays
   // buffers, build the candidate masks (cell_masks), and confirm the rare survivors with the
@@ -826,8 +862,10 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
     s.vf_keys.insert(s.vf_keys.end(), chunk.vf_keys.begin(), chunk.vf_keys.end());
     s.ee_keys.insert(s.ee_keys.end(), chunk.ee_keys.begin(), chunk.ee_keys.end());
   }
-  grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv), out.vertex_face);
-  grid_keys_to_pairs(s.ee_keys, s.sort_tmp, ee_shift, 2 * ee_shift, out.edge_edge);
+  // The two sorts are independent (own buffers): one per thread.
+  tbb::parallel_invoke(
+      [&] { grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv), out.vertex_face); },
+      [&] { grid_keys_to_pairs(s.ee_keys, s.sort_tmp_ee, ee_shift, 2 * ee_shift, out.edge_edge); });
   return reported;
 }
 

@@ -150,9 +150,11 @@ struct BroadPhaseScratch {
   std::vector<std::size_t> chunk_cells;          ///< Grid: first cell of each chunk, then #cells
   std::vector<double> extent_sample;        ///< Grid: box extents for the cell size
   std::vector<std::uint32_t> cell_start;    ///< Grid: CSR offsets per cell
-  std::vector<std::uint32_t> cell_fill;     ///< Grid: fill cursors of the counting sort
+  std::vector<std::uint32_t> cell_count;    ///< Grid: per part of the counting sort, per cell
+  std::vector<std::uint32_t> cell_fill;     ///< Grid: fill cursors, per part, per cell
   std::vector<std::uint32_t> cell_entries;  ///< Grid: box id << 3 | first-cell flags
-  std::vector<std::uint64_t> sort_tmp;      ///< Grid: radix sort buffer
+  std::vector<std::uint64_t> sort_tmp;      ///< Grid: radix sort buffer (VF)
+  std::vector<std::uint64_t> sort_tmp_ee;   ///< Grid: radix sort buffer (EE)
 };
 }  // namespace detail
 
