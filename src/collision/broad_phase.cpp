@@ -212,13 +212,15 @@ std::int64_t face_pairs(const CollisionTopology& topo, CandidatePairs& out) {
   if (!topo.orphan_vertices.empty()) {
     std::vector<BroadPhaseBox> orphans;
     orphans.reserve(topo.orphan_vertices.size());
-    for (int v : topo.orphan_vertices) orphans.push_back(s.vertex_boxes[static_cast<std::size_t>(v)]);
+    for (int v : topo.orphan_vertices)
+      orphans.push_back(s.vertex_boxes[static_cast<std::size_t>(v)]);
     box_search(orphans, s.face_boxes, CGAL::Box_intersection_d::BIPARTITE, s,
                [&](const BroadPhaseBox& a, const BroadPhaseBox& b) {
                  ++reported;
                  const BroadPhaseBox& vb = a.box_id < nv ? a : b;
                  const BroadPhaseBox& fb = a.box_id < nv ? b : a;
-                 s.vf_keys.push_back(pack(static_cast<int>(vb.box_id), static_cast<int>(fb.box_id - nv)));
+                 s.vf_keys.push_back(
+                     pack(static_cast<int>(vb.box_id), static_cast<int>(fb.box_id - nv)));
                });
   }
   keys_to_pairs(s.vf_keys, out.vertex_face);
@@ -864,7 +866,10 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
   }
   // The two sorts are independent (own buffers): one per thread.
   tbb::parallel_invoke(
-      [&] { grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv), out.vertex_face); },
+      [&] {
+        grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv),
+                           out.vertex_face);
+      },
       [&] { grid_keys_to_pairs(s.ee_keys, s.sort_tmp_ee, ee_shift, 2 * ee_shift, out.edge_edge); });
   return reported;
 }

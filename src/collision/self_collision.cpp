@@ -17,7 +17,6 @@ double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::
 
 Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 
-
 /// Response target: contacts closer than delta are pushed to RESPONSE_FACTOR * delta, so that a
 /// resolved pair is not detected again in the next round (detection thickness < response
 /// thickness, as in Bridson et al. 2002).
@@ -25,11 +24,11 @@ constexpr double RESPONSE_FACTOR = 2.0;
 
 /// Region margin (CollisionOptions::region_margin, see resolve): the step's one broad phase
 /// inflates the swept boxes by delta + m with m = region_margin * delta, and every vertex then
-/// stays inside its swept box grown by m/2 (the response is clamped to it; the other half is a wide gap over rounding).
-/// A small region clamps more pushes, which later rounds or the fail-safe must finish; a large
-/// one gives more candidates. Measured (this machine, quiet, warm start on): bear default run,
-/// per step filter tests / rounds / collision ms, fail-safe vertices over the run; and hand at
-/// P = 4 for 300 frames, fail-safe vertices:
+/// stays inside its swept box grown by m/2 (the response is clamped to it; the other half is a
+/// wide gap over rounding). A small region clamps more pushes, which later rounds or the
+/// fail-safe must finish; a large one gives more candidates. Measured (this machine, quiet, warm
+/// start on): bear default run, per step filter tests / rounds / collision ms, fail-safe
+/// vertices over the run; and hand at P = 4 for 300 frames, fail-safe vertices:
 ///   m = 2 delta: 128k / 3.65 / 30.5 ms, 0; hand 2004
 ///   m = 4 delta: 166k / 3.17 / 31.3-32.7 ms, 0; hand 1032
 ///   m = 8 delta: 257k / 2.96 / 37.2 ms, 0; hand 266
@@ -124,7 +123,8 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                                         const std::array<int, 4>& v) {
     const bool vf = kind == CcdPrimitive::VertexFace;
     if (advance(vf ? excluded_vf_ : excluded_ee_, vf ? ex_vf : ex_ee, pair)) return;
-    pairs_.push_back(PairRecord{v, pair, kind, advance(vf ? near_vf_ : near_ee_, vf ? nr_vf : nr_ee, pair)});
+    const bool near = advance(vf ? near_vf_ : near_ee_, vf ? nr_vf : nr_ee, pair);
+    pairs_.push_back(PairRecord{v, pair, kind, near});
   });
   stale_.assign(pairs_.size(), 1);
   free_.assign(pairs_.size(), 0);

@@ -80,11 +80,11 @@ class SelfCollision {
   /// margin m (CollisionOptions::region_margin), gives the candidates of every round and of the
   /// fail-safe, because the response is clamped so that no vertex leaves its swept box grown by
   /// m/2 (a push it cannot complete is finished by the pair's other vertices in a later round, or
-  /// by the fail-safe, whose revert to x0 stays inside too). After round 0 only the pairs with a vertex that the
-  /// previous response moved are tested again: the others' positions, hence their answers, have
-  /// not changed. The fail-safe tests the pairs not known to be free at their current
-  /// positions. Before the filter, each pair's own swept boxes are compared (swept_boxes_apart):
-  /// pairs kept only by the margin leave for a few nanoseconds.
+  /// by the fail-safe, whose revert to x0 stays inside too). After round 0 only the pairs with a
+  /// vertex that the previous response moved are tested again: the others' positions, hence
+  /// their answers, have not changed. The fail-safe tests the pairs not known to be free at their
+  /// current positions. Before the filter, each pair's own swept boxes are compared
+  /// (swept_boxes_apart): pairs kept only by the margin leave for a few nanoseconds.
   /// @param w  inverse masses (pinned vertices are not moved by the response)
   void resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w, CollisionStepStats& stats);
 
