@@ -30,6 +30,21 @@ struct Scene {
   std::vector<std::size_t> colours;  ///< colour offsets
 };
 
+/// Draws `count` random rest points, then fills the scene's start state with keep * rest +
+/// noise * random offsets and random masses in [0.5, 2]. Returns the rest points.
+std::vector<Vec3> random_rest_and_start(Scene& s, int count, double keep, double noise,
+                                        std::mt19937& rng) {
+  std::vector<Vec3> rest(static_cast<std::size_t>(count));
+  for (Vec3& p : rest) p = test::random_vec3(rng);
+  std::uniform_real_distribution<double> mass(0.5, 2.0);
+  for (const Vec3& p : rest) {
+    const Vec3 q = keep * p + noise * test::random_vec3(rng);
+    s.x0.insert(s.x0.end(), {q.x(), q.y(), q.z()});
+    s.w.push_back(1.0 / mass(rng));
+  }
+  return rest;
+}
+
 /// The padded rows (x, y, z, w) of a scene's start state.
 std::vector<PaddedVertex> padded(const Scene& s) {
   std::vector<PaddedVertex> xw(s.w.size());
@@ -72,14 +87,7 @@ PackedMembrane packed_on(const Vec3& a, const Vec3& b, const Vec3& c, std::array
 /// results. The first constraints are the special cases named below.
 MembraneScene membrane_scene(int n, std::mt19937& rng) {
   MembraneScene s;
-  std::vector<Vec3> rest(3 * n);
-  for (Vec3& p : rest) p = test::random_vec3(rng);
-  std::uniform_real_distribution<double> mass(0.5, 2.0);
-  for (int i = 0; i < 3 * n; ++i) {
-    const Vec3 q = 0.8 * rest[i] + 0.15 * test::random_vec3(rng);
-    s.x0.insert(s.x0.end(), {q.x(), q.y(), q.z()});
-    s.w.push_back(1.0 / mass(rng));
-  }
+  const std::vector<Vec3> rest = random_rest_and_start(s, 3 * n, 0.8, 0.15, rng);
   auto set = [&](int i, const Vec3& p) { for (int d = 0; d < 3; ++d) s.x0[3 * i + d] = p(d); };
   for (int k = 0; k < n; ++k)
     s.records.push_back(packed_on(rest[3 * k], rest[3 * k + 1], rest[3 * k + 2], {3 * k, 3 * k + 1, 3 * k + 2}));
@@ -240,14 +248,7 @@ IsometricHingeConstraint hinge_on(const std::vector<Vec3>& rest, std::array<int,
 /// rest stencils are random (curved, so flat-rest bending has work everywhere).
 HingeScene hinge_scene(int n, std::mt19937& rng) {
   HingeScene s;
-  std::vector<Vec3> rest(4 * n);
-  for (Vec3& p : rest) p = test::random_vec3(rng);
-  std::uniform_real_distribution<double> mass(0.5, 2.0);
-  for (int i = 0; i < 4 * n; ++i) {
-    const Vec3 q = rest[i] + 0.1 * test::random_vec3(rng);
-    s.x0.insert(s.x0.end(), {q.x(), q.y(), q.z()});
-    s.w.push_back(1.0 / mass(rng));
-  }
+  const std::vector<Vec3> rest = random_rest_and_start(s, 4 * n, 1.0, 0.1, rng);
   for (int k = 0; k < n; ++k) s.records.push_back(hinge_on(rest, {4 * k, 4 * k + 1, 4 * k + 2, 4 * k + 3}));
   s.w[0] = s.w[1] = s.w[2] = s.w[3] = 0.0;  // 0: all pinned: skipped
   s.w[5] = 0.0;                             // 1: one pinned vertex
