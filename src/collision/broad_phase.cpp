@@ -585,14 +585,28 @@ int bit_width(std::uint64_t v) {
   return n;
 }
 
-/// Sorts keys a << shift | b and unpacks them into (a, b) pairs.
+/// Sorts keys (a << shift | b) << 1 | close and unpacks them into (a, b) pairs and close flags
+/// (the flag bit does not change the order: each pair occurs once).
 void grid_keys_to_pairs(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp,
-                        int shift, int bits, std::vector<std::array<int, 2>>& pairs) {
-  radix_sort(keys, tmp, bits);
+                        int shift, int bits, std::vector<std::array<int, 2>>& pairs,
+                        std::vector<std::uint8_t>& close) {
+  radix_sort(keys, tmp, bits + 1);
   const std::uint64_t mask = (std::uint64_t{1} << shift) - 1;
   pairs.resize(keys.size());
-  for (std::size_t i = 0; i < keys.size(); ++i)
-    pairs[i] = {static_cast<int>(keys[i] >> shift), static_cast<int>(keys[i] & mask)};
+  close.resize(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    const std::uint64_t k = keys[i] >> 1;
+    pairs[i] = {static_cast<int>(k >> shift), static_cast<int>(k & mask)};
+    close[i] = static_cast<std::uint8_t>(keys[i] & 1u);
+  }
+}
+
+/// True if, on some axis, the gap between the two boxes is larger than `threshold` (a negative
+/// threshold asks for an overlap of at least -threshold).
+bool gap_above(const detail::GridVertexBox& a, const detail::GridVertexBox& b, double threshold) {
+  return b.lo[0] - a.hi[0] > threshold || a.lo[0] - b.hi[0] > threshold ||
+         b.lo[1] - a.hi[1] > threshold || a.lo[1] - b.hi[1] > threshold ||
+         b.lo[2] - a.hi[2] > threshold || a.lo[2] - b.hi[2] > threshold;
 }
 
 /// Item i of the current cell against items [j0, j1): mask[j] = 1 iff the pair passes the dedupe
@@ -647,10 +661,12 @@ void build_grid_vertex_boxes(const Positions& x0, const Positions& x1, double in
   }
 }
 
-/// Method Grid (x0, x1 already in s.grid_vertex_boxes). Returns -1 (nothing done) if the grid
-/// would degenerate (see GRID_WORK_PER_BOX), otherwise the number of box pairs that overlap after
-/// rounding outward to float, adjacent ones included (VF, plus EE once per unordered pair).
-std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
+/// Method Grid (x0, x1 already in s.grid_vertex_boxes). A pair whose two boxes have a gap above
+/// far_gap on some axis is flagged 0 in out's close flags (see find_candidates). Returns -1
+/// (nothing done) if the grid would degenerate (see GRID_WORK_PER_BOX), otherwise the number of
+/// box pairs that overlap after rounding outward to float, adjacent ones included (VF, plus EE
+/// once per unordered pair).
+std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, CandidatePairs& out) {
   BroadPhaseScratch& s = out.scratch;
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
   const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
@@ -658,6 +674,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
   const std::size_t nboxes = nv + nf + ne;
   out.vertex_face.clear();
   out.edge_edge.clear();
+  out.vertex_face_close.clear();
+  out.edge_edge_close.clear();
   if (nv == 0) return 0;
   if (nboxes >= GRID_MAX_BOXES) return -1;
   const GridPrimitives prim{topo, s, nv, nf};
@@ -839,8 +857,12 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
           if (mask[j] == 0) continue;
           const std::array<int, 3> fv = {cell.v[0][j], cell.v[1][j], cell.v[2][j]};
           const int vi = cell.v[0][i];
-          if (!overlap(vbox[static_cast<std::size_t>(vi)], prim.box(fv))) continue;
-          out_chunk.vf_keys.push_back(static_cast<std::uint64_t>(vi) << vf_shift | (cell.gid[j] - nv));
+          const detail::GridVertexBox& a = vbox[static_cast<std::size_t>(vi)];
+          const detail::GridVertexBox fbox = prim.box(fv);
+          if (!overlap(a, fbox)) continue;
+          const std::uint64_t close = gap_above(a, fbox, far_gap) ? 0u : 1u;
+          out_chunk.vf_keys.push_back(
+              (static_cast<std::uint64_t>(vi) << vf_shift | (cell.gid[j] - nv)) << 1 | close);
         }
       }
       for (std::size_t i = eb; i + 1 < k; ++i) {
@@ -849,9 +871,11 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
         const std::uint64_t high = static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift;
         for (std::size_t j = i + 1; j < k; ++j) {
           if (mask[j] == 0) continue;
-          if (!overlap(pbox, prim.box({cell.v[0][j], cell.v[1][j], -2}))) continue;
+          const detail::GridVertexBox qbox = prim.box({cell.v[0][j], cell.v[1][j], -2});
+          if (!overlap(pbox, qbox)) continue;
+          const std::uint64_t close = gap_above(pbox, qbox, far_gap) ? 0u : 1u;
           // Entries of a cell are in increasing id order, so a < b.
-          out_chunk.ee_keys.push_back(high | (cell.gid[j] - nv - nf));
+          out_chunk.ee_keys.push_back((high | (cell.gid[j] - nv - nf)) << 1 | close);
         }
       }
     }
@@ -868,9 +892,12 @@ std::int64_t grid_pairs(const CollisionTopology& topo, CandidatePairs& out) {
   tbb::parallel_invoke(
       [&] {
         grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv),
-                           out.vertex_face);
+                           out.vertex_face, out.vertex_face_close);
       },
-      [&] { grid_keys_to_pairs(s.ee_keys, s.sort_tmp_ee, ee_shift, 2 * ee_shift, out.edge_edge); });
+      [&] {
+        grid_keys_to_pairs(s.ee_keys, s.sort_tmp_ee, ee_shift, 2 * ee_shift, out.edge_edge,
+                           out.edge_edge_close);
+      });
   return reported;
 }
 
@@ -943,9 +970,20 @@ CollisionTopology make_collision_topology(const Faces& faces, int num_vertices) 
 
 void find_candidates(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
                      double inflation, CandidatePairs& out, BroadPhaseStats* stats,
-                     BroadPhaseMethod method) {
+                     BroadPhaseMethod method, double far_distance) {
   const auto start = std::chrono::steady_clock::now();
   check_inputs(x0, x1, topo, inflation);
+  // Grid: a pair is flagged far if on some axis the gap g between its two (inflated, rounded)
+  // boxes exceeds far_gap. Each box bound is fl(c -+ inflation) for an exact coordinate c with
+  // |c| <= M, off by at most u (M + inflation), and the computed difference adds u (2M +
+  // 2 inflation) (1 + u); so g > far_gap = (far - 2 inflation) + 8 u (M + inflation + far),
+  // itself rounded twice, leaves the exact gap of the boxes before inflation above `far`.
+  double far_gap = std::numeric_limits<double>::infinity();
+  if (far_distance >= 0.0 && std::isfinite(far_distance)) {
+    const double m = x0.rows() > 0 ? std::max(x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff()) : 0.0;
+    constexpr double u = std::numeric_limits<double>::epsilon() / 2.0;
+    far_gap = (far_distance - 2.0 * inflation) + 8.0 * u * (m + inflation + far_distance);
+  }
   // Grid keeps only vertex boxes (GridVertexBox); the others share BroadPhaseBox.
   if (method == BroadPhaseMethod::Grid)
     build_grid_vertex_boxes(x0, x1, inflation, out.scratch.grid_vertex_boxes);
@@ -964,13 +1002,18 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
       reported = bvh_pairs(topo, out);
       break;
     case BroadPhaseMethod::Grid:
-      reported = grid_pairs(topo, out);
+      reported = grid_pairs(topo, far_gap, out);
       if (reported < 0) {
         ran = BroadPhaseMethod::PrimitiveBoxes;
         build_boxes(x0, x1, topo, inflation, out.scratch, true, true);
         reported = primitive_boxes(topo, out);
       }
       break;
+  }
+  if (ran != BroadPhaseMethod::Grid) {
+    // Only the grid has the exact boxes at hand when it emits a pair: the others flag none far.
+    out.vertex_face_close.assign(out.vertex_face.size(), 1);
+    out.edge_edge_close.assign(out.edge_edge.size(), 1);
   }
   if (stats) {
     stats->no_culling_vertex_face = topo.all_vertex_face_pairs;

@@ -107,13 +107,16 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                                 CollisionStepStats& stats) {
   BroadPhaseStats bs;
   workers_->arena.execute([&] {
-    find_candidates(x0, x1, topo_, options_.delta + margin, candidates_, &bs, options_.method);
+    find_candidates(x0, x1, topo_, options_.delta + margin, candidates_, &bs, options_.method,
+                    options_.delta);
   });
   const auto t0 = Clock::now();
   // The excluded and near lists are sorted like the candidates in for_each_pair order, so one
   // merge pass replaces a search per candidate.
   pairs_.clear();
-  std::size_t ex_vf = 0, ex_ee = 0, nr_vf = 0, nr_ee = 0;
+  stale_.clear();
+  free_.clear();
+  std::size_t ex_vf = 0, ex_ee = 0, nr_vf = 0, nr_ee = 0, at_vf = 0, at_ee = 0;
   auto advance = [](const std::vector<std::array<int, 2>>& list, std::size_t& at,
                     const std::array<int, 2>& pair) {
     while (at < list.size() && list[at] < pair) ++at;
@@ -122,12 +125,16 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
   for_each_pair(candidates_, topo_, [&](CcdPrimitive kind, const std::array<int, 2>& pair,
                                         const std::array<int, 4>& v) {
     const bool vf = kind == CcdPrimitive::VertexFace;
+    const std::uint8_t close =
+        vf ? candidates_.vertex_face_close[at_vf++] : candidates_.edge_edge_close[at_ee++];
     if (advance(vf ? excluded_vf_ : excluded_ee_, vf ? ex_vf : ex_ee, pair)) return;
     const bool near = advance(vf ? near_vf_ : near_ee_, vf ? nr_vf : nr_ee, pair);
     pairs_.push_back(PairRecord{v, pair, kind, near});
+    // A pair the broad phase shows farther than delta apart over the step is one detection's box
+    // cull would find free: it is marked so without a test, until a response moves a vertex.
+    stale_.push_back(close);
+    free_.push_back(close ^ 1u);
   });
-  stale_.assign(pairs_.size(), 1);
-  free_.assign(pairs_.size(), 0);
   region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
   region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
   stats.broad_seconds += bs.seconds + since(t0);

@@ -281,6 +281,89 @@ TEST(BroadPhase, RandomMotionsSmallToLarge) {
   EXPECT_GT(g_grid_runs - grid_runs_before, 100);
 }
 
+/// Largest per-axis gap between the swept boxes (not inflated) of the two primitives of a pair.
+double pair_gap(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
+                bool vertex_face, const std::array<int, 2>& p) {
+  const Box a = vertex_face ? swept_box(x0, x1, {p[0]}, 0.0)
+                            : swept_box(x0, x1, {topo.edges(p[0], 0), topo.edges(p[0], 1)}, 0.0);
+  const Box b = vertex_face ? swept_box(x0, x1, {topo.faces(p[1], 0), topo.faces(p[1], 1),
+                                                 topo.faces(p[1], 2)}, 0.0)
+                            : swept_box(x0, x1, {topo.edges(p[1], 0), topo.edges(p[1], 1)}, 0.0);
+  double gap = -std::numeric_limits<double>::infinity();
+  for (int d = 0; d < 3; ++d) gap = std::max({gap, b.lo[d] - a.hi[d], a.lo[d] - b.hi[d]});
+  return gap;
+}
+
+TEST(BroadPhase, CloseFlagsMarkFarOnlyPairsFartherThanTheDistance) {
+  // The collision step skips the first test of pairs flagged far: a pair within the distance
+  // flagged far would be a missed contact. Grid must also flag the far pairs (up to rounding),
+  // or the flags would save nothing; the other methods flag every pair close.
+  std::mt19937 rng(20261123);
+  const TriMesh m = test::icosphere(2);
+  const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
+  std::int64_t far_seen = 0, grid_far = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Positions x0 = random_motion(m.x, 0.15, rng);
+    const Positions x1 = random_motion(x0, trial % 2 == 0 ? 0.01 : 0.1, rng);
+    const double inflation = 0.05, far = trial < 3 ? 0.02 : 0.0;
+    for (BroadPhaseMethod method : METHODS) {
+      CandidatePairs out;
+      BroadPhaseStats stats;
+      find_candidates(x0, x1, topo, inflation, out, &stats, method, far);
+      ASSERT_EQ(out.vertex_face_close.size(), out.vertex_face.size());
+      ASSERT_EQ(out.edge_edge_close.size(), out.edge_edge.size());
+      const bool grid = stats.method_run == BroadPhaseMethod::Grid;
+      for (int list = 0; list < 2; ++list) {
+        const Pairs& pairs = list == 0 ? out.vertex_face : out.edge_edge;
+        const auto& close = list == 0 ? out.vertex_face_close : out.edge_edge_close;
+        for (std::size_t i = 0; i < pairs.size(); ++i) {
+          const double gap = pair_gap(x0, x1, topo, list == 0, pairs[i]);
+          const std::string where = method_name(method) + " trial " + std::to_string(trial) +
+                                    (list == 0 ? " VF " : " EE ") + std::to_string(pairs[i][0]) +
+                                    "," + std::to_string(pairs[i][1]);
+          if (!close[i]) {
+            EXPECT_GT(gap, far) << where;
+          }
+          if (!grid) {
+            EXPECT_EQ(close[i], 1) << where;
+          } else if (gap > far * (1.0 + 1e-9) + 1e-12) {
+            EXPECT_EQ(close[i], 0) << where << ": gap " << gap;
+          }
+          if (method == BroadPhaseMethod::Grid) {
+            far_seen += gap > far;
+            grid_far += !close[i];
+          }
+        }
+      }
+      // Without a distance, nothing is flagged far.
+      find_candidates(x0, x1, topo, inflation, out, nullptr, method);
+      EXPECT_EQ(std::count(out.vertex_face_close.begin(), out.vertex_face_close.end(), 0), 0);
+      EXPECT_EQ(std::count(out.edge_edge_close.begin(), out.edge_edge_close.end(), 0), 0);
+    }
+  }
+  EXPECT_GT(far_seen, 1000);  // the scenes have many far pairs ...
+  EXPECT_GT(grid_far, 1000);  // ... and the grid ran its own algorithm on them
+}
+
+TEST(BroadPhase, CloseFlagAtTheExactDistance) {
+  // A vertex above a triangle, both static: per-axis gap exactly `far` (binary fractions, so the
+  // gap is exact) is close; 1% farther is far (Grid; the others never flag far).
+  TriMesh m;
+  m.x.resize(4, 3);
+  m.faces.resize(1, 3);
+  m.faces << 0, 1, 2;
+  const double far = 0.0625;
+  const CollisionTopology topo = make_collision_topology(m.faces, 4);
+  for (double gap : {far, far * 1.01}) {
+    m.x << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0.25, 0.25, gap;
+    CandidatePairs out;
+    BroadPhaseStats stats;
+    find_candidates(m.x, m.x, topo, 0.125, out, &stats, BroadPhaseMethod::Grid, far);
+    ASSERT_EQ(out.vertex_face.size(), 1u);
+    EXPECT_EQ(out.vertex_face_close[0], gap == far ? 1 : 0) << "gap " << gap;
+  }
+}
+
 TEST(BroadPhase, TwoSpheresPushedIntoEachOther) {
   // Two unit spheres 0.1 apart move 0.25 towards each other each, ending 0.4 interpenetrated.
   const TriMesh s = test::icosphere(2);

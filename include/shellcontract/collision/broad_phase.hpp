@@ -165,6 +165,12 @@ struct CandidatePairs {
   std::vector<std::array<int, 2>> vertex_face;
   /// (edge id a, edge id b), a < b, the edges share no vertex; sorted, unique.
   std::vector<std::array<int, 2>> edge_edge;
+  /// Per pair of vertex_face and of edge_edge: 0 only if the two primitives' swept boxes,
+  /// before inflation, are certainly more than find_candidates' `far_distance` apart on some
+  /// axis (so they never come that close during the step); 1 otherwise. Only the Grid method,
+  /// which has the exact boxes at hand when it emits a pair, sets 0; the others report 1.
+  std::vector<std::uint8_t> vertex_face_close;
+  std::vector<std::uint8_t> edge_edge_close;
   /// Internal buffers; not part of the result.
   detail::BroadPhaseScratch scratch;
 };
@@ -202,11 +208,15 @@ struct BroadPhaseStats {
 /// @param out        receives the pairs (previous contents are discarded, capacity is reused)
 /// @param stats      optional counters of this call; may be nullptr
 /// @param method     algorithm; every method gives the same pairs
+/// @param far_distance  if >= 0, the distance for CandidatePairs' close flags (a caller that
+///                   tests the pairs with tolerance far_distance can skip the pairs flagged 0);
+///                   if negative, every pair is flagged close
 /// @pre positions are finite
 /// @throws UsageError on a row-count mismatch or a negative or non-finite inflation
 void find_candidates(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
                      double inflation, CandidatePairs& out, BroadPhaseStats* stats = nullptr,
-                     BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD);
+                     BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD,
+                     double far_distance = -1.0);
 
 /// Fast conservative step check: does find_candidates have at least one pair to report?
 /// Stops at the first non-adjacent overlapping VF or EE box pair, so a `false` answer (nothing
