@@ -235,6 +235,13 @@ void SelfCollision::warm_start(Positions& x1, const Eigen::VectorXd& w) const {
 void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w,
                             CollisionStepStats& stats) {
   stats = CollisionStepStats{};
+  const auto start = Clock::now();
+  resolve_impl(x0, x1, w, stats);
+  stats.seconds = since(start);
+}
+
+void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen::VectorXd& w,
+                                 CollisionStepStats& stats) {
   const double delta = options_.delta;
   if (options_.warm_start) {
     const auto t0 = Clock::now();
