@@ -980,7 +980,8 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
   // itself rounded twice, leaves the exact gap of the boxes before inflation above `far`.
   double far_gap = std::numeric_limits<double>::infinity();
   if (far_distance >= 0.0 && std::isfinite(far_distance)) {
-    const double m = x0.rows() > 0 ? std::max(x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff()) : 0.0;
+    const double m =
+        x0.rows() > 0 ? std::max(x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff()) : 0.0;
     constexpr double u = std::numeric_limits<double>::epsilon() / 2.0;
     far_gap = (far_distance - 2.0 * inflation) + 8.0 * u * (m + inflation + far_distance);
   }
