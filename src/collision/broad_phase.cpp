@@ -4,7 +4,6 @@
 #include <CGAL/box_intersection_d.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
-#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -555,27 +554,6 @@ void for_each_cell(const Grid& g, const detail::GridRange& r, Visit visit) {
     }
 }
 
-/// LSD radix sort of keys whose values are below 2^bits (11-bit digits). Faster than std::sort
-/// for the ~10^4-10^5 keys here. No deduplication: the grid emits each pair once.
-void radix_sort(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp, int bits) {
-  constexpr int DIGIT = 11;
-  constexpr std::size_t RADIX = std::size_t{1} << DIGIT;
-  tmp.resize(keys.size());
-  std::array<std::size_t, RADIX> count{};
-  for (int shift = 0; shift < bits; shift += DIGIT) {
-    count.fill(0);
-    for (const std::uint64_t k : keys) ++count[(k >> shift) & (RADIX - 1)];
-    std::size_t sum = 0;
-    for (std::size_t& c : count) {
-      const std::size_t n = c;
-      c = sum;
-      sum += n;
-    }
-    for (const std::uint64_t k : keys) tmp[count[(k >> shift) & (RADIX - 1)]++] = k;
-    keys.swap(tmp);
-  }
-}
-
 int bit_width(std::uint64_t v) {
   int n = 0;
   while (v != 0) {
@@ -585,19 +563,14 @@ int bit_width(std::uint64_t v) {
   return n;
 }
 
-/// Sorts keys (a << shift | b) << 1 | close and unpacks them into (a, b) pairs and close flags
-/// (the flag bit does not change the order: each pair occurs once).
-void grid_keys_to_pairs(std::vector<std::uint64_t>& keys, std::vector<std::uint64_t>& tmp,
-                        int shift, int bits, std::vector<std::array<int, 2>>& pairs,
-                        std::vector<std::uint8_t>& close) {
-  radix_sort(keys, tmp, bits + 1);
+/// Unpacks keys (a << shift | b) << 1 | close into pairs[at..] and close[at..].
+void unpack_keys(const std::vector<std::uint64_t>& keys, int shift, std::size_t at,
+                 std::vector<std::array<int, 2>>& pairs, std::vector<std::uint8_t>& close) {
   const std::uint64_t mask = (std::uint64_t{1} << shift) - 1;
-  pairs.resize(keys.size());
-  close.resize(keys.size());
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const std::uint64_t k = keys[i] >> 1;
-    pairs[i] = {static_cast<int>(k >> shift), static_cast<int>(k & mask)};
-    close[i] = static_cast<std::uint8_t>(keys[i] & 1u);
+    pairs[at + i] = {static_cast<int>(k >> shift), static_cast<int>(k & mask)};
+    close[at + i] = static_cast<std::uint8_t>(keys[i] & 1u);
   }
 }
 
@@ -804,8 +777,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // Per cell: gather the items (float boxes, vertex ids, flags) into structure-of-arrays
   // buffers, build the candidate masks (cell_masks), and confirm the rare survivors with the
   // exact double boxes. Cells are split into GRID_CHUNKS chunks of about equal entry counts,
-  // processed in parallel, each into its own key buffers; the radix sort afterwards puts the
-  // keys in one order whatever the thread count (each pair is emitted exactly once).
+  // processed in parallel, each into its own key buffers, concatenated in chunk order
+  // afterwards (each pair is emitted exactly once).
   const int vf_shift = std::max(1, bit_width(nf));
   const int ee_shift = std::max(1, bit_width(ne));
   s.chunks.resize(GRID_CHUNKS);
@@ -880,24 +853,29 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
       }
     }
   });
+  // The chunks' pairs one after the other: the chunks are cut by entry counts, not by threads,
+  // so this order (cells, then rows within a cell) does not depend on the thread count. No sort:
+  // it cost 2 ms per call on the collapsed bear, and callers need a fixed order, not a sorted one.
   std::int64_t reported = 0;
-  s.vf_keys.clear();
-  s.ee_keys.clear();
-  for (const detail::GridChunk& chunk : s.chunks) {
-    reported += chunk.reported;
-    s.vf_keys.insert(s.vf_keys.end(), chunk.vf_keys.begin(), chunk.vf_keys.end());
-    s.ee_keys.insert(s.ee_keys.end(), chunk.ee_keys.begin(), chunk.ee_keys.end());
+  std::size_t vf_total = 0, ee_total = 0;
+  std::vector<std::size_t>& offset = s.chunk_offsets;  // VF offsets, then EE offsets, per chunk
+  offset.assign(2 * GRID_CHUNKS, 0);
+  for (std::size_t c = 0; c < GRID_CHUNKS; ++c) {
+    reported += s.chunks[c].reported;
+    offset[c] = vf_total;
+    offset[GRID_CHUNKS + c] = ee_total;
+    vf_total += s.chunks[c].vf_keys.size();
+    ee_total += s.chunks[c].ee_keys.size();
   }
-  // The two sorts are independent (own buffers): one per thread.
-  tbb::parallel_invoke(
-      [&] {
-        grid_keys_to_pairs(s.vf_keys, s.sort_tmp, vf_shift, vf_shift + bit_width(nv),
-                           out.vertex_face, out.vertex_face_close);
-      },
-      [&] {
-        grid_keys_to_pairs(s.ee_keys, s.sort_tmp_ee, ee_shift, 2 * ee_shift, out.edge_edge,
-                           out.edge_edge_close);
-      });
+  out.vertex_face.resize(vf_total);
+  out.vertex_face_close.resize(vf_total);
+  out.edge_edge.resize(ee_total);
+  out.edge_edge_close.resize(ee_total);
+  tbb::parallel_for(std::size_t{0}, GRID_CHUNKS, [&](std::size_t c) {
+    unpack_keys(s.chunks[c].vf_keys, vf_shift, offset[c], out.vertex_face, out.vertex_face_close);
+    unpack_keys(s.chunks[c].ee_keys, ee_shift, offset[GRID_CHUNKS + c], out.edge_edge,
+                out.edge_edge_close);
+  });
   return reported;
 }
 

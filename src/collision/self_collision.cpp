@@ -97,7 +97,9 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
     else if (primitive_ccd(kind, s0, s1, near).hit)
       (vf ? near_vf_ : near_ee_).push_back(pair);
   });
-  // Candidates come out sorted, so these are sorted too.
+  // Sorted for the binary searches of broad_phase (the Grid's candidates are in cell order).
+  for (auto* list : {&excluded_vf_, &excluded_ee_, &near_vf_, &near_ee_})
+    std::sort(list->begin(), list->end());
   moved_.assign(static_cast<std::size_t>(rest.rows()), 0);
 }
 
@@ -111,24 +113,21 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                     options_.delta);
   });
   const auto t0 = Clock::now();
-  // The excluded and near lists are sorted like the candidates in for_each_pair order, so one
-  // merge pass replaces a search per candidate.
+  // The excluded and near lists are short (pairs within delta at rest) and sorted.
   pairs_.clear();
   stale_.clear();
   free_.clear();
-  std::size_t ex_vf = 0, ex_ee = 0, nr_vf = 0, nr_ee = 0, at_vf = 0, at_ee = 0;
-  auto advance = [](const std::vector<std::array<int, 2>>& list, std::size_t& at,
-                    const std::array<int, 2>& pair) {
-    while (at < list.size() && list[at] < pair) ++at;
-    return at < list.size() && list[at] == pair;
+  std::size_t at_vf = 0, at_ee = 0;
+  auto listed = [](const std::vector<std::array<int, 2>>& list, const std::array<int, 2>& pair) {
+    return !list.empty() && std::binary_search(list.begin(), list.end(), pair);
   };
   for_each_pair(candidates_, topo_, [&](CcdPrimitive kind, const std::array<int, 2>& pair,
                                         const std::array<int, 4>& v) {
     const bool vf = kind == CcdPrimitive::VertexFace;
     const std::uint8_t close =
         vf ? candidates_.vertex_face_close[at_vf++] : candidates_.edge_edge_close[at_ee++];
-    if (advance(vf ? excluded_vf_ : excluded_ee_, vf ? ex_vf : ex_ee, pair)) return;
-    const bool near = advance(vf ? near_vf_ : near_ee_, vf ? nr_vf : nr_ee, pair);
+    if (listed(vf ? excluded_vf_ : excluded_ee_, pair)) return;
+    const bool near = listed(vf ? near_vf_ : near_ee_, pair);
     pairs_.push_back(PairRecord{v, pair, kind, near});
     // A pair the broad phase shows farther than delta apart over the step is one detection's box
     // cull would find free: it is marked so without a test, until a response moves a vertex.

@@ -2,6 +2,7 @@
 // the pairs that the box test over all VF and EE pairs returns (ipc-toolkit's
 // brute_force_comparison habit, style.md section 3).
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <array>
@@ -107,6 +108,12 @@ BruteForce brute_force(const Positions& x0, const Positions& x1, const Faces& fa
   return r;
 }
 
+/// The pairs in sorted order (Grid emits them in its cell order).
+Pairs sorted(Pairs p) {
+  std::sort(p.begin(), p.end());
+  return p;
+}
+
 std::string first_difference(const Pairs& got, const Pairs& want) {
   std::ostringstream os;
   Pairs missing, extra;
@@ -137,10 +144,13 @@ BruteForce expect_all_methods_match(const Positions& x0, const Positions& x1, co
     find_candidates(x0, x1, topo, inflation, got, &stats, m);
     const std::string where = label + ", method " + method_name(m) +
                               ", inflation " + std::to_string(inflation);
-    EXPECT_TRUE(got.vertex_face == want.vertex_face)
-        << where << ": VF " << first_difference(got.vertex_face, want.vertex_face);
-    EXPECT_TRUE(got.edge_edge == want.edge_edge)
-        << where << ": EE " << first_difference(got.edge_edge, want.edge_edge);
+    // Sorted, the output must equal brute force; and only Grid may emit out of order.
+    const Pairs vf = sorted(got.vertex_face), ee = sorted(got.edge_edge);
+    EXPECT_TRUE(vf == want.vertex_face) << where << ": VF " << first_difference(vf, want.vertex_face);
+    EXPECT_TRUE(ee == want.edge_edge) << where << ": EE " << first_difference(ee, want.edge_edge);
+    if (m != BroadPhaseMethod::Grid) {
+      EXPECT_TRUE(vf == got.vertex_face && ee == got.edge_edge) << where << ": not sorted";
+    }
     EXPECT_EQ(stats.no_culling_vertex_face, want.all_vf) << where;
     EXPECT_EQ(stats.no_culling_edge_edge, want.all_ee) << where;
     EXPECT_EQ(stats.vertex_face, static_cast<std::int64_t>(want.vertex_face.size())) << where;
@@ -504,8 +514,40 @@ TEST(BroadPhase, ReusedOutputHoldsOnlyTheLatestCall) {
     find_candidates(m.x, big, topo, 0.0, out, nullptr, method);
     ASSERT_GT(out.vertex_face.size(), want.vertex_face.size());  // the first call is larger
     find_candidates(m.x, m.x, topo, 0.0, out, nullptr, method);
-    EXPECT_TRUE(out.vertex_face == want.vertex_face) << method_name(method);
-    EXPECT_TRUE(out.edge_edge == want.edge_edge) << method_name(method);
+    EXPECT_TRUE(sorted(out.vertex_face) == want.vertex_face) << method_name(method);
+    EXPECT_TRUE(sorted(out.edge_edge) == want.edge_edge) << method_name(method);
+    EXPECT_EQ(out.vertex_face_close.size(), out.vertex_face.size()) << method_name(method);
+    EXPECT_EQ(out.edge_edge_close.size(), out.edge_edge.size()) << method_name(method);
+  }
+}
+
+TEST(BroadPhase, GridOrderDoesNotDependOnTheThreadCount) {
+  // Grid's pairs come in cell order, unsorted; the collision step relies on that order (and the
+  // close flags) being the same for any number of threads.
+  std::mt19937 rng(11);
+  const TriMesh m = test::icosphere(3);
+  const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
+  const Positions x0 = random_motion(m.x, 0.05, rng);
+  const Positions x1 = random_motion(x0, 0.02, rng);
+  std::vector<CandidatePairs> runs(3);
+  const int threads[3] = {1, 2, 4};
+  for (int k = 0; k < 3; ++k) {
+    tbb::task_arena arena(threads[k]);
+    BroadPhaseStats stats;
+    arena.execute([&] {
+      find_candidates(x0, x1, topo, 0.01, runs[static_cast<std::size_t>(k)], &stats,
+                      BroadPhaseMethod::Grid, 0.005);
+    });
+    ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
+  }
+  ASSERT_GT(runs[0].vertex_face.size(), 100u);
+  ASSERT_GT(runs[0].edge_edge.size(), 100u);
+  for (int k = 1; k < 3; ++k) {
+    const CandidatePairs& r = runs[static_cast<std::size_t>(k)];
+    EXPECT_TRUE(r.vertex_face == runs[0].vertex_face) << threads[k] << " threads";
+    EXPECT_TRUE(r.edge_edge == runs[0].edge_edge) << threads[k] << " threads";
+    EXPECT_TRUE(r.vertex_face_close == runs[0].vertex_face_close) << threads[k] << " threads";
+    EXPECT_TRUE(r.edge_edge_close == runs[0].edge_edge_close) << threads[k] << " threads";
   }
 }
 

@@ -59,9 +59,10 @@ enum class BroadPhaseMethod {
   /// Uniform grid (cell size 1.5 x the median face/edge box extent) filled by a counting sort;
   /// in each cell, vertex boxes against face boxes and edge boxes against each other, each pair
   /// emitted only in the first cell the two boxes share (no hash set), culled by a vectorized
-  /// test on boxes rounded outward to float, confirmed by the exact double test; then a radix
-  /// sort. Falls back to PrimitiveBoxes when the boxes are so large or spread out that the grid
-  /// would degenerate towards brute force (BroadPhaseStats::method_run says which ran).
+  /// test on boxes rounded outward to float, confirmed by the exact double test. Pairs come out
+  /// in cell order, not sorted (see CandidatePairs). Falls back to PrimitiveBoxes when the boxes
+  /// are so large or spread out that the grid would degenerate towards brute force
+  /// (BroadPhaseStats::method_run says which ran).
   /// The default: fastest on bear (bench_broad_phase).
   Grid,
 };
@@ -153,17 +154,18 @@ struct BroadPhaseScratch {
   std::vector<std::uint32_t> cell_count;    ///< Grid: per part of the counting sort, per cell
   std::vector<std::uint32_t> cell_fill;     ///< Grid: fill cursors, per part, per cell
   std::vector<std::uint32_t> cell_entries;  ///< Grid: box id << 3 | first-cell flags
-  std::vector<std::uint64_t> sort_tmp;      ///< Grid: radix sort buffer (VF)
-  std::vector<std::uint64_t> sort_tmp_ee;   ///< Grid: radix sort buffer (EE)
+  std::vector<std::size_t> chunk_offsets;   ///< Grid: each chunk's first output VF, then EE pair
 };
 }  // namespace detail
 
 /// Candidate pairs for the narrow phase. Reuse one object across steps: the vectors keep their
 /// capacity.
 struct CandidatePairs {
-  /// (vertex id, face id), the vertex not a corner of the face; sorted, unique.
+  /// (vertex id, face id), the vertex not a corner of the face; unique. Sorted, except from the
+  /// Grid method, whose pairs come in the order of its cells: the same order for any number of
+  /// threads (sorting cost more than a tenth of a grid call).
   std::vector<std::array<int, 2>> vertex_face;
-  /// (edge id a, edge id b), a < b, the edges share no vertex; sorted, unique.
+  /// (edge id a, edge id b), a < b, the edges share no vertex; unique; ordered as vertex_face.
   std::vector<std::array<int, 2>> edge_edge;
   /// Per pair of vertex_face and of edge_edge: 0 only if the two primitives' swept boxes,
   /// before inflation, are certainly more than find_candidates' `far_distance` apart on some
