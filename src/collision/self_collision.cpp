@@ -43,19 +43,24 @@ constexpr double WARM_START_SLIDE = 2.0;
 
 /// Pairs per task of the parallel filter and narrow phase.
 constexpr std::size_t DETECT_GRAIN = 512;
+/// Pairs per task of the per-pair bookkeeping loops (records, stale marks).
+constexpr std::size_t PAIR_GRAIN = 4096;
+
+/// The narrow-phase stencil (ccd.hpp order) of a VF pair (vertex, face) or an EE pair.
+std::array<int, 4> stencil(CcdPrimitive kind, const std::array<int, 2>& p,
+                           const CollisionTopology& topo) {
+  if (kind == CcdPrimitive::VertexFace)
+    return {p[0], topo.faces(p[1], 0), topo.faces(p[1], 1), topo.faces(p[1], 2)};
+  return {topo.edges(p[0], 0), topo.edges(p[0], 1), topo.edges(p[1], 0), topo.edges(p[1], 1)};
+}
 
 /// The VF and EE candidate pairs of `c` as narrow-phase stencils.
 template <class Visit>
 void for_each_pair(const CandidatePairs& c, const CollisionTopology& topo, Visit visit) {
-  for (const auto& p : c.vertex_face) {
-    const int f = p[1];
-    visit(CcdPrimitive::VertexFace, p,
-          std::array<int, 4>{p[0], topo.faces(f, 0), topo.faces(f, 1), topo.faces(f, 2)});
-  }
+  for (const auto& p : c.vertex_face)
+    visit(CcdPrimitive::VertexFace, p, stencil(CcdPrimitive::VertexFace, p, topo));
   for (const auto& p : c.edge_edge)
-    visit(CcdPrimitive::EdgeEdge, p,
-          std::array<int, 4>{topo.edges(p[0], 0), topo.edges(p[0], 1), topo.edges(p[1], 0),
-                             topo.edges(p[1], 1)});
+    visit(CcdPrimitive::EdgeEdge, p, stencil(CcdPrimitive::EdgeEdge, p, topo));
 }
 
 void gather(const Positions& x0, const Positions& x1, const std::array<int, 4>& v, CcdStencil& s0,
@@ -113,26 +118,37 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                     options_.delta);
   });
   const auto t0 = Clock::now();
-  // The excluded and near lists are short (pairs within delta at rest) and sorted.
-  pairs_.clear();
-  stale_.clear();
-  free_.clear();
-  std::size_t at_vf = 0, at_ee = 0;
+  // One record per candidate, filled in parallel (each writes its own slot). Excluded pairs keep
+  // their slot but are never tested. The excluded and near lists are short (pairs within delta
+  // at rest) and sorted.
+  const std::size_t nvf = candidates_.vertex_face.size();
+  const std::size_t n = nvf + candidates_.edge_edge.size();
+  pairs_.resize(n);
+  stale_.resize(n);
+  free_.resize(n);
   auto listed = [](const std::vector<std::array<int, 2>>& list, const std::array<int, 2>& pair) {
     return !list.empty() && std::binary_search(list.begin(), list.end(), pair);
   };
-  for_each_pair(candidates_, topo_, [&](CcdPrimitive kind, const std::array<int, 2>& pair,
-                                        const std::array<int, 4>& v) {
-    const bool vf = kind == CcdPrimitive::VertexFace;
-    const std::uint8_t close =
-        vf ? candidates_.vertex_face_close[at_vf++] : candidates_.edge_edge_close[at_ee++];
-    if (listed(vf ? excluded_vf_ : excluded_ee_, pair)) return;
-    const bool near = listed(vf ? near_vf_ : near_ee_, pair);
-    pairs_.push_back(PairRecord{v, pair, kind, near});
-    // A pair the broad phase shows farther than delta apart over the step is one detection's box
-    // cull would find free: it is marked so without a test, until a response moves a vertex.
-    stale_.push_back(close);
-    free_.push_back(close ^ 1u);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, PAIR_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          PairRecord& p = pairs_[i];
+                          const bool vf = i < nvf;
+                          p.kind = vf ? CcdPrimitive::VertexFace : CcdPrimitive::EdgeEdge;
+                          p.pair = vf ? candidates_.vertex_face[i] : candidates_.edge_edge[i - nvf];
+                          p.v = stencil(p.kind, p.pair, topo_);
+                          p.excluded = listed(vf ? excluded_vf_ : excluded_ee_, p.pair);
+                          p.near = !p.excluded && listed(vf ? near_vf_ : near_ee_, p.pair);
+                          // A pair the broad phase shows farther than delta apart over the step is
+                          // one detection's box cull would find free: it is marked so without a
+                          // test, until a response moves one of its vertices.
+                          const bool close = vf ? candidates_.vertex_face_close[i]
+                                                : candidates_.edge_edge_close[i - nvf];
+                          stale_[i] = close && !p.excluded;
+                          free_[i] = !stale_[i];
+                        }
+                      });
   });
   region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
   region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
@@ -209,12 +225,19 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
 
 void SelfCollision::mark_moved_pairs_stale() {
   if (moved_list_.empty()) return;
-  for (std::size_t i = 0; i < pairs_.size(); ++i) {
-    const std::array<int, 4>& v = pairs_[i].v;
-    if (moved_[static_cast<std::size_t>(v[0])] | moved_[static_cast<std::size_t>(v[1])] |
-        moved_[static_cast<std::size_t>(v[2])] | moved_[static_cast<std::size_t>(v[3])])
-      stale_[i] = 1;
-  }
+  workers_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pairs_.size(), PAIR_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          const std::array<int, 4>& v = pairs_[i].v;
+                          if (moved_[static_cast<std::size_t>(v[0])] |
+                              moved_[static_cast<std::size_t>(v[1])] |
+                              moved_[static_cast<std::size_t>(v[2])] |
+                              moved_[static_cast<std::size_t>(v[3])])
+                            stale_[i] = 1;
+                        }
+                      });
+  });
   for (int v : moved_list_) moved_[static_cast<std::size_t>(v)] = 0;
   moved_list_.clear();
 }
@@ -259,7 +282,8 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
     // than delta at rest get no push (fail-safe only).
     tests_.clear();
     for (std::size_t i = 0; i < pairs_.size(); ++i)
-      if (stale_[i] && !pairs_[i].near) tests_.push_back(static_cast<std::uint32_t>(i));
+      if (stale_[i] && !pairs_[i].near && !pairs_[i].excluded)
+        tests_.push_back(static_cast<std::uint32_t>(i));
     if (tests_.empty()) break;
     detect(x0, x1, delta, stats, round == 0);
     ++stats.rounds;
@@ -287,7 +311,8 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
   for (;;) {
     tests_.clear();
     for (std::size_t i = 0; i < pairs_.size(); ++i)
-      if (stale_[i] || !free_[i]) tests_.push_back(static_cast<std::uint32_t>(i));
+      if ((stale_[i] || !free_[i]) && !pairs_[i].excluded)
+        tests_.push_back(static_cast<std::uint32_t>(i));
     detect(x0, x1, 0.0, stats, false);
     if (contacts_.empty()) return;
     std::int64_t reverted = 0;

@@ -102,10 +102,11 @@ class SelfCollision {
     std::array<int, 2> pair;  ///< (vertex, face) or (edge a, edge b)
     CcdPrimitive kind;
     bool near;                ///< closer than delta at rest: no response push, fail-safe only
+    bool excluded;            ///< touching at rest: never tested
   };
 
   /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
-  /// dropped). A pair is stale unless the broad phase shows its swept boxes farther than delta
+  /// marked, never tested). A pair is stale unless the broad phase shows its swept boxes farther than delta
   /// apart (CandidatePairs' close flags): then it is free already. The swept boxes of (x0, x1)
   /// grown by margin / 2 become the regions the response keeps each vertex in.
   void broad_phase(const Positions& x0, const Positions& x1, double margin,
@@ -130,7 +131,7 @@ class SelfCollision {
   CollisionTopology topo_;
   CollisionOptions options_;
   CandidatePairs candidates_;
-  std::vector<PairRecord> pairs_;        ///< candidates of the last broad phase
+  std::vector<PairRecord> pairs_;        ///< candidates of the last broad phase, in its order
   std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
   std::vector<std::uint32_t> tests_;     ///< pairs to test in the next detect()
