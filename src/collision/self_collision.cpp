@@ -8,6 +8,7 @@
 #include <tbb/task_arena.h>
 
 #include "shellcontract/collision/ccd.hpp"
+#include "shellcontract/collision/cull_batch.hpp"
 
 namespace shellcontract {
 namespace {
@@ -166,17 +167,28 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   // Stage 1: the certain non-penetration filter (math-spec 10.4), one flag per test.
   auto t0 = Clock::now();
   hit_.assign(n, 0);
+  // Four tests at a time (cull_batch: the same answers as swept_boxes_apart and
+  // nonpenetration_filter_culls one by one); a group of four is cut where the kind changes.
+  const std::size_t groups = (n + CULL_LANES - 1) / CULL_LANES;
   workers_->arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, DETECT_GRAIN),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        CcdStencil s0, s1;
-                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                          const PairRecord& p = pairs_[tests_[i]];
-                          gather(x0, x1, p.v, s0, s1);
-                          hit_[i] = !(swept_boxes_apart(p.kind, s0, s1, tol) ||
-                                      nonpenetration_filter_culls(p.kind, s0, s1, tol));
-                        }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<std::size_t>(0, groups, DETECT_GRAIN / CULL_LANES),
+        [&](const tbb::blocked_range<std::size_t>& r) {
+          std::array<int, 4> v[CULL_LANES];
+          std::uint8_t culled[CULL_LANES];
+          for (std::size_t g = r.begin(); g < r.end(); ++g) {
+            const std::size_t end = std::min(n, (g + 1) * CULL_LANES);
+            for (std::size_t i = g * CULL_LANES; i < end;) {
+              const CcdPrimitive kind = pairs_[tests_[i]].kind;
+              int count = 0;
+              for (std::size_t j = i; j < end && pairs_[tests_[j]].kind == kind; ++j)
+                v[count++] = pairs_[tests_[j]].v;
+              cull_batch(kind, x0.data(), x1.data(), v, count, tol, culled);
+              for (int k = 0; k < count; ++k) hit_[i + static_cast<std::size_t>(k)] = !culled[k];
+              i += static_cast<std::size_t>(count);
+            }
+          }
+        });
   });
   survivors_.clear();
   for (std::size_t i = 0; i < n; ++i)

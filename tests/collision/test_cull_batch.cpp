@@ -1,0 +1,152 @@
+// cull_batch against the scalar swept_boxes_apart and nonpenetration_filter_culls: the same
+// answer for every stencil (the batch only shares the work), on random, near-coplanar,
+// degenerate, boundary and non-finite stencils.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "shellcontract/collision/ccd.hpp"
+#include "shellcontract/collision/cull_batch.hpp"
+#include "support/random_geometry.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// Start and end positions of many stencils, four vertices each (stencil s uses rows 4s..4s+3).
+struct Stencils {
+  std::vector<double> x0, x1;
+  std::vector<CcdPrimitive> kind;
+  void add(CcdPrimitive k, const CcdStencil& s0, const CcdStencil& s1) {
+    for (int j = 0; j < 4; ++j)
+      for (int d = 0; d < 3; ++d) {
+        x0.push_back(s0[static_cast<std::size_t>(j)][d]);
+        x1.push_back(s1[static_cast<std::size_t>(j)][d]);
+      }
+    kind.push_back(k);
+  }
+  std::size_t size() const { return kind.size(); }
+  CcdStencil at(const std::vector<double>& x, std::size_t s) const {
+    CcdStencil out;
+    for (int j = 0; j < 4; ++j)
+      out[static_cast<std::size_t>(j)] = Vec3(x[12 * s + 3 * static_cast<std::size_t>(j)],
+                                              x[12 * s + 3 * static_cast<std::size_t>(j) + 1],
+                                              x[12 * s + 3 * static_cast<std::size_t>(j) + 2]);
+    return out;
+  }
+};
+
+Stencils make_stencils(std::mt19937& rng) {
+  Stencils st;
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  const double inf = std::numeric_limits<double>::infinity();
+  for (CcdPrimitive kind : {CcdPrimitive::VertexFace, CcdPrimitive::EdgeEdge}) {
+    for (int i = 0; i < 4000; ++i) {
+      const int family = i % 8;
+      CcdStencil s0, s1;
+      const double spread = family == 0 ? 1.0 : 0.05;
+      for (auto& p : s0) p = test::random_vec3(rng, spread);
+      const double motion = family == 1 ? 0.0 : family == 2 ? 1e-3 : 0.05;
+      for (int j = 0; j < 4; ++j)
+        s1[static_cast<std::size_t>(j)] =
+            s0[static_cast<std::size_t>(j)] + test::random_vec3(rng, motion);
+      if (family == 3) {
+        // Near-coplanar: flatten z to about 1e-6, start and end.
+        for (auto* s : {&s0, &s1})
+          for (auto& p : *s) p.z() *= 1e-5;
+      } else if (family == 4) {
+        // Degenerate: repeated points (zero-length edge, collinear triangle).
+        s0[2] = s0[1];
+        s1[2] = s1[1];
+        s0[3] = 0.5 * (s0[0] + s0[1]);
+        s1[3] = 0.5 * (s1[0] + s1[1]);
+      } else if (family == 5) {
+        // Boxes exactly tau = 1/16 apart on x (binary fractions: the gap is exact), or closer.
+        const double gap = i % 3 == 0 ? 0.0625 : i % 3 == 1 ? 0.0625 * (1 + 1e-15) : 0.03125;
+        for (auto* s : {&s0, &s1}) {
+          const int split = kind == CcdPrimitive::VertexFace ? 1 : 2;
+          for (int j = 0; j < 4; ++j) (*s)[static_cast<std::size_t>(j)].x() = j < split ? 0.0 : gap;
+        }
+      } else if (family == 6) {
+        // Huge coordinates: the box test's probe sum may overflow.
+        for (auto* s : {&s0, &s1})
+          for (auto& p : *s) p *= 1e307;
+      } else if (family == 7 && i % 16 == 7) {
+        // Non-finite.
+        s1[static_cast<std::size_t>(i % 4)].y() = (i / 16) % 2 == 0 ? inf : std::nan("");
+      }
+      st.add(kind, s0, s1);
+    }
+  }
+  return st;
+}
+
+TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
+  if (!cull_batch_avx2_available()) {
+    GTEST_SKIP() << "this CPU has no AVX2: cull_batch runs the scalar functions themselves";
+  }
+  std::mt19937 rng(20261123);
+  const Stencils st = make_stencils(rng);
+  std::int64_t box = 0, filter_only = 0, kept = 0, compared = 0;
+  for (double tol : {0.0, 1e-4, 0.0625}) {
+    // Batches of 1..4 stencils of one kind.
+    for (std::size_t s = 0; s < st.size();) {
+      const int want_count = 1 + static_cast<int>(s % 4);
+      std::array<int, 4> v[CULL_LANES];
+      int count = 0;
+      while (count < want_count && s + static_cast<std::size_t>(count) < st.size() &&
+             st.kind[s + static_cast<std::size_t>(count)] == st.kind[s]) {
+        const int base = 4 * static_cast<int>(s + static_cast<std::size_t>(count));
+        v[count++] = {base, base + 1, base + 2, base + 3};
+      }
+      std::uint8_t culled[CULL_LANES] = {7, 7, 7, 7};
+      cull_batch(st.kind[s], st.x0.data(), st.x1.data(), v, count, tol, culled);
+      for (int k = 0; k < count; ++k) {
+        const std::size_t id = s + static_cast<std::size_t>(k);
+        const CcdStencil s0 = st.at(st.x0, id), s1 = st.at(st.x1, id);
+        const bool by_box = swept_boxes_apart(st.kind[s], s0, s1, tol);
+        const bool by_filter = nonpenetration_filter_culls(st.kind[s], s0, s1, tol);
+        ASSERT_EQ(culled[k], by_box || by_filter ? 1 : 0)
+            << "stencil " << id << " (family " << (id % 4000) % 8 << "), tolerance " << tol;
+        box += by_box;
+        filter_only += !by_box && by_filter;
+        kept += !by_box && !by_filter;
+        ++compared;
+      }
+      for (int k = count; k < CULL_LANES; ++k) EXPECT_EQ(culled[k], 7) << "lane past count written";
+      s += static_cast<std::size_t>(count);
+    }
+  }
+  // Every outcome occurs often, so the comparison covers each path of the batch code.
+  EXPECT_GT(box, 1000);
+  EXPECT_GT(filter_only, 1000);
+  EXPECT_GT(kept, 1000);
+  EXPECT_EQ(compared, 3 * static_cast<std::int64_t>(st.size()));
+}
+
+TEST(CullBatch, ScalarIsaAndNonFiniteInputAreNeverCulled) {
+  // Far apart but with a NaN or an infinity: never culled, on either path.
+  const double inf = std::numeric_limits<double>::infinity();
+  for (double bad : {inf, -inf, std::nan("")}) {
+    std::vector<double> x0 = {0, 0, 0, 10, 0, 0, 10, 1, 0, 10, 0, 1};
+    std::vector<double> x1 = x0;
+    x1[4] = bad;
+    const std::array<int, 4> v[1] = {{0, 1, 2, 3}};
+    for (CullIsa isa : {CullIsa::Auto, CullIsa::Scalar}) {
+      std::uint8_t culled[1] = {7};
+      cull_batch(CcdPrimitive::VertexFace, x0.data(), x1.data(), v, 1, 1e-4, culled, isa);
+      EXPECT_EQ(culled[0], 0) << "bad value " << bad;
+      x1[4] = 0.0;  // the same stencil, finite: culled by the boxes
+      cull_batch(CcdPrimitive::VertexFace, x0.data(), x1.data(), v, 1, 1e-4, culled, isa);
+      EXPECT_EQ(culled[0], 1);
+      x1[4] = bad;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace shellcontract
