@@ -106,9 +106,9 @@ class SelfCollision {
   };
 
   /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
-  /// marked, never tested). A pair is stale unless the broad phase shows its swept boxes farther than delta
-  /// apart (CandidatePairs' close flags): then it is free already. The swept boxes of (x0, x1)
-  /// grown by margin / 2 become the regions the response keeps each vertex in.
+  /// marked, never tested). A pair is stale unless the broad phase shows its swept boxes farther
+  /// than delta apart (CandidatePairs' close flags): then it is free already. The swept boxes of
+  /// (x0, x1) grown by margin / 2 become the regions the response keeps each vertex in.
   void broad_phase(const Positions& x0, const Positions& x1, double margin,
                    CollisionStepStats& stats);
 
