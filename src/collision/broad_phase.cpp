@@ -955,7 +955,8 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
   // boxes exceeds far_gap. Each box bound is fl(c -+ inflation) for an exact coordinate c with
   // |c| <= M, off by at most u (M + inflation), and the computed difference adds u (2M +
   // 2 inflation) (1 + u); so g > far_gap = (far - 2 inflation) + 8 u (M + inflation + far),
-  // itself rounded twice, leaves the exact gap of the boxes before inflation above `far`.
+  // itself rounded a few times (a few u (far + 2 inflation) more), leaves the exact gap of the
+  // boxes before inflation above `far`.
   double far_gap = std::numeric_limits<double>::infinity();
   if (far_distance >= 0.0 && std::isfinite(far_distance)) {
     const double m =

@@ -32,8 +32,9 @@ void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const st
 }
 
 #if SHELLCONTRACT_CULL_AVX2
-// AVX2 without FMA: the scalar code (baseline x86-64) rounds every product and sum on its own,
-// and so must this, for the answers to be the same bit for bit. Every expression below mirrors
+// AVX2 without FMA, and both files compiled with -ffp-contract=off (CMakeLists.txt): the scalar
+// code rounds every product and sum on its own, and so must this, for the answers to be the
+// same bit for bit. Every expression below mirrors
 // one in ccd.cpp (relative_vectors, det3, det3_abs, bernstein_with_bound, normal_length_bound,
 // one_sign, swept_boxes_apart) and Eigen's evaluation order for 3-vectors (cross: y z - z y,
 // z x - x z, x y - y x; dot and sum: (a0 + a1) + a2; norm: sqrt of the squared norm).

@@ -141,9 +141,9 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                           p.v = stencil(p.kind, p.pair, topo_);
                           p.excluded = listed(vf ? excluded_vf_ : excluded_ee_, p.pair);
                           p.near = !p.excluded && listed(vf ? near_vf_ : near_ee_, p.pair);
-                          // A pair the broad phase shows farther than delta apart over the step is
-                          // one detection's box cull would find free: it is marked so without a
-                          // test, until a response moves one of its vertices.
+                          // A pair the broad phase shows farther than delta apart over the whole
+                          // step cannot come within delta: it is marked free without a test,
+                          // until a response moves one of its vertices.
                           const bool close = vf ? candidates_.vertex_face_close[i]
                                                 : candidates_.edge_edge_close[i - nvf];
                           stale_[i] = close && !p.excluded;
@@ -290,7 +290,8 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
     moved_list_.push_back(v);
   };
   for (int round = 0; round < options_.rounds; ++round) {
-    // Round 0 tests every pair; later rounds the pairs a response push made stale. Pairs closer
+    // Round 0 tests every pair not flagged far; later rounds the pairs a response push made
+    // stale. Pairs closer
     // than delta at rest get no push (fail-safe only).
     tests_.clear();
     for (std::size_t i = 0; i < pairs_.size(); ++i)
