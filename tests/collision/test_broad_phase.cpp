@@ -374,6 +374,36 @@ TEST(BroadPhase, CloseFlagAtTheExactDistance) {
   }
 }
 
+TEST(BroadPhase, CloseFlagSurvivesTheRoundingOfInflatedBoxesFarFromTheOrigin) {
+  // Exact gap == far (binary fractions), but coordinates near 2^10..2^20 and inflations that are
+  // not binary fractions: the inflated bounds round by up to an ulp of the coordinates, far more
+  // than any ulp of the gap. Without the rounding allowance in the threshold, some of these
+  // pairs come out flagged far (tried: the test fails then).
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> fraction(0.0, 1.0);
+  TriMesh m;
+  m.x.resize(4, 3);
+  m.faces.resize(1, 3);
+  m.faces << 0, 1, 2;
+  const CollisionTopology topo = make_collision_topology(m.faces, 4);
+  int far_flagged = 0, cases = 0;
+  for (int e = 10; e <= 20; ++e)
+    for (int trial = 0; trial < 200; ++trial) {
+      const double base = std::ldexp(1.0, e) + std::ldexp(std::floor(fraction(rng) * 4096), -8);
+      const double far = 0.125;
+      const double inflation = 0.1 + 0.3 * fraction(rng);  // > far / 2: far pairs are emitted
+      // The triangle spans x in [base - 1, base]; the vertex sits at base + far on x.
+      m.x << base - 1, 0, 0, base, 0, 0, base - 1, 1, 0, base + far, 0.25, 0;
+      CandidatePairs out;
+      BroadPhaseStats stats;
+      find_candidates(m.x, m.x, topo, inflation, out, &stats, BroadPhaseMethod::Grid, far);
+      ASSERT_EQ(out.vertex_face.size(), 1u);
+      far_flagged += out.vertex_face_close[0] == 0;
+      ++cases;
+    }
+  EXPECT_EQ(far_flagged, 0) << "of " << cases << " pairs exactly `far` apart";
+}
+
 TEST(BroadPhase, TwoSpheresPushedIntoEachOther) {
   // Two unit spheres 0.1 apart move 0.25 towards each other each, ending 0.4 interpenetrated.
   const TriMesh s = test::icosphere(2);
