@@ -25,6 +25,15 @@ struct ProjectionContext {
 namespace detail {
 inline Eigen::Map<Vec3> vertex(double* x, int i) { return Eigen::Map<Vec3>(x + 3 * i); }
 
+/// x_i -= s g, written out: the same roundings as vertex(x, i) -= s * g, but GCC did not inline
+/// Eigen's operator-= on a Map (3.6% of a bear run's samples in a call of its own).
+inline void subtract_scaled(double* x, int i, double s, const Vec3& g) {
+  double* p = x + 3 * static_cast<std::ptrdiff_t>(i);
+  p[0] -= s * g[0];
+  p[1] -= s * g[1];
+  p[2] -= s * g[2];
+}
+
 /// Applies dx_i = -scale w_i g_i, scaled down so that no |dx_i| exceeds max_step
 /// (math-spec 9.1d). N = number of stencil vertices.
 template <int N>
@@ -33,7 +42,7 @@ inline void apply_step(double* x, const double* w, const std::array<int, N>& v,
   double longest_sq = 0.0;
   for (int i = 0; i < N; ++i) longest_sq = std::max(longest_sq, (scale * w[v[i]]) * (scale * w[v[i]]) * g[i].squaredNorm());
   if (longest_sq > max_step * max_step) scale *= max_step / std::sqrt(longest_sq);
-  for (int i = 0; i < N; ++i) vertex(x, v[i]) -= (scale * w[v[i]]) * g[i];
+  for (int i = 0; i < N; ++i) subtract_scaled(x, v[i], scale * w[v[i]], g[i]);
 }
 }  // namespace detail
 
@@ -141,18 +150,18 @@ inline bool project_membrane(const M& material, const PackedMembrane& c,
     longest_sq = std::max(longest_sq, (scale * w1) * (scale * w1) * n1);
     longest_sq = std::max(longest_sq, (scale * w2) * (scale * w2) * n2);
     if (longest_sq > max_step * max_step) scale *= max_step / std::sqrt(longest_sq);
-    detail::vertex(x, i0) -= (scale * w0) * g[0];
-    detail::vertex(x, i1) -= (scale * w1) * g[1];
-    detail::vertex(x, i2) -= (scale * w2) * g[2];
+    detail::subtract_scaled(x, i0, scale * w0, g[0]);
+    detail::subtract_scaled(x, i1, scale * w1, g[1]);
+    detail::subtract_scaled(x, i2, scale * w2, g[2]);
     return true;
   }
   const double C = std::sqrt(2.0 * E);
   const double at = ctx.alpha_tilde;
   const double sigma = C * (C + at * *lambda) / (G + at * C * C);
   *lambda -= C * sigma;
-  detail::vertex(x, i0) -= (sigma * w0) * g[0];
-  detail::vertex(x, i1) -= (sigma * w1) * g[1];
-  detail::vertex(x, i2) -= (sigma * w2) * g[2];
+  detail::subtract_scaled(x, i0, sigma * w0, g[0]);
+  detail::subtract_scaled(x, i1, sigma * w1, g[1]);
+  detail::subtract_scaled(x, i2, sigma * w2, g[2]);
   return true;
 }
 
@@ -224,10 +233,10 @@ inline bool project_isometric_hinge(const IsometricHingeConstraint& c, double k_
     longest = std::max(longest, w3 * std::abs(K3));
     longest *= base.norm();
     const double shrink = longest > max_step ? max_step / longest : 1.0;
-    detail::vertex(x, i0) -= (shrink * w0 * K0) * base;
-    detail::vertex(x, i1) -= (shrink * w1 * K1) * base;
-    detail::vertex(x, i2) -= (shrink * w2 * K2) * base;
-    detail::vertex(x, i3) -= (shrink * w3 * K3) * base;
+    detail::subtract_scaled(x, i0, shrink * w0 * K0, base);
+    detail::subtract_scaled(x, i1, shrink * w1 * K1, base);
+    detail::subtract_scaled(x, i2, shrink * w2 * K2, base);
+    detail::subtract_scaled(x, i3, shrink * w3 * K3, base);
     return true;
   }
   const double beta = k_bending * three_over_area;
