@@ -27,7 +27,7 @@ bool project_dihedral_hinge(const DihedralHingeConstraint& c, double k_bending,
   const double C = root * d;
   const double dlam = (-C - ctx.alpha_tilde * *lambda) / (root * root * wg + ctx.alpha_tilde);
   *lambda += dlam;
-  for (int i = 0; i < 4; ++i) detail::vertex(ctx.x, c.v[i]) += (ctx.w[c.v[i]] * root * dlam) * grad[i];
+  for (int i = 0; i < 4; ++i) detail::add_scaled(ctx.x, c.v[i], ctx.w[c.v[i]] * root * dlam, grad[i]);
   return true;
 }
 

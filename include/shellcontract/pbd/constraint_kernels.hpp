@@ -33,6 +33,13 @@ inline void subtract_scaled(double* x, int i, double s, const Vec3& g) {
   p[1] -= s * g[1];
   p[2] -= s * g[2];
 }
+/// x_i += s g, as subtract_scaled (the XPBD updates).
+inline void add_scaled(double* x, int i, double s, const Vec3& g) {
+  double* p = x + 3 * static_cast<std::ptrdiff_t>(i);
+  p[0] += s * g[0];
+  p[1] += s * g[1];
+  p[2] += s * g[2];
+}
 
 /// Applies dx_i = -scale w_i g_i, scaled down so that no |dx_i| exceeds max_step
 /// (math-spec 9.1d). N = number of stencil vertices.
@@ -244,10 +251,10 @@ inline bool project_isometric_hinge(const IsometricHingeConstraint& c, double k_
   Eigen::Map<Vec3> lam(lambda);
   const Vec3 dlam = (-sqrt_beta * h - ctx.alpha_tilde * lam) / (beta * wK2 + ctx.alpha_tilde);
   lam += dlam;
-  detail::vertex(x, i0) += (w0 * sqrt_beta * K0) * dlam;
-  detail::vertex(x, i1) += (w1 * sqrt_beta * K1) * dlam;
-  detail::vertex(x, i2) += (w2 * sqrt_beta * K2) * dlam;
-  detail::vertex(x, i3) += (w3 * sqrt_beta * K3) * dlam;
+  detail::add_scaled(x, i0, w0 * sqrt_beta * K0, dlam);
+  detail::add_scaled(x, i1, w1 * sqrt_beta * K1, dlam);
+  detail::add_scaled(x, i2, w2 * sqrt_beta * K2, dlam);
+  detail::add_scaled(x, i3, w3 * sqrt_beta * K3, dlam);
   return true;
 }
 
