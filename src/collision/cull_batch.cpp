@@ -34,10 +34,10 @@ void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const st
 #if SHELLCONTRACT_CULL_AVX2
 // AVX2 without FMA, and both files compiled with -ffp-contract=off (CMakeLists.txt): the scalar
 // code rounds every product and sum on its own, and so must this, for the answers to be the
-// same bit for bit. Every expression below mirrors
-// one in ccd.cpp (relative_vectors, det3, det3_abs, bernstein_with_bound, normal_length_bound,
-// one_sign, swept_boxes_apart) and Eigen's evaluation order for 3-vectors (cross: y z - z y,
-// z x - x z, x y - y x; dot and sum: (a0 + a1) + a2; norm: sqrt of the squared norm).
+// same bit for bit. Every expression below mirrors one in ccd.cpp (relative_vectors, det3,
+// det3_abs, bernstein_with_bound, normal_length_bound, one_sign, swept_boxes_apart) and Eigen's
+// evaluation order for 3-vectors (cross: y z - z y, z x - x z, x y - y x; dot and sum:
+// (a0 + a1) + a2; norm: sqrt of the squared norm).
 #pragma GCC push_options
 #pragma GCC target("avx2")
 
@@ -50,8 +50,8 @@ struct V3 {
 
 SC_CULL_INLINE V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 SC_CULL_INLINE V vabs(V a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a); }
-/// std::max(a, b) = a < b ? b : a, and std::min(a, b) = b < a ? b : a, lane by lane (the inputs
-/// are finite here, so only signed zeros could tell the forms apart, and no test below can).
+/// std::max(a, b) = a < b ? b : a, and std::min(a, b) = b < a ? b : a, lane by lane, NaN and
+/// signed zeros included (lanes with a non-finite input are masked out at the end anyway).
 SC_CULL_INLINE V vmax(V a, V b) { return _mm256_blendv_pd(a, b, _mm256_cmp_pd(a, b, _CMP_LT_OQ)); }
 SC_CULL_INLINE V vmin(V a, V b) { return _mm256_blendv_pd(a, b, _mm256_cmp_pd(b, a, _CMP_LT_OQ)); }
 
