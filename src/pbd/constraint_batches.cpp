@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 
 // The AVX2 path needs GCC's vector operators on __m256d, its target pragma and x86-64 (the
 // project's compiler is g++ 12; others get the scalar path).
@@ -40,7 +41,9 @@ ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
     for (std::size_t first = colour_offsets[c]; first < end; first += BATCH_LANES) {
       Batch b{};
       b.count = static_cast<int>(std::min<std::size_t>(BATCH_LANES, end - first));
-      b.same_colour_next = first + BATCH_LANES < end;
+      // Only the membrane kernel pipelines its loads (loading early did not pay for hinges).
+      if constexpr (std::is_same_v<Batch, MembraneBatch>)
+        b.same_colour_next = first + BATCH_LANES < end;
       for (int k = 0; k < BATCH_LANES; ++k) {
         const Record& r = records[first + (k < b.count ? k : 0)];
         for (int j = 0; j < N; ++j) b.v[j][k] = r.v[j];

@@ -60,7 +60,6 @@ struct alignas(32) IsometricBatch {
   double max_step[BATCH_LANES];        ///< clamp (math-spec 9.1d)
   int v[4][BATCH_LANES];
   int count;
-  int same_colour_next;  ///< as in MembraneBatch
 };
 
 /// Batches of one constraint kind grouped by colour: colour c owns batches
