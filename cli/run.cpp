@@ -279,6 +279,7 @@ int command_run(int argc, char** argv) {
     opt.collision.warm_start = warm_start == "on";
     opt.collision.threads = opt.solver.threads;
     opt.validate = parse_validate(validate);
+    opt.frame_energies = !log_path.empty();  // only the CSV log reports them
     opt.inward_term = parse_inward(inward);
     if (fiber != "centre") {
       opt.anisotropy.fiber_mode = FiberMode::User;
@@ -353,7 +354,7 @@ int command_run(int argc, char** argv) {
         failure = std::to_string(m.new_intersections) + " new self-intersecting face pairs at frame " +
                   std::to_string(m.frame);
       }
-      csv += csv_row(m);
+      if (!log_path.empty()) csv += csv_row(m);
       const auto now = std::chrono::steady_clock::now();
       if (!quiet && (std::chrono::duration<double>(now - last_report).count() > 1.0 ||
                      sim.finished())) {

@@ -125,6 +125,7 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
   const std::size_t nvf = candidates_.vertex_face.size();
   const std::size_t n = nvf + candidates_.edge_edge.size();
   pairs_.resize(n);
+  role_.resize(n);
   stale_.resize(n);
   free_.resize(n);
   auto listed = [](const std::vector<std::array<int, 2>>& list, const std::array<int, 2>& pair) {
@@ -139,14 +140,16 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                           p.kind = vf ? CcdPrimitive::VertexFace : CcdPrimitive::EdgeEdge;
                           p.pair = vf ? candidates_.vertex_face[i] : candidates_.edge_edge[i - nvf];
                           p.v = stencil(p.kind, p.pair, topo_);
-                          p.excluded = listed(vf ? excluded_vf_ : excluded_ee_, p.pair);
-                          p.near = !p.excluded && listed(vf ? near_vf_ : near_ee_, p.pair);
+                          const bool excluded = listed(vf ? excluded_vf_ : excluded_ee_, p.pair);
+                          role_[i] = excluded                                      ? EXCLUDED
+                                     : listed(vf ? near_vf_ : near_ee_, p.pair) ? NEAR
+                                                                                : NORMAL;
                           // A pair the broad phase shows farther than delta apart over the whole
                           // step cannot come within delta: it is marked free without a test,
                           // until a response moves one of its vertices.
                           const bool close = vf ? candidates_.vertex_face_close[i]
                                                 : candidates_.edge_edge_close[i - nvf];
-                          stale_[i] = close && !p.excluded;
+                          stale_[i] = close && !excluded;
                           free_[i] = !stale_[i];
                         }
                       });
@@ -190,14 +193,18 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
           }
         });
   });
-  survivors_.clear();
-  for (std::size_t i = 0; i < n; ++i)
-    if (hit_[i]) survivors_.push_back(static_cast<std::uint32_t>(i));
+  // Branch-free compaction: hit_ is hard to predict.
+  survivors_.resize(n);
+  std::size_t m = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    survivors_[m] = static_cast<std::uint32_t>(i);
+    m += hit_[i];
+  }
+  survivors_.resize(m);
   stats.filter_seconds += since(t0);
   // Stage 2: the narrow phase on the survivors. Each test writes only its own slot, so the
   // outcome is the same for any number of threads.
   t0 = Clock::now();
-  const std::size_t m = survivors_.size();
   if (found_.size() < n) found_.resize(n);
   CcdOptions ccd;
   ccd.tolerance = tol;
@@ -233,6 +240,18 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   stats.narrow_tests += static_cast<std::int64_t>(m);
   stats.filter_tests += static_cast<std::int64_t>(n);
   if (count_stage) stats.pairs_filtered = static_cast<std::int64_t>(m);
+}
+
+template <class Keep>
+void SelfCollision::collect_tests(Keep keep) {
+  // Branch-free compaction over byte flags (a few passes per step over ~10^5 pairs on bear).
+  tests_.resize(pairs_.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < pairs_.size(); ++i) {
+    tests_[k] = static_cast<std::uint32_t>(i);
+    k += keep(i) ? 1 : 0;
+  }
+  tests_.resize(k);
 }
 
 void SelfCollision::mark_moved_pairs_stale() {
@@ -293,10 +312,7 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
     // Round 0 tests every pair not flagged far; later rounds the pairs a response push made
     // stale. Pairs closer
     // than delta at rest get no push (fail-safe only).
-    tests_.clear();
-    for (std::size_t i = 0; i < pairs_.size(); ++i)
-      if (stale_[i] && !pairs_[i].near && !pairs_[i].excluded)
-        tests_.push_back(static_cast<std::uint32_t>(i));
+    collect_tests([&](std::size_t i) { return (stale_[i] & (role_[i] == NORMAL)) != 0; });
     if (tests_.empty()) break;
     detect(x0, x1, delta, stats, round == 0);
     ++stats.rounds;
@@ -322,10 +338,9 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
   // pair that touches (a real crossing or contact) to x0 until none is left. Reverting shrinks
   // a swept box to a subset of the one the broad phase saw, so its pairs stay a superset.
   for (;;) {
-    tests_.clear();
-    for (std::size_t i = 0; i < pairs_.size(); ++i)
-      if ((stale_[i] || !free_[i]) && !pairs_[i].excluded)
-        tests_.push_back(static_cast<std::uint32_t>(i));
+    collect_tests([&](std::size_t i) {
+      return ((stale_[i] | (free_[i] ^ 1)) & (role_[i] != EXCLUDED)) != 0;
+    });
     detect(x0, x1, 0.0, stats, false);
     if (contacts_.empty()) return;
     std::int64_t reverted = 0;

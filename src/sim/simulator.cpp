@@ -141,7 +141,7 @@ FrameMetrics Simulator::step() {
   m.frame = frame_;
   m.time = frame_ * dt;
   m.volume_ratio = volume_ratio_;
-  m.energies = solver_->energies(x_);
+  if (options_.frame_energies) m.energies = solver_->energies(x_);
   m.step_seconds = std::chrono::duration<double>(stop - start).count();
   if (options_.validate == ValidateMode::EveryFrame ||
       (options_.validate == ValidateMode::End && finished()))

@@ -29,6 +29,26 @@ TEST(Simulator, FaceOrderOfTheConstraintsIsTheInputOrder) {
   EXPECT_EQ(F, fixture.faces);
 }
 
+TEST(Simulator, FrameEnergiesAreTheSolverEnergiesOrOmitted) {
+  // frame_energies on: each step reports the energies of its end state; off: zeros, and the
+  // trajectory is the same (the energies are only measured, never fed back).
+  SimOptions on;
+  on.frames = 5;
+  SimOptions off = on;
+  off.frame_energies = false;
+  Simulator a(sphere(), on), b(sphere(), off);
+  while (!a.finished()) {
+    const FrameMetrics ma = a.step(), mb = b.step();
+    const ConstraintEnergies e = a.energies();
+    EXPECT_GT(ma.energies.membrane, 0.0);
+    EXPECT_EQ(ma.energies.membrane, e.membrane);
+    EXPECT_EQ(ma.energies.bending, e.bending);
+    EXPECT_EQ(mb.energies.membrane, 0.0);
+    EXPECT_EQ(mb.energies.bending, 0.0);
+    EXPECT_EQ(a.positions(), b.positions());
+  }
+}
+
 TEST(Simulator, DihedralModelAtZeroPressureStaysAtRest) {
   SimOptions opt;
   opt.pressure = 0.0;

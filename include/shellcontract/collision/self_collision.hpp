@@ -101,8 +101,13 @@ class SelfCollision {
     std::array<int, 4> v;     ///< vertex ids in the CCD stencil order (ccd.hpp)
     std::array<int, 2> pair;  ///< (vertex, face) or (edge a, edge b)
     CcdPrimitive kind;
-    bool near;                ///< closer than delta at rest: no response push, fail-safe only
-    bool excluded;            ///< touching at rest: never tested
+  };
+
+  /// Per pair (role_): how the rest state classed it.
+  enum PairRole : std::uint8_t {
+    NORMAL = 0,
+    NEAR = 1,      ///< closer than delta at rest: no response push, fail-safe only
+    EXCLUDED = 2,  ///< touching at rest: never tested
   };
 
   /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
@@ -128,10 +133,15 @@ class SelfCollision {
   /// Marks stale every pair with a vertex in moved_, then clears moved_.
   void mark_moved_pairs_stale();
 
+  /// Sets tests_ to the pairs i with keep(i), in increasing order.
+  template <class Keep>
+  void collect_tests(Keep keep);
+
   CollisionTopology topo_;
   CollisionOptions options_;
   CandidatePairs candidates_;
   std::vector<PairRecord> pairs_;        ///< candidates of the last broad phase, in its order
+  std::vector<std::uint8_t> role_;       ///< per pair: a PairRole
   std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
   std::vector<std::uint32_t> tests_;     ///< pairs to test in the next detect()
