@@ -48,11 +48,13 @@ struct CcdOptions {
   int max_depth = DEFAULT_CCD_MAX_DEPTH;
   /// Cap on examined time intervals per query (>= 1). Default DEFAULT_CCD_MAX_INTERVALS.
   int max_intervals = DEFAULT_CCD_MAX_INTERVALS;
-  /// For a hit decided by distance (CcdHitReason::Distance) after t = 0: tighten the lower bound
-  /// toi by a greedy descent over [ta, tm] (up to 32 more interval tests, most of the cost of
-  /// such a query). Off, toi is the start of the deciding interval, still a valid lower bound;
-  /// hit, weights, normal and side are the same either way. The collision response does not
-  /// use toi and turns it off.
+  /// Tighten the lower bound toi inside the deciding interval: for a hit decided by distance
+  /// (CcdHitReason::Distance) after t = 0 by a greedy descent over [ta, tm] (up to 32 more
+  /// interval tests, most of the cost of such a query); for the other hits by bisecting with the
+  /// coplanarity test (up to 40 levels). Off, toi is the start of the deciding interval, still a
+  /// valid lower bound; hit and reason are the same either way, and so are weights, normal and
+  /// side unless the tightened toi passes the estimated contact time (then they are evaluated
+  /// at toi). The collision response does not use toi and turns it off.
   bool tighten_toi = true;
 };
 
