@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -46,6 +47,8 @@ constexpr double WARM_START_SLIDE = 2.0;
 constexpr std::size_t DETECT_GRAIN = 512;
 /// Pairs per task of the per-pair bookkeeping loops (records, stale marks).
 constexpr std::size_t PAIR_GRAIN = 4096;
+/// Indices per block of compact(): fixed, so the result never depends on the threads.
+constexpr std::size_t COMPACT_BLOCK = 8192;
 
 /// The narrow-phase stencil (ccd.hpp order) of a VF pair (vertex, face) or an EE pair.
 std::array<int, 4> stencil(CcdPrimitive kind, const std::array<int, 2>& p,
@@ -165,11 +168,13 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
 void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
                            CollisionStepStats& stats, bool count_stage) {
   contacts_.clear();
-  const std::size_t n = tests_.size();
+  const std::size_t n = test_count_;
   if (n == 0) return;
-  // Stage 1: the certain non-penetration filter (math-spec 10.4), one flag per test.
+  // Stage 1: the certain non-penetration filter (math-spec 10.4), one flag per test. A culled
+  // pair is free at its current positions: its flags are set here (each test is a different
+  // pair, so the tasks write different bytes).
   auto t0 = Clock::now();
-  hit_.assign(n, 0);
+  if (hit_.size() < n) hit_.resize(n);
   // Four tests at a time (cull_batch: the same answers as swept_boxes_apart and
   // nonpenetration_filter_culls one by one); a group of four is cut where the kind changes.
   const std::size_t groups = (n + CULL_LANES - 1) / CULL_LANES;
@@ -187,22 +192,20 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
               for (std::size_t j = i; j < end && pairs_[tests_[j]].kind == kind; ++j)
                 v[count++] = pairs_[tests_[j]].v;
               cull_batch(kind, x0.data(), x1.data(), v, count, tol, culled);
-              for (int k = 0; k < count; ++k) hit_[i + static_cast<std::size_t>(k)] = !culled[k];
-              i += static_cast<std::size_t>(count);
+              for (int k = 0; k < count; ++k, ++i) {
+                hit_[i] = !culled[k];
+                if (culled[k]) {
+                  stale_[tests_[i]] = 0;
+                  free_[tests_[i]] = 1;
+                }
+              }
             }
           }
         });
   });
-  // Branch-free compaction: hit_ is hard to predict.
-  survivors_.resize(n);
-  std::size_t m = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    survivors_[m] = static_cast<std::uint32_t>(i);
-    m += hit_[i];
-  }
-  survivors_.resize(m);
+  const std::size_t m = compact(n, [&](std::size_t i) { return hit_[i] != 0; }, survivors_);
   stats.filter_seconds += since(t0);
-  // Stage 2: the narrow phase on the survivors. Each test writes only its own slot, so the
+  // Stage 2: the narrow phase on the survivors. Each test writes only its own slots, so the
   // outcome is the same for any number of threads.
   t0 = Clock::now();
   if (found_.size() < n) found_.resize(n);
@@ -215,10 +218,13 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
                         CcdStencil s0, s1;
                         for (std::size_t k = r.begin(); k < r.end(); ++k) {
                           const std::size_t i = survivors_[k];
-                          const PairRecord& p = pairs_[tests_[i]];
+                          const std::uint32_t pair = tests_[i];
+                          const PairRecord& p = pairs_[pair];
                           gather(x0, x1, p.v, s0, s1);
                           const CcdResult res = primitive_ccd(p.kind, s0, s1, ccd);
                           hit_[i] = res.hit;
+                          stale_[pair] = 0;
+                          free_[pair] = !res.hit;
                           if (!res.hit) continue;
                           Contact& c = found_[i];
                           c.kind = p.kind;
@@ -230,12 +236,18 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
                         }
                       });
   });
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t p = tests_[i];
-    stale_[p] = 0;
-    free_[p] = !hit_[i];
-    if (hit_[i]) contacts_.push_back(found_[i]);
-  }
+  // The hits in the order of tests_ (survivors_ is increasing), copied in parallel: each
+  // contact was written by whichever thread tested it.
+  const std::size_t hits =
+      compact(m, [&](std::size_t k) { return hit_[survivors_[k]] != 0; }, hit_list_);
+  contacts_.resize(hits);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, hits, DETECT_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t h = r.begin(); h < r.end(); ++h)
+                          contacts_[h] = found_[survivors_[hit_list_[h]]];
+                      });
+  });
   stats.narrow_seconds += since(t0);
   stats.narrow_tests += static_cast<std::int64_t>(m);
   stats.filter_tests += static_cast<std::int64_t>(n);
@@ -243,15 +255,37 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
 }
 
 template <class Keep>
-void SelfCollision::collect_tests(Keep keep) {
-  // Branch-free compaction over byte flags (a few passes per step over ~10^5 pairs on bear).
-  tests_.resize(pairs_.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < pairs_.size(); ++i) {
-    tests_[k] = static_cast<std::uint32_t>(i);
-    k += keep(i) ? 1 : 0;
+std::size_t SelfCollision::compact(std::size_t n, Keep keep, std::vector<std::uint32_t>& out) {
+  // Fixed blocks (never cut by the thread count): block b compacts its kept indices, in order,
+  // to the front of its own slice out[b B, (b + 1) B); the slices are then closed up in order.
+  constexpr std::size_t B = COMPACT_BLOCK;
+  const std::size_t blocks = (n + B - 1) / B;
+  if (out.size() < n) out.resize(n);
+  block_count_.resize(blocks);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+      std::uint32_t* dst = out.data() + b * B;
+      const std::size_t end = std::min(n, (b + 1) * B);
+      std::size_t k = 0;
+      for (std::size_t i = b * B; i < end; ++i) {
+        dst[k] = static_cast<std::uint32_t>(i);  // branch-free: keep() is hard to predict
+        k += keep(i) ? 1 : 0;
+      }
+      block_count_[b] = k;
+    });
+  });
+  std::size_t total = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (total != b * B)
+      std::memmove(out.data() + total, out.data() + b * B, block_count_[b] * sizeof(std::uint32_t));
+    total += block_count_[b];
   }
-  tests_.resize(k);
+  return total;
+}
+
+template <class Keep>
+void SelfCollision::collect_tests(Keep keep) {
+  test_count_ = compact(pairs_.size(), keep, tests_);
 }
 
 void SelfCollision::mark_moved_pairs_stale() {
@@ -313,7 +347,7 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
     // stale. Pairs closer
     // than delta at rest get no push (fail-safe only).
     collect_tests([&](std::size_t i) { return (stale_[i] & (role_[i] == NORMAL)) != 0; });
-    if (tests_.empty()) break;
+    if (test_count_ == 0) break;
     detect(x0, x1, delta, stats, round == 0);
     ++stats.rounds;
     if (contacts_.empty()) break;

@@ -117,9 +117,10 @@ class SelfCollision {
   void broad_phase(const Positions& x0, const Positions& x1, double margin,
                    CollisionStepStats& stats);
 
-  /// Filter and narrow phase with tolerance tol on the pairs listed in tests_ (indices into
-  /// pairs_), in parallel; afterwards free_ and stale_ of those pairs are updated and contacts_
-  /// holds their hits in the order of tests_ (so the result does not depend on the threads).
+  /// Filter and narrow phase with tolerance tol on the pairs listed in tests_[0, test_count_)
+  /// (indices into pairs_), in parallel; afterwards free_ and stale_ of those pairs are updated
+  /// and contacts_ holds their hits in the order of tests_ (so the result does not depend on the
+  /// threads).
   void detect(const Positions& x0, const Positions& x1, double tol, CollisionStepStats& stats,
               bool count_stage);
 
@@ -133,9 +134,14 @@ class SelfCollision {
   /// Marks stale every pair with a vertex in moved_, then clears moved_.
   void mark_moved_pairs_stale();
 
-  /// Sets tests_ to the pairs i with keep(i), in increasing order.
+  /// Sets tests_[0, test_count_) to the pairs i with keep(i), in increasing order.
   template <class Keep>
   void collect_tests(Keep keep);
+
+  /// Writes the i in [0, n) with keep(i) to out[0, count), in increasing order, in parallel
+  /// (the same result for any number of threads); returns count. out keeps its capacity.
+  template <class Keep>
+  std::size_t compact(std::size_t n, Keep keep, std::vector<std::uint32_t>& out);
 
   CollisionTopology topo_;
   CollisionOptions options_;
@@ -144,8 +150,11 @@ class SelfCollision {
   std::vector<std::uint8_t> role_;       ///< per pair: a PairRole
   std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
-  std::vector<std::uint32_t> tests_;     ///< pairs to test in the next detect()
-  std::vector<std::uint32_t> survivors_; ///< tests_ entries the filter did not cull
+  std::vector<std::uint32_t> tests_;     ///< [0, test_count_): pairs to test in the next detect()
+  std::size_t test_count_ = 0;
+  std::vector<std::uint32_t> survivors_; ///< tests_ entries the filter did not cull (a prefix)
+  std::vector<std::uint32_t> hit_list_;  ///< survivors_ entries the narrow phase hit (a prefix)
+  std::vector<std::size_t> block_count_; ///< compact(): kept indices per block
   std::vector<std::uint8_t> hit_;        ///< per tests_ entry: the narrow phase reported a hit
   std::vector<Contact> found_;           ///< per tests_ entry: the contact, if hit_
   std::vector<std::uint8_t> moved_;      ///< per vertex: moved by the response or the fail-safe
