@@ -26,6 +26,13 @@ double enclosed_volume(const Mesh& mesh, const Positions& x) {
     throw InputError("enclosed_volume: the mesh is not closed (" + std::to_string(border) +
                      " border edges), so it encloses no volume");
   }
+  return enclosed_volume_unchecked(mesh, x);
+}
+
+double enclosed_volume_unchecked(const Mesh& mesh, const Positions& x) {
+  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
+    throw std::invalid_argument("enclosed_volume: " + std::to_string(x.rows()) + " position rows for " +
+                                std::to_string(mesh.number_of_vertices()) + " vertices");
   namespace PMP = CGAL::Polygon_mesh_processing;
   return PMP::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(x)));
 }

@@ -75,6 +75,10 @@ TEST(EnclosedVolume, DeformedPositionsAreMeasuredNotTheMeshPoints) {
   const test::TriMesh cube = unit_cube(true);
   EXPECT_NEAR(enclosed_volume(mesh, corner), test::signed_volume(corner, cube.faces), 1e-14);
   EXPECT_GT(enclosed_volume(mesh, corner), 1.0 + 1e-3);
+  // The unchecked variant the simulator uses every frame measures the same positions.
+  EXPECT_NEAR(enclosed_volume_unchecked(mesh, corner), test::signed_volume(corner, cube.faces), 1e-14);
+  EXPECT_NEAR(enclosed_volume_unchecked(mesh, scaled), 8.0, 1e-14);
+  EXPECT_THROW(enclosed_volume_unchecked(mesh, Positions(rest.topRows(7))), std::invalid_argument);
 }
 
 TEST(EnclosedVolume, OpenSheetIsReportedAsNotClosed) {
