@@ -344,8 +344,7 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
   };
   for (int round = 0; round < options_.rounds; ++round) {
     // Round 0 tests every pair not flagged far; later rounds the pairs a response push made
-    // stale. Pairs closer
-    // than delta at rest get no push (fail-safe only).
+    // stale. Pairs closer than delta at rest get no push (fail-safe only).
     collect_tests([&](std::size_t i) { return (stale_[i] & (role_[i] == NORMAL)) != 0; });
     if (test_count_ == 0) break;
     detect(x0, x1, delta, stats, round == 0);
