@@ -30,6 +30,9 @@ double enclosed_volume(const Mesh& mesh, const Positions& x) {
 }
 
 double enclosed_volume_unchecked(const Mesh& mesh, const Positions& x) {
+  // The cheap guards stay: removed elements would index past the rows of x.
+  if (mesh.has_garbage())
+    throw std::invalid_argument("enclosed_volume: the mesh has removed elements; call collect_garbage() first");
   if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
     throw std::invalid_argument("enclosed_volume: " + std::to_string(x.rows()) + " position rows for " +
                                 std::to_string(mesh.number_of_vertices()) + " vertices");

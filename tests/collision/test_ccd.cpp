@@ -509,36 +509,51 @@ TEST(Ccd, TimeOfImpactIsALowerBoundAndMissesAreSeparated) {
 }
 
 TEST(Ccd, UntightenedTimeOfImpactKeepsTheAnswerAndTheContactData) {
-  // tighten_toi = false (what the collision response uses) may only loosen toi: same hit,
-  // reason, contact data; toi still a lower bound (no sampled time before it within tau) and
-  // not above the tightened one. Random motions with a large tau make many distance hits.
-  std::mt19937 rng(606);
-  const double tau = 0.05;
-  CcdOptions tight, loose;
-  tight.tolerance = loose.tolerance = tau;
-  loose.tighten_toi = false;
-  int distance_hits_after_start = 0;
-  for (int trial = 0; trial < 2000; ++trial) {
-    const CcdPrimitive kind = KINDS[trial % 2];
-    CcdStencil x0, x1;
-    random_motion(rng, x0, x1);
-    const CcdResult a = primitive_ccd(kind, x0, x1, tight);
-    const CcdResult b = primitive_ccd(kind, x0, x1, loose);
-    ASSERT_EQ(a.hit, b.hit) << "trial " << trial;
-    if (!a.hit) continue;
-    EXPECT_EQ(a.reason, b.reason) << "trial " << trial;
-    EXPECT_EQ(a.weights, b.weights) << "trial " << trial;
-    EXPECT_EQ(a.normal, b.normal) << "trial " << trial;
-    EXPECT_EQ(a.side, b.side) << "trial " << trial;
-    EXPECT_LE(b.toi, a.toi) << "trial " << trial;
-    distance_hits_after_start += a.reason == CcdHitReason::Distance && b.toi < a.toi;
-    for (int s = 0; s <= 200; ++s) {
-      const double t = double(s) / 200;
-      if (t >= b.toi) break;
-      ASSERT_GT(distance_at(kind, x0, x1, t), tau * (1 - 1e-9)) << "trial " << trial << " t=" << t;
+  // tighten_toi = false (what the collision response uses) may only loosen toi: same hit and
+  // reason; toi still a lower bound (no sampled time before it within tau), not above the
+  // tightened one, and contact_time in [toi, 1]; the same contact data, except where the
+  // tightened toi passed the estimated contact time (ccd.hpp: then the tightened data are
+  // evaluated at its toi). Random motions with a large tau make many distance hits, tau = 0
+  // many crossings.
+  int distance_hits_after_start = 0, crossings_loosened = 0;
+  for (const double tau : {0.05, 0.0}) {
+    std::mt19937 rng(606);
+    CcdOptions tight, loose;
+    tight.tolerance = loose.tolerance = tau;
+    loose.tighten_toi = false;
+    for (int trial = 0; trial < 4000; ++trial) {
+      const CcdPrimitive kind = KINDS[trial % 2];
+      CcdStencil x0, x1;
+      random_motion(rng, x0, x1);
+      const CcdResult a = primitive_ccd(kind, x0, x1, tight);
+      const CcdResult b = primitive_ccd(kind, x0, x1, loose);
+      ASSERT_EQ(a.hit, b.hit) << "trial " << trial;
+      if (!a.hit) continue;
+      EXPECT_EQ(a.reason, b.reason) << "trial " << trial;
+      EXPECT_LE(b.toi, a.toi) << "trial " << trial;
+      EXPECT_LE(b.toi, b.contact_time) << "trial " << trial;
+      EXPECT_LE(b.contact_time, 1.0) << "trial " << trial;
+      if (a.contact_time == b.contact_time) {
+        EXPECT_EQ(a.weights, b.weights) << "trial " << trial;
+        EXPECT_EQ(a.normal, b.normal) << "trial " << trial;
+        EXPECT_EQ(a.side, b.side) << "trial " << trial;
+      } else {
+        // The documented exception: the tightened toi passed the estimate.
+        EXPECT_EQ(a.contact_time, a.toi) << "trial " << trial;
+        EXPECT_LT(b.contact_time, a.toi) << "trial " << trial;
+      }
+      distance_hits_after_start += a.reason == CcdHitReason::Distance && b.toi < a.toi;
+      crossings_loosened += a.reason == CcdHitReason::Crossing && b.toi < a.toi;
+      for (int s = 0; s <= 200; ++s) {
+        const double t = double(s) / 200;
+        if (t >= b.toi) break;
+        ASSERT_GT(distance_at(kind, x0, x1, t), tau * (1 - 1e-9))
+            << "tau " << tau << " trial " << trial << " t=" << t;
+      }
     }
   }
   EXPECT_GT(distance_hits_after_start, 50) << "the cases must exercise the untightened path";
+  EXPECT_GT(crossings_loosened, 50) << "the cases must exercise untightened crossings";
 }
 
 TEST(Ccd, NonFiniteInputIsReportedConservatively) {

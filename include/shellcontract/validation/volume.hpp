@@ -23,7 +23,7 @@ double enclosed_volume(const Mesh& mesh, const Positions& x);
 /// halfedge, which costs more than the volume itself (~0.3 ms per call on bear).
 /// @pre enclosed_volume succeeded on this mesh (with any positions), and the mesh's
 ///      connectivity has not changed since
-/// @throws std::invalid_argument if x has the wrong number of rows
+/// @throws std::invalid_argument if x has the wrong number of rows or the mesh has garbage
 double enclosed_volume_unchecked(const Mesh& mesh, const Positions& x);
 
 }  // namespace shellcontract
