@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include <tbb/info.h>
+#include <tbb/task_arena.h>
 
 #include "shellcontract/bending/isometric_bending.hpp"
 #include "shellcontract/material/stvk.hpp"
@@ -77,8 +77,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
       apply_order(set_.anisotropic, aniso.order);
       apply_order(set_.anisotropic_k_a, aniso.order);
       aniso_colours_ = aniso.offsets;
-      // The schedule's own threads (ColourSchedule, SpinTeam): as many as asked, or one per core.
-      threads_ = settings_.threads > 0 ? settings_.threads : tbb::info::default_concurrency();
+      // The value of `automatic` is copied first: binding the static member to the conditional's
+      // lvalue would odr-use it, and TBB 2021 does not define it out of line (link error).
+      const int automatic = tbb::task_arena::automatic;
+      arena_ = std::make_unique<tbb::task_arena>(settings_.threads > 0 ? settings_.threads : automatic);
     } else {
       membrane_colours_ = {0, set_.membranes.size()};
       isometric_colours_ = {0, set_.isometric_hinges.size()};
@@ -114,7 +116,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
   }
 
   void solve(Positions& x, const Eigen::VectorXd& inv_mass) override {
-    solve_impl(x, inv_mass);
+    if (coloured_)
+      arena_->execute([&] { solve_impl(x, inv_mass); });
+    else
+      solve_impl(x, inv_mass);
   }
 
   ColourCounts colour_counts() const override {
@@ -273,7 +278,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
       const std::size_t n = static_cast<std::size_t>(x.rows());
       if (!schedule_built_ || n != padded_.size()) {  // first call (or a new vertex count)
         const std::vector<ColourPhase> phases = sweep_phases(n);
-        schedule_ = ColourSchedule(phases, settings_.iterations, threads_);
+        schedule_ = ColourSchedule(phases, settings_.iterations, arena_->max_concurrency());
         padded_.resize(n);
         first_padded_ = !phases.empty() && padded_kind(phases.front().kind);
         last_padded_ = !phases.empty() && (phases.back().kind == PACK ||
@@ -373,7 +378,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
   std::vector<PackedMembrane> packed_membranes_;  ///< set_.membranes, packed, same order
   std::vector<PackedMembrane> packed_aniso_;      ///< set_.anisotropic, packed, same order
   std::vector<ElementMaterialData> aniso_data_;   ///< fibre of each anisotropic face
-  int threads_ = 1;                               ///< Coloured order only: threads of a solve
+  std::unique_ptr<tbb::task_arena> arena_;        ///< Coloured order only: settings.threads
   ColourSchedule schedule_;          ///< Coloured order only: the phases of a solve (first solve)
   bool schedule_built_ = false;
   bool first_padded_ = false;        ///< a sweep starts on padded_ (pack before the first)

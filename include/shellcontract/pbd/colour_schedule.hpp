@@ -1,34 +1,24 @@
 // Runs the colours of a Coloured Gauss-Seidel solve (math-spec 9.4) on several threads with one
 // light barrier per colour instead of one tbb::parallel_for per colour: the threads enter once
 // per solve and walk the same list of phases (every colour of every constraint kind, sweep after
-// sweep). A phase is cut into chunks; thread t owns a contiguous block of them.
-//
-// Why this layout: on a VM whose two cores exchange a cache line in ~200 ns (the machine of
-// 2026-11-24 measured a 430 ns round trip), a colour of bear takes only ~5-12 us on one thread,
-// so a schedule that moves a shared line per chunk (one claim counter and one completion counter
-// for all threads) spends as much on those transfers as on the work. Here a thread claims its own
-// chunks in lines that only it writes, counts them locally, and publishes one completion count
-// per phase in another line only it writes; the waiting thread reads that line. In the normal
-// case a phase costs one line transfer per thread, plus the vertex rows the two halves share.
+// sweep). A phase is cut into chunks that threads claim from an atomic counter; a thread that
+// finds no chunk left waits until every chunk of the phase is done, then moves on.
 //
 // Determinism: a phase's items (constraints of one colour) share no vertex, so which thread runs
 // which chunk, and how the phase is cut, cannot change a bit of the result.
-// Progress: a thread that has waited STEAL_AFTER_SPINS spins for a phase, or that sees another
-// thread has not entered this run yet, claims the other threads' unclaimed chunks of it (from the
-// back of their blocks), so the schedule completes whenever the helpers start, and a thread whose
-// core the OS took away holds the others up for only that long.
-// Threads: the caller plus the schedule's own SpinTeam (core/spin_team.hpp says why not TBB tasks).
+// Progress: a thread only ever waits for chunks that another thread has claimed and is running,
+// so the schedule completes even if TBB runs the tasks one after the other on one thread.
 #pragma once
 
 #include <algorithm>
 #include <atomic>
 #include <cstddef>
-#include <cstdint>
 #include <memory>
 #include <thread>
 #include <vector>
 
-#include "shellcontract/core/spin_team.hpp"
+#include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 namespace shellcontract {
 
@@ -49,9 +39,7 @@ class ColourSchedule {
   /// @param sweeps   sweeps per run (>= 0)
   /// @param threads  threads that will run it (>= 1); sets the chunk sizes, about
   ///                 CHUNKS_PER_THREAD chunks per thread and phase (never below a phase's grain)
-  /// @param spin_us  how long the helper threads poll for the next run before they block
-  ColourSchedule(std::vector<ColourPhase> phases, int sweeps, int threads,
-                 int spin_us = SpinTeam::DEFAULT_SPIN_US)
+  ColourSchedule(std::vector<ColourPhase> phases, int sweeps, int threads)
       : phases_(std::move(phases)), sweeps_(std::max(sweeps, 0)), threads_(std::max(threads, 1)) {
     chunk_.resize(phases_.size());
     chunks_.resize(phases_.size());
@@ -59,114 +47,90 @@ class ColourSchedule {
       const std::size_t n = phases_[p].end - phases_[p].begin;
       const std::size_t target = static_cast<std::size_t>(CHUNKS_PER_THREAD) * threads_;
       chunk_[p] = std::max<std::size_t>({phases_[p].grain, (n + target - 1) / target, 1});
-      // At most CHUNKS_PER_THREAD * threads_ chunks, so a block has at most CLAIMS_PER_LINE.
       chunks_[p] = static_cast<int>((n + chunk_[p] - 1) / chunk_[p]);
     }
-    lines_ = std::make_unique<Line[]>(line_count());
-    arrived_ = std::make_unique<Line[]>(static_cast<std::size_t>(threads_));
-    if (threads_ > 1) team_ = std::make_unique<SpinTeam>(threads_, spin_us);
+    counters_ = std::make_unique<Counter[]>(phases_.size() * static_cast<std::size_t>(sweeps_));
+    first_claim_.resize(phases_.size());
+    for (std::size_t p = 0; p < phases_.size(); ++p) {
+      first_claim_[p] = claims_per_sweep_;
+      claims_per_sweep_ += static_cast<std::size_t>(chunks_[p]);
+    }
+    claims_ = std::make_unique<std::atomic<int>[]>(claims_per_sweep_ * static_cast<std::size_t>(sweeps_));
   }
 
   /// Runs body(kind, begin, end) over every chunk of every phase, phase after phase, on the
-  /// calling thread plus the threads - 1 helpers of the schedule's own SpinTeam. Not reentrant.
+  /// calling thread plus threads - 1 tasks of the current arena. Call inside the arena that
+  /// should run it (task_arena::execute). Not reentrant.
   template <class Body>
   void run(const Body& body) {
-    // A new epoch instead of clearing every flag: a claim or count of an older run is simply
-    // not of this epoch (and clearing would pull every line to this core once per run).
-    const std::uint64_t epoch = ++epoch_;
+    const std::size_t total = phases_.size() * static_cast<std::size_t>(sweeps_);
+    for (std::size_t i = 0; i < total; ++i) counters_[i].done.store(0, std::memory_order_relaxed);
+    for (std::size_t i = 0; i < claims_per_sweep_ * static_cast<std::size_t>(sweeps_); ++i)
+      claims_[i].store(0, std::memory_order_relaxed);
     if (threads_ == 1) {
-      walk(0, epoch, body);
+      walk(0, body);
       return;
     }
-    // SpinTeam::run publishes epoch to the helpers and returns after all of them.
-    team_->run([&](int t) { walk(t, epoch, body); });
+    // Spawning publishes the reset counters to the tasks (task_group::run synchronizes).
+    tbb::task_group group;
+    for (int t = 1; t < threads_; ++t) group.run([&, t] { walk(t, body); });
+    walk(0, body);
+    group.wait();
   }
 
   int threads() const { return threads_; }
 
-  /// Chunks per thread and phase: a few, so that work can be taken over from a thread slowed
-  /// down by another process without moving a whole block.
+  /// Chunks per thread and phase: a few, so a thread slowed down by another process does not
+  /// hold the whole phase back, and few enough that claims (one atomic add) stay rare.
   static constexpr int CHUNKS_PER_THREAD = 4;
 
  private:
-  static constexpr int CLAIMS_PER_LINE = 8;
-  static_assert(CHUNKS_PER_THREAD <= CLAIMS_PER_LINE, "a thread's block must fit one line");
-
-  /// One cache line of one thread in one phase of one sweep: the claims of the thread's own
-  /// chunks (the epoch that claimed each), then, in the next line, its completion count.
-  struct alignas(64) Line {
-    std::atomic<std::uint64_t> word[CLAIMS_PER_LINE];
+  /// Completion counter of one phase of one sweep, on its own cache line.
+  struct alignas(64) Counter {
+    std::atomic<int> done{0};
   };
 
-  /// (sweep, phase, thread) -> its claim line; its done line follows it.
-  std::size_t claim_line(int s, std::size_t p, int t) const {
-    return ((static_cast<std::size_t>(s) * phases_.size() + p) * static_cast<std::size_t>(threads_) +
-            static_cast<std::size_t>(t)) * 2;
-  }
-  std::size_t line_count() const {
-    return static_cast<std::size_t>(sweeps_) * phases_.size() * static_cast<std::size_t>(threads_) * 2;
-  }
-
-  /// Chunks [block_begin(p, t), block_begin(p, t + 1)) of phase p belong to thread t.
-  int block_begin(std::size_t p, int t) const { return chunks_[p] * t / threads_; }
-
-  /// Done counts are published as epoch * DONE_SCALE + count (count < DONE_SCALE).
-  static constexpr std::uint64_t DONE_SCALE = std::uint64_t{1} << 20;
-
+  /// Thread `t` first runs its own chunks (block t of the phase: the same part of the mesh in
+  /// every colour, so its vertices stay in this core's cache), then helps with the others'
+  /// unclaimed chunks from the back.
   template <class Body>
-  void walk(int t, std::uint64_t epoch, const Body& body) {
-    arrived_[static_cast<std::size_t>(t)].word[0].store(epoch, std::memory_order_relaxed);
+  void walk(int t, const Body& body) {
     for (int s = 0; s < sweeps_; ++s)
       for (std::size_t p = 0; p < phases_.size(); ++p) {
+        const std::size_t id = static_cast<std::size_t>(s) * phases_.size() + p;
+        std::atomic<int>* claimed = &claims_[first_claim_[p] + static_cast<std::size_t>(s) * claims_per_sweep_];
         const ColourPhase& phase = phases_[p];
-        std::uint64_t done = 0;  // chunks of this phase this thread ran
-        // Chunk k of owner o: claimed by whoever swaps in the epoch first.
-        auto try_run = [&](int o, int k) {
-          std::atomic<std::uint64_t>& claim =
-              lines_[claim_line(s, p, o)].word[k - block_begin(p, o)];
-          if (claim.load(std::memory_order_relaxed) == epoch ||
-              claim.exchange(epoch, std::memory_order_relaxed) == epoch)
-            return;
+        const int chunks = chunks_[p];
+        const int own_begin = chunks * t / threads_, own_end = chunks * (t + 1) / threads_;
+        auto run_chunk = [&](int k) {
+          if (claimed[k].exchange(1, std::memory_order_relaxed) != 0) return;
           const std::size_t begin = phase.begin + static_cast<std::size_t>(k) * chunk_[p];
           body(phase.kind, begin, std::min(begin + chunk_[p], phase.end));
-          ++done;
+          // Release: the next phase's readers see this chunk's writes (acquire in wait_for).
+          counters_[id].done.fetch_add(1, std::memory_order_release);
         };
-        std::atomic<std::uint64_t>& published = lines_[claim_line(s, p, t) + 1].word[0];
-        for (int k = block_begin(p, t); k < block_begin(p, t + 1); ++k) try_run(t, k);
-        // Release: whoever reads this count sees the writes of the chunks it counts.
-        published.store(epoch * DONE_SCALE + done, std::memory_order_release);
-        // Wait until every chunk of the phase is done; after a while take the others' chunks.
-        for (int spins = 0;; ++spins) {
-          std::uint64_t total = 0;
-          for (int o = 0; o < threads_; ++o) {
-            const std::uint64_t v =
-                lines_[claim_line(s, p, o) + 1].word[0].load(std::memory_order_acquire);
-            if (v / DONE_SCALE == epoch) total += v % DONE_SCALE;
-          }
-          if (total == static_cast<std::uint64_t>(chunks_[p])) break;
-          // A thread that has not started this run yet (a helper waking up) is not waited for.
-          const std::uint64_t before = done;
-          for (int o = 0; o < threads_; ++o)
-            if (o != t && (spins >= STEAL_AFTER_SPINS ||
-                           arrived_[static_cast<std::size_t>(o)].word[0].load(
-                               std::memory_order_relaxed) != epoch))
-              for (int k = block_begin(p, o + 1) - 1; k >= block_begin(p, o); --k) try_run(o, k);
-          if (done != before) published.store(epoch * DONE_SCALE + done, std::memory_order_release);
-          if (spins < SPINS_BEFORE_YIELD) {
-#if defined(__x86_64__) || defined(__i386__)
-            __builtin_ia32_pause();
-#endif
-          } else {
-            std::this_thread::yield();
-          }
-        }
+        for (int k = own_begin; k < own_end; ++k) run_chunk(k);
+        for (int k = chunks - 1; k >= own_end; --k) run_chunk(k);
+        for (int k = own_begin - 1; k >= 0; --k) run_chunk(k);
+        wait_for(counters_[id].done, chunks);
       }
   }
 
-  /// Spins of a waiting thread before it takes over unclaimed chunks of the others (5-15 us of
-  /// pause instructions, 68 ns each on the Zen 5 VM: more than a chunk normally takes).
-  static constexpr int STEAL_AFTER_SPINS = 200;
-  /// Spins before the waiting thread starts giving its core away between polls.
+  /// Spins (briefly) then yields until counter reaches target: the other thread is running a
+  /// chunk of a few microseconds, unless the OS took its core away.
+  static void wait_for(const std::atomic<int>& counter, int target) {
+    for (int spins = 0; counter.load(std::memory_order_acquire) < target; ++spins) {
+      if (spins < SPINS_BEFORE_YIELD) {
+#if defined(__x86_64__) || defined(__i386__)
+        __builtin_ia32_pause();
+#endif
+      } else {
+        std::this_thread::yield();
+      }
+    }
+  }
+
+  /// About 10-50 us of pause instructions before the waiting thread gives its core away.
   static constexpr int SPINS_BEFORE_YIELD = 2000;
 
   std::vector<ColourPhase> phases_;
@@ -174,10 +138,10 @@ class ColourSchedule {
   std::vector<int> chunks_;         ///< chunks per phase
   int sweeps_ = 0;
   int threads_ = 1;
-  std::uint64_t epoch_ = 0;         ///< runs so far; the current run's claims carry it
-  std::unique_ptr<Line[]> lines_;   ///< per (sweep, phase, thread): claim line, done line
-  std::unique_ptr<Line[]> arrived_; ///< per thread: the epoch of the last run it entered
-  std::unique_ptr<SpinTeam> team_;  ///< threads_ > 1 only
+  std::unique_ptr<Counter[]> counters_;  ///< sweeps x phases
+  std::vector<std::size_t> first_claim_;  ///< phase p's chunk flags start here within a sweep
+  std::size_t claims_per_sweep_ = 0;
+  std::unique_ptr<std::atomic<int>[]> claims_;  ///< 1 once a chunk is taken; sweeps x chunks
 };
 
 }  // namespace shellcontract
