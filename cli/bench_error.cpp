@@ -15,6 +15,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <unistd.h>
 #include <vector>
 
@@ -39,6 +40,9 @@ compared at the end with a reference run of the same model:
   pbd rungs:  against PBD with --pbd-ref-iterations sweeps at the base step (PBD's stiffness
               depends on the step, so a smaller step is another model; PBD rungs use substeps 1
               unless --pbd-substeps).
+Coloured rungs (--orders coloured or both) use the parallel colour order (another valid
+Gauss-Seidel order, compared with the same sequential references) on each of --threads; their
+errors do not depend on the thread count (bit-identical), only their time does.
 A substep divides the step by k and runs k times as many steps; the damping is rescaled so the
 same fraction of velocity is removed per unit time. Collision handling is off unless
 --collisions on. Errors are in normalized units (bounding-box diagonal 1):
@@ -79,12 +83,13 @@ std::string fmt(double v, int precision = 3) {
 }
 
 void print_rows(const std::vector<ErrorLadderRow>& rows, std::ostream& os) {
-  os << std::left << std::setw(6) << "solver" << std::right << std::setw(6) << "iter"
-     << std::setw(5) << "sub" << std::setw(13) << "ms_per_step" << std::setw(12) << "hausdorff"
+  os << std::left << std::setw(6) << "solver" << std::setw(11) << "order" << std::right
+     << std::setw(4) << "thr" << std::setw(6) << "iter" << std::setw(5) << "sub" << std::setw(13) << "ms_per_step" << std::setw(12) << "hausdorff"
      << std::setw(12) << "max_vertex" << std::setw(9) << "V/V0" << std::setw(11) << "dV"
      << std::setw(11) << "dE_rel" << '\n';
   for (const ErrorLadderRow& r : rows) {
-    os << std::left << std::setw(6) << ladder_solver_name(r.solver) << std::right << std::setw(6)
+    os << std::left << std::setw(6) << ladder_solver_name(r.solver) << std::setw(11)
+       << ladder_order_name(r.order) << std::right << std::setw(4) << r.threads << std::setw(6)
        << r.iterations << std::setw(5) << r.substeps << std::setw(13) << fmt(r.ms_per_step)
        << std::setw(12) << fmt(r.hausdorff) << std::setw(12) << fmt(r.max_vertex_error)
        << std::setw(9) << fmt(r.volume_ratio, 4) << std::setw(11) << fmt(r.volume_error)
@@ -109,17 +114,19 @@ void print_checks(const std::vector<ReferenceCheck>& checks, std::ostream& os) {
 
 /// CSV: one row per rung ("rung"), per reference ("reference", errors 0) and per reference
 /// check ("reference_check": the refined run's errors against the reference, at the
-/// reference's ms_per_step). Full precision, so the table can be recomputed.
+/// reference's ms_per_step). Full precision, so the table can be recomputed. The order and
+/// threads columns come last, so readers of the older 13-column files still find theirs.
 std::string to_csv(const ErrorLadderResult& res) {
   std::ostringstream s;
   s << std::setprecision(10);
   s << "row_type,solver,iterations,substeps,frames,dt,failed,ms_per_step,hausdorff,"
-       "max_vertex_error,volume_ratio,volume_error,energy_error\n";
+       "max_vertex_error,volume_ratio,volume_error,energy_error,order,threads\n";
   auto row = [&](const char* type, const ErrorLadderRow& r) {
     s << type << ',' << ladder_solver_name(r.solver) << ',' << r.iterations << ',' << r.substeps
       << ',' << res.frames << ',' << res.dt << ',' << (r.failed ? 1 : 0) << ',' << r.ms_per_step
       << ',' << r.hausdorff << ',' << r.max_vertex_error << ',' << r.volume_ratio << ','
-      << r.volume_error << ',' << r.energy_error << '\n';
+      << r.volume_error << ',' << r.energy_error << ',' << ladder_order_name(r.order) << ','
+      << r.threads << '\n';
   };
   for (const ErrorLadderRow& r : res.rows) row("rung", r);
   for (const ErrorLadderRow& r : res.reference_rows) row("reference", r);
@@ -127,13 +134,13 @@ std::string to_csv(const ErrorLadderResult& res) {
     s << "reference_check," << ladder_solver_name(c.solver) << ',' << c.refined_iterations << ','
       << c.refined_substeps << ',' << res.frames << ',' << res.dt << ',' << (c.failed ? 1 : 0)
       << ',' << c.ms_per_step << ',' << c.hausdorff << ",," << ',' << c.volume_error << ','
-      << c.energy_error << '\n';
+      << c.energy_error << ",sequential,1\n";
   }
   return s.str();
 }
 
 /// gnuplot commands drawing hausdorff (log) against ms_per_step (log) from the CSV: one line per
-/// solver and substep count (points labelled by iterations), and each reference's own error
+/// solver, substep count, order and thread count (points labelled by iterations), and each reference's own error
 /// (its check) as a star. The same plot as scripts/plot_speed_error.sh.
 std::string gnuplot_script(const std::string& csv, const std::string& out, const std::string& title,
                            const ErrorLadderResult& res) {
@@ -149,20 +156,26 @@ std::string gnuplot_script(const std::string& csv, const std::string& out, const
     << "set xlabel 'wall time per step (ms, median)'\n"
     << "set ylabel 'Hausdorff distance to the reference (normalized units)'\n"
     << "set title '" << title << "' noenhanced\n";
-  // Series: (solver, substeps) pairs present among the rungs, in run order.
-  std::vector<std::pair<SolverKind, int>> series;
+  // Series: (solver, substeps, order, threads) present among the rungs, in run order.
+  std::vector<std::tuple<SolverKind, int, ConstraintOrder, int>> series;
   for (const ErrorLadderRow& r : res.rows) {
-    const std::pair<SolverKind, int> k{r.solver, r.substeps};
+    const auto k = std::make_tuple(r.solver, r.substeps, r.order, r.threads);
     if (std::find(series.begin(), series.end(), k) == series.end()) series.push_back(k);
   }
   g << "plot ";
   int style = 1;
-  for (const auto& [kind, sub] : series) {
+  for (const auto& [kind, sub, order, threads] : series) {
     const std::string name = ladder_solver_name(kind);
+    const std::string order_name = ladder_order_name(order);
     const std::string sel = "(strcol(1) eq 'rung' && strcol(2) eq '" + name +
-                            "' && $4 == " + std::to_string(sub) + " && $9 > 0 ? $9 : 1/0)";
+                            "' && $4 == " + std::to_string(sub) + " && strcol(14) eq '" +
+                            order_name + "' && $15 == " + std::to_string(threads) +
+                            " && $9 > 0 ? $9 : 1/0)";
+    std::string title = name + ", " + std::to_string(sub) + (sub == 1 ? " substep" : " substeps");
+    if (order != ConstraintOrder::Sequential)
+      title += ", " + order_name + " " + std::to_string(threads) + (threads == 1 ? " thread" : " threads");
     g << "'" << csv << "' skip 1 using 8:" << sel << " with linespoints lt " << style
-      << " pt 7 title '" << name << ", " << sub << (sub == 1 ? " substep" : " substeps")
+      << " pt 7 title '" << title
       << "', \\\n     '" << csv << "' skip 1 using 8:" << sel
       << ":3 with labels offset char 0.8,0.6 font ',8' tc lt " << style << " notitle, \\\n     ";
     ++style;
@@ -180,7 +193,7 @@ bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>
 
 int command_bench_error(int argc, char** argv) {
   std::string input, csv, plot, solver = "both", iterations = "1,2,5,10,20,50", substeps = "1,2,4";
-  std::string collisions = "off";
+  std::string collisions = "off", orders = "sequential", threads = "1";
   ErrorLadderOptions opt;
   SimOptions base;
   bool no_check = false, quiet = false;
@@ -194,6 +207,8 @@ int command_bench_error(int argc, char** argv) {
       ("iterations", po::value<std::string>(&iterations)->default_value(iterations), "Gauss-Seidel sweeps of the rungs (list)")
       ("substeps", po::value<std::string>(&substeps)->default_value(substeps), "substeps of the rungs (list)")
       ("pbd-substeps", po::bool_switch(&opt.pbd_substeps), "also run PBD rungs with substeps > 1")
+      ("orders", po::value<std::string>(&orders)->default_value(orders), "sweep orders of the rungs: sequential, coloured or both (list)")
+      ("threads", po::value<std::string>(&threads)->default_value(threads), "threads of the coloured rungs (list; results do not depend on it)")
       ("ref-iterations", po::value<int>(&opt.xpbd_reference_iterations)->default_value(opt.xpbd_reference_iterations), "XPBD reference sweeps per substep")
       ("ref-substeps", po::value<int>(&opt.xpbd_reference_substeps)->default_value(opt.xpbd_reference_substeps), "XPBD reference substeps")
       ("pbd-ref-iterations", po::value<int>(&opt.pbd_reference_iterations)->default_value(opt.pbd_reference_iterations), "PBD reference sweeps")
@@ -218,6 +233,19 @@ int command_bench_error(int argc, char** argv) {
     opt.collisions = collisions == "on";
     opt.iterations = parse_list(iterations, "--iterations");
     opt.substeps = parse_list(substeps, "--substeps");
+    opt.threads = parse_list(threads, "--threads");
+    opt.orders.clear();
+    {
+      std::istringstream list(orders);
+      std::string item;
+      while (std::getline(list, item, ',')) {
+        if (item == "sequential") opt.orders.push_back(ConstraintOrder::Sequential);
+        else if (item == "coloured") opt.orders.push_back(ConstraintOrder::Coloured);
+        else if (item == "both") opt.orders.insert(opt.orders.end(), {ConstraintOrder::Sequential, ConstraintOrder::Coloured});
+        else throw UsageError("--orders: expected sequential, coloured or both, got '" + item + "'");
+      }
+      if (opt.orders.empty()) throw UsageError("--orders: empty list");
+    }
     opt.check_reference = !no_check;
     if (opt.frames < 1) throw UsageError("--frames must be >= 1");
     if (opt.xpbd_reference_iterations < 1 || opt.xpbd_reference_substeps < 1 || opt.pbd_reference_iterations < 1)

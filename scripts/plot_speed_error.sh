@@ -18,17 +18,29 @@ case $out in
   *.png) terminal="pngcairo size 900,640 font 'sans,11'" ;;
   *) echo "$0: output must end in .png or .svg" >&2; exit 1 ;;
 esac
-# One line per (solver, substeps) among the rungs, in file order (columns: row_type, solver,
-# iterations, substeps, ..., ms_per_step = 8, hausdorff = 9).
-series=$(awk -F, '$1 == "rung" && !seen[$2 "," $4]++ { print $2 "," $4 }' "$csv")
+# One line per (solver, substeps, order, threads) among the rungs, in file order (columns:
+# row_type, solver, iterations, substeps, ..., ms_per_step = 8, hausdorff = 9, ..., order = 14,
+# threads = 15; files from before the order column count as sequential, 1 thread).
+series=$(awk -F, '$1 == "rung" { o = ($14 == "" ? "sequential" : $14); t = ($15 == "" ? 1 : $15); if (!seen[$2 "," $4 "," o "," t]++) print $2 "," $4 "," o "," t }' "$csv")
+has_order=$(head -n 1 "$csv" | grep -c ',order,' || true)
 plot=""
 lt=1
 for s in $series; do
-  solver=${s%,*}
-  sub=${s#*,}
+  IFS=, read -r solver sub order threads <<EOF_SERIES
+$s
+EOF_SERIES
   if [ "$sub" = 1 ]; then unit=substep; else unit=substeps; fi
-  sel="(strcol(1) eq 'rung' && strcol(2) eq '$solver' && \$4 == $sub && \$9 > 0 ? \$9 : 1/0)"
-  plot="$plot'$csv' skip 1 using 8:$sel with linespoints lt $lt pt 7 title '$solver, $sub $unit', '$csv' skip 1 using 8:$sel:3 with labels offset char 0.8,0.6 font ',8' tc lt $lt notitle, "
+  title="$solver, $sub $unit"
+  if [ "$has_order" = 0 ]; then
+    osel="1"
+  elif [ "$order" = sequential ]; then
+    osel="(strcol(14) eq 'sequential')"
+  else
+    osel="(strcol(14) eq '$order' && \$15 == $threads)"
+    if [ "$threads" = 1 ]; then title="$title, $order 1 thread"; else title="$title, $order $threads threads"; fi
+  fi
+  sel="(strcol(1) eq 'rung' && strcol(2) eq '$solver' && \$4 == $sub && $osel && \$9 > 0 ? \$9 : 1/0)"
+  plot="$plot'$csv' skip 1 using 8:$sel with linespoints lt $lt pt 7 title '$title', '$csv' skip 1 using 8:$sel:3 with labels offset char 0.8,0.6 font ',8' tc lt $lt notitle, "
   lt=$((lt + 1))
 done
 ref="(strcol(1) eq 'reference_check' && \$9 > 0 ? \$9 : 1/0)"

@@ -14,6 +14,10 @@ namespace shellcontract {
 
 const char* ladder_solver_name(SolverKind kind) { return kind == SolverKind::Pbd ? "pbd" : "xpbd"; }
 
+const char* ladder_order_name(ConstraintOrder order) {
+  return order == ConstraintOrder::Sequential ? "sequential" : "coloured";
+}
+
 namespace {
 
 /// The end state of one run.
@@ -28,12 +32,24 @@ struct RunResult {
 
 double total_energy(const ConstraintEnergies& e) { return e.membrane + e.bending + e.anisotropic; }
 
-/// Runs frames base steps of `base` with the given solver, iterations and substeps.
-RunResult run_one(const Mesh& mesh, const SimOptions& base, SolverKind kind, int iterations,
-                  int substeps, int frames, bool collisions) {
+/// One run's solver settings.
+struct RunSettings {
+  SolverKind kind = SolverKind::Xpbd;
+  int iterations = 1;
+  int substeps = 1;
+  ConstraintOrder order = ConstraintOrder::Sequential;
+  int threads = 1;
+};
+
+/// Runs frames base steps of `base` with the given solver settings.
+RunResult run_one(const Mesh& mesh, const SimOptions& base, const RunSettings& rs, int frames,
+                  bool collisions) {
+  const int substeps = rs.substeps;
   SimOptions o = base;
-  o.solver.kind = kind;
-  o.solver.iterations = iterations;
+  o.solver.kind = rs.kind;
+  o.solver.iterations = rs.iterations;
+  o.solver.order = rs.order;
+  o.solver.threads = rs.threads;
   o.dt = base.dt / substeps;
   o.solver.dt = o.dt;
   o.frames = frames * substeps;
@@ -87,6 +103,8 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
   if (opt.solvers.empty()) throw UsageError("error ladder: no solver");
   require_positive(opt.iterations, "iterations");
   require_positive(opt.substeps, "substeps");
+  require_positive(opt.threads, "threads");
+  if (opt.orders.empty()) throw UsageError("error ladder: no sweep order");
   require_positive({opt.xpbd_reference_iterations, opt.xpbd_reference_substeps,
                     opt.pbd_reference_iterations},
                    "reference iterations and substeps");
@@ -123,9 +141,11 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
     row.volume_error = std::abs(run.volume_ratio - ref.volume_ratio);
     row.energy_error = relative(run.energy, ref.energy);
   };
-  auto describe = [](SolverKind k, int it, int sub) {
+  auto describe = [](const RunSettings& r) {
     std::ostringstream s;
-    s << ladder_solver_name(k) << " iterations " << it << " substeps " << sub;
+    s << ladder_solver_name(r.kind) << " iterations " << r.iterations << " substeps " << r.substeps;
+    if (r.order != ConstraintOrder::Sequential)
+      s << ' ' << ladder_order_name(r.order) << " threads " << r.threads;
     return s.str();
   };
 
@@ -133,9 +153,10 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
     const bool xpbd = kind == SolverKind::Xpbd;
     const int ref_it = xpbd ? opt.xpbd_reference_iterations : opt.pbd_reference_iterations;
     const int ref_sub = xpbd ? opt.xpbd_reference_substeps : 1;
-    say("reference " + describe(kind, ref_it, ref_sub));
-    const RunResult ref = run_one(mesh, base, kind, ref_it, ref_sub, opt.frames, opt.collisions);
-    if (ref.failed) throw SimulationError("error ladder: the reference (" + describe(kind, ref_it, ref_sub) + ") failed: " + ref.failure);
+    const RunSettings ref_settings{kind, ref_it, ref_sub, ConstraintOrder::Sequential, 1};
+    say("reference " + describe(ref_settings));
+    const RunResult ref = run_one(mesh, base, ref_settings, opt.frames, opt.collisions);
+    if (ref.failed) throw SimulationError("error ladder: the reference (" + describe(ref_settings) + ") failed: " + ref.failure);
     ErrorLadderRow ref_row;
     ref_row.solver = kind;
     ref_row.iterations = ref_it;
@@ -146,21 +167,28 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
     double smallest = std::numeric_limits<double>::infinity();
     double smallest_dv = std::numeric_limits<double>::infinity();
     const std::vector<int> subs = xpbd || opt.pbd_substeps ? opt.substeps : std::vector<int>{1};
-    for (int sub : subs) {
-      for (int it : opt.iterations) {
-        say("rung " + describe(kind, it, sub));
-        ErrorLadderRow row;
-        row.solver = kind;
-        row.iterations = it;
-        row.substeps = sub;
-        compare(run_one(mesh, base, kind, it, sub, opt.frames, opt.collisions), ref, row);
-        if (!row.failed && !(it == ref_it && sub == ref_sub)) {
-          smallest = std::min(smallest, row.hausdorff);
-          smallest_dv = std::min(smallest_dv, row.volume_error);
-        }
-        result.rows.push_back(row);
+    for (int sub : subs)
+      for (ConstraintOrder order : opt.orders) {
+        const bool serial = order == ConstraintOrder::Sequential;
+        for (int threads : serial ? std::vector<int>{1} : opt.threads)
+          for (int it : opt.iterations) {
+            const RunSettings rs{kind, it, sub, order, threads};
+            say("rung " + describe(rs));
+            ErrorLadderRow row;
+            row.solver = kind;
+            row.iterations = it;
+            row.substeps = sub;
+            row.order = order;
+            row.threads = threads;
+            compare(run_one(mesh, base, rs, opt.frames, opt.collisions), ref, row);
+            // The reference's own settings reproduce it exactly (error 0): not a rung error.
+            if (!row.failed && !(it == ref_it && sub == ref_sub && serial)) {
+              smallest = std::min(smallest, row.hausdorff);
+              smallest_dv = std::min(smallest_dv, row.volume_error);
+            }
+            result.rows.push_back(row);
+          }
       }
-    }
 
     if (opt.check_reference) {
       ReferenceCheck c;
@@ -171,9 +199,10 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
       c.refined_iterations = xpbd ? ref_it : 2 * ref_it;
       c.refined_substeps = xpbd ? 2 * ref_sub : ref_sub;
       c.ms_per_step = ref.ms_per_step;
-      say("reference check " + describe(kind, c.refined_iterations, c.refined_substeps));
-      const RunResult fine = run_one(mesh, base, kind, c.refined_iterations, c.refined_substeps,
-                                     opt.frames, opt.collisions);
+      const RunSettings fine_settings{kind, c.refined_iterations, c.refined_substeps,
+                                      ConstraintOrder::Sequential, 1};
+      say("reference check " + describe(fine_settings));
+      const RunResult fine = run_one(mesh, base, fine_settings, opt.frames, opt.collisions);
       ErrorLadderRow d;
       compare(fine, ref, d);
       c.failed = d.failed;

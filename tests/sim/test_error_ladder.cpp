@@ -95,6 +95,39 @@ TEST(ErrorLadder, MoreSweepsBringXpbdCloserAndTheReferenceCheckIsReported) {
                                          << r.references[1].smallest_rung_hausdorff;
 }
 
+TEST(ErrorLadder, ColouredRungsAreComparedWithTheSequentialReferenceAndThreadsChangeNoBit) {
+  ErrorLadderOptions o = small_ladder();
+  o.solvers = {SolverKind::Xpbd};
+  o.iterations = {1, 50};
+  o.substeps = {8};
+  o.orders = {ConstraintOrder::Sequential, ConstraintOrder::Coloured};
+  o.threads = {1, 2};
+  o.check_reference = false;
+  const ErrorLadderResult r = run_error_ladder(sphere(), SimOptions(), o);
+  // Sequential: one rung per iteration count; Coloured: one per thread count as well.
+  ASSERT_EQ(r.rows.size(), 2u + 4u);
+  auto row = [&](ConstraintOrder order, int threads, int it) -> const ErrorLadderRow& {
+    for (const ErrorLadderRow& x : r.rows)
+      if (x.order == order && x.threads == threads && x.iterations == it) return x;
+    throw std::runtime_error("row not found");
+  };
+  // The sequential rung with the reference's own settings is the reference: error exactly 0.
+  EXPECT_EQ(row(ConstraintOrder::Sequential, 1, 50).hausdorff, 0.0);
+  for (int it : {1, 50}) {
+    const ErrorLadderRow& one = row(ConstraintOrder::Coloured, 1, it);
+    const ErrorLadderRow& two = row(ConstraintOrder::Coloured, 2, it);
+    EXPECT_FALSE(one.failed) << one.failure;
+    // Threads change the time only: the same bits, so the same errors.
+    EXPECT_EQ(one.hausdorff, two.hausdorff) << it << " iterations";
+    EXPECT_EQ(one.max_vertex_error, two.max_vertex_error);
+    EXPECT_EQ(one.volume_ratio, two.volume_ratio);
+  }
+  // Another order of the same model: not the reference's bits, but closer to it with more sweeps.
+  EXPECT_GT(row(ConstraintOrder::Coloured, 1, 50).hausdorff, 0.0);
+  EXPECT_LT(row(ConstraintOrder::Coloured, 1, 50).hausdorff,
+            row(ConstraintOrder::Coloured, 1, 1).hausdorff);
+}
+
 TEST(ErrorLadder, RefusesEmptyOrNonPositiveLists) {
   ErrorLadderOptions o = small_ladder();
   o.iterations.clear();
@@ -104,6 +137,12 @@ TEST(ErrorLadder, RefusesEmptyOrNonPositiveLists) {
   EXPECT_THROW(run_error_ladder(sphere(), SimOptions(), o), UsageError);
   o = small_ladder();
   o.frames = 0;
+  EXPECT_THROW(run_error_ladder(sphere(), SimOptions(), o), UsageError);
+  o = small_ladder();
+  o.threads = {0};
+  EXPECT_THROW(run_error_ladder(sphere(), SimOptions(), o), UsageError);
+  o = small_ladder();
+  o.orders.clear();
   EXPECT_THROW(run_error_ladder(sphere(), SimOptions(), o), UsageError);
 }
 

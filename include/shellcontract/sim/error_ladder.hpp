@@ -11,6 +11,9 @@
 // - A substep is the base step divided by k, run k times per base step (k times more steps over
 //   the same time). The damping is a fraction of the velocity removed per step, so it is
 //   rescaled to d_k = 1 - (1 - d)^(1/k): the same fraction is removed per unit time.
+// - Sweep order and threads are rungs too: the Coloured order (math-spec 9.4) is another valid
+//   Gauss-Seidel order of the same model, so its rungs are compared with the same reference
+//   (Sequential order, one thread); its threads change the time, never the result (bit-identical).
 // - Collision handling is off by default: it is not part of the constraint solver being
 //   measured and it makes small differences between runs jump (discrete contact decisions).
 #pragma once
@@ -31,6 +34,11 @@ struct ErrorLadderOptions {
   std::vector<SolverKind> solvers{SolverKind::Pbd, SolverKind::Xpbd};
   std::vector<int> iterations{1, 2, 5, 10, 20, 50};  ///< Gauss-Seidel sweeps per (sub)step
   std::vector<int> substeps{1, 2, 4};                ///< substeps per base step
+  /// Sweep orders of the rungs. The references always use the Sequential order.
+  std::vector<ConstraintOrder> orders{ConstraintOrder::Sequential};
+  /// Threads of the Coloured rungs (each >= 1): one rung per entry. Sequential rungs run on one
+  /// thread (the order is serial); collision handling, if on, uses the same count.
+  std::vector<int> threads{1};
   /// PBD rungs with substeps > 1 change PBD's model (see file comment); off by default.
   bool pbd_substeps = false;
   int xpbd_reference_iterations = 50;
@@ -52,6 +60,8 @@ struct ErrorLadderRow {
   SolverKind solver = SolverKind::Xpbd;
   int iterations = 0;
   int substeps = 1;
+  ConstraintOrder order = ConstraintOrder::Sequential;
+  int threads = 1;              ///< threads of the solve (Coloured order) and of collisions
   bool failed = false;          ///< the run threw SimulationError (blow-up); errors are NaN
   std::string failure;          ///< its message
   /// Median over the base steps of the wall time of one base step (the sum of its substeps'
@@ -94,7 +104,8 @@ struct ErrorLadderResult {
   int frames = 0;
   double dt = 0.0;               ///< base step
   double simulated_time = 0.0;   ///< frames x dt
-  std::vector<ErrorLadderRow> rows;        ///< in run order: per solver, per substeps, per iterations
+  /// In run order: per solver, per substeps, per order, per threads, per iterations.
+  std::vector<ErrorLadderRow> rows;
   std::vector<ReferenceCheck> references;  ///< one per solver (empty if check_reference is off)
   std::vector<ErrorLadderRow> reference_rows;  ///< the reference runs themselves (errors 0)
 };
@@ -109,5 +120,8 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
 
 /// "pbd" or "xpbd".
 const char* ladder_solver_name(SolverKind kind);
+
+/// "sequential" or "coloured".
+const char* ladder_order_name(ConstraintOrder order);
 
 }  // namespace shellcontract
