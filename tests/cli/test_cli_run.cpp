@@ -4,8 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "shellcontract/mesh/io.hpp"
 #include "support/cli_runner.hpp"
@@ -106,6 +108,40 @@ TEST_F(CliRun, HelpListsTheOptions) {
   for (const char* opt : {"--pressure", "--frames", "--dt", "--solver", "--material", "--bending",
                           "--k-b", "--collisions", "--validate", "--aniso", "--log", "--summary"})
     EXPECT_NE(r.output.find(opt), std::string::npos) << opt;
+}
+
+// `bench error` with the order and thread rungs: the CSV has a row per (order, threads,
+// iterations) rung with its order and thread count in the last two columns, and the coloured
+// rungs' errors do not depend on the thread count; a bad order is a usage error (exit 1).
+TEST_F(CliRun, BenchErrorHasOrderAndThreadRungs) {
+  const auto r = run_cli({"bench", "error", mesh("ico2.off"), "--frames", "5", "--solver", "xpbd",
+                          "--iterations", "1,5", "--substeps", "1", "--ref-substeps", "2",
+                          "--ref-iterations", "5", "--orders", "both", "--threads", "1,2",
+                          "--no-check", "--csv", out("e.csv"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream csv(out("e.csv"));
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_NE(line.find(",order,threads"), std::string::npos) << line;
+  std::map<std::string, std::string> hausdorff;  // "order,threads,iterations" -> column 9
+  int rungs = 0;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> c;
+    std::stringstream ss(line);
+    for (std::string f; std::getline(ss, f, ',');) c.push_back(f);
+    ASSERT_EQ(c.size(), 15u) << line;
+    if (c[0] != "rung") continue;
+    ++rungs;
+    hausdorff[c[13] + "," + c[14] + "," + c[2]] = c[8];
+  }
+  EXPECT_EQ(rungs, 2 + 4);  // sequential x {1, 5}; coloured x {1, 2} threads x {1, 5}
+  for (const char* it : {"1", "5"}) {
+    ASSERT_EQ(hausdorff.count(std::string("coloured,1,") + it), 1u);
+    EXPECT_EQ(hausdorff[std::string("coloured,1,") + it], hausdorff[std::string("coloured,2,") + it]);
+  }
+  const auto bad = run_cli({"bench", "error", mesh("ico2.off"), "--orders", "random", "-q"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.output.find("--orders"), std::string::npos) << bad.output;
 }
 
 }  // namespace
