@@ -647,9 +647,10 @@ bool cell_masks(const detail::GridCell& cell, std::size_t i, std::size_t j0, std
 /// (base | (gid_j - sub)) << 1 | close of every j (increasing) that passes the dedupe flags, the
 /// exact box test and the adjacency test; close is 0 iff gap_above(box i, box j, far_gap). Adds
 /// the flag-and-box hits (adjacent pairs included) to `hits`.
-void cell_row_avx512(const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1,
-                     std::uint64_t base, std::uint32_t sub, double far_gap,
-                     std::vector<std::uint64_t>& keys, std::size_t& n, std::int64_t& hits) {
+inline __attribute__((always_inline)) void cell_row_avx512(
+    const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1,
+    std::uint64_t base, std::uint32_t sub, double far_gap, std::vector<std::uint64_t>& keys,
+    std::size_t& n, std::int64_t& hits) {
   const __m512d lx = _mm512_set1_pd(cell.dlo[0][i]), ly = _mm512_set1_pd(cell.dlo[1][i]);
   const __m512d lz = _mm512_set1_pd(cell.dlo[2][i]), hx = _mm512_set1_pd(cell.dhi[0][i]);
   const __m512d hy = _mm512_set1_pd(cell.dhi[1][i]), hz = _mm512_set1_pd(cell.dhi[2][i]);
@@ -662,38 +663,35 @@ void cell_row_avx512(const detail::GridCell& cell, std::size_t i, std::size_t j0
   const __m512i key_sub = _mm512_set1_epi64(sub), one = _mm512_set1_epi64(1);
   std::int64_t box_hits = 0;
   for (std::size_t j = j0; j < j1; j += 8) {
-    // Lanes past j1 are masked: their loads read nothing and they never pass.
+    // Lanes past j1 are masked: their loads read nothing and they never pass. The comparisons
+    // are independent of each other (one mask AND at the end, one branch), so they do not form
+    // a chain of masked compares.
     const __mmask8 live =
         j1 - j >= 8 ? __mmask8{0xff} : static_cast<__mmask8>((1u << (j1 - j)) - 1u);
     const __m256i qf = _mm256_maskz_loadu_epi32(live, cell.flags.data() + j);
-    __mmask8 box = _mm256_mask_cmpeq_epi32_mask(live, _mm256_or_si256(fi, qf), all_first);
-    if (box == 0) continue;
-    const __m512d qlx = _mm512_maskz_loadu_pd(box, cell.dlo[0].data() + j);
-    const __m512d qhx = _mm512_maskz_loadu_pd(box, cell.dhi[0].data() + j);
-    const __m512d qly = _mm512_maskz_loadu_pd(box, cell.dlo[1].data() + j);
-    const __m512d qhy = _mm512_maskz_loadu_pd(box, cell.dhi[1].data() + j);
-    const __m512d qlz = _mm512_maskz_loadu_pd(box, cell.dlo[2].data() + j);
-    const __m512d qhz = _mm512_maskz_loadu_pd(box, cell.dhi[2].data() + j);
-    // overlap(i, j): closed intervals on all three axes.
-    box = _mm512_mask_cmp_pd_mask(box, lx, qhx, _CMP_LE_OQ);
-    box = _mm512_mask_cmp_pd_mask(box, qlx, hx, _CMP_LE_OQ);
-    box = _mm512_mask_cmp_pd_mask(box, ly, qhy, _CMP_LE_OQ);
-    box = _mm512_mask_cmp_pd_mask(box, qly, hy, _CMP_LE_OQ);
-    box = _mm512_mask_cmp_pd_mask(box, lz, qhz, _CMP_LE_OQ);
-    box = _mm512_mask_cmp_pd_mask(box, qlz, hz, _CMP_LE_OQ);
-    if (box == 0) continue;
-    box_hits += __builtin_popcount(box);
+    const __m512d qlx = _mm512_maskz_loadu_pd(live, cell.dlo[0].data() + j);
+    const __m512d qhx = _mm512_maskz_loadu_pd(live, cell.dhi[0].data() + j);
+    const __m512d qly = _mm512_maskz_loadu_pd(live, cell.dlo[1].data() + j);
+    const __m512d qhy = _mm512_maskz_loadu_pd(live, cell.dhi[1].data() + j);
+    const __m512d qlz = _mm512_maskz_loadu_pd(live, cell.dlo[2].data() + j);
+    const __m512d qhz = _mm512_maskz_loadu_pd(live, cell.dhi[2].data() + j);
+    const __m256i qa = _mm256_maskz_loadu_epi32(live, cell.v[0].data() + j);
+    const __m256i qb = _mm256_maskz_loadu_epi32(live, cell.v[1].data() + j);
+    const __m256i qc = _mm256_maskz_loadu_epi32(live, cell.v[2].data() + j);
+    // The dedupe flags and overlap(i, j): closed intervals on all three axes.
+    const unsigned box =
+        live & _mm256_cmpeq_epi32_mask(_mm256_or_si256(fi, qf), all_first) &
+        _mm512_cmp_pd_mask(lx, qhx, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlx, hx, _CMP_LE_OQ) &
+        _mm512_cmp_pd_mask(ly, qhy, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qly, hy, _CMP_LE_OQ) &
+        _mm512_cmp_pd_mask(lz, qhz, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlz, hz, _CMP_LE_OQ);
     // Adjacent iff a vertex id is shared; the -1/-2 placeholders never match (see ids()).
-    const __m256i qa = _mm256_maskz_loadu_epi32(box, cell.v[0].data() + j);
-    const __m256i qb = _mm256_maskz_loadu_epi32(box, cell.v[1].data() + j);
-    const __m256i qc = _mm256_maskz_loadu_epi32(box, cell.v[2].data() + j);
-    __mmask8 pass = _mm256_mask_cmpneq_epi32_mask(box, a, qa);
-    pass = _mm256_mask_cmpneq_epi32_mask(pass, a, qb);
-    pass = _mm256_mask_cmpneq_epi32_mask(pass, a, qc);
-    pass = _mm256_mask_cmpneq_epi32_mask(pass, b, qa);
-    pass = _mm256_mask_cmpneq_epi32_mask(pass, b, qb);
-    pass = _mm256_mask_cmpneq_epi32_mask(pass, c, qa);
-    pass = _mm256_mask_cmpneq_epi32_mask(pass, c, qb);
+    const unsigned apart =
+        _mm256_cmpneq_epi32_mask(a, qa) & _mm256_cmpneq_epi32_mask(a, qb) &
+        _mm256_cmpneq_epi32_mask(a, qc) & _mm256_cmpneq_epi32_mask(b, qa) &
+        _mm256_cmpneq_epi32_mask(b, qb) & _mm256_cmpneq_epi32_mask(c, qa) &
+        _mm256_cmpneq_epi32_mask(c, qb);
+    box_hits += __builtin_popcount(box);
+    const __mmask8 pass = static_cast<__mmask8>(box & apart);
     if (pass == 0) continue;
     // gap_above(box i, box j, far_gap), the same subtractions.
     const __mmask8 far = static_cast<__mmask8>(
@@ -714,6 +712,58 @@ void cell_row_avx512(const detail::GridCell& cell, std::size_t i, std::size_t j0
     n += static_cast<std::size_t>(__builtin_popcount(pass));
   }
   hits += box_hits;
+}
+
+/// The cells [c0, c1) of the grid with the AVX-512 rows: the same cells, rows and pairs as the
+/// portable loop in grid_pairs, on exact boxes. The key buffers serve as their own capacity and
+/// are trimmed at the end.
+void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
+                       const std::uint32_t* entry, std::size_t c0, std::size_t c1, int vf_shift,
+                       int ee_shift, double far_gap, detail::GridChunk& out_chunk) {
+  const std::size_t nv = prim.nv, nf = prim.nf;
+  detail::GridCell& cell = out_chunk.cell;
+  std::size_t nvf = 0, nee = 0;
+  for (std::size_t c = c0; c < c1; ++c) {
+    const std::uint32_t b = start[c], e = start[c + 1];
+    if (e - b < 2) continue;
+    const std::size_t k = e - b;
+    if (cell.flags.size() < k) {
+      for (std::size_t d = 0; d < 3; ++d) {
+        cell.dlo[d].resize(k);
+        cell.dhi[d].resize(k);
+        cell.v[d].resize(k);
+      }
+      cell.flags.resize(k);
+      cell.gid.resize(k);
+    }
+    std::size_t fb = 0, eb = 0;
+    for (std::size_t t = 0; t < k; ++t) {
+      const std::uint32_t tag = entry[b + t];
+      const std::size_t gid = tag >> 3;
+      const std::array<int, 3> v = prim.ids(gid);
+      const detail::GridVertexBox box = prim.box(v);
+      for (std::size_t d = 0; d < 3; ++d) {
+        cell.dlo[d][t] = box.lo[d];
+        cell.dhi[d][t] = box.hi[d];
+        cell.v[d][t] = v[d];
+      }
+      cell.flags[t] = tag & GRID_ALL_FIRST;
+      cell.gid[t] = static_cast<std::uint32_t>(gid);
+      fb += gid < nv;
+      eb += gid < nv + nf;
+    }
+    for (std::size_t i = 0; i < fb && eb > fb; ++i)
+      cell_row_avx512(cell, i, fb, eb, static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift,
+                      static_cast<std::uint32_t>(nv), far_gap, out_chunk.vf_keys, nvf,
+                      out_chunk.reported);
+    for (std::size_t i = eb; i + 1 < k; ++i)
+      cell_row_avx512(cell, i, i + 1, k,
+                      static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift,
+                      static_cast<std::uint32_t>(nv + nf), far_gap, out_chunk.ee_keys, nee,
+                      out_chunk.reported);
+  }
+  out_chunk.vf_keys.resize(nvf);
+  out_chunk.ee_keys.resize(nee);
 }
 
 #pragma GCC pop_options
@@ -894,50 +944,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     detail::GridCell& cell = out_chunk.cell;
 #if SHELLCONTRACT_GRID_AVX512
     if (avx512) {
-      // The same cells, rows and pairs as the portable loop below, on exact boxes (see
-      // cell_row_avx512). The key buffers serve as their own capacity; trimmed at the end.
-      std::size_t nvf = 0, nee = 0;
-      for (std::size_t c = s.chunk_cells[chunk]; c < s.chunk_cells[chunk + 1]; ++c) {
-        const std::uint32_t b = start[c], e = start[c + 1];
-        if (e - b < 2) continue;
-        const std::size_t k = e - b;
-        if (cell.flags.size() < k) {
-          for (std::size_t d = 0; d < 3; ++d) {
-            cell.dlo[d].resize(k);
-            cell.dhi[d].resize(k);
-            cell.v[d].resize(k);
-          }
-          cell.flags.resize(k);
-          cell.gid.resize(k);
-        }
-        std::size_t fb = 0, eb = 0;
-        for (std::size_t t = 0; t < k; ++t) {
-          const std::uint32_t tag = entry[b + t];
-          const std::size_t gid = tag >> 3;
-          const std::array<int, 3> v = prim.ids(gid);
-          const detail::GridVertexBox box = prim.box(v);
-          for (std::size_t d = 0; d < 3; ++d) {
-            cell.dlo[d][t] = box.lo[d];
-            cell.dhi[d][t] = box.hi[d];
-            cell.v[d][t] = v[d];
-          }
-          cell.flags[t] = tag & GRID_ALL_FIRST;
-          cell.gid[t] = static_cast<std::uint32_t>(gid);
-          fb += gid < nv;
-          eb += gid < nv + nf;
-        }
-        for (std::size_t i = 0; i < fb && eb > fb; ++i)
-          cell_row_avx512(cell, i, fb, eb, static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift,
-                          static_cast<std::uint32_t>(nv), far_gap, out_chunk.vf_keys, nvf,
-                          out_chunk.reported);
-        for (std::size_t i = eb; i + 1 < k; ++i)
-          cell_row_avx512(cell, i, i + 1, k,
-                          static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift,
-                          static_cast<std::uint32_t>(nv + nf), far_gap, out_chunk.ee_keys, nee,
-                          out_chunk.reported);
-      }
-      out_chunk.vf_keys.resize(nvf);
-      out_chunk.ee_keys.resize(nee);
+      grid_chunk_avx512(prim, start.data(), entry, s.chunk_cells[chunk], s.chunk_cells[chunk + 1],
+                        vf_shift, ee_shift, far_gap, out_chunk);
       return;
     }
 #endif
