@@ -59,7 +59,9 @@ enum class BroadPhaseMethod {
   /// Uniform grid (cell size 1.5 x the median face/edge box extent) filled by a counting sort;
   /// in each cell, vertex boxes against face boxes and edge boxes against each other, each pair
   /// emitted only in the first cell the two boxes share (no hash set), culled by a vectorized
-  /// test on boxes rounded outward to float, confirmed by the exact double test. Pairs come out
+  /// test on boxes rounded outward to float, confirmed by the exact double test; on CPUs with
+  /// AVX-512 (checked at run time, detail::GridIsa) one 8-lane pass tests the exact double
+  /// boxes directly and emits the same pairs in the same order. Pairs come out
   /// in cell order, not sorted (see CandidatePairs). Falls back to PrimitiveBoxes when the boxes
   /// are so large or spread out that the grid would degenerate towards brute force
   /// (BroadPhaseStats::method_run says which ran).
