@@ -3,7 +3,10 @@
 // Scene: the mesh scaled to bounding-box diagonal 1 (math-spec 1.2), moved by one realistic
 // contraction step: x1 = c + 0.99 (x0 - c) + noise (c = centroid, noise 1e-3 x mean edge length
 // per coordinate), inflation 1e-4 x diagonal (the paper's delta in normalized units).
-// Usage: bench_broad_phase [--mesh=PATH] [google-benchmark flags]
+// Usage: bench_broad_phase [--mesh=PATH] [--end=PATH] [--inflation=I] [--far=D] [benchmark flags]
+// (--end: end positions from a second mesh of the same connectivity, e.g. the next frame)
+// (inflation and far distance x diagonal; defaults 1e-4 and none. The collision step's call is
+// --inflation=5e-4 --far=1e-4; a mesh written by a long run gives its collapsed state.)
 // Default mesh: data/meshes/bear.off (scripts/fetch_paper_meshes.sh); if it is missing, an
 // icosphere with 5 subdivision levels (10242 vertices) is used instead.
 #include <benchmark/benchmark.h>
@@ -25,6 +28,13 @@ namespace {
 using namespace shellcontract;
 
 std::string g_mesh = std::string(SHELLCONTRACT_PAPER_MESH_DIR) + "/bear.off";
+/// Box inflation and the far distance of the close flags (negative: none), x diagonal. The
+/// collision step calls the grid with 5e-4 (delta + the 4 delta region margin) and 1e-4 (delta).
+double g_inflation = 1e-4;
+double g_far = -1.0;
+/// If set, the end positions are read from this mesh (same connectivity, e.g. the next frame of
+/// a run) instead of the synthetic contraction step.
+std::string g_end;
 
 /// Minimal OFF reader (triangles only; polygons are fanned): enough for the paper meshes.
 test::TriMesh read_off(const std::string& path) {
@@ -88,7 +98,12 @@ const Scene& scene() {
     std::normal_distribution<double> noise(0.0, 1e-3 * mean_edge);
     sc.x1 = (0.99 * (sc.x0.rowwise() - c)).rowwise() + c;
     for (Eigen::Index i = 0; i < sc.x1.size(); ++i) sc.x1.data()[i] += noise(rng);
-    sc.inflation = 1e-4;  // x diagonal (= 1)
+    if (!g_end.empty()) {
+      const test::TriMesh end = read_off(g_end);
+      if (end.x.rows() != m.x.rows()) throw std::runtime_error(g_end + ": vertex count differs");
+      sc.x1 = end.x / (hi - lo).norm();
+    }
+    sc.inflation = g_inflation;  // x diagonal (= 1)
     std::cerr << "bench_broad_phase: " << sc.name << ": " << sc.x0.rows() << " vertices, "
               << sc.topo.faces.rows() << " faces, " << sc.topo.edges.rows()
               << " edges, mean edge " << mean_edge << " (diagonal 1)\n";
@@ -102,7 +117,7 @@ void BM_FindCandidates(benchmark::State& state, BroadPhaseMethod method) {
   CandidatePairs out;
   BroadPhaseStats stats;
   for (auto _ : state) {
-    find_candidates(sc.x0, sc.x1, sc.topo, sc.inflation, out, &stats, method);
+    find_candidates(sc.x0, sc.x1, sc.topo, sc.inflation, out, &stats, method, g_far);
     benchmark::DoNotOptimize(out.vertex_face.data());
     benchmark::DoNotOptimize(out.edge_edge.data());
   }
@@ -140,8 +155,15 @@ BENCHMARK(BM_HasAnyCandidate)->Unit(benchmark::kMillisecond);
 int main(int argc, char** argv) {
   // Our own flag first, then Google Benchmark's.
   for (int i = 1; i < argc; ++i) {
-    if (std::strncmp(argv[i], "--mesh=", 7) == 0) {
-      g_mesh = argv[i] + 7;
+    const bool mesh = std::strncmp(argv[i], "--mesh=", 7) == 0;
+    const bool inflation = std::strncmp(argv[i], "--inflation=", 12) == 0;
+    const bool far = std::strncmp(argv[i], "--far=", 6) == 0;
+    const bool end = std::strncmp(argv[i], "--end=", 6) == 0;
+    if (mesh || inflation || far || end) {
+      if (end) g_end = argv[i] + 6;
+      if (mesh) g_mesh = argv[i] + 7;
+      if (inflation) g_inflation = std::stod(argv[i] + 12);
+      if (far) g_far = std::stod(argv[i] + 6);
       for (int j = i; j + 1 < argc; ++j) argv[j] = argv[j + 1];
       --argc;
       --i;

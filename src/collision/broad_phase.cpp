@@ -14,6 +14,15 @@
 
 #include "shellcontract/core/error.hpp"
 
+// The Grid method's AVX-512 cell loop needs GCC's target pragma and x86-64 (as cull_batch.cpp);
+// other compilers get the portable loop only.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define SHELLCONTRACT_GRID_AVX512 1
+#include <immintrin.h>
+#else
+#define SHELLCONTRACT_GRID_AVX512 0
+#endif
+
 namespace shellcontract {
 
 namespace {
@@ -621,6 +630,145 @@ bool cell_masks(const detail::GridCell& cell, std::size_t i, std::size_t j0, std
   return any != 0;
 }
 
+#if SHELLCONTRACT_GRID_AVX512
+// The AVX-512 cell loop. The portable loop tests float boxes (4 SSE2 lanes), writes a mask per
+// item, scans it, and confirms each hit with the exact double boxes, gathered again from the
+// vertex arrays (cache misses on bear). Here the cell holds the exact double boxes and one pass
+// of 8 double lanes applies every test of the portable path to the same doubles with the same
+// comparisons (the dedupe flags, overlap(), the adjacency test, gap_above()), then writes the
+// finished keys of the lanes that pass with a compress-store, in lane order: the same pairs, in
+// the same order, with the same close flags (tested against the portable loop). The float boxes
+// were only a cull in front of the exact test, so skipping them changes nothing but the
+// box_overlaps statistic, which then counts exact overlaps.
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512vl,popcnt")
+
+/// Item i of the cell against items [j0, j1): appends to keys[n..] the key
+/// (base | (gid_j - sub)) << 1 | close of every j (increasing) that passes the dedupe flags, the
+/// exact box test and the adjacency test; close is 0 iff gap_above(box i, box j, far_gap). Adds
+/// the flag-and-box hits (adjacent pairs included) to `hits`.
+inline __attribute__((always_inline)) void cell_row_avx512(
+    const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1,
+    std::uint64_t base, std::uint32_t sub, double far_gap, std::vector<std::uint64_t>& keys,
+    std::size_t& n, std::int64_t& hits) {
+  const __m512d lx = _mm512_set1_pd(cell.dlo[0][i]), ly = _mm512_set1_pd(cell.dlo[1][i]);
+  const __m512d lz = _mm512_set1_pd(cell.dlo[2][i]), hx = _mm512_set1_pd(cell.dhi[0][i]);
+  const __m512d hy = _mm512_set1_pd(cell.dhi[1][i]), hz = _mm512_set1_pd(cell.dhi[2][i]);
+  const __m512d gap = _mm512_set1_pd(far_gap);
+  const __m256i fi = _mm256_set1_epi32(static_cast<int>(cell.flags[i]));
+  const __m256i all_first = _mm256_set1_epi32(static_cast<int>(GRID_ALL_FIRST));
+  const __m256i a = _mm256_set1_epi32(cell.v[0][i]), b = _mm256_set1_epi32(cell.v[1][i]);
+  const __m256i c = _mm256_set1_epi32(cell.v[2][i]);
+  const __m512i key_base = _mm512_set1_epi64(static_cast<long long>(base));
+  const __m512i key_sub = _mm512_set1_epi64(sub), one = _mm512_set1_epi64(1);
+  std::int64_t box_hits = 0;
+  for (std::size_t j = j0; j < j1; j += 8) {
+    // Lanes past j1 are masked: their loads read nothing and they never pass. The comparisons
+    // are independent of each other (one mask AND at the end, one branch), so they do not form
+    // a chain of masked compares.
+    const __mmask8 live =
+        j1 - j >= 8 ? __mmask8{0xff} : static_cast<__mmask8>((1u << (j1 - j)) - 1u);
+    const __m256i qf = _mm256_maskz_loadu_epi32(live, cell.flags.data() + j);
+    const __m512d qlx = _mm512_maskz_loadu_pd(live, cell.dlo[0].data() + j);
+    const __m512d qhx = _mm512_maskz_loadu_pd(live, cell.dhi[0].data() + j);
+    const __m512d qly = _mm512_maskz_loadu_pd(live, cell.dlo[1].data() + j);
+    const __m512d qhy = _mm512_maskz_loadu_pd(live, cell.dhi[1].data() + j);
+    const __m512d qlz = _mm512_maskz_loadu_pd(live, cell.dlo[2].data() + j);
+    const __m512d qhz = _mm512_maskz_loadu_pd(live, cell.dhi[2].data() + j);
+    const __m256i qa = _mm256_maskz_loadu_epi32(live, cell.v[0].data() + j);
+    const __m256i qb = _mm256_maskz_loadu_epi32(live, cell.v[1].data() + j);
+    const __m256i qc = _mm256_maskz_loadu_epi32(live, cell.v[2].data() + j);
+    // The dedupe flags and overlap(i, j): closed intervals on all three axes.
+    const unsigned box =
+        live & _mm256_cmpeq_epi32_mask(_mm256_or_si256(fi, qf), all_first) &
+        _mm512_cmp_pd_mask(lx, qhx, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlx, hx, _CMP_LE_OQ) &
+        _mm512_cmp_pd_mask(ly, qhy, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qly, hy, _CMP_LE_OQ) &
+        _mm512_cmp_pd_mask(lz, qhz, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlz, hz, _CMP_LE_OQ);
+    // Adjacent iff a vertex id is shared; the -1/-2 placeholders never match (see ids()).
+    const unsigned apart =
+        _mm256_cmpneq_epi32_mask(a, qa) & _mm256_cmpneq_epi32_mask(a, qb) &
+        _mm256_cmpneq_epi32_mask(a, qc) & _mm256_cmpneq_epi32_mask(b, qa) &
+        _mm256_cmpneq_epi32_mask(b, qb) & _mm256_cmpneq_epi32_mask(c, qa) &
+        _mm256_cmpneq_epi32_mask(c, qb);
+    box_hits += __builtin_popcount(box);
+    const __mmask8 pass = static_cast<__mmask8>(box & apart);
+    if (pass == 0) continue;
+    // gap_above(box i, box j, far_gap), the same subtractions.
+    const __mmask8 far = static_cast<__mmask8>(
+        _mm512_cmp_pd_mask(_mm512_sub_pd(qlx, hx), gap, _CMP_GT_OQ) |
+        _mm512_cmp_pd_mask(_mm512_sub_pd(lx, qhx), gap, _CMP_GT_OQ) |
+        _mm512_cmp_pd_mask(_mm512_sub_pd(qly, hy), gap, _CMP_GT_OQ) |
+        _mm512_cmp_pd_mask(_mm512_sub_pd(ly, qhy), gap, _CMP_GT_OQ) |
+        _mm512_cmp_pd_mask(_mm512_sub_pd(qlz, hz), gap, _CMP_GT_OQ) |
+        _mm512_cmp_pd_mask(_mm512_sub_pd(lz, qhz), gap, _CMP_GT_OQ));
+    const __m512i gid = _mm512_maskz_cvtepu32_epi64(
+        pass,
+        _mm256_maskz_loadu_epi32(pass, reinterpret_cast<const int*>(cell.gid.data() + j)));
+    __m512i key = _mm512_maskz_slli_epi64(
+        pass, _mm512_or_si512(key_base, _mm512_sub_epi64(gid, key_sub)), 1);
+    key = _mm512_mask_or_epi64(key, static_cast<__mmask8>(~far), key, one);
+    if (keys.size() < n + 8) keys.resize(std::max<std::size_t>(2 * keys.size(), n + 256));
+    _mm512_mask_compressstoreu_epi64(keys.data() + n, pass, key);
+    n += static_cast<std::size_t>(__builtin_popcount(pass));
+  }
+  hits += box_hits;
+}
+
+/// The cells [c0, c1) of the grid with the AVX-512 rows: the same cells, rows and pairs as the
+/// portable loop in grid_pairs, on exact boxes. The key buffers serve as their own capacity and
+/// are trimmed at the end.
+void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
+                       const std::uint32_t* entry, std::size_t c0, std::size_t c1, int vf_shift,
+                       int ee_shift, double far_gap, detail::GridChunk& out_chunk) {
+  const std::size_t nv = prim.nv, nf = prim.nf;
+  detail::GridCell& cell = out_chunk.cell;
+  std::size_t nvf = 0, nee = 0;
+  for (std::size_t c = c0; c < c1; ++c) {
+    const std::uint32_t b = start[c], e = start[c + 1];
+    if (e - b < 2) continue;
+    const std::size_t k = e - b;
+    if (cell.flags.size() < k) {
+      for (std::size_t d = 0; d < 3; ++d) {
+        cell.dlo[d].resize(k);
+        cell.dhi[d].resize(k);
+        cell.v[d].resize(k);
+      }
+      cell.flags.resize(k);
+      cell.gid.resize(k);
+    }
+    std::size_t fb = 0, eb = 0;
+    for (std::size_t t = 0; t < k; ++t) {
+      const std::uint32_t tag = entry[b + t];
+      const std::size_t gid = tag >> 3;
+      const std::array<int, 3> v = prim.ids(gid);
+      const detail::GridVertexBox box = prim.box(v);
+      for (std::size_t d = 0; d < 3; ++d) {
+        cell.dlo[d][t] = box.lo[d];
+        cell.dhi[d][t] = box.hi[d];
+        cell.v[d][t] = v[d];
+      }
+      cell.flags[t] = tag & GRID_ALL_FIRST;
+      cell.gid[t] = static_cast<std::uint32_t>(gid);
+      fb += gid < nv;
+      eb += gid < nv + nf;
+    }
+    for (std::size_t i = 0; i < fb && eb > fb; ++i)
+      cell_row_avx512(cell, i, fb, eb, static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift,
+                      static_cast<std::uint32_t>(nv), far_gap, out_chunk.vf_keys, nvf,
+                      out_chunk.reported);
+    for (std::size_t i = eb; i + 1 < k; ++i)
+      cell_row_avx512(cell, i, i + 1, k,
+                      static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift,
+                      static_cast<std::uint32_t>(nv + nf), far_gap, out_chunk.ee_keys, nee,
+                      out_chunk.reported);
+  }
+  out_chunk.vf_keys.resize(nvf);
+  out_chunk.ee_keys.resize(nee);
+}
+
+#pragma GCC pop_options
+#endif  // SHELLCONTRACT_GRID_AVX512
+
 void build_grid_vertex_boxes(const Positions& x0, const Positions& x1, double inflation,
                              std::vector<detail::GridVertexBox>& boxes) {
   boxes.resize(static_cast<std::size_t>(x0.rows()));
@@ -683,8 +831,11 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // Float boxes relative to the scene minimum (better precision than absolute coordinates).
   // Each double is rounded outward after the subtraction; the rounded subtraction is monotone,
   // so whenever two double boxes overlap, so do their float boxes: the float test only culls.
-  s.grid_vertex_floats.resize(nv);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, GRID_VERTEX_GRAIN),
+  // The AVX-512 cell loop tests the double boxes directly and needs none.
+  const bool avx512 = s.grid_isa == detail::GridIsa::Auto && detail::grid_avx512_available();
+  s.grid_vertex_floats.resize(avx512 ? 0 : nv);
+  if (!avx512)
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, GRID_VERTEX_GRAIN),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t v = r.begin(); v < r.end(); ++v)
                         for (std::size_t d = 0; d < 3; ++d) {
@@ -789,10 +940,17 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   const std::uint32_t* entry = s.cell_entries.data();
   tbb::parallel_for(std::size_t{0}, GRID_CHUNKS, [&](std::size_t chunk) {
     detail::GridChunk& out_chunk = s.chunks[chunk];
-    out_chunk.vf_keys.clear();
-    out_chunk.ee_keys.clear();
     out_chunk.reported = 0;
     detail::GridCell& cell = out_chunk.cell;
+#if SHELLCONTRACT_GRID_AVX512
+    if (avx512) {
+      grid_chunk_avx512(prim, start.data(), entry, s.chunk_cells[chunk], s.chunk_cells[chunk + 1],
+                        vf_shift, ee_shift, far_gap, out_chunk);
+      return;
+    }
+#endif
+    out_chunk.vf_keys.clear();
+    out_chunk.ee_keys.clear();
     for (std::size_t c = s.chunk_cells[chunk]; c < s.chunk_cells[chunk + 1]; ++c) {
       const std::uint32_t b = start[c], e = start[c + 1];
       if (e - b < 2) continue;
@@ -884,6 +1042,18 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
 struct CandidateFound {};
 
 }  // namespace
+
+namespace detail {
+bool grid_avx512_available() {
+#if SHELLCONTRACT_GRID_AVX512
+  static const bool available =
+      __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
+  return available;
+#else
+  return false;
+#endif
+}
+}  // namespace detail
 
 CollisionTopology make_collision_topology(const Faces& faces, int num_vertices) {
   if (num_vertices < 0)

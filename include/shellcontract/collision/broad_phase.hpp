@@ -59,7 +59,9 @@ enum class BroadPhaseMethod {
   /// Uniform grid (cell size 1.5 x the median face/edge box extent) filled by a counting sort;
   /// in each cell, vertex boxes against face boxes and edge boxes against each other, each pair
   /// emitted only in the first cell the two boxes share (no hash set), culled by a vectorized
-  /// test on boxes rounded outward to float, confirmed by the exact double test. Pairs come out
+  /// test on boxes rounded outward to float, confirmed by the exact double test; on CPUs with
+  /// AVX-512 (checked at run time, detail::GridIsa) one 8-lane pass tests the exact double
+  /// boxes directly and emits the same pairs in the same order. Pairs come out
   /// in cell order, not sorted (see CandidatePairs). Falls back to PrimitiveBoxes when the boxes
   /// are so large or spread out that the grid would degenerate towards brute force
   /// (BroadPhaseStats::method_run says which ran).
@@ -114,7 +116,8 @@ struct GridFloatBox {
 
 /// Grid method: the boxes of one cell as structure-of-arrays buffers (for vectorized tests).
 struct GridCell {
-  std::array<std::vector<float>, 3> lo, hi;  ///< float boxes, per axis
+  std::array<std::vector<float>, 3> lo, hi;  ///< float boxes, per axis (portable path)
+  std::array<std::vector<double>, 3> dlo, dhi;  ///< exact boxes, per axis (AVX-512 path)
   std::array<std::vector<int>, 3> v;         ///< vertex ids (see GridPrimitives::ids)
   std::vector<std::uint32_t> flags;          ///< bit d: the box's first cell on axis d
   std::vector<std::uint32_t> gid;            ///< vertex id, V + face id or V + F + edge id
@@ -126,11 +129,19 @@ struct GridChunk {
   GridCell cell;                         ///< the boxes of the current cell
   std::vector<std::uint64_t> vf_keys;    ///< pairs found in this chunk (see BroadPhaseScratch)
   std::vector<std::uint64_t> ee_keys;
-  std::int64_t reported = 0;             ///< float box overlaps (statistics)
+  std::int64_t reported = 0;             ///< box overlaps (statistics, see BroadPhaseStats)
 };
+
+/// Which code the Grid method's cell loop runs. Both emit the same pairs in the same order with
+/// the same close flags (tested); Auto takes AVX-512 when the CPU has it (checked at run time).
+enum class GridIsa { Auto, Portable };
+
+/// True if GridIsa::Auto runs the AVX-512 cell loop on this CPU (AVX-512 F and VL, GCC x86-64).
+bool grid_avx512_available();
 
 /// Scratch buffers reused between calls, so a steady-state call does not allocate.
 struct BroadPhaseScratch {
+  GridIsa grid_isa = GridIsa::Auto;  ///< tests set Portable to compare the two cell loops
   std::vector<BroadPhaseBox> vertex_boxes;  ///< indexed by vertex id
   std::vector<BroadPhaseBox> face_boxes;    ///< indexed by face id
   std::vector<BroadPhaseBox> edge_boxes;    ///< indexed by edge id
@@ -184,7 +195,8 @@ struct BroadPhaseStats {
   /// Overlapping box pairs the box search reported, adjacent ones included. PrimitiveBoxes:
   /// VF + EE primitive box pairs. FacePairs: face box pairs. Bvh: VF box pairs plus EE box
   /// pairs with a < b. Grid: VF plus EE (a < b) pairs whose boxes overlap after rounding outward
-  /// to float (a superset of the exact overlaps, in practice equal).
+  /// to float (a superset of the exact overlaps, in practice equal); exactly overlapping pairs
+  /// when the AVX-512 cell loop ran (detail::GridIsa).
   std::int64_t box_overlaps = 0;
   /// The algorithm that ran: the requested one, except that Grid falls back to PrimitiveBoxes
   /// when its grid would degenerate (see BroadPhaseMethod::Grid).
