@@ -163,8 +163,16 @@ std::string gnuplot_script(const std::string& csv, const std::string& out, const
     if (std::find(series.begin(), series.end(), k) == series.end()) series.push_back(k);
   }
   g << "plot ";
-  int style = 1;
+  // One colour per (solver, substeps); the order and threads show in the line and point style
+  // (solid dots: sequential; dashed squares: coloured on 1 thread; dotted triangles: more).
+  std::vector<std::pair<SolverKind, int>> colours;
   for (const auto& [kind, sub, order, threads] : series) {
+    const std::pair<SolverKind, int> c{kind, sub};
+    if (std::find(colours.begin(), colours.end(), c) == colours.end()) colours.push_back(c);
+    const int style = 1 + static_cast<int>(std::find(colours.begin(), colours.end(), c) - colours.begin());
+    const bool serial = order == ConstraintOrder::Sequential;
+    const int point = serial ? 7 : threads == 1 ? 5 : 9;
+    const int dash = serial ? 1 : threads == 1 ? 2 : 3;
     const std::string name = ladder_solver_name(kind);
     const std::string order_name = ladder_order_name(order);
     const std::string sel = "(strcol(1) eq 'rung' && strcol(2) eq '" + name +
@@ -175,10 +183,9 @@ std::string gnuplot_script(const std::string& csv, const std::string& out, const
     if (order != ConstraintOrder::Sequential)
       title += ", " + order_name + " " + std::to_string(threads) + (threads == 1 ? " thread" : " threads");
     g << "'" << csv << "' skip 1 using 8:" << sel << " with linespoints lt " << style
-      << " pt 7 title '" << title
+      << " dt " << dash << " pt " << point << " title '" << title
       << "', \\\n     '" << csv << "' skip 1 using 8:" << sel
       << ":3 with labels offset char 0.8,0.6 font ',8' tc lt " << style << " notitle, \\\n     ";
-    ++style;
   }
   g << "'" << csv << "' skip 1 using 8:(strcol(1) eq 'reference_check' && $9 > 0 ? $9 : 1/0)"
     << " with points pt 3 ps 2 lc rgb 'black' title 'each reference vs its refinement (its own error)', \\\n     '"

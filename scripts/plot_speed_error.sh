@@ -24,24 +24,30 @@ esac
 series=$(awk -F, '$1 == "rung" { o = ($14 == "" ? "sequential" : $14); t = ($15 == "" ? 1 : $15); if (!seen[$2 "," $4 "," o "," t]++) print $2 "," $4 "," o "," t }' "$csv")
 has_order=$(head -n 1 "$csv" | grep -c ',order,' || true)
 plot=""
-lt=1
+colours=""
 for s in $series; do
   IFS=, read -r solver sub order threads <<EOF_SERIES
 $s
 EOF_SERIES
+  # One colour per (solver, substeps); order and threads in the line and point style, as
+  # `bench error --plot` draws them.
+  case " $colours " in *" $solver,$sub "*) ;; *) colours="$colours $solver,$sub" ;; esac
+  lt=1
+  for c in $colours; do [ "$c" = "$solver,$sub" ] && break; lt=$((lt + 1)); done
+  pt=7; dt=1
+  if [ "$order" != sequential ]; then if [ "$threads" = 1 ]; then pt=5; dt=2; else pt=9; dt=3; fi; fi
   if [ "$sub" = 1 ]; then unit=substep; else unit=substeps; fi
-  title="$solver, $sub $unit"
+  label="$solver, $sub $unit"
   if [ "$has_order" = 0 ]; then
     osel="1"
   elif [ "$order" = sequential ]; then
     osel="(strcol(14) eq 'sequential')"
   else
     osel="(strcol(14) eq '$order' && \$15 == $threads)"
-    if [ "$threads" = 1 ]; then title="$title, $order 1 thread"; else title="$title, $order $threads threads"; fi
+    if [ "$threads" = 1 ]; then label="$label, $order 1 thread"; else label="$label, $order $threads threads"; fi
   fi
   sel="(strcol(1) eq 'rung' && strcol(2) eq '$solver' && \$4 == $sub && $osel && \$9 > 0 ? \$9 : 1/0)"
-  plot="$plot'$csv' skip 1 using 8:$sel with linespoints lt $lt pt 7 title '$title', '$csv' skip 1 using 8:$sel:3 with labels offset char 0.8,0.6 font ',8' tc lt $lt notitle, "
-  lt=$((lt + 1))
+  plot="$plot'$csv' skip 1 using 8:$sel with linespoints lt $lt dt $dt pt $pt title '$label', '$csv' skip 1 using 8:$sel:3 with labels offset char 0.8,0.6 font ',8' tc lt $lt notitle, "
 done
 ref="(strcol(1) eq 'reference_check' && \$9 > 0 ? \$9 : 1/0)"
 plot="$plot'$csv' skip 1 using 8:$ref with points pt 3 ps 2 lc rgb 'black' title 'each reference vs its refinement (its own error)', '$csv' skip 1 using 8:$ref:(strcol(2).' reference') with labels offset char 0,-1 font ',8' notitle"
