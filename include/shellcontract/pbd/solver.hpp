@@ -54,6 +54,10 @@ struct ColourCounts {
   int isometric = 0;
   int dihedral = 0;
   int anisotropic = 0;
+  /// Coloured order in the regional layout: the interiors of two vertex-id ranges run in
+  /// parallel, then the interface constraints (see solver.cpp, REGIONS). Used when every
+  /// constraint is a StVK membrane or an isometric hinge and few span the two ranges.
+  bool regional = false;
 };
 
 /// Sum of each kind of constraint energy at a configuration.
