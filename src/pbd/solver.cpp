@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <type_traits>
@@ -47,8 +46,8 @@ enum SweepKind : int {
   ANISOTROPIC,
   PACK,    ///< vertices: positions and inverse masses into the batches' padded rows
   UNPACK,  ///< vertices: positions back from the padded rows
-  /// Regional order (see RegionalOrder): items are regions; each runs all the membrane (hinge)
-  /// batches of its region's interior, colour after colour.
+  /// Regional order (see REGIONS): items are parts; each runs all the membrane (hinge) batches
+  /// of its part's interior, colour after colour.
   REGION_MEMBRANES,
   REGION_ISOMETRIC,
   /// Regional order: one item, all the interface membrane (hinge) batches, colour after colour.
@@ -74,11 +73,11 @@ bool padded_kind(int kind) {
 /// exchange a cache line in ~200 ns the per-colour barriers and the vertex rows shared at the
 /// two threads' boundary in every colour cost as much as the work (README, Speed). Here a sweep
 /// has 4 barriers instead of ~31, and only interface vertices change core (bear: 861 of 27,648
-/// faces and 1,720 of 41,472 hinges are interface). Bear's solve on 2 threads: 1.64-1.74x one
-/// thread, against 1.09-1.11x with one phase per colour (BM_SolverStep, alternating runs). The order is a valid Gauss-Seidel order
-/// (each constraint once per sweep, in the kinds' order of math-spec 9.4) and does not depend on
-/// the thread count, so results are bit-identical for any number of threads. The number of
-/// parts is fixed (not the thread count) for that reason.
+/// faces and 1,720 of 41,472 hinges are interface). Bear's solve on 2 threads: 1.64-1.84x one
+/// thread, against 1.09-1.11x with one phase per colour (BM_SolverStep, README "Speed"). The
+/// order is a valid Gauss-Seidel order (each constraint once per sweep, in the kinds' order of
+/// math-spec 9.4) and does not depend on the thread count, so results are bit-identical for any
+/// number of threads. The number of parts is fixed (not the thread count) for that reason.
 constexpr std::size_t REGIONS = 2;
 /// Groups of a kind's constraints in the regional order: the REGIONS interiors, then the interface.
 constexpr std::size_t REGION_GROUPS = REGIONS + 1;
@@ -140,7 +139,8 @@ constexpr double MAX_INTERFACE_FRACTION = 0.15;
 
 /// Number of records whose vertices do not all lie in one part.
 template <class Record>
-std::size_t interface_count(const std::vector<Record>& records, const std::vector<std::uint8_t>& part) {
+std::size_t interface_count(const std::vector<Record>& records,
+                            const std::vector<std::uint8_t>& part) {
   std::size_t count = 0;
   for (const Record& r : records) {
     const std::uint8_t g = part[static_cast<std::size_t>(r.v[0])];
@@ -216,9 +216,11 @@ class GaussSeidelSolver final : public ConstraintSolver {
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
       const std::vector<std::uint8_t> part =
           split_vertices(num_vertices, set_.membranes, set_.isometric_hinges);
-      regional_ = regional_ &&
-                  interface_count(set_.membranes, part) <= MAX_INTERFACE_FRACTION * set_.membranes.size() &&
-                  interface_count(set_.isometric_hinges, part) <= MAX_INTERFACE_FRACTION * set_.isometric_hinges.size();
+      auto few = [&](const auto& records) {
+        return static_cast<double>(interface_count(records, part)) <=
+               MAX_INTERFACE_FRACTION * static_cast<double>(records.size());
+      };
+      regional_ = regional_ && few(set_.membranes) && few(set_.isometric_hinges);
       if (regional_) {
         membrane_colours_ = regional_in_place(set_.membranes, membrane_colours_, part);
         isometric_colours_ = regional_in_place(set_.isometric_hinges, isometric_colours_, part);
@@ -227,7 +229,6 @@ class GaussSeidelSolver final : public ConstraintSolver {
       // lvalue would odr-use it, and TBB 2021 does not define it out of line (link error).
       const int automatic = tbb::task_arena::automatic;
       arena_ = std::make_unique<tbb::task_arena>(settings_.threads > 0 ? settings_.threads : automatic);
-
     } else {
       membrane_colours_ = {0, set_.membranes.size()};
       isometric_colours_ = {0, set_.isometric_hinges.size()};
@@ -420,7 +421,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
         const bool interface = kind == INTERFACE_MEMBRANES || kind == INTERFACE_ISOMETRIC;
         const std::vector<std::size_t>& off =
             membranes ? membrane_batches_.offsets : isometric_batches_.offsets;
-        const std::size_t C = static_cast<std::size_t>(membranes ? membrane_num_colours_ : isometric_num_colours_);
+        const std::size_t C =
+            static_cast<std::size_t>(membranes ? membrane_num_colours_ : isometric_num_colours_);
         for (std::size_t g = interface ? REGIONS : b; g < (interface ? REGION_GROUPS : e); ++g)
           for (std::size_t c = 0; c < C; ++c)
             project_range(membranes ? MEMBRANE_BATCHES : ISOMETRIC_BATCHES, off[g * C + c],
