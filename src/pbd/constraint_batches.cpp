@@ -392,6 +392,24 @@ void unpack_padded(const PaddedVertex* xw, std::size_t begin, std::size_t end, d
   }
 }
 
+void pack_padded(const double* x, const double* w, const int* row_vertex, std::size_t begin,
+                 std::size_t end, PaddedVertex* xw) {
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::size_t i = static_cast<std::size_t>(row_vertex[k]);
+    xw[k] = PaddedVertex{x[3 * i], x[3 * i + 1], x[3 * i + 2], w[i]};
+  }
+}
+
+void unpack_padded(const PaddedVertex* xw, const int* row_vertex, std::size_t begin,
+                   std::size_t end, double* x) {
+  for (std::size_t k = begin; k < end; ++k) {
+    const std::size_t i = static_cast<std::size_t>(row_vertex[k]);
+    x[3 * i] = xw[k].x;
+    x[3 * i + 1] = xw[k].y;
+    x[3 * i + 2] = xw[k].z;
+  }
+}
+
 void project_stvk_membrane_batches(const Stvk& material, const MembraneBatch* batches,
                                    std::size_t count, PaddedVertex* xw,
                                    const ProjectionContext& ctx, double* lambda, BatchIsa isa) {

@@ -82,16 +82,14 @@ constexpr std::size_t REGIONS = 2;
 /// Groups of a kind's constraints in the regional order: the REGIONS interiors, then the interface.
 constexpr std::size_t REGION_GROUPS = REGIONS + 1;
 
-/// Parts of the vertex ids [0, n): ids below the cut are part 0, the others part 1. By id, not
-/// by a graph partition: the batches' padded rows are stored in id order, two vertices per cache
-/// line, and parts that interleave in memory share lines. (A breadth-first split over the
-/// triangles gave a shorter cut on bear, 504 interface faces instead of 861, but made each thread
-/// 4x slower per constraint: bear solve 5.1 ms on 2 threads against 1.44 ms by id, 2.4 ms on
-/// one.) The cut is the one with the shortest critical path: per kind, the larger interior runs
+/// Parts of the padded rows [0, n) (records given in row numbers): rows below the cut are part
+/// 0, the others part 1. A cut of the row order, so that each part is contiguous in memory: two
+/// rows share a cache line, and parts that interleave in memory share lines (a breadth-first
+/// split of bear's vertex ids with the rows in id order made each thread 4x slower per
+/// constraint: 5.1 ms per solve on 2 threads against 1.44 ms, 2.4 ms on one). The cut is the one with the shortest critical path: per kind, the larger interior runs
 /// beside the smaller and then the interface runs alone, so a kind costs (count - the smaller
 /// interior); the sum over both kinds is minimized over every cut, in O(#V + #constraints).
-/// Meshes usually come with spatially coherent ids (bear: 3% of the faces span the best cut);
-/// when they do not, the interface is large and the solver keeps the plain colour order.
+/// If the interface is still large, the solver keeps the plain colour order.
 template <class RecordA, class RecordB>
 std::vector<std::uint8_t> split_vertices(int n, const std::vector<RecordA>& a,
                                          const std::vector<RecordB>& b) {
@@ -131,6 +129,59 @@ std::vector<std::uint8_t> split_vertices(int n, const std::vector<RecordA>& a,
   std::vector<std::uint8_t> part(N);
   for (std::size_t v = 0; v < N; ++v) part[v] = v < best_cut ? 0 : 1;
   return part;
+}
+
+/// The order of the batches' padded rows: breadth-first over the triangles' edges, component by
+/// component from the smallest unvisited id, then the vertices no triangle references, in id
+/// order; row_vertex[k] is the vertex of row k (a permutation of [0, n)). Why: the cut of the
+/// regional layout is a cut of the row order, and meshes do not always number their vertices
+/// coherently (the kitten from CGAL's mesher: 71% of its faces span the best cut of the ids). A
+/// breadth-first order is coherent for any input numbering (bear: 504 interface faces against
+/// 861 by id), and the two parts stay contiguous in memory (no shared cache lines).
+template <class Record>
+std::vector<int> breadth_first_rows(const std::vector<Record>& triangles, int n) {
+  const std::size_t N = static_cast<std::size_t>(n);
+  std::vector<int> start(N + 1, 0), adj;
+  for (const Record& t : triangles)
+    for (int v : t.v) start[static_cast<std::size_t>(v) + 1] += 2;
+  for (std::size_t i = 0; i < N; ++i) start[i + 1] += start[i];
+  adj.resize(static_cast<std::size_t>(start[N]));
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const Record& t : triangles)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t v = static_cast<std::size_t>(t.v[k]);
+      adj[static_cast<std::size_t>(fill[v]++)] = t.v[(k + 1) % 3];
+      adj[static_cast<std::size_t>(fill[v]++)] = t.v[(k + 2) % 3];
+    }
+  std::vector<int> order;
+  order.reserve(N);
+  std::vector<std::uint8_t> seen(N, 0);
+  for (std::size_t root = 0; root < N; ++root) {
+    if (seen[root] || start[root] == start[root + 1]) continue;
+    seen[root] = 1;
+    for (std::size_t head = order.size(), i = (order.push_back(static_cast<int>(root)), head);
+         i < order.size(); ++i) {
+      const std::size_t v = static_cast<std::size_t>(order[i]);
+      for (int a = start[v]; a < start[v + 1]; ++a) {
+        const std::size_t w = static_cast<std::size_t>(adj[static_cast<std::size_t>(a)]);
+        if (!seen[w]) {
+          seen[w] = 1;
+          order.push_back(static_cast<int>(w));
+        }
+      }
+    }
+  }
+  for (std::size_t v = 0; v < N; ++v)
+    if (!seen[v]) order.push_back(static_cast<int>(v));
+  return order;
+}
+
+/// Vertex ids of records, renamed: out[i].v[k] = row[records[i].v[k]].
+template <class Record>
+std::vector<Record> renamed(std::vector<Record> records, const std::vector<int>& row) {
+  for (Record& r : records)
+    for (int& v : r.v) v = row[static_cast<std::size_t>(v)];
+  return records;
 }
 
 /// Largest fraction of a kind's constraints on the interface for which the regional order is
@@ -214,8 +265,17 @@ class GaussSeidelSolver final : public ConstraintSolver {
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
       for (const auto& c : set_.isometric_hinges)
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
-      const std::vector<std::uint8_t> part =
-          split_vertices(num_vertices, set_.membranes, set_.isometric_hinges);
+      // Padded rows in breadth-first order; the parts are cut in that order.
+      row_vertex_ = breadth_first_rows(set_.membranes, num_vertices);
+      vertex_row_.resize(row_vertex_.size());
+      for (std::size_t k = 0; k < row_vertex_.size(); ++k)
+        vertex_row_[static_cast<std::size_t>(row_vertex_[k])] = static_cast<int>(k);
+      const std::vector<std::uint8_t> row_part =
+          split_vertices(num_vertices, renamed(set_.membranes, vertex_row_),
+                         renamed(set_.isometric_hinges, vertex_row_));
+      std::vector<std::uint8_t> part(row_part.size());  // by vertex id
+      for (std::size_t v = 0; v < part.size(); ++v)
+        part[v] = row_part[static_cast<std::size_t>(vertex_row_[v])];
       auto few = [&](const auto& records) {
         return static_cast<double>(interface_count(records, part)) <=
                MAX_INTERFACE_FRACTION * static_cast<double>(records.size());
@@ -240,9 +300,12 @@ class GaussSeidelSolver final : public ConstraintSolver {
     if (coloured_) {
       // Coloured order: StVK membranes and isometric hinges are projected four per SIMD batch
       // (constraint_batches.hpp); the other kinds and materials keep the per-constraint kernels.
+      // The batches address padded rows, not vertex ids.
       if constexpr (std::is_same_v<M, Stvk>)
-        membrane_batches_ = make_membrane_batches(packed_membranes_, membrane_colours_);
-      isometric_batches_ = make_isometric_batches(set_.isometric_hinges, isometric_colours_);
+        membrane_batches_ =
+            make_membrane_batches(renamed(packed_membranes_, vertex_row_), membrane_colours_);
+      isometric_batches_ =
+          make_isometric_batches(renamed(set_.isometric_hinges, vertex_row_), isometric_colours_);
     }
     packed_aniso_.reserve(set_.anisotropic.size());
     aniso_data_.reserve(set_.anisotropic.size());
@@ -430,10 +493,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
         break;
       }
       case PACK:
-        pack_padded(ctx.x, ctx.w, b, e, xw);
+        pack_padded(ctx.x, ctx.w, row_vertex_.data(), b, e, xw);
         break;
       case UNPACK:
-        unpack_padded(xw, b, e, ctx.x);
+        unpack_padded(xw, row_vertex_.data(), b, e, ctx.x);
         break;
       default:
         break;
@@ -460,14 +523,16 @@ class GaussSeidelSolver final : public ConstraintSolver {
         const std::vector<ColourPhase> phases = sweep_phases(n);
         schedule_ = ColourSchedule(phases, settings_.iterations, arena_->max_concurrency());
         padded_.resize(n);
+        // Vertices past the constraints' largest id keep their own row.
+        for (std::size_t v = row_vertex_.size(); v < n; ++v) row_vertex_.push_back(static_cast<int>(v));
         first_padded_ = !phases.empty() && padded_kind(phases.front().kind);
         last_padded_ = !phases.empty() && (phases.back().kind == PACK ||
                                            (phases.back().kind != UNPACK && padded_kind(phases.back().kind)));
         schedule_built_ = true;
       }
-      if (first_padded_) pack_padded(ctx.x, ctx.w, 0, n, padded_.data());
+      if (first_padded_) pack_padded(ctx.x, ctx.w, row_vertex_.data(), 0, n, padded_.data());
       schedule_.run([&](int kind, std::size_t b, std::size_t e) { project_range(kind, b, e, ctx); });
-      if (last_padded_) unpack_padded(padded_.data(), 0, n, ctx.x);
+      if (last_padded_) unpack_padded(padded_.data(), row_vertex_.data(), 0, n, ctx.x);
       return;
     }
     for (int it = 0; it < settings_.iterations; ++it) {
@@ -558,6 +623,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
   /// then REGION_GROUPS x colours (group-major), not one per colour.
   bool regional_ = false;
   int membrane_num_colours_ = 0, isometric_num_colours_ = 0;
+  std::vector<int> row_vertex_;  ///< Coloured order: the vertex of each padded row
+  std::vector<int> vertex_row_;  ///< its inverse, over the constraints' vertex ids
   ColourOffsets membrane_colours_, isometric_colours_, dihedral_colours_, aniso_colours_;
   std::vector<PackedMembrane> packed_membranes_;  ///< set_.membranes, packed, same order
   std::vector<PackedMembrane> packed_aniso_;      ///< set_.anisotropic, packed, same order

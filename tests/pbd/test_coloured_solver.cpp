@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include <random>
 #include <set>
@@ -257,47 +258,93 @@ TEST(ColouredSolver, BatchedSolveEqualsTheScalarKernelsInColourOrder) {
     }
 }
 
-TEST(ColouredSolver, RegionalLayoutOnCoherentIdsIsExactAndBitIdenticalForAnyThreads) {
-  // StVK membranes and isometric hinges only, ids ordered by height: the solver runs the two
-  // id ranges' interiors in parallel and then the interface (solver.cpp, REGIONS). Its result
-  // must be the scalar kernels' in its array order (membranes, then hinges), and the same bits
-  // on 1, 2 and 4 threads. With shuffled ids most constraints span the ranges: plain colours.
-  Scene s = make_scene(4, 0.85, 0.02, Ids::ByHeight);
-  s.set.dihedral_hinges.clear();
-  for (SolverKind kind : {SolverKind::Pbd, SolverKind::Xpbd}) {
-    SolverSettings settings;
-    settings.kind = kind;
-    settings.order = ConstraintOrder::Coloured;
-    settings.iterations = 3;
-    settings.threads = 1;
-    const auto one_solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
-    ASSERT_TRUE(one_solver->colour_counts().regional);
-    EXPECT_EQ(one_solver->colour_counts().membrane, colour_constraints(s.set.membranes).num_colours());
-    Positions one = s.x;
-    one_solver->solve(one, s.w);
-    const bool xpbd = kind == SolverKind::Xpbd;
-    const Positions ref = reference_sweeps(Stvk(MaterialParams{}), one_solver->constraints(), s, xpbd, 3);
-    const double moved = (ref - s.x).cwiseAbs().maxCoeff();
-    ASSERT_GT(moved, 1e-4);
-    EXPECT_LE((one - ref).cwiseAbs().maxCoeff(), 1e-12 * moved) << (xpbd ? "xpbd" : "pbd");
-    for (int threads : {2, 4}) {
-      settings.threads = threads;
-      const auto solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
-      Positions many = s.x;
-      for (int step = 0; step < 2; ++step) solver->solve(many, s.w);  // a second solve reuses the schedule
-      Positions again = one;
-      one_solver->solve(again, s.w);
-      EXPECT_TRUE((many.array() == again.array()).all())
-          << (xpbd ? "xpbd, " : "pbd, ") << threads << " threads, max diff "
-          << (many - again).cwiseAbs().maxCoeff();
+/// A closed bipyramid: `rim` vertices on a circle and two apexes; every face has an apex, so any
+/// cut of the vertices leaves many faces on the interface.
+Scene bipyramid_scene(int rim) {
+  test::TriMesh m;
+  m.x.resize(rim + 2, 3);
+  for (int i = 0; i < rim; ++i) {
+    const double a = 2.0 * 3.14159265358979323846 * i / rim;
+    m.x.row(i) << std::cos(a), std::sin(a), 0.0;
+  }
+  m.x.row(rim) << 0.0, 0.0, 1.0;
+  m.x.row(rim + 1) << 0.0, 0.0, -1.0;
+  m.faces.resize(2 * rim, 3);
+  for (int i = 0; i < rim; ++i) {
+    m.faces.row(2 * i) << i, (i + 1) % rim, rim;
+    m.faces.row(2 * i + 1) << (i + 1) % rim, i, rim + 1;
+  }
+  Mesh mesh = test::to_surface_mesh(m);
+  build_rest_state(mesh, MassModel::AreaLumped, 1.0);
+  Scene s;
+  s.set = pack_constraints(mesh, BendingModel::Isometric);
+  s.w = inverse_masses(mesh);
+  s.x = 0.9 * m.x;
+  return s;
+}
+
+TEST(ColouredSolver, RegionalLayoutIsExactAndBitIdenticalForAnyThreadsWhateverTheIds) {
+  // StVK membranes and isometric hinges only: the solver cuts its breadth-first row order in two
+  // and runs the two parts' interiors in parallel, then the interface (solver.cpp, REGIONS). Its
+  // result must be the scalar kernels' in its array order (membranes, then hinges), and the same
+  // bits on 1, 2 and 4 threads, whether the input's ids are coherent or shuffled (the rows are
+  // in breadth-first order either way).
+  for (Ids ids : {Ids::ByHeight, Ids::Shuffled}) {
+    Scene s = make_scene(4, 0.85, 0.02, ids);
+    s.set.dihedral_hinges.clear();
+    const char* name = ids == Ids::ByHeight ? "ids by height, " : "shuffled ids, ";
+    for (SolverKind kind : {SolverKind::Pbd, SolverKind::Xpbd}) {
+      SolverSettings settings;
+      settings.kind = kind;
+      settings.order = ConstraintOrder::Coloured;
+      settings.iterations = 3;
+      settings.threads = 1;
+      const auto one_solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
+      ASSERT_TRUE(one_solver->colour_counts().regional) << name;
+      EXPECT_EQ(one_solver->colour_counts().membrane, colour_constraints(s.set.membranes).num_colours());
+      Positions one = s.x;
+      one_solver->solve(one, s.w);
+      const bool xpbd = kind == SolverKind::Xpbd;
+      const Positions ref = reference_sweeps(Stvk(MaterialParams{}), one_solver->constraints(), s, xpbd, 3);
+      const double moved = (ref - s.x).cwiseAbs().maxCoeff();
+      ASSERT_GT(moved, 1e-4);
+      EXPECT_LE((one - ref).cwiseAbs().maxCoeff(), 1e-12 * moved) << name << (xpbd ? "xpbd" : "pbd");
+      for (int threads : {2, 4}) {
+        settings.threads = threads;
+        const auto solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
+        Positions many = s.x;
+        for (int step = 0; step < 2; ++step) solver->solve(many, s.w);  // the schedule is reused
+        Positions again = one;
+        one_solver->solve(again, s.w);
+        EXPECT_TRUE((many.array() == again.array()).all())
+            << name << (xpbd ? "xpbd, " : "pbd, ") << threads << " threads, max diff "
+            << (many - again).cwiseAbs().maxCoeff();
+      }
     }
   }
-  Scene shuffled = make_scene(3, 0.85, 0.02, Ids::Shuffled);
-  shuffled.set.dihedral_hinges.clear();
+}
+
+TEST(ColouredSolver, KeepsOnePhasePerColourWhenMostConstraintsSpanEveryCut) {
+  // Every face of a bipyramid has an apex: at least a third of the faces span any cut, so the
+  // regional layout would run them on one thread; the solver keeps one phase per colour, and its
+  // result is still the scalar kernels' in its order, bit-identical on 1 and 2 threads.
+  const Scene s = bipyramid_scene(64);
   SolverSettings settings;
   settings.order = ConstraintOrder::Coloured;
-  EXPECT_FALSE(make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, shuffled.set, settings)
-                   ->colour_counts().regional);
+  settings.iterations = 3;
+  settings.threads = 1;
+  const auto one_solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
+  EXPECT_FALSE(one_solver->colour_counts().regional);
+  Positions one = s.x;
+  one_solver->solve(one, s.w);
+  const Positions ref = reference_sweeps(Stvk(MaterialParams{}), one_solver->constraints(), s, false, 3);
+  const double moved = (ref - s.x).cwiseAbs().maxCoeff();
+  ASSERT_GT(moved, 1e-6);
+  EXPECT_LE((one - ref).cwiseAbs().maxCoeff(), 1e-12 * moved);
+  settings.threads = 2;
+  Positions two = s.x;
+  make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings)->solve(two, s.w);
+  EXPECT_TRUE((two.array() == one.array()).all());
 }
 
 TEST(ColouredSolver, RejectsNegativeThreads) {

@@ -39,6 +39,16 @@ void pack_padded(const double* x, const double* w, std::size_t begin, std::size_
 /// Copies the positions of vertices [begin, end) of xw back to x (3 per vertex).
 void unpack_padded(const PaddedVertex* xw, std::size_t begin, std::size_t end, double* x);
 
+/// pack_padded with the rows in another order: row k of xw [begin, end) gets vertex row_vertex[k]
+/// of x and w (the solver keeps its rows in breadth-first order, see solver.cpp).
+void pack_padded(const double* x, const double* w, const int* row_vertex, std::size_t begin,
+                 std::size_t end, PaddedVertex* xw);
+
+/// unpack_padded with the rows in another order: row k of xw [begin, end) goes back to vertex
+/// row_vertex[k] of x.
+void unpack_padded(const PaddedVertex* xw, const int* row_vertex, std::size_t begin,
+                   std::size_t end, double* x);
+
 /// Four membrane constraints of one colour (PackedMembrane fields, lane k = k-th constraint).
 /// Lanes at or past `count` are padding: lane 0's vertex ids (so every read stays in bounds and
 /// on this thread's vertices) and zero rest data (E = 0: skipped); they are never written.
