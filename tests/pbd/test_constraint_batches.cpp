@@ -207,6 +207,22 @@ TEST(PaddedVertices, PackAndUnpackRoundTripAndRowsAre32ByteAligned) {
   EXPECT_EQ(back, (std::vector<double>{0, 0, 0, 4, 5, 6, 7, 8, 9}));
 }
 
+TEST(PaddedVertices, PermutedPackAndUnpackMapRowsToVertices) {
+  // Row k holds vertex row_vertex[k] (the solver's breadth-first rows).
+  const std::vector<double> x{1, 2, 3, 4, 5, 6, 7, 8, 9}, w{0.5, 0.0, 2.0};
+  const std::vector<int> row_vertex{2, 0, 1};
+  std::vector<PaddedVertex> xw(3);
+  pack_padded(x.data(), w.data(), row_vertex.data(), 0, 3, xw.data());
+  EXPECT_EQ(xw[0].x, 7.0);
+  EXPECT_EQ(xw[0].w, 2.0);
+  EXPECT_EQ(xw[1].y, 2.0);
+  EXPECT_EQ(xw[2].z, 6.0);
+  EXPECT_EQ(xw[2].w, 0.0);
+  std::vector<double> back(9, 0.0);
+  unpack_padded(xw.data(), row_vertex.data(), 1, 3, back.data());  // rows 1, 2: vertices 0, 1
+  EXPECT_EQ(back, (std::vector<double>{1, 2, 3, 4, 5, 6, 0, 0, 0}));
+}
+
 TEST(MembraneBatches, LayoutPadsEachColoursLastBatchWithLaneZero) {
   std::mt19937 rng(33);
   MembraneScene s = membrane_scene(10, rng);
