@@ -64,20 +64,21 @@ bool padded_kind(int kind) {
          kind == REGION_ISOMETRIC || kind == INTERFACE_MEMBRANES || kind == INTERFACE_ISOMETRIC;
 }
 
-/// The regional order of the Coloured solve. The vertex ids are split into REGIONS ranges
-/// (split_vertices); a constraint whose vertices all lie in one range is interior to it, the
-/// others form the interface. A sweep then runs, for membranes and then for hinges,
-/// the interior constraints of every part (the parts share no vertex, so they run on different
-/// threads with no barrier between colours), then the interface constraints, colour after
-/// colour, on one thread. Why: a colour of bear is only 5-12 us of work, and on a VM whose cores
-/// exchange a cache line in ~200 ns the per-colour barriers and the vertex rows shared at the
-/// two threads' boundary in every colour cost as much as the work (README, Speed). Here a sweep
-/// has 4 barriers instead of ~31, and only interface vertices change core (bear: 861 of 27,648
-/// faces and 1,720 of 41,472 hinges are interface). Bear's solve on 2 threads: 1.64-1.84x one
-/// thread, against 1.09-1.11x with one phase per colour (BM_SolverStep, README "Speed"). The
-/// order is a valid Gauss-Seidel order (each constraint once per sweep, in the kinds' order of
-/// math-spec 9.4) and does not depend on the thread count, so results are bit-identical for any
-/// number of threads. The number of parts is fixed (not the thread count) for that reason.
+/// The regional order of the Coloured solve. The padded rows (in breadth-first order, see
+/// breadth_first_rows) are cut into REGIONS parts (split_vertices); a constraint whose vertices
+/// all lie in one part is interior to it, the others form the interface. A sweep then runs, for
+/// membranes and then for hinges, the interior constraints of every part (the parts share no
+/// vertex, so they run on different threads with no barrier between colours), then the
+/// interface constraints, colour after colour, on one thread. Why: a colour of bear is only 5-12
+/// us of work, and on a VM whose cores exchange a cache line in ~200 ns the per-colour barriers
+/// and the vertex rows shared at the two threads' boundary in every colour cost as much as the
+/// work (README, Speed). Here a sweep has 4 barriers instead of ~31, and only interface vertices
+/// change core (bear: about 500 of 27,648 faces and 1,000 of 41,472 hinges are interface).
+/// Bear's solve on 2 threads: 1.4-1.85x one thread (mostly 1.65-1.85x), against 1.09-1.11x with
+/// one phase per colour (BM_SolverStep, README "Speed"). The order is a valid Gauss-Seidel order
+/// (each constraint once per sweep, in the kinds' order of math-spec 9.4) and does not depend on
+/// the thread count, so results are bit-identical for any number of threads. The number of
+/// parts is fixed (not the thread count) for that reason.
 constexpr std::size_t REGIONS = 2;
 /// Groups of a kind's constraints in the regional order: the REGIONS interiors, then the interface.
 constexpr std::size_t REGION_GROUPS = REGIONS + 1;
@@ -86,14 +87,15 @@ constexpr std::size_t REGION_GROUPS = REGIONS + 1;
 /// 0, the others part 1. A cut of the row order, so that each part is contiguous in memory: two
 /// rows share a cache line, and parts that interleave in memory share lines (a breadth-first
 /// split of bear's vertex ids with the rows in id order made each thread 4x slower per
-/// constraint: 5.1 ms per solve on 2 threads against 1.44 ms, 2.4 ms on one). The cut is the one with the shortest critical path: per kind, the larger interior runs
-/// beside the smaller and then the interface runs alone, so a kind costs (count - the smaller
-/// interior); the sum over both kinds is minimized over every cut, in O(#V + #constraints).
-/// If the interface is still large, the solver keeps the plain colour order.
+/// constraint: 5.1 ms per solve on 2 threads against 1.44 ms, 2.4 ms on one). The cut is the one
+/// with the shortest critical path: per kind, the larger interior runs beside the smaller and
+/// then the interface runs alone, so a kind costs (count - the smaller interior); the sum over
+/// both kinds is minimized over every cut, in O(#V + #constraints). If the interface is still
+/// large, the solver keeps the plain colour order.
 template <class RecordA, class RecordB>
 std::vector<std::uint8_t> split_vertices(int n, const std::vector<RecordA>& a,
                                          const std::vector<RecordB>& b) {
-  static_assert(REGIONS == 2, "the cut search splits the ids in two");
+  static_assert(REGIONS == 2, "the cut search splits the rows in two");
   const std::size_t N = static_cast<std::size_t>(n);
   // Per kind: how many constraints have their largest id at x (interior to part 0 once the
   // cut is above x) and their smallest id at x (interior to part 1 while the cut is at most x).
@@ -524,7 +526,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
         schedule_ = ColourSchedule(phases, settings_.iterations, arena_->max_concurrency());
         padded_.resize(n);
         // Vertices past the constraints' largest id keep their own row.
-        for (std::size_t v = row_vertex_.size(); v < n; ++v) row_vertex_.push_back(static_cast<int>(v));
+        for (std::size_t v = row_vertex_.size(); v < n; ++v)
+          row_vertex_.push_back(static_cast<int>(v));
         first_padded_ = !phases.empty() && padded_kind(phases.front().kind);
         last_padded_ = !phases.empty() && (phases.back().kind == PACK ||
                                            (phases.back().kind != UNPACK && padded_kind(phases.back().kind)));
