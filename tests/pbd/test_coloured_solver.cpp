@@ -40,7 +40,8 @@ test::TriMesh renumbered(const test::TriMesh& m, Ids ids) {
   std::vector<int> order(static_cast<std::size_t>(m.x.rows()));
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<int>(i);
   if (ids == Ids::ByHeight)
-    std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return m.x(a, 2) < m.x(b, 2); });
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return m.x(a, 2) < m.x(b, 2); });
   if (ids == Ids::Shuffled) std::shuffle(order.begin(), order.end(), std::mt19937(11));
   test::TriMesh out = m;
   std::vector<int> new_id(order.size());
@@ -230,6 +231,16 @@ Positions reference_sweeps(const Material& m, const ConstraintSet& set, const Sc
   return x;
 }
 
+/// Coloured-order settings of the tests below.
+SolverSettings coloured(SolverKind kind, int iterations, int threads) {
+  SolverSettings settings;
+  settings.kind = kind;
+  settings.order = ConstraintOrder::Coloured;
+  settings.iterations = iterations;
+  settings.threads = threads;
+  return settings;
+}
+
 TEST(ColouredSolver, BatchedSolveEqualsTheScalarKernelsInColourOrder) {
   // The Coloured solver projects StVK membranes and isometric hinges in SIMD batches on padded
   // rows, and the other kinds (dihedral hinges here; corotated membranes) one by one on x, with
@@ -238,12 +249,8 @@ TEST(ColouredSolver, BatchedSolveEqualsTheScalarKernelsInColourOrder) {
   const Scene s = make_scene(3);
   for (MaterialKind material : {MaterialKind::Stvk, MaterialKind::Corotated})
     for (SolverKind kind : {SolverKind::Pbd, SolverKind::Xpbd}) {
-      SolverSettings settings;
-      settings.kind = kind;
-      settings.order = ConstraintOrder::Coloured;
-      settings.iterations = 3;
-      settings.threads = 2;
-      const auto solver = make_constraint_solver(material, MaterialParams{}, s.set, settings);
+      const auto solver =
+          make_constraint_solver(material, MaterialParams{}, s.set, coloured(kind, 3, 2));
       Positions x = s.x;
       solver->solve(x, s.w);
       const bool xpbd = kind == SolverKind::Xpbd;
@@ -294,24 +301,25 @@ TEST(ColouredSolver, RegionalLayoutIsExactAndBitIdenticalForAnyThreadsWhateverTh
     s.set.dihedral_hinges.clear();
     const char* name = ids == Ids::ByHeight ? "ids by height, " : "shuffled ids, ";
     for (SolverKind kind : {SolverKind::Pbd, SolverKind::Xpbd}) {
-      SolverSettings settings;
-      settings.kind = kind;
-      settings.order = ConstraintOrder::Coloured;
-      settings.iterations = 3;
-      settings.threads = 1;
-      const auto one_solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
+      SolverSettings settings = coloured(kind, 3, 1);
+      const auto one_solver =
+          make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
       ASSERT_TRUE(one_solver->colour_counts().regional) << name;
-      EXPECT_EQ(one_solver->colour_counts().membrane, colour_constraints(s.set.membranes).num_colours());
+      EXPECT_EQ(one_solver->colour_counts().membrane,
+                colour_constraints(s.set.membranes).num_colours());
       Positions one = s.x;
       one_solver->solve(one, s.w);
       const bool xpbd = kind == SolverKind::Xpbd;
-      const Positions ref = reference_sweeps(Stvk(MaterialParams{}), one_solver->constraints(), s, xpbd, 3);
+      const Positions ref =
+          reference_sweeps(Stvk(MaterialParams{}), one_solver->constraints(), s, xpbd, 3);
       const double moved = (ref - s.x).cwiseAbs().maxCoeff();
       ASSERT_GT(moved, 1e-4);
-      EXPECT_LE((one - ref).cwiseAbs().maxCoeff(), 1e-12 * moved) << name << (xpbd ? "xpbd" : "pbd");
+      EXPECT_LE((one - ref).cwiseAbs().maxCoeff(), 1e-12 * moved)
+          << name << (xpbd ? "xpbd" : "pbd");
       for (int threads : {2, 4}) {
         settings.threads = threads;
-        const auto solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
+        const auto solver =
+            make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
         Positions many = s.x;
         for (int step = 0; step < 2; ++step) solver->solve(many, s.w);  // the schedule is reused
         Positions again = one;
@@ -329,15 +337,14 @@ TEST(ColouredSolver, KeepsOnePhasePerColourWhenMostConstraintsSpanEveryCut) {
   // regional layout would run them on one thread; the solver keeps one phase per colour, and its
   // result is still the scalar kernels' in its order, bit-identical on 1 and 2 threads.
   const Scene s = bipyramid_scene(64);
-  SolverSettings settings;
-  settings.order = ConstraintOrder::Coloured;
-  settings.iterations = 3;
-  settings.threads = 1;
-  const auto one_solver = make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
+  SolverSettings settings = coloured(SolverKind::Pbd, 3, 1);
+  const auto one_solver =
+      make_constraint_solver(MaterialKind::Stvk, MaterialParams{}, s.set, settings);
   EXPECT_FALSE(one_solver->colour_counts().regional);
   Positions one = s.x;
   one_solver->solve(one, s.w);
-  const Positions ref = reference_sweeps(Stvk(MaterialParams{}), one_solver->constraints(), s, false, 3);
+  const Positions ref =
+      reference_sweeps(Stvk(MaterialParams{}), one_solver->constraints(), s, false, 3);
   const double moved = (ref - s.x).cwiseAbs().maxCoeff();
   ASSERT_GT(moved, 1e-6);
   EXPECT_LE((one - ref).cwiseAbs().maxCoeff(), 1e-12 * moved);
