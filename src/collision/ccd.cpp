@@ -193,6 +193,49 @@ inline int differences(CcdPrimitive kind, const CcdStencil& x, Vec3* d) {
   return 4;
 }
 
+/// Rounding-aware thresholds of the separating-axis steps (2a, 2b) for tolerance tau and
+/// M = max |input coordinate|:
+///  * a difference vector D of computed positions is within 12 u M per coordinate of the exact
+///    one (two positions at 4 u M, one subtraction of values <= 2M), so its dot product with any
+///    d is within 12 sqrt3 u M |d| + gamma_3 2 sqrt3 M |d| < 32 u M |d| of the exact value; 48
+///    leaves room for the rounding of the threshold itself (`direction`, times |d|);
+///  * one coordinate of D: 12 u M, used for the axis tests (16 with room; `axis`).
+struct SeparationGaps {
+  double axis;
+  double direction;
+};
+
+SeparationGaps separation_gaps(double tau, double M) {
+  return {(tau + 16.0 * U * M) * (1.0 + 4.0 * U) + UNDERFLOW_FLOOR,
+          tau + 48.0 * U * M + UNDERFLOW_FLOOR};
+}
+
+/// Step 2a: true if one of the axes x, y, z has every difference at both ends (da, db, nd each)
+/// beyond the gap on the same side: the relative vectors, which stay in their convex hull, never
+/// come within tau on the interval.
+bool axes_separate(const Vec3* da, const Vec3* db, int nd, const SeparationGaps& gaps) {
+  for (int ax = 0; ax < 3; ++ax) {
+    double lo = da[0][ax], hi = da[0][ax];
+    for (int k = 0; k < nd; ++k) {
+      lo = std::min({lo, da[k][ax], db[k][ax]});
+      hi = std::max({hi, da[k][ax], db[k][ax]});
+    }
+    if (lo > gaps.axis || hi < -gaps.axis) return true;
+  }
+  return false;
+}
+
+/// Step 2b: true if every difference at both ends has a dot product with d above the gap times
+/// |d| (false for d = 0).
+bool direction_separates(const Vec3* da, const Vec3* db, int nd, const Vec3& d,
+                         const SeparationGaps& gaps) {
+  const double dn = d.norm();
+  if (!(dn > 0.0)) return false;
+  double smin = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < nd; ++k) smin = std::min({smin, da[k].dot(d), db[k].dot(d)});
+  return smin > gaps.direction * dn * (1.0 + 8.0 * U);
+}
+
 /// Sign of h(t) = det(e(t), r(t), n) on an interval where e, r are linear with end values
 /// (ea, ra) and (eb, rb): +1 if its three Bernstein coefficients are all > err, -1 if all < -err,
 /// else 0 (undecided). The middle coefficient is the blossom (det(ea,rb,n) + det(eb,ra,n)) / 2.
@@ -412,14 +455,8 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
   const double tau_term = tau > 0.0 ? tau * normal_length_bound(kind, x0, x1) * (1.0 + 4.0 * U) : 0.0;
   const double split_err = 4.0 * U * bb.max_abs;
 
-  // Bounds for the geometric steps (see the file comment and crossing_certificate):
-  //  * a difference vector D of computed positions is within 12 u M per coordinate of the exact
-  //    one (two positions at 4 u M, one subtraction of values <= 2M), so its dot product with any
-  //    d is within 12 sqrt3 u M |d| + gamma_3 2 sqrt3 M |d| < 32 u M |d| of the exact value; 48
-  //    leaves room for the rounding of the threshold itself;
-  //  * one coordinate of D: 12 u M, used for the axis tests (16 with room).
-  const double axis_gap = (tau + 16.0 * U * M) * (1.0 + 4.0 * U) + UNDERFLOW_FLOOR;
-  const double sat_gap = tau + 48.0 * U * M + UNDERFLOW_FLOOR;
+  // Bounds for the geometric steps (see separation_gaps and crossing_certificate).
+  const SeparationGaps gaps = separation_gaps(tau, M);
   // The computed distance is not a certified bound, so it only accepts (never excludes): up to
   // this much above tau it is treated as touching.
   const double dist_slack = 64.0 * U * M;
@@ -449,23 +486,11 @@ CcdResult run_ccd(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
     positions_at(q, iv.tb, xb);
     const int nd = differences(kind, xa, da);
     differences(kind, xb, db);
-    for (int ax = 0; ax < 3; ++ax) {
-      double lo = da[0][ax], hi = da[0][ax];
-      for (int k = 0; k < nd; ++k) {
-        lo = std::min({lo, da[k][ax], db[k][ax]});
-        hi = std::max({hi, da[k][ax], db[k][ax]});
-      }
-      if (lo > axis_gap || hi < -axis_gap) return true;
-    }
+    if (axes_separate(da, db, nd, gaps)) return true;
     // 2b. Separating axis along the closest-point direction at the midpoint.
     positions_at(q, 0.5 * (iv.ta + iv.tb), xm);
     cm = closest_at(kind, xm);
-    const Vec3& d = cm.direction;
-    const double dn = d.norm();
-    if (!(dn > 0.0)) return false;
-    double smin = std::numeric_limits<double>::infinity();
-    for (int k = 0; k < nd; ++k) smin = std::min({smin, da[k].dot(d), db[k].dot(d)});
-    return smin > sat_gap * dn * (1.0 + 8.0 * U);
+    return direction_separates(da, db, nd, cm.direction, gaps);
   };
 
   auto halves = [&](const Interval& iv, Interval& l, Interval& r) {
@@ -668,6 +693,25 @@ bool swept_boxes_apart(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil
     if (blo - ahi > limit || alo - bhi > limit) return true;
   }
   return false;
+}
+
+bool separating_axis_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                           double tolerance) {
+  double M = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    if (!x0[k].allFinite() || !x1[k].allFinite()) return false;
+    M = std::max({M, x0[k].cwiseAbs().maxCoeff(), x1[k].cwiseAbs().maxCoeff()});
+  }
+  // Steps 2a and 2b of the interval search on I = [0, 1], with the same thresholds: the
+  // positions at t = 0 and 1 are the inputs themselves, the midpoint is evaluated as there.
+  const SeparationGaps gaps = separation_gaps(tolerance > 0.0 ? tolerance : 0.0, M);
+  Vec3 da[4], db[4];
+  const int nd = differences(kind, x0, da);
+  differences(kind, x1, db);
+  if (axes_separate(da, db, nd, gaps)) return true;
+  CcdStencil xm;
+  for (int k = 0; k < 4; ++k) xm[k] = position(x0[k], x1[k], 0.5);
+  return direction_separates(da, db, nd, closest_at(kind, xm).direction, gaps);
 }
 
 }  // namespace shellcontract

@@ -1,6 +1,7 @@
 #include "shellcontract/collision/self_collision.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstring>
 
@@ -212,15 +213,27 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   CcdOptions ccd;
   ccd.tolerance = tol;
   ccd.tighten_toi = false;  // the response uses the contact data, not the time of impact
+  std::atomic<std::int64_t> separated{0};
   workers_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, m, DETECT_GRAIN / 8),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         CcdStencil s0, s1;
+                        std::int64_t axis_culls = 0;
                         for (std::size_t k = r.begin(); k < r.end(); ++k) {
                           const std::size_t i = survivors_[k];
                           const std::uint32_t pair = tests_[i];
                           const PairRecord& p = pairs_[pair];
                           gather(x0, x1, p.v, s0, s1);
+                          // Most survivors of the filter are neighbours apart within a common
+                          // plane: the separating-axis test settles them for less than a third
+                          // of the interval search's cost, with the same answer (ccd.hpp).
+                          if (separating_axis_culls(p.kind, s0, s1, tol)) {
+                            hit_[i] = 0;
+                            stale_[pair] = 0;
+                            free_[pair] = 1;
+                            ++axis_culls;
+                            continue;
+                          }
                           const CcdResult res = primitive_ccd(p.kind, s0, s1, ccd);
                           hit_[i] = res.hit;
                           stale_[pair] = 0;
@@ -234,6 +247,7 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
                           c.normal = res.normal;
                           c.side = res.side;
                         }
+                        separated.fetch_add(axis_culls, std::memory_order_relaxed);
                       });
   });
   // The hits in the order of tests_ (survivors_ is increasing), copied in parallel: each
@@ -250,6 +264,7 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   });
   stats.narrow_seconds += since(t0);
   stats.narrow_tests += static_cast<std::int64_t>(m);
+  stats.axis_culls += separated.load();
   stats.filter_tests += static_cast<std::int64_t>(n);
   if (count_stage) stats.pairs_filtered = static_cast<std::int64_t>(m);
 }

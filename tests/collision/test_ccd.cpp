@@ -210,6 +210,110 @@ TEST(SweptBoxes, NonFiniteInputIsNeverCulled) {
   }
 }
 
+// ------------------------------------------------------------------- separating axes
+
+/// A flat pair in the plane z = 0 (a rotated copy of it), moving in that plane: neighbours on a sheet,
+/// which the non-penetration filter cannot cull (the points are close to coplanar all the time).
+void flat_pair(std::mt19937& rng, CcdPrimitive kind, double scale, CcdStencil& x0, CcdStencil& x1) {
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Mat3 R = test::random_rotation(rng);
+  const double angle = 3.14159 * u(rng), length = 0.5 + 0.4 * u(rng);
+  const Vec3 shift(length * std::cos(angle), length * std::sin(angle), 0.0);
+  for (int k = 0; k < 4; ++k) {
+    const bool second = k >= (kind == CcdPrimitive::VertexFace ? 1 : 2);
+    const Vec3 p(0.5 * u(rng), 0.5 * u(rng), 0.0);
+    x0[k] = scale * R * (p + (second ? shift : Vec3::Zero()));
+    x1[k] = x0[k] + scale * R * Vec3(0.3 * u(rng), 0.3 * u(rng), 0.0);
+  }
+}
+
+TEST(SeparatingAxis, CullsOnlyPairsFartherThanTauThatTheIntervalSearchAlsoRejects) {
+  // Flat neighbour pairs of many sizes and tolerances. A culled pair must be farther than tau at
+  // every sampled time and be a miss for the interval search (ccd.hpp promises the same answer);
+  // the test must cull many pairs that the box test and the filter keep, and keep some.
+  std::mt19937 rng(808);
+  std::uniform_real_distribution<double> exponent(-4.0, 0.0);
+  int culled = 0, beyond_filter = 0;
+  const int n = 20000, samples = 16;
+  for (int trial = 0; trial < n; ++trial) {
+    const CcdPrimitive kind = KINDS[trial % 2];
+    const double scale = std::pow(10.0, exponent(rng));
+    const double tau = trial % 5 == 0 ? 0.0 : scale * std::pow(10.0, exponent(rng)) * 0.2;
+    CcdStencil x0, x1;
+    flat_pair(rng, kind, scale, x0, x1);
+    const bool culls = separating_axis_culls(kind, x0, x1, tau);
+    if (!culls) continue;
+    ++culled;
+    beyond_filter += !swept_boxes_apart(kind, x0, x1, tau) &&
+                     !nonpenetration_filter_culls(kind, x0, x1, tau);
+    for (int s = 0; s <= samples; ++s)
+      ASSERT_GT(distance_at(kind, x0, x1, double(s) / samples), tau)
+          << "trial " << trial << describe(x0, x1);
+    CcdOptions o;
+    o.tolerance = tau;
+    ASSERT_FALSE(primitive_ccd(kind, x0, x1, o).hit) << "trial " << trial << describe(x0, x1);
+  }
+  EXPECT_GT(culled, n / 4);
+  EXPECT_LT(culled, n - n / 10);
+  EXPECT_GT(beyond_filter, n / 10);
+  std::printf("  culled %d of %d, %d of them kept by the box test and the filter\n", culled, n,
+              beyond_filter);
+}
+
+TEST(SeparatingAxis, CoplanarForTheWholeStep) {
+  // Everything in the plane z = 0 for the whole step: the filter sees f == 0 and cannot cull.
+  const CcdStencil face = {Vec3::Zero(), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  CcdStencil x0 = face, x1 = face;
+  // The vertex slides along the hypotenuse's outside at distance 0.1: culled up to tau < 0.1.
+  const Vec3 out = Vec3(1, 1, 0).normalized() * 0.1;
+  x0[0] = Vec3(0.8, 0.2, 0) + out;
+  x1[0] = Vec3(0.2, 0.8, 0) + out;
+  EXPECT_FALSE(nonpenetration_filter_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
+  EXPECT_TRUE(separating_axis_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
+  EXPECT_TRUE(separating_axis_culls(CcdPrimitive::VertexFace, x0, x1, 0.09));
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::VertexFace, x0, x1, 0.11));
+  // The vertex crosses into the triangle in its plane: a real contact, never culled.
+  x1[0] = Vec3(0.2, 0.2, 0);
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
+  // Coplanar edges: parallel at distance 0.5, then crossing.
+  const CcdStencil e0 = {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 0.5, 0), Vec3(1, 0.5, 0)};
+  EXPECT_TRUE(separating_axis_culls(CcdPrimitive::EdgeEdge, e0, e0, 0.4));
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::EdgeEdge, e0, e0, 0.6));
+  CcdStencil e1 = e0;
+  e1[2] = Vec3(0.5, -0.5, 0);
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::EdgeEdge, e0, e1, 0.0));
+}
+
+TEST(SeparatingAxis, TouchingZeroMotionAndTheToleranceBoundary) {
+  // Static vertex above the triangle's interior at height h: distance h the whole step.
+  const CcdStencil face = {Vec3(0.25, 0.25, 0.5), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  EXPECT_TRUE(separating_axis_culls(CcdPrimitive::VertexFace, face, face, 0.0));
+  EXPECT_TRUE(separating_axis_culls(CcdPrimitive::VertexFace, face, face, 0.49));
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::VertexFace, face, face, 0.5));  // exactly tau
+  // Touching at t = 0 or at t = 1 is never culled.
+  CcdStencil x1 = face;
+  x1[0].z() = 0.0;
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::VertexFace, face, x1, 0.0));
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::VertexFace, x1, face, 0.0));
+  // A degenerate (zero-area) triangle and zero-length edges at distance 1 are still culled.
+  const CcdStencil sliver = {Vec3(0, 0, 1), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)};
+  EXPECT_TRUE(separating_axis_culls(CcdPrimitive::VertexFace, sliver, sliver, 0.5));
+  const CcdStencil points = {Vec3(0, 0, 0), Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(0, 1, 0)};
+  EXPECT_TRUE(separating_axis_culls(CcdPrimitive::EdgeEdge, points, points, 0.5));
+  EXPECT_FALSE(separating_axis_culls(CcdPrimitive::EdgeEdge, points, points, 1.0));
+}
+
+TEST(SeparatingAxis, NonFiniteInputIsNeverCulled) {
+  CcdStencil x0 = {Vec3(5, 5, 5), Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  CcdStencil x1 = x0;
+  ASSERT_TRUE(separating_axis_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    x1[3].y() = bad;
+    EXPECT_FALSE(separating_axis_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
+    x1[3].y() = 1.0;
+  }
+}
+
 // ----------------------------------------------------------------------- known answers
 
 TEST(VertexFaceCcd, VertexThroughTriangleCentreAtConstantSpeed) {

@@ -42,7 +42,10 @@ struct CollisionStepStats {
   std::int64_t pairs_broad = 0;       ///< after the broad phase (inflation delta + region margin)
   std::int64_t pairs_filtered = 0;    ///< left after the box cull and the filter (first round)
   std::int64_t filter_tests = 0;      ///< non-penetration filter evaluations, all passes
-  std::int64_t narrow_tests = 0;      ///< narrow-phase (cubic) tests run, all rounds
+  std::int64_t narrow_tests = 0;      ///< narrow-phase queries run, all rounds
+  /// narrow-phase queries that separating_axis_culls settled before the interval search (the
+  /// rest, narrow_tests - axis_culls, went through the coplanarity cubic's root isolation)
+  std::int64_t axis_culls = 0;
   std::int64_t contacts = 0;          ///< contacts found, all rounds
   int rounds = 0;                     ///< detection rounds run
   int broad_phase_calls = 0;          ///< broad phases run (one per step, see resolve)
