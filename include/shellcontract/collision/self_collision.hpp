@@ -121,9 +121,9 @@ class SelfCollision {
                    CollisionStepStats& stats);
 
   /// Filter and narrow phase with tolerance tol on the pairs listed in tests_[0, test_count_)
-  /// (indices into pairs_), in parallel; afterwards free_ and stale_ of those pairs are updated
-  /// and contacts_ holds their hits in the order of tests_ (so the result does not depend on the
-  /// threads).
+  /// (indices into pairs_), in parallel, one region for both stages; afterwards free_ and stale_
+  /// of those pairs are updated and contacts_ holds their hits in the order of tests_ (so the
+  /// result does not depend on the threads).
   void detect(const Positions& x0, const Positions& x1, double tol, CollisionStepStats& stats,
               bool count_stage);
 
@@ -134,8 +134,10 @@ class SelfCollision {
   /// Projects the last step's contacts on x1 once (see CollisionOptions::warm_start).
   void warm_start(Positions& x1, const Eigen::VectorXd& w) const;
 
-  /// Marks stale every pair with a vertex in moved_, then clears moved_.
-  void mark_moved_pairs_stale();
+  /// Marks stale every pair with a vertex in moved_ and clears moved_, then sets tests_ as
+  /// collect_tests(keep) does, in the same pass over the pairs.
+  template <class Keep>
+  void mark_moved_and_collect(Keep keep);
 
   /// Sets tests_[0, test_count_) to the pairs i with keep(i), in increasing order.
   template <class Keep>
@@ -155,11 +157,16 @@ class SelfCollision {
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
   std::vector<std::uint32_t> tests_;     ///< [0, test_count_): pairs to test in the next detect()
   std::size_t test_count_ = 0;
-  std::vector<std::uint32_t> survivors_; ///< tests_ entries the filter did not cull (a prefix)
-  std::vector<std::uint32_t> hit_list_;  ///< survivors_ entries the narrow phase hit (a prefix)
   std::vector<std::size_t> block_count_; ///< compact(): kept indices per block
-  std::vector<std::uint8_t> hit_;        ///< per tests_ entry: the narrow phase reported a hit
-  std::vector<Contact> found_;           ///< per tests_ entry: the contact, if hit_
+  /// One block of tests of detect(): what its task found (buffers reused between calls).
+  struct DetectBlock {
+    std::vector<std::uint32_t> kept;  ///< pairs the filter did not cull, in test order
+    std::vector<Contact> hits;        ///< narrow-phase hits, in test order
+    std::size_t survivors = 0;        ///< kept.size()
+    std::int64_t axis_culls = 0;      ///< survivors separating_axis_culls settled
+    double filter_seconds = 0.0, narrow_seconds = 0.0;  ///< the task's time in each stage
+  };
+  std::vector<DetectBlock> blocks_;
   std::vector<std::uint8_t> moved_;      ///< per vertex: moved by the response or the fail-safe
   std::vector<int> moved_list_;          ///< the vertices with moved_ set
   Positions region_lo_, region_hi_;      ///< per vertex, the box the response keeps it in
