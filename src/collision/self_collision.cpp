@@ -46,6 +46,8 @@ constexpr double WARM_START_SLIDE = 2.0;
 /// Tests per task of detect() (filter and narrow phase of one block): fixed, so the result never
 /// depends on the threads. Bear's first round has ~100k tests, later rounds a few thousand.
 constexpr std::size_t DETECT_BLOCK = 512;
+/// Pairs per task of the per-pair bookkeeping loops (records, stale marks).
+constexpr std::size_t PAIR_GRAIN = 4096;
 /// Indices per block of compact(): fixed, so the result never depends on the threads.
 constexpr std::size_t COMPACT_BLOCK = 8192;
 
@@ -121,9 +123,9 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                     options_.delta);
   });
   const auto t0 = Clock::now();
-  // One record per candidate, filled in parallel (each writes its own slot), in the same pass
-  // (one parallel region) that collects round 0's tests. Excluded pairs keep their slot but are
-  // never tested. The excluded and near lists are short (pairs within delta at rest) and sorted.
+  // One record per candidate, filled in parallel (each writes its own slot). Excluded pairs keep
+  // their slot but are never tested. The excluded and near lists are short (pairs within delta
+  // at rest) and sorted.
   const std::size_t nvf = candidates_.vertex_face.size();
   const std::size_t n = nvf + candidates_.edge_edge.size();
   pairs_.resize(n);
@@ -133,21 +135,28 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
   auto listed = [](const std::vector<std::array<int, 2>>& list, const std::array<int, 2>& pair) {
     return !list.empty() && std::binary_search(list.begin(), list.end(), pair);
   };
-  collect_tests([&](std::size_t i) {
-    PairRecord& p = pairs_[i];
-    const bool vf = i < nvf;
-    p.kind = vf ? CcdPrimitive::VertexFace : CcdPrimitive::EdgeEdge;
-    p.pair = vf ? candidates_.vertex_face[i] : candidates_.edge_edge[i - nvf];
-    p.v = stencil(p.kind, p.pair, topo_);
-    const bool excluded = listed(vf ? excluded_vf_ : excluded_ee_, p.pair);
-    role_[i] = excluded ? EXCLUDED : listed(vf ? near_vf_ : near_ee_, p.pair) ? NEAR : NORMAL;
-    // A pair the broad phase shows farther than delta apart over the whole step cannot come
-    // within delta: it is marked free without a test, until a response moves one of its
-    // vertices.
-    const bool close = vf ? candidates_.vertex_face_close[i] : candidates_.edge_edge_close[i - nvf];
-    stale_[i] = close && !excluded;
-    free_[i] = !stale_[i];
-    return round_test(i);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, PAIR_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
+                          PairRecord& p = pairs_[i];
+                          const bool vf = i < nvf;
+                          p.kind = vf ? CcdPrimitive::VertexFace : CcdPrimitive::EdgeEdge;
+                          p.pair = vf ? candidates_.vertex_face[i] : candidates_.edge_edge[i - nvf];
+                          p.v = stencil(p.kind, p.pair, topo_);
+                          const bool excluded = listed(vf ? excluded_vf_ : excluded_ee_, p.pair);
+                          role_[i] = excluded                                      ? EXCLUDED
+                                     : listed(vf ? near_vf_ : near_ee_, p.pair) ? NEAR
+                                                                                : NORMAL;
+                          // A pair the broad phase shows farther than delta apart over the whole
+                          // step cannot come within delta: it is marked free without a test,
+                          // until a response moves one of its vertices.
+                          const bool close = vf ? candidates_.vertex_face_close[i]
+                                                : candidates_.edge_edge_close[i - nvf];
+                          stale_[i] = close && !excluded;
+                          free_[i] = !stale_[i];
+                        }
+                      });
   });
   region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
   region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
@@ -343,9 +352,15 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
     moved_[static_cast<std::size_t>(v)] = 1;
     moved_list_.push_back(v);
   };
-  auto round_tests = [&](std::size_t i) { return round_test(i); };
-  auto failsafe_tests = [&](std::size_t i) { return failsafe_test(i); };
-  // broad_phase collected round 0's tests.
+  // Round 0 tests every pair not flagged far; later rounds the pairs a response push made
+  // stale. Pairs closer than delta at rest get no push (fail-safe only).
+  auto round_tests = [&](std::size_t i) { return (stale_[i] & (role_[i] == NORMAL)) != 0; };
+  // The fail-safe tests every pair not known to be free at its current positions (stale, hit in
+  // a round, or near at rest).
+  auto failsafe_tests = [&](std::size_t i) {
+    return ((stale_[i] | (free_[i] ^ 1)) & (role_[i] != EXCLUDED)) != 0;
+  };
+  if (options_.rounds > 0) collect_tests(round_tests);
   for (int round = 0; round < options_.rounds; ++round) {
     if (test_count_ == 0) break;
     detect(x0, x1, delta, stats, round == 0);

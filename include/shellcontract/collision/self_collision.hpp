@@ -114,10 +114,9 @@ class SelfCollision {
   };
 
   /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
-  /// marked, never tested) and collects round 0's tests (round_test) in the same pass. A pair is
-  /// stale unless the broad phase shows its swept boxes farther than delta apart
-  /// (CandidatePairs' close flags): then it is free already. The swept boxes of (x0, x1) grown
-  /// by margin / 2 become the regions the response keeps each vertex in.
+  /// marked, never tested). A pair is stale unless the broad phase shows its swept boxes farther
+  /// than delta apart (CandidatePairs' close flags): then it is free already. The swept boxes of
+  /// (x0, x1) grown by margin / 2 become the regions the response keeps each vertex in.
   void broad_phase(const Positions& x0, const Positions& x1, double margin,
                    CollisionStepStats& stats);
 
@@ -134,16 +133,6 @@ class SelfCollision {
 
   /// Projects the last step's contacts on x1 once (see CollisionOptions::warm_start).
   void warm_start(Positions& x1, const Eigen::VectorXd& w) const;
-
-  /// The detection rounds test every pair that is stale (round 0: every pair not flagged far;
-  /// later rounds: the pairs a response push moved), except the pairs closer than delta at rest,
-  /// which get no push (fail-safe only).
-  bool round_test(std::size_t i) const { return (stale_[i] & (role_[i] == NORMAL)) != 0; }
-  /// The fail-safe tests every pair not known to be free at its current positions (stale, hit in
-  /// a round, or near at rest).
-  bool failsafe_test(std::size_t i) const {
-    return ((stale_[i] | (free_[i] ^ 1)) & (role_[i] != EXCLUDED)) != 0;
-  }
 
   /// Marks stale every pair with a vertex in moved_ and clears moved_, then sets tests_ as
   /// collect_tests(keep) does, in the same pass over the pairs.
