@@ -329,13 +329,19 @@ TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) 
     SCOPED_TRACE("rounds " + std::to_string(rounds) + (warm ? ", warm start" : ""));
     std::vector<CollisionStepStats> stats;
     const std::vector<Positions> one = crush_sphere(1, rounds, warm, &stats);
-    std::int64_t contacts = 0, failsafe = 0;
+    std::int64_t contacts = 0, failsafe = 0, axis_culls = 0;
     int multi_round = 0;
     for (const CollisionStepStats& s : stats) {
       contacts += s.contacts;
       failsafe += s.failsafe_vertices;
       multi_round += s.rounds > 1;
+      axis_culls += s.axis_culls;
       EXPECT_EQ(s.broad_phase_calls, 1);
+      // Queries the separating-axis test settles are part of the narrow phase's queries, which
+      // are the filter's survivors, which are part of its tests.
+      EXPECT_LE(s.axis_culls, s.narrow_tests);
+      EXPECT_LE(s.narrow_tests, s.filter_tests);
+      EXPECT_LE(s.pairs_filtered, s.pairs_broad);
       // The reported collision time is the whole call, which contains the disjoint stage
       // intervals (the factor only absorbs the rounding of the sums of durations to double).
       EXPECT_GE(s.seconds * (1.0 + 1e-12),
@@ -345,6 +351,7 @@ TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) 
     // The scenario exercises every path: response rounds (incremental after round 0) and the
     // fail-safe (1 round is too few to resolve every crossing).
     EXPECT_GT(contacts, 0);
+    EXPECT_GT(axis_culls, 0);
     if (rounds > 1) {
       EXPECT_GT(multi_round, 0);
     } else {
