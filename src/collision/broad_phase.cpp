@@ -727,7 +727,8 @@ void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
     const std::uint32_t b = start[c], e = start[c + 1];
     if (e - b < 2) continue;
     const std::size_t k = e - b;
-    if (cell.flags.size() < k) {
+    // The portable loop may have sized the shared buffers but not these.
+    if (cell.flags.size() < k || cell.dlo[0].size() < k) {
       for (std::size_t d = 0; d < 3; ++d) {
         cell.dlo[d].resize(k);
         cell.dhi[d].resize(k);
@@ -955,7 +956,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
       const std::uint32_t b = start[c], e = start[c + 1];
       if (e - b < 2) continue;
       const std::size_t k = e - b;
-      if (cell.flags.size() < k) {
+      // The AVX-512 loop may have sized the shared buffers but not these.
+      if (cell.flags.size() < k || cell.lo[0].size() < k || cell.mask.size() < k) {
         for (std::size_t d = 0; d < 3; ++d) {
           cell.lo[d].resize(k);
           cell.hi[d].resize(k);

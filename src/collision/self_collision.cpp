@@ -187,7 +187,6 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
       DetectBlock& out = blocks_[b];
       out.hits.clear();
-      out.survivors = 0;
       out.axis_culls = 0;
       const std::size_t begin = b * DETECT_BLOCK, end = std::min(n, begin + DETECT_BLOCK);
       const auto t0 = Clock::now();
@@ -240,7 +239,6 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
         c.normal = res.normal;
         c.side = res.side;
       }
-      out.survivors = out.kept.size();
       out.filter_seconds = std::chrono::duration<double>(t1 - t0).count();
       out.narrow_seconds = since(t1);
     });
@@ -251,7 +249,7 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   for (std::size_t b = 0; b < blocks; ++b) {
     const DetectBlock& block = blocks_[b];
     contacts_.insert(contacts_.end(), block.hits.begin(), block.hits.end());
-    m += block.survivors;
+    m += block.kept.size();
     stats.axis_culls += block.axis_culls;
     filter_cpu += block.filter_seconds;
     narrow_cpu += block.narrow_seconds;

@@ -599,6 +599,9 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   const TriMesh two = combine(test::icosphere(2), test::icosphere(2));
   std::int64_t compared = 0, far_flags = 0, close_flags = 0;
   int grid_runs = 0;
+  // One object whose loop alternates call by call: each loop must size its own cell buffers,
+  // whatever the other left behind in the shared scratch.
+  CandidatePairs switching;
   for (const TriMesh* m : {&sphere, &two}) {
     const CollisionTopology topo = make_collision_topology(m->faces, static_cast<int>(m->x.rows()));
     for (double scale : {0.0, 0.01, 0.05, 0.12}) {
@@ -625,6 +628,11 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
           EXPECT_TRUE(fast.edge_edge == portable.edge_edge) << where;
           EXPECT_TRUE(fast.vertex_face_close == portable.vertex_face_close) << where;
           EXPECT_TRUE(fast.edge_edge_close == portable.edge_edge_close) << where;
+          switching.scratch.grid_isa =
+              grid_runs % 2 ? detail::GridIsa::Portable : detail::GridIsa::Auto;
+          find_candidates(x0, x1, topo, inflation, switching, nullptr, BroadPhaseMethod::Grid, far);
+          EXPECT_TRUE(switching.vertex_face == portable.vertex_face) << where;
+          EXPECT_TRUE(switching.edge_edge_close == portable.edge_edge_close) << where;
           // Exact overlaps, never more than the portable loop's float ones.
           EXPECT_LE(fast_stats.box_overlaps, portable_stats.box_overlaps) << where;
           compared += static_cast<std::int64_t>(fast.vertex_face.size() + fast.edge_edge.size());

@@ -162,7 +162,6 @@ class SelfCollision {
   struct DetectBlock {
     std::vector<std::uint32_t> kept;  ///< pairs the filter did not cull, in test order
     std::vector<Contact> hits;        ///< narrow-phase hits, in test order
-    std::size_t survivors = 0;        ///< kept.size()
     std::int64_t axis_culls = 0;      ///< survivors separating_axis_culls settled
     double filter_seconds = 0.0, narrow_seconds = 0.0;  ///< the task's time in each stage
   };
