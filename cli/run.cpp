@@ -108,7 +108,8 @@ std::string csv_row(const FrameMetrics& m) {
 struct CollisionTotals {
   double no_culling = 0, broad = 0, filtered = 0, tests = 0, axis_culls = 0, contacts = 0,
          failsafe = 0;
-  double broad_calls = 0, filter_tests = 0, rounds = 0;
+  double broad_calls = 0, filter_tests = 0, rounds = 0, speculative = 0, escaped = 0,
+         background_s = 0;
   double broad_s = 0, filter_s = 0, narrow_s = 0, response_s = 0, collision_s = 0, solve_s = 0,
          step_s = 0;
   void add(const FrameMetrics& m) {
@@ -123,6 +124,9 @@ struct CollisionTotals {
     broad_calls += c.broad_phase_calls;
     filter_tests += static_cast<double>(c.filter_tests);
     rounds += c.rounds;
+    speculative += c.speculative;
+    escaped += static_cast<double>(c.escaped_vertices);
+    background_s += c.background_seconds;
     broad_s += c.broad_seconds;
     filter_s += c.filter_seconds;
     narrow_s += c.narrow_seconds;
@@ -142,6 +146,9 @@ struct CollisionTotals {
         .add("contacts_per_step", contacts / n).add("failsafe_vertices_total", failsafe)
         .add("broad_phase_calls_per_step", broad_calls / n).add("filter_tests_per_step", filter_tests / n)
         .add("rounds_per_step", rounds / n)
+        .add("speculative_broad_phase_steps", speculative)
+        .add("escaped_vertices_per_speculative_step", speculative > 0 ? escaped / speculative : 0.0)
+        .add("background_broad_phase_ms_per_step", 1e3 * background_s / n)
         .add("broad_phase_ms_per_step", 1e3 * broad_s / n).add("filter_ms_per_step", 1e3 * filter_s / n)
         .add("narrow_phase_ms_per_step", 1e3 * narrow_s / n).add("response_ms_per_step", 1e3 * response_s / n)
         .add("collision_ms_per_step", 1e3 * collision_s / n)
@@ -157,7 +164,8 @@ int command_run(int argc, char** argv) {
                                                      bending = "isometric", pressure_model = "energy",
                                                      mass = "area";
   SimOptions opt;
-  std::string collisions = "on", validate = "off", order = "sequential", warm_start = "on";
+  std::string collisions = "on", validate = "off", order = "sequential", warm_start = "on",
+              speculative = "on";
   std::string aniso = "none", regions_arg = "auto", inward = "force", fiber = "centre";
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
@@ -244,6 +252,10 @@ int command_run(int argc, char** argv) {
       ("warm-start", po::value(&warm_start)->default_value(warm_start),
        "on: push along the previous step's contacts before detection (resting contact, fewer "
        "detections); off: every step's contacts come from detection alone")
+      ("speculative-broad-phase", po::value(&speculative)->default_value(speculative),
+       "on: the collision broad phase starts on predicted positions on a spare thread while "
+       "the solve runs, and is completed for the actual ones (the same candidate pairs); off: "
+       "it runs after the solve")
       ("validate", po::value(&validate)->default_value(validate),
        "CGAL self-intersection check: off | end | every-frame (exit code 4 if new ones)")
       ("fields", po::value(&fields_prefix),
@@ -281,6 +293,9 @@ int command_run(int argc, char** argv) {
     if (warm_start != "on" && warm_start != "off")
       throw UsageError("--warm-start expects on or off, got '" + warm_start + "'");
     opt.collision.warm_start = warm_start == "on";
+    if (speculative != "on" && speculative != "off")
+      throw UsageError("--speculative-broad-phase expects on or off, got '" + speculative + "'");
+    opt.collision.speculative = speculative == "on";
     opt.collision.threads = opt.solver.threads;
     opt.validate = parse_validate(validate);
     opt.frame_energies = !log_path.empty();  // only the CSV log reports them
@@ -383,7 +398,8 @@ int command_run(int argc, char** argv) {
           .add("lambda", opt.material_params.lambda).add("bending", bending)
           .add("k_b", opt.solver.k_bending).add("mass", mass).add("density", opt.density)
           .add("stop_volume_ratio", opt.stop_volume_ratio).add("delta", opt.collision.delta)
-          .add("collision_rounds", opt.collision.rounds).add("warm_start", warm_start);
+          .add("collision_rounds", opt.collision.rounds).add("warm_start", warm_start)
+          .add("speculative_broad_phase", speculative);
       JsonObject summary;
       summary.add("status", status).add("failure", failure).add("input", input).add("output", output)
           .add("vertices", report.vertices).add("faces", report.faces)

@@ -798,6 +798,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   out.edge_edge.clear();
   out.vertex_face_close.clear();
   out.edge_edge_close.clear();
+  s.grid_kept = false;
   if (nv == 0) return 0;
   if (nboxes >= GRID_MAX_BOXES) return -1;
   const GridPrimitives prim{topo, s, nv, nf};
@@ -925,6 +926,11 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
                     });
     }
   });
+
+  s.grid_kept = true;
+  s.grid_origin = g.origin;
+  s.grid_inv_h = g.inv_h;
+  s.grid_dims = g.dims;
 
   // Per cell: gather the items (float boxes, vertex ids, flags) into structure-of-arrays
   // buffers, build the candidate masks (cell_masks), and confirm the rare survivors with the
@@ -1118,24 +1124,73 @@ CollisionTopology make_collision_topology(const Faces& faces, int num_vertices) 
   return topo;
 }
 
+double far_gap_threshold(const Positions& x0, const Positions& x1, double inflation,
+                         double far_distance) {
+  // A pair is flagged far if on some axis the gap g between its two (inflated, rounded) boxes
+  // exceeds far_gap. Each box bound is fl(c -+ inflation) for an exact coordinate c with
+  // |c| <= M, off by at most u (M + inflation), and the computed difference adds u (2M +
+  // 2 inflation) (1 + u); so g > far_gap = (far - 2 inflation) + 8 u (M + inflation + far),
+  // itself rounded a few times (a few u (far + 2 inflation) more), leaves the exact gap of the
+  // boxes before inflation above `far`.
+  if (!(far_distance >= 0.0) || !std::isfinite(far_distance))
+    return std::numeric_limits<double>::infinity();
+  const double m =
+      x0.rows() > 0 ? std::max(x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff()) : 0.0;
+  constexpr double u = std::numeric_limits<double>::epsilon() / 2.0;
+  return (far_distance - 2.0 * inflation) + 8.0 * u * (m + inflation + far_distance);
+}
+
+bool find_candidates_in_vertex_boxes(const std::vector<detail::GridVertexBox>& boxes,
+                                     const CollisionTopology& topo, CandidatePairs& out) {
+  if (boxes.size() != static_cast<std::size_t>(topo.num_vertices))
+    throw UsageError("broad phase: " + std::to_string(boxes.size()) + " vertex boxes for " +
+                     std::to_string(topo.num_vertices) + " vertices");
+  out.scratch.grid_vertex_boxes = boxes;
+  if (grid_pairs(topo, std::numeric_limits<double>::infinity(), out) >= 0) return true;
+  out.scratch.grid_kept = false;
+  return false;
+}
+
+void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
+                     const detail::GridVertexBox& box, std::vector<std::uint32_t>& out) {
+  const BroadPhaseScratch& s = pairs.scratch;
+  if (!s.grid_kept) throw UsageError("query_kept_grid: no grid is kept");
+  Grid g;
+  g.origin = s.grid_origin;
+  g.inv_h = s.grid_inv_h;
+  g.dims = s.grid_dims;
+  const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
+  const GridPrimitives prim{topo, s, nv, static_cast<std::size_t>(topo.faces.rows())};
+  std::array<std::size_t, 3> lo{}, hi{};
+  for (std::size_t d = 0; d < 3; ++d) {
+    lo[d] = g.coord(box.lo[d], d);
+    hi[d] = g.coord(box.hi[d], d);
+  }
+  // A stored box meets the query in every cell of the intersection of their cell ranges (coord
+  // is monotone); it is reported in the first of them, where on each axis the cell is the stored
+  // box's first (its entry flag) or the query's first.
+  const std::size_t sy = g.dims[0], sz = g.dims[0] * g.dims[1];
+  for (std::size_t z = lo[2]; z <= hi[2]; ++z)
+    for (std::size_t y = lo[1]; y <= hi[1]; ++y)
+      for (std::size_t x = lo[0]; x <= hi[0]; ++x) {
+        const std::size_t c = z * sz + y * sy + x;
+        const std::uint32_t query_first =
+            (x == lo[0] ? 1u : 0u) | (y == lo[1] ? 2u : 0u) | (z == lo[2] ? 4u : 0u);
+        for (std::uint32_t k = s.cell_start[c]; k < s.cell_start[c + 1]; ++k) {
+          const std::uint32_t tag = s.cell_entries[k];
+          if (((tag | query_first) & GRID_ALL_FIRST) != GRID_ALL_FIRST) continue;
+          const std::uint32_t gid = tag >> 3;
+          if (overlap(box, prim.box(prim.ids(gid)))) out.push_back(gid);
+        }
+      }
+}
+
 void find_candidates(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
                      double inflation, CandidatePairs& out, BroadPhaseStats* stats,
                      BroadPhaseMethod method, double far_distance) {
   const auto start = std::chrono::steady_clock::now();
   check_inputs(x0, x1, topo, inflation);
-  // Grid: a pair is flagged far if on some axis the gap g between its two (inflated, rounded)
-  // boxes exceeds far_gap. Each box bound is fl(c -+ inflation) for an exact coordinate c with
-  // |c| <= M, off by at most u (M + inflation), and the computed difference adds u (2M +
-  // 2 inflation) (1 + u); so g > far_gap = (far - 2 inflation) + 8 u (M + inflation + far),
-  // itself rounded a few times (a few u (far + 2 inflation) more), leaves the exact gap of the
-  // boxes before inflation above `far`.
-  double far_gap = std::numeric_limits<double>::infinity();
-  if (far_distance >= 0.0 && std::isfinite(far_distance)) {
-    const double m =
-        x0.rows() > 0 ? std::max(x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff()) : 0.0;
-    constexpr double u = std::numeric_limits<double>::epsilon() / 2.0;
-    far_gap = (far_distance - 2.0 * inflation) + 8.0 * u * (m + inflation + far_distance);
-  }
+  const double far_gap = far_gap_threshold(x0, x1, inflation, far_distance);
   // Grid keeps only vertex boxes (GridVertexBox); the others share BroadPhaseBox.
   if (method == BroadPhaseMethod::Grid)
     build_grid_vertex_boxes(x0, x1, inflation, out.scratch.grid_vertex_boxes);

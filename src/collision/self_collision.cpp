@@ -2,14 +2,17 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include "shellcontract/collision/ccd.hpp"
 #include "shellcontract/collision/cull_batch.hpp"
+#include "shellcontract/core/error.hpp"
 
 namespace shellcontract {
 namespace {
@@ -42,6 +45,20 @@ constexpr double RESPONSE_FACTOR = 2.0;
 /// normal no longer describes the pair. Measured on bear (default run, 200 frames, contacts
 /// detected per step): no warm start 10,160; limit 0.5: 5,224; 1: 4,758; 2: 4,659; none: 4,698.
 constexpr double WARM_START_SLIDE = 2.0;
+
+/// Speculative broad phase (SelfCollision::predict): the skin of a vertex's predicted box is
+/// SKIN_MIN delta plus SKIN_GROWTH times its prediction error (max norm) of the last step.
+/// Measured on bear (default run, prediction = guess + last correction, before the warm start
+/// was added to it): the error has median 1e-5 and 99th percentile 1-2e-4 per step, with a tail
+/// to 1e-3 at the contacts, and the same vertices keep large errors from step to step. A fixed
+/// skin of 2.5 delta left 59 vertices per step outside their boxes (5 delta: 8, for a grid
+/// that costs 30% more); 1.5 delta plus 4 times the last error, 9 (mean skin 2.2 delta).
+constexpr double SKIN_MIN = 1.5;
+constexpr double SKIN_GROWTH = 4.0;
+/// If more than ESCAPE_LIMIT vertices, or this fraction of them if more, left their predicted
+/// boxes, the queries would approach a full broad phase: resolve runs the plain one.
+constexpr double ESCAPE_LIMIT = 64.0;
+constexpr double ESCAPE_FRACTION = 1.0 / 32.0;
 
 /// Tests per task of detect() (filter and narrow phase of one block): fixed, so the result never
 /// depends on the threads. Bear's first round has ~100k tests, later rounds a few thousand.
@@ -80,6 +97,7 @@ void gather(const Positions& x0, const Positions& x1, const std::array<int, 4>& 
 
 struct SelfCollision::Workers {
   tbb::task_arena arena;
+  tbb::task_group background;  ///< the speculative broad phase (predict)
   explicit Workers(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
 };
 
@@ -113,7 +131,295 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
   moved_.assign(static_cast<std::size_t>(rest.rows()), 0);
 }
 
-SelfCollision::~SelfCollision() = default;
+SelfCollision::~SelfCollision() {
+  if (!spec_pending_) return;
+  try {
+    workers_->arena.execute([&] { workers_->background.wait(); });
+  } catch (...) {
+    // The task's own failure does not matter any more; it must only not outlive the members.
+  }
+}
+
+SelfCollision::PairRole SelfCollision::rest_role(CcdPrimitive kind,
+                                                 const std::array<int, 2>& pair) const {
+  auto listed = [&](const std::vector<std::array<int, 2>>& list) {
+    return !list.empty() && std::binary_search(list.begin(), list.end(), pair);
+  };
+  const bool vf = kind == CcdPrimitive::VertexFace;
+  if (listed(vf ? excluded_vf_ : excluded_ee_)) return EXCLUDED;
+  if (listed(vf ? near_vf_ : near_ee_)) return NEAR;
+  return NORMAL;
+}
+
+SelfCollision::PairRole SelfCollision::fill_record(std::size_t i, std::size_t nvf) {
+  PairRecord& p = pairs_[i];
+  const bool vf = i < nvf;
+  p.kind = vf ? CcdPrimitive::VertexFace : CcdPrimitive::EdgeEdge;
+  p.pair = vf ? candidates_.vertex_face[i] : candidates_.edge_edge[i - nvf];
+  p.v = stencil(p.kind, p.pair, topo_);
+  return rest_role(p.kind, p.pair);
+}
+
+std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>>
+SelfCollision::candidate_pairs() const {
+  std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>> out;
+  for (std::size_t i = 0; i < pairs_.size(); ++i) {
+    if (i < role_.size() && role_[i] == NOT_CANDIDATE) continue;
+    (pairs_[i].kind == CcdPrimitive::VertexFace ? out.first : out.second).push_back(pairs_[i].pair);
+  }
+  std::sort(out.first.begin(), out.first.end());
+  std::sort(out.second.begin(), out.second.end());
+  return out;
+}
+
+void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
+                            const Eigen::VectorXd& w) {
+  if (!options_.speculative || options_.method != BroadPhaseMethod::Grid) return;
+  if (x0.rows() != topo_.num_vertices || x_guess.rows() != topo_.num_vertices ||
+      w.size() != topo_.num_vertices)
+    throw UsageError("SelfCollision::predict: position or mass arrays do not match the mesh");
+  if (spec_pending_) {  // a prediction resolve never used: wait for it, then replace it
+    spec_pending_ = false;
+    workers_->arena.execute([&] { workers_->background.wait(); });
+  }
+  const Eigen::Index n = x0.rows();
+  const double delta = options_.delta;
+  spec_x0_ = x0;
+  spec_guess_ = x_guess;
+  spec_pred_ = x_guess;
+  if (correction_.rows() == n) spec_pred_ += correction_;
+  if (options_.warm_start) warm_start(spec_pred_, w);
+  if (skin_.size() != n) skin_ = Eigen::VectorXd::Constant(n, SKIN_MIN * delta);
+  const double inflation = delta + options_.region_margin * delta;
+  spec_boxes_.resize(static_cast<std::size_t>(n));
+  for (Eigen::Index v = 0; v < n; ++v) {
+    detail::GridVertexBox& b = spec_boxes_[static_cast<std::size_t>(v)];
+    for (Eigen::Index d = 0; d < 3; ++d) {
+      const double a = x0(v, d), c = spec_pred_(v, d);
+      b.lo[static_cast<std::size_t>(d)] = std::min(a, c) - inflation - skin_(v);
+      b.hi[static_cast<std::size_t>(d)] = std::max(a, c) + inflation + skin_(v);
+    }
+  }
+  // Non-finite predictions (a blow-up the simulator will report) make no grid: plain path.
+  if (!spec_pred_.allFinite()) return;
+  spec_pending_ = true;
+  spec_ok_ = false;
+  workers_->arena.enqueue(workers_->background.defer([this] { run_speculation(); }));
+}
+
+void SelfCollision::run_speculation() {
+  const auto t0 = Clock::now();
+  spec_ok_ = find_candidates_in_vertex_boxes(spec_boxes_, topo_, candidates_);
+  if (spec_ok_) {
+    const std::size_t nvf = candidates_.vertex_face.size();
+    const std::size_t n = nvf + candidates_.edge_edge.size();
+    pairs_.resize(n);
+    base_role_.resize(n);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, PAIR_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t i = r.begin(); i < r.end(); ++i)
+                          base_role_[i] = fill_record(i, nvf);
+                      });
+  }
+  spec_seconds_ = since(t0);
+}
+
+bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x1, double margin,
+                                         CollisionStepStats& stats) {
+  const auto t0 = Clock::now();
+  spec_pending_ = false;
+  workers_->arena.execute([&] { workers_->background.wait(); });
+  stats.background_seconds = spec_seconds_;
+  const Eigen::Index nv = x0.rows();
+  const std::size_t nvs = static_cast<std::size_t>(nv);
+  const double inflation = options_.delta + margin;
+  // The actual boxes (the arithmetic of find_candidates), which vertices left their predicted
+  // boxes, and the skins of the next prediction (the end positions after the warm start are
+  // what was predicted).
+  exact_boxes_.resize(nvs);
+  escaped_.assign(nvs, 0);
+  std::size_t escaped = 0;
+  for (Eigen::Index v = 0; v < nv; ++v) {
+    const std::size_t i = static_cast<std::size_t>(v);
+    detail::GridVertexBox& e = exact_boxes_[i];
+    const detail::GridVertexBox& p = spec_boxes_[i];
+    bool inside = true;
+    double error = 0.0;
+    for (Eigen::Index d = 0; d < 3; ++d) {
+      const std::size_t k = static_cast<std::size_t>(d);
+      const double a = x0(v, d), c = x1(v, d);
+      e.lo[k] = std::min(a, c) - inflation;
+      e.hi[k] = std::max(a, c) + inflation;
+      inside = inside && p.lo[k] <= e.lo[k] && e.hi[k] <= p.hi[k];
+      error = std::max(error, std::abs(c - spec_pred_(v, d)));
+    }
+    escaped_[i] = !inside;
+    escaped += !inside;
+    skin_(v) = SKIN_MIN * options_.delta + SKIN_GROWTH * (std::isfinite(error) ? error : 0.0);
+  }
+  if (!spec_ok_ || (x0.array() != spec_x0_.array()).any() ||
+      static_cast<double>(escaped) >
+          std::max(ESCAPE_LIMIT, ESCAPE_FRACTION * static_cast<double>(nvs)))
+    return false;
+
+  // The grid's pairs of two primitives inside their predicted boxes whose actual boxes overlap
+  // are exactly find_candidates' pairs of such primitives (containment keeps every overlap).
+  // Pairs with a vertex outside are left out here and found by the queries below.
+  const double far_gap = far_gap_threshold(x0, x1, inflation, options_.delta);
+  const std::size_t n_spec = pairs_.size();
+  role_.resize(n_spec);
+  stale_.resize(n_spec);
+  free_.resize(n_spec);
+  const std::size_t blocks = (n_spec + PAIR_GRAIN - 1) / PAIR_GRAIN;
+  block_kept_.assign(blocks, 0);
+  auto box_of = [&](const std::array<int, 4>& v, int first, int count) {
+    detail::GridVertexBox b = exact_boxes_[static_cast<std::size_t>(v[static_cast<std::size_t>(first)])];
+    for (int k = first + 1; k < first + count; ++k) {
+      const detail::GridVertexBox& q = exact_boxes_[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
+      for (std::size_t d = 0; d < 3; ++d) {
+        b.lo[d] = std::min(b.lo[d], q.lo[d]);
+        b.hi[d] = std::max(b.hi[d], q.hi[d]);
+      }
+    }
+    return b;
+  };
+  auto overlap = [](const detail::GridVertexBox& a, const detail::GridVertexBox& b) {
+    return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] &&
+           b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
+  };
+  auto far = [&](const detail::GridVertexBox& a, const detail::GridVertexBox& b) {
+    return b.lo[0] - a.hi[0] > far_gap || a.lo[0] - b.hi[0] > far_gap ||
+           b.lo[1] - a.hi[1] > far_gap || a.lo[1] - b.hi[1] > far_gap ||
+           b.lo[2] - a.hi[2] > far_gap || a.lo[2] - b.hi[2] > far_gap;
+  };
+  // Sets the slots of pair i from its role and its two actual boxes.
+  auto classify = [&](std::size_t i, PairRole role, const detail::GridVertexBox& a,
+                      const detail::GridVertexBox& b) {
+    role_[i] = role;
+    stale_[i] = role != EXCLUDED && !far(a, b);
+    free_[i] = !stale_[i];
+  };
+  workers_->arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t blk) {
+      std::size_t kept = 0;
+      const std::size_t end = std::min(n_spec, (blk + 1) * PAIR_GRAIN);
+      for (std::size_t i = blk * PAIR_GRAIN; i < end; ++i) {
+        const PairRecord& p = pairs_[i];
+        const std::array<int, 4>& v = p.v;
+        const bool out = escaped_[static_cast<std::size_t>(v[0])] |
+                         escaped_[static_cast<std::size_t>(v[1])] |
+                         escaped_[static_cast<std::size_t>(v[2])] |
+                         escaped_[static_cast<std::size_t>(v[3])];
+        const int split = p.kind == CcdPrimitive::VertexFace ? 1 : 2;
+        const detail::GridVertexBox a = box_of(v, 0, split), b = box_of(v, split, 4 - split);
+        if (out || !overlap(a, b)) {
+          role_[i] = NOT_CANDIDATE;
+          stale_[i] = 0;
+          free_[i] = 1;
+          continue;
+        }
+        classify(i, static_cast<PairRole>(base_role_[i]), a, b);
+        ++kept;
+      }
+      block_kept_[blk] = kept;
+    });
+  });
+  std::size_t kept = 0;
+  for (const std::size_t k : block_kept_) kept += k;
+
+  // The primitives with a vertex outside its predicted box: each against the grid's primitives
+  // without one (whose actual boxes are inside their predicted ones, so the query sees every
+  // actual overlap), then against each other by a sweep along x. Serial: a few hundred queries.
+  const std::size_t nf = static_cast<std::size_t>(topo_.faces.rows());
+  const std::size_t ne = static_cast<std::size_t>(topo_.edges.rows());
+  auto ids = [&](std::uint32_t gid) -> std::array<int, 3> {
+    if (gid < nvs) return {static_cast<int>(gid), -1, -1};
+    if (gid < nvs + nf) {
+      const Eigen::Index f = static_cast<Eigen::Index>(gid - nvs);
+      return {topo_.faces(f, 0), topo_.faces(f, 1), topo_.faces(f, 2)};
+    }
+    const Eigen::Index e = static_cast<Eigen::Index>(gid - nvs - nf);
+    return {topo_.edges(e, 0), topo_.edges(e, 1), -2};
+  };
+  auto corners = [](const std::array<int, 3>& v) { return v[1] < 0 ? 1 : v[2] < 0 ? 2 : 3; };
+  auto outside = [&](std::uint32_t gid) {
+    const std::array<int, 3> v = ids(gid);
+    for (int k = 0; k < corners(v); ++k)
+      if (escaped_[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])]) return true;
+    return false;
+  };
+  auto prim_box = [&](std::uint32_t gid) {
+    const std::array<int, 3> v = ids(gid);
+    return box_of({v[0], v[1], v[2], 0}, 0, corners(v));
+  };
+  escaped_prims_.clear();
+  for (std::uint32_t g = 0; g < nvs + nf + ne; ++g)
+    if (outside(g)) escaped_prims_.push_back(g);
+  // Appends the pair of primitives a, b (any order) if they are a VF or EE pair sharing no
+  // vertex whose actual boxes overlap.
+  auto consider = [&](std::uint32_t a, std::uint32_t b) {
+    const bool a_vertex = a < nvs, b_vertex = b < nvs;
+    const bool a_face = !a_vertex && a < nvs + nf, b_face = !b_vertex && b < nvs + nf;
+    const bool a_edge = a >= nvs + nf, b_edge = b >= nvs + nf;
+    std::array<int, 2> pair;
+    CcdPrimitive kind;
+    if (a_vertex && b_face) {
+      kind = CcdPrimitive::VertexFace;
+      pair = {static_cast<int>(a), static_cast<int>(b - nvs)};
+    } else if (a_face && b_vertex) {
+      kind = CcdPrimitive::VertexFace;
+      pair = {static_cast<int>(b), static_cast<int>(a - nvs)};
+    } else if (a_edge && b_edge) {
+      kind = CcdPrimitive::EdgeEdge;
+      const int ea = static_cast<int>(a - nvs - nf), eb = static_cast<int>(b - nvs - nf);
+      pair = {std::min(ea, eb), std::max(ea, eb)};
+    } else {
+      return;
+    }
+    const std::array<int, 3> va = ids(a), vb = ids(b);
+    for (int i = 0; i < corners(va); ++i)
+      for (int j = 0; j < corners(vb); ++j)
+        if (va[static_cast<std::size_t>(i)] == vb[static_cast<std::size_t>(j)]) return;
+    const detail::GridVertexBox ba = prim_box(a), bb = prim_box(b);
+    if (!overlap(ba, bb)) return;
+    const std::size_t i = pairs_.size();
+    PairRecord& p = pairs_.emplace_back();
+    p.kind = kind;
+    p.pair = pair;
+    p.v = stencil(kind, pair, topo_);
+    role_.push_back(0);
+    stale_.push_back(0);
+    free_.push_back(0);
+    classify(i, rest_role(kind, pair), ba, bb);
+    ++kept;
+  };
+  for (const std::uint32_t a : escaped_prims_) {
+    query_hits_.clear();
+    query_kept_grid(candidates_, topo_, prim_box(a), query_hits_);
+    for (const std::uint32_t b : query_hits_)
+      if (!outside(b)) consider(a, b);
+  }
+  // Sweep and prune along x over the escaped primitives (sorted by lower x bound, then id).
+  std::vector<std::pair<double, std::uint32_t>>& order = sweep_order_;
+  order.clear();
+  for (const std::uint32_t a : escaped_prims_) order.emplace_back(prim_box(a).lo[0], a);
+  std::sort(order.begin(), order.end());
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const double hi = prim_box(order[i].second).hi[0];
+    for (std::size_t j = i + 1; j < order.size() && order[j].first <= hi; ++j)
+      consider(order[i].second, order[j].second);
+  }
+
+  region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
+  region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
+  stats.speculative = 1;
+  stats.escaped_vertices = static_cast<std::int64_t>(escaped);
+  stats.broad_seconds += since(t0);
+  ++stats.broad_phase_calls;
+  stats.pairs_no_culling = topo_.all_vertex_face_pairs + topo_.all_edge_edge_pairs;
+  stats.pairs_broad = static_cast<std::int64_t>(kept);
+  return true;
+}
 
 void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double margin,
                                 CollisionStepStats& stats) {
@@ -132,28 +438,18 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
   role_.resize(n);
   stale_.resize(n);
   free_.resize(n);
-  auto listed = [](const std::vector<std::array<int, 2>>& list, const std::array<int, 2>& pair) {
-    return !list.empty() && std::binary_search(list.begin(), list.end(), pair);
-  };
   workers_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, PAIR_GRAIN),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                          PairRecord& p = pairs_[i];
-                          const bool vf = i < nvf;
-                          p.kind = vf ? CcdPrimitive::VertexFace : CcdPrimitive::EdgeEdge;
-                          p.pair = vf ? candidates_.vertex_face[i] : candidates_.edge_edge[i - nvf];
-                          p.v = stencil(p.kind, p.pair, topo_);
-                          const bool excluded = listed(vf ? excluded_vf_ : excluded_ee_, p.pair);
-                          role_[i] = excluded                                      ? EXCLUDED
-                                     : listed(vf ? near_vf_ : near_ee_, p.pair) ? NEAR
-                                                                                : NORMAL;
+                          const PairRole role = fill_record(i, nvf);
+                          role_[i] = role;
                           // A pair the broad phase shows farther than delta apart over the whole
                           // step cannot come within delta: it is marked free without a test,
                           // until a response moves one of its vertices.
-                          const bool close = vf ? candidates_.vertex_face_close[i]
-                                                : candidates_.edge_edge_close[i - nvf];
-                          stale_[i] = close && !excluded;
+                          const bool close = i < nvf ? candidates_.vertex_face_close[i]
+                                                     : candidates_.edge_edge_close[i - nvf];
+                          stale_[i] = close && role != EXCLUDED;
                           free_[i] = !stale_[i];
                         }
                       });
@@ -339,13 +635,16 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
 void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen::VectorXd& w,
                                  CollisionStepStats& stats) {
   const double delta = options_.delta;
+  // The solve's correction of the guess, for the next step's prediction.
+  if (spec_pending_ && x1.rows() == spec_guess_.rows()) correction_ = x1 - spec_guess_;
   if (options_.warm_start) {
     const auto t0 = Clock::now();
     warm_start(x1, w);
     stats.response_seconds += since(t0);
   }
   previous_contacts_.clear();
-  broad_phase(x0, x1, options_.region_margin * delta, stats);
+  if (!spec_pending_ || !complete_speculation(x0, x1, options_.region_margin * delta, stats))
+    broad_phase(x0, x1, options_.region_margin * delta, stats);
   auto mark = [&](int v) {
     if (moved_[static_cast<std::size_t>(v)]) return;
     moved_[static_cast<std::size_t>(v)] = 1;
@@ -357,7 +656,7 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
   // The fail-safe tests every pair not known to be free at its current positions (stale, hit in
   // a round, or near at rest).
   auto failsafe_tests = [&](std::size_t i) {
-    return ((stale_[i] | (free_[i] ^ 1)) & (role_[i] != EXCLUDED)) != 0;
+    return ((stale_[i] | (free_[i] ^ 1)) & (role_[i] < EXCLUDED)) != 0;
   };
   if (options_.rounds > 0) collect_tests(round_tests);
   for (int round = 0; round < options_.rounds; ++round) {

@@ -118,6 +118,9 @@ FrameMetrics Simulator::step() {
   x_pred_ = x_ + dt * (v_ + dt * (force_.array().colwise() * inv_mass_.array()).matrix());
   // Step 2: constraint projection (Gauss-Seidel sweeps).
   FrameMetrics m;
+  // The collision step's broad phase starts on a spare thread from the guess, so that it
+  // overlaps the solve (SelfCollision::predict).
+  if (collision_) collision_->predict(x_, x_pred_, inv_mass_);
   const auto solve_start = std::chrono::steady_clock::now();
   solver_->solve(x_pred_, inv_mass_);
   m.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();

@@ -648,6 +648,84 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   EXPECT_GT(close_flags, 1000);
 }
 
+TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
+  // SelfCollision's speculative broad phase: the grid on given vertex boxes must emit the box
+  // pairs of find_candidates for the same boxes, and a query of the kept grid must return every
+  // primitive whose box meets the query box, once.
+  std::mt19937 rng(424242);
+  const TriMesh m = test::icosphere(2);
+  const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
+  const std::size_t nv = static_cast<std::size_t>(m.x.rows());
+  const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
+  const std::size_t ne = static_cast<std::size_t>(topo.edges.rows());
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  int queries_with_hits = 0;
+  for (int trial = 0; trial < 6; ++trial) {
+    const Positions x0 = random_motion(m.x, 0.15, rng);
+    const Positions x1 = random_motion(x0, trial < 3 ? 1e-3 : 0.05, rng);
+    const double inflation = trial % 2 == 0 ? 0.0 : 0.01;
+    std::vector<detail::GridVertexBox> boxes(nv);
+    for (std::size_t v = 0; v < nv; ++v)
+      for (int d = 0; d < 3; ++d) {
+        const Eigen::Index i = static_cast<Eigen::Index>(v);
+        boxes[v].lo[static_cast<std::size_t>(d)] = std::min(x0(i, d), x1(i, d)) - inflation;
+        boxes[v].hi[static_cast<std::size_t>(d)] = std::max(x0(i, d), x1(i, d)) + inflation;
+      }
+    CandidatePairs given;
+    ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, given));
+    const BruteForce bf = brute_force(x0, x1, m.faces, inflation);
+    EXPECT_EQ(sorted(given.vertex_face), bf.vertex_face) << "trial " << trial;
+    EXPECT_EQ(sorted(given.edge_edge), bf.edge_edge) << "trial " << trial;
+    // Query boxes around random points, from a point to a tenth of the sphere.
+    auto prim_box = [&](std::size_t gid) {
+      std::vector<int> verts;
+      if (gid < nv) verts = {static_cast<int>(gid)};
+      else if (gid < nv + nf)
+        verts = {topo.faces(static_cast<Eigen::Index>(gid - nv), 0),
+                 topo.faces(static_cast<Eigen::Index>(gid - nv), 1),
+                 topo.faces(static_cast<Eigen::Index>(gid - nv), 2)};
+      else
+        verts = {topo.edges(static_cast<Eigen::Index>(gid - nv - nf), 0),
+                 topo.edges(static_cast<Eigen::Index>(gid - nv - nf), 1)};
+      Box b;
+      for (int d = 0; d < 3; ++d) {
+        b.lo[d] = std::numeric_limits<double>::infinity();
+        b.hi[d] = -b.lo[d];
+        for (int v : verts) {
+          b.lo[d] = std::min(b.lo[d], boxes[static_cast<std::size_t>(v)].lo[static_cast<std::size_t>(d)]);
+          b.hi[d] = std::max(b.hi[d], boxes[static_cast<std::size_t>(v)].hi[static_cast<std::size_t>(d)]);
+        }
+      }
+      return b;
+    };
+    for (int q = 0; q < 40; ++q) {
+      detail::GridVertexBox query;
+      Box qb;
+      const double size = q % 4 == 0 ? 0.0 : 0.2 * unit(rng);
+      for (std::size_t d = 0; d < 3; ++d) {
+        // Some query boxes reach outside the grid (the scene bounds).
+        const double c = 2.6 * unit(rng) - 1.3;
+        query.lo[d] = qb.lo[d] = c - size;
+        query.hi[d] = qb.hi[d] = c + size;
+      }
+      std::vector<std::uint32_t> hits;
+      query_kept_grid(given, topo, query, hits);
+      std::vector<std::uint32_t> expected;
+      for (std::size_t g = 0; g < nv + nf + ne; ++g)
+        if (boxes_overlap(qb, prim_box(g))) expected.push_back(static_cast<std::uint32_t>(g));
+      std::sort(hits.begin(), hits.end());
+      EXPECT_EQ(hits, expected) << "trial " << trial << ", query " << q;
+      queries_with_hits += !expected.empty();
+    }
+  }
+  EXPECT_GT(queries_with_hits, 40);
+  // A CandidatePairs that holds no grid refuses queries.
+  CandidatePairs none;
+  std::vector<std::uint32_t> hits;
+  EXPECT_THROW(query_kept_grid(none, topo, detail::GridVertexBox{}, hits), UsageError);
+  EXPECT_THROW(find_candidates_in_vertex_boxes({}, topo, none), UsageError);
+}
+
 TEST(BroadPhase, RejectsMismatchedInput) {
   const TriMesh m = test::icosphere(0);
   const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));

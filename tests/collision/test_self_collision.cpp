@@ -8,6 +8,7 @@
 #include "shellcontract/collision/ccd.hpp"
 #include "shellcontract/collision/contact.hpp"
 #include "shellcontract/collision/self_collision.hpp"
+#include "shellcontract/core/error.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {
@@ -255,6 +256,16 @@ int brute_force_contacts(const Faces& faces, const Positions& x0, const Position
 /// the top pass through the bottom and many pairs cross, so the response pushes vertices far
 /// (more than the reuse margin: the re-broad-phase path runs) and the incremental rounds and
 /// fail-safe must find every pair. Returns the positions after each step.
+/// The solver's guess for the crushed sphere's step x0 -> x1 with speculation on: x1 off by a
+/// little everywhere and by a lot at every 7th vertex (outside its predicted box).
+Positions guess_for(const Positions& x1, std::mt19937& rng) {
+  std::uniform_real_distribution<double> small(-2e-4, 2e-4);
+  Positions g = x1;
+  for (Eigen::Index i = 0; i < g.rows(); ++i)
+    for (int d = 0; d < 3; ++d) g(i, d) += i % 7 == 0 ? 0.05 : small(rng);
+  return g;
+}
+
 std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
                                     std::vector<CollisionStepStats>* all_stats, int level = 2,
                                     bool brute_force = true) {
@@ -360,6 +371,126 @@ TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) 
     const std::vector<Positions> two = crush_sphere(2, rounds, warm, nullptr);
     ASSERT_EQ(one.size(), two.size());
     for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "step " << i;
+  }
+}
+
+TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
+  // predict() builds the grid on predicted boxes; resolve() must end up with exactly the pairs
+  // of find_candidates on the actual step, whether a vertex stayed in its predicted box, left
+  // it, or (with its neighbours) left it together with the primitives around it.
+  const test::TriMesh sphere = test::icosphere(2);
+  const Eigen::Index n = sphere.x.rows();
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  opt.warm_start = false;  // then the broad phase sees the given x1
+  SelfCollision sc(sphere.faces, sphere.x, opt);
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(n);
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> motion(-0.01, 0.01), small(-5e-4, 5e-4);
+  Positions x0 = sphere.x;
+  std::int64_t escaped = 0;
+  int speculative = 0, clean = 0;
+  for (int step = 0; step < 12; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    Positions x1 = x0, guess = x0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      x1(i, 2) -= 0.04 * x0(i, 2);  // flatten towards z = 0
+      for (int d = 0; d < 3; ++d) x1(i, d) += motion(rng);
+      for (int d = 0; d < 3; ++d) guess(i, d) = x1(i, d) + small(rng);
+      // A cap of neighbouring vertices far off its guess in some steps (the primitives between
+      // them leave together), a lone vertex in others, none in the rest.
+      if ((step % 3 == 1 && x0(i, 0) > 0.8) || (step % 3 == 2 && i == 5)) guess(i, 1) += 0.03;
+    }
+    if (step == 11) guess.array() += 0.1;  // every vertex off: the plain broad phase runs
+    CandidatePairs expected;
+    find_candidates(x0, x1, sc.topology(), opt.delta * (1.0 + opt.region_margin), expected);
+    std::sort(expected.vertex_face.begin(), expected.vertex_face.end());
+    std::sort(expected.edge_edge.begin(), expected.edge_edge.end());
+    CollisionStepStats stats;
+    sc.predict(x0, guess, w);
+    Positions x = x1;
+    sc.resolve(x0, x, w, stats);
+    const auto got = sc.candidate_pairs();
+    EXPECT_EQ(got.first, expected.vertex_face);
+    EXPECT_EQ(got.second, expected.edge_edge);
+    EXPECT_EQ(stats.pairs_broad, static_cast<std::int64_t>(expected.vertex_face.size() +
+                                                           expected.edge_edge.size()));
+    EXPECT_EQ(stats.speculative, step == 11 ? 0 : 1);
+    speculative += stats.speculative;
+    escaped += stats.escaped_vertices;
+    clean += stats.speculative == 1 && stats.escaped_vertices == 0;
+    x0 = x;
+  }
+  EXPECT_EQ(speculative, 11);
+  EXPECT_GT(escaped, 20);  // the caps
+  EXPECT_GT(clean, 0);     // steps whose guesses held everywhere
+  // A prediction for another x0 is not used.
+  sc.predict(x0, x0, w);
+  Positions moved = x0;
+  moved.array() += 1e-3;
+  Positions x = moved;
+  CollisionStepStats stats;
+  sc.resolve(moved, x, w, stats);
+  EXPECT_EQ(stats.speculative, 0);
+  EXPECT_THROW(sc.predict(x0, Positions(n + 1, 3), w), UsageError);
+}
+
+/// A sphere flattened onto itself (z shrinks by 45% a step, with jitter) with speculation on:
+/// the guess is the end position off by a little, and by a lot at every 7th vertex.
+std::vector<Positions> flatten_sphere_speculatively(int threads, bool warm_start,
+                                                    std::vector<CollisionStepStats>& all_stats) {
+  const test::TriMesh sphere = test::icosphere(2);
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  opt.threads = threads;
+  opt.warm_start = warm_start;
+  SelfCollision sc(sphere.faces, sphere.x, opt);
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(sphere.x.rows());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> jitter(-0.01, 0.01);
+  Positions x0 = sphere.x;
+  std::vector<Positions> out;
+  for (int step = 0; step < 14; ++step) {
+    Positions x1 = x0;
+    for (Eigen::Index i = 0; i < x1.rows(); ++i) {
+      x1(i, 2) = 0.55 * x0(i, 2);
+      for (int d = 0; d < 3; ++d) x1(i, d) += jitter(rng);
+    }
+    CollisionStepStats stats;
+    sc.predict(x0, guess_for(x1, rng), w);
+    sc.resolve(x0, x1, w, stats);
+    all_stats.push_back(stats);
+    EXPECT_EQ(brute_force_contacts(sphere.faces, x0, x1, false), 0) << "step " << step;
+    out.push_back(x1);
+    x0 = x1;
+  }
+  return out;
+}
+
+TEST(SelfCollision, SpeculativeFlattenedSphereNeverTouchesItselfAndDoesNotDependOnThreads) {
+  for (const bool warm : {true, false}) {
+    SCOPED_TRACE(warm ? "warm start" : "no warm start");
+    std::vector<CollisionStepStats> stats, stats2;
+    const std::vector<Positions> one = flatten_sphere_speculatively(1, warm, stats);
+    std::int64_t escaped = 0, contacts = 0;
+    int speculative = 0;
+    for (const CollisionStepStats& s : stats) {
+      speculative += s.speculative;
+      escaped += s.escaped_vertices;
+      contacts += s.contacts;
+    }
+    // The scenario exercises the speculative path with vertices outside their predicted boxes
+    // and with contacts to resolve.
+    EXPECT_GT(speculative, 7);
+    EXPECT_GT(escaped, 0);
+    EXPECT_GT(contacts, 0);
+    const std::vector<Positions> two = flatten_sphere_speculatively(2, warm, stats2);
+    ASSERT_EQ(one.size(), two.size());
+    for (std::size_t i = 0; i < one.size(); ++i) EXPECT_EQ(one[i], two[i]) << "step " << i;
+    for (std::size_t i = 0; i < stats.size(); ++i) {
+      EXPECT_EQ(stats[i].speculative, stats2[i].speculative);
+      EXPECT_EQ(stats[i].pairs_broad, stats2[i].pairs_broad);
+    }
   }
 }
 

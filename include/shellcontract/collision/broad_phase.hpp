@@ -166,6 +166,12 @@ struct BroadPhaseScratch {
   std::vector<std::uint32_t> cell_fill;     ///< Grid: fill cursors, per part, per cell
   std::vector<std::uint32_t> cell_entries;  ///< Grid: box id << 3 | first-cell flags
   std::vector<std::size_t> chunk_offsets;   ///< Grid: each chunk's first output VF, then EE pair
+  /// Grid: whether the grid of the last call (cell_start, cell_entries, grid_vertex_boxes and the
+  /// geometry below) is complete and may be queried (query_kept_grid).
+  bool grid_kept = false;
+  std::array<double, 3> grid_origin{};        ///< Grid: its minimum corner
+  double grid_inv_h = 1.0;                    ///< Grid: 1 / cell size
+  std::array<std::size_t, 3> grid_dims{};     ///< Grid: cells per axis
 };
 }  // namespace detail
 
@@ -231,6 +237,34 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
                      double inflation, CandidatePairs& out, BroadPhaseStats* stats = nullptr,
                      BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD,
                      double far_distance = -1.0);
+
+/// The threshold find_candidates compares the gaps of inflated boxes with to flag a pair far
+/// (CandidatePairs' close flags), for boxes of x0 and x1 grown by `inflation`: a gap above it on
+/// some axis leaves the boxes before inflation more than far_distance apart, rounding included.
+/// +infinity if far_distance is negative or not finite (nothing is flagged far).
+double far_gap_threshold(const Positions& x0, const Positions& x1, double inflation,
+                         double far_distance);
+
+/// The Grid method on given per-vertex boxes: a face's or edge's box is the union of its vertices'
+/// boxes, and every non-adjacent VF and EE pair whose boxes overlap (closed intervals) is
+/// emitted, flagged close, in the Grid's order. The grid is kept in out.scratch for
+/// query_kept_grid until the next broad-phase call on `out`. SelfCollision builds it on predicted
+/// swept boxes while the constraint solve runs (see SelfCollision::predict).
+/// @param boxes  one box per vertex, lo <= hi, finite
+/// @param topo   the mesh's topology; boxes.size() == topo.num_vertices
+/// @param out    receives the pairs
+/// @return false if the grid would degenerate towards brute force (see BroadPhaseMethod::Grid):
+///         then out holds no pairs and no grid, and find_candidates is the way
+/// @throws UsageError if boxes.size() != topo.num_vertices
+bool find_candidates_in_vertex_boxes(const std::vector<detail::GridVertexBox>& boxes,
+                                     const CollisionTopology& topo, CandidatePairs& out);
+
+/// The primitives whose boxes in the grid kept by the last find_candidates_in_vertex_boxes call
+/// on `pairs` overlap `box` (closed intervals on all three axes), each once, appended to `out`
+/// as ids: vertex v, face V + f, edge V + F + e. Adjacency is not checked.
+/// @throws UsageError if `pairs` keeps no grid
+void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
+                     const detail::GridVertexBox& box, std::vector<std::uint32_t>& out);
 
 /// Fast conservative step check: does find_candidates have at least one pair to report?
 /// Stops at the first non-adjacent overlapping VF or EE box pair, so a `false` answer (nothing

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -34,6 +35,11 @@ struct CollisionOptions {
   /// vertex within m/2 of its swept box (see SelfCollision::resolve; measurements in
   /// self_collision.cpp).
   double region_margin = 4.0;
+  /// Speculative broad phase: predict() builds the step's broad phase on predicted end positions
+  /// on a spare thread while the constraint solve runs, and resolve() completes it for the
+  /// actual ones (see predict). The candidate pairs are the same as without it; only their
+  /// order differs. Off, or when predict is not called, resolve runs the broad phase itself.
+  bool speculative = true;
 };
 
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
@@ -55,6 +61,16 @@ struct CollisionStepStats {
   double filter_seconds = 0.0;
   double narrow_seconds = 0.0;
   double response_seconds = 0.0;
+  /// 1 if the step's broad phase was the speculative one (SelfCollision::predict), completed for
+  /// the actual end positions; 0 if resolve ran it itself.
+  int speculative = 0;
+  /// Speculative steps: vertices whose swept box left its predicted box (their primitives were
+  /// queried again).
+  std::int64_t escaped_vertices = 0;
+  /// Wall time of the speculative broad phase on the spare thread, which overlaps the constraint
+  /// solve: not part of `seconds` (resolve's share, the wait for it and its completion, is in
+  /// broad_seconds).
+  double background_seconds = 0.0;
   /// Wall time of the whole resolve call: the four stages plus the bookkeeping between them
   /// (pair lists, stale marks). The collision cost per step that the logs report.
   double seconds = 0.0;
@@ -93,6 +109,30 @@ class SelfCollision {
   /// @param w  inverse masses (pinned vertices are not moved by the response)
   void resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w, CollisionStepStats& stats);
 
+  /// Starts the broad phase of the step from x0 in the background (CollisionOptions::speculative),
+  /// to overlap it with the constraint solve; call it with the solver's initial guess before the
+  /// solve, then resolve(x0, solved positions, ...) with the same x0.
+  ///
+  /// The prediction of each vertex's end position is the guess plus the solve's correction of
+  /// the last step, then the warm start (resolve's first move). Each predicted swept box (x0 to
+  /// the prediction, inflated as resolve's broad phase) is grown by a skin: SKIN_MIN delta plus
+  /// SKIN_GROWTH times the vertex's prediction error of the last step. The grid over these boxes
+  /// and the pairs' records are built on a spare thread of the collision arena. resolve() then
+  /// keeps the pairs whose actual boxes overlap (every pair of two primitives whose actual boxes
+  /// lie inside their predicted ones is among the grid's pairs) and queries the grid again for
+  /// the primitives of the vertices whose actual box left the predicted one (plus those pairs
+  /// among themselves). If x0 differs, or too many vertices left, resolve runs the plain broad
+  /// phase.
+  /// @param x0       the step's start positions
+  /// @param x_guess  the solver's initial guess of the end positions (copied)
+  /// @param w        inverse masses (the warm start's weights)
+  void predict(const Positions& x0, const Positions& x_guess, const Eigen::VectorXd& w);
+
+  /// The candidate pairs of the last resolve's broad phase, excluded ones included: VF pairs
+  /// (vertex, face) and EE pairs (edge a < edge b), each list sorted (for tests and tools).
+  std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>> candidate_pairs()
+      const;
+
   /// Number of VF and EE pairs excluded because they touch in the rest state.
   std::size_t excluded_pairs() const { return excluded_vf_.size() + excluded_ee_.size(); }
 
@@ -111,6 +151,7 @@ class SelfCollision {
     NORMAL = 0,
     NEAR = 1,      ///< closer than delta at rest: no response push, fail-safe only
     EXCLUDED = 2,  ///< touching at rest: never tested
+    NOT_CANDIDATE = 3,  ///< speculative pair whose actual boxes do not overlap: never tested
   };
 
   /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
@@ -119,6 +160,21 @@ class SelfCollision {
   /// (x0, x1) grown by margin / 2 become the regions the response keeps each vertex in.
   void broad_phase(const Positions& x0, const Positions& x1, double margin,
                    CollisionStepStats& stats);
+
+  /// The speculative broad phase's completion (see predict): waits for the background task,
+  /// then sets pairs_, role_, stale_, free_ and the regions as broad_phase would, with the same
+  /// candidate pairs. Returns false (nothing set) if resolve must run broad_phase instead.
+  bool complete_speculation(const Positions& x0, const Positions& x1, double margin,
+                            CollisionStepStats& stats);
+
+  /// Runs on the spare thread: the grid over spec_boxes_ and the records of its pairs.
+  void run_speculation();
+
+  /// pairs_[i] from the broad phase's candidate i (VF first); returns its rest-state role.
+  PairRole fill_record(std::size_t i, std::size_t nvf);
+
+  /// The rest-state role of a VF or EE pair (excluded and near lists).
+  PairRole rest_role(CcdPrimitive kind, const std::array<int, 2>& pair) const;
 
   /// Filter and narrow phase with tolerance tol on the pairs listed in tests_[0, test_count_)
   /// (indices into pairs_), in parallel, one region for both stages; afterwards free_ and stale_
@@ -177,6 +233,24 @@ class SelfCollision {
   std::vector<std::array<int, 2>> near_ee_;      ///< closer than delta at rest, sorted
   std::vector<Contact> contacts_;
   std::vector<Contact> previous_contacts_;  ///< every contact of the last step (warm start)
+
+  // Speculative broad phase (predict, run_speculation, complete_speculation).
+  bool spec_pending_ = false;        ///< predict started a background task not yet waited for
+  bool spec_ok_ = false;             ///< the task built a grid (set by the task)
+  double spec_seconds_ = 0.0;        ///< the task's wall time (set by the task)
+  Positions spec_x0_;                ///< x0 given to predict
+  Positions spec_guess_;             ///< x_guess given to predict
+  Positions spec_pred_;              ///< predicted end positions
+  Positions correction_;             ///< last step: solved end positions minus the guess
+  Eigen::VectorXd skin_;             ///< per vertex, for the next prediction
+  std::vector<detail::GridVertexBox> spec_boxes_;   ///< predicted boxes, grown by the skin
+  std::vector<detail::GridVertexBox> exact_boxes_;  ///< actual boxes (resolve)
+  std::vector<std::uint8_t> base_role_;  ///< per speculative pair: its rest-state PairRole
+  std::vector<std::uint8_t> escaped_;    ///< per vertex: actual box not inside the predicted one
+  std::vector<std::uint32_t> escaped_prims_;  ///< their vertices, faces and edges (grid ids)
+  std::vector<std::uint32_t> query_hits_;     ///< query_kept_grid's output
+  std::vector<std::size_t> block_kept_;       ///< per block of the completion: pairs kept
+  std::vector<std::pair<double, std::uint32_t>> sweep_order_;  ///< escaped primitives by x
 };
 
 }  // namespace shellcontract
