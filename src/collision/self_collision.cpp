@@ -331,7 +331,6 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   // without one (whose actual boxes are inside their predicted ones, so the query sees every
   // actual overlap), then against each other by a sweep along x. Serial: a few hundred queries.
   const std::size_t nf = static_cast<std::size_t>(topo_.faces.rows());
-  const std::size_t ne = static_cast<std::size_t>(topo_.edges.rows());
   auto ids = [&](std::uint32_t gid) -> std::array<int, 3> {
     if (gid < nvs) return {static_cast<int>(gid), -1, -1};
     if (gid < nvs + nf) {
@@ -353,8 +352,17 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
     return box_of({v[0], v[1], v[2], 0}, 0, corners(v));
   };
   escaped_prims_.clear();
-  for (std::uint32_t g = 0; g < nvs + nf + ne; ++g)
-    if (outside(g)) escaped_prims_.push_back(g);
+  if (escaped > 0) {
+    auto esc = [&](Eigen::Index v) { return escaped_[static_cast<std::size_t>(v)] != 0; };
+    for (Eigen::Index v = 0; v < nv; ++v)
+      if (esc(v)) escaped_prims_.push_back(static_cast<std::uint32_t>(v));
+    for (Eigen::Index f = 0; f < topo_.faces.rows(); ++f)
+      if (esc(topo_.faces(f, 0)) | esc(topo_.faces(f, 1)) | esc(topo_.faces(f, 2)))
+        escaped_prims_.push_back(static_cast<std::uint32_t>(nvs + static_cast<std::size_t>(f)));
+    for (Eigen::Index e = 0; e < topo_.edges.rows(); ++e)
+      if (esc(topo_.edges(e, 0)) | esc(topo_.edges(e, 1)))
+        escaped_prims_.push_back(static_cast<std::uint32_t>(nvs + nf + static_cast<std::size_t>(e)));
+  }
   // Appends the pair of primitives a, b (any order) if they are a VF or EE pair sharing no
   // vertex whose actual boxes overlap.
   auto consider = [&](std::uint32_t a, std::uint32_t b) {
