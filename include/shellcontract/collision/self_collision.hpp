@@ -67,12 +67,14 @@ struct CollisionStepStats {
   /// Speculative steps: vertices whose swept box left its predicted box (their primitives were
   /// queried again).
   std::int64_t escaped_vertices = 0;
-  /// Wall time of the speculative broad phase on the spare thread, which overlaps the constraint
-  /// solve: not part of `seconds` (resolve's share, the wait for it and its completion, is in
-  /// broad_seconds).
+  /// Wall time of the speculative broad phase's task on the spare thread, which overlaps the
+  /// constraint solve: not part of `seconds`, which holds what the calling thread spends (in
+  /// predict, waiting for the task, completing it).
   double background_seconds = 0.0;
-  /// Wall time of the whole resolve call: the four stages plus the bookkeeping between them
-  /// (pair lists, stale marks). The collision cost per step that the logs report.
+  /// Wall time the calling thread spends on the step's collision handling: the whole resolve
+  /// call (the four stages plus the bookkeeping between them: pair lists, stale marks) and the
+  /// step's predict call (also counted in broad_seconds). The collision cost per step that the
+  /// logs report.
   double seconds = 0.0;
 };
 
@@ -238,6 +240,7 @@ class SelfCollision {
   bool spec_pending_ = false;        ///< predict started a background task not yet waited for
   bool spec_ok_ = false;             ///< the task built a grid (set by the task)
   double spec_seconds_ = 0.0;        ///< the task's wall time (set by the task)
+  double predict_seconds_ = 0.0;     ///< predict's own wall time, until resolve reports it
   Positions spec_x0_;                ///< x0 given to predict
   Positions spec_guess_;             ///< x_guess given to predict
   Positions spec_pred_;              ///< predicted end positions
