@@ -255,7 +255,8 @@ int command_run(int argc, char** argv) {
       ("speculative-broad-phase", po::value(&speculative)->default_value(speculative),
        "on: the collision broad phase starts on predicted positions on a spare thread while "
        "the solve runs, and is completed for the actual ones (the same candidate pairs); off: "
-       "it runs after the solve")
+       "it runs after the solve. With --threads 1 there is no spare thread and 'on' only keeps "
+       "the result equal to that of other thread counts ('off' is faster there)")
       ("validate", po::value(&validate)->default_value(validate),
        "CGAL self-intersection check: off | end | every-frame (exit code 4 if new ones)")
       ("fields", po::value(&fields_prefix),

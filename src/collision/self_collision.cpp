@@ -132,7 +132,7 @@ SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
 }
 
 SelfCollision::~SelfCollision() {
-  if (!spec_pending_) return;
+  if (!spec_enqueued_) return;
   try {
     workers_->arena.execute([&] { workers_->background.wait(); });
   } catch (...) {
@@ -179,10 +179,11 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
   if (x0.rows() != topo_.num_vertices || x_guess.rows() != topo_.num_vertices ||
       w.size() != topo_.num_vertices)
     throw UsageError("SelfCollision::predict: position or mass arrays do not match the mesh");
-  if (spec_pending_) {  // a prediction resolve never used: wait for it, then replace it
-    spec_pending_ = false;
+  if (spec_enqueued_) {  // a prediction resolve never used: wait for it, then replace it
+    spec_enqueued_ = false;
     workers_->arena.execute([&] { workers_->background.wait(); });
   }
+  spec_pending_ = false;
   const Eigen::Index n = x0.rows();
   const double delta = options_.delta;
   spec_x0_ = x0;
@@ -205,7 +206,11 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
   if (spec_pred_.allFinite()) {
     spec_pending_ = true;
     spec_ok_ = false;
-    workers_->arena.enqueue(workers_->background.defer([this] { run_speculation(); }));
+    // One thread asked for: no spare thread; resolve runs the same task itself, so that the
+    // result is the same for any thread count.
+    spec_enqueued_ = options_.threads != 1;
+    if (spec_enqueued_)
+      workers_->arena.enqueue(workers_->background.defer([this] { run_speculation(); }));
   }
   predict_seconds_ += since(t0);
 }
@@ -231,8 +236,13 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
                                          CollisionStepStats& stats) {
   const auto t0 = Clock::now();
   spec_pending_ = false;
-  workers_->arena.execute([&] { workers_->background.wait(); });
-  stats.background_seconds = spec_seconds_;
+  if (spec_enqueued_) {
+    spec_enqueued_ = false;
+    workers_->arena.execute([&] { workers_->background.wait(); });
+    stats.background_seconds = spec_seconds_;
+  } else {  // run here: its time is this thread's (broad_seconds)
+    workers_->arena.execute([&] { run_speculation(); });
+  }
   const Eigen::Index nv = x0.rows();
   const std::size_t nvs = static_cast<std::size_t>(nv);
   const double inflation = options_.delta + margin;

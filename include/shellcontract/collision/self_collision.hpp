@@ -124,7 +124,8 @@ class SelfCollision {
   /// lie inside their predicted ones is among the grid's pairs) and queries the grid again for
   /// the primitives of the vertices whose actual box left the predicted one (plus those pairs
   /// among themselves). If x0 differs, or too many vertices left, resolve runs the plain broad
-  /// phase.
+  /// phase. With CollisionOptions::threads == 1 there is no spare thread: resolve runs the same
+  /// task itself (the same result as with more threads, no time gained).
   /// @param x0       the step's start positions
   /// @param x_guess  the solver's initial guess of the end positions (copied)
   /// @param w        inverse masses (the warm start's weights)
@@ -237,7 +238,8 @@ class SelfCollision {
   std::vector<Contact> previous_contacts_;  ///< every contact of the last step (warm start)
 
   // Speculative broad phase (predict, run_speculation, complete_speculation).
-  bool spec_pending_ = false;        ///< predict started a background task not yet waited for
+  bool spec_pending_ = false;        ///< predict made a prediction resolve has not used yet
+  bool spec_enqueued_ = false;       ///< ... and enqueued its task (not with one thread)
   bool spec_ok_ = false;             ///< the task built a grid (set by the task)
   double spec_seconds_ = 0.0;        ///< the task's wall time (set by the task)
   double predict_seconds_ = 0.0;     ///< predict's own wall time, until resolve reports it
