@@ -188,6 +188,7 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
   const double delta = options_.delta;
   spec_x0_ = x0;
   spec_guess_ = x_guess;
+  guess_set_ = true;
   spec_pred_ = x_guess;
   if (correction_.rows() == n) spec_pred_ += correction_;
   if (options_.warm_start) warm_start(spec_pred_, w);
@@ -202,8 +203,13 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
       b.hi[static_cast<std::size_t>(d)] = std::max(a, c) + inflation + skin_(v);
     }
   }
-  // Non-finite predictions (a blow-up the simulator will report) make no grid: plain path.
-  if (spec_pred_.allFinite()) {
+  // Non-finite predictions or boxes (a blow-up the simulator will report) make no grid: plain
+  // path.
+  bool finite = spec_pred_.allFinite();
+  for (const detail::GridVertexBox& b : spec_boxes_)
+    for (std::size_t d = 0; d < 3; ++d)
+      finite = finite && std::isfinite(b.lo[d]) && std::isfinite(b.hi[d]);
+  if (finite) {
     spec_pending_ = true;
     spec_ok_ = false;
     // One thread asked for: no spare thread; resolve runs the same task itself, so that the
@@ -236,13 +242,23 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
                                          CollisionStepStats& stats) {
   const auto t0 = Clock::now();
   spec_pending_ = false;
-  if (spec_enqueued_) {
-    spec_enqueued_ = false;
-    workers_->arena.execute([&] { workers_->background.wait(); });
-    stats.background_seconds = spec_seconds_;
-  } else {  // run here: its time is this thread's (broad_seconds)
-    workers_->arena.execute([&] { run_speculation(); });
+  try {
+    if (spec_enqueued_) {
+      spec_enqueued_ = false;
+      workers_->arena.execute([&] { workers_->background.wait(); });
+      stats.background_seconds = spec_seconds_;
+    } else {  // run here: its time is this thread's (broad_seconds)
+      workers_->arena.execute([&] { run_speculation(); });
+    }
+  } catch (...) {
+    // Whatever failed in the speculative task, the plain broad phase decides (and reports a
+    // failure of its own, if it has one).
+    return false;
   }
+  // Arrays that do not match the mesh, or non-finite end positions: the plain broad phase
+  // reports them (find_candidates' checks) or handles them.
+  if (x0.rows() != topo_.num_vertices || x1.rows() != topo_.num_vertices || !x1.allFinite())
+    return false;
   const Eigen::Index nv = x0.rows();
   const std::size_t nvs = static_cast<std::size_t>(nv);
   const double inflation = options_.delta + margin;
@@ -694,7 +710,8 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
                                  CollisionStepStats& stats) {
   const double delta = options_.delta;
   // The solve's correction of the guess, for the next step's prediction.
-  if (spec_pending_ && x1.rows() == spec_guess_.rows()) correction_ = x1 - spec_guess_;
+  if (guess_set_ && x1.rows() == spec_guess_.rows()) correction_ = x1 - spec_guess_;
+  guess_set_ = false;
   if (options_.warm_start) {
     const auto t0 = Clock::now();
     warm_start(x1, w);

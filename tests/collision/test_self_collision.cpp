@@ -252,12 +252,8 @@ int brute_force_contacts(const Faces& faces, const Positions& x0, const Position
   return hits;
 }
 
-/// Steps of a sphere crushed flat through itself with random jitter: every step's motion makes
-/// the top pass through the bottom and many pairs cross, so the response pushes vertices far
-/// (more than the reuse margin: the re-broad-phase path runs) and the incremental rounds and
-/// fail-safe must find every pair. Returns the positions after each step.
-/// The solver's guess for the crushed sphere's step x0 -> x1 with speculation on: x1 off by a
-/// little everywhere and by a lot at every 7th vertex (outside its predicted box).
+/// A solver's guess for a step ending at x1 with speculation on: x1 off by a little everywhere
+/// and by a lot at every 7th vertex (outside its predicted box).
 Positions guess_for(const Positions& x1, std::mt19937& rng) {
   std::uniform_real_distribution<double> small(-2e-4, 2e-4);
   Positions g = x1;
@@ -266,6 +262,10 @@ Positions guess_for(const Positions& x1, std::mt19937& rng) {
   return g;
 }
 
+/// Steps of a sphere crushed flat through itself with random jitter: every step's motion makes
+/// the top pass through the bottom and many pairs cross, so the response pushes vertices far
+/// (more than the reuse margin: the re-broad-phase path runs) and the incremental rounds and
+/// fail-safe must find every pair. Returns the positions after each step.
 std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
                                     std::vector<CollisionStepStats>* all_stats, int level = 2,
                                     bool brute_force = true) {
@@ -433,6 +433,10 @@ TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
   sc.resolve(moved, x, w, stats);
   EXPECT_EQ(stats.speculative, 0);
   EXPECT_THROW(sc.predict(x0, Positions(n + 1, 3), w), UsageError);
+  // After a prediction, arrays that do not match the mesh are still reported, not read.
+  sc.predict(x0, x0, w);
+  Positions bad = Positions::Zero(n + 1, 3), bad0 = bad;
+  EXPECT_THROW(sc.resolve(bad0, bad, w, stats), UsageError);
 }
 
 /// A sphere flattened onto itself (z shrinks by 45% a step, with jitter) with speculation on:

@@ -37,8 +37,10 @@ struct CollisionOptions {
   double region_margin = 4.0;
   /// Speculative broad phase: predict() builds the step's broad phase on predicted end positions
   /// on a spare thread while the constraint solve runs, and resolve() completes it for the
-  /// actual ones (see predict). The candidate pairs are the same as without it; only their
-  /// order differs. Off, or when predict is not called, resolve runs the broad phase itself.
+  /// actual ones (see predict). The candidate pairs are the same as without it, but their order
+  /// differs (and pairs far apart are always flagged, also where the plain grid falls back to
+  /// CGAL), so the step's result can differ in its last bits; it never depends on the thread
+  /// count. Off, or when predict is not called, resolve runs the broad phase itself.
   bool speculative = true;
 };
 
@@ -133,6 +135,7 @@ class SelfCollision {
 
   /// The candidate pairs of the last resolve's broad phase, excluded ones included: VF pairs
   /// (vertex, face) and EE pairs (edge a < edge b), each list sorted (for tests and tools).
+  /// Not between predict and resolve: the speculative task may be rewriting them.
   std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>> candidate_pairs()
       const;
 
@@ -238,6 +241,7 @@ class SelfCollision {
   std::vector<Contact> previous_contacts_;  ///< every contact of the last step (warm start)
 
   // Speculative broad phase (predict, run_speculation, complete_speculation).
+  bool guess_set_ = false;           ///< predict ran since the last resolve (spec_guess_ is its)
   bool spec_pending_ = false;        ///< predict made a prediction resolve has not used yet
   bool spec_enqueued_ = false;       ///< ... and enqueued its task (not with one thread)
   bool spec_ok_ = false;             ///< the task built a grid (set by the task)
