@@ -165,7 +165,7 @@ int command_run(int argc, char** argv) {
                                                      mass = "area";
   SimOptions opt;
   std::string collisions = "on", validate = "off", order = "sequential", warm_start = "on",
-              speculative = "on";
+              speculative = "auto";
   std::string aniso = "none", regions_arg = "auto", inward = "force", fiber = "centre";
   double young = 0, poisson = 0.3, thickness = 0;
   bool quiet = false;
@@ -255,8 +255,10 @@ int command_run(int argc, char** argv) {
       ("speculative-broad-phase", po::value(&speculative)->default_value(speculative),
        "on: the collision broad phase starts on predicted positions on a spare thread while "
        "the solve runs, and is completed for the actual ones (the same candidate pairs); off: "
-       "it runs after the solve. With --threads 1 there is no spare thread and 'on' only keeps "
-       "the result equal to that of other thread counts ('off' is faster there)")
+       "it runs after the solve; auto: on with --order sequential (a single-threaded solve), "
+       "off with --order coloured (whose solve needs the spare thread). With --threads 1 there "
+       "is no spare thread and 'on' only keeps the result equal to that of other thread counts "
+       "('off' is faster there)")
       ("validate", po::value(&validate)->default_value(validate),
        "CGAL self-intersection check: off | end | every-frame (exit code 4 if new ones)")
       ("fields", po::value(&fields_prefix),
@@ -294,9 +296,15 @@ int command_run(int argc, char** argv) {
     if (warm_start != "on" && warm_start != "off")
       throw UsageError("--warm-start expects on or off, got '" + warm_start + "'");
     opt.collision.warm_start = warm_start == "on";
-    if (speculative != "on" && speculative != "off")
-      throw UsageError("--speculative-broad-phase expects on or off, got '" + speculative + "'");
-    opt.collision.speculative = speculative == "on";
+    if (speculative == "auto")
+      opt.speculative_broad_phase = SpeculativeBroadPhase::Auto;
+    else if (speculative == "on")
+      opt.speculative_broad_phase = SpeculativeBroadPhase::On;
+    else if (speculative == "off")
+      opt.speculative_broad_phase = SpeculativeBroadPhase::Off;
+    else
+      throw UsageError("--speculative-broad-phase expects auto, on or off, got '" + speculative +
+                       "'");
     opt.collision.threads = opt.solver.threads;
     opt.validate = parse_validate(validate);
     opt.frame_energies = !log_path.empty();  // only the CSV log reports them

@@ -66,6 +66,11 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   options_.solver.k_a_in_projection = options_.inward_term == InwardTerm::Projection;
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
+  // The speculative broad phase uses the core a single-threaded solve leaves idle (config.hpp).
+  options_.collision.speculative =
+      options_.speculative_broad_phase == SpeculativeBroadPhase::On ||
+      (options_.speculative_broad_phase == SpeculativeBroadPhase::Auto &&
+       options_.solver.order == ConstraintOrder::Sequential);
   if (options_.collisions) collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
   if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
   v_ = Positions::Zero(x_.rows(), 3);

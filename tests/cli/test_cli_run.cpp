@@ -89,6 +89,10 @@ TEST_F(CliRun, BadUsageIsExitCode1) {
   EXPECT_EQ(run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--solver", "magic"}).exit_code, 1);
   EXPECT_EQ(run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--dt", "-1"}).exit_code, 1);
   EXPECT_EQ(run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--no-such-option"}).exit_code, 1);
+  const auto spec = run_cli(
+      {"run", mesh("ico1.off"), "-o", out("o.off"), "--speculative-broad-phase", "maybe"});
+  EXPECT_EQ(spec.exit_code, 1);
+  EXPECT_NE(spec.output.find("auto, on or off"), std::string::npos) << spec.output;
   const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("missing_dir/o.off"), "--frames", "1"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_FALSE(fs::exists(out("missing_dir")));

@@ -260,5 +260,27 @@ TEST(Simulator, RunsAreDeterministicAndColouredRunsDoNotDependOnThreads) {
   EXPECT_NE(a, c1) << "the coloured order is a different (valid) Gauss-Seidel order";
 }
 
+TEST(Simulator, SpeculativeBroadPhaseAutoFollowsTheSolveOrder) {
+  // Auto: speculative with the single-threaded sequential solve, not with the coloured one
+  // (whose solve needs the spare core); On and Off are obeyed with either order.
+  const Mesh mesh = sphere(2);
+  auto speculative_steps = [&](ConstraintOrder order, SpeculativeBroadPhase mode) {
+    SimOptions opt;
+    opt.frames = 3;
+    opt.solver.order = order;
+    opt.solver.threads = 2;
+    opt.collision.threads = 2;
+    opt.speculative_broad_phase = mode;
+    Simulator sim(mesh, opt);
+    int steps = 0;
+    while (!sim.finished()) steps += sim.step().collision.speculative;
+    return steps;
+  };
+  EXPECT_EQ(speculative_steps(ConstraintOrder::Sequential, SpeculativeBroadPhase::Auto), 3);
+  EXPECT_EQ(speculative_steps(ConstraintOrder::Coloured, SpeculativeBroadPhase::Auto), 0);
+  EXPECT_EQ(speculative_steps(ConstraintOrder::Coloured, SpeculativeBroadPhase::On), 3);
+  EXPECT_EQ(speculative_steps(ConstraintOrder::Sequential, SpeculativeBroadPhase::Off), 0);
+}
+
 }  // namespace
 }  // namespace shellcontract

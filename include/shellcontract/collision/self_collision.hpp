@@ -40,7 +40,8 @@ struct CollisionOptions {
   /// actual ones (see predict). The candidate pairs are the same as without it, but their order
   /// differs (and pairs far apart are always flagged, also where the plain grid falls back to
   /// CGAL), so the step's result can differ in its last bits; it never depends on the thread
-  /// count. Off, or when predict is not called, resolve runs the broad phase itself.
+  /// count. Off, or when predict is not called, resolve runs the broad phase itself. The
+  /// Simulator sets it from SimOptions::speculative_broad_phase.
   bool speculative = true;
 };
 

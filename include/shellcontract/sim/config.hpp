@@ -41,6 +41,16 @@ inline constexpr double DEFAULT_PRESSURE = 2.0;
 /// undamped PBD shell rings (V/V0 oscillates around its quasi-static path, README measurement).
 inline constexpr double DEFAULT_DAMPING = 0.2;
 
+/// Whether the collision broad phase starts speculatively while the constraint solve runs
+/// (CollisionOptions::speculative, SelfCollision::predict). Its task runs on the core that a
+/// single-threaded solve leaves idle; a parallel solve needs that core itself (bear, coloured
+/// order on 2 threads: solve 1.84 -> 3.38 ms and step 14.5 -> 16.4 ms per step with it on).
+enum class SpeculativeBroadPhase {
+  Auto,  ///< on with the sequential order (single-threaded solve), off with the coloured one
+  On,
+  Off,
+};
+
 /// Options of one contraction run. Lengths are in normalized units (bounding-box diagonal 1).
 struct SimOptions {
   double pressure = DEFAULT_PRESSURE;            ///< P, normalized units
@@ -62,6 +72,8 @@ struct SimOptions {
   /// a result that never passes through itself (design.md).
   bool collisions = true;
   CollisionOptions collision;                    ///< delta, rounds, broad-phase method
+  /// Sets collision.speculative when the Simulator is built (the value given there is ignored).
+  SpeculativeBroadPhase speculative_broad_phase = SpeculativeBroadPhase::Auto;
   ValidateMode validate = ValidateMode::Off;
   /// Fill FrameMetrics::energies after every step. Costs a pass over every constraint (about
   /// 1.5 ms per step on bear, 5% of a default run), so a caller that does not log them (the CLI
