@@ -482,18 +482,9 @@ struct GridPrimitives {
   const detail::BroadPhaseScratch& s;
   std::size_t nv, nf;
 
-  /// Vertex ids: vertex {v, -1, -1}, face {a, b, c}, edge {a, b, -2} (-2: never equal to an id
-  /// nor to a vertex's -1), so one set of comparisons tests adjacency for VF and EE.
-  std::array<int, 3> ids(std::size_t gid) const {
-    if (gid < nv) return {static_cast<int>(gid), -1, -1};
-    if (gid < nv + nf) {
-      const Eigen::Index f = static_cast<Eigen::Index>(gid - nv);
-      return {topo.faces(f, 0), topo.faces(f, 1), topo.faces(f, 2)};
-    }
-    const Eigen::Index e = static_cast<Eigen::Index>(gid - nv - nf);
-    return {topo.edges(e, 0), topo.edges(e, 1), -2};
-  }
-  static int corners(const std::array<int, 3>& v) { return v[1] < 0 ? 1 : v[2] < 0 ? 2 : 3; }
+  /// Vertex ids (detail::primitive_vertices).
+  std::array<int, 3> ids(std::size_t gid) const { return detail::primitive_vertices(topo, gid); }
+  static int corners(const std::array<int, 3>& v) { return detail::primitive_corners(v); }
 
   detail::GridRange range(const std::array<int, 3>& v) const {
     detail::GridRange r = s.grid_vertex_ranges[static_cast<std::size_t>(v[0])];
@@ -519,15 +510,7 @@ struct GridPrimitives {
   }
   /// The exact box: the same arithmetic as build_boxes, bit-identical to the other methods'.
   detail::GridVertexBox box(const std::array<int, 3>& v) const {
-    detail::GridVertexBox b = s.grid_vertex_boxes[static_cast<std::size_t>(v[0])];
-    for (int k = 1; k < corners(v); ++k) {
-      const detail::GridVertexBox& q = s.grid_vertex_boxes[static_cast<std::size_t>(v[k])];
-      for (std::size_t d = 0; d < 3; ++d) {
-        b.lo[d] = std::min(b.lo[d], q.lo[d]);
-        b.hi[d] = std::max(b.hi[d], q.hi[d]);
-      }
-    }
-    return b;
+    return detail::primitive_box(s.grid_vertex_boxes, v);
   }
 };
 

@@ -301,17 +301,6 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   free_.resize(n_spec);
   const std::size_t blocks = (n_spec + PAIR_GRAIN - 1) / PAIR_GRAIN;
   block_kept_.assign(blocks, 0);
-  auto box_of = [&](const std::array<int, 4>& v, int first, int count) {
-    detail::GridVertexBox b = exact_boxes_[static_cast<std::size_t>(v[static_cast<std::size_t>(first)])];
-    for (int k = first + 1; k < first + count; ++k) {
-      const detail::GridVertexBox& q = exact_boxes_[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
-      for (std::size_t d = 0; d < 3; ++d) {
-        b.lo[d] = std::min(b.lo[d], q.lo[d]);
-        b.hi[d] = std::max(b.hi[d], q.hi[d]);
-      }
-    }
-    return b;
-  };
   auto overlap = [](const detail::GridVertexBox& a, const detail::GridVertexBox& b) {
     return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] &&
            b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];
@@ -393,26 +382,14 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   // without one (whose actual boxes are inside their predicted ones, so the query sees every
   // actual overlap), then against each other by a sweep along x. Serial: a few hundred queries.
   const std::size_t nf = static_cast<std::size_t>(topo_.faces.rows());
-  auto ids = [&](std::uint32_t gid) -> std::array<int, 3> {
-    if (gid < nvs) return {static_cast<int>(gid), -1, -1};
-    if (gid < nvs + nf) {
-      const Eigen::Index f = static_cast<Eigen::Index>(gid - nvs);
-      return {topo_.faces(f, 0), topo_.faces(f, 1), topo_.faces(f, 2)};
-    }
-    const Eigen::Index e = static_cast<Eigen::Index>(gid - nvs - nf);
-    return {topo_.edges(e, 0), topo_.edges(e, 1), -2};
-  };
-  auto corners = [](const std::array<int, 3>& v) { return v[1] < 0 ? 1 : v[2] < 0 ? 2 : 3; };
+  auto ids = [&](std::uint32_t gid) { return detail::primitive_vertices(topo_, gid); };
   auto outside = [&](std::uint32_t gid) {
     const std::array<int, 3> v = ids(gid);
-    for (int k = 0; k < corners(v); ++k)
+    for (int k = 0; k < detail::primitive_corners(v); ++k)
       if (escaped_[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])]) return true;
     return false;
   };
-  auto prim_box = [&](std::uint32_t gid) {
-    const std::array<int, 3> v = ids(gid);
-    return box_of({v[0], v[1], v[2], 0}, 0, corners(v));
-  };
+  auto prim_box = [&](std::uint32_t gid) { return detail::primitive_box(exact_boxes_, ids(gid)); };
   escaped_prims_.clear();
   if (escaped > 0) {
     auto esc = [&](Eigen::Index v) { return escaped_[static_cast<std::size_t>(v)] != 0; };
@@ -447,8 +424,8 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       return;
     }
     const std::array<int, 3> va = ids(a), vb = ids(b);
-    for (int i = 0; i < corners(va); ++i)
-      for (int j = 0; j < corners(vb); ++j)
+    for (int i = 0; i < detail::primitive_corners(va); ++i)
+      for (int j = 0; j < detail::primitive_corners(vb); ++j)
         if (va[static_cast<std::size_t>(i)] == vb[static_cast<std::size_t>(j)]) return;
     const detail::GridVertexBox ba = prim_box(a), bb = prim_box(b);
     if (!overlap(ba, bb)) return;

@@ -262,32 +262,24 @@ Positions guess_for(const Positions& x1, std::mt19937& rng) {
   return g;
 }
 
-/// Steps of a sphere crushed flat through itself with random jitter: every step's motion makes
-/// the top pass through the bottom and many pairs cross, so the response pushes vertices far
-/// (more than the reuse margin: the re-broad-phase path runs) and the incremental rounds and
-/// fail-safe must find every pair. Returns the positions after each step.
-std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
-                                    std::vector<CollisionStepStats>* all_stats, int level = 2,
-                                    bool brute_force = true) {
+/// Collision steps on a level-`level` icosphere with delta 1e-3: each step ends at
+/// move(x0, rng); with `speculative`, predict() gets guess_for(x1) first. Asserts that no pair
+/// touches after a step (brute force) if `brute_force`. Returns the positions after each step.
+template <class Move>
+std::vector<Positions> sphere_steps(CollisionOptions opt, int level, unsigned seed, int steps,
+                                    Move move, bool speculative, bool brute_force,
+                                    std::vector<CollisionStepStats>* all_stats) {
   const test::TriMesh sphere = test::icosphere(level);
-  CollisionOptions opt;
   opt.delta = 1e-3;
-  opt.threads = threads;
-  opt.rounds = rounds;
-  opt.warm_start = warm_start;
   SelfCollision sc(sphere.faces, sphere.x, opt);
   const Eigen::VectorXd w = Eigen::VectorXd::Ones(sphere.x.rows());
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  std::mt19937 rng(seed);
   Positions x0 = sphere.x;
   std::vector<Positions> out;
-  for (int step = 0; step < 6; ++step) {
-    Positions x1 = x0;
-    for (Eigen::Index i = 0; i < x1.rows(); ++i) {
-      x1(i, 2) = -0.6 * x0(i, 2);  // the poles swap sides: top and bottom pass through
-      for (int d = 0; d < 3; ++d) x1(i, d) += jitter(rng);
-    }
+  for (int step = 0; step < steps; ++step) {
+    Positions x1 = move(x0, rng);
     CollisionStepStats stats;
+    if (speculative) sc.predict(x0, guess_for(x1, rng), w);
     sc.resolve(x0, x1, w, stats);
     if (all_stats) all_stats->push_back(stats);
     if (brute_force) {
@@ -297,6 +289,29 @@ std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
     x0 = x1;
   }
   return out;
+}
+
+/// Steps of a sphere crushed flat through itself with random jitter: every step's motion makes
+/// the top pass through the bottom and many pairs cross, so the response pushes vertices far
+/// (more than the reuse margin: the re-broad-phase path runs) and the incremental rounds and
+/// fail-safe must find every pair. Returns the positions after each step.
+std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
+                                    std::vector<CollisionStepStats>* all_stats, int level = 2,
+                                    bool brute_force = true) {
+  CollisionOptions opt;
+  opt.threads = threads;
+  opt.rounds = rounds;
+  opt.warm_start = warm_start;
+  std::uniform_real_distribution<double> jitter(-0.05, 0.05);
+  auto move = [&](const Positions& x0, std::mt19937& rng) {
+    Positions x1 = x0;
+    for (Eigen::Index i = 0; i < x1.rows(); ++i) {
+      x1(i, 2) = -0.6 * x0(i, 2);  // the poles swap sides: top and bottom pass through
+      for (int d = 0; d < 3; ++d) x1(i, d) += jitter(rng);
+    }
+    return x1;
+  };
+  return sphere_steps(opt, level, 7, 6, move, false, brute_force, all_stats);
 }
 
 TEST(SelfCollision, ResponseKeepsEveryVertexInItsSweptBoxGrownByHalfTheMargin) {
@@ -443,32 +458,19 @@ TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
 /// the guess is the end position off by a little, and by a lot at every 7th vertex.
 std::vector<Positions> flatten_sphere_speculatively(int threads, bool warm_start,
                                                     std::vector<CollisionStepStats>& all_stats) {
-  const test::TriMesh sphere = test::icosphere(2);
   CollisionOptions opt;
-  opt.delta = 1e-3;
   opt.threads = threads;
   opt.warm_start = warm_start;
-  SelfCollision sc(sphere.faces, sphere.x, opt);
-  const Eigen::VectorXd w = Eigen::VectorXd::Ones(sphere.x.rows());
-  std::mt19937 rng(3);
   std::uniform_real_distribution<double> jitter(-0.01, 0.01);
-  Positions x0 = sphere.x;
-  std::vector<Positions> out;
-  for (int step = 0; step < 14; ++step) {
+  auto move = [&](const Positions& x0, std::mt19937& rng) {
     Positions x1 = x0;
     for (Eigen::Index i = 0; i < x1.rows(); ++i) {
       x1(i, 2) = 0.55 * x0(i, 2);
       for (int d = 0; d < 3; ++d) x1(i, d) += jitter(rng);
     }
-    CollisionStepStats stats;
-    sc.predict(x0, guess_for(x1, rng), w);
-    sc.resolve(x0, x1, w, stats);
-    all_stats.push_back(stats);
-    EXPECT_EQ(brute_force_contacts(sphere.faces, x0, x1, false), 0) << "step " << step;
-    out.push_back(x1);
-    x0 = x1;
-  }
-  return out;
+    return x1;
+  };
+  return sphere_steps(opt, 2, 3, 14, move, true, true, &all_stats);
 }
 
 TEST(SelfCollision, SpeculativeFlattenedSphereNeverTouchesItselfAndDoesNotDependOnThreads) {

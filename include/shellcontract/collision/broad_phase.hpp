@@ -5,7 +5,9 @@
 // Eigen and std only. CGAL's box_intersection_d is used inside src/collision/broad_phase*.cpp.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -101,6 +103,41 @@ struct GridVertexBox {
   std::array<double, 3> lo;
   std::array<double, 3> hi;
 };
+
+/// The Grid method's primitive ids (also query_kept_grid's): vertex v, face V + f, edge V + F + e.
+/// Returns the primitive's vertices: vertex {v, -1, -1}, face {a, b, c}, edge {a, b, -2} (-2:
+/// never equal to an id nor to a vertex's -1, so one set of comparisons tests adjacency for VF
+/// and EE).
+inline std::array<int, 3> primitive_vertices(const CollisionTopology& topo, std::size_t id) {
+  const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
+  const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
+  if (id < nv) return {static_cast<int>(id), -1, -1};
+  if (id < nv + nf) {
+    const Eigen::Index f = static_cast<Eigen::Index>(id - nv);
+    return {topo.faces(f, 0), topo.faces(f, 1), topo.faces(f, 2)};
+  }
+  const Eigen::Index e = static_cast<Eigen::Index>(id - nv - nf);
+  return {topo.edges(e, 0), topo.edges(e, 1), -2};
+}
+
+/// The number of vertices in primitive_vertices' answer: 1, 3 or 2.
+inline int primitive_corners(const std::array<int, 3>& v) {
+  return v[1] < 0 ? 1 : v[2] < 0 ? 2 : 3;
+}
+
+/// A primitive's box: the union of its vertices' boxes (min and max are exact).
+inline GridVertexBox primitive_box(const std::vector<GridVertexBox>& vertex_boxes,
+                                   const std::array<int, 3>& v) {
+  GridVertexBox b = vertex_boxes[static_cast<std::size_t>(v[0])];
+  for (int k = 1; k < primitive_corners(v); ++k) {
+    const GridVertexBox& q = vertex_boxes[static_cast<std::size_t>(v[static_cast<std::size_t>(k)])];
+    for (std::size_t d = 0; d < 3; ++d) {
+      b.lo[d] = std::min(b.lo[d], q.lo[d]);
+      b.hi[d] = std::max(b.hi[d], q.hi[d]);
+    }
+  }
+  return b;
+}
 
 /// Grid method: the cells a box covers, inclusive, per axis.
 struct GridRange {
