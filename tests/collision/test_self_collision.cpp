@@ -150,6 +150,36 @@ TEST(SelfCollision, WarmStartKeepsARestingContactWithoutNewDetections) {
   EXPECT_LT(later_contacts[true], later_contacts[false]);
 }
 
+TEST(SelfCollision, WarmStartKeepsAPressedContactFromStepToStep) {
+  // The resting contact of the test above, pressed for 8 steps: after step 0 detects the
+  // contacts, the warm start alone must hold them at every later step, so detection finds
+  // nothing. A warm start that only re-projects the last step's detections forgets the contacts
+  // it held (none were detected in the step it held them), so they come back every other step
+  // (measured: 2 contacts at steps 2, 4 and 6).
+  const double delta = 1e-3;
+  TwoTriangles t;
+  t.x0.bottomRows(3).col(2).setConstant(2.5 * delta);
+  t.w.head(3).setZero();
+  CollisionOptions opt;
+  opt.delta = delta;
+  SelfCollision sc(t.faces, t.x0, opt);
+  for (int step = 0; step < 8; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    Positions x1 = t.x0;
+    x1.bottomRows(3).col(2).array() -= 3.0 * delta;
+    CollisionStepStats stats;
+    sc.resolve(t.x0, x1, t.w, stats);
+    EXPECT_FALSE(any_contact(t, x1));
+    if (step == 0)
+      EXPECT_GT(stats.contacts, 0);
+    else
+      EXPECT_EQ(stats.contacts, 0);
+    // Held at the response distance 2 delta (the warm start's target), not pushed farther.
+    EXPECT_GT(x1(3, 2), 0.0);  // the vertex over the lower triangle stays above it
+    t.x0 = x1;
+  }
+}
+
 TEST(SelfCollision, FailSafeRevertsWhenTheResponseCannotAct) {
   TwoTriangles t;
   t.x1.bottomRows(3).col(2).array() -= 0.3;

@@ -27,8 +27,8 @@ struct CollisionOptions {
   /// Results do not depend on it.
   int threads = 0;
   /// Warm start: before detection, push the end positions apart along the frozen frames of the
-  /// previous step's contacts (resting contact persists from step to step), so that detection
-  /// finds and pushes fewer pairs. Detection and the fail-safe still decide; off gives the plain
+  /// previous step's contacts, detected or still pressed (resting contact persists from step to
+  /// step, see SelfCollision::resolve), so that detection finds and pushes fewer pairs. Detection and the fail-safe still decide; off gives the plain
   /// per-step response of math-spec 10.8.
   bool warm_start = true;
   /// m / delta >= 0: the step's broad phase inflates by delta + m, and the response keeps each
@@ -100,7 +100,9 @@ class SelfCollision {
   /// contacts (true by induction from the rest state), so is the result.
   ///
   /// With CollisionOptions::warm_start, the previous step's contacts are first projected on x1
-  /// (their frozen frames), so a resting contact is not detected and pushed again every step.
+  /// (their frozen frames), so a resting contact is not detected and pushed again every step:
+  /// those detected in the previous step and those its warm start still had to push (a contact
+  /// stays in this cache while it is pressed together, one entry per pair).
   ///
   /// Work is incremental. One broad phase per step, on the swept boxes inflated by delta plus a
   /// margin m (CollisionOptions::region_margin), gives the candidates of every round and of the
@@ -194,8 +196,15 @@ class SelfCollision {
   void resolve_impl(const Positions& x0, Positions& x1, const Eigen::VectorXd& w,
                     CollisionStepStats& stats);
 
-  /// Projects the last step's contacts on x1 once (see CollisionOptions::warm_start).
-  void warm_start(Positions& x1, const Eigen::VectorXd& w) const;
+  /// Projects the contact cache (previous_contacts_) on x1 once (see
+  /// CollisionOptions::warm_start); appends those it moved (still pressed together) to
+  /// `pressed` if given.
+  void warm_start(Positions& x1, const Eigen::VectorXd& w,
+                  std::vector<Contact>* pressed = nullptr) const;
+
+  /// The next step's contact cache: the step's detections (previous_contacts_, the last one of
+  /// each pair) and the warm start's pressed contacts that were not detected again.
+  void update_contact_cache();
 
   /// Marks stale every pair with a vertex in moved_ and clears moved_, then sets tests_ as
   /// collect_tests(keep) does, in the same pass over the pairs.
@@ -239,7 +248,12 @@ class SelfCollision {
   std::vector<std::array<int, 2>> near_vf_;      ///< closer than delta at rest, sorted
   std::vector<std::array<int, 2>> near_ee_;      ///< closer than delta at rest, sorted
   std::vector<Contact> contacts_;
-  std::vector<Contact> previous_contacts_;  ///< every contact of the last step (warm start)
+  /// The contact cache the warm start projects: during resolve's rounds the step's detections,
+  /// afterwards (update_contact_cache) also the pressed ones of the warm start, one per pair.
+  std::vector<Contact> previous_contacts_;
+  std::vector<Contact> pressed_contacts_;  ///< this step's warm start moved them
+  std::vector<Contact> cache_next_;        ///< update_contact_cache's output buffer
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> cache_keys_;  ///< (pair key, index)
 
   // Speculative broad phase (predict, run_speculation, complete_speculation).
   bool guess_set_ = false;           ///< predict ran since the last resolve (spec_guess_ is its)
