@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -69,6 +70,9 @@ constexpr double SKIN_GROWTH = 4.0;
 constexpr double ESCAPE_LIMIT = 64.0;
 constexpr double ESCAPE_FRACTION = 1.0 / 32.0;
 
+/// Escaped primitives per task of the speculative broad phase's grid queries (a few hundred per
+/// step on bear at P = 4, ~5 microseconds each).
+constexpr std::size_t QUERY_BLOCK = 8;
 /// Tests per task of detect() (filter and narrow phase of one block): fixed, so the result never
 /// depends on the threads. Bear's first round has ~100k tests, later rounds a few thousand.
 constexpr std::size_t DETECT_BLOCK = 512;
@@ -305,6 +309,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   // Pairs with a vertex outside are left out here and found by the queries below.
   const double far_gap = far_gap_threshold(x0, x1, inflation, options_.delta);
   const std::size_t n_spec = pairs_.size();
+  const std::size_t nvf_spec = candidates_.vertex_face.size();
   role_.resize(n_spec);
   stale_.resize(n_spec);
   free_.resize(n_spec);
@@ -347,40 +352,43 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       std::uint8_t* __restrict fr = free_data;
       const double gap = far_gap;
       std::size_t kept = 0;
-      const std::size_t end = std::min(n_spec, (blk + 1) * PAIR_GRAIN);
-      for (std::size_t i = blk * PAIR_GRAIN; i < end; ++i) {
-        const PairRecord& p = rec[i];
-        const std::size_t v0 = static_cast<std::size_t>(p.v[0]), v1 = static_cast<std::size_t>(p.v[1]);
-        const std::size_t v2 = static_cast<std::size_t>(p.v[2]), v3 = static_cast<std::size_t>(p.v[3]);
-        if (esc[v0] | esc[v1] | esc[v2] | esc[v3]) {
-          role[i] = NOT_CANDIDATE;
-          stale[i] = 0;
-          fr[i] = 1;
-          continue;
-        }
-        // The two primitives' actual boxes: VF vertex | face, EE edge | edge (the unions of
-        // vertex boxes that find_candidates forms; min and max are exact).
-        const bool vf = p.kind == CcdPrimitive::VertexFace;
-        const detail::GridVertexBox &b0 = eb[v0], &b1 = eb[v1], &b2 = eb[v2], &b3 = eb[v3];
-        bool meet = true, far = false;
-        for (std::size_t d = 0; d < 3; ++d) {
-          const double alo = vf ? b0.lo[d] : std::min(b0.lo[d], b1.lo[d]);
-          const double ahi = vf ? b0.hi[d] : std::max(b0.hi[d], b1.hi[d]);
-          double blo = std::min(b2.lo[d], b3.lo[d]), bhi = std::max(b2.hi[d], b3.hi[d]);
-          if (vf) {
-            blo = std::min(blo, b1.lo[d]);
-            bhi = std::max(bhi, b1.hi[d]);
+      // VF pairs come first (the grid's lists, VF then EE): one loop per kind, so the kind is no
+      // per-pair branch, and the tests are branch-free (measured on bear: 35-40% faster).
+      auto classify_range = [&](auto vf_tag, std::size_t begin, std::size_t stop) {
+        constexpr bool vf = decltype(vf_tag)::value;
+        for (std::size_t i = begin; i < stop; ++i) {
+          const PairRecord& p = rec[i];
+          const std::size_t v0 = static_cast<std::size_t>(p.v[0]), v1 = static_cast<std::size_t>(p.v[1]);
+          const std::size_t v2 = static_cast<std::size_t>(p.v[2]), v3 = static_cast<std::size_t>(p.v[3]);
+          const bool out = (esc[v0] | esc[v1] | esc[v2] | esc[v3]) != 0;
+          // The two primitives' actual boxes: VF vertex | face, EE edge | edge (the unions of
+          // vertex boxes that find_candidates forms; min and max are exact).
+          const detail::GridVertexBox &b0 = eb[v0], &b1 = eb[v1], &b2 = eb[v2], &b3 = eb[v3];
+          bool meet = !out, far = false;
+          for (std::size_t d = 0; d < 3; ++d) {
+            const double alo = vf ? b0.lo[d] : std::min(b0.lo[d], b1.lo[d]);
+            const double ahi = vf ? b0.hi[d] : std::max(b0.hi[d], b1.hi[d]);
+            double blo = std::min(b2.lo[d], b3.lo[d]), bhi = std::max(b2.hi[d], b3.hi[d]);
+            if (vf) {
+              blo = std::min(blo, b1.lo[d]);
+              bhi = std::max(bhi, b1.hi[d]);
+            }
+            meet = meet & (alo <= bhi) & (blo <= ahi);
+            far = far | (blo - ahi > gap) | (alo - bhi > gap);
           }
-          meet = meet && alo <= bhi && blo <= ahi;
-          far = far || blo - ahi > gap || alo - bhi > gap;
+          // A pair with a vertex outside its predicted box is left to the queries below.
+          const std::uint8_t r = meet ? base[i] : std::uint8_t{NOT_CANDIDATE};
+          const bool st = meet & (r != EXCLUDED) & !far;
+          role[i] = r;
+          stale[i] = st;
+          fr[i] = !st;
+          kept += meet;
         }
-        const std::uint8_t r = meet ? base[i] : std::uint8_t{NOT_CANDIDATE};
-        const bool st = meet && r != EXCLUDED && !far;
-        role[i] = r;
-        stale[i] = st;
-        fr[i] = !st;
-        kept += meet;
-      }
+      };
+      const std::size_t begin = blk * PAIR_GRAIN, end = std::min(n_spec, begin + PAIR_GRAIN);
+      const std::size_t split = std::clamp(nvf_spec, begin, end);
+      classify_range(std::true_type{}, begin, split);
+      classify_range(std::false_type{}, split, end);
       kept_data[blk] = kept;
     });
   });
@@ -389,7 +397,8 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
 
   // The primitives with a vertex outside its predicted box: each against the grid's primitives
   // without one (whose actual boxes are inside their predicted ones, so the query sees every
-  // actual overlap), then against each other by a sweep along x. Serial: a few hundred queries.
+  // actual overlap), then against each other by a sweep along x. A few hundred queries per step
+  // (bear at P = 4), in parallel blocks: 1.4 -> 0.9 ms per step, measured.
   const std::size_t nf = static_cast<std::size_t>(topo_.faces.rows());
   auto ids = [&](std::uint32_t gid) { return detail::primitive_vertices(topo_, gid); };
   auto outside = [&](std::uint32_t gid) {
@@ -411,14 +420,13 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       if (esc(topo_.edges(e, 0)) | esc(topo_.edges(e, 1)))
         escaped_prims_.push_back(static_cast<std::uint32_t>(nvs + nf + static_cast<std::size_t>(e)));
   }
-  // Appends the pair of primitives a, b (any order) if they are a VF or EE pair sharing no
-  // vertex whose actual boxes overlap.
-  auto consider = [&](std::uint32_t a, std::uint32_t b) {
+  // If primitives a, b (any order) are a VF or EE pair sharing no vertex whose actual boxes
+  // overlap: true, and the pair.
+  auto pair_of = [&](std::uint32_t a, std::uint32_t b, CcdPrimitive& kind,
+                     std::array<int, 2>& pair) {
     const bool a_vertex = a < nvs, b_vertex = b < nvs;
     const bool a_face = !a_vertex && a < nvs + nf, b_face = !b_vertex && b < nvs + nf;
     const bool a_edge = a >= nvs + nf, b_edge = b >= nvs + nf;
-    std::array<int, 2> pair;
-    CcdPrimitive kind;
     if (a_vertex && b_face) {
       kind = CcdPrimitive::VertexFace;
       pair = {static_cast<int>(a), static_cast<int>(b - nvs)};
@@ -430,14 +438,20 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       const int ea = static_cast<int>(a - nvs - nf), eb = static_cast<int>(b - nvs - nf);
       pair = {std::min(ea, eb), std::max(ea, eb)};
     } else {
-      return;
+      return false;
     }
     const std::array<int, 3> va = ids(a), vb = ids(b);
     for (int i = 0; i < detail::primitive_corners(va); ++i)
       for (int j = 0; j < detail::primitive_corners(vb); ++j)
-        if (va[static_cast<std::size_t>(i)] == vb[static_cast<std::size_t>(j)]) return;
+        if (va[static_cast<std::size_t>(i)] == vb[static_cast<std::size_t>(j)]) return false;
+    return overlap(prim_box(a), prim_box(b));
+  };
+  // Appends the pair of primitives a, b if pair_of says so.
+  auto consider = [&](std::uint32_t a, std::uint32_t b) {
+    CcdPrimitive kind;
+    std::array<int, 2> pair;
+    if (!pair_of(a, b, kind, pair)) return;
     const detail::GridVertexBox ba = prim_box(a), bb = prim_box(b);
-    if (!overlap(ba, bb)) return;
     const std::size_t i = pairs_.size();
     PairRecord& p = pairs_.emplace_back();
     p.kind = kind;
@@ -449,12 +463,27 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
     classify(i, rest_role(kind, pair), ba, bb);
     ++kept;
   };
-  for (const std::uint32_t a : escaped_prims_) {
-    query_hits_.clear();
-    query_kept_grid(candidates_, topo_, prim_box(a), query_hits_);
-    for (const std::uint32_t b : query_hits_)
-      if (!outside(b)) consider(a, b);
-  }
+  // The grid queries in parallel (fixed blocks, each its own buffers), the appends in order.
+  const std::size_t query_blocks = (escaped_prims_.size() + QUERY_BLOCK - 1) / QUERY_BLOCK;
+  if (query_blocks_.size() < query_blocks) query_blocks_.resize(query_blocks);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, query_blocks, [&](std::size_t blk) {
+      QueryBlock& out = query_blocks_[blk];
+      out.pairs.clear();
+      const std::size_t stop = std::min(escaped_prims_.size(), (blk + 1) * QUERY_BLOCK);
+      for (std::size_t k = blk * QUERY_BLOCK; k < stop; ++k) {
+        const std::uint32_t a = escaped_prims_[k];
+        out.hits.clear();
+        query_kept_grid(candidates_, topo_, prim_box(a), out.hits);
+        CcdPrimitive kind;
+        std::array<int, 2> pair;
+        for (const std::uint32_t b : out.hits)
+          if (!outside(b) && pair_of(a, b, kind, pair)) out.pairs.push_back({a, b});
+      }
+    });
+  });
+  for (std::size_t blk = 0; blk < query_blocks; ++blk)
+    for (const std::array<std::uint32_t, 2>& ab : query_blocks_[blk].pairs) consider(ab[0], ab[1]);
   // Sweep and prune along x over the escaped primitives (sorted by lower x bound, then id).
   std::vector<std::pair<double, std::uint32_t>>& order = sweep_order_;
   order.clear();
