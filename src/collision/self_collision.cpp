@@ -495,6 +495,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       consider(order[i].second, order[j].second);
   }
 
+  collect_live();
   region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
   region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
   stats.speculative = 1;
@@ -539,6 +540,7 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                         }
                       });
   });
+  collect_live();
   region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
   region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
   stats.broad_seconds += bs.seconds + since(t0);
@@ -645,8 +647,9 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   if (count_stage) stats.pairs_filtered = static_cast<std::int64_t>(m);
 }
 
-template <class Keep>
-std::size_t SelfCollision::compact(std::size_t n, Keep keep, std::vector<std::uint32_t>& out) {
+template <class Index, class Keep>
+std::size_t SelfCollision::compact(std::size_t n, Index index, Keep keep,
+                                   std::vector<std::uint32_t>& out) {
   // Fixed blocks (never cut by the thread count): block b compacts its kept indices, in order,
   // to the front of its own slice out[b B, (b + 1) B); the slices are then closed up in order.
   constexpr std::size_t B = COMPACT_BLOCK;
@@ -658,7 +661,8 @@ std::size_t SelfCollision::compact(std::size_t n, Keep keep, std::vector<std::ui
       std::uint32_t* dst = out.data() + b * B;
       const std::size_t end = std::min(n, (b + 1) * B);
       std::size_t k = 0;
-      for (std::size_t i = b * B; i < end; ++i) {
+      for (std::size_t j = b * B; j < end; ++j) {
+        const std::size_t i = index(j);
         dst[k] = static_cast<std::uint32_t>(i);  // branch-free: keep() is hard to predict
         k += keep(i) ? 1 : 0;
       }
@@ -674,9 +678,18 @@ std::size_t SelfCollision::compact(std::size_t n, Keep keep, std::vector<std::ui
   return total;
 }
 
+void SelfCollision::collect_live() {
+  live_count_ = compact(
+      pairs_.size(), [](std::size_t i) { return i; },
+      [&](std::size_t i) { return role_[i] < EXCLUDED; }, live_);
+}
+
 template <class Keep>
 void SelfCollision::collect_tests(Keep keep) {
-  test_count_ = compact(pairs_.size(), keep, tests_);
+  const std::uint32_t* live = live_.data();
+  test_count_ = compact(
+      live_count_, [live](std::size_t j) { return static_cast<std::size_t>(live[j]); }, keep,
+      tests_);
 }
 
 template <class Keep>

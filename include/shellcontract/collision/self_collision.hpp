@@ -206,19 +206,25 @@ class SelfCollision {
   /// each pair) and the warm start's pressed contacts that were not detected again.
   void update_contact_cache();
 
-  /// Marks stale every pair with a vertex in moved_ and clears moved_, then sets tests_ as
+  /// Marks stale every live pair with a vertex in moved_ and clears moved_, then sets tests_ as
   /// collect_tests(keep) does, in the same pass over the pairs.
   template <class Keep>
   void mark_moved_and_collect(Keep keep);
 
-  /// Sets tests_[0, test_count_) to the pairs i with keep(i), in increasing order.
+  /// Sets tests_[0, test_count_) to the live pairs i (live_) with keep(i), in increasing order.
   template <class Keep>
   void collect_tests(Keep keep);
 
-  /// Writes the i in [0, n) with keep(i) to out[0, count), in increasing order, in parallel
-  /// (the same result for any number of threads); returns count. out keeps its capacity.
-  template <class Keep>
-  std::size_t compact(std::size_t n, Keep keep, std::vector<std::uint32_t>& out);
+  /// Sets live_[0, live_count_) to the pairs that may ever be tested (role NORMAL or NEAR), in
+  /// increasing order: the later passes over the pairs skip the excluded ones and the
+  /// speculative broad phase's non-candidates.
+  void collect_live();
+
+  /// Writes the i = index(j) for j in [0, n) with keep(i) to out[0, count), in the order of j,
+  /// in parallel (the same result for any number of threads); returns count. out keeps its
+  /// capacity.
+  template <class Index, class Keep>
+  std::size_t compact(std::size_t n, Index index, Keep keep, std::vector<std::uint32_t>& out);
 
   CollisionTopology topo_;
   CollisionOptions options_;
@@ -228,6 +234,8 @@ class SelfCollision {
   std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
   std::vector<std::uint32_t> tests_;     ///< [0, test_count_): pairs to test in the next detect()
+  std::vector<std::uint32_t> live_;      ///< [0, live_count_): see collect_live
+  std::size_t live_count_ = 0;
   std::size_t test_count_ = 0;
   std::vector<std::size_t> block_count_; ///< compact(): kept indices per block
   /// One block of tests of detect(): what its task found (buffers reused between calls).
