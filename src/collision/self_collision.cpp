@@ -255,23 +255,31 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
                                          CollisionStepStats& stats) {
   const auto t0 = Clock::now();
   spec_pending_ = false;
-  try {
-    if (spec_enqueued_) {
-      spec_enqueued_ = false;
-      workers_->arena.execute([&] { workers_->background.wait(); });
-      stats.background_seconds = spec_seconds_;
-    } else {  // run here: its time is this thread's (broad_seconds)
-      workers_->arena.execute([&] { run_speculation(); });
+  // Waits for the task (or runs it here); false if it failed.
+  auto finish_task = [&] {
+    try {
+      if (spec_enqueued_) {
+        spec_enqueued_ = false;
+        workers_->arena.execute([&] { workers_->background.wait(); });
+        stats.background_seconds = spec_seconds_;
+      } else {  // run here: its time is this thread's (broad_seconds)
+        workers_->arena.execute([&] { run_speculation(); });
+      }
+    } catch (...) {
+      // Whatever failed in the speculative task, the plain broad phase decides (and reports a
+      // failure of its own, if it has one).
+      return false;
     }
-  } catch (...) {
-    // Whatever failed in the speculative task, the plain broad phase decides (and reports a
-    // failure of its own, if it has one).
-    return false;
-  }
+    return true;
+  };
   // Arrays that do not match the mesh, or non-finite end positions: the plain broad phase
   // reports them (find_candidates' checks) or handles them.
-  if (x0.rows() != topo_.num_vertices || x1.rows() != topo_.num_vertices || !x1.allFinite())
+  if (x0.rows() != topo_.num_vertices || x1.rows() != topo_.num_vertices || !x1.allFinite()) {
+    finish_task();
     return false;
+  }
+  // What needs only x0 and x1 comes first, while the task may still be running (it reads
+  // spec_boxes_ and writes the pair buffers; this part writes neither).
   const Eigen::Index nv = x0.rows();
   const std::size_t nvs = static_cast<std::size_t>(nv);
   const double inflation = options_.delta + margin;
@@ -299,15 +307,30 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
     escaped += !inside;
     skin_(v) = SKIN_MIN * options_.delta + SKIN_GROWTH * (std::isfinite(error) ? error : 0.0);
   }
-  if (!spec_ok_ || (x0.array() != spec_x0_.array()).any() ||
-      static_cast<double>(escaped) >
-          std::max(ESCAPE_LIMIT, ESCAPE_FRACTION * static_cast<double>(nvs)))
-    return false;
+  const bool too_many = static_cast<double>(escaped) >
+                        std::max(ESCAPE_LIMIT, ESCAPE_FRACTION * static_cast<double>(nvs));
+  // The primitives with a vertex outside its predicted box (grid ids), for the queries below.
+  const std::size_t nf = static_cast<std::size_t>(topo_.faces.rows());
+  escaped_prims_.clear();
+  if (escaped > 0 && !too_many) {
+    auto esc = [&](Eigen::Index v) { return escaped_[static_cast<std::size_t>(v)] != 0; };
+    for (Eigen::Index v = 0; v < nv; ++v)
+      if (esc(v)) escaped_prims_.push_back(static_cast<std::uint32_t>(v));
+    for (Eigen::Index f = 0; f < topo_.faces.rows(); ++f)
+      if (esc(topo_.faces(f, 0)) | esc(topo_.faces(f, 1)) | esc(topo_.faces(f, 2)))
+        escaped_prims_.push_back(static_cast<std::uint32_t>(nvs + static_cast<std::size_t>(f)));
+    for (Eigen::Index e = 0; e < topo_.edges.rows(); ++e)
+      if (esc(topo_.edges(e, 0)) | esc(topo_.edges(e, 1)))
+        escaped_prims_.push_back(static_cast<std::uint32_t>(nvs + nf + static_cast<std::size_t>(e)));
+  }
+  const double far_gap = far_gap_threshold(x0, x1, inflation, options_.delta);
+  const bool other_x0 = (x0.array() != spec_x0_.array()).any();
+  const bool task_ok = finish_task();
+  if (!task_ok || !spec_ok_ || too_many || other_x0) return false;
 
   // The grid's pairs of two primitives inside their predicted boxes whose actual boxes overlap
   // are exactly find_candidates' pairs of such primitives (containment keeps every overlap).
   // Pairs with a vertex outside are left out here and found by the queries below.
-  const double far_gap = far_gap_threshold(x0, x1, inflation, options_.delta);
   const std::size_t n_spec = pairs_.size();
   const std::size_t nvf_spec = candidates_.vertex_face.size();
   role_.resize(n_spec);
@@ -399,7 +422,6 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   // without one (whose actual boxes are inside their predicted ones, so the query sees every
   // actual overlap), then against each other by a sweep along x. A few hundred queries per step
   // (bear at P = 4), in parallel blocks: 1.4 -> 0.9 ms per step, measured.
-  const std::size_t nf = static_cast<std::size_t>(topo_.faces.rows());
   auto ids = [&](std::uint32_t gid) { return detail::primitive_vertices(topo_, gid); };
   auto outside = [&](std::uint32_t gid) {
     const std::array<int, 3> v = ids(gid);
@@ -408,18 +430,6 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
     return false;
   };
   auto prim_box = [&](std::uint32_t gid) { return detail::primitive_box(exact_boxes_, ids(gid)); };
-  escaped_prims_.clear();
-  if (escaped > 0) {
-    auto esc = [&](Eigen::Index v) { return escaped_[static_cast<std::size_t>(v)] != 0; };
-    for (Eigen::Index v = 0; v < nv; ++v)
-      if (esc(v)) escaped_prims_.push_back(static_cast<std::uint32_t>(v));
-    for (Eigen::Index f = 0; f < topo_.faces.rows(); ++f)
-      if (esc(topo_.faces(f, 0)) | esc(topo_.faces(f, 1)) | esc(topo_.faces(f, 2)))
-        escaped_prims_.push_back(static_cast<std::uint32_t>(nvs + static_cast<std::size_t>(f)));
-    for (Eigen::Index e = 0; e < topo_.edges.rows(); ++e)
-      if (esc(topo_.edges(e, 0)) | esc(topo_.edges(e, 1)))
-        escaped_prims_.push_back(static_cast<std::uint32_t>(nvs + nf + static_cast<std::size_t>(e)));
-  }
   // If primitives a, b (any order) are a VF or EE pair sharing no vertex whose actual boxes
   // overlap: true, and the pair.
   auto pair_of = [&](std::uint32_t a, std::uint32_t b, CcdPrimitive& kind,
