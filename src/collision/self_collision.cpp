@@ -51,9 +51,9 @@ constexpr double RESPONSE_FACTOR = 2.0;
 /// the ones its own warm start projected (SelfCollision::update_contact_cache). With only the
 /// detected ones, a resting contact alternated: detected in one step, warm-started (so not
 /// detected) in the next, forgotten in the one after, detected again. Measured on bear (default
-/// run; P = 4 for 300 frames), detected contacts / filter tests per step / collision ms per step:
-/// last step's detections only 4,648 / 113k / 7.84 (11,749 / 243k / 18.7); with the cache 867 /
-/// 78k / 5.95-6.17 (1,756 / 159k / 13.9); V/V0 at the end 0.0234 both (0.0149, 0.0152).
+/// run; P = 4 for 300 frames), detected contacts / filter tests per step: last step's
+/// detections only 4,648 / 113k (11,749 / 243k); with the cache 864 / 78k (1,721 / 158k); V/V0
+/// at the end 0.0234 both (0.0149, 0.0150). Times: README, "Self-collision".
 constexpr double WARM_START_SLIDE = 2.0;
 
 /// Speculative broad phase (SelfCollision::predict): the skin of a vertex's predicted box is
@@ -381,8 +381,10 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
         constexpr bool vf = decltype(vf_tag)::value;
         for (std::size_t i = begin; i < stop; ++i) {
           const PairRecord& p = rec[i];
-          const std::size_t v0 = static_cast<std::size_t>(p.v[0]), v1 = static_cast<std::size_t>(p.v[1]);
-          const std::size_t v2 = static_cast<std::size_t>(p.v[2]), v3 = static_cast<std::size_t>(p.v[3]);
+          const std::size_t v0 = static_cast<std::size_t>(p.v[0]);
+          const std::size_t v1 = static_cast<std::size_t>(p.v[1]);
+          const std::size_t v2 = static_cast<std::size_t>(p.v[2]);
+          const std::size_t v3 = static_cast<std::size_t>(p.v[3]);
           const bool out = (esc[v0] | esc[v1] | esc[v2] | esc[v3]) != 0;
           // The two primitives' actual boxes: VF vertex | face, EE edge | edge (the unions of
           // vertex boxes that find_candidates forms; min and max are exact).

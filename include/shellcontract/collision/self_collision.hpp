@@ -28,8 +28,9 @@ struct CollisionOptions {
   int threads = 0;
   /// Warm start: before detection, push the end positions apart along the frozen frames of the
   /// previous step's contacts, detected or still pressed (resting contact persists from step to
-  /// step, see SelfCollision::resolve), so that detection finds and pushes fewer pairs. Detection and the fail-safe still decide; off gives the plain
-  /// per-step response of math-spec 10.8.
+  /// step, see SelfCollision::resolve), so that detection finds and pushes fewer pairs.
+  /// Detection and the fail-safe still decide; off gives the plain per-step response of
+  /// math-spec 10.8.
   bool warm_start = true;
   /// m / delta >= 0: the step's broad phase inflates by delta + m, and the response keeps each
   /// vertex within m/2 of its swept box (see SelfCollision::resolve; measurements in
