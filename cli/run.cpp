@@ -109,7 +109,7 @@ struct CollisionTotals {
   double no_culling = 0, broad = 0, filtered = 0, tests = 0, axis_culls = 0, contacts = 0,
          failsafe = 0;
   double broad_calls = 0, filter_tests = 0, rounds = 0, speculative = 0, escaped = 0,
-         background_s = 0;
+         background_s = 0, wait_s = 0;
   double broad_s = 0, filter_s = 0, narrow_s = 0, response_s = 0, collision_s = 0, solve_s = 0,
          step_s = 0;
   void add(const FrameMetrics& m) {
@@ -127,6 +127,7 @@ struct CollisionTotals {
     speculative += c.speculative;
     escaped += static_cast<double>(c.escaped_vertices);
     background_s += c.background_seconds;
+    wait_s += c.wait_seconds;
     broad_s += c.broad_seconds;
     filter_s += c.filter_seconds;
     narrow_s += c.narrow_seconds;
@@ -149,6 +150,7 @@ struct CollisionTotals {
         .add("speculative_broad_phase_steps", speculative)
         .add("escaped_vertices_per_speculative_step", speculative > 0 ? escaped / speculative : 0.0)
         .add("background_broad_phase_ms_per_step", 1e3 * background_s / n)
+        .add("background_wait_ms_per_step", 1e3 * wait_s / n)
         .add("broad_phase_ms_per_step", 1e3 * broad_s / n).add("filter_ms_per_step", 1e3 * filter_s / n)
         .add("narrow_phase_ms_per_step", 1e3 * narrow_s / n).add("response_ms_per_step", 1e3 * response_s / n)
         .add("collision_ms_per_step", 1e3 * collision_s / n)

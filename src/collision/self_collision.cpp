@@ -257,6 +257,12 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   spec_pending_ = false;
   // Waits for the task (or runs it here); false if it failed.
   auto finish_task = [&] {
+    const auto tw = Clock::now();
+    struct Timer {  // counts the wait however the block is left
+      Clock::time_point start;
+      double& total;
+      ~Timer() { total += since(start); }
+    } timer{tw, stats.wait_seconds};
     try {
       if (spec_enqueued_) {
         spec_enqueued_ = false;
@@ -274,9 +280,14 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   };
   // Arrays that do not match the mesh, or non-finite end positions: the plain broad phase
   // reports them (find_candidates' checks) or handles them.
+  // A failed completion's time (the wait included) is broad-phase time of the step too.
+  auto fail = [&] {
+    stats.broad_seconds += since(t0);
+    return false;
+  };
   if (x0.rows() != topo_.num_vertices || x1.rows() != topo_.num_vertices || !x1.allFinite()) {
     finish_task();
-    return false;
+    return fail();
   }
   // What needs only x0 and x1 comes first, while the task may still be running (it reads
   // spec_boxes_ and writes the pair buffers; this part writes neither).
@@ -326,7 +337,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   const double far_gap = far_gap_threshold(x0, x1, inflation, options_.delta);
   const bool other_x0 = (x0.array() != spec_x0_.array()).any();
   const bool task_ok = finish_task();
-  if (!task_ok || !spec_ok_ || too_many || other_x0) return false;
+  if (!task_ok || !spec_ok_ || too_many || other_x0) return fail();
 
   // The grid's pairs of two primitives inside their predicted boxes whose actual boxes overlap
   // are exactly find_candidates' pairs of such primitives (containment keeps every overlap).

@@ -75,6 +75,10 @@ struct CollisionStepStats {
   /// constraint solve: not part of `seconds`, which holds what the calling thread spends (in
   /// predict, waiting for the task, completing it).
   double background_seconds = 0.0;
+  /// Steps with a prediction: wall time the calling thread spent on the speculative task after
+  /// the solve (waiting for it, or taking over its remaining work; with one thread, running it
+  /// all). Part of broad_seconds: the time the task still cost the step.
+  double wait_seconds = 0.0;
   /// Wall time the calling thread spends on the step's collision handling: the whole resolve
   /// call (the four stages plus the bookkeeping between them: pair lists, stale marks) and the
   /// step's predict call (also counted in broad_seconds). The collision cost per step that the
