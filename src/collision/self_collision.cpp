@@ -255,14 +255,10 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
                                          CollisionStepStats& stats) {
   const auto t0 = Clock::now();
   spec_pending_ = false;
-  // Waits for the task (or runs it here); false if it failed.
+  // Waits for the task (or runs it here); false if it failed. Its time is the step's wait.
   auto finish_task = [&] {
     const auto tw = Clock::now();
-    struct Timer {  // counts the wait however the block is left
-      Clock::time_point start;
-      double& total;
-      ~Timer() { total += since(start); }
-    } timer{tw, stats.wait_seconds};
+    bool ok = true;
     try {
       if (spec_enqueued_) {
         spec_enqueued_ = false;
@@ -274,9 +270,10 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
     } catch (...) {
       // Whatever failed in the speculative task, the plain broad phase decides (and reports a
       // failure of its own, if it has one).
-      return false;
+      ok = false;
     }
-    return true;
+    stats.wait_seconds += since(tw);
+    return ok;
   };
   // Arrays that do not match the mesh, or non-finite end positions: the plain broad phase
   // reports them (find_candidates' checks) or handles them.
