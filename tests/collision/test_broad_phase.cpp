@@ -716,6 +716,25 @@ TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
       std::sort(hits.begin(), hits.end());
       EXPECT_EQ(hits, expected) << "trial " << trial << ", query " << q;
       queries_with_hits += !expected.empty();
+      // An id range: the vertices, the faces, the edges, and one that cuts through the faces
+      // and edges (each cell's run of entries must be found, not assumed to start at a kind).
+      const std::uint32_t total = static_cast<std::uint32_t>(nv + nf + ne);
+      const std::uint32_t cut = static_cast<std::uint32_t>(nv + nf / 2);
+      const std::array<std::array<std::uint32_t, 2>, 4> ranges = {
+          {{0, static_cast<std::uint32_t>(nv)},
+           {static_cast<std::uint32_t>(nv), static_cast<std::uint32_t>(nv + nf)},
+           {static_cast<std::uint32_t>(nv + nf), total},
+           {cut, cut + static_cast<std::uint32_t>(nf)}}};
+      for (const auto& range : ranges) {
+        std::vector<std::uint32_t> ranged, expected_ranged;
+        query_kept_grid(given, topo, query, ranged, range[0], range[1]);
+        for (const std::uint32_t g : expected)
+          if (g >= range[0] && g < range[1]) expected_ranged.push_back(g);
+        std::sort(ranged.begin(), ranged.end());
+        EXPECT_EQ(ranged, expected_ranged)
+            << "trial " << trial << ", query " << q << ", ids [" << range[0] << ", " << range[1]
+            << ")";
+      }
     }
   }
   EXPECT_GT(queries_with_hits, 40);

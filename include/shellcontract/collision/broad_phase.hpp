@@ -9,6 +9,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "shellcontract/core/types.hpp"
@@ -299,9 +300,14 @@ bool find_candidates_in_vertex_boxes(const std::vector<detail::GridVertexBox>& b
 /// The primitives whose boxes in the grid kept by the last find_candidates_in_vertex_boxes call
 /// on `pairs` overlap `box` (closed intervals on all three axes), each once, appended to `out`
 /// as ids: vertex v, face V + f, edge V + F + e. Adjacency is not checked.
+/// @param first_id, end_id  only ids in [first_id, end_id) are reported (e.g. [V, V + F): the
+///                          faces a vertex can pair with); the others are skipped without a box
+///                          test, since each cell lists its boxes by increasing id
 /// @throws UsageError if `pairs` keeps no grid
 void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
-                     const detail::GridVertexBox& box, std::vector<std::uint32_t>& out);
+                     const detail::GridVertexBox& box, std::vector<std::uint32_t>& out,
+                     std::uint32_t first_id = 0,
+                     std::uint32_t end_id = std::numeric_limits<std::uint32_t>::max());
 
 /// Fast conservative step check: does find_candidates have at least one pair to report?
 /// Stops at the first non-adjacent overlapping VF or EE box pair, so a `false` answer (nothing

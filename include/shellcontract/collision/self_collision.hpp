@@ -292,6 +292,10 @@ class SelfCollision {
   };
   std::vector<QueryBlock> query_blocks_;
   std::vector<std::size_t> block_kept_;       ///< per block of the completion: pairs kept
+  std::vector<std::size_t> block_live_;       ///< ... its live pairs (see collect_live)
+  std::vector<std::size_t> block_tests_;      ///< ... its round-0 tests
+  /// complete_speculation set live_ and round 0's tests_ itself (resolve skips collecting them)
+  bool round0_tests_ready_ = false;
   std::vector<std::pair<double, std::uint32_t>> sweep_order_;  ///< escaped primitives by x
 };
 
