@@ -626,23 +626,42 @@ bool cell_masks(const detail::GridCell& cell, std::size_t i, std::size_t j0, std
 #pragma GCC push_options
 #pragma GCC target("avx512f,avx512vl,popcnt")
 
-/// Item i of the cell against items [j0, j1): appends to keys[n..] the key
-/// (base | (gid_j - sub)) << 1 | close of every j (increasing) that passes the dedupe flags, the
-/// exact box test and the adjacency test; close is 0 iff gap_above(box i, box j, far_gap). Adds
-/// the flag-and-box hits (adjacent pairs included) to `hits`.
-inline __attribute__((always_inline)) void cell_row_avx512(
-    const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1,
-    std::uint64_t base, std::uint32_t sub, double far_gap, std::vector<std::uint64_t>& keys,
-    std::size_t& n, std::int64_t& hits) {
-  const __m512d lx = _mm512_set1_pd(cell.dlo[0][i]), ly = _mm512_set1_pd(cell.dlo[1][i]);
-  const __m512d lz = _mm512_set1_pd(cell.dlo[2][i]), hx = _mm512_set1_pd(cell.dhi[0][i]);
-  const __m512d hy = _mm512_set1_pd(cell.dhi[1][i]), hz = _mm512_set1_pd(cell.dhi[2][i]);
+/// Items i, ..., i + R - 1 of the cell (R = 1 or 2 rows) against items [j0 + r s, j1), where
+/// s = 1 if `stagger` (edge-edge rows: row r starts after its own item) and 0 otherwise
+/// (vertex-face rows share their range). Row r appends to keys[r][n[r]..] the key
+/// (base[r] | (gid_j - sub)) << 1 | close of every j (increasing) that passes the dedupe flags,
+/// the exact box test and the adjacency test; close is 0 iff gap_above(box i + r, box j,
+/// far_gap). Adds the flag-and-box hits (adjacent pairs included) to `hits`. Two rows share the
+/// loads of the j items and the loop (EE rows average about three 8-lane steps, so a row's set-up
+/// and its loop exit weigh as much as its tests); their answers are row 1's own, written to its
+/// own buffer, so the caller can append them after row 0's and keep the order of single rows.
+template <int R>
+inline __attribute__((always_inline)) void cell_rows_avx512(
+    const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1, bool stagger,
+    const std::uint64_t (&base)[R], std::uint32_t sub, double far_gap,
+    std::vector<std::uint64_t>* const (&keys)[R], std::size_t* const (&n)[R],
+    std::int64_t& hits) {
+  __m512d lx[R], ly[R], lz[R], hx[R], hy[R], hz[R];
+  __m256i fi[R], a[R], b[R], c[R];
+  __m512i key_base[R];
+  std::size_t start[R];
+  for (int r = 0; r < R; ++r) {
+    const std::size_t q = i + static_cast<std::size_t>(r);
+    lx[r] = _mm512_set1_pd(cell.dlo[0][q]);
+    ly[r] = _mm512_set1_pd(cell.dlo[1][q]);
+    lz[r] = _mm512_set1_pd(cell.dlo[2][q]);
+    hx[r] = _mm512_set1_pd(cell.dhi[0][q]);
+    hy[r] = _mm512_set1_pd(cell.dhi[1][q]);
+    hz[r] = _mm512_set1_pd(cell.dhi[2][q]);
+    fi[r] = _mm256_set1_epi32(static_cast<int>(cell.flags[q]));
+    a[r] = _mm256_set1_epi32(cell.v[0][q]);
+    b[r] = _mm256_set1_epi32(cell.v[1][q]);
+    c[r] = _mm256_set1_epi32(cell.v[2][q]);
+    key_base[r] = _mm512_set1_epi64(static_cast<long long>(base[r]));
+    start[r] = j0 + (stagger ? static_cast<std::size_t>(r) : 0);
+  }
   const __m512d gap = _mm512_set1_pd(far_gap);
-  const __m256i fi = _mm256_set1_epi32(static_cast<int>(cell.flags[i]));
   const __m256i all_first = _mm256_set1_epi32(static_cast<int>(GRID_ALL_FIRST));
-  const __m256i a = _mm256_set1_epi32(cell.v[0][i]), b = _mm256_set1_epi32(cell.v[1][i]);
-  const __m256i c = _mm256_set1_epi32(cell.v[2][i]);
-  const __m512i key_base = _mm512_set1_epi64(static_cast<long long>(base));
   const __m512i key_sub = _mm512_set1_epi64(sub), one = _mm512_set1_epi64(1);
   std::int64_t box_hits = 0;
   for (std::size_t j = j0; j < j1; j += 8) {
@@ -661,38 +680,46 @@ inline __attribute__((always_inline)) void cell_row_avx512(
     const __m256i qa = _mm256_maskz_loadu_epi32(live, cell.v[0].data() + j);
     const __m256i qb = _mm256_maskz_loadu_epi32(live, cell.v[1].data() + j);
     const __m256i qc = _mm256_maskz_loadu_epi32(live, cell.v[2].data() + j);
-    // The dedupe flags and overlap(i, j): closed intervals on all three axes.
-    const unsigned box =
-        live & _mm256_cmpeq_epi32_mask(_mm256_or_si256(fi, qf), all_first) &
-        _mm512_cmp_pd_mask(lx, qhx, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlx, hx, _CMP_LE_OQ) &
-        _mm512_cmp_pd_mask(ly, qhy, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qly, hy, _CMP_LE_OQ) &
-        _mm512_cmp_pd_mask(lz, qhz, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlz, hz, _CMP_LE_OQ);
-    // Adjacent iff a vertex id is shared; the -1/-2 placeholders never match (see ids()).
-    const unsigned apart =
-        _mm256_cmpneq_epi32_mask(a, qa) & _mm256_cmpneq_epi32_mask(a, qb) &
-        _mm256_cmpneq_epi32_mask(a, qc) & _mm256_cmpneq_epi32_mask(b, qa) &
-        _mm256_cmpneq_epi32_mask(b, qb) & _mm256_cmpneq_epi32_mask(c, qa) &
-        _mm256_cmpneq_epi32_mask(c, qb);
-    box_hits += __builtin_popcount(box);
-    const __mmask8 pass = static_cast<__mmask8>(box & apart);
-    if (pass == 0) continue;
-    // gap_above(box i, box j, far_gap), the same subtractions.
-    const __mmask8 far = static_cast<__mmask8>(
-        _mm512_cmp_pd_mask(_mm512_sub_pd(qlx, hx), gap, _CMP_GT_OQ) |
-        _mm512_cmp_pd_mask(_mm512_sub_pd(lx, qhx), gap, _CMP_GT_OQ) |
-        _mm512_cmp_pd_mask(_mm512_sub_pd(qly, hy), gap, _CMP_GT_OQ) |
-        _mm512_cmp_pd_mask(_mm512_sub_pd(ly, qhy), gap, _CMP_GT_OQ) |
-        _mm512_cmp_pd_mask(_mm512_sub_pd(qlz, hz), gap, _CMP_GT_OQ) |
-        _mm512_cmp_pd_mask(_mm512_sub_pd(lz, qhz), gap, _CMP_GT_OQ));
-    const __m512i gid = _mm512_maskz_cvtepu32_epi64(
-        pass,
-        _mm256_maskz_loadu_epi32(pass, reinterpret_cast<const int*>(cell.gid.data() + j)));
-    __m512i key = _mm512_maskz_slli_epi64(
-        pass, _mm512_or_si512(key_base, _mm512_sub_epi64(gid, key_sub)), 1);
-    key = _mm512_mask_or_epi64(key, static_cast<__mmask8>(~far), key, one);
-    if (keys.size() < n + 8) keys.resize(std::max<std::size_t>(2 * keys.size(), n + 256));
-    _mm512_mask_compressstoreu_epi64(keys.data() + n, pass, key);
-    n += static_cast<std::size_t>(__builtin_popcount(pass));
+    for (int r = 0; r < R; ++r) {
+      // Row r's lanes: live, and at or after its start (only a staggered row's first step
+      // drops a lane).
+      const unsigned lanes =
+          start[r] > j ? live & ~((1u << (start[r] - j)) - 1u) : static_cast<unsigned>(live);
+      // The dedupe flags and overlap(i + r, j): closed intervals on all three axes.
+      const unsigned box =
+          lanes & _mm256_cmpeq_epi32_mask(_mm256_or_si256(fi[r], qf), all_first) &
+          _mm512_cmp_pd_mask(lx[r], qhx, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlx, hx[r], _CMP_LE_OQ) &
+          _mm512_cmp_pd_mask(ly[r], qhy, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qly, hy[r], _CMP_LE_OQ) &
+          _mm512_cmp_pd_mask(lz[r], qhz, _CMP_LE_OQ) & _mm512_cmp_pd_mask(qlz, hz[r], _CMP_LE_OQ);
+      // Adjacent iff a vertex id is shared; the -1/-2 placeholders never match (see ids()).
+      const unsigned apart =
+          _mm256_cmpneq_epi32_mask(a[r], qa) & _mm256_cmpneq_epi32_mask(a[r], qb) &
+          _mm256_cmpneq_epi32_mask(a[r], qc) & _mm256_cmpneq_epi32_mask(b[r], qa) &
+          _mm256_cmpneq_epi32_mask(b[r], qb) & _mm256_cmpneq_epi32_mask(c[r], qa) &
+          _mm256_cmpneq_epi32_mask(c[r], qb);
+      box_hits += __builtin_popcount(box);
+      const __mmask8 pass = static_cast<__mmask8>(box & apart);
+      if (pass == 0) continue;
+      // gap_above(box i + r, box j, far_gap), the same subtractions.
+      const __mmask8 far = static_cast<__mmask8>(
+          _mm512_cmp_pd_mask(_mm512_sub_pd(qlx, hx[r]), gap, _CMP_GT_OQ) |
+          _mm512_cmp_pd_mask(_mm512_sub_pd(lx[r], qhx), gap, _CMP_GT_OQ) |
+          _mm512_cmp_pd_mask(_mm512_sub_pd(qly, hy[r]), gap, _CMP_GT_OQ) |
+          _mm512_cmp_pd_mask(_mm512_sub_pd(ly[r], qhy), gap, _CMP_GT_OQ) |
+          _mm512_cmp_pd_mask(_mm512_sub_pd(qlz, hz[r]), gap, _CMP_GT_OQ) |
+          _mm512_cmp_pd_mask(_mm512_sub_pd(lz[r], qhz), gap, _CMP_GT_OQ));
+      const __m512i gid = _mm512_maskz_cvtepu32_epi64(
+          pass,
+          _mm256_maskz_loadu_epi32(pass, reinterpret_cast<const int*>(cell.gid.data() + j)));
+      __m512i key = _mm512_maskz_slli_epi64(
+          pass, _mm512_or_si512(key_base[r], _mm512_sub_epi64(gid, key_sub)), 1);
+      key = _mm512_mask_or_epi64(key, static_cast<__mmask8>(~far), key, one);
+      std::vector<std::uint64_t>& out = *keys[r];
+      std::size_t& count = *n[r];
+      if (out.size() < count + 8) out.resize(std::max<std::size_t>(2 * out.size(), count + 256));
+      _mm512_mask_compressstoreu_epi64(out.data() + count, pass, key);
+      count += static_cast<std::size_t>(__builtin_popcount(pass));
+    }
   }
   hits += box_hits;
 }
@@ -736,15 +763,56 @@ void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
       fb += gid < nv;
       eb += gid < nv + nf;
     }
-    for (std::size_t i = 0; i < fb && eb > fb; ++i)
-      cell_row_avx512(cell, i, fb, eb, static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift,
-                      static_cast<std::uint32_t>(nv), far_gap, out_chunk.vf_keys, nvf,
-                      out_chunk.reported);
-    for (std::size_t i = eb; i + 1 < k; ++i)
-      cell_row_avx512(cell, i, i + 1, k,
-                      static_cast<std::uint64_t>(cell.gid[i] - nv - nf) << ee_shift,
-                      static_cast<std::uint32_t>(nv + nf), far_gap, out_chunk.ee_keys, nee,
-                      out_chunk.reported);
+    // Rows two at a time; the second row's keys go to row_keys and follow the first row's, so
+    // the keys come in the order of single rows (the portable loop's).
+    std::vector<std::uint64_t>* const one_buffer[1] = {&out_chunk.vf_keys};
+    std::size_t* const one_count[1] = {&nvf};
+    std::vector<std::uint64_t>* const two_buffers[2] = {&out_chunk.vf_keys, &out_chunk.row_keys};
+    std::size_t nrow = 0;
+    std::size_t* const two_counts[2] = {&nvf, &nrow};
+    auto append_row = [&](std::vector<std::uint64_t>& keys, std::size_t& count) {
+      if (nrow == 0) return;
+      if (keys.size() < count + nrow) keys.resize(std::max(2 * keys.size(), count + nrow));
+      std::copy(out_chunk.row_keys.begin(),
+                out_chunk.row_keys.begin() + static_cast<std::ptrdiff_t>(nrow),
+                keys.begin() + static_cast<std::ptrdiff_t>(count));
+      count += nrow;
+      nrow = 0;
+    };
+    const std::uint32_t vf_sub = static_cast<std::uint32_t>(nv);
+    std::size_t i = 0;
+    for (; eb > fb && i + 1 < fb; i += 2) {
+      const std::uint64_t base[2] = {static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift,
+                                     static_cast<std::uint64_t>(cell.v[0][i + 1]) << vf_shift};
+      cell_rows_avx512<2>(cell, i, fb, eb, false, base, vf_sub, far_gap, two_buffers, two_counts,
+                          out_chunk.reported);
+      append_row(out_chunk.vf_keys, nvf);
+    }
+    if (eb > fb && i < fb) {
+      const std::uint64_t base[1] = {static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift};
+      cell_rows_avx512<1>(cell, i, fb, eb, false, base, vf_sub, far_gap, one_buffer, one_count,
+                          out_chunk.reported);
+    }
+    std::vector<std::uint64_t>* const one_ee[1] = {&out_chunk.ee_keys};
+    std::size_t* const one_ee_count[1] = {&nee};
+    std::vector<std::uint64_t>* const two_ee[2] = {&out_chunk.ee_keys, &out_chunk.row_keys};
+    std::size_t* const two_ee_counts[2] = {&nee, &nrow};
+    const std::uint32_t ee_sub = static_cast<std::uint32_t>(nv + nf);
+    auto ee_base = [&](std::size_t q) {
+      return static_cast<std::uint64_t>(cell.gid[q] - nv - nf) << ee_shift;
+    };
+    i = eb;
+    for (; i + 2 < k; i += 2) {
+      const std::uint64_t base[2] = {ee_base(i), ee_base(i + 1)};
+      cell_rows_avx512<2>(cell, i, i + 1, k, true, base, ee_sub, far_gap, two_ee, two_ee_counts,
+                          out_chunk.reported);
+      append_row(out_chunk.ee_keys, nee);
+    }
+    if (i + 1 < k) {
+      const std::uint64_t base[1] = {ee_base(i)};
+      cell_rows_avx512<1>(cell, i, i + 1, k, true, base, ee_sub, far_gap, one_ee, one_ee_count,
+                          out_chunk.reported);
+    }
   }
   out_chunk.vf_keys.resize(nvf);
   out_chunk.ee_keys.resize(nee);

@@ -167,6 +167,7 @@ struct GridChunk {
   GridCell cell;                         ///< the boxes of the current cell
   std::vector<std::uint64_t> vf_keys;    ///< pairs found in this chunk (see BroadPhaseScratch)
   std::vector<std::uint64_t> ee_keys;
+  std::vector<std::uint64_t> row_keys;   ///< AVX-512 loop: the second row of a pair of rows
   std::int64_t reported = 0;             ///< box overlaps (statistics, see BroadPhaseStats)
 };
 
