@@ -11,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <type_traits>
 
 #include "shellcontract/core/error.hpp"
 
@@ -412,6 +413,12 @@ constexpr std::size_t GRID_CHUNKS = 32;
 constexpr std::size_t GRID_MAX_PARTS = 8;
 /// Vertices per task of the grid's per-vertex loops.
 constexpr std::size_t GRID_VERTEX_GRAIN = 2048;
+/// Rows of the AVX-512 cell loop processed together (cell_rows_avx512). bench_broad_phase on
+/// bear's frames 299 and 300 at P = 4 (one core, best of 5, five alternating series): 1 row
+/// 13.2-15.0 ms per call, 2 rows 11.6-13.5, 4 rows 12.7-14.4 (their broadcast row values no
+/// longer fit the 32 vector registers). At most 4 (BroadPhaseScratch's row buffers).
+constexpr int GRID_ROW_GROUP = 2;
+static_assert(GRID_ROW_GROUP >= 1 && GRID_ROW_GROUP <= 4, "see detail::GridChunk::row_keys");
 /// Ids are stored as gid << 3 | flags in 32 bits.
 constexpr std::size_t GRID_MAX_BOXES = std::size_t{1} << 29;
 /// Cells per axis fit the 16-bit fields of detail::GridRange.
@@ -626,15 +633,15 @@ bool cell_masks(const detail::GridCell& cell, std::size_t i, std::size_t j0, std
 #pragma GCC push_options
 #pragma GCC target("avx512f,avx512vl,popcnt")
 
-/// Items i, ..., i + R - 1 of the cell (R = 1 or 2 rows) against items [j0 + r s, j1), where
-/// s = 1 if `stagger` (edge-edge rows: row r starts after its own item) and 0 otherwise
-/// (vertex-face rows share their range). Row r appends to keys[r][n[r]..] the key
+/// Items i, ..., i + R - 1 of the cell (R rows, see GRID_ROW_GROUP) against items
+/// [j0 + r s, j1), where s = 1 if `stagger` (edge-edge rows: row r starts after its own item)
+/// and 0 otherwise (vertex-face rows share their range). Row r appends to keys[r][n[r]..] the key
 /// (base[r] | (gid_j - sub)) << 1 | close of every j (increasing) that passes the dedupe flags,
 /// the exact box test and the adjacency test; close is 0 iff gap_above(box i + r, box j,
-/// far_gap). Adds the flag-and-box hits (adjacent pairs included) to `hits`. Two rows share the
+/// far_gap). Adds the flag-and-box hits (adjacent pairs included) to `hits`. The rows share the
 /// loads of the j items and the loop (EE rows average about three 8-lane steps, so a row's set-up
-/// and its loop exit weigh as much as its tests); their answers are row 1's own, written to its
-/// own buffer, so the caller can append them after row 0's and keep the order of single rows.
+/// and its loop exit weigh as much as its tests); each row's answers are its own, written to its
+/// own buffer, so the caller can append them in row order and keep the order of single rows.
 template <int R>
 inline __attribute__((always_inline)) void cell_rows_avx512(
     const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1, bool stagger,
@@ -763,56 +770,59 @@ void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
       fb += gid < nv;
       eb += gid < nv + nf;
     }
-    // Rows two at a time; the second row's keys go to row_keys and follow the first row's, so
-    // the keys come in the order of single rows (the portable loop's).
-    std::vector<std::uint64_t>* const one_buffer[1] = {&out_chunk.vf_keys};
-    std::size_t* const one_count[1] = {&nvf};
-    std::vector<std::uint64_t>* const two_buffers[2] = {&out_chunk.vf_keys, &out_chunk.row_keys};
-    std::size_t nrow = 0;
-    std::size_t* const two_counts[2] = {&nvf, &nrow};
-    auto append_row = [&](std::vector<std::uint64_t>& keys, std::size_t& count) {
-      if (nrow == 0) return;
-      if (keys.size() < count + nrow) keys.resize(std::max(2 * keys.size(), count + nrow));
-      std::copy(out_chunk.row_keys.begin(),
-                out_chunk.row_keys.begin() + static_cast<std::ptrdiff_t>(nrow),
-                keys.begin() + static_cast<std::ptrdiff_t>(count));
-      count += nrow;
-      nrow = 0;
+    // Rows GRID_ROW_GROUP at a time; row r > 0 of a group writes to row_keys[r - 1], appended
+    // after the rows before it, so the keys come in the order of single rows (the portable
+    // loop's). `base_of(q)` is item q's key prefix.
+    auto rows = [&](auto group, std::size_t i, std::size_t j0, std::size_t j1, bool stagger,
+                    auto base_of, std::uint32_t sub, std::vector<std::uint64_t>& keys,
+                    std::size_t& count) {
+      constexpr int R = decltype(group)::value;
+      std::uint64_t base[R];
+      std::vector<std::uint64_t>* buffers[R];
+      std::size_t row_count[R] = {};
+      std::size_t* counts[R];
+      for (int r = 0; r < R; ++r) {
+        base[r] = base_of(i + static_cast<std::size_t>(r));
+        buffers[r] = r == 0 ? &keys : &out_chunk.row_keys[static_cast<std::size_t>(r - 1)];
+        counts[r] = r == 0 ? &count : &row_count[r];
+      }
+      cell_rows_avx512<R>(cell, i, j0, j1, stagger, base, sub, far_gap, buffers, counts,
+                          out_chunk.reported);
+      for (int r = 1; r < R; ++r) {
+        const std::size_t m = row_count[r];
+        if (m == 0) continue;
+        if (keys.size() < count + m) keys.resize(std::max(2 * keys.size(), count + m));
+        const std::vector<std::uint64_t>& row = *buffers[r];
+        std::copy(row.begin(), row.begin() + static_cast<std::ptrdiff_t>(m),
+                  keys.begin() + static_cast<std::ptrdiff_t>(count));
+        count += m;
+      }
     };
+    using Group = std::integral_constant<int, GRID_ROW_GROUP>;
+    using Single = std::integral_constant<int, 1>;
+    constexpr std::size_t G = GRID_ROW_GROUP;
+    // Vertex-face rows: every vertex i < fb against the faces [fb, eb).
     const std::uint32_t vf_sub = static_cast<std::uint32_t>(nv);
+    auto vf_base = [&](std::size_t q) {
+      return static_cast<std::uint64_t>(cell.v[0][q]) << vf_shift;
+    };
     std::size_t i = 0;
-    for (; eb > fb && i + 1 < fb; i += 2) {
-      const std::uint64_t base[2] = {static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift,
-                                     static_cast<std::uint64_t>(cell.v[0][i + 1]) << vf_shift};
-      cell_rows_avx512<2>(cell, i, fb, eb, false, base, vf_sub, far_gap, two_buffers, two_counts,
-                          out_chunk.reported);
-      append_row(out_chunk.vf_keys, nvf);
+    if (eb > fb) {
+      for (; i + G <= fb; i += G)
+        rows(Group{}, i, fb, eb, false, vf_base, vf_sub, out_chunk.vf_keys, nvf);
+      for (; i < fb; ++i)
+        rows(Single{}, i, fb, eb, false, vf_base, vf_sub, out_chunk.vf_keys, nvf);
     }
-    if (eb > fb && i < fb) {
-      const std::uint64_t base[1] = {static_cast<std::uint64_t>(cell.v[0][i]) << vf_shift};
-      cell_rows_avx512<1>(cell, i, fb, eb, false, base, vf_sub, far_gap, one_buffer, one_count,
-                          out_chunk.reported);
-    }
-    std::vector<std::uint64_t>* const one_ee[1] = {&out_chunk.ee_keys};
-    std::size_t* const one_ee_count[1] = {&nee};
-    std::vector<std::uint64_t>* const two_ee[2] = {&out_chunk.ee_keys, &out_chunk.row_keys};
-    std::size_t* const two_ee_counts[2] = {&nee, &nrow};
+    // Edge-edge rows: edge i against the edges after it, [i + 1, k) (a group needs a j for its
+    // last row).
     const std::uint32_t ee_sub = static_cast<std::uint32_t>(nv + nf);
     auto ee_base = [&](std::size_t q) {
       return static_cast<std::uint64_t>(cell.gid[q] - nv - nf) << ee_shift;
     };
-    i = eb;
-    for (; i + 2 < k; i += 2) {
-      const std::uint64_t base[2] = {ee_base(i), ee_base(i + 1)};
-      cell_rows_avx512<2>(cell, i, i + 1, k, true, base, ee_sub, far_gap, two_ee, two_ee_counts,
-                          out_chunk.reported);
-      append_row(out_chunk.ee_keys, nee);
-    }
-    if (i + 1 < k) {
-      const std::uint64_t base[1] = {ee_base(i)};
-      cell_rows_avx512<1>(cell, i, i + 1, k, true, base, ee_sub, far_gap, one_ee, one_ee_count,
-                          out_chunk.reported);
-    }
+    for (i = eb; i + G < k; i += G)
+      rows(Group{}, i, i + 1, k, true, ee_base, ee_sub, out_chunk.ee_keys, nee);
+    for (; i + 1 < k; ++i)
+      rows(Single{}, i, i + 1, k, true, ee_base, ee_sub, out_chunk.ee_keys, nee);
   }
   out_chunk.vf_keys.resize(nvf);
   out_chunk.ee_keys.resize(nee);

@@ -167,7 +167,8 @@ struct GridChunk {
   GridCell cell;                         ///< the boxes of the current cell
   std::vector<std::uint64_t> vf_keys;    ///< pairs found in this chunk (see BroadPhaseScratch)
   std::vector<std::uint64_t> ee_keys;
-  std::vector<std::uint64_t> row_keys;   ///< AVX-512 loop: the second row of a pair of rows
+  /// AVX-512 loop: the keys of rows 1, 2, 3 of a group of rows (cell_rows_avx512)
+  std::array<std::vector<std::uint64_t>, 3> row_keys;
   std::int64_t reported = 0;             ///< box overlaps (statistics, see BroadPhaseStats)
 };
 
