@@ -1240,7 +1240,8 @@ void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
             (x == lo[0] ? 1u : 0u) | (y == lo[1] ? 2u : 0u) | (z == lo[2] ? 4u : 0u);
         // The cell's entries are in increasing id order (the counting sort's), so the ids
         // asked for are one run of them: found by binary search, the rest never touched (a
-        // vertex's query asks for the faces only, a sixth of a typical cell).
+        // vertex's query asks for the faces only, about a third of a cell's entries; a face's
+        // for the vertices, about a sixth).
         const std::uint32_t* const cell_begin = s.cell_entries.data() + s.cell_start[c];
         const std::uint32_t* const cell_end = s.cell_entries.data() + s.cell_start[c + 1];
         const std::uint32_t* k = std::partition_point(
