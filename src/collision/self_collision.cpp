@@ -758,20 +758,64 @@ void SelfCollision::collect_tests(Keep keep) {
       tests_);
 }
 
-template <class Keep>
-void SelfCollision::mark_moved_and_collect(Keep keep) {
-  if (moved_list_.empty()) {
-    collect_tests(keep);
-    return;
-  }
-  // One pass (one parallel region) marks the pairs of the moved vertices stale and collects
-  // the next tests.
-  collect_tests([&](std::size_t i) {
-    const std::array<int, 4>& v = pairs_[i].v;
-    stale_[i] |= moved_[static_cast<std::size_t>(v[0])] | moved_[static_cast<std::size_t>(v[1])] |
-                 moved_[static_cast<std::size_t>(v[2])] | moved_[static_cast<std::size_t>(v[3])];
-    return keep(i);
+template <bool FAILSAFE>
+void SelfCollision::mark_moved_and_collect() {
+  // One pass (one parallel region) over the live pairs marks the pairs of the moved vertices
+  // stale and collects the next tests, in fixed blocks (as compact). Raw pointers copied into
+  // each task: through the byte stores to stale_ the compiler would otherwise reload every
+  // vector's data pointer per pair.
+  constexpr std::size_t B = COMPACT_BLOCK;
+  const std::size_t n = live_count_;
+  const std::size_t blocks = (n + B - 1) / B;
+  if (tests_.size() < n) tests_.resize(n);
+  block_count_.resize(blocks);
+  const bool mark = !moved_list_.empty();
+  const std::uint32_t* const live_data = live_.data();
+  const PairRecord* const rec_data = pairs_.data();
+  const std::uint8_t* const moved_data = moved_.data();
+  std::uint8_t* const stale_data = stale_.data();
+  const std::uint8_t* const role_data = role_.data();
+  const std::uint8_t* const free_data = free_.data();
+  std::uint32_t* const out_data = tests_.data();
+  std::size_t* const count_data = block_count_.data();
+  workers_->arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, blocks, [=](std::size_t b) {
+      const std::uint32_t* __restrict live = live_data;
+      const PairRecord* __restrict rec = rec_data;
+      const std::uint8_t* __restrict moved = moved_data;
+      std::uint8_t* __restrict stale = stale_data;
+      const std::uint8_t* __restrict role = role_data;
+      const std::uint8_t* __restrict fr = free_data;
+      std::uint32_t* __restrict dst = out_data + b * B;
+      const std::size_t end = std::min(n, (b + 1) * B);
+      std::size_t k = 0;
+      for (std::size_t j = b * B; j < end; ++j) {
+        const std::uint32_t i = live[j];
+        std::uint8_t st = stale[i];
+        if (mark) {
+          const std::array<int, 4>& v = rec[i].v;
+          st |= moved[static_cast<std::size_t>(v[0])] | moved[static_cast<std::size_t>(v[1])] |
+                moved[static_cast<std::size_t>(v[2])] | moved[static_cast<std::size_t>(v[3])];
+          stale[i] = st;
+        }
+        // Rounds: stale NORMAL pairs (no push for pairs near at rest). Fail-safe: every live
+        // pair not known to be free at its current positions (stale, hit, or near at rest).
+        const bool keep = FAILSAFE ? ((st | (fr[i] ^ 1)) & (role[i] < EXCLUDED)) != 0
+                                   : (st & (role[i] == NORMAL)) != 0;
+        dst[k] = i;  // branch-free: keep is hard to predict
+        k += keep ? 1 : 0;
+      }
+      count_data[b] = k;
+    });
   });
+  std::size_t total = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    if (total != b * B)
+      std::memmove(tests_.data() + total, tests_.data() + b * B,
+                   block_count_[b] * sizeof(std::uint32_t));
+    total += block_count_[b];
+  }
+  test_count_ = total;
   for (int v : moved_list_) moved_[static_cast<std::size_t>(v)] = 0;
   moved_list_.clear();
 }
@@ -852,11 +896,6 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
   // stale. Pairs closer than delta at rest get no push (fail-safe only).
   // (complete_speculation collects round 0's in its own pass over the pairs.)
   auto round_tests = [&](std::size_t i) { return (stale_[i] & (role_[i] == NORMAL)) != 0; };
-  // The fail-safe tests every pair not known to be free at its current positions (stale, hit in
-  // a round, or near at rest).
-  auto failsafe_tests = [&](std::size_t i) {
-    return ((stale_[i] | (free_[i] ^ 1)) & (role_[i] < EXCLUDED)) != 0;
-  };
   if (options_.rounds > 0 && !round0_tests_ready_) collect_tests(round_tests);
   for (int round = 0; round < options_.rounds; ++round) {
     if (test_count_ == 0) break;
@@ -877,7 +916,7 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
       }
     }
     stats.response_seconds += since(t0);
-    if (round + 1 < options_.rounds) mark_moved_and_collect(round_tests);
+    if (round + 1 < options_.rounds) mark_moved_and_collect<false>();
   }
   if (options_.warm_start) {
     const auto t0 = Clock::now();
@@ -889,7 +928,7 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
   // contact) to x0 until none is left. Reverting shrinks a swept box to a subset of the one the
   // broad phase saw, so its pairs stay a superset.
   for (;;) {
-    mark_moved_and_collect(failsafe_tests);
+    mark_moved_and_collect<true>();
     detect(x0, x1, 0.0, stats, false);
     if (contacts_.empty()) return;
     std::int64_t reverted = 0;

@@ -211,10 +211,11 @@ class SelfCollision {
   /// each pair) and the warm start's pressed contacts that were not detected again.
   void update_contact_cache();
 
-  /// Marks stale every live pair with a vertex in moved_ and clears moved_, then sets tests_ as
-  /// collect_tests(keep) does, in the same pass over the pairs.
-  template <class Keep>
-  void mark_moved_and_collect(Keep keep);
+  /// Marks stale every live pair with a vertex in moved_ and clears moved_, then sets tests_ to
+  /// the live pairs to test next, in increasing order, in the same pass over the pairs: the
+  /// rounds' (stale and NORMAL) or, with FAILSAFE, the fail-safe's (stale, or not free, or NEAR).
+  template <bool FAILSAFE>
+  void mark_moved_and_collect();
 
   /// Sets tests_[0, test_count_) to the live pairs i (live_) with keep(i), in increasing order.
   template <class Keep>
