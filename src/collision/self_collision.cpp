@@ -359,13 +359,6 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
            b.lo[1] - a.hi[1] > far_gap || a.lo[1] - b.hi[1] > far_gap ||
            b.lo[2] - a.hi[2] > far_gap || a.lo[2] - b.hi[2] > far_gap;
   };
-  // Sets the slots of pair i from its role and its two actual boxes.
-  auto classify = [&](std::size_t i, PairRole role, const detail::GridVertexBox& a,
-                      const detail::GridVertexBox& b) {
-    role_[i] = role;
-    stale_[i] = role != EXCLUDED && !far(a, b);
-    free_[i] = !stale_[i];
-  };
   // Raw pointers copied into each task: with the byte stores of the flags the compiler would
   // otherwise reload every vector's data pointer per pair (measured 2x slower).
   const PairRecord* const rec_data = pairs_.data();
@@ -499,24 +492,33 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
         if (va[static_cast<std::size_t>(i)] == vb[static_cast<std::size_t>(j)]) return false;
     return overlap(prim_box(a), prim_box(b));
   };
+  // The record and flags of the pair (kind, pair) of primitives a, b, as the classification
+  // pass sets them: its rest-state role; stale (to test) unless excluded or flagged far.
+  auto make_hit = [&](std::uint32_t a, std::uint32_t b, CcdPrimitive kind,
+                      const std::array<int, 2>& pair) {
+    QueryHit h;
+    h.record.kind = kind;
+    h.record.pair = pair;
+    h.record.v = stencil(kind, pair, topo_);
+    h.role = rest_role(kind, pair);
+    h.stale = h.role != EXCLUDED && !far(prim_box(a), prim_box(b));
+    return h;
+  };
+  auto append = [&](const QueryHit& h) {
+    pairs_.push_back(h.record);
+    role_.push_back(h.role);
+    stale_.push_back(h.stale);
+    free_.push_back(!h.stale);
+    ++kept;
+  };
   // Appends the pair of primitives a, b if pair_of says so.
   auto consider = [&](std::uint32_t a, std::uint32_t b) {
     CcdPrimitive kind;
     std::array<int, 2> pair;
-    if (!pair_of(a, b, kind, pair)) return;
-    const detail::GridVertexBox ba = prim_box(a), bb = prim_box(b);
-    const std::size_t i = pairs_.size();
-    PairRecord& p = pairs_.emplace_back();
-    p.kind = kind;
-    p.pair = pair;
-    p.v = stencil(kind, pair, topo_);
-    role_.push_back(0);
-    stale_.push_back(0);
-    free_.push_back(0);
-    classify(i, rest_role(kind, pair), ba, bb);
-    ++kept;
+    if (pair_of(a, b, kind, pair)) append(make_hit(a, b, kind, pair));
   };
-  // The grid queries in parallel (fixed blocks, each its own buffers), the appends in order.
+  // The grid queries in parallel (fixed blocks, each its own buffers, which also hold the new
+  // pairs' records and flags), the appends in order.
   const std::size_t query_blocks = (escaped_prims_.size() + QUERY_BLOCK - 1) / QUERY_BLOCK;
   const std::uint32_t nv32 = static_cast<std::uint32_t>(nvs);
   const std::uint32_t nvs_nf32 = static_cast<std::uint32_t>(nvs + nf);
@@ -537,12 +539,28 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
         CcdPrimitive kind;
         std::array<int, 2> pair;
         for (const std::uint32_t b : out.hits)
-          if (!outside(b) && pair_of(a, b, kind, pair)) out.pairs.push_back({a, b});
+          if (!outside(b) && pair_of(a, b, kind, pair))
+            out.pairs.push_back(make_hit(a, b, kind, pair));
       }
     });
   });
+  // Sized once, then filled (push_back per pair cost 0.24 ms per step on bear at P = 4).
+  std::size_t appended = 0;
+  for (std::size_t blk = 0; blk < query_blocks; ++blk) appended += query_blocks_[blk].pairs.size();
+  std::size_t at = pairs_.size();
+  pairs_.resize(at + appended);
+  role_.resize(at + appended);
+  stale_.resize(at + appended);
+  free_.resize(at + appended);
+  kept += appended;
   for (std::size_t blk = 0; blk < query_blocks; ++blk)
-    for (const std::array<std::uint32_t, 2>& ab : query_blocks_[blk].pairs) consider(ab[0], ab[1]);
+    for (const QueryHit& h : query_blocks_[blk].pairs) {
+      pairs_[at] = h.record;
+      role_[at] = h.role;
+      stale_[at] = h.stale;
+      free_[at] = !h.stale;
+      ++at;
+    }
   // Sweep and prune along x over the escaped primitives (sorted by lower x bound, then id).
   std::vector<std::pair<double, std::uint32_t>>& order = sweep_order_;
   order.clear();

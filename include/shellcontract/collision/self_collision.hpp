@@ -286,10 +286,16 @@ class SelfCollision {
   std::vector<std::uint8_t> base_role_;  ///< per speculative pair: its rest-state PairRole
   std::vector<std::uint8_t> escaped_;    ///< per vertex: actual box not inside the predicted one
   std::vector<std::uint32_t> escaped_prims_;  ///< their vertices, faces and edges (grid ids)
+  /// A pair the grid queries of complete_speculation found, ready to append.
+  struct QueryHit {
+    PairRecord record;
+    std::uint8_t role = NORMAL;  ///< its rest-state PairRole
+    std::uint8_t stale = 0;      ///< to test (not flagged far, not excluded)
+  };
   /// One block of the grid queries of complete_speculation (buffers reused between calls).
   struct QueryBlock {
-    std::vector<std::uint32_t> hits;                  ///< query_kept_grid's output
-    std::vector<std::array<std::uint32_t, 2>> pairs;  ///< (escaped, grid) primitives to append
+    std::vector<std::uint32_t> hits;  ///< query_kept_grid's output
+    std::vector<QueryHit> pairs;      ///< the (escaped, grid) pairs to append, in query order
   };
   std::vector<QueryBlock> query_blocks_;
   std::vector<std::size_t> block_kept_;       ///< per block of the completion: pairs kept
