@@ -385,9 +385,9 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       const double gap = far_gap;
       std::size_t kept = 0;
       // The same pass compacts the block's live pairs (collect_live) and round 0's tests (the
-      // live pairs that are stale and NORMAL, resolve's round_tests) to the front of the block's
-      // own slices of live_ and tests_ (branch-free stores), closed up after the loop: two
-      // fewer passes over the pairs.
+      // live pairs that are stale and NORMAL, as mark_moved_and_collect) to the front of the
+      // block's own slices of live_ and tests_ (branch-free stores), closed up after the loop:
+      // two fewer passes over the pairs.
       std::uint32_t* __restrict live_out = live_data + blk * PAIR_GRAIN;
       std::uint32_t* __restrict test_out = tests_data + blk * PAIR_GRAIN;
       std::size_t nlive = 0, ntests = 0;
@@ -441,18 +441,8 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   });
   std::size_t kept = 0;
   for (const std::size_t k : block_kept_) kept += k;
-  // Close up the blocks' slices (as compact does).
-  live_count_ = 0;
-  test_count_ = 0;
-  for (std::size_t blk = 0; blk < blocks; ++blk) {
-    const std::uint32_t* live_slice = live_.data() + blk * PAIR_GRAIN;
-    const std::uint32_t* test_slice = tests_.data() + blk * PAIR_GRAIN;
-    std::memmove(live_.data() + live_count_, live_slice, block_live_[blk] * sizeof(std::uint32_t));
-    std::memmove(tests_.data() + test_count_, test_slice,
-                 block_tests_[blk] * sizeof(std::uint32_t));
-    live_count_ += block_live_[blk];
-    test_count_ += block_tests_[blk];
-  }
+  live_count_ = close_up(live_, PAIR_GRAIN, block_live_);
+  test_count_ = close_up(tests_, PAIR_GRAIN, block_tests_);
 
   // The primitives with a vertex outside its predicted box: each against the grid's primitives
   // without one (whose actual boxes are inside their predicted ones, so the query sees every
@@ -504,18 +494,22 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
     h.stale = h.role != EXCLUDED && !far(prim_box(a), prim_box(b));
     return h;
   };
-  auto append = [&](const QueryHit& h) {
-    pairs_.push_back(h.record);
-    role_.push_back(h.role);
-    stale_.push_back(h.stale);
-    free_.push_back(!h.stale);
-    ++kept;
-  };
-  // Appends the pair of primitives a, b if pair_of says so.
-  auto consider = [&](std::uint32_t a, std::uint32_t b) {
-    CcdPrimitive kind;
-    std::array<int, 2> pair;
-    if (pair_of(a, b, kind, pair)) append(make_hit(a, b, kind, pair));
+  // Appends hits to the pairs, sizing the arrays once (push_back per pair cost 0.24 ms per step
+  // on bear at P = 4).
+  auto append = [&](const std::vector<QueryHit>& hits) {
+    std::size_t at = pairs_.size();
+    pairs_.resize(at + hits.size());
+    role_.resize(at + hits.size());
+    stale_.resize(at + hits.size());
+    free_.resize(at + hits.size());
+    kept += hits.size();
+    for (const QueryHit& h : hits) {
+      pairs_[at] = h.record;
+      role_[at] = h.role;
+      stale_[at] = h.stale;
+      free_[at] = !h.stale;
+      ++at;
+    }
   };
   // The grid queries in parallel (fixed blocks, each its own buffers, which also hold the new
   // pairs' records and flags), the appends in order.
@@ -544,33 +538,23 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       }
     });
   });
-  // Sized once, then filled (push_back per pair cost 0.24 ms per step on bear at P = 4).
-  std::size_t appended = 0;
-  for (std::size_t blk = 0; blk < query_blocks; ++blk) appended += query_blocks_[blk].pairs.size();
-  std::size_t at = pairs_.size();
-  pairs_.resize(at + appended);
-  role_.resize(at + appended);
-  stale_.resize(at + appended);
-  free_.resize(at + appended);
-  kept += appended;
-  for (std::size_t blk = 0; blk < query_blocks; ++blk)
-    for (const QueryHit& h : query_blocks_[blk].pairs) {
-      pairs_[at] = h.record;
-      role_[at] = h.role;
-      stale_[at] = h.stale;
-      free_[at] = !h.stale;
-      ++at;
-    }
+  for (std::size_t blk = 0; blk < query_blocks; ++blk) append(query_blocks_[blk].pairs);
   // Sweep and prune along x over the escaped primitives (sorted by lower x bound, then id).
   std::vector<std::pair<double, std::uint32_t>>& order = sweep_order_;
   order.clear();
   for (const std::uint32_t a : escaped_prims_) order.emplace_back(prim_box(a).lo[0], a);
   std::sort(order.begin(), order.end());
+  sweep_hits_.clear();
   for (std::size_t i = 0; i < order.size(); ++i) {
     const double hi = prim_box(order[i].second).hi[0];
-    for (std::size_t j = i + 1; j < order.size() && order[j].first <= hi; ++j)
-      consider(order[i].second, order[j].second);
+    for (std::size_t j = i + 1; j < order.size() && order[j].first <= hi; ++j) {
+      const std::uint32_t a = order[i].second, b = order[j].second;
+      CcdPrimitive kind;
+      std::array<int, 2> pair;
+      if (pair_of(a, b, kind, pair)) sweep_hits_.push_back(make_hit(a, b, kind, pair));
+    }
   }
+  append(sweep_hits_);
 
   // The appended pairs' live and round-0 test entries, after the grid's (increasing index).
   if (live_.size() < pairs_.size()) live_.resize(pairs_.size());
@@ -731,9 +715,8 @@ void SelfCollision::detect(const Positions& x0, const Positions& x1, double tol,
   if (count_stage) stats.pairs_filtered = static_cast<std::int64_t>(m);
 }
 
-template <class Index, class Keep>
-std::size_t SelfCollision::compact(std::size_t n, Index index, Keep keep,
-                                   std::vector<std::uint32_t>& out) {
+template <class Keep>
+std::size_t SelfCollision::compact(std::size_t n, Keep keep, std::vector<std::uint32_t>& out) {
   // Fixed blocks (never cut by the thread count): block b compacts its kept indices, in order,
   // to the front of its own slice out[b B, (b + 1) B); the slices are then closed up in order.
   constexpr std::size_t B = COMPACT_BLOCK;
@@ -745,35 +728,29 @@ std::size_t SelfCollision::compact(std::size_t n, Index index, Keep keep,
       std::uint32_t* dst = out.data() + b * B;
       const std::size_t end = std::min(n, (b + 1) * B);
       std::size_t k = 0;
-      for (std::size_t j = b * B; j < end; ++j) {
-        const std::size_t i = index(j);
+      for (std::size_t i = b * B; i < end; ++i) {
         dst[k] = static_cast<std::uint32_t>(i);  // branch-free: keep() is hard to predict
         k += keep(i) ? 1 : 0;
       }
       block_count_[b] = k;
     });
   });
+  return close_up(out, B, block_count_);
+}
+
+std::size_t SelfCollision::close_up(std::vector<std::uint32_t>& out, std::size_t block,
+                                    const std::vector<std::size_t>& counts) {
   std::size_t total = 0;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    if (total != b * B)
-      std::memmove(out.data() + total, out.data() + b * B, block_count_[b] * sizeof(std::uint32_t));
-    total += block_count_[b];
+  for (std::size_t b = 0; b < counts.size(); ++b) {
+    if (total != b * block)
+      std::memmove(out.data() + total, out.data() + b * block, counts[b] * sizeof(std::uint32_t));
+    total += counts[b];
   }
   return total;
 }
 
 void SelfCollision::collect_live() {
-  live_count_ = compact(
-      pairs_.size(), [](std::size_t i) { return i; },
-      [&](std::size_t i) { return role_[i] < EXCLUDED; }, live_);
-}
-
-template <class Keep>
-void SelfCollision::collect_tests(Keep keep) {
-  const std::uint32_t* live = live_.data();
-  test_count_ = compact(
-      live_count_, [live](std::size_t j) { return static_cast<std::size_t>(live[j]); }, keep,
-      tests_);
+  live_count_ = compact(pairs_.size(), [&](std::size_t i) { return role_[i] < EXCLUDED; }, live_);
 }
 
 template <bool FAILSAFE>
@@ -826,14 +803,7 @@ void SelfCollision::mark_moved_and_collect() {
       count_data[b] = k;
     });
   });
-  std::size_t total = 0;
-  for (std::size_t b = 0; b < blocks; ++b) {
-    if (total != b * B)
-      std::memmove(tests_.data() + total, tests_.data() + b * B,
-                   block_count_[b] * sizeof(std::uint32_t));
-    total += block_count_[b];
-  }
-  test_count_ = total;
+  test_count_ = close_up(tests_, B, block_count_);
   for (int v : moved_list_) moved_[static_cast<std::size_t>(v)] = 0;
   moved_list_.clear();
 }
@@ -911,10 +881,10 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
     moved_list_.push_back(v);
   };
   // Round 0 tests every pair not flagged far; later rounds the pairs a response push made
-  // stale. Pairs closer than delta at rest get no push (fail-safe only).
-  // (complete_speculation collects round 0's in its own pass over the pairs.)
-  auto round_tests = [&](std::size_t i) { return (stale_[i] & (role_[i] == NORMAL)) != 0; };
-  if (options_.rounds > 0 && !round0_tests_ready_) collect_tests(round_tests);
+  // stale. Pairs closer than delta at rest get no push (fail-safe only). Nothing has moved yet
+  // (the fail-safe of the last step ends with moved_ cleared), so round 0's collection marks
+  // nothing; complete_speculation collects round 0's tests in its own pass over the pairs.
+  if (options_.rounds > 0 && !round0_tests_ready_) mark_moved_and_collect<false>();
   for (int round = 0; round < options_.rounds; ++round) {
     if (test_count_ == 0) break;
     detect(x0, x1, delta, stats, round == 0);

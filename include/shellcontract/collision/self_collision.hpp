@@ -217,20 +217,22 @@ class SelfCollision {
   template <bool FAILSAFE>
   void mark_moved_and_collect();
 
-  /// Sets tests_[0, test_count_) to the live pairs i (live_) with keep(i), in increasing order.
-  template <class Keep>
-  void collect_tests(Keep keep);
 
   /// Sets live_[0, live_count_) to the pairs that may ever be tested (role NORMAL or NEAR), in
   /// increasing order: the later passes over the pairs skip the excluded ones and the
   /// speculative broad phase's non-candidates.
   void collect_live();
 
-  /// Writes the i = index(j) for j in [0, n) with keep(i) to out[0, count), in the order of j,
-  /// in parallel (the same result for any number of threads); returns count. out keeps its
-  /// capacity.
-  template <class Index, class Keep>
-  std::size_t compact(std::size_t n, Index index, Keep keep, std::vector<std::uint32_t>& out);
+  /// Writes the i in [0, n) with keep(i) to out[0, count), in increasing order, in parallel
+  /// (the same result for any number of threads); returns count. out keeps its capacity.
+  template <class Keep>
+  std::size_t compact(std::size_t n, Keep keep, std::vector<std::uint32_t>& out);
+
+  /// Closes up blocks compacted in place: block b's counts[b] entries, at the front of its slice
+  /// out[b block, (b + 1) block), are moved after those of the blocks before it; returns the
+  /// total.
+  static std::size_t close_up(std::vector<std::uint32_t>& out, std::size_t block,
+                              const std::vector<std::size_t>& counts);
 
   CollisionTopology topo_;
   CollisionOptions options_;
@@ -298,6 +300,7 @@ class SelfCollision {
     std::vector<QueryHit> pairs;      ///< the (escaped, grid) pairs to append, in query order
   };
   std::vector<QueryBlock> query_blocks_;
+  std::vector<QueryHit> sweep_hits_;  ///< the escaped primitives' pairs among themselves
   std::vector<std::size_t> block_kept_;       ///< per block of the completion: pairs kept
   std::vector<std::size_t> block_live_;       ///< ... its live pairs (see collect_live)
   std::vector<std::size_t> block_tests_;      ///< ... its round-0 tests
