@@ -29,12 +29,13 @@ Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 constexpr double RESPONSE_FACTOR = 2.0;
 
 /// Region margin (CollisionOptions::region_margin, see resolve): the step's one broad phase
-/// inflates the swept boxes by delta + m with m = region_margin * delta, and every vertex then
-/// stays inside its swept box grown by m/2 (the response is clamped to it; the other half is a
-/// wide gap over rounding). A small region clamps more pushes, which later rounds or the
-/// fail-safe must finish; a large one gives more candidates. Measured (this machine, quiet, warm
-/// start on): bear default run, per step filter tests / rounds / collision ms, fail-safe
-/// vertices over the run; and hand at P = 4 for 300 frames, fail-safe vertices:
+/// inflates the swept boxes by delta + m/2 with m = region_margin * delta (broad_phase_inflation,
+/// below), and every vertex then stays inside its swept box grown by m/2 (the response is
+/// clamped to it). A small region clamps more pushes, which later rounds or the fail-safe must
+/// finish; a large one gives more candidates. Measured (this machine, quiet, warm start on, with
+/// the inflation delta + m of the time): bear default run, per step filter tests / rounds /
+/// collision ms, fail-safe vertices over the run; and hand at P = 4 for 300 frames, fail-safe
+/// vertices:
 ///   m = 2 delta: 128k / 3.65 / 30.5 ms, 0; hand 2004
 ///   m = 4 delta: 166k / 3.17 / 31.3-32.7 ms, 0; hand 1032
 ///   m = 8 delta: 257k / 2.96 / 37.2 ms, 0; hand 266
@@ -113,6 +114,19 @@ struct SelfCollision::Workers {
   tbb::task_group background;  ///< the speculative broad phase (predict)
   explicit Workers(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
 };
+
+// Each box is inflated by delta + m/2. A pair can come within delta in the step only if its swept
+// boxes, each grown by its vertices' regions (m/2, plus the rounding of the region bounds), come
+// within delta on every axis: if the boxes' gap G <= delta + m + 2u (M + m) (M = max |coordinate|,
+// u the unit roundoff). Boxes grown by delta + m/2 overlap, the rounding of their bounds included,
+// for every G <= 2 delta + m - 4u (M + delta + m), which covers that unless delta is below
+// 6u (M + delta + m), about 1e-15 of the coordinates. Until 2026-11-24 the inflation was delta + m:
+// the second m/2 was headroom for rounding, which delta gives already, and it widened the
+// candidates' gap band from 6 delta to 10 (bear at P = 4: 173k -> 131k candidates and 158k ->
+// 137k filter tests per step; README, "Self-collision").
+double broad_phase_inflation(const CollisionOptions& options) {
+  return options.delta + 0.5 * (options.region_margin * options.delta);
+}
 
 SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
                              const CollisionOptions& options)
@@ -206,7 +220,7 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
   if (correction_.rows() == n) spec_pred_ += correction_;
   if (options_.warm_start) warm_start(spec_pred_, w);
   if (skin_.size() != n) skin_ = Eigen::VectorXd::Constant(n, SKIN_MIN * delta);
-  const double inflation = delta + options_.region_margin * delta;
+  const double inflation = broad_phase_inflation(options_);
   spec_boxes_.resize(static_cast<std::size_t>(n));
   for (Eigen::Index v = 0; v < n; ++v) {
     detail::GridVertexBox& b = spec_boxes_[static_cast<std::size_t>(v)];
@@ -290,7 +304,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   // spec_boxes_ and writes the pair buffers; this part writes neither).
   const Eigen::Index nv = x0.rows();
   const std::size_t nvs = static_cast<std::size_t>(nv);
-  const double inflation = options_.delta + margin;
+  const double inflation = broad_phase_inflation(options_);
   // The actual boxes (the arithmetic of find_candidates), which vertices left their predicted
   // boxes, and the skins of the next prediction (the end positions after the warm start are
   // what was predicted).
@@ -579,8 +593,8 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                                 CollisionStepStats& stats) {
   BroadPhaseStats bs;
   workers_->arena.execute([&] {
-    find_candidates(x0, x1, topo_, options_.delta + margin, candidates_, &bs, options_.method,
-                    options_.delta);
+    find_candidates(x0, x1, topo_, broad_phase_inflation(options_), candidates_, &bs,
+                    options_.method, options_.delta);
   });
   const auto t0 = Clock::now();
   // One record per candidate, filled in parallel (each writes its own slot). Excluded pairs keep

@@ -379,6 +379,45 @@ TEST(SelfCollision, ResponseKeepsEveryVertexInItsSweptBoxGrownByHalfTheMargin) {
   EXPECT_GT(contacts, 100);
 }
 
+TEST(SelfCollision, BroadPhaseKeepsThePairsItsRegionsCanBringWithinDeltaAndNoFarther) {
+  // Two still triangles, the upper one a gap g above the lower (every VF and EE pair between
+  // them is g apart on z). Inside their regions (each vertex within m/2 of its swept box) the
+  // step can bring them within delta iff g <= delta + m; the broad phase keeps, per math-spec
+  // 10.2, every pair whose boxes grown by delta plus the region overlap: g <= 2 delta + m.
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  const double m = opt.region_margin * opt.delta;
+  EXPECT_DOUBLE_EQ(broad_phase_inflation(opt), opt.delta + 0.5 * m);
+  std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>> inside;
+  for (const double g : {0.999 * (opt.delta + m), 0.999 * (2.0 * opt.delta + m),
+                         1.001 * (2.0 * opt.delta + m)}) {
+    SCOPED_TRACE("gap " + std::to_string(g));
+    TwoTriangles t;  // at rest 0.1 apart: every pair is NORMAL
+    SelfCollision sc(t.faces, t.x0, opt);
+    Positions x = t.x0;
+    x.bottomRows(3).col(2).setConstant(g);
+    Positions x1 = x;
+    CollisionStepStats stats;
+    sc.resolve(x, x1, t.w, stats);
+    EXPECT_EQ(x1, x) << "nothing within delta: nothing moves";
+    const bool candidates = g <= 2.0 * opt.delta + m;
+    // Inside: the pairs whose boxes overlap in x and y (vertex 3 over face 0 among them), the
+    // same for both gaps; beyond: none.
+    const auto pairs = sc.candidate_pairs();
+    EXPECT_EQ(stats.pairs_broad,
+              static_cast<std::int64_t>(pairs.first.size() + pairs.second.size()));
+    if (!candidates) {
+      EXPECT_EQ(stats.pairs_broad, 0);
+      continue;
+    }
+    const std::array<int, 2> vertex3_face0{3, 0};
+    EXPECT_NE(std::find(pairs.first.begin(), pairs.first.end(), vertex3_face0), pairs.first.end());
+    EXPECT_FALSE(pairs.second.empty());
+    if (inside.first.empty()) inside = pairs;
+    EXPECT_EQ(pairs, inside);
+  }
+}
+
 TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) {
   for (const bool warm : {true, false})
   for (int rounds : {5, 1}) {
@@ -448,7 +487,7 @@ TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
     }
     if (step == 11) guess.array() += 0.1;  // every vertex off: the plain broad phase runs
     CandidatePairs expected;
-    find_candidates(x0, x1, sc.topology(), opt.delta * (1.0 + opt.region_margin), expected);
+    find_candidates(x0, x1, sc.topology(), broad_phase_inflation(opt), expected);
     std::sort(expected.vertex_face.begin(), expected.vertex_face.end());
     std::sort(expected.edge_edge.begin(), expected.edge_edge.end());
     CollisionStepStats stats;

@@ -32,9 +32,9 @@ struct CollisionOptions {
   /// Detection and the fail-safe still decide; off gives the plain per-step response of
   /// math-spec 10.8.
   bool warm_start = true;
-  /// m / delta >= 0: the step's broad phase inflates by delta + m, and the response keeps each
-  /// vertex within m/2 of its swept box (see SelfCollision::resolve; measurements in
-  /// self_collision.cpp).
+  /// m / delta >= 0: the step's broad phase inflates by delta + m/2 (broad_phase_inflation), and
+  /// the response keeps each vertex within m/2 of its swept box (see SelfCollision::resolve;
+  /// measurements in self_collision.cpp).
   double region_margin = 4.0;
   /// Speculative broad phase: predict() builds the step's broad phase on predicted end positions
   /// on a spare thread while the constraint solve runs, and resolve() completes it for the
@@ -45,6 +45,12 @@ struct CollisionOptions {
   /// Simulator sets it from SimOptions::speculative_broad_phase.
   bool speculative = true;
 };
+
+/// The broad phase's inflation of every swept box: delta + m/2, m = region_margin * delta. Each
+/// box keeps math-spec 10.2's inflation by delta, grown by the region every vertex stays in (see
+/// SelfCollision::resolve), so every pair the step can still bring within delta is a candidate
+/// (the argument, rounding included, is at its definition in self_collision.cpp).
+double broad_phase_inflation(const CollisionOptions& options);
 
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
 struct CollisionStepStats {
@@ -109,15 +115,16 @@ class SelfCollision {
   /// those detected in the previous step and those its warm start still had to push (a contact
   /// stays in this cache while it is pressed together, one entry per pair).
   ///
-  /// Work is incremental. One broad phase per step, on the swept boxes inflated by delta plus a
-  /// margin m (CollisionOptions::region_margin), gives the candidates of every round and of the
-  /// fail-safe, because the response is clamped so that no vertex leaves its swept box grown by
-  /// m/2 (a push it cannot complete is finished by the pair's other vertices in a later round, or
-  /// by the fail-safe, whose revert to x0 stays inside too). After round 0 only the pairs with a
-  /// vertex that the previous response moved are tested again: the others' positions, hence
-  /// their answers, have not changed. The fail-safe tests the pairs not known to be free at their
-  /// current positions. Before the filter, each pair's own swept boxes are compared
-  /// (swept_boxes_apart): pairs kept only by the margin leave for a few nanoseconds.
+  /// Work is incremental. One broad phase per step, on the swept boxes inflated by delta plus
+  /// m/2 for a margin m (CollisionOptions::region_margin; broad_phase_inflation), gives the
+  /// candidates of every round and of the fail-safe, because the response is clamped so that no
+  /// vertex leaves its swept box grown by m/2 (a push it cannot complete is finished by the
+  /// pair's other vertices in a later round, or by the fail-safe, whose revert to x0 stays inside
+  /// too). After round 0 only the pairs with a vertex that the previous response moved are tested
+  /// again: the others' positions, hence their answers, have not changed. The fail-safe tests the
+  /// pairs not known to be free at their current positions. Before the filter, each pair's own
+  /// swept boxes are compared (swept_boxes_apart): pairs kept only by the margin leave for a few
+  /// nanoseconds.
   /// @param w  inverse masses (pinned vertices are not moved by the response)
   void resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w, CollisionStepStats& stats);
 
@@ -168,7 +175,7 @@ class SelfCollision {
     NOT_CANDIDATE = 3,  ///< speculative pair whose actual boxes do not overlap: never tested
   };
 
-  /// Broad phase on (x0, x1) with inflation delta + margin; rebuilds pairs_ (excluded pairs
+  /// Broad phase on (x0, x1) with broad_phase_inflation; rebuilds pairs_ (excluded pairs
   /// marked, never tested). A pair is stale unless the broad phase shows its swept boxes farther
   /// than delta apart (CandidatePairs' close flags): then it is free already. The swept boxes of
   /// (x0, x1) grown by margin / 2 become the regions the response keeps each vertex in.
