@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #include <tbb/blocked_range.h>
@@ -71,6 +72,8 @@ constexpr double SKIN_GROWTH = 4.0;
 constexpr double ESCAPE_LIMIT = 64.0;
 constexpr double ESCAPE_FRACTION = 1.0 / 32.0;
 
+/// End of a chain in update_contact_cache's lookup.
+constexpr std::uint32_t NO_ENTRY = std::numeric_limits<std::uint32_t>::max();
 /// Escaped primitives per task of the speculative broad phase's grid queries (a few hundred per
 /// step on bear at P = 4, ~5 microseconds each).
 constexpr std::size_t QUERY_BLOCK = 8;
@@ -852,12 +855,30 @@ void SelfCollision::update_contact_cache() {
     if (i + 1 == cache_keys_.size() || cache_keys_[i + 1].first != cache_keys_[i].first)
       cache_next_.push_back(previous_contacts_[cache_keys_[i].second]);
   // Then the warm start's pressed contacts whose pair was not detected again (they are unique:
-  // a subset of the last cache).
-  for (const Contact& c : pressed_contacts_) {
-    const auto it = std::lower_bound(cache_keys_.begin(), cache_keys_.end(),
-                                     std::make_pair(key(c), std::uint32_t{0}));
-    if (it == cache_keys_.end() || it->first != key(c)) cache_next_.push_back(c);
+  // a subset of the last cache). The detections are looked up through chains per vertex (VF)
+  // and per first edge (EE), usually one entry long: a binary search over the sorted keys per
+  // pressed contact cost 0.25-0.3 ms per step on bear at P = 4 (5.3k pressed, 1.7k detected).
+  const std::size_t detected = cache_next_.size();
+  cache_head_vf_.resize(static_cast<std::size_t>(topo_.num_vertices), NO_ENTRY);
+  cache_head_ee_.resize(static_cast<std::size_t>(topo_.edges.rows()), NO_ENTRY);
+  cache_chain_.resize(detected);
+  auto head = [&](const Contact& c) -> std::uint32_t& {
+    std::vector<std::uint32_t>& heads =
+        c.kind == CcdPrimitive::VertexFace ? cache_head_vf_ : cache_head_ee_;
+    return heads[static_cast<std::size_t>(c.pair[0])];
+  };
+  for (std::size_t i = 0; i < detected; ++i) {
+    std::uint32_t& first = head(cache_next_[i]);
+    cache_chain_[i] = first;
+    first = static_cast<std::uint32_t>(i);
   }
+  for (const Contact& c : pressed_contacts_) {
+    bool found = false;
+    for (std::uint32_t i = head(c); i != NO_ENTRY && !found; i = cache_chain_[i])
+      found = cache_next_[i].kind == c.kind && cache_next_[i].pair == c.pair;
+    if (!found) cache_next_.push_back(c);
+  }
+  for (std::size_t i = 0; i < detected; ++i) head(cache_next_[i]) = NO_ENTRY;
   previous_contacts_.swap(cache_next_);
 }
 

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <random>
+#include <tuple>
 
 #include "shellcontract/collision/ccd.hpp"
 #include "shellcontract/collision/contact.hpp"
@@ -416,6 +417,47 @@ TEST(SelfCollision, BroadPhaseKeepsThePairsItsRegionsCanBringWithinDeltaAndNoFar
     if (inside.first.empty()) inside = pairs;
     EXPECT_EQ(pairs, inside);
   }
+}
+
+TEST(SelfCollision, ContactCacheHoldsOnePerPairOfTheDetectionsAndThePressed) {
+  // A sphere flattened until its halves rest on each other, with the warm start: each step's
+  // cache must hold every pair detected in the step and every pair its warm start pushed, each
+  // once (a pressed pair detected again keeps the detection, whose frame is newer).
+  const test::TriMesh sphere = test::icosphere(2);
+  CollisionOptions opt;
+  opt.delta = 1e-3;
+  SelfCollision sc(sphere.faces, sphere.x, opt);
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(sphere.x.rows());
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> jitter(-1e-4, 1e-4);
+  Positions x0 = sphere.x;
+  auto key = [](const Contact& c) {
+    return std::make_tuple(c.kind == CcdPrimitive::EdgeEdge, c.pair[0], c.pair[1]);
+  };
+  std::size_t cached = 0, carried = 0;
+  for (int step = 0; step < 12; ++step) {
+    SCOPED_TRACE("step " + std::to_string(step));
+    const std::vector<Contact> before = sc.contact_cache();
+    Positions x1 = x0;
+    for (Eigen::Index i = 0; i < x1.rows(); ++i) {
+      // Flattened towards z = 0 until the two halves press on each other (from step 6 on).
+      x1(i, 2) = 0.3 * x0(i, 2);
+      for (int d = 0; d < 3; ++d) x1(i, d) += jitter(rng);
+    }
+    CollisionStepStats stats;
+    sc.resolve(x0, x1, w, stats);
+    std::vector<std::tuple<bool, int, int>> keys;
+    for (const Contact& c : sc.contact_cache()) keys.push_back(key(c));
+    std::sort(keys.begin(), keys.end());
+    EXPECT_TRUE(std::adjacent_find(keys.begin(), keys.end()) == keys.end()) << "a pair twice";
+    // Pairs of the last cache kept (pressed again, or detected again) are part of the new one.
+    for (const Contact& c : before)
+      carried += std::binary_search(keys.begin(), keys.end(), key(c)) ? 1u : 0u;
+    cached += keys.size();
+    x0 = x1;
+  }
+  EXPECT_GT(cached, 0u);
+  EXPECT_GT(carried, 0u);
 }
 
 TEST(SelfCollision, CrushedSphereNeverTouchesItselfAndRunsDoNotDependOnThreads) {

@@ -148,6 +148,10 @@ class SelfCollision {
   /// @param w        inverse masses (the warm start's weights)
   void predict(const Positions& x0, const Positions& x_guess, const Eigen::VectorXd& w);
 
+  /// The contact cache the next step's warm start projects (CollisionOptions::warm_start): the
+  /// last resolve's detections and the contacts its warm start still had to push, one per pair.
+  const std::vector<Contact>& contact_cache() const { return previous_contacts_; }
+
   /// The candidate pairs of the last resolve's broad phase, excluded ones included: VF pairs
   /// (vertex, face) and EE pairs (edge a < edge b), each list sorted (for tests and tools).
   /// Not between predict and resolve: the speculative task may be rewriting them.
@@ -277,6 +281,10 @@ class SelfCollision {
   std::vector<Contact> pressed_contacts_;  ///< this step's warm start moved them
   std::vector<Contact> cache_next_;        ///< update_contact_cache's output buffer
   std::vector<std::pair<std::uint64_t, std::uint32_t>> cache_keys_;  ///< (pair key, index)
+  /// update_contact_cache's lookup of the detected pairs: per vertex (VF) and per edge (EE, the
+  /// pair's first edge) the first of its detections in cache_next_, then cache_chain_ to the
+  /// next one; NO_ENTRY ends a chain. All NO_ENTRY between calls.
+  std::vector<std::uint32_t> cache_head_vf_, cache_head_ee_, cache_chain_;
 
   // Speculative broad phase (predict, run_speculation, complete_speculation).
   bool guess_set_ = false;           ///< predict ran since the last resolve (spec_guess_ is its)
