@@ -195,8 +195,9 @@ class SelfCollision {
   /// Runs on the spare thread: the grid over spec_boxes_ and the records of its pairs.
   void run_speculation();
 
-  /// pairs_[i] from the broad phase's candidate i (VF first); returns its rest-state role.
-  PairRole fill_record(std::size_t i, std::size_t nvf);
+  /// pairs_[i] from the broad phase's candidate i (VF first) and roles[i] its rest-state role,
+  /// for i in [begin, end).
+  void fill_records(std::size_t begin, std::size_t end, std::size_t nvf, std::uint8_t* roles);
 
   /// The rest-state role of a VF or EE pair (excluded and near lists).
   PairRole rest_role(CcdPrimitive kind, const std::array<int, 2>& pair) const;
