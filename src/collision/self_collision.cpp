@@ -225,6 +225,17 @@ SelfCollision::candidate_pairs() const {
   return out;
 }
 
+bool SelfCollision::live_pairs_consistent() const {
+  if (live_count_ > live_.size() || live_count_ > live_v_.size()) return false;
+  for (std::size_t j = 0; j < live_count_; ++j) {
+    const std::uint32_t i = live_[j];
+    if (i >= pairs_.size() || i >= role_.size() || role_[i] >= EXCLUDED) return false;
+    if (j > 0 && live_[j - 1] >= i) return false;
+    if (live_v_[j] != pairs_[i].v) return false;
+  }
+  return true;
+}
+
 void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
                             const Eigen::VectorXd& w) {
   if (!options_.speculative || options_.method != BroadPhaseMethod::Grid) return;
@@ -388,6 +399,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   block_live_.assign(blocks, 0);
   block_tests_.assign(blocks, 0);
   if (live_.size() < n_spec) live_.resize(n_spec);
+  if (live_v_.size() < n_spec) live_v_.resize(n_spec);
   if (tests_.size() < n_spec) tests_.resize(n_spec);
   auto overlap = [](const detail::GridVertexBox& a, const detail::GridVertexBox& b) {
     return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] &&
@@ -411,6 +423,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   std::size_t* const live_counts = block_live_.data();
   std::size_t* const test_counts = block_tests_.data();
   std::uint32_t* const live_data = live_.data();
+  std::array<int, 4>* const live_v_data = live_v_.data();
   std::uint32_t* const tests_data = tests_.data();
   workers_->arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, blocks, [=](std::size_t blk) {
@@ -428,6 +441,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
       // block's own slices of live_ and tests_ (branch-free stores), closed up after the loop:
       // two fewer passes over the pairs.
       std::uint32_t* __restrict live_out = live_data + blk * PAIR_GRAIN;
+      std::array<int, 4>* __restrict live_v_out = live_v_data + blk * PAIR_GRAIN;
       std::uint32_t* __restrict test_out = tests_data + blk * PAIR_GRAIN;
       std::size_t nlive = 0, ntests = 0;
       // VF pairs come first (the grid's lists, VF then EE): one loop per kind, so the kind is no
@@ -472,6 +486,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
           fr[i] = !st;
           kept += meet;
           live_out[nlive] = static_cast<std::uint32_t>(i);
+          live_v_out[nlive] = p.v;
           nlive += r < EXCLUDED;
           test_out[ntests] = static_cast<std::uint32_t>(i);
           ntests += st & (r == NORMAL);
@@ -489,6 +504,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   std::size_t kept = 0;
   for (const std::size_t k : block_kept_) kept += k;
   live_count_ = close_up(live_, PAIR_GRAIN, block_live_);
+  close_up(live_v_, PAIR_GRAIN, block_live_);
   test_count_ = close_up(tests_, PAIR_GRAIN, block_tests_);
 
   // The primitives with a vertex outside its predicted box: each against the grid's primitives
@@ -605,9 +621,13 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
 
   // The appended pairs' live and round-0 test entries, after the grid's (increasing index).
   if (live_.size() < pairs_.size()) live_.resize(pairs_.size());
+  if (live_v_.size() < pairs_.size()) live_v_.resize(pairs_.size());
   if (tests_.size() < pairs_.size()) tests_.resize(pairs_.size());
   for (std::size_t i = n_spec; i < pairs_.size(); ++i) {
-    if (role_[i] < EXCLUDED) live_[live_count_++] = static_cast<std::uint32_t>(i);
+    if (role_[i] < EXCLUDED) {
+      live_v_[live_count_] = pairs_[i].v;
+      live_[live_count_++] = static_cast<std::uint32_t>(i);
+    }
     if (stale_[i] && role_[i] == NORMAL) tests_[test_count_++] = static_cast<std::uint32_t>(i);
   }
   round0_tests_ready_ = true;
@@ -785,12 +805,13 @@ std::size_t SelfCollision::compact(std::size_t n, Keep keep, std::vector<std::ui
   return close_up(out, B, block_count_);
 }
 
-std::size_t SelfCollision::close_up(std::vector<std::uint32_t>& out, std::size_t block,
+template <class T>
+std::size_t SelfCollision::close_up(std::vector<T>& out, std::size_t block,
                                     const std::vector<std::size_t>& counts) {
   std::size_t total = 0;
   for (std::size_t b = 0; b < counts.size(); ++b) {
     if (total != b * block)
-      std::memmove(out.data() + total, out.data() + b * block, counts[b] * sizeof(std::uint32_t));
+      std::memmove(out.data() + total, out.data() + b * block, counts[b] * sizeof(T));
     total += counts[b];
   }
   return total;
@@ -798,6 +819,14 @@ std::size_t SelfCollision::close_up(std::vector<std::uint32_t>& out, std::size_t
 
 void SelfCollision::collect_live() {
   live_count_ = compact(pairs_.size(), [&](std::size_t i) { return role_[i] < EXCLUDED; }, live_);
+  if (live_v_.size() < live_count_) live_v_.resize(live_count_);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, live_count_, PAIR_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t j = r.begin(); j < r.end(); ++j)
+                          live_v_[j] = pairs_[live_[j]].v;
+                      });
+  });
 }
 
 template <bool FAILSAFE>
@@ -813,7 +842,7 @@ void SelfCollision::mark_moved_and_collect() {
   block_count_.resize(blocks);
   const bool mark = !moved_list_.empty();
   const std::uint32_t* const live_data = live_.data();
-  const PairRecord* const rec_data = pairs_.data();
+  const std::array<int, 4>* const live_v_data = live_v_.data();
   const std::uint8_t* const moved_data = moved_.data();
   std::uint8_t* const stale_data = stale_.data();
   const std::uint8_t* const role_data = role_.data();
@@ -823,7 +852,7 @@ void SelfCollision::mark_moved_and_collect() {
   workers_->arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, blocks, [=](std::size_t b) {
       const std::uint32_t* __restrict live = live_data;
-      const PairRecord* __restrict rec = rec_data;
+      const std::array<int, 4>* __restrict live_v = live_v_data;
       const std::uint8_t* __restrict moved = moved_data;
       std::uint8_t* __restrict stale = stale_data;
       const std::uint8_t* __restrict role = role_data;
@@ -835,7 +864,7 @@ void SelfCollision::mark_moved_and_collect() {
         const std::uint32_t i = live[j];
         std::uint8_t st = stale[i];
         if (mark) {
-          const std::array<int, 4>& v = rec[i].v;
+          const std::array<int, 4>& v = live_v[j];
           st |= moved[static_cast<std::size_t>(v[0])] | moved[static_cast<std::size_t>(v[1])] |
                 moved[static_cast<std::size_t>(v[2])] | moved[static_cast<std::size_t>(v[3])];
           stale[i] = st;

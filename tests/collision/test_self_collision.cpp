@@ -328,7 +328,7 @@ std::vector<Positions> sphere_steps(CollisionOptions opt, int level, unsigned se
 /// fail-safe must find every pair. Returns the positions after each step.
 std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
                                     std::vector<CollisionStepStats>* all_stats, int level = 2,
-                                    bool brute_force = true) {
+                                    bool brute_force = true, bool speculative = false) {
   CollisionOptions opt;
   opt.threads = threads;
   opt.rounds = rounds;
@@ -342,7 +342,7 @@ std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
     }
     return x1;
   };
-  return sphere_steps(opt, level, 7, 6, move, false, brute_force, all_stats);
+  return sphere_steps(opt, level, 7, 6, move, speculative, brute_force, all_stats);
 }
 
 TEST(SelfCollision, ResponseKeepsEveryVertexInItsSweptBoxGrownByHalfTheMargin) {
@@ -537,6 +537,7 @@ TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
     Positions x = x1;
     sc.resolve(x0, x, w, stats);
     const auto got = sc.candidate_pairs();
+    EXPECT_TRUE(sc.live_pairs_consistent());
     EXPECT_EQ(got.first, expected.vertex_face);
     EXPECT_EQ(got.second, expected.edge_edge);
     EXPECT_EQ(stats.pairs_broad, static_cast<std::int64_t>(expected.vertex_face.size() +
@@ -641,6 +642,18 @@ TEST(SelfCollision, LargeCrushedSphereDoesNotDependOnThreads) {
     for (std::size_t i = 0; i < one.size(); ++i)
       EXPECT_EQ(one[i], other[i]) << threads << " threads, step " << i;
   }
+  // The same with the speculative broad phase, whose classification compacts the live pairs
+  // and their stencils in blocks of 4096 pairs: no pair may touch either.
+  std::vector<CollisionStepStats> spec_stats;
+  crush_sphere(2, 5, true, &spec_stats, 3, true, true);
+  int speculative = 0;
+  for (const CollisionStepStats& s : spec_stats) {
+    speculative += s.speculative;
+    if (s.speculative == 1) {
+      EXPECT_GT(s.pairs_broad, 3 * 4096);
+    }
+  }
+  EXPECT_GT(speculative, 0);
 }
 
 }  // namespace

@@ -152,6 +152,10 @@ class SelfCollision {
   /// last resolve's detections and the contacts its warm start still had to push, one per pair.
   const std::vector<Contact>& contact_cache() const { return previous_contacts_; }
 
+  /// For tests: whether the last resolve's list of live pairs is what its rounds assume: in
+  /// increasing order, none excluded or out of the candidates, each with its stencil beside it.
+  bool live_pairs_consistent() const;
+
   /// The candidate pairs of the last resolve's broad phase, excluded ones included: VF pairs
   /// (vertex, face) and EE pairs (edge a < edge b), each list sorted (for tests and tools).
   /// Not between predict and resolve: the speculative task may be rewriting them.
@@ -243,7 +247,8 @@ class SelfCollision {
   /// Closes up blocks compacted in place: block b's counts[b] entries, at the front of its slice
   /// out[b block, (b + 1) block), are moved after those of the blocks before it; returns the
   /// total.
-  static std::size_t close_up(std::vector<std::uint32_t>& out, std::size_t block,
+  template <class T>
+  static std::size_t close_up(std::vector<T>& out, std::size_t block,
                               const std::vector<std::size_t>& counts);
 
   CollisionTopology topo_;
@@ -255,6 +260,9 @@ class SelfCollision {
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
   std::vector<std::uint32_t> tests_;     ///< [0, test_count_): pairs to test in the next detect()
   std::vector<std::uint32_t> live_;      ///< [0, live_count_): see collect_live
+  /// live_v_[j] = pairs_[live_[j]].v: the rounds' collection passes read the stencils in order
+  /// instead of through the indices (see mark_moved_and_collect).
+  std::vector<std::array<int, 4>> live_v_;
   std::size_t live_count_ = 0;
   std::size_t test_count_ = 0;
   std::vector<std::size_t> block_count_; ///< compact(): kept indices per block
