@@ -74,6 +74,7 @@ constexpr double ESCAPE_FRACTION = 1.0 / 32.0;
 
 /// End of a chain in update_contact_cache's lookup.
 constexpr std::uint32_t NO_ENTRY = std::numeric_limits<std::uint32_t>::max();
+
 /// Escaped primitives per task of the speculative broad phase's grid queries (a few hundred per
 /// step on bear at P = 4, ~5 microseconds each).
 constexpr std::size_t QUERY_BLOCK = 8;
@@ -125,8 +126,8 @@ struct SelfCollision::Workers {
 // for every G <= 2 delta + m - 4u (M + delta + m), which covers that unless delta is below
 // 6u (M + delta + m), about 1e-15 of the coordinates. Until 2026-11-24 the inflation was delta + m:
 // the second m/2 was headroom for rounding, which delta gives already, and it widened the
-// candidates' gap band from 6 delta to 10 (bear at P = 4: 173k -> 131k candidates and 158k ->
-// 137k filter tests per step; README, "Self-collision").
+// candidates' gap band from 6 delta to 10 (bear at P = 4: 173k -> 132k candidates and 158k ->
+// 140k filter tests per step; README, "Self-collision").
 double broad_phase_inflation(const CollisionOptions& options) {
   return options.delta + 0.5 * (options.region_margin * options.delta);
 }

@@ -420,9 +420,10 @@ TEST(SelfCollision, BroadPhaseKeepsThePairsItsRegionsCanBringWithinDeltaAndNoFar
 }
 
 TEST(SelfCollision, ContactCacheHoldsOnePerPairOfTheDetectionsAndThePressed) {
-  // A sphere flattened until its halves rest on each other, with the warm start: each step's
-  // cache must hold every pair detected in the step and every pair its warm start pushed, each
-  // once (a pressed pair detected again keeps the detection, whose frame is newer).
+  // A sphere flattened until its halves rest on each other, with the warm start: the cache
+  // holds the step's detections and the contacts its warm start pushed, each pair once (a
+  // pressed pair detected again keeps only the detection, whose frame is newer), and pairs are
+  // carried from step to step.
   const test::TriMesh sphere = test::icosphere(2);
   CollisionOptions opt;
   opt.delta = 1e-3;
@@ -440,7 +441,7 @@ TEST(SelfCollision, ContactCacheHoldsOnePerPairOfTheDetectionsAndThePressed) {
     const std::vector<Contact> before = sc.contact_cache();
     Positions x1 = x0;
     for (Eigen::Index i = 0; i < x1.rows(); ++i) {
-      // Flattened towards z = 0 until the two halves press on each other (from step 6 on).
+      // Flattened towards z = 0 until the two halves press on each other.
       x1(i, 2) = 0.3 * x0(i, 2);
       for (int d = 0; d < 3; ++d) x1(i, d) += jitter(rng);
     }
