@@ -188,8 +188,6 @@ void SelfCollision::fill_records(std::size_t begin, std::size_t end, std::size_t
   // any (none on bear): the per-pair call with its member reloads took 1.2 ms of CPU per step
   // for bear's 221k speculative pairs at P = 4 (perf), on the background task's thread.
   PairRecord* const rec = pairs_.data();
-  const int* const faces = topo_.faces.data();  // row-major: face f's corners at 3 f
-  const int* const edges = topo_.edges.data();  // edge e's ends at 2 e
   const std::size_t split = std::clamp(nvf, begin, end);
   const bool vf_listed = !excluded_vf_.empty() || !near_vf_.empty();
   const bool ee_listed = !excluded_ee_.empty() || !near_ee_.empty();
@@ -199,17 +197,14 @@ void SelfCollision::fill_records(std::size_t begin, std::size_t end, std::size_t
     PairRecord& p = rec[i];
     p.kind = CcdPrimitive::VertexFace;
     p.pair = vf[i];
-    const int* f = faces + 3 * static_cast<std::ptrdiff_t>(p.pair[1]);
-    p.v = {p.pair[0], f[0], f[1], f[2]};
+    p.v = stencil(p.kind, p.pair, topo_);
     roles[i] = vf_listed ? rest_role(p.kind, p.pair) : NORMAL;
   }
   for (std::size_t i = split; i < end; ++i) {
     PairRecord& p = rec[i];
     p.kind = CcdPrimitive::EdgeEdge;
     p.pair = ee[i - nvf];
-    const int* a = edges + 2 * static_cast<std::ptrdiff_t>(p.pair[0]);
-    const int* b = edges + 2 * static_cast<std::ptrdiff_t>(p.pair[1]);
-    p.v = {a[0], a[1], b[0], b[1]};
+    p.v = stencil(p.kind, p.pair, topo_);
     roles[i] = ee_listed ? rest_role(p.kind, p.pair) : NORMAL;
   }
 }
