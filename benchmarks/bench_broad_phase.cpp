@@ -22,6 +22,7 @@
 
 #include "../tests/support/mesh_fixtures.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
+#include "shellcontract/collision/cull_batch.hpp"
 
 namespace {
 
@@ -142,6 +143,44 @@ void BM_HasAnyCandidate(benchmark::State& state) {
   state.counters["any"] = any ? 1.0 : 0.0;
 }
 
+/// The collision step's filter stage (cull_batch: box cull and non-penetration filter) on every
+/// pair the grid finds, four stencils of one kind at a time, as SelfCollision::detect runs it;
+/// tolerance = the far distance if given (the collision step's delta), else 0. The stencils are
+/// gathered in pair order beforehand, so the time is the cull's (and its position loads).
+void BM_CullBatch(benchmark::State& state, CullIsa isa) {
+  const Scene& sc = scene();
+  CandidatePairs pairs;
+  find_candidates(sc.x0, sc.x1, sc.topo, sc.inflation, pairs, nullptr, BroadPhaseMethod::Grid,
+                  g_far);
+  std::vector<std::array<int, 4>> vf, ee;
+  for (const auto& p : pairs.vertex_face)
+    vf.push_back({p[0], sc.topo.faces(p[1], 0), sc.topo.faces(p[1], 1), sc.topo.faces(p[1], 2)});
+  for (const auto& p : pairs.edge_edge)
+    ee.push_back({sc.topo.edges(p[0], 0), sc.topo.edges(p[0], 1), sc.topo.edges(p[1], 0),
+                  sc.topo.edges(p[1], 1)});
+  const double tol = g_far > 0.0 ? g_far : 0.0;
+  std::vector<std::uint8_t> culled(vf.size() + ee.size() + CULL_LANES);
+  for (auto _ : state) {
+    std::size_t at = 0;
+    for (const auto* list : {&vf, &ee}) {
+      const CcdPrimitive kind = list == &vf ? CcdPrimitive::VertexFace : CcdPrimitive::EdgeEdge;
+      for (std::size_t i = 0; i < list->size(); i += CULL_LANES) {
+        const int count = static_cast<int>(std::min<std::size_t>(CULL_LANES, list->size() - i));
+        cull_batch(kind, sc.x0.data(), sc.x1.data(), list->data() + i, count, tol,
+                   culled.data() + at, isa);
+        at += static_cast<std::size_t>(count);
+      }
+    }
+    benchmark::DoNotOptimize(culled.data());
+  }
+  std::size_t n_culled = 0;
+  for (std::size_t i = 0; i < vf.size() + ee.size(); ++i) n_culled += culled[i];
+  state.counters["tests"] = static_cast<double>(vf.size() + ee.size());
+  state.counters["culled"] = static_cast<double>(n_culled);
+}
+
+BENCHMARK_CAPTURE(BM_CullBatch, Auto, CullIsa::Auto)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_CullBatch, Scalar, CullIsa::Scalar)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FindCandidates, PrimitiveBoxes, BroadPhaseMethod::PrimitiveBoxes)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FindCandidates, FacePairs, BroadPhaseMethod::FacePairs)

@@ -68,18 +68,25 @@ SC_CULL_INLINE V det3_abs(const V3& a, const V3& b, const V3& c) {
 }
 SC_CULL_INLINE V norm(const V3& a) { return _mm256_sqrt_pd(dot(a, a)); }
 
-/// Point j of the four stencils at one time, lanes 0..3.
+/// Point j of the four stencils at one time, lanes 0..3: one load per lane of the point's x, y, z
+/// (the fourth element masked off, so the last vertex's row never reads past the array), then a
+/// 4 x 3 transpose. Moves the same doubles as scalar loads would, without the store-to-load
+/// forwarding stalls of assembling vectors through memory.
 SC_CULL_INLINE V3 load_point(const double* x, const std::array<int, 4>* v, int count, int j) {
-  double c[3][4];
+  const __m256i xyz = _mm256_set_epi64x(0, -1, -1, -1);
+  V r[4];
   for (int k = 0; k < 4; ++k) {
     // Lanes past count repeat lane 0 (their answers are not written).
-    const std::ptrdiff_t r =
+    const std::ptrdiff_t row =
         3 * static_cast<std::ptrdiff_t>(v[k < count ? k : 0][static_cast<std::size_t>(j)]);
-    c[0][k] = x[r];
-    c[1][k] = x[r + 1];
-    c[2][k] = x[r + 2];
+    r[k] = _mm256_maskload_pd(x + row, xyz);
   }
-  return {_mm256_loadu_pd(c[0]), _mm256_loadu_pd(c[1]), _mm256_loadu_pd(c[2])};
+  const V t0 = _mm256_unpacklo_pd(r[0], r[1]);  // x0 x1 z0 z1
+  const V t1 = _mm256_unpackhi_pd(r[0], r[1]);  // y0 y1 .  .
+  const V t2 = _mm256_unpacklo_pd(r[2], r[3]);  // x2 x3 z2 z3
+  const V t3 = _mm256_unpackhi_pd(r[2], r[3]);  // y2 y3 .  .
+  return {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
+          _mm256_permute2f128_pd(t0, t2, 0x31)};
 }
 
 void cull_avx2(CcdPrimitive kind, const double* x0, const double* x1, const std::array<int, 4>* v,
