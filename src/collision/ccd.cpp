@@ -107,6 +107,28 @@ BernsteinBound bernstein_with_bound(CcdPrimitive kind, const CcdStencil& x0, con
   return out;
 }
 
+/// The coarse rounding bound of the same coefficients (FilterBound::Coarse), from the computed
+/// relative vectors alone. Every det3_abs(x, y, z) = sum_i |z_i| (|x_j| |y_k| + |x_k| |y_j|) is at
+/// most 2 |x|_inf |y|_inf |z|_1, and an average of three is at most its largest term, so the
+/// magnitude a of bernstein_with_bound is at most 2 mu mv mw with mu = max(|u0|_inf, |u1|_inf),
+/// mv likewise, mw = max(|w0|_1, |w1|_1). Computed, mw is low by at most (1 - gamma_2) and the
+/// two products add two roundings (the doubling is exact), so the result c satisfies
+/// c >= (1 - gamma_4) a, and 16 u c >= gamma_11 a, the error the tight bound covers.
+double coarse_error_bound(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1) {
+  const RelativeVectors r0 = relative_vectors(kind, x0), r1 = relative_vectors(kind, x1);
+  auto inf_norm = [](const Vec3& a) {
+    return std::max(std::max(std::abs(a.x()), std::abs(a.y())), std::abs(a.z()));
+  };
+  // Summed as cull_batch sums it: (|x| + |y|) + |z|.
+  auto one_norm = [](const Vec3& a) {
+    return (std::abs(a.x()) + std::abs(a.y())) + std::abs(a.z());
+  };
+  const double mu = std::max(inf_norm(r0.u), inf_norm(r1.u));
+  const double mv = std::max(inf_norm(r0.v), inf_norm(r1.v));
+  const double mw = std::max(one_norm(r0.w), one_norm(r1.w));
+  return 16.0 * U * ((mu * mv) * (mw + mw)) + UNDERFLOW_FLOOR;
+}
+
 /// Upper bound, over t in [0,1], of the length of the normal whose dot product with a point
 /// offset is f: VF |u x v| <= |u||v|, so point-to-plane distance = |f| / |u x v| >= |f| / N;
 /// EE f = ((a1-a0) x (b1-b0)) . (a0-b0) up to sign, so line-line distance >= |f| / N with
@@ -658,13 +680,14 @@ std::array<double, 4> bernstein_from_power(const std::array<double, 4>& c) {
 }
 
 bool nonpenetration_filter_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
-                                 double tolerance) {
+                                 double tolerance, FilterBound bound) {
   for (int k = 0; k < 4; ++k)
     if (!x0[k].allFinite() || !x1[k].allFinite()) return false;
   const BernsteinBound bb = bernstein_with_bound(kind, x0, x1);
+  const double err = bound == FilterBound::Tight ? bb.err : coarse_error_bound(kind, x0, x1);
   const double tau = tolerance > 0.0 ? tolerance : 0.0;
   const double tau_term = tau > 0.0 ? tau * normal_length_bound(kind, x0, x1) * (1.0 + 4.0 * U) : 0.0;
-  return one_sign(bb.b.data(), bb.err + tau_term);
+  return one_sign(bb.b.data(), err + tau_term);
 }
 
 bool swept_boxes_apart(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,

@@ -27,7 +27,7 @@ void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const st
       s1[static_cast<std::size_t>(j)] = Vec3(x1[r], x1[r + 1], x1[r + 2]);
     }
     culled[k] = swept_boxes_apart(kind, s0, s1, tolerance) ||
-                nonpenetration_filter_culls(kind, s0, s1, tolerance);
+                nonpenetration_filter_culls(kind, s0, s1, tolerance, FilterBound::Coarse);
   }
 }
 
@@ -35,8 +35,8 @@ void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const st
 // AVX2 without FMA, and both files compiled with -ffp-contract=off (CMakeLists.txt): the scalar
 // code rounds every product and sum on its own, and so must this, for the answers to be the
 // same bit for bit. Every expression below mirrors one in ccd.cpp (relative_vectors, det3,
-// det3_abs, bernstein_with_bound, normal_length_bound, one_sign, swept_boxes_apart) and Eigen's
-// evaluation order for 3-vectors (cross: y z - z y, z x - x z, x y - y x; dot and sum:
+// bernstein_with_bound, coarse_error_bound, normal_length_bound, one_sign, swept_boxes_apart)
+// and Eigen's evaluation order for 3-vectors (cross: y z - z y, z x - x z, x y - y x; dot and sum:
 // (a0 + a1) + a2; norm: sqrt of the squared norm).
 #pragma GCC push_options
 #pragma GCC target("avx2")
@@ -60,12 +60,8 @@ SC_CULL_INLINE V3 cross(const V3& a, const V3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 SC_CULL_INLINE V det3(const V3& a, const V3& b, const V3& c) { return dot(cross(a, b), c); }
-SC_CULL_INLINE V det3_abs(const V3& a, const V3& b, const V3& c) {
-  const V3 A{vabs(a.x), vabs(a.y), vabs(a.z)}, B{vabs(b.x), vabs(b.y), vabs(b.z)};
-  const V3 C{vabs(c.x), vabs(c.y), vabs(c.z)};
-  return (C.x * (A.y * B.z + A.z * B.y) + C.y * (A.z * B.x + A.x * B.z)) +
-         C.z * (A.x * B.y + A.y * B.x);
-}
+SC_CULL_INLINE V inf_norm(const V3& a) { return vmax(vmax(vabs(a.x), vabs(a.y)), vabs(a.z)); }
+SC_CULL_INLINE V one_norm(const V3& a) { return (vabs(a.x) + vabs(a.y)) + vabs(a.z); }
 SC_CULL_INLINE V norm(const V3& a) { return _mm256_sqrt_pd(dot(a, a)); }
 
 /// Point j of the four stencils at one time, lanes 0..3: one load per lane of the point's x, y, z
@@ -145,9 +141,10 @@ void cull_avx2(CcdPrimitive kind, const double* x0, const double* x1, const std:
   const V b1 = ((det3(u1, v0, w0) + det3(u0, v1, w0)) + det3(u0, v0, w1)) / three;
   const V b2 = ((det3(u1, v1, w0) + det3(u1, v0, w1)) + det3(u0, v1, w1)) / three;
   const V b3 = det3(u1, v1, w1);
-  V mag = vmax(det3_abs(u0, v0, w0), det3_abs(u1, v1, w1));
-  mag = vmax(mag, ((det3_abs(u1, v0, w0) + det3_abs(u0, v1, w0)) + det3_abs(u0, v0, w1)) / three);
-  mag = vmax(mag, ((det3_abs(u1, v1, w0) + det3_abs(u1, v0, w1)) + det3_abs(u0, v1, w1)) / three);
+  // coarse_error_bound (FilterBound::Coarse): 16 u (mu mv) (mw + mw).
+  const V mu = vmax(inf_norm(u0), inf_norm(u1)), mv = vmax(inf_norm(v0), inf_norm(v1));
+  const V mw = vmax(one_norm(w0), one_norm(w1));
+  const V mag = (mu * mv) * (mw + mw);
   const V err = _mm256_set1_pd(16.0 * U) * mag + _mm256_set1_pd(UNDERFLOW_FLOOR);
   V m = err;
   if (tau > 0.0) {

@@ -141,6 +141,93 @@ TEST(NonpenetrationFilter, ToleranceKeepsNearMissesWithinTau) {
   EXPECT_FALSE(nonpenetration_filter_culls(CcdPrimitive::VertexFace, x0, x1, 2.0 * tau));
 }
 
+TEST(NonpenetrationFilter, NeverCullsStencilsCoplanarAtTheStartWhatEverTheBound) {
+  // The four points lie exactly on the plane x + y + z = 1 at t = 0 (coordinates with at most 26
+  // fractional bits, so 1 - a - b and every difference are exact doubles), and the vertex (VF) or
+  // the first edge (EE) moves off the plane: the exact cubic is f(t) = c t, so b0 = 0 and the
+  // filter may not cull at tau = 0. The computed b0 is nonzero through the rounding of the
+  // products for many of them, so a rounding bound smaller than that error would cull. With
+  // the start lifted by 1e-6 along the normal the same motions are culled by both bounds (the
+  // test can fail both ways).
+  std::mt19937 rng(1717);
+  std::uniform_int_distribution<int> grid(0, (1 << 26) - 1);
+  std::uniform_real_distribution<double> lift(0.01, 0.2);
+  auto on_plane = [&] {
+    const double a = std::ldexp(grid(rng), -27), b = std::ldexp(grid(rng), -27);
+    return Vec3(a, b, 1.0 - a - b);
+  };
+  const Vec3 normal = Vec3(1, 1, 1) / std::sqrt(3.0);
+  int rounded = 0, culled_lifted = 0;
+  const int n = 20000;
+  for (int trial = 0; trial < n; ++trial) {
+    const CcdPrimitive kind = KINDS[trial % 2];
+    CcdStencil x0, x1;
+    for (auto& p : x0) p = on_plane();
+    x1 = x0;
+    const Vec3 motion = lift(rng) * normal;
+    x1[0] += motion;  // VF: the vertex; EE: both ends of edge a
+    if (kind == CcdPrimitive::EdgeEdge) x1[1] += motion;
+    rounded += coplanarity_bernstein(kind, x0, x1)[0] != 0.0;
+    for (FilterBound bound : {FilterBound::Tight, FilterBound::Coarse})
+      ASSERT_FALSE(nonpenetration_filter_culls(kind, x0, x1, 0.0, bound))
+          << "trial " << trial << (bound == FilterBound::Tight ? " tight" : " coarse")
+          << describe(x0, x1);
+    CcdStencil y0 = x0, y1 = x1;
+    const int moving = kind == CcdPrimitive::VertexFace ? 1 : 2;
+    for (int k = 0; k < moving; ++k) {
+      y0[k] += 1e-6 * normal;
+      y1[k] += 1e-6 * normal;
+    }
+    culled_lifted += nonpenetration_filter_culls(kind, y0, y1, 0.0, FilterBound::Tight) &&
+                     nonpenetration_filter_culls(kind, y0, y1, 0.0, FilterBound::Coarse);
+  }
+  EXPECT_GT(rounded, n / 10);
+  EXPECT_GT(culled_lifted, n - n / 100);
+  std::printf("  computed b0 nonzero in %d of %d; lifted: %d culled by both bounds\n", rounded, n,
+              culled_lifted);
+}
+
+TEST(NonpenetrationFilter, CoarseBoundCullsOnlyWhatTheTightOneCulls) {
+  // The coarse bound is never below the tight one (ccd.cpp, coarse_error_bound), so it may only
+  // cull less. Stencils flattened to every scale from 1e-6 to 1e-17 put coefficients on both
+  // sides of both bounds at tau = 0: the tight bound must cull some the coarse keeps (the test
+  // reaches the region where they differ). The coarse bound ignores the flatness (its magnitude
+  // is O(1) here where the tight one is O(flatness)), which costs nothing once tau is a
+  // tolerance of the collision step's size (1e-4 of coordinates of size 1; on general stencils):
+  // then both must cull the same stencils, up to one in a thousand.
+  std::mt19937 rng(1818);
+  std::uniform_real_distribution<double> flatness(-17.0, -6.0);
+  int tight_only = 0, coarse = 0, with_tau = 0, coarse_with_tau = 0;
+  const int n = 100000;
+  for (int trial = 0; trial < n; ++trial) {
+    const CcdPrimitive kind = KINDS[trial % 2];
+    // Every third stencil is a general one (not flattened) with tau > 0.
+    const bool with_tolerance = trial % 3 == 0;
+    const double flat = with_tolerance ? 1.0 : std::pow(10.0, flatness(rng));
+    CcdStencil x0, x1;
+    for (int k = 0; k < 4; ++k) {
+      x0[k] = test::random_vec3(rng);
+      x1[k] = x0[k] + test::random_vec3(rng, 0.3);
+      x0[k].z() *= flat;
+      x1[k].z() *= flat;
+    }
+    const double tau = with_tolerance ? 1e-4 : 0.0;
+    const bool by_tight = nonpenetration_filter_culls(kind, x0, x1, tau, FilterBound::Tight);
+    const bool by_coarse = nonpenetration_filter_culls(kind, x0, x1, tau, FilterBound::Coarse);
+    ASSERT_TRUE(by_tight || !by_coarse) << "trial " << trial << describe(x0, x1);
+    tight_only += by_tight && !by_coarse;
+    coarse += by_coarse;
+    with_tau += tau > 0.0 && by_tight;
+    coarse_with_tau += tau > 0.0 && by_coarse;
+  }
+  EXPECT_GT(tight_only, n / 100);
+  EXPECT_GT(coarse, n / 4);
+  EXPECT_GT(with_tau, n / 20);
+  EXPECT_GE(coarse_with_tau, with_tau - with_tau / 1000);
+  std::printf("  tight-only culls %d, coarse culls %d of %d; with tau: %d against %d\n",
+              tight_only, coarse, n, coarse_with_tau, with_tau);
+}
+
 TEST(SweptBoxes, CullOnlyPairsFartherThanTauAtEverySampledTime) {
   // Random stencils with motions and tolerances of many sizes. A culled pair must be farther than
   // tau at every sampled time (the box gap bounds the distance from below); and the test must cull

@@ -1,4 +1,5 @@
-// cull_batch against the scalar swept_boxes_apart and nonpenetration_filter_culls: the same
+// cull_batch against the scalar swept_boxes_apart and nonpenetration_filter_culls (with the
+// coarse rounding bound, FilterBound::Coarse): the same
 // answer for every stencil (the batch only shares the work), on random, near-coplanar,
 // degenerate, boundary and non-finite stencils.
 #include <gtest/gtest.h>
@@ -55,9 +56,11 @@ Stencils make_stencils(std::mt19937& rng) {
         s1[static_cast<std::size_t>(j)] =
             s0[static_cast<std::size_t>(j)] + test::random_vec3(rng, motion);
       if (family == 3) {
-        // Near-coplanar: flatten z to about 1e-6, start and end.
+        // Near-coplanar: flatten z by 1e-5 ... 1e-17, start and end; the flattest put the
+        // coefficients within the rounding bound, where it decides.
+        const double flat = std::pow(10.0, -5 - (i / 8) % 13);
         for (auto* s : {&s0, &s1})
-          for (auto& p : *s) p.z() *= 1e-5;
+          for (auto& p : *s) p.z() *= flat;
       } else if (family == 4) {
         // Degenerate: repeated points (zero-length edge, collinear triangle).
         s0[2] = s0[1];
@@ -91,7 +94,7 @@ TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
   }
   std::mt19937 rng(20261123);
   const Stencils st = make_stencils(rng);
-  std::int64_t box = 0, filter_only = 0, kept = 0, compared = 0;
+  std::int64_t box = 0, filter_only = 0, kept = 0, compared = 0, bound_decides = 0;
   for (double tol : {0.0, 1e-4, 0.0625}) {
     // Batches of 1..4 stencils of one kind.
     for (std::size_t s = 0; s < st.size();) {
@@ -109,9 +112,14 @@ TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
         const std::size_t id = s + static_cast<std::size_t>(k);
         const CcdStencil s0 = st.at(st.x0, id), s1 = st.at(st.x1, id);
         const bool by_box = swept_boxes_apart(st.kind[s], s0, s1, tol);
-        const bool by_filter = nonpenetration_filter_culls(st.kind[s], s0, s1, tol);
+        const bool by_filter =
+            nonpenetration_filter_culls(st.kind[s], s0, s1, tol, FilterBound::Coarse);
         ASSERT_EQ(culled[k], by_box || by_filter ? 1 : 0)
             << "stencil " << id << " (family " << (id % 4000) % 8 << "), tolerance " << tol;
+        // Stencils that the tight bound would cull and the coarse one keeps: the rounding bound
+        // itself is compared there.
+        bound_decides +=
+            !by_filter && nonpenetration_filter_culls(st.kind[s], s0, s1, tol, FilterBound::Tight);
         box += by_box;
         filter_only += !by_box && by_filter;
         kept += !by_box && !by_filter;
@@ -125,6 +133,7 @@ TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
   EXPECT_GT(box, 1000);
   EXPECT_GT(filter_only, 1000);
   EXPECT_GT(kept, 1000);
+  EXPECT_GT(bound_decides, 100);
   EXPECT_EQ(compared, 3 * static_cast<std::int64_t>(st.size()));
 }
 

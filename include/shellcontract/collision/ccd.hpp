@@ -155,6 +155,18 @@ std::array<double, 4> tang_bernstein(CcdPrimitive kind, const CcdStencil& x0,
 /// @return b0..b3
 std::array<double, 4> bernstein_from_power(const std::array<double, 4>& c);
 
+/// The rounding-error bound of nonpenetration_filter_culls. Both are rigorous (ccd.cpp); they
+/// differ only for coefficients within a few thousand ulps of the bound, i.e. for stencils that
+/// are coplanar (tau = 0) or at distance tau to within rounding.
+enum class FilterBound {
+  /// 16 u times the magnitude sum of each coefficient's products: the smallest bound, most culls.
+  Tight,
+  /// 32 u max|u|_inf max|v|_inf max|w|_1 over both times: at least as large (but for the
+  /// rounding of either), a fifth of the arithmetic. The collision step's batched filter (cull_batch) uses it; with tau > 0 the
+  /// tolerance term dwarfs either bound.
+  Coarse,
+};
+
 /// Deforming non-penetration filter (Tang et al. 2010, math-spec 10.4) made certain in floating
 /// point: true only if, with every rounding error bounded, all Bernstein coefficients of the
 /// coplanarity cubic are > tau N or all are < -tau N, where N bounds the normal's length over the
@@ -164,9 +176,10 @@ std::array<double, 4> bernstein_from_power(const std::array<double, 4>& c);
 /// @param x0         positions at t = 0
 /// @param x1         positions at t = 1
 /// @param tolerance  tau >= 0 in the same length unit
+/// @param bound      which rounding bound (FilterBound)
 /// @return true if the pair can be culled (no contact within tau in [0,1])
 bool nonpenetration_filter_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
-                                 double tolerance = 0.0);
+                                 double tolerance = 0.0, FilterBound bound = FilterBound::Tight);
 
 /// Separating-axis cull over the whole step (the narrow phase's step 2 on [0,1], ccd.cpp): true
 /// only if, along one of the axes x, y, z or along the closest-point direction at t = 1/2, every

@@ -1,6 +1,8 @@
 // The two cheap culls of the collision step's filter stage, four stencils at a time: the swept
 // box test (swept_boxes_apart) and Tang et al.'s non-penetration filter
-// (nonpenetration_filter_culls, math-spec 10.4). Each lane performs the scalar functions'
+// (nonpenetration_filter_culls with FilterBound::Coarse, math-spec 10.4: its rounding bound
+// costs a fifth of the tight one's arithmetic, and with the collision step's tolerance it culls
+// the same pairs on bear). Each lane performs the scalar functions'
 // floating-point operations in the same order, so every answer is the scalar answer, bit for
 // bit; only the work is shared. AVX2 when the CPU has it (checked at run time), else the scalar
 // functions.
@@ -20,8 +22,8 @@ static constexpr int CULL_LANES = 4;
 enum class CullIsa { Auto, Scalar };
 
 /// For k < count (1..CULL_LANES): culled[k] = swept_boxes_apart(kind, s0, s1, tolerance) ||
-/// nonpenetration_filter_culls(kind, s0, s1, tolerance), where s0 and s1 are the stencil of
-/// vertex ids v[k] (ccd.hpp order) at the start and end positions.
+/// nonpenetration_filter_culls(kind, s0, s1, tolerance, FilterBound::Coarse), where s0 and s1
+/// are the stencil of vertex ids v[k] (ccd.hpp order) at the start and end positions.
 /// @param x0, x1  #V by 3 positions, row-major (Positions::data())
 /// @param v       count vertex-id stencils, all of primitive kind `kind`
 void cull_batch(CcdPrimitive kind, const double* x0, const double* x1,
