@@ -155,15 +155,17 @@ std::array<double, 4> tang_bernstein(CcdPrimitive kind, const CcdStencil& x0,
 /// @return b0..b3
 std::array<double, 4> bernstein_from_power(const std::array<double, 4>& c);
 
-/// The rounding-error bound of nonpenetration_filter_culls. Both are rigorous (ccd.cpp); they
-/// differ only for coefficients within a few thousand ulps of the bound, i.e. for stencils that
-/// are coplanar (tau = 0) or at distance tau to within rounding.
+/// The rounding-error bound of nonpenetration_filter_culls; both are rigorous (ccd.cpp). Their
+/// answers differ only for stencils whose coefficients lie between the two bounds, i.e. within
+/// about 1e-14 |u| |v| |w| of the threshold: coplanar to within rounding (tau = 0), or at
+/// distance tau to within rounding.
 enum class FilterBound {
   /// 16 u times the magnitude sum of each coefficient's products: the smallest bound, most culls.
   Tight,
   /// 32 u max|u|_inf max|v|_inf max|w|_1 over both times: at least as large (but for the
-  /// rounding of either), a fifth of the arithmetic. The collision step's batched filter (cull_batch) uses it; with tau > 0 the
-  /// tolerance term dwarfs either bound.
+  /// rounding of either; much larger for flat stencils), a fifth of the arithmetic. The
+  /// collision step's batched filter (cull_batch) uses it; with tau > 0 the tolerance term
+  /// dwarfs either bound.
   Coarse,
 };
 
