@@ -141,14 +141,14 @@ TEST(NonpenetrationFilter, ToleranceKeepsNearMissesWithinTau) {
   EXPECT_FALSE(nonpenetration_filter_culls(CcdPrimitive::VertexFace, x0, x1, 2.0 * tau));
 }
 
-TEST(NonpenetrationFilter, NeverCullsStencilsCoplanarAtTheStartWhatEverTheBound) {
-  // The four points lie exactly on the plane x + y + z = 1 at t = 0 (coordinates with at most 26
-  // fractional bits, so 1 - a - b and every difference are exact doubles), and the vertex (VF) or
-  // the first edge (EE) moves off the plane: the exact cubic is f(t) = c t, so b0 = 0 and the
-  // filter may not cull at tau = 0. The computed b0 is nonzero through the rounding of the
-  // products for many of them, so a rounding bound smaller than that error would cull. With
-  // the start lifted by 1e-6 along the normal the same motions are culled by both bounds (the
-  // test can fail both ways).
+TEST(NonpenetrationFilter, NeverCullsStencilsCoplanarAtTheStartWithEitherBound) {
+  // The four points lie exactly on the plane x + y + z = 1 at t = 0 (coordinates in [0, 1) with
+  // at most 27 fractional bits, so 1 - a - b and every difference are exact doubles), and the
+  // vertex (VF) or the first edge (EE) moves off the plane: the exact cubic is f(t) = c t, so
+  // b0 = 0 and the filter may not cull at tau = 0. The computed b0 is nonzero through the
+  // rounding of the products for many of them, so a rounding bound smaller than that error
+  // would cull. With the start lifted by 1e-6 along the normal the same motions are culled by
+  // both bounds (the test can fail both ways).
   std::mt19937 rng(1717);
   std::uniform_int_distribution<int> grid(0, (1 << 26) - 1);
   std::uniform_real_distribution<double> lift(0.01, 0.2);
