@@ -297,7 +297,7 @@ void SelfCollision::run_speculation() {
   spec_seconds_ = since(t0);
 }
 
-bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x1, double margin,
+bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x1,
                                          CollisionStepStats& stats) {
   const auto t0 = Clock::now();
   spec_pending_ = false;
@@ -627,8 +627,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
     if (stale_[i] && role_[i] == NORMAL) tests_[test_count_++] = static_cast<std::uint32_t>(i);
   }
   round0_tests_ready_ = true;
-  region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
-  region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
+  set_regions(x0, x1);
   stats.speculative = 1;
   stats.escaped_vertices = static_cast<std::int64_t>(escaped);
   stats.broad_seconds += since(t0);
@@ -638,7 +637,13 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   return true;
 }
 
-void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double margin,
+void SelfCollision::set_regions(const Positions& x0, const Positions& x1) {
+  const double margin = options_.region_margin * options_.delta;
+  region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
+  region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
+}
+
+void SelfCollision::broad_phase(const Positions& x0, const Positions& x1,
                                 CollisionStepStats& stats) {
   BroadPhaseStats bs;
   workers_->arena.execute([&] {
@@ -672,8 +677,7 @@ void SelfCollision::broad_phase(const Positions& x0, const Positions& x1, double
                       });
   });
   collect_live();
-  region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
-  region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
+  set_regions(x0, x1);
   stats.broad_seconds += bs.seconds + since(t0);
   ++stats.broad_phase_calls;
   stats.pairs_no_culling = bs.no_culling_vertex_face + bs.no_culling_edge_edge;
@@ -963,8 +967,7 @@ void SelfCollision::resolve_impl(const Positions& x0, Positions& x1, const Eigen
   }
   previous_contacts_.clear();
   round0_tests_ready_ = false;
-  if (!spec_pending_ || !complete_speculation(x0, x1, options_.region_margin * delta, stats))
-    broad_phase(x0, x1, options_.region_margin * delta, stats);
+  if (!spec_pending_ || !complete_speculation(x0, x1, stats)) broad_phase(x0, x1, stats);
   auto mark = [&](int v) {
     if (moved_[static_cast<std::size_t>(v)]) return;
     moved_[static_cast<std::size_t>(v)] = 1;

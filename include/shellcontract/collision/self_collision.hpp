@@ -55,7 +55,7 @@ double broad_phase_inflation(const CollisionOptions& options);
 /// Counters of one step (CSV log) and the stages of the paper's Table 2.
 struct CollisionStepStats {
   std::int64_t pairs_no_culling = 0;  ///< all non-adjacent VF + EE pairs
-  std::int64_t pairs_broad = 0;       ///< after the broad phase (inflation delta + region margin)
+  std::int64_t pairs_broad = 0;       ///< after the broad phase (broad_phase_inflation)
   std::int64_t pairs_filtered = 0;    ///< left after the box cull and the filter (first round)
   std::int64_t filter_tests = 0;      ///< non-penetration filter evaluations, all passes
   std::int64_t narrow_tests = 0;      ///< narrow-phase queries run, all rounds
@@ -185,16 +185,18 @@ class SelfCollision {
 
   /// Broad phase on (x0, x1) with broad_phase_inflation; rebuilds pairs_ (excluded pairs
   /// marked, never tested). A pair is stale unless the broad phase shows its swept boxes farther
-  /// than delta apart (CandidatePairs' close flags): then it is free already. The swept boxes of
-  /// (x0, x1) grown by margin / 2 become the regions the response keeps each vertex in.
-  void broad_phase(const Positions& x0, const Positions& x1, double margin,
-                   CollisionStepStats& stats);
+  /// than delta apart (CandidatePairs' close flags): then it is free already. Sets the regions
+  /// (set_regions).
+  void broad_phase(const Positions& x0, const Positions& x1, CollisionStepStats& stats);
 
   /// The speculative broad phase's completion (see predict): waits for the background task,
   /// then sets pairs_, role_, stale_, free_ and the regions as broad_phase would, with the same
   /// candidate pairs. Returns false (nothing set) if resolve must run broad_phase instead.
-  bool complete_speculation(const Positions& x0, const Positions& x1, double margin,
-                            CollisionStepStats& stats);
+  bool complete_speculation(const Positions& x0, const Positions& x1, CollisionStepStats& stats);
+
+  /// The regions the response keeps each vertex in: its swept box over (x0, x1) grown by m/2,
+  /// m = region_margin * delta (region_lo_, region_hi_).
+  void set_regions(const Positions& x0, const Positions& x1);
 
   /// Runs on the spare thread: the grid over spec_boxes_ and the records of its pairs.
   void run_speculation();
@@ -232,7 +234,6 @@ class SelfCollision {
   /// rounds' (stale and NORMAL) or, with FAILSAFE, the fail-safe's (stale, or not free, or NEAR).
   template <bool FAILSAFE>
   void mark_moved_and_collect();
-
 
   /// Sets live_[0, live_count_) to the pairs that may ever be tested (role NORMAL or NEAR), in
   /// increasing order: the later passes over the pairs skip the excluded ones and the
