@@ -41,7 +41,9 @@ def run_once(exe, mesh, pressure, frames, tmp, tag):
            str(pressure), "--frames", str(frames), "--summary", summary]
     done = subprocess.run(cmd)
     if done.returncode != 0:
-        sys.exit("collision_ratio: '%s' failed with exit code %d" % (" ".join(cmd), done.returncode))
+        print("collision_ratio: '%s' failed with exit code %d" % (" ".join(cmd), done.returncode),
+              file=sys.stderr)
+        sys.exit(done.returncode)
     with open(summary) as f:
         t = json.load(f)["table2"]
     row = {key: t.get(key, 0.0) for _, key in FIELDS}
