@@ -588,6 +588,69 @@ TEST(BroadPhase, GridOrderDoesNotDependOnTheThreadCount) {
   }
 }
 
+TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
+  // Step after step the grid keeps its cells and patches its counting sort for the boxes that
+  // changed cell range (patch_grid). A patch must leave exactly what the counting sort builds on
+  // the same grid: the same cell lists (so the same pairs in the same order, and the same
+  // answers from query_kept_grid), on trajectories of small steps (patched), with jumps (too
+  // many changes: rebuilt) and with the scene growing out of the grid (a new grid).
+  std::mt19937 rng(29);
+  const TriMesh sphere = test::icosphere(3);
+  TriMesh two = combine(test::icosphere(2), test::icosphere(2));
+  two.x.bottomRows(two.x.rows() / 2).rowwise() += Vec3(1.2, 0.1, 0.0).transpose();
+  int patched_steps = 0, rebuilt_steps = 0;
+  for (const TriMesh* m : {&sphere, static_cast<const TriMesh*>(&two)}) {
+    const CollisionTopology topo = make_collision_topology(m->faces, static_cast<int>(m->x.rows()));
+    CandidatePairs patched, patched_one_thread, rebuilt;
+    rebuilt.scratch.grid_patch_always_rebuild = true;
+    Positions x0 = m->x;
+    for (int step = 0; step < 40; ++step) {
+      // Mostly small steps; a jump every 10th; the scene grows at step 25.
+      const double scale = step % 10 == 9 ? 0.1 : 0.004;
+      Positions x1 = random_motion(x0, scale, rng);
+      if (step == 25) x1 *= 1.1;
+      const double inflation = 0.01, far = 0.005;
+      BroadPhaseStats stats;
+      find_candidates(x0, x1, topo, inflation, patched, &stats, BroadPhaseMethod::Grid, far);
+      find_candidates(x0, x1, topo, inflation, rebuilt, nullptr, BroadPhaseMethod::Grid, far);
+      tbb::task_arena one(1);
+      one.execute([&] {
+        find_candidates(x0, x1, topo, inflation, patched_one_thread, nullptr,
+                        BroadPhaseMethod::Grid, far);
+      });
+      const std::string where = "step " + std::to_string(step);
+      ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid) << where;
+      const detail::BroadPhaseScratch &p = patched.scratch, &r = rebuilt.scratch;
+      if (p.grid_patched_boxes > 0) ++patched_steps;
+      if (p.grid_patched_boxes < 0 && step > 0) ++rebuilt_steps;
+      // The same grid and the same cell lists (the rebuild keeps spare slots past the end).
+      ASSERT_EQ(p.grid_dims, r.grid_dims) << where;
+      ASSERT_EQ(p.grid_origin, r.grid_origin) << where;
+      ASSERT_EQ(p.cell_start, r.cell_start) << where;
+      const std::size_t n = p.cell_start.back();
+      ASSERT_GE(r.cell_entries.size(), n) << where;
+      EXPECT_TRUE(std::equal(p.cell_entries.begin(), p.cell_entries.begin() + static_cast<std::ptrdiff_t>(n),
+                             r.cell_entries.begin()))
+          << where;
+      // Hence the same pairs, order and flags; exactly brute force's pairs; any thread count.
+      EXPECT_TRUE(patched.vertex_face == rebuilt.vertex_face) << where;
+      EXPECT_TRUE(patched.edge_edge == rebuilt.edge_edge) << where;
+      EXPECT_TRUE(patched.vertex_face_close == rebuilt.vertex_face_close) << where;
+      EXPECT_TRUE(patched.edge_edge_close == rebuilt.edge_edge_close) << where;
+      EXPECT_TRUE(patched_one_thread.vertex_face == patched.vertex_face) << where;
+      EXPECT_TRUE(patched_one_thread.edge_edge == patched.edge_edge) << where;
+      const BruteForce want = brute_force(x0, x1, m->faces, inflation);
+      const Pairs vf = sorted(patched.vertex_face), ee = sorted(patched.edge_edge);
+      EXPECT_TRUE(vf == want.vertex_face) << where << ": VF " << first_difference(vf, want.vertex_face);
+      EXPECT_TRUE(ee == want.edge_edge) << where << ": EE " << first_difference(ee, want.edge_edge);
+      x0 = x1;
+    }
+  }
+  // Both paths ran: patches with changed boxes, and rebuilds after the jumps.
+  EXPECT_GE(patched_steps, 40);
+  EXPECT_GE(rebuilt_steps, 4);
+}
+
 TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   // The AVX-512 cell loop must emit exactly the portable loop's pairs, in its order, with its
   // close flags: random motions from none (every box touching its neighbours) to large, cells
@@ -602,6 +665,7 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   // One object whose loop alternates call by call: each loop must size its own cell buffers,
   // whatever the other left behind in the shared scratch.
   CandidatePairs switching;
+  switching.scratch.grid_patch = false;  // a fresh grid each call, as `portable`'s
   for (const TriMesh* m : {&sphere, &two}) {
     const CollisionTopology topo = make_collision_topology(m->faces, static_cast<int>(m->x.rows()));
     for (double scale : {0.0, 0.01, 0.05, 0.12}) {

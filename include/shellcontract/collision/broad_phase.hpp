@@ -212,6 +212,21 @@ struct BroadPhaseScratch {
   std::array<double, 3> grid_origin{};        ///< Grid: its minimum corner
   double grid_inv_h = 1.0;                    ///< Grid: 1 / cell size
   std::array<std::size_t, 3> grid_dims{};     ///< Grid: cells per axis
+  /// Grid: keep the last call's grid and patch its counting sort when it still fits (tests turn
+  /// it off); grid_patch_always_rebuild keeps the grid but rebuilds the counting sort, so that a
+  /// test can compare a patch with a rebuild on the same grid.
+  bool grid_patch = true;
+  bool grid_patch_always_rebuild = false;
+  /// Grid: boxes whose cell range the last call patched, or -1 if it rebuilt the counting sort.
+  std::int64_t grid_patched_boxes = -1;
+  std::vector<GridRange> grid_ranges_next;      ///< Grid: the patch's new ranges
+  std::vector<std::uint8_t> grid_changed;       ///< Grid: per box, range changed (patch)
+  std::vector<std::uint32_t> grid_changed_ids;  ///< Grid: the patch's changed boxes
+  std::vector<std::uint64_t> grid_changed_bits; ///< Grid: the same as a bitset
+  std::vector<std::uint32_t> grid_add_start;    ///< Grid: the patch's new entries per cell
+  std::vector<std::uint32_t> grid_adds;         ///< Grid: the patch's new entries (tags)
+  std::vector<std::uint32_t> cell_start_next;   ///< Grid: the patch's output buffers
+  std::vector<std::uint32_t> cell_entries_next;
 };
 }  // namespace detail
 
