@@ -441,12 +441,12 @@ constexpr double GRID_MAX_DIM = 65535.0;
 /// hash set needed.
 constexpr std::uint32_t GRID_ALL_FIRST = 7;
 
-/// Uniform grid over the bounding box of all swept boxes (with a margin, and kept from call to call
-/// while it fits: grid_pairs). coord() is monotone in x (a rounded subtraction, a multiplication by
-/// a positive number, a clamp, a truncation of a non-negative value), so if two boxes' closed
-/// intervals overlap on an axis, so do their cell ranges: no pair is lost to rounding, and the
-/// exact double box test decides. Monotone also means the cell range of a union of boxes is the
-/// union (min/max) of their cell ranges.
+/// Uniform grid over the bounding box of all swept boxes (with a margin, and kept from call to
+/// call while it fits: grid_pairs). coord() is monotone in x (a rounded subtraction, a
+/// multiplication by a positive number, a clamp, a truncation of a non-negative value), so if two
+/// boxes' closed intervals overlap on an axis, so do their cell ranges: no pair is lost to
+/// rounding, and the exact double box test decides. Monotone also means the cell range of a union
+/// of boxes is the union (min/max) of their cell ranges.
 struct Grid {
   std::array<double, 3> origin{};
   double inv_h = 1.0;
@@ -947,8 +947,9 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   out.vertex_face_close.clear();
   out.edge_edge_close.clear();
   // The last call's grid, if complete, and what it was built for (see patch_grid).
-  const bool had_grid = s.grid_kept && s.grid_ranges.size() == nboxes &&
-                        s.cell_start.size() == s.grid_dims[0] * s.grid_dims[1] * s.grid_dims[2] + 1;
+  const bool had_grid =
+      s.grid_kept && s.grid_ranges.size() == nboxes &&
+      s.cell_start.size() == s.grid_dims[0] * s.grid_dims[1] * s.grid_dims[2] + 1;
   s.grid_kept = false;
   s.grid_patched_boxes = -1;
   if (nv == 0) return 0;

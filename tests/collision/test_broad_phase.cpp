@@ -593,7 +593,7 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
   // changed cell range (patch_grid). A patch must leave exactly what the counting sort builds on
   // the same grid: the same cell lists (so the same pairs in the same order, and the same
   // answers from query_kept_grid), on trajectories of small steps (patched), with jumps (too
-  // many changes: rebuilt) and with the scene growing out of the grid (a new grid).
+  // many changes: rebuilt on the kept grid, or a new grid for the new cell size) and a drift.
   std::mt19937 rng(29);
   const TriMesh sphere = test::icosphere(3);
   TriMesh two = combine(test::icosphere(2), test::icosphere(2));
@@ -604,11 +604,14 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
     CandidatePairs patched, patched_one_thread, rebuilt;
     rebuilt.scratch.grid_patch_always_rebuild = true;
     Positions x0 = m->x;
+    std::array<double, 3> last_origin{};
+    int new_grids = 0;
     for (int step = 0; step < 40; ++step) {
-      // Mostly small steps; a jump every 10th; the scene grows at step 25.
+      // Mostly small steps; a jump every 10th; steps 21-28 also drift by 0.1 along x.
       const double scale = step % 10 == 9 ? 0.1 : 0.004;
       Positions x1 = random_motion(x0, scale, rng);
-      if (step == 25) x1 *= 1.1;
+      const bool drift = step >= 21 && step <= 28;
+      if (drift) x1.col(0).array() += 0.1;
       const double inflation = 0.01, far = 0.005;
       BroadPhaseStats stats;
       find_candidates(x0, x1, topo, inflation, patched, &stats, BroadPhaseMethod::Grid, far);
@@ -623,13 +626,16 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
       const detail::BroadPhaseScratch &p = patched.scratch, &r = rebuilt.scratch;
       if (p.grid_patched_boxes > 0) ++patched_steps;
       if (p.grid_patched_boxes < 0 && step > 0) ++rebuilt_steps;
+      if (step > 0 && p.grid_origin != last_origin) ++new_grids;
+      last_origin = p.grid_origin;
       // The same grid and the same cell lists (the rebuild keeps spare slots past the end).
       ASSERT_EQ(p.grid_dims, r.grid_dims) << where;
       ASSERT_EQ(p.grid_origin, r.grid_origin) << where;
       ASSERT_EQ(p.cell_start, r.cell_start) << where;
       const std::size_t n = p.cell_start.back();
       ASSERT_GE(r.cell_entries.size(), n) << where;
-      EXPECT_TRUE(std::equal(p.cell_entries.begin(), p.cell_entries.begin() + static_cast<std::ptrdiff_t>(n),
+      EXPECT_TRUE(std::equal(p.cell_entries.begin(),
+                             p.cell_entries.begin() + static_cast<std::ptrdiff_t>(n),
                              r.cell_entries.begin()))
           << where;
       // Hence the same pairs, order and flags; exactly brute force's pairs; any thread count.
@@ -641,10 +647,14 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
       EXPECT_TRUE(patched_one_thread.edge_edge == patched.edge_edge) << where;
       const BruteForce want = brute_force(x0, x1, m->faces, inflation);
       const Pairs vf = sorted(patched.vertex_face), ee = sorted(patched.edge_edge);
-      EXPECT_TRUE(vf == want.vertex_face) << where << ": VF " << first_difference(vf, want.vertex_face);
+      EXPECT_TRUE(vf == want.vertex_face)
+          << where << ": VF " << first_difference(vf, want.vertex_face);
       EXPECT_TRUE(ee == want.edge_edge) << where << ": EE " << first_difference(ee, want.edge_edge);
       x0 = x1;
     }
+    // Some calls made a new grid (the jumps' and the drift's larger boxes, then the smaller
+    // ones again, ask for other cell sizes), and the patches went on on each new one.
+    EXPECT_GE(new_grids, 2);
   }
   // Both paths ran: patches with changed boxes, and rebuilds after the jumps.
   EXPECT_GE(patched_steps, 40);
