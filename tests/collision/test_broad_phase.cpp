@@ -652,8 +652,8 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
       EXPECT_TRUE(ee == want.edge_edge) << where << ": EE " << first_difference(ee, want.edge_edge);
       x0 = x1;
     }
-    // Some calls made a new grid (the jumps' and the drift's larger boxes, then the smaller
-    // ones again, ask for other cell sizes), and the patches went on on each new one.
+    // Some calls made a new grid: the jumps' and the drift's larger boxes, then the smaller ones
+    // again, ask for other cell sizes.
     EXPECT_GE(new_grids, 2);
   }
   // Both paths ran: patches with changed boxes, and rebuilds after the jumps.
