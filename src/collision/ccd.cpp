@@ -87,14 +87,16 @@ struct BernsteinBound {
   double max_abs = 0.0;  ///< max_k |b_k computed|
 };
 
-BernsteinBound bernstein_with_bound(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1) {
-  const RelativeVectors r0 = relative_vectors(kind, x0), r1 = relative_vectors(kind, x1);
+/// The Bernstein coefficients of f on [0,1] from the relative vectors at t = 0 and t = 1.
+std::array<double, 4> bernstein_coefficients(const RelativeVectors& r0, const RelativeVectors& r1) {
   const Vec3 &u0 = r0.u, &v0 = r0.v, &w0 = r0.w, &u1 = r1.u, &v1 = r1.v, &w1 = r1.w;
-  BernsteinBound out;
-  out.b[0] = det3(u0, v0, w0);
-  out.b[1] = (det3(u1, v0, w0) + det3(u0, v1, w0) + det3(u0, v0, w1)) / 3.0;
-  out.b[2] = (det3(u1, v1, w0) + det3(u1, v0, w1) + det3(u0, v1, w1)) / 3.0;
-  out.b[3] = det3(u1, v1, w1);
+  return {det3(u0, v0, w0), (det3(u1, v0, w0) + det3(u0, v1, w0) + det3(u0, v0, w1)) / 3.0,
+          (det3(u1, v1, w0) + det3(u1, v0, w1) + det3(u0, v1, w1)) / 3.0, det3(u1, v1, w1)};
+}
+
+/// The tight rounding bound of bernstein_coefficients (FilterBound::Tight).
+double tight_error_bound(const RelativeVectors& r0, const RelativeVectors& r1) {
+  const Vec3 &u0 = r0.u, &v0 = r0.v, &w0 = r0.w, &u1 = r1.u, &v1 = r1.v, &w1 = r1.w;
   // Rounding depth: 3 input differences (1 each, relative) + product + cross subtraction + product
   // with the third factor + 2 dot-product sums = 8 for one det; + 2 for the sum of three dets + 1
   // for /3 = 11. The computed magnitude itself is low by at most a factor (1 - gamma_11), so
@@ -102,20 +104,26 @@ BernsteinBound bernstein_with_bound(CcdPrimitive kind, const CcdStencil& x0, con
   double a = std::max(det3_abs(u0, v0, w0), det3_abs(u1, v1, w1));
   a = std::max(a, (det3_abs(u1, v0, w0) + det3_abs(u0, v1, w0) + det3_abs(u0, v0, w1)) / 3.0);
   a = std::max(a, (det3_abs(u1, v1, w0) + det3_abs(u1, v0, w1) + det3_abs(u0, v1, w1)) / 3.0);
-  out.err = 16.0 * U * a + UNDERFLOW_FLOOR;
+  return 16.0 * U * a + UNDERFLOW_FLOOR;
+}
+
+BernsteinBound bernstein_with_bound(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1) {
+  const RelativeVectors r0 = relative_vectors(kind, x0), r1 = relative_vectors(kind, x1);
+  BernsteinBound out;
+  out.b = bernstein_coefficients(r0, r1);
+  out.err = tight_error_bound(r0, r1);
   for (double b : out.b) out.max_abs = std::max(out.max_abs, std::abs(b));
   return out;
 }
 
-/// The coarse rounding bound of the same coefficients (FilterBound::Coarse), from the computed
+/// The coarse rounding bound of bernstein_coefficients (FilterBound::Coarse), from the computed
 /// relative vectors alone. Every det3_abs(x, y, z) = sum_i |z_i| (|x_j| |y_k| + |x_k| |y_j|) is at
 /// most 2 |x|_inf |y|_inf |z|_1, and an average of three is at most its largest term, so the
-/// magnitude a of bernstein_with_bound is at most 2 mu mv mw with mu = max(|u0|_inf, |u1|_inf),
+/// magnitude a of tight_error_bound is at most 2 mu mv mw with mu = max(|u0|_inf, |u1|_inf),
 /// mv likewise, mw = max(|w0|_1, |w1|_1). Computed, mw is low by at most (1 - gamma_2) and the
 /// two products add two roundings (the doubling is exact), so the result c satisfies
 /// c >= (1 - gamma_4) a, and 16 u c >= gamma_11 a, the error the tight bound covers.
-double coarse_error_bound(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1) {
-  const RelativeVectors r0 = relative_vectors(kind, x0), r1 = relative_vectors(kind, x1);
+double coarse_error_bound(const RelativeVectors& r0, const RelativeVectors& r1) {
   auto inf_norm = [](const Vec3& a) {
     return std::max(std::max(std::abs(a.x()), std::abs(a.y())), std::abs(a.z()));
   };
@@ -683,11 +691,13 @@ bool nonpenetration_filter_culls(CcdPrimitive kind, const CcdStencil& x0, const 
                                  double tolerance, FilterBound bound) {
   for (int k = 0; k < 4; ++k)
     if (!x0[k].allFinite() || !x1[k].allFinite()) return false;
-  const BernsteinBound bb = bernstein_with_bound(kind, x0, x1);
-  const double err = bound == FilterBound::Tight ? bb.err : coarse_error_bound(kind, x0, x1);
+  const RelativeVectors r0 = relative_vectors(kind, x0), r1 = relative_vectors(kind, x1);
+  const std::array<double, 4> b = bernstein_coefficients(r0, r1);
+  const double err =
+      bound == FilterBound::Tight ? tight_error_bound(r0, r1) : coarse_error_bound(r0, r1);
   const double tau = tolerance > 0.0 ? tolerance : 0.0;
   const double tau_term = tau > 0.0 ? tau * normal_length_bound(kind, x0, x1) * (1.0 + 4.0 * U) : 0.0;
-  return one_sign(bb.b.data(), err + tau_term);
+  return one_sign(b.data(), err + tau_term);
 }
 
 bool swept_boxes_apart(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
