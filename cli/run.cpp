@@ -109,7 +109,8 @@ struct CollisionTotals {
   double no_culling = 0, broad = 0, filtered = 0, tests = 0, axis_culls = 0, contacts = 0,
          failsafe = 0;
   double broad_calls = 0, filter_tests = 0, rounds = 0, speculative = 0, escaped = 0,
-         background_s = 0, wait_s = 0;
+         background_s = 0, wait_s = 0, bg_grid_s = 0, bg_cells_s = 0, bg_output_s = 0,
+         bg_records_s = 0, predict_s = 0;
   double broad_s = 0, filter_s = 0, narrow_s = 0, response_s = 0, collision_s = 0, solve_s = 0,
          step_s = 0;
   void add(const FrameMetrics& m) {
@@ -128,6 +129,11 @@ struct CollisionTotals {
     escaped += static_cast<double>(c.escaped_vertices);
     background_s += c.background_seconds;
     wait_s += c.wait_seconds;
+    bg_grid_s += c.background_grid_seconds;
+    bg_cells_s += c.background_cell_loop_seconds;
+    bg_output_s += c.background_output_seconds;
+    bg_records_s += c.background_records_seconds;
+    predict_s += c.predict_seconds;
     broad_s += c.broad_seconds;
     filter_s += c.filter_seconds;
     narrow_s += c.narrow_seconds;
@@ -151,6 +157,11 @@ struct CollisionTotals {
         .add("escaped_vertices_per_speculative_step", speculative > 0 ? escaped / speculative : 0.0)
         .add("background_broad_phase_ms_per_step", 1e3 * background_s / n)
         .add("background_wait_ms_per_step", 1e3 * wait_s / n)
+        .add("background_grid_ms_per_step", 1e3 * bg_grid_s / n)
+        .add("background_cell_loop_ms_per_step", 1e3 * bg_cells_s / n)
+        .add("background_pair_output_ms_per_step", 1e3 * bg_output_s / n)
+        .add("background_records_ms_per_step", 1e3 * bg_records_s / n)
+        .add("prediction_ms_per_step", 1e3 * predict_s / n)
         .add("broad_phase_ms_per_step", 1e3 * broad_s / n).add("filter_ms_per_step", 1e3 * filter_s / n)
         .add("narrow_phase_ms_per_step", 1e3 * narrow_s / n).add("response_ms_per_step", 1e3 * response_s / n)
         .add("collision_ms_per_step", 1e3 * collision_s / n)

@@ -284,7 +284,9 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
 void SelfCollision::run_speculation() {
   const auto t0 = Clock::now();
   spec_ok_ = find_candidates_in_vertex_boxes(spec_boxes_, topo_, candidates_);
+  spec_records_seconds_ = 0.0;
   if (spec_ok_) {
+    const auto tr = Clock::now();
     const std::size_t nvf = candidates_.vertex_face.size();
     const std::size_t n = nvf + candidates_.edge_edge.size();
     pairs_.resize(n);
@@ -293,6 +295,7 @@ void SelfCollision::run_speculation() {
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         fill_records(r.begin(), r.end(), nvf, base_role_.data());
                       });
+    spec_records_seconds_ = since(tr);
   }
   spec_seconds_ = since(t0);
 }
@@ -310,6 +313,11 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
         spec_enqueued_ = false;
         workers_->arena.execute([&] { workers_->background.wait(); });
         stats.background_seconds = spec_seconds_;
+        const detail::BroadPhaseScratch& g = candidates_.scratch;
+        stats.background_grid_seconds = g.grid_build_seconds;
+        stats.background_cell_loop_seconds = g.grid_cell_loop_seconds;
+        stats.background_output_seconds = g.grid_output_seconds;
+        stats.background_records_seconds = spec_records_seconds_;
       } else {  // run here: its time is this thread's (broad_seconds)
         workers_->arena.execute([&] { run_speculation(); });
       }
@@ -949,6 +957,7 @@ void SelfCollision::resolve(const Positions& x0, Positions& x1, const Eigen::Vec
   // predict's share on the calling thread (the prediction, its boxes, the hand-off) is
   // collision work of this step too.
   stats.broad_seconds += predict_seconds_;
+  stats.predict_seconds = predict_seconds_;
   stats.seconds = since(start) + predict_seconds_;
   predict_seconds_ = 0.0;
 }

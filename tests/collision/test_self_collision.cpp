@@ -617,6 +617,24 @@ TEST(SelfCollision, SpeculativeFlattenedSphereNeverTouchesItselfAndDoesNotDepend
         EXPECT_LE(s->broad_seconds, s->seconds);
       }
       EXPECT_GT(stats[i].wait_seconds, 0.0);
+      // The task's parts are timed inside it, one after the other: each is within its time.
+      // With one thread it runs inline and is not background time at all.
+      const CollisionStepStats& s = stats2[i];
+      const double parts = s.background_grid_seconds + s.background_cell_loop_seconds +
+                           s.background_output_seconds + s.background_records_seconds;
+      EXPECT_EQ(stats[i].background_seconds, 0.0);
+      EXPECT_EQ(stats[i].background_grid_seconds + stats[i].background_cell_loop_seconds, 0.0);
+      if (s.speculative == 1) {
+        EXPECT_GT(s.background_grid_seconds, 0.0) << "step " << i;
+        EXPECT_GT(s.background_cell_loop_seconds, 0.0) << "step " << i;
+        EXPECT_GE(s.background_output_seconds, 0.0) << "step " << i;
+        EXPECT_GE(s.background_records_seconds, 0.0) << "step " << i;
+        EXPECT_LE(parts, s.background_seconds) << "step " << i;
+      }
+      for (const CollisionStepStats* t : {&stats[i], &stats2[i]}) {
+        EXPECT_GT(t->predict_seconds, 0.0) << "step " << i;
+        EXPECT_LE(t->predict_seconds, t->broad_seconds) << "step " << i;
+      }
     }
   }
 }

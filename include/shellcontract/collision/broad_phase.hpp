@@ -227,6 +227,12 @@ struct BroadPhaseScratch {
   std::vector<std::uint32_t> grid_adds;         ///< Grid: the patch's new entries (tags)
   std::vector<std::uint32_t> cell_start_next;   ///< Grid: the patch's output buffers
   std::vector<std::uint32_t> cell_entries_next;
+  /// Grid: wall time of the last call's three parts, for diagnostics (0 for a part it did not
+  /// reach): the grid (scene bounds, cell size, cell ranges, the counting sort or its patch),
+  /// the cell loop, and the output of its pairs in chunk order.
+  double grid_build_seconds = 0.0;
+  double grid_cell_loop_seconds = 0.0;
+  double grid_output_seconds = 0.0;
 };
 }  // namespace detail
 

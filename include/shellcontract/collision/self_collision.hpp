@@ -81,6 +81,16 @@ struct CollisionStepStats {
   /// constraint solve: not part of `seconds`, which holds what the calling thread spends (in
   /// predict, waiting for the task, completing it).
   double background_seconds = 0.0;
+  /// Parts of background_seconds (diagnostics; 0 when it is): the task's grid construction or
+  /// patch, the grid's cell loop, the grid's output of the pairs, and the per-pair records. The
+  /// rest of the task is bookkeeping between them.
+  double background_grid_seconds = 0.0;
+  double background_cell_loop_seconds = 0.0;
+  double background_output_seconds = 0.0;
+  double background_records_seconds = 0.0;
+  /// Steps with a prediction: the calling thread's time in predict, before the solve (part of
+  /// broad_seconds and of seconds).
+  double predict_seconds = 0.0;
   /// Steps with a prediction: wall time the calling thread spent on the speculative task after
   /// the solve (waiting for it, or taking over its remaining work; with one thread, running it
   /// all). Part of broad_seconds: the time the task still cost the step.
@@ -302,6 +312,7 @@ class SelfCollision {
   bool spec_enqueued_ = false;       ///< ... and enqueued its task (not with one thread)
   bool spec_ok_ = false;             ///< the task built a grid (set by the task)
   double spec_seconds_ = 0.0;        ///< the task's wall time (set by the task)
+  double spec_records_seconds_ = 0.0;  ///< the task's time filling the pair records
   double predict_seconds_ = 0.0;     ///< predict's own wall time, until resolve reports it
   Positions spec_x0_;                ///< x0 given to predict
   Positions spec_guess_;             ///< x_guess given to predict
