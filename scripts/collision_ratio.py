@@ -31,6 +31,8 @@ FIELDS = [  # (column, table2 key)
     ("collision ms", "collision_ms_per_step"),
     ("solve ms", "constraint_solve_ms_per_step"),
     ("background ms", "background_broad_phase_ms_per_step"),
+    # the task's largest part (0 from builds before 2026-11-25, which do not report it)
+    ("cell loop ms", "background_cell_loop_ms_per_step"),
     ("wait ms", "background_wait_ms_per_step"),
 ]
 
