@@ -134,6 +134,71 @@ void BM_FindCandidates(benchmark::State& state, BroadPhaseMethod method) {
   state.counters["own_path"] = stats.method_run == method ? 1.0 : 0.0;
 }
 
+/// The speculative task's call (SelfCollision::predict): the Grid on given vertex boxes (here the
+/// swept boxes of the scene grown by the inflation), with the exact double cell loop or the
+/// float superset one (BroadPhaseScratch::grid_float_superset).
+void BM_GridOnVertexBoxes(benchmark::State& state, bool float_superset) {
+  const Scene& sc = scene();
+  std::vector<detail::GridVertexBox> boxes(static_cast<std::size_t>(sc.x0.rows()));
+  for (Eigen::Index v = 0; v < sc.x0.rows(); ++v)
+    for (Eigen::Index d = 0; d < 3; ++d) {
+      detail::GridVertexBox& b = boxes[static_cast<std::size_t>(v)];
+      b.lo[static_cast<std::size_t>(d)] = std::min(sc.x0(v, d), sc.x1(v, d)) - sc.inflation;
+      b.hi[static_cast<std::size_t>(d)] = std::max(sc.x0(v, d), sc.x1(v, d)) + sc.inflation;
+    }
+  CandidatePairs out;
+  out.scratch.grid_patch = false;  // as BM_FindCandidates
+  out.scratch.grid_float_superset = float_superset;
+  double cell_loop = 0.0;
+  for (auto _ : state) {
+    if (!find_candidates_in_vertex_boxes(boxes, sc.topo, out))
+      state.SkipWithError("the grid degenerated");
+    cell_loop += out.scratch.grid_cell_loop_seconds;
+    benchmark::DoNotOptimize(out.vertex_face.data());
+    benchmark::DoNotOptimize(out.edge_edge.data());
+  }
+  state.counters["vf"] = static_cast<double>(out.vertex_face.size());
+  state.counters["ee"] = static_cast<double>(out.edge_edge.size());
+  const auto calls = std::max<benchmark::IterationCount>(1, state.iterations());
+  state.counters["cell_loop_ms"] = 1e3 * cell_loop / static_cast<double>(calls);
+}
+
+/// A step's call as SelfCollision makes it: the kept grid patched. Alternates between the boxes
+/// of the scene's step and those of the step after it, extrapolated (x1 -> 2 x1 - x0), so each
+/// call moves the boxes by one step. Reports the grid's part (the patch) and the cell loop.
+void BM_GridPatched(benchmark::State& state) {
+  const Scene& sc = scene();
+  const Positions x2 = 2.0 * sc.x1 - sc.x0;
+  std::array<std::vector<detail::GridVertexBox>, 2> boxes;
+  for (int k = 0; k < 2; ++k) {
+    const Positions& a = k == 0 ? sc.x0 : sc.x1;
+    const Positions& b = k == 0 ? sc.x1 : x2;
+    boxes[static_cast<std::size_t>(k)].resize(static_cast<std::size_t>(a.rows()));
+    for (Eigen::Index v = 0; v < a.rows(); ++v)
+      for (Eigen::Index d = 0; d < 3; ++d) {
+        detail::GridVertexBox& q = boxes[static_cast<std::size_t>(k)][static_cast<std::size_t>(v)];
+        q.lo[static_cast<std::size_t>(d)] = std::min(a(v, d), b(v, d)) - sc.inflation;
+        q.hi[static_cast<std::size_t>(d)] = std::max(a(v, d), b(v, d)) + sc.inflation;
+      }
+  }
+  CandidatePairs out;
+  double grid = 0.0, cell_loop = 0.0;
+  std::int64_t patched = 0, calls = 0;
+  for (auto _ : state) {
+    if (!find_candidates_in_vertex_boxes(boxes[static_cast<std::size_t>(calls % 2)], sc.topo, out))
+      state.SkipWithError("the grid degenerated");
+    grid += out.scratch.grid_build_seconds;
+    cell_loop += out.scratch.grid_cell_loop_seconds;
+    patched += out.scratch.grid_patched_boxes > 0 ? out.scratch.grid_patched_boxes : 0;
+    ++calls;
+    benchmark::DoNotOptimize(out.edge_edge.data());
+  }
+  const double n = static_cast<double>(std::max<std::int64_t>(1, calls));
+  state.counters["grid_ms"] = 1e3 * grid / n;
+  state.counters["cell_loop_ms"] = 1e3 * cell_loop / n;
+  state.counters["patched_boxes"] = static_cast<double>(patched) / n;
+}
+
 /// The early-exit check on the same step (it finds a pair, so this is its "true" time).
 void BM_HasAnyCandidate(benchmark::State& state) {
   const Scene& sc = scene();
@@ -190,6 +255,9 @@ BENCHMARK_CAPTURE(BM_FindCandidates, FacePairs, BroadPhaseMethod::FacePairs)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FindCandidates, Bvh, BroadPhaseMethod::Bvh)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FindCandidates, Grid, BroadPhaseMethod::Grid)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_GridOnVertexBoxes, Exact, false)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_GridOnVertexBoxes, FloatSuperset, true)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_GridPatched)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_HasAnyCandidate)->Unit(benchmark::kMillisecond);
 
 }  // namespace

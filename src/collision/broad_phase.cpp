@@ -742,9 +742,99 @@ inline __attribute__((always_inline)) void cell_rows_avx512(
   hits += box_hits;
 }
 
+/// The superset variant of cell_rows_avx512 for the speculative broad phase
+/// (find_candidates_in_vertex_boxes): items i, ..., i + R - 1 against [j0 + r s, j1) on the
+/// cell's float boxes, 16 lanes at a time, with the same dedupe flags, the same adjacency test
+/// and the same staggering and key layout. Every pair whose exact boxes overlap passes (the
+/// float boxes are the exact ones rounded monotonically: see grid_pairs), and a pair whose float
+/// boxes overlap only by rounding passes too; every key is flagged close (no far test). Twice
+/// the lanes of the double loop and no confirmation: the speculative task's cell loop is the
+/// step's longest part at strong pressure. Bear's P = 4 frames 299-300 (BM_GridOnVertexBoxes,
+/// one core, with the gather by kind of grid_chunk_avx512 for both): cell loop 6.5-6.7 against
+/// 7.8-9.8 ms, the same 252k pairs (README, "Self-collision").
+template <int R>
+inline __attribute__((always_inline)) void cell_rows_avx512_float(
+    const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1, bool stagger,
+    const std::uint64_t (&base)[R], std::uint32_t sub,
+    std::vector<std::uint64_t>* const (&keys)[R], std::size_t* const (&n)[R],
+    std::int64_t& hits) {
+  __m512 lx[R], ly[R], lz[R], hx[R], hy[R], hz[R];
+  __m512i fi[R], a[R], b[R], c[R];
+  __m512i key_base[R];
+  std::size_t start[R];
+  for (int r = 0; r < R; ++r) {
+    const std::size_t q = i + static_cast<std::size_t>(r);
+    lx[r] = _mm512_set1_ps(cell.lo[0][q]);
+    ly[r] = _mm512_set1_ps(cell.lo[1][q]);
+    lz[r] = _mm512_set1_ps(cell.lo[2][q]);
+    hx[r] = _mm512_set1_ps(cell.hi[0][q]);
+    hy[r] = _mm512_set1_ps(cell.hi[1][q]);
+    hz[r] = _mm512_set1_ps(cell.hi[2][q]);
+    fi[r] = _mm512_set1_epi32(static_cast<int>(cell.flags[q]));
+    a[r] = _mm512_set1_epi32(cell.v[0][q]);
+    b[r] = _mm512_set1_epi32(cell.v[1][q]);
+    c[r] = _mm512_set1_epi32(cell.v[2][q]);
+    // (base | (gid - sub)) << 1 | 1 = (base << 1 | 1) + ((gid - sub) << 1): base's low bits
+    // below the gid field are zero.
+    key_base[r] = _mm512_set1_epi64(static_cast<long long>(base[r] << 1 | 1u));
+    start[r] = j0 + (stagger ? static_cast<std::size_t>(r) : 0);
+  }
+  const __m512i all_first = _mm512_set1_epi32(static_cast<int>(GRID_ALL_FIRST));
+  const __m512i key_sub = _mm512_set1_epi64(sub);
+  std::int64_t box_hits = 0;
+  for (std::size_t j = j0; j < j1; j += 16) {
+    const __mmask16 live =
+        j1 - j >= 16 ? __mmask16{0xffff} : static_cast<__mmask16>((1u << (j1 - j)) - 1u);
+    const __m512i qf = _mm512_maskz_loadu_epi32(live, cell.flags.data() + j);
+    const __m512 qlx = _mm512_maskz_loadu_ps(live, cell.lo[0].data() + j);
+    const __m512 qhx = _mm512_maskz_loadu_ps(live, cell.hi[0].data() + j);
+    const __m512 qly = _mm512_maskz_loadu_ps(live, cell.lo[1].data() + j);
+    const __m512 qhy = _mm512_maskz_loadu_ps(live, cell.hi[1].data() + j);
+    const __m512 qlz = _mm512_maskz_loadu_ps(live, cell.lo[2].data() + j);
+    const __m512 qhz = _mm512_maskz_loadu_ps(live, cell.hi[2].data() + j);
+    const __m512i qa = _mm512_maskz_loadu_epi32(live, cell.v[0].data() + j);
+    const __m512i qb = _mm512_maskz_loadu_epi32(live, cell.v[1].data() + j);
+    const __m512i qc = _mm512_maskz_loadu_epi32(live, cell.v[2].data() + j);
+    for (int r = 0; r < R; ++r) {
+      const unsigned lanes =
+          start[r] > j ? live & ~((1u << (start[r] - j)) - 1u) : static_cast<unsigned>(live);
+      const unsigned box =
+          lanes & _mm512_cmpeq_epi32_mask(_mm512_or_si512(fi[r], qf), all_first) &
+          _mm512_cmp_ps_mask(lx[r], qhx, _CMP_LE_OQ) & _mm512_cmp_ps_mask(qlx, hx[r], _CMP_LE_OQ) &
+          _mm512_cmp_ps_mask(ly[r], qhy, _CMP_LE_OQ) & _mm512_cmp_ps_mask(qly, hy[r], _CMP_LE_OQ) &
+          _mm512_cmp_ps_mask(lz[r], qhz, _CMP_LE_OQ) & _mm512_cmp_ps_mask(qlz, hz[r], _CMP_LE_OQ);
+      const unsigned apart =
+          _mm512_cmpneq_epi32_mask(a[r], qa) & _mm512_cmpneq_epi32_mask(a[r], qb) &
+          _mm512_cmpneq_epi32_mask(a[r], qc) & _mm512_cmpneq_epi32_mask(b[r], qa) &
+          _mm512_cmpneq_epi32_mask(b[r], qb) & _mm512_cmpneq_epi32_mask(c[r], qa) &
+          _mm512_cmpneq_epi32_mask(c[r], qb);
+      box_hits += __builtin_popcount(box);
+      const unsigned pass = box & apart;
+      if (pass == 0) continue;
+      std::vector<std::uint64_t>& out = *keys[r];
+      std::size_t& count = *n[r];
+      if (out.size() < count + 16) out.resize(std::max<std::size_t>(2 * out.size(), count + 256));
+      for (std::size_t half = 0; half < 2; ++half) {
+        const __mmask8 m = static_cast<__mmask8>(pass >> (8 * half));
+        if (m == 0) continue;
+        const __m512i gid = _mm512_maskz_cvtepu32_epi64(
+            m, _mm256_maskz_loadu_epi32(
+                   m, reinterpret_cast<const int*>(cell.gid.data() + j + 8 * half)));
+        const __m512i key = _mm512_add_epi64(
+            key_base[r], _mm512_maskz_slli_epi64(m, _mm512_sub_epi64(gid, key_sub), 1));
+        _mm512_storeu_si512(out.data() + count, _mm512_maskz_compress_epi64(m, key));
+        count += static_cast<std::size_t>(__builtin_popcount(m));
+      }
+    }
+  }
+  hits += box_hits;
+}
+
 /// The cells [c0, c1) of the grid with the AVX-512 rows: the same cells, rows and pairs as the
-/// portable loop in grid_pairs, on exact boxes. The key buffers serve as their own capacity and
-/// are trimmed at the end.
+/// portable loop in grid_pairs, on exact boxes (cell_rows_avx512), or with Float a superset of
+/// them on float boxes (cell_rows_avx512_float; far_gap unused). The key buffers serve as their
+/// own capacity and are trimmed at the end.
+template <bool Float>
 void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
                        const std::uint32_t* entry, std::size_t c0, std::size_t c1, int vf_shift,
                        int ee_shift, double far_gap, detail::GridChunk& out_chunk) {
@@ -755,31 +845,77 @@ void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
     const std::uint32_t b = start[c], e = start[c + 1];
     if (e - b < 2) continue;
     const std::size_t k = e - b;
-    // The portable loop may have sized the shared buffers but not these.
-    if (cell.flags.size() < k || cell.dlo[0].size() < k) {
+    // The portable loop or the other flavour may have sized the shared buffers but not these.
+    if (cell.flags.size() < k || (Float ? cell.lo[0].size() : cell.dlo[0].size()) < k) {
       for (std::size_t d = 0; d < 3; ++d) {
-        cell.dlo[d].resize(k);
-        cell.dhi[d].resize(k);
+        if constexpr (Float) {
+          cell.lo[d].resize(k);
+          cell.hi[d].resize(k);
+        } else {
+          cell.dlo[d].resize(k);
+          cell.dhi[d].resize(k);
+        }
         cell.v[d].resize(k);
       }
       cell.flags.resize(k);
       cell.gid.resize(k);
     }
-    std::size_t fb = 0, eb = 0;
-    for (std::size_t t = 0; t < k; ++t) {
-      const std::uint32_t tag = entry[b + t];
-      const std::size_t gid = tag >> 3;
-      const std::array<int, 3> v = prim.ids(gid);
-      const detail::GridVertexBox box = prim.box(v);
+    // Each cell lists its vertices, then faces, then edges, each by increasing id (the counting
+    // sort's order, kept by patch_grid), so the kinds are three runs: one gather loop per kind,
+    // without the per-entry branches on the kind and its corner count.
+    const std::uint32_t* const tags = entry + b;
+    const std::size_t fb = static_cast<std::size_t>(
+        std::partition_point(tags, tags + k, [&](std::uint32_t tag) { return (tag >> 3) < nv; }) -
+        tags);
+    const std::size_t eb = static_cast<std::size_t>(
+        std::partition_point(tags + fb, tags + k,
+                             [&](std::uint32_t tag) { return (tag >> 3) < nv + nf; }) -
+        tags);
+    using Box = std::conditional_t<Float, detail::GridFloatBox, detail::GridVertexBox>;
+    const Box* const vbox = [&] {
+      if constexpr (Float) return prim.s.grid_vertex_floats.data();
+      else return prim.s.grid_vertex_boxes.data();
+    }();
+    auto put = [&](std::size_t t, std::uint32_t tag, const Box& box, int v0, int v1, int v2) {
       for (std::size_t d = 0; d < 3; ++d) {
-        cell.dlo[d][t] = box.lo[d];
-        cell.dhi[d][t] = box.hi[d];
-        cell.v[d][t] = v[d];
+        if constexpr (Float) {
+          cell.lo[d][t] = box.lo[d];
+          cell.hi[d][t] = box.hi[d];
+        } else {
+          cell.dlo[d][t] = box.lo[d];
+          cell.dhi[d][t] = box.hi[d];
+        }
       }
+      cell.v[0][t] = v0;
+      cell.v[1][t] = v1;
+      cell.v[2][t] = v2;
       cell.flags[t] = tag & GRID_ALL_FIRST;
-      cell.gid[t] = static_cast<std::uint32_t>(gid);
-      fb += gid < nv;
-      eb += gid < nv + nf;
+      cell.gid[t] = tag >> 3;
+    };
+    // min and max are exact: a joined box is bit-identical to primitive_box's.
+    auto join = [](Box x, const Box& y) {
+      for (std::size_t d = 0; d < 3; ++d) {
+        x.lo[d] = std::min(x.lo[d], y.lo[d]);
+        x.hi[d] = std::max(x.hi[d], y.hi[d]);
+      }
+      return x;
+    };
+    auto vb = [&](int v) -> const Box& { return vbox[static_cast<std::size_t>(v)]; };
+    for (std::size_t t = 0; t < fb; ++t) {
+      const std::uint32_t v = tags[t] >> 3;
+      put(t, tags[t], vbox[v], static_cast<int>(v), -1, -1);
+    }
+    const int* const face_v = prim.topo.faces.data();
+    for (std::size_t t = fb; t < eb; ++t) {
+      const std::size_t f = (tags[t] >> 3) - nv;
+      const int v0 = face_v[3 * f], v1 = face_v[3 * f + 1], v2 = face_v[3 * f + 2];
+      put(t, tags[t], join(join(vb(v0), vb(v1)), vb(v2)), v0, v1, v2);
+    }
+    const int* const edge_v = prim.topo.edges.data();
+    for (std::size_t t = eb; t < k; ++t) {
+      const std::size_t ed = (tags[t] >> 3) - nv - nf;
+      const int v0 = edge_v[2 * ed], v1 = edge_v[2 * ed + 1];
+      put(t, tags[t], join(vb(v0), vb(v1)), v0, v1, -2);
     }
     // Rows GRID_ROW_GROUP at a time; row r > 0 of a group writes to row_keys[r - 1], appended
     // after the rows before it, so the keys come in the order of single rows (the portable
@@ -797,8 +933,12 @@ void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
         buffers[r] = r == 0 ? &keys : &out_chunk.row_keys[static_cast<std::size_t>(r - 1)];
         counts[r] = r == 0 ? &count : &row_count[r];
       }
-      cell_rows_avx512<R>(cell, i, j0, j1, stagger, base, sub, far_gap, buffers, counts,
-                          out_chunk.reported);
+      if constexpr (Float)
+        cell_rows_avx512_float<R>(cell, i, j0, j1, stagger, base, sub, buffers, counts,
+                                  out_chunk.reported);
+      else
+        cell_rows_avx512<R>(cell, i, j0, j1, stagger, base, sub, far_gap, buffers, counts,
+                            out_chunk.reported);
       for (int r = 1; r < R; ++r) {
         const std::size_t m = row_count[r];
         if (m == 0) continue;
@@ -855,41 +995,119 @@ void build_grid_vertex_boxes(const Positions& x0, const Positions& x1, double in
   }
 }
 
-/// Updates the kept grid's counting sort (s.cell_start, s.cell_entries over s.grid_ranges) to
-/// the ranges in s.grid_ranges_next, both on grid g, where s.grid_changed[i] says whether box i's
-/// range differs: the entries of those boxes leave their old cells and enter their new ones. The
-/// result is what the counting sort builds from the new ranges (each cell lists its boxes in
-/// increasing id order, with the same flags), because an entry depends only on its box's id and
-/// range. Returns false, leaving the counting sort as it was, if more than
-/// nboxes / GRID_PATCH_DIVISOR ranges changed.
-bool patch_grid(const Grid& g, std::size_t nboxes, detail::BroadPhaseScratch& s) {
-  // The changed boxes, in increasing id order, and a bit per box for the merge's lookups (a
-  // bitset stays in the first-level cache).
-  s.grid_changed_ids.clear();
-  s.grid_changed_bits.assign((nboxes + 63) / 64, 0);
-  const std::size_t limit = nboxes / GRID_PATCH_DIVISOR;
-  for (std::size_t i = 0; i < nboxes; ++i) {
-    if (!s.grid_changed[i]) continue;
-    if (s.grid_changed_ids.size() == limit) return false;
-    s.grid_changed_ids.push_back(static_cast<std::uint32_t>(i));
-    s.grid_changed_bits[i >> 6] |= std::uint64_t{1} << (i & 63);
+/// Builds s.grid_vertex_prims (per vertex, the grid ids of the faces and edges it is a corner
+/// of) and keeps a copy of the topology it was built for, unless that copy equals `topo`
+/// already. Returns whether it was rebuilt.
+bool update_vertex_prims(const CollisionTopology& topo, detail::BroadPhaseScratch& s) {
+  const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
+  const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
+  const std::size_t ne = static_cast<std::size_t>(topo.edges.rows());
+  const std::size_t face_ints = 3 * nf, edge_ints = 2 * ne;
+  if (s.grid_topology_vertices == nv && s.grid_topology.size() == face_ints + edge_ints &&
+      std::equal(topo.faces.data(), topo.faces.data() + face_ints, s.grid_topology.begin()) &&
+      std::equal(topo.edges.data(), topo.edges.data() + edge_ints,
+                 s.grid_topology.begin() + static_cast<std::ptrdiff_t>(face_ints)))
+    return false;
+  s.grid_topology_vertices = nv;
+  s.grid_topology.assign(topo.faces.data(), topo.faces.data() + face_ints);
+  s.grid_topology.insert(s.grid_topology.end(), topo.edges.data(), topo.edges.data() + edge_ints);
+  // Counting sort of (vertex, primitive) by vertex: faces first, then edges, each by id, so
+  // each vertex lists its primitives in increasing grid id.
+  std::vector<std::uint32_t>& start = s.grid_vertex_prims_start;
+  start.assign(nv + 1, 0);
+  for (std::size_t k = 0; k < face_ints + edge_ints; ++k)
+    ++start[static_cast<std::size_t>(s.grid_topology[k]) + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  s.grid_vertex_prims.resize(start[nv]);
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (std::size_t k = 0; k < face_ints + edge_ints; ++k) {
+    const std::size_t gid = k < face_ints ? nv + k / 3 : nv + nf + (k - face_ints) / 2;
+    s.grid_vertex_prims[fill[static_cast<std::size_t>(s.grid_topology[k])]++] =
+        static_cast<std::uint32_t>(gid);
   }
+  return true;
+}
+
+/// Updates the kept grid's counting sort (s.cell_start, s.cell_entries over s.grid_ranges) for
+/// this call's vertex ranges (s.grid_vertex_ranges; the last call's, on the same grid g, in
+/// s.grid_vertex_ranges_prev): the boxes whose range changed leave their old cells and enter
+/// their new ones, and s.grid_ranges gets their new ranges. Only a box with a vertex whose range
+/// changed can change (a box's range is the union of its vertices'; the topology is compared
+/// with the last call's, and if it differs every box is recomputed). The result is what the
+/// counting sort builds from the new ranges (each cell lists its boxes in increasing id order,
+/// with the same flags), because an entry depends only on its box's id and range. Returns false,
+/// leaving the counting sort as it was, if more than nboxes / GRID_PATCH_DIVISOR ranges changed
+/// (s.grid_ranges is then stale: the caller rebuilds it).
+bool patch_grid(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
+                detail::BroadPhaseScratch& s) {
+  const std::size_t nv = prim.nv;
+  const std::vector<detail::GridRange>& vr = s.grid_vertex_ranges;
+  const std::vector<detail::GridRange>& vr_prev = s.grid_vertex_ranges_prev;
+  auto same = [](const detail::GridRange& a, const detail::GridRange& b) {
+    return a.lo[0] == b.lo[0] && a.lo[1] == b.lo[1] && a.lo[2] == b.lo[2] &&
+           a.hi[0] == b.hi[0] && a.hi[1] == b.hi[1] && a.hi[2] == b.hi[2];
+  };
+  // The boxes that may have changed: every one after a change of topology, else those with a
+  // vertex whose range changed (a bit per box; a bitset stays in the first-level cache).
+  const std::size_t words = (nboxes + 63) / 64;
+  std::vector<std::uint64_t>& maybe = s.grid_maybe_bits;
+  const bool all = update_vertex_prims(prim.topo, s) || vr_prev.size() != nv;
+  maybe.assign(words, all ? ~std::uint64_t{0} : 0);
+  if (!all) {
+    auto mark = [&](std::size_t id) { maybe[id >> 6] |= std::uint64_t{1} << (id & 63); };
+    for (std::size_t v = 0; v < nv; ++v) {
+      if (same(vr[v], vr_prev[v])) continue;
+      mark(v);
+      for (std::uint32_t k = s.grid_vertex_prims_start[v]; k < s.grid_vertex_prims_start[v + 1];
+           ++k)
+        mark(s.grid_vertex_prims[k]);
+    }
+  }
+  // The changed boxes, in increasing id order, their new ranges, and a bit per changed box for
+  // the merge's lookups.
+  s.grid_changed_ids.clear();
+  s.grid_changed_ranges.clear();
+  s.grid_changed_bits.assign(words, 0);
+  const std::size_t limit = nboxes / GRID_PATCH_DIVISOR;
+  for (std::size_t w = 0; w < words; ++w)
+    for (std::uint64_t bits = maybe[w]; bits != 0; bits &= bits - 1) {
+      const std::size_t i = 64 * w + static_cast<std::size_t>(__builtin_ctzll(bits));
+      if (i >= nboxes) break;
+      const detail::GridRange n = prim.range(prim.ids(i));
+      if (same(n, s.grid_ranges[i])) continue;
+      if (s.grid_changed_ids.size() == limit) return false;
+      s.grid_changed_ids.push_back(static_cast<std::uint32_t>(i));
+      s.grid_changed_ranges.push_back(n);
+      s.grid_changed_bits[i >> 6] |= std::uint64_t{1} << (i & 63);
+    }
   // The changed boxes' new entries, counting-sorted by cell (in id order within a cell).
   const std::size_t ncell = g.cells();
   std::vector<std::uint32_t>& add_start = s.grid_add_start;
   add_start.assign(ncell + 1, 0);
-  for (const std::uint32_t i : s.grid_changed_ids)
-    for_each_cell(g, s.grid_ranges_next[i], [&](std::size_t c, std::uint32_t, bool valid) {
-      add_start[c + 1] += valid;
-    });
+  const std::size_t nchanged = s.grid_changed_ids.size();
+  for (const detail::GridRange& r : s.grid_changed_ranges)
+    for_each_cell(g, r,
+                  [&](std::size_t c, std::uint32_t, bool valid) { add_start[c + 1] += valid; });
   for (std::size_t c = 0; c < ncell; ++c) add_start[c + 1] += add_start[c];
   s.grid_adds.resize(add_start[ncell]);
   s.cell_fill.assign(add_start.begin(), add_start.end() - 1);
-  for (const std::uint32_t i : s.grid_changed_ids) {
-    const std::uint32_t tag = i << 3;
-    for_each_cell(g, s.grid_ranges_next[i], [&](std::size_t c, std::uint32_t flags, bool valid) {
-      if (valid) s.grid_adds[s.cell_fill[c]++] = tag | flags;
-    });
+  for (std::size_t k = 0; k < nchanged; ++k) {
+    const std::uint32_t tag = s.grid_changed_ids[k] << 3;
+    for_each_cell(g, s.grid_changed_ranges[k],
+                  [&](std::size_t c, std::uint32_t flags, bool valid) {
+                    if (valid) s.grid_adds[s.cell_fill[c]++] = tag | flags;
+                  });
+  }
+  // The cells the patch changes: those of the changed boxes' old ranges (entries leave) and
+  // new ranges (entries come). The others keep their entries, copied as runs of cells.
+  s.grid_dirty.assign(ncell + 1, 0);
+  std::uint8_t* const dirty = s.grid_dirty.data();
+  for (std::size_t k = 0; k < nchanged; ++k) {
+    const auto mark = [&](std::size_t c, std::uint32_t, bool valid) {
+      dirty[valid ? c : ncell] = 1;
+    };
+    for_each_cell(g, s.grid_ranges[s.grid_changed_ids[k]], mark);
+    for_each_cell(g, s.grid_changed_ranges[k], mark);
   }
   // Merge cell by cell: the old entries without the changed boxes', and the new ones.
   const std::vector<std::uint32_t>& start = s.cell_start;
@@ -907,6 +1125,14 @@ bool patch_grid(const Grid& g, std::size_t nboxes, detail::BroadPhaseScratch& s)
   };
   std::size_t out = 0;
   for (std::size_t c = 0; c < ncell; ++c) {
+    if (!dirty[c]) {  // a run of unchanged cells: shifted offsets, one copy of their entries
+      const std::size_t run = c;
+      const std::uint32_t shift = static_cast<std::uint32_t>(out) - start[run];  // mod 2^32
+      for (; c < ncell && !dirty[c]; ++c) next_start[c] = start[c] + shift;
+      std::copy(entry + start[run], entry + start[c], next + out);
+      out += start[c] - start[run];
+      if (c == ncell) break;
+    }
     next_start[c] = static_cast<std::uint32_t>(out);
     std::uint32_t k = start[c];
     const std::uint32_t e = start[c + 1];
@@ -926,17 +1152,21 @@ bool patch_grid(const Grid& g, std::size_t nboxes, detail::BroadPhaseScratch& s)
   next_entries.resize(out);
   s.cell_start.swap(next_start);
   s.cell_entries.swap(next_entries);
-  s.grid_ranges.swap(s.grid_ranges_next);
-  s.grid_patched_boxes = static_cast<std::int64_t>(s.grid_changed_ids.size());
+  for (std::size_t k = 0; k < nchanged; ++k)
+    s.grid_ranges[s.grid_changed_ids[k]] = s.grid_changed_ranges[k];
+  s.grid_patched_boxes = static_cast<std::int64_t>(nchanged);
   return true;
 }
 
 /// Method Grid (x0, x1 already in s.grid_vertex_boxes). A pair whose two boxes have a gap above
-/// far_gap on some axis is flagged 0 in out's close flags (see find_candidates). Returns -1
+/// far_gap on some axis is flagged 0 in out's close flags (see find_candidates). With
+/// float_superset and the AVX-512 loop, the pairs whose float boxes overlap, all flagged close
+/// (see find_candidates_in_vertex_boxes). Returns -1
 /// (nothing done) if the grid would degenerate (see GRID_WORK_PER_BOX), otherwise the number of
 /// box pairs that overlap after rounding outward to float, adjacent ones included (VF, plus EE
 /// once per unordered pair).
-std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, CandidatePairs& out) {
+std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, CandidatePairs& out,
+                        bool float_superset = false) {
   BroadPhaseScratch& s = out.scratch;
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
   const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
@@ -991,10 +1221,27 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // Float boxes relative to the scene minimum (better precision than absolute coordinates).
   // Each double is rounded outward after the subtraction; the rounded subtraction is monotone,
   // so whenever two double boxes overlap, so do their float boxes: the float test only culls.
-  // The AVX-512 cell loop tests the double boxes directly and needs none.
+  // The AVX-512 cell loop tests the double boxes directly and needs none, unless the caller
+  // takes a superset (float_superset: find_candidates_in_vertex_boxes), which it then emits
+  // from float boxes alone.
   const bool avx512 = s.grid_isa == detail::GridIsa::Auto && detail::grid_avx512_available();
-  s.grid_vertex_floats.resize(avx512 ? 0 : nv);
-  if (!avx512)
+  const bool float_cells = avx512 && float_superset;
+  s.grid_vertex_floats.resize(avx512 && !float_cells ? 0 : nv);
+  if (float_cells) {
+    // The superset loop needs only a monotone map from the doubles to the floats (it keeps
+    // every overlap: a <= b implies f(a) <= f(b)), and a rounded subtraction followed by a
+    // rounded conversion is one; the outward rounding of the portable path costs 10x more here
+    // (bench_broad_phase, 0.5 ms per call on bear).
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, GRID_VERTEX_GRAIN),
+                      [&](const tbb::blocked_range<std::size_t>& r) {
+                        for (std::size_t v = r.begin(); v < r.end(); ++v)
+                          for (std::size_t d = 0; d < 3; ++d) {
+                            detail::GridFloatBox& f = s.grid_vertex_floats[v];
+                            f.lo[d] = static_cast<float>(vbox[v].lo[d] - lo[d]);
+                            f.hi[d] = static_cast<float>(vbox[v].hi[d] - lo[d]);
+                          }
+                      });
+  } else if (!avx512) {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, GRID_VERTEX_GRAIN),
                     [&](const tbb::blocked_range<std::size_t>& r) {
                       for (std::size_t v = r.begin(); v < r.end(); ++v)
@@ -1003,6 +1250,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
                           s.grid_vertex_floats[v].hi[d] = round_up(vbox[v].hi[d] - lo[d]);
                         }
                     });
+  }
 
   // The counting sort below runs in `parts` parts, each over a contiguous range of box ids with
   // its own counters; part p's entries of a cell follow those of parts < p, so every cell lists
@@ -1043,25 +1291,11 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     g.origin = s.grid_origin;
     g.inv_h = s.grid_inv_h;
     g.dims = s.grid_dims;
+    // The last call's vertex ranges are on this grid too (it kept it, or made it): patch_grid
+    // compares them with this call's.
+    s.grid_vertex_ranges_prev.swap(s.grid_vertex_ranges);
     vertex_ranges();
-    s.grid_ranges_next.resize(nboxes);
-    s.grid_changed.resize(nboxes);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nboxes, GRID_VERTEX_GRAIN),
-                      [&](const tbb::blocked_range<std::size_t>& r) {
-                        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                          const detail::GridRange n = prim.range(prim.ids(i));
-                          const detail::GridRange& o = s.grid_ranges[i];
-                          s.grid_ranges_next[i] = n;
-                          s.grid_changed[i] = (n.lo[0] != o.lo[0]) | (n.lo[1] != o.lo[1]) |
-                                              (n.lo[2] != o.lo[2]) | (n.hi[0] != o.hi[0]) |
-                                              (n.hi[1] != o.hi[1]) | (n.hi[2] != o.hi[2]);
-                        }
-                      });
-    if (s.grid_patch_always_rebuild) {
-      s.grid_ranges.swap(s.grid_ranges_next);  // the rebuild below recomputes them anyway
-    } else {
-      patched = patch_grid(g, nboxes, s);
-    }
+    if (!s.grid_patch_always_rebuild) patched = patch_grid(g, prim, nboxes, s);
     if (patched) entries = start[g.cells()];
   }
   s.grid_ranges.resize(nboxes);
@@ -1162,9 +1396,14 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     out_chunk.reported = 0;
     detail::GridCell& cell = out_chunk.cell;
 #if SHELLCONTRACT_GRID_AVX512
+    if (float_cells) {
+      grid_chunk_avx512<true>(prim, start.data(), entry, s.chunk_cells[chunk],
+                              s.chunk_cells[chunk + 1], vf_shift, ee_shift, far_gap, out_chunk);
+      return;
+    }
     if (avx512) {
-      grid_chunk_avx512(prim, start.data(), entry, s.chunk_cells[chunk], s.chunk_cells[chunk + 1],
-                        vf_shift, ee_shift, far_gap, out_chunk);
+      grid_chunk_avx512<false>(prim, start.data(), entry, s.chunk_cells[chunk],
+                               s.chunk_cells[chunk + 1], vf_shift, ee_shift, far_gap, out_chunk);
       return;
     }
 #endif
@@ -1361,7 +1600,9 @@ bool find_candidates_in_vertex_boxes(const std::vector<detail::GridVertexBox>& b
     throw UsageError("broad phase: " + std::to_string(boxes.size()) + " vertex boxes for " +
                      std::to_string(topo.num_vertices) + " vertices");
   out.scratch.grid_vertex_boxes = boxes;
-  if (grid_pairs(topo, std::numeric_limits<double>::infinity(), out) >= 0) return true;
+  if (grid_pairs(topo, std::numeric_limits<double>::infinity(), out,
+                 out.scratch.grid_float_superset) >= 0)
+    return true;
   out.scratch.grid_kept = false;
   return false;
 }

@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <array>
 #include <random>
 #include <set>
@@ -661,6 +662,39 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
   EXPECT_GE(rebuilt_steps, 4);
 }
 
+TEST(BroadPhase, GridKeptForAnotherTopologyOfTheSameSizesIsPatchedForIt) {
+  // The patch recomputes only the boxes with a vertex whose cell range changed, which holds for
+  // the topology of the last call only. The same CandidatePairs given another topology of the
+  // same sizes (the labels of an edge's two vertices swapped in the faces: a few faces and edges
+  // now span other vertices) and the same vertex boxes must still give brute force's pairs.
+  std::mt19937 rng(41);
+  const TriMesh m = test::icosphere(2);
+  const int a = m.faces(0, 0), b = m.faces(0, 1);
+  Faces swapped = m.faces;
+  for (Eigen::Index f = 0; f < swapped.rows(); ++f)
+    for (Eigen::Index k = 0; k < 3; ++k)
+      swapped(f, k) = swapped(f, k) == a ? b : swapped(f, k) == b ? a : swapped(f, k);
+  const int nv = static_cast<int>(m.x.rows());
+  const CollisionTopology first = make_collision_topology(m.faces, nv);
+  const CollisionTopology second = make_collision_topology(swapped, nv);
+  ASSERT_EQ(first.edges.rows(), second.edges.rows());
+  ASSERT_FALSE(first.faces == second.faces);
+  const Positions x0 = random_motion(m.x, 0.01, rng);
+  const Positions x1 = random_motion(x0, 1e-3, rng);
+  const double inflation = 0.01;
+  CandidatePairs out;
+  BroadPhaseStats stats;
+  find_candidates(x0, x1, first, inflation, out, &stats, BroadPhaseMethod::Grid);
+  ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
+  find_candidates(x0, x1, second, inflation, out, &stats, BroadPhaseMethod::Grid);
+  ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
+  EXPECT_GT(out.scratch.grid_patched_boxes, 0);  // the kept grid, patched for the new topology
+  const BruteForce want = brute_force(x0, x1, swapped, inflation);
+  const Pairs vf = sorted(out.vertex_face), ee = sorted(out.edge_edge);
+  EXPECT_TRUE(vf == want.vertex_face) << "VF " << first_difference(vf, want.vertex_face);
+  EXPECT_TRUE(ee == want.edge_edge) << "EE " << first_difference(ee, want.edge_edge);
+}
+
 TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   // The AVX-512 cell loop must emit exactly the portable loop's pairs, in its order, with its
   // close flags: random motions from none (every box touching its neighbours) to large, cells
@@ -722,7 +756,32 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   EXPECT_GT(close_flags, 1000);
 }
 
+/// Compares a superset `got` with `want` (both sorted): how many pairs of want got misses, how
+/// many it adds, and the widest gap (on any axis) between the two boxes of an added pair.
+struct SupersetCheck {
+  int missing = 0;
+  int extra = 0;
+  double widest_gap = 0.0;
+};
+template <class BoxesOf>
+SupersetCheck check_superset(const Pairs& got, const Pairs& want, BoxesOf boxes_of) {
+  SupersetCheck r;
+  Pairs missing, extra;
+  std::set_difference(want.begin(), want.end(), got.begin(), got.end(),
+                      std::back_inserter(missing));
+  std::set_difference(got.begin(), got.end(), want.begin(), want.end(), std::back_inserter(extra));
+  r.missing = static_cast<int>(missing.size());
+  r.extra = static_cast<int>(extra.size());
+  for (const auto& p : extra) {
+    const auto [a, b] = boxes_of(p);
+    for (int d = 0; d < 3; ++d)
+      r.widest_gap = std::max({r.widest_gap, b.lo[d] - a.hi[d], a.lo[d] - b.hi[d]});
+  }
+  return r;
+}
+
 TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
+
   // SelfCollision's speculative broad phase: the grid on given vertex boxes must emit the box
   // pairs of find_candidates for the same boxes, and a query of the kept grid must return every
   // primitive whose box meets the query box, once.
@@ -745,11 +804,6 @@ TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
         boxes[v].lo[static_cast<std::size_t>(d)] = std::min(x0(i, d), x1(i, d)) - inflation;
         boxes[v].hi[static_cast<std::size_t>(d)] = std::max(x0(i, d), x1(i, d)) + inflation;
       }
-    CandidatePairs given;
-    ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, given));
-    const BruteForce bf = brute_force(x0, x1, m.faces, inflation);
-    EXPECT_EQ(sorted(given.vertex_face), bf.vertex_face) << "trial " << trial;
-    EXPECT_EQ(sorted(given.edge_edge), bf.edge_edge) << "trial " << trial;
     // Query boxes around random points, from a point to a tenth of the sphere.
     auto prim_box = [&](std::size_t gid) {
       std::vector<int> verts;
@@ -772,6 +826,28 @@ TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
       }
       return b;
     };
+    // The exact cell loop: brute force's pairs. The float one (the default): those, and pairs
+    // whose boxes are apart by at most float rounding (coordinates within 2 of the scene's
+    // minimum here, so a float's spacing is at most 2 FLT_EPSILON).
+    CandidatePairs given, exact;
+    exact.scratch.grid_float_superset = false;
+    ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, given));
+    ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, exact));
+    const BruteForce bf = brute_force(x0, x1, m.faces, inflation);
+    EXPECT_EQ(sorted(exact.vertex_face), bf.vertex_face) << "trial " << trial;
+    EXPECT_EQ(sorted(exact.edge_edge), bf.edge_edge) << "trial " << trial;
+    const SupersetCheck vf =
+        check_superset(sorted(given.vertex_face), bf.vertex_face, [&](const auto& p) {
+          return std::make_pair(prim_box(static_cast<std::size_t>(p[0])),
+                                prim_box(nv + static_cast<std::size_t>(p[1])));
+        });
+    const SupersetCheck ee =
+        check_superset(sorted(given.edge_edge), bf.edge_edge, [&](const auto& p) {
+          return std::make_pair(prim_box(nv + nf + static_cast<std::size_t>(p[0])),
+                                prim_box(nv + nf + static_cast<std::size_t>(p[1])));
+        });
+    EXPECT_EQ(vf.missing + ee.missing, 0) << "trial " << trial;
+    EXPECT_LE(std::max(vf.widest_gap, ee.widest_gap), 4.0 * FLT_EPSILON) << "trial " << trial;
     for (int q = 0; q < 40; ++q) {
       detail::GridVertexBox query;
       Box qb;
@@ -817,6 +893,64 @@ TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
   std::vector<std::uint32_t> hits;
   EXPECT_THROW(query_kept_grid(none, topo, detail::GridVertexBox{}, hits), UsageError);
   EXPECT_THROW(find_candidates_in_vertex_boxes({}, topo, none), UsageError);
+}
+
+TEST(BroadPhase, GridFloatSupersetAddsOnlyPairsApartByRounding) {
+  // Two spheres whose boxes are 1e-13 apart on x where they face each other (inflation 0, no
+  // motion: point boxes for vertices): too close for floats to separate. The exact cell loop
+  // must not report those pairs; the float loop (AVX-512 only) must keep every exact pair, and
+  // may add only pairs apart by rounding, which this scene has by construction.
+  const TriMesh one = test::icosphere(2);
+  TriMesh two = combine(one, one);
+  const Eigen::Index half = one.x.rows();
+  const double x_max = one.x.col(0).maxCoeff(), x_min = one.x.col(0).minCoeff();
+  two.x.bottomRows(half).col(0).array() += x_max - x_min + 1e-13;
+  const CollisionTopology topo = make_collision_topology(two.faces, static_cast<int>(two.x.rows()));
+  const std::size_t nv = static_cast<std::size_t>(two.x.rows());
+  std::vector<detail::GridVertexBox> boxes(nv);
+  for (std::size_t v = 0; v < nv; ++v)
+    for (std::size_t d = 0; d < 3; ++d)
+      boxes[v].lo[d] = boxes[v].hi[d] =
+          two.x(static_cast<Eigen::Index>(v), static_cast<Eigen::Index>(d));
+  // The gap is there in double: the nearest vertices of the two spheres are apart on x.
+  const double gap = two.x.bottomRows(half).col(0).minCoeff() - x_max;
+  ASSERT_GT(gap, 0.0);
+  ASSERT_LT(gap, 1e-12);
+  CandidatePairs given, exact;
+  exact.scratch.grid_float_superset = false;
+  ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, given));
+  ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, exact));
+  const BruteForce bf = brute_force(two.x, two.x, two.faces, 0.0);
+  EXPECT_EQ(sorted(exact.vertex_face), bf.vertex_face);
+  EXPECT_EQ(sorted(exact.edge_edge), bf.edge_edge);
+  const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
+  auto prim_box = [&](std::size_t gid) {
+    const std::array<int, 3> v = detail::primitive_vertices(topo, gid);
+    const detail::GridVertexBox g = detail::primitive_box(boxes, v);
+    Box b;
+    for (int d = 0; d < 3; ++d) {
+      b.lo[d] = g.lo[static_cast<std::size_t>(d)];
+      b.hi[d] = g.hi[static_cast<std::size_t>(d)];
+    }
+    return b;
+  };
+  const SupersetCheck vf =
+      check_superset(sorted(given.vertex_face), bf.vertex_face, [&](const auto& p) {
+        return std::make_pair(prim_box(static_cast<std::size_t>(p[0])),
+                              prim_box(nv + static_cast<std::size_t>(p[1])));
+      });
+  const SupersetCheck ee =
+      check_superset(sorted(given.edge_edge), bf.edge_edge, [&](const auto& p) {
+        return std::make_pair(prim_box(nv + nf + static_cast<std::size_t>(p[0])),
+                              prim_box(nv + nf + static_cast<std::size_t>(p[1])));
+      });
+  EXPECT_EQ(vf.missing + ee.missing, 0);
+  if (!detail::grid_avx512_available()) {  // the portable loop runs: exact either way
+    EXPECT_EQ(vf.extra + ee.extra, 0);
+    GTEST_SKIP() << "no AVX-512 on this CPU: the float cell loop did not run";
+  }
+  EXPECT_GT(vf.extra + ee.extra, 0);  // the facing primitives, 1e-13 apart
+  EXPECT_LE(std::max(vf.widest_gap, ee.widest_gap), 1e-12);
 }
 
 TEST(BroadPhase, RejectsMismatchedInput) {

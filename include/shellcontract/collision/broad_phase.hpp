@@ -154,7 +154,7 @@ struct GridFloatBox {
 
 /// Grid method: the boxes of one cell as structure-of-arrays buffers (for vectorized tests).
 struct GridCell {
-  std::array<std::vector<float>, 3> lo, hi;  ///< float boxes, per axis (portable path)
+  std::array<std::vector<float>, 3> lo, hi;  ///< float boxes, per axis (portable, superset)
   std::array<std::vector<double>, 3> dlo, dhi;  ///< exact boxes, per axis (AVX-512 path)
   std::array<std::vector<int>, 3> v;         ///< vertex ids (see GridPrimitives::ids)
   std::vector<std::uint32_t> flags;          ///< bit d: the box's first cell on axis d
@@ -182,6 +182,10 @@ bool grid_avx512_available();
 /// Scratch buffers reused between calls, so a steady-state call does not allocate.
 struct BroadPhaseScratch {
   GridIsa grid_isa = GridIsa::Auto;  ///< tests set Portable to compare the two cell loops
+  /// find_candidates_in_vertex_boxes with the AVX-512 cell loop: test float boxes 16 lanes at a
+  /// time and emit a superset of the exact pairs (see there); false: the exact pairs (tests and
+  /// bench_broad_phase compare the two).
+  bool grid_float_superset = true;
   std::vector<BroadPhaseBox> vertex_boxes;  ///< indexed by vertex id
   std::vector<BroadPhaseBox> face_boxes;    ///< indexed by face id
   std::vector<BroadPhaseBox> edge_boxes;    ///< indexed by edge id
@@ -219,11 +223,18 @@ struct BroadPhaseScratch {
   bool grid_patch_always_rebuild = false;
   /// Grid: boxes whose cell range the last call patched, or -1 if it rebuilt the counting sort.
   std::int64_t grid_patched_boxes = -1;
-  std::vector<GridRange> grid_ranges_next;      ///< Grid: the patch's new ranges
-  std::vector<std::uint8_t> grid_changed;       ///< Grid: per box, range changed (patch)
+  std::vector<GridRange> grid_vertex_ranges_prev;  ///< Grid: the last call's vertex ranges
+  std::vector<std::uint64_t> grid_maybe_bits;   ///< Grid: boxes the patch recomputes (bitset)
   std::vector<std::uint32_t> grid_changed_ids;  ///< Grid: the patch's changed boxes
+  std::vector<GridRange> grid_changed_ranges;   ///< Grid: their new ranges
+  /// Grid: the topology (faces, then edges) the vertex-to-primitive lists were built for
+  std::vector<int> grid_topology;
+  std::size_t grid_topology_vertices = 0;
+  std::vector<std::uint32_t> grid_vertex_prims_start;  ///< Grid: CSR offsets per vertex
+  std::vector<std::uint32_t> grid_vertex_prims;  ///< Grid: each vertex's faces and edges (ids)
   std::vector<std::uint64_t> grid_changed_bits; ///< Grid: the same as a bitset
   std::vector<std::uint32_t> grid_add_start;    ///< Grid: the patch's new entries per cell
+  std::vector<std::uint8_t> grid_dirty;         ///< Grid: per cell, the patch changes it
   std::vector<std::uint32_t> grid_adds;         ///< Grid: the patch's new entries (tags)
   std::vector<std::uint32_t> cell_start_next;   ///< Grid: the patch's output buffers
   std::vector<std::uint32_t> cell_entries_next;
@@ -308,7 +319,12 @@ double far_gap_threshold(const Positions& x0, const Positions& x1, double inflat
 
 /// The Grid method on given per-vertex boxes: a face's or edge's box is the union of its vertices'
 /// boxes, and every non-adjacent VF and EE pair whose boxes overlap (closed intervals) is
-/// emitted, flagged close, in the Grid's order. The grid is kept in out.scratch for
+/// emitted, flagged close, in the Grid's order. With the AVX-512 cell loop and
+/// out.scratch.grid_float_superset (the default) the boxes are tested in float, mapped from the
+/// doubles monotonically, which keeps every overlap: the pairs are then a superset, the extra
+/// ones apart by no more than float rounding (about 1e-7 of the scene's extent; bear: none). The
+/// caller must test its pairs' exact boxes itself (SelfCollision does, on the actual step's
+/// boxes). The grid is kept in out.scratch for
 /// query_kept_grid until the next broad-phase call on `out`. SelfCollision builds it on predicted
 /// swept boxes while the constraint solve runs (see SelfCollision::predict).
 /// @param boxes  one box per vertex, lo <= hi, finite
