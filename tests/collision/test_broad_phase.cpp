@@ -756,27 +756,37 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   EXPECT_GT(close_flags, 1000);
 }
 
-/// Compares a superset `got` with `want` (both sorted): how many pairs of want got misses, how
-/// many it adds, and the widest gap (on any axis) between the two boxes of an added pair.
+/// Compares a grid's pairs `got` (a superset) with brute force's `want`: how many pairs of want
+/// got misses, how many it adds, and the widest gap (on any axis) between the two boxes of an
+/// added pair; prim_box(id) is the box of grid primitive id (vertex v, face V + f, edge V + F + e).
 struct SupersetCheck {
   int missing = 0;
   int extra = 0;
   double widest_gap = 0.0;
 };
-template <class BoxesOf>
-SupersetCheck check_superset(const Pairs& got, const Pairs& want, BoxesOf boxes_of) {
+template <class PrimBox>
+SupersetCheck check_superset(const CandidatePairs& got, const BruteForce& want, std::size_t nv,
+                             std::size_t nf, PrimBox prim_box) {
   SupersetCheck r;
-  Pairs missing, extra;
-  std::set_difference(want.begin(), want.end(), got.begin(), got.end(),
-                      std::back_inserter(missing));
-  std::set_difference(got.begin(), got.end(), want.begin(), want.end(), std::back_inserter(extra));
-  r.missing = static_cast<int>(missing.size());
-  r.extra = static_cast<int>(extra.size());
-  for (const auto& p : extra) {
-    const auto [a, b] = boxes_of(p);
-    for (int d = 0; d < 3; ++d)
-      r.widest_gap = std::max({r.widest_gap, b.lo[d] - a.hi[d], a.lo[d] - b.hi[d]});
-  }
+  auto compare = [&](const Pairs& got_pairs, const Pairs& want_pairs, std::size_t first_base,
+                     std::size_t second_base) {
+    const Pairs g = sorted(got_pairs);
+    Pairs missing, extra;
+    std::set_difference(want_pairs.begin(), want_pairs.end(), g.begin(), g.end(),
+                        std::back_inserter(missing));
+    std::set_difference(g.begin(), g.end(), want_pairs.begin(), want_pairs.end(),
+                        std::back_inserter(extra));
+    r.missing += static_cast<int>(missing.size());
+    r.extra += static_cast<int>(extra.size());
+    for (const auto& p : extra) {
+      const Box a = prim_box(first_base + static_cast<std::size_t>(p[0]));
+      const Box b = prim_box(second_base + static_cast<std::size_t>(p[1]));
+      for (int d = 0; d < 3; ++d)
+        r.widest_gap = std::max({r.widest_gap, b.lo[d] - a.hi[d], a.lo[d] - b.hi[d]});
+    }
+  };
+  compare(got.vertex_face, want.vertex_face, 0, nv);
+  compare(got.edge_edge, want.edge_edge, nv + nf, nv + nf);
   return r;
 }
 
@@ -836,18 +846,9 @@ TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
     const BruteForce bf = brute_force(x0, x1, m.faces, inflation);
     EXPECT_EQ(sorted(exact.vertex_face), bf.vertex_face) << "trial " << trial;
     EXPECT_EQ(sorted(exact.edge_edge), bf.edge_edge) << "trial " << trial;
-    const SupersetCheck vf =
-        check_superset(sorted(given.vertex_face), bf.vertex_face, [&](const auto& p) {
-          return std::make_pair(prim_box(static_cast<std::size_t>(p[0])),
-                                prim_box(nv + static_cast<std::size_t>(p[1])));
-        });
-    const SupersetCheck ee =
-        check_superset(sorted(given.edge_edge), bf.edge_edge, [&](const auto& p) {
-          return std::make_pair(prim_box(nv + nf + static_cast<std::size_t>(p[0])),
-                                prim_box(nv + nf + static_cast<std::size_t>(p[1])));
-        });
-    EXPECT_EQ(vf.missing + ee.missing, 0) << "trial " << trial;
-    EXPECT_LE(std::max(vf.widest_gap, ee.widest_gap), 4.0 * FLT_EPSILON) << "trial " << trial;
+    const SupersetCheck check = check_superset(given, bf, nv, nf, prim_box);
+    EXPECT_EQ(check.missing, 0) << "trial " << trial;
+    EXPECT_LE(check.widest_gap, 4.0 * FLT_EPSILON) << "trial " << trial;
     for (int q = 0; q < 40; ++q) {
       detail::GridVertexBox query;
       Box qb;
@@ -934,23 +935,14 @@ TEST(BroadPhase, GridFloatSupersetAddsOnlyPairsApartByRounding) {
     }
     return b;
   };
-  const SupersetCheck vf =
-      check_superset(sorted(given.vertex_face), bf.vertex_face, [&](const auto& p) {
-        return std::make_pair(prim_box(static_cast<std::size_t>(p[0])),
-                              prim_box(nv + static_cast<std::size_t>(p[1])));
-      });
-  const SupersetCheck ee =
-      check_superset(sorted(given.edge_edge), bf.edge_edge, [&](const auto& p) {
-        return std::make_pair(prim_box(nv + nf + static_cast<std::size_t>(p[0])),
-                              prim_box(nv + nf + static_cast<std::size_t>(p[1])));
-      });
-  EXPECT_EQ(vf.missing + ee.missing, 0);
+  const SupersetCheck check = check_superset(given, bf, nv, nf, prim_box);
+  EXPECT_EQ(check.missing, 0);
   if (!detail::grid_avx512_available()) {  // the portable loop runs: exact either way
-    EXPECT_EQ(vf.extra + ee.extra, 0);
+    EXPECT_EQ(check.extra, 0);
     GTEST_SKIP() << "no AVX-512 on this CPU: the float cell loop did not run";
   }
-  EXPECT_GT(vf.extra + ee.extra, 0);  // the facing primitives, 1e-13 apart
-  EXPECT_LE(std::max(vf.widest_gap, ee.widest_gap), 1e-12);
+  EXPECT_GT(check.extra, 0);  // the facing primitives, 1e-13 apart
+  EXPECT_LE(check.widest_gap, 1e-12);
 }
 
 TEST(BroadPhase, RejectsMismatchedInput) {
