@@ -5,8 +5,8 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <cfloat>
 #include <array>
+#include <cfloat>
 #include <random>
 #include <set>
 #include <sstream>
@@ -791,7 +791,6 @@ SupersetCheck check_superset(const CandidatePairs& got, const BruteForce& want, 
 }
 
 TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
-
   // SelfCollision's speculative broad phase: the grid on given vertex boxes must emit the box
   // pairs of find_candidates for the same boxes, and a query of the kept grid must return every
   // primitive whose box meets the query box, once.
