@@ -227,12 +227,12 @@ struct BroadPhaseScratch {
   std::vector<std::uint64_t> grid_maybe_bits;   ///< Grid: boxes the patch recomputes (bitset)
   std::vector<std::uint32_t> grid_changed_ids;  ///< Grid: the patch's changed boxes
   std::vector<GridRange> grid_changed_ranges;   ///< Grid: their new ranges
+  std::vector<std::uint64_t> grid_changed_bits; ///< Grid: the changed boxes as a bitset
   /// Grid: the topology (faces, then edges) the vertex-to-primitive lists were built for
   std::vector<int> grid_topology;
   std::size_t grid_topology_vertices = 0;
   std::vector<std::uint32_t> grid_vertex_prims_start;  ///< Grid: CSR offsets per vertex
   std::vector<std::uint32_t> grid_vertex_prims;  ///< Grid: each vertex's faces and edges (ids)
-  std::vector<std::uint64_t> grid_changed_bits; ///< Grid: the same as a bitset
   std::vector<std::uint32_t> grid_add_start;    ///< Grid: the patch's new entries per cell
   std::vector<std::uint8_t> grid_dirty;         ///< Grid: per cell, the patch changes it
   std::vector<std::uint32_t> grid_adds;         ///< Grid: the patch's new entries (tags)
