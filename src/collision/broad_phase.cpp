@@ -1172,10 +1172,17 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
   const std::size_t ne = static_cast<std::size_t>(topo.edges.rows());
   const std::size_t nboxes = nv + nf + ne;
-  out.vertex_face.clear();
-  out.edge_edge.clear();
-  out.vertex_face_close.clear();
-  out.edge_edge_close.clear();
+  // The output lists are cleared only where nothing is found; the output stage resizes them
+  // from the last call's sizes, so that only growth is value-initialized (clearing first made
+  // the resize zero-fill every pair: 0.3% of perf's samples of bear's P = 4 run, ~0.13 ms of the
+  // speculative task per step).
+  auto nothing = [&](std::int64_t result) {
+    out.vertex_face.clear();
+    out.edge_edge.clear();
+    out.vertex_face_close.clear();
+    out.edge_edge_close.clear();
+    return result;
+  };
   const auto t_start = std::chrono::steady_clock::now();
   s.grid_build_seconds = s.grid_cell_loop_seconds = s.grid_output_seconds = 0.0;
   auto seconds_since = [](std::chrono::steady_clock::time_point t) {
@@ -1187,8 +1194,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
       s.cell_start.size() == s.grid_dims[0] * s.grid_dims[1] * s.grid_dims[2] + 1;
   s.grid_kept = false;
   s.grid_patched_boxes = -1;
-  if (nv == 0) return 0;
-  if (nboxes >= GRID_MAX_BOXES) return -1;
+  if (nv == 0) return nothing(0);
+  if (nboxes >= GRID_MAX_BOXES) return nothing(-1);
   const GridPrimitives prim{topo, s, nv, nf};
   const std::vector<detail::GridVertexBox>& vbox = s.grid_vertex_boxes;
 
@@ -1340,7 +1347,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     const std::int64_t k = patched ? start[c] - start[c - 1] : start[c];
     work += k * (k - 1) / 2;
   }
-  if (work > GRID_WORK_PER_BOX * static_cast<std::int64_t>(nboxes)) return -1;
+  if (work > GRID_WORK_PER_BOX * static_cast<std::int64_t>(nboxes)) return nothing(-1);
   if (!patched) {
     for (std::size_t c = 1; c <= ncell; ++c) start[c] += start[c - 1];
     // Counting-sort scatter. Part p's cursor of cell c starts after the entries of parts < p;
