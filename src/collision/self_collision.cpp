@@ -127,7 +127,7 @@ struct SelfCollision::Workers {
 // 6u (M + delta + m), about 1e-15 of the coordinates. Until 2026-11-24 the inflation was delta + m:
 // the second m/2 was headroom for rounding, which delta gives already, and it widened the
 // candidates' gap band from 6 delta to 10 (bear at P = 4: 173k -> 132k candidates and 158k ->
-// 140k filter tests per step; README, "Self-collision").
+// 140k filter tests per step; docs/self-collision.md).
 double broad_phase_inflation(const CollisionOptions& options) {
   return options.delta + 0.5 * (options.region_margin * options.delta);
 }
