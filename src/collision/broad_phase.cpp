@@ -1597,8 +1597,14 @@ double far_gap_threshold(const Positions& x0, const Positions& x1, double inflat
     return std::numeric_limits<double>::infinity();
   const double m =
       x0.rows() > 0 ? std::max(x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff()) : 0.0;
+  return far_gap_threshold_for_magnitude(m, inflation, far_distance);
+}
+
+double far_gap_threshold_for_magnitude(double max_abs, double inflation, double far_distance) {
+  if (!(far_distance >= 0.0) || !std::isfinite(far_distance))
+    return std::numeric_limits<double>::infinity();
   constexpr double u = std::numeric_limits<double>::epsilon() / 2.0;
-  return (far_distance - 2.0 * inflation) + 8.0 * u * (m + inflation + far_distance);
+  return (far_distance - 2.0 * inflation) + 8.0 * u * (max_abs + inflation + far_distance);
 }
 
 bool find_candidates_in_vertex_boxes(const std::vector<detail::GridVertexBox>& boxes,

@@ -317,6 +317,10 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
 double far_gap_threshold(const Positions& x0, const Positions& x1, double inflation,
                          double far_distance);
 
+/// far_gap_threshold for coordinates of magnitude at most `max_abs` (the largest |coordinate| of
+/// x0 and x1), for callers that have it from a pass of their own.
+double far_gap_threshold_for_magnitude(double max_abs, double inflation, double far_distance);
+
 /// The Grid method on given per-vertex boxes: a face's or edge's box is the union of its vertices'
 /// boxes, and every non-adjacent VF and EE pair whose boxes overlap (closed intervals) is
 /// emitted, flagged close, in the Grid's order. With the AVX-512 cell loop and

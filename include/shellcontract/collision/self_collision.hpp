@@ -324,6 +324,14 @@ class SelfCollision {
   std::vector<std::uint8_t> base_role_;  ///< per speculative pair: its rest-state PairRole
   std::vector<std::uint8_t> escaped_;    ///< per vertex: actual box not inside the predicted one
   std::vector<std::uint32_t> escaped_prims_;  ///< their vertices, faces and edges (grid ids)
+  /// One block of complete_speculation's pass over the vertices: its escaped vertices, largest
+  /// |coordinate| of x0 and x1, and whether its x0 differs from predict's.
+  struct VertexBlock {
+    std::size_t escaped = 0;
+    double max_abs = 0.0;
+    bool other_x0 = false;
+  };
+  std::vector<VertexBlock> vertex_blocks_;
   /// A pair the grid queries of complete_speculation found, ready to append.
   struct QueryHit {
     PairRecord record;
