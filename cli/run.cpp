@@ -110,7 +110,7 @@ struct CollisionTotals {
          failsafe = 0;
   double broad_calls = 0, filter_tests = 0, rounds = 0, speculative = 0, escaped = 0,
          background_s = 0, wait_s = 0, bg_grid_s = 0, bg_cells_s = 0, bg_output_s = 0,
-         bg_records_s = 0, predict_s = 0;
+         bg_records_s = 0, predict_s = 0, rescans_full = 0, rescans_in_zone = 0;
   double broad_s = 0, filter_s = 0, narrow_s = 0, response_s = 0, collision_s = 0, solve_s = 0,
          step_s = 0;
   void add(const FrameMetrics& m) {
@@ -125,6 +125,8 @@ struct CollisionTotals {
     broad_calls += c.broad_phase_calls;
     filter_tests += static_cast<double>(c.filter_tests);
     rounds += c.rounds;
+    rescans_full += c.rescans_full;
+    rescans_in_zone += c.rescans_in_zone;
     speculative += c.speculative;
     escaped += static_cast<double>(c.escaped_vertices);
     background_s += c.background_seconds;
@@ -153,6 +155,8 @@ struct CollisionTotals {
         .add("contacts_per_step", contacts / n).add("failsafe_vertices_total", failsafe)
         .add("broad_phase_calls_per_step", broad_calls / n).add("filter_tests_per_step", filter_tests / n)
         .add("rounds_per_step", rounds / n)
+        .add("rescans_full_per_step", rescans_full / n)
+        .add("rescans_in_zone_per_step", rescans_in_zone / n)
         .add("speculative_broad_phase_steps", speculative)
         .add("escaped_vertices_per_speculative_step", speculative > 0 ? escaped / speculative : 0.0)
         .add("background_broad_phase_ms_per_step", 1e3 * background_s / n)

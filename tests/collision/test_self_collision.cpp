@@ -328,11 +328,13 @@ std::vector<Positions> sphere_steps(CollisionOptions opt, int level, unsigned se
 /// fail-safe must find every pair. Returns the positions after each step.
 std::vector<Positions> crush_sphere(int threads, int rounds, bool warm_start,
                                     std::vector<CollisionStepStats>* all_stats, int level = 2,
-                                    bool brute_force = true, bool speculative = false) {
+                                    bool brute_force = true, bool speculative = false,
+                                    bool narrow_rescans = true) {
   CollisionOptions opt;
   opt.threads = threads;
   opt.rounds = rounds;
   opt.warm_start = warm_start;
+  opt.narrow_rescans = narrow_rescans;
   std::uniform_real_distribution<double> jitter(-0.05, 0.05);
   auto move = [&](const Positions& x0, std::mt19937& rng) {
     Positions x1 = x0;
@@ -673,6 +675,74 @@ TEST(SelfCollision, LargeCrushedSphereDoesNotDependOnThreads) {
     }
   }
   EXPECT_GT(speculative, 0);
+}
+
+/// A push chain for the zone of the rescans (CollisionOptions::narrow_rescans), delta 1e-3:
+/// four parallel triangles A > B > C > D (each inside the one below it, seen from above), B, C,
+/// D at rest at z = 0, -2.2 delta, -3.7 delta, and A, pinned, moving from 3 delta to 0.2 delta
+/// above B. Round 0 pushes B away from A, down toward C; a later round finds B and C, then C
+/// and D, within delta: vertices that no earlier push moved, outside the zone. Beside them,
+/// `fillers` pairs of parallel triangles 1.5 delta apart that never move keep the zone a small
+/// part of the live pairs, except the first: 0.5 delta apart at rest (near, so never pushed)
+/// and passing through each other, which only the fail-safe, after the zone is built, can
+/// stop. Returns the end positions after one resolve.
+Positions push_chain(bool narrow_rescans, int fillers, CollisionStepStats& stats) {
+  constexpr double delta = 1e-3;
+  const int n_tri = 4 + 2 * fillers;
+  Faces faces(n_tri, 3);
+  Positions x0(3 * n_tri, 3);
+  auto triangle = [&](int t, double cx, double size, double z) {
+    faces.row(t) << 3 * t, 3 * t + 1, 3 * t + 2;
+    x0.row(3 * t) << cx - size, -size, z;
+    x0.row(3 * t + 1) << cx + size, -size, z;
+    x0.row(3 * t + 2) << cx, size, z;
+  };
+  triangle(0, 0.0, 0.02, 3.0 * delta);  // A
+  triangle(1, 0.0, 0.05, 0.0);          // B
+  triangle(2, 0.0, 0.10, -2.2 * delta); // C
+  triangle(3, 0.0, 0.20, -3.7 * delta); // D
+  for (int k = 0; k < fillers; ++k) {
+    triangle(4 + 2 * k, 1.0 + 0.5 * k, 0.05, 1.5 * delta);
+    triangle(5 + 2 * k, 1.0 + 0.5 * k, 0.10, 0.0);
+  }
+  if (fillers > 0) x0.block(12, 2, 3, 1).setConstant(0.5 * delta);
+  Positions x1 = x0;
+  x1.topRows(3).col(2).array() = 0.2 * delta;
+  if (fillers > 0) x1.block(12, 2, 3, 1).setConstant(-0.5 * delta);
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(x0.rows());
+  w.head(3).setZero();  // A is pinned: round 0 moves only B
+  CollisionOptions opt;
+  opt.delta = delta;
+  opt.narrow_rescans = narrow_rescans;
+  SelfCollision sc(faces, x0, opt);
+  sc.resolve(x0, x1, w, stats);
+  return x1;
+}
+
+TEST(SelfCollision, NarrowRescansGiveTheFullPassesResults) {
+  // The passes after a push visit only the zone around the step's moved vertices while no other
+  // vertex moves, and must collect exactly what a pass over every live pair collects: the same
+  // positions bit for bit. In the push chain, vertices outside the zone move after it is built
+  // (C, then D): those passes must visit every pair again (with a zone pass instead, the pairs
+  // of C and D would not be marked, and the result would differ).
+  CollisionStepStats zone_stats, full_stats;
+  const Positions zone = push_chain(true, 12, zone_stats);
+  const Positions full = push_chain(false, 12, full_stats);
+  EXPECT_EQ(zone, full);
+  EXPECT_GE(zone_stats.contacts, 3);  // A-B, B-C and C-D at least
+  EXPECT_GT(zone_stats.rescans_in_zone, 0);
+  // The collection before round 0, the first pass after it (which builds the zone), and at
+  // least one pass that a vertex outside the zone made full.
+  EXPECT_GE(zone_stats.rescans_full, 3);
+  EXPECT_EQ(full_stats.rescans_in_zone, 0);
+  EXPECT_EQ(zone_stats.rescans_full + zone_stats.rescans_in_zone, full_stats.rescans_full);
+  EXPECT_GT(zone_stats.failsafe_vertices, 0);  // the near pair, reverted
+  EXPECT_EQ(zone_stats.failsafe_vertices, full_stats.failsafe_vertices);
+  // Without the fillers the zone is most of the pairs: no zone pass, the same result.
+  CollisionStepStats small_stats, small_full_stats;
+  EXPECT_EQ(push_chain(true, 0, small_stats), push_chain(false, 0, small_full_stats));
+  EXPECT_EQ(small_stats.rescans_in_zone, 0);
+  EXPECT_GE(small_stats.contacts, 3);
 }
 
 }  // namespace

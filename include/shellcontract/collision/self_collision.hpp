@@ -44,6 +44,11 @@ struct CollisionOptions {
   /// count. Off, or when predict is not called, resolve runs the broad phase itself. The
   /// Simulator sets it from SimOptions::speculative_broad_phase.
   bool speculative = true;
+  /// After a response push, the passes that mark the pairs of the moved vertices and collect
+  /// the next tests visit only the pairs around the step's moved vertices while no other vertex
+  /// moves (see SelfCollision::mark_moved_and_collect); off, every pass visits every live pair.
+  /// The same tests in the same order either way, so the result does not depend on it.
+  bool narrow_rescans = true;
 };
 
 /// The broad phase's inflation of every swept box: delta + m/2, m = region_margin * delta. Each
@@ -64,6 +69,10 @@ struct CollisionStepStats {
   std::int64_t axis_culls = 0;
   std::int64_t contacts = 0;          ///< contacts found, all rounds
   int rounds = 0;                     ///< detection rounds run
+  /// Passes that marked the moved vertices' pairs and collected the next tests: over every live
+  /// pair, or over the zone around the step's moved vertices (CollisionOptions::narrow_rescans)
+  int rescans_full = 0;
+  int rescans_in_zone = 0;
   int broad_phase_calls = 0;          ///< broad phases run (one per step, see resolve)
   std::int64_t failsafe_vertices = 0; ///< vertices reverted to their start position
   std::int64_t unresolved = 0;        ///< static pairs still reported after the fail-safe
@@ -242,8 +251,10 @@ class SelfCollision {
   /// Marks stale every live pair with a vertex in moved_ and clears moved_, then sets tests_ to
   /// the live pairs to test next, in increasing order, in the same pass over the pairs: the
   /// rounds' (stale and NORMAL) or, with FAILSAFE, the fail-safe's (stale, or not free, or NEAR).
+  /// Visits only the zone's pairs where that gives the same (CollisionOptions::narrow_rescans);
+  /// counts the pass in stats.
   template <bool FAILSAFE>
-  void mark_moved_and_collect();
+  void mark_moved_and_collect(CollisionStepStats& stats);
 
   /// Sets live_[0, live_count_) to the pairs that may ever be tested (role NORMAL or NEAR), in
   /// increasing order: the later passes over the pairs skip the excluded ones and the
@@ -285,8 +296,19 @@ class SelfCollision {
     double filter_seconds = 0.0, narrow_seconds = 0.0;  ///< the task's time in each stage
   };
   std::vector<DetectBlock> blocks_;
-  std::vector<std::uint8_t> moved_;      ///< per vertex: moved by the response or the fail-safe
-  std::vector<int> moved_list_;          ///< the vertices with moved_ set
+  /// per vertex: flags MOVED (by the response or the fail-safe, since the last pass over the
+  /// pairs) and ZONE (a zone vertex), see mark_moved_and_collect
+  std::vector<std::uint8_t> moved_;
+  std::vector<int> moved_list_;          ///< the vertices with MOVED set
+  /// The zone of mark_moved_and_collect: per block of its passes, the block's live pairs that
+  /// touch a zone vertex or were stale or not free after the pass that listed them (pair ids and
+  /// stencils, zone_count_[b] from the block's first slot).
+  std::vector<std::uint32_t> zone_pair_;
+  std::vector<std::array<int, 4>> zone_v_;
+  std::vector<std::size_t> zone_count_;
+  std::vector<int> zone_vertices_;       ///< the vertices with ZONE set
+  enum class ZoneState : std::uint8_t { None, Ready, TooLarge };
+  ZoneState zone_state_ = ZoneState::None;
   Positions region_lo_, region_hi_;      ///< per vertex, the box the response keeps it in
   struct Workers;                        ///< the thread arena (TBB stays in the .cpp)
   std::unique_ptr<Workers> workers_;
