@@ -92,6 +92,18 @@ constexpr std::size_t PAIR_GRAIN = 4096;
 /// Indices per block of compact(): fixed, so the result never depends on the threads.
 constexpr std::size_t COMPACT_BLOCK = 8192;
 
+/// Runs body(block, begin, end) for the fixed blocks [begin, end) of VERTEX_BLOCK vertices of
+/// n, in parallel on `arena`.
+template <class Body>
+void for_vertex_blocks(tbb::task_arena& arena, std::size_t n, Body body) {
+  const std::size_t blocks = (n + VERTEX_BLOCK - 1) / VERTEX_BLOCK;
+  arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+      body(b, b * VERTEX_BLOCK, std::min(n, (b + 1) * VERTEX_BLOCK));
+    });
+  });
+}
+
 /// The narrow-phase stencil (ccd.hpp order) of a VF pair (vertex, face) or an EE pair.
 std::array<int, 4> stencil(CcdPrimitive kind, const std::array<int, 2>& p,
                            const CollisionTopology& topo) {
@@ -252,29 +264,50 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
   spec_pending_ = false;
   const Eigen::Index n = x0.rows();
   const double delta = options_.delta;
-  spec_x0_ = x0;
-  spec_guess_ = x_guess;
+  // The copies and the prediction, then (after the warm start) the boxes, in parallel blocks
+  // of vertices: the spare thread is idle before the solve. Elementwise, so the values do not
+  // depend on the blocks.
+  const std::size_t nvs = static_cast<std::size_t>(n);
+  spec_x0_.resize(n, 3);
+  spec_guess_.resize(n, 3);
+  spec_pred_.resize(n, 3);
+  const bool corrected = correction_.rows() == n;
+  for_vertex_blocks(workers_->arena, nvs, [&](std::size_t, std::size_t begin, std::size_t end) {
+    const Eigen::Index b = static_cast<Eigen::Index>(begin);
+    const Eigen::Index m = static_cast<Eigen::Index>(end - begin);
+    spec_x0_.middleRows(b, m) = x0.middleRows(b, m);
+    spec_guess_.middleRows(b, m) = x_guess.middleRows(b, m);
+    if (corrected)
+      spec_pred_.middleRows(b, m) = x_guess.middleRows(b, m) + correction_.middleRows(b, m);
+    else
+      spec_pred_.middleRows(b, m) = x_guess.middleRows(b, m);
+  });
   guess_set_ = true;
-  spec_pred_ = x_guess;
-  if (correction_.rows() == n) spec_pred_ += correction_;
   if (options_.warm_start) warm_start(spec_pred_, w);
   if (skin_.size() != n) skin_ = Eigen::VectorXd::Constant(n, SKIN_MIN * delta);
   const double inflation = broad_phase_inflation(options_);
-  spec_boxes_.resize(static_cast<std::size_t>(n));
-  for (Eigen::Index v = 0; v < n; ++v) {
-    detail::GridVertexBox& b = spec_boxes_[static_cast<std::size_t>(v)];
-    for (Eigen::Index d = 0; d < 3; ++d) {
-      const double a = x0(v, d), c = spec_pred_(v, d);
-      b.lo[static_cast<std::size_t>(d)] = std::min(a, c) - inflation - skin_(v);
-      b.hi[static_cast<std::size_t>(d)] = std::max(a, c) + inflation + skin_(v);
-    }
-  }
+  spec_boxes_.resize(nvs);
   // Non-finite predictions or boxes (a blow-up the simulator will report) make no grid: plain
-  // path.
-  bool finite = spec_pred_.allFinite();
-  for (const detail::GridVertexBox& b : spec_boxes_)
-    for (std::size_t d = 0; d < 3; ++d)
-      finite = finite && std::isfinite(b.lo[d]) && std::isfinite(b.hi[d]);
+  // path. (A NaN prediction can leave its box finite: std::min and std::max pass the other
+  // argument.)
+  block_finite_.assign((nvs + VERTEX_BLOCK - 1) / VERTEX_BLOCK, 1);
+  for_vertex_blocks(workers_->arena, nvs, [&](std::size_t blk, std::size_t begin, std::size_t end) {
+    bool finite = true;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Eigen::Index v = static_cast<Eigen::Index>(i);
+      detail::GridVertexBox& b = spec_boxes_[i];
+      for (Eigen::Index d = 0; d < 3; ++d) {
+        const std::size_t k = static_cast<std::size_t>(d);
+        const double a = x0(v, d), c = spec_pred_(v, d);
+        b.lo[k] = std::min(a, c) - inflation - skin_(v);
+        b.hi[k] = std::max(a, c) + inflation + skin_(v);
+        finite = finite && std::isfinite(c) && std::isfinite(b.lo[k]) && std::isfinite(b.hi[k]);
+      }
+    }
+    block_finite_[blk] = finite;
+  });
+  const bool finite = std::all_of(block_finite_.begin(), block_finite_.end(),
+                                  [](std::uint8_t f) { return f != 0; });
   if (finite) {
     spec_pending_ = true;
     spec_ok_ = false;
@@ -362,37 +395,33 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   escaped_.resize(nvs);
   region_lo_.resize(nv, 3);
   region_hi_.resize(nv, 3);
-  const std::size_t vertex_blocks = (nvs + VERTEX_BLOCK - 1) / VERTEX_BLOCK;
-  vertex_blocks_.resize(vertex_blocks);
-  workers_->arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, vertex_blocks, [&](std::size_t blk) {
-      VertexBlock& out = vertex_blocks_[blk];
-      out = VertexBlock{};
-      const std::size_t end = std::min(nvs, (blk + 1) * VERTEX_BLOCK);
-      for (std::size_t i = blk * VERTEX_BLOCK; i < end; ++i) {
-        const Eigen::Index v = static_cast<Eigen::Index>(i);
-        detail::GridVertexBox& e = exact_boxes_[i];
-        const detail::GridVertexBox& p = spec_boxes_[i];
-        bool inside = true;
-        double error = 0.0;
-        for (Eigen::Index d = 0; d < 3; ++d) {
-          const std::size_t k = static_cast<std::size_t>(d);
-          const double a = x0(v, d), c = x1(v, d);
-          const double lo = std::min(a, c), hi = std::max(a, c);
-          e.lo[k] = lo - inflation;
-          e.hi[k] = hi + inflation;
-          region_lo_(v, d) = lo - half_margin;
-          region_hi_(v, d) = hi + half_margin;
-          inside = inside && p.lo[k] <= e.lo[k] && e.hi[k] <= p.hi[k];
-          error = std::max(error, std::abs(c - spec_pred_(v, d)));
-          out.max_abs = std::max(out.max_abs, std::max(std::abs(a), std::abs(c)));
-          out.other_x0 = out.other_x0 || a != spec_x0_(v, d);
-        }
-        escaped_[i] = !inside;
-        out.escaped += !inside;
-        skin_(v) = SKIN_MIN * options_.delta + SKIN_GROWTH * (std::isfinite(error) ? error : 0.0);
+  vertex_blocks_.resize((nvs + VERTEX_BLOCK - 1) / VERTEX_BLOCK);
+  for_vertex_blocks(workers_->arena, nvs, [&](std::size_t blk, std::size_t begin, std::size_t end) {
+    VertexBlock& out = vertex_blocks_[blk];
+    out = VertexBlock{};
+    for (std::size_t i = begin; i < end; ++i) {
+      const Eigen::Index v = static_cast<Eigen::Index>(i);
+      detail::GridVertexBox& e = exact_boxes_[i];
+      const detail::GridVertexBox& p = spec_boxes_[i];
+      bool inside = true;
+      double error = 0.0;
+      for (Eigen::Index d = 0; d < 3; ++d) {
+        const std::size_t k = static_cast<std::size_t>(d);
+        const double a = x0(v, d), c = x1(v, d);
+        const double lo = std::min(a, c), hi = std::max(a, c);
+        e.lo[k] = lo - inflation;
+        e.hi[k] = hi + inflation;
+        region_lo_(v, d) = lo - half_margin;
+        region_hi_(v, d) = hi + half_margin;
+        inside = inside && p.lo[k] <= e.lo[k] && e.hi[k] <= p.hi[k];
+        error = std::max(error, std::abs(c - spec_pred_(v, d)));
+        out.max_abs = std::max(out.max_abs, std::max(std::abs(a), std::abs(c)));
+        out.other_x0 = out.other_x0 || a != spec_x0_(v, d);
       }
-    });
+      escaped_[i] = !inside;
+      out.escaped += !inside;
+      skin_(v) = SKIN_MIN * options_.delta + SKIN_GROWTH * (std::isfinite(error) ? error : 0.0);
+    }
   });
   std::size_t escaped = 0;
   double max_abs = 0.0;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 #include <random>
 #include <tuple>
 
@@ -562,6 +563,18 @@ TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
   CollisionStepStats stats;
   sc.resolve(moved, x, w, stats);
   EXPECT_EQ(stats.speculative, 0);
+  // A guess with a NaN or infinite coordinate makes no prediction (a NaN would leave its box
+  // finite: std::min and std::max pass the other argument): the plain broad phase runs.
+  for (const double bad_value :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    Positions guess = x0;
+    guess(n / 2, 1) = bad_value;
+    sc.predict(x0, guess, w);
+    x = x0;
+    sc.resolve(x0, x, w, stats);
+    EXPECT_EQ(stats.speculative, 0) << bad_value;
+    EXPECT_TRUE(x.allFinite());
+  }
   EXPECT_THROW(sc.predict(x0, Positions(n + 1, 3), w), UsageError);
   // After a prediction, arrays that do not match the mesh are still reported, not read.
   sc.predict(x0, x0, w);

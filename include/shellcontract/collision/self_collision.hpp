@@ -354,6 +354,7 @@ class SelfCollision {
     bool other_x0 = false;
   };
   std::vector<VertexBlock> vertex_blocks_;
+  std::vector<std::uint8_t> block_finite_;  ///< predict: per block of vertices, all finite
   /// A pair the grid queries of complete_speculation found, ready to append.
   struct QueryHit {
     PairRecord record;
