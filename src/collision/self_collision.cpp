@@ -240,14 +240,24 @@ SelfCollision::candidate_pairs() const {
 }
 
 bool SelfCollision::live_pairs_consistent() const {
-  if (live_count_ > live_.size() || live_count_ > live_v_.size()) return false;
-  for (std::size_t j = 0; j < live_count_; ++j) {
-    const std::uint32_t i = live_[j];
-    if (i >= pairs_.size() || i >= role_.size() || role_[i] >= EXCLUDED) return false;
-    if (j > 0 && live_[j - 1] >= i) return false;
-    if (live_v_[j] != pairs_[i].v) return false;
+  std::size_t count = 0, next = 0;
+  bool first = true;
+  std::uint32_t last = 0;
+  for (const LiveUnit& u : live_units_) {
+    if (u.begin < next || u.begin + u.count > live_.size() || u.begin + u.count > live_v_.size())
+      return false;
+    next = u.begin + u.count;
+    for (std::size_t j = u.begin; j < next; ++j) {
+      const std::uint32_t i = live_[j];
+      if (i >= pairs_.size() || i >= role_.size() || role_[i] >= EXCLUDED) return false;
+      if (!first && last >= i) return false;
+      if (live_v_[j] != pairs_[i].v) return false;
+      first = false;
+      last = i;
+    }
+    count += u.count;
   }
-  return true;
+  return count == live_count_;
 }
 
 void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
@@ -568,8 +578,14 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   });
   std::size_t kept = 0;
   for (const std::size_t k : block_kept_) kept += k;
-  live_count_ = close_up(live_, PAIR_GRAIN, block_live_);
-  close_up(live_v_, PAIR_GRAIN, block_live_);
+  // The live pairs stay in the blocks' slices (the passes over them visit the slices, so they
+  // are not moved together: 2.7 MB a step on bear at P = 4).
+  live_units_.resize(blocks);
+  live_count_ = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    live_units_[b] = LiveUnit{b * PAIR_GRAIN, block_live_[b]};
+    live_count_ += block_live_[b];
+  }
   test_count_ = close_up(tests_, PAIR_GRAIN, block_tests_);
 
   // The primitives with a vertex outside its predicted box: each against the grid's primitives
@@ -684,17 +700,23 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   }
   append(sweep_hits_);
 
-  // The appended pairs' live and round-0 test entries, after the grid's (increasing index).
-  if (live_.size() < pairs_.size()) live_.resize(pairs_.size());
-  if (live_v_.size() < pairs_.size()) live_v_.resize(pairs_.size());
+  // The appended pairs' live and round-0 test entries, after the grid's (increasing index):
+  // their live entries in one more unit after the blocks' slices.
+  const std::size_t appended = pairs_.size() - n_spec;
+  const std::size_t tail = blocks * PAIR_GRAIN;
+  if (live_.size() < tail + appended) live_.resize(tail + appended);
+  if (live_v_.size() < tail + appended) live_v_.resize(tail + appended);
   if (tests_.size() < pairs_.size()) tests_.resize(pairs_.size());
+  std::size_t tail_count = 0;
   for (std::size_t i = n_spec; i < pairs_.size(); ++i) {
     if (role_[i] < EXCLUDED) {
-      live_v_[live_count_] = pairs_[i].v;
-      live_[live_count_++] = static_cast<std::uint32_t>(i);
+      live_v_[tail + tail_count] = pairs_[i].v;
+      live_[tail + tail_count++] = static_cast<std::uint32_t>(i);
     }
     if (stale_[i] && role_[i] == NORMAL) tests_[test_count_++] = static_cast<std::uint32_t>(i);
   }
+  if (tail_count > 0) live_units_.push_back(LiveUnit{tail, tail_count});
+  live_count_ += tail_count;
   round0_tests_ready_ = true;
   stats.speculative = 1;
   stats.escaped_vertices = static_cast<std::int64_t>(escaped);
@@ -873,6 +895,19 @@ std::size_t SelfCollision::compact(std::size_t n, Keep keep, std::vector<std::ui
   return close_up(out, B, block_count_);
 }
 
+std::size_t SelfCollision::close_up(std::vector<std::uint32_t>& out,
+                                    const std::vector<LiveUnit>& units,
+                                    const std::vector<std::size_t>& counts) {
+  std::size_t total = 0;
+  for (std::size_t u = 0; u < units.size(); ++u) {
+    if (total != units[u].begin)
+      std::memmove(out.data() + total, out.data() + units[u].begin,
+                   counts[u] * sizeof(std::uint32_t));
+    total += counts[u];
+  }
+  return total;
+}
+
 template <class T>
 std::size_t SelfCollision::close_up(std::vector<T>& out, std::size_t block,
                                     const std::vector<std::size_t>& counts) {
@@ -895,16 +930,19 @@ void SelfCollision::collect_live() {
                           live_v_[j] = pairs_[live_[j]].v;
                       });
   });
+  live_units_.clear();
+  for (std::size_t b = 0; b < live_count_; b += COMPACT_BLOCK)
+    live_units_.push_back(LiveUnit{b, std::min(COMPACT_BLOCK, live_count_ - b)});
 }
 
 template <bool FAILSAFE>
 void SelfCollision::mark_moved_and_collect(CollisionStepStats& stats) {
   // One pass (one parallel region) over the live pairs marks the pairs of the moved vertices
-  // stale and collects the next tests, in fixed blocks (as compact). Raw pointers copied into
+  // stale and collects the next tests, one task per live unit. Raw pointers copied into
   // each task: through the byte stores to stale_ the compiler would otherwise reload every
   // vector's data pointer per pair.
   //
-  // The zone (CollisionOptions::narrow_rescans): a full pass that marks also lists, per block,
+  // The zone (CollisionOptions::narrow_rescans): a full pass that marks also lists, per unit,
   // the live pairs that touch a zone vertex (one that a push or a revert has moved since the
   // step began, this pass's included) or are stale or not free after it. Until a vertex outside
   // the zone moves, every later pass visits only those: a pair outside touches no vertex that
@@ -914,11 +952,13 @@ void SelfCollision::mark_moved_and_collect(CollisionStepStats& stats) {
   // counts in a build not committed): each pass over its 133k live pairs took 0.18 ms, while
   // rounds 2-4 collect 3,000, 700 and 200 tests per step and the fail-safe's hardly any; the
   // zone holds 38% of the live pairs, and 1.8 of the 4.4 passes per step stay in it.
-  constexpr std::size_t B = COMPACT_BLOCK;
+  // Work unit u is live_units_[u]: its live pairs, and the slots from its begin in tests_ and
+  // in the zone's lists.
   const std::size_t n = live_count_;
-  const std::size_t blocks = (n + B - 1) / B;
-  if (tests_.size() < n) tests_.resize(n);
-  block_count_.resize(blocks);
+  const std::size_t units = live_units_.size();
+  const std::size_t slots = units > 0 ? live_units_.back().begin + live_units_.back().count : 0;
+  if (tests_.size() < slots) tests_.resize(slots);
+  block_count_.resize(units);
   const bool mark = !moved_list_.empty();
   bool in_zone = zone_state_ == ZoneState::Ready;
   for (std::size_t k = 0; in_zone && k < moved_list_.size(); ++k)
@@ -928,9 +968,9 @@ void SelfCollision::mark_moved_and_collect(CollisionStepStats& stats) {
   const bool build =
       !in_zone && mark && options_.narrow_rescans && zone_state_ != ZoneState::TooLarge;
   if (build) {
-    if (zone_pair_.size() < n) zone_pair_.resize(n);
-    if (zone_v_.size() < n) zone_v_.resize(n);
-    zone_count_.resize(blocks);
+    if (zone_pair_.size() < slots) zone_pair_.resize(slots);
+    if (zone_v_.size() < slots) zone_v_.resize(slots);
+    zone_count_.resize(units);
     for (int v : moved_list_) {
       std::uint8_t& f = moved_[static_cast<std::size_t>(v)];
       if (!(f & ZONE)) zone_vertices_.push_back(v);
@@ -944,6 +984,7 @@ void SelfCollision::mark_moved_and_collect(CollisionStepStats& stats) {
   std::uint32_t* const zone_data = zone_pair_.data();
   std::array<int, 4>* const zone_v_data = zone_v_.data();
   std::size_t* const zone_count_data = zone_count_.data();
+  const LiveUnit* const unit_data = live_units_.data();
   const std::uint8_t* const moved_data = moved_.data();
   std::uint8_t* const stale_data = stale_.data();
   const std::uint8_t* const role_data = role_.data();
@@ -952,17 +993,18 @@ void SelfCollision::mark_moved_and_collect(CollisionStepStats& stats) {
   std::size_t* const count_data = block_count_.data();
   auto pass = [=](auto build_tag, std::size_t b) {
     constexpr bool BUILD = decltype(build_tag)::value;
-    // A zone pass visits block b's zone entries, a full pass its live pairs.
-    const std::uint32_t* __restrict live = live_data + b * B;
-    const std::array<int, 4>* __restrict live_v = live_v_data + b * B;
-    const std::size_t count = in_zone ? zone_counts[b] : std::min(n, (b + 1) * B) - b * B;
+    // A zone pass visits unit b's zone entries, a full pass its live pairs.
+    const std::size_t at = unit_data[b].begin;
+    const std::uint32_t* __restrict live = live_data + at;
+    const std::array<int, 4>* __restrict live_v = live_v_data + at;
+    const std::size_t count = in_zone ? zone_counts[b] : unit_data[b].count;
     const std::uint8_t* __restrict moved = moved_data;
     std::uint8_t* __restrict stale = stale_data;
     const std::uint8_t* __restrict role = role_data;
     const std::uint8_t* __restrict fr = free_data;
-    std::uint32_t* __restrict dst = out_data + b * B;
-    std::uint32_t* __restrict zone = zone_data + b * B;
-    std::array<int, 4>* __restrict zone_v = zone_v_data + b * B;
+    std::uint32_t* __restrict dst = out_data + at;
+    std::uint32_t* __restrict zone = zone_data + at;
+    std::array<int, 4>* __restrict zone_v = zone_v_data + at;
     std::size_t k = 0, z = 0;
     for (std::size_t j = 0; j < count; ++j) {
       const std::uint32_t i = live[j];
@@ -991,20 +1033,20 @@ void SelfCollision::mark_moved_and_collect(CollisionStepStats& stats) {
     if (BUILD) zone_count_data[b] = z;
   };
   workers_->arena.execute([&] {
-    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+    tbb::parallel_for(std::size_t{0}, units, [&](std::size_t b) {
       if (build)
         pass(std::true_type{}, b);
       else
         pass(std::false_type{}, b);
     });
   });
-  test_count_ = close_up(tests_, B, block_count_);
+  test_count_ = close_up(tests_, live_units_, block_count_);
   for (int v : moved_list_) moved_[static_cast<std::size_t>(v)] &= ~MOVED;
   moved_list_.clear();
   if (build) {
     // A zone of most of the pairs saves little: its passes would be nearly full ones.
     std::size_t total = 0;
-    for (std::size_t b = 0; b < blocks; ++b) total += zone_count_[b];
+    for (std::size_t b = 0; b < units; ++b) total += zone_count_[b];
     zone_state_ = total <= n / 2 ? ZoneState::Ready : ZoneState::TooLarge;
   }
 }

@@ -256,9 +256,9 @@ class SelfCollision {
   template <bool FAILSAFE>
   void mark_moved_and_collect(CollisionStepStats& stats);
 
-  /// Sets live_[0, live_count_) to the pairs that may ever be tested (role NORMAL or NEAR), in
-  /// increasing order: the later passes over the pairs skip the excluded ones and the
-  /// speculative broad phase's non-candidates.
+  /// Sets the live pairs (live_, live_v_, live_units_) to the pairs that may ever be tested (role
+  /// NORMAL or NEAR), in increasing order: the later passes over the pairs skip the excluded
+  /// ones and the speculative broad phase's non-candidates.
   void collect_live();
 
   /// Writes the i in [0, n) with keep(i) to out[0, count), in increasing order, in parallel
@@ -273,6 +273,15 @@ class SelfCollision {
   static std::size_t close_up(std::vector<T>& out, std::size_t block,
                               const std::vector<std::size_t>& counts);
 
+  /// Live pairs live_[begin, begin + count) (and their stencils in live_v_): the unit of work
+  /// of the passes over the live pairs (see live_units_).
+  struct LiveUnit {
+    std::size_t begin = 0, count = 0;
+  };
+  /// close_up for slices that start at the units' begins: unit u's counts[u] entries.
+  static std::size_t close_up(std::vector<std::uint32_t>& out, const std::vector<LiveUnit>& units,
+                              const std::vector<std::size_t>& counts);
+
   CollisionTopology topo_;
   CollisionOptions options_;
   CandidatePairs candidates_;
@@ -281,11 +290,15 @@ class SelfCollision {
   std::vector<std::uint8_t> stale_;      ///< per pair: a vertex moved since its last test
   std::vector<std::uint8_t> free_;       ///< per pair: its last test found no contact
   std::vector<std::uint32_t> tests_;     ///< [0, test_count_): pairs to test in the next detect()
-  std::vector<std::uint32_t> live_;      ///< [0, live_count_): see collect_live
+  /// The live pairs (see collect_live), in the slices live_units_ lists, in increasing order
+  /// across them: the speculative broad phase's classification leaves them in its blocks'
+  /// slices, as they are written.
+  std::vector<std::uint32_t> live_;
   /// live_v_[j] = pairs_[live_[j]].v: the rounds' collection passes read the stencils in order
   /// instead of through the indices (see mark_moved_and_collect).
   std::vector<std::array<int, 4>> live_v_;
-  std::size_t live_count_ = 0;
+  std::vector<LiveUnit> live_units_;
+  std::size_t live_count_ = 0;           ///< the live pairs in all units
   std::size_t test_count_ = 0;
   std::vector<std::size_t> block_count_; ///< compact(): kept indices per block
   /// One block of tests of detect(): what its task found (buffers reused between calls).
@@ -300,9 +313,9 @@ class SelfCollision {
   /// pairs) and ZONE (a zone vertex), see mark_moved_and_collect
   std::vector<std::uint8_t> moved_;
   std::vector<int> moved_list_;          ///< the vertices with MOVED set
-  /// The zone of mark_moved_and_collect: per block of its passes, the block's live pairs that
-  /// touch a zone vertex or were stale or not free after the pass that listed them (pair ids and
-  /// stencils, zone_count_[b] from the block's first slot).
+  /// The zone of mark_moved_and_collect: per live unit, the unit's live pairs that touch a zone
+  /// vertex or were stale or not free after the pass that listed them (pair ids and stencils,
+  /// zone_count_[u] from the unit's begin).
   std::vector<std::uint32_t> zone_pair_;
   std::vector<std::array<int, 4>> zone_v_;
   std::vector<std::size_t> zone_count_;
