@@ -85,7 +85,7 @@ constexpr std::size_t QUERY_BLOCK = 8;
 /// Tests per task of detect() (filter and narrow phase of one block): fixed, so the result never
 /// depends on the threads. Bear's first round has ~100k tests, later rounds a few thousand.
 constexpr std::size_t DETECT_BLOCK = 512;
-/// Vertices per task of complete_speculation's pass over the vertices.
+/// Vertices per task of the passes over the vertices (predict, complete_speculation).
 constexpr std::size_t VERTEX_BLOCK = 4096;
 /// Pairs per task of the per-pair bookkeeping loops (records, stale marks).
 constexpr std::size_t PAIR_GRAIN = 4096;
