@@ -952,6 +952,7 @@ void SelfCollision::mark_moved_and_collect(CollisionStepStats& stats) {
   // counts in a build not committed): each pass over its 133k live pairs took 0.18 ms, while
   // rounds 2-4 collect 3,000, 700 and 200 tests per step and the fail-safe's hardly any; the
   // zone holds 38% of the live pairs, and 1.8 of the 4.4 passes per step stay in it.
+  //
   // Work unit u is live_units_[u]: its live pairs, and the slots from its begin in tests_ and
   // in the zone's lists.
   const std::size_t n = live_count_;
