@@ -2,7 +2,7 @@
 """Measures issue 4's speed point: collision handling time per step against the constraint
 solve's, on bear at strong pressure (P = 4, 300 frames), over repeated runs.
 
-One run prints one ratio, and on a shared VM single runs scatter by 20-35% (docs/self-collision.md),
+One run prints one ratio, and on a shared VM single runs scatter by 20-35% (docs/design/self-collision.md),
 so this runs the job several times and reports the median, the range and how
 many runs stay at or below 1. Each run is
 

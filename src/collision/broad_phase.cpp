@@ -751,7 +751,7 @@ inline __attribute__((always_inline)) void cell_rows_avx512(
 /// the lanes of the double loop and no confirmation: the speculative task's cell loop is the
 /// step's longest part at strong pressure. Bear's P = 4 frames 299-300 (BM_GridOnVertexBoxes,
 /// one core, with the gather by kind of grid_chunk_avx512 for both): cell loop 6.5-6.7 against
-/// 7.8-9.8 ms, the same 252k pairs (docs/self-collision.md).
+/// 7.8-9.8 ms, the same 252k pairs (docs/design/self-collision.md).
 template <int R>
 inline __attribute__((always_inline)) void cell_rows_avx512_float(
     const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1, bool stagger,

@@ -145,7 +145,7 @@ struct SelfCollision::Workers {
 // 6u (M + delta + m), about 1e-15 of the coordinates. Until 2026-11-24 the inflation was delta + m:
 // the second m/2 was headroom for rounding, which delta gives already, and it widened the
 // candidates' gap band from 6 delta to 10 (bear at P = 4: 173k -> 132k candidates and 158k ->
-// 140k filter tests per step; docs/self-collision.md).
+// 140k filter tests per step; docs/design/self-collision.md).
 double broad_phase_inflation(const CollisionOptions& options) {
   return options.delta + 0.5 * (options.region_margin * options.delta);
 }
@@ -396,7 +396,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
   // predicted boxes, the skins of the next prediction (the end positions after the warm start
   // are what was predicted), the response regions (set_regions' arithmetic), the largest
   // coordinate (far_gap_threshold's) and whether x0 is the one predict saw. As four serial
-  // passes these took 0.31 ms per step on bear at P = 4 (docs/self-collision.md).
+  // passes these took 0.31 ms per step on bear at P = 4 (docs/design/self-collision.md).
   const Eigen::Index nv = x0.rows();
   const std::size_t nvs = static_cast<std::size_t>(nv);
   const double inflation = broad_phase_inflation(options_);

@@ -51,7 +51,6 @@ RunResult run_one(const Mesh& mesh, const SimOptions& base, const RunSettings& r
   o.solver.order = rs.order;
   o.solver.threads = rs.threads;
   o.dt = base.dt / substeps;
-  o.solver.dt = o.dt;
   o.frames = frames * substeps;
   // Same fraction of velocity removed per unit time as the base run (file comment of the header).
   o.damping = 1.0 - std::pow(1.0 - base.damping, 1.0 / substeps);

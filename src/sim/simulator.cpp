@@ -9,6 +9,8 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
+#include "shellcontract/sim/run_options.hpp"
+#include "shellcontract/sim/volume_constraint.hpp"
 #include "shellcontract/validation/volume.hpp"
 
 namespace shellcontract {
@@ -32,12 +34,16 @@ void check_options(const SimOptions& o) {
     fail("collision region margin must be >= 0");
   if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
     fail("stop volume ratio must be in [0, 1)");
+  if (!(o.target_volume >= 0.0 && o.target_volume < 1.0)) fail("target volume must be in [0, 1)");
+  if (o.target_volume > 0.0 && o.stop_volume_ratio > 0.0)
+    fail("a target volume and a stop volume ratio exclude each other");
+  if (o.target_ramp_frames < 1) fail("the target-volume ramp must be at least 1 frame");
 }
 }  // namespace
 
 Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(options) {
   check_options(options_);
-  options_.solver.dt = options_.dt;
+  resolve_sim_options(options_);
   if (input.has_garbage()) throw UsageError("Simulator: the input mesh has garbage");
   mesh_ = std::make_unique<Mesh>(input);
   normalization_ = compute_normalization(positions_from_mesh(*mesh_));
@@ -52,7 +58,6 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   ConstraintSet constraints = pack_constraints(*mesh_, options_.bending);
   if (options_.solver.aniso != AnisoKind::None) {
     AnisotropyOptions a = options_.anisotropy;
-    a.mu_aniso = options_.material_params.mu_aniso;
     if (options_.inward_term == InwardTerm::None) a.kappa_a = 0.0;
     anisotropy_report_ = add_anisotropic_constraints(*mesh_, a, constraints);
     if (options_.inward_term == InwardTerm::Force ||
@@ -63,14 +68,8 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
           inward_faces_(static_cast<Eigen::Index>(i), k) = constraints.anisotropic[i].v[k];
     }
   }
-  options_.solver.k_a_in_projection = options_.inward_term == InwardTerm::Projection;
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
-  // The speculative broad phase uses the core a single-threaded solve leaves idle (config.hpp).
-  options_.collision.speculative =
-      options_.speculative_broad_phase == SpeculativeBroadPhase::On ||
-      (options_.speculative_broad_phase == SpeculativeBroadPhase::Auto &&
-       options_.solver.order == ConstraintOrder::Sequential);
   if (options_.collisions) collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
   if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
   v_ = Positions::Zero(x_.rows(), 3);
@@ -99,13 +98,36 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
     throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) + ")");
+  constraint_rest_volume_ = signed_volume(x_, faces_);
 }
 
 Simulator::~Simulator() = default;
 
-bool Simulator::finished() const {
-  return frame_ >= options_.frames ||
-         (options_.stop_volume_ratio > 0.0 && volume_ratio_ < options_.stop_volume_ratio);
+bool Simulator::finished() const { return frame_ >= options_.frames || stop_volume_reached_; }
+
+double Simulator::volume_target(int n) const {
+  if (options_.target_volume <= 0.0) return 0.0;
+  // A run shorter than twice the ramp still reaches the target at half its frames.
+  const int ramp = std::min(options_.target_ramp_frames, std::max(1, options_.frames / 2));
+  return target_volume_at(n, ramp, 1.0, options_.target_volume);
+}
+
+void Simulator::apply_volume_control(Positions& x) {
+  // Rounding-level tolerance: the constraint is met to ~1e-12 of V0, far below the 0.005 a
+  // target-volume run promises, so collisions and rounding alone decide the error.
+  const double tolerance = 1e-12 * constraint_rest_volume_;
+  if (options_.target_volume > 0.0) {
+    const double target = constraint_rest_volume_ * volume_target(frame_ + 1);
+    project_volume(x, faces_, inv_mass_, target, tolerance);
+  } else if (options_.stop_volume_ratio > 0.0) {
+    // The step that would cross epsilon ends on it: the run stops at the crossing frame with
+    // V/V0 = epsilon up to the collision response, instead of one step's change below it.
+    const double floor = constraint_rest_volume_ * options_.stop_volume_ratio;
+    if (signed_volume(x, faces_) <= floor) {
+      project_volume(x, faces_, inv_mass_, floor, tolerance);
+      stop_volume_reached_ = true;
+    }
+  }
 }
 
 FrameMetrics Simulator::step() {
@@ -129,6 +151,8 @@ FrameMetrics Simulator::step() {
   const auto solve_start = std::chrono::steady_clock::now();
   solver_->solve(x_pred_, inv_mass_);
   m.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
+  // Step 2b: the global volume constraint of a target volume or a stop ratio (docs/math/volume-control.md).
+  apply_volume_control(x_pred_);
   if (!x_pred_.allFinite())
     throw SimulationError("non-finite positions at step " + std::to_string(frame_ + 1));
   // A step that moves a vertex farther than the whole mesh is a blow-up, whatever the

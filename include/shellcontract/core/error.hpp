@@ -13,6 +13,8 @@ enum class ExitCode : int {
   BadInput = 2,           ///< the input mesh cannot be used; the message says what and where
   SimulationFailed = 3,   ///< NaN or blow-up; the last good state is written, marked as such
   NewSelfIntersections = 4,  ///< validation found intersections that the input did not have
+  TargetNotReached = 5,   ///< --target-volume or --stop-volume-ratio not reached (stalled, or out of frames)
+  Cancelled = 130,        ///< interrupted by the caller (the shell's code for SIGINT)
 };
 
 /// Bad usage of the library or the tool (exit code 1).

@@ -14,7 +14,7 @@ namespace shellcontract {
 /// How the fibre direction a of a region face is chosen (the paper never gives one).
 enum class FiberMode {
   /// Tangent direction from the face toward its region's area-weighted centre: shortening along
-  /// it pulls the region together (default; README "Fibre direction" gives the measurement).
+  /// it pulls the region together (default; docs/design/anisotropy.md "Fibre direction" gives the measurement).
   TowardCentre,
   /// One user 3D direction d for every face: a = normalize(d . T1, d . T2) (math-spec 7).
   User,

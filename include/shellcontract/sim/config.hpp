@@ -23,7 +23,7 @@ enum class BendingModel { Isometric, Dihedral, None };
 enum class InwardTerm { Projection, Force, None };
 
 /// Default local extra pressure P_A on the anisotropic regions (InwardTerm::Force), normalized
-/// units; README "Anisotropic regions" gives the measurement behind it.
+/// units; docs/design/anisotropy.md gives the measurement behind it.
 inline constexpr double DEFAULT_REGION_PRESSURE = 3.0;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
@@ -32,10 +32,14 @@ enum class ValidateMode { Off, End, EveryFrame };
 /// area: m_i = rho_A sum Abar_j / 3 (math-spec 1.4, default); unit: m_i = 1.
 enum class MassModel { AreaLumped, Unit };
 
-/// Default over-pressure in normalized units. Chosen by measurement (README "Choosing the
-/// defaults"): with DEFAULT_DAMPING, 200 default frames contract eight, hand, elk and bear
+/// Default over-pressure in normalized units. Chosen by measurement (docs/design/defaults.md): with
+/// DEFAULT_DAMPING, 200 default frames contract eight, hand, elk and bear
 /// visibly and monotonically without blowing up.
 inline constexpr double DEFAULT_PRESSURE = 2.0;
+
+/// Default length of the target-volume ramp, in frames: long enough that the shell follows the
+/// shrinking volume quasi-statically, short enough to hold the target for most of a default run.
+inline constexpr int DEFAULT_TARGET_RAMP_FRAMES = 100;
 
 /// Default fraction of the velocity removed per step. The paper has no damping; without it the
 /// undamped PBD shell rings (V/V0 oscillates around its quasi-static path, README measurement).
@@ -63,7 +67,13 @@ struct SimOptions {
   BendingModel bending = BendingModel::Isometric;
   MassModel mass = MassModel::AreaLumped;
   double density = 1.0;                          ///< rho_A, mass per normalized area
-  double stop_volume_ratio = 0.0;                ///< epsilon: stop when V/V0 < epsilon (0 = off)
+  /// epsilon: stop at the step whose V/V0 would fall below epsilon, with the volume projected onto
+  /// epsilon V0 in that step (docs/math/volume-control.md), so the run ends on epsilon (0 = off).
+  double stop_volume_ratio = 0.0;
+  /// R: drive V/V0 to R and hold it there with a global volume constraint (docs/math/volume-control.md); 0 = off.
+  double target_volume = 0.0;
+  /// Frames over which the constraint's target goes from V0 to R V0 (smoothstep ramp).
+  int target_ramp_frames = DEFAULT_TARGET_RAMP_FRAMES;
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
   AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
   InwardTerm inward_term = InwardTerm::Force;

@@ -46,8 +46,14 @@ class Simulator {
   /// @throws SimulationError on non-finite positions; the state is then left at the last good step
   FrameMetrics step();
 
-  /// True when the frame count is reached or V/V0 fell below options.stop_volume_ratio.
+  /// True when the frame count is reached or the step reached options.stop_volume_ratio.
   bool finished() const;
+
+  /// The target V/V0 of the volume constraint at frame n (the ramp of options.target_volume);
+  /// 0 without a target volume.
+  double volume_target(int n) const;
+  /// Whether a step reached options.stop_volume_ratio (the run then ends on it).
+  bool stop_volume_reached() const { return stop_volume_reached_; }
 
   int frame() const { return frame_; }
   double volume_ratio() const { return volume_ratio_; }
@@ -80,6 +86,9 @@ class Simulator {
   const Positions& rest_positions() const { return rest_x_; }
 
  private:
+  /// Projects x onto the volume of a target-volume run, or onto the stop ratio at its crossing.
+  void apply_volume_control(Positions& x);
+
   SimOptions options_;
   std::unique_ptr<Mesh> mesh_;
   Normalization normalization_;
@@ -98,6 +107,8 @@ class Simulator {
   std::vector<int> region_vertices_;  ///< vertices of the regions, sorted, unique
   Positions region_normals_;          ///< their rest unit normals, same order
   double rest_volume_ = 0.0;
+  double constraint_rest_volume_ = 0.0;  ///< V0 as signed_volume computes it (the constraint's)
+  bool stop_volume_reached_ = false;
   double volume_ratio_ = 1.0;
   int frame_ = 0;
 };

@@ -1,0 +1,98 @@
+// The CLI's observers of a run (sim/run.hpp): warnings and progress on stderr, the CSV log, the
+// start and end fields. Each has one job; cli/run.cpp picks those the options ask for.
+#pragma once
+
+#include <chrono>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/fields.hpp"
+#include "shellcontract/sim/run.hpp"
+
+namespace shellcontract::cli {
+
+inline FieldColour parse_field_colour(const std::string& s) {
+  if (s == "mean") return FieldColour::MeanCurvature;
+  if (s == "gaussian") return FieldColour::GaussianCurvature;
+  if (s == "pressure") return FieldColour::Pressure;
+  if (s == "energy") return FieldColour::EnergyDensity;
+  throw UsageError("unknown --fields-colour '" + s +
+                   "' (expected mean, gaussian, pressure or energy)");
+}
+
+/// "warning: ..." on stderr as the run finds it.
+class WarningPrinter final : public RunObserver {
+ public:
+  void warning(const std::string& text) override { std::cerr << "warning: " << text << '\n'; }
+};
+
+/// A progress line on stderr about once a second, and at the last frame.
+class ProgressPrinter final : public RunObserver {
+ public:
+  ProgressPrinter(int frames, bool auto_regions) : frames_(frames), auto_regions_(auto_regions) {}
+  void started(const Simulator& sim) override {
+    const std::size_t regions = sim.options().anisotropy.regions.size();
+    if (auto_regions_ && regions > 0)
+      std::cerr << "regions: " << regions << " spherical regions selected by curvature\n";
+    start_ = last_ = std::chrono::steady_clock::now();
+  }
+  void frame(const Simulator& sim, const FrameMetrics& m) override {
+    const auto now = std::chrono::steady_clock::now();
+    if (std::chrono::duration<double>(now - last_).count() > 1.0 || sim.finished()) {
+      std::cerr << "frame " << m.frame << "/" << frames_ << "  V/V0 " << std::setprecision(6)
+                << m.volume_ratio << "  " << std::setprecision(3)
+                << std::chrono::duration<double>(now - start_).count() << " s\n";
+      last_ = now;
+    }
+  }
+
+ private:
+  int frames_;
+  bool auto_regions_;
+  std::chrono::steady_clock::time_point start_, last_;
+};
+
+/// The per-frame CSV log (README "Outputs"), kept in memory and written at the end.
+class CsvLog final : public RunObserver {
+ public:
+  static constexpr const char* HEADER =
+      "frame,time,volume_ratio,energy_membrane,energy_bending,energy_anisotropic,"
+      "max_displacement,step_ms,solve_ms,ccd_ms,candidates,contacts,collision_rounds,"
+      "failsafe_vertices,new_intersections\n";
+  void frame(const Simulator&, const FrameMetrics& m) override {
+    std::ostringstream o;
+    o << std::setprecision(17) << m.frame << ',' << m.time << ',' << m.volume_ratio << ','
+      << m.energies.membrane << ',' << m.energies.bending << ',' << m.energies.anisotropic << ','
+      << m.max_displacement << ',' << m.step_seconds * 1e3 << ',' << m.solve_seconds * 1e3 << ','
+      << m.collision.seconds * 1e3 << ',' << m.collision.pairs_broad << ',' << m.collision.contacts
+      << ',' << m.collision.rounds << ',' << m.collision.failsafe_vertices << ','
+      << m.new_intersections << '\n';
+    text_ += o.str();
+  }
+  const std::string& text() const { return text_; }
+
+ private:
+  std::string text_ = HEADER;
+};
+
+/// PREFIX_start.ply at the rest state and PREFIX_end.ply at the end (README "Outputs").
+class FieldsWriter final : public RunObserver {
+ public:
+  FieldsWriter(std::string prefix, FieldColour colour)
+      : prefix_(std::move(prefix)), colour_(colour) {}
+  void started(const Simulator& sim) override { write(sim, "_start.ply"); }
+  void finished(const Simulator& sim, const RunResult&) override { write(sim, "_end.ply"); }
+
+ private:
+  void write(const Simulator& sim, const std::string& suffix) {
+    write_fields_ply(prefix_ + suffix, sim, sim.positions_in_input_units(),
+                     compute_vertex_fields(sim), colour_);
+  }
+  std::string prefix_;
+  FieldColour colour_;
+};
+
+}  // namespace shellcontract::cli

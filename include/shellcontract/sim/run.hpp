@@ -1,0 +1,106 @@
+// The library's entry point for a whole contraction run (design.md "One run, many listeners"):
+// region selection, the time loop with its stop criteria (frame count, stop ratio, target
+// volume, stall), the run's status and totals. The CLI, the Python module and the exporters are
+// observers of this one loop.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/sim/run_options.hpp"
+#include "shellcontract/sim/run_totals.hpp"
+#include "shellcontract/sim/simulator.hpp"
+
+namespace shellcontract {
+
+/// How a run ended; RunResult::exit_code maps it onto the documented exit codes.
+enum class RunStatus {
+  Completed,         ///< every frame ran, or the stop ratio was reached, or the target is held
+  TargetNotReached,  ///< a target volume or stop ratio was not reached: the volume stalled or the
+                     ///< frames ran out
+  SimulationFailed,  ///< non-finite positions or a blow-up; the state is the last good step
+  NewIntersections,  ///< validation found self-intersections the input did not have
+  Cancelled,         ///< the observer asked to stop (a KeyboardInterrupt in Python)
+};
+
+/// |V/V0 - R| within which a target volume counts as reached and held.
+inline constexpr double TARGET_VOLUME_TOLERANCE = 0.005;
+/// The volume has stalled when V/V0 changed by less than STALL_CHANGE over the last STALL_FRAMES
+/// frames while it is still off its target: contacts lock the shell, or the pressure is balanced.
+inline constexpr int STALL_FRAMES = 20;
+inline constexpr double STALL_CHANGE = 1e-4;
+
+/// What a run produced.
+struct RunResult {
+  RunStatus status = RunStatus::Completed;
+  std::string message;  ///< why it did not complete, for the user; empty when completed
+  int frames_run = 0;
+  double final_volume_ratio = 1.0;
+  double min_volume_ratio = 1.0;
+  /// Whether the target volume or stop ratio was reached (true when neither was asked for).
+  bool target_reached = true;
+  /// The first frame at which V/V0 was within TARGET_VOLUME_TOLERANCE of the target volume and
+  /// its ramp had ended (or the stop ratio's crossing frame); -1 if never.
+  int frame_target_reached = -1;
+  double wall_seconds = 0.0;
+  long new_intersections = -1;  ///< at the last validated frame; -1 when never validated
+  std::size_t regions = 0;      ///< anisotropic regions used (or measured)
+  std::size_t anisotropic_faces = 0;
+  double region_inward_displacement = 0.0;  ///< Simulator::region_inward_displacement at the end
+  std::size_t degenerate_faces = 0;
+  std::size_t excluded_contact_pairs = 0;
+  double normalization_scale = 1.0;
+  std::vector<std::string> warnings;
+  RunTotals totals;
+  Positions positions;  ///< final positions in the input's units, row i = vertex i
+
+  /// The process exit code of this result (README "Exit codes").
+  int exit_code() const;
+};
+
+/// Sees a run. Every callback runs on the caller's thread, between steps.
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  /// Something the user should know (degenerate faces, no regions found, ...), as it is found.
+  virtual void warning(const std::string& /*text*/) {}
+  /// The simulator is built, before the first step (frame 0 = the rest state).
+  virtual void started(const Simulator& /*sim*/) {}
+  /// After each step.
+  virtual void frame(const Simulator& /*sim*/, const FrameMetrics& /*metrics*/) {}
+  /// Polled after every step: true ends the run with RunStatus::Cancelled.
+  virtual bool cancelled() { return false; }
+  /// After the last step, before run_contraction returns.
+  virtual void finished(const Simulator& /*sim*/, const RunResult& /*result*/) {}
+};
+
+/// Several observers in order.
+class ObserverList final : public RunObserver {
+ public:
+  void add(RunObserver& o) { observers_.push_back(&o); }
+  void warning(const std::string& text) override;
+  void started(const Simulator& sim) override;
+  void frame(const Simulator& sim, const FrameMetrics& m) override;
+  bool cancelled() override;
+  void finished(const Simulator& sim, const RunResult& r) override;
+
+ private:
+  std::vector<RunObserver*> observers_;
+};
+
+/// The regions a run would use: auto-selected by curvature, read from the file, or none.
+/// Selection happens only when something acts on them (an anisotropic energy or an inward term)
+/// or they are measured.
+/// @throws InputError for an unreadable or out-of-range region file
+std::vector<std::vector<int>> select_run_regions(const Mesh& mesh, const RunOptions& options);
+
+/// Runs the contraction of `mesh` (a checked, closed, outward-oriented triangle mesh from
+/// read_input_mesh, any units) to its end.
+/// @throws UsageError for invalid options, InputError for an unusable mesh or region file
+///         (before the first step). A failing step is not thrown: it ends the run with
+///         RunStatus::SimulationFailed and the last good state.
+RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer = nullptr);
+
+}  // namespace shellcontract

@@ -1,0 +1,45 @@
+// Options of one contraction run as a caller gives them (CLI, Python, C++): the simulation's
+// options plus where the anisotropic regions come from. option_table.hpp parses them from text,
+// run.hpp runs them.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "shellcontract/sim/config.hpp"
+
+namespace shellcontract {
+
+/// Where the faces of the anisotropic regions come from.
+enum class RegionSource {
+  Auto,  ///< spherical regions found by curvature (select_spherical_regions)
+  File,  ///< RunOptions::region_file: one line per region, 0-based face ids
+  None,
+};
+
+/// Everything a run needs besides the mesh. Lengths are in normalized units.
+struct RunOptions {
+  SimOptions sim;
+  RegionSource regions = RegionSource::Auto;
+  std::string region_file;  ///< RegionSource::File only
+  /// Select the regions even when no local contraction acts on them, to report how far they sink.
+  bool measure_regions = false;
+  /// Membrane stiffness from Young's modulus, Poisson ratio and thickness (math-spec 6). When
+  /// both young and thickness are set, resolve_run_options replaces mu and lambda with them.
+  std::optional<double> young;
+  double poisson = 0.3;
+  std::optional<double> thickness;
+};
+
+/// Checks the options that depend on each other and derives the values that follow from others
+/// (mu and lambda from --young; the solver's time step and threads, the collision threads and the
+/// speculative broad phase). Called once, by run_contraction and by the Simulator; every value
+/// has this one owner.
+/// @throws UsageError naming the option
+void resolve_run_options(RunOptions& options);
+
+/// The derived fields of SimOptions (solver.dt, solver.threads -> collision.threads,
+/// collision.speculative, the anisotropy's mu_A, the solver's k_A switch) from the others.
+void resolve_sim_options(SimOptions& options);
+
+}  // namespace shellcontract

@@ -1,0 +1,451 @@
+#include "shellcontract/sim/option_table.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <utility>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/material/registry.hpp"
+
+namespace shellcontract {
+
+std::string shortest_text(double x) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+
+namespace {
+
+constexpr double INF = std::numeric_limits<double>::infinity();
+
+/// The bounds beyond which a run would take days rather than fail: they refuse a typo
+/// (--frames 1000000000), not a long run.
+constexpr int MAX_FRAMES = 1000000;
+constexpr int MAX_ITERATIONS = 100000;
+
+[[noreturn]] void bad(const std::string& name, const std::string& value, const std::string& range) {
+  throw UsageError("--" + name + ": '" + value + "' is not " + range);
+}
+
+/// A number and its accepted interval; open ends are exclusive.
+struct Interval {
+  double lo = -INF, hi = INF;
+  bool lo_open = false, hi_open = false;
+  std::string text;  ///< how --help and the error say it, e.g. "a number in (0, 1]"
+  bool contains(double x) const {
+    return std::isfinite(x) && (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+};
+
+Interval positive() { return {0.0, INF, true, false, "a finite number > 0"}; }
+Interval non_negative() { return {0.0, INF, false, false, "a finite number >= 0"}; }
+Interval between(double lo, double hi, bool lo_open, bool hi_open) {
+  std::ostringstream t;
+  t << "a number in " << (lo_open ? '(' : '[') << shortest_text(lo) << ", " << shortest_text(hi)
+    << (hi_open ? ')' : ']');
+  return {lo, hi, lo_open, hi_open, t.str()};
+}
+
+double parse_number(const std::string& name, const std::string& value, const Interval& range) {
+  const char* begin = value.c_str();
+  char* end = nullptr;
+  const double x = std::strtod(begin, &end);
+  if (value.empty() || end != begin + value.size() || !range.contains(x))
+    bad(name, value, range.text);
+  return x;
+}
+
+int parse_integer(const std::string& name, const std::string& value, long lo, long hi) {
+  const std::string range =
+      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  long x = 0;
+  const auto r = std::from_chars(value.data(), value.data() + value.size(), x);
+  if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size() || x < lo ||
+      x > hi)
+    bad(name, value, range);
+  return static_cast<int>(x);
+}
+
+bool parse_on_off(const std::string& name, const std::string& value) {
+  if (value == "on" || value == "true" || value == "1") return true;
+  if (value == "off" || value == "false" || value == "0") return false;
+  bad(name, value, "on or off");
+}
+
+std::string on_off(bool b) { return b ? "on" : "off"; }
+
+/// A choice between names; each table entry maps a name to a value of T.
+template <class T>
+using Choices = std::vector<std::pair<std::string, T>>;
+
+template <class T>
+std::string choices_text(const Choices<T>& choices) {
+  std::string s;
+  for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? " | " : "") + choices[i].first;
+  return s;
+}
+
+template <class T>
+T parse_choice(const std::string& name, const std::string& value, const Choices<T>& choices) {
+  for (const auto& [n, v] : choices)
+    if (n == value) return v;
+  bad(name, value, "one of " + choices_text(choices));
+}
+
+template <class T>
+std::string choice_name(const T& v, const Choices<T>& choices) {
+  for (const auto& [n, c] : choices)
+    if (c == v) return n;
+  return "?";
+}
+
+// ------------------------------------------------------------------------------- entry builders
+
+/// A double member reached by `field`.
+template <class Field>
+OptionSpec number(std::string name, char short_name, std::string value_name, std::string help,
+                  Interval range, Field field, std::vector<std::string> bad_examples = {}) {
+  OptionSpec o;
+  o.name = name;
+  o.short_name = short_name;
+  o.value_name = std::move(value_name);
+  o.help = std::move(help) + "; " + range.text;
+  o.set = [name, range, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_number(name, v, range);
+  };
+  o.get = [field](const RunOptions& r) { return shortest_text(field(const_cast<RunOptions&>(r))); };
+  o.bad_examples = {"nan", "inf", "-inf", "x"};
+  for (double edge : {range.lo, range.hi})
+    if (std::isfinite(edge)) {
+      const double outside = edge == range.lo ? (range.lo_open ? edge : edge - 1.0)
+                                              : (range.hi_open ? edge : edge + 1.0);
+      o.bad_examples.push_back(shortest_text(outside));
+    }
+  for (std::string& b : bad_examples) o.bad_examples.push_back(std::move(b));
+  return o;
+}
+
+template <class Field>
+OptionSpec integer(std::string name, char short_name, std::string value_name, std::string help,
+                   long lo, long hi, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.short_name = short_name;
+  o.value_name = std::move(value_name);
+  o.help =
+      std::move(help) + "; an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  o.set = [name, lo, hi, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_integer(name, v, lo, hi);
+  };
+  o.get = [field](const RunOptions& r) {
+    return std::to_string(field(const_cast<RunOptions&>(r)));
+  };
+  o.bad_examples = {std::to_string(lo - 1), std::to_string(hi + 1), "1.5", "x", ""};
+  return o;
+}
+
+template <class T, class Field>
+OptionSpec choice(std::string name, std::string help, Choices<T> choices, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.value_name = "NAME";
+  o.help = std::move(help) + "; " + choices_text(choices);
+  o.set = [name, choices, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_choice(name, v, choices);
+  };
+  o.get = [choices, field](const RunOptions& r) {
+    return choice_name(field(const_cast<RunOptions&>(r)), choices);
+  };
+  o.bad_examples = {"", "nonsense"};
+  return o;
+}
+
+template <class Field>
+OptionSpec on_off_option(std::string name, std::string help, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.value_name = "on|off";
+  o.help = std::move(help);
+  o.set = [name, field](RunOptions& r, const std::string& v) { field(r) = parse_on_off(name, v); };
+  o.get = [field](const RunOptions& r) { return on_off(field(const_cast<RunOptions&>(r))); };
+  o.bad_examples = {"", "maybe"};
+  return o;
+}
+
+template <class Field>
+OptionSpec flag(std::string name, std::string help, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.help = std::move(help);
+  o.is_switch = true;
+  o.set = [name, field](RunOptions& r, const std::string& v) { field(r) = parse_on_off(name, v); };
+  o.get = [field](const RunOptions& r) { return on_off(field(const_cast<RunOptions&>(r))); };
+  o.bad_examples = {"maybe"};
+  return o;
+}
+
+template <class Field>
+OptionSpec optional_number(std::string name, std::string value_name, std::string help,
+                           Interval range, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.value_name = std::move(value_name);
+  o.help = std::move(help) + "; " + range.text;
+  o.set = [name, range, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_number(name, v, range);
+  };
+  o.get = [field](const RunOptions& r) {
+    const auto& f = field(const_cast<RunOptions&>(r));
+    return f ? shortest_text(*f) : std::string();
+  };
+  o.bad_examples = {"nan", "inf", "0", "-1", "x"};
+  return o;
+}
+
+Choices<MaterialKind> material_choices() {
+  Choices<MaterialKind> c;
+  for (const std::string& n : material_names()) c.emplace_back(n, parse_material_kind(n));
+  return c;
+}
+
+Choices<AnisoKind> aniso_choices() {
+  Choices<AnisoKind> c;
+  for (const std::string& n : aniso_names()) c.emplace_back(n, parse_aniso_kind(n));
+  return c;
+}
+
+OptionSpec region_option() {
+  OptionSpec o;
+  o.name = "regions";
+  o.value_name = "auto|none|FILE";
+  o.help =
+      "faces of the local contraction: auto (spherical regions found by curvature), none, or a "
+      "file with one line per region of 0-based face ids";
+  o.set = [](RunOptions& r, const std::string& v) {
+    if (v.empty()) bad("regions", v, "auto, none or a file name");
+    r.regions = v == "auto"   ? RegionSource::Auto
+                : v == "none" ? RegionSource::None
+                              : RegionSource::File;
+    r.region_file = r.regions == RegionSource::File ? v : std::string();
+  };
+  o.get = [](const RunOptions& r) {
+    return r.regions == RegionSource::Auto   ? std::string("auto")
+           : r.regions == RegionSource::None ? std::string("none")
+                                             : r.region_file;
+  };
+  o.bad_examples = {""};
+  return o;
+}
+
+OptionSpec fiber_option() {
+  OptionSpec o;
+  o.name = "fiber";
+  o.value_name = "centre|X,Y,Z";
+  o.help =
+      "fibre direction of the regions: centre (toward the region's centre) or one nonzero "
+      "direction X,Y,Z";
+  o.set = [](RunOptions& r, const std::string& v) {
+    AnisotropyOptions& a = r.sim.anisotropy;
+    if (v == "centre") {
+      a.fiber_mode = FiberMode::TowardCentre;
+      return;
+    }
+    Vec3 d;
+    char c1 = 0, c2 = 0;
+    std::istringstream in(v);
+    if (!(in >> d.x() >> c1 >> d.y() >> c2 >> d.z()) || c1 != ',' || c2 != ',' ||
+        !(in >> std::ws).eof() || !d.allFinite() || d.norm() == 0.0)
+      bad("fiber", v, "'centre' or a nonzero finite direction X,Y,Z");
+    a.fiber_mode = FiberMode::User;
+    a.user_direction = d;
+  };
+  o.get = [](const RunOptions& r) {
+    const AnisotropyOptions& a = r.sim.anisotropy;
+    if (a.fiber_mode == FiberMode::TowardCentre) return std::string("centre");
+    return shortest_text(a.user_direction.x()) + "," + shortest_text(a.user_direction.y()) + "," +
+           shortest_text(a.user_direction.z());
+  };
+  o.bad_examples = {"0,0,0", "1,2", "nan,0,0", "up"};
+  return o;
+}
+
+std::vector<OptionSpec> build_table() {
+  using R = RunOptions;
+  std::vector<OptionSpec> t;
+  // ---- how much it contracts
+  t.push_back(number("pressure", 'p', "P",
+                     "outside over-pressure (normalized units; > 0 compresses, < 0 inflates)",
+                     between(-1e6, 1e6, false, false),
+                     [](R& r) -> double& { return r.sim.pressure; }));
+  t.push_back(number("target-volume", 0, "R",
+                     "drive V/V0 to R and hold it there (a global volume constraint); 0 = off, the "
+                     "pressure alone decides",
+                     between(0.0, 1.0, false, true),
+                     [](R& r) -> double& { return r.sim.target_volume; }));
+  t.push_back(integer("target-ramp", 0, "N", "frames over which the target volume is approached", 1,
+                      MAX_FRAMES, [](R& r) -> int& { return r.sim.target_ramp_frames; }));
+  t.push_back(number(
+      "stop-volume-ratio", 0, "E", "stop at the frame where V/V0 reaches E (0 = run all frames)",
+      between(0.0, 1.0, false, true), [](R& r) -> double& { return r.sim.stop_volume_ratio; }));
+  t.push_back(integer("frames", 'n', "N", "number of time steps", 0, MAX_FRAMES,
+                      [](R& r) -> int& { return r.sim.frames; }));
+  t.push_back(choice("pressure-model",
+                     "energy: f = -P dV/dx (no net force); paper: P * area * unit vertex normal",
+                     Choices<PressureModel>{{"energy", PressureModel::EnergyConsistent},
+                                            {"paper", PressureModel::Paper}},
+                     [](R& r) -> PressureModel& { return r.sim.pressure_model; }));
+  // ---- solver
+  t.push_back(number("dt", 0, "DT", "time step (normalized units)", between(0.0, 1.0, true, false),
+                     [](R& r) -> double& { return r.sim.dt; }));
+  t.push_back(integer("iterations", 0, "N", "Gauss-Seidel sweeps per step (paper: 5)", 0,
+                      MAX_ITERATIONS, [](R& r) -> int& { return r.sim.solver.iterations; }));
+  t.push_back(choice(
+      "solver",
+      "pbd: the paper's energy-as-constraint projection; xpbd: compliant, physical stiffness",
+      Choices<SolverKind>{{"pbd", SolverKind::Pbd}, {"xpbd", SolverKind::Xpbd}},
+      [](R& r) -> SolverKind& { return r.sim.solver.kind; }));
+  t.push_back(choice("order",
+                     "sequential: the paper's Gauss-Seidel order; coloured: parallel by colour, "
+                     "bit-identical for any thread count",
+                     Choices<ConstraintOrder>{{"sequential", ConstraintOrder::Sequential},
+                                              {"coloured", ConstraintOrder::Coloured}},
+                     [](R& r) -> ConstraintOrder& { return r.sim.solver.order; }));
+  t.push_back(
+      integer("threads", 0, "N",
+              "threads of the coloured order and of the collision handling (0 = all cores); "
+              "results do not depend on it",
+              0, 4096, [](R& r) -> int& { return r.sim.solver.threads; }));
+  t.push_back(
+      number("damping", 0, "D", "fraction of the velocity removed per step (the paper has none)",
+             between(0.0, 1.0, false, true), [](R& r) -> double& { return r.sim.damping; }));
+  // ---- material
+  t.push_back(choice("material", "membrane material", material_choices(),
+                     [](R& r) -> MaterialKind& { return r.sim.material; }));
+  t.push_back(number("mu", 0, "MU",
+                     "Lame mu (energy per normalized area); in pbd mode only lambda/mu matters",
+                     positive(), [](R& r) -> double& { return r.sim.material_params.mu; }));
+  t.push_back(number("lambda", 0, "LAMBDA", "plane-stress Lame lambda", non_negative(),
+                     [](R& r) -> double& { return r.sim.material_params.lambda; }));
+  t.push_back(number("c10", 0, "C10", "Mooney-Rivlin C10", positive(),
+                     [](R& r) -> double& { return r.sim.material_params.c10; }));
+  t.push_back(number("c01", 0, "C01", "Mooney-Rivlin C01", non_negative(),
+                     [](R& r) -> double& { return r.sim.material_params.c01; }));
+  t.push_back(optional_number("young", "E",
+                              "Young's modulus (with --thickness): sets mu and lambda", positive(),
+                              [](R& r) -> std::optional<double>& { return r.young; }));
+  t.push_back(number("poisson", 0, "NU", "Poisson ratio (with --young)",
+                     between(-1.0, 0.5, true, true), [](R& r) -> double& { return r.poisson; }));
+  t.push_back(optional_number("thickness", "H", "shell thickness (with --young; normalized units)",
+                              positive(),
+                              [](R& r) -> std::optional<double>& { return r.thickness; }));
+  t.push_back(choice("bending", "isometric (the paper's, flat rest) | dihedral (rest-aware) | none",
+                     Choices<BendingModel>{{"isometric", BendingModel::Isometric},
+                                           {"dihedral", BendingModel::Dihedral},
+                                           {"none", BendingModel::None}},
+                     [](R& r) -> BendingModel& { return r.sim.bending; }));
+  t.push_back(number("k-b", 0, "KB",
+                     "bending k_B: pbd correction multiplier (at most 1); xpbd energy scale",
+                     non_negative(), [](R& r) -> double& { return r.sim.solver.k_bending; }));
+  t.push_back(choice("mass", "area: lumped by rest area; unit: m = 1",
+                     Choices<MassModel>{{"area", MassModel::AreaLumped}, {"unit", MassModel::Unit}},
+                     [](R& r) -> MassModel& { return r.sim.mass; }));
+  t.push_back(number("density", 0, "RHO", "areal density rho_A", between(0.0, 1e12, true, false),
+                     [](R& r) -> double& { return r.sim.density; }));
+  // ---- local contraction
+  t.push_back(choice("aniso", "anisotropic energy on the regions", aniso_choices(),
+                     [](R& r) -> AnisoKind& { return r.sim.solver.aniso; }));
+  t.push_back(region_option());
+  t.push_back(number("k-a", 0, "KAPPA",
+                     "kappa_A: the inward term is k_A = kappa_A mu_A sqrt(face rest area)",
+                     non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
+  t.push_back(
+      choice("inward",
+             "inward term on the regions: projection (the paper's k_A, pbd) | force (local extra "
+             "pressure --region-pressure) | none",
+             Choices<InwardTerm>{{"projection", InwardTerm::Projection},
+                                 {"force", InwardTerm::Force},
+                                 {"none", InwardTerm::None}},
+             [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
+  t.push_back(number("region-pressure", 0, "PA",
+                     "extra pressure on the regions with --inward force (normalized units)",
+                     between(-1e6, 1e6, false, false),
+                     [](R& r) -> double& { return r.sim.region_pressure; }));
+  t.push_back(number("mu-a", 0, "MUA", "anisotropic fibre stiffness mu_A", non_negative(),
+                     [](R& r) -> double& { return r.sim.material_params.mu_aniso; }));
+  t.push_back(number("fiber-target", 0, "GAMMA", "active-fibre target stretch gamma",
+                     between(0.0, 1.0, true, false),
+                     [](R& r) -> double& { return r.sim.material_params.fiber_target; }));
+  t.push_back(fiber_option());
+  t.push_back(
+      flag("measure-regions",
+           "select the regions even without --aniso, to report how far they sink in (summary)",
+           [](R& r) -> bool& { return r.measure_regions; }));
+  t.push_back(flag("inversion-aware", "orientation s = sign(n . n_ref) for the anisotropic faces",
+                   [](R& r) -> bool& { return r.sim.solver.inversion_aware; }));
+  // ---- collisions and validation
+  t.push_back(
+      on_off_option("collisions",
+                    "on: continuous collision detection and response, the result never passes "
+                    "through itself; off: faster",
+                    [](R& r) -> bool& { return r.sim.collisions; }));
+  t.push_back(number(
+      "delta", 0, "DELTA",
+      "contact distance (normalized units); closer primitives are pushed apart to 2 delta",
+      between(0.0, 0.1, true, false), [](R& r) -> double& { return r.sim.collision.delta; }));
+  t.push_back(integer("collision-rounds", 0, "N",
+                      "detection/response rounds per step before the fail-safe", 0, 1000,
+                      [](R& r) -> int& { return r.sim.collision.rounds; }));
+  t.push_back(on_off_option(
+      "warm-start",
+      "on: push along the previous step's contacts before detection (resting contact); "
+      "off: every step's contacts come from detection alone",
+      [](R& r) -> bool& { return r.sim.collision.warm_start; }));
+  t.push_back(
+      choice("speculative-broad-phase",
+             "on: the broad phase starts on predicted positions on a spare thread while the solve "
+             "runs (the same candidate pairs); off: after the solve; auto: on with --order "
+             "sequential, off with --order coloured",
+             Choices<SpeculativeBroadPhase>{{"auto", SpeculativeBroadPhase::Auto},
+                                            {"on", SpeculativeBroadPhase::On},
+                                            {"off", SpeculativeBroadPhase::Off}},
+             [](R& r) -> SpeculativeBroadPhase& { return r.sim.speculative_broad_phase; }));
+  t.push_back(choice(
+      "validate", "CGAL self-intersection check of the result (exit code 4 if it finds new ones)",
+      Choices<ValidateMode>{{"off", ValidateMode::Off},
+                            {"end", ValidateMode::End},
+                            {"every-frame", ValidateMode::EveryFrame}},
+      [](R& r) -> ValidateMode& { return r.sim.validate; }));
+  return t;
+}
+
+std::string dashes(std::string name) {
+  for (char& c : name)
+    if (c == '_') c = '-';
+  return name;
+}
+
+}  // namespace
+
+const std::vector<OptionSpec>& run_option_table() {
+  static const std::vector<OptionSpec> table = build_table();
+  return table;
+}
+
+const OptionSpec* find_run_option(const std::string& name) {
+  const std::string key = dashes(name);
+  for (const OptionSpec& o : run_option_table())
+    if (o.name == key) return &o;
+  return nullptr;
+}
+
+void set_run_option(RunOptions& options, const std::string& name, const std::string& value) {
+  const OptionSpec* o = find_run_option(name);
+  if (!o) throw UsageError("unknown option '" + name + "'");
+  o->set(options, value);
+}
+
+}  // namespace shellcontract

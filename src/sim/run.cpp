@@ -1,0 +1,195 @@
+#include "shellcontract/sim/run.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+
+namespace shellcontract {
+
+int RunResult::exit_code() const {
+  switch (status) {
+    case RunStatus::Completed:
+      return static_cast<int>(ExitCode::Success);
+    case RunStatus::TargetNotReached:
+      return static_cast<int>(ExitCode::TargetNotReached);
+    case RunStatus::SimulationFailed:
+      return static_cast<int>(ExitCode::SimulationFailed);
+    case RunStatus::NewIntersections:
+      return static_cast<int>(ExitCode::NewSelfIntersections);
+    case RunStatus::Cancelled:
+      return static_cast<int>(ExitCode::Cancelled);
+  }
+  return static_cast<int>(ExitCode::SimulationFailed);
+}
+
+void ObserverList::warning(const std::string& text) {
+  for (RunObserver* o : observers_) o->warning(text);
+}
+void ObserverList::started(const Simulator& sim) {
+  for (RunObserver* o : observers_) o->started(sim);
+}
+void ObserverList::frame(const Simulator& sim, const FrameMetrics& m) {
+  for (RunObserver* o : observers_) o->frame(sim, m);
+}
+bool ObserverList::cancelled() {
+  bool any = false;
+  for (RunObserver* o : observers_) any = o->cancelled() || any;
+  return any;
+}
+void ObserverList::finished(const Simulator& sim, const RunResult& r) {
+  for (RunObserver* o : observers_) o->finished(sim, r);
+}
+
+std::vector<std::vector<int>> select_run_regions(const Mesh& mesh, const RunOptions& options) {
+  const SimOptions& s = options.sim;
+  const bool acted_on = s.solver.aniso != AnisoKind::None;
+  switch (options.regions) {
+    case RegionSource::None:
+      return {};
+    case RegionSource::File:
+      return read_region_file(options.region_file, mesh.number_of_faces());
+    case RegionSource::Auto:
+      if (!acted_on && !options.measure_regions) return {};
+      return regions_from_face_ids(
+          select_spherical_regions(mesh, positions_from_mesh(mesh), RegionOptions{}));
+  }
+  return {};
+}
+
+namespace {
+
+std::string ratio_text(double r) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4f", r);
+  return buf;
+}
+
+/// Tells the observer and keeps the warning for the summary.
+void warn(RunResult& r, RunObserver& o, const std::string& text) {
+  r.warnings.push_back(text);
+  o.warning(text);
+}
+
+}  // namespace
+
+RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer) {
+  RunObserver none;
+  RunObserver& obs = observer ? *observer : none;
+  RunResult r;
+  resolve_run_options(options);
+  SimOptions& s = options.sim;
+  s.anisotropy.regions = select_run_regions(mesh, options);
+  r.regions = s.anisotropy.regions.size();
+  if (s.solver.aniso != AnisoKind::None && r.regions == 0)
+    warn(r, obs,
+         "--aniso " + to_string(s.solver.aniso) +
+             " has no effect: no region was found (or given), so no face gets the anisotropic "
+             "energy");
+
+  Simulator sim(mesh, s);
+  const RestStateReport& rest = sim.rest_report();
+  if (rest.degenerate_faces > 0)
+    warn(r, obs,
+         std::to_string(rest.degenerate_faces) + " degenerate faces carry no membrane energy; " +
+             std::to_string(rest.inactive_hinges) + " hinges touching them are inactive");
+  if (rest.clamped_cotangents > 0)
+    warn(r, obs,
+         std::to_string(rest.clamped_cotangents) +
+             " rest angles below 1 or above 179 degrees: their bending cotangents were clamped "
+             "to +-cot(1 degree)");
+  obs.started(sim);
+
+  const auto start = std::chrono::steady_clock::now();
+  const bool has_target = s.target_volume > 0.0;
+  const bool has_stop = s.stop_volume_ratio > 0.0;
+  std::vector<double> history{1.0};  // V/V0 after each frame, frame 0 = the rest state
+  std::string stalled;
+  while (!sim.finished()) {
+    FrameMetrics m;
+    try {
+      m = sim.step();
+    } catch (const SimulationError& e) {
+      r.status = RunStatus::SimulationFailed;
+      r.message = e.what();
+      break;
+    }
+    r.min_volume_ratio = std::min(r.min_volume_ratio, m.volume_ratio);
+    r.totals.add(m);
+    if (m.new_intersections >= 0) r.new_intersections = m.new_intersections;
+    if (m.new_intersections > 0 && r.status == RunStatus::Completed) {
+      r.status = RunStatus::NewIntersections;
+      r.message = std::to_string(m.new_intersections) +
+                  " new self-intersecting face pairs at frame " + std::to_string(m.frame);
+    }
+    history.push_back(m.volume_ratio);
+    if (has_target && r.frame_target_reached < 0 && sim.volume_target(m.frame) == s.target_volume &&
+        std::abs(m.volume_ratio - s.target_volume) <= TARGET_VOLUME_TOLERANCE)
+      r.frame_target_reached = m.frame;
+    obs.frame(sim, m);
+    // Stall: the volume no longer moves while it is still off the target (or above the stop
+    // ratio); more frames would not get there.
+    if ((has_target || has_stop) && !sim.finished() &&
+        static_cast<int>(history.size()) > STALL_FRAMES) {
+      const double change = std::abs(m.volume_ratio - history[history.size() - 1 - STALL_FRAMES]);
+      const double goal = has_target ? sim.volume_target(m.frame) : s.stop_volume_ratio;
+      if (change < STALL_CHANGE && std::abs(m.volume_ratio - goal) > TARGET_VOLUME_TOLERANCE) {
+        stalled = "the volume stalled at V/V0 " + ratio_text(m.volume_ratio) + " (less than " +
+                  ratio_text(STALL_CHANGE) + " change over " + std::to_string(STALL_FRAMES) +
+                  " frames) at frame " + std::to_string(m.frame);
+        break;
+      }
+    }
+    if (obs.cancelled()) {
+      if (r.status == RunStatus::Completed) {
+        r.status = RunStatus::Cancelled;
+        r.message = "cancelled at frame " + std::to_string(m.frame);
+      }
+      break;
+    }
+  }
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // A run that ended early (stall, cancel) skipped the step's end-of-run validation.
+  if (s.validate == ValidateMode::End && r.new_intersections < 0) {
+    r.new_intersections = static_cast<long>(sim.count_new_intersections());
+    if (r.new_intersections > 0 && r.status == RunStatus::Completed) {
+      r.status = RunStatus::NewIntersections;
+      r.message =
+          std::to_string(r.new_intersections) + " new self-intersecting face pairs at the end";
+    }
+  }
+
+  r.frames_run = sim.frame();
+  r.final_volume_ratio = sim.volume_ratio();
+  if (has_stop) {
+    r.target_reached = sim.stop_volume_reached();
+    if (r.target_reached) r.frame_target_reached = sim.frame();
+  } else if (has_target) {
+    r.target_reached = std::abs(r.final_volume_ratio - s.target_volume) <= TARGET_VOLUME_TOLERANCE;
+  }
+  if (!r.target_reached && r.status == RunStatus::Completed) {
+    r.status = RunStatus::TargetNotReached;
+    const std::string what = has_target ? "target volume " : "stop volume ratio ";
+    const double goal = has_target ? s.target_volume : s.stop_volume_ratio;
+    r.message =
+        what + ratio_text(goal) + " not reached: " +
+        (stalled.empty() ? "the frames ran out at V/V0 " + ratio_text(r.final_volume_ratio) +
+                               " (frame " + std::to_string(r.frames_run) + ")"
+                         : stalled);
+  }
+  r.anisotropic_faces = sim.anisotropy_report().faces;
+  r.region_inward_displacement = sim.region_inward_displacement();
+  r.degenerate_faces = rest.degenerate_faces;
+  r.excluded_contact_pairs = sim.excluded_contact_pairs();
+  r.normalization_scale = sim.normalization().scale;
+  r.positions = sim.positions_in_input_units();
+  obs.finished(sim, r);
+  return r;
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,111 @@
+// The one table of run options (sim/option_table.hpp): every entry reads back its own default,
+// refuses values outside its range with a message naming it, and shows a clean default in --help.
+#include <gtest/gtest.h>
+
+#include <regex>
+#include <set>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/option_table.hpp"
+
+namespace shellcontract {
+namespace {
+
+TEST(OptionTable, NamesAreUniqueAndFindableWithUnderscores) {
+  std::set<std::string> names;
+  for (const OptionSpec& o : run_option_table()) {
+    EXPECT_TRUE(names.insert(o.name).second) << o.name;
+    EXPECT_FALSE(o.help.empty()) << o.name;
+    std::string python = o.name;
+    for (char& c : python)
+      if (c == '-') c = '_';
+    EXPECT_EQ(find_run_option(python), &o);
+  }
+  EXPECT_EQ(find_run_option("no-such-option"), nullptr);
+  RunOptions r;
+  EXPECT_THROW(set_run_option(r, "no-such-option", "1"), UsageError);
+}
+
+TEST(OptionTable, EveryDefaultReadsBackUnchanged) {
+  const RunOptions defaults;
+  for (const OptionSpec& o : run_option_table()) {
+    const std::string text = o.get(defaults);
+    if (text.empty()) continue;  // an optional value with no default (--young)
+    RunOptions r;
+    ASSERT_NO_THROW(o.set(r, text)) << o.name << " = " << text;
+    EXPECT_EQ(o.get(r), text) << o.name;
+  }
+}
+
+TEST(OptionTable, DefaultsAreShownWithoutBinaryNoise) {
+  // 0.3, not 0.29999999999999999: no run of five or more equal digits after a point.
+  const std::regex noise("\\.[0-9]*(0{5}|9{5})[0-9]");
+  const RunOptions defaults;
+  for (const OptionSpec& o : run_option_table())
+    EXPECT_FALSE(std::regex_search(o.get(defaults), noise)) << o.name << " = " << o.get(defaults);
+  EXPECT_EQ(shortest_text(0.3), "0.3");
+  EXPECT_EQ(shortest_text(1e-4), "0.0001");
+  EXPECT_EQ(std::stod(shortest_text(0.1 + 0.2)), 0.1 + 0.2);
+}
+
+TEST(OptionTable, EveryOptionRefusesValuesOutsideItsRange) {
+  for (const OptionSpec& o : run_option_table()) {
+    ASSERT_FALSE(o.bad_examples.empty()) << o.name << " has no example of a bad value";
+    for (const std::string& bad : o.bad_examples) {
+      RunOptions r;
+      try {
+        o.set(r, bad);
+        ADD_FAILURE() << "--" << o.name << " accepted '" << bad << "'";
+      } catch (const UsageError& e) {
+        EXPECT_NE(std::string(e.what()).find("--" + o.name), std::string::npos) << e.what();
+      }
+    }
+  }
+}
+
+TEST(OptionTable, RangesFromTheIssue) {
+  // Values that were accepted silently before the table (issue 30): each must be refused.
+  const std::vector<std::pair<std::string, std::string>> refused = {{"mu", "nan"},
+                                                                    {"lambda", "nan"},
+                                                                    {"mu", "-1"},
+                                                                    {"c10", "nan"},
+                                                                    {"density", "inf"},
+                                                                    {"mu-a", "nan"},
+                                                                    {"k-a", "nan"},
+                                                                    {"fiber-target", "0"},
+                                                                    {"fiber-target", "2"},
+                                                                    {"iterations", "1000000000"},
+                                                                    {"frames", "1000000000"},
+                                                                    {"target-volume", "1"},
+                                                                    {"target-volume", "-0.5"},
+                                                                    {"pressure", "nan"},
+                                                                    {"dt", "0"},
+                                                                    {"damping", "1"}};
+  for (const auto& [name, value] : refused) {
+    RunOptions r;
+    EXPECT_THROW(set_run_option(r, name, value), UsageError) << name << " " << value;
+  }
+}
+
+TEST(OptionTable, CrossChecksAreResolvedOnce) {
+  RunOptions r;
+  set_run_option(r, "young", "1000");
+  EXPECT_THROW(resolve_run_options(r), UsageError);  // --young without --thickness
+  set_run_option(r, "thickness", "0.01");
+  EXPECT_THROW(set_run_option(r, "poisson", "0.5"), UsageError);
+  set_run_option(r, "poisson", "0.25");
+  resolve_run_options(r);
+  EXPECT_DOUBLE_EQ(r.sim.material_params.mu, 1000 * 0.01 / (2 * 1.25));
+  RunOptions both;
+  set_run_option(both, "target-volume", "0.5");
+  set_run_option(both, "stop-volume-ratio", "0.5");
+  EXPECT_THROW(resolve_run_options(both), UsageError);
+  RunOptions stiff;
+  set_run_option(stiff, "k-b", "2");
+  EXPECT_THROW(resolve_run_options(stiff), UsageError);  // pbd: a multiplier in [0, 1]
+  set_run_option(stiff, "solver", "xpbd");
+  EXPECT_NO_THROW(resolve_run_options(stiff));
+}
+
+}  // namespace
+}  // namespace shellcontract

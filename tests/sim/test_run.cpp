@@ -1,0 +1,162 @@
+// The library's run entry point (sim/run.hpp): target volume reached and held, stop ratio and
+// stall handling, the observer's view of the run, cancellation, exit codes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/sim/run.hpp"
+#include "support/cgal_mesh.hpp"
+
+namespace shellcontract {
+namespace {
+
+Mesh sphere(int level = 2) { return test::to_surface_mesh(test::icosphere(level)); }
+
+/// Records what the run shows it.
+struct Recorder final : RunObserver {
+  int started = 0, finished = 0;
+  std::vector<int> frames;
+  std::vector<double> ratios;
+  std::vector<std::string> warnings;
+  int cancel_at = -1;
+  void warning(const std::string& w) override { warnings.push_back(w); }
+  void started(const Simulator& sim) override {
+    ++started;
+    EXPECT_EQ(sim.frame(), 0);
+  }
+  void frame(const Simulator&, const FrameMetrics& m) override {
+    frames.push_back(m.frame);
+    ratios.push_back(m.volume_ratio);
+  }
+  bool cancelled() override {
+    return cancel_at >= 0 && static_cast<int>(frames.size()) >= cancel_at;
+  }
+  void finished(const Simulator&, const RunResult&) override { ++finished; }
+};
+
+TEST(Run, TargetVolumeIsReachedAndHeldOnASphere) {
+  for (double target : {0.9, 0.5}) {
+    RunOptions o;
+    o.sim.frames = 120;
+    o.sim.target_volume = target;
+    o.sim.target_ramp_frames = 40;
+    Recorder rec;
+    const RunResult r = run_contraction(sphere(3), o, &rec);
+    EXPECT_EQ(r.status, RunStatus::Completed) << r.message;
+    EXPECT_TRUE(r.target_reached);
+    EXPECT_EQ(r.exit_code(), 0);
+    ASSERT_EQ(rec.ratios.size(), 120u);
+    // Held over the last half, after the ramp, within the documented tolerance.
+    for (std::size_t i = 60; i < rec.ratios.size(); ++i)
+      EXPECT_NEAR(rec.ratios[i], target, TARGET_VOLUME_TOLERANCE) << "frame " << i + 1;
+    EXPECT_GE(r.frame_target_reached, 40);
+    EXPECT_LE(r.frame_target_reached, 60);
+  }
+}
+
+TEST(Run, TargetVolumeOverridesAPressureThatWouldCrushTheShell) {
+  // Without the constraint, P = 20 takes the sphere far below 0.7 in 80 frames; with it, V/V0
+  // holds at 0.7.
+  RunOptions free;
+  free.sim.frames = 80;
+  free.sim.pressure = 20.0;
+  free.sim.collisions = false;
+  const RunResult crushed = run_contraction(sphere(2), free);
+  ASSERT_LT(crushed.final_volume_ratio, 0.6);
+  RunOptions held = free;
+  held.sim.target_volume = 0.7;
+  const RunResult r = run_contraction(sphere(2), held);
+  EXPECT_NEAR(r.final_volume_ratio, 0.7, TARGET_VOLUME_TOLERANCE);
+  EXPECT_EQ(r.status, RunStatus::Completed);
+}
+
+TEST(Run, StopRatioEndsAtTheCrossingFrame) {
+  RunOptions o;
+  o.sim.frames = 2000;
+  o.sim.pressure = 3.0;
+  o.sim.stop_volume_ratio = 0.8;
+  const RunResult r = run_contraction(sphere(3), o);
+  EXPECT_EQ(r.status, RunStatus::Completed) << r.message;
+  EXPECT_NEAR(r.final_volume_ratio, 0.8, 0.002);
+  EXPECT_EQ(r.frame_target_reached, r.frames_run);
+  EXPECT_LT(r.frames_run, 2000);
+}
+
+TEST(Run, AStalledVolumeStopsTheRunWithExitCode5) {
+  // No pressure: the volume never moves toward the stop ratio, so the run stops once it has
+  // stalled for STALL_FRAMES frames instead of running all 1000.
+  RunOptions o;
+  o.sim.frames = 1000;
+  o.sim.pressure = 0.0;
+  o.sim.bending = BendingModel::None;  // the flat-rest bending would inflate the curved shell
+  o.sim.stop_volume_ratio = 0.5;
+  Recorder rec;
+  const RunResult r = run_contraction(sphere(2), o, &rec);
+  EXPECT_EQ(r.status, RunStatus::TargetNotReached);
+  EXPECT_EQ(r.exit_code(), static_cast<int>(ExitCode::TargetNotReached));
+  EXPECT_EQ(r.exit_code(), 5);
+  EXPECT_FALSE(r.target_reached);
+  EXPECT_EQ(r.frames_run, STALL_FRAMES + 1);
+  EXPECT_NE(r.message.find("stalled"), std::string::npos) << r.message;
+  EXPECT_EQ(rec.finished, 1);
+}
+
+TEST(Run, FramesRunningOutBeforeTheStopRatioIsReported) {
+  RunOptions o;
+  o.sim.frames = 5;
+  o.sim.pressure = 1.0;
+  o.sim.stop_volume_ratio = 0.5;
+  const RunResult r = run_contraction(sphere(2), o);
+  EXPECT_EQ(r.status, RunStatus::TargetNotReached);
+  EXPECT_NE(r.message.find("frames ran out"), std::string::npos) << r.message;
+  EXPECT_EQ(r.frames_run, 5);
+}
+
+TEST(Run, ObserverSeesEveryFrameAndCanCancel) {
+  RunOptions o;
+  o.sim.frames = 12;
+  Recorder all;
+  const RunResult r = run_contraction(sphere(2), o, &all);
+  EXPECT_EQ(all.started, 1);
+  EXPECT_EQ(all.finished, 1);
+  ASSERT_EQ(all.frames.size(), 12u);
+  for (int i = 0; i < 12; ++i) EXPECT_EQ(all.frames[static_cast<std::size_t>(i)], i + 1);
+  EXPECT_EQ(r.final_volume_ratio, all.ratios.back());
+
+  Recorder cancel;
+  cancel.cancel_at = 4;
+  const RunResult c = run_contraction(sphere(2), o, &cancel);
+  EXPECT_EQ(c.status, RunStatus::Cancelled);
+  EXPECT_EQ(c.frames_run, 4);
+  EXPECT_EQ(c.exit_code(), static_cast<int>(ExitCode::Cancelled));
+}
+
+TEST(Run, ResultEqualsTheSimulatorStepByStep) {
+  // The entry point adds no physics of its own: the same positions as a bare Simulator loop.
+  RunOptions o;
+  o.sim.frames = 15;
+  resolve_run_options(o);
+  const Mesh mesh = sphere(2);
+  Simulator sim(mesh, o.sim);
+  while (!sim.finished()) sim.step();
+  const RunResult r = run_contraction(mesh, o);
+  EXPECT_EQ(r.positions, sim.positions_in_input_units());
+}
+
+TEST(Run, AnisoWithoutRegionsWarns) {
+  RunOptions o;
+  o.sim.frames = 2;
+  set_run_option(o, "aniso", "arap");
+  set_run_option(o, "regions", "none");
+  Recorder rec;
+  const RunResult r = run_contraction(sphere(2), o, &rec);
+  ASSERT_EQ(rec.warnings.size(), 1u);
+  EXPECT_NE(rec.warnings[0].find("no effect"), std::string::npos);
+  EXPECT_EQ(r.warnings, rec.warnings);
+}
+
+}  // namespace
+}  // namespace shellcontract

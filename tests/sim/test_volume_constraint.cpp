@@ -1,0 +1,84 @@
+// The global volume constraint of target-volume runs (docs/math/volume-control.md): its volume
+// against CGAL's and the sphere's closed form, its gradient against finite differences, the
+// projection, the ramp.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/sim/volume_constraint.hpp"
+#include "shellcontract/validation/volume.hpp"
+#include "support/cgal_mesh.hpp"
+#include "support/mesh_fixtures.hpp"
+
+namespace shellcontract {
+namespace {
+
+TEST(VolumeConstraint, VolumeEqualsCgalAndTendsToTheSphere) {
+  for (int level : {1, 3}) {
+    const test::TriMesh m = test::icosphere(level, 2.0);
+    const Mesh mesh = test::to_surface_mesh(m);
+    EXPECT_NEAR(signed_volume(m.x, m.faces), enclosed_volume(mesh, m.x), 1e-12);
+  }
+  // An inscribed polyhedron is smaller than the ball, and close to it at level 4.
+  const test::TriMesh fine = test::icosphere(4, 2.0);
+  const double ball = 4.0 / 3.0 * M_PI * 8.0;
+  EXPECT_LT(signed_volume(fine.x, fine.faces), ball);
+  EXPECT_NEAR(signed_volume(fine.x, fine.faces) / ball, 1.0, 0.01);
+}
+
+TEST(VolumeConstraint, GradientMatchesFiniteDifferences) {
+  test::TriMesh m = test::icosphere(1);
+  // An irregular shape, so that no symmetry hides a wrong term.
+  for (Eigen::Index i = 0; i < m.x.rows(); ++i) m.x.row(i) *= 1.0 + 0.1 * std::sin(3.0 * i);
+  Positions g;
+  volume_gradient(m.x, m.faces, g);
+  const double h = 1e-6;
+  for (Eigen::Index i = 0; i < m.x.rows(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      Positions xp = m.x, xm = m.x;
+      xp(i, k) += h;
+      xm(i, k) -= h;
+      const double fd = (signed_volume(xp, m.faces) - signed_volume(xm, m.faces)) / (2 * h);
+      EXPECT_NEAR(g(i, k), fd, 1e-8) << "vertex " << i << " axis " << k;
+    }
+}
+
+TEST(VolumeConstraint, ProjectionReachesTheTargetAndMovesByTheWeights) {
+  const test::TriMesh m = test::icosphere(2);
+  const double v0 = signed_volume(m.x, m.faces);
+  Eigen::VectorXd w = Eigen::VectorXd::Ones(m.x.rows());
+  w(0) = 0.0;  // a fixed vertex
+  Positions x = m.x;
+  const int steps = project_volume(x, m.faces, w, 0.6 * v0, 1e-13 * v0);
+  EXPECT_GT(steps, 1) << "a cubic constraint needs more than one linear step for a 40% change";
+  EXPECT_NEAR(signed_volume(x, m.faces), 0.6 * v0, 1e-12 * v0);
+  EXPECT_EQ(x.row(0), m.x.row(0));
+  // Every other vertex moved inward, along its direction (the gradient is the vertex normal).
+  for (Eigen::Index i = 1; i < x.rows(); ++i) {
+    EXPECT_LT(x.row(i).norm(), 0.95 * m.x.row(i).norm()) << "vertex " << i;
+    EXPECT_NEAR(x.row(i).normalized().dot(m.x.row(i).normalized()), 1.0, 1e-3) << "vertex " << i;
+  }
+  // All weights zero: nothing can move, and nothing does.
+  Positions y = m.x;
+  project_volume(y, m.faces, Eigen::VectorXd::Zero(m.x.rows()), 0.5 * v0, 1e-12);
+  EXPECT_EQ(y, m.x);
+}
+
+TEST(VolumeConstraint, RampStartsAtV0EndsAtTheTargetAndIsMonotone) {
+  EXPECT_DOUBLE_EQ(target_volume_at(0, 100, 2.0, 0.5), 2.0);
+  EXPECT_DOUBLE_EQ(target_volume_at(100, 100, 2.0, 0.5), 1.0);
+  EXPECT_DOUBLE_EQ(target_volume_at(250, 100, 2.0, 0.5), 1.0);
+  EXPECT_DOUBLE_EQ(target_volume_at(50, 100, 2.0, 0.5), 1.5);  // smoothstep(1/2) = 1/2
+  for (int n = 0; n < 100; ++n)
+    EXPECT_GT(target_volume_at(n, 100, 1.0, 0.3), target_volume_at(n + 1, 100, 1.0, 0.3));
+  // Zero rate at both ends: the first and last steps are smaller than the middle one.
+  const auto change = [](int n) {
+    return target_volume_at(n, 100, 1.0, 0.3) - target_volume_at(n + 1, 100, 1.0, 0.3);
+  };
+  EXPECT_LT(change(0), 0.1 * change(50));
+  EXPECT_LT(change(99), 0.1 * change(50));
+}
+
+}  // namespace
+}  // namespace shellcontract
