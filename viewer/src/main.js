@@ -149,7 +149,7 @@ function setColour(i) {
     shell.geometry.setAttribute('color', colourAttributes[i]);
     m.vertexColors = true;
     const f = state.colourFields[i];
-    el('colour-note').textContent = `${f.name}: blue ${Number(f.low).toPrecision(3)}, red ${Number(f.high).toPrecision(3)} (2nd to 98th percentile, at frame 0)`;
+    el('colour-note').textContent = `${f.name}: blue ${Number(f.low).toPrecision(3)}, red ${Number(f.high).toPrecision(3)} (its 2nd to 98th percentile)`;
   } else {
     m.vertexColors = false;
     m.color.set(0xd8c8b0);
