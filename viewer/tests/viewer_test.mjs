@@ -1,9 +1,10 @@
 // Headless check of the viewer in Debian's Chromium (puppeteer-core; no browser is downloaded):
 // serves a run with scripts/view.py, then checks that the page loads with no console errors, that
 // the first and last frames look different, that the scrubber moves the mesh, that the plot holds
-// the CSV's V/V0 series, and that switching the colour field changes the picture.
-// Usage: node viewer/tests/viewer_test.mjs --glb RUN.glb --csv RUN.csv [--chromium PATH]
-//        [--screenshot OUT.png]
+// the CSV's V/V0 series (and, with --json, the summary's final and minimum V/V0), and that
+// switching the colour field changes the picture.
+// Usage: node viewer/tests/viewer_test.mjs --glb RUN.glb --csv RUN.csv [--json RUN.json]
+//        [--chromium PATH] [--screenshot OUT.png]
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -28,10 +29,10 @@ function check(ok, what) {
   if (!ok) failures.push(what);
 }
 
-/** Starts scripts/view.py on a free port; resolves to {server, url}. */
-function serve() {
+/** Starts scripts/view.py on a free port with the .glb and a log; resolves to {server, url}. */
+function serve(log) {
   return new Promise((resolve, reject) => {
-    const server = spawn('/usr/bin/python3', [path.join(repo, 'scripts', 'view.py'), args.glb, '--log', args.csv,
+    const server = spawn('/usr/bin/python3', [path.join(repo, 'scripts', 'view.py'), args.glb, '--log', log,
       '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
     let out = '';
     server.stdout.on('data', (d) => {
@@ -43,7 +44,8 @@ function serve() {
   });
 }
 
-const { server, url } = await serve();
+const { server, url } = await serve(args.csv);
+let jsonServer = null;
 console.log(`viewer at ${url}`);
 const profile = mkdtempSync(path.join(tmpdir(), 'shellcontract-chromium-'));
 const browser = await puppeteer.launch({
@@ -144,10 +146,23 @@ try {
     await page.screenshot({ path: args.screenshot });
     console.log(`screenshot: ${args.screenshot}`);
   }
+  // The JSON summary instead of the CSV: its final and minimum V/V0.
+  if (args.json) {
+    const served = await serve(args.json);
+    jsonServer = served.server;
+    await page.goto(served.url, { waitUntil: 'load' });
+    await page.waitForFunction(() => window.viewer && (window.viewer.ready || window.viewer.error), { timeout: 60000 });
+    const expected = JSON.parse(readFileSync(args.json, 'utf8'));
+    const summary = await page.evaluate(() => window.viewer.summary);
+    check(summary && summary.finalVolumeRatio === expected.final_volume_ratio &&
+          summary.minVolumeRatio === expected.min_volume_ratio,
+          `the summary's final and minimum V/V0 are the JSON's (${summary?.finalVolumeRatio}, ${summary?.minVolumeRatio})`);
+  }
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
 } finally {
   await browser.close();
   server.kill();
+  jsonServer?.kill();
   rmSync(profile, { recursive: true, force: true });
 }
 if (failures.length) {
