@@ -32,7 +32,9 @@ FieldColours field_colours(const Eigen::VectorXd& values) {
   out.high = percentile(v, 0.98);
   out.rgb.resize(values.size(), 3);
   for (Eigen::Index i = 0; i < values.size(); ++i) {
-    const double t = out.high > out.low ? std::clamp((values(i) - out.low) / (out.high - out.low), 0.0, 1.0) : 0.5;
+    const double t = out.high > out.low
+                         ? std::clamp((values(i) - out.low) / (out.high - out.low), 0.0, 1.0)
+                         : 0.5;
     // blue -> white over [0, 0.5], white -> red over [0.5, 1] (sRGB)
     const double r = t < 0.5 ? t / 0.5 : 1.0;
     const double g = t < 0.5 ? t / 0.5 : (1.0 - t) / 0.5;

@@ -30,25 +30,33 @@ int decimal_digits(int n) {
 std::string frame_file_name(const std::string& dir, const std::string& name, const std::string& ext,
                             int frame, int max_frame) {
   if (frame < 0 || frame > max_frame)
-    throw std::invalid_argument("frame_file_name: frame " + std::to_string(frame) + " outside [0, " +
-                                std::to_string(max_frame) + "]");
+    throw std::invalid_argument("frame_file_name: frame " + std::to_string(frame) +
+                                " outside [0, " + std::to_string(max_frame) + "]");
   std::string number = std::to_string(frame);
   number.insert(0, static_cast<std::size_t>(decimal_digits(max_frame)) - number.size(), '0');
   const std::string file = name + "_" + number + "." + ext;
   return dir.empty() ? file : (std::filesystem::path(dir) / file).string();
 }
 
-FrameSequenceWriter::FrameSequenceWriter(std::string dir, std::string name, std::string ext, const Mesh& mesh,
-                                         int max_frame, std::size_t queue_capacity)
-    : dir_(std::move(dir)), name_(std::move(name)), ext_(std::move(ext)), mesh_(mesh), max_frame_(max_frame),
+FrameSequenceWriter::FrameSequenceWriter(std::string dir, std::string name, std::string ext,
+                                         const Mesh& mesh, int max_frame,
+                                         std::size_t queue_capacity)
+    : dir_(std::move(dir)),
+      name_(std::move(name)),
+      ext_(std::move(ext)),
+      mesh_(mesh),
+      max_frame_(max_frame),
       capacity_(std::max<std::size_t>(queue_capacity, 1)) {
-  std::transform(ext_.begin(), ext_.end(), ext_.begin(), [](unsigned char c) { return std::tolower(c); });
+  std::transform(ext_.begin(), ext_.end(), ext_.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
   if (!ext_.empty() && ext_.front() == '.') ext_.erase(0, 1);
   if (ext_ != "off" && ext_ != "obj" && ext_ != "ply" && ext_ != "stl")
-    throw UsageError("frame sequence: unknown format '" + ext_ + "' (expected off, obj, ply or stl)");
+    throw UsageError("frame sequence: unknown format '" + ext_ +
+                     "' (expected off, obj, ply or stl)");
   if (max_frame_ < 0) throw std::invalid_argument("FrameSequenceWriter: max_frame < 0");
   if (mesh_.has_garbage())
-    throw std::invalid_argument("FrameSequenceWriter: the mesh has removed elements; call collect_garbage() first");
+    throw std::invalid_argument(
+        "FrameSequenceWriter: the mesh has removed elements; call collect_garbage() first");
   thread_ = std::thread([this] { work(); });
 }
 
@@ -67,11 +75,12 @@ std::string FrameSequenceWriter::file_name(int frame) const {
 void FrameSequenceWriter::write(int frame, const Positions& x_input_units) {
   const auto start = Clock::now();
   if (static_cast<std::size_t>(x_input_units.rows()) != mesh_.number_of_vertices())
-    throw std::invalid_argument("FrameSequenceWriter::write: " + std::to_string(x_input_units.rows()) +
-                                " position rows for " + std::to_string(mesh_.number_of_vertices()) + " vertices");
+    throw std::invalid_argument(
+        "FrameSequenceWriter::write: " + std::to_string(x_input_units.rows()) +
+        " position rows for " + std::to_string(mesh_.number_of_vertices()) + " vertices");
   if (frame < 0 || frame > max_frame_)
-    throw std::invalid_argument("FrameSequenceWriter::write: frame " + std::to_string(frame) + " outside [0, " +
-                                std::to_string(max_frame_) + "]");
+    throw std::invalid_argument("FrameSequenceWriter::write: frame " + std::to_string(frame) +
+                                " outside [0, " + std::to_string(max_frame_) + "]");
   Positions copy = x_input_units;  // outside the lock: the writer keeps going meanwhile
   std::unique_lock<std::mutex> lock(mutex_);
   if (stopping_) throw std::invalid_argument("FrameSequenceWriter::write after finish()");

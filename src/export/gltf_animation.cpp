@@ -1,13 +1,13 @@
 #include "shellcontract/export/gltf_animation.hpp"
 
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
 #include <sstream>
 #include <stdexcept>
-
-#include <tiny_gltf.h>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/export/field_colours.hpp"
@@ -22,9 +22,7 @@ using Floats3 = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
 /// Appends arrays to the model's one buffer and makes views and accessors on them.
 class BufferBuilder {
  public:
-  explicit BufferBuilder(tinygltf::Model& model) : model_(model) {
-    model_.buffers.resize(1);
-  }
+  explicit BufferBuilder(tinygltf::Model& model) : model_(model) { model_.buffers.resize(1); }
 
   /// A view on a copy of `bytes` bytes at `data` (4-byte aligned); target 0 means none.
   int add_view(const void* data, std::size_t bytes, int target) {
@@ -44,7 +42,8 @@ class BufferBuilder {
   /// A float VEC3 vertex attribute; with_bounds adds min/max (required for POSITION).
   int add_vec3(const Floats3& a, bool with_bounds) {
     tinygltf::Accessor acc;
-    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()), TINYGLTF_TARGET_ARRAY_BUFFER);
+    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
+                              TINYGLTF_TARGET_ARRAY_BUFFER);
     acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
     acc.count = static_cast<std::size_t>(a.rows());
     acc.type = TINYGLTF_TYPE_VEC3;
@@ -73,9 +72,11 @@ class BufferBuilder {
   /// Triangle indices as unsigned 32-bit integers.
   int add_indices(const Faces& faces) {
     std::vector<std::uint32_t> idx(static_cast<std::size_t>(faces.size()));
-    for (Eigen::Index i = 0; i < faces.size(); ++i) idx[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(faces.data()[i]);
+    for (Eigen::Index i = 0; i < faces.size(); ++i)
+      idx[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(faces.data()[i]);
     tinygltf::Accessor acc;
-    acc.bufferView = add_view(idx.data(), sizeof(std::uint32_t) * idx.size(), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    acc.bufferView = add_view(idx.data(), sizeof(std::uint32_t) * idx.size(),
+                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
     acc.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     acc.count = idx.size();
     acc.type = TINYGLTF_TYPE_SCALAR;
@@ -94,14 +95,17 @@ void check_input(const GltfAnimation& a) {
   if (a.frames.empty()) throw std::invalid_argument("write_gltf_animation: no frames");
   if (a.frame_numbers.size() != a.frames.size())
     throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.frame_numbers.size()) +
-                                " frame numbers for " + std::to_string(a.frames.size()) + " frames");
+                                " frame numbers for " + std::to_string(a.frames.size()) +
+                                " frames");
   const Eigen::Index nv = a.frames[0].rows();
   for (std::size_t k = 0; k < a.frames.size(); ++k) {
     if (a.frames[k].rows() != nv)
       throw std::invalid_argument("write_gltf_animation: frame " + std::to_string(k) + " has " +
-                                  std::to_string(a.frames[k].rows()) + " vertices, frame 0 has " + std::to_string(nv));
+                                  std::to_string(a.frames[k].rows()) + " vertices, frame 0 has " +
+                                  std::to_string(nv));
     if (!a.frames[k].allFinite())
-      throw std::invalid_argument("write_gltf_animation: frame " + std::to_string(a.frame_numbers[k]) +
+      throw std::invalid_argument("write_gltf_animation: frame " +
+                                  std::to_string(a.frame_numbers[k]) +
                                   " has a non-finite coordinate");
     if (k > 0 && a.frame_numbers[k] <= a.frame_numbers[k - 1])
       throw std::invalid_argument("write_gltf_animation: frame numbers must increase");
@@ -112,8 +116,10 @@ void check_input(const GltfAnimation& a) {
   for (const NamedVertexField& f : a.colour_fields)
     if (f.values.size() != nv)
       throw std::invalid_argument("write_gltf_animation: colour field '" + f.name + "' has " +
-                                  std::to_string(f.values.size()) + " values for " + std::to_string(nv) + " vertices");
-  if (!(a.seconds_per_frame > 0.0)) throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
+                                  std::to_string(f.values.size()) + " values for " +
+                                  std::to_string(nv) + " vertices");
+  if (!(a.seconds_per_frame > 0.0))
+    throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
 }
 
 tinygltf::Value string_array(const std::vector<std::string>& s) {
@@ -211,7 +217,8 @@ GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& a) 
     const std::size_t nk = a.frames.size(), nt = prim.targets.size();
     std::vector<float> times(nk), weights(nk * nt, 0.0f);
     for (std::size_t k = 0; k < nk; ++k) {
-      times[k] = static_cast<float>((a.frame_numbers[k] - a.frame_numbers[0]) * a.seconds_per_frame);
+      times[k] =
+          static_cast<float>((a.frame_numbers[k] - a.frame_numbers[0]) * a.seconds_per_frame);
       if (k > 0) weights[k * nt + (k - 1)] = 1.0f;
     }
     tinygltf::AnimationSampler sampler;

@@ -1,12 +1,12 @@
 // Helpers of the export tests: a scratch folder, a mesh read from meshes/, a fake contraction.
 #pragma once
 
+#include <unistd.h>
+
 #include <cmath>
 #include <filesystem>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
@@ -21,7 +21,8 @@ class ScratchDir {
   explicit ScratchDir(const std::string& tag) {
     static int n = 0;
     path_ = std::filesystem::temp_directory_path() /
-            ("shellcontract_test_export_" + tag + "_" + std::to_string(::getpid()) + "_" + std::to_string(n++));
+            ("shellcontract_test_export_" + tag + "_" + std::to_string(::getpid()) + "_" +
+             std::to_string(n++));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }

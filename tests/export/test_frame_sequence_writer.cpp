@@ -67,7 +67,8 @@ TEST_P(FrameSequenceWriterTest, WritesEveryQueuedFrameWithItsPositions) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, FrameSequenceWriterTest, ::testing::Values("off", "obj", "ply", "stl"));
+INSTANTIATE_TEST_SUITE_P(Formats, FrameSequenceWriterTest,
+                         ::testing::Values("off", "obj", "ply", "stl"));
 
 TEST(FrameSequenceWriter, SameFramesGiveByteIdenticalFiles) {
   test::ScratchDir a("same_a"), b("same_b");
@@ -79,8 +80,10 @@ TEST(FrameSequenceWriter, SameFramesGiveByteIdenticalFiles) {
     writer.finish();
   }
   for (int f = 0; f <= 3; ++f) {
-    std::ifstream fa(frame_file_name(a.str(), "m", "off", f, 3)), fb(frame_file_name(b.str(), "m", "off", f, 3));
-    const std::string sa((std::istreambuf_iterator<char>(fa)), {}), sb((std::istreambuf_iterator<char>(fb)), {});
+    std::ifstream fa(frame_file_name(a.str(), "m", "off", f, 3)),
+        fb(frame_file_name(b.str(), "m", "off", f, 3));
+    const std::string sa((std::istreambuf_iterator<char>(fa)), {}),
+        sb((std::istreambuf_iterator<char>(fb)), {});
     EXPECT_FALSE(sa.empty());
     EXPECT_EQ(sa, sb) << "frame " << f;
   }
@@ -96,7 +99,8 @@ TEST(FrameSequenceWriter, CallerCanChangeItsPositionsRightAfterWrite) {
   x.setConstant(1e9);  // the simulation moves on; the queued copy must not see it
   writer.write(1, x);
   writer.finish();
-  const Positions back = positions_from_mesh(read_input_mesh(frame_file_name(dir.str(), "m", "off", 0, 1)));
+  const Positions back =
+      positions_from_mesh(read_input_mesh(frame_file_name(dir.str(), "m", "off", 0, 1)));
   EXPECT_LE((back - original).cwiseAbs().maxCoeff(), 1e-14);
 }
 
@@ -126,9 +130,10 @@ TEST(FrameSequenceWriter, BearFramesCost) {
   const ExportStats s = writer.stats();
   EXPECT_EQ(s.frames_written, 11);
   std::cout << "bear OFF frames: " << s.frames_written << ", " << s.bytes / s.frames_written
-            << " bytes each; caller " << 1e3 * s.caller_seconds / s.frames_written << " ms, writer thread "
-            << 1e3 * s.writer_seconds / s.frames_written
-            << " ms per frame (the caller waits for queue room: this test makes frames faster than they are written)\n";
+            << " bytes each; caller " << 1e3 * s.caller_seconds / s.frames_written
+            << " ms, writer thread " << 1e3 * s.writer_seconds / s.frames_written
+            << " ms per frame (the caller waits for queue room: this test makes frames faster than "
+               "they are written)\n";
 }
 
 TEST(FrameSequenceWriter, RejectsBadArguments) {

@@ -1,6 +1,7 @@
 // write_gltf_animation: the .glb read back with tinygltf's own loader gives every frame's positions
 // (base + morph displacement) to float precision, unit normals, one keyframe per frame.
 #include <gtest/gtest.h>
+#include <tiny_gltf.h>
 
 #include <cmath>
 #include <cstring>
@@ -8,8 +9,6 @@
 #include <iostream>
 #include <string>
 #include <vector>
-
-#include <tiny_gltf.h>
 
 #include "export_fixtures.hpp"
 #include "shellcontract/core/error.hpp"
@@ -31,7 +30,10 @@ Floats read_floats(const tinygltf::Model& m, int index) {
   Floats out(static_cast<Eigen::Index>(acc.count), cols);
   const std::size_t bytes = sizeof(float) * acc.count * static_cast<std::size_t>(cols);
   EXPECT_LE(acc.byteOffset + bytes, view.byteLength);
-  std::memcpy(out.data(), m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset + acc.byteOffset, bytes);
+  std::memcpy(out.data(),
+              m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset +
+                  acc.byteOffset,
+              bytes);
   return out;
 }
 
@@ -83,9 +85,11 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
     ASSERT_EQ(acc.count, static_cast<std::size_t>(a.faces.size()));
     const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(acc.bufferView));
     std::vector<std::uint32_t> idx(acc.count);
-    std::memcpy(idx.data(), m.buffers[0].data.data() + view.byteOffset + acc.byteOffset, 4 * acc.count);
+    std::memcpy(idx.data(), m.buffers[0].data.data() + view.byteOffset + acc.byteOffset,
+                4 * acc.count);
     for (Eigen::Index i = 0; i < a.faces.size(); ++i)
-      ASSERT_EQ(idx[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(a.faces.data()[i])) << "index " << i;
+      ASSERT_EQ(idx[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(a.faces.data()[i]))
+          << "index " << i;
   }
 
   const Floats x0 = read_floats(m, p.attributes.at("POSITION"));
@@ -106,8 +110,10 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
     EXPECT_LE(err, tol) << "frame " << a.frame_numbers[k];
     const Positions expected_n = vertex_normals(a.frames[k], a.faces);
     for (Eigen::Index i = 0; i < nk_.rows(); ++i) {
-      ASSERT_NEAR(nk_.row(i).cast<double>().norm(), 1.0, 1e-5) << "frame " << a.frame_numbers[k] << " vertex " << i;
-      ASSERT_GT(nk_.row(i).cast<double>().dot(expected_n.row(i)), 1.0 - 1e-5) << "frame " << a.frame_numbers[k];
+      ASSERT_NEAR(nk_.row(i).cast<double>().norm(), 1.0, 1e-5)
+          << "frame " << a.frame_numbers[k] << " vertex " << i;
+      ASSERT_GT(nk_.row(i).cast<double>().dot(expected_n.row(i)), 1.0 - 1e-5)
+          << "frame " << a.frame_numbers[k];
     }
     if (k > 0) {  // outward: the normals point away from the centroid on this star-shaped mesh
       const Eigen::RowVector3d c = a.frames[k].colwise().mean();
@@ -121,16 +127,19 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
   ASSERT_EQ(anim.channels.size(), 1u);
   EXPECT_EQ(anim.channels[0].target_path, "weights");
   EXPECT_EQ(anim.channels[0].target_node, 0);
-  const tinygltf::AnimationSampler& s = anim.samplers.at(static_cast<std::size_t>(anim.channels[0].sampler));
+  const tinygltf::AnimationSampler& s =
+      anim.samplers.at(static_cast<std::size_t>(anim.channels[0].sampler));
   EXPECT_EQ(s.interpolation, "STEP");
   const Floats times = read_floats(m, s.input);
   const Floats weights = read_floats(m, s.output);
   ASSERT_EQ(static_cast<std::size_t>(times.rows()), nk);
   ASSERT_EQ(static_cast<std::size_t>(weights.rows()), nk * (nk - 1));
   for (std::size_t k = 0; k < nk; ++k) {
-    EXPECT_FLOAT_EQ(times(static_cast<Eigen::Index>(k)), static_cast<float>(a.frame_numbers[k] * 0.05));
+    EXPECT_FLOAT_EQ(times(static_cast<Eigen::Index>(k)),
+                    static_cast<float>(a.frame_numbers[k] * 0.05));
     for (std::size_t t = 0; t + 1 < nk; ++t)
-      EXPECT_EQ(weights(static_cast<Eigen::Index>(k * (nk - 1) + t)), (k > 0 && t == k - 1) ? 1.0f : 0.0f)
+      EXPECT_EQ(weights(static_cast<Eigen::Index>(k * (nk - 1) + t)),
+                (k > 0 && t == k - 1) ? 1.0f : 0.0f)
           << "keyframe " << k << " target " << t;
   }
 
@@ -138,7 +147,8 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
   const tinygltf::Value& extras = m.meshes[0].extras;
   ASSERT_TRUE(extras.Has("frame_numbers"));
   ASSERT_EQ(extras.Get("frame_numbers").ArrayLen(), nk);
-  EXPECT_EQ(extras.Get("frame_numbers").Get(static_cast<int>(nk - 1)).GetNumberAsInt(), a.frame_numbers.back());
+  EXPECT_EQ(extras.Get("frame_numbers").Get(static_cast<int>(nk - 1)).GetNumberAsInt(),
+            a.frame_numbers.back());
   ASSERT_EQ(extras.Get("colour_fields").ArrayLen(), 2u);
   EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("name").Get<std::string>(), "wave");
   EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("attribute").Get<std::string>(), "COLOR_1");
@@ -184,7 +194,8 @@ TEST(GltfAnimation, RejectsInconsistentInputAndUnwritablePaths) {
 // and two colour fields, under 30 MB. The size depends only on the counts (no compression).
 TEST(GltfAnimation, BearWithFiftyFramesIsUnder30MB) {
   const std::string bear = std::string(test::PAPER_MESH_DIR) + "/bear.off";
-  if (!std::filesystem::exists(bear)) GTEST_SKIP() << bear << " missing (scripts/fetch_paper_meshes.sh)";
+  if (!std::filesystem::exists(bear))
+    GTEST_SKIP() << bear << " missing (scripts/fetch_paper_meshes.sh)";
   const Mesh mesh = read_input_mesh(bear);
   const Positions x = positions_from_mesh(mesh);
   GltfAnimation a;

@@ -19,13 +19,15 @@ int main(int argc, char** argv) {
     for (int i = 2; i < argc; ++i) {
       const std::string arg = argv[i];
       const std::size_t colon = arg.find(':');
-      if (colon == std::string::npos) throw std::invalid_argument("expected FRAME:MESH, got '" + arg + "'");
+      if (colon == std::string::npos)
+        throw std::invalid_argument("expected FRAME:MESH, got '" + arg + "'");
       const Mesh mesh = read_input_mesh(arg.substr(colon + 1));
       if (i == 2) a.faces = test::faces_of(mesh);
       a.frame_numbers.push_back(std::stoi(arg.substr(0, colon)));
       a.frames.push_back(positions_from_mesh(mesh));
     }
-    a.colour_fields.push_back({"displacement_first_to_last", (a.frames.back() - a.frames.front()).rowwise().norm()});
+    a.colour_fields.push_back(
+        {"displacement_first_to_last", (a.frames.back() - a.frames.front()).rowwise().norm()});
     const GltfStats s = write_gltf_animation(argv[1], a);
     std::cout << argv[1] << ": " << a.frames.size() << " frames, " << s.bytes << " bytes\n";
   } catch (const std::exception& e) {

@@ -40,7 +40,8 @@ int main(int argc, char** argv) {
       const Positions y = test::fake_frame(x, f, frames);
       ratio = test::signed_volume(y, a.faces) / v0;
       min_ratio = std::min(min_ratio, ratio);
-      csv << f << ',' << 0.01 * f << ',' << ratio << ',' << (y - previous).rowwise().norm().maxCoeff() << '\n';
+      csv << f << ',' << 0.01 * f << ',' << ratio << ','
+          << (y - previous).rowwise().norm().maxCoeff() << '\n';
       previous = y;
       if (f % every == 0 || f == frames) {
         a.frame_numbers.push_back(f);
@@ -55,8 +56,9 @@ int main(int argc, char** argv) {
     if (!csv.flush()) throw std::runtime_error("cannot write " + out + ".csv");
     // The summary's fields that the viewer reads (the run's --summary has more).
     std::ofstream json(out + ".json");
-    json << std::setprecision(17) << "{\"frames_run\": " << frames << ", \"final_volume_ratio\": " << ratio
-         << ", \"min_volume_ratio\": " << min_ratio << "}\n";
+    json << std::setprecision(17) << "{\"frames_run\": " << frames
+         << ", \"final_volume_ratio\": " << ratio << ", \"min_volume_ratio\": " << min_ratio
+         << "}\n";
     if (!json.flush()) throw std::runtime_error("cannot write " + out + ".json");
     std::cout << out << ".glb: " << a.frames.size() << " keyframes, " << s.bytes << " bytes\n";
   } catch (const std::exception& e) {

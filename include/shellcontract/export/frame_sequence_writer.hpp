@@ -18,11 +18,11 @@ namespace shellcontract {
 
 /// What exporting cost; the CLI puts it in the run's summary.
 struct ExportStats {
-  int frames_written = 0;        ///< files completely written (renamed into place)
-  std::uint64_t bytes = 0;       ///< total size of those files
-  double caller_seconds = 0.0;   ///< time spent in write() by the calling (simulation) thread:
-                                 ///< copying the positions, enqueueing, waiting for queue room
-  double writer_seconds = 0.0;   ///< time the background thread spent formatting and writing
+  int frames_written = 0;       ///< files completely written (renamed into place)
+  std::uint64_t bytes = 0;      ///< total size of those files
+  double caller_seconds = 0.0;  ///< time spent in write() by the calling (simulation) thread:
+                                ///< copying the positions, enqueueing, waiting for queue room
+  double writer_seconds = 0.0;  ///< time the background thread spent formatting and writing
 };
 
 /// File name of one frame: `dir/<name>_<frame>.<ext>`, the frame number zero-padded to the
@@ -50,8 +50,8 @@ class FrameSequenceWriter {
   /// @param max_frame largest frame number that will be written; sets the zero-padding width
   /// @pre mesh is a triangle mesh without garbage
   /// @throws UsageError for an unknown extension
-  FrameSequenceWriter(std::string dir, std::string name, std::string ext, const Mesh& mesh, int max_frame,
-                      std::size_t queue_capacity = DEFAULT_QUEUE_CAPACITY);
+  FrameSequenceWriter(std::string dir, std::string name, std::string ext, const Mesh& mesh,
+                      int max_frame, std::size_t queue_capacity = DEFAULT_QUEUE_CAPACITY);
   /// Joins the thread; an error not collected by finish() is dropped.
   ~FrameSequenceWriter();
   FrameSequenceWriter(const FrameSequenceWriter&) = delete;

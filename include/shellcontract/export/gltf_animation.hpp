@@ -2,10 +2,9 @@
 // exported frame, played by a STEP animation of the morph weights.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "shellcontract/core/types.hpp"
 
@@ -19,9 +18,9 @@ struct NamedVertexField {
 
 /// Everything the .glb holds. Positions are in the input's units and orientation.
 struct GltfAnimation {
-  Faces faces;                      ///< #F by 3, counter-clockwise seen from outside
-  std::vector<int> frame_numbers;   ///< the run's frame number of each entry of `frames`, increasing
-  std::vector<Positions> frames;    ///< #V by 3 each; frames[0] is the base mesh
+  Faces faces;                     ///< #F by 3, counter-clockwise seen from outside
+  std::vector<int> frame_numbers;  ///< the run's frame number of each entry of `frames`, increasing
+  std::vector<Positions> frames;   ///< #V by 3 each; frames[0] is the base mesh
   double seconds_per_frame = 1.0 / 24.0;  ///< playback time between two consecutive run frames
                                           ///< (keyframe k is at (frame_numbers[k] -
                                           ///< frame_numbers[0]) * seconds_per_frame)
