@@ -146,6 +146,15 @@ try {
     await page.screenshot({ path: args.screenshot });
     console.log(`screenshot: ${args.screenshot}`);
   }
+  // The file picker: the same run opened through the page's <input type=file>.
+  await page.evaluate(() => { window.viewer.ready = false; window.viewer.log = null; });
+  await (await page.$('#file-input')).uploadFile(args.glb, args.csv);
+  await page.waitForFunction(() => window.viewer.ready && window.viewer.log, { timeout: 60000 });
+  const picked = await page.evaluate(() => ({
+    frames: window.viewer.frameNumbers.length, rows: window.viewer.log.frame.length }));
+  check(picked.frames === state0.frames.length && picked.rows === expectFrame.length,
+        `the file picker opens the .glb and the CSV (${picked.frames} frames, ${picked.rows} rows)`);
+
   // The JSON summary instead of the CSV: its final and minimum V/V0.
   if (args.json) {
     const served = await serve(args.json);
