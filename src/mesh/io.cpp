@@ -21,6 +21,7 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
@@ -34,6 +35,7 @@
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
@@ -578,49 +580,73 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
   const Eigen::Index nv = x.rows();
   const std::size_t nf = mesh.number_of_faces();
 
-  write_atomic(path, [&](std::ostream& out) {
-    if (ext == "off") {
-      out << "OFF\n" << nv << ' ' << nf << " 0\n";
-      for (Eigen::Index i = 0; i < nv; ++i) out << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << '\n';
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        out << "3 " << c[0] << ' ' << c[1] << ' ' << c[2] << '\n';
-      }
-    } else if (ext == "obj") {
-      out << "# written by shellcontract\n";
-      for (Eigen::Index i = 0; i < nv; ++i) out << "v " << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << '\n';
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        out << "f " << c[0] + 1 << ' ' << c[1] + 1 << ' ' << c[2] + 1 << '\n';  // OBJ counts from 1
-      }
-    } else if (ext == "ply") {
-      // Double properties: a float PLY would lose the positions' precision.
-      out << "ply\nformat ascii 1.0\ncomment written by shellcontract\nelement vertex " << nv
-          << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << nf
-          << "\nproperty list uchar int vertex_indices\nend_header\n";
-      for (Eigen::Index i = 0; i < nv; ++i) out << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << '\n';
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        out << "3 " << c[0] << ' ' << c[1] << ' ' << c[2] << '\n';
-      }
-    } else {
-      // ASCII STL has no shared vertices: readers merge equal points in order of first
-      // appearance, so faces keep their order but vertex numbering may not.
-      out << "solid shellcontract\n";
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        const Vec3 a = x.row(static_cast<Eigen::Index>(c[0])).transpose();
-        const Vec3 b = x.row(static_cast<Eigen::Index>(c[1])).transpose();
-        const Vec3 d = x.row(static_cast<Eigen::Index>(c[2])).transpose();
-        Vec3 n = (b - a).cross(d - a);
-        if (n.norm() > 0.0) n.normalize();
-        out << "facet normal " << n.x() << ' ' << n.y() << ' ' << n.z() << "\nouter loop\n";
-        for (const Vec3* p : {&a, &b, &d}) out << "vertex " << p->x() << ' ' << p->y() << ' ' << p->z() << '\n';
-        out << "endloop\nendfacet\n";
-      }
-      out << "endsolid shellcontract\n";
+  // Formatted with to_chars into one string per file and written at once: the same bytes as the
+  // stream at precision 17 (to_chars' general format with a precision is printf's %.17g, which
+  // is what the stream uses), several times faster, which matters for frame sequences.
+  std::string text;
+  text.reserve(static_cast<std::size_t>(nv) * 64 + nf * 24);
+  const auto put = [&text](auto value) {
+    char buf[32];
+    std::to_chars_result r;
+    if constexpr (std::is_floating_point_v<decltype(value)>)
+      r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
+    else
+      r = std::to_chars(buf, buf + sizeof buf, value);
+    text.append(buf, r.ptr);
+  };
+  const auto put3 = [&](const char* prefix, auto a, auto b, auto c) {
+    text += prefix;
+    put(a);
+    text += ' ';
+    put(b);
+    text += ' ';
+    put(c);
+    text += '\n';
+  };
+  const auto vertex_rows = [&](const char* prefix) {
+    for (Eigen::Index i = 0; i < nv; ++i) put3(prefix, x(i, 0), x(i, 1), x(i, 2));
+  };
+  const auto face_rows = [&](const char* prefix, std::size_t base) {
+    for (const FaceIndex f : mesh.faces()) {
+      const auto c = corners(mesh, f);
+      put3(prefix, c[0] + base, c[1] + base, c[2] + base);
     }
-  });
+  };
+
+  if (ext == "off") {
+    text += "OFF\n" + std::to_string(nv) + ' ' + std::to_string(nf) + " 0\n";
+    vertex_rows("");
+    face_rows("3 ", 0);
+  } else if (ext == "obj") {
+    text += "# written by shellcontract\n";
+    vertex_rows("v ");
+    face_rows("f ", 1);  // OBJ counts from 1
+  } else if (ext == "ply") {
+    // Double properties: a float PLY would lose the positions' precision.
+    text += "ply\nformat ascii 1.0\ncomment written by shellcontract\nelement vertex " + std::to_string(nv) +
+            "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(nf) +
+            "\nproperty list uchar int vertex_indices\nend_header\n";
+    vertex_rows("");
+    face_rows("3 ", 0);
+  } else {
+    // ASCII STL has no shared vertices: readers merge equal points in order of first
+    // appearance, so faces keep their order but vertex numbering may not.
+    text += "solid shellcontract\n";
+    for (const FaceIndex f : mesh.faces()) {
+      const auto c = corners(mesh, f);
+      const Vec3 a = x.row(static_cast<Eigen::Index>(c[0])).transpose();
+      const Vec3 b = x.row(static_cast<Eigen::Index>(c[1])).transpose();
+      const Vec3 d = x.row(static_cast<Eigen::Index>(c[2])).transpose();
+      Vec3 n = (b - a).cross(d - a);
+      if (n.norm() > 0.0) n.normalize();
+      put3("facet normal ", n.x(), n.y(), n.z());
+      text += "outer loop\n";
+      for (const Vec3* p : {&a, &b, &d}) put3("vertex ", p->x(), p->y(), p->z());
+      text += "endloop\nendfacet\n";
+    }
+    text += "endsolid shellcontract\n";
+  }
+  write_atomic(path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
 }
 
 void write_text_atomic(const std::string& path, const std::string& text) {

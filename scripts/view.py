@@ -1,0 +1,74 @@
+#!/usr/bin/python3
+"""Serves the viewer (viewer/) and a run's files on localhost and prints the URL to open.
+
+Usage: scripts/view.py RUN.glb [--log RUN.csv|RUN.json] [--port N] [--open]
+
+The page is viewer/index.html with ?file=/run/RUN.glb&log=/run/RUN.csv; only those files and
+the viewer folder are served, on 127.0.0.1. three.js is served from viewer/node_modules, which
+scripts/install_deps.sh installs (npm ci). Stop with Ctrl-C.
+"""
+import argparse
+import functools
+import http.server
+import os
+import sys
+import urllib.parse
+import webbrowser
+
+VIEWER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "viewer")
+
+
+class Handler(http.server.SimpleHTTPRequestHandler):
+    extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
+                      ".glb": "model/gltf-binary", ".js": "text/javascript", ".mjs": "text/javascript",
+                      ".csv": "text/csv", ".json": "application/json"}
+
+    def __init__(self, *args, run_files=None, **kwargs):
+        self.run_files = run_files or {}
+        super().__init__(*args, directory=VIEWER, **kwargs)
+
+    def translate_path(self, path):
+        p = urllib.parse.unquote(urllib.parse.urlsplit(path).path)
+        if p.startswith("/run/"):
+            return self.run_files.get(p[len("/run/"):], os.path.join(VIEWER, "__missing__"))
+        return super().translate_path(path)
+
+    def log_message(self, fmt, *args):  # quiet: errors only
+        if len(args) > 1 and str(args[1]).startswith(("4", "5")):
+            super().log_message(fmt, *args)
+
+
+def main():
+    ap = argparse.ArgumentParser(description="Serve the ShellContract viewer with a run's .glb")
+    ap.add_argument("glb", help="the run's animated glTF (shellcontract run ... --gltf RUN.glb)")
+    ap.add_argument("--log", help="the run's --log CSV or --summary JSON, for the V/V0 plot")
+    ap.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: any free port)")
+    ap.add_argument("--open", action="store_true", help="also open the page in the default browser")
+    args = ap.parse_args()
+
+    if not os.path.isdir(os.path.join(VIEWER, "node_modules", "three")):
+        sys.exit("view.py: viewer/node_modules is missing; run scripts/install_deps.sh (or npm ci in viewer/)")
+    run_files, query = {}, {}
+    for key, path in (("file", args.glb), ("log", args.log)):
+        if path is None:
+            continue
+        if not os.path.isfile(path):
+            sys.exit(f"view.py: no such file: {path}")
+        name = os.path.basename(path)
+        run_files[name] = os.path.abspath(path)
+        query[key] = "/run/" + urllib.parse.quote(name)
+
+    handler = functools.partial(Handler, run_files=run_files)
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), handler)
+    url = f"http://127.0.0.1:{server.server_address[1]}/index.html?" + urllib.parse.urlencode(query, safe="/")
+    print(url, flush=True)
+    if args.open:
+        webbrowser.open(url)
+    try:
+        server.serve_forever()
+    except KeyboardInterrupt:
+        pass
+
+
+if __name__ == "__main__":
+    main()

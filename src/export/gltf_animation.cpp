@@ -1,0 +1,252 @@
+#include "shellcontract/export/gltf_animation.hpp"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/export/field_colours.hpp"
+#include "shellcontract/mesh/io.hpp"
+
+namespace shellcontract {
+
+namespace {
+
+using Floats3 = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// Appends arrays to the model's one buffer and makes views and accessors on them.
+class BufferBuilder {
+ public:
+  explicit BufferBuilder(tinygltf::Model& model) : model_(model) { model_.buffers.resize(1); }
+
+  /// A view on a copy of `bytes` bytes at `data` (4-byte aligned); target 0 means none.
+  int add_view(const void* data, std::size_t bytes, int target) {
+    std::vector<unsigned char>& buf = model_.buffers[0].data;
+    while (buf.size() % 4 != 0) buf.push_back(0);
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = buf.size();
+    view.byteLength = bytes;
+    view.target = target;
+    const auto* p = static_cast<const unsigned char*>(data);
+    buf.insert(buf.end(), p, p + bytes);
+    model_.bufferViews.push_back(view);
+    return static_cast<int>(model_.bufferViews.size()) - 1;
+  }
+
+  /// A float VEC3 vertex attribute; with_bounds adds min/max (required for POSITION).
+  int add_vec3(const Floats3& a, bool with_bounds) {
+    tinygltf::Accessor acc;
+    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
+                              TINYGLTF_TARGET_ARRAY_BUFFER);
+    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    acc.count = static_cast<std::size_t>(a.rows());
+    acc.type = TINYGLTF_TYPE_VEC3;
+    if (with_bounds) {
+      const Eigen::RowVector3f lo = a.colwise().minCoeff(), hi = a.colwise().maxCoeff();
+      acc.minValues = {lo(0), lo(1), lo(2)};
+      acc.maxValues = {hi(0), hi(1), hi(2)};
+    }
+    return push(acc);
+  }
+
+  /// A float SCALAR array (animation keys and weights); with_bounds adds min/max.
+  int add_scalars(const std::vector<float>& a, bool with_bounds) {
+    tinygltf::Accessor acc;
+    acc.bufferView = add_view(a.data(), sizeof(float) * a.size(), 0);
+    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    acc.count = a.size();
+    acc.type = TINYGLTF_TYPE_SCALAR;
+    if (with_bounds) {
+      acc.minValues = {*std::min_element(a.begin(), a.end())};
+      acc.maxValues = {*std::max_element(a.begin(), a.end())};
+    }
+    return push(acc);
+  }
+
+  /// Triangle indices as unsigned 32-bit integers.
+  int add_indices(const Faces& faces) {
+    std::vector<std::uint32_t> idx(static_cast<std::size_t>(faces.size()));
+    for (Eigen::Index i = 0; i < faces.size(); ++i)
+      idx[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(faces.data()[i]);
+    tinygltf::Accessor acc;
+    acc.bufferView = add_view(idx.data(), sizeof(std::uint32_t) * idx.size(),
+                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    acc.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    acc.count = idx.size();
+    acc.type = TINYGLTF_TYPE_SCALAR;
+    return push(acc);
+  }
+
+ private:
+  int push(const tinygltf::Accessor& acc) {
+    model_.accessors.push_back(acc);
+    return static_cast<int>(model_.accessors.size()) - 1;
+  }
+  tinygltf::Model& model_;
+};
+
+void check_input(const GltfAnimation& a) {
+  if (a.frames.empty()) throw std::invalid_argument("write_gltf_animation: no frames");
+  if (a.frame_numbers.size() != a.frames.size())
+    throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.frame_numbers.size()) +
+                                " frame numbers for " + std::to_string(a.frames.size()) +
+                                " frames");
+  const Eigen::Index nv = a.frames[0].rows();
+  for (std::size_t k = 0; k < a.frames.size(); ++k) {
+    if (a.frames[k].rows() != nv)
+      throw std::invalid_argument("write_gltf_animation: frame " + std::to_string(k) + " has " +
+                                  std::to_string(a.frames[k].rows()) + " vertices, frame 0 has " +
+                                  std::to_string(nv));
+    if (!a.frames[k].allFinite())
+      throw std::invalid_argument("write_gltf_animation: frame " +
+                                  std::to_string(a.frame_numbers[k]) +
+                                  " has a non-finite coordinate");
+    if (k > 0 && a.frame_numbers[k] <= a.frame_numbers[k - 1])
+      throw std::invalid_argument("write_gltf_animation: frame numbers must increase");
+  }
+  if (a.faces.rows() == 0) throw std::invalid_argument("write_gltf_animation: no faces");
+  if (a.faces.minCoeff() < 0 || a.faces.maxCoeff() >= nv)
+    throw std::invalid_argument("write_gltf_animation: a face index is out of range");
+  for (const NamedVertexField& f : a.colour_fields)
+    if (f.values.size() != nv)
+      throw std::invalid_argument("write_gltf_animation: colour field '" + f.name + "' has " +
+                                  std::to_string(f.values.size()) + " values for " +
+                                  std::to_string(nv) + " vertices");
+  if (!(a.seconds_per_frame > 0.0))
+    throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
+}
+
+tinygltf::Value string_array(const std::vector<std::string>& s) {
+  tinygltf::Value::Array a;
+  for (const std::string& x : s) a.emplace_back(x);
+  return tinygltf::Value(a);
+}
+
+}  // namespace
+
+Positions vertex_normals(const Positions& x, const Faces& faces) {
+  Positions n = Positions::Zero(x.rows(), 3);
+  for (Eigen::Index j = 0; j < faces.rows(); ++j) {
+    const Vec3 a = x.row(faces(j, 0)), b = x.row(faces(j, 1)), c = x.row(faces(j, 2));
+    const Vec3 w = (b - a).cross(c - a);  // twice the area times the unit normal
+    for (int k = 0; k < 3; ++k) n.row(faces(j, k)) += w.transpose();
+  }
+  for (Eigen::Index i = 0; i < n.rows(); ++i) {
+    const double len = n.row(i).norm();
+    if (len > 0.0 && std::isfinite(len))
+      n.row(i) /= len;
+    else
+      n.row(i) << 0.0, 0.0, 1.0;
+  }
+  return n;
+}
+
+GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& a) {
+  check_input(a);
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "shellcontract";
+  BufferBuilder bb(model);
+
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.indices = bb.add_indices(a.faces);
+  const Floats3 x0 = a.frames[0].cast<float>();
+  const Positions x0_stored = x0.cast<double>();  // what a reader gets for frame 0
+  const Positions n0 = vertex_normals(a.frames[0], a.faces);
+  prim.attributes["POSITION"] = bb.add_vec3(x0, true);
+  prim.attributes["NORMAL"] = bb.add_vec3(n0.cast<float>(), false);
+
+  tinygltf::Value::Object extras;
+  tinygltf::Value::Array colour_info;
+  for (std::size_t i = 0; i < a.colour_fields.size(); ++i) {
+    const FieldColours c = field_colours(a.colour_fields[i].values);
+    const std::string attribute = "COLOR_" + std::to_string(i);
+    prim.attributes[attribute] = bb.add_vec3(c.rgb, false);
+    tinygltf::Value::Object info;
+    info["name"] = tinygltf::Value(a.colour_fields[i].name);
+    info["attribute"] = tinygltf::Value(attribute);
+    info["low"] = tinygltf::Value(c.low);
+    info["high"] = tinygltf::Value(c.high);
+    colour_info.emplace_back(info);
+  }
+
+  // Morph targets: displacements from what the reader has for frame 0, so that base plus
+  // displacement rounds once (float) away from each frame.
+  std::vector<std::string> target_names;
+  for (std::size_t k = 1; k < a.frames.size(); ++k) {
+    const Floats3 dx = (a.frames[k] - x0_stored).cast<float>();
+    const Floats3 dn = (vertex_normals(a.frames[k], a.faces) - n0).cast<float>();
+    std::map<std::string, int> target;
+    target["POSITION"] = bb.add_vec3(dx, true);
+    target["NORMAL"] = bb.add_vec3(dn, false);
+    prim.targets.push_back(target);
+    target_names.push_back("frame_" + std::to_string(a.frame_numbers[k]));
+  }
+
+  tinygltf::Mesh mesh;
+  mesh.name = "shell";
+  mesh.primitives.push_back(prim);
+  mesh.weights.assign(prim.targets.size(), 0.0);
+  tinygltf::Value::Array frame_numbers;
+  for (int f : a.frame_numbers) frame_numbers.emplace_back(f);
+  extras["frame_numbers"] = tinygltf::Value(frame_numbers);
+  extras["targetNames"] = string_array(target_names);
+  extras["colour_fields"] = tinygltf::Value(colour_info);
+  extras["seconds_per_frame"] = tinygltf::Value(a.seconds_per_frame);
+  mesh.extras = tinygltf::Value(extras);
+  model.meshes.push_back(mesh);
+
+  tinygltf::Node node;
+  node.name = "shell";
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  if (!prim.targets.empty()) {
+    // One keyframe per frame: frame 0 has every weight at 0, frame k has target k - 1 at 1.
+    const std::size_t nk = a.frames.size(), nt = prim.targets.size();
+    std::vector<float> times(nk), weights(nk * nt, 0.0f);
+    for (std::size_t k = 0; k < nk; ++k) {
+      times[k] =
+          static_cast<float>((a.frame_numbers[k] - a.frame_numbers[0]) * a.seconds_per_frame);
+      if (k > 0) weights[k * nt + (k - 1)] = 1.0f;
+    }
+    tinygltf::AnimationSampler sampler;
+    sampler.input = bb.add_scalars(times, true);
+    sampler.output = bb.add_scalars(weights, false);
+    sampler.interpolation = "STEP";
+    tinygltf::AnimationChannel channel;
+    channel.sampler = 0;
+    channel.target_node = 0;
+    channel.target_path = "weights";
+    tinygltf::Animation anim;
+    anim.name = "contraction";
+    anim.samplers.push_back(sampler);
+    anim.channels.push_back(channel);
+    model.animations.push_back(anim);
+  }
+
+  model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
+  GltfStats stats;
+  stats.buffer_bytes = model.buffers[0].data.size();
+  std::ostringstream out(std::ios::binary);
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, out, false, true) || !out)
+    throw UsageError("cannot write '" + path + "': serializing the glTF failed");
+  const std::string bytes = out.str();
+  write_text_atomic(path, bytes);
+  stats.bytes = bytes.size();
+  return stats;
+}
+
+}  // namespace shellcontract

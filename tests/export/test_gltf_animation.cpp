@@ -1,0 +1,228 @@
+// write_gltf_animation: the .glb read back with tinygltf's own loader gives every frame's positions
+// (base + morph displacement) to float precision, unit normals, one keyframe per frame.
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "export_fixtures.hpp"
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/export/gltf_animation.hpp"
+#include "support/mesh_fixtures.hpp"
+
+namespace shellcontract {
+namespace {
+
+using Floats = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// The float data of accessor `index` (count rows, component-count columns), tightly packed.
+Floats read_floats(const tinygltf::Model& m, int index) {
+  const tinygltf::Accessor& acc = m.accessors.at(static_cast<std::size_t>(index));
+  EXPECT_EQ(acc.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+  const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(acc.bufferView));
+  const int cols = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(acc.type));
+  EXPECT_EQ(view.byteStride, 0u);
+  Floats out(static_cast<Eigen::Index>(acc.count), cols);
+  const std::size_t bytes = sizeof(float) * acc.count * static_cast<std::size_t>(cols);
+  EXPECT_LE(acc.byteOffset + bytes, view.byteLength);
+  std::memcpy(out.data(),
+              m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset +
+                  acc.byteOffset,
+              bytes);
+  return out;
+}
+
+tinygltf::Model load(const std::string& path) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = loader.LoadBinaryFromFile(&model, &err, &warn, path);
+  EXPECT_TRUE(ok) << path << ": " << err;
+  EXPECT_TRUE(err.empty()) << err;
+  EXPECT_TRUE(warn.empty()) << warn;
+  return model;
+}
+
+GltfAnimation sphere_animation(int frames, int every) {
+  const test::TriMesh s = test::icosphere(3, 2.5);
+  Positions x = s.x;
+  x.col(0).array() += 40.0;  // far from the origin: the float error must be relative to the size
+  GltfAnimation a;
+  a.faces = s.faces;
+  for (int f = 0; f <= frames; f += every) {
+    a.frame_numbers.push_back(f);
+    a.frames.push_back(test::fake_frame(x, f, frames));
+  }
+  a.seconds_per_frame = 0.05;
+  a.colour_fields.push_back({"height", x.col(2)});
+  a.colour_fields.push_back({"wave", x.col(0).array().sin().matrix()});
+  return a;
+}
+
+TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
+  test::ScratchDir dir("gltf");
+  const GltfAnimation a = sphere_animation(40, 5);
+  const std::string path = dir.file("sphere.glb");
+  const GltfStats stats = write_gltf_animation(path, a);
+  EXPECT_EQ(stats.bytes, std::filesystem::file_size(path));
+
+  const tinygltf::Model m = load(path);
+  ASSERT_EQ(m.meshes.size(), 1u);
+  ASSERT_EQ(m.meshes[0].primitives.size(), 1u);
+  const tinygltf::Primitive& p = m.meshes[0].primitives[0];
+  const std::size_t nk = a.frames.size();
+  ASSERT_EQ(p.targets.size(), nk - 1);
+
+  // Indices: the faces in order.
+  {
+    const tinygltf::Accessor& acc = m.accessors.at(static_cast<std::size_t>(p.indices));
+    ASSERT_EQ(acc.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+    ASSERT_EQ(acc.count, static_cast<std::size_t>(a.faces.size()));
+    const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(acc.bufferView));
+    std::vector<std::uint32_t> idx(acc.count);
+    std::memcpy(idx.data(), m.buffers[0].data.data() + view.byteOffset + acc.byteOffset,
+                4 * acc.count);
+    for (Eigen::Index i = 0; i < a.faces.size(); ++i)
+      ASSERT_EQ(idx[static_cast<std::size_t>(i)], static_cast<std::uint32_t>(a.faces.data()[i]))
+          << "index " << i;
+  }
+
+  const Floats x0 = read_floats(m, p.attributes.at("POSITION"));
+  const Floats n0 = read_floats(m, p.attributes.at("NORMAL"));
+  const double size = (a.frames[0].colwise().maxCoeff() - a.frames[0].colwise().minCoeff()).norm();
+  const double extent = a.frames[0].cwiseAbs().maxCoeff();
+  // One float rounding of the base and one of the displacement and the sum: a few ulps of the
+  // coordinates' magnitude.
+  const double tol = 4.0 * extent * std::numeric_limits<float>::epsilon();
+  ASSERT_LT(tol, 1e-4 * size) << "the test must be able to see a wrong frame";
+  for (std::size_t k = 0; k < nk; ++k) {
+    Floats xk = x0, nk_ = n0;
+    if (k > 0) {
+      xk += read_floats(m, p.targets[k - 1].at("POSITION"));
+      nk_ += read_floats(m, p.targets[k - 1].at("NORMAL"));
+    }
+    const double err = (xk.cast<double>() - a.frames[k]).cwiseAbs().maxCoeff();
+    EXPECT_LE(err, tol) << "frame " << a.frame_numbers[k];
+    const Positions expected_n = vertex_normals(a.frames[k], a.faces);
+    for (Eigen::Index i = 0; i < nk_.rows(); ++i) {
+      ASSERT_NEAR(nk_.row(i).cast<double>().norm(), 1.0, 1e-5)
+          << "frame " << a.frame_numbers[k] << " vertex " << i;
+      ASSERT_GT(nk_.row(i).cast<double>().dot(expected_n.row(i)), 1.0 - 1e-5)
+          << "frame " << a.frame_numbers[k];
+    }
+    if (k > 0) {  // outward: the normals point away from the centroid on this star-shaped mesh
+      const Eigen::RowVector3d c = a.frames[k].colwise().mean();
+      EXPECT_GT((a.frames[k].row(0) - c).dot(nk_.row(0).cast<double>()), 0.0);
+    }
+  }
+
+  // The animation: one STEP sampler on the node's weights, one keyframe per frame.
+  ASSERT_EQ(m.animations.size(), 1u);
+  const tinygltf::Animation& anim = m.animations[0];
+  ASSERT_EQ(anim.channels.size(), 1u);
+  EXPECT_EQ(anim.channels[0].target_path, "weights");
+  EXPECT_EQ(anim.channels[0].target_node, 0);
+  const tinygltf::AnimationSampler& s =
+      anim.samplers.at(static_cast<std::size_t>(anim.channels[0].sampler));
+  EXPECT_EQ(s.interpolation, "STEP");
+  const Floats times = read_floats(m, s.input);
+  const Floats weights = read_floats(m, s.output);
+  ASSERT_EQ(static_cast<std::size_t>(times.rows()), nk);
+  ASSERT_EQ(static_cast<std::size_t>(weights.rows()), nk * (nk - 1));
+  for (std::size_t k = 0; k < nk; ++k) {
+    EXPECT_FLOAT_EQ(times(static_cast<Eigen::Index>(k)),
+                    static_cast<float>(a.frame_numbers[k] * 0.05));
+    for (std::size_t t = 0; t + 1 < nk; ++t)
+      EXPECT_EQ(weights(static_cast<Eigen::Index>(k * (nk - 1) + t)),
+                (k > 0 && t == k - 1) ? 1.0f : 0.0f)
+          << "keyframe " << k << " target " << t;
+  }
+
+  // Extras: frame numbers and the colour fields' names.
+  const tinygltf::Value& extras = m.meshes[0].extras;
+  ASSERT_TRUE(extras.Has("frame_numbers"));
+  ASSERT_EQ(extras.Get("frame_numbers").ArrayLen(), nk);
+  EXPECT_EQ(extras.Get("frame_numbers").Get(static_cast<int>(nk - 1)).GetNumberAsInt(),
+            a.frame_numbers.back());
+  ASSERT_EQ(extras.Get("colour_fields").ArrayLen(), 2u);
+  EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("name").Get<std::string>(), "wave");
+  EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("attribute").Get<std::string>(), "COLOR_1");
+  const Floats c1 = read_floats(m, p.attributes.at("COLOR_1"));
+  EXPECT_GE(c1.minCoeff(), 0.0f);
+  EXPECT_LE(c1.maxCoeff(), 1.0f);
+  EXPECT_GT((c1.col(0) - c1.col(2)).cwiseAbs().maxCoeff(), 0.5f) << "the field spans red and blue";
+}
+
+TEST(GltfAnimation, OneFrameHasNoTargetsAndNoAnimation) {
+  test::ScratchDir dir("one");
+  GltfAnimation a = sphere_animation(0, 1);
+  a.colour_fields.clear();
+  write_gltf_animation(dir.file("one.glb"), a);
+  const tinygltf::Model m = load(dir.file("one.glb"));
+  EXPECT_TRUE(m.meshes.at(0).primitives.at(0).targets.empty());
+  EXPECT_TRUE(m.animations.empty());
+}
+
+TEST(GltfAnimation, RejectsInconsistentInputAndUnwritablePaths) {
+  test::ScratchDir dir("bad");
+  const GltfAnimation good = sphere_animation(10, 5);
+  GltfAnimation a = good;
+  a.frame_numbers.pop_back();
+  EXPECT_THROW(write_gltf_animation(dir.file("a.glb"), a), std::invalid_argument);
+  a = good;
+  a.frames[1] = a.frames[1].topRows(10);
+  EXPECT_THROW(write_gltf_animation(dir.file("a.glb"), a), std::invalid_argument);
+  a = good;
+  a.frames[2](3, 1) = std::nan("");
+  EXPECT_THROW(write_gltf_animation(dir.file("a.glb"), a), std::invalid_argument);
+  a = good;
+  std::swap(a.frame_numbers[0], a.frame_numbers[1]);
+  EXPECT_THROW(write_gltf_animation(dir.file("a.glb"), a), std::invalid_argument);
+  a = good;
+  a.colour_fields[0].values.resize(3);
+  EXPECT_THROW(write_gltf_animation(dir.file("a.glb"), a), std::invalid_argument);
+  EXPECT_THROW(write_gltf_animation("/nonexistent_shellcontract_dir/a.glb", good), UsageError);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a.glb")));
+}
+
+// Issue 26's size bound: bear (27,648 faces, 13,826 vertices) with 50 frames after the first,
+// and two colour fields, under 30 MB. The size depends only on the counts (no compression).
+TEST(GltfAnimation, BearWithFiftyFramesIsUnder30MB) {
+  const std::string bear = std::string(test::PAPER_MESH_DIR) + "/bear.off";
+  if (!std::filesystem::exists(bear))
+    GTEST_SKIP() << bear << " missing (scripts/fetch_paper_meshes.sh)";
+  const Mesh mesh = read_input_mesh(bear);
+  const Positions x = positions_from_mesh(mesh);
+  GltfAnimation a;
+  a.faces = test::faces_of(mesh);
+  for (int f = 0; f <= 50; ++f) {
+    a.frame_numbers.push_back(f);
+    a.frames.push_back(test::fake_frame(x, f, 50));
+  }
+  a.colour_fields.push_back({"height", x.col(2)});
+  a.colour_fields.push_back({"x", x.col(0)});
+  test::ScratchDir dir("bear");
+  const GltfStats stats = write_gltf_animation(dir.file("bear.glb"), a);
+  std::cout << "bear, 51 frames (0..50), 2 colour fields: " << stats.bytes << " bytes ("
+            << static_cast<double>(stats.bytes) / 1e6 << " MB)\n";
+  EXPECT_EQ(a.faces.rows(), 27648);
+  EXPECT_EQ(x.rows(), 13826);
+  EXPECT_LT(stats.bytes, 30u * 1000u * 1000u);
+}
+
+TEST(VertexNormals, UnitOutwardOnASphere) {
+  const test::TriMesh s = test::icosphere(2, 3.0);
+  const Positions n = vertex_normals(s.x, s.faces);
+  for (Eigen::Index i = 0; i < n.rows(); ++i) {
+    EXPECT_NEAR(n.row(i).norm(), 1.0, 1e-12);
+    EXPECT_GT(n.row(i).dot(s.x.row(i).normalized()), 0.99) << "vertex " << i;
+  }
+}
+
+}  // namespace
+}  // namespace shellcontract
