@@ -11,42 +11,13 @@
 #include <vector>
 
 #include "export_fixtures.hpp"
+#include "gltf_reader.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/export/gltf_animation.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {
 namespace {
-
-using Floats = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-/// The float data of accessor `index` (count rows, component-count columns), tightly packed.
-Floats read_floats(const tinygltf::Model& m, int index) {
-  const tinygltf::Accessor& acc = m.accessors.at(static_cast<std::size_t>(index));
-  EXPECT_EQ(acc.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
-  const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(acc.bufferView));
-  const int cols = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(acc.type));
-  EXPECT_EQ(view.byteStride, 0u);
-  Floats out(static_cast<Eigen::Index>(acc.count), cols);
-  const std::size_t bytes = sizeof(float) * acc.count * static_cast<std::size_t>(cols);
-  EXPECT_LE(acc.byteOffset + bytes, view.byteLength);
-  std::memcpy(out.data(),
-              m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset +
-                  acc.byteOffset,
-              bytes);
-  return out;
-}
-
-tinygltf::Model load(const std::string& path) {
-  tinygltf::Model model;
-  tinygltf::TinyGLTF loader;
-  std::string err, warn;
-  const bool ok = loader.LoadBinaryFromFile(&model, &err, &warn, path);
-  EXPECT_TRUE(ok) << path << ": " << err;
-  EXPECT_TRUE(err.empty()) << err;
-  EXPECT_TRUE(warn.empty()) << warn;
-  return model;
-}
 
 GltfAnimation sphere_animation(int frames, int every) {
   const test::TriMesh s = test::icosphere(3, 2.5);
@@ -71,7 +42,7 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
   const GltfStats stats = write_gltf_animation(path, a);
   EXPECT_EQ(stats.bytes, std::filesystem::file_size(path));
 
-  const tinygltf::Model m = load(path);
+  const tinygltf::Model m = test::load_glb(path);
   ASSERT_EQ(m.meshes.size(), 1u);
   ASSERT_EQ(m.meshes[0].primitives.size(), 1u);
   const tinygltf::Primitive& p = m.meshes[0].primitives[0];
@@ -92,8 +63,8 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
           << "index " << i;
   }
 
-  const Floats x0 = read_floats(m, p.attributes.at("POSITION"));
-  const Floats n0 = read_floats(m, p.attributes.at("NORMAL"));
+  const test::Floats x0 = test::read_floats(m, p.attributes.at("POSITION"));
+  const test::Floats n0 = test::read_floats(m, p.attributes.at("NORMAL"));
   const double size = (a.frames[0].colwise().maxCoeff() - a.frames[0].colwise().minCoeff()).norm();
   const double extent = a.frames[0].cwiseAbs().maxCoeff();
   // One float rounding of the base and one of the displacement and the sum: a few ulps of the
@@ -101,10 +72,10 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
   const double tol = 4.0 * extent * std::numeric_limits<float>::epsilon();
   ASSERT_LT(tol, 1e-4 * size) << "the test must be able to see a wrong frame";
   for (std::size_t k = 0; k < nk; ++k) {
-    Floats xk = x0, nk_ = n0;
+    test::Floats xk = x0, nk_ = n0;
     if (k > 0) {
-      xk += read_floats(m, p.targets[k - 1].at("POSITION"));
-      nk_ += read_floats(m, p.targets[k - 1].at("NORMAL"));
+      xk += test::read_floats(m, p.targets[k - 1].at("POSITION"));
+      nk_ += test::read_floats(m, p.targets[k - 1].at("NORMAL"));
     }
     const double err = (xk.cast<double>() - a.frames[k]).cwiseAbs().maxCoeff();
     EXPECT_LE(err, tol) << "frame " << a.frame_numbers[k];
@@ -130,8 +101,8 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
   const tinygltf::AnimationSampler& s =
       anim.samplers.at(static_cast<std::size_t>(anim.channels[0].sampler));
   EXPECT_EQ(s.interpolation, "STEP");
-  const Floats times = read_floats(m, s.input);
-  const Floats weights = read_floats(m, s.output);
+  const test::Floats times = test::read_floats(m, s.input);
+  const test::Floats weights = test::read_floats(m, s.output);
   ASSERT_EQ(static_cast<std::size_t>(times.rows()), nk);
   ASSERT_EQ(static_cast<std::size_t>(weights.rows()), nk * (nk - 1));
   for (std::size_t k = 0; k < nk; ++k) {
@@ -152,7 +123,7 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
   ASSERT_EQ(extras.Get("colour_fields").ArrayLen(), 2u);
   EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("name").Get<std::string>(), "wave");
   EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("attribute").Get<std::string>(), "COLOR_1");
-  const Floats c1 = read_floats(m, p.attributes.at("COLOR_1"));
+  const test::Floats c1 = test::read_floats(m, p.attributes.at("COLOR_1"));
   EXPECT_GE(c1.minCoeff(), 0.0f);
   EXPECT_LE(c1.maxCoeff(), 1.0f);
   EXPECT_GT((c1.col(0) - c1.col(2)).cwiseAbs().maxCoeff(), 0.5f) << "the field spans red and blue";
@@ -163,7 +134,7 @@ TEST(GltfAnimation, OneFrameHasNoTargetsAndNoAnimation) {
   GltfAnimation a = sphere_animation(0, 1);
   a.colour_fields.clear();
   write_gltf_animation(dir.file("one.glb"), a);
-  const tinygltf::Model m = load(dir.file("one.glb"));
+  const tinygltf::Model m = test::load_glb(dir.file("one.glb"));
   EXPECT_TRUE(m.meshes.at(0).primitives.at(0).targets.empty());
   EXPECT_TRUE(m.animations.empty());
 }

@@ -1,0 +1,43 @@
+// Reading a .glb back with tinygltf's own loader, for the export tests.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <tiny_gltf.h>
+
+#include <Eigen/Core>
+#include <cstring>
+#include <string>
+
+namespace shellcontract::test {
+
+using Floats = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// The float data of accessor `index` (count rows, component-count columns), tightly packed.
+inline Floats read_floats(const tinygltf::Model& m, int index) {
+  const tinygltf::Accessor& acc = m.accessors.at(static_cast<std::size_t>(index));
+  EXPECT_EQ(acc.componentType, TINYGLTF_COMPONENT_TYPE_FLOAT);
+  const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(acc.bufferView));
+  const int cols = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(acc.type));
+  EXPECT_EQ(view.byteStride, 0u);
+  Floats out(static_cast<Eigen::Index>(acc.count), cols);
+  const std::size_t bytes = sizeof(float) * acc.count * static_cast<std::size_t>(cols);
+  EXPECT_LE(acc.byteOffset + bytes, view.byteLength);
+  std::memcpy(out.data(),
+              m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset +
+                  acc.byteOffset,
+              bytes);
+  return out;
+}
+
+inline tinygltf::Model load_glb(const std::string& path) {
+  tinygltf::Model model;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool ok = loader.LoadBinaryFromFile(&model, &err, &warn, path);
+  EXPECT_TRUE(ok) << path << ": " << err;
+  EXPECT_TRUE(err.empty()) << err;
+  EXPECT_TRUE(warn.empty()) << warn;
+  return model;
+}
+
+}  // namespace shellcontract::test
