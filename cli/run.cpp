@@ -13,6 +13,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "export_observer.hpp"
 #include "json_writer.hpp"
 #include "output_paths.hpp"
 #include "run_observers.hpp"
@@ -62,6 +63,19 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+JsonObject export_json(const FrameExporter& e) {
+  const ExportStats f = e.frame_stats();
+  JsonObject o;
+  o.add("every", e.every())
+      .add("frames_written", f.frames_written)
+      .add("frame_bytes", static_cast<std::size_t>(f.bytes))
+      .add("simulation_thread_seconds", f.caller_seconds + e.gltf_copy_seconds())
+      .add("writer_thread_seconds", f.writer_seconds)
+      .add("gltf_bytes", e.gltf_bytes())
+      .add("gltf_seconds", e.gltf_seconds());
+  return o;
+}
+
 JsonObject summary_json(const std::string& input, const std::string& output,
                         const InputReport& report, const RunOptions& options, const RunResult& r) {
   JsonObject opts;
@@ -107,6 +121,7 @@ JsonObject summary_json(const std::string& input, const std::string& output,
 
 int command_run(int argc, char** argv) {
   std::string input, output, log_path, summary_path, fields_prefix, fields_colour = "mean";
+  ExportRequest exports;
   bool quiet = false;
   std::map<std::string, std::string> values;
   std::map<std::string, bool> switches;
@@ -122,7 +137,15 @@ int command_run(int argc, char** argv) {
       "pressure load and elastic energy density, coloured by --fields-colour")(
       "fields-colour", po::value(&fields_colour)->default_value(fields_colour)->value_name("NAME"),
       "mean | gaussian | pressure | energy: blue-white-red over the 2nd-98th percentile")(
-      "log", po::value(&log_path)->value_name("FILE.csv"), "per-frame CSV log")(
+      "export-every", po::value(&exports.every)->value_name("N"),
+      "with --export-dir or --gltf: keep every N-th frame (and the first and last); default for "
+      "--gltf alone: about 100 frames of the run")(
+      "export-dir", po::value(&exports.dir)->value_name("DIR"),
+      "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing)")(
+      "gltf", po::value(&exports.gltf)->value_name("FILE.glb"),
+      "write the kept frames as one animated glTF 2.0 binary (morph targets, normals, colour "
+      "fields); open it with scripts/view.py")("log", po::value(&log_path)->value_name("FILE.csv"),
+                                               "per-frame CSV log")(
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
       "quiet,q", po::bool_switch(&quiet), "no progress on stderr");
   FieldColour colour = FieldColour::MeanCurvature;
@@ -155,6 +178,27 @@ int command_run(int argc, char** argv) {
       planned.push_back({"--fields", fields_prefix + "_start.ply"});
       planned.push_back({"--fields", fields_prefix + "_end.ply"});
     }
+    if (!exports.gltf.empty()) {
+      if (lower_extension(exports.gltf) != "glb")
+        throw UsageError("--gltf " + exports.gltf + ": expected a .glb file");
+      planned.push_back({"--gltf", exports.gltf});
+    }
+    if (vm.count("export-every") && exports.every < 1)
+      throw UsageError("--export-every: expected an integer >= 1, got " +
+                       std::to_string(exports.every));
+    if (vm.count("export-every") && exports.dir.empty() && exports.gltf.empty())
+      throw UsageError("--export-every has no effect without --export-dir or --gltf");
+    if (!exports.dir.empty()) {
+      std::error_code ec;
+      if (!std::filesystem::is_directory(exports.dir) &&
+          !std::filesystem::create_directories(exports.dir, ec))
+        throw UsageError("--export-dir " + exports.dir + ": cannot create the folder (" +
+                         ec.message() + ")");
+      exports.name = std::filesystem::path(output).stem().string();
+      exports.ext = ext;
+      planned.push_back(
+          {"--export-dir", frame_file_name(exports.dir, exports.name, ext, 0, options.sim.frames)});
+    }
     check_planned_outputs(planned, input);
   } catch (const po::error& e) {
     return usage_error("run", e.what());
@@ -175,13 +219,19 @@ int command_run(int argc, char** argv) {
     if (!log_path.empty()) observers.add(csv);
     FieldsWriter fields(fields_prefix, colour);
     if (!fields_prefix.empty()) observers.add(fields);
+    FrameExporter exporter(exports, mesh, options.sim.frames);
+    if (!exports.dir.empty() || !exports.gltf.empty()) observers.add(exporter);
 
     const RunResult r = run_contraction(mesh, options, &observers);
 
     write_mesh_atomic(output, mesh, r.positions);
     if (!log_path.empty()) write_text_atomic(log_path, csv.text());
-    if (!summary_path.empty())
-      write_text_atomic(summary_path, summary_json(input, output, report, options, r).str() + "\n");
+    if (!summary_path.empty()) {
+      JsonObject summary = summary_json(input, output, report, options, r);
+      if (!exports.dir.empty() || !exports.gltf.empty())
+        summary.add("export", export_json(exporter));
+      write_text_atomic(summary_path, summary.str() + "\n");
+    }
     switch (r.status) {
       case RunStatus::NewIntersections:
         std::cerr << "shellcontract run: validation found new self-intersections: " << r.message

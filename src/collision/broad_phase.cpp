@@ -418,8 +418,7 @@ constexpr double GRID_REUSE_FACTOR = 1.25;
 constexpr double GRID_MARGIN_CELLS = 0.5;
 /// The kept grid's counting sort is patched (patch_grid) if at most 1 / GRID_PATCH_DIVISOR of the
 /// boxes changed their cell range, else rebuilt. Bear at P = 4: 7.2k of 83k boxes per step on
-/// average; patching costs ~1 ms against ~3.2 ms for the rebuild (one core, 2026-11-25, timers in
-/// a build not committed, before the grid's margin was added).
+/// average; patching costs about a third of a rebuild there (benchmarks/bench_broad_phase.cpp).
 constexpr std::size_t GRID_PATCH_DIVISOR = 4;
 /// Vertices per task of the grid's per-vertex loops.
 constexpr std::size_t GRID_VERTEX_GRAIN = 2048;

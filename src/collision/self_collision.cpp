@@ -142,10 +142,9 @@ struct SelfCollision::Workers {
 // within delta on every axis: if the boxes' gap G <= delta + m + 2u (M + m) (M = max |coordinate|,
 // u the unit roundoff). Boxes grown by delta + m/2 overlap, the rounding of their bounds included,
 // for every G <= 2 delta + m - 4u (M + delta + m), which covers that unless delta is below
-// 6u (M + delta + m), about 1e-15 of the coordinates. Until 2026-11-24 the inflation was delta + m:
-// the second m/2 was headroom for rounding, which delta gives already, and it widened the
-// candidates' gap band from 6 delta to 10 (bear at P = 4: 173k -> 132k candidates and 158k ->
-// 140k filter tests per step; docs/design/self-collision.md).
+// 6u (M + delta + m), about 1e-15 of the coordinates. An inflation of delta + m would add headroom
+// for rounding that delta gives already, and widen the candidates' gap band from 6 delta to 10
+// (bear at P = 4: 173k instead of 132k candidates per step; docs/design/self-collision.md).
 double broad_phase_inflation(const CollisionOptions& options) {
   return options.delta + 0.5 * (options.region_margin * options.delta);
 }

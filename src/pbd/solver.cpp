@@ -260,7 +260,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
       isometric_num_colours_ = static_cast<int>(isometric_colours_.size()) - 1;
       // The regional order needs every constraint of the sweep in a batched kind (one padded
       // state for the whole sweep).
-      regional_ = std::is_same_v<M, Stvk> && !set_.membranes.empty() &&
+      regional_ = BatchedMembraneProjection<M>::value && !set_.membranes.empty() &&
                   set_.dihedral_hinges.empty() && set_.anisotropic.empty();
       int num_vertices = 0;
       for (const auto& c : set_.membranes)
@@ -300,10 +300,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
     packed_membranes_.reserve(set_.membranes.size());
     for (const MembraneConstraint& c : set_.membranes) packed_membranes_.push_back(pack_membrane(c));
     if (coloured_) {
-      // Coloured order: StVK membranes and isometric hinges are projected four per SIMD batch
-      // (constraint_batches.hpp); the other kinds and materials keep the per-constraint kernels.
-      // The batches address padded rows, not vertex ids.
-      if constexpr (std::is_same_v<M, Stvk>)
+      // Coloured order: the membranes of a material with a batched projection (StVK) and the
+      // isometric hinges are projected four per SIMD batch (constraint_batches.hpp); the other
+      // kinds and materials keep the per-constraint kernels. The batches address padded rows.
+      if constexpr (BatchedMembraneProjection<M>::value)
         membrane_batches_ =
             make_membrane_batches(renamed(packed_membranes_, vertex_row_), membrane_colours_);
       isometric_batches_ =
@@ -436,9 +436,9 @@ class GaussSeidelSolver final : public ConstraintSolver {
     // The xpbd tests are outside the inner loops so each loop body is branch-free.
     switch (kind) {
       case MEMBRANE_BATCHES:
-        if constexpr (std::is_same_v<M, Stvk>)
-          project_stvk_membrane_batches(material_, &membrane_batches_.batches[b], e - b, xw, ctx,
-                                        xpbd ? &lambda_membrane_[BATCH_LANES * b] : nullptr);
+        if constexpr (BatchedMembraneProjection<M>::value)
+          BatchedMembraneProjection<M>::project(material_, &membrane_batches_.batches[b], e - b, xw, ctx,
+                                                xpbd ? &lambda_membrane_[BATCH_LANES * b] : nullptr);
         break;
       case MEMBRANES:
         if (xpbd)

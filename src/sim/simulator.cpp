@@ -8,9 +8,9 @@
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/validation/self_intersection.hpp"
 #include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
+#include "shellcontract/validation/self_intersection.hpp"
 #include "shellcontract/validation/volume.hpp"
 
 namespace shellcontract {
@@ -28,7 +28,8 @@ void check_options(const SimOptions& o) {
   if (!(o.density > 0.0)) fail("density must be positive");
   if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("damping must be in [0, 1)");
   if (!std::isfinite(o.region_pressure)) fail("region pressure must be finite");
-  if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta)) fail("contact distance delta must be positive");
+  if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta))
+    fail("contact distance delta must be positive");
   if (o.collision.rounds < 0) fail("collision rounds must be >= 0");
   if (!(o.collision.region_margin >= 0.0) || !std::isfinite(o.collision.region_margin))
     fail("collision region margin must be >= 0");
@@ -61,7 +62,8 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
     if (options_.inward_term == InwardTerm::None) a.kappa_a = 0.0;
     anisotropy_report_ = add_anisotropic_constraints(*mesh_, a, constraints);
     if (options_.inward_term == InwardTerm::Force ||
-        (options_.inward_term == InwardTerm::Projection && options_.solver.kind == SolverKind::Xpbd)) {
+        (options_.inward_term == InwardTerm::Projection &&
+         options_.solver.kind == SolverKind::Xpbd)) {
       inward_faces_.resize(static_cast<Eigen::Index>(constraints.anisotropic.size()), 3);
       for (std::size_t i = 0; i < constraints.anisotropic.size(); ++i)
         for (int k = 0; k < 3; ++k)
@@ -70,7 +72,8 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   }
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
-  if (options_.collisions) collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
+  if (options_.collisions)
+    collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
   if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
   v_ = Positions::Zero(x_.rows(), 3);
   rest_x_ = x_;
@@ -87,17 +90,20 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
         if (f >= 0 && f < faces_.rows())
           for (int k = 0; k < 3; ++k) region_vertices_.push_back(faces_(f, k));
     std::sort(region_vertices_.begin(), region_vertices_.end());
-    region_vertices_.erase(std::unique(region_vertices_.begin(), region_vertices_.end()), region_vertices_.end());
+    region_vertices_.erase(std::unique(region_vertices_.begin(), region_vertices_.end()),
+                           region_vertices_.end());
     region_normals_.resize(static_cast<Eigen::Index>(region_vertices_.size()), 3);
     for (std::size_t i = 0; i < region_vertices_.size(); ++i) {
       const Vec3 n = vertex_normal.row(region_vertices_[i]);
       const double len = n.norm();
-      region_normals_.row(static_cast<Eigen::Index>(i)) = len > 0.0 ? Eigen::RowVector3d(n.transpose() / len) : Eigen::RowVector3d::Zero();
+      region_normals_.row(static_cast<Eigen::Index>(i)) =
+          len > 0.0 ? Eigen::RowVector3d(n.transpose() / len) : Eigen::RowVector3d::Zero();
     }
   }
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
-    throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) + ")");
+    throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) +
+                     ")");
   constraint_rest_volume_ = signed_volume(x_, faces_);
 }
 
@@ -116,15 +122,22 @@ void Simulator::apply_volume_control(Positions& x) {
   // Rounding-level tolerance: the constraint is met to ~1e-12 of V0, far below the 0.005 a
   // target-volume run promises, so collisions and rounding alone decide the error.
   const double tolerance = 1e-12 * constraint_rest_volume_;
+  // The vertices the collision response moved in the previous step are held by their contacts:
+  // the constraint moves only the free ones. Moving the held ones too would make the response
+  // push them back every step and undo part of the volume change, so that a shell in wide contact
+  // stalls above its target (eight stalled at V/V0 0.3065 for R = 0.3 that way).
+  Eigen::VectorXd w = inv_mass_;
+  for (std::size_t i = 0; i < held_by_contact_.size(); ++i)
+    if (held_by_contact_[i]) w(static_cast<Eigen::Index>(i)) = 0.0;
   if (options_.target_volume > 0.0) {
     const double target = constraint_rest_volume_ * volume_target(frame_ + 1);
-    project_volume(x, faces_, inv_mass_, target, tolerance);
+    project_volume(x, faces_, w, target, tolerance);
   } else if (options_.stop_volume_ratio > 0.0) {
     // The step that would cross epsilon ends on it: the run stops at the crossing frame with
     // V/V0 = epsilon up to the collision response, instead of one step's change below it.
     const double floor = constraint_rest_volume_ * options_.stop_volume_ratio;
     if (signed_volume(x, faces_) <= floor) {
-      project_volume(x, faces_, inv_mass_, floor, tolerance);
+      project_volume(x, faces_, w, floor, tolerance);
       stop_volume_reached_ = true;
     }
   }
@@ -150,18 +163,28 @@ FrameMetrics Simulator::step() {
   if (collision_) collision_->predict(x_, x_pred_, inv_mass_);
   const auto solve_start = std::chrono::steady_clock::now();
   solver_->solve(x_pred_, inv_mass_);
-  m.solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
-  // Step 2b: the global volume constraint of a target volume or a stop ratio (docs/math/volume-control.md).
+  m.solve_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
+  // Step 2b: the global volume constraint of a target volume or a stop ratio
+  // (docs/math/volume-control.md).
   apply_volume_control(x_pred_);
   if (!x_pred_.allFinite())
     throw SimulationError("non-finite positions at step " + std::to_string(frame_ + 1));
   // A step that moves a vertex farther than the whole mesh is a blow-up, whatever the
   // collision handling would make of it.
   if ((x_pred_ - x_).rowwise().norm().maxCoeff() > BLOWUP_DISPLACEMENT)
-    throw SimulationError("blow-up at step " + std::to_string(frame_ + 1) +
-                          ": a vertex moved more than the whole mesh (bounding-box diagonal) in one step");
+    throw SimulationError(
+        "blow-up at step " + std::to_string(frame_ + 1) +
+        ": a vertex moved more than the whole mesh (bounding-box diagonal) in one step");
   // Step 3: continuous collision detection and response between x^n and x*.
+  const bool volume_control = options_.target_volume > 0.0 || options_.stop_volume_ratio > 0.0;
+  if (collision_ && volume_control) before_collisions_ = x_pred_;
   if (collision_) collision_->resolve(x_, x_pred_, inv_mass_, m.collision);
+  if (collision_ && volume_control) {
+    held_by_contact_.assign(static_cast<std::size_t>(x_.rows()), 0);
+    for (Eigen::Index i = 0; i < x_.rows(); ++i)
+      held_by_contact_[static_cast<std::size_t>(i)] = x_pred_.row(i) != before_collisions_.row(i);
+  }
   m.max_displacement = (x_pred_ - x_).rowwise().norm().maxCoeff();
   // Steps 4-5: accept and update velocities; damping removes a fixed fraction of the velocity
   // per step (Mueller et al. 2007, section 3.5 uses a similar global damping).
@@ -194,7 +217,8 @@ double Simulator::region_inward_displacement() const {
 
 std::size_t Simulator::input_intersections() const {
   // The rest mesh's own points are the input positions (normalized), whatever x_ is now.
-  if (!baseline_intersections_) baseline_intersections_ = self_intersecting_pairs(*mesh_, positions_from_mesh(*mesh_));
+  if (!baseline_intersections_)
+    baseline_intersections_ = self_intersecting_pairs(*mesh_, positions_from_mesh(*mesh_));
   return baseline_intersections_->size();
 }
 

@@ -92,14 +92,14 @@ TEST_F(CliRun, BadUsageIsExitCode1) {
   const auto spec = run_cli(
       {"run", mesh("ico1.off"), "-o", out("o.off"), "--speculative-broad-phase", "maybe"});
   EXPECT_EQ(spec.exit_code, 1);
-  EXPECT_NE(spec.output.find("auto, on or off"), std::string::npos) << spec.output;
+  EXPECT_NE(spec.output.find("auto | on | off"), std::string::npos) << spec.output;
   const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("missing_dir/o.off"), "--frames", "1"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_FALSE(fs::exists(out("missing_dir")));
 }
 
 TEST_F(CliRun, BlowUpIsExitCode3AndTheLastGoodStateIsWritten) {
-  const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--pressure", "1e300",
+  const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--pressure", "1e6",
                           "--collisions", "off", "-q"});
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("last good state"), std::string::npos) << r.output;

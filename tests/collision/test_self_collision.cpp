@@ -627,7 +627,6 @@ TEST(SelfCollision, SpeculativeFlattenedSphereNeverTouchesItselfAndDoesNotDepend
       // The time the task still cost the step is part of the broad phase's, which is part of
       // the step's collision time; with one thread the task runs inline, so it takes time.
       for (const CollisionStepStats* s : {&stats[i], &stats2[i]}) {
-        EXPECT_GE(s->wait_seconds, 0.0);
         EXPECT_LE(s->wait_seconds, s->broad_seconds);
         EXPECT_LE(s->broad_seconds, s->seconds);
       }
@@ -642,8 +641,6 @@ TEST(SelfCollision, SpeculativeFlattenedSphereNeverTouchesItselfAndDoesNotDepend
       if (s.speculative == 1) {
         EXPECT_GT(s.background_grid_seconds, 0.0) << "step " << i;
         EXPECT_GT(s.background_cell_loop_seconds, 0.0) << "step " << i;
-        EXPECT_GE(s.background_output_seconds, 0.0) << "step " << i;
-        EXPECT_GE(s.background_records_seconds, 0.0) << "step " << i;
         EXPECT_LE(parts, s.background_seconds) << "step " << i;
       }
       for (const CollisionStepStats* t : {&stats[i], &stats2[i]}) {

@@ -43,7 +43,7 @@ TEST_P(FrameSequenceWriterTest, WritesEveryQueuedFrameWithItsPositions) {
     for (const auto& e : fs::directory_iterator(dir.str())) bytes += e.file_size();
     EXPECT_EQ(s.bytes, bytes);
     EXPECT_GT(s.writer_seconds, 0.0);
-    EXPECT_GE(s.caller_seconds, 0.0);
+    EXPECT_GT(s.caller_seconds, 0.0) << "write() copied the positions, which takes time";
   }
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.str())) ++files;

@@ -15,6 +15,7 @@
 
 #include "shellcontract/bending/isometric_bending.hpp"
 #include "shellcontract/fem/triangle_element.hpp"
+#include "shellcontract/material/corotated.hpp"
 #include "shellcontract/pbd/constraint_batches.hpp"
 #include "support/random_geometry.hpp"
 
@@ -340,3 +341,9 @@ TEST(IsometricBatches, SkippedLanesAreUntouchedAndTheClampHolds) {
 
 }  // namespace
 }  // namespace shellcontract
+
+// The coloured order's fast path is chosen by the material trait, not by a type test: StVK
+// declares a batched projection, the other materials do not (and so take the per-constraint
+// kernels).
+static_assert(shellcontract::BatchedMembraneProjection<shellcontract::Stvk>::value);
+static_assert(!shellcontract::BatchedMembraneProjection<shellcontract::Corotated>::value);

@@ -44,11 +44,7 @@ TEST_P(StrongPressure, NoNewSelfIntersectionAtAnyFrameAndStillContracts) {
     ASSERT_EQ(sim.count_new_intersections(), 0u) << GetParam() << " frame " << m.frame;
   }
   EXPECT_LE(sim.volume_ratio(), 0.7) << GetParam();
-  opt.collisions = false;
-  Simulator free_run(mesh, opt);
-  while (!free_run.finished()) free_run.step();
-  std::cout << GetParam() << ": V/V0 at frame 300, collisions on " << sim.volume_ratio()
-            << ", off " << free_run.volume_ratio() << "; collision / solve time per step "
+  std::cout << GetParam() << ": V/V0 at frame 300 " << sim.volume_ratio() << "; collision / solve time per step "
             << 1e3 * collision_s / 300 << " / " << 1e3 * solve_s / 300 << " ms; fail-safe vertices "
             << failsafe << "\n";
 }

@@ -114,6 +114,24 @@ void project_stvk_membrane_batches(const Stvk& material, const MembraneBatch* ba
                                    const ProjectionContext& ctx, double* lambda,
                                    BatchIsa isa = BatchIsa::Auto);
 
+/// The batched membrane projection of a material, for the coloured order's fast path. A material
+/// without one (the default) takes the per-constraint kernels; a material gets the fast path by
+/// specializing this trait with value = true and a `project` with the signature below (the
+/// solver never tests for a material type).
+template <class M>
+struct BatchedMembraneProjection {
+  static constexpr bool value = false;
+};
+
+template <>
+struct BatchedMembraneProjection<Stvk> {
+  static constexpr bool value = true;
+  static void project(const Stvk& material, const MembraneBatch* batches, std::size_t count,
+                      PaddedVertex* xw, const ProjectionContext& ctx, double* lambda) {
+    project_stvk_membrane_batches(material, batches, count, xw, ctx, lambda);
+  }
+};
+
 /// Projects `count` isometric hinge batches in order (project_isometric_hinge per lane, math-spec
 /// 8.2): PBD when lambda == nullptr, else XPBD with the 3-vector multiplier of lane k of batch b
 /// at lambda[12 b + 3 k .. 12 b + 3 k + 2]. xw and ctx as for project_stvk_membrane_batches.

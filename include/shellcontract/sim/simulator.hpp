@@ -2,12 +2,11 @@
 // state, then the time loop of math-spec 2 (paper Steps 1-7).
 #pragma once
 
+#include <Eigen/Core>
 #include <memory>
 #include <optional>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/normalization.hpp"
@@ -20,14 +19,14 @@ namespace shellcontract {
 
 /// Per-step measurements (one CSV row of the run log).
 struct FrameMetrics {
-  int frame = 0;                 ///< 1-based index of the step just taken
-  double time = 0.0;             ///< simulated time after the step (normalized units)
-  double volume_ratio = 1.0;     ///< V / V0, V from CGAL PMP::volume
-  ConstraintEnergies energies;   ///< after the step; zero unless SimOptions::frame_energies
-  double max_displacement = 0.0; ///< max_i |x_i^{n+1} - x_i^n| (normalized units)
-  double step_seconds = 0.0;     ///< wall time of the step (predict, solve, collisions, velocity)
-  double solve_seconds = 0.0;    ///< wall time of the constraint projection alone
-  CollisionStepStats collision;  ///< zero when collisions are off
+  int frame = 0;                  ///< 1-based index of the step just taken
+  double time = 0.0;              ///< simulated time after the step (normalized units)
+  double volume_ratio = 1.0;      ///< V / V0, V from CGAL PMP::volume
+  ConstraintEnergies energies;    ///< after the step; zero unless SimOptions::frame_energies
+  double max_displacement = 0.0;  ///< max_i |x_i^{n+1} - x_i^n| (normalized units)
+  double step_seconds = 0.0;      ///< wall time of the step (predict, solve, collisions, velocity)
+  double solve_seconds = 0.0;     ///< wall time of the constraint projection alone
+  CollisionStepStats collision;   ///< zero when collisions are off
   /// New self-intersections (face pairs not intersecting in the input) found by CGAL at this
   /// frame; -1 when not validated at this frame.
   long new_intersections = -1;
@@ -69,7 +68,9 @@ class Simulator {
   /// Face pairs that already intersect in the input (the validation baseline).
   std::size_t input_intersections() const;
   /// Primitive pairs the collision handling ignores because they touch in the rest state.
-  std::size_t excluded_contact_pairs() const { return collision_ ? collision_->excluded_pairs() : 0; }
+  std::size_t excluded_contact_pairs() const {
+    return collision_ ? collision_->excluded_pairs() : 0;
+  }
   /// CGAL self-intersection check of the current positions: face pairs not in the input's set.
   std::size_t count_new_intersections() const;
   /// How far the anisotropic regions sank in: the mean over the vertices of every region
@@ -95,8 +96,8 @@ class Simulator {
   RestStateReport rest_report_;
   AnisotropyReport anisotropy_report_;
   Faces faces_;
-  Faces inward_faces_;           ///< anisotropic faces that get the local extra pressure
-  Positions region_force_;       ///< its forces (buffer)
+  Faces inward_faces_;      ///< anisotropic faces that get the local extra pressure
+  Positions region_force_;  ///< its forces (buffer)
   Eigen::VectorXd inv_mass_;
   std::unique_ptr<ConstraintSolver> solver_;
   std::unique_ptr<SelfCollision> collision_;
@@ -109,6 +110,8 @@ class Simulator {
   double rest_volume_ = 0.0;
   double constraint_rest_volume_ = 0.0;  ///< V0 as signed_volume computes it (the constraint's)
   bool stop_volume_reached_ = false;
+  Positions before_collisions_;        ///< volume control: positions before the response
+  std::vector<char> held_by_contact_;  ///< volume control: moved by the last step's response
   double volume_ratio_ = 1.0;
   int frame_ = 0;
 };

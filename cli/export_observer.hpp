@@ -1,0 +1,96 @@
+// The CLI's frame export (README "See the contraction"): every N-th frame of a run, and the first
+// and the last, as mesh files written on a background thread and/or as one animated glTF.
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shellcontract/export/frame_sequence_writer.hpp"
+#include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/sim/fields.hpp"
+#include "shellcontract/sim/run.hpp"
+
+namespace shellcontract::cli {
+
+/// What --export-every, --export-dir and --gltf asked for.
+struct ExportRequest {
+  int every = 0;     ///< every N-th frame; 0 = the default for --gltf alone (see exporter)
+  std::string dir;   ///< frame files' folder; empty = no frame files
+  std::string name;  ///< frame files' stem (the output's stem)
+  std::string ext;   ///< frame files' format (the output's extension)
+  std::string gltf;  ///< animated .glb; empty = none
+  double seconds_per_frame = 1.0 / 24.0;
+};
+
+/// Exports frames as the run shows them. Only reads positions, so the run is the same with or
+/// without it (test: byte-identical result).
+class FrameExporter final : public RunObserver {
+ public:
+  FrameExporter(ExportRequest request, const Mesh& mesh, int frames)
+      : request_(std::move(request)), mesh_(mesh) {
+    // --gltf alone keeps about 100 frames, enough to play smoothly, few enough for a small file.
+    if (request_.every <= 0) request_.every = std::max(1, (frames + 99) / 100);
+    max_frame_ = frames;
+  }
+
+  void started(const Simulator& sim) override {
+    if (!request_.dir.empty())
+      writer_.emplace(request_.dir, request_.name, request_.ext, mesh_, max_frame_);
+    if (!request_.gltf.empty()) gltf_.faces = faces_array(mesh_);
+    take(0, sim);
+  }
+  void frame(const Simulator& sim, const FrameMetrics& m) override {
+    if (m.frame % request_.every == 0 || sim.finished()) take(m.frame, sim);
+  }
+  void finished(const Simulator& sim, const RunResult&) override {
+    if (last_ != sim.frame()) take(sim.frame(), sim);  // a run that stopped early
+    if (writer_) writer_->finish();
+    if (!request_.gltf.empty()) {
+      const auto start = std::chrono::steady_clock::now();
+      const VertexFields f = compute_vertex_fields(sim);
+      gltf_.colour_fields = {{"mean_curvature", f.mean_curvature},
+                             {"gaussian_curvature", f.gaussian_curvature},
+                             {"pressure", f.pressure},
+                             {"energy_density", f.energy_density}};
+      gltf_.seconds_per_frame = request_.seconds_per_frame;
+      gltf_bytes_ = write_gltf_animation(request_.gltf, gltf_).bytes;
+      gltf_seconds_ =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  }
+
+  /// Export costs for the summary: frame files (counts and both threads' time) and the glTF.
+  ExportStats frame_stats() const { return writer_ ? writer_->stats() : ExportStats{}; }
+  std::size_t gltf_bytes() const { return gltf_bytes_; }
+  double gltf_seconds() const { return gltf_seconds_; }
+  double gltf_copy_seconds() const { return gltf_copy_seconds_; }
+  int every() const { return request_.every; }
+
+ private:
+  void take(int frame, const Simulator& sim) {
+    last_ = frame;
+    if (!writer_ && request_.gltf.empty()) return;
+    const Positions x = sim.positions_in_input_units();
+    if (writer_) writer_->write(frame, x);
+    if (!request_.gltf.empty()) {
+      const auto start = std::chrono::steady_clock::now();
+      gltf_.frame_numbers.push_back(frame);
+      gltf_.frames.push_back(x);
+      gltf_copy_seconds_ +=
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  }
+
+  ExportRequest request_;
+  const Mesh& mesh_;
+  int max_frame_ = 0;
+  int last_ = -1;
+  std::optional<FrameSequenceWriter> writer_;
+  GltfAnimation gltf_;
+  std::size_t gltf_bytes_ = 0;
+  double gltf_seconds_ = 0.0, gltf_copy_seconds_ = 0.0;
+};
+
+}  // namespace shellcontract::cli

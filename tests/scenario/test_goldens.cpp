@@ -1,0 +1,126 @@
+// Regression goldens (issue "A house a newcomer can live in"): the final positions of a fixed set
+// of short runs on the paper's meshes, recorded in tests/goldens/runs.txt. They are not evidence
+// that the physics is right (the other tests are); they catch a change of behaviour that a
+// refactoring did not intend. A change that is intended re-blesses them with
+// scripts/bless_goldens.sh and says so in its commit.
+//
+// Each line: name, FNV-1a hash of the positions' bytes, V/V0, sum and sum of squares of the
+// coordinates. The hash must match on the machine that blessed it; elsewhere (another CPU's
+// vector paths) the sums must agree to 1e-9 relative.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/sim/run.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+struct GoldenRun {
+  std::string name;
+  std::string mesh;
+  std::vector<std::pair<std::string, std::string>> options;  // option table names and values
+};
+
+const std::vector<GoldenRun>& golden_runs() {
+  static const std::vector<GoldenRun> runs = {
+      {"hand_default", "hand", {}},
+      {"bear_default", "bear", {}},
+      {"eight_p4", "eight", {{"pressure", "4"}}},
+      {"elk_p4_coloured", "elk", {{"pressure", "4"}, {"order", "coloured"}, {"threads", "2"}}},
+      {"hand_p4_coloured_1thread",
+       "hand",
+       {{"pressure", "4"}, {"order", "coloured"}, {"threads", "1"}}},
+      {"hand_aniso_arap", "hand", {{"aniso", "arap"}}},
+      {"bear_xpbd", "bear", {{"solver", "xpbd"}, {"mu", "50"}, {"lambda", "50"}}},
+      {"bear_target_07", "bear", {{"target-volume", "0.7"}}},
+  };
+  return runs;
+}
+
+constexpr int GOLDEN_FRAMES = 40;
+
+std::string golden_file() { return std::string(test::MESH_DIR) + "/../tests/goldens/runs.txt"; }
+
+struct Fingerprint {
+  std::uint64_t hash = 1469598103934665603ull;
+  double ratio = 0, sum = 0, sum_sq = 0;
+};
+
+Fingerprint fingerprint(const RunResult& r) {
+  Fingerprint f;
+  const auto* bytes = reinterpret_cast<const unsigned char*>(r.positions.data());
+  for (std::size_t i = 0; i < static_cast<std::size_t>(r.positions.size()) * sizeof(double); ++i)
+    f.hash = (f.hash ^ bytes[i]) * 1099511628211ull;
+  f.ratio = r.final_volume_ratio;
+  f.sum = r.positions.sum();
+  f.sum_sq = r.positions.squaredNorm();
+  return f;
+}
+
+std::string line_of(const std::string& name, const Fingerprint& f) {
+  std::ostringstream o;
+  o << name << ' ' << std::hex << f.hash << std::dec << std::setprecision(17) << ' ' << f.ratio
+    << ' ' << f.sum << ' ' << f.sum_sq;
+  return o.str();
+}
+
+std::map<std::string, std::string> read_goldens() {
+  std::map<std::string, std::string> lines;
+  std::ifstream in(golden_file());
+  std::string line;
+  while (std::getline(in, line))
+    if (!line.empty() && line[0] != '#') lines[line.substr(0, line.find(' '))] = line;
+  return lines;
+}
+
+bool close(double a, double b) { return std::abs(a - b) <= 1e-9 * std::max(1.0, std::abs(b)); }
+
+TEST(Goldens, FixedRunsReproduceTheirRecordedOutput) {
+  for (const char* m : {"hand", "bear", "eight", "elk"})
+    if (!std::filesystem::exists(std::string(test::PAPER_MESH_DIR) + "/" + m + ".off"))
+      GTEST_SKIP() << "paper meshes absent: run scripts/fetch_paper_meshes.sh";
+  const bool bless = std::getenv("SHELLCONTRACT_BLESS_GOLDENS") != nullptr;
+  const std::map<std::string, std::string> goldens = read_goldens();
+  std::string blessed =
+      "# scripts/bless_goldens.sh writes this file; see tests/scenario/test_goldens.cpp\n";
+  for (const GoldenRun& g : golden_runs()) {
+    RunOptions o;
+    o.sim.frames = GOLDEN_FRAMES;
+    for (const auto& [name, value] : g.options) set_run_option(o, name, value);
+    const Mesh mesh = read_input_mesh(std::string(test::PAPER_MESH_DIR) + "/" + g.mesh + ".off");
+    const Fingerprint f = fingerprint(run_contraction(mesh, o));
+    const std::string line = line_of(g.name, f);
+    blessed += line + "\n";
+    if (bless) continue;
+    const auto it = goldens.find(g.name);
+    ASSERT_NE(it, goldens.end()) << g.name << " has no golden: run scripts/bless_goldens.sh";
+    if (it->second == line) continue;
+    std::istringstream want(it->second);
+    std::string name, hash;
+    double ratio = 0, sum = 0, sum_sq = 0;
+    want >> name >> hash >> ratio >> sum >> sum_sq;
+    EXPECT_TRUE(close(f.ratio, ratio) && close(f.sum, sum) && close(f.sum_sq, sum_sq))
+        << "golden run " << g.name << " changed:\n  want " << it->second << "\n  got  " << line;
+    std::cout << "golden " << g.name << ": hash differs, sums agree to 1e-9 (another CPU?)\n";
+  }
+  if (bless) {
+    std::ofstream(golden_file()) << blessed;
+    std::cout << "blessed " << golden_file() << '\n';
+  }
+}
+
+}  // namespace
+}  // namespace shellcontract

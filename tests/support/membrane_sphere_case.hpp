@@ -1,0 +1,56 @@
+// A thin spherical membrane under a small outside pressure against its closed form (issue
+// "Control", item 4; docs/math/membrane-sphere.md): radius r, thickness h, Young's modulus E,
+// Poisson ratio nu, over-pressure P well below buckling shrink by dr/r = -P r (1 - nu) / (2 E h),
+// so dV/V = (1 + dr/r)^3 - 1. Shared by the default suite (tests/sim) and the long label.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+
+#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/sim/run.hpp"
+#include "support/cgal_mesh.hpp"
+
+namespace shellcontract::test {
+
+/// The material and the solver setting the comparison uses (normalized units: the sphere's
+/// bounding-box diagonal is 1, so r = 1 / (2 sqrt 3)).
+struct MembraneSphereSetting {
+  double young = 1000.0, poisson = 0.3, thickness = 0.01;
+  int iterations = 100;
+  int frames = 400;
+};
+
+/// The closed form's dV/V for pressure P.
+inline double membrane_sphere_dv(double P, const MembraneSphereSetting& s) {
+  const double r = 1.0 / (2.0 * std::sqrt(3.0));
+  const double dr = -P * r * (1.0 - s.poisson) / (2.0 * s.young * s.thickness);
+  return std::pow(1.0 + dr, 3) - 1.0;
+}
+
+/// The buckling pressure 2 E h^2 / (r^2 sqrt(3 (1 - nu^2))).
+inline double membrane_sphere_buckling(const MembraneSphereSetting& s) {
+  const double r = 1.0 / (2.0 * std::sqrt(3.0));
+  return 2.0 * s.young * s.thickness * s.thickness / (r * r * std::sqrt(3.0 * (1.0 - s.poisson * s.poisson)));
+}
+
+/// dV/V measured at the end of an XPBD run of the icosphere of `levels` subdivisions at pressure P
+/// (no bending: the closed form is the membrane's alone; no collisions: nothing touches).
+inline double membrane_sphere_measured(int levels, double P, const MembraneSphereSetting& s) {
+  RunOptions o;
+  set_run_option(o, "solver", "xpbd");
+  set_run_option(o, "young", std::to_string(s.young));
+  set_run_option(o, "poisson", std::to_string(s.poisson));
+  set_run_option(o, "thickness", std::to_string(s.thickness));
+  set_run_option(o, "bending", "none");
+  set_run_option(o, "collisions", "off");
+  o.sim.pressure = P;
+  o.sim.solver.iterations = s.iterations;
+  o.sim.frames = s.frames;
+  const RunResult r = run_contraction(to_surface_mesh(icosphere(levels)), o);
+  return r.final_volume_ratio - 1.0;
+}
+
+}  // namespace shellcontract::test
