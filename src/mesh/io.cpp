@@ -1,4 +1,5 @@
-// Reading, checking and writing meshes (design.md, data flow: read -> check input -> ... -> write).
+// Reading and checking meshes (design.md, data flow: read -> check input); writing is in
+// write_mesh.cpp.
 //
 // Reading goes through a polygon soup (CGAL::IO::read_OFF/OBJ/PLY/STL), which we check
 // ourselves before PMP::polygon_soup_to_polygon_mesh: that function only *asserts* that the soup
@@ -6,10 +7,6 @@
 // null face. Checking the soup also lets every message name the face, the vertex and (for OFF,
 // through a small line-based pre-scan) the line. The soup keeps the input vertex and face order,
 // which users rely on (textures, per-vertex data); read_input_mesh verifies that it was kept.
-//
-// Writing is done by hand for the four formats, so that the positions come from a Positions
-// array (no mesh copy), the order is exactly the mesh's index order, and doubles are printed
-// with 17 significant digits (lossless round trip).
 #include "shellcontract/mesh/io.hpp"
 
 #include <unistd.h>  // getpid, for unique temporary names
@@ -269,47 +266,6 @@ void align_to_soup(Mesh& mesh, const std::vector<Polygon>& tris) {
   }
 }
 
-// ------------------------------------------------------------------------------------ writing
-
-/// Writes through `fill` into a temporary file next to `path`, then renames it over `path`.
-void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  // Same folder, so that rename is atomic (same file system); hidden, pid- and counter-unique so
-  // that parallel writers never share a temporary.
-  const fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw UsageError("cannot write '" + path + "': cannot create a file in folder '" + dir.string() + "' (" + std::strerror(errno) + ")");
-    out << std::setprecision(17);
-    try {
-      fill(out);
-    } catch (...) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw;
-    }
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw UsageError("cannot write '" + path + "': writing the temporary file failed (disk full?)");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    throw UsageError("cannot write '" + path + "': " + why);
-  }
-}
-
-std::array<std::size_t, 3> corners(const Mesh& mesh, FaceIndex f) {
-  const HalfedgeIndex h = mesh.halfedge(f);
-  return {mesh.target(h).idx(), mesh.target(mesh.next(h)).idx(), mesh.target(mesh.next(mesh.next(h))).idx()};
-}
-
 }  // namespace
 
 // ================================================================================== read_input_mesh
@@ -562,69 +518,6 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
     report->warnings = std::move(warnings);
   }
   return mesh;
-}
-
-// ================================================================================== writing
-
-void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x) {
-  if (mesh.has_garbage())
-    throw std::invalid_argument("write_mesh_atomic: the mesh has removed elements; call collect_garbage() first");
-  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
-    throw std::invalid_argument("write_mesh_atomic: " + std::to_string(x.rows()) + " position rows for " +
-                                std::to_string(mesh.number_of_vertices()) + " vertices");
-  const std::string ext = lower_extension(path);
-  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
-    throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
-  const Eigen::Index nv = x.rows();
-  const std::size_t nf = mesh.number_of_faces();
-
-  write_atomic(path, [&](std::ostream& out) {
-    if (ext == "off") {
-      out << "OFF\n" << nv << ' ' << nf << " 0\n";
-      for (Eigen::Index i = 0; i < nv; ++i) out << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << '\n';
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        out << "3 " << c[0] << ' ' << c[1] << ' ' << c[2] << '\n';
-      }
-    } else if (ext == "obj") {
-      out << "# written by shellcontract\n";
-      for (Eigen::Index i = 0; i < nv; ++i) out << "v " << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << '\n';
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        out << "f " << c[0] + 1 << ' ' << c[1] + 1 << ' ' << c[2] + 1 << '\n';  // OBJ counts from 1
-      }
-    } else if (ext == "ply") {
-      // Double properties: a float PLY would lose the positions' precision.
-      out << "ply\nformat ascii 1.0\ncomment written by shellcontract\nelement vertex " << nv
-          << "\nproperty double x\nproperty double y\nproperty double z\nelement face " << nf
-          << "\nproperty list uchar int vertex_indices\nend_header\n";
-      for (Eigen::Index i = 0; i < nv; ++i) out << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << '\n';
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        out << "3 " << c[0] << ' ' << c[1] << ' ' << c[2] << '\n';
-      }
-    } else {
-      // ASCII STL has no shared vertices: readers merge equal points in order of first
-      // appearance, so faces keep their order but vertex numbering may not.
-      out << "solid shellcontract\n";
-      for (const FaceIndex f : mesh.faces()) {
-        const auto c = corners(mesh, f);
-        const Vec3 a = x.row(static_cast<Eigen::Index>(c[0])).transpose();
-        const Vec3 b = x.row(static_cast<Eigen::Index>(c[1])).transpose();
-        const Vec3 d = x.row(static_cast<Eigen::Index>(c[2])).transpose();
-        Vec3 n = (b - a).cross(d - a);
-        if (n.norm() > 0.0) n.normalize();
-        out << "facet normal " << n.x() << ' ' << n.y() << ' ' << n.z() << "\nouter loop\n";
-        for (const Vec3* p : {&a, &b, &d}) out << "vertex " << p->x() << ' ' << p->y() << ' ' << p->z() << '\n';
-        out << "endloop\nendfacet\n";
-      }
-      out << "endsolid shellcontract\n";
-    }
-  });
-}
-
-void write_text_atomic(const std::string& path, const std::string& text) {
-  write_atomic(path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace shellcontract
