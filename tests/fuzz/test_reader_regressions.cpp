@@ -70,7 +70,7 @@ TEST(ReaderRegression, EveryRegressionFileIsReadOrRefusedCleanly) {
       ADD_FAILURE() << path << ": " << typeid(e).name() << ": " << e.what();
     }
   }
-  EXPECT_GE(n, 11u);
+  EXPECT_GE(n, 14u);
 }
 
 // CGAL 5.5's PLY reader segfaults on integer-typed coordinates (a null PLY_read_typed_number).
@@ -87,12 +87,16 @@ TEST(ReaderRegression, PlyPropertyBeforeElementIsAParseError) {
 // CGAL 5.5's PLY reader spends minutes and gigabytes on a count the file cannot hold.
 TEST(ReaderRegression, PlyHugeDeclaredCountIsBoundedByTheFileSize) {
   expect_refused(regression("ply_huge_vertex_count.ply"), {"truncated file", "1000000000"});
+  // 58 bytes: 10^9 vertices without properties kept CGAL busy for seconds and gigabytes.
+  expect_refused(regression("ply_vertex_count_without_properties.ply"), {"parse error", "line 3", "1000000000 declared", "x, y, z"});
 }
 
-// std::bad_alloc from a reserve of the declared count (ours and CGAL's OFF reader).
+// std::bad_alloc from a reserve of the declared count (ours; CGAL's OFF reader resizes to it).
 TEST(ReaderRegression, OffHugeDeclaredCountsAreTruncatedFiles) {
   expect_refused(regression("off_huge_vertex_count.off"), {"truncated file", "1000000000000 vertices"});
   expect_refused(regression("off_huge_face_count.off"), {"truncated file", "1000000000000000000 faces"});
+  // A count that fits CGAL's int: CGAL's reader resized its arrays to it (std::bad_alloc).
+  expect_refused(regression("off_vertex_count_fits_int.off"), {"truncated file", "2000000000 vertices"});
 }
 
 // A UTF-8 byte-order mark and classic-Mac line ends are legal text: read, not misreported.
@@ -100,6 +104,10 @@ TEST(ReaderRegression, OffWithByteOrderMarkOrCrLineEndsIsRead) {
   expect_unit_tetrahedron(regression("off_utf8_bom.off"));
   expect_unit_tetrahedron(regression("off_cr_line_ends.off"));
 }
+
+// CGAL 5.5's polygon-soup OFF reader does not skip a binary face's colour count: every face
+// after the first was misread ("face 1 has 0 vertices").
+TEST(ReaderRegression, BinaryOffIsRead) { expect_unit_tetrahedron(regression("off_binary_tetrahedron.off")); }
 
 // The open boundary is the more fundamental problem than the unused vertex.
 TEST(ReaderRegression, OpenMeshWithUnusedVertexIsReportedAsOpen) {
@@ -124,6 +132,35 @@ TEST(ReaderRegression, ZeroVolumeAndZeroDiagonalAreRefusedByTheReader) {
   fs::create_directories(dir);
   std::ofstream(dir + "/point.off") << "OFF\n4 4 0\n1 1 1\n1 1 1\n1 1 1\n1 1 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
   expect_refused(dir + "/point.off", {"zero bounding-box diagonal"});
+  fs::remove_all(dir);
+}
+
+// 400 oriented points on the unit sphere: CGAL's poisson_surface_reconstruction_delaunay
+// segfaulted (facets_in_complex_2_to_triangle_mesh on an empty complex); `reconstruct` must
+// exit 0 or 2, and write nothing on 2. Bad point files are refused with exit 2 too.
+TEST(ReaderRegression, ReconstructExitsZeroOrTwo) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << "needs the CLI";
+  const std::string dir = fs::temp_directory_path() / ("shellcontract_reconstruct_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ostringstream xyz;
+  xyz << std::setprecision(17);
+  const int n = 400;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = 2.399963 * i;
+    for (int k = 0; k < 2; ++k) xyz << r * std::cos(t) << ' ' << r * std::sin(t) << ' ' << z << (k ? '\n' : ' ');
+  }
+  std::ofstream(dir + "/sphere.xyz") << xyz.str();
+  for (const std::string& in : {dir + "/sphere.xyz", regression("ply_property_before_element.ply"),
+                                regression("ply_int_coordinates.ply"), regression("off_vertex_count_fits_int.off")}) {
+    const std::string out = dir + "/out.off";
+    const test::RunResult r = test::run_cli({"reconstruct", in, "-o", out});
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 2) << in << " exited " << r.exit_code << "\n" << r.output;
+    if (r.exit_code == 2) {
+      EXPECT_FALSE(fs::exists(out)) << in;
+      EXPECT_NE(r.output.find(in), std::string::npos) << r.output;
+    }
+    fs::remove(out);
+  }
   fs::remove_all(dir);
 }
 
