@@ -10,6 +10,7 @@ PACKAGES=(
   libtbb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   gnuplot-nox
+  pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-dev
 )
 
 missing=()
