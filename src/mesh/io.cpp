@@ -1,44 +1,38 @@
-// Reading, checking and writing meshes (design.md, data flow: read -> check input -> ... -> write).
+// Reading and checking meshes (design.md, data flow: read -> check input); writing is in
+// write_mesh.cpp.
 //
-// Reading goes through a polygon soup (CGAL::IO::read_OFF/OBJ/PLY/STL), which we check
-// ourselves before PMP::polygon_soup_to_polygon_mesh: that function only *asserts* that the soup
-// is a valid polygon mesh, and a failed Euler::add_face in a release build silently yields a
-// null face. Checking the soup also lets every message name the face, the vertex and (for OFF,
-// through a small line-based pre-scan) the line. The soup keeps the input vertex and face order,
-// which users rely on (textures, per-vertex data); read_input_mesh verifies that it was kept.
+// Reading goes through a polygon soup, which we check ourselves before
+// PMP::polygon_soup_to_polygon_mesh: that function only *asserts* that the soup is a valid
+// polygon mesh, and a failed Euler::add_face in a release build silently yields a null face.
+// Checking the soup also lets every message name the face, the vertex and (for OFF and ascii PLY)
+// the line. The soup keeps the input vertex and face order, which users rely on (textures,
+// per-vertex data); read_input_mesh verifies that it was kept.
 //
-// Writing is done by hand for the four formats, so that the positions come from a Positions
-// array (no mesh copy), the order is exactly the mesh's index order, and doubles are printed
-// with 17 significant digits (lossless round trip).
+// The soup comes from CGAL::IO::read_OFF/OBJ/STL, or from our own PLY reader (ply_reader.cpp:
+// CGAL 5.5's crashes). OFF files are pre-scanned (off_scan.cpp) so that CGAL never sees a count
+// the file does not hold. Every geometric test (triangulation, orientation, volume, zero area)
+// runs on coordinates normalized to the bounding-box centre and a unit diagonal, so that meshes
+// from 1e-150 to 1e150 get the same answers as at unit scale (no overflow or underflow in
+// products of three coordinates).
 #include "shellcontract/mesh/io.hpp"
 
-#include <unistd.h>  // getpid, for unique temporary names
-
-#include <CGAL/IO/polygon_soup_io.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <cerrno>
-#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdint>
-#include <cstdlib>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <functional>
 #include <iomanip>
 #include <map>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
-#include <type_traits>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/normalization.hpp"
+#include "shellcontract/mesh/read_polygon_soup.hpp"
 #include "shellcontract/validation/volume.hpp"
 
 namespace shellcontract {
@@ -73,153 +67,54 @@ std::string list_indices(const std::vector<std::size_t>& ids) {
   return s;
 }
 
-// ------------------------------------------------------------------------------------ OFF pre-scan
-// CGAL's OFF reader returns a bare `false` on a truncated or garbled file. This scan walks the
-// plain-ASCII "OFF" layout line by line (one vertex or face per line, '#' comments) to say which
-// line is wrong, and records the line of every vertex and face for later messages. Variants
-// (COFF, NOFF, OFF BINARY, ...) are left to CGAL alone.
-
-struct OffLines {
-  std::vector<std::size_t> vertex_line;  ///< 1-based line of vertex i; empty if not scanned
-  std::vector<std::size_t> face_line;    ///< 1-based line of face i; empty if not scanned
-};
-
-class OffScanner {
- public:
-  OffScanner(const std::string& path, std::istream& in) : path_(path), in_(in) {}
-
-  OffLines scan() {
-    OffLines out;
-    std::vector<std::string> t;
-    if (!next(t)) fail(path_, "empty file", "no OFF header, the file holds only blank or comment lines");
-    const std::size_t header_line = line_;
-    if (t[0] != "OFF") {
-      const bool variant = t[0].size() > 3 && t[0].compare(t[0].size() - 3, 3, "OFF") == 0;
-      if (variant) return out;  // COFF, NOFF, STOFF...: CGAL's reader handles them
-      fail(path_, "parse error", "line " + std::to_string(line_) + ": expected the OFF header, found '" + shorten(t[0]) + "'");
-    }
-    t.erase(t.begin());
-    if (!t.empty() && t[0] == "BINARY") return out;
-    if (t.empty() && !next(t))
-      fail(path_, "truncated file", "the file ends after the OFF header (line " + std::to_string(header_line) + "), before the vertex and face counts");
-    if (t.size() < 2)
-      fail(path_, "parse error", "line " + std::to_string(line_) + ": expected the vertex, face and edge counts");
-    const std::size_t counts_line = line_;
-    const std::size_t nv = count(t[0], "vertex count");
-    const std::size_t nf = count(t[1], "face count");
-    if (nv == 0 || nf == 0)
-      fail(path_, "empty mesh", "line " + std::to_string(counts_line) + " announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces");
-
-    const std::string announced = "the header (line " + std::to_string(counts_line) + ") announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces";
-    out.vertex_line.reserve(nv);
-    for (std::size_t i = 0; i < nv; ++i) {
-      if (!next(t))
-        fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(i) + " vertices (line " + std::to_string(line_) + ")");
-      const std::string where = "vertex " + std::to_string(i) + " (line " + std::to_string(line_) + ")";
-      if (t.size() < 3) {
-        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where);
-        fail(path_, "parse error", where + " has " + std::to_string(t.size()) + " numbers, expected 3 coordinates");
-      }
-      for (int k = 0; k < 3; ++k) {
-        char* end = nullptr;
-        const double c = std::strtod(t[k].c_str(), &end);
-        if (end == t[k].c_str() || *end != '\0')
-          fail(path_, "parse error", where + ": '" + shorten(t[k]) + "' is not a number");
-        if (!std::isfinite(c))
-          fail(path_, "non-finite coordinate", where + " has coordinate " + "xyz"[k] + " = " + t[k]);
-      }
-      out.vertex_line.push_back(line_);
-    }
-    out.face_line.reserve(nf);
-    for (std::size_t j = 0; j < nf; ++j) {
-      if (!next(t))
-        fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(j) + " faces (line " + std::to_string(line_) + ")");
-      const std::string where = "face " + std::to_string(j) + " (line " + std::to_string(line_) + ")";
-      const std::size_t n = index(t[0], where + ": vertex count");
-      if (t.size() < n + 1) {
-        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where);
-        fail(path_, "parse error", where + " announces " + std::to_string(n) + " vertices but lists " + std::to_string(t.size() - 1));
-      }
-      for (std::size_t k = 1; k <= n; ++k) {
-        const std::size_t v = index(t[k], where);
-        if (v >= nv)
-          fail(path_, "vertex index out of range", where + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
-      }
-      out.face_line.push_back(line_);
-    }
-    return out;
-  }
-
- private:
-  /// Next non-blank, non-comment line split into tokens; false at end of file.
-  bool next(std::vector<std::string>& tokens) {
-    std::string s;
-    while (std::getline(in_, s)) {
-      ++line_;
-      const auto hash = s.find('#');
-      if (hash != std::string::npos) s.erase(hash);
-      std::istringstream ls(s);
-      tokens.clear();
-      for (std::string w; ls >> w;) tokens.push_back(w);
-      if (!tokens.empty()) return true;
-    }
-    return false;
-  }
-  bool at_end() {
-    in_ >> std::ws;
-    return in_.peek() == std::char_traits<char>::eof();
-  }
-  static std::string shorten(const std::string& s) {
-    std::string r = s.size() > 20 ? s.substr(0, 20) + "..." : s;
-    for (char& c : r)
-      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-    return r;
-  }
-  std::size_t index(const std::string& tok, const std::string& where) {
-    char* end = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(tok.c_str(), &end, 10);
-    if (end == tok.c_str() || *end != '\0' || errno == ERANGE)
-      fail(path_, "parse error", where + ": '" + shorten(tok) + "' is not an integer");
-    if (v < 0) fail(path_, "vertex index out of range", where + " has the negative index " + tok);
-    return static_cast<std::size_t>(v);
-  }
-  std::size_t count(const std::string& tok, const std::string& what) {
-    char* end = nullptr;
-    errno = 0;
-    const long long v = std::strtoll(tok.c_str(), &end, 10);
-    if (end == tok.c_str() || *end != '\0' || errno == ERANGE || v < 0)
-      fail(path_, "parse error", "line " + std::to_string(line_) + ": " + what + " '" + shorten(tok) + "' is not a non-negative integer");
-    return static_cast<std::size_t>(v);
-  }
-
-  const std::string& path_;
-  std::istream& in_;
-  std::size_t line_ = 0;
-};
-
 // ------------------------------------------------------------------------------------ soup checks
 
 Vec3 to_vec(const Point3& p) { return Vec3(p.x(), p.y(), p.z()); }
 
-/// Names a face in messages: its index, and where it came from in the file when known.
-struct FaceNamer {
-  const std::vector<std::size_t>* origin;  ///< input polygon of each output face
-  const OffLines* lines;
-  std::string operator()(std::size_t f) const {
-    std::string s = "face " + std::to_string(f);
+/// Names vertices, faces and edges in messages, the way the file shows them: with their line
+/// when known; for STL, which has no vertex numbers (CGAL merges equal corners into numbered
+/// points), by facet number and coordinates.
+struct Namer {
+  const SourceLines* lines = nullptr;
+  const std::vector<Point3>* points = nullptr;
+  const std::vector<std::size_t>* origin = nullptr;  ///< input polygon of each output face
+  bool stl = false;
+  std::vector<std::pair<std::size_t, std::size_t>> first_use;  ///< STL: (facet, corner) where point i first appears
+
+  std::string point(std::size_t v) const {
+    std::ostringstream s;
+    s << std::setprecision(9) << '(' << (*points)[v].x() << ", " << (*points)[v].y() << ", " << (*points)[v].z() << ')';
+    return s.str();
+  }
+  std::string vertex(std::size_t v) const {
+    if (stl) {
+      std::string s = "the point " + point(v);
+      if (v < first_use.size()) s += " (corner " + std::to_string(first_use[v].second) + " of facet " + std::to_string(first_use[v].first) + ")";
+      return s;
+    }
+    std::string s = "vertex " + std::to_string(v);
+    if (v < lines->vertex_line.size()) s += " (line " + std::to_string(lines->vertex_line[v]) + ")";
+    return s;
+  }
+  /// Polygon i of the input (before triangulation).
+  std::string polygon(std::size_t i) const {
+    std::string s = (stl ? "facet " : "face ") + std::to_string(i);
+    if (i < lines->face_line.size()) s += " (line " + std::to_string(lines->face_line[i]) + ")";
+    return s;
+  }
+  /// Face f of the triangulated mesh.
+  std::string face(std::size_t f) const {
     const std::size_t p = (*origin)[f];
-    if (p != f) s += " (part of input polygon " + std::to_string(p) + ")";
+    if (p == f) return polygon(f);
+    std::string s = "face " + std::to_string(f) + " (part of input polygon " + std::to_string(p) + ")";
     if (p < lines->face_line.size()) s += " (line " + std::to_string(lines->face_line[p]) + ")";
     return s;
   }
+  std::string edge(std::size_t a, std::size_t b) const {
+    if (stl) return "the edge from " + point(a) + " to " + point(b);
+    return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
+  }
 };
-
-std::string vertex_name(std::size_t v, const OffLines& lines) {
-  std::string s = "vertex " + std::to_string(v);
-  if (v < lines.vertex_line.size()) s += " (line " + std::to_string(lines.vertex_line[v]) + ")";
-  return s;
-}
 
 /// Fan-triangulates polygon `p` from the first corner whose fan triangles all face along the
 /// polygon's Newell normal (any convex polygon, and star-shaped ones seen from that corner).
@@ -271,81 +166,22 @@ void align_to_soup(Mesh& mesh, const std::vector<Polygon>& tris) {
   }
 }
 
-// ------------------------------------------------------------------------------------ writing
-
-/// Writes through `fill` into a temporary file next to `path`, then renames it over `path`.
-void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
-  static std::atomic<unsigned> counter{0};
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  // Same folder, so that rename is atomic (same file system); hidden, pid- and counter-unique so
-  // that parallel writers never share a temporary.
-  const fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw UsageError("cannot write '" + path + "': cannot create a file in folder '" + dir.string() + "' (" + std::strerror(errno) + ")");
-    out << std::setprecision(17);
-    try {
-      fill(out);
-    } catch (...) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw;
-    }
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw UsageError("cannot write '" + path + "': writing the temporary file failed (disk full?)");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    throw UsageError("cannot write '" + path + "': " + why);
-  }
-}
-
-std::array<std::size_t, 3> corners(const Mesh& mesh, FaceIndex f) {
-  const HalfedgeIndex h = mesh.halfedge(f);
-  return {mesh.target(h).idx(), mesh.target(mesh.next(h)).idx(), mesh.target(mesh.next(mesh.next(h))).idx()};
-}
-
-}  // namespace
-
-// ================================================================================== read_input_mesh
-
-Mesh read_input_mesh(const std::string& path, InputReport* report) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path, "cannot open file", "no such file");
-  if (fs::is_directory(path, ec)) fail(path, "cannot open file", "it is a folder");
-  std::ifstream probe(path, std::ios::binary);
-  if (!probe) fail(path, "cannot open file", std::strerror(errno));
-  const std::string ext = lower_extension(path);
-  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
-    fail(path, "unknown extension", "'." + ext + "' (expected .off, .obj, .ply or .stl)");
-  probe >> std::ws;
-  if (probe.peek() == std::char_traits<char>::eof()) fail(path, "empty file", "the file holds no data");
-  probe.clear();
-  probe.seekg(0);
-
-  OffLines lines;
-  if (ext == "off") lines = OffScanner(path, probe).scan();
-  probe.close();
-
-  std::vector<Point3> points;
-  std::vector<Polygon> polygons;
-  bool ok = false;
-  // Direct calls rather than read_polygon_soup: the extension is already lower-cased and known.
-  if (ext == "off") ok = CGAL::IO::read_OFF(path, points, polygons);
-  else if (ext == "obj") ok = CGAL::IO::read_OBJ(path, points, polygons);
-  else if (ext == "ply") ok = CGAL::IO::read_PLY(path, points, polygons);
-  else ok = CGAL::IO::read_STL(path, points, polygons);
-  if (!ok)
-    fail(path, "parse error", "CGAL could not read it as a ." + ext + " file (truncated file or garbage)");
+/// Checks the soup, triangulates and orients it, and builds the mesh (read_input_mesh's work).
+Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
+                const std::vector<Polygon>& polygons, const SourceLines& lines, InputReport* report) {
   if (points.empty() || polygons.empty())
     fail(path, "empty mesh", std::to_string(points.size()) + " vertices and " + std::to_string(polygons.size()) + " faces");
+  Namer name;
+  name.lines = &lines;
+  name.points = &points;
+  if (ext == "stl") {
+    name.stl = true;
+    name.first_use.assign(points.size(), {0, 0});
+    std::vector<char> seen(points.size(), 0);
+    for (std::size_t f = polygons.size(); f-- > 0;)
+      for (std::size_t k = polygons[f].size(); k-- > 0;)
+        if (polygons[f][k] < points.size()) name.first_use[polygons[f][k]] = {f, k};
+  }
 
   const std::size_t nv = points.size();
   for (std::size_t i = 0; i < nv; ++i) {
@@ -353,8 +189,27 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
       std::ostringstream c;
       c << p.x() << ' ' << p.y() << ' ' << p.z();
-      fail(path, "non-finite coordinate", vertex_name(i, lines) + " is (" + c.str() + ")");
+      fail(path, "non-finite coordinate", name.vertex(i) + " is (" + c.str() + ")");
     }
+  }
+
+  // Geometry is tested on normalized coordinates (see the file comment), with the bounding-box
+  // centre and diagonal that compute_normalization gives the simulator, so that both see the
+  // same numbers. A zero or non-finite diagonal is refused below, after the connectivity checks.
+  Vec3 lo = to_vec(points[0]), hi = lo;
+  for (const Point3& p : points) {
+    lo = lo.cwiseMin(to_vec(p));
+    hi = hi.cwiseMax(to_vec(p));
+  }
+  const Vec3 centre = 0.5 * (lo + hi);
+  const double diagonal = (hi - lo).norm();
+  const bool usable_diagonal = std::isfinite(diagonal) && diagonal > 0.0;
+  const double scale = usable_diagonal ? diagonal : 1.0;
+  std::vector<Point3> unit;
+  unit.reserve(nv);
+  for (const Point3& p : points) {
+    const Vec3 q = (to_vec(p) - centre) / scale;
+    unit.emplace_back(q.x(), q.y(), q.z());
   }
 
   // Per polygon: arity, index range, repeated corners. Then triangulate: polygon i's (first)
@@ -366,29 +221,25 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   std::vector<Polygon> extra;
   std::vector<std::size_t> extra_origin;
   std::size_t split = 0;
-  auto polygon_name = [&](std::size_t i) {
-    std::string s = "face " + std::to_string(i);
-    if (i < lines.face_line.size()) s += " (line " + std::to_string(lines.face_line[i]) + ")";
-    return s;
-  };
+
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const Polygon& p = polygons[i];
     if (p.size() < 3)
-      fail(path, "degenerate face", polygon_name(i) + " has " + std::to_string(p.size()) + " vertices");
+      fail(path, "degenerate face", name.polygon(i) + " has " + std::to_string(p.size()) + " vertices");
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (p[k] >= nv)
-        fail(path, "vertex index out of range", polygon_name(i) + " refers to vertex " + std::to_string(p[k]) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
+        fail(path, "vertex index out of range", name.polygon(i) + " refers to vertex " + std::to_string(p[k]) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
       for (std::size_t l = 0; l < k; ++l)
         if (p[l] == p[k])
-          fail(path, "degenerate face", polygon_name(i) + " uses vertex " + std::to_string(p[k]) + " twice");
+          fail(path, "degenerate face", name.polygon(i) + (name.stl ? " uses " + name.vertex(p[k]) + " twice" : " uses vertex " + std::to_string(p[k]) + " twice"));
     }
     if (p.size() == 3) {
       tris[i] = p;
       continue;
     }
-    std::vector<Polygon> t = fan_triangulate(p, points);
+    std::vector<Polygon> t = fan_triangulate(p, unit);
     if (t.empty())
-      fail(path, "non-convex polygon", polygon_name(i) + " has " + std::to_string(p.size()) + " vertices and no corner from which a fan triangulates it; triangulate it before");
+      fail(path, "non-convex polygon", name.polygon(i) + " has " + std::to_string(p.size()) + " vertices and no corner from which a fan triangulates it; triangulate it before");
     ++split;
     tris[i] = t[0];
     for (std::size_t k = 1; k < t.size(); ++k) {
@@ -398,7 +249,7 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   }
   tris.insert(tris.end(), extra.begin(), extra.end());
   origin.insert(origin.end(), extra_origin.begin(), extra_origin.end());
-  const FaceNamer face_name{&origin, &lines};
+  name.origin = &origin;
   const std::size_t nf = tris.size();
 
   // Duplicate faces (same three vertices in any order) would make a zero-volume double sheet.
@@ -409,17 +260,8 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
       std::sort(key.begin(), key.end());
       const auto [it, inserted] = seen.emplace(key, f);
       if (!inserted)
-        fail(path, "duplicate face", face_name(f) + " has the same vertices (" + std::to_string(key[0]) + ", " + std::to_string(key[1]) + ", " + std::to_string(key[2]) + ") as " + face_name(it->second));
+        fail(path, "duplicate face", name.face(f) + " has the same corners as " + name.face(it->second));
     }
-  }
-
-  // Isolated vertices have no mass and no forces; they would be free degrees of freedom.
-  {
-    std::vector<char> used(nv, 0);
-    for (const Polygon& t : tris)
-      for (std::size_t v : t) used[v] = 1;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (!used[v]) fail(path, "isolated vertex", vertex_name(v, lines) + " is not used by any face");
   }
 
   // Edges: each undirected edge must have exactly two faces that traverse it in opposite
@@ -450,16 +292,26 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
         std::size_t count = 0;
         while (first + static_cast<std::ptrdiff_t>(count) != uses_sorted.end() && first[static_cast<std::ptrdiff_t>(count)].key == key(a, b)) ++count;
         if (count == 2 && first[0].forward != first[1].forward) continue;
-        const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
+        const std::string edge = name.edge(a, b);
         if (count == 1)
-          fail(path, "open boundary", edge + " of " + face_name(f) + " has no neighbouring face (boundary edge between vertex " + std::to_string(a) + " and vertex " + std::to_string(b) + "); the mesh must be closed");
+          fail(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed");
         if (count > 2) {
           std::string fs_list;
           for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) fs_list += (u ? ", " : "") + std::to_string(first[static_cast<std::ptrdiff_t>(u)].face);
-          fail(path, "non-manifold edge", "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed");
+          fail(path, "non-manifold edge", name.edge(std::min(a, b), std::max(a, b)) + " is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed");
         }
-        fail(path, "inconsistent orientation", face_name(first[0].face) + " and " + face_name(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
+        fail(path, "inconsistent orientation", name.face(first[0].face) + " and " + name.face(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
       }
+  }
+
+  // Isolated vertices have no mass and no forces; they would be free degrees of freedom. Checked
+  // after the edges: an open boundary is the more fundamental problem of a mesh with both.
+  {
+    std::vector<char> used(nv, 0);
+    for (const Polygon& t : tris)
+      for (std::size_t v : t) used[v] = 1;
+    for (std::size_t v = 0; v < nv; ++v)
+      if (!used[v]) fail(path, "isolated vertex", name.vertex(v) + " is not used by any face");
   }
 
   // Vertices: the faces around a vertex must form one fan (their link edges one cycle). With
@@ -478,7 +330,7 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
         ++steps;
       }
       if (steps + 1 != l.size())
-        fail(path, "non-manifold vertex", vertex_name(v, lines) + ": its " + std::to_string(l.size()) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
+        fail(path, "non-manifold vertex", name.vertex(v) + ": its " + std::to_string(l.size()) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
     }
   }
 
@@ -502,14 +354,14 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
     const std::size_t c = component_of_root.at(uf.find(tris[f][0]));
     component_face[f] = c;
     // Measured from a point of the component: the closed-surface sum does not depend on the
-    // origin, and a nearby one avoids cancellation for meshes far from (0,0,0).
+    // origin, and a nearby one avoids cancellation for components far from the centre.
     if (!has_origin[c]) {
-      origin_point[c] = to_vec(points[tris[f][0]]);
+      origin_point[c] = to_vec(unit[tris[f][0]]);
       has_origin[c] = 1;
     }
-    const Vec3 a = to_vec(points[tris[f][0]]) - origin_point[c];
-    const Vec3 b = to_vec(points[tris[f][1]]) - origin_point[c];
-    const Vec3 d = to_vec(points[tris[f][2]]) - origin_point[c];
+    const Vec3 a = to_vec(unit[tris[f][0]]) - origin_point[c];
+    const Vec3 b = to_vec(unit[tris[f][1]]) - origin_point[c];
+    const Vec3 d = to_vec(unit[tris[f][2]]) - origin_point[c];
     six_volume[c] += a.dot(b.cross(d));
   }
   bool reoriented = false;
@@ -525,7 +377,8 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
       }
     std::ostringstream w;
     w << "component " << c << " (" << count << " faces, starting at face " << first
-      << ") was inside-out (signed volume " << six_volume[c] / 6.0 << "); its faces were flipped";
+      << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
+      << "); its faces were flipped";
     warnings.push_back(w.str());
   }
   if (split > 0)
@@ -537,21 +390,34 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   {
     double edge_sum = 0.0;
     for (const Polygon& t : tris)
-      for (int k = 0; k < 3; ++k) edge_sum += (to_vec(points[t[k]]) - to_vec(points[t[(k + 1) % 3]])).norm();
+      for (int k = 0; k < 3; ++k) edge_sum += (to_vec(unit[t[k]]) - to_vec(unit[t[(k + 1) % 3]])).norm();
     const double mean_edge = edge_sum / (3.0 * static_cast<double>(nf));
     const double threshold = ZERO_AREA_RELATIVE * mean_edge * mean_edge;
     for (std::size_t f = 0; f < nf; ++f) {
-      const Vec3 a = to_vec(points[tris[f][0]]);
-      const double twice_area = (to_vec(points[tris[f][1]]) - a).cross(to_vec(points[tris[f][2]]) - a).norm();
+      const Vec3 a = to_vec(unit[tris[f][0]]);
+      const double twice_area = (to_vec(unit[tris[f][1]]) - a).cross(to_vec(unit[tris[f][2]]) - a).norm();
       if (twice_area < threshold) zero_area.push_back(f);
     }
   }
   if (!zero_area.empty())
     warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + list_indices(zero_area));
 
+  // What the simulator needs beyond a closed manifold (one decision for `check` and `run`): a
+  // bounding box to normalize by, and a positive volume, measured exactly as the simulator does.
+  if (!usable_diagonal)
+    fail(path, "degenerate mesh", diagonal == 0.0 ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
+                                                  : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
   Mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, tris, mesh);
   align_to_soup(mesh, tris);
+  const Positions x = positions_from_mesh(mesh);
+  const double unit_volume = enclosed_volume(mesh, normalize(x, compute_normalization(x)));
+  if (!(unit_volume > 0.0)) {
+    std::ostringstream v;
+    v << unit_volume;
+    fail(path, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
+                                         " at a unit bounding-box diagonal): it is flat or degenerate");
+  }
 
   if (report) {
     report->vertices = mesh.number_of_vertices();
@@ -560,97 +426,46 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
     report->zero_area_faces = std::move(zero_area);
     report->reoriented = reoriented;
     report->components = n_components;
-    report->volume = enclosed_volume(mesh, positions_from_mesh(mesh));
+    // In input units; beyond about 1e102 per coordinate the cube of the scale overflows to inf.
+    report->volume = unit_volume * scale * scale * scale;
     report->warnings = std::move(warnings);
   }
   return mesh;
 }
 
-// ================================================================================== writing
+}  // namespace
 
-void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x) {
-  if (mesh.has_garbage())
-    throw std::invalid_argument("write_mesh_atomic: the mesh has removed elements; call collect_garbage() first");
-  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
-    throw std::invalid_argument("write_mesh_atomic: " + std::to_string(x.rows()) + " position rows for " +
-                                std::to_string(mesh.number_of_vertices()) + " vertices");
+// ================================================================================== read_input_mesh
+
+Mesh read_input_mesh(const std::string& path, InputReport* report) {
   const std::string ext = lower_extension(path);
-  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
-    throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
-  const Eigen::Index nv = x.rows();
-  const std::size_t nf = mesh.number_of_faces();
-
-  // Formatted with to_chars into one string per file and written at once: the same bytes as the
-  // stream at precision 17 (to_chars' general format with a precision is printf's %.17g, which
-  // is what the stream uses), several times faster, which matters for frame sequences.
-  std::string text;
-  text.reserve(static_cast<std::size_t>(nv) * 64 + nf * 24);
-  const auto put = [&text](auto value) {
-    char buf[32];
-    std::to_chars_result r;
-    if constexpr (std::is_floating_point_v<decltype(value)>)
-      r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
-    else
-      r = std::to_chars(buf, buf + sizeof buf, value);
-    text.append(buf, r.ptr);
-  };
-  const auto put3 = [&](const char* prefix, auto a, auto b, auto c) {
-    text += prefix;
-    put(a);
-    text += ' ';
-    put(b);
-    text += ' ';
-    put(c);
-    text += '\n';
-  };
-  const auto vertex_rows = [&](const char* prefix) {
-    for (Eigen::Index i = 0; i < nv; ++i) put3(prefix, x(i, 0), x(i, 1), x(i, 2));
-  };
-  const auto face_rows = [&](const char* prefix, std::size_t base) {
-    for (const FaceIndex f : mesh.faces()) {
-      const auto c = corners(mesh, f);
-      put3(prefix, c[0] + base, c[1] + base, c[2] + base);
+  std::vector<Point3> points;
+  std::vector<Polygon> polygons;
+  SourceLines lines;
+  // The readers bound every declared count by the file's size; these handlers are the last line
+  // of defence, so that no file can end the process with an uncaught exception.
+  try {
+    if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl") {
+      std::error_code ec;
+      if (!fs::exists(path, ec)) fail(path, "cannot open file", "no such file");
+      fail(path, "unknown extension", "'." + ext + "' (expected .off, .obj, .ply or .stl)");
     }
-  };
-
-  if (ext == "off") {
-    text += "OFF\n" + std::to_string(nv) + ' ' + std::to_string(nf) + " 0\n";
-    vertex_rows("");
-    face_rows("3 ", 0);
-  } else if (ext == "obj") {
-    text += "# written by shellcontract\n";
-    vertex_rows("v ");
-    face_rows("f ", 1);  // OBJ counts from 1
-  } else if (ext == "ply") {
-    // Double properties: a float PLY would lose the positions' precision.
-    text += "ply\nformat ascii 1.0\ncomment written by shellcontract\nelement vertex " + std::to_string(nv) +
-            "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(nf) +
-            "\nproperty list uchar int vertex_indices\nend_header\n";
-    vertex_rows("");
-    face_rows("3 ", 0);
-  } else {
-    // ASCII STL has no shared vertices: readers merge equal points in order of first
-    // appearance, so faces keep their order but vertex numbering may not.
-    text += "solid shellcontract\n";
-    for (const FaceIndex f : mesh.faces()) {
-      const auto c = corners(mesh, f);
-      const Vec3 a = x.row(static_cast<Eigen::Index>(c[0])).transpose();
-      const Vec3 b = x.row(static_cast<Eigen::Index>(c[1])).transpose();
-      const Vec3 d = x.row(static_cast<Eigen::Index>(c[2])).transpose();
-      Vec3 n = (b - a).cross(d - a);
-      if (n.norm() > 0.0) n.normalize();
-      put3("facet normal ", n.x(), n.y(), n.z());
-      text += "outer loop\n";
-      for (const Vec3* p : {&a, &b, &d}) put3("vertex ", p->x(), p->y(), p->z());
-      text += "endloop\nendfacet\n";
-    }
-    text += "endsolid shellcontract\n";
+    read_polygon_soup(path, ext, points, polygons, lines);
+    return check_soup(path, ext, points, polygons, lines, report);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    fail(path, "out of memory", "reading it needs more memory than there is (" + std::to_string(points.size()) +
+                                    " vertices and " + std::to_string(polygons.size()) + " faces read)");
+  } catch (const std::length_error& e) {
+    fail(path, "too large", std::string("a count in the file is beyond what can be stored (") + e.what() + ")");
+  } catch (const std::ios_base::failure& e) {
+    fail(path, "cannot read file", e.what());
+  } catch (const std::out_of_range& e) {
+    fail(path, "parse error", std::string("a value is out of range (") + e.what() + ")");
+  } catch (const std::invalid_argument& e) {
+    fail(path, "parse error", std::string("a value is not a number (") + e.what() + ")");
   }
-  write_atomic(path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
-}
-
-void write_text_atomic(const std::string& path, const std::string& text) {
-  write_atomic(path, [&](std::ostream& out) { out << text; });
 }
 
 }  // namespace shellcontract

@@ -6,34 +6,104 @@
 #include <CGAL/poisson_surface_reconstruction.h>
 #include <CGAL/property_map.h>
 
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <new>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/ply_reader.hpp"
+#include "shellcontract/mesh/read_polygon_soup.hpp"
 
 namespace shellcontract {
 
-Mesh reconstruct_from_oriented_points(const std::string& path, const ReconstructionOptions& options) {
-  using Vector3 = Kernel::Vector_3;
-  using PointWithNormal = std::pair<Point3, Vector3>;
+namespace {
+
+using Vector3 = Kernel::Vector_3;
+using PointWithNormal = std::pair<Point3, Vector3>;
+
+/// The oriented points of `path`: PLY through our reader (CGAL 5.5's crashes, see ply_reader),
+/// anything else through CGAL::IO::read_points, with its allocation failures turned into an
+/// InputError naming the file.
+std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   std::vector<PointWithNormal> points;
-  if (!CGAL::IO::read_points(path, std::back_inserter(points),
-                             CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>())
-                                 .normal_map(CGAL::Second_of_pair_property_map<PointWithNormal>())))
-    throw InputError(path + ": cannot read an oriented point set (x y z nx ny nz per line)");
+  if (ext == ".ply") {
+    const PlyData d = read_ply(path, read_file_bytes(path));
+    if (d.normals.size() != d.points.size())
+      throw InputError(path + ": no normals: the vertex element has no nx, ny, nz properties; need an oriented point set");
+    points.reserve(d.points.size());
+    for (std::size_t i = 0; i < d.points.size(); ++i)
+      points.emplace_back(Point3(d.points[i][0], d.points[i][1], d.points[i][2]),
+                          Vector3(d.normals[i][0], d.normals[i][1], d.normals[i][2]));
+  } else {
+    try {
+      if (!CGAL::IO::read_points(path, std::back_inserter(points),
+                                 CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>())
+                                     .normal_map(CGAL::Second_of_pair_property_map<PointWithNormal>())))
+        throw InputError(path + ": cannot read an oriented point set (x y z nx ny nz per line)");
+    } catch (const std::bad_alloc&) {
+      throw InputError(path + ": out of memory: a count in the file is larger than the file can hold");
+    } catch (const std::length_error&) {
+      throw InputError(path + ": too large: a count in the file is beyond what can be stored");
+    }
+  }
+  // Poisson reconstruction needs finite points and normals: a NaN would poison the solve.
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Point3& p = points[i].first;
+    const Vector3& n = points[i].second;
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) || !std::isfinite(n.x()) ||
+        !std::isfinite(n.y()) || !std::isfinite(n.z()))
+      throw InputError(path + ": non-finite coordinate: point " + std::to_string(i) + " has a non-finite coordinate or normal");
+  }
+  return points;
+}
+
+/// CGAL::poisson_surface_reconstruction_delaunay (CGAL 5.5, poisson_surface_reconstruction.h)
+/// with one more check: when the surface mesher finds vertices but no facet, CGAL's
+/// facets_in_complex_2_to_triangle_mesh segfaults on the empty complex (400 points on a unit
+/// sphere did it); here that is a failed reconstruction.
+bool poisson_delaunay(const std::vector<PointWithNormal>& points, Mesh& mesh, double spacing,
+                      const ReconstructionOptions& options) {
+  using Function = CGAL::Poisson_reconstruction_function<Kernel>;
+  using Tr = CGAL::Surface_mesher::Surface_mesh_default_triangulation_3_generator<Kernel>::Type;
+  using C2t3 = CGAL::Surface_mesh_complex_2_in_triangulation_3<Tr>;
+  using Surface = CGAL::Implicit_surface_3<Kernel, Function>;
+  Function function(points.begin(), points.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
+                    CGAL::Second_of_pair_property_map<PointWithNormal>());
+  if (!function.compute_implicit_function()) return false;
+  const Point3 inner = function.get_inner_point();
+  const double radius = 5.0 * CGAL::approximate_sqrt(function.bounding_sphere().squared_radius());
+  const double dichotomy_error = options.distance * spacing / 1000.0;
+  const Surface surface(function, Kernel::Sphere_3(inner, radius * radius), dichotomy_error / radius);
+  const CGAL::Surface_mesh_default_criteria_3<Tr> criteria(options.angle, options.radius * spacing,
+                                                           options.distance * spacing);
+  Tr tr;
+  C2t3 c2t3(tr);
+  CGAL::make_surface_mesh(c2t3, surface, criteria, CGAL::Manifold_with_boundary_tag());
+  if (tr.number_of_vertices() == 0 || c2t3.number_of_facets() == 0) return false;
+  CGAL::facets_in_complex_2_to_triangle_mesh(c2t3, mesh);
+  return true;
+}
+
+}  // namespace
+
+Mesh reconstruct_from_oriented_points(const std::string& path, const ReconstructionOptions& options) {
+  std::vector<PointWithNormal> points = read_oriented_points(path);
   if (points.size() < 10)
     throw InputError(path + ": only " + std::to_string(points.size()) + " points; need an oriented point set");
   const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(
       points, options.spacing_neighbours,
       CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>()));
   Mesh mesh;
-  if (!(spacing > 0.0) ||
-      !CGAL::poisson_surface_reconstruction_delaunay(
-          points.begin(), points.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
-          CGAL::Second_of_pair_property_map<PointWithNormal>(), mesh, spacing, options.angle,
-          options.radius, options.distance))
-    throw InputError(path + ": Poisson surface reconstruction failed");
+  if (!(spacing > 0.0) || !poisson_delaunay(points, mesh, spacing, options))
+    throw InputError(path + ": Poisson surface reconstruction failed (no surface found)");
   if (!CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh))
     throw InputError(path + ": the reconstructed surface is not a closed triangle mesh");
   // Outward orientation, as the simulator expects (math-spec 1.1).

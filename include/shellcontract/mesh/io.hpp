@@ -18,14 +18,19 @@ struct InputReport {
   std::vector<std::size_t> zero_area_faces;  ///< face indices (output order) with ~zero area
   bool reoriented = false;          ///< the mesh was inside-out and its faces were flipped
   std::size_t components = 0;       ///< connected components
-  double volume = 0.0;              ///< enclosed volume after reorientation (input units)
+  double volume = 0.0;              ///< enclosed volume after reorientation (input units; inf beyond ~1e102 per coordinate)
   std::vector<std::string> warnings;
 };
 
-/// Reads OFF/OBJ/PLY/STL (by extension) through CGAL IO and checks that the mesh is a closed,
-/// manifold triangle mesh with finite coordinates. Polygons are triangulated (with a warning);
-/// an inside-out mesh is reoriented (with a warning); zero-area faces are reported.
-/// @throws InputError naming the file and the problem (and the face, vertex or line where known)
+/// Reads OFF/OBJ/PLY/STL (by extension; read_polygon_soup) and checks that the mesh is a
+/// closed, manifold triangle mesh with finite coordinates, a nonzero finite bounding-box diagonal
+/// and a positive enclosed volume (measured as the simulator measures it): the one decision of
+/// what `check`, `run` and `regions` can use. Polygons are triangulated (with a warning); an
+/// inside-out mesh is reoriented (with a warning); zero-area faces are reported. Geometric tests
+/// run on coordinates normalized to a unit bounding-box diagonal, so any scale from 1e-150 to
+/// 1e150 gives the same answers.
+/// @throws InputError naming the file and the problem (and the face, vertex or line where known),
+///         for any file whatever its bytes (also when memory runs out while reading it)
 Mesh read_input_mesh(const std::string& path, InputReport* report = nullptr);
 
 /// Writes the mesh connectivity with the vertex positions x (row i = vertex i, input units),

@@ -1,0 +1,29 @@
+# SHELLCONTRACT_BUILD_PYTHON: on by default when pybind11 and the Python development files (with
+# numpy) are found, silently off otherwise. The interpreter is Debian's /usr/bin/python3 unless
+# Python_EXECUTABLE says otherwise: a pyenv or venv python3 first on PATH usually lacks numpy and
+# pybind11, and the module must be built for the interpreter that runs it.
+if(NOT DEFINED Python_EXECUTABLE AND EXISTS /usr/bin/python3)
+  set(Python_EXECUTABLE /usr/bin/python3 CACHE FILEPATH "Python interpreter the module is built for")
+endif()
+set(_shellcontract_python_default OFF)
+if(NOT DEFINED SHELLCONTRACT_BUILD_PYTHON OR SHELLCONTRACT_BUILD_PYTHON)
+  find_package(Python 3 QUIET COMPONENTS Interpreter Development.Module NumPy)
+  if(Python_FOUND)
+    set(PYBIND11_FINDPYTHON ON)  # reuse the Python found above (FindPython), not the old FindPythonLibs
+    find_package(pybind11 2.6 CONFIG QUIET)
+  endif()
+  if(Python_FOUND AND pybind11_FOUND)
+    set(_shellcontract_python_default ON)
+  endif()
+endif()
+option(SHELLCONTRACT_BUILD_PYTHON "Build the Python module (pybind11)" ${_shellcontract_python_default})
+if(SHELLCONTRACT_BUILD_PYTHON AND NOT (Python_FOUND AND pybind11_FOUND))
+  message(FATAL_ERROR "SHELLCONTRACT_BUILD_PYTHON is on, but Python ${Python_EXECUTABLE} with "
+                      "development files and numpy, or pybind11, was not found "
+                      "(Debian: python3-dev python3-numpy pybind11-dev)")
+endif()
+if(SHELLCONTRACT_BUILD_PYTHON)
+  # The module is a shared object with the static library inside: its code must be
+  # position-independent (a thread-local in CGAL's headers otherwise fails to link).
+  set_target_properties(shellcontract PROPERTIES POSITION_INDEPENDENT_CODE ON)
+endif()

@@ -1,0 +1,127 @@
+"""ShellContract: contract closed triangle meshes like thin elastic shells under pressure.
+
+Meshes are numpy arrays: vertices (N by 3, float64) and faces (M by 3, int32 or int64, 0-based,
+outward or inward oriented, closed and manifold). The options of ``contract`` are those of
+``shellcontract run`` with underscores (``k_b`` for ``--k-b``), with the same defaults and
+ranges; ``options()`` lists them. The same input and options give the same result as the CLI,
+to the last bit.
+"""
+
+import collections
+import queue
+import threading
+
+from . import _core
+
+__all__ = ["Option", "Result", "contract", "frames", "options", "check", "regions",
+           "read_mesh", "write_mesh"]
+
+Option = collections.namedtuple("Option", "name default help cli_name")
+Option.__doc__ = "One run option: Python name, default as text ('' when unset), help, CLI name."
+
+
+class Result:
+    """What a run produced.
+
+    vertices: N by 3 float64, final positions in the input's units (vertex order kept).
+    faces:    M by 3 int64, the faces as run (inside-out components flipped, as the CLI does).
+    log:      dict column -> array, one entry per frame: the CLI's --log CSV columns.
+    summary:  dict, the CLI's --summary JSON without the file names.
+    status:   "ok", "target not reached", "failed", "new self-intersections" or "cancelled".
+    """
+
+    def __init__(self, raw):
+        self.vertices = raw["vertices"]
+        self.faces = raw["faces"]
+        self.log = raw["log"]
+        self.summary = raw["summary"]
+        self.status = raw["status"]
+
+    def __repr__(self):
+        return "Result(status={!r}, frames_run={}, final_volume_ratio={:.6g})".format(
+            self.status, self.summary["frames_run"], self.summary["final_volume_ratio"])
+
+
+def options():
+    """The run options, in ``shellcontract run --help`` order, as Option tuples."""
+    return [Option(*row) for row in _core.option_table()]
+
+
+def contract(vertices, faces, *, callback=None, **options):
+    """Contracts a closed triangle mesh and returns a Result.
+
+    callback(frame, vertices, metrics) is called after every step (frame = 1, 2, ...) with the
+    current positions (input units) and that frame's log row as a dict; returning False stops the
+    run (status "cancelled"). Ctrl-C stops the run cleanly and raises KeyboardInterrupt.
+    Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
+    unknown option.
+    """
+    return Result(_core.contract(vertices, faces, callback=callback, **options))
+
+
+def frames(vertices, faces, every=1, **options):
+    """Runs ``contract`` and yields (frame, vertices, metrics) at every ``every``-th frame.
+
+    The run goes on in a worker thread, one frame ahead at most; the generator's return value
+    (StopIteration.value, or ``result = yield from frames(...)``) is the Result. Closing the
+    generator early cancels the run.
+    """
+    if every < 1:
+        raise ValueError("every must be >= 1, got {}".format(every))
+    handoff = queue.Queue(maxsize=1)
+    stop = threading.Event()
+
+    def on_frame(frame, v, metrics):
+        if stop.is_set():
+            return False
+        if frame % every == 0:
+            handoff.put(("frame", (frame, v, metrics)))
+        return not stop.is_set()
+
+    def work():
+        try:
+            handoff.put(("done", contract(vertices, faces, callback=on_frame, **options)))
+        except BaseException as e:  # handed to the consumer, raised there
+            handoff.put(("error", e))
+
+    worker = threading.Thread(target=work, name="shellcontract.frames", daemon=True)
+    worker.start()
+    try:
+        while True:
+            kind, payload = handoff.get()
+            if kind == "frame":
+                yield payload
+            elif kind == "done":
+                return payload
+            else:
+                raise payload
+    finally:
+        stop.set()
+        while worker.is_alive():  # unblock a pending put until the run has seen the stop
+            try:
+                handoff.get(timeout=0.05)
+            except queue.Empty:
+                pass
+        worker.join()
+
+
+def check(vertices, faces):
+    """What ``shellcontract check`` reports (counts, genus, volume, self-intersecting face pairs);
+    raises ValueError with the reason when the mesh cannot be used."""
+    return _core.check(vertices, faces)
+
+
+def regions(vertices, faces, **region_options):
+    """The spherical regions ``--regions auto`` would choose: a list of face-index arrays, largest
+    region first. Options: the RegionOptions fields of geometry/region_selection.hpp."""
+    return _core.regions(vertices, faces, **region_options)
+
+
+def read_mesh(path):
+    """Reads OFF/OBJ/PLY/STL with the CLI's checks; returns (vertices, faces)."""
+    return _core.read_mesh(str(path))
+
+
+def write_mesh(path, vertices, faces):
+    """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output."""
+    _core.write_mesh(str(path), vertices, faces)

@@ -1,0 +1,92 @@
+// numpy arrays <-> Mesh and Positions. Input arrays of the right dtype and layout are read in
+// place (the soup view points into numpy's buffer); only other dtypes or strided arrays are
+// converted first, by numpy.
+#include "arrays.hpp"
+
+#include <string>
+
+#include "shellcontract/mesh/from_arrays.hpp"
+
+namespace shellcontract::python {
+namespace {
+
+std::string shape_text(const py::array& a) {
+  std::string s = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) s += (i ? ", " : "") + std::to_string(a.shape(i));
+  return s + (a.ndim() == 1 ? ",)" : ")");
+}
+
+void require_n_by_3(const py::array& a, const char* what) {
+  if (a.ndim() != 2 || a.shape(1) != 3)
+    throw py::value_error(std::string(what) + " must be an N by 3 array, got shape " + shape_text(a));
+}
+
+/// float64, C-contiguous: the caller's own buffer when it already is one.
+py::array_t<double, py::array::c_style> vertex_array(const py::handle& vertices) {
+  const py::array any = py::array::ensure(vertices);
+  if (!any) throw py::type_error("vertices must be an array-like of numbers");
+  const char kind = any.dtype().kind();
+  if (kind != 'f' && kind != 'i' && kind != 'u')
+    throw py::type_error("vertices must hold real numbers, got dtype " + std::string(py::str(any.dtype())));
+  auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(any);
+  require_n_by_3(v, "vertices");
+  return v;
+}
+
+/// int32 or int64 kept as they are when C-contiguous; any other integer type becomes int64.
+py::array face_array(const py::handle& faces) {
+  py::array any = py::array::ensure(faces);
+  if (!any) throw py::type_error("faces must be an array-like of integers");
+  const char kind = any.dtype().kind();
+  if (kind != 'i' && kind != 'u')  // a float index array is a mistake, not something to round
+    throw py::type_error("faces must hold integers, got dtype " + std::string(py::str(any.dtype())));
+  const bool c_contiguous = (any.flags() & py::array::c_style) != 0;
+  if (!(c_contiguous && (any.dtype().is(py::dtype::of<std::int32_t>()) ||
+                         any.dtype().is(py::dtype::of<std::int64_t>()))))
+    any = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(any);
+  require_n_by_3(any, "faces");
+  return any;
+}
+
+}  // namespace
+
+Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputReport* report, bool reorient) {
+  const auto v = vertex_array(vertices);
+  const py::array f = face_array(faces);
+  TriangleSoupView soup;
+  soup.vertices = v.data();
+  soup.num_vertices = static_cast<std::size_t>(v.shape(0));
+  soup.num_faces = static_cast<std::size_t>(f.shape(0));
+  if (f.dtype().is(py::dtype::of<std::int32_t>()))
+    soup.faces32 = static_cast<const std::int32_t*>(f.data());
+  else
+    soup.faces64 = static_cast<const std::int64_t*>(f.data());
+  return mesh_from_arrays(soup, ARRAY_INPUT_NAME, report, reorient);
+}
+
+py::array_t<double> positions_to_numpy(const Positions& x) {
+  py::array_t<double> out({static_cast<py::ssize_t>(x.rows()), py::ssize_t{3}});
+  // Positions is row-major N by 3, the same layout as the new C-contiguous array.
+  std::copy(x.data(), x.data() + x.size(), out.mutable_data());
+  return out;
+}
+
+py::array_t<std::int64_t> faces_to_numpy(const Mesh& mesh) {
+  py::array_t<std::int64_t> out({static_cast<py::ssize_t>(mesh.number_of_faces()), py::ssize_t{3}});
+  std::int64_t* p = out.mutable_data();
+  for (const FaceIndex f : mesh.faces()) {
+    // Corners from the face's halfedge, as write_mesh_atomic lists them.
+    HalfedgeIndex h = mesh.halfedge(f);
+    for (int k = 0; k < 3; ++k, h = mesh.next(h)) *p++ = static_cast<std::int64_t>(mesh.target(h).idx());
+  }
+  return out;
+}
+
+Positions positions_from_numpy(const py::handle& vertices) {
+  const auto v = vertex_array(vertices);
+  Positions x(v.shape(0), 3);
+  std::copy(v.data(), v.data() + v.size(), x.data());
+  return x;
+}
+
+}  // namespace shellcontract::python

@@ -1,0 +1,37 @@
+// numpy arrays <-> the library's Mesh and Positions for the Python module.
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/surface_mesh.hpp"
+
+namespace shellcontract::python {
+
+namespace py = pybind11;
+
+/// What the messages of a refused array input call it (read_input_mesh names the file there).
+inline constexpr const char* ARRAY_INPUT_NAME = "input arrays";
+
+/// Builds a checked mesh from vertices (N by 3, float64 used in place when C-contiguous, other
+/// real types converted) and faces (M by 3, int32 or int64 used in place when C-contiguous, other
+/// integer types converted), with mesh_from_arrays' checks (mesh/from_arrays.hpp).
+/// @throws py::type_error / py::value_error for a wrong dtype or shape; InputError for a mesh
+///         the library refuses (ValueError in Python)
+Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputReport* report = nullptr,
+                     bool reorient = true);
+
+/// The positions as a new N by 3 float64 array.
+py::array_t<double> positions_to_numpy(const Positions& x);
+
+/// The mesh's faces as a new M by 3 int64 array, corners in the mesh's order (as written).
+py::array_t<std::int64_t> faces_to_numpy(const Mesh& mesh);
+
+/// The positions of an N by 3 array as the library's Positions (a copy).
+Positions positions_from_numpy(const py::handle& vertices);
+
+}  // namespace shellcontract::python

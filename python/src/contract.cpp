@@ -1,0 +1,250 @@
+// shellcontract.contract: the Python mirror of cli/run.cpp. Options go through the option table
+// as text (so the same digits give the same double, hence the same run as the CLI); the run goes
+// through run_contraction with one observer that keeps the log, calls the Python callback and
+// polls for Ctrl-C.
+#include "contract.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <Python.h>
+
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "arrays.hpp"
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/sim/run.hpp"
+
+namespace shellcontract::python {
+namespace {
+
+std::string python_name(std::string cli_name) {
+  for (char& c : cli_name)
+    if (c == '-') c = '_';
+  return cli_name;
+}
+
+std::string valid_names() {
+  std::string s;
+  for (const OptionSpec& o : run_option_table()) s += (s.empty() ? "" : ", ") + python_name(o.name);
+  return s;
+}
+
+/// The text the CLI would receive for a Python value: bool -> on/off, float -> repr (the shortest
+/// text that reads back as the same double), int and str as they are, a sequence -> "a,b,c"
+/// (--fiber X,Y,Z).
+std::string option_text(const std::string& name, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::isinstance<py::float_>(value)) return py::repr(py::float_(value.cast<double>()));
+  if (PyIndex_Check(value.ptr())) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
+  if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
+    std::string s;
+    for (const py::handle& item : value) s += (s.empty() ? "" : ",") + option_text(name, item);
+    return s;
+  }
+  throw py::type_error("option " + name + ": expected a number, a string or a bool, got " +
+                       std::string(py::str(value.get_type())));
+}
+
+RunOptions options_from_kwargs(const py::kwargs& kwargs) {
+  RunOptions options;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = key.cast<std::string>();
+    const OptionSpec* spec = find_run_option(name);
+    if (!spec)
+      throw py::type_error("contract() got an unknown option '" + name + "'; valid options: " + valid_names());
+    spec->set(options, option_text(name, value));  // UsageError (ValueError) for a bad value
+  }
+  resolve_run_options(options);
+  // The log always carries the energies (the CLI computes them when --log is given).
+  options.sim.frame_energies = true;
+  return options;
+}
+
+/// One log row's values in CSV column order (cli/run_observers.hpp CsvLog::HEADER).
+constexpr std::array<const char*, 15> LOG_COLUMNS = {
+    "frame", "time", "volume_ratio", "energy_membrane", "energy_bending", "energy_anisotropic",
+    "max_displacement", "step_ms", "solve_ms", "ccd_ms", "candidates", "contacts",
+    "collision_rounds", "failsafe_vertices", "new_intersections"};
+/// Which columns are integers (int64 arrays); the others are float64.
+constexpr std::array<bool, 15> LOG_INTEGER = {true,  false, false, false, false, false, false, false,
+                                              false, false, true,  true,  true,  true,  true};
+
+std::array<double, 15> log_row(const FrameMetrics& m) {
+  return {static_cast<double>(m.frame), m.time, m.volume_ratio, m.energies.membrane,
+          m.energies.bending, m.energies.anisotropic, m.max_displacement, m.step_seconds * 1e3,
+          m.solve_seconds * 1e3, m.collision.seconds * 1e3, static_cast<double>(m.collision.pairs_broad),
+          static_cast<double>(m.collision.contacts), static_cast<double>(m.collision.rounds),
+          static_cast<double>(m.collision.failsafe_vertices), static_cast<double>(m.new_intersections)};
+}
+
+py::object column_value(std::size_t c, double v) {
+  if (LOG_INTEGER[c]) return py::int_(static_cast<std::int64_t>(v));
+  return py::float_(v);
+}
+
+/// Keeps the log, calls the callback, polls for signals. Python objects are touched only with
+/// the GIL held: the run itself executes with the GIL released.
+class PythonObserver final : public RunObserver {
+ public:
+  explicit PythonObserver(py::object callback) : callback_(std::move(callback)), has_callback_(!callback_.is_none()) {}
+
+  ~PythonObserver() override {
+    // A pending error is only dropped when contract() itself throws before taking it.
+    if (error_type_) {
+      Py_XDECREF(error_type_);
+      Py_XDECREF(error_value_);
+      Py_XDECREF(error_trace_);
+    }
+  }
+
+  void frame(const Simulator& sim, const FrameMetrics& m) override {
+    rows_.push_back(log_row(m));
+    if (!has_callback_ || stop_) return;
+    py::gil_scoped_acquire gil;
+    try {
+      py::dict metrics;
+      for (std::size_t c = 0; c < LOG_COLUMNS.size(); ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
+      const py::object answer = callback_(m.frame, positions_to_numpy(sim.positions_in_input_units()), metrics);
+      if (answer.is(py::bool_(false))) stop_ = true;  // only False stops; None (no return) goes on
+    } catch (py::error_already_set& e) {
+      e.restore();  // back into the interpreter's error indicator, then kept for after the run
+      keep_error();
+    }
+  }
+
+  bool cancelled() override {
+    if (stop_) return true;
+    // Taking the GIL can wait for another Python thread's switch interval (5 ms): poll a few
+    // times a second, not after every step.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_poll_ < SIGNAL_POLL_INTERVAL) return false;
+    last_poll_ = now;
+    py::gil_scoped_acquire gil;
+    // Runs the Python signal handlers (main thread only): Ctrl-C raises KeyboardInterrupt here.
+    if (PyErr_CheckSignals() != 0) keep_error();
+    return stop_;
+  }
+
+  /// Raises the error the callback or a signal handler raised, if any (GIL held).
+  void raise_if_error() {
+    if (!error_type_) return;
+    PyErr_Restore(error_type_, error_value_, error_trace_);
+    error_type_ = error_value_ = error_trace_ = nullptr;
+    throw py::error_already_set();
+  }
+
+  py::dict log() const {
+    py::dict out;
+    for (std::size_t c = 0; c < LOG_COLUMNS.size(); ++c) {
+      if (LOG_INTEGER[c]) {
+        py::array_t<std::int64_t> a(static_cast<py::ssize_t>(rows_.size()));
+        for (std::size_t i = 0; i < rows_.size(); ++i) a.mutable_at(i) = static_cast<std::int64_t>(rows_[i][c]);
+        out[LOG_COLUMNS[c]] = a;
+      } else {
+        py::array_t<double> a(static_cast<py::ssize_t>(rows_.size()));
+        for (std::size_t i = 0; i < rows_.size(); ++i) a.mutable_at(i) = rows_[i][c];
+        out[LOG_COLUMNS[c]] = a;
+      }
+    }
+    return out;
+  }
+
+ private:
+  void keep_error() {
+    PyErr_Fetch(&error_type_, &error_value_, &error_trace_);
+    stop_ = true;
+  }
+
+  static constexpr std::chrono::milliseconds SIGNAL_POLL_INTERVAL{100};
+
+  py::object callback_;
+  bool has_callback_;
+  std::chrono::steady_clock::time_point last_poll_{};
+  bool stop_ = false;
+  PyObject* error_type_ = nullptr;
+  PyObject* error_value_ = nullptr;
+  PyObject* error_trace_ = nullptr;
+  std::vector<std::array<double, 15>> rows_;  // doubles hold the integer columns exactly (< 2^53)
+};
+
+/// The summary's keys and values as cli/run.cpp writes them to JSON, without the file names.
+py::dict summary(const InputReport& report, const RunOptions& options, const RunResult& r) {
+  static const std::array<const char*, 5> STATUS_NAMES = {"ok", "target not reached", "failed",
+                                                           "new self-intersections", "cancelled"};
+  py::dict opts;
+  for (const OptionSpec& o : run_option_table()) opts[py::str(python_name(o.name))] = o.get(options);
+  py::dict table2;
+  for (const auto& [name, value] : r.totals.per_step(r.frames_run)) table2[py::str(name)] = value;
+  std::vector<std::string> warnings = report.warnings;
+  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+  py::dict s;
+  s["status"] = STATUS_NAMES[static_cast<std::size_t>(r.status)];
+  s["failure"] = r.message;
+  s["exit_code"] = r.exit_code();
+  s["vertices"] = report.vertices;
+  s["faces"] = report.faces;
+  s["components"] = report.components;
+  s["reoriented"] = report.reoriented;
+  s["degenerate_faces"] = r.degenerate_faces;
+  s["normalization_scale"] = r.normalization_scale;
+  s["options"] = opts;
+  s["frames_run"] = r.frames_run;
+  s["final_volume_ratio"] = r.final_volume_ratio;
+  s["min_volume_ratio"] = r.min_volume_ratio;
+  s["target_reached"] = r.target_reached;
+  s["frame_target_reached"] = r.frame_target_reached;
+  s["wall_seconds"] = r.wall_seconds;
+  s["mean_step_ms"] = r.frames_run > 0 ? 1e3 * r.wall_seconds / r.frames_run : 0.0;
+  s["collisions"] = options.sim.collisions;
+  s["excluded_contact_pairs"] = r.excluded_contact_pairs;
+  s["new_intersections"] = r.new_intersections;
+  s["regions"] = r.regions;
+  s["anisotropic_faces"] = r.anisotropic_faces;
+  s["region_inward_displacement"] = r.region_inward_displacement;
+  s["table2"] = table2;
+  s["warnings"] = warnings;
+  return s;
+}
+
+}  // namespace
+
+py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
+                  const py::kwargs& kwargs) {
+  if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
+    throw py::type_error("callback must be callable(frame, vertices, metrics) or None");
+  const RunOptions options = options_from_kwargs(kwargs);
+  InputReport report;
+  const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
+  PythonObserver observer(callback);
+  RunResult r;
+  {
+    py::gil_scoped_release release;
+    r = run_contraction(mesh, options, &observer);
+  }
+  observer.raise_if_error();
+  py::dict out;
+  out["vertices"] = positions_to_numpy(r.positions);
+  out["faces"] = faces_to_numpy(mesh);
+  out["log"] = observer.log();
+  out["summary"] = summary(report, options, r);
+  out["status"] = out["summary"]["status"];
+  return out;
+}
+
+py::list option_table() {
+  const RunOptions defaults;
+  py::list out;
+  for (const OptionSpec& o : run_option_table())
+    out.append(py::make_tuple(python_name(o.name), o.get(defaults), o.help, o.name));
+  return out;
+}
+
+}  // namespace shellcontract::python

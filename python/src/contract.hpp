@@ -1,0 +1,23 @@
+// shellcontract.contract and shellcontract.options: a run through run_contraction (sim/run.hpp)
+// with the options of the one option table (sim/option_table.hpp), as the CLI's `run` does.
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace shellcontract::python {
+
+namespace py = pybind11;
+
+/// Contracts the mesh (vertices N by 3, faces M by 3) with the keyword options (the table's names
+/// with underscores; values as numbers, strings or bools, turned into the text the CLI would get).
+/// The GIL is released during the run; `callback(frame, vertices, metrics)` runs after each step
+/// with the GIL held, and returning False cancels the run. A KeyboardInterrupt cancels the run and
+/// is raised when it has returned.
+/// @return dict with vertices, faces, log (column -> array), summary (dict), status
+py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
+                  const py::kwargs& options);
+
+/// The option table: one (python_name, default, help, cli_name) tuple per option, in --help order.
+py::list option_table();
+
+}  // namespace shellcontract::python

@@ -1,0 +1,175 @@
+"""contract(): callback, stopping, options, input dtypes and refused input."""
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import shellcontract
+
+
+def test_callback_sees_every_frame(ico2):
+    vertices, faces = ico2
+    seen = []
+
+    def callback(frame, v, metrics):
+        assert v.shape == vertices.shape and v.dtype == np.float64
+        seen.append((frame, metrics["volume_ratio"], v.copy()))
+
+    result = shellcontract.contract(vertices, faces, frames=12, callback=callback)
+    assert [s[0] for s in seen] == list(range(1, 13))
+    np.testing.assert_array_equal([s[1] for s in seen], result.log["volume_ratio"])
+    np.testing.assert_array_equal(seen[-1][2], result.vertices)  # the last frame is the result
+
+
+def test_returning_false_cancels_the_run(ico2):
+    vertices, faces = ico2
+    result = shellcontract.contract(vertices, faces, frames=50,
+                                    callback=lambda frame, v, m: frame < 5)
+    assert result.status == "cancelled"
+    assert result.summary["frames_run"] == 5
+    assert list(result.log["frame"]) == [1, 2, 3, 4, 5]
+
+
+def test_returning_none_goes_on(ico2):
+    vertices, faces = ico2
+    result = shellcontract.contract(vertices, faces, frames=6, callback=lambda frame, v, m: None)
+    assert result.status == "ok" and result.summary["frames_run"] == 6
+
+
+def test_callback_exception_stops_and_propagates(ico2):
+    vertices, faces = ico2
+
+    def callback(frame, v, m):
+        if frame == 3:
+            raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        shellcontract.contract(vertices, faces, frames=50, callback=callback)
+
+
+def test_keyboard_interrupt_stops_the_run(ico2):
+    """SIGINT during the run (GIL released, no callback) is seen by the observer's poll."""
+    vertices, faces = ico2
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            shellcontract.contract(vertices, faces, frames=100000)  # about 45 s if not stopped
+    finally:
+        timer.cancel()
+    assert time.monotonic() - start < 10
+
+
+@pytest.mark.parametrize("face_dtype", [np.int32, np.int64, np.uint16])
+def test_face_dtypes_give_the_same_result(ico2, face_dtype):
+    vertices, faces = ico2
+    reference = shellcontract.contract(vertices, faces.astype(np.int64), frames=5)
+    result = shellcontract.contract(np.ascontiguousarray(vertices, dtype=np.float64),
+                                    faces.astype(face_dtype), frames=5)
+    np.testing.assert_array_equal(result.vertices, reference.vertices)
+    np.testing.assert_array_equal(result.faces, faces)
+
+
+def test_strided_and_list_input_work(ico2):
+    vertices, faces = ico2
+    reference = shellcontract.contract(vertices, faces, frames=3)
+    fortran = shellcontract.contract(np.asfortranarray(vertices), np.asfortranarray(faces), frames=3)
+    lists = shellcontract.contract(vertices.tolist(), faces.tolist(), frames=3)
+    np.testing.assert_array_equal(fortran.vertices, reference.vertices)
+    np.testing.assert_array_equal(lists.vertices, reference.vertices)
+
+
+def test_float_faces_are_refused(ico2):
+    vertices, faces = ico2
+    with pytest.raises(TypeError, match="faces must hold integers"):
+        shellcontract.contract(vertices, faces.astype(np.float64), frames=1)
+
+
+def test_wrong_shape_is_refused(ico2):
+    vertices, faces = ico2
+    with pytest.raises(ValueError, match=r"vertices must be an N by 3 array, got shape \(162, 2\)"):
+        shellcontract.contract(vertices[:, :2], faces, frames=1)
+
+
+def test_nan_coordinate_raises_value_error(ico2):
+    vertices, faces = ico2
+    vertices = vertices.copy()
+    vertices[7, 1] = np.nan
+    with pytest.raises(ValueError, match=r"non-finite coordinate: vertex 7 is \(.* nan .*\)"):
+        shellcontract.contract(vertices, faces, frames=1)
+
+
+def test_open_mesh_raises_value_error(ico2):
+    vertices, faces = ico2
+    with pytest.raises(ValueError, match="open boundary"):
+        shellcontract.contract(vertices, faces[1:], frames=1)
+
+
+def test_unknown_option_raises_and_lists_valid_ones(ico2):
+    vertices, faces = ico2
+    with pytest.raises(TypeError, match="unknown option 'presure'.*pressure.*k_b"):
+        shellcontract.contract(vertices, faces, presure=2.0)
+
+
+def test_bad_option_value_raises_value_error(ico2):
+    vertices, faces = ico2
+    with pytest.raises(ValueError, match="frames"):
+        shellcontract.contract(vertices, faces, frames=-1)
+    with pytest.raises(ValueError, match="dt"):
+        shellcontract.contract(vertices, faces, dt=float("nan"))
+
+
+def test_options_are_the_table_and_its_defaults(ico2):
+    """options() lists the run's options with the defaults a run reports (frames=0: no step)."""
+    table = shellcontract.options()
+    names = [o.name for o in table]
+    assert len(names) == len(set(names))
+    assert {"pressure", "frames", "k_b", "target_volume", "collisions"} <= set(names)
+    assert all(o.name == o.cli_name.replace("-", "_") and o.help for o in table)
+    vertices, faces = ico2
+    result = shellcontract.contract(vertices, faces, frames=0)
+    reported = result.summary["options"]
+    assert set(reported) == set(names)
+    for o in table:
+        if o.name != "frames":
+            assert reported[o.name] == o.default, o.name
+
+
+def test_bool_and_string_values(ico2):
+    vertices, faces = ico2
+    result = shellcontract.contract(vertices, faces, frames=2, collisions=False, solver="xpbd")
+    assert result.summary["options"]["collisions"] == "off"
+    assert result.summary["options"]["solver"] == "xpbd"
+    assert result.summary["collisions"] is False
+
+
+def test_gil_is_released_during_the_run(ico2):
+    """Another Python thread keeps running while contract() computes (no callback): measured
+    against its own rate, it must get a good share of the run's time. With the GIL held it gets
+    only the switch intervals (5 ms) around the call."""
+    vertices, faces = ico2
+    done = threading.Event()
+    count = [0]
+
+    def spin():
+        while not done.is_set():
+            count[0] += 1
+
+    thread = threading.Thread(target=spin)
+    thread.start()
+    try:
+        start, before = time.monotonic(), count[0]
+        time.sleep(0.2)  # main thread idle: the spinner's rate alone
+        rate = (count[0] - before) / (time.monotonic() - start)
+        start, before = time.monotonic(), count[0]
+        shellcontract.contract(vertices, faces, frames=4000)
+        elapsed, during = time.monotonic() - start, count[0] - before
+    finally:
+        done.set()
+        thread.join()
+    assert elapsed > 0.5, "the run is too short to tell"
+    assert during > 0.05 * rate * elapsed, (during, rate, elapsed)

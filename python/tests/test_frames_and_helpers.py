@@ -1,0 +1,100 @@
+"""frames(), check(), regions(), read_mesh() and write_mesh(), each against the CLI's answer."""
+import re
+import subprocess
+
+import numpy as np
+import pytest
+
+import shellcontract
+
+
+def test_frames_yields_every_nth_frame_and_returns_the_result(ico2):
+    vertices, faces = ico2
+    gen = shellcontract.frames(vertices, faces, every=3, frames=10)
+    got = []
+    with pytest.raises(StopIteration) as stop:
+        while True:
+            got.append(next(gen))
+    result = stop.value.value
+    assert [f for f, _, _ in got] == [3, 6, 9]
+    assert result.summary["frames_run"] == 10
+    np.testing.assert_array_equal([m["volume_ratio"] for _, _, m in got],
+                                  result.log["volume_ratio"][[2, 5, 8]])
+
+
+def test_closing_frames_early_cancels_the_run(ico2):
+    vertices, faces = ico2
+    gen = shellcontract.frames(vertices, faces, frames=100000)
+    assert next(gen)[0] == 1
+    gen.close()  # must return promptly: the worker sees the stop at its next frame
+
+
+def test_check_reports_what_the_cli_reports(cli, mesh_dir):
+    path = mesh_dir / "torus.off"
+    report = shellcontract.check(*shellcontract.read_mesh(path))
+    text = subprocess.run([cli, "check", str(path)], check=True, capture_output=True, text=True).stdout
+    cli_values = dict(line.split(": ", 1) for line in text.splitlines() if ": " in line)
+    assert report["genus"] == int(cli_values["genus"]) == 1
+    assert report["euler_characteristic"] == int(cli_values["euler_characteristic"])
+    assert report["edges"] == int(cli_values["edges"])
+    assert report["volume"] == float(cli_values["volume"])
+    assert report["self_intersections"].shape == (0, 2)
+
+
+def test_regions_match_the_cli_face_list(cli, mesh_dir, tmp_path):
+    path = mesh_dir / "bumpy_sphere.off"
+    face_list = tmp_path / "regions.txt"
+    subprocess.run([cli, "regions", str(path), "-o", str(tmp_path / "r.ply"), "--face-list", str(face_list)],
+                   check=True, capture_output=True)
+    expected = [[int(t) for t in line.split()] for line in face_list.read_text().splitlines() if line.strip()]
+    got = shellcontract.regions(*shellcontract.read_mesh(path))
+    assert len(got) == 3  # the mesh's three bumps (meshes/README.md)
+    assert [list(r) for r in got] == expected
+
+
+def test_regions_options_are_used_and_checked(mesh_dir):
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    assert shellcontract.regions(vertices, faces, min_curvature_contrast=100.0) == []
+    with pytest.raises(TypeError, match="unknown option 'contrast'"):
+        shellcontract.regions(vertices, faces, contrast=2.0)
+
+
+def test_write_then_read_gives_the_same_arrays(ico2, tmp_path):
+    vertices, faces = ico2
+    for ext in ("off", "obj", "ply"):
+        path = tmp_path / ("copy." + ext)
+        shellcontract.write_mesh(path, vertices, faces.astype(np.int32))
+        v, f = shellcontract.read_mesh(path)
+        np.testing.assert_array_equal(v, vertices, err_msg=ext)
+        np.testing.assert_array_equal(f, faces, err_msg=ext)
+
+
+def test_read_mesh_refuses_like_the_cli(mesh_dir):
+    with pytest.raises(ValueError, match="non-finite coordinate"):
+        shellcontract.read_mesh(mesh_dir / "bad" / "nan.off")
+
+
+def off_arrays(path):
+    """A plain triangle OFF file's arrays, without any check (the checks are what is tested)."""
+    rows = [line.split("#")[0].split() for line in path.read_text().splitlines()]
+    rows = [r for r in rows if r]
+    nv, nf = int(rows[1][0]), int(rows[1][1])
+    vertices = np.array([[float(t) for t in r[:3]] for r in rows[2:2 + nv]])
+    faces = np.array([[int(t) for t in r[1:4]] for r in rows[2 + nv:2 + nv + nf]])
+    return vertices, faces
+
+
+BAD_TRIANGLE_MESHES = ["nan.off", "duplicate_face.off", "inconsistent_orientation.off",
+                       "index_out_of_range.off", "nonmanifold_edge.off", "nonmanifold_vertex.off",
+                       "open_sheet.off", "repeated_vertex.off"]
+
+
+@pytest.mark.parametrize("name", BAD_TRIANGLE_MESHES)
+def test_arrays_are_refused_for_the_cli_reason(cli, mesh_dir, name):
+    """The array checks (mesh/from_arrays.cpp) name the same problem as the file reader."""
+    path = mesh_dir / "bad" / name
+    cli_error = subprocess.run([cli, "check", str(path)], capture_output=True, text=True)
+    assert cli_error.returncode == 2
+    problem = re.search(re.escape(str(path)) + r": ([a-z -]+):", cli_error.stderr).group(1)
+    with pytest.raises(ValueError, match="^input arrays: " + problem + ":"):
+        shellcontract.check(*off_arrays(path))

@@ -1,0 +1,258 @@
+// A checked Mesh from a triangle soup in memory. The checks, their order and their messages follow
+// read_input_mesh (src/mesh/io.cpp) for a triangle soup, so that an array and a file with the
+// same content are accepted or refused alike; a file's extras (lines, polygon triangulation) do
+// not apply. io.cpp keeps its checks inside read_input_mesh, hence this second implementation:
+// if both ever move to one shared soup check, this file becomes a thin wrapper.
+#include "shellcontract/mesh/from_arrays.hpp"
+
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/core/types.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/validation/volume.hpp"
+
+namespace shellcontract {
+namespace {
+
+using Tri = std::array<std::size_t, 3>;
+
+/// read_input_mesh's ZERO_AREA_RELATIVE: 2A below this fraction of the squared mean edge length.
+constexpr double ZERO_AREA_RELATIVE = 1e-10;
+/// How many indices a warning lists before "...".
+constexpr std::size_t MAX_LISTED = 10;
+
+[[noreturn]] void fail(const std::string& name, const std::string& problem, const std::string& details) {
+  throw InputError(name + ": " + problem + ": " + details);
+}
+
+std::string face_name(std::size_t f) { return "face " + std::to_string(f); }
+std::string vertex_name(std::size_t v) { return "vertex " + std::to_string(v); }
+
+Vec3 to_vec(const Point3& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+std::size_t find_root(std::vector<std::size_t>& parent, std::size_t a) {
+  while (parent[a] != a) a = parent[a] = parent[parent[a]];
+  return a;
+}
+
+/// Faces as size_t triangles; range and repeated-corner checks on the way.
+std::vector<Tri> read_faces(const TriangleSoupView& s, const std::string& name) {
+  std::vector<Tri> tris(s.num_faces);
+  for (std::size_t f = 0; f < s.num_faces; ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const std::int64_t v = s.faces32 ? s.faces32[3 * f + k] : s.faces64[3 * f + k];
+      if (v < 0)
+        fail(name, "vertex index out of range", face_name(f) + " has the negative index " + std::to_string(v));
+      if (static_cast<std::uint64_t>(v) >= s.num_vertices)
+        fail(name, "vertex index out of range", face_name(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has " + std::to_string(s.num_vertices) + " vertices (0.." + std::to_string(s.num_vertices - 1) + ")");
+      tris[f][k] = static_cast<std::size_t>(v);
+      for (int l = 0; l < k; ++l)
+        if (tris[f][l] == tris[f][k])
+          fail(name, "degenerate face", face_name(f) + " uses vertex " + std::to_string(v) + " twice");
+    }
+  }
+  return tris;
+}
+
+void check_duplicates_and_isolated(const std::vector<Tri>& tris, std::size_t nv, const std::string& name) {
+  std::map<Tri, std::size_t> seen;
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    Tri key = tris[f];
+    std::sort(key.begin(), key.end());
+    const auto [it, inserted] = seen.emplace(key, f);
+    if (!inserted)
+      fail(name, "duplicate face", face_name(f) + " has the same vertices (" + std::to_string(key[0]) + ", " + std::to_string(key[1]) + ", " + std::to_string(key[2]) + ") as " + face_name(it->second));
+  }
+  std::vector<char> used(nv, 0);
+  for (const Tri& t : tris)
+    for (std::size_t v : t) used[v] = 1;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!used[v]) fail(name, "isolated vertex", vertex_name(v) + " is not used by any face");
+}
+
+/// Each undirected edge: exactly two faces, opposite directions. The first problem in face order
+/// is reported, as read_input_mesh does.
+void check_edges(const std::vector<Tri>& tris, std::size_t nv, const std::string& name) {
+  struct EdgeUse {
+    std::uint64_t key;
+    std::size_t face;
+    bool forward;
+    bool operator<(const EdgeUse& o) const { return key != o.key ? key < o.key : face < o.face; }
+  };
+  auto key = [nv](std::size_t a, std::size_t b) { return static_cast<std::uint64_t>(std::min(a, b)) * nv + std::max(a, b); };
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * tris.size());
+  for (std::size_t f = 0; f < tris.size(); ++f)
+    for (int k = 0; k < 3; ++k) uses.push_back({key(tris[f][k], tris[f][(k + 1) % 3]), f, tris[f][k] < tris[f][(k + 1) % 3]});
+  std::sort(uses.begin(), uses.end());
+  for (std::size_t f = 0; f < tris.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
+      const auto first = std::lower_bound(uses.begin(), uses.end(), EdgeUse{key(a, b), 0, false});
+      std::size_t count = 0;
+      while (first + static_cast<std::ptrdiff_t>(count) != uses.end() && first[static_cast<std::ptrdiff_t>(count)].key == key(a, b)) ++count;
+      if (count == 2 && first[0].forward != first[1].forward) continue;
+      const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
+      if (count == 1)
+        fail(name, "open boundary", edge + " of " + face_name(f) + " has no neighbouring face (boundary edge between vertex " + std::to_string(a) + " and vertex " + std::to_string(b) + "); the mesh must be closed");
+      if (count > 2) {
+        std::string list;
+        for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) list += (u ? ", " : "") + std::to_string(first[static_cast<std::ptrdiff_t>(u)].face);
+        fail(name, "non-manifold edge", "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " + std::to_string(count) + " faces (" + list + "), at most 2 allowed");
+      }
+      fail(name, "inconsistent orientation", face_name(first[0].face) + " and " + face_name(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
+    }
+}
+
+/// The faces around each vertex form one fan (after the edge checks, each link vertex has one
+/// successor, so following them from the first face must visit every face).
+void check_vertex_fans(const std::vector<Tri>& tris, std::size_t nv, const std::string& name) {
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> link(nv);
+  for (const Tri& t : tris)
+    for (int k = 0; k < 3; ++k) link[t[k]].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto& l = link[v];
+    std::size_t steps = 0, cur = l[0].second;
+    while (cur != l[0].first && steps <= l.size()) {
+      const auto it = std::find_if(l.begin(), l.end(), [cur](const auto& e) { return e.first == cur; });
+      if (it == l.end()) break;
+      cur = it->second;
+      ++steps;
+    }
+    if (steps + 1 != l.size())
+      fail(name, "non-manifold vertex", vertex_name(v) + ": its " + std::to_string(l.size()) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
+  }
+}
+
+/// Flips the inside-out components (negative signed volume); returns the components' count.
+std::size_t orient_components(std::vector<Tri>& tris, const std::vector<Point3>& points, bool reorient,
+                              std::vector<std::string>& warnings, bool& reoriented) {
+  std::vector<std::size_t> parent(points.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  for (const Tri& t : tris) {
+    parent[find_root(parent, t[0])] = find_root(parent, t[1]);
+    parent[find_root(parent, t[1])] = find_root(parent, t[2]);
+  }
+  std::map<std::size_t, std::size_t> component_of_root;
+  for (const Tri& t : tris) component_of_root.emplace(find_root(parent, t[0]), component_of_root.size());
+  const std::size_t n = component_of_root.size();
+  std::vector<double> six_volume(n, 0.0);
+  std::vector<Vec3> origin(n);
+  std::vector<char> has_origin(n, 0);
+  std::vector<std::size_t> component(tris.size());
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    const std::size_t c = component_of_root.at(find_root(parent, tris[f][0]));
+    component[f] = c;
+    // Measured from a point of the component (less cancellation far from the origin).
+    if (!has_origin[c]) {
+      origin[c] = to_vec(points[tris[f][0]]);
+      has_origin[c] = 1;
+    }
+    const Vec3 a = to_vec(points[tris[f][0]]) - origin[c];
+    six_volume[c] += a.dot((to_vec(points[tris[f][1]]) - origin[c]).cross(to_vec(points[tris[f][2]]) - origin[c]));
+  }
+  reoriented = false;
+  for (std::size_t c = 0; reorient && c < n; ++c) {
+    if (six_volume[c] >= 0.0) continue;
+    reoriented = true;
+    std::size_t first = tris.size(), count = 0;
+    for (std::size_t f = 0; f < tris.size(); ++f)
+      if (component[f] == c) {
+        std::swap(tris[f][1], tris[f][2]);  // corner 0 stays first
+        first = std::min(first, f);
+        ++count;
+      }
+    std::ostringstream w;
+    w << "component " << c << " (" << count << " faces, starting at face " << first
+      << ") was inside-out (signed volume " << six_volume[c] / 6.0 << "); its faces were flipped";
+    warnings.push_back(w.str());
+  }
+  return n;
+}
+
+std::vector<std::size_t> zero_area_faces(const std::vector<Tri>& tris, const std::vector<Point3>& points) {
+  double edge_sum = 0.0;
+  for (const Tri& t : tris)
+    for (int k = 0; k < 3; ++k) edge_sum += (to_vec(points[t[k]]) - to_vec(points[t[(k + 1) % 3]])).norm();
+  const double mean_edge = edge_sum / (3.0 * static_cast<double>(tris.size()));
+  const double threshold = ZERO_AREA_RELATIVE * mean_edge * mean_edge;
+  std::vector<std::size_t> out;
+  for (std::size_t f = 0; f < tris.size(); ++f) {
+    const Vec3 a = to_vec(points[tris[f][0]]);
+    if ((to_vec(points[tris[f][1]]) - a).cross(to_vec(points[tris[f][2]]) - a).norm() < threshold) out.push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
+Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, InputReport* report, bool reorient) {
+  if ((soup.faces32 == nullptr) == (soup.faces64 == nullptr))
+    throw std::invalid_argument("mesh_from_arrays: set exactly one of faces32 and faces64");
+  if (soup.num_vertices == 0 || soup.num_faces == 0)
+    fail(name, "empty mesh", std::to_string(soup.num_vertices) + " vertices and " + std::to_string(soup.num_faces) + " faces");
+  const std::size_t nv = soup.num_vertices;
+  std::vector<Point3> points;
+  points.reserve(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    const double* p = soup.vertices + 3 * i;
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
+      std::ostringstream c;
+      c << p[0] << ' ' << p[1] << ' ' << p[2];
+      fail(name, "non-finite coordinate", vertex_name(i) + " is (" + c.str() + ")");
+    }
+    points.emplace_back(p[0], p[1], p[2]);
+  }
+  std::vector<Tri> tris = read_faces(soup, name);
+  check_duplicates_and_isolated(tris, nv, name);
+  check_edges(tris, nv, name);
+  check_vertex_fans(tris, nv, name);
+  std::vector<std::string> warnings;
+  bool reoriented = false;
+  const std::size_t components = orient_components(tris, points, reorient, warnings, reoriented);
+  std::vector<std::size_t> zero_area = zero_area_faces(tris, points);
+  if (!zero_area.empty()) {
+    std::string list;
+    for (std::size_t i = 0; i < zero_area.size() && i < MAX_LISTED; ++i) list += (i ? ", " : "") + std::to_string(zero_area[i]);
+    if (zero_area.size() > MAX_LISTED) list += ", ...";
+    warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + list);
+  }
+
+  Mesh mesh;
+  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, tris, mesh);
+  if (mesh.number_of_faces() != tris.size())
+    throw std::logic_error("mesh_from_arrays: polygon_soup_to_polygon_mesh dropped faces of a checked soup");
+  // Each face's halfedge starts at the soup's first corner, so that a written face lists its
+  // corners as given (read_input_mesh's align_to_soup).
+  for (const FaceIndex f : mesh.faces()) {
+    const Tri& t = tris[f.idx()];
+    HalfedgeIndex h = mesh.halfedge(f);
+    for (int k = 0; k < 3 && mesh.target(h).idx() != t[0]; ++k) h = mesh.next(h);
+    if (mesh.target(h).idx() != t[0] || mesh.target(mesh.next(h)).idx() != t[1])
+      throw std::logic_error("mesh_from_arrays: face " + std::to_string(f.idx()) + " lost its corner order");
+    mesh.set_halfedge(f, h);
+  }
+  if (report) {
+    report->vertices = mesh.number_of_vertices();
+    report->faces = mesh.number_of_faces();
+    report->triangulated_faces = 0;
+    report->zero_area_faces = std::move(zero_area);
+    report->reoriented = reoriented;
+    report->components = components;
+    report->volume = enclosed_volume(mesh, positions_from_mesh(mesh));
+    report->warnings = std::move(warnings);
+  }
+  return mesh;
+}
+
+}  // namespace shellcontract

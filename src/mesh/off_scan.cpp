@@ -1,0 +1,229 @@
+// OFF pre-scan (see off_scan.hpp). CGAL's OFF reader returns a bare `false` on a truncated or
+// garbled file, and it resizes its arrays to the declared counts (and each face to its declared
+// corner count) before reading them: a header that announces 10^12 vertices aborted the tool
+// with std::bad_alloc. This scan walks the file line by line (one vertex or face per line, '#'
+// comments) without trusting any count: it says which line is wrong, records the line of every
+// vertex and face for later messages, and hands CGAL only files whose counts it has verified.
+// Binary OFF is read here entirely (CGAL 5.5's soup reader misreads it, see off_scan.hpp).
+#include "shellcontract/mesh/off_scan.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <regex>
+#include <sstream>
+
+#include "shellcontract/core/error.hpp"
+
+namespace shellcontract {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
+  throw InputError(path + ": " + problem + ": " + details);
+}
+
+std::string shorten(const std::string& s) {
+  std::string r = s.size() > 20 ? s.substr(0, 20) + "..." : s;
+  for (char& c : r)
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+  return r;
+}
+
+/// What an OFF keyword (ST)?C?N?4?n?OFF says about each vertex line.
+struct OffVariant {
+  bool homogeneous = false;  ///< "4": x y z w
+  bool dimensional = false;  ///< "n": a dimension precedes the counts
+  std::size_t vertex_numbers = 3;  ///< numbers a vertex line holds at least (colours are optional)
+};
+
+class OffScanner {
+ public:
+  OffScanner(const std::string& path, const std::string& text) : path_(path), text_(text), in_(text) {}
+
+  OffScan scan() {
+    std::vector<std::string> t;
+    if (!next(t)) fail(path_, "empty file", "no OFF header, the file holds only blank or comment lines");
+    const std::size_t header_line = line_;
+    static const std::regex keyword("(ST)?(C)?(N)?(4)?(n)?OFF");
+    std::smatch m;
+    if (!std::regex_match(t[0], m, keyword))
+      fail(path_, "parse error", "line " + std::to_string(line_) + ": expected the OFF header, found '" + shorten(t[0]) + "'");
+    OffVariant variant;
+    variant.homogeneous = m[4].matched;
+    variant.dimensional = m[5].matched;
+    variant.vertex_numbers = 3 + (m[4].matched ? 1 : 0) + (m[3].matched ? 3 : 0) + (m[1].matched ? 2 : 0);
+    t.erase(t.begin());
+    if (!t.empty() && t[0] == "BINARY") {
+      if (m.length(0) != 3)
+        fail(path_, "unsupported OFF variant", "line " + std::to_string(line_) + ": only plain 'OFF BINARY' is read among the binary variants");
+      return scan_binary();
+    }
+    if (t.empty() && !next(t))
+      fail(path_, "truncated file", "the file ends after the OFF header (line " + std::to_string(header_line) + "), before the vertex and face counts");
+    if (variant.dimensional) {
+      if (count(t[0], "dimension") != 3)
+        fail(path_, "unsupported OFF variant", "line " + std::to_string(line_) + ": dimension " + shorten(t[0]) + ", only 3 is read");
+      t.erase(t.begin());
+      if (t.empty() && !next(t))
+        fail(path_, "truncated file", "the file ends before the vertex and face counts");
+    }
+    if (t.size() < 2)
+      fail(path_, "parse error", "line " + std::to_string(line_) + ": expected the vertex, face and edge counts");
+    const std::size_t counts_line = line_;
+    const std::size_t nv = count(t[0], "vertex count");
+    const std::size_t nf = count(t[1], "face count");
+    if (nv == 0 || nf == 0)
+      fail(path_, "empty mesh", "line " + std::to_string(counts_line) + " announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces");
+
+    const std::string announced = "the header (line " + std::to_string(counts_line) + ") announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces";
+    OffScan scan;
+    SourceLines& out = scan.lines;
+    // Never reserve a declared count as such: a vertex line has at least 6 bytes.
+    out.vertex_line.reserve(std::min(nv, text_.size() / 6 + 1));
+    for (std::size_t i = 0; i < nv; ++i) {
+      if (!next(t))
+        fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(i) + " vertices (line " + std::to_string(line_) + ")");
+      const std::string where = "vertex " + std::to_string(i) + " (line " + std::to_string(line_) + ")";
+      if (t.size() < variant.vertex_numbers) {
+        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where);
+        fail(path_, "parse error", where + " has " + std::to_string(t.size()) + " numbers, expected " + std::to_string(variant.vertex_numbers));
+      }
+      for (std::size_t k = 0; k < variant.vertex_numbers; ++k) {
+        char* end = nullptr;
+        const double c = std::strtod(t[k].c_str(), &end);
+        if (end == t[k].c_str() || *end != '\0')
+          fail(path_, "parse error", where + ": '" + shorten(t[k]) + "' is not a number");
+        if (k < 3 && !std::isfinite(c))
+          fail(path_, "non-finite coordinate", where + " has coordinate " + "xyz"[k] + " = " + t[k]);
+        if (k == 3 && variant.homogeneous && !(std::isfinite(c) && c != 0.0))
+          fail(path_, "non-finite coordinate", where + " has the homogeneous coordinate w = " + t[k]);
+      }
+      out.vertex_line.push_back(line_);
+    }
+    out.face_line.reserve(std::min(nf, text_.size() / 8 + 1));
+    for (std::size_t j = 0; j < nf; ++j) {
+      if (!next(t))
+        fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(j) + " faces (line " + std::to_string(line_) + ")");
+      const std::string where = "face " + std::to_string(j) + " (line " + std::to_string(line_) + ")";
+      const std::size_t n = index(t[0], where + ": vertex count");
+      if (t.size() - 1 < n) {
+        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where);
+        fail(path_, "parse error", where + " announces " + std::to_string(n) + " vertices but lists " + std::to_string(t.size() - 1));
+      }
+      for (std::size_t k = 1; k <= n; ++k) {
+        const std::size_t v = index(t[k], where);
+        if (v >= nv)
+          fail(path_, "vertex index out of range", where + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
+      }
+      out.face_line.push_back(line_);
+    }
+    return scan;
+  }
+
+ private:
+  /// Next non-blank, non-comment line split into tokens; false at end of file.
+  bool next(std::vector<std::string>& tokens) {
+    std::string s;
+    while (std::getline(in_, s)) {
+      ++line_;
+      const auto hash = s.find('#');
+      if (hash != std::string::npos) s.erase(hash);
+      std::istringstream ls(s);
+      tokens.clear();
+      for (std::string w; ls >> w;) tokens.push_back(w);
+      if (!tokens.empty()) return true;
+    }
+    return false;
+  }
+  bool at_end() {
+    in_ >> std::ws;
+    return in_.peek() == std::char_traits<char>::eof();
+  }
+  std::size_t index(const std::string& tok, const std::string& where) {
+    char* end = nullptr;
+    errno = 0;
+    const long long v = std::strtoll(tok.c_str(), &end, 10);
+    if (end == tok.c_str() || *end != '\0' || errno == ERANGE)
+      fail(path_, "parse error", where + ": '" + shorten(tok) + "' is not an integer");
+    if (v < 0) fail(path_, "vertex index out of range", where + " has the negative index " + tok);
+    return static_cast<std::size_t>(v);
+  }
+  /// A count CGAL reads as a 32-bit int: larger ones are refused here, never misread there.
+  std::size_t count(const std::string& tok, const std::string& what) {
+    char* end = nullptr;
+    errno = 0;
+    const long long v = std::strtoll(tok.c_str(), &end, 10);
+    if (end == tok.c_str() || *end != '\0' || errno == ERANGE || v < 0)
+      fail(path_, "parse error", "line " + std::to_string(line_) + ": " + what + " '" + shorten(tok) + "' is not a non-negative integer");
+    return static_cast<std::size_t>(v);
+  }
+
+  /// "OFF BINARY" as CGAL writes it: after the header line, big-endian int32 counts (vertices,
+  /// faces, edges), float32 x y z per vertex, then per face an int32 corner count, the int32
+  /// indices, an int32 colour count (0 to 4) and that many float32.
+  OffScan scan_binary() {
+    OffScan out;
+    out.binary = true;
+    const std::size_t nl = text_.find('\n');
+    std::size_t pos = nl == std::string::npos ? text_.size() : nl + 1;
+    auto int32 = [&](const std::string& what) {
+      if (text_.size() - pos < 4) fail(path_, "truncated file", "binary OFF: the file ends inside " + what + " (byte offset " + std::to_string(pos) + ")");
+      std::uint32_t u = 0;
+      for (int i = 0; i < 4; ++i) u = (u << 8) | static_cast<unsigned char>(text_[pos + static_cast<std::size_t>(i)]);
+      pos += 4;
+      return static_cast<std::int32_t>(u);
+    };
+    const std::int32_t nv = int32("the vertex count"), nf = int32("the face count");
+    int32("the edge count");
+    if (nv <= 0 || nf <= 0)
+      fail(path_, "empty mesh", "binary OFF: the header announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces");
+    const std::size_t vertex_bytes = 12 * static_cast<std::size_t>(nv);
+    if (text_.size() - pos < vertex_bytes || (text_.size() - pos - vertex_bytes) / 8 < static_cast<std::size_t>(nf))
+      fail(path_, "truncated file", "binary OFF: the header announces " + std::to_string(nv) + " vertices (12 bytes each) and " + std::to_string(nf) + " faces (8 bytes at least), but only " + std::to_string(text_.size() - pos) + " bytes follow");
+    out.points.reserve(static_cast<std::size_t>(nv));
+    for (std::int32_t i = 0; i < nv; ++i) {
+      std::array<double, 3> p{};
+      for (double& c : p) {
+        const auto bits = static_cast<std::uint32_t>(int32("a coordinate"));
+        float f = 0.0f;
+        std::memcpy(&f, &bits, 4);
+        c = f;
+      }
+      out.points.push_back(p);
+    }
+    out.faces.reserve(static_cast<std::size_t>(nf));
+    for (std::int32_t f = 0; f < nf; ++f) {
+      const std::string where = "face " + std::to_string(f);
+      const std::int32_t n = int32(where + "'s corner count");
+      if (n < 0 || static_cast<std::size_t>(n) > (text_.size() - pos) / 4)
+        fail(path_, "parse error", "binary OFF: " + where + " announces " + std::to_string(n) + " corners (byte offset " + std::to_string(pos - 4) + ")");
+      std::vector<std::size_t> face;
+      face.reserve(static_cast<std::size_t>(n));
+      for (std::int32_t k = 0; k < n; ++k) {
+        const std::int32_t v = int32(where);
+        face.push_back(static_cast<std::size_t>(v));
+        if (v < 0 || v >= nv)
+          fail(path_, "vertex index out of range", "binary OFF: " + where + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices");
+      }
+      const std::int32_t colours = int32(where + "'s colour count");
+      if (colours < 0 || colours > 4 || text_.size() - pos < 4 * static_cast<std::size_t>(colours))
+        fail(path_, "parse error", "binary OFF: " + where + " has a bad colour count " + std::to_string(colours));
+      pos += 4 * static_cast<std::size_t>(colours);
+      out.faces.push_back(std::move(face));
+    }
+    return out;
+  }
+
+  const std::string& path_;
+  const std::string& text_;
+  std::istringstream in_;
+  std::size_t line_ = 0;
+};
+
+}  // namespace
+
+OffScan scan_off(const std::string& path, const std::string& text) { return OffScanner(path, text).scan(); }
+
+}  // namespace shellcontract

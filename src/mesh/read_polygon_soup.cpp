@@ -1,0 +1,87 @@
+// Reading a mesh file into a polygon soup (read_input_mesh's first step, issue 30): the whole
+// file is read into memory first, so that every reader can bound what a header declares by the
+// bytes that are really there.
+#include "shellcontract/mesh/read_polygon_soup.hpp"
+
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/STL.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/ply_reader.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
+  throw InputError(path + ": " + problem + ": " + details);
+}
+
+/// Text formats: drops a UTF-8 byte-order mark, and turns classic-Mac line ends (a lone "\r")
+/// into "\n", which CGAL's readers and the OFF scan split lines at ("\r\n" already works there).
+/// Only a file without any "\n" is converted, so the data of an "OFF BINARY" file is never touched.
+void normalize_text(std::string& s) {
+  if (s.compare(0, 3, "\xEF\xBB\xBF") == 0) s.erase(0, 3);
+  if (s.find('\n') == std::string::npos) std::replace(s.begin(), s.end(), '\r', '\n');
+}
+
+}  // namespace
+
+std::string read_file_bytes(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, "cannot open file", "no such file");
+  if (fs::is_directory(path, ec)) fail(path, "cannot open file", "it is a folder");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, "cannot open file", std::strerror(errno));
+  std::ostringstream s;
+  s << in.rdbuf();
+  if (in.bad()) fail(path, "cannot read file", std::strerror(errno));
+  return s.str();
+}
+
+void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
+                       std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines) {
+  std::string bytes = read_file_bytes(path);
+  if (std::all_of(bytes.begin(), bytes.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); }))
+    fail(path, "empty file", "the file holds no data");
+  if (ext == "ply") {
+    PlyData d = read_ply(path, bytes);
+    points.reserve(d.points.size());
+    for (const auto& p : d.points) points.emplace_back(p[0], p[1], p[2]);
+    polygons = std::move(d.faces);
+    lines.vertex_line = std::move(d.vertex_line);
+    lines.face_line = std::move(d.face_line);
+    return;
+  }
+  if (ext != "stl") normalize_text(bytes);
+  if (ext == "off") {
+    OffScan scan = scan_off(path, bytes);
+    if (scan.binary) {
+      points.reserve(scan.points.size());
+      for (const auto& p : scan.points) points.emplace_back(p[0], p[1], p[2]);
+      polygons = std::move(scan.faces);
+      return;
+    }
+    lines = std::move(scan.lines);
+  }
+  std::istringstream in(bytes);
+  bool ok = false;
+  // Direct calls rather than CGAL's read_polygon_soup: the extension is already known.
+  if (ext == "off") ok = CGAL::IO::read_OFF(in, points, polygons);
+  else if (ext == "obj") ok = CGAL::IO::read_OBJ(in, points, polygons);
+  else ok = CGAL::IO::read_STL(in, points, polygons);
+  if (!ok)
+    fail(path, "parse error", "CGAL could not read it as a ." + ext + " file (truncated file or garbage)");
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,126 @@
+// mesh_from_arrays against read_input_mesh: the same soup from a file and from arrays gives the
+// same mesh (corner order included) and the same report, and a bad soup the same problem name.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/from_arrays.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// A mesh's arrays as the soup that produced it (positions and corner order as written).
+struct Arrays {
+  std::vector<double> v;
+  std::vector<std::int64_t> f;
+};
+
+Arrays arrays_of(const Mesh& mesh) {
+  Arrays a;
+  const Positions x = positions_from_mesh(mesh);
+  a.v.assign(x.data(), x.data() + x.size());
+  for (const FaceIndex f : mesh.faces())
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) a.f.push_back(v.idx());
+  return a;
+}
+
+Mesh from(const Arrays& a, InputReport* report = nullptr, bool reorient = true) {
+  TriangleSoupView s;
+  s.vertices = a.v.data();
+  s.num_vertices = a.v.size() / 3;
+  s.faces64 = a.f.data();
+  s.num_faces = a.f.size() / 3;
+  return mesh_from_arrays(s, "arrays", report, reorient);
+}
+
+/// The "<problem>" of an InputError "<name>: <problem>: <details>".
+std::string problem_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    const auto a = m.find(": ") + 2;
+    return m.substr(a, m.find(": ", a) - a);
+  }
+  return "(no error)";
+}
+
+TEST(FromArrays, SameMeshAndReportAsTheFileReader) {
+  for (const char* name : {"ico2.off", "torus.off", "zero_area_face.off"}) {
+    InputReport file_report, array_report;
+    const Mesh file_mesh = read_input_mesh(std::string(test::MESH_DIR) + "/" + name, &file_report);
+    const Arrays a = arrays_of(file_mesh);
+    const Mesh mesh = from(a, &array_report);
+    const Arrays b = arrays_of(mesh);
+    EXPECT_EQ(a.v, b.v) << name;
+    EXPECT_EQ(a.f, b.f) << name;
+    EXPECT_EQ(array_report.components, file_report.components) << name;
+    EXPECT_EQ(array_report.zero_area_faces, file_report.zero_area_faces) << name;
+    EXPECT_EQ(array_report.volume, file_report.volume) << name;
+    EXPECT_GT(array_report.volume, 0.0) << name;
+  }
+}
+
+TEST(FromArrays, Int32FacesGiveTheSameMesh) {
+  const Arrays a = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off"));
+  const std::vector<std::int32_t> f32(a.f.begin(), a.f.end());
+  TriangleSoupView s;
+  s.vertices = a.v.data();
+  s.num_vertices = a.v.size() / 3;
+  s.faces32 = f32.data();
+  s.num_faces = f32.size() / 3;
+  EXPECT_EQ(arrays_of(mesh_from_arrays(s, "arrays")).f, a.f);
+}
+
+TEST(FromArrays, FacesKeepTheirGivenFirstCorner) {
+  // Rotated corners (same orientation): a written face must list them as given.
+  Arrays a = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off"));
+  for (std::size_t f = 0; f < a.f.size(); f += 3)
+    for (std::size_t r = 0; r < (f / 3) % 3; ++r) std::rotate(a.f.begin() + f, a.f.begin() + f + 1, a.f.begin() + f + 3);
+  EXPECT_EQ(arrays_of(from(a)).f, a.f);
+}
+
+TEST(FromArrays, InsideOutIsFlippedOnlyWhenAsked) {
+  // The file reader flips the inside-out sphere; giving it back reversed must flip it again.
+  const Arrays outward = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/inside_out_sphere.off"));
+  Arrays inward = outward;
+  for (std::size_t f = 0; f < inward.f.size(); f += 3) std::swap(inward.f[f + 1], inward.f[f + 2]);
+  InputReport report;
+  EXPECT_EQ(arrays_of(from(inward, &report)).f, outward.f);
+  EXPECT_TRUE(report.reoriented);
+  EXPECT_EQ(arrays_of(from(inward, nullptr, /*reorient=*/false)).f, inward.f);
+}
+
+TEST(FromArrays, BadSoupsNameTheirProblem) {
+  const Arrays good = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico1.off"));
+  auto with = [&](auto change) {
+    Arrays a = good;
+    change(a);
+    return problem_of([&] { from(a); });
+  };
+  EXPECT_EQ(with([](Arrays&) {}), "(no error)");
+  EXPECT_EQ(with([](Arrays& a) { a.v[7] = std::numeric_limits<double>::quiet_NaN(); }), "non-finite coordinate");
+  EXPECT_EQ(with([](Arrays& a) { a.v[2] = INFINITY; }), "non-finite coordinate");
+  EXPECT_EQ(with([](Arrays& a) { a.f[4] = 42; }), "vertex index out of range");
+  EXPECT_EQ(with([](Arrays& a) { a.f[4] = -1; }), "vertex index out of range");
+  EXPECT_EQ(with([](Arrays& a) { a.f[4] = a.f[3]; }), "degenerate face");
+  EXPECT_EQ(with([](Arrays& a) { a.f.resize(a.f.size() - 3); }), "open boundary");
+  EXPECT_EQ(with([](Arrays& a) { std::swap(a.f[1], a.f[2]); }), "inconsistent orientation");
+  EXPECT_EQ(with([](Arrays& a) { a.f.insert(a.f.end(), {a.f[0], a.f[2], a.f[1]}); }), "duplicate face");
+  EXPECT_EQ(with([](Arrays& a) { a.v.insert(a.v.end(), {0.0, 0.0, 0.0}); }), "isolated vertex");
+  EXPECT_EQ(with([](Arrays& a) { a.f.clear(); }), "empty mesh");
+}
+
+}  // namespace
+}  // namespace shellcontract
