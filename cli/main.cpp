@@ -38,7 +38,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (command == "--version") {
-    std::cout << "shellcontract 0.1.0\n";
+    std::cout << "shellcontract " SHELLCONTRACT_VERSION "\n";
     return 0;
   }
   // Subcommands see their own name as argv[0].

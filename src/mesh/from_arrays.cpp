@@ -19,6 +19,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/normalization.hpp"
 #include "shellcontract/validation/volume.hpp"
 
 namespace shellcontract {
@@ -228,6 +229,18 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
     warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + list);
   }
 
+  // What the simulator needs beyond a closed manifold, decided and measured as read_input_mesh
+  // does (a usable bounding box; a positive volume at a unit diagonal, scaled back).
+  Eigen::Vector3d lo = to_vec(points[0]), hi = lo;
+  for (const Point3& p : points) {
+    lo = lo.cwiseMin(to_vec(p));
+    hi = hi.cwiseMax(to_vec(p));
+  }
+  const double diagonal = (hi - lo).norm();
+  if (!(std::isfinite(diagonal) && diagonal > 0.0))
+    fail(name, "degenerate mesh", diagonal == 0.0 ? "zero bounding-box diagonal"
+                                                  : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
+
   Mesh mesh;
   CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, tris, mesh);
   if (mesh.number_of_faces() != tris.size())
@@ -242,6 +255,14 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
       throw std::logic_error("mesh_from_arrays: face " + std::to_string(f.idx()) + " lost its corner order");
     mesh.set_halfedge(f, h);
   }
+  const Positions x = positions_from_mesh(mesh);
+  const double unit_volume = enclosed_volume(mesh, normalize(x, compute_normalization(x)));
+  if (reorient && !(unit_volume > 0.0)) {
+    std::ostringstream v;
+    v << unit_volume;
+    fail(name, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
+                                         " at a unit bounding-box diagonal): it is flat or degenerate");
+  }
   if (report) {
     report->vertices = mesh.number_of_vertices();
     report->faces = mesh.number_of_faces();
@@ -249,7 +270,7 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
     report->zero_area_faces = std::move(zero_area);
     report->reoriented = reoriented;
     report->components = components;
-    report->volume = enclosed_volume(mesh, positions_from_mesh(mesh));
+    report->volume = unit_volume * diagonal * diagonal * diagonal;
     report->warnings = std::move(warnings);
   }
   return mesh;
