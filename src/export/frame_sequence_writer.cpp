@@ -1,5 +1,9 @@
 #include "shellcontract/export/frame_sequence_writer.hpp"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
@@ -93,6 +97,10 @@ void FrameSequenceWriter::write(int frame, const Positions& x_input_units) {
 }
 
 void FrameSequenceWriter::work() {
+  // The lowest priority for this thread alone (Linux applies nice per thread): the simulation's
+  // threads, the speculative broad phase on the spare core among them, come first and the files
+  // are written in their idle time.
+  setpriority(PRIO_PROCESS, static_cast<id_t>(::syscall(SYS_gettid)), 19);
   for (;;) {
     std::pair<int, Positions> item;
     {
