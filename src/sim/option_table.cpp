@@ -419,6 +419,15 @@ std::vector<OptionSpec> build_table() {
                             {"end", ValidateMode::End},
                             {"every-frame", ValidateMode::EveryFrame}},
       [](R& r) -> ValidateMode& { return r.sim.validate; }));
+  // Every setter also records that the option was given (RunOptions::given).
+  for (OptionSpec& o : t) {
+    auto parse = o.set;
+    const std::string name = o.name;
+    o.set = [parse, name](RunOptions& r, const std::string& v) {
+      parse(r, v);
+      r.given.insert(name);
+    };
+  }
   return t;
 }
 

@@ -92,6 +92,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
              " has no effect: no region was found (or given), so no face gets the anisotropic "
              "energy");
 
+  for (const std::string& w : ineffective_options(options)) warn(r, obs, w);
   Simulator sim(mesh, s);
   const RestStateReport& rest = sim.rest_report();
   if (rest.degenerate_faces > 0)
@@ -128,7 +129,8 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
                   " new self-intersecting face pairs at frame " + std::to_string(m.frame);
     }
     history.push_back(m.volume_ratio);
-    if (has_target && r.frame_target_reached < 0 && sim.volume_target(m.frame) == s.target_volume &&
+    if (has_target && r.frame_target_reached < 0 &&
+        std::abs(sim.volume_target(m.frame) - s.target_volume) < 1e-12 &&
         std::abs(m.volume_ratio - s.target_volume) <= TARGET_VOLUME_TOLERANCE)
       r.frame_target_reached = m.frame;
     obs.frame(sim, m);

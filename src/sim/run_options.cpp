@@ -2,6 +2,7 @@
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/material/material.hpp"
+#include "shellcontract/material/registry.hpp"
 
 namespace shellcontract {
 
@@ -31,6 +32,40 @@ void resolve_run_options(RunOptions& r) {
         "--target-volume and --stop-volume-ratio exclude each other (the target holds the "
         "volume, the stop ends the run when it is reached)");
   resolve_sim_options(r.sim);
+}
+
+std::vector<std::string> ineffective_options(const RunOptions& r) {
+  const SimOptions& s = r.sim;
+  std::vector<std::string> w;
+  auto check = [&](const char* name, bool no_effect, const std::string& why) {
+    if (no_effect && r.given.count(name))
+      w.push_back(std::string("--") + name + " has no effect: " + why);
+  };
+  const bool aniso = s.solver.aniso != AnisoKind::None;
+  check("region-pressure", !aniso || s.inward_term != InwardTerm::Force,
+        "the region pressure acts with --aniso and --inward force");
+  check("k-a", !aniso || s.inward_term != InwardTerm::Projection,
+        "kappa_A acts with --aniso and --inward projection");
+  check("inward", !aniso, "the inward term acts on the regions of --aniso");
+  for (const char* name : {"mu-a", "fiber", "inversion-aware"})
+    check(name, !aniso, "no --aniso energy is chosen");
+  check("fiber-target", s.solver.aniso != AnisoKind::ActiveFiber,
+        "it is the active fibre's (--aniso active-fiber)");
+  for (const char* name : {"c10", "c01"})
+    check(name, s.material != MaterialKind::MooneyRivlin,
+          "it is a Mooney-Rivlin parameter (--material mooney-rivlin)");
+  for (const char* name : {"mu", "lambda"})
+    check(name, s.material == MaterialKind::MooneyRivlin, "Mooney-Rivlin takes --c10 and --c01");
+  check("poisson", !r.young.has_value(), "the Poisson ratio is used with --young and --thickness");
+  check("k-b", s.bending == BendingModel::None, "--bending none");
+  for (const char* name : {"delta", "collision-rounds", "warm-start", "speculative-broad-phase"})
+    check(name, !s.collisions, "--collisions off");
+  check("target-ramp", !(s.target_volume > 0.0), "it is the ramp of --target-volume");
+  check("pressure", s.target_volume > 0.0,
+        "with --target-volume the volume constraint decides the volume (the pressure only adds "
+        "momentum "
+        "along its own direction, which the constraint removes)");
+  return w;
 }
 
 }  // namespace shellcontract

@@ -38,7 +38,7 @@ struct Recorder final : RunObserver {
 };
 
 TEST(Run, TargetVolumeIsReachedAndHeldOnASphere) {
-  for (double target : {0.9, 0.5}) {
+  for (double target : {0.9, 0.5, 0.3}) {  // 1 - (1 - 0.3) is not 0.3 in doubles
     RunOptions o;
     o.sim.frames = 120;
     o.sim.target_volume = target;
@@ -155,6 +155,34 @@ TEST(Run, AnisoWithoutRegionsWarns) {
   const RunResult r = run_contraction(sphere(2), o, &rec);
   ASSERT_EQ(rec.warnings.size(), 1u);
   EXPECT_NE(rec.warnings[0].find("no effect"), std::string::npos);
+  EXPECT_EQ(r.warnings, rec.warnings);
+}
+
+}  // namespace
+}  // namespace shellcontract
+
+namespace shellcontract {
+namespace {
+
+TEST(Run, OptionsWithoutEffectAreWarnedAndDefaultsAreNot) {
+  RunOptions quiet;
+  quiet.sim.frames = 1;
+  Recorder none;
+  run_contraction(sphere(1), quiet, &none);
+  EXPECT_TRUE(none.warnings.empty());
+  RunOptions o;
+  o.sim.frames = 1;
+  set_run_option(o, "c10", "0.7");  // StVK is the material
+  set_run_option(o, "collisions", "off");
+  set_run_option(o, "delta", "0.001");        // collisions are off
+  set_run_option(o, "region-pressure", "5");  // no --aniso
+  set_run_option(o, "pressure", "2");         // effective: no target volume
+  Recorder rec;
+  const RunResult r = run_contraction(sphere(1), o, &rec);
+  ASSERT_EQ(rec.warnings.size(), 3u);
+  EXPECT_NE(rec.warnings[0].find("--region-pressure"), std::string::npos) << rec.warnings[0];
+  EXPECT_NE(rec.warnings[1].find("--c10"), std::string::npos) << rec.warnings[1];
+  EXPECT_NE(rec.warnings[2].find("--delta"), std::string::npos) << rec.warnings[2];
   EXPECT_EQ(r.warnings, rec.warnings);
 }
 

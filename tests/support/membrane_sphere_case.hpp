@@ -36,15 +36,19 @@ inline double membrane_sphere_buckling(const MembraneSphereSetting& s) {
   return 2.0 * s.young * s.thickness * s.thickness / (r * r * std::sqrt(3.0 * (1.0 - s.poisson * s.poisson)));
 }
 
-/// dV/V measured at the end of an XPBD run of the icosphere of `levels` subdivisions at pressure P
-/// (no bending: the closed form is the membrane's alone; no collisions: nothing touches).
+/// dV/V measured at the end of an XPBD run of the icosphere of `levels` subdivisions at pressure P.
+/// Bending is the rest-aware dihedral model: a uniform contraction keeps every dihedral angle, so
+/// it adds no force to the closed form's solution, but it gives the shell the bending stiffness
+/// that keeps a compressed membrane from wrinkling (without it, 5120 faces at 0.04 P_c wrinkled
+/// within 400 frames: dV/V 4.8x the closed form). No collisions: nothing touches.
 inline double membrane_sphere_measured(int levels, double P, const MembraneSphereSetting& s) {
   RunOptions o;
   set_run_option(o, "solver", "xpbd");
   set_run_option(o, "young", std::to_string(s.young));
   set_run_option(o, "poisson", std::to_string(s.poisson));
   set_run_option(o, "thickness", std::to_string(s.thickness));
-  set_run_option(o, "bending", "none");
+  set_run_option(o, "bending", "dihedral");
+  set_run_option(o, "k-b", "1");
   set_run_option(o, "collisions", "off");
   o.sim.pressure = P;
   o.sim.solver.iterations = s.iterations;

@@ -4,7 +4,9 @@
 #pragma once
 
 #include <optional>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "shellcontract/sim/config.hpp"
 
@@ -29,7 +31,15 @@ struct RunOptions {
   std::optional<double> young;
   double poisson = 0.3;
   std::optional<double> thickness;
+  /// The options set through the option table (CLI spelling), so that a run can say which of
+  /// them have no effect in its configuration (ineffective_options).
+  std::set<std::string> given;
 };
+
+/// One warning per given option that has no effect with the others (e.g. --region-pressure
+/// without an anisotropic energy, --c10 with a material other than Mooney-Rivlin, --delta with
+/// collisions off). run_contraction reports them as warnings.
+std::vector<std::string> ineffective_options(const RunOptions& options);
 
 /// Checks the options that depend on each other and derives the values that follow from others
 /// (mu and lambda from --young; the solver's time step and threads, the collision threads and the
