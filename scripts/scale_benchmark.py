@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""The large-mesh benchmark (issue "Large meshes and many cores"): bear and bear subdivided once
+and twice (every triangle split in four at its edge midpoints: 110,592 and 442,368 faces, made
+deterministically from data/meshes/bear.off), each run for a few frames in the coloured order with
+collisions on at several thread counts. Prints a markdown table of the step time, the broad phase's
+time, the time outside the time loop (reading, checking, preparing, writing) and the peak memory.
+
+Usage: scripts/scale_benchmark.py [--build build] [--frames 10] [--threads 1,2] [--levels 0,1,2]
+Needs: the built tool and data/meshes/bear.off (scripts/fetch_paper_meshes.sh)."""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+
+
+def read_off(path):
+    with open(path) as f:
+        words = f.read().split()
+    assert words[0] == "OFF", path
+    nv, nf = int(words[1]), int(words[2])
+    at = 4
+    points = [tuple(float(w) for w in words[at + 3 * i: at + 3 * i + 3]) for i in range(nv)]
+    at += 3 * nv
+    faces = []
+    for _ in range(nf):
+        n = int(words[at])
+        assert n == 3, "triangles only"
+        faces.append(tuple(int(w) for w in words[at + 1: at + 4]))
+        at += 4
+    return points, faces
+
+
+def subdivide(points, faces):
+    """Every triangle split in four at its edge midpoints; midpoints shared between neighbours, new
+    vertices numbered in the order the faces first meet them (deterministic)."""
+    points = list(points)
+    middle = {}
+
+    def mid(a, b):
+        key = (min(a, b), max(a, b))
+        if key not in middle:
+            pa, pb = points[a], points[b]
+            points.append(tuple(0.5 * (x + y) for x, y in zip(pa, pb)))
+            middle[key] = len(points) - 1
+        return middle[key]
+
+    out = []
+    for a, b, c in faces:
+        ab, bc, ca = mid(a, b), mid(b, c), mid(c, a)
+        out += [(a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca)]
+    return points, out
+
+
+def write_off(path, points, faces):
+    with open(path, "w") as f:
+        f.write(f"OFF\n{len(points)} {len(faces)} 0\n")
+        f.writelines(f"{x!r} {y!r} {z!r}\n" for x, y, z in points)
+        f.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
+
+
+def run(tool, mesh, frames, threads, tmp):
+    summary = os.path.join(tmp, "s.json")
+    cmd = ["/usr/bin/time", "-f", "%M", tool, "run", mesh, "-o", os.path.join(tmp, "o.off"), "--frames",
+           str(frames), "--order", "coloured", "--threads", str(threads), "--summary", summary, "-q"]
+    start = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    total = time.perf_counter() - start
+    if p.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed:\n{p.stderr}")
+    peak_kib = int(p.stderr.strip().splitlines()[-1])
+    s = json.load(open(summary))
+    t2 = s["table2"]
+    return {"faces": s["faces"], "step_ms": t2["step_ms"], "broad_ms": t2["broad_phase_ms_per_step"],
+            "outside_s": total - s["wall_seconds"], "peak_mb": peak_kib / 1024}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--frames", type=int, default=10)
+    ap.add_argument("--threads", default="1,2")
+    ap.add_argument("--levels", default="0,1,2")
+    a = ap.parse_args()
+    tool = os.path.join(a.build, "shellcontract")
+    bear = os.path.join(ROOT, "data", "meshes", "bear.off")
+    threads = [int(t) for t in a.threads.split(",")]
+    levels = [int(l) for l in a.levels.split(",")]
+    with tempfile.TemporaryDirectory() as tmp:
+        points, faces = read_off(bear)
+        meshes = {}
+        for level in range(max(levels) + 1):
+            if level in levels:
+                path = os.path.join(tmp, f"bear_x{4 ** level}.off")
+                write_off(path, points, faces)
+                meshes[level] = path
+            points, faces = subdivide(points, faces)
+        head = "| mesh | faces | " + " | ".join(f"step, {t} thr (ms)" for t in threads)
+        head += f" | step per 1k faces, {threads[0]} thr (ms) | broad phase, {threads[0]} thr (ms)"
+        head += " | outside the loop (s) | peak memory (MB) |"
+        print(f"coloured order, collisions on, {a.frames} frames, default pressure; {os.uname().nodename}, "
+              f"{os.cpu_count()} CPUs")
+        print(head)
+        print("|" + "---|" * (head.count("|") - 1))
+        for level in levels:
+            rows = {t: run(tool, meshes[level], a.frames, t, tmp) for t in threads}
+            r0 = rows[threads[0]]
+            cells = [f"{rows[t]['step_ms']:.1f}" for t in threads]
+            print(f"| bear x{4 ** level} | {r0['faces']} | " + " | ".join(cells) +
+                  f" | {1e3 * r0['step_ms'] / r0['faces']:.3f} | {r0['broad_ms']:.1f} | {r0['outside_s']:.2f} | "
+                  f"{max(r['peak_mb'] for r in rows.values()):.0f} |")
+
+
+if __name__ == "__main__":
+    main()
