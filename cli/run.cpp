@@ -2,9 +2,12 @@
 // call run_contraction with the CLI's observers, write the files and return the exit code.
 #include "shellcontract/sim/run.hpp"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <boost/program_options.hpp>
 #include <cctype>
+#include <chrono>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -117,6 +120,13 @@ JsonObject summary_json(const std::string& input, const std::string& output,
   return s;
 }
 
+/// The process's peak resident memory so far (getrusage: Linux reports KiB).
+double peak_memory_mb() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_maxrss) / 1024.0;
+}
+
 }  // namespace
 
 int command_run(int argc, char** argv) {
@@ -208,7 +218,10 @@ int command_run(int argc, char** argv) {
 
   try {
     InputReport report;
+    const auto read_start = std::chrono::steady_clock::now();
     const Mesh mesh = read_input_mesh(input, &report);
+    const double read_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
     for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
     ObserverList observers;
     WarningPrinter warnings;
@@ -228,6 +241,11 @@ int command_run(int argc, char** argv) {
     if (!log_path.empty()) write_text_atomic(log_path, csv.text());
     if (!summary_path.empty()) {
       JsonObject summary = summary_json(input, output, report, options, r);
+      JsonObject setup;
+      setup.add("read_and_check_seconds", read_seconds)
+          .add("regions_seconds", r.regions_seconds)
+          .add("prepare_seconds", r.prepare_seconds);
+      summary.add("setup", setup).add("peak_memory_mb", peak_memory_mb());
       if (!exports.dir.empty() || !exports.gltf.empty())
         summary.add("export", export_json(exporter));
       write_text_atomic(summary_path, summary.str() + "\n");

@@ -76,7 +76,8 @@ def run(tool, mesh, frames, threads, tmp):
     s = json.load(open(summary))
     t2 = s["table2"]
     return {"faces": s["faces"], "step_ms": t2["step_ms"], "broad_ms": t2["broad_phase_ms_per_step"],
-            "outside_s": total - s["wall_seconds"], "peak_mb": peak_kib / 1024}
+            "outside_s": total - s["wall_seconds"], "read_s": s["setup"]["read_and_check_seconds"],
+            "prepare_s": s["setup"]["prepare_seconds"], "peak_mb": peak_kib / 1024}
 
 
 def main():
@@ -101,7 +102,7 @@ def main():
             points, faces = subdivide(points, faces)
         head = "| mesh | faces | " + " | ".join(f"step, {t} thr (ms)" for t in threads)
         head += f" | step per 1k faces, {threads[0]} thr (ms) | broad phase, {threads[0]} thr (ms)"
-        head += " | outside the loop (s) | peak memory (MB) |"
+        head += " | read + check (s) | prepare (s) | outside the loop (s) | peak memory (MB) |"
         print(f"coloured order, collisions on, {a.frames} frames, default pressure; {os.uname().nodename}, "
               f"{os.cpu_count()} CPUs")
         print(head)
@@ -111,7 +112,8 @@ def main():
             r0 = rows[threads[0]]
             cells = [f"{rows[t]['step_ms']:.1f}" for t in threads]
             print(f"| bear x{4 ** level} | {r0['faces']} | " + " | ".join(cells) +
-                  f" | {1e3 * r0['step_ms'] / r0['faces']:.3f} | {r0['broad_ms']:.1f} | {r0['outside_s']:.2f} | "
+                  f" | {1e3 * r0['step_ms'] / r0['faces']:.3f} | {r0['broad_ms']:.1f} | {r0['read_s']:.2f} | "
+                  f"{r0['prepare_s']:.2f} | {r0['outside_s']:.2f} | "
                   f"{max(r['peak_mb'] for r in rows.values()):.0f} |")
 
 

@@ -84,7 +84,13 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   RunResult r;
   resolve_run_options(options);
   SimOptions& s = options.sim;
+  using Clock = std::chrono::steady_clock;
+  const auto seconds_since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
+  const auto regions_start = Clock::now();
   s.anisotropy.regions = select_run_regions(mesh, options);
+  r.regions_seconds = seconds_since(regions_start);
   r.regions = s.anisotropy.regions.size();
   if (s.solver.aniso != AnisoKind::None && r.regions == 0)
     warn(r, obs,
@@ -93,7 +99,9 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
              "energy");
 
   for (const std::string& w : ineffective_options(options)) warn(r, obs, w);
+  const auto prepare_start = Clock::now();
   Simulator sim(mesh, s);
+  r.prepare_seconds = seconds_since(prepare_start);
   const RestStateReport& rest = sim.rest_report();
   if (rest.degenerate_faces > 0)
     warn(r, obs,

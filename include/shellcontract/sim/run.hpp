@@ -44,9 +44,11 @@ struct RunResult {
   /// The first frame at which V/V0 was within TARGET_VOLUME_TOLERANCE of the target volume and
   /// its ramp had ended (or the stop ratio's crossing frame); -1 if never.
   int frame_target_reached = -1;
-  double wall_seconds = 0.0;
-  long new_intersections = -1;  ///< at the last validated frame; -1 when never validated
-  std::size_t regions = 0;      ///< anisotropic regions used (or measured)
+  double wall_seconds = 0.0;     ///< the time loop
+  double regions_seconds = 0.0;  ///< selecting or reading the regions, before the loop
+  double prepare_seconds = 0.0;  ///< building the Simulator: rest state, constraints, collisions
+  long new_intersections = -1;   ///< at the last validated frame; -1 when never validated
+  std::size_t regions = 0;       ///< anisotropic regions used (or measured)
   std::size_t anisotropic_faces = 0;
   double region_inward_displacement = 0.0;  ///< Simulator::region_inward_displacement at the end
   std::size_t degenerate_faces = 0;
