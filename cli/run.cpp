@@ -85,10 +85,8 @@ JsonObject summary_json(const std::string& input, const std::string& output,
   for (const OptionSpec& o : run_option_table()) opts.add(o.name, o.get(options));
   JsonObject table2;
   for (const auto& [name, value] : r.totals.per_step(r.frames_run)) table2.add(name, value);
-  const std::vector<std::string> status_names = {"ok", "target not reached", "failed",
-                                                 "new self-intersections", "cancelled"};
   JsonObject s;
-  s.add("status", status_names[static_cast<std::size_t>(r.status)])
+  s.add("status", status_name(r.status))
       .add("failure", r.message)
       .add("exit_code", r.exit_code())
       .add("input", input)

@@ -177,8 +177,6 @@ class PythonObserver final : public RunObserver {
 
 /// The summary's keys and values as cli/run.cpp writes them to JSON, without the file names.
 py::dict summary(const InputReport& report, const RunOptions& options, const RunResult& r) {
-  static const std::array<const char*, 5> STATUS_NAMES = {"ok", "target not reached", "failed",
-                                                           "new self-intersections", "cancelled"};
   py::dict opts;
   for (const OptionSpec& o : run_option_table()) opts[py::str(python_name(o.name))] = o.get(options);
   py::dict table2;
@@ -186,7 +184,7 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   std::vector<std::string> warnings = report.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
   py::dict s;
-  s["status"] = STATUS_NAMES[static_cast<std::size_t>(r.status)];
+  s["status"] = status_name(r.status);
   s["failure"] = r.message;
   s["exit_code"] = r.exit_code();
   s["vertices"] = report.vertices;

@@ -5,17 +5,11 @@
 #include <stdexcept>
 #include <vector>
 
+#include "shellcontract/sim/fields.hpp"
+
 namespace shellcontract {
 
 namespace {
-
-/// Same rank rule as the fields PLY (nearest rank).
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const std::size_t k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
 
 /// sRGB transfer function inverted (IEC 61966-2-1).
 float srgb_to_linear(double c) {
@@ -28,8 +22,8 @@ FieldColours field_colours(const Eigen::VectorXd& values) {
   FieldColours out;
   if (!values.allFinite()) throw std::invalid_argument("field_colours: a value is not finite");
   const std::vector<double> v(values.data(), values.data() + values.size());
-  out.low = percentile(v, 0.02);
-  out.high = percentile(v, 0.98);
+  out.low = field_percentile(v, 0.02);
+  out.high = field_percentile(v, 0.98);
   out.rgb.resize(values.size(), 3);
   for (Eigen::Index i = 0; i < values.size(); ++i) {
     const double t = out.high > out.low

@@ -13,14 +13,6 @@
 namespace shellcontract {
 namespace {
 
-/// Value at fraction q of the sorted values (nearest rank).
-double percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0.0;
-  const std::size_t k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
-  return v[k];
-}
-
 /// One-ring area sums of a per-face quantity and of the face areas at positions x.
 void ring_sums(const Faces& F, const Positions& x, const Eigen::VectorXd& per_face,
                Eigen::VectorXd& value, Eigen::VectorXd& area) {
@@ -80,7 +72,7 @@ void write_fields_ply(const std::string& path, const Simulator& sim, const Posit
                              : colour == FieldColour::Pressure          ? fields.pressure
                                                                         : fields.energy_density;
   const std::vector<double> values(c.data(), c.data() + c.size());
-  const double lo = percentile(values, 0.02), hi = percentile(values, 0.98);
+  const double lo = field_percentile(values, 0.02), hi = field_percentile(values, 0.98);
   std::ostringstream o;
   o << std::setprecision(17);
   o << "ply\nformat ascii 1.0\ncomment shellcontract fields; colour = field mapped from its 2nd to "
@@ -96,11 +88,20 @@ void write_fields_ply(const std::string& path, const Simulator& sim, const Posit
     const Eigen::Vector3i rgb = field_colour(t);
     o << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << ' ' << rgb(0) << ' ' << rgb(1) << ' '
       << rgb(2) << ' ' << static_cast<float>(fields.mean_curvature(i)) << ' '
-      << static_cast<float>(fields.gaussian_curvature(i)) << ' ' << static_cast<float>(fields.pressure(i))
-      << ' ' << static_cast<float>(fields.energy_density(i)) << '\n';
+      << static_cast<float>(fields.gaussian_curvature(i)) << ' '
+      << static_cast<float>(fields.pressure(i)) << ' '
+      << static_cast<float>(fields.energy_density(i)) << '\n';
   }
-  for (Eigen::Index j = 0; j < F.rows(); ++j) o << "3 " << F(j, 0) << ' ' << F(j, 1) << ' ' << F(j, 2) << '\n';
+  for (Eigen::Index j = 0; j < F.rows(); ++j)
+    o << "3 " << F(j, 0) << ' ' << F(j, 1) << ' ' << F(j, 2) << '\n';
   write_text_atomic(path, o.str());
+}
+
+double field_percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  const std::size_t k = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
 }
 
 }  // namespace shellcontract

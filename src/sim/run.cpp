@@ -12,6 +12,22 @@
 
 namespace shellcontract {
 
+const char* status_name(RunStatus status) {
+  switch (status) {
+    case RunStatus::Completed:
+      return "ok";
+    case RunStatus::TargetNotReached:
+      return "target not reached";
+    case RunStatus::SimulationFailed:
+      return "failed";
+    case RunStatus::NewIntersections:
+      return "new self-intersections";
+    case RunStatus::Cancelled:
+      return "cancelled";
+  }
+  return "failed";
+}
+
 int RunResult::exit_code() const {
   switch (status) {
     case RunStatus::Completed:

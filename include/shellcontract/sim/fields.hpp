@@ -2,9 +2,9 @@
 // elastic energy density, written as a PLY with scalar properties and colours.
 #pragma once
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "shellcontract/sim/simulator.hpp"
 
@@ -29,6 +29,10 @@ VertexFields compute_vertex_fields(const Simulator& sim);
 /// percentile (clamped outside) onto blue (0, 0, 255) -> white (255, 255, 255) -> red
 /// (255, 0, 0). Returns r, g, b in 0..255 for t in [0, 1].
 Eigen::Vector3i field_colour(double t);
+
+/// The value at fraction q in [0, 1] of the sorted values (nearest rank; 0 for no values): the
+/// 2nd and 98th percentiles that the field colours span.
+double field_percentile(std::vector<double> values, double q);
 
 /// Writes the mesh at positions x (input units) as ASCII PLY with per-vertex colour (from
 /// `colour`) and the float properties mean_curvature, gaussian_curvature, pressure and

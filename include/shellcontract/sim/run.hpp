@@ -25,6 +25,10 @@ enum class RunStatus {
   Cancelled,         ///< the observer asked to stop (a KeyboardInterrupt in Python)
 };
 
+/// The status as the summary writes it: "ok", "target not reached", "failed",
+/// "new self-intersections" or "cancelled".
+const char* status_name(RunStatus status);
+
 /// |V/V0 - R| within which a target volume counts as reached and held.
 inline constexpr double TARGET_VOLUME_TOLERANCE = 0.005;
 /// The volume has stalled when V/V0 changed by less than STALL_CHANGE over the last STALL_FRAMES
