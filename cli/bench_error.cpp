@@ -33,7 +33,7 @@ namespace {
 constexpr const char* BENCH_ERROR_USAGE = R"(usage: shellcontract bench error INPUT [options]
 
 Speed against error of the constraint solver on one mesh. Every run simulates the same time
-(--frames x --dt) with the default physics (pressure, StVK, isometric bending, damping) and is
+(--frames x --dt) with the default physics (pressure with air, StVK, dihedral bending, damping) and is
 compared at the end with a reference run of the same model:
   xpbd rungs: against XPBD with --ref-iterations sweeps and --ref-substeps substeps per step
               (XPBD converges to one physical model as the step shrinks);

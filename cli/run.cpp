@@ -111,6 +111,7 @@ JsonObject summary_json(const std::string& input, const std::string& output,
       .add("regions", r.regions)
       .add("anisotropic_faces", r.anisotropic_faces)
       .add("region_inward_displacement", r.region_inward_displacement)
+      .add("outside_region_displacement", r.outside_region_displacement)
       .add("table2", table2);
   std::vector<std::string> warnings = report.warnings;
   warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
@@ -224,7 +225,12 @@ int command_run(int argc, char** argv) {
     ObserverList observers;
     WarningPrinter warnings;
     observers.add(warnings);
-    ProgressPrinter progress(options.sim.frames, options.regions == RegionSource::Auto);
+    // Regions are auto-selected when asked for, or implied by an anisotropic energy.
+    const bool auto_regions =
+        options.regions == RegionSource::Auto ||
+        (options.regions == RegionSource::None && !options.given.count("regions") &&
+         (options.sim.solver.aniso != AnisoKind::None || options.measure_regions));
+    ProgressPrinter progress(options.sim.frames, auto_regions);
     if (!quiet) observers.add(progress);
     CsvLog csv;
     if (!log_path.empty()) observers.add(csv);

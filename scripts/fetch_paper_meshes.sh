@@ -1,6 +1,7 @@
 #!/bin/sh
 # Extracts the paper's models from Debian's libcgal-demo data into data/ at the repository root
-# (git-ignored, never committed): data/meshes/{eight,hand,elk,bear}.off and
+# (git-ignored, never committed): data/meshes/{eight,hand,elk,bear}.off, two curved demo meshes
+# (dragknob.off, spool.off: the long default-run tests) and
 # data/points_3/kitten.xyz. Installs libcgal-demo with apt-get if it is missing (needs root or
 # sudo). Idempotent: files already present with the same content are left alone.
 #
@@ -8,7 +9,7 @@
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-MEMBERS="data/meshes/eight.off data/meshes/hand.off data/meshes/elk.off data/meshes/bear.off data/points_3/kitten.xyz"
+MEMBERS="data/meshes/eight.off data/meshes/hand.off data/meshes/elk.off data/meshes/bear.off data/meshes/dragknob.off data/meshes/spool.off data/points_3/kitten.xyz"
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi

@@ -207,6 +207,7 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   s["regions"] = r.regions;
   s["anisotropic_faces"] = r.anisotropic_faces;
   s["region_inward_displacement"] = r.region_inward_displacement;
+  s["outside_region_displacement"] = r.outside_region_displacement;
   s["table2"] = table2;
   s["warnings"] = warnings;
   return s;

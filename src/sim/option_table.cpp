@@ -223,8 +223,9 @@ OptionSpec region_option() {
   o.name = "regions";
   o.value_name = "auto|none|FILE";
   o.help =
-      "faces of the local contraction: auto (spherical regions found by curvature), none, or a "
-      "file with one line per region of 0-based face ids";
+      "regions that sink in (the local contraction, --region-shrink): auto (spherical regions "
+      "found by curvature), none, or a file with one line per region of 0-based face ids; "
+      "default none, auto with --aniso";
   o.set = [](RunOptions& r, const std::string& v) {
     if (v.empty()) bad("regions", v, "auto, none or a file name");
     r.regions = v == "auto"   ? RegionSource::Auto
@@ -278,9 +279,16 @@ std::vector<OptionSpec> build_table() {
   std::vector<OptionSpec> t;
   // ---- how much it contracts
   t.push_back(number("pressure", 'p', "P",
-                     "outside over-pressure (normalized units; > 0 compresses, < 0 inflates)",
+                     "net outside over-pressure at the rest volume (normalized units; > 0 "
+                     "compresses, < 0 inflates)",
                      between(-1e6, 1e6, false, false),
                      [](R& r) -> double& { return r.sim.pressure; }));
+  t.push_back(number("air-balance", 0, "R",
+                     "air inside the shell (isothermal): the V/V0 at which its pressure balances "
+                     "the outside pressure, so the shell slows down and stops near R; 0 = no air "
+                     "(constant pressure, the paper's)",
+                     between(0.0, 1.0, false, true),
+                     [](R& r) -> double& { return r.sim.air_balance; }));
   t.push_back(number("target-volume", 0, "R",
                      "drive V/V0 to R and hold it there (a global volume constraint); 0 = off, the "
                      "pressure alone decides",
@@ -364,16 +372,18 @@ std::vector<OptionSpec> build_table() {
                      non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
   t.push_back(
       choice("inward",
-             "inward term on the regions: projection (the paper's k_A, pbd) | force (local extra "
-             "pressure --region-pressure) | none",
+             "inward term on the regions: force (a pressure on the regions without net force "
+             "or torque, --region-shrink) | projection (the paper's k_A inside the E_A "
+             "projection; --aniso, pbd) | none",
              Choices<InwardTerm>{{"projection", InwardTerm::Projection},
                                  {"force", InwardTerm::Force},
                                  {"none", InwardTerm::None}},
              [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
-  t.push_back(number("region-pressure", 0, "PA",
-                     "extra pressure on the regions with --inward force (normalized units)",
-                     between(-1e6, 1e6, false, false),
-                     [](R& r) -> double& { return r.sim.region_pressure; }));
+  t.push_back(number("region-shrink", 0, "S",
+                     "how much the regions of --regions sink in (the local contraction's "
+                     "strength; 0 = not at all)",
+                     between(0.0, 1.0, false, false),
+                     [](R& r) -> double& { return r.sim.region_shrink; }));
   t.push_back(number("mu-a", 0, "MUA", "anisotropic fibre stiffness mu_A", non_negative(),
                      [](R& r) -> double& { return r.sim.material_params.mu_aniso; }));
   t.push_back(number("fiber-target", 0, "GAMMA", "active-fibre target stretch gamma",
@@ -382,7 +392,8 @@ std::vector<OptionSpec> build_table() {
   t.push_back(fiber_option());
   t.push_back(
       flag("measure-regions",
-           "select the regions even without --aniso, to report how far they sink in (summary)",
+           "select the regions (auto) only to report how far they sink in (summary) in a run "
+           "that does not contract them; with --regions or --aniso they are contracted too",
            [](R& r) -> bool& { return r.measure_regions; }));
   t.push_back(flag("inversion-aware", "orientation s = sign(n . n_ref) for the anisotropic faces",
                    [](R& r) -> bool& { return r.sim.solver.inversion_aware; }));

@@ -1,5 +1,7 @@
 #include "shellcontract/sim/pressure.hpp"
 
+#include <algorithm>
+
 namespace shellcontract {
 
 void pressure_forces(const Positions& x, const Faces& faces, double P, PressureModel model,
@@ -35,6 +37,12 @@ void pressure_forces(const Positions& x, const Faces& faces, double P, PressureM
       f.row(i) *= -P * ring_area(i) / (3.0 * len);
     }  // else: the normals cancel (e.g. a flat fold); no direction, so no force
   }
+}
+
+double air_net_pressure(double P, double R, double v) {
+  if (!(R > 0.0)) return P;
+  const double outside = P / (1.0 - R);
+  return outside * (1.0 - R / std::max(v, 0.25 * R));
 }
 
 }  // namespace shellcontract

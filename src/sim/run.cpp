@@ -63,15 +63,12 @@ void ObserverList::finished(const Simulator& sim, const RunResult& r) {
 }
 
 std::vector<std::vector<int>> select_run_regions(const Mesh& mesh, const RunOptions& options) {
-  const SimOptions& s = options.sim;
-  const bool acted_on = s.solver.aniso != AnisoKind::None;
   switch (options.regions) {
     case RegionSource::None:
       return {};
     case RegionSource::File:
       return read_region_file(options.region_file, mesh.number_of_faces());
     case RegionSource::Auto:
-      if (!acted_on && !options.measure_regions) return {};
       return regions_from_face_ids(
           select_spherical_regions(mesh, positions_from_mesh(mesh), RegionOptions{}));
   }
@@ -113,6 +110,10 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
          "--aniso " + to_string(s.solver.aniso) +
              " has no effect: no region was found (or given), so no face gets the anisotropic "
              "energy");
+  else if (options.regions != RegionSource::None && r.regions == 0 && !options.measure_regions)
+    warn(r, obs,
+         "--regions found no region (or the file lists none): the local contraction has no "
+         "effect");
 
   for (const std::string& w : ineffective_options(options)) warn(r, obs, w);
   const auto prepare_start = Clock::now();
@@ -210,6 +211,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   }
   r.anisotropic_faces = sim.anisotropy_report().faces;
   r.region_inward_displacement = sim.region_inward_displacement();
+  r.outside_region_displacement = sim.outside_region_displacement();
   r.degenerate_faces = rest.degenerate_faces;
   r.excluded_contact_pairs = sim.excluded_contact_pairs();
   r.normalization_scale = sim.normalization().scale;

@@ -3,6 +3,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/material/material.hpp"
 #include "shellcontract/material/registry.hpp"
+#include "shellcontract/sim/option_table.hpp"
 
 namespace shellcontract {
 
@@ -27,6 +28,16 @@ void resolve_run_options(RunOptions& r) {
   }
   if (r.sim.solver.kind == SolverKind::Pbd && r.sim.solver.k_bending > 1.0)
     throw UsageError("--k-b: in pbd mode k_B is a correction multiplier and must be in [0, 1]");
+  // An anisotropic energy acts on regions, so choosing one without saying which selects them
+  // by curvature (the behaviour before regions switched the local contraction on by themselves).
+  const bool implied = r.regions == RegionSource::None && !r.given.count("regions");
+  if (implied && r.sim.solver.aniso != AnisoKind::None) r.regions = RegionSource::Auto;
+  // --measure-regions alone selects the regions only to report how far they sink in a run that
+  // does not contract them: the baseline of the local contraction's measurements.
+  if (implied && r.measure_regions && r.sim.solver.aniso == AnisoKind::None) {
+    r.regions = RegionSource::Auto;
+    r.sim.inward_term = InwardTerm::None;
+  }
   if (r.sim.target_volume > 0.0 && r.sim.stop_volume_ratio > 0.0)
     throw UsageError(
         "--target-volume and --stop-volume-ratio exclude each other (the target holds the "
@@ -42,11 +53,16 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
       w.push_back(std::string("--") + name + " has no effect: " + why);
   };
   const bool aniso = s.solver.aniso != AnisoKind::None;
-  check("region-pressure", !aniso || s.inward_term != InwardTerm::Force,
-        "the region pressure acts with --aniso and --inward force");
-  check("k-a", !aniso || s.inward_term != InwardTerm::Projection,
-        "kappa_A acts with --aniso and --inward projection");
-  check("inward", !aniso, "the inward term acts on the regions of --aniso");
+  const bool regions = r.regions != RegionSource::None;
+  const bool pbd = s.solver.kind == SolverKind::Pbd;
+  const bool k_a_projected = aniso && pbd && s.inward_term == InwardTerm::Projection;
+  check("region-shrink", !regions || s.inward_term == InwardTerm::None || k_a_projected,
+        "the local contraction acts on the regions of --regions (or --aniso) with --inward force");
+  check("k-a", !k_a_projected, "kappa_A acts with --aniso, --inward projection and --solver pbd");
+  check("inward", !regions, "the inward term acts on the regions of --regions (or --aniso)");
+  check("mu-a", aniso && pbd && s.inward_term != InwardTerm::Projection,
+        "a PBD projection does not depend on the stiffness (mu_A acts with --solver xpbd, or "
+        "through k_A with --inward projection)");
   for (const char* name : {"mu-a", "fiber", "inversion-aware"})
     check(name, !aniso, "no --aniso energy is chosen");
   check("fiber-target", s.solver.aniso != AnisoKind::ActiveFiber,
@@ -61,6 +77,16 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   for (const char* name : {"delta", "collision-rounds", "warm-start", "speculative-broad-phase"})
     check(name, !s.collisions, "--collisions off");
   check("target-ramp", !(s.target_volume > 0.0), "it is the ramp of --target-volume");
+  check("air-balance", s.target_volume > 0.0,
+        "with --target-volume the volume constraint decides the volume");
+  check("air-balance", !(s.pressure > 0.0) && !(s.target_volume > 0.0),
+        "the air balances a compressing pressure, and -p is not > 0");
+  if (s.stop_volume_ratio > 0.0 && s.target_volume <= 0.0 && s.air_balance > 0.0 &&
+      s.stop_volume_ratio <= s.air_balance)
+    w.push_back("--stop-volume-ratio " + shortest_text(s.stop_volume_ratio) +
+                " is at or below the air balance " + shortest_text(s.air_balance) +
+                ": the air inside stops the shell above it, so the run may stall first (lower "
+                "--air-balance, 0 = no air)");
   check("pressure", s.target_volume > 0.0,
         "with --target-volume the volume constraint decides the volume (the pressure only adds "
         "momentum "

@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
+
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/sim/local_contraction.hpp"
 #include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
@@ -27,7 +29,7 @@ void check_options(const SimOptions& o) {
     fail("in PBD mode k_B is a correction multiplier and must be in [0, 1]");
   if (!(o.density > 0.0)) fail("density must be positive");
   if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("damping must be in [0, 1)");
-  if (!std::isfinite(o.region_pressure)) fail("region pressure must be finite");
+  if (!(o.region_shrink >= 0.0 && o.region_shrink <= 1.0)) fail("region shrink must be in [0, 1]");
   if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta))
     fail("contact distance delta must be positive");
   if (o.collision.rounds < 0) fail("collision rounds must be >= 0");
@@ -38,6 +40,7 @@ void check_options(const SimOptions& o) {
   if (!(o.target_volume >= 0.0 && o.target_volume < 1.0)) fail("target volume must be in [0, 1)");
   if (o.target_volume > 0.0 && o.stop_volume_ratio > 0.0)
     fail("a target volume and a stop volume ratio exclude each other");
+  if (!(o.air_balance >= 0.0 && o.air_balance < 1.0)) fail("air balance must be in [0, 1)");
   if (o.target_ramp_frames < 1) fail("the target-volume ramp must be at least 1 frame");
 }
 }  // namespace
@@ -61,14 +64,21 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
     AnisotropyOptions a = options_.anisotropy;
     if (options_.inward_term == InwardTerm::None) a.kappa_a = 0.0;
     anisotropy_report_ = add_anisotropic_constraints(*mesh_, a, constraints);
-    if (options_.inward_term == InwardTerm::Force ||
-        (options_.inward_term == InwardTerm::Projection &&
-         options_.solver.kind == SolverKind::Xpbd)) {
-      inward_faces_.resize(static_cast<Eigen::Index>(constraints.anisotropic.size()), 3);
-      for (std::size_t i = 0; i < constraints.anisotropic.size(); ++i)
-        for (int k = 0; k < 3; ++k)
-          inward_faces_(static_cast<Eigen::Index>(i), k) = constraints.anisotropic[i].v[k];
-    }
+  }
+  // The local contraction's force acts on the regions with or without an anisotropic energy;
+  // only the paper's k_A (InwardTerm::Projection) lives inside the PBD projection of E_A.
+  const bool k_a_projected = options_.inward_term == InwardTerm::Projection &&
+                             options_.solver.aniso != AnisoKind::None &&
+                             options_.solver.kind == SolverKind::Pbd;
+  if (options_.inward_term != InwardTerm::None && !k_a_projected &&
+      options_.region_shrink > 0.0) {
+    std::vector<int> region_faces;
+    for (const std::vector<int>& region : options_.anisotropy.regions)
+      for (int f : region)
+        if (f >= 0 && f < static_cast<int>(mesh_->number_of_faces())) region_faces.push_back(f);
+    inward_faces_.resize(static_cast<Eigen::Index>(region_faces.size()), 3);
+    for (std::size_t i = 0; i < region_faces.size(); ++i)
+      inward_faces_.row(static_cast<Eigen::Index>(i)) = faces_.row(region_faces[i]);
   }
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
@@ -92,6 +102,15 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
     std::sort(region_vertices_.begin(), region_vertices_.end());
     region_vertices_.erase(std::unique(region_vertices_.begin(), region_vertices_.end()),
                            region_vertices_.end());
+    // The one-ring band around a region moves with its rim; the rest is what should stay.
+    std::vector<char> near(static_cast<std::size_t>(x_.rows()), 0);
+    for (int v : region_vertices_) near[static_cast<std::size_t>(v)] = 1;
+    std::vector<char> band = near;
+    for (Eigen::Index j = 0; j < faces_.rows(); ++j)
+      if (near[faces_(j, 0)] || near[faces_(j, 1)] || near[faces_(j, 2)])
+        for (int k = 0; k < 3; ++k) band[static_cast<std::size_t>(faces_(j, k))] = 1;
+    for (Eigen::Index i = 0; i < x_.rows(); ++i)
+      if (!band[static_cast<std::size_t>(i)]) outside_vertices_.push_back(static_cast<int>(i));
     region_normals_.resize(static_cast<Eigen::Index>(region_vertices_.size()), 3);
     for (std::size_t i = 0; i < region_vertices_.size(); ++i) {
       const Vec3 n = vertex_normal.row(region_vertices_[i]);
@@ -147,12 +166,17 @@ FrameMetrics Simulator::step() {
   const auto start = std::chrono::steady_clock::now();
   const double dt = options_.dt;
   // Step 1 (math-spec 2): symplectic Euler with the explicit pressure force at x^n.
-  pressure_forces(x_, faces_, options_.pressure, options_.pressure_model, force_);
-  // Local extra pressure on the anisotropic faces (math-spec 9.2 R, the physically meaningful
-  // replacement of the paper's k_A): f_i = -(P_A / 6) sum N_j over the region faces around i.
+  double pressure = options_.pressure;
+  // The air balances an outside pressure; without one (P <= 0) there is nothing to balance.
+  if (options_.air_balance > 0.0 && options_.pressure > 0.0)
+    pressure = air_net_pressure(options_.pressure, options_.air_balance,
+                                signed_volume(x_, faces_) / constraint_rest_volume_);
+  pressure_forces(x_, faces_, pressure, options_.pressure_model, force_);
+  // The local contraction (math-spec 9.2 R, the physically meaningful replacement of the paper's
+  // k_A): a region pressure without net force or torque.
   if (inward_faces_.rows() > 0) {
-    pressure_forces(x_, inward_faces_, options_.region_pressure, PressureModel::EnergyConsistent,
-                    region_force_);
+    local_contraction_forces(x_, inward_faces_, region_pressure(options_.region_shrink), inv_mass_,
+                             region_force_);
     force_ += region_force_;
   }
   x_pred_ = x_ + dt * (v_ + dt * (force_.array().colwise() * inv_mass_.array()).matrix());
@@ -213,6 +237,13 @@ double Simulator::region_inward_displacement() const {
     sum -= (x_.row(v) - rest_x_.row(v)).dot(region_normals_.row(static_cast<Eigen::Index>(i)));
   }
   return sum / static_cast<double>(region_vertices_.size());
+}
+
+double Simulator::outside_region_displacement() const {
+  if (region_vertices_.empty() || outside_vertices_.empty()) return 0.0;
+  double sum = 0.0;
+  for (int v : outside_vertices_) sum += (x_.row(v) - rest_x_.row(v)).norm();
+  return sum / static_cast<double>(outside_vertices_.size());
 }
 
 std::size_t Simulator::input_intersections() const {

@@ -77,6 +77,7 @@ TEST(Run, StopRatioEndsAtTheCrossingFrame) {
   RunOptions o;
   o.sim.frames = 2000;
   o.sim.pressure = 3.0;
+  o.sim.air_balance = 0.0;  // constant pressure: nothing stops the shell before the crossing
   o.sim.stop_volume_ratio = 0.8;
   const RunResult r = run_contraction(sphere(3), o);
   EXPECT_EQ(r.status, RunStatus::Completed) << r.message;
@@ -175,12 +176,12 @@ TEST(Run, OptionsWithoutEffectAreWarnedAndDefaultsAreNot) {
   set_run_option(o, "c10", "0.7");  // StVK is the material
   set_run_option(o, "collisions", "off");
   set_run_option(o, "delta", "0.001");        // collisions are off
-  set_run_option(o, "region-pressure", "5");  // no --aniso
+  set_run_option(o, "region-shrink", "0.5");  // no --regions
   set_run_option(o, "pressure", "2");         // effective: no target volume
   Recorder rec;
   const RunResult r = run_contraction(sphere(1), o, &rec);
   ASSERT_EQ(rec.warnings.size(), 3u);
-  EXPECT_NE(rec.warnings[0].find("--region-pressure"), std::string::npos) << rec.warnings[0];
+  EXPECT_NE(rec.warnings[0].find("--region-shrink"), std::string::npos) << rec.warnings[0];
   EXPECT_NE(rec.warnings[1].find("--c10"), std::string::npos) << rec.warnings[1];
   EXPECT_NE(rec.warnings[2].find("--delta"), std::string::npos) << rec.warnings[2];
   EXPECT_EQ(r.warnings, rec.warnings);

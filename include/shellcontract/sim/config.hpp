@@ -22,9 +22,9 @@ enum class BendingModel { Isometric, Dihedral, None };
 /// energy, momentum-consistent, independent of the mesh resolution), or nothing.
 enum class InwardTerm { Projection, Force, None };
 
-/// Default local extra pressure P_A on the anisotropic regions (InwardTerm::Force), normalized
-/// units; docs/design/anisotropy.md gives the measurement behind it.
-inline constexpr double DEFAULT_REGION_PRESSURE = 3.0;
+/// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): the region
+/// pressure of DEFAULT_REGION_PRESSURE; docs/design/anisotropy.md gives the measurement behind it.
+inline constexpr double DEFAULT_REGION_SHRINK = 0.3;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
 enum class ValidateMode { Off, End, EveryFrame };
@@ -32,10 +32,15 @@ enum class ValidateMode { Off, End, EveryFrame };
 /// area: m_i = rho_A sum Abar_j / 3 (math-spec 1.4, default); unit: m_i = 1.
 enum class MassModel { AreaLumped, Unit };
 
-/// Default over-pressure in normalized units. Chosen by measurement (docs/design/defaults.md): with
-/// DEFAULT_DAMPING, 200 default frames contract eight, hand, elk and bear
-/// visibly and monotonically without blowing up.
-inline constexpr double DEFAULT_PRESSURE = 2.0;
+/// Default net over-pressure at the rest volume, normalized units. Chosen with the default air
+/// (DEFAULT_AIR_BALANCE) and dihedral bending by measurement (docs/design/defaults.md): 200 default
+/// frames end between V/V0 0.4 and 0.8 on eight, hand, elk, bear and the kitten.
+inline constexpr double DEFAULT_PRESSURE = 4.0;
+
+/// Default balance volume ratio of the enclosed air (air_net_pressure): the net pressure vanishes
+/// at V/V0 = 0.5, so that every mesh slows down and stops short of being crushed, whatever its
+/// shape or resolution (docs/design/defaults.md).
+inline constexpr double DEFAULT_AIR_BALANCE = 0.5;
 
 /// Default length of the target-volume ramp, in frames: long enough that the shell follows the
 /// shrinking volume quasi-statically, short enough to hold the target for most of a default run.
@@ -58,13 +63,17 @@ enum class SpeculativeBroadPhase {
 /// Options of one contraction run. Lengths are in normalized units (bounding-box diagonal 1).
 struct SimOptions {
   double pressure = DEFAULT_PRESSURE;            ///< P, normalized units
+  /// R of the enclosed air (air_net_pressure): the net pressure vanishes at V/V0 = R; 0 = no air.
+  double air_balance = DEFAULT_AIR_BALANCE;
   PressureModel pressure_model = PressureModel::EnergyConsistent;
   int frames = 200;                              ///< number of time steps
   double dt = 0.01;                              ///< time step (math-spec 14)
   SolverSettings solver;                         ///< pbd/xpbd, iterations (5), k_B (0.01)
   MaterialKind material = MaterialKind::Stvk;
   MaterialParams material_params;
-  BendingModel bending = BendingModel::Isometric;
+  /// Rest-aware by default: the paper's flat-rest isometric model pushes a curved shell outward
+  /// even at P = 0 (docs/design/defaults.md "Rest drift").
+  BendingModel bending = BendingModel::Dihedral;
   MassModel mass = MassModel::AreaLumped;
   double density = 1.0;                          ///< rho_A, mass per normalized area
   /// epsilon: stop at the step whose V/V0 would fall below epsilon, with the volume projected onto
@@ -77,7 +86,8 @@ struct SimOptions {
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
   AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
   InwardTerm inward_term = InwardTerm::Force;
-  double region_pressure = DEFAULT_REGION_PRESSURE;  ///< P_A of InwardTerm::Force (normalized)
+  /// How much the regions shrink, in [0, 1]: the local contraction's strength (region_pressure).
+  double region_shrink = DEFAULT_REGION_SHRINK;
   /// Continuous collision detection and response (paper section 4). On by default: users expect
   /// a result that never passes through itself (design.md).
   bool collisions = true;

@@ -19,4 +19,14 @@ enum class PressureModel { EnergyConsistent, Paper };
 void pressure_forces(const Positions& x, const Faces& faces, double P, PressureModel model,
                      Positions& f);
 
+/// Net over-pressure on a shell that encloses isothermal air (Boyle's law, math-spec 3.1).
+/// The outside pressure is P / (1 - R) and the air's is P R / ((1 - R) v) at volume ratio
+/// v = V/V0, so the net pressure is P at the rest volume and vanishes at v = R: the shell slows
+/// down and stops near R instead of collapsing until contact. R = 0 is no air: P at any volume.
+/// @param P  net over-pressure at the rest volume (the simulator applies the air only for P > 0)
+/// @param R  balance volume ratio in [0, 1)
+/// @param v  current V/V0; floored at R / 4 so that a shell crushed far below its balance volume
+///           (or inverted, with collisions off) gets a bounded outward push, not an infinite one
+double air_net_pressure(double P, double R, double v);
+
 }  // namespace shellcontract

@@ -22,7 +22,9 @@ enum class RegionSource {
 /// Everything a run needs besides the mesh. Lengths are in normalized units.
 struct RunOptions {
   SimOptions sim;
-  RegionSource regions = RegionSource::Auto;
+  /// None by default: regions switch the local contraction on. An anisotropic energy (--aniso)
+  /// or measure_regions without a region source given selects Auto (resolve_run_options).
+  RegionSource regions = RegionSource::None;
   std::string region_file;  ///< RegionSource::File only
   /// Select the regions even when no local contraction acts on them, to report how far they sink.
   bool measure_regions = false;
@@ -36,8 +38,8 @@ struct RunOptions {
   std::set<std::string> given;
 };
 
-/// One warning per given option that has no effect with the others (e.g. --region-pressure
-/// without an anisotropic energy, --c10 with a material other than Mooney-Rivlin, --delta with
+/// One warning per given option that has no effect with the others (e.g. --region-shrink
+/// without regions, --c10 with a material other than Mooney-Rivlin, --delta with
 /// collisions off). run_contraction reports them as warnings.
 std::vector<std::string> ineffective_options(const RunOptions& options);
 

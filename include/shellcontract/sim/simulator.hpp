@@ -78,6 +78,10 @@ class Simulator {
   /// nbar_i the rest area-weighted unit vertex normal (normalized units; > 0 = moved inward).
   /// 0 when there are no regions. The paper's Fig. 20 measure (issue acceptance).
   double region_inward_displacement() const;
+  /// How far the rest of the shell moved: the mean |x_i - xbar_i| over the vertices outside the
+  /// regions and outside the one-ring band around them (normalized units; 0 when there are no
+  /// regions). region_inward_displacement() over it is the local contraction's locality.
+  double outside_region_displacement() const;
   const SimOptions& options() const { return options_; }
   /// Energies at the current positions.
   ConstraintEnergies energies() const { return solver_->energies(x_); }
@@ -106,6 +110,7 @@ class Simulator {
   Positions x_, v_, x_pred_, force_;
   Positions rest_x_;                  ///< normalized rest positions
   std::vector<int> region_vertices_;  ///< vertices of the regions, sorted, unique
+  std::vector<int> outside_vertices_;  ///< neither in a region nor in its one-ring band
   Positions region_normals_;          ///< their rest unit normals, same order
   double rest_volume_ = 0.0;
   double constraint_rest_volume_ = 0.0;  ///< V0 as signed_volume computes it (the constraint's)

@@ -1,0 +1,98 @@
+// Runs of the default options (issue "Control", item 5) and of the local contraction (issue
+// "Local contraction", items 1-2), shared by the default-suite subset (tests/scenario) and the
+// long runs (tests/long).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <map>
+#include <utility>
+
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/rest_state.hpp"
+#include "shellcontract/sim/run.hpp"
+#include "support/cgal_mesh.hpp"
+#include "support/target_volume_case.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract::test {
+
+/// A mesh of CGAL's demo data that scripts/fetch_paper_meshes.sh extracts beside the paper's.
+inline std::string demo_mesh_path(const std::string& name) {
+  return std::string(PAPER_MESH_DIR) + "/" + name + ".off";
+}
+
+/// Every triangle split in four at its edge midpoints (as scripts/scale_benchmark.py does): the
+/// same surface at twice the resolution.
+inline Mesh split_in_four(const Mesh& mesh) {
+  const Positions x = positions_from_mesh(mesh);
+  const Faces f = faces_array(mesh);
+  std::vector<Vec3> points;
+  for (Eigen::Index i = 0; i < x.rows(); ++i) points.push_back(x.row(i).transpose());
+  std::map<std::pair<int, int>, int> midpoints;
+  auto midpoint = [&](int a, int b) {
+    const std::pair<int, int> key(std::min(a, b), std::max(a, b));
+    auto it = midpoints.find(key);
+    if (it != midpoints.end()) return it->second;
+    points.push_back(0.5 * (points[static_cast<std::size_t>(a)] + points[static_cast<std::size_t>(b)]));
+    return midpoints[key] = static_cast<int>(points.size()) - 1;
+  };
+  TriMesh out;
+  std::vector<std::array<int, 3>> faces;
+  for (Eigen::Index j = 0; j < f.rows(); ++j) {
+    const int a = f(j, 0), b = f(j, 1), c = f(j, 2);
+    const int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+    faces.push_back({a, ab, ca});
+    faces.push_back({ab, b, bc});
+    faces.push_back({ca, bc, c});
+    faces.push_back({ab, bc, ca});
+  }
+  out.x.resize(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i) out.x.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  out.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t j = 0; j < faces.size(); ++j)
+    for (int k = 0; k < 3; ++k) out.faces(static_cast<Eigen::Index>(j), k) = faces[j][k];
+  return to_surface_mesh(out);
+}
+
+/// The default run (200 frames, every default) of `mesh`; V/V0 at the end, or -1 if skipped.
+inline RunResult default_run(const Mesh& mesh) {
+  RunOptions o;
+  o.sim.validate = ValidateMode::End;
+  return run_contraction(mesh, o);
+}
+
+/// Checks issue "Control" item 5 on one mesh: the default run ends between V/V0 0.4 and 0.8
+/// (shape still recognisable: neither barely dented nor crushed), with no new self-intersection.
+inline void check_default_run_range(const std::string& name) {
+  const std::string path = target_mesh_path(name);
+  if (!std::filesystem::exists(path))
+    GTEST_SKIP() << path << " is absent: run scripts/fetch_paper_meshes.sh";
+  const RunResult r = default_run(load_target_mesh(name));
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
+  EXPECT_GE(r.final_volume_ratio, 0.4) << name;
+  EXPECT_LE(r.final_volume_ratio, 0.8) << name;
+  EXPECT_EQ(r.new_intersections, 0) << name;
+  std::cout << "default run " << name << ": V/V0 " << r.final_volume_ratio << " after "
+            << r.frames_run << " frames, " << r.wall_seconds << " s\n";
+}
+
+/// A local-contraction run on meshes/bumpy_sphere.off with its three known bumps
+/// (meshes/bumpy_sphere.bumps.txt) as the regions, no overall pressure.
+inline RunResult bumpy_sphere_contraction(double shrink) {
+  RunOptions o;
+  o.sim.pressure = 0.0;
+  o.sim.region_shrink = shrink;
+  o.regions = RegionSource::File;
+  o.region_file = std::string(MESH_DIR) + "/bumpy_sphere.bumps.txt";
+  o.sim.validate = ValidateMode::End;
+  return run_contraction(read_input_mesh(std::string(MESH_DIR) + "/bumpy_sphere.off"), o);
+}
+
+}  // namespace shellcontract::test
