@@ -1,5 +1,6 @@
 // CCD broad phase (math-spec 10.1-10.2): swept boxes, CGAL box_intersection_d, candidate pairs.
 #include "shellcontract/collision/broad_phase.hpp"
+#include "collision/broad_phase/scratch.hpp"
 
 #include <CGAL/box_intersection_d.h>
 #include <tbb/blocked_range.h>
@@ -29,7 +30,6 @@ namespace shellcontract {
 namespace {
 
 using detail::BroadPhaseBox;
-using detail::BroadPhaseScratch;
 
 /// CGAL's cutoff: below this many boxes a subproblem is solved by a scan instead of further
 /// segment-tree recursion. On bear (bench_broad_phase) PrimitiveBoxes took 86 ms with CGAL's
@@ -144,7 +144,7 @@ void box_search(const std::vector<BroadPhaseBox>& a, const std::vector<BroadPhas
 /// Method PrimitiveBoxes: VF by a bipartite search, EE by a complete (self) search.
 /// @return number of overlapping box pairs CGAL reported
 std::int64_t primitive_boxes(const CollisionTopology& topo, CandidatePairs& out) {
-  BroadPhaseScratch& s = out.scratch;
+  BroadPhaseScratch& s = *out.scratch;
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
   std::int64_t reported = 0;
 
@@ -184,7 +184,7 @@ std::int64_t primitive_boxes(const CollisionTopology& topo, CandidatePairs& out)
 /// no face references are in no face pair: they are searched against the faces separately.
 /// @return number of overlapping face box pairs (and unreferenced-vertex / face box pairs)
 std::int64_t face_pairs(const CollisionTopology& topo, CandidatePairs& out) {
-  BroadPhaseScratch& s = out.scratch;
+  BroadPhaseScratch& s = *out.scratch;
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
   const Faces& faces = topo.faces;
   std::int64_t reported = 0;
@@ -357,7 +357,7 @@ void query_bvh(const std::vector<detail::BvhNode>& nodes, const std::vector<int>
 /// each tree item is met at most once per query, so there are no duplicates.
 /// @return number of overlapping box pairs found (VF, plus EE with a < b)
 std::int64_t bvh_pairs(const CollisionTopology& topo, CandidatePairs& out) {
-  BroadPhaseScratch& s = out.scratch;
+  BroadPhaseScratch& s = *out.scratch;
   std::int64_t reported = 0;
   build_bvh(s.face_boxes, s.face_tree, s.face_order, s.vf_keys);
   build_bvh(s.edge_boxes, s.edge_tree, s.edge_order, s.ee_keys);
@@ -496,7 +496,7 @@ float round_up(double x) {
 /// vertex arrays and the topology stay in cache.
 struct GridPrimitives {
   const CollisionTopology& topo;
-  const detail::BroadPhaseScratch& s;
+  const BroadPhaseScratch& s;
   std::size_t nv, nf;
 
   /// Vertex ids (detail::primitive_vertices).
@@ -997,7 +997,7 @@ void build_grid_vertex_boxes(const Positions& x0, const Positions& x1, double in
 /// Builds s.grid_vertex_prims (per vertex, the grid ids of the faces and edges it is a corner
 /// of) and keeps a copy of the topology it was built for, unless that copy equals `topo`
 /// already. Returns whether it was rebuilt.
-bool update_vertex_prims(const CollisionTopology& topo, detail::BroadPhaseScratch& s) {
+bool update_vertex_prims(const CollisionTopology& topo, BroadPhaseScratch& s) {
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
   const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
   const std::size_t ne = static_cast<std::size_t>(topo.edges.rows());
@@ -1038,7 +1038,7 @@ bool update_vertex_prims(const CollisionTopology& topo, detail::BroadPhaseScratc
 /// leaving the counting sort as it was, if more than nboxes / GRID_PATCH_DIVISOR ranges changed
 /// (s.grid_ranges is then stale: the caller rebuilds it).
 bool patch_grid(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
-                detail::BroadPhaseScratch& s) {
+                BroadPhaseScratch& s) {
   const std::size_t nv = prim.nv;
   const std::vector<detail::GridRange>& vr = s.grid_vertex_ranges;
   const std::vector<detail::GridRange>& vr_prev = s.grid_vertex_ranges_prev;
@@ -1166,7 +1166,7 @@ bool patch_grid(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
 /// once per unordered pair).
 std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, CandidatePairs& out,
                         bool float_superset = false) {
-  BroadPhaseScratch& s = out.scratch;
+  BroadPhaseScratch& s = *out.scratch;
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
   const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
   const std::size_t ne = static_cast<std::size_t>(topo.edges.rows());
@@ -1523,6 +1523,11 @@ bool grid_avx512_available() {
 }
 }  // namespace detail
 
+CandidatePairs::CandidatePairs() : scratch(std::make_unique<BroadPhaseScratch>()) {}
+CandidatePairs::~CandidatePairs() = default;
+CandidatePairs::CandidatePairs(CandidatePairs&&) noexcept = default;
+CandidatePairs& CandidatePairs::operator=(CandidatePairs&&) noexcept = default;
+
 CollisionTopology make_collision_topology(const Faces& faces, int num_vertices) {
   if (num_vertices < 0)
     throw UsageError("make_collision_topology: negative vertex count " +
@@ -1611,18 +1616,18 @@ bool find_candidates_in_vertex_boxes(const std::vector<detail::GridVertexBox>& b
   if (boxes.size() != static_cast<std::size_t>(topo.num_vertices))
     throw UsageError("broad phase: " + std::to_string(boxes.size()) + " vertex boxes for " +
                      std::to_string(topo.num_vertices) + " vertices");
-  out.scratch.grid_vertex_boxes = boxes;
+  out.scratch->grid_vertex_boxes = boxes;
   if (grid_pairs(topo, std::numeric_limits<double>::infinity(), out,
-                 out.scratch.grid_float_superset) >= 0)
+                 out.scratch->grid_float_superset) >= 0)
     return true;
-  out.scratch.grid_kept = false;
+  out.scratch->grid_kept = false;
   return false;
 }
 
 void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
                      const detail::GridVertexBox& box, std::vector<std::uint32_t>& out,
                      std::uint32_t first_id, std::uint32_t end_id) {
-  const BroadPhaseScratch& s = pairs.scratch;
+  const BroadPhaseScratch& s = *pairs.scratch;
   if (!s.grid_kept) throw UsageError("query_kept_grid: no grid is kept");
   Grid g;
   g.origin = s.grid_origin;
@@ -1671,9 +1676,9 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
   const double far_gap = far_gap_threshold(x0, x1, inflation, far_distance);
   // Grid keeps only vertex boxes (GridVertexBox); the others share BroadPhaseBox.
   if (method == BroadPhaseMethod::Grid)
-    build_grid_vertex_boxes(x0, x1, inflation, out.scratch.grid_vertex_boxes);
+    build_grid_vertex_boxes(x0, x1, inflation, out.scratch->grid_vertex_boxes);
   else
-    build_boxes(x0, x1, topo, inflation, out.scratch, true, true);
+    build_boxes(x0, x1, topo, inflation, *out.scratch, true, true);
   std::int64_t reported = 0;
   BroadPhaseMethod ran = method;
   switch (method) {
@@ -1690,7 +1695,7 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
       reported = grid_pairs(topo, far_gap, out);
       if (reported < 0) {
         ran = BroadPhaseMethod::PrimitiveBoxes;
-        build_boxes(x0, x1, topo, inflation, out.scratch, true, true);
+        build_boxes(x0, x1, topo, inflation, *out.scratch, true, true);
         reported = primitive_boxes(topo, out);
       }
       break;
@@ -1713,7 +1718,8 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
 }
 
 bool has_any_candidate(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
-                       double inflation, detail::BroadPhaseScratch& scratch) {
+                       double inflation, CandidatePairs& buffers) {
+  BroadPhaseScratch& scratch = *buffers.scratch;
   check_inputs(x0, x1, topo, inflation);
   build_boxes(x0, x1, topo, inflation, scratch, true, true);
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);

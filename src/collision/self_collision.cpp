@@ -1,4 +1,5 @@
 #include "shellcontract/collision/self_collision.hpp"
+#include "collision/broad_phase/scratch.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -361,7 +362,7 @@ bool SelfCollision::complete_speculation(const Positions& x0, const Positions& x
         spec_enqueued_ = false;
         workers_->arena.execute([&] { workers_->background.wait(); });
         stats.background_seconds = spec_seconds_;
-        const detail::BroadPhaseScratch& g = candidates_.scratch;
+        const BroadPhaseScratch& g = *candidates_.scratch;
         stats.background_grid_seconds = g.grid_build_seconds;
         stats.background_cell_loop_seconds = g.grid_cell_loop_seconds;
         stats.background_output_seconds = g.grid_output_seconds;

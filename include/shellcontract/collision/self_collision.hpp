@@ -354,8 +354,8 @@ class SelfCollision {
   Positions spec_pred_;              ///< predicted end positions
   Positions correction_;             ///< last step: solved end positions minus the guess
   Eigen::VectorXd skin_;             ///< per vertex, for the next prediction
-  std::vector<detail::GridVertexBox> spec_boxes_;   ///< predicted boxes, grown by the skin
-  std::vector<detail::GridVertexBox> exact_boxes_;  ///< actual boxes (resolve)
+  std::vector<VertexBox> spec_boxes_;               ///< predicted boxes, grown by the skin
+  std::vector<VertexBox> exact_boxes_;               ///< actual boxes (resolve)
   std::vector<std::uint8_t> base_role_;  ///< per speculative pair: its rest-state PairRole
   std::vector<std::uint8_t> escaped_;    ///< per vertex: actual box not inside the predicted one
   std::vector<std::uint32_t> escaped_prims_;  ///< their vertices, faces and edges (grid ids)
