@@ -123,6 +123,17 @@ void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
                      std::uint32_t first_id = 0,
                      std::uint32_t end_id = std::numeric_limits<std::uint32_t>::max());
 
+/// Wall time of the Grid method's parts in the last broad-phase call on a CandidatePairs, in
+/// seconds (diagnostics; 0 for a part the call did not reach).
+struct GridPartSeconds {
+  double build = 0.0;      ///< scene bounds, cell size, cell ranges, counting sort or its patch
+  double cell_loop = 0.0;  ///< the cell loop
+  double output = 0.0;     ///< the output of its pairs in chunk order
+};
+
+/// The part times of the last find_candidates or find_candidates_in_vertex_boxes call on `pairs`.
+GridPartSeconds grid_part_seconds(const CandidatePairs& pairs);
+
 /// Fast conservative step check: does find_candidates have at least one pair to report?
 /// Stops at the first non-adjacent overlapping VF or EE box pair, so a `false` answer (nothing
 /// can collide this step, skip the narrow phase) costs one box search and a `true` answer usually

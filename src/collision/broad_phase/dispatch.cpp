@@ -1,6 +1,5 @@
 // The broad phase's public entry points: find_candidates dispatches to the method asked for
 // (and the Grid's fallback), the speculative broad phase's grid calls, the far-pair threshold.
-#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -9,6 +8,7 @@
 #include "collision/broad_phase/grid.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/core/stage_timer.hpp"
 
 namespace shellcontract {
 
@@ -21,6 +21,11 @@ CandidatePairs::CandidatePairs() : scratch(std::make_unique<BroadPhaseScratch>()
 CandidatePairs::~CandidatePairs() = default;
 CandidatePairs::CandidatePairs(CandidatePairs&&) noexcept = default;
 CandidatePairs& CandidatePairs::operator=(CandidatePairs&&) noexcept = default;
+
+GridPartSeconds grid_part_seconds(const CandidatePairs& pairs) {
+  const BroadPhaseScratch& s = *pairs.scratch;
+  return {s.grid_build_seconds, s.grid_cell_loop_seconds, s.grid_output_seconds};
+}
 
 double far_gap_threshold(const Positions& x0, const Positions& x1, double inflation,
                          double far_distance) {
@@ -104,7 +109,7 @@ void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
 void find_candidates(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
                      double inflation, CandidatePairs& out, BroadPhaseStats* stats,
                      BroadPhaseMethod method, double far_distance) {
-  const auto start = std::chrono::steady_clock::now();
+  const StageTimer start;
   detail::check_inputs(x0, x1, topo, inflation);
   const double far_gap = far_gap_threshold(x0, x1, inflation, far_distance);
   // Grid keeps only vertex boxes (GridVertexBox); the others share BroadPhaseBox.
@@ -145,8 +150,7 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
     stats->method_run = ran;
     stats->vertex_face = static_cast<std::int64_t>(out.vertex_face.size());
     stats->edge_edge = static_cast<std::int64_t>(out.edge_edge.size());
-    stats->seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    stats->seconds = start.elapsed();
   }
 }
 

@@ -7,9 +7,10 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
+
+#include "shellcontract/core/stage_timer.hpp"
 
 namespace shellcontract {
 namespace detail {
@@ -115,11 +116,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     out.edge_edge_close.clear();
     return result;
   };
-  const auto t_start = std::chrono::steady_clock::now();
+  const StageTimer t_start;
   s.grid_build_seconds = s.grid_cell_loop_seconds = s.grid_output_seconds = 0.0;
-  auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-  };
   // The last call's grid, if complete, and what it was built for (see patch_grid).
   const bool had_grid = s.grid_kept && s.grid_ranges.size() == nboxes &&
                         s.cell_start.size() == s.grid_dims[0] * s.grid_dims[1] * s.grid_dims[2] + 1;
@@ -310,8 +308,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   }
 
   s.grid_kept = true;
-  s.grid_build_seconds = seconds_since(t_start);
-  const auto t_cells = std::chrono::steady_clock::now();
+  s.grid_build_seconds = t_start.elapsed();
+  const StageTimer t_cells;
   s.grid_origin = g.origin;
   s.grid_inv_h = g.inv_h;
   s.grid_dims = g.dims;
@@ -408,8 +406,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
       }
     }
   });
-  s.grid_cell_loop_seconds = seconds_since(t_cells);
-  const auto t_output = std::chrono::steady_clock::now();
+  s.grid_cell_loop_seconds = t_cells.elapsed();
+  const StageTimer t_output;
   // The chunks' pairs one after the other: the chunks are cut by entry counts, not by threads,
   // so this order (cells, then rows within a cell) does not depend on the thread count. No sort:
   // it cost 2 ms per call on the collapsed bear, and callers need a fixed order, not a sorted one.
@@ -433,7 +431,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     unpack_keys(s.chunks[c].ee_keys, ee_shift, offset[GRID_CHUNKS + c], out.edge_edge,
                 out.edge_edge_close);
   });
-  s.grid_output_seconds = seconds_since(t_output);
+  s.grid_output_seconds = t_output.elapsed();
   return reported;
 }
 

@@ -20,14 +20,14 @@ void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, doubl
   CcdOptions ccd;
   ccd.tolerance = tol;
   ccd.tighten_toi = false;  // the response uses the contact data, not the time of impact
-  const auto start = Clock::now();
+  const StageTimer start;
   workers_->arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
       DetectBlock& out = blocks_[b];
       out.hits.clear();
       out.axis_culls = 0;
       const std::size_t begin = b * DETECT_BLOCK, end = std::min(n, begin + DETECT_BLOCK);
-      const auto t0 = Clock::now();
+      const StageTimer t0;
       // Stage 1: the box cull and the certain non-penetration filter (math-spec 10.4), four
       // tests at a time (cull_batch: the same answers as swept_boxes_apart and
       // nonpenetration_filter_culls one by one); a group of four is cut where the kind changes.
@@ -51,7 +51,8 @@ void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, doubl
           free_[tests_[i]] = 1;
         }
       }
-      const auto t1 = Clock::now();
+      out.filter_seconds = t0.elapsed();
+      const StageTimer t1;
       // Stage 2: the narrow phase on the survivors, in test order.
       CcdStencil s0, s1;
       for (const std::uint32_t pair : out.kept) {
@@ -77,8 +78,7 @@ void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, doubl
         c.normal = res.normal;
         c.side = res.side;
       }
-      out.filter_seconds = std::chrono::duration<double>(t1 - t0).count();
-      out.narrow_seconds = since(t1);
+      out.narrow_seconds = t1.elapsed();
     });
   });
   // The hits in the order of tests_: block after block.
@@ -93,7 +93,7 @@ void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, doubl
     narrow_cpu += block.narrow_seconds;
   }
   // The stages share one region: its wall time is split in proportion to their CPU time.
-  const double wall = since(start), cpu = filter_cpu + narrow_cpu;
+  const double wall = start.elapsed(), cpu = filter_cpu + narrow_cpu;
   const double filter_share = cpu > 0.0 ? filter_cpu / cpu : 0.5;
   stats.filter_seconds += wall * filter_share;
   stats.narrow_seconds += wall * (1.0 - filter_share);

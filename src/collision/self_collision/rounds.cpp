@@ -7,13 +7,13 @@ namespace shellcontract {
 void SelfCollision::Impl::resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w,
                                   CollisionStepStats& stats) {
   stats = CollisionStepStats{};
-  const auto start = Clock::now();
+  const StageTimer start;
   resolve_impl(x0, x1, w, stats);
   // predict's share on the calling thread (the prediction, its boxes, the hand-off) is
   // collision work of this step too.
   stats.broad_seconds += predict_seconds_;
   stats.predict_seconds = predict_seconds_;
-  stats.seconds = since(start) + predict_seconds_;
+  stats.seconds = start.elapsed() + predict_seconds_;
   predict_seconds_ = 0.0;
 }
 
@@ -25,9 +25,9 @@ void SelfCollision::Impl::resolve_impl(const Positions& x0, Positions& x1, const
   guess_set_ = false;
   pressed_contacts_.clear();
   if (options_.warm_start) {
-    const auto t0 = Clock::now();
+    const StageTimer t0;
     warm_start(x1, w, &pressed_contacts_);
-    stats.response_seconds += since(t0);
+    t0.add_to(stats.response_seconds);
   }
   previous_contacts_.clear();
   round0_tests_ready_ = false;
@@ -54,7 +54,7 @@ void SelfCollision::Impl::resolve_impl(const Positions& x0, Positions& x1, const
     if (contacts_.empty()) break;
     stats.contacts += static_cast<std::int64_t>(contacts_.size());
     previous_contacts_.insert(previous_contacts_.end(), contacts_.begin(), contacts_.end());
-    const auto t0 = Clock::now();
+    const StageTimer t0;
     for (const Contact& c : contacts_) {
       if (!project_contact(c, RESPONSE_FACTOR * delta, x1.data(), w.data())) continue;
       for (int v : c.v) {
@@ -65,13 +65,13 @@ void SelfCollision::Impl::resolve_impl(const Positions& x0, Positions& x1, const
         x1.row(v) = x1.row(v).cwiseMax(region_lo_.row(v)).cwiseMin(region_hi_.row(v));
       }
     }
-    stats.response_seconds += since(t0);
+    t0.add_to(stats.response_seconds);
     if (round + 1 < options_.rounds) mark_moved_and_collect<false>(stats);
   }
   if (options_.warm_start) {
-    const auto t0 = Clock::now();
+    const StageTimer t0;
     update_contact_cache();
-    stats.response_seconds += since(t0);
+    t0.add_to(stats.response_seconds);
   }
   // Fail-safe (math-spec 10.8): test, with tolerance 0, every pair not known to be free at its
   // current positions, and revert the vertices of each pair that touches (a real crossing or

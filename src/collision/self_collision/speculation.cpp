@@ -7,7 +7,7 @@ namespace shellcontract {
 void SelfCollision::Impl::predict(const Positions& x0, const Positions& x_guess,
                                   const Eigen::VectorXd& w) {
   if (!options_.speculative || options_.method != BroadPhaseMethod::Grid) return;
-  const auto t0 = Clock::now();
+  const StageTimer t0;
   if (x0.rows() != topo_.num_vertices || x_guess.rows() != topo_.num_vertices ||
       w.size() != topo_.num_vertices)
     throw UsageError("SelfCollision::Impl::predict: position or mass arrays do not match the mesh");
@@ -71,15 +71,15 @@ void SelfCollision::Impl::predict(const Positions& x0, const Positions& x_guess,
     if (spec_enqueued_)
       workers_->arena.enqueue(workers_->background.defer([this] { run_speculation(); }));
   }
-  predict_seconds_ += since(t0);
+  t0.add_to(predict_seconds_);
 }
 
 void SelfCollision::Impl::run_speculation() {
-  const auto t0 = Clock::now();
+  const StageTimer t0;
   spec_ok_ = find_candidates_in_vertex_boxes(spec_boxes_, topo_, candidates_);
   spec_records_seconds_ = 0.0;
   if (spec_ok_) {
-    const auto tr = Clock::now();
+    const StageTimer tr;
     const std::size_t nvf = candidates_.vertex_face.size();
     const std::size_t n = nvf + candidates_.edge_edge.size();
     pairs_.resize(n);
@@ -88,9 +88,9 @@ void SelfCollision::Impl::run_speculation() {
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         fill_records(r.begin(), r.end(), nvf, base_role_.data());
                       });
-    spec_records_seconds_ = since(tr);
+    spec_records_seconds_ = tr.elapsed();
   }
-  spec_seconds_ = since(t0);
+  spec_seconds_ = t0.elapsed();
 }
 
 }  // namespace shellcontract

@@ -8,21 +8,21 @@ namespace shellcontract {
 
 bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positions& x1,
                                                CollisionStepStats& stats) {
-  const auto t0 = Clock::now();
+  const StageTimer t0;
   spec_pending_ = false;
   // Waits for the task (or runs it here); false if it failed. Its time is the step's wait.
   auto finish_task = [&] {
-    const auto tw = Clock::now();
+    const StageTimer tw;
     bool ok = true;
     try {
       if (spec_enqueued_) {
         spec_enqueued_ = false;
         workers_->arena.execute([&] { workers_->background.wait(); });
         stats.background_seconds = spec_seconds_;
-        const BroadPhaseScratch& g = *candidates_.scratch;
-        stats.background_grid_seconds = g.grid_build_seconds;
-        stats.background_cell_loop_seconds = g.grid_cell_loop_seconds;
-        stats.background_output_seconds = g.grid_output_seconds;
+        const GridPartSeconds g = grid_part_seconds(candidates_);
+        stats.background_grid_seconds = g.build;
+        stats.background_cell_loop_seconds = g.cell_loop;
+        stats.background_output_seconds = g.output;
         stats.background_records_seconds = spec_records_seconds_;
       } else {  // run here: its time is this thread's (broad_seconds)
         workers_->arena.execute([&] { run_speculation(); });
@@ -32,14 +32,14 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
       // failure of its own, if it has one).
       ok = false;
     }
-    stats.wait_seconds += since(tw);
+    tw.add_to(stats.wait_seconds);
     return ok;
   };
   // Arrays that do not match the mesh, or non-finite end positions: the plain broad phase
   // reports them (find_candidates' checks) or handles them.
   // A failed completion's time (the wait included) is broad-phase time of the step too.
   auto fail = [&] {
-    stats.broad_seconds += since(t0);
+    t0.add_to(stats.broad_seconds);
     return false;
   };
   if (x0.rows() != topo_.num_vertices || x1.rows() != topo_.num_vertices || !x1.allFinite()) {
@@ -378,7 +378,7 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
   round0_tests_ready_ = true;
   stats.speculative = 1;
   stats.escaped_vertices = static_cast<std::int64_t>(escaped);
-  stats.broad_seconds += since(t0);
+  t0.add_to(stats.broad_seconds);
   ++stats.broad_phase_calls;
   stats.pairs_no_culling = topo_.all_vertex_face_pairs + topo_.all_edge_edge_pairs;
   stats.pairs_broad = static_cast<std::int64_t>(kept);

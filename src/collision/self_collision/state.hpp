@@ -13,7 +13,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -29,6 +28,7 @@
 #include "shellcontract/collision/cull_batch.hpp"
 #include "shellcontract/collision/self_collision.hpp"
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/core/stage_timer.hpp"
 
 namespace shellcontract {
 
@@ -45,11 +45,6 @@ struct SelfCollision::Impl {
       const;
 
   // Constants and helpers of the stages.
-  using Clock = std::chrono::steady_clock;
-  static double since(Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  }
-
   static Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 
   /// Response target: contacts closer than delta are pushed to RESPONSE_FACTOR * delta, so that a

@@ -67,7 +67,7 @@ void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
     find_candidates(x0, x1, topo_, broad_phase_inflation(options_), candidates_, &bs,
                     options_.method, options_.delta);
   });
-  const auto t0 = Clock::now();
+  const StageTimer t0;
   // One record per candidate, filled in parallel (each writes its own slot). Excluded pairs keep
   // their slot but are never tested. The excluded and near lists are short (pairs within delta
   // at rest) and sorted.
@@ -95,7 +95,7 @@ void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
   });
   collect_live();
   set_regions(x0, x1);
-  stats.broad_seconds += bs.seconds + since(t0);
+  stats.broad_seconds += bs.seconds + t0.elapsed();
   ++stats.broad_phase_calls;
   stats.pairs_no_culling = bs.no_culling_vertex_face + bs.no_culling_edge_edge;
   stats.pairs_broad = bs.vertex_face + bs.edge_edge;
