@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "../tests/support/mesh_fixtures.hpp"
+#include "collision/broad_phase/scratch.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
 #include "shellcontract/collision/cull_batch.hpp"
 
@@ -118,7 +119,7 @@ void BM_FindCandidates(benchmark::State& state, BroadPhaseMethod method) {
   CandidatePairs out;
   // Every call on the same scene: a kept grid would be patched with nothing to change, which is
   // not a step's cost; each call builds its grid afresh (a step patches it: README).
-  out.scratch.grid_patch = false;
+  out.scratch->grid_patch = false;
   BroadPhaseStats stats;
   for (auto _ : state) {
     find_candidates(sc.x0, sc.x1, sc.topo, sc.inflation, out, &stats, method, g_far);
@@ -147,13 +148,13 @@ void BM_GridOnVertexBoxes(benchmark::State& state, bool float_superset) {
       b.hi[static_cast<std::size_t>(d)] = std::max(sc.x0(v, d), sc.x1(v, d)) + sc.inflation;
     }
   CandidatePairs out;
-  out.scratch.grid_patch = false;  // as BM_FindCandidates
-  out.scratch.grid_float_superset = float_superset;
+  out.scratch->grid_patch = false;  // as BM_FindCandidates
+  out.scratch->grid_float_superset = float_superset;
   double cell_loop = 0.0;
   for (auto _ : state) {
     if (!find_candidates_in_vertex_boxes(boxes, sc.topo, out))
       state.SkipWithError("the grid degenerated");
-    cell_loop += out.scratch.grid_cell_loop_seconds;
+    cell_loop += out.scratch->grid_cell_loop_seconds;
     benchmark::DoNotOptimize(out.vertex_face.data());
     benchmark::DoNotOptimize(out.edge_edge.data());
   }
@@ -187,9 +188,9 @@ void BM_GridPatched(benchmark::State& state) {
   for (auto _ : state) {
     if (!find_candidates_in_vertex_boxes(boxes[static_cast<std::size_t>(calls % 2)], sc.topo, out))
       state.SkipWithError("the grid degenerated");
-    grid += out.scratch.grid_build_seconds;
-    cell_loop += out.scratch.grid_cell_loop_seconds;
-    patched += out.scratch.grid_patched_boxes > 0 ? out.scratch.grid_patched_boxes : 0;
+    grid += out.scratch->grid_build_seconds;
+    cell_loop += out.scratch->grid_cell_loop_seconds;
+    patched += out.scratch->grid_patched_boxes > 0 ? out.scratch->grid_patched_boxes : 0;
     ++calls;
     benchmark::DoNotOptimize(out.edge_edge.data());
   }
@@ -202,7 +203,7 @@ void BM_GridPatched(benchmark::State& state) {
 /// The early-exit check on the same step (it finds a pair, so this is its "true" time).
 void BM_HasAnyCandidate(benchmark::State& state) {
   const Scene& sc = scene();
-  detail::BroadPhaseScratch scratch;
+  CandidatePairs scratch;
   bool any = false;
   for (auto _ : state) {
     any = has_any_candidate(sc.x0, sc.x1, sc.topo, sc.inflation, scratch);

@@ -34,8 +34,9 @@ void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const st
 #if SHELLCONTRACT_CULL_AVX2
 // AVX2 without FMA, and both files compiled with -ffp-contract=off (CMakeLists.txt): the scalar
 // code rounds every product and sum on its own, and so must this, for the answers to be the
-// same bit for bit. Every expression below mirrors one in ccd.cpp (relative_vectors, det3,
-// bernstein_with_bound, coarse_error_bound, normal_length_bound, one_sign, swept_boxes_apart)
+// same bit for bit. Every expression below mirrors one in ccd/ (bounds.hpp: relative_vectors,
+// det3, bernstein_with_bound, coarse_error_bound, normal_length_bound, one_sign; filters.cpp:
+// swept_boxes_apart)
 // and Eigen's evaluation order for 3-vectors (cross: y z - z y, z x - x z, x y - y x; dot and sum:
 // (a0 + a1) + a2; norm: sqrt of the squared norm).
 #pragma GCC push_options
@@ -88,7 +89,7 @@ SC_CULL_INLINE V3 load_point(const double* x, const std::array<int, 4>* v, int c
 void cull_avx2(CcdPrimitive kind, const double* x0, const double* x1, const std::array<int, 4>* v,
                int count, double tolerance, std::uint8_t* culled) {
   constexpr double U = std::numeric_limits<double>::epsilon() / 2.0;
-  constexpr double UNDERFLOW_FLOOR = 1e-300;  // as ccd.cpp
+  constexpr double UNDERFLOW_FLOOR = 1e-300;  // as ccd/bounds.hpp
   V3 p0[4], p1[4];
   for (int j = 0; j < 4; ++j) {
     p0[j] = load_point(x0, v, count, j);

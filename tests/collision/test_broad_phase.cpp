@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "collision/broad_phase/scratch.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
 #include "shellcontract/core/error.hpp"
 #include "support/mesh_fixtures.hpp"
@@ -167,14 +168,14 @@ BruteForce expect_all_methods_match(const Positions& x0, const Positions& x1, co
       // The portable cell loop (Auto may have run the AVX-512 one): the same pairs, in the same
       // order.
       CandidatePairs portable;
-      portable.scratch.grid_isa = detail::GridIsa::Portable;
+      portable.scratch->grid_isa = detail::GridIsa::Portable;
       find_candidates(x0, x1, topo, inflation, portable, nullptr, m);
       EXPECT_TRUE(portable.vertex_face == got.vertex_face) << where << ": portable VF differs";
       EXPECT_TRUE(portable.edge_edge == got.edge_edge) << where << ": portable EE differs";
     } else {
       EXPECT_EQ(stats.method_run, m) << where;
     }
-    EXPECT_EQ(has_any_candidate(x0, x1, topo, inflation, got.scratch),
+    EXPECT_EQ(has_any_candidate(x0, x1, topo, inflation, got),
               !want.vertex_face.empty() || !want.edge_edge.empty())
         << where;
   }
@@ -603,7 +604,7 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
   for (const TriMesh* m : {&sphere, static_cast<const TriMesh*>(&two)}) {
     const CollisionTopology topo = make_collision_topology(m->faces, static_cast<int>(m->x.rows()));
     CandidatePairs patched, patched_one_thread, rebuilt;
-    rebuilt.scratch.grid_patch_always_rebuild = true;
+    rebuilt.scratch->grid_patch_always_rebuild = true;
     Positions x0 = m->x;
     std::array<double, 3> last_origin{};
     int new_grids = 0;
@@ -624,7 +625,7 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
       });
       const std::string where = "step " + std::to_string(step);
       ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid) << where;
-      const detail::BroadPhaseScratch &p = patched.scratch, &r = rebuilt.scratch;
+      const BroadPhaseScratch &p = *patched.scratch, &r = *rebuilt.scratch;
       if (p.grid_patched_boxes > 0) ++patched_steps;
       if (p.grid_patched_boxes < 0 && step > 0) ++rebuilt_steps;
       if (step > 0 && p.grid_origin != last_origin) ++new_grids;
@@ -688,7 +689,7 @@ TEST(BroadPhase, GridKeptForAnotherTopologyOfTheSameSizesIsPatchedForIt) {
   ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
   find_candidates(x0, x1, second, inflation, out, &stats, BroadPhaseMethod::Grid);
   ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
-  EXPECT_GT(out.scratch.grid_patched_boxes, 0);  // the kept grid, patched for the new topology
+  EXPECT_GT(out.scratch->grid_patched_boxes, 0);  // the kept grid, patched for the new topology
   const BruteForce want = brute_force(x0, x1, swapped, inflation);
   const Pairs vf = sorted(out.vertex_face), ee = sorted(out.edge_edge);
   EXPECT_TRUE(vf == want.vertex_face) << "VF " << first_difference(vf, want.vertex_face);
@@ -709,7 +710,7 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
   // One object whose loop alternates call by call: each loop must size its own cell buffers,
   // whatever the other left behind in the shared scratch.
   CandidatePairs switching;
-  switching.scratch.grid_patch = false;  // a fresh grid each call, as `portable`'s
+  switching.scratch->grid_patch = false;  // a fresh grid each call, as `portable`'s
   for (const TriMesh* m : {&sphere, &two}) {
     const CollisionTopology topo = make_collision_topology(m->faces, static_cast<int>(m->x.rows()));
     for (double scale : {0.0, 0.01, 0.05, 0.12}) {
@@ -721,7 +722,7 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
         for (double far : {-1.0, 0.0, 0.005, 0.02}) {
           CandidatePairs fast, portable;
           BroadPhaseStats fast_stats, portable_stats;
-          portable.scratch.grid_isa = detail::GridIsa::Portable;
+          portable.scratch->grid_isa = detail::GridIsa::Portable;
           find_candidates(x0, x1, topo, inflation, fast, &fast_stats, BroadPhaseMethod::Grid, far);
           find_candidates(x0, x1, topo, inflation, portable, &portable_stats,
                           BroadPhaseMethod::Grid, far);
@@ -736,7 +737,7 @@ TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
           EXPECT_TRUE(fast.edge_edge == portable.edge_edge) << where;
           EXPECT_TRUE(fast.vertex_face_close == portable.vertex_face_close) << where;
           EXPECT_TRUE(fast.edge_edge_close == portable.edge_edge_close) << where;
-          switching.scratch.grid_isa =
+          switching.scratch->grid_isa =
               grid_runs % 2 ? detail::GridIsa::Portable : detail::GridIsa::Auto;
           find_candidates(x0, x1, topo, inflation, switching, nullptr, BroadPhaseMethod::Grid, far);
           EXPECT_TRUE(switching.vertex_face == portable.vertex_face) << where;
@@ -839,7 +840,7 @@ TEST(BroadPhase, GridOnGivenVertexBoxesAndItsQueriesMatchBruteForce) {
     // whose boxes are apart by at most float rounding (coordinates within 2 of the scene's
     // minimum here, so a float's spacing is at most 2 FLT_EPSILON).
     CandidatePairs given, exact;
-    exact.scratch.grid_float_superset = false;
+    exact.scratch->grid_float_superset = false;
     ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, given));
     ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, exact));
     const BruteForce bf = brute_force(x0, x1, m.faces, inflation);
@@ -917,7 +918,7 @@ TEST(BroadPhase, GridFloatSupersetAddsOnlyPairsApartByRounding) {
   ASSERT_GT(gap, 0.0);
   ASSERT_LT(gap, 1e-12);
   CandidatePairs given, exact;
-  exact.scratch.grid_float_superset = false;
+  exact.scratch->grid_float_superset = false;
   ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, given));
   ASSERT_TRUE(find_candidates_in_vertex_boxes(boxes, topo, exact));
   const BruteForce bf = brute_force(two.x, two.x, two.faces, 0.0);
@@ -953,7 +954,7 @@ TEST(BroadPhase, RejectsMismatchedInput) {
   EXPECT_THROW(find_candidates(shorter, m.x, topo, 0.0, out), UsageError);
   EXPECT_THROW(find_candidates(m.x, m.x, topo, -1e-3, out), UsageError);
   EXPECT_THROW(find_candidates(m.x, m.x, topo, std::nan(""), out), UsageError);
-  EXPECT_THROW(has_any_candidate(m.x, shorter, topo, 0.0, out.scratch), UsageError);
+  EXPECT_THROW(has_any_candidate(m.x, shorter, topo, 0.0, out), UsageError);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <random>
 #include <tuple>
 
+#include "shellcontract/collision/broad_phase.hpp"
 #include "shellcontract/collision/ccd.hpp"
 #include "shellcontract/collision/contact.hpp"
 #include "shellcontract/collision/self_collision.hpp"

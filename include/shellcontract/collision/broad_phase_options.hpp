@@ -1,0 +1,56 @@
+// The broad phase's choice of algorithm and its per-call counters: what a caller configures and
+// reads, without the broad phase's declarations.
+#pragma once
+
+#include <cstdint>
+
+namespace shellcontract {
+
+/// Broad-phase algorithm. All of them return exactly the same pairs (tests compare each with
+/// brute force); they differ only in speed.
+enum class BroadPhaseMethod {
+  /// CGAL box_intersection_d on primitive boxes: vertex boxes against face boxes (bipartite
+  /// mode), edge boxes against themselves (complete mode).
+  PrimitiveBoxes,
+  /// CGAL box_intersection_d on face boxes (complete mode), then the 6 VF and 9 EE pairs of every
+  /// overlapping face pair, box-tested and deduplicated (math-spec 10.2, the paper's way).
+  FacePairs,
+  /// Our own bounding-volume hierarchy (median split, rebuilt each call) over face boxes and
+  /// over edge boxes; one query per vertex box and per edge box. Output comes out grouped by
+  /// the first id, so only short runs need sorting and nothing needs deduplicating.
+  Bvh,
+  /// Uniform grid (cell size 1.5 x the median face/edge box extent) filled by a counting sort;
+  /// in each cell, vertex boxes against face boxes and edge boxes against each other, each pair
+  /// emitted only in the first cell the two boxes share (no hash set), culled by a vectorized
+  /// test on boxes rounded outward to float, confirmed by the exact double test; on CPUs with
+  /// AVX-512 (checked at run time) one 8-lane pass tests the exact double
+  /// boxes directly and emits the same pairs in the same order. Pairs come out
+  /// in cell order, not sorted (see CandidatePairs). Falls back to PrimitiveBoxes when the boxes
+  /// are so large or spread out that the grid would degenerate towards brute force
+  /// (BroadPhaseStats::method_run says which ran).
+  /// The default: fastest on bear (bench_broad_phase).
+  Grid,
+};
+
+/// The method find_candidates uses when none is given (the fastest on bear, bench_broad_phase).
+static constexpr BroadPhaseMethod DEFAULT_BROAD_PHASE_METHOD = BroadPhaseMethod::Grid;
+
+/// Counters of one find_candidates call (for logs and the paper's Table 2).
+struct BroadPhaseStats {
+  std::int64_t no_culling_vertex_face = 0;  ///< topo.all_vertex_face_pairs
+  std::int64_t no_culling_edge_edge = 0;    ///< topo.all_edge_edge_pairs
+  /// Overlapping box pairs the box search reported, adjacent ones included. PrimitiveBoxes:
+  /// VF + EE primitive box pairs. FacePairs: face box pairs. Bvh: VF box pairs plus EE box
+  /// pairs with a < b. Grid: VF plus EE (a < b) pairs whose boxes overlap after rounding outward
+  /// to float (a superset of the exact overlaps, in practice equal); exactly overlapping pairs
+  /// when the AVX-512 cell loop ran.
+  std::int64_t box_overlaps = 0;
+  /// The algorithm that ran: the requested one, except that Grid falls back to PrimitiveBoxes
+  /// when its grid would degenerate (see BroadPhaseMethod::Grid).
+  BroadPhaseMethod method_run = DEFAULT_BROAD_PHASE_METHOD;
+  std::int64_t vertex_face = 0;  ///< VF pairs emitted
+  std::int64_t edge_edge = 0;    ///< EE pairs emitted
+  double seconds = 0.0;          ///< wall time of the call, s
+};
+
+}  // namespace shellcontract

@@ -1,0 +1,105 @@
+// Detection: the non-penetration filter and the narrow phase on the pairs to test, in fixed
+// blocks (the result does not depend on the threads).
+#include "collision/self_collision/state.hpp"
+
+namespace shellcontract {
+
+void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, double tol,
+                                 CollisionStepStats& stats, bool count_stage) {
+  contacts_.clear();
+  const std::size_t n = test_count_;
+  if (n == 0) return;
+  // One parallel region per call: each task takes a fixed block of tests (never cut by the
+  // thread count), runs the filter on it, then the narrow phase on the block's survivors, and
+  // keeps its hits in test order. With a region per stage and compaction (five per call), bear's
+  // rounds after the first took 0.68 ms each for a few thousand tests, mostly hand-offs between
+  // the threads; with one, 0.44 ms. Each test is a different pair, so the tasks write different
+  // bytes of free_ and stale_.
+  const std::size_t blocks = (n + DETECT_BLOCK - 1) / DETECT_BLOCK;
+  if (blocks_.size() < blocks) blocks_.resize(blocks);
+  CcdOptions ccd;
+  ccd.tolerance = tol;
+  ccd.tighten_toi = false;  // the response uses the contact data, not the time of impact
+  const StageTimer start;
+  workers_->arena.execute([&] {
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+      DetectBlock& out = blocks_[b];
+      out.hits.clear();
+      out.axis_culls = 0;
+      const std::size_t begin = b * DETECT_BLOCK, end = std::min(n, begin + DETECT_BLOCK);
+      const StageTimer t0;
+      // Stage 1: the box cull and the certain non-penetration filter (math-spec 10.4), four
+      // tests at a time (cull_batch: the same answers as swept_boxes_apart and
+      // nonpenetration_filter_culls one by one); a group of four is cut where the kind changes.
+      // A culled pair is free at its current positions.
+      out.kept.clear();
+      std::array<int, 4> v[CULL_LANES];
+      std::uint8_t culled[CULL_LANES];
+      for (std::size_t i = begin; i < end;) {
+        const CcdPrimitive kind = pairs_[tests_[i]].kind;
+        const std::size_t group_end = std::min(end, i + CULL_LANES);
+        int count = 0;
+        for (std::size_t j = i; j < group_end && pairs_[tests_[j]].kind == kind; ++j)
+          v[count++] = pairs_[tests_[j]].v;
+        cull_batch(kind, x0.data(), x1.data(), v, count, tol, culled);
+        for (int k = 0; k < count; ++k, ++i) {
+          if (!culled[k]) {
+            out.kept.push_back(tests_[i]);
+            continue;
+          }
+          stale_[tests_[i]] = 0;
+          free_[tests_[i]] = 1;
+        }
+      }
+      out.filter_seconds = t0.elapsed();
+      const StageTimer t1;
+      // Stage 2: the narrow phase on the survivors, in test order.
+      CcdStencil s0, s1;
+      for (const std::uint32_t pair : out.kept) {
+        const PairRecord& p = pairs_[pair];
+        gather(x0, x1, p.v, s0, s1);
+        stale_[pair] = 0;
+        // Most survivors of the filter are neighbours apart within a common plane: the
+        // separating-axis test settles them for less than a third of the interval search's
+        // cost, with the same answer (ccd.hpp).
+        if (separating_axis_culls(p.kind, s0, s1, tol)) {
+          free_[pair] = 1;
+          ++out.axis_culls;
+          continue;
+        }
+        const CcdResult res = primitive_ccd(p.kind, s0, s1, ccd);
+        free_[pair] = !res.hit;
+        if (!res.hit) continue;
+        Contact& c = out.hits.emplace_back();
+        c.kind = p.kind;
+        c.pair = p.pair;
+        c.v = p.v;
+        c.weights = res.weights;
+        c.normal = res.normal;
+        c.side = res.side;
+      }
+      out.narrow_seconds = t1.elapsed();
+    });
+  });
+  // The hits in the order of tests_: block after block.
+  double filter_cpu = 0.0, narrow_cpu = 0.0;
+  std::size_t m = 0;
+  for (std::size_t b = 0; b < blocks; ++b) {
+    const DetectBlock& block = blocks_[b];
+    contacts_.insert(contacts_.end(), block.hits.begin(), block.hits.end());
+    m += block.kept.size();
+    stats.axis_culls += block.axis_culls;
+    filter_cpu += block.filter_seconds;
+    narrow_cpu += block.narrow_seconds;
+  }
+  // The stages share one region: its wall time is split in proportion to their CPU time.
+  const double wall = start.elapsed(), cpu = filter_cpu + narrow_cpu;
+  const double filter_share = cpu > 0.0 ? filter_cpu / cpu : 0.5;
+  stats.filter_seconds += wall * filter_share;
+  stats.narrow_seconds += wall * (1.0 - filter_share);
+  stats.narrow_tests += static_cast<std::int64_t>(m);
+  stats.filter_tests += static_cast<std::int64_t>(n);
+  if (count_stage) stats.pairs_filtered = static_cast<std::int64_t>(m);
+}
+
+}  // namespace shellcontract
