@@ -45,9 +45,9 @@ RestStateReport build_rest_state(Mesh& mesh, MassModel mass, double density) {
 
   // Masses: area-lumped, or unit. A vertex whose faces all have zero area would get an infinite
   // inverse mass; it gets the mean mass instead (math-spec 11: degenerate faces are inactive).
-  // A vertex whose faces are all slivers is floored at MIN_MASS_FRACTION of the mean: with
-  // almost no mass it takes nearly all of every projection's correction and runs away (camel.off
-  // of CGAL's demo data, 26 vertices below 1 % of the mean, blew up at step 9).
+  // A vertex surrounded by slivers is floored at MIN_MASS_FRACTION of the mean: with almost no
+  // mass it takes nearly all of every projection's correction and runs away (camel.off of CGAL's
+  // demo data, 26 vertices below 1 % of the mean, blew up at step 9).
   constexpr double MIN_MASS_FRACTION = 0.01;
   double mean_mass = 0.0;
   for (double m : vertex_mass) mean_mass += m;

@@ -1,6 +1,6 @@
 // Issue 30, items 6 and 7, on the hardest meshes of CGAL's demo data (extracted next to the
 // paper's meshes by scripts/fetch_paper_meshes.sh; skipped when absent). camel.off blew up at
-// step 9 (exit 3) before the mass floor of rest_state.cpp: slivers gave 26 vertices less than 1 %
+// step 9 (exit 3) before the mass floor of rest_state.cpp: 26 of its vertices have less than 1 %
 // of the mean lumped mass. elephant-with-holes.off has 106 holes. Label "scenario" (~15 s);
 // the 200-frame camel run is in tests/long.
 #include <gtest/gtest.h>
