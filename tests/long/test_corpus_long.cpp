@@ -1,6 +1,6 @@
 // Issue 30 item 6: camel.off of CGAL's demo data (scripts/fetch_paper_meshes.sh) runs the default
 // 200 frames to the end with no new self-intersection (it blew up at step 9 before the mass floor
-// of rest_state.cpp). Label "long" (~60 s on 2 cores).
+// of rest_state.cpp). Label "long" (240 s measured on a shared, loaded 2-core machine).
 #include <gtest/gtest.h>
 
 #include <filesystem>
