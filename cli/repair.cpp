@@ -56,6 +56,7 @@ JsonObject report_json(const std::string& input, const std::string& output, cons
       .add("largest_hole_edges", r.largest_hole_edges)
       .add("holes_not_faired", r.holes_not_faired)
       .add("holes_unfilled", r.holes_unfilled)
+      .add("hole_self_intersections", r.hole_self_intersections)
       .add("components_dropped", r.components_dropped)
       .add("faces_dropped", r.faces_dropped)
       .add("vertices", r.usable ? r.input_report.vertices : 0)

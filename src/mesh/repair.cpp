@@ -12,6 +12,7 @@
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Polygon_mesh_processing/stitch_borders.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_faces.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
@@ -21,6 +22,7 @@
 #include <filesystem>
 #include <iterator>
 #include <map>
+#include <set>
 #include <sstream>
 #include <tuple>
 
@@ -98,6 +100,7 @@ std::size_t border_length(const Mesh& mesh, HalfedgeIndex h) {
 void fill_holes(Mesh& mesh, std::size_t max_edges, RepairReport& r) {
   std::vector<HalfedgeIndex> borders;
   PMP::extract_boundary_cycles(mesh, std::back_inserter(borders));
+  std::set<FaceIndex> filled;
   for (const HalfedgeIndex h : borders) {
     if (!mesh.is_border(h)) continue;  // an earlier fill closed it (cannot happen; be safe)
     const std::size_t edges = border_length(mesh, h);
@@ -118,7 +121,15 @@ void fill_holes(Mesh& mesh, std::size_t max_edges, RepairReport& r) {
     r.hole_vertices_added += vertices.size();
     r.largest_hole_edges = std::max(r.largest_hole_edges, edges);
     if (!faired) ++r.holes_not_faired;
+    filled.insert(faces.begin(), faces.end());
   }
+  // A fill can cut through the surface (a faired cap bulging into a nearby part): counted so the
+  // user knows; the usability check does not refuse self-intersections, and neither does this.
+  if (filled.empty()) return;
+  std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
+  PMP::self_intersections(mesh, std::back_inserter(pairs));
+  for (const auto& [a, b] : pairs)
+    if (filled.count(a) || filled.count(b)) ++r.hole_self_intersections;
 }
 
 /// Removes the components that are still open or enclose (almost) no volume (the component
@@ -173,6 +184,7 @@ std::vector<std::string> RepairReport::summary_lines() const {
                   std::to_string(largest_hole_edges) + " boundary edges" +
                   (holes_not_faired > 0 ? ", " + std::to_string(holes_not_faired) + " not faired" : "") + ")");
   line(holes_unfilled, "holes left open");
+  line(hole_self_intersections, "self-intersecting face pairs involve the holes' new faces (kept: not refused)");
   if (components_dropped > 0)
     out.push_back(std::to_string(components_dropped) + " components dropped (" + std::to_string(faces_dropped) +
                   " faces): still open, or enclosing no volume");

@@ -92,6 +92,7 @@ TEST_F(Repair, CubeWithOneFaceRemovedGetsOneHoleFilledAndItsVolumeBack) {
   // The hole is a planar square: any fill in its plane restores the cube; fairing could only
   // bulge it if refinement added inner vertices, which a 4-edge hole of this size does not get.
   EXPECT_EQ(r.hole_vertices_added, 0u);
+  EXPECT_EQ(r.hole_self_intersections, 0u);  // a fill in the square's plane touches only its edges
   EXPECT_NEAR(volume_of(m), 1.0, 1e-12);
   expect_outward(m);
 }

@@ -32,6 +32,7 @@ struct RepairReport {
   std::size_t largest_hole_edges = 0;         ///< boundary edges of the largest hole filled
   std::size_t holes_not_faired = 0;           ///< filled without fairing (fairing failed)
   std::size_t holes_unfilled = 0;             ///< holes CGAL could not triangulate
+  std::size_t hole_self_intersections = 0;    ///< self-intersecting face pairs with a new hole face
   std::size_t components_dropped = 0;         ///< components still open or enclosing no volume
   std::size_t faces_dropped = 0;              ///< faces of those components
   bool usable = false;                        ///< the repaired mesh passed the usability check
