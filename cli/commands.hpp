@@ -10,5 +10,6 @@ int command_bench_ccd(int argc, char** argv);  ///< shellcontract bench ccd --qu
 int command_regions(int argc, char** argv);    ///< shellcontract regions IN -o OUT.ply
 int command_bench_error(int argc, char** argv);  ///< shellcontract bench error IN [options]
 int command_reconstruct(int argc, char** argv);  ///< shellcontract reconstruct PTS -o OUT
+int command_repair(int argc, char** argv);       ///< shellcontract repair IN -o OUT
 
 }  // namespace shellcontract::cli

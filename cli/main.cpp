@@ -13,6 +13,7 @@ constexpr const char* USAGE = R"(usage: shellcontract <command> [options]
 commands:
   run INPUT -o OUTPUT [options]    contract a closed mesh (see 'shellcontract run --help')
   check INPUT [--json]             report whether a mesh can be used, and why not
+  repair INPUT -o OUTPUT           make a refused mesh usable (fill holes, stitch, orient ...)
   regions INPUT -o OUT.ply         the spherical regions that --regions auto would choose
   reconstruct POINTS -o OUT        closed surface from an oriented point set (the kitten)
   bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
@@ -44,6 +45,7 @@ int main(int argc, char** argv) {
   // Subcommands see their own name as argv[0].
   if (command == "run") return shellcontract::cli::command_run(argc - 1, argv + 1);
   if (command == "check") return shellcontract::cli::command_check(argc - 1, argv + 1);
+  if (command == "repair") return shellcontract::cli::command_repair(argc - 1, argv + 1);
   if (command == "regions") return shellcontract::cli::command_regions(argc - 1, argv + 1);
   if (command == "reconstruct") return shellcontract::cli::command_reconstruct(argc - 1, argv + 1);
   if (command == "bench") {

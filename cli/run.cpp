@@ -22,6 +22,7 @@
 #include "run_observers.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/repair.hpp"
 #include "shellcontract/sim/option_table.hpp"
 
 namespace po = boost::program_options;
@@ -131,14 +132,17 @@ double peak_memory_mb() {
 int command_run(int argc, char** argv) {
   std::string input, output, log_path, summary_path, fields_prefix, fields_colour = "mean";
   ExportRequest exports;
-  bool quiet = false;
+  bool quiet = false, repair = false;
   std::map<std::string, std::string> values;
   std::map<std::string, bool> switches;
   RunOptions options;
   po::options_description desc(RUN_USAGE, 100, 50);
   desc.add_options()("help,h", "show this help")(
       "output,o", po::value(&output)->value_name("FILE"),
-      "output mesh (format from the extension: off, obj, ply, stl)");
+      "output mesh (format from the extension: off, obj, ply, stl)")(
+      "repair", po::bool_switch(&repair),
+      "repair the input first if 'check' refuses it (as 'shellcontract repair' does; the output "
+      "then has the repaired mesh's vertices and faces)");
   add_table_options(desc, values, switches);
   desc.add_options()(
       "fields", po::value(&fields_prefix)->value_name("PREFIX"),
@@ -218,7 +222,15 @@ int command_run(int argc, char** argv) {
   try {
     InputReport report;
     const auto read_start = std::chrono::steady_clock::now();
-    const Mesh mesh = read_input_mesh(input, &report);
+    RepairReport repair_report;
+    const Mesh mesh = repair ? repair_input_mesh(input, &repair_report) : read_input_mesh(input, &report);
+    if (repair) {
+      report = repair_report.input_report;
+      if (!repair_report.already_usable) {
+        std::cerr << "repaired " << input << " (refused as read: " << repair_report.input_problem << ")\n";
+        for (const std::string& line : repair_report.summary_lines()) std::cerr << "  " << line << '\n';
+      }
+    }
     const double read_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
     for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
@@ -250,6 +262,13 @@ int command_run(int argc, char** argv) {
           .add("regions_seconds", r.regions_seconds)
           .add("prepare_seconds", r.prepare_seconds);
       summary.add("setup", setup).add("peak_memory_mb", peak_memory_mb());
+      if (repair) {
+        JsonObject rep;
+        rep.add("already_usable", repair_report.already_usable)
+            .add("input_problem", repair_report.input_problem)
+            .add("changes", repair_report.summary_lines());
+        summary.add("repair", rep);
+      }
       if (!exports.dir.empty() || !exports.gltf.empty())
         summary.add("export", export_json(exporter));
       write_text_atomic(summary_path, summary.str() + "\n");

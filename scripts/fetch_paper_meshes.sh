@@ -1,15 +1,17 @@
 #!/bin/sh
 # Extracts the paper's models from Debian's libcgal-demo data into data/ at the repository root
-# (git-ignored, never committed): data/meshes/{eight,hand,elk,bear}.off, two curved demo meshes
-# (dragknob.off, spool.off: the long default-run tests) and
-# data/points_3/kitten.xyz. Installs libcgal-demo with apt-get if it is missing (needs root or
+# (git-ignored, never committed): data/meshes/{eight,hand,elk,bear}.off and
+# data/points_3/kitten.xyz, and the demo meshes the tests use (dragknob.off, spool.off: the long
+# default-run tests; camel.off, elephant-with-holes.off: tests/scenario/test_corpus_meshes.cpp).
+# Installs libcgal-demo with apt-get if it is missing (needs root or
 # sudo). Idempotent: files already present with the same content are left alone.
 #
 # Usage: scripts/fetch_paper_meshes.sh
 set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-MEMBERS="data/meshes/eight.off data/meshes/hand.off data/meshes/elk.off data/meshes/bear.off data/meshes/dragknob.off data/meshes/spool.off data/points_3/kitten.xyz"
+MEMBERS="data/meshes/eight.off data/meshes/hand.off data/meshes/elk.off data/meshes/bear.off data/points_3/kitten.xyz
+         data/meshes/dragknob.off data/meshes/spool.off data/meshes/camel.off data/meshes/elephant-with-holes.off"
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi

@@ -435,6 +435,12 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
 
 }  // namespace
 
+Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
+                      const std::vector<std::vector<std::size_t>>& polygons, InputReport* report) {
+  const SourceLines no_lines;
+  return check_soup(name, "", points, polygons, no_lines, report);
+}
+
 // ================================================================================== read_input_mesh
 
 Mesh read_input_mesh(const std::string& path, InputReport* report) {

@@ -33,6 +33,12 @@ struct InputReport {
 ///         for any file whatever its bytes (also when memory runs out while reading it)
 Mesh read_input_mesh(const std::string& path, InputReport* report = nullptr);
 
+/// read_input_mesh's checks on a polygon soup already in memory (points in input units): the
+/// same decision, for a mesh built by the program (repair_input_mesh). Messages start with `name`.
+/// @throws InputError as read_input_mesh
+Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
+                      const std::vector<std::vector<std::size_t>>& polygons, InputReport* report = nullptr);
+
 /// Writes the mesh connectivity with the vertex positions x (row i = vertex i, input units),
 /// keeping vertex and face order. Written to a temporary file in the same folder, then renamed,
 /// so a failure never leaves a partial file.
