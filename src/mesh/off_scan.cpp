@@ -8,6 +8,7 @@
 #include "shellcontract/mesh/off_scan.hpp"
 
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -76,6 +77,16 @@ class OffScanner {
     const std::size_t nf = count(t[1], "face count");
     if (nv == 0 || nf == 0)
       fail(path_, "empty mesh", "line " + std::to_string(counts_line) + " announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces");
+    // The edge count is not used, but CGAL 5.5's OFF header reader doubles it in an int
+    // (File_header_OFF_impl.h:404): beyond INT_MAX / 2 a signed overflow, undefined behaviour that
+    // UBSan reports (scripts/sanitize.sh); beyond INT_MAX its read fails. Refused here, with a reason.
+    if (t.size() >= 3) {
+      errno = 0;
+      char* end = nullptr;
+      const long long ne = std::strtoll(t[2].c_str(), &end, 10);
+      if (end != t[2].c_str() && (errno == ERANGE || ne > INT_MAX / 2 || ne < INT_MIN / 2))
+        fail(path_, "parse error", "line " + std::to_string(counts_line) + ": edge count " + shorten(t[2]) + " is out of range (at most " + std::to_string(INT_MAX / 2) + ")");
+    }
 
     const std::string announced = "the header (line " + std::to_string(counts_line) + ") announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces";
     OffScan scan;

@@ -65,23 +65,69 @@ std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
   return points;
 }
 
+using PoissonFunction = CGAL::Poisson_reconstruction_function<Kernel>;
+
+/// The value of a PoissonFunction at a point: CGAL 5.5's operator() repeated line for line (same
+/// locate, same barycentric arithmetic, so the same values), because CGAL's own binds a reference
+/// to a null pointer (Cell_hint::get, Poisson_reconstruction_function.h:265) on the first call of
+/// every copy, which has no hint yet: undefined behaviour that UBSan reports (scripts/sanitize.sh).
+/// Fixed in CGAL after 5.5 (CGAL/cgal commit 9cd4535b, issue 8260); this avoids it without a
+/// sanitizer suppression. Like CGAL's, a copy starts without a hint (the surface mesher copies it).
+class PoissonValue {
+ public:
+  using Cell_handle = PoissonFunction::Cell_handle;
+  explicit PoissonValue(const PoissonFunction& function) : function_(&function) {}
+  PoissonValue(const PoissonValue& other) : function_(other.function_) {}
+  PoissonValue& operator=(const PoissonValue& other) {
+    function_ = other.function_;
+    hint_ = Cell_handle();
+    return *this;
+  }
+
+  Kernel::FT operator()(const Point3& p) const {
+    const PoissonFunction::Triangulation& tr = function_->tr();
+    hint_ = tr.locate(p, hint_);  // a null handle means no hint, as in CGAL
+    if (tr.is_infinite(hint_)) {
+      const int i = hint_->index(tr.infinite_vertex());
+      return hint_->vertex((i + 1) & 3)->f();
+    }
+    const Point3& pd = hint_->vertex(3)->point();
+    const Vector3 va = hint_->vertex(0)->point() - pd;
+    const Vector3 vb = hint_->vertex(1)->point() - pd;
+    const Vector3 vc = hint_->vertex(2)->point() - pd;
+    Kernel::FT m[9];
+    CGAL::internal::invert(va.x(), va.y(), va.z(), vb.x(), vb.y(), vb.z(), vc.x(), vc.y(), vc.z(), m[0], m[1], m[2],
+                           m[3], m[4], m[5], m[6], m[7], m[8]);
+    const Vector3 vp = p - pd;
+    const Kernel::FT a = m[0] * vp.x() + m[3] * vp.y() + m[6] * vp.z();
+    const Kernel::FT b = m[1] * vp.x() + m[4] * vp.y() + m[7] * vp.z();
+    const Kernel::FT c = m[2] * vp.x() + m[5] * vp.y() + m[8] * vp.z();
+    const Kernel::FT d = 1 - (a + b + c);
+    return a * hint_->vertex(0)->f() + b * hint_->vertex(1)->f() + c * hint_->vertex(2)->f() +
+           d * hint_->vertex(3)->f();
+  }
+
+ private:
+  const PoissonFunction* function_;
+  mutable Cell_handle hint_;
+};
+
 /// CGAL::poisson_surface_reconstruction_delaunay (CGAL 5.5, poisson_surface_reconstruction.h)
 /// with one more check: when the surface mesher finds vertices but no facet, CGAL's
 /// facets_in_complex_2_to_triangle_mesh segfaults on the empty complex (400 points on a unit
 /// sphere did it); here that is a failed reconstruction.
 bool poisson_delaunay(const std::vector<PointWithNormal>& points, Mesh& mesh, double spacing,
                       const ReconstructionOptions& options) {
-  using Function = CGAL::Poisson_reconstruction_function<Kernel>;
   using Tr = CGAL::Surface_mesher::Surface_mesh_default_triangulation_3_generator<Kernel>::Type;
   using C2t3 = CGAL::Surface_mesh_complex_2_in_triangulation_3<Tr>;
-  using Surface = CGAL::Implicit_surface_3<Kernel, Function>;
-  Function function(points.begin(), points.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
+  using Surface = CGAL::Implicit_surface_3<Kernel, PoissonValue>;
+  PoissonFunction function(points.begin(), points.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
                     CGAL::Second_of_pair_property_map<PointWithNormal>());
   if (!function.compute_implicit_function()) return false;
   const Point3 inner = function.get_inner_point();
   const double radius = 5.0 * CGAL::approximate_sqrt(function.bounding_sphere().squared_radius());
   const double dichotomy_error = options.distance * spacing / 1000.0;
-  const Surface surface(function, Kernel::Sphere_3(inner, radius * radius), dichotomy_error / radius);
+  const Surface surface(PoissonValue(function), Kernel::Sphere_3(inner, radius * radius), dichotomy_error / radius);
   const CGAL::Surface_mesh_default_criteria_3<Tr> criteria(options.angle, options.radius * spacing,
                                                            options.distance * spacing);
   Tr tr;

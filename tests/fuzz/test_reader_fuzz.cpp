@@ -195,7 +195,13 @@ TEST(ReaderFuzz, CheckAndRunExitZeroOrTwoOnMutants) {
     write_bytes(p, m.bytes);
     const std::string repro = p.string() + " (seed " + std::to_string(seed) + ", mutant " + std::to_string(k) + ": " + m.seed_file->name + ": " + m.what + ")";
     // A 20 s limit and a 4 GB address space, so that a broken reader cannot hold the machine.
+#ifdef __SANITIZE_ADDRESS__
+    // Under AddressSanitizer (scripts/sanitize.sh) the CLI reserves terabytes of address space for
+    // its shadow memory and cannot start under ulimit -v: ASan's own allocator limit instead.
+    const std::string limits = "ASAN_OPTIONS=\"$ASAN_OPTIONS:malloc_limit_mb=4000\" timeout 20 ";
+#else
     const std::string limits = "ulimit -v 4000000; timeout 20 ";
+#endif
     const std::string check = limits + test::quoted(SHELLCONTRACT_CLI_PATH) + " check " + test::quoted(p.string()) + " 2>&1";
     test::RunResult r;
     if (FILE* pipe = ::popen(check.c_str(), "r")) {

@@ -99,6 +99,12 @@ TEST(ReaderRegression, OffHugeDeclaredCountsAreTruncatedFiles) {
   expect_refused(regression("off_vertex_count_fits_int.off"), {"truncated file", "2000000000 vertices"});
 }
 
+// CGAL 5.5's OFF header reader doubles the (unused) edge count in an int: a signed overflow
+// beyond INT_MAX / 2, found by UBSan (scripts/sanitize.sh). Refused with a reason instead.
+TEST(ReaderRegression, OffEdgeCountBeyondCgalsIntIsRefused) {
+  expect_refused(regression("off_edge_count_overflows_int.off"), {"parse error", "edge count 2147483647"});
+}
+
 // A UTF-8 byte-order mark and classic-Mac line ends are legal text: read, not misreported.
 TEST(ReaderRegression, OffWithByteOrderMarkOrCrLineEndsIsRead) {
   expect_unit_tetrahedron(regression("off_utf8_bom.off"));
