@@ -124,7 +124,8 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
     warn(r, obs,
          std::to_string(rest.degenerate_faces) + " degenerate faces carry no membrane energy; " +
              std::to_string(rest.inactive_hinges) + " hinges touching them are inactive");
-  if (rest.clamped_cotangents > 0)
+  // The cotangent weights belong to the isometric bending; the dihedral model does not use them.
+  if (rest.clamped_cotangents > 0 && s.bending == BendingModel::Isometric)
     warn(r, obs,
          std::to_string(rest.clamped_cotangents) +
              " rest angles below 1 or above 179 degrees: their bending cotangents were clamped "
