@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-
 #include <cmath>
 #include <string>
 #include <utility>
