@@ -294,7 +294,10 @@ std::vector<OptionSpec> build_table() {
                      "pressure alone decides",
                      between(0.0, 1.0, false, true),
                      [](R& r) -> double& { return r.sim.target_volume; }));
-  t.push_back(integer("target-ramp", 0, "N", "frames over which the target volume is approached", 1,
+  t.push_back(integer("target-ramp", 0, "N",
+                      "frames over which the target volume (and the regions' shrink, --inward "
+                      "volume) is approached",
+                      1,
                       MAX_FRAMES, [](R& r) -> int& { return r.sim.target_ramp_frames; }));
   t.push_back(number(
       "stop-volume-ratio", 0, "E", "stop at the frame where V/V0 reaches E (0 = run all frames)",
@@ -372,16 +375,18 @@ std::vector<OptionSpec> build_table() {
                      non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
   t.push_back(
       choice("inward",
-             "inward term on the regions: force (a pressure on the regions without net force "
-             "or torque, --region-shrink) | projection (the paper's k_A inside the E_A "
-             "projection; --aniso, pbd) | none",
-             Choices<InwardTerm>{{"projection", InwardTerm::Projection},
+             "how the regions are made to sink in: volume (each region's cap volume is driven "
+             "to 1 - 2S of its rest value, S = --region-shrink, and held) | force (the paper's "
+             "extra pressure on the regions, P_A = 10 S, without net force or torque) | "
+             "projection (the paper's k_A inside the E_A projection; --aniso, pbd) | none",
+             Choices<InwardTerm>{{"volume", InwardTerm::Volume},
+                                 {"projection", InwardTerm::Projection},
                                  {"force", InwardTerm::Force},
                                  {"none", InwardTerm::None}},
              [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
   t.push_back(number("region-shrink", 0, "S",
-                     "how much the regions of --regions sink in (the local contraction's "
-                     "strength; 0 = not at all)",
+                     "how much the regions of --regions shrink (the local contraction's "
+                     "strength): 0 not at all, 0.5 flattens a bump, 1 turns it inside out",
                      between(0.0, 1.0, false, false),
                      [](R& r) -> double& { return r.sim.region_shrink; }));
   t.push_back(number("mu-a", 0, "MUA", "anisotropic fibre stiffness mu_A", non_negative(),

@@ -119,6 +119,11 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   const auto prepare_start = Clock::now();
   Simulator sim(mesh, s);
   r.prepare_seconds = seconds_since(prepare_start);
+  if (sim.regions_without_cap() > 0)
+    warn(r, obs,
+         std::to_string(sim.regions_without_cap()) + " of " + std::to_string(r.regions) +
+             " regions are flat or dented at rest: the local contraction (--inward volume) "
+             "shrinks a region's cap and leaves those alone");
   const RestStateReport& rest = sim.rest_report();
   if (rest.degenerate_faces > 0)
     warn(r, obs,

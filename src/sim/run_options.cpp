@@ -57,7 +57,8 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   const bool pbd = s.solver.kind == SolverKind::Pbd;
   const bool k_a_projected = aniso && pbd && s.inward_term == InwardTerm::Projection;
   check("region-shrink", !regions || s.inward_term == InwardTerm::None || k_a_projected,
-        "the local contraction acts on the regions of --regions (or --aniso) with --inward force");
+        "the local contraction acts on the regions of --regions (or --aniso) with --inward "
+        "volume or force");
   check("k-a", !k_a_projected, "kappa_A acts with --aniso, --inward projection and --solver pbd");
   check("inward", !regions, "the inward term acts on the regions of --regions (or --aniso)");
   check("mu-a", aniso && pbd && s.inward_term != InwardTerm::Projection,
@@ -76,7 +77,9 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   check("k-b", s.bending == BendingModel::None, "--bending none");
   for (const char* name : {"delta", "collision-rounds", "warm-start", "speculative-broad-phase"})
     check(name, !s.collisions, "--collisions off");
-  check("target-ramp", !(s.target_volume > 0.0), "it is the ramp of --target-volume");
+  check("target-ramp",
+        !(s.target_volume > 0.0) && !(regions && s.inward_term == InwardTerm::Volume),
+        "it is the ramp of --target-volume and of the regions' shrink (--inward volume)");
   check("air-balance", s.target_volume > 0.0,
         "with --target-volume the volume constraint decides the volume");
   check("air-balance", !(s.pressure > 0.0) && !(s.target_volume > 0.0),

@@ -9,6 +9,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/sim/local_contraction.hpp"
+#include "shellcontract/sim/region_volume.hpp"
 #include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
@@ -69,8 +70,18 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   const bool k_a_projected = options_.inward_term == InwardTerm::Projection &&
                              options_.solver.aniso != AnisoKind::None &&
                              options_.solver.kind == SolverKind::Pbd;
-  if (options_.inward_term != InwardTerm::None && !k_a_projected &&
-      options_.region_shrink > 0.0) {
+  const bool pushed = options_.inward_term == InwardTerm::Force ||
+                      (options_.inward_term == InwardTerm::Projection && !k_a_projected);
+  if (options_.inward_term == InwardTerm::Volume && options_.region_shrink > 0.0) {
+    for (const std::vector<int>& region : options_.anisotropy.regions) {
+      RegionCap cap = make_region_cap(faces_, region);
+      cap.rest_volume = cap_volume(x_, cap);
+      // A flat region or a dent has no cap to shrink (region_cap_target would push it out).
+      if (cap.rest_volume > 0.0) region_caps_.push_back(std::move(cap));
+      else ++regions_without_cap_;
+    }
+  }
+  if (pushed && options_.region_shrink > 0.0) {
     std::vector<int> region_faces;
     for (const std::vector<int>& region : options_.anisotropy.regions)
       for (int f : region)
@@ -118,6 +129,7 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
           len > 0.0 ? Eigen::RowVector3d(n.transpose() / len) : Eigen::RowVector3d::Zero();
     }
   }
+  follow_rest_ = (!region_caps_.empty() || inward_faces_.rows() > 0) && !outside_vertices_.empty();
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
     throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) +
@@ -161,6 +173,37 @@ void Simulator::apply_volume_control(Positions& x) {
   }
 }
 
+void Simulator::follow_rest(Positions& x) const {
+  Vec3 moment = Vec3::Zero();
+  double mass = 0.0;
+  for (int v : outside_vertices_) {
+    const double w = inv_mass_(v);
+    if (!(w > 0.0)) continue;
+    moment += Vec3(x.row(v) - x_.row(v)) / w;
+    mass += 1.0 / w;
+  }
+  if (mass > 0.0) x.rowwise() -= (moment / mass).transpose();
+}
+
+void Simulator::apply_region_contraction(Positions& x) {
+  if (region_caps_.empty()) return;
+  // The same ramp as a target volume's: the regions start and stop sinking gently.
+  const int ramp = std::min(options_.target_ramp_frames, std::max(1, options_.frames / 2));
+  const double t = std::clamp(static_cast<double>(frame_ + 1) / ramp, 0.0, 1.0);
+  const double s = t * t * (3.0 - 2.0 * t);
+  const double ratio = signed_volume(x, faces_) / constraint_rest_volume_;
+  // Vertices held by the last step's contacts stay (see apply_volume_control).
+  Eigen::VectorXd w = inv_mass_;
+  for (std::size_t i = 0; i < held_by_contact_.size(); ++i)
+    if (held_by_contact_[i]) w(static_cast<Eigen::Index>(i)) = 0.0;
+  for (const RegionCap& cap : region_caps_) {
+    const double target = region_cap_target(cap.rest_volume, options_.region_shrink, s, ratio);
+    // One-sided: a region the global contraction has already sunk further is left alone.
+    if (cap_volume(x, cap) > target)
+      project_cap_volume(x, cap, w, target, 1e-12 * cap.rest_volume);
+  }
+}
+
 FrameMetrics Simulator::step() {
   const auto start = std::chrono::steady_clock::now();
   const double dt = options_.dt;
@@ -188,8 +231,10 @@ FrameMetrics Simulator::step() {
   solver_->solve(x_pred_, inv_mass_);
   m.solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
-  // Step 2b: the global volume constraint of a target volume or a stop ratio
-  // (docs/math/volume-control.md).
+  // Step 2b: the regions' cap volumes (the local contraction), then the global volume
+  // constraint of a target volume or a stop ratio (docs/math/volume-control.md), which has the
+  // last word on V.
+  apply_region_contraction(x_pred_);
   apply_volume_control(x_pred_);
   if (!x_pred_.allFinite())
     throw SimulationError("non-finite positions at step " + std::to_string(frame_ + 1));
@@ -200,7 +245,8 @@ FrameMetrics Simulator::step() {
         "blow-up at step " + std::to_string(frame_ + 1) +
         ": a vertex moved more than the whole mesh (bounding-box diagonal) in one step");
   // Step 3: continuous collision detection and response between x^n and x*.
-  const bool volume_control = options_.target_volume > 0.0 || options_.stop_volume_ratio > 0.0;
+  const bool volume_control = options_.target_volume > 0.0 || options_.stop_volume_ratio > 0.0 ||
+                              !region_caps_.empty();
   if (collision_ && volume_control) before_collisions_ = x_pred_;
   if (collision_) collision_->resolve(x_, x_pred_, inv_mass_, m.collision);
   if (collision_ && volume_control) {
@@ -208,6 +254,7 @@ FrameMetrics Simulator::step() {
     for (Eigen::Index i = 0; i < x_.rows(); ++i)
       held_by_contact_[static_cast<std::size_t>(i)] = x_pred_.row(i) != before_collisions_.row(i);
   }
+  if (follow_rest_) follow_rest(x_pred_);
   m.max_displacement = (x_pred_ - x_).rowwise().norm().maxCoeff();
   // Steps 4-5: accept and update velocities; damping removes a fixed fraction of the velocity
   // per step (Mueller et al. 2007, section 3.5 uses a similar global damping).

@@ -3,8 +3,11 @@
 // how far regions sink (issue "Local contraction", items 1-2).
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
+#include "shellcontract/sim/region_volume.hpp"
 #include "support/default_run_case.hpp"
 
 namespace shellcontract {
@@ -46,6 +49,50 @@ TEST(LocalContraction, RegionsSinkMoreAsTheShrinkGrows) {
               << ", rest moved " << r.outside_region_displacement << " (normalized), V/V0 "
               << r.final_volume_ratio << "\n";
   }
+}
+
+TEST(LocalContraction, TopOfRangeSinksTheBumpsDeepAndLocally) {
+  // Issue "Local contraction", item 2: at --region-shrink 1 (the mirror image of each bump) the
+  // centre of every bump sinks by at least 30 % of its radius, with the regions sinking at least
+  // 10x as far as the rest of the shell moves (item 1's locality) and no new self-intersection.
+  const RunResult r = test::bumpy_sphere_contraction(1.0);
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
+  EXPECT_EQ(r.new_intersections, 0);
+  EXPECT_GE(r.region_inward_displacement, 10.0 * r.outside_region_displacement)
+      << "sink " << r.region_inward_displacement << ", rest " << r.outside_region_displacement;
+  const Mesh input = read_input_mesh(std::string(test::MESH_DIR) + "/bumpy_sphere.off");
+  const Positions rest = positions_from_mesh(input);
+  const Faces faces = faces_array(input);
+  Positions normal = Positions::Zero(rest.rows(), 3);
+  for (Eigen::Index j = 0; j < faces.rows(); ++j) {
+    const Vec3 a = rest.row(faces(j, 0)), b = rest.row(faces(j, 1)), c = rest.row(faces(j, 2));
+    for (int k = 0; k < 3; ++k) normal.row(faces(j, k)) += (b - a).cross(c - a).transpose();
+  }
+  std::ifstream in(std::string(test::MESH_DIR) + "/bumpy_sphere.bumps.txt");
+  int bumps = 0;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream ids(line);
+    std::vector<int> region;
+    for (int f; ids >> f;) region.push_back(f);
+    if (region.empty()) continue;
+    ++bumps;
+    const RegionCap cap = make_region_cap(faces, region);
+    Vec3 c = Vec3::Zero(), axis = Vec3::Zero();
+    for (int k : cap.rim) c += Vec3(rest.row(cap.vertices[static_cast<std::size_t>(k)]));
+    c /= static_cast<double>(cap.rim.size());
+    for (int v : cap.vertices) axis += Vec3(normal.row(v));
+    axis.normalize();
+    double radius = 0.0;
+    for (int k : cap.rim) radius += (Vec3(rest.row(cap.vertices[static_cast<std::size_t>(k)])) - c).norm();
+    radius /= static_cast<double>(cap.rim.size());
+    int apex = cap.vertices.front();
+    for (int v : cap.vertices)
+      if ((Vec3(rest.row(v)) - c).dot(axis) > (Vec3(rest.row(apex)) - c).dot(axis)) apex = v;
+    const double sink =
+        -(Vec3(r.positions.row(apex)) - Vec3(rest.row(apex))).dot(Vec3(normal.row(apex)).normalized());
+    EXPECT_GE(sink, 0.3 * radius) << "bump " << bumps << ": centre sink " << sink << ", radius " << radius;
+  }
+  EXPECT_EQ(bumps, 3);
 }
 
 }  // namespace

@@ -16,14 +16,19 @@ namespace shellcontract {
 /// isometric: the paper's flat-rest model (math-spec 8.2); dihedral: rest-aware (8.3).
 enum class BendingModel { Isometric, Dihedral, None };
 
-/// The inward term of the anisotropic regions: the paper's k_A inside the E_A projection
-/// (math-spec 9.3; PBD only, in XPBD it becomes Force), a local extra pressure P_A on the region
-/// faces, f_i = -(P_A/6) sum N_j, applied in the prediction (math-spec 9.2 R: a real force with an
-/// energy, momentum-consistent, independent of the mesh resolution), or nothing.
-enum class InwardTerm { Projection, Force, None };
+/// The local contraction's mechanism on the regions: Volume (default) drives each region's cap
+/// volume down to a target set by region_shrink and holds it there (region_volume.hpp,
+/// docs/math/local-contraction.md): the region sinks a chosen amount and the rest of the shell
+/// is left alone once it is there. Force is the paper's extra pressure P_A on the region faces,
+/// f_i = -(P_A/6) sum N_j, applied in the prediction without net force or torque (math-spec
+/// 9.2 R); it keeps pushing for the whole run, so the sink creeps on and spreads to the rest.
+/// Projection is the paper's k_A inside the E_A projection (math-spec 9.3; PBD only, in XPBD it
+/// becomes Force). None: no inward term.
+enum class InwardTerm { Projection, Force, Volume, None };
 
-/// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): the region
-/// pressure of DEFAULT_REGION_PRESSURE; docs/design/anisotropy.md gives the measurement behind it.
+/// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
+/// Volume mechanism, the regions' caps are driven to 1 - 2 * 0.3 = 0.4 of their rest volume
+/// (relative to the shell's); docs/design/anisotropy.md gives the measurements behind it.
 inline constexpr double DEFAULT_REGION_SHRINK = 0.3;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
@@ -85,8 +90,9 @@ struct SimOptions {
   int target_ramp_frames = DEFAULT_TARGET_RAMP_FRAMES;
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
   AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
-  InwardTerm inward_term = InwardTerm::Force;
-  /// How much the regions shrink, in [0, 1]: the local contraction's strength (region_pressure).
+  InwardTerm inward_term = InwardTerm::Volume;
+  /// How much the regions shrink, in [0, 1]: the local contraction's strength (region_cap_target
+  /// for InwardTerm::Volume, region_pressure for InwardTerm::Force).
   double region_shrink = DEFAULT_REGION_SHRINK;
   /// Continuous collision detection and response (paper section 4). On by default: users expect
   /// a result that never passes through itself (design.md).

@@ -13,6 +13,7 @@
 #include "shellcontract/mesh/surface_mesh.hpp"
 #include "shellcontract/pbd/solver.hpp"
 #include "shellcontract/sim/config.hpp"
+#include "shellcontract/sim/region_volume.hpp"
 #include "shellcontract/sim/rest_state.hpp"
 
 namespace shellcontract {
@@ -82,6 +83,9 @@ class Simulator {
   /// regions and outside the one-ring band around them (normalized units; 0 when there are no
   /// regions). region_inward_displacement() over it is the local contraction's locality.
   double outside_region_displacement() const;
+  /// Regions the Volume local contraction leaves alone because they are flat or dented at rest
+  /// (no cap to shrink).
+  int regions_without_cap() const { return regions_without_cap_; }
   const SimOptions& options() const { return options_; }
   /// Energies at the current positions.
   ConstraintEnergies energies() const { return solver_->energies(x_); }
@@ -93,6 +97,11 @@ class Simulator {
  private:
   /// Projects x onto the volume of a target-volume run, or onto the stop ratio at its crossing.
   void apply_volume_control(Positions& x);
+  /// Projects each region's cap volume below its target of this frame (InwardTerm::Volume).
+  void apply_region_contraction(Positions& x);
+  /// Moves x by minus the mass-weighted mean displacement of the outside vertices in this step
+  /// (a Galilean change of frame: no internal force, contact or shape changes).
+  void follow_rest(Positions& x) const;
 
   SimOptions options_;
   std::unique_ptr<Mesh> mesh_;
@@ -102,6 +111,12 @@ class Simulator {
   Faces faces_;
   Faces inward_faces_;      ///< anisotropic faces that get the local extra pressure
   Positions region_force_;  ///< its forces (buffer)
+  std::vector<RegionCap> region_caps_;  ///< InwardTerm::Volume: the regions with a cap to shrink
+  int regions_without_cap_ = 0;         ///< regions left alone: flat or dented at rest
+  /// A local contraction acts (caps or region force): the frame follows the rest of the shell.
+  /// A free shell whose regions sink in recoils as a whole (its centre of mass stays), which on
+  /// bumpy_sphere was nearly all of the rest's displacement (docs/math/local-contraction.md).
+  bool follow_rest_ = false;
   Eigen::VectorXd inv_mass_;
   std::unique_ptr<ConstraintSolver> solver_;
   std::unique_ptr<SelfCollision> collision_;

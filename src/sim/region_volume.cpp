@@ -1,0 +1,108 @@
+#include "shellcontract/sim/region_volume.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <utility>
+
+namespace shellcontract {
+namespace {
+
+Vec3 rim_centroid(const Positions& x, const RegionCap& cap) {
+  Vec3 c = Vec3::Zero();
+  if (cap.rim.empty()) return c;  // no rim: the volume does not depend on c
+  for (int r : cap.rim) c += Vec3(x.row(cap.vertices[static_cast<std::size_t>(r)]));
+  return c / static_cast<double>(cap.rim.size());
+}
+
+}  // namespace
+
+RegionCap make_region_cap(const Faces& faces, const std::vector<int>& region_faces) {
+  RegionCap cap;
+  std::vector<int> kept;
+  for (int f : region_faces)
+    if (f >= 0 && f < faces.rows()) kept.push_back(f);
+  std::sort(kept.begin(), kept.end());
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  for (int f : kept)
+    for (int k = 0; k < 3; ++k) cap.vertices.push_back(faces(f, k));
+  std::sort(cap.vertices.begin(), cap.vertices.end());
+  cap.vertices.erase(std::unique(cap.vertices.begin(), cap.vertices.end()), cap.vertices.end());
+  auto local = [&](int v) {
+    return static_cast<int>(std::lower_bound(cap.vertices.begin(), cap.vertices.end(), v) -
+                            cap.vertices.begin());
+  };
+  cap.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
+  // An undirected edge used by one region face is on the rim.
+  std::map<std::pair<int, int>, int> uses;
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int a = local(faces(kept[i], k)), b = local(faces(kept[i], (k + 1) % 3));
+      cap.faces(static_cast<Eigen::Index>(i), k) = a;
+      ++uses[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<char> on_rim(cap.vertices.size(), 0);
+  for (const auto& [edge, count] : uses)
+    if (count == 1) on_rim[static_cast<std::size_t>(edge.first)] =
+                        on_rim[static_cast<std::size_t>(edge.second)] = 1;
+  for (std::size_t i = 0; i < on_rim.size(); ++i)
+    if (on_rim[i]) cap.rim.push_back(static_cast<int>(i));
+  return cap;
+}
+
+double cap_volume(const Positions& x, const RegionCap& cap) {
+  const Vec3 c = rim_centroid(x, cap);
+  auto corner = [&](Eigen::Index j, int k) {
+    return Vec3(Vec3(x.row(cap.vertices[static_cast<std::size_t>(cap.faces(j, k))])) - c);
+  };
+  double v = 0.0;
+  for (Eigen::Index j = 0; j < cap.faces.rows(); ++j)
+    v += corner(j, 0).dot(corner(j, 1).cross(corner(j, 2)));
+  return v / 6.0;
+}
+
+void cap_volume_gradient(const Positions& x, const RegionCap& cap, Positions& g) {
+  const Vec3 c = rim_centroid(x, cap);
+  g.setZero(static_cast<Eigen::Index>(cap.vertices.size()), 3);
+  auto corner = [&](Eigen::Index j, int k) {
+    return Vec3(Vec3(x.row(cap.vertices[static_cast<std::size_t>(cap.faces(j, k))])) - c);
+  };
+  for (Eigen::Index j = 0; j < cap.faces.rows(); ++j) {
+    const Vec3 a = corner(j, 0), b = corner(j, 1), d = corner(j, 2);
+    g.row(cap.faces(j, 0)) += b.cross(d).transpose() / 6.0;
+    g.row(cap.faces(j, 1)) += d.cross(a).transpose() / 6.0;
+    g.row(cap.faces(j, 2)) += a.cross(b).transpose() / 6.0;
+  }
+  if (cap.rim.empty()) return;
+  // dV/dc = -(sum of the corners' terms) (translation invariance), and dc/dx_r = I / #rim.
+  const Eigen::RowVector3d share = -g.colwise().sum() / static_cast<double>(cap.rim.size());
+  for (int r : cap.rim) g.row(r) += share;
+}
+
+int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w, double target,
+                       double tolerance, int max_steps) {
+  Positions g;
+  int steps = 0;
+  for (; steps < max_steps; ++steps) {
+    const double c = cap_volume(x, cap) - target;
+    if (std::abs(c) <= tolerance) break;
+    cap_volume_gradient(x, cap, g);
+    double denominator = 0.0;
+    for (std::size_t i = 0; i < cap.vertices.size(); ++i)
+      denominator += w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i)).squaredNorm();
+    // No movable gradient (every vertex held, or a collapsed region): nothing can move V.
+    if (!(denominator > 0.0) || !std::isfinite(denominator)) break;
+    const double lambda = c / denominator;
+    for (std::size_t i = 0; i < cap.vertices.size(); ++i)
+      x.row(cap.vertices[i]) -= lambda * w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i));
+  }
+  return steps;
+}
+
+double region_cap_target(double rest_volume, double shrink, double s, double volume_ratio) {
+  // Mirror image of the scaled cap at most: beyond it the region would have to stretch.
+  return rest_volume *
+         std::max(volume_ratio - 2.0 * shrink * std::clamp(s, 0.0, 1.0), -volume_ratio);
+}
+
+}  // namespace shellcontract

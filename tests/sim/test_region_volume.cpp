@@ -1,0 +1,162 @@
+// The local contraction's cap-volume constraint (sim/region_volume.hpp): the cap volume against
+// closed forms, its gradient against finite differences, and the projection's invariants.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "shellcontract/sim/region_volume.hpp"
+#include "shellcontract/sim/volume_constraint.hpp"
+#include "support/mesh_fixtures.hpp"
+#include "support/random_geometry.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// A square pyramid: the rim (+-1, +-1, 0) counter-clockwise from above and the apex (0, 0, h);
+/// its four faces face outward (up and away from the axis).
+test::TriMesh pyramid(double h) {
+  test::TriMesh m;
+  m.x.resize(5, 3);
+  m.x << 1, -1, 0, 1, 1, 0, -1, 1, 0, -1, -1, 0, 0, 0, h;
+  m.faces.resize(4, 3);
+  m.faces << 0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4;
+  return m;
+}
+
+std::vector<int> all_faces(const Faces& f) {
+  std::vector<int> ids(static_cast<std::size_t>(f.rows()));
+  for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = static_cast<int>(i);
+  return ids;
+}
+
+/// The faces of an icosphere with a corner above z = z0 (an open cap), positions perturbed.
+struct CapScene {
+  test::TriMesh m;
+  std::vector<int> region;
+};
+
+CapScene cap_scene(double z0, unsigned seed) {
+  std::mt19937 rng(seed);
+  CapScene s{test::icosphere(2, 1.0), {}};
+  for (Eigen::Index i = 0; i < s.m.x.rows(); ++i)
+    s.m.x.row(i) += 0.02 * test::random_vec3(rng).transpose();
+  for (Eigen::Index j = 0; j < s.m.faces.rows(); ++j)
+    for (int k = 0; k < 3; ++k)
+      if (s.m.x(s.m.faces(j, k), 2) > z0) {
+        s.region.push_back(static_cast<int>(j));
+        break;
+      }
+  return s;
+}
+
+TEST(RegionVolume, PyramidCapIsTheConeOverItsRim) {
+  for (double h : {0.7, 0.0, -0.7}) {
+    const test::TriMesh m = pyramid(h);
+    const RegionCap cap = make_region_cap(m.faces, all_faces(m.faces));
+    EXPECT_EQ(cap.rim.size(), 4u);
+    // Base area 4, height h: 4h/3 (> 0 bump, 0 flat, < 0 dent).
+    EXPECT_NEAR(cap_volume(m.x, cap), 4.0 * h / 3.0, 1e-15) << "h " << h;
+  }
+}
+
+TEST(RegionVolume, ARegionWithoutRimIsTheEnclosedVolume) {
+  const test::TriMesh m = test::icosphere(2, 1.3);
+  const RegionCap cap = make_region_cap(m.faces, all_faces(m.faces));
+  EXPECT_TRUE(cap.rim.empty());
+  EXPECT_NEAR(cap_volume(m.x, cap), signed_volume(m.x, m.faces), 1e-13);
+}
+
+TEST(RegionVolume, RimIsWhereRegionAndRestMeet) {
+  const CapScene s = cap_scene(0.5, 1);
+  const RegionCap cap = make_region_cap(s.m.faces, s.region);
+  // On a closed manifold mesh a region vertex is on the rim iff it also has a face outside.
+  std::vector<char> in(static_cast<std::size_t>(s.m.faces.rows()), 0);
+  for (int f : s.region) in[static_cast<std::size_t>(f)] = 1;
+  std::vector<char> touches_region(static_cast<std::size_t>(s.m.x.rows()), 0), touches_rest = touches_region;
+  for (Eigen::Index j = 0; j < s.m.faces.rows(); ++j)
+    for (int k = 0; k < 3; ++k)
+      (in[static_cast<std::size_t>(j)] ? touches_region : touches_rest)[s.m.faces(j, k)] = 1;
+  std::vector<int> want;
+  for (std::size_t v = 0; v < touches_region.size(); ++v)
+    if (touches_region[v] && touches_rest[v]) want.push_back(static_cast<int>(v));
+  std::vector<int> got;
+  for (int r : cap.rim) got.push_back(cap.vertices[static_cast<std::size_t>(r)]);
+  EXPECT_FALSE(want.empty());
+  EXPECT_EQ(got, want);
+}
+
+TEST(RegionVolume, GradientMatchesCentralDifferences) {
+  const CapScene s = cap_scene(0.3, 2);
+  const RegionCap cap = make_region_cap(s.m.faces, s.region);
+  Positions g;
+  cap_volume_gradient(s.m.x, cap, g);
+  const double h = 1e-6;
+  double worst = 0.0;
+  for (std::size_t i = 0; i < cap.vertices.size(); ++i)
+    for (int d = 0; d < 3; ++d) {
+      Positions xp = s.m.x, xm = s.m.x;
+      xp(cap.vertices[i], d) += h;
+      xm(cap.vertices[i], d) -= h;
+      const double fd = (cap_volume(xp, cap) - cap_volume(xm, cap)) / (2.0 * h);
+      worst = std::max(worst, std::abs(fd - g(static_cast<Eigen::Index>(i), d)));
+    }
+  // V is cubic: the central difference's error is h^2 times third derivatives of order 1.
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(g.norm(), 0.1);
+}
+
+TEST(RegionVolume, RigidMotionKeepsTheVolumeAndTheGradientHasNoNetPart) {
+  std::mt19937 rng(5);
+  const CapScene s = cap_scene(0.4, 3);
+  const RegionCap cap = make_region_cap(s.m.faces, s.region);
+  const Mat3 R = test::random_rotation(rng);
+  const Vec3 t = test::random_vec3(rng, 3.0);
+  const Positions moved = (s.m.x * R.transpose()).rowwise() + t.transpose();
+  EXPECT_NEAR(cap_volume(moved, cap), cap_volume(s.m.x, cap), 1e-13);
+  Positions g;
+  cap_volume_gradient(s.m.x, cap, g);
+  EXPECT_LT(g.colwise().sum().norm(), 1e-14);
+}
+
+TEST(RegionVolume, ProjectionReachesTheTargetAndMovesNoCentreOfMass) {
+  std::mt19937 rng(7);
+  const CapScene s = cap_scene(0.4, 4);
+  RegionCap cap = make_region_cap(s.m.faces, s.region);
+  cap.rest_volume = cap_volume(s.m.x, cap);
+  ASSERT_GT(cap.rest_volume, 0.0);
+  Eigen::VectorXd w(s.m.x.rows());
+  for (Eigen::Index i = 0; i < w.size(); ++i) w(i) = std::uniform_real_distribution<>(0.5, 2.0)(rng);
+  Positions x = s.m.x;
+  const double target = region_cap_target(cap.rest_volume, 0.3, 1.0, 1.0);
+  EXPECT_NEAR(target, 0.4 * cap.rest_volume, 1e-15);
+  project_cap_volume(x, cap, w, target, 1e-13);
+  EXPECT_NEAR(cap_volume(x, cap), target, 1e-13);
+  Vec3 moment = Vec3::Zero();  // sum of m_i dx_i: the centre of mass's displacement times M
+  for (Eigen::Index i = 0; i < x.rows(); ++i) moment += Vec3(x.row(i) - s.m.x.row(i)) / w(i);
+  EXPECT_LT(moment.norm(), 1e-14);
+  EXPECT_GT((x - s.m.x).norm(), 1e-3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    if (!std::binary_search(cap.vertices.begin(), cap.vertices.end(), static_cast<int>(i))) {
+      EXPECT_EQ(x.row(i), s.m.x.row(i)) << "vertex " << i << " is not in the region";
+    }
+  }
+  // A held vertex (w = 0, in contact) stays; the others still reach the target.
+  w(cap.vertices[0]) = 0.0;
+  x = s.m.x;
+  project_cap_volume(x, cap, w, target, 1e-13);
+  EXPECT_NEAR(cap_volume(x, cap), target, 1e-13);
+  EXPECT_EQ(x.row(cap.vertices[0]), s.m.x.row(cap.vertices[0]));
+}
+
+TEST(RegionVolume, TargetGoesFromRestThroughFlatToMirror) {
+  EXPECT_DOUBLE_EQ(region_cap_target(2.0, 0.8, 0.0, 1.0), 2.0);   // ramp not started
+  EXPECT_DOUBLE_EQ(region_cap_target(2.0, 0.5, 1.0, 1.0), 0.0);   // flat
+  EXPECT_DOUBLE_EQ(region_cap_target(2.0, 1.0, 1.0, 1.0), -2.0);  // mirror image
+  EXPECT_DOUBLE_EQ(region_cap_target(2.0, 0.0, 1.0, 0.5), 1.0);   // off: the shell's share only
+  // A contracted shell: 2 S of the rest cap more than the shell's share, down to its mirror.
+  EXPECT_DOUBLE_EQ(region_cap_target(2.0, 0.1, 1.0, 0.5), 0.6);
+  EXPECT_DOUBLE_EQ(region_cap_target(2.0, 1.0, 1.0, 0.5), -1.0);
+}
+
+}  // namespace
+}  // namespace shellcontract
