@@ -6,35 +6,53 @@ namespace shellcontract {
 namespace {
 constexpr double PI = 3.14159265358979323846;
 
-/// A face of the hinge counts as collapsed when |N| < 1e-12 |e0|^2 (math-spec 11).
-bool collapsed(const Vec3& N, double edge_sq) { return !(N.norm() >= 1e-12 * edge_sq) || edge_sq <= 0.0; }
+/// The hinge's edge and unnormalized face normals, shared by the angle and its gradient.
+struct Hinge {
+  Vec3 e, NA, NB;
+  double e_sq, a_sq, b_sq;
+};
+
+/// False when a face of the hinge is collapsed: |N| < 1e-12 |e0|^2 (math-spec 11), compared in
+/// squares (no square root; a NaN still counts as collapsed).
+bool hinge(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3, Hinge& h) {
+  h.e = x1 - x0;
+  h.NA = h.e.cross(x2 - x0);
+  h.NB = (x0 - x1).cross(x3 - x1);
+  h.e_sq = h.e.squaredNorm();
+  h.a_sq = h.NA.squaredNorm();
+  h.b_sq = h.NB.squaredNorm();
+  const double floor_sq = 1e-24 * h.e_sq * h.e_sq;
+  return h.e_sq > 0.0 && h.a_sq >= floor_sq && h.b_sq >= floor_sq;
+}
+
+/// theta = atan2((nA x nB) . e_hat, nA . nB) with the normals left unnormalized: atan2 takes the
+/// same angle from both arguments scaled by 1 / (|NA| |NB|) > 0. Two normalizations fewer than
+/// the textbook form, in the solver's inner loop (BM_DihedralBendingPbd).
+double angle(const Hinge& h, const Vec3& e_hat) {
+  return std::atan2(h.NA.cross(h.NB).dot(e_hat), h.NA.dot(h.NB));
+}
 }  // namespace
 
 bool dihedral_angle(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
                     double& theta) {
-  const Vec3 e = x1 - x0;
-  const Vec3 NA = e.cross(x2 - x0);
-  const Vec3 NB = (x0 - x1).cross(x3 - x1);
-  const double e_sq = e.squaredNorm();
+  Hinge h;
   theta = 0.0;
-  if (collapsed(NA, e_sq) || collapsed(NB, e_sq)) return false;
-  const Vec3 nA = NA.normalized();
-  const Vec3 nB = NB.normalized();
-  theta = std::atan2(nA.cross(nB).dot(e / std::sqrt(e_sq)), nA.dot(nB));
+  if (!hinge(x0, x1, x2, x3, h)) return false;
+  theta = angle(h, h.e / std::sqrt(h.e_sq));
   return true;
 }
 
 bool dihedral_angle_gradient(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
                              double& theta, std::array<Vec3, 4>& grad) {
   grad.fill(Vec3::Zero());
-  if (!dihedral_angle(x0, x1, x2, x3, theta)) return false;
-  const Vec3 e = x1 - x0;
-  const double L = e.norm();
-  const Vec3 e_hat = e / L;
-  const Vec3 NA = e.cross(x2 - x0);
-  const Vec3 NB = (x0 - x1).cross(x3 - x1);
-  const Vec3 aA = NA / NA.squaredNorm();
-  const Vec3 aB = NB / NB.squaredNorm();
+  Hinge h;
+  theta = 0.0;
+  if (!hinge(x0, x1, x2, x3, h)) return false;
+  const double L = std::sqrt(h.e_sq);
+  const Vec3 e_hat = h.e / L;
+  theta = angle(h, e_hat);
+  const Vec3 aA = h.NA / h.a_sq;
+  const Vec3 aB = h.NB / h.b_sq;
   // math-spec 8.3 (Bridson et al. 2003), checked by finite differences in the tests.
   grad[2] = -L * aA;
   grad[3] = -L * aB;
