@@ -64,6 +64,8 @@ class Simulator {
   const Mesh& rest_mesh() const { return *mesh_; }
   const Normalization& normalization() const { return normalization_; }
   const RestStateReport& rest_report() const { return rest_report_; }
+  /// Vertices whose mass scale_masses_for_pressure raised (sim/mass_scaling.hpp).
+  std::size_t mass_scaled_vertices() const { return mass_scaled_vertices_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
   /// Face pairs that already intersect in the input (the validation baseline).
   std::size_t input_intersections() const;
@@ -103,6 +105,7 @@ class Simulator {
   Faces inward_faces_;      ///< anisotropic faces that get the local extra pressure
   Positions region_force_;  ///< its forces (buffer)
   Eigen::VectorXd inv_mass_;
+  std::size_t mass_scaled_vertices_ = 0;
   std::unique_ptr<ConstraintSolver> solver_;
   std::unique_ptr<SelfCollision> collision_;
   /// Input's intersecting face pairs, computed on first use (validation only).
