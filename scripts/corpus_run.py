@@ -163,6 +163,21 @@ def main():
     repaired = sum(r["repaired"] for r in rows)
     ran = [r for r in rows if r["run"] != ""]
     ok = sum(1 for r in ran if r["run"] == 0)
+
+    def number(v):
+        try:
+            return float(v)
+        except (TypeError, ValueError):
+            return None
+
+    # Issue 30 item 6's property: the run ends (exit 0), right side out (V/V0 > 0), and no more
+    # self-intersecting pairs after it than before.
+    blowups = [r["mesh"] for r in ran if str(r["run"]).startswith("3")]
+    timeouts = [r["mesh"] for r in ran if r["run"] == "timeout"]
+    inside_out = [r["mesh"] for r in ran if (number(r["ratio"]) or 0.0) < 0.0]
+    si_growth = [r["mesh"] for r in ran if number(r["si_after"]) is not None and number(r["si_before"]) is not None
+                 and number(r["si_after"]) > number(r["si_before"])]
+    refused = [r for r in rows if not r["usable"] and not r["repaired"]]
     lines = [
         "# CGAL demo corpus: check, repair and a default run",
         "",
@@ -175,6 +190,12 @@ def main():
         f"- runs (`run --validate end`, {args.frames} frames, timeout {args.run_timeout:.0f} s): "
         f"{len(ran)}, exit 0: {ok}; others: "
         + (", ".join(f"{r['mesh']} {r['run']}" for r in ran if r["run"] != 0) or "none") + ".",
+        f"- refused even after `repair`: {len(refused)}; blow-ups (exit 3): {len(blowups)}"
+        + (f" ({', '.join(blowups)})" if blowups else "") + f"; cut off by the timeout: {len(timeouts)}"
+        + (f" ({', '.join(timeouts)})" if timeouts else "") + f"; inside out at the end (V/V0 < 0): "
+        f"{len(inside_out)}" + (f" ({', '.join(inside_out)})" if inside_out else "")
+        + f"; more self-intersecting pairs after the run than before: {len(si_growth)}"
+        + (f" ({', '.join(si_growth)})" if si_growth else "") + ".",
         "- self-intersections: face pairs of the run's input (`before`) and of its result (`after`), "
         "by `check`; time: the run's `wall_seconds` (summary), one thread.",
         "",
@@ -186,7 +207,7 @@ def main():
                      .format(**{k: str(v).replace("|", "/") for k, v in r.items()}))
     with open(args.out, "w") as f:
         f.write("\n".join(lines) + "\n")
-    print("\n".join(lines[:7]))
+    print("\n".join(lines[:8]))
 
 
 if __name__ == "__main__":

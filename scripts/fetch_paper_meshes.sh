@@ -2,7 +2,9 @@
 # Extracts the paper's models from Debian's libcgal-demo data into data/ at the repository root
 # (git-ignored, never committed): data/meshes/{eight,hand,elk,bear}.off and
 # data/points_3/kitten.xyz, and the demo meshes the tests use (dragknob.off, spool.off: the long
-# default-run tests; camel.off, elephant-with-holes.off: tests/scenario/test_corpus_meshes.cpp).
+# default-run tests; camel.off, elephant-with-holes.off, mannequin-devil.off, fold.off, horizons.off,
+# cylinder_locally_refined.off, polygon_mesh.off, b9_mesh.off: the corpus tests of issue 30 in
+# tests/scenario/test_corpus_meshes.cpp and tests/long/test_corpus_long.cpp).
 # Installs libcgal-demo with apt-get if it is missing (needs root or
 # sudo). Idempotent: files already present with the same content are left alone.
 #
@@ -11,7 +13,9 @@ set -eu
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 MEMBERS="data/meshes/eight.off data/meshes/hand.off data/meshes/elk.off data/meshes/bear.off data/points_3/kitten.xyz
-         data/meshes/dragknob.off data/meshes/spool.off data/meshes/camel.off data/meshes/elephant-with-holes.off"
+         data/meshes/dragknob.off data/meshes/spool.off data/meshes/camel.off data/meshes/elephant-with-holes.off
+         data/meshes/mannequin-devil.off data/meshes/fold.off data/meshes/horizons.off
+         data/meshes/cylinder_locally_refined.off data/meshes/polygon_mesh.off data/meshes/b9_mesh.off"
 
 as_root() {
   if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi

@@ -9,6 +9,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/sim/local_contraction.hpp"
+#include "shellcontract/sim/mass_scaling.hpp"
 #include "shellcontract/sim/region_volume.hpp"
 #include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
@@ -59,6 +60,9 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   rest_report_ = build_rest_state(*mesh_, options_.mass, options_.density);
   faces_ = faces_array(*mesh_);
   inv_mass_ = inverse_masses(*mesh_);
+  // The explicit pressure needs a minimum mass per vertex at this dt (sim/mass_scaling.hpp).
+  mass_scaled_vertices_ =
+      scale_masses_for_pressure(x_, faces_, options_.pressure, options_.dt, inv_mass_);
   ConstraintSet constraints = pack_constraints(*mesh_, options_.bending);
   if (options_.solver.aniso != AnisoKind::None) {
     AnisotropyOptions a = options_.anisotropy;

@@ -65,6 +65,8 @@ class Simulator {
   const Mesh& rest_mesh() const { return *mesh_; }
   const Normalization& normalization() const { return normalization_; }
   const RestStateReport& rest_report() const { return rest_report_; }
+  /// Vertices whose mass scale_masses_for_pressure raised (sim/mass_scaling.hpp).
+  std::size_t mass_scaled_vertices() const { return mass_scaled_vertices_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
   /// Face pairs that already intersect in the input (the validation baseline).
   std::size_t input_intersections() const;
@@ -118,6 +120,7 @@ class Simulator {
   /// bumpy_sphere was nearly all of the rest's displacement (docs/math/local-contraction.md).
   bool follow_rest_ = false;
   Eigen::VectorXd inv_mass_;
+  std::size_t mass_scaled_vertices_ = 0;
   std::unique_ptr<ConstraintSolver> solver_;
   std::unique_ptr<SelfCollision> collision_;
   /// Input's intersecting face pairs, computed on first use (validation only).

@@ -1,0 +1,44 @@
+#include "shellcontract/sim/mass_scaling.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shellcontract {
+
+std::size_t scale_masses_for_pressure(const Positions& x, const Faces& faces, double pressure,
+                                      double dt, Eigen::VectorXd& inv_mass) {
+  const double P = std::abs(pressure);
+  if (!(P > 0.0) || !(dt > 0.0)) return 0;
+  // Perimeter of each vertex's one-ring: the edge opposite the vertex in each of its faces.
+  // d f_i / d x_k = P / 6 [skew(...)] sums, over the ring, to at most P / 3 times it.
+  Eigen::VectorXd ring = Eigen::VectorXd::Zero(x.rows());
+  for (Eigen::Index j = 0; j < faces.rows(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(j, (k + 1) % 3), b = faces(j, (k + 2) % 3);
+      ring(faces(j, k)) += (x.row(a) - x.row(b)).norm();
+    }
+  // The scaling evens out the light vertices; it never makes one heavier than the mean vertex,
+  // so a pressure or time step far too large for the whole mesh still ends in a reported blow-up.
+  double mean_mass = 0.0;
+  std::size_t massive = 0;
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (inv_mass(i) > 0.0) {
+      mean_mass += 1.0 / inv_mass(i);
+      ++massive;
+    }
+  if (massive == 0) return 0;
+  mean_mass /= static_cast<double>(massive);
+  const double s = dt / MAX_PRESSURE_OMEGA_DT;
+  const double factor = s * s * P / 3.0;
+  std::size_t raised = 0;
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const double min_mass = std::min(factor * ring(i), mean_mass);
+    if (inv_mass(i) > 0.0 && inv_mass(i) * min_mass > 1.0) {
+      inv_mass(i) = 1.0 / min_mass;
+      ++raised;
+    }
+  }
+  return raised;
+}
+
+}  // namespace shellcontract
