@@ -6,13 +6,17 @@
 #include <cctype>
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <locale>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
@@ -36,9 +40,35 @@ std::string lower_extension(const std::string& path) {
 }
 // ------------------------------------------------------------------------------------ writing
 
+/// The stream's double formatting for the writers. CGAL's writers print every coordinate with
+/// operator<<, and libstdc++'s num_put formats a double through printf, several times slower
+/// than std::to_chars, which gives the same characters (C++17: general format with a precision
+/// is printf's %g in the C locale). A frame sequence writes a file per frame, so this matters
+/// (run --export-every 1 on bear); anything but plain default formatting goes to the base.
+class ToCharsDoublePut : public std::num_put<char> {
+ protected:
+  iter_type do_put(iter_type out, std::ios_base& str, char_type fill, double v) const override {
+    if ((str.flags() & (std::ios_base::floatfield | std::ios_base::showpoint | std::ios_base::showpos |
+                        std::ios_base::uppercase)) != 0 ||
+        str.width() > 0)
+      return std::num_put<char>::do_put(out, str, fill, v);
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general,
+                                 static_cast<int>(str.precision()));
+    return std::copy(buf, r.ptr, out);
+  }
+};
+
 /// Writes through `fill` into a temporary file next to `path`, then renames it over `path`.
+/// `fill` writes into memory first: CGAL's writers end every line with std::endl, and a flush
+/// per line to a file costs a system call each (one write per file instead). A throwing `fill`
+/// leaves no file behind.
 void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
   static std::atomic<unsigned> counter{0};
+  std::ostringstream text;
+  text.imbue(std::locale(text.getloc(), new ToCharsDoublePut));  // the locale owns the facet
+  fill(text);
+  const std::string bytes = std::move(text).str();
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   // Same folder, so that rename is atomic (same file system); hidden, pid- and counter-unique so
@@ -48,13 +78,7 @@ void write_atomic(const std::string& path, const std::function<void(std::ostream
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out)
       throw UsageError("cannot write '" + path + "': cannot create a file in folder '" + dir.string() + "' (" + std::strerror(errno) + ")");
-    try {
-      fill(out);
-    } catch (...) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw;
-    }
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.flush();
     if (!out) {
       out.close();

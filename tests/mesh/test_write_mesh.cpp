@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <CGAL/IO/Color.h>
+#include <CGAL/IO/OFF.h>
 #include <CGAL/Surface_mesh/IO/PLY.h>
 
 #include <cmath>
@@ -110,6 +111,32 @@ TEST_F(PlyWithProperties, MeshForOutputDropsTheMapsAndKeepsCorners) {
   for (VertexIndex v : out.vertices())
     ASSERT_EQ(out.point(v), Point3(x_(v.idx(), 0), x_(v.idx(), 1), x_(v.idx(), 2)));
   EXPECT_THROW(mesh_for_output(mesh_, x_.topRows(3)), std::invalid_argument);
+}
+
+TEST_F(PlyWithProperties, FilesHoldExactlyWhatCgalWritesAtSeventeenDigits) {
+  // write_atomic formats doubles with to_chars instead of the stream's printf; the bytes must
+  // be those of CGAL's writer on a plain stream at precision 17.
+  Mesh out = mesh_for_output(mesh_, x_);
+  auto H = property::add_map<VertexIndex, double>(out, property::MEAN_CURVATURE);
+  auto P = property::add_map<VertexIndex, float>(out, property::PRESSURE_LOAD);
+  for (VertexIndex v : out.vertices()) {
+    H[v] = -awkward(v.idx()) * 1e-300;  // a subnormal-range exponent too
+    P[v] = static_cast<float>(awkward(v.idx()));
+  }
+  const auto np = CGAL::parameters::stream_precision(17);
+  std::ostringstream expected_ply;
+  ASSERT_TRUE(CGAL::IO::write_PLY(expected_ply, out, "c", np));
+  const std::string ply = temp_file("exact.ply");
+  write_ply_atomic(ply, out, "c");
+  EXPECT_EQ(read_text(ply), expected_ply.str());
+  fs::remove(ply);
+
+  std::ostringstream expected_off;
+  ASSERT_TRUE(CGAL::IO::write_OFF(expected_off, mesh_, np.vertex_point_map(EigenPointMap(x_))));
+  const std::string off = temp_file("exact.off");
+  write_mesh_atomic(off, mesh_, x_);
+  EXPECT_EQ(read_text(off), expected_off.str());
+  fs::remove(off);
 }
 
 }  // namespace
