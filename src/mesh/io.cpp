@@ -325,7 +325,6 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   if (ext == "stl") {
     name.stl = true;
     name.first_use.assign(points.size(), {0, 0});
-    std::vector<char> seen(points.size(), 0);
     for (std::size_t f = polygons.size(); f-- > 0;)
       for (std::size_t k = polygons[f].size(); k-- > 0;)
         if (polygons[f][k] < points.size()) name.first_use[polygons[f][k]] = {f, k};
