@@ -95,14 +95,13 @@ int command_regions(int argc, char** argv) {
 
   try {
     InputReport input_report;
-    const Mesh mesh = read_input_mesh(input, &input_report);
+    Mesh mesh = read_input_mesh(input, &input_report);
     for (const std::string& w : input_report.warnings) std::cerr << "warning: " << w << '\n';
     const Positions x = positions_from_mesh(mesh);
     RegionReport report;
-    const std::vector<int> region = select_spherical_regions(mesh, x, options, &report);
-    const CurvatureField curvature = compute_curvature(mesh, x);
-    write_region_ply(output, mesh, x, region, &curvature);
-    if (!face_list.empty()) write_region_file(face_list, region);
+    mark_spherical_regions(mesh, x, options, &report);  // f:region and the curvature maps
+    write_region_ply(output, mesh, x);
+    if (!face_list.empty()) write_region_file(face_list, stored_regions(mesh));
 
     std::ostringstream out;
     out << std::setprecision(4);

@@ -34,7 +34,7 @@ class ProgressPrinter final : public RunObserver {
  public:
   ProgressPrinter(int frames, bool auto_regions) : frames_(frames), auto_regions_(auto_regions) {}
   void started(const Simulator& sim) override {
-    const std::size_t regions = sim.options().anisotropy.regions.size();
+    const std::size_t regions = sim.region_count();
     if (auto_regions_ && regions > 0)
       std::cerr << "regions: " << regions << " spherical regions selected by curvature\n";
     start_ = last_ = std::chrono::steady_clock::now();

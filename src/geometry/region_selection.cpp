@@ -2,6 +2,7 @@
 // algorithm and the meaning of every threshold).
 #include "shellcontract/geometry/region_selection.hpp"
 
+#include <CGAL/IO/Color.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <boost/property_map/property_map.hpp>
 
@@ -126,18 +127,22 @@ std::string line_error(const std::string& path, std::size_t line, const std::str
   return path + ":" + std::to_string(line) + ": " + what;
 }
 
-}  // namespace
 
-std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
-                                          RegionReport* report) {
+void check_region_options(const RegionOptions& options) {
   if (options.smoothing_rings < 0) throw UsageError("select_spherical_regions: smoothing_rings must be >= 0");
   if (!(options.fit_distance_tolerance >= 0.0) || !(options.fit_normal_tolerance_deg >= 0.0))
     throw UsageError("select_spherical_regions: fit tolerances must be >= 0");
-  const CurvatureField c = compute_curvature(mesh, x);  // checks garbage and sizes
+}
+
+/// Steps 1-4 (header) from the per-vertex H and K (mean_raw, gaussian_raw) and the mixed areas
+/// and angle deficits of c, all computed at x.
+std::vector<int> select_from_curvature(const Mesh& mesh, const Positions& x, const CurvatureField& c,
+                                       const Eigen::VectorXd& mean_raw, const Eigen::VectorXd& gaussian_raw,
+                                       const RegionOptions& options, RegionReport* report) {
   const auto nv = static_cast<Eigen::Index>(mesh.number_of_vertices());
 
   // Step 1: ring averages. H: area-weighted mean; K: total deficit / total mixed area.
-  Eigen::VectorXd H = c.mean, K = c.gaussian;
+  Eigen::VectorXd H = mean_raw, K = gaussian_raw;
   if (options.smoothing_rings > 0) {
     std::vector<std::size_t> mark(static_cast<std::size_t>(nv), 0);
     std::vector<VertexIndex> ring;
@@ -147,7 +152,7 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
       for (VertexIndex w : ring) {
         const auto j = static_cast<Eigen::Index>(w.idx());
         area += c.mixed_area(j);
-        h_area += c.mixed_area(j) * c.mean(j);
+        h_area += c.mixed_area(j) * mean_raw(j);
         deficit += c.angle_deficit(j);
       }
       const auto i = static_cast<Eigen::Index>(v.idx());
@@ -305,6 +310,34 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
   return region;
 }
 
+}  // namespace
+
+std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
+                                          RegionReport* report) {
+  check_region_options(options);
+  const CurvatureField c = compute_curvature(mesh, x);  // checks garbage and sizes
+  return select_from_curvature(mesh, x, c, c.mean, c.gaussian, options, report);
+}
+
+std::size_t mark_spherical_regions(Mesh& mesh, const Positions& x, const RegionOptions& options,
+                                   RegionReport* report) {
+  check_region_options(options);
+  const CurvatureField c = compute_curvature(mesh, x);
+  store_curvature(mesh, c);
+  // H and K as every later reader sees them: from the maps (the mixed areas and deficits that
+  // the ring averages weight them with have no map; nothing else uses them).
+  const auto H_map = property::get_map<VertexIndex, double>(mesh, property::MEAN_CURVATURE);
+  const auto K_map = property::get_map<VertexIndex, double>(mesh, property::GAUSSIAN_CURVATURE);
+  Eigen::VectorXd H(static_cast<Eigen::Index>(mesh.number_of_vertices())), K(H.size());
+  for (VertexIndex v : mesh.vertices()) {
+    H(static_cast<Eigen::Index>(v.idx())) = H_map[v];
+    K(static_cast<Eigen::Index>(v.idx())) = K_map[v];
+  }
+  const std::vector<int> region = select_from_curvature(mesh, x, c, H, K, options, report);
+  store_regions(mesh, region);
+  return regions_from_face_ids(region).size();
+}
+
 void store_regions(Mesh& mesh, const std::vector<int>& region_of_face) {
   if (region_of_face.size() != mesh.number_of_faces() || mesh.has_garbage())
     throw UsageError("store_regions: " + std::to_string(region_of_face.size()) + " ids for " +
@@ -316,6 +349,14 @@ void store_regions(Mesh& mesh, const std::vector<int>& region_of_face) {
     map = property::add_map<FaceIndex, int>(mesh, property::REGION, -1);
   }
   for (FaceIndex f : mesh.faces()) map[f] = region_of_face[f.idx()];
+}
+
+std::vector<int> stored_regions(const Mesh& mesh) {
+  std::vector<int> ids(mesh.number_of_faces(), -1);
+  const auto [map, found] = mesh.property_map<FaceIndex, int>(property::REGION);
+  if (found)
+    for (FaceIndex f : mesh.faces()) ids[f.idx()] = map[f];
+  return ids;
 }
 
 std::vector<std::vector<int>> regions_from_face_ids(const std::vector<int>& region_of_face) {
@@ -412,36 +453,31 @@ std::array<unsigned char, 3> region_colour(int id) {
   return {byte(r), byte(g), byte(b)};
 }
 
-void write_region_ply(const std::string& path, const Mesh& mesh, const Positions& x,
-                      const std::vector<int>& region_of_face, const CurvatureField* curvature) {
-  const std::size_t nv = mesh.number_of_vertices(), nf = mesh.number_of_faces();
-  if (mesh.has_garbage() || static_cast<std::size_t>(x.rows()) != nv || region_of_face.size() != nf ||
-      (curvature && (static_cast<std::size_t>(curvature->mean.size()) != nv ||
-                     static_cast<std::size_t>(curvature->gaussian.size()) != nv)))
-    throw UsageError("write_region_ply: sizes do not match the mesh (" + std::to_string(nv) + " vertices, " +
-                     std::to_string(nf) + " faces)");
-  std::ostringstream out;
-  out << std::setprecision(17);
-  out << "ply\nformat ascii 1.0\ncomment shellcontract regions: face colour = region, grey = none\n"
-      << "element vertex " << nv << "\nproperty double x\nproperty double y\nproperty double z\n";
-  if (curvature) out << "property double mean_curvature\nproperty double gaussian_curvature\n";
-  out << "element face " << nf << "\nproperty list uchar int vertex_indices\n"
-      << "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty int region\nend_header\n";
-  for (std::size_t i = 0; i < nv; ++i) {
-    const auto r = static_cast<Eigen::Index>(i);
-    out << x(r, 0) << ' ' << x(r, 1) << ' ' << x(r, 2);
-    if (curvature) out << ' ' << curvature->mean(r) << ' ' << curvature->gaussian(r);
-    out << '\n';
-  }
-  for (FaceIndex f : mesh.faces()) {
-    std::vector<std::size_t> ids;
-    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) ids.push_back(v.idx());
-    out << ids.size();
-    for (std::size_t id : ids) out << ' ' << id;
+void write_region_ply(const std::string& path, const Mesh& mesh, const Positions& x) {
+  const std::vector<int> region_of_face = stored_regions(mesh);
+  const auto [H_in, has_H] = mesh.property_map<VertexIndex, double>(property::MEAN_CURVATURE);
+  const auto [K_in, has_K] = mesh.property_map<VertexIndex, double>(property::GAUSSIAN_CURVATURE);
+  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
+    throw UsageError("write_region_ply: " + std::to_string(x.rows()) + " positions for " +
+                     std::to_string(mesh.number_of_vertices()) + " vertices");
+  // Attached in the order of the file's columns: colour and id per face, curvature per vertex.
+  Mesh out = mesh_for_output(mesh, x);
+  auto colour = property::add_map<FaceIndex, CGAL::IO::Color>(out, property::FACE_COLOR);
+  auto id = property::add_map<FaceIndex, int>(out, property::REGION, -1);
+  for (FaceIndex f : out.faces()) {
     const auto rgb = region_colour(region_of_face[f.idx()]);
-    out << ' ' << int{rgb[0]} << ' ' << int{rgb[1]} << ' ' << int{rgb[2]} << ' ' << region_of_face[f.idx()] << '\n';
+    colour[f] = CGAL::IO::Color(rgb[0], rgb[1], rgb[2]);
+    id[f] = region_of_face[f.idx()];
   }
-  write_text_atomic(path, out.str());
+  if (has_H && has_K) {
+    auto H = property::add_map<VertexIndex, double>(out, property::MEAN_CURVATURE);
+    auto K = property::add_map<VertexIndex, double>(out, property::GAUSSIAN_CURVATURE);
+    for (VertexIndex v : out.vertices()) {
+      H[v] = H_in[v];
+      K[v] = K_in[v];
+    }
+  }
+  write_ply_atomic(path, out, "shellcontract regions: face colour = region, grey = none");
 }
 
 }  // namespace shellcontract

@@ -5,6 +5,7 @@
 // if both ever move to one shared soup check, this file becomes a thin wrapper.
 #include "shellcontract/mesh/from_arrays.hpp"
 
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 
 #include <algorithm>
@@ -20,7 +21,6 @@
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/normalization.hpp"
-#include "shellcontract/validation/volume.hpp"
 
 namespace shellcontract {
 namespace {
@@ -256,7 +256,11 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
     mesh.set_halfedge(f, h);
   }
   const Positions x = positions_from_mesh(mesh);
-  const double unit_volume = enclosed_volume(mesh, normalize(x, compute_normalization(x)));
+  // read_input_mesh's measure: the PMP::volume call of validation's enclosed_volume, made here
+  // so that mesh/ does not depend on validation/.
+  const Positions unit_x = normalize(x, compute_normalization(x));
+  const double unit_volume =
+      CGAL::Polygon_mesh_processing::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(unit_x)));
   if (reorient && !(unit_volume > 0.0)) {
     std::ostringstream v;
     v << unit_volume;

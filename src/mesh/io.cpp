@@ -4,9 +4,13 @@
 // Reading goes through a polygon soup, which we check ourselves before
 // PMP::polygon_soup_to_polygon_mesh: that function only *asserts* that the soup is a valid
 // polygon mesh, and a failed Euler::add_face in a release build silently yields a null face.
-// Checking the soup also lets every message name the face, the vertex and (for OFF and ascii PLY)
-// the line. The soup keeps the input vertex and face order, which users rely on (textures,
-// per-vertex data); read_input_mesh verifies that it was kept.
+// PMP::is_polygon_soup_a_polygon_mesh would say only yes or no; our checks let every message
+// name the problem, the face, the vertex and (for OFF and ascii PLY) the line, and it stays as
+// the last guard. CGAL does what needs no message: the mesh, its connected components, the
+// volume. PMP::merge_duplicate_polygons_in_polygon_soup and orient_polygon_soup would change a
+// file the user must hear about (`repair` uses them, on request). The soup keeps the input
+// vertex and face order, which users rely on (textures, per-vertex data); read_input_mesh
+// verifies that it was kept.
 //
 // The soup comes from CGAL::IO::read_OFF/OBJ/STL, or from our own PLY reader (ply_reader.cpp:
 // CGAL 5.5's crashes). OFF files are pre-scanned (off_scan.cpp) so that CGAL never sees a count
@@ -16,7 +20,10 @@
 // products of three coordinates).
 #include "shellcontract/mesh/io.hpp"
 
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <array>
@@ -33,12 +40,12 @@
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/normalization.hpp"
 #include "shellcontract/mesh/read_polygon_soup.hpp"
-#include "shellcontract/validation/volume.hpp"
 
 namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
+namespace PMP = CGAL::Polygon_mesh_processing;
 using Polygon = std::vector<std::size_t>;
 
 /// Faces with 2A below this fraction of the squared mean edge length count as zero-area
@@ -139,16 +146,6 @@ std::vector<Polygon> fan_triangulate(const Polygon& p, const std::vector<Point3>
   return {};
 }
 
-struct UnionFind {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::size_t find(std::size_t a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  }
-  void unite(std::size_t a, std::size_t b) { parent[find(a)] = find(b); }
-};
-
 /// Sets each face's halfedge so that vertices_around_face starts at the soup's first corner:
 /// then a written face lists its corners exactly as the input did (per-corner data such as UVs
 /// stay aligned). Also verifies that the conversion kept vertex and face order.
@@ -166,6 +163,157 @@ void align_to_soup(Mesh& mesh, const std::vector<Polygon>& tris) {
   }
 }
 
+/// Duplicate faces (same three vertices in any order) would make a zero-volume double sheet.
+void check_no_duplicate_face(const std::string& path, const std::vector<Polygon>& tris, const Namer& name) {
+  const std::size_t nf = tris.size();
+  std::map<std::array<std::size_t, 3>, std::size_t> seen;
+  for (std::size_t f = 0; f < nf; ++f) {
+    std::array<std::size_t, 3> key{tris[f][0], tris[f][1], tris[f][2]};
+    std::sort(key.begin(), key.end());
+    const auto [it, inserted] = seen.emplace(key, f);
+    if (!inserted)
+      fail(path, "duplicate face", name.face(f) + " has the same corners as " + name.face(it->second));
+  }
+}
+
+/// Edges: each undirected edge must have exactly two faces that traverse it in opposite
+/// directions (closed, manifold, consistently oriented).
+void check_edges(const std::string& path, const std::vector<Polygon>& tris, std::size_t nv, const Namer& name) {
+  const std::size_t nf = tris.size();
+  // One record per half-edge, sorted by undirected edge: the uses of an edge are one run
+  // (a hash map of vectors cost ~0.1 s on bear, an allocation per edge).
+  struct EdgeUse {
+    std::uint64_t key;  // undirected edge
+    std::size_t face;
+    bool forward;  // traversed from the smaller to the larger vertex index
+    bool operator<(const EdgeUse& o) const { return key != o.key ? key < o.key : face < o.face; }
+  };
+  auto key = [nv](std::size_t a, std::size_t b) { return static_cast<std::uint64_t>(std::min(a, b)) * nv + std::max(a, b); };
+  std::vector<EdgeUse> uses_sorted;
+  uses_sorted.reserve(3 * nf);
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
+      uses_sorted.push_back({key(a, b), f, a < b});
+    }
+  std::sort(uses_sorted.begin(), uses_sorted.end());
+  // Report the first problem in face order, so that the message does not depend on the sort.
+  for (std::size_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
+      const auto first = std::lower_bound(uses_sorted.begin(), uses_sorted.end(), EdgeUse{key(a, b), 0, false});
+      std::size_t count = 0;
+      while (first + static_cast<std::ptrdiff_t>(count) != uses_sorted.end() && first[static_cast<std::ptrdiff_t>(count)].key == key(a, b)) ++count;
+      if (count == 2 && first[0].forward != first[1].forward) continue;
+      const std::string edge = name.edge(a, b);
+      if (count == 1)
+        fail(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed");
+      if (count > 2) {
+        std::string fs_list;
+        for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) fs_list += (u ? ", " : "") + std::to_string(first[static_cast<std::ptrdiff_t>(u)].face);
+        fail(path, "non-manifold edge", name.edge(std::min(a, b), std::max(a, b)) + " is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed");
+      }
+      fail(path, "inconsistent orientation", name.face(first[0].face) + " and " + name.face(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
+    }
+}
+
+/// Isolated vertices have no mass and no forces; they would be free degrees of freedom. Checked
+/// after the edges: an open boundary is the more fundamental problem of a mesh with both.
+void check_no_isolated_vertex(const std::string& path, const std::vector<Polygon>& tris, std::size_t nv,
+                               const Namer& name) {
+  std::vector<char> used(nv, 0);
+  for (const Polygon& t : tris)
+    for (std::size_t v : t) used[v] = 1;
+  for (std::size_t v = 0; v < nv; ++v)
+    if (!used[v]) fail(path, "isolated vertex", name.vertex(v) + " is not used by any face");
+}
+
+/// Vertices: the faces around a vertex must form one fan (their link edges one cycle). With
+/// manifold, consistently oriented edges, each link vertex has exactly one successor.
+void check_vertex_fans(const std::string& path, const std::vector<Polygon>& tris, std::size_t nv, const Namer& name) {
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> link(nv);
+  for (const Polygon& t : tris)
+    for (int k = 0; k < 3; ++k) link[t[k]].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
+  for (std::size_t v = 0; v < nv; ++v) {
+    const auto& l = link[v];
+    std::size_t steps = 0, cur = l[0].second;
+    while (cur != l[0].first && steps <= l.size()) {
+      const auto it = std::find_if(l.begin(), l.end(), [cur](const auto& e) { return e.first == cur; });
+      if (it == l.end()) break;  // cannot happen after the edge checks; never dereference end
+      cur = it->second;
+      ++steps;
+    }
+    if (steps + 1 != l.size())
+      fail(path, "non-manifold vertex", name.vertex(v) + ": its " + std::to_string(l.size()) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
+  }
+}
+
+/// Components (PMP::connected_components, numbered in order of their first face) and their
+/// orientation: a component with negative signed volume is inside-out and gets flipped
+/// (swapping corners 1 and 2 keeps corner 0 first). Each component is taken as its own shell;
+/// a nested inner wall of a hollow solid would also be flipped outward (which
+/// PMP::orient_to_bound_a_volume would not do: it orients nested shells inward).
+/// @param mesh   built from tris (components are found on it)
+/// @param unit   the points at a unit bounding-box diagonal; scale = that diagonal (for the message)
+/// @return the number of components; inside-out ones are flipped in tris and named in warnings
+std::size_t orient_components(const Mesh& mesh, std::vector<Polygon>& tris, const std::vector<Point3>& unit,
+                              double scale, std::vector<std::string>& warnings) {
+  const std::size_t nf = tris.size();
+  std::vector<std::size_t> component_face(nf);
+  const std::size_t n_components = PMP::connected_components(mesh, CGAL::make_property_map(component_face));
+  std::vector<double> six_volume(n_components, 0.0);
+  std::vector<Vec3> origin_point(n_components);
+  std::vector<char> has_origin(n_components, 0);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::size_t c = component_face[f];
+    // Measured from a point of the component: the closed-surface sum does not depend on the
+    // origin, and a nearby one avoids cancellation for components far from the centre.
+    if (!has_origin[c]) {
+      origin_point[c] = to_vec(unit[tris[f][0]]);
+      has_origin[c] = 1;
+    }
+    const Vec3 a = to_vec(unit[tris[f][0]]) - origin_point[c];
+    const Vec3 b = to_vec(unit[tris[f][1]]) - origin_point[c];
+    const Vec3 d = to_vec(unit[tris[f][2]]) - origin_point[c];
+    six_volume[c] += a.dot(b.cross(d));
+  }
+  for (std::size_t c = 0; c < n_components; ++c) {
+    if (six_volume[c] >= 0.0) continue;
+    std::size_t first = nf, count = 0;
+    for (std::size_t f = 0; f < nf; ++f)
+      if (component_face[f] == c) {
+        std::swap(tris[f][1], tris[f][2]);
+        first = std::min(first, f);
+        ++count;
+      }
+    std::ostringstream w;
+    w << "component " << c << " (" << count << " faces, starting at face " << first
+      << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
+      << "); its faces were flipped";
+    warnings.push_back(w.str());
+  }
+  return n_components;
+}
+
+/// Faces with (nearly) zero area on the normalized coordinates `unit`, ascending: 2A below
+/// ZERO_AREA_RELATIVE times the squared mean edge length. Reported, not refused (the rest state
+/// gives them no membrane energy).
+std::vector<std::size_t> zero_area_faces(const std::vector<Polygon>& tris, const std::vector<Point3>& unit) {
+  const std::size_t nf = tris.size();
+  std::vector<std::size_t> zero_area;
+  double edge_sum = 0.0;
+  for (const Polygon& t : tris)
+    for (int k = 0; k < 3; ++k) edge_sum += (to_vec(unit[t[k]]) - to_vec(unit[t[(k + 1) % 3]])).norm();
+  const double mean_edge = edge_sum / (3.0 * static_cast<double>(nf));
+  const double threshold = ZERO_AREA_RELATIVE * mean_edge * mean_edge;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Vec3 a = to_vec(unit[tris[f][0]]);
+    const double twice_area = (to_vec(unit[tris[f][1]]) - a).cross(to_vec(unit[tris[f][2]]) - a).norm();
+    if (twice_area < threshold) zero_area.push_back(f);
+  }
+  return zero_area;
+}
+
 /// Checks the soup, triangulates and orients it, and builds the mesh (read_input_mesh's work).
 Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
                 const std::vector<Polygon>& polygons, const SourceLines& lines, InputReport* report) {
@@ -177,7 +325,6 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   if (ext == "stl") {
     name.stl = true;
     name.first_use.assign(points.size(), {0, 0});
-    std::vector<char> seen(points.size(), 0);
     for (std::size_t f = polygons.size(); f-- > 0;)
       for (std::size_t k = polygons[f].size(); k-- > 0;)
         if (polygons[f][k] < points.size()) name.first_use[polygons[f][k]] = {f, k};
@@ -250,168 +397,49 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   tris.insert(tris.end(), extra.begin(), extra.end());
   origin.insert(origin.end(), extra_origin.begin(), extra_origin.end());
   name.origin = &origin;
-  const std::size_t nf = tris.size();
 
-  // Duplicate faces (same three vertices in any order) would make a zero-volume double sheet.
-  {
-    std::map<std::array<std::size_t, 3>, std::size_t> seen;
-    for (std::size_t f = 0; f < nf; ++f) {
-      std::array<std::size_t, 3> key{tris[f][0], tris[f][1], tris[f][2]};
-      std::sort(key.begin(), key.end());
-      const auto [it, inserted] = seen.emplace(key, f);
-      if (!inserted)
-        fail(path, "duplicate face", name.face(f) + " has the same corners as " + name.face(it->second));
-    }
-  }
+  // Connectivity, in the order of the problems' importance (each names what it finds).
+  check_no_duplicate_face(path, tris, name);
+  check_edges(path, tris, nv, name);
+  check_no_isolated_vertex(path, tris, nv, name);
+  check_vertex_fans(path, tris, nv, name);
 
-  // Edges: each undirected edge must have exactly two faces that traverse it in opposite
-  // directions (closed, manifold, consistently oriented).
-  {
-    // One record per half-edge, sorted by undirected edge: the uses of an edge are one run
-    // (a hash map of vectors cost ~0.1 s on bear, an allocation per edge).
-    struct EdgeUse {
-      std::uint64_t key;  // undirected edge
-      std::size_t face;
-      bool forward;  // traversed from the smaller to the larger vertex index
-      bool operator<(const EdgeUse& o) const { return key != o.key ? key < o.key : face < o.face; }
-    };
-    auto key = [nv](std::size_t a, std::size_t b) { return static_cast<std::uint64_t>(std::min(a, b)) * nv + std::max(a, b); };
-    std::vector<EdgeUse> uses_sorted;
-    uses_sorted.reserve(3 * nf);
-    for (std::size_t f = 0; f < nf; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
-        uses_sorted.push_back({key(a, b), f, a < b});
-      }
-    std::sort(uses_sorted.begin(), uses_sorted.end());
-    // Report the first problem in face order, so that the message does not depend on the sort.
-    for (std::size_t f = 0; f < nf; ++f)
-      for (int k = 0; k < 3; ++k) {
-        const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
-        const auto first = std::lower_bound(uses_sorted.begin(), uses_sorted.end(), EdgeUse{key(a, b), 0, false});
-        std::size_t count = 0;
-        while (first + static_cast<std::ptrdiff_t>(count) != uses_sorted.end() && first[static_cast<std::ptrdiff_t>(count)].key == key(a, b)) ++count;
-        if (count == 2 && first[0].forward != first[1].forward) continue;
-        const std::string edge = name.edge(a, b);
-        if (count == 1)
-          fail(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed");
-        if (count > 2) {
-          std::string fs_list;
-          for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) fs_list += (u ? ", " : "") + std::to_string(first[static_cast<std::ptrdiff_t>(u)].face);
-          fail(path, "non-manifold edge", name.edge(std::min(a, b), std::max(a, b)) + " is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed");
-        }
-        fail(path, "inconsistent orientation", name.face(first[0].face) + " and " + name.face(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
-      }
-  }
+  // The soup is now what polygon_soup_to_polygon_mesh requires (in release builds it only
+  // asserts that); CGAL's own test stays as the last guard against a gap in the checks above.
+  if (!PMP::is_polygon_soup_a_polygon_mesh(tris))
+    throw std::logic_error("read_input_mesh: a soup that passed every check is not a polygon mesh for CGAL");
+  if (!usable_diagonal)
+    fail(path, "degenerate mesh", diagonal == 0.0 ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
+                                                  : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, tris, mesh);
+  align_to_soup(mesh, tris);
 
-  // Isolated vertices have no mass and no forces; they would be free degrees of freedom. Checked
-  // after the edges: an open boundary is the more fundamental problem of a mesh with both.
-  {
-    std::vector<char> used(nv, 0);
-    for (const Polygon& t : tris)
-      for (std::size_t v : t) used[v] = 1;
-    for (std::size_t v = 0; v < nv; ++v)
-      if (!used[v]) fail(path, "isolated vertex", name.vertex(v) + " is not used by any face");
-  }
-
-  // Vertices: the faces around a vertex must form one fan (their link edges one cycle). With
-  // manifold, consistently oriented edges, each link vertex has exactly one successor.
-  {
-    std::vector<std::vector<std::pair<std::size_t, std::size_t>>> link(nv);
-    for (const Polygon& t : tris)
-      for (int k = 0; k < 3; ++k) link[t[k]].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
-    for (std::size_t v = 0; v < nv; ++v) {
-      const auto& l = link[v];
-      std::size_t steps = 0, cur = l[0].second;
-      while (cur != l[0].first && steps <= l.size()) {
-        const auto it = std::find_if(l.begin(), l.end(), [cur](const auto& e) { return e.first == cur; });
-        if (it == l.end()) break;  // cannot happen after the edge checks; never dereference end
-        cur = it->second;
-        ++steps;
-      }
-      if (steps + 1 != l.size())
-        fail(path, "non-manifold vertex", name.vertex(v) + ": its " + std::to_string(l.size()) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
-    }
-  }
-
-  // Components and their orientation: a component with negative signed volume is inside-out
-  // and gets flipped (swapping corners 1 and 2 keeps corner 0 first). Each component is taken as
-  // its own shell; a nested inner wall of a hollow solid would also be flipped outward.
   std::vector<std::string> warnings;
-  UnionFind uf(nv);
-  for (const Polygon& t : tris) {
-    uf.unite(t[0], t[1]);
-    uf.unite(t[1], t[2]);
-  }
-  std::map<std::size_t, std::size_t> component_of_root;
-  for (const Polygon& t : tris) component_of_root.emplace(uf.find(t[0]), component_of_root.size());
-  const std::size_t n_components = component_of_root.size();
-  std::vector<double> six_volume(n_components, 0.0);
-  std::vector<Vec3> origin_point(n_components);
-  std::vector<char> has_origin(n_components, 0);
-  std::vector<std::size_t> component_face(nf);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::size_t c = component_of_root.at(uf.find(tris[f][0]));
-    component_face[f] = c;
-    // Measured from a point of the component: the closed-surface sum does not depend on the
-    // origin, and a nearby one avoids cancellation for components far from the centre.
-    if (!has_origin[c]) {
-      origin_point[c] = to_vec(unit[tris[f][0]]);
-      has_origin[c] = 1;
-    }
-    const Vec3 a = to_vec(unit[tris[f][0]]) - origin_point[c];
-    const Vec3 b = to_vec(unit[tris[f][1]]) - origin_point[c];
-    const Vec3 d = to_vec(unit[tris[f][2]]) - origin_point[c];
-    six_volume[c] += a.dot(b.cross(d));
-  }
-  bool reoriented = false;
-  for (std::size_t c = 0; c < n_components; ++c) {
-    if (six_volume[c] >= 0.0) continue;
-    reoriented = true;
-    std::size_t first = nf, count = 0;
-    for (std::size_t f = 0; f < nf; ++f)
-      if (component_face[f] == c) {
-        std::swap(tris[f][1], tris[f][2]);
-        first = std::min(first, f);
-        ++count;
-      }
-    std::ostringstream w;
-    w << "component " << c << " (" << count << " faces, starting at face " << first
-      << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
-      << "); its faces were flipped";
-    warnings.push_back(w.str());
+  const std::size_t n_components = orient_components(mesh, tris, unit, scale, warnings);
+  const bool reoriented = !warnings.empty();
+  if (reoriented) {
+    // Rebuilt from the flipped soup (rare: only inside-out input pays for a second build), so
+    // that the mesh is the one a correctly oriented file gives, halfedge for halfedge.
+    mesh.clear();
+    PMP::polygon_soup_to_polygon_mesh(points, tris, mesh);
+    align_to_soup(mesh, tris);
   }
   if (split > 0)
     warnings.push_back(std::to_string(split) + " polygons with more than 3 vertices were fan-triangulated into " +
                        std::to_string(split + extra.size()) + " triangles (the first keeps the polygon's face index, the others are appended after face " + std::to_string(polygons.size() - 1) + ")");
 
-  // Zero-area faces: reported, not refused (the rest state gives them no membrane energy).
-  std::vector<std::size_t> zero_area;
-  {
-    double edge_sum = 0.0;
-    for (const Polygon& t : tris)
-      for (int k = 0; k < 3; ++k) edge_sum += (to_vec(unit[t[k]]) - to_vec(unit[t[(k + 1) % 3]])).norm();
-    const double mean_edge = edge_sum / (3.0 * static_cast<double>(nf));
-    const double threshold = ZERO_AREA_RELATIVE * mean_edge * mean_edge;
-    for (std::size_t f = 0; f < nf; ++f) {
-      const Vec3 a = to_vec(unit[tris[f][0]]);
-      const double twice_area = (to_vec(unit[tris[f][1]]) - a).cross(to_vec(unit[tris[f][2]]) - a).norm();
-      if (twice_area < threshold) zero_area.push_back(f);
-    }
-  }
+  std::vector<std::size_t> zero_area = zero_area_faces(tris, unit);
   if (!zero_area.empty())
     warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + list_indices(zero_area));
 
   // What the simulator needs beyond a closed manifold (one decision for `check` and `run`): a
-  // bounding box to normalize by, and a positive volume, measured exactly as the simulator does.
-  if (!usable_diagonal)
-    fail(path, "degenerate mesh", diagonal == 0.0 ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
-                                                  : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
-  Mesh mesh;
-  CGAL::Polygon_mesh_processing::polygon_soup_to_polygon_mesh(points, tris, mesh);
-  align_to_soup(mesh, tris);
+  // bounding box to normalize by (checked above, before building the mesh), and a positive
+  // volume, measured exactly as the simulator does: validation's enclosed_volume is this same
+  // PMP::volume call, made here directly so that mesh/ does not depend on validation/.
   const Positions x = positions_from_mesh(mesh);
-  const double unit_volume = enclosed_volume(mesh, normalize(x, compute_normalization(x)));
+  const Positions unit_x = normalize(x, compute_normalization(x));
+  const double unit_volume = PMP::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(unit_x)));
   if (!(unit_volume > 0.0)) {
     std::ostringstream v;
     v << unit_volume;

@@ -1,11 +1,8 @@
-// Writing meshes and text atomically (design.md, data flow: ... -> write). Done by hand for the
-// four formats, so that the positions come from a Positions array (no mesh copy), the order is
-// exactly the mesh's index order, and doubles are printed with 17 significant digits (lossless
-// round trip).
+// Writing meshes and text atomically (design.md, data flow: ... -> write) with CGAL's writers at
+// 17 significant digits, so that a written double reads back bitwise (full precision).
 #include <unistd.h>  // getpid, for unique temporary names
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <atomic>
 #include <cerrno>
@@ -15,12 +12,19 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iomanip>
+#include <locale>
+#include <sstream>
 #include <stdexcept>
 #include <string>
-#include <type_traits>
+#include <utility>
+
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/STL.h>
+#include <CGAL/Surface_mesh/IO/PLY.h>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/io.hpp"
 
 namespace shellcontract {
@@ -36,9 +40,35 @@ std::string lower_extension(const std::string& path) {
 }
 // ------------------------------------------------------------------------------------ writing
 
+/// The stream's double formatting for the writers. CGAL's writers print every coordinate with
+/// operator<<, and libstdc++'s num_put formats a double through printf, several times slower
+/// than std::to_chars, which gives the same characters (C++17: general format with a precision
+/// is printf's %g in the C locale). A frame sequence writes a file per frame, so this matters
+/// (run --export-every 1 on bear); anything but plain default formatting goes to the base.
+class ToCharsDoublePut : public std::num_put<char> {
+ protected:
+  iter_type do_put(iter_type out, std::ios_base& str, char_type fill, double v) const override {
+    if ((str.flags() & (std::ios_base::floatfield | std::ios_base::showpoint | std::ios_base::showpos |
+                        std::ios_base::uppercase)) != 0 ||
+        str.width() > 0)
+      return std::num_put<char>::do_put(out, str, fill, v);
+    char buf[64];
+    const auto r = std::to_chars(buf, buf + sizeof buf, v, std::chars_format::general,
+                                 static_cast<int>(str.precision()));
+    return std::copy(buf, r.ptr, out);
+  }
+};
+
 /// Writes through `fill` into a temporary file next to `path`, then renames it over `path`.
+/// `fill` writes into memory first: CGAL's writers end every line with std::endl, and a flush
+/// per line to a file costs a system call each (one write per file instead). A throwing `fill`
+/// leaves no file behind.
 void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
   static std::atomic<unsigned> counter{0};
+  std::ostringstream text;
+  text.imbue(std::locale(text.getloc(), new ToCharsDoublePut));  // the locale owns the facet
+  fill(text);
+  const std::string bytes = std::move(text).str();
   const fs::path target(path);
   const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
   // Same folder, so that rename is atomic (same file system); hidden, pid- and counter-unique so
@@ -48,14 +78,7 @@ void write_atomic(const std::string& path, const std::function<void(std::ostream
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out)
       throw UsageError("cannot write '" + path + "': cannot create a file in folder '" + dir.string() + "' (" + std::strerror(errno) + ")");
-    out << std::setprecision(17);
-    try {
-      fill(out);
-    } catch (...) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw;
-    }
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.flush();
     if (!out) {
       out.close();
@@ -70,94 +93,64 @@ void write_atomic(const std::string& path, const std::function<void(std::ostream
   }
 }
 
-std::array<std::size_t, 3> corners(const Mesh& mesh, FaceIndex f) {
-  const HalfedgeIndex h = mesh.halfedge(f);
-  return {mesh.target(h).idx(), mesh.target(mesh.next(h)).idx(), mesh.target(mesh.next(mesh.next(h))).idx()};
+/// Enough significant digits that every double reads back bitwise (max_digits10).
+constexpr int FULL_PRECISION = 17;
+
+/// Removed elements or a row count that differs from the vertex count would index past x.
+void check_positions(const Mesh& mesh, const Positions& x, const char* who) {
+  if (mesh.has_garbage())
+    throw std::invalid_argument(std::string(who) + ": the mesh has removed elements; call collect_garbage() first");
+  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
+    throw std::invalid_argument(std::string(who) + ": " + std::to_string(x.rows()) + " position rows for " +
+                                std::to_string(mesh.number_of_vertices()) + " vertices");
 }
 
 }  // namespace
 
 // ================================================================================== writing
 
-void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x) {
+Mesh mesh_for_output(const Mesh& mesh, const Positions& x) {
+  check_positions(mesh, x, "mesh_for_output");
+  // A copy keeps every face's halfedge, so each face lists its corners from the same vertex as
+  // the input (per-corner data such as UVs stay aligned); the maps go, the caller adds its own.
+  Mesh out = mesh;
+  out.remove_all_property_maps();
+  for (const VertexIndex v : out.vertices()) {
+    const auto i = static_cast<Eigen::Index>(v.idx());
+    out.point(v) = Point3(x(i, 0), x(i, 1), x(i, 2));
+  }
+  return out;
+}
+
+void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::string& comments) {
   if (mesh.has_garbage())
-    throw std::invalid_argument("write_mesh_atomic: the mesh has removed elements; call collect_garbage() first");
-  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
-    throw std::invalid_argument("write_mesh_atomic: " + std::to_string(x.rows()) + " position rows for " +
-                                std::to_string(mesh.number_of_vertices()) + " vertices");
+    throw std::invalid_argument("write_ply_atomic: the mesh has removed elements; call collect_garbage() first");
+  write_atomic(path, [&](std::ostream& out) {
+    if (!CGAL::IO::write_PLY(out, mesh, comments, CGAL::parameters::stream_precision(FULL_PRECISION)))
+      throw UsageError("cannot write '" + path + "': CGAL's PLY writer failed");
+  });
+}
+
+void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x) {
+  check_positions(mesh, x, "write_mesh_atomic");
   const std::string ext = lower_extension(path);
   if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
     throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
-  const Eigen::Index nv = x.rows();
-  const std::size_t nf = mesh.number_of_faces();
-
-  // Formatted with to_chars into one string per file and written at once: the same bytes as the
-  // stream at precision 17 (to_chars' general format with a precision is printf's %.17g, which
-  // is what the stream uses), several times faster, which matters for frame sequences.
-  std::string text;
-  text.reserve(static_cast<std::size_t>(nv) * 64 + nf * 24);
-  const auto put = [&text](auto value) {
-    char buf[32];
-    std::to_chars_result r;
-    if constexpr (std::is_floating_point_v<decltype(value)>)
-      r = std::to_chars(buf, buf + sizeof buf, value, std::chars_format::general, 17);
-    else
-      r = std::to_chars(buf, buf + sizeof buf, value);
-    text.append(buf, r.ptr);
-  };
-  const auto put3 = [&](const char* prefix, auto a, auto b, auto c) {
-    text += prefix;
-    put(a);
-    text += ' ';
-    put(b);
-    text += ' ';
-    put(c);
-    text += '\n';
-  };
-  const auto vertex_rows = [&](const char* prefix) {
-    for (Eigen::Index i = 0; i < nv; ++i) put3(prefix, x(i, 0), x(i, 1), x(i, 2));
-  };
-  const auto face_rows = [&](const char* prefix, std::size_t base) {
-    for (const FaceIndex f : mesh.faces()) {
-      const auto c = corners(mesh, f);
-      put3(prefix, c[0] + base, c[1] + base, c[2] + base);
-    }
-  };
-
-  if (ext == "off") {
-    text += "OFF\n" + std::to_string(nv) + ' ' + std::to_string(nf) + " 0\n";
-    vertex_rows("");
-    face_rows("3 ", 0);
-  } else if (ext == "obj") {
-    text += "# written by shellcontract\n";
-    vertex_rows("v ");
-    face_rows("f ", 1);  // OBJ counts from 1
-  } else if (ext == "ply") {
-    // Double properties: a float PLY would lose the positions' precision.
-    text += "ply\nformat ascii 1.0\ncomment written by shellcontract\nelement vertex " + std::to_string(nv) +
-            "\nproperty double x\nproperty double y\nproperty double z\nelement face " + std::to_string(nf) +
-            "\nproperty list uchar int vertex_indices\nend_header\n";
-    vertex_rows("");
-    face_rows("3 ", 0);
-  } else {
-    // ASCII STL has no shared vertices: readers merge equal points in order of first
-    // appearance, so faces keep their order but vertex numbering may not.
-    text += "solid shellcontract\n";
-    for (const FaceIndex f : mesh.faces()) {
-      const auto c = corners(mesh, f);
-      const Vec3 a = x.row(static_cast<Eigen::Index>(c[0])).transpose();
-      const Vec3 b = x.row(static_cast<Eigen::Index>(c[1])).transpose();
-      const Vec3 d = x.row(static_cast<Eigen::Index>(c[2])).transpose();
-      Vec3 n = (b - a).cross(d - a);
-      if (n.norm() > 0.0) n.normalize();
-      put3("facet normal ", n.x(), n.y(), n.z());
-      text += "outer loop\n";
-      for (const Vec3* p : {&a, &b, &d}) put3("vertex ", p->x(), p->y(), p->z());
-      text += "endloop\nendfacet\n";
-    }
-    text += "endsolid shellcontract\n";
+  if (ext == "ply") {
+    // CGAL 5.5's Surface_mesh PLY writer takes the mesh's own points (no vertex_point_map).
+    write_ply_atomic(path, mesh_for_output(mesh, x));
+    return;
   }
-  write_atomic(path, [&](std::ostream& out) { out.write(text.data(), static_cast<std::streamsize>(text.size())); });
+  // The other writers read the positions through the point map: no mesh copy. They write
+  // vertices and faces in index order, each face from its halfedge's target, as read back.
+  const auto np = CGAL::parameters::vertex_point_map(EigenPointMap(x)).stream_precision(FULL_PRECISION);
+  write_atomic(path, [&](std::ostream& out) {
+    bool ok = false;
+    if (ext == "off") ok = CGAL::IO::write_OFF(out, mesh, np);
+    else if (ext == "obj") ok = CGAL::IO::write_OBJ(out, mesh, np);
+    else ok = CGAL::IO::write_STL(out, mesh, np);  // ASCII: the stream is not in binary mode
+    if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
+  });
 }
 
 void write_text_atomic(const std::string& path, const std::string& text) {

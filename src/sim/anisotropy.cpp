@@ -1,10 +1,13 @@
 #include "shellcontract/sim/anisotropy.hpp"
 
+#include <array>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/fem/triangle_element.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/properties.hpp"
 
 namespace shellcontract {
@@ -16,11 +19,12 @@ Vec2 fiber_in_rest_frame(const Vec3& d, const Vec3& T1, const Vec3& T2, bool& fa
   return fallback ? Vec2(1.0, 0.0) : Vec2(a / len);
 }
 
-AnisotropyReport add_anisotropic_constraints(const Mesh& mesh, const AnisotropyOptions& options,
+AnisotropyReport add_anisotropic_constraints(Mesh& mesh, const AnisotropyOptions& options,
                                              ConstraintSet& set) {
   AnisotropyReport report;
   const auto rest = property::get_map<FaceIndex, TriangleRest>(mesh, property::TRIANGLE_REST);
-  const int nf = static_cast<int>(mesh.number_of_faces());
+  // Rest data, attached once like f:triangle_rest (a second attach would be stale).
+  auto fiber = property::add_map<FaceIndex, Vec2>(mesh, property::FIBER_DIR, Vec2(1.0, 0.0));
   auto corners = [&](int f) {
     std::array<int, 3> v;
     int k = 0;
@@ -32,15 +36,13 @@ AnisotropyReport add_anisotropic_constraints(const Mesh& mesh, const AnisotropyO
     const Point3& p = mesh.point(VertexIndex(v));
     return Vec3(p.x(), p.y(), p.z());
   };
-  for (std::size_t r = 0; r < options.regions.size(); ++r) {
-    const std::vector<int>& region = options.regions[r];
+  const std::vector<std::vector<int>> regions = regions_from_face_ids(stored_regions(mesh));
+  // The fibres first, into f:fiber_dir (the rest state's data, like f:triangle_rest) ...
+  for (const std::vector<int>& region : regions) {
     // Area-weighted rest centroid of the region.
     Vec3 centre = Vec3::Zero();
     double area = 0.0;
     for (int f : region) {
-      if (f < 0 || f >= nf)
-        throw InputError("region " + std::to_string(r) + ": face " + std::to_string(f) +
-                         " is out of range (the mesh has " + std::to_string(nf) + " faces)");
       const auto v = corners(f);
       const double A = rest[FaceIndex(f)].area;
       centre += A * (point(v[0]) + point(v[1]) + point(v[2])) / 3.0;
@@ -51,23 +53,30 @@ AnisotropyReport add_anisotropic_constraints(const Mesh& mesh, const AnisotropyO
       const TriangleRest& tr = rest[FaceIndex(f)];
       if (tr.degenerate) continue;
       const auto v = corners(f);
-      MembraneConstraint c;
-      c.v = v;
-      c.Dm_inv = tr.Dm_inv;
-      c.rest_area = tr.area;
-      c.max_step = STEP_CLAMP_FACTOR * tr.min_edge;
-      c.face = f;
       const Vec3 d = options.fiber_mode == FiberMode::User
                          ? options.user_direction
                          : Vec3(centre - (point(v[0]) + point(v[1]) + point(v[2])) / 3.0);
       bool fallback = false;
-      c.data.fiber = fiber_in_rest_frame(d, tr.T1, tr.T2, fallback);
+      fiber[FaceIndex(f)] = fiber_in_rest_frame(d, tr.T1, tr.T2, fallback);
       if (fallback) ++report.fallback_fibers;
+    }
+  }
+  // ... then the constraints read them from there.
+  for (const std::vector<int>& region : regions)
+    for (int f : region) {
+      const TriangleRest& tr = rest[FaceIndex(f)];
+      if (tr.degenerate) continue;
+      MembraneConstraint c;
+      c.v = corners(f);
+      c.Dm_inv = tr.Dm_inv;
+      c.rest_area = tr.area;
+      c.max_step = STEP_CLAMP_FACTOR * tr.min_edge;
+      c.face = f;
+      c.data.fiber = fiber[FaceIndex(f)];
       set.anisotropic.push_back(c);
       set.anisotropic_k_a.push_back(options.kappa_a * options.mu_aniso * std::sqrt(tr.area));
       ++report.faces;
     }
-  }
   return report;
 }
 

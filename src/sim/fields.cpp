@@ -1,12 +1,16 @@
 #include "shellcontract/sim/fields.hpp"
 
+#include <CGAL/IO/Color.h>
+
 #include <algorithm>
 #include <iomanip>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 #include "shellcontract/geometry/curvature.hpp"
 #include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/properties.hpp"
 #include "shellcontract/sim/pressure.hpp"
 #include "shellcontract/sim/rest_state.hpp"
 
@@ -66,35 +70,36 @@ Eigen::Vector3i field_colour(double t) {
 
 void write_fields_ply(const std::string& path, const Simulator& sim, const Positions& x,
                       const VertexFields& fields, FieldColour colour) {
-  const Faces F = faces_array(sim.rest_mesh());
   const Eigen::VectorXd& c = colour == FieldColour::MeanCurvature       ? fields.mean_curvature
                              : colour == FieldColour::GaussianCurvature ? fields.gaussian_curvature
                              : colour == FieldColour::Pressure          ? fields.pressure
                                                                         : fields.energy_density;
   const std::vector<double> values(c.data(), c.data() + c.size());
   const double lo = field_percentile(values, 0.02), hi = field_percentile(values, 0.98);
-  std::ostringstream o;
-  o << std::setprecision(17);
-  o << "ply\nformat ascii 1.0\ncomment shellcontract fields; colour = field mapped from its 2nd to "
-       "98th percentile ["
-    << lo << ", " << hi << "] onto blue-white-red\nelement vertex " << x.rows()
-    << "\nproperty double x\nproperty double y\nproperty double z\n"
-       "property uchar red\nproperty uchar green\nproperty uchar blue\n"
-       "property float mean_curvature\nproperty float gaussian_curvature\n"
-       "property float pressure\nproperty float energy_density\n"
-    << "element face " << F.rows() << "\nproperty list uchar int vertex_indices\nend_header\n";
-  for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    const double t = hi > lo ? (c(i) - lo) / (hi - lo) : 0.5;  // constant field: white
-    const Eigen::Vector3i rgb = field_colour(t);
-    o << x(i, 0) << ' ' << x(i, 1) << ' ' << x(i, 2) << ' ' << rgb(0) << ' ' << rgb(1) << ' '
-      << rgb(2) << ' ' << static_cast<float>(fields.mean_curvature(i)) << ' '
-      << static_cast<float>(fields.gaussian_curvature(i)) << ' '
-      << static_cast<float>(fields.pressure(i)) << ' '
-      << static_cast<float>(fields.energy_density(i)) << '\n';
+  // Attached in the order of the file's columns. The fields stay float, as they always were:
+  // they are for looking at, and half the size of doubles.
+  Mesh out = mesh_for_output(sim.rest_mesh(), x);
+  auto rgb = property::add_map<VertexIndex, CGAL::IO::Color>(out, property::VERTEX_COLOR);
+  const std::pair<const char*, const Eigen::VectorXd*> columns[] = {
+      {property::MEAN_CURVATURE, &fields.mean_curvature},
+      {property::GAUSSIAN_CURVATURE, &fields.gaussian_curvature},
+      {property::PRESSURE_LOAD, &fields.pressure},
+      {property::ENERGY_DENSITY, &fields.energy_density}};
+  for (const auto& [name, field] : columns) {
+    auto map = property::add_map<VertexIndex, float>(out, name);
+    for (VertexIndex v : out.vertices()) map[v] = static_cast<float>((*field)(static_cast<Eigen::Index>(v.idx())));
   }
-  for (Eigen::Index j = 0; j < F.rows(); ++j)
-    o << "3 " << F(j, 0) << ' ' << F(j, 1) << ' ' << F(j, 2) << '\n';
-  write_text_atomic(path, o.str());
+  for (VertexIndex v : out.vertices()) {
+    const auto i = static_cast<Eigen::Index>(v.idx());
+    const double t = hi > lo ? (c(i) - lo) / (hi - lo) : 0.5;  // constant field: white
+    const Eigen::Vector3i c8 = field_colour(t);
+    rgb[v] = CGAL::IO::Color(static_cast<unsigned char>(c8(0)), static_cast<unsigned char>(c8(1)),
+                             static_cast<unsigned char>(c8(2)));
+  }
+  std::ostringstream comment;
+  comment << std::setprecision(17) << "shellcontract fields; colour = field mapped from its 2nd to 98th percentile ["
+          << lo << ", " << hi << "] onto blue-white-red";
+  write_ply_atomic(path, out, comment.str());
 }
 
 double field_percentile(std::vector<double> v, double q) {

@@ -62,17 +62,21 @@ void ObserverList::finished(const Simulator& sim, const RunResult& r) {
   for (RunObserver* o : observers_) o->finished(sim, r);
 }
 
-std::vector<std::vector<int>> select_run_regions(const Mesh& mesh, const RunOptions& options) {
+std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
   switch (options.regions) {
-    case RegionSource::None:
-      return {};
-    case RegionSource::File:
-      return read_region_file(options.region_file, mesh.number_of_faces());
+    case RegionSource::File: {
+      const std::vector<std::vector<int>> lists =
+          read_region_file(options.region_file, mesh.number_of_faces());
+      store_regions(mesh, face_ids_from_regions(lists, mesh.number_of_faces()));
+      return lists.size();
+    }
     case RegionSource::Auto:
-      return regions_from_face_ids(
-          select_spherical_regions(mesh, positions_from_mesh(mesh), RegionOptions{}));
+      return mark_spherical_regions(mesh, positions_from_mesh(mesh), RegionOptions{});
+    case RegionSource::None:
+      break;
   }
-  return {};
+  store_regions(mesh, std::vector<int>(mesh.number_of_faces(), -1));
+  return 0;
 }
 
 namespace {
@@ -102,9 +106,12 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
   const auto regions_start = Clock::now();
-  s.anisotropy.regions = select_run_regions(mesh, options);
+  // The run's regions travel as the f:region map of its copy of the mesh (one owner: the run
+  // options say where they come from; face lists a caller put in the options are not used).
+  Mesh marked = mesh;
+  s.anisotropy.regions.clear();
+  r.regions = mark_run_regions(marked, options);
   r.regions_seconds = seconds_since(regions_start);
-  r.regions = s.anisotropy.regions.size();
   if (s.solver.aniso != AnisoKind::None && r.regions == 0)
     warn(r, obs,
          "--aniso " + to_string(s.solver.aniso) +
@@ -117,7 +124,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
 
   for (const std::string& w : ineffective_options(options)) warn(r, obs, w);
   const auto prepare_start = Clock::now();
-  Simulator sim(mesh, s);
+  Simulator sim(marked, s);
   r.prepare_seconds = seconds_since(prepare_start);
   if (sim.regions_without_cap() > 0)
     warn(r, obs,

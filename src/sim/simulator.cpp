@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/sim/local_contraction.hpp"
 #include "shellcontract/sim/mass_scaling.hpp"
@@ -57,6 +58,12 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
     const auto r = x_.row(v.idx());
     mesh_->point(v) = Point3(r(0), r(1), r(2));
   }
+  // A caller's face lists become the mesh's f:region map; without them the input mesh's map
+  // (if any) is the regions. Everything below reads the map.
+  if (!options_.anisotropy.regions.empty())
+    store_regions(*mesh_, face_ids_from_regions(options_.anisotropy.regions, mesh_->number_of_faces()));
+  const std::vector<std::vector<int>> regions = regions_from_face_ids(stored_regions(*mesh_));
+  region_count_ = regions.size();
   rest_report_ = build_rest_state(*mesh_, options_.mass, options_.density);
   faces_ = faces_array(*mesh_);
   inv_mass_ = inverse_masses(*mesh_);
@@ -77,7 +84,7 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   const bool pushed = options_.inward_term == InwardTerm::Force ||
                       (options_.inward_term == InwardTerm::Projection && !k_a_projected);
   if (options_.inward_term == InwardTerm::Volume && options_.region_shrink > 0.0) {
-    for (const std::vector<int>& region : options_.anisotropy.regions) {
+    for (const std::vector<int>& region : regions) {
       RegionCap cap = make_region_cap(faces_, region);
       cap.rest_volume = cap_volume(x_, cap);
       // A flat region or a dent has no cap to shrink (region_cap_target would push it out).
@@ -87,9 +94,8 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   }
   if (pushed && options_.region_shrink > 0.0) {
     std::vector<int> region_faces;
-    for (const std::vector<int>& region : options_.anisotropy.regions)
-      for (int f : region)
-        if (f >= 0 && f < static_cast<int>(mesh_->number_of_faces())) region_faces.push_back(f);
+    for (const std::vector<int>& region : regions)
+      region_faces.insert(region_faces.end(), region.begin(), region.end());
     inward_faces_.resize(static_cast<Eigen::Index>(region_faces.size()), 3);
     for (std::size_t i = 0; i < region_faces.size(); ++i)
       inward_faces_.row(static_cast<Eigen::Index>(i)) = faces_.row(region_faces[i]);
@@ -102,17 +108,16 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   v_ = Positions::Zero(x_.rows(), 3);
   rest_x_ = x_;
   // Region vertices and their rest normals, for region_inward_displacement().
-  if (!options_.anisotropy.regions.empty()) {
+  if (!regions.empty()) {
     Positions vertex_normal = Positions::Zero(x_.rows(), 3);
     for (Eigen::Index j = 0; j < faces_.rows(); ++j) {
       const Vec3 xc = x_.row(faces_(j, 2));
       const Vec3 N = (Vec3(x_.row(faces_(j, 0))) - xc).cross(Vec3(x_.row(faces_(j, 1))) - xc);
       for (int k = 0; k < 3; ++k) vertex_normal.row(faces_(j, k)) += N.transpose();
     }
-    for (const std::vector<int>& region : options_.anisotropy.regions)
+    for (const std::vector<int>& region : regions)
       for (int f : region)
-        if (f >= 0 && f < faces_.rows())
-          for (int k = 0; k < 3; ++k) region_vertices_.push_back(faces_(f, k));
+        for (int k = 0; k < 3; ++k) region_vertices_.push_back(faces_(f, k));
     std::sort(region_vertices_.begin(), region_vertices_.end());
     region_vertices_.erase(std::unique(region_vertices_.begin(), region_vertices_.end()),
                            region_vertices_.end());

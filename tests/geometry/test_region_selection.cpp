@@ -11,10 +11,12 @@
 #include <fstream>
 #include <iostream>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/curvature.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/io.hpp"
@@ -126,11 +128,35 @@ TEST_F(BumpySphere, StoreRegionsWritesTheFaceMap) {
   for (FaceIndex f : mesh_.faces()) EXPECT_EQ(map[f], region[f.idx()]);
 }
 
-TEST_F(BumpySphere, ColouredPlyIsReadableWithTheSameFaces) {
-  const std::vector<int> region = select_spherical_regions(mesh_, x_, RegionOptions{});
+TEST_F(BumpySphere, MarkWritesTheSelectionAndTheCurvatureIntoTheMaps) {
+  RegionReport expected_report, report;
+  const std::vector<int> expected = select_spherical_regions(mesh_, x_, RegionOptions{}, &expected_report);
+  EXPECT_EQ(stored_regions(mesh_), std::vector<int>(mesh_.number_of_faces(), -1)) << "no map yet: no region";
+  const std::size_t n = mark_spherical_regions(mesh_, x_, RegionOptions{}, &report);
+  EXPECT_EQ(n, 3u);
+  EXPECT_EQ(report.regions.size(), expected_report.regions.size());
+  const auto map = property::get_map<FaceIndex, int>(mesh_, property::REGION);
+  for (FaceIndex f : mesh_.faces()) ASSERT_EQ(map[f], expected[f.idx()]) << "face " << f.idx();
+  EXPECT_EQ(stored_regions(mesh_), expected);
   const CurvatureField c = compute_curvature(mesh_, x_);
+  const auto H = property::get_map<VertexIndex, double>(mesh_, property::MEAN_CURVATURE);
+  const auto K = property::get_map<VertexIndex, double>(mesh_, property::GAUSSIAN_CURVATURE);
+  for (VertexIndex v : mesh_.vertices()) {
+    ASSERT_EQ(H[v], c.mean(static_cast<Eigen::Index>(v.idx()))) << "vertex " << v.idx();
+    ASSERT_EQ(K[v], c.gaussian(static_cast<Eigen::Index>(v.idx()))) << "vertex " << v.idx();
+  }
+  // A second run overwrites the maps (here with no region at all).
+  RegionOptions none;
+  none.min_curvature_contrast = 100.0;
+  EXPECT_EQ(mark_spherical_regions(mesh_, x_, none), 0u);
+  EXPECT_EQ(stored_regions(mesh_), std::vector<int>(mesh_.number_of_faces(), -1));
+}
+
+TEST_F(BumpySphere, ColouredPlyHasTheMapsOfTheMesh) {
+  mark_spherical_regions(mesh_, x_, RegionOptions{});
+  const std::vector<int> region = stored_regions(mesh_);
   const std::string path = temp_path("bumps.ply");
-  write_region_ply(path, mesh_, x_, region, &c);
+  write_region_ply(path, mesh_, x_);
   const Mesh back = read_input_mesh(path);
   ASSERT_EQ(back.number_of_faces(), mesh_.number_of_faces());
   const Positions xb = positions_from_mesh(back);
@@ -140,6 +166,29 @@ TEST_F(BumpySphere, ColouredPlyIsReadableWithTheSameFaces) {
   EXPECT_NE(text.find("property int region"), std::string::npos);
   EXPECT_NE(text.find("property double mean_curvature"), std::string::npos);
   EXPECT_NE(text.find("property double gaussian_curvature"), std::string::npos);
+  // Face rows: "3 a b c <region> <r g b a>" in the order the maps were attached (colour first).
+  const std::size_t body = text.find("end_header\n") + 11;
+  std::istringstream rows(text.substr(body));
+  std::string line;
+  for (std::size_t i = 0; i < mesh_.number_of_vertices(); ++i) std::getline(rows, line);
+  for (FaceIndex f : mesh_.faces()) {
+    ASSERT_TRUE(std::getline(rows, line));
+    std::istringstream t(line);
+    int n = 0, a = 0, b = 0, c = 0, red = 0, green = 0, blue = 0, alpha = 0, id = 0;
+    t >> n >> a >> b >> c >> red >> green >> blue >> alpha >> id;
+    ASSERT_EQ(id, region[f.idx()]) << line;
+    const auto rgb = region_colour(region[f.idx()]);
+    ASSERT_EQ(red, rgb[0]) << line;
+    ASSERT_EQ(blue, rgb[2]) << line;
+  }
+  // Without the curvature maps the file has no curvature columns.
+  Mesh plain = read_input_mesh(mesh_path("bumpy_sphere.off"));
+  store_regions(plain, region);
+  write_region_ply(path, plain, x_);
+  std::ifstream in2(path);
+  text.assign((std::istreambuf_iterator<char>(in2)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text.find("mean_curvature"), std::string::npos);
+  EXPECT_NE(text.find("property int region"), std::string::npos);
 }
 
 TEST(RegionSelection, PlainSphereHasNoRegion) {

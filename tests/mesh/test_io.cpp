@@ -213,6 +213,31 @@ TEST(ReadInputMesh, ComponentsAreCountedAndEachOrientedOnItsOwn) {
   EXPECT_NEAR(report.volume, 2.0, 1e-14);
 }
 
+TEST(ReadInputMesh, InsideOutFileGivesTheMeshOfTheOrientedFileHalfedgeForHalfedge) {
+  // Edge and halfedge numbering orders the bending constraints, so a flipped input must not
+  // only have the right faces but be the very mesh that the correctly oriented file gives.
+  TempDir dir;
+  const Mesh oriented = read_input_mesh(mesh_path("cube.off"));
+  std::ostringstream off;
+  off << std::setprecision(17) << "OFF\n" << oriented.number_of_vertices() << ' ' << oriented.number_of_faces() << " 0\n";
+  for (const VertexIndex v : oriented.vertices()) off << oriented.point(v) << '\n';
+  for (std::size_t f = 0; f < oriented.number_of_faces(); ++f) {
+    const auto c = corners(oriented, f);
+    off << "3 " << c[0] << ' ' << c[2] << ' ' << c[1] << '\n';  // inside-out, first corner kept
+  }
+  write_file(dir.file("flipped.off"), off.str());
+  InputReport report;
+  const Mesh flipped = read_input_mesh(dir.file("flipped.off"), &report);
+  ASSERT_TRUE(report.reoriented);
+  ASSERT_EQ(flipped.number_of_halfedges(), oriented.number_of_halfedges());
+  for (const HalfedgeIndex h : oriented.halfedges()) {
+    ASSERT_EQ(flipped.target(h), oriented.target(h)) << "halfedge " << h.idx();
+    ASSERT_EQ(flipped.next(h), oriented.next(h)) << "halfedge " << h.idx();
+    ASSERT_EQ(flipped.face(h), oriented.face(h)) << "halfedge " << h.idx();
+  }
+  for (const FaceIndex f : oriented.faces()) ASSERT_EQ(flipped.halfedge(f), oriented.halfedge(f)) << "face " << f.idx();
+}
+
 TEST(PositionsFromMesh, RowIsVertexIndex) {
   const Mesh mesh = read_input_mesh(mesh_path("ico1.off"));
   const Positions x = positions_from_mesh(mesh);

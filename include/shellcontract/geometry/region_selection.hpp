@@ -96,11 +96,25 @@ struct RegionReport {
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report = nullptr);
 
+/// The same selection on the mesh's own property maps (design.md, data flow: curvature ->
+/// spherical regions -> f:region): stores the curvature at x in "v:mean_curvature" and
+/// "v:gaussian_curvature" (store_curvature), selects the regions from those maps, and stores the
+/// ids in "f:region" (store_regions). Maps already attached are overwritten.
+/// @param mesh, x, options, report as select_spherical_regions (same @pre)
+/// @return the number of regions (ids 0..n-1 in f:region)
+/// @throws UsageError as select_spherical_regions
+std::size_t mark_spherical_regions(Mesh& mesh, const Positions& x, const RegionOptions& options,
+                                   RegionReport* report = nullptr);
+
 /// Writes the region ids into the face map "f:region" (properties.hpp), creating it if missing
 /// and overwriting it otherwise.
 /// @param region_of_face one entry per face, id or -1.
 /// @throws UsageError if the size differs from number_of_faces.
 void store_regions(Mesh& mesh, const std::vector<int>& region_of_face);
+
+/// The ids of the face map "f:region": one entry per face, -1 for no region; all -1 when the
+/// map is not attached.
+std::vector<int> stored_regions(const Mesh& mesh);
 
 /// Groups per-face ids into face lists: result[r] = faces with id r, ascending.
 /// @param region_of_face one entry per face, id >= 0 or -1 (ignored).
@@ -138,15 +152,12 @@ void write_region_file(const std::string& path, const std::vector<int>& region_o
 /// @return {red, green, blue}, 0..255.
 std::array<unsigned char, 3> region_colour(int id);
 
-/// Writes an ASCII PLY of the mesh at positions x (17 significant digits, vertex and face order
-/// kept) with per-face `red green blue` (region_colour) and `int region`, and, when `curvature`
-/// is given, per-vertex `double mean_curvature` and `double gaussian_curvature`. Written
-/// atomically (temporary file + rename).
-/// @param x              #V by 3 positions, row i = vertex i.
-/// @param region_of_face one entry per face, id or -1.
-/// @param curvature      optional, computed on this mesh (sizes = #V).
-/// @throws UsageError on a size mismatch or when the file cannot be written.
-void write_region_ply(const std::string& path, const Mesh& mesh, const Positions& x,
-                      const std::vector<int>& region_of_face, const CurvatureField* curvature = nullptr);
+/// Writes the regions stored on the mesh as a PLY (write_ply_atomic: ASCII, 17 significant
+/// digits, vertex and face order kept, atomic) at positions x: per face `red green blue alpha`
+/// (region_colour) and `int region` from "f:region"; per vertex `double mean_curvature` and
+/// `double gaussian_curvature` when those maps are attached (mark_spherical_regions stores them).
+/// @param x #V by 3 positions, row i = vertex i.
+/// @throws UsageError when x does not match the mesh or the file cannot be written.
+void write_region_ply(const std::string& path, const Mesh& mesh, const Positions& x);
 
 }  // namespace shellcontract

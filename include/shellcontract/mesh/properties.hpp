@@ -18,6 +18,13 @@ inline constexpr const char* REGION = "f:region";                   ///< int, -1
 inline constexpr const char* ISOMETRIC_BENDING = "e:isometric_bending";  ///< IsometricBendingRest
 inline constexpr const char* DIHEDRAL_BENDING = "e:dihedral_bending";    ///< DihedralBendingRest
 inline constexpr const char* HINGE = "e:hinge";                     ///< HingeVertices stencil
+/// Output only (write_ply_atomic): CGAL's PLY writer turns these exact names, of type
+/// CGAL::IO::Color, into red, green, blue, alpha columns.
+inline constexpr const char* VERTEX_COLOR = "v:color";
+inline constexpr const char* FACE_COLOR = "f:color";  ///< see VERTEX_COLOR
+/// Output only (write_fields_ply): per-vertex fields of sim/fields.hpp.
+inline constexpr const char* PRESSURE_LOAD = "v:pressure";
+inline constexpr const char* ENERGY_DENSITY = "v:energy_density";  ///< see PRESSURE_LOAD
 
 /// Adds a new property map named `name` to the mesh. CGAL 5.5 returns (map, created); a map of
 /// that name that already exists would be stale rest data, so that is an error here.

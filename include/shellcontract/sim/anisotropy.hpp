@@ -22,7 +22,11 @@ enum class FiberMode {
 
 /// Options of the anisotropic regions.
 struct AnisotropyOptions {
-  std::vector<std::vector<int>> regions;  ///< face ids (input order) of each region
+  /// Face ids (input order) of each region, for a caller that has them as lists: the Simulator
+  /// stores them in the map "f:region" of its mesh (face_ids_from_regions; a face in two lists
+  /// or out of range is refused). Empty (default): the regions are the "f:region" map of the
+  /// mesh given to the Simulator, if it has one (mark_spherical_regions, store_regions).
+  std::vector<std::vector<int>> regions;
   FiberMode fiber_mode = FiberMode::TowardCentre;
   Vec3 user_direction = Vec3::UnitX();    ///< FiberMode::User only
   double kappa_a = 0.1;                   ///< k_A = kappa_A mu_A sqrt(Abar_j) (math-spec 9.3, 14)
@@ -35,11 +39,14 @@ struct AnisotropyReport {
   std::size_t fallback_fibers = 0;  ///< faces where the direction was undefined: a = (1, 0)
 };
 
-/// Appends one E_A constraint per non-degenerate region face to set.anisotropic (with its fibre
-/// in ElementMaterialData::fiber) and its k_A to set.anisotropic_k_a.
-/// @pre build_rest_state(mesh) was called (reads f:triangle_rest)
-/// @throws InputError for a face id out of range
-AnisotropyReport add_anisotropic_constraints(const Mesh& mesh, const AnisotropyOptions& options,
+/// Stores the fibre direction of every region face in the map "f:fiber_dir" (unit Vec2 in the
+/// face's rest frame; (1, 0) outside the regions and on degenerate faces), then appends one E_A
+/// constraint per non-degenerate region face to set.anisotropic (with the fibre read from that
+/// map in ElementMaterialData::fiber) and its k_A to set.anisotropic_k_a. Constraints come
+/// region by region, each region's faces in ascending order. options.regions is not read.
+/// @pre build_rest_state(mesh) was called (reads f:triangle_rest); the regions are in
+///      "f:region" (no map: no region)
+AnisotropyReport add_anisotropic_constraints(Mesh& mesh, const AnisotropyOptions& options,
                                              ConstraintSet& set);
 
 /// Unit fibre direction in a face's rest frame from a 3D direction d (math-spec 7):

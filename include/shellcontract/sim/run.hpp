@@ -97,11 +97,13 @@ class ObserverList final : public RunObserver {
   std::vector<RunObserver*> observers_;
 };
 
-/// The regions a run would use: auto-selected by curvature, read from the file, or none.
-/// Selection happens only when something acts on them (an anisotropic energy or an inward term)
-/// or they are measured.
+/// Stores the regions a run would use in the mesh's "f:region" map: auto-selected by curvature
+/// (mark_spherical_regions, which also stores the curvature maps), read from the file, or none
+/// (every face -1). run_contraction calls it on its copy of the mesh after resolve_run_options,
+/// which selects Auto only when something acts on the regions or they are measured.
+/// @return the number of regions
 /// @throws InputError for an unreadable or out-of-range region file
-std::vector<std::vector<int>> select_run_regions(const Mesh& mesh, const RunOptions& options);
+std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
 
 /// Runs the contraction of `mesh` (a checked, closed, outward-oriented triangle mesh from
 /// read_input_mesh, any units) to its end.

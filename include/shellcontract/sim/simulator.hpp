@@ -68,6 +68,9 @@ class Simulator {
   /// Vertices whose mass scale_masses_for_pressure raised (sim/mass_scaling.hpp).
   std::size_t mass_scaled_vertices() const { return mass_scaled_vertices_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
+  /// Number of regions in the rest mesh's "f:region" map (options.anisotropy.regions, or the
+  /// input mesh's map), whether or not anything acts on them.
+  std::size_t region_count() const { return region_count_; }
   /// Face pairs that already intersect in the input (the validation baseline).
   std::size_t input_intersections() const;
   /// Primitive pairs the collision handling ignores because they touch in the rest state.
@@ -77,7 +80,7 @@ class Simulator {
   /// CGAL self-intersection check of the current positions: face pairs not in the input's set.
   std::size_t count_new_intersections() const;
   /// How far the anisotropic regions sank in: the mean over the vertices of every region
-  /// (options.anisotropy.regions, whether or not E_A is on) of -(x_i - xbar_i) . nbar_i, with
+  /// (the "f:region" map, whether or not E_A is on) of -(x_i - xbar_i) . nbar_i, with
   /// nbar_i the rest area-weighted unit vertex normal (normalized units; > 0 = moved inward).
   /// 0 when there are no regions. The paper's Fig. 20 measure (issue acceptance).
   double region_inward_displacement() const;
@@ -127,6 +130,7 @@ class Simulator {
   mutable std::optional<std::vector<std::pair<FaceIndex, FaceIndex>>> baseline_intersections_;
   Positions x_, v_, x_pred_, force_;
   Positions rest_x_;                  ///< normalized rest positions
+  std::size_t region_count_ = 0;
   std::vector<int> region_vertices_;  ///< vertices of the regions, sorted, unique
   std::vector<int> outside_vertices_;  ///< neither in a region nor in its one-ring band
   Positions region_normals_;          ///< their rest unit normals, same order
