@@ -22,7 +22,9 @@ struct ProjectionContext {
   double orientation = 1.0;    ///< s of math-spec 4.2 (+1 default)
 };
 
-namespace detail {
+/// Building blocks of the inline projection kernels below (vertex access, scaled updates, the
+/// energy gradient of any material): in this header because the kernels are inline for speed.
+namespace kernel_parts {
 inline Eigen::Map<Vec3> vertex(double* x, int i) { return Eigen::Map<Vec3>(x + 3 * i); }
 
 /// x_i -= s g, written out: the same roundings as vertex(x, i) -= s * g, but GCC did not inline
@@ -51,7 +53,7 @@ inline void apply_step(double* x, const double* w, const std::array<int, N>& v,
   if (longest_sq > max_step * max_step) scale *= max_step / std::sqrt(longest_sq);
   for (int i = 0; i < N; ++i) subtract_scaled(x, v[i], scale * w[v[i]], g[i]);
 }
-}  // namespace detail
+}  // namespace kernel_parts
 
 /// True when material M offers the frame-free C-form psi_second_pk(C, data, S) (math-spec 4.4).
 template <class M, class = void>
@@ -97,7 +99,7 @@ inline double membrane_energy_gradient_cform(const M& material, const MembraneCo
   return membrane_energy_gradient_cform(material, pack_membrane(c), c.data, x1, x2, x3, g);
 }
 
-namespace detail {
+namespace kernel_parts {
 /// Energy E and vertex gradients g of a membrane element for any material: the C-form when
 /// the material has one, else the current frame and the lift (math-spec 4.2-4.4).
 /// @return false when the element must be skipped (no frame, or a frame-dependent material on
@@ -123,7 +125,7 @@ inline bool membrane_energy_gradient(const M& material, const PackedMembrane& c,
     return true;
   }
 }
-}  // namespace detail
+}  // namespace kernel_parts
 
 /// Projects one membrane (or anisotropic) constraint with material M.
 /// PBD (lambda == nullptr): dx_i = -k E/G w_i g_i, G = sum w_i |g_i|^2 (math-spec 9.1), with the
@@ -142,8 +144,8 @@ inline bool project_membrane(const M& material, const PackedMembrane& c,
   const double max_step = c.max_step;
   std::array<Vec3, 3> g;
   double E;
-  if (!detail::membrane_energy_gradient(material, c, data, ctx.orientation, detail::vertex(x, i0),
-                                        detail::vertex(x, i1), detail::vertex(x, i2), g, E))
+  if (!kernel_parts::membrane_energy_gradient(material, c, data, ctx.orientation, kernel_parts::vertex(x, i0),
+                                        kernel_parts::vertex(x, i1), kernel_parts::vertex(x, i2), g, E))
     return false;
   if (!(E > ctx.energy_floor * c.rest_area)) return false;  // also rejects NaN
   const double w0 = ctx.w[i0], w1 = ctx.w[i1], w2 = ctx.w[i2];
@@ -151,24 +153,24 @@ inline bool project_membrane(const M& material, const PackedMembrane& c,
   const double G = w0 * n0 + w1 * n1 + w2 * n2;
   if (!(G > 1e-300)) return false;  // stationary point with E > 0 (math-spec 9.1d)
   if (lambda == nullptr) {
-    // detail::apply_step with the |g_i|^2 above reused.
+    // kernel_parts::apply_step with the |g_i|^2 above reused.
     double scale = stiffness * E / G;
     double longest_sq = std::max(0.0, (scale * w0) * (scale * w0) * n0);
     longest_sq = std::max(longest_sq, (scale * w1) * (scale * w1) * n1);
     longest_sq = std::max(longest_sq, (scale * w2) * (scale * w2) * n2);
     if (longest_sq > max_step * max_step) scale *= max_step / std::sqrt(longest_sq);
-    detail::subtract_scaled(x, i0, scale * w0, g[0]);
-    detail::subtract_scaled(x, i1, scale * w1, g[1]);
-    detail::subtract_scaled(x, i2, scale * w2, g[2]);
+    kernel_parts::subtract_scaled(x, i0, scale * w0, g[0]);
+    kernel_parts::subtract_scaled(x, i1, scale * w1, g[1]);
+    kernel_parts::subtract_scaled(x, i2, scale * w2, g[2]);
     return true;
   }
   const double C = std::sqrt(2.0 * E);
   const double at = ctx.alpha_tilde;
   const double sigma = C * (C + at * *lambda) / (G + at * C * C);
   *lambda -= C * sigma;
-  detail::subtract_scaled(x, i0, sigma * w0, g[0]);
-  detail::subtract_scaled(x, i1, sigma * w1, g[1]);
-  detail::subtract_scaled(x, i2, sigma * w2, g[2]);
+  kernel_parts::subtract_scaled(x, i0, sigma * w0, g[0]);
+  kernel_parts::subtract_scaled(x, i1, sigma * w1, g[1]);
+  kernel_parts::subtract_scaled(x, i2, sigma * w2, g[2]);
   return true;
 }
 
@@ -192,9 +194,9 @@ inline bool project_anisotropic_paper(const A& material, const PackedMembrane& c
   if (k_a == 0.0) return project_membrane(material, c, data, 1.0, ctx, nullptr);
   std::array<Vec3, 3> g;
   double E;
-  if (!detail::membrane_energy_gradient(material, c, data, ctx.orientation,
-                                        detail::vertex(ctx.x, c.v[0]), detail::vertex(ctx.x, c.v[1]),
-                                        detail::vertex(ctx.x, c.v[2]), g, E))
+  if (!kernel_parts::membrane_energy_gradient(material, c, data, ctx.orientation,
+                                        kernel_parts::vertex(ctx.x, c.v[0]), kernel_parts::vertex(ctx.x, c.v[1]),
+                                        kernel_parts::vertex(ctx.x, c.v[2]), g, E))
     return false;
   if (!(E > ctx.energy_floor * c.rest_area)) return false;
   double G = 0.0;  // = sum w |g|^2 + k_A^2 sum w: the cross term is zero (g in-plane)
@@ -203,7 +205,7 @@ inline bool project_anisotropic_paper(const A& material, const PackedMembrane& c
     G += ctx.w[c.v[i]] * g[i].squaredNorm();
   }
   if (!(G > 1e-300)) return false;
-  detail::apply_step<3>(ctx.x, ctx.w, c.v, g, E / G, c.max_step);
+  kernel_parts::apply_step<3>(ctx.x, ctx.w, c.v, g, E / G, c.max_step);
   return true;
 }
 
@@ -227,8 +229,8 @@ inline bool project_isometric_hinge(const IsometricHingeConstraint& c, double k_
   const double K0 = c.K(0), K1 = c.K(1), K2 = c.K(2), K3 = c.K(3);
   const double max_step = c.max_step, three_over_area = c.three_over_area;
   const double w0 = ctx.w[i0], w1 = ctx.w[i1], w2 = ctx.w[i2], w3 = ctx.w[i3];
-  const Vec3 h = K0 * detail::vertex(x, i0) + K1 * detail::vertex(x, i1) +
-                 K2 * detail::vertex(x, i2) + K3 * detail::vertex(x, i3);
+  const Vec3 h = K0 * kernel_parts::vertex(x, i0) + K1 * kernel_parts::vertex(x, i1) +
+                 K2 * kernel_parts::vertex(x, i2) + K3 * kernel_parts::vertex(x, i3);
   const double wK2 = w0 * K0 * K0 + w1 * K1 * K1 + w2 * K2 * K2 + w3 * K3 * K3;
   if (!(wK2 > 1e-300)) return false;  // every stencil vertex pinned, or K = 0 (inactive hinge)
   if (lambda == nullptr) {
@@ -240,10 +242,10 @@ inline bool project_isometric_hinge(const IsometricHingeConstraint& c, double k_
     longest = std::max(longest, w3 * std::abs(K3));
     longest *= base.norm();
     const double shrink = longest > max_step ? max_step / longest : 1.0;
-    detail::subtract_scaled(x, i0, shrink * w0 * K0, base);
-    detail::subtract_scaled(x, i1, shrink * w1 * K1, base);
-    detail::subtract_scaled(x, i2, shrink * w2 * K2, base);
-    detail::subtract_scaled(x, i3, shrink * w3 * K3, base);
+    kernel_parts::subtract_scaled(x, i0, shrink * w0 * K0, base);
+    kernel_parts::subtract_scaled(x, i1, shrink * w1 * K1, base);
+    kernel_parts::subtract_scaled(x, i2, shrink * w2 * K2, base);
+    kernel_parts::subtract_scaled(x, i3, shrink * w3 * K3, base);
     return true;
   }
   const double beta = k_bending * three_over_area;
@@ -251,10 +253,10 @@ inline bool project_isometric_hinge(const IsometricHingeConstraint& c, double k_
   Eigen::Map<Vec3> lam(lambda);
   const Vec3 dlam = (-sqrt_beta * h - ctx.alpha_tilde * lam) / (beta * wK2 + ctx.alpha_tilde);
   lam += dlam;
-  detail::add_scaled(x, i0, w0 * sqrt_beta * K0, dlam);
-  detail::add_scaled(x, i1, w1 * sqrt_beta * K1, dlam);
-  detail::add_scaled(x, i2, w2 * sqrt_beta * K2, dlam);
-  detail::add_scaled(x, i3, w3 * sqrt_beta * K3, dlam);
+  kernel_parts::add_scaled(x, i0, w0 * sqrt_beta * K0, dlam);
+  kernel_parts::add_scaled(x, i1, w1 * sqrt_beta * K1, dlam);
+  kernel_parts::add_scaled(x, i2, w2 * sqrt_beta * K2, dlam);
+  kernel_parts::add_scaled(x, i3, w3 * sqrt_beta * K3, dlam);
   return true;
 }
 
