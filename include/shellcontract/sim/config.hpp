@@ -27,8 +27,9 @@ enum class BendingModel { Isometric, Dihedral, None };
 enum class InwardTerm { Projection, Force, Volume, None };
 
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
-/// Volume mechanism, the regions' caps are driven to 1 - 2 * 0.3 = 0.4 of their rest volume
-/// (relative to the shell's); docs/design/anisotropy.md gives the measurements behind it.
+/// Volume mechanism, a region's cap on a shell at its rest volume is driven to 1 - 2 * 0.3 = 0.4
+/// of its rest cap volume (region_cap_target); docs/design/anisotropy.md gives the measurements
+/// behind it.
 inline constexpr double DEFAULT_REGION_SHRINK = 0.3;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
