@@ -7,12 +7,11 @@
 # the tests' output holds one, so that a finding in a child process (the CLI run by a test) is
 # not lost. (GCC's UBSan ignores log_path and reports on stderr.)
 #
-# Time: long. On the shared 2-vCPU development machine (load 8 to 12 from other builds, this at
-# nice 19) the library alone took 95 min wall and 33 min of CPU (user + sys) with a cold ccache,
-# and the whole build was not measured to the end; from the CPU per source file (about 40 s), the
-# build is about 75 CPU-minutes (roughly 40 min on 2 free cores), before a suite that runs several
-# times slower than in Release. That does not fit beside the default suite in the CI budget
-# (90 min, 16 used), so .ci/run does not run it: run it on demand. A re-run reuses build-asan.
+# Time: long. On the 2-vCPU development machine, at nice 5 beside a Release build for part of the
+# time: 79 min wall (123 CPU-min), of which the build took about 28 min (ccache half warm from an
+# earlier, interrupted attempt; about 75 CPU-min cold) and the suite 42 min (the Release suite
+# takes 5). That does not fit beside the default suite in the CI budget (90 min, 21 used), so
+# .ci/run does not run it: run it on demand. A re-run reuses build-asan.
 #
 # Usage: scripts/sanitize.sh [extra ctest args]       (e.g. -R Reconstruction)
 #        SANITIZE_BUILD_DIR=build-asan (default)      the build folder
@@ -58,14 +57,21 @@ check_output() {
     status=1
   fi
 }
-ctest --test-dir "$build" --output-on-failure -j"$jobs" -LE 'long|python' "$@" || status=1
+# Goldens.* compare bit-exact hashes of the Release build's arithmetic (-O3); this build's -O1 code
+# rounds differently (elk_p4_coloured: V/V0 0.6584579 against 0.6584682 after 40 frames), so the
+# comparison cannot hold here. Every code path those runs take is also taken by the other tests.
+ctest --test-dir "$build" --output-on-failure -j"$jobs" -LE 'long|python' -E '^Goldens\.' "$@" || status=1
 check_output
 # The Python tests run Debian's python3, which is not instrumented: the module's ASan runtime must
 # be loaded first (LD_PRELOAD), and the interpreter's own allocations alive at exit are not leaks
 # of ours (detect_leaks=0 for these tests, the CLI they start included).
 if grep -q '^SHELLCONTRACT_BUILD_PYTHON:BOOL=ON' "$build/CMakeCache.txt"; then
   cxx="$(sed -n 's/^CMAKE_CXX_COMPILER:[A-Z]*=//p' "$build/CMakeCache.txt")"
-  LD_PRELOAD="$("$cxx" -print-file-name=libasan.so)" ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
+  # libstdc++ is preloaded too: ASan's __cxa_throw interceptor resolves the real function when it
+  # starts, before Python would load libstdc++ with the module (without it: "CHECK failed:
+  # real___cxa_throw != 0" at the module's first exception).
+  LD_PRELOAD="$("$cxx" -print-file-name=libasan.so) $("$cxx" -print-file-name=libstdc++.so)" \
+    ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" \
     ctest --test-dir "$build" --output-on-failure -j"$jobs" -L python -LE long "$@" || status=1
   check_output
 fi
