@@ -95,7 +95,7 @@ def main():
              "each column measures). Lengths are fractions of the bounding-box diagonal; 200 frames; "
              "collisions on; \"new SI\" = new self-intersecting face pairs at the end (CGAL).", ""]
     with tempfile.TemporaryDirectory() as tmp:
-        lines += ["## 1. Locality: `-p 0 --regions R`, default strength (`--region-shrink 0.3`)", "",
+        lines += ["## 1. Locality: `-p 0 --regions R`, default strength (`--region-shrink 0.7`)", "",
                   "| mesh | regions | mechanism | sink | rest | sink / rest | V/V0 | new SI |",
                   "|---|---|---|---:|---:|---:|---:|---:|"]
         for name, path, regions in meshes[:3]:

@@ -59,10 +59,13 @@ class Runner:
         for option, value in (("--air-balance", "0"), ("--bending", "isometric"), ("--pressure", "2")):
             if option not in args:
                 args += [option, value]
-        # The paper's local contraction is its region pressure (--inward force); the tool's default
-        # shrinks the regions' cap volumes instead (docs/math/local-contraction.md).
+        # The paper's local contraction is its region pressure (--inward force), here P_A = 3
+        # (--region-shrink 0.3, the strength the figures were made with); the tool's default
+        # sinks the regions as dimples instead (docs/math/local-contraction.md).
         if any(a in args for a in ("--regions", "--aniso")) and "--inward" not in args:
             args += ["--inward", "force"]
+            if "--region-shrink" not in args:
+                args += ["--region-shrink", "0.3"]
         cmd = [self.tool, "run", mesh, "-o", base + ".off", "--summary", base + ".json",
                "--log", base + ".csv", "-q", *args]
         # --reuse (for editing the text without re-simulating): a run whose command line is the

@@ -375,8 +375,9 @@ std::vector<OptionSpec> build_table() {
                      non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
   t.push_back(
       choice("inward",
-             "how the regions are made to sink in: volume (each region's cap volume is driven "
-             "to 1 - 2S of its rest value, S = --region-shrink, and held) | force (the paper's "
+             "how the regions are made to sink in: volume (each region sinks as a mirrored "
+             "dimple around its apex that takes 2S of its rest cap volume off, S = "
+             "--region-shrink, and is held there) | force (the paper's "
              "extra pressure on the regions, P_A = 10 S, without net force or torque) | "
              "projection (the paper's k_A inside the E_A projection; --aniso, pbd) | none",
              Choices<InwardTerm>{{"volume", InwardTerm::Volume},
@@ -386,7 +387,8 @@ std::vector<OptionSpec> build_table() {
              [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
   t.push_back(number("region-shrink", 0, "S",
                      "how much the regions of --regions shrink (the local contraction's "
-                     "strength): 0 not at all, 0.5 flattens a bump, 1 turns it inside out",
+                     "strength): 0 not at all, 0.5 takes a bump's whole volume off, 1 turns "
+                     "it inside out",
                      between(0.0, 1.0, false, false),
                      [](R& r) -> double& { return r.sim.region_shrink; }));
   t.push_back(number("mu-a", 0, "MUA", "anisotropic fibre stiffness mu_A", non_negative(),

@@ -99,10 +99,4 @@ int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd
   return steps;
 }
 
-double region_cap_target(double rest_volume, double shrink, double s, double volume_ratio) {
-  // Mirror image of the scaled cap at most: beyond it the region would have to stretch.
-  return rest_volume *
-         std::max(volume_ratio - 2.0 * shrink * std::clamp(s, 0.0, 1.0), -volume_ratio);
-}
-
 }  // namespace shellcontract

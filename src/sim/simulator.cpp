@@ -85,10 +85,9 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
                       (options_.inward_term == InwardTerm::Projection && !k_a_projected);
   if (options_.inward_term == InwardTerm::Volume && options_.region_shrink > 0.0) {
     for (const std::vector<int>& region : regions) {
-      RegionCap cap = make_region_cap(faces_, region);
-      cap.rest_volume = cap_volume(x_, cap);
-      // A flat region or a dent has no cap to shrink (region_cap_target would push it out).
-      if (cap.rest_volume > 0.0) region_caps_.push_back(std::move(cap));
+      RegionDimple dimple = make_region_dimple(x_, faces_, region);
+      // A flat region or a dent has no cap to shrink (a dimple would push it out).
+      if (dimple.whole.rest_volume > 0.0) region_dimples_.push_back(std::move(dimple));
       else ++regions_without_cap_;
     }
   }
@@ -138,7 +137,7 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
           len > 0.0 ? Eigen::RowVector3d(n.transpose() / len) : Eigen::RowVector3d::Zero();
     }
   }
-  follow_rest_ = (!region_caps_.empty() || inward_faces_.rows() > 0) && !outside_vertices_.empty();
+  follow_rest_ = (!region_dimples_.empty() || inward_faces_.rows() > 0) && !outside_vertices_.empty();
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
     throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) +
@@ -195,21 +194,36 @@ void Simulator::follow_rest(Positions& x) const {
 }
 
 void Simulator::apply_region_contraction(Positions& x) {
-  if (region_caps_.empty()) return;
+  if (region_dimples_.empty()) return;
   // The same ramp as a target volume's: the regions start and stop sinking gently.
   const int ramp = std::min(options_.target_ramp_frames, std::max(1, options_.frames / 2));
   const double t = std::clamp(static_cast<double>(frame_ + 1) / ramp, 0.0, 1.0);
   const double s = t * t * (3.0 - 2.0 * t);
-  const double ratio = signed_volume(x, faces_) / constraint_rest_volume_;
+  // The shell's own contraction rho is measured with the caps cut off at their rims: a sinking
+  // region lowers V/V0 by itself, and a target scaled by that would chase its own sinking.
+  double caps_now = 0.0, caps_rest = 0.0;
+  for (const RegionDimple& d : region_dimples_) {
+    caps_now += cap_volume(x, d.whole);
+    caps_rest += d.whole.rest_volume;
+  }
+  const double rest_outside = constraint_rest_volume_ - caps_rest;
+  const double ratio = rest_outside > 0.0
+                           ? (signed_volume(x, faces_) - caps_now) / rest_outside
+                           : signed_volume(x, faces_) / constraint_rest_volume_;
+  if (!(ratio > 0.0)) return;  // a shell turned inside out has no caps to sink
   // Vertices held by the last step's contacts stay (see apply_volume_control).
   Eigen::VectorXd w = inv_mass_;
   for (std::size_t i = 0; i < held_by_contact_.size(); ++i)
     if (held_by_contact_[i]) w(static_cast<Eigen::Index>(i)) = 0.0;
-  for (const RegionCap& cap : region_caps_) {
-    const double target = region_cap_target(cap.rest_volume, options_.region_shrink, s, ratio);
-    // One-sided: a region the global contraction has already sunk further is left alone.
-    if (cap_volume(x, cap) > target)
-      project_cap_volume(x, cap, w, target, 1e-12 * cap.rest_volume);
+  for (RegionDimple& d : region_dimples_) {
+    const double wanted = dimple_rest_volume(d.whole.rest_volume, options_.region_shrink, s, ratio);
+    if (!(wanted > 0.0)) continue;
+    set_dimple_size(d, faces_, dimple_size_for(d, wanted));
+    if (!(d.dimple.rest_volume > 0.0)) continue;
+    const double target = -ratio * d.dimple.rest_volume;
+    // One-sided: a dimple the global contraction has already sunk further is left alone.
+    if (cap_volume(x, d.dimple) > target)
+      project_cap_volume(x, d.dimple, w, target, 1e-12 * d.dimple.rest_volume);
   }
 }
 
@@ -240,7 +254,7 @@ FrameMetrics Simulator::step() {
   solver_->solve(x_pred_, inv_mass_);
   m.solve_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - solve_start).count();
-  // Step 2b: the regions' cap volumes (the local contraction), then the global volume
+  // Step 2b: the regions' dimples (the local contraction), then the global volume
   // constraint of a target volume or a stop ratio (docs/math/volume-control.md), which has the
   // last word on V.
   apply_region_contraction(x_pred_);
@@ -255,7 +269,7 @@ FrameMetrics Simulator::step() {
         ": a vertex moved more than the whole mesh (bounding-box diagonal) in one step");
   // Step 3: continuous collision detection and response between x^n and x*.
   const bool volume_control = options_.target_volume > 0.0 || options_.stop_volume_ratio > 0.0 ||
-                              !region_caps_.empty();
+                              !region_dimples_.empty();
   if (collision_ && volume_control) before_collisions_ = x_pred_;
   if (collision_) collision_->resolve(x_, x_pred_, inv_mass_, m.collision);
   if (collision_ && volume_control) {

@@ -32,9 +32,9 @@ TEST(Defaults, ThePapersSettingIsStillAvailable) {
 
 TEST(LocalContraction, RegionsSinkMoreAsTheShrinkGrows) {
   // Monotone in the strength, and nothing at strength 0 (no pressure either: the shell is at
-  // rest with the rest-aware bending).
+  // rest with the rest-aware bending); local at the default strength.
   double previous = -1.0;
-  for (double s : {0.0, 0.3, 0.6, 1.0}) {
+  for (double s : {0.0, 0.3, DEFAULT_REGION_SHRINK, 1.0}) {
     const RunResult r = test::bumpy_sphere_contraction(s);
     ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
     EXPECT_EQ(r.regions, 3u);
@@ -43,6 +43,13 @@ TEST(LocalContraction, RegionsSinkMoreAsTheShrinkGrows) {
       EXPECT_LE(std::abs(r.region_inward_displacement), 1e-9);
     } else {
       EXPECT_GT(r.region_inward_displacement, previous) << "shrink " << s;
+    }
+    if (s == DEFAULT_REGION_SHRINK) {
+      // Item 1 at the default strength: the bumps sink at least 1 % of the bounding-box diagonal
+      // (the normalized unit) and 10x as far as the rest of the shell moves.
+      EXPECT_GE(r.region_inward_displacement, 0.01);
+      EXPECT_GE(r.region_inward_displacement, 10.0 * r.outside_region_displacement)
+          << "rest moved " << r.outside_region_displacement;
     }
     previous = r.region_inward_displacement;
     std::cout << "bumpy_sphere shrink " << s << ": region sink " << r.region_inward_displacement

@@ -16,10 +16,10 @@ namespace shellcontract {
 /// isometric: the paper's flat-rest model (math-spec 8.2); dihedral: rest-aware (8.3).
 enum class BendingModel { Isometric, Dihedral, None };
 
-/// The local contraction's mechanism on the regions: Volume (default) drives each region's cap
-/// volume down to a target set by region_shrink and holds it there (region_volume.hpp,
-/// docs/math/local-contraction.md): the region sinks a chosen amount and the rest of the shell
-/// is left alone once it is there. Force is the paper's extra pressure P_A on the region faces,
+/// The local contraction's mechanism on the regions: Volume (default) sinks each region as a
+/// mirrored dimple around its apex, as large as region_shrink asks, and holds it there
+/// (region_dimple.hpp, docs/math/local-contraction.md): the region sinks a chosen amount and the
+/// rest of the shell is left alone once it is there. Force is the paper's extra pressure P_A on the region faces,
 /// f_i = -(P_A/6) sum N_j, applied in the prediction without net force or torque (math-spec
 /// 9.2 R); it keeps pushing for the whole run, so the sink creeps on and spreads to the rest.
 /// Projection is the paper's k_A inside the E_A projection (math-spec 9.3; PBD only, in XPBD it
@@ -27,10 +27,12 @@ enum class BendingModel { Isometric, Dihedral, None };
 enum class InwardTerm { Projection, Force, Volume, None };
 
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
-/// Volume mechanism, a region's cap on a shell at its rest volume is driven to 1 - 2 * 0.3 = 0.4
-/// of its rest cap volume (region_cap_target); docs/design/anisotropy.md gives the measurements
-/// behind it.
-inline constexpr double DEFAULT_REGION_SHRINK = 0.3;
+/// Volume mechanism, a region on a shell at its rest volume loses 2 * 0.7 = 1.4 times its rest cap
+/// volume, as a mirrored dimple (dimple_rest_volume). Chosen by measurement
+/// (docs/benchmarks/local-contraction.md): the smallest strength at which the regions of
+/// bumpy_sphere and bear sink at least twice as far with the contraction as without it under the
+/// default pressure.
+inline constexpr double DEFAULT_REGION_SHRINK = 0.7;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
 enum class ValidateMode { Off, End, EveryFrame };
@@ -92,7 +94,7 @@ struct SimOptions {
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
   AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
   InwardTerm inward_term = InwardTerm::Volume;
-  /// How much the regions shrink, in [0, 1]: the local contraction's strength (region_cap_target
+  /// How much the regions shrink, in [0, 1]: the local contraction's strength (dimple_rest_volume
   /// for InwardTerm::Volume, region_pressure for InwardTerm::Force).
   double region_shrink = DEFAULT_REGION_SHRINK;
   /// Continuous collision detection and response (paper section 4). On by default: users expect

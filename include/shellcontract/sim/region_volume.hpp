@@ -1,7 +1,7 @@
 // The local contraction as a constraint (docs/math/local-contraction.md): each region is closed by
-// a fan from the centroid of its rim into a "cap", and the cap's volume is driven down to a
-// fraction of its rest value (relative to the whole shell's volume ratio), so that the region
-// sinks in by a chosen amount and then stays there. Eigen only.
+// a fan from the centroid of its rim into a "cap", whose volume measures how far the region
+// stands out (> 0) or is sunk in (< 0); a projection drives it to a target (the dimple of
+// sim/region_dimple.hpp is such a cap). Eigen only.
 #pragma once
 
 #include <vector>
@@ -42,13 +42,5 @@ void cap_volume_gradient(const Positions& x, const RegionCap& cap, Positions& g)
 /// @param w  inverse masses of the whole mesh (#V); w = 0 holds a vertex
 int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w, double target,
                        double tolerance, int max_steps = 4);
-
-/// The cap volume a region is driven below at ramp progress s in [0, 1] (smoothstep of the frame),
-/// with the shell at volume ratio rho = V/V0: rest_volume * max(rho - 2 shrink s, -rho). On a
-/// shell at its rest volume, shrink 0.5 flattens the cap and 1 turns it into its mirror image;
-/// when a global pressure or a target volume contracts everything (rho < 1), the region still
-/// loses 2 shrink of its rest cap volume more than the shell's own share, down to the mirror image
-/// of its scaled cap.
-double region_cap_target(double rest_volume, double shrink, double s, double volume_ratio);
 
 }  // namespace shellcontract

@@ -13,7 +13,7 @@
 #include "shellcontract/mesh/surface_mesh.hpp"
 #include "shellcontract/pbd/solver.hpp"
 #include "shellcontract/sim/config.hpp"
-#include "shellcontract/sim/region_volume.hpp"
+#include "shellcontract/sim/region_dimple.hpp"
 #include "shellcontract/sim/rest_state.hpp"
 
 namespace shellcontract {
@@ -102,7 +102,7 @@ class Simulator {
  private:
   /// Projects x onto the volume of a target-volume run, or onto the stop ratio at its crossing.
   void apply_volume_control(Positions& x);
-  /// Projects each region's cap volume below its target of this frame (InwardTerm::Volume).
+  /// Projects each region's dimple onto its mirror image of this frame (InwardTerm::Volume).
   void apply_region_contraction(Positions& x);
   /// Moves x by minus the mass-weighted mean displacement of the outside vertices in this step
   /// (a Galilean change of frame: no internal force, contact or shape changes).
@@ -116,7 +116,7 @@ class Simulator {
   Faces faces_;
   Faces inward_faces_;      ///< anisotropic faces that get the local extra pressure
   Positions region_force_;  ///< its forces (buffer)
-  std::vector<RegionCap> region_caps_;  ///< InwardTerm::Volume: the regions with a cap to shrink
+  std::vector<RegionDimple> region_dimples_;  ///< InwardTerm::Volume: regions with a cap to sink
   int regions_without_cap_ = 0;         ///< regions left alone: flat or dented at rest
   /// A local contraction acts (caps or region force): the frame follows the rest of the shell.
   /// A free shell whose regions sink in recoils as a whole (its centre of mass stays), which on
