@@ -21,6 +21,7 @@
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/normalization.hpp"
+#include "mesh/soup_checks.hpp"
 
 namespace shellcontract {
 namespace {
@@ -29,12 +30,8 @@ using Tri = std::array<std::size_t, 3>;
 
 /// read_input_mesh's ZERO_AREA_RELATIVE: 2A below this fraction of the squared mean edge length.
 constexpr double ZERO_AREA_RELATIVE = 1e-10;
-/// How many indices a warning lists before "...".
-constexpr std::size_t MAX_LISTED = 10;
 
-[[noreturn]] void fail(const std::string& name, const std::string& problem, const std::string& details) {
-  throw InputError(name + ": " + problem + ": " + details);
-}
+using soup::fail;
 
 std::string face_name(std::size_t f) { return "face " + std::to_string(f); }
 std::string vertex_name(std::size_t v) { return "vertex " + std::to_string(v); }
@@ -81,59 +78,6 @@ void check_duplicates_and_isolated(const std::vector<Tri>& tris, std::size_t nv,
     if (!used[v]) fail(name, "isolated vertex", vertex_name(v) + " is not used by any face");
 }
 
-/// Each undirected edge: exactly two faces, opposite directions. The first problem in face order
-/// is reported, as read_input_mesh does.
-void check_edges(const std::vector<Tri>& tris, std::size_t nv, const std::string& name) {
-  struct EdgeUse {
-    std::uint64_t key;
-    std::size_t face;
-    bool forward;
-    bool operator<(const EdgeUse& o) const { return key != o.key ? key < o.key : face < o.face; }
-  };
-  auto key = [nv](std::size_t a, std::size_t b) { return static_cast<std::uint64_t>(std::min(a, b)) * nv + std::max(a, b); };
-  std::vector<EdgeUse> uses;
-  uses.reserve(3 * tris.size());
-  for (std::size_t f = 0; f < tris.size(); ++f)
-    for (int k = 0; k < 3; ++k) uses.push_back({key(tris[f][k], tris[f][(k + 1) % 3]), f, tris[f][k] < tris[f][(k + 1) % 3]});
-  std::sort(uses.begin(), uses.end());
-  for (std::size_t f = 0; f < tris.size(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
-      const auto first = std::lower_bound(uses.begin(), uses.end(), EdgeUse{key(a, b), 0, false});
-      std::size_t count = 0;
-      while (first + static_cast<std::ptrdiff_t>(count) != uses.end() && first[static_cast<std::ptrdiff_t>(count)].key == key(a, b)) ++count;
-      if (count == 2 && first[0].forward != first[1].forward) continue;
-      const std::string edge = "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
-      if (count == 1)
-        fail(name, "open boundary", edge + " of " + face_name(f) + " has no neighbouring face (boundary edge between vertex " + std::to_string(a) + " and vertex " + std::to_string(b) + "); the mesh must be closed");
-      if (count > 2) {
-        std::string list;
-        for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) list += (u ? ", " : "") + std::to_string(first[static_cast<std::ptrdiff_t>(u)].face);
-        fail(name, "non-manifold edge", "edge (" + std::to_string(std::min(a, b)) + ", " + std::to_string(std::max(a, b)) + ") is shared by " + std::to_string(count) + " faces (" + list + "), at most 2 allowed");
-      }
-      fail(name, "inconsistent orientation", face_name(first[0].face) + " and " + face_name(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
-    }
-}
-
-/// The faces around each vertex form one fan (after the edge checks, each link vertex has one
-/// successor, so following them from the first face must visit every face).
-void check_vertex_fans(const std::vector<Tri>& tris, std::size_t nv, const std::string& name) {
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> link(nv);
-  for (const Tri& t : tris)
-    for (int k = 0; k < 3; ++k) link[t[k]].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
-  for (std::size_t v = 0; v < nv; ++v) {
-    const auto& l = link[v];
-    std::size_t steps = 0, cur = l[0].second;
-    while (cur != l[0].first && steps <= l.size()) {
-      const auto it = std::find_if(l.begin(), l.end(), [cur](const auto& e) { return e.first == cur; });
-      if (it == l.end()) break;
-      cur = it->second;
-      ++steps;
-    }
-    if (steps + 1 != l.size())
-      fail(name, "non-manifold vertex", vertex_name(v) + ": its " + std::to_string(l.size()) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
-  }
-}
 
 /// Flips the inside-out components (negative signed volume); returns the components' count.
 std::size_t orient_components(std::vector<Tri>& tris, const std::vector<Point3>& points, bool reorient,
@@ -216,18 +160,22 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   }
   std::vector<Tri> tris = read_faces(soup, name);
   check_duplicates_and_isolated(tris, nv, name);
-  check_edges(tris, nv, name);
-  check_vertex_fans(tris, nv, name);
+  // The reader's edge and fan checks, with faces and vertices named by their index (no lines).
+  const SourceLines no_lines;
+  std::vector<std::size_t> identity(tris.size());
+  std::iota(identity.begin(), identity.end(), std::size_t{0});
+  soup::Namer by_index;
+  by_index.lines = &no_lines;
+  by_index.points = &points;
+  by_index.origin = &identity;
+  soup::check_edges(name, tris, nv, by_index);
+  soup::check_vertex_fans(name, tris, nv, by_index);
   std::vector<std::string> warnings;
   bool reoriented = false;
   const std::size_t components = orient_components(tris, points, reorient, warnings, reoriented);
   std::vector<std::size_t> zero_area = zero_area_faces(tris, points);
-  if (!zero_area.empty()) {
-    std::string list;
-    for (std::size_t i = 0; i < zero_area.size() && i < MAX_LISTED; ++i) list += (i ? ", " : "") + std::to_string(zero_area[i]);
-    if (zero_area.size() > MAX_LISTED) list += ", ...";
-    warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + list);
-  }
+  if (!zero_area.empty())
+    warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + soup::list_indices(zero_area));
 
   // What the simulator needs beyond a closed manifold, decided and measured as read_input_mesh
   // does (a usable bounding box; a positive volume at a unit diagonal, scaled back).

@@ -2,39 +2,21 @@
 // prefix volumes against the cap volume computed afresh, and the choice of its size.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include "shellcontract/sim/region_dimple.hpp"
-#include "support/mesh_fixtures.hpp"
-#include "support/random_geometry.hpp"
+#include "support/icosphere_cap.hpp"
 
 namespace shellcontract {
 namespace {
 
-/// An icosphere (perturbed when `noise` > 0) and the faces with a corner above z = z0.
-struct Scene {
-  test::TriMesh m;
-  std::vector<int> region;
-};
-
-Scene scene(double z0, double noise, unsigned seed = 7) {
-  std::mt19937 rng(seed);
-  Scene s{test::icosphere(3, 1.0), {}};
-  for (Eigen::Index i = 0; i < s.m.x.rows(); ++i)
-    s.m.x.row(i) += noise * test::random_vec3(rng).transpose();
-  for (Eigen::Index j = 0; j < s.m.faces.rows(); ++j)
-    for (int k = 0; k < 3; ++k)
-      if (s.m.x(s.m.faces(j, k), 2) > z0) {
-        s.region.push_back(static_cast<int>(j));
-        break;
-      }
-  return s;
+/// The level-3 icosphere (perturbed when `noise` > 0) and its faces with a corner above z0.
+test::CapScene scene(double z0, double noise, unsigned seed = 7) {
+  return test::icosphere_cap(3, z0, noise, seed);
 }
 
 TEST(RegionDimple, PrefixVolumesAreTheCapVolumesOfEachPrefix) {
   // The one-pass sums against make_region_cap + cap_volume (rim found afresh, fan from its
   // centroid) for every prefix, on a perturbed cap and in its dimple order and in face order.
-  const Scene s = scene(0.3, 0.02);
+  const test::CapScene s = scene(0.3, 0.02);
   const RegionDimple d = make_region_dimple(s.m.x, s.m.faces, s.region);
   ASSERT_EQ(d.order.size(), s.region.size());
   for (const std::vector<int>& order : {d.order, s.region}) {
@@ -53,7 +35,7 @@ TEST(RegionDimple, PrefixVolumesAreTheCapVolumesOfEachPrefix) {
 TEST(RegionDimple, OrderGrowsFromTheApex) {
   // Unperturbed sphere, cap around +z: the apex is the top vertex (0, 0, 1), the first face
   // touches it, and the face centroids' distances from it never decrease along the order.
-  const Scene s = scene(0.5, 0.0);
+  const test::CapScene s = scene(0.5, 0.0);
   const RegionDimple d = make_region_dimple(s.m.x, s.m.faces, s.region);
   Eigen::Index top = 0;
   s.m.x.col(2).maxCoeff(&top);
@@ -75,7 +57,7 @@ TEST(RegionDimple, OrderGrowsFromTheApex) {
 }
 
 TEST(RegionDimple, SizeIsTheSmallestPrefixThatHoldsTheVolume) {
-  const Scene s = scene(0.3, 0.02, 11);
+  const test::CapScene s = scene(0.3, 0.02, 11);
   RegionDimple d = make_region_dimple(s.m.x, s.m.faces, s.region);
   const int n = static_cast<int>(d.order.size());
   for (double fraction : {0.05, 0.25, 0.5, 0.9, 1.0}) {
@@ -96,7 +78,7 @@ TEST(RegionDimple, MirrorImageHasTheOppositeVolume) {
   // The contraction's target for a dimple of rest cap volume V_k is -V_k: its mirror image in
   // the rim's plane (here the rim's mean height), whose cap volume is exactly -V_k (a reflection
   // maps the rim centroid to the reflected centroid and every determinant to minus itself).
-  const Scene s = scene(0.5, 0.0);
+  const test::CapScene s = scene(0.5, 0.0);
   RegionDimple d = make_region_dimple(s.m.x, s.m.faces, s.region);
   set_dimple_size(d, s.m.faces, static_cast<int>(d.order.size()) / 2);
   ASSERT_GT(d.dimple.rest_volume, 0.0);

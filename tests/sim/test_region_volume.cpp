@@ -6,6 +6,7 @@
 
 #include "shellcontract/sim/region_volume.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
+#include "support/icosphere_cap.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/random_geometry.hpp"
 
@@ -29,25 +30,8 @@ std::vector<int> all_faces(const Faces& f) {
   return ids;
 }
 
-/// The faces of an icosphere with a corner above z = z0 (an open cap), positions perturbed.
-struct CapScene {
-  test::TriMesh m;
-  std::vector<int> region;
-};
-
-CapScene cap_scene(double z0, unsigned seed) {
-  std::mt19937 rng(seed);
-  CapScene s{test::icosphere(2, 1.0), {}};
-  for (Eigen::Index i = 0; i < s.m.x.rows(); ++i)
-    s.m.x.row(i) += 0.02 * test::random_vec3(rng).transpose();
-  for (Eigen::Index j = 0; j < s.m.faces.rows(); ++j)
-    for (int k = 0; k < 3; ++k)
-      if (s.m.x(s.m.faces(j, k), 2) > z0) {
-        s.region.push_back(static_cast<int>(j));
-        break;
-      }
-  return s;
-}
+/// A perturbed open cap of the level-2 icosphere: its faces with a corner above z = z0.
+test::CapScene cap_scene(double z0, unsigned seed) { return test::icosphere_cap(2, z0, 0.02, seed); }
 
 TEST(RegionVolume, PyramidCapIsTheConeOverItsRim) {
   for (double h : {0.7, 0.0, -0.7}) {
@@ -67,7 +51,7 @@ TEST(RegionVolume, ARegionWithoutRimIsTheEnclosedVolume) {
 }
 
 TEST(RegionVolume, RimIsWhereRegionAndRestMeet) {
-  const CapScene s = cap_scene(0.5, 1);
+  const test::CapScene s = cap_scene(0.5, 1);
   const RegionCap cap = make_region_cap(s.m.faces, s.region);
   // On a closed manifold mesh a region vertex is on the rim iff it also has a face outside.
   std::vector<char> in(static_cast<std::size_t>(s.m.faces.rows()), 0);
@@ -86,7 +70,7 @@ TEST(RegionVolume, RimIsWhereRegionAndRestMeet) {
 }
 
 TEST(RegionVolume, GradientMatchesCentralDifferences) {
-  const CapScene s = cap_scene(0.3, 2);
+  const test::CapScene s = cap_scene(0.3, 2);
   const RegionCap cap = make_region_cap(s.m.faces, s.region);
   Positions g;
   cap_volume_gradient(s.m.x, cap, g);
@@ -107,7 +91,7 @@ TEST(RegionVolume, GradientMatchesCentralDifferences) {
 
 TEST(RegionVolume, RigidMotionKeepsTheVolumeAndTheGradientHasNoNetPart) {
   std::mt19937 rng(5);
-  const CapScene s = cap_scene(0.4, 3);
+  const test::CapScene s = cap_scene(0.4, 3);
   const RegionCap cap = make_region_cap(s.m.faces, s.region);
   const Mat3 R = test::random_rotation(rng);
   const Vec3 t = test::random_vec3(rng, 3.0);
@@ -120,7 +104,7 @@ TEST(RegionVolume, RigidMotionKeepsTheVolumeAndTheGradientHasNoNetPart) {
 
 TEST(RegionVolume, ProjectionReachesTheTargetAndMovesNoCentreOfMass) {
   std::mt19937 rng(7);
-  const CapScene s = cap_scene(0.4, 4);
+  const test::CapScene s = cap_scene(0.4, 4);
   RegionCap cap = make_region_cap(s.m.faces, s.region);
   cap.rest_volume = cap_volume(s.m.x, cap);
   ASSERT_GT(cap.rest_volume, 0.0);
