@@ -156,12 +156,12 @@ def detect_up(V, F, slab=0.05):
 
 def camera_basis(up, azim_deg, elev_deg):
     """Orthonormal (right, screen_up, toward_viewer) rows. The camera circles the up axis by
-    azim and looks down on the model by elev; azim 0 looks along the first axis after `up` in
-    the x, y, z cycle (for y up: from +z, the front of the paper's models)."""
+    azim and looks down on the model by elev; azim 0 looks from the second axis after `up` in the
+    x, y, z cycle (for y up: azim 0 looks from +x, azim 90 from -z)."""
     up = up / np.linalg.norm(up)
     k = int(np.argmax(np.abs(up)))
     front = np.zeros(3)
-    front[(k + 2) % 3] = 1.0  # y up -> front +z; z up -> front +x; x up -> front +y
+    front[(k + 2) % 3] = 1.0  # y up -> front +x; z up -> front +y; x up -> front +z
     side = np.cross(up, front)
     a, e = np.radians(azim_deg), np.radians(elev_deg)
     horiz = np.cos(a) * front + np.sin(a) * side
