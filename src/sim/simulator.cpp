@@ -19,6 +19,13 @@
 
 namespace shellcontract {
 namespace {
+/// The share of V0 by which a target-volume step may end above its target after the collision
+/// response before it gets a second projection and response: 1e-3, a fifth of the 0.005 a target
+/// promises, so that the worst error over a held target stays under it (acceptance grid:
+/// docs/benchmarks/target-volume.md) while steps whose response undoes less keep their single
+/// response (every golden run is unchanged).
+constexpr double LOCKED_TARGET_EXCESS = 1e-3;
+
 void check_options(const SimOptions& o) {
   auto fail = [](const std::string& what) { throw UsageError(what); };
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("time step must be positive and finite");
@@ -276,6 +283,25 @@ FrameMetrics Simulator::step() {
     held_by_contact_.assign(static_cast<std::size_t>(x_.rows()), 0);
     for (Eigen::Index i = 0; i < x_.rows(); ++i)
       held_by_contact_[static_cast<std::size_t>(i)] = x_pred_.row(i) != before_collisions_.row(i);
+  }
+  // A target that this step's response kept the shell from (it undid more than a rounding share
+  // of the projection): one more projection, of the vertices this response left alone, checked
+  // by one more response over the whole step. Without it a shell in wide contact settles where
+  // each step's response undoes what the projection adds: the elk at R = 0.3 stalled at V/V0
+  // 0.3052, above the 0.005 a target promises (docs/benchmarks/target-volume.md).
+  if (collision_ && options_.target_volume > 0.0 &&
+      signed_volume(x_pred_, faces_) - constraint_rest_volume_ * volume_target(frame_ + 1) >
+          LOCKED_TARGET_EXCESS * constraint_rest_volume_) {
+    const std::vector<char> held_first = held_by_contact_;
+    apply_volume_control(x_pred_);
+    before_collisions_ = x_pred_;
+    CollisionStepStats again;
+    collision_->resolve(x_, x_pred_, inv_mass_, again);
+    m.collision.seconds += again.seconds;
+    m.collision.contacts += again.contacts;
+    for (Eigen::Index i = 0; i < x_.rows(); ++i)
+      held_by_contact_[static_cast<std::size_t>(i)] =
+          held_first[static_cast<std::size_t>(i)] || x_pred_.row(i) != before_collisions_.row(i);
   }
   if (follow_rest_) follow_rest(x_pred_);
   m.max_displacement = (x_pred_ - x_).rowwise().norm().maxCoeff();
