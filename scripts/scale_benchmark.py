@@ -6,6 +6,7 @@ collisions on at several thread counts. Prints a markdown table of the step time
 time, the time outside the time loop (reading, checking, preparing, writing) and the peak memory.
 
 Usage: scripts/scale_benchmark.py [--build build] [--frames 10] [--threads 1,2] [--levels 0,1,2]
+                                  [--extra "--relative-broad-phase on"]
 Needs: the built tool and data/meshes/bear.off (scripts/fetch_paper_meshes.sh)."""
 import argparse
 import json
@@ -63,10 +64,10 @@ def write_off(path, points, faces):
         f.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
 
 
-def run(tool, mesh, frames, threads, tmp):
+def run(tool, mesh, frames, threads, tmp, extra):
     summary = os.path.join(tmp, "s.json")
     cmd = ["/usr/bin/time", "-f", "%M", tool, "run", mesh, "-o", os.path.join(tmp, "o.off"), "--frames",
-           str(frames), "--order", "coloured", "--threads", str(threads), "--summary", summary, "-q"]
+           str(frames), "--order", "coloured", "--threads", str(threads), "--summary", summary, "-q"] + extra
     start = time.perf_counter()
     p = subprocess.run(cmd, capture_output=True, text=True)
     total = time.perf_counter() - start
@@ -76,6 +77,7 @@ def run(tool, mesh, frames, threads, tmp):
     s = json.load(open(summary))
     t2 = s["table2"]
     return {"faces": s["faces"], "step_ms": t2["step_ms"], "broad_ms": t2["broad_phase_ms_per_step"],
+            "pairs": t2["pairs_after_broad_phase_per_step"],
             "outside_s": total - s["wall_seconds"], "read_s": s["setup"]["read_and_check_seconds"],
             "prepare_s": s["setup"]["prepare_seconds"], "peak_mb": peak_kib / 1024}
 
@@ -86,7 +88,9 @@ def main():
     ap.add_argument("--frames", type=int, default=10)
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--levels", default="0,1,2")
+    ap.add_argument("--extra", default="", help="more options of every run, one string")
     a = ap.parse_args()
+    extra = a.extra.split()
     tool = os.path.join(a.build, "shellcontract")
     bear = os.path.join(ROOT, "data", "meshes", "bear.off")
     threads = [int(t) for t in a.threads.split(",")]
@@ -102,17 +106,19 @@ def main():
             points, faces = subdivide(points, faces)
         head = "| mesh | faces | " + " | ".join(f"step, {t} thr (ms)" for t in threads)
         head += f" | step per 1k faces, {threads[0]} thr (ms) | broad phase, {threads[0]} thr (ms)"
+        head += f" | broad phase per 1k faces (ms) | candidate pairs per face"
         head += " | read + check (s) | prepare (s) | outside the loop (s) | peak memory (MB) |"
-        print(f"coloured order, collisions on, {a.frames} frames, default pressure; {os.uname().nodename}, "
-              f"{os.cpu_count()} CPUs")
+        print(f"coloured order, collisions on, {a.frames} frames, default pressure"
+              f"{', ' + a.extra if a.extra else ''}; {os.uname().nodename}, {os.cpu_count()} CPUs")
         print(head)
         print("|" + "---|" * (head.count("|") - 1))
         for level in levels:
-            rows = {t: run(tool, meshes[level], a.frames, t, tmp) for t in threads}
+            rows = {t: run(tool, meshes[level], a.frames, t, tmp, extra) for t in threads}
             r0 = rows[threads[0]]
             cells = [f"{rows[t]['step_ms']:.1f}" for t in threads]
             print(f"| bear x{4 ** level} | {r0['faces']} | " + " | ".join(cells) +
-                  f" | {1e3 * r0['step_ms'] / r0['faces']:.3f} | {r0['broad_ms']:.1f} | {r0['read_s']:.2f} | "
+                  f" | {1e3 * r0['step_ms'] / r0['faces']:.3f} | {r0['broad_ms']:.1f}"
+                  f" | {1e3 * r0['broad_ms'] / r0['faces']:.3f} | {r0['pairs'] / r0['faces']:.2f} | {r0['read_s']:.2f} | "
                   f"{r0['prepare_s']:.2f} | {r0['outside_s']:.2f} | "
                   f"{max(r['peak_mb'] for r in rows.values()):.0f} |")
 
