@@ -26,6 +26,24 @@ namespace {
 /// response (every golden run is unchanged).
 constexpr double LOCKED_TARGET_EXCESS = 1e-3;
 
+/// The inverse masses with the vertices the collision response holds set to 0 (not moved by the
+/// volume constraint or the regions' dimples; see Simulator::apply_volume_control).
+Eigen::VectorXd free_inverse_masses(const Eigen::VectorXd& inv_mass,
+                                    const std::vector<char>& held) {
+  Eigen::VectorXd w = inv_mass;
+  for (std::size_t i = 0; i < held.size(); ++i)
+    if (held[i]) w(static_cast<Eigen::Index>(i)) = 0.0;
+  return w;
+}
+
+/// Marks in `held` the vertices a collision response moved (x != before), keeping the marks
+/// already there.
+void mark_moved(const Positions& x, const Positions& before, std::vector<char>& held) {
+  held.resize(static_cast<std::size_t>(x.rows()), 0);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (x.row(i) != before.row(i)) held[static_cast<std::size_t>(i)] = 1;
+}
+
 void check_options(const SimOptions& o) {
   auto fail = [](const std::string& what) { throw UsageError(what); };
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("time step must be positive and finite");
@@ -171,9 +189,7 @@ void Simulator::apply_volume_control(Positions& x) {
   // the constraint moves only the free ones. Moving the held ones too would make the response
   // push them back every step and undo part of the volume change, so that a shell in wide contact
   // stalls above its target (eight stalled at V/V0 0.3065 for R = 0.3 that way).
-  Eigen::VectorXd w = inv_mass_;
-  for (std::size_t i = 0; i < held_by_contact_.size(); ++i)
-    if (held_by_contact_[i]) w(static_cast<Eigen::Index>(i)) = 0.0;
+  const Eigen::VectorXd w = free_inverse_masses(inv_mass_, held_by_contact_);
   if (options_.target_volume > 0.0) {
     const double target = constraint_rest_volume_ * volume_target(frame_ + 1);
     project_volume(x, faces_, w, target, tolerance);
@@ -219,9 +235,7 @@ void Simulator::apply_region_contraction(Positions& x) {
                            : signed_volume(x, faces_) / constraint_rest_volume_;
   if (!(ratio > 0.0)) return;  // a shell turned inside out has no caps to sink
   // Vertices held by the last step's contacts stay (see apply_volume_control).
-  Eigen::VectorXd w = inv_mass_;
-  for (std::size_t i = 0; i < held_by_contact_.size(); ++i)
-    if (held_by_contact_[i]) w(static_cast<Eigen::Index>(i)) = 0.0;
+  const Eigen::VectorXd w = free_inverse_masses(inv_mass_, held_by_contact_);
   for (RegionDimple& d : region_dimples_) {
     const double wanted = dimple_rest_volume(d.whole.rest_volume, options_.region_shrink, s, ratio);
     if (!(wanted > 0.0)) continue;
@@ -281,8 +295,7 @@ FrameMetrics Simulator::step() {
   if (collision_) collision_->resolve(x_, x_pred_, inv_mass_, m.collision);
   if (collision_ && volume_control) {
     held_by_contact_.assign(static_cast<std::size_t>(x_.rows()), 0);
-    for (Eigen::Index i = 0; i < x_.rows(); ++i)
-      held_by_contact_[static_cast<std::size_t>(i)] = x_pred_.row(i) != before_collisions_.row(i);
+    mark_moved(x_pred_, before_collisions_, held_by_contact_);
   }
   // A target that this step's response kept the shell from (it undid more than a rounding share
   // of the projection): one more projection, of the vertices this response left alone, checked
@@ -292,16 +305,13 @@ FrameMetrics Simulator::step() {
   if (collision_ && options_.target_volume > 0.0 &&
       signed_volume(x_pred_, faces_) - constraint_rest_volume_ * volume_target(frame_ + 1) >
           LOCKED_TARGET_EXCESS * constraint_rest_volume_) {
-    const std::vector<char> held_first = held_by_contact_;
     apply_volume_control(x_pred_);
     before_collisions_ = x_pred_;
     CollisionStepStats again;
     collision_->resolve(x_, x_pred_, inv_mass_, again);
     m.collision.seconds += again.seconds;
     m.collision.contacts += again.contacts;
-    for (Eigen::Index i = 0; i < x_.rows(); ++i)
-      held_by_contact_[static_cast<std::size_t>(i)] =
-          held_first[static_cast<std::size_t>(i)] || x_pred_.row(i) != before_collisions_.row(i);
+    mark_moved(x_pred_, before_collisions_, held_by_contact_);  // held by either response
   }
   if (follow_rest_) follow_rest(x_pred_);
   m.max_displacement = (x_pred_ - x_).rowwise().norm().maxCoeff();
