@@ -192,6 +192,39 @@ TEST(DihedralHingeProjection, ReducesAngleErrorAndConservesMomentum) {
   EXPECT_LE(momentum.norm(), 1e-13);
 }
 
+TEST(DihedralHingeProjection, XpbdStepOnAFoldedHingeIsClamped) {
+  // A hinge folded far from its rest angle, stiff next to its compliance: the linearized XPBD step
+  // would move its vertices further than max_step. It must be clamped to exactly max_step, with
+  // lambda taking the clamped increment, and still conserve momentum.
+  const std::vector<Vec3> rest{Vec3(-0.4, 0, 0), Vec3(0.6, 0, 0), Vec3(0.1, 0.7, 0), Vec3(-0.2, -0.4, -0.3)};
+  DihedralHingeConstraint c{{0, 1, 2, 3}, dihedral_bending_rest(rest[0], rest[1], rest[2], rest[3]), 1e-3};
+  Stencil s{{-0.4, 0, 0, 0.6, 0, 0, 0.1, 0.7, 0, -0.2, 0.6, 0.05}, {1, 1, 1, 1}};  // vertex 3 folded over
+  const Stencil before = s;
+  ProjectionContext ctx = context(s);
+  ctx.alpha_tilde = 1e-6;
+  double lambda = 0.0;
+  ASSERT_TRUE(project_dihedral_hinge(c, 1.0, ctx, &lambda));
+  double longest = 0.0;
+  Vec3 momentum = Vec3::Zero();
+  for (int i = 0; i < 4; ++i) {
+    longest = std::max(longest, (at(s, i) - at(before, i)).norm());
+    momentum += (at(s, i) - at(before, i)) / s.w[i];
+  }
+  EXPECT_NEAR(longest, 1e-3, 1e-15) << "the XPBD step is clamped to exactly max_step";
+  EXPECT_LE(momentum.norm(), 1e-15);
+  // Unclamped, the same hinge moves a vertex by more than 0.1: the clamp is what acted.
+  Stencil u = before;
+  ProjectionContext uctx = context(u);
+  uctx.alpha_tilde = 1e-6;
+  double lambda_u = 0.0;
+  c.max_step = 1e9;
+  ASSERT_TRUE(project_dihedral_hinge(c, 1.0, uctx, &lambda_u));
+  double longest_u = 0.0;
+  for (int i = 0; i < 4; ++i) longest_u = std::max(longest_u, (at(u, i) - at(before, i)).norm());
+  EXPECT_GT(longest_u, 0.1);
+  EXPECT_NEAR(lambda / lambda_u, 1e-3 / longest_u, 1e-12) << "lambda takes the clamped increment";
+}
+
 }  // namespace
 }  // namespace shellcontract
 
