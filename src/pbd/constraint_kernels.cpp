@@ -1,8 +1,5 @@
 #include "shellcontract/pbd/constraint_kernels.hpp"
 
-#include <algorithm>
-#include <cmath>
-
 namespace shellcontract {
 
 bool project_dihedral_hinge(const DihedralHingeConstraint& c, double k_bending,
@@ -32,12 +29,7 @@ bool project_dihedral_hinge(const DihedralHingeConstraint& c, double k_bending,
   // The same clamp as PBD's (math-spec 9.1d): the angle is nonlinear, and a linearized step on a
   // nearly folded hinge can throw its vertices across the mesh (bear under --solver xpbd --mu 0.2
   // blew up without it: docs/design/defaults.md "Resolution", tests/long/test_resolution_long.cpp).
-  double longest_sq = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    const double s = ctx.w[c.v[i]] * root * dlam;
-    longest_sq = std::max(longest_sq, s * s * grad[i].squaredNorm());
-  }
-  if (longest_sq > c.max_step * c.max_step) dlam *= c.max_step / std::sqrt(longest_sq);
+  dlam *= kernel_parts::step_clamp_factor<4>(ctx.w, c.v, grad, root * dlam, c.max_step);
   *lambda += dlam;
   for (int i = 0; i < 4; ++i) kernel_parts::add_scaled(ctx.x, c.v[i], ctx.w[c.v[i]] * root * dlam, grad[i]);
   return true;

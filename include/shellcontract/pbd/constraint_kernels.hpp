@@ -43,14 +43,22 @@ inline void add_scaled(double* x, int i, double s, const Vec3& g) {
   p[2] += s * g[2];
 }
 
+/// The factor in (0, 1] that keeps every |dx_i| = |scale w_i g_i| within max_step (math-spec
+/// 9.1d): 1 unless the longest step is over it. N = number of stencil vertices.
+template <int N>
+inline double step_clamp_factor(const double* w, const std::array<int, N>& v,
+                                const std::array<Vec3, N>& g, double scale, double max_step) {
+  double longest_sq = 0.0;
+  for (int i = 0; i < N; ++i) longest_sq = std::max(longest_sq, (scale * w[v[i]]) * (scale * w[v[i]]) * g[i].squaredNorm());
+  return longest_sq > max_step * max_step ? max_step / std::sqrt(longest_sq) : 1.0;
+}
+
 /// Applies dx_i = -scale w_i g_i, scaled down so that no |dx_i| exceeds max_step
 /// (math-spec 9.1d). N = number of stencil vertices.
 template <int N>
 inline void apply_step(double* x, const double* w, const std::array<int, N>& v,
                        const std::array<Vec3, N>& g, double scale, double max_step) {
-  double longest_sq = 0.0;
-  for (int i = 0; i < N; ++i) longest_sq = std::max(longest_sq, (scale * w[v[i]]) * (scale * w[v[i]]) * g[i].squaredNorm());
-  if (longest_sq > max_step * max_step) scale *= max_step / std::sqrt(longest_sq);
+  scale *= step_clamp_factor<N>(w, v, g, scale, max_step);
   for (int i = 0; i < N; ++i) subtract_scaled(x, v[i], scale * w[v[i]], g[i]);
 }
 }  // namespace kernel_parts
