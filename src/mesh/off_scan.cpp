@@ -7,6 +7,7 @@
 // Binary OFF is read here entirely (CGAL 5.5's soup reader misreads it, see off_scan.hpp).
 #include "shellcontract/mesh/off_scan.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -14,7 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <regex>
-#include <sstream>
+#include <string_view>
 
 #include "shellcontract/core/error.hpp"
 
@@ -25,8 +26,8 @@ namespace {
   throw InputError(path + ": " + problem + ": " + details);
 }
 
-std::string shorten(const std::string& s) {
-  std::string r = s.size() > 20 ? s.substr(0, 20) + "..." : s;
+std::string shorten(std::string_view s) {
+  std::string r = s.size() > 20 ? std::string(s.substr(0, 20)) + "..." : std::string(s);
   for (char& c : r)
     if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
   return r;
@@ -41,15 +42,16 @@ struct OffVariant {
 
 class OffScanner {
  public:
-  OffScanner(const std::string& path, const std::string& text) : path_(path), text_(text), in_(text) {}
+  OffScanner(const std::string& path, const std::string& text) : path_(path), text_(text) {}
 
   OffScan scan() {
-    std::vector<std::string> t;
+    std::vector<std::string_view> t;
     if (!next(t)) fail(path_, "empty file", "no OFF header, the file holds only blank or comment lines");
     const std::size_t header_line = line_;
     static const std::regex keyword("(ST)?(C)?(N)?(4)?(n)?OFF");
     std::smatch m;
-    if (!std::regex_match(t[0], m, keyword))
+    const std::string header(t[0]);
+    if (!std::regex_match(header, m, keyword))
       fail(path_, "parse error", "line " + std::to_string(line_) + ": expected the OFF header, found '" + shorten(t[0]) + "'");
     OffVariant variant;
     variant.homogeneous = m[4].matched;
@@ -83,8 +85,8 @@ class OffScanner {
     if (t.size() >= 3) {
       errno = 0;
       char* end = nullptr;
-      const long long ne = std::strtoll(t[2].c_str(), &end, 10);
-      if (end != t[2].c_str() && (errno == ERANGE || ne > INT_MAX / 2 || ne < INT_MIN / 2))
+      const long long ne = std::strtoll(t[2].data(), &end, 10);
+      if (end != t[2].data() && (errno == ERANGE || ne > INT_MAX / 2 || ne < INT_MIN / 2))
         fail(path_, "parse error", "line " + std::to_string(counts_line) + ": edge count " + shorten(t[2]) + " is out of range (at most " + std::to_string(INT_MAX / 2) + ")");
     }
 
@@ -96,20 +98,23 @@ class OffScanner {
     for (std::size_t i = 0; i < nv; ++i) {
       if (!next(t))
         fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(i) + " vertices (line " + std::to_string(line_) + ")");
-      const std::string where = "vertex " + std::to_string(i) + " (line " + std::to_string(line_) + ")";
+      // Built only for a message: a string per vertex was a tenth of the scan on 442k faces.
+      auto where = [&] { return "vertex " + std::to_string(i) + " (line " + std::to_string(line_) + ")"; };
       if (t.size() < variant.vertex_numbers) {
-        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where);
-        fail(path_, "parse error", where + " has " + std::to_string(t.size()) + " numbers, expected " + std::to_string(variant.vertex_numbers));
+        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where());
+        fail(path_, "parse error", where() + " has " + std::to_string(t.size()) + " numbers, expected " + std::to_string(variant.vertex_numbers));
       }
       for (std::size_t k = 0; k < variant.vertex_numbers; ++k) {
+        // strtod reads the token in place: a token ends at a blank, '#' or the line's end, none
+        // of which a number contains, so it stops there or earlier (then the token is refused).
         char* end = nullptr;
-        const double c = std::strtod(t[k].c_str(), &end);
-        if (end == t[k].c_str() || *end != '\0')
-          fail(path_, "parse error", where + ": '" + shorten(t[k]) + "' is not a number");
+        const double c = std::strtod(t[k].data(), &end);
+        if (end != t[k].data() + t[k].size())
+          fail(path_, "parse error", where() + ": '" + shorten(t[k]) + "' is not a number");
         if (k < 3 && !std::isfinite(c))
-          fail(path_, "non-finite coordinate", where + " has coordinate " + "xyz"[k] + " = " + t[k]);
+          fail(path_, "non-finite coordinate", where() + " has coordinate " + "xyz"[k] + " = " + std::string(t[k]));
         if (k == 3 && variant.homogeneous && !(std::isfinite(c) && c != 0.0))
-          fail(path_, "non-finite coordinate", where + " has the homogeneous coordinate w = " + t[k]);
+          fail(path_, "non-finite coordinate", where() + " has the homogeneous coordinate w = " + std::string(t[k]));
       }
       out.vertex_line.push_back(line_);
     }
@@ -117,16 +122,16 @@ class OffScanner {
     for (std::size_t j = 0; j < nf; ++j) {
       if (!next(t))
         fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(j) + " faces (line " + std::to_string(line_) + ")");
-      const std::string where = "face " + std::to_string(j) + " (line " + std::to_string(line_) + ")";
-      const std::size_t n = index(t[0], where + ": vertex count");
+      auto where = [&] { return "face " + std::to_string(j) + " (line " + std::to_string(line_) + ")"; };
+      const std::size_t n = index(t[0], [&] { return where() + ": vertex count"; });
       if (t.size() - 1 < n) {
-        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where);
-        fail(path_, "parse error", where + " announces " + std::to_string(n) + " vertices but lists " + std::to_string(t.size() - 1));
+        if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where());
+        fail(path_, "parse error", where() + " announces " + std::to_string(n) + " vertices but lists " + std::to_string(t.size() - 1));
       }
       for (std::size_t k = 1; k <= n; ++k) {
         const std::size_t v = index(t[k], where);
         if (v >= nv)
-          fail(path_, "vertex index out of range", where + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
+          fail(path_, "vertex index out of range", where() + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
       }
       out.face_line.push_back(line_);
     }
@@ -135,38 +140,53 @@ class OffScanner {
 
  private:
   /// Next non-blank, non-comment line split into tokens; false at end of file.
-  bool next(std::vector<std::string>& tokens) {
-    std::string s;
-    while (std::getline(in_, s)) {
+  /// The next line with a token (text before a '#'), split at blanks into views of text_. Views
+  /// rather than strings, and no stream: per-line streams and token strings were most of the
+  /// scan's time on bear x16 (docs/benchmarks/scale.md).
+  bool next(std::vector<std::string_view>& tokens) {
+    const std::string_view text(text_);
+    while (pos_ < text.size()) {
       ++line_;
+      std::size_t eol = text.find('\n', pos_);
+      if (eol == std::string_view::npos) eol = text.size();
+      std::string_view s = text.substr(pos_, eol - pos_);
+      pos_ = eol + 1;
       const auto hash = s.find('#');
-      if (hash != std::string::npos) s.erase(hash);
-      std::istringstream ls(s);
+      if (hash != std::string_view::npos) s = s.substr(0, hash);
       tokens.clear();
-      for (std::string w; ls >> w;) tokens.push_back(w);
+      for (std::size_t i = 0; i < s.size();) {
+        while (i < s.size() && blank(s[i])) ++i;
+        const std::size_t start = i;
+        while (i < s.size() && !blank(s[i])) ++i;
+        if (i > start) tokens.push_back(s.substr(start, i - start));
+      }
       if (!tokens.empty()) return true;
     }
     return false;
   }
-  bool at_end() {
-    in_ >> std::ws;
-    return in_.peek() == std::char_traits<char>::eof();
+  static bool blank(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
+  bool at_end() const {
+    for (std::size_t i = pos_; i < text_.size(); ++i)
+      if (!blank(text_[i])) return false;
+    return true;
   }
-  std::size_t index(const std::string& tok, const std::string& where) {
+  /// strtoll reads the token in place (see the vertex loop); `where` names it, for messages only.
+  template <class Where>
+  std::size_t index(std::string_view tok, const Where& where) {
     char* end = nullptr;
     errno = 0;
-    const long long v = std::strtoll(tok.c_str(), &end, 10);
-    if (end == tok.c_str() || *end != '\0' || errno == ERANGE)
-      fail(path_, "parse error", where + ": '" + shorten(tok) + "' is not an integer");
-    if (v < 0) fail(path_, "vertex index out of range", where + " has the negative index " + tok);
+    const long long v = std::strtoll(tok.data(), &end, 10);
+    if (end != tok.data() + tok.size() || tok.empty() || errno == ERANGE)
+      fail(path_, "parse error", where() + ": '" + shorten(tok) + "' is not an integer");
+    if (v < 0) fail(path_, "vertex index out of range", where() + " has the negative index " + std::string(tok));
     return static_cast<std::size_t>(v);
   }
   /// A count CGAL reads as a 32-bit int: larger ones are refused here, never misread there.
-  std::size_t count(const std::string& tok, const std::string& what) {
+  std::size_t count(std::string_view tok, const std::string& what) {
     char* end = nullptr;
     errno = 0;
-    const long long v = std::strtoll(tok.c_str(), &end, 10);
-    if (end == tok.c_str() || *end != '\0' || errno == ERANGE || v < 0)
+    const long long v = std::strtoll(tok.data(), &end, 10);
+    if (end != tok.data() + tok.size() || errno == ERANGE || v < 0)
       fail(path_, "parse error", "line " + std::to_string(line_) + ": " + what + " '" + shorten(tok) + "' is not a non-negative integer");
     return static_cast<std::size_t>(v);
   }
@@ -229,7 +249,7 @@ class OffScanner {
 
   const std::string& path_;
   const std::string& text_;
-  std::istringstream in_;
+  std::size_t pos_ = 0;  ///< start of the next line in text_
   std::size_t line_ = 0;
 };
 
