@@ -259,6 +259,8 @@ int command_run(int argc, char** argv) {
       JsonObject summary = summary_json(input, output, report, options, r);
       JsonObject setup;
       setup.add("read_and_check_seconds", read_seconds)
+          .add("read_seconds", report.read_seconds)
+          .add("check_seconds", report.check_seconds)
           .add("regions_seconds", r.regions_seconds)
           .add("prepare_seconds", r.prepare_seconds);
       summary.add("setup", setup).add("peak_memory_mb", peak_memory_mb());

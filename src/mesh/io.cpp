@@ -27,6 +27,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -351,8 +352,15 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
       if (!fs::exists(path, ec)) fail(path, "cannot open file", "no such file");
       fail(path, "unknown extension", "'." + ext + "' (expected .off, .obj, .ply or .stl)");
     }
+    const auto start = std::chrono::steady_clock::now();
     read_polygon_soup(path, ext, points, polygons, lines);
-    return check_soup(path, ext, points, polygons, lines, report);
+    const auto read = std::chrono::steady_clock::now();
+    Mesh mesh = check_soup(path, ext, points, polygons, lines, report);
+    if (report) {
+      report->read_seconds = std::chrono::duration<double>(read - start).count();
+      report->check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - read).count();
+    }
+    return mesh;
   } catch (const InputError&) {
     throw;
   } catch (const std::bad_alloc&) {

@@ -20,6 +20,8 @@ struct InputReport {
   std::size_t components = 0;       ///< connected components
   double volume = 0.0;              ///< enclosed volume after reorientation (input units; inf beyond ~1e102 per coordinate)
   std::vector<std::string> warnings;
+  double read_seconds = 0.0;   ///< read_input_mesh: reading the file into a polygon soup
+  double check_seconds = 0.0;  ///< read_input_mesh: checking it and building the mesh
 };
 
 /// Reads OFF/OBJ/PLY/STL (by extension; read_polygon_soup) and checks that the mesh is a
