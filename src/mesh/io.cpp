@@ -6,15 +6,15 @@
 // polygon mesh, and a failed Euler::add_face in a release build silently yields a null face.
 // PMP::is_polygon_soup_a_polygon_mesh would say only yes or no; our checks let every message
 // name the problem, the face, the vertex and (for OFF and ascii PLY) the line, and they cover
-// every condition it tests (see check_soup). CGAL does what needs no message: the mesh, its connected components, the
-// volume. PMP::merge_duplicate_polygons_in_polygon_soup and orient_polygon_soup would change a
+// every condition it tests (see check_soup). CGAL does what needs no message: the mesh, its
+// connected components, the volume. PMP::merge_duplicate_polygons_in_polygon_soup and orient_polygon_soup would change a
 // file the user must hear about (`repair` uses them, on request). The soup keeps the input
 // vertex and face order, which users rely on (textures, per-vertex data); read_input_mesh
 // verifies that it was kept.
 //
-// The soup comes from CGAL::IO::read_OFF/OBJ/STL, or from our own PLY reader (ply_reader.cpp:
-// CGAL 5.5's crashes). OFF files are pre-scanned (off_scan.cpp) so that CGAL never sees a count
-// the file does not hold. Every geometric test (triangulation, orientation, volume, zero area)
+// The soup comes from CGAL::IO::read_OBJ/STL, or from our own PLY and OFF readers (ply_reader.cpp:
+// CGAL 5.5's crashes; off_scan.cpp: CGAL's trusts declared counts, misreads binary OFF and parses
+// slowly). Every geometric test (triangulation, orientation, volume, zero area)
 // runs on coordinates normalized to the bounding-box centre and a unit diagonal, so that meshes
 // from 1e-150 to 1e150 get the same answers as at unit scale (no overflow or underflow in
 // products of three coordinates).

@@ -1,10 +1,10 @@
-// OFF pre-scan (see off_scan.hpp). CGAL's OFF reader returns a bare `false` on a truncated or
+// The OFF reader (see off_scan.hpp). CGAL's OFF reader returns a bare `false` on a truncated or
 // garbled file, and it resizes its arrays to the declared counts (and each face to its declared
 // corner count) before reading them: a header that announces 10^12 vertices aborted the tool
 // with std::bad_alloc. This scan walks the file line by line (one vertex or face per line, '#'
 // comments) without trusting any count: it says which line is wrong, records the line of every
-// vertex and face for later messages, and hands CGAL only files whose counts it has verified.
-// Binary OFF is read here entirely (CGAL 5.5's soup reader misreads it, see off_scan.hpp).
+// vertex and face for later messages, and keeps what it parsed (CGAL's reader, which the scan
+// once only checked files for, parsed them a second time).
 #include "shellcontract/mesh/off_scan.hpp"
 
 #include <cctype>
@@ -95,30 +95,37 @@ class OffScanner {
     SourceLines& out = scan.lines;
     // Never reserve a declared count as such: a vertex line has at least 6 bytes.
     out.vertex_line.reserve(std::min(nv, text_.size() / 6 + 1));
+    scan.points.reserve(std::min(nv, text_.size() / 6 + 1));
     for (std::size_t i = 0; i < nv; ++i) {
       if (!next(t))
         fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(i) + " vertices (line " + std::to_string(line_) + ")");
-      // Built only for a message: a string per vertex was a tenth of the scan on 442k faces.
+      // Built only for a message (see next()): most files never need one.
       auto where = [&] { return "vertex " + std::to_string(i) + " (line " + std::to_string(line_) + ")"; };
       if (t.size() < variant.vertex_numbers) {
         if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where());
         fail(path_, "parse error", where() + " has " + std::to_string(t.size()) + " numbers, expected " + std::to_string(variant.vertex_numbers));
       }
+      double c4[4] = {0.0, 0.0, 0.0, 1.0};
       for (std::size_t k = 0; k < variant.vertex_numbers; ++k) {
         // strtod reads the token in place: a token ends at a blank, '#' or the line's end, none
         // of which a number contains, so it stops there or earlier (then the token is refused).
         char* end = nullptr;
         const double c = std::strtod(t[k].data(), &end);
-        if (end != t[k].data() + t[k].size())
+        // Hexadecimal floats are strtod's alone: CGAL's reader (a stream) refuses them, so do we.
+        if (end != t[k].data() + t[k].size() || t[k].find_first_of("xX") != std::string_view::npos)
           fail(path_, "parse error", where() + ": '" + shorten(t[k]) + "' is not a number");
         if (k < 3 && !std::isfinite(c))
           fail(path_, "non-finite coordinate", where() + " has coordinate " + "xyz"[k] + " = " + std::string(t[k]));
         if (k == 3 && variant.homogeneous && !(std::isfinite(c) && c != 0.0))
           fail(path_, "non-finite coordinate", where() + " has the homogeneous coordinate w = " + std::string(t[k]));
+        if (k < 3 || (k == 3 && variant.homogeneous)) c4[k] = c;
       }
+      // As CGAL's fill_point: x / w (exact for w = 1).
+      scan.points.push_back({c4[0] / c4[3], c4[1] / c4[3], c4[2] / c4[3]});
       out.vertex_line.push_back(line_);
     }
     out.face_line.reserve(std::min(nf, text_.size() / 8 + 1));
+    scan.faces.reserve(std::min(nf, text_.size() / 8 + 1));
     for (std::size_t j = 0; j < nf; ++j) {
       if (!next(t))
         fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(j) + " faces (line " + std::to_string(line_) + ")");
@@ -128,21 +135,23 @@ class OffScanner {
         if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where());
         fail(path_, "parse error", where() + " announces " + std::to_string(n) + " vertices but lists " + std::to_string(t.size() - 1));
       }
+      std::vector<std::size_t> face(n);
       for (std::size_t k = 1; k <= n; ++k) {
         const std::size_t v = index(t[k], where);
         if (v >= nv)
           fail(path_, "vertex index out of range", where() + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
+        face[k - 1] = v;
       }
+      scan.faces.push_back(std::move(face));
       out.face_line.push_back(line_);
     }
     return scan;
   }
 
  private:
-  /// Next non-blank, non-comment line split into tokens; false at end of file.
-  /// The next line with a token (text before a '#'), split at blanks into views of text_. Views
-  /// rather than strings, and no stream: per-line streams and token strings were most of the
-  /// scan's time on bear x16 (docs/benchmarks/scale.md).
+  /// Next non-blank, non-comment line (text before a '#') split at blanks into views of text_;
+  /// false at end of file. Views rather than strings, and no stream: a string stream per line and
+  /// a string per token made the scan of bear x16 take 0.6-0.9 s (docs/benchmarks/scale.md).
   bool next(std::vector<std::string_view>& tokens) {
     const std::string_view text(text_);
     while (pos_ < text.size()) {

@@ -4,7 +4,6 @@
 #include "shellcontract/mesh/read_polygon_soup.hpp"
 
 #include <CGAL/IO/OBJ.h>
-#include <CGAL/IO/OFF.h>
 #include <CGAL/IO/STL.h>
 
 #include <algorithm>
@@ -64,21 +63,18 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
     return;
   }
   if (ext != "stl") normalize_text(bytes);
-  if (ext == "off") {
+  if (ext == "off") {  // read by the scan (off_scan.hpp says why not by CGAL)
     OffScan scan = scan_off(path, bytes);
-    if (scan.binary) {
-      points.reserve(scan.points.size());
-      for (const auto& p : scan.points) points.emplace_back(p[0], p[1], p[2]);
-      polygons = std::move(scan.faces);
-      return;
-    }
+    points.reserve(scan.points.size());
+    for (const auto& p : scan.points) points.emplace_back(p[0], p[1], p[2]);
+    polygons = std::move(scan.faces);
     lines = std::move(scan.lines);
+    return;
   }
   std::istringstream in(bytes);
   bool ok = false;
   // Direct calls rather than CGAL's read_polygon_soup: the extension is already known.
-  if (ext == "off") ok = CGAL::IO::read_OFF(in, points, polygons);
-  else if (ext == "obj") ok = CGAL::IO::read_OBJ(in, points, polygons);
+  if (ext == "obj") ok = CGAL::IO::read_OBJ(in, points, polygons);
   else ok = CGAL::IO::read_STL(in, points, polygons);
   if (!ok)
     fail(path, "parse error", "CGAL could not read it as a ." + ext + " file (truncated file or garbage)");
