@@ -17,6 +17,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "shellcontract/core/error.hpp"
@@ -228,29 +229,35 @@ class PlyParser {
     }
   }
 
-  /// Next ascii token; false at the end of the bytes.
-  bool token(std::string& tok) {
+  /// Next ascii token, a view of bytes_; false at the end of the bytes.
+  bool token(std::string_view& tok) {
     skip_space();
     if (pos_ >= bytes_.size()) return false;
     const std::size_t b = pos_;
     while (pos_ < bytes_.size() && !is_space(bytes_[pos_])) ++pos_;
-    tok.assign(bytes_, b, pos_ - b);
+    tok = std::string_view(bytes_).substr(b, pos_ - b);
     return true;
   }
 
-  /// One scalar as a double (integers of every PLY type are exact in a double).
-  double scalar(Type t, const std::string& what) {
+  /// One scalar as a double (integers of every PLY type are exact in a double). `what()` names
+  /// it, built only for a message: a string per value was the same waste as in the OFF scan
+  /// (docs/benchmarks/scale.md).
+  template <class What>
+  double scalar(Type t, const What& what) {
     if (format_ == Format::Ascii) {
-      std::string tok;
-      if (!token(tok)) fail("truncated file", "the file ends before " + what + " (" + where() + ")");
+      std::string_view tok;
+      if (!token(tok)) fail("truncated file", "the file ends before " + what() + " (" + where() + ")");
+      // strtod reads the token in place: it ends at a separator or at the end of bytes_ (a
+      // std::string, so a '\0' follows), where any number ends; a shorter parse is refused.
       char* end = nullptr;
-      const double v = std::strtod(tok.c_str(), &end);
-      if (end == tok.c_str() || *end != '\0') fail("parse error", where() + ": '" + shorten(tok) + "' is not a number (" + what + ")");
+      const double v = std::strtod(tok.data(), &end);
+      if (end != tok.data() + tok.size())
+        fail("parse error", where() + ": '" + shorten(std::string(tok)) + "' is not a number (" + what() + ")");
       return v;
     }
     const int n = size_of(t);
     if (bytes_.size() - pos_ < static_cast<std::size_t>(n))
-      fail("truncated file", "the file ends inside " + what + " (" + where() + ")");
+      fail("truncated file", "the file ends inside " + what() + " (" + where() + ")");
     std::uint64_t u = 0;
     for (int i = 0; i < n; ++i) {
       const int shift = 8 * (format_ == Format::BinaryBigEndian ? n - 1 - i : i);
@@ -280,12 +287,13 @@ class PlyParser {
   }
 
   /// A list count or an index: a non-negative integer below 2^53 (exact in a double).
-  std::size_t whole(Type t, const std::string& what) {
+  template <class What>
+  std::size_t whole(Type t, const What& what) {
     const double v = scalar(t, what);
     if (!(v >= 0.0 && v < 9.0e15) || v != std::floor(v)) {
       std::ostringstream s;
       s << std::setprecision(17) << v;
-      fail("parse error", where() + ": " + what + " is " + s.str() + ", not a non-negative integer");
+      fail("parse error", where() + ": " + what() + " is " + s.str() + ", not a non-negative integer");
     }
     return static_cast<std::size_t>(v);
   }
@@ -318,7 +326,7 @@ class PlyParser {
     if (is_face) out.faces.reserve(n);
     const bool ascii = format_ == Format::Ascii;
     for (std::size_t i = 0; i < n; ++i) {
-      const std::string instance = "'" + shorten(e.name) + "' element " + std::to_string(i);
+      auto instance = [&] { return "'" + shorten(e.name) + "' element " + std::to_string(i); };
       std::array<double, 6> v{};
       std::vector<std::size_t> face;
       if (ascii && (is_vertex || is_face)) {
@@ -327,7 +335,7 @@ class PlyParser {
       }
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
-        const std::string what = "property '" + shorten(p.name) + "' of " + instance;
+        auto what = [&] { return "property '" + shorten(p.name) + "' of " + instance(); };
         if (!p.list) {
           const double x = scalar(p.type, what);
           const int kk = static_cast<int>(k);
@@ -339,16 +347,16 @@ class PlyParser {
           else if (kk == inz) v[5] = x;
           continue;
         }
-        const std::size_t count = whole(p.count_type, "the list length of " + what);
+        const std::size_t count = whole(p.count_type, [&] { return "the list length of " + what(); });
         // Bound the list by the bytes left before reserving (ascii: 2 bytes an item at least).
         const std::size_t item_bytes = ascii ? 2 : static_cast<std::size_t>(size_of(p.type));
         if (count > (bytes_.size() - pos_ + 1) / item_bytes)
-          fail("truncated file", what + " announces " + std::to_string(count) + " items, more than the " +
+          fail("truncated file", what() + " announces " + std::to_string(count) + " items, more than the " +
                                      std::to_string(bytes_.size() - pos_) + " bytes left can hold (" + where() + ")");
         const bool indices = is_face && static_cast<int>(k) == iidx;
         if (indices) face.reserve(count);
         for (std::size_t j = 0; j < count; ++j) {
-          if (indices) face.push_back(whole(p.type, "vertex index " + std::to_string(j) + " of face " + std::to_string(i)));
+          if (indices) face.push_back(whole(p.type, [&] { return "vertex index " + std::to_string(j) + " of face " + std::to_string(i); }));
           else scalar(p.type, what);
         }
       }
