@@ -205,7 +205,6 @@ class OffScanner {
   /// indices, an int32 colour count (0 to 4) and that many float32.
   OffScan scan_binary() {
     OffScan out;
-    out.binary = true;
     const std::size_t nl = text_.find('\n');
     std::size_t pos = nl == std::string::npos ? text_.size() : nl + 1;
     auto int32 = [&](const std::string& what) {

@@ -22,7 +22,6 @@ struct SourceLines {
 /// What the scan read.
 struct OffScan {
   SourceLines lines;    ///< ascii: the line of every vertex and face
-  bool binary = false;  ///< "OFF BINARY"
   std::vector<std::array<double, 3>> points;    ///< x / w, y / w, z / w (w = 1 unless "4OFF")
   std::vector<std::vector<std::size_t>> faces;  ///< each face's vertex indices, colours dropped
 };
