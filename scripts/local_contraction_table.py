@@ -11,6 +11,9 @@ docs/benchmarks/local-contraction.md.
    smallest over the regions.
 3. With the global pressure on: default runs with `--regions auto` against `--measure-regions`
    (the same regions measured, not contracted).
+4. What moves the locality of section 1: the hand (auto regions) and bear with its automatic
+   regions below 5 % of the area (`regions --max-area-fraction 0.05 --face-list`: the head region
+   left out), `-p 0`, the default mechanism, one option changed at a time.
 
 Every variant is run for both mechanisms (`--inward volume`, the default, and `--inward force`).
 
@@ -80,6 +83,40 @@ def centre_sink_over_radius(rest, faces, end, regions):
     return worst
 
 
+SENSITIVITY = [("default", []), ("--region-shrink 0.5", ["--region-shrink", "0.5"]),
+               ("--region-shrink 1", ["--region-shrink", "1"]), ("--k-b 0.001", ["--k-b", "0.001"]),
+               ("--k-b 0.05", ["--k-b", "0.05"]), ("--bending none", ["--bending", "none"]),
+               ("--iterations 20", ["--iterations", "20"]), ("--damping 0.5", ["--damping", "0.5"]),
+               ("--collisions off", ["--collisions", "off"]), ("--frames 400", ["--frames", "400"])]
+
+
+def sensitivity(exe, tmp):
+    """Section 4: the locality of the hand and of bear's small regions over one option at a time."""
+    subjects = []
+    hand, bear = (os.path.join(ROOT, "data", "meshes", n + ".off") for n in ("hand", "bear"))
+    if os.path.exists(hand):
+        subjects.append(("hand", hand, "auto"))
+    if os.path.exists(bear):
+        small = os.path.join(tmp, "bear_small.txt")
+        subprocess.run([exe, "regions", bear, "-o", os.path.join(tmp, "r.ply"), "--face-list", small,
+                        "--max-area-fraction", "0.05"], check=True, stdout=subprocess.DEVNULL)
+        subjects.append(("bear, regions < 5 % of the area", bear, small))
+    if not subjects:
+        return []
+    lines = ["", "## 4. What moves the locality: `-p 0`, one option changed at a time", "",
+             "| option | " + " | ".join("%s: sink, rest, sink / rest" % n for n, _, _ in subjects) + " |",
+             "|---|" + "---:|" * len(subjects)]
+    for label, extra in SENSITIVITY:
+        row = "| %s |" % label
+        for _, path, regions in subjects:
+            s, _ = run(exe, path, tmp, ["-p", "0", "--regions", regions] + extra)
+            sink, rest = s["region_inward_displacement"], s["outside_region_displacement"]
+            row += " %.4f, %.5f, %.1fx |" % (sink, rest, sink / max(rest, 1e-12))
+        lines.append(row)
+        print(row, file=sys.stderr)
+    return lines
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
@@ -133,6 +170,7 @@ def main():
                                         "%.2fx" % (on["region_inward_displacement"] / b) if b > 1e-9 else "-")
             lines.append(row)
             print(row, file=sys.stderr)
+        lines += sensitivity(exe, tmp)
     with open(a.out, "w") as f:
         f.write("\n".join(lines) + "\n")
     print("wrote", a.out)
