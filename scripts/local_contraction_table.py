@@ -10,7 +10,7 @@ docs/benchmarks/local-contraction.md.
    displacement of its vertex farthest from its rim plane over the rim's mean radius (rest), the
    smallest over the regions.
 3. With the global pressure on: default runs with `--regions auto` against `--measure-regions`
-   (the same regions measured, not contracted).
+   (the same regions measured, not contracted); 3b: the same with `--target-volume 0.9`.
 4. What moves the locality of section 1: the hand (auto regions) and bear with its automatic
    regions below 5 % of the area (`regions --max-area-fraction 0.05 --face-list`: the head region
    left out), `-p 0`, the default mechanism, one option changed at a time.
@@ -170,6 +170,17 @@ def main():
                                         "%.2fx" % (on["region_inward_displacement"] / b) if b > 1e-9 else "-")
             lines.append(row)
             print(row, file=sys.stderr)
+        lines += ["", "## 3b. With a target volume: `--target-volume 0.9`, contraction on against off", "",
+                  "| mesh | regions | sink off (`--inward none`) | sink on (volume) | ratio |",
+                  "|---|---:|---:|---:|---:|"]
+        for name, path, regions in meshes:
+            off, _ = run(exe, path, tmp, ["--regions", regions, "--inward", "none", "--target-volume", "0.9"])
+            on, _ = run(exe, path, tmp, ["--regions", regions, "--target-volume", "0.9"])
+            b = off["region_inward_displacement"]
+            lines.append("| %s | %d | %.4f | %.4f | %s |" % (
+                name, off["regions"], b, on["region_inward_displacement"],
+                "%.2fx" % (on["region_inward_displacement"] / b) if b > 1e-9 else "-"))
+            print(lines[-1], file=sys.stderr)
         lines += sensitivity(exe, tmp)
     with open(a.out, "w") as f:
         f.write("\n".join(lines) + "\n")
