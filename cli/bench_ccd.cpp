@@ -1,5 +1,5 @@
 // shellcontract bench ccd: the CCD narrow phase against benchmark queries with exact ground truth
-// (shared/data/ccd-queries/README.md): false positives, false negatives and time per query for
+// (../shared/data/ccd-queries/README.md): false positives, false negatives and time per query for
 // each file, at one tolerance or a sweep of tolerances (the speed-against-error table).
 //
 // Exit codes: 0 success, 1 bad usage (unknown option, missing or non-directory --queries, bad
@@ -137,9 +137,10 @@ int command_bench_ccd(int argc, char** argv) {
       "usage: shellcontract bench ccd --queries DIR [options]\n\n"
       "Runs the CCD narrow phase on every query file under DIR (recursively: *.csv except\n"
       "*.index.csv; the type comes from the name, vertex-face.csv or edge-edge.csv; format in\n"
-      "shared/data/ccd-queries/README.md) and prints, per file, the false positives (FP), false\n"
-      "negatives (FN), hits that floating point could not confirm (uncertain), and the mean and\n"
-      "maximum wall time per query (single thread). Lengths are in the files' units.\n\n"
+      "../shared/data/ccd-queries/README.md, beside the repository) and prints, per file, the\n"
+      "false positives (FP), false negatives (FN), hits that floating point could not confirm\n"
+      "(uncertain), and the mean and maximum wall time per query (single thread). Lengths are in\n"
+      "the files' units.\n\n"
       "exit codes: 0 success, 1 bad usage, 2 unreadable or malformed query file\n\noptions");
   desc.add_options()("help,h", "print this help")(
       "queries", po::value<std::string>(&dir), "directory of query files (required)")(

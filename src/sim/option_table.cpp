@@ -296,7 +296,7 @@ std::vector<OptionSpec> build_table() {
                      [](R& r) -> double& { return r.sim.target_volume; }));
   t.push_back(integer("target-ramp", 0, "N",
                       "frames over which the target volume (and the regions' shrink, --inward "
-                      "volume) is approached",
+                      "volume) is approached, at most half of --frames",
                       1,
                       MAX_FRAMES, [](R& r) -> int& { return r.sim.target_ramp_frames; }));
   t.push_back(number(
