@@ -385,6 +385,11 @@ std::vector<OptionSpec> build_table() {
                                  {"force", InwardTerm::Force},
                                  {"none", InwardTerm::None}},
              [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
+  t.push_back(number("region-max-area", 0, "F",
+                     "--regions auto: drop regions larger than this fraction of the surface "
+                     "(0.05 keeps bear's head out, which deflates the whole shell)",
+                     between(0.0, 1.0, true, false),
+                     [](R& r) -> double& { return r.region_max_area; }));
   t.push_back(number("region-shrink", 0, "S",
                      "how much the regions of --regions shrink (the local contraction's "
                      "strength): 0 not at all, 0.5 takes a bump's whole volume off, 1 turns "

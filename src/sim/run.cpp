@@ -70,8 +70,11 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
       store_regions(mesh, face_ids_from_regions(lists, mesh.number_of_faces()));
       return lists.size();
     }
-    case RegionSource::Auto:
-      return mark_spherical_regions(mesh, positions_from_mesh(mesh), RegionOptions{});
+    case RegionSource::Auto: {
+      RegionOptions o;
+      o.max_area_fraction = options.region_max_area;
+      return mark_spherical_regions(mesh, positions_from_mesh(mesh), o);
+    }
     case RegionSource::None:
       break;
   }

@@ -56,6 +56,8 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   const bool regions = r.regions != RegionSource::None;
   const bool pbd = s.solver.kind == SolverKind::Pbd;
   const bool k_a_projected = aniso && pbd && s.inward_term == InwardTerm::Projection;
+  check("region-max-area", r.regions != RegionSource::Auto,
+        "it filters the regions of --regions auto");
   check("region-shrink", !regions || s.inward_term == InwardTerm::None || k_a_projected,
         "the local contraction acts on the regions of --regions (or --aniso) with --inward "
         "volume or force");

@@ -2,13 +2,20 @@
 // stall handling, the observer's view of the run, cancellation, exit codes.
 #include <gtest/gtest.h>
 
+#include <CGAL/Polygon_mesh_processing/measure.h>
+
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
 #include "support/cgal_mesh.hpp"
+#include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
@@ -185,6 +192,61 @@ TEST(Run, OptionsWithoutEffectAreWarnedAndDefaultsAreNot) {
   EXPECT_NE(rec.warnings[1].find("--c10"), std::string::npos) << rec.warnings[1];
   EXPECT_NE(rec.warnings[2].find("--delta"), std::string::npos) << rec.warnings[2];
   EXPECT_EQ(r.warnings, rec.warnings);
+}
+
+/// Area of each region of the mesh's f:region map, as a fraction of the whole surface.
+std::vector<double> region_area_fractions(const Mesh& mesh) {
+  const std::vector<int> region = stored_regions(mesh);
+  std::vector<double> area;
+  double total = 0.0;
+  for (FaceIndex f : mesh.faces()) {
+    const double a = CGAL::Polygon_mesh_processing::face_area(f, mesh);
+    total += a;
+    const int r = region[f.idx()];
+    if (r < 0) continue;
+    if (area.size() <= static_cast<std::size_t>(r)) area.resize(static_cast<std::size_t>(r) + 1, 0.0);
+    area[static_cast<std::size_t>(r)] += a;
+  }
+  for (double& a : area) a /= total;
+  return area;
+}
+
+// --region-max-area bounds the regions that --regions auto keeps: on bumpy_sphere, whose bumps
+// differ in size, every kept region is within the bound and a tighter bound keeps fewer.
+TEST(Run, RegionMaxAreaDropsTheLargerAutoRegions) {
+  const Mesh input = read_input_mesh(std::string(test::MESH_DIR) + "/bumpy_sphere.off");
+  std::size_t previous = 0;
+  double largest = 0.0;
+  for (const char* bound : {"0.5", "0.08", "0.03"}) {
+    RunOptions o;
+    set_run_option(o, "regions", "auto");
+    set_run_option(o, "region-max-area", bound);
+    Mesh mesh = input;
+    const std::size_t count = mark_run_regions(mesh, o);
+    const std::vector<double> area = region_area_fractions(mesh);
+    ASSERT_EQ(area.size(), count) << bound;
+    for (double a : area) EXPECT_LE(a, std::stod(bound)) << bound;
+    if (previous > 0) EXPECT_LE(count, previous) << bound;
+    if (previous == 0)
+      for (double a : area) largest = std::max(largest, a);
+    previous = count;
+  }
+  // The bounds straddle at least the largest region, so something was dropped.
+  ASSERT_GT(largest, 0.03);
+  RunOptions all;
+  set_run_option(all, "regions", "auto");
+  Mesh mesh = input;
+  EXPECT_GT(mark_run_regions(mesh, all), previous);
+}
+
+TEST(Run, RegionMaxAreaWithoutAutoRegionsIsWarned) {
+  RunOptions o;
+  o.sim.frames = 1;
+  set_run_option(o, "region-max-area", "0.05");
+  Recorder rec;
+  run_contraction(sphere(1), o, &rec);
+  ASSERT_EQ(rec.warnings.size(), 1u);
+  EXPECT_NE(rec.warnings[0].find("--region-max-area"), std::string::npos) << rec.warnings[0];
 }
 
 }  // namespace

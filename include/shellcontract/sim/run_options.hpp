@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/sim/config.hpp"
 
 namespace shellcontract {
@@ -26,6 +27,9 @@ struct RunOptions {
   /// or measure_regions without a region source given selects Auto (resolve_run_options).
   RegionSource regions = RegionSource::None;
   std::string region_file;  ///< RegionSource::File only
+  /// RegionSource::Auto only: regions larger than this fraction of the total area are dropped
+  /// (RegionOptions::max_area_fraction; a large one, such as bear's head, deflates the shell).
+  double region_max_area = RegionOptions{}.max_area_fraction;
   /// Select the regions even when no local contraction acts on them, to report how far they sink.
   bool measure_regions = false;
   /// Membrane stiffness from Young's modulus, Poisson ratio and thickness (math-spec 6). When
