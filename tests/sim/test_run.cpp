@@ -202,17 +202,17 @@ std::vector<double> region_area_fractions(const Mesh& mesh) {
   for (FaceIndex f : mesh.faces()) {
     const double a = CGAL::Polygon_mesh_processing::face_area(f, mesh);
     total += a;
-    const int r = region[f.idx()];
-    if (r < 0) continue;
-    if (area.size() <= static_cast<std::size_t>(r)) area.resize(static_cast<std::size_t>(r) + 1, 0.0);
-    area[static_cast<std::size_t>(r)] += a;
+    if (region[f.idx()] < 0) continue;
+    const std::size_t r = static_cast<std::size_t>(region[f.idx()]);
+    if (area.size() <= r) area.resize(r + 1, 0.0);
+    area[r] += a;
   }
   for (double& a : area) a /= total;
   return area;
 }
 
 // --region-max-area bounds the regions that --regions auto keeps: on bumpy_sphere, whose bumps
-// differ in size, every kept region is within the bound and a tighter bound keeps fewer.
+// differ in size, every kept region is within the bound and a tighter bound keeps no more.
 TEST(Run, RegionMaxAreaDropsTheLargerAutoRegions) {
   const Mesh input = read_input_mesh(std::string(test::MESH_DIR) + "/bumpy_sphere.off");
   std::size_t previous = 0;
