@@ -1,11 +1,14 @@
 // `shellcontract run`'s control of the volume and its checks before work, as a user meets them:
 // exit code 5 with the result written, outputs refused before the simulation, option ranges.
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
@@ -49,6 +52,37 @@ TEST_F(CliRunControl, TargetVolumeIsReachedAndReported) {
   for (const char* key : {"\"read_and_check_seconds\"", "\"read_seconds\"", "\"check_seconds\"",
                           "\"regions_seconds\"", "\"prepare_seconds\"", "\"peak_memory_mb\""})
     EXPECT_NE(s.find(key), std::string::npos) << key;
+}
+
+TEST_F(CliRunControl, PeakMemoryIsTheToolsOwnNotItsParents) {
+  // A caller holding 400 MB (a script, this test) forks and starts the tool on a small mesh, as
+  // Python's subprocess does. The summary's peak must be the tool's: getrusage's maximum
+  // resident size carries the forked copy's peak across exec and read 400 MB or more here.
+  // (run_cli's popen spawns without copying the caller's memory, so the test forks itself.)
+  const std::size_t held = std::size_t{400} << 20;
+  std::vector<char> ballast(held, 1);
+  std::vector<std::string> args = {SHELLCONTRACT_CLI_PATH, "run", mesh("ico2.off"), "-o",
+                                   out("o.off"), "--frames", "1", "--summary", out("s.json"),
+                                   "-q"};
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const pid_t pid = ::fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    ::execv(argv[0], argv.data());
+    ::_exit(127);
+  }
+  int status = 0;
+  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  const std::string s = read(out("s.json"));
+  const std::size_t at = s.find("\"peak_memory_mb\": ");
+  ASSERT_NE(at, std::string::npos) << s;
+  const double mb = std::stod(s.substr(at + 18));
+  EXPECT_GT(mb, 0.0);
+  EXPECT_LT(mb, 200.0) << "the caller held " << (held >> 20) << " MB; ballast "
+                       << static_cast<int>(ballast[held / 2]);
 }
 
 TEST_F(CliRunControl, AStalledTargetExitsWith5AndWritesTheResult) {
