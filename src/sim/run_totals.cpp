@@ -24,6 +24,10 @@ void RunTotals::add(const FrameMetrics& m) {
   bg_cells_s_ += c.background_cell_loop_seconds;
   bg_output_s_ += c.background_output_seconds;
   bg_records_s_ += c.background_records_seconds;
+  grid_s_ += c.broad_grid_seconds;
+  cells_s_ += c.broad_cell_loop_seconds;
+  output_s_ += c.broad_output_seconds;
+  records_s_ += c.broad_records_seconds;
   predict_s_ += c.predict_seconds;
   broad_s_ += c.broad_seconds;
   filter_s_ += c.filter_seconds;
@@ -60,6 +64,10 @@ std::vector<std::pair<std::string, double>> RunTotals::per_step(int frames) cons
       {"background_records_ms_per_step", 1e3 * bg_records_s_ / n},
       {"prediction_ms_per_step", 1e3 * predict_s_ / n},
       {"broad_phase_ms_per_step", 1e3 * broad_s_ / n},
+      {"broad_phase_grid_ms_per_step", 1e3 * grid_s_ / n},
+      {"broad_phase_cell_loop_ms_per_step", 1e3 * cells_s_ / n},
+      {"broad_phase_pair_output_ms_per_step", 1e3 * output_s_ / n},
+      {"broad_phase_records_ms_per_step", 1e3 * records_s_ / n},
       {"filter_ms_per_step", 1e3 * filter_s_ / n},
       {"narrow_phase_ms_per_step", 1e3 * narrow_s_ / n},
       {"response_ms_per_step", 1e3 * response_s_ / n},

@@ -122,7 +122,11 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
       if (drift) x1.col(0).array() += 0.1;
       const double inflation = 0.01, far = 0.005;
       BroadPhaseStats stats;
-      find_candidates(x0, x1, topo, inflation, patched, &stats, BroadPhaseMethod::Grid, far);
+      // Two threads: past GRID_PATCH_MAX_THREADS the kept grid is rebuilt, not patched.
+      tbb::task_arena two(2);
+      two.execute([&] {
+        find_candidates(x0, x1, topo, inflation, patched, &stats, BroadPhaseMethod::Grid, far);
+      });
       find_candidates(x0, x1, topo, inflation, rebuilt, nullptr, BroadPhaseMethod::Grid, far);
       tbb::task_arena one(1);
       one.execute([&] {
@@ -191,9 +195,12 @@ TEST(BroadPhase, GridKeptForAnotherTopologyOfTheSameSizesIsPatchedForIt) {
   const double inflation = 0.01;
   CandidatePairs out;
   BroadPhaseStats stats;
-  find_candidates(x0, x1, first, inflation, out, &stats, BroadPhaseMethod::Grid);
-  ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
-  find_candidates(x0, x1, second, inflation, out, &stats, BroadPhaseMethod::Grid);
+  tbb::task_arena one(1);  // past GRID_PATCH_MAX_THREADS the kept grid is rebuilt, not patched
+  one.execute([&] {
+    find_candidates(x0, x1, first, inflation, out, &stats, BroadPhaseMethod::Grid);
+    ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
+    find_candidates(x0, x1, second, inflation, out, &stats, BroadPhaseMethod::Grid);
+  });
   ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
   EXPECT_GT(out.scratch->grid_patched_boxes, 0);  // the kept grid, patched for the new topology
   const BruteForce want = brute_force(x0, x1, swapped, inflation);

@@ -46,6 +46,14 @@ struct CollisionStepStats {
   double background_cell_loop_seconds = 0.0;
   double background_output_seconds = 0.0;
   double background_records_seconds = 0.0;
+  /// Parts of broad_seconds spent in the step's own (not speculative) broad phase calls, summed
+  /// over them (diagnostics; 0 when the grid did not run): the grid's construction or patch, its
+  /// cell loop, its output of the pairs, and the per-pair records with the live list. Where a
+  /// many-core run loses its speed-up (docs/benchmarks/scale.md).
+  double broad_grid_seconds = 0.0;
+  double broad_cell_loop_seconds = 0.0;
+  double broad_output_seconds = 0.0;
+  double broad_records_seconds = 0.0;
   /// Steps with a prediction: the calling thread's time in predict, before the solve (part of
   /// broad_seconds and of seconds).
   double predict_seconds = 0.0;

@@ -25,6 +25,7 @@ class RunTotals {
   double broad_calls_ = 0, filter_tests_ = 0, rounds_ = 0, speculative_ = 0, escaped_ = 0,
          background_s_ = 0, wait_s_ = 0, bg_grid_s_ = 0, bg_cells_s_ = 0, bg_output_s_ = 0,
          bg_records_s_ = 0, predict_s_ = 0, rescans_full_ = 0, rescans_in_zone_ = 0;
+  double grid_s_ = 0, cells_s_ = 0, output_s_ = 0, records_s_ = 0;
   double broad_s_ = 0, filter_s_ = 0, narrow_s_ = 0, response_s_ = 0, collision_s_ = 0,
          solve_s_ = 0, step_s_ = 0;
 };

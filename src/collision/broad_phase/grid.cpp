@@ -231,9 +231,27 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     // compares them with this call's.
     s.grid_vertex_ranges_prev.swap(s.grid_vertex_ranges);
     vertex_ranges();
-    if (!s.grid_patch_always_rebuild) patched = patch_grid(g, prim, nboxes, s);
+    // A patch is serial and a rebuild parallel: past GRID_PATCH_MAX_THREADS the rebuild wins.
+    if (!s.grid_patch_always_rebuild &&
+        tbb::this_task_arena::max_concurrency() <= GRID_PATCH_MAX_THREADS) {
+      if (s.grid_patch_skips > 0) {
+        --s.grid_patch_skips;
+      } else {
+        patched = patch_grid(g, prim, nboxes, s);
+        s.grid_patch_backoff =
+            patched ? 0 : std::min(std::max(1, 2 * s.grid_patch_backoff), GRID_PATCH_MAX_BACKOFF);
+        s.grid_patch_skips = s.grid_patch_backoff;
+      }
+    }
     if (patched) entries = start[g.cells()];
   }
+  // The per-cell passes run over fixed blocks of cells (never cut by the thread count); block b
+  // keeps its entries in block_sums[2 b] and its pair work in block_sums[2 b + 1].
+  std::vector<std::uint64_t>& sums = s.block_sums;
+  auto blocks_of = [](std::size_t ncell) { return (ncell + GRID_CELL_GRAIN - 1) / GRID_CELL_GRAIN; };
+  auto block_end = [](std::size_t b, std::size_t ncell) {
+    return std::min(ncell, (b + 1) * GRID_CELL_GRAIN);
+  };
   s.grid_ranges.resize(nboxes);
   for (bool first = true; !patched; first = false) {
     if (!(first && reuse)) {
@@ -249,51 +267,84 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     }
     const std::size_t ncell = g.cells();
     // Part p counts cell c in cell_count[p * (ncell + 1) + c]; the extra slot per part absorbs
-    // the invalid visits of the 2x2x2 pattern.
-    s.cell_count.assign(parts * (ncell + 1), 0);
+    // the invalid visits of the 2x2x2 pattern. Each part clears its own counters.
+    s.cell_count.resize(parts * (ncell + 1));
     tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t p) {
       std::uint32_t* count = s.cell_count.data() + p * (ncell + 1);
+      std::fill(count, count + ncell + 1, 0u);
       for (std::size_t i = part_begin(p); i < part_begin(p + 1); ++i) {
         s.grid_ranges[i] = prim.range(prim.ids(i));
         for_each_cell(g, s.grid_ranges[i],
                       [&](std::size_t c, std::uint32_t, bool valid) { count[c] += valid; });
       }
     });
-    start.assign(ncell + 1, 0);
-    for (std::size_t p = 0; p < parts; ++p) {
-      const std::uint32_t* count = s.cell_count.data() + p * (ncell + 1);
-      for (std::size_t c = 0; c < ncell; ++c) start[c + 1] += count[c];
-    }
+    // Cell c's entries over the parts go to start[c + 1] (until the prefix sum below), and each
+    // block's entries and pair work to block_sums, in parallel: these passes over every cell and
+    // part were serial and kept many-core runs of bear x16 from scaling.
+    start.resize(ncell + 1);
+    start[0] = 0;
+    sums.assign(2 * blocks_of(ncell), 0);
+    tbb::parallel_for(std::size_t{0}, blocks_of(ncell), [&](std::size_t b) {
+      std::uint64_t e = 0, w = 0;
+      for (std::size_t c = b * GRID_CELL_GRAIN; c < block_end(b, ncell); ++c) {
+        std::uint32_t k = 0;
+        for (std::size_t p = 0; p < parts; ++p) k += s.cell_count[p * (ncell + 1) + c];
+        start[c + 1] = k;
+        e += k;
+        w += std::uint64_t{k} * (k - (k > 0 ? 1u : 0u)) / 2;
+      }
+      sums[2 * b] = e;
+      sums[2 * b + 1] = w;
+    });
     entries = 0;
-    for (std::size_t c = 1; c <= ncell; ++c) entries += start[c];
+    for (std::size_t b = 0; b < blocks_of(ncell); ++b) entries += sums[2 * b];
     if (entries <= GRID_ENTRIES_PER_BOX * nboxes || ncell == 1) break;
     h = 2.0 / g.inv_h;
   }
   const std::size_t ncell = g.cells();
-  // Cell sizes: counts from the counting sort, offsets from a patch.
-  std::int64_t work = 0;
-  for (std::size_t c = 1; c <= ncell; ++c) {
-    const std::int64_t k = patched ? start[c] - start[c - 1] : start[c];
-    work += k * (k - 1) / 2;
-  }
-  if (work > GRID_WORK_PER_BOX * static_cast<std::int64_t>(nboxes)) return nothing(-1);
-  if (!patched) {
-    for (std::size_t c = 1; c <= ncell; ++c) start[c] += start[c - 1];
-    // Counting-sort scatter. Part p's cursor of cell c starts after the entries of parts < p;
-    // invalid visits write to the part's own sink slot past the end (cursor ncell), which keeps
-    // the 2x2x2 pattern branch-free. Boxes go in in id order within each part, so each cell lists
-    // its vertices, then faces, then edges, each by increasing id.
-    s.cell_fill.resize(parts * (ncell + 1));
-    for (std::size_t c = 0; c < ncell; ++c) {
-      std::uint32_t cursor = start[c];
-      for (std::size_t p = 0; p < parts; ++p) {
-        s.cell_fill[p * (ncell + 1) + c] = cursor;
-        cursor += s.cell_count[p * (ncell + 1) + c];
+  const std::size_t blocks = blocks_of(ncell);
+  if (patched) {  // the pair work from the patched offsets
+    sums.assign(2 * blocks, 0);
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+      std::uint64_t w = 0;
+      for (std::size_t c = b * GRID_CELL_GRAIN; c < block_end(b, ncell); ++c) {
+        const std::uint64_t k = start[c + 1] - start[c];
+        w += k * (k - (k > 0 ? 1u : 0u)) / 2;
       }
+      sums[2 * b + 1] = w;
+    });
+  }
+  std::uint64_t work = 0;
+  for (std::size_t b = 0; b < blocks; ++b) work += sums[2 * b + 1];
+  if (work > static_cast<std::uint64_t>(GRID_WORK_PER_BOX) * nboxes) return nothing(-1);
+  if (!patched) {
+    // The offsets: an exclusive prefix sum over the blocks, then within each block in parallel,
+    // where each cell's counters become the parts' fill cursors in place (part p's cursor of
+    // cell c starts after the entries of parts < p).
+    std::uint64_t before = 0;
+    for (std::size_t b = 0; b < blocks; ++b) {
+      const std::uint64_t e = sums[2 * b];
+      sums[2 * b] = before;
+      before += e;
     }
+    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
+      std::uint32_t offset = static_cast<std::uint32_t>(sums[2 * b]);
+      for (std::size_t c = b * GRID_CELL_GRAIN; c < block_end(b, ncell); ++c) {
+        for (std::size_t p = 0; p < parts; ++p) {
+          std::uint32_t& slot = s.cell_count[p * (ncell + 1) + c];
+          const std::uint32_t k = slot;
+          slot = offset;
+          offset += k;
+        }
+        start[c + 1] = offset;
+      }
+    });
+    // Counting-sort scatter. Invalid visits write to the part's own sink slot past the end
+    // (cursor ncell), which keeps the 2x2x2 pattern branch-free. Boxes go in in id order within
+    // each part, so each cell lists its vertices, then faces, then edges, each by increasing id.
     s.cell_entries.resize(entries + parts);
     tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t p) {
-      std::uint32_t* fill = s.cell_fill.data() + p * (ncell + 1);
+      std::uint32_t* fill = s.cell_count.data() + p * (ncell + 1);
       std::uint32_t* entry = s.cell_entries.data();
       fill[ncell] = static_cast<std::uint32_t>(entries + p);
       for (std::size_t i = part_begin(p); i < part_begin(p + 1); ++i) {
@@ -324,8 +375,13 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   s.chunks.resize(GRID_CHUNKS);
   s.chunk_cells.assign(GRID_CHUNKS + 1, g.cells());
   s.chunk_cells[0] = 0;
-  for (std::size_t c = 0, k = 1; c < g.cells() && k < GRID_CHUNKS; ++c)
-    while (k < GRID_CHUNKS && start[c] >= entries * k / GRID_CHUNKS) s.chunk_cells[k++] = c;
+  // Chunk k starts at the first cell whose entries begin at or after entries * k / GRID_CHUNKS
+  // (a binary search over the offsets: a scan of every cell was serial).
+  for (std::size_t k = 1; k < GRID_CHUNKS; ++k)
+    s.chunk_cells[k] = static_cast<std::size_t>(
+        std::lower_bound(start.begin(), start.begin() + static_cast<std::ptrdiff_t>(g.cells()),
+                         static_cast<std::uint32_t>(entries * k / GRID_CHUNKS)) -
+        start.begin());
   const std::uint32_t* entry = s.cell_entries.data();
   tbb::parallel_for(std::size_t{0}, GRID_CHUNKS, [&](std::size_t chunk) {
     detail::GridChunk& out_chunk = s.chunks[chunk];

@@ -43,9 +43,12 @@ constexpr std::size_t GRID_ENTRIES_PER_BOX = 16;
 /// grid degenerates towards brute force, so PrimitiveBoxes runs instead (same result).
 constexpr std::int64_t GRID_WORK_PER_BOX = 256;
 /// The per-cell pair loops run as this many chunks of cells (about equal entry counts each), in
-/// parallel with TBB; more chunks than threads balance the load.
-constexpr std::size_t GRID_CHUNKS = 32;
-/// Parts of the grid's counting sort: at most this many (one per thread of the arena).
+/// parallel with TBB; more chunks than threads balance the load (eight per thread on 16 cores:
+/// the chunks' costs differ by up to 1.5x, as their work grows with the square of a cell's
+/// entries). The pairs come out in the same order for any number of chunks.
+constexpr std::size_t GRID_CHUNKS = 128;
+/// Parts of the grid's counting sort: at most this many (one per thread of the arena). Each
+/// part has a counter per cell (bear x16: 2.65 M cells, 10.6 MB per part).
 constexpr std::size_t GRID_MAX_PARTS = 8;
 /// Grid reuse (temporal coherence, grid_pairs): a call keeps the last call's grid while the
 /// desired cell size is within this factor of the kept one and the scene is inside the kept grid.
@@ -56,6 +59,18 @@ constexpr double GRID_MARGIN_CELLS = 0.5;
 /// boxes changed their cell range, else rebuilt. Bear at P = 4: 7.2k of 83k boxes per step on
 /// average; patching costs about a third of a rebuild there (benchmarks/bench_broad_phase.cpp).
 constexpr std::size_t GRID_PATCH_DIVISOR = 4;
+/// After a failed patch attempt (too many changed boxes) the next calls rebuild without trying,
+/// 1, 2, 4, ... up to this many calls, until an attempt succeeds again. On bear x16 every attempt
+/// fails (its cells are small against the motion), and each cost a serial pass over the boxes
+/// before the rebuild (scripts/scale_benchmark.py --phases, the grid row).
+constexpr int GRID_PATCH_MAX_BACKOFF = 8;
+/// The kept grid is patched only in an arena of at most this many threads. The patch runs on
+/// one thread, the rebuild on all: on bear (scripts/scale_benchmark.py --phases, the grid row,
+/// coloured order) a patched step's grid cost about what a rebuild did at two threads, and
+/// less at one. The grid is the same either way, so results do not depend on the choice.
+constexpr int GRID_PATCH_MAX_THREADS = 2;
+/// Cells per task of the grid's per-cell passes (sums, prefix, fill cursors).
+constexpr std::size_t GRID_CELL_GRAIN = 16384;
 /// Vertices per task of the grid's per-vertex loops.
 constexpr std::size_t GRID_VERTEX_GRAIN = 2048;
 /// Rows of the AVX-512 cell loop processed together (cell_rows_avx512). bench_broad_phase on

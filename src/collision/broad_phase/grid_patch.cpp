@@ -13,14 +13,17 @@ namespace detail {
 void build_grid_vertex_boxes(const Positions& x0, const Positions& x1, double inflation,
                              std::vector<detail::GridVertexBox>& boxes) {
   boxes.resize(static_cast<std::size_t>(x0.rows()));
-  for (Eigen::Index v = 0; v < x0.rows(); ++v) {
-    detail::GridVertexBox& b = boxes[static_cast<std::size_t>(v)];
-    for (Eigen::Index d = 0; d < 3; ++d) {
-      const double a = x0(v, d), c = x1(v, d);
-      b.lo[static_cast<std::size_t>(d)] = std::min(a, c) - inflation;
-      b.hi[static_cast<std::size_t>(d)] = std::max(a, c) + inflation;
-    }
-  }
+  tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, x0.rows(), GRID_VERTEX_GRAIN),
+                    [&](const tbb::blocked_range<Eigen::Index>& r) {
+                      for (Eigen::Index v = r.begin(); v < r.end(); ++v) {
+                        detail::GridVertexBox& b = boxes[static_cast<std::size_t>(v)];
+                        for (Eigen::Index d = 0; d < 3; ++d) {
+                          const double a = x0(v, d), c = x1(v, d);
+                          b.lo[static_cast<std::size_t>(d)] = std::min(a, c) - inflation;
+                          b.hi[static_cast<std::size_t>(d)] = std::max(a, c) + inflation;
+                        }
+                      }
+                    });
 }
 
 namespace {

@@ -145,8 +145,10 @@ struct BroadPhaseScratch {
   std::vector<std::size_t> chunk_cells;     ///< Grid: first cell of each chunk, then #cells
   std::vector<double> extent_sample;        ///< Grid: box extents for the cell size
   std::vector<std::uint32_t> cell_start;    ///< Grid: CSR offsets per cell
-  std::vector<std::uint32_t> cell_count;    ///< Grid: per part of the counting sort, per cell
-  std::vector<std::uint32_t> cell_fill;     ///< Grid: fill cursors, per part, per cell
+  /// Grid: per part of the counting sort, per cell, its count and then its fill cursor
+  std::vector<std::uint32_t> cell_count;
+  std::vector<std::uint32_t> cell_fill;     ///< Grid: the patch's fill cursors, per cell
+  std::vector<std::uint64_t> block_sums;    ///< Grid: entries and pair work per block of cells
   std::vector<std::uint32_t> cell_entries;  ///< Grid: box id << 3 | first-cell flags
   std::vector<std::size_t> chunk_offsets;   ///< Grid: each chunk's first output VF, then EE pair
   /// Grid: whether the grid of the last call (cell_start, cell_entries, grid_vertex_boxes and the
@@ -162,6 +164,11 @@ struct BroadPhaseScratch {
   bool grid_patch_always_rebuild = false;
   /// Grid: boxes whose cell range the last call patched, or -1 if it rebuilt the counting sort.
   std::int64_t grid_patched_boxes = -1;
+  /// Grid: calls that skip the patch attempt and rebuild at once, after a failed attempt
+  /// (grid_patch_skips left of the current backoff, grid_patch_backoff; see
+  /// GRID_PATCH_MAX_BACKOFF). Depends only on the calls so far, never on the thread count.
+  int grid_patch_skips = 0;
+  int grid_patch_backoff = 0;
   std::vector<detail::GridRange> grid_vertex_ranges_prev;  ///< Grid: the last call's vertex ranges
   std::vector<std::uint64_t> grid_maybe_bits;   ///< Grid: boxes the patch recomputes (bitset)
   std::vector<std::uint32_t> grid_changed_ids;  ///< Grid: the patch's changed boxes

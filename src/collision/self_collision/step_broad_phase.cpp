@@ -55,9 +55,20 @@ SelfCollision::Impl::candidate_pairs() const {
 }
 
 void SelfCollision::Impl::set_regions(const Positions& x0, const Positions& x1) {
-  const double margin = options_.region_margin * options_.delta;
-  region_lo_ = x0.cwiseMin(x1).array() - 0.5 * margin;
-  region_hi_ = x0.cwiseMax(x1).array() + 0.5 * margin;
+  // In parallel blocks of rows: one serial pass was 2 ms per step on bear x16.
+  const double half = 0.5 * options_.region_margin * options_.delta;
+  region_lo_.resize(x0.rows(), 3);
+  region_hi_.resize(x0.rows(), 3);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<Eigen::Index>(0, x0.rows(), 4096),
+                      [&](const tbb::blocked_range<Eigen::Index>& r) {
+                        const Eigen::Index b = r.begin(), n = r.end() - r.begin();
+                        region_lo_.middleRows(b, n) =
+                            x0.middleRows(b, n).cwiseMin(x1.middleRows(b, n)).array() - half;
+                        region_hi_.middleRows(b, n) =
+                            x0.middleRows(b, n).cwiseMax(x1.middleRows(b, n)).array() + half;
+                      });
+  });
 }
 
 void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
@@ -94,6 +105,13 @@ void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
                       });
   });
   collect_live();
+  stats.broad_records_seconds += t0.elapsed();
+  if (bs.method_run == BroadPhaseMethod::Grid) {
+    const GridPartSeconds g = grid_part_seconds(candidates_);
+    stats.broad_grid_seconds += g.build;
+    stats.broad_cell_loop_seconds += g.cell_loop;
+    stats.broad_output_seconds += g.output;
+  }
   set_regions(x0, x1);
   stats.broad_seconds += bs.seconds + t0.elapsed();
   ++stats.broad_phase_calls;
