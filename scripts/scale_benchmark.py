@@ -8,10 +8,16 @@ checking, preparing, writing) and the peak memory. In the sequential order the b
 a spare thread during the solve (--speculative-broad-phase auto): its column is then that work plus
 the broad phase after the solve, without the time the main thread waited for it.
 
-Usage: scripts/scale_benchmark.py [--build build] [--frames 10] [--threads 1,2] [--levels 0,1,2]
-                                  [--order coloured|sequential] [--extra "--delta 2e-4"]
+The "same result" column says whether every thread count wrote the same bytes as the first. With
+--phases, a second table gives each phase's time per step at every thread count (where the time
+goes, and which phase stops scaling). With --save DIR, every run's summary is kept there.
+
+Usage: scripts/scale_benchmark.py [--build build | --tool PATH] [--frames 10] [--threads 1,2]
+                                  [--levels 0,1,2] [--order coloured|sequential]
+                                  [--extra "--delta 2e-4"] [--phases] [--save DIR]
 Needs: the built tool and data/meshes/bear.off (scripts/fetch_paper_meshes.sh)."""
 import argparse
+import hashlib
 import json
 import os
 import subprocess
@@ -67,17 +73,35 @@ def write_off(path, points, faces):
         f.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
 
 
-def run(tool, mesh, frames, threads, order, tmp, extra):
+# The summary's per-step phase times (table2), in the order the step runs them.
+PHASES = [("broad_phase_ms_per_step", "broad phase"),
+          ("broad_phase_grid_ms_per_step", "- its grid (build or patch)"),
+          ("broad_phase_cell_loop_ms_per_step", "- its cell loop"),
+          ("broad_phase_pair_output_ms_per_step", "- its pair output"),
+          ("broad_phase_records_ms_per_step", "- its pair records"),
+          ("filter_ms_per_step", "filter"),
+          ("narrow_phase_ms_per_step", "narrow phase"), ("response_ms_per_step", "response"),
+          ("collision_ms_per_step", "collision, all"),
+          ("constraint_solve_ms_per_step", "constraint solve"), ("step_ms", "step")]
+
+
+def run(tool, mesh, frames, threads, order, tmp, extra, save):
     summary = os.path.join(tmp, "s.json")
-    cmd = ["/usr/bin/time", "-f", "%M", tool, "run", mesh, "-o", os.path.join(tmp, "o.off"), "--frames",
-           str(frames), "--order", order, "--threads", str(threads), "--summary", summary, "-q"] + extra
+    output = os.path.join(tmp, "o.off")
+    cmd = [tool, "run", mesh, "-o", output, "--frames", str(frames), "--order", order,
+           "--threads", str(threads), "--summary", summary, "-q"] + extra
     start = time.perf_counter()
     p = subprocess.run(cmd, capture_output=True, text=True)
     total = time.perf_counter() - start
     if p.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} failed:\n{p.stderr}")
-    peak_kib = int(p.stderr.strip().splitlines()[-1])
+        sys.exit(f"{' '.join(cmd)} failed:\n{p.stdout}{p.stderr}")
+    with open(output, "rb") as f:
+        digest = hashlib.sha256(f.read()).hexdigest()
     s = json.load(open(summary))
+    if save:
+        name = f"{os.path.splitext(os.path.basename(mesh))[0]}_{order}_{threads}thr.json"
+        with open(os.path.join(save, name), "w") as f:
+            json.dump(s, f, indent=1)
     t2 = s["table2"]
     # Sequential order: the spare thread's work plus the part after the solve, less the main
     # thread's wait for that work (which overlaps it). With one thread there is no spare thread:
@@ -86,22 +110,45 @@ def run(tool, mesh, frames, threads, order, tmp, extra):
     broad = (t2["broad_phase_ms_per_step"] + background -
              min(t2["background_wait_ms_per_step"], background))
     return {"faces": s["faces"], "step_ms": t2["step_ms"], "broad_ms": broad,
-            "pairs": t2["pairs_after_broad_phase_per_step"],
+            "pairs": t2["pairs_after_broad_phase_per_step"], "table2": t2, "digest": digest,
             "outside_s": total - s["wall_seconds"], "read_s": s["setup"]["read_and_check_seconds"],
-            "prepare_s": s["setup"]["prepare_seconds"], "peak_mb": peak_kib / 1024}
+            "prepare_s": s["setup"]["prepare_seconds"],
+            # The tool's own peak (VmHWM); /usr/bin/time's and wait4's maximum resident size
+            # would include this script's memory at the fork (bear x16's points: ~400 MB).
+            "peak_mb": s["peak_memory_mb"]}
+
+
+def print_phases(name, rows, threads):
+    """Each phase's time per step at every thread count, and its speed-up at the last count."""
+    print(f"\n{name}: time per step by phase (ms)")
+    head = "| phase | " + " | ".join(f"{t} thr" for t in threads)
+    head += f" | speed-up, {threads[-1]} over {threads[0]} thr |"
+    print(head)
+    print("|" + "---|" * (head.count("|") - 1))
+    for key, label in PHASES:
+        if any(key not in rows[t]["table2"] for t in threads):
+            continue  # a tool older than the row
+        ms = [rows[t]["table2"][key] for t in threads]
+        gain = f"{ms[0] / ms[-1]:.2f}x" if ms[-1] > 0 else "-"
+        print(f"| {label} | " + " | ".join(f"{m:.2f}" for m in ms) + f" | {gain} |")
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
+    ap.add_argument("--tool", help="the tool to run (default: BUILD/shellcontract)")
     ap.add_argument("--frames", type=int, default=10)
     ap.add_argument("--threads", default="1,2")
     ap.add_argument("--levels", default="0,1,2")
     ap.add_argument("--order", default="coloured", choices=["coloured", "sequential"])
     ap.add_argument("--extra", default="", help="more options of every run, one string")
+    ap.add_argument("--phases", action="store_true", help="also a table of the phases per mesh")
+    ap.add_argument("--save", help="a folder to keep every run's summary in")
     a = ap.parse_args()
     extra = a.extra.split()
-    tool = os.path.join(a.build, "shellcontract")
+    tool = a.tool or os.path.join(a.build, "shellcontract")
+    if a.save:
+        os.makedirs(a.save, exist_ok=True)
     bear = os.path.join(ROOT, "data", "meshes", "bear.off")
     threads = [int(t) for t in a.threads.split(",")]
     levels = [int(l) for l in a.levels.split(",")]
@@ -117,20 +164,29 @@ def main():
         head = "| mesh | faces | " + " | ".join(f"step, {t} thr (ms)" for t in threads)
         head += f" | step per 1k faces, {threads[0]} thr (ms) | broad phase, {threads[0]} thr (ms)"
         head += " | broad phase per 1k faces (ms) | candidate pairs per face"
-        head += " | read + check (s) | prepare (s) | outside the loop (s) | peak memory (MB) |"
+        head += " | read + check (s) | prepare (s) | outside the loop (s) | peak memory (MB)"
+        head += " | same result |"
         print(f"{a.order} order, collisions on, {a.frames} frames, default pressure"
               f"{', ' + a.extra if a.extra else ''}; {os.uname().nodename}, {os.cpu_count()} CPUs")
         print(head)
         print("|" + "---|" * (head.count("|") - 1))
+        all_rows = {}
         for level in levels:
-            rows = {t: run(tool, meshes[level], a.frames, t, a.order, tmp, extra) for t in threads}
+            rows = {t: run(tool, meshes[level], a.frames, t, a.order, tmp, extra, a.save)
+                    for t in threads}
+            all_rows[level] = rows
+            same = all(r["digest"] == rows[threads[0]]["digest"] for r in rows.values())
             r0 = rows[threads[0]]
             cells = [f"{rows[t]['step_ms']:.1f}" for t in threads]
             print(f"| bear x{4 ** level} | {r0['faces']} | " + " | ".join(cells) +
                   f" | {1e3 * r0['step_ms'] / r0['faces']:.3f} | {r0['broad_ms']:.1f}"
                   f" | {1e3 * r0['broad_ms'] / r0['faces']:.3f} | {r0['pairs'] / r0['faces']:.2f} | {r0['read_s']:.2f} | "
                   f"{r0['prepare_s']:.2f} | {r0['outside_s']:.2f} | "
-                  f"{max(r['peak_mb'] for r in rows.values()):.0f} |")
+                  f"{max(r['peak_mb'] for r in rows.values()):.0f} | {'yes' if same else 'NO'} |",
+                  flush=True)
+        if a.phases:
+            for level in levels:
+                print_phases(f"bear x{4 ** level}", all_rows[level], threads)
 
 
 if __name__ == "__main__":
