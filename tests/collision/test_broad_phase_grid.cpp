@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "collision/broad_phase/grid.hpp"
 #include "collision/broad_phase/scratch.hpp"
 #include "collision/broad_phase_oracle.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
@@ -68,27 +69,37 @@ TEST(BroadPhase, ReusedOutputHoldsOnlyTheLatestCall) {
 
 TEST(BroadPhase, GridOrderDoesNotDependOnTheThreadCount) {
   // Grid's pairs come in cell order, unsorted; the collision step relies on that order (and the
-  // close flags) being the same for any number of threads.
+  // close flags) being the same for any number of threads. The counting sort runs in one part
+  // per thread (up to GRID_MAX_PARTS), scattered part by part and merged cell by cell: its cells
+  // must list the same boxes in the same order for any number of parts. A mesh with more cells
+  // than one block of the per-cell passes (GRID_CELL_GRAIN).
   std::mt19937 rng(11);
-  const TriMesh m = test::icosphere(3);
+  const TriMesh m = test::icosphere(5);
   const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
-  const Positions x0 = random_motion(m.x, 0.05, rng);
-  const Positions x1 = random_motion(x0, 0.02, rng);
-  std::vector<CandidatePairs> runs(3);
-  const int threads[3] = {1, 2, 4};
-  for (int k = 0; k < 3; ++k) {
+  const Positions x0 = random_motion(m.x, 0.01, rng);
+  const Positions x1 = random_motion(x0, 0.004, rng);
+  const std::vector<int> threads = {1, 2, 3, 4, 7};
+  std::vector<CandidatePairs> runs(threads.size());
+  for (std::size_t k = 0; k < threads.size(); ++k) {
     tbb::task_arena arena(threads[k]);
     BroadPhaseStats stats;
     arena.execute([&] {
-      find_candidates(x0, x1, topo, 0.01, runs[static_cast<std::size_t>(k)], &stats,
-                      BroadPhaseMethod::Grid, 0.005);
+      find_candidates(x0, x1, topo, 0.002, runs[k], &stats, BroadPhaseMethod::Grid, 0.001);
     });
     ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
   }
+  const BroadPhaseScratch& first = *runs[0].scratch;
+  ASSERT_GT(first.cell_start.size(), detail::GRID_CELL_GRAIN + 1);
   ASSERT_GT(runs[0].vertex_face.size(), 100u);
   ASSERT_GT(runs[0].edge_edge.size(), 100u);
-  for (int k = 1; k < 3; ++k) {
-    const CandidatePairs& r = runs[static_cast<std::size_t>(k)];
+  const std::size_t n = first.cell_start.back();
+  for (std::size_t k = 1; k < threads.size(); ++k) {
+    const CandidatePairs& r = runs[k];
+    EXPECT_TRUE(r.scratch->cell_start == first.cell_start) << threads[k] << " threads";
+    EXPECT_TRUE(std::equal(first.cell_entries.begin(),
+                           first.cell_entries.begin() + static_cast<std::ptrdiff_t>(n),
+                           r.scratch->cell_entries.begin()))
+        << threads[k] << " threads";
     EXPECT_TRUE(r.vertex_face == runs[0].vertex_face) << threads[k] << " threads";
     EXPECT_TRUE(r.edge_edge == runs[0].edge_edge) << threads[k] << " threads";
     EXPECT_TRUE(r.vertex_face_close == runs[0].vertex_face_close) << threads[k] << " threads";
