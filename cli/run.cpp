@@ -109,6 +109,7 @@ JsonObject summary_json(const std::string& input, const std::string& output,
       .add("wall_seconds", r.wall_seconds)
       .add("mean_step_ms", r.frames_run > 0 ? 1e3 * r.wall_seconds / r.frames_run : 0.0)
       .add("collisions", options.sim.collisions)
+      .add("order_used", r.order == ConstraintOrder::Coloured ? "coloured" : "sequential")
       .add("excluded_contact_pairs", r.excluded_contact_pairs)
       .add("new_intersections", static_cast<int>(r.new_intersections))
       .add("regions", r.regions)

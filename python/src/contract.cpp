@@ -202,6 +202,7 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   s["wall_seconds"] = r.wall_seconds;
   s["mean_step_ms"] = r.frames_run > 0 ? 1e3 * r.wall_seconds / r.frames_run : 0.0;
   s["collisions"] = options.sim.collisions;
+  s["order_used"] = r.order == ConstraintOrder::Coloured ? "coloured" : "sequential";
   s["excluded_contact_pairs"] = r.excluded_contact_pairs;
   s["new_intersections"] = r.new_intersections;
   s["regions"] = r.regions;

@@ -321,10 +321,12 @@ std::vector<OptionSpec> build_table() {
       [](R& r) -> SolverKind& { return r.sim.solver.kind; }));
   t.push_back(choice("order",
                      "sequential: the paper's Gauss-Seidel order; coloured: parallel by colour, "
-                     "bit-identical for any thread count",
-                     Choices<ConstraintOrder>{{"sequential", ConstraintOrder::Sequential},
-                                              {"coloured", ConstraintOrder::Coloured}},
-                     [](R& r) -> ConstraintOrder& { return r.sim.solver.order; }));
+                     "bit-identical for any thread count; auto: coloured above " +
+                         std::to_string(AUTO_COLOURED_FACES) + " faces",
+                     Choices<OrderChoice>{{"auto", OrderChoice::Auto},
+                                          {"sequential", OrderChoice::Sequential},
+                                          {"coloured", OrderChoice::Coloured}},
+                     [](R& r) -> OrderChoice& { return r.order; }));
   t.push_back(
       integer("threads", 0, "N",
               "threads of the coloured order and of the collision handling (0 = all cores); "

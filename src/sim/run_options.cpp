@@ -18,7 +18,21 @@ void resolve_sim_options(SimOptions& o) {
                              o.solver.order == ConstraintOrder::Sequential);
 }
 
+ConstraintOrder order_for(OrderChoice choice, std::size_t faces) {
+  switch (choice) {
+    case OrderChoice::Sequential:
+      return ConstraintOrder::Sequential;
+    case OrderChoice::Coloured:
+      return ConstraintOrder::Coloured;
+    case OrderChoice::Auto:
+      break;
+  }
+  return faces > AUTO_COLOURED_FACES ? ConstraintOrder::Coloured : ConstraintOrder::Sequential;
+}
+
 void resolve_run_options(RunOptions& r) {
+  // An order given by name is known without the mesh; auto is decided by run_contraction.
+  if (r.order != OrderChoice::Auto) r.sim.solver.order = order_for(r.order, 0);
   if (r.young.has_value() != r.thickness.has_value())
     throw UsageError("--young needs --thickness (and the other way round)");
   if (r.young) {

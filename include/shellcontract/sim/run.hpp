@@ -59,6 +59,8 @@ struct RunResult {
   std::size_t degenerate_faces = 0;
   std::size_t excluded_contact_pairs = 0;
   double normalization_scale = 1.0;
+  /// The Gauss-Seidel order the run used (RunOptions::order resolved for the mesh).
+  ConstraintOrder order = ConstraintOrder::Sequential;
   std::vector<std::string> warnings;
   RunTotals totals;
   Positions positions;  ///< final positions in the input's units, row i = vertex i

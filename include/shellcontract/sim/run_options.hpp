@@ -3,6 +3,7 @@
 // run.hpp runs them.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <set>
 #include <string>
@@ -20,9 +21,26 @@ enum class RegionSource {
   None,
 };
 
+/// The Gauss-Seidel order a run asks for (--order). Auto: the paper's sequential order up to
+/// AUTO_COLOURED_FACES faces, the coloured one above (order_for).
+enum class OrderChoice { Auto, Sequential, Coloured };
+
+/// Above this many faces `--order auto` picks the coloured order. On bear subdivided twice (442k
+/// faces), over a default run of 200 frames on two cores, the coloured order peaked at 942 MB and
+/// took 411 ms per step, the sequential one (with its speculative broad phase) 1562 MB and 507
+/// ms; at 16 threads of a 16-core machine 246-276 against 725 ms per step, whose sequential
+/// solve runs on one thread (docs/benchmarks/scale.md). The paper's meshes (at most 28k faces)
+/// and bear subdivided once (111k) keep the paper's order, for which the defaults were chosen.
+constexpr std::size_t AUTO_COLOURED_FACES = 200000;
+
+/// The order a run of a mesh with `faces` faces uses.
+ConstraintOrder order_for(OrderChoice choice, std::size_t faces);
+
 /// Everything a run needs besides the mesh. Lengths are in normalized units.
 struct RunOptions {
   SimOptions sim;
+  /// The Gauss-Seidel order: run_contraction sets sim.solver.order from it and the mesh's size.
+  OrderChoice order = OrderChoice::Auto;
   /// None by default: regions switch the local contraction on. An anisotropic energy (--aniso)
   /// or measure_regions without a region source given selects Auto (resolve_run_options).
   RegionSource regions = RegionSource::None;
