@@ -248,7 +248,9 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // The per-cell passes run over fixed blocks of cells (never cut by the thread count); block b
   // keeps its entries in block_sums[2 b] and its pair work in block_sums[2 b + 1].
   std::vector<std::uint64_t>& sums = s.block_sums;
-  auto blocks_of = [](std::size_t ncell) { return (ncell + GRID_CELL_GRAIN - 1) / GRID_CELL_GRAIN; };
+  auto blocks_of = [](std::size_t ncell) {
+    return (ncell + GRID_CELL_GRAIN - 1) / GRID_CELL_GRAIN;
+  };
   auto block_end = [](std::size_t b, std::size_t ncell) {
     return std::min(ncell, (b + 1) * GRID_CELL_GRAIN);
   };
