@@ -82,8 +82,8 @@ void SelfCollision::Impl::run_speculation() {
     const StageTimer tr;
     const std::size_t nvf = candidates_.vertex_face.size();
     const std::size_t n = nvf + candidates_.edge_edge.size();
-    pairs_.resize(n);
-    base_role_.resize(n);
+    resize_for_rewrite(pairs_, n);
+    resize_for_rewrite(base_role_, n);
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, PAIR_GRAIN),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         fill_records(r.begin(), r.end(), nvf, base_role_.data());

@@ -124,9 +124,9 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
   // Pairs with a vertex outside are left out here and found by the queries below.
   const std::size_t n_spec = pairs_.size();
   const std::size_t nvf_spec = candidates_.vertex_face.size();
-  role_.resize(n_spec);
-  stale_.resize(n_spec);
-  free_.resize(n_spec);
+  resize_for_rewrite(role_, n_spec);
+  resize_for_rewrite(stale_, n_spec);
+  resize_for_rewrite(free_, n_spec);
   const std::size_t blocks = (n_spec + PAIR_GRAIN - 1) / PAIR_GRAIN;
   block_kept_.assign(blocks, 0);
   block_live_.assign(blocks, 0);

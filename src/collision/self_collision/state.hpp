@@ -22,6 +22,7 @@
 #include <utility>
 #include <vector>
 
+#include "collision/self_collision/pair_arrays.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
 #include "shellcontract/collision/ccd.hpp"
 #include "shellcontract/collision/contact.hpp"
@@ -250,10 +251,10 @@ struct SelfCollision::Impl {
   CollisionTopology topo_;
   CollisionOptions options_;
   CandidatePairs candidates_;
-  std::vector<PairRecord> pairs_;     ///< candidates of the last broad phase, in its order
-  std::vector<std::uint8_t> role_;    ///< per pair: a PairRole
-  std::vector<std::uint8_t> stale_;   ///< per pair: a vertex moved since its last test
-  std::vector<std::uint8_t> free_;    ///< per pair: its last test found no contact
+  PairArray<PairRecord> pairs_;     ///< candidates of the last broad phase, in its order
+  PairArray<std::uint8_t> role_;    ///< per pair: a PairRole
+  PairArray<std::uint8_t> stale_;   ///< per pair: a vertex moved since its last test
+  PairArray<std::uint8_t> free_;    ///< per pair: its last test found no contact
   std::vector<std::uint32_t> tests_;  ///< [0, test_count_): pairs to test in the next detect()
   /// The live pairs (see collect_live), in the slices live_units_ lists, in increasing order
   /// across them: the speculative broad phase's classification leaves them in its blocks'
@@ -326,7 +327,7 @@ struct SelfCollision::Impl {
   Eigen::VectorXd skin_;                ///< per vertex, for the next prediction
   std::vector<VertexBox> spec_boxes_;   ///< predicted boxes, grown by the skin
   std::vector<VertexBox> exact_boxes_;  ///< actual boxes (resolve)
-  std::vector<std::uint8_t> base_role_;  ///< per speculative pair: its rest-state PairRole
+  PairArray<std::uint8_t> base_role_;  ///< per speculative pair: its rest-state PairRole
   std::vector<std::uint8_t> escaped_;    ///< per vertex: actual box not inside the predicted one
   std::vector<std::uint32_t> escaped_prims_;  ///< their vertices, faces and edges (grid ids)
   /// One block of complete_speculation's pass over the vertices: its escaped vertices, largest

@@ -84,10 +84,10 @@ void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
   // at rest) and sorted.
   const std::size_t nvf = candidates_.vertex_face.size();
   const std::size_t n = nvf + candidates_.edge_edge.size();
-  pairs_.resize(n);
-  role_.resize(n);
-  stale_.resize(n);
-  free_.resize(n);
+  resize_for_rewrite(pairs_, n);
+  resize_for_rewrite(role_, n);
+  resize_for_rewrite(stale_, n);
+  resize_for_rewrite(free_, n);
   workers_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, PAIR_GRAIN),
                       [&](const tbb::blocked_range<std::size_t>& r) {
