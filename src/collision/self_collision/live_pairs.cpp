@@ -28,12 +28,12 @@ bool SelfCollision::Impl::live_pairs_consistent() const {
 
 template <class Keep>
 std::size_t SelfCollision::Impl::compact(std::size_t n, Keep keep,
-                                         std::vector<std::uint32_t>& out) {
+                                         PairArray<std::uint32_t>& out) {
   // Fixed blocks (never cut by the thread count): block b compacts its kept indices, in order,
   // to the front of its own slice out[b B, (b + 1) B); the slices are then closed up in order.
   constexpr std::size_t B = COMPACT_BLOCK;
   const std::size_t blocks = (n + B - 1) / B;
-  if (out.size() < n) out.resize(n);
+  if (out.size() < n) resize_for_rewrite(out, n);
   block_count_.resize(blocks);
   workers_->arena.execute([&] {
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
@@ -50,7 +50,7 @@ std::size_t SelfCollision::Impl::compact(std::size_t n, Keep keep,
   return close_up(out, B, block_count_);
 }
 
-std::size_t SelfCollision::Impl::close_up(std::vector<std::uint32_t>& out,
+std::size_t SelfCollision::Impl::close_up(PairArray<std::uint32_t>& out,
                                           const std::vector<LiveUnit>& units,
                                           const std::vector<std::size_t>& counts) {
   std::size_t total = 0;
@@ -66,7 +66,7 @@ std::size_t SelfCollision::Impl::close_up(std::vector<std::uint32_t>& out,
 void SelfCollision::Impl::collect_live() {
   live_count_ = compact(
       pairs_.size(), [&](std::size_t i) { return role_[i] < EXCLUDED; }, live_);
-  if (live_v_.size() < live_count_) live_v_.resize(live_count_);
+  if (live_v_.size() < live_count_) resize_for_rewrite(live_v_, live_count_);
   workers_->arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, live_count_, PAIR_GRAIN),
                       [&](const tbb::blocked_range<std::size_t>& r) {

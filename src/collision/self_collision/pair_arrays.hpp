@@ -1,5 +1,5 @@
-// Storage for the per-pair arrays of the collision step (its records and flags), which every
-// broad phase rewrites whole, in parallel, right after sizing them.
+// Storage for the per-pair arrays of the collision step (its records and flags, the live list
+// and the tests), which every broad phase rewrites whole, in parallel, right after sizing them.
 #pragma once
 
 #include <cstddef>

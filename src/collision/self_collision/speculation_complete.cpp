@@ -131,9 +131,9 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
   block_kept_.assign(blocks, 0);
   block_live_.assign(blocks, 0);
   block_tests_.assign(blocks, 0);
-  if (live_.size() < n_spec) live_.resize(n_spec);
-  if (live_v_.size() < n_spec) live_v_.resize(n_spec);
-  if (tests_.size() < n_spec) tests_.resize(n_spec);
+  if (live_.size() < n_spec) resize_for_rewrite(live_, n_spec);
+  if (live_v_.size() < n_spec) resize_for_rewrite(live_v_, n_spec);
+  if (tests_.size() < n_spec) resize_for_rewrite(tests_, n_spec);
   auto overlap = [](const detail::GridVertexBox& a, const detail::GridVertexBox& b) {
     return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
            a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];

@@ -230,13 +230,13 @@ struct SelfCollision::Impl {
   /// Writes the i in [0, n) with keep(i) to out[0, count), in increasing order, in parallel
   /// (the same result for any number of threads); returns count. out keeps its capacity.
   template <class Keep>
-  std::size_t compact(std::size_t n, Keep keep, std::vector<std::uint32_t>& out);
+  std::size_t compact(std::size_t n, Keep keep, PairArray<std::uint32_t>& out);
 
   /// Closes up blocks compacted in place: block b's counts[b] entries, at the front of its slice
   /// out[b block, (b + 1) block), are moved after those of the blocks before it; returns the
   /// total.
   template <class T>
-  static std::size_t close_up(std::vector<T>& out, std::size_t block,
+  static std::size_t close_up(PairArray<T>& out, std::size_t block,
                               const std::vector<std::size_t>& counts);
 
   /// Live pairs live_[begin, begin + count) (and their stencils in live_v_): the unit of work
@@ -245,7 +245,7 @@ struct SelfCollision::Impl {
     std::size_t begin = 0, count = 0;
   };
   /// close_up for slices that start at the units' begins: unit u's counts[u] entries.
-  static std::size_t close_up(std::vector<std::uint32_t>& out, const std::vector<LiveUnit>& units,
+  static std::size_t close_up(PairArray<std::uint32_t>& out, const std::vector<LiveUnit>& units,
                               const std::vector<std::size_t>& counts);
 
   CollisionTopology topo_;
@@ -255,14 +255,14 @@ struct SelfCollision::Impl {
   PairArray<std::uint8_t> role_;    ///< per pair: a PairRole
   PairArray<std::uint8_t> stale_;   ///< per pair: a vertex moved since its last test
   PairArray<std::uint8_t> free_;    ///< per pair: its last test found no contact
-  std::vector<std::uint32_t> tests_;  ///< [0, test_count_): pairs to test in the next detect()
+  PairArray<std::uint32_t> tests_;  ///< [0, test_count_): pairs to test in the next detect()
   /// The live pairs (see collect_live), in the slices live_units_ lists, in increasing order
   /// across them: the speculative broad phase's classification leaves them in its blocks'
   /// slices, as they are written.
-  std::vector<std::uint32_t> live_;
+  PairArray<std::uint32_t> live_;
   /// live_v_[j] = pairs_[live_[j]].v: the rounds' collection passes read the stencils in order
   /// instead of through the indices (see mark_moved_and_collect).
-  std::vector<std::array<int, 4>> live_v_;
+  PairArray<std::array<int, 4>> live_v_;
   std::vector<LiveUnit> live_units_;
   std::size_t live_count_ = 0;  ///< the live pairs in all units
   std::size_t test_count_ = 0;
@@ -361,7 +361,7 @@ struct SelfCollision::Impl {
 };
 
 template <class T>
-std::size_t SelfCollision::Impl::close_up(std::vector<T>& out, std::size_t block,
+std::size_t SelfCollision::Impl::close_up(PairArray<T>& out, std::size_t block,
                                           const std::vector<std::size_t>& counts) {
   std::size_t total = 0;
   for (std::size_t b = 0; b < counts.size(); ++b) {
