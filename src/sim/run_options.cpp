@@ -31,8 +31,6 @@ ConstraintOrder order_for(OrderChoice choice, std::size_t faces) {
 }
 
 void resolve_run_options(RunOptions& r) {
-  // An order given by name is known without the mesh; auto is decided by run_contraction.
-  if (r.order != OrderChoice::Auto) r.sim.solver.order = order_for(r.order, 0);
   if (r.young.has_value() != r.thickness.has_value())
     throw UsageError("--young needs --thickness (and the other way round)");
   if (r.young) {

@@ -37,6 +37,9 @@ Grid make_grid(const std::array<double, 3>& lo, const std::array<double, 3>& hi,
   return g;
 }
 
+/// k (k - 1) / 2, the pairs among a cell's k entries (0 for k = 0: the product is 0).
+std::uint64_t pairs_among(std::uint64_t k) { return k * (k - 1) / 2; }
+
 int bit_width(std::uint64_t v) {
   int n = 0;
   while (v != 0) {
@@ -293,7 +296,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
         for (std::size_t p = 0; p < parts; ++p) k += s.cell_count[p * (ncell + 1) + c];
         start[c + 1] = k;
         e += k;
-        w += std::uint64_t{k} * (k - (k > 0 ? 1u : 0u)) / 2;
+        w += pairs_among(k);
       }
       sums[2 * b] = e;
       sums[2 * b + 1] = w;
@@ -310,8 +313,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
       std::uint64_t w = 0;
       for (std::size_t c = b * GRID_CELL_GRAIN; c < block_end(b, ncell); ++c) {
-        const std::uint64_t k = start[c + 1] - start[c];
-        w += k * (k - (k > 0 ? 1u : 0u)) / 2;
+        w += pairs_among(start[c + 1] - start[c]);
       }
       sums[2 * b + 1] = w;
     });
