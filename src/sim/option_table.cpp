@@ -348,7 +348,10 @@ std::vector<OptionSpec> build_table() {
   t.push_back(number("c01", 0, "C01", "Mooney-Rivlin C01", non_negative(),
                      [](R& r) -> double& { return r.sim.material_params.c01; }));
   t.push_back(optional_number("young", "E",
-                              "Young's modulus (with --thickness): sets mu and lambda", positive(),
+                              "Young's modulus (with --thickness): sets mu and lambda, and with "
+                              "--solver xpbd and dihedral bending also k_B (unless --k-b is "
+                              "given): E h^3 / (36 (1 - nu^2))",
+                              positive(),
                               [](R& r) -> std::optional<double>& { return r.young; }));
   t.push_back(number("poisson", 0, "NU", "Poisson ratio (with --young)",
                      between(-1.0, 0.5, true, true), [](R& r) -> double& { return r.poisson; }));

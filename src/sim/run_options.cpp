@@ -1,5 +1,6 @@
 #include "shellcontract/sim/run_options.hpp"
 
+#include "shellcontract/bending/dihedral_bending.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/material/material.hpp"
 #include "shellcontract/material/registry.hpp"
@@ -37,6 +38,13 @@ void resolve_run_options(RunOptions& r) {
     const MaterialParams lame = membrane_lame_from_young(*r.young, r.poisson, *r.thickness);
     r.sim.material_params.mu = lame.mu;
     r.sim.material_params.lambda = lame.lambda;
+    // Under xpbd k_B is a stiffness, so the material gives it too: the plate's bending rigidity
+    // for the dihedral energy. With it the wrinkles' size follows the thickness and is the same
+    // on bear and bear x4 (docs/benchmarks/wrinkles.md). In pbd k_B is a correction multiplier,
+    // not a stiffness.
+    if (r.sim.solver.kind == SolverKind::Xpbd && r.sim.bending == BendingModel::Dihedral &&
+        !r.given.count("k-b"))
+      r.sim.solver.k_bending = dihedral_k_bending_from_young(*r.young, r.poisson, *r.thickness);
   }
   if (r.sim.solver.kind == SolverKind::Pbd && r.sim.solver.k_bending > 1.0)
     throw UsageError("--k-b: in pbd mode k_B is a correction multiplier and must be in [0, 1]");

@@ -4,6 +4,9 @@
 
 #include <regex>
 #include <set>
+#include <vector>
+#include <utility>
+#include <string>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/sim/option_table.hpp"
@@ -85,6 +88,29 @@ TEST(OptionTable, RangesFromTheIssue) {
     RunOptions r;
     EXPECT_THROW(set_run_option(r, name, value), UsageError) << name << " " << value;
   }
+}
+
+TEST(OptionTable, YoungAndThicknessGiveTheBendingStiffnessUnderXpbd) {
+  const auto resolved = [](std::vector<std::pair<std::string, std::string>> given) {
+    RunOptions r;
+    for (const auto& [name, value] : given) set_run_option(r, name, value);
+    resolve_run_options(r);
+    return r.sim.solver.k_bending;
+  };
+  const double default_k_b = RunOptions().sim.solver.k_bending;
+  const double E = 1000, nu = 0.25, h = 0.002;
+  const double plate = E * h * h * h / (12 * (1 - nu * nu));  // D, the plate's rigidity
+  const std::vector<std::pair<std::string, std::string>> material = {
+      {"young", "1000"}, {"poisson", "0.25"}, {"thickness", "0.002"}};
+  auto with = [&](std::vector<std::pair<std::string, std::string>> more) {
+    more.insert(more.begin(), material.begin(), material.end());
+    return more;
+  };
+  EXPECT_NEAR(resolved(with({{"solver", "xpbd"}})), plate / 3, 1e-15 * plate);
+  // An explicit --k-b wins; pbd's k_B is a multiplier; other bending models have other scales.
+  EXPECT_EQ(resolved(with({{"solver", "xpbd"}, {"k-b", "0.5"}})), 0.5);
+  EXPECT_EQ(resolved(material), default_k_b);
+  EXPECT_EQ(resolved(with({{"solver", "xpbd"}, {"bending", "isometric"}})), default_k_b);
 }
 
 TEST(OptionTable, CrossChecksAreResolvedOnce) {
