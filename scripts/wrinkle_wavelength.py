@@ -43,12 +43,17 @@ Usage:
   scripts/wrinkle_wavelength.py --self-test [--sigmas 0.01,0.025]
   scripts/wrinkle_wavelength.py [--exe build/shellcontract] [--out DIR] [--k-b 0.01,0.001,0.1]
                                 [--sigmas 0.01,0.025] [--png docs/images/wrinkles_bear_vs_bear4.png]
+                                [--load "--target-volume 0.7 --frames 200"] [--k-b material]
 Prints markdown tables: the runs with their silhouette numbers, the wavelengths, their ratios.
-Each run is the default command with --stop-volume-ratio 0.7 --validate end (and --k-b).
+Each run is the default command with --stop-volume-ratio 0.7 --validate end (and --k-b); --load
+replaces "--stop-volume-ratio 0.7" by other options that take the shell to V/V0 0.7 (a target
+volume: a deflation at a controlled rate instead of the default pressure's crush); --k-b material
+passes no --k-b, so that with --solver xpbd --young --thickness in --load k_B is the material's.
 """
 import argparse
 import json
 import os
+import shlex
 import subprocess
 import sys
 
@@ -295,10 +300,10 @@ def make_bear4(path):
     write_off(path, P, Fl)
 
 
-def run(exe, mesh, out, extra):
+def run(exe, mesh, out, load, extra):
     summary = out[:-4] + ".json"
-    cmd = [exe, "run", mesh, "-o", out, "--summary", summary, "-q", "--stop-volume-ratio", "0.7",
-           "--validate", "end"] + extra
+    cmd = ([exe, "run", mesh, "-o", out, "--summary", summary, "-q"] + load + ["--validate", "end"]
+           + extra)
     rc = subprocess.run(cmd).returncode
     with open(summary) as f:
         s = json.load(f)
@@ -313,8 +318,13 @@ def main():
                     "spheres carrying fields of known wavelength, then exit")
     ap.add_argument("--exe", default=os.path.join(ROOT, "build/shellcontract"))
     ap.add_argument("--out", default="/tmp/wrinkles", help="folder for meshes and summaries")
-    ap.add_argument("--k-b", default="0.01", help="comma-separated --k-b values to run")
+    ap.add_argument("--k-b", default="0.01",
+                    help="comma-separated --k-b values to run; 'material': no --k-b (with "
+                    "--solver xpbd --young --thickness in --load, k_B then comes from the material)")
     ap.add_argument("--sigmas", default="0.01,0.025", help="comma-separated smoothing radii / D")
+    ap.add_argument("--load", default="--stop-volume-ratio 0.7",
+                    help="run options that take the shell to V/V0 0.7 (default: the default run, "
+                    "stopped there)")
     ap.add_argument("--png", default="", help="write the top-view renders (input, bear, bear x4 "
                     "at 0.7; first --k-b value) side by side here")
     a = ap.parse_args()
@@ -331,7 +341,8 @@ def main():
     for kb in a.k_b.split(","):
         for name, mesh in (("bear", bear), ("bear x4", bear4)):
             out = os.path.join(a.out, f"{name.replace(' ', '')}_kb{kb}.off")
-            rc, s = run(a.exe, mesh, out, ["--k-b", kb])
+            k_b = [] if kb == "material" else ["--k-b", kb]
+            rc, s = run(a.exe, mesh, out, shlex.split(a.load), k_b)
             V0, F, _ = read_mesh(mesh)
             V, F1, _ = read_mesh(out)
             assert len(V) == len(V0) and (F1 == F).all(), "output must keep the input's order"
@@ -351,7 +362,9 @@ def main():
             if kb == a.k_b.split(",")[0]:
                 renders.setdefault("input", (V0, F, V0))
                 renders[name] = (V, F, V0)
-    print("\n| mesh | k_B | faces | exit | frames to 0.7 | V/V0 | new self-intersections "
+    print(f"\nrun options: {a.load} --validate end --k-b K_B")
+    frames = "frames to 0.7" if a.load == ap.get_default("load") else "frames run"
+    print(f"\n| mesh | k_B | faces | exit | {frames} | V/V0 | new self-intersections "
           "| mask area / input's | IoU | IoU top 25 % | IoU top 10 % |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     print("\n".join(runs))
