@@ -4,9 +4,9 @@
 
 #include <regex>
 #include <set>
-#include <vector>
-#include <utility>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/sim/option_table.hpp"
