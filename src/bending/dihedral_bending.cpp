@@ -1,9 +1,6 @@
 #include "shellcontract/bending/dihedral_bending.hpp"
 
 #include <cmath>
-#include <sstream>
-
-#include "shellcontract/core/error.hpp"
 
 namespace shellcontract {
 namespace {
@@ -100,20 +97,6 @@ std::array<Vec3, 4> dihedral_bending_gradient(const DihedralBendingRest& r, doub
   const double coeff = 2.0 * k_bending * r.kappa * wrapped_angle_difference(theta, r.rest_angle);
   for (auto& gi : g) gi *= coeff;
   return g;
-}
-
-double dihedral_k_bending_from_young(double young, double poisson, double thickness) {
-  // Negated "valid" tests, so that NaN is refused too (as membrane_lame_from_young does).
-  if (!(young > 0.0) || !std::isfinite(young) || !(thickness > 0.0) || !std::isfinite(thickness) ||
-      !(poisson > -1.0 && poisson < 1.0)) {
-    std::ostringstream msg;
-    msg << "dihedral_k_bending_from_young: need E > 0, h > 0 and -1 < nu < 1 (finite), got E = "
-        << young << ", nu = " << poisson << ", h = " << thickness;
-    throw UsageError(msg.str());
-  }
-  const double plate_rigidity =
-      young * thickness * thickness * thickness / (12.0 * (1.0 - poisson * poisson));
-  return plate_rigidity / 3.0;
 }
 
 }  // namespace shellcontract

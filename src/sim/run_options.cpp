@@ -1,6 +1,5 @@
 #include "shellcontract/sim/run_options.hpp"
 
-#include "shellcontract/bending/dihedral_bending.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/material/material.hpp"
 #include "shellcontract/material/registry.hpp"

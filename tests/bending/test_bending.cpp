@@ -11,6 +11,7 @@
 #include "shellcontract/bending/dihedral_bending.hpp"
 #include "shellcontract/bending/isometric_bending.hpp"
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/material/material.hpp"
 #include "support/random_geometry.hpp"
 
 namespace shellcontract {

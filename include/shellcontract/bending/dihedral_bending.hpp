@@ -40,13 +40,4 @@ std::array<Vec3, 4> dihedral_bending_gradient(const DihedralBendingRest& r, doub
                                               const Vec3& x0, const Vec3& x1, const Vec3& x2,
                                               const Vec3& x3);
 
-/// The k_B at which the energy above is a plate's bending energy, (D / 2) kappa^2 per unit area
-/// with D = E h^3 / (12 (1 - nu^2)), for a cylindrical bend of a regularly triangulated sheet:
-/// D / 3, because the hinge sum with k_B = 1 is 3 / 2 kappa^2 per unit area there (the test
-/// DihedralBending.CylinderMatchesPlateEnergyWithStiffnessFromYoung). Other triangulations and
-/// doubly curved bends differ by a factor of order one, which the wrinkle wavelength, going as
-/// the fourth root of the bending stiffness, barely sees (docs/benchmarks/wrinkles.md).
-/// \pre E > 0, h > 0, -1 < nu < 1 (throws UsageError otherwise)
-double dihedral_k_bending_from_young(double young, double poisson, double thickness);
-
 }  // namespace shellcontract

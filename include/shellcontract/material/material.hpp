@@ -41,6 +41,16 @@ struct MaterialParams {
 /// \pre E > 0, h > 0, -1 < nu < 1 (throws UsageError otherwise)
 MaterialParams membrane_lame_from_young(double young, double poisson, double thickness);
 
+/// The k_B at which the rest-aware dihedral bending energy (bending/dihedral_bending.hpp,
+/// k_B kappa_bar (theta - theta_bar)^2) is a plate's bending energy, (D / 2) kappa^2 per unit
+/// area with D = E h^3 / (12 (1 - nu^2)), for a cylindrical bend of a regularly triangulated
+/// sheet: D / 3, because the hinge sum with k_B = 1 is 3 / 2 kappa^2 per unit area there (the
+/// test DihedralBending.CylinderMatchesPlateEnergyWithStiffnessFromYoung). Other triangulations
+/// and doubly curved bends differ by a factor of order one, which the wrinkle wavelength, going
+/// as the fourth root of the bending stiffness, barely sees (docs/math/bending-from-material.md).
+/// \pre E > 0, h > 0, -1 < nu < 1 (throws UsageError otherwise)
+double dihedral_k_bending_from_young(double young, double poisson, double thickness);
+
 /// Interface of a membrane energy density psi(Fbar).
 class MembraneMaterial {
  public:
