@@ -191,13 +191,6 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
                       });
   }
 
-  // The counting sort below runs in `parts` parts, each over a contiguous range of box ids with
-  // its own counters; part p's entries of a cell follow those of parts < p, so every cell lists
-  // its boxes in id order whatever the number of parts (and threads).
-  const std::size_t parts = std::clamp<std::size_t>(
-      static_cast<std::size_t>(tbb::this_task_arena::max_concurrency()), 1, GRID_MAX_PARTS);
-  auto part_begin = [&](std::size_t p) { return nboxes * p / parts; };
-
   // Count the (cell, box) entries per cell; double the cell size while there are too many.
   const std::size_t max_cells = std::max<std::size_t>(64, GRID_CELLS_PER_BOX * nboxes);
   Grid g;
@@ -248,15 +241,6 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     }
     if (patched) entries = start[g.cells()];
   }
-  // The per-cell passes run over fixed blocks of cells (never cut by the thread count); block b
-  // keeps its entries in block_sums[2 b] and its pair work in block_sums[2 b + 1].
-  std::vector<std::uint64_t>& sums = s.block_sums;
-  auto blocks_of = [](std::size_t ncell) {
-    return (ncell + GRID_CELL_GRAIN - 1) / GRID_CELL_GRAIN;
-  };
-  auto block_end = [](std::size_t b, std::size_t ncell) {
-    return std::min(ncell, (b + 1) * GRID_CELL_GRAIN);
-  };
   s.grid_ranges.resize(nboxes);
   for (bool first = true; !patched; first = false) {
     if (!(first && reuse)) {
@@ -270,97 +254,28 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
       g = make_grid(glo, ghi, h, max_cells);
       vertex_ranges();
     }
-    const std::size_t ncell = g.cells();
-    // Part p counts cell c in cell_count[p * (ncell + 1) + c]; the extra slot per part absorbs
-    // the invalid visits of the 2x2x2 pattern. Each part clears its own counters.
-    s.cell_count.resize(parts * (ncell + 1));
-    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t p) {
-      std::uint32_t* count = s.cell_count.data() + p * (ncell + 1);
-      std::fill(count, count + ncell + 1, 0u);
-      for (std::size_t i = part_begin(p); i < part_begin(p + 1); ++i) {
-        s.grid_ranges[i] = prim.range(prim.ids(i));
-        for_each_cell(g, s.grid_ranges[i],
-                      [&](std::size_t c, std::uint32_t, bool valid) { count[c] += valid; });
-      }
-    });
-    // Cell c's entries over the parts go to start[c + 1] (until the prefix sum below), and each
-    // block's entries and pair work to block_sums, in parallel: these passes over every cell and
-    // part were serial and kept many-core runs of bear x16 from scaling.
-    start.resize(ncell + 1);
-    start[0] = 0;
-    sums.assign(2 * blocks_of(ncell), 0);
-    tbb::parallel_for(std::size_t{0}, blocks_of(ncell), [&](std::size_t b) {
-      std::uint64_t e = 0, w = 0;
-      for (std::size_t c = b * GRID_CELL_GRAIN; c < block_end(b, ncell); ++c) {
-        std::uint32_t k = 0;
-        for (std::size_t p = 0; p < parts; ++p) k += s.cell_count[p * (ncell + 1) + c];
-        start[c + 1] = k;
-        e += k;
-        w += pairs_among(k);
-      }
-      sums[2 * b] = e;
-      sums[2 * b + 1] = w;
-    });
-    entries = 0;
-    for (std::size_t b = 0; b < blocks_of(ncell); ++b) entries += sums[2 * b];
-    if (entries <= GRID_ENTRIES_PER_BOX * nboxes || ncell == 1) break;
+    entries = grid_sort_count(g, prim, nboxes, s);
+    if (entries <= GRID_ENTRIES_PER_BOX * nboxes || g.cells() == 1) break;
     h = 2.0 / g.inv_h;
   }
-  const std::size_t ncell = g.cells();
-  const std::size_t blocks = blocks_of(ncell);
-  if (patched) {  // the pair work from the patched offsets
-    sums.assign(2 * blocks, 0);
+  std::uint64_t work = 0;
+  if (patched) {
+    // The pair work from the patched offsets, over fixed blocks of cells (never cut by the
+    // thread count).
+    const std::size_t ncell = g.cells();
+    const std::size_t blocks = (ncell + GRID_CELL_GRAIN - 1) / GRID_CELL_GRAIN;
+    s.block_sums.assign(blocks, 0);
     tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
       std::uint64_t w = 0;
-      for (std::size_t c = b * GRID_CELL_GRAIN; c < block_end(b, ncell); ++c) {
+      for (std::size_t c = b * GRID_CELL_GRAIN; c < std::min(ncell, (b + 1) * GRID_CELL_GRAIN); ++c)
         w += pairs_among(start[c + 1] - start[c]);
-      }
-      sums[2 * b + 1] = w;
+      s.block_sums[b] = w;
     });
+    for (const std::uint64_t w : s.block_sums) work += w;
+  } else {
+    work = grid_sort_fill(g, nboxes, entries, s);
   }
-  std::uint64_t work = 0;
-  for (std::size_t b = 0; b < blocks; ++b) work += sums[2 * b + 1];
   if (work > static_cast<std::uint64_t>(GRID_WORK_PER_BOX) * nboxes) return nothing(-1);
-  if (!patched) {
-    // The offsets: an exclusive prefix sum over the blocks, then within each block in parallel,
-    // where each cell's counters become the parts' fill cursors in place (part p's cursor of
-    // cell c starts after the entries of parts < p).
-    std::uint64_t before = 0;
-    for (std::size_t b = 0; b < blocks; ++b) {
-      const std::uint64_t e = sums[2 * b];
-      sums[2 * b] = before;
-      before += e;
-    }
-    tbb::parallel_for(std::size_t{0}, blocks, [&](std::size_t b) {
-      std::uint32_t offset = static_cast<std::uint32_t>(sums[2 * b]);
-      for (std::size_t c = b * GRID_CELL_GRAIN; c < block_end(b, ncell); ++c) {
-        for (std::size_t p = 0; p < parts; ++p) {
-          std::uint32_t& slot = s.cell_count[p * (ncell + 1) + c];
-          const std::uint32_t k = slot;
-          slot = offset;
-          offset += k;
-        }
-        start[c + 1] = offset;
-      }
-    });
-    // Counting-sort scatter. Invalid visits write to the part's own sink slot past the end
-    // (cursor ncell), which keeps the 2x2x2 pattern branch-free. Boxes go in in id order within
-    // each part, so each cell lists its vertices, then faces, then edges, each by increasing id.
-    s.cell_entries.resize(entries + parts);
-    tbb::parallel_for(std::size_t{0}, parts, [&](std::size_t p) {
-      std::uint32_t* fill = s.cell_count.data() + p * (ncell + 1);
-      std::uint32_t* entry = s.cell_entries.data();
-      fill[ncell] = static_cast<std::uint32_t>(entries + p);
-      for (std::size_t i = part_begin(p); i < part_begin(p + 1); ++i) {
-        const std::uint32_t tag = static_cast<std::uint32_t>(i) << 3;
-        for_each_cell(g, s.grid_ranges[i], [&](std::size_t c, std::uint32_t flags, bool valid) {
-          const std::size_t slot = valid ? c : ncell;
-          entry[fill[slot]] = tag | flags;
-          fill[slot] += valid;
-        });
-      }
-    });
-  }
 
   s.grid_kept = true;
   s.grid_build_seconds = t_start.elapsed();

@@ -47,9 +47,6 @@ constexpr std::int64_t GRID_WORK_PER_BOX = 256;
 /// the chunks' costs differ by up to 1.5x, as their work grows with the square of a cell's
 /// entries). The pairs come out in the same order for any number of chunks.
 constexpr std::size_t GRID_CHUNKS = 128;
-/// Parts of the grid's counting sort: at most this many (one per thread of the arena). Each
-/// part has a counter per cell (bear x16: 2.65 M cells, 10.6 MB per part).
-constexpr std::size_t GRID_MAX_PARTS = 8;
 /// Grid reuse (temporal coherence, grid_pairs): a call keeps the last call's grid while the
 /// desired cell size is within this factor of the kept one and the scene is inside the kept grid.
 constexpr double GRID_REUSE_FACTOR = 1.25;
@@ -70,7 +67,7 @@ constexpr int GRID_PATCH_MAX_BACKOFF = 8;
 /// is kept for the default sequential order, whose speculative grid runs on the one thread the
 /// solve leaves free. The grid is the same either way: results do not depend on it.
 constexpr int GRID_PATCH_MAX_THREADS = 2;
-/// Cells per task of the grid's per-cell passes (sums, prefix, fill cursors).
+/// Cells per task of the patched grid's pass over its cells (the pair work).
 constexpr std::size_t GRID_CELL_GRAIN = 16384;
 /// Vertices per task of the grid's per-vertex loops.
 constexpr std::size_t GRID_VERTEX_GRAIN = 2048;
@@ -205,6 +202,17 @@ inline bool gap_above(const detail::GridVertexBox& a, const detail::GridVertexBo
 
 void build_grid_vertex_boxes(const Positions& x0, const Positions& x1, double inflation,
                              std::vector<detail::GridVertexBox>& boxes);
+
+/// The first level of the counting sort of the boxes into the cells of g (grid_sort.cpp): sets
+/// s.grid_ranges to the boxes' cell ranges and counts their entries per slab. Returns the number
+/// of (cell, box) entries.
+std::uint64_t grid_sort_count(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
+                              BroadPhaseScratch& s);
+/// The rest of that counting sort, after grid_sort_count on the same grid: s.cell_start and
+/// s.cell_entries, each cell listing its boxes (id << 3 | first-cell flags) in increasing id
+/// order. Returns the pair work, the sum over the cells of k (k - 1) / 2 for k entries.
+std::uint64_t grid_sort_fill(const Grid& g, std::size_t nboxes, std::uint64_t entries,
+                             BroadPhaseScratch& s);
 
 /// Updates the kept grid's counting sort (s.cell_start, s.cell_entries over s.grid_ranges) for
 /// this call's vertex ranges (s.grid_vertex_ranges; the last call's, on the same grid g, in

@@ -145,10 +145,15 @@ struct BroadPhaseScratch {
   std::vector<std::size_t> chunk_cells;     ///< Grid: first cell of each chunk, then #cells
   std::vector<double> extent_sample;        ///< Grid: box extents for the cell size
   std::vector<std::uint32_t> cell_start;    ///< Grid: CSR offsets per cell
-  /// Grid: per part of the counting sort, per cell, its count and then its fill cursor
-  std::vector<std::uint32_t> cell_count;
+  /// Grid's counting sort (grid_sort.cpp): per part and slab, its boxes (then their cursors)
+  /// and its entries; each slab's first box and first entry; the slabs' box lists; their work
+  std::vector<std::uint64_t> slab_counts;
+  std::vector<std::uint64_t> slab_box_begin;
+  std::vector<std::uint64_t> slab_entry_begin;
+  std::vector<std::uint32_t> slab_boxes;
+  std::vector<std::uint64_t> slab_work;
   std::vector<std::uint32_t> cell_fill;     ///< Grid: the patch's fill cursors, per cell
-  std::vector<std::uint64_t> block_sums;    ///< Grid: entries and pair work per block of cells
+  std::vector<std::uint64_t> block_sums;    ///< Grid: the patched grid's pair work per block
   std::vector<std::uint32_t> cell_entries;  ///< Grid: box id << 3 | first-cell flags
   std::vector<std::size_t> chunk_offsets;   ///< Grid: each chunk's first output VF, then EE pair
   /// Grid: whether the grid of the last call (cell_start, cell_entries, grid_vertex_boxes and the
