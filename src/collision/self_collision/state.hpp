@@ -282,8 +282,8 @@ struct SelfCollision::Impl {
   /// The zone of mark_moved_and_collect: per live unit, the unit's live pairs that touch a zone
   /// vertex or were stale or not free after the pass that listed them (pair ids and stencils,
   /// zone_count_[u] from the unit's begin).
-  std::vector<std::uint32_t> zone_pair_;
-  std::vector<std::array<int, 4>> zone_v_;
+  PairArray<std::uint32_t> zone_pair_;
+  PairArray<std::array<int, 4>> zone_v_;
   std::vector<std::size_t> zone_count_;
   std::vector<int> zone_vertices_;  ///< the vertices with ZONE set
   enum class ZoneState : std::uint8_t { None, Ready, TooLarge };
