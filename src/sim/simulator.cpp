@@ -1,5 +1,8 @@
 #include "shellcontract/sim/simulator.hpp"
 
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -72,6 +75,56 @@ void check_options(const SimOptions& o) {
 }
 }  // namespace
 
+/// The step's own per-vertex work (the pressure, the prediction, the checks, the velocities)
+/// runs in parallel in the run's thread count: serial, it took 8-15 ms of bear x16's step of
+/// about 110 ms at 16 threads on a 16-core machine (a step timer build, not kept;
+/// docs/benchmarks/scale.md, "Sixteen cores").
+struct Simulator::StepArena {
+  tbb::task_arena arena;
+  explicit StepArena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+};
+
+namespace {
+
+/// Rows per block of the step's elementwise work. Fixed, and a multiple of 8 rows, so that a
+/// block starts on a packet boundary of the whole matrix's evaluation (up to 8 doubles): each
+/// coefficient is computed as the whole-matrix expression computes it, for any thread count.
+constexpr Eigen::Index STEP_ROW_BLOCK = 4096;
+
+template <class Fn>
+void for_row_blocks(tbb::task_arena& arena, Eigen::Index n, Fn fn) {
+  const Eigen::Index blocks = (n + STEP_ROW_BLOCK - 1) / STEP_ROW_BLOCK;
+  arena.execute([&] {
+    tbb::parallel_for(Eigen::Index{0}, blocks, [&](Eigen::Index b) {
+      const Eigen::Index begin = b * STEP_ROW_BLOCK;
+      fn(begin, std::min(n, begin + STEP_ROW_BLOCK) - begin);
+    });
+  });
+}
+
+/// Whether a is finite, and max_i |a_i - b_i| over the rows (meaningful only if finite).
+std::pair<bool, double> finite_and_max_distance(tbb::task_arena& arena, const Positions& a,
+                                                const Positions& b) {
+  const Eigen::Index n = a.rows();
+  std::vector<std::pair<bool, double>> part(
+      static_cast<std::size_t>((n + STEP_ROW_BLOCK - 1) / STEP_ROW_BLOCK), {true, 0.0});
+  for_row_blocks(arena, n, [&](Eigen::Index begin, Eigen::Index rows) {
+    const bool finite = a.middleRows(begin, rows).allFinite();
+    const double d =
+        finite ? (a.middleRows(begin, rows) - b.middleRows(begin, rows)).rowwise().norm().maxCoeff()
+               : 0.0;
+    part[static_cast<std::size_t>(begin / STEP_ROW_BLOCK)] = {finite, d};
+  });
+  std::pair<bool, double> all{true, 0.0};
+  for (const auto& [finite, d] : part) {
+    all.first = all.first && finite;
+    all.second = std::max(all.second, d);
+  }
+  return all;
+}
+
+}  // namespace
+
 Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(options) {
   check_options(options_);
   resolve_sim_options(options_);
@@ -86,11 +139,14 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   // A caller's face lists become the mesh's f:region map; without them the input mesh's map
   // (if any) is the regions. Everything below reads the map.
   if (!options_.anisotropy.regions.empty())
-    store_regions(*mesh_, face_ids_from_regions(options_.anisotropy.regions, mesh_->number_of_faces()));
+    store_regions(*mesh_,
+                  face_ids_from_regions(options_.anisotropy.regions, mesh_->number_of_faces()));
   const std::vector<std::vector<int>> regions = regions_from_face_ids(stored_regions(*mesh_));
   region_count_ = regions.size();
   rest_report_ = build_rest_state(*mesh_, options_.mass, options_.density);
   faces_ = faces_array(*mesh_);
+  faces_around_ = vertex_faces(faces_, x_.rows());
+  arena_ = std::make_unique<StepArena>(options_.solver.threads);
   inv_mass_ = inverse_masses(*mesh_);
   // The explicit pressure needs a minimum mass per vertex at this dt (sim/mass_scaling.hpp).
   mass_scaled_vertices_ =
@@ -112,8 +168,10 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
     for (const std::vector<int>& region : regions) {
       RegionDimple dimple = make_region_dimple(x_, faces_, region);
       // A flat region or a dent has no cap to shrink (a dimple would push it out).
-      if (dimple.whole.rest_volume > 0.0) region_dimples_.push_back(std::move(dimple));
-      else ++regions_without_cap_;
+      if (dimple.whole.rest_volume > 0.0)
+        region_dimples_.push_back(std::move(dimple));
+      else
+        ++regions_without_cap_;
     }
   }
   if (pushed && options_.region_shrink > 0.0) {
@@ -162,7 +220,8 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
           len > 0.0 ? Eigen::RowVector3d(n.transpose() / len) : Eigen::RowVector3d::Zero();
     }
   }
-  follow_rest_ = (!region_dimples_.empty() || inward_faces_.rows() > 0) && !outside_vertices_.empty();
+  follow_rest_ =
+      (!region_dimples_.empty() || inward_faces_.rows() > 0) && !outside_vertices_.empty();
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
     throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) +
@@ -230,9 +289,8 @@ void Simulator::apply_region_contraction(Positions& x) {
     caps_rest += d.whole.rest_volume;
   }
   const double rest_outside = constraint_rest_volume_ - caps_rest;
-  const double ratio = rest_outside > 0.0
-                           ? (signed_volume(x, faces_) - caps_now) / rest_outside
-                           : signed_volume(x, faces_) / constraint_rest_volume_;
+  const double ratio = rest_outside > 0.0 ? (signed_volume(x, faces_) - caps_now) / rest_outside
+                                          : signed_volume(x, faces_) / constraint_rest_volume_;
   if (!(ratio > 0.0)) return;  // a shell turned inside out has no caps to sink
   // Vertices held by the last step's contacts stay (see apply_volume_control).
   const Eigen::VectorXd w = free_inverse_masses(inv_mass_, held_by_contact_);
@@ -257,7 +315,9 @@ FrameMetrics Simulator::step() {
   if (options_.air_balance > 0.0 && options_.pressure > 0.0)
     pressure = air_net_pressure(options_.pressure, options_.air_balance,
                                 signed_volume(x_, faces_) / constraint_rest_volume_);
-  pressure_forces(x_, faces_, pressure, options_.pressure_model, force_);
+  arena_->arena.execute([&] {
+    pressure_forces(x_, faces_, faces_around_, pressure, options_.pressure_model, force_);
+  });
   // The local contraction (math-spec 9.2 R, the physically meaningful replacement of the paper's
   // k_A): a region pressure without net force or torque.
   if (inward_faces_.rows() > 0) {
@@ -265,7 +325,14 @@ FrameMetrics Simulator::step() {
                              region_force_);
     force_ += region_force_;
   }
-  x_pred_ = x_ + dt * (v_ + dt * (force_.array().colwise() * inv_mass_.array()).matrix());
+  x_pred_.resize(x_.rows(), 3);
+  for_row_blocks(arena_->arena, x_.rows(), [&](Eigen::Index b, Eigen::Index rows) {
+    x_pred_.middleRows(b, rows) =
+        x_.middleRows(b, rows) +
+        dt * (v_.middleRows(b, rows) + dt * (force_.middleRows(b, rows).array().colwise() *
+                                             inv_mass_.segment(b, rows).array())
+                                                .matrix());
+  });
   // Step 2: constraint projection (Gauss-Seidel sweeps).
   FrameMetrics m;
   // The collision step's broad phase starts on a spare thread from the guess, so that it
@@ -280,17 +347,17 @@ FrameMetrics Simulator::step() {
   // last word on V.
   apply_region_contraction(x_pred_);
   apply_volume_control(x_pred_);
-  if (!x_pred_.allFinite())
-    throw SimulationError("non-finite positions at step " + std::to_string(frame_ + 1));
+  const auto [finite, farthest] = finite_and_max_distance(arena_->arena, x_pred_, x_);
+  if (!finite) throw SimulationError("non-finite positions at step " + std::to_string(frame_ + 1));
   // A step that moves a vertex farther than the whole mesh is a blow-up, whatever the
   // collision handling would make of it.
-  if ((x_pred_ - x_).rowwise().norm().maxCoeff() > BLOWUP_DISPLACEMENT)
+  if (farthest > BLOWUP_DISPLACEMENT)
     throw SimulationError(
         "blow-up at step " + std::to_string(frame_ + 1) +
         ": a vertex moved more than the whole mesh (bounding-box diagonal) in one step");
   // Step 3: continuous collision detection and response between x^n and x*.
-  const bool volume_control = options_.target_volume > 0.0 || options_.stop_volume_ratio > 0.0 ||
-                              !region_dimples_.empty();
+  const bool volume_control =
+      options_.target_volume > 0.0 || options_.stop_volume_ratio > 0.0 || !region_dimples_.empty();
   if (collision_ && volume_control) before_collisions_ = x_pred_;
   if (collision_) collision_->resolve(x_, x_pred_, inv_mass_, m.collision);
   if (collision_ && volume_control) {
@@ -314,10 +381,14 @@ FrameMetrics Simulator::step() {
     mark_moved(x_pred_, before_collisions_, held_by_contact_);  // held by either response
   }
   if (follow_rest_) follow_rest(x_pred_);
-  m.max_displacement = (x_pred_ - x_).rowwise().norm().maxCoeff();
+  m.max_displacement = finite_and_max_distance(arena_->arena, x_pred_, x_).second;
   // Steps 4-5: accept and update velocities; damping removes a fixed fraction of the velocity
   // per step (Mueller et al. 2007, section 3.5 uses a similar global damping).
-  v_ = (1.0 - options_.damping) * (x_pred_ - x_) / dt;
+  v_.resize(x_.rows(), 3);
+  for_row_blocks(arena_->arena, x_.rows(), [&](Eigen::Index b, Eigen::Index rows) {
+    v_.middleRows(b, rows) =
+        (1.0 - options_.damping) * (x_pred_.middleRows(b, rows) - x_.middleRows(b, rows)) / dt;
+  });
   x_.swap(x_pred_);
   const auto stop = std::chrono::steady_clock::now();
   ++frame_;

@@ -1,6 +1,8 @@
 // External pressure load (math-spec 3). Eigen only.
 #pragma once
 
+#include <vector>
+
 #include "shellcontract/core/types.hpp"
 
 namespace shellcontract {
@@ -18,6 +20,23 @@ enum class PressureModel { EnergyConsistent, Paper };
 /// \note In the paper form, a vertex whose summed normal is zero (|sum N| = 0) gets no force.
 void pressure_forces(const Positions& x, const Faces& faces, double P, PressureModel model,
                      Positions& f);
+
+/// The faces around each vertex, in increasing face id: faces[start[v], start[v + 1]).
+struct VertexFaces {
+  std::vector<int> start;
+  std::vector<int> faces;
+};
+/// The faces around each of the vertices 0..num_vertices-1 (ids outside that range are skipped).
+VertexFaces vertex_faces(const Faces& faces, Eigen::Index num_vertices);
+
+/// pressure_forces, in parallel over fixed blocks of vertices (in the caller's TBB arena), each
+/// vertex summing the terms of its faces in increasing face id, as the face loop of the serial
+/// form adds them: the same bits for any thread count and as the serial form. On a 16-core
+/// machine the serial form took 3-7 ms of bear x16's ~110 ms step at 16 threads (a step timer
+/// build, not kept; docs/benchmarks/scale.md, "Sixteen cores").
+/// @param around  vertex_faces(faces, x.rows())
+void pressure_forces(const Positions& x, const Faces& faces, const VertexFaces& around, double P,
+                     PressureModel model, Positions& f);
 
 /// Net over-pressure on a shell that encloses isothermal air (Boyle's law, math-spec 3.1).
 /// The outside pressure is P / (1 - R) and the air's is P R / ((1 - R) v) at volume ratio

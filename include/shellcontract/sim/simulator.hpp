@@ -13,6 +13,7 @@
 #include "shellcontract/mesh/surface_mesh.hpp"
 #include "shellcontract/pbd/solver.hpp"
 #include "shellcontract/sim/config.hpp"
+#include "shellcontract/sim/pressure.hpp"
 #include "shellcontract/sim/region_dimple.hpp"
 #include "shellcontract/sim/rest_state.hpp"
 
@@ -108,12 +109,17 @@ class Simulator {
   /// (a Galilean change of frame: no internal force, contact or shape changes).
   void follow_rest(Positions& x) const;
 
+  /// The run's threads for the step's own per-vertex work (simulator.cpp).
+  struct StepArena;
+
   SimOptions options_;
+  std::unique_ptr<StepArena> arena_;
   std::unique_ptr<Mesh> mesh_;
   Normalization normalization_;
   RestStateReport rest_report_;
   AnisotropyReport anisotropy_report_;
   Faces faces_;
+  VertexFaces faces_around_;  ///< the faces around each vertex, for the pressure
   Faces inward_faces_;      ///< anisotropic faces that get the local extra pressure
   Positions region_force_;  ///< its forces (buffer)
   std::vector<RegionDimple> region_dimples_;  ///< InwardTerm::Volume: regions with a cap to sink
