@@ -37,9 +37,6 @@ Grid make_grid(const std::array<double, 3>& lo, const std::array<double, 3>& hi,
   return g;
 }
 
-/// k (k - 1) / 2, the pairs among a cell's k entries (0 for k = 0: the product is 0).
-std::uint64_t pairs_among(std::uint64_t k) { return k * (k - 1) / 2; }
-
 int bit_width(std::uint64_t v) {
   int n = 0;
   while (v != 0) {

@@ -159,6 +159,9 @@ struct GridPrimitives {
   }
 };
 
+/// k (k - 1) / 2, the pairs among a cell's k entries (0 for k = 0: the product is 0).
+inline std::uint64_t pairs_among(std::uint64_t k) { return k * (k - 1) / 2; }
+
 inline bool overlap(const detail::GridVertexBox& a, const detail::GridVertexBox& b) {
   return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] &&
          a.lo[2] <= b.hi[2] && b.lo[2] <= a.hi[2];

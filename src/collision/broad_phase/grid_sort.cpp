@@ -119,8 +119,6 @@ struct SlabBuffers {
   std::vector<std::uint32_t> cell, tag, cursor;
 };
 
-std::uint64_t pairs_among(std::uint64_t k) { return k * (k - 1) / 2; }
-
 }  // namespace
 
 std::uint64_t grid_sort_count(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
