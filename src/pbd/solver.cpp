@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include "shellcontract/bending/isometric_bending.hpp"
@@ -40,10 +42,13 @@ constexpr double ENERGY_FLOOR_RELATIVE = 1e-16;
 
 Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 
-/// Smallest chunk of constraints a thread claims in the Coloured order (ColourSchedule). A
-/// projection takes ~10 ns, so a chunk is a few microseconds of work, well above the cost of a
-/// claim.
-constexpr std::size_t COLOUR_GRAIN = 256;
+/// Smallest chunk of constraints a thread claims in the Coloured order (ColourSchedule): under a
+/// microsecond of projections, still well above a claim. With 256, bear's colours (a few
+/// thousand constraints) had about a dozen chunks for 16 threads, and its solve at 16 threads
+/// took 4.5-4.7 ms per step against 3.3-3.4 ms with 64 (and 3.0-3.1 with 32); on bear x16, whose
+/// colours are cut by the thread count instead, 64 and 256 were within the noise
+/// (docs/benchmarks/scale.md, "Sixteen cores").
+constexpr std::size_t COLOUR_GRAIN = 64;
 /// COLOUR_GRAIN in batches of BATCH_LANES constraints.
 constexpr std::size_t BATCH_GRAIN = COLOUR_GRAIN / BATCH_LANES;
 
@@ -380,9 +385,23 @@ class GaussSeidelSolver final : public ConstraintSolver {
                                            (phases.back().kind != UNPACK && padded_kind(phases.back().kind)));
         schedule_built_ = true;
       }
-      if (first_padded_) pack_padded(ctx.x, ctx.w, row_vertex_.data(), 0, n, padded_.data());
+      // The copies into and out of the padded rows run in parallel too (row by row, so the
+      // same values): on one thread they were about 10 ms of bear x16's 43 ms solve at 16
+      // threads on a 16-core machine (the schedule's own time was 33 ms; a timer build, not
+      // kept: docs/benchmarks/scale.md, "Sixteen cores").
+      auto rows = [&](auto copy) {
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, VERTEX_GRAIN),
+                          [&](const tbb::blocked_range<std::size_t>& r) { copy(r.begin(), r.end()); });
+      };
+      if (first_padded_)
+        rows([&](std::size_t b, std::size_t e) {
+          pack_padded(ctx.x, ctx.w, row_vertex_.data(), b, e, padded_.data());
+        });
       schedule_.run([&](int kind, std::size_t b, std::size_t e) { project_range(kind, b, e, ctx); });
-      if (last_padded_) unpack_padded(padded_.data(), row_vertex_.data(), 0, n, ctx.x);
+      if (last_padded_)
+        rows([&](std::size_t b, std::size_t e) {
+          unpack_padded(padded_.data(), row_vertex_.data(), b, e, ctx.x);
+        });
       return;
     }
     for (int it = 0; it < settings_.iterations; ++it) {
