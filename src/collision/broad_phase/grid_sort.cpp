@@ -22,7 +22,7 @@ namespace {
 /// Parts of the boxes (contiguous id ranges) of the first level: a fixed number, so that the
 /// work does not depend on the thread count; part p's boxes of a slab follow those of parts < p.
 constexpr std::size_t SORT_PARTS = 64;
-/// A slab has at most this many cells (its counters: 64 KB) ...
+/// A slab has at most this many cells (its counters: 64 KB), or one row if a row has more ...
 constexpr std::size_t SLAB_MAX_CELLS = 16384;
 /// ... and there are about this many slabs, for load balance on many cores.
 constexpr std::size_t SLAB_TARGET = 256;
