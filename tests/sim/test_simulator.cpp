@@ -273,6 +273,26 @@ TEST(Simulator, RunsAreDeterministicAndColouredRunsDoNotDependOnThreads) {
   EXPECT_NE(a, c1) << "the coloured order is a different (valid) Gauss-Seidel order";
 }
 
+TEST(Simulator, ColouredRunsOfSeveralBlocksDoNotDependOnThreads) {
+  // The same with 10k vertices: several blocks of the step's parallel per-vertex work (4096
+  // rows each), of the solver's copies and of the grid's slabs, on 1 and 3 threads.
+  const Mesh mesh = sphere(5);
+  auto run = [&](int threads) {
+    SimOptions opt;
+    opt.frames = 6;
+    opt.pressure = 3.0;
+    opt.solver.order = ConstraintOrder::Coloured;
+    opt.solver.threads = threads;
+    opt.collision.threads = threads;
+    Simulator sim(mesh, opt);
+    while (!sim.finished()) sim.step();
+    return Positions(sim.positions());
+  };
+  const Positions one = run(1);
+  ASSERT_GT(one.rows(), 2 * 4096);
+  EXPECT_EQ(one, run(3));
+}
+
 TEST(Simulator, SpeculativeBroadPhaseAutoFollowsTheSolveOrder) {
   // Auto: speculative with the single-threaded sequential solve, not with the coloured one
   // (whose solve needs the spare core); On and Off are obeyed with either order.
