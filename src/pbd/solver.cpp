@@ -42,12 +42,9 @@ constexpr double ENERGY_FLOOR_RELATIVE = 1e-16;
 
 Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
 
-/// Smallest chunk of constraints a thread claims in the Coloured order (ColourSchedule): under a
-/// microsecond of projections, still well above a claim. With 256, bear's colours (a few
-/// thousand constraints) had about a dozen chunks for 16 threads, and its solve at 16 threads
-/// took 4.5-4.7 ms per step against 3.3-3.4 ms with 64 (and 3.0-3.1 with 32); on bear x16, whose
-/// colours are cut by the thread count instead, 64 and 256 were within the noise
-/// (docs/benchmarks/scale.md, "Sixteen cores").
+/// Smallest chunk a thread claims in the Coloured order (ColourSchedule). With 256, bear's
+/// colours had about a dozen chunks for 16 threads: its solve took 4.5-4.7 ms per step at 16
+/// threads, 3.3-3.4 with 64, 3.0-3.1 with 32; bear x16's chunks are larger anyway (scale.md).
 constexpr std::size_t COLOUR_GRAIN = 64;
 /// COLOUR_GRAIN in batches of BATCH_LANES constraints.
 constexpr std::size_t BATCH_GRAIN = COLOUR_GRAIN / BATCH_LANES;
@@ -77,6 +74,10 @@ enum SweepKind : int {
 
 /// Vertices per chunk of a PACK or UNPACK phase.
 constexpr std::size_t VERTEX_GRAIN = 1024;
+/// Rows per task of the solve's copies into and out of the padded rows: with 1024,
+/// bench_projection's coloured membrane sweep (bear, 2 threads) took 205-212 us against 199-207
+/// with the copies serial; with 8192, 202-203 us.
+constexpr std::size_t COPY_GRAIN = 8192;
 
 /// True for the kinds that work on the padded rows (PaddedVertex) instead of x.
 bool padded_kind(int kind) {
@@ -385,12 +386,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
                                            (phases.back().kind != UNPACK && padded_kind(phases.back().kind)));
         schedule_built_ = true;
       }
-      // The copies into and out of the padded rows run in parallel too (row by row, so the
-      // same values): on one thread they were about 10 ms of bear x16's 43 ms solve at 16
-      // threads on a 16-core machine (the schedule's own time was 33 ms; a timer build, not
-      // kept: docs/benchmarks/scale.md, "Sixteen cores").
+      // The copies in parallel too (row by row: the same values); serial, they were about 10 ms
+      // of bear x16's 43 ms solve at 16 threads (docs/benchmarks/scale.md, "Sixteen cores").
       auto rows = [&](auto copy) {
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, VERTEX_GRAIN),
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, COPY_GRAIN),
                           [&](const tbb::blocked_range<std::size_t>& r) { copy(r.begin(), r.end()); });
       };
       if (first_padded_)
