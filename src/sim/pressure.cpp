@@ -8,7 +8,7 @@
 namespace shellcontract {
 
 namespace {
-/// Vertices per task of the parallel form (fixed: a vertex's sum does not depend on it).
+/// Smallest task of the parallel form, in vertices (a vertex's sum does not depend on it).
 constexpr Eigen::Index PRESSURE_VERTEX_BLOCK = 4096;
 }  // namespace
 

@@ -1,4 +1,4 @@
-// External pressure load (math-spec 3). Eigen only.
+// External pressure load (math-spec 3). Eigen only (TBB runs the parallel form).
 #pragma once
 
 #include <vector>
@@ -29,9 +29,9 @@ struct VertexFaces {
 /// The faces around each of the vertices 0..num_vertices-1 (ids outside that range are skipped).
 VertexFaces vertex_faces(const Faces& faces, Eigen::Index num_vertices);
 
-/// pressure_forces, in parallel over fixed blocks of vertices (in the caller's TBB arena), each
-/// vertex summing the terms of its faces in increasing face id, as the face loop of the serial
-/// form adds them: the same bits for any thread count and as the serial form. On a 16-core
+/// pressure_forces, in parallel over the vertices (in the caller's TBB arena), each vertex
+/// summing the terms of its faces in increasing face id, as the face loop of the serial form
+/// adds them: the same bits for any thread count and as the serial form. On a 16-core
 /// machine the serial form took 3-7 ms of bear x16's ~110 ms step at 16 threads (a step timer
 /// build, not kept; docs/benchmarks/scale.md, "Sixteen cores").
 /// @param around  vertex_faces(faces, x.rows())
