@@ -70,6 +70,8 @@ void pressure_forces(const Positions& x, const Faces& faces, const VertexFaces& 
                      PressureModel model, Positions& f) {
   const Eigen::Index nv = x.rows();
   f.resize(nv, 3);
+  // A face's normal is computed again at each of its three corners instead of being stored: no
+  // per-face buffer, and each vertex's terms are the serial loop's.
   auto normal = [&](int j) {
     const int a = faces(j, 0), b = faces(j, 1), c = faces(j, 2);
     const Vec3 xc = x.row(c);

@@ -5,7 +5,6 @@
 // entries of neighbouring parts into the same cache lines: on 16 cores its count ran 2.3x and
 // its scatter 1.1x faster than on one (docs/benchmarks/scale.md, "Sixteen cores"). Here a
 // slab's counters and entries fit in a core's L2 and no two tasks write the same slab.
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -114,11 +113,6 @@ std::size_t emit_cells_in_rows(const Slabs& sl, const GridRange& r, std::size_t 
   return n;
 }
 
-/// A task's buffers for one slab at a time.
-struct SlabBuffers {
-  std::vector<std::uint32_t> cell, tag, cursor;
-};
-
 }  // namespace
 
 std::uint64_t grid_sort_count(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
@@ -184,13 +178,12 @@ std::uint64_t grid_sort_fill(const Grid& g, std::size_t nboxes, std::uint64_t en
   start[0] = 0;
   s.cell_entries.resize(entries);
   s.slab_work.assign(sl.count, 0);
-  tbb::enumerable_thread_specific<SlabBuffers> buffers;
   tbb::parallel_for(std::size_t{0}, sl.count, [&](std::size_t slab) {
     const std::size_t row0 = slab * sl.rows_per_slab;
     const std::size_t row1 = std::min(sl.rows, row0 + sl.rows_per_slab);
     const std::size_t first_cell = row0 * sl.dx, ncell = (row1 - row0) * sl.dx;
     const std::size_t nentries = s.slab_entry_begin[slab + 1] - s.slab_entry_begin[slab];
-    SlabBuffers& buf = buffers.local();
+    GridSlabBuffers& buf = s.slab_buffers.local();
     buf.cursor.assign(ncell, 0);
     if (buf.cell.size() < nentries + 8) {
       buf.cell.resize(nentries + 8);

@@ -4,6 +4,8 @@
 // (src/collision/self_collision/) and by the white-box tests and benchmarks of the grid.
 #pragma once
 
+#include <tbb/enumerable_thread_specific.h>
+
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -99,6 +101,11 @@ struct GridCell {
 };
 
 /// Grid method: one chunk of cells processed by one task, with its own buffers.
+/// Grid method: a task's buffers for one slab at a time of the counting sort (grid_sort.cpp).
+struct GridSlabBuffers {
+  std::vector<std::uint32_t> cell, tag, cursor;
+};
+
 struct GridChunk {
   GridCell cell;                       ///< the boxes of the current cell
   std::vector<std::uint64_t> vf_keys;  ///< pairs found in this chunk (see BroadPhaseScratch)
@@ -152,6 +159,8 @@ struct BroadPhaseScratch {
   std::vector<std::uint64_t> slab_entry_begin;
   std::vector<std::uint32_t> slab_boxes;
   std::vector<std::uint64_t> slab_work;
+  /// Grid's counting sort: each thread's slab buffers, kept from call to call
+  tbb::enumerable_thread_specific<detail::GridSlabBuffers> slab_buffers;
   std::vector<std::uint32_t> cell_fill;     ///< Grid: the patch's fill cursors, per cell
   std::vector<std::uint64_t> block_sums;    ///< Grid: the patched grid's pair work per block
   std::vector<std::uint32_t> cell_entries;  ///< Grid: box id << 3 | first-cell flags
