@@ -316,7 +316,9 @@ std::vector<OptionSpec> build_table() {
                       MAX_ITERATIONS, [](R& r) -> int& { return r.sim.solver.iterations; }));
   t.push_back(choice(
       "solver",
-      "pbd: the paper's energy-as-constraint projection; xpbd: compliant, physical stiffness",
+      "xpbd: compliant, physical stiffness (the shell material of --young and --thickness, so "
+      "the result does not depend on the mesh's resolution); pbd: the paper's "
+      "energy-as-constraint projection (membrane --mu and --lambda, damping 0.2)",
       Choices<SolverKind>{{"pbd", SolverKind::Pbd}, {"xpbd", SolverKind::Xpbd}},
       [](R& r) -> SolverKind& { return r.sim.solver.kind; }));
   t.push_back(choice("order",
@@ -333,15 +335,18 @@ std::vector<OptionSpec> build_table() {
               "results do not depend on it",
               0, 4096, [](R& r) -> int& { return r.sim.solver.threads; }));
   t.push_back(
-      number("damping", 0, "D", "fraction of the velocity removed per step (the paper has none)",
+      number("damping", 0, "D",
+             "fraction of the velocity removed per step (the paper has none); 0.2 under "
+             "--solver pbd unless given",
              between(0.0, 1.0, false, true), [](R& r) -> double& { return r.sim.damping; }));
   // ---- material
   t.push_back(choice("material", "membrane material", material_choices(),
                      [](R& r) -> MaterialKind& { return r.sim.material; }));
   t.push_back(number("mu", 0, "MU",
-                     "Lame mu (energy per normalized area); in pbd mode only lambda/mu matters",
+                     "Lame mu (energy per normalized area); in pbd mode only lambda/mu matters; "
+                     "under xpbd, unless given, --young and --thickness set it",
                      positive(), [](R& r) -> double& { return r.sim.material_params.mu; }));
-  t.push_back(number("lambda", 0, "LAMBDA", "plane-stress Lame lambda", non_negative(),
+  t.push_back(number("lambda", 0, "LAMBDA", "plane-stress Lame lambda (as --mu)", non_negative(),
                      [](R& r) -> double& { return r.sim.material_params.lambda; }));
   t.push_back(number("c10", 0, "C10", "Mooney-Rivlin C10", positive(),
                      [](R& r) -> double& { return r.sim.material_params.c10; }));
@@ -350,7 +355,8 @@ std::vector<OptionSpec> build_table() {
   t.push_back(optional_number("young", "E",
                               "Young's modulus (with --thickness): sets mu and lambda, and with "
                               "--solver xpbd and dihedral bending also k_B (unless --k-b is "
-                              "given): E h^3 / (36 (1 - nu^2))",
+                              "given): E h^3 / (36 (1 - nu^2)). The default shell material "
+                              "applies under xpbd unless --mu or --lambda is given",
                               positive(),
                               [](R& r) -> std::optional<double>& { return r.young; }));
   t.push_back(number("poisson", 0, "NU", "Poisson ratio (with --young)",
@@ -364,7 +370,8 @@ std::vector<OptionSpec> build_table() {
                                            {"none", BendingModel::None}},
                      [](R& r) -> BendingModel& { return r.sim.bending; }));
   t.push_back(number("k-b", 0, "KB",
-                     "bending k_B: pbd correction multiplier (at most 1); xpbd energy scale",
+                     "bending k_B: pbd correction multiplier (at most 1); xpbd energy scale "
+                     "(unless given, from --young and --thickness)",
                      non_negative(), [](R& r) -> double& { return r.sim.solver.k_bending; }));
   t.push_back(choice("mass", "area: lumped by rest area; unit: m = 1",
                      Choices<MassModel>{{"area", MassModel::AreaLumped}, {"unit", MassModel::Unit}},

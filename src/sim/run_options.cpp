@@ -30,7 +30,37 @@ ConstraintOrder order_for(OrderChoice choice, std::size_t faces) {
   return faces > AUTO_COLOURED_FACES ? ConstraintOrder::Coloured : ConstraintOrder::Sequential;
 }
 
+namespace {
+
+/// The paper's settings where the caller left the default run's (RunOptions): under pbd the
+/// membrane is mu and lambda and the damping DEFAULT_DAMPING; chosen mu or lambda are the
+/// membrane. Idempotent, like the rest of resolve_run_options.
+void resolve_default_run(RunOptions& r) {
+  const auto chosen = [&r](const char* name, bool changed) { return r.given.count(name) || changed; };
+  const MaterialParams paper;
+  const bool pbd = r.sim.solver.kind == SolverKind::Pbd;
+  const bool shell_chosen = r.given.count("young") || r.given.count("thickness");
+  // mu and lambda that the shell material gave (an earlier resolve) are not chosen.
+  const MaterialParams& m = r.sim.material_params;
+  bool from_shell = false;
+  if (r.young && r.thickness) {
+    const MaterialParams shell = membrane_lame_from_young(*r.young, r.poisson, *r.thickness);
+    from_shell = m.mu == shell.mu && m.lambda == shell.lambda;
+  }
+  const bool lame_chosen = chosen("mu", !from_shell && m.mu != paper.mu) ||
+                           chosen("lambda", !from_shell && m.lambda != paper.lambda);
+  if (!shell_chosen && (pbd || lame_chosen || r.sim.material == MaterialKind::MooneyRivlin)) {
+    r.young.reset();
+    r.thickness.reset();
+  }
+  if (pbd && !chosen("damping", r.sim.damping != DEFAULT_XPBD_DAMPING))
+    r.sim.damping = DEFAULT_DAMPING;
+}
+
+}  // namespace
+
 void resolve_run_options(RunOptions& r) {
+  resolve_default_run(r);
   if (r.young.has_value() != r.thickness.has_value())
     throw UsageError("--young needs --thickness (and the other way round)");
   if (r.young) {

@@ -109,13 +109,14 @@ TEST(OptionTable, YoungAndThicknessGiveTheBendingStiffnessUnderXpbd) {
   EXPECT_NEAR(resolved(with({{"solver", "xpbd"}})), plate / 3, 1e-15 * plate);
   // An explicit --k-b wins; pbd's k_B is a multiplier; other bending models have other scales.
   EXPECT_EQ(resolved(with({{"solver", "xpbd"}, {"k-b", "0.5"}})), 0.5);
-  EXPECT_EQ(resolved(material), default_k_b);
+  EXPECT_EQ(resolved(with({{"solver", "pbd"}})), default_k_b);
   EXPECT_EQ(resolved(with({{"solver", "xpbd"}, {"bending", "isometric"}})), default_k_b);
 }
 
 TEST(OptionTable, CrossChecksAreResolvedOnce) {
   RunOptions r;
   set_run_option(r, "young", "1000");
+  r.thickness.reset();  // a caller that unsets the default thickness
   EXPECT_THROW(resolve_run_options(r), UsageError);  // --young without --thickness
   set_run_option(r, "thickness", "0.01");
   EXPECT_THROW(set_run_option(r, "poisson", "0.5"), UsageError);
@@ -127,10 +128,66 @@ TEST(OptionTable, CrossChecksAreResolvedOnce) {
   set_run_option(both, "stop-volume-ratio", "0.5");
   EXPECT_THROW(resolve_run_options(both), UsageError);
   RunOptions stiff;
+  set_run_option(stiff, "solver", "pbd");
   set_run_option(stiff, "k-b", "2");
   EXPECT_THROW(resolve_run_options(stiff), UsageError);  // pbd: a multiplier in [0, 1]
   set_run_option(stiff, "solver", "xpbd");
   EXPECT_NO_THROW(resolve_run_options(stiff));
+}
+
+TEST(OptionTable, TheDefaultRunIsTheShellMaterialUnderXpbd) {
+  // The default run (RunOptions) is XPBD with the shell material E = 1000, nu = 0.3, h = 0.002 and
+  // damping 0.1; --solver pbd is the paper's setting (mu = lambda = 1, damping 0.2), as are given
+  // Lame parameters for the membrane. Values from the closed forms of math-spec 6.
+  const auto resolved = [](std::vector<std::pair<std::string, std::string>> given) {
+    RunOptions r;
+    for (const auto& [name, value] : given) set_run_option(r, name, value);
+    resolve_run_options(r);
+    return r;
+  };
+  const auto mu_of = [](double E, double nu, double h) { return E * h / (2 * (1 + nu)); };
+  const auto lambda_of = [](double E, double nu, double h) { return E * h * nu / (1 - nu * nu); };
+  const auto k_b_of = [](double E, double nu, double h) {
+    return E * h * h * h / (36 * (1 - nu * nu));
+  };
+  const RunOptions d = resolved({});
+  EXPECT_EQ(d.sim.solver.kind, SolverKind::Xpbd);
+  EXPECT_DOUBLE_EQ(d.sim.material_params.mu, mu_of(1000, 0.3, 0.002));
+  EXPECT_DOUBLE_EQ(d.sim.material_params.lambda, lambda_of(1000, 0.3, 0.002));
+  EXPECT_DOUBLE_EQ(d.sim.solver.k_bending, k_b_of(1000, 0.3, 0.002));
+  EXPECT_EQ(d.sim.damping, 0.1);
+
+  const RunOptions pbd = resolved({{"solver", "pbd"}});
+  EXPECT_FALSE(pbd.young.has_value());
+  EXPECT_EQ(pbd.sim.material_params.mu, 1.0);
+  EXPECT_EQ(pbd.sim.material_params.lambda, 1.0);
+  EXPECT_EQ(pbd.sim.solver.k_bending, 0.01);
+  EXPECT_EQ(pbd.sim.damping, 0.2);
+  EXPECT_EQ(resolved({{"solver", "pbd"}, {"damping", "0.1"}}).sim.damping, 0.1);
+  EXPECT_EQ(resolved({{"solver", "xpbd"}, {"damping", "0.2"}}).sim.damping, 0.2);
+
+  const RunOptions lame = resolved({{"mu", "0.5"}});
+  EXPECT_FALSE(lame.young.has_value());
+  EXPECT_EQ(lame.sim.material_params.mu, 0.5);
+  EXPECT_EQ(lame.sim.material_params.lambda, 1.0);
+  // One of the two material values given: the other keeps its default.
+  const RunOptions thick = resolved({{"thickness", "0.004"}});
+  EXPECT_DOUBLE_EQ(thick.sim.material_params.mu, mu_of(1000, 0.3, 0.004));
+  EXPECT_DOUBLE_EQ(thick.sim.solver.k_bending, k_b_of(1000, 0.3, 0.004));
+  // A caller that writes the fields (no option table) is read the same way.
+  RunOptions written;
+  written.sim.material_params.mu = 0.5;
+  resolve_run_options(written);
+  EXPECT_EQ(written.sim.material_params.mu, 0.5);
+  // Resolving twice changes nothing (the CLI resolves, then run_contraction again).
+  for (RunOptions once : {d, pbd, lame, thick}) {
+    RunOptions twice = once;
+    resolve_run_options(twice);
+    EXPECT_EQ(twice.sim.material_params.mu, once.sim.material_params.mu);
+    EXPECT_EQ(twice.sim.solver.k_bending, once.sim.solver.k_bending);
+    EXPECT_EQ(twice.sim.damping, once.sim.damping);
+    EXPECT_EQ(twice.young, once.young);
+  }
 }
 
 }  // namespace

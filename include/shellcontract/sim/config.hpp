@@ -54,9 +54,25 @@ inline constexpr double DEFAULT_AIR_BALANCE = 0.5;
 /// shrinking volume quasi-statically, short enough to hold the target for most of a default run.
 inline constexpr int DEFAULT_TARGET_RAMP_FRAMES = 100;
 
-/// Default fraction of the velocity removed per step. The paper has no damping; without it the
-/// undamped PBD shell rings (V/V0 oscillates around its quasi-static path, README measurement).
+/// Default fraction of the velocity removed per step of the paper's PBD solver (--solver pbd).
+/// The paper has no damping; without it the undamped PBD shell rings (V/V0 oscillates around its
+/// quasi-static path, README measurement).
 inline constexpr double DEFAULT_DAMPING = 0.2;
+
+/// The default run's damping (XPBD with the default shell material, RunOptions). Half the PBD
+/// value: a run that removes less velocity lets the rest of the shell spring back to its rest
+/// shape sooner after the regions' dimples pull on it, so the local contraction stays local
+/// (bumpy_sphere at -p 0: 12.8x at 0.1 against 9.1x at 0.2, docs/design/defaults.md "The default
+/// run").
+inline constexpr double DEFAULT_XPBD_DAMPING = 0.1;
+
+/// The default run's shell material (XPBD, RunOptions): Young's modulus and thickness in
+/// normalized units (bounding-box diagonal 1), Poisson ratio 0.3. Chosen by measurement
+/// (docs/design/defaults.md "The default run"): icospheres of 320 to 20,480 faces end within
+/// 0.02 of each other and bear with bear split in four within 0.03, and the wrinkles take a size
+/// set by the thickness (docs/benchmarks/wrinkles.md).
+inline constexpr double DEFAULT_SHELL_YOUNG = 1000.0;
+inline constexpr double DEFAULT_SHELL_THICKNESS = 0.002;
 
 /// Whether the collision broad phase starts speculatively while the constraint solve runs
 /// (CollisionOptions::speculative, SelfCollision::predict). Its task runs on the core that a

@@ -36,9 +36,26 @@ constexpr std::size_t AUTO_COLOURED_FACES = 200000;
 /// The order a run of a mesh with `faces` faces uses.
 ConstraintOrder order_for(OrderChoice choice, std::size_t faces);
 
+/// The simulation options of the default run: XPBD (physical stiffness, so that the result does
+/// not depend on the mesh's resolution) with DEFAULT_XPBD_DAMPING. The Simulator's own defaults
+/// (SimOptions) stay the paper's PBD scheme.
+inline SimOptions default_run_sim_options() {
+  SimOptions s;
+  s.solver.kind = SolverKind::Xpbd;
+  s.damping = DEFAULT_XPBD_DAMPING;
+  return s;
+}
+
 /// Everything a run needs besides the mesh. Lengths are in normalized units.
+///
+/// The defaults are the default run: XPBD with the default shell material (young, thickness) and
+/// its damping. resolve_run_options goes back to the paper's settings where a caller leaves them:
+/// under --solver pbd the membrane is mu and lambda (not the shell material) and the damping is
+/// DEFAULT_DAMPING; with mu or lambda chosen, they are the membrane. "Chosen" is set through the
+/// option table (which records it in `given`) or, for a caller that writes the fields, changed
+/// from the default.
 struct RunOptions {
-  SimOptions sim;
+  SimOptions sim = default_run_sim_options();
   /// The Gauss-Seidel order: run_contraction sets sim.solver.order from it and the mesh's size.
   OrderChoice order = OrderChoice::Auto;
   /// None by default: regions switch the local contraction on. An anisotropic energy (--aniso)
@@ -51,10 +68,11 @@ struct RunOptions {
   /// Select the regions even when no local contraction acts on them, to report how far they sink.
   bool measure_regions = false;
   /// Membrane stiffness from Young's modulus, Poisson ratio and thickness (math-spec 6). When
-  /// both young and thickness are set, resolve_run_options replaces mu and lambda with them.
-  std::optional<double> young;
+  /// both young and thickness are set, resolve_run_options replaces mu and lambda with them; it
+  /// unsets the defaults under pbd and when mu or lambda is chosen (see above).
+  std::optional<double> young = DEFAULT_SHELL_YOUNG;
   double poisson = 0.3;
-  std::optional<double> thickness;
+  std::optional<double> thickness = DEFAULT_SHELL_THICKNESS;
   /// The options set through the option table (CLI spelling), so that a run can say which of
   /// them have no effect in its configuration (ineffective_options).
   std::set<std::string> given;
