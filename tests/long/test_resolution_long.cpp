@@ -21,45 +21,27 @@ class LargestStep final : public RunObserver {
   double largest = 0.0;
 };
 
-RunResult soft_xpbd_run(const Mesh& mesh, LargestStep* steps = nullptr) {
+RunOptions soft_xpbd() {
   RunOptions o;
   set_run_option(o, "solver", "xpbd");
   set_run_option(o, "mu", "0.2");
   set_run_option(o, "lambda", "0.2");
   o.sim.validate = ValidateMode::End;
-  return run_contraction(mesh, o, steps);
+  return o;
+}
+
+RunResult soft_xpbd_run(const Mesh& mesh, LargestStep* steps = nullptr) {
+  return run_contraction(mesh, soft_xpbd(), steps);
 }
 
 TEST(ResolutionLong, DefaultRunIcospheresEndAlike) {
-  double lowest = 1.0, highest = 0.0;
-  for (int levels = 2; levels <= 5; ++levels) {  // 320, 1280, 5120, 20480 faces
-    RunOptions o;
-    o.sim.validate = ValidateMode::End;
-    const RunResult r = run_contraction(test::to_surface_mesh(test::icosphere(levels)), o);
-    ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
-    EXPECT_EQ(r.new_intersections, 0);
-    lowest = std::min(lowest, r.final_volume_ratio);
-    highest = std::max(highest, r.final_volume_ratio);
-    std::cout << "default icosphere of " << 20 * (1 << (2 * levels)) << " faces: V/V0 "
-              << r.final_volume_ratio << "\n";
-  }
-  EXPECT_LE(highest - lowest, 0.02);
-  EXPECT_LT(highest, 0.8) << "they must contract, not agree by staying put";
+  RunOptions o;
+  o.sim.validate = ValidateMode::End;
+  test::check_icospheres_end_alike(o, 5, "default");
 }
 
 TEST(ResolutionLong, SoftXpbdIcospheresEndAlike) {
-  double lowest = 1.0, highest = 0.0;
-  for (int levels = 2; levels <= 5; ++levels) {  // 320, 1280, 5120, 20480 faces
-    const RunResult r = soft_xpbd_run(test::to_surface_mesh(test::icosphere(levels)));
-    ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
-    EXPECT_EQ(r.new_intersections, 0);
-    lowest = std::min(lowest, r.final_volume_ratio);
-    highest = std::max(highest, r.final_volume_ratio);
-    std::cout << "soft xpbd icosphere of " << 20 * (1 << (2 * levels)) << " faces: V/V0 "
-              << r.final_volume_ratio << "\n";
-  }
-  EXPECT_LE(highest - lowest, 0.02);
-  EXPECT_LT(highest, 0.8) << "they must contract, not agree by staying put";
+  test::check_icospheres_end_alike(soft_xpbd(), 5, "soft xpbd");
 }
 
 /// Also the regression of the XPBD dihedral hinge's step clamp: without it this bear run blew up

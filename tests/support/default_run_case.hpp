@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -18,6 +19,7 @@
 #include "shellcontract/sim/rest_state.hpp"
 #include "shellcontract/sim/run.hpp"
 #include "support/cgal_mesh.hpp"
+#include "support/mesh_fixtures.hpp"
 #include "support/target_volume_case.hpp"
 #include "test_paths.hpp"
 
@@ -81,6 +83,27 @@ inline void check_default_run_range(const std::string& name) {
   EXPECT_EQ(r.new_intersections, 0) << name;
   std::cout << "default run " << name << ": V/V0 " << r.final_volume_ratio << " after "
             << r.frames_run << " frames, " << r.wall_seconds << " s\n";
+}
+
+/// Issue "Control", item 3: `options` on icospheres of levels 2 to max_level (320, 1280, 5120,
+/// 20480 faces) end within 0.02 of each other in V/V0, below 0.8 (they must contract, not agree by
+/// staying put), without a new self-intersection when options.sim.validate asks for the check.
+inline void check_icospheres_end_alike(const RunOptions& options, int max_level,
+                                       const std::string& label) {
+  double lowest = 1.0, highest = 0.0;
+  for (int levels = 2; levels <= max_level; ++levels) {
+    const RunResult r = run_contraction(to_surface_mesh(icosphere(levels)), options);
+    ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
+    if (options.sim.validate != ValidateMode::Off) {
+      EXPECT_EQ(r.new_intersections, 0);
+    }
+    lowest = std::min(lowest, r.final_volume_ratio);
+    highest = std::max(highest, r.final_volume_ratio);
+    std::cout << label << " icosphere of " << 20 * (1 << (2 * levels)) << " faces: V/V0 "
+              << r.final_volume_ratio << "\n";
+  }
+  EXPECT_LE(highest - lowest, 0.02) << label;
+  EXPECT_LT(highest, 0.8) << label;
 }
 
 /// A local-contraction run on meshes/bumpy_sphere.off with its three known bumps
