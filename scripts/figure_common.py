@@ -41,8 +41,9 @@ class Runner:
         # unless a figure sets one) and the flat-rest isometric bending. The tool's defaults
         # differ (an XPBD shell material with air inside, dihedral bending:
         # docs/design/defaults.md).
-        for option, value in (("--solver", "pbd"), ("--air-balance", "0"), ("--bending", "isometric"),
-                              ("--pressure", "2")):
+        paper = (("--solver", "pbd"), ("--air-balance", "0"), ("--bending", "isometric"),
+                 ("--pressure", "2"))
+        for option, value in paper:
             if option not in args:
                 args += [option, value]
         # The paper's local contraction is its region pressure (--inward force), here P_A = 3

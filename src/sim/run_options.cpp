@@ -36,7 +36,9 @@ namespace {
 /// membrane is mu and lambda and the damping DEFAULT_DAMPING; chosen mu or lambda are the
 /// membrane. Idempotent, like the rest of resolve_run_options.
 void resolve_default_run(RunOptions& r) {
-  const auto chosen = [&r](const char* name, bool changed) { return r.given.count(name) || changed; };
+  const auto chosen = [&r](const char* name, bool changed) {
+    return r.given.count(name) || changed;
+  };
   const MaterialParams paper;
   const bool pbd = r.sim.solver.kind == SolverKind::Pbd;
   const bool shell_chosen = r.given.count("young") || r.given.count("thickness");

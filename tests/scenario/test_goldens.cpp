@@ -39,9 +39,15 @@ const std::vector<GoldenRun>& golden_runs() {
       // The paper's setting pinned (its PBD solver, constant pressure 2, flat-rest bending): these
       // reproduce the outputs recorded before air, dihedral bending and the XPBD shell material
       // became the defaults.
-      {"hand_paper", "hand", {{"solver", "pbd"}, {"air-balance", "0"}, {"bending", "isometric"}, {"pressure", "2"}}},
-      {"bear_paper", "bear", {{"solver", "pbd"}, {"air-balance", "0"}, {"bending", "isometric"}, {"pressure", "2"}}},
-      {"eight_p4", "eight", {{"solver", "pbd"}, {"air-balance", "0"}, {"bending", "isometric"}, {"pressure", "4"}}},
+      {"hand_paper",
+       "hand",
+       {{"solver", "pbd"}, {"air-balance", "0"}, {"bending", "isometric"}, {"pressure", "2"}}},
+      {"bear_paper",
+       "bear",
+       {{"solver", "pbd"}, {"air-balance", "0"}, {"bending", "isometric"}, {"pressure", "2"}}},
+      {"eight_p4",
+       "eight",
+       {{"solver", "pbd"}, {"air-balance", "0"}, {"bending", "isometric"}, {"pressure", "4"}}},
       {"elk_p4_coloured",
        "elk",
        {{"solver", "pbd"},
