@@ -389,7 +389,8 @@ std::vector<OptionSpec> build_table() {
       choice("inward",
              "how the regions are made to sink in: volume (each region sinks as a mirrored "
              "dimple around its apex that takes 2S of its rest cap volume off, S = "
-             "--region-shrink, and is held there) | force (the paper's "
+             "--region-shrink, and is held there; under -p > 0 without --target-volume the "
+             "regions also take an extra pressure 2 S P) | force (the paper's "
              "extra pressure on the regions, P_A = 10 S, without net force or torque) | "
              "projection (the paper's k_A inside the E_A projection; --aniso, pbd) | none",
              Choices<InwardTerm>{{"volume", InwardTerm::Volume},

@@ -80,7 +80,7 @@ void cap_volume_gradient(const Positions& x, const RegionCap& cap, Positions& g)
 }
 
 int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w, double target,
-                       double tolerance, int max_steps) {
+                       double tolerance, int max_steps, double max_move) {
   Positions g;
   int steps = 0;
   for (; steps < max_steps; ++steps) {
@@ -92,9 +92,16 @@ int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd
       denominator += w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i)).squaredNorm();
     // No movable gradient (every vertex held, or a collapsed region): nothing can move V.
     if (!(denominator > 0.0) || !std::isfinite(denominator)) break;
-    const double lambda = c / denominator;
+    double lambda = c / denominator;
+    double largest = 0.0;  // the largest vertex move of this Newton step
+    for (std::size_t i = 0; i < cap.vertices.size(); ++i)
+      largest = std::max(largest, w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i)).norm());
+    largest *= std::abs(lambda);
+    const bool limited = largest > max_move;
+    if (limited) lambda *= max_move / largest;
     for (std::size_t i = 0; i < cap.vertices.size(); ++i)
       x.row(cap.vertices[i]) -= lambda * w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i));
+    if (limited) return steps + 1;
   }
   return steps;
 }

@@ -174,10 +174,18 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
         ++regions_without_cap_;
     }
   }
-  if (pushed && options_.region_shrink > 0.0) {
+  // Under a global pressure the regions with a dimple also take the region load (config.hpp
+  // REGION_LOAD_GAIN); at -p 0 there is no load and the dimple alone sinks them.
+  const bool loaded = !region_dimples_.empty() && options_.pressure > 0.0 &&
+                      options_.target_volume <= 0.0;
+  if ((pushed || loaded) && options_.region_shrink > 0.0) {
     std::vector<int> region_faces;
-    for (const std::vector<int>& region : regions)
-      region_faces.insert(region_faces.end(), region.begin(), region.end());
+    if (pushed)
+      for (const std::vector<int>& region : regions)
+        region_faces.insert(region_faces.end(), region.begin(), region.end());
+    else
+      for (const RegionDimple& d : region_dimples_)
+        region_faces.insert(region_faces.end(), d.order.begin(), d.order.end());
     inward_faces_.resize(static_cast<Eigen::Index>(region_faces.size()), 3);
     for (std::size_t i = 0; i < region_faces.size(); ++i)
       inward_faces_.row(static_cast<Eigen::Index>(i)) = faces_.row(region_faces[i]);
@@ -302,7 +310,8 @@ void Simulator::apply_region_contraction(Positions& x) {
     const double target = -ratio * d.dimple.rest_volume;
     // One-sided: a dimple the global contraction has already sunk further is left alone.
     if (cap_volume(x, d.dimple) > target)
-      project_cap_volume(x, d.dimple, w, target, 1e-12 * d.dimple.rest_volume);
+      project_cap_volume(x, d.dimple, w, target, 1e-12 * d.dimple.rest_volume, 4,
+                         DIMPLE_STEP_LIMIT * d.edge_length);
   }
 }
 
@@ -321,9 +330,13 @@ FrameMetrics Simulator::step() {
   // The local contraction (math-spec 9.2 R, the physically meaningful replacement of the paper's
   // k_A): a region pressure without net force or torque.
   if (inward_faces_.rows() > 0) {
-    local_contraction_forces(x_, inward_faces_, region_pressure(options_.region_shrink), inv_mass_,
-                             region_force_);
-    force_ += region_force_;
+    const double region_load = options_.inward_term == InwardTerm::Volume
+                                   ? region_load_pressure(options_.region_shrink, options_.pressure)
+                                   : region_pressure(options_.region_shrink);
+    if (region_load != 0.0) {
+      local_contraction_forces(x_, inward_faces_, region_load, inv_mass_, region_force_);
+      force_ += region_force_;
+    }
   }
   x_pred_.resize(x_.rows(), 3);
   for_row_blocks(arena_->arena, x_.rows(), [&](Eigen::Index b, Eigen::Index rows) {

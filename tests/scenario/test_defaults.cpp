@@ -112,5 +112,27 @@ TEST(LocalContraction, TopOfRangeSinksTheBumpsDeepAndLocally) {
   EXPECT_EQ(bumps, 3);
 }
 
+TEST(LocalContraction, UnderTheDefaultPressureTheBumpsSinkTwiceAsFar) {
+  // Issue "Local contraction", item 3: in the default run (the global pressure on) the regions
+  // sink at least twice as far with the local contraction as without it (--inward none), with
+  // no new self-intersection. The dimple alone, bounded by the bump's mirror image, gave 1.37x.
+  auto run = [](InwardTerm inward) {
+    RunOptions o;
+    o.sim.inward_term = inward;
+    o.regions = RegionSource::File;
+    o.region_file = std::string(test::MESH_DIR) + "/bumpy_sphere.bumps.txt";
+    o.sim.validate = ValidateMode::End;
+    return run_contraction(read_input_mesh(std::string(test::MESH_DIR) + "/bumpy_sphere.off"), o);
+  };
+  const RunResult off = run(InwardTerm::None), on = run(InwardTerm::Volume);
+  ASSERT_EQ(off.status, RunStatus::Completed) << off.message;
+  ASSERT_EQ(on.status, RunStatus::Completed) << on.message;
+  EXPECT_EQ(on.regions, 3u);
+  EXPECT_EQ(on.new_intersections, 0);
+  ASSERT_GT(off.region_inward_displacement, 0.0);
+  EXPECT_GE(on.region_inward_displacement, 2.0 * off.region_inward_displacement)
+      << "on " << on.region_inward_displacement << ", off " << off.region_inward_displacement;
+}
+
 }  // namespace
 }  // namespace shellcontract

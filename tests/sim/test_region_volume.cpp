@@ -131,5 +131,31 @@ TEST(RegionVolume, ProjectionReachesTheTargetAndMovesNoCentreOfMass) {
   EXPECT_EQ(x.row(cap.vertices[0]), s.m.x.row(cap.vertices[0]));
 }
 
+TEST(RegionVolume, ABoundedProjectionMovesNoVertexFartherAndGetsThereInSteps) {
+  // All but one vertex held (a dimple in contact): the free apex alone must carry the volume
+  // change, which the unbounded projection does in one jump of h; the bounded one moves it by at
+  // most max_move per call and reaches the target after enough calls.
+  const double h = 0.5;
+  const test::TriMesh m = pyramid(h);
+  const RegionCap cap = make_region_cap(m.faces, all_faces(m.faces));
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
+  w(4) = 1.0;  // the apex; the rim is held
+  const double target = -cap_volume(m.x, cap);  // the mirror image: the apex goes to -h
+  Positions x = m.x;
+  project_cap_volume(x, cap, w, target, 1e-14);
+  EXPECT_NEAR(x(4, 2), -h, 1e-12);
+  const double max_move = 0.1;
+  x = m.x;
+  int calls = 0;
+  for (; calls < 20 && std::abs(cap_volume(x, cap) - target) > 1e-14; ++calls) {
+    const Positions before = x;
+    project_cap_volume(x, cap, w, target, 1e-14, 4, max_move);
+    EXPECT_LE((x - before).rowwise().norm().maxCoeff(), max_move * (1.0 + 1e-12)) << "call " << calls;
+    EXPECT_EQ(x.topRows(4), m.x.topRows(4));
+  }
+  EXPECT_NEAR(x(4, 2), -h, 1e-12);
+  EXPECT_EQ(calls, 10);  // 2h / max_move calls of one bounded step each
+}
+
 }  // namespace
 }  // namespace shellcontract

@@ -4,6 +4,7 @@
 // sim/region_dimple.hpp is such a cap). Eigen only.
 #pragma once
 
+#include <limits>
 #include <vector>
 
 #include "shellcontract/core/types.hpp"
@@ -38,9 +39,12 @@ void cap_volume_gradient(const Positions& x, const RegionCap& cap, Positions& g)
 /// Moves the cap's vertices of x onto cap_volume = target with Newton steps
 /// dx_i = -w_i lambda dV/dx_i, lambda = (V - target) / sum_i w_i |dV/dx_i|^2, until
 /// |V - target| <= tolerance or max_steps steps; returns the steps taken. Nothing moves when the
-/// gradient vanishes for the movable vertices.
+/// gradient vanishes for the movable vertices. A Newton step that would move a vertex farther
+/// than max_move is shortened to max_move and ends the projection (the target is left for the
+/// next call).
 /// @param w  inverse masses of the whole mesh (#V); w = 0 holds a vertex
 int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w, double target,
-                       double tolerance, int max_steps = 4);
+                       double tolerance, int max_steps = 4,
+                       double max_move = std::numeric_limits<double>::infinity());
 
 }  // namespace shellcontract
