@@ -32,10 +32,6 @@ RegionDimple make_region_dimple(const Positions& rest, const Faces& faces,
     const double h = (at(v) - rim_centre).dot(normal);
     if (h > height) apex = v, height = h;
   }
-  double edges = 0.0;
-  for (int f : d.order)
-    for (int k = 0; k < 3; ++k) edges += (at(faces(f, (k + 1) % 3)) - at(faces(f, k))).norm();
-  d.edge_length = edges / (3.0 * static_cast<double>(d.order.size()));
   std::vector<double> distance(d.order.size());
   for (std::size_t i = 0; i < d.order.size(); ++i) {
     const int f = d.order[i];

@@ -80,28 +80,34 @@ void cap_volume_gradient(const Positions& x, const RegionCap& cap, Positions& g)
 }
 
 int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w, double target,
-                       double tolerance, int max_steps, double max_move) {
+                       double tolerance, int max_steps) {
+  return project_cap_volume_sharing(x, cap, w, {}, target, tolerance, max_steps);
+}
+
+int project_cap_volume_sharing(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w,
+                               const std::vector<char>& held, double target, double tolerance,
+                               int max_steps) {
+  auto is_held = [&](int v) {
+    return static_cast<std::size_t>(v) < held.size() && held[static_cast<std::size_t>(v)];
+  };
   Positions g;
   int steps = 0;
   for (; steps < max_steps; ++steps) {
     const double c = cap_volume(x, cap) - target;
     if (std::abs(c) <= tolerance) break;
     cap_volume_gradient(x, cap, g);
-    double denominator = 0.0;
-    for (std::size_t i = 0; i < cap.vertices.size(); ++i)
-      denominator += w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i)).squaredNorm();
+    double denominator = 0.0, movable = 0.0;
+    for (std::size_t i = 0; i < cap.vertices.size(); ++i) {
+      const double share = w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i)).squaredNorm();
+      denominator += share;
+      if (!is_held(cap.vertices[i])) movable += share;
+    }
     // No movable gradient (every vertex held, or a collapsed region): nothing can move V.
-    if (!(denominator > 0.0) || !std::isfinite(denominator)) break;
-    double lambda = c / denominator;
-    double largest = 0.0;  // the largest vertex move of this Newton step
+    if (!(movable > 0.0) || !std::isfinite(denominator)) break;
+    const double lambda = c / denominator;
     for (std::size_t i = 0; i < cap.vertices.size(); ++i)
-      largest = std::max(largest, w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i)).norm());
-    largest *= std::abs(lambda);
-    const bool limited = largest > max_move;
-    if (limited) lambda *= max_move / largest;
-    for (std::size_t i = 0; i < cap.vertices.size(); ++i)
-      x.row(cap.vertices[i]) -= lambda * w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i));
-    if (limited) return steps + 1;
+      if (!is_held(cap.vertices[i]))
+        x.row(cap.vertices[i]) -= lambda * w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i));
   }
   return steps;
 }

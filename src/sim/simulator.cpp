@@ -300,8 +300,8 @@ void Simulator::apply_region_contraction(Positions& x) {
   const double ratio = rest_outside > 0.0 ? (signed_volume(x, faces_) - caps_now) / rest_outside
                                           : signed_volume(x, faces_) / constraint_rest_volume_;
   if (!(ratio > 0.0)) return;  // a shell turned inside out has no caps to sink
-  // Vertices held by the last step's contacts stay (see apply_volume_control).
-  const Eigen::VectorXd w = free_inverse_masses(inv_mass_, held_by_contact_);
+  // Vertices held by the last step's contacts stay (see apply_volume_control) and keep their
+  // share of the correction (project_cap_volume_sharing).
   for (RegionDimple& d : region_dimples_) {
     const double wanted = dimple_rest_volume(d.whole.rest_volume, options_.region_shrink, s, ratio);
     if (!(wanted > 0.0)) continue;
@@ -310,8 +310,8 @@ void Simulator::apply_region_contraction(Positions& x) {
     const double target = -ratio * d.dimple.rest_volume;
     // One-sided: a dimple the global contraction has already sunk further is left alone.
     if (cap_volume(x, d.dimple) > target)
-      project_cap_volume(x, d.dimple, w, target, 1e-12 * d.dimple.rest_volume, 4,
-                         DIMPLE_STEP_LIMIT * d.edge_length);
+      project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
+                                 1e-12 * d.dimple.rest_volume);
   }
 }
 

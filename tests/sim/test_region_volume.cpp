@@ -131,30 +131,58 @@ TEST(RegionVolume, ProjectionReachesTheTargetAndMovesNoCentreOfMass) {
   EXPECT_EQ(x.row(cap.vertices[0]), s.m.x.row(cap.vertices[0]));
 }
 
-TEST(RegionVolume, ABoundedProjectionMovesNoVertexFartherAndGetsThereInSteps) {
-  // All but one vertex held (a dimple in contact): the free apex alone must carry the volume
-  // change, which the unbounded projection does in one jump of h; the bounded one moves it by at
-  // most max_move per call and reaches the target after enough calls.
+TEST(RegionVolume, HeldVerticesKeepTheirShareOfTheCorrection) {
+  // A pyramid whose rim the contacts hold: the apex alone would have to carry the whole volume
+  // change (project_cap_volume with w = 0 on the rim moves it from h to -h in one step). Sharing,
+  // the apex moves only as far as it would with nothing held, and V is linear in the apex height,
+  // so one step leaves exactly the held vertices' share (1 - f) of the error.
   const double h = 0.5;
   const test::TriMesh m = pyramid(h);
   const RegionCap cap = make_region_cap(m.faces, all_faces(m.faces));
-  Eigen::VectorXd w = Eigen::VectorXd::Zero(5);
-  w(4) = 1.0;  // the apex; the rim is held
-  const double target = -cap_volume(m.x, cap);  // the mirror image: the apex goes to -h
-  Positions x = m.x;
-  project_cap_volume(x, cap, w, target, 1e-14);
-  EXPECT_NEAR(x(4, 2), -h, 1e-12);
-  const double max_move = 0.1;
-  x = m.x;
-  int calls = 0;
-  for (; calls < 20 && std::abs(cap_volume(x, cap) - target) > 1e-14; ++calls) {
-    const Positions before = x;
-    project_cap_volume(x, cap, w, target, 1e-14, 4, max_move);
-    EXPECT_LE((x - before).rowwise().norm().maxCoeff(), max_move * (1.0 + 1e-12)) << "call " << calls;
-    EXPECT_EQ(x.topRows(4), m.x.topRows(4));
+  const Eigen::VectorXd w = Eigen::VectorXd::Constant(5, 1.0);
+  std::vector<char> held = {1, 1, 1, 1, 0};
+  const double v0 = cap_volume(m.x, cap), target = -v0;
+  Positions g;
+  cap_volume_gradient(m.x, cap, g);
+  const double f = g.row(4).squaredNorm() / g.rowwise().squaredNorm().sum();
+  ASSERT_GT(f, 0.0);
+  ASSERT_LT(f, 1.0);
+
+  Positions free = m.x, shared = m.x;
+  project_cap_volume(free, cap, w, target, 1e-14, 1);  // nothing held: every vertex moves
+  EXPECT_EQ(project_cap_volume_sharing(shared, cap, w, held, target, 1e-14, 1), 1);
+  EXPECT_EQ(shared.topRows(4), m.x.topRows(4));
+  EXPECT_NEAR((shared.row(4) - m.x.row(4)).norm(), (free.row(4) - m.x.row(4)).norm(), 1e-15);
+  EXPECT_NEAR(cap_volume(shared, cap) - target, (1.0 - f) * (v0 - target), 1e-14);
+
+  // Every step leaves the held share (1 - f_k) of its error, f_k from that step's gradient (the
+  // rim's rows change with the apex), so the apex never goes past its mirror height; four single
+  // steps are the four-step call.
+  Positions stepped = m.x;
+  for (int k = 0; k < 4; ++k) {
+    cap_volume_gradient(stepped, cap, g);
+    const double fk = g.row(4).squaredNorm() / g.rowwise().squaredNorm().sum();
+    const double before = cap_volume(stepped, cap) - target;
+    project_cap_volume_sharing(stepped, cap, w, held, target, 1e-14, 1);
+    EXPECT_NEAR(cap_volume(stepped, cap) - target, (1.0 - fk) * before, 1e-14) << "step " << k;
+    EXPECT_GT(stepped(4, 2), -h);
   }
-  EXPECT_NEAR(x(4, 2), -h, 1e-12);
-  EXPECT_EQ(calls, 10);  // 2h / max_move calls of one bounded step each
+  shared = m.x;
+  EXPECT_EQ(project_cap_volume_sharing(shared, cap, w, held, target, 1e-14, 4), 4);
+  EXPECT_EQ(shared, stepped);
+
+  // Nothing held: the plain projection, bit for bit (a perturbed cap, unequal masses).
+  const test::CapScene s = cap_scene(0.4, 5);
+  RegionCap c2 = make_region_cap(s.m.faces, s.region);
+  Eigen::VectorXd w2(s.m.x.rows());
+  std::mt19937 rng(3);
+  for (Eigen::Index i = 0; i < w2.size(); ++i) w2(i) = std::uniform_real_distribution<>(0.5, 2.0)(rng);
+  Positions a = s.m.x, b = s.m.x;
+  const double t2 = 0.3 * cap_volume(s.m.x, c2);
+  project_cap_volume(a, c2, w2, t2, 1e-13);
+  project_cap_volume_sharing(b, c2, w2, std::vector<char>(static_cast<std::size_t>(w2.size()), 0),
+                             t2, 1e-13);
+  EXPECT_EQ(a, b);
 }
 
 }  // namespace

@@ -41,12 +41,12 @@ inline double region_pressure(double shrink) { return shrink * FULL_REGION_PRESS
 /// Gain of the region load: under a global pressure P (-p > 0, no target volume) the default
 /// mechanism (InwardTerm::Volume) adds to each region's dimple the pressure
 /// REGION_LOAD_GAIN * S * P on the region's faces, so the regions feel (1 + 2 S) times the
-/// shell's load. The dimple alone is a shape, bounded by the region's own mirror image, while the
-/// global pressure moves the whole shell by more than that; the load makes the regions sink
-/// with the shell's contraction, and the enclosed air, whose pressure grows as the volume falls,
-/// stops it. At -p 0 there is no load and the dimple alone keeps the contraction local. Chosen by
+/// shell's load. The dimple alone is a shape, no deeper than the region's own mirror image, while
+/// the global pressure moves the whole shell by more than that; the load makes the regions sink
+/// with the shell's contraction (a load, so they creep on slowly after the shell has stopped).
+/// At -p 0 there is no load and the dimple alone keeps the contraction local. Chosen by
 /// measurement (docs/math/local-contraction.md, section 5): with it the regions of bumpy_sphere,
-/// the hand, bear, the elk and the kitten sink at least 2.5 times as far as without the
+/// the hand, bear, the elk and the kitten sink at least 2.7 times as far as without the
 /// contraction in the default run, a margin over the 2x the local contraction promises.
 inline constexpr double REGION_LOAD_GAIN = 2.0;
 

@@ -12,14 +12,6 @@
 
 namespace shellcontract {
 
-/// The most a dimple's projection moves a vertex in one step, as a fraction of the region's mean
-/// rest edge length (RegionDimple::edge_length): the dimple then reaches its target over a few
-/// steps. Without a bound, a dimple whose vertices the contacts hold all but a few moves those
-/// few as far as its whole volume change needs (bumpy_sphere's regions under the region load at
-/// S = 0.9: 3.1 bounding-box diagonals in one step, a blow-up); with it, the runs of
-/// docs/benchmarks/local-contraction.md at -p 0 sink as far as without it.
-inline constexpr double DIMPLE_STEP_LIMIT = 0.25;
-
 /// A region's faces ordered from its apex outward, with the rest cap volume of every prefix of
 /// that order, and the prefix now mirrored (the dimple).
 struct RegionDimple {
@@ -28,7 +20,6 @@ struct RegionDimple {
   std::vector<double> prefix_rest_volume;  ///< [k]: rest cap volume of the first k + 1 faces
   int size = 0;                    ///< faces in the current dimple (0: none yet)
   RegionCap dimple;                ///< cap of the first `size` faces of order, rest_volume set
-  double edge_length = 0.0;        ///< mean rest length of the region's face edges
 };
 
 /// The dimple order of a region at the rest positions: the apex is the region vertex farthest

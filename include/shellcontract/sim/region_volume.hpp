@@ -4,7 +4,6 @@
 // sim/region_dimple.hpp is such a cap). Eigen only.
 #pragma once
 
-#include <limits>
 #include <vector>
 
 #include "shellcontract/core/types.hpp"
@@ -39,12 +38,22 @@ void cap_volume_gradient(const Positions& x, const RegionCap& cap, Positions& g)
 /// Moves the cap's vertices of x onto cap_volume = target with Newton steps
 /// dx_i = -w_i lambda dV/dx_i, lambda = (V - target) / sum_i w_i |dV/dx_i|^2, until
 /// |V - target| <= tolerance or max_steps steps; returns the steps taken. Nothing moves when the
-/// gradient vanishes for the movable vertices. A Newton step that would move a vertex farther
-/// than max_move is shortened to max_move and ends the projection (the target is left for the
-/// next call).
+/// gradient vanishes for the movable vertices.
 /// @param w  inverse masses of the whole mesh (#V); w = 0 holds a vertex
 int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w, double target,
-                       double tolerance, int max_steps = 4,
-                       double max_move = std::numeric_limits<double>::infinity());
+                       double tolerance, int max_steps = 4);
+
+/// The same projection with some vertices held (held[i] != 0: in contact), where a held vertex
+/// keeps its share of the correction instead of passing it to the others: lambda is taken over
+/// every vertex with its inverse mass w_i, and only the free ones move. So no free vertex moves
+/// farther than it would with nothing held, and the target is reached in part (after max_steps
+/// steps the error is (1 - f)^max_steps of it, f = the free vertices' share of
+/// sum_i w_i |dV/dx_i|^2). Without this, a cap held at all but a few vertices moves those few as
+/// far as its whole volume change needs (docs/math/local-contraction.md, section 5).
+/// With no vertex held it is project_cap_volume, bit for bit.
+/// @param held  #V flags, or empty (nothing held)
+int project_cap_volume_sharing(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w,
+                               const std::vector<char>& held, double target, double tolerance,
+                               int max_steps = 4);
 
 }  // namespace shellcontract
