@@ -2,15 +2,18 @@
 """Measures the local contraction (issue "Local contraction", items 1-3) and writes
 docs/benchmarks/local-contraction.md.
 
-1. Locality: `run MESH -p 0 --regions R --region-shrink S` (no global pressure, 200 frames): the
+1. Locality: `run MESH -p 0 --regions R` (no global pressure, 200 frames, default strength; R:
+   auto, bumpy_sphere's bumps file, and the face lists that `shellcontract regions` writes for the
+   hand and bear with the thresholds of FACE_LISTS): the
    regions' mean inward displacement along the rest normal ("sink") against the mean displacement
    of the vertices outside the regions and their one-ring band ("rest"), both from the summary
    and as fractions of the bounding-box diagonal, and the new self-intersections (CGAL, at the end).
 2. Depth: the same on bumpy_sphere over S; "centre sink / radius" is, per region, the inward
    displacement of its vertex farthest from its rim plane over the rim's mean radius (rest), the
    smallest over the regions.
-3. With the global pressure on: default runs with `--regions auto` against `--measure-regions`
-   (the same regions measured, not contracted); 3b: the same with `--target-volume 0.9`.
+3. With the global pressure on: default runs with `--regions auto` (and camel, and the face lists of
+   section 1) against `--inward none` (the same regions measured, not contracted); 3b: the same
+   with `--target-volume 0.9`.
 4. What moves the locality of section 1: the hand (auto regions) and bear with its automatic
    regions below 5 % of the area (`--region-max-area 0.05`: the head region left out), `-p 0`, the
    default mechanism, one option changed at a time.
@@ -58,6 +61,13 @@ def run(exe, mesh, tmp, args):
     return s, read_off(out)[0]
 
 
+def ratio_text(on, off):
+    """on / off; a region that rises without the contraction (off <= 0) and sinks with it is so marked."""
+    if off > 1e-9:
+        return "%.2fx" % (on / off)
+    return "rises off, sinks on" if on > 0 else "-"
+
+
 def centre_sink_over_radius(rest, faces, end, regions):
     """Smallest, over the regions, of the apex's inward displacement over the rim's mean radius."""
     normals = np.zeros_like(rest)
@@ -81,6 +91,25 @@ def centre_sink_over_radius(rest, faces, end, regions):
         radius = np.linalg.norm(rest[rim] - c, axis=1).mean()
         worst = min(worst, -np.dot(end[apex] - rest[apex], normals[apex]) / radius)
     return worst
+
+
+# Face lists chosen with `shellcontract regions` (docs/math/local-contraction.md, "Which regions"):
+# the hand's regions grown a little, bear's without its head and tighter.
+FACE_LISTS = [("hand", ["--fit-distance", "0.03"]), ("bear", ["--max-area-fraction", "0.05", "--contrast", "2"])]
+
+
+def face_lists(exe, tmp):
+    """(name, mesh path, face-list path, label) for each FACE_LISTS entry whose mesh is present."""
+    out = []
+    for name, thresholds in FACE_LISTS:
+        path = os.path.join(ROOT, "data", "meshes", name + ".off")
+        if not os.path.exists(path):
+            continue
+        listed = os.path.join(tmp, name + "_regions.txt")
+        subprocess.run([exe, "regions", path, "-o", os.path.join(tmp, "r.ply"), "--face-list", listed] + thresholds,
+                       check=True, stdout=subprocess.DEVNULL)
+        out.append((name, path, listed, "face list (`regions %s`)" % " ".join(thresholds)))
+    return out
 
 
 SENSITIVITY = [("default", []), ("--region-shrink 0.5", ["--region-shrink", "0.5"]),
@@ -132,12 +161,15 @@ def main():
         lines += ["## 1. Locality: `-p 0 --regions R`, default strength (`--region-shrink 0.7`)", "",
                   "| mesh | regions | mechanism | sink | rest | sink / rest | V/V0 | new SI |",
                   "|---|---|---|---:|---:|---:|---:|---:|"]
-        for name, path, regions in meshes[:3]:
+        listed = face_lists(exe, tmp)
+        subjects = [(n, p, r, "file" if r != "auto" else "auto") for n, p, r in meshes[:3]]
+        subjects += [(n, p, r, label) for n, p, r, label in listed]
+        for name, path, regions, label in subjects:
             for mech in mechanisms:
                 s, _ = run(exe, path, tmp, ["-p", "0", "--regions", regions, "--inward", mech])
                 sink, rest = s["region_inward_displacement"], s["outside_region_displacement"]
                 lines.append("| %s | %s | %s | %.4f | %.4f | %.1fx | %.3f | %d |" % (
-                    name, "file" if regions != "auto" else "auto", mech, sink, rest, sink / max(rest, 1e-12),
+                    name, label, mech, sink, rest, sink / max(rest, 1e-12),
                     s["final_volume_ratio"], s.get("new_intersections", -1)))
             print(lines[-1], file=sys.stderr)
         lines += ["", "## 2. Depth: bumpy_sphere, `-p 0 --regions meshes/bumpy_sphere.bumps.txt`, over S", "",
@@ -154,29 +186,35 @@ def main():
                     mech, shrink, sink, rest, sink / max(rest, 1e-12),
                     centre_sink_over_radius(rest_x, faces, end, bumps), s.get("new_intersections", -1)))
                 print(lines[-1], file=sys.stderr)
+        # Every mesh of the table where --regions auto finds regions, camel too, and the face lists.
+        camel = os.path.join(ROOT, "data", "meshes", "camel.off")
+        pressed = meshes + ([("camel", camel, "auto")] if os.path.exists(camel) else [])
+        pressed += [(n + " (face list)", p, r) for n, p, r, _ in listed]
         lines += ["", "## 3. With the global pressure: default run, contraction on against off", "",
-                  "| mesh | regions | sink off (`--measure-regions`) | sink on, volume | ratio | sink on, force | ratio |",
+                  "`volume` is the default mechanism: each region's dimple and, under the global pressure, "
+                  "the region load 2 S P on its faces (docs/math/local-contraction.md, section 5).", "",
+                  "| mesh | regions | sink off (`--inward none`) | sink on, volume | ratio | sink on, force | ratio |",
                   "|---|---:|---:|---:|---:|---:|---:|"]
-        for name, path, regions in meshes:
+        for name, path, regions in pressed:
             off, _ = run(exe, path, tmp, ["--regions", regions, "--inward", "none"])
             row = "| %s | %d | %.4f |" % (name, off["regions"], off["region_inward_displacement"])
             for mech in mechanisms:
                 on, _ = run(exe, path, tmp, ["--regions", regions, "--inward", mech])
                 b = off["region_inward_displacement"]
                 row += " %.4f | %s |" % (on["region_inward_displacement"],
-                                        "%.2fx" % (on["region_inward_displacement"] / b) if b > 1e-9 else "-")
+                                        ratio_text(on["region_inward_displacement"], b))
             lines.append(row)
             print(row, file=sys.stderr)
         lines += ["", "## 3b. With a target volume: `--target-volume 0.9`, contraction on against off", "",
                   "| mesh | regions | sink off (`--inward none`) | sink on (volume) | ratio |",
                   "|---|---:|---:|---:|---:|"]
-        for name, path, regions in meshes:
+        for name, path, regions in pressed:
             off, _ = run(exe, path, tmp, ["--regions", regions, "--inward", "none", "--target-volume", "0.9"])
             on, _ = run(exe, path, tmp, ["--regions", regions, "--target-volume", "0.9"])
             b = off["region_inward_displacement"]
             lines.append("| %s | %d | %.4f | %.4f | %s |" % (
                 name, off["regions"], b, on["region_inward_displacement"],
-                "%.2fx" % (on["region_inward_displacement"] / b) if b > 1e-9 else "-"))
+                ratio_text(on["region_inward_displacement"], b)))
             print(lines[-1], file=sys.stderr)
         lines += sensitivity(exe, tmp)
     with open(a.out, "w") as f:

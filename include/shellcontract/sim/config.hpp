@@ -19,7 +19,8 @@ enum class BendingModel { Isometric, Dihedral, None };
 /// The local contraction's mechanism on the regions: Volume (default) sinks each region as a
 /// mirrored dimple around its apex, as large as region_shrink asks, and holds it there
 /// (region_dimple.hpp, docs/math/local-contraction.md): the region sinks a chosen amount and the
-/// rest of the shell is left alone once it is there. Force is the paper's extra pressure P_A on the region faces,
+/// rest of the shell is left alone once it is there; under a global pressure its faces also take
+/// the region load REGION_LOAD_GAIN S P (local_contraction.hpp). Force is the paper's extra pressure P_A on the region faces,
 /// f_i = -(P_A/6) sum N_j, applied in the prediction without net force or torque (math-spec
 /// 9.2 R); it keeps pushing for the whole run, so the sink creeps on and spreads to the rest.
 /// Projection is the paper's k_A inside the E_A projection (math-spec 9.3; PBD only, in XPBD it
@@ -29,9 +30,10 @@ enum class InwardTerm { Projection, Force, Volume, None };
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
 /// Volume mechanism, a region on a shell at its rest volume loses 2 * 0.7 = 1.4 times its rest cap
 /// volume, as a mirrored dimple (dimple_rest_volume). Chosen by measurement
-/// (docs/benchmarks/local-contraction.md): the smallest strength at which the regions of
-/// bumpy_sphere and bear sink at least twice as far with the contraction as without it under the
-/// default pressure.
+/// (docs/benchmarks/local-contraction.md, sections 1-2): at -p 0 it sinks bumpy_sphere's bumps
+/// 5.4 % of the bounding-box diagonal, 12.8x as far as the rest of the shell moves, and the
+/// smallest bump's centre by 1.2 times its radius; 1 adds little more depth (1.3) and less
+/// locality (12.2x).
 inline constexpr double DEFAULT_REGION_SHRINK = 0.7;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
