@@ -174,8 +174,9 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
         ++regions_without_cap_;
     }
   }
-  // Under a global pressure the regions with a dimple also take the region load (config.hpp
-  // REGION_LOAD_GAIN); at -p 0 there is no load and the dimple alone sinks them.
+  // Under a global pressure the regions with a dimple also take the region load
+  // (local_contraction.hpp, REGION_LOAD_GAIN); at -p 0 there is no load and the dimple alone
+  // sinks them.
   const bool loaded = !region_dimples_.empty() && options_.pressure > 0.0 &&
                       options_.target_volume <= 0.0;
   if ((pushed || loaded) && options_.region_shrink > 0.0) {

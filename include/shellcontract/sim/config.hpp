@@ -20,9 +20,10 @@ enum class BendingModel { Isometric, Dihedral, None };
 /// mirrored dimple around its apex, as large as region_shrink asks, and holds it there
 /// (region_dimple.hpp, docs/math/local-contraction.md): the region sinks a chosen amount and the
 /// rest of the shell is left alone once it is there; under a global pressure its faces also take
-/// the region load REGION_LOAD_GAIN S P (local_contraction.hpp). Force is the paper's extra pressure P_A on the region faces,
-/// f_i = -(P_A/6) sum N_j, applied in the prediction without net force or torque (math-spec
-/// 9.2 R); it keeps pushing for the whole run, so the sink creeps on and spreads to the rest.
+/// the region load REGION_LOAD_GAIN S P (local_contraction.hpp). Force is the paper's extra
+/// pressure P_A on the region faces, f_i = -(P_A/6) sum N_j, applied in the prediction without
+/// net force or torque (math-spec 9.2 R); it keeps pushing for the whole run, so the sink creeps
+/// on and spreads to the rest.
 /// Projection is the paper's k_A inside the E_A projection (math-spec 9.3; PBD only, in XPBD it
 /// becomes Force). None: no inward term.
 enum class InwardTerm { Projection, Force, Volume, None };
