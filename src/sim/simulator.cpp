@@ -30,7 +30,8 @@ namespace {
 constexpr double LOCKED_TARGET_EXCESS = 1e-3;
 
 /// The inverse masses with the vertices the collision response holds set to 0 (not moved by the
-/// volume constraint or the regions' dimples; see Simulator::apply_volume_control).
+/// volume constraint; see Simulator::apply_volume_control). The regions' dimples hold them too,
+/// but keep their share of the correction (project_cap_volume_sharing).
 Eigen::VectorXd free_inverse_masses(const Eigen::VectorXd& inv_mass,
                                     const std::vector<char>& held) {
   Eigen::VectorXd w = inv_mass;
