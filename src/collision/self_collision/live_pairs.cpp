@@ -74,6 +74,11 @@ void SelfCollision::Impl::collect_live() {
                           live_v_[j] = pairs_[live_[j]].v;
                       });
   });
+  set_live_units(live_count_);
+}
+
+void SelfCollision::Impl::set_live_units(std::size_t count) {
+  live_count_ = count;
   live_units_.clear();
   for (std::size_t b = 0; b < live_count_; b += COMPACT_BLOCK)
     live_units_.push_back(LiveUnit{b, std::min(COMPACT_BLOCK, live_count_ - b)});

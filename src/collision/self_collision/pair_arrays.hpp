@@ -37,14 +37,19 @@ template <class T>
 using PairArray = std::vector<T, NoZeroAllocator<T>>;
 
 /// Sizes v to n for contents the caller then writes whole: growth past the capacity takes fresh
-/// storage (a quarter above n) instead of copying elements that are about to be overwritten.
+/// storage (twice n) instead of copying elements that are about to be overwritten.
 /// The stage timers of bear x16 (docs/benchmarks/scale.md, "Sixteen cores") had the growth of
 /// these arrays serial, 8.5-10 ms per step at any thread count over the first ten frames.
+/// Twice, not a quarter more: the pairs grow as the shell contracts, and glibc serves blocks
+/// this large with a fresh mapping, whose every page faults on first write; with a quarter, the
+/// arrays were taken anew every few frames and bear x16's pair records cost about twice as much
+/// (docs/benchmarks/scale.md, "Page faults"). The reserve beyond what is written is never
+/// touched, so it is not resident.
 template <class T>
 void resize_for_rewrite(PairArray<T>& v, std::size_t n) {
   if (n > v.capacity()) {
     PairArray<T> fresh;
-    fresh.reserve(n + n / 4);
+    fresh.reserve(2 * n);
     v.swap(fresh);
   }
   v.resize(n);

@@ -226,6 +226,9 @@ struct SelfCollision::Impl {
   /// NORMAL or NEAR), in increasing order: the later passes over the pairs skip the excluded
   /// ones and the speculative broad phase's non-candidates.
   void collect_live();
+  /// Sets live_count_ to count and cuts live_[0, count) into live_units_ (collect_live's units);
+  /// live_ and live_v_ must hold the live pairs already.
+  void set_live_units(std::size_t count);
 
   /// Writes the i in [0, n) with keep(i) to out[0, count), in increasing order, in parallel
   /// (the same result for any number of threads); returns count. out keeps its capacity.
