@@ -23,7 +23,7 @@
 
 namespace shellcontract::test {
 
-using Pairs = std::vector<std::array<int, 2>>;
+using Pairs = NoZeroVector<std::array<int, 2>>;  // CandidatePairs' list type
 
 inline const std::array<BroadPhaseMethod, 4> METHODS = {BroadPhaseMethod::PrimitiveBoxes,
                                                   BroadPhaseMethod::FacePairs,

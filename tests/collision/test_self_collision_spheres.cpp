@@ -272,8 +272,9 @@ TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
     sc.resolve(x0, x, w, stats);
     const auto got = sc.candidate_pairs();
     EXPECT_TRUE(sc.live_pairs_consistent());
-    EXPECT_EQ(got.first, expected.vertex_face);
-    EXPECT_EQ(got.second, expected.edge_edge);
+    using List = std::vector<std::array<int, 2>>;  // candidate_pairs()' type
+    EXPECT_EQ(got.first, List(expected.vertex_face.begin(), expected.vertex_face.end()));
+    EXPECT_EQ(got.second, List(expected.edge_edge.begin(), expected.edge_edge.end()));
     EXPECT_EQ(stats.pairs_broad, static_cast<std::int64_t>(expected.vertex_face.size() +
                                                            expected.edge_edge.size()));
     EXPECT_EQ(stats.speculative, step == 11 ? 0 : 1);

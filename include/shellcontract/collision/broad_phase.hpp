@@ -15,6 +15,7 @@
 
 #include "shellcontract/collision/broad_phase_options.hpp"
 #include "shellcontract/collision/topology.hpp"
+#include "shellcontract/core/no_zero_allocator.hpp"
 #include "shellcontract/core/types.hpp"
 
 namespace shellcontract {
@@ -35,15 +36,15 @@ struct CandidatePairs {
   /// (vertex id, face id), the vertex not a corner of the face; unique. Sorted, except from the
   /// Grid method, whose pairs come in the order of its cells: the same order for any number of
   /// threads (sorting cost more than a tenth of a grid call).
-  std::vector<std::array<int, 2>> vertex_face;
+  NoZeroVector<std::array<int, 2>> vertex_face;
   /// (edge id a, edge id b), a < b, the edges share no vertex; unique; ordered as vertex_face.
-  std::vector<std::array<int, 2>> edge_edge;
+  NoZeroVector<std::array<int, 2>> edge_edge;
   /// Per pair of vertex_face and of edge_edge: 0 only if the two primitives' swept boxes,
   /// before inflation, are certainly more than find_candidates' `far_distance` apart on some
   /// axis (so they never come that close during the step); 1 otherwise. Only the Grid method,
   /// which has the exact boxes at hand when it emits a pair, sets 0; the others report 1.
-  std::vector<std::uint8_t> vertex_face_close;
-  std::vector<std::uint8_t> edge_edge_close;
+  NoZeroVector<std::uint8_t> vertex_face_close;
+  NoZeroVector<std::uint8_t> edge_edge_close;
   /// The broad phase's buffers, kept between calls (a steady-state call does not allocate) and
   /// the grid that query_kept_grid reads. Not part of the result; the type is complete only
   /// inside the library (src/collision/broad_phase/scratch.hpp).

@@ -62,7 +62,7 @@ void build_boxes(const Positions& x0, const Positions& x1, const CollisionTopolo
   }
 }
 
-void keys_to_pairs(std::vector<std::uint64_t>& keys, std::vector<std::array<int, 2>>& pairs) {
+void keys_to_pairs(std::vector<std::uint64_t>& keys, NoZeroVector<std::array<int, 2>>& pairs) {
   std::sort(keys.begin(), keys.end());
   keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
   pairs.resize(keys.size());

@@ -52,7 +52,7 @@ void build_boxes(const Positions& x0, const Positions& x1, const CollisionTopolo
                  double inflation, BroadPhaseScratch& s, bool need_faces, bool need_edges);
 
 /// Sorts and deduplicates packed keys, then unpacks them into pairs (deterministic output).
-void keys_to_pairs(std::vector<std::uint64_t>& keys, std::vector<std::array<int, 2>>& pairs);
+void keys_to_pairs(std::vector<std::uint64_t>& keys, NoZeroVector<std::array<int, 2>>& pairs);
 
 /// Method PrimitiveBoxes: VF by a bipartite search, EE by a complete (self) search.
 /// @return number of overlapping box pairs CGAL reported

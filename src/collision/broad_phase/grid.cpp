@@ -48,7 +48,7 @@ int bit_width(std::uint64_t v) {
 
 /// Unpacks keys (a << shift | b) << 1 | close into pairs[at..] and close[at..].
 void unpack_keys(const std::vector<std::uint64_t>& keys, int shift, std::size_t at,
-                 std::vector<std::array<int, 2>>& pairs, std::vector<std::uint8_t>& close) {
+                 NoZeroVector<std::array<int, 2>>& pairs, NoZeroVector<std::uint8_t>& close) {
   const std::uint64_t mask = (std::uint64_t{1} << shift) - 1;
   for (std::size_t i = 0; i < keys.size(); ++i) {
     const std::uint64_t k = keys[i] >> 1;
@@ -105,10 +105,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
   const std::size_t ne = static_cast<std::size_t>(topo.edges.rows());
   const std::size_t nboxes = nv + nf + ne;
-  // The output lists are cleared only where nothing is found; the output stage resizes them
-  // from the last call's sizes, so that only growth is value-initialized (clearing first made
-  // the resize zero-fill every pair: 0.3% of perf's samples of bear's P = 4 run, ~0.13 ms of the
-  // speculative task per step).
+  // The output lists are cleared only where nothing is found; the output stage sizes them with
+  // resize_for_rewrite, which writes nothing.
   auto nothing = [&](std::int64_t result) {
     out.vertex_face.clear();
     out.edge_edge.clear();
@@ -394,10 +392,14 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     vf_total += s.chunks[c].vf_keys.size();
     ee_total += s.chunks[c].ee_keys.size();
   }
-  out.vertex_face.resize(vf_total);
-  out.vertex_face_close.resize(vf_total);
-  out.edge_edge.resize(ee_total);
-  out.edge_edge_close.resize(ee_total);
+  // Sized without writing: the parallel unpack below writes every pair, and takes the page
+  // faults of fresh storage on all threads. A resize that zeroed the growth (and copied the old
+  // pairs when it reallocated) cost bear x16 4-7 ms per step on one thread, and 33-65 ms at each
+  // reallocation (docs/benchmarks/scale.md, "Page faults of the pair arrays").
+  resize_for_rewrite(out.vertex_face, vf_total);
+  resize_for_rewrite(out.vertex_face_close, vf_total);
+  resize_for_rewrite(out.edge_edge, ee_total);
+  resize_for_rewrite(out.edge_edge_close, ee_total);
   tbb::parallel_for(std::size_t{0}, GRID_CHUNKS, [&](std::size_t c) {
     unpack_keys(s.chunks[c].vf_keys, vf_shift, offset[c], out.vertex_face, out.vertex_face_close);
     unpack_keys(s.chunks[c].ee_keys, ee_shift, offset[GRID_CHUNKS + c], out.edge_edge,
