@@ -118,9 +118,11 @@ TEST(LocalContraction, TopOfRangeSinksTheBumpsDeepAndLocally) {
 /// `shellcontract run MESH -p 0 --regions F`, the way README's task "Sink chosen regions" does it.
 RunResult face_list_contraction(const std::string& name, const RegionOptions& thresholds) {
   const Mesh mesh = test::load_target_mesh(name);
-  const std::vector<int> ids = select_spherical_regions(mesh, positions_from_mesh(mesh), thresholds);
-  const std::string file =
-      (std::filesystem::temp_directory_path() / ("shellcontract_" + name + "_regions.txt")).string();
+  const std::vector<int> ids =
+      select_spherical_regions(mesh, positions_from_mesh(mesh), thresholds);
+  const std::string file = (std::filesystem::temp_directory_path() /
+                            ("shellcontract_" + name + "_regions.txt"))
+                               .string();
   write_region_file(file, ids);
   RunOptions o;
   o.sim.pressure = 0.0;
@@ -148,7 +150,8 @@ TEST(LocalContraction, FaceListsOfTheHandAndBearSinkLocally) {
   // regions grown a little (--fit-distance 0.03), bear's without its head and tighter
   // (--max-area-fraction 0.05 --contrast 2). Default strength, no global pressure.
   for (const char* name : {"hand", "bear"})
-    if (!std::filesystem::exists(test::target_mesh_path(name))) GTEST_SKIP() << name << " is absent";
+    if (!std::filesystem::exists(test::target_mesh_path(name)))
+      GTEST_SKIP() << name << " is absent";
   RegionOptions hand;
   hand.fit_distance_tolerance = 0.03;
   expect_local("hand", face_list_contraction("hand", hand));

@@ -171,12 +171,14 @@ TEST(RegionVolume, HeldVerticesKeepTheirShareOfTheCorrection) {
   EXPECT_EQ(project_cap_volume_sharing(shared, cap, w, held, target, 1e-14, 4), 4);
   EXPECT_EQ(shared, stepped);
 
-  // Nothing held: the plain projection, bit for bit (a perturbed cap, unequal masses).
+  // An all-zero held list is no held list, bit for bit (a perturbed cap, unequal masses;
+  // project_cap_volume is the call with none).
   const test::CapScene s = cap_scene(0.4, 5);
   RegionCap c2 = make_region_cap(s.m.faces, s.region);
   Eigen::VectorXd w2(s.m.x.rows());
   std::mt19937 rng(3);
-  for (Eigen::Index i = 0; i < w2.size(); ++i) w2(i) = std::uniform_real_distribution<>(0.5, 2.0)(rng);
+  for (Eigen::Index i = 0; i < w2.size(); ++i)
+    w2(i) = std::uniform_real_distribution<>(0.5, 2.0)(rng);
   Positions a = s.m.x, b = s.m.x;
   const double t2 = 0.3 * cap_volume(s.m.x, c2);
   project_cap_volume(a, c2, w2, t2, 1e-13);
