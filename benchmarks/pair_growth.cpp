@@ -6,10 +6,11 @@
 //    math-spec 10.1, before any response moves a vertex);
 //  - with no motion at all (x1 = x0): what the inflation alone gives.
 // All boxes are inflated by the collision step's own inflation, broad_phase_inflation of the
-// default CollisionOptions, in normalized units (bounding-box diagonal of the rest mesh 1).
+// default CollisionOptions (or of --delta D, the run's --delta), in normalized units
+// (bounding-box diagonal of the rest mesh 1).
 //
-// Usage: pair_growth REST START END [K ...]   (meshes in any format read_input_mesh reads;
-// START and END two consecutive frames of a run of REST, e.g. its --export-dir frames)
+// Usage: pair_growth [--delta D] REST START END [K ...]   (meshes in any format read_input_mesh
+// reads; START and END two consecutive frames of a run of REST, e.g. its --export-dir frames)
 // Prints one JSON object: faces, inflation, and pairs per face for no motion and for each K.
 #include <algorithm>
 #include <array>
@@ -50,8 +51,19 @@ std::size_t sliced_pairs(const Positions& x0, const Positions& x1, const Collisi
 }  // namespace
 
 int main(int argc, char** argv) {
+  CollisionOptions options;
+  if (argc > 2 && std::string(argv[1]) == "--delta") {
+    char* end = nullptr;
+    options.delta = std::strtod(argv[2], &end);
+    if (end == argv[2] || *end != '\0' || !(options.delta > 0.0 && options.delta <= 0.1)) {
+      std::fprintf(stderr, "pair_growth: --delta must be a number in (0, 0.1], got %s\n", argv[2]);
+      return 2;
+    }
+    argv += 2;
+    argc -= 2;
+  }
   if (argc < 4) {
-    std::fprintf(stderr, "usage: pair_growth REST START END [K ...]\n");
+    std::fprintf(stderr, "usage: pair_growth [--delta D] REST START END [K ...]\n");
     return 2;
   }
   try {
@@ -69,7 +81,7 @@ int main(int argc, char** argv) {
     const Positions x0 = positions_from_mesh(start) / diagonal;
     const Positions x1 = positions_from_mesh(end) / diagonal;
     const CollisionTopology topo = make_collision_topology(faces, static_cast<int>(x0.rows()));
-    const double inflation = broad_phase_inflation(CollisionOptions{});
+    const double inflation = broad_phase_inflation(options);
     const double nf = static_cast<double>(faces.rows());
     std::printf("{\"faces\": %ld, \"inflation\": %.6g, \"static\": %.4f",
                 static_cast<long>(faces.rows()), inflation,

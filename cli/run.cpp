@@ -111,6 +111,7 @@ JsonObject summary_json(const std::string& input, const std::string& output,
       .add("collisions", options.sim.collisions)
       .add("order_used", r.order == ConstraintOrder::Coloured ? "coloured" : "sequential")
       .add("excluded_contact_pairs", r.excluded_contact_pairs)
+      .add("contact_distance", r.contact_distance)
       .add("new_intersections", static_cast<int>(r.new_intersections))
       .add("regions", r.regions)
       .add("anisotropic_faces", r.anisotropic_faces)

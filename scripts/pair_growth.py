@@ -6,8 +6,9 @@ build/benchmarks/pair_growth the candidate pairs per face of that last step:
   - with the step's swept boxes (k = 1: what the broad phase finds);
   - as the union over k sub-intervals of the step (what a broad phase that slices each step into k
     parts would find, before any response moves a vertex);
-  - with no motion at all (the last frame against itself), with and without the inflation.
-Writes docs/benchmarks/pair-growth.md (or --out).
+  - with no motion at all (the last frame against itself), with and without the inflation;
+once under the default options and once with the contact distance (--delta) in proportion to the
+mean edge length (bear's ratio). Writes docs/benchmarks/pair-growth.md (or --out).
 
 Usage: scripts/pair_growth.py [--build build] [--frames 10] [--levels 0,1,2] [--out FILE]
 Needs: the built tool and build/benchmarks/pair_growth, data/meshes/bear.off."""
@@ -23,6 +24,55 @@ sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from scale_benchmark import read_off, subdivide, write_off  # noqa: E402
 
 SLICES = [1, 2, 4, 8]
+DEFAULT_DELTA = 1e-4  # the tool's --delta default (CollisionOptions::delta)
+
+
+def measure(tool, counter, mesh, frames, delta, tmp):
+    """Runs MESH for FRAMES frames (with --delta DELTA unless None) and counts the last step's
+    pairs per face."""
+    name = os.path.splitext(os.path.basename(mesh))[0]
+    tag = name + ("" if delta is None else f"_delta{delta:g}")
+    out_dir = os.path.join(tmp, tag)
+    os.makedirs(out_dir)
+    summary = os.path.join(tmp, tag + ".json")
+    extra = [] if delta is None else ["--delta", repr(delta)]
+    cmd = [tool, "run", mesh, "-o", os.path.join(out_dir, "f.off"), "--frames", str(frames),
+           "--order", "coloured", "--export-every", "1", "--export-dir", out_dir,
+           "--summary", summary, "-q"] + extra
+    subprocess.run(cmd, check=True)
+    # The frame numbers are zero-padded to the width of the last one.
+    kept = sorted(n for n in os.listdir(out_dir) if n.startswith("f_"))
+    last = [os.path.join(out_dir, n) for n in kept[-2:]]
+    out = subprocess.run([counter] + extra + [mesh] + last + [str(k) for k in SLICES],
+                         check=True, capture_output=True, text=True).stdout
+    counts = json.loads(out)
+    s = json.load(open(summary))
+    counts["run_mean"] = s["table2"]["pairs_after_broad_phase_per_step"] / s["faces"]
+    counts["name"] = name.replace("_", " ")
+    print(tag, counts, flush=True)
+    return counts
+
+
+def table(rows):
+    lines = [
+        "| mesh | faces | inflation | run | k = 1 | k = 2 | k = 4 | k = 8 | no motion | no motion, "
+        "no inflation |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in rows:
+        lines.append(f"| {r['name']} | {r['faces']} | {r['inflation']:g} | {r['run_mean']:.2f} | "
+                     + " | ".join(f"{r[f'k{k}']:.2f}" for k in SLICES)
+                     + f" | {r['static']:.2f} | {r['static_no_inflation']:.2f} |")
+    first, last = rows[0], rows[-1]
+    if len(rows) > 1:
+        lines += [
+            "",
+            f"{last['name']} over {first['name']}, per face: "
+            f"run: {last['run_mean'] / first['run_mean']:.2f}x, "
+            + ", ".join(f"k = {k}: {last[f'k{k}'] / first[f'k{k}']:.2f}x" for k in SLICES)
+            + f"; no motion: {last['static'] / first['static']:.2f}x.",
+        ]
+    return lines
 
 
 def main():
@@ -40,7 +90,7 @@ def main():
         if not os.path.exists(path):
             sys.exit(f"{path} not found: build the project first (scripts/build_and_test.sh)")
     levels = [int(v) for v in a.levels.split(",")]
-    rows = []
+    fixed, scaled = [], []
     with tempfile.TemporaryDirectory() as tmp:
         points, faces = read_off(os.path.join(ROOT, "data", "meshes", "bear.off"))
         for level in range(max(levels) + 1):
@@ -48,37 +98,26 @@ def main():
                 name = f"bear_x{4 ** level}"
                 mesh = os.path.join(tmp, name + ".off")
                 write_off(mesh, points, faces)
-                frames = os.path.join(tmp, name)
-                os.makedirs(frames)
-                summary = os.path.join(tmp, name + ".json")
-                cmd = [tool, "run", mesh, "-o", os.path.join(frames, "f.off"), "--frames",
-                       str(a.frames), "--order", "coloured", "--export-every", "1",
-                       "--export-dir", frames, "--summary", summary, "-q"]
-                subprocess.run(cmd, check=True)
-                # The frame numbers are zero-padded to the width of the last one.
-                kept = sorted(n for n in os.listdir(frames) if n.startswith("f_"))
-                last = [os.path.join(frames, n) for n in kept[-2:]]
-                out = subprocess.run([counter, mesh] + last + [str(k) for k in SLICES],
-                                     check=True, capture_output=True, text=True).stdout
-                counts = json.loads(out)
-                s = json.load(open(summary))
-                counts["run_mean"] = s["table2"]["pairs_after_broad_phase_per_step"] / s["faces"]
-                counts["name"] = name.replace("_", " ")
-                rows.append(counts)
-                print(counts, flush=True)
+                fixed.append(measure(tool, counter, mesh, a.frames, None, tmp))
+                # Each subdivision halves every edge: DEFAULT_DELTA / 2^level keeps bear's ratio
+                # of the contact distance to the mean edge length.
+                if level > 0:
+                    scaled.append(measure(tool, counter, mesh, a.frames,
+                                          DEFAULT_DELTA / 2 ** level, tmp))
+                else:
+                    scaled.append(fixed[-1])
             points, faces = subdivide(points, faces)
     lines = [
         "# Candidate pairs per face: bear and bear subdivided",
         "",
         f"`/usr/bin/python3 scripts/pair_growth.py --frames {a.frames} --levels {a.levels}` "
         "(writes this page). Each mesh runs "
-        f"{a.frames} frames of the default options in the coloured order (`shellcontract run MESH "
+        f"{a.frames} frames in the coloured order (`shellcontract run MESH "
         f"--frames {a.frames} --order coloured --export-every 1`); `build/benchmarks/pair_growth` "
         "then counts the candidate pairs (vertex-face and edge-edge, adjacent ones left out) "
         "of the "
         f"step from frame {a.frames - 1} to frame {a.frames}, per face, with the boxes inflated by "
-        f"the collision step's inflation ({rows[0]['inflation']:g} of the rest diagonal: "
-        "`delta + region_margin delta / 2`).",
+        "the collision step's inflation (`delta + region_margin delta / 2`, 3 delta).",
         "",
         "- **run**: the run's own mean over its steps (the summary's "
         "`pairs_after_broad_phase_per_step`);",
@@ -87,22 +126,20 @@ def main():
         "phase that sliced the step would find before any response moved a vertex;",
         "- **no motion**: the last frame against itself, with the inflation and without it.",
         "",
-        "| mesh | faces | run | k = 1 | k = 2 | k = 4 | k = 8 | no motion | no motion, no "
-        "inflation |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|",
+        f"## The default options (`--delta` {DEFAULT_DELTA:g}: a fixed share of the diagonal)",
+        "",
     ]
-    for r in rows:
-        lines.append(f"| {r['name']} | {r['faces']} | {r['run_mean']:.2f} | "
-                     + " | ".join(f"{r[f'k{k}']:.2f}" for k in SLICES)
-                     + f" | {r['static']:.2f} | {r['static_no_inflation']:.2f} |")
-    first, last = rows[0], rows[-1]
-    if len(rows) > 1:
-        lines += [
-            "",
-            f"{last['name']} over {first['name']}, per face: "
-            + ", ".join(f"k = {k}: {last[f'k{k}'] / first[f'k{k}']:.2f}x" for k in SLICES)
-            + f"; no motion: {last['static'] / first['static']:.2f}x.",
-        ]
+    lines += table(fixed)
+    lines += [
+        "",
+        "## The contact distance in proportion to the edge length",
+        "",
+        f"The same, each mesh run with `--delta` {DEFAULT_DELTA:g} / 2^level (bear x4: "
+        f"{DEFAULT_DELTA / 2:g}, bear x16: {DEFAULT_DELTA / 4:g}), which keeps bear's ratio of the "
+        "contact distance to the mean edge length (each subdivision halves every edge).",
+        "",
+    ]
+    lines += table(scaled)
     with open(a.out, "w") as f:
         f.write("\n".join(lines) + "\n")
     print(f"wrote {a.out}")

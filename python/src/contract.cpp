@@ -204,6 +204,7 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   s["collisions"] = options.sim.collisions;
   s["order_used"] = r.order == ConstraintOrder::Coloured ? "coloured" : "sequential";
   s["excluded_contact_pairs"] = r.excluded_contact_pairs;
+  s["contact_distance"] = r.contact_distance;
   s["new_intersections"] = r.new_intersections;
   s["regions"] = r.regions;
   s["anisotropic_faces"] = r.anisotropic_faces;

@@ -180,3 +180,22 @@ def test_gil_is_released_during_the_run(ico2):
         thread.join()
     assert elapsed > 0.5, "the run is too short to tell"
     assert during > 0.05 * rate * elapsed, (during, rate, elapsed)
+
+
+def test_delta_auto_and_the_contact_distance_used(ico2):
+    """--delta auto reaches the library as auto and resolves to the default on a mesh whose edges
+    are long (1/80 of ico2's mean edge is far above 1e-4); the share itself is checked in C++
+    (tests/sim/test_contact_distance.cpp)."""
+    vertices, faces = ico2
+    edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]],
+                                              faces[:, [2, 0]]]), axis=1), axis=0)
+    diagonal = np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))
+    mean_edge = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).mean()
+    assert mean_edge / diagonal / 80 > 1e-4
+    result = shellcontract.contract(vertices, faces, frames=1, delta="auto")
+    assert result.summary["options"]["delta"] == "auto"
+    assert result.summary["contact_distance"] == 1e-4
+    result = shellcontract.contract(vertices, faces, frames=1, delta=5e-5)
+    assert result.summary["contact_distance"] == 5e-5
+    result = shellcontract.contract(vertices, faces, frames=1, collisions=False)
+    assert result.summary["contact_distance"] == 0.0

@@ -242,6 +242,36 @@ OptionSpec region_option() {
   return o;
 }
 
+/// --delta: a number, or auto (the paper's delta, or 1/80 of the mean edge length where that is
+/// smaller: sim/contact_distance.hpp).
+OptionSpec delta_option() {
+  using R = RunOptions;
+  Interval range = between(0.0, 0.1, true, false);
+  range.text += " or auto";
+  OptionSpec o = number(
+      "delta", 0, "DELTA|auto",
+      "contact distance (normalized units); closer primitives are pushed apart to 2 delta; auto: "
+      "the default, or 1/80 of the mean edge length where smaller (fewer collision pairs per "
+      "face on meshes finer than the paper's)",
+      range, [](R& r) -> double& { return r.sim.collision.delta; });
+  const auto set_number = o.set;
+  o.set = [set_number](R& r, const std::string& v) {
+    if (v == "auto") {
+      r.sim.auto_delta = true;
+      r.sim.collision.delta = CollisionOptions{}.delta;
+      return;
+    }
+    set_number(r, v);
+    r.sim.auto_delta = false;
+  };
+  const auto get_number = o.get;
+  o.get = [get_number](const R& r) {
+    return r.sim.auto_delta ? std::string("auto") : get_number(r);
+  };
+  o.bad_examples.push_back("Auto");
+  return o;
+}
+
 OptionSpec fiber_option() {
   OptionSpec o;
   o.name = "fiber";
@@ -428,10 +458,7 @@ std::vector<OptionSpec> build_table() {
                     "on: continuous collision detection and response, the result never passes "
                     "through itself; off: faster",
                     [](R& r) -> bool& { return r.sim.collisions; }));
-  t.push_back(number(
-      "delta", 0, "DELTA",
-      "contact distance (normalized units); closer primitives are pushed apart to 2 delta",
-      between(0.0, 0.1, true, false), [](R& r) -> double& { return r.sim.collision.delta; }));
+  t.push_back(delta_option());
   t.push_back(integer("collision-rounds", 0, "N",
                       "detection/response rounds per step before the fail-safe", 0, 1000,
                       [](R& r) -> int& { return r.sim.collision.rounds; }));

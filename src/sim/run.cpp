@@ -232,6 +232,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   r.outside_region_displacement = sim.outside_region_displacement();
   r.degenerate_faces = rest.degenerate_faces;
   r.excluded_contact_pairs = sim.excluded_contact_pairs();
+  r.contact_distance = sim.options().collisions ? sim.options().collision.delta : 0.0;
   r.normalization_scale = sim.normalization().scale;
   r.positions = sim.positions_in_input_units();
   obs.finished(sim, r);

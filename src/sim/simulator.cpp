@@ -12,6 +12,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/sim/contact_distance.hpp"
 #include "shellcontract/sim/local_contraction.hpp"
 #include "shellcontract/sim/mass_scaling.hpp"
 #include "shellcontract/sim/region_volume.hpp"
@@ -194,8 +195,11 @@ Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(op
   }
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
-  if (options_.collisions)
+  if (options_.collisions) {
+    if (options_.auto_delta)
+      options_.collision.delta = auto_contact_distance(*mesh_, options_.collision.delta);
     collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
+  }
   if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
   v_ = Positions::Zero(x_.rows(), 3);
   rest_x_ = x_;

@@ -90,6 +90,19 @@ TEST(OptionTable, RangesFromTheIssue) {
   }
 }
 
+TEST(OptionTable, DeltaTakesAutoAndANumberEndsIt) {
+  RunOptions r;
+  set_run_option(r, "delta", "3e-5");
+  set_run_option(r, "delta", "auto");
+  EXPECT_TRUE(r.sim.auto_delta);
+  EXPECT_EQ(r.sim.collision.delta, CollisionOptions{}.delta);  // the cap is the default again
+  EXPECT_EQ(find_run_option("delta")->get(r), "auto");
+  set_run_option(r, "delta", "5e-5");
+  EXPECT_FALSE(r.sim.auto_delta);
+  EXPECT_EQ(r.sim.collision.delta, 5e-5);
+  EXPECT_EQ(find_run_option("delta")->get(r), "5e-05");
+}
+
 TEST(OptionTable, YoungAndThicknessGiveTheBendingStiffnessUnderXpbd) {
   const auto resolved = [](std::vector<std::pair<std::string, std::string>> given) {
     RunOptions r;

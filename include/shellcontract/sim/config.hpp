@@ -120,6 +120,9 @@ struct SimOptions {
   /// a result that never passes through itself (design.md).
   bool collisions = true;
   CollisionOptions collision;                    ///< delta, rounds, broad-phase method
+  /// --delta auto: the Simulator sets collision.delta to auto_contact_distance of the normalized
+  /// rest mesh, capped at the collision.delta given (sim/contact_distance.hpp).
+  bool auto_delta = false;
   /// Sets collision.speculative when the Simulator is built (the value given there is ignored).
   SpeculativeBroadPhase speculative_broad_phase = SpeculativeBroadPhase::Auto;
   ValidateMode validate = ValidateMode::Off;

@@ -58,6 +58,9 @@ struct RunResult {
   double outside_region_displacement = 0.0;  ///< Simulator::outside_region_displacement at the end
   std::size_t degenerate_faces = 0;
   std::size_t excluded_contact_pairs = 0;
+  /// The contact distance delta the run used (normalized units; --delta auto resolved for the
+  /// mesh); 0 with collisions off.
+  double contact_distance = 0.0;
   double normalization_scale = 1.0;
   /// The Gauss-Seidel order the run used (RunOptions::order resolved for the mesh).
   ConstraintOrder order = ConstraintOrder::Sequential;
