@@ -19,8 +19,8 @@ double mean_edge_length(const Mesh& mesh) {
 
 double auto_contact_distance(const Mesh& mesh, double cap) {
   const double share = AUTO_DELTA_PER_MEAN_EDGE * mean_edge_length(mesh);
-  // A mesh whose edges all have length 0 is refused before this (zero-area faces); the guard
-  // keeps a positive contact distance whatever the caller passes.
+  // A mesh without edges, or with edges of length 0 only, gives a share of 0: the cap keeps the
+  // contact distance positive (the collision step needs delta > 0).
   return share > 0.0 ? std::min(cap, share) : cap;
 }
 
