@@ -182,20 +182,42 @@ def test_gil_is_released_during_the_run(ico2):
     assert during > 0.05 * rate * elapsed, (during, rate, elapsed)
 
 
-def test_delta_auto_and_the_contact_distance_used(ico2):
-    """--delta auto reaches the library as auto and resolves to the default on a mesh whose edges
-    are long (1/80 of ico2's mean edge is far above 1e-4); the share itself is checked in C++
-    (tests/sim/test_contact_distance.cpp)."""
-    vertices, faces = ico2
+def _subdivided(vertices, faces):
+    """Every triangle split in four at its edge midpoints (flat, not projected)."""
+    e = np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]], faces[:, [2, 0]]]), axis=1)
+    unique, inverse = np.unique(e, axis=0, return_inverse=True)
+    mid = len(vertices) + np.arange(len(unique))
+    vertices = np.vstack([vertices, (vertices[unique[:, 0]] + vertices[unique[:, 1]]) / 2])
+    ab, bc, ca = mid[inverse.reshape(3, -1)]
+    a, b, c = faces.T
+    return vertices, np.vstack([np.stack(t, axis=1) for t in
+                                ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))])
+
+
+def _edge_share(vertices, faces):
+    """1/80 of the mean edge length over the bounding-box diagonal, each edge once."""
     edges = np.unique(np.sort(np.concatenate([faces[:, [0, 1]], faces[:, [1, 2]],
                                               faces[:, [2, 0]]]), axis=1), axis=0)
     diagonal = np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))
     mean_edge = np.linalg.norm(vertices[edges[:, 0]] - vertices[edges[:, 1]], axis=1).mean()
-    assert mean_edge / diagonal / 80 > 1e-4
+    return mean_edge / diagonal / 80
+
+
+def test_delta_auto_and_the_contact_distance_used(ico2):
+    """--delta auto: the default 1e-4 on ico2 (long edges), 1/80 of the mean edge on ico2
+    subdivided four times (81,920 faces); the summary reports the delta used."""
+    vertices, faces = ico2
+    assert _edge_share(vertices, faces) > 1e-4
     result = shellcontract.contract(vertices, faces, frames=1, delta="auto")
     assert result.summary["options"]["delta"] == "auto"
     assert result.summary["contact_distance"] == 1e-4
-    result = shellcontract.contract(vertices, faces, frames=1, delta=5e-5)
+    for _ in range(4):
+        vertices, faces = _subdivided(vertices, faces)
+    share = _edge_share(vertices, faces)
+    assert share < 1e-4
+    result = shellcontract.contract(vertices, faces, frames=0, delta="auto")
+    assert result.summary["contact_distance"] == pytest.approx(share, rel=1e-12)
+    result = shellcontract.contract(vertices, faces, frames=0, delta=5e-5)
     assert result.summary["contact_distance"] == 5e-5
-    result = shellcontract.contract(vertices, faces, frames=1, collisions=False)
+    result = shellcontract.contract(vertices, faces, frames=0, collisions=False)
     assert result.summary["contact_distance"] == 0.0

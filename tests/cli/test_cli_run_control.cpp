@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "support/cli_runner.hpp"
@@ -83,6 +84,27 @@ TEST_F(CliRunControl, PeakMemoryIsTheToolsOwnNotItsParents) {
   EXPECT_GT(mb, 0.0);
   EXPECT_LT(mb, 200.0) << "the caller held " << (held >> 20) << " MB; ballast "
                        << static_cast<int>(ballast[held / 2]);
+}
+
+TEST_F(CliRunControl, TheSummaryNamesTheContactDistanceUsed) {
+  // --delta auto keeps the default on ico2, whose edges are long (the share of the edge is
+  // checked in tests/sim/test_contact_distance.cpp); a number is used as given; no collisions,
+  // no contact distance.
+  const auto contact_distance = [&](std::vector<std::string> options) {
+    std::vector<std::string> args = {"run", mesh("ico2.off"), "-o", out("o.off"), "--frames", "1",
+                                     "--summary", out("s.json"), "-q"};
+    args.insert(args.end(), options.begin(), options.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const std::string s = read(out("s.json"));
+    const std::size_t at = s.find("\"contact_distance\": ");
+    EXPECT_NE(at, std::string::npos) << s;
+    return std::make_pair(at == std::string::npos ? -1.0 : std::stod(s.substr(at + 20)),
+                          s.find("\"delta\": \"auto\"") != std::string::npos);
+  };
+  EXPECT_EQ(contact_distance({"--delta", "auto"}), std::make_pair(1e-4, true));
+  EXPECT_EQ(contact_distance({"--delta", "5e-5"}), std::make_pair(5e-5, false));
+  EXPECT_EQ(contact_distance({"--collisions", "off"}), std::make_pair(0.0, false));
 }
 
 TEST_F(CliRunControl, AStalledTargetExitsWith5AndWritesTheResult) {

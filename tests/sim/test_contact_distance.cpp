@@ -71,6 +71,10 @@ TEST(ContactDistance, TheSimulatorResolvesAutoOnTheNormalizedMesh) {
   o.auto_delta = true;
   o.collision.delta = 1e-4;
   EXPECT_EQ(Simulator(to_surface_mesh(sphere), o).options().collision.delta, 1e-4);
+  // Without collisions there is no contact distance to resolve: the options stay as given.
+  o.collision.delta = 0.05;
+  o.collisions = false;
+  EXPECT_EQ(Simulator(to_surface_mesh(sphere), o).options().collision.delta, 0.05);
 }
 
 TEST(ContactDistance, TheRunReportsTheDeltaItUsed) {

@@ -11,7 +11,7 @@ namespace shellcontract {
 /// at the paper's delta. A contact distance that is a fixed share of the diagonal is a growing
 /// share of a finer mesh's edges: each face has more neighbours within it, and the broad phase's
 /// candidate pairs per face grow with the resolution (bear subdivided twice, at rest: 4.3x bear's
-/// per face under delta 1e-4, 1.05x under delta 2.5e-5; pair-growth.md).
+/// per face under delta 1e-4, 1.05x under delta 2.5e-5, bear's own ratio; pair-growth.md).
 inline constexpr double AUTO_DELTA_PER_MEAN_EDGE = 1.0 / 80.0;
 
 /// Mean length of the mesh's edges (each edge once), in the mesh's units; 0 for a mesh without

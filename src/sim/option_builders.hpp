@@ -1,0 +1,203 @@
+// The entry builders of the run-option table (src/sim/option_table.cpp): parsing with ranges
+// and error messages that name the option, and one builder per kind of value. Private to the
+// library (included as "sim/option_builders.hpp").
+#pragma once
+
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/option_table.hpp"
+
+namespace shellcontract::option_builders {
+
+inline constexpr double INF = std::numeric_limits<double>::infinity();
+
+[[noreturn]] inline void bad(const std::string& name, const std::string& value,
+                             const std::string& range) {
+  throw UsageError("--" + name + ": '" + value + "' is not " + range);
+}
+
+/// A number and its accepted interval; open ends are exclusive.
+struct Interval {
+  double lo = -INF, hi = INF;
+  bool lo_open = false, hi_open = false;
+  std::string text;  ///< how --help and the error say it, e.g. "a number in (0, 1]"
+  bool contains(double x) const {
+    return std::isfinite(x) && (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+};
+
+inline Interval positive() { return {0.0, INF, true, false, "a finite number > 0"}; }
+inline Interval non_negative() { return {0.0, INF, false, false, "a finite number >= 0"}; }
+inline Interval between(double lo, double hi, bool lo_open, bool hi_open) {
+  std::ostringstream t;
+  t << "a number in " << (lo_open ? '(' : '[') << shortest_text(lo) << ", " << shortest_text(hi)
+    << (hi_open ? ')' : ']');
+  return {lo, hi, lo_open, hi_open, t.str()};
+}
+
+inline double parse_number(const std::string& name, const std::string& value,
+                           const Interval& range) {
+  const char* begin = value.c_str();
+  char* end = nullptr;
+  const double x = std::strtod(begin, &end);
+  if (value.empty() || end != begin + value.size() || !range.contains(x))
+    bad(name, value, range.text);
+  return x;
+}
+
+inline int parse_integer(const std::string& name, const std::string& value, long lo, long hi) {
+  const std::string range =
+      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  long x = 0;
+  const auto r = std::from_chars(value.data(), value.data() + value.size(), x);
+  if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size() || x < lo ||
+      x > hi)
+    bad(name, value, range);
+  return static_cast<int>(x);
+}
+
+inline bool parse_on_off(const std::string& name, const std::string& value) {
+  if (value == "on" || value == "true" || value == "1") return true;
+  if (value == "off" || value == "false" || value == "0") return false;
+  bad(name, value, "on or off");
+}
+
+inline std::string on_off(bool b) { return b ? "on" : "off"; }
+
+/// A choice between names; each table entry maps a name to a value of T.
+template <class T>
+using Choices = std::vector<std::pair<std::string, T>>;
+
+template <class T>
+std::string choices_text(const Choices<T>& choices) {
+  std::string s;
+  for (std::size_t i = 0; i < choices.size(); ++i) s += (i ? " | " : "") + choices[i].first;
+  return s;
+}
+
+template <class T>
+T parse_choice(const std::string& name, const std::string& value, const Choices<T>& choices) {
+  for (const auto& [n, v] : choices)
+    if (n == value) return v;
+  bad(name, value, "one of " + choices_text(choices));
+}
+
+template <class T>
+std::string choice_name(const T& v, const Choices<T>& choices) {
+  for (const auto& [n, c] : choices)
+    if (c == v) return n;
+  return "?";
+}
+
+// ------------------------------------------------------------------------------- entry builders
+
+/// A double member reached by `field`.
+template <class Field>
+OptionSpec number(std::string name, char short_name, std::string value_name, std::string help,
+                  Interval range, Field field, std::vector<std::string> bad_examples = {}) {
+  OptionSpec o;
+  o.name = name;
+  o.short_name = short_name;
+  o.value_name = std::move(value_name);
+  o.help = std::move(help) + "; " + range.text;
+  o.set = [name, range, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_number(name, v, range);
+  };
+  o.get = [field](const RunOptions& r) { return shortest_text(field(const_cast<RunOptions&>(r))); };
+  o.bad_examples = {"nan", "inf", "-inf", "x"};
+  for (double edge : {range.lo, range.hi})
+    if (std::isfinite(edge)) {
+      const double outside = edge == range.lo ? (range.lo_open ? edge : edge - 1.0)
+                                              : (range.hi_open ? edge : edge + 1.0);
+      o.bad_examples.push_back(shortest_text(outside));
+    }
+  for (std::string& b : bad_examples) o.bad_examples.push_back(std::move(b));
+  return o;
+}
+
+template <class Field>
+OptionSpec integer(std::string name, char short_name, std::string value_name, std::string help,
+                   long lo, long hi, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.short_name = short_name;
+  o.value_name = std::move(value_name);
+  o.help =
+      std::move(help) + "; an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  o.set = [name, lo, hi, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_integer(name, v, lo, hi);
+  };
+  o.get = [field](const RunOptions& r) {
+    return std::to_string(field(const_cast<RunOptions&>(r)));
+  };
+  o.bad_examples = {std::to_string(lo - 1), std::to_string(hi + 1), "1.5", "x", ""};
+  return o;
+}
+
+template <class T, class Field>
+OptionSpec choice(std::string name, std::string help, Choices<T> choices, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.value_name = "NAME";
+  o.help = std::move(help) + "; " + choices_text(choices);
+  o.set = [name, choices, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_choice(name, v, choices);
+  };
+  o.get = [choices, field](const RunOptions& r) {
+    return choice_name(field(const_cast<RunOptions&>(r)), choices);
+  };
+  o.bad_examples = {"", "nonsense"};
+  return o;
+}
+
+template <class Field>
+OptionSpec on_off_option(std::string name, std::string help, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.value_name = "on|off";
+  o.help = std::move(help);
+  o.set = [name, field](RunOptions& r, const std::string& v) { field(r) = parse_on_off(name, v); };
+  o.get = [field](const RunOptions& r) { return on_off(field(const_cast<RunOptions&>(r))); };
+  o.bad_examples = {"", "maybe"};
+  return o;
+}
+
+template <class Field>
+OptionSpec flag(std::string name, std::string help, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.help = std::move(help);
+  o.is_switch = true;
+  o.set = [name, field](RunOptions& r, const std::string& v) { field(r) = parse_on_off(name, v); };
+  o.get = [field](const RunOptions& r) { return on_off(field(const_cast<RunOptions&>(r))); };
+  o.bad_examples = {"maybe"};
+  return o;
+}
+
+template <class Field>
+OptionSpec optional_number(std::string name, std::string value_name, std::string help,
+                           Interval range, Field field) {
+  OptionSpec o;
+  o.name = name;
+  o.value_name = std::move(value_name);
+  o.help = std::move(help) + "; " + range.text;
+  o.set = [name, range, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_number(name, v, range);
+  };
+  o.get = [field](const RunOptions& r) {
+    const auto& f = field(const_cast<RunOptions&>(r));
+    return f ? shortest_text(*f) : std::string();
+  };
+  o.bad_examples = {"nan", "inf", "0", "-1", "x"};
+  return o;
+}
+
+}  // namespace shellcontract::option_builders
