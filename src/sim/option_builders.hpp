@@ -170,14 +170,12 @@ OptionSpec on_off_option(std::string name, std::string help, Field field) {
   return o;
 }
 
+/// An on|off option given as a bare switch (on when present).
 template <class Field>
 OptionSpec flag(std::string name, std::string help, Field field) {
-  OptionSpec o;
-  o.name = name;
-  o.help = std::move(help);
+  OptionSpec o = on_off_option(std::move(name), std::move(help), field);
+  o.value_name.clear();
   o.is_switch = true;
-  o.set = [name, field](RunOptions& r, const std::string& v) { field(r) = parse_on_off(name, v); };
-  o.get = [field](const RunOptions& r) { return on_off(field(const_cast<RunOptions&>(r))); };
   o.bad_examples = {"maybe"};
   return o;
 }

@@ -22,16 +22,21 @@
 #include <utility>
 #include <vector>
 
-#include "collision/self_collision/pair_arrays.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
 #include "shellcontract/collision/ccd.hpp"
 #include "shellcontract/collision/contact.hpp"
 #include "shellcontract/collision/cull_batch.hpp"
 #include "shellcontract/collision/self_collision.hpp"
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/core/no_zero_allocator.hpp"
 #include "shellcontract/core/stage_timer.hpp"
 
 namespace shellcontract {
+
+/// A per-pair array of the collision step (its records and flags, the live list and the tests):
+/// every broad phase sizes it with resize_for_rewrite and then rewrites it whole, in parallel.
+template <class T>
+using PairArray = NoZeroVector<T>;
 
 struct SelfCollision::Impl {
   Impl(const Faces& faces, const Positions& rest, const CollisionOptions& options);
