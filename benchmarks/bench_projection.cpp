@@ -164,9 +164,10 @@ void solver_sweep(benchmark::State& state, const ConstraintSet& set, int iterati
     solver->solve(x, sc.w);
     benchmark::ClobberMemory();
   }
-  const std::size_t count = set.membranes.size() + set.isometric_hinges.size();
+  const std::size_t count =
+      set.membranes.size() + set.isometric_hinges.size() + set.dihedral_hinges.size();
   const ColourCounts colours = solver->colour_counts();
-  state.counters["colours"] = colours.membrane + colours.isometric;
+  state.counters["colours"] = colours.membrane + colours.isometric + colours.dihedral;
   state.counters["per_projection"] = benchmark::Counter(
       static_cast<double>(count * iterations),
       benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
@@ -181,6 +182,14 @@ void BM_MembraneStvkSolverSweep(benchmark::State& state) {
 void BM_IsometricBendingSolverSweep(benchmark::State& state) {
   ConstraintSet set;
   set.isometric_hinges = scene().membranes_and_isometric.isometric_hinges;
+  solver_sweep(state, set);
+}
+
+/// Dihedral hinges (the default bending): in the Coloured order by blocks of hinges, whose
+/// colours are counted.
+void BM_DihedralBendingSolverSweep(benchmark::State& state) {
+  ConstraintSet set;
+  set.dihedral_hinges = scene().dihedral.dihedral_hinges;
   solver_sweep(state, set);
 }
 
@@ -201,6 +210,8 @@ BENCHMARK(BM_IsometricBendingPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched
 BENCHMARK(BM_MembraneStvkSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
     ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IsometricBendingSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
+    ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DihedralBendingSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
     ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_SolverStep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
     ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);
