@@ -185,8 +185,8 @@ void BM_IsometricBendingSolverSweep(benchmark::State& state) {
   solver_sweep(state, set);
 }
 
-/// Dihedral hinges (the default bending): in the Coloured order by blocks of hinges, whose
-/// colours are counted.
+/// Dihedral hinges (the default bending, per-constraint kernels on x): docs/benchmarks/scale.md,
+/// "The whole run, and the solve in the coloured order".
 void BM_DihedralBendingSolverSweep(benchmark::State& state) {
   ConstraintSet set;
   set.dihedral_hinges = scene().dihedral.dihedral_hinges;
