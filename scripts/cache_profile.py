@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
-"""Instructions and simulated cache misses per face and step, bear against bear subdivided (issue
-"Large meshes and many cores", its linear-cost point: where does the step's cost per face grow?).
+"""Instructions, simulated cache misses and mispredicted branches per face and step, bear against
+bear subdivided (issue "Large meshes and many cores", its linear-cost point: where does the step's
+cost per face grow?).
 
 Timings on a shared VM vary by up to 40 % between runs; valgrind's cachegrind counts the
-instructions each function executes and simulates a two-level data cache. From one run of the same
-binary to the next the instruction counts repeat to within 0.01 %, the misses to within a percent or
-two (the memory layout changes). Each mesh (scale_benchmark.py's, made deterministically from
-data/meshes/bear.off) runs `shellcontract run MESH --frames N --threads 1 --order coloured` and
-again with --frames 0; the difference, divided by the faces and the N steps, is what one step costs
-per face. Writes a markdown page (docs/benchmarks/cache-profile.md unless --out) with the totals,
-the solve's and the collision step's functions grouped by name, and the largest functions.
+instructions each function executes and simulates a two-level data cache and a branch predictor.
+From one run of the same binary to the next the instruction counts repeat to within 0.01 %, the
+misses to within a percent or two (the memory layout changes). Each mesh (scale_benchmark.py's, made
+deterministically from data/meshes/bear.off) runs `shellcontract run MESH --frames N --threads 1
+--order coloured` and again with --frames 0; the difference, divided by the faces and the N steps,
+is what one step costs per face. Writes a markdown page (docs/benchmarks/cache-profile.md unless
+--out) with the totals, the solve's and the collision step's functions grouped by name, and the
+largest functions.
 
 What cachegrind does not see: valgrind hides AVX-512 from the program, so the broad phase's cell
 loop runs its portable version here (the tool takes the AVX-512 one where the CPU has it); the
@@ -35,7 +37,9 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
 from scale_benchmark import read_off, subdivide, write_off  # noqa: E402
 
-EVENTS = ["Ir", "D1mr", "DLmr", "D1mw", "DLmw"]
+# The events the page uses; an event missing from a file (a run without the branch simulation)
+# counts 0.
+EVENTS = ["Ir", "D1mr", "DLmr", "D1mw", "DLmw", "Bcm", "Bim"]
 
 # Functions grouped by a pattern of their demangled name (first match wins); what matches none is
 # "other". The largest functions are listed by name as well, so a group never hides one.
@@ -69,15 +73,16 @@ def load(path):
                 values = line.split()[1:]
                 row = counts[fn]
                 for i, name in enumerate(EVENTS):
-                    at = events.index(name)
+                    at = events.index(name) if name in events else len(values)
                     if at < len(values):
                         row[i] += int(values[at])
     return counts
 
 
 def cachegrind(tool, mesh, frames, extra, l1, ll, out):
-    cmd = ["valgrind", "--tool=cachegrind", "--cache-sim=yes", f"--I1={l1},8,64",
-           f"--D1={l1},8,64", f"--LL={ll},16,64", f"--cachegrind-out-file={out}", tool, "run",
+    cmd = ["valgrind", "--tool=cachegrind", "--cache-sim=yes", "--branch-sim=yes",
+           f"--I1={l1},8,64", f"--D1={l1},8,64", f"--LL={ll},16,64",
+           f"--cachegrind-out-file={out}", tool, "run",
            mesh, "-o", out + ".off", "--frames", str(frames), "--threads", "1", "--order",
            "coloured", "-q"] + extra
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -171,36 +176,46 @@ def write_page(a, tool, levels, meshes, rows):
     base, names = levels[0], {lv: f"bear x{4 ** lv}" if lv else "bear" for lv in levels}
     ir, d1, ll = EVENTS.index("Ir"), EVENTS.index("D1mr"), EVENTS.index("DLmr")
     d1w, llw = EVENTS.index("D1mw"), EVENTS.index("DLmw")
-    lines = [f"# Instructions and cache misses per face and step: {', '.join(names.values())}", "",
+
+    def mispredicts(v):
+        return v[EVENTS.index("Bcm")] + v[EVENTS.index("Bim")]
+    lines = [f"# Instructions, cache misses and mispredicted branches per face and step: "
+             f"{', '.join(names.values())}", "",
              f"`/usr/bin/python3 scripts/cache_profile.py --frames {a.frames} --levels {a.levels}"
              + (f' --extra "{a.extra}"' if a.extra else "") + f" --ll {a.ll}` (writes this page; "
              f"valgrind's cachegrind, one thread, coloured order; the run of `--frames "
              f"{a.frames}` less the run of `--frames 0`, per face and step). Simulated caches: "
              f"L1 {a.l1 // 1024} KB 8-way, last level {a.ll // 1024} KB 16-way, 64-byte lines, "
-             "no prefetcher. From one run of the same build to the next the instruction counts "
-             "repeat to within 0.01 %, the misses to within a percent or two; they are counts, "
-             "not time. Under valgrind the cell loop runs its portable "
+             "no prefetcher; branches through cachegrind's simulated predictor (conditional "
+             "and indirect, mispredictions counted). From one run of the same build to the next "
+             "the instruction counts repeat to within 0.01 %, the misses to within a percent or "
+             "two; they are counts, not time. Under valgrind the cell loop runs its portable "
              "version, not the AVX-512 one.", ""]
     lines += ["## The whole step", "",
               "| mesh | faces | instructions | L1 read misses | last-level read misses | "
-              "L1 write misses | last-level write misses |", "|---|---:|---:|---:|---:|---:|---:|"]
+              "L1 write misses | last-level write misses | mispredicted branches |",
+              "|---|---:|---:|---:|---:|---:|---:|---:|"]
     tot = {lv: [sum(v[i] for v in rows[lv].values()) for i in range(len(EVENTS))]
            for lv in levels}
     for lv in levels:
         t = tot[lv]
         lines.append(f"| {names[lv]} | {meshes[lv][1]} | {t[ir]:.0f} | {t[d1]:.1f} | {t[ll]:.1f} "
-                     f"| {t[d1w]:.1f} | {t[llw]:.1f} |")
+                     f"| {t[d1w]:.1f} | {t[llw]:.1f} | {mispredicts(t):.2f} |")
     for lv in levels[1:]:
         t, b = tot[lv], tot[base]
         lines.append(f"| {names[lv]} / {names[base]} | | {ratio(t[ir], b[ir])} | "
                      f"{ratio(t[d1], b[d1])} | {ratio(t[ll], b[ll])} | {ratio(t[d1w], b[d1w])} | "
-                     f"{ratio(t[llw], b[llw])} |")
+                     f"{ratio(t[llw], b[llw])} | {ratio(mispredicts(t), mispredicts(b))} |")
     lines += ["", "## By part of the step (functions grouped by name)", "",
-              "Per face and step: instructions, and last-level read misses; each with the ratio "
-              f"to {names[base]}'s.", ""]
-    head = "| part | " + " | ".join(f"instr., {names[lv]}" for lv in levels)
-    head += " | " + " | ".join(f"LL misses, {names[lv]}" for lv in levels) + " |"
-    lines += [head, "|---|" + "---:|" * (2 * len(levels))]
+              "Per face and step: instructions, last-level read misses and mispredicted branches; "
+              f"each with the ratio to {names[base]}'s. Each count is the difference of two runs, "
+              "so a part whose work the run of 0 frames also does (reading, preparing) can come "
+              "out a little below zero.", ""]
+    measures = [("instr.", lambda v: v[ir], "{:.0f}"), ("LL misses", lambda v: v[ll], "{:.2f}"),
+                ("mispredicts", mispredicts, "{:.2f}")]
+    head = "| part | " + " | ".join(f"{label}, {names[lv]}" for label, _, _ in measures
+                                    for lv in levels) + " |"
+    lines += [head, "|---|" + "---:|" * (len(measures) * len(levels))]
     groups = {lv: collections.defaultdict(lambda: [0.0] * len(EVENTS)) for lv in levels}
     for lv in levels:
         for fn, v in rows[lv].items():
@@ -209,11 +224,10 @@ def write_page(a, tool, levels, meshes, rows):
                 g[i] += v[i]
     for name in [g for g, _ in GROUPS] + ["other"]:
         cells = []
-        for i in (ir, ll):
+        for _, value, fmt in measures:
             for lv in levels:
-                x, b = groups[lv][name][i], groups[base][name][i]
-                fmt = f"{x:.0f}" if i == ir else f"{x:.2f}"
-                cells.append(fmt if lv == base else f"{fmt} ({ratio(x, b)})")
+                x, b = value(groups[lv][name]), value(groups[base][name])
+                cells.append(fmt.format(x) if lv == base else f"{fmt.format(x)} ({ratio(x, b)})")
         lines.append(f"| {name} | " + " | ".join(cells) + " |")
     last = levels[-1]
     lines += ["", f"## The largest functions of {names[last]}", "",
