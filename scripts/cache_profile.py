@@ -5,13 +5,13 @@ cost per face grow?).
 
 Timings on a shared VM vary by up to 40 % between runs; valgrind's cachegrind counts the
 instructions each function executes and simulates a two-level data cache and a branch predictor.
-From one run of the same binary to the next the instruction counts repeat to within 0.01 %, the
-misses to within a percent or two (the memory layout changes). Each mesh (scale_benchmark.py's, made
-deterministically from data/meshes/bear.off) runs `shellcontract run MESH --frames N --threads 1
---order coloured` and again with --frames 0; the difference, divided by the faces and the N steps,
-is what one step costs per face. Writes a markdown page (docs/benchmarks/cache-profile.md unless
---out) with the totals, the solve's and the collision step's functions grouped by name, and the
-largest functions.
+From one run of the same binary to the next the instruction counts repeat to within a few hundredths
+of a percent, the misses to within a percent or two (the memory layout changes). Each mesh
+(scale_benchmark.py's, made deterministically from data/meshes/bear.off) runs `shellcontract run
+MESH --frames N --threads 1 --order coloured` and again with --frames 0; the difference, divided by
+the faces and the N steps, is what one step costs per face. Writes a markdown page
+(docs/benchmarks/cache-profile.md unless --out) with the totals, the solve's and the collision
+step's functions grouped by name, and the largest functions.
 
 What cachegrind does not see: valgrind hides AVX-512 from the program, so the broad phase's cell
 loop runs its portable version here (the tool takes the AVX-512 one where the CPU has it); the
@@ -143,16 +143,22 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmarks", "cache-profile.md"))
     a = ap.parse_args()
     tool = a.tool or os.path.join(a.build, "shellcontract")
-    levels = [int(x) for x in a.levels.split(",")]
-    if a.frames < 1 or len(levels) < 2:
-        sys.exit("need --frames >= 1 and at least two levels")
+    try:
+        levels = [int(x) for x in a.levels.split(",")]
+    except ValueError:
+        sys.exit(f"cache_profile: --levels {a.levels!r} is not a list of integers like 0,2")
+    if a.frames < 1 or len(levels) < 2 or min(levels) < 0:
+        sys.exit("cache_profile: need --frames >= 1 and at least two levels >= 0")
+    bear = os.path.join(ROOT, "data", "meshes", "bear.off")
+    if not os.path.exists(bear):
+        sys.exit(f"cache_profile: {bear} is missing (scripts/fetch_paper_meshes.sh)")
     extra = shlex.split(a.extra)
     if shutil.which("valgrind") is None:
         sys.exit("cache_profile: valgrind not found (Debian: apt-get install valgrind)")
     if not os.access(tool, os.X_OK):
         sys.exit(f"cache_profile: no tool at {tool} (build it first, or give --tool)")
     with tempfile.TemporaryDirectory() as tmp:
-        points, faces = read_off(os.path.join(ROOT, "data", "meshes", "bear.off"))
+        points, faces = read_off(bear)
         meshes = {}
         for level in range(max(levels) + 1):
             if level in levels:
@@ -169,10 +175,10 @@ def main():
             counts = {job: f.result() for job, f in futures.items()}
     rows = {lv: per_face_step(counts[(lv, a.frames)], counts[(lv, 0)], meshes[lv][1], a.frames)
             for lv in levels}
-    write_page(a, tool, levels, meshes, rows)
+    write_page(a, levels, meshes, rows)
 
 
-def write_page(a, tool, levels, meshes, rows):
+def write_page(a, levels, meshes, rows):
     base, names = levels[0], {lv: f"bear x{4 ** lv}" if lv else "bear" for lv in levels}
     ir, d1, ll = EVENTS.index("Ir"), EVENTS.index("D1mr"), EVENTS.index("DLmr")
     d1w, llw = EVENTS.index("D1mw"), EVENTS.index("DLmw")
@@ -182,15 +188,17 @@ def write_page(a, tool, levels, meshes, rows):
     lines = [f"# Instructions, cache misses and mispredicted branches per face and step: "
              f"{', '.join(names.values())}", "",
              f"`/usr/bin/python3 scripts/cache_profile.py --frames {a.frames} --levels {a.levels}"
-             + (f' --extra "{a.extra}"' if a.extra else "") + f" --ll {a.ll}` (writes this page; "
+             + (f' --extra "{a.extra}"' if a.extra else "")
+             + (f" --tool {a.tool}" if a.tool else "")
+             + (f" --l1 {a.l1}" if a.l1 != 32768 else "") + f" --ll {a.ll}` (writes this page; "
              f"valgrind's cachegrind, one thread, coloured order; the run of `--frames "
              f"{a.frames}` less the run of `--frames 0`, per face and step). Simulated caches: "
              f"L1 {a.l1 // 1024} KB 8-way, last level {a.ll // 1024} KB 16-way, 64-byte lines, "
              "no prefetcher; branches through cachegrind's simulated predictor (conditional "
              "and indirect, mispredictions counted). From one run of the same build to the next "
-             "the instruction counts repeat to within 0.01 %, the misses to within a percent or "
-             "two; they are counts, not time. Under valgrind the cell loop runs its portable "
-             "version, not the AVX-512 one.", ""]
+             "the instruction counts repeat to within a few hundredths of a percent, the misses "
+             "to within a percent or two; they are counts, not time. Under valgrind the cell loop "
+             "runs its portable version, not the AVX-512 one.", ""]
     lines += ["## The whole step", "",
               "| mesh | faces | instructions | L1 read misses | last-level read misses | "
               "L1 write misses | last-level write misses | mispredicted branches |",
