@@ -70,6 +70,8 @@ def load(path):
             elif line.startswith("fn="):
                 fn = line[3:].strip()
             elif fn and line[:1].isdigit():
+                if events is None:
+                    sys.exit(f"cache_profile: {path} has counts before its events line")
                 values = line.split()[1:]
                 row = counts[fn]
                 for i, name in enumerate(EVENTS):
@@ -82,9 +84,8 @@ def load(path):
 def cachegrind(tool, mesh, frames, extra, l1, ll, out):
     cmd = ["valgrind", "--tool=cachegrind", "--cache-sim=yes", "--branch-sim=yes",
            f"--I1={l1},8,64", f"--D1={l1},8,64", f"--LL={ll},16,64",
-           f"--cachegrind-out-file={out}", tool, "run",
-           mesh, "-o", out + ".off", "--frames", str(frames), "--threads", "1", "--order",
-           "coloured", "-q"] + extra
+           f"--cachegrind-out-file={out}", tool, "run", mesh, "-o", out + ".off", "--frames",
+           str(frames), "--threads", "1", "--order", "coloured", "-q"] + extra
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:
         sys.exit(f"{' '.join(cmd)} failed:\n{p.stdout}{p.stderr}")
@@ -92,6 +93,7 @@ def cachegrind(tool, mesh, frames, extra, l1, ll, out):
 
 
 def per_face_step(run, setup, faces, steps):
+    """Each function's counts of the run less the set-up run's, per face and step."""
     out = {}
     for fn in set(run) | set(setup):
         a, b = run.get(fn, [0] * len(EVENTS)), setup.get(fn, [0] * len(EVENTS))
@@ -100,6 +102,7 @@ def per_face_step(run, setup, faces, steps):
 
 
 def group_of(fn):
+    """The part of the step a function belongs to (GROUPS, first match), or "other"."""
     for name, pattern in GROUPS:
         if re.search(pattern, fn):
             return name
