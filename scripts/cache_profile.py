@@ -222,7 +222,8 @@ def write_page(a, levels, meshes, rows):
               f"each with the ratio to {names[base]}'s. Each count is the difference of two runs, "
               "so a part whose work the run of 0 frames also does (reading, preparing) can come "
               "out a little below zero.", ""]
-    measures = [("instr.", lambda v: v[ir], "{:.0f}"), ("LL misses", lambda v: v[ll], "{:.2f}"),
+    measures = [("instr.", lambda v: v[ir], "{:.0f}"),
+                ("LL read misses", lambda v: v[ll], "{:.2f}"),
                 ("mispredicts", mispredicts, "{:.2f}")]
     head = "| part | " + " | ".join(f"{label}, {names[lv]}" for label, _, _ in measures
                                     for lv in levels) + " |"
@@ -244,8 +245,8 @@ def write_page(a, levels, meshes, rows):
     lines += ["", f"## The largest functions of {names[last]}", "",
               f"By instructions per face and step on {names[last]}.", "",
               "| function | part | " + " | ".join(f"instr., {names[lv]}" for lv in levels)
-              + " | " + " | ".join(f"L1 misses, {names[lv]}" for lv in levels) + " | "
-              + " | ".join(f"LL misses, {names[lv]}" for lv in levels) + " |",
+              + " | " + " | ".join(f"L1 read misses, {names[lv]}" for lv in levels) + " | "
+              + " | ".join(f"LL read misses, {names[lv]}" for lv in levels) + " |",
               "|---|---|" + "---:|" * (3 * len(levels))]
     top = sorted(rows[last], key=lambda fn: -rows[last][fn][ir])[:a.top]
     for fn in top:
