@@ -35,7 +35,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(ROOT, "scripts"))
-from scale_benchmark import read_off, subdivide, write_off  # noqa: E402
+from scale_benchmark import write_levels  # noqa: E402
 
 # The events the page uses; an event missing from a file (a run without the branch simulation)
 # counts 0.
@@ -161,15 +161,7 @@ def main():
     if not os.access(tool, os.X_OK):
         sys.exit(f"cache_profile: no tool at {tool} (build it first, or give --tool)")
     with tempfile.TemporaryDirectory() as tmp:
-        points, faces = read_off(bear)
-        meshes = {}
-        for level in range(max(levels) + 1):
-            if level in levels:
-                path = os.path.join(tmp, f"bear_x{4 ** level}.off")
-                write_off(path, points, faces)
-                meshes[level] = (path, len(faces))
-            if level < max(levels):
-                points, faces = subdivide(points, faces)
+        meshes = write_levels(tmp, levels)
         jobs = [(lv, n) for lv in levels for n in (a.frames, 0)]
         with ThreadPoolExecutor(max_workers=2) as pool:
             futures = {job: pool.submit(cachegrind, tool, meshes[job[0]][0], job[1], extra, a.l1,

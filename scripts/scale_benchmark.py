@@ -73,6 +73,21 @@ def write_off(path, points, faces):
         f.writelines(f"3 {a} {b} {c}\n" for a, b, c in faces)
 
 
+def write_levels(directory, levels):
+    """bear.off subdivided 0, 1, ... times, written to directory as bear_x1.off, bear_x4.off, ...
+    for each level listed: {level: (path, faces)}."""
+    points, faces = read_off(os.path.join(ROOT, "data", "meshes", "bear.off"))
+    meshes = {}
+    for level in range(max(levels) + 1):
+        if level in levels:
+            path = os.path.join(directory, f"bear_x{4 ** level}.off")
+            write_off(path, points, faces)
+            meshes[level] = (path, len(faces))
+        if level < max(levels):
+            points, faces = subdivide(points, faces)
+    return meshes
+
+
 # The summary's per-step phase times (table2), in the order the step runs them.
 PHASES = [("broad_phase_ms_per_step", "broad phase"),
           ("broad_phase_grid_ms_per_step", "- its grid (build or patch)"),
@@ -149,18 +164,10 @@ def main():
     tool = a.tool or os.path.join(a.build, "shellcontract")
     if a.save:
         os.makedirs(a.save, exist_ok=True)
-    bear = os.path.join(ROOT, "data", "meshes", "bear.off")
     threads = [int(t) for t in a.threads.split(",")]
     levels = [int(l) for l in a.levels.split(",")]
     with tempfile.TemporaryDirectory() as tmp:
-        points, faces = read_off(bear)
-        meshes = {}
-        for level in range(max(levels) + 1):
-            if level in levels:
-                path = os.path.join(tmp, f"bear_x{4 ** level}.off")
-                write_off(path, points, faces)
-                meshes[level] = path
-            points, faces = subdivide(points, faces)
+        meshes = {level: path for level, (path, _) in write_levels(tmp, levels).items()}
         head = "| mesh | faces | " + " | ".join(f"step, {t} thr (ms)" for t in threads)
         head += f" | step per 1k faces, {threads[0]} thr (ms) | broad phase, {threads[0]} thr (ms)"
         head += " | broad phase per 1k faces (ms) | candidate pairs per face"
