@@ -123,6 +123,13 @@ ColouredBatches<IsometricBatch> coloured_isometric_batches() {
   return make_isometric_batches(c, col.offsets);
 }
 
+ColouredBatches<DihedralBatch> coloured_dihedral_batches() {
+  std::vector<DihedralHingeConstraint> c = scene().dihedral.dihedral_hinges;
+  const Colouring col = colour_constraints(c);
+  apply_order(c, col.order);
+  return make_dihedral_batches(c, col.offsets);
+}
+
 /// state.range(0) = 0: the scalar kernels in colour order; 1: the batched path the solver runs
 /// (AVX2 + FMA when the CPU has them, counter avx2 = 1).
 void BM_MembraneStvkPbdColouredOrder(benchmark::State& state) {
@@ -142,6 +149,18 @@ void BM_IsometricBendingPbdColouredOrder(benchmark::State& state) {
   run_sweeps(state, scene().membranes_and_isometric.isometric_hinges.size(), [&](const ProjectionContext& ctx, PaddedVertex* xw) {
     project_isometric_hinge_batches(b.batches.data(), b.batches.size(), 0.01, xw, ctx, nullptr, isa);
   });
+  state.counters["colours"] = b.num_colours();
+  state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();
+}
+
+void BM_DihedralBendingPbdColouredOrder(benchmark::State& state) {
+  const ColouredBatches<DihedralBatch> b = coloured_dihedral_batches();
+  const BatchIsa isa = state.range(0) == 0 ? BatchIsa::Scalar : BatchIsa::Auto;
+  run_sweeps(state, scene().dihedral.dihedral_hinges.size(),
+             [&](const ProjectionContext& ctx, PaddedVertex* xw) {
+               project_dihedral_hinge_batches(b.batches.data(), b.batches.size(), 0.01, xw, ctx,
+                                              nullptr, isa);
+             });
   state.counters["colours"] = b.num_colours();
   state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();
 }
@@ -185,8 +204,8 @@ void BM_IsometricBendingSolverSweep(benchmark::State& state) {
   solver_sweep(state, set);
 }
 
-/// Dihedral hinges (the default bending, per-constraint kernels on x): docs/benchmarks/scale.md,
-/// "The whole run, and the solve in the coloured order".
+/// Dihedral hinges (the default bending; in the coloured order in batches on the padded rows):
+/// docs/benchmarks/scale.md, "The whole run, and the solve in the coloured order".
 void BM_DihedralBendingSolverSweep(benchmark::State& state) {
   ConstraintSet set;
   set.dihedral_hinges = scene().dihedral.dihedral_hinges;
@@ -206,6 +225,8 @@ BENCHMARK(BM_IsometricBendingPbd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DihedralBendingPbd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MembraneStvkPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IsometricBendingPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_DihedralBendingPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")
+    ->Unit(benchmark::kMicrosecond);
 // {order, threads}: Sequential (threads unused), Coloured on 1 and 2 threads.
 BENCHMARK(BM_MembraneStvkSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})
     ->ArgNames({"order", "threads"})->UseRealTime()->Unit(benchmark::kMicrosecond);

@@ -21,6 +21,7 @@
 
 #include "pbd/membrane_energy.hpp"
 #include "pbd/regional_order.hpp"
+#include "pbd/sweep_phases.hpp"
 
 namespace shellcontract {
 namespace {
@@ -36,54 +37,12 @@ using regional::renamed;
 using regional::split_vertices;
 using solver_energies::add_face_energies;
 using solver_energies::membrane_energy;
+using namespace sweep;  // NOLINT(google-build-using-namespace): the sweep's phase kinds
 
 /// Skip threshold of math-spec 9.1(d): E <= 1e-16 mu Abar.
 constexpr double ENERGY_FLOOR_RELATIVE = 1e-16;
 
 Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
-
-/// Smallest chunk a thread claims in the Coloured order (ColourSchedule). With 256, bear's
-/// colours had about a dozen chunks for 16 threads: its solve took 4.5-4.7 ms per step at 16
-/// threads, 3.3-3.4 with 64, 3.0-3.1 with 32; bear x16's chunks are larger anyway (scale.md).
-constexpr std::size_t COLOUR_GRAIN = 64;
-/// COLOUR_GRAIN in batches of BATCH_LANES constraints.
-constexpr std::size_t BATCH_GRAIN = COLOUR_GRAIN / BATCH_LANES;
-
-/// Colour ranges of one constraint kind: constraint k of colour c lies in
-/// [offsets[c], offsets[c + 1]). The Sequential order is one range over everything.
-using ColourOffsets = std::vector<std::size_t>;
-
-/// What a range of a sweep projects (ColourPhase::kind).
-enum SweepKind : int {
-  MEMBRANE_BATCHES,   ///< batches of StVK membranes (Coloured order)
-  MEMBRANES,          ///< membranes one by one
-  ISOMETRIC_BATCHES,  ///< batches of isometric hinges (Coloured order)
-  ISOMETRIC,          ///< isometric hinges one by one
-  DIHEDRAL,
-  ANISOTROPIC,
-  PACK,    ///< vertices: positions and inverse masses into the batches' padded rows
-  UNPACK,  ///< vertices: positions back from the padded rows
-  /// Regional order (see REGIONS): items are parts; each runs all the membrane (hinge) batches
-  /// of its part's interior, colour after colour.
-  REGION_MEMBRANES,
-  REGION_ISOMETRIC,
-  /// Regional order: one item, all the interface membrane (hinge) batches, colour after colour.
-  INTERFACE_MEMBRANES,
-  INTERFACE_ISOMETRIC,
-};
-
-/// Vertices per chunk of a PACK or UNPACK phase.
-constexpr std::size_t VERTEX_GRAIN = 1024;
-/// Rows per task of the solve's copies into and out of the padded rows: with 1024,
-/// bench_projection's coloured membrane sweep (bear, 2 threads) took 205-212 us against 199-207
-/// with the copies serial; with 8192, 202-203 us.
-constexpr std::size_t COPY_GRAIN = 8192;
-
-/// True for the kinds that work on the padded rows (PaddedVertex) instead of x.
-bool padded_kind(int kind) {
-  return kind == MEMBRANE_BATCHES || kind == ISOMETRIC_BATCHES || kind == REGION_MEMBRANES ||
-         kind == REGION_ISOMETRIC || kind == INTERFACE_MEMBRANES || kind == INTERFACE_ISOMETRIC;
-}
 
 /// The solver for one concrete membrane material M and anisotropic energy A: the template makes
 /// the per-element material calls direct and inlinable (material.hpp).
@@ -119,6 +78,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
       for (const auto& c : set_.membranes)
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
       for (const auto& c : set_.isometric_hinges)
+        for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
+      for (const auto& c : set_.dihedral_hinges)
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
       // Padded rows in breadth-first order; the parts are cut in that order.
       row_vertex_ = breadth_first_rows(set_.membranes, num_vertices);
@@ -161,6 +122,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
             make_membrane_batches(renamed(packed_membranes_, vertex_row_), membrane_colours_);
       isometric_batches_ =
           make_isometric_batches(renamed(set_.isometric_hinges, vertex_row_), isometric_colours_);
+      dihedral_batches_ =
+          make_dihedral_batches(renamed(set_.dihedral_hinges, vertex_row_), dihedral_colours_);
     }
     packed_aniso_.reserve(set_.anisotropic.size());
     aniso_data_.reserve(set_.anisotropic.size());
@@ -174,7 +137,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
                                        BATCH_LANES * membrane_batches_.batches.size()));
       lambda_isometric_.resize(3 * std::max(set_.isometric_hinges.size(),
                                             BATCH_LANES * isometric_batches_.batches.size()));
-      lambda_dihedral_.resize(set_.dihedral_hinges.size());
+      lambda_dihedral_.resize(std::max(set_.dihedral_hinges.size(),
+                                       BATCH_LANES * dihedral_batches_.batches.size()));
       lambda_aniso_.resize(set_.anisotropic.size());
     }
     aniso_normal_.resize(set_.anisotropic.size(), Vec3::Zero());
@@ -264,7 +228,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
       add(ISOMETRIC_BATCHES, isometric_batches_.offsets, BATCH_GRAIN);
     else
       add(ISOMETRIC, isometric_colours_, COLOUR_GRAIN);
-    add(DIHEDRAL, dihedral_colours_, COLOUR_GRAIN);
+    if (!dihedral_batches_.batches.empty())
+      add(DIHEDRAL_BATCHES, dihedral_batches_.offsets, BATCH_GRAIN);
+    else
+      add(DIHEDRAL, dihedral_colours_, COLOUR_GRAIN);
     add(ANISOTROPIC, aniso_colours_, COLOUR_GRAIN);
     std::vector<ColourPhase> out;
     for (std::size_t p = 0; p < phases.size(); ++p) {
@@ -312,6 +279,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
         else
           for (std::size_t i = b; i < e; ++i)
             project_isometric_hinge(set_.isometric_hinges[i], kb, ctx, nullptr);
+        break;
+      case DIHEDRAL_BATCHES:
+        project_dihedral_hinge_batches(&dihedral_batches_.batches[b], e - b, kb, xw, ctx,
+                                       xpbd ? &lambda_dihedral_[BATCH_LANES * b] : nullptr);
         break;
       case DIHEDRAL:
         for (std::size_t i = b; i < e; ++i)
@@ -473,6 +444,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
   std::vector<PaddedVertex> padded_; ///< Coloured order: the batches' state (x, y, z, w rows)
   ColouredBatches<MembraneBatch> membrane_batches_;    ///< Coloured order, StVK only
   ColouredBatches<IsometricBatch> isometric_batches_;  ///< Coloured order only
+  ColouredBatches<DihedralBatch> dihedral_batches_;    ///< Coloured order only
 };
 
 }  // namespace

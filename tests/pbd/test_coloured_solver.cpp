@@ -242,8 +242,8 @@ SolverSettings coloured(SolverKind kind, int iterations, int threads) {
 }
 
 TEST(ColouredSolver, BatchedSolveEqualsTheScalarKernelsInColourOrder) {
-  // The Coloured solver projects StVK membranes and isometric hinges in SIMD batches on padded
-  // rows, and the other kinds (dihedral hinges here; corotated membranes) one by one on x, with
+  // The Coloured solver projects StVK membranes, isometric and dihedral hinges in SIMD batches
+  // on padded rows, and the other kinds (corotated membranes here) one by one on x, with
   // pack / unpack phases in between. Its result must be what the scalar kernels give in the
   // same order, to rounding (FMA) relative to how far the vertices moved.
   const Scene s = make_scene(3);

@@ -72,6 +72,16 @@ struct alignas(32) IsometricBatch {
   int count;
 };
 
+/// Four dihedral hinges of one colour (DihedralHingeConstraint fields, stencil order of
+/// bending/hinge.hpp). Padding lanes as in MembraneBatch (kappa = 0: skipped).
+struct alignas(32) DihedralBatch {
+  double rest_angle[BATCH_LANES];  ///< theta_bar (math-spec 8.3)
+  double kappa[BATCH_LANES];       ///< kappa_bar; 0 for an inactive hinge or a padding lane
+  double max_step[BATCH_LANES];    ///< clamp (math-spec 9.1d)
+  int v[4][BATCH_LANES];
+  int count;
+};
+
 /// Batches of one constraint kind grouped by colour: colour c owns batches
 /// [offsets[c], offsets[c + 1]); each colour's constraints fill its batches in order, so only a
 /// colour's last batch can have padding lanes.
@@ -91,6 +101,11 @@ ColouredBatches<MembraneBatch> make_membrane_batches(const std::vector<PackedMem
 /// Packs isometric hinges grouped by colour (see make_membrane_batches).
 ColouredBatches<IsometricBatch> make_isometric_batches(
     const std::vector<IsometricHingeConstraint>& records,
+    const std::vector<std::size_t>& colour_offsets);
+
+/// Packs dihedral hinges grouped by colour (see make_membrane_batches).
+ColouredBatches<DihedralBatch> make_dihedral_batches(
+    const std::vector<DihedralHingeConstraint>& records,
     const std::vector<std::size_t>& colour_offsets);
 
 /// Which implementation a batch projection runs.
@@ -140,5 +155,15 @@ void project_isometric_hinge_batches(const IsometricBatch* batches, std::size_t 
                                      double k_bending, PaddedVertex* xw,
                                      const ProjectionContext& ctx, double* lambda,
                                      BatchIsa isa = BatchIsa::Auto);
+
+/// Projects `count` dihedral hinge batches in order (project_dihedral_hinge per lane, math-spec
+/// 8.3): PBD when lambda == nullptr, else XPBD with the multiplier of lane k of batch b at
+/// lambda[4 b + k]. The AVX2 path takes each lane's angle from std::atan2, as the scalar kernel
+/// does, and the rest four lanes at a time. xw and ctx as for project_stvk_membrane_batches.
+/// \pre no two real lanes of a batch share a vertex (one colour)
+void project_dihedral_hinge_batches(const DihedralBatch* batches, std::size_t count,
+                                    double k_bending, PaddedVertex* xw,
+                                    const ProjectionContext& ctx, double* lambda,
+                                    BatchIsa isa = BatchIsa::Auto);
 
 }  // namespace shellcontract

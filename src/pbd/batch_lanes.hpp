@@ -1,0 +1,187 @@
+// What the batched projections share (constraint_batches.cpp, dihedral_batches.cpp): the batch
+// layout's builder, the scalar path's lane-by-lane call, and the AVX2 lanes' loads, stores and
+// arithmetic. Private to src/pbd.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <stdexcept>
+#include <tuple>
+#include <type_traits>
+#include <vector>
+
+#include "shellcontract/pbd/constraint_batches.hpp"
+
+// The AVX2 path needs GCC's vector operators on __m256d, its target pragma and x86-64 (the
+// project's compiler is g++ 12; others get the scalar path).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define SHELLCONTRACT_BATCH_AVX2 1
+#include <immintrin.h>
+#else
+#define SHELLCONTRACT_BATCH_AVX2 0
+#endif
+
+namespace shellcontract {
+namespace batch_lanes {
+
+inline void check_colour_offsets(const std::vector<std::size_t>& offsets, std::size_t size) {
+  if (offsets.empty() || offsets.front() != 0 || offsets.back() != size ||
+      !std::is_sorted(offsets.begin(), offsets.end()))
+    throw std::invalid_argument("constraint batches: colour offsets do not cover the records");
+}
+
+/// Fills batches colour by colour; fill(batch, lane, record) copies one record's rest data.
+/// Padding lanes get lane 0's vertex ids and keep the zero rest data of the value-initialized batch.
+template <class Batch, class Record, class Fill>
+ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
+                                    const std::vector<std::size_t>& colour_offsets, Fill fill) {
+  check_colour_offsets(colour_offsets, records.size());
+  constexpr int N = static_cast<int>(std::tuple_size<decltype(Record::v)>::value);
+  ColouredBatches<Batch> out;
+  std::size_t total = 0;
+  for (std::size_t c = 0; c + 1 < colour_offsets.size(); ++c)
+    total += (colour_offsets[c + 1] - colour_offsets[c] + BATCH_LANES - 1) / BATCH_LANES;
+  out.batches.reserve(total);
+  for (std::size_t c = 0; c + 1 < colour_offsets.size(); ++c) {
+    const std::size_t end = colour_offsets[c + 1];
+    for (std::size_t first = colour_offsets[c]; first < end; first += BATCH_LANES) {
+      Batch b{};
+      b.count = static_cast<int>(std::min<std::size_t>(BATCH_LANES, end - first));
+      // Only the membrane kernel pipelines its loads (loading early did not pay for hinges).
+      if constexpr (std::is_same_v<Batch, MembraneBatch>)
+        b.same_colour_next = first + BATCH_LANES < end;
+      for (int k = 0; k < BATCH_LANES; ++k) {
+        const Record& r = records[first + (k < b.count ? k : 0)];
+        for (int j = 0; j < N; ++j) b.v[j][k] = r.v[j];
+        if (k < b.count) fill(b, k, r);
+      }
+      out.batches.push_back(b);
+    }
+    out.offsets.push_back(out.batches.size());
+  }
+  return out;
+}
+
+/// One lane through the scalar kernel: its stencil is copied out of xw into a local (x, w) pair
+/// (vertices 0..N-1), projected, and copied back, so the arithmetic is the kernel's own.
+template <int N, class Project>
+inline void project_lane(PaddedVertex* xw, const int (&v)[N][BATCH_LANES], int k, const ProjectionContext& ctx,
+                  Project project) {
+  double x[3 * N], w[N];
+  for (int j = 0; j < N; ++j) {
+    const PaddedVertex& p = xw[v[j][k]];
+    x[3 * j] = p.x, x[3 * j + 1] = p.y, x[3 * j + 2] = p.z;
+    w[j] = p.w;
+  }
+  ProjectionContext local = ctx;
+  local.x = x;
+  local.w = w;
+  project(local);
+  for (int j = 0; j < N; ++j) {
+    PaddedVertex& p = xw[v[j][k]];
+    p.x = x[3 * j], p.y = x[3 * j + 1], p.z = x[3 * j + 2];
+  }
+}
+
+#if SHELLCONTRACT_BATCH_AVX2
+// Everything from here to pop_options is compiled for AVX2 + FMA and only called after
+// batch_avx2_available(). Arithmetic is written with GCC's vector operators on __m256d (what
+// the _mm256_add_pd family expands to), so the compiler contracts a * b + c into FMAs. A file
+// that calls these opens the same target region around its kernels.
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+
+using V = __m256d;
+
+#define SC_AVX2_INLINE inline __attribute__((always_inline))
+
+/// Four lanes of a 3-vector: x, y and z of lanes 0..3.
+struct V3 {
+  V x, y, z;
+};
+
+SC_AVX2_INLINE V splat(double a) { return _mm256_set1_pd(a); }
+SC_AVX2_INLINE V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+SC_AVX2_INLINE V3 operator*(const V3& a, V s) { return {a.x * s, a.y * s, a.z * s}; }
+SC_AVX2_INLINE V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+SC_AVX2_INLINE V dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+/// a where mask is set, else +0 (so that x - masked(d) == x exactly even when d is inf or NaN).
+SC_AVX2_INLINE V3 masked(const V3& a, V mask) {
+  return {_mm256_and_pd(a.x, mask), _mm256_and_pd(a.y, mask), _mm256_and_pd(a.z, mask)};
+}
+/// Ordered a > b: false on NaN, like the scalar kernels' !(a > b) guards.
+SC_AVX2_INLINE V greater(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
+
+/// Four lanes of a padded vertex: the position and the inverse mass w.
+struct V4 {
+  V3 x;
+  V w;
+};
+
+/// Rows xw[v[k]] of the four lanes, transposed to (X, Y, Z, W) registers: four 128-bit loads
+/// into the low halves, four into the high halves (lanes 2 and 3), four unpacks.
+SC_AVX2_INLINE V4 gather(const PaddedVertex* xw, const int* v) {
+  const double* p0 = &xw[v[0]].x;
+  const double* p1 = &xw[v[1]].x;
+  const double* p2 = &xw[v[2]].x;
+  const double* p3 = &xw[v[3]].x;
+  const V xy02 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p0)), _mm_load_pd(p2), 1);
+  const V xy13 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p1)), _mm_load_pd(p3), 1);
+  const V zw02 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p0 + 2)), _mm_load_pd(p2 + 2), 1);
+  const V zw13 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_load_pd(p1 + 2)), _mm_load_pd(p3 + 2), 1);
+  return {{_mm256_unpacklo_pd(xy02, xy13), _mm256_unpackhi_pd(xy02, xy13), _mm256_unpacklo_pd(zw02, zw13)},
+          _mm256_unpackhi_pd(zw02, zw13)};
+}
+
+/// Inverse of gather for the first `count` lanes, one aligned 256-bit store per vertex (w is
+/// written back unchanged). Padding lanes are never written.
+SC_AVX2_INLINE void scatter(PaddedVertex* xw, const int* v, int count, const V3& a, V w) {
+  const V xy02 = _mm256_unpacklo_pd(a.x, a.y);  // x0 y0 x2 y2
+  const V xy13 = _mm256_unpackhi_pd(a.x, a.y);  // x1 y1 x3 y3
+  const V zw02 = _mm256_unpacklo_pd(a.z, w);    // z0 w0 z2 w2
+  const V zw13 = _mm256_unpackhi_pd(a.z, w);    // z1 w1 z3 w3
+  _mm256_store_pd(&xw[v[0]].x, _mm256_permute2f128_pd(xy02, zw02, 0x20));
+  if (count > 1) _mm256_store_pd(&xw[v[1]].x, _mm256_permute2f128_pd(xy13, zw13, 0x20));
+  if (count > 2) _mm256_store_pd(&xw[v[2]].x, _mm256_permute2f128_pd(xy02, zw02, 0x31));
+  if (count > 3) _mm256_store_pd(&xw[v[3]].x, _mm256_permute2f128_pd(xy13, zw13, 0x31));
+}
+
+/// Rows x[3 v[k] .. 3 v[k] + 2] of a 3-stride array (the XPBD hinge multipliers).
+SC_AVX2_INLINE V3 gather3(const double* x, const int* v) {
+  const double* p0 = x + 3 * static_cast<std::ptrdiff_t>(v[0]);
+  const double* p1 = x + 3 * static_cast<std::ptrdiff_t>(v[1]);
+  const double* p2 = x + 3 * static_cast<std::ptrdiff_t>(v[2]);
+  const double* p3 = x + 3 * static_cast<std::ptrdiff_t>(v[3]);
+  const V xy02 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p0)), _mm_loadu_pd(p2), 1);
+  const V xy13 = _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(p1)), _mm_loadu_pd(p3), 1);
+  const __m128d z01 = _mm_loadh_pd(_mm_load_sd(p0 + 2), p1 + 2);
+  const __m128d z23 = _mm_loadh_pd(_mm_load_sd(p2 + 2), p3 + 2);
+  return {_mm256_unpacklo_pd(xy02, xy13), _mm256_unpackhi_pd(xy02, xy13),
+          _mm256_insertf128_pd(_mm256_castpd128_pd256(z01), z23, 1)};
+}
+
+/// Inverse of gather3 (all four rows).
+SC_AVX2_INLINE void scatter3(double* x, const int* v, const V3& a) {
+  const V xy02 = _mm256_unpacklo_pd(a.x, a.y);
+  const V xy13 = _mm256_unpackhi_pd(a.x, a.y);
+  const __m128d z01 = _mm256_castpd256_pd128(a.z);
+  const __m128d z23 = _mm256_extractf128_pd(a.z, 1);
+  double* p0 = x + 3 * static_cast<std::ptrdiff_t>(v[0]);
+  double* p1 = x + 3 * static_cast<std::ptrdiff_t>(v[1]);
+  double* p2 = x + 3 * static_cast<std::ptrdiff_t>(v[2]);
+  double* p3 = x + 3 * static_cast<std::ptrdiff_t>(v[3]);
+  _mm_storeu_pd(p0, _mm256_castpd256_pd128(xy02));
+  _mm_store_sd(p0 + 2, z01);
+  _mm_storeu_pd(p1, _mm256_castpd256_pd128(xy13));
+  _mm_storeh_pd(p1 + 2, z01);
+  _mm_storeu_pd(p2, _mm256_extractf128_pd(xy02, 1));
+  _mm_store_sd(p2 + 2, z23);
+  _mm_storeu_pd(p3, _mm256_extractf128_pd(xy13, 1));
+  _mm_storeh_pd(p3 + 2, z23);
+}
+
+#pragma GCC pop_options
+#endif  // SHELLCONTRACT_BATCH_AVX2
+
+}  // namespace batch_lanes
+}  // namespace shellcontract
