@@ -70,11 +70,13 @@ class GaussSeidelSolver final : public ConstraintSolver {
       aniso_colours_ = aniso.offsets;
       membrane_num_colours_ = static_cast<int>(membrane_colours_.size()) - 1;
       isometric_num_colours_ = static_cast<int>(isometric_colours_.size()) - 1;
-      dihedral_num_colours_ = static_cast<int>(dihedral_colours_.size()) - 1;
       // The regional order needs every constraint of the sweep in a batched kind (one padded
-      // state for the whole sweep).
+      // state for the whole sweep). Not extended to the dihedral hinges, though they have
+      // batches: its REGIONS parts are fixed at two whatever the thread count (for bit-identical
+      // results), so the default bending's solve would use at most two cores on a many-core
+      // machine, where it now runs one phase per colour on all of them.
       regional_ = BatchedMembraneProjection<M>::value && !set_.membranes.empty() &&
-                  set_.anisotropic.empty();
+                  set_.dihedral_hinges.empty() && set_.anisotropic.empty();
       int num_vertices = 0;
       for (const auto& c : set_.membranes)
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
@@ -87,14 +89,9 @@ class GaussSeidelSolver final : public ConstraintSolver {
       vertex_row_.resize(row_vertex_.size());
       for (std::size_t k = 0; k < row_vertex_.size(); ++k)
         vertex_row_[static_cast<std::size_t>(row_vertex_[k])] = static_cast<int>(k);
-      // The cut for the membranes and the run's bending hinges (a set with both kinds, as some
-      // tests build, is cut for the isometric ones; the two have the same stencils).
       const std::vector<std::uint8_t> row_part =
-          set_.isometric_hinges.empty()
-              ? split_vertices(num_vertices, renamed(set_.membranes, vertex_row_),
-                               renamed(set_.dihedral_hinges, vertex_row_))
-              : split_vertices(num_vertices, renamed(set_.membranes, vertex_row_),
-                               renamed(set_.isometric_hinges, vertex_row_));
+          split_vertices(num_vertices, renamed(set_.membranes, vertex_row_),
+                         renamed(set_.isometric_hinges, vertex_row_));
       std::vector<std::uint8_t> part(row_part.size());  // by vertex id
       for (std::size_t v = 0; v < part.size(); ++v)
         part[v] = row_part[static_cast<std::size_t>(vertex_row_[v])];
@@ -102,12 +99,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
         return static_cast<double>(interface_count(records, part)) <=
                MAX_INTERFACE_FRACTION * static_cast<double>(records.size());
       };
-      regional_ = regional_ && few(set_.membranes) && few(set_.isometric_hinges) &&
-                  few(set_.dihedral_hinges);
+      regional_ = regional_ && few(set_.membranes) && few(set_.isometric_hinges);
       if (regional_) {
         membrane_colours_ = regional_in_place(set_.membranes, membrane_colours_, part);
         isometric_colours_ = regional_in_place(set_.isometric_hinges, isometric_colours_, part);
-        dihedral_colours_ = regional_in_place(set_.dihedral_hinges, dihedral_colours_, part);
       }
       // The value of `automatic` is copied first: binding the static member to the conditional's
       // lvalue would odr-use it, and TBB 2021 does not define it out of line (link error).
@@ -134,7 +129,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
       dihedral_batches_ =
           make_dihedral_batches(renamed(set_.dihedral_hinges, vertex_row_), dihedral_colours_);
       // From here the batches hold the membranes' rest data: the packed copy (49 MB on bear
-      // x16) would only add to the run's peak, which the dihedral batches raised by 30 MB.
+      // x16) would only add to the run's peak, which the dihedral batches raised by 27 MB.
       if (!membrane_batches_.batches.empty()) std::vector<PackedMembrane>().swap(packed_membranes_);
     }
     packed_aniso_.reserve(set_.anisotropic.size());
@@ -170,7 +165,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
     n.membrane = membrane_num_colours_;
     n.isometric = isometric_num_colours_;
     n.regional = regional_;
-    n.dihedral = dihedral_num_colours_;
+    n.dihedral = static_cast<int>(dihedral_colours_.size()) - 1;
     n.anisotropic = static_cast<int>(aniso_colours_.size()) - 1;
     return n;
   }
@@ -214,9 +209,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
   /// after the last one as needed).
   std::vector<ColourPhase> sweep_phases(std::size_t num_vertices) const {
     if (regional_) {
-      // Membranes, then hinges of each kind (math-spec 9.4): the parts' interiors in parallel,
-      // then the interface. Every kind here works on the padded rows: no PACK or UNPACK inside a
-      // sweep.
+      // Membranes, then hinges (math-spec 9.4): the parts' interiors in parallel, then the
+      // interface. Every kind here works on the padded rows: no PACK or UNPACK inside a sweep.
       std::vector<ColourPhase> phases;
       if (!set_.membranes.empty()) {
         phases.push_back({REGION_MEMBRANES, 0, REGIONS, 1});
@@ -225,10 +219,6 @@ class GaussSeidelSolver final : public ConstraintSolver {
       if (!set_.isometric_hinges.empty()) {
         phases.push_back({REGION_ISOMETRIC, 0, REGIONS, 1});
         phases.push_back({INTERFACE_ISOMETRIC, 0, 1, 1});
-      }
-      if (!set_.dihedral_hinges.empty()) {
-        phases.push_back({REGION_DIHEDRAL, 0, REGIONS, 1});
-        phases.push_back({INTERFACE_DIHEDRAL, 0, 1, 1});
       }
       return phases;
     }
@@ -262,21 +252,6 @@ class GaussSeidelSolver final : public ConstraintSolver {
     if (!phases.empty() && padded_kind(phases.front().kind) != padded_kind(phases.back().kind))
       out.push_back({padded_kind(phases.front().kind) ? PACK : UNPACK, 0, num_vertices, VERTEX_GRAIN});
     return out;
-  }
-
-  /// A kind of the regional order: its batched kind, batch offsets and number of colours.
-  struct RegionalKind {
-    SweepKind batches;
-    const std::vector<std::size_t>* offsets;
-    std::size_t colours;
-  };
-  RegionalKind regional_kind(int kind) const {
-    auto colours = [](int n) { return static_cast<std::size_t>(n); };
-    if (kind == REGION_MEMBRANES || kind == INTERFACE_MEMBRANES)
-      return {MEMBRANE_BATCHES, &membrane_batches_.offsets, colours(membrane_num_colours_)};
-    if (kind == REGION_ISOMETRIC || kind == INTERFACE_ISOMETRIC)
-      return {ISOMETRIC_BATCHES, &isometric_batches_.offsets, colours(isometric_num_colours_)};
-    return {DIHEDRAL_BATCHES, &dihedral_batches_.offsets, colours(dihedral_num_colours_)};
   }
 
   /// Projects items [b, e) of one kind in order (constraints, or batches of four).
@@ -336,17 +311,18 @@ class GaussSeidelSolver final : public ConstraintSolver {
       case REGION_MEMBRANES:
       case INTERFACE_MEMBRANES:
       case REGION_ISOMETRIC:
-      case INTERFACE_ISOMETRIC:
-      case REGION_DIHEDRAL:
-      case INTERFACE_DIHEDRAL: {
+      case INTERFACE_ISOMETRIC: {
         // Items are parts (or the one interface group): every colour range of the group.
-        const bool interface = kind == INTERFACE_MEMBRANES || kind == INTERFACE_ISOMETRIC ||
-                               kind == INTERFACE_DIHEDRAL;
-        const RegionalKind k = regional_kind(kind);
+        const bool membranes = kind == REGION_MEMBRANES || kind == INTERFACE_MEMBRANES;
+        const bool interface = kind == INTERFACE_MEMBRANES || kind == INTERFACE_ISOMETRIC;
+        const std::vector<std::size_t>& off =
+            membranes ? membrane_batches_.offsets : isometric_batches_.offsets;
+        const std::size_t C =
+            static_cast<std::size_t>(membranes ? membrane_num_colours_ : isometric_num_colours_);
         for (std::size_t g = interface ? REGIONS : b; g < (interface ? REGION_GROUPS : e); ++g)
-          for (std::size_t c = 0; c < k.colours; ++c)
-            project_range(k.batches, (*k.offsets)[g * k.colours + c],
-                          (*k.offsets)[g * k.colours + c + 1], ctx);
+          for (std::size_t c = 0; c < C; ++c)
+            project_range(membranes ? MEMBRANE_BATCHES : ISOMETRIC_BATCHES, off[g * C + c],
+                          off[g * C + c + 1], ctx);
         break;
       }
       case PACK:
@@ -460,7 +436,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
   /// Coloured order in the regional layout (see REGIONS): the membrane and isometric ranges are
   /// then REGION_GROUPS x colours (group-major), not one per colour.
   bool regional_ = false;
-  int membrane_num_colours_ = 0, isometric_num_colours_ = 0, dihedral_num_colours_ = 0;
+  int membrane_num_colours_ = 0, isometric_num_colours_ = 0;
   std::vector<int> row_vertex_;  ///< Coloured order: the vertex of each padded row
   std::vector<int> vertex_row_;  ///< its inverse, over the constraints' vertex ids
   ColourOffsets membrane_colours_, isometric_colours_, dihedral_colours_, aniso_colours_;

@@ -36,11 +36,9 @@ enum SweepKind : int {
   /// of its part's interior, colour after colour.
   REGION_MEMBRANES,
   REGION_ISOMETRIC,
-  REGION_DIHEDRAL,
   /// Regional order: one item, all the interface membrane (hinge) batches, colour after colour.
   INTERFACE_MEMBRANES,
   INTERFACE_ISOMETRIC,
-  INTERFACE_DIHEDRAL,
 };
 
 /// Vertices per chunk of a PACK or UNPACK phase.
@@ -53,8 +51,8 @@ constexpr std::size_t COPY_GRAIN = 8192;
 /// True for the kinds that work on the padded rows (PaddedVertex) instead of x.
 inline bool padded_kind(int kind) {
   return kind == MEMBRANE_BATCHES || kind == ISOMETRIC_BATCHES || kind == DIHEDRAL_BATCHES ||
-         kind == REGION_MEMBRANES || kind == REGION_ISOMETRIC || kind == REGION_DIHEDRAL ||
-         kind == INTERFACE_MEMBRANES || kind == INTERFACE_ISOMETRIC || kind == INTERFACE_DIHEDRAL;
+         kind == REGION_MEMBRANES || kind == REGION_ISOMETRIC || kind == INTERFACE_MEMBRANES ||
+         kind == INTERFACE_ISOMETRIC;
 }
 
 }  // namespace sweep
