@@ -65,8 +65,8 @@ ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
 /// One lane through the scalar kernel: its stencil is copied out of xw into a local (x, w) pair
 /// (vertices 0..N-1), projected, and copied back, so the arithmetic is the kernel's own.
 template <int N, class Project>
-inline void project_lane(PaddedVertex* xw, const int (&v)[N][BATCH_LANES], int k, const ProjectionContext& ctx,
-                  Project project) {
+inline void project_lane(PaddedVertex* xw, const int (&v)[N][BATCH_LANES], int k,
+                         const ProjectionContext& ctx, Project project) {
   double x[3 * N], w[N];
   for (int j = 0; j < N; ++j) {
     const PaddedVertex& p = xw[v[j][k]];

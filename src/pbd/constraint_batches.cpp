@@ -1,8 +1,8 @@
 #include "shellcontract/pbd/constraint_batches.hpp"
 
-#include "pbd/batch_lanes.hpp"
-
 #include <algorithm>
+
+#include "pbd/batch_lanes.hpp"
 
 namespace shellcontract {
 namespace {

@@ -1,10 +1,11 @@
 // The dihedral hinge (the default bending, math-spec 8.3) projected four hinges of one colour at
 // a time, on the padded rows of the coloured order (constraint_batches.hpp).
+#include "shellcontract/pbd/constraint_batches.hpp"
+
 #include <cmath>
 #include <cstddef>
 
 #include "pbd/batch_lanes.hpp"
-#include "shellcontract/pbd/constraint_batches.hpp"
 
 namespace shellcontract {
 namespace {

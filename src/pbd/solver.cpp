@@ -74,7 +74,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
       // state for the whole sweep). Not extended to the dihedral hinges, though they have
       // batches: its REGIONS parts are fixed at two whatever the thread count (for bit-identical
       // results), so the default bending's solve would use at most two cores on a many-core
-      // machine, where it now runs one phase per colour on all of them.
+      // machine (as the isometric hinges' does), where it now runs one phase per colour on all
+      // of them (docs/benchmarks/scale.md, "The dihedral hinges in batches").
       regional_ = BatchedMembraneProjection<M>::value && !set_.membranes.empty() &&
                   set_.dihedral_hinges.empty() && set_.anisotropic.empty();
       int num_vertices = 0;
@@ -440,7 +441,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
   std::vector<int> row_vertex_;  ///< Coloured order: the vertex of each padded row
   std::vector<int> vertex_row_;  ///< its inverse, over the constraints' vertex ids
   ColourOffsets membrane_colours_, isometric_colours_, dihedral_colours_, aniso_colours_;
-  std::vector<PackedMembrane> packed_membranes_;  ///< set_.membranes, packed, same order
+  /// set_.membranes, packed, same order; freed once membrane batches hold them (Coloured order)
+  std::vector<PackedMembrane> packed_membranes_;
   std::vector<PackedMembrane> packed_aniso_;      ///< set_.anisotropic, packed, same order
   std::vector<ElementMaterialData> aniso_data_;   ///< fibre of each anisotropic face
   std::unique_ptr<tbb::task_arena> arena_;        ///< Coloured order only: settings.threads
