@@ -134,6 +134,24 @@ std::vector<Record> renamed(std::vector<Record> records, const std::vector<int>&
   return records;
 }
 
+/// Sorts each colour's records (colour c at [colours[c], colours[c + 1])) by their smallest row,
+/// row[v] over their vertices, keeping the order of ties: a colour's batches then read the padded
+/// rows from front to back. The records of a colour share no vertex, so their order within it
+/// changes no bit of a sweep.
+template <class Record>
+void sort_colours_by_row(std::vector<Record>& records, const std::vector<std::size_t>& colours,
+                         const std::vector<int>& row) {
+  auto first_row = [&](const Record& r) {
+    int lowest = row[static_cast<std::size_t>(r.v[0])];
+    for (int v : r.v) lowest = std::min(lowest, row[static_cast<std::size_t>(v)]);
+    return lowest;
+  };
+  for (std::size_t c = 0; c + 1 < colours.size(); ++c)
+    std::stable_sort(records.begin() + static_cast<std::ptrdiff_t>(colours[c]),
+                     records.begin() + static_cast<std::ptrdiff_t>(colours[c + 1]),
+                     [&](const Record& a, const Record& b) { return first_row(a) < first_row(b); });
+}
+
 /// Largest fraction of a kind's constraints on the interface for which the regional order is
 /// used: the interface runs on one thread, so beyond this the plain colour order is faster.
 constexpr double MAX_INTERFACE_FRACTION = 0.15;
