@@ -73,7 +73,6 @@ MembraneScene membrane_scene(int n, std::mt19937& rng) {
   return s;
 }
 
-
 /// Scalar reference: project_membrane over the records in order.
 std::vector<double> scalar_membranes(const Stvk& m, const MembraneScene& s, std::vector<double>* lambda) {
   std::vector<double> x = s.x0;
