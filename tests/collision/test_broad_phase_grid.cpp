@@ -74,7 +74,7 @@ TEST(BroadPhase, GridOrderDoesNotDependOnTheThreadCount) {
   // must list the same boxes in the same order for any number of parts. A mesh with more cells
   // than one block of the per-cell passes (GRID_CELL_GRAIN).
   std::mt19937 rng(11);
-  const TriMesh m = test::icosphere(5);
+  const TriMesh m = test::icosphere(6);
   const CollisionTopology topo = make_collision_topology(m.faces, static_cast<int>(m.x.rows()));
   const Positions x0 = random_motion(m.x, 0.01, rng);
   const Positions x1 = random_motion(x0, 0.004, rng);
@@ -126,11 +126,11 @@ TEST(BroadPhase, GridKeptAcrossStepsIsPatchedToExactlyTheRebuiltCountingSort) {
     std::array<double, 3> last_origin{};
     int new_grids = 0;
     for (int step = 0; step < 40; ++step) {
-      // Mostly small steps; a jump every 10th; steps 21-28 also drift by 0.1 along x.
+      // Mostly small steps; a jump every 10th; steps 21-28 also drift by 0.2 along x.
       const double scale = step % 10 == 9 ? 0.1 : 0.004;
       Positions x1 = random_motion(x0, scale, rng);
       const bool drift = step >= 21 && step <= 28;
-      if (drift) x1.col(0).array() += 0.1;
+      if (drift) x1.col(0).array() += 0.2;
       const double inflation = 0.01, far = 0.005;
       BroadPhaseStats stats;
       // Two threads: past GRID_PATCH_MAX_THREADS the kept grid is rebuilt, not patched.

@@ -19,13 +19,14 @@ enum class BroadPhaseMethod {
   /// over edge boxes; one query per vertex box and per edge box. Output comes out grouped by
   /// the first id, so only short runs need sorting and nothing needs deduplicating.
   Bvh,
-  /// Uniform grid (cell size 1.5 x the median face/edge box extent) filled by a counting sort;
-  /// in each cell, vertex boxes against face boxes and edge boxes against each other, each pair
-  /// emitted only in the first cell the two boxes share (no hash set), culled by a vectorized
-  /// test on boxes rounded outward to float, confirmed by the exact double test; on CPUs with
-  /// AVX-512 (checked at run time) one 8-lane pass tests the exact double
-  /// boxes directly and emits the same pairs in the same order. Pairs come out
-  /// in cell order, not sorted (see CandidatePairs). Falls back to PrimitiveBoxes when the boxes
+  /// Uniform grid (cell size 3 x the median face/edge box extent, 1.5 x where such cells hold
+  /// too many boxes) filled by a counting sort; in each cell, vertex boxes against face boxes
+  /// and edge boxes against each other, each pair emitted only in the first cell the two boxes
+  /// share (no hash set), culled by a vectorized test on boxes rounded outward to float,
+  /// confirmed by the exact double test; on CPUs with AVX-512 (checked at run time) one 8-lane
+  /// pass tests the exact double boxes directly and emits the same pairs in the same order.
+  /// Pairs come out in cell order, not sorted (see CandidatePairs), so the cell size decides
+  /// their order. Falls back to PrimitiveBoxes when the boxes
   /// are so large or spread out that the grid would degenerate towards brute force
   /// (BroadPhaseStats::method_run says which ran).
   /// The default: fastest on bear (bench_broad_phase).

@@ -141,13 +141,16 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     const detail::GridVertexBox b = prim.box(prim.ids(i));
     s.extent_sample.push_back(std::max({b.hi[0] - b.lo[0], b.hi[1] - b.lo[1], b.hi[2] - b.lo[2]}));
   }
-  double h = 0.0;
+  double median_extent = 0.0;
   if (!s.extent_sample.empty()) {
     const auto mid =
         s.extent_sample.begin() + static_cast<std::ptrdiff_t>(s.extent_sample.size() / 2);
     std::nth_element(s.extent_sample.begin(), mid, s.extent_sample.end());
-    h = GRID_CELL_FACTOR * *mid;
+    median_extent = *mid;
   }
+  const bool small_cells = s.grid_patch && s.grid_small_skips > 0;
+  if (small_cells) --s.grid_small_skips;
+  double h = (small_cells ? GRID_SMALL_CELL_FACTOR : GRID_CELL_FACTOR) * median_extent;
   const double span = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   // Degenerate extents (points: no motion, no inflation, zero-length edges) or no primitives.
   if (!(h > 0.0)) h = span > 0.0 ? span : 1.0;
@@ -236,22 +239,29 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     }
     if (patched) entries = start[g.cells()];
   }
-  s.grid_ranges.resize(nboxes);
-  for (bool first = true; !patched; first = false) {
-    if (!(first && reuse)) {
+  // A new grid of cell size `cell`, its vertex ranges and its entry count, the cell doubled while
+  // the entries are too many.
+  auto new_grid = [&](double cell) {
+    for (;;) {
       // Half a cell of margin on every side, so that a scene that drifts or grows a little
       // keeps the grid (and its patches) in the next steps.
       std::array<double, 3> glo = lo, ghi = hi;
       for (std::size_t d = 0; d < 3; ++d) {
-        glo[d] -= GRID_MARGIN_CELLS * h;
-        ghi[d] += GRID_MARGIN_CELLS * h;
+        glo[d] -= GRID_MARGIN_CELLS * cell;
+        ghi[d] += GRID_MARGIN_CELLS * cell;
       }
-      g = make_grid(glo, ghi, h, max_cells);
+      g = make_grid(glo, ghi, cell, max_cells);
       vertex_ranges();
+      entries = grid_sort_count(g, prim, nboxes, s);
+      if (entries <= GRID_ENTRIES_PER_BOX * nboxes || g.cells() == 1) return;
+      cell = 2.0 / g.inv_h;
     }
-    entries = grid_sort_count(g, prim, nboxes, s);
-    if (entries <= GRID_ENTRIES_PER_BOX * nboxes || g.cells() == 1) break;
-    h = 2.0 / g.inv_h;
+  };
+  s.grid_ranges.resize(nboxes);
+  if (!patched) {
+    if (reuse) entries = grid_sort_count(g, prim, nboxes, s);
+    if (!reuse || (entries > GRID_ENTRIES_PER_BOX * nboxes && g.cells() > 1))
+      new_grid(reuse ? 2.0 / g.inv_h : h);
   }
   std::uint64_t work = 0;
   if (patched) {
@@ -270,7 +280,20 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   } else {
     work = grid_sort_fill(g, nboxes, entries, s);
   }
-  if (work > static_cast<std::uint64_t>(GRID_WORK_PER_BOX) * nboxes) return nothing(-1);
+  const std::uint64_t work_limit = static_cast<std::uint64_t>(GRID_WORK_PER_BOX) * nboxes;
+  // Boxes long against the spacing of the surface (a fine mesh's motion) crowd the cells of
+  // GRID_CELL_FACTOR: smaller cells are tried before giving up on the grid.
+  const double small_h = GRID_SMALL_CELL_FACTOR * median_extent;
+  if (work > work_limit && small_h > 0.0 && small_h < 1.0 / g.inv_h) {
+    new_grid(small_h);
+    work = grid_sort_fill(g, nboxes, entries, s);  // new_grid keeps the entries in bounds
+    s.grid_small_backoff =
+        std::min(std::max(1, 2 * s.grid_small_backoff), GRID_SMALL_CELL_MAX_BACKOFF);
+    s.grid_small_skips = s.grid_patch ? s.grid_small_backoff : 0;
+  } else if (!small_cells) {
+    s.grid_small_backoff = 0;
+  }
+  if (work > work_limit) return nothing(-1);
 
   s.grid_kept = true;
   s.grid_build_seconds = t_start.elapsed();

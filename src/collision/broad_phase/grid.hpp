@@ -27,9 +27,19 @@ namespace shellcontract {
 namespace detail {
 
 /// Cell size over the median swept-box extent (the largest side of a face or edge box).
-/// On bear (bench_broad_phase, CPU ms per call): 0.6: 11.7, 1.0: 10.0, 1.5: 8.3, 2: 8.3, 3: 8.6
-/// (smaller cells put each box in more cells; larger ones test more pairs per cell).
-constexpr double GRID_CELL_FACTOR = 1.5;
+/// Smaller cells put each box in more cells (a dearer counting sort, fewer patches of the kept
+/// grid); larger ones test more pairs per cell. scripts/scale_benchmark.py --phases (its grid
+/// and cell loop rows, bear and bear x16, one and two threads): 2.5 to 3.5 are the fastest,
+/// 1.5 is 13-17 % slower per step on bear in the coloured order, 4 near the limit of
+/// GRID_WORK_PER_BOX on bear x16.
+constexpr double GRID_CELL_FACTOR = 3.0;
+/// The cell size tried, over the same median extent, when GRID_CELL_FACTOR's cells would exceed
+/// GRID_WORK_PER_BOX, before the grid gives up.
+constexpr double GRID_SMALL_CELL_FACTOR = 1.5;
+/// After a call that had to take the small cells, the next calls start with them (1, 2, 4, ...
+/// up to this many, as GRID_PATCH_MAX_BACKOFF), so that a crowded scene does not build two grids
+/// per call; then the large cells are tried again.
+constexpr int GRID_SMALL_CELL_MAX_BACKOFF = 8;
 /// Boxes sampled for the median extent; a sample keeps it O(1) and robust to a few huge boxes
 /// (e.g. one vertex that flies off), which would drag a mean up.
 constexpr std::size_t GRID_EXTENT_SAMPLES = 1024;

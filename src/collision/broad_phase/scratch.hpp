@@ -171,9 +171,10 @@ struct BroadPhaseScratch {
   std::array<double, 3> grid_origin{};     ///< Grid: its minimum corner
   double grid_inv_h = 1.0;                 ///< Grid: 1 / cell size
   std::array<std::size_t, 3> grid_dims{};  ///< Grid: cells per axis
-  /// Grid: keep the last call's grid and patch its counting sort when it still fits (tests turn
-  /// it off); grid_patch_always_rebuild keeps the grid but rebuilds the counting sort, so that a
-  /// test can compare a patch with a rebuild on the same grid.
+  /// Grid: keep the last call's grid and patch its counting sort when it still fits, and start
+  /// from its small cells after a crowded call (tests and benchmarks turn it off: every call
+  /// then makes its grid afresh); grid_patch_always_rebuild keeps the grid but rebuilds the
+  /// counting sort, so that a test can compare a patch with a rebuild on the same grid.
   bool grid_patch = true;
   bool grid_patch_always_rebuild = false;
   /// Grid: boxes whose cell range the last call patched, or -1 if it rebuilt the counting sort.
@@ -183,6 +184,11 @@ struct BroadPhaseScratch {
   /// GRID_PATCH_MAX_BACKOFF). Depends only on the calls so far, never on the thread count.
   int grid_patch_skips = 0;
   int grid_patch_backoff = 0;
+  /// Grid: calls that take GRID_SMALL_CELL_FACTOR from the start, after a call whose
+  /// GRID_CELL_FACTOR cells were too crowded (grid_small_skips left of the current backoff,
+  /// grid_small_backoff; see GRID_SMALL_CELL_MAX_BACKOFF). Depends only on the boxes so far.
+  int grid_small_skips = 0;
+  int grid_small_backoff = 0;
   std::vector<detail::GridRange> grid_vertex_ranges_prev;  ///< Grid: the last call's vertex ranges
   std::vector<std::uint64_t> grid_maybe_bits;   ///< Grid: boxes the patch recomputes (bitset)
   std::vector<std::uint32_t> grid_changed_ids;  ///< Grid: the patch's changed boxes
