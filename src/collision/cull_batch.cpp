@@ -18,7 +18,7 @@ namespace {
 
 /// The scalar path: the functions themselves.
 void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const std::array<int, 4>* v,
-                 int count, double tolerance, std::uint8_t* culled) {
+                 int count, double tolerance, std::uint8_t* culled, std::uint8_t* axes) {
   for (int k = 0; k < count; ++k) {
     CcdStencil s0, s1;
     for (int j = 0; j < 4; ++j) {
@@ -28,6 +28,7 @@ void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const st
     }
     culled[k] = swept_boxes_apart(kind, s0, s1, tolerance) ||
                 nonpenetration_filter_culls(kind, s0, s1, tolerance, FilterBound::Coarse);
+    if (axes != nullptr) axes[k] = separating_axes_culls(kind, s0, s1, tolerance);
   }
 }
 
@@ -36,7 +37,7 @@ void cull_scalar(CcdPrimitive kind, const double* x0, const double* x1, const st
 // code rounds every product and sum on its own, and so must this, for the answers to be the
 // same bit for bit. Every expression below mirrors one in ccd/ (bounds.hpp: relative_vectors,
 // det3, bernstein_with_bound, coarse_error_bound, normal_length_bound, one_sign; filters.cpp:
-// swept_boxes_apart)
+// swept_boxes_apart, separating_axes_culls with separation_gaps, differences and axes_separate)
 // and Eigen's evaluation order for 3-vectors (cross: y z - z y, z x - x z, x y - y x; dot and sum:
 // (a0 + a1) + a2; norm: sqrt of the squared norm).
 #pragma GCC push_options
@@ -87,7 +88,7 @@ SC_CULL_INLINE V3 load_point(const double* x, const std::array<int, 4>* v, int c
 }
 
 void cull_avx2(CcdPrimitive kind, const double* x0, const double* x1, const std::array<int, 4>* v,
-               int count, double tolerance, std::uint8_t* culled) {
+               int count, double tolerance, std::uint8_t* culled, std::uint8_t* axes) {
   constexpr double U = std::numeric_limits<double>::epsilon() / 2.0;
   constexpr double UNDERFLOW_FLOOR = 1e-300;  // as ccd/bounds.hpp
   V3 p0[4], p1[4];
@@ -167,6 +168,38 @@ void cull_avx2(CcdPrimitive kind, const double* x0, const double* x1, const std:
                               _mm256_and_pd(all_finite, _mm256_or_pd(all_above, all_below)));
   const int bits = _mm256_movemask_pd(cull);
   for (int k = 0; k < count; ++k) culled[k] = static_cast<std::uint8_t>((bits >> k) & 1);
+  if (axes == nullptr) return;
+  // separating_axes_culls: M = the largest |coordinate| (max is exact: any order gives it),
+  // separation_gaps' axis gap, the vertex differences (VF: p - f_i; EE: a_i - b_j) at both ends.
+  V M = zero;
+  for (int k = 0; k < 4; ++k) M = vmax(M, vmax(inf_norm(p0[k]), inf_norm(p1[k])));
+  const V gap =
+      (_mm256_set1_pd(tau) + _mm256_set1_pd(16.0 * U) * M) * _mm256_set1_pd(1.0 + 4.0 * U) +
+      _mm256_set1_pd(UNDERFLOW_FLOOR);
+  const V neg_gap = zero - gap;
+  V3 d[8];
+  int nd = 0;
+  for (const V3* p : {p0, p1}) {
+    if (vf) {
+      for (int j = 1; j < 4; ++j) d[nd++] = p[0] - p[j];
+    } else {
+      for (int i = 0; i < 2; ++i)
+        for (int j = 2; j < 4; ++j) d[nd++] = p[i] - p[j];
+    }
+  }
+  V separated = zero;
+  for (int ax = 0; ax < 3; ++ax) {
+    auto coordinate = [ax](const V3& q) { return ax == 0 ? q.x : ax == 1 ? q.y : q.z; };
+    V lo = coordinate(d[0]), hi = lo;
+    for (int k = 1; k < nd; ++k) {
+      lo = vmin(lo, coordinate(d[k]));
+      hi = vmax(hi, coordinate(d[k]));
+    }
+    separated = _mm256_or_pd(separated, _mm256_or_pd(_mm256_cmp_pd(lo, gap, _CMP_GT_OQ),
+                                                     _mm256_cmp_pd(hi, neg_gap, _CMP_LT_OQ)));
+  }
+  const int axis_bits = _mm256_movemask_pd(_mm256_and_pd(all_finite, separated));
+  for (int k = 0; k < count; ++k) axes[k] = static_cast<std::uint8_t>((axis_bits >> k) & 1);
 }
 
 #undef SC_CULL_INLINE
@@ -186,16 +219,16 @@ bool cull_batch_avx2_available() {
 
 void cull_batch(CcdPrimitive kind, const double* x0, const double* x1,
                 const std::array<int, 4>* v, int count, double tolerance, std::uint8_t* culled,
-                CullIsa isa) {
+                CullIsa isa, std::uint8_t* axes) {
   count = std::clamp(count, 0, CULL_LANES);
   if (count == 0) return;
 #if SHELLCONTRACT_CULL_AVX2
   if (isa == CullIsa::Auto && cull_batch_avx2_available()) {
-    cull_avx2(kind, x0, x1, v, count, tolerance, culled);
+    cull_avx2(kind, x0, x1, v, count, tolerance, culled, axes);
     return;
   }
 #endif
-  cull_scalar(kind, x0, x1, v, count, tolerance, culled);
+  cull_scalar(kind, x0, x1, v, count, tolerance, culled, axes);
 }
 
 }  // namespace shellcontract

@@ -288,7 +288,7 @@ TEST(SeparatingAxis, CullsOnlyPairsFartherThanTauThatTheIntervalSearchAlsoReject
   // the test must cull many pairs that the box test and the filter keep, and keep some.
   std::mt19937 rng(808);
   std::uniform_real_distribution<double> exponent(-4.0, 0.0);
-  int culled = 0, beyond_filter = 0;
+  int culled = 0, beyond_filter = 0, by_axes = 0, by_direction_only = 0;
   const int n = 20000, samples = 16;
   for (int trial = 0; trial < n; ++trial) {
     const CcdPrimitive kind = KINDS[trial % 2];
@@ -297,6 +297,13 @@ TEST(SeparatingAxis, CullsOnlyPairsFartherThanTauThatTheIntervalSearchAlsoReject
     CcdStencil x0, x1;
     flat_pair(rng, kind, scale, x0, x1);
     const bool culls = separating_axis_culls(kind, x0, x1, tau);
+    // Its two halves (the collision step runs the axes in its filter stage, the direction in
+    // the narrow phase): it culls iff one of them does.
+    const bool axes = separating_axes_culls(kind, x0, x1, tau);
+    const bool direction = separating_direction_culls(kind, x0, x1, tau);
+    ASSERT_EQ(culls, axes || direction) << "trial " << trial << describe(x0, x1);
+    by_axes += axes;
+    by_direction_only += direction && !axes;
     if (!culls) continue;
     ++culled;
     beyond_filter += !swept_boxes_apart(kind, x0, x1, tau) &&
@@ -313,6 +320,9 @@ TEST(SeparatingAxis, CullsOnlyPairsFartherThanTauThatTheIntervalSearchAlsoReject
   EXPECT_GT(beyond_filter, n / 10);
   std::printf("  culled %d of %d, %d of them kept by the box test and the filter\n", culled, n,
               beyond_filter);
+  EXPECT_GT(by_axes, n / 4);
+  EXPECT_GT(by_direction_only, n / 40);
+  std::printf("  by the axes %d, by the direction alone %d\n", by_axes, by_direction_only);
 }
 
 TEST(SeparatingAxis, CoplanarForTheWholeStep) {
@@ -365,6 +375,8 @@ TEST(SeparatingAxis, NonFiniteInputIsNeverCulled) {
   for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     x1[3].y() = bad;
     EXPECT_FALSE(separating_axis_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
+    EXPECT_FALSE(separating_axes_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
+    EXPECT_FALSE(separating_direction_culls(CcdPrimitive::VertexFace, x0, x1, 0.0));
     x1[3].y() = 1.0;
   }
 }

@@ -1,7 +1,7 @@
 // cull_batch against the scalar swept_boxes_apart and nonpenetration_filter_culls (with the
-// coarse rounding bound, FilterBound::Coarse): the same
-// answer for every stencil (the batch only shares the work), on random, near-coplanar,
-// degenerate, boundary and non-finite stencils.
+// coarse rounding bound, FilterBound::Coarse), and its axes output against separating_axes_culls:
+// the same answer for every stencil (the batch only shares the work), on random, near-coplanar,
+// degenerate, boundary and non-finite stencils, and on pairs that move together.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -88,6 +88,24 @@ Stencils make_stencils(std::mt19937& rng) {
   return st;
 }
 
+/// Calls visit(first stencil, ids, count) for batches of 1..4 consecutive stencils of one kind
+/// (count cycling with the first stencil's index, cut where the kind changes).
+template <class Visit>
+void for_each_batch(const Stencils& st, Visit visit) {
+  for (std::size_t s = 0; s < st.size();) {
+    const int want_count = 1 + static_cast<int>(s % 4);
+    std::array<int, 4> v[CULL_LANES];
+    int count = 0;
+    while (count < want_count && s + static_cast<std::size_t>(count) < st.size() &&
+           st.kind[s + static_cast<std::size_t>(count)] == st.kind[s]) {
+      const int base = 4 * static_cast<int>(s + static_cast<std::size_t>(count));
+      v[count++] = {base, base + 1, base + 2, base + 3};
+    }
+    visit(s, v, count);
+    s += static_cast<std::size_t>(count);
+  }
+}
+
 TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
   if (!cull_batch_avx2_available()) {
     GTEST_SKIP() << "this CPU has no AVX2: cull_batch runs the scalar functions themselves";
@@ -96,16 +114,7 @@ TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
   const Stencils st = make_stencils(rng);
   std::int64_t box = 0, filter_only = 0, kept = 0, compared = 0, bound_decides = 0;
   for (double tol : {0.0, 1e-4, 0.0625}) {
-    // Batches of 1..4 stencils of one kind.
-    for (std::size_t s = 0; s < st.size();) {
-      const int want_count = 1 + static_cast<int>(s % 4);
-      std::array<int, 4> v[CULL_LANES];
-      int count = 0;
-      while (count < want_count && s + static_cast<std::size_t>(count) < st.size() &&
-             st.kind[s + static_cast<std::size_t>(count)] == st.kind[s]) {
-        const int base = 4 * static_cast<int>(s + static_cast<std::size_t>(count));
-        v[count++] = {base, base + 1, base + 2, base + 3};
-      }
+    for_each_batch(st, [&](std::size_t s, const std::array<int, 4>* v, int count) {
       std::uint8_t culled[CULL_LANES] = {7, 7, 7, 7};
       cull_batch(st.kind[s], st.x0.data(), st.x1.data(), v, count, tol, culled);
       for (int k = 0; k < count; ++k) {
@@ -126,8 +135,7 @@ TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
         ++compared;
       }
       for (int k = count; k < CULL_LANES; ++k) EXPECT_EQ(culled[k], 7) << "lane past count written";
-      s += static_cast<std::size_t>(count);
-    }
+    });
   }
   // Every outcome occurs often, so the comparison covers each path of the batch code.
   EXPECT_GT(box, 1000);
@@ -135,6 +143,60 @@ TEST(CullBatch, SameAnswersAsTheScalarFunctions) {
   EXPECT_GT(kept, 1000);
   EXPECT_GT(bound_decides, 100);
   EXPECT_EQ(compared, 3 * static_cast<std::int64_t>(st.size()));
+}
+
+/// Pairs that move together: apart by `gap` along x at the start (A's points at x >= gap, B's at
+/// x <= 0), then all moved by a shared 0.3 along x plus each point's own motion of up to 0.05 per
+/// coordinate. Their swept boxes overlap (the shared motion is larger than the gap), so the box
+/// test keeps them; the differences a - b at each end decide the axes cull.
+void add_moving_together(std::mt19937& rng, Stencils& st) {
+  std::uniform_real_distribution<double> gap(0.0, 0.2), unit(0.0, 1.0);
+  for (CcdPrimitive kind : {CcdPrimitive::VertexFace, CcdPrimitive::EdgeEdge}) {
+    const int split = kind == CcdPrimitive::VertexFace ? 1 : 2;
+    for (int i = 0; i < 3000; ++i) {
+      const double g = gap(rng);
+      CcdStencil s0, s1;
+      for (int j = 0; j < 4; ++j) {
+        Vec3& p = s0[static_cast<std::size_t>(j)];
+        p = test::random_vec3(rng, 0.05);
+        p.x() = j < split ? g + 0.05 * unit(rng) : -0.05 * unit(rng);
+        s1[static_cast<std::size_t>(j)] = p + Vec3(0.3, 0.0, 0.0) + test::random_vec3(rng, 0.05);
+      }
+      st.add(kind, s0, s1);
+    }
+  }
+}
+
+TEST(CullBatch, AxesOutputIsTheScalarAxesCull) {
+  if (!cull_batch_avx2_available()) {
+    GTEST_SKIP() << "this CPU has no AVX2: cull_batch runs the scalar functions themselves";
+  }
+  std::mt19937 rng(20261129);
+  Stencils st = make_stencils(rng);
+  add_moving_together(rng, st);
+  std::int64_t axes_only = 0, axes_and_filter = 0, neither = 0;
+  for (double tol : {0.0, 1e-4, 0.0625}) {
+    for_each_batch(st, [&](std::size_t s, const std::array<int, 4>* v, int count) {
+      std::uint8_t culled[CULL_LANES], axes[CULL_LANES] = {7, 7, 7, 7};
+      cull_batch(st.kind[s], st.x0.data(), st.x1.data(), v, count, tol, culled, CullIsa::Auto,
+                 axes);
+      for (int k = 0; k < count; ++k) {
+        const std::size_t id = s + static_cast<std::size_t>(k);
+        const CcdStencil s0 = st.at(st.x0, id), s1 = st.at(st.x1, id);
+        const bool want = separating_axes_culls(st.kind[s], s0, s1, tol);
+        ASSERT_EQ(axes[k], want ? 1 : 0) << "stencil " << id << ", tolerance " << tol;
+        axes_only += want && !culled[k];
+        axes_and_filter += want && culled[k];
+        neither += !want && !culled[k];
+      }
+      for (int k = count; k < CULL_LANES; ++k) EXPECT_EQ(axes[k], 7) << "lane past count written";
+    });
+  }
+  // The axes settle many pairs the box test and the filter keep (the collision step's reason to
+  // ask), and many of both kinds of answer occur.
+  EXPECT_GT(axes_only, 1000);
+  EXPECT_GT(axes_and_filter, 1000);
+  EXPECT_GT(neither, 1000);
 }
 
 TEST(CullBatch, ScalarIsaAndNonFiniteInputAreNeverCulled) {

@@ -202,6 +202,14 @@ bool nonpenetration_filter_culls(CcdPrimitive kind, const CcdStencil& x0, const 
 bool separating_axis_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
                            double tolerance = 0.0);
 
+/// The two halves of separating_axis_culls, which is true iff one of them is: the axes x, y, z
+/// alone (its step 2a; cull_batch also gives it four stencils at a time), and the closest-point
+/// direction at t = 1/2 alone (step 2b). Same parameters and the same false for non-finite input.
+bool separating_axes_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                           double tolerance = 0.0);
+bool separating_direction_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                                double tolerance = 0.0);
+
 /// Swept-box cull (math-spec 10.2, per pair): true only if the boxes around the two primitives'
 /// start and end positions (VF: the vertex against the face; EE: edge against edge) are more than
 /// tau apart on some axis, with the rounding of the gap bounded. Then their distance exceeds tau at

@@ -81,8 +81,18 @@ bool swept_boxes_apart(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil
   return false;
 }
 
-bool separating_axis_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
-                           double tolerance) {
+namespace {
+
+/// The separating-axis steps' inputs: the vertex differences at both ends and the gaps for
+/// tolerance tau and the largest input coordinate. False (nothing set) for non-finite input.
+struct SeparationInput {
+  Vec3 da[4], db[4];
+  int nd = 0;
+  SeparationGaps gaps{};
+};
+
+bool separation_input(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                      double tolerance, SeparationInput& in) {
   double M = 0.0;
   for (int k = 0; k < 4; ++k) {
     if (!x0[k].allFinite() || !x1[k].allFinite()) return false;
@@ -90,14 +100,39 @@ bool separating_axis_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdSte
   }
   // Steps 2a and 2b of the interval search on I = [0, 1], with the same thresholds: the
   // positions at t = 0 and 1 are the inputs themselves, the midpoint is evaluated as there.
-  const SeparationGaps gaps = separation_gaps(tolerance > 0.0 ? tolerance : 0.0, M);
-  Vec3 da[4], db[4];
-  const int nd = differences(kind, x0, da);
-  differences(kind, x1, db);
-  if (axes_separate(da, db, nd, gaps)) return true;
+  in.gaps = separation_gaps(tolerance > 0.0 ? tolerance : 0.0, M);
+  in.nd = differences(kind, x0, in.da);
+  differences(kind, x1, in.db);
+  return true;
+}
+
+bool direction_step(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                    const SeparationInput& in) {
   CcdStencil xm;
   for (int k = 0; k < 4; ++k) xm[k] = position(x0[k], x1[k], 0.5);
-  return direction_separates(da, db, nd, closest_at(kind, xm).direction, gaps);
+  return direction_separates(in.da, in.db, in.nd, closest_at(kind, xm).direction, in.gaps);
+}
+
+}  // namespace
+
+bool separating_axis_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                           double tolerance) {
+  SeparationInput in;
+  if (!separation_input(kind, x0, x1, tolerance, in)) return false;
+  return axes_separate(in.da, in.db, in.nd, in.gaps) || direction_step(kind, x0, x1, in);
+}
+
+bool separating_axes_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                           double tolerance) {
+  SeparationInput in;
+  return separation_input(kind, x0, x1, tolerance, in) &&
+         axes_separate(in.da, in.db, in.nd, in.gaps);
+}
+
+bool separating_direction_culls(CcdPrimitive kind, const CcdStencil& x0, const CcdStencil& x1,
+                                double tolerance) {
+  SeparationInput in;
+  return separation_input(kind, x0, x1, tolerance, in) && direction_step(kind, x0, x1, in);
 }
 
 }  // namespace shellcontract

@@ -277,9 +277,10 @@ struct SelfCollision::Impl {
   std::vector<std::size_t> block_count_;  ///< compact(): kept indices per block
   /// One block of tests of detect(): what its task found (buffers reused between calls).
   struct DetectBlock {
-    std::vector<std::uint32_t> kept;  ///< pairs the filter did not cull, in test order
+    std::vector<std::uint32_t> kept;  ///< pairs the filter and the axes cull kept, in test order
     std::vector<Contact> hits;        ///< narrow-phase hits, in test order
     std::int64_t axis_culls = 0;      ///< survivors separating_axis_culls settled
+    std::size_t axes_settled = 0;     ///< of them, those its axes half settled in the filter
     double filter_seconds = 0.0, narrow_seconds = 0.0;  ///< the task's time in each stage
   };
   std::vector<DetectBlock> blocks_;
