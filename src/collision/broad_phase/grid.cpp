@@ -287,6 +287,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   if (work > work_limit && small_h > 0.0 && small_h < 1.0 / g.inv_h) {
     new_grid(small_h);
     work = grid_sort_fill(g, nboxes, entries, s);  // new_grid keeps the entries in bounds
+    s.grid_patched_boxes = -1;                     // whatever a patch did, this is a rebuild
     s.grid_small_backoff =
         std::min(std::max(1, 2 * s.grid_small_backoff), GRID_SMALL_CELL_MAX_BACKOFF);
     s.grid_small_skips = s.grid_patch ? s.grid_small_backoff : 0;
