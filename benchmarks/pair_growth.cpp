@@ -81,7 +81,8 @@ int main(int argc, char** argv) {
     const Positions x0 = positions_from_mesh(start) / diagonal;
     const Positions x1 = positions_from_mesh(end) / diagonal;
     const CollisionTopology topo = make_collision_topology(faces, static_cast<int>(x0.rows()));
-    const double inflation = broad_phase_inflation(options);
+    const double max_abs = std::max({x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff()});
+    const double inflation = broad_phase_inflation(options, max_abs);
     const double nf = static_cast<double>(faces.rows());
     std::printf("{\"faces\": %ld, \"inflation\": %.6g, \"static\": %.4f",
                 static_cast<long>(faces.rows()), inflation,

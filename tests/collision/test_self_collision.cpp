@@ -258,15 +258,16 @@ TEST(SelfCollision, PairsTouchingAtRestAreExcluded) {
 TEST(SelfCollision, BroadPhaseKeepsThePairsItsRegionsCanBringWithinDeltaAndNoFarther) {
   // Two still triangles, the upper one a gap g above the lower (every VF and EE pair between
   // them is g apart on z). Inside their regions (each vertex within m/2 of its swept box) the
-  // step can bring them within delta iff g <= delta + m; the broad phase keeps, per math-spec
-  // 10.2, every pair whose boxes grown by delta plus the region overlap: g <= 2 delta + m.
+  // step can bring them within delta iff g <= delta + m; the broad phase keeps every pair whose
+  // boxes grown by (delta + m)/2 and a rounding margin overlap: g <= delta + m (up to that
+  // margin, a few u of the coordinates), and no pair of a gap beyond, such as 1.001 (delta + m)
+  // or the 2 delta + m of the inflation delta + m/2 it had before.
   CollisionOptions opt;
   opt.delta = 1e-3;
   const double m = opt.region_margin * opt.delta;
-  EXPECT_DOUBLE_EQ(broad_phase_inflation(opt), opt.delta + 0.5 * m);
   std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>> inside;
-  for (const double g : {0.999 * (opt.delta + m), 0.999 * (2.0 * opt.delta + m),
-                         1.001 * (2.0 * opt.delta + m)}) {
+  for (const double g : {0.5 * (opt.delta + m), opt.delta + m, 1.001 * (opt.delta + m),
+                         0.999 * (2.0 * opt.delta + m)}) {
     SCOPED_TRACE("gap " + std::to_string(g));
     TwoTriangles t;  // at rest 0.1 apart: every pair is NORMAL
     SelfCollision sc(t.faces, t.x0, opt);
@@ -276,7 +277,7 @@ TEST(SelfCollision, BroadPhaseKeepsThePairsItsRegionsCanBringWithinDeltaAndNoFar
     CollisionStepStats stats;
     sc.resolve(x, x1, t.w, stats);
     EXPECT_EQ(x1, x) << "nothing within delta: nothing moves";
-    const bool candidates = g <= 2.0 * opt.delta + m;
+    const bool candidates = g <= opt.delta + m;
     // Inside: the pairs whose boxes overlap in x and y (vertex 3 over face 0 among them), the
     // same for both gaps; beyond: none.
     const auto pairs = sc.candidate_pairs();

@@ -263,7 +263,8 @@ TEST(SelfCollision, SpeculativeBroadPhaseHasThePlainCandidates) {
     }
     if (step == 11) guess.array() += 0.1;  // every vertex off: the plain broad phase runs
     CandidatePairs expected;
-    find_candidates(x0, x1, sc.topology(), broad_phase_inflation(opt), expected);
+    const double max_abs = std::max(x0.cwiseAbs().maxCoeff(), x1.cwiseAbs().maxCoeff());
+    find_candidates(x0, x1, sc.topology(), broad_phase_inflation(opt, max_abs), expected);
     std::sort(expected.vertex_face.begin(), expected.vertex_face.end());
     std::sort(expected.edge_edge.begin(), expected.edge_edge.end());
     CollisionStepStats stats;

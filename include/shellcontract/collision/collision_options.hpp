@@ -22,7 +22,7 @@ struct CollisionOptions {
   /// Detection and the fail-safe still decide; off gives the plain per-step response of
   /// math-spec 10.8.
   bool warm_start = true;
-  /// m / delta >= 0: the step's broad phase inflates by delta + m/2 (broad_phase_inflation), and
+  /// m / delta >= 0: the step's broad phase inflates by (delta + m)/2 (broad_phase_inflation), and
   /// the response keeps each vertex within m/2 of its swept box (see SelfCollision::resolve;
   /// measurements at RESPONSE_FACTOR in src/collision/self_collision/state.hpp).
   double region_margin = 4.0;
@@ -41,11 +41,13 @@ struct CollisionOptions {
   bool narrow_rescans = true;
 };
 
-/// The broad phase's inflation of every swept box: delta + m/2, m = region_margin * delta. Each
-/// box keeps math-spec 10.2's inflation by delta, grown by the region every vertex stays in (see
-/// SelfCollision::resolve), so every pair the step can still bring within delta is a candidate
+/// The broad phase's inflation of every swept box, for coordinates of magnitude at most max_abs
+/// (the largest |coordinate| of the step's start and end positions): (delta + m)/2 plus a
+/// rounding margin of 4u (max_abs + delta + m), m = region_margin * delta, u the unit roundoff.
+/// Two boxes grown by it overlap whenever the step can bring their primitives within delta with
+/// every vertex inside its region (see SelfCollision::resolve), so every such pair is a candidate
 /// (the argument, rounding included, is at its definition,
 /// src/collision/self_collision/self_collision.cpp).
-double broad_phase_inflation(const CollisionOptions& options);
+double broad_phase_inflation(const CollisionOptions& options, double max_abs);
 
 }  // namespace shellcontract

@@ -42,8 +42,8 @@ class SelfCollision {
   /// those detected in the previous step and those its warm start still had to push (a contact
   /// stays in this cache while it is pressed together, one entry per pair).
   ///
-  /// Work is incremental. One broad phase per step, on the swept boxes inflated by delta plus
-  /// m/2 for a margin m (CollisionOptions::region_margin; broad_phase_inflation), gives the
+  /// Work is incremental. One broad phase per step, on the swept boxes inflated by (delta + m)/2
+  /// for a margin m (CollisionOptions::region_margin; broad_phase_inflation), gives the
   /// candidates of every round and of the fail-safe, because the response is clamped so that no
   /// vertex leaves its swept box grown by m/2 (a push it cannot complete is finished by the
   /// pair's other vertices in a later round, or by the fail-safe, whose revert to x0 stays inside

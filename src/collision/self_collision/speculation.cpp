@@ -39,7 +39,11 @@ void SelfCollision::Impl::predict(const Positions& x0, const Positions& x_guess,
   guess_set_ = true;
   if (options_.warm_start) warm_start(spec_pred_, w);
   if (skin_.size() != n) skin_ = Eigen::VectorXd::Constant(n, SKIN_MIN * delta);
-  const double inflation = broad_phase_inflation(options_);
+  // The inflation for the predicted positions' magnitude: the actual step's may differ in its
+  // rounding margin (a few u of the coordinates), which the skin covers. A non-finite
+  // prediction makes non-finite boxes (below).
+  const double inflation =
+      broad_phase_inflation(options_, spec_pred_.allFinite() ? max_abs(x0, spec_pred_) : 0.0);
   spec_boxes_.resize(nvs);
   // Non-finite predictions or boxes (a blow-up the simulator will report) make no grid: plain
   // path. (A NaN prediction can leave its box finite: std::min and std::max pass the other

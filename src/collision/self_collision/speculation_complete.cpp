@@ -47,16 +47,17 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
     return fail();
   }
   // What needs only x0 and x1 comes first, while the task may still be running (it reads
-  // spec_boxes_ and writes the pair buffers; this part writes neither). One pass over the
-  // vertices, in parallel fixed blocks (each with its own counts, so nothing depends on the
-  // threads): the actual boxes (the arithmetic of find_candidates), which vertices left their
-  // predicted boxes, the skins of the next prediction (the end positions after the warm start
-  // are what was predicted), the response regions (set_regions' arithmetic), the largest
-  // coordinate (far_gap_threshold's) and whether x0 is the one predict saw. As four serial
-  // passes these took 0.31 ms per step on bear at P = 4 (docs/design/self-collision.md).
+  // spec_boxes_ and writes the pair buffers; this part writes neither). The largest coordinate
+  // (for the inflation and far_gap_threshold's), then one pass over the vertices, in parallel
+  // fixed blocks (each with its own counts, so nothing depends on the threads): the actual boxes
+  // (the arithmetic of find_candidates), which vertices left their predicted boxes, the skins of
+  // the next prediction (the end positions after the warm start are what was predicted), the
+  // response regions (set_regions' arithmetic) and whether x0 is the one predict saw. As four
+  // serial passes these took 0.31 ms per step on bear at P = 4 (docs/design/self-collision.md).
   const Eigen::Index nv = x0.rows();
   const std::size_t nvs = static_cast<std::size_t>(nv);
-  const double inflation = broad_phase_inflation(options_);
+  const double max_abs_x = max_abs(x0, x1);
+  const double inflation = broad_phase_inflation(options_, max_abs_x);
   const double half_margin = 0.5 * (options_.region_margin * options_.delta);
   exact_boxes_.resize(nvs);
   escaped_.resize(nvs);
@@ -82,7 +83,6 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
         region_hi_(v, d) = hi + half_margin;
         inside = inside && p.lo[k] <= e.lo[k] && e.hi[k] <= p.hi[k];
         error = std::max(error, std::abs(c - spec_pred_(v, d)));
-        out.max_abs = std::max(out.max_abs, std::max(std::abs(a), std::abs(c)));
         out.other_x0 = out.other_x0 || a != spec_x0_(v, d);
       }
       escaped_[i] = !inside;
@@ -91,11 +91,9 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
     }
   });
   std::size_t escaped = 0;
-  double max_abs = 0.0;
   bool other_x0 = false;
   for (const VertexBlock& b : vertex_blocks_) {
     escaped += b.escaped;
-    max_abs = std::max(max_abs, b.max_abs);
     other_x0 = other_x0 || b.other_x0;
   }
   const bool too_many = static_cast<double>(escaped) >
@@ -115,7 +113,7 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
         escaped_prims_.push_back(
             static_cast<std::uint32_t>(nvs + nf + static_cast<std::size_t>(e)));
   }
-  const double far_gap = far_gap_threshold_for_magnitude(max_abs, inflation, options_.delta);
+  const double far_gap = far_gap_threshold_for_magnitude(max_abs_x, inflation, options_.delta);
   const bool task_ok = finish_task();
   if (!task_ok || !spec_ok_ || too_many || other_x0) return fail();
 

@@ -59,10 +59,10 @@ struct SelfCollision::Impl {
   static constexpr double RESPONSE_FACTOR = 2.0;
 
   /// Region margin (CollisionOptions::region_margin, see resolve): the step's one broad phase
-  /// inflates the swept boxes by delta + m/2 with m = region_margin * delta (broad_phase_inflation,
-  /// below), and every vertex then stays inside its swept box grown by m/2 (the response is
-  /// clamped to it). A small region clamps more pushes, which later rounds or the fail-safe must
-  /// finish; a large one gives more candidates. Measured (this machine, quiet, warm start on, with
+  /// inflates the swept boxes by (delta + m)/2 with m = region_margin * delta
+  /// (broad_phase_inflation), and every vertex then stays inside its swept box grown by m/2 (the
+  /// response is clamped to it). A small region clamps more pushes, which later rounds or the
+  /// fail-safe must finish; a large one gives more candidates. Measured (this machine, quiet, warm start on, with
   /// the inflation delta + m of the time): bear default run, per step filter tests / rounds /
   /// collision ms, fail-safe vertices over the run; and hand at P = 4 for 300 frames, fail-safe
   /// vertices:
@@ -187,6 +187,9 @@ struct SelfCollision::Impl {
   /// The regions the response keeps each vertex in: its swept box over (x0, x1) grown by m/2,
   /// m = region_margin * delta (region_lo_, region_hi_).
   void set_regions(const Positions& x0, const Positions& x1);
+
+  /// The largest |coordinate| of a and b (finite, same row counts), in parallel fixed blocks.
+  double max_abs(const Positions& a, const Positions& b) const;
 
   /// Runs on the spare thread: the grid over spec_boxes_ and the records of its pairs.
   void run_speculation();
@@ -339,11 +342,10 @@ struct SelfCollision::Impl {
   PairArray<std::uint8_t> base_role_;  ///< per speculative pair: its rest-state PairRole
   std::vector<std::uint8_t> escaped_;    ///< per vertex: actual box not inside the predicted one
   std::vector<std::uint32_t> escaped_prims_;  ///< their vertices, faces and edges (grid ids)
-  /// One block of complete_speculation's pass over the vertices: its escaped vertices, largest
-  /// |coordinate| of x0 and x1, and whether its x0 differs from predict's.
+  /// One block of complete_speculation's pass over the vertices: its escaped vertices and
+  /// whether its x0 differs from predict's.
   struct VertexBlock {
     std::size_t escaped = 0;
-    double max_abs = 0.0;
     bool other_x0 = false;
   };
   std::vector<VertexBlock> vertex_blocks_;

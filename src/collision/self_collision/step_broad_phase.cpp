@@ -71,12 +71,30 @@ void SelfCollision::Impl::set_regions(const Positions& x0, const Positions& x1) 
   });
 }
 
+double SelfCollision::Impl::max_abs(const Positions& a, const Positions& b) const {
+  // Per fixed block of rows, then over the blocks in order (a max is exact: any order gives it).
+  const Eigen::Index n = a.rows(), block = 4096;
+  const Eigen::Index blocks = (n + block - 1) / block;
+  std::vector<double> partial(static_cast<std::size_t>(blocks), 0.0);
+  workers_->arena.execute([&] {
+    tbb::parallel_for(Eigen::Index{0}, blocks, [&](Eigen::Index k) {
+      const Eigen::Index begin = k * block, rows = std::min(block, n - begin);
+      partial[static_cast<std::size_t>(k)] =
+          std::max(a.middleRows(begin, rows).cwiseAbs().maxCoeff(),
+                   b.middleRows(begin, rows).cwiseAbs().maxCoeff());
+    });
+  });
+  double m = 0.0;
+  for (const double p : partial) m = std::max(m, p);
+  return m;
+}
+
 void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
                                       CollisionStepStats& stats) {
   BroadPhaseStats bs;
+  const double inflation = broad_phase_inflation(options_, max_abs(x0, x1));
   workers_->arena.execute([&] {
-    find_candidates(x0, x1, topo_, broad_phase_inflation(options_), candidates_, &bs,
-                    options_.method, options_.delta);
+    find_candidates(x0, x1, topo_, inflation, candidates_, &bs, options_.method, options_.delta);
   });
   const StageTimer t0;
   // One record per candidate, filled in parallel (each writes its own slot). Excluded pairs keep
