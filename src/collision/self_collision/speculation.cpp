@@ -41,9 +41,8 @@ void SelfCollision::Impl::predict(const Positions& x0, const Positions& x_guess,
   if (skin_.size() != n) skin_ = Eigen::VectorXd::Constant(n, SKIN_MIN * delta);
   // The inflation for the predicted positions' magnitude: the actual step's may differ in its
   // rounding margin (a few u of the coordinates), which the skin covers. A non-finite
-  // prediction makes non-finite boxes (below).
-  const double inflation =
-      broad_phase_inflation(options_, spec_pred_.allFinite() ? max_abs(x0, spec_pred_) : 0.0);
+  // prediction makes no grid whatever this gives (the finiteness test below).
+  const double inflation = broad_phase_inflation(options_, max_abs(x0, spec_pred_));
   spec_boxes_.resize(nvs);
   // Non-finite predictions or boxes (a blow-up the simulator will report) make no grid: plain
   // path. (A NaN prediction can leave its box finite: std::min and std::max pass the other

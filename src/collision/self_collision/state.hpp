@@ -188,7 +188,8 @@ struct SelfCollision::Impl {
   /// m = region_margin * delta (region_lo_, region_hi_).
   void set_regions(const Positions& x0, const Positions& x1);
 
-  /// The largest |coordinate| of a and b (finite, same row counts), in parallel fixed blocks.
+  /// The largest |coordinate| of a and b (same row counts), in parallel fixed blocks; unspecified
+  /// (possibly NaN) if a coordinate is not finite.
   double max_abs(const Positions& a, const Positions& b) const;
 
   /// Runs on the spare thread: the grid over spec_boxes_ and the records of its pairs.
