@@ -13,6 +13,10 @@
 
 #include "collision/broad_phase/grid.hpp"
 
+#if SHELLCONTRACT_GRID_AVX512
+#include <immintrin.h>
+#endif
+
 namespace shellcontract {
 namespace detail {
 
@@ -113,6 +117,46 @@ std::size_t emit_cells_in_rows(const Slabs& sl, const GridRange& r, std::size_t 
   return n;
 }
 
+#if SHELLCONTRACT_GRID_AVX512
+#pragma GCC push_options
+#pragma GCC target("avx512f,avx512vl")
+/// emit_cells_in_rows with the 2x2x2 pattern in eight 32-bit lanes: the same cells and tags in
+/// the same order (a compress keeps the lanes' order, corner 0 first), two stores per box
+/// instead of sixteen. Cells and rows fit 32 bits: a grid has at most 2 boxes' worth of cells
+/// (GRID_CELLS_PER_BOX), and fewer than GRID_MAX_BOXES boxes.
+std::size_t emit_cells_in_rows_avx512(const Slabs& sl, const GridRange& r, std::size_t row0,
+                                      std::size_t row1, std::uint32_t tag, std::uint32_t* cell,
+                                      std::uint32_t* tags, std::size_t n) {
+  const unsigned ex = r.hi[0] - r.lo[0], ey = r.hi[1] - r.lo[1], ez = r.hi[2] - r.lo[2];
+  if ((ex | ey | ez) > 1) return emit_cells_in_rows(sl, r, row0, row1, tag, cell, tags, n);
+  const __m256i corner = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+  const __m256i one = _mm256_set1_epi32(1);
+  const __m256i ox = _mm256_and_si256(corner, one);
+  const __m256i oy = _mm256_and_si256(_mm256_srli_epi32(corner, 1), one);
+  const __m256i oz = _mm256_srli_epi32(corner, 2);
+  const __m256i row = _mm256_add_epi32(
+      _mm256_add_epi32(_mm256_set1_epi32(r.lo[1]), oy),
+      _mm256_mullo_epi32(_mm256_add_epi32(_mm256_set1_epi32(r.lo[2]), oz),
+                         _mm256_set1_epi32(static_cast<int>(sl.dy))));
+  const __m256i r0 = _mm256_set1_epi32(static_cast<int>(row0));
+  const __mmask8 valid = _mm256_cmple_epu32_mask(ox, _mm256_set1_epi32(static_cast<int>(ex))) &
+                         _mm256_cmple_epu32_mask(oy, _mm256_set1_epi32(static_cast<int>(ey))) &
+                         _mm256_cmple_epu32_mask(oz, _mm256_set1_epi32(static_cast<int>(ez))) &
+                         _mm256_cmpge_epu32_mask(row, r0) &
+                         _mm256_cmplt_epu32_mask(row, _mm256_set1_epi32(static_cast<int>(row1)));
+  const __m256i c = _mm256_add_epi32(
+      _mm256_mullo_epi32(_mm256_sub_epi32(row, r0), _mm256_set1_epi32(static_cast<int>(sl.dx))),
+      _mm256_add_epi32(_mm256_set1_epi32(r.lo[0]), ox));
+  // The flags of corner k are those of the scalar path: (ox ^ 1) | (oy ^ 1) << 1 | (oz ^ 1) << 2.
+  const __m256i t = _mm256_or_si256(_mm256_set1_epi32(static_cast<int>(tag)),
+                                    _mm256_sub_epi32(_mm256_set1_epi32(7), corner));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(cell + n), _mm256_maskz_compress_epi32(valid, c));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(tags + n), _mm256_maskz_compress_epi32(valid, t));
+  return n + static_cast<std::size_t>(__builtin_popcount(valid));
+}
+#pragma GCC pop_options
+#endif
+
 }  // namespace
 
 std::uint64_t grid_sort_count(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
@@ -178,6 +222,9 @@ std::uint64_t grid_sort_fill(const Grid& g, std::size_t nboxes, std::uint64_t en
   start[0] = 0;
   s.cell_entries.resize(entries);
   s.slab_work.assign(sl.count, 0);
+  // The AVX-512 emission where the cell loop is AVX-512 too (GridIsa::Portable: neither).
+  const bool avx512 = s.grid_isa == GridIsa::Auto && grid_avx512_available();
+  (void)avx512;
   tbb::parallel_for(std::size_t{0}, sl.count, [&](std::size_t slab) {
     const std::size_t row0 = slab * sl.rows_per_slab;
     const std::size_t row1 = std::min(sl.rows, row0 + sl.rows_per_slab);
@@ -194,9 +241,16 @@ std::uint64_t grid_sort_fill(const Grid& g, std::size_t nboxes, std::uint64_t en
     const std::uint32_t* ids = s.slab_boxes.data() + s.slab_box_begin[slab];
     const std::size_t nids = s.slab_box_begin[slab + 1] - s.slab_box_begin[slab];
     std::size_t n = 0;
-    for (std::size_t k = 0; k < nids; ++k)
-      n = emit_cells_in_rows(sl, s.grid_ranges[ids[k]], row0, row1, ids[k] << 3, buf.cell.data(),
-                             buf.tag.data(), n);
+#if SHELLCONTRACT_GRID_AVX512
+    if (avx512)
+      for (std::size_t k = 0; k < nids; ++k)
+        n = emit_cells_in_rows_avx512(sl, s.grid_ranges[ids[k]], row0, row1, ids[k] << 3,
+                                      buf.cell.data(), buf.tag.data(), n);
+    else
+#endif
+      for (std::size_t k = 0; k < nids; ++k)
+        n = emit_cells_in_rows(sl, s.grid_ranges[ids[k]], row0, row1, ids[k] << 3,
+                               buf.cell.data(), buf.tag.data(), n);
     assert(n == nentries);
     std::uint32_t* cursor = buf.cursor.data();
     for (std::size_t i = 0; i < n; ++i) ++cursor[buf.cell[i]];
