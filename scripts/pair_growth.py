@@ -117,7 +117,8 @@ def main():
         "then counts the candidate pairs (vertex-face and edge-edge, adjacent ones left out) "
         "of the "
         f"step from frame {a.frames - 1} to frame {a.frames}, per face, with the boxes inflated by "
-        "the collision step's inflation (`delta + region_margin delta / 2`, 3 delta).",
+        "the collision step's inflation (`broad_phase_inflation`: "
+        "(delta + region_margin delta) / 2 and a rounding margin, 2.5 delta).",
         "",
         "- **run**: the run's own mean over its steps (the summary's "
         "`pairs_after_broad_phase_per_step`);",
