@@ -1,7 +1,8 @@
 // The Grid method's cell size (src/collision/broad_phase/grid.cpp): where the boxes are long
 // against the spacing of the surface, the cells of GRID_CELL_FACTOR median extents hold so many
-// boxes that the grid would give up (GRID_WORK_PER_BOX); it must take smaller cells first, keep
-// them for the next calls, and still report exactly brute force's pairs.
+// boxes (GRID_CROWDED_WORK_PER_BOX) that it must take smaller cells, keep them for the next
+// calls, and still report exactly brute force's pairs; it gives up only when even those exceed
+// GRID_WORK_PER_BOX.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -66,8 +67,9 @@ TEST(BroadPhaseGridCells, UncrowdedBoxesGetTheLargeCells) {
 }
 
 TEST(BroadPhaseGridCells, CrowdedCellsAreHalvedBeforeTheGridGivesUp) {
-  // Shifted by 2 (found by trying: from 1.5 to 2.5 the large cells exceed GRID_WORK_PER_BOX and
-  // the small ones do not; from 2.75 both do): the median extent is 3 + 2 inflation.
+  // Shifted by 2 (found by trying: from 1.5 to 2.5 the large cells exceed
+  // GRID_CROWDED_WORK_PER_BOX and the small ones do not; from 2.75 both do): the median extent is
+  // 3 + 2 inflation.
   const double inflation = 0.01, median = 3.0 + 2.0 * inflation;
   const MovedSheet s(2.0);
   CandidatePairs out;
@@ -90,15 +92,30 @@ TEST(BroadPhaseGridCells, CrowdedCellsAreHalvedBeforeTheGridGivesUp) {
   EXPECT_EQ(out.scratch->grid_small_backoff, 2);
 }
 
-TEST(BroadPhaseGridCells, BoxesTooCrowdedForEitherCellSizeGoToPrimitiveBoxes) {
-  // Shifted by 4: even the small cells exceed GRID_WORK_PER_BOX; the pairs are still exact.
-  const double inflation = 0.01;
+TEST(BroadPhaseGridCells, SmallCellsAboveTheCrowdedWorkKeepTheGrid) {
+  // Shifted by 4 (found by trying: from 2.75 to 7 the small cells hold 268 to 988 entry pairs per
+  // box, above GRID_CROWDED_WORK_PER_BOX and below GRID_WORK_PER_BOX): the grid goes on with them,
+  // where a limit at the crowded work gave up.
+  const double inflation = 0.01, median = 5.0 + 2.0 * inflation;
   const MovedSheet s(4.0);
   CandidatePairs out;
   BroadPhaseStats stats;
   find_candidates(s.mesh.x, s.x1, s.topo, inflation, out, &stats, BroadPhaseMethod::Grid);
-  EXPECT_EQ(stats.method_run, BroadPhaseMethod::PrimitiveBoxes);
+  EXPECT_EQ(stats.method_run, BroadPhaseMethod::Grid);
+  EXPECT_NEAR(cell_size(out), detail::GRID_SMALL_CELL_FACTOR * median, 1e-9 * median);
   expect_brute_force(s, inflation, out, "shift 4");
+}
+
+TEST(BroadPhaseGridCells, BoxesTooCrowdedForEitherCellSizeGoToPrimitiveBoxes) {
+  // Shifted by 10 (from 8 on, even the small cells exceed GRID_WORK_PER_BOX); the pairs are still
+  // exact.
+  const double inflation = 0.01;
+  const MovedSheet s(10.0);
+  CandidatePairs out;
+  BroadPhaseStats stats;
+  find_candidates(s.mesh.x, s.x1, s.topo, inflation, out, &stats, BroadPhaseMethod::Grid);
+  EXPECT_EQ(stats.method_run, BroadPhaseMethod::PrimitiveBoxes);
+  expect_brute_force(s, inflation, out, "shift 10");
 }
 
 }  // namespace

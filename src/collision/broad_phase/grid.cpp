@@ -281,10 +281,11 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     work = grid_sort_fill(g, nboxes, entries, s);
   }
   const std::uint64_t work_limit = static_cast<std::uint64_t>(GRID_WORK_PER_BOX) * nboxes;
+  const std::uint64_t crowded = static_cast<std::uint64_t>(GRID_CROWDED_WORK_PER_BOX) * nboxes;
   // Boxes long against the spacing of the surface (a fine mesh's motion) crowd the cells of
-  // GRID_CELL_FACTOR: smaller cells are tried before giving up on the grid.
+  // GRID_CELL_FACTOR: smaller cells are tried, which also keep the grid from giving up.
   const double small_h = GRID_SMALL_CELL_FACTOR * median_extent;
-  if (work > work_limit && small_h > 0.0 && small_h < 1.0 / g.inv_h) {
+  if (work > crowded && small_h > 0.0 && small_h < 1.0 / g.inv_h) {
     new_grid(small_h);
     work = grid_sort_fill(g, nboxes, entries, s);  // new_grid keeps the entries in bounds
     s.grid_patched_boxes = -1;                     // whatever a patch did, this is a rebuild

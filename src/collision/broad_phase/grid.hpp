@@ -31,10 +31,10 @@ namespace detail {
 /// grid); larger ones test more pairs per cell. scripts/scale_benchmark.py --phases (its grid
 /// and cell loop rows, bear and bear x16, one and two threads): 2.5 to 3.5 are the fastest,
 /// 1.5 is 13-17 % slower per step on bear in the coloured order, 4 near the limit of
-/// GRID_WORK_PER_BOX on bear x16.
+/// GRID_CROWDED_WORK_PER_BOX on bear x16.
 constexpr double GRID_CELL_FACTOR = 3.0;
 /// The cell size tried, over the same median extent, when GRID_CELL_FACTOR's cells would exceed
-/// GRID_WORK_PER_BOX, before the grid gives up.
+/// GRID_CROWDED_WORK_PER_BOX.
 constexpr double GRID_SMALL_CELL_FACTOR = 1.5;
 /// After a call that had to take the small cells, the next calls start with them (1, 2, 4, ...
 /// up to this many, as GRID_PATCH_MAX_BACKOFF), so that a crowded scene does not build two grids
@@ -48,10 +48,20 @@ constexpr std::size_t GRID_EXTENT_SAMPLES = 1024;
 constexpr std::size_t GRID_CELLS_PER_BOX = 2;
 /// At most this many (box, cell) entries per box on average; beyond it the cell size is doubled.
 constexpr std::size_t GRID_ENTRIES_PER_BOX = 16;
-/// If the per-cell pair loops would visit more than this many entry pairs per box (every box in
-/// a few cells: boxes spread over a huge range, or nearly all of the scene overlapping), the
-/// grid degenerates towards brute force, so PrimitiveBoxes runs instead (same result).
-constexpr std::int64_t GRID_WORK_PER_BOX = 256;
+/// Where the cells of GRID_CELL_FACTOR would make the per-cell pair loops visit more than this
+/// many entry pairs per box, the cells of GRID_SMALL_CELL_FACTOR are tried.
+constexpr std::int64_t GRID_CROWDED_WORK_PER_BOX = 256;
+/// If the pair loops would still visit more than this many entry pairs per box (every box in a
+/// few cells: boxes spread over a huge range, or nearly all of the scene overlapping), the grid
+/// degenerates towards brute force, so PrimitiveBoxes (CGAL's box_intersection_d) runs instead
+/// (same result). The AVX-512 cell loop tests a pair in about 0.45 ns (bear x16, ten frames, one
+/// thread: about 230 M pairs in 103 ms per step), so 1024 pairs per box cost about 0.5 us, what
+/// PrimitiveBoxes costs per box with almost no overlaps (bench_broad_phase,
+/// BM_FindCandidates/PrimitiveBoxes: 37 ms for bear's 83k boxes) and less than it costs on large
+/// scenes: with a limit of 256, bear subdivided three times (1.77 M faces) fell back to it in its
+/// first ten frames and took 9.3 s per step, against 2.5 s on the grid (docs/benchmarks/scale.md,
+/// "Beyond a million faces").
+constexpr std::int64_t GRID_WORK_PER_BOX = 1024;
 /// The per-cell pair loops run as this many chunks of cells (about equal entry counts each), in
 /// parallel with TBB; more chunks than threads balance the load (eight per thread on 16 cores:
 /// the chunks' costs differ by up to 1.5x, as their work grows with the square of a cell's
