@@ -45,6 +45,13 @@ struct MovedSheet {
 
 double cell_size(const CandidatePairs& out) { return 1.0 / out.scratch->grid_inv_h; }
 
+/// One call of the Grid method on the sheet's step; its statistics.
+BroadPhaseStats grid_call(const MovedSheet& s, double inflation, CandidatePairs& out) {
+  BroadPhaseStats stats;
+  find_candidates(s.mesh.x, s.x1, s.topo, inflation, out, &stats, BroadPhaseMethod::Grid);
+  return stats;
+}
+
 void expect_brute_force(const MovedSheet& s, double inflation, const CandidatePairs& out,
                         const std::string& where) {
   const BruteForce want = brute_force(s.mesh.x, s.x1, s.mesh.faces, inflation);
@@ -58,9 +65,7 @@ TEST(BroadPhaseGridCells, UncrowdedBoxesGetTheLargeCells) {
   const double inflation = 0.01, median = 2.0 + 2.0 * inflation;
   const MovedSheet s(1.0);
   CandidatePairs out;
-  BroadPhaseStats stats;
-  find_candidates(s.mesh.x, s.x1, s.topo, inflation, out, &stats, BroadPhaseMethod::Grid);
-  ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid);
+  ASSERT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::Grid);
   EXPECT_NEAR(cell_size(out), detail::GRID_CELL_FACTOR * median, 1e-9 * median);
   EXPECT_EQ(out.scratch->grid_small_skips, 0);
   expect_brute_force(s, inflation, out, "shift 1");
@@ -73,10 +78,8 @@ TEST(BroadPhaseGridCells, CrowdedCellsAreHalvedBeforeTheGridGivesUp) {
   const double inflation = 0.01, median = 3.0 + 2.0 * inflation;
   const MovedSheet s(2.0);
   CandidatePairs out;
-  BroadPhaseStats stats;
   auto call = [&](const std::string& where) {
-    find_candidates(s.mesh.x, s.x1, s.topo, inflation, out, &stats, BroadPhaseMethod::Grid);
-    ASSERT_EQ(stats.method_run, BroadPhaseMethod::Grid) << where;
+    ASSERT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::Grid) << where;
     EXPECT_NEAR(cell_size(out), detail::GRID_SMALL_CELL_FACTOR * median, 1e-9 * median) << where;
     expect_brute_force(s, inflation, out, where);
   };
@@ -99,9 +102,7 @@ TEST(BroadPhaseGridCells, SmallCellsAboveTheCrowdedWorkKeepTheGrid) {
   const double inflation = 0.01, median = 5.0 + 2.0 * inflation;
   const MovedSheet s(4.0);
   CandidatePairs out;
-  BroadPhaseStats stats;
-  find_candidates(s.mesh.x, s.x1, s.topo, inflation, out, &stats, BroadPhaseMethod::Grid);
-  EXPECT_EQ(stats.method_run, BroadPhaseMethod::Grid);
+  EXPECT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::Grid);
   EXPECT_NEAR(cell_size(out), detail::GRID_SMALL_CELL_FACTOR * median, 1e-9 * median);
   expect_brute_force(s, inflation, out, "shift 4");
 }
@@ -112,9 +113,7 @@ TEST(BroadPhaseGridCells, BoxesTooCrowdedForEitherCellSizeGoToPrimitiveBoxes) {
   const double inflation = 0.01;
   const MovedSheet s(10.0);
   CandidatePairs out;
-  BroadPhaseStats stats;
-  find_candidates(s.mesh.x, s.x1, s.topo, inflation, out, &stats, BroadPhaseMethod::Grid);
-  EXPECT_EQ(stats.method_run, BroadPhaseMethod::PrimitiveBoxes);
+  EXPECT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::PrimitiveBoxes);
   expect_brute_force(s, inflation, out, "shift 10");
 }
 
