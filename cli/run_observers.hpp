@@ -29,15 +29,22 @@ class WarningPrinter final : public RunObserver {
   void warning(const std::string& text) override { std::cerr << "warning: " << text << '\n'; }
 };
 
-/// A progress line on stderr about once a second, and at the last frame.
+/// A progress line on stderr about once a second, and at the last frame; before the first
+/// frame, a line for the preparation (rest state, constraints, collision structures) if it took
+/// a second or more (bear subdivided three times: about 4 s).
 class ProgressPrinter final : public RunObserver {
  public:
-  ProgressPrinter(int frames, bool auto_regions) : frames_(frames), auto_regions_(auto_regions) {}
+  /// Made just before the run starts preparing.
+  ProgressPrinter(int frames, bool auto_regions)
+      : frames_(frames), auto_regions_(auto_regions), made_(std::chrono::steady_clock::now()) {}
   void started(const Simulator& sim) override {
+    start_ = last_ = std::chrono::steady_clock::now();
+    const double prepare = std::chrono::duration<double>(start_ - made_).count();
+    if (prepare >= 1.0)
+      std::cerr << "prepared in " << std::setprecision(3) << prepare << " s\n";
     const std::size_t regions = sim.region_count();
     if (auto_regions_ && regions > 0)
       std::cerr << "regions: " << regions << " spherical regions selected by curvature\n";
-    start_ = last_ = std::chrono::steady_clock::now();
   }
   void frame(const Simulator& sim, const FrameMetrics& m) override {
     const auto now = std::chrono::steady_clock::now();
@@ -52,7 +59,7 @@ class ProgressPrinter final : public RunObserver {
  private:
   int frames_;
   bool auto_regions_;
-  std::chrono::steady_clock::time_point start_, last_;
+  std::chrono::steady_clock::time_point made_, start_, last_;
 };
 
 /// The per-frame CSV log (README "Outputs"), kept in memory and written at the end.
