@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "../tests/support/mesh_fixtures.hpp"
+#include "collision/broad_phase/grid.hpp"
 #include "collision/broad_phase/scratch.hpp"
 #include "shellcontract/collision/broad_phase.hpp"
 #include "shellcontract/collision/cull_batch.hpp"
@@ -164,6 +165,36 @@ void BM_GridOnVertexBoxes(benchmark::State& state, bool float_superset) {
   state.counters["cell_loop_ms"] = 1e3 * cell_loop / static_cast<double>(calls);
 }
 
+/// The Grid's cell loop per unit of its pair work (the entry pairs of every cell, which
+/// GRID_WORK_PER_BOX limits), with the AVX-512 loop (Auto, where the CPU has it) or the portable
+/// one: what a box costs the grid at a given work, against what PrimitiveBoxes costs per box.
+void BM_GridCellLoop(benchmark::State& state, detail::GridIsa isa) {
+  const Scene& sc = scene();
+  CandidatePairs out;
+  out.scratch->grid_patch = false;  // as BM_FindCandidates
+  out.scratch->grid_isa = isa;
+  BroadPhaseStats stats;
+  double cell_loop = 0.0;
+  for (auto _ : state) {
+    find_candidates(sc.x0, sc.x1, sc.topo, sc.inflation, out, &stats, BroadPhaseMethod::Grid,
+                    g_far);
+    cell_loop += out.scratch->grid_cell_loop_seconds;
+    benchmark::DoNotOptimize(out.vertex_face.data());
+  }
+  const std::vector<std::uint32_t>& start = out.scratch->cell_start;
+  double work = 0.0;
+  for (std::size_t c = 0; c + 1 < start.size(); ++c)
+    work += static_cast<double>(detail::pairs_among(start[c + 1] - start[c]));
+  const double boxes =
+      static_cast<double>(sc.x0.rows() + sc.topo.faces.rows() + sc.topo.edges.rows());
+  const double calls =
+      static_cast<double>(std::max<benchmark::IterationCount>(1, state.iterations()));
+  state.counters["cell_loop_ms"] = 1e3 * cell_loop / calls;
+  state.counters["work_per_box"] = work / boxes;
+  state.counters["ns_per_work"] = work > 0.0 ? 1e9 * cell_loop / calls / work : 0.0;
+  state.counters["own_path"] = stats.method_run == BroadPhaseMethod::Grid ? 1.0 : 0.0;
+}
+
 /// A step's call as SelfCollision makes it: the kept grid patched. Alternates between the boxes
 /// of the scene's step and those of the step after it, extrapolated (x1 -> 2 x1 - x0), so each
 /// call moves the boxes by one step. Reports the grid's part (the patch) and the cell loop.
@@ -256,6 +287,9 @@ BENCHMARK_CAPTURE(BM_FindCandidates, FacePairs, BroadPhaseMethod::FacePairs)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FindCandidates, Bvh, BroadPhaseMethod::Bvh)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_FindCandidates, Grid, BroadPhaseMethod::Grid)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_GridCellLoop, Auto, detail::GridIsa::Auto)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_GridCellLoop, Portable, detail::GridIsa::Portable)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_GridOnVertexBoxes, Exact, false)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_GridOnVertexBoxes, FloatSuperset, true)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_GridPatched)->Unit(benchmark::kMillisecond);

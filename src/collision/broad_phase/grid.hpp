@@ -54,13 +54,13 @@ constexpr std::int64_t GRID_CROWDED_WORK_PER_BOX = 256;
 /// If the pair loops would still visit more than this many entry pairs per box (every box in a
 /// few cells: boxes spread over a huge range, or nearly all of the scene overlapping), the grid
 /// degenerates towards brute force, so PrimitiveBoxes (CGAL's box_intersection_d) runs instead
-/// (same result). The AVX-512 cell loop tests a pair in about 0.45 ns (bear x16, ten frames, one
-/// thread: about 230 M pairs in 103 ms per step), so 1024 pairs per box cost about 0.5 us, what
-/// PrimitiveBoxes costs per box with almost no overlaps (bench_broad_phase,
-/// BM_FindCandidates/PrimitiveBoxes: 37 ms for bear's 83k boxes) and less than it costs on large
-/// scenes: with a limit of 256, bear subdivided three times (1.77 M faces) fell back to it in its
-/// first ten frames and took 9.3 s per step, against 2.5 s on the grid (docs/benchmarks/scale.md,
-/// "Beyond a million faces").
+/// (same result). At one thread the cell loop costs 0.41 ns per entry pair with AVX-512 and 0.66
+/// ns without (bench_broad_phase BM_GridCellLoop on bear), so 1024 pairs per box cost 0.4-0.7 us,
+/// about what PrimitiveBoxes costs per box on a scene with almost no overlaps (0.41 us:
+/// BM_FindCandidates/PrimitiveBoxes, 34 ms for bear's 83k boxes) and much less than it costs on
+/// a crowded one: with a limit of 256, bear subdivided three times (1.77 M faces) fell back to it
+/// in its first ten frames and took 9.3 s per step, against 2.4 s on the grid
+/// (docs/benchmarks/scale.md, "Beyond a million faces").
 constexpr std::int64_t GRID_WORK_PER_BOX = 1024;
 /// The per-cell pair loops run as this many chunks of cells (about equal entry counts each), in
 /// parallel with TBB; more chunks than threads balance the load (eight per thread on 16 cores:
