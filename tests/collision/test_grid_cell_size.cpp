@@ -60,15 +60,22 @@ void expect_brute_force(const MovedSheet& s, double inflation, const CandidatePa
   EXPECT_TRUE(ee == want.edge_edge) << where << ": EE " << first_difference(ee, want.edge_edge);
 }
 
+/// One Grid call that must keep the grid, with cells of `factor` median extents, and report
+/// brute force's pairs.
+void expect_grid_cells(const MovedSheet& s, double inflation, double factor, double median,
+                       CandidatePairs& out, const std::string& where) {
+  ASSERT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::Grid) << where;
+  EXPECT_NEAR(cell_size(out), factor * median, 1e-9 * median) << where;
+  expect_brute_force(s, inflation, out, where);
+}
+
 TEST(BroadPhaseGridCells, UncrowdedBoxesGetTheLargeCells) {
   // Shifted by 1: the median extent is 2 + 2 inflation, and the cells hold few enough boxes.
   const double inflation = 0.01, median = 2.0 + 2.0 * inflation;
   const MovedSheet s(1.0);
   CandidatePairs out;
-  ASSERT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::Grid);
-  EXPECT_NEAR(cell_size(out), detail::GRID_CELL_FACTOR * median, 1e-9 * median);
+  expect_grid_cells(s, inflation, detail::GRID_CELL_FACTOR, median, out, "shift 1");
   EXPECT_EQ(out.scratch->grid_small_skips, 0);
-  expect_brute_force(s, inflation, out, "shift 1");
 }
 
 TEST(BroadPhaseGridCells, CrowdedCellsAreHalvedBeforeTheGridGivesUp) {
@@ -79,9 +86,7 @@ TEST(BroadPhaseGridCells, CrowdedCellsAreHalvedBeforeTheGridGivesUp) {
   const MovedSheet s(2.0);
   CandidatePairs out;
   auto call = [&](const std::string& where) {
-    ASSERT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::Grid) << where;
-    EXPECT_NEAR(cell_size(out), detail::GRID_SMALL_CELL_FACTOR * median, 1e-9 * median) << where;
-    expect_brute_force(s, inflation, out, where);
+    expect_grid_cells(s, inflation, detail::GRID_SMALL_CELL_FACTOR, median, out, where);
   };
   // The first call tries the large cells, then takes the small ones; the next call starts with
   // them; the one after tries the large ones again and backs off for two calls.
@@ -102,9 +107,7 @@ TEST(BroadPhaseGridCells, SmallCellsAboveTheCrowdedWorkKeepTheGrid) {
   const double inflation = 0.01, median = 5.0 + 2.0 * inflation;
   const MovedSheet s(4.0);
   CandidatePairs out;
-  EXPECT_EQ(grid_call(s, inflation, out).method_run, BroadPhaseMethod::Grid);
-  EXPECT_NEAR(cell_size(out), detail::GRID_SMALL_CELL_FACTOR * median, 1e-9 * median);
-  expect_brute_force(s, inflation, out, "shift 4");
+  expect_grid_cells(s, inflation, detail::GRID_SMALL_CELL_FACTOR, median, out, "shift 4");
 }
 
 TEST(BroadPhaseGridCells, BoxesTooCrowdedForEitherCellSizeGoToPrimitiveBoxes) {
