@@ -2,6 +2,7 @@
 // pressure (Sun et al., J. Software 2020). This file only dispatches to the subcommands.
 #include <cstring>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "commands.hpp"
@@ -22,9 +23,30 @@ commands:
   shellcontract <command> --help   options of one command
   shellcontract --version
 
-exit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed (NaN or blow-up),
-            4 new self-intersections found by validation
+exit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed (NaN or blow-up) or
+            out of memory, 4 new self-intersections found by validation, 5 target volume or stop
+            ratio not reached
 )";
+
+/// The subcommand's exit code; 1 for an unknown one.
+int dispatch(const std::string& command, int argc, char** argv) {
+  // Subcommands see their own name as argv[0].
+  if (command == "run") return shellcontract::cli::command_run(argc - 1, argv + 1);
+  if (command == "check") return shellcontract::cli::command_check(argc - 1, argv + 1);
+  if (command == "repair") return shellcontract::cli::command_repair(argc - 1, argv + 1);
+  if (command == "regions") return shellcontract::cli::command_regions(argc - 1, argv + 1);
+  if (command == "reconstruct") return shellcontract::cli::command_reconstruct(argc - 1, argv + 1);
+  if (command == "bench") {
+    if (argc >= 3 && std::strcmp(argv[2], "ccd") == 0)
+      return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);
+    if (argc >= 3 && std::strcmp(argv[2], "error") == 0)
+      return shellcontract::cli::command_bench_error(argc - 2, argv + 2);
+    std::cerr << "shellcontract bench: expected 'ccd' or 'error' (try 'shellcontract bench error --help')\n";
+    return 1;
+  }
+  std::cerr << "shellcontract: unknown command '" << command << "'\n\n" << USAGE;
+  return 1;
+}
 
 }  // namespace
 
@@ -42,20 +64,13 @@ int main(int argc, char** argv) {
     std::cout << "shellcontract " SHELLCONTRACT_VERSION "\n";
     return 0;
   }
-  // Subcommands see their own name as argv[0].
-  if (command == "run") return shellcontract::cli::command_run(argc - 1, argv + 1);
-  if (command == "check") return shellcontract::cli::command_check(argc - 1, argv + 1);
-  if (command == "repair") return shellcontract::cli::command_repair(argc - 1, argv + 1);
-  if (command == "regions") return shellcontract::cli::command_regions(argc - 1, argv + 1);
-  if (command == "reconstruct") return shellcontract::cli::command_reconstruct(argc - 1, argv + 1);
-  if (command == "bench") {
-    if (argc >= 3 && std::strcmp(argv[2], "ccd") == 0)
-      return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);
-    if (argc >= 3 && std::strcmp(argv[2], "error") == 0)
-      return shellcontract::cli::command_bench_error(argc - 2, argv + 2);
-    std::cerr << "shellcontract bench: expected 'ccd' or 'error' (try 'shellcontract bench error --help')\n";
-    return 1;
+  try {
+    return dispatch(command, argc, argv);
+  } catch (const std::bad_alloc&) {
+    // A large enough mesh exhausts any machine; that must end with a message and an exit code,
+    // not an abort. `run` says more itself (which frame, what it wrote).
+    std::cerr << "shellcontract " << command
+              << ": out of memory (outputs are written whole or not at all)\n";
+    return 3;
   }
-  std::cerr << "shellcontract: unknown command '" << command << "'\n\n" << USAGE;
-  return 1;
 }

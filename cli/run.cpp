@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -41,9 +42,10 @@ constexpr const char* RUN_USAGE =
     "Output keeps the input's vertex and face order.\n\noptions";
 
 constexpr const char* RUN_EXIT_CODES =
-    "\nexit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed (last good state\n"
-    "            written), 4 new self-intersections found by --validate, 5 the target volume or\n"
-    "            stop ratio was not reached (result written)\n";
+    "\nexit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed or out of memory\n"
+    "            (the last good state written; nothing if memory ran out before the first frame\n"
+    "            or while writing), 4 new self-intersections found by --validate, 5 the target\n"
+    "            volume or stop ratio was not reached (result written)\n";
 
 /// The table's options as text values for boost; switches as bool_switch.
 void add_table_options(po::options_description& desc, std::map<std::string, std::string>& values,
@@ -233,6 +235,10 @@ int command_run(int argc, char** argv) {
     return usage_error("run", e.what());
   }
 
+  // For a message if memory runs out outside the frames (those end the run with the last good
+  // state, see run_contraction): what the tool was doing, and what it had written.
+  std::string stage = (repair ? "reading and repairing " : "reading ") + input;
+  std::string faces, written;
   try {
     InputReport report;
     const auto read_start = std::chrono::steady_clock::now();
@@ -271,10 +277,19 @@ int command_run(int argc, char** argv) {
     FrameExporter exporter(exports, mesh, options.sim.frames);
     if (!exports.dir.empty() || !exports.gltf.empty()) observers.add(exporter);
 
+    faces = std::to_string(mesh.number_of_faces()) + " faces";
+    // run_contraction ends the run itself when memory runs out during the frames.
+    stage = "preparing the run or taking its result";
     const RunResult r = run_contraction(mesh, options, &observers);
 
+    stage = "writing " + output;
     write_mesh_atomic(output, mesh, r.positions);
-    if (!log_path.empty()) write_text_atomic(log_path, csv.text());
+    written = output;
+    stage = "writing the log and the summary";
+    if (!log_path.empty()) {
+      write_text_atomic(log_path, csv.text());
+      written += " and " + log_path;
+    }
     if (!summary_path.empty()) {
       JsonObject summary = summary_json(input, output, report, options, r);
       JsonObject setup;
@@ -321,6 +336,12 @@ int command_run(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "shellcontract run: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadUsage);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "shellcontract run: out of memory while " << stage
+              << (faces.empty() ? "" : " (" + faces + ")") << "; "
+              << (written.empty() ? "nothing was written" : "wrote " + written + " only")
+              << '\n';
+    return static_cast<int>(ExitCode::SimulationFailed);
   }
 }
 

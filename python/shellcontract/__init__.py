@@ -28,6 +28,9 @@ class Result:
     log:      dict column -> array, one entry per frame: the CLI's --log CSV columns.
     summary:  dict, the CLI's --summary JSON without the file names.
     status:   "ok", "target not reached", "failed", "new self-intersections" or "cancelled".
+              "failed" (non-finite positions, a blow-up, or memory running out during the
+              frames) keeps the last good state in vertices; summary["failure"] says which.
+              Memory running out before the first frame raises MemoryError.
     """
 
     def __init__(self, raw):

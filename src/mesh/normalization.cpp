@@ -23,7 +23,14 @@ Positions normalize(const Positions& x, const Normalization& n) {
 }
 
 Positions denormalize(const Positions& x, const Normalization& n) {
-  return ((x * n.scale).rowwise() + n.center.transpose()).eval();
+  Positions out;
+  denormalize_into(x, n, out);
+  return out;
+}
+
+void denormalize_into(const Positions& x, const Normalization& n, Positions& out) {
+  out.resize(x.rows(), 3);
+  out.noalias() = (x * n.scale).rowwise() + n.center.transpose();
 }
 
 }  // namespace shellcontract

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <new>
 #include <string>
 
 #include "shellcontract/core/error.hpp"
@@ -90,6 +92,25 @@ std::string ratio_text(double r) {
   return buf;
 }
 
+/// Ends the run on std::bad_alloc (`when`: where it ran out), keeping the state as it is: the
+/// message says how large the mesh is and, from the last step, how many candidate pairs the
+/// collision step held, which is what grows with a finer mesh and a faster motion.
+void fail_out_of_memory(RunResult& r, const std::string& when, const Mesh& mesh,
+                        std::int64_t last_pairs) {
+  std::string text =
+      "out of memory " + when + " (" + std::to_string(mesh.number_of_faces()) + " faces";
+  if (last_pairs > 0)
+    text += "; the last completed step held " + std::to_string(last_pairs) +
+            " candidate contact pairs, about 100 bytes each";
+  text +=
+      "): a coarser mesh, or a contact distance in proportion to the edges (delta auto), "
+      "needs less memory";
+  // What the run had found before (new self-intersections) stays in the message.
+  if (r.status != RunStatus::Completed) text += "; before that: " + r.message;
+  r.status = RunStatus::SimulationFailed;
+  r.message = text;
+}
+
 /// Tells the observer and keeps the warning for the summary.
 void warn(RunResult& r, RunObserver& o, const std::string& text) {
   r.warnings.push_back(text);
@@ -154,15 +175,29 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   const bool has_stop = s.stop_volume_ratio > 0.0;
   std::vector<double> history{1.0};  // V/V0 after each frame, frame 0 = the rest state
   std::string stalled;
+  std::int64_t last_pairs = 0;  // the last step's candidate pairs, for an out-of-memory message
+  r.positions.resize(sim.positions().rows(), 3);  // the result's storage, see the end
   while (!sim.finished()) {
     FrameMetrics m;
+    const int before = sim.frame();
     try {
       m = sim.step();
     } catch (const SimulationError& e) {
       r.status = RunStatus::SimulationFailed;
       r.message = e.what();
       break;
+    } catch (const std::bad_alloc&) {
+      // The step works on its own copy of the positions (Simulator::step) until it accepts
+      // them, so the state is a whole step's; after that it only measures (energies, validation).
+      // What grows during a run is the collision step's candidate pairs
+      // (docs/benchmarks/scale.md, "Beyond a million faces").
+      fail_out_of_memory(r,
+                         sim.frame() == before ? "at step " + std::to_string(before + 1)
+                                               : "checking step " + std::to_string(sim.frame()),
+                         mesh, last_pairs);
+      break;
     }
+    last_pairs = m.collision.pairs_broad;
     r.min_volume_ratio = std::min(r.min_volume_ratio, m.volume_ratio);
     r.totals.add(m);
     if (m.new_intersections >= 0) r.new_intersections = m.new_intersections;
@@ -176,7 +211,15 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
         std::abs(sim.volume_target(m.frame) - s.target_volume) < 1e-12 &&
         std::abs(m.volume_ratio - s.target_volume) <= TARGET_VOLUME_TOLERANCE)
       r.frame_target_reached = m.frame;
-    obs.frame(sim, m);
+    try {
+      obs.frame(sim, m);
+    } catch (const std::bad_alloc&) {
+      // An observer that keeps frames (the glTF exporter) grows with the run; the state is
+      // complete.
+      fail_out_of_memory(r, "after step " + std::to_string(m.frame) + " (in an observer)", mesh,
+                         last_pairs);
+      break;
+    }
     // Stall: the volume no longer moves while it is still off the target (or above the stop
     // ratio); more frames would not get there.
     if ((has_target || has_stop) && !sim.finished() &&
@@ -201,7 +244,18 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // A run that ended early (stall, cancel) skipped the step's end-of-run validation.
   if (s.validate == ValidateMode::End && r.new_intersections < 0) {
-    r.new_intersections = static_cast<long>(sim.count_new_intersections());
+    try {
+      r.new_intersections = static_cast<long>(sim.count_new_intersections());
+    } catch (const std::bad_alloc&) {
+      // Not validated (new_intersections stays -1); the state itself is good.
+      if (r.status == RunStatus::Completed) {
+        r.status = RunStatus::SimulationFailed;
+        r.message = "out of memory validating the result (" +
+                    std::to_string(mesh.number_of_faces()) + " faces)";
+      } else {
+        r.message += "; the end's validation also ran out of memory";
+      }
+    }
     if (r.new_intersections > 0 && r.status == RunStatus::Completed) {
       r.status = RunStatus::NewIntersections;
       r.message =
@@ -234,8 +288,14 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   r.excluded_contact_pairs = sim.excluded_contact_pairs();
   r.contact_distance = sim.options().collisions ? sim.options().collision.delta : 0.0;
   r.normalization_scale = sim.normalization().scale;
-  r.positions = sim.positions_in_input_units();
-  obs.finished(sim, r);
+  // Into the storage taken before the first step: a run that has used all the memory there is
+  // still returns its result.
+  denormalize_into(sim.positions(), sim.normalization(), r.positions);
+  try {
+    obs.finished(sim, r);
+  } catch (const std::bad_alloc&) {
+    fail_out_of_memory(r, "after the last step (in an observer)", mesh, last_pairs);
+  }
   return r;
 }
 

@@ -1,11 +1,13 @@
 // The library's run entry point (sim/run.hpp): target volume reached and held, stop ratio and
-// stall handling, the observer's view of the run, cancellation, exit codes.
+// stall handling, the observer's view of the run, cancellation, running out of memory, exit
+// codes.
 #include <gtest/gtest.h>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include <algorithm>
 #include <cmath>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -152,6 +154,53 @@ TEST(Run, ResultEqualsTheSimulatorStepByStep) {
   while (!sim.finished()) sim.step();
   const RunResult r = run_contraction(mesh, o);
   EXPECT_EQ(r.positions, sim.positions_in_input_units());
+}
+
+/// Throws std::bad_alloc where an observer that keeps frames would run out of memory.
+struct ExhaustedObserver final : RunObserver {
+  int throw_at_frame = -1;  ///< frame() throws at this frame
+  bool throw_at_finish = false;
+  int n_finished = 0;
+  void frame(const Simulator&, const FrameMetrics& m) override {
+    if (m.frame == throw_at_frame) throw std::bad_alloc();
+  }
+  void finished(const Simulator&, const RunResult&) override {
+    ++n_finished;
+    if (throw_at_finish) throw std::bad_alloc();
+  }
+};
+
+TEST(Run, OutOfMemoryEndsTheRunWithTheLastGoodState) {
+  // A run that memory fails returns, with the state of its last whole step: the same positions
+  // as a run asked for that many frames (the CLI writes them, exit code 3).
+  RunOptions o;
+  o.sim.frames = 12;
+  RunOptions five = o;
+  five.sim.frames = 5;
+  const Mesh mesh = sphere(2);
+  const RunResult ref = run_contraction(mesh, five);
+  ExhaustedObserver obs;
+  obs.throw_at_frame = 5;
+  RunResult r;
+  ASSERT_NO_THROW(r = run_contraction(mesh, o, &obs));
+  EXPECT_EQ(r.status, RunStatus::SimulationFailed);
+  EXPECT_EQ(r.exit_code(), static_cast<int>(ExitCode::SimulationFailed));
+  EXPECT_NE(r.message.find("out of memory after step 5"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find(std::to_string(mesh.number_of_faces()) + " faces"), std::string::npos)
+      << r.message;
+  EXPECT_EQ(r.frames_run, 5);
+  EXPECT_EQ(r.positions, ref.positions);
+  EXPECT_EQ(obs.n_finished, 1);
+
+  // In the observers' end: the run is whole, and says it failed.
+  const RunResult full = run_contraction(mesh, o);
+  ExhaustedObserver at_end;
+  at_end.throw_at_finish = true;
+  ASSERT_NO_THROW(r = run_contraction(mesh, o, &at_end));
+  EXPECT_EQ(r.status, RunStatus::SimulationFailed);
+  EXPECT_NE(r.message.find("out of memory after the last step"), std::string::npos) << r.message;
+  EXPECT_EQ(r.frames_run, 12);
+  EXPECT_EQ(r.positions, full.positions);
 }
 
 TEST(Run, AnisoWithoutRegionsWarns) {

@@ -23,11 +23,8 @@ inline std::string quoted(const std::string& s) {
   return q + "'";
 }
 
-/// Runs the CLI with the given arguments.
-inline RunResult run_cli(const std::vector<std::string>& args) {
-  std::string cmd = quoted(SHELLCONTRACT_CLI_PATH);
-  for (const std::string& a : args) cmd += " " + quoted(a);
-  cmd += " 2>&1";
+/// Runs a /bin/sh command line, capturing what it writes to stdout.
+inline RunResult run_command(const std::string& cmd) {
   RunResult r;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return r;
@@ -37,6 +34,24 @@ inline RunResult run_cli(const std::vector<std::string>& args) {
   const int status = ::pclose(pipe);
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return r;
+}
+
+/// The command line that runs the CLI with the given arguments, stderr into stdout.
+inline std::string cli_command(const std::vector<std::string>& args) {
+  std::string cmd = quoted(SHELLCONTRACT_CLI_PATH);
+  for (const std::string& a : args) cmd += " " + quoted(a);
+  return cmd + " 2>&1";
+}
+
+/// Runs the CLI with the given arguments.
+inline RunResult run_cli(const std::vector<std::string>& args) {
+  return run_command(cli_command(args));
+}
+
+/// Runs the CLI with at most `kib` KiB of address space (the shell's ulimit -v, RLIMIT_AS): its
+/// allocations beyond that fail with std::bad_alloc, as on a machine without the memory.
+inline RunResult run_cli_limited(long kib, const std::vector<std::string>& args) {
+  return run_command("ulimit -v " + std::to_string(kib) + " && exec " + cli_command(args));
 }
 
 }  // namespace shellcontract::test

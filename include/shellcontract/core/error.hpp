@@ -11,7 +11,7 @@ enum class ExitCode : int {
   Success = 0,
   BadUsage = 1,           ///< unknown option, missing argument, unwritable output path
   BadInput = 2,           ///< the input mesh cannot be used; the message says what and where
-  SimulationFailed = 3,   ///< NaN or blow-up; the last good state is written, marked as such
+  SimulationFailed = 3,   ///< NaN, blow-up or out of memory; the last good state is written
   NewSelfIntersections = 4,  ///< validation found intersections that the input did not have
   TargetNotReached = 5,   ///< --target-volume or --stop-volume-ratio not reached (stalled, or out of frames)
   Cancelled = 130,        ///< interrupted by the caller (the shell's code for SIGINT)

@@ -21,4 +21,9 @@ Positions normalize(const Positions& x, const Normalization& n);
 /// Maps normalized positions back to input units.
 Positions denormalize(const Positions& x, const Normalization& n);
 
+/// denormalize into `out`, which is resized only if its shape differs from x's: into storage
+/// taken beforehand it allocates nothing (run_contraction's result after a run that used all
+/// the memory there is). The same bits as denormalize.
+void denormalize_into(const Positions& x, const Normalization& n, Positions& out);
+
 }  // namespace shellcontract

@@ -20,7 +20,8 @@ enum class RunStatus {
   Completed,         ///< every frame ran, or the stop ratio was reached, or the target is held
   TargetNotReached,  ///< a target volume or stop ratio was not reached: the volume stalled or the
                      ///< frames ran out
-  SimulationFailed,  ///< non-finite positions or a blow-up; the state is the last good step
+  SimulationFailed,  ///< non-finite positions, a blow-up or out of memory; the state is the
+                     ///< last good step
   NewIntersections,  ///< validation found self-intersections the input did not have
   Cancelled,         ///< the observer asked to stop (a KeyboardInterrupt in Python)
 };
@@ -113,8 +114,10 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
 /// Runs the contraction of `mesh` (a checked, closed, outward-oriented triangle mesh from
 /// read_input_mesh, any units) to its end.
 /// @throws UsageError for invalid options, InputError for an unusable mesh or region file
-///         (before the first step). A failing step is not thrown: it ends the run with
-///         RunStatus::SimulationFailed and the last good state.
+///         (before the first step), std::bad_alloc if preparing the run runs out of memory. A
+///         failing step is not thrown: it ends the run with RunStatus::SimulationFailed and the
+///         last good state; so does running out of memory (std::bad_alloc) in a step, in an
+///         observer's frame() or in the end's validation, with a message that says so.
 RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer = nullptr);
 
 }  // namespace shellcontract

@@ -1,0 +1,159 @@
+// `shellcontract run` when memory runs out (README "Exit codes": 3): a message and, once a frame
+// has run, the last good state; never an abort. The memory is limited with the shell's
+// `ulimit -v` (the address space, RLIMIT_AS), so that allocations fail with std::bad_alloc as
+// on a machine without the memory. Where the run fails depends on the limit, and the limit a run
+// needs depends on the machine, so the test finds it first and then steps below it: every run
+// must end in one of the documented ways, and the steps must reach both a failure during the
+// frames (the collision step's candidate pairs grow as the shell contracts) and one before them.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shellcontract/mesh/io.hpp"
+#include "support/cli_runner.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr long FLOOR_KIB = 8 * 1024;            ///< too little to start a process
+constexpr long CEILING_KIB = 8L * 1024 * 1024;  ///< more than the tests' runs need
+
+/// The least address space (KiB, to within `step`) under which the CLI with `args` succeeds;
+/// -1 if not even CEILING_KIB is enough.
+long least_address_space(const std::vector<std::string>& args, long step) {
+  long lo = FLOOR_KIB, hi = CEILING_KIB;
+  if (test::run_cli_limited(hi, args).exit_code != 0) return -1;
+  while (hi - lo > step) {
+    const long mid = lo + (hi - lo) / 2;
+    (test::run_cli_limited(mid, args).exit_code == 0 ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+std::string file_bytes(const fs::path& p) {
+  std::ostringstream s;
+  s << std::ifstream(p, std::ios::binary).rdbuf();
+  return s.str();
+}
+
+class CliOutOfMemory : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    bear_ = std::string(test::PAPER_MESH_DIR) + "/bear.off";
+    if (!fs::exists(bear_)) GTEST_SKIP() << bear_ << " absent (scripts/fetch_paper_meshes.sh)";
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_cli_oom_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::vector<std::string> run_args(const fs::path& out, int frames) const {
+    return {"run", bear_, "-o", out.string(), "--frames", std::to_string(frames), "-q"};
+  }
+  std::string bear_;
+  fs::path dir_;
+};
+
+TEST_F(CliOutOfMemory, RunEndsWithAMessageAndTheLastGoodStateNeverAnAbort) {
+  constexpr int FRAMES = 20;
+  const fs::path out = dir_ / "o.off";
+  const long hi = least_address_space(run_args(out, FRAMES), 1024);
+  if (hi < 0)
+    GTEST_SKIP() << "the run needs more than 8 GiB of address space here (a sanitizer build "
+                    "reserves terabytes of it)";
+  std::printf("the run needs %ld KiB of address space\n", hi);
+  // Below it, 2 MiB at a time until a run fails before its first frame.
+  const std::regex at_step("out of memory at step ([0-9]+)");
+  const std::regex after_step(
+      "out of memory (checking step|after step|after the last step|validating the result)");
+  int in_frames = 0, before_frames = 0, checked_state = 0;
+  for (long kb = hi - 1024; kb > FLOOR_KIB && before_frames == 0; kb -= 2048) {
+    fs::remove(out);
+    const test::RunResult r = test::run_cli_limited(kb, run_args(out, FRAMES));
+    SCOPED_TRACE("ulimit -v " + std::to_string(kb) + ": " + r.output);
+    if (r.exit_code == 0) continue;  // the need is not strictly monotone in the limit
+    ASSERT_NE(r.output.find("out of memory"), std::string::npos);
+    if (r.exit_code == 2) {  // the reader's own: the file needs more than there is
+      EXPECT_FALSE(fs::exists(out));
+      ++before_frames;
+      continue;
+    }
+    ASSERT_EQ(r.exit_code, 3) << "the documented exit code, not an abort";
+    std::smatch m;
+    if (std::regex_search(r.output, m, at_step)) {
+      ++in_frames;
+      const int good = std::stoi(m[1].str()) - 1;
+      ASSERT_NE(r.output.find("the last good state (frame " + std::to_string(good) + ")"),
+                std::string::npos);
+      ASSERT_TRUE(fs::exists(out));
+      InputReport report;
+      const Mesh written = read_input_mesh(out.string(), &report);
+      EXPECT_EQ(written.number_of_faces(), 27648u);
+      if (checked_state++ == 0) {  // the same bytes as a run asked for that many frames
+        const fs::path ref = dir_ / "ref.off";
+        ASSERT_EQ(test::run_cli(run_args(ref, good)).exit_code, 0);
+        EXPECT_EQ(file_bytes(out), file_bytes(ref));
+        fs::remove(ref);
+      }
+    } else if (r.output.find("nothing was written") != std::string::npos) {
+      EXPECT_FALSE(fs::exists(out));
+      before_frames += r.output.find("preparing the run") != std::string::npos;
+    } else {
+      // After a whole step (its checks, the end's validation, an observer): the message says
+      // so, and the state is written.
+      EXPECT_TRUE(std::regex_search(r.output, after_step)) << r.output;
+      EXPECT_TRUE(fs::exists(out));
+    }
+    // No temporary file of an atomic write is left behind.
+    for (const auto& e : fs::directory_iterator(dir_))
+      EXPECT_EQ(e.path().filename(), "o.off") << "left behind: " << e.path();
+  }
+  EXPECT_GT(in_frames, 0) << "no limit ran out of memory during the frames";
+  EXPECT_GT(before_frames, 0) << "no limit ran out of memory before the first frame";
+}
+
+TEST_F(CliOutOfMemory, OtherCommandsEndWithAMessageNeverAnAbort) {
+  // `check` and `regions`: an input the reader cannot hold is exit code 2 (its "out of memory"
+  // message names the file), anything later 3; an output is written whole or not at all.
+  const fs::path out = dir_ / "r.ply";
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"check", bear_},
+        std::vector<std::string>{"regions", bear_, "-o", out.string()}}) {
+    SCOPED_TRACE(args[0]);
+    const long hi = least_address_space(args, 512);
+    if (hi < 0) GTEST_SKIP() << "needs more than 8 GiB of address space here";
+    int failed = 0, after_reading = 0;
+    for (long kb = hi - 512; kb > FLOOR_KIB && failed < 6; kb -= 512) {
+      fs::remove(out);
+      const test::RunResult r = test::run_cli_limited(kb, args);
+      SCOPED_TRACE("ulimit -v " + std::to_string(kb) + ": " + r.output);
+      if (r.exit_code == 0) continue;
+      ++failed;
+      ASSERT_TRUE(r.exit_code == 2 || r.exit_code == 3) << r.exit_code;
+      EXPECT_NE(r.output.find("out of memory"), std::string::npos);
+      after_reading += r.exit_code == 3;
+      if (fs::exists(out)) {
+        InputReport report;
+        EXPECT_EQ(read_input_mesh(out.string(), &report).number_of_faces(), 27648u);
+      }
+    }
+    EXPECT_GT(failed, 0);
+    if (args[0] == "regions") {
+      EXPECT_GT(after_reading, 0) << "no run failed after reading";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace shellcontract
