@@ -5,6 +5,7 @@
 #include <chrono>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shellcontract/export/frame_sequence_writer.hpp"
@@ -55,10 +56,20 @@ class FrameExporter final : public RunObserver {
                              {"pressure", f.pressure},
                              {"energy_density", f.energy_density}};
       gltf_.seconds_per_frame = request_.seconds_per_frame;
-      gltf_bytes_ = write_gltf_animation(request_.gltf, gltf_).bytes;
       gltf_seconds_ =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+  }
+
+  /// Writes the .glb of --gltf, after the run: the simulator's memory is free by then (bear x16
+  /// peaked at 4.1 GB with the file written from finished(), against 0.9 GB for its run).
+  void write_gltf() {
+    if (request_.gltf.empty() || gltf_.frames.empty()) return;
+    const auto start = std::chrono::steady_clock::now();
+    gltf_bytes_ = write_gltf_animation(request_.gltf, std::move(gltf_)).bytes;
+    gltf_ = GltfAnimation{};
+    gltf_seconds_ +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
   /// Export costs for the summary: frame files (counts and both threads' time) and the glTF.

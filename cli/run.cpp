@@ -282,9 +282,14 @@ int command_run(int argc, char** argv) {
     stage = "preparing the run or taking its result";
     const RunResult r = run_contraction(mesh, options, &observers);
 
+    if (!exports.gltf.empty()) {
+      stage = "writing " + exports.gltf;
+      exporter.write_gltf();
+      written = exports.gltf;
+    }
     stage = "writing " + output;
     write_mesh_atomic(output, mesh, r.positions);
-    written = output;
+    written = written.empty() ? output : written + " and " + output;
     stage = "writing the log and the summary";
     if (!log_path.empty()) {
       write_text_atomic(log_path, csv.text());

@@ -59,38 +59,17 @@ class ToCharsDoublePut : public std::num_put<char> {
   }
 };
 
-/// Writes through `fill` into a temporary file next to `path`, then renames it over `path`.
-/// `fill` writes into memory first: CGAL's writers end every line with std::endl, and a flush
-/// per line to a file costs a system call each (one write per file instead). A throwing `fill`
-/// leaves no file behind.
+/// Writes through `fill` into memory first, then the whole into the file (write_file_atomic).
+/// CGAL's writers end every line with std::endl, and a flush per line to a file costs a system
+/// call each (one write per file instead). A throwing `fill` leaves no file behind.
 void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
-  static std::atomic<unsigned> counter{0};
   std::ostringstream text;
   text.imbue(std::locale(text.getloc(), new ToCharsDoublePut));  // the locale owns the facet
   fill(text);
   const std::string bytes = std::move(text).str();
-  const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  // Same folder, so that rename is atomic (same file system); hidden, pid- and counter-unique so
-  // that parallel writers never share a temporary.
-  const fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw UsageError("cannot write '" + path + "': cannot create a file in folder '" + dir.string() + "' (" + std::strerror(errno) + ")");
+  write_file_atomic(path, [&](std::ostream& out) {
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw UsageError("cannot write '" + path + "': writing the temporary file failed (disk full?)");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    throw UsageError("cannot write '" + path + "': " + why);
-  }
+  });
 }
 
 /// Enough significant digits that every double reads back bitwise (max_digits10).
@@ -154,7 +133,43 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
 }
 
 void write_text_atomic(const std::string& path, const std::string& text) {
-  write_atomic(path, [&](std::ostream& out) { out << text; });
+  write_file_atomic(path, [&](std::ostream& out) {
+    out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  });
+}
+
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  static std::atomic<unsigned> counter{0};
+  const fs::path target(path);
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  // Same folder, so that rename is atomic (same file system); hidden, pid- and counter-unique so
+  // that parallel writers never share a temporary.
+  const fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" +
+                              std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out)
+      throw UsageError("cannot write '" + path + "': cannot create a file in folder '" +
+                       dir.string() + "' (" + std::strerror(errno) + ")");
+    try {
+      write(out);
+      out.flush();
+    } catch (...) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw;
+    }
+    if (!out) {
+      out.close();
+      std::remove(tmp.c_str());
+      throw UsageError("cannot write '" + path + "': writing the temporary file failed (disk full?)");
+    }
+  }
+  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const std::string why = std::strerror(errno);
+    std::remove(tmp.c_str());
+    throw UsageError("cannot write '" + path + "': " + why);
+  }
 }
 
 }  // namespace shellcontract

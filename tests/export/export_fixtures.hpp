@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,12 @@ class ScratchDir {
  private:
   std::filesystem::path path_;
 };
+
+/// A file's bytes.
+inline std::string read_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 /// Faces of a triangle mesh in face index order.
 inline Faces faces_of(const Mesh& mesh) {

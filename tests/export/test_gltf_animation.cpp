@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "export_fixtures.hpp"
@@ -137,6 +138,19 @@ TEST(GltfAnimation, OneFrameHasNoTargetsAndNoAnimation) {
   const tinygltf::Model m = test::load_glb(dir.file("one.glb"));
   EXPECT_TRUE(m.meshes.at(0).primitives.at(0).targets.empty());
   EXPECT_TRUE(m.animations.empty());
+}
+
+TEST(GltfAnimation, ConsumingTheFramesWritesTheSameFile) {
+  // The CLI hands its frames over (a large mesh's frames and buffer are hundreds of MB each):
+  // the same bytes as from a copy, and the frames after the first freed.
+  test::ScratchDir dir("consume");
+  const GltfAnimation a = sphere_animation(40, 5);
+  write_gltf_animation(dir.file("copy.glb"), a);
+  GltfAnimation handed = a;
+  const GltfStats stats = write_gltf_animation(dir.file("moved.glb"), std::move(handed));
+  EXPECT_EQ(stats.bytes, std::filesystem::file_size(dir.file("copy.glb")));
+  EXPECT_EQ(test::read_bytes(dir.file("moved.glb")), test::read_bytes(dir.file("copy.glb")));
+  for (std::size_t k = 1; k < handed.frames.size(); ++k) EXPECT_EQ(handed.frames[k].size(), 0);
 }
 
 TEST(GltfAnimation, RejectsInconsistentInputAndUnwritablePaths) {

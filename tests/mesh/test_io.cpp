@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <new>
 #include <set>
 #include <sstream>
 #include <string>
@@ -344,6 +345,25 @@ TEST(WriteTextAtomic, WritesExactlyAndFailsCleanly) {
   std::vector<std::string> e = dir.entries();
   std::sort(e.begin(), e.end());
   EXPECT_EQ(e, (std::vector<std::string>{"dir.csv", "log.csv"}));
+}
+
+TEST(WriteFileAtomic, StreamsTheFileAndAThrowingWriterLeavesTheOldOne) {
+  // The .glb's writer: straight into the temporary file, so a writer that fails half-way (out
+  // of memory) must leave the old file as it was and no temporary.
+  TempDir dir;
+  const std::string path = dir.file("a.glb");
+  write_file(path, "old content\n");
+  EXPECT_THROW(write_file_atomic(path,
+                                 [](std::ostream& out) {
+                                   out << "half a file";
+                                   throw std::bad_alloc();
+                                 }),
+               std::bad_alloc);
+  EXPECT_EQ(read_file(path), "old content\n");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"a.glb"}) << "a temporary file was left behind";
+  write_file_atomic(path, [](std::ostream& out) { out.write("glTF\0\x02", 6); });
+  EXPECT_EQ(read_file(path), std::string("glTF\0\x02", 6));
+  EXPECT_THROW(write_file_atomic(dir.file("missing/a.glb"), [](std::ostream&) {}), UsageError);
 }
 
 // ----------------------------------------------------------------------------- bad inputs

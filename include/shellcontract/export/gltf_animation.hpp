@@ -48,6 +48,11 @@ struct GltfStats {
 /// @throws UsageError if the file cannot be written
 GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& animation);
 
+/// The same file, freeing each frame of `animation` once it is in the file's buffer, so that the
+/// frames and the buffer are not both held whole (a large mesh's .glb is hundreds of MB); the
+/// frames are left empty.
+GltfStats write_gltf_animation(const std::string& path, GltfAnimation&& animation);
+
 /// Area-weighted vertex normals (unit length; (0, 0, 1) for a vertex whose faces have no area).
 Positions vertex_normals(const Positions& x, const Faces& faces);
 

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -70,5 +72,11 @@ void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::stri
 
 /// Writes text to path atomically (temporary file + rename). @throws UsageError on failure
 void write_text_atomic(const std::string& path, const std::string& text);
+
+/// Writes a file atomically through `write`, which writes straight into a temporary file next to
+/// `path` (no copy in memory: for large binary files written in a few large pieces, the .glb);
+/// then renames it over `path`. If `write` throws, no file is left and the exception passes.
+/// @throws UsageError if the file cannot be created or written
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 }  // namespace shellcontract
