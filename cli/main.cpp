@@ -3,6 +3,7 @@
 #include <cstring>
 #include <iostream>
 #include <new>
+#include <stdexcept>
 #include <string>
 
 #include "commands.hpp"
@@ -71,6 +72,12 @@ int main(int argc, char** argv) {
     // not an abort. `run` says more itself (which frame, what it wrote).
     std::cerr << "shellcontract " << command
               << ": out of memory (outputs are written whole or not at all)\n";
+    return 3;
+  } catch (const std::runtime_error& e) {
+    // The commands catch their own errors (bad usage, bad input); what is left is a resource
+    // the system refused, such as a thread (TBB's "pthread_create has failed").
+    std::cerr << "shellcontract " << command << ": " << e.what()
+              << " (outputs are written whole or not at all)\n";
     return 3;
   }
 }

@@ -15,6 +15,7 @@
 #include <iostream>
 #include <map>
 #include <new>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -346,6 +347,11 @@ int command_run(int argc, char** argv) {
               << (faces.empty() ? "" : " (" + faces + ")") << "; "
               << (written.empty() ? "nothing was written" : "wrote " + written + " only")
               << '\n';
+    return static_cast<int>(ExitCode::SimulationFailed);
+  } catch (const std::runtime_error& e) {
+    // A resource the system refused besides memory (TBB's threads: "pthread_create has failed").
+    std::cerr << "shellcontract run: " << e.what() << " (while " << stage << "); "
+              << (written.empty() ? "nothing was written" : "wrote " + written + " only") << '\n';
     return static_cast<int>(ExitCode::SimulationFailed);
   }
 }

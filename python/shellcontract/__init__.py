@@ -30,7 +30,8 @@ class Result:
     status:   "ok", "target not reached", "failed", "new self-intersections" or "cancelled".
               "failed" (non-finite positions, a blow-up, or memory running out during the
               frames) keeps the last good state in vertices; summary["failure"] says which.
-              Memory running out before the first frame raises MemoryError.
+              Memory running out before the first frame raises MemoryError (where glibc
+              cannot give a new thread its thread-local storage, it ends the process itself).
     """
 
     def __init__(self, raw):

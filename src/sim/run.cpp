@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <new>
+#include <stdexcept>
 #include <string>
 
 #include "shellcontract/core/error.hpp"
@@ -195,6 +196,12 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
                          sim.frame() == before ? "at step " + std::to_string(before + 1)
                                                : "checking step " + std::to_string(sim.frame()),
                          mesh, last_pairs);
+      break;
+    } catch (const std::runtime_error& e) {
+      // What the system refuses besides memory: a thread (TBB's pthread_create, "Resource
+      // temporarily unavailable", when the address space is exhausted). The same state.
+      r.status = RunStatus::SimulationFailed;
+      r.message = "at step " + std::to_string(before + 1) + ": " + e.what();
       break;
     }
     last_pairs = m.collision.pairs_broad;

@@ -117,7 +117,9 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
 ///         (before the first step), std::bad_alloc if preparing the run runs out of memory. A
 ///         failing step is not thrown: it ends the run with RunStatus::SimulationFailed and the
 ///         last good state; so does running out of memory (std::bad_alloc) in a step, in an
-///         observer's frame() or in the end's validation, with a message that says so.
+///         observer's frame() or in the end's validation, and a std::runtime_error from a step
+///         (TBB's "pthread_create has failed" when the address space is exhausted), with a
+///         message that says so.
 RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer = nullptr);
 
 }  // namespace shellcontract
