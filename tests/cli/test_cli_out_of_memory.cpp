@@ -76,7 +76,6 @@ TEST_F(CliOutOfMemory, RunEndsWithAMessageAndTheLastGoodStateNeverAnAbort) {
     GTEST_SKIP() << "the run needs more than 8 GiB of address space here (a sanitizer build "
                     "reserves terabytes of it)";
   std::printf("the run needs %ld KiB of address space\n", hi);
-  // Below it, 2 MiB at a time down to where reading the file fails.
   // Memory, or a thread the system cannot start without it (TBB: "pthread_create has failed:
   // Resource temporarily unavailable").
   const std::regex refused("out of memory|Resource temporarily unavailable");
@@ -85,6 +84,7 @@ TEST_F(CliOutOfMemory, RunEndsWithAMessageAndTheLastGoodStateNeverAnAbort) {
       "out of memory (checking step|after step|after the last step|validating the result)");
   int in_frames = 0, before_frames = 0, checked_state = 0, threads_refused = 0;
   bool reading_failed = false;
+  // Below it, 2 MiB at a time down to where reading the file fails.
   for (long kb = hi - 1024; kb > FLOOR_KIB && !reading_failed; kb -= 2048) {
     fs::remove(out);
     const test::RunResult r = test::run_cli_limited(kb, run_args(out, FRAMES));
