@@ -8,6 +8,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
@@ -151,7 +152,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
 
   for (const std::string& w : ineffective_options(options)) warn(r, obs, w);
   const auto prepare_start = Clock::now();
-  Simulator sim(marked, s);
+  Simulator sim(std::move(marked), s);  // one copy of a large mesh fewer (bear x16: 26 MB)
   r.prepare_seconds = seconds_since(prepare_start);
   if (sim.regions_without_cap() > 0)
     warn(r, obs,

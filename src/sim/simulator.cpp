@@ -127,11 +127,11 @@ std::pair<bool, double> finite_and_max_distance(tbb::task_arena& arena, const Po
 
 }  // namespace
 
-Simulator::Simulator(const Mesh& input, const SimOptions& options) : options_(options) {
+Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) {
   check_options(options_);
   resolve_sim_options(options_);
   if (input.has_garbage()) throw UsageError("Simulator: the input mesh has garbage");
-  mesh_ = std::make_unique<Mesh>(input);
+  mesh_ = std::make_unique<Mesh>(std::move(input));
   normalization_ = compute_normalization(positions_from_mesh(*mesh_));
   x_ = normalize(positions_from_mesh(*mesh_), normalization_);
   for (VertexIndex v : mesh_->vertices()) {

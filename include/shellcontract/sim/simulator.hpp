@@ -37,10 +37,11 @@ struct FrameMetrics {
 /// Runs the contraction of one closed mesh.
 class Simulator {
  public:
-  /// Copies and normalizes the mesh and builds the rest state and the constraints.
+  /// Takes (a copy of, or the moved) mesh, normalizes it and builds the rest state and the
+  /// constraints.
   /// @param input  a checked, closed, outward-oriented triangle mesh (read_input_mesh), any units
   /// @throws UsageError for invalid options, InputError for an unusable mesh
-  Simulator(const Mesh& input, const SimOptions& options);
+  Simulator(Mesh input, const SimOptions& options);
   ~Simulator();
 
   /// One time step: predict with the pressure force, project constraints, update velocities.
