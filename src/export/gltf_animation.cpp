@@ -277,8 +277,7 @@ GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& ani
 }
 
 GltfStats write_gltf_animation(const std::string& path, GltfAnimation&& animation) {
-  const GltfAnimation& a = animation;
-  return write_gltf(path, a, &animation.frames);
+  return write_gltf(path, animation, &animation.frames);
 }
 
 }  // namespace shellcontract

@@ -256,13 +256,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
       r.new_intersections = static_cast<long>(sim.count_new_intersections());
     } catch (const std::bad_alloc&) {
       // Not validated (new_intersections stays -1); the state itself is good.
-      if (r.status == RunStatus::Completed) {
-        r.status = RunStatus::SimulationFailed;
-        r.message = "out of memory validating the result (" +
-                    std::to_string(mesh.number_of_faces()) + " faces)";
-      } else {
-        r.message += "; the end's validation also ran out of memory";
-      }
+      fail_out_of_memory(r, "validating the result", mesh, last_pairs);
     }
     if (r.new_intersections > 0 && r.status == RunStatus::Completed) {
       r.status = RunStatus::NewIntersections;
