@@ -141,7 +141,7 @@ std::string to_csv(const ErrorLadderResult& res) {
 
 /// gnuplot commands drawing hausdorff (log) against ms_per_step (log) from the CSV: one line per
 /// solver, substep count, order and thread count (points labelled by iterations), and each reference's own error
-/// (its check) as a star. The same plot as scripts/plot_speed_error.sh.
+/// (its check) as a star. The same plot as lab/scripts/plot_speed_error.sh.
 std::string gnuplot_script(const std::string& csv, const std::string& out, const std::string& title,
                            const ErrorLadderResult& res) {
   const bool svg = std::filesystem::path(out).extension() == ".svg";

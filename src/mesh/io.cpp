@@ -273,7 +273,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   // asserts that): each condition of PMP::is_polygon_soup_a_polygon_mesh is one of the checks
   // above (tests/mesh/test_soup_checks_vs_cgal.cpp compares them on mutated soups). CGAL's test
   // itself is not run again: with its std::set of 2.6 M directed edges it took a third of reading
-  // bear x16 (docs/benchmarks/scale.md). A gap in our checks cannot become undefined behaviour:
+  // bear x16 (lab/pages/scale.md). A gap in our checks cannot become undefined behaviour:
   // Euler::add_face returns a null face for a face it cannot add, and align_to_soup refuses a mesh
   // that lost a face or a face's corner order.
   if (!usable_diagonal)

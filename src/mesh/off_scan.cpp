@@ -151,7 +151,7 @@ class OffScanner {
  private:
   /// Next non-blank, non-comment line (text before a '#') split at blanks into views of text_;
   /// false at end of file. Views rather than strings, and no stream: a string stream per line and
-  /// a string per token were most of the scan's cost on bear x16 (docs/benchmarks/scale.md).
+  /// a string per token were most of the scan's cost on bear x16 (lab/pages/scale.md).
   bool next(std::vector<std::string_view>& tokens) {
     const std::string_view text(text_);
     while (pos_ < text.size()) {

@@ -241,7 +241,7 @@ class PlyParser {
 
   /// One scalar as a double (integers of every PLY type are exact in a double). `what()` names
   /// it, built only for a message: a string per value was the same waste as in the OFF scan
-  /// (docs/benchmarks/scale.md).
+  /// (lab/pages/scale.md).
   template <class What>
   double scalar(Type t, const What& what) {
     if (format_ == Format::Ascii) {

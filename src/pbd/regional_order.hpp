@@ -23,7 +23,7 @@ namespace shellcontract::regional {
 /// every colour cost as much as the work (BM_SolverStep). Here a sweep has 4 barriers instead of ~31, and only interface
 /// vertices change core (bear: about 500 of 27,648 faces and 1,000 of 41,472 hinges are interface).
 /// Bear's solve on 2 threads: 1.4-1.85x one thread (mostly 1.65-1.85x), against 1.09-1.11x with
-/// one phase per colour (BM_SolverStep, docs/history.md). The order is a valid Gauss-Seidel
+/// one phase per colour (BM_SolverStep, lab/history.md). The order is a valid Gauss-Seidel
 /// order (each constraint once per sweep, in the kinds' order of math-spec 9.4) and does not depend
 /// on the thread count, so results are bit-identical for any number of threads. The number of
 /// parts is fixed (not the thread count) for that reason.

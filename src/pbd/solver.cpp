@@ -76,7 +76,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
       // batches: its REGIONS parts are fixed at two whatever the thread count (for bit-identical
       // results), so the default bending's solve would use at most two cores on a many-core
       // machine (as the isometric hinges' does), where it now runs one phase per colour on all
-      // of them (docs/benchmarks/scale.md, "The dihedral hinges in batches").
+      // of them (lab/pages/scale.md, "The dihedral hinges in batches").
       regional_ = BatchedMembraneProjection<M>::value && !set_.membranes.empty() &&
                   set_.dihedral_hinges.empty() && set_.anisotropic.empty();
       int num_vertices = 0;
@@ -94,7 +94,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
       // Each colour in row order: a thread's chunk of a colour then reads and writes a part of
       // the rows of its own, as it does in the regional layout, and the colour's loads run
       // forward. The same bits; bear x16's solve 15-19 % faster at one and two threads, bear's
-      // 31 % at two (docs/benchmarks/scale.md, "The dihedral hinges in batches").
+      // 31 % at two (lab/pages/scale.md, "The dihedral hinges in batches").
       sort_colours_by_row(set_.membranes, membrane_colours_, vertex_row_);
       sort_colours_by_row(set_.isometric_hinges, isometric_colours_, vertex_row_);
       sort_colours_by_row(set_.dihedral_hinges, dihedral_colours_, vertex_row_);
@@ -374,7 +374,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
         schedule_built_ = true;
       }
       // The copies in parallel too (row by row: the same values); serial, they were about 10 ms
-      // of bear x16's 43 ms solve at 16 threads (docs/benchmarks/scale.md, "Sixteen cores").
+      // of bear x16's 43 ms solve at 16 threads (lab/pages/scale.md, "Sixteen cores").
       auto rows = [&](auto copy) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, COPY_GRAIN),
                           [&](const tbb::blocked_range<std::size_t>& r) { copy(r.begin(), r.end()); });

@@ -192,7 +192,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
       // The step works on its own copy of the positions (Simulator::step) until it accepts
       // them, so the state is a whole step's; after that it only measures (energies, validation).
       // What grows during a run is the collision step's candidate pairs
-      // (docs/benchmarks/scale.md, "Beyond a million faces").
+      // (lab/pages/scale.md, "Beyond a million faces").
       fail_out_of_memory(r,
                          sim.frame() == before ? "at step " + std::to_string(before + 1)
                                                : "checking step " + std::to_string(sim.frame()),

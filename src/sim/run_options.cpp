@@ -71,7 +71,7 @@ void resolve_run_options(RunOptions& r) {
     r.sim.material_params.lambda = lame.lambda;
     // Under xpbd k_B is a stiffness, so the material gives it too: the plate's bending rigidity
     // for the dihedral energy. With it the wrinkles' size follows the thickness and is the same
-    // on bear and bear x4 (docs/benchmarks/wrinkles.md). In pbd k_B is a correction multiplier,
+    // on bear and bear x4 (lab/pages/wrinkles.md). In pbd k_B is a correction multiplier,
     // not a stiffness.
     if (r.sim.solver.kind == SolverKind::Xpbd && r.sim.bending == BendingModel::Dihedral &&
         !r.given.count("k-b"))

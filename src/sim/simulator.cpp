@@ -26,7 +26,7 @@ namespace {
 /// The share of V0 by which a target-volume step may end above its target after the collision
 /// response before it gets a second projection and response: 1e-3, a fifth of the 0.005 a target
 /// promises, so that the worst error over a held target stays under it (acceptance grid:
-/// docs/benchmarks/target-volume.md) while steps whose response undoes less keep their single
+/// lab/pages/target-volume.md) while steps whose response undoes less keep their single
 /// response (every golden run is unchanged).
 constexpr double LOCKED_TARGET_EXCESS = 1e-3;
 
@@ -80,7 +80,7 @@ void check_options(const SimOptions& o) {
 /// The step's own per-vertex work (the pressure, the prediction, the checks, the velocities)
 /// runs in parallel in the run's thread count: serial, it took 8-15 ms of bear x16's step of
 /// about 110 ms at 16 threads on a 16-core machine (a step timer build, not kept;
-/// docs/benchmarks/scale.md, "Sixteen cores").
+/// lab/pages/scale.md, "Sixteen cores").
 struct Simulator::StepArena {
   tbb::task_arena arena;
   explicit StepArena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
@@ -387,7 +387,7 @@ FrameMetrics Simulator::step() {
   // of the projection): one more projection, of the vertices this response left alone, checked
   // by one more response over the whole step. Without it a shell in wide contact settles where
   // each step's response undoes what the projection adds: the elk at R = 0.3 stalled at V/V0
-  // 0.3052, above the 0.005 a target promises (docs/benchmarks/target-volume.md).
+  // 0.3052, above the 0.005 a target promises (lab/pages/target-volume.md).
   if (collision_ && options_.target_volume > 0.0 &&
       signed_volume(x_pred_, faces_) - constraint_rest_volume_ * volume_target(frame_ + 1) >
           LOCKED_TARGET_EXCESS * constraint_rest_volume_) {

@@ -3,8 +3,8 @@
 // camel.off blew up at step 9 before the mass floor of rest_state.cpp; the repaired
 // mannequin-devil.off at step 16 before the mass scaling of sim/mass_scaling.hpp; the repaired
 // cylinder_locally_refined.off and polygon_mesh.off blew up, and b9_mesh.off and horizons.off
-// ended inside out, under the earlier defaults (docs/benchmarks/corpus.md). Label "long" (176 s
-// for both on a shared 2-core machine; the runs' own times in scripts/corpus_run.py are
+// ended inside out, under the earlier defaults (lab/pages/corpus.md). Label "long" (176 s
+// for both on a shared 2-core machine; the runs' own times in lab/scripts/corpus_run.py are
 // polygon_mesh 55 s, mannequin-devil 53 s, b9_mesh 29 s, camel 22 s, cylinder_locally_refined
 // 19 s, horizons 7 s; repair and CGAL's self-intersection checks come on top).
 #include <gtest/gtest.h>

@@ -5,8 +5,8 @@
 // before the mass floor of rest_state.cpp: 26 of its vertices have less than 1 % of the mean
 // lumped mass. The repaired mannequin-devil.off blew up at step 16 before the mass scaling of
 // sim/mass_scaling.hpp; fold.off ended inside out (V/V0 < 0) under the earlier defaults (constant
-// pressure), and elephant-with-holes.off has 106 holes. docs/benchmarks/corpus.md
-// (scripts/corpus_run.py) has the whole corpus. Label "scenario" (about 25 s for the four on a
+// pressure), and elephant-with-holes.off has 106 holes. lab/pages/corpus.md
+// (lab/scripts/corpus_run.py) has the whole corpus. Label "scenario" (about 25 s for the four on a
 // loaded 2-core machine); the 200-frame runs of the larger ones are in
 // tests/long/test_corpus_long.cpp.
 #include <gtest/gtest.h>

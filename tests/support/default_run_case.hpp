@@ -30,7 +30,7 @@ inline std::string demo_mesh_path(const std::string& name) {
   return std::string(PAPER_MESH_DIR) + "/" + name + ".off";
 }
 
-/// Every triangle split in four at its edge midpoints (as scripts/scale_benchmark.py does): the
+/// Every triangle split in four at its edge midpoints (as lab/scripts/scale_benchmark.py does): the
 /// same surface at twice the resolution.
 inline Mesh split_in_four(const Mesh& mesh) {
   const Positions x = positions_from_mesh(mesh);

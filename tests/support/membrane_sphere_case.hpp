@@ -49,7 +49,7 @@ inline double membrane_sphere_measured(int levels, double P, const MembraneSpher
   set_run_option(o, "thickness", std::to_string(s.thickness));
   set_run_option(o, "bending", "dihedral");
   set_run_option(o, "k-b", "1");
-  // The damping the table of docs/benchmarks/membrane-sphere.md was measured with (the default
+  // The damping the table of lab/pages/membrane-sphere.md was measured with (the default
   // before the default run moved to XPBD with 0.1); the closed form is the static state.
   set_run_option(o, "damping", "0.2");
   set_run_option(o, "collisions", "off");

@@ -49,7 +49,7 @@ struct CollisionStepStats {
   /// Parts of broad_seconds spent in the step's own (not speculative) broad phase calls, summed
   /// over them (diagnostics; 0 when the grid did not run): the grid's construction or patch, its
   /// cell loop, its output of the pairs, and the per-pair records with the live list. Where a
-  /// many-core run loses its speed-up (docs/benchmarks/scale.md).
+  /// many-core run loses its speed-up (lab/pages/scale.md).
   double broad_grid_seconds = 0.0;
   double broad_cell_loop_seconds = 0.0;
   double broad_output_seconds = 0.0;

@@ -2,7 +2,7 @@
 // keeps the coordinates and faces it parses on the way. CGAL's OFF reader is not used: it resizes
 // its arrays to the declared counts before reading, returns a bare `false` on any error, misreads
 // binary OFF, and parses every line again through a string stream (a large part of reading
-// bear x16: docs/benchmarks/scale.md). tests/mesh/test_off_scan_vs_cgal.cpp checks that both
+// bear x16: lab/pages/scale.md). tests/mesh/test_off_scan_vs_cgal.cpp checks that both
 // read the same points and faces from valid files of every variant.
 #pragma once
 

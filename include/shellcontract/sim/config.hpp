@@ -31,7 +31,7 @@ enum class InwardTerm { Projection, Force, Volume, None };
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
 /// Volume mechanism, a region on a shell at its rest volume loses 2 * 0.7 = 1.4 times its rest cap
 /// volume, as a mirrored dimple (dimple_rest_volume). Chosen by measurement
-/// (docs/benchmarks/local-contraction.md, sections 1-2): at -p 0 it sinks bumpy_sphere's bumps
+/// (lab/pages/local-contraction.md, sections 1-2): at -p 0 it sinks bumpy_sphere's bumps
 /// 5.4 % of the bounding-box diagonal, 12.8x as far as the rest of the shell moves, and the
 /// smallest bump's centre by 1.2 times its radius; 1 adds little more depth (1.3) and less
 /// locality (12.2x).
@@ -73,7 +73,7 @@ inline constexpr double DEFAULT_XPBD_DAMPING = 0.1;
 /// normalized units (bounding-box diagonal 1), Poisson ratio 0.3. Chosen by measurement
 /// (docs/design/defaults.md "The default run"): icospheres of 320 to 20,480 faces end within
 /// 0.02 of each other and bear with bear split in four within 0.03, and the wrinkles take a size
-/// set by the thickness (docs/benchmarks/wrinkles.md).
+/// set by the thickness (lab/pages/wrinkles.md).
 inline constexpr double DEFAULT_SHELL_YOUNG = 1000.0;
 inline constexpr double DEFAULT_SHELL_THICKNESS = 0.002;
 

@@ -1,5 +1,5 @@
 // The contact distance of --delta auto: the paper's delta, or a fixed share of the mesh's mean
-// edge length where that is smaller (docs/benchmarks/pair-growth.md).
+// edge length where that is smaller (lab/pages/pair-growth.md).
 #pragma once
 
 #include "shellcontract/mesh/surface_mesh.hpp"

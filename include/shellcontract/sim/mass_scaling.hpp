@@ -3,7 +3,7 @@
 // with an effective stiffness of about m_i / dt^2 per vertex. Where the lumped mass is tiny next
 // to the pressure's stiffness around a vertex (finely meshed detail, slivers), the pressure
 // wins: the repaired mannequin-devil.off of CGAL's demo data blew up at step 16 of a default run
-// (scripts/corpus_run.py), and at dt / 4 it did not. Raising those few masses removes that
+// (lab/scripts/corpus_run.py), and at dt / 4 it did not. Raising those few masses removes that
 // without touching the time step of the whole mesh.
 #pragma once
 
@@ -17,7 +17,7 @@ namespace shellcontract {
 /// The largest omega * dt that the mass scaling leaves to a vertex, where omega^2 = K_i / m_i and
 /// K_i = |P| / 3 * (perimeter of the vertex's one-ring) bounds the stiffness of the pressure
 /// force f_i = -P / 6 sum_j N_j with respect to the ring's vertices. Calibrated on the repaired
-/// mannequin-devil.off (scripts/corpus_run.py; collisions off, default options otherwise): with
+/// mannequin-devil.off (lab/scripts/corpus_run.py; collisions off, default options otherwise): with
 /// no scaling it blew up at step 9, with a bound of 0.7 at step 17, 0.4 at step 51, and with
 /// 0.25 it ran (docs/design/defaults.md, "Mass scaling").
 inline constexpr double MAX_PRESSURE_OMEGA_DT = 0.25;

@@ -33,7 +33,7 @@ VertexFaces vertex_faces(const Faces& faces, Eigen::Index num_vertices);
 /// summing the terms of its faces in increasing face id, as the face loop of the serial form
 /// adds them: the same bits for any thread count and as the serial form. On a 16-core
 /// machine the serial form took 3-7 ms of bear x16's ~110 ms step at 16 threads (a step timer
-/// build, not kept; docs/benchmarks/scale.md, "Sixteen cores").
+/// build, not kept; lab/pages/scale.md, "Sixteen cores").
 /// @param around  vertex_faces(faces, x.rows())
 void pressure_forces(const Positions& x, const Faces& faces, const VertexFaces& around, double P,
                      PressureModel model, Positions& f);

@@ -420,7 +420,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // Sized without writing: the parallel unpack below writes every pair, and takes the page
   // faults of fresh storage on all threads. A resize that zeroed the growth (and copied the old
   // pairs when it reallocated) cost bear x16 4-7 ms per step on one thread, and 33-65 ms at each
-  // reallocation (docs/benchmarks/scale.md, "Page faults of the pair arrays").
+  // reallocation (lab/pages/scale.md, "Page faults of the pair arrays").
   resize_for_rewrite(out.vertex_face, vf_total);
   resize_for_rewrite(out.vertex_face_close, vf_total);
   resize_for_rewrite(out.edge_edge, ee_total);

@@ -28,7 +28,7 @@ namespace detail {
 
 /// Cell size over the median swept-box extent (the largest side of a face or edge box).
 /// Smaller cells put each box in more cells (a dearer counting sort, fewer patches of the kept
-/// grid); larger ones test more pairs per cell. scripts/scale_benchmark.py --phases (its grid
+/// grid); larger ones test more pairs per cell. lab/scripts/scale_benchmark.py --phases (its grid
 /// and cell loop rows, bear and bear x16, one and two threads): 2.5 to 3.5 are the fastest,
 /// 1.5 is 13-17 % slower per step on bear in the coloured order, 4 near the limit of
 /// GRID_CROWDED_WORK_PER_BOX on bear x16.
@@ -60,7 +60,7 @@ constexpr std::int64_t GRID_CROWDED_WORK_PER_BOX = 256;
 /// BM_FindCandidates/PrimitiveBoxes, 34 ms for bear's 83k boxes) and much less than it costs on
 /// a crowded one: with a limit of 256, bear subdivided three times (1.77 M faces) fell back to it
 /// in its first ten frames and took 9.3 s per step, against 2.4 s on the grid
-/// (docs/benchmarks/scale.md, "Beyond a million faces").
+/// (lab/pages/scale.md, "Beyond a million faces").
 constexpr std::int64_t GRID_WORK_PER_BOX = 1024;
 /// The per-cell pair loops run as this many chunks of cells (about equal entry counts each), in
 /// parallel with TBB; more chunks than threads balance the load (eight per thread on 16 cores:
@@ -74,12 +74,12 @@ constexpr double GRID_REUSE_FACTOR = 1.25;
 constexpr double GRID_MARGIN_CELLS = 0.5;
 /// The kept grid's counting sort is patched (patch_grid) if at most 1 / GRID_PATCH_DIVISOR of the
 /// boxes changed their cell range, else rebuilt. Bear at P = 4: 7.2k of 83k boxes per step on
-/// average; patching costs about a third of a rebuild there (benchmarks/bench_broad_phase.cpp).
+/// average; patching costs about a third of a rebuild there (lab/benchmarks/bench_broad_phase.cpp).
 constexpr std::size_t GRID_PATCH_DIVISOR = 4;
 /// After a failed patch attempt (too many changed boxes) the next calls rebuild without trying,
 /// 1, 2, 4, ... up to this many calls, until an attempt succeeds again. On bear x16 every attempt
 /// fails (its cells are small against the motion), and each cost a serial pass over the boxes
-/// before the rebuild (scripts/scale_benchmark.py --phases, the grid row).
+/// before the rebuild (lab/scripts/scale_benchmark.py --phases, the grid row).
 constexpr int GRID_PATCH_MAX_BACKOFF = 8;
 /// The kept grid is patched only in an arena of at most this many threads. The patch runs on
 /// one thread, the rebuild on all. On bear (coloured order, the grid's time per step over 30

@@ -3,7 +3,7 @@
 // its own boxes into its own cells. A flat counting sort over all cells kept a counter per cell
 // for every part of the boxes (bear x16: 2.65 M cells, 10.6 MB per part) and scattered the
 // entries of neighbouring parts into the same cache lines: on 16 cores its count ran 2.3x and
-// its scatter 1.1x faster than on one (docs/benchmarks/scale.md, "Sixteen cores"). Here a
+// its scatter 1.1x faster than on one (lab/pages/scale.md, "Sixteen cores"). Here a
 // slab's counters and entries fit in a core's L2 and no two tasks write the same slab.
 #include <tbb/parallel_for.h>
 

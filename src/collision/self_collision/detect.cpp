@@ -34,7 +34,7 @@ void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, doubl
       // axes cull (separating_axes_culls) from the positions it has loaded: a survivor it settles
       // is free as well, and counted as the narrow phase's. On bear x16 it settles three
       // quarters of the survivors (neighbours that move together), which the narrow phase
-      // gathered again one by one (scripts/scale_benchmark.py --phases, the narrow phase row).
+      // gathered again one by one (lab/scripts/scale_benchmark.py --phases, the narrow phase row).
       out.kept.clear();
       out.axes_settled = 0;
       std::array<int, 4> v[CULL_LANES];

@@ -109,7 +109,7 @@ void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
   // Without rest-state exclusions (most meshes; bear and its subdivisions) every pair is live,
   // and the live list (collect_live) is the identity: the record pass writes it while the
   // stencils are in cache. As a second pass it re-read every record: a tenth of the records'
-  // time on bear x16 at one thread (scripts/scale_benchmark.py --phases, the pair records row).
+  // time on bear x16 at one thread (lab/scripts/scale_benchmark.py --phases, the pair records row).
   const bool all_live = excluded_vf_.empty() && excluded_ee_.empty();
   if (all_live) {
     if (live_.size() < n) resize_for_rewrite(live_, n);
