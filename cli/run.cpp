@@ -22,6 +22,7 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "export_observer.hpp"
+#include "help_groups.hpp"
 #include "json_writer.hpp"
 #include "output_paths.hpp"
 #include "run_observers.hpp"
@@ -40,7 +41,7 @@ constexpr const char* RUN_USAGE =
     "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL) like a thin elastic shell under an\n"
     "outside pressure. The mesh is normalized to a unit bounding-box diagonal for the\n"
     "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
-    "Output keeps the input's vertex and face order.\n\noptions";
+    "Output keeps the input's vertex and face order.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed or out of memory\n"
@@ -48,21 +49,35 @@ constexpr const char* RUN_EXIT_CODES =
     "            or while writing), 4 new self-intersections found by --validate, 5 the target\n"
     "            volume or stop ratio was not reached (result written)\n";
 
-/// The table's options as text values for boost; switches as bool_switch.
+/// The table's options as text values for boost, switches as bool_switch, in the task groups of
+/// run --help (help_groups.hpp), each group added to `desc`.
 void add_table_options(po::options_description& desc, std::map<std::string, std::string>& values,
                        std::map<std::string, bool>& switches) {
   const RunOptions defaults;
+  const auto& groups = run_help_groups();
+  std::vector<po::options_description> sections;
+  for (const auto& g : groups) sections.emplace_back(g.first, 100, 50);
+  sections.emplace_back("other", 100, 50);
   for (const OptionSpec& o : run_option_table()) {
+    std::size_t s = 0;
+    while (s < groups.size() &&
+           std::find(groups[s].second.begin(), groups[s].second.end(), o.name) ==
+               groups[s].second.end())
+      ++s;
+    po::options_description& section = sections[s];
     const std::string key = o.short_name ? o.name + "," + std::string(1, o.short_name) : o.name;
     if (o.is_switch) {
-      desc.add_options()(key.c_str(), po::bool_switch(&switches[o.name]), o.help.c_str());
+      section.add_options()(key.c_str(), po::bool_switch(&switches[o.name]), o.help.c_str());
       continue;
     }
     const std::string def = o.get(defaults);
+    const std::string shown = run_help_shown_default(o.name);
     po::typed_value<std::string>* v = po::value(&values[o.name])->value_name(o.value_name);
-    if (!def.empty()) v->default_value(def);
-    desc.add_options()(key.c_str(), v, o.help.c_str());
+    if (!def.empty()) v->default_value(def, shown.empty() ? def : shown);
+    section.add_options()(key.c_str(), v, o.help.c_str());
   }
+  for (const po::options_description& section : sections)
+    if (!section.options().empty()) desc.add(section);
 }
 
 std::string lower_extension(const std::string& path) {
