@@ -1,14 +1,20 @@
-// shellcontract check IN [--json]: reads and checks a mesh the way `run` does, and prints what
-// it found. Exit 0 if the mesh can be used, 2 (with the reason on stderr) if not, 1 on bad usage.
+// shellcontract check IN [--json] [--against INPUT] [--fail-on-self-intersections]: reads and
+// checks a mesh the way `run` does, and prints what it found. Exit 0 if the mesh can be used, 2
+// (with the reason on stderr) if not, 1 on bad usage, 4 when it fails --against or
+// --fail-on-self-intersections (issue 56: a result can be refused, not only an input).
 #include <boost/program_options.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "commands.hpp"
@@ -17,6 +23,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/read_polygon_soup.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
 
 namespace shellcontract::cli {
@@ -24,17 +31,98 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* CHECK_USAGE = R"(usage: shellcontract check INPUT [--json]
+constexpr const char* CHECK_USAGE = R"(usage: shellcontract check MESH [--json] [--against INPUT] [--fail-on-self-intersections]
 
-Reads INPUT (.off, .obj, .ply, .stl) with the same checks as 'run' and reports: vertices, faces,
+Reads MESH (.off, .obj, .ply, .stl) with the same checks as 'run' and reports: vertices, faces,
 edges, connected components, Euler characteristic and genus, closed, manifold, enclosed volume,
 bounding-box diagonal, zero-area faces and self-intersecting face pairs.
 Polygons are triangulated and inside-out components flipped, as 'run' would (see the warnings).
+With --against, MESH is a result of 'run' on INPUT (same vertices and faces, moved): the face
+pairs that intersect in MESH but not in INPUT are counted (compared polygon by polygon, so a quad
+split along its other diagonal is the same quad).
 
 exit codes: 0 the mesh can be used (self-intersections already in the input are reported, not
-            refused), 1 bad usage, 2 the mesh cannot be used (the message says what and where)
+            refused), 1 bad usage (also: MESH and INPUT do not have the same vertices and faces),
+            2 the mesh (or INPUT) cannot be used (the message says what and where), 4 MESH has
+            self-intersecting pairs that INPUT lacks (--against), or has any
+            (--fail-on-self-intersections)
 
 options)";
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+/// A file's polygons (as its reader gives them) and, per face of the mesh read_input_mesh makes
+/// of it, the polygon that face comes from: face i < #polygons is polygon i's first triangle,
+/// the other triangles of split polygons follow in polygon order.
+struct Polygons {
+  std::vector<std::vector<std::size_t>> polygons;
+  std::vector<std::size_t> face_origin;
+};
+
+Polygons read_polygons(const std::string& path) {
+  Polygons p;
+  std::vector<Point3> points;
+  SourceLines lines;
+  read_polygon_soup(path, lower_extension(path), points, p.polygons, lines);
+  for (std::size_t i = 0; i < p.polygons.size(); ++i) p.face_origin.push_back(i);
+  for (std::size_t i = 0; i < p.polygons.size(); ++i)
+    for (std::size_t k = 3; k < p.polygons[i].size(); ++k) p.face_origin.push_back(i);
+  return p;
+}
+
+/// The pairs of `pairs` (faces of `mesh`, read from `path`) whose polygons do not intersect in
+/// `input` (faces of `input_mesh`, read from input_path, with pairs input_pairs). A face of the
+/// result belongs to the input polygon that holds its three vertices.
+/// @throws UsageError if the two files do not have the same vertices and polygons
+std::vector<FacePair> new_pairs(const std::string& path, const Mesh& mesh, const std::vector<FacePair>& pairs,
+                                const std::string& input_path, const Mesh& input_mesh,
+                                const std::vector<FacePair>& input_pairs) {
+  const std::string not_same = path + " is not a result of " + input_path + ": ";
+  if (mesh.number_of_vertices() != input_mesh.number_of_vertices() || mesh.number_of_faces() != input_mesh.number_of_faces())
+    throw UsageError(not_same + std::to_string(mesh.number_of_vertices()) + " vertices and " +
+                     std::to_string(mesh.number_of_faces()) + " faces against " +
+                     std::to_string(input_mesh.number_of_vertices()) + " and " +
+                     std::to_string(input_mesh.number_of_faces()));
+  const Polygons in = read_polygons(input_path);
+  std::vector<std::vector<std::size_t>> polygons_of(input_mesh.number_of_vertices());
+  for (std::size_t p = 0; p < in.polygons.size(); ++p)
+    for (const std::size_t v : in.polygons[p]) polygons_of[v].push_back(p);
+  // The input polygon of each result face: the one polygon around its first vertex that holds
+  // all three of its vertices.
+  std::vector<std::size_t> polygon(mesh.number_of_faces());
+  for (const FaceIndex f : mesh.faces()) {
+    std::vector<std::size_t> fv;
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) fv.push_back(v.idx());
+    bool found = false;
+    for (const std::size_t p : polygons_of[fv[0]]) {
+      const auto& poly = in.polygons[p];
+      if (std::find(poly.begin(), poly.end(), fv[1]) != poly.end() && std::find(poly.begin(), poly.end(), fv[2]) != poly.end()) {
+        polygon[f.idx()] = p;
+        found = true;
+        break;
+      }
+    }
+    if (!found)
+      throw UsageError(not_same + "its face " + std::to_string(f.idx()) + " (vertices " + std::to_string(fv[0]) + " " +
+                       std::to_string(fv[1]) + " " + std::to_string(fv[2]) + ") is in no face of the input");
+  }
+  std::set<std::pair<std::size_t, std::size_t>> before;
+  for (const FacePair& q : input_pairs) {
+    const std::size_t a = in.face_origin[q.first.idx()], b = in.face_origin[q.second.idx()];
+    before.insert({std::min(a, b), std::max(a, b)});
+  }
+  std::vector<FacePair> fresh;
+  for (const FacePair& q : pairs) {
+    const std::size_t a = polygon[q.first.idx()], b = polygon[q.second.idx()];
+    if (!before.count({std::min(a, b), std::max(a, b)})) fresh.push_back(q);
+  }
+  return fresh;
+}
 
 /// Indices as a JSON array text.
 std::string json_array(const std::vector<std::size_t>& ids) {
@@ -46,12 +134,16 @@ std::string json_array(const std::vector<std::size_t>& ids) {
 }  // namespace
 
 int command_check(int argc, char** argv) {
-  std::string input;
-  bool json = false;
+  std::string input, against;
+  bool json = false, fail_on_intersections = false;
   po::options_description visible;
   visible.add_options()
       ("help,h", "show this help")
-      ("json", po::bool_switch(&json), "print the report as a JSON object on stdout");
+      ("json", po::bool_switch(&json), "print the report as a JSON object on stdout")
+      ("against", po::value(&against)->value_name("INPUT"),
+       "MESH is a result of 'run' on INPUT: exit 4 if MESH has self-intersecting face pairs that INPUT lacks")
+      ("fail-on-self-intersections", po::bool_switch(&fail_on_intersections),
+       "exit 4 if MESH has any self-intersecting face pairs");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
@@ -65,6 +157,7 @@ int command_check(int argc, char** argv) {
     return usage_error("check", e.what());
   }
 
+  std::string stage = input;  // the file whose problem a JSON error reports
   try {
     InputReport report;
     const Mesh mesh = read_input_mesh(input, &report);
@@ -78,6 +171,23 @@ int command_check(int argc, char** argv) {
     // read_input_mesh refuses open, non-manifold and non-orientable input, so every component
     // is a closed orientable surface: chi = sum (2 - 2 g_i).
     const long long genus = (2 * static_cast<long long>(report.components) - chi) / 2;
+
+    // A result judged against its input, or on its own (exit 4 when it fails).
+    std::vector<FacePair> fresh;
+    std::size_t input_pair_count = 0;
+    if (!against.empty()) {
+      stage = against;
+      const Mesh input_mesh = read_input_mesh(against);
+      const std::vector<FacePair> input_pairs = self_intersecting_pairs(input_mesh, positions_from_mesh(input_mesh));
+      input_pair_count = input_pairs.size();
+      fresh = new_pairs(input, mesh, pairs, against, input_mesh, input_pairs);
+    }
+    const bool fails = !fresh.empty() || (fail_on_intersections && !pairs.empty());
+    std::string verdict;
+    if (!fresh.empty())
+      verdict = std::to_string(fresh.size()) + " self-intersecting face pairs that " + against + " does not have";
+    else if (fails)
+      verdict = std::to_string(pairs.size()) + " self-intersecting face pairs (--fail-on-self-intersections)";
 
     if (json) {
       std::string pairs_json = "[";
@@ -94,6 +204,14 @@ int command_check(int argc, char** argv) {
           .add_raw("zero_area_faces", json_array(report.zero_area_faces))
           .add("self_intersecting_pairs", pairs.size()).add_raw("self_intersections", pairs_json)
           .add("warnings", report.warnings);
+      if (!against.empty()) {
+        std::string fresh_json = "[";
+        for (std::size_t i = 0; i < fresh.size(); ++i)
+          fresh_json += (i ? ", " : "") + json_array({fresh[i].first.idx(), fresh[i].second.idx()});
+        o.add("against", against).add("input_self_intersecting_pairs", input_pair_count)
+            .add("new_self_intersecting_pairs", fresh.size()).add_raw("new_self_intersections", fresh_json + "]");
+      }
+      if (!against.empty() || fail_on_intersections) o.add("passes", !fails).add("failure", verdict);
       std::cout << o.str() << '\n';
     } else {
       std::ostringstream out;
@@ -126,14 +244,32 @@ int command_check(int argc, char** argv) {
         out << (pairs.size() > 20 ? " ...)" : ")");
       }
       out << "\nusable: yes\n";
+      if (!against.empty()) {
+        out << "against: " << against << "\ninput_self_intersecting_pairs: " << input_pair_count
+            << "\nnew_self_intersecting_pairs: " << fresh.size();
+        if (!fresh.empty()) {
+          out << " (";
+          for (std::size_t i = 0; i < fresh.size() && i < 20; ++i)
+            out << (i ? " " : "") << fresh[i].first.idx() << '-' << fresh[i].second.idx();
+          out << (fresh.size() > 20 ? " ...)" : ")");
+        }
+        out << '\n';
+      }
+      if (!against.empty() || fail_on_intersections) out << "passes: " << (fails ? "no (" + verdict + ")" : "yes") << '\n';
       std::cout << out.str();
     }
+    if (fails) {
+      std::cerr << "shellcontract check: " << input << " fails: " << verdict << '\n';
+      return static_cast<int>(ExitCode::NewSelfIntersections);
+    }
     return static_cast<int>(ExitCode::Success);
+  } catch (const UsageError& e) {
+    return usage_error("check", e.what());
   } catch (const InputError& e) {
     std::cerr << "shellcontract check: " << e.what() << '\n';
     if (json) {
       JsonObject o;
-      o.add("file", input).add("usable", false).add("error", std::string(e.what()));
+      o.add("file", stage).add("usable", false).add("error", std::string(e.what()));
       std::cout << o.str() << '\n';
     }
     return static_cast<int>(ExitCode::BadInput);

@@ -10,6 +10,7 @@
 
 #include "shellcontract/export/frame_sequence_writer.hpp"
 #include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/mesh/mesh_document.hpp"
 #include "shellcontract/sim/fields.hpp"
 #include "shellcontract/sim/run.hpp"
 
@@ -55,10 +56,23 @@ class FrameExporter final : public RunObserver {
                              {"gaussian_curvature", f.gaussian_curvature},
                              {"pressure", f.pressure},
                              {"energy_density", f.energy_density}};
+      gltf_.colour_frame = sim.frame();  // the fields are this frame's, not every frame's
       gltf_.seconds_per_frame = request_.seconds_per_frame;
       gltf_seconds_ =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
+  }
+
+  /// The input's texture coordinates, for the glTF's TEXCOORD_0 (issue 56); empty: none.
+  void set_texcoords(const CornerTexcoords& t) {
+    if (t.empty()) return;
+    gltf_.uv.resize(static_cast<Eigen::Index>(t.uv.size()), 2);
+    for (std::size_t i = 0; i < t.uv.size(); ++i)
+      gltf_.uv.row(static_cast<Eigen::Index>(i)) << t.uv[i][0], t.uv[i][1];
+    gltf_.face_uv.resize(static_cast<Eigen::Index>(t.face_uv.size()), 3);
+    for (std::size_t f = 0; f < t.face_uv.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        gltf_.face_uv(static_cast<Eigen::Index>(f), k) = static_cast<int>(t.face_uv[f][static_cast<std::size_t>(k)]);
   }
 
   /// Writes the .glb of --gltf, after the run: the simulator's memory is free by then (bear x16

@@ -14,6 +14,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <new>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,7 @@
 #include "run_observers.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/mesh_document.hpp"
 #include "shellcontract/mesh/repair.hpp"
 #include "shellcontract/sim/option_table.hpp"
 
@@ -41,7 +43,9 @@ constexpr const char* RUN_USAGE =
     "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL) like a thin elastic shell under an\n"
     "outside pressure. The mesh is normalized to a unit bounding-box diagonal for the\n"
     "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
-    "Output keeps the input's vertex and face order.\n\noutputs and general";
+    "Output keeps the input's vertex and face order. An OBJ or PLY output of an input of the same\n"
+    "format is the input file with new positions (OBJ: and normals): UVs, groups, materials,\n"
+    "polygons and extra PLY properties are kept (docs/design/attributes.md).\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed or out of memory\n"
@@ -276,6 +280,20 @@ int command_run(int argc, char** argv) {
       std::cerr << "read " << input << ": " << mesh.number_of_vertices() << " vertices, "
                 << mesh.number_of_faces() << " faces in " << std::setprecision(3) << read_seconds
                 << " s\n";
+    // The input kept whole, so that an OBJ or PLY result keeps what the simulation does not use
+    // (UVs, normals, groups, materials, polygons, extra properties; docs/design/attributes.md).
+    // Held only where it is used (it is the whole file): an output of the input's format, or the
+    // glTF's texture coordinates.
+    std::unique_ptr<MeshDocument> document;
+    if ((!repair || repair_report.already_usable) &&
+        (lower_extension(input) == lower_extension(output) || !exports.gltf.empty())) {
+      try {
+        document = read_mesh_document(input);
+      } catch (const InputError& e) {
+        std::cerr << "warning: the result is written without the input's attributes: " << e.what() << '\n';
+      }
+      if (document && !document->matches(mesh)) document.reset();
+    }
     ObserverList observers;
     WarningPrinter warnings;
     observers.add(warnings);
@@ -292,6 +310,7 @@ int command_run(int argc, char** argv) {
     if (!fields_prefix.empty()) observers.add(fields);
     FrameExporter exporter(exports, mesh, options.sim.frames);
     if (!exports.dir.empty() || !exports.gltf.empty()) observers.add(exporter);
+    if (document && !exports.gltf.empty()) exporter.set_texcoords(document->texcoords(mesh));
 
     faces = std::to_string(mesh.number_of_faces()) + " faces";
     // run_contraction ends the run itself when memory runs out during the frames.
@@ -304,7 +323,10 @@ int command_run(int argc, char** argv) {
       written = exports.gltf;
     }
     stage = "writing " + output;
-    write_mesh_atomic(output, mesh, r.positions);
+    if (document && document->format() == lower_extension(output))
+      write_mesh_document_atomic(output, *document, r.positions);
+    else
+      write_mesh_atomic(output, mesh, r.positions);
     written = written.empty() ? output : written + " and " + output;
     stage = "writing the log and the summary";
     if (!log_path.empty()) {

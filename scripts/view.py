@@ -1,10 +1,12 @@
 #!/usr/bin/python3
 """Serves the viewer (viewer/) and a run's files on localhost and prints the URL to open.
 
-Usage: scripts/view.py RUN.glb [--log RUN.csv|RUN.json] [--port N] [--open]
+Usage: scripts/view.py FILE [FILE2] [--log RUN.csv|RUN.json] [--port N] [--open]
 
-The page is viewer/index.html with ?file=/run/RUN.glb&log=/run/RUN.csv; only those files and
-the viewer folder are served, on 127.0.0.1. three.js is served from viewer/node_modules, which
+FILE is a run's .glb or a mesh (.off, .obj, .ply, .stl: a result, a frame, a --fields PLY);
+with FILE2 the two are shown side by side (e.g. before and after).
+The page is viewer/index.html with ?file=/run/FILE&compare=/run/FILE2&log=/run/RUN.csv; only
+those files and the viewer folder are served, on 127.0.0.1. three.js is served from viewer/node_modules, which
 scripts/install_deps.sh installs (npm ci). Stop with Ctrl-C.
 """
 import argparse
@@ -21,7 +23,8 @@ VIEWER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "viewer"
 class Handler(http.server.SimpleHTTPRequestHandler):
     extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
                       ".glb": "model/gltf-binary", ".js": "text/javascript", ".mjs": "text/javascript",
-                      ".csv": "text/csv", ".json": "application/json"}
+                      ".csv": "text/csv", ".json": "application/json", ".off": "text/plain",
+                      ".obj": "text/plain", ".ply": "application/octet-stream", ".stl": "application/octet-stream"}
 
     def __init__(self, *args, run_files=None, **kwargs):
         self.run_files = run_files or {}
@@ -39,8 +42,10 @@ class Handler(http.server.SimpleHTTPRequestHandler):
 
 
 def main():
-    ap = argparse.ArgumentParser(description="Serve the ShellContract viewer with a run's .glb")
-    ap.add_argument("glb", help="the run's animated glTF (shellcontract run ... --gltf RUN.glb)")
+    ap = argparse.ArgumentParser(description="Serve the ShellContract viewer with a run's .glb or meshes")
+    ap.add_argument("glb", metavar="FILE",
+                    help="the run's animated glTF (shellcontract run ... --gltf RUN.glb) or a mesh (.off, .obj, .ply, .stl)")
+    ap.add_argument("compare", metavar="FILE2", nargs="?", help="a second .glb or mesh, shown beside the first")
     ap.add_argument("--log", help="the run's --log CSV or --summary JSON, for the V/V0 plot")
     ap.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: any free port)")
     ap.add_argument("--open", action="store_true", help="also open the page in the default browser")
@@ -49,12 +54,14 @@ def main():
     if not os.path.isdir(os.path.join(VIEWER, "node_modules", "three")):
         sys.exit("view.py: viewer/node_modules is missing; run scripts/install_deps.sh (or npm ci in viewer/)")
     run_files, query = {}, {}
-    for key, path in (("file", args.glb), ("log", args.log)):
+    for key, path in (("file", args.glb), ("compare", args.compare), ("log", args.log)):
         if path is None:
             continue
         if not os.path.isfile(path):
             sys.exit(f"view.py: no such file: {path}")
         name = os.path.basename(path)
+        if name in run_files and run_files[name] != os.path.abspath(path):
+            name = f"{key}_{name}"  # two files of the same name (before/out.off, after/out.off)
         run_files[name] = os.path.abspath(path)
         query[key] = "/run/" + urllib.parse.quote(name)
 

@@ -3,10 +3,12 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/export/field_colours.hpp"
@@ -17,6 +19,7 @@ namespace shellcontract {
 namespace {
 
 using Floats3 = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
+using Floats2 = Eigen::Matrix<float, Eigen::Dynamic, 2, Eigen::RowMajor>;
 
 /// Appends arrays to the model's one buffer and makes views and accessors on them.
 class BufferBuilder {
@@ -56,6 +59,28 @@ class BufferBuilder {
       acc.minValues = {lo(0), lo(1), lo(2)};
       acc.maxValues = {hi(0), hi(1), hi(2)};
     }
+    return push(acc);
+  }
+
+  /// A float VEC2 vertex attribute (texture coordinates).
+  int add_vec2(const Floats2& a) {
+    tinygltf::Accessor acc;
+    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
+                              TINYGLTF_TARGET_ARRAY_BUFFER);
+    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    acc.count = static_cast<std::size_t>(a.rows());
+    acc.type = TINYGLTF_TYPE_VEC2;
+    return push(acc);
+  }
+
+  /// A float SCALAR vertex attribute (a field's values).
+  int add_vertex_scalars(const Eigen::VectorXf& a) {
+    tinygltf::Accessor acc;
+    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
+                              TINYGLTF_TARGET_ARRAY_BUFFER);
+    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    acc.count = static_cast<std::size_t>(a.size());
+    acc.type = TINYGLTF_TYPE_SCALAR;
     return push(acc);
   }
 
@@ -122,6 +147,16 @@ void check_input(const GltfAnimation& a) {
       throw std::invalid_argument("write_gltf_animation: colour field '" + f.name + "' has " +
                                   std::to_string(f.values.size()) + " values for " +
                                   std::to_string(nv) + " vertices");
+  if (a.face_uv.rows() > 0 || a.uv.rows() > 0) {
+    if (a.face_uv.rows() != a.faces.rows())
+      throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.face_uv.rows()) +
+                                  " rows of texture coordinate indices for " +
+                                  std::to_string(a.faces.rows()) + " faces");
+    if (a.uv.rows() == 0 || a.face_uv.minCoeff() < 0 || a.face_uv.maxCoeff() >= a.uv.rows())
+      throw std::invalid_argument("write_gltf_animation: a texture coordinate index is out of range");
+    if (!a.uv.allFinite())
+      throw std::invalid_argument("write_gltf_animation: a texture coordinate is not finite");
+  }
   if (!(a.seconds_per_frame > 0.0))
     throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
 }
@@ -153,13 +188,74 @@ Positions vertex_normals(const Positions& x, const Faces& faces) {
 
 namespace {
 
+/// The glTF's vertices: the simulation's, plus a copy of a vertex for each further texture
+/// coordinate its corners use (glTF has one set of attributes per vertex).
+struct SeamSplit {
+  std::vector<Eigen::Index> source;  ///< glTF vertex -> simulation vertex; identity for i < #V
+  Faces faces;                       ///< the faces on the glTF's vertices
+  Floats2 texcoords;                 ///< TEXCOORD_0 (u, 1 - v); empty without texture coordinates
+};
+
+SeamSplit split_seams(const GltfAnimation& a) {
+  const Eigen::Index nv = a.frames[0].rows();
+  SeamSplit s;
+  s.faces = a.faces;
+  s.source.resize(static_cast<std::size_t>(nv));
+  for (Eigen::Index i = 0; i < nv; ++i) s.source[static_cast<std::size_t>(i)] = i;
+  if (a.face_uv.rows() == 0) return s;
+  std::vector<int> uv_of(static_cast<std::size_t>(nv), -1);  // the glTF vertex's uv index
+  std::vector<std::vector<std::pair<int, int>>> copies(static_cast<std::size_t>(nv));  // (uv, glTF vertex)
+  for (Eigen::Index f = 0; f < a.faces.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = a.faces(f, k), t = a.face_uv(f, k);
+      const auto vs = static_cast<std::size_t>(v);
+      if (uv_of[vs] < 0) uv_of[vs] = t;
+      if (uv_of[vs] == t) continue;
+      int id = -1;
+      for (const auto& [uv, copy] : copies[vs])
+        if (uv == t) id = copy;
+      if (id < 0) {
+        id = static_cast<int>(s.source.size());
+        s.source.push_back(v);
+        uv_of.push_back(t);
+        copies[vs].emplace_back(t, id);
+      }
+      s.faces(f, k) = id;
+    }
+  s.texcoords.resize(static_cast<Eigen::Index>(s.source.size()), 2);
+  for (std::size_t i = 0; i < s.source.size(); ++i) {
+    const Eigen::Index t = uv_of[i] < 0 ? 0 : uv_of[i];  // < 0: a vertex no face uses
+    s.texcoords(static_cast<Eigen::Index>(i), 0) = static_cast<float>(a.uv(t, 0));
+    s.texcoords(static_cast<Eigen::Index>(i), 1) = static_cast<float>(1.0 - a.uv(t, 1));
+  }
+  return s;
+}
+
+/// Rows of `a` for the glTF's vertices (a itself when nothing was split).
+template <class M>
+M gather(M a, const std::vector<Eigen::Index>& source) {
+  if (static_cast<std::size_t>(a.rows()) == source.size()) return a;
+  M out(static_cast<Eigen::Index>(source.size()), a.cols());
+  for (std::size_t i = 0; i < source.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = a.row(source[i]);
+  return out;
+}
+
+/// A custom attribute's name for a field: "_" and the name in capitals, other characters than
+/// letters and digits as "_" (glTF: application-specific semantics start with "_").
+std::string custom_attribute(const std::string& name) {
+  std::string s = "_";
+  for (const char c : name)
+    s += std::isalnum(static_cast<unsigned char>(c)) ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : '_';
+  return s;
+}
+
 /// The bytes write_gltf_animation's buffer holds, with each view's alignment padding.
-std::size_t buffer_capacity(const GltfAnimation& a) {
-  const std::size_t nv = static_cast<std::size_t>(a.frames[0].rows());
+std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
   const std::size_t nk = a.frames.size();
   const std::size_t vec3 = 12 * nv + 3;
   return 4 * static_cast<std::size_t>(a.faces.size()) + 3 +    // indices
          (2 + a.colour_fields.size() + 2 * (nk - 1)) * vec3 +  // attributes and targets
+         (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
          4 * nk + 3 + 4 * nk * (nk - 1) + 3;                   // keys and weights
 }
 
@@ -168,29 +264,40 @@ std::size_t buffer_capacity(const GltfAnimation& a) {
 GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
                      std::vector<Positions>* consumed) {
   check_input(a);
+  const SeamSplit split = split_seams(a);
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "shellcontract";
-  BufferBuilder bb(model, buffer_capacity(a));
+  BufferBuilder bb(model, buffer_capacity(a, split.source.size()));
 
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.indices = bb.add_indices(a.faces);
+  prim.indices = bb.add_indices(split.faces);
   const Floats3 x0 = a.frames[0].cast<float>();
   const Positions x0_stored = x0.cast<double>();  // what a reader gets for frame 0
+  // Normals on the simulation's mesh, so that a seam's copies share theirs (no visible seam).
   const Positions n0 = vertex_normals(a.frames[0], a.faces);
-  prim.attributes["POSITION"] = bb.add_vec3(x0, true);
-  prim.attributes["NORMAL"] = bb.add_vec3(n0.cast<float>(), false);
+  prim.attributes["POSITION"] = bb.add_vec3(gather(x0, split.source), true);
+  prim.attributes["NORMAL"] = bb.add_vec3(gather<Floats3>(n0.cast<float>(), split.source), false);
+  if (split.texcoords.rows() > 0) prim.attributes["TEXCOORD_0"] = bb.add_vec2(split.texcoords);
 
   tinygltf::Value::Object extras;
   tinygltf::Value::Array colour_info;
   for (std::size_t i = 0; i < a.colour_fields.size(); ++i) {
     const FieldColours c = field_colours(a.colour_fields[i].values);
     const std::string attribute = "COLOR_" + std::to_string(i);
-    prim.attributes[attribute] = bb.add_vec3(c.rgb, false);
+    prim.attributes[attribute] = bb.add_vec3(gather(c.rgb, split.source), false);
+    // The values themselves under the field's name (colours say little to a script or a DCC
+    // tool); two names that map to the same attribute get the field's index appended.
+    std::string values = custom_attribute(a.colour_fields[i].name);
+    if (prim.attributes.count(values)) values += "_" + std::to_string(i);
+    prim.attributes[values] = bb.add_vertex_scalars(
+        gather<Eigen::VectorXf>(a.colour_fields[i].values.cast<float>(), split.source));
     tinygltf::Value::Object info;
     info["name"] = tinygltf::Value(a.colour_fields[i].name);
     info["attribute"] = tinygltf::Value(attribute);
+    info["values_attribute"] = tinygltf::Value(values);
+    if (a.colour_frame >= 0) info["frame"] = tinygltf::Value(a.colour_frame);
     info["low"] = tinygltf::Value(c.low);
     info["high"] = tinygltf::Value(c.high);
     colour_info.emplace_back(info);
@@ -200,8 +307,8 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   // displacement rounds once (float) away from each frame.
   std::vector<std::string> target_names;
   for (std::size_t k = 1; k < a.frames.size(); ++k) {
-    const Floats3 dx = (a.frames[k] - x0_stored).cast<float>();
-    const Floats3 dn = (vertex_normals(a.frames[k], a.faces) - n0).cast<float>();
+    const Floats3 dx = gather<Floats3>((a.frames[k] - x0_stored).cast<float>(), split.source);
+    const Floats3 dn = gather<Floats3>((vertex_normals(a.frames[k], a.faces) - n0).cast<float>(), split.source);
     if (consumed) Positions().swap((*consumed)[k]);
     std::map<std::string, int> target;
     target["POSITION"] = bb.add_vec3(dx, true);

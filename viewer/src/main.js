@@ -1,11 +1,16 @@
 // ShellContract viewer: plays the morph-target animation of a run's .glb (one target per exported
-// frame, STEP keyframes), scrubs it, plots V/V0 from the run's CSV log or JSON summary and switches
-// the colour fields (COLOR_n attributes named in the mesh's extras).
-// URL parameters: ?file=RUN.glb&log=RUN.csv (or a .json summary).
-// For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, log, summary, ...}.
+// frame, STEP keyframes), scrubs it and jumps to a frame, plots V/V0 from the run's CSV log or JSON
+// summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL). Two files are
+// shown side by side (before and after, one camera); a single .glb can show its first frame beside
+// the current one. A colour field is shown on the frame whose values it holds (the glTF's extras
+// say which), never on the others; a mesh file is coloured with its own values.
+// URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
+// For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes, shown, ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { colourAttribute, range } from './colour_map.js';
+import { extensionOf, loadMeshFile, MESH_EXTENSIONS } from './mesh_files.js';
 import { drawPlot } from './plot.js';
 import { parseCsvLog, parseJsonSummary, ratioAt } from './run_log.js';
 
@@ -13,36 +18,61 @@ const el = (id) => document.getElementById(id);
 const view = el('view');
 const state = {
   ready: false, error: null, keyframe: 0, frameNumbers: [], times: [], log: null, summary: null,
-  colourFields: [], colour: -1, playing: false,
+  colourFields: [], colour: '-1', playing: false, sideBySide: false,
+  panes: [],   // per pane: {name, kind: 'glb' | 'mesh', vertices, frame (glb: shown run frame)}
+  shown: [],   // per pane: the colours it shows ('none', a field's name, or 'file colours')
 };
 window.viewer = state;
 
 // ---------------------------------------------------------------- scene
 const renderer = new THREE.WebGLRenderer({ antialias: true });
 renderer.setPixelRatio(window.devicePixelRatio);
+renderer.setScissorTest(true);
 view.appendChild(renderer.domElement);
-const scene = new THREE.Scene();
-scene.background = new THREE.Color(0xf4f4f2);
 const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 100);
-scene.add(camera);
-scene.add(new THREE.HemisphereLight(0xffffff, 0x808080, 1.6));
-const sun = new THREE.DirectionalLight(0xffffff, 1.8);
-sun.position.set(1, 2, 3);
-camera.add(sun);  // the light follows the view
 const controls = new OrbitControls(camera, renderer.domElement);
 controls.addEventListener('change', render);
-let root = null;   // the loaded glTF scene
-let shell = null;  // the THREE.Mesh with the morph targets
-let colourAttributes = [];
+/** @type {{name, kind, scene, sun, object, meshes, vertices, frameNumbers?, colourInfo?, colourAttributes?, fixed?, fields?, fileColours?}[]} */
+let panes = [];
+
+function makeScene() {
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xf4f4f2);
+  scene.add(new THREE.HemisphereLight(0xffffff, 0x808080, 1.6));
+  const sun = new THREE.DirectionalLight(0xffffff, 1.8);
+  scene.add(sun);
+  return { scene, sun };
+}
 
 function resize() {
-  const w = view.clientWidth, h = view.clientHeight;
-  renderer.setSize(w, h);
-  camera.aspect = w / Math.max(h, 1);
-  camera.updateProjectionMatrix();
+  renderer.setSize(view.clientWidth, view.clientHeight);
   render();
 }
-function render() { renderer.render(scene, camera); }
+function render() {
+  const w = view.clientWidth, h = view.clientHeight, n = Math.max(1, panes.length);
+  camera.aspect = w / n / Math.max(h, 1);
+  camera.updateProjectionMatrix();
+  if (!panes.length) {
+    renderer.setViewport(0, 0, w, h);
+    renderer.setScissor(0, 0, w, h);
+    renderer.setClearColor(0xf4f4f2);
+    renderer.clear();
+  }
+  panes.forEach((p, i) => {
+    const x = Math.round((i * w) / n), pw = Math.round(((i + 1) * w) / n) - x;
+    renderer.setViewport(x, 0, pw, h);
+    renderer.setScissor(x, 0, pw, h);
+    // The light follows the view: from the camera, a little above and to the right.
+    p.sun.position.copy(camera.position).add(new THREE.Vector3(1, 2, 3).applyQuaternion(camera.quaternion));
+    renderer.render(p.scene, camera);
+  });
+  el('pane-labels').replaceChildren(...panes.map((p, i) => {
+    const s = document.createElement('span');
+    s.textContent = p.fixed !== undefined ? `${p.name}, frame ${p.frameNumbers[p.fixed]}` : p.name;
+    s.style.left = `${(100 * i) / n}%`;
+    return s;
+  }));
+}
 window.addEventListener('resize', resize);
 
 function setStatus(text, isError = false) {
@@ -52,36 +82,73 @@ function setStatus(text, isError = false) {
 }
 
 // ---------------------------------------------------------------- loading
-async function loadGlb(arrayBuffer, name) {
+async function glbPane(arrayBuffer, name) {
   const gltf = await new GLTFLoader().parseAsync(arrayBuffer, '');
-  if (root) scene.remove(root);
-  root = gltf.scene;
-  shell = null;
+  let shell = null;
   gltf.scene.traverse((o) => { if (!shell && o.isMesh) shell = o; });
   if (!shell) throw new Error(`${name}: no mesh`);
-  scene.add(gltf.scene);
   const extras = shell.userData ?? {};
   const targets = shell.morphTargetInfluences ? shell.morphTargetInfluences.length : 0;
-  state.frameNumbers = Array.isArray(extras.frame_numbers) ? extras.frame_numbers
-    : Array.from({ length: targets + 1 }, (_, k) => k);
+  const frameNumbers = Array.isArray(extras.frame_numbers) ? extras.frame_numbers : Array.from({ length: targets + 1 }, (_, k) => k);
   const track = gltf.animations[0]?.tracks[0];
-  state.times = track ? Array.from(track.times) : state.frameNumbers.map((_, k) => k / 24);
-
   // Colour fields: COLOR_0 is three's 'color', COLOR_n its 'color_n'.
+  const colourInfo = Array.isArray(extras.colour_fields) ? extras.colour_fields : [];
   const geometry = shell.geometry;
-  state.colourFields = Array.isArray(extras.colour_fields) ? extras.colour_fields : [];
-  colourAttributes = state.colourFields.map((f, i) => geometry.getAttribute(i === 0 ? 'color' : `color_${i}`));
+  const colourAttributes = colourInfo.map((f, i) => {
+    const a = typeof f.attribute === 'string' ? f.attribute : `COLOR_${i}`;
+    return geometry.getAttribute(a === 'COLOR_0' ? 'color' : a.toLowerCase());
+  });
+  shell.material = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
+  const { scene, sun } = makeScene();
+  scene.add(gltf.scene);
+  return { name, kind: 'glb', scene, sun, object: gltf.scene, meshes: [shell], vertices: geometry.getAttribute('position').count,
+           frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, colourAttributes };
+}
+
+function meshPane(arrayBuffer, name) {
+  const m = loadMeshFile(arrayBuffer, name);
+  const { scene, sun } = makeScene();
+  scene.add(m.object);
+  // The file's own colours, kept aside: the colour choice may replace them.
+  const fileColourAttributes = m.meshes.map((s) => s.geometry.getAttribute('color'));
+  return { name, kind: 'mesh', scene, sun, object: m.object, meshes: m.meshes, vertices: m.vertices, fields: m.fields,
+           fileColours: m.fileColours, fileColourAttributes };
+}
+
+async function makePane(arrayBuffer, name) {
+  const ext = extensionOf(name);
+  if (ext === 'glb') return glbPane(arrayBuffer, name);
+  if (MESH_EXTENSIONS.includes(ext)) return meshPane(arrayBuffer, name);
+  throw new Error(`${name}: not a .glb or a mesh (.off, .obj, .ply, .stl)`);
+}
+
+/** Shows the panes made of the files (one, or two side by side) and resets the frame and colours. */
+function showPanes(newPanes) {
+  panes = newPanes;
+  const glb = panes.find((p) => p.kind === 'glb');
+  state.frameNumbers = glb ? glb.frameNumbers : [0];
+  state.times = glb ? glb.times : [0];
+  state.sideBySide = false;
+  el('side-by-side').checked = false;
+  el('side-by-side').disabled = !(panes.length === 1 && glb && glb.frameNumbers.length > 1);
+
+  // Colour choices: the glTF's fields by index; a mesh file's own colours and scalar fields.
   const select = el('colour');
   select.replaceChildren(new Option('none', '-1'));
+  state.colourFields = glb ? glb.colourInfo : [];
   state.colourFields.forEach((f, i) => select.add(new Option(f.name, String(i))));
-  shell.material = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0,
-                                                    side: THREE.DoubleSide });
-  setColour(state.colourFields.length > 0 ? 0 : -1);
+  if (panes.some((p) => p.kind === 'mesh' && p.fileColours)) select.add(new Option('file colours', 'file'));
+  const names = [...new Set(panes.flatMap((p) => (p.kind === 'mesh' ? p.fields.map((f) => f.name) : [])))];
+  names.forEach((n) => select.add(new Option(n, `field:${n}`)));
+  // First choice: the glTF's first field, else the files' own colours, else their first field.
+  const values = [...select.options].map((o) => o.value);
+  const first = values.includes('0') ? '0' : values.includes('file') ? 'file' : (values[1] ?? '-1');
 
-  // Camera on frame 0's bounding box.
-  const box = new THREE.Box3().setFromObject(shell);
+  // Camera on the first frame's bounding box of every pane.
+  const box = new THREE.Box3();
+  for (const p of panes) box.expandByObject(p.object);
   const centre = box.getCenter(new THREE.Vector3());
-  const radius = box.getSize(new THREE.Vector3()).length() / 2;
+  const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-9);
   camera.near = radius / 100;
   camera.far = radius * 100;
   camera.position.copy(centre).add(new THREE.Vector3(0.6, 0.5, 1.6).normalize().multiplyScalar(radius * 3.2));
@@ -90,11 +157,33 @@ async function loadGlb(arrayBuffer, name) {
 
   const scrubber = el('scrubber');
   scrubber.max = String(state.frameNumbers.length - 1);
-  scrubber.disabled = false;
-  el('play').disabled = state.frameNumbers.length < 2;
+  scrubber.disabled = !glb;
+  el('play').disabled = !glb || state.frameNumbers.length < 2;
+  el('goto').disabled = !glb;
+  state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices }));
+  setColour(first);
   setKeyframe(0);
-  setStatus(`${name}: ${geometry.getAttribute('position').count} vertices, ${state.frameNumbers.length} frames`);
-  state.ready = true;
+  setStatus(panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '')).join('  |  '));
+}
+
+/** A single .glb's first frame beside its current frame (or back to one pane). */
+function setSideBySide(on) {
+  const glb = panes.find((p) => p.kind === 'glb' && p.fixed === undefined);
+  if (!glb) return;
+  if (on && panes.length === 1) {
+    const object = glb.object.clone(true);
+    const meshes = [];
+    object.traverse((o) => { if (o.isMesh) { o.material = o.material.clone(); meshes.push(o); } });
+    const { scene, sun } = makeScene();
+    scene.add(object);
+    panes = [{ ...glb, scene, sun, object, meshes, fixed: 0 }, glb];
+  } else if (!on) {
+    panes = [glb];
+  }
+  state.sideBySide = panes.length === 2;
+  state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices }));
+  setColour(state.colour);
+  setKeyframe(state.keyframe);
 }
 
 function loadLog(text, name) {
@@ -115,49 +204,101 @@ async function fetchChecked(url) {
 }
 
 async function openFiles(files) {
+  const models = [];
   for (const f of files) {
     try {
-      if (f.name.toLowerCase().endsWith('.glb')) await loadGlb(await f.arrayBuffer(), f.name);
+      const ext = extensionOf(f.name);
+      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) models.push(await makePane(await f.arrayBuffer(), f.name));
       else loadLog(await f.text(), f.name);
     } catch (e) { setStatus(`${f.name}: ${e.message}`, true); }
   }
+  if (models.length) showPanes(models.slice(0, 2));
+  state.ready = true;
 }
 
 // ---------------------------------------------------------------- frames, colours, plot
 function setKeyframe(k) {
-  if (!shell) return;
+  if (!panes.length) return;
   k = Math.max(0, Math.min(state.frameNumbers.length - 1, k));
   state.keyframe = k;
-  const influences = shell.morphTargetInfluences ?? [];
-  influences.fill(0);
-  if (k > 0) influences[k - 1] = 1;  // the glTF's STEP keyframe k
+  for (const p of panes) {
+    if (p.kind !== 'glb') continue;
+    const kp = p.fixed ?? k;
+    const influences = p.meshes[0].morphTargetInfluences ?? [];
+    influences.fill(0);
+    if (kp > 0) influences[kp - 1] = 1;  // the glTF's STEP keyframe kp
+  }
   el('scrubber').value = String(k);
   const frame = state.frameNumbers[k];
   const ratio = ratioAt(state.log, frame);
   el('frame-label').textContent = `frame ${frame} (${k + 1}/${state.frameNumbers.length})` +
     (ratio !== undefined ? `  V/V0 ${ratio.toFixed(4)}` : '');
+  applyColours();
   updatePlot();
   render();
 }
 
-function setColour(i) {
-  state.colour = i;
-  el('colour').value = String(i);
-  if (!shell) return;
-  const m = shell.material;
-  if (i >= 0 && colourAttributes[i]) {
-    shell.geometry.setAttribute('color', colourAttributes[i]);
-    m.vertexColors = true;
-    const f = state.colourFields[i];
-    el('colour-note').textContent = `${f.name}: blue ${Number(f.low).toPrecision(3)}, red ${Number(f.high).toPrecision(3)} (its 2nd to 98th percentile)`;
-  } else {
-    m.vertexColors = false;
-    m.color.set(0xd8c8b0);
-    el('colour-note').textContent = state.colourFields.length ? '' : 'this file has no colour fields';
-  }
-  if (i >= 0) m.color.set(0xffffff);
-  m.needsUpdate = true;
+/** Jumps to run frame f: its keyframe, or the last one before it when f was not exported. */
+function jumpToFrame(f) {
+  let k = 0;
+  state.frameNumbers.forEach((n, i) => { if (n <= f) k = i; });
+  setPlaying(false);
+  setKeyframe(k);
+}
+
+function setColour(choice) {
+  state.colour = String(choice);
+  el('colour').value = state.colour;
+  applyColours();
   render();
+}
+
+/** Colours every pane by the choice, each with its own values, or leaves it plain. */
+function applyColours() {
+  const choice = state.colour;
+  const notes = [];
+  // A scalar field of mesh files: one range over every pane that has it, so colours compare.
+  let scale = null;
+  if (choice.startsWith('field:')) {
+    const name = choice.slice(6);
+    const arrays = panes.flatMap((p) => (p.kind === 'mesh' && p.fields.some((f) => f.name === name)
+      ? p.meshes.map((m) => m.geometry.getAttribute(`field_${name}`).array) : []));
+    scale = range(arrays);
+    notes.push(`${name}: blue ${scale.low.toPrecision(3)}, red ${scale.high.toPrecision(3)} (2nd to 98th percentile of the files shown)`);
+  }
+  state.shown = panes.map((p) => {
+    let shown = 'none';
+    p.meshes.forEach((m, j) => {
+      const mat = m.material;
+      let attr = null;
+      if (p.kind === 'glb' && /^\d+$/.test(choice)) {
+        const i = Number(choice), info = p.colourInfo[i];
+        const frame = p.frameNumbers[p.fixed ?? state.keyframe];
+        // A field holds one frame's values ('frame' in the extras); without it, any frame's.
+        if (info && (info.frame === undefined || info.frame === frame)) attr = p.colourAttributes[i];
+        if (info && j === 0) {
+          notes.push(`${info.name}: blue ${Number(info.low).toPrecision(3)}, red ${Number(info.high).toPrecision(3)} (its 2nd to 98th percentile)` +
+                     (info.frame !== undefined ? `; values of frame ${info.frame}, shown on that frame only` : ''));
+        }
+        if (attr) shown = info.name;
+      } else if (p.kind === 'mesh' && choice === 'file' && p.fileColourAttributes[j]) {
+        attr = p.fileColourAttributes[j];
+        shown = 'file colours';
+      } else if (p.kind === 'mesh' && scale) {
+        const values = m.geometry.getAttribute(`field_${choice.slice(6)}`);
+        if (values) {
+          attr = colourAttribute(values.array, scale.low, scale.high);
+          shown = choice.slice(6);
+        }
+      }
+      if (attr) m.geometry.setAttribute('color', attr);
+      mat.vertexColors = !!attr;
+      mat.color.set(attr ? 0xffffff : 0xd8c8b0);
+      mat.needsUpdate = true;
+    });
+    return shown;
+  });
+  el('colour-note').textContent = el('colour').options.length > 1 ? [...new Set(notes)].join('; ') : 'these files have no colours';
 }
 
 function updatePlot() {
@@ -188,8 +329,10 @@ function setPlaying(on) {
 // ---------------------------------------------------------------- UI
 el('scrubber').addEventListener('input', (e) => { setPlaying(false); setKeyframe(Number(e.target.value)); });
 el('play').addEventListener('click', () => setPlaying(!state.playing));
-el('colour').addEventListener('change', (e) => setColour(Number(e.target.value)));
-el('file-input').addEventListener('change', (e) => openFiles(Array.from(e.target.files)));
+el('colour').addEventListener('change', (e) => setColour(e.target.value));
+el('side-by-side').addEventListener('change', (e) => setSideBySide(e.target.checked));
+el('goto').addEventListener('change', (e) => { if (e.target.value !== '') jumpToFrame(Number(e.target.value)); });
+el('file-input').addEventListener('change', (e) => { state.ready = false; openFiles(Array.from(e.target.files)); });
 window.addEventListener('dragover', (e) => { e.preventDefault(); document.body.classList.add('dragging'); });
 window.addEventListener('dragleave', () => document.body.classList.remove('dragging'));
 window.addEventListener('drop', (e) => {
@@ -203,6 +346,18 @@ window.addEventListener('keydown', (e) => {
   if (e.key === 'ArrowRight') setKeyframe(state.keyframe + 1);
   if (e.key === 'ArrowLeft') setKeyframe(state.keyframe - 1);
 });
+state.jumpToFrame = jumpToFrame;
+/** For tests: per pane, the mean red (linear) of the colours it shows; null for a plain pane. */
+state.colourMeans = () => panes.map((p) => {
+  let sum = 0, n = 0;
+  for (const m of p.meshes) {
+    const c = m.material.vertexColors ? m.geometry.getAttribute('color') : null;
+    if (!c) return null;
+    for (let i = 0; i < c.count; i++) sum += c.getX(i);
+    n += c.count;
+  }
+  return n ? sum / n : null;
+});
 
 resize();
 updatePlot();
@@ -211,9 +366,13 @@ const params = new URLSearchParams(window.location.search);
   try {
     const log = params.get('log');
     if (log) loadLog(await (await fetchChecked(log)).text(), log);
-    const file = params.get('file');
-    if (file) await loadGlb(await (await fetchChecked(file)).arrayBuffer(), file);
-    else state.ready = true;
+    const models = [];
+    for (const key of ['file', 'compare']) {
+      const url = params.get(key);
+      if (url) models.push(await makePane(await (await fetchChecked(url)).arrayBuffer(), url.split('/').pop()));
+    }
+    if (models.length) showPanes(models);
+    state.ready = true;
   } catch (e) {
     setStatus(e.message, true);
   }

@@ -25,6 +25,11 @@ struct GltfAnimation {
                                           ///< (keyframe k is at (frame_numbers[k] -
                                           ///< frame_numbers[0]) * seconds_per_frame)
   std::vector<NamedVertexField> colour_fields;  ///< optional; field i becomes attribute COLOR_i
+  int colour_frame = -1;  ///< the run frame whose values colour_fields hold; -1 unknown
+  /// Optional texture coordinates (the input's, issue 56): uv holds (u, v) pairs, face_uv (#F by
+  /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
+  Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
+  Faces face_uv;
 };
 
 /// What write_gltf_animation wrote.
@@ -41,9 +46,17 @@ struct GltfStats {
 /// NORMAL(0); one animation whose `weights` channel (STEP interpolation) has one keyframe per frame
 /// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Colour field i is a float
 /// VEC3 COLOR_i in linear RGB: its 2nd to 98th percentile mapped onto blue - white - red (the
-/// fields PLY's map), clamped outside. The mesh's `extras` hold `frame_numbers`, `targetNames`
-/// ("frame_<n>") and `colour_fields` (name, attribute, the value range mapped to the colours).
-/// @throws std::invalid_argument for inconsistent sizes, no frames, non-increasing frame
+/// fields PLY's map), clamped outside; its values themselves are also a float SCALAR custom
+/// attribute named after it ("mean_curvature" -> _MEAN_CURVATURE; three.js: _mean_curvature).
+/// The mesh's `extras` hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields`
+/// (name, attribute, values_attribute, the value range mapped to the colours, and `frame`, the run
+/// frame whose values they are, when colour_frame is set).
+///
+/// With texture coordinates, TEXCOORD_0 holds each vertex's (u, 1 - v): glTF's origin is the
+/// top-left corner, OBJ's and PLY's the bottom-left. A vertex with several texture coordinates (a
+/// seam) is split: glTF vertex i < #V is vertex i with the first coordinates its corners use, the
+/// copies follow; every attribute and every morph target is copied with it.
+/// @throws std::invalid_argument for inconsistent sizes (texture coordinates too), no frames, non-increasing frame
 ///         numbers or a non-finite coordinate
 /// @throws UsageError if the file cannot be written
 GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& animation);

@@ -1,0 +1,94 @@
+// What the OBJ and PLY documents share (docs/design/attributes.md): the map from the simulation's
+// triangles back to the file's polygons, the check that a document stands for a mesh, and the
+// texture coordinates per triangle corner for the glTF.
+#include "shellcontract/mesh/mesh_document.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <filesystem>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/read_polygon_soup.hpp"
+
+namespace shellcontract {
+
+std::string format_double(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);  // shortest round-trip text
+  return std::string(buf, r.ptr);
+}
+
+std::size_t MeshDocument::triangle_count() const {
+  std::size_t n = 0;
+  for (std::size_t p = 0; p < polygon_count(); ++p) n += polygon_start_[p + 1] - polygon_start_[p] - 2;
+  return n;
+}
+
+std::vector<std::size_t> MeshDocument::face_origins() const {
+  // read_input_mesh: polygon i's first triangle is face i; the other n - 3 triangles of each
+  // split polygon are appended after the last polygon, in polygon order.
+  const std::size_t np = polygon_count();
+  std::vector<std::size_t> origin(np);
+  for (std::size_t p = 0; p < np; ++p) origin[p] = p;
+  for (std::size_t p = 0; p < np; ++p) {
+    const std::size_t n = polygon_start_[p + 1] - polygon_start_[p];
+    for (std::size_t k = 3; k < n; ++k) origin.push_back(p);
+  }
+  return origin;
+}
+
+bool MeshDocument::matches(const Mesh& mesh) const {
+  if (mesh.has_garbage() || mesh.number_of_vertices() != vertex_count_ || polygon_count() == 0) return false;
+  for (std::size_t p = 0; p < polygon_count(); ++p)
+    if (polygon_start_[p + 1] - polygon_start_[p] < 3) return false;
+  if (mesh.number_of_faces() != triangle_count()) return false;
+  const std::vector<std::size_t> origin = face_origins();
+  for (const FaceIndex f : mesh.faces()) {
+    const std::size_t p = origin[f.idx()];
+    const auto b = corner_vertex_.begin() + static_cast<std::ptrdiff_t>(polygon_start_[p]);
+    const auto e = corner_vertex_.begin() + static_cast<std::ptrdiff_t>(polygon_start_[p + 1]);
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh))
+      if (std::find(b, e, static_cast<std::size_t>(v.idx())) == e) return false;
+  }
+  return true;
+}
+
+CornerTexcoords MeshDocument::texcoords(const Mesh& mesh) const {
+  CornerTexcoords t;
+  if (uv_.empty() || corner_uv_.empty() ||
+      std::any_of(corner_uv_.begin(), corner_uv_.end(), [](long long i) { return i < 0; }))
+    return t;
+  const std::vector<std::size_t> origin = face_origins();
+  t.face_uv.resize(mesh.number_of_faces());
+  for (const FaceIndex f : mesh.faces()) {
+    const std::size_t p = origin[f.idx()];
+    int k = 0;
+    // Corners in the order of faces_array (vertices_around_face from the face's halfedge); a
+    // vertex appears once in a polygon (read_input_mesh refuses repeats), so it names the corner.
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) {
+      std::size_t c = polygon_start_[p];
+      while (c < polygon_start_[p + 1] && corner_vertex_[c] != v.idx()) ++c;
+      if (c == polygon_start_[p + 1])
+        throw std::invalid_argument("MeshDocument::texcoords: the mesh is not this document's (call matches first)");
+      t.face_uv[f.idx()][static_cast<std::size_t>(k++)] = static_cast<std::size_t>(corner_uv_[c]);
+    }
+  }
+  t.uv = uv_;
+  return t;
+}
+
+std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".obj") return parse_obj_document(path, read_file_bytes(path));
+  if (ext == ".ply") return parse_ply_document(path, read_file_bytes(path));
+  return nullptr;
+}
+
+void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc, const Positions& x) {
+  write_text_atomic(path, doc.text(x));
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,212 @@
+// An OBJ file kept as a document (issue 56, docs/design/attributes.md). The file's bytes are
+// kept; writing replaces only the text of the `v` lines' x y z and of the `vn` lines, so texture
+// coordinates, face corners (v/vt/vn), groups, objects, materials, smoothing groups, comments and
+// polygons come back exactly as read.
+//
+// Vertex i of the simulation is the i-th `v` line: CGAL's read_OBJ, which read_input_mesh uses,
+// keeps the `v` lines in order and never merges duplicates, so no map is needed besides the
+// identity (MeshDocument::matches checks it). Quads and larger polygons are fan-triangulated for
+// the simulation only; their corners keep their vertices here, which move with the simulation.
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/mesh_document.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// A span of the file's bytes, [begin, end).
+struct Span {
+  std::size_t begin = 0, end = 0;
+};
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
+
+/// The next whitespace-separated token of [at, end) in s; empty span at end when none.
+Span next_token(const std::string& s, std::size_t& at, std::size_t end) {
+  while (at < end && is_space(s[at])) ++at;
+  Span t{at, at};
+  while (at < end && !is_space(s[at])) ++at;
+  t.end = at;
+  return t;
+}
+
+class ObjDocument final : public MeshDocument {
+ public:
+  ObjDocument(const std::string& name, std::string bytes);
+
+  std::string format() const override { return "obj"; }
+  std::string text(const Positions& x) const override;
+
+ private:
+  [[noreturn]] void fail(std::size_t line, const std::string& problem, const std::string& what) const {
+    throw InputError(name_ + ": " + problem + ": line " + std::to_string(line) + ": " + what);
+  }
+  double number(const Span& t, std::size_t line, const char* what) const;
+  /// A face corner's index ("3", "-1"): 0-based, relative ones resolved against `count`.
+  long long index(const std::string& token, std::size_t count, std::size_t line, const char* what) const;
+  void read_face(std::size_t at, std::size_t end, std::size_t line);
+
+  std::string name_;
+  std::string bytes_;
+  std::vector<Span> v_numbers_;  ///< per `v` line: the span of its "x y z" text
+  std::vector<Span> vn_text_;    ///< per `vn` line: the span from "vn" to the line's end
+  std::vector<long long> corner_vn_;  ///< per corner: index of its `vn` line; -1 none
+};
+
+double ObjDocument::number(const Span& t, std::size_t line, const char* what) const {
+  if (t.begin == t.end) fail(line, "parse error", std::string("missing ") + what);
+  const std::string s = bytes_.substr(t.begin, t.end - t.begin);
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(s.c_str(), &end);
+  if (end != s.c_str() + s.size()) fail(line, "parse error", std::string(what) + " '" + s + "' is not a number");
+  return v;
+}
+
+long long ObjDocument::index(const std::string& token, std::size_t count, std::size_t line, const char* what) const {
+  char* end = nullptr;
+  const long long i = std::strtoll(token.c_str(), &end, 10);
+  if (token.empty() || end != token.c_str() + token.size())
+    fail(line, "parse error", std::string(what) + " index '" + token + "' is not an integer");
+  const long long n = static_cast<long long>(count);
+  // Negative indices count back from the last element defined so far (OBJ's relative references).
+  const long long zero_based = i > 0 ? i - 1 : n + i;
+  if (i == 0 || zero_based < 0 || zero_based >= n)
+    fail(line, "index out of range", std::string(what) + " index " + token + " refers to none of the " +
+                                         std::to_string(count) + " defined so far");
+  return zero_based;
+}
+
+void ObjDocument::read_face(std::size_t at, std::size_t end, std::size_t line) {
+  std::size_t corners = 0;
+  for (Span t = next_token(bytes_, at, end); t.begin != t.end; t = next_token(bytes_, at, end)) {
+    const std::string tok = bytes_.substr(t.begin, t.end - t.begin);
+    if (tok[0] == '#') break;  // a comment after the corners
+    const std::size_t s1 = tok.find('/');
+    const std::size_t s2 = s1 == std::string::npos ? std::string::npos : tok.find('/', s1 + 1);
+    corner_vertex_.push_back(static_cast<std::size_t>(index(tok.substr(0, s1), v_numbers_.size(), line, "vertex")));
+    long long vt = -1, vn = -1;
+    if (s1 != std::string::npos) {
+      const std::string t_vt = tok.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
+      if (!t_vt.empty()) vt = index(t_vt, uv_.size(), line, "texture coordinate");
+      if (s2 != std::string::npos) vn = index(tok.substr(s2 + 1), vn_text_.size(), line, "normal");
+    }
+    corner_uv_.push_back(vt);
+    corner_vn_.push_back(vn);
+    ++corners;
+  }
+  if (corners == 0) fail(line, "parse error", "a face without corners");
+  polygon_start_.push_back(corner_vertex_.size());
+}
+
+ObjDocument::ObjDocument(const std::string& name, std::string bytes) : name_(name), bytes_(std::move(bytes)) {
+  polygon_start_.push_back(0);
+  // Lines end at "\n" ("\r\n" too: the "\r" counts as space); a file with no "\n" at all ends
+  // its lines with a lone "\r" (classic Mac), as read_polygon_soup accepts.
+  const char eol = bytes_.find('\n') == std::string::npos ? '\r' : '\n';
+  std::size_t begin = bytes_.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte-order mark
+  for (std::size_t line = 1; begin < bytes_.size(); ++line) {
+    std::size_t end = bytes_.find(eol, begin);
+    if (end == std::string::npos) end = bytes_.size();
+    std::size_t at = begin;
+    const Span key = next_token(bytes_, at, end);
+    const std::string k = bytes_.substr(key.begin, key.end - key.begin);
+    if (k == "v") {
+      Span numbers;
+      for (const char* c : {"x", "y", "z"}) {
+        const Span t = next_token(bytes_, at, end);
+        number(t, line, c);
+        if (c[0] == 'x') numbers.begin = t.begin;
+        numbers.end = t.end;
+      }
+      v_numbers_.push_back(numbers);
+    } else if (k == "vt") {
+      const double u = number(next_token(bytes_, at, end), line, "u");
+      const Span tv = next_token(bytes_, at, end);
+      uv_.push_back({u, tv.begin == tv.end ? 0.0 : number(tv, line, "v")});
+    } else if (k == "vn") {
+      std::size_t e = end;
+      while (e > key.begin && is_space(bytes_[e - 1])) --e;  // keep a "\r" of "\r\n" outside
+      vn_text_.push_back({key.begin, e});
+    } else if (k == "f") {
+      read_face(at, end, line);
+    }
+    begin = end + 1;
+  }
+  vertex_count_ = v_numbers_.size();
+  // A texture coordinate only where every corner of every polygon has one (the glTF's TEXCOORD_0
+  // needs one per vertex): otherwise none at all.
+  for (const long long t : corner_uv_)
+    if (t < 0) {
+      corner_uv_.assign(corner_uv_.size(), -1);
+      break;
+    }
+}
+
+std::string ObjDocument::text(const Positions& x) const {
+  if (static_cast<std::size_t>(x.rows()) != vertex_count_)
+    throw std::invalid_argument("ObjDocument::text: " + std::to_string(x.rows()) + " positions for " +
+                                std::to_string(vertex_count_) + " vertices");
+  if (!x.allFinite()) throw std::invalid_argument("ObjDocument::text: a position is not finite");
+
+  // Normals: each `vn` gets the area-weighted normal of the polygons whose corners use it. A vn
+  // shared by all corners of one vertex (smooth shading) is that vertex's area-weighted normal;
+  // one shared by a flat polygon's corners (hard edges) is the polygon's normal. Each polygon's
+  // weight is its Newell vector: twice its area along its normal (for a triangle, the cross product).
+  std::vector<Vec3> normal(vn_text_.size(), Vec3::Zero());
+  for (std::size_t p = 0; p + 1 < polygon_start_.size(); ++p) {
+    Vec3 newell = Vec3::Zero();
+    const std::size_t b = polygon_start_[p], e = polygon_start_[p + 1];
+    for (std::size_t c = b; c < e; ++c) {
+      const std::size_t next = c + 1 < e ? c + 1 : b;
+      const Vec3 pc = x.row(static_cast<Eigen::Index>(corner_vertex_[c])).transpose();
+      const Vec3 pn = x.row(static_cast<Eigen::Index>(corner_vertex_[next])).transpose();
+      newell += pc.cross(pn);
+    }
+    for (std::size_t c = b; c < e; ++c)
+      if (corner_vn_[c] >= 0) normal[static_cast<std::size_t>(corner_vn_[c])] += newell;
+  }
+
+  // The pieces to replace, in file order (v and vn spans never overlap).
+  std::vector<std::pair<Span, std::string>> edits;
+  edits.reserve(v_numbers_.size() + vn_text_.size());
+  for (std::size_t i = 0; i < v_numbers_.size(); ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    edits.push_back({v_numbers_[i], format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' + format_double(x(r, 2))});
+  }
+  for (std::size_t j = 0; j < vn_text_.size(); ++j) {
+    const double len = normal[j].norm();
+    // A normal no polygon uses, or whose polygons have no area now, keeps its line.
+    if (!(len > 0.0) || !std::isfinite(len)) continue;
+    const Vec3 n = normal[j] / len;
+    edits.push_back({vn_text_[j], "vn " + format_double(n.x()) + ' ' + format_double(n.y()) + ' ' + format_double(n.z())});
+  }
+  std::sort(edits.begin(), edits.end(), [](const auto& a, const auto& b) { return a.first.begin < b.first.begin; });
+  std::string out;
+  out.reserve(bytes_.size() + bytes_.size() / 4);
+  std::size_t at = 0;
+  for (const auto& [span, replacement] : edits) {
+    out.append(bytes_, at, span.begin - at);
+    out += replacement;
+    at = span.end;
+  }
+  out.append(bytes_, at, std::string::npos);
+  return out;
+}
+
+}  // namespace
+
+std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name, const std::string& bytes) {
+  return std::make_unique<ObjDocument>(name, bytes);
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,161 @@
+// The PLY document (issue 56): extra vertex properties (texture coordinates, colours), face
+// properties, comments and other elements come back unchanged; x, y, z are the new positions in
+// their declared type. The layouts are written here by hand, so the bytes to compare are known.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/mesh_document.hpp"
+#include "shellcontract/mesh/ply_reader.hpp"
+
+namespace shellcontract {
+namespace {
+
+// A tetrahedron: 4 vertices, 4 faces, outward.
+const double TET[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+const int TET_FACES[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+Positions moved_tet() {
+  Positions y(4, 3);
+  y << 0.1, -0.2, 0.3, 1.25, 0.01, -0.125, 0.1 / 3.0, 0.9, 0.02, -0.01, 0.03, 0.7;
+  return y;
+}
+
+std::string ascii_tet() {
+  std::ostringstream o;
+  o << "ply\nformat ascii 1.0\ncomment made by hand\nelement vertex 4\n"
+       "property float x\nproperty float y\nproperty float z\nproperty float s\nproperty float t\n"
+       "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+       "element face 4\nproperty list uchar int vertex_indices\nproperty int flags\n"
+       "element material 1\nproperty float shininess\nend_header\n";
+  for (int i = 0; i < 4; ++i)
+    o << TET[i][0] << ' ' << TET[i][1] << ' ' << TET[i][2] << ' ' << 0.25 * i << ' ' << 1.0 - 0.125 * i << ' '
+      << 10 * i << ' ' << 20 * i + 1 << ' ' << 255 - i << '\n';
+  for (int f = 0; f < 4; ++f) o << "3 " << TET_FACES[f][0] << ' ' << TET_FACES[f][1] << ' ' << TET_FACES[f][2] << ' ' << 7 * f << '\n';
+  o << "0.5\n";
+  return o.str();
+}
+
+std::vector<std::string> tokens(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> t;
+  for (std::string w; in >> w;) t.push_back(w);
+  return t;
+}
+
+TEST(PlyDocument, AsciiKeepsEveryOtherValueAndWritesTheFloatPositions) {
+  const std::string in = ascii_tet();
+  const auto doc = parse_ply_document("tet.ply", in);
+  ASSERT_EQ(doc->vertex_count(), 4u);
+  ASSERT_EQ(doc->polygon_count(), 4u);
+  const Positions y = moved_tet();
+  const std::string out = doc->text(y);
+  // The header verbatim; the body token by token: x, y, z are the first 3 of each 8-token vertex.
+  const std::size_t h = in.find("end_header\n") + 11;
+  ASSERT_EQ(out.substr(0, h), in.substr(0, h));
+  const std::vector<std::string> a = tokens(in.substr(h)), b = tokens(out.substr(h));
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (i >= 32 || i % 8 >= 3) {
+      EXPECT_EQ(a[i], b[i]) << "token " << i;
+    }
+  // Read back by the project's reader (which parses ascii as double): a reader that stores the
+  // float properties as floats gets exactly the floats of the new positions.
+  const PlyData d = read_ply("out.ply", out);
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(static_cast<float>(d.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)]), static_cast<float>(y(i, k)));
+  EXPECT_EQ(d.faces.size(), 4u);
+}
+
+/// The same tetrahedron in binary: double x y z, float u v, uchar alpha; faces with a float
+/// property before the list. Big or little endian.
+std::string binary_tet(bool big) {
+  std::string s = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                  " 1.0\nelement vertex 4\nproperty double x\nproperty double y\nproperty double z\n"
+                  "property float u\nproperty float v\nproperty uchar alpha\n"
+                  "element face 4\nproperty float quality\nproperty list uchar uint vertex_indices\nend_header\n";
+  auto put = [&](const void* p, std::size_t n) {
+    unsigned char b[8];
+    std::memcpy(b, p, n);
+    if (big)
+      for (std::size_t i = 0; i < n / 2; ++i) std::swap(b[i], b[n - 1 - i]);
+    s.append(reinterpret_cast<const char*>(b), n);
+  };
+  for (int i = 0; i < 4; ++i) {
+    for (int k = 0; k < 3; ++k) put(&TET[i][k], 8);
+    const float u = 0.1f * static_cast<float>(i), v = 0.5f + 0.1f * static_cast<float>(i);
+    put(&u, 4);
+    put(&v, 4);
+    const unsigned char alpha = static_cast<unsigned char>(200 + i);
+    put(&alpha, 1);
+  }
+  for (int f = 0; f < 4; ++f) {
+    const float q = 0.25f * static_cast<float>(f);
+    put(&q, 4);
+    const unsigned char n = 3;
+    put(&n, 1);
+    for (int k = 0; k < 3; ++k) {
+      const auto idx = static_cast<std::uint32_t>(TET_FACES[f][k]);
+      put(&idx, 4);
+    }
+  }
+  return s;
+}
+
+TEST(PlyDocument, BinaryOfEitherByteOrderChangesOnlyThePositionBytes) {
+  for (const bool big : {false, true}) {
+    const std::string in = binary_tet(big);
+    const auto doc = parse_ply_document("tet.ply", in);
+    const Positions y = moved_tet();
+    const std::string out = doc->text(y);
+    ASSERT_EQ(out.size(), in.size());
+    const std::size_t h = in.find("end_header\n") + 11;
+    // Vertex i's record is 33 bytes at h + 33 i: x y z are its first 24, the rest must not change.
+    for (std::size_t b = 0; b < in.size(); ++b) {
+      const bool position = b >= h && b < h + 4 * 33 && (b - h) % 33 < 24;
+      if (!position) {
+        EXPECT_EQ(in[b], out[b]) << "byte " << b << (big ? " (big endian)" : "");
+      }
+    }
+    const PlyData d = read_ply("out.ply", out);
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(d.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)], y(i, k));
+  }
+}
+
+TEST(PlyDocument, TextureCoordinatesArePerVertex) {
+  // Vertex i has (s, t) = (0.25 i, 1 - 0.125 i) in ascii_tet (exact in float): every corner of
+  // every simulation face must get its vertex's.
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "shellcontract_ply_document_uv.ply";
+  std::ofstream(path) << ascii_tet();
+  const Mesh mesh = read_input_mesh(path.string());
+  const auto doc = read_mesh_document(path.string());
+  std::filesystem::remove(path);
+  ASSERT_TRUE(doc && doc->matches(mesh));
+  const CornerTexcoords tc = doc->texcoords(mesh);
+  ASSERT_EQ(tc.face_uv.size(), 4u);
+  for (const FaceIndex f : mesh.faces()) {
+    std::size_t k = 0;
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) {
+      const auto& uv = tc.uv.at(tc.face_uv[f.idx()][k++]);
+      EXPECT_EQ(uv[0], 0.25 * v.idx());
+      EXPECT_EQ(uv[1], 1.0 - 0.125 * v.idx());
+    }
+  }
+  const auto none = parse_ply_document("plain.ply",
+      "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
+      "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
+  EXPECT_TRUE(none->texcoords(mesh).empty());
+}
+
+}  // namespace
+}  // namespace shellcontract

@@ -1,0 +1,216 @@
+// Headless check (Debian's Chromium, puppeteer-core) of what issue 56 asked of the viewer: it
+// opens result meshes (OFF, OBJ, PLY, STL), shows two files side by side (and a .glb's first
+// frame beside its current one), colours each pane with its own values, shows a glTF colour field
+// only on the frame whose values it holds, and jumps to a frame. The files come from real runs of
+// the CLI on a small mesh, made here in a temporary folder.
+// Usage: node viewer/tests/viewer_meshes_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
+import { spawn, spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import puppeteer from 'puppeteer-core';
+
+const args = Object.fromEntries(process.argv.slice(2).reduce((acc, a, i, all) => {
+  if (a.startsWith('--')) acc.push([a.slice(2), all[i + 1]]);
+  return acc;
+}, []));
+const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+if (!args.cli || !args.mesh) {
+  console.error('usage: viewer_meshes_test.mjs --cli SHELLCONTRACT --mesh MESH.off [--chromium PATH]');
+  process.exit(2);
+}
+const failures = [];
+function check(ok, what) {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures.push(what);
+}
+
+// ---------------------------------------------------------------- the files
+const work = mkdtempSync(path.join(tmpdir(), 'shellcontract-viewer-meshes-'));
+const file = (n) => path.join(work, n);
+function cli(...a) {
+  const r = spawnSync(args.cli, a, { encoding: 'utf8' });
+  if (r.status !== 0 && r.status !== 5) throw new Error(`${args.cli} ${a.join(' ')}: exit ${r.status}\n${r.stderr}`);
+}
+const runOptions = ['--frames', '20', '--target-volume', '0.7', '-q'];
+cli('run', args.mesh, '-o', file('out.off'), ...runOptions, '--fields', file('fields'), '--gltf', file('run.glb'), '--export-every', '5');
+for (const ext of ['obj', 'ply', 'stl']) cli('run', args.mesh, '-o', file(`out.${ext}`), ...runOptions);
+// The counts of the OFF input: the first line that is not the keyword or a comment.
+const countLine = readFileSync(args.mesh, 'utf8').split(/\r?\n/).map((l) => l.split('#')[0].trim())
+  .filter((l) => l && l !== 'OFF')[0].split(/\s+/);
+const nv = Number(countLine[0]), nf = Number(countLine[1]);
+
+/** Starts scripts/view.py with the files; resolves to {server, url}. */
+function serve(...files) {
+  return new Promise((resolve, reject) => {
+    const server = spawn('/usr/bin/python3', [path.join(repo, 'scripts', 'view.py'), ...files, '--port', '0'],
+      { stdio: ['ignore', 'pipe', 'inherit'] });
+    let out = '';
+    server.stdout.on('data', (d) => {
+      out += d;
+      if (out.includes('\n')) resolve({ server, url: out.split('\n')[0].trim() });
+    });
+    server.on('exit', (code) => reject(new Error(`view.py exited with ${code}`)));
+  });
+}
+
+/** sRGB byte to linear, as three.js's Color.setRGB(..., SRGBColorSpace); PLYLoader stores the
+ * result of a uchar colour back as a byte (Math.round(linear * 255)). */
+const linear = (b) => { const c = b / 255; return c < 0.04045 ? c * 0.0773993808 : Math.pow(c * 0.9478672986 + 0.0521327014, 2.4); };
+/** Mean linear red of an ascii PLY's vertices (its red property), read here, not by the page. */
+function meanRed(plyPath) {
+  const text = readFileSync(plyPath, 'utf8');
+  const [head, body] = text.split('end_header');
+  const props = [...head.matchAll(/^property (\S+) (\S+)$/gm)].map((m) => m[2]);
+  const count = Number(/element vertex (\d+)/.exec(head)[1]);
+  const rows = body.trim().split(/\r?\n/).slice(0, count).map((l) => l.trim().split(/\s+/).map(Number));
+  return rows.reduce((s, r) => s + Math.round(linear(r[props.indexOf('red')]) * 255) / 255, 0) / count;
+}
+
+const profile = mkdtempSync(path.join(tmpdir(), 'shellcontract-chromium-'));
+const browser = await puppeteer.launch({
+  executablePath: args.chromium ?? '/usr/bin/chromium', headless: true, userDataDir: profile,
+  args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+    '--disable-background-networking', '--disable-component-update', '--disable-sync',
+    '--use-angle=swiftshader', '--enable-unsafe-swiftshader'],
+});
+const servers = [];
+try {
+  const page = await browser.newPage();
+  await page.setViewport({ width: 1100, height: 640 });
+  const consoleErrors = [];
+  page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
+  page.on('pageerror', (e) => consoleErrors.push(String(e)));
+  const open = async (...files) => {
+    const s = await serve(...files);
+    servers.push(s.server);
+    await page.goto(s.url, { waitUntil: 'load' });
+    await page.waitForFunction(() => window.viewer && (window.viewer.ready || window.viewer.error), { timeout: 60000 });
+    await page.addStyleTag({ content: '#pane-labels { display: none; }' });  // pictures of the meshes only
+    return page.evaluate(() => ({ error: window.viewer.error, panes: window.viewer.panes, shown: window.viewer.shown }));
+  };
+  const settle = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
+  /** Screenshot of #view, or of its left or right half. */
+  const shot = async (half) => {
+    await settle();
+    const b = await (await page.$('#view')).boundingBox();
+    const w = Math.floor(b.width / 2);
+    const clip = half === 'left' ? { x: b.x, y: b.y, width: w, height: b.height }
+      : half === 'right' ? { x: b.x + w, y: b.y, width: w, height: b.height } : b;
+    return page.screenshot({ clip, encoding: 'base64' });
+  };
+  const differing = (a, b) => page.evaluate(async (a, b) => {
+    const load = async (s) => {
+      const img = new Image();
+      img.src = `data:image/png;base64,${s}`;
+      await img.decode();
+      const c = new OffscreenCanvas(img.width, img.height);
+      const ctx = c.getContext('2d');
+      ctx.drawImage(img, 0, 0);
+      return ctx.getImageData(0, 0, img.width, img.height).data;
+    };
+    const [pa, pb] = [await load(a), await load(b)];
+    if (pa.length !== pb.length) return 1;
+    let n = 0;
+    for (let i = 0; i < pa.length; i += 4)
+      if (Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]) > 24) n++;
+    return n / (pa.length / 4);
+  }, a, b);
+  /** Fraction of pixels that are not the background (0xf4f4f2). */
+  const covered = (a) => page.evaluate(async (a) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${a}`;
+    await img.decode();
+    const c = new OffscreenCanvas(img.width, img.height);
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const p = ctx.getImageData(0, 0, img.width, img.height).data;
+    let n = 0;
+    for (let i = 0; i < p.length; i += 4) if (Math.abs(p[i] - 0xf4) + Math.abs(p[i + 1] - 0xf4) + Math.abs(p[i + 2] - 0xf2) > 24) n++;
+    return n / (p.length / 4);
+  }, a);
+
+  // Every mesh format opens, with the file's vertices (OBJ and STL: three corners per face).
+  const pictures = {};
+  for (const [ext, count] of [['off', nv], ['obj', 3 * nf], ['ply', nv], ['stl', 3 * nf]]) {
+    const s = await open(file(`out.${ext}`));
+    check(!s.error && s.panes.length === 1 && s.panes[0].vertices === count,
+          `out.${ext} opens (${s.error ?? `${s.panes[0]?.vertices} vertices, expected ${count}`})`);
+    pictures[ext] = await shot();
+    const c = await covered(pictures[ext]);
+    check(c > 0.02, `out.${ext} is drawn (${(100 * c).toFixed(1)} % of the pixels)`);
+  }
+  // OFF and PLY hold the same indexed mesh: the same picture.
+  const dPly = await differing(pictures.off, pictures.ply);
+  check(dPly < 0.002, `out.off and out.ply look the same (${(100 * dPly).toFixed(2)} % differ)`);
+
+  // Before and after side by side: the input and the result differ; the same file twice does not.
+  let s = await open(args.mesh, file('out.off'));
+  check(s.panes.length === 2, `two files open side by side (${s.panes.map((p) => p.name).join(', ')})`);
+  const dBeforeAfter = await differing(await shot('left'), await shot('right'));
+  check(dBeforeAfter > 0.01, `before and after differ (${(100 * dBeforeAfter).toFixed(1)} % of the pixels)`);
+  s = await open(file('out.off'), file('out.ply'));
+  const dSame = await differing(await shot('left'), await shot('right'));
+  check(dSame < 0.002, `the same mesh in both panes looks the same (${(100 * dSame).toFixed(2)} % differ)`);
+
+  // The fields PLYs side by side: each pane wears its own file's colours.
+  s = await open(file('fields_start.ply'), file('fields_end.ply'));
+  check(JSON.stringify(s.shown) === '["file colours","file colours"]', `both panes show their file's colours (${JSON.stringify(s.shown)})`);
+  const means = await page.evaluate(() => window.viewer.colourMeans());
+  const expected = [meanRed(file('fields_start.ply')), meanRed(file('fields_end.ply'))];
+  check(means && means[0] !== null && means[1] !== null && Math.abs(means[0] - expected[0]) < 1e-4 && Math.abs(means[1] - expected[1]) < 1e-4,
+        `each pane's colours are its file's (mean red ${means?.map((m) => m?.toFixed(4))} vs ${expected.map((m) => m.toFixed(4))})`);
+  check(Math.abs(expected[0] - expected[1]) > 1e-3, 'the start and end colours differ (else the check above proves nothing)');
+  await page.select('#colour', 'field:mean_curvature');
+  s = await page.evaluate(() => window.viewer.shown);
+  check(JSON.stringify(s) === '["mean_curvature","mean_curvature"]', `a scalar field of the files colours both panes (${JSON.stringify(s)})`);
+
+  // The CLI's .glb: the colour fields are the last frame's, so frame 0 is not coloured by them.
+  s = await open(file('run.glb'));
+  const frames = await page.evaluate(() => window.viewer.frameNumbers);
+  check(JSON.stringify(frames) === '[0,5,10,15,20]', `the run's frames (${JSON.stringify(frames)})`);
+  check(s.shown[0] === 'none', `frame 0 does not wear the last frame's colours (shown: ${s.shown[0]})`);
+  const frame0Coloured = await shot();
+  await page.select('#colour', '-1');
+  const frame0Plain = await shot();
+  check(await differing(frame0Coloured, frame0Plain) < 0.001, 'frame 0 looks the same with the field chosen as with none');
+  await page.select('#colour', '0');
+  await page.focus('#scrubber');
+  await page.keyboard.press('End');
+  const lastShown = await page.evaluate(() => window.viewer.shown[0]);
+  check(lastShown === 'mean_curvature', `the last frame wears its own colours (shown: ${lastShown})`);
+  const lastColoured = await shot();
+  await page.select('#colour', '-1');
+  check(await differing(lastColoured, await shot()) > 0.01, 'on the last frame the field changes the picture');
+
+  // Jump to a frame: an exported one, and one between two exported frames (the one before it).
+  for (const [typed, k] of [[10, 2], [12, 2], [20, 4], [0, 0]]) {
+    await page.$eval('#goto', (e, v) => { e.value = String(v); e.dispatchEvent(new Event('change')); }, typed);
+    const got = await page.evaluate(() => ({ k: window.viewer.keyframe, label: document.getElementById('frame-label').textContent }));
+    check(got.k === k && got.label.startsWith(`frame ${frames[k]} `), `go to frame ${typed} shows keyframe ${k} (${got.k}, "${got.label}")`);
+  }
+
+  // A .glb's first frame beside its current one: equal on frame 0, different on the last.
+  await page.click('#side-by-side');
+  const sb = await page.evaluate(() => ({ on: window.viewer.sideBySide, panes: window.viewer.panes.length }));
+  check(sb.on && sb.panes === 2, `before | after shows two panes (${JSON.stringify(sb)})`);
+  const d0 = await differing(await shot('left'), await shot('right'));
+  check(d0 < 0.002, `on frame 0 both panes show frame 0 (${(100 * d0).toFixed(2)} % differ)`);
+  await page.focus('#scrubber');
+  await page.keyboard.press('End');
+  const dEnd = await differing(await shot('left'), await shot('right'));
+  check(dEnd > 0.01, `on the last frame the panes differ (${(100 * dEnd).toFixed(1)} % of the pixels)`);
+
+  check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
+} finally {
+  await browser.close();
+  for (const s of servers) s.kill();
+  rmSync(profile, { recursive: true, force: true });
+  rmSync(work, { recursive: true, force: true });
+}
+if (failures.length) {
+  console.error(`${failures.length} check(s) failed`);
+  process.exit(1);
+}
+console.log('all viewer mesh checks passed');
