@@ -10,6 +10,7 @@
 
 #include "shellcontract/export/frame_sequence_writer.hpp"
 #include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/geometry/curvature.hpp"
 #include "shellcontract/mesh/mesh_document.hpp"
 #include "shellcontract/sim/fields.hpp"
 #include "shellcontract/sim/run.hpp"
@@ -103,6 +104,12 @@ class FrameExporter final : public RunObserver {
       const auto start = std::chrono::steady_clock::now();
       gltf_.frame_numbers.push_back(frame);
       gltf_.frames.push_back(x);
+      // Each kept frame's own mean curvature (the default colour field, computed as
+      // compute_vertex_fields does), so that a viewer colours every frame with its values, not
+      // the end's (issue 56).
+      if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({"mean_curvature", {}});
+      gltf_.frame_fields[0].second.push_back(
+          compute_curvature(sim.rest_mesh(), sim.positions()).mean.cast<float>());
       gltf_copy_seconds_ +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }

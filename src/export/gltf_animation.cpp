@@ -157,6 +157,16 @@ void check_input(const GltfAnimation& a) {
     if (!a.uv.allFinite())
       throw std::invalid_argument("write_gltf_animation: a texture coordinate is not finite");
   }
+  for (const auto& [name, values] : a.frame_fields) {
+    if (values.size() != a.frames.size())
+      throw std::invalid_argument("write_gltf_animation: frame field '" + name + "' has " +
+                                  std::to_string(values.size()) + " frames, the animation " +
+                                  std::to_string(a.frames.size()));
+    for (const Eigen::VectorXf& v : values)
+      if (v.size() != nv || !v.allFinite())
+        throw std::invalid_argument("write_gltf_animation: frame field '" + name +
+                                    "' has a frame of the wrong size or a non-finite value");
+  }
   if (!(a.seconds_per_frame > 0.0))
     throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
 }
@@ -256,6 +266,7 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
   return 4 * static_cast<std::size_t>(a.faces.size()) + 3 +    // indices
          (2 + a.colour_fields.size() + 2 * (nk - 1)) * vec3 +  // attributes and targets
          (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
+         a.frame_fields.size() * nk * (4 * nv + 3) +                                   // frame fields
          4 * nk + 3 + 4 * nk * (nk - 1) + 3;                   // keys and weights
 }
 
@@ -303,6 +314,27 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
     colour_info.emplace_back(info);
   }
 
+  // Per-frame field values: one accessor per frame, one colour scale over all of them.
+  tinygltf::Value::Array frame_field_info;
+  for (const auto& [name, values] : a.frame_fields) {
+    std::vector<float> all;
+    all.reserve(values.size() * static_cast<std::size_t>(values[0].size()));
+    tinygltf::Value::Array accessors;
+    for (const Eigen::VectorXf& v : values) {
+      all.insert(all.end(), v.data(), v.data() + v.size());
+      accessors.emplace_back(bb.add_vertex_scalars(gather(v, split.source)));
+    }
+    std::sort(all.begin(), all.end());
+    // Nearest rank, as field_percentile (the fields PLY and field_colours).
+    auto at = [&](double q) { return static_cast<double>(all[static_cast<std::size_t>(std::lround(q * static_cast<double>(all.size() - 1)))]); };
+    tinygltf::Value::Object info;
+    info["name"] = tinygltf::Value(name);
+    info["accessors"] = tinygltf::Value(accessors);
+    info["low"] = tinygltf::Value(at(0.02));
+    info["high"] = tinygltf::Value(at(0.98));
+    frame_field_info.emplace_back(info);
+  }
+
   // Morph targets: displacements from what the reader has for frame 0, so that base plus
   // displacement rounds once (float) away from each frame.
   std::vector<std::string> target_names;
@@ -326,6 +358,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   extras["frame_numbers"] = tinygltf::Value(frame_numbers);
   extras["targetNames"] = string_array(target_names);
   extras["colour_fields"] = tinygltf::Value(colour_info);
+  if (!frame_field_info.empty()) extras["frame_fields"] = tinygltf::Value(frame_field_info);
   extras["seconds_per_frame"] = tinygltf::Value(a.seconds_per_frame);
   mesh.extras = tinygltf::Value(extras);
   model.meshes.push_back(mesh);

@@ -177,4 +177,15 @@ TEST_F(CliAttributes, PlyKeepsItsTextureCoordinatesAndColours) {
   }
 }
 
+TEST_F(CliAttributes, AnObjTheDocumentCannotReadIsWrittenPlainWithAWarning) {
+  // "f 1/1/1/1": CGAL's reader takes the vertex and skips the rest; the document refuses it.
+  const std::string in = file("odd.obj");
+  std::ofstream(in) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\n"
+                       "f 1/1/1/1 3/1/1/1 2/1/1/1\nf 1/1/1/1 2/1/1/1 4/1/1/1\nf 1/1/1/1 4/1/1/1 3/1/1/1\nf 2/1/1/1 3/1/1/1 4/1/1/1\n";
+  const RunResult r = run_cli({"run", in, "-o", file("odd_out.obj"), "--frames", "2", "-q"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: the result is written without the input's attributes: " + in), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(file("odd_out.obj")));
+}
+
 }  // namespace

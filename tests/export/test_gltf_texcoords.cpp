@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -51,6 +53,9 @@ TEST(GltfTexcoords, SeamsAreSplitAndEveryCornerHasItsFileCoordinates) {
   a.face_uv.resize(a.faces.rows(), 3);
   for (std::size_t f = 0; f < tc.face_uv.size(); ++f)
     for (int k = 0; k < 3; ++k) a.face_uv(static_cast<Eigen::Index>(f), k) = static_cast<int>(tc.face_uv[f][static_cast<std::size_t>(k)]);
+  // Each frame's own values of a field: here the frame's z coordinates.
+  a.frame_fields.push_back({"height", {}});
+  for (const Positions& x : a.frames) a.frame_fields[0].second.push_back(x.col(2).cast<float>());
   const std::string glb = dir.file("ball.glb");
   write_gltf_animation(glb, a);
 
@@ -106,6 +111,23 @@ TEST(GltfTexcoords, SeamsAreSplitAndEveryCornerHasItsFileCoordinates) {
     EXPECT_EQ(values(g, 0), static_cast<float>(x0(source[static_cast<std::size_t>(g)], 2)));
   const tinygltf::Value& info = m.meshes[0].extras.Get("colour_fields").Get(0);
   EXPECT_EQ(info.Get("values_attribute").Get<std::string>(), "_MEAN_CURVATURE");
+
+  // The per-frame field: one accessor per frame, frame k's z per glTF vertex (copies too), and
+  // one scale: the 2nd and 98th percentiles of all frames' values (nearest rank, computed here).
+  const tinygltf::Value& ff = m.meshes[0].extras.Get("frame_fields").Get(0);
+  EXPECT_EQ(ff.Get("name").Get<std::string>(), "height");
+  ASSERT_EQ(ff.Get("accessors").ArrayLen(), a.frames.size());
+  std::vector<float> all;
+  for (std::size_t k = 0; k < a.frames.size(); ++k) {
+    const test::Floats v = test::read_floats(m, ff.Get("accessors").Get(static_cast<int>(k)).GetNumberAsInt());
+    ASSERT_EQ(v.rows(), pos.rows());
+    for (Eigen::Index g = 0; g < v.rows(); ++g)
+      EXPECT_EQ(v(g, 0), static_cast<float>(a.frames[k](source[static_cast<std::size_t>(g)], 2))) << "frame " << k;
+    for (Eigen::Index i = 0; i < nv; ++i) all.push_back(static_cast<float>(a.frames[k](i, 2)));
+  }
+  std::sort(all.begin(), all.end());
+  EXPECT_EQ(ff.Get("low").GetNumberAsDouble(), all[static_cast<std::size_t>(std::lround(0.02 * static_cast<double>(all.size() - 1)))]);
+  EXPECT_EQ(ff.Get("high").GetNumberAsDouble(), all[static_cast<std::size_t>(std::lround(0.98 * static_cast<double>(all.size() - 1)))]);
 }
 
 TEST(GltfTexcoords, WithoutCoordinatesNothingIsSplit) {

@@ -182,6 +182,14 @@ TEST(ObjDocument, DoesNotMatchAnotherMesh) {
   EXPECT_FALSE(parse_obj_document("small.obj", t.text)->matches(other));
 }
 
+TEST(ObjDocument, WindowsLineEndsStay) {
+  const std::string crlf = "o t\r\nv 0 0 0\r\nv 1 0 0\r\nv 0 1 0 \r\nvn 1 0 0\r\nf 1//1 2//1 3//1\r\n";
+  Positions x(3, 3);
+  x << 0, 0, 0, 2, 0, 0, 0, 2, 0;
+  EXPECT_EQ(parse_obj_document("crlf.obj", crlf)->text(x),
+            "o t\r\nv 0 0 0\r\nv 2 0 0\r\nv 0 2 0 \r\nvn 0 0 1\r\nf 1//1 2//1 3//1\r\n");
+}
+
 TEST(ObjDocument, WrongRowCountIsRefused) {
   const test::TexturedObj t = test::textured_uv_sphere();
   EXPECT_THROW(parse_obj_document("s.obj", t.text)->text(Positions::Zero(3, 3)), std::invalid_argument);

@@ -2,10 +2,12 @@
 // frame, STEP keyframes), scrubs it and jumps to a frame, plots V/V0 from the run's CSV log or JSON
 // summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL). Two files are
 // shown side by side (before and after, one camera); a single .glb can show its first frame beside
-// the current one. A colour field is shown on the frame whose values it holds (the glTF's extras
-// say which), never on the others; a mesh file is coloured with its own values.
+// the current one. Each frame is coloured with its own values where the file has them (the
+// glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on that frame
+// and never on the others; a mesh file is coloured with its own values.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
-// For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes, shown, ...}.
+// For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes, shown,
+// colourValues (per pane, the values its colours show), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -98,11 +100,19 @@ async function glbPane(arrayBuffer, name) {
     const a = typeof f.attribute === 'string' ? f.attribute : `COLOR_${i}`;
     return geometry.getAttribute(a === 'COLOR_0' ? 'color' : a.toLowerCase());
   });
+  // Fields with each frame's own values (extras.frame_fields: one accessor per frame), by name.
+  const frameFields = {};
+  for (const f of Array.isArray(extras.frame_fields) ? extras.frame_fields : []) {
+    if (!Array.isArray(f.accessors) || f.accessors.length !== frameNumbers.length) continue;
+    const values = await Promise.all(f.accessors.map((i) => gltf.parser.getDependency('accessor', i)));
+    frameFields[f.name] = { values: values.map((a) => a.array), low: Number(f.low), high: Number(f.high), colours: [] };
+  }
   shell.material = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
   const { scene, sun } = makeScene();
   scene.add(gltf.scene);
   return { name, kind: 'glb', scene, sun, object: gltf.scene, meshes: [shell], vertices: geometry.getAttribute('position').count,
-           frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, colourAttributes };
+           frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, colourAttributes,
+           frameFields };
 }
 
 function meshPane(arrayBuffer, name) {
@@ -266,17 +276,28 @@ function applyColours() {
     scale = range(arrays);
     notes.push(`${name}: blue ${scale.low.toPrecision(3)}, red ${scale.high.toPrecision(3)} (2nd to 98th percentile of the files shown)`);
   }
-  state.shown = panes.map((p) => {
+  const values = panes.map(() => null);  // per pane: the values its colours show, if any
+  state.shown = panes.map((p, pi) => {
     let shown = 'none';
     p.meshes.forEach((m, j) => {
       const mat = m.material;
       let attr = null;
       if (p.kind === 'glb' && /^\d+$/.test(choice)) {
         const i = Number(choice), info = p.colourInfo[i];
-        const frame = p.frameNumbers[p.fixed ?? state.keyframe];
-        // A field holds one frame's values ('frame' in the extras); without it, any frame's.
-        if (info && (info.frame === undefined || info.frame === frame)) attr = p.colourAttributes[i];
-        if (info && j === 0) {
+        const k = p.fixed ?? state.keyframe, frame = p.frameNumbers[k];
+        const perFrame = info && p.frameFields[info.name];
+        if (perFrame) {
+          // Each frame's own values, on one scale over all frames (so frames compare).
+          perFrame.colours[k] ??= colourAttribute(perFrame.values[k], perFrame.low, perFrame.high);
+          attr = perFrame.colours[k];
+          values[pi] = perFrame.values[k];
+          if (j === 0) notes.push(`${info.name}: each frame's own values; blue ${perFrame.low.toPrecision(3)}, red ${perFrame.high.toPrecision(3)} (2nd to 98th percentile over all frames)`);
+        } else if (info && (info.frame === undefined || info.frame === frame)) {
+          // A field of one frame ('frame' in the extras) is shown on that frame only; without
+          // 'frame', on any.
+          attr = p.colourAttributes[i];
+        }
+        if (info && !perFrame && j === 0) {
           notes.push(`${info.name}: blue ${Number(info.low).toPrecision(3)}, red ${Number(info.high).toPrecision(3)} (its 2nd to 98th percentile)` +
                      (info.frame !== undefined ? `; values of frame ${info.frame}, shown on that frame only` : ''));
         }
@@ -285,9 +306,10 @@ function applyColours() {
         attr = p.fileColourAttributes[j];
         shown = 'file colours';
       } else if (p.kind === 'mesh' && scale) {
-        const values = m.geometry.getAttribute(`field_${choice.slice(6)}`);
-        if (values) {
-          attr = colourAttribute(values.array, scale.low, scale.high);
+        const v = m.geometry.getAttribute(`field_${choice.slice(6)}`);
+        if (v) {
+          attr = colourAttribute(v.array, scale.low, scale.high);
+          values[pi] = v.array;
           shown = choice.slice(6);
         }
       }
@@ -298,6 +320,7 @@ function applyColours() {
     });
     return shown;
   });
+  state.colourValues = values;
   el('colour-note').textContent = el('colour').options.length > 1 ? [...new Set(notes)].join('; ') : 'these files have no colours';
 }
 

@@ -1,7 +1,7 @@
 // Headless check (Debian's Chromium, puppeteer-core) of what issue 56 asked of the viewer: it
 // opens result meshes (OFF, OBJ, PLY, STL), shows two files side by side (and a .glb's first
-// frame beside its current one), colours each pane with its own values, shows a glTF colour field
-// only on the frame whose values it holds, and jumps to a frame. The files come from real runs of
+// frame beside its current one), colours each pane and each frame with its own values (a glTF
+// field of one frame only on that frame), and jumps to a frame. The files come from real runs of
 // the CLI on a small mesh, made here in a temporary folder.
 // Usage: node viewer/tests/viewer_meshes_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
 import { spawn, spawnSync } from 'node:child_process';
@@ -58,15 +58,22 @@ function serve(...files) {
 /** sRGB byte to linear, as three.js's Color.setRGB(..., SRGBColorSpace); PLYLoader stores the
  * result of a uchar colour back as a byte (Math.round(linear * 255)). */
 const linear = (b) => { const c = b / 255; return c < 0.04045 ? c * 0.0773993808 : Math.pow(c * 0.9478672986 + 0.0521327014, 2.4); };
-/** Mean linear red of an ascii PLY's vertices (its red property), read here, not by the page. */
-function meanRed(plyPath) {
+/** A vertex property of an ascii PLY as numbers, read here, not by the page. */
+function plyColumn(plyPath, name) {
   const text = readFileSync(plyPath, 'utf8');
   const [head, body] = text.split('end_header');
   const props = [...head.matchAll(/^property (\S+) (\S+)$/gm)].map((m) => m[2]);
   const count = Number(/element vertex (\d+)/.exec(head)[1]);
   const rows = body.trim().split(/\r?\n/).slice(0, count).map((l) => l.trim().split(/\s+/).map(Number));
-  return rows.reduce((s, r) => s + Math.round(linear(r[props.indexOf('red')]) * 255) / 255, 0) / count;
+  return rows.map((r) => r[props.indexOf(name)]);
 }
+/** Mean linear red of an ascii PLY's vertices. */
+const meanRed = (plyPath) => {
+  const red = plyColumn(plyPath, 'red');
+  return red.reduce((s, r) => s + Math.round(linear(r) * 255) / 255, 0) / red.length;
+};
+/** Whether the page's values are the PLY's float column, exactly. */
+const sameFloats = (page, ply) => page && page.length === ply.length && ply.every((v, i) => Math.fround(v) === page[i]);
 
 const profile = mkdtempSync(path.join(tmpdir(), 'shellcontract-chromium-'));
 const browser = await puppeteer.launch({
@@ -166,20 +173,34 @@ try {
   s = await page.evaluate(() => window.viewer.shown);
   check(JSON.stringify(s) === '["mean_curvature","mean_curvature"]', `a scalar field of the files colours both panes (${JSON.stringify(s)})`);
 
-  // The CLI's .glb: the colour fields are the last frame's, so frame 0 is not coloured by them.
+  // The CLI's .glb: mean curvature has each frame's own values (those of the --fields PLYs of
+  // the same run, frame 0 and the last); the other fields are the last frame's only, so frame 0
+  // is not coloured by them.
   s = await open(file('run.glb'));
   const frames = await page.evaluate(() => window.viewer.frameNumbers);
   check(JSON.stringify(frames) === '[0,5,10,15,20]', `the run's frames (${JSON.stringify(frames)})`);
-  check(s.shown[0] === 'none', `frame 0 does not wear the last frame's colours (shown: ${s.shown[0]})`);
+  const pageValues = () => page.evaluate(() => (window.viewer.colourValues[0] ? Array.from(window.viewer.colourValues[0]) : null));
+  check(s.shown[0] === 'mean_curvature', `frame 0 is coloured by mean curvature (shown: ${s.shown[0]})`);
+  check(sameFloats(await pageValues(), plyColumn(file('fields_start.ply'), 'mean_curvature')),
+        "frame 0's colours are frame 0's mean curvature (the --fields start PLY's)");
+  const frame0Mean = (await page.evaluate(() => window.viewer.colourMeans()))[0];
+  await page.select('#colour', '1');
+  s.shown = await page.evaluate(() => window.viewer.shown);
+  check(s.shown[0] === 'none', `frame 0 does not wear the last frame's gaussian curvature (shown: ${s.shown[0]})`);
   const frame0Coloured = await shot();
   await page.select('#colour', '-1');
   const frame0Plain = await shot();
-  check(await differing(frame0Coloured, frame0Plain) < 0.001, 'frame 0 looks the same with the field chosen as with none');
+  check(await differing(frame0Coloured, frame0Plain) < 0.001, 'frame 0 looks the same with that field chosen as with none');
   await page.select('#colour', '0');
   await page.focus('#scrubber');
   await page.keyboard.press('End');
+  check(sameFloats(await pageValues(), plyColumn(file('fields_end.ply'), 'mean_curvature')),
+        "the last frame's colours are its own mean curvature (the --fields end PLY's)");
+  const lastMean = (await page.evaluate(() => window.viewer.colourMeans()))[0];
+  check(Math.abs(lastMean - frame0Mean) > 1e-3, `frame 0 and the last frame have different colours (mean red ${frame0Mean?.toFixed(4)}, ${lastMean?.toFixed(4)})`);
+  await page.select('#colour', '1');
   const lastShown = await page.evaluate(() => window.viewer.shown[0]);
-  check(lastShown === 'mean_curvature', `the last frame wears its own colours (shown: ${lastShown})`);
+  check(lastShown === 'gaussian_curvature', `the last frame wears its gaussian curvature (shown: ${lastShown})`);
   const lastColoured = await shot();
   await page.select('#colour', '-1');
   check(await differing(lastColoured, await shot()) > 0.01, 'on the last frame the field changes the picture');

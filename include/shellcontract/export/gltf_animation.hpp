@@ -4,6 +4,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shellcontract/core/types.hpp"
@@ -26,6 +27,9 @@ struct GltfAnimation {
                                           ///< frame_numbers[0]) * seconds_per_frame)
   std::vector<NamedVertexField> colour_fields;  ///< optional; field i becomes attribute COLOR_i
   int colour_frame = -1;  ///< the run frame whose values colour_fields hold; -1 unknown
+  /// Optional: per frame (parallel to `frames`), the values of a field on that frame (float,
+  /// #V each), so that a viewer colours each frame with its own values. Field name -> values.
+  std::vector<std::pair<std::string, std::vector<Eigen::VectorXf>>> frame_fields;
   /// Optional texture coordinates (the input's, issue 56): uv holds (u, v) pairs, face_uv (#F by
   /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
@@ -51,6 +55,10 @@ struct GltfStats {
 /// The mesh's `extras` hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields`
 /// (name, attribute, values_attribute, the value range mapped to the colours, and `frame`, the run
 /// frame whose values they are, when colour_frame is set).
+///
+/// Each of `frame_fields` is one float SCALAR accessor per frame (not a primitive attribute: glTF
+/// morph targets cannot carry it), listed in the mesh's extras `frame_fields` (name, accessors,
+/// and low / high: the 2nd and 98th percentiles of all its frames' values, one colour scale).
 ///
 /// With texture coordinates, TEXCOORD_0 holds each vertex's (u, 1 - v): glTF's origin is the
 /// top-left corner, OBJ's and PLY's the bottom-left. A vertex with several texture coordinates (a
