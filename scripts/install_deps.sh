@@ -12,6 +12,7 @@ PACKAGES=(
   gnuplot-nox
   libtinygltf-dev nlohmann-json3-dev
   chromium
+  blender
   pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-dev
 )
 # The viewer's tests and scripts/view.py's page need node and npm; an existing install (any

@@ -10,6 +10,7 @@
 #include <Python.h>
 
 #include <array>
+#include <cmath>
 #include <chrono>
 #include <cstdint>
 #include <string>
@@ -42,8 +43,29 @@ std::string valid_names() {
 std::string option_text(const std::string& name, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  // A numpy array or scalar goes by its Python value (an array also passes PyIndex_Check).
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
+    return option_text(name, value.attr("tolist")());
   if (py::isinstance<py::float_>(value)) return py::repr(py::float_(value.cast<double>()));
   if (PyIndex_Check(value.ptr())) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
+  // Keyframes as (frame, value) pairs (target_volume=[(0, 1), (60, 0.5)]): the CLI's
+  // "0:1, 60:0.5".
+  if ((py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) && py::len(value) > 0 &&
+      (py::isinstance<py::tuple>(value[py::int_(0)]) || py::isinstance<py::list>(value[py::int_(0)]))) {
+    std::string s;
+    for (const py::handle& key : value) {
+      if (!(py::isinstance<py::tuple>(key) || py::isinstance<py::list>(key)) || py::len(key) != 2)
+        throw py::value_error("option " + name + ": keyframes are (frame, value) pairs, got " +
+                              std::string(py::str(py::repr(key))));
+      // A whole float frame (a float array's 15.0) is the integer frame it stands for.
+      py::object frame = key[py::int_(0)];
+      if (py::isinstance<py::float_>(frame) && std::floor(frame.cast<double>()) == frame.cast<double>() &&
+          std::abs(frame.cast<double>()) < 1e15)
+        frame = py::int_(static_cast<long long>(frame.cast<double>()));
+      s += (s.empty() ? "" : ", ") + option_text(name, frame) + ":" + option_text(name, key[py::int_(1)]);
+    }
+    return s;
+  }
   if (py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) {
     std::string s;
     for (const py::handle& item : value) s += (s.empty() ? "" : ",") + option_text(name, item);
@@ -57,6 +79,14 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs) {
   RunOptions options;
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
+    // region_weights=W: the weights themselves (a file name goes through the table as text).
+    if (find_run_option(name) && find_run_option(name)->name == "region-weights" &&
+        !py::isinstance<py::str>(value)) {
+      options.vertex_weights = py::cast<std::vector<double>>(
+          py::module_::import("numpy").attr("asarray")(value, "float64").attr("ravel")().attr("tolist")());
+      options.given.insert("region-weights");
+      continue;
+    }
     const OptionSpec* spec = find_run_option(name);
     if (!spec)
       throw py::type_error("contract() got an unknown option '" + name + "'; valid options: " + valid_names());

@@ -43,4 +43,20 @@ void local_contraction_forces(const Positions& x, const Faces& region_faces, dou
   remove_rigid_body_force(x, inv_mass, f);
 }
 
+void local_contraction_forces(const Positions& x, const Faces& region_faces, double P_A,
+                              const Eigen::VectorXd& weight, const Eigen::VectorXd& inv_mass,
+                              Positions& f) {
+  f.setZero(x.rows(), 3);
+  for (Eigen::Index j = 0; j < region_faces.rows(); ++j) {
+    const int a = region_faces(j, 0), b = region_faces(j, 1), c = region_faces(j, 2);
+    const Vec3 xc = x.row(c);
+    const Vec3 N = (Vec3(x.row(a)) - xc).cross(Vec3(x.row(b)) - xc);
+    const Eigen::RowVector3d fj = (-P_A * weight(j) / 6.0) * N.transpose();
+    f.row(a) += fj;
+    f.row(b) += fj;
+    f.row(c) += fj;
+  }
+  remove_rigid_body_force(x, inv_mass, f);
+}
+
 }  // namespace shellcontract

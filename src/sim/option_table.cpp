@@ -7,6 +7,7 @@
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/material/registry.hpp"
+#include "sim/keyed_options.hpp"
 #include "sim/option_builders.hpp"
 
 namespace shellcontract {
@@ -38,6 +39,25 @@ Choices<AnisoKind> aniso_choices() {
   return c;
 }
 
+/// --region-weights FILE (sim/region_weights.hpp); read when the mesh is known.
+OptionSpec region_weights_option() {
+  OptionSpec o;
+  o.name = "region-weights";
+  o.value_name = "FILE";
+  o.help =
+      "regions and strength from per-vertex weights (a Blender vertex group, a weight map): one "
+      "weight in [0, 1] per line in the mesh's vertex order; the faces whose vertices all weigh 0 "
+      "stay out, the others sink with --region-shrink times the mean of their vertices' weights; "
+      "excludes --regions";
+  o.set = [](RunOptions& r, const std::string& v) {
+    if (v.empty()) bad("region-weights", v, "a file name");
+    r.region_weight_file = v;
+  };
+  o.get = [](const RunOptions& r) { return r.region_weight_file; };
+  o.bad_examples = {""};
+  return o;
+}
+
 OptionSpec region_option() {
   OptionSpec o;
   o.name = "regions";
@@ -54,9 +74,10 @@ OptionSpec region_option() {
     r.region_file = r.regions == RegionSource::File ? v : std::string();
   };
   o.get = [](const RunOptions& r) {
-    return r.regions == RegionSource::Auto   ? std::string("auto")
-           : r.regions == RegionSource::None ? std::string("none")
-                                             : r.region_file;
+    return r.regions == RegionSource::Auto      ? std::string("auto")
+           : r.regions == RegionSource::None    ? std::string("none")
+           : r.regions == RegionSource::Weights ? std::string("weights")
+                                                : r.region_file;
   };
   o.bad_examples = {""};
   return o;
@@ -128,22 +149,22 @@ std::vector<OptionSpec> build_table() {
   using R = RunOptions;
   std::vector<OptionSpec> t;
   // ---- how much it contracts
-  t.push_back(number("pressure", 'p', "P",
+  t.push_back(with_keyframes(number("pressure", 'p', "P",
                      "net outside over-pressure at the rest volume (normalized units; > 0 "
                      "compresses, < 0 inflates)",
                      between(-1e6, 1e6, false, false),
-                     [](R& r) -> double& { return r.sim.pressure; }));
+                     [](R& r) -> double& { return r.sim.pressure; }), KeyedValue::Pressure));
   t.push_back(number("air-balance", 0, "R",
                      "air inside the shell (isothermal): the V/V0 at which its pressure balances "
                      "the outside pressure, so the shell slows down and stops near R; 0 = no air "
                      "(constant pressure, the paper's)",
                      between(0.0, 1.0, false, true),
                      [](R& r) -> double& { return r.sim.air_balance; }));
-  t.push_back(number("target-volume", 0, "R",
+  t.push_back(with_keyframes(number("target-volume", 0, "R",
                      "drive V/V0 to R and hold it there (a global volume constraint); 0 = off, the "
                      "pressure alone decides",
                      between(0.0, 1.0, false, true),
-                     [](R& r) -> double& { return r.sim.target_volume; }));
+                     [](R& r) -> double& { return r.sim.target_volume; }), KeyedValue::TargetVolume));
   t.push_back(integer("target-ramp", 0, "N",
                       "frames over which the target volume (and the regions' shrink, --inward "
                       "volume) is approached, at most half of --frames",
@@ -232,6 +253,7 @@ std::vector<OptionSpec> build_table() {
   t.push_back(choice("aniso", "anisotropic energy on the regions", aniso_choices(),
                      [](R& r) -> AnisoKind& { return r.sim.solver.aniso; }));
   t.push_back(region_option());
+  t.push_back(region_weights_option());
   t.push_back(number("k-a", 0, "KAPPA",
                      "kappa_A: the inward term is k_A = kappa_A mu_A sqrt(face rest area)",
                      non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));

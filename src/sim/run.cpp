@@ -13,6 +13,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/sim/region_weights.hpp"
 
 namespace shellcontract {
 
@@ -78,6 +79,14 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
       RegionOptions o;
       o.max_area_fraction = options.region_max_area;
       return mark_spherical_regions(mesh, positions_from_mesh(mesh), o);
+    }
+    case RegionSource::Weights: {
+      if (!options.vertex_weights.empty()) {
+        check_vertex_weights(options.vertex_weights, mesh.number_of_vertices(), "region_weights");
+        return mark_weighted_regions(mesh, options.vertex_weights);
+      }
+      return mark_weighted_regions(
+          mesh, read_vertex_weights(options.region_weight_file, mesh.number_of_vertices()));
     }
     case RegionSource::None:
       break;
@@ -271,12 +280,17 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
     r.target_reached = sim.stop_volume_reached();
     if (r.target_reached) r.frame_target_reached = sim.frame();
   } else if (has_target) {
-    r.target_reached = std::abs(r.final_volume_ratio - s.target_volume) <= TARGET_VOLUME_TOLERANCE;
+    // A schedule's goal is its value at the last frame run (a key after it is never reached).
+    const double goal =
+        s.target_volume_schedule.empty() ? s.target_volume : sim.volume_target(sim.frame());
+    r.target_reached = std::abs(r.final_volume_ratio - goal) <= TARGET_VOLUME_TOLERANCE;
   }
   if (!r.target_reached && r.status == RunStatus::Completed) {
     r.status = RunStatus::TargetNotReached;
     const std::string what = has_target ? "target volume " : "stop volume ratio ";
-    const double goal = has_target ? s.target_volume : s.stop_volume_ratio;
+    const double goal = !has_target                          ? s.stop_volume_ratio
+                        : s.target_volume_schedule.empty() ? s.target_volume
+                                                           : sim.volume_target(sim.frame());
     r.message =
         what + ratio_text(goal) + " not reached: " +
         (stalled.empty() ? "the frames ran out at V/V0 " + ratio_text(r.final_volume_ratio) +

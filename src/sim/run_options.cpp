@@ -1,5 +1,7 @@
 #include "shellcontract/sim/run_options.hpp"
 
+#include <utility>
+
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/material/material.hpp"
 #include "shellcontract/material/registry.hpp"
@@ -79,6 +81,13 @@ void resolve_run_options(RunOptions& r) {
   }
   if (r.sim.solver.kind == SolverKind::Pbd && r.sim.solver.k_bending > 1.0)
     throw UsageError("--k-b: in pbd mode k_B is a correction multiplier and must be in [0, 1]");
+  // Weights are the regions: another region source beside them is a contradiction.
+  if (!r.region_weight_file.empty() || !r.vertex_weights.empty()) {
+    if (r.regions != RegionSource::Weights && r.given.count("regions"))
+      throw UsageError(
+          "--region-weights and --regions exclude each other (the weighted faces are the regions)");
+    r.regions = RegionSource::Weights;
+  }
   // An anisotropic energy acts on regions, so choosing one without saying which selects them
   // by curvature (the behaviour before regions switched the local contraction on by themselves).
   const bool implied = r.regions == RegionSource::None && !r.given.count("regions");
@@ -133,6 +142,17 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   check("target-ramp",
         !(s.target_volume > 0.0) && !(regions && s.inward_term == InwardTerm::Volume),
         "it is the ramp of --target-volume and of the regions' shrink (--inward volume)");
+  check("target-ramp", !s.target_volume_schedule.empty(),
+        "the keys of --target-volume set its timing");
+  // A key after the last frame is never reached: the run ends part way to it.
+  for (const auto& [name, keys] : {std::pair<const char*, const Schedule*>{
+                                       "target-volume", &s.target_volume_schedule},
+                                   {"pressure", &s.pressure_schedule}})
+    if (!keys->empty() && keys->last_frame() > s.frames)
+      w.push_back(std::string("--") + name + ": the key at frame " +
+                  std::to_string(keys->last_frame()) + " comes after the last frame (" +
+                  std::to_string(s.frames) + "); the run ends on the schedule's value there, " +
+                  shortest_text(keys->at(s.frames)));
   check("air-balance", s.target_volume > 0.0,
         "with --target-volume the volume constraint decides the volume");
   check("air-balance", !(s.pressure > 0.0) && !(s.target_volume > 0.0),

@@ -16,6 +16,7 @@
 #include "shellcontract/sim/local_contraction.hpp"
 #include "shellcontract/sim/mass_scaling.hpp"
 #include "shellcontract/sim/region_volume.hpp"
+#include "shellcontract/sim/region_weights.hpp"
 #include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
@@ -49,6 +50,30 @@ void mark_moved(const Positions& x, const Positions& before, std::vector<char>& 
     if (x.row(i) != before.row(i)) held[static_cast<std::size_t>(i)] = 1;
 }
 
+/// The largest |P| the run applies: the explicit pressure's mass floor (mass_scaling.hpp) must
+/// hold at every key, and the curve never leaves its keys' range.
+double peak_pressure_magnitude(const SimOptions& o) {
+  if (o.pressure_schedule.empty()) return o.pressure;
+  return std::max(std::abs(o.pressure_schedule.min_value()),
+                  std::abs(o.pressure_schedule.max_value()));
+}
+
+/// The rest area-weighted mean of a region's face weights (1 without weights): a dimple is one
+/// shape for its whole region, so the region sinks with its mean strength.
+double mean_face_weight(const Positions& x, const Faces& faces, const std::vector<int>& region,
+                        const std::vector<double>& weight) {
+  if (weight.empty()) return 1.0;
+  double sum = 0.0, area = 0.0;
+  for (int f : region) {
+    const Vec3 xc = x.row(faces(f, 2));
+    const double a =
+        (Vec3(x.row(faces(f, 0))) - xc).cross(Vec3(x.row(faces(f, 1))) - xc).norm();
+    sum += a * weight[static_cast<std::size_t>(f)];
+    area += a;
+  }
+  return area > 0.0 ? sum / area : 0.0;
+}
+
 void check_options(const SimOptions& o) {
   auto fail = [](const std::string& what) { throw UsageError(what); };
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("time step must be positive and finite");
@@ -69,7 +94,16 @@ void check_options(const SimOptions& o) {
     fail("collision region margin must be >= 0");
   if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
     fail("stop volume ratio must be in [0, 1)");
-  if (!(o.target_volume >= 0.0 && o.target_volume < 1.0)) fail("target volume must be in [0, 1)");
+  if (o.target_volume_schedule.empty()) {
+    if (!(o.target_volume >= 0.0 && o.target_volume < 1.0)) fail("target volume must be in [0, 1)");
+  } else if (!(o.target_volume_schedule.min_value() > 0.0 &&
+               o.target_volume_schedule.max_value() <= MAX_KEYED_VOLUME_RATIO)) {
+    fail("keyframed target volumes must be in (0, " + std::to_string(MAX_KEYED_VOLUME_RATIO) + "]");
+  } else if (o.target_volume != o.target_volume_schedule.last_value()) {
+    fail("the target volume must be the last key's value of its schedule");
+  }
+  if (!o.pressure_schedule.empty() && o.pressure != o.pressure_schedule.max_value())
+    fail("the pressure must be the largest key value of its schedule");
   if (o.target_volume > 0.0 && o.stop_volume_ratio > 0.0)
     fail("a target volume and a stop volume ratio exclude each other");
   if (!(o.air_balance >= 0.0 && o.air_balance < 1.0)) fail("air balance must be in [0, 1)");
@@ -152,7 +186,8 @@ Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) 
   inv_mass_ = inverse_masses(*mesh_);
   // The explicit pressure needs a minimum mass per vertex at this dt (sim/mass_scaling.hpp).
   mass_scaled_vertices_ =
-      scale_masses_for_pressure(x_, faces_, options_.pressure, options_.dt, inv_mass_);
+      scale_masses_for_pressure(x_, faces_, peak_pressure_magnitude(options_), options_.dt,
+                                inv_mass_);
   ConstraintSet constraints = pack_constraints(*mesh_, options_.bending);
   if (options_.solver.aniso != AnisoKind::None) {
     AnisotropyOptions a = options_.anisotropy;
@@ -166,13 +201,16 @@ Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) 
                              options_.solver.kind == SolverKind::Pbd;
   const bool pushed = options_.inward_term == InwardTerm::Force ||
                       (options_.inward_term == InwardTerm::Projection && !k_a_projected);
+  // Weighted regions: the strength of each face (empty: every region at full strength).
+  const std::vector<double> face_weight = stored_region_weights(*mesh_);
   if (options_.inward_term == InwardTerm::Volume && options_.region_shrink > 0.0) {
     for (const std::vector<int>& region : regions) {
       RegionDimple dimple = make_region_dimple(x_, faces_, region);
       // A flat region or a dent has no cap to shrink (a dimple would push it out).
-      if (dimple.whole.rest_volume > 0.0)
+      if (dimple.whole.rest_volume > 0.0) {
         region_dimples_.push_back(std::move(dimple));
-      else
+        dimple_weight_.push_back(mean_face_weight(x_, faces_, region, face_weight));
+      } else
         ++regions_without_cap_;
     }
   }
@@ -192,6 +230,12 @@ Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) 
     inward_faces_.resize(static_cast<Eigen::Index>(region_faces.size()), 3);
     for (std::size_t i = 0; i < region_faces.size(); ++i)
       inward_faces_.row(static_cast<Eigen::Index>(i)) = faces_.row(region_faces[i]);
+    if (!face_weight.empty()) {
+      inward_weight_.resize(static_cast<Eigen::Index>(region_faces.size()));
+      for (std::size_t i = 0; i < region_faces.size(); ++i)
+        inward_weight_(static_cast<Eigen::Index>(i)) =
+            face_weight[static_cast<std::size_t>(region_faces[i])];
+    }
   }
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
@@ -245,9 +289,15 @@ Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) 
 
 Simulator::~Simulator() = default;
 
+double Simulator::pressure_at(int n) const {
+  // Without keys the option's own value, untouched: a single -p runs as before, bit for bit.
+  return options_.pressure_schedule.empty() ? options_.pressure : options_.pressure_schedule.at(n);
+}
+
 bool Simulator::finished() const { return frame_ >= options_.frames || stop_volume_reached_; }
 
 double Simulator::volume_target(int n) const {
+  if (!options_.target_volume_schedule.empty()) return options_.target_volume_schedule.at(n);
   if (options_.target_volume <= 0.0) return 0.0;
   // A run shorter than twice the ramp still reaches the target at half its frames.
   const int ramp = std::min(options_.target_ramp_frames, std::max(1, options_.frames / 2));
@@ -308,8 +358,10 @@ void Simulator::apply_region_contraction(Positions& x) {
   if (!(ratio > 0.0)) return;  // a shell turned inside out has no caps to sink
   // Vertices held by the last step's contacts stay (see apply_volume_control) and keep their
   // share of the correction (project_cap_volume_sharing).
-  for (RegionDimple& d : region_dimples_) {
-    const double wanted = dimple_rest_volume(d.whole.rest_volume, options_.region_shrink, s, ratio);
+  for (std::size_t i = 0; i < region_dimples_.size(); ++i) {
+    RegionDimple& d = region_dimples_[i];
+    const double strength = options_.region_shrink * dimple_weight_[i];
+    const double wanted = dimple_rest_volume(d.whole.rest_volume, strength, s, ratio);
     if (!(wanted > 0.0)) continue;
     set_dimple_size(d, faces_, dimple_size_for(d, wanted));
     if (!(d.dimple.rest_volume > 0.0)) continue;
@@ -325,10 +377,11 @@ FrameMetrics Simulator::step() {
   const auto start = std::chrono::steady_clock::now();
   const double dt = options_.dt;
   // Step 1 (math-spec 2): symplectic Euler with the explicit pressure force at x^n.
-  double pressure = options_.pressure;
+  const double keyed_pressure = pressure_at(frame_);
+  double pressure = keyed_pressure;
   // The air balances an outside pressure; without one (P <= 0) there is nothing to balance.
-  if (options_.air_balance > 0.0 && options_.pressure > 0.0)
-    pressure = air_net_pressure(options_.pressure, options_.air_balance,
+  if (options_.air_balance > 0.0 && keyed_pressure > 0.0)
+    pressure = air_net_pressure(keyed_pressure, options_.air_balance,
                                 signed_volume(x_, faces_) / constraint_rest_volume_);
   arena_->arena.execute([&] {
     pressure_forces(x_, faces_, faces_around_, pressure, options_.pressure_model, force_);
@@ -337,10 +390,14 @@ FrameMetrics Simulator::step() {
   // k_A): a region pressure without net force or torque.
   if (inward_faces_.rows() > 0) {
     const double region_load = options_.inward_term == InwardTerm::Volume
-                                   ? region_load_pressure(options_.region_shrink, options_.pressure)
+                                   ? region_load_pressure(options_.region_shrink, keyed_pressure)
                                    : region_pressure(options_.region_shrink);
     if (region_load != 0.0) {
-      local_contraction_forces(x_, inward_faces_, region_load, inv_mass_, region_force_);
+      if (inward_weight_.size() > 0)
+        local_contraction_forces(x_, inward_faces_, region_load, inward_weight_, inv_mass_,
+                                 region_force_);
+      else
+        local_contraction_forces(x_, inward_faces_, region_load, inv_mass_, region_force_);
       force_ += region_force_;
     }
   }

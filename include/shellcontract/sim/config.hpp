@@ -10,6 +10,7 @@
 #include "shellcontract/pbd/solver.hpp"
 #include "shellcontract/sim/anisotropy.hpp"
 #include "shellcontract/sim/pressure.hpp"
+#include "shellcontract/sim/schedule.hpp"
 
 namespace shellcontract {
 
@@ -56,6 +57,10 @@ inline constexpr double DEFAULT_AIR_BALANCE = 0.5;
 /// Default length of the target-volume ramp, in frames: long enough that the shell follows the
 /// shrinking volume quasi-statically, short enough to hold the target for most of a default run.
 inline constexpr int DEFAULT_TARGET_RAMP_FRAMES = 100;
+
+/// Largest V/V0 a key of a keyframed target volume may ask: re-inflation to the rest volume and
+/// beyond it up to twice the volume; a larger ratio is taken for a typo (50 for 0.5).
+inline constexpr double MAX_KEYED_VOLUME_RATIO = 2.0;
 
 /// Default fraction of the velocity removed per step of the paper's PBD solver (--solver pbd).
 /// The paper has no damping; without it the undamped PBD shell rings (V/V0 oscillates around its
@@ -110,6 +115,13 @@ struct SimOptions {
   double target_volume = 0.0;
   /// Frames over which the constraint's target goes from V0 to R V0 (smoothstep ramp).
   int target_ramp_frames = DEFAULT_TARGET_RAMP_FRAMES;
+  /// Keyframed target V/V0 (--target-volume "0:1, 60:0.5, 120:0.85"); when not empty it is the
+  /// target instead of the ramp to target_volume, and target_volume is its last key's value
+  /// (docs/design/keyframes.md).
+  Schedule target_volume_schedule;
+  /// Keyframed pressure (-p "0:4, 100:0"); when not empty it is P at each frame, and pressure is
+  /// its largest key value (what the checks of "is there a compressing pressure" read).
+  Schedule pressure_schedule;
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
   AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
   InwardTerm inward_term = InwardTerm::Volume;

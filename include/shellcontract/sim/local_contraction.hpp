@@ -30,6 +30,14 @@ void remove_rigid_body_force(const Positions& x, const Eigen::VectorXd& inv_mass
 void local_contraction_forces(const Positions& x, const Faces& region_faces, double P_A,
                               const Eigen::VectorXd& inv_mass, Positions& f);
 
+/// local_contraction_forces with a weight per region face (sim/region_weights.hpp): face j
+/// pushes with P_A * weight(j), f_i = -(1 / 6) sum_j P_A weight(j) N_j, then the rigid-body part
+/// is removed.
+/// @param weight  #F_A weights in [0, 1], one per row of region_faces
+void local_contraction_forces(const Positions& x, const Faces& region_faces, double P_A,
+                              const Eigen::VectorXd& weight, const Eigen::VectorXd& inv_mass,
+                              Positions& f);
+
 /// Region pressure P_A at full strength (region shrink 1), normalized units: the bumps of
 /// meshes/bumpy_sphere.off cave in (docs/design/anisotropy.md).
 inline constexpr double FULL_REGION_PRESSURE = 10.0;

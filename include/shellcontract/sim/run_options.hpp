@@ -18,6 +18,9 @@ namespace shellcontract {
 enum class RegionSource {
   Auto,  ///< spherical regions found by curvature (select_spherical_regions)
   File,  ///< RunOptions::region_file: one line per region, 0-based face ids
+  /// Per-vertex weights (RunOptions::region_weight_file or vertex_weights): the weighted faces
+  /// are the regions, their weights the strength (sim/region_weights.hpp).
+  Weights,
   None,
 };
 
@@ -62,6 +65,11 @@ struct RunOptions {
   /// or measure_regions without a region source given selects Auto (resolve_run_options).
   RegionSource regions = RegionSource::None;
   std::string region_file;  ///< RegionSource::File only
+  /// --region-weights: one weight in [0, 1] per vertex (read_vertex_weights); resolve_run_options
+  /// then sets regions to Weights.
+  std::string region_weight_file;
+  /// The same weights given as numbers (Python region_weights=W), instead of the file.
+  std::vector<double> vertex_weights;
   /// RegionSource::Auto only: regions larger than this fraction of the total area are dropped
   /// (RegionOptions::max_area_fraction; a large one, such as bear's head, deflates the shell).
   double region_max_area = RegionOptions{}.max_area_fraction;

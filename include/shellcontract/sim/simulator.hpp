@@ -51,9 +51,13 @@ class Simulator {
   /// True when the frame count is reached or the step reached options.stop_volume_ratio.
   bool finished() const;
 
-  /// The target V/V0 of the volume constraint at frame n (the ramp of options.target_volume);
+  /// The target V/V0 of the volume constraint at frame n (the ramp of options.target_volume, or
+  /// options.target_volume_schedule at n when that has keys);
   /// 0 without a target volume.
   double volume_target(int n) const;
+  /// The pressure P of the step from frame n to n + 1: options.pressure, or its schedule's value
+  /// at frame n (options.pressure_schedule).
+  double pressure_at(int n) const;
   /// Whether a step reached options.stop_volume_ratio (the run then ends on it).
   bool stop_volume_reached() const { return stop_volume_reached_; }
 
@@ -125,6 +129,11 @@ class Simulator {
   Positions region_force_;  ///< its forces (buffer)
   std::vector<RegionDimple> region_dimples_;  ///< InwardTerm::Volume: regions with a cap to sink
   int regions_without_cap_ = 0;         ///< regions left alone: flat or dented at rest
+  /// Weighted regions (sim/region_weights.hpp): each dimple's strength factor, the rest
+  /// area-weighted mean of its faces' weights, and each inward face's weight; 1 and empty
+  /// without weights.
+  std::vector<double> dimple_weight_;
+  Eigen::VectorXd inward_weight_;
   /// A local contraction acts (caps or region force): the frame follows the rest of the shell.
   /// A free shell whose regions sink in recoils as a whole (its centre of mass stays), which on
   /// bumpy_sphere was nearly all of the rest's displacement (docs/math/local-contraction.md).

@@ -1,0 +1,217 @@
+"""bpy.ops.object.shellcontract_contract: the run of the active mesh, written as shape keys."""
+
+import bpy
+import numpy as np
+
+from . import runner
+
+KEY_PREFIX = "shellcontract "
+
+
+def _preferences(context):
+    addon = context.preferences.addons.get(__package__)
+    return addon.preferences if addon else None
+
+
+def _keys_of(obj, prop):
+    """The keyframes (frame, value) of obj.shellcontract.<prop>, or None when not animated."""
+    ad = obj.animation_data
+    if ad is None or ad.action is None:
+        return None
+    fc = ad.action.fcurves.find("shellcontract." + prop)
+    if fc is None or len(fc.keyframe_points) == 0:
+        return None
+    return [(kp.co[0], kp.co[1]) for kp in fc.keyframe_points]
+
+
+def mesh_arrays(obj):
+    """Vertices (local coordinates, the base mesh's) and triangles of the object's mesh: the
+    loop triangles, so quads and n-gons stay as they are in Blender, and the shape keys move the
+    mesh's own vertices."""
+    mesh = obj.data
+    vertices = np.empty(len(mesh.vertices) * 3, dtype=np.float64)
+    mesh.vertices.foreach_get("co", vertices)
+    mesh.calc_loop_triangles()
+    faces = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int64)
+    mesh.loop_triangles.foreach_get("vertices", faces)
+    return vertices.reshape(-1, 3), faces.reshape(-1, 3)
+
+
+def vertex_group_weights(obj, name):
+    group = obj.vertex_groups.get(name)
+    if group is None:
+        raise runner.AddonError("region group '{}': {} has no such vertex group (it has: {})".format(
+            name, obj.name, ", ".join(g.name for g in obj.vertex_groups) or "none"))
+    weights = np.zeros(len(obj.data.vertices), dtype=np.float64)
+    for v in obj.data.vertices:
+        for g in v.groups:
+            if g.group == group.index:
+                weights[v.index] = g.weight
+    return weights
+
+
+def run_options(context, obj):
+    """The contract() options of the object's settings, with keyframed settings as schedules."""
+    s = obj.shellcontract
+    start = context.scene.frame_start
+    options = {"frames": s.frames, "thickness": s.thickness, "collisions": s.collisions}
+    volume_keys = _keys_of(obj, "target_volume")
+    if volume_keys:
+        options["target_volume"] = runner.schedule_text(volume_keys, start, "Target volume")
+    elif s.target_volume > 0.0:
+        options["target_volume"] = s.target_volume
+    pressure_keys = _keys_of(obj, "pressure")
+    if pressure_keys:
+        options["pressure"] = runner.schedule_text(pressure_keys, start, "Pressure")
+    else:
+        options["pressure"] = s.pressure
+    if s.region_group:
+        options["region_weights"] = vertex_group_weights(obj, s.region_group)
+        options["region_shrink"] = s.region_shrink
+    return options
+
+
+def write_shape_keys(context, obj, job):
+    """One shape key per kept frame, keyed so that timeline frame start + n shows simulation
+    frame n (linear blends between neighbouring keys). Earlier results of the add-on are
+    replaced; the Basis and the object's other keys stay."""
+    if obj.data.shape_keys is None:
+        obj.shape_key_add(name="Basis", from_mix=False)
+    keys = obj.data.shape_keys
+    for kb in [kb for kb in keys.key_blocks if kb.name.startswith(KEY_PREFIX)]:
+        obj.shape_key_remove(kb)
+    if keys.animation_data is None:
+        keys.animation_data_create()
+    if keys.animation_data.action is None:
+        keys.animation_data.action = bpy.data.actions.new(obj.name + "ShellContract")
+    action = keys.animation_data.action
+    for fc in [fc for fc in action.fcurves if KEY_PREFIX in fc.data_path]:
+        action.fcurves.remove(fc)
+    start = context.scene.frame_start
+    frames = sorted(job.frames)
+    times = [start] + [start + n for n in frames]  # start: the rest state, the Basis
+    for i, n in enumerate(frames):
+        kb = obj.shape_key_add(name="{}{:05d}".format(KEY_PREFIX, n), from_mix=False)
+        kb.data.foreach_set("co", np.ascontiguousarray(job.frames[n], dtype=np.float64).ravel())
+        kb.value = 0.0
+        points = [(times[i], 0.0), (times[i + 1], 1.0)]
+        if i + 2 < len(times):
+            points.append((times[i + 2], 0.0))
+        fc = action.fcurves.new('key_blocks["{}"].value'.format(kb.name))
+        fc.keyframe_points.add(len(points))
+        fc.keyframe_points.foreach_set("co", [c for p in points for c in p])
+        for kp in fc.keyframe_points:
+            kp.interpolation = "LINEAR"
+        fc.update()
+    context.scene.frame_end = max(context.scene.frame_end, times[-1])
+    obj.data.update()
+
+
+class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
+    """Contract the active mesh like a thin elastic shell; the result becomes shape keys"""
+
+    bl_idname = "object.shellcontract_contract"
+    bl_label = "Contract"
+    bl_options = {"REGISTER", "UNDO"}
+
+    _timer = None
+    _job = None
+
+    @classmethod
+    def poll(cls, context):
+        obj = context.active_object
+        return obj is not None and obj.type == "MESH" and not obj.shellcontract.running
+
+    def _prepare(self, context):
+        obj = context.active_object
+        prefs = _preferences(context)
+        module = runner.import_shellcontract(prefs.module_path if prefs else "")
+        vertices, faces = mesh_arrays(obj)
+        options = run_options(context, obj)
+        keep = runner.kept_frames(obj.shellcontract.frames, obj.shellcontract.frame_step)
+        return obj, runner.Job(module, vertices, faces, options, keep)
+
+    def _finish(self, context, obj, job):
+        s = obj.shellcontract
+        s.running = False
+        if job.error is not None:
+            s.status = "error: {}".format(job.error)
+            self.report({"ERROR"}, "ShellContract: {}".format(job.error))
+            return {"CANCELLED"}
+        result = job.result
+        if result.status == "cancelled":
+            s.status = "cancelled at frame {}".format(job.progress)
+            self.report({"WARNING"}, "ShellContract: cancelled; the object is unchanged")
+            return {"CANCELLED"}
+        # The last frame is the result's own positions (a run may end early: a stall, a failure).
+        job.frames[result.summary["frames_run"]] = result.vertices
+        job.frames = {n: v for n, v in job.frames.items() if n <= result.summary["frames_run"]}
+        if not job.frames:
+            s.status = "no frame was run"
+            self.report({"ERROR"}, "ShellContract: {}".format(result.summary["failure"]))
+            return {"CANCELLED"}
+        write_shape_keys(context, obj, job)
+        s.status = "{}: {} frames, V/V0 {:.4f}".format(
+            result.status, result.summary["frames_run"], result.summary["final_volume_ratio"])
+        obj["shellcontract_final_volume_ratio"] = result.summary["final_volume_ratio"]
+        obj["shellcontract_regions"] = result.summary["regions"]
+        level = {"INFO"} if result.status == "ok" else {"WARNING"}
+        self.report(level, "ShellContract: " + s.status +
+                    ("" if result.status == "ok" else " ({})".format(result.summary["failure"])))
+        return {"FINISHED"}
+
+    def execute(self, context):
+        # Scripts and background mode (blender -b): the whole run, then the shape keys.
+        try:
+            obj, job = self._prepare(context)
+        except (runner.AddonError, ValueError, TypeError) as e:
+            self.report({"ERROR"}, "ShellContract: {}".format(e))
+            return {"CANCELLED"}
+        obj.shellcontract.running = True
+        job.run()
+        return self._finish(context, obj, job)
+
+    def invoke(self, context, event):
+        if bpy.app.background:
+            return self.execute(context)
+        try:
+            obj, job = self._prepare(context)
+        except (runner.AddonError, ValueError, TypeError) as e:
+            self.report({"ERROR"}, "ShellContract: {}".format(e))
+            return {"CANCELLED"}
+        self._obj_name = obj.name
+        self._job = job
+        obj.shellcontract.running = True
+        obj.shellcontract.progress = 0
+        job.start()
+        wm = context.window_manager
+        wm.progress_begin(0, obj.shellcontract.frames)
+        self._timer = wm.event_timer_add(0.1, window=context.window)
+        wm.modal_handler_add(self)
+        return {"RUNNING_MODAL"}
+
+    def modal(self, context, event):
+        obj = bpy.data.objects.get(self._obj_name)
+        job = self._job
+        if event.type in {"ESC"} and event.value == "PRESS":
+            job.cancel()
+        if event.type != "TIMER":
+            return {"PASS_THROUGH"}
+        wm = context.window_manager
+        wm.progress_update(job.progress)
+        frames = obj.shellcontract.frames if obj else 0
+        context.workspace.status_text_set(
+            "ShellContract: frame {} of {} (Esc cancels)".format(job.progress, frames))
+        if obj is not None:
+            obj.shellcontract.progress = job.progress
+        for area in context.screen.areas:
+            if area.type == "VIEW_3D":
+                area.tag_redraw()
+        if not job.done():
+            return {"RUNNING_MODAL"}
+        wm.event_timer_remove(self._timer)
+        wm.progress_end()
+        context.workspace.status_text_set(None)
+        if obj is None:  # deleted during the run
+            return {"CANCELLED"}
+        return self._finish(context, obj, job)

@@ -1,0 +1,169 @@
+"""The add-on's acceptance inside Blender (issue 56, point 4), run by run_addon_test.py as
+    blender -b --factory-startup --python-exit-code 1 --python addon_in_blender.py -- ARGS
+ARGS: --addon-dir DIR (the folder holding shellcontract_blender), --glb FILE (a CLI --gltf result
+to import). The shellcontract module comes from SHELLCONTRACT_PYTHONPATH (the add-on's own
+lookup). Any failed check raises, and Blender exits with 1.
+
+Checks: the add-on enables from the source tree; on a UV sphere with a UV map and a vertex group,
+bpy.ops.object.shellcontract_contract() at target 0.6 runs to the end in background mode and
+leaves shape keys and timeline keys; the last key's V/V0, measured with bmesh (not the module's
+number), is within 0.005 of 0.6; the UVs are unchanged; the project's own check
+(shellcontract.check) finds no self-intersecting pair that the input lacks; a keyframed target
+(1 -> 0.6 -> 0.9) becomes a schedule the last key of which is 0.9; a missing vertex group is
+refused; and the CLI's .glb imports (the numpy.bool shim)."""
+
+import argparse
+import sys
+
+import addon_utils
+import bmesh
+import bpy
+import numpy as np
+
+
+def args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser()
+    p.add_argument("--addon-dir", required=True)
+    p.add_argument("--glb", default="")
+    return p.parse_args(argv)
+
+
+def check(condition, message):
+    if not condition:
+        raise AssertionError(message)
+    print("ok:", message)
+
+
+def volume_of(obj, co):
+    """|V| of the object's mesh with vertex positions `co` (N by 3), by bmesh."""
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bm.verts.ensure_lookup_table()
+    for v in bm.verts:
+        v.co = co[v.index]
+    vol = abs(bm.calc_volume(signed=True))
+    bm.free()
+    return vol
+
+
+def key_positions(kb):
+    co = np.empty(len(kb.data) * 3)
+    kb.data.foreach_get("co", co)
+    return co.reshape(-1, 3)
+
+
+def triangles(obj):
+    mesh = obj.data
+    mesh.calc_loop_triangles()
+    f = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int64)
+    mesh.loop_triangles.foreach_get("vertices", f)
+    return f.reshape(-1, 3)
+
+
+def uv_sphere():
+    bpy.ops.object.select_all(action="SELECT")
+    bpy.ops.object.delete()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=24, ring_count=12, radius=1.0,
+                                         calc_uvs=True)
+    obj = bpy.context.active_object
+    group = obj.vertex_groups.new(name="spot")
+    # A patch around the +x equator point, weights falling off from 1 to 0.
+    for v in obj.data.vertices:
+        w = max(0.0, (v.co.x - 0.75) / 0.25)
+        if w > 0.0:
+            group.add([v.index], min(w, 1.0), "REPLACE")
+    return obj
+
+
+def main():
+    a = args()
+    sys.path.insert(0, a.addon_dir)
+    mod = addon_utils.enable("shellcontract_blender", default_set=True, handle_error=None)
+    check(mod is not None and hasattr(bpy.types.Object, "shellcontract"),
+          "the add-on enables from the source tree")
+    from shellcontract_blender import runner
+    shellcontract = runner.import_shellcontract()  # the add-on's own lookup
+
+    obj = uv_sphere()
+    check(len(obj.data.uv_layers) == 1, "the sphere has a UV map")
+    uv_before = np.empty(len(obj.data.uv_layers[0].data) * 2)
+    obj.data.uv_layers[0].data.foreach_get("uv", uv_before)
+    rest = np.empty(len(obj.data.vertices) * 3)
+    obj.data.vertices.foreach_get("co", rest)
+    rest = rest.reshape(-1, 3)
+    faces = triangles(obj)
+    before_pairs = {tuple(p) for p in shellcontract.check(rest, faces)["self_intersections"]}
+
+    s = obj.shellcontract
+    s.target_volume = 0.6
+    s.frames = 120
+    s.region_group = "spot"
+    result = bpy.ops.object.shellcontract_contract()
+    check(result == {"FINISHED"}, "the operator runs to the end in background mode: " + s.status)
+    check(obj["shellcontract_regions"] == 1, "the vertex group's weights made one region")
+
+    keys = obj.data.shape_keys
+    check(keys is not None and len(keys.key_blocks) > 10, "shape keys were written ({})".format(
+        len(keys.key_blocks) if keys else 0))
+    fcurves = keys.animation_data.action.fcurves if keys.animation_data else []
+    check(len(fcurves) == len(keys.key_blocks) - 1 and all(len(fc.keyframe_points) >= 2
+                                                             for fc in fcurves),
+          "every result key has timeline keys")
+    last = keys.key_blocks[-1]
+    # The timeline's last frame shows the last key alone.
+    bpy.context.scene.frame_set(bpy.context.scene.frame_start + s.frames)
+    check(abs(last.value - 1.0) < 1e-9 and all(abs(kb.value) < 1e-9 for kb in keys.key_blocks[1:-1]),
+          "at the last frame only the last key is on")
+    ratio = volume_of(obj, key_positions(last)) / volume_of(obj, rest)
+    check(abs(ratio - 0.6) <= 0.005, "the last key's V/V0 (bmesh) {:.4f} is within 0.005 of 0.6"
+          .format(ratio))
+    uv_after = np.empty(len(obj.data.uv_layers[0].data) * 2)
+    obj.data.uv_layers[0].data.foreach_get("uv", uv_after)
+    check(np.array_equal(uv_before, uv_after), "the UVs are unchanged")
+    after_pairs = {tuple(p) for p in shellcontract.check(key_positions(last), faces)
+                   ["self_intersections"]}
+    check(not (after_pairs - before_pairs), "no new self-intersecting pair ({} new)".format(
+        len(after_pairs - before_pairs)))
+
+    # A keyframed target: 1 at the start, 0.6 at frame +40, 0.9 at frame +80.
+    obj2 = uv_sphere()
+    start = bpy.context.scene.frame_start
+    for frame, value in ((start, 1.0), (start + 40, 0.6), (start + 80, 0.9)):
+        obj2.shellcontract.target_volume = value
+        obj2.keyframe_insert('shellcontract.target_volume', frame=frame)
+    obj2.shellcontract.frames = 100
+    obj2.shellcontract.region_group = ""
+    check(bpy.ops.object.shellcontract_contract() == {"FINISHED"},
+          "a keyframed target runs: " + obj2.shellcontract.status)
+    rest2 = np.empty(len(obj2.data.vertices) * 3)
+    obj2.data.vertices.foreach_get("co", rest2)
+    kb = obj2.data.shape_keys.key_blocks
+    by_frame = {int(k.name.split()[-1]): k for k in kb[1:]}
+    v0 = volume_of(obj2, rest2.reshape(-1, 3))
+    for frame, value in ((40, 0.6), (100, 0.9)):
+        r = volume_of(obj2, key_positions(by_frame[frame])) / v0
+        check(abs(r - value) <= 0.005, "keyed target: V/V0 {:.4f} at frame {} (key {})".format(
+            r, frame, value))
+
+    # An error report of an operator called from a script is a RuntimeError with its text.
+    obj2.shellcontract.region_group = "no such group"
+    keys_before = len(obj2.data.shape_keys.key_blocks)
+    try:
+        bpy.ops.object.shellcontract_contract()
+        refused = ""
+    except RuntimeError as e:
+        refused = str(e)
+    check("no such group" in refused and "vertex group" in refused
+          and len(obj2.data.shape_keys.key_blocks) == keys_before,
+          "a missing vertex group is refused, naming it, and nothing changes")
+
+    if a.glb:
+        bpy.ops.import_scene.gltf(filepath=a.glb)
+        imported = [o for o in bpy.context.selected_objects if o.type == "MESH"]
+        check(imported and imported[0].data.shape_keys is not None,
+              "the CLI's .glb imports with its morph targets as shape keys")
+
+
+main()
+print("ALL ADD-ON CHECKS PASSED")

@@ -1,0 +1,76 @@
+#!/usr/bin/env python3
+"""Runs the add-on's acceptance in Debian's Blender (ctest label "blender"):
+
+    run_addon_test.py --cli BUILD/shellcontract --pythonpath BUILD/python
+
+Without a `blender` executable the test is skipped (exit code 77, ctest's SKIP_RETURN_CODE) with
+a message, except under CI=true, where a missing Blender is a failure: the CI image installs it
+(scripts/install_deps.sh)."""
+
+import argparse
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SKIP = 77
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--cli", required=True, help="the shellcontract executable")
+    p.add_argument("--pythonpath", required=True, help="the folder with the shellcontract module")
+    p.add_argument("--blender", default=shutil.which("blender") or "")
+    a = p.parse_args()
+    if not a.blender:
+        if os.environ.get("CI") == "true":
+            print("FAIL: blender is not installed (CI=true; scripts/install_deps.sh installs it)")
+            return 1
+        print("SKIP: blender is not installed (apt-get install blender); the add-on is not tested")
+        return SKIP
+    with tempfile.TemporaryDirectory() as tmp:
+        # A small .glb from the CLI, for the importer check.
+        glb = os.path.join(tmp, "ico.glb")
+        mesh = os.path.join(os.path.dirname(os.path.dirname(HERE)), "meshes", "ico2.off")
+        subprocess.run([a.cli, "run", mesh, "-o", os.path.join(tmp, "ico.off"), "-n", "10",
+                        "--gltf", glb, "-q"], check=True)
+        env = dict(os.environ, SHELLCONTRACT_PYTHONPATH=os.path.abspath(a.pythonpath))
+        cmd = [a.blender, "-b", "--factory-startup", "--python-exit-code", "1",
+               "--python", os.path.join(HERE, "addon_in_blender.py"), "--",
+               "--addon-dir", os.path.dirname(HERE), "--glb", glb]
+        done = subprocess.run(cmd, env=env, cwd=tmp, stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, text=True)
+        print(done.stdout)
+        # The zip installs and enables as a user would (Preferences > Add-ons > Install), into a
+        # user scripts folder of its own.
+        sys.path.insert(0, os.path.dirname(HERE))
+        import make_zip
+        zip_path = make_zip.make_zip(os.path.join(tmp, "shellcontract_blender.zip"))
+        install = ("import addon_utils, bpy; "
+                   "bpy.ops.preferences.addon_install(filepath={!r}); "
+                   "m = addon_utils.enable('shellcontract_blender', default_set=True, "
+                   "handle_error=None); "
+                   "assert m is not None and m.__file__.startswith({!r}), m; "
+                   "assert hasattr(bpy.types.Object, 'shellcontract'); "
+                   "print('ZIP INSTALLED', m.__file__)").format(zip_path, tmp)
+        zipped = subprocess.run(
+            [a.blender, "-b", "--factory-startup", "--python-exit-code", "1",
+             "--python-expr", install],
+            env=dict(env, BLENDER_USER_SCRIPTS=os.path.join(tmp, "user_scripts")), cwd=tmp,
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        print(zipped.stdout)
+        if zipped.returncode != 0 or "ZIP INSTALLED" not in zipped.stdout:
+            print("FAIL: the zip did not install and enable")
+            return 1
+        # The script's last line is printed only when every check passed: a script that stopped
+        # early without a non-zero exit (Blender's handling of some errors) still fails.
+        if done.returncode != 0 or "ALL ADD-ON CHECKS PASSED" not in done.stdout:
+            print("FAIL: blender exited with", done.returncode)
+            return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,125 @@
+#include "shellcontract/sim/region_weights.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+
+namespace shellcontract {
+
+namespace {
+
+[[noreturn]] void line_error(const std::string& path, std::size_t line, const std::string& what) {
+  throw InputError(path + ":" + std::to_string(line) + ": " + what);
+}
+
+bool valid_weight(double w) { return std::isfinite(w) && w >= 0.0 && w <= 1.0; }
+
+}  // namespace
+
+std::vector<double> read_vertex_weights(const std::string& path, std::size_t num_vertices) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the weight file");
+  std::vector<double> weights;
+  weights.reserve(num_vertices);
+  std::string text;
+  std::size_t line = 0, last_line = 0;
+  while (std::getline(in, text)) {
+    ++line;
+    std::istringstream tokens(text);
+    std::string token, extra;
+    if (!(tokens >> token) || token[0] == '#') continue;
+    if (tokens >> extra)
+      line_error(path, line, "'" + extra + "' after the weight: one weight per line (vertex " +
+                                 std::to_string(weights.size()) + ")");
+    const char* b = token.c_str();
+    char* e = nullptr;
+    const double w = std::strtod(b, &e);
+    if (e != b + token.size() || !std::isfinite(w))
+      line_error(path, line, "'" + token + "' is not a weight (a number in [0, 1])");
+    if (!valid_weight(w))
+      line_error(path, line, "weight " + token + " of vertex " + std::to_string(weights.size()) +
+                                 " is outside [0, 1]");
+    if (weights.size() == num_vertices)
+      line_error(path, line, "more weights than the mesh's " + std::to_string(num_vertices) +
+                                 " vertices (one weight per vertex, in the mesh's vertex order)");
+    weights.push_back(w);
+    last_line = line;
+  }
+  if (in.bad()) throw InputError(path + ": read error after line " + std::to_string(line));
+  if (weights.size() != num_vertices)
+    throw InputError(path + ": " + std::to_string(weights.size()) + " weights for " +
+                     std::to_string(num_vertices) + " vertices (the last weight is on line " +
+                     std::to_string(last_line) +
+                     "); one weight per vertex, in the mesh's vertex order");
+  return weights;
+}
+
+void check_vertex_weights(const std::vector<double>& weights, std::size_t num_vertices,
+                          const std::string& what) {
+  if (weights.size() != num_vertices)
+    throw UsageError(what + ": " + std::to_string(weights.size()) + " weights for " +
+                     std::to_string(num_vertices) + " vertices (one per vertex, in vertex order)");
+  for (std::size_t i = 0; i < weights.size(); ++i)
+    if (!valid_weight(weights[i])) {
+      std::ostringstream w;
+      w << weights[i];
+      throw UsageError(what + "[" + std::to_string(i) + "] = " + w.str() + " is outside [0, 1]");
+    }
+}
+
+std::vector<double> face_weights(const Mesh& mesh, const std::vector<double>& vertex_weights) {
+  std::vector<double> out(mesh.number_of_faces(), 0.0);
+  for (FaceIndex f : mesh.faces()) {
+    double sum = 0.0;
+    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      sum += vertex_weights[v.idx()];
+    out[f.idx()] = sum / 3.0;
+  }
+  return out;
+}
+
+std::size_t mark_weighted_regions(Mesh& mesh, const std::vector<double>& vertex_weights) {
+  const std::vector<double> weight = face_weights(mesh, vertex_weights);
+  // Edge-connected components of the weighted faces, grown from the lowest face id, so that the
+  // ids follow the face order.
+  std::vector<int> region(mesh.number_of_faces(), -1);
+  int count = 0;
+  std::vector<FaceIndex> stack;
+  for (FaceIndex seed : mesh.faces()) {
+    if (!(weight[seed.idx()] > 0.0) || region[seed.idx()] >= 0) continue;
+    region[seed.idx()] = count;
+    stack.assign(1, seed);
+    while (!stack.empty()) {
+      const FaceIndex f = stack.back();
+      stack.pop_back();
+      for (HalfedgeIndex h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
+        const FaceIndex g = mesh.face(mesh.opposite(h));
+        if (g == Mesh::null_face() || !(weight[g.idx()] > 0.0) || region[g.idx()] >= 0) continue;
+        region[g.idx()] = count;
+        stack.push_back(g);
+      }
+    }
+    ++count;
+  }
+  store_regions(mesh, region);
+  auto [map, created] = mesh.add_property_map<FaceIndex, double>(REGION_WEIGHT_MAP, 0.0);
+  (void)created;  // a map from an earlier marking is overwritten
+  for (FaceIndex f : mesh.faces()) map[f] = weight[f.idx()];
+  return static_cast<std::size_t>(count);
+}
+
+std::vector<double> stored_region_weights(const Mesh& mesh) {
+  const auto [map, found] = mesh.property_map<FaceIndex, double>(REGION_WEIGHT_MAP);
+  if (!found) return {};
+  std::vector<double> out(mesh.number_of_faces());
+  for (FaceIndex f : mesh.faces()) out[f.idx()] = map[f];
+  return out;
+}
+
+}  // namespace shellcontract

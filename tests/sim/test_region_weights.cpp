@@ -1,0 +1,122 @@
+// Regions and strength from per-vertex weights (sim/region_weights.hpp): the file's messages
+// name the line, the weighted faces' components are the regions, and the weighted force is the
+// unweighted one scaled face by face.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/local_contraction.hpp"
+#include "shellcontract/sim/region_weights.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+std::string write_file(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string read_error(const std::string& text, std::size_t vertices) {
+  const std::string path = write_file("weights.txt", text);
+  try {
+    read_vertex_weights(path, vertices);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(RegionWeights, ReadsOneWeightPerLineSkippingCommentsAndBlanks) {
+  const std::string path = write_file("good.txt", "# weights\n0\n\n0.25\n  1 \n");
+  EXPECT_EQ(read_vertex_weights(path, 3), (std::vector<double>{0.0, 0.25, 1.0}));
+}
+
+TEST(RegionWeights, BadFilesAreRefusedNamingTheLine) {
+  EXPECT_NE(read_error("0\n0.5\nx\n", 3).find(":3: 'x' is not a weight"), std::string::npos);
+  EXPECT_NE(read_error("0\n1.5\n0\n", 3).find(":2: weight 1.5 of vertex 1 is outside [0, 1]"),
+            std::string::npos);
+  EXPECT_NE(read_error("0\n-0.1\n0\n", 3).find(":2:"), std::string::npos);
+  EXPECT_NE(read_error("0\nnan\n0\n", 3).find(":2:"), std::string::npos);
+  EXPECT_NE(read_error("0\n0 1\n0\n", 3).find(":2: '1' after the weight"), std::string::npos);
+  EXPECT_NE(read_error("0\n0\n0\n# more\n1\n", 3).find(":5: more weights than the mesh's 3"),
+            std::string::npos);
+  EXPECT_NE(read_error("0\n0\n", 3).find("2 weights for 3 vertices (the last weight is on line 2)"),
+            std::string::npos);
+  EXPECT_NE(read_error("", 3).find("0 weights for 3 vertices"), std::string::npos);
+  EXPECT_THROW(read_vertex_weights(::testing::TempDir() + "no/such/file", 3), InputError);
+  EXPECT_THROW(check_vertex_weights({0.0, 2.0}, 2, "w"), UsageError);
+  EXPECT_THROW(check_vertex_weights({0.0}, 2, "w"), UsageError);
+}
+
+TEST(RegionWeights, WeightedFacesMakeOneRegionPerComponent) {
+  Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off");
+  const Positions x = positions_from_mesh(mesh);
+  // Two caps at opposite ends of the x axis: two regions; everything else weight 0.
+  std::vector<double> w(mesh.number_of_vertices(), 0.0);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (std::abs(x(i, 0)) > 0.8 * x.col(0).cwiseAbs().maxCoeff()) w[static_cast<std::size_t>(i)] = 0.6;
+  EXPECT_EQ(mark_weighted_regions(mesh, w), 2u);
+  const std::vector<int> region = stored_regions(mesh);
+  const std::vector<double> face_weight = stored_region_weights(mesh);
+  const std::vector<double> expected = face_weights(mesh, w);
+  ASSERT_EQ(face_weight.size(), mesh.number_of_faces());
+  for (FaceIndex f : mesh.faces()) {
+    double mean = 0.0;
+    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) mean += w[v.idx()] / 3;
+    EXPECT_NEAR(face_weight[f.idx()], mean, 1e-15);
+    EXPECT_EQ(face_weight[f.idx()], expected[f.idx()]);
+    // Weight 0 is outside; every weighted face is in a region.
+    EXPECT_EQ(region[f.idx()] >= 0, mean > 0.0) << f.idx();
+  }
+  // The two caps lie on opposite sides: no face of region 0 has x of the other sign than another.
+  std::vector<int> sign(2, 0);
+  for (FaceIndex f : mesh.faces()) {
+    if (region[f.idx()] < 0) continue;
+    const int s = x(mesh.target(mesh.halfedge(f)).idx(), 0) > 0 ? 1 : -1;
+    int& seen = sign[static_cast<std::size_t>(region[f.idx()])];
+    if (seen == 0) seen = s;
+    EXPECT_EQ(seen, s);
+  }
+  EXPECT_NE(sign[0], sign[1]);
+}
+
+TEST(RegionWeights, WeightedForceIsTheUnweightedOneScaledByFace) {
+  Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off");
+  const Positions x = positions_from_mesh(mesh);
+  Faces faces(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
+  for (FaceIndex f : mesh.faces()) {
+    int k = 0;
+    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+      faces(f.idx(), k++) = static_cast<int>(v.idx());
+  }
+  const Faces region = faces.topRows(30);
+  const Eigen::VectorXd inv_mass = Eigen::VectorXd::Ones(x.rows());
+  Positions plain, ones, twice, zero;
+  local_contraction_forces(x, region, 3.0, inv_mass, plain);
+  local_contraction_forces(x, region, 3.0, Eigen::VectorXd::Ones(30), inv_mass, ones);
+  local_contraction_forces(x, region, 1.5, Eigen::VectorXd::Constant(30, 2.0), inv_mass, twice);
+  local_contraction_forces(x, region, 3.0, Eigen::VectorXd::Zero(30), inv_mass, zero);
+  EXPECT_LE((plain - ones).cwiseAbs().maxCoeff(), 1e-12 * plain.cwiseAbs().maxCoeff());
+  EXPECT_LE((plain - twice).cwiseAbs().maxCoeff(), 1e-12 * plain.cwiseAbs().maxCoeff());
+  EXPECT_EQ(zero.cwiseAbs().maxCoeff(), 0.0);
+  // Half the faces at weight 0.5: no net force (the rigid-body part removed) and a field that
+  // differs from the uniform one.
+  Eigen::VectorXd mixed = Eigen::VectorXd::Ones(30);
+  mixed.head(15).setConstant(0.5);
+  Positions f;
+  local_contraction_forces(x, region, 3.0, mixed, inv_mass, f);
+  EXPECT_LE(f.colwise().sum().norm(), 1e-12 * f.cwiseAbs().maxCoeff());
+  EXPECT_GT((f - plain).cwiseAbs().maxCoeff(), 1e-3 * plain.cwiseAbs().maxCoeff());
+}
+
+}  // namespace
+}  // namespace shellcontract
