@@ -180,6 +180,56 @@ SC_AVX2_INLINE void scatter3(double* x, const int* v, const V3& a) {
   _mm_storeh_pd(p3 + 2, z23);
 }
 
+/// atan2(y, x) on four lanes, within a few ulp of std::atan2 (tests/pbd/test_lane_math.cpp), so
+/// that the dihedral kernel needs no libm call per lane. Branch-free: the quotient
+/// t = min(|x|, |y|) / max(|x|, |y|) in [0, 1] is reduced to |u| <= 0.66 by u = (t - 1) / (t + 1)
+/// above 0.66 (one division either way: the difference of the two magnitudes is exact there),
+/// atan(u) is Cephes' rational approximation (atan.c: P / Q of degrees 4 and 5 in u^2, accurate to
+/// about one ulp on |u| <= 0.66), and the octant is put back as
+/// |atan2| = k pi/4 + sgn atan(u), k in 0..4 and sgn = +-1 from the swap, the sign of x and the
+/// reduction, with k pi/4 as a double plus its rounding error, so that the sum rounds once.
+/// Signed zeros as std::atan2: atan2(+-0, -0) = +-pi, atan2(+-0, +0) = +-0. NaN in, NaN out.
+SC_AVX2_INLINE V atan2_lanes(V y, V x) {
+  const V sign_bit = _mm256_set1_pd(-0.0);
+  const V zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1.0), two = _mm256_set1_pd(2.0);
+  const V ax = _mm256_andnot_pd(sign_bit, x), ay = _mm256_andnot_pd(sign_bit, y);
+  const V swap = _mm256_cmp_pd(ay, ax, _CMP_GT_OQ);
+  const V num = _mm256_min_pd(ax, ay), den = _mm256_max_pd(ax, ay);
+  // num > 0.66 den: u = (num - den) / (num + den) and atan(t) = pi/4 + atan(u).
+  const V upper = _mm256_cmp_pd(num, _mm256_set1_pd(0.66) * den, _CMP_GT_OQ);
+  const V top = _mm256_blendv_pd(num, num - den, upper);
+  V bottom = _mm256_blendv_pd(den, num + den, upper);
+  // Both magnitudes zero: u = 0 (atan2(+-0, +-0) is then set by the signs below).
+  bottom = _mm256_blendv_pd(bottom, one, _mm256_cmp_pd(den, zero, _CMP_EQ_OQ));
+  const V u = top / bottom;
+  const V z = u * u;
+  V p = _mm256_set1_pd(-8.750608600031904122785e-1);
+  p = p * z + _mm256_set1_pd(-1.615753718733365076637e1);
+  p = p * z + _mm256_set1_pd(-7.500855792314704667340e1);
+  p = p * z + _mm256_set1_pd(-1.228866684490136173410e2);
+  p = p * z + _mm256_set1_pd(-6.485021904942025371773e1);
+  V q = z + _mm256_set1_pd(2.485846490142306297962e1);
+  q = q * z + _mm256_set1_pd(1.650270098316988542046e2);
+  q = q * z + _mm256_set1_pd(4.328810604912902668951e2);
+  q = q * z + _mm256_set1_pd(4.853903996359136964868e2);
+  q = q * z + _mm256_set1_pd(1.945506571482613964425e2);
+  const V a = u * z * (p / q) + u;  // atan(u)
+  // |atan2| = off + s atan(t) with off = 0, pi/2 or pi and s = -1 where exactly one of swap and
+  // x < 0 (or -0) holds; atan(t) = pi/4 + atan(u) on the upper lanes. So k = 2 off / (pi/2) + s
+  // upper.
+  const V negative_x = _mm256_blendv_pd(zero, _mm256_castsi256_pd(_mm256_set1_epi64x(-1)), x);
+  const V flip = _mm256_xor_pd(swap, negative_x);
+  const V off = _mm256_blendv_pd(_mm256_blendv_pd(zero, two + two, negative_x), two, swap);
+  const V k = off + _mm256_and_pd(upper, _mm256_blendv_pd(one, -one, flip));
+  // k pi/4 = hi + lo: hi rounded, lo its rounding error (exact by the FMA) plus k pi4_lo.
+  const V pio4_hi = _mm256_set1_pd(7.85398163397448278999e-1);
+  const V pio4_lo = _mm256_set1_pd(3.061616997868382943065e-17);
+  const V hi = k * pio4_hi;
+  const V lo = _mm256_fmsub_pd(k, pio4_hi, hi) + k * pio4_lo;
+  const V r = hi + (_mm256_xor_pd(a, _mm256_and_pd(flip, sign_bit)) + lo);
+  return _mm256_or_pd(r, _mm256_and_pd(sign_bit, y));  // r >= 0: the sign of y
+}
+
 #pragma GCC pop_options
 #endif  // SHELLCONTRACT_BATCH_AVX2
 
