@@ -56,6 +56,8 @@ void aniso_batches_scalar(const A& material, const AnisoBatch* batches, std::siz
 // Compiled for AVX2 + FMA like the lane code of batch_lanes.hpp (see there).
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"  // as in batch_lanes.hpp
 
 /// The fibre a of four lanes.
 struct LaneFiber {
@@ -195,6 +197,7 @@ void run_avx2(const ActiveFiber& m, const AnisoBatch* batches, std::size_t count
       batches, count, xw, ctx, lambda, paper);
 }
 
+#pragma GCC diagnostic pop
 #pragma GCC pop_options
 #endif  // SHELLCONTRACT_BATCH_AVX2
 

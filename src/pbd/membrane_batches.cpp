@@ -42,6 +42,8 @@ void membrane_batches_scalar(const M& material, const MembraneBatch* batches, st
 // Compiled for AVX2 + FMA like the lane code of batch_lanes.hpp (see there).
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"  // as in batch_lanes.hpp
 
 /// Linear::psi and pk1 (math-spec 6.3) with F(1, 0) = 0.
 struct LinearLanes {
@@ -164,6 +166,7 @@ void mooney_rivlin_avx2(const MooneyRivlin& m, const MembraneBatch* batches, std
                               xw, ctx, lambda);
 }
 
+#pragma GCC diagnostic pop
 #pragma GCC pop_options
 #define SC_AVX2_KERNEL(kernel) \
   if (isa == BatchIsa::Auto && batch_avx2_available()) return kernel(material, batches, count, xw, ctx, lambda)

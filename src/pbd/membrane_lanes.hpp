@@ -15,6 +15,8 @@ namespace batch_lanes {
 #if SHELLCONTRACT_BATCH_AVX2
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"  // as in batch_lanes.hpp
 
 SC_AVX2_INLINE V3 cross(const V3& a, const V3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
@@ -130,6 +132,7 @@ SC_AVX2_INLINE void membrane_step(PaddedVertex* xw, const int (&v)[3][BATCH_LANE
   scatter(xw, v[2], count, r3.x - masked(gp[2] * (sigma * w2), active), w2);
 }
 
+#pragma GCC diagnostic pop
 #pragma GCC pop_options
 #endif  // SHELLCONTRACT_BATCH_AVX2
 

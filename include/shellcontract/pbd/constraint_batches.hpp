@@ -88,6 +88,8 @@ struct alignas(32) DihedralBatch {
   double max_step[BATCH_LANES];    ///< clamp (math-spec 9.1d)
   int v[4][BATCH_LANES];
   int count;
+  int same_colour_next;  ///< 1 when batch + 1 is of the same colour (the AVX2 kernel then
+                         ///< projects the two together)
 };
 
 /// Four anisotropic (E_A) faces of one colour (math-spec 7, 9.3): MembraneBatch's rest data, the
