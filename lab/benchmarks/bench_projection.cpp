@@ -17,6 +17,7 @@
 #include <iostream>
 #include <random>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "shellcontract/material/stvk.hpp"
@@ -143,6 +144,43 @@ void BM_MembraneStvkPbdColouredOrder(benchmark::State& state) {
   state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();
 }
 
+/// The other membrane materials: per-constraint kernel in array order, and the batched path of
+/// the coloured order (range(0) as for BM_MembraneStvkPbdColouredOrder).
+template <class M>
+void membrane_pbd(benchmark::State& state) {
+  const auto& c = scene().membranes_and_isometric.membranes;
+  const M m(MaterialParams{});
+  run_sweeps(state, c.size(), [&](const ProjectionContext& ctx, PaddedVertex*) {
+    for (const MembraneConstraint& k : c) project_membrane(m, k, 1.0, ctx, nullptr);
+  });
+}
+
+template <class M>
+void membrane_coloured(benchmark::State& state) {
+  const ColouredBatches<MembraneBatch> b = coloured_membrane_batches();
+  const M m(MaterialParams{});
+  const BatchIsa isa = state.range(0) == 0 ? BatchIsa::Scalar : BatchIsa::Auto;
+  run_sweeps(state, scene().membranes_and_isometric.membranes.size(),
+             [&](const ProjectionContext& ctx, PaddedVertex* xw) {
+               if constexpr (std::is_same_v<M, Linear>)
+                 project_linear_membrane_batches(m, b.batches.data(), b.batches.size(), xw, ctx, nullptr, isa);
+               else if constexpr (std::is_same_v<M, Corotated>)
+                 project_corotated_membrane_batches(m, b.batches.data(), b.batches.size(), xw, ctx, nullptr, isa);
+               else
+                 project_mooney_rivlin_membrane_batches(m, b.batches.data(), b.batches.size(), xw, ctx, nullptr, isa);
+             });
+  state.counters["avx2"] = isa == BatchIsa::Auto && batch_avx2_available();
+}
+
+void BM_MembraneCorotatedPbd(benchmark::State& state) { membrane_pbd<Corotated>(state); }
+void BM_MembraneLinearPbd(benchmark::State& state) { membrane_pbd<Linear>(state); }
+void BM_MembraneMooneyRivlinPbd(benchmark::State& state) { membrane_pbd<MooneyRivlin>(state); }
+void BM_MembraneCorotatedPbdColouredOrder(benchmark::State& state) { membrane_coloured<Corotated>(state); }
+void BM_MembraneLinearPbdColouredOrder(benchmark::State& state) { membrane_coloured<Linear>(state); }
+void BM_MembraneMooneyRivlinPbdColouredOrder(benchmark::State& state) {
+  membrane_coloured<MooneyRivlin>(state);
+}
+
 void BM_IsometricBendingPbdColouredOrder(benchmark::State& state) {
   const ColouredBatches<IsometricBatch> b = coloured_isometric_batches();
   const BatchIsa isa = state.range(0) == 0 ? BatchIsa::Scalar : BatchIsa::Auto;
@@ -226,6 +264,13 @@ BENCHMARK(BM_DihedralBendingPbd)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_MembraneStvkPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_IsometricBendingPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_DihedralBendingPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")
+    ->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneCorotatedPbd)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneLinearPbd)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneMooneyRivlinPbd)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneCorotatedPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneLinearPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_MembraneMooneyRivlinPbdColouredOrder)->Arg(0)->Arg(1)->ArgName("batched")
     ->Unit(benchmark::kMicrosecond);
 // {order, threads}: Sequential (threads unused), Coloured on 1 and 2 threads.
 BENCHMARK(BM_MembraneStvkSolverSweep)->Args({0, 1})->Args({1, 1})->Args({1, 2})

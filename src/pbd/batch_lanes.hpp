@@ -47,8 +47,9 @@ ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
     for (std::size_t first = colour_offsets[c]; first < end; first += BATCH_LANES) {
       Batch b{};
       b.count = static_cast<int>(std::min<std::size_t>(BATCH_LANES, end - first));
-      // Only the membrane kernel pipelines its loads (loading early did not pay for hinges).
-      if constexpr (std::is_same_v<Batch, MembraneBatch>)
+      // The membrane kernel pipelines its loads, the dihedral one projects such pairs together
+      // (loading early did not pay for the isometric hinges).
+      if constexpr (std::is_same_v<Batch, MembraneBatch> || std::is_same_v<Batch, DihedralBatch>)
         b.same_colour_next = first + BATCH_LANES < end;
       for (int k = 0; k < BATCH_LANES; ++k) {
         const Record& r = records[first + (k < b.count ? k : 0)];
@@ -90,27 +91,63 @@ inline void project_lane(PaddedVertex* xw, const int (&v)[N][BATCH_LANES], int k
 // that calls these opens the same target region around its kernels.
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
+// L3<V> and the lane-generic templates take __m256d as a template argument, whose alignment
+// attribute GCC says it ignores there (it keeps the type's own alignment: harmless).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"
 
 using V = __m256d;
 
 #define SC_AVX2_INLINE inline __attribute__((always_inline))
 
-/// Four lanes of a 3-vector: x, y and z of lanes 0..3.
-struct V3 {
-  V x, y, z;
+/// A 3-vector of lane vectors T (T = V: four lanes; the dihedral kernel also uses a pair of V).
+template <class T>
+struct L3 {
+  T x, y, z;
 };
+/// Four lanes of a 3-vector: x, y and z of lanes 0..3.
+using V3 = L3<V>;
 
 SC_AVX2_INLINE V splat(double a) { return _mm256_set1_pd(a); }
-SC_AVX2_INLINE V3 operator-(const V3& a, const V3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-SC_AVX2_INLINE V3 operator*(const V3& a, V s) { return {a.x * s, a.y * s, a.z * s}; }
-SC_AVX2_INLINE V3 operator+(const V3& a, const V3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-SC_AVX2_INLINE V dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+template <class T>
+SC_AVX2_INLINE L3<T> operator-(const L3<T>& a, const L3<T>& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+template <class T>
+SC_AVX2_INLINE L3<T> operator*(const L3<T>& a, T s) { return {a.x * s, a.y * s, a.z * s}; }
+template <class T>
+SC_AVX2_INLINE L3<T> operator+(const L3<T>& a, const L3<T>& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+template <class T>
+SC_AVX2_INLINE T dot(const L3<T>& a, const L3<T>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 /// a where mask is set, else +0 (so that x - masked(d) == x exactly even when d is inf or NaN).
 SC_AVX2_INLINE V3 masked(const V3& a, V mask) {
   return {_mm256_and_pd(a.x, mask), _mm256_and_pd(a.y, mask), _mm256_and_pd(a.z, mask)};
 }
 /// Ordered a > b: false on NaN, like the scalar kernels' !(a > b) guards.
 SC_AVX2_INLINE V greater(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
+
+// The operations the lane-generic code (atan2_lanes, the dihedral kernel) uses besides the
+// arithmetic operators, for T = V; dihedral_batches.cpp adds them for a pair of V.
+template <class T>
+SC_AVX2_INLINE T lanes_splat(double a);
+template <>
+SC_AVX2_INLINE V lanes_splat<V>(double a) { return _mm256_set1_pd(a); }
+SC_AVX2_INLINE V vand(V a, V b) { return _mm256_and_pd(a, b); }
+SC_AVX2_INLINE V vandnot(V a, V b) { return _mm256_andnot_pd(a, b); }
+SC_AVX2_INLINE V vor(V a, V b) { return _mm256_or_pd(a, b); }
+SC_AVX2_INLINE V vxor(V a, V b) { return _mm256_xor_pd(a, b); }
+SC_AVX2_INLINE V vmin(V a, V b) { return _mm256_min_pd(a, b); }
+SC_AVX2_INLINE V vmax(V a, V b) { return _mm256_max_pd(a, b); }
+SC_AVX2_INLINE V vsqrt(V a) { return _mm256_sqrt_pd(a); }
+/// b where the sign bit of mask is set, else a (_mm256_blendv_pd).
+SC_AVX2_INLINE V blend(V a, V b, V mask) { return _mm256_blendv_pd(a, b, mask); }
+SC_AVX2_INLINE V cmp_gt(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
+SC_AVX2_INLINE V cmp_ge(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_GE_OQ); }
+SC_AVX2_INLINE V cmp_le(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
+SC_AVX2_INLINE V cmp_eq(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_EQ_OQ); }
+SC_AVX2_INLINE V cmp_neq_uq(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_NEQ_UQ); }
+/// a b - c with one rounding.
+SC_AVX2_INLINE V fmsub(V a, V b, V c) { return _mm256_fmsub_pd(a, b, c); }
+/// One bit per lane (the lane's sign bit).
+SC_AVX2_INLINE int lane_bits(V a) { return _mm256_movemask_pd(a); }
 
 /// Four lanes of a padded vertex: the position and the inverse mass w.
 struct V4 {
@@ -180,6 +217,57 @@ SC_AVX2_INLINE void scatter3(double* x, const int* v, const V3& a) {
   _mm_storeh_pd(p3 + 2, z23);
 }
 
+/// atan2(y, x) on four lanes, within a few ulp of std::atan2 (tests/pbd/test_lane_math.cpp), so
+/// that the dihedral kernel needs no libm call per lane. Branch-free: the quotient
+/// t = min(|x|, |y|) / max(|x|, |y|) in [0, 1] is reduced to |u| <= 0.66 by u = (t - 1) / (t + 1)
+/// above 0.66 (one division either way: the difference of the two magnitudes is exact there),
+/// atan(u) is Cephes' rational approximation (atan.c: P / Q of degrees 4 and 5 in u^2, accurate to
+/// about one ulp on |u| <= 0.66), and the octant is put back as
+/// |atan2| = k pi/4 + sgn atan(u), k in 0..4 and sgn = +-1 from the swap, the sign of x and the
+/// reduction, with k pi/4 as a double plus its rounding error, so that the sum rounds once.
+/// Signed zeros as std::atan2: atan2(+-0, -0) = +-pi, atan2(+-0, +0) = +-0. NaN in, NaN out.
+template <class T>
+SC_AVX2_INLINE T atan2_lanes(T y, T x) {
+  const T sign_bit = lanes_splat<T>(-0.0);
+  const T zero = lanes_splat<T>(0.0), one = lanes_splat<T>(1.0), two = lanes_splat<T>(2.0);
+  const T ax = vandnot(sign_bit, x), ay = vandnot(sign_bit, y);
+  const T swap = cmp_gt(ay, ax);
+  const T num = vmin(ax, ay), den = vmax(ax, ay);
+  // num > 0.66 den: u = (num - den) / (num + den) and atan(t) = pi/4 + atan(u).
+  const T upper = cmp_gt(num, lanes_splat<T>(0.66) * den);
+  const T top = blend(num, num - den, upper);
+  // Both magnitudes zero: u = 0 (atan2(+-0, +-0) is then set by the signs below).
+  const T bottom = blend(blend(den, num + den, upper), one, cmp_eq(den, zero));
+  const T u = top / bottom;
+  const T z = u * u;
+  T p = lanes_splat<T>(-8.750608600031904122785e-1);
+  p = p * z + lanes_splat<T>(-1.615753718733365076637e1);
+  p = p * z + lanes_splat<T>(-7.500855792314704667340e1);
+  p = p * z + lanes_splat<T>(-1.228866684490136173410e2);
+  p = p * z + lanes_splat<T>(-6.485021904942025371773e1);
+  T q = z + lanes_splat<T>(2.485846490142306297962e1);
+  q = q * z + lanes_splat<T>(1.650270098316988542046e2);
+  q = q * z + lanes_splat<T>(4.328810604912902668951e2);
+  q = q * z + lanes_splat<T>(4.853903996359136964868e2);
+  q = q * z + lanes_splat<T>(1.945506571482613964425e2);
+  const T a = u * z * (p / q) + u;  // atan(u)
+  // |atan2| = off + s atan(t) with off = 0, pi/2 or pi and s = -1 where exactly one of swap and
+  // x < 0 (or -0) holds; atan(t) = pi/4 + atan(u) on the upper lanes. So k = 2 off / (pi/2) + s
+  // upper.
+  const T negative_x = blend(zero, cmp_eq(zero, zero), x);  // all ones where x's sign bit is set
+  const T flip = vxor(swap, negative_x);
+  const T off = blend(blend(zero, two + two, negative_x), two, swap);
+  const T k = off + vand(upper, blend(one, zero - one, flip));
+  // k pi/4 = hi + lo: hi rounded, lo its rounding error (exact by the FMA) plus k pi4_lo.
+  const T pio4_hi = lanes_splat<T>(7.85398163397448278999e-1);
+  const T pio4_lo = lanes_splat<T>(3.061616997868382943065e-17);
+  const T hi = k * pio4_hi;
+  const T lo = fmsub(k, pio4_hi, hi) + k * pio4_lo;
+  const T r = hi + (vxor(a, vand(flip, sign_bit)) + lo);
+  return vor(r, vand(sign_bit, y));  // r >= 0: the sign of y
+}
+
+#pragma GCC diagnostic pop
 #pragma GCC pop_options
 #endif  // SHELLCONTRACT_BATCH_AVX2
 

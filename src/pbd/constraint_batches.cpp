@@ -54,6 +54,8 @@ void isometric_batches_scalar(const IsometricBatch* batches, std::size_t count, 
 // Compiled for AVX2 + FMA like the lane code of batch_lanes.hpp (see there).
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"  // as in batch_lanes.hpp
 
 /// Lane k reads row k of a 4 by 3 block (the XPBD hinge multipliers of one batch).
 constexpr int LANE_IDS[BATCH_LANES] = {0, 1, 2, 3};
@@ -182,6 +184,7 @@ void isometric_batches_avx2(const IsometricBatch* batches, std::size_t count, do
   }
 }
 
+#pragma GCC diagnostic pop
 #pragma GCC pop_options
 #endif  // SHELLCONTRACT_BATCH_AVX2
 

@@ -2,6 +2,7 @@
 // a time, on the padded rows of the coloured order (constraint_batches.hpp).
 #include "shellcontract/pbd/constraint_batches.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -38,115 +39,206 @@ void dihedral_batches_scalar(const DihedralBatch* batches, std::size_t count, do
 // Compiled for AVX2 + FMA like the lane code of batch_lanes.hpp (see there).
 #pragma GCC push_options
 #pragma GCC target("avx2,fma")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"  // as in batch_lanes.hpp
 
-SC_AVX2_INLINE V3 cross(const V3& a, const V3& b) {
+}  // namespace
+
+namespace batch_lanes {
+/// Two batches' lanes side by side (eight hinges of one colour): every operation is two 256-bit
+/// instructions next to each other, so that the two batches' long dependency chains (the angle's
+/// two divisions and its polynomial) overlap instead of waiting in turn for the reorder window.
+struct W {
+  V a, b;
+};
+SC_AVX2_INLINE W operator+(W p, W q) { return {p.a + q.a, p.b + q.b}; }
+SC_AVX2_INLINE W operator-(W p, W q) { return {p.a - q.a, p.b - q.b}; }
+SC_AVX2_INLINE W operator*(W p, W q) { return {p.a * q.a, p.b * q.b}; }
+SC_AVX2_INLINE W operator/(W p, W q) { return {p.a / q.a, p.b / q.b}; }
+template <>
+SC_AVX2_INLINE W lanes_splat<W>(double x) { return {_mm256_set1_pd(x), _mm256_set1_pd(x)}; }
+#define SC_W2(name) \
+  SC_AVX2_INLINE W name(W p, W q) { return {name(p.a, q.a), name(p.b, q.b)}; }
+SC_W2(vand)
+SC_W2(vandnot)
+SC_W2(vor)
+SC_W2(vxor)
+SC_W2(vmin)
+SC_W2(vmax)
+SC_W2(cmp_gt)
+SC_W2(cmp_ge)
+SC_W2(cmp_le)
+SC_W2(cmp_eq)
+SC_W2(cmp_neq_uq)
+#undef SC_W2
+SC_AVX2_INLINE W vsqrt(W p) { return {vsqrt(p.a), vsqrt(p.b)}; }
+SC_AVX2_INLINE W blend(W p, W q, W m) { return {blend(p.a, q.a, m.a), blend(p.b, q.b, m.b)}; }
+SC_AVX2_INLINE W fmsub(W p, W q, W r) { return {fmsub(p.a, q.a, r.a), fmsub(p.b, q.b, r.b)}; }
+SC_AVX2_INLINE int lane_bits(W p) { return lane_bits(p.a) | lane_bits(p.b) << BATCH_LANES; }
+}  // namespace batch_lanes
+
+namespace {
+
+template <class T>
+SC_AVX2_INLINE L3<T> cross(const L3<T>& a, const L3<T>& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-SC_AVX2_INLINE V3 operator/(const V3& a, V s) { return {a.x / s, a.y / s, a.z / s}; }
 /// a where mask is set, else b.
-SC_AVX2_INLINE V3 select(V mask, const V3& a, const V3& b) {
-  return {_mm256_blendv_pd(b.x, a.x, mask), _mm256_blendv_pd(b.y, a.y, mask),
-          _mm256_blendv_pd(b.z, a.z, mask)};
+template <class T>
+SC_AVX2_INLINE L3<T> select(T mask, const L3<T>& a, const L3<T>& b) {
+  return {blend(b.x, a.x, mask), blend(b.y, a.y, mask), blend(b.z, a.z, mask)};
 }
-SC_AVX2_INLINE V both(V a, V b) { return _mm256_and_pd(a, b); }
 /// -a, the sign bit flipped (as the scalar unary minus).
-SC_AVX2_INLINE V neg(V a) { return _mm256_xor_pd(a, _mm256_set1_pd(-0.0)); }
-SC_AVX2_INLINE V3 neg(const V3& a) { return {neg(a.x), neg(a.y), neg(a.z)}; }
+template <class T>
+SC_AVX2_INLINE T neg(T a) { return vxor(a, lanes_splat<T>(-0.0)); }
+template <class T>
+SC_AVX2_INLINE L3<T> neg(const L3<T>& a) { return {neg(a.x), neg(a.y), neg(a.z)}; }
 
-/// project_dihedral_hinge and dihedral_angle_gradient (dihedral_bending.cpp), four lanes at a
-/// time; each line mirrors the scalar one, the angle itself from std::atan2 lane by lane.
+/// The two batches a kernel pass works on, their rest data and vertex rows as lanes of W. A
+/// batch without a partner goes through the same code with itself as the second, whose results
+/// are dropped: every batch is then computed by the same instructions whether it is paired or
+/// not (the two halves of W round alike, a lone V path might contract multiply-adds
+/// differently), so the result does not depend on where the threads' chunks cut a colour.
+struct TwoBatches {
+  const DihedralBatch* c0;
+  const DihedralBatch* c1;  ///< of c0's colour, or c0 itself when `second` is false
+  bool second;              ///< c1 is a batch of its own (store its results)
+  using T = W;
+  W load(const double (DihedralBatch::*f)[BATCH_LANES]) const {
+    return {_mm256_load_pd(c0->*f), _mm256_load_pd(c1->*f)};
+  }
+  void rows(const PaddedVertex* xw, int j, L3<W>& x, W& w) const {
+    const V4 r0 = gather(xw, c0->v[j]), r1 = gather(xw, c1->v[j]);
+    x = {{r0.x.x, r1.x.x}, {r0.x.y, r1.x.y}, {r0.x.z, r1.x.z}};
+    w = {r0.w, r1.w};
+  }
+  void store(PaddedVertex* xw, int j, const L3<W>& x, W w) const {
+    scatter(xw, c0->v[j], c0->count, V3{x.x.a, x.y.a, x.z.a}, w.a);
+    if (second) scatter(xw, c1->v[j], c1->count, V3{x.x.b, x.y.b, x.z.b}, w.b);
+  }
+  W load_lambda(const double* lam) const {
+    return {_mm256_loadu_pd(lam), _mm256_loadu_pd(second ? lam + BATCH_LANES : lam)};
+  }
+  void store_lambda(double* lam, W l) const {
+    _mm256_storeu_pd(lam, l.a);
+    if (second) _mm256_storeu_pd(lam + BATCH_LANES, l.b);
+  }
+};
+
+/// project_dihedral_hinge and dihedral_angle_gradient (dihedral_bending.cpp) on the lanes of two
+/// batches (see TwoBatches); each line mirrors the scalar one, except that the
+/// angle comes from atan2_lanes (a few ulp from std::atan2, which had been four libm calls per
+/// batch and most of its time) and that the divisions by |e|, |N_A|^2 and |N_B|^2 are
+/// multiplications by reciprocals taken from one division (eight divisions fewer). The results
+/// change by rounding only.
+/// @param lam  XPBD: the batches' multipliers (lambda + 4 b), else nullptr
+template <class Batches>
+SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_bending,
+                                   double alpha_tilde, double* lam) {
+  using T = typename Batches::T;
+  constexpr double PI = 3.14159265358979323846;
+  const T zero = lanes_splat<T>(0.0), one = lanes_splat<T>(1.0), two = lanes_splat<T>(2.0);
+  // Inactive hinges (kappa = 0) and padding lanes: no change.
+  const T kappa = c.load(&DihedralBatch::kappa);
+  const T live = cmp_gt(kappa, zero);
+  if (lane_bits(live) == 0) return;
+  L3<T> xs[4];
+  T ws[4];
+  for (int j = 0; j < 4; ++j) c.rows(xw, j, xs[j], ws[j]);
+  // The hinge (edge, unnormalized normals) and its collapse test, compared in squares.
+  const L3<T> e = xs[1] - xs[0];
+  const L3<T> NA = cross(e, xs[2] - xs[0]);
+  const L3<T> NB = cross(xs[0] - xs[1], xs[3] - xs[1]);
+  const T e_sq = dot(e, e), a_sq = dot(NA, NA), b_sq = dot(NB, NB);
+  const T floor_sq = lanes_splat<T>(1e-24) * e_sq * e_sq;
+  const T ok = vand(vand(live, cmp_gt(e_sq, zero)), vand(cmp_ge(a_sq, floor_sq), cmp_ge(b_sq, floor_sq)));
+  if (lane_bits(ok) == 0) return;
+  const T L = vsqrt(e_sq);
+  // 1 / L, 1 / |N_A|^2 and 1 / |N_B|^2 from one division by their product, unless that
+  // product leaves [1e-290, 1e290] on a lane (edges far from the normalized mesh's unit scale).
+  const T ab = a_sq * b_sq;
+  const T product = L * ab;
+  T inv_L, inv_a, inv_b;
+  const T in_range = vand(cmp_ge(product, lanes_splat<T>(1e-290)), cmp_le(product, lanes_splat<T>(1e290)));
+  if (lane_bits(vandnot(in_range, ok)) == 0) {
+    const T inv = one / product;
+    inv_L = ab * inv;
+    inv_a = (L * b_sq) * inv;
+    inv_b = (L * a_sq) * inv;
+  } else {
+    inv_L = one / L;
+    inv_a = one / a_sq;
+    inv_b = one / b_sq;
+  }
+  const L3<T> e_hat = e * inv_L;
+  // theta = atan2((NA x NB) . e_hat, NA . NB).
+  const T theta = atan2_lanes(dot(cross(NA, NB), e_hat), dot(NA, NB));
+  const L3<T> aA = NA * inv_a;
+  const L3<T> aB = NB * inv_b;
+  L3<T> g[4];
+  g[2] = aA * neg(L);
+  g[3] = aB * neg(L);
+  g[0] = neg(aA * dot(xs[2] - xs[1], e_hat) + aB * dot(xs[3] - xs[1], e_hat));
+  g[1] = aA * dot(xs[2] - xs[0], e_hat) + aB * dot(xs[3] - xs[0], e_hat);
+  // wrapped_angle_difference: into (-pi, pi].
+  T d = theta - c.load(&DihedralBatch::rest_angle);
+  d = blend(d, d - lanes_splat<T>(2.0 * PI), cmp_gt(d, lanes_splat<T>(PI)));
+  d = blend(d, d + lanes_splat<T>(2.0 * PI), cmp_le(d, lanes_splat<T>(-PI)));
+  T n[4];
+  for (int j = 0; j < 4; ++j) n[j] = dot(g[j], g[j]);
+  const T wg = ws[0] * n[0] + ws[1] * n[1] + ws[2] * n[2] + ws[3] * n[3];
+  // The scalar kernel's !(wg > 1e-300) || d == 0 (a NaN d is not 0: it goes on, as there).
+  const T active = vand(vand(ok, cmp_gt(wg, lanes_splat<T>(1e-300))), cmp_neq_uq(d, zero));
+  if (lane_bits(active) == 0) return;
+  const T max_step = c.load(&DihedralBatch::max_step);
+  // kernel_parts::step_clamp_factor for the step scale * w_j * g_j: max(value, longest) keeps
+  // longest where value is NaN, as std::max(longest, value) does. The square root and the
+  // division only when a lane clamps (rare).
+  auto clamp_factor = [&](T scale) {
+    T longest_sq = zero;
+    for (int j = 0; j < 4; ++j) {
+      const T s = scale * ws[j];
+      longest_sq = vmax(s * s * n[j], longest_sq);
+    }
+    const T clamp = cmp_gt(longest_sq, max_step * max_step);
+    if (lane_bits(vand(clamp, active)) == 0) return one;
+    return blend(one, max_step / vsqrt(longest_sq), clamp);
+  };
+  const T kb = lanes_splat<T>(k_bending);
+  if (lam == nullptr) {
+    // PBD: dx_j = -k_B d / (2 wg) w_j g_j, clamped (kernel_parts::apply_step).
+    T scale = kb * d / (two * wg);
+    scale = scale * clamp_factor(scale);
+    for (int j = 0; j < 4; ++j) c.store(xw, j, select(active, xs[j] - g[j] * (scale * ws[j]), xs[j]), ws[j]);
+    return;
+  }
+  // XPBD: C = sqrt(2 k_B kappa) d.
+  const T at = lanes_splat<T>(alpha_tilde);
+  const T l = c.load_lambda(lam);
+  const T root = vsqrt(two * kb * kappa);
+  const T C = root * d;
+  T dlam = (neg(C) - at * l) / (root * root * wg + at);
+  dlam = dlam * clamp_factor(root * dlam);
+  c.store_lambda(lam, blend(l, l + dlam, active));
+  for (int j = 0; j < 4; ++j)
+    c.store(xw, j, select(active, xs[j] + g[j] * (ws[j] * root * dlam), xs[j]), ws[j]);
+}
+
+/// Batches in pairs where two consecutive ones are of one colour (they share no vertex, so the
+/// pair's lanes are independent as a batch's are), else one at a time (see TwoBatches).
 void dihedral_batches_avx2(const DihedralBatch* batches, std::size_t count, double k_bending,
                            PaddedVertex* xw, const ProjectionContext& ctx, double* lambda) {
-  constexpr double PI = 3.14159265358979323846;
-  const V zero = _mm256_setzero_pd(), one = splat(1.0), two = splat(2.0);
-  const V pi = splat(PI), minus_pi = splat(-PI), two_pi = splat(2.0 * PI);
-  const V floor_factor = splat(1e-24), tiny = splat(1e-300);
-  const V kb = splat(k_bending), at = splat(ctx.alpha_tilde);
-  for (std::size_t b = 0; b < count; ++b) {
-    const DihedralBatch& c = batches[b];
-    // Inactive hinges (kappa = 0) and padding lanes: no change.
-    const V kappa = _mm256_load_pd(c.kappa);
-    const V live = greater(kappa, zero);
-    if (_mm256_movemask_pd(live) == 0) continue;
-    V3 xs[4];
-    V ws[4];
-    for (int j = 0; j < 4; ++j) {
-      const V4 r = gather(xw, c.v[j]);
-      xs[j] = r.x;
-      ws[j] = r.w;
-    }
-    // The hinge (edge, unnormalized normals) and its collapse test, compared in squares.
-    const V3 e = xs[1] - xs[0];
-    const V3 NA = cross(e, xs[2] - xs[0]);
-    const V3 NB = cross(xs[0] - xs[1], xs[3] - xs[1]);
-    const V e_sq = dot(e, e), a_sq = dot(NA, NA), b_sq = dot(NB, NB);
-    const V floor_sq = floor_factor * e_sq * e_sq;
-    const V ok = both(both(live, greater(e_sq, zero)),
-                      both(_mm256_cmp_pd(a_sq, floor_sq, _CMP_GE_OQ),
-                           _mm256_cmp_pd(b_sq, floor_sq, _CMP_GE_OQ)));
-    const int ok_lanes = _mm256_movemask_pd(ok);
-    if (ok_lanes == 0) continue;
-    const V L = _mm256_sqrt_pd(e_sq);
-    const V3 e_hat = e / L;
-    // theta = atan2((NA x NB) . e_hat, NA . NB), by libm on each lane that has a hinge.
-    alignas(32) double sine[BATCH_LANES], cosine[BATCH_LANES], angle[BATCH_LANES];
-    _mm256_store_pd(sine, dot(cross(NA, NB), e_hat));
-    _mm256_store_pd(cosine, dot(NA, NB));
-    for (int k = 0; k < BATCH_LANES; ++k)
-      angle[k] = (ok_lanes >> k) & 1 ? std::atan2(sine[k], cosine[k]) : 0.0;
-    const V theta = _mm256_load_pd(angle);
-    const V3 aA = NA / a_sq;
-    const V3 aB = NB / b_sq;
-    V3 g[4];
-    g[2] = aA * neg(L);
-    g[3] = aB * neg(L);
-    g[0] = neg(aA * dot(xs[2] - xs[1], e_hat) + aB * dot(xs[3] - xs[1], e_hat));
-    g[1] = aA * dot(xs[2] - xs[0], e_hat) + aB * dot(xs[3] - xs[0], e_hat);
-    // wrapped_angle_difference: into (-pi, pi].
-    V d = theta - _mm256_load_pd(c.rest_angle);
-    d = _mm256_blendv_pd(d, d - two_pi, greater(d, pi));
-    d = _mm256_blendv_pd(d, d + two_pi, _mm256_cmp_pd(d, minus_pi, _CMP_LE_OQ));
-    V n[4];
-    for (int j = 0; j < 4; ++j) n[j] = dot(g[j], g[j]);
-    const V wg = ws[0] * n[0] + ws[1] * n[1] + ws[2] * n[2] + ws[3] * n[3];
-    // The scalar kernel's !(wg > 1e-300) || d == 0 (a NaN d is not 0: it goes on, as there).
-    const V active =
-        both(both(ok, greater(wg, tiny)), _mm256_cmp_pd(d, zero, _CMP_NEQ_UQ));
-    if (_mm256_movemask_pd(active) == 0) continue;
-    const V max_step = _mm256_load_pd(c.max_step);
-    // kernel_parts::step_clamp_factor for the step scale * w_j * g_j: max_pd(value, longest)
-    // keeps longest where value is NaN, as std::max(longest, value) does.
-    auto clamp_factor = [&](V scale) {
-      V longest_sq = zero;
-      for (int j = 0; j < 4; ++j) {
-        const V s = scale * ws[j];
-        longest_sq = _mm256_max_pd(s * s * n[j], longest_sq);
-      }
-      return _mm256_blendv_pd(one, max_step / _mm256_sqrt_pd(longest_sq),
-                              greater(longest_sq, max_step * max_step));
-    };
-    if (lambda == nullptr) {
-      // PBD: dx_j = -k_B d / (2 wg) w_j g_j, clamped (kernel_parts::apply_step).
-      V scale = kb * d / (two * wg);
-      scale = scale * clamp_factor(scale);
-      for (int j = 0; j < 4; ++j)
-        scatter(xw, c.v[j], c.count, select(active, xs[j] - g[j] * (scale * ws[j]), xs[j]), ws[j]);
-      continue;
-    }
-    // XPBD: C = sqrt(2 k_B kappa) d.
-    double* lam = lambda + BATCH_LANES * b;
-    const V l = _mm256_loadu_pd(lam);
-    const V root = _mm256_sqrt_pd(two * kb * kappa);
-    const V C = root * d;
-    V dlam = (neg(C) - at * l) / (root * root * wg + at);
-    dlam = dlam * clamp_factor(root * dlam);
-    _mm256_storeu_pd(lam, _mm256_blendv_pd(l, l + dlam, active));
-    for (int j = 0; j < 4; ++j)
-      scatter(xw, c.v[j], c.count, select(active, xs[j] + g[j] * (ws[j] * root * dlam), xs[j]),
-              ws[j]);
+  std::size_t b = 0;
+  while (b < count) {
+    double* lam = lambda ? lambda + BATCH_LANES * b : nullptr;
+    const bool pair = b + 1 < count && batches[b].same_colour_next;
+    dihedral_lanes(TwoBatches{batches + b, batches + (pair ? b + 1 : b), pair}, xw, k_bending,
+                   ctx.alpha_tilde, lam);
+    b += pair ? 2 : 1;
   }
 }
 
+#pragma GCC diagnostic pop
 #pragma GCC pop_options
 #endif  // SHELLCONTRACT_BATCH_AVX2
 
@@ -161,6 +253,40 @@ ColouredBatches<DihedralBatch> make_dihedral_batches(
                                        b.kappa[k] = r.rest.kappa;
                                        b.max_step[k] = r.max_step;
                                      });
+}
+
+#if SHELLCONTRACT_BATCH_AVX2
+#pragma GCC push_options
+#pragma GCC target("avx2,fma")
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wignored-attributes"  // as in batch_lanes.hpp
+namespace {
+void atan2_avx2(const double* y, const double* x, double* theta, std::size_t n) {
+  alignas(32) double ys[BATCH_LANES], xs[BATCH_LANES], out[BATCH_LANES];
+  for (std::size_t i = 0; i < n; i += BATCH_LANES) {
+    const std::size_t m = std::min<std::size_t>(BATCH_LANES, n - i);
+    for (std::size_t k = 0; k < BATCH_LANES; ++k) {
+      ys[k] = k < m ? y[i + k] : 0.0;
+      xs[k] = k < m ? x[i + k] : 1.0;
+    }
+    _mm256_store_pd(out, atan2_lanes(_mm256_load_pd(ys), _mm256_load_pd(xs)));
+    for (std::size_t k = 0; k < m; ++k) theta[i + k] = out[k];
+  }
+}
+}  // namespace
+#pragma GCC diagnostic pop
+#pragma GCC pop_options
+#endif
+
+bool batch_atan2(const double* y, const double* x, double* theta, std::size_t n) {
+#if SHELLCONTRACT_BATCH_AVX2
+  if (!batch_avx2_available()) return false;
+  atan2_avx2(y, x, theta, n);
+  return true;
+#else
+  (void)y, (void)x, (void)theta, (void)n;
+  return false;
+#endif
 }
 
 void project_dihedral_hinge_batches(const DihedralBatch* batches, std::size_t count,

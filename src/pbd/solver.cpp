@@ -86,6 +86,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
       for (const auto& c : set_.dihedral_hinges)
         for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
+      for (const auto& c : set_.anisotropic)
+        for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
       // Padded rows in breadth-first order; the parts are cut in that order.
       row_vertex_ = breadth_first_rows(set_.membranes, num_vertices);
       vertex_row_.resize(row_vertex_.size());
@@ -126,10 +128,9 @@ class GaussSeidelSolver final : public ConstraintSolver {
     packed_membranes_.reserve(set_.membranes.size());
     for (const MembraneConstraint& c : set_.membranes) packed_membranes_.push_back(pack_membrane(c));
     if (coloured_) {
-      // Coloured order: the membranes of a material with a batched projection (StVK) and the
-      // isometric and dihedral hinges are projected four per SIMD batch (constraint_batches.hpp);
-      // the other kinds and materials keep the per-constraint kernels. The batches address
-      // padded rows.
+      // Coloured order: the membranes of a material with a batched projection (every
+      // MaterialKind), the isometric and dihedral hinges and the anisotropic faces are projected
+      // four per SIMD batch (constraint_batches.hpp); the batches address padded rows.
       if constexpr (BatchedMembraneProjection<M>::value)
         membrane_batches_ =
             make_membrane_batches(renamed(packed_membranes_, vertex_row_), membrane_colours_);
@@ -147,6 +148,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
       packed_aniso_.push_back(pack_membrane(c));
       aniso_data_.push_back(c.data);
     }
+    if constexpr (BatchedAnisoProjection<A>::value)
+      if (coloured_ && !set_.anisotropic.empty()) make_aniso_layout();
     if (settings_.kind == SolverKind::Xpbd) {
       // Batched kinds keep BATCH_LANES multipliers per batch, padding lanes included.
       lambda_membrane_.resize(std::max(set_.membranes.size(),
@@ -155,7 +158,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
                                             BATCH_LANES * isometric_batches_.batches.size()));
       lambda_dihedral_.resize(std::max(set_.dihedral_hinges.size(),
                                        BATCH_LANES * dihedral_batches_.batches.size()));
-      lambda_aniso_.resize(set_.anisotropic.size());
+      lambda_aniso_.resize(std::max(set_.anisotropic.size(),
+                                    BATCH_LANES * aniso_batches_.batches.size()));
     }
     aniso_normal_.resize(set_.anisotropic.size(), Vec3::Zero());
     aniso_orientation_.resize(set_.anisotropic.size(), 1.0);
@@ -248,7 +252,10 @@ class GaussSeidelSolver final : public ConstraintSolver {
       add(DIHEDRAL_BATCHES, dihedral_batches_.offsets, BATCH_GRAIN);
     else
       add(DIHEDRAL, dihedral_colours_, COLOUR_GRAIN);
-    add(ANISOTROPIC, aniso_colours_, COLOUR_GRAIN);
+    if (!aniso_batches_.batches.empty())
+      add(ANISO_BATCHES, aniso_batches_.offsets, BATCH_GRAIN);
+    else
+      add(ANISOTROPIC, aniso_colours_, COLOUR_GRAIN);
     std::vector<ColourPhase> out;
     for (std::size_t p = 0; p < phases.size(); ++p) {
       // The state before phase p: the previous phase's, or (p = 0) the last phase's.
@@ -316,6 +323,12 @@ class GaussSeidelSolver final : public ConstraintSolver {
             project_membrane(aniso_, packed_aniso_[i], aniso_data_[i], 1.0, c,
                              xpbd ? &lambda_aniso_[i] : nullptr);
         }
+        break;
+      case ANISO_BATCHES:
+        if constexpr (BatchedAnisoProjection<A>::value)
+          project_aniso_batches(aniso_, &aniso_batches_.batches[b], e - b, xw, ctx,
+                                xpbd ? &lambda_aniso_[BATCH_LANES * b] : nullptr,
+                                !xpbd && settings_.k_a_in_projection);
         break;
       case REGION_MEMBRANES:
       case INTERFACE_MEMBRANES:
@@ -398,6 +411,17 @@ class GaussSeidelSolver final : public ConstraintSolver {
     }
   }
 
+  /// Coloured order: the anisotropic faces in batches on the padded rows, and where each face's
+  /// lane is (the per-solve normal and orientation are written there).
+  void make_aniso_layout() {
+    aniso_batches_ = make_aniso_batches(renamed(packed_aniso_, vertex_row_), aniso_data_,
+                                        set_.anisotropic_k_a, aniso_colours_);
+    aniso_lane_.resize(set_.anisotropic.size());
+    for (std::size_t c = 0; c + 1 < aniso_colours_.size(); ++c)
+      for (std::size_t i = aniso_colours_[c]; i < aniso_colours_[c + 1]; ++i)
+        aniso_lane_[i] = BATCH_LANES * aniso_batches_.offsets[c] + (i - aniso_colours_[c]);
+  }
+
   /// Freezes, for the solve, each anisotropic face's unit normal (for the k_A term, math-spec
   /// 9.3 R) and, in the inversion-aware mode, its orientation s = sign(n . n_ref) with n_ref the
   /// normalized sum of the area-weighted vertex normals of its corners (math-spec 4.2).
@@ -408,7 +432,17 @@ class GaussSeidelSolver final : public ConstraintSolver {
       const double len = N.norm();
       aniso_normal_[i] = len > 0.0 ? Vec3(N / len) : Vec3::Zero();  // collapsed: no inward push
     }
-    if (!settings_.inversion_aware || faces_.rows() == 0) return;
+    if (settings_.inversion_aware && faces_.rows() > 0) freeze_orientations(x);
+    for (std::size_t i = 0; i < aniso_lane_.size(); ++i) {  // into the batches, if any
+      AnisoBatch& b = aniso_batches_.batches[aniso_lane_[i] / BATCH_LANES];
+      const std::size_t k = aniso_lane_[i] % BATCH_LANES;
+      for (int d = 0; d < 3; ++d) b.normal[d][k] = aniso_normal_[i](d);
+      b.orientation[k] = aniso_orientation_[i];
+    }
+  }
+
+  /// The inversion-aware orientations of freeze_anisotropic_frames (math-spec 4.2).
+  void freeze_orientations(const Positions& x) {
     vertex_normal_.setZero(x.rows(), 3);
     for (Eigen::Index j = 0; j < faces_.rows(); ++j) {
       const Vec3 N = (row(x, faces_(j, 0)) - row(x, faces_(j, 2)))
@@ -462,6 +496,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
   ColouredBatches<MembraneBatch> membrane_batches_;    ///< Coloured order, StVK only
   ColouredBatches<IsometricBatch> isometric_batches_;  ///< Coloured order only
   ColouredBatches<DihedralBatch> dihedral_batches_;    ///< Coloured order only
+  ColouredBatches<AnisoBatch> aniso_batches_;          ///< Coloured order, fibre energies only
+  std::vector<std::size_t> aniso_lane_;  ///< 4 batch + lane of each anisotropic face (batched)
 };
 
 }  // namespace

@@ -23,7 +23,7 @@ using ColourOffsets = std::vector<std::size_t>;
 
 /// What a range of a sweep projects (ColourPhase::kind).
 enum SweepKind : int {
-  MEMBRANE_BATCHES,   ///< batches of StVK membranes (Coloured order)
+  MEMBRANE_BATCHES,   ///< batches of membranes (Coloured order)
   MEMBRANES,          ///< membranes one by one
   ISOMETRIC_BATCHES,  ///< batches of isometric hinges (Coloured order)
   ISOMETRIC,          ///< isometric hinges one by one
@@ -39,6 +39,7 @@ enum SweepKind : int {
   /// Regional order: one item, all the interface membrane (hinge) batches, colour after colour.
   INTERFACE_MEMBRANES,
   INTERFACE_ISOMETRIC,
+  ANISO_BATCHES,  ///< batches of anisotropic faces (Coloured order)
 };
 
 /// Vertices per chunk of a PACK or UNPACK phase.
@@ -52,7 +53,7 @@ constexpr std::size_t COPY_GRAIN = 8192;
 inline bool padded_kind(int kind) {
   return kind == MEMBRANE_BATCHES || kind == ISOMETRIC_BATCHES || kind == DIHEDRAL_BATCHES ||
          kind == REGION_MEMBRANES || kind == REGION_ISOMETRIC || kind == INTERFACE_MEMBRANES ||
-         kind == INTERFACE_ISOMETRIC;
+         kind == INTERFACE_ISOMETRIC || kind == ANISO_BATCHES;
 }
 
 }  // namespace sweep

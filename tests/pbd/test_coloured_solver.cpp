@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/material/corotated.hpp"
+#include "shellcontract/material/registry.hpp"
 #include "shellcontract/material/stvk.hpp"
 #include "shellcontract/pbd/colouring.hpp"
 #include "shellcontract/pbd/constraint_kernels.hpp"
@@ -208,10 +208,12 @@ TEST(ColouredSolver, ReportsColoursAndKeepsFacesForPerFaceOutput) {
 }
 
 /// The scalar kernels over `set` in its array order (the coloured solver's sweep order, from
-/// constraints()), `iterations` sweeps of membranes, isometric and dihedral hinges.
-template <class Material>
+/// constraints()), `iterations` sweeps of membranes, isometric and dihedral hinges, and the
+/// anisotropic faces with fibre energy `a` (if any) as the solver projects them: normals frozen
+/// at the start, orientation +1, the paper's k_A projection in PBD.
+template <class Material, class Aniso = NoAniso>
 Positions reference_sweeps(const Material& m, const ConstraintSet& set, const Scene& s, bool xpbd,
-                           int iterations) {
+                           int iterations, const Aniso& a = Aniso()) {
   Positions x = s.x;
   ProjectionContext ctx;
   ctx.x = x.data();
@@ -219,7 +221,13 @@ Positions reference_sweeps(const Material& m, const ConstraintSet& set, const Sc
   ctx.energy_floor = 1e-16;   // 1e-16 x the largest modulus (1, MaterialParams{})
   ctx.alpha_tilde = 1e4;      // 1 / dt^2, dt = 0.01
   std::vector<double> lm(set.membranes.size()), li(3 * set.isometric_hinges.size()),
-      ld(set.dihedral_hinges.size());
+      ld(set.dihedral_hinges.size()), la(set.anisotropic.size());
+  std::vector<Vec3> normal;
+  for (const MembraneConstraint& c : set.anisotropic) {
+    const Vec3 N = (Vec3(s.x.row(c.v[0])) - Vec3(s.x.row(c.v[2])))
+                       .cross(Vec3(s.x.row(c.v[1])) - Vec3(s.x.row(c.v[2])));
+    normal.push_back(N.normalized());
+  }
   for (int it = 0; it < iterations; ++it) {
     for (std::size_t i = 0; i < set.membranes.size(); ++i)
       project_membrane(m, set.membranes[i], 1.0, ctx, xpbd ? &lm[i] : nullptr);
@@ -227,6 +235,11 @@ Positions reference_sweeps(const Material& m, const ConstraintSet& set, const Sc
       project_isometric_hinge(set.isometric_hinges[i], 0.01, ctx, xpbd ? &li[3 * i] : nullptr);
     for (std::size_t i = 0; i < set.dihedral_hinges.size(); ++i)
       project_dihedral_hinge(set.dihedral_hinges[i], 0.01, ctx, xpbd ? &ld[i] : nullptr);
+    for (std::size_t i = 0; i < set.anisotropic.size(); ++i)
+      if (xpbd)
+        project_membrane(a, set.anisotropic[i], 1.0, ctx, &la[i]);
+      else
+        project_anisotropic_paper(a, set.anisotropic[i], set.anisotropic_k_a[i], normal[i], ctx);
   }
   return x;
 }
@@ -241,28 +254,57 @@ SolverSettings coloured(SolverKind kind, int iterations, int threads) {
   return settings;
 }
 
+/// The coloured solve of `material` (and fibre energy `aniso`) against reference_sweeps.
+template <class Material, class Aniso = NoAniso>
+void expect_coloured_equals_scalar(const Scene& s, MaterialKind material, AnisoKind aniso,
+                                   const MaterialParams& params, const std::string& name) {
+  for (SolverKind kind : {SolverKind::Pbd, SolverKind::Xpbd}) {
+    SolverSettings settings = coloured(kind, 3, 2);
+    settings.aniso = aniso;
+    const auto solver = make_constraint_solver(material, params, s.set, settings);
+    Positions x = s.x;
+    solver->solve(x, s.w);
+    const bool xpbd = kind == SolverKind::Xpbd;
+    const Positions ref = reference_sweeps(Material(params), solver->constraints(), s, xpbd, 3,
+                                           Aniso(params));
+    const double moved = (ref - s.x).cwiseAbs().maxCoeff();
+    ASSERT_GT(moved, 1e-4);
+    EXPECT_LE((x - ref).cwiseAbs().maxCoeff(), 1e-12 * moved) << name << (xpbd ? " xpbd" : " pbd");
+  }
+}
+
 TEST(ColouredSolver, BatchedSolveEqualsTheScalarKernelsInColourOrder) {
-  // The Coloured solver projects StVK membranes, isometric and dihedral hinges in SIMD batches
-  // on padded rows, and the other kinds (corotated membranes here) one by one on x, with
-  // pack / unpack phases in between. Its result must be what the scalar kernels give in the
-  // same order, to rounding (FMA) relative to how far the vertices moved.
+  // The Coloured solver projects every material's membranes, the isometric and dihedral hinges
+  // and the anisotropic faces in SIMD batches on padded rows. Its result must be what the
+  // scalar kernels give in the same order, to rounding (FMA) relative to how far the vertices
+  // moved.
   const Scene s = make_scene(3);
-  for (MaterialKind material : {MaterialKind::Stvk, MaterialKind::Corotated})
-    for (SolverKind kind : {SolverKind::Pbd, SolverKind::Xpbd}) {
-      const auto solver =
-          make_constraint_solver(material, MaterialParams{}, s.set, coloured(kind, 3, 2));
-      Positions x = s.x;
-      solver->solve(x, s.w);
-      const bool xpbd = kind == SolverKind::Xpbd;
-      const Positions ref =
-          material == MaterialKind::Stvk
-              ? reference_sweeps(Stvk(MaterialParams{}), solver->constraints(), s, xpbd, 3)
-              : reference_sweeps(Corotated(MaterialParams{}), solver->constraints(), s, xpbd, 3);
-      const double moved = (ref - s.x).cwiseAbs().maxCoeff();
-      ASSERT_GT(moved, 1e-4);
-      EXPECT_LE((x - ref).cwiseAbs().maxCoeff(), 1e-12 * moved)
-          << (material == MaterialKind::Stvk ? "stvk " : "corotated ") << (xpbd ? "xpbd" : "pbd");
-    }
+  MaterialParams p;
+  p.c10 = 0.4;  // both Mooney-Rivlin terms, 2 (C10 + C01) = 1: the energy floor stays 1e-16
+  p.c01 = 0.1;
+  expect_coloured_equals_scalar<Stvk>(s, MaterialKind::Stvk, AnisoKind::None, p, "stvk");
+  expect_coloured_equals_scalar<Corotated>(s, MaterialKind::Corotated, AnisoKind::None, p, "corotated");
+  expect_coloured_equals_scalar<Linear>(s, MaterialKind::Linear, AnisoKind::None, p, "linear");
+  expect_coloured_equals_scalar<MooneyRivlin>(s, MaterialKind::MooneyRivlin, AnisoKind::None, p,
+                                              "mooney-rivlin");
+}
+
+TEST(ColouredSolver, BatchedAnisotropicFacesEqualTheScalarKernelsInColourOrder) {
+  // Every face also an E_A face with its own fibre and k_A (the paper's inward term in PBD).
+  Scene s = make_scene(3);
+  s.set.anisotropic = s.set.membranes;
+  for (std::size_t i = 0; i < s.set.anisotropic.size(); ++i) {
+    const double angle = 0.37 * static_cast<double>(i);
+    s.set.anisotropic[i].data.fiber = Vec2(std::cos(angle), std::sin(angle));
+    s.set.anisotropic_k_a.push_back(i % 3 == 0 ? 0.0 : 0.05);
+  }
+  MaterialParams p;
+  p.fiber_target = 0.8;
+  expect_coloured_equals_scalar<Stvk, AnisotropicArap>(s, MaterialKind::Stvk, AnisoKind::Arap, p, "arap");
+  expect_coloured_equals_scalar<Stvk, AnisotropicStvk>(s, MaterialKind::Stvk, AnisoKind::Stvk, p, "stvk-fibre");
+  expect_coloured_equals_scalar<Stvk, AnisotropicSqrt>(s, MaterialKind::Stvk, AnisoKind::Sqrt, p, "sqrt");
+  expect_coloured_equals_scalar<Corotated, ActiveFiber>(s, MaterialKind::Corotated,
+                                                        AnisoKind::ActiveFiber, p, "active-fiber");
 }
 
 /// A closed bipyramid: `rim` vertices on a circle and two apexes; every face has an apex, so any

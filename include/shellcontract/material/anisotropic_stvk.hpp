@@ -22,6 +22,7 @@ class AnisotropicStvk final : public MembraneMaterial {
 
   std::string name() const override { return "stvk"; }
   bool frame_dependent() const override { return false; }
+  double mu() const { return mu_; }  ///< fibre stiffness mu_A (energy per unit rest area)
 
   /// @param d  d.fiber: unit fibre a in the rest frame
   double psi(const Mat2& F, const ElementMaterialData& d) const override {

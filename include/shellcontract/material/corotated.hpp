@@ -28,6 +28,8 @@ class Corotated final : public MembraneMaterial {
 
   std::string name() const override { return "corotated"; }
   bool frame_dependent() const override { return true; }
+  double mu() const { return mu_; }          ///< Lame mu (energy per unit rest area)
+  double lambda() const { return lambda_; }  ///< plane-stress Lame lambda
 
   double psi(const Mat2& F, const ElementMaterialData&) const override {
     const Polar2 pd = polar2(F);

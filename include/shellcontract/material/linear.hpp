@@ -22,6 +22,8 @@ class Linear final : public MembraneMaterial {
 
   std::string name() const override { return "linear"; }
   bool frame_dependent() const override { return true; }
+  double mu() const { return mu_; }          ///< Lame mu (energy per unit rest area)
+  double lambda() const { return lambda_; }  ///< plane-stress Lame lambda
 
   double psi(const Mat2& F, const ElementMaterialData&) const override {
     const Mat2 eps = small_strain(F);

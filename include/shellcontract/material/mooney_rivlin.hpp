@@ -40,6 +40,8 @@ class MooneyRivlin final : public MembraneMaterial {
 
   std::string name() const override { return "mooney-rivlin"; }
   bool frame_dependent() const override { return false; }
+  double c10() const { return c10_; }  ///< C10 (energy per unit rest area)
+  double c01() const { return c01_; }  ///< C01 (energy per unit rest area)
 
   double psi(const Mat2& F, const ElementMaterialData&) const override {
     const double J = F.determinant();

@@ -16,8 +16,16 @@
 
 #include <array>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
+#include "shellcontract/material/active_fiber.hpp"
+#include "shellcontract/material/anisotropic_arap.hpp"
+#include "shellcontract/material/anisotropic_sqrt.hpp"
+#include "shellcontract/material/anisotropic_stvk.hpp"
+#include "shellcontract/material/corotated.hpp"
+#include "shellcontract/material/linear.hpp"
+#include "shellcontract/material/mooney_rivlin.hpp"
 #include "shellcontract/material/stvk.hpp"
 #include "shellcontract/pbd/constraint_kernels.hpp"
 #include "shellcontract/pbd/constraints.hpp"
@@ -80,6 +88,23 @@ struct alignas(32) DihedralBatch {
   double max_step[BATCH_LANES];    ///< clamp (math-spec 9.1d)
   int v[4][BATCH_LANES];
   int count;
+  int same_colour_next;  ///< 1 when batch + 1 is of the same colour (the AVX2 kernel then
+                         ///< projects the two together)
+};
+
+/// Four anisotropic (E_A) faces of one colour (math-spec 7, 9.3): MembraneBatch's rest data, the
+/// fibre and k_A, and the orientation s and unit normal n the solver freezes for each solve.
+/// Padding lanes as in MembraneBatch (zero rest data: E = 0, skipped).
+struct alignas(32) AnisoBatch {
+  double dm00[BATCH_LANES], dm01[BATCH_LANES], dm11[BATCH_LANES];  ///< Dm^-1 (math-spec 4.1)
+  double rest_area[BATCH_LANES];                                   ///< Abar
+  double max_step[BATCH_LANES];                                    ///< clamp (math-spec 9.1d)
+  double fiber[2][BATCH_LANES];        ///< unit fibre a in the rest frame (ElementMaterialData)
+  double k_a[BATCH_LANES];             ///< k_A of the paper's inward term (math-spec 9.3)
+  double orientation[BATCH_LANES];     ///< s (math-spec 4.2), set per solve
+  double normal[3][BATCH_LANES];       ///< frozen unit outward normal n, set per solve
+  int v[3][BATCH_LANES];
+  int count;
 };
 
 /// Batches of one constraint kind grouped by colour: colour c owns batches
@@ -107,6 +132,13 @@ ColouredBatches<IsometricBatch> make_isometric_batches(
 ColouredBatches<DihedralBatch> make_dihedral_batches(
     const std::vector<DihedralHingeConstraint>& records,
     const std::vector<std::size_t>& colour_offsets);
+
+/// Packs anisotropic faces grouped by colour (see make_membrane_batches) with their fibres
+/// (data[i] of records[i]) and k_A; orientation 1 and normal 0 until the solver sets them.
+ColouredBatches<AnisoBatch> make_aniso_batches(const std::vector<PackedMembrane>& records,
+                                               const std::vector<ElementMaterialData>& data,
+                                               const std::vector<double>& k_a,
+                                               const std::vector<std::size_t>& colour_offsets);
 
 /// Which implementation a batch projection runs.
 enum class BatchIsa {
@@ -147,6 +179,75 @@ struct BatchedMembraneProjection<Stvk> {
   }
 };
 
+/// Projects `count` membrane batches of a frame-based material (math-spec 4.2-4.4, 6.2-6.4):
+/// the current edge-aligned frame with orientation ctx.orientation, the material's 2x2 PK1 and
+/// its lift, four lanes at a time; otherwise as project_stvk_membrane_batches (the same contract
+/// per lane as project_membrane with stiffness 1, guards included: a frame-dependent material
+/// skips a triangle without a regular frame, Mooney-Rivlin projects it on the collapsed frame).
+/// \pre no two real lanes of a batch share a vertex (one colour)
+void project_linear_membrane_batches(const Linear& material, const MembraneBatch* batches,
+                                     std::size_t count, PaddedVertex* xw,
+                                     const ProjectionContext& ctx, double* lambda,
+                                     BatchIsa isa = BatchIsa::Auto);
+/// See project_linear_membrane_batches.
+void project_corotated_membrane_batches(const Corotated& material, const MembraneBatch* batches,
+                                        std::size_t count, PaddedVertex* xw,
+                                        const ProjectionContext& ctx, double* lambda,
+                                        BatchIsa isa = BatchIsa::Auto);
+/// See project_linear_membrane_batches.
+void project_mooney_rivlin_membrane_batches(const MooneyRivlin& material,
+                                            const MembraneBatch* batches, std::size_t count,
+                                            PaddedVertex* xw, const ProjectionContext& ctx,
+                                            double* lambda, BatchIsa isa = BatchIsa::Auto);
+
+template <>
+struct BatchedMembraneProjection<Linear> {
+  static constexpr bool value = true;
+  static void project(const Linear& material, const MembraneBatch* batches, std::size_t count,
+                      PaddedVertex* xw, const ProjectionContext& ctx, double* lambda) {
+    project_linear_membrane_batches(material, batches, count, xw, ctx, lambda);
+  }
+};
+
+template <>
+struct BatchedMembraneProjection<Corotated> {
+  static constexpr bool value = true;
+  static void project(const Corotated& material, const MembraneBatch* batches, std::size_t count,
+                      PaddedVertex* xw, const ProjectionContext& ctx, double* lambda) {
+    project_corotated_membrane_batches(material, batches, count, xw, ctx, lambda);
+  }
+};
+
+template <>
+struct BatchedMembraneProjection<MooneyRivlin> {
+  static constexpr bool value = true;
+  static void project(const MooneyRivlin& material, const MembraneBatch* batches,
+                      std::size_t count, PaddedVertex* xw, const ProjectionContext& ctx,
+                      double* lambda) {
+    project_mooney_rivlin_membrane_batches(material, batches, count, xw, ctx, lambda);
+  }
+};
+
+/// Projects `count` anisotropic batches of fibre energy A in order, each lane as the solver's
+/// per-face call with the lane's orientation and fibre: `paper` (PBD only, lambda == nullptr):
+/// project_anisotropic_paper with the lane's k_A and normal (math-spec 9.3); else
+/// project_membrane with stiffness 1, PBD or XPBD (multiplier of lane k of batch b at
+/// lambda[4 b + k]). Defined for AnisotropicArap, AnisotropicStvk, AnisotropicSqrt and
+/// ActiveFiber (aniso_batches.cpp). xw and ctx as for project_stvk_membrane_batches (ctx's
+/// orientation is not used: each lane has its own).
+/// \pre no two real lanes of a batch share a vertex (one colour)
+template <class A>
+void project_aniso_batches(const A& material, const AnisoBatch* batches, std::size_t count,
+                           PaddedVertex* xw, const ProjectionContext& ctx, double* lambda,
+                           bool paper, BatchIsa isa = BatchIsa::Auto);
+
+/// True for the fibre energies that project_aniso_batches is defined for.
+template <class A>
+struct BatchedAnisoProjection {
+  static constexpr bool value = std::is_same_v<A, AnisotropicArap> || std::is_same_v<A, AnisotropicStvk> ||
+                                std::is_same_v<A, AnisotropicSqrt> || std::is_same_v<A, ActiveFiber>;
+};
+
 /// Projects `count` isometric hinge batches in order (project_isometric_hinge per lane, math-spec
 /// 8.2): PBD when lambda == nullptr, else XPBD with the 3-vector multiplier of lane k of batch b
 /// at lambda[12 b + 3 k .. 12 b + 3 k + 2]. xw and ctx as for project_stvk_membrane_batches.
@@ -165,5 +266,10 @@ void project_dihedral_hinge_batches(const DihedralBatch* batches, std::size_t co
                                     double k_bending, PaddedVertex* xw,
                                     const ProjectionContext& ctx, double* lambda,
                                     BatchIsa isa = BatchIsa::Auto);
+
+/// The four-lane atan2 of the AVX2 dihedral kernel (src/pbd/batch_lanes.hpp) on n pairs
+/// (theta[i] = atan2(y[i], x[i]) to a few ulp), for its accuracy test against std::atan2.
+/// @return false, writing nothing, when this CPU or build has no AVX2 path
+bool batch_atan2(const double* y, const double* x, double* theta, std::size_t n);
 
 }  // namespace shellcontract
