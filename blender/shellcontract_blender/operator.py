@@ -7,6 +7,10 @@ from . import runner
 
 KEY_PREFIX = "shellcontract "
 
+# The runs in progress, by object name -> Job: kept here, not on the object, so that a file saved
+# (or a Blender that crashed) during a run does not come back with a run that no longer exists.
+RUNNING = {}
+
 
 def _preferences(context):
     addon = context.preferences.addons.get(__package__)
@@ -120,7 +124,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
     @classmethod
     def poll(cls, context):
         obj = context.active_object
-        return obj is not None and obj.type == "MESH" and not obj.shellcontract.running
+        return obj is not None and obj.type == "MESH" and obj.name not in RUNNING
 
     def _prepare(self, context):
         obj = context.active_object
@@ -133,7 +137,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
 
     def _finish(self, context, obj, job):
         s = obj.shellcontract
-        s.running = False
+        RUNNING.pop(obj.name, None)
         if job.error is not None:
             s.status = "error: {}".format(job.error)
             self.report({"ERROR"}, "ShellContract: {}".format(job.error))
@@ -167,7 +171,6 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         except (runner.AddonError, ValueError, TypeError) as e:
             self.report({"ERROR"}, "ShellContract: {}".format(e))
             return {"CANCELLED"}
-        obj.shellcontract.running = True
         job.run()
         return self._finish(context, obj, job)
 
@@ -181,8 +184,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             return {"CANCELLED"}
         self._obj_name = obj.name
         self._job = job
-        obj.shellcontract.running = True
-        obj.shellcontract.progress = 0
+        RUNNING[obj.name] = job
         job.start()
         wm = context.window_manager
         wm.progress_begin(0, obj.shellcontract.frames)
@@ -193,8 +195,9 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
     def modal(self, context, event):
         obj = bpy.data.objects.get(self._obj_name)
         job = self._job
-        if event.type in {"ESC"} and event.value == "PRESS":
+        if event.type == "ESC" and event.value == "PRESS":
             job.cancel()
+            return {"RUNNING_MODAL"}
         if event.type != "TIMER":
             return {"PASS_THROUGH"}
         wm = context.window_manager
@@ -202,8 +205,6 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         frames = obj.shellcontract.frames if obj else 0
         context.workspace.status_text_set(
             "ShellContract: frame {} of {} (Esc cancels)".format(job.progress, frames))
-        if obj is not None:
-            obj.shellcontract.progress = job.progress
         for area in context.screen.areas:
             if area.type == "VIEW_3D":
                 area.tag_redraw()
@@ -213,5 +214,6 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         wm.progress_end()
         context.workspace.status_text_set(None)
         if obj is None:  # deleted during the run
+            RUNNING.pop(self._obj_name, None)
             return {"CANCELLED"}
         return self._finish(context, obj, job)

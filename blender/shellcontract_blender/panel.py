@@ -2,6 +2,8 @@
 
 import bpy
 
+from . import operator
+
 
 class VIEW3D_PT_shellcontract(bpy.types.Panel):
     bl_label = "ShellContract"
@@ -31,8 +33,9 @@ class VIEW3D_PT_shellcontract(bpy.types.Panel):
         sub.prop(s, "region_shrink")
         col.prop(s, "frame_step")
         row = layout.row()
-        if s.running:
-            row.label(text="Frame {} of {} (Esc cancels)".format(s.progress, s.frames))
+        job = operator.RUNNING.get(obj.name)
+        if job is not None:
+            row.label(text="Frame {} of {} (Esc cancels)".format(job.progress, s.frames))
         else:
             row.operator("object.shellcontract_contract", icon="MOD_SOFT")
         if s.status:

@@ -63,5 +63,3 @@ class ShellContractSettings(bpy.types.PropertyGroup):
     )
     # Read-only outcome of the last run, shown in the panel.
     status: bpy.props.StringProperty(name="Status", default="")
-    progress: bpy.props.IntProperty(name="Progress", default=0)
-    running: bpy.props.BoolProperty(name="Running", default=False)

@@ -10,7 +10,8 @@ leaves shape keys and timeline keys; the last key's V/V0, measured with bmesh (n
 number), is within 0.005 of 0.6; the UVs are unchanged; the project's own check
 (shellcontract.check) finds no self-intersecting pair that the input lacks; a keyframed target
 (1 -> 0.6 -> 0.9) becomes a schedule the last key of which is 0.9; a missing vertex group is
-refused; and the CLI's .glb imports (the numpy.bool shim)."""
+refused; the threaded run of the UI reports progress and cancels; and the CLI's .glb imports
+(the numpy.bool shim)."""
 
 import argparse
 import sys
@@ -157,6 +158,21 @@ def main():
     check("no such group" in refused and "vertex group" in refused
           and len(obj2.data.shape_keys.key_blocks) == keys_before,
           "a missing vertex group is refused, naming it, and nothing changes")
+
+    # The UI's path: the run in a worker thread while this (Blender's) thread goes on, and a
+    # cancel that stops it after the current step, leaving the object alone.
+    import time
+    job = runner.Job(shellcontract, rest, faces, {"frames": 5000, "target_volume": 0.6}, keep=[])
+    job.start()
+    ticks = 0
+    while job.progress < 3 and not job.done():
+        time.sleep(0.01)
+        ticks += 1
+    job.cancel()
+    job.join()
+    check(job.error is None and job.result.status == "cancelled" and job.progress < 5000
+          and ticks > 0, "a threaded run reports progress and cancels (frame {})".format(
+              job.progress))
 
     if a.glb:
         bpy.ops.import_scene.gltf(filepath=a.glb)

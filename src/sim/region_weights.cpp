@@ -122,4 +122,17 @@ std::vector<double> stored_region_weights(const Mesh& mesh) {
   return out;
 }
 
+double mean_region_weight(const Positions& x, const Faces& faces, const std::vector<int>& region,
+                          const std::vector<double>& weight) {
+  if (weight.empty()) return 1.0;
+  double sum = 0.0, area = 0.0;
+  for (int f : region) {
+    const Vec3 xc = x.row(faces(f, 2));
+    const double a = (Vec3(x.row(faces(f, 0))) - xc).cross(Vec3(x.row(faces(f, 1))) - xc).norm();
+    sum += a * weight[static_cast<std::size_t>(f)];
+    area += a;
+  }
+  return area > 0.0 ? sum / area : 0.0;
+}
+
 }  // namespace shellcontract

@@ -58,22 +58,6 @@ double peak_pressure_magnitude(const SimOptions& o) {
                   std::abs(o.pressure_schedule.max_value()));
 }
 
-/// The rest area-weighted mean of a region's face weights (1 without weights): a dimple is one
-/// shape for its whole region, so the region sinks with its mean strength.
-double mean_face_weight(const Positions& x, const Faces& faces, const std::vector<int>& region,
-                        const std::vector<double>& weight) {
-  if (weight.empty()) return 1.0;
-  double sum = 0.0, area = 0.0;
-  for (int f : region) {
-    const Vec3 xc = x.row(faces(f, 2));
-    const double a =
-        (Vec3(x.row(faces(f, 0))) - xc).cross(Vec3(x.row(faces(f, 1))) - xc).norm();
-    sum += a * weight[static_cast<std::size_t>(f)];
-    area += a;
-  }
-  return area > 0.0 ? sum / area : 0.0;
-}
-
 void check_options(const SimOptions& o) {
   auto fail = [](const std::string& what) { throw UsageError(what); };
   if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("time step must be positive and finite");
@@ -209,7 +193,8 @@ Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) 
       // A flat region or a dent has no cap to shrink (a dimple would push it out).
       if (dimple.whole.rest_volume > 0.0) {
         region_dimples_.push_back(std::move(dimple));
-        dimple_weight_.push_back(mean_face_weight(x_, faces_, region, face_weight));
+        // A dimple is one shape for its whole region: it sinks with the region's mean weight.
+        dimple_weight_.push_back(mean_region_weight(x_, faces_, region, face_weight));
       } else
         ++regions_without_cap_;
     }

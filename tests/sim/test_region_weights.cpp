@@ -118,5 +118,17 @@ TEST(RegionWeights, WeightedForceIsTheUnweightedOneScaledByFace) {
   EXPECT_GT((f - plain).cwiseAbs().maxCoeff(), 1e-3 * plain.cwiseAbs().maxCoeff());
 }
 
+TEST(RegionWeights, RegionMeanIsAreaWeighted) {
+  // Two triangles in the plane z = 0 of areas 1/2 and 2 (closed form): weights 1 and 0 give
+  // 0.5 / 2.5 = 0.2; one weight everywhere gives that weight; no weights give 1.
+  Positions x(5, 3);
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0, 2, 0, 0, 0, 2, 0;
+  Faces faces(2, 3);
+  faces << 0, 1, 2, 0, 3, 4;
+  EXPECT_NEAR(mean_region_weight(x, faces, {0, 1}, {1.0, 0.0}), 0.2, 1e-15);
+  EXPECT_NEAR(mean_region_weight(x, faces, {0, 1}, {0.3, 0.3}), 0.3, 1e-15);
+  EXPECT_EQ(mean_region_weight(x, faces, {0, 1}, {}), 1.0);
+}
+
 }  // namespace
 }  // namespace shellcontract

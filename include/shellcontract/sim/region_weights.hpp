@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/surface_mesh.hpp"
 
 namespace shellcontract {
@@ -41,5 +42,11 @@ std::size_t mark_weighted_regions(Mesh& mesh, const std::vector<double>& vertex_
 /// The weights of REGION_WEIGHT_MAP, one per face; empty when the map is not attached (every
 /// region then acts at the full --region-shrink).
 std::vector<double> stored_region_weights(const Mesh& mesh);
+
+/// The area-weighted mean of a region's face weights at positions x (the rest state): the
+/// strength factor of the region's dimple. 1 when `weight` is empty (no weights), 0 for a
+/// region of zero area.
+double mean_region_weight(const Positions& x, const Faces& faces, const std::vector<int>& region,
+                          const std::vector<double>& weight);
 
 }  // namespace shellcontract
