@@ -285,14 +285,17 @@ int command_run(int argc, char** argv) {
     // Held only where it is used (it is the whole file): an output of the input's format, or the
     // glTF's texture coordinates.
     std::unique_ptr<MeshDocument> document;
-    if ((!repair || repair_report.already_usable) &&
-        (lower_extension(input) == lower_extension(output) || !exports.gltf.empty())) {
+    if (lower_extension(input) == lower_extension(output) || !exports.gltf.empty()) {
       try {
         document = read_mesh_document(input);
       } catch (const InputError& e) {
         std::cerr << "warning: the result is written without the input's attributes: " << e.what() << '\n';
       }
-      if (document && !document->matches(mesh)) document.reset();
+      if (document && !document->matches(mesh)) {
+        std::cerr << "warning: the result is written without the input's attributes: "
+                  << (repair ? "--repair changed the mesh" : "the mesh is not the file's") << '\n';
+        document.reset();
+      }
     }
     ObserverList observers;
     WarningPrinter warnings;

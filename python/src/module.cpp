@@ -5,7 +5,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdint>
+#include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -16,10 +20,17 @@
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/from_arrays.hpp"
 #include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh/mesh_document.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
 
 namespace shellcontract::python {
 namespace {
+
+bool path_has_extension(const std::string& path, const std::string& ext) {
+  const std::string e = std::filesystem::path(path).extension().string();
+  return e.size() == ext.size() + 1 &&
+         std::equal(ext.begin(), ext.end(), e.begin() + 1, [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); });
+}
 
 /// What `shellcontract check` reports, for a mesh that passed the input checks.
 py::dict check(const py::handle& vertices, const py::handle& faces) {
@@ -89,9 +100,23 @@ py::tuple read_mesh(const std::string& path) {
   return py::make_tuple(positions_to_numpy(positions_from_mesh(mesh)), faces_to_numpy(mesh));
 }
 
-void write_mesh(const std::string& path, const py::handle& vertices, const py::handle& faces) {
+void write_mesh(const std::string& path, const py::handle& vertices, const py::handle& faces,
+                const std::string& like) {
   // The faces are written as given (no reorientation): this writes a result back.
   const Mesh mesh = mesh_from_numpy(vertices, faces, nullptr, /*reorient=*/false);
+  if (!like.empty()) {
+    // The file `like` kept whole with these positions (docs/design/attributes.md): only for the
+    // mesh read_mesh(like) gives, written in like's format.
+    const std::unique_ptr<MeshDocument> doc = read_mesh_document(like);
+    const Mesh read = read_input_mesh(like);
+    if (!doc || !path_has_extension(path, doc->format()))
+      throw UsageError("write_mesh: like=" + like + ": only an OBJ or PLY file, written to a file of its format");
+    const auto f = faces_to_numpy(read), g = py::array_t<std::int64_t>::ensure(faces);
+    if (!g || g.size() != f.size() || !std::equal(f.data(), f.data() + f.size(), g.data()) || !doc->matches(read))
+      throw UsageError("write_mesh: like=" + like + ": the faces are not those read_mesh gives for it");
+    write_mesh_document_atomic(path, *doc, positions_from_numpy(vertices));
+    return;
+  }
   write_mesh_atomic(path, mesh, positions_from_numpy(vertices));
 }
 
@@ -121,5 +146,5 @@ PYBIND11_MODULE(_core, m) {
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));
   m.def("regions", &regions, py::arg("vertices"), py::arg("faces"));
   m.def("read_mesh", &read_mesh, py::arg("path"));
-  m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("faces"));
+  m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::arg("like") = "");
 }

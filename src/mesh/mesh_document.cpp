@@ -22,7 +22,8 @@ std::string format_double(double v) {
 
 std::size_t MeshDocument::triangle_count() const {
   std::size_t n = 0;
-  for (std::size_t p = 0; p < polygon_count(); ++p) n += polygon_start_[p + 1] - polygon_start_[p] - 2;
+  for (std::size_t p = 0; p < polygon_count(); ++p)
+    n += polygon_start_[p + 1] - polygon_start_[p] - 2;
   return n;
 }
 
@@ -40,7 +41,8 @@ std::vector<std::size_t> MeshDocument::face_origins() const {
 }
 
 bool MeshDocument::matches(const Mesh& mesh) const {
-  if (mesh.has_garbage() || mesh.number_of_vertices() != vertex_count_ || polygon_count() == 0) return false;
+  if (mesh.has_garbage() || mesh.number_of_vertices() != vertex_count_ || polygon_count() == 0)
+    return false;
   for (std::size_t p = 0; p < polygon_count(); ++p)
     if (polygon_start_[p + 1] - polygon_start_[p] < 3) return false;
   if (mesh.number_of_faces() != triangle_count()) return false;
@@ -71,7 +73,8 @@ CornerTexcoords MeshDocument::texcoords(const Mesh& mesh) const {
       std::size_t c = polygon_start_[p];
       while (c < polygon_start_[p + 1] && corner_vertex_[c] != v.idx()) ++c;
       if (c == polygon_start_[p + 1])
-        throw std::invalid_argument("MeshDocument::texcoords: the mesh is not this document's (call matches first)");
+        throw std::invalid_argument(
+            "MeshDocument::texcoords: the mesh is not this document's (call matches first)");
       t.face_uv[f.idx()][static_cast<std::size_t>(k++)] = static_cast<std::size_t>(corner_uv_[c]);
     }
   }
@@ -81,13 +84,15 @@ CornerTexcoords MeshDocument::texcoords(const Mesh& mesh) const {
 
 std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".obj") return parse_obj_document(path, read_file_bytes(path));
   if (ext == ".ply") return parse_ply_document(path, read_file_bytes(path));
   return nullptr;
 }
 
-void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc, const Positions& x) {
+void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc,
+                                const Positions& x) {
   write_text_atomic(path, doc.text(x));
 }
 

@@ -47,18 +47,20 @@ class ObjDocument final : public MeshDocument {
   std::string text(const Positions& x) const override;
 
  private:
-  [[noreturn]] void fail(std::size_t line, const std::string& problem, const std::string& what) const {
+  [[noreturn]] void fail(std::size_t line, const std::string& problem,
+                         const std::string& what) const {
     throw InputError(name_ + ": " + problem + ": line " + std::to_string(line) + ": " + what);
   }
   double number(const Span& t, std::size_t line, const char* what) const;
   /// A face corner's index ("3", "-1"): 0-based, relative ones resolved against `count`.
-  long long index(const std::string& token, std::size_t count, std::size_t line, const char* what) const;
+  long long index(const std::string& token, std::size_t count, std::size_t line,
+                  const char* what) const;
   void read_face(std::size_t at, std::size_t end, std::size_t line);
 
   std::string name_;
   std::string bytes_;
-  std::vector<Span> v_numbers_;  ///< per `v` line: the span of its "x y z" text
-  std::vector<Span> vn_text_;    ///< per `vn` line: the span from "vn" to the line's end
+  std::vector<Span> v_numbers_;       ///< per `v` line: the span of its "x y z" text
+  std::vector<Span> vn_text_;         ///< per `vn` line: the span from "vn" to the line's end
   std::vector<long long> corner_vn_;  ///< per corner: index of its `vn` line; -1 none
 };
 
@@ -68,11 +70,13 @@ double ObjDocument::number(const Span& t, std::size_t line, const char* what) co
   char* end = nullptr;
   errno = 0;
   const double v = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size()) fail(line, "parse error", std::string(what) + " '" + s + "' is not a number");
+  if (end != s.c_str() + s.size())
+    fail(line, "parse error", std::string(what) + " '" + s + "' is not a number");
   return v;
 }
 
-long long ObjDocument::index(const std::string& token, std::size_t count, std::size_t line, const char* what) const {
+long long ObjDocument::index(const std::string& token, std::size_t count, std::size_t line,
+                             const char* what) const {
   char* end = nullptr;
   const long long i = std::strtoll(token.c_str(), &end, 10);
   if (token.empty() || end != token.c_str() + token.size())
@@ -81,8 +85,9 @@ long long ObjDocument::index(const std::string& token, std::size_t count, std::s
   // Negative indices count back from the last element defined so far (OBJ's relative references).
   const long long zero_based = i > 0 ? i - 1 : n + i;
   if (i == 0 || zero_based < 0 || zero_based >= n)
-    fail(line, "index out of range", std::string(what) + " index " + token + " refers to none of the " +
-                                         std::to_string(count) + " defined so far");
+    fail(line, "index out of range",
+         std::string(what) + " index " + token + " refers to none of the " + std::to_string(count) +
+             " defined so far");
   return zero_based;
 }
 
@@ -93,10 +98,12 @@ void ObjDocument::read_face(std::size_t at, std::size_t end, std::size_t line) {
     if (tok[0] == '#') break;  // a comment after the corners
     const std::size_t s1 = tok.find('/');
     const std::size_t s2 = s1 == std::string::npos ? std::string::npos : tok.find('/', s1 + 1);
-    corner_vertex_.push_back(static_cast<std::size_t>(index(tok.substr(0, s1), v_numbers_.size(), line, "vertex")));
+    corner_vertex_.push_back(
+        static_cast<std::size_t>(index(tok.substr(0, s1), v_numbers_.size(), line, "vertex")));
     long long vt = -1, vn = -1;
     if (s1 != std::string::npos) {
-      const std::string t_vt = tok.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
+      const std::string t_vt =
+          tok.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
       if (!t_vt.empty()) vt = index(t_vt, uv_.size(), line, "texture coordinate");
       if (s2 != std::string::npos) vn = index(tok.substr(s2 + 1), vn_text_.size(), line, "normal");
     }
@@ -108,7 +115,8 @@ void ObjDocument::read_face(std::size_t at, std::size_t end, std::size_t line) {
   polygon_start_.push_back(corner_vertex_.size());
 }
 
-ObjDocument::ObjDocument(const std::string& name, std::string bytes) : name_(name), bytes_(std::move(bytes)) {
+ObjDocument::ObjDocument(const std::string& name, std::string bytes)
+    : name_(name), bytes_(std::move(bytes)) {
   polygon_start_.push_back(0);
   // Lines end at "\n" ("\r\n" too: the "\r" counts as space); a file with no "\n" at all ends
   // its lines with a lone "\r" (classic Mac), as read_polygon_soup accepts.
@@ -154,14 +162,15 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes) : name_(nam
 
 std::string ObjDocument::text(const Positions& x) const {
   if (static_cast<std::size_t>(x.rows()) != vertex_count_)
-    throw std::invalid_argument("ObjDocument::text: " + std::to_string(x.rows()) + " positions for " +
-                                std::to_string(vertex_count_) + " vertices");
+    throw std::invalid_argument("ObjDocument::text: " + std::to_string(x.rows()) +
+                                " positions for " + std::to_string(vertex_count_) + " vertices");
   if (!x.allFinite()) throw std::invalid_argument("ObjDocument::text: a position is not finite");
 
   // Normals: each `vn` gets the area-weighted normal of the polygons whose corners use it. A vn
   // shared by all corners of one vertex (smooth shading) is that vertex's area-weighted normal;
   // one shared by a flat polygon's corners (hard edges) is the polygon's normal. Each polygon's
-  // weight is its Newell vector: twice its area along its normal (for a triangle, the cross product).
+  // weight is its Newell vector: twice its area along its normal (for a triangle, the cross
+  // product).
   std::vector<Vec3> normal(vn_text_.size(), Vec3::Zero());
   for (std::size_t p = 0; p + 1 < polygon_start_.size(); ++p) {
     Vec3 newell = Vec3::Zero();
@@ -181,16 +190,19 @@ std::string ObjDocument::text(const Positions& x) const {
   edits.reserve(v_numbers_.size() + vn_text_.size());
   for (std::size_t i = 0; i < v_numbers_.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
-    edits.push_back({v_numbers_[i], format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' + format_double(x(r, 2))});
+    edits.push_back({v_numbers_[i], format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' +
+                                        format_double(x(r, 2))});
   }
   for (std::size_t j = 0; j < vn_text_.size(); ++j) {
     const double len = normal[j].norm();
     // A normal no polygon uses, or whose polygons have no area now, keeps its line.
     if (!(len > 0.0) || !std::isfinite(len)) continue;
     const Vec3 n = normal[j] / len;
-    edits.push_back({vn_text_[j], "vn " + format_double(n.x()) + ' ' + format_double(n.y()) + ' ' + format_double(n.z())});
+    edits.push_back({vn_text_[j], "vn " + format_double(n.x()) + ' ' + format_double(n.y()) + ' ' +
+                                      format_double(n.z())});
   }
-  std::sort(edits.begin(), edits.end(), [](const auto& a, const auto& b) { return a.first.begin < b.first.begin; });
+  std::sort(edits.begin(), edits.end(),
+            [](const auto& a, const auto& b) { return a.first.begin < b.first.begin; });
   std::string out;
   out.reserve(bytes_.size() + bytes_.size() / 4);
   std::size_t at = 0;
@@ -205,7 +217,8 @@ std::string ObjDocument::text(const Positions& x) const {
 
 }  // namespace
 
-std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name, const std::string& bytes) {
+std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name,
+                                                 const std::string& bytes) {
   return std::make_unique<ObjDocument>(name, bytes);
 }
 

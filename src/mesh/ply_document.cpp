@@ -3,7 +3,8 @@
 // their declared type and the file's format (ascii text, or binary of either byte order). Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other
 // elements are therefore kept. Runs after read_ply accepted the same bytes (read_input_mesh), so
-// its checks are short; any surprise is an InputError and the caller falls back to the plain writer.
+// its checks are short; any surprise is an InputError and the caller falls back to the plain
+// writer.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -27,12 +28,13 @@ struct PlyType {
   bool integer;
   bool is_signed;
 };
-constexpr PlyType TYPES[] = {{"char", 1, true, true},    {"int8", 1, true, true},     {"uchar", 1, true, false},
-                             {"uint8", 1, true, false},  {"short", 2, true, true},    {"int16", 2, true, true},
-                             {"ushort", 2, true, false}, {"uint16", 2, true, false},  {"int", 4, true, true},
-                             {"int32", 4, true, true},   {"uint", 4, true, false},    {"uint32", 4, true, false},
-                             {"float", 4, false, true},  {"float32", 4, false, true}, {"double", 8, false, true},
-                             {"float64", 8, false, true}};
+constexpr PlyType TYPES[] = {
+    {"char", 1, true, true},    {"int8", 1, true, true},     {"uchar", 1, true, false},
+    {"uint8", 1, true, false},  {"short", 2, true, true},    {"int16", 2, true, true},
+    {"ushort", 2, true, false}, {"uint16", 2, true, false},  {"int", 4, true, true},
+    {"int32", 4, true, true},   {"uint", 4, true, false},    {"uint32", 4, true, false},
+    {"float", 4, false, true},  {"float32", 4, false, true}, {"double", 8, false, true},
+    {"float64", 8, false, true}};
 
 struct Property {
   std::string name;
@@ -52,7 +54,9 @@ struct Slot {
   const PlyType* type = nullptr;
 };
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
+}
 
 class PlyDocument final : public MeshDocument {
  public:
@@ -61,7 +65,9 @@ class PlyDocument final : public MeshDocument {
   std::string text(const Positions& x) const override;
 
  private:
-  [[noreturn]] void fail(const std::string& what) const { throw InputError(name_ + ": PLY document: " + what); }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError(name_ + ": PLY document: " + what);
+  }
   const PlyType* type_of(const std::string& t) const {
     for (const PlyType& p : TYPES)
       if (t == p.name) return &p;
@@ -102,7 +108,8 @@ void PlyDocument::parse_header() {
       ascii_ = t[1] == "ascii";
       big_endian_ = t[1] == "binary_big_endian";
     } else if (t[0] == "element" && t.size() == 3) {
-      elements_.push_back({t[1], static_cast<std::size_t>(std::strtoull(t[2].c_str(), nullptr, 10)), {}});
+      elements_.push_back(
+          {t[1], static_cast<std::size_t>(std::strtoull(t[2].c_str(), nullptr, 10)), {}});
     } else if (t[0] == "property" && !elements_.empty()) {
       Property p;
       if (t.size() == 5 && t[1] == "list") {
@@ -154,11 +161,13 @@ double PlyDocument::next_value(const PlyType* t, Slot& where) {
   }
   std::uint64_t u = 0;
   for (std::size_t i = size; i-- > 0;) u = (u << 8) | b[i];
-  if (t->is_signed && (u >> (8 * size - 1)) & 1u) return static_cast<double>(static_cast<std::int64_t>(u) - (std::int64_t{1} << (8 * size)));
+  if (t->is_signed && (u >> (8 * size - 1)) & 1u)
+    return static_cast<double>(static_cast<std::int64_t>(u) - (std::int64_t{1} << (8 * size)));
   return static_cast<double>(u);
 }
 
-PlyDocument::PlyDocument(const std::string& name, std::string bytes) : name_(name), bytes_(std::move(bytes)) {
+PlyDocument::PlyDocument(const std::string& name, std::string bytes)
+    : name_(name), bytes_(std::move(bytes)) {
   parse_header();
   bool vertices_seen = false, faces_seen = false;
   polygon_start_.push_back(0);
@@ -173,8 +182,10 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes) : name_(nam
     if (is_vertex) {
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const std::string& n = e.properties[k].name;
-        if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s") u_prop = static_cast<int>(k);
-        if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t") v_prop = static_cast<int>(k);
+        if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
+          u_prop = static_cast<int>(k);
+        if (n == "v" || n == "t" || n == "texture_v" || n == "texture_t")
+          v_prop = static_cast<int>(k);
       }
       // Each vertex needs at least one byte per property: a count beyond the bytes is refused
       // before anything is reserved for it.
@@ -188,7 +199,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes) : name_(nam
         Slot s;
         if (p.list) {
           const double n = next_value(p.count_type, s);
-          if (!(n >= 0) || n > static_cast<double>(bytes_.size())) fail("a list count is out of range");
+          if (!(n >= 0) || n > static_cast<double>(bytes_.size()))
+            fail("a list count is out of range");
           const bool corners = is_face && (p.name == "vertex_indices" || p.name == "vertex_index");
           for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
             const double idx = next_value(p.type, s);
@@ -199,11 +211,16 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes) : name_(nam
         }
         const double value = next_value(p.type, s);
         if (!is_vertex) continue;
-        if (p.name == "x") slots_[3 * i] = s;
-        else if (p.name == "y") slots_[3 * i + 1] = s;
-        else if (p.name == "z") slots_[3 * i + 2] = s;
-        else if (static_cast<int>(k) == u_prop) u_values.push_back(value);
-        else if (static_cast<int>(k) == v_prop) v_values.push_back(value);
+        if (p.name == "x")
+          slots_[3 * i] = s;
+        else if (p.name == "y")
+          slots_[3 * i + 1] = s;
+        else if (p.name == "z")
+          slots_[3 * i + 2] = s;
+        else if (static_cast<int>(k) == u_prop)
+          u_values.push_back(value);
+        else if (static_cast<int>(k) == v_prop)
+          v_values.push_back(value);
       }
     }
   }
@@ -217,15 +234,16 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes) : name_(nam
 
 std::string PlyDocument::text(const Positions& x) const {
   if (static_cast<std::size_t>(x.rows()) != vertex_count_)
-    throw std::invalid_argument("PlyDocument::text: " + std::to_string(x.rows()) + " positions for " +
-                                std::to_string(vertex_count_) + " vertices");
+    throw std::invalid_argument("PlyDocument::text: " + std::to_string(x.rows()) +
+                                " positions for " + std::to_string(vertex_count_) + " vertices");
   if (!x.allFinite()) throw std::invalid_argument("PlyDocument::text: a position is not finite");
   std::string out;
   out.reserve(bytes_.size() + (ascii_ ? 24 * slots_.size() : 0));
   // In file order (a header may declare z before x).
   std::vector<std::size_t> order(slots_.size());
   for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return slots_[a].begin < slots_[b].begin; });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return slots_[a].begin < slots_[b].begin; });
   std::size_t at = 0;
   for (const std::size_t k : order) {
     const Slot& s = slots_[k];
@@ -241,7 +259,8 @@ std::string PlyDocument::text(const Positions& x) const {
         out += std::to_string(r);
       } else {
         unsigned char b[8];
-        for (int i = 0; i < s.type->size; ++i) b[i] = static_cast<unsigned char>((static_cast<std::uint64_t>(r) >> (8 * i)) & 0xff);
+        for (int i = 0; i < s.type->size; ++i)
+          b[i] = static_cast<unsigned char>((static_cast<std::uint64_t>(r) >> (8 * i)) & 0xff);
         if (big_endian_) std::reverse(b, b + s.type->size);
         out.append(reinterpret_cast<const char*>(b), static_cast<std::size_t>(s.type->size));
       }
@@ -271,7 +290,8 @@ std::string PlyDocument::text(const Positions& x) const {
 
 }  // namespace
 
-std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const std::string& bytes) {
+std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name,
+                                                 const std::string& bytes) {
   return std::make_unique<PlyDocument>(name, bytes);
 }
 

@@ -188,4 +188,17 @@ TEST_F(CliAttributes, AnObjTheDocumentCannotReadIsWrittenPlainWithAWarning) {
   EXPECT_TRUE(fs::exists(file("odd_out.obj")));
 }
 
+TEST_F(CliAttributes, AMeshThatRepairChangedIsWrittenPlainWithAWarning) {
+  // An unused vertex: check refuses it, --repair removes it, and the file's vertex numbering
+  // no longer holds.
+  const std::string in = file("spare.obj");
+  std::ofstream(in) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nv 5 5 5\nvt 0 0\n"
+                       "f 1/1 3/1 2/1\nf 1/1 2/1 4/1\nf 1/1 4/1 3/1\nf 2/1 3/1 4/1\n";
+  const RunResult r = run_cli({"run", in, "-o", file("spare_out.obj"), "--repair", "--frames", "2", "-q"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: the result is written without the input's attributes: --repair changed the mesh"),
+            std::string::npos) << r.output;
+  EXPECT_EQ(read_text(file("spare_out.obj")).find("vt "), std::string::npos);  // the plain writer's
+}
+
 }  // namespace

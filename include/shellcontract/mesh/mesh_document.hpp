@@ -37,7 +37,9 @@ class MeshDocument {
   virtual std::string text(const Positions& x) const = 0;
 
   std::size_t vertex_count() const { return vertex_count_; }
-  std::size_t polygon_count() const { return polygon_start_.empty() ? 0 : polygon_start_.size() - 1; }
+  std::size_t polygon_count() const {
+    return polygon_start_.empty() ? 0 : polygon_start_.size() - 1;
+  }
   /// Number of triangles read_input_mesh makes of the polygons (n corners: n - 2).
   std::size_t triangle_count() const;
   /// Whether this document stands for `mesh`, the mesh read_input_mesh made of the same file:
@@ -79,7 +81,8 @@ std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const 
 
 /// Writes doc.text(x) to `path` atomically (write_text_atomic).
 /// @throws UsageError if the file cannot be written
-void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc, const Positions& x);
+void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc,
+                                const Positions& x);
 
 /// The shortest text that reads back to exactly v (std::to_chars); used by the documents.
 std::string format_double(double v);

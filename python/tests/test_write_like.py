@@ -1,0 +1,36 @@
+"""write_mesh(..., like=INPUT) keeps a textured OBJ whole (issue 56): every line but v and vn
+as read, the given positions bitwise."""
+import numpy as np
+import pytest
+
+import shellcontract
+
+OBJ = ("# a tetrahedron with texture coordinates and a material\nmtllib t.mtl\no tet\n"
+       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nusemtl red\ns 1\n"
+       "f 1/1/1 3/3/1 2/2/1\nf 1/1/1 2/2/1 4/3/1\nf 1/1/1 4/3/1 3/2/1\nf 2/2/1 3/3/1 4/1/1\n")
+
+
+def test_write_like_keeps_everything_but_positions(tmp_path):
+    src = tmp_path / "tet.obj"
+    src.write_text(OBJ)
+    v, f = shellcontract.read_mesh(src)
+    moved = v * 0.5 + np.array([0.125, -0.25, 1.0 / 3.0])
+    out = tmp_path / "out.obj"
+    shellcontract.write_mesh(out, moved, f, like=src)
+    a, b = OBJ.splitlines(), out.read_text().splitlines()
+    assert len(a) == len(b)
+    rows = [line for line in b if line.startswith("v ")]
+    assert np.array_equal(np.array([[float(t) for t in r.split()[1:4]] for r in rows]), moved)
+    for x, y in zip(a, b):
+        if not x.startswith(("v ", "vn ")):
+            assert x == y
+
+
+def test_write_like_refuses_other_faces(tmp_path):
+    src = tmp_path / "tet.obj"
+    src.write_text(OBJ)
+    v, f = shellcontract.read_mesh(src)
+    with pytest.raises(ValueError, match="not those read_mesh gives"):
+        shellcontract.write_mesh(tmp_path / "out.obj", v, f[:, [0, 2, 1]], like=src)
+    with pytest.raises(ValueError, match="only an OBJ or PLY file"):
+        shellcontract.write_mesh(tmp_path / "out.off", v, f, like=src)
