@@ -217,6 +217,37 @@ SC_AVX2_INLINE void scatter3(double* x, const int* v, const V3& a) {
   _mm_storeh_pd(p3 + 2, z23);
 }
 
+/// Two batches' lanes side by side (eight hinges of one colour): every operation is two 256-bit
+/// instructions next to each other, so that the two batches' long dependency chains (the angle's
+/// two divisions and its polynomial) overlap instead of waiting in turn for the reorder window.
+struct W {
+  V a, b;
+};
+SC_AVX2_INLINE W operator+(W p, W q) { return {p.a + q.a, p.b + q.b}; }
+SC_AVX2_INLINE W operator-(W p, W q) { return {p.a - q.a, p.b - q.b}; }
+SC_AVX2_INLINE W operator*(W p, W q) { return {p.a * q.a, p.b * q.b}; }
+SC_AVX2_INLINE W operator/(W p, W q) { return {p.a / q.a, p.b / q.b}; }
+template <>
+SC_AVX2_INLINE W lanes_splat<W>(double x) { return {_mm256_set1_pd(x), _mm256_set1_pd(x)}; }
+#define SC_W2(name) \
+  SC_AVX2_INLINE W name(W p, W q) { return {name(p.a, q.a), name(p.b, q.b)}; }
+SC_W2(vand)
+SC_W2(vandnot)
+SC_W2(vor)
+SC_W2(vxor)
+SC_W2(vmin)
+SC_W2(vmax)
+SC_W2(cmp_gt)
+SC_W2(cmp_ge)
+SC_W2(cmp_le)
+SC_W2(cmp_eq)
+SC_W2(cmp_neq_uq)
+#undef SC_W2
+SC_AVX2_INLINE W vsqrt(W p) { return {vsqrt(p.a), vsqrt(p.b)}; }
+SC_AVX2_INLINE W blend(W p, W q, W m) { return {blend(p.a, q.a, m.a), blend(p.b, q.b, m.b)}; }
+SC_AVX2_INLINE W fmsub(W p, W q, W r) { return {fmsub(p.a, q.a, r.a), fmsub(p.b, q.b, r.b)}; }
+SC_AVX2_INLINE int lane_bits(W p) { return lane_bits(p.a) | lane_bits(p.b) << BATCH_LANES; }
+
 /// atan2(y, x) on four lanes, within a few ulp of std::atan2 (tests/pbd/test_lane_math.cpp), so
 /// that the dihedral kernel needs no libm call per lane. Branch-free: the quotient
 /// t = min(|x|, |y|) / max(|x|, |y|) in [0, 1] is reduced to |u| <= 0.66 by u = (t - 1) / (t + 1)

@@ -42,42 +42,6 @@ void dihedral_batches_scalar(const DihedralBatch* batches, std::size_t count, do
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wignored-attributes"  // as in batch_lanes.hpp
 
-}  // namespace
-
-namespace batch_lanes {
-/// Two batches' lanes side by side (eight hinges of one colour): every operation is two 256-bit
-/// instructions next to each other, so that the two batches' long dependency chains (the angle's
-/// two divisions and its polynomial) overlap instead of waiting in turn for the reorder window.
-struct W {
-  V a, b;
-};
-SC_AVX2_INLINE W operator+(W p, W q) { return {p.a + q.a, p.b + q.b}; }
-SC_AVX2_INLINE W operator-(W p, W q) { return {p.a - q.a, p.b - q.b}; }
-SC_AVX2_INLINE W operator*(W p, W q) { return {p.a * q.a, p.b * q.b}; }
-SC_AVX2_INLINE W operator/(W p, W q) { return {p.a / q.a, p.b / q.b}; }
-template <>
-SC_AVX2_INLINE W lanes_splat<W>(double x) { return {_mm256_set1_pd(x), _mm256_set1_pd(x)}; }
-#define SC_W2(name) \
-  SC_AVX2_INLINE W name(W p, W q) { return {name(p.a, q.a), name(p.b, q.b)}; }
-SC_W2(vand)
-SC_W2(vandnot)
-SC_W2(vor)
-SC_W2(vxor)
-SC_W2(vmin)
-SC_W2(vmax)
-SC_W2(cmp_gt)
-SC_W2(cmp_ge)
-SC_W2(cmp_le)
-SC_W2(cmp_eq)
-SC_W2(cmp_neq_uq)
-#undef SC_W2
-SC_AVX2_INLINE W vsqrt(W p) { return {vsqrt(p.a), vsqrt(p.b)}; }
-SC_AVX2_INLINE W blend(W p, W q, W m) { return {blend(p.a, q.a, m.a), blend(p.b, q.b, m.b)}; }
-SC_AVX2_INLINE W fmsub(W p, W q, W r) { return {fmsub(p.a, q.a, r.a), fmsub(p.b, q.b, r.b)}; }
-SC_AVX2_INLINE int lane_bits(W p) { return lane_bits(p.a) | lane_bits(p.b) << BATCH_LANES; }
-}  // namespace batch_lanes
-
-namespace {
 
 template <class T>
 SC_AVX2_INLINE L3<T> cross(const L3<T>& a, const L3<T>& b) {

@@ -19,6 +19,7 @@
 #include "shellcontract/pbd/constraint_batches.hpp"
 #include "shellcontract/pbd/constraint_kernels.hpp"
 
+#include "pbd/aniso_frames.hpp"
 #include "pbd/membrane_energy.hpp"
 #include "pbd/regional_order.hpp"
 #include "pbd/sweep_phases.hpp"
@@ -426,39 +427,15 @@ class GaussSeidelSolver final : public ConstraintSolver {
   /// 9.3 R) and, in the inversion-aware mode, its orientation s = sign(n . n_ref) with n_ref the
   /// normalized sum of the area-weighted vertex normals of its corners (math-spec 4.2).
   void freeze_anisotropic_frames(const Positions& x) {
-    for (std::size_t i = 0; i < set_.anisotropic.size(); ++i) {
-      const auto& v = set_.anisotropic[i].v;
-      const Vec3 N = (row(x, v[0]) - row(x, v[2])).cross(row(x, v[1]) - row(x, v[2]));
-      const double len = N.norm();
-      aniso_normal_[i] = len > 0.0 ? Vec3(N / len) : Vec3::Zero();  // collapsed: no inward push
-    }
-    if (settings_.inversion_aware && faces_.rows() > 0) freeze_orientations(x);
+    aniso_frames::face_normals(set_.anisotropic, x, aniso_normal_);
+    if (settings_.inversion_aware && faces_.rows() > 0)
+      aniso_frames::inversion_orientations(set_.anisotropic, faces_, x, aniso_normal_,
+                                           vertex_normal_, aniso_orientation_);
     for (std::size_t i = 0; i < aniso_lane_.size(); ++i) {  // into the batches, if any
       AnisoBatch& b = aniso_batches_.batches[aniso_lane_[i] / BATCH_LANES];
       const std::size_t k = aniso_lane_[i] % BATCH_LANES;
       for (int d = 0; d < 3; ++d) b.normal[d][k] = aniso_normal_[i](d);
       b.orientation[k] = aniso_orientation_[i];
-    }
-  }
-
-  /// The inversion-aware orientations of freeze_anisotropic_frames (math-spec 4.2).
-  void freeze_orientations(const Positions& x) {
-    vertex_normal_.setZero(x.rows(), 3);
-    for (Eigen::Index j = 0; j < faces_.rows(); ++j) {
-      const Vec3 N = (row(x, faces_(j, 0)) - row(x, faces_(j, 2)))
-                         .cross(row(x, faces_(j, 1)) - row(x, faces_(j, 2)));
-      for (int k = 0; k < 3; ++k) vertex_normal_.row(faces_(j, k)) += N.transpose();
-    }
-    for (std::size_t i = 0; i < set_.anisotropic.size(); ++i) {
-      const auto& v = set_.anisotropic[i].v;
-      Vec3 ref = Vec3::Zero();
-      for (int k = 0; k < 3; ++k) {
-        const Vec3 nv = row(vertex_normal_, v[k]);
-        const double len = nv.norm();
-        if (len > 0.0) ref += nv / len;
-      }
-      // Tie (n . n_ref = 0, or no reference) counts as not inverted (math-spec 5 tie rule).
-      aniso_orientation_[i] = aniso_normal_[i].dot(ref) < 0.0 ? -1.0 : 1.0;
     }
   }
 

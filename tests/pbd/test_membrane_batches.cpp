@@ -6,7 +6,7 @@
 // lanes) and both orientations s; and a nearly collinear triangle inside Mooney-Rivlin's |J|
 // clamp, to the accuracy its conditioning allows.
 // A wrong PK1 entry, frame axis or lift term moves the steps by far more than the tolerance
-// (checked by dropping the p01 term of the linear PK1 and the t2 part of g2: both fail).
+// (checked by dropping the p01 term of the linear PK1, and the t2 part of g1: each fails).
 #include <gtest/gtest.h>
 
 #include <cmath>
