@@ -306,7 +306,10 @@ int command_run(int argc, char** argv) {
         written = written.empty() ? path : written + " and " + path;
         outputs.add(option, path, "written");
       } catch (const UsageError& e) {
-        outputs.add(option, path, std::string("failed: ") + e.what());
+        std::error_code ec;  // a file there before the run is left as it was
+        outputs.add(option, path,
+                    std::string(std::filesystem::exists(path, ec) ? "failed, the old file kept: " : "failed: ") +
+                        e.what());
       }
     };
     if (!exports.gltf.empty()) attempt("--gltf", exports.gltf, [&] { exporter.write_gltf(); });

@@ -220,7 +220,7 @@ std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) 
                                      std::to_string(max_bytes) + " this file can need");
   std::string bytes(static_cast<std::size_t>(declared), '\0');  // std::bad_alloc passes to the caller
   std::size_t done = 0;
-  char more[65536];  // past the stat's size: a file that grew, read on within the bound
+  char more[512];  // past the stat's size: a file that grew, read on within the bound
   for (;;) {
     const bool full = done == bytes.size();
     const ssize_t n = full ? ::read(fd, more, sizeof more) : ::read(fd, bytes.data() + done, bytes.size() - done);

@@ -21,6 +21,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
@@ -149,7 +150,7 @@ namespace {
 /// that a full disk is reported as such whatever the writer on top of it makes of the failure.
 class FdBuf final : public std::streambuf {
  public:
-  explicit FdBuf(int fd) : fd_(fd) { setp(buffer_, buffer_ + sizeof buffer_); }
+  explicit FdBuf(int fd) : fd_(fd), buffer_(BUFFER_BYTES) { setp(buffer_.data(), buffer_.data() + BUFFER_BYTES); }
   int error() const { return error_; }
   std::uint64_t written() const { return written_; }
 
@@ -163,7 +164,7 @@ class FdBuf final : public std::streambuf {
     return traits_type::not_eof(c);
   }
   std::streamsize xsputn(const char* s, std::streamsize n) override {
-    if (n < static_cast<std::streamsize>(sizeof buffer_)) return std::streambuf::xsputn(s, n);
+    if (n < static_cast<std::streamsize>(BUFFER_BYTES)) return std::streambuf::xsputn(s, n);
     if (!drain() || !put(s, static_cast<std::size_t>(n))) return 0;  // large pieces go straight out
     return n;
   }
@@ -177,8 +178,8 @@ class FdBuf final : public std::streambuf {
  private:
   bool drain() {
     const std::size_t n = static_cast<std::size_t>(pptr() - pbase());
-    setp(buffer_, buffer_ + sizeof buffer_);
-    return put(buffer_, n);
+    setp(buffer_.data(), buffer_.data() + BUFFER_BYTES);
+    return put(buffer_.data(), n);
   }
   bool put(const char* s, std::size_t n) {
     if (error_) return false;
@@ -198,7 +199,8 @@ class FdBuf final : public std::streambuf {
   int fd_;
   int error_ = 0;
   std::uint64_t written_ = 0;
-  char buffer_[1 << 16];
+  static constexpr std::size_t BUFFER_BYTES = 8192;  // as std::ofstream's; large pieces bypass it
+  std::vector<char> buffer_;
 };
 
 /// "cannot write 'PATH': WHY".

@@ -36,13 +36,16 @@ TEST_F(Hostile, AFullDiskStopsTheExportNotTheResult) {
 TEST_F(Hostile, AFullDiskUnderTheGltfIsNamedAndTheResultWritten) {
   std::string why;
   if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) GTEST_SKIP() << why;
+  test::spit(dir_ / "small" / "a.glb", "an earlier run's");
   const auto r = run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "20", "-q",
                           "--export-every", "1", "--gltf", (dir_ / "small" / "a.glb").string()});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_TRUE(fs::exists(dir_ / "o.off")) << r.output;
   EXPECT_NE(r.output.find("disk is full"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("serializing"), std::string::npos) << r.output;
-  EXPECT_TRUE(test::listing(dir_ / "small").empty()) << "a temporary was left on the full disk";
+  EXPECT_NE(r.output.find("the old file kept"), std::string::npos) << r.output;
+  EXPECT_EQ(test::slurp(dir_ / "small" / "a.glb"), "an earlier run's");
+  EXPECT_EQ(test::listing(dir_ / "small"), std::vector<std::string>{"a.glb"}) << "a temporary was left on the full disk";
 }
 
 // Before: the summary copied the file name's bytes as they were; a Latin-1 name made it invalid
