@@ -49,7 +49,15 @@ class FrameExporter final : public RunObserver {
   }
   void finished(const Simulator& sim, const RunResult&) override {
     if (last_ != sim.frame()) take(sim.frame(), sim);  // a run that stopped early
-    if (writer_) writer_->finish();
+    // A failed frame file (a full disk) stops the export, not the run: the result, the log and
+    // the summary are still written, and the run's end names the failure.
+    if (writer_) {
+      try {
+        writer_->finish();
+      } catch (const std::exception& e) {
+        export_error_ = e.what();
+      }
+    }
     if (!request_.gltf.empty()) {
       const auto start = std::chrono::steady_clock::now();
       const VertexFields f = compute_vertex_fields(sim);
@@ -93,6 +101,8 @@ class FrameExporter final : public RunObserver {
   double gltf_seconds() const { return gltf_seconds_; }
   double gltf_copy_seconds() const { return gltf_copy_seconds_; }
   int every() const { return request_.every; }
+  /// Why the frame files stopped being written; empty when they all were.
+  const std::string& export_error() const { return export_error_; }
 
  private:
   void take(int frame, const Simulator& sim) {
@@ -123,6 +133,7 @@ class FrameExporter final : public RunObserver {
   GltfAnimation gltf_;
   std::size_t gltf_bytes_ = 0;
   double gltf_seconds_ = 0.0, gltf_copy_seconds_ = 0.0;
+  std::string export_error_;
 };
 
 }  // namespace shellcontract::cli

@@ -9,18 +9,46 @@
 
 namespace shellcontract::cli {
 
-/// Escapes a string for a JSON string literal (quotes, backslash, control characters).
+/// Length of the well-formed UTF-8 sequence at s[i] (1 to 4), or 0 if the byte there does not
+/// start one (a stray continuation byte, an overlong form, a surrogate, beyond U+10FFFF).
+inline std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
+  const auto b = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = b(i);
+  if (c < 0x80) return 1;
+  std::size_t n = 0;
+  unsigned lo = 0x80, hi = 0xBF;  // range of the second byte
+  if (c >= 0xC2 && c <= 0xDF) n = 2;
+  else if (c >= 0xE0 && c <= 0xEF) n = 3, lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
+  else if (c >= 0xF0 && c <= 0xF4) n = 4, lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
+  else return 0;
+  if (i + n > s.size() || b(i + 1) < lo || b(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k)
+    if (b(i + k) < 0x80 || b(i + k) > 0xBF) return 0;
+  return n;
+}
+
+/// Escapes a string for a JSON string literal (quotes, backslash, control characters). The
+/// result is always valid UTF-8: a byte that is not part of a well-formed UTF-8 sequence (a file
+/// name in Latin-1, say) becomes the escape of the code point of the same value (U+0000 to U+00FF).
 inline std::string json_quote(const std::string& s) {
   std::ostringstream o;
   o << '"';
-  for (unsigned char c : s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const std::size_t n = utf8_sequence_length(s, i);
+    if (n > 1) {
+      o.write(s.data() + i, static_cast<std::streamsize>(n));
+      i += n;
+      continue;
+    }
+    ++i;
     switch (c) {
       case '"': o << "\\\""; break;
       case '\\': o << "\\\\"; break;
       case '\n': o << "\\n"; break;
       case '\t': o << "\\t"; break;
       default:
-        if (c < 0x20) o << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
+        if (c < 0x20 || n == 0) o << "\\u" << std::hex << std::setw(4) << std::setfill('0') << int(c) << std::dec;
         else o << c;
     }
   }

@@ -1,22 +1,99 @@
-// Checks of the files a command will write, made before any work: a run must not fail after
-// minutes of simulation because its output folder is missing, nor write JSON over its own mesh.
+// The one decision, for every command, of which files it may write (docs/design/output-safety.md),
+// made before any work: a run must not fail after minutes of simulation because its output
+// folder is missing, nor write over its own input, however the two are spelled.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "json_writer.hpp"
+#include "shellcontract/mesh/file_safety.hpp"
 
 namespace shellcontract::cli {
 
-/// One file a command will write and the option that names it.
+/// One file a command reads or writes and the option that names it.
 struct PlannedOutput {
-  std::string option;  ///< e.g. "-o" or "--summary"
+  std::string option;  ///< e.g. "-o" or "--summary" ("INPUT" or "--regions" for an input)
   std::string path;
 };
 
-/// Checks that every planned output is distinct from the others and from the input (the same
-/// file reached by different spellings counts as the same), that its folder exists and is
-/// writable, and that it is not an existing folder.
-/// @throws UsageError naming the option and the path
-void check_planned_outputs(const std::vector<PlannedOutput>& outputs, const std::string& input);
+/// The frame files of --export-dir: DIR/<stem>_<frame>.<ext>, the frame zero-padded to the
+/// digits of max_frame (frame_file_name). Any frame from 0 to max_frame may be written (a run
+/// that stops early writes its last frame), so every one of those names is checked.
+struct PlannedFrames {
+  std::string dir;  ///< empty: no frame files
+  std::string stem, ext;
+  int max_frame = 0;
+};
+
+/// What a command will write and what it reads.
+struct OutputPlan {
+  std::vector<PlannedOutput> outputs;
+  std::vector<PlannedOutput> inputs;
+  PlannedFrames frames;
+};
+
+/// Checks a command's outputs by file identity (device and inode; for a file that does not exist
+/// yet, its folder's device and inode and its name), so that hard links, symbolic links and bind
+/// mounts are seen through: no output (every frame name included) may be an input or another
+/// output. An existing output must be a writable regular file (a device, FIFO, socket or folder
+/// is never replaced). Each output folder is probed by creating and removing a file with a name
+/// of the output's length, so that a missing or read-only folder, a parent that is a file or a
+/// name too long is found now. Creates nothing that stays (the export folder is made by
+/// prepare_export_folder).
+/// @throws UsageError naming the option, the path and the reason (exit code 1)
+void check_planned_outputs(const OutputPlan& plan);
+
+/// Held while a run writes frames into its export folder: a second run with the same folder is
+/// refused while the first runs (an advisory lock on the folder).
+class ExportFolderLock {
+ public:
+  explicit ExportFolderLock(int fd) : fd_(fd) {}
+  ~ExportFolderLock();
+  ExportFolderLock(const ExportFolderLock&) = delete;
+  ExportFolderLock& operator=(const ExportFolderLock&) = delete;
+
+ private:
+  int fd_;
+};
+
+/// After check_planned_outputs: creates the export folder if missing, locks it, and refuses it
+/// when frame files of this name (<stem>_<digits>.<ext>) are already there, from another run:
+/// two runs never mix their frames. Nothing is created when the answer is no (the folder made
+/// here is removed again).
+/// @throws UsageError (exit code 1)
+std::unique_ptr<ExportFolderLock> prepare_export_folder(const PlannedFrames& frames);
+
+/// What became of each output at the end of a run: "written", or "failed: why" (the final
+/// message and the summary's "outputs" name each one).
+class OutputStatus {
+ public:
+  void add(std::string option, std::string path, std::string state) {
+    if (state.rfind("written", 0) != 0) failed_ = true;
+    rows_.push_back({std::move(option), std::move(path), std::move(state)});
+  }
+  bool failed() const { return failed_; }
+  /// One line per output: "  OPTION PATH: STATE".
+  std::string text() const {
+    std::string t;
+    for (const Row& r : rows_) t += "  " + r.option + " " + printable(r.path) + ": " + r.state + "\n";
+    return t;
+  }
+  /// {"OPTION": "STATE", ...}
+  JsonObject json() const {
+    JsonObject o;
+    for (const Row& r : rows_) o.add(r.option, r.state);
+    return o;
+  }
+
+ private:
+  struct Row {
+    std::string option, path, state;
+  };
+  std::vector<Row> rows_;
+  bool failed_ = false;
+};
 
 }  // namespace shellcontract::cli

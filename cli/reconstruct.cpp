@@ -5,6 +5,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "output_paths.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh/io.hpp"
@@ -35,6 +36,10 @@ int command_reconstruct(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("missing POINTS file");
     if (output.empty()) throw UsageError("missing -o OUT");
+    OutputPlan plan;
+    plan.inputs.push_back({"INPUT", input});
+    plan.outputs.push_back({"-o", output});
+    check_planned_outputs(plan);  // never the points file, a writable folder (output_paths.hpp)
   } catch (const po::error& e) {
     return usage_error("reconstruct", e.what());
   } catch (const UsageError& e) {

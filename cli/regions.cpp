@@ -5,9 +5,11 @@
 
 #include "commands.hpp"
 #include "command_line.hpp"
+#include "output_paths.hpp"
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -87,6 +89,14 @@ int command_regions(int argc, char** argv) {
     if (options.smoothing_rings < 0) throw UsageError("--smoothing-rings must be >= 0");
     if (!(options.fit_distance_tolerance >= 0.0) || !(options.fit_normal_tolerance_deg >= 0.0))
       throw UsageError("--fit-distance and --fit-normal-deg must be >= 0");
+    for (const double t : {options.min_principal_ratio, options.min_curvature_contrast, options.fit_distance_tolerance,
+                           options.fit_normal_tolerance_deg, options.min_area_fraction, options.max_area_fraction})
+      if (!std::isfinite(t) || t < 0.0) throw UsageError("every threshold must be a finite number >= 0");
+    OutputPlan plan;
+    plan.inputs.push_back({"INPUT", input});
+    plan.outputs.push_back({"-o", output});
+    if (!face_list.empty()) plan.outputs.push_back({"--face-list", face_list});
+    check_planned_outputs(plan);  // none is the input or the other, all writable (output_paths.hpp)
   } catch (const po::error& e) {
     return usage_error("regions", e.what());
   } catch (const UsageError& e) {

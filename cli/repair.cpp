@@ -88,7 +88,10 @@ int command_repair(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
-    check_planned_outputs({{"-o", output}}, input);
+    OutputPlan plan;
+    plan.inputs.push_back({"INPUT", input});
+    plan.outputs.push_back({"-o", output});
+    check_planned_outputs(plan);
   } catch (const po::error& e) {
     return usage_error("repair", e.what());
   } catch (const UsageError& e) {

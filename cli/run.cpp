@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -198,6 +199,7 @@ int command_run(int argc, char** argv) {
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
       "quiet,q", po::bool_switch(&quiet), "no progress on stderr");
   FieldColour colour = FieldColour::MeanCurvature;
+  std::unique_ptr<ExportFolderLock> export_lock;  // held until the run's files are written
   try {
     const po::variables_map vm = parse_command_line(argc, argv, desc, input);
     if (vm.count("help")) {
@@ -220,7 +222,9 @@ int command_run(int argc, char** argv) {
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
       throw UsageError("-o " + output + ": unknown mesh format '." + ext +
                        "' (expected .off, .obj, .ply or .stl)");
-    std::vector<PlannedOutput> planned{{"-o", output}};
+    OutputPlan plan;
+    std::vector<PlannedOutput>& planned = plan.outputs;
+    planned.push_back({"-o", output});
     if (!log_path.empty()) planned.push_back({"--log", log_path});
     if (!summary_path.empty()) planned.push_back({"--summary", summary_path});
     if (!fields_prefix.empty()) {
@@ -237,18 +241,19 @@ int command_run(int argc, char** argv) {
                        std::to_string(exports.every));
     if (vm.count("export-every") && exports.dir.empty() && exports.gltf.empty())
       throw UsageError("--export-every has no effect without --export-dir or --gltf");
+    plan.inputs.push_back({"INPUT", input});
+    if (options.regions == RegionSource::File) plan.inputs.push_back({"--regions", options.region_file});
     if (!exports.dir.empty()) {
-      std::error_code ec;
-      if (!std::filesystem::is_directory(exports.dir) &&
-          !std::filesystem::create_directories(exports.dir, ec))
-        throw UsageError("--export-dir " + exports.dir + ": cannot create the folder (" +
-                         ec.message() + ")");
       exports.name = std::filesystem::path(output).stem().string();
       exports.ext = ext;
-      planned.push_back(
-          {"--export-dir", frame_file_name(exports.dir, exports.name, ext, 0, options.sim.frames)});
+      // Every frame name, not only frame 0's: a run that stops early writes its last frame.
+      plan.frames = {exports.dir, exports.name, ext, options.sim.frames};
     }
-    check_planned_outputs(planned, input);
+    // One decision for every output (output_paths.hpp), then the export folder: created, locked
+    // against a second run, refused if another run's frames are there. Nothing before this
+    // creates a file or folder.
+    check_planned_outputs(plan);
+    export_lock = prepare_export_folder(plan.frames);
   } catch (const po::error& e) {
     return usage_error("run", e.what());
   } catch (const UsageError& e) {
@@ -320,22 +325,37 @@ int command_run(int argc, char** argv) {
     stage = "preparing the run or taking its result";
     const RunResult r = run_contraction(mesh, options, &observers);
 
-    if (!exports.gltf.empty()) {
-      stage = "writing " + exports.gltf;
-      exporter.write_gltf();
-      written = exports.gltf;
+    // A finished result is never thrown away: each output is written on its own, one that
+    // fails (a full disk) is reported and the others are still written (output-safety.md).
+    OutputStatus outputs;
+    if (!exporter.export_error().empty()) {
+      std::cerr << "warning: the frame export stopped: " << exporter.export_error() << '\n';
+      outputs.add("--export-dir", exports.dir,
+                  std::to_string(exporter.frame_stats().frames_written) +
+                      " frames written, then failed: " + exporter.export_error());
     }
-    stage = "writing " + output;
-    if (document && document->format() == lower_extension(output))
-      write_mesh_document_atomic(output, *document, r.positions);
-    else
-      write_mesh_atomic(output, mesh, r.positions);
-    written = written.empty() ? output : written + " and " + output;
-    stage = "writing the log and the summary";
-    if (!log_path.empty()) {
-      write_text_atomic(log_path, csv.text());
-      written += " and " + log_path;
-    }
+    if (!fields.error().empty()) outputs.add("--fields", fields_prefix, "failed: " + fields.error());
+    const auto attempt = [&](const char* option, const std::string& path, const std::function<void()>& write) {
+      stage = "writing " + path;
+      try {
+        write();
+        written = written.empty() ? path : written + " and " + path;
+        outputs.add(option, path, "written");
+      } catch (const UsageError& e) {
+        std::error_code ec;  // a file there before the run is left as it was
+        outputs.add(option, path,
+                    std::string(std::filesystem::exists(path, ec) ? "failed, the old file kept: " : "failed: ") +
+                        e.what());
+      }
+    };
+    if (!exports.gltf.empty()) attempt("--gltf", exports.gltf, [&] { exporter.write_gltf(); });
+    attempt("-o", output, [&] {
+      if (document && document->format() == lower_extension(output))
+        write_mesh_document_atomic(output, *document, r.positions);
+      else
+        write_mesh_atomic(output, mesh, r.positions);
+    });
+    if (!log_path.empty()) attempt("--log", log_path, [&] { write_text_atomic(log_path, csv.text()); });
     if (!summary_path.empty()) {
       JsonObject summary = summary_json(input, output, report, options, r);
       JsonObject setup;
@@ -354,7 +374,14 @@ int command_run(int argc, char** argv) {
       }
       if (!exports.dir.empty() || !exports.gltf.empty())
         summary.add("export", export_json(exporter));
-      write_text_atomic(summary_path, summary.str() + "\n");
+      summary.add("outputs", outputs.json());
+      attempt("--summary", summary_path, [&] { write_text_atomic(summary_path, summary.str() + "\n"); });
+    }
+    if (outputs.failed()) {
+      std::cerr << "shellcontract run: not every output could be written (the run itself ended: "
+                << status_name(r.status) << ", frame " << r.frames_run << ")\n"
+                << outputs.text();
+      return static_cast<int>(ExitCode::BadUsage);
     }
     switch (r.status) {
       case RunStatus::NewIntersections:

@@ -92,13 +92,19 @@ class FieldsWriter final : public RunObserver {
       : prefix_(std::move(prefix)), colour_(colour) {}
   void started(const Simulator& sim) override { write(sim, "_start.ply"); }
   void finished(const Simulator& sim, const RunResult&) override { write(sim, "_end.ply"); }
+  /// Why a fields file could not be written (the run goes on); empty when both were.
+  const std::string& error() const { return error_; }
 
  private:
   void write(const Simulator& sim, const std::string& suffix) {
-    write_fields_ply(prefix_ + suffix, sim, sim.positions_in_input_units(),
-                     compute_vertex_fields(sim), colour_);
+    try {
+      write_fields_ply(prefix_ + suffix, sim, sim.positions_in_input_units(),
+                       compute_vertex_fields(sim), colour_);
+    } catch (const UsageError& e) {
+      error_ += (error_.empty() ? "" : "; ") + std::string(e.what());
+    }
   }
-  std::string prefix_;
+  std::string prefix_, error_;
   FieldColour colour_;
 };
 

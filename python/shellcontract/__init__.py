@@ -7,7 +7,9 @@ ranges; ``options()`` lists them. The same input and options give the same resul
 to the last bit.
 """
 
+import atexit
 import collections
+import numbers
 import queue
 import threading
 
@@ -63,6 +65,28 @@ def contract(vertices, faces, *, callback=None, **options):
     return Result(_core.contract(vertices, faces, callback=callback, **options))
 
 
+# The frames() runs whose generator is still open: at exit, a suspended generator's worker waits
+# in its callback for a consumer that will not come; _stop_frames_at_exit hands it its stop, before
+# the module's own exit hook (registered earlier, so run later) waits for every run to end.
+_live_frames = set()
+
+
+def _finish_frames_run(stop, handoff, worker):
+    stop.set()
+    while worker.is_alive():  # unblock a pending put until the run has seen the stop
+        try:
+            handoff.get(timeout=0.05)
+        except queue.Empty:
+            pass
+    worker.join()
+
+
+@atexit.register
+def _stop_frames_at_exit():
+    for run in list(_live_frames):
+        _finish_frames_run(*run)
+
+
 def frames(vertices, faces, every=1, **options):
     """Runs ``contract`` and yields (frame, vertices, metrics) at every ``every``-th frame.
 
@@ -70,6 +94,8 @@ def frames(vertices, faces, every=1, **options):
     (StopIteration.value, or ``result = yield from frames(...)``) is the Result. Closing the
     generator early cancels the run.
     """
+    if isinstance(every, bool) or not isinstance(every, numbers.Integral):
+        raise TypeError("every must be an integer, got {}".format(type(every).__name__))
     if every < 1:
         raise ValueError("every must be >= 1, got {}".format(every))
     handoff = queue.Queue(maxsize=1)
@@ -89,6 +115,8 @@ def frames(vertices, faces, every=1, **options):
             handoff.put(("error", e))
 
     worker = threading.Thread(target=work, name="shellcontract.frames", daemon=True)
+    run = (stop, handoff, worker)
+    _live_frames.add(run)
     worker.start()
     try:
         while True:
@@ -100,13 +128,8 @@ def frames(vertices, faces, every=1, **options):
             else:
                 raise payload
     finally:
-        stop.set()
-        while worker.is_alive():  # unblock a pending put until the run has seen the stop
-            try:
-                handoff.get(timeout=0.05)
-            except queue.Empty:
-                pass
-        worker.join()
+        _finish_frames_run(stop, handoff, worker)
+        _live_frames.discard(run)
 
 
 def check(vertices, faces):
@@ -123,11 +146,11 @@ def regions(vertices, faces, **region_options):
 
 def read_mesh(path):
     """Reads OFF/OBJ/PLY/STL with the CLI's checks; returns (vertices, faces)."""
-    return _core.read_mesh(str(path))
+    return _core.read_mesh(path)  # str or os.PathLike; TypeError otherwise
 
 
 def write_mesh(path, vertices, faces, like=None):
     """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output.
     like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
     the new positions (UVs, normals, groups, materials, polygons, extra properties kept)."""
-    _core.write_mesh(str(path), vertices, faces, "" if like is None else str(like))
+    _core.write_mesh(path, vertices, faces, "" if like is None else str(like))

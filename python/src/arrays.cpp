@@ -3,8 +3,10 @@
 // converted first, by numpy.
 #include "arrays.hpp"
 
+#include <cstdint>
 #include <string>
 
+#include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/from_arrays.hpp"
 
 namespace shellcontract::python {
@@ -50,8 +52,24 @@ py::array face_array(const py::handle& faces) {
 
 }  // namespace
 
+/// uint64 indices beyond int64 would wrap to negative ones when converted: such an index is
+/// reported as given, with the message the library gives any index out of range.
+static void check_uint64_indices(const py::handle& faces, std::size_t num_vertices) {
+  const py::array any = py::array::ensure(faces);
+  if (!any || any.dtype().kind() != 'u' || any.itemsize() < 8) return;
+  const auto u = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(any);
+  if (!u) return;
+  const std::uint64_t* p = u.data();
+  for (py::ssize_t i = 0; i < u.size(); ++i)
+    if (p[i] >= num_vertices)
+      throw InputError(std::string(ARRAY_INPUT_NAME) + ": vertex index out of range: face " + std::to_string(i / 3) +
+                       " refers to vertex " + std::to_string(p[i]) + ", but the mesh has " +
+                       std::to_string(num_vertices) + " vertices");
+}
+
 Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputReport* report, bool reorient) {
   const auto v = vertex_array(vertices);
+  check_uint64_indices(faces, static_cast<std::size_t>(v.shape(0)));
   const py::array f = face_array(faces);
   TriangleSoupView soup;
   soup.vertices = v.data();

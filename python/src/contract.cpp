@@ -11,7 +11,11 @@
 
 #include <array>
 #include <cmath>
+#include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -24,6 +28,45 @@
 
 namespace shellcontract::python {
 namespace {
+
+// ------------------------------------------------------------ runs and the interpreter's exit
+// A run executes with the GIL released. Taking the GIL back while the interpreter finalizes ends
+// the thread where it stands (pthread_exit), unwinding through C++ frames that cannot be
+// unwound: an abort. So at exit (stop_runs_at_exit, an atexit hook, before finalization) every
+// run is cancelled and waited for; a run that outlasts the wait never takes the GIL again.
+
+std::atomic<bool> exiting{false};
+std::mutex runs_mutex;
+std::condition_variable runs_changed;
+int active_runs = 0;
+
+/// How long the exit waits for running runs to see the cancel (they check after every step).
+constexpr std::chrono::seconds EXIT_WAIT{60};
+
+bool interpreter_finalizing() {
+#if PY_VERSION_HEX >= 0x030D0000
+  return Py_IsFinalizing() != 0;
+#else
+  return _Py_IsFinalizing() != 0;
+#endif
+}
+
+bool interpreter_exiting() { return exiting.load(std::memory_order_acquire) || interpreter_finalizing(); }
+
+/// Counts a run from before the GIL is released until after it is taken back.
+struct ActiveRun {
+  ActiveRun() {
+    std::lock_guard<std::mutex> lock(runs_mutex);
+    ++active_runs;
+  }
+  ~ActiveRun() {
+    std::lock_guard<std::mutex> lock(runs_mutex);
+    --active_runs;
+    runs_changed.notify_all();
+  }
+  ActiveRun(const ActiveRun&) = delete;
+  ActiveRun& operator=(const ActiveRun&) = delete;
+};
 
 std::string python_name(std::string cli_name) {
   for (char& c : cli_name)
@@ -138,6 +181,10 @@ class PythonObserver final : public RunObserver {
   void frame(const Simulator& sim, const FrameMetrics& m) override {
     rows_.push_back(log_row(m));
     if (!has_callback_ || stop_) return;
+    if (interpreter_exiting()) {  // no GIL for a callback while the interpreter exits
+      stop_ = true;
+      return;
+    }
     py::gil_scoped_acquire gil;
     try {
       py::dict metrics;
@@ -152,6 +199,7 @@ class PythonObserver final : public RunObserver {
 
   bool cancelled() override {
     if (stop_) return true;
+    if (interpreter_exiting()) return stop_ = true;  // checked without the GIL
     // Taking the GIL can wait for another Python thread's switch interval (5 ms): poll a few
     // times a second, not after every step.
     const auto now = std::chrono::steady_clock::now();
@@ -257,8 +305,13 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   PythonObserver observer(callback);
   RunResult r;
   {
+    const ActiveRun active;  // destroyed after the GIL is taken back
     py::gil_scoped_release release;
     r = run_contraction(mesh, options, &observer);
+    // Past the exit's wait, the interpreter is going away: this thread never takes the GIL
+    // again and sleeps until the process ends around it.
+    if (interpreter_finalizing())
+      for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
   }
   observer.raise_if_error();
   py::dict out;
@@ -268,6 +321,13 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   out["summary"] = summary(report, options, r);
   out["status"] = out["summary"]["status"];
   return out;
+}
+
+void stop_runs_at_exit() {
+  exiting.store(true, std::memory_order_release);
+  py::gil_scoped_release release;  // the runs take the GIL to finish
+  std::unique_lock<std::mutex> lock(runs_mutex);
+  runs_changed.wait_for(lock, EXIT_WAIT, [] { return active_runs == 0; });
 }
 
 py::list option_table() {

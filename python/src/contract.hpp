@@ -17,6 +17,11 @@ namespace py = pybind11;
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
                   const py::kwargs& options);
 
+/// Registered with Python's atexit when the module loads: cancels every run still going (in a
+/// daemon thread, say) and waits for it to leave the library, so that no thread takes the GIL
+/// while the interpreter finalizes (it would be ended inside C++ frames: an abort).
+void stop_runs_at_exit();
+
 /// The option table: one (python_name, default, help, cli_name) tuple per option, in --help order.
 py::list option_table();
 

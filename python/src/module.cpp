@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -66,18 +67,50 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   return d;
 }
 
+/// A non-negative real option of regions(): TypeError for anything but a real number (a bool
+/// or a string too), ValueError for NaN, infinity or a negative value.
+double real_option(const std::string& name, const py::handle& value) {
+  const bool real = !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) &&
+                    (PyFloat_Check(value.ptr()) || PyIndex_Check(value.ptr()) ||
+                     PyObject_HasAttrString(value.ptr(), "__float__"));
+  if (!real)
+    throw py::type_error("regions() option " + name + ": expected a real number, got " +
+                         std::string(py::str(value.get_type().attr("__name__"))));
+  const double v = PyFloat_AsDouble(value.ptr());
+  if (v == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+  if (!std::isfinite(v) || v < 0.0)
+    throw py::value_error("regions() option " + name + ": expected a finite number >= 0, got " +
+                          std::string(py::repr(value)));
+  return v;
+}
+
+/// A non-negative integer option of regions() (TypeError for a float or a bool).
+int int_option(const std::string& name, const py::handle& value) {
+  if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr()))
+    throw py::type_error("regions() option " + name + ": expected an integer, got " +
+                         std::string(py::str(value.get_type().attr("__name__"))));
+  const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+  if (!i) throw py::error_already_set();
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if (overflow != 0 || v < 0 || v > 1000)
+    throw py::value_error("regions() option " + name + ": expected an integer from 0 to 1000, got " +
+                          std::string(py::repr(value)));
+  return static_cast<int>(v);
+}
+
 /// The regions `run --regions auto` would choose: one ascending face-index array per region.
 py::list regions(const py::handle& vertices, const py::handle& faces, const py::kwargs& kwargs) {
   RegionOptions o;
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
-    if (name == "smoothing_rings") o.smoothing_rings = value.cast<int>();
-    else if (name == "min_principal_ratio") o.min_principal_ratio = value.cast<double>();
-    else if (name == "min_curvature_contrast") o.min_curvature_contrast = value.cast<double>();
-    else if (name == "fit_distance_tolerance") o.fit_distance_tolerance = value.cast<double>();
-    else if (name == "fit_normal_tolerance_deg") o.fit_normal_tolerance_deg = value.cast<double>();
-    else if (name == "min_area_fraction") o.min_area_fraction = value.cast<double>();
-    else if (name == "max_area_fraction") o.max_area_fraction = value.cast<double>();
+    if (name == "smoothing_rings") o.smoothing_rings = int_option(name, value);
+    else if (name == "min_principal_ratio") o.min_principal_ratio = real_option(name, value);
+    else if (name == "min_curvature_contrast") o.min_curvature_contrast = real_option(name, value);
+    else if (name == "fit_distance_tolerance") o.fit_distance_tolerance = real_option(name, value);
+    else if (name == "fit_normal_tolerance_deg") o.fit_normal_tolerance_deg = real_option(name, value);
+    else if (name == "min_area_fraction") o.min_area_fraction = real_option(name, value);
+    else if (name == "max_area_fraction") o.max_area_fraction = real_option(name, value);
     else
       throw py::type_error("regions() got an unknown option '" + name +
                            "'; valid options: smoothing_rings, min_principal_ratio, min_curvature_contrast, "
@@ -95,13 +128,27 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
   return out;
 }
 
-py::tuple read_mesh(const std::string& path) {
-  const Mesh mesh = read_input_mesh(path);
+/// A file path from Python: str or os.PathLike (bytes too), as os.fspath takes it; TypeError for
+/// anything else (None must not become a file named "None"), ValueError for a NUL byte.
+std::string path_argument(const py::handle& path) {
+  if (!py::isinstance<py::str>(path) && !py::isinstance<py::bytes>(path) &&
+      !PyObject_HasAttrString(path.ptr(), "__fspath__"))
+    throw py::type_error("path must be a str or an os.PathLike, got " +
+                         std::string(py::str(path.get_type().attr("__name__"))));
+  const py::object p = py::module_::import("os").attr("fspath")(path);
+  const std::string s = py::isinstance<py::bytes>(p) ? std::string(p.cast<py::bytes>()) : p.cast<std::string>();
+  if (s.find('\0') != std::string::npos) throw py::value_error("path must not hold a NUL byte");
+  return s;
+}
+
+py::tuple read_mesh(const py::handle& path) {
+  const Mesh mesh = read_input_mesh(path_argument(path));
   return py::make_tuple(positions_to_numpy(positions_from_mesh(mesh)), faces_to_numpy(mesh));
 }
 
-void write_mesh(const std::string& path, const py::handle& vertices, const py::handle& faces,
+void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py::handle& faces,
                 const std::string& like) {
+  const std::string path = path_argument(path_arg);
   // The faces are written as given (no reorientation): this writes a result back.
   const Mesh mesh = mesh_from_numpy(vertices, faces, nullptr, /*reorient=*/false);
   if (!like.empty()) {
@@ -141,6 +188,8 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(PyExc_RuntimeError, e.what());
     }
   });
+  // At the interpreter's exit, before it finalizes: cancel and wait for runs in other threads.
+  py::module_::import("atexit").attr("register")(py::cpp_function(&stop_runs_at_exit));
   m.def("contract", &contract, py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("callback") = py::none());
   m.def("option_table", &option_table);
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));

@@ -12,6 +12,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
@@ -23,6 +24,7 @@
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/curvature.hpp"
+#include "shellcontract/mesh/file_safety.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/mesh/properties.hpp"
 
@@ -122,6 +124,9 @@ std::optional<Sphere> fit_sphere(const std::vector<VertexIndex>& group, const Po
   if (!(r2 > 0.0)) return std::nullopt;
   return Sphere{mean + rms * centre, rms * std::sqrt(r2)};
 }
+
+/// What a region file may hold beyond its face ids: comment lines, blank lines, wide spacing.
+constexpr std::uint64_t REGION_FILE_SLACK_BYTES = 1 << 20;
 
 std::string line_error(const std::string& path, std::size_t line, const std::string& what) {
   return path + ":" + std::to_string(line) + ": " + what;
@@ -384,14 +389,25 @@ std::vector<int> face_ids_from_regions(const std::vector<std::vector<int>>& regi
 }
 
 std::vector<std::vector<int>> read_region_file(const std::string& path, std::size_t num_faces) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the region file");
+  // A face is listed once at most, in at most 20 characters with its separator: a real file is
+  // bounded by the mesh. Larger files (a 1 GB sparse file, /dev/zero is refused as a device)
+  // are refused before they are read; so are longer lines.
+  const std::uint64_t max_line = REGION_FILE_SLACK_BYTES + 21 * static_cast<std::uint64_t>(num_faces);
+  const std::uint64_t max_bytes = REGION_FILE_SLACK_BYTES + 64 * static_cast<std::uint64_t>(num_faces);
+  const std::string bytes = read_regular_file(path, max_bytes);
   std::vector<std::vector<int>> regions;
   std::vector<std::size_t> first_line(num_faces, 0);  // line where a face was listed, 0 = not yet
-  std::string text;
   std::size_t line = 0;
-  while (std::getline(in, text)) {
+  for (std::size_t begin = 0; begin < bytes.size();) {
+    std::size_t end = bytes.find('\n', begin);
+    if (end == std::string::npos) end = bytes.size();
     ++line;
+    if (end - begin > max_line)
+      throw InputError(line_error(printable(path), line, "the line has " + std::to_string(end - begin) +
+                                                             " characters, more than a region of this mesh can need (" +
+                                                             std::to_string(max_line) + ")"));
+    std::string text = bytes.substr(begin, end - begin);
+    begin = end + 1;
     if (!text.empty() && text.back() == '\r') text.pop_back();  // files written on Windows
     const std::size_t start = text.find_first_not_of(" \t");
     if (start == std::string::npos || text[start] == '#') continue;
@@ -400,22 +416,22 @@ std::vector<std::vector<int>> read_region_file(const std::string& path, std::siz
     std::string token;
     while (tokens >> token) {
       // Digits only: "-1", "3.5", "1e3", "0x10" and "12abc" are all refused rather than
-      // half-parsed by stol.
+      // half-parsed by stol. The token is quoted printable (a NUL would cut the message).
       if (!std::all_of(token.begin(), token.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; }))
-        throw InputError(line_error(path, line, "'" + token + "' is not a face index (a non-negative integer)"));
+        throw InputError(line_error(printable(path), line, "'" + printable(token, 40) +
+                                                               "' is not a face index (a non-negative integer)"));
       if (token.size() > 18 || std::stoull(token) >= num_faces)
-        throw InputError(line_error(path, line, "face " + token + " is out of range (the mesh has " +
+        throw InputError(line_error(printable(path), line, "face " + printable(token, 40) + " is out of range (the mesh has " +
                                                     std::to_string(num_faces) + " faces)"));
       const auto f = static_cast<std::size_t>(std::stoull(token));
       if (first_line[f] != 0)
-        throw InputError(line_error(path, line, "face " + token + " is already listed on line " +
+        throw InputError(line_error(printable(path), line, "face " + token + " is already listed on line " +
                                                     std::to_string(first_line[f])));
       first_line[f] = line;
       region.push_back(static_cast<int>(f));
     }
     regions.push_back(std::move(region));
   }
-  if (in.bad()) throw InputError(path + ": read error after line " + std::to_string(line));
   return regions;
 }
 

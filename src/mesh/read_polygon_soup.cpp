@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/file_safety.hpp"
 #include "shellcontract/mesh/ply_reader.hpp"
 
 namespace shellcontract {
@@ -37,15 +38,10 @@ void normalize_text(std::string& s) {
 }  // namespace
 
 std::string read_file_bytes(const std::string& path) {
-  std::error_code ec;
-  if (!fs::exists(path, ec)) fail(path, "cannot open file", "no such file");
-  if (fs::is_directory(path, ec)) fail(path, "cannot open file", "it is a folder");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) fail(path, "cannot open file", std::strerror(errno));
-  std::ostringstream s;
-  s << in.rdbuf();
-  if (in.bad()) fail(path, "cannot read file", std::strerror(errno));
-  return s.str();
+  // Regular files only, read to their end with every read checked: a device or FIFO that never
+  // ends is refused before reading, and memory running out while reading passes as bad_alloc
+  // (read_input_mesh: exit code 2), never as a file cut short (file_safety.hpp).
+  return read_regular_file(path);
 }
 
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
@@ -72,10 +68,14 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
     return;
   }
   std::istringstream in(bytes);
+  // An exception inside a stream operation (std::bad_alloc while CGAL's reader reads a line)
+  // would otherwise only set badbit, and the reader would return the part read so far.
+  in.exceptions(std::ios::badbit);
   bool ok = false;
   // Direct calls rather than CGAL's read_polygon_soup: the extension is already known.
   if (ext == "obj") ok = CGAL::IO::read_OBJ(in, points, polygons);
   else ok = CGAL::IO::read_STL(in, points, polygons);
+  if (in.bad()) fail(path, "cannot read file", "the reader's stream failed");
   if (!ok)
     fail(path, "parse error", "CGAL could not read it as a ." + ext + " file (truncated file or garbage)");
 }

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/file_safety.hpp"
 #include "shellcontract/mesh/ply_reader.hpp"
 #include "shellcontract/mesh/read_polygon_soup.hpp"
 
@@ -34,6 +35,8 @@ std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   std::vector<PointWithNormal> points;
+  // A regular file or nothing: CGAL's reader would read /dev/zero or a FIFO until memory ends.
+  regular_file_size(path);
   if (ext == ".ply") {
     const PlyData d = read_ply(path, read_file_bytes(path));
     if (d.normals.size() != d.points.size())

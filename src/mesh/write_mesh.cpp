@@ -1,6 +1,8 @@
 // Writing meshes and text atomically (design.md, data flow: ... -> write) with CGAL's writers at
 // 17 significant digits, so that a written double reads back bitwise (full precision).
-#include <unistd.h>  // getpid, for unique temporary names
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
@@ -9,6 +11,8 @@
 #include <charconv>
 #include <cstdio>
 #include <cstring>
+#include <cstdint>
+#include <streambuf>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -17,6 +21,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
@@ -25,6 +30,7 @@
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/file_safety.hpp"
 #include "shellcontract/mesh/io.hpp"
 
 namespace shellcontract {
@@ -138,38 +144,128 @@ void write_text_atomic(const std::string& path, const std::string& text) {
   });
 }
 
+namespace {
+
+/// An output stream buffer over a file descriptor that keeps the first write error's errno, so
+/// that a full disk is reported as such whatever the writer on top of it makes of the failure.
+class FdBuf final : public std::streambuf {
+ public:
+  explicit FdBuf(int fd) : fd_(fd), buffer_(BUFFER_BYTES) { setp(buffer_.data(), buffer_.data() + BUFFER_BYTES); }
+  int error() const { return error_; }
+  std::uint64_t written() const { return written_; }
+
+ protected:
+  int_type overflow(int_type c) override {
+    if (!drain()) return traits_type::eof();
+    if (!traits_type::eq_int_type(c, traits_type::eof())) {
+      *pptr() = traits_type::to_char_type(c);
+      pbump(1);
+    }
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char* s, std::streamsize n) override {
+    if (n < static_cast<std::streamsize>(BUFFER_BYTES)) return std::streambuf::xsputn(s, n);
+    if (!drain() || !put(s, static_cast<std::size_t>(n))) return 0;  // large pieces go straight out
+    return n;
+  }
+  int sync() override { return drain() ? 0 : -1; }
+  /// tellp(): the bytes written so far (the glTF writer reports its size through it).
+  pos_type seekoff(off_type off, std::ios_base::seekdir dir, std::ios_base::openmode which) override {
+    if (off != 0 || dir != std::ios_base::cur || !(which & std::ios_base::out)) return pos_type(off_type(-1));
+    return pos_type(static_cast<off_type>(written_ + static_cast<std::uint64_t>(pptr() - pbase())));
+  }
+
+ private:
+  bool drain() {
+    const std::size_t n = static_cast<std::size_t>(pptr() - pbase());
+    setp(buffer_.data(), buffer_.data() + BUFFER_BYTES);
+    return put(buffer_.data(), n);
+  }
+  bool put(const char* s, std::size_t n) {
+    if (error_) return false;
+    while (n > 0) {
+      const ssize_t w = ::write(fd_, s, n);
+      if (w < 0) {
+        if (errno == EINTR) continue;
+        error_ = errno;
+        return false;
+      }
+      s += w;
+      n -= static_cast<std::size_t>(w);
+      written_ += static_cast<std::uint64_t>(w);
+    }
+    return true;
+  }
+  int fd_;
+  int error_ = 0;
+  std::uint64_t written_ = 0;
+  static constexpr std::size_t BUFFER_BYTES = 8192;  // as std::ofstream's; large pieces bypass it
+  std::vector<char> buffer_;
+};
+
+/// "cannot write 'PATH': WHY".
+[[noreturn]] void cannot_write(const std::string& path, const std::string& why) {
+  throw UsageError("cannot write '" + printable(path) + "': " + why);
+}
+
+/// An existing target that is not a regular file (a device, a FIFO, a socket, a folder) is
+/// never replaced: as root, --log /dev/null would otherwise turn /dev/null into a file.
+void refuse_special_target(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    cannot_write(path, S_ISDIR(st.st_mode) ? "it is a folder"
+                                           : "it exists and is not a regular file (a device, FIFO or socket is never replaced)");
+}
+
+}  // namespace
+
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  static std::atomic<unsigned> counter{0};
+  require_usable_path(path, "output");
+  refuse_special_target(path);
   const fs::path target(path);
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  // Same folder, so that rename is atomic (same file system); hidden, pid- and counter-unique so
-  // that parallel writers never share a temporary.
-  const fs::path tmp = dir / ("." + target.filename().string() + ".tmp-" +
-                              std::to_string(::getpid()) + "-" + std::to_string(counter++));
+  const std::string dir = target.has_parent_path() ? target.parent_path().string() : std::string(".");
+  // Same folder, so that rename is atomic (same file system). The name is random and created
+  // exclusively (never an existing file, never through a link planted there), and registered so
+  // that SIGINT and SIGTERM remove it (file_safety.hpp).
+  const ExclusiveFile tmp = create_exclusive_file(dir, target.filename().string() + ".tmp");
+  if (tmp.fd < 0) {
+    const int e = errno;
+    cannot_write(path, "cannot create a file in the folder '" + printable(dir) + "' (" + file_error_text(e) + ")");
+  }
+  const int slot = register_temporary(tmp.path);
+  const auto discard = [&] {
+    ::unlink(tmp.path.c_str());
+    unregister_temporary(slot);
+  };
+  int error = 0;
   {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out)
-      throw UsageError("cannot write '" + path + "': cannot create a file in folder '" +
-                       dir.string() + "' (" + std::strerror(errno) + ")");
+    FdBuf buf(tmp.fd);
+    std::ostream out(&buf);
     try {
       write(out);
       out.flush();
     } catch (...) {
-      out.close();
-      std::remove(tmp.c_str());
+      ::close(tmp.fd);
+      discard();
+      // A writer that gave up because the disk did (tinygltf: "serializing failed") is
+      // reported by the disk's reason.
+      if (buf.error()) cannot_write(path, file_error_text(buf.error()));
       throw;
     }
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw UsageError("cannot write '" + path + "': writing the temporary file failed (disk full?)");
-    }
+    error = buf.error();
+    if (!error && !out) error = EIO;
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
-    std::remove(tmp.c_str());
-    throw UsageError("cannot write '" + path + "': " + why);
+  if (::close(tmp.fd) != 0 && !error) error = errno;  // NFS reports some write errors here
+  if (error) {
+    discard();
+    cannot_write(path, file_error_text(error));
   }
+  if (std::rename(tmp.path.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    discard();
+    cannot_write(path, file_error_text(e));
+  }
+  unregister_temporary(slot);
 }
 
 }  // namespace shellcontract

@@ -1,0 +1,59 @@
+// What every file the library reads or writes goes through (docs/design/output-safety.md):
+// temporaries that nobody can guess or plant, removed when the process is interrupted; inputs
+// read completely from regular files; error messages that name a file in printable text.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace shellcontract {
+
+/// `s` as printable text for a message: bytes below 0x20 (NUL included) and 0x7f become \xNN,
+/// and text longer than `max_chars` is cut with "...". A message built from file contents is
+/// then never cut at a NUL nor able to move the terminal's cursor.
+std::string printable(std::string_view s, std::size_t max_chars = 200);
+
+/// Plain words for an errno of a file operation ("no space left on the device (disk full)",
+/// "the folder does not exist", "a part of the path is a file, not a folder", ...).
+std::string file_error_text(int error_number);
+
+/// @throws UsageError naming `what` if `path` is empty or holds a NUL byte (a C path would end
+///         there and name another file)
+void require_usable_path(const std::string& path, const std::string& what);
+
+/// A file created exclusively: open(O_CREAT | O_EXCL | O_NOFOLLOW), so that neither a file nor
+/// a symbolic link planted under its name is ever opened, with a random name that cannot be
+/// guessed. While it is registered (register_temporary), SIGINT and SIGTERM remove it.
+struct ExclusiveFile {
+  int fd = -1;
+  std::string path;
+};
+
+/// Creates ".<hint>.<random>" in `dir` (hint cut to keep the name short), mode 0666 less the
+/// umask. With `name_length` > 0 the name is padded to that many characters, so that creating
+/// it succeeds only where a file name of that length can be created (a probe).
+/// @return fd = -1 and errno set when the file cannot be created
+ExclusiveFile create_exclusive_file(const std::string& dir, const std::string& hint,
+                                    std::size_t name_length = 0);
+
+/// Adds `path` to the temporaries that SIGINT and SIGTERM remove before the process ends
+/// (the handler is installed on first use, only where the signal has its default action).
+/// @return a slot for unregister_temporary; -1 when all slots are in use (not removed then)
+int register_temporary(const std::string& path);
+/// Forgets a slot of register_temporary (after the file was renamed or removed).
+void unregister_temporary(int slot);
+
+/// The whole content of a regular file. Folders, devices, FIFOs and sockets are refused before
+/// anything is read (a FIFO is not even opened for long: O_NONBLOCK), so /dev/zero or a pipe
+/// that never ends cannot fill the memory. Every read is checked: a read error or a file larger
+/// than `max_bytes` is refused, never returned in part.
+/// @throws InputError "<path>: <problem>: <details>"; std::bad_alloc passes (the caller names it)
+std::string read_regular_file(const std::string& path,
+                              std::uint64_t max_bytes = UINT64_MAX);
+
+/// The size of a regular file (the same refusals as read_regular_file, nothing read).
+/// @throws InputError
+std::uint64_t regular_file_size(const std::string& path);
+
+}  // namespace shellcontract

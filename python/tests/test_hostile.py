@@ -1,0 +1,121 @@
+"""The Python module never crashes the interpreter and refuses bad arguments by type (issue 53,
+point 6). Each test failed against the module before the fix as its docstring says."""
+import os
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+import pytest
+
+import shellcontract
+
+
+def _exit_while_running(mesh_dir, body):
+    """Runs a Python process that starts a long run, then lets the interpreter exit."""
+    script = textwrap.dedent("""
+        import sys, threading, time
+        import shellcontract
+        v, f = shellcontract.read_mesh(sys.argv[1])
+    """) + textwrap.dedent(body)
+    env = dict(os.environ)
+    return subprocess.run([sys.executable, "-c", script, str(mesh_dir / "ico2.off")], env=env,
+                          capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.parametrize("attempt", range(4))
+def test_exit_while_contract_runs_in_a_daemon_thread(mesh_dir, attempt):
+    """Before: the worker took the GIL back during finalization: SIGABRT (13 of 16 tries)."""
+    r = _exit_while_running(mesh_dir, """
+        t = threading.Thread(target=lambda: shellcontract.contract(v, f, frames=1000000), daemon=True)
+        t.start()
+        time.sleep(0.3 + 0.1 * %d)
+    """ % attempt)
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
+
+
+@pytest.mark.parametrize("attempt", range(4))
+def test_exit_with_a_suspended_frames_generator(mesh_dir, attempt):
+    """Before: the generator's worker, blocked in its callback, woke during finalization: abort."""
+    r = _exit_while_running(mesh_dir, """
+        gen = shellcontract.frames(v, f, frames=1000000)
+        for _ in range(1 + %d):
+            next(gen)
+    """ % attempt)
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
+
+
+def test_exit_while_a_callback_run_is_going(mesh_dir):
+    """A callback that Python would run during the exit is not called: exit 0."""
+    r = _exit_while_running(mesh_dir, """
+        seen = []
+        t = threading.Thread(target=lambda: shellcontract.contract(
+            v, f, frames=1000000, callback=lambda *a: seen.append(a[0])), daemon=True)
+        t.start()
+        time.sleep(0.5)
+    """)
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
+
+
+def test_a_path_with_nul_is_a_value_error(tmp_path, ico2):
+    """Before: write_mesh('a.off\\x00/../b.off') reported success and overwrote a.off."""
+    a = tmp_path / "a.off"
+    a.write_text("keep")
+    with pytest.raises(ValueError):
+        shellcontract.write_mesh(str(a) + "\x00/../b.off", *ico2)
+    assert a.read_text() == "keep"
+    with pytest.raises(ValueError):
+        shellcontract.read_mesh(str(a) + "\x00x.off")
+
+
+def test_read_mesh_none_is_a_type_error(tmp_path, monkeypatch):
+    """Before: str(None) opened a file named "None"."""
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(TypeError):
+        shellcontract.read_mesh(None)
+    with pytest.raises(TypeError):
+        shellcontract.write_mesh(None, np.zeros((4, 3)), np.zeros((4, 3), dtype=np.int64))
+    assert not os.path.exists(tmp_path / "None")
+
+
+def test_write_mesh_never_replaces_a_fifo(tmp_path, ico2):
+    """Before: the rename replaced the FIFO by a regular file."""
+    fifo = tmp_path / "out.off"
+    os.mkfifo(fifo)
+    with pytest.raises(ValueError):
+        shellcontract.write_mesh(fifo, *ico2)
+    assert os.path.exists(fifo) and not os.path.isfile(fifo)
+
+
+@pytest.mark.parametrize("option,value", [("smoothing_rings", "1"), ("smoothing_rings", 1.5),
+                                          ("min_principal_ratio", "0.5"), ("min_area_fraction", None),
+                                          ("contrast_is_unknown", 1.0)])
+def test_regions_wrong_types_are_type_errors(ico2, option, value):
+    """Before: a string for a float option raised RuntimeError (pybind11's cast_error)."""
+    with pytest.raises(TypeError):
+        shellcontract.regions(*ico2, **{option: value})
+
+
+@pytest.mark.parametrize("option,value", [("min_curvature_contrast", float("nan")),
+                                          ("fit_distance_tolerance", float("inf")),
+                                          ("min_area_fraction", -0.1), ("smoothing_rings", -1)])
+def test_regions_out_of_range_values_are_value_errors(ico2, option, value):
+    """Before: NaN thresholds were accepted (and selected nothing, silently)."""
+    with pytest.raises(ValueError):
+        shellcontract.regions(*ico2, **{option: value})
+
+
+def test_a_uint64_index_is_reported_as_given(ico2):
+    """Before: 2**64 - 1 was converted to int64 first and reported as -1."""
+    vertices, faces = ico2
+    bad = faces.astype(np.uint64)
+    bad[5, 1] = np.uint64(2**64 - 1)
+    with pytest.raises(ValueError, match="18446744073709551615"):
+        shellcontract.check(vertices, bad)
+
+
+@pytest.mark.parametrize("every", [1.5, "2", None, True])
+def test_frames_every_of_a_wrong_type_is_a_type_error(ico2, every):
+    """Before: every=1.5 was accepted (frame % 1.5), every=True counted as 1."""
+    with pytest.raises(TypeError):
+        next(shellcontract.frames(*ico2, every=every, frames=3))

@@ -1,0 +1,242 @@
+// Temporaries, complete reads of regular files and printable messages (file_safety.hpp;
+// docs/design/output-safety.md).
+#include "shellcontract/mesh/file_safety.hpp"
+
+#include <fcntl.h>
+#include <sys/random.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdio>
+#include <cstring>
+#include <mutex>
+
+#include "shellcontract/core/error.hpp"
+
+namespace shellcontract {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
+  throw InputError(printable(path) + ": " + problem + ": " + details);
+}
+
+// ------------------------------------------------------------------- temporaries and signals
+
+/// Live temporaries, in fixed storage: the signal handler may only read memory and call
+/// async-signal-safe functions (unlink, sigaction, raise). A slot's path is written before its
+/// flag is set (release), and the handler reads the path only of a set flag (acquire).
+constexpr int SLOTS = 64;
+constexpr std::size_t PATH_BYTES = 4096;
+std::array<std::atomic<bool>, SLOTS> slot_live{};
+std::array<std::array<char, PATH_BYTES>, SLOTS> slot_path{};
+std::mutex slot_mutex;  // claiming a slot (not used by the handler)
+
+extern "C" void remove_temporaries_and_reraise(int sig) {
+  for (int i = 0; i < SLOTS; ++i)
+    if (slot_live[i].load(std::memory_order_acquire)) ::unlink(slot_path[i].data());
+  // The default action (end the process, exit status 128 + signal) as if we were not here.
+  struct sigaction dfl {};
+  dfl.sa_handler = SIG_DFL;
+  sigemptyset(&dfl.sa_mask);
+  ::sigaction(sig, &dfl, nullptr);
+  ::raise(sig);
+}
+
+/// Installs the handler for SIGINT and SIGTERM where their action is the default one: a program
+/// that handles them itself (Python's KeyboardInterrupt) keeps its handler, and its interrupted
+/// write then ends normally and removes its temporary itself.
+void install_handler_once() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    for (const int sig : {SIGINT, SIGTERM}) {
+      struct sigaction current {};
+      if (::sigaction(sig, nullptr, &current) != 0) continue;
+      if (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_DFL) {
+        struct sigaction ours {};
+        ours.sa_handler = remove_temporaries_and_reraise;
+        sigemptyset(&ours.sa_mask);
+        ::sigaction(sig, &ours, nullptr);
+      }
+    }
+  });
+}
+
+/// Random name characters from the kernel (getrandom); a weaker source only if it fails.
+std::string random_chars(std::size_t n) {
+  static constexpr char ALPHABET[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+  std::string bytes(n, '\0');
+  if (::getrandom(bytes.data(), n, 0) != static_cast<ssize_t>(n)) {
+    static std::atomic<unsigned long> counter{0};
+    unsigned long x = static_cast<unsigned long>(::getpid()) * 2654435761UL ^ counter++ * 40503UL ^
+                      static_cast<unsigned long>(reinterpret_cast<std::uintptr_t>(&bytes));
+    for (char& c : bytes) c = static_cast<char>((x = x * 6364136223846793005UL + 1442695040888963407UL) >> 56);
+  }
+  for (char& c : bytes) c = ALPHABET[static_cast<unsigned char>(c) % (sizeof ALPHABET - 1)];
+  return bytes;
+}
+
+}  // namespace
+
+std::string printable(std::string_view s, std::size_t max_chars) {
+  std::string out;
+  for (const char ch : s) {
+    if (out.size() >= max_chars) {
+      out += "...";
+      break;
+    }
+    const auto c = static_cast<unsigned char>(ch);
+    if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", c);
+      out += buf;
+    } else {
+      out += ch;
+    }
+  }
+  return out;
+}
+
+std::string file_error_text(int e) {
+  switch (e) {
+    case ENOSPC: return "no space left on the device (the disk is full)";
+    case EDQUOT: return "the disk quota is exhausted";
+    case EROFS: return "the file system is read-only";
+    case EACCES:
+    case EPERM: return "permission denied";
+    case ENAMETOOLONG: return "the file name is too long";
+    case ENOTDIR: return "a part of the path is a file, not a folder";
+    case ENOENT: return "the folder does not exist";
+    case EISDIR: return "it is a folder";
+    case ELOOP: return "too many symbolic links (or a link where none may be)";
+    case EIO: return "input/output error (a failing disk?)";
+    default: return std::strerror(e);
+  }
+}
+
+void require_usable_path(const std::string& path, const std::string& what) {
+  if (path.empty()) throw UsageError(what + ": empty file name");
+  if (path.find('\0') != std::string::npos)
+    throw UsageError(what + " '" + printable(path) + "': a file name cannot hold a NUL byte");
+}
+
+ExclusiveFile create_exclusive_file(const std::string& dir, const std::string& hint,
+                                    std::size_t name_length) {
+  ExclusiveFile f;
+  const std::string folder = dir.empty() ? std::string(".") : dir;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    std::string name = "." + hint.substr(0, 40) + "." + random_chars(12);
+    if (name.size() < name_length) name += std::string(name_length - name.size(), 'x');
+    const std::string path = folder + "/" + name;
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      f.fd = fd;
+      f.path = path;
+      return f;
+    }
+    if (errno != EEXIST) return f;  // errno says why
+  }
+  errno = EEXIST;
+  return f;
+}
+
+int register_temporary(const std::string& path) {
+  install_handler_once();
+  if (path.size() >= PATH_BYTES) return -1;
+  std::lock_guard<std::mutex> lock(slot_mutex);
+  for (int i = 0; i < SLOTS; ++i) {
+    if (slot_live[i].load(std::memory_order_relaxed)) continue;
+    std::memcpy(slot_path[i].data(), path.c_str(), path.size() + 1);
+    slot_live[i].store(true, std::memory_order_release);
+    return i;
+  }
+  return -1;
+}
+
+void unregister_temporary(int slot) {
+  if (slot < 0 || slot >= SLOTS) return;
+  std::lock_guard<std::mutex> lock(slot_mutex);
+  slot_live[slot].store(false, std::memory_order_release);
+}
+
+// ------------------------------------------------------------------------------------ reading
+
+namespace {
+
+/// An open regular file, or InputError naming why not.
+int open_regular(const std::string& path, struct stat& st) {
+  if (path.find('\0') != std::string::npos)
+    fail(path, "cannot open file", "a file name cannot hold a NUL byte");
+  if (::stat(path.c_str(), &st) != 0) {
+    const int e = errno;
+    fail(path, "cannot open file", e == ENOENT ? "no such file" : file_error_text(e));
+  }
+  const auto refuse_kind = [&](const struct stat& s) {
+    if (S_ISDIR(s.st_mode)) fail(path, "cannot open file", "it is a folder");
+    if (S_ISCHR(s.st_mode) || S_ISBLK(s.st_mode))
+      fail(path, "not a regular file", "it is a device; inputs must be regular files");
+    if (S_ISFIFO(s.st_mode))
+      fail(path, "not a regular file", "it is a FIFO (named pipe); inputs must be regular files");
+    if (S_ISSOCK(s.st_mode)) fail(path, "not a regular file", "it is a socket; inputs must be regular files");
+    if (!S_ISREG(s.st_mode)) fail(path, "not a regular file", "inputs must be regular files");
+  };
+  refuse_kind(st);
+  // O_NONBLOCK: should the file be swapped for a FIFO after the stat, open does not wait for a
+  // writer; the fstat below then refuses it.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+  if (fd < 0) {
+    const int e = errno;
+    fail(path, "cannot open file", file_error_text(e));
+  }
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    refuse_kind(st);
+  }
+  return fd;
+}
+
+}  // namespace
+
+std::uint64_t regular_file_size(const std::string& path) {
+  struct stat st {};
+  const int fd = open_regular(path, st);
+  ::close(fd);
+  return static_cast<std::uint64_t>(st.st_size);
+}
+
+std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) {
+  struct stat st {};
+  const int fd = open_regular(path, st);
+  struct Closer {
+    int fd;
+    ~Closer() { ::close(fd); }
+  } closer{fd};
+  const auto declared = static_cast<std::uint64_t>(st.st_size);
+  if (declared > max_bytes)
+    fail(path, "file too large", std::to_string(declared) + " bytes, more than the " +
+                                     std::to_string(max_bytes) + " this file can need");
+  std::string bytes(static_cast<std::size_t>(declared), '\0');  // std::bad_alloc passes to the caller
+  std::size_t done = 0;
+  char more[512];  // past the stat's size: a file that grew, read on within the bound
+  for (;;) {
+    const bool full = done == bytes.size();
+    const ssize_t n = full ? ::read(fd, more, sizeof more) : ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      fail(path, "cannot read file", file_error_text(e) + " after " + std::to_string(done) + " bytes");
+    }
+    if (n == 0) break;
+    if (full) bytes.append(more, static_cast<std::size_t>(n));
+    done += static_cast<std::size_t>(n);
+    if (done > max_bytes)
+      fail(path, "file too large", "it grew beyond " + std::to_string(max_bytes) + " bytes while being read");
+  }
+  bytes.resize(done);
+  return bytes;
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,119 @@
+// Inputs are regular files, read completely or refused (issue 53, point 5). The CLI runs under
+// `timeout` and a memory limit, so that the code before the fix (which read devices and FIFOs
+// until memory ran out, or waited for a FIFO's writer forever) fails these tests instead of
+// hanging them.
+#include <sys/stat.h>
+
+#include <array>
+#include <regex>
+
+#include "hostile/hostile_support.hpp"
+
+namespace shellcontract {
+namespace {
+
+using test::Hostile;
+
+/// The CLI with at most 60 s and 3 GB of address space.
+test::RunResult bounded_cli(const std::vector<std::string>& args) {
+  return test::run_command("ulimit -v 3000000 && exec timeout 60 " + test::cli_command(args));
+}
+
+// Before: /dev/zero named like a mesh was read until memory ran out.
+TEST_F(Hostile, ADeviceAsTheMeshIsRefusedAtOnce) {
+  const fs::path zero = dir_ / "zero.off";
+  std::string why;
+  if (!make_device(zero, 5, why)) GTEST_SKIP() << why;
+  const auto r = bounded_cli({"check", zero.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
+}
+
+// Before: opening a FIFO waited for a writer forever (timeout: exit 124).
+TEST_F(Hostile, AFifoAsTheMeshIsRefusedAtOnce) {
+  const fs::path fifo = dir_ / "in.off";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  const auto r = bounded_cli({"run", fifo.string(), "-o", (dir_ / "o.off").string(), "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("FIFO"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "o.off"));
+}
+
+// Before: a folder as --regions FILE, and /dev/zero as one, were read with getline.
+TEST_F(Hostile, ADeviceAsTheRegionFileIsRefusedAtOnce) {
+  const fs::path zero = dir_ / "zero.txt";
+  std::string why;
+  if (!make_device(zero, 5, why)) GTEST_SKIP() << why;
+  const auto r = bounded_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "2",
+                              "-q", "--regions", zero.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
+}
+
+// Before: a 1 GB sparse region file took 22 s and 6.3 GB; now its size is refused before a byte
+// is read (a region file of this mesh cannot need more than about 1 MB).
+TEST_F(Hostile, ARegionFileFarLargerThanTheMeshIsRefused) {
+  const fs::path big = dir_ / "big.txt";
+  test::spit(big, "");
+  fs::resize_file(big, std::uintmax_t{1} << 30);
+  const auto r = bounded_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "2",
+                              "-q", "--regions", big.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("too large"), std::string::npos) << r.output;
+}
+
+// Before: the message quoted the token up to its first NUL ("'" and nothing after).
+TEST_F(Hostile, ARegionFileWithNulBytesGetsAPrintableMessage) {
+  const fs::path f = dir_ / "nul.txt";
+  test::spit(f, std::string("1 2\n3 a\0b 4\n", 12));
+  const auto r = bounded_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "2",
+                              "-q", "--regions", f.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("'a\\x00b' is not a face index"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find('\0'), std::string::npos);
+}
+
+/// Closed tetrahedron number t of an OBJ (vertices 4t+1 .. 4t+4).
+std::string tetrahedron(int t) {
+  const std::string x = std::to_string(3 * t), x1 = std::to_string(3 * t + 1);
+  std::string s = "v " + x + " 0 0\nv " + x1 + " 0 0\nv " + x + " 1 0\nv " + x + " 0 1\n";
+  const int b = 4 * t + 1;
+  for (const auto& f : {std::array<int, 3>{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}})
+    s += "f " + std::to_string(b + f[0]) + " " + std::to_string(b + f[1]) + " " + std::to_string(b + f[2]) + "\n";
+  return s;
+}
+
+// Before: memory running out while the file's bytes were read (`stream << rdbuf()`) was
+// swallowed, and the part read so far was taken for the file. The file here is a tetrahedron,
+// 24 MB of comment lines, and a second tetrahedron: any prefix is a usable one-tetrahedron mesh,
+// cheap to parse. The code before the fix answered exit 0 with 4 faces at 6 of these 17 limits.
+// Now: the whole mesh (8 faces) or exit 2.
+TEST_F(Hostile, OutOfMemoryWhileReadingIsNeverAHalfMesh) {
+  const fs::path obj = dir_ / "padded.obj";
+  {
+    std::ofstream out(obj, std::ios::binary);
+    out << tetrahedron(0);
+    const std::string comment = "# " + std::string(98, 'p') + "\n";
+    for (int i = 0; i < 24 * 1024 * 1024 / 100; ++i) out << comment;
+    out << tetrahedron(1);
+  }
+  const std::regex faces_line("\"faces\": ([0-9]+)");
+  int refused = 0, whole = 0;
+  for (long kib = 16000; kib <= 80000; kib += 4000) {
+    const auto r = test::run_command("ulimit -v " + std::to_string(kib) + " && exec timeout 120 " +
+                                     test::cli_command({"check", obj.string(), "--json"}));
+    std::smatch m;
+    if (r.exit_code == 0 && std::regex_search(r.output, m, faces_line)) {
+      EXPECT_EQ(m[1].str(), "8") << "a part of the file was read as the mesh at " << kib << " KiB";
+      ++whole;
+    } else {
+      EXPECT_EQ(r.exit_code, 2) << kib << " KiB:\n" << r.output.substr(0, 400);
+      EXPECT_NE(r.output.find("out of memory"), std::string::npos) << r.output.substr(0, 400);
+      ++refused;
+    }
+  }
+  std::printf("refused %d times, read whole %d times\n", refused, whole);
+}
+
+}  // namespace
+}  // namespace shellcontract

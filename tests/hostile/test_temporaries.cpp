@@ -1,0 +1,104 @@
+// Temporaries are unguessable and exclusive, and SIGINT/SIGTERM remove them (issue 53, point 3);
+// a path with a NUL names no file. Each failed against the code before the fix as its comment says.
+#include <sys/wait.h>
+
+#include <csignal>
+
+#include "hostile/hostile_support.hpp"
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/file_safety.hpp"
+#include "shellcontract/mesh/io.hpp"
+
+namespace shellcontract {
+namespace {
+
+using test::Hostile;
+
+/// The hidden temporary next to `target` while write_file_atomic writes it.
+std::vector<std::string> temporaries_while_writing(const fs::path& target) {
+  std::vector<std::string> seen;
+  write_file_atomic(target.string(), [&](std::ostream& out) {
+    out << "data";
+    for (const std::string& n : test::listing(target.parent_path()))
+      if (n != target.filename().string()) seen.push_back(n);
+  });
+  return seen;
+}
+
+// Before: ".o.off.tmp-PID-0", the process id and a counter: a link planted under the next name
+// was followed. Now: a random name, created O_EXCL | O_NOFOLLOW.
+TEST_F(Hostile, TemporaryNamesCannotBeGuessed) {
+  const fs::path target = dir_ / "o.off";
+  const std::vector<std::string> a = temporaries_while_writing(target);
+  const std::vector<std::string> b = temporaries_while_writing(target);
+  ASSERT_EQ(a.size(), 1u);
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_NE(a[0], b[0]) << "two writes of one file used the same temporary name";
+  EXPECT_EQ(a[0].find(std::to_string(::getpid())), std::string::npos) << a[0];
+  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"o.off"});
+}
+
+// Creating a file where a link already stands never follows the link (O_NOFOLLOW | O_EXCL).
+TEST_F(Hostile, AnExclusiveFileNeverOpensAPlantedLink) {
+  const fs::path victim = dir_ / "victim.txt";
+  test::spit(victim, "precious");
+  for (int i = 0; i < 20; ++i) {
+    const ExclusiveFile f = create_exclusive_file(dir_.string(), "x");
+    ASSERT_GE(f.fd, 0);
+    ::close(f.fd);
+    // Plant a link under the name just used, then ask again: a new name, the link untouched.
+    ::unlink(f.path.c_str());
+    fs::create_symlink(victim, f.path);
+    const ExclusiveFile g = create_exclusive_file(dir_.string(), "x");
+    ASSERT_GE(g.fd, 0);
+    EXPECT_NE(g.path, f.path);
+    ::close(g.fd);
+    ::unlink(g.path.c_str());
+    ::unlink(f.path.c_str());
+  }
+  EXPECT_EQ(test::slurp(victim), "precious");
+}
+
+/// Runs write_file_atomic in a child that sends itself `sig` halfway through the write; returns
+/// the child's wait status.
+int interrupted_write(const fs::path& target, int sig) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    try {
+      write_file_atomic(target.string(), [&](std::ostream& out) {
+        out << std::string(1 << 20, 'a');
+        out.flush();
+        ::kill(::getpid(), sig);
+        out << "never";
+      });
+    } catch (...) {
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return status;
+}
+
+// Before: a SIGINT or SIGTERM during the write left the hidden temporary behind.
+TEST_F(Hostile, SigtermAndSigintDuringAWriteRemoveTheTemporary) {
+  for (const int sig : {SIGTERM, SIGINT}) {
+    const int status = interrupted_write(dir_ / "o.off", sig);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the signal must still end the process";
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_TRUE(test::listing(dir_).empty()) << "left behind: " << test::listing(dir_).front();
+  }
+}
+
+// Before: write_mesh_atomic("a.off\0/../b.off") wrote a.off (the C path ends at the NUL).
+TEST_F(Hostile, APathWithANulNamesNoFile) {
+  const fs::path a = dir_ / "a.off";
+  test::spit(a, "keep");
+  const std::string path = a.string() + std::string(1, '\0') + "/../b.off";
+  EXPECT_THROW(write_text_atomic(path, "x"), UsageError);
+  EXPECT_EQ(test::slurp(a), "keep");
+  EXPECT_THROW(read_input_mesh(test::mesh("ico2.off") + std::string(1, '\0') + "x.off"), InputError);
+}
+
+}  // namespace
+}  // namespace shellcontract
