@@ -22,11 +22,33 @@ def test_frames_yields_every_nth_frame_and_returns_the_result(ico2):
                                   result.log["volume_ratio"][[2, 5, 8]])
 
 
-def test_closing_frames_early_cancels_the_run(ico2):
+def test_closing_frames_early_cancels_the_run(ico2, monkeypatch):
+    # The run behind frames() is watched through contract(), which frames() calls: the frames its
+    # callback saw and the Result it returned prove that the run stopped a frame or two after the
+    # close, not after its 100,000 frames (which would also keep close() from returning).
+    seen = []
+    results = []
+    real_contract = shellcontract.contract
+
+    def watched(vertices, faces, *, callback=None, **options):
+        def counting(frame, v, metrics):
+            seen.append(frame)
+            return callback(frame, v, metrics)
+        result = real_contract(vertices, faces, callback=counting, **options)
+        results.append(result)
+        return result
+
+    monkeypatch.setattr(shellcontract, "contract", watched)
     vertices, faces = ico2
     gen = shellcontract.frames(vertices, faces, frames=100000)
     assert next(gen)[0] == 1
-    gen.close()  # must return promptly: the worker sees the stop at its next frame
+    gen.close()  # joins the worker: when it returns, the run has returned
+    assert len(results) == 1
+    # Frame 1 was handed over, frame 2 at most waits in the one-slot queue, and the callback of
+    # the frame after it sees the stop.
+    assert results[0].summary["frames_run"] <= 3
+    assert seen == list(range(1, len(seen) + 1)) and len(seen) <= 3
+    assert results[0].status == "cancelled"
 
 
 def test_check_reports_what_the_cli_reports(cli, mesh_dir):

@@ -161,7 +161,6 @@ inline BruteForce expect_all_methods_match(const Positions& x0, const Positions&
                                       ? stats.vertex_face + stats.edge_edge
                                       : std::int64_t{1})
         << where;
-    EXPECT_GT(stats.seconds, 0.0) << where << ": the search ran, so it took time";
     if (m == BroadPhaseMethod::Grid) {
       ++(stats.method_run == BroadPhaseMethod::Grid ? g_grid_runs : g_grid_fallbacks);
       // The portable cell loop (Auto may have run the AVX-512 one): the same pairs, in the same

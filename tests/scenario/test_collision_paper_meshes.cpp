@@ -1,10 +1,11 @@
 // Issue "self-collision", acceptance: the paper's meshes and the two-sheet mesh contracted with
-// strong pressure for 300 frames with collisions on. CGAL finds no new self-intersection at any
-// frame, and the shell still contracts (V/V0 <= 0.7 at frame 300). Label "scenario" (~80 s).
+// pressure 4 (twice the paper's 2) for 300 frames with collisions on, in the Simulator's own
+// defaults otherwise (PBD, StVK mu = lambda = 1, dihedral bending, air balance 0.5). CGAL finds no
+// new self-intersection at any frame, and the shell still contracts (V/V0 <= 0.7 at frame 300).
+// Label "scenario" (part of the default suite).
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <iostream>
 #include <string>
 
 #include "shellcontract/mesh/io.hpp"
@@ -14,7 +15,9 @@
 namespace shellcontract {
 namespace {
 
-/// The strong pressure of this scenario (normalized units; the default is 2).
+/// The pressure of this scenario (normalized units): twice the paper's 2, which is also the
+/// default (DEFAULT_PRESSURE) since the air was added; written out so that the scenario does not
+/// change with the default.
 constexpr double STRONG_PRESSURE = 4.0;
 
 std::string path_of(const std::string& name) {
@@ -34,22 +37,14 @@ TEST_P(StrongPressure, NoNewSelfIntersectionAtAnyFrameAndStillContracts) {
   opt.frames = 300;
   opt.collisions = true;
   Simulator sim(mesh, opt);
-  double collision_s = 0, solve_s = 0;
-  long failsafe = 0;
   while (!sim.finished()) {
     const FrameMetrics m = sim.step();
-    collision_s += m.collision.seconds;
-    solve_s += m.solve_seconds;
-    failsafe += m.collision.failsafe_vertices;
     ASSERT_EQ(sim.count_new_intersections(), 0u) << GetParam() << " frame " << m.frame;
   }
   EXPECT_LE(sim.volume_ratio(), 0.7) << GetParam();
-  std::cout << GetParam() << ": V/V0 at frame 300 " << sim.volume_ratio() << "; collision / solve time per step "
-            << 1e3 * collision_s / 300 << " / " << 1e3 * solve_s / 300 << " ms; fail-safe vertices "
-            << failsafe << "\n";
 }
 
-INSTANTIATE_TEST_SUITE_P(Long, StrongPressure,
+INSTANTIATE_TEST_SUITE_P(Scenario, StrongPressure,
                          ::testing::Values("eight", "hand", "elk", "bear", "two_sheet"),
                          [](const auto& info) { return info.param; });
 

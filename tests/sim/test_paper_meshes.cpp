@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iostream>
 #include <string>
 
 #include "shellcontract/mesh/io.hpp"
@@ -39,23 +40,30 @@ class PaperMesh : public ::testing::TestWithParam<std::string> {
   Mesh mesh_;
 };
 
-TEST_P(PaperMesh, DefaultRunContractsMonotonicallyAndStiffBendingContractsLess) {
-  SimOptions opt;  // defaults: P, dt, damping, PBD, StVK, isometric bending, k_B = 0.01
-  ASSERT_EQ(opt.frames, 200);
-  ASSERT_EQ(opt.solver.k_bending, 0.01);
+TEST_P(PaperMesh, PapersSettingContractsMonotonicallyAndStiffBendingContractsLess) {
+  // The paper's setting, written out (not the Simulator's defaults, which are neither the CLI's
+  // nor the paper's): PBD, StVK, constant pressure 2 (no air), flat-rest isometric bending with
+  // k_B = 0.01, 200 frames; collisions off (run() above).
+  SimOptions opt;
+  opt.solver.kind = SolverKind::Pbd;
+  opt.air_balance = 0.0;
+  opt.pressure = 2.0;
+  opt.bending = BendingModel::Isometric;
+  opt.solver.k_bending = 0.01;
+  opt.frames = 200;
   const std::vector<double> soft = run(opt);
   ASSERT_EQ(soft.size(), 200u);
   EXPECT_LT(soft.front(), 1.0);
   for (std::size_t i = 1; i < soft.size(); ++i)
     EXPECT_LT(soft[i], soft[i - 1]) << "V/V0 must decrease at frame " << i + 1;
-  EXPECT_LT(soft.back(), 0.99) << "the default run must visibly contract";
+  // How far it gets is pinned elsewhere (tests/goldens, Defaults.ThePapersSettingIsStillAvailable);
+  // here only that the contraction is visible.
+  EXPECT_LT(soft.back(), 0.99) << "the paper's setting must visibly contract";
   opt.solver.k_bending = 1.0;
   const std::vector<double> stiff = run(opt);
   EXPECT_GT(stiff.back(), soft.back()) << "k_B = 1 must contract less (paper Fig. 17)";
   RecordProperty("volume_ratio_kb_0.01", std::to_string(soft.back()));
   RecordProperty("volume_ratio_kb_1", std::to_string(stiff.back()));
-  std::cout << GetParam() << ": V/V0 after 200 frames " << soft.back() << " (k_B = 0.01), "
-            << stiff.back() << " (k_B = 1)\n";
 }
 
 TEST_P(PaperMesh, DihedralBendingAtZeroPressureStaysAtRest) {

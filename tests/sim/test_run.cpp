@@ -17,12 +17,17 @@
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
 #include "support/cgal_mesh.hpp"
+#include "support/cgal_volume.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
 Mesh sphere(int level = 2) { return test::to_surface_mesh(test::icosphere(level)); }
+
+/// The target volume's acceptance tolerance (issue "Control", item 1), a number here rather than
+/// the code's TARGET_VOLUME_TOLERANCE, so that widening that constant does not widen the tests.
+constexpr double TARGET_TOLERANCE = 0.005;
 
 /// Records what the run shows it.
 struct Recorder final : RunObserver {
@@ -60,7 +65,9 @@ TEST(Run, TargetVolumeIsReachedAndHeldOnASphere) {
     ASSERT_EQ(rec.ratios.size(), 120u);
     // Held over the last half, after the ramp, within the documented tolerance.
     for (std::size_t i = 60; i < rec.ratios.size(); ++i)
-      EXPECT_NEAR(rec.ratios[i], target, TARGET_VOLUME_TOLERANCE) << "frame " << i + 1;
+      EXPECT_NEAR(rec.ratios[i], target, TARGET_TOLERANCE) << "frame " << i + 1;
+    // The result itself, in the input's units, measured with CGAL rather than by the run.
+    EXPECT_NEAR(test::cgal_volume_ratio(sphere(3), r.positions), target, TARGET_TOLERANCE);
     EXPECT_GE(r.frame_target_reached, 40);
     EXPECT_LE(r.frame_target_reached, 60);
   }
@@ -78,7 +85,8 @@ TEST(Run, TargetVolumeHoldsAgainstAPressureThatWouldContractFurther) {
   RunOptions held = free;
   held.sim.target_volume = 0.97;
   const RunResult r = run_contraction(sphere(2), held);
-  EXPECT_NEAR(r.final_volume_ratio, 0.97, TARGET_VOLUME_TOLERANCE);
+  EXPECT_NEAR(r.final_volume_ratio, 0.97, TARGET_TOLERANCE);
+  EXPECT_NEAR(test::cgal_volume_ratio(sphere(2), r.positions), 0.97, TARGET_TOLERANCE);
   EXPECT_EQ(r.status, RunStatus::Completed);
 }
 

@@ -63,26 +63,28 @@ inline Mesh split_in_four(const Mesh& mesh) {
   return to_surface_mesh(out);
 }
 
-/// The default run (200 frames, every default) of `mesh`; V/V0 at the end, or -1 if skipped.
+/// The default run (200 frames, every default) of `mesh`, checked for new self-intersections at the end.
 inline RunResult default_run(const Mesh& mesh) {
   RunOptions o;
   o.sim.validate = ValidateMode::End;
   return run_contraction(mesh, o);
 }
 
-/// Checks issue "Control" item 5 on one mesh: the default run ends between V/V0 0.4 and 0.8
-/// (shape still recognisable: neither barely dented nor crushed), with no new self-intersection.
-inline void check_default_run_range(const std::string& name) {
+/// Checks issue "Control" item 5 on one mesh: the default run (200 frames, every default) ends
+/// within 0.02 of the V/V0 the README states for it (`readme`, written in the calling test), with
+/// no new self-intersection. The README's numbers are the documented behaviour: the air balance
+/// (0.5) sets them, the shell's stiffness and the pressure the few hundredths above it, so
+/// DEFAULT_AIR_BALANCE moved from 0.5 to 0.7 fails this (the end moves by about 0.2).
+inline void check_default_run_ratio(const std::string& name, double readme) {
   const std::string path = target_mesh_path(name);
   if (!std::filesystem::exists(path))
     GTEST_SKIP() << path << " is absent: run scripts/fetch_paper_meshes.sh";
   const RunResult r = default_run(load_target_mesh(name));
   ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
-  EXPECT_GE(r.final_volume_ratio, 0.4) << name;
-  EXPECT_LE(r.final_volume_ratio, 0.8) << name;
+  EXPECT_EQ(r.frames_run, 200) << name;
+  EXPECT_NEAR(r.final_volume_ratio, readme, 0.02) << name;
   EXPECT_EQ(r.new_intersections, 0) << name;
-  std::cout << "default run " << name << ": V/V0 " << r.final_volume_ratio << " after "
-            << r.frames_run << " frames, " << r.wall_seconds << " s\n";
+  std::cout << "default run " << name << ": V/V0 " << r.final_volume_ratio << " (README " << readme << ")\n";
 }
 
 /// Issue "Control", item 3: `options` on icospheres of levels 2 to max_level (320, 1280, 5120,

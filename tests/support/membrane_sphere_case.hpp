@@ -1,7 +1,8 @@
 // A thin spherical membrane under a small outside pressure against its closed form (issue
 // "Control", item 4; docs/math/membrane-sphere.md): radius r, thickness h, Young's modulus E,
 // Poisson ratio nu, over-pressure P well below buckling shrink by dr/r = -P r (1 - nu) / (2 E h),
-// so dV/V = (1 + dr/r)^3 - 1. Shared by the default suite (tests/sim) and the long label.
+// so dV/V = (1 + dr/r)^3 - 1. Shared by the default suite (320 faces,
+// tests/sim/test_sphere_closed_forms.cpp) and the long label (1280 to 20480 faces).
 #pragma once
 
 #include <gtest/gtest.h>

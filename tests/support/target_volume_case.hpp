@@ -15,6 +15,7 @@
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/mesh/reconstruction.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "support/cgal_volume.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract::test {
@@ -53,8 +54,13 @@ struct VolumeRecorder final : RunObserver {
   }
 };
 
+/// The acceptance's tolerance on V/V0 (issue "Control", item 1), written here as a number: the
+/// tests must not take it from the code under test (TARGET_VOLUME_TOLERANCE), which could widen it.
+inline constexpr double TARGET_TOLERANCE = 0.005;
+
 /// Runs `name` to target R for 400 frames and checks the acceptance: |V/V0 - R| <= 0.005 at each
-/// of the last 50 frames, no new self-intersection (at every frame when `every_frame`).
+/// of the last 50 frames and for the written positions measured with CGAL's PMP::volume, no new
+/// self-intersection (at every frame when `every_frame`).
 inline void check_target_volume(const std::string& name, double target, bool every_frame) {
   const std::string path = target_mesh_path(name);
   if (!std::filesystem::exists(path))
@@ -69,13 +75,16 @@ inline void check_target_volume(const std::string& name, double target, bool eve
   ASSERT_EQ(rec.ratios.size(), 400u) << r.message;
   double worst = 0.0;
   for (std::size_t i = 350; i < 400; ++i) worst = std::max(worst, std::abs(rec.ratios[i] - target));
-  EXPECT_LE(worst, TARGET_VOLUME_TOLERANCE) << name << " R = " << target;
+  EXPECT_LE(worst, TARGET_TOLERANCE) << name << " R = " << target;
+  const Mesh& input = load_target_mesh(name);
+  EXPECT_NEAR(cgal_volume_ratio(input, r.positions), target, TARGET_TOLERANCE)
+      << name << ": the written positions, measured with CGAL";
   EXPECT_EQ(r.new_intersections, 0) << name << " R = " << target;
   EXPECT_EQ(rec.worst_new_intersections, 0) << name << " R = " << target;
   EXPECT_EQ(r.status, RunStatus::Completed) << r.message;
   std::cout << "target-volume " << name << " R=" << target << ": frame reached "
             << r.frame_target_reached << ", worst |V/V0-R| over the last 50 frames " << worst
-            << ", final " << r.final_volume_ratio << ", " << r.wall_seconds << " s\n";
+            << ", final " << r.final_volume_ratio << "\n";
 }
 
 }  // namespace shellcontract::test
