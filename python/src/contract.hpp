@@ -17,6 +17,12 @@ namespace py = pybind11;
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
                   const py::kwargs& options);
 
+/// Checks keyword options as contract() does (TypeError for an unknown name, ValueError naming
+/// the option and its range) without running anything: the sweep's validation of every job.
+/// @return dict: "resolved" (python name -> the table's text of every option after
+///         resolve_run_options) and "args" (the `shellcontract run` arguments of the given ones)
+py::dict resolve_options(const py::kwargs& options);
+
 /// The option table: one (python_name, default, help, cli_name) tuple per option, in --help order.
 py::list option_table();
 
