@@ -15,6 +15,7 @@ or a refused sweep file (nothing run), 3 some job could not get an outcome (cras
 import argparse
 import os
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -111,10 +112,17 @@ def _has_dashboard():
 
 def _embedded_cluster(workers):
     from distributed import LocalCluster
-    # One thread per worker: each job is one process, which uses the worker's core.
-    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                        dashboard_address="127.0.0.1:0" if _has_dashboard() else None,
-                        silence_logs=40)
+    # The worker processes ignore SIGINT (an ignored signal stays ignored across their exec): a
+    # Ctrl-C at the terminal reaches the whole process group, and only this process should act
+    # on it (cancel, close the cluster, whose workers' jobs then save their checkpoints).
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        # One thread per worker: each job is one process, which uses the worker's core.
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                            dashboard_address="127.0.0.1:0" if _has_dashboard() else None,
+                            silence_logs=40)
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 def _run_dask(jobs, todo, args, cli, progress, on_record):

@@ -308,3 +308,26 @@ def test_progress_is_a_bar_on_a_terminal_and_lines_otherwise():
     p.job_finished(failed, "job 1")
     assert "\r" not in plain.getvalue()
     assert plain.getvalue().splitlines()[1].startswith("job 1: failed (blow-up at step 3) -- 1 done, 1 failed, 1 left")
+
+
+def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "long.json", LONG, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                             "--shard", "0/1", "--checkpoint-every", "5"], env=sweep_env(cli),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    # The second job is running and has saved a checkpoint.
+    wait_until(lambda: len(done_jobs(out)) == 1 and any((out / ".work" / "checkpoints").glob("*.ckpt")))
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "run the same command again" in err
+    # Nothing half-done in DIR: one finished job folder, the rest pending, no temporary files.
+    assert len(done_jobs(out)) == 1
+    assert [r["status"] for r in results(out)].count("pending") == 5
+    assert not [p for p in out.iterdir() if p.name.startswith(".results") or ".tmp-" in p.name]
+    again = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert again.returncode == 0, again.stderr
+    records = [json.loads(p.read_text()) for p in done_jobs(out)]
+    assert sum(r["resumed"] for r in records) == 1  # the interrupted one, from its checkpoint
+    assert_equals_serial(out, serial_reference(cli, path, tmp_path))
