@@ -331,3 +331,24 @@ def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_
     records = [json.loads(p.read_text()) for p in done_jobs(out)]
     assert sum(r["resumed"] for r in records) == 1  # the interrupted one, from its checkpoint
     assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+
+
+def test_crashed_and_killed_jobs_are_recorded_and_rerun_later(cli, mesh_dir, tmp_path):
+    # A stand-in for the tool that dies by a signal for some jobs (a crash; SIGKILL is what the
+    # kernel's OOM killer sends) and is the real one otherwise.
+    fake = tmp_path / "fake_cli.sh"
+    fake.write_text("#!/bin/sh\n"
+                    "case \"$*\" in *'--pressure 3'*) kill -SEGV $$;; *'--pressure 5'*) kill -KILL $$;; esac\n"
+                    "exec '{}' \"$@\"\n".format(cli))
+    fake.chmod(0o755)
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3, 5]}}
+    path = write_sweep(tmp_path, mesh_dir, "c.json", spec, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--cli", str(fake)])
+    assert r.returncode == 3, r.stderr
+    assert [row["status"] for row in results(out)] == ["ok", "crashed", "killed"]
+    assert "SIGSEGV" in json.loads((out / "jobs" / results(out)[1]["job"] / "job.json").read_text())["message"]
+    # With the real tool the crashed and killed jobs run again; the finished one does not.
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "1 done already" in r.stderr, r.stderr
+    assert [row["status"] for row in results(out)] == ["ok", "ok", "ok"]
