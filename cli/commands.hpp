@@ -11,5 +11,6 @@ int command_regions(int argc, char** argv);    ///< shellcontract regions IN -o 
 int command_bench_error(int argc, char** argv);  ///< shellcontract bench error IN [options]
 int command_reconstruct(int argc, char** argv);  ///< shellcontract reconstruct PTS -o OUT
 int command_repair(int argc, char** argv);       ///< shellcontract repair IN -o OUT
+int command_sweep(int argc, char** argv);        ///< shellcontract sweep SWEEP.json -o DIR
 
 }  // namespace shellcontract::cli

@@ -20,6 +20,7 @@ commands:
   reconstruct POINTS -o OUT        closed surface from an oriented point set (the kitten)
   bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
   bench error INPUT [options]      speed against error of the solver (table, CSV, gnuplot plot)
+  sweep SWEEP.json -o DIR          many runs (meshes x options) on Dask distributed, resumable
 
   shellcontract <command> --help   options of one command
   shellcontract --version
@@ -37,6 +38,7 @@ int dispatch(const std::string& command, int argc, char** argv) {
   if (command == "repair") return shellcontract::cli::command_repair(argc - 1, argv + 1);
   if (command == "regions") return shellcontract::cli::command_regions(argc - 1, argv + 1);
   if (command == "reconstruct") return shellcontract::cli::command_reconstruct(argc - 1, argv + 1);
+  if (command == "sweep") return shellcontract::cli::command_sweep(argc - 1, argv + 1);
   if (command == "bench") {
     if (argc >= 3 && std::strcmp(argv[2], "ccd") == 0)
       return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);

@@ -27,11 +27,13 @@
 #include "help_groups.hpp"
 #include "json_writer.hpp"
 #include "output_paths.hpp"
+#include "run_checkpoint.hpp"
 #include "run_observers.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/mesh/mesh_document.hpp"
 #include "shellcontract/mesh/repair.hpp"
+#include "shellcontract/sim/checkpoint.hpp"
 #include "shellcontract/sim/option_table.hpp"
 
 namespace po = boost::program_options;
@@ -173,6 +175,9 @@ int command_run(int argc, char** argv) {
   std::map<std::string, std::string> values;
   std::map<std::string, bool> switches;
   RunOptions options;
+  std::string checkpoint_path, resume_path;
+  int checkpoint_every = 0;
+  Checkpoint resume;
   po::options_description desc(RUN_USAGE, 100, 50);
   desc.add_options()("help,h", "show this help")(
       "output,o", po::value(&output)->value_name("FILE"),
@@ -197,7 +202,16 @@ int command_run(int argc, char** argv) {
       "fields); open it with scripts/view.py")("log", po::value(&log_path)->value_name("FILE.csv"),
                                                "per-frame CSV log")(
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
-      "quiet,q", po::bool_switch(&quiet), "no progress on stderr");
+      "quiet,q", po::bool_switch(&quiet), "no progress on stderr")(
+      "checkpoint", po::value(&checkpoint_path)->value_name("FILE"),
+      "save the whole state to FILE (atomically) every --checkpoint-every frames and on SIGINT or "
+      "SIGTERM, which then stop the run (exit code 130, no other output); --resume continues it")(
+      "checkpoint-every", po::value(&checkpoint_every)->value_name("N"),
+      "with --checkpoint: frames between saves (default: only on a signal)")(
+      "resume", po::value(&resume_path)->value_name("FILE"),
+      "continue the run saved in FILE (its input, unless INPUT is given, and its options; options "
+      "given must equal its own, --threads excepted): the same result, to the byte, as the run "
+      "that was not interrupted");
   FieldColour colour = FieldColour::MeanCurvature;
   std::unique_ptr<ExportFolderLock> export_lock;  // held until the run's files are written
   try {
@@ -206,6 +220,8 @@ int command_run(int argc, char** argv) {
       std::cout << desc << RUN_EXIT_CODES;
       return 0;
     }
+    if (!resume_path.empty()) resume = read_checkpoint(resume_path);  // InputError: exit 2
+    if (input.empty() && !resume_path.empty()) input = resume.input;
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
     for (const OptionSpec& o : run_option_table()) {
@@ -215,8 +231,18 @@ int command_run(int argc, char** argv) {
         o.set(options, values[o.name]);
       }
     }
+    if (!resume_path.empty()) options = options_for_resume(resume, options);
     resolve_run_options(options);
-    options.sim.frame_energies = !log_path.empty();  // only the CSV log reports them
+    // Only the CSV log reports the energies; a checkpointed run keeps them for the log of the
+    // run that resumes it (they are measured, the state does not depend on them).
+    options.sim.frame_energies = !log_path.empty() || !checkpoint_path.empty();
+    if (vm.count("checkpoint-every") && (checkpoint_every < 1 || checkpoint_path.empty()))
+      throw UsageError("--checkpoint-every: expected an integer >= 1, with --checkpoint");
+    if (!resume_path.empty() && (!fields_prefix.empty() || !exports.dir.empty() ||
+                                 !exports.gltf.empty()))
+      throw UsageError(
+          "--fields, --export-dir and --gltf cannot be combined with --resume: the frames before "
+          "the checkpoint are not in it");
     colour = parse_field_colour(fields_colour);
     const std::string ext = lower_extension(output);
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
@@ -227,6 +253,7 @@ int command_run(int argc, char** argv) {
     planned.push_back({"-o", output});
     if (!log_path.empty()) planned.push_back({"--log", log_path});
     if (!summary_path.empty()) planned.push_back({"--summary", summary_path});
+    if (!checkpoint_path.empty()) planned.push_back({"--checkpoint", checkpoint_path});
     if (!fields_prefix.empty()) {
       planned.push_back({"--fields", fields_prefix + "_start.ply"});
       planned.push_back({"--fields", fields_prefix + "_end.ply"});
@@ -258,6 +285,9 @@ int command_run(int argc, char** argv) {
     return usage_error("run", e.what());
   } catch (const UsageError& e) {
     return usage_error("run", e.what());
+  } catch (const InputError& e) {
+    std::cerr << "shellcontract run: " << e.what() << '\n';
+    return static_cast<int>(ExitCode::BadInput);
   }
 
   // For a message if memory runs out outside the frames (those end the run with the last good
@@ -313,7 +343,14 @@ int command_run(int argc, char** argv) {
     ProgressPrinter progress(options.sim.frames, auto_regions);
     if (!quiet) observers.add(progress);
     CsvLog csv;
-    if (!log_path.empty()) observers.add(csv);
+    if (!log_path.empty() || !checkpoint_path.empty()) observers.add(csv);
+    if (!resume_path.empty()) {
+      check_checkpoint_input(resume, input, mesh);  // InputError: exit 2
+      csv.restore(resume.log);
+    }
+    CliCheckpointer checkpointer(checkpoint_path, checkpoint_every,
+                                 resume_path.empty() ? nullptr : &resume, input, mesh_hash(mesh),
+                                 options, csv);
     FieldsWriter fields(fields_prefix, colour);
     if (!fields_prefix.empty()) observers.add(fields);
     FrameExporter exporter(exports, mesh, options.sim.frames);
@@ -323,7 +360,18 @@ int command_run(int argc, char** argv) {
     faces = std::to_string(mesh.number_of_faces()) + " faces";
     // run_contraction ends the run itself when memory runs out during the frames.
     stage = "preparing the run or taking its result";
-    const RunResult r = run_contraction(mesh, options, &observers);
+    const RunResult r = run_contraction(mesh, options, &observers, &checkpointer);
+    if (r.status == RunStatus::Cancelled && checkpointer.interrupted()) {
+      // Nothing else is written: the run is not over, its state is in the checkpoint.
+      if (checkpointer.saved_frame() == r.frames_run)
+        std::cerr << "shellcontract run: interrupted at frame " << r.frames_run << "; the state is "
+                  << "saved in " << checkpoint_path << " (continue with: shellcontract run "
+                  << "--resume " << checkpoint_path << " -o " << output << " ...)\n";
+      else
+        std::cerr << "shellcontract run: interrupted at frame " << r.frames_run
+                  << "; the checkpoint could not be written\n";
+      return static_cast<int>(ExitCode::Cancelled);
+    }
 
     // A finished result is never thrown away: each output is written on its own, one that
     // fails (a full disk) is reported and the others are still written (output-safety.md).

@@ -80,6 +80,8 @@ class CsvLog final : public RunObserver {
     text_ += o.str();
   }
   const std::string& text() const { return text_; }
+  /// A resumed run's log so far (its checkpoint's), header included.
+  void restore(std::string text) { text_ = std::move(text); }
 
  private:
   std::string text_ = HEADER;

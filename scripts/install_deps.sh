@@ -14,6 +14,7 @@ PACKAGES=(
   chromium
   blender
   pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-dev
+  python3-distributed
 )
 # The viewer's tests and scripts/view.py's page need node and npm; an existing install (any
 # source) is kept.

@@ -61,6 +61,13 @@ def contract(vertices, faces, *, callback=None, **options):
     run (status "cancelled"). Ctrl-C stops the run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
     unknown option.
+
+    checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
+    cancels the run; resume=FILE continues such a run (the same vertices and faces; options, if
+    given, must equal the checkpoint's, threads excepted) to the result the uninterrupted run
+    gives, bit for bit, its log included (``shellcontract run --checkpoint/--resume``, whose
+    checkpoints this reads and the other way round). ValueError for a checkpoint of another
+    mesh, other options or another version, saying which.
     """
     return Result(_core.contract(vertices, faces, callback=callback, **options))
 

@@ -17,12 +17,16 @@
 #include <mutex>
 #include <thread>
 #include <cstdint>
+#include <cstdlib>
+#include <iomanip>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "arrays.hpp"
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/checkpoint.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
 
@@ -197,6 +201,36 @@ class PythonObserver final : public RunObserver {
     }
   }
 
+  /// The rows so far as the CLI's --log CSV text (a checkpoint's log: the CLI and Python resume
+  /// each other's checkpoints).
+  std::string csv_text() const {
+    std::ostringstream o;
+    o << "frame,time,volume_ratio,energy_membrane,energy_bending,energy_anisotropic,"
+         "max_displacement,step_ms,solve_ms,ccd_ms,candidates,contacts,collision_rounds,"
+         "failsafe_vertices,new_intersections\n"
+      << std::setprecision(17);
+    for (const auto& row : rows_)
+      for (std::size_t c = 0; c < row.size(); ++c) o << row[c] << (c + 1 < row.size() ? ',' : '\n');
+    return o.str();
+  }
+
+  /// A resumed run's rows so far, from its checkpoint's CSV text.
+  void restore_csv(const std::string& text) {
+    std::istringstream in(text);
+    std::string line;
+    std::getline(in, line);  // the header
+    while (std::getline(in, line)) {
+      std::array<double, 15> row{};
+      const char* p = line.c_str();
+      for (double& v : row) {
+        char* end = nullptr;
+        v = std::strtod(p, &end);
+        p = *end == ',' ? end + 1 : end;
+      }
+      rows_.push_back(row);
+    }
+  }
+
   bool cancelled() override {
     if (stop_) return true;
     if (interpreter_exiting()) return stop_ = true;  // checked without the GIL
@@ -293,21 +327,83 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   return s;
 }
 
+/// contract(checkpoint=FILE, checkpoint_every=N, resume=FILE): saves every N frames and when
+/// the run is cancelled by a signal (Ctrl-C: KeyboardInterrupt); the log travels as the CLI's
+/// CSV text.
+class PythonCheckpointer final : public RunCheckpointer {
+ public:
+  PythonCheckpointer(std::string path, int every, const Checkpoint* resume, std::uint64_t hash,
+                     const RunOptions& options, PythonObserver& observer)
+      : path_(std::move(path)), every_(every), resume_(resume), hash_(hash),
+        given_(given_options(options)), resolved_(resolved_options(options)), observer_(observer) {}
+  const Checkpoint* resume_from() const override { return resume_; }
+  bool save_due(const Simulator& sim) override {
+    if (path_.empty()) return false;
+    return (every_ > 0 && sim.frame() % every_ == 0) || observer_.cancelled();
+  }
+  void save(const Simulator& sim, const RunProgress& progress) override {
+    Checkpoint c;
+    c.version = checkpoint_tool_version();
+    c.input = "<arrays>";
+    c.input_hash = hash_;
+    c.given = given_;
+    c.resolved = resolved_;
+    c.sim = sim.state();
+    c.progress = progress;
+    c.log = observer_.csv_text();
+    write_checkpoint(path_, c);
+  }
+
+ private:
+  std::string path_;
+  int every_;
+  const Checkpoint* resume_;
+  std::uint64_t hash_;
+  OptionValues given_, resolved_;
+  PythonObserver& observer_;
+};
+
 }  // namespace
 
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
-                  const py::kwargs& kwargs) {
+                  const py::kwargs& all_kwargs) {
   if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
     throw py::type_error("callback must be callable(frame, vertices, metrics) or None");
-  const RunOptions options = options_from_kwargs(kwargs);
+  std::string checkpoint_path, resume_path;
+  int checkpoint_every = 0;
+  py::kwargs kwargs;
+  for (const auto& [key, value] : all_kwargs) {
+    const std::string name = key.cast<std::string>();
+    if (name == "checkpoint") checkpoint_path = py::str(value);
+    else if (name == "resume") resume_path = py::str(value);
+    else if (name == "checkpoint_every") checkpoint_every = value.cast<int>();
+    else kwargs[key] = value;
+  }
+  if (checkpoint_every < 0 || (checkpoint_every > 0 && checkpoint_path.empty()))
+    throw py::value_error("checkpoint_every: expected an integer >= 1, with checkpoint=FILE");
+  RunOptions options = options_from_kwargs(kwargs);
+  Checkpoint resume;
+  if (!resume_path.empty()) {
+    resume = read_checkpoint(resume_path);
+    options = options_for_resume(resume, options);
+    resolve_run_options(options);
+    options.sim.frame_energies = true;
+  }
   InputReport report;
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
   PythonObserver observer(callback);
+  if (!resume_path.empty()) {
+    check_checkpoint_input(resume, "the vertices and faces given", mesh);
+    observer.restore_csv(resume.log);
+  }
+  PythonCheckpointer checkpointer(checkpoint_path, checkpoint_every,
+                                  resume_path.empty() ? nullptr : &resume, mesh_hash(mesh), options,
+                                  observer);
   RunResult r;
   {
     const ActiveRun active;  // destroyed after the GIL is taken back
     py::gil_scoped_release release;
-    r = run_contraction(mesh, options, &observer);
+    r = run_contraction(mesh, options, &observer, &checkpointer);
     // Past the exit's wait, the interpreter is going away: this thread never takes the GIL
     // again and sleeps until the process ends around it.
     if (interpreter_finalizing())
@@ -328,6 +424,32 @@ void stop_runs_at_exit() {
   py::gil_scoped_release release;  // the runs take the GIL to finish
   std::unique_lock<std::mutex> lock(runs_mutex);
   runs_changed.wait_for(lock, EXIT_WAIT, [] { return active_runs == 0; });
+}
+
+py::dict resolve_options(const py::kwargs& kwargs) {
+  const RunOptions options = options_from_kwargs(kwargs);
+  // The arguments in table order (the CLI parses them in that order whatever the order given).
+  py::list args;
+  for (const OptionSpec& o : run_option_table()) {
+    const std::string name = python_name(o.name);
+    if (!kwargs.contains(name)) continue;
+    const std::string text = option_text(name, kwargs[py::str(name)]);
+    if (o.is_switch) {
+      RunOptions probe;
+      o.set(probe, text);  // the switch's own parse (on/off/true/false/1/0)
+      if (o.get(probe) == o.get(RunOptions{})) continue;  // off: the flag is left out
+      args.append("--" + o.name);
+      continue;
+    }
+    args.append("--" + o.name);
+    args.append(text);
+  }
+  py::dict resolved;
+  for (const OptionSpec& o : run_option_table()) resolved[py::str(python_name(o.name))] = o.get(options);
+  py::dict out;
+  out["resolved"] = resolved;
+  out["args"] = args;
+  return out;
 }
 
 py::list option_table() {

@@ -22,6 +22,12 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
 /// while the interpreter finalizes (it would be ended inside C++ frames: an abort).
 void stop_runs_at_exit();
 
+/// Checks keyword options as contract() does (TypeError for an unknown name, ValueError naming
+/// the option and its range) without running anything: the sweep's validation of every job.
+/// @return dict: "resolved" (python name -> the table's text of every option after
+///         resolve_run_options) and "args" (the `shellcontract run` arguments of the given ones)
+py::dict resolve_options(const py::kwargs& options);
+
 /// The option table: one (python_name, default, help, cli_name) tuple per option, in --help order.
 py::list option_table();
 

@@ -192,6 +192,7 @@ PYBIND11_MODULE(_core, m) {
   py::module_::import("atexit").attr("register")(py::cpp_function(&stop_runs_at_exit));
   m.def("contract", &contract, py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("callback") = py::none());
   m.def("option_table", &option_table);
+  m.def("resolve_options", &resolve_options);
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));
   m.def("regions", &regions, py::arg("vertices"), py::arg("faces"));
   m.def("read_mesh", &read_mesh, py::arg("path"));

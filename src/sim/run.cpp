@@ -13,6 +13,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/sim/checkpoint.hpp"
 #include "shellcontract/sim/region_weights.hpp"
 
 namespace shellcontract {
@@ -130,7 +131,8 @@ void warn(RunResult& r, RunObserver& o, const std::string& text) {
 
 }  // namespace
 
-RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer) {
+RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer,
+                          RunCheckpointer* checkpointer) {
   RunObserver none;
   RunObserver& obs = observer ? *observer : none;
   RunResult r;
@@ -179,14 +181,27 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
          std::to_string(rest.clamped_cotangents) +
              " rest angles below 1 or above 179 degrees: their bending cotangents were clamped "
              "to +-cot(1 degree)");
-  obs.started(sim);
-
-  const auto start = std::chrono::steady_clock::now();
   const bool has_target = s.target_volume > 0.0;
   const bool has_stop = s.stop_volume_ratio > 0.0;
   std::vector<double> history{1.0};  // V/V0 after each frame, frame 0 = the rest state
   std::string stalled;
   std::int64_t last_pairs = 0;  // the last step's candidate pairs, for an out-of-memory message
+  // A resumed run: the Simulator and this loop continue where the checkpoint's run stopped.
+  if (const Checkpoint* c = checkpointer ? checkpointer->resume_from() : nullptr) {
+    sim.restore(c->sim);
+    const RunProgress& p = c->progress;
+    history = p.history;
+    r.min_volume_ratio = p.min_volume_ratio;
+    r.totals = p.totals;
+    r.new_intersections = p.new_intersections;
+    r.status = p.status;
+    r.message = p.message;
+    r.frame_target_reached = p.frame_target_reached;
+    last_pairs = p.last_pairs;
+  }
+  obs.started(sim);
+
+  const auto start = std::chrono::steady_clock::now();
   r.positions.resize(sim.positions().rows(), 3);  // the result's storage, see the end
   while (!sim.finished()) {
     FrameMetrics m;
@@ -247,6 +262,19 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
         stalled = "the volume stalled at V/V0 " + ratio_text(m.volume_ratio) + " (less than " +
                   ratio_text(STALL_CHANGE) + " change over " + std::to_string(STALL_FRAMES) +
                   " frames) at frame " + std::to_string(m.frame);
+        break;
+      }
+    }
+    // Before the observers' cancel: a caller that cancels on a signal (Python's Ctrl-C) saves
+    // the state first.
+    if (checkpointer && !sim.finished()) {
+      if (checkpointer->save_due(sim))
+        checkpointer->save(sim, RunProgress{history, r.min_volume_ratio, r.totals,
+                                            r.new_intersections, r.status, r.message,
+                                            r.frame_target_reached, last_pairs});
+      if (checkpointer->stop()) {
+        r.status = RunStatus::Cancelled;
+        r.message = "interrupted at frame " + std::to_string(m.frame);
         break;
       }
     }

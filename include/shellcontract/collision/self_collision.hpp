@@ -95,6 +95,19 @@ class SelfCollision {
 
   const CollisionTopology& topology() const;
 
+  /// What a later step depends on besides the positions (a checkpoint's share,
+  /// sim/simulator_state.hpp): the warm start's contact cache, and the speculative broad phase's
+  /// last correction and skins, from which it predicts (its pairs, hence the order of the tests).
+  /// Meaningful between steps only.
+  struct PersistentState {
+    std::vector<Contact> contact_cache;
+    Positions correction;
+    Eigen::VectorXd skin;
+  };
+  PersistentState persistent_state() const;
+  /// Continues from a persistent_state() of a SelfCollision built from the same mesh and options.
+  void restore_persistent_state(PersistentState state);
+
  private:
   struct Impl;  ///< the state and the stages (src/collision/self_collision/state.hpp)
   std::unique_ptr<Impl> impl_;

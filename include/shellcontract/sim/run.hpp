@@ -103,6 +103,8 @@ class ObserverList final : public RunObserver {
   std::vector<RunObserver*> observers_;
 };
 
+class RunCheckpointer;  // sim/checkpoint.hpp
+
 /// Stores the regions a run would use in the mesh's "f:region" map: auto-selected by curvature
 /// (mark_spherical_regions, which also stores the curvature maps), read from the file, or none
 /// (every face -1). run_contraction calls it on its copy of the mesh after resolve_run_options,
@@ -120,6 +122,9 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
 ///         observer's frame() or in the end's validation, and a std::runtime_error from a step
 ///         (TBB's "pthread_create has failed" when the address space is exhausted), with a
 ///         message that says so.
-RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer = nullptr);
+/// @param checkpointer  continues from its checkpoint, and saves the state when it asks
+///         (sim/checkpoint.hpp); InputError if its checkpoint does not fit the mesh and options
+RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer = nullptr,
+                          RunCheckpointer* checkpointer = nullptr);
 
 }  // namespace shellcontract

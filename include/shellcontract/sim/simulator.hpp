@@ -16,6 +16,7 @@
 #include "shellcontract/sim/pressure.hpp"
 #include "shellcontract/sim/region_dimple.hpp"
 #include "shellcontract/sim/rest_state.hpp"
+#include "shellcontract/sim/simulator_state.hpp"
 
 namespace shellcontract {
 
@@ -104,6 +105,14 @@ class Simulator {
   Eigen::VectorXd face_energies() const { return solver_->face_energies(x_, faces_.rows()); }
   /// Normalized rest positions.
   const Positions& rest_positions() const { return rest_x_; }
+
+  /// Everything the next steps depend on besides what the constructor builds (a checkpoint,
+  /// sim/checkpoint.hpp). Between steps.
+  SimulatorState state() const;
+  /// Continues from a state() of a Simulator built from the same mesh and options: the next
+  /// step() is the one the saving Simulator would have taken.
+  /// @throws InputError if the state's sizes do not fit this mesh
+  void restore(SimulatorState state);
 
  private:
   /// Projects x onto the volume of a target-volume run, or onto the stop ratio at its crossing.

@@ -79,6 +79,16 @@ const std::vector<Contact>& SelfCollision::contact_cache() const {
   return impl_->previous_contacts_;
 }
 
+SelfCollision::PersistentState SelfCollision::persistent_state() const {
+  return {impl_->previous_contacts_, impl_->correction_, impl_->skin_};
+}
+
+void SelfCollision::restore_persistent_state(PersistentState state) {
+  impl_->previous_contacts_ = std::move(state.contact_cache);
+  impl_->correction_ = std::move(state.correction);
+  impl_->skin_ = std::move(state.skin);
+}
+
 bool SelfCollision::live_pairs_consistent() const { return impl_->live_pairs_consistent(); }
 
 std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>>

@@ -1,0 +1,94 @@
+#!/usr/bin/env python3
+"""The sweep engine's benchmark (issue 57, point 8): 64 jobs (the paper's meshes eight, hand, elk
+and bear x 4 target volumes x 4 thicknesses, 100 frames each) run
+
+  1. as 64 plain `shellcontract run` calls, one after the other (the reference),
+  2. through the sweep on an embedded cluster of 1 worker,
+  3. through the sweep on an embedded cluster of 2 workers,
+
+and reports the speed-up of 2 workers over 1 (the issue asks at least 1.8x on a 2-core machine)
+and the sweep's per-job overhead, 1 worker against the plain calls (at most 5 %). Every sweep
+starts from an empty folder, so nothing is skipped. Run it on a quiet machine: the figures mean
+nothing while other work shares the cores.
+
+usage: lab/sweep/benchmark.py [--build build] [--meshes data/meshes] [--out /tmp/sweep_bench]
+                              [--frames 100] [--page lab/sweep/README.md]
+"""
+import argparse
+import json
+import os
+import shutil
+import subprocess
+import sys
+import time
+
+MESHES = ["eight.off", "hand.off", "elk.off", "bear.off"]
+TARGETS = [0.3, 0.4, 0.5, 0.6]
+THICKNESSES = [0.001, 0.002, 0.004, 0.008]
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    p.add_argument("--build", default=os.path.join(root, "build"))
+    p.add_argument("--meshes", default=os.path.join(root, "data", "meshes"))
+    p.add_argument("--out", default="/tmp/shellcontract_sweep_benchmark")
+    p.add_argument("--frames", type=int, default=100)
+    p.add_argument("--page", default=None, help="append the table to this Markdown file")
+    a = p.parse_args()
+    cli = os.path.join(a.build, "shellcontract")
+    env = dict(os.environ, PYTHONPATH=os.path.join(a.build, "python"), SHELLCONTRACT_CLI=cli)
+    shutil.rmtree(a.out, ignore_errors=True)
+    os.makedirs(a.out)
+    sweep = {"meshes": [os.path.join(a.meshes, m) for m in MESHES],
+             "options": {"frames": a.frames, "threads": 1},
+             "grid": {"target_volume": TARGETS, "thickness": THICKNESSES}}
+    sweep_path = os.path.join(a.out, "sweep.json")
+    with open(sweep_path, "w") as f:
+        json.dump(sweep, f)
+
+    # 1. Plain CLI calls with the jobs' own arguments.
+    listing = subprocess.run([sys.executable, "-m", "shellcontract.sweep", sweep_path, "-o",
+                              os.path.join(a.out, "unused"), "--dry-run"], env=env, check=True,
+                             capture_output=True, text=True).stdout.splitlines()
+    plain_dir = os.path.join(a.out, "plain")
+    os.makedirs(plain_dir)
+    start = time.monotonic()
+    for line in listing:
+        job, mesh, *args = line.split()
+        mesh = os.path.join(os.path.dirname(sweep_path), mesh)
+        ext = os.path.splitext(mesh)[1]
+        rc = subprocess.run([cli, "run", mesh, "-o", os.path.join(plain_dir, job + ext), "--log",
+                             os.path.join(plain_dir, job + ".csv"), "--summary",
+                             os.path.join(plain_dir, job + ".json"), "-q"] + args).returncode
+        if rc not in (0, 5):
+            sys.exit("plain run of job {} exited {}".format(job, rc))
+    plain = time.monotonic() - start
+
+    times = {}
+    for workers in (1, 2):
+        out = os.path.join(a.out, "sweep{}".format(workers))
+        start = time.monotonic()
+        subprocess.run([sys.executable, "-m", "shellcontract.sweep", sweep_path, "-o", out,
+                        "--workers", str(workers)], env=env, check=True)
+        times[workers] = time.monotonic() - start
+
+    n = len(listing)
+    lines = [
+        "| what | wall time (s) | per job (s) |",
+        "|---|---:|---:|",
+        "| {} plain CLI calls, serial | {:.1f} | {:.2f} |".format(n, plain, plain / n),
+        "| sweep, 1 worker | {:.1f} | {:.2f} |".format(times[1], times[1] / n),
+        "| sweep, 2 workers | {:.1f} | {:.2f} |".format(times[2], times[2] / n),
+        "",
+        "speed-up of 2 workers over 1: {:.2f}x; sweep overhead (1 worker against the plain calls): "
+        "{:+.1f} %".format(times[1] / times[2], 100.0 * (times[1] / plain - 1.0)),
+    ]
+    print("\n".join(lines))
+    if a.page:
+        with open(a.page, "a") as f:
+            f.write("\n" + "\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()

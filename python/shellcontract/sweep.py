@@ -1,0 +1,228 @@
+"""python3 -m shellcontract.sweep SWEEP.json -o DIR: many contraction runs, on Dask distributed.
+
+Every job of the sweep file is validated before any runs; then the jobs run on an embedded local
+cluster (one worker process per core), on an existing cluster (--scheduler tcp://HOST:PORT), or
+one slice of them serially (--shard I/N, for Slurm or Kubernetes job arrays). Each job is
+`shellcontract run` in a process of its own; its outcome lands whole in DIR/jobs/<id>/ and a row
+of DIR/results.csv and results.json. Running the same file again skips the finished jobs.
+docs/design/sweeps.md says how and why.
+
+Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage
+or a refused sweep file (nothing run), 3 some job could not get an outcome (crash, kill, timeout),
+130 interrupted (run the same command again to finish).
+"""
+
+import argparse
+import os
+import shutil
+import signal
+import subprocess
+import sys
+
+from . import sweep_file, sweep_job, sweep_progress, sweep_results
+
+EXIT_USAGE = 1
+EXIT_INCOMPLETE = 3
+EXIT_INTERRUPTED = 130
+# Jobs whose outcome is not a result the same run would give again.
+RETRIED_STATUSES = ("crashed", "killed", "timeout")
+
+
+def find_cli(given=None):
+    """The `shellcontract` executable: --cli, $SHELLCONTRACT_CLI, the build tree this package
+    was built in (<build>/python/shellcontract -> <build>/shellcontract), then PATH."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidates = [given, os.environ.get("SHELLCONTRACT_CLI"),
+                  os.path.join(here, os.pardir, os.pardir, "shellcontract"),
+                  shutil.which("shellcontract")]
+    for c in candidates:
+        if c and os.path.isfile(c) and os.access(c, os.X_OK):
+            return os.path.abspath(c)
+    return None
+
+
+def cli_version(cli):
+    out = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True)
+    return out.stdout.strip()
+
+
+def parse_shard(text):
+    try:
+        i, n = (int(x) for x in text.split("/"))
+    except ValueError:
+        raise argparse.ArgumentTypeError("expected I/N, e.g. 0/4, got {!r}".format(text))
+    if n < 1 or not 0 <= i < n:
+        raise argparse.ArgumentTypeError("expected 0 <= I < N, got {!r}".format(text))
+    return i, n
+
+
+def positive_float(text):
+    v = float(text)
+    if not v > 0:
+        raise argparse.ArgumentTypeError("expected a number > 0, got {!r}".format(text))
+    return v
+
+
+def positive_int(text):
+    v = int(text)
+    if v < 1:
+        raise argparse.ArgumentTypeError("expected an integer >= 1, got {!r}".format(text))
+    return v
+
+
+def parser():
+    p = argparse.ArgumentParser(
+        prog="shellcontract sweep",
+        description="Run every job of a sweep file (meshes x options grid x runs) on Dask "
+                    "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
+        epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
+               "refused sweep file (nothing run), 3 some job crashed, was killed or timed out, "
+               "130 interrupted (run the same command again to finish)")
+    p.add_argument("sweep", metavar="SWEEP.json")
+    p.add_argument("-o", "--output", metavar="DIR", required=True, help="results folder")
+    where = p.add_mutually_exclusive_group()
+    where.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+                       help="an existing Dask cluster (dask scheduler / dask worker); DIR and the "
+                            "meshes must be at the same paths on every worker")
+    where.add_argument("--shard", metavar="I/N", type=parse_shard,
+                       help="run only the I-th of N slices of the jobs, serially in this process "
+                            "(job arrays: Slurm, Kubernetes indexed jobs)")
+    p.add_argument("--workers", type=positive_int, default=None,
+                   help="worker processes of the embedded cluster (default: the cores)")
+    p.add_argument("--job-timeout", type=positive_float, default=None, metavar="SECONDS",
+                   help="stop a job after this long (recorded as 'timeout'; a later sweep "
+                        "resumes it from its checkpoint)")
+    p.add_argument("--checkpoint-every", type=positive_int, default=20, metavar="N",
+                   help="each job saves its state every N frames (a lost worker's job resumes "
+                        "from there); default 20")
+    p.add_argument("--cli", metavar="PATH", help="the shellcontract executable")
+    p.add_argument("--dry-run", action="store_true",
+                   help="validate the sweep file and list the jobs; run nothing")
+    return p
+
+
+def _has_dashboard():
+    """Dask's dashboard needs bokeh (Debian: python3-bokeh)."""
+    try:
+        import bokeh  # noqa: F401
+        return True
+    except ImportError:
+        return False
+
+
+def _embedded_cluster(workers):
+    from distributed import LocalCluster
+    # The worker processes ignore SIGINT (an ignored signal stays ignored across their exec): a
+    # Ctrl-C at the terminal reaches the whole process group, and only this process should act
+    # on it (cancel, close the cluster, whose workers' jobs then save their checkpoints).
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        # One thread per worker: each job is one process, which uses the worker's core.
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                            dashboard_address="127.0.0.1:0" if _has_dashboard() else None,
+                            silence_logs=40)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def _run_dask(jobs, todo, args, cli, progress, on_record):
+    from distributed import Client, as_completed
+    cluster = None
+    if args.scheduler:
+        client = Client(args.scheduler, timeout="30s")
+    else:
+        cluster = _embedded_cluster(args.workers or os.cpu_count() or 1)
+        client = Client(cluster)
+    futures = {}
+    try:
+        if args.scheduler or _has_dashboard():
+            # The scheduler's own dashboard when it has one (it says where).
+            progress.message("Dask dashboard: {}".format(client.dashboard_link))
+        else:
+            progress.message("Dask dashboard: not available (it needs bokeh: python3-bokeh)")
+        progress.restart_clock()  # the ETA counts from the cluster's start, not its set-up
+        for job in todo:
+            f = client.submit(sweep_job.run_job, job.to_dict(), args.output, cli, args.job_timeout,
+                              args.checkpoint_every, key="shellcontract-job-" + job.id, pure=False)
+            futures[f] = job
+        for f in as_completed(list(futures)):
+            job = futures[f]
+            try:
+                record = f.result()
+            except Exception as e:  # the task itself failed (e.g. a worker lost too often)
+                record = {"job": job.id, "status": "crashed", "exit_code": None,
+                          "message": "{}: {}".format(type(e).__name__, e)}
+            on_record(job, record)
+    except KeyboardInterrupt:
+        client.cancel(list(futures))
+        raise
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()
+
+
+def main(argv=None):
+    args = parser().parse_args(argv)
+    cli = find_cli(args.cli)
+    if cli is None:
+        print("shellcontract sweep: cannot find the shellcontract executable (--cli PATH or "
+              "SHELLCONTRACT_CLI)", file=sys.stderr)
+        return EXIT_USAGE
+    args.output = os.path.abspath(args.output)
+    try:
+        data = sweep_file.load(args.sweep)
+        version = cli_version(cli)
+        jobs = sweep_file.expand(args.sweep, data, version)
+    except sweep_file.SweepError as e:
+        print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
+        return EXIT_USAGE
+    varying = sweep_file.varying_names(data)
+    sweep_dir = os.path.dirname(os.path.abspath(args.sweep))
+    if args.dry_run:
+        for job in jobs:
+            print("{}  {}  {}".format(job.id, os.path.relpath(job.mesh, sweep_dir),
+                                      " ".join(job.args)))
+        return 0
+    os.makedirs(os.path.join(args.output, "jobs"), exist_ok=True)
+    selected = jobs if args.shard is None else jobs[args.shard[0]::args.shard[1]]
+    todo = [j for j in selected if not sweep_job.is_done(sweep_job.read_record(args.output, j.id))]
+    table = sweep_results.write(jobs, varying, args.output, sweep_dir)
+    done = sum(1 for j in selected if sweep_job.is_done(sweep_job.read_record(args.output, j.id)))
+    progress = sweep_progress.Progress(len(selected), done=done)
+    progress.message("{} jobs ({} in this run, {} done already) -> {}".format(
+        len(jobs), len(todo), done, args.output))
+    latest = {}
+
+    def on_record(job, record):
+        latest[job.id] = record
+        sweep_results.write(jobs, varying, args.output, sweep_dir, latest)
+        progress.job_finished(record, job.label())
+
+    try:
+        if args.shard is not None:
+            for job in todo:
+                on_record(job, sweep_job.run_job(job.to_dict(), args.output, cli, args.job_timeout,
+                                                 args.checkpoint_every))
+        elif todo:  # nothing left to run: no cluster to start
+            _run_dask(jobs, todo, args, cli, progress, on_record)
+    except KeyboardInterrupt:
+        sweep_results.write(jobs, varying, args.output, sweep_dir, latest)
+        progress.close()
+        print("shellcontract sweep: interrupted; run the same command again to finish the rest "
+              "(finished jobs are kept, running ones resume from their checkpoints)",
+              file=sys.stderr)
+        return EXIT_INTERRUPTED
+    table = sweep_results.write(jobs, varying, args.output, sweep_dir, latest)
+    progress.close()
+    ids = {j.id for j in selected}
+    incomplete = [r for r in table if r["job"] in ids and
+                  (r["status"] in RETRIED_STATUSES + ("pending", "interrupted"))]
+    done, failed, left = sweep_results.counts([r for r in table if r["job"] in ids])
+    print("shellcontract sweep: {} done, {} failed, {} left; results in {}".format(
+        done, failed, left, os.path.join(args.output, "results.csv")), file=sys.stderr)
+    return EXIT_INCOMPLETE if incomplete else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,212 @@
+"""The sweep file (docs/design/sweeps.md): JSON naming meshes, fixed options, a grid and/or a list
+of runs; expanded into jobs, every one validated before any runs.
+
+Option names are the Python names of the one option table (``shellcontract.options()``); values
+are checked by the library itself (``_core.resolve_options``), so the sweep holds no second copy
+of the names or the ranges.
+"""
+
+import glob
+import hashlib
+import itertools
+import json
+import os
+
+from . import _core
+
+TOP_LEVEL_KEYS = ("meshes", "options", "grid", "runs")
+# Options whose value is a file name: relative to the sweep file, as the meshes are.
+PATH_OPTIONS = {"regions": ("auto", "none")}
+# Options that do not change a run's result (the library guarantees the same bytes for any
+# thread count), left out of the job id so that a change of them reruns nothing.
+RESULT_NEUTRAL = ("threads",)
+
+
+class SweepError(Exception):
+    """A sweep file that cannot be run; the message names the file and the job or entry."""
+
+
+class Job:
+    """One run: a mesh and its options (the given ones; the library resolves the rest)."""
+
+    def __init__(self, index, mesh, options, args, resolved, job_id, varying):
+        self.index = index        # position in the sweep's expansion order
+        self.mesh = mesh          # absolute path of the input mesh
+        self.options = options    # Python option name -> value as the sweep file gives it
+        self.args = args          # `shellcontract run` arguments of those options
+        self.resolved = resolved  # every option's resolved text (the job id's input)
+        self.id = job_id
+        self.varying = varying    # option name -> value for the grid/runs columns
+
+    def label(self):
+        parts = ["{}={}".format(k, v) for k, v in sorted(self.options.items())]
+        return "job {} ({}{})".format(self.index, os.path.basename(self.mesh),
+                                      ", " + ", ".join(parts) if parts else "")
+
+    def to_dict(self):
+        return {"index": self.index, "mesh": self.mesh, "options": self.options,
+                "args": self.args, "id": self.id}
+
+
+def _fail(path, what):
+    raise SweepError("{}: {}".format(path, what))
+
+
+def _check_value(path, where, name, value):
+    if isinstance(value, (dict,)) or value is None:
+        _fail(path, "{}: option {!r} has a value {!r}; expected a number, a string, a bool or a "
+                    "list of numbers".format(where, name, value))
+
+
+def load(path):
+    """Reads and checks the sweep file's structure; returns its dict."""
+    try:
+        with open(path, "rb") as f:
+            text = f.read()
+    except OSError as e:
+        raise SweepError("{}: cannot read the sweep file ({})".format(path, e.strerror))
+    try:
+        data = json.loads(text.decode("utf-8"))
+    except (UnicodeDecodeError, ValueError) as e:
+        raise SweepError("{}: not valid JSON ({})".format(path, e))
+    if not isinstance(data, dict):
+        _fail(path, "expected a JSON object with 'meshes' and optionally 'options', 'grid', "
+                    "'runs'")
+    unknown = [k for k in data if k not in TOP_LEVEL_KEYS]
+    if unknown:
+        _fail(path, "unknown key {!r} (expected {})".format(unknown[0], ", ".join(TOP_LEVEL_KEYS)))
+    meshes = data.get("meshes")
+    if isinstance(meshes, str):
+        meshes = [meshes]
+    if not isinstance(meshes, list) or not meshes or not all(isinstance(m, str) for m in meshes):
+        _fail(path, "'meshes' must be a non-empty list of paths or globs (relative to the file)")
+    options = data.get("options", {})
+    if not isinstance(options, dict):
+        _fail(path, "'options' must be an object: option name -> value")
+    grid = data.get("grid", {})
+    if not isinstance(grid, dict):
+        _fail(path, "'grid' must be an object: option name -> list of values")
+    for name, values in grid.items():
+        if not isinstance(values, list) or not values:
+            _fail(path, "grid option {!r}: expected a non-empty list of values".format(name))
+        if name in options:
+            _fail(path, "option {!r} is both in 'options' and in 'grid'".format(name))
+    runs = data.get("runs", [{}])
+    if not isinstance(runs, list) or not runs or not all(isinstance(r, dict) for r in runs):
+        _fail(path, "'runs' must be a non-empty list of objects (option name -> value)")
+    for where, table in [("options", options)] + [("runs[{}]".format(i), r) for i, r in
+                                                  enumerate(runs)]:
+        for name, value in table.items():
+            _check_value(path, where, name, value)
+    for name, values in grid.items():
+        for value in values:
+            _check_value(path, "grid", name, value)
+    return {"meshes": meshes, "options": options, "grid": grid, "runs": runs}
+
+
+def expand_meshes(path, patterns):
+    """The meshes' absolute paths, each pattern's matches sorted, in the file's order; a
+    pattern that matches nothing is an error."""
+    base = os.path.dirname(os.path.abspath(path))
+    out = []
+    for pattern in patterns:
+        full = pattern if os.path.isabs(pattern) else os.path.join(base, pattern)
+        if glob.has_magic(full):
+            matches = sorted(m for m in glob.glob(full) if os.path.isfile(m))
+            if not matches:
+                _fail(path, "mesh pattern {!r} matches no file".format(pattern))
+        else:
+            matches = [full]
+        for m in matches:
+            m = os.path.abspath(m)
+            if m not in out:
+                out.append(m)
+    return out
+
+
+def _with_paths(path, options):
+    """Options whose value is a file, made absolute (relative to the sweep file)."""
+    base = os.path.dirname(os.path.abspath(path))
+    out = dict(options)
+    for name, keywords in PATH_OPTIONS.items():
+        v = out.get(name)
+        if isinstance(v, str) and v not in keywords and not os.path.isabs(v):
+            out[name] = os.path.join(base, v)
+    return out
+
+
+def file_sha256(path, cache={}):
+    """The mesh's bytes' SHA-256 (cached per path for one sweep)."""
+    if path not in cache:
+        h = hashlib.sha256()
+        with open(path, "rb") as f:
+            for block in iter(lambda: f.read(1 << 20), b""):
+                h.update(block)
+        cache[path] = h.hexdigest()
+    return cache[path]
+
+
+def job_id(mesh_sha, resolved, version):
+    """A stable id: the mesh's bytes, every resolved option (less the result-neutral ones) and
+    the tool's version. The same job in another sweep file has the same id."""
+    key = {k: v for k, v in resolved.items() if k not in RESULT_NEUTRAL}
+    text = json.dumps({"mesh": mesh_sha, "options": key, "version": version}, sort_keys=True)
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
+
+
+def expand(path, data, version, check_mesh=None):
+    """The jobs of a loaded sweep file, validated; raises SweepError naming the first bad job
+    (nothing is run before every job has passed).
+
+    check_mesh(path) raises ValueError/OSError for an unusable mesh (default: the library's
+    reader with the CLI's checks).
+    """
+    check_mesh = check_mesh or (lambda m: _core.read_mesh(m))
+    meshes = expand_meshes(path, data["meshes"])
+    for m in meshes:
+        try:
+            check_mesh(m)
+        except (ValueError, OSError) as e:
+            _fail(path, "mesh {}: {}".format(m, e))
+        except RuntimeError as e:
+            _fail(path, "mesh {}: {}".format(m, e))
+    grid = data["grid"]
+    names = list(grid)
+    points = [dict(zip(names, values)) for values in itertools.product(*grid.values())] or [{}]
+    jobs, seen, index = [], set(), -1
+    for mesh in meshes:
+        for point in points:
+            for run in data["runs"]:
+                options = dict(data["options"])
+                options.update(point)
+                options.update(run)
+                varying = dict(point)
+                varying.update(run)
+                index += 1
+                where = "job {} (mesh {}, options {})".format(
+                    index, os.path.relpath(mesh, os.path.dirname(os.path.abspath(path))),
+                    json.dumps(options, sort_keys=True))
+                try:
+                    checked = _core.resolve_options(**_with_paths(path, options))
+                except (TypeError, ValueError) as e:
+                    _fail(path, "{}: {}".format(where, e))
+                regions = checked["resolved"].get("regions", "")
+                if regions not in ("", "auto", "none") and not os.path.isfile(regions):
+                    _fail(path, "{}: regions file {} is not readable".format(where, regions))
+                jid = job_id(file_sha256(mesh), checked["resolved"], version)
+                if jid in seen:  # the same run twice (e.g. a grid value equal to the default)
+                    continue
+                seen.add(jid)
+                jobs.append(Job(len(jobs), mesh, options, list(checked["args"]),
+                                checked["resolved"], jid, varying))
+    return jobs
+
+
+def varying_names(data):
+    """The results' option columns: the grid's names, then the runs' names, in file order."""
+    names = list(data["grid"])
+    for run in data["runs"]:
+        for name in run:
+            if name not in names:
+                names.append(name)
+    return names

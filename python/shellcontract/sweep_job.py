@@ -1,0 +1,199 @@
+"""One job of a sweep: `shellcontract run` as a child process, in a folder of its own that is
+renamed into DIR/jobs/<id>/ when the job has an outcome (docs/design/sweeps.md).
+
+A child process, not the Python module in the worker: a crash, a run out of memory or a timeout
+then ends the job, not the worker, and the job is recorded like any other. This module imports
+nothing of the compiled core, so that a worker needs only the CLI and this package's files.
+"""
+
+import ctypes
+import json
+import os
+import shutil
+import signal
+import subprocess
+import time
+import uuid
+
+# Statuses of an outcome the same run would give again: the job is done. The others (a crash,
+# a kill, a timeout) are recorded too but run again by the next sweep of the file.
+FINAL_STATUSES = ("ok", "target not reached", "failed", "new self-intersections", "bad input",
+                  "bad usage")
+EXIT_STATUS = {0: "ok", 1: "bad usage", 2: "bad input", 3: "failed", 4: "new self-intersections",
+               5: "target not reached"}
+# The CLI's exit code after a signal when it has written its checkpoint (ExitCode::Cancelled).
+INTERRUPTED = 130
+# How long a child asked to stop (SIGTERM: it writes its checkpoint) may take before SIGKILL.
+STOP_GRACE_SECONDS = 10.0
+SUMMARY_FIELDS = ("final_volume_ratio", "frames_run", "new_intersections", "peak_memory_mb")
+
+
+try:  # loaded here, not in the forked child (where only the call itself should run)
+    _PRCTL = ctypes.CDLL(None, use_errno=True).prctl
+except (OSError, AttributeError):
+    _PRCTL = None
+PR_SET_PDEATHSIG = 1
+
+
+def _die_with_parent():
+    """In the child before exec: SIGTERM when the thread that started it ends (a worker killed
+    mid-job), so that the run writes its checkpoint and stops instead of running on orphaned."""
+    if _PRCTL is not None:
+        _PRCTL(PR_SET_PDEATHSIG, int(signal.SIGTERM))
+
+
+def paths(out_dir, job_id):
+    return {
+        "final": os.path.join(out_dir, "jobs", job_id),
+        "work": os.path.join(out_dir, ".work"),
+        "checkpoint": os.path.join(out_dir, ".work", "checkpoints", job_id + ".ckpt"),
+    }
+
+
+def read_record(out_dir, job_id):
+    """The job's record (DIR/jobs/<id>/job.json), or None."""
+    try:
+        with open(os.path.join(out_dir, "jobs", job_id, "job.json")) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def is_done(record):
+    return record is not None and record.get("status") in FINAL_STATUSES
+
+
+def _write_json_atomic(path, data):
+    tmp = path + ".tmp-" + uuid.uuid4().hex
+    with open(tmp, "w") as f:
+        json.dump(data, f, indent=1, sort_keys=True)
+        f.write("\n")
+    os.replace(tmp, path)
+
+
+def _last_lines(path, n=3):
+    try:
+        with open(path, errors="replace") as f:
+            lines = [line.rstrip() for line in f if line.strip()]
+    except OSError:
+        return ""
+    return " | ".join(lines[-n:])
+
+
+def _classify(rc, timed_out, summary, messages):
+    if timed_out:
+        return "timeout", "stopped after --job-timeout"
+    if rc is not None and rc < 0:
+        sig = -rc
+        if sig == signal.SIGKILL:
+            return "killed", ("killed by SIGKILL (out of memory, or the system's OOM killer); "
+                              + messages).rstrip("; ")
+        name = signal.Signals(sig).name if sig in signal.Signals._value2member_map_ else str(sig)
+        return "crashed", ("crashed ({}); {}".format(name, messages)).rstrip("; ")
+    if rc == INTERRUPTED:
+        return "interrupted", "interrupted (checkpoint written)"
+    status = EXIT_STATUS.get(rc, "crashed")
+    if status == "ok":
+        return status, ""
+    failure = (summary or {}).get("failure") or messages
+    return status, failure
+
+
+def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20):
+    """Runs one job (a Job.to_dict()) unless DIR/jobs/<id>/ holds its outcome already; returns
+    its record. An interrupted job (SIGTERM/SIGINT to the child) leaves its checkpoint and no
+    record; the next attempt resumes from the checkpoint."""
+    out_dir = os.path.abspath(out_dir)
+    p = paths(out_dir, job["id"])
+    old = read_record(out_dir, job["id"])
+    if is_done(old):
+        old["skipped"] = True
+        return old
+    os.makedirs(os.path.dirname(p["checkpoint"]), exist_ok=True)
+    os.makedirs(os.path.join(out_dir, "jobs"), exist_ok=True)
+    work = os.path.join(p["work"], "{}.{}".format(job["id"], uuid.uuid4().hex[:8]))
+    os.makedirs(work)
+    ext = os.path.splitext(job["mesh"])[1].lower() or ".off"
+    mesh_name = os.path.splitext(os.path.basename(job["mesh"]))[0] + ext
+    cmd = [cli, "run", job["mesh"], "-o", os.path.join(work, mesh_name),
+           "--log", os.path.join(work, "log.csv"), "--summary", os.path.join(work, "summary.json"),
+           "-q", "--checkpoint", p["checkpoint"], "--checkpoint-every", str(checkpoint_every)]
+    resumed = os.path.isfile(p["checkpoint"])
+    if resumed:
+        cmd += ["--resume", p["checkpoint"]]
+    cmd += list(job["args"])
+    start = time.monotonic()
+    timed_out = False
+    with open(os.path.join(work, "messages.txt"), "wb") as messages:
+        # A session of its own: a Ctrl-C at the terminal reaches the sweep, which stops the
+        # children itself (SIGTERM: they write their checkpoints).
+        proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
+                                start_new_session=True, preexec_fn=_die_with_parent)
+        try:
+            try:
+                rc = proc.wait(timeout=timeout)
+            except subprocess.TimeoutExpired:
+                timed_out = True
+                rc = _stop(proc)
+        except BaseException:
+            _stop(proc)
+            shutil.rmtree(work, ignore_errors=True)
+            raise
+    wall = time.monotonic() - start
+    summary = None
+    try:
+        with open(os.path.join(work, "summary.json")) as f:
+            summary = json.load(f)
+    except (OSError, ValueError):
+        pass
+    status, message = _classify(rc, timed_out, summary,
+                                _last_lines(os.path.join(work, "messages.txt")))
+    record = {"job": job["id"], "mesh": job["mesh"], "options": job["options"],
+              "status": status, "exit_code": rc, "message": message,
+              "wall_seconds": round(wall, 3), "resumed": resumed, "output": ""}
+    for k in SUMMARY_FIELDS:
+        record[k] = summary.get(k) if summary else None
+    if status == "interrupted":
+        shutil.rmtree(work, ignore_errors=True)
+        return record
+    if os.path.isfile(os.path.join(work, mesh_name)):
+        record["output"] = os.path.join("jobs", job["id"], mesh_name)
+    _write_json_atomic(os.path.join(work, "job.json"), record)
+    _publish(work, p["final"], out_dir)
+    if status in FINAL_STATUSES:
+        try:
+            os.remove(p["checkpoint"])
+        except OSError:
+            pass
+    return record
+
+
+def _stop(proc):
+    """SIGTERM (the run writes its checkpoint), then SIGKILL after STOP_GRACE_SECONDS."""
+    if proc.poll() is None:
+        proc.terminate()
+        try:
+            proc.wait(timeout=STOP_GRACE_SECONDS)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+    return proc.wait()
+
+
+def _publish(work, final, out_dir):
+    """Renames the finished folder to DIR/jobs/<id>/ (one rename: whole or absent). An earlier
+    outcome that is not final (a crash) is moved aside first; one that is final (another attempt
+    of the same job finished first, e.g. after a worker was lost) is kept and ours dropped."""
+    if os.path.isdir(final):
+        if is_done(read_record(out_dir, os.path.basename(final))):
+            shutil.rmtree(work, ignore_errors=True)
+            return
+        trash = work + ".old"
+        try:
+            os.rename(final, trash)
+            shutil.rmtree(trash, ignore_errors=True)
+        except OSError:
+            pass
+    try:
+        os.rename(work, final)
+    except OSError:  # another attempt's outcome arrived in between: keep it
+        shutil.rmtree(work, ignore_errors=True)

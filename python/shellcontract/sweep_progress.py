@@ -1,0 +1,88 @@
+"""The sweep's progress: a bar redrawn in place on a terminal (jobs done, failed, left, ETA),
+one plain line per finished job otherwise (a log file, a batch system's output)."""
+
+import sys
+import time
+
+BAR_WIDTH = 30
+
+
+def _duration(seconds):
+    seconds = int(round(seconds))
+    if seconds >= 3600:
+        return "{}h{:02d}m".format(seconds // 3600, seconds % 3600 // 60)
+    if seconds >= 60:
+        return "{}m{:02d}s".format(seconds // 60, seconds % 60)
+    return "{}s".format(seconds)
+
+
+class Progress:
+    def __init__(self, total, done=0, failed=0, stream=None, tty=None):
+        self.stream = stream or sys.stderr
+        self.tty = self.stream.isatty() if tty is None else tty
+        self.total = total
+        self.done = done
+        self.failed = failed
+        self.start = time.monotonic()
+        self.finished_here = 0  # jobs this process saw end (for the rate)
+        self._drawn = False
+
+    def restart_clock(self):
+        self.start = time.monotonic()
+
+    @property
+    def left(self):
+        return self.total - self.done - self.failed
+
+    def eta(self):
+        elapsed = time.monotonic() - self.start
+        if self.finished_here == 0 or self.left == 0:
+            return None
+        return elapsed / self.finished_here * self.left
+
+    def line(self):
+        eta = self.eta()
+        return "{} done, {} failed, {} left{}".format(
+            self.done, self.failed, self.left, ", ETA " + _duration(eta) if eta is not None else "")
+
+    def message(self, text):
+        """A line of its own (above the bar on a terminal)."""
+        if self.tty and self._drawn:
+            self.stream.write("\r\033[K")
+        self.stream.write(text + "\n")
+        self._drawn = False
+        if self.tty:
+            self.draw()
+        self.stream.flush()
+
+    def draw(self):
+        if not self.tty:
+            return
+        filled = int(BAR_WIDTH * (self.done + self.failed) / self.total) if self.total else BAR_WIDTH
+        bar = "#" * filled + "." * (BAR_WIDTH - filled)
+        self.stream.write("\r\033[K[{}] {}".format(bar, self.line()))
+        self.stream.flush()
+        self._drawn = True
+
+    def job_finished(self, record, label):
+        self.finished_here += 1
+        if record["status"] in ("ok", "target not reached"):
+            self.done += 1
+        else:
+            self.failed += 1
+        text = "{}: {}".format(label, record["status"])
+        if record.get("message") and record["status"] not in ("ok",):
+            text += " ({})".format(record["message"])
+        if self.tty:
+            if record["status"] not in ("ok", "target not reached"):
+                self.message(text)
+            else:
+                self.draw()
+        else:
+            self.message("{} -- {}".format(text, self.line()))
+
+    def close(self):
+        if self.tty and self._drawn:
+            self.stream.write("\n")
+            self.stream.flush()
+            self._drawn = False

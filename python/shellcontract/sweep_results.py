@@ -1,0 +1,80 @@
+"""DIR/results.csv and DIR/results.json: one row per job of the sweep file, in the file's order,
+from the jobs' records (DIR/jobs/<id>/job.json); a job without one is "pending". Both files are
+written whole and renamed, so a reader never sees half a table."""
+
+import csv
+import io
+import json
+import os
+import uuid
+
+from . import sweep_job
+
+RESULT_COLUMNS = ("status", "exit_code", "final_volume_ratio", "frames_run", "wall_seconds",
+                  "peak_memory_mb", "new_intersections", "output")
+
+
+def columns(varying):
+    return ["job", "mesh"] + list(varying) + list(RESULT_COLUMNS)
+
+
+def rows(jobs, varying, out_dir, sweep_dir, latest=None):
+    """The table's rows (dicts); `latest` maps job id -> a record newer than the folder's (an
+    interrupted attempt, which has no folder)."""
+    latest = latest or {}
+    out = []
+    for job in jobs:
+        record = sweep_job.read_record(out_dir, job.id) or latest.get(job.id)
+        row = {"job": job.id, "mesh": os.path.relpath(job.mesh, sweep_dir)}
+        for name in varying:
+            row[name] = job.varying.get(name, job.options.get(name, ""))
+        if record is None:
+            row.update({k: "" for k in RESULT_COLUMNS})
+            row["status"] = "pending"
+        else:
+            for k in RESULT_COLUMNS:
+                v = record.get(k)
+                row[k] = "" if v is None else v
+        out.append(row)
+    return out
+
+
+def _atomic(path, text):
+    tmp = "{}.tmp-{}".format(path, uuid.uuid4().hex)
+    with open(tmp, "w", newline="") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def _cell(v):
+    if isinstance(v, bool):
+        return "on" if v else "off"
+    if isinstance(v, float):
+        return repr(v)
+    if isinstance(v, (list, tuple)):
+        return ",".join(_cell(x) for x in v)
+    return str(v)
+
+
+def write(jobs, varying, out_dir, sweep_dir, latest=None):
+    """Writes both files; returns the rows."""
+    table = rows(jobs, varying, out_dir, sweep_dir, latest)
+    names = columns(varying)
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(names)
+    for row in table:
+        w.writerow([_cell(row[n]) for n in names])
+    os.makedirs(out_dir, exist_ok=True)
+    _atomic(os.path.join(out_dir, "results.csv"), buf.getvalue())
+    _atomic(os.path.join(out_dir, "results.json"),
+            json.dumps([{n: row[n] for n in names} for row in table], indent=1) + "\n")
+    return table
+
+
+def counts(table):
+    """(done, failed, left): done = an outcome the same run would give again that is a result
+    (ok or target not reached); failed = any other recorded outcome; left = pending."""
+    done = sum(1 for r in table if r["status"] in ("ok", "target not reached"))
+    left = sum(1 for r in table if r["status"] == "pending")
+    return done, len(table) - done - left, left

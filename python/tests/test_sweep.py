@@ -1,0 +1,354 @@
+"""python3 -m shellcontract.sweep with real processes: the embedded Dask cluster, a real `dask
+scheduler` with two `dask worker`s one of which is killed mid-sweep, a sweep killed and run
+again, shards, and sweep files that are refused. Every result is compared byte for byte with the
+same job run as a plain `shellcontract run` (the serial run the issue names as the reference)."""
+import csv
+import json
+import os
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+
+import pytest
+
+from shellcontract import sweep_file
+
+pytest.importorskip("distributed")
+
+TIMING_COLUMNS = {"step_ms", "solve_ms", "ccd_ms"}
+RESULT_COLUMNS = ["status", "exit_code", "final_volume_ratio", "frames_run", "wall_seconds",
+                  "peak_memory_mb", "new_intersections", "output"]
+
+
+def sweep_env(cli):
+    env = dict(os.environ)
+    import shellcontract
+    package_parent = os.path.dirname(os.path.dirname(os.path.abspath(shellcontract.__file__)))
+    env["PYTHONPATH"] = package_parent + os.pathsep + env.get("PYTHONPATH", "")
+    env["SHELLCONTRACT_CLI"] = cli
+    return env
+
+
+def run_sweep(cli, args, **kw):
+    return subprocess.run([sys.executable, "-m", "shellcontract.sweep"] + args, env=sweep_env(cli),
+                          capture_output=True, text=True, timeout=240, **kw)
+
+
+def write_sweep(tmp_path, mesh_dir, name, spec, meshes=("ico1.off", "octahedron.off")):
+    folder = tmp_path / "meshes"
+    folder.mkdir(exist_ok=True)
+    for m in meshes:
+        if not (folder / m).exists():
+            shutil.copy(mesh_dir / m, folder / m)
+    path = tmp_path / name
+    path.write_text(json.dumps(spec))
+    return path
+
+
+_SERIAL = {}  # job id -> (mesh bytes, log): a job's id names its mesh bytes and options
+
+
+def serial_reference(cli, sweep_path, tmp_path):
+    """Each job of the file run as a plain `shellcontract run`: job id -> (mesh bytes, log)."""
+    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
+    jobs = sweep_file.expand(str(sweep_path), sweep_file.load(str(sweep_path)), version)
+    ref = tmp_path / "serial"
+    ref.mkdir(exist_ok=True)
+    out = {}
+    for job in jobs:
+        if job.id in _SERIAL:
+            out[job.id] = _SERIAL[job.id]
+            continue
+        mesh_out = ref / (job.id + os.path.splitext(job.mesh)[1])
+        log = ref / (job.id + ".csv")
+        r = subprocess.run([cli, "run", job.mesh, "-o", str(mesh_out), "--log", str(log), "-q"]
+                           + job.args, capture_output=True, text=True)
+        assert r.returncode in (0, 5), r.stderr
+        out[job.id] = _SERIAL[job.id] = (mesh_out.read_bytes(), log_rows(log))
+    return out
+
+
+def log_rows(path):
+    with open(path) as f:
+        return [{k: v for k, v in row.items() if k not in TIMING_COLUMNS} for row in csv.DictReader(f)]
+
+
+def results(out_dir):
+    with open(os.path.join(out_dir, "results.csv")) as f:
+        return list(csv.DictReader(f))
+
+
+def assert_equals_serial(out_dir, reference):
+    rows = results(out_dir)
+    assert sorted(r["job"] for r in rows) == sorted(reference)
+    for row in rows:
+        assert row["status"] in ("ok", "target not reached"), row
+        mesh_bytes, log = reference[row["job"]]
+        with open(os.path.join(out_dir, row["output"]), "rb") as f:
+            assert f.read() == mesh_bytes, "job {}: the mesh differs from the serial run".format(row["job"])
+        assert log_rows(os.path.join(out_dir, "jobs", row["job"], "log.csv")) == log, row["job"]
+
+
+SMALL = {"meshes": ["meshes/*.off"], "options": {"collisions": True},
+         "grid": {"pressure": [2, 4.5], "frames": [6, 9]}}
+
+
+def test_embedded_cluster_equals_serial_runs(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "small.json", SMALL)
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--workers", "2"])
+    assert r.returncode == 0, r.stderr
+    assert "Dask dashboard" in r.stderr or "dashboard" in r.stderr.lower()
+    rows = results(out)
+    assert len(rows) == 8
+    assert list(rows[0]) == ["job", "mesh", "pressure", "frames"] + RESULT_COLUMNS
+    assert {(r["pressure"], r["frames"]) for r in rows} == {("2", "6"), ("2", "9"), ("4.5", "6"), ("4.5", "9")}
+    assert json.loads((out / "results.json").read_text())[0].keys() == rows[0].keys()
+    assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+    # Again: every job is skipped (no job folder is rewritten).
+    before = {p: os.stat(p).st_ino for p in (out / "jobs").glob("*/job.json")}
+    again = run_sweep(cli, [str(path), "-o", str(out), "--workers", "1"])
+    assert again.returncode == 0, again.stderr
+    assert "8 done already" in again.stderr
+    assert {p: os.stat(p).st_ino for p in (out / "jobs").glob("*/job.json")} == before
+    # One option changed for one grid value: only the jobs it touches run.
+    changed = dict(SMALL, grid={"pressure": [2, 3], "frames": [6, 9]})
+    path2 = write_sweep(tmp_path, mesh_dir, "changed.json", changed)
+    third = run_sweep(cli, [str(path2), "-o", str(out), "--shard", "0/1"])
+    assert third.returncode == 0, third.stderr
+    assert "4 done already" in third.stderr
+
+
+def test_shards_together_equal_the_whole(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "small.json", SMALL)
+    out = tmp_path / "out"
+    seen = set()
+    for i in range(3):
+        r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "{}/3".format(i)])
+        assert r.returncode == 0, r.stderr
+        done = {p.name for p in (out / "jobs").iterdir()}
+        assert len(done - seen) in (2, 3), "shard {} ran {} jobs".format(i, len(done - seen))
+        seen = done
+    assert len(seen) == 8
+    assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+
+
+LONG = {"meshes": ["meshes/ico3.off"],
+        "options": {"target_volume": 0.3, "target_ramp": 30, "threads": 1},
+        "grid": {"frames": [70, 80, 90], "pressure": [2, 3]}}
+
+
+def wait_until(predicate, timeout=120):
+    start = time.monotonic()
+    while not predicate():
+        if time.monotonic() - start > timeout:
+            raise AssertionError("timed out waiting")
+        time.sleep(0.05)
+
+
+def done_jobs(out):
+    return list((out / "jobs").glob("*/job.json")) if (out / "jobs").is_dir() else []
+
+
+def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "long.json", LONG, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                             "--workers", "2", "--checkpoint-every", "5"], env=sweep_env(cli),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    wait_until(lambda: len(done_jobs(out)) >= 2)
+    os.killpg(proc.pid, signal.SIGKILL)  # the sweep and its worker processes, no goodbye
+    proc.wait()
+    finished = {p.parent.name: (os.stat(p).st_ino, p.read_text()) for p in done_jobs(out)}
+    assert 2 <= len(finished) < 6, "make the jobs longer: the sweep ended before the kill"
+    again = run_sweep(cli, [str(path), "-o", str(out), "--workers", "2"])
+    assert again.returncode == 0, again.stderr
+    for job, (inode, text) in finished.items():
+        p = out / "jobs" / job / "job.json"
+        assert os.stat(p).st_ino == inode and p.read_text() == text, "job {} was redone".format(job)
+    assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def test_real_scheduler_with_a_worker_killed_mid_sweep(cli, mesh_dir, tmp_path):
+    dask = shutil.which("dask")
+    if dask is None:
+        pytest.skip("the dask command (python3-distributed) is not installed")
+    path = write_sweep(tmp_path, mesh_dir, "long.json", LONG, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    port = free_port()
+    address = "tcp://127.0.0.1:{}".format(port)
+    env = sweep_env(cli)
+    logs = open(tmp_path / "dask.log", "w")
+    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
+                               "--dashboard-address", "127.0.0.1:{}".format(free_port())],
+                              env=env, stdout=logs, stderr=logs)]
+    try:
+        for _ in range(2):
+            procs.append(subprocess.Popen(
+                [dask, "worker", address, "--nworkers", "1", "--nthreads", "1", "--no-nanny",
+                 "--host", "127.0.0.1", "--no-dashboard"], env=env, stdout=logs, stderr=logs))
+        sweep = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o",
+                                  str(out), "--scheduler", address, "--checkpoint-every", "5"],
+                                 env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        # Mid-sweep: a job has saved a checkpoint (some are running), none has finished yet or few.
+        wait_until(lambda: (out / ".work" / "checkpoints").is_dir()
+                   and any((out / ".work" / "checkpoints").glob("*.ckpt")))
+        procs[1].kill()  # SIGKILL: the worker and its running job are gone at once
+        procs[1].wait()
+        _, err = sweep.communicate(timeout=240)
+        assert sweep.returncode == 0, err
+        assert len(results(out)) == 6
+        assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+        records = [json.loads(p.read_text()) for p in done_jobs(out)]
+        # The lost worker's job went on from its checkpoint elsewhere (its run got SIGTERM when
+        # the worker died, saved, and the new attempt resumed it).
+        assert any(r["resumed"] for r in records), [r["job"] for r in records]
+    finally:
+        for p in procs:
+            if p.poll() is None:
+                p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        logs.close()
+
+
+@pytest.mark.parametrize("spec,expected", [
+    ({"meshes": ["meshes/*.off"], "grid": {"presure": [1, 2]}}, "unknown option 'presure'"),
+    ({"meshes": ["meshes/*.off"], "grid": {"damping": [0.1, 1.5]}}, "--damping: '1.5'"),
+    ({"meshes": ["meshes/*.off", "meshes/missing.off"]}, "missing.off"),
+    ({"meshes": ["meshes/*.stl"]}, "matches no file"),
+    ({"meshes": ["meshes/*.off"], "options": {"frames": 5}, "grid": {"frames": [1]}},
+     "both in 'options' and in 'grid'"),
+    ({"meshes": ["meshes/*.off"], "gird": {}}, "unknown key 'gird'"),
+    ({"meshes": ["meshes/*.off"], "runs": [{"frames": 5}, {"target_volume": 0.5, "stop_volume_ratio": 0.4}]},
+     "job 1 (mesh meshes/ico1.off"),
+])
+def test_bad_sweep_files_are_refused_naming_the_job_and_nothing_runs(cli, mesh_dir, tmp_path, spec,
+                                                                     expected):
+    path = write_sweep(tmp_path, mesh_dir, "bad.json", spec)
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 1, r.stderr
+    assert "refused, nothing run" in r.stderr and expected in r.stderr, r.stderr
+    assert not out.exists()
+
+
+def test_unreadable_mesh_and_bad_json_are_refused(cli, mesh_dir, tmp_path):
+    folder = tmp_path / "meshes"
+    folder.mkdir()
+    (folder / "broken.off").write_text("OFF\n3 1 0\n0 0 0\n1 0 0\n")
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps({"meshes": ["meshes/broken.off"]}))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--shard", "0/1"])
+    assert r.returncode == 1 and "broken.off" in r.stderr, r.stderr
+    path.write_text("{\"meshes\": [")
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--shard", "0/1"])
+    assert r.returncode == 1 and "not valid JSON" in r.stderr, r.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_failing_job_is_recorded_and_the_others_go_on(cli, mesh_dir, tmp_path):
+    # A target that the frames cannot reach (exit 5, result written) and a job timeout.
+    spec = {"meshes": ["meshes/ico2.off"], "runs": [{"frames": 4},
+                                                     {"frames": 4, "stop_volume_ratio": 0.1},
+                                                     {"frames": 1000000, "threads": 1}]}
+    path = write_sweep(tmp_path, mesh_dir, "f.json", spec, meshes=("ico2.off",))
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--job-timeout", "3"])
+    assert r.returncode == 3, r.stderr  # a job timed out: not every job has its outcome
+    status = [row["status"] for row in results(out)]
+    assert status == ["ok", "target not reached", "timeout"], status
+    rows = results(out)
+    assert rows[1]["exit_code"] == "5" and rows[1]["output"]
+    record = json.loads((out / "jobs" / rows[2]["job"] / "job.json").read_text())
+    assert "job-timeout" in record["message"]
+    # The timed-out job stopped with SIGTERM and saved its state: a rerun resumes it.
+    assert (out / ".work" / "checkpoints" / (rows[2]["job"] + ".ckpt")).is_file()
+
+
+def test_cli_front_runs_the_sweep_module(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "small.json", SMALL)
+    r = subprocess.run([cli, "sweep", str(path), "-o", str(tmp_path / "out"), "--dry-run"],
+                       capture_output=True, text=True, env=sweep_env(cli), timeout=120)
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert len(lines) == 8 and all("--pressure" in line and "--frames" in line for line in lines)
+    assert not (tmp_path / "out").exists()  # a dry run writes nothing
+
+
+def test_progress_is_a_bar_on_a_terminal_and_lines_otherwise():
+    import io
+    from shellcontract.sweep_progress import Progress
+    ok = {"status": "ok"}
+    failed = {"status": "failed", "message": "blow-up at step 3"}
+    tty = io.StringIO()
+    p = Progress(3, stream=tty, tty=True)
+    p.job_finished(ok, "job 0")
+    p.job_finished(failed, "job 1")
+    text = tty.getvalue()
+    assert "\r" in text and "[" + "#" * 10 in text  # redrawn in place, a third then two
+    assert "1 done, 1 failed, 1 left, ETA" in text
+    assert "job 1: failed (blow-up at step 3)\n" in text
+    plain = io.StringIO()
+    p = Progress(3, stream=plain, tty=False)
+    p.job_finished(ok, "job 0")
+    p.job_finished(failed, "job 1")
+    assert "\r" not in plain.getvalue()
+    assert plain.getvalue().splitlines()[1].startswith("job 1: failed (blow-up at step 3) -- 1 done, 1 failed, 1 left")
+
+
+def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "long.json", LONG, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                             "--shard", "0/1", "--checkpoint-every", "5"], env=sweep_env(cli),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    # The second job is running and has saved a checkpoint.
+    wait_until(lambda: len(done_jobs(out)) == 1 and any((out / ".work" / "checkpoints").glob("*.ckpt")))
+    proc.send_signal(signal.SIGINT)
+    _, err = proc.communicate(timeout=60)
+    assert proc.returncode == 130, err
+    assert "run the same command again" in err
+    # Nothing half-done in DIR: one finished job folder, the rest pending, no temporary files.
+    assert len(done_jobs(out)) == 1
+    assert [r["status"] for r in results(out)].count("pending") == 5
+    assert not [p for p in out.iterdir() if p.name.startswith(".results") or ".tmp-" in p.name]
+    again = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert again.returncode == 0, again.stderr
+    records = [json.loads(p.read_text()) for p in done_jobs(out)]
+    assert sum(r["resumed"] for r in records) == 1  # the interrupted one, from its checkpoint
+    assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+
+
+def test_crashed_and_killed_jobs_are_recorded_and_rerun_later(cli, mesh_dir, tmp_path):
+    # A stand-in for the tool that dies by a signal for some jobs (a crash; SIGKILL is what the
+    # kernel's OOM killer sends) and is the real one otherwise.
+    fake = tmp_path / "fake_cli.sh"
+    fake.write_text("#!/bin/sh\n"
+                    "case \"$*\" in *'--pressure 3'*) kill -SEGV $$;; *'--pressure 5'*) kill -KILL $$;; esac\n"
+                    "exec '{}' \"$@\"\n".format(cli))
+    fake.chmod(0o755)
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3, 5]}}
+    path = write_sweep(tmp_path, mesh_dir, "c.json", spec, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--cli", str(fake)])
+    assert r.returncode == 3, r.stderr
+    assert [row["status"] for row in results(out)] == ["ok", "crashed", "killed"]
+    assert "SIGSEGV" in json.loads((out / "jobs" / results(out)[1]["job"] / "job.json").read_text())["message"]
+    # With the real tool the crashed and killed jobs run again; the finished one does not.
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "1 done already" in r.stderr, r.stderr
+    assert [row["status"] for row in results(out)] == ["ok", "ok", "ok"]

@@ -1,0 +1,320 @@
+#include "shellcontract/sim/checkpoint.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+#include <type_traits>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/option_table.hpp"
+
+#ifndef SHELLCONTRACT_VERSION
+#define SHELLCONTRACT_VERSION "unknown"
+#endif
+
+namespace shellcontract {
+namespace {
+
+// The file: MAGIC, FORMAT, the fields in the order of Writer calls below, then an FNV-1a hash of
+// everything before it (a truncated or damaged file is refused, not resumed into another run).
+// Numbers are the machine's own bytes: a checkpoint moves between machines of one architecture
+// (the sweep's workers), where the doubles read back bit for bit.
+constexpr char MAGIC[] = "SHELLCONTRACT-CHECKPOINT\n";
+constexpr std::uint32_t FORMAT = 1;
+// Options that do not change a run's result (the library's guarantee: the same bytes at any
+// thread count): a run may resume with other values.
+constexpr const char* RESULT_NEUTRAL = "threads";
+
+static_assert(std::is_trivially_copyable_v<RunTotals>,
+              "RunTotals is saved as its bytes; a member that is not (a vector) needs a field");
+
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ull) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+class Writer {
+ public:
+  template <class T>
+  void pod(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void size(std::size_t n) { pod(static_cast<std::uint64_t>(n)); }
+  void text(const std::string& s) {
+    size(s.size());
+    out_ += s;
+  }
+  void matrix(const Positions& m) {
+    size(static_cast<std::size_t>(m.rows()));
+    size(static_cast<std::size_t>(m.cols()));
+    out_.append(reinterpret_cast<const char*>(m.data()), sizeof(double) * m.size());
+  }
+  void vector(const Eigen::VectorXd& v) {
+    size(static_cast<std::size_t>(v.size()));
+    out_.append(reinterpret_cast<const char*>(v.data()), sizeof(double) * v.size());
+  }
+  template <class T>
+  void list(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    size(v.size());
+    out_.append(reinterpret_cast<const char*>(v.data()), sizeof(T) * v.size());
+  }
+  void options(const OptionValues& o) {
+    size(o.size());
+    for (const auto& [name, value] : o) {
+      text(name);
+      text(value);
+    }
+  }
+  std::string& bytes() { return out_; }
+
+ private:
+  std::string out_;
+};
+
+class Reader {
+ public:
+  Reader(const std::string& bytes, std::string path) : in_(bytes), path_(std::move(path)) {}
+  template <class T>
+  T pod() {
+    T v;
+    take(&v, sizeof v);
+    return v;
+  }
+  std::size_t size() {
+    const auto n = pod<std::uint64_t>();
+    if (n > in_.size()) fail("a length past the end of the file");
+    return static_cast<std::size_t>(n);
+  }
+  std::string text() {
+    const std::size_t n = size();
+    std::string s(n, '\0');
+    take(s.data(), n);
+    return s;
+  }
+  Positions matrix() {
+    const std::size_t rows = size(), cols = size();
+    if (cols > 3 || rows * cols * sizeof(double) > in_.size()) fail("a matrix past the end");
+    Positions m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+    take(m.data(), sizeof(double) * m.size());
+    return m;
+  }
+  Eigen::VectorXd vector() {
+    const std::size_t n = size();
+    if (n * sizeof(double) > in_.size()) fail("a vector past the end");
+    Eigen::VectorXd v(static_cast<Eigen::Index>(n));
+    take(v.data(), sizeof(double) * n);
+    return v;
+  }
+  template <class T>
+  std::vector<T> list() {
+    const std::size_t n = size();
+    if (n * sizeof(T) > in_.size()) fail("a list past the end");
+    std::vector<T> v(n);
+    take(v.data(), sizeof(T) * n);
+    return v;
+  }
+  OptionValues options() {
+    OptionValues o(size());
+    for (auto& [name, value] : o) {
+      name = text();
+      value = text();
+    }
+    return o;
+  }
+  void take(void* p, std::size_t n) {
+    if (in_.size() - pos_ < n) fail("truncated");
+    std::memcpy(p, in_.data() + pos_, n);
+    pos_ += n;
+  }
+  std::size_t position() const { return pos_; }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw InputError("checkpoint " + path_ + ": " + what + " (not a whole checkpoint)");
+  }
+
+ private:
+  const std::string& in_;
+  std::string path_;
+  std::size_t pos_ = 0;
+};
+
+void write_contact(Writer& w, const Contact& c) {
+  w.pod(static_cast<std::int32_t>(c.kind));
+  w.pod(c.pair);
+  w.pod(c.v);
+  for (int k = 0; k < 4; ++k) w.pod(c.weights(k));
+  for (int k = 0; k < 3; ++k) w.pod(c.normal(k));
+  w.pod(c.side);
+}
+
+Contact read_contact(Reader& r) {
+  Contact c;
+  c.kind = static_cast<CcdPrimitive>(r.pod<std::int32_t>());
+  c.pair = r.pod<std::array<int, 2>>();
+  c.v = r.pod<std::array<int, 4>>();
+  for (int k = 0; k < 4; ++k) c.weights(k) = r.pod<double>();
+  for (int k = 0; k < 3; ++k) c.normal(k) = r.pod<double>();
+  c.side = r.pod<double>();
+  return c;
+}
+
+std::string describe(const OptionValues& o, const std::string& name) {
+  for (const auto& [n, v] : o)
+    if (n == name) return v.empty() ? "unset" : v;
+  return "unset";
+}
+
+}  // namespace
+
+const char* checkpoint_tool_version() { return SHELLCONTRACT_VERSION; }
+
+std::uint64_t mesh_hash(const Mesh& mesh) {
+  std::uint64_t h = fnv1a("mesh", 4);
+  for (VertexIndex v : mesh.vertices()) {
+    const Point3& p = mesh.point(v);
+    const double c[3] = {p.x(), p.y(), p.z()};
+    h = fnv1a(c, sizeof c, h);
+  }
+  for (FaceIndex f : mesh.faces())
+    for (VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) {
+      const std::uint32_t i = v.idx();
+      h = fnv1a(&i, sizeof i, h);
+    }
+  return h;
+}
+
+OptionValues given_options(const RunOptions& options) {
+  OptionValues out;
+  for (const OptionSpec& o : run_option_table())
+    if (options.given.count(o.name) && o.name != RESULT_NEUTRAL)
+      out.emplace_back(o.name, o.get(options));
+  return out;
+}
+
+OptionValues resolved_options(RunOptions options) {
+  resolve_run_options(options);
+  OptionValues out;
+  for (const OptionSpec& o : run_option_table())
+    if (o.name != RESULT_NEUTRAL) out.emplace_back(o.name, o.get(options));
+  return out;
+}
+
+RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_line) {
+  RunOptions options;
+  for (const auto& [name, value] : c.given) set_run_option(options, name, value);
+  for (const OptionSpec& o : run_option_table())
+    if (command_line.given.count(o.name)) o.set(options, o.get(command_line));
+  const OptionValues now = resolved_options(options);
+  std::string differ;
+  for (const auto& [name, value] : now)
+    if (describe(c.resolved, name) != (value.empty() ? "unset" : value))
+      differ += (differ.empty() ? "" : ", ") + ("--" + name + " " + (value.empty() ? "unset" : value) +
+                                                 " (the checkpoint's: " + describe(c.resolved, name) + ")");
+  if (differ.size() == 0 && now.size() != c.resolved.size())
+    differ = "the checkpoint lists other options";
+  if (!differ.empty())
+    throw UsageError("the checkpoint was written with other options: " + differ);
+  return options;
+}
+
+void check_checkpoint_input(const Checkpoint& c, const std::string& path, const Mesh& mesh) {
+  if (c.version != checkpoint_tool_version())
+    throw InputError("checkpoint written by shellcontract " + c.version + ", this is " +
+                     checkpoint_tool_version() + ": resume it with that version");
+  if (mesh_hash(mesh) != c.input_hash)
+    throw InputError("the checkpoint is of another input: " + path + " is not the mesh " +
+                     c.input + " it was written for (or that file has changed)");
+}
+
+void write_checkpoint(const std::string& path, const Checkpoint& c) {
+  Writer w;
+  w.bytes().append(MAGIC, sizeof MAGIC - 1);
+  w.pod(FORMAT);
+  w.text(c.version);
+  w.text(c.input);
+  w.pod(c.input_hash);
+  w.options(c.given);
+  w.options(c.resolved);
+  const SimulatorState& s = c.sim;
+  w.pod(static_cast<std::int64_t>(s.frame));
+  w.pod(s.volume_ratio);
+  w.pod(static_cast<std::uint8_t>(s.stop_volume_reached));
+  w.matrix(s.x);
+  w.matrix(s.v);
+  w.list(s.held_by_contact);
+  w.list(s.dimple_sizes);
+  w.pod(static_cast<std::uint8_t>(s.has_collision));
+  w.size(s.collision.contact_cache.size());
+  for (const Contact& k : s.collision.contact_cache) write_contact(w, k);
+  w.matrix(s.collision.correction);
+  w.vector(s.collision.skin);
+  const RunProgress& p = c.progress;
+  w.list(p.history);
+  w.pod(p.min_volume_ratio);
+  w.pod(p.totals);
+  w.pod(static_cast<std::int64_t>(p.new_intersections));
+  w.pod(static_cast<std::int32_t>(p.status));
+  w.text(p.message);
+  w.pod(static_cast<std::int64_t>(p.frame_target_reached));
+  w.pod(p.last_pairs);
+  w.text(c.log);
+  w.pod(fnv1a(w.bytes().data(), w.bytes().size()));
+  write_text_atomic(path, w.bytes());
+}
+
+Checkpoint read_checkpoint(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("checkpoint " + path + ": cannot open (" + std::strerror(errno) + ")");
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Reader r(bytes, path);
+  if (bytes.compare(0, sizeof MAGIC - 1, MAGIC) != 0)
+    throw InputError("checkpoint " + path + ": not a shellcontract checkpoint");
+  std::string magic(sizeof MAGIC - 1, '\0');
+  r.take(magic.data(), magic.size());
+  if (bytes.size() < sizeof(std::uint64_t) + magic.size()) r.fail("truncated");
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
+  if (fnv1a(bytes.data(), bytes.size() - sizeof stored) != stored)
+    r.fail("its checksum does not match (truncated or damaged)");
+  if (r.pod<std::uint32_t>() != FORMAT) r.fail("another checkpoint format");
+  Checkpoint c;
+  c.version = r.text();
+  c.input = r.text();
+  c.input_hash = r.pod<std::uint64_t>();
+  c.given = r.options();
+  c.resolved = r.options();
+  SimulatorState& s = c.sim;
+  s.frame = static_cast<int>(r.pod<std::int64_t>());
+  s.volume_ratio = r.pod<double>();
+  s.stop_volume_reached = r.pod<std::uint8_t>() != 0;
+  s.x = r.matrix();
+  s.v = r.matrix();
+  s.held_by_contact = r.list<char>();
+  s.dimple_sizes = r.list<int>();
+  s.has_collision = r.pod<std::uint8_t>() != 0;
+  s.collision.contact_cache.resize(r.size());
+  for (Contact& k : s.collision.contact_cache) k = read_contact(r);
+  s.collision.correction = r.matrix();
+  s.collision.skin = r.vector();
+  RunProgress& p = c.progress;
+  p.history = r.list<double>();
+  p.min_volume_ratio = r.pod<double>();
+  p.totals = r.pod<RunTotals>();
+  p.new_intersections = static_cast<long>(r.pod<std::int64_t>());
+  p.status = static_cast<RunStatus>(r.pod<std::int32_t>());
+  p.message = r.text();
+  p.frame_target_reached = static_cast<int>(r.pod<std::int64_t>());
+  p.last_pairs = r.pod<std::int64_t>();
+  c.log = r.text();
+  if (r.position() + sizeof stored != bytes.size()) r.fail("trailing bytes");
+  return c;
+}
+
+}  // namespace shellcontract
