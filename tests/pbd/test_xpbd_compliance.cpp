@@ -8,9 +8,9 @@
 // step is (mu + lambda) / alpha~ times the strain, so a stiffness or time step off by a factor
 // moves it by that factor.
 //
-// Checked to fail: DEFAULT_SHELL_YOUNG doubled (include/shellcontract/sim/config.hpp), the
-// thickness halved, or membrane_lame_from_young returning twice mu and lambda each move the step
-// by about 2x; dt doubled moves it 4x.
+// Fails with: DEFAULT_SHELL_YOUNG doubled or DEFAULT_SHELL_THICKNESS halved (config.hpp), which
+// reach the step only through membrane_lame_from_young: the step moves by about 2x (checked by
+// doubling mu and lambda there, and by halving its thickness); dt doubled moves it 4x.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -16,7 +16,8 @@
 //    membrane's large-strain response (derivation at sphere_with_air_ratio). Fails with:
 //    DEFAULT_AIR_BALANCE 0.5 -> 0.7, E doubled or h halved (in DEFAULT_SHELL_YOUNG,
 //    DEFAULT_SHELL_THICKNESS or membrane_lame_from_young), DEFAULT_PRESSURE changed: each moves
-//    the end V/V0 by several times the tolerance (checked; the figures are in the commits).
+//    the end V/V0 by several times the tolerance. Checked: E and h in membrane_lame_from_young,
+//    the air balance as --air-balance 0.7 on the same run (figures in the commits).
 #include <gtest/gtest.h>
 
 #include <cmath>
