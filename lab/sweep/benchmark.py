@@ -40,7 +40,7 @@ def main():
     env = dict(os.environ, PYTHONPATH=os.path.join(a.build, "python"), SHELLCONTRACT_CLI=cli)
     shutil.rmtree(a.out, ignore_errors=True)
     os.makedirs(a.out)
-    sweep = {"meshes": [os.path.join(a.meshes, m) for m in MESHES],
+    sweep = {"meshes": [os.path.join(os.path.abspath(a.meshes), m) for m in MESHES],
              "options": {"frames": a.frames, "threads": 1},
              "grid": {"target_volume": TARGETS, "thickness": THICKNESSES}}
     sweep_path = os.path.join(a.out, "sweep.json")

@@ -166,10 +166,9 @@ def expand(path, data, version, check_mesh=None):
     for m in meshes:
         try:
             check_mesh(m)
-        except (ValueError, OSError) as e:
-            _fail(path, "mesh {}: {}".format(m, e))
-        except RuntimeError as e:
-            _fail(path, "mesh {}: {}".format(m, e))
+        except (ValueError, OSError, RuntimeError) as e:
+            text = str(e)  # the reader's messages start with the file's name
+            _fail(path, text if text.startswith(m) else "mesh {}: {}".format(m, text))
     grid = data["grid"]
     names = list(grid)
     points = [dict(zip(names, values)) for values in itertools.product(*grid.values())] or [{}]
