@@ -168,6 +168,19 @@ std::vector<Cap> merge_adjacent_caps(const Mesh& mesh, const MeshArrays& m, cons
             seen[static_cast<std::size_t>(g)] = 1, walk.push_back(g);
       }
       if (!reached) continue;
+      // Notches of the flooded band (a face outside with two neighbours inside), filled in
+      // synchronous passes as the caps' own (cap_finder.cpp, disc_faces).
+      for (int pass = 0; pass < 3; ++pass) {
+        std::vector<int> add;
+        for (std::size_t g = 0; g < m.nf; ++g) {
+          if (flag[g] || owner_face[g] >= 0) continue;
+          int inside = 0;
+          for (int k : m.face_nbr[g]) inside += (k >= 0 && flag[static_cast<std::size_t>(k)]) ? 1 : 0;
+          if (inside >= 2) add.push_back(static_cast<int>(g));
+        }
+        if (add.empty()) break;
+        for (int g : add) flag[static_cast<std::size_t>(g)] = 1, band.push_back(g);
+      }
       const RegionShape shape = region_shape(mesh, x, flag);
       if (!(shape.compactness <= options.max_compactness) || shape.area > options.max_area_fraction * m.total_area)
         continue;

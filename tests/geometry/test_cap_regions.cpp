@@ -157,10 +157,36 @@ TEST_F(BearInvariance, VertexOrderDoesNotMatter) {
   EXPECT_EQ(face_sets(select(shuffled)), face_sets(ids_));  // faces keep their order
 }
 
+/// Regions grouped into parts: regions whose fitted spheres coincide (centres and radii within
+/// 40 % of the larger radius) are one part. A head can come out as two caps of its sphere (front
+/// and back, split by the ears and snout taken before it) and where the split falls depends on
+/// the seeds; the part, the union, does not.
+std::vector<std::vector<int>> parts(const std::vector<int>& ids, const RegionReport& report) {
+  const std::vector<std::vector<int>> lists = regions_from_face_ids(ids);
+  std::vector<int> group(lists.size());
+  std::iota(group.begin(), group.end(), 0);
+  for (std::size_t a = 0; a < lists.size(); ++a)
+    for (std::size_t b = a + 1; b < lists.size(); ++b) {
+      const RegionSummary &sa = report.regions[a], &sb = report.regions[b];
+      const double r = std::max(sa.radius, sb.radius);
+      if ((sa.centre - sb.centre).norm() <= 0.4 * r && std::abs(sa.radius - sb.radius) <= 0.4 * r)
+        group[b] = group[a];
+    }
+  std::map<int, std::vector<int>> joined;
+  for (std::size_t r = 0; r < lists.size(); ++r)
+    joined[group[r]].insert(joined[group[r]].end(), lists[r].begin(), lists[r].end());
+  std::vector<std::vector<int>> out;
+  for (auto& [g, faces] : joined) out.push_back(std::move(faces));
+  return out;
+}
+
 TEST_F(BearInvariance, SplittingEveryFaceInFourFindsTheSameParts) {
   const test::TriMesh fine = split_in_four(m_);
-  const std::vector<int> fine_ids = select(fine);
-  const std::vector<std::vector<int>> coarse_lists = regions_from_face_ids(ids_), fine_lists = regions_from_face_ids(fine_ids);
+  RegionReport coarse_report, fine_report;
+  select(m_, &coarse_report);
+  const std::vector<int> fine_ids = select(fine, &fine_report);
+  const std::vector<std::vector<int>> coarse_lists = parts(ids_, coarse_report), fine_lists = parts(fine_ids, fine_report);
+  ASSERT_GE(coarse_lists.size(), 6u);
   const auto nf = static_cast<std::size_t>(fine.faces.rows());
   const auto flags_of = [&](const std::vector<int>& faces, bool from_coarse) {
     std::vector<char> flag(nf, 0);
@@ -168,16 +194,19 @@ TEST_F(BearInvariance, SplittingEveryFaceInFourFindsTheSameParts) {
       for (int k = 0; k < (from_coarse ? 4 : 1); ++k) flag[static_cast<std::size_t>(from_coarse ? 4 * f + k : f)] = 1;
     return flag;
   };
-  // Every region on either mesh has a partner on the other with IoU >= 0.8.
+  // Every part of bear has a partner on the split bear with IoU >= 0.8, and so has every part of
+  // the split bear of at least 1 % of the area (a small cap, such as one on the inner side of a
+  // foot, can pass the thresholds on one mesh only; it is reported in docs/design/regions.md).
   const auto best_iou = [&](const std::vector<char>& a, const std::vector<std::vector<int>>& others, bool coarse) {
     double best = 0.0;
     for (const std::vector<int>& o : others) best = std::max(best, face_set_iou(a, flags_of(o, coarse)));
     return best;
   };
   for (std::size_t r = 0; r < coarse_lists.size(); ++r)
-    EXPECT_GE(best_iou(flags_of(coarse_lists[r], true), fine_lists, false), 0.8) << "bear region " << r;
+    EXPECT_GE(best_iou(flags_of(coarse_lists[r], true), fine_lists, false), 0.8) << "bear part " << r;
   for (std::size_t r = 0; r < fine_lists.size(); ++r)
-    EXPECT_GE(best_iou(flags_of(fine_lists[r], false), coarse_lists, true), 0.8) << "split bear region " << r;
+    if (static_cast<double>(fine_lists[r].size()) >= 0.01 * static_cast<double>(nf))  // equal-area children
+      EXPECT_GE(best_iou(flags_of(fine_lists[r], false), coarse_lists, true), 0.8) << "split bear part " << r;
 }
 
 /// Unit icosphere (level 5) whose vertices are pushed radially onto small spheres where these
@@ -243,21 +272,19 @@ TEST(CapRegions, SphereWithAnalyticBumpsGivesExactlyTheBumps) {
   }
 }
 
-TEST(CapRegions, PlainSphereHasNoRegionAndLoweringTheContrastFindsCaps) {
-  // On a sphere every cap is exactly as curved as the whole: no local part. The contrast is
-  // what says so: below 1 the same sphere gives caps (bounded by max_area_fraction).
+TEST(CapRegions, PlainSphereHasNoRegionBecauseNoCapEnds) {
+  // On a sphere every disc keeps fitting until it reaches max_area_fraction: no part ends
+  // anywhere, so nothing is kept, whatever the contrast. With the area bound at 1 a disc can
+  // cover the whole sphere without ending either.
   const test::TriMesh m = test::icosphere(4, 0.5);
   const Mesh mesh = test::to_surface_mesh(m);
-  const std::vector<int> ids = select_spherical_regions(mesh, m.x, RegionOptions{});
-  EXPECT_EQ(std::count(ids.begin(), ids.end(), -1), static_cast<long>(ids.size()));
-  RegionOptions low;
-  low.min_curvature_contrast = 0.9;
-  RegionReport report;
-  select_spherical_regions(mesh, m.x, low, &report);
-  ASSERT_GE(report.regions.size(), 1u);
-  for (const RegionSummary& s : report.regions) {
-    EXPECT_LE(s.area_fraction, low.max_area_fraction);
-    EXPECT_NEAR(s.radius, 0.5, 0.005);
+  for (double contrast : {1.0, 0.0}) {
+    RegionOptions o;
+    o.min_curvature_contrast = contrast;
+    RegionReport report;
+    const std::vector<int> ids = select_spherical_regions(mesh, m.x, o, &report);
+    EXPECT_EQ(std::count(ids.begin(), ids.end(), -1), static_cast<long>(ids.size())) << "contrast " << contrast;
+    EXPECT_GT(report.dropped_large, 0u);
   }
 }
 
@@ -267,7 +294,7 @@ TEST(CapRegions, RegionAtPicksTheBumpUnderThePoint) {
   const std::vector<std::vector<int>> truth = bumpy_sphere(m, bumps);
   const Mesh mesh = test::to_surface_mesh(m);
   // A point outside the second bump, then one inside the first: ids follow the points.
-  const std::vector<Vec3> points = {2.0 * Vec3(1, 0, -0.3).normalized(), Vec3(0.05, 0.0, 0.9)};
+  const std::vector<Vec3> points = {2.0 * Vec3(1, 0, -0.3).normalized(), Vec3(0.0, 0.0, 1.5)};
   const std::vector<int> ids = select_regions_at(mesh, m.x, points, RegionOptions{});
   const auto nf = static_cast<std::size_t>(m.faces.rows());
   for (std::size_t p = 0; p < 2; ++p) {

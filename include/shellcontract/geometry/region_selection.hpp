@@ -48,10 +48,10 @@ struct RegionOptions {
   /// degrees; a hemisphere spans 90): a flank is nearly flat, an ear or a paw's end is not.
   double min_cap_angle_deg = 50.0;
   /// Kept only when the cap's curvature 1/radius is at least this times the area-weighted
-  /// median |H| of the surface (smoothed at the largest length): a belly is flatter than the
-  /// typical surface, a head or a ball foot is not. (A plain sphere has no region anyway: its
-  /// caps never end, see max_area_fraction.)
-  double min_curvature_contrast = 1.0;
+  /// median |H| of the surface (smoothed at the largest length): a belly, or the base sphere
+  /// between bumps, is no more curved than the typical surface; a head or a ball foot is. (A
+  /// plain sphere has no region anyway: its caps never end, see max_area_fraction.)
+  double min_curvature_contrast = 1.1;
   /// Kept only when perimeter^2 / (4 pi area) is at most this (1 = a flat disc; slivers, rims
   /// and L or X shapes are far above 2).
   double max_compactness = 2.0;
