@@ -117,7 +117,9 @@ def check(vertices, faces):
 
 def regions(vertices, faces, **region_options):
     """The spherical regions ``--regions auto`` would choose: a list of face-index arrays, largest
-    region first. Options: the RegionOptions fields of geometry/region_selection.hpp."""
+    region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
+    ``max_area_fraction``, ... with '_' or '-'); ``region_at=[(x, y, z), ...]`` picks the caps
+    around the points instead."""
     return _core.regions(vertices, faces, **region_options)
 
 

@@ -53,10 +53,12 @@ def test_regions_match_the_cli_face_list(cli, mesh_dir, tmp_path):
 
 
 def test_regions_options_are_used_and_checked(mesh_dir):
+    # The CLI's option names, with '_' or '-'.
     vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
-    assert shellcontract.regions(vertices, faces, min_curvature_contrast=100.0) == []
-    with pytest.raises(TypeError, match="unknown option 'contrast'"):
-        shellcontract.regions(vertices, faces, contrast=2.0)
+    assert shellcontract.regions(vertices, faces, contrast=100.0) == []
+    assert shellcontract.regions(vertices, faces, **{"min-cap-angle": 180.0}) == []
+    with pytest.raises(TypeError, match="unknown option 'min_curvature_contrast'"):
+        shellcontract.regions(vertices, faces, min_curvature_contrast=2.0)
 
 
 def test_write_then_read_gives_the_same_arrays(ico2, tmp_path):
