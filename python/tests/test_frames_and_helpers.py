@@ -100,3 +100,19 @@ def test_arrays_are_refused_for_the_cli_reason(cli, mesh_dir, name):
     problem = re.search(re.escape(str(path)) + r": ([a-z -]+):", cli_error.stderr).group(1)
     with pytest.raises(ValueError, match="^input arrays: " + problem + ":"):
         shellcontract.check(*off_arrays(path))
+
+
+def test_contract_takes_what_regions_returns_and_per_face_labels(mesh_dir):
+    # Issue "Regions a person would choose", item 4: the three forms give the same run.
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    found = shellcontract.regions(vertices, faces)
+    labels = [-1] * len(faces)
+    for k, r in enumerate(found):
+        for f in r:
+            labels[int(f)] = k
+    a = shellcontract.contract(vertices, faces, regions=found, frames=3, pressure=0.0)
+    b = shellcontract.contract(vertices, faces, regions=labels, frames=3, pressure=0.0)
+    assert a.summary["regions"] == len(found) == 3
+    assert (a.vertices == b.vertices).all()
+    with pytest.raises(ValueError, match="one entry per face"):
+        shellcontract.contract(vertices, faces, regions=[0, 1], frames=1)
