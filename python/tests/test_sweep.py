@@ -200,9 +200,11 @@ def test_real_scheduler_with_a_worker_killed_mid_sweep(cli, mesh_dir, tmp_path):
         sweep = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o",
                                   str(out), "--scheduler", address, "--checkpoint-every", "5"],
                                  env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        # Mid-sweep: a job has saved a checkpoint (some are running), none has finished yet or few.
+        # Mid-sweep, with both workers inside a job: a job's checkpoint exists only while it runs
+        # (a finished job removes it), so two checkpoints mean each worker holds a job that has
+        # saved one, and the worker killed below is certainly mid-job.
         wait_until(lambda: (out / ".work" / "checkpoints").is_dir()
-                   and any((out / ".work" / "checkpoints").glob("*.ckpt")))
+                   and len(list((out / ".work" / "checkpoints").glob("*.ckpt"))) >= 2)
         procs[1].kill()  # SIGKILL: the worker and its running job are gone at once
         procs[1].wait()
         _, err = sweep.communicate(timeout=240)
