@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fcntl.h>
 #include <filesystem>
@@ -119,7 +120,13 @@ class CliCheckpoint : public ::testing::Test {
 };
 
 TEST_F(CliCheckpoint, KilledAtARandomFrameAndResumedEqualsTheWholeRun) {
+  // The whole run's duration bounds the random wait below, so that the kill lands inside the run
+  // on a fast machine as on a loaded one.
+  const auto whole_start = std::chrono::steady_clock::now();
   const auto whole = run_cli(whole_run());
+  const auto whole_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                            std::chrono::steady_clock::now() - whole_start)
+                            .count();
   ASSERT_EQ(whole.exit_code, 0) << whole.output;
   std::vector<std::string> args{"run", mesh("ico3.off"), "-o", out("killed.off"), "-q",
                                 "--checkpoint", out("c.ckpt"), "--checkpoint-every", "1"};
@@ -131,7 +138,9 @@ TEST_F(CliCheckpoint, KilledAtARandomFrameAndResumedEqualsTheWholeRun) {
   const auto start = std::chrono::steady_clock::now();
   while (!fs::exists(out("c.ckpt")) && std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(0, 600)(random)));
+  const int max_wait_ms = static_cast<int>(std::min<long long>(600, whole_ms / 3));
+  std::this_thread::sleep_for(
+      std::chrono::milliseconds(std::uniform_int_distribution<int>(0, max_wait_ms)(random)));
   ::kill(pid, SIGKILL);
   const int status = wait_for(pid);
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run ended before the kill; make it longer";
@@ -152,10 +161,14 @@ TEST_F(CliCheckpoint, SigtermSavesStopsWith130AndWritesNothingElse) {
   ASSERT_EQ(run_cli(whole_run()).exit_code, 0);
   std::vector<std::string> args{"run", mesh("ico3.off"), "-o", out("t.off"), "--log", out("t.csv"),
                                 "--summary", out("t.json"), "-q", "--checkpoint", out("t.ckpt"),
-                                "--checkpoint-every", "1000"};
+                                "--checkpoint-every", "1"};
   for (const std::string& o : options()) args.push_back(o);
   const pid_t pid = spawn_cli(args);
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // The first checkpoint (after frame 1) shows the time loop is running; the signal then lands
+  // inside it, however fast the machine.
+  const auto start = std::chrono::steady_clock::now();
+  while (!fs::exists(out("t.ckpt")) && std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   ::kill(pid, SIGTERM);
   const int status = wait_for(pid);
   ASSERT_TRUE(WIFEXITED(status));
