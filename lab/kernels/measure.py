@@ -7,7 +7,7 @@ and prints the median of each run's per-projection time (ns) and the median over
 the ratio old / new. Cases missing from a binary (kernels the old one has not got) are shown as -.
 
   python3 lab/kernels/measure.py --old /tmp/kernels_old/bench_projection \
-      --new build/benchmarks/bench_projection --rounds 3 [--filter REGEX] [--mesh PATH]
+      --new build/lab/benchmarks/bench_projection --rounds 3 [--filter REGEX] [--mesh PATH]
 """
 import argparse
 import json

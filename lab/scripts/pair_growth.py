@@ -2,7 +2,7 @@
 """Why the broad phase's candidate pairs per face grow with the resolution (issue "Large meshes and
 many cores", its linear-cost point). Runs bear and bear subdivided (scale_benchmark.py's meshes) for
 a few frames in the coloured order, keeps the last two frames, and counts with
-build/benchmarks/pair_growth the candidate pairs per face of that last step:
+build/lab/benchmarks/pair_growth the candidate pairs per face of that last step:
   - with the step's swept boxes (k = 1: what the broad phase finds);
   - as the union over k sub-intervals of the step (what a broad phase that slices each step into k
     parts would find, before any response moves a vertex);
@@ -11,7 +11,7 @@ once under the default options and once with the contact distance (--delta) in p
 mean edge length (bear's ratio). Writes lab/pages/pair-growth.md (or --out).
 
 Usage: lab/scripts/pair_growth.py [--build build] [--frames 10] [--levels 0,1,2] [--out FILE]
-Needs: the built tool and build/benchmarks/pair_growth, data/meshes/bear.off."""
+Needs: the built tool and build/lab/benchmarks/pair_growth, data/meshes/bear.off."""
 import argparse
 import json
 import os
@@ -113,7 +113,7 @@ def main():
         f"`/usr/bin/python3 lab/scripts/pair_growth.py --frames {a.frames} --levels {a.levels}` "
         "(writes this page). Each mesh runs "
         f"{a.frames} frames in the coloured order (`shellcontract run MESH "
-        f"--frames {a.frames} --order coloured --export-every 1`); `build/benchmarks/pair_growth` "
+        f"--frames {a.frames} --order coloured --export-every 1`); `build/lab/benchmarks/pair_growth` "
         "then counts the candidate pairs (vertex-face and edge-edge, adjacent ones left out) "
         "of the "
         f"step from frame {a.frames - 1} to frame {a.frames}, per face, with the boxes inflated by "

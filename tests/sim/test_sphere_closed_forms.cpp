@@ -46,7 +46,7 @@ double area(const Positions& x, const Faces& f) {
 }
 
 TEST(SphereClosedForm, MembraneOf320FacesMatchesTheThinShellFormula) {
-  // The setting of the README's table (docs/benchmarks/membrane-sphere.md): E 1000, nu 0.3,
+  // The setting of the table in lab/pages/membrane-sphere.md: E 1000, nu 0.3,
   // h 0.01, k_B 1, no collisions, 100 iterations, 400 frames, damping 0.2; P at 2 % of the
   // classical buckling pressure 2 E h^2 / (r^2 sqrt(3 (1 - nu^2))).
   test::MembraneSphereSetting s;
