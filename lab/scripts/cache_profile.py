@@ -34,7 +34,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "lab", "scripts"))
 from scale_benchmark import write_levels  # noqa: E402
 
 # The events the page uses; an event missing from a file (a run without the branch simulation)
@@ -143,7 +143,7 @@ def main():
     ap.add_argument("--l1", type=int, default=32768, help="simulated L1 size (bytes)")
     ap.add_argument("--ll", type=int, default=1048576, help="simulated last level (bytes)")
     ap.add_argument("--top", type=int, default=25)
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmarks", "cache-profile.md"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "lab", "pages", "cache-profile.md"))
     a = ap.parse_args()
     tool = a.tool or os.path.join(a.build, "shellcontract")
     try:

@@ -131,10 +131,10 @@ def one_mesh(path, args, work):
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--cli", default=os.path.join(root, "build", "shellcontract"))
-    ap.add_argument("--out", default=os.path.join(root, "docs", "benchmarks", "corpus.md"))
+    ap.add_argument("--out", default=os.path.join(root, "lab", "pages", "corpus.md"))
     ap.add_argument("--timeout", type=float, default=120, help="seconds for check and repair")
     ap.add_argument("--run-timeout", type=float, default=300, help="seconds for one run")
     ap.add_argument("--frames", type=int, default=200)

@@ -146,7 +146,7 @@ def sensitivity(exe, tmp):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmarks", "local-contraction.md"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "lab", "pages", "local-contraction.md"))
     a = ap.parse_args()
     exe = os.path.join(a.build, "shellcontract")
     meshes = [("bumpy_sphere", BUMPY, BUMPS)] + [

@@ -20,7 +20,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-sys.path.insert(0, os.path.join(ROOT, "scripts"))
+sys.path.insert(0, os.path.join(ROOT, "lab", "scripts"))
 from scale_benchmark import read_off, subdivide, write_off  # noqa: E402
 
 SLICES = [1, 2, 4, 8]
@@ -80,12 +80,12 @@ def main():
     ap.add_argument("--build", default=os.path.join(ROOT, "build"))
     ap.add_argument("--frames", type=int, default=10)
     ap.add_argument("--levels", default="0,1,2")
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "benchmarks", "pair-growth.md"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "lab", "pages", "pair-growth.md"))
     a = ap.parse_args()
     if a.frames < 1:
         sys.exit("--frames must be at least 1")
     tool = os.path.join(a.build, "shellcontract")
-    counter = os.path.join(a.build, "benchmarks", "pair_growth")
+    counter = os.path.join(a.build, "lab", "benchmarks", "pair_growth")
     for path in (tool, counter):
         if not os.path.exists(path):
             sys.exit(f"{path} not found: build the project first (scripts/build_and_test.sh)")

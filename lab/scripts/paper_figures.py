@@ -10,7 +10,7 @@ this invocation; nothing is typed in by hand.
 Usage: /usr/bin/python3 lab/scripts/paper_figures.py [--tool build/shellcontract] [--out lab/figures]
                                                  [--quick] [--work DIR [--reuse]]
   --quick: 20 frames, no elk or bear: a smoke run of the whole pipeline (under a minute); write
-           it somewhere other than docs/figures.
+           it somewhere other than lab/figures.
   --work DIR --reuse: keep the runs in DIR and, next time, skip those whose command line is
            unchanged (for editing the text); the committed page comes from a run without it.
 """
@@ -31,7 +31,7 @@ from figures_regions import fig19, fig20  # noqa: E402
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--tool", default=os.path.join(ROOT, "build", "shellcontract"))
-    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "figures"))
+    ap.add_argument("--out", default=os.path.join(ROOT, "lab", "figures"))
     ap.add_argument("--work", default=None, help="keep the runs' meshes, logs and summaries here")
     ap.add_argument("--quick", action="store_true", help="20 frames, no elk or bear (smoke run)")
     ap.add_argument("--reuse", action="store_true",
