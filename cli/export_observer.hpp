@@ -84,8 +84,8 @@ class FrameExporter final : public RunObserver {
         gltf_.face_uv(static_cast<Eigen::Index>(f), k) = static_cast<int>(t.face_uv[f][static_cast<std::size_t>(k)]);
   }
 
-  /// Writes the .glb of --gltf, after the run: the simulator's memory is free by then (bear x16
-  /// peaked at 4.1 GB with the file written from finished(), against 0.9 GB for its run).
+  /// Writes the .glb of --gltf, after the run: the simulator's memory is free by then (written
+  /// from finished(), the file raised a large mesh's peak far above its run's; lab/history.md).
   void write_gltf() {
     if (request_.gltf.empty() || gltf_.frames.empty()) return;
     const auto start = std::chrono::steady_clock::now();

@@ -400,7 +400,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   GltfStats stats;
   stats.buffer_bytes = model.buffers[0].data.size();
   // Straight into the file: through a string first, a large mesh's .glb was held three more
-  // times in memory (bear x16's 101 frames: 552 MB each).
+  // times in memory (lab/history.md).
   write_file_atomic(path, [&](std::ostream& out) {
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&model, out, false, true) || !out)

@@ -272,10 +272,10 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   // The soup is now what polygon_soup_to_polygon_mesh requires (in release builds it only
   // asserts that): each condition of PMP::is_polygon_soup_a_polygon_mesh is one of the checks
   // above (tests/mesh/test_soup_checks_vs_cgal.cpp compares them on mutated soups). CGAL's test
-  // itself is not run again: with its std::set of 2.6 M directed edges it took a third of reading
-  // bear x16 (lab/pages/scale.md). A gap in our checks cannot become undefined behaviour:
-  // Euler::add_face returns a null face for a face it cannot add, and align_to_soup refuses a mesh
-  // that lost a face or a face's corner order.
+  // itself is not run again: its std::set of directed edges is a large share of reading a large
+  // mesh (lab/pages/scale.md, lab/history.md). A gap in our checks cannot become undefined
+  // behaviour: Euler::add_face returns a null face for a face it cannot add, and align_to_soup
+  // refuses a mesh that lost a face or a face's corner order.
   if (!usable_diagonal)
     fail(path, "degenerate mesh", diagonal == 0.0 ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
                                                   : "non-finite bounding-box diagonal: the coordinates span more than a double holds");

@@ -99,7 +99,7 @@ template <class Tris>
 void check_edges(const std::string& path, const Tris& tris, std::size_t nv, const Namer& name) {
   const std::size_t nf = tris.size();
   // One record per half-edge, sorted by undirected edge: the uses of an edge are one run
-  // (a hash map of vectors cost ~0.1 s on bear, an allocation per edge).
+  // (a hash map of vectors costs an allocation per edge; lab/history.md).
   struct EdgeUse {
     std::uint64_t key;  // undirected edge
     std::size_t face;

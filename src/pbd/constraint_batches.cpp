@@ -70,7 +70,8 @@ void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* b
   // Software pipelining: the rows of batch b + 1 are loaded before the stores of batch b when
   // the two are of the same colour (same_colour_next: they share no vertex, so the rows read are
   // the same either way), else after them. Loads that follow the previous batch's stores in
-  // program order start later; about 7% faster on bear (BM_MembraneStvkPbdColouredOrder/batched:1).
+  // program order start later; measured faster on bear (BM_MembraneStvkPbdColouredOrder/batched:1,
+  // lab/history.md).
   V4 next1, next2, next3;
   auto load_next = [&](const MembraneBatch& c) {
     next1 = gather(xw, c.v[0]), next2 = gather(xw, c.v[1]), next3 = gather(xw, c.v[2]);

@@ -17,16 +17,16 @@ namespace shellcontract::regional {
 /// all lie in one part is interior to it, the others form the interface. A sweep then runs, for
 /// membranes and then for hinges, the interior constraints of every part (the parts share no
 /// vertex, so they run on different threads with no barrier between colours), then the
-/// interface constraints, colour after colour, on one thread. Why: a colour of bear is only 5-12
-/// us of work, and where cores exchange a cache line in ~200 ns (as on the 2-vCPU development
-/// machine) the per-colour barriers and the vertex rows shared at the two threads' boundary in
-/// every colour cost as much as the work (BM_SolverStep). Here a sweep has 4 barriers instead of ~31, and only interface
-/// vertices change core (bear: about 500 of 27,648 faces and 1,000 of 41,472 hinges are interface).
-/// Bear's solve on 2 threads: 1.4-1.85x one thread (mostly 1.65-1.85x), against 1.09-1.11x with
-/// one phase per colour (BM_SolverStep, lab/history.md). The order is a valid Gauss-Seidel
-/// order (each constraint once per sweep, in the kinds' order of math-spec 9.4) and does not depend
-/// on the thread count, so results are bit-identical for any number of threads. The number of
-/// parts is fixed (not the thread count) for that reason.
+/// interface constraints, colour after colour, on one thread. Why: a colour of bear is only a few
+/// microseconds of work, and where exchanging a cache line between cores is slow (as on the
+/// 2-vCPU development machine) the per-colour barriers and the vertex rows shared at the two
+/// threads' boundary in every colour cost as much as the work (BM_SolverStep). Here a sweep has
+/// 4 barriers instead of ~31, and only interface vertices change core (bear: about 500 of 27,648
+/// faces and 1,000 of 41,472 hinges are interface). On 2 threads the regional order scales far
+/// better than one phase per colour (BM_SolverStep, lab/history.md). The order is a valid
+/// Gauss-Seidel order (each constraint once per sweep, in the kinds' order of math-spec 9.4) and
+/// does not depend on the thread count, so results are bit-identical for any number of threads.
+/// The number of parts is fixed (not the thread count) for that reason.
 constexpr std::size_t REGIONS = 2;
 /// Groups of a kind's constraints in the regional order: the REGIONS interiors, then the interface.
 constexpr std::size_t REGION_GROUPS = REGIONS + 1;
@@ -34,8 +34,8 @@ constexpr std::size_t REGION_GROUPS = REGIONS + 1;
 /// Parts of the padded rows [0, n) (records given in row numbers): rows below the cut are part
 /// 0, the others part 1. A cut of the row order, so that each part is contiguous in memory: two
 /// rows share a cache line, and parts that interleave in memory share lines (a breadth-first
-/// split of bear's vertex ids with the rows in id order made each thread 4x slower per
-/// constraint: 5.1 ms per solve on 2 threads against 1.44 ms, 2.4 ms on one). The cut is the one
+/// split of bear's vertex ids with the rows in id order made each thread several times slower
+/// per constraint, slower on 2 threads than on one; lab/history.md). The cut is the one
 /// with the shortest critical path: per kind, the larger interior runs beside the smaller and
 /// then the interface runs alone, so a kind costs (count - the smaller interior); the sum over
 /// both kinds is minimized over every cut, in O(#V + #constraints). If the interface is still

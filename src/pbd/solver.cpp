@@ -96,8 +96,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
         vertex_row_[static_cast<std::size_t>(row_vertex_[k])] = static_cast<int>(k);
       // Each colour in row order: a thread's chunk of a colour then reads and writes a part of
       // the rows of its own, as it does in the regional layout, and the colour's loads run
-      // forward. The same bits; bear x16's solve 15-19 % faster at one and two threads, bear's
-      // 31 % at two (lab/pages/scale.md, "The dihedral hinges in batches").
+      // forward. The same bits, and a faster solve at one and two threads (lab/pages/scale.md,
+      // "The dihedral hinges in batches").
       sort_colours_by_row(set_.membranes, membrane_colours_, vertex_row_);
       sort_colours_by_row(set_.isometric_hinges, isometric_colours_, vertex_row_);
       sort_colours_by_row(set_.dihedral_hinges, dihedral_colours_, vertex_row_);
@@ -139,8 +139,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
           make_isometric_batches(renamed(set_.isometric_hinges, vertex_row_), isometric_colours_);
       dihedral_batches_ =
           make_dihedral_batches(renamed(set_.dihedral_hinges, vertex_row_), dihedral_colours_);
-      // From here the batches hold the membranes' rest data: the packed copy (49 MB on bear
-      // x16) would only add to the run's peak, which the dihedral batches raised by 27 MB.
+      // From here the batches hold the membranes' rest data: the packed copy would only add to
+      // the run's peak, which the dihedral batches had already raised (lab/history.md).
       if (!membrane_batches_.batches.empty()) std::vector<PackedMembrane>().swap(packed_membranes_);
     }
     packed_aniso_.reserve(set_.anisotropic.size());
@@ -387,8 +387,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
                                            (phases.back().kind != UNPACK && padded_kind(phases.back().kind)));
         schedule_built_ = true;
       }
-      // The copies in parallel too (row by row: the same values); serial, they were about 10 ms
-      // of bear x16's 43 ms solve at 16 threads (lab/pages/scale.md, "Sixteen cores").
+      // The copies in parallel too (row by row: the same values); serial, they were a large
+      // share of the solve at 16 threads (lab/pages/scale.md, "Sixteen cores").
       auto rows = [&](auto copy) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, COPY_GRAIN),
                           [&](const tbb::blocked_range<std::size_t>& r) { copy(r.begin(), r.end()); });

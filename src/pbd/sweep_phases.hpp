@@ -11,8 +11,8 @@ namespace shellcontract {
 namespace sweep {
 
 /// Smallest chunk a thread claims in the Coloured order (ColourSchedule). With 256, bear's
-/// colours had about a dozen chunks for 16 threads: its solve took 4.5-4.7 ms per step at 16
-/// threads, 3.3-3.4 with 64, 3.0-3.1 with 32; bear x16's chunks are larger anyway (scale.md).
+/// colours had about a dozen chunks for 16 threads, and its solve at 16 threads was slower than
+/// with smaller grains (lab/history.md); bear x16's chunks are larger anyway (scale.md).
 constexpr std::size_t COLOUR_GRAIN = 64;
 /// COLOUR_GRAIN in batches of BATCH_LANES constraints.
 constexpr std::size_t BATCH_GRAIN = COLOUR_GRAIN / BATCH_LANES;

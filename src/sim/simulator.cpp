@@ -96,9 +96,9 @@ void check_options(const SimOptions& o) {
 }  // namespace
 
 /// The step's own per-vertex work (the pressure, the prediction, the checks, the velocities)
-/// runs in parallel in the run's thread count: serial, it took 8-15 ms of bear x16's step of
-/// about 110 ms at 16 threads on a 16-core machine (a step timer build, not kept;
-/// lab/pages/scale.md, "Sixteen cores").
+/// runs in parallel in the run's thread count: serial, it was a large share of the step at 16
+/// threads on a 16-core machine (a step timer build, not kept; lab/pages/scale.md,
+/// "Sixteen cores").
 struct Simulator::StepArena {
   tbb::task_arena arena;
   explicit StepArena(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}

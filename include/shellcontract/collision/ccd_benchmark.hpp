@@ -75,7 +75,7 @@ static constexpr int DEFAULT_CCD_BENCHMARK_REPETITIONS = 3;
 /// Runs the narrow phase on every query of a file, single-threaded. The mean is the wall time of
 /// one pass over all queries divided by their number, the fastest of `repetitions` passes; the
 /// maximum comes from timing each query alone (`repetitions` times, keeping its fastest run) and
-/// includes the clock's own overhead (~20-50 ns). Taking the fastest run filters out
+/// includes the clock's own overhead (lab/history.md). Taking the fastest run filters out
 /// interference from other processes on a shared machine. Every pass must give the same answers
 /// (the test is deterministic).
 /// @param file         queries

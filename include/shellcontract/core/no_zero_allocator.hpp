@@ -41,8 +41,9 @@ using NoZeroVector = std::vector<T, NoZeroAllocator<T>>;
 /// elements are left unwritten. Used for the collision step's per-pair arrays and the broad
 /// phase's candidate lists, which grow as the shell contracts. Twice, not a quarter more: glibc
 /// serves blocks this large with a fresh mapping, whose every page faults on its first write, and
-/// with a quarter bear x16's pair arrays were taken anew every few frames, which doubled the cost
-/// of its pair records (lab/pages/scale.md, "Page faults of the pair arrays"). The reserve
+/// with a quarter the largest meshes' pair arrays were taken anew every few frames, which added
+/// much to the cost of their pair records (lab/pages/scale.md, "Page faults of the pair
+/// arrays"). The reserve
 /// beyond what is written is never touched, so it is not resident.
 template <class T>
 void resize_for_rewrite(NoZeroVector<T>& v, std::size_t n) {

@@ -28,7 +28,8 @@ namespace kernel_parts {
 inline Eigen::Map<Vec3> vertex(double* x, int i) { return Eigen::Map<Vec3>(x + 3 * i); }
 
 /// x_i -= s g, written out: the same roundings as vertex(x, i) -= s * g, but GCC did not inline
-/// Eigen's operator-= on a Map (3.6% of a bear run's samples in a call of its own).
+/// Eigen's operator-= on a Map (a visible share of a bear run's samples in a call of its own;
+/// lab/history.md).
 inline void subtract_scaled(double* x, int i, double s, const Vec3& g) {
   double* p = x + 3 * static_cast<std::ptrdiff_t>(i);
   p[0] -= s * g[0];

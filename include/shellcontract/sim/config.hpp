@@ -32,10 +32,9 @@ enum class InwardTerm { Projection, Force, Volume, None };
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
 /// Volume mechanism, a region on a shell at its rest volume loses 2 * 0.7 = 1.4 times its rest cap
 /// volume, as a mirrored dimple (dimple_rest_volume). Chosen by measurement
-/// (lab/pages/local-contraction.md, sections 1-2): at -p 0 it sinks bumpy_sphere's bumps
-/// 5.4 % of the bounding-box diagonal, 12.8x as far as the rest of the shell moves, and the
-/// smallest bump's centre by 1.2 times its radius; 1 adds little more depth (1.3) and less
-/// locality (12.2x).
+/// (lab/pages/local-contraction.md, sections 1-2): at -p 0 it sinks bumpy_sphere's bumps much
+/// farther than the rest of the shell moves, the smallest one by more than its radius; 1 adds
+/// little more depth and less locality.
 inline constexpr double DEFAULT_REGION_SHRINK = 0.7;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
@@ -70,7 +69,7 @@ inline constexpr double DEFAULT_DAMPING = 0.2;
 /// The default run's damping (XPBD with the default shell material, RunOptions). Half the PBD
 /// value: a run that removes less velocity lets the rest of the shell spring back to its rest
 /// shape sooner after the regions' dimples pull on it, so the local contraction stays local
-/// (bumpy_sphere at -p 0: 12.8x at 0.1 against 9.1x at 0.2, docs/design/defaults.md "The default
+/// (bumpy_sphere at -p 0: 0.1 is more local than 0.2, docs/design/defaults.md "The default
 /// run").
 inline constexpr double DEFAULT_XPBD_DAMPING = 0.1;
 
@@ -84,8 +83,8 @@ inline constexpr double DEFAULT_SHELL_THICKNESS = 0.002;
 
 /// Whether the collision broad phase starts speculatively while the constraint solve runs
 /// (CollisionOptions::speculative, SelfCollision::predict). Its task runs on the core that a
-/// single-threaded solve leaves idle; a parallel solve needs that core itself (bear, coloured
-/// order on 2 threads: solve 1.84 -> 3.38 ms and step 14.5 -> 16.4 ms per step with it on).
+/// single-threaded solve leaves idle; a parallel solve needs that core itself, and the task
+/// slows both the solve and the step there (lab/history.md).
 enum class SpeculativeBroadPhase {
   Auto,  ///< on with the sequential order (single-threaded solve), off with the coloured one
   On,
@@ -138,8 +137,9 @@ struct SimOptions {
   /// Sets collision.speculative when the Simulator is built (the value given there is ignored).
   SpeculativeBroadPhase speculative_broad_phase = SpeculativeBroadPhase::Auto;
   ValidateMode validate = ValidateMode::Off;
-  /// Fill FrameMetrics::energies after every step. Costs a pass over every constraint (about
-  /// 1.5 ms per step on bear, 5% of a default run), so a caller that does not log them (the CLI
+  /// Fill FrameMetrics::energies after every step. Costs a pass over every constraint (a
+  /// noticeable share of a default run; lab/history.md), so a caller that does not log them
+  /// (the CLI
   /// without --log) turns it off; Simulator::energies() still computes them on demand.
   bool frame_energies = true;
 };

@@ -10,8 +10,8 @@ namespace shellcontract {
 /// (delta 1e-4, mean edge 0.0088 of the diagonal), so 1/80 leaves it, and every mesh as coarse,
 /// at the paper's delta. A contact distance that is a fixed share of the diagonal is a growing
 /// share of a finer mesh's edges: each face has more neighbours within it, and the broad phase's
-/// candidate pairs per face grow with the resolution (bear subdivided twice, at rest: 4.3x bear's
-/// per face under delta 1e-4, 1.05x under delta 2.5e-5, bear's own ratio; pair-growth.md).
+/// candidate pairs per face grow with the resolution, while a delta kept at the same share of the
+/// mean edge keeps them near the coarse mesh's count (lab/pages/pair-growth.md).
 inline constexpr double AUTO_DELTA_PER_MEAN_EDGE = 1.0 / 80.0;
 
 /// Mean length of the mesh's edges (each edge once), in the mesh's units; 0 for a mesh without

@@ -54,8 +54,8 @@ inline double region_pressure(double shrink) { return shrink * FULL_REGION_PRESS
 /// with the shell's contraction (a load, so they creep on slowly after the shell has stopped).
 /// At -p 0 there is no load and the dimple alone keeps the contraction local. Chosen by
 /// measurement (docs/math/local-contraction.md, section 5): with it the regions of bumpy_sphere,
-/// the hand, bear, the elk and the kitten sink at least 2.7 times as far as without the
-/// contraction in the default run, a margin over the 2x the local contraction promises.
+/// the hand, bear, the elk and the kitten sink, in the default run, farther than the 2x the
+/// local contraction promises, with a margin.
 inline constexpr double REGION_LOAD_GAIN = 2.0;
 
 /// The region load of strength S under the global pressure P: REGION_LOAD_GAIN * S * P.

@@ -32,8 +32,8 @@ VertexFaces vertex_faces(const Faces& faces, Eigen::Index num_vertices);
 /// pressure_forces, in parallel over the vertices (in the caller's TBB arena), each vertex
 /// summing the terms of its faces in increasing face id, as the face loop of the serial form
 /// adds them: the same bits for any thread count and as the serial form. On a 16-core
-/// machine the serial form took 3-7 ms of bear x16's ~110 ms step at 16 threads (a step timer
-/// build, not kept; lab/pages/scale.md, "Sixteen cores").
+/// machine the serial form was a noticeable share of the largest meshes' step at 16 threads (a
+/// step timer build, not kept; lab/pages/scale.md, "Sixteen cores").
 /// @param around  vertex_faces(faces, x.rows())
 void pressure_forces(const Positions& x, const Faces& faces, const VertexFaces& around, double P,
                      PressureModel model, Positions& f);

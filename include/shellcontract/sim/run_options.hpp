@@ -29,10 +29,9 @@ enum class RegionSource {
 enum class OrderChoice { Auto, Sequential, Coloured };
 
 /// Above this many faces `--order auto` picks the coloured order. On bear subdivided twice (442k
-/// faces), over a default run of 200 frames on two cores, the coloured order peaked at 942 MB and
-/// took 411 ms per step, the sequential one (with its speculative broad phase) 1562 MB and 507
-/// ms; at 16 threads of a 16-core machine 246-276 against 725 ms per step, whose sequential
-/// solve runs on one thread (lab/pages/scale.md). The paper's meshes (at most 28k faces)
+/// faces) the coloured order used less memory and was faster per step than the sequential one
+/// (with its speculative broad phase), on two cores and more so on sixteen, where the
+/// sequential solve runs on one thread (lab/pages/scale.md). The paper's meshes (at most 28k faces)
 /// and bear subdivided once (111k) keep the paper's order, for which the defaults were chosen.
 constexpr std::size_t AUTO_COLOURED_FACES = 200000;
 

@@ -167,8 +167,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   if (float_cells) {
     // The superset loop needs only a monotone map from the doubles to the floats (it keeps
     // every overlap: a <= b implies f(a) <= f(b)), and a rounded subtraction followed by a
-    // rounded conversion is one; the outward rounding of the portable path costs 10x more here
-    // (bench_broad_phase, 0.5 ms per call on bear).
+    // rounded conversion is one; the outward rounding of the portable path costs much more here
+    // (bench_broad_phase; lab/history.md).
     tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, GRID_VERTEX_GRAIN),
                       [&](const tbb::blocked_range<std::size_t>& r) {
                         for (std::size_t v = r.begin(); v < r.end(); ++v)
@@ -405,7 +405,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   const StageTimer t_output;
   // The chunks' pairs one after the other: the chunks are cut by entry counts, not by threads,
   // so this order (cells, then rows within a cell) does not depend on the thread count. No sort:
-  // it cost 2 ms per call on the collapsed bear, and callers need a fixed order, not a sorted one.
+  // it is costly on a crowded scene (lab/history.md), and callers need a fixed order, not a sorted
+  // one.
   std::int64_t reported = 0;
   std::size_t vf_total = 0, ee_total = 0;
   std::vector<std::size_t>& offset = s.chunk_offsets;  // VF offsets, then EE offsets, per chunk
@@ -419,8 +420,8 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   }
   // Sized without writing: the parallel unpack below writes every pair, and takes the page
   // faults of fresh storage on all threads. A resize that zeroed the growth (and copied the old
-  // pairs when it reallocated) cost bear x16 4-7 ms per step on one thread, and 33-65 ms at each
-  // reallocation (lab/pages/scale.md, "Page faults of the pair arrays").
+  // pairs when it reallocated) cost every step serial time, and more at each reallocation
+  // (lab/pages/scale.md, "Page faults of the pair arrays").
   resize_for_rewrite(out.vertex_face, vf_total);
   resize_for_rewrite(out.vertex_face_close, vf_total);
   resize_for_rewrite(out.edge_edge, ee_total);

@@ -29,9 +29,9 @@ namespace detail {
 /// Cell size over the median swept-box extent (the largest side of a face or edge box).
 /// Smaller cells put each box in more cells (a dearer counting sort, fewer patches of the kept
 /// grid); larger ones test more pairs per cell. lab/scripts/scale_benchmark.py --phases (its grid
-/// and cell loop rows, bear and bear x16, one and two threads): 2.5 to 3.5 are the fastest,
-/// 1.5 is 13-17 % slower per step on bear in the coloured order, 4 near the limit of
-/// GRID_CROWDED_WORK_PER_BOX on bear x16.
+/// and cell loop rows, bear and bear x16, one and two threads): 3 lies in the fastest range;
+/// smaller factors are measurably slower per step, and larger ones approach the limit of
+/// GRID_CROWDED_WORK_PER_BOX on the largest meshes (lab/pages/scale.md, lab/history.md).
 constexpr double GRID_CELL_FACTOR = 3.0;
 /// The cell size tried, over the same median extent, when GRID_CELL_FACTOR's cells would exceed
 /// GRID_CROWDED_WORK_PER_BOX.
@@ -54,18 +54,16 @@ constexpr std::int64_t GRID_CROWDED_WORK_PER_BOX = 256;
 /// If the pair loops would still visit more than this many entry pairs per box (every box in a
 /// few cells: boxes spread over a huge range, or nearly all of the scene overlapping), the grid
 /// degenerates towards brute force, so PrimitiveBoxes (CGAL's box_intersection_d) runs instead
-/// (same result). At one thread the cell loop costs 0.41 ns per entry pair with AVX-512 and 0.66
-/// ns without (bench_broad_phase BM_GridCellLoop on bear), so 1024 pairs per box cost 0.4-0.7 us,
-/// about what PrimitiveBoxes costs per box on a scene with almost no overlaps (0.41 us:
-/// BM_FindCandidates/PrimitiveBoxes, 34 ms for bear's 83k boxes) and much less than it costs on
-/// a crowded one: with a limit of 256, bear subdivided three times (1.77 M faces) fell back to it
-/// in its first ten frames and took 9.3 s per step, against 2.4 s on the grid
-/// (lab/pages/scale.md, "Beyond a million faces").
+/// (same result). The limit is where the cell loop's cost per box (BM_GridCellLoop) matches what
+/// PrimitiveBoxes costs per box on a scene with almost no overlaps
+/// (BM_FindCandidates/PrimitiveBoxes); on a crowded scene PrimitiveBoxes costs much more, and a
+/// lower limit made the largest meshes fall back to it and run several times slower per step
+/// (lab/pages/scale.md, "Beyond a million faces"; lab/history.md).
 constexpr std::int64_t GRID_WORK_PER_BOX = 1024;
 /// The per-cell pair loops run as this many chunks of cells (about equal entry counts each), in
 /// parallel with TBB; more chunks than threads balance the load (eight per thread on 16 cores:
-/// the chunks' costs differ by up to 1.5x, as their work grows with the square of a cell's
-/// entries). The pairs come out in the same order for any number of chunks.
+/// the chunks' costs differ, as their work grows with the square of a cell's entries;
+/// lab/history.md). The pairs come out in the same order for any number of chunks.
 constexpr std::size_t GRID_CHUNKS = 128;
 /// Grid reuse (temporal coherence, grid_pairs): a call keeps the last call's grid while the
 /// desired cell size is within this factor of the kept one and the scene is inside the kept grid.
@@ -91,10 +89,9 @@ constexpr int GRID_PATCH_MAX_THREADS = 2;
 constexpr std::size_t GRID_CELL_GRAIN = 16384;
 /// Vertices per task of the grid's per-vertex loops.
 constexpr std::size_t GRID_VERTEX_GRAIN = 2048;
-/// Rows of the AVX-512 cell loop processed together (cell_rows_avx512). bench_broad_phase on
-/// bear's frames 299 and 300 at P = 4 (one core, best of 5, five alternating series): 1 row
-/// 13.2-15.0 ms per call, 2 rows 11.6-13.5, 4 rows 12.7-14.4 (their broadcast row values no
-/// longer fit the 32 vector registers). At most 4 (BroadPhaseScratch's row buffers).
+/// Rows of the AVX-512 cell loop processed together (cell_rows_avx512). 2 rows were the fastest
+/// in bench_broad_phase (lab/history.md): 4 rows' broadcast row values no longer fit the 32
+/// vector registers. At most 4 (BroadPhaseScratch's row buffers).
 constexpr int GRID_ROW_GROUP = 2;
 static_assert(GRID_ROW_GROUP >= 1 && GRID_ROW_GROUP <= 4, "see detail::GridChunk::row_keys");
 /// Ids are stored as gid << 3 | flags in 32 bits.
@@ -140,8 +137,8 @@ inline float round_up(double x) {
 }
 
 /// Per-primitive data of the grid, derived from the per-vertex data on the fly: stored face and
-/// edge boxes would be 2-5 MB per call and memory traffic dominated earlier versions, while the
-/// vertex arrays and the topology stay in cache.
+/// edge boxes would be megabytes per call and memory traffic dominated earlier versions, while
+/// the vertex arrays and the topology stay in cache (lab/history.md).
 struct GridPrimitives {
   const CollisionTopology& topo;
   const BroadPhaseScratch& s;

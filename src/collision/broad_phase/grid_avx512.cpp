@@ -125,9 +125,8 @@ inline __attribute__((always_inline)) void cell_rows_avx512(
 /// float boxes are the exact ones rounded monotonically: see grid_pairs), and a pair whose float
 /// boxes overlap only by rounding passes too; every key is flagged close (no far test). Twice
 /// the lanes of the double loop and no confirmation: the speculative task's cell loop is the
-/// step's longest part at strong pressure. Bear's P = 4 frames 299-300 (BM_GridOnVertexBoxes,
-/// one core, with the gather by kind of grid_chunk_avx512 for both): cell loop 6.5-6.7 against
-/// 7.8-9.8 ms, the same 252k pairs (docs/design/self-collision.md).
+/// step's longest part at strong pressure. The float loop is faster than the double one and
+/// finds the same pairs (BM_GridOnVertexBoxes; docs/design/self-collision.md, lab/history.md).
 template <int R>
 inline __attribute__((always_inline)) void cell_rows_avx512_float(
     const detail::GridCell& cell, std::size_t i, std::size_t j0, std::size_t j1, bool stagger,

@@ -1,9 +1,9 @@
 // The Grid method's counting sort of the boxes into their cells, in two levels: the boxes go
 // first into slabs (runs of whole grid rows, cut by cells, not by threads), then each slab sorts
 // its own boxes into its own cells. A flat counting sort over all cells kept a counter per cell
-// for every part of the boxes (bear x16: 2.65 M cells, 10.6 MB per part) and scattered the
-// entries of neighbouring parts into the same cache lines: on 16 cores its count ran 2.3x and
-// its scatter 1.1x faster than on one (lab/pages/scale.md, "Sixteen cores"). Here a
+// for every part of the boxes (megabytes per part on the largest meshes) and scattered the
+// entries of neighbouring parts into the same cache lines, so it hardly ran faster on many
+// cores than on one (lab/pages/scale.md, "Sixteen cores"; lab/history.md). Here a
 // slab's counters and entries fit in a core's L2 and no two tasks write the same slab.
 #include <tbb/parallel_for.h>
 

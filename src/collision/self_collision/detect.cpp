@@ -11,9 +11,9 @@ void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, doubl
   if (n == 0) return;
   // One parallel region per call: each task takes a fixed block of tests (never cut by the
   // thread count), runs the filter on it, then the narrow phase on the block's survivors, and
-  // keeps its hits in test order. With a region per stage and compaction (five per call), bear's
-  // rounds after the first took 0.68 ms each for a few thousand tests, mostly hand-offs between
-  // the threads; with one, 0.44 ms. Each test is a different pair, so the tasks write different
+  // keeps its hits in test order. A region per stage and compaction (five per call) spent most
+  // of the later rounds, a few thousand tests each, on hand-offs between the threads
+  // (lab/history.md). Each test is a different pair, so the tasks write different
   // bytes of free_ and stale_.
   const std::size_t blocks = (n + DETECT_BLOCK - 1) / DETECT_BLOCK;
   if (blocks_.size() < blocks) blocks_.resize(blocks);
@@ -32,8 +32,8 @@ void SelfCollision::Impl::detect(const Positions& x0, const Positions& x1, doubl
       // nonpenetration_filter_culls one by one); a group of four is cut where the kind changes.
       // A culled pair is free at its current positions. The same batch gives the narrow phase's
       // axes cull (separating_axes_culls) from the positions it has loaded: a survivor it settles
-      // is free as well, and counted as the narrow phase's. On bear x16 it settles three
-      // quarters of the survivors (neighbours that move together), which the narrow phase
+      // is free as well, and counted as the narrow phase's. On large meshes it settles most
+      // of the survivors (neighbours that move together), which the narrow phase
       // gathered again one by one (lab/scripts/scale_benchmark.py --phases, the narrow phase row).
       out.kept.clear();
       out.axes_settled = 0;

@@ -97,10 +97,10 @@ void SelfCollision::Impl::mark_moved_and_collect(CollisionStepStats& stats) {
   // the zone moves, every later pass visits only those: a pair outside touches no vertex that
   // has moved since, so its flags stay as the full pass left them (not stale, free) and no pass
   // would mark or collect it; the tested pairs, the only ones detect changes, are collected
-  // ones. The zone pass collects the same pairs in the same order. Bear at P = 4 (timers and
-  // counts in a build not committed): each pass over its 133k live pairs took 0.18 ms, while
-  // rounds 2-4 collect 3,000, 700 and 200 tests per step and the fail-safe's hardly any; the
-  // zone holds 38% of the live pairs, and 1.8 of the 4.4 passes per step stay in it.
+  // ones. The zone pass collects the same pairs in the same order. Why: at strong pressure a
+  // full pass over the live pairs costs far more than the few tests the later rounds collect,
+  // and a good share of the passes stay in the zone (measured on bear at P = 4;
+  // lab/history.md).
   //
   // Work unit u is live_units_[u]: its live pairs, and the slots from its begin in tests_ and
   // in the zone's lists.
@@ -119,8 +119,8 @@ void SelfCollision::Impl::mark_moved_and_collect(CollisionStepStats& stats) {
       !in_zone && mark && options_.narrow_rescans && zone_state_ != ZoneState::TooLarge;
   if (build) {
     // The build pass rewrites the zone whole: its growth neither zeroes nor copies. As
-    // std::vector's, on one thread, the growth was about 1.4 % of bear x16's step time at one
-    // thread under perf, over its first eight frames (the pairs grow as the shell contracts).
+    // std::vector's, on one thread, the growth showed in perf on the largest meshes (the pairs
+    // grow as the shell contracts; lab/history.md).
     if (zone_pair_.size() < slots) resize_for_rewrite(zone_pair_, slots);
     if (zone_v_.size() < slots) resize_for_rewrite(zone_v_, slots);
     zone_count_.resize(units);

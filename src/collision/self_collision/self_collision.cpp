@@ -11,8 +11,8 @@ namespace shellcontract {
 // (rounding is monotone: hi + I >= lo' - I gives fl(hi + I) >= fl(lo' - I)). So I = (delta +
 // m)/2 + s covers the bound when s >= u (M + m/2) plus the rounding of I itself, which s = 4u (M
 // + delta + m) does. The inflation was delta + m/2, a band of gaps up to 2 delta + m (6 delta)
-// where delta + m (5 delta) are needed: on bear x16 in the first ten frames 15 % more
-// candidates, on bear 8 % (lab/scripts/scale_benchmark.py's pairs per face).
+// where delta + m (5 delta) are needed, and the wider band gave measurably more candidates
+// (lab/scripts/scale_benchmark.py's pairs per face; lab/history.md).
 double broad_phase_inflation(const CollisionOptions& options, double max_abs) {
   constexpr double u = std::numeric_limits<double>::epsilon() / 2.0;
   const double band = options.delta + options.region_margin * options.delta;

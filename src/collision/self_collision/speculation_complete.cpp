@@ -53,7 +53,8 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
   // (the arithmetic of find_candidates), which vertices left their predicted boxes, the skins of
   // the next prediction (the end positions after the warm start are what was predicted), the
   // response regions (set_regions' arithmetic) and whether x0 is the one predict saw. As four
-  // serial passes these took 0.31 ms per step on bear at P = 4 (docs/design/self-collision.md).
+  // serial passes these were a visible share of the step at strong pressure
+  // (docs/design/self-collision.md).
   const Eigen::Index nv = x0.rows();
   const std::size_t nvs = static_cast<std::size_t>(nv);
   const double max_abs_x = max_abs(x0, x1);
@@ -142,7 +143,7 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
            b.lo[2] - a.hi[2] > far_gap || a.lo[2] - b.hi[2] > far_gap;
   };
   // Raw pointers copied into each task: with the byte stores of the flags the compiler would
-  // otherwise reload every vector's data pointer per pair (measured 2x slower).
+  // otherwise reload every vector's data pointer per pair (measured slower; lab/history.md).
   const PairRecord* const rec_data = pairs_.data();
   const detail::GridVertexBox* const box_data = exact_boxes_.data();
   const std::uint8_t* const esc_data = escaped_.data();
@@ -176,7 +177,7 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
       std::uint32_t* __restrict test_out = tests_data + blk * PAIR_GRAIN;
       std::size_t nlive = 0, ntests = 0;
       // VF pairs come first (the grid's lists, VF then EE): one loop per kind, so the kind is no
-      // per-pair branch, and the tests are branch-free (measured on bear: 35-40% faster).
+      // per-pair branch, and the tests are branch-free (measured faster; lab/history.md).
       // The boxes of the pair PF ahead are prefetched: the four box reads per pair are the
       // loop's cost (perf, bear at P = 4: its share against the solve's membrane kernel 0.61 ->
       // 0.57; 16 and 32 ahead the same).
@@ -235,7 +236,7 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
   std::size_t kept = 0;
   for (const std::size_t k : block_kept_) kept += k;
   // The live pairs stay in the blocks' slices (the passes over them visit the slices, so they
-  // are not moved together: 2.7 MB a step on bear at P = 4).
+  // are not moved together: that would copy megabytes a step at strong pressure).
   live_units_.resize(blocks);
   live_count_ = 0;
   for (std::size_t b = 0; b < blocks; ++b) {
@@ -247,7 +248,7 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
   // The primitives with a vertex outside its predicted box: each against the grid's primitives
   // without one (whose actual boxes are inside their predicted ones, so the query sees every
   // actual overlap), then against each other by a sweep along x. A few hundred queries per step
-  // (bear at P = 4), in parallel blocks: 1.4 -> 0.9 ms per step, measured.
+  // (bear at P = 4), in parallel blocks, which measured faster than serial (lab/history.md).
   auto ids = [&](std::uint32_t gid) { return detail::primitive_vertices(topo_, gid); };
   auto outside = [&](std::uint32_t gid) {
     const std::array<int, 3> v = ids(gid);
@@ -294,8 +295,8 @@ bool SelfCollision::Impl::complete_speculation(const Positions& x0, const Positi
     h.stale = h.role != EXCLUDED && !far(prim_box(a), prim_box(b));
     return h;
   };
-  // Appends hits to the pairs, sizing the arrays once (push_back per pair cost 0.24 ms per step
-  // on bear at P = 4).
+  // Appends hits to the pairs, sizing the arrays once (push_back per pair was measurably slower;
+  // lab/history.md).
   auto append = [&](const std::vector<QueryHit>& hits) {
     std::size_t at = pairs_.size();
     pairs_.resize(at + hits.size());

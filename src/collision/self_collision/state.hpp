@@ -62,15 +62,11 @@ struct SelfCollision::Impl {
   /// inflates the swept boxes by (delta + m)/2 with m = region_margin * delta
   /// (broad_phase_inflation), and every vertex then stays inside its swept box grown by m/2 (the
   /// response is clamped to it). A small region clamps more pushes, which later rounds or the
-  /// fail-safe must finish; a large one gives more candidates. Measured (this machine, quiet, warm start on, with
-  /// the inflation delta + m of the time): bear default run, per step filter tests / rounds /
-  /// collision ms, fail-safe vertices over the run; and hand at P = 4 for 300 frames, fail-safe
-  /// vertices:
-  ///   m = 2 delta: 128k / 3.65 / 30.5 ms, 0; hand 2004
-  ///   m = 4 delta: 166k / 3.17 / 31.3-32.7 ms, 0; hand 1032
-  ///   m = 8 delta: 257k / 2.96 / 37.2 ms, 0; hand 266
-  /// The scheme before the clamp (a second broad phase with an 8 delta margin whenever a push left
-  /// the region, 1.93 per step on bear): 196k / 2.81 / 49.8 ms, 0; hand 32.
+  /// fail-safe must finish; a large one gives more candidates. Measured on bear's default run and
+  /// on hand at P = 4 (lab/history.md): a wider margin costs more filter tests and collision
+  /// time and leaves fewer fail-safe vertices on hand. The scheme before the clamp (a second broad
+  /// phase with an 8 delta margin whenever a push left the region) was slower still, though it
+  /// left fewer fail-safe vertices on hand.
 
   /// Warm start: a previous contact is projected again only while its contact points have slid
   /// apart (tangentially) by at most this many push distances (2 delta each): farther, the frozen
@@ -89,11 +85,10 @@ struct SelfCollision::Impl {
 
   /// Speculative broad phase (SelfCollision::predict): the skin of a vertex's predicted box is
   /// SKIN_MIN delta plus SKIN_GROWTH times its prediction error (max norm) of the last step.
-  /// Measured on bear (default run, prediction = guess + last correction, before the warm start
-  /// was added to it): the error has median 1e-5 and 99th percentile 1-2e-4 per step, with a tail
-  /// to 1e-3 at the contacts, and the same vertices keep large errors from step to step. A fixed
-  /// skin of 2.5 delta left 59 vertices per step outside their boxes (5 delta: 8, for a grid
-  /// that costs 30% more); 1.5 delta plus 4 times the last error, 9 (mean skin 2.2 delta).
+  /// The prediction error is small for most vertices, with a tail at the contacts, and the same
+  /// vertices keep large errors from step to step; so a skin that grows with a vertex's last
+  /// error leaves few vertices outside their boxes at a smaller mean skin than a fixed skin, whose
+  /// grid would cost more (measured on bear; lab/history.md).
   static constexpr double SKIN_MIN = 1.5;
   static constexpr double SKIN_GROWTH = 4.0;
   /// If more than ESCAPE_LIMIT vertices, or this fraction of them if more, left their predicted

@@ -18,8 +18,8 @@ SelfCollision::Impl::PairRole SelfCollision::Impl::rest_role(CcdPrimitive kind,
 void SelfCollision::Impl::fill_records(std::size_t begin, std::size_t end, std::size_t nvf,
                                        std::uint8_t* roles) {
   // One loop per kind over raw pointers, and the rest-state lists searched only if the kind has
-  // any (none on bear): the per-pair call with its member reloads took 1.2 ms of CPU per step
-  // for bear's 221k speculative pairs at P = 4 (perf), on the background task's thread.
+  // any (none on bear): the per-pair call with its member reloads was a visible share of the
+  // background task's thread at strong pressure (perf; lab/history.md).
   PairRecord* const rec = pairs_.data();
   const std::size_t split = std::clamp(nvf, begin, end);
   const bool vf_listed = !excluded_vf_.empty() || !near_vf_.empty();
@@ -55,7 +55,7 @@ SelfCollision::Impl::candidate_pairs() const {
 }
 
 void SelfCollision::Impl::set_regions(const Positions& x0, const Positions& x1) {
-  // In parallel blocks of rows: one serial pass was 2 ms per step on bear x16.
+  // In parallel blocks of rows: a serial pass is too slow on the largest meshes (lab/history.md).
   const double half = 0.5 * options_.region_margin * options_.delta;
   region_lo_.resize(x0.rows(), 3);
   region_hi_.resize(x0.rows(), 3);
@@ -108,8 +108,8 @@ void SelfCollision::Impl::broad_phase(const Positions& x0, const Positions& x1,
   resize_for_rewrite(free_, n);
   // Without rest-state exclusions (most meshes; bear and its subdivisions) every pair is live,
   // and the live list (collect_live) is the identity: the record pass writes it while the
-  // stencils are in cache. As a second pass it re-read every record: a tenth of the records'
-  // time on bear x16 at one thread (lab/scripts/scale_benchmark.py --phases, the pair records row).
+  // stencils are in cache. As a second pass it re-read every record, a measurable share of the
+  // records' time (lab/scripts/scale_benchmark.py --phases, the pair records row; lab/history.md).
   const bool all_live = excluded_vf_.empty() && excluded_ee_.empty();
   if (all_live) {
     if (live_.size() < n) resize_for_rewrite(live_, n);
