@@ -25,6 +25,9 @@ struct ExportRequest {
   std::string ext;   ///< frame files' format (the output's extension)
   std::string gltf;  ///< animated .glb; empty = none
   double seconds_per_frame = 1.0 / 24.0;
+  /// --export-failure stop: a frame file that cannot be written ends the run (its result and
+  /// the other outputs are still written); otherwise only the export stops.
+  bool stop_run_on_failure = false;
 };
 
 /// Exports frames as the run shows them. Only reads positions, so the run is the same with or
@@ -46,6 +49,10 @@ class FrameExporter final : public RunObserver {
   }
   void frame(const Simulator& sim, const FrameMetrics& m) override {
     if (m.frame % request_.every == 0 || sim.finished()) take(m.frame, sim);
+  }
+  /// Polled after every step: with --export-failure stop, a failed frame file ends the run.
+  bool cancelled() override {
+    return request_.stop_run_on_failure && writer_ && writer_->failed();
   }
   void finished(const Simulator& sim, const RunResult&) override {
     if (last_ != sim.frame()) take(sim.frame(), sim);  // a run that stopped early

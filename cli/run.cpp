@@ -170,6 +170,7 @@ double peak_memory_mb() {
 
 int command_run(int argc, char** argv) {
   std::string input, output, log_path, summary_path, fields_prefix, fields_colour = "mean";
+  std::string export_failure = "warn";
   ExportRequest exports;
   bool quiet = false, repair = false;
   std::map<std::string, std::string> values;
@@ -197,6 +198,9 @@ int command_run(int argc, char** argv) {
       "--gltf alone: about 100 frames of the run")(
       "export-dir", po::value(&exports.dir)->value_name("DIR"),
       "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing)")(
+      "export-failure", po::value(&export_failure)->default_value(export_failure)->value_name("WHAT"),
+      "when a frame file cannot be written (a full disk): warn (the export stops, the run goes "
+      "on) or stop (the run ends there); either way the result, log and summary are written")(
       "gltf", po::value(&exports.gltf)->value_name("FILE.glb"),
       "write the kept frames as one animated glTF 2.0 binary (morph targets, normals, colour "
       "fields); open it with scripts/view.py")("log", po::value(&log_path)->value_name("FILE.csv"),
@@ -244,6 +248,9 @@ int command_run(int argc, char** argv) {
           "--fields, --export-dir and --gltf cannot be combined with --resume: the frames before "
           "the checkpoint are not in it");
     colour = parse_field_colour(fields_colour);
+    if (export_failure != "warn" && export_failure != "stop")
+      throw UsageError("--export-failure: '" + export_failure + "' is not warn or stop");
+    exports.stop_run_on_failure = export_failure == "stop";
     const std::string ext = lower_extension(output);
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
       throw UsageError("-o " + output + ": unknown mesh format '." + ext +

@@ -151,6 +151,11 @@ void FrameSequenceWriter::finish() {
   if (error) std::rethrow_exception(error);
 }
 
+bool FrameSequenceWriter::failed() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return error_ != nullptr;
+}
+
 ExportStats FrameSequenceWriter::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stats_;

@@ -31,6 +31,32 @@ TEST_F(Hostile, AFullDiskStopsTheExportNotTheResult) {
   EXPECT_EQ(test::slurp(dir_ / "o.off"), test::slurp(dir_ / "ref.off"));
 }
 
+// --export-failure stop: the user asked that a failed frame file end the run. The run stops
+// early (fewer frames than asked), and the result, log and summary of where it stopped are still
+// written. Without the option the run would go on to frame 200.
+TEST_F(Hostile, AFullDiskEndsTheRunWhenAskedAndKeepsItsResult) {
+  std::string why;
+  if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) GTEST_SKIP() << why;
+  const auto r = run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "200",
+                          "-q", "--export-every", "1", "--export-dir", (dir_ / "small" / "frames").string(),
+                          "--export-failure", "stop", "--log", (dir_ / "log.csv").string(), "--summary",
+                          (dir_ / "s.json").string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "o.off")) << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "log.csv")) << r.output;
+  ASSERT_TRUE(fs::exists(dir_ / "s.json")) << r.output;
+  EXPECT_NE(r.output.find("disk is full"), std::string::npos) << r.output;
+  const std::string summary = test::slurp(dir_ / "s.json");
+  const std::size_t at = summary.find("\"frames_run\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_LT(std::stoi(summary.substr(at + 14)), 200) << "the run did not stop at the failure";
+  // A value other than warn or stop is refused before any work.
+  const auto bad = run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "b.off").string(),
+                            "--export-failure", "maybe"});
+  EXPECT_EQ(bad.exit_code, 1) << bad.output;
+  EXPECT_FALSE(fs::exists(dir_ / "b.off"));
+}
+
 // Before: the full disk under the .glb was reported as "serializing the glTF failed", and -o was
 // never written.
 TEST_F(Hostile, AFullDiskUnderTheGltfIsNamedAndTheResultWritten) {

@@ -72,6 +72,9 @@ class FrameSequenceWriter {
   /// Counters so far (safe to call at any time).
   ExportStats stats() const;
 
+  /// Whether a frame failed to be written (safe to call at any time); finish() rethrows it.
+  bool failed() const;
+
  private:
   void work();
 
