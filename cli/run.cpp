@@ -152,7 +152,7 @@ JsonObject summary_json(const std::string& input, const std::string& output,
 
 /// The process's peak resident memory so far. Linux's VmHWM (/proc/self/status, in kB) first:
 /// getrusage's ru_maxrss keeps, across exec, the peak of the process that forked this one, so a
-/// tool started from a script holding 800 MB reported 800 MB for a small mesh
+/// tool started from a script reported the script's peak, not its own, for a small mesh
 /// (tests/cli/test_cli_run_control.cpp). getrusage (KiB on Linux) where /proc is not there.
 double peak_memory_mb() {
   std::ifstream status("/proc/self/status");

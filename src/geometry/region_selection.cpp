@@ -390,7 +390,7 @@ std::vector<int> face_ids_from_regions(const std::vector<std::vector<int>>& regi
 
 std::vector<std::vector<int>> read_region_file(const std::string& path, std::size_t num_faces) {
   // A face is listed once at most, in at most 20 characters with its separator: a real file is
-  // bounded by the mesh. Larger files (a 1 GB sparse file, /dev/zero is refused as a device)
+  // bounded by the mesh. Larger files (a huge sparse file; /dev/zero is refused as a device)
   // are refused before they are read; so are longer lines.
   const std::uint64_t max_line = REGION_FILE_SLACK_BYTES + 21 * static_cast<std::uint64_t>(num_faces);
   const std::uint64_t max_bytes = REGION_FILE_SLACK_BYTES + 64 * static_cast<std::uint64_t>(num_faces);

@@ -44,9 +44,9 @@ enum SweepKind : int {
 
 /// Vertices per chunk of a PACK or UNPACK phase.
 constexpr std::size_t VERTEX_GRAIN = 1024;
-/// Rows per task of the solve's copies into and out of the padded rows: with 1024,
-/// bench_projection's coloured membrane sweep (bear, 2 threads) took 205-212 us against 199-207
-/// with the copies serial; with 8192, 202-203 us.
+/// Rows per task of the solve's copies into and out of the padded rows: large enough that the
+/// tasks' overhead does not make the parallel copy slower than a serial one on a small mesh
+/// (bench_projection's coloured membrane sweep; lab/history.md).
 constexpr std::size_t COPY_GRAIN = 8192;
 
 /// True for the kinds that work on the padded rows (PaddedVertex) instead of x.
