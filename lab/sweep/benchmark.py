@@ -17,6 +17,7 @@ usage: lab/sweep/benchmark.py [--build build] [--meshes data/meshes] [--out /tmp
 import argparse
 import json
 import os
+import resource
 import shutil
 import statistics
 import subprocess
@@ -53,10 +54,17 @@ def main():
                               os.path.join(a.out, "unused"), "--dry-run"], env=env, check=True,
                              capture_output=True, text=True).stdout.splitlines()
 
+    def children_cpu():
+        """CPU seconds (user + system) of every finished child process, theirs included: less
+        sensitive than wall time to other work on the machine."""
+        r = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return r.ru_utime + r.ru_stime
+
     def plain_calls(folder):
         """The jobs as plain CLI calls with their own arguments, one after the other."""
         os.makedirs(folder)
         start = time.monotonic()
+        cpu = children_cpu()
         for line in listing:
             job, mesh, *args = line.split()
             mesh = os.path.join(os.path.dirname(sweep_path), mesh)
@@ -66,30 +74,35 @@ def main():
                                  os.path.join(folder, job + ".json"), "-q"] + args).returncode
             if rc not in (0, 5):
                 sys.exit("plain run of job {} exited {}".format(job, rc))
-        return time.monotonic() - start
+        return time.monotonic() - start, children_cpu() - cpu
 
     def sweep_run(folder, workers):
         start = time.monotonic()
+        cpu = children_cpu()
         subprocess.run([sys.executable, "-m", "shellcontract.sweep", sweep_path, "-o", folder,
                         "--workers", str(workers)], env=env, check=True,
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-        return time.monotonic() - start
+        return time.monotonic() - start, children_cpu() - cpu
 
     # Rounds of the three, alternating, so that a slow spell of the machine falls on all three
     # alike; each sweep starts in an empty folder (nothing skipped).
-    rounds = []
+    rounds, cpu = [], []
     for k in range(a.rounds):
-        t = {"plain": plain_calls(os.path.join(a.out, "plain{}".format(k))),
+        w = {"plain": plain_calls(os.path.join(a.out, "plain{}".format(k))),
              1: sweep_run(os.path.join(a.out, "sweep1_{}".format(k)), 1),
              2: sweep_run(os.path.join(a.out, "sweep2_{}".format(k)), 2)}
+        t = {key: v[0] for key, v in w.items()}
+        cpu.append({key: v[1] for key, v in w.items()})
         rounds.append(t)
-        print("round {}: plain {:.1f} s, 1 worker {:.1f} s, 2 workers {:.1f} s".format(
-            k + 1, t["plain"], t[1], t[2]), flush=True)
+        print("round {}: plain {:.1f} s, 1 worker {:.1f} s, 2 workers {:.1f} s (CPU {:.1f}, {:.1f}, "
+              "{:.1f} s)".format(k + 1, t["plain"], t[1], t[2], cpu[-1]["plain"], cpu[-1][1],
+                                 cpu[-1][2]), flush=True)
 
     n = len(listing)
     med = {key: statistics.median(t[key] for t in rounds) for key in ("plain", 1, 2)}
     speedup = statistics.median(t[1] / t[2] for t in rounds)
     overhead = statistics.median(100.0 * (t[1] / t["plain"] - 1.0) for t in rounds)
+    cpu_overhead = statistics.median(100.0 * (c[1] / c["plain"] - 1.0) for c in cpu)
     lines = [
         "{} rounds; medians of the wall times, and of each round's ratios:".format(len(rounds)),
         "",
@@ -101,10 +114,12 @@ def main():
         "| sweep, 2 workers | {:.1f} | {:.2f} |".format(med[2], med[2] / n),
         "",
         "speed-up of 2 workers over 1: {:.2f}x; sweep overhead (1 worker against the plain "
-        "calls): {:+.1f} %".format(speedup, overhead),
+        "calls): {:+.1f} % in wall time, {:+.1f} % in CPU time (every process of the sweep, "
+        "Dask's included)".format(speedup, overhead, cpu_overhead),
         "",
-        "each round (plain, 1 worker, 2 workers, s): " + "; ".join(
-            "{:.1f}, {:.1f}, {:.1f}".format(t["plain"], t[1], t[2]) for t in rounds),
+        "each round (plain, 1 worker, 2 workers; wall s / CPU s): " + "; ".join(
+            "{:.1f}/{:.1f}, {:.1f}/{:.1f}, {:.1f}/{:.1f}".format(
+                t["plain"], c["plain"], t[1], c[1], t[2], c[2]) for t, c in zip(rounds, cpu)),
     ]
     print("\n".join(lines))
     if a.page:
