@@ -53,8 +53,8 @@ class ContactCache {
   /// apart (tangentially) by at most this many push distances (RESPONSE_FACTOR delta each):
   /// farther, the frozen normal no longer describes the pair. A tighter limit drops resting
   /// contacts that then are detected and pushed again; no limit projects pairs whose normal has
-  /// turned (the measured contact counts: lab/history.md, "Warm start: the slide limit and the
-  /// cache").
+  /// turned (the measured contact counts: lab/history.md, "Figures moved out of the collision
+  /// pipeline's comments").
   ///
   /// The contacts the warm start projects are those of the last step: the ones detected then,
   /// and the ones its own warm start projected (update). With only the detected ones, a
