@@ -75,10 +75,12 @@ def test_regions_match_the_cli_face_list(cli, mesh_dir, tmp_path):
 
 
 def test_regions_options_are_used_and_checked(mesh_dir):
+    # The CLI's option names, with '_' or '-'.
     vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
-    assert shellcontract.regions(vertices, faces, min_curvature_contrast=100.0) == []
-    with pytest.raises(TypeError, match="unknown option 'contrast'"):
-        shellcontract.regions(vertices, faces, contrast=2.0)
+    assert shellcontract.regions(vertices, faces, contrast=100.0) == []
+    assert shellcontract.regions(vertices, faces, **{"min-cap-angle": 180.0}) == []
+    with pytest.raises(TypeError, match="unknown option 'min_curvature_contrast'"):
+        shellcontract.regions(vertices, faces, min_curvature_contrast=2.0)
 
 
 def test_write_then_read_gives_the_same_arrays(ico2, tmp_path):
@@ -120,3 +122,19 @@ def test_arrays_are_refused_for_the_cli_reason(cli, mesh_dir, name):
     problem = re.search(re.escape(str(path)) + r": ([a-z -]+):", cli_error.stderr).group(1)
     with pytest.raises(ValueError, match="^input arrays: " + problem + ":"):
         shellcontract.check(*off_arrays(path))
+
+
+def test_contract_takes_what_regions_returns_and_per_face_labels(mesh_dir):
+    # Issue "Regions a person would choose", item 4: the three forms give the same run.
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    found = shellcontract.regions(vertices, faces)
+    labels = [-1] * len(faces)
+    for k, r in enumerate(found):
+        for f in r:
+            labels[int(f)] = k
+    a = shellcontract.contract(vertices, faces, regions=found, frames=3, pressure=0.0)
+    b = shellcontract.contract(vertices, faces, regions=labels, frames=3, pressure=0.0)
+    assert a.summary["regions"] == len(found) == 3
+    assert (a.vertices == b.vertices).all()
+    with pytest.raises(ValueError, match="one entry per face"):
+        shellcontract.contract(vertices, faces, regions=[0, 1], frames=1)
