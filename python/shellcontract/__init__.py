@@ -63,7 +63,8 @@ def contract(vertices, faces, *, callback=None, **options):
     run (status "cancelled"). Ctrl-C stops the run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
     unknown option. ``regions`` takes "auto", "none", a face-list file, what regions() returns
-    (a list of face-index arrays) or one label per face (-1 = none).
+    (a list of face-index arrays) or one label per face (-1 = none); with the last two,
+    ``region_strengths`` (one value in [0, 1] per region) scales each region's region_shrink.
 
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
     cancels the run; resume=FILE continues such a run (the same vertices and faces; options, if
@@ -72,16 +73,35 @@ def contract(vertices, faces, *, callback=None, **options):
     checkpoints this reads and the other way round). ValueError for a checkpoint of another
     mesh, other options or another version, saying which.
     """
+    options = dict(options)
+    strengths = options.pop("region_strengths", None)
     regions = options.get("regions")
     if regions is None or isinstance(regions, (str, os.PathLike)):
+        if strengths is not None:
+            raise ValueError("region_strengths needs regions given as face lists or labels "
+                             "(a face-list file takes them as its 'S:' column)")
         return Result(_core.contract(vertices, faces, callback=callback, **options))
     # Face lists (what regions() returns) or one label per face (-1 = none): handed to the
-    # library as a temporary face-list file, the format `run --regions FILE` reads.
+    # library as a temporary face-list file, the format `run --regions FILE` reads, with each
+    # region's strength as its "S:" column.
+    lists = _region_lists(regions, len(faces))
+    prefixes = [""] * len(lists) if strengths is None else ["{!r}: ".format(s) for s in _strengths(strengths, len(lists))]
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "regions.txt")
         with open(path, "w") as f:
-            f.write("".join(" ".join(str(int(i)) for i in r) + "\n" for r in _region_lists(regions, len(faces))))
+            f.write("".join(p + " ".join(str(int(i)) for i in r) + "\n" for p, r in zip(prefixes, lists)))
         return Result(_core.contract(vertices, faces, callback=callback, **dict(options, regions=path)))
+
+
+def _strengths(strengths, num_regions):
+    """One float in [0, 1] per region (the share of region_shrink each region sinks with)."""
+    values = [float(s) for s in strengths]
+    if len(values) != num_regions:
+        raise ValueError("region_strengths: {} values for {} regions".format(len(values), num_regions))
+    for i, s in enumerate(values):
+        if not 0.0 <= s <= 1.0:  # NaN fails too
+            raise ValueError("region_strengths[{}] = {!r} is outside [0, 1]".format(i, s))
+    return values
 
 
 def _region_lists(regions, num_faces):

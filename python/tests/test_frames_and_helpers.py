@@ -138,3 +138,25 @@ def test_contract_takes_what_regions_returns_and_per_face_labels(mesh_dir):
     assert (a.vertices == b.vertices).all()
     with pytest.raises(ValueError, match="one entry per face"):
         shellcontract.contract(vertices, faces, regions=[0, 1], frames=1)
+
+
+def test_region_strengths_scale_each_region(mesh_dir):
+    # Issue 55, item 3: a strength per region from Python. Strength 1 everywhere is the run
+    # without strengths; 0.5 everywhere is region_shrink times 0.5, bit for bit (a power of two
+    # keeps the area-weighted mean strength exact), so it sinks less.
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    found = shellcontract.regions(vertices, faces)
+    run = dict(frames=40, pressure=0.0)
+    plain = shellcontract.contract(vertices, faces, regions=found, **run)
+    ones = shellcontract.contract(vertices, faces, regions=found, region_strengths=[1.0] * len(found), **run)
+    half = shellcontract.contract(vertices, faces, regions=found, region_strengths=np.full(len(found), 0.5), **run)
+    shrunk = shellcontract.contract(vertices, faces, regions=found, region_shrink=0.7 * 0.5, **run)
+    assert (ones.vertices == plain.vertices).all()
+    assert (half.vertices == shrunk.vertices).all()
+    assert 0.0 < half.summary["region_inward_displacement"] < 0.8 * plain.summary["region_inward_displacement"]
+    with pytest.raises(ValueError, match="2 values for 3 regions"):
+        shellcontract.contract(vertices, faces, regions=found, region_strengths=[1, 1], frames=1)
+    with pytest.raises(ValueError, match=r"region_strengths\[1\] = 1.5"):
+        shellcontract.contract(vertices, faces, regions=found, region_strengths=[1, 1.5, 1], frames=1)
+    with pytest.raises(ValueError, match="face lists or labels"):
+        shellcontract.contract(vertices, faces, regions="auto", region_strengths=[1], frames=1)

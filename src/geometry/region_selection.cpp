@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/curvature.hpp"
@@ -89,13 +90,17 @@ std::vector<int> face_ids_from_regions(const std::vector<std::vector<int>>& regi
 }
 
 std::vector<std::vector<int>> read_region_file(const std::string& path, std::size_t num_faces) {
+  return read_region_file_with_strengths(path, num_faces).regions;
+}
+
+RegionFile read_region_file_with_strengths(const std::string& path, std::size_t num_faces) {
   // A face is listed once at most, in at most 20 characters with its separator: a real file is
   // bounded by the mesh. Larger files (a huge sparse file; /dev/zero is refused as a device)
   // are refused before they are read; so are longer lines.
   const std::uint64_t max_line = REGION_FILE_SLACK_BYTES + 21 * static_cast<std::uint64_t>(num_faces);
   const std::uint64_t max_bytes = REGION_FILE_SLACK_BYTES + 64 * static_cast<std::uint64_t>(num_faces);
   const std::string bytes = read_regular_file(path, max_bytes);
-  std::vector<std::vector<int>> regions;
+  RegionFile file;
   std::vector<std::size_t> first_line(num_faces, 0);  // line where a face was listed, 0 = not yet
   std::size_t line = 0;
   for (std::size_t begin = 0; begin < bytes.size();) {
@@ -114,7 +119,19 @@ std::vector<std::vector<int>> read_region_file(const std::string& path, std::siz
     std::vector<int> region;
     std::istringstream tokens(text);
     std::string token;
+    double strength = 1.0;
+    bool first = true;
     while (tokens >> token) {
+      if (std::exchange(first, false) && token.size() > 1 && token.back() == ':') {
+        // The region's strength: the whole token but its ':' must be a number (strtod's end).
+        const std::string number = token.substr(0, token.size() - 1);
+        char* end = nullptr;
+        strength = std::strtod(number.c_str(), &end);
+        if (end != number.c_str() + number.size() || !std::isfinite(strength) || strength < 0.0 || strength > 1.0)
+          throw InputError(line_error(printable(path), line, "strength '" + printable(number, 40) +
+                                                                 "' is not a number in [0, 1]"));
+        continue;
+      }
       // Digits only: "-1", "3.5", "1e3", "0x10" and "12abc" are all refused rather than
       // half-parsed by stol. The token is quoted printable (a NUL would cut the message).
       if (!std::all_of(token.begin(), token.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; }))
@@ -130,9 +147,11 @@ std::vector<std::vector<int>> read_region_file(const std::string& path, std::siz
       first_line[f] = line;
       region.push_back(static_cast<int>(f));
     }
-    regions.push_back(std::move(region));
+    if (region.empty()) throw InputError(line_error(printable(path), line, "a strength with no face after it"));
+    file.regions.push_back(std::move(region));
+    file.strength.push_back(strength);
   }
-  return regions;
+  return file;
 }
 
 void write_region_file(const std::string& path, const std::vector<int>& region_of_face) {

@@ -283,6 +283,31 @@ TEST(RegionFile, BadFilesNameTheLine) {
   expect_bad_file("duplicate.txt", "0 1\n2 1\n", 10, "2", "face 1 is already listed on line 1");
 }
 
+TEST(RegionFile, ALineMayStartWithItsStrength) {
+  // Issue 55, item 3: "S:" before the faces is the region's strength; without it, 1. A file
+  // without strengths reads as before (the other RegionFile tests).
+  const std::string path = temp_path("strengths.txt");
+  write_file(path, "# strengths\n0.25: 4 2\n7\n  1: 3\t5\n0: 6\n");
+  const RegionFile file = read_region_file_with_strengths(path, 8);
+  ASSERT_EQ(file.regions.size(), 4u);
+  EXPECT_EQ(file.regions[0], (std::vector<int>{4, 2}));
+  EXPECT_EQ(file.regions[1], (std::vector<int>{7}));
+  EXPECT_EQ(file.regions[2], (std::vector<int>{3, 5}));
+  EXPECT_EQ(file.regions[3], (std::vector<int>{6}));
+  EXPECT_EQ(file.strength, (std::vector<double>{0.25, 1.0, 1.0, 0.0}));
+  EXPECT_EQ(read_region_file(path, 8), file.regions);
+}
+
+TEST(RegionFile, BadStrengthsNameTheLine) {
+  expect_bad_file("strength_high.txt", "1 2\n1.5: 3\n", 10, "2", "strength '1.5' is not a number in [0, 1]");
+  expect_bad_file("strength_negative.txt", "-0.1: 3\n", 10, "1", "strength '-0.1' is not a number in [0, 1]");
+  expect_bad_file("strength_word.txt", "half: 3\n", 10, "1", "strength 'half' is not a number in [0, 1]");
+  expect_bad_file("strength_nan.txt", "nan: 3\n", 10, "1", "strength 'nan' is not a number in [0, 1]");
+  expect_bad_file("strength_trailing.txt", "0.5x: 3\n", 10, "1", "strength '0.5x' is not a number in [0, 1]");
+  expect_bad_file("strength_alone.txt", "0 1\n0.5:\n", 10, "2", "a strength with no face after it");
+  expect_bad_file("strength_second.txt", "3 0.5: 4\n", 10, "1", "'0.5:' is not a face index");
+}
+
 TEST(RegionFile, MissingFileIsAnInputError) {
   EXPECT_THROW(read_region_file(temp_path("does_not_exist.txt"), 10), InputError);
 }

@@ -164,6 +164,19 @@ std::vector<int> face_ids_from_regions(const std::vector<std::vector<int>>& regi
 ///         "<path>: cannot open" when the file cannot be read.
 std::vector<std::vector<int>> read_region_file(const std::string& path, std::size_t num_faces);
 
+/// The regions of a face-list file with a strength each.
+struct RegionFile {
+  std::vector<std::vector<int>> regions;  ///< as read_region_file returns them
+  std::vector<double> strength;           ///< one per region, in [0, 1]; 1 where the line gives none
+};
+
+/// read_region_file, where a line may start with its region's strength: a number in [0, 1]
+/// followed by ':' ("0.5: 12 13 14"), the share of --region-shrink that region sinks with; a line
+/// without one is at full strength. So a plain face list reads as before.
+/// @throws InputError "<path>:<line>: <problem>" as read_region_file, and for a strength that is
+///         not a number in [0, 1] or a strength with no face after it.
+RegionFile read_region_file_with_strengths(const std::string& path, std::size_t num_faces);
+
 /// Writes the regions of `region_of_face` in the format read_region_file reads: line r = the
 /// faces with id r, ascending, separated by single spaces. Written atomically (temporary file
 /// + rename).
