@@ -4,7 +4,11 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
+#include <memory>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -72,17 +76,22 @@ std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Posit
   for (Eigen::Index i = 0; i < n; ++i) mt.emplace_back(i, i, std::max(c.mixed_area(i), floor));
   M.setFromTriplets(mt.begin(), mt.end());
   const Eigen::VectorXd rhs = M * c.mean;
-  std::vector<Eigen::VectorXd> out;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver;
-  bool analysed = false;
-  for (double s : SEED_SCALES) {
-    const double t = (s * m.size) * (s * m.size);
+  // The scales are independent systems: solved side by side (each solve is the same
+  // deterministic sequence of operations as alone, so the result does not depend on the threads).
+  std::vector<Eigen::VectorXd> out(SEED_SCALES.size());
+  std::vector<char> failed(SEED_SCALES.size(), 0);
+  tbb::parallel_for(std::size_t{0}, SEED_SCALES.size(), [&](std::size_t k) {
+    const double t = (SEED_SCALES[k] * m.size) * (SEED_SCALES[k] * m.size);
     const Eigen::SparseMatrix<double> A = M + t * L;
-    if (!analysed) solver.analyzePattern(A), analysed = true;
-    solver.factorize(A);
-    if (solver.info() != Eigen::Success) throw UsageError("select_spherical_regions: the smoothing system is singular");
-    out.push_back(solver.solve(rhs));
-  }
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+    if (solver.info() != Eigen::Success) {
+      failed[k] = 1;
+      return;
+    }
+    out[k] = solver.solve(rhs);
+  });
+  if (std::any_of(failed.begin(), failed.end(), [](char f) { return f != 0; }))
+    throw UsageError("select_spherical_regions: the smoothing system is singular");
   return out;
 }
 
@@ -351,9 +360,18 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
     return cap.angle >= min_angle && cap.sphere.radius * options.min_curvature_contrast * h_ref <= 1.0;
   };
   const std::vector<char> none(m.nv, 0);
+  // Each seed's free growth depends on the seed alone: grown side by side, one grower (scratch
+  // arrays) per thread, and read back in seed order, so the result does not depend on threads.
+  std::vector<std::optional<Cap>> grown(seeds.size());
+  tbb::enumerable_thread_specific<std::unique_ptr<CapGrower>> growers;
+  tbb::parallel_for(std::size_t{0}, seeds.size(), [&](std::size_t i) {
+    std::unique_ptr<CapGrower>& g = growers.local();
+    if (!g) g = std::make_unique<CapGrower>(m, x, c, u.front(), options);
+    grown[i] = g->grow(seeds[i], none);
+  });
   std::vector<Cap> candidates;
-  for (int s : seeds)
-    if (std::optional<Cap> cap = grower.grow(s, none)) {
+  for (std::optional<Cap>& cap : grown)
+    if (cap) {
       ++r.candidates;
       if (cap->unbounded) {
         ++r.dropped_large;
