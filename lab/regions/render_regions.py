@@ -32,7 +32,7 @@ def main():
                 continue
             regions, table, ply = common.auto_regions(exe, path, tmp)
             png = os.path.join(out_dir, f"regions_{name}.png")
-            subprocess.run([sys.executable, os.path.join(common.ROOT, "scripts", "render_ply.py"), ply, png,
+            subprocess.run([sys.executable, os.path.join(common.ROOT, "lab", "scripts", "render_ply.py"), ply, png,
                             "--size", "640x480", "--title", f"{name}: {len(regions)} regions"] + VIEWS[name],
                            check=True, stdout=subprocess.DEVNULL)
             print(f"wrote {png} ({len(regions)} regions)")
