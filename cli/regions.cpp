@@ -81,6 +81,14 @@ std::string region_table(const RegionReport& report) {
   return t.str();
 }
 
+// A default as the user would type it ("0.3"), not Boost's full round-trip digits
+// ("0.29999999999999999").
+std::string shown(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 }  // namespace
 
 int command_regions(int argc, char** argv) {
@@ -96,20 +104,20 @@ int command_regions(int argc, char** argv) {
                                            "0-based face ids; the format 'run --regions FILE' reads)")
       ("region-at", po::value(&points)->composing(), "X,Y,Z: the cap around the surface point nearest to "
                                                       "this point (repeatable; replaces the automatic search)")
-      ("fit-tolerance", po::value(&options.fit_tolerance)->default_value(options.fit_tolerance),
+      ("fit-tolerance", po::value(&options.fit_tolerance)->default_value(options.fit_tolerance, shown(options.fit_tolerance)),
        "growth: RMS distance to the fitted sphere at most this fraction of its radius")
-      ("max-concave-fraction", po::value(&options.max_concave_fraction)->default_value(options.max_concave_fraction),
+      ("max-concave-fraction", po::value(&options.max_concave_fraction)->default_value(options.max_concave_fraction, shown(options.max_concave_fraction)),
        "growth: at most this share of a disc may be concave")
-      ("min-cap-angle", po::value(&options.min_cap_angle_deg)->default_value(options.min_cap_angle_deg),
+      ("min-cap-angle", po::value(&options.min_cap_angle_deg)->default_value(options.min_cap_angle_deg, shown(options.min_cap_angle_deg)),
        "keep caps spanning at least this angle, degrees (geodesic radius / sphere radius; a hemisphere is 90)")
-      ("contrast", po::value(&options.min_curvature_contrast)->default_value(options.min_curvature_contrast),
+      ("contrast", po::value(&options.min_curvature_contrast)->default_value(options.min_curvature_contrast, shown(options.min_curvature_contrast)),
        "keep caps whose curvature 1/radius is at least this multiple of the area-weighted median |H|")
-      ("max-compactness", po::value(&options.max_compactness)->default_value(options.max_compactness),
+      ("max-compactness", po::value(&options.max_compactness)->default_value(options.max_compactness, shown(options.max_compactness)),
        "keep caps with perimeter^2 / (4 pi area) at most this (1 = disc)")
       ("min-faces", po::value(&options.min_faces)->default_value(options.min_faces), "keep caps with at least this many faces")
-      ("min-area-fraction", po::value(&options.min_area_fraction)->default_value(options.min_area_fraction),
+      ("min-area-fraction", po::value(&options.min_area_fraction)->default_value(options.min_area_fraction, shown(options.min_area_fraction)),
        "drop regions smaller than this fraction of the total area")
-      ("max-area-fraction", po::value(&options.max_area_fraction)->default_value(options.max_area_fraction),
+      ("max-area-fraction", po::value(&options.max_area_fraction)->default_value(options.max_area_fraction, shown(options.max_area_fraction)),
        "drop regions larger than this fraction of the total area (not local)");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
