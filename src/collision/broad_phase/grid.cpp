@@ -185,9 +185,10 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // Float boxes relative to the scene minimum (better precision than absolute coordinates).
   // Each double is rounded outward after the subtraction; the rounded subtraction is monotone,
   // so whenever two double boxes overlap, so do their float boxes: the float test only culls.
-  // The AVX-512 cell loop tests the double boxes directly and needs none, unless the caller
-  // takes a superset (float_superset: find_candidates_in_vertex_boxes), which it then emits
-  // from float boxes alone.
+  // The AVX-512 double cell loop tests the double boxes directly and needs none; the float
+  // loop emits a superset from float boxes alone, which a caller takes as it is (float_superset:
+  // find_candidates_in_vertex_boxes) or which confirm_keys cuts to the exact pairs
+  // (grid_float_confirm).
   const bool avx512 = s.grid_isa == detail::GridIsa::Auto && detail::grid_avx512_available();
   const bool float_cells = avx512 && (float_superset || s.grid_float_confirm);
   const bool confirm = float_cells && !float_superset;
