@@ -33,9 +33,11 @@ struct BroadPhaseScratch;
 /// Candidate pairs for the narrow phase. Reuse one object across steps: the vectors keep their
 /// capacity.
 struct CandidatePairs {
-  /// (vertex id, face id), the vertex not a corner of the face; unique. Sorted, except from the
-  /// Grid method, whose pairs come in the order of its cells: the same order for any number of
-  /// threads (sorting cost more than a tenth of a grid call).
+  /// (vertex id, face id), the vertex not a corner of the face; unique. From find_candidates:
+  /// sorted. (The Grid method emits them in the order of its cells, which depends on the grid a
+  /// call keeps from the last one; find_candidates sorts them so that the order, on which the
+  /// collision step's result depends, comes from the pairs alone: the same after a checkpoint's
+  /// resume.) From find_candidates_in_vertex_boxes: in the Grid's cell order.
   NoZeroVector<std::array<int, 2>> vertex_face;
   /// (edge id a, edge id b), a < b, the edges share no vertex; unique; ordered as vertex_face.
   NoZeroVector<std::array<int, 2>> edge_edge;

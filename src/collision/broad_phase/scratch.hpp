@@ -144,6 +144,7 @@ struct BroadPhaseScratch {
   std::vector<detail::BroadPhaseBox> work_a;        ///< copies CGAL may reorder
   std::vector<detail::BroadPhaseBox> work_b;
   std::vector<std::uint64_t> vf_keys;      ///< packed (vertex << 32 | face) pair keys
+  std::vector<std::uint64_t> sort_keys;    ///< find_candidates' sort of the Grid's pairs
   std::vector<std::uint64_t> ee_keys;      ///< packed (edge a << 32 | edge b) pair keys
   std::vector<detail::BvhNode> face_tree;  ///< Bvh method: tree over face boxes
   std::vector<int> face_order;             ///< face ids in leaf order
