@@ -194,8 +194,8 @@ std::vector<OptionSpec> build_table() {
       [](R& r) -> SolverKind& { return r.sim.solver.kind; }));
   t.push_back(choice("order",
                      "sequential: the paper's Gauss-Seidel order; coloured: parallel by colour, "
-                     "bit-identical for any thread count; auto: coloured above " +
-                         std::to_string(AUTO_COLOURED_FACES) + " faces",
+                     "bit-identical for any thread count, the faster at equal accuracy; auto: "
+                     "coloured",
                      Choices<OrderChoice>{{"auto", OrderChoice::Auto},
                                           {"sequential", OrderChoice::Sequential},
                                           {"coloured", OrderChoice::Coloured}},

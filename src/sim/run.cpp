@@ -136,7 +136,7 @@ RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* obs
   RunObserver none;
   RunObserver& obs = observer ? *observer : none;
   RunResult r;
-  options.sim.solver.order = order_for(options.order, mesh.number_of_faces());
+  options.sim.solver.order = order_for(options.order);
   r.order = options.sim.solver.order;
   resolve_run_options(options);
   SimOptions& s = options.sim;

@@ -20,16 +20,8 @@ void resolve_sim_options(SimOptions& o) {
                              o.solver.order == ConstraintOrder::Sequential);
 }
 
-ConstraintOrder order_for(OrderChoice choice, std::size_t faces) {
-  switch (choice) {
-    case OrderChoice::Sequential:
-      return ConstraintOrder::Sequential;
-    case OrderChoice::Coloured:
-      return ConstraintOrder::Coloured;
-    case OrderChoice::Auto:
-      break;
-  }
-  return faces > AUTO_COLOURED_FACES ? ConstraintOrder::Coloured : ConstraintOrder::Sequential;
+ConstraintOrder order_for(OrderChoice choice) {
+  return choice == OrderChoice::Sequential ? ConstraintOrder::Sequential : ConstraintOrder::Coloured;
 }
 
 namespace {

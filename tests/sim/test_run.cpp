@@ -308,26 +308,20 @@ TEST(Run, RegionMaxAreaWithoutAutoRegionsIsWarned) {
   EXPECT_NE(rec.warnings[0].find("--region-max-area"), std::string::npos) << rec.warnings[0];
 }
 
-TEST(Run, OrderAutoIsSequentialUpToTheThresholdAndColouredAbove) {
-  EXPECT_EQ(order_for(OrderChoice::Auto, AUTO_COLOURED_FACES), ConstraintOrder::Sequential);
-  EXPECT_EQ(order_for(OrderChoice::Auto, AUTO_COLOURED_FACES + 1), ConstraintOrder::Coloured);
-  EXPECT_EQ(order_for(OrderChoice::Sequential, 10 * AUTO_COLOURED_FACES),
-            ConstraintOrder::Sequential);
-  EXPECT_EQ(order_for(OrderChoice::Coloured, 0), ConstraintOrder::Coloured);
-  // The run decides it from its mesh: a small sphere keeps the paper's order unless told
-  // otherwise, a sphere of 327,680 faces gets the coloured one.
+TEST(Run, OrderAutoIsColouredAtEverySizeAndSequentialOnRequest) {
+  EXPECT_EQ(order_for(OrderChoice::Auto), ConstraintOrder::Coloured);
+  EXPECT_EQ(order_for(OrderChoice::Coloured), ConstraintOrder::Coloured);
+  EXPECT_EQ(order_for(OrderChoice::Sequential), ConstraintOrder::Sequential);
+  // The run reports the order it used: coloured by default on a small sphere, the paper's
+  // sequential order when asked.
   RunOptions o;
   o.sim.frames = 0;
   o.sim.collisions = false;
-  EXPECT_EQ(run_contraction(sphere(2), o).order, ConstraintOrder::Sequential);
-  set_run_option(o, "order", "coloured");
   EXPECT_EQ(run_contraction(sphere(2), o).order, ConstraintOrder::Coloured);
-  set_run_option(o, "order", "auto");
-  const Mesh large = sphere(7);
-  ASSERT_GT(large.number_of_faces(), AUTO_COLOURED_FACES);
-  EXPECT_EQ(run_contraction(large, o).order, ConstraintOrder::Coloured);
   set_run_option(o, "order", "sequential");
-  EXPECT_EQ(run_contraction(large, o).order, ConstraintOrder::Sequential);
+  EXPECT_EQ(run_contraction(sphere(2), o).order, ConstraintOrder::Sequential);
+  set_run_option(o, "order", "auto");
+  EXPECT_EQ(run_contraction(sphere(2), o).order, ConstraintOrder::Coloured);
 }
 
 }  // namespace

@@ -24,19 +24,15 @@ enum class RegionSource {
   None,
 };
 
-/// The Gauss-Seidel order a run asks for (--order). Auto: the paper's sequential order up to
-/// AUTO_COLOURED_FACES faces, the coloured one above (order_for).
+/// The Gauss-Seidel order a run asks for (--order). Auto (the default): the coloured order at
+/// every size. At equal time it was never less accurate than the paper's sequential order on
+/// the paper's meshes and two spheres (every rung of `shellcontract bench error`:
+/// lab/speed-error/orders/README.md), it runs the batched kernels on every thread, and its result
+/// does not depend on the thread count. Sequential stays available as the paper's order.
 enum class OrderChoice { Auto, Sequential, Coloured };
 
-/// Above this many faces `--order auto` picks the coloured order. On bear subdivided twice (442k
-/// faces) the coloured order used less memory and was faster per step than the sequential one
-/// (with its speculative broad phase), on two cores and more so on sixteen, where the
-/// sequential solve runs on one thread (lab/pages/scale.md). The paper's meshes (at most 28k faces)
-/// and bear subdivided once (111k) keep the paper's order, for which the defaults were chosen.
-constexpr std::size_t AUTO_COLOURED_FACES = 200000;
-
-/// The order a run of a mesh with `faces` faces uses.
-ConstraintOrder order_for(OrderChoice choice, std::size_t faces);
+/// The order a run asking for `choice` uses.
+ConstraintOrder order_for(OrderChoice choice);
 
 /// The simulation options of the default run: XPBD (physical stiffness, so that the result does
 /// not depend on the mesh's resolution) with DEFAULT_XPBD_DAMPING. The Simulator's own defaults
