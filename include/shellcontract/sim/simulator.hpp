@@ -8,14 +8,17 @@
 #include <utility>
 #include <vector>
 
+#include "shellcontract/collision/self_collision.hpp"
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/normalization.hpp"
 #include "shellcontract/mesh/surface_mesh.hpp"
 #include "shellcontract/pbd/solver.hpp"
+#include "shellcontract/sim/anisotropy.hpp"
 #include "shellcontract/sim/config.hpp"
 #include "shellcontract/sim/pressure.hpp"
 #include "shellcontract/sim/region_dimple.hpp"
 #include "shellcontract/sim/rest_state.hpp"
+#include "shellcontract/sim/run_plan.hpp"
 #include "shellcontract/sim/simulator_state.hpp"
 
 namespace shellcontract {
@@ -38,8 +41,12 @@ struct FrameMetrics {
 /// Runs the contraction of one closed mesh.
 class Simulator {
  public:
-  /// Takes (a copy of, or the moved) mesh, normalizes it and builds the rest state and the
-  /// constraints.
+  /// Builds the rest state and the constraints of a plan (run_plan.hpp): the plan's options are
+  /// resolved and checked, its mesh normalized with its regions in "f:region"; the Simulator
+  /// neither checks nor resolves.
+  /// @throws InputError for an unusable mesh (no positive enclosed volume)
+  explicit Simulator(SimPlan plan);
+  /// Simulator(plan_simulation(input, options)): the regions are the map `input` carries.
   /// @param input  a checked, closed, outward-oriented triangle mesh (read_input_mesh), any units
   /// @throws UsageError for invalid options, InputError for an unusable mesh
   Simulator(Mesh input, const SimOptions& options);
@@ -75,8 +82,7 @@ class Simulator {
   /// Vertices whose mass scale_masses_for_pressure raised (sim/mass_scaling.hpp).
   std::size_t mass_scaled_vertices() const { return mass_scaled_vertices_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
-  /// Number of regions in the rest mesh's "f:region" map (options.anisotropy.regions, or the
-  /// input mesh's map), whether or not anything acts on them.
+  /// Number of regions in the rest mesh's "f:region" map, whether or not anything acts on them.
   std::size_t region_count() const { return region_count_; }
   /// Face pairs that already intersect in the input (the validation baseline).
   std::size_t input_intersections() const;
