@@ -29,6 +29,7 @@
 #include "shellcontract/sim/checkpoint.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/simulator.hpp"
 #include "shellcontract/sim/run_report.hpp"
 
 namespace shellcontract::python {

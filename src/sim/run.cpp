@@ -13,6 +13,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/sim/checkpoint.hpp"
+#include "shellcontract/sim/simulator.hpp"
 
 namespace shellcontract {
 

@@ -16,6 +16,7 @@
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/cgal_volume.hpp"
 #include "test_paths.hpp"

@@ -15,6 +15,7 @@
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/simulator.hpp"
 #include "shellcontract/sim/schedule.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
 #include "test_paths.hpp"

@@ -10,6 +10,7 @@
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/material/material.hpp"
 #include "shellcontract/material/registry.hpp"
+#include "shellcontract/pbd/constraint_energies.hpp"
 #include "shellcontract/pbd/constraints.hpp"
 #include "shellcontract/pbd/solver_settings.hpp"
 
@@ -25,13 +26,6 @@ struct ColourCounts {
   /// parallel, then the interface constraints (see solver.cpp, REGIONS). Used when every
   /// constraint is a StVK membrane or an isometric hinge and few span the two ranges.
   bool regional = false;
-};
-
-/// Sum of each kind of constraint energy at a configuration.
-struct ConstraintEnergies {
-  double membrane = 0.0;     ///< sum Abar psi over membrane faces
-  double bending = 0.0;      ///< k_B E_B (isometric) or k_B kappa (theta - theta_bar)^2 (dihedral)
-  double anisotropic = 0.0;  ///< sum Abar psi_A over anisotropic faces
 };
 
 /// Projects all constraints of a scene. Built by make_constraint_solver.

@@ -8,13 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/pbd/solver_settings.hpp"
+#include "shellcontract/sim/frame_metrics.hpp"
 #include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/run_plan.hpp"
 #include "shellcontract/sim/run_totals.hpp"
-#include "shellcontract/sim/simulator.hpp"
 
 namespace shellcontract {
+
+class Simulator;  // sim/simulator.hpp, for an observer that reads more than the frame's metrics
 
 /// How a run ended; RunResult::exit_code maps it onto the documented exit codes.
 enum class RunStatus {
