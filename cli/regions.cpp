@@ -37,10 +37,12 @@ ones 'run --regions auto' uses, and writes the mesh as an ASCII PLY with one col
 (grey = none), a per-face 'region' id and per-vertex 'mean_curvature' / 'gaussian_curvature'
 (input units). Prints the regions with their face count and area fraction.
 
-A vertex seeds a region when it is convex, close to umbilic (k_min/k_max >= --umbilic-ratio) and
-its mean curvature is at least --contrast times the area-weighted median |H| of the mesh; each
-group of seeds grows over the faces that lie on a sphere fitted to it. Every threshold is a
-ratio, so scaling the mesh does not change the result.
+Each region is a compact cap on a sphere (an ear, a head, a fingertip): seeds at maxima of the
+smoothed mean curvature grow geodesic discs while a sphere fits them (--fit-tolerance), the caps
+are ranked by the angle they span and kept when round (--max-compactness), curved (--min-cap-angle,
+--contrast) and of a local size (--min-area-fraction, --max-area-fraction). --region-at X,Y,Z
+(repeatable) instead picks the cap around the surface point nearest to each point. Every
+threshold is a ratio, so scaling or rotating the mesh does not change the result.
 
 exit codes: 0 success, 1 bad usage or unwritable output, 2 the mesh cannot be used
 
@@ -52,10 +54,47 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+/// "X,Y,Z" -> point; UsageError naming the text otherwise.
+Vec3 parse_point(const std::string& text) {
+  std::istringstream in(text);
+  Vec3 p;
+  char c1 = 0, c2 = 0;
+  if (!(in >> p.x() >> c1 >> p.y() >> c2 >> p.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() || !p.allFinite())
+    throw UsageError("--region-at '" + text + "': expected three finite numbers X,Y,Z");
+  return p;
+}
+
+/// The regions as an aligned table: one row per region (id order).
+std::string region_table(const RegionReport& report) {
+  std::ostringstream t;
+  t << std::fixed;
+  t << "  id  centre (x, y, z)                      radius      area %   faces  compact.  residual  angle\n";
+  for (std::size_t r = 0; r < report.regions.size(); ++r) {
+    const RegionSummary& s = report.regions[r];
+    std::ostringstream centre;
+    centre << std::setprecision(4) << std::showpos << s.centre.x() << ", " << s.centre.y() << ", " << s.centre.z();
+    t << std::setw(4) << r << "  " << std::left << std::setw(36) << centre.str() << std::right << std::setprecision(4)
+      << std::setw(10) << s.radius << std::setprecision(2) << std::setw(10) << 100.0 * s.area_fraction
+      << std::setw(8) << s.faces << std::setw(10) << s.compactness << std::setprecision(3) << std::setw(10)
+      << s.residual << std::setprecision(0) << std::setw(6) << s.cap_angle_deg << '\n';
+  }
+  return t.str();
+}
+
+// A default as the user would type it ("0.3"), not Boost's full round-trip digits
+// ("0.29999999999999999").
+std::string shown(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
 }  // namespace
 
 int command_regions(int argc, char** argv) {
   std::string input, output, face_list;
+  std::vector<std::string> points;
+  std::vector<Vec3> at;
   RegionOptions options;
   po::options_description visible;
   visible.add_options()
@@ -63,19 +102,22 @@ int command_regions(int argc, char** argv) {
       ("output,o", po::value(&output), "output mesh, .ply (face colours, region ids, curvature)")
       ("face-list", po::value(&face_list), "also write the regions as a face-list file (one line per region, "
                                            "0-based face ids; the format 'run --regions FILE' reads)")
-      ("smoothing-rings", po::value(&options.smoothing_rings)->default_value(options.smoothing_rings),
-       "vertex rings over which H and K are averaged before the tests (0 = none)")
-      ("umbilic-ratio", po::value(&options.min_principal_ratio)->default_value(options.min_principal_ratio),
-       "minimum k_min/k_max of a seed (1 = sphere, 0 = cylinder)")
-      ("contrast", po::value(&options.min_curvature_contrast)->default_value(options.min_curvature_contrast),
-       "minimum H of a seed as a multiple of the area-weighted median |H|")
-      ("fit-distance", po::value(&options.fit_distance_tolerance)->default_value(options.fit_distance_tolerance),
-       "growth: corners within this fraction of the fitted radius from the fitted sphere")
-      ("fit-normal-deg", po::value(&options.fit_normal_tolerance_deg)->default_value(options.fit_normal_tolerance_deg),
-       "growth: face normal within this angle (degrees) of the sphere's radial direction")
-      ("min-area-fraction", po::value(&options.min_area_fraction)->default_value(options.min_area_fraction),
+      ("region-at", po::value(&points)->composing(), "X,Y,Z: the cap around the surface point nearest to "
+                                                      "this point (repeatable; replaces the automatic search)")
+      ("fit-tolerance", po::value(&options.fit_tolerance)->default_value(options.fit_tolerance, shown(options.fit_tolerance)),
+       "growth: RMS distance to the fitted sphere at most this fraction of its radius")
+      ("max-concave-fraction", po::value(&options.max_concave_fraction)->default_value(options.max_concave_fraction, shown(options.max_concave_fraction)),
+       "growth: at most this share of a disc may be concave")
+      ("min-cap-angle", po::value(&options.min_cap_angle_deg)->default_value(options.min_cap_angle_deg, shown(options.min_cap_angle_deg)),
+       "keep caps spanning at least this angle, degrees (geodesic radius / sphere radius; a hemisphere is 90)")
+      ("contrast", po::value(&options.min_curvature_contrast)->default_value(options.min_curvature_contrast, shown(options.min_curvature_contrast)),
+       "keep caps whose curvature 1/radius is at least this multiple of the area-weighted median |H|")
+      ("max-compactness", po::value(&options.max_compactness)->default_value(options.max_compactness, shown(options.max_compactness)),
+       "keep caps with perimeter^2 / (4 pi area) at most this (1 = disc)")
+      ("min-faces", po::value(&options.min_faces)->default_value(options.min_faces), "keep caps with at least this many faces")
+      ("min-area-fraction", po::value(&options.min_area_fraction)->default_value(options.min_area_fraction, shown(options.min_area_fraction)),
        "drop regions smaller than this fraction of the total area")
-      ("max-area-fraction", po::value(&options.max_area_fraction)->default_value(options.max_area_fraction),
+      ("max-area-fraction", po::value(&options.max_area_fraction)->default_value(options.max_area_fraction, shown(options.max_area_fraction)),
        "drop regions larger than this fraction of the total area (not local)");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
@@ -86,12 +128,12 @@ int command_regions(int argc, char** argv) {
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUT.ply");
     if (lower_extension(output) != ".ply") throw UsageError("the output must be a .ply file (got '" + output + "')");
-    if (options.smoothing_rings < 0) throw UsageError("--smoothing-rings must be >= 0");
-    if (!(options.fit_distance_tolerance >= 0.0) || !(options.fit_normal_tolerance_deg >= 0.0))
-      throw UsageError("--fit-distance and --fit-normal-deg must be >= 0");
-    for (const double t : {options.min_principal_ratio, options.min_curvature_contrast, options.fit_distance_tolerance,
-                           options.fit_normal_tolerance_deg, options.min_area_fraction, options.max_area_fraction})
+    for (const double t : {options.fit_tolerance, options.max_concave_fraction, options.min_cap_angle_deg,
+                           options.min_curvature_contrast, options.max_compactness, options.min_area_fraction,
+                           options.max_area_fraction})
       if (!std::isfinite(t) || t < 0.0) throw UsageError("every threshold must be a finite number >= 0");
+    check_region_options(options);
+    for (const std::string& p : points) at.push_back(parse_point(p));
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});
     plan.outputs.push_back({"-o", output});
@@ -109,23 +151,25 @@ int command_regions(int argc, char** argv) {
     for (const std::string& w : input_report.warnings) std::cerr << "warning: " << w << '\n';
     const Positions x = positions_from_mesh(mesh);
     RegionReport report;
-    mark_spherical_regions(mesh, x, options, &report);  // f:region and the curvature maps
+    if (at.empty()) {
+      mark_spherical_regions(mesh, x, options, &report);  // f:region and the curvature maps
+    } else {
+      store_regions(mesh, select_regions_at(mesh, x, at, options, &report));
+      store_curvature(mesh, compute_curvature(mesh, x));
+    }
     write_region_ply(output, mesh, x);
     if (!face_list.empty()) write_region_file(face_list, stored_regions(mesh));
 
     std::ostringstream out;
-    out << std::setprecision(4);
     out << "file: " << input << '\n'
         << "faces: " << mesh.number_of_faces() << '\n'
-        << "reference_mean_curvature: " << report.reference_mean_curvature << " (area-weighted median |H|)\n"
-        << "seed_vertices: " << report.seed_vertices << '\n'
-        << "dropped: " << report.dropped_small << " small, " << report.dropped_large << " large\n"
+        << "reference_mean_curvature: " << std::setprecision(4) << report.reference_mean_curvature
+        << " (area-weighted median |H|)\n"
+        << "seeds: " << report.seed_vertices << ", fitted caps: " << report.candidates << '\n'
+        << "dropped: " << report.dropped_flat << " flat, " << report.dropped_small << " small, "
+        << report.dropped_large << " large, " << report.dropped_shape << " not compact\n"
         << "regions: " << report.regions.size() << '\n';
-    for (std::size_t r = 0; r < report.regions.size(); ++r) {
-      const RegionSummary& s = report.regions[r];
-      out << "  region " << r << ": faces " << s.faces << ", area fraction " << s.area_fraction
-          << ", mean curvature " << s.mean_curvature << " (" << s.contrast << " x reference)\n";
-    }
+    out << region_table(report);
     out << "wrote: " << output << '\n';
     if (!face_list.empty()) out << "wrote: " << face_list << '\n';
     std::cout << out.str();

@@ -1,11 +1,8 @@
 """Shared parts of lab/scripts/paper_figures.py and its figure modules (figures_membrane.py,
-figures_regions.py): running the CLI with a cache of runs, loading meshes, drawing panels, and
-the number formats of the page."""
-import json
+figures_regions.py): loading meshes, drawing panels, the number formats of the page (the runs:
+figure_sweep.py)."""
 import os
-import subprocess
 import sys
-import time
 
 import numpy as np
 
@@ -14,7 +11,6 @@ import matplotlib  # noqa: E402
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-import mesh_measures as mm  # noqa: E402
 import render_mesh as rm  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
@@ -23,64 +19,6 @@ MATERIALS = ["stvk", "corotated", "linear", "mooney-rivlin"]
 ENERGIES = ["arap", "sqrt", "stvk"]
 K_B = [1.0, 0.1, 0.01, 0.001, 0.0]
 REGION_TINT = np.array([0.95, 0.45, 0.35])
-
-
-# ----------------------------------------------------------------------------- running the CLI
-
-class Runner:
-    """Runs `shellcontract run` into a work directory and keeps what each run produced."""
-
-    def __init__(self, tool, work, reuse=False):
-        self.tool, self.work, self.reuse = tool, work, reuse
-        self.seconds, self.count, self.not_ok = 0.0, 0, []
-
-    def run(self, name, mesh, *args):
-        base = os.path.join(self.work, name)
-        args = [str(a) for a in args]
-        # The paper's model, which its figures show: its PBD solver, a constant pressure (P = 2
-        # unless a figure sets one) and the flat-rest isometric bending. The tool's defaults
-        # differ (an XPBD shell material with air inside, dihedral bending:
-        # docs/design/defaults.md).
-        paper = (("--solver", "pbd"), ("--air-balance", "0"), ("--bending", "isometric"),
-                 ("--pressure", "2"))
-        for option, value in paper:
-            if option not in args:
-                args += [option, value]
-        # The paper's local contraction is its region pressure (--inward force), here P_A = 3
-        # (--region-shrink 0.3, the strength the figures were made with); the tool's default
-        # sinks the regions as dimples instead (docs/math/local-contraction.md).
-        if any(a in args for a in ("--regions", "--aniso")) and "--inward" not in args:
-            args += ["--inward", "force"]
-            if "--region-shrink" not in args:
-                args += ["--region-shrink", "0.3"]
-        cmd = [self.tool, "run", mesh, "-o", base + ".off", "--summary", base + ".json",
-               "--log", base + ".csv", "-q", *args]
-        # --reuse (for editing the text without re-simulating): a run whose command line is the
-        # one recorded beside its summary is not run again.
-        recorded = None
-        if self.reuse and os.path.exists(base + ".cmd") and os.path.exists(base + ".json"):
-            with open(base + ".cmd") as f:
-                recorded = f.read()
-        if recorded != json.dumps(cmd):
-            start = time.time()
-            proc = subprocess.run(cmd, capture_output=True, text=True)
-            self.seconds += time.time() - start
-            self.count += 1
-            if os.path.exists(base + ".json"):
-                with open(base + ".cmd", "w") as f:
-                    f.write(json.dumps(cmd))
-            else:
-                raise RuntimeError(f"{' '.join(cmd)}: exit {proc.returncode}\n{proc.stderr}")
-        # Exit 3 (simulation failed) still writes the last good state and a summary, whose
-        # status the tables show, rather than stopping the whole script.
-        with open(base + ".json") as f:
-            summary = json.load(f)
-        log = mm.read_log(base + ".csv")
-        if summary["status"] != "ok":
-            self.not_ok.append(f"{name} ({summary['status']}: {summary.get('failure', '')})")
-        print(f"  {name}: V/V0 {summary['final_volume_ratio']:.4f} ({summary['status']})",
-              flush=True)
-        return {"summary": summary, "log": log, "mesh": base + ".off", "args": args}
 
 
 def load(path):

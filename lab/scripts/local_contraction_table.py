@@ -95,7 +95,8 @@ def centre_sink_over_radius(rest, faces, end, regions):
 
 # Face lists chosen with `shellcontract regions` (docs/math/local-contraction.md, "Which regions"):
 # the hand's regions grown a little, bear's without its head and tighter.
-FACE_LISTS = [("hand", ["--fit-distance", "0.03"]), ("bear", ["--max-area-fraction", "0.05", "--contrast", "2"])]
+# The cap finder's defaults find the fingertips and bear's parts (docs/design/regions.md).
+FACE_LISTS = [("hand", []), ("bear", [])]
 
 
 def face_lists(exe, tmp):

@@ -7,12 +7,17 @@ Needs Debian's python3 with numpy and matplotlib (/usr/bin/python3) and the pape
 data/meshes (scripts/fetch_paper_meshes.sh). Every number in the README comes from the runs of
 this invocation; nothing is typed in by hand.
 
+The runs go through the sweep engine (`python3 -m shellcontract.sweep`, an embedded Dask
+cluster with a worker per core; lab/scripts/figure_sweep.py), so they use every core and a
+killed invocation loses no finished run.
+
 Usage: /usr/bin/python3 lab/scripts/paper_figures.py [--tool build/shellcontract] [--out lab/figures]
-                                                 [--quick] [--work DIR [--reuse]]
+                                                 [--quick] [--work DIR] [--workers N]
   --quick: 20 frames, no elk or bear: a smoke run of the whole pipeline (under a minute); write
            it somewhere other than lab/figures.
-  --work DIR --reuse: keep the runs in DIR and, next time, skip those whose command line is
-           unchanged (for editing the text); the committed page comes from a run without it.
+  --work DIR: keep the sweep's jobs in DIR; the next invocation with the same DIR skips every
+           finished run (the sweep's job ids), e.g. for editing the text. The committed page
+           comes from an invocation with an empty DIR.
 """
 import argparse
 import os
@@ -22,7 +27,10 @@ import tempfile
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from figure_common import PAPER_MESHES, ROOT, Runner, mesh_path  # noqa: E402
+from figure_common import PAPER_MESHES, ROOT, mesh_path  # noqa: E402
+from figure_sweep import SweepRunner  # noqa: E402
+import figures_membrane  # noqa: E402
+import figures_regions  # noqa: E402
 from figures_membrane import fig13, fig16_18  # noqa: E402
 from figures_regions import fig19, fig20  # noqa: E402
 
@@ -34,8 +42,8 @@ def main():
     ap.add_argument("--out", default=os.path.join(ROOT, "lab", "figures"))
     ap.add_argument("--work", default=None, help="keep the runs' meshes, logs and summaries here")
     ap.add_argument("--quick", action="store_true", help="20 frames, no elk or bear (smoke run)")
-    ap.add_argument("--reuse", action="store_true",
-                    help="with --work: keep runs already there with the same command line")
+    ap.add_argument("--workers", type=int, default=None,
+                    help="the sweep's worker processes (default: one per core)")
     a = ap.parse_args()
     for m in PAPER_MESHES:
         if not os.path.exists(mesh_path(m)):
@@ -50,12 +58,17 @@ def main():
     os.makedirs(a.out, exist_ok=True)
     work = a.work or tempfile.mkdtemp(prefix="paper_figures_")
     os.makedirs(work, exist_ok=True)
-    r = Runner(os.path.abspath(a.tool), work, a.reuse and a.work is not None)
+    r = SweepRunner(a.tool, work, a.workers)
     start = time.time()
 
-    sections = [fig13(r, cfg, a.out), fig16_18(r, cfg, a.out), fig19(r, cfg, a.out),
-                fig20(r, cfg, a.out)]
-    opts = r.run("defaults", mesh_path("eight"), "--frames", 1)["summary"]["options"]
+    figures = [lambda out: fig13(r, cfg, out), lambda out: fig16_18(r, cfg, out),
+               lambda out: fig19(r, cfg, out), lambda out: fig20(r, cfg, out),
+               lambda out: r.run("defaults", mesh_path("eight"), "--frames", 1)]
+    # The collecting passes render nothing (their results are stand-ins).
+    no_render = {"draw": lambda *args, **kw: None, "panel_grid": lambda *args, **kw: None}
+    *sections, defaults_run = r.draw_all(figures, a.out, {figures_membrane: no_render,
+                                                          figures_regions: no_render})
+    opts = defaults_run["summary"]["options"]
     keys = ["pressure", "damping", "k-b", "material", "solver", "bending", "iterations", "dt",
             "collisions", "inward", "region-shrink", "air-balance"]
     defaults = ", ".join(f"`--{k} {opts[k]}`" for k in keys if k in opts)
@@ -72,8 +85,8 @@ written by the command
 /usr/bin/python3 lab/scripts/paper_figures.py{' --quick' if a.quick else ''}{tool_arg}
 ```
 
-({r.count} runs, {elapsed / 60:.1f} min on the machine that made this page, of which
-{r.seconds / 60:.1f} min in the simulations). The paper's claims are paraphrased or quoted (in
+({r.count} runs through the sweep engine in {r.sweeps} sweeps, {elapsed / 60:.1f} min on the
+machine that made this page; the runs' own wall times add up to {r.seconds / 60:.1f} min). The paper's claims are paraphrased or quoted (in
 translation) from its text with their figure numbers; its own numbers are only in its bar charts
 and curves, which are not reproduced here. Where ours differs, the text says so. The paper runs
 100 frames; {'this quick run uses ' + str(cfg['frames']) if a.quick else 'so do we'}. Settings not

@@ -12,12 +12,14 @@ starts from an empty folder, so nothing is skipped. Run it on a quiet machine: t
 nothing while other work shares the cores.
 
 usage: lab/sweep/benchmark.py [--build build] [--meshes data/meshes] [--out /tmp/sweep_bench]
-                              [--frames 100] [--page lab/sweep/README.md]
+                              [--frames 100] [--rounds 3] [--page lab/sweep/README.md]
 """
 import argparse
 import json
 import os
+import resource
 import shutil
+import statistics
 import subprocess
 import sys
 import time
@@ -34,6 +36,7 @@ def main():
     p.add_argument("--meshes", default=os.path.join(root, "data", "meshes"))
     p.add_argument("--out", default="/tmp/shellcontract_sweep_benchmark")
     p.add_argument("--frames", type=int, default=100)
+    p.add_argument("--rounds", type=int, default=3, help="alternating rounds of the three (median)")
     p.add_argument("--page", default=None, help="append the table to this Markdown file")
     a = p.parse_args()
     cli = os.path.join(a.build, "shellcontract")
@@ -47,42 +50,76 @@ def main():
     with open(sweep_path, "w") as f:
         json.dump(sweep, f)
 
-    # 1. Plain CLI calls with the jobs' own arguments.
     listing = subprocess.run([sys.executable, "-m", "shellcontract.sweep", sweep_path, "-o",
                               os.path.join(a.out, "unused"), "--dry-run"], env=env, check=True,
                              capture_output=True, text=True).stdout.splitlines()
-    plain_dir = os.path.join(a.out, "plain")
-    os.makedirs(plain_dir)
-    start = time.monotonic()
-    for line in listing:
-        job, mesh, *args = line.split()
-        mesh = os.path.join(os.path.dirname(sweep_path), mesh)
-        ext = os.path.splitext(mesh)[1]
-        rc = subprocess.run([cli, "run", mesh, "-o", os.path.join(plain_dir, job + ext), "--log",
-                             os.path.join(plain_dir, job + ".csv"), "--summary",
-                             os.path.join(plain_dir, job + ".json"), "-q"] + args).returncode
-        if rc not in (0, 5):
-            sys.exit("plain run of job {} exited {}".format(job, rc))
-    plain = time.monotonic() - start
 
-    times = {}
-    for workers in (1, 2):
-        out = os.path.join(a.out, "sweep{}".format(workers))
+    def children_cpu():
+        """CPU seconds (user + system) of every finished child process, theirs included: less
+        sensitive than wall time to other work on the machine."""
+        r = resource.getrusage(resource.RUSAGE_CHILDREN)
+        return r.ru_utime + r.ru_stime
+
+    def plain_calls(folder):
+        """The jobs as plain CLI calls with their own arguments, one after the other."""
+        os.makedirs(folder)
         start = time.monotonic()
-        subprocess.run([sys.executable, "-m", "shellcontract.sweep", sweep_path, "-o", out,
-                        "--workers", str(workers)], env=env, check=True)
-        times[workers] = time.monotonic() - start
+        cpu = children_cpu()
+        for line in listing:
+            job, mesh, *args = line.split()
+            mesh = os.path.join(os.path.dirname(sweep_path), mesh)
+            ext = os.path.splitext(mesh)[1]
+            rc = subprocess.run([cli, "run", mesh, "-o", os.path.join(folder, job + ext),
+                                 "--log", os.path.join(folder, job + ".csv"), "--summary",
+                                 os.path.join(folder, job + ".json"), "-q"] + args).returncode
+            if rc not in (0, 5):
+                sys.exit("plain run of job {} exited {}".format(job, rc))
+        return time.monotonic() - start, children_cpu() - cpu
+
+    def sweep_run(folder, workers):
+        start = time.monotonic()
+        cpu = children_cpu()
+        subprocess.run([sys.executable, "-m", "shellcontract.sweep", sweep_path, "-o", folder,
+                        "--workers", str(workers)], env=env, check=True,
+                       stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        return time.monotonic() - start, children_cpu() - cpu
+
+    # Rounds of the three, alternating, so that a slow spell of the machine falls on all three
+    # alike; each sweep starts in an empty folder (nothing skipped).
+    rounds, cpu = [], []
+    for k in range(a.rounds):
+        w = {"plain": plain_calls(os.path.join(a.out, "plain{}".format(k))),
+             1: sweep_run(os.path.join(a.out, "sweep1_{}".format(k)), 1),
+             2: sweep_run(os.path.join(a.out, "sweep2_{}".format(k)), 2)}
+        t = {key: v[0] for key, v in w.items()}
+        cpu.append({key: v[1] for key, v in w.items()})
+        rounds.append(t)
+        print("round {}: plain {:.1f} s, 1 worker {:.1f} s, 2 workers {:.1f} s (CPU {:.1f}, {:.1f}, "
+              "{:.1f} s)".format(k + 1, t["plain"], t[1], t[2], cpu[-1]["plain"], cpu[-1][1],
+                                 cpu[-1][2]), flush=True)
 
     n = len(listing)
+    med = {key: statistics.median(t[key] for t in rounds) for key in ("plain", 1, 2)}
+    speedup = statistics.median(t[1] / t[2] for t in rounds)
+    overhead = statistics.median(100.0 * (t[1] / t["plain"] - 1.0) for t in rounds)
+    cpu_overhead = statistics.median(100.0 * (c[1] / c["plain"] - 1.0) for c in cpu)
     lines = [
+        "{} rounds; medians of the wall times, and of each round's ratios:".format(len(rounds)),
+        "",
         "| what | wall time (s) | per job (s) |",
         "|---|---:|---:|",
-        "| {} plain CLI calls, serial | {:.1f} | {:.2f} |".format(n, plain, plain / n),
-        "| sweep, 1 worker | {:.1f} | {:.2f} |".format(times[1], times[1] / n),
-        "| sweep, 2 workers | {:.1f} | {:.2f} |".format(times[2], times[2] / n),
+        "| {} plain CLI calls, serial | {:.1f} | {:.2f} |".format(n, med["plain"],
+                                                              med["plain"] / n),
+        "| sweep, 1 worker | {:.1f} | {:.2f} |".format(med[1], med[1] / n),
+        "| sweep, 2 workers | {:.1f} | {:.2f} |".format(med[2], med[2] / n),
         "",
-        "speed-up of 2 workers over 1: {:.2f}x; sweep overhead (1 worker against the plain calls): "
-        "{:+.1f} %".format(times[1] / times[2], 100.0 * (times[1] / plain - 1.0)),
+        "speed-up of 2 workers over 1: {:.2f}x; sweep overhead (1 worker against the plain "
+        "calls): {:+.1f} % in wall time, {:+.1f} % in CPU time (every process of the sweep, "
+        "Dask's included)".format(speedup, overhead, cpu_overhead),
+        "",
+        "each round (plain, 1 worker, 2 workers; wall s / CPU s): " + "; ".join(
+            "{:.1f}/{:.1f}, {:.1f}/{:.1f}, {:.1f}/{:.1f}".format(
+                t["plain"], c["plain"], t[1], c[1], t[2], c[2]) for t, c in zip(rounds, cpu)),
     ]
     print("\n".join(lines))
     if a.page:

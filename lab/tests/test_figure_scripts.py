@@ -68,3 +68,24 @@ def test_view_toward_looks_from_the_given_direction():
         d /= np.linalg.norm(d)
         toward = render_mesh.camera_basis(u, *render_mesh.view_toward(d, u))[2]
         assert np.allclose(toward, d), up
+
+
+def test_cli_arguments_become_the_sweeps_options():
+    import figure_sweep
+    opts = figure_sweep.to_options(["--k-b", "0.1", "--measure-regions", "--pressure", "-2",
+                                    "--regions", "/tmp/r.txt"])
+    # A negative number is the value of --pressure, not a flag; a flag with no value a switch.
+    assert opts == {"k_b": "0.1", "measure_regions": True, "pressure": "-2",
+                    "regions": "/tmp/r.txt"}
+
+
+def test_the_papers_model_is_added_only_where_a_figure_does_not_set_it():
+    import figure_sweep
+    args = figure_sweep.paper_args(["--pressure", 0, "--aniso", "arap"])
+    opts = figure_sweep.to_options(args)
+    assert opts["pressure"] == "0"  # the figure's own value is kept
+    assert opts["solver"] == "pbd" and opts["bending"] == "isometric"
+    assert opts["air_balance"] == "0"
+    # A local-contraction run gets the paper's region pressure.
+    assert opts["inward"] == "force" and opts["region_shrink"] == "0.3"
+    assert "inward" not in figure_sweep.to_options(figure_sweep.paper_args(["--frames", 5]))

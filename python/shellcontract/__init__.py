@@ -10,7 +10,9 @@ to the last bit.
 import atexit
 import collections
 import numbers
+import os
 import queue
+import tempfile
 import threading
 
 from . import _core
@@ -60,7 +62,9 @@ def contract(vertices, faces, *, callback=None, **options):
     current positions (input units) and that frame's log row as a dict; returning False stops the
     run (status "cancelled"). Ctrl-C stops the run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
-    unknown option.
+    unknown option. ``regions`` takes "auto", "none", a face-list file, what regions() returns
+    (a list of face-index arrays) or one label per face (-1 = none); with the last two,
+    ``region_strengths`` (one value in [0, 1] per region) scales each region's region_shrink.
 
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
     cancels the run; resume=FILE continues such a run (the same vertices and faces; options, if
@@ -69,7 +73,54 @@ def contract(vertices, faces, *, callback=None, **options):
     checkpoints this reads and the other way round). ValueError for a checkpoint of another
     mesh, other options or another version, saying which.
     """
-    return Result(_core.contract(vertices, faces, callback=callback, **options))
+    options = dict(options)
+    strengths = options.pop("region_strengths", None)
+    regions = options.get("regions")
+    if regions is None or isinstance(regions, (str, os.PathLike)):
+        if strengths is not None:
+            raise ValueError("region_strengths needs regions given as face lists or labels "
+                             "(a face-list file takes them as its 'S:' column)")
+        return Result(_core.contract(vertices, faces, callback=callback, **options))
+    # Face lists (what regions() returns) or one label per face (-1 = none): handed to the
+    # library as a temporary face-list file, the format `run --regions FILE` reads, with each
+    # region's strength as its "S:" column.
+    lists = _region_lists(regions, len(faces))
+    prefixes = [""] * len(lists) if strengths is None else ["{!r}: ".format(s) for s in _strengths(strengths, len(lists))]
+    with tempfile.TemporaryDirectory() as tmp:
+        path = os.path.join(tmp, "regions.txt")
+        with open(path, "w") as f:
+            f.write("".join(p + " ".join(str(int(i)) for i in r) + "\n" for p, r in zip(prefixes, lists)))
+        return Result(_core.contract(vertices, faces, callback=callback, **dict(options, regions=path)))
+
+
+def _strengths(strengths, num_regions):
+    """One float in [0, 1] per region (the share of region_shrink each region sinks with)."""
+    values = [float(s) for s in strengths]
+    if len(values) != num_regions:
+        raise ValueError("region_strengths: {} values for {} regions".format(len(values), num_regions))
+    for i, s in enumerate(values):
+        if not 0.0 <= s <= 1.0:  # NaN fails too
+            raise ValueError("region_strengths[{}] = {!r} is outside [0, 1]".format(i, s))
+    return values
+
+
+def _region_lists(regions, num_faces):
+    """Face lists from a list of face-index arrays, or from a per-face label array (one entry per
+    face, -1 = no region, labels 0..n-1)."""
+    try:
+        labels = [int(x) for x in regions]  # a flat sequence of integers: one label per face
+    except TypeError:
+        return [[int(i) for i in r] for r in regions]
+    if len(labels) != num_faces:
+        raise ValueError("regions: a label array needs one entry per face ({} faces, {} labels)"
+                         .format(num_faces, len(labels)))
+    out = [[] for _ in range(max(labels, default=-1) + 1)]
+    for face, label in enumerate(labels):
+        if label >= 0:
+            out[label].append(face)
+    if any(not r for r in out):
+        raise ValueError("regions: labels must be 0..n-1 without a gap")
+    return out
 
 
 # The frames() runs whose generator is still open: at exit, a suspended generator's worker waits
@@ -147,7 +198,9 @@ def check(vertices, faces):
 
 def regions(vertices, faces, **region_options):
     """The spherical regions ``--regions auto`` would choose: a list of face-index arrays, largest
-    region first. Options: the RegionOptions fields of geometry/region_selection.hpp."""
+    region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
+    ``max_area_fraction``, ... with '_' or '-'); ``region_at=[(x, y, z), ...]`` picks the caps
+    around the points instead."""
     return _core.regions(vertices, faces, **region_options)
 
 

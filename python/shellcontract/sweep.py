@@ -102,7 +102,7 @@ def parser():
 
 
 def _has_dashboard():
-    """Dask's dashboard needs bokeh (Debian: python3-bokeh)."""
+    """Dask's dashboard needs bokeh (pip's bokeh; Debian 12 does not package it)."""
     try:
         import bokeh  # noqa: F401
         return True
@@ -139,7 +139,8 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
             # The scheduler's own dashboard when it has one (it says where).
             progress.message("Dask dashboard: {}".format(client.dashboard_link))
         else:
-            progress.message("Dask dashboard: not available (it needs bokeh: python3-bokeh)")
+            progress.message("Dask dashboard: not available (it needs the Python package bokeh, "
+                             "which Debian 12 does not package)")
         progress.restart_clock()  # the ETA counts from the cluster's start, not its set-up
         for job in todo:
             f = client.submit(sweep_job.run_job, job.to_dict(), args.output, cli, args.job_timeout,

@@ -101,25 +101,37 @@ int int_option(const std::string& name, const py::handle& value) {
 }
 
 /// The regions `run --regions auto` would choose: one ascending face-index array per region.
+/// The options are the CLI's (`shellcontract regions --help`), with '_' or '-':
+/// regions(V, F, max_area_fraction=0.1) or regions(V, F, **{"region-at": [(x, y, z)]}).
 py::list regions(const py::handle& vertices, const py::handle& faces, const py::kwargs& kwargs) {
   RegionOptions o;
+  std::vector<Vec3> at;
   for (const auto& [key, value] : kwargs) {
-    const std::string name = key.cast<std::string>();
-    if (name == "smoothing_rings") o.smoothing_rings = int_option(name, value);
-    else if (name == "min_principal_ratio") o.min_principal_ratio = real_option(name, value);
-    else if (name == "min_curvature_contrast") o.min_curvature_contrast = real_option(name, value);
-    else if (name == "fit_distance_tolerance") o.fit_distance_tolerance = real_option(name, value);
-    else if (name == "fit_normal_tolerance_deg") o.fit_normal_tolerance_deg = real_option(name, value);
-    else if (name == "min_area_fraction") o.min_area_fraction = real_option(name, value);
-    else if (name == "max_area_fraction") o.max_area_fraction = real_option(name, value);
-    else
-      throw py::type_error("regions() got an unknown option '" + name +
-                           "'; valid options: smoothing_rings, min_principal_ratio, min_curvature_contrast, "
-                           "fit_distance_tolerance, fit_normal_tolerance_deg, min_area_fraction, max_area_fraction "
-                           "(RegionOptions in geometry/region_selection.hpp)");
+    std::string name = key.cast<std::string>();
+    std::replace(name.begin(), name.end(), '_', '-');
+    if (name == "fit-tolerance") o.fit_tolerance = real_option(name, value);
+    else if (name == "max-concave-fraction") o.max_concave_fraction = real_option(name, value);
+    else if (name == "min-cap-angle") o.min_cap_angle_deg = real_option(name, value);
+    else if (name == "contrast") o.min_curvature_contrast = real_option(name, value);
+    else if (name == "max-compactness") o.max_compactness = real_option(name, value);
+    else if (name == "min-faces") o.min_faces = int_option(name, value);
+    else if (name == "min-area-fraction") o.min_area_fraction = real_option(name, value);
+    else if (name == "max-area-fraction") o.max_area_fraction = real_option(name, value);
+    else if (name == "region-at") {
+      for (const py::handle p : value) {
+        const auto xyz = p.cast<std::vector<double>>();
+        if (xyz.size() != 3) throw py::value_error("regions(): region_at takes points of three coordinates");
+        at.emplace_back(xyz[0], xyz[1], xyz[2]);
+      }
+    } else
+      throw py::type_error("regions() got an unknown option '" + key.cast<std::string>() +
+                           "'; valid options (those of `shellcontract regions`, '-' or '_'): fit_tolerance, "
+                           "max_concave_fraction, min_cap_angle, contrast, max_compactness, min_faces, "
+                           "min_area_fraction, max_area_fraction, region_at");
   }
   const Mesh mesh = mesh_from_numpy(vertices, faces);
-  const std::vector<int> ids = select_spherical_regions(mesh, positions_from_mesh(mesh), o);
+  const std::vector<int> ids = at.empty() ? select_spherical_regions(mesh, positions_from_mesh(mesh), o)
+                                          : select_regions_at(mesh, positions_from_mesh(mesh), at, o);
   py::list out;
   for (const std::vector<int>& r : regions_from_face_ids(ids)) {
     py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.size()));

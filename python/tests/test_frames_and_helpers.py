@@ -75,10 +75,12 @@ def test_regions_match_the_cli_face_list(cli, mesh_dir, tmp_path):
 
 
 def test_regions_options_are_used_and_checked(mesh_dir):
+    # The CLI's option names, with '_' or '-'.
     vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
-    assert shellcontract.regions(vertices, faces, min_curvature_contrast=100.0) == []
-    with pytest.raises(TypeError, match="unknown option 'contrast'"):
-        shellcontract.regions(vertices, faces, contrast=2.0)
+    assert shellcontract.regions(vertices, faces, contrast=100.0) == []
+    assert shellcontract.regions(vertices, faces, **{"min-cap-angle": 180.0}) == []
+    with pytest.raises(TypeError, match="unknown option 'min_curvature_contrast'"):
+        shellcontract.regions(vertices, faces, min_curvature_contrast=2.0)
 
 
 def test_write_then_read_gives_the_same_arrays(ico2, tmp_path):
@@ -120,3 +122,41 @@ def test_arrays_are_refused_for_the_cli_reason(cli, mesh_dir, name):
     problem = re.search(re.escape(str(path)) + r": ([a-z -]+):", cli_error.stderr).group(1)
     with pytest.raises(ValueError, match="^input arrays: " + problem + ":"):
         shellcontract.check(*off_arrays(path))
+
+
+def test_contract_takes_what_regions_returns_and_per_face_labels(mesh_dir):
+    # Issue "Regions a person would choose", item 4: the three forms give the same run.
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    found = shellcontract.regions(vertices, faces)
+    labels = [-1] * len(faces)
+    for k, r in enumerate(found):
+        for f in r:
+            labels[int(f)] = k
+    a = shellcontract.contract(vertices, faces, regions=found, frames=3, pressure=0.0)
+    b = shellcontract.contract(vertices, faces, regions=labels, frames=3, pressure=0.0)
+    assert a.summary["regions"] == len(found) == 3
+    assert (a.vertices == b.vertices).all()
+    with pytest.raises(ValueError, match="one entry per face"):
+        shellcontract.contract(vertices, faces, regions=[0, 1], frames=1)
+
+
+def test_region_strengths_scale_each_region(mesh_dir):
+    # Issue 55, item 3: a strength per region from Python. Strength 1 everywhere is the run
+    # without strengths; 0.5 everywhere is region_shrink times 0.5, bit for bit (a power of two
+    # keeps the area-weighted mean strength exact), so it sinks less.
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    found = shellcontract.regions(vertices, faces)
+    run = dict(frames=40, pressure=0.0)
+    plain = shellcontract.contract(vertices, faces, regions=found, **run)
+    ones = shellcontract.contract(vertices, faces, regions=found, region_strengths=[1.0] * len(found), **run)
+    half = shellcontract.contract(vertices, faces, regions=found, region_strengths=np.full(len(found), 0.5), **run)
+    shrunk = shellcontract.contract(vertices, faces, regions=found, region_shrink=0.7 * 0.5, **run)
+    assert (ones.vertices == plain.vertices).all()
+    assert (half.vertices == shrunk.vertices).all()
+    assert 0.0 < half.summary["region_inward_displacement"] < 0.8 * plain.summary["region_inward_displacement"]
+    with pytest.raises(ValueError, match="2 values for 3 regions"):
+        shellcontract.contract(vertices, faces, regions=found, region_strengths=[1, 1], frames=1)
+    with pytest.raises(ValueError, match=r"region_strengths\[1\] = 1.5"):
+        shellcontract.contract(vertices, faces, regions=found, region_strengths=[1, 1.5, 1], frames=1)
+    with pytest.raises(ValueError, match="face lists or labels"):
+        shellcontract.contract(vertices, faces, regions="auto", region_strengths=[1], frames=1)

@@ -87,8 +87,8 @@ def test_write_mesh_never_replaces_a_fifo(tmp_path, ico2):
     assert os.path.exists(fifo) and not os.path.isfile(fifo)
 
 
-@pytest.mark.parametrize("option,value", [("smoothing_rings", "1"), ("smoothing_rings", 1.5),
-                                          ("min_principal_ratio", "0.5"), ("min_area_fraction", None),
+@pytest.mark.parametrize("option,value", [("min_faces", "1"), ("min_faces", 1.5),
+                                          ("contrast", "0.5"), ("min_area_fraction", None),
                                           ("contrast_is_unknown", 1.0)])
 def test_regions_wrong_types_are_type_errors(ico2, option, value):
     """Before: a string for a float option raised RuntimeError (pybind11's cast_error)."""
@@ -96,9 +96,9 @@ def test_regions_wrong_types_are_type_errors(ico2, option, value):
         shellcontract.regions(*ico2, **{option: value})
 
 
-@pytest.mark.parametrize("option,value", [("min_curvature_contrast", float("nan")),
-                                          ("fit_distance_tolerance", float("inf")),
-                                          ("min_area_fraction", -0.1), ("smoothing_rings", -1)])
+@pytest.mark.parametrize("option,value", [("contrast", float("nan")),
+                                          ("fit_tolerance", float("inf")),
+                                          ("min_area_fraction", -0.1), ("min_faces", -1)])
 def test_regions_out_of_range_values_are_value_errors(ico2, option, value):
     """Before: NaN thresholds were accepted (and selected nothing, silently)."""
     with pytest.raises(ValueError):

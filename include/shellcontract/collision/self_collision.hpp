@@ -109,7 +109,8 @@ class SelfCollision {
   void restore_persistent_state(PersistentState state);
 
  private:
-  struct Impl;  ///< the state and the stages (src/collision/self_collision/state.hpp)
+  struct Impl;  ///< the parts of the pipeline, wired in order (src/collision/self_collision/impl.hpp;
+                ///< docs/design/collision-pipeline.md)
   std::unique_ptr<Impl> impl_;
 };
 

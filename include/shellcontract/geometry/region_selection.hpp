@@ -1,20 +1,25 @@
 // Automatic selection of the "local spherical structures" of Sun et al. 2020 (section 3.3: a head,
-// a bump; the paper picks them by hand) from discrete curvature, and the region face-list file.
-//
-// The selection (select_spherical_regions) in four steps:
-//   1. curvature (geometry/curvature.hpp) at the given positions, optionally averaged over
-//      vertex rings: H and K become area-weighted means over the ring (for K that is the total
-//      angle deficit of the ring divided by its mixed area, i.e. the integrated Gaussian
-//      curvature; averaging suppresses the per-vertex noise of scanned meshes);
-//   2. a vertex is a *seed* when it is convex (H > 0, K > 0), close to umbilic
-//      (k_min / k_max >= min_principal_ratio, both from the averaged H and K) and clearly more
-//      curved than the rest of the surface (H >= min_curvature_contrast * H_ref, H_ref = the
-//      area-weighted median of |H| over the mesh, floored at REFERENCE_FLOOR / bbox diagonal);
-//   3. a face is selected when at least min_seed_vertices of its corners are seeds (a vertex's
-//      curvature stands for its whole one-ring, so 1 = the seeds' one-ring);
-//   4. PMP::connected_components on the selected faces (edge-connected); patches with less than
-//      min_area_fraction or more than max_area_fraction of the total area are dropped.
-// Every threshold is a ratio, so the result does not change when the mesh is scaled.
+// an ear, a fingertip; the paper picks them by hand): compact caps on a sphere, the parts a person
+// would circle. Algorithm (docs/design/regions.md; code in cap_finder.cpp):
+//   1. seeds: vertices where the mean curvature, smoothed by heat diffusion at two lengths
+//      relative to the mesh's size, has a strict local maximum over its one-ring and is > 0;
+//   2. every seed grows a geodesic disc (Dijkstra on the edge graph) in steps of a fixed
+//      fraction of the mesh's size; at each step a least-squares sphere is fitted to the disc
+//      (area-weighted); the disc keeps growing while the fit's RMS distance stays within
+//      fit_tolerance of the radius, the centre stays inside (convex) and at most
+//      max_concave_fraction of the disc is concave;
+//   3. candidates are ranked by their angular extent (arc radius / sphere radius: a fingertip or
+//      ear is close to a hemisphere, a patch of a flank is nearly flat); in that order each is
+//      grown again without entering the regions already accepted (non-maximum suppression; a
+//      candidate mostly inside better ones is skipped) and is kept when it is curved enough
+//      (1/radius >= min_curvature_contrast x the median |H|), spans at least
+//      min_cap_angle_deg, has an area share within [min, max]_area_fraction, at least
+//      min_faces faces and compactness perimeter^2 / (4 pi area) <= max_compactness;
+//   4. kept caps that are pieces of one part are joined (cap_internal.hpp,
+//      merge_adjacent_caps): across a convex gap, or two caps of one sphere across the band
+//      between them, when the union stays compact.
+// Every length is relative to the mesh's size (sqrt of its area), so the result does not
+// change under scaling, rotation, vertex order and (within the discretisation) resolution.
 #pragma once
 
 #include <array>
@@ -30,37 +35,34 @@ namespace shellcontract {
 
 /// Thresholds of select_spherical_regions. All are dimensionless (scale-free).
 struct RegionOptions {
-  /// Rings of the vertex neighbourhood over which H and K are averaged before the tests
-  /// (0 = the vertex's own values). 1 removes most of the noise of scanned meshes while keeping
-  /// bumps a few rings wide.
-  int smoothing_rings = 1;
-  /// Close to umbilic: k_min / k_max of the averaged curvature must be at least this. 1 is a
-  /// perfect sphere; a cylinder has 0. 0.5 accepts ellipsoid-like caps with axis ratios up to
-  /// about 2:1 and rejects ridges, finger shafts and saddles. Equivalent to
-  /// H^2 - K <= ((1 - r) / (1 + r))^2 H^2 = H^2 / 9 at r = 0.5.
-  double min_principal_ratio = 0.5;
-  /// Clearly more curved than the surroundings: H >= this times H_ref (the area-weighted median
-  /// of |H|, i.e. the curvature of a "typical" half of the surface). 1.5 means a bump of radius
-  /// at most 2/3 of the typical radius of curvature; a plain sphere (every vertex = H_ref) has
-  /// no region.
-  double min_curvature_contrast = 1.5;
-  /// Growth tolerance: a neighbour joins a seed group when its distance to the sphere fitted
-  /// to the group differs from the radius by at most this fraction of the radius.
-  double fit_distance_tolerance = 0.02;
-  /// Growth tolerance: ... and its vertex normal is within this angle (degrees) of the sphere's
-  /// outward radial direction.
-  double fit_normal_tolerance_deg = 20.0;
-  /// Patches smaller than this fraction of the total area are dropped (noise, single spikes).
+  /// Growth: the disc grows while the RMS distance of its points to the fitted sphere is at most
+  /// this fraction of the sphere's radius. Loose on purpose: the parts a person circles are
+  /// rounded, not exact spheres (an ear is a flattened lobe, a paw's end a rounded disc), and a
+  /// part ends where its body begins, at a concave crease (max_concave_fraction); the fit stops
+  /// a disc that runs along a shaft or a flank.
+  double fit_tolerance = 0.3;
+  /// Growth: at most this share of the disc's area may be concave (smoothed H < 0); the crease
+  /// between a part and its body stops the growth.
+  double max_concave_fraction = 0.05;
+  /// Kept only when the cap spans at least this angle (geodesic radius / sphere radius, in
+  /// degrees; a hemisphere spans 90): a flank is nearly flat, an ear or a paw's end is not.
+  double min_cap_angle_deg = 50.0;
+  /// Kept only when the cap's curvature 1/radius is at least this times the area-weighted
+  /// median |H| of the surface (smoothed at the largest length): a belly, or the base sphere
+  /// between bumps, is no more curved than the typical surface; a head or a ball foot is. (A
+  /// plain sphere has no region anyway: its caps never end, see max_area_fraction.)
+  double min_curvature_contrast = 1.1;
+  /// Kept only when perimeter^2 / (4 pi area) is at most this (1 = a flat disc; slivers, rims
+  /// and L or X shapes are far above 2).
+  double max_compactness = 2.0;
+  /// Kept only with at least this many faces (fewer cannot be judged round).
+  int min_faces = 10;
+  /// Kept only when at least this fraction of the total area (noise, single spikes).
   double min_area_fraction = 0.002;
-  /// Patches larger than this fraction of the total area are not *local* structures and are
-  /// dropped (cannot happen with a contrast > 1, since then H > median on the whole patch; kept
-  /// as a guard for a user who lowers the contrast).
-  double max_area_fraction = 0.5;
-
-  /// Floor of H_ref in units of 1 / bounding-box diagonal, so that a mostly flat mesh (a cube:
-  /// median |H| = 0) does not make every convex vertex "clearly more curved". A sphere has
-  /// H = 2 sqrt(3) / diagonal = 3.46 / diagonal, so 1 is well below any round shape.
-  static constexpr double REFERENCE_FLOOR = 1.0;
+  /// Kept only when at most this fraction of the total area (a region that large is not a
+  /// local part; sinking it deflates the shell). Also bounds the growth: a disc that still fits
+  /// at this size has not met the end of a part and is dropped.
+  double max_area_fraction = 0.25;
 };
 
 /// One selected region, as reported by select_spherical_regions.
@@ -68,17 +70,26 @@ struct RegionSummary {
   std::size_t faces = 0;         ///< number of faces
   double area = 0.0;             ///< length^2, at the given positions
   double area_fraction = 0.0;    ///< area / total area
-  double mean_curvature = 0.0;   ///< area-weighted mean of the averaged H over its faces, 1/length
+  Vec3 centre = Vec3::Zero();    ///< centre of the fitted sphere (length)
+  double radius = 0.0;           ///< radius of the fitted sphere (length)
+  double residual = 0.0;         ///< RMS distance of the region's vertices to the sphere / radius
+  double cap_angle_deg = 0.0;    ///< geodesic radius of the region / sphere radius, degrees
+  double compactness = 0.0;      ///< perimeter^2 / (4 pi area) of the region's faces
+  int seed_vertex = -1;          ///< vertex the region grew from
+  double mean_curvature = 0.0;   ///< 1 / radius, 1/length
   double contrast = 0.0;         ///< mean_curvature / reference_mean_curvature
 };
 
 /// What select_spherical_regions measured and kept (for the CLI summary and for tuning).
 struct RegionReport {
   double total_area = 0.0;                ///< length^2
-  double reference_mean_curvature = 0.0;  ///< H_ref after the floor, 1/length
-  std::size_t seed_vertices = 0;          ///< vertices that passed step 2
-  std::size_t dropped_small = 0;          ///< patches dropped by min_area_fraction
-  std::size_t dropped_large = 0;          ///< patches dropped by max_area_fraction
+  double reference_mean_curvature = 0.0;  ///< area-weighted median |smoothed H|, 1/length
+  std::size_t seed_vertices = 0;          ///< seeds (step 1)
+  std::size_t candidates = 0;             ///< seeds whose disc fitted a convex sphere (step 2)
+  std::size_t dropped_small = 0;          ///< dropped by min_area_fraction or min_faces
+  std::size_t dropped_large = 0;          ///< dropped by max_area_fraction
+  std::size_t dropped_flat = 0;           ///< dropped by min_cap_angle_deg or the contrast
+  std::size_t dropped_shape = 0;          ///< dropped by max_compactness
   std::vector<RegionSummary> regions;     ///< one per region id, in id order
 };
 
@@ -88,13 +99,27 @@ struct RegionReport {
 /// @param x       vertex positions, #V by 3, row i = vertex i, any length unit (rest or deformed).
 /// @param options thresholds (all scale-free).
 /// @param report  optional; filled with the reference curvature and one summary per region.
-/// @pre  x.rows() == number_of_vertices; options.smoothing_rings >= 0,
-///       1 <= options.min_seed_vertices <= 3.
+/// @pre  x.rows() == number_of_vertices; options in range (check_region_options).
 /// @return one entry per face (index = face index = input face order): the region id, or -1.
 ///         Ids are 0..n-1 ordered by decreasing area, ties by smallest face index.
 /// @throws UsageError on a precondition failure.
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report = nullptr);
+
+/// The regions around given points (an artist pointing at an ear): for each point, the surface
+/// point nearest to it, then the cap grown from the nearest vertex of that face as in step 2,
+/// without the ranking filters (angle, contrast, compactness) but keeping the growth's
+/// tolerances; a later point does not enter the regions of the earlier ones. A point whose cap
+/// cannot be fitted (a flat or concave spot) gets the seed's one-ring, so every point gives a
+/// region. Ids follow the order of the points.
+/// @throws UsageError as select_spherical_regions, or when a point is not finite.
+std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
+                                   const RegionOptions& options, RegionReport* report = nullptr);
+
+/// Throws UsageError naming the first option out of range (tolerances >= 0, fractions in
+/// [0, 1], min <= max, min_faces >= 1).
+void check_region_options(const RegionOptions& options);
+
 
 /// The same selection on the mesh's own property maps (design.md, data flow: curvature ->
 /// spherical regions -> f:region): stores the curvature at x in "v:mean_curvature" and
@@ -138,6 +163,19 @@ std::vector<int> face_ids_from_regions(const std::vector<std::vector<int>>& regi
 ///         an index >= num_faces, or a face listed twice (in one region or in two); and
 ///         "<path>: cannot open" when the file cannot be read.
 std::vector<std::vector<int>> read_region_file(const std::string& path, std::size_t num_faces);
+
+/// The regions of a face-list file with a strength each.
+struct RegionFile {
+  std::vector<std::vector<int>> regions;  ///< as read_region_file returns them
+  std::vector<double> strength;           ///< one per region, in [0, 1]; 1 where the line gives none
+};
+
+/// read_region_file, where a line may start with its region's strength: a number in [0, 1]
+/// followed by ':' ("0.5: 12 13 14"), the share of --region-shrink that region sinks with; a line
+/// without one is at full strength. So a plain face list reads as before.
+/// @throws InputError "<path>:<line>: <problem>" as read_region_file, and for a strength that is
+///         not a number in [0, 1] or a strength with no face after it.
+RegionFile read_region_file_with_strengths(const std::string& path, std::size_t num_faces);
 
 /// Writes the regions of `region_of_face` in the format read_region_file reads: line r = the
 /// faces with id r, ascending, separated by single spaces. Written atomically (temporary file

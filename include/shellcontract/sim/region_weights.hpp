@@ -39,6 +39,13 @@ std::vector<double> face_weights(const Mesh& mesh, const std::vector<double>& ve
 /// @return the number of regions
 std::size_t mark_weighted_regions(Mesh& mesh, const std::vector<double>& vertex_weights);
 
+/// Attaches the strengths of a face-list file's regions (read_region_file_with_strengths) as
+/// REGION_WEIGHT_MAP: each face of regions[r] gets strength[r], the other faces 0. Attaches
+/// nothing when every strength is 1, so a file without strengths runs as it did before them.
+/// @param strength  one per region, each in [0, 1]
+void store_region_strengths(Mesh& mesh, const std::vector<std::vector<int>>& regions,
+                            const std::vector<double>& strength);
+
 /// The weights of REGION_WEIGHT_MAP, one per face; empty when the map is not attached (every
 /// region then acts at the full --region-shrink).
 std::vector<double> stored_region_weights(const Mesh& mesh);

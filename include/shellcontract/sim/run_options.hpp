@@ -37,7 +37,7 @@ constexpr std::size_t AUTO_COLOURED_FACES = 200000;
 
 /// Default of RunOptions::region_max_area: RegionOptions{}.max_area_fraction
 /// (geometry/region_selection.hpp; a test holds the two equal).
-inline constexpr double DEFAULT_REGION_MAX_AREA = 0.5;
+inline constexpr double DEFAULT_REGION_MAX_AREA = 0.25;
 
 /// The order a run of a mesh with `faces` faces uses.
 ConstraintOrder order_for(OrderChoice choice, std::size_t faces);

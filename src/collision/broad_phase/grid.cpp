@@ -57,6 +57,33 @@ void unpack_keys(const std::vector<std::uint64_t>& keys, int shift, std::size_t 
   }
 }
 
+/// Keeps the keys ((p << shift | q) << 1 | close) of `keys` whose pair's exact double boxes
+/// overlap, in order, with close set as the double cell loop sets it (0 iff gap_above(box p,
+/// box q, far_gap); gap_above is symmetric in its boxes). The float loop's keys are a superset
+/// of the double loop's, emitted by the same cells, rows and lanes in the same order (the two
+/// loops differ only in the box test), so the kept keys are the double loop's, in its order.
+/// p is a vertex and q a face (vf), or p and q are edges.
+void confirm_keys(const GridPrimitives& prim, bool vf, int shift, double far_gap,
+                  std::vector<std::uint64_t>& keys) {
+  const std::uint64_t mask = (std::uint64_t{1} << shift) - 1;
+  const CollisionTopology& topo = prim.topo;
+  std::size_t kept = 0;
+  for (const std::uint64_t k : keys) {
+    const std::uint64_t body = k >> 1;
+    const auto p = static_cast<Eigen::Index>(body >> shift);
+    const auto q = static_cast<Eigen::Index>(body & mask);
+    const detail::GridVertexBox a =
+        vf ? prim.s.grid_vertex_boxes[static_cast<std::size_t>(p)]
+           : prim.box({topo.edges(p, 0), topo.edges(p, 1), -2});
+    const detail::GridVertexBox b =
+        vf ? prim.box({topo.faces(q, 0), topo.faces(q, 1), topo.faces(q, 2)})
+           : prim.box({topo.edges(q, 0), topo.edges(q, 1), -2});
+    if (!overlap(a, b)) continue;
+    keys[kept++] = body << 1 | (gap_above(a, b, far_gap) ? 0u : 1u);
+  }
+  keys.resize(kept);
+}
+
 /// Item i of the current cell against items [j0, j1): mask[j] = 1 iff the pair passes the dedupe
 /// flags, the float box test and the adjacency test. Plain loops over structure-of-arrays data,
 /// written so that the compiler vectorizes them (no branches, 32-bit lanes throughout); they are
@@ -158,11 +185,13 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // Float boxes relative to the scene minimum (better precision than absolute coordinates).
   // Each double is rounded outward after the subtraction; the rounded subtraction is monotone,
   // so whenever two double boxes overlap, so do their float boxes: the float test only culls.
-  // The AVX-512 cell loop tests the double boxes directly and needs none, unless the caller
-  // takes a superset (float_superset: find_candidates_in_vertex_boxes), which it then emits
-  // from float boxes alone.
+  // The AVX-512 double cell loop tests the double boxes directly and needs none; the float
+  // loop emits a superset from float boxes alone, which a caller takes as it is (float_superset:
+  // find_candidates_in_vertex_boxes) or which confirm_keys cuts to the exact pairs
+  // (grid_float_confirm).
   const bool avx512 = s.grid_isa == detail::GridIsa::Auto && detail::grid_avx512_available();
-  const bool float_cells = avx512 && float_superset;
+  const bool float_cells = avx512 && (float_superset || s.grid_float_confirm);
+  const bool confirm = float_cells && !float_superset;
   s.grid_vertex_floats.resize(avx512 && !float_cells ? 0 : nv);
   if (float_cells) {
     // The superset loop needs only a monotone map from the doubles to the floats (it keeps
@@ -330,6 +359,10 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     if (float_cells) {
       grid_chunk_avx512<true>(prim, start.data(), entry, s.chunk_cells[chunk],
                               s.chunk_cells[chunk + 1], vf_shift, ee_shift, far_gap, out_chunk);
+      if (confirm) {
+        confirm_keys(prim, true, vf_shift, far_gap, out_chunk.vf_keys);
+        confirm_keys(prim, false, ee_shift, far_gap, out_chunk.ee_keys);
+      }
       return;
     }
     if (avx512) {

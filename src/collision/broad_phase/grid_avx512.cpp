@@ -18,7 +18,9 @@ namespace detail {
 // finished keys of the lanes that pass with a compress-store, in lane order: the same pairs, in
 // the same order, with the same close flags (tested against the portable loop). The float boxes
 // were only a cull in front of the exact test, so skipping them changes nothing but the
-// box_overlaps statistic, which then counts exact overlaps.
+// box_overlaps statistic, which then counts exact overlaps. By default find_candidates runs the
+// float loop below instead and confirms its pairs in double (grid.cpp's confirm_keys, the same
+// pairs in the same order); this loop runs with BroadPhaseScratch::grid_float_confirm false.
 #pragma GCC push_options
 #pragma GCC target("avx512f,avx512vl,popcnt")
 

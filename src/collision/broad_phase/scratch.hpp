@@ -132,6 +132,12 @@ struct BroadPhaseScratch {
   /// time and emit a superset of the exact pairs (see there); false: the exact pairs (tests and
   /// bench_broad_phase compare the two).
   bool grid_float_superset = true;
+  /// find_candidates (exact pairs) with the AVX-512 cell loop: run the float loop of the
+  /// superset, then confirm each of its pairs with the exact double test and set its close flag
+  /// (grid_pairs' confirm_keys): the same pairs in the same order as the double loop, whose
+  /// per-lane double tests cost more than the float cull plus one test per emitted pair. False:
+  /// the double loop (tests compare the two).
+  bool grid_float_confirm = true;
   std::vector<detail::BroadPhaseBox> vertex_boxes;  ///< indexed by vertex id
   std::vector<detail::BroadPhaseBox> face_boxes;    ///< indexed by face id
   std::vector<detail::BroadPhaseBox> edge_boxes;    ///< indexed by edge id

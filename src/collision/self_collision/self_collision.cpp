@@ -1,62 +1,67 @@
-// SelfCollision's set-up (the rest state's excluded and near pairs) and its public calls, which
-// forward to the stages (state.hpp lists them).
-#include "collision/self_collision/state.hpp"
+// SelfCollision: its public calls, and resolve() wiring the pipeline's parts in order (contact
+// cache, broad phase, detection, response; docs/design/collision-pipeline.md).
+#include "collision/self_collision/impl.hpp"
+#include "shellcontract/core/stage_timer.hpp"
 
 namespace shellcontract {
 
-// A pair can come within delta in the step only if its swept boxes, each grown by its vertices'
-// regions (m/2 and the rounding of the region bounds, at most u (M + m/2); M = max |coordinate|,
-// u the unit roundoff), come within delta on every axis: if the boxes' gap G <= delta + m +
-// 2u (M + m/2). Boxes grown by I overlap for every G <= 2I, their rounded bounds included
-// (rounding is monotone: hi + I >= lo' - I gives fl(hi + I) >= fl(lo' - I)). So I = (delta +
-// m)/2 + s covers the bound when s >= u (M + m/2) plus the rounding of I itself, which s = 4u (M
-// + delta + m) does. The inflation was delta + m/2, a band of gaps up to 2 delta + m (6 delta)
-// where delta + m (5 delta) are needed, and the wider band gave measurably more candidates
-// (lab/scripts/scale_benchmark.py's pairs per face; lab/history.md).
-double broad_phase_inflation(const CollisionOptions& options, double max_abs) {
-  constexpr double u = std::numeric_limits<double>::epsilon() / 2.0;
-  const double band = options.delta + options.region_margin * options.delta;
-  return 0.5 * band + 4.0 * u * (max_abs + band);
+using namespace collision_pipeline;
+
+SelfCollision::Impl::Impl(const Faces& faces, const Positions& rest, const CollisionOptions& opts)
+    : topo(make_collision_topology(faces, static_cast<int>(rest.rows()))),
+      options(opts),
+      workers(std::make_unique<Workers>(opts.threads)),
+      cache(opts.delta),
+      broad_phase(rest, topo, options, *workers),
+      response(static_cast<std::size_t>(rest.rows()), options) {}
+
+void SelfCollision::Impl::predict(const Positions& x0, const Positions& x_guess,
+                                  const Eigen::VectorXd& w) {
+  broad_phase.predict(x0, x_guess, w, cache);
 }
 
-SelfCollision::Impl::Impl(const Faces& faces, const Positions& rest,
-                          const CollisionOptions& options)
-    : topo_(make_collision_topology(faces, static_cast<int>(rest.rows()))),
-      options_(options),
-      workers_(std::make_unique<Workers>(options.threads)) {
-  // Pairs that touch (distance 0) in the rest state cannot be separated by a response that
-  // keeps each pair on its starting side: exclude them for the whole run. Pairs closer than
-  // delta (but not touching) are the input's own thin features: the response leaves them at
-  // their rest distance (a shell at rest stays at rest), but the fail-safe still keeps them
-  // from crossing.
-  find_candidates(rest, rest, topo_, options_.delta, candidates_, nullptr, options_.method);
-  CcdOptions touch, near;
-  touch.tolerance = 0.0;
-  near.tolerance = options_.delta;
-  for_each_pair(
-      candidates_, topo_,
-      [&](CcdPrimitive kind, const std::array<int, 2>& pair, const std::array<int, 4>& v) {
-        CcdStencil s0, s1;
-        gather(rest, rest, v, s0, s1);
-        const bool vf = kind == CcdPrimitive::VertexFace;
-        if (primitive_ccd(kind, s0, s1, touch).hit)
-          (vf ? excluded_vf_ : excluded_ee_).push_back(pair);
-        else if (primitive_ccd(kind, s0, s1, near).hit)
-          (vf ? near_vf_ : near_ee_).push_back(pair);
-      });
-  // Sorted for the binary searches of broad_phase (the Grid's candidates are in cell order).
-  for (auto* list : {&excluded_vf_, &excluded_ee_, &near_vf_, &near_ee_})
-    std::sort(list->begin(), list->end());
-  moved_.assign(static_cast<std::size_t>(rest.rows()), 0);
+void SelfCollision::Impl::resolve(const Positions& x0, Positions& x1, const Eigen::VectorXd& w,
+                                  CollisionStepStats& stats) {
+  stats = CollisionStepStats{};
+  const StageTimer start;
+  resolve_steps(x0, x1, w, stats);
+  // predict's share on the calling thread (the prediction, its boxes, the hand-off) is
+  // collision work of this step too.
+  const double predict_seconds = broad_phase.speculation().take_predict_seconds();
+  stats.broad_seconds += predict_seconds;
+  stats.predict_seconds = predict_seconds;
+  stats.seconds = start.elapsed() + predict_seconds;
 }
 
-SelfCollision::Impl::~Impl() {
-  if (!spec_enqueued_) return;
-  try {
-    workers_->arena.execute([&] { workers_->background.wait(); });
-  } catch (...) {
-    // The task's own failure does not matter any more; it must only not outlive the members.
+void SelfCollision::Impl::resolve_steps(const Positions& x0, Positions& x1,
+                                        const Eigen::VectorXd& w, CollisionStepStats& stats) {
+  tbb::task_arena& arena = workers->arena;
+  // The solve's correction of the guess, for the next step's prediction (before the warm start
+  // moves x1).
+  broad_phase.speculation().take_correction(x1);
+  // 1. Contact cache: the last step's contacts projected on x1, then emptied for this step's.
+  if (options.warm_start) {
+    const StageTimer t0;
+    cache.warm_start(x1, w);
+    t0.add_to(stats.response_seconds);
   }
+  cache.clear_detections();
+  // 2. Broad phase: the step's pairs and regions (a new step's pairs: no zone yet).
+  response.begin_step();
+  const bool round0_collected = broad_phase.run(x0, x1, stats);
+  // 3. and 4. Detection and response: the rounds, whose detections the cache keeps.
+  response.rounds(arena, x0, x1, w, broad_phase.pairs(), broad_phase.regions(), round0_collected,
+                  detection, cache, stats);
+  // The next step's cache: this step's detections and the warm start's pressed contacts.
+  if (options.warm_start) {
+    const StageTimer t0;
+    cache.update(static_cast<std::size_t>(topo.num_vertices),
+                 static_cast<std::size_t>(topo.edges.rows()));
+    t0.add_to(stats.response_seconds);
+  }
+  // The fail-safe, on the same pairs: reverting shrinks a swept box to a subset of the one the
+  // broad phase saw.
+  response.failsafe(arena, x0, x1, broad_phase.pairs(), detection, stats);
 }
 
 SelfCollision::SelfCollision(const Faces& faces, const Positions& rest,
@@ -75,31 +80,29 @@ void SelfCollision::predict(const Positions& x0, const Positions& x_guess,
   impl_->predict(x0, x_guess, w);
 }
 
-const std::vector<Contact>& SelfCollision::contact_cache() const {
-  return impl_->previous_contacts_;
-}
+const std::vector<Contact>& SelfCollision::contact_cache() const { return impl_->cache.contacts(); }
 
 SelfCollision::PersistentState SelfCollision::persistent_state() const {
-  return {impl_->previous_contacts_, impl_->correction_, impl_->skin_};
+  const Speculation& s = impl_->broad_phase.speculation();
+  return {impl_->cache.contacts(), s.correction(), s.skin()};
 }
 
 void SelfCollision::restore_persistent_state(PersistentState state) {
-  impl_->previous_contacts_ = std::move(state.contact_cache);
-  impl_->correction_ = std::move(state.correction);
-  impl_->skin_ = std::move(state.skin);
+  impl_->cache.restore(std::move(state.contact_cache));
+  impl_->broad_phase.speculation().restore(std::move(state.correction), std::move(state.skin));
 }
 
-bool SelfCollision::live_pairs_consistent() const { return impl_->live_pairs_consistent(); }
+bool SelfCollision::live_pairs_consistent() const {
+  return impl_->broad_phase.pairs().live_consistent();
+}
 
 std::pair<std::vector<std::array<int, 2>>, std::vector<std::array<int, 2>>>
 SelfCollision::candidate_pairs() const {
-  return impl_->candidate_pairs();
+  return impl_->broad_phase.pairs().candidate_pairs();
 }
 
-std::size_t SelfCollision::excluded_pairs() const {
-  return impl_->excluded_vf_.size() + impl_->excluded_ee_.size();
-}
+std::size_t SelfCollision::excluded_pairs() const { return impl_->broad_phase.excluded_pairs(); }
 
-const CollisionTopology& SelfCollision::topology() const { return impl_->topo_; }
+const CollisionTopology& SelfCollision::topology() const { return impl_->topo; }
 
 }  // namespace shellcontract

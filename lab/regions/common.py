@@ -1,0 +1,71 @@
+"""Shared helpers of the lab/regions scripts: reading meshes and face lists, running the tool.
+
+Every script here runs the built tool (build/shellcontract by default) on the paper's meshes in
+data/meshes (scripts/fetch_paper_meshes.sh; the kitten: scripts/make_kitten.sh) and on
+meshes/bumpy_sphere.off; a mesh that is absent is skipped and said so.
+"""
+import os
+import subprocess
+
+import numpy as np
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+PAPER = ["eight", "hand", "elk", "bear", "kitten"]
+
+
+def mesh_path(name):
+    if name == "bumpy_sphere":
+        return os.path.join(ROOT, "meshes", "bumpy_sphere.off")
+    return os.path.join(ROOT, "data", "meshes", name + ".off")
+
+
+def read_off(path):
+    tokens = " ".join(line.split("#")[0] for line in open(path)).split()
+    i = 1 if tokens[0] == "OFF" else 0
+    nv, nf = int(tokens[i]), int(tokens[i + 1])
+    i += 3
+    v = np.array(tokens[i:i + 3 * nv], float).reshape(nv, 3)
+    i += 3 * nv
+    faces = []
+    for _ in range(nf):
+        n = int(tokens[i])
+        faces.append([int(x) for x in tokens[i + 1:i + 1 + n]])
+        i += 1 + n
+    return v, np.array(faces)
+
+
+def read_face_list(path):
+    """Regions of a face-list file: one list of face ids per non-comment line."""
+    out = []
+    for line in open(path):
+        line = line.split("#")[0].split()
+        if line:
+            out.append([int(t) for t in line])
+    return out
+
+
+def auto_regions(exe, mesh, tmp, extra=()):
+    """The regions `shellcontract regions MESH` finds (its face list) and its printed table."""
+    listed = os.path.join(tmp, "regions.txt")
+    ply = os.path.join(tmp, "regions.ply")
+    if os.path.exists(listed):
+        os.remove(listed)
+    out = subprocess.run([exe, "regions", mesh, "-o", ply, "--face-list", listed] + list(extra),
+                         check=True, capture_output=True, text=True).stdout
+    return (read_face_list(listed) if os.path.exists(listed) else []), out, ply
+
+
+def face_centroids(v, f):
+    return v[f].mean(axis=1)
+
+
+def face_areas(v, f):
+    return 0.5 * np.linalg.norm(np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]]), axis=1)
+
+
+def rest_normals(v, f):
+    n = np.zeros_like(v)
+    cr = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    for k in range(3):
+        np.add.at(n, f[:, k], cr)
+    return n / np.maximum(np.linalg.norm(n, axis=1), 1e-300)[:, None]

@@ -1,0 +1,109 @@
+#!/usr/bin/python3
+"""The labelled set: the parts a person would circle on the paper's meshes, as geometric
+predicates written down by looking at renders of each mesh (scripts/render_mesh.py), and the
+per-part IoU of the automatic regions (`shellcontract regions MESH`, default thresholds).
+Writes lab/regions/iou_table.md.
+
+Each part is "the faces whose centroid lies within r of the point P" (a ball predicate), with P
+a point on or inside the part, chosen as said in the comment of each entry: an extreme vertex of
+the mesh in a stated direction inside a stated box, or a written point. The IoU of a part is
+by area: |part & region| / |part | region| for the region that overlaps it most.
+
+Usage: /usr/bin/python3 lab/regions/labels.py [--build build]
+"""
+import argparse
+import os
+import sys
+import tempfile
+
+import numpy as np
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import common  # noqa: E402
+
+
+def extreme(v, axis, sign, box):
+    """The vertex farthest along sign * axis among those inside box (a predicate on v)."""
+    idx = np.flatnonzero(box(v))
+    return v[idx[np.argmax(sign * v[idx, axis])]]
+
+
+def parts_of(name, v):
+    """(part name, P, r) per labelled part; None when the mesh has no labels."""
+    x, y, z = 0, 1, 2
+    if name == "bear":  # stands on y, faces +z; ears on top, arms at mid height, feet at the bottom
+        return [("left ear", extreme(v, y, 1, lambda v: v[:, 0] < -0.15), 0.17),
+                ("right ear", extreme(v, y, 1, lambda v: v[:, 0] > 0.15), 0.17),
+                ("head", np.array([0.0, 0.55, 0.0]), 0.30),
+                ("left arm end", extreme(v, x, -1, lambda v: (v[:, 1] > 0.0) & (v[:, 1] < 0.45)), 0.17),
+                ("right arm end", extreme(v, x, 1, lambda v: (v[:, 1] > 0.0) & (v[:, 1] < 0.45)), 0.17),
+                ("left foot end", extreme(v, x, -1, lambda v: v[:, 1] < -0.3), 0.2),
+                ("right foot end", extreme(v, x, 1, lambda v: v[:, 1] < -0.3), 0.2)]
+    if name == "hand":  # a fist standing on z: the four finger ends are the top of four x-bands
+        lo, hi = v[:, 0].min(), v[:, 0].max()
+        edges = np.linspace(lo, hi, 5)
+        return [("fingertip %d" % (k + 1),
+                 extreme(v, z, 1, lambda v, a=edges[k], b=edges[k + 1]: (v[:, 0] >= a) & (v[:, 0] <= b)), 0.12)
+                for k in range(4)]
+    if name == "elk":  # a wooden toy: four ball feet (the lowest vertex of each quadrant in x, z)
+        cx, cz = np.median(v[:, 0]), np.median(v[:, 2])
+        out = []
+        for k, (sx, sz) in enumerate([(-1, -1), (-1, 1), (1, -1), (1, 1)]):
+            box = (lambda v, sx=sx, sz=sz: (sx * (v[:, 0] - cx) > 0) & (sz * (v[:, 2] - cz) > 0) & (v[:, 1] < -40))
+            bottom = extreme(v, y, -1, box)
+            out.append(("ball foot %d" % (k + 1), bottom + np.array([0, 25.0, 0]), 27.0))
+        return out
+    if name == "eight":  # a figure eight along z: its two round ends
+        return [("top end", extreme(v, z, 1, lambda v: v[:, 2] > 0), 0.2),
+                ("bottom end", extreme(v, z, -1, lambda v: v[:, 2] < 0), 0.2)]
+    if name == "kitten":  # sits on y: head on top
+        return [("head", extreme(v, y, 1, lambda v: np.ones(len(v), bool)), 0.35 * np.ptp(v[:, 1]))]
+    return None
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
+    ap.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "iou_table.md"))
+    a = ap.parse_args()
+    exe = os.path.join(a.build, "shellcontract")
+    rows = ["| mesh | part | P | r | part faces | best region | IoU (area) |", "|---|---|---|---|---|---|---|"]
+    summary = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in common.PAPER:
+            path = common.mesh_path(name)
+            if not os.path.exists(path):
+                rows.append(f"| {name} | (mesh absent) | | | | | |")
+                continue
+            v, f = common.read_off(path)
+            parts = parts_of(name, v)
+            regions, _, _ = common.auto_regions(exe, path, tmp)
+            area = common.face_areas(v, f)
+            cent = common.face_centroids(v, f)
+            ious = []
+            for part, P, r in parts:
+                mask = np.linalg.norm(cent - P, axis=1) <= r
+                best, arg = 0.0, "-"
+                for k, reg in enumerate(regions):
+                    rm = np.zeros(len(f), bool)
+                    rm[reg] = True
+                    iou = area[mask & rm].sum() / max(area[mask | rm].sum(), 1e-300)
+                    if iou > best:
+                        best, arg = iou, k
+                ious.append(best)
+                rows.append(f"| {name} | {part} | ({P[0]:.3g}, {P[1]:.3g}, {P[2]:.3g}) | {r:.3g} | {int(mask.sum())} | "
+                            f"{arg} | {best:.2f} |")
+            summary.append(f"| {name} | {len(parts)} | {len(regions)} | {np.mean(ious):.2f} | "
+                           f"{sum(i >= 0.5 for i in ious)} |")
+    text = ("# Labelled parts against the automatic regions\n\n"
+            "Generated by `lab/regions/labels.py` (the predicates are in its `parts_of`). Default "
+            "thresholds of `shellcontract regions`.\n\n"
+            "| mesh | labelled parts | automatic regions | mean IoU | parts with IoU >= 0.5 |\n|---|---|---|---|---|\n"
+            + "\n".join(summary) + "\n\n" + "\n".join(rows) + "\n")
+    with open(a.out, "w") as fo:
+        fo.write(text)
+    print(text)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,490 @@
+// The spherical-cap region finder (algorithm in region_selection.hpp and docs/design/regions.md):
+// diffusion-smoothed mean curvature -> seeds -> geodesic discs grown while a sphere fits ->
+// ranked, non-overlapping, compact caps.
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <memory>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <queue>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "geometry/cap_internal.hpp"
+#include "geometry/sphere_moments.hpp"
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/curvature.hpp"
+#include "shellcontract/geometry/region_metrics.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+
+namespace shellcontract {
+namespace {
+
+using detail::Cap;
+using detail::MeshArrays;
+using detail::mesh_arrays;
+
+constexpr double PI = 3.14159265358979323846;
+/// Diffusion lengths of the smoothed mean curvature, in units of the mesh's size sqrt(total
+/// area). The first marks concave spots (creases between a part and its body) without the
+/// noise of a scan; the others give the seeds: a fingertip or an ear is a maximum at the
+/// smaller ones, a head at the larger.
+constexpr std::array<double, 4> SEED_SCALES = {0.01, 0.02, 0.05, 0.1};
+/// Growth step of the discs, in units of the mesh's size (finer than the smallest part looked for).
+constexpr double GROWTH_STEP = 0.004;
+/// Vertices a disc needs before its fit is judged (fewer cannot tell a cap from noise), and
+/// after which a disc that never fitted is given up.
+constexpr std::size_t MIN_FIT_POINTS = 10, GIVE_UP_POINTS = 40;
+/// A candidate whose freely grown cap has more than this share of its faces on better caps is a
+/// fragment of a part already taken (non-maximum suppression).
+constexpr double MAX_COVERED = 0.5;
+
+/// H smoothed by one implicit heat step: (M + t L) u = M H, L the (positive semidefinite)
+/// cotangent Laplacian, M the mixed areas, t = (scale * size)^2. Mesh-independent in the limit,
+/// unlike ring averages, so a subdivided mesh gives the same smoothed field.
+std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Positions& x, const CurvatureField& c) {
+  const auto n = static_cast<Eigen::Index>(m.nv);
+  std::vector<Eigen::Triplet<double>> lt;
+  lt.reserve(m.nf * 9);
+  for (const auto& t : m.tri)
+    for (int k = 0; k < 3; ++k) {
+      const int i = t[static_cast<std::size_t>(k)], j = t[static_cast<std::size_t>((k + 1) % 3)],
+                o = t[static_cast<std::size_t>((k + 2) % 3)];
+      const Vec3 a = Vec3(x.row(i)) - Vec3(x.row(o)), b = Vec3(x.row(j)) - Vec3(x.row(o));
+      const double cross = a.cross(b).norm();
+      if (!(cross > 1e-14 * a.norm() * b.norm())) continue;  // degenerate: no weight
+      const double w = 0.5 * a.dot(b) / cross;
+      lt.emplace_back(i, j, -w);
+      lt.emplace_back(j, i, -w);
+      lt.emplace_back(i, i, w);
+      lt.emplace_back(j, j, w);
+    }
+  Eigen::SparseMatrix<double> L(n, n), M(n, n);
+  L.setFromTriplets(lt.begin(), lt.end());
+  std::vector<Eigen::Triplet<double>> mt;
+  // A zero mixed area (all faces degenerate) would make the row singular: a tiny positive mass.
+  const double floor = 1e-12 * m.total_area / std::max<double>(1.0, static_cast<double>(m.nv));
+  for (Eigen::Index i = 0; i < n; ++i) mt.emplace_back(i, i, std::max(c.mixed_area(i), floor));
+  M.setFromTriplets(mt.begin(), mt.end());
+  const Eigen::VectorXd rhs = M * c.mean;
+  // The scales are independent systems: solved side by side (each solve is the same
+  // deterministic sequence of operations as alone, so the result does not depend on the threads).
+  std::vector<Eigen::VectorXd> out(SEED_SCALES.size());
+  std::vector<char> failed(SEED_SCALES.size(), 0);
+  tbb::parallel_for(std::size_t{0}, SEED_SCALES.size(), [&](std::size_t k) {
+    const double t = (SEED_SCALES[k] * m.size) * (SEED_SCALES[k] * m.size);
+    const Eigen::SparseMatrix<double> A = M + t * L;
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+    if (solver.info() != Eigen::Success) {
+      failed[k] = 1;
+      return;
+    }
+    out[k] = solver.solve(rhs);
+  });
+  if (std::any_of(failed.begin(), failed.end(), [](char f) { return f != 0; }))
+    throw UsageError("select_spherical_regions: the smoothing system is singular");
+  return out;
+}
+
+/// Area-weighted median of |values|; 0 when the total weight is 0.
+double weighted_median_abs(const Eigen::VectorXd& values, const std::vector<double>& weights) {
+  std::vector<std::size_t> order(weights.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto v = [&](std::size_t i) { return std::abs(values(static_cast<Eigen::Index>(i))); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v(a) < v(b); });
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  double acc = 0.0;
+  for (std::size_t i : order)
+    if ((acc += weights[i]) >= 0.5 * total) return v(i);
+  return 0.0;
+}
+
+/// Grows discs from seeds (step 2). Scratch arrays are kept between seeds.
+class CapGrower {
+ public:
+  CapGrower(const MeshArrays& m, const Positions& x, const CurvatureField& c, const Eigen::VectorXd& concave_field,
+            const RegionOptions& o)
+      : m_(m), x_(x), c_(c), concave_(concave_field), o_(o), dist_(m.nv, INF), popped_(m.nv, 0) {}
+
+  /// The cap around `seed`, not entering vertices with blocked[v] != 0. Nothing when no disc
+  /// passed the tests.
+  std::optional<Cap> grow(int seed, const std::vector<char>& blocked) {
+    reset();
+    const double h = GROWTH_STEP * m_.size;
+    detail::SphereMoments moments(Vec3(x_.row(seed)), m_.size);
+    const Vec3 n_seed(c_.normal.row(seed));
+    std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> heap;
+    dist_[static_cast<std::size_t>(seed)] = 0.0;
+    touched_.push_back(seed);
+    heap.emplace(0.0, seed);
+    double boundary = h, area = 0.0, concave = 0.0, last = 0.0;
+    std::optional<Cap> best;
+    bool stop = false, unbounded = false;
+    const auto judge = [&]() {
+      if (order_.size() < MIN_FIT_POINTS) return;
+      const std::optional<detail::SphereFit> f = moments.fit();
+      const bool pass = f && f->residual <= o_.fit_tolerance && n_seed.dot(Vec3(x_.row(seed)) - f->centre) > 0.0 &&
+                        concave <= o_.max_concave_fraction * area;
+      if (pass) {
+        if (!best) best = Cap{};
+        best->seed = seed;
+        best->rho = last;
+        best->sphere = *f;
+      } else if (best || order_.size() >= GIVE_UP_POINTS) {
+        stop = true;
+      }
+    };
+    while (!heap.empty() && !stop) {
+      const auto [d, v] = heap.top();
+      heap.pop();
+      const auto vi = static_cast<std::size_t>(v);
+      if (popped_[vi]) continue;
+      if (d > boundary) {
+        judge();
+        if (stop) break;
+        if (area > o_.max_area_fraction * m_.total_area) {
+          unbounded = true;  // still fitting at the size limit: no part ends here
+          break;
+        }
+        boundary = (std::floor(d / h) + 1.0) * h;
+      }
+      popped_[vi] = 1;
+      order_.push_back(v);
+      last = d;
+      moments.add(Vec3(x_.row(v)), m_.vertex_area[vi]);
+      area += m_.vertex_area[vi];
+      if (concave_(v) < 0.0) concave += m_.vertex_area[vi];
+      for (const auto& [w, len] : m_.nbr[vi]) {
+        const auto wi = static_cast<std::size_t>(w);
+        if (blocked[wi] || popped_[wi] || !(d + len < dist_[wi])) continue;
+        if (dist_[wi] == INF) touched_.push_back(w);
+        dist_[wi] = d + len;
+        heap.emplace(d + len, w);
+      }
+    }
+    if (heap.empty() && !stop) judge();  // the whole (blocked-off) component is the disc
+    if (!best) return std::nullopt;
+    best->unbounded = unbounded;
+    best->angle = best->sphere.radius > 0.0 ? best->rho / best->sphere.radius : 0.0;
+    best->faces = disc_faces(seed, best->rho, blocked);
+    return best;
+  }
+
+  /// The faces of the disc of radius rho: every corner reached and the mean corner distance
+  /// within rho; the edge-connected part touching the seed; notches (a face outside with two
+  /// neighbours inside) filled in synchronous passes, so the result does not depend on the
+  /// order of the faces.
+  std::vector<int> disc_faces(int seed, double rho, const std::vector<char>& blocked) {
+    std::vector<int> cand;
+    std::vector<char> in(m_.nf, 0), keep(m_.nf, 0);
+    for (int v : touched_)
+      for (int f : m_.vertex_faces[static_cast<std::size_t>(v)]) {
+        if (in[static_cast<std::size_t>(f)]) continue;
+        const auto& t = m_.tri[static_cast<std::size_t>(f)];
+        double sum = 0.0;
+        bool reached = true;
+        for (int w : t) {
+          reached = reached && !blocked[static_cast<std::size_t>(w)] && dist_[static_cast<std::size_t>(w)] < INF;
+          sum += dist_[static_cast<std::size_t>(w)];
+        }
+        if (reached && sum / 3.0 <= rho) in[static_cast<std::size_t>(f)] = 1, cand.push_back(f);
+      }
+    std::vector<int> stack;
+    for (int f : m_.vertex_faces[static_cast<std::size_t>(seed)])
+      if (in[static_cast<std::size_t>(f)] && !keep[static_cast<std::size_t>(f)]) keep[static_cast<std::size_t>(f)] = 1, stack.push_back(f);
+    std::vector<int> faces;
+    while (!stack.empty()) {
+      const int f = stack.back();
+      stack.pop_back();
+      faces.push_back(f);
+      for (int g : m_.face_nbr[static_cast<std::size_t>(f)])
+        if (g >= 0 && in[static_cast<std::size_t>(g)] && !keep[static_cast<std::size_t>(g)]) keep[static_cast<std::size_t>(g)] = 1, stack.push_back(g);
+    }
+    for (int pass = 0; pass < 3; ++pass) {
+      std::vector<int> add;
+      for (int f : faces)
+        for (int g : m_.face_nbr[static_cast<std::size_t>(f)]) {
+          if (g < 0 || keep[static_cast<std::size_t>(g)]) continue;
+          const auto& t = m_.tri[static_cast<std::size_t>(g)];
+          if (std::any_of(t.begin(), t.end(), [&](int w) { return blocked[static_cast<std::size_t>(w)] != 0; })) continue;
+          int inside = 0;
+          for (int k : m_.face_nbr[static_cast<std::size_t>(g)]) inside += (k >= 0 && keep[static_cast<std::size_t>(k)]) ? 1 : 0;
+          if (inside >= 2) add.push_back(g);
+        }
+      if (add.empty()) break;
+      for (int g : add)
+        if (!keep[static_cast<std::size_t>(g)]) keep[static_cast<std::size_t>(g)] = 1, faces.push_back(g);
+    }
+    std::sort(faces.begin(), faces.end());
+    return faces;
+  }
+
+ private:
+  static constexpr double INF = std::numeric_limits<double>::infinity();
+  void reset() {
+    for (int v : touched_) dist_[static_cast<std::size_t>(v)] = INF, popped_[static_cast<std::size_t>(v)] = 0;
+    touched_.clear();
+    order_.clear();
+  }
+  const MeshArrays& m_;
+  const Positions& x_;
+  const CurvatureField& c_;
+  const Eigen::VectorXd& concave_;
+  const RegionOptions& o_;
+  std::vector<double> dist_;
+  std::vector<char> popped_;
+  std::vector<int> touched_, order_;
+};
+
+/// Fills a summary from a cap and its faces.
+RegionSummary summarise(const Mesh& mesh, const Positions& x, const MeshArrays& m, const Cap& cap, double h_ref) {
+  std::vector<char> flag(m.nf, 0);
+  for (int f : cap.faces) flag[static_cast<std::size_t>(f)] = 1;
+  const RegionShape shape = region_shape(mesh, x, flag);
+  RegionSummary s;
+  s.faces = cap.faces.size();
+  s.area = shape.area;
+  s.area_fraction = m.total_area > 0.0 ? shape.area / m.total_area : 0.0;
+  s.centre = cap.sphere.centre;
+  s.radius = cap.sphere.radius;
+  s.residual = cap.sphere.residual;
+  s.cap_angle_deg = cap.angle * 180.0 / PI;
+  s.compactness = shape.compactness;
+  s.seed_vertex = cap.seed;
+  s.mean_curvature = cap.sphere.radius > 0.0 ? 1.0 / cap.sphere.radius : 0.0;
+  s.contrast = h_ref > 0.0 ? s.mean_curvature / h_ref : 0.0;
+  return s;
+}
+
+/// Ids by decreasing area (ties: smallest face), the per-face id array and the report's list.
+std::vector<int> number_regions(std::vector<std::pair<Cap, RegionSummary>>& kept, std::size_t nf,
+                                RegionReport& r, bool keep_order) {
+  if (!keep_order)
+    std::sort(kept.begin(), kept.end(), [](const auto& a, const auto& b) {
+      if (a.second.area != b.second.area) return a.second.area > b.second.area;
+      return a.first.faces.front() < b.first.faces.front();
+    });
+  std::vector<int> region(nf, -1);
+  for (std::size_t id = 0; id < kept.size(); ++id) {
+    for (int f : kept[id].first.faces) region[static_cast<std::size_t>(f)] = static_cast<int>(id);
+    r.regions.push_back(kept[id].second);
+  }
+  return region;
+}
+
+void block(const MeshArrays& m, const Cap& cap, std::vector<char>& blocked) {
+  for (int f : cap.faces)
+    for (int v : m.tri[static_cast<std::size_t>(f)]) blocked[static_cast<std::size_t>(v)] = 1;
+}
+
+/// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = va + vb + vc;
+  if (!(std::abs(denom) > 0.0)) return a;  // degenerate triangle
+  return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
+}  // namespace
+
+void check_region_options(const RegionOptions& o) {
+  const auto bad = [](const std::string& what) { throw UsageError("region options: " + what); };
+  if (!(o.fit_tolerance >= 0.0)) bad("fit tolerance must be >= 0");
+  if (!(o.max_concave_fraction >= 0.0 && o.max_concave_fraction <= 1.0)) bad("max concave fraction must be in [0, 1]");
+  if (!(o.min_cap_angle_deg >= 0.0 && o.min_cap_angle_deg <= 180.0)) bad("min cap angle must be in [0, 180] degrees");
+  if (!(o.min_curvature_contrast >= 0.0)) bad("contrast must be >= 0");
+  if (!(o.max_compactness >= 1.0)) bad("max compactness must be >= 1");
+  if (o.min_faces < 1) bad("min faces must be >= 1");
+  if (!(o.min_area_fraction >= 0.0 && o.max_area_fraction <= 1.0 && o.min_area_fraction <= o.max_area_fraction))
+    bad("area fractions must satisfy 0 <= min <= max <= 1");
+}
+
+std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
+                                          RegionReport* report) {
+  check_region_options(options);
+  const CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
+  const MeshArrays m = mesh_arrays(mesh, x);
+  RegionReport r;
+  r.total_area = m.total_area;
+  if (m.nv == 0 || !(m.total_area > 0.0)) {
+    if (report) *report = r;
+    return std::vector<int>(m.nf, -1);
+  }
+  const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c);
+  const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+  // A mostly flat mesh (a cube: median |H| = 0) must not make every rounded spot "curved".
+  const double h_ref = std::max(weighted_median_abs(u.back(), m.vertex_area), diagonal > 0.0 ? 1.0 / diagonal : 0.0);
+  r.reference_mean_curvature = h_ref;
+
+  // Step 1: strict one-ring maxima (ties make no seed, so the vertex order cannot matter).
+  std::vector<int> seeds;
+  for (std::size_t k = 1; k < u.size(); ++k)
+    for (std::size_t v = 0; v < m.nv; ++v) {
+      const Eigen::VectorXd& s = u[k];
+      const double val = s(static_cast<Eigen::Index>(v));
+      if (!(val > 0.0)) continue;
+      if (std::all_of(m.nbr[v].begin(), m.nbr[v].end(), [&](const auto& w) { return val > s(w.first); }))
+        seeds.push_back(static_cast<int>(v));
+    }
+  std::sort(seeds.begin(), seeds.end());
+  seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
+  r.seed_vertices = seeds.size();
+
+  // Step 2: free growth, to rank.
+  CapGrower grower(m, x, c, u.front(), options);
+  const double min_angle = options.min_cap_angle_deg * PI / 180.0;
+  const auto curved = [&](const Cap& cap) {
+    return cap.angle >= min_angle && cap.sphere.radius * options.min_curvature_contrast * h_ref <= 1.0;
+  };
+  const std::vector<char> none(m.nv, 0);
+  // Each seed's free growth depends on the seed alone: grown side by side, one grower (scratch
+  // arrays) per thread, and read back in seed order, so the result does not depend on threads.
+  std::vector<std::optional<Cap>> grown(seeds.size());
+  tbb::enumerable_thread_specific<std::unique_ptr<CapGrower>> growers;
+  tbb::parallel_for(std::size_t{0}, seeds.size(), [&](std::size_t i) {
+    std::unique_ptr<CapGrower>& g = growers.local();
+    if (!g) g = std::make_unique<CapGrower>(m, x, c, u.front(), options);
+    grown[i] = g->grow(seeds[i], none);
+  });
+  std::vector<Cap> candidates;
+  for (std::optional<Cap>& cap : grown)
+    if (cap) {
+      ++r.candidates;
+      if (cap->unbounded) {
+        ++r.dropped_large;
+      } else if (curved(*cap)) {
+        candidates.push_back(std::move(*cap));
+      } else {
+        ++r.dropped_flat;
+      }
+    }
+  std::sort(candidates.begin(), candidates.end(), [](const Cap& a, const Cap& b) {
+    if (a.angle != b.angle) return a.angle > b.angle;
+    return a.faces.size() > b.faces.size();
+  });
+
+  // Step 3: in rank order, grown again around the regions already kept.
+  std::vector<char> blocked(m.nv, 0);
+  std::vector<std::pair<Cap, RegionSummary>> kept;
+  for (const Cap& first : candidates) {
+    if (blocked[static_cast<std::size_t>(first.seed)]) continue;  // inside a better cap
+    // Mostly covered by better caps: a fragment of a part already taken, not a part of its own.
+    std::size_t covered = 0;
+    for (int f : first.faces)
+      covered += std::any_of(m.tri[static_cast<std::size_t>(f)].begin(), m.tri[static_cast<std::size_t>(f)].end(),
+                             [&](int v) { return blocked[static_cast<std::size_t>(v)] != 0; });
+    if (static_cast<double>(covered) > MAX_COVERED * static_cast<double>(first.faces.size())) continue;
+    std::optional<Cap> cap = grower.grow(first.seed, blocked);
+    if (!cap || cap->faces.empty()) continue;
+    if (cap->unbounded) {
+      ++r.dropped_large;
+      continue;
+    }
+    if (!curved(*cap)) {
+      ++r.dropped_flat;
+      continue;
+    }
+    const RegionSummary s = summarise(mesh, x, m, *cap, h_ref);
+    if (s.area_fraction < options.min_area_fraction || s.faces < static_cast<std::size_t>(options.min_faces)) {
+      ++r.dropped_small;
+    } else if (s.area_fraction > options.max_area_fraction) {
+      ++r.dropped_large;
+    } else if (!(s.compactness <= options.max_compactness)) {
+      ++r.dropped_shape;
+    } else {
+      block(m, *cap, blocked);
+      kept.emplace_back(std::move(*cap), s);
+    }
+  }
+  // Step 4: caps of one part (two sides of a head) are joined across a convex gap.
+  std::vector<Cap> caps;
+  for (auto& k : kept) caps.push_back(std::move(k.first));
+  caps = detail::merge_adjacent_caps(mesh, m, x, u.front(), std::move(caps), options);
+  kept.clear();
+  for (Cap& cap : caps) {
+    const RegionSummary s = summarise(mesh, x, m, cap, h_ref);
+    kept.emplace_back(std::move(cap), s);
+  }
+  std::vector<int> region = number_regions(kept, m.nf, r, false);
+  if (report) *report = std::move(r);
+  return region;
+}
+
+std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
+                                   const RegionOptions& options, RegionReport* report) {
+  check_region_options(options);
+  const CurvatureField c = compute_curvature(mesh, x);
+  const MeshArrays m = mesh_arrays(mesh, x);
+  if (m.nf == 0) throw UsageError("select_regions_at: the mesh has no face");
+  const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c);
+  const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+  const double h_ref = std::max(weighted_median_abs(u.back(), m.vertex_area), diagonal > 0.0 ? 1.0 / diagonal : 0.0);
+  RegionReport r;
+  r.total_area = m.total_area;
+  r.reference_mean_curvature = h_ref;
+  CapGrower grower(m, x, c, u.front(), options);
+  std::vector<char> blocked(m.nv, 0);
+  std::vector<std::pair<Cap, RegionSummary>> kept;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points[i];
+    if (!p.allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
+    // Nearest surface point (brute force: a handful of points), then its nearest corner.
+    double best = std::numeric_limits<double>::infinity();
+    int seed = -1;
+    for (std::size_t f = 0; f < m.nf; ++f) {
+      const auto& t = m.tri[f];
+      const Vec3 q = closest_on_triangle(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])));
+      const double d = (q - p).squaredNorm();
+      if (d < best) {
+        best = d;
+        seed = t[0];
+        for (int v : t)
+          if ((Vec3(x.row(v)) - q).squaredNorm() < (Vec3(x.row(seed)) - q).squaredNorm()) seed = v;
+      }
+    }
+    if (blocked[static_cast<std::size_t>(seed)])
+      throw UsageError("region point " + std::to_string(i + 1) + " lies in the region of an earlier point");
+    ++r.seed_vertices;
+    std::optional<Cap> cap = grower.grow(seed, blocked);
+    if (!cap || cap->faces.empty()) {
+      // No convex sphere fits here: the seed's one-ring, so the user still gets a region.
+      cap = Cap{};
+      cap->seed = seed;
+      for (int f : m.vertex_faces[static_cast<std::size_t>(seed)]) cap->faces.push_back(f);
+      std::sort(cap->faces.begin(), cap->faces.end());
+    } else {
+      ++r.candidates;
+    }
+    const RegionSummary s = summarise(mesh, x, m, *cap, h_ref);
+    block(m, *cap, blocked);
+    kept.emplace_back(std::move(*cap), s);
+  }
+  std::vector<int> region = number_regions(kept, m.nf, r, true);
+  if (report) *report = std::move(r);
+  return region;
+}
+
+}  // namespace shellcontract
