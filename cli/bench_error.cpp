@@ -24,6 +24,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/error_ladder.hpp"
+#include "shellcontract/sim/option_table.hpp"
 
 namespace po = boost::program_options;
 
@@ -290,7 +291,7 @@ int command_bench_error(int argc, char** argv) {
     std::cerr << "shellcontract bench error: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadInput);
   } catch (const UsageError& e) {
-    return usage_error("bench error", e.what());
+    return usage_error("bench error", spell_options(e.what(), OptionSpelling::Cli));
   } catch (const SimulationError& e) {
     std::cerr << "shellcontract bench error: " << e.what() << '\n';
     return static_cast<int>(ExitCode::SimulationFailed);

@@ -35,6 +35,7 @@
 #include "shellcontract/mesh/repair.hpp"
 #include "shellcontract/sim/checkpoint.hpp"
 #include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/sim/run_report.hpp"
 
 namespace po = boost::program_options;
 
@@ -108,45 +109,37 @@ JsonObject export_json(const FrameExporter& e) {
   return o;
 }
 
+/// The library's summary (write_run_summary) into a JSON object.
+class JsonSummary final : public SummaryWriter {
+ public:
+  explicit JsonSummary(JsonObject& o) : o_(o) {}
+  void add_bool(const std::string& key, bool v) override { o_.add(key, v); }
+  void add_integer(const std::string& key, long long v) override {
+    o_.add_raw(key, std::to_string(v));
+  }
+  void add_number(const std::string& key, double v) override { o_.add(key, v); }
+  void add_text(const std::string& key, const std::string& v) override { o_.add(key, v); }
+  void add_texts(const std::string& key, const std::vector<std::string>& v) override {
+    o_.add(key, v);
+  }
+  void add_object(const std::string& key,
+                  const std::function<void(SummaryWriter&)>& fill) override {
+    JsonObject inner;
+    JsonSummary w(inner);
+    fill(w);
+    o_.add(key, inner);
+  }
+
+ private:
+  JsonObject& o_;
+};
+
 JsonObject summary_json(const std::string& input, const std::string& output,
                         const InputReport& report, const RunOptions& options, const RunResult& r) {
-  JsonObject opts;
-  for (const OptionSpec& o : run_option_table()) opts.add(o.name, o.get(options));
-  JsonObject table2;
-  for (const auto& [name, value] : r.totals.per_step(r.frames_run)) table2.add(name, value);
   JsonObject s;
-  s.add("status", status_name(r.status))
-      .add("failure", r.message)
-      .add("exit_code", r.exit_code())
-      .add("input", input)
-      .add("output", output)
-      .add("vertices", report.vertices)
-      .add("faces", report.faces)
-      .add("components", report.components)
-      .add("reoriented", report.reoriented)
-      .add("degenerate_faces", r.degenerate_faces)
-      .add("normalization_scale", r.normalization_scale)
-      .add("options", opts)
-      .add("frames_run", r.frames_run)
-      .add("final_volume_ratio", r.final_volume_ratio)
-      .add("min_volume_ratio", r.min_volume_ratio)
-      .add("target_reached", r.target_reached)
-      .add("frame_target_reached", r.frame_target_reached)
-      .add("wall_seconds", r.wall_seconds)
-      .add("mean_step_ms", r.frames_run > 0 ? 1e3 * r.wall_seconds / r.frames_run : 0.0)
-      .add("collisions", options.sim.collisions)
-      .add("order_used", r.order == ConstraintOrder::Coloured ? "coloured" : "sequential")
-      .add("excluded_contact_pairs", r.excluded_contact_pairs)
-      .add("contact_distance", r.contact_distance)
-      .add("new_intersections", static_cast<int>(r.new_intersections))
-      .add("regions", r.regions)
-      .add("anisotropic_faces", r.anisotropic_faces)
-      .add("region_inward_displacement", r.region_inward_displacement)
-      .add("outside_region_displacement", r.outside_region_displacement)
-      .add("table2", table2);
-  std::vector<std::string> warnings = report.warnings;
-  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-  s.add("warnings", warnings);
+  JsonSummary w(s);
+  const SummaryFiles files{input, output};
+  write_run_summary(w, report, options, r, OptionSpelling::Cli, &files);
   return s;
 }
 
@@ -291,7 +284,7 @@ int command_run(int argc, char** argv) {
   } catch (const po::error& e) {
     return usage_error("run", e.what());
   } catch (const UsageError& e) {
-    return usage_error("run", e.what());
+    return usage_error("run", spell_options(e.what(), OptionSpelling::Cli));
   } catch (const InputError& e) {
     std::cerr << "shellcontract run: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadInput);
@@ -462,7 +455,7 @@ int command_run(int argc, char** argv) {
     std::cerr << "shellcontract run: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadInput);
   } catch (const UsageError& e) {
-    std::cerr << "shellcontract run: " << e.what() << '\n';
+    std::cerr << "shellcontract run: " << spell_options(e.what(), OptionSpelling::Cli) << '\n';
     return static_cast<int>(ExitCode::BadUsage);
   } catch (const std::bad_alloc&) {
     std::cerr << "shellcontract run: out of memory while " << stage

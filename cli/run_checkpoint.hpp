@@ -12,6 +12,7 @@
 #include "run_observers.hpp"
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/sim/checkpoint.hpp"
+#include "shellcontract/sim/simulator.hpp"
 
 namespace shellcontract::cli {
 

@@ -11,6 +11,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/sim/fields.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/run_report.hpp"
 
 namespace shellcontract::cli {
 
@@ -26,7 +27,9 @@ inline FieldColour parse_field_colour(const std::string& s) {
 /// "warning: ..." on stderr as the run finds it.
 class WarningPrinter final : public RunObserver {
  public:
-  void warning(const std::string& text) override { std::cerr << "warning: " << text << '\n'; }
+  void warning(const std::string& text) override {
+    std::cerr << "warning: " << spell_options(text, OptionSpelling::Cli) << '\n';
+  }
 };
 
 /// A progress line on stderr about once a second, and at the last frame; before the first
@@ -65,26 +68,15 @@ class ProgressPrinter final : public RunObserver {
 /// The per-frame CSV log (README "Outputs"), kept in memory and written at the end.
 class CsvLog final : public RunObserver {
  public:
-  static constexpr const char* HEADER =
-      "frame,time,volume_ratio,energy_membrane,energy_bending,energy_anisotropic,"
-      "max_displacement,step_ms,solve_ms,ccd_ms,candidates,contacts,collision_rounds,"
-      "failsafe_vertices,new_intersections\n";
   void frame(const Simulator&, const FrameMetrics& m) override {
-    std::ostringstream o;
-    o << std::setprecision(17) << m.frame << ',' << m.time << ',' << m.volume_ratio << ','
-      << m.energies.membrane << ',' << m.energies.bending << ',' << m.energies.anisotropic << ','
-      << m.max_displacement << ',' << m.step_seconds * 1e3 << ',' << m.solve_seconds * 1e3 << ','
-      << m.collision.seconds * 1e3 << ',' << m.collision.pairs_broad << ',' << m.collision.contacts
-      << ',' << m.collision.rounds << ',' << m.collision.failsafe_vertices << ','
-      << m.new_intersections << '\n';
-    text_ += o.str();
+    text_ += log_csv_line(log_row(m));
   }
   const std::string& text() const { return text_; }
   /// A resumed run's log so far (its checkpoint's), header included.
   void restore(std::string text) { text_ = std::move(text); }
 
  private:
-  std::string text_ = HEADER;
+  std::string text_ = log_csv_header();
 };
 
 /// PREFIX_start.ply at the rest state and PREFIX_end.ply at the end (README "Outputs").

@@ -29,6 +29,8 @@
 #include "shellcontract/sim/checkpoint.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/sim/run_report.hpp"
 
 namespace shellcontract::python {
 namespace {
@@ -131,7 +133,7 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs) {
         !py::isinstance<py::str>(value)) {
       options.vertex_weights = py::cast<std::vector<double>>(
           py::module_::import("numpy").attr("asarray")(value, "float64").attr("ravel")().attr("tolist")());
-      options.given.insert("region-weights");
+      options.given.insert("region_weights");
       continue;
     }
     const OptionSpec* spec = find_run_option(name);
@@ -143,23 +145,6 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs) {
   // The log always carries the energies (the CLI computes them when --log is given).
   options.sim.frame_energies = true;
   return options;
-}
-
-/// One log row's values in CSV column order (cli/run_observers.hpp CsvLog::HEADER).
-constexpr std::array<const char*, 15> LOG_COLUMNS = {
-    "frame", "time", "volume_ratio", "energy_membrane", "energy_bending", "energy_anisotropic",
-    "max_displacement", "step_ms", "solve_ms", "ccd_ms", "candidates", "contacts",
-    "collision_rounds", "failsafe_vertices", "new_intersections"};
-/// Which columns are integers (int64 arrays); the others are float64.
-constexpr std::array<bool, 15> LOG_INTEGER = {true,  false, false, false, false, false, false, false,
-                                              false, false, true,  true,  true,  true,  true};
-
-std::array<double, 15> log_row(const FrameMetrics& m) {
-  return {static_cast<double>(m.frame), m.time, m.volume_ratio, m.energies.membrane,
-          m.energies.bending, m.energies.anisotropic, m.max_displacement, m.step_seconds * 1e3,
-          m.solve_seconds * 1e3, m.collision.seconds * 1e3, static_cast<double>(m.collision.pairs_broad),
-          static_cast<double>(m.collision.contacts), static_cast<double>(m.collision.rounds),
-          static_cast<double>(m.collision.failsafe_vertices), static_cast<double>(m.new_intersections)};
 }
 
 py::object column_value(std::size_t c, double v) {
@@ -192,7 +177,7 @@ class PythonObserver final : public RunObserver {
     py::gil_scoped_acquire gil;
     try {
       py::dict metrics;
-      for (std::size_t c = 0; c < LOG_COLUMNS.size(); ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
+      for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
       const py::object answer = callback_(m.frame, positions_to_numpy(sim.positions_in_input_units()), metrics);
       if (answer.is(py::bool_(false))) stop_ = true;  // only False stops; None (no return) goes on
     } catch (py::error_already_set& e) {
@@ -204,14 +189,9 @@ class PythonObserver final : public RunObserver {
   /// The rows so far as the CLI's --log CSV text (a checkpoint's log: the CLI and Python resume
   /// each other's checkpoints).
   std::string csv_text() const {
-    std::ostringstream o;
-    o << "frame,time,volume_ratio,energy_membrane,energy_bending,energy_anisotropic,"
-         "max_displacement,step_ms,solve_ms,ccd_ms,candidates,contacts,collision_rounds,"
-         "failsafe_vertices,new_intersections\n"
-      << std::setprecision(17);
-    for (const auto& row : rows_)
-      for (std::size_t c = 0; c < row.size(); ++c) o << row[c] << (c + 1 < row.size() ? ',' : '\n');
-    return o.str();
+    std::string text = log_csv_header();
+    for (const LogRow& row : rows_) text += log_csv_line(row);
+    return text;
   }
 
   /// A resumed run's rows so far, from its checkpoint's CSV text.
@@ -220,7 +200,7 @@ class PythonObserver final : public RunObserver {
     std::string line;
     std::getline(in, line);  // the header
     while (std::getline(in, line)) {
-      std::array<double, 15> row{};
+      LogRow row{};
       const char* p = line.c_str();
       for (double& v : row) {
         char* end = nullptr;
@@ -284,46 +264,36 @@ class PythonObserver final : public RunObserver {
   PyObject* error_type_ = nullptr;
   PyObject* error_value_ = nullptr;
   PyObject* error_trace_ = nullptr;
-  std::vector<std::array<double, 15>> rows_;  // doubles hold the integer columns exactly (< 2^53)
+  std::vector<LogRow> rows_;  // doubles hold the integer columns exactly (< 2^53)
 };
 
-/// The summary's keys and values as cli/run.cpp writes them to JSON, without the file names.
+/// The library's summary (write_run_summary) into a dict.
+class DictSummary final : public SummaryWriter {
+ public:
+  explicit DictSummary(py::dict& d) : d_(d) {}
+  void add_bool(const std::string& key, bool v) override { d_[py::str(key)] = py::bool_(v); }
+  void add_integer(const std::string& key, long long v) override { d_[py::str(key)] = py::int_(v); }
+  void add_number(const std::string& key, double v) override { d_[py::str(key)] = py::float_(v); }
+  void add_text(const std::string& key, const std::string& v) override { d_[py::str(key)] = py::str(v); }
+  void add_texts(const std::string& key, const std::vector<std::string>& v) override {
+    d_[py::str(key)] = py::cast(v);
+  }
+  void add_object(const std::string& key, const std::function<void(SummaryWriter&)>& fill) override {
+    py::dict inner;
+    DictSummary w(inner);
+    fill(w);
+    d_[py::str(key)] = inner;
+  }
+
+ private:
+  py::dict& d_;
+};
+
+/// The summary's keys and values as the CLI writes them to JSON, without the file names.
 py::dict summary(const InputReport& report, const RunOptions& options, const RunResult& r) {
-  py::dict opts;
-  for (const OptionSpec& o : run_option_table()) opts[py::str(python_name(o.name))] = o.get(options);
-  py::dict table2;
-  for (const auto& [name, value] : r.totals.per_step(r.frames_run)) table2[py::str(name)] = value;
-  std::vector<std::string> warnings = report.warnings;
-  warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
   py::dict s;
-  s["status"] = status_name(r.status);
-  s["failure"] = r.message;
-  s["exit_code"] = r.exit_code();
-  s["vertices"] = report.vertices;
-  s["faces"] = report.faces;
-  s["components"] = report.components;
-  s["reoriented"] = report.reoriented;
-  s["degenerate_faces"] = r.degenerate_faces;
-  s["normalization_scale"] = r.normalization_scale;
-  s["options"] = opts;
-  s["frames_run"] = r.frames_run;
-  s["final_volume_ratio"] = r.final_volume_ratio;
-  s["min_volume_ratio"] = r.min_volume_ratio;
-  s["target_reached"] = r.target_reached;
-  s["frame_target_reached"] = r.frame_target_reached;
-  s["wall_seconds"] = r.wall_seconds;
-  s["mean_step_ms"] = r.frames_run > 0 ? 1e3 * r.wall_seconds / r.frames_run : 0.0;
-  s["collisions"] = options.sim.collisions;
-  s["order_used"] = r.order == ConstraintOrder::Coloured ? "coloured" : "sequential";
-  s["excluded_contact_pairs"] = r.excluded_contact_pairs;
-  s["contact_distance"] = r.contact_distance;
-  s["new_intersections"] = r.new_intersections;
-  s["regions"] = r.regions;
-  s["anisotropic_faces"] = r.anisotropic_faces;
-  s["region_inward_displacement"] = r.region_inward_displacement;
-  s["outside_region_displacement"] = r.outside_region_displacement;
-  s["table2"] = table2;
-  s["warnings"] = warnings;
+  DictSummary w(s);
+  write_run_summary(w, report, options, r, OptionSpelling::Python);
   return s;
 }
 
@@ -427,7 +397,13 @@ void stop_runs_at_exit() {
 }
 
 py::dict resolve_options(const py::kwargs& kwargs) {
-  const RunOptions options = options_from_kwargs(kwargs);
+  RunOptions options;
+  try {
+    options = options_from_kwargs(kwargs);
+  } catch (const UsageError& e) {
+    // The sweep's check of its jobs: a command of the CLI, so the options go by their flags.
+    throw py::value_error(spell_options(e.what(), OptionSpelling::Cli));
+  }
   // The arguments in table order (the CLI parses them in that order whatever the order given).
   py::list args;
   for (const OptionSpec& o : run_option_table()) {

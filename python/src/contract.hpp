@@ -23,7 +23,8 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
 void stop_runs_at_exit();
 
 /// Checks keyword options as contract() does (TypeError for an unknown name, ValueError naming
-/// the option and its range) without running anything: the sweep's validation of every job.
+/// the option and its range) without running anything: the sweep's validation of every job. The
+/// sweep is a command of the CLI: its ValueError names the options by their flags (--damping).
 /// @return dict: "resolved" (python name -> the table's text of every option after
 ///         resolve_run_options) and "args" (the `shellcontract run` arguments of the given ones)
 py::dict resolve_options(const py::kwargs& options);

@@ -22,6 +22,7 @@
 #include "shellcontract/mesh/from_arrays.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/mesh/mesh_document.hpp"
+#include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
 
 namespace shellcontract::python {
@@ -195,7 +196,8 @@ PYBIND11_MODULE(_core, m) {
     } catch (const InputError& e) {
       PyErr_SetString(PyExc_ValueError, e.what());
     } catch (const UsageError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      // Options by Python's names (the library names them by field, option_table.hpp).
+      PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());
     } catch (const SimulationError& e) {
       PyErr_SetString(PyExc_RuntimeError, e.what());
     }

@@ -193,7 +193,7 @@ std::uint64_t mesh_hash(const Mesh& mesh) {
 OptionValues given_options(const RunOptions& options) {
   OptionValues out;
   for (const OptionSpec& o : run_option_table())
-    if (options.given.count(o.name) && o.name != RESULT_NEUTRAL)
+    if (options.given.count(option_field(o.name)) && o.name != RESULT_NEUTRAL)
       out.emplace_back(o.name, o.get(options));
   return out;
 }
@@ -210,7 +210,7 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
   RunOptions options;
   for (const auto& [name, value] : c.given) set_run_option(options, name, value);
   for (const OptionSpec& o : run_option_table())
-    if (command_line.given.count(o.name)) o.set(options, o.get(command_line));
+    if (command_line.given.count(option_field(o.name))) o.set(options, o.get(command_line));
   const OptionValues now = resolved_options(options);
   std::string differ;
   for (const auto& [name, value] : now)

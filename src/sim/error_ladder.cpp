@@ -5,8 +5,10 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/sim/run.hpp"
 #include "shellcontract/sim/simulator.hpp"
 #include "shellcontract/validation/hausdorff.hpp"
 
@@ -21,7 +23,7 @@ const char* ladder_order_name(ConstraintOrder order) {
 namespace {
 
 /// The end state of one run.
-struct RunResult {
+struct LadderRun {
   bool failed = false;
   std::string failure;
   double ms_per_step = 0.0;
@@ -41,8 +43,36 @@ struct RunSettings {
   int threads = 1;
 };
 
-/// Runs frames base steps of `base` with the given solver settings.
-RunResult run_one(const Mesh& mesh, const SimOptions& base, const RunSettings& rs, int frames,
+/// Sees one rung's run: the wall time of each base step (its substeps together) and the end
+/// state, normalized.
+class LadderObserver final : public RunObserver {
+ public:
+  explicit LadderObserver(int substeps) : substeps_(substeps) {}
+  void frame(const Simulator&, const FrameMetrics& m) override {
+    seconds_ += m.step_seconds;
+    if (m.frame % substeps_ == 0) {
+      frame_ms.push_back(1e3 * seconds_);
+      seconds_ = 0.0;
+    }
+  }
+  void finished(const Simulator& sim, const RunResult&) override {
+    x = sim.positions();
+    volume_ratio = sim.volume_ratio();
+    energy = total_energy(sim.energies());
+  }
+  std::vector<double> frame_ms;
+  Positions x;
+  double volume_ratio = 1.0;
+  double energy = 0.0;
+
+ private:
+  int substeps_;
+  double seconds_ = 0.0;
+};
+
+/// Runs frames base steps of `base` with the given solver settings, through run_contraction (the
+/// run's one time loop) with a plan of these simulation options alone.
+LadderRun run_one(const Mesh& mesh, const SimOptions& base, const RunSettings& rs, int frames,
                   bool collisions) {
   const int substeps = rs.substeps;
   SimOptions o = base;
@@ -57,29 +87,25 @@ RunResult run_one(const Mesh& mesh, const SimOptions& base, const RunSettings& r
   o.collisions = collisions;
   o.validate = ValidateMode::Off;
   o.stop_volume_ratio = 0.0;
-  Simulator sim(mesh, o);
-  RunResult r;
-  std::vector<double> frame_ms;
-  frame_ms.reserve(static_cast<std::size_t>(frames));
-  try {
-    for (int f = 0; f < frames; ++f) {
-      double seconds = 0.0;
-      for (int s = 0; s < substeps; ++s) seconds += sim.step().step_seconds;
-      frame_ms.push_back(1e3 * seconds);
-    }
-  } catch (const SimulationError& e) {
+  RunPlan plan;
+  plan.sim = plan_simulation(mesh, o);
+  LadderObserver observer(substeps);
+  const RunResult result = run_contraction(std::move(plan), &observer);
+  LadderRun r;
+  if (result.status == RunStatus::SimulationFailed) {
     r.failed = true;
-    r.failure = e.what();
+    r.failure = result.message;
   }
+  std::vector<double>& frame_ms = observer.frame_ms;
   if (!frame_ms.empty()) {
     // Median, not mean: the machine is shared and a few slow steps should not decide the rung.
     auto mid = frame_ms.begin() + static_cast<std::ptrdiff_t>(frame_ms.size() / 2);
     std::nth_element(frame_ms.begin(), mid, frame_ms.end());
     r.ms_per_step = *mid;
   }
-  r.x = sim.positions();
-  r.volume_ratio = sim.volume_ratio();
-  r.energy = total_energy(sim.energies());
+  r.x = std::move(observer.x);
+  r.volume_ratio = observer.volume_ratio;
+  r.energy = observer.energy;
   return r;
 }
 
@@ -124,7 +150,7 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
   probe.validate = ValidateMode::Off;
   const Mesh surface = Simulator(mesh, probe).rest_mesh();
 
-  auto compare = [&](const RunResult& run, const RunResult& ref, ErrorLadderRow& row) {
+  auto compare = [&](const LadderRun& run, const LadderRun& ref, ErrorLadderRow& row) {
     row.ms_per_step = run.ms_per_step;
     row.volume_ratio = run.volume_ratio;
     row.energy = run.energy;
@@ -154,7 +180,7 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
     const int ref_sub = xpbd ? opt.xpbd_reference_substeps : 1;
     const RunSettings ref_settings{kind, ref_it, ref_sub, ConstraintOrder::Sequential, 1};
     say("reference " + describe(ref_settings));
-    const RunResult ref = run_one(mesh, base, ref_settings, opt.frames, opt.collisions);
+    const LadderRun ref = run_one(mesh, base, ref_settings, opt.frames, opt.collisions);
     if (ref.failed) throw SimulationError("error ladder: the reference (" + describe(ref_settings) + ") failed: " + ref.failure);
     ErrorLadderRow ref_row;
     ref_row.solver = kind;
@@ -201,7 +227,7 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
       const RunSettings fine_settings{kind, c.refined_iterations, c.refined_substeps,
                                       ConstraintOrder::Sequential, 1};
       say("reference check " + describe(fine_settings));
-      const RunResult fine = run_one(mesh, base, fine_settings, opt.frames, opt.collisions);
+      const LadderRun fine = run_one(mesh, base, fine_settings, opt.frames, opt.collisions);
       ErrorLadderRow d;
       compare(fine, ref, d);
       c.failed = d.failed;

@@ -19,9 +19,11 @@ namespace shellcontract::option_builders {
 
 inline constexpr double INF = std::numeric_limits<double>::infinity();
 
+/// The error names the option by its field (`k_b`), which each front end spells its own way
+/// (spell_options).
 [[noreturn]] inline void bad(const std::string& name, const std::string& value,
                              const std::string& range) {
-  throw UsageError("--" + name + ": '" + value + "' is not " + range);
+  throw UsageError("`" + option_field(name) + "`: '" + value + "' is not " + range);
 }
 
 /// A number and its accepted interval; open ends are exclusive.

@@ -1,5 +1,6 @@
 #include "shellcontract/sim/option_table.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <string>
 #include <utility>
@@ -324,10 +325,10 @@ std::vector<OptionSpec> build_table() {
                             {"end", ValidateMode::End},
                             {"every-frame", ValidateMode::EveryFrame}},
       [](R& r) -> ValidateMode& { return r.sim.validate; }));
-  // Every setter also records that the option was given (RunOptions::given).
+  // Every setter also records that the option was given (RunOptions::given, by field).
   for (OptionSpec& o : t) {
     auto parse = o.set;
-    const std::string name = o.name;
+    const std::string name = option_field(o.name);
     o.set = [parse, name](RunOptions& r, const std::string& v) {
       parse(r, v);
       r.given.insert(name);
@@ -360,6 +361,40 @@ void set_run_option(RunOptions& options, const std::string& name, const std::str
   const OptionSpec* o = find_run_option(name);
   if (!o) throw UsageError("unknown option '" + name + "'");
   o->set(options, value);
+}
+
+}  // namespace shellcontract
+
+namespace shellcontract {
+
+std::string option_field(const std::string& name) {
+  std::string field = name;
+  for (char& c : field)
+    if (c == '-') c = '_';
+  return field;
+}
+
+std::string option_name(const OptionSpec& option, OptionSpelling spelling) {
+  return spelling == OptionSpelling::Cli ? option.name : option_field(option.name);
+}
+
+std::string spell_options(const std::string& message, OptionSpelling spelling) {
+  std::string out;
+  std::size_t i = 0;
+  while (i < message.size()) {
+    const std::size_t open = message.find('`', i);
+    const std::size_t close = open == std::string::npos ? open : message.find('`', open + 1);
+    if (close == std::string::npos) break;
+    const std::string field = message.substr(open + 1, close - open - 1);
+    const OptionSpec* o = field.find('-') == std::string::npos ? find_run_option(field) : nullptr;
+    out += message.substr(i, open - i);
+    if (o)
+      out += spelling == OptionSpelling::Cli ? "--" + o->name : option_field(o->name);
+    else
+      out += message.substr(open, close - open + 1);
+    i = close + 1;
+  }
+  return out + message.substr(std::min(i, message.size()));
 }
 
 }  // namespace shellcontract

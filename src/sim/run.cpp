@@ -11,10 +11,9 @@
 #include <utility>
 
 #include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/sim/checkpoint.hpp"
-#include "shellcontract/sim/region_weights.hpp"
+#include "shellcontract/sim/simulator.hpp"
 
 namespace shellcontract {
 
@@ -68,34 +67,6 @@ void ObserverList::finished(const Simulator& sim, const RunResult& r) {
   for (RunObserver* o : observers_) o->finished(sim, r);
 }
 
-std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
-  switch (options.regions) {
-    case RegionSource::File: {
-      const RegionFile file = read_region_file_with_strengths(options.region_file, mesh.number_of_faces());
-      store_regions(mesh, face_ids_from_regions(file.regions, mesh.number_of_faces()));
-      store_region_strengths(mesh, file.regions, file.strength);  // a "S:" column, if any
-      return file.regions.size();
-    }
-    case RegionSource::Auto: {
-      RegionOptions o;
-      o.max_area_fraction = options.region_max_area;
-      return mark_spherical_regions(mesh, positions_from_mesh(mesh), o);
-    }
-    case RegionSource::Weights: {
-      if (!options.vertex_weights.empty()) {
-        check_vertex_weights(options.vertex_weights, mesh.number_of_vertices(), "region_weights");
-        return mark_weighted_regions(mesh, options.vertex_weights);
-      }
-      return mark_weighted_regions(
-          mesh, read_vertex_weights(options.region_weight_file, mesh.number_of_vertices()));
-    }
-    case RegionSource::None:
-      break;
-  }
-  store_regions(mesh, std::vector<int>(mesh.number_of_faces(), -1));
-  return 0;
-}
-
 namespace {
 
 std::string ratio_text(double r) {
@@ -131,44 +102,29 @@ void warn(RunResult& r, RunObserver& o, const std::string& text) {
 
 }  // namespace
 
-RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer,
+RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserver* observer,
                           RunCheckpointer* checkpointer) {
+  return run_contraction(plan_run(mesh, options), observer, checkpointer);
+}
+
+RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* checkpointer) {
   RunObserver none;
   RunObserver& obs = observer ? *observer : none;
   RunResult r;
-  options.sim.solver.order = order_for(options.order);
-  r.order = options.sim.solver.order;
-  resolve_run_options(options);
-  SimOptions& s = options.sim;
+  r.order = plan.sim.options.solver.order;
+  r.regions = plan.regions;
+  r.regions_seconds = plan.regions_seconds;
+  for (const std::string& w : plan.warnings) warn(r, obs, w);
   using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point t) {
-    return std::chrono::duration<double>(Clock::now() - t).count();
-  };
-  const auto regions_start = Clock::now();
-  // The run's regions travel as the f:region map of its copy of the mesh (one owner: the run
-  // options say where they come from; face lists a caller put in the options are not used).
-  Mesh marked = mesh;
-  s.anisotropy.regions.clear();
-  r.regions = mark_run_regions(marked, options);
-  r.regions_seconds = seconds_since(regions_start);
-  if (s.solver.aniso != AnisoKind::None && r.regions == 0)
-    warn(r, obs,
-         "--aniso " + to_string(s.solver.aniso) +
-             " has no effect: no region was found (or given), so no face gets the anisotropic "
-             "energy");
-  else if (options.regions != RegionSource::None && r.regions == 0 && !options.measure_regions)
-    warn(r, obs,
-         "--regions found no region (or the file lists none): the local contraction has no "
-         "effect");
-
-  for (const std::string& w : ineffective_options(options)) warn(r, obs, w);
   const auto prepare_start = Clock::now();
-  Simulator sim(std::move(marked), s);  // one copy of a large mesh fewer (bear x16: 26 MB)
-  r.prepare_seconds = seconds_since(prepare_start);
+  Simulator sim(std::move(plan.sim));  // one copy of a large mesh fewer (bear x16: 26 MB)
+  r.prepare_seconds = std::chrono::duration<double>(Clock::now() - prepare_start).count();
+  const SimOptions& s = sim.options();
+  const Mesh& mesh = sim.rest_mesh();  // for the size in an out-of-memory message
   if (sim.regions_without_cap() > 0)
     warn(r, obs,
          std::to_string(sim.regions_without_cap()) + " of " + std::to_string(r.regions) +
-             " regions are flat or dented at rest: the local contraction (--inward volume) "
+             " regions are flat or dented at rest: the local contraction (`inward` volume) "
              "shrinks a region's cap and leaves those alone");
   const RestStateReport& rest = sim.rest_report();
   if (rest.degenerate_faces > 0)

@@ -42,7 +42,11 @@ std::vector<double> monotone_slopes(const std::vector<Keyframe>& k) {
 
 [[noreturn]] void bad_key(const std::string& option, std::size_t index, const std::string& key,
                           const std::string& what) {
-  throw UsageError("--" + option + ": key " + std::to_string(index + 1) + " ('" + key +
+  // The option by its field (`target_volume`), as the option table's errors name it.
+  std::string field = option;
+  for (char& c : field)
+    if (c == '-') c = '_';
+  throw UsageError("`" + field + "`: key " + std::to_string(index + 1) + " ('" + key +
                    "'): " + what);
 }
 

@@ -12,12 +12,10 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/sim/contact_distance.hpp"
 #include "shellcontract/sim/local_contraction.hpp"
 #include "shellcontract/sim/mass_scaling.hpp"
 #include "shellcontract/sim/region_volume.hpp"
 #include "shellcontract/sim/region_weights.hpp"
-#include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
 #include "shellcontract/validation/self_intersection.hpp"
 #include "shellcontract/validation/volume.hpp"
@@ -58,41 +56,6 @@ double peak_pressure_magnitude(const SimOptions& o) {
                   std::abs(o.pressure_schedule.max_value()));
 }
 
-void check_options(const SimOptions& o) {
-  auto fail = [](const std::string& what) { throw UsageError(what); };
-  if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("time step must be positive and finite");
-  if (o.frames < 0) fail("frame count must be >= 0");
-  if (o.solver.iterations < 0) fail("iterations must be >= 0");
-  if (o.solver.threads < 0) fail("threads must be >= 0");
-  if (!std::isfinite(o.pressure)) fail("pressure must be finite");
-  if (!(o.solver.k_bending >= 0.0) || !std::isfinite(o.solver.k_bending)) fail("k_B must be >= 0");
-  if (o.solver.kind == SolverKind::Pbd && o.solver.k_bending > 1.0)
-    fail("in PBD mode k_B is a correction multiplier and must be in [0, 1]");
-  if (!(o.density > 0.0)) fail("density must be positive");
-  if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("damping must be in [0, 1)");
-  if (!(o.region_shrink >= 0.0 && o.region_shrink <= 1.0)) fail("region shrink must be in [0, 1]");
-  if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta))
-    fail("contact distance delta must be positive");
-  if (o.collision.rounds < 0) fail("collision rounds must be >= 0");
-  if (!(o.collision.region_margin >= 0.0) || !std::isfinite(o.collision.region_margin))
-    fail("collision region margin must be >= 0");
-  if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
-    fail("stop volume ratio must be in [0, 1)");
-  if (o.target_volume_schedule.empty()) {
-    if (!(o.target_volume >= 0.0 && o.target_volume < 1.0)) fail("target volume must be in [0, 1)");
-  } else if (!(o.target_volume_schedule.min_value() > 0.0 &&
-               o.target_volume_schedule.max_value() <= MAX_KEYED_VOLUME_RATIO)) {
-    fail("keyframed target volumes must be in (0, " + std::to_string(MAX_KEYED_VOLUME_RATIO) + "]");
-  } else if (o.target_volume != o.target_volume_schedule.last_value()) {
-    fail("the target volume must be the last key's value of its schedule");
-  }
-  if (!o.pressure_schedule.empty() && o.pressure != o.pressure_schedule.max_value())
-    fail("the pressure must be the largest key value of its schedule");
-  if (o.target_volume > 0.0 && o.stop_volume_ratio > 0.0)
-    fail("a target volume and a stop volume ratio exclude each other");
-  if (!(o.air_balance >= 0.0 && o.air_balance < 1.0)) fail("air balance must be in [0, 1)");
-  if (o.target_ramp_frames < 1) fail("the target-volume ramp must be at least 1 frame");
-}
 }  // namespace
 
 /// The step's own per-vertex work (the pressure, the prediction, the checks, the velocities)
@@ -145,22 +108,16 @@ std::pair<bool, double> finite_and_max_distance(tbb::task_arena& arena, const Po
 
 }  // namespace
 
-Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) {
-  check_options(options_);
-  resolve_sim_options(options_);
-  if (input.has_garbage()) throw UsageError("Simulator: the input mesh has garbage");
-  mesh_ = std::make_unique<Mesh>(std::move(input));
-  normalization_ = compute_normalization(positions_from_mesh(*mesh_));
-  x_ = normalize(positions_from_mesh(*mesh_), normalization_);
-  for (VertexIndex v : mesh_->vertices()) {
-    const auto r = x_.row(v.idx());
-    mesh_->point(v) = Point3(r(0), r(1), r(2));
-  }
-  // A caller's face lists become the mesh's f:region map; without them the input mesh's map
-  // (if any) is the regions. Everything below reads the map.
-  if (!options_.anisotropy.regions.empty())
-    store_regions(*mesh_,
-                  face_ids_from_regions(options_.anisotropy.regions, mesh_->number_of_faces()));
+Simulator::Simulator(Mesh input, const SimOptions& options)
+    : Simulator(plan_simulation(std::move(input), options)) {}
+
+Simulator::Simulator(SimPlan plan)
+    : options_(std::move(plan.options)),
+      mesh_(std::make_unique<Mesh>(std::move(plan.mesh))),
+      normalization_(plan.normalization) {
+  // The plan's mesh is normalized: its points are the rest positions, bit for bit.
+  x_ = positions_from_mesh(*mesh_);
+  // The plan resolved the regions into the f:region map; everything below reads the map.
   const std::vector<std::vector<int>> regions = regions_from_face_ids(stored_regions(*mesh_));
   region_count_ = regions.size();
   rest_report_ = build_rest_state(*mesh_, options_.mass, options_.density);
@@ -225,8 +182,6 @@ Simulator::Simulator(Mesh input, const SimOptions& options) : options_(options) 
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
   if (options_.collisions) {
-    if (options_.auto_delta)
-      options_.collision.delta = auto_contact_distance(*mesh_, options_.collision.delta);
     collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
   }
   if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state

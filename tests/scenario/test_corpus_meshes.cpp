@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <string>
 
+#include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/mesh/repair.hpp"
 #include "shellcontract/sim/run.hpp"

@@ -1,6 +1,6 @@
-// The regions and fibre directions travel as face maps (design.md data flow): face lists given
-// in the options become "f:region", a map already on the input mesh is read as it is, and the
-// anisotropy setup stores "f:fiber_dir" and builds its constraints from it.
+// The regions and fibre directions travel as face maps (design.md data flow): the regions are the
+// "f:region" map of the mesh the Simulator is given (the run plan resolves a run's region source
+// into it), and the anisotropy setup stores "f:fiber_dir" and builds its constraints from it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -25,12 +25,12 @@ SimOptions anisotropic_options() {
   return opt;
 }
 
-TEST(AnisotropyMaps, FaceListsBecomeTheRegionMapAndFibresAreStored) {
-  const Mesh mesh = test::to_surface_mesh(test::icosphere(2));
-  SimOptions opt = anisotropic_options();
-  opt.anisotropy.regions = {{7, 3, 5}, {40, 41}};  // unsorted on purpose
-  const Simulator sim(mesh, opt);
-  const std::vector<int> expected = face_ids_from_regions(opt.anisotropy.regions, mesh.number_of_faces());
+TEST(AnisotropyMaps, RegionMapIsKeptAndFibresAreStored) {
+  Mesh mesh = test::to_surface_mesh(test::icosphere(2));
+  const std::vector<int> expected =
+      face_ids_from_regions({{7, 3, 5}, {40, 41}}, mesh.number_of_faces());  // unsorted on purpose
+  store_regions(mesh, expected);
+  const Simulator sim(mesh, anisotropic_options());
   EXPECT_EQ(stored_regions(sim.rest_mesh()), expected);
   EXPECT_EQ(sim.region_count(), 2u);
   EXPECT_EQ(sim.anisotropy_report().faces, 5u);
@@ -50,31 +50,25 @@ TEST(AnisotropyMaps, FaceListsBecomeTheRegionMapAndFibresAreStored) {
 TEST(AnisotropyMaps, RegionMapOnTheInputMeshIsWhatTheSimulatorUses) {
   Mesh marked = test::to_surface_mesh(test::icosphere(2));
   const Mesh plain = marked;
-  SimOptions with_lists = anisotropic_options();
-  with_lists.anisotropy.regions = {{3, 5, 7}, {40, 41}};  // ascending: the map's order
-  store_regions(marked, face_ids_from_regions(with_lists.anisotropy.regions, marked.number_of_faces()));
+  store_regions(marked, face_ids_from_regions({{3, 5, 7}, {40, 41}}, marked.number_of_faces()));
 
-  Simulator by_lists(plain, with_lists);
   Simulator by_map(marked, anisotropic_options());
   Simulator without(plain, anisotropic_options());
   EXPECT_EQ(by_map.region_count(), 2u);
   EXPECT_EQ(without.region_count(), 0u);
-  while (!by_lists.finished()) {
-    by_lists.step();
+  while (!by_map.finished()) {
     by_map.step();
     without.step();
   }
-  EXPECT_EQ(by_map.positions(), by_lists.positions()) << "the map and the same lists must give the same run";
-  EXPECT_NE(without.positions(), by_lists.positions()) << "the regions must change the run, or this test cannot fail";
+  EXPECT_NE(without.positions(), by_map.positions()) << "the regions must change the run";
 }
 
 TEST(AnisotropyMaps, BadFaceListsAreRefused) {
   const Mesh mesh = test::to_surface_mesh(test::icosphere(1));
-  SimOptions opt = anisotropic_options();
-  opt.anisotropy.regions = {{0, 1}, {1}};
-  EXPECT_THROW(Simulator(mesh, opt), UsageError);
-  opt.anisotropy.regions = {{static_cast<int>(mesh.number_of_faces())}};
-  EXPECT_THROW(Simulator(mesh, opt), UsageError);
+  EXPECT_THROW(face_ids_from_regions({{0, 1}, {1}}, mesh.number_of_faces()), UsageError);
+  EXPECT_THROW(face_ids_from_regions({{static_cast<int>(mesh.number_of_faces())}},
+                                     mesh.number_of_faces()),
+               UsageError);
 }
 
 }  // namespace

@@ -15,6 +15,7 @@
 #include "shellcontract/core/error.hpp"
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/checkpoint.hpp"
+#include "shellcontract/sim/simulator.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "test_paths.hpp"
 

@@ -16,6 +16,7 @@
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/cgal_volume.hpp"
 #include "test_paths.hpp"
@@ -245,9 +246,9 @@ TEST(Run, OptionsWithoutEffectAreWarnedAndDefaultsAreNot) {
   Recorder rec;
   const RunResult r = run_contraction(sphere(1), o, &rec);
   ASSERT_EQ(rec.warnings.size(), 3u);
-  EXPECT_NE(rec.warnings[0].find("--region-shrink"), std::string::npos) << rec.warnings[0];
-  EXPECT_NE(rec.warnings[1].find("--c10"), std::string::npos) << rec.warnings[1];
-  EXPECT_NE(rec.warnings[2].find("--delta"), std::string::npos) << rec.warnings[2];
+  EXPECT_NE(rec.warnings[0].find("`region_shrink`"), std::string::npos) << rec.warnings[0];
+  EXPECT_NE(rec.warnings[1].find("`c10`"), std::string::npos) << rec.warnings[1];
+  EXPECT_NE(rec.warnings[2].find("`delta`"), std::string::npos) << rec.warnings[2];
   EXPECT_EQ(r.warnings, rec.warnings);
 }
 
@@ -305,7 +306,7 @@ TEST(Run, RegionMaxAreaWithoutAutoRegionsIsWarned) {
   Recorder rec;
   run_contraction(sphere(1), o, &rec);
   ASSERT_EQ(rec.warnings.size(), 1u);
-  EXPECT_NE(rec.warnings[0].find("--region-max-area"), std::string::npos) << rec.warnings[0];
+  EXPECT_NE(rec.warnings[0].find("`region_max_area`"), std::string::npos) << rec.warnings[0];
 }
 
 TEST(Run, OrderAutoIsColouredAtEverySizeAndSequentialOnRequest) {

@@ -15,6 +15,7 @@
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/simulator.hpp"
 #include "shellcontract/sim/schedule.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
 #include "test_paths.hpp"
@@ -124,7 +125,7 @@ TEST(Schedule, BadKeysAreRefusedNamingTheKey) {
     for (const std::string& p : parts)
       EXPECT_NE(m.find(p), std::string::npos) << "'" << text << "' -> " << m;
   };
-  expect("target-volume", "0:1, 60:0.5, 50:0.8", {"--target-volume", "key 3", "'50:0.8'", "increase"});
+  expect("target-volume", "0:1, 60:0.5, 50:0.8", {"`target_volume`", "key 3", "'50:0.8'", "increase"});
   expect("target-volume", "0:1, 60:0.5, 60:0.8", {"key 3", "'60:0.8'"});
   expect("target-volume", "0:1, 60:2.5", {"key 2", "'60:2.5'", "(0, 2]"});
   expect("target-volume", "0:1, 60:0", {"key 2", "(0, 2]"});
@@ -138,7 +139,7 @@ TEST(Schedule, BadKeysAreRefusedNamingTheKey) {
   expect("target-volume", "-5:1", {"key 1", "'-5'"});
   expect("target-volume", "0:0.5, 60:0.4", {"key 1", "rest volume"});
   expect("target-volume", "1.5:0.5", {"key 1", "'1.5'"});
-  expect("pressure", "0:4, 10:x", {"--pressure", "key 2", "'x'"});
+  expect("pressure", "0:4, 10:x", {"`pressure`", "key 2", "'x'"});
 }
 
 TEST(Schedule, OptionTableTakesANumberOrKeys) {
@@ -163,10 +164,10 @@ TEST(Schedule, OptionTableTakesANumberOrKeys) {
   RunOptions keyed;
   set_run_option(keyed, "target-volume", "0:1, 60:0.5");
   resolve_run_options(keyed);
-  keyed.given.insert("target-ramp");
+  keyed.given.insert("target_ramp");
   const std::vector<std::string> w = ineffective_options(keyed);
   EXPECT_TRUE(std::any_of(w.begin(), w.end(), [](const std::string& s) {
-    return s.find("--target-ramp has no effect") != std::string::npos;
+    return s.find("`target_ramp` has no effect") != std::string::npos;
   }));
 }
 

@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/sim/rest_state.hpp"
 #include "shellcontract/sim/run_options.hpp"
 #include "shellcontract/sim/simulator.hpp"
@@ -228,8 +230,9 @@ TEST(Simulator, EveryMaterialAndAnisotropicEnergyRunsThroughTheSolver) {
         opt.solver.kind = kind;
         opt.solver.aniso = aniso;
         opt.material_params.fiber_target = 0.9;
-        opt.anisotropy.regions = {region};
-        Simulator sim(mesh, opt);
+        Mesh marked = mesh;
+        store_regions(marked, face_ids_from_regions({region}, marked.number_of_faces()));
+        Simulator sim(std::move(marked), opt);
         while (!sim.finished()) sim.step();
         const std::string what = to_string(material) + " + " + to_string(aniso) +
                                  (kind == SolverKind::Pbd ? " pbd" : " xpbd");

@@ -17,6 +17,7 @@
 #include <string>
 
 #include "shellcontract/core/types.hpp"
+#include "shellcontract/material/material_params.hpp"
 
 namespace shellcontract {
 
@@ -24,16 +25,6 @@ namespace shellcontract {
 struct ElementMaterialData {
   /// Unit fibre direction a in the face's REST frame (Tbar1, Tbar2) (math-spec 7).
   Vec2 fiber = Vec2(1.0, 0.0);
-};
-
-/// Membrane stiffness parameters. Units: energy per unit rest area (N/m for a membrane in SI).
-struct MaterialParams {
-  double mu = 1.0;           ///< shear modulus (Lame mu), default 1 (math-spec 14)
-  double lambda = 1.0;       ///< plane-stress Lame lambda, default lambda/mu = 1 (math-spec 14)
-  double c10 = 0.5;          ///< Mooney-Rivlin C10, default mu/2 (math-spec 14)
-  double c01 = 0.0;          ///< Mooney-Rivlin C01, default 0 (neo-Hookean membrane)
-  double mu_aniso = 1.0;     ///< anisotropic fibre stiffness mu_A
-  double fiber_target = 1.0; ///< active-fibre target stretch gamma in (0, 1] (math-spec 7)
 };
 
 /// Plane-stress membrane Lame parameters from 3D Young's modulus E, Poisson ratio nu and

@@ -16,18 +16,11 @@
 #include "shellcontract/material/corotated.hpp"
 #include "shellcontract/material/linear.hpp"
 #include "shellcontract/material/material.hpp"
+#include "shellcontract/material/material_params.hpp"
 #include "shellcontract/material/mooney_rivlin.hpp"
 #include "shellcontract/material/stvk.hpp"
 
 namespace shellcontract {
-
-/// Isotropic membrane energy E_S (math-spec 6). Names: "stvk", "corotated", "linear",
-/// "mooney-rivlin".
-enum class MaterialKind { Stvk, Corotated, Linear, MooneyRivlin };
-
-/// Anisotropic fibre energy E_A (math-spec 7). Names: "none", "arap", "stvk", "sqrt",
-/// "active-fiber". Each model's name() equals its name here.
-enum class AnisoKind { None, Arap, Stvk, Sqrt, ActiveFiber };
 
 /// The "energy" of AnisoKind::None: psi = 0, P = 0 for every F. It exists so that with_aniso()
 /// can call its functor for every AnisoKind with a type that has the material interface; a loop

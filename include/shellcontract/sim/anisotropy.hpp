@@ -8,30 +8,9 @@
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/surface_mesh.hpp"
 #include "shellcontract/pbd/constraints.hpp"
+#include "shellcontract/sim/anisotropy_options.hpp"
 
 namespace shellcontract {
-
-/// How the fibre direction a of a region face is chosen (the paper never gives one).
-enum class FiberMode {
-  /// Tangent direction from the face toward its region's area-weighted centre: shortening along
-  /// it pulls the region together (default; docs/design/anisotropy.md "Fibre direction" gives the measurement).
-  TowardCentre,
-  /// One user 3D direction d for every face: a = normalize(d . T1, d . T2) (math-spec 7).
-  User,
-};
-
-/// Options of the anisotropic regions.
-struct AnisotropyOptions {
-  /// Face ids (input order) of each region, for a caller that has them as lists: the Simulator
-  /// stores them in the map "f:region" of its mesh (face_ids_from_regions; a face in two lists
-  /// or out of range is refused). Empty (default): the regions are the "f:region" map of the
-  /// mesh given to the Simulator, if it has one (mark_spherical_regions, store_regions).
-  std::vector<std::vector<int>> regions;
-  FiberMode fiber_mode = FiberMode::TowardCentre;
-  Vec3 user_direction = Vec3::UnitX();    ///< FiberMode::User only
-  double kappa_a = 0.1;                   ///< k_A = kappa_A mu_A sqrt(Abar_j) (math-spec 9.3, 14)
-  double mu_aniso = 1.0;                  ///< mu_A, for k_A
-};
 
 /// What building the anisotropic constraints did, for the log.
 struct AnisotropyReport {
@@ -43,7 +22,7 @@ struct AnisotropyReport {
 /// face's rest frame; (1, 0) outside the regions and on degenerate faces), then appends one E_A
 /// constraint per non-degenerate region face to set.anisotropic (with the fibre read from that
 /// map in ElementMaterialData::fiber) and its k_A to set.anisotropic_k_a. Constraints come
-/// region by region, each region's faces in ascending order. options.regions is not read.
+/// region by region, each region's faces in ascending order.
 /// @pre build_rest_state(mesh) was called (reads f:triangle_rest); the regions are in
 ///      "f:region" (no map: no region)
 AnisotropyReport add_anisotropic_constraints(Mesh& mesh, const AnisotropyOptions& options,

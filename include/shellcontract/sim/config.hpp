@@ -1,15 +1,16 @@
 // Plain option structs of a simulation run. Defaults are the paper's values where it gives
 // them, otherwise ours (math-spec 14); README.md "Options" documents how they were chosen.
+// A leaf: each module's settings come from its own leaf header beside it (no mesh, solver,
+// collision or material classes); the run plan (run_plan.hpp) resolves and checks them.
 #pragma once
 
 #include <string>
 
-#include "shellcontract/material/material.hpp"
-#include "shellcontract/material/registry.hpp"
-#include "shellcontract/collision/self_collision.hpp"
-#include "shellcontract/pbd/solver.hpp"
-#include "shellcontract/sim/anisotropy.hpp"
-#include "shellcontract/sim/pressure.hpp"
+#include "shellcontract/collision/collision_options.hpp"
+#include "shellcontract/material/material_params.hpp"
+#include "shellcontract/pbd/solver_settings.hpp"
+#include "shellcontract/sim/anisotropy_options.hpp"
+#include "shellcontract/sim/pressure_model.hpp"
 #include "shellcontract/sim/schedule.hpp"
 
 namespace shellcontract {
@@ -122,7 +123,7 @@ struct SimOptions {
   /// its largest key value (what the checks of "is there a compressing pressure" read).
   Schedule pressure_schedule;
   double damping = DEFAULT_DAMPING;              ///< fraction of velocity removed per step, [0, 1)
-  AnisotropyOptions anisotropy;                  ///< regions, fibres, kappa_A (solver.aniso = model)
+  AnisotropyOptions anisotropy;                  ///< fibres, kappa_A (solver.aniso = model)
   InwardTerm inward_term = InwardTerm::Volume;
   /// How much the regions shrink, in [0, 1]: the local contraction's strength (dimple_rest_volume
   /// for InwardTerm::Volume, region_pressure for InwardTerm::Force).
@@ -131,10 +132,10 @@ struct SimOptions {
   /// a result that never passes through itself (design.md).
   bool collisions = true;
   CollisionOptions collision;                    ///< delta, rounds, broad-phase method
-  /// --delta auto: the Simulator sets collision.delta to auto_contact_distance of the normalized
-  /// rest mesh, capped at the collision.delta given (sim/contact_distance.hpp).
+  /// --delta auto: the plan (plan_simulation) sets collision.delta to auto_contact_distance of
+  /// the normalized rest mesh, capped at the collision.delta given (sim/contact_distance.hpp).
   bool auto_delta = false;
-  /// Sets collision.speculative when the Simulator is built (the value given there is ignored).
+  /// Sets collision.speculative when the options are resolved (the value given there is ignored).
   SpeculativeBroadPhase speculative_broad_phase = SpeculativeBroadPhase::Auto;
   ValidateMode validate = ValidateMode::Off;
   /// Fill FrameMetrics::energies after every step. Costs a pass over every constraint (a

@@ -37,6 +37,25 @@ const OptionSpec* find_run_option(const std::string& name);
 /// Sets one option from text. @throws UsageError for an unknown name or a bad value
 void set_run_option(RunOptions& options, const std::string& name, const std::string& value);
 
+/// How a front end names the options. The library's messages name an option by its field, in
+/// backquotes (`k_b`: the table's name with underscores, as RunOptions::given records it); each
+/// front end spells it its own way.
+enum class OptionSpelling {
+  Cli,     ///< the table's name ("k-b"); "--k-b" in a message
+  Python,  ///< the field's name ("k_b"), as contract() takes it
+};
+
+/// The field name of a table name: "k-b" -> "k_b".
+std::string option_field(const std::string& name);
+
+/// The option's name in a spelling: "k-b" (Cli) or "k_b" (Python).
+std::string option_name(const OptionSpec& option, OptionSpelling spelling);
+
+/// A library message with every backquoted option field (`target_volume`) spelled for the front
+/// end: "--target-volume" (Cli) or "target_volume" (Python). Backquotes around anything but a
+/// table option's field are left as they are.
+std::string spell_options(const std::string& message, OptionSpelling spelling);
+
 /// The shortest decimal text that reads back as exactly `x` (0.3, 1e-4, 2).
 std::string shortest_text(double x);
 

@@ -4,13 +4,9 @@
 #include <vector>
 
 #include "shellcontract/core/types.hpp"
+#include "shellcontract/sim/pressure_model.hpp"
 
 namespace shellcontract {
-
-/// energy: f_i = -(P/6) sum_{j ni i} N_j = -P dV/dx_i (default; no net force, work = -P dV).
-/// paper:  f_i = -P nhat_i sum_{j ni i} A_j / 3 with the area-weighted unit vertex normal
-///         (paper eq. for Step 1; same direction, larger magnitude on coarse meshes).
-enum class PressureModel { EnergyConsistent, Paper };
 
 /// Pressure forces at positions x (math-spec 3). P > 0 with outward normals pushes inward.
 /// @param x      #V by 3 current positions

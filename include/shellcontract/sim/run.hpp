@@ -8,12 +8,17 @@
 #include <string>
 #include <vector>
 
+#include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/pbd/solver_settings.hpp"
+#include "shellcontract/sim/frame_metrics.hpp"
 #include "shellcontract/sim/run_options.hpp"
+#include "shellcontract/sim/run_plan.hpp"
 #include "shellcontract/sim/run_totals.hpp"
-#include "shellcontract/sim/simulator.hpp"
 
 namespace shellcontract {
+
+class Simulator;  // sim/simulator.hpp, for an observer that reads more than the frame's metrics
 
 /// How a run ended; RunResult::exit_code maps it onto the documented exit codes.
 enum class RunStatus {
@@ -105,14 +110,6 @@ class ObserverList final : public RunObserver {
 
 class RunCheckpointer;  // sim/checkpoint.hpp
 
-/// Stores the regions a run would use in the mesh's "f:region" map: auto-selected by curvature
-/// (mark_spherical_regions, which also stores the curvature maps), read from the file, or none
-/// (every face -1). run_contraction calls it on its copy of the mesh after resolve_run_options,
-/// which selects Auto only when something acts on the regions or they are measured.
-/// @return the number of regions
-/// @throws InputError for an unreadable or out-of-range region file
-std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
-
 /// Runs the contraction of `mesh` (a checked, closed, outward-oriented triangle mesh from
 /// read_input_mesh, any units) to its end.
 /// @throws UsageError for invalid options, InputError for an unusable mesh or region file
@@ -124,7 +121,13 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
 ///         message that says so.
 /// @param checkpointer  continues from its checkpoint, and saves the state when it asks
 ///         (sim/checkpoint.hpp); InputError if its checkpoint does not fit the mesh and options
-RunResult run_contraction(const Mesh& mesh, RunOptions options, RunObserver* observer = nullptr,
+RunResult run_contraction(const Mesh& mesh, const RunOptions& options,
+                          RunObserver* observer = nullptr, RunCheckpointer* checkpointer = nullptr);
+
+/// Runs a plan (plan_run(mesh, options), or a plan a caller put together from plan_simulation):
+/// run_contraction(mesh, options) is run_contraction(plan_run(mesh, options)). The plan's
+/// warnings go to the observer first.
+RunResult run_contraction(RunPlan plan, RunObserver* observer = nullptr,
                           RunCheckpointer* checkpointer = nullptr);
 
 }  // namespace shellcontract

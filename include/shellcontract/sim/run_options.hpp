@@ -1,6 +1,7 @@
 // Options of one contraction run as a caller gives them (CLI, Python, C++): the simulation's
-// options plus where the anisotropic regions come from. option_table.hpp parses them from text,
-// run.hpp runs them.
+// options plus where the anisotropic regions come from. Plain data and a leaf (no mesh, solver
+// or collision classes). option_table.hpp parses them from text, run_plan.hpp resolves and checks
+// them (docs/design/run-plan.md), run.hpp runs them.
 #pragma once
 
 #include <cstddef>
@@ -9,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/geometry/region_selection.hpp"
 #include "shellcontract/sim/config.hpp"
 
 namespace shellcontract {
@@ -30,6 +30,10 @@ enum class RegionSource {
 /// lab/speed-error/orders/README.md), it runs the batched kernels on every thread, and its result
 /// does not depend on the thread count. Sequential stays available as the paper's order.
 enum class OrderChoice { Auto, Sequential, Coloured };
+
+/// Default of RunOptions::region_max_area: RegionOptions{}.max_area_fraction
+/// (geometry/region_selection.hpp; a test holds the two equal).
+inline constexpr double DEFAULT_REGION_MAX_AREA = 0.25;
 
 /// The order a run asking for `choice` uses.
 ConstraintOrder order_for(OrderChoice choice);
@@ -67,7 +71,7 @@ struct RunOptions {
   std::vector<double> vertex_weights;
   /// RegionSource::Auto only: regions larger than this fraction of the total area are dropped
   /// (RegionOptions::max_area_fraction; a large one, such as bear's head, deflates the shell).
-  double region_max_area = RegionOptions{}.max_area_fraction;
+  double region_max_area = DEFAULT_REGION_MAX_AREA;
   /// Select the regions even when no local contraction acts on them, to report how far they sink.
   bool measure_regions = false;
   /// Membrane stiffness from Young's modulus, Poisson ratio and thickness (math-spec 6). When
@@ -76,25 +80,35 @@ struct RunOptions {
   std::optional<double> young = DEFAULT_SHELL_YOUNG;
   double poisson = 0.3;
   std::optional<double> thickness = DEFAULT_SHELL_THICKNESS;
-  /// The options set through the option table (CLI spelling), so that a run can say which of
-  /// them have no effect in its configuration (ineffective_options).
+  /// The options set through the option table, by field name ("k_b", "region_weights"; not a
+  /// front end's spelling), so that a run can say which of them have no effect in its
+  /// configuration (ineffective_options).
   std::set<std::string> given;
 };
 
-/// One warning per given option that has no effect with the others (e.g. --region-shrink
-/// without regions, --c10 with a material other than Mooney-Rivlin, --delta with
-/// collisions off). run_contraction reports them as warnings.
+/// One warning per given option that has no effect with the others (e.g. region_shrink
+/// without regions, c10 with a material other than Mooney-Rivlin, delta with collisions off),
+/// naming the options by field in backquotes (`region_shrink`; spell_options spells them for a
+/// front end). The run plan reports them as warnings.
 std::vector<std::string> ineffective_options(const RunOptions& options);
 
-/// Checks the options that depend on each other and derives the values that follow from others
-/// (mu and lambda from --young; the solver's time step and threads, the collision threads and the
-/// speculative broad phase). Called once, by run_contraction and by the Simulator; every value
-/// has this one owner.
-/// @throws UsageError naming the option
+/// Applies the defaults that depend on other options, derives the values that follow from
+/// others (mu and lambda from young; the solver's time step and threads, the collision threads
+/// and the speculative broad phase) and checks every option and the rules between them. The
+/// mesh-free part of the run plan (run_plan.hpp, src/sim/run_plan.cpp): every default and rule
+/// has this one owner. Idempotent, so that a caller (the CLI, to refuse bad options before it
+/// reads the mesh) may resolve what plan_run resolves again.
+/// @throws UsageError naming the option by its field (`target_volume`; option_table.hpp spells it
+///         for the CLI or Python)
 void resolve_run_options(RunOptions& options);
 
 /// The derived fields of SimOptions (solver.dt, solver.threads -> collision.threads,
-/// collision.speculative, the anisotropy's mu_A, the solver's k_A switch) from the others.
+/// collision.speculative, the anisotropy's mu_A, the solver's k_A switch) from the others, then
+/// the checks of check_sim_options.
 void resolve_sim_options(SimOptions& options);
+
+/// Checks the simulation options' ranges and the rules between them.
+/// @throws UsageError naming the option by its field
+void check_sim_options(const SimOptions& options);
 
 }  // namespace shellcontract

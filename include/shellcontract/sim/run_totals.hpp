@@ -7,7 +7,7 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/sim/frame_metrics.hpp"
 
 namespace shellcontract {
 

@@ -8,38 +8,31 @@
 #include <utility>
 #include <vector>
 
+#include "shellcontract/collision/self_collision.hpp"
 #include "shellcontract/core/types.hpp"
 #include "shellcontract/mesh/normalization.hpp"
 #include "shellcontract/mesh/surface_mesh.hpp"
 #include "shellcontract/pbd/solver.hpp"
+#include "shellcontract/sim/anisotropy.hpp"
 #include "shellcontract/sim/config.hpp"
+#include "shellcontract/sim/frame_metrics.hpp"
 #include "shellcontract/sim/pressure.hpp"
 #include "shellcontract/sim/region_dimple.hpp"
 #include "shellcontract/sim/rest_state.hpp"
+#include "shellcontract/sim/run_plan.hpp"
 #include "shellcontract/sim/simulator_state.hpp"
 
 namespace shellcontract {
 
-/// Per-step measurements (one CSV row of the run log).
-struct FrameMetrics {
-  int frame = 0;                  ///< 1-based index of the step just taken
-  double time = 0.0;              ///< simulated time after the step (normalized units)
-  double volume_ratio = 1.0;      ///< V / V0, V from CGAL PMP::volume
-  ConstraintEnergies energies;    ///< after the step; zero unless SimOptions::frame_energies
-  double max_displacement = 0.0;  ///< max_i |x_i^{n+1} - x_i^n| (normalized units)
-  double step_seconds = 0.0;      ///< wall time of the step (predict, solve, collisions, velocity)
-  double solve_seconds = 0.0;     ///< wall time of the constraint projection alone
-  CollisionStepStats collision;   ///< zero when collisions are off
-  /// New self-intersections (face pairs not intersecting in the input) found by CGAL at this
-  /// frame; -1 when not validated at this frame.
-  long new_intersections = -1;
-};
-
 /// Runs the contraction of one closed mesh.
 class Simulator {
  public:
-  /// Takes (a copy of, or the moved) mesh, normalizes it and builds the rest state and the
-  /// constraints.
+  /// Builds the rest state and the constraints of a plan (run_plan.hpp): the plan's options are
+  /// resolved and checked, its mesh normalized with its regions in "f:region"; the Simulator
+  /// neither checks nor resolves.
+  /// @throws InputError for an unusable mesh (no positive enclosed volume)
+  explicit Simulator(SimPlan plan);
+  /// Simulator(plan_simulation(input, options)): the regions are the map `input` carries.
   /// @param input  a checked, closed, outward-oriented triangle mesh (read_input_mesh), any units
   /// @throws UsageError for invalid options, InputError for an unusable mesh
   Simulator(Mesh input, const SimOptions& options);
@@ -75,8 +68,7 @@ class Simulator {
   /// Vertices whose mass scale_masses_for_pressure raised (sim/mass_scaling.hpp).
   std::size_t mass_scaled_vertices() const { return mass_scaled_vertices_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
-  /// Number of regions in the rest mesh's "f:region" map (options.anisotropy.regions, or the
-  /// input mesh's map), whether or not anything acts on them.
+  /// Number of regions in the rest mesh's "f:region" map, whether or not anything acts on them.
   std::size_t region_count() const { return region_count_; }
   /// Face pairs that already intersect in the input (the validation baseline).
   std::size_t input_intersections() const;

@@ -1,0 +1,214 @@
+// The run plan (run_plan.hpp, docs/design/run-plan.md): the one place where the options get
+// their defaults, their derived values and their checks, and where the regions become the mesh's
+// "f:region" map.
+#include "shellcontract/sim/run_plan.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/material/material.hpp"
+#include "shellcontract/material/registry.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/sim/contact_distance.hpp"
+#include "shellcontract/sim/region_weights.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// Every range and every rule between the simulation options, in one list (the option table
+/// refuses a bad value of one option as it is parsed; this also holds a caller that writes the
+/// fields).
+void check_sim_options_impl(const SimOptions& o) {
+  auto fail = [](const std::string& what) { throw UsageError(what); };
+  if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("`dt` must be positive and finite");
+  if (o.frames < 0) fail("`frames` must be >= 0");
+  if (o.solver.iterations < 0) fail("`iterations` must be >= 0");
+  if (o.solver.threads < 0) fail("`threads` must be >= 0");
+  if (!std::isfinite(o.pressure)) fail("`pressure` must be finite");
+  if (!(o.solver.k_bending >= 0.0) || !std::isfinite(o.solver.k_bending)) fail("`k_b` must be >= 0");
+  if (o.solver.kind == SolverKind::Pbd && o.solver.k_bending > 1.0)
+    fail("`k_b`: in pbd mode k_B is a correction multiplier and must be in [0, 1]");
+  if (!(o.density > 0.0)) fail("`density` must be positive");
+  if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("`damping` must be in [0, 1)");
+  if (!(o.region_shrink >= 0.0 && o.region_shrink <= 1.0)) fail("`region_shrink` must be in [0, 1]");
+  if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta))
+    fail("`delta` must be positive");
+  if (o.collision.rounds < 0) fail("`collision_rounds` must be >= 0");
+  if (!(o.collision.region_margin >= 0.0) || !std::isfinite(o.collision.region_margin))
+    fail("collision.region_margin must be >= 0");
+  if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
+    fail("`stop_volume_ratio` must be in [0, 1)");
+  if (o.target_volume_schedule.empty()) {
+    if (!(o.target_volume >= 0.0 && o.target_volume < 1.0)) fail("`target_volume` must be in [0, 1)");
+  } else if (!(o.target_volume_schedule.min_value() > 0.0 &&
+               o.target_volume_schedule.max_value() <= MAX_KEYED_VOLUME_RATIO)) {
+    fail("keyframed `target_volume` values must be in (0, " + std::to_string(MAX_KEYED_VOLUME_RATIO) + "]");
+  } else if (o.target_volume != o.target_volume_schedule.last_value()) {
+    fail("`target_volume` must be the last key's value of its schedule");
+  }
+  if (!o.pressure_schedule.empty() && o.pressure != o.pressure_schedule.max_value())
+    fail("`pressure` must be the largest key value of its schedule");
+  if (o.target_volume > 0.0 && o.stop_volume_ratio > 0.0)
+    fail(
+        "`target_volume` and `stop_volume_ratio` exclude each other (the target holds the "
+        "volume, the stop ends the run when it is reached)");
+  if (!(o.air_balance >= 0.0 && o.air_balance < 1.0)) fail("`air_balance` must be in [0, 1)");
+  if (o.target_ramp_frames < 1) fail("`target_ramp` must be at least 1 frame");
+}
+
+/// The paper's settings where the caller left the default run's (RunOptions): under pbd the
+/// membrane is mu and lambda and the damping DEFAULT_DAMPING; chosen mu or lambda are the
+/// membrane. Idempotent, like the rest of resolve_run_options.
+void resolve_default_run(RunOptions& r) {
+  const auto chosen = [&r](const char* name, bool changed) {
+    return r.given.count(name) || changed;
+  };
+  const MaterialParams paper;
+  const bool pbd = r.sim.solver.kind == SolverKind::Pbd;
+  const bool shell_chosen = r.given.count("young") || r.given.count("thickness");
+  // mu and lambda that the shell material gave (an earlier resolve) are not chosen.
+  const MaterialParams& m = r.sim.material_params;
+  bool from_shell = false;
+  if (r.young && r.thickness) {
+    const MaterialParams shell = membrane_lame_from_young(*r.young, r.poisson, *r.thickness);
+    from_shell = m.mu == shell.mu && m.lambda == shell.lambda;
+  }
+  const bool lame_chosen = chosen("mu", !from_shell && m.mu != paper.mu) ||
+                           chosen("lambda", !from_shell && m.lambda != paper.lambda);
+  if (!shell_chosen && (pbd || lame_chosen || r.sim.material == MaterialKind::MooneyRivlin)) {
+    r.young.reset();
+    r.thickness.reset();
+  }
+  if (pbd && !chosen("damping", r.sim.damping != DEFAULT_XPBD_DAMPING))
+    r.sim.damping = DEFAULT_DAMPING;
+}
+
+}  // namespace
+
+void check_sim_options(const SimOptions& o) { check_sim_options_impl(o); }
+
+void resolve_sim_options(SimOptions& o) {
+  o.solver.dt = o.dt;
+  o.collision.threads = o.solver.threads;
+  o.anisotropy.mu_aniso = o.material_params.mu_aniso;
+  o.solver.k_a_in_projection = o.inward_term == InwardTerm::Projection;
+  // The speculative broad phase uses the core a single-threaded solve leaves idle (config.hpp).
+  o.collision.speculative = o.speculative_broad_phase == SpeculativeBroadPhase::On ||
+                            (o.speculative_broad_phase == SpeculativeBroadPhase::Auto &&
+                             o.solver.order == ConstraintOrder::Sequential);
+  check_sim_options(o);
+}
+
+void resolve_run_options(RunOptions& r) {
+  resolve_default_run(r);
+  if (r.young.has_value() != r.thickness.has_value())
+    throw UsageError("`young` needs `thickness` (and the other way round)");
+  if (r.young) {
+    const MaterialParams lame = membrane_lame_from_young(*r.young, r.poisson, *r.thickness);
+    r.sim.material_params.mu = lame.mu;
+    r.sim.material_params.lambda = lame.lambda;
+    // Under xpbd k_B is a stiffness, so the material gives it too: the plate's bending rigidity
+    // for the dihedral energy. With it the wrinkles' size follows the thickness and is the same
+    // on bear and bear x4 (lab/pages/wrinkles.md). In pbd k_B is a correction multiplier,
+    // not a stiffness.
+    if (r.sim.solver.kind == SolverKind::Xpbd && r.sim.bending == BendingModel::Dihedral &&
+        !r.given.count("k_b"))
+      r.sim.solver.k_bending = dihedral_k_bending_from_young(*r.young, r.poisson, *r.thickness);
+  }
+  // Weights are the regions: another region source beside them is a contradiction.
+  if (!r.region_weight_file.empty() || !r.vertex_weights.empty()) {
+    if (r.regions != RegionSource::Weights && r.given.count("regions"))
+      throw UsageError(
+          "`region_weights` and `regions` exclude each other (the weighted faces are the regions)");
+    r.regions = RegionSource::Weights;
+  }
+  // An anisotropic energy acts on regions, so choosing one without saying which selects them
+  // by curvature (the behaviour before regions switched the local contraction on by themselves).
+  const bool implied = r.regions == RegionSource::None && !r.given.count("regions");
+  if (implied && r.sim.solver.aniso != AnisoKind::None) r.regions = RegionSource::Auto;
+  // --measure-regions alone selects the regions only to report how far they sink in a run that
+  // does not contract them: the baseline of the local contraction's measurements.
+  if (implied && r.measure_regions && r.sim.solver.aniso == AnisoKind::None) {
+    r.regions = RegionSource::Auto;
+    r.sim.inward_term = InwardTerm::None;
+  }
+  resolve_sim_options(r.sim);  // and the checks of every simulation option
+}
+
+std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
+  switch (options.regions) {
+    case RegionSource::File: {
+      const RegionFile file = read_region_file_with_strengths(options.region_file, mesh.number_of_faces());
+      store_regions(mesh, face_ids_from_regions(file.regions, mesh.number_of_faces()));
+      store_region_strengths(mesh, file.regions, file.strength);  // a "S:" column, if any
+      return file.regions.size();
+    }
+    case RegionSource::Auto: {
+      RegionOptions o;
+      o.max_area_fraction = options.region_max_area;
+      return mark_spherical_regions(mesh, positions_from_mesh(mesh), o);
+    }
+    case RegionSource::Weights: {
+      if (!options.vertex_weights.empty()) {
+        check_vertex_weights(options.vertex_weights, mesh.number_of_vertices(), "region_weights");
+        return mark_weighted_regions(mesh, options.vertex_weights);
+      }
+      return mark_weighted_regions(
+          mesh, read_vertex_weights(options.region_weight_file, mesh.number_of_vertices()));
+    }
+    case RegionSource::None:
+      break;
+  }
+  store_regions(mesh, std::vector<int>(mesh.number_of_faces(), -1));
+  return 0;
+}
+
+SimPlan plan_simulation(Mesh mesh, SimOptions options) {
+  resolve_sim_options(options);
+  if (mesh.has_garbage()) throw UsageError("Simulator: the input mesh has garbage");
+  SimPlan plan;
+  plan.normalization = compute_normalization(positions_from_mesh(mesh));
+  const Positions x = normalize(positions_from_mesh(mesh), plan.normalization);
+  for (VertexIndex v : mesh.vertices()) {
+    const auto r = x.row(v.idx());
+    mesh.point(v) = Point3(r(0), r(1), r(2));
+  }
+  if (options.collisions && options.auto_delta)
+    options.collision.delta = auto_contact_distance(mesh, options.collision.delta);
+  plan.mesh = std::move(mesh);
+  plan.options = std::move(options);
+  return plan;
+}
+
+RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
+  RunPlan plan;
+  plan.options = options;
+  RunOptions& o = plan.options;
+  o.sim.solver.order = order_for(o.order);
+  resolve_run_options(o);
+  const auto regions_start = std::chrono::steady_clock::now();
+  // The run's regions travel as the f:region map of its copy of the mesh (one owner: the run
+  // options say where they come from).
+  Mesh marked = mesh;
+  plan.regions = mark_run_regions(marked, o);
+  plan.regions_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - regions_start).count();
+  const SimOptions& s = o.sim;
+  if (s.solver.aniso != AnisoKind::None && plan.regions == 0)
+    plan.warnings.push_back(
+        "`aniso` " + to_string(s.solver.aniso) +
+        " has no effect: no region was found (or given), so no face gets the anisotropic energy");
+  else if (o.regions != RegionSource::None && plan.regions == 0 && !o.measure_regions)
+    plan.warnings.push_back(
+        "`regions` found no region (or the file lists none): the local contraction has no "
+        "effect");
+  for (std::string& w : ineffective_options(o)) plan.warnings.push_back(std::move(w));
+  plan.sim = plan_simulation(std::move(marked), o.sim);  // one copy of a large mesh fewer
+  return plan;
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,89 @@
+// The summary and the log row of a run, for every front end (run_report.hpp).
+#include "shellcontract/sim/run_report.hpp"
+
+#include <iomanip>
+#include <sstream>
+
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/run.hpp"
+
+namespace shellcontract {
+
+LogRow log_row(const FrameMetrics& m) {
+  return {static_cast<double>(m.frame),
+          m.time,
+          m.volume_ratio,
+          m.energies.membrane,
+          m.energies.bending,
+          m.energies.anisotropic,
+          m.max_displacement,
+          m.step_seconds * 1e3,
+          m.solve_seconds * 1e3,
+          m.collision.seconds * 1e3,
+          static_cast<double>(m.collision.pairs_broad),
+          static_cast<double>(m.collision.contacts),
+          static_cast<double>(m.collision.rounds),
+          static_cast<double>(m.collision.failsafe_vertices),
+          static_cast<double>(m.new_intersections)};
+}
+
+std::string log_csv_header() {
+  std::string s;
+  for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) s += (c ? "," : "") + std::string(LOG_COLUMNS[c]);
+  return s + "\n";
+}
+
+std::string log_csv_line(const LogRow& row) {
+  std::ostringstream o;
+  o << std::setprecision(17);
+  for (std::size_t c = 0; c < row.size(); ++c) o << row[c] << (c + 1 < row.size() ? ',' : '\n');
+  return o.str();
+}
+
+void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOptions& options,
+                       const RunResult& r, OptionSpelling spelling, const SummaryFiles* files) {
+  const auto count = [&w](const char* key, std::size_t v) {
+    w.add_integer(key, static_cast<long long>(v));
+  };
+  w.add_text("status", status_name(r.status));
+  w.add_text("failure", r.message);
+  w.add_integer("exit_code", r.exit_code());
+  if (files) {
+    w.add_text("input", files->input);
+    w.add_text("output", files->output);
+  }
+  count("vertices", report.vertices);
+  count("faces", report.faces);
+  count("components", report.components);
+  w.add_bool("reoriented", report.reoriented);
+  count("degenerate_faces", r.degenerate_faces);
+  w.add_number("normalization_scale", r.normalization_scale);
+  w.add_object("options", [&](SummaryWriter& o) {
+    for (const OptionSpec& spec : run_option_table())
+      o.add_text(option_name(spec, spelling), spec.get(options));
+  });
+  w.add_integer("frames_run", r.frames_run);
+  w.add_number("final_volume_ratio", r.final_volume_ratio);
+  w.add_number("min_volume_ratio", r.min_volume_ratio);
+  w.add_bool("target_reached", r.target_reached);
+  w.add_integer("frame_target_reached", r.frame_target_reached);
+  w.add_number("wall_seconds", r.wall_seconds);
+  w.add_number("mean_step_ms", r.frames_run > 0 ? 1e3 * r.wall_seconds / r.frames_run : 0.0);
+  w.add_bool("collisions", options.sim.collisions);
+  w.add_text("order_used", r.order == ConstraintOrder::Coloured ? "coloured" : "sequential");
+  count("excluded_contact_pairs", r.excluded_contact_pairs);
+  w.add_number("contact_distance", r.contact_distance);
+  w.add_integer("new_intersections", r.new_intersections);
+  count("regions", r.regions);
+  count("anisotropic_faces", r.anisotropic_faces);
+  w.add_number("region_inward_displacement", r.region_inward_displacement);
+  w.add_number("outside_region_displacement", r.outside_region_displacement);
+  w.add_object("table2", [&](SummaryWriter& t) {
+    for (const auto& [name, value] : r.totals.per_step(r.frames_run)) t.add_number(name, value);
+  });
+  std::vector<std::string> warnings = report.warnings;
+  for (const std::string& text : r.warnings) warnings.push_back(spell_options(text, spelling));
+  w.add_texts("warnings", warnings);
+}
+
+}  // namespace shellcontract

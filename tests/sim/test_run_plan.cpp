@@ -1,0 +1,217 @@
+// The run plan (sim/run_plan.hpp): the one place where the options are resolved and checked and
+// the regions become the mesh's f:region map; option fields in the library's messages and each
+// front end's spelling of them; the summary and log row written once for the CLI and Python
+// (sim/run_report.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellcontract/core/error.hpp"
+#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/sim/run.hpp"
+#include "shellcontract/sim/run_plan.hpp"
+#include "shellcontract/sim/run_report.hpp"
+#include "support/cgal_mesh.hpp"
+
+namespace shellcontract {
+namespace {
+
+Mesh sphere(int level = 2) { return test::to_surface_mesh(test::icosphere(level)); }
+
+std::string what_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(RunPlan, ShellMaterialGivesMuLambdaAndKbInClosedForm) {
+  // The default run: XPBD, E = 1000, nu = 0.3, h = 0.002, dihedral bending. Plane-stress Lame
+  // parameters and the plate's k_B = D / 3 = E h^3 / (36 (1 - nu^2)), written out here.
+  const RunPlan plan = plan_run(sphere(1), RunOptions{});
+  const double E = DEFAULT_SHELL_YOUNG, h = DEFAULT_SHELL_THICKNESS, nu = 0.3;
+  const SimOptions& s = plan.sim.options;
+  EXPECT_NEAR(s.material_params.mu, E * h / (2.0 * (1.0 + nu)), 1e-14);
+  EXPECT_NEAR(s.material_params.lambda, E * h * nu / (1.0 - nu * nu), 1e-14);
+  EXPECT_NEAR(s.solver.k_bending, E * h * h * h / (36.0 * (1.0 - nu * nu)), 1e-18);
+  // Derived values the Simulator no longer derives itself.
+  EXPECT_EQ(s.solver.dt, s.dt);
+  EXPECT_EQ(plan.options.sim.material_params.mu, s.material_params.mu);
+  // k_B given is kept: the material derives it only where the caller left it.
+  RunOptions given;
+  set_run_option(given, "k-b", "0.02");
+  EXPECT_EQ(plan_run(sphere(1), given).sim.options.solver.k_bending, 0.02);
+}
+
+TEST(RunPlan, RegionFileBecomesTheRegionMapOfTheNormalizedMesh) {
+  const Mesh mesh = sphere(2);
+  const std::string path = ::testing::TempDir() + "run_plan_regions.txt";
+  {
+    std::ofstream out(path);
+    out << "7 3 5\n40 41\n";
+  }
+  RunOptions o;
+  set_run_option(o, "regions", path);
+  const RunPlan plan = plan_run(mesh, o);
+  EXPECT_EQ(plan.regions, 2u);
+  EXPECT_EQ(stored_regions(plan.sim.mesh),
+            face_ids_from_regions({{7, 3, 5}, {40, 41}}, mesh.number_of_faces()));
+  // The plan's mesh is normalized: bounding-box diagonal 1.
+  const Positions x = positions_from_mesh(plan.sim.mesh);
+  EXPECT_NEAR((x.colwise().maxCoeff() - x.colwise().minCoeff()).norm(), 1.0, 1e-12);
+  // No region source: every face -1, whatever map the caller's mesh had.
+  Mesh marked = mesh;
+  store_regions(marked, face_ids_from_regions({{1, 2}}, mesh.number_of_faces()));
+  const RunPlan none = plan_run(marked, RunOptions{});
+  EXPECT_EQ(none.regions, 0u);
+  EXPECT_EQ(stored_regions(none.sim.mesh), std::vector<int>(mesh.number_of_faces(), -1));
+  std::remove(path.c_str());
+}
+
+TEST(RunPlan, RulesNameTheFieldsAndEachFrontEndSpellsThem) {
+  RunOptions both;
+  set_run_option(both, "target-volume", "0.5");
+  set_run_option(both, "stop-volume-ratio", "0.3");
+  const std::string m = what_of([&] { plan_run(sphere(1), both); });
+  EXPECT_EQ(m.rfind("`target_volume` and `stop_volume_ratio` exclude each other", 0), 0u) << m;
+  EXPECT_EQ(spell_options(m, OptionSpelling::Cli)
+                .rfind("--target-volume and --stop-volume-ratio exclude each other", 0),
+            0u);
+  EXPECT_EQ(spell_options(m, OptionSpelling::Python)
+                .rfind("target_volume and stop_volume_ratio exclude each other", 0),
+            0u);
+  // The same rule, and the same message, for a Simulator built from SimOptions alone: one
+  // check, reached from both entry points.
+  SimOptions s;
+  s.target_volume = 0.5;
+  s.stop_volume_ratio = 0.3;
+  EXPECT_EQ(what_of([&] { plan_simulation(sphere(1), s); }), m);
+  // The k_B bound of pbd, where k_B is a correction multiplier.
+  RunOptions stiff;
+  set_run_option(stiff, "solver", "pbd");
+  set_run_option(stiff, "k-b", "2");
+  EXPECT_EQ(what_of([&] { resolve_run_options(stiff); }).rfind("`k_b`: in pbd mode", 0), 0u);
+  SimOptions pbd;
+  pbd.solver.k_bending = 2.0;
+  EXPECT_EQ(what_of([&] { plan_simulation(sphere(1), pbd); }).rfind("`k_b`: in pbd mode", 0), 0u);
+}
+
+TEST(RunPlan, GivenRecordsFieldNamesNotFlags) {
+  RunOptions o;
+  set_run_option(o, "k-b", "0.02");
+  set_run_option(o, "region_shrink", "0.5");  // Python's spelling is accepted too
+  EXPECT_EQ(o.given, (std::set<std::string>{"k_b", "region_shrink"}));
+}
+
+TEST(RunPlan, DefaultRegionMaxAreaIsTheRegionFindersDefault) {
+  EXPECT_EQ(RunOptions{}.region_max_area, RegionOptions{}.max_area_fraction);
+}
+
+TEST(SpellOptions, SpellsOnlyTheTablesFields) {
+  const std::string m = "a `b` c `k_b` and `nonsense`, `region_max_area` --x `";
+  EXPECT_EQ(spell_options(m, OptionSpelling::Cli),
+            "a `b` c --k-b and `nonsense`, --region-max-area --x `");
+  EXPECT_EQ(spell_options(m, OptionSpelling::Python),
+            "a `b` c k_b and `nonsense`, region_max_area --x `");
+  EXPECT_EQ(spell_options("no fields here", OptionSpelling::Cli), "no fields here");
+}
+
+TEST(RunReport, LogLineReadsBackAndWritesWholeNumbersAsIntegers) {
+  FrameMetrics m;
+  m.frame = 12;
+  m.time = 0.1 + 0.2;
+  m.volume_ratio = 2.0 / 3.0;
+  m.collision.pairs_broad = 123456789;
+  m.new_intersections = -1;
+  const LogRow row = log_row(m);
+  const std::string line = log_csv_line(row);
+  ASSERT_EQ(line.back(), '\n');
+  std::vector<std::string> fields;
+  std::string field;
+  for (char c : line.substr(0, line.size() - 1)) {
+    if (c == ',') {
+      fields.push_back(field);
+      field.clear();
+    } else {
+      field += c;
+    }
+  }
+  fields.push_back(field);
+  ASSERT_EQ(fields.size(), LOG_COLUMN_COUNT);
+  for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) {
+    EXPECT_EQ(std::strtod(fields[c].c_str(), nullptr), row[c]) << LOG_COLUMNS[c];
+    if (LOG_INTEGER[c]) {
+      EXPECT_EQ(fields[c].find_first_of(".e"), std::string::npos) << fields[c];
+    }
+  }
+  EXPECT_EQ(fields[0], "12");
+  EXPECT_EQ(fields[10], "123456789");
+  EXPECT_EQ(fields[14], "-1");
+  EXPECT_EQ(log_csv_header().substr(0, 6), "frame,");
+}
+
+/// Keys as a SummaryWriter receives them, nested ones as "outer.inner".
+class KeyRecorder final : public SummaryWriter {
+ public:
+  explicit KeyRecorder(std::vector<std::string>& keys, std::string prefix = "")
+      : keys_(keys), prefix_(std::move(prefix)) {}
+  void add_bool(const std::string& k, bool) override { keys_.push_back(prefix_ + k); }
+  void add_integer(const std::string& k, long long) override { keys_.push_back(prefix_ + k); }
+  void add_number(const std::string& k, double) override { keys_.push_back(prefix_ + k); }
+  void add_text(const std::string& k, const std::string&) override { keys_.push_back(prefix_ + k); }
+  void add_texts(const std::string& k, const std::vector<std::string>&) override {
+    keys_.push_back(prefix_ + k);
+  }
+  void add_object(const std::string& k, const std::function<void(SummaryWriter&)>& fill) override {
+    keys_.push_back(prefix_ + k);
+    KeyRecorder inner(keys_, prefix_ + k + ".");
+    fill(inner);
+  }
+
+ private:
+  std::vector<std::string>& keys_;
+  std::string prefix_;
+};
+
+bool has(const std::vector<std::string>& v, const std::string& s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+TEST(RunReport, SummaryNamesTheOptionsInEachFrontEndsSpelling) {
+  const RunOptions options;
+  const RunResult r;
+  const InputReport report;
+  std::vector<std::string> cli, python;
+  KeyRecorder c(cli), p(python);
+  const SummaryFiles files{"in.off", "out.off"};
+  write_run_summary(c, report, options, r, OptionSpelling::Cli, &files);
+  write_run_summary(p, report, options, r, OptionSpelling::Python);
+  EXPECT_TRUE(has(cli, "options.k-b") && has(cli, "options.stop-volume-ratio"));
+  EXPECT_TRUE(has(python, "options.k_b") && has(python, "options.stop_volume_ratio"));
+  EXPECT_FALSE(has(python, "input") || has(python, "output"));
+  // The CLI's files come right after the exit code; otherwise the keys are the same, in order.
+  ASSERT_GE(cli.size(), 5u);
+  EXPECT_EQ(std::vector<std::string>(cli.begin(), cli.begin() + 5),
+            (std::vector<std::string>{"status", "failure", "exit_code", "input", "output"}));
+  std::vector<std::string> without_files;
+  for (const std::string& k : cli)
+    if (k != "input" && k != "output") without_files.push_back(k.rfind("options.", 0) == 0 ? option_field(k) : k);
+  EXPECT_EQ(without_files, python);
+}
+
+}  // namespace
+}  // namespace shellcontract
