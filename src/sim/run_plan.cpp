@@ -104,6 +104,7 @@ void resolve_sim_options(SimOptions& o) {
 }
 
 void resolve_run_options(RunOptions& r) {
+  r.sim.solver.order = order_for(r.order);
   resolve_default_run(r);
   if (r.young.has_value() != r.thickness.has_value())
     throw UsageError("`young` needs `thickness` (and the other way round)");
@@ -188,7 +189,6 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
   RunPlan plan;
   plan.options = options;
   RunOptions& o = plan.options;
-  o.sim.solver.order = order_for(o.order);
   resolve_run_options(o);
   const auto regions_start = std::chrono::steady_clock::now();
   // The run's regions travel as the f:region map of its copy of the mesh (one owner: the run

@@ -4,12 +4,14 @@
 // (a column of 1 changes nothing, a smaller strength sinks the regions less).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "shellcontract/mesh/io.hpp"
 #include "shellcontract/sim/config.hpp"
+#include "shellcontract/sim/option_table.hpp"
 #include "shellcontract/sim/run.hpp"
 #include "test_paths.hpp"
 
@@ -29,8 +31,9 @@ std::string bumps_with(const std::string& name, const std::string& prefix) {
   return path;
 }
 
-RunResult sink(const std::string& region_file, double shrink) {
+RunResult sink(const std::string& region_file, double shrink, const char* order = "auto") {
   RunOptions o;
+  set_run_option(o, "order", order);
   o.sim.pressure = 0.0;
   o.sim.frames = 60;
   o.sim.region_shrink = shrink;
@@ -59,9 +62,17 @@ TEST(RegionStrength, AStrengthColumnScalesTheShrinkOfItsRegion) {
 }
 
 TEST(RegionStrength, StrengthZeroLeavesTheShellAtRest) {
+  // At -p 0 with every region at strength 0 nothing pushes the shell: it stays at rest up to the
+  // rounding of the coloured order's batched kernels (their angles and roots are polynomials, so
+  // a constraint at rest may move a vertex by ~1e-22), and bit for bit under the paper's
+  // sequential order, whose scalar kernels give exactly zero at rest.
   const RunResult none = sink(bumps_with("zero.txt", "0: "), DEFAULT_REGION_SHRINK);
-  EXPECT_EQ(none.region_inward_displacement, 0.0);
-  EXPECT_EQ(none.outside_region_displacement, 0.0);
+  EXPECT_LE(std::abs(none.region_inward_displacement), 1e-15);
+  EXPECT_LE(std::abs(none.outside_region_displacement), 1e-15);
+  const RunResult sequential =
+      sink(bumps_with("zero_sequential.txt", "0: "), DEFAULT_REGION_SHRINK, "sequential");
+  EXPECT_EQ(sequential.region_inward_displacement, 0.0);
+  EXPECT_EQ(sequential.outside_region_displacement, 0.0);
 }
 
 }  // namespace
