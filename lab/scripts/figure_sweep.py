@@ -25,13 +25,13 @@ import mesh_measures as mm
 
 def paper_args(args):
     """The paper's model, which its figures show, added to a run's CLI arguments where a figure
-    does not set it: its PBD solver, a constant pressure (P = 2) and the flat-rest isometric
-    bending. The tool's defaults differ (an XPBD shell material with air inside, dihedral bending:
+    does not set it: its PBD solver with its sequential Gauss-Seidel order, a constant pressure
+    (P = 2) and the flat-rest isometric bending. The tool's defaults differ (an XPBD shell material with air inside, dihedral bending:
     docs/design/defaults.md). The paper's local contraction is its region pressure (--inward
     force), here P_A = 3 (--region-shrink 0.3, the strength the figures were made with); the
     tool's default sinks the regions as dimples instead (docs/math/local-contraction.md)."""
     args = [str(a) for a in args]
-    for option, value in (("--solver", "pbd"), ("--air-balance", "0"),
+    for option, value in (("--solver", "pbd"), ("--order", "sequential"), ("--air-balance", "0"),
                           ("--bending", "isometric"), ("--pressure", "2")):
         if option not in args:
             args += [option, value]

@@ -85,6 +85,7 @@ def test_the_papers_model_is_added_only_where_a_figure_does_not_set_it():
     opts = figure_sweep.to_options(args)
     assert opts["pressure"] == "0"  # the figure's own value is kept
     assert opts["solver"] == "pbd" and opts["bending"] == "isometric"
+    assert opts["order"] == "sequential"
     assert opts["air_balance"] == "0"
     # A local-contraction run gets the paper's region pressure.
     assert opts["inward"] == "force" and opts["region_shrink"] == "0.3"
