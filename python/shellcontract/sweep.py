@@ -110,7 +110,19 @@ def _has_dashboard():
         return False
 
 
+# Dask's background work, which shares the cores with the jobs: each worker's statistical
+# profiler samples its threads every 10 ms, every event loop checks its own latency every 20 ms,
+# the memory monitors run every 100 ms and the scheduler looks for work to steal every 100 ms, for
+# tasks that only wait for their child processes. Off, or slowed, in the embedded cluster
+# (lab/sweep/README.md).
+QUIET_WORKERS = {"distributed.worker.profile.enabled": False,
+                 "distributed.admin.tick.interval": "1s",
+                 "distributed.worker.memory.monitor-interval": "1s",
+                 "distributed.scheduler.work-stealing-interval": "1s"}
+
+
 def _embedded_cluster(workers):
+    import dask
     from distributed import LocalCluster
     # The worker processes ignore SIGINT (an ignored signal stays ignored across their exec): a
     # Ctrl-C at the terminal reaches the whole process group, and only this process should act
@@ -118,6 +130,8 @@ def _embedded_cluster(workers):
     previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
     try:
         # One thread per worker: each job is one process, which uses the worker's core.
+        # For this process's scheduler too; the nannies hand it to their workers.
+        dask.config.set(QUIET_WORKERS)
         return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                             dashboard_address="127.0.0.1:0" if _has_dashboard() else None,
                             silence_logs=40)
