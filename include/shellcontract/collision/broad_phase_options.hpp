@@ -23,10 +23,10 @@ enum class BroadPhaseMethod {
   /// too many boxes) filled by a counting sort; in each cell, vertex boxes against face boxes
   /// and edge boxes against each other, each pair emitted only in the first cell the two boxes
   /// share (no hash set), culled by a vectorized test on boxes rounded outward to float,
-  /// confirmed by the exact double test; on CPUs with AVX-512 (checked at run time) one 8-lane
-  /// pass tests the exact double boxes directly and emits the same pairs in the same order.
-  /// Pairs come out in cell order, not sorted (see CandidatePairs), so the cell size decides
-  /// their order. Falls back to PrimitiveBoxes when the boxes
+  /// confirmed by the exact double test (with AVX-512, checked at run time, 16 float lanes at a
+  /// time, then one exact test per emitted pair). The cells emit the pairs in cell order;
+  /// find_candidates then sorts them (see CandidatePairs), so their order does not depend on the
+  /// cell size or on a grid kept from the last call. Falls back to PrimitiveBoxes when the boxes
   /// are so large or spread out that the grid would degenerate towards brute force
   /// (BroadPhaseStats::method_run says which ran).
   /// The default: fastest on bear (bench_broad_phase).
