@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shellcontract/core/types.hpp"
+#include "shellcontract/pbd/constraint_batches.hpp"
 #include "shellcontract/pbd/constraints.hpp"
 
 namespace shellcontract::aniso_frames {
@@ -47,6 +48,20 @@ inline void inversion_orientations(const std::vector<MembraneConstraint>& faces_
     }
     // Tie (n . n_ref = 0, or no reference) counts as not inverted (math-spec 5 tie rule).
     orientation[i] = normal[i].dot(ref) < 0.0 ? -1.0 : 1.0;
+  }
+}
+
+/// The coloured order's copy: face i's normal and orientation into its batch lane, lane[i] =
+/// BATCH_LANES * batch + lane (faces without batches: lane is empty, nothing to write).
+inline void write_into_batches(const std::vector<std::size_t>& lane,
+                               const std::vector<Vec3>& normal,
+                               const std::vector<double>& orientation,
+                               ColouredBatches<AnisoBatch>& batches) {
+  for (std::size_t i = 0; i < lane.size(); ++i) {
+    AnisoBatch& b = batches.batches[lane[i] / BATCH_LANES];
+    const std::size_t k = lane[i] % BATCH_LANES;
+    for (int d = 0; d < 3; ++d) b.normal[d][k] = normal[i](d);
+    b.orientation[k] = orientation[i];
   }
 }
 

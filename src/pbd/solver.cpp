@@ -44,7 +44,7 @@ using namespace sweep;  // NOLINT(google-build-using-namespace): the sweep's pha
 /// Skip threshold of math-spec 9.1(d): E <= 1e-16 mu Abar.
 constexpr double ENERGY_FLOOR_RELATIVE = 1e-16;
 
-Vec3 row(const Positions& x, int i) { return Vec3(x(i, 0), x(i, 1), x(i, 2)); }
+using aniso_frames::row;
 
 /// The solver for one concrete membrane material M and anisotropic energy A: the template makes
 /// the per-element material calls direct and inlinable (material.hpp).
@@ -431,12 +431,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
     if (settings_.inversion_aware && faces_.rows() > 0)
       aniso_frames::inversion_orientations(set_.anisotropic, faces_, x, aniso_normal_,
                                            vertex_normal_, aniso_orientation_);
-    for (std::size_t i = 0; i < aniso_lane_.size(); ++i) {  // into the batches, if any
-      AnisoBatch& b = aniso_batches_.batches[aniso_lane_[i] / BATCH_LANES];
-      const std::size_t k = aniso_lane_[i] % BATCH_LANES;
-      for (int d = 0; d < 3; ++d) b.normal[d][k] = aniso_normal_[i](d);
-      b.orientation[k] = aniso_orientation_[i];
-    }
+    aniso_frames::write_into_batches(aniso_lane_, aniso_normal_, aniso_orientation_,
+                                     aniso_batches_);
   }
 
   M material_;

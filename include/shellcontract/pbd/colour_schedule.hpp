@@ -130,7 +130,8 @@ class ColourSchedule {
     }
   }
 
-  /// About 10-50 us of pause instructions before the waiting thread gives its core away.
+  /// Pause instructions before the waiting thread gives its core away: a colour's usual wait
+  /// for its last chunk is shorter, a stall longer (lab/history.md, "SPINS_BEFORE_YIELD").
   static constexpr int SPINS_BEFORE_YIELD = 2000;
 
   std::vector<ColourPhase> phases_;

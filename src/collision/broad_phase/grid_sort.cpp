@@ -25,7 +25,8 @@ namespace {
 /// Parts of the boxes (contiguous id ranges) of the first level: a fixed number, so that the
 /// work does not depend on the thread count; part p's boxes of a slab follow those of parts < p.
 constexpr std::size_t SORT_PARTS = 64;
-/// A slab has at most this many cells (its counters: 64 KB), or one row if a row has more ...
+/// A slab has at most this many cells (its 4-byte counters stay in a core's L2 beside the
+/// entries it writes), or one row if a row has more ...
 constexpr std::size_t SLAB_MAX_CELLS = 16384;
 /// ... and there are about this many slabs, for load balance on many cores.
 constexpr std::size_t SLAB_TARGET = 256;
