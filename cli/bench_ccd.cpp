@@ -17,11 +17,11 @@
 #include <unistd.h>
 #include <vector>
 
-#include "commands.hpp"
+#include "collision/ccd_benchmark.hpp"
 #include "command_line.hpp"
+#include "commands.hpp"
 #include "json_writer.hpp"
-#include "shellcontract/collision/ccd_benchmark.hpp"
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace po = boost::program_options;
 

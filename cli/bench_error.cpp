@@ -19,12 +19,12 @@
 #include <unistd.h>
 #include <vector>
 
-#include "commands.hpp"
 #include "command_line.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/error_ladder.hpp"
-#include "shellcontract/sim/option_table.hpp"
+#include "commands.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "sim/error_ladder.hpp"
 
 namespace po = boost::program_options;
 

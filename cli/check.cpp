@@ -17,14 +17,14 @@
 #include <utility>
 #include <vector>
 
-#include "commands.hpp"
 #include "command_line.hpp"
+#include "commands.hpp"
 #include "json_writer.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/read_polygon_soup.hpp"
-#include "shellcontract/validation/self_intersection.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "mesh/read_polygon_soup.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/validation.hpp"
 
 namespace shellcontract::cli {
 namespace {

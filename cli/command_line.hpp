@@ -6,7 +6,7 @@
 #include <iostream>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
 

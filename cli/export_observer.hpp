@@ -8,12 +8,14 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/export/frame_sequence_writer.hpp"
-#include "shellcontract/export/gltf_animation.hpp"
-#include "shellcontract/geometry/curvature.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
-#include "shellcontract/sim/fields.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "export/frame_sequence_writer.hpp"
+#include "geometry/curvature.hpp"
+#include "shellcontract/export.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/fields.hpp"
+#include "sim/frame_access.hpp"
+#include "sim/simulator.hpp"
 
 namespace shellcontract::cli {
 
@@ -41,21 +43,21 @@ class FrameExporter final : public RunObserver {
     max_frame_ = frames;
   }
 
-  void started(const Simulator& sim) override {
+  void started(const FrameView& view) override {
     if (!request_.dir.empty())
       writer_.emplace(request_.dir, request_.name, request_.ext, mesh_, max_frame_);
     if (!request_.gltf.empty()) gltf_.faces = faces_array(mesh_);
-    take(0, sim);
+    take(0, view);
   }
-  void frame(const Simulator& sim, const FrameMetrics& m) override {
-    if (m.frame % request_.every == 0 || sim.finished()) take(m.frame, sim);
+  void frame(const FrameView& view, const FrameMetrics& m) override {
+    if (m.frame % request_.every == 0 || view.last()) take(m.frame, view);
   }
   /// Polled after every step: with --export-failure stop, a failed frame file ends the run.
   bool cancelled() override {
     return request_.stop_run_on_failure && writer_ && writer_->failed();
   }
-  void finished(const Simulator& sim, const RunResult&) override {
-    if (last_ != sim.frame()) take(sim.frame(), sim);  // a run that stopped early
+  void finished(const FrameView& view, const RunResult&) override {
+    if (last_ != view.frame()) take(view.frame(), view);  // a run that stopped early
     // A failed frame file (a full disk) stops the export, not the run: the result, the log and
     // the summary are still written, and the run's end names the failure.
     if (writer_) {
@@ -67,12 +69,12 @@ class FrameExporter final : public RunObserver {
     }
     if (!request_.gltf.empty()) {
       const auto start = std::chrono::steady_clock::now();
-      const VertexFields f = compute_vertex_fields(sim);
+      const VertexFields f = compute_vertex_fields(simulator_of(view));
       gltf_.colour_fields = {{"mean_curvature", f.mean_curvature},
                              {"gaussian_curvature", f.gaussian_curvature},
                              {"pressure", f.pressure},
                              {"energy_density", f.energy_density}};
-      gltf_.colour_frame = sim.frame();  // the fields are this frame's, not every frame's
+      gltf_.colour_frame = view.frame();  // the fields are this frame's, not every frame's
       gltf_.seconds_per_frame = request_.seconds_per_frame;
       gltf_seconds_ =
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -112,10 +114,10 @@ class FrameExporter final : public RunObserver {
   const std::string& export_error() const { return export_error_; }
 
  private:
-  void take(int frame, const Simulator& sim) {
+  void take(int frame, const FrameView& view) {
     last_ = frame;
     if (!writer_ && request_.gltf.empty()) return;
-    const Positions x = sim.positions_in_input_units();
+    const Positions x = view.positions();
     if (writer_) writer_->write(frame, x);
     if (!request_.gltf.empty()) {
       const auto start = std::chrono::steady_clock::now();
@@ -126,7 +128,7 @@ class FrameExporter final : public RunObserver {
       // the end's (issue 56).
       if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({"mean_curvature", {}});
       gltf_.frame_fields[0].second.push_back(
-          compute_curvature(sim.rest_mesh(), sim.positions()).mean.cast<float>());
+          compute_curvature(simulator_of(view).rest_mesh(), view.normalized_positions()).mean.cast<float>());
       gltf_copy_seconds_ +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }

@@ -13,9 +13,9 @@
 #include <optional>
 #include <system_error>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/export/frame_sequence_writer.hpp"
-#include "shellcontract/mesh/file_safety.hpp"
+#include "export/frame_sequence_writer.hpp"
+#include "mesh/file_safety.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "json_writer.hpp"
-#include "shellcontract/mesh/file_safety.hpp"
+#include "mesh/file_safety.hpp"
 
 namespace shellcontract::cli {
 

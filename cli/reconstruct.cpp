@@ -5,11 +5,11 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "mesh/reconstruction.hpp"
 #include "output_paths.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/reconstruction.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace po = boost::program_options;
 

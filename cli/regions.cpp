@@ -3,8 +3,8 @@
 // output), 2 bad input mesh.
 #include <boost/program_options.hpp>
 
-#include "commands.hpp"
 #include "command_line.hpp"
+#include "commands.hpp"
 #include "output_paths.hpp"
 
 #include <algorithm>
@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/curvature.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "geometry/curvature.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/regions.hpp"
 
 namespace shellcontract::cli {
 

@@ -1,6 +1,6 @@
 // shellcontract repair IN -o OUT [--json] [--max-hole-edges N]: makes a refused mesh usable with
 // CGAL's repair functions (repair_input_mesh) and writes it; on failure writes nothing.
-#include "shellcontract/mesh/repair.hpp"
+#include "shellcontract/repair.hpp"
 
 #include <boost/program_options.hpp>
 
@@ -10,9 +10,9 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mesh/eigen_point_map.hpp"
 #include "output_paths.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
 namespace {

@@ -1,6 +1,6 @@
 // shellcontract run: parse the options (from the library's option table), check the outputs,
 // call run_contraction with the CLI's observers, write the files and return the exit code.
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/run.hpp"
 
 #include <sys/resource.h>
 
@@ -29,13 +29,12 @@
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
 #include "run_observers.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
-#include "shellcontract/mesh/repair.hpp"
-#include "shellcontract/sim/checkpoint.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run_report.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/repair.hpp"
+#include "shellcontract/report.hpp"
+#include "sim/checkpoint.hpp"
 
 namespace po = boost::program_options;
 

@@ -1,5 +1,5 @@
 // `run --checkpoint FILE [--checkpoint-every N]` and `run --resume FILE`: the CLI's side of
-// sim/checkpoint.hpp. The state is saved every N frames and when SIGINT or SIGTERM arrives (the
+// shellcontract/checkpoint.hpp. The state is saved every N frames and when SIGINT or SIGTERM arrives (the
 // handler only sets a flag; the run saves and stops after the step it is in).
 #pragma once
 
@@ -10,9 +10,8 @@
 #include <utility>
 
 #include "run_observers.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/checkpoint.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/checkpoint.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
 
@@ -36,8 +35,7 @@ class CliCheckpointer final : public RunCheckpointer {
         resume_(resume),
         input_(std::move(input)),
         hash_(input_hash),
-        given_(given_options(options)),
-        resolved_(resolved_options(options)),
+        options_(options),
         log_(log) {
     if (path_.empty()) return;
     struct sigaction sa {};
@@ -49,24 +47,16 @@ class CliCheckpointer final : public RunCheckpointer {
 
   const Checkpoint* resume_from() const override { return resume_; }
 
-  bool save_due(const Simulator& sim) override {
+  bool save_due(int frame) override {
     if (path_.empty()) return false;
-    return interrupted() || (every_ > 0 && sim.frame() % every_ == 0);
+    frame_ = frame;
+    return interrupted() || (every_ > 0 && frame % every_ == 0);
   }
 
-  void save(const Simulator& sim, const RunProgress& progress) override {
-    Checkpoint c;
-    c.version = checkpoint_tool_version();
-    c.input = input_;
-    c.input_hash = hash_;
-    c.given = given_;
-    c.resolved = resolved_;
-    c.sim = sim.state();
-    c.progress = progress;
-    c.log = log_.text();
+  void save(const SavedRun& run) override {
     try {
-      write_checkpoint(path_, c);
-      saved_frame_ = sim.frame();
+      write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, log_.text()});
+      saved_frame_ = frame_;
     } catch (const UsageError& e) {
       // The run goes on without it (a full disk should not cost the run); said once.
       if (!warned_) std::cerr << "warning: checkpoint not written: " << e.what() << '\n';
@@ -87,8 +77,9 @@ class CliCheckpointer final : public RunCheckpointer {
   const Checkpoint* resume_;
   std::string input_;
   std::uint64_t hash_;
-  OptionValues given_, resolved_;
+  RunOptions options_;
   const CsvLog& log_;
+  int frame_ = 0;  ///< the frame of the last save_due, which save() saves
   int saved_frame_ = -1;
   bool warned_ = false;
 };

@@ -8,10 +8,12 @@
 #include <sstream>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/fields.hpp"
-#include "shellcontract/sim/run.hpp"
-#include "shellcontract/sim/run_report.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/report.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/fields.hpp"
+#include "sim/frame_access.hpp"
+#include "sim/simulator.hpp"
 
 namespace shellcontract::cli {
 
@@ -40,18 +42,18 @@ class ProgressPrinter final : public RunObserver {
   /// Made just before the run starts preparing.
   ProgressPrinter(int frames, bool auto_regions)
       : frames_(frames), auto_regions_(auto_regions), made_(std::chrono::steady_clock::now()) {}
-  void started(const Simulator& sim) override {
+  void started(const FrameView& view) override {
     start_ = last_ = std::chrono::steady_clock::now();
     const double prepare = std::chrono::duration<double>(start_ - made_).count();
     if (prepare >= 1.0)
       std::cerr << "prepared in " << std::setprecision(3) << prepare << " s\n";
-    const std::size_t regions = sim.region_count();
+    const std::size_t regions = view.regions();
     if (auto_regions_ && regions > 0)
       std::cerr << "regions: " << regions << " spherical regions selected by curvature\n";
   }
-  void frame(const Simulator& sim, const FrameMetrics& m) override {
+  void frame(const FrameView& view, const FrameMetrics& m) override {
     const auto now = std::chrono::steady_clock::now();
-    if (std::chrono::duration<double>(now - last_).count() > 1.0 || sim.finished()) {
+    if (std::chrono::duration<double>(now - last_).count() > 1.0 || view.last()) {
       std::cerr << "frame " << m.frame << "/" << frames_ << "  V/V0 " << std::setprecision(6)
                 << m.volume_ratio << "  " << std::setprecision(3)
                 << std::chrono::duration<double>(now - start_).count() << " s\n";
@@ -68,7 +70,7 @@ class ProgressPrinter final : public RunObserver {
 /// The per-frame CSV log (README "Outputs"), kept in memory and written at the end.
 class CsvLog final : public RunObserver {
  public:
-  void frame(const Simulator&, const FrameMetrics& m) override {
+  void frame(const FrameView&, const FrameMetrics& m) override {
     text_ += log_csv_line(log_row(m));
   }
   const std::string& text() const { return text_; }
@@ -84,16 +86,16 @@ class FieldsWriter final : public RunObserver {
  public:
   FieldsWriter(std::string prefix, FieldColour colour)
       : prefix_(std::move(prefix)), colour_(colour) {}
-  void started(const Simulator& sim) override { write(sim, "_start.ply"); }
-  void finished(const Simulator& sim, const RunResult&) override { write(sim, "_end.ply"); }
+  void started(const FrameView& view) override { write(view, "_start.ply"); }
+  void finished(const FrameView& view, const RunResult&) override { write(view, "_end.ply"); }
   /// Why a fields file could not be written (the run goes on); empty when both were.
   const std::string& error() const { return error_; }
 
  private:
-  void write(const Simulator& sim, const std::string& suffix) {
+  void write(const FrameView& view, const std::string& suffix) {
     try {
-      write_fields_ply(prefix_ + suffix, sim, sim.positions_in_input_units(),
-                       compute_vertex_fields(sim), colour_);
+      const Simulator& sim = simulator_of(view);
+      write_fields_ply(prefix_ + suffix, sim, view.positions(), compute_vertex_fields(sim), colour_);
     } catch (const UsageError& e) {
       error_ += (error_.empty() ? "" : "; ") + std::string(e.what());
     }

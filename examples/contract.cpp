@@ -5,9 +5,9 @@
 #include <exception>
 #include <string>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
 
 namespace sc = shellcontract;
 
@@ -15,7 +15,7 @@ namespace sc = shellcontract;
 class Progress final : public sc::RunObserver {
  public:
   void warning(const std::string& text) override { std::printf("warning: %s\n", text.c_str()); }
-  void frame(const sc::Simulator&, const sc::FrameMetrics& m) override {
+  void frame(const sc::FrameView&, const sc::FrameMetrics& m) override {
     std::printf("frame %d  V/V0 %.6f  step %.2f ms\n", m.frame, m.volume_ratio, 1e3 * m.step_seconds);
   }
 };

@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "../tests/support/mesh_fixtures.hpp"
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/grid.hpp"
 #include "collision/broad_phase/scratch.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
-#include "shellcontract/collision/cull_batch.hpp"
+#include "collision/cull_batch.hpp"
 
 namespace {
 

@@ -11,9 +11,9 @@
 #include <filesystem>
 #include <string>
 
-#include "shellcontract/export/frame_sequence_writer.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "export/frame_sequence_writer.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace {
 

@@ -20,13 +20,13 @@
 #include <type_traits>
 #include <vector>
 
-#include "shellcontract/material/stvk.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/pbd/colouring.hpp"
-#include "shellcontract/pbd/constraint_batches.hpp"
-#include "shellcontract/pbd/constraint_kernels.hpp"
-#include "shellcontract/pbd/solver.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "material/stvk.hpp"
+#include "pbd/colouring.hpp"
+#include "pbd/constraint_batches.hpp"
+#include "pbd/constraint_kernels.hpp"
+#include "pbd/solver.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "sim/simulator.hpp"
 
 namespace {
 

@@ -20,12 +20,12 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/collision/broad_phase.hpp"
-#include "shellcontract/collision/collision_options.hpp"
-#include "shellcontract/collision/topology.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/rest_state.hpp"
+#include "collision/broad_phase.hpp"
+#include "collision/topology.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/simulation_options.hpp"
+#include "sim/rest_state.hpp"
 
 namespace {
 

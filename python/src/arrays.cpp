@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/from_arrays.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract::python {
 namespace {

@@ -6,9 +6,9 @@
 
 #include <cstdint>
 
-#include "shellcontract/core/types.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::python {
 

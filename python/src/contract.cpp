@@ -19,18 +19,18 @@
 #include <cstdint>
 #include <cstdlib>
 #include <iomanip>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "arrays.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/checkpoint.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
-#include "shellcontract/sim/simulator.hpp"
-#include "shellcontract/sim/run_report.hpp"
+#include "shellcontract/checkpoint.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/report.hpp"
+#include "shellcontract/run.hpp"
 
 namespace shellcontract::python {
 namespace {
@@ -167,7 +167,7 @@ class PythonObserver final : public RunObserver {
     }
   }
 
-  void frame(const Simulator& sim, const FrameMetrics& m) override {
+  void frame(const FrameView& view, const FrameMetrics& m) override {
     rows_.push_back(log_row(m));
     if (!has_callback_ || stop_) return;
     if (interpreter_exiting()) {  // no GIL for a callback while the interpreter exits
@@ -178,7 +178,7 @@ class PythonObserver final : public RunObserver {
     try {
       py::dict metrics;
       for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
-      const py::object answer = callback_(m.frame, positions_to_numpy(sim.positions_in_input_units()), metrics);
+      const py::object answer = callback_(m.frame, positions_to_numpy(view.positions()), metrics);
       if (answer.is(py::bool_(false))) stop_ = true;  // only False stops; None (no return) goes on
     } catch (py::error_already_set& e) {
       e.restore();  // back into the interpreter's error indicator, then kept for after the run
@@ -304,24 +304,15 @@ class PythonCheckpointer final : public RunCheckpointer {
  public:
   PythonCheckpointer(std::string path, int every, const Checkpoint* resume, std::uint64_t hash,
                      const RunOptions& options, PythonObserver& observer)
-      : path_(std::move(path)), every_(every), resume_(resume), hash_(hash),
-        given_(given_options(options)), resolved_(resolved_options(options)), observer_(observer) {}
+      : path_(std::move(path)), every_(every), resume_(resume), hash_(hash), options_(options),
+        observer_(observer) {}
   const Checkpoint* resume_from() const override { return resume_; }
-  bool save_due(const Simulator& sim) override {
+  bool save_due(int frame) override {
     if (path_.empty()) return false;
-    return (every_ > 0 && sim.frame() % every_ == 0) || observer_.cancelled();
+    return (every_ > 0 && frame % every_ == 0) || observer_.cancelled();
   }
-  void save(const Simulator& sim, const RunProgress& progress) override {
-    Checkpoint c;
-    c.version = checkpoint_tool_version();
-    c.input = "<arrays>";
-    c.input_hash = hash_;
-    c.given = given_;
-    c.resolved = resolved_;
-    c.sim = sim.state();
-    c.progress = progress;
-    c.log = observer_.csv_text();
-    write_checkpoint(path_, c);
+  void save(const SavedRun& run) override {
+    write_checkpoint(path_, run, options_, CheckpointInfo{"<arrays>", hash_, observer_.csv_text()});
   }
 
  private:
@@ -329,7 +320,7 @@ class PythonCheckpointer final : public RunCheckpointer {
   int every_;
   const Checkpoint* resume_;
   std::uint64_t hash_;
-  OptionValues given_, resolved_;
+  RunOptions options_;
   PythonObserver& observer_;
 };
 
@@ -352,10 +343,10 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   if (checkpoint_every < 0 || (checkpoint_every > 0 && checkpoint_path.empty()))
     throw py::value_error("checkpoint_every: expected an integer >= 1, with checkpoint=FILE");
   RunOptions options = options_from_kwargs(kwargs);
-  Checkpoint resume;
+  std::shared_ptr<const Checkpoint> resume;
   if (!resume_path.empty()) {
-    resume = read_checkpoint(resume_path);
-    options = options_for_resume(resume, options);
+    resume = load_checkpoint(resume_path);
+    options = options_for_resume(*resume, options);
     resolve_run_options(options);
     options.sim.frame_energies = true;
   }
@@ -363,11 +354,11 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
   PythonObserver observer(callback);
   if (!resume_path.empty()) {
-    check_checkpoint_input(resume, "the vertices and faces given", mesh);
-    observer.restore_csv(resume.log);
+    check_checkpoint_input(*resume, "the vertices and faces given", mesh);
+    observer.restore_csv(checkpoint_log(*resume));
   }
   PythonCheckpointer checkpointer(checkpoint_path, checkpoint_every,
-                                  resume_path.empty() ? nullptr : &resume, mesh_hash(mesh), options,
+                                  resume.get(), mesh_hash(mesh), options,
                                   observer);
   RunResult r;
   {

@@ -16,14 +16,11 @@
 
 #include "arrays.hpp"
 #include "contract.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/from_arrays.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/validation/self_intersection.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/regions.hpp"
+#include "shellcontract/validation.hpp"
 
 namespace shellcontract::python {
 namespace {

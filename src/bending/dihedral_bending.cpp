@@ -1,4 +1,4 @@
-#include "shellcontract/bending/dihedral_bending.hpp"
+#include "bending/dihedral_bending.hpp"
 
 #include <cmath>
 

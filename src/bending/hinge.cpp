@@ -1,4 +1,4 @@
-#include "shellcontract/bending/hinge.hpp"
+#include "bending/hinge.hpp"
 
 #include <algorithm>
 

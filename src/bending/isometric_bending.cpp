@@ -1,4 +1,4 @@
-#include "shellcontract/bending/isometric_bending.hpp"
+#include "bending/isometric_bending.hpp"
 
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // CCD benchmark files: reader and runner (shared/data/ccd-queries/README.md, "Format").
-#include "shellcontract/collision/ccd_benchmark.hpp"
+#include "collision/ccd_benchmark.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,7 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

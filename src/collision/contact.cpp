@@ -1,4 +1,4 @@
-#include "shellcontract/collision/contact.hpp"
+#include "collision/contact.hpp"
 
 namespace shellcontract {
 

@@ -1,4 +1,4 @@
-#include "shellcontract/collision/cull_batch.hpp"
+#include "collision/cull_batch.hpp"
 
 #include <algorithm>
 #include <cmath>

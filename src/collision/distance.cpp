@@ -1,5 +1,5 @@
 // Point-triangle and segment-segment closest points (math-spec 10.6).
-#include "shellcontract/collision/distance.hpp"
+#include "collision/distance.hpp"
 
 #include <algorithm>
 #include <cmath>

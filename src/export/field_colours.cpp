@@ -1,11 +1,11 @@
-#include "shellcontract/export/field_colours.hpp"
+#include "export/field_colours.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
 
-#include "shellcontract/sim/fields.hpp"
+#include "sim/fields.hpp"
 
 namespace shellcontract {
 

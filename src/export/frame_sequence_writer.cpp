@@ -1,4 +1,4 @@
-#include "shellcontract/export/frame_sequence_writer.hpp"
+#include "export/frame_sequence_writer.hpp"
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 

@@ -1,4 +1,4 @@
-#include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/export.hpp"
 
 #include <tiny_gltf.h>
 
@@ -10,9 +10,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/export/field_colours.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "export/field_colours.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 

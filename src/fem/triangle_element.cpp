@@ -1,4 +1,4 @@
-#include "shellcontract/fem/triangle_element.hpp"
+#include "fem/triangle_element.hpp"
 
 namespace shellcontract {
 

@@ -20,11 +20,11 @@
 #include <vector>
 
 #include "geometry/cap_internal.hpp"
+#include "geometry/curvature.hpp"
+#include "geometry/region_metrics.hpp"
 #include "geometry/sphere_moments.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/curvature.hpp"
-#include "shellcontract/geometry/region_metrics.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/regions.hpp"
 
 namespace shellcontract {
 namespace {

@@ -9,9 +9,9 @@
 #include <Eigen/Core>
 
 #include "geometry/sphere_moments.hpp"
-#include "shellcontract/core/types.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/regions.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::detail {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "geometry/cap_internal.hpp"
-#include "shellcontract/geometry/region_metrics.hpp"
+#include "geometry/region_metrics.hpp"
 
 namespace shellcontract::detail {
 namespace {

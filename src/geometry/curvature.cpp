@@ -1,13 +1,13 @@
 // Discrete curvature (Meyer et al. 2003 mixed area, cotangent mean-curvature normal, angle
 // deficit). Conventions and sign are documented in the header.
-#include "shellcontract/geometry/curvature.hpp"
+#include "geometry/curvature.hpp"
 
 #include <array>
 #include <cmath>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/properties.hpp"
+#include "mesh/properties.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

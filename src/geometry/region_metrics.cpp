@@ -1,11 +1,11 @@
 // Area, perimeter and compactness of a face set; IoU of two face sets.
-#include "shellcontract/geometry/region_metrics.hpp"
+#include "geometry/region_metrics.hpp"
 
 #include <cmath>
 #include <limits>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

@@ -1,6 +1,6 @@
 // The region face-list file format, the f:region map and the coloured PLY; the selection itself
 // is in cap_finder.cpp (header has the algorithm and the meaning of every threshold).
-#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/regions.hpp"
 
 #include <CGAL/IO/Color.h>
 #include <algorithm>
@@ -18,11 +18,11 @@
 #include <string>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/curvature.hpp"
-#include "shellcontract/mesh/file_safety.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/properties.hpp"
+#include "geometry/curvature.hpp"
+#include "mesh/file_safety.hpp"
+#include "mesh/properties.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {

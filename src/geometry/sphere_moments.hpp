@@ -8,7 +8,7 @@
 #include <cmath>
 #include <optional>
 
-#include "shellcontract/core/types.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::detail {
 

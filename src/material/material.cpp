@@ -1,10 +1,10 @@
 // Free functions of the material interface (include/shellcontract/material/material.hpp).
-#include "shellcontract/material/material.hpp"
+#include "shellcontract/material.hpp"
 
 #include <cmath>
 #include <sstream>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

@@ -1,5 +1,5 @@
 // Name <-> model registry (include/shellcontract/material/registry.hpp).
-#include "shellcontract/material/registry.hpp"
+#include "material/registry.hpp"
 
 #include <array>
 #include <type_traits>

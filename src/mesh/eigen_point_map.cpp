@@ -1,5 +1,5 @@
 // positions_from_mesh: the one place where mesh points become the simulation's position array.
-#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "mesh/eigen_point_map.hpp"
 
 #include <stdexcept>
 

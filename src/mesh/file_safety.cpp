@@ -1,6 +1,6 @@
 // Temporaries, complete reads of regular files and printable messages (file_safety.hpp;
 // docs/design/output-safety.md).
-#include "shellcontract/mesh/file_safety.hpp"
+#include "mesh/file_safety.hpp"
 
 #include <fcntl.h>
 #include <sys/random.h>
@@ -15,7 +15,7 @@
 #include <cstring>
 #include <mutex>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

@@ -3,7 +3,7 @@
 // same content are accepted or refused alike; a file's extras (lines, polygon triangulation) do
 // not apply. io.cpp keeps its checks inside read_input_mesh, hence this second implementation:
 // if both ever move to one shared soup check, this file becomes a thin wrapper.
-#include "shellcontract/mesh/from_arrays.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -17,11 +17,11 @@
 #include <stdexcept>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/core/types.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/normalization.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "mesh/normalization.hpp"
 #include "mesh/soup_checks.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract {
 namespace {

@@ -18,7 +18,7 @@
 // runs on coordinates normalized to the bounding-box centre and a unit diagonal, so that meshes
 // from 1e-150 to 1e150 get the same answers as at unit scale (no overflow or underflow in
 // products of three coordinates).
-#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -37,10 +37,10 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/normalization.hpp"
-#include "shellcontract/mesh/read_polygon_soup.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "mesh/normalization.hpp"
+#include "mesh/read_polygon_soup.hpp"
+#include "shellcontract/error.hpp"
 
 #include "mesh/soup_checks.hpp"
 

@@ -1,16 +1,15 @@
 // What the OBJ and PLY documents share (docs/design/attributes.md): the map from the simulation's
 // triangles back to the file's polygons, the check that a document stands for a mesh, and the
 // texture coordinates per triangle corner for the glTF.
-#include "shellcontract/mesh/mesh_document.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <filesystem>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/read_polygon_soup.hpp"
+#include "mesh/read_polygon_soup.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

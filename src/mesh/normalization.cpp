@@ -1,8 +1,8 @@
-#include "shellcontract/mesh/normalization.hpp"
+#include "mesh/normalization.hpp"
 
 #include <cmath>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

@@ -17,8 +17,8 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {

@@ -5,7 +5,7 @@
 // comments) without trusting any count: it says which line is wrong, records the line of every
 // vertex and face for later messages, and keeps what it parsed (CGAL's reader, which the scan
 // once only checked files for, parsed them a second time).
-#include "shellcontract/mesh/off_scan.hpp"
+#include "mesh/off_scan.hpp"
 
 #include <cctype>
 #include <cerrno>
@@ -17,7 +17,7 @@
 #include <regex>
 #include <string_view>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

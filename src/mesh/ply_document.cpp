@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {

@@ -7,7 +7,7 @@
 // follow the header (each element instance needs a known minimum of bytes), and only then is
 // memory reserved. Every failure is an InputError naming the file, the problem and the header
 // line, body line (ascii) or byte offset (binary).
-#include "shellcontract/mesh/ply_reader.hpp"
+#include "mesh/ply_reader.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -20,7 +20,7 @@
 #include <string_view>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

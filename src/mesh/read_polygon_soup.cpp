@@ -1,7 +1,7 @@
 // Reading a mesh file into a polygon soup (read_input_mesh's first step, issue 30): the whole
 // file is read into memory first, so that every reader can bound what a header declares by the
 // bytes that are really there.
-#include "shellcontract/mesh/read_polygon_soup.hpp"
+#include "mesh/read_polygon_soup.hpp"
 
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/STL.h>
@@ -14,9 +14,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/file_safety.hpp"
-#include "shellcontract/mesh/ply_reader.hpp"
+#include "mesh/file_safety.hpp"
+#include "mesh/ply_reader.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

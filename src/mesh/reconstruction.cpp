@@ -1,4 +1,4 @@
-#include "shellcontract/mesh/reconstruction.hpp"
+#include "mesh/reconstruction.hpp"
 
 #include <CGAL/IO/read_points.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/file_safety.hpp"
-#include "shellcontract/mesh/ply_reader.hpp"
-#include "shellcontract/mesh/read_polygon_soup.hpp"
+#include "mesh/file_safety.hpp"
+#include "mesh/ply_reader.hpp"
+#include "mesh/read_polygon_soup.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

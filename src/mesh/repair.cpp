@@ -1,7 +1,7 @@
 // Repair of meshes that read_input_mesh refuses (docs/design/repair.md). Every geometric step is
 // CGAL Polygon Mesh Processing's; this file orders the steps, counts what each changed and hands
 // the result to the one usability check (check_input_soup, the function behind read_input_mesh).
-#include "shellcontract/mesh/repair.hpp"
+#include "shellcontract/repair.hpp"
 
 #include <CGAL/Polygon_mesh_processing/border.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
@@ -26,8 +26,8 @@
 #include <sstream>
 #include <tuple>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/read_polygon_soup.hpp"
+#include "mesh/read_polygon_soup.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

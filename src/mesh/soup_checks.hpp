@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/off_scan.hpp"
-#include "shellcontract/mesh/surface_mesh.hpp"
+#include "mesh/off_scan.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh.hpp"
 
 namespace shellcontract::soup {
 

@@ -28,10 +28,10 @@
 #include <CGAL/IO/STL.h>
 #include <CGAL/Surface_mesh/IO/PLY.h>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/file_safety.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "mesh/file_safety.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {

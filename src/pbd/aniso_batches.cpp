@@ -1,7 +1,7 @@
 // Batched anisotropic (E_A) faces (math-spec 7, 9.3): four faces of one colour at a time on the
 // padded rows, each with its own fibre, k_A, orientation and frozen normal, so that the fibre
 // energies take the coloured order's batched path too (constraint_batches.hpp).
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 
 #include <array>
 #include <cstddef>

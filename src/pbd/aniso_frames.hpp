@@ -6,9 +6,9 @@
 #include <cstddef>
 #include <vector>
 
-#include "shellcontract/core/types.hpp"
-#include "shellcontract/pbd/constraint_batches.hpp"
-#include "shellcontract/pbd/constraints.hpp"
+#include "pbd/constraint_batches.hpp"
+#include "pbd/constraints.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::aniso_frames {
 

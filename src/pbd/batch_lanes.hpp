@@ -10,7 +10,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 
 // The AVX2 path needs GCC's vector operators on __m256d, its target pragma and x86-64 (the
 // project's compiler is g++ 12; others get the scalar path).

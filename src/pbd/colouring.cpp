@@ -1,4 +1,4 @@
-#include "shellcontract/pbd/colouring.hpp"
+#include "pbd/colouring.hpp"
 
 #include <algorithm>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 
 #include <algorithm>
 

@@ -1,4 +1,4 @@
-#include "shellcontract/pbd/constraint_kernels.hpp"
+#include "pbd/constraint_kernels.hpp"
 
 namespace shellcontract {
 

@@ -1,6 +1,6 @@
 // The dihedral hinge (the default bending, math-spec 8.3) projected four hinges of one colour at
 // a time, on the padded rows of the coloured order (constraint_batches.hpp).
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 
 #include <algorithm>
 #include <cmath>

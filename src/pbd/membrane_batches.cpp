@@ -2,7 +2,7 @@
 // Mooney-Rivlin, math-spec 6.2-6.4): four membranes of one colour at a time on the padded rows,
 // through the current edge-aligned frame and the lift of the 2x2 PK1 (math-spec 4.2-4.4), so
 // that every material takes the coloured order's batched path (constraint_batches.hpp).
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 
 #include <cstddef>
 

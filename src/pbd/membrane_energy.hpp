@@ -8,9 +8,9 @@
 
 #include <Eigen/Core>
 
-#include "shellcontract/fem/triangle_element.hpp"
-#include "shellcontract/pbd/constraint_kernels.hpp"
-#include "shellcontract/pbd/constraints.hpp"
+#include "fem/triangle_element.hpp"
+#include "pbd/constraint_kernels.hpp"
+#include "pbd/constraints.hpp"
 
 namespace shellcontract::solver_energies {
 

@@ -6,8 +6,8 @@
 // multiply-adds, and a reciprocal multiplied where the scalar code divides). Private to src/pbd.
 #pragma once
 
+#include "fem/triangle_element.hpp"
 #include "pbd/batch_lanes.hpp"
-#include "shellcontract/fem/triangle_element.hpp"
 
 namespace shellcontract {
 namespace batch_lanes {

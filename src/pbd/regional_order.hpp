@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "shellcontract/pbd/colouring.hpp"
+#include "pbd/colouring.hpp"
 
 namespace shellcontract::regional {
 

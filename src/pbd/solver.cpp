@@ -1,4 +1,4 @@
-#include "shellcontract/pbd/solver.hpp"
+#include "pbd/solver.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -12,12 +12,12 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include "shellcontract/bending/isometric_bending.hpp"
-#include "shellcontract/material/stvk.hpp"
-#include "shellcontract/pbd/colour_schedule.hpp"
-#include "shellcontract/pbd/colouring.hpp"
-#include "shellcontract/pbd/constraint_batches.hpp"
-#include "shellcontract/pbd/constraint_kernels.hpp"
+#include "bending/isometric_bending.hpp"
+#include "material/stvk.hpp"
+#include "pbd/colour_schedule.hpp"
+#include "pbd/colouring.hpp"
+#include "pbd/constraint_batches.hpp"
+#include "pbd/constraint_kernels.hpp"
 
 #include "pbd/aniso_frames.hpp"
 #include "pbd/membrane_energy.hpp"

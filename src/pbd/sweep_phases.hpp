@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 
 namespace shellcontract {
 namespace sweep {

@@ -1,14 +1,14 @@
-#include "shellcontract/sim/anisotropy.hpp"
+#include "sim/anisotropy.hpp"
 
 #include <array>
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/fem/triangle_element.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/properties.hpp"
+#include "fem/triangle_element.hpp"
+#include "mesh/properties.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/regions.hpp"
 
 namespace shellcontract {
 

@@ -1,14 +1,16 @@
-#include "shellcontract/sim/checkpoint.hpp"
+#include "sim/checkpoint.hpp"
 
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <memory>
 #include <sstream>
 #include <type_traits>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "sim/simulator.hpp"
 
 #ifndef SHELLCONTRACT_VERSION
 #define SHELLCONTRACT_VERSION "unknown"
@@ -231,6 +233,27 @@ void check_checkpoint_input(const Checkpoint& c, const std::string& path, const 
   if (mesh_hash(mesh) != c.input_hash)
     throw InputError("the checkpoint is of another input: " + path + " is not the mesh " +
                      c.input + " it was written for (or that file has changed)");
+}
+
+std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path) {
+  return std::make_shared<const Checkpoint>(read_checkpoint(path));
+}
+
+int checkpoint_frame(const Checkpoint& c) { return c.sim.frame; }
+const std::string& checkpoint_log(const Checkpoint& c) { return c.log; }
+
+void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,
+                      const CheckpointInfo& info) {
+  Checkpoint c;
+  c.version = checkpoint_tool_version();
+  c.input = info.input;
+  c.input_hash = info.input_hash;
+  c.given = given_options(options);
+  c.resolved = resolved_options(options);
+  c.sim = run.sim.state();
+  c.progress = run.progress;
+  c.log = info.log;
+  write_checkpoint(path, c);
 }
 
 void write_checkpoint(const std::string& path, const Checkpoint& c) {

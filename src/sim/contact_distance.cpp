@@ -1,5 +1,5 @@
 // --delta auto (sim/contact_distance.hpp).
-#include "shellcontract/sim/contact_distance.hpp"
+#include "sim/contact_distance.hpp"
 
 #include <algorithm>
 

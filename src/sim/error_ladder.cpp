@@ -1,5 +1,5 @@
 // run_error_ladder: references, rungs and the reference convergence check (error_ladder.hpp).
-#include "shellcontract/sim/error_ladder.hpp"
+#include "sim/error_ladder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,10 +7,11 @@
 #include <sstream>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/run.hpp"
-#include "shellcontract/sim/simulator.hpp"
-#include "shellcontract/validation/hausdorff.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/run.hpp"
+#include "shellcontract/validation.hpp"
+#include "sim/frame_access.hpp"
+#include "sim/simulator.hpp"
 
 namespace shellcontract {
 
@@ -48,16 +49,17 @@ struct RunSettings {
 class LadderObserver final : public RunObserver {
  public:
   explicit LadderObserver(int substeps) : substeps_(substeps) {}
-  void frame(const Simulator&, const FrameMetrics& m) override {
+  void frame(const FrameView&, const FrameMetrics& m) override {
     seconds_ += m.step_seconds;
     if (m.frame % substeps_ == 0) {
       frame_ms.push_back(1e3 * seconds_);
       seconds_ = 0.0;
     }
   }
-  void finished(const Simulator& sim, const RunResult&) override {
-    x = sim.positions();
-    volume_ratio = sim.volume_ratio();
+  void finished(const FrameView& view, const RunResult&) override {
+    const Simulator& sim = simulator_of(view);
+    x = view.normalized_positions();
+    volume_ratio = view.volume_ratio();
     energy = total_energy(sim.energies());
   }
   std::vector<double> frame_ms;

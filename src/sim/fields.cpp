@@ -1,4 +1,4 @@
-#include "shellcontract/sim/fields.hpp"
+#include "sim/fields.hpp"
 
 #include <CGAL/IO/Color.h>
 
@@ -8,11 +8,11 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/geometry/curvature.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/properties.hpp"
-#include "shellcontract/sim/pressure.hpp"
-#include "shellcontract/sim/rest_state.hpp"
+#include "geometry/curvature.hpp"
+#include "mesh/properties.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "sim/pressure.hpp"
+#include "sim/rest_state.hpp"
 
 namespace shellcontract {
 namespace {

@@ -3,8 +3,8 @@
 #include <string>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/schedule.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/simulation_options.hpp"
 
 namespace shellcontract {
 

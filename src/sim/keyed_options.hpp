@@ -3,7 +3,7 @@
 // Private to the library (included as "sim/keyed_options.hpp").
 #pragma once
 
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract {
 

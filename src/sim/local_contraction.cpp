@@ -1,6 +1,6 @@
-#include "shellcontract/sim/local_contraction.hpp"
+#include "sim/local_contraction.hpp"
 
-#include "shellcontract/sim/pressure.hpp"
+#include "sim/pressure.hpp"
 
 namespace shellcontract {
 

@@ -1,4 +1,4 @@
-#include "shellcontract/sim/mass_scaling.hpp"
+#include "sim/mass_scaling.hpp"
 
 #include <algorithm>
 #include <cmath>

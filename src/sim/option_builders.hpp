@@ -12,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract::option_builders {
 

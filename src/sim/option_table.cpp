@@ -1,4 +1,4 @@
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/options.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/material/registry.hpp"
+#include "material/registry.hpp"
+#include "shellcontract/error.hpp"
 #include "sim/keyed_options.hpp"
 #include "sim/option_builders.hpp"
 

@@ -1,4 +1,4 @@
-#include "shellcontract/sim/pressure.hpp"
+#include "sim/pressure.hpp"
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>

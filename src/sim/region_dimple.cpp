@@ -1,4 +1,4 @@
-#include "shellcontract/sim/region_dimple.hpp"
+#include "sim/region_dimple.hpp"
 
 #include <algorithm>
 #include <map>

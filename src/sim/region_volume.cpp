@@ -1,4 +1,4 @@
-#include "shellcontract/sim/region_volume.hpp"
+#include "sim/region_volume.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "shellcontract/sim/region_weights.hpp"
+#include "sim/region_weights.hpp"
 
 #include <algorithm>
 
@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/regions.hpp"
 
 namespace shellcontract {
 

@@ -1,13 +1,13 @@
-#include "shellcontract/sim/rest_state.hpp"
+#include "sim/rest_state.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "shellcontract/bending/dihedral_bending.hpp"
-#include "shellcontract/bending/isometric_bending.hpp"
-#include "shellcontract/fem/triangle_element.hpp"
-#include "shellcontract/mesh/properties.hpp"
+#include "bending/dihedral_bending.hpp"
+#include "bending/isometric_bending.hpp"
+#include "fem/triangle_element.hpp"
+#include "mesh/properties.hpp"
 
 namespace shellcontract {
 namespace {

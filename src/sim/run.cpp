@@ -1,4 +1,4 @@
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/run.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -10,10 +10,10 @@
 #include <string>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/sim/checkpoint.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "sim/checkpoint.hpp"
+#include "sim/simulator.hpp"
 
 namespace shellcontract {
 
@@ -52,19 +52,19 @@ int RunResult::exit_code() const {
 void ObserverList::warning(const std::string& text) {
   for (RunObserver* o : observers_) o->warning(text);
 }
-void ObserverList::started(const Simulator& sim) {
-  for (RunObserver* o : observers_) o->started(sim);
+void ObserverList::started(const FrameView& view) {
+  for (RunObserver* o : observers_) o->started(view);
 }
-void ObserverList::frame(const Simulator& sim, const FrameMetrics& m) {
-  for (RunObserver* o : observers_) o->frame(sim, m);
+void ObserverList::frame(const FrameView& view, const FrameMetrics& m) {
+  for (RunObserver* o : observers_) o->frame(view, m);
 }
 bool ObserverList::cancelled() {
   bool any = false;
   for (RunObserver* o : observers_) any = o->cancelled() || any;
   return any;
 }
-void ObserverList::finished(const Simulator& sim, const RunResult& r) {
-  for (RunObserver* o : observers_) o->finished(sim, r);
+void ObserverList::finished(const FrameView& view, const RunResult& r) {
+  for (RunObserver* o : observers_) o->finished(view, r);
 }
 
 namespace {
@@ -155,7 +155,8 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
     r.frame_target_reached = p.frame_target_reached;
     last_pairs = p.last_pairs;
   }
-  obs.started(sim);
+  const FrameView view(sim);
+  obs.started(view);
 
   const auto start = std::chrono::steady_clock::now();
   r.positions.resize(sim.positions().rows(), 3);  // the result's storage, see the end
@@ -200,7 +201,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
         std::abs(m.volume_ratio - s.target_volume) <= TARGET_VOLUME_TOLERANCE)
       r.frame_target_reached = m.frame;
     try {
-      obs.frame(sim, m);
+      obs.frame(view, m);
     } catch (const std::bad_alloc&) {
       // An observer that keeps frames (the glTF exporter) grows with the run; the state is
       // complete.
@@ -224,10 +225,12 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
     // Before the observers' cancel: a caller that cancels on a signal (Python's Ctrl-C) saves
     // the state first.
     if (checkpointer && !sim.finished()) {
-      if (checkpointer->save_due(sim))
-        checkpointer->save(sim, RunProgress{history, r.min_volume_ratio, r.totals,
-                                            r.new_intersections, r.status, r.message,
-                                            r.frame_target_reached, last_pairs});
+      if (checkpointer->save_due(sim.frame())) {
+        const RunProgress progress{history,      r.min_volume_ratio, r.totals,
+                                   r.new_intersections, r.status, r.message,
+                                   r.frame_target_reached, last_pairs};
+        checkpointer->save(SavedRun{sim, progress});
+      }
       if (checkpointer->stop()) {
         r.status = RunStatus::Cancelled;
         r.message = "interrupted at frame " + std::to_string(m.frame);
@@ -292,7 +295,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   // still returns its result.
   denormalize_into(sim.positions(), sim.normalization(), r.positions);
   try {
-    obs.finished(sim, r);
+    obs.finished(view, r);
   } catch (const std::bad_alloc&) {
     fail_out_of_memory(r, "after the last step (in an observer)", mesh, last_pairs);
   }

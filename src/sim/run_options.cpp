@@ -1,11 +1,10 @@
-#include "shellcontract/sim/run_options.hpp"
+#include "shellcontract/options.hpp"
 
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/material/material.hpp"
-#include "shellcontract/material/registry.hpp"
-#include "shellcontract/sim/option_table.hpp"
+#include "material/registry.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/material.hpp"
 
 namespace shellcontract {
 

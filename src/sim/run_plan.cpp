@@ -1,20 +1,20 @@
 // The run plan (run_plan.hpp, docs/design/run-plan.md): the one place where the options get
 // their defaults, their derived values and their checks, and where the regions become the mesh's
 // "f:region" map.
-#include "shellcontract/sim/run_plan.hpp"
+#include "sim/run_plan.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <string>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/material/material.hpp"
-#include "shellcontract/material/registry.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/sim/contact_distance.hpp"
-#include "shellcontract/sim/region_weights.hpp"
+#include "material/registry.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/material.hpp"
+#include "shellcontract/regions.hpp"
+#include "sim/contact_distance.hpp"
+#include "sim/region_weights.hpp"
 
 namespace shellcontract {
 namespace {

@@ -1,11 +1,11 @@
 // The summary and the log row of a run, for every front end (run_report.hpp).
-#include "shellcontract/sim/run_report.hpp"
+#include "shellcontract/report.hpp"
 
 #include <iomanip>
 #include <sstream>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/run.hpp"
 
 namespace shellcontract {
 

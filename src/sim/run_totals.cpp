@@ -1,4 +1,4 @@
-#include "shellcontract/sim/run_totals.hpp"
+#include "shellcontract/observer.hpp"
 
 namespace shellcontract {
 

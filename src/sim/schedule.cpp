@@ -1,4 +1,4 @@
-#include "shellcontract/sim/schedule.hpp"
+#include "shellcontract/simulation_options.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,8 +8,8 @@
 #include <string>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract {
 

@@ -1,4 +1,4 @@
-#include "shellcontract/sim/simulator.hpp"
+#include "sim/simulator.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -9,16 +9,15 @@
 #include <string>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/sim/local_contraction.hpp"
-#include "shellcontract/sim/mass_scaling.hpp"
-#include "shellcontract/sim/region_volume.hpp"
-#include "shellcontract/sim/region_weights.hpp"
-#include "shellcontract/sim/volume_constraint.hpp"
-#include "shellcontract/validation/self_intersection.hpp"
-#include "shellcontract/validation/volume.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/regions.hpp"
+#include "shellcontract/validation.hpp"
+#include "sim/local_contraction.hpp"
+#include "sim/mass_scaling.hpp"
+#include "sim/region_volume.hpp"
+#include "sim/region_weights.hpp"
+#include "sim/volume_constraint.hpp"
 
 namespace shellcontract {
 namespace {

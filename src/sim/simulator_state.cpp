@@ -4,10 +4,10 @@
 #include <string>
 #include <utility>
 
-#include "shellcontract/collision/self_collision.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/region_dimple.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "collision/self_collision.hpp"
+#include "shellcontract/error.hpp"
+#include "sim/region_dimple.hpp"
+#include "sim/simulator.hpp"
 
 namespace shellcontract {
 

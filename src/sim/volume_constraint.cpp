@@ -1,4 +1,4 @@
-#include "shellcontract/sim/volume_constraint.hpp"
+#include "sim/volume_constraint.hpp"
 
 #include <algorithm>
 #include <cmath>

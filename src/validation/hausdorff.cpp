@@ -1,6 +1,6 @@
 // symmetric_hausdorff_distance: CGAL's bounded-error Hausdorff distance with one Eigen point map
 // per side (the CGAL headers stay in this file).
-#include "shellcontract/validation/hausdorff.hpp"
+#include "shellcontract/validation.hpp"
 
 #include <CGAL/Polygon_mesh_processing/distance.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "mesh/eigen_point_map.hpp"
 
 namespace shellcontract {
 

@@ -1,6 +1,6 @@
 // Self-intersection queries: PMP::self_intersections / does_self_intersect with the position
 // array as vertex point map (no mesh copy).
-#include "shellcontract/validation/self_intersection.hpp"
+#include "shellcontract/validation.hpp"
 
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "mesh/eigen_point_map.hpp"
 
 namespace shellcontract {
 namespace {

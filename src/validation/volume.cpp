@@ -1,5 +1,5 @@
 // enclosed_volume: PMP::volume with the position array as vertex point map.
-#include "shellcontract/validation/volume.hpp"
+#include "shellcontract/validation.hpp"
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/boost/graph/helpers.h>
@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

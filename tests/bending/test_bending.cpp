@@ -8,10 +8,10 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/bending/dihedral_bending.hpp"
-#include "shellcontract/bending/isometric_bending.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/material/material.hpp"
+#include "bending/dihedral_bending.hpp"
+#include "bending/isometric_bending.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/material.hpp"
 #include "support/random_geometry.hpp"
 
 namespace shellcontract {

@@ -19,7 +19,7 @@
 #include <thread>
 #include <vector>
 
-#include "shellcontract/sim/checkpoint.hpp"
+#include "sim/checkpoint.hpp"
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 

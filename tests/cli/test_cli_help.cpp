@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/options.hpp"
 #include "support/cli_runner.hpp"
 
 namespace shellcontract {

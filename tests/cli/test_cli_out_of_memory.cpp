@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 

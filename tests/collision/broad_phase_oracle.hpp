@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/scratch.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/random_geometry.hpp"
 

@@ -7,8 +7,8 @@
 #include <sstream>
 #include <string>
 
-#include "shellcontract/collision/ccd.hpp"
-#include "shellcontract/collision/distance.hpp"
+#include "collision/ccd.hpp"
+#include "collision/distance.hpp"
 
 namespace shellcontract::test {
 

@@ -14,11 +14,11 @@
 #include <utility>
 #include <vector>
 
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/grid.hpp"
 #include "collision/broad_phase/scratch.hpp"
 #include "collision/broad_phase_oracle.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/random_geometry.hpp"
 

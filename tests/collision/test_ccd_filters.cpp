@@ -7,10 +7,10 @@
 #include <random>
 #include <sstream>
 
+#include "collision/ccd.hpp"
 #include "collision/ccd_test_helpers.hpp"
+#include "collision/distance.hpp"
 #include "support/random_geometry.hpp"
-#include "shellcontract/collision/ccd.hpp"
-#include "shellcontract/collision/distance.hpp"
 
 namespace shellcontract {
 namespace {

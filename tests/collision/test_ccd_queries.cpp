@@ -8,8 +8,8 @@
 #include <map>
 #include <string>
 
-#include "shellcontract/collision/ccd_benchmark.hpp"
-#include "shellcontract/core/error.hpp"
+#include "collision/ccd_benchmark.hpp"
+#include "shellcontract/error.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/collision/ccd.hpp"
-#include "shellcontract/collision/cull_batch.hpp"
+#include "collision/ccd.hpp"
+#include "collision/cull_batch.hpp"
 #include "support/random_geometry.hpp"
 
 namespace shellcontract {

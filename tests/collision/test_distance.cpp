@@ -5,8 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "collision/distance.hpp"
 #include "support/random_geometry.hpp"
-#include "shellcontract/collision/distance.hpp"
 
 namespace shellcontract {
 namespace {

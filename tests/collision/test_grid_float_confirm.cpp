@@ -7,10 +7,10 @@
 #include <random>
 #include <string>
 
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/grid.hpp"
 #include "collision/broad_phase/scratch.hpp"
 #include "collision/broad_phase_oracle.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {

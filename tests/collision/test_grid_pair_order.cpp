@@ -7,9 +7,9 @@
 #include <array>
 #include <random>
 
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/scratch.hpp"
 #include "collision/broad_phase_oracle.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {

@@ -14,7 +14,7 @@
 
 #include "collision/broad_phase/grid.hpp"
 #include "collision/broad_phase/scratch.hpp"
-#include "shellcontract/collision/topology.hpp"
+#include "collision/topology.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {

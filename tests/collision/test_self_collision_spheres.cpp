@@ -9,11 +9,11 @@
 #include <random>
 #include <tuple>
 
-#include "shellcontract/collision/broad_phase.hpp"
-#include "shellcontract/collision/ccd.hpp"
-#include "shellcontract/collision/contact.hpp"
-#include "shellcontract/collision/self_collision.hpp"
-#include "shellcontract/core/error.hpp"
+#include "collision/broad_phase.hpp"
+#include "collision/ccd.hpp"
+#include "collision/contact.hpp"
+#include "collision/self_collision.hpp"
+#include "shellcontract/error.hpp"
 #include "support/mesh_fixtures.hpp"
 
 

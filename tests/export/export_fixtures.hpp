@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/types.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/types.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract::test {

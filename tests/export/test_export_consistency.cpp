@@ -5,10 +5,10 @@
 #include <limits>
 #include <string>
 
+#include "export/frame_sequence_writer.hpp"
 #include "export_fixtures.hpp"
 #include "gltf_reader.hpp"
-#include "shellcontract/export/frame_sequence_writer.hpp"
-#include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/export.hpp"
 
 namespace shellcontract {
 namespace {

@@ -7,9 +7,9 @@
 #include <iostream>
 #include <string>
 
+#include "export/frame_sequence_writer.hpp"
 #include "export_fixtures.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/export/frame_sequence_writer.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

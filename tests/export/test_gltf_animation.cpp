@@ -13,8 +13,8 @@
 
 #include "export_fixtures.hpp"
 #include "gltf_reader.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/export.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {

@@ -13,8 +13,8 @@
 
 #include "export_fixtures.hpp"
 #include "gltf_reader.hpp"
-#include "shellcontract/export/gltf_animation.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
+#include "shellcontract/export.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "support/textured_obj.hpp"
 
 namespace shellcontract {

@@ -6,8 +6,8 @@
 #include <array>
 #include <random>
 
-#include "shellcontract/fem/triangle_element.hpp"
-#include "shellcontract/material/stvk.hpp"
+#include "fem/triangle_element.hpp"
+#include "material/stvk.hpp"
 #include "support/random_geometry.hpp"
 
 namespace shellcontract {

@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "fuzz/fuzz_inputs.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "support/cli_runner.hpp"
 
 // ------------------------------------------------------------------ allocation watch

@@ -13,9 +13,9 @@
 
 #include <unistd.h>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 

@@ -16,10 +16,10 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/geometry/region_metrics.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "geometry/region_metrics.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/regions.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "test_paths.hpp"

@@ -5,9 +5,9 @@
 #include <csignal>
 
 #include "hostile/hostile_support.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/file_safety.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "mesh/file_safety.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {

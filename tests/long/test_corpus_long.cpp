@@ -13,9 +13,9 @@
 #include <filesystem>
 #include <string>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/repair.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/repair.hpp"
+#include "shellcontract/run.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <iostream>
 
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/options.hpp"
 #include "support/default_run_case.hpp"
 #include "support/mesh_fixtures.hpp"
 
@@ -17,7 +17,7 @@ namespace {
 /// Records the largest one-step displacement of a run.
 class LargestStep final : public RunObserver {
  public:
-  void frame(const Simulator&, const FrameMetrics& m) override { largest = std::max(largest, m.max_displacement); }
+  void frame(const FrameView&, const FrameMetrics& m) override { largest = std::max(largest, m.max_displacement); }
   double largest = 0.0;
 };
 

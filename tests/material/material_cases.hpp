@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/types.hpp"
-#include "shellcontract/material/material.hpp"
-#include "shellcontract/material/polar2.hpp"
+#include "material/polar2.hpp"
+#include "shellcontract/material.hpp"
+#include "shellcontract/types.hpp"
 #include "support/fd_check.hpp"
 
 namespace shellcontract::test {

@@ -11,15 +11,15 @@
 #include <type_traits>
 #include <utility>
 
+#include "material/active_fiber.hpp"
+#include "material/anisotropic_arap.hpp"
+#include "material/anisotropic_sqrt.hpp"
+#include "material/anisotropic_stvk.hpp"
+#include "material/corotated.hpp"
+#include "material/linear.hpp"
+#include "material/mooney_rivlin.hpp"
+#include "material/stvk.hpp"
 #include "material_cases.hpp"
-#include "shellcontract/material/active_fiber.hpp"
-#include "shellcontract/material/anisotropic_arap.hpp"
-#include "shellcontract/material/anisotropic_sqrt.hpp"
-#include "shellcontract/material/anisotropic_stvk.hpp"
-#include "shellcontract/material/corotated.hpp"
-#include "shellcontract/material/linear.hpp"
-#include "shellcontract/material/mooney_rivlin.hpp"
-#include "shellcontract/material/stvk.hpp"
 #include "support/fd_check.hpp"
 
 namespace shellcontract {

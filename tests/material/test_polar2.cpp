@@ -4,8 +4,8 @@
 #include <Eigen/SVD>
 #include <cmath>
 
+#include "material/polar2.hpp"
 #include "material_cases.hpp"
-#include "shellcontract/material/polar2.hpp"
 #include "support/fd_check.hpp"
 
 namespace shellcontract {

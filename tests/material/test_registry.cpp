@@ -7,9 +7,9 @@
 #include <type_traits>
 #include <typeinfo>
 
+#include "material/registry.hpp"
 #include "material_cases.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/material/registry.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace {

@@ -11,10 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/from_arrays.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

@@ -17,9 +17,9 @@
 
 #include <unistd.h>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "test_paths.hpp"
 

@@ -14,9 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "support/textured_obj.hpp"
 
 namespace shellcontract {

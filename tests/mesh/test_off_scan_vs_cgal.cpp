@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/mesh/off_scan.hpp"
-#include "shellcontract/mesh/surface_mesh.hpp"
+#include "mesh/off_scan.hpp"
+#include "shellcontract/mesh.hpp"
 
 namespace shellcontract {
 namespace {

@@ -11,9 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/mesh_document.hpp"
-#include "shellcontract/mesh/ply_reader.hpp"
+#include "mesh/ply_reader.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {

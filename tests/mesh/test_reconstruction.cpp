@@ -6,10 +6,10 @@
 #include <filesystem>
 #include <fstream>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/reconstruction.hpp"
-#include "shellcontract/validation/volume.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "mesh/reconstruction.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/validation.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract {

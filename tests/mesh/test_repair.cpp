@@ -1,6 +1,6 @@
 // repair_input_mesh (docs/design/repair.md): each defect CGAL's repair steps address, on the unit
 // cube (volume 1, 8 vertices, 12 faces) made defective in one known way.
-#include "shellcontract/mesh/repair.hpp"
+#include "shellcontract/repair.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/validation/volume.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/validation.hpp"
 
 namespace shellcontract {
 namespace {

@@ -16,10 +16,10 @@
 
 #include <unistd.h>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/properties.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "mesh/properties.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

@@ -8,7 +8,7 @@
 
 #include <tbb/task_arena.h>
 
-#include "shellcontract/pbd/colour_schedule.hpp"
+#include "pbd/colour_schedule.hpp"
 
 namespace shellcontract {
 namespace {

@@ -13,12 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/material/registry.hpp"
-#include "shellcontract/material/stvk.hpp"
-#include "shellcontract/pbd/colouring.hpp"
-#include "shellcontract/pbd/constraint_kernels.hpp"
-#include "shellcontract/pbd/solver.hpp"
-#include "shellcontract/sim/rest_state.hpp"
+#include "material/registry.hpp"
+#include "material/stvk.hpp"
+#include "pbd/colouring.hpp"
+#include "pbd/constraint_kernels.hpp"
+#include "pbd/solver.hpp"
+#include "sim/rest_state.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {

@@ -13,10 +13,10 @@
 #include <stdexcept>
 #include <vector>
 
-#include "shellcontract/bending/isometric_bending.hpp"
-#include "shellcontract/fem/triangle_element.hpp"
-#include "shellcontract/material/corotated.hpp"
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "bending/isometric_bending.hpp"
+#include "fem/triangle_element.hpp"
+#include "material/corotated.hpp"
+#include "pbd/constraint_batches.hpp"
 #include "support/batch_scene.hpp"
 #include "support/random_geometry.hpp"
 

@@ -4,9 +4,9 @@
 #include <random>
 #include <vector>
 
-#include "shellcontract/bending/isometric_bending.hpp"
-#include "shellcontract/material/stvk.hpp"
-#include "shellcontract/pbd/constraint_kernels.hpp"
+#include "bending/isometric_bending.hpp"
+#include "material/stvk.hpp"
+#include "pbd/constraint_kernels.hpp"
 #include "support/random_geometry.hpp"
 
 namespace shellcontract {
@@ -257,7 +257,7 @@ TEST(MembraneCForm, AgreesWithTheFrameLiftIncludingCollapsedTriangles) {
 }  // namespace
 }  // namespace shellcontract
 
-#include "shellcontract/material/anisotropic_arap.hpp"
+#include "material/anisotropic_arap.hpp"
 
 namespace shellcontract {
 namespace {

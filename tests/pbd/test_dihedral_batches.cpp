@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "shellcontract/bending/dihedral_bending.hpp"
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "bending/dihedral_bending.hpp"
+#include "pbd/constraint_batches.hpp"
 #include "support/batch_scene.hpp"
 
 namespace shellcontract {

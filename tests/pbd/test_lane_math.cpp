@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 
 namespace shellcontract {
 namespace {

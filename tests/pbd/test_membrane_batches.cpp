@@ -16,7 +16,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "pbd/constraint_batches.hpp"
 #include "support/batch_scene.hpp"
 
 namespace shellcontract {

@@ -15,8 +15,8 @@
 
 #include <cmath>
 
-#include "shellcontract/pbd/solver.hpp"
-#include "shellcontract/sim/run_options.hpp"
+#include "pbd/solver.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract {
 namespace {

@@ -8,9 +8,9 @@
 #include <iostream>
 #include <sstream>
 
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/region_volume.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/regions.hpp"
+#include "sim/region_volume.hpp"
 #include "support/default_run_case.hpp"
 
 namespace shellcontract {

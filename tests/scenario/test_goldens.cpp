@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

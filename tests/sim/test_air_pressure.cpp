@@ -4,7 +4,7 @@
 #include <cmath>
 #include <random>
 
-#include "shellcontract/sim/pressure.hpp"
+#include "sim/pressure.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/random_geometry.hpp"
 

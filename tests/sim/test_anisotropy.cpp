@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/properties.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "mesh/properties.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/regions.hpp"
+#include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {

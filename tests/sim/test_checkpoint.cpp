@@ -12,11 +12,11 @@
 #include <optional>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/checkpoint.hpp"
-#include "shellcontract/sim/simulator.hpp"
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "sim/checkpoint.hpp"
+#include "sim/simulator.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -31,8 +31,9 @@ class MemoryCheckpointer final : public RunCheckpointer {
       : mesh_(&mesh), options_(&options), at_(at), stop_(stop) {}
   explicit MemoryCheckpointer(const Checkpoint* resume) : resume_(resume) {}
   const Checkpoint* resume_from() const override { return resume_; }
-  bool save_due(const Simulator& sim) override { return at_ > 0 && sim.frame() == at_; }
-  void save(const Simulator& sim, const RunProgress& p) override {
+  bool save_due(int frame) override { return at_ > 0 && frame == at_; }
+  void save(const SavedRun& run) override {
+    const Simulator& sim = run.sim;
     Checkpoint c;
     c.version = checkpoint_tool_version();
     c.input = "test";
@@ -40,7 +41,7 @@ class MemoryCheckpointer final : public RunCheckpointer {
     c.given = given_options(*options_);
     c.resolved = resolved_options(*options_);
     c.sim = sim.state();
-    c.progress = p;
+    c.progress = run.progress;
     c.log = "log up to " + std::to_string(sim.frame());
     saved = c;
   }

@@ -5,8 +5,8 @@
 
 #include <string>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "sim/simulator.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

@@ -9,9 +9,9 @@
 #include <set>
 #include <utility>
 
-#include "shellcontract/sim/contact_distance.hpp"
-#include "shellcontract/sim/run.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/contact_distance.hpp"
+#include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 

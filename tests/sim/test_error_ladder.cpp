@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/error_ladder.hpp"
+#include "shellcontract/error.hpp"
+#include "sim/error_ladder.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 

@@ -3,8 +3,8 @@
 
 #include <filesystem>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/fields.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "sim/fields.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {

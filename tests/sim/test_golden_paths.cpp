@@ -12,9 +12,9 @@
 #include <filesystem>
 #include <string>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
 #include "support/cgal_mesh.hpp"
 #include "test_paths.hpp"
 

@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "shellcontract/sim/local_contraction.hpp"
-#include "shellcontract/sim/pressure.hpp"
+#include "sim/local_contraction.hpp"
+#include "sim/pressure.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/random_geometry.hpp"
 

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "shellcontract/sim/mass_scaling.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "sim/mass_scaling.hpp"
+#include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/sim/option_table.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract {
 namespace {

@@ -8,8 +8,8 @@
 #include <iostream>
 #include <string>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "sim/simulator.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

@@ -6,7 +6,7 @@
 #include <cstring>
 #include <random>
 
-#include "shellcontract/sim/pressure.hpp"
+#include "sim/pressure.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/random_geometry.hpp"
 

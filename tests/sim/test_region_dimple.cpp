@@ -2,7 +2,7 @@
 // prefix volumes against the cap volume computed afresh, and the choice of its size.
 #include <gtest/gtest.h>
 
-#include "shellcontract/sim/region_dimple.hpp"
+#include "sim/region_dimple.hpp"
 #include "support/icosphere_cap.hpp"
 
 namespace shellcontract {

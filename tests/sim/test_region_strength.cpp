@@ -9,10 +9,10 @@
 #include <sstream>
 #include <string>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/config.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
+#include "shellcontract/simulation_options.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

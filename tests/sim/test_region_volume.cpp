@@ -4,8 +4,8 @@
 
 #include <random>
 
-#include "shellcontract/sim/region_volume.hpp"
-#include "shellcontract/sim/volume_constraint.hpp"
+#include "sim/region_volume.hpp"
+#include "sim/volume_constraint.hpp"
 #include "support/icosphere_cap.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/random_geometry.hpp"

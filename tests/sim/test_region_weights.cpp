@@ -8,12 +8,12 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/local_contraction.hpp"
-#include "shellcontract/sim/region_weights.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/regions.hpp"
+#include "sim/local_contraction.hpp"
+#include "sim/region_weights.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

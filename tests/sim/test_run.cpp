@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/regions.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/cgal_volume.hpp"
 #include "test_paths.hpp"
@@ -38,18 +38,18 @@ struct Recorder final : RunObserver {
   std::vector<std::string> warnings;
   int cancel_at = -1;
   void warning(const std::string& w) override { warnings.push_back(w); }
-  void started(const Simulator& sim) override {
+  void started(const FrameView& view) override {
     ++n_started;
-    EXPECT_EQ(sim.frame(), 0);
+    EXPECT_EQ(view.frame(), 0);
   }
-  void frame(const Simulator&, const FrameMetrics& m) override {
+  void frame(const FrameView&, const FrameMetrics& m) override {
     frames.push_back(m.frame);
     ratios.push_back(m.volume_ratio);
   }
   bool cancelled() override {
     return cancel_at >= 0 && static_cast<int>(frames.size()) >= cancel_at;
   }
-  void finished(const Simulator&, const RunResult&) override { ++n_finished; }
+  void finished(const FrameView&, const RunResult&) override { ++n_finished; }
 };
 
 TEST(Run, TargetVolumeIsReachedAndHeldOnASphere) {
@@ -170,10 +170,10 @@ struct ExhaustedObserver final : RunObserver {
   int throw_at_frame = -1;  ///< frame() throws at this frame
   bool throw_at_finish = false;
   int n_finished = 0;
-  void frame(const Simulator&, const FrameMetrics& m) override {
+  void frame(const FrameView&, const FrameMetrics& m) override {
     if (m.frame == throw_at_frame) throw std::bad_alloc();
   }
-  void finished(const Simulator&, const RunResult&) override {
+  void finished(const FrameView&, const RunResult&) override {
     ++n_finished;
     if (throw_at_finish) throw std::bad_alloc();
   }

@@ -15,14 +15,14 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
-#include "shellcontract/sim/run_plan.hpp"
-#include "shellcontract/sim/run_report.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/regions.hpp"
+#include "shellcontract/report.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/run_plan.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {

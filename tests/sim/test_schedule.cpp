@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
-#include "shellcontract/sim/simulator.hpp"
-#include "shellcontract/sim/schedule.hpp"
-#include "shellcontract/sim/volume_constraint.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
+#include "shellcontract/simulation_options.hpp"
+#include "sim/simulator.hpp"
+#include "sim/volume_constraint.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -184,8 +184,8 @@ struct CgalVolumes final : RunObserver {
   double v0 = 0.0;
   std::vector<double> ratios{1.0};  // frame 0 = the rest state
   std::vector<long> contacts{0};
-  void frame(const Simulator& sim, const FrameMetrics& m) override {
-    ratios.push_back(cgal_volume(*mesh, sim.positions_in_input_units()) / v0);
+  void frame(const FrameView& view, const FrameMetrics& m) override {
+    ratios.push_back(cgal_volume(*mesh, view.positions()) / v0);
     contacts.push_back(m.collision.contacts);
   }
 };

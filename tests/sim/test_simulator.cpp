@@ -6,11 +6,11 @@
 #include <cmath>
 #include <utility>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/geometry/region_selection.hpp"
-#include "shellcontract/sim/rest_state.hpp"
-#include "shellcontract/sim/run_options.hpp"
-#include "shellcontract/sim/simulator.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/regions.hpp"
+#include "sim/rest_state.hpp"
+#include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {

@@ -22,8 +22,8 @@
 
 #include <cmath>
 
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/membrane_sphere_case.hpp"
 

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/sim/volume_constraint.hpp"
-#include "shellcontract/validation/volume.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/validation.hpp"
+#include "sim/volume_constraint.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 

@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "shellcontract/fem/triangle_element.hpp"
-#include "shellcontract/pbd/constraint_batches.hpp"
+#include "fem/triangle_element.hpp"
+#include "pbd/constraint_batches.hpp"
 #include "support/random_geometry.hpp"
 
 namespace shellcontract::test {

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 
 namespace shellcontract::test {

@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "shellcontract/core/types.hpp"
-#include "shellcontract/mesh/surface_mesh.hpp"
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::test {
 

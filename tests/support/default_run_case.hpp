@@ -14,10 +14,10 @@
 #include <map>
 #include <utility>
 
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/rest_state.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/rest_state.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/target_volume_case.hpp"

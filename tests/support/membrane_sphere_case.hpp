@@ -10,8 +10,8 @@
 #include <cmath>
 #include <iostream>
 
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract::test {

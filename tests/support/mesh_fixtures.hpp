@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "shellcontract/core/types.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::test {
 

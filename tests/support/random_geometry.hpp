@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-#include "shellcontract/core/types.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::test {
 

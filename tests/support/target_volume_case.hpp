@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/mesh/reconstruction.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "mesh/reconstruction.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/run.hpp"
 #include "support/cgal_volume.hpp"
 #include "test_paths.hpp"
 
@@ -48,7 +48,7 @@ inline Mesh load_target_mesh(const std::string& name) {
 struct VolumeRecorder final : RunObserver {
   std::vector<double> ratios;
   long worst_new_intersections = 0;
-  void frame(const Simulator&, const FrameMetrics& m) override {
+  void frame(const FrameView&, const FrameMetrics& m) override {
     ratios.push_back(m.volume_ratio);
     worst_new_intersections = std::max(worst_new_intersections, m.new_intersections);
   }

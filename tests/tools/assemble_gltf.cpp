@@ -6,7 +6,7 @@
 #include <string>
 
 #include "../export/export_fixtures.hpp"
-#include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/export.hpp"
 
 int main(int argc, char** argv) {
   using namespace shellcontract;

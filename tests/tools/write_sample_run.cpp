@@ -13,7 +13,7 @@
 #include <string>
 
 #include "../export/export_fixtures.hpp"
-#include "shellcontract/export/gltf_animation.hpp"
+#include "shellcontract/export.hpp"
 #include "support/mesh_fixtures.hpp"
 
 int main(int argc, char** argv) {

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "shellcontract/validation/hausdorff.hpp"
+#include "shellcontract/validation.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 

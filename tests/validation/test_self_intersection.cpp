@@ -5,9 +5,9 @@
 #include <filesystem>
 #include <string>
 
-#include "shellcontract/mesh/eigen_point_map.hpp"
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/validation/self_intersection.hpp"
+#include "mesh/eigen_point_map.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/validation.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 namespace detail {

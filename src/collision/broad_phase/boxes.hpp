@@ -7,8 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/scratch.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
 
 namespace shellcontract {
 namespace detail {

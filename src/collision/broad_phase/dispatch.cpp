@@ -11,11 +11,11 @@
 #include <string>
 #include <vector>
 
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/boxes.hpp"
 #include "collision/broad_phase/grid.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/core/stage_timer.hpp"
+#include "core/stage_timer.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

@@ -10,7 +10,7 @@
 #include <cmath>
 #include <limits>
 
-#include "shellcontract/core/stage_timer.hpp"
+#include "core/stage_timer.hpp"
 
 namespace shellcontract {
 namespace detail {

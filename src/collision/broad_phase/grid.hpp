@@ -12,8 +12,8 @@
 #include <limits>
 #include <vector>
 
+#include "collision/broad_phase.hpp"
 #include "collision/broad_phase/scratch.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
 
 // The Grid method's AVX-512 cell loop needs GCC's target pragma and x86-64 (as cull_batch.cpp);
 // other compilers get the portable loop only.

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "shellcontract/collision/broad_phase.hpp"
+#include "collision/broad_phase.hpp"
 
 namespace shellcontract {
 namespace detail {

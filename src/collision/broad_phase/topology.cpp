@@ -1,12 +1,12 @@
 // The collision topology: unique edges, face-edge incidence and the pair counts of the paper's
 // Table 2.
-#include "shellcontract/collision/topology.hpp"
+#include "collision/topology.hpp"
 
 #include <algorithm>
 #include <string>
 
 #include "collision/broad_phase/boxes.hpp"
-#include "shellcontract/core/error.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract {
 

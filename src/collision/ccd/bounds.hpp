@@ -10,8 +10,8 @@
 #include <cmath>
 #include <limits>
 
-#include "shellcontract/collision/ccd.hpp"
-#include "shellcontract/collision/distance.hpp"
+#include "collision/ccd.hpp"
+#include "collision/distance.hpp"
 
 namespace shellcontract {
 namespace ccd_detail {

@@ -39,14 +39,14 @@
 //    (Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., 3.1 and 3.5);
 //  * with M = max |input coordinate|, a position x(t) evaluated by `position` is within 4 u M of
 //    the exact one per coordinate (at most three roundings of quantities <= 2M; exact at t = 0, 1).
-#include "shellcontract/collision/ccd.hpp"
+#include "collision/ccd.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 #include "collision/ccd/bounds.hpp"
-#include "shellcontract/collision/distance.hpp"
+#include "collision/distance.hpp"
 
 namespace shellcontract {
 namespace {

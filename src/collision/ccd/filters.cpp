@@ -5,8 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include "collision/ccd.hpp"
 #include "collision/ccd/bounds.hpp"
-#include "shellcontract/collision/ccd.hpp"
 
 namespace shellcontract {
 

@@ -14,10 +14,10 @@
 #include <cstring>
 #include <vector>
 
-#include "shellcontract/collision/ccd.hpp"
-#include "shellcontract/collision/topology.hpp"
-#include "shellcontract/core/no_zero_allocator.hpp"
-#include "shellcontract/core/types.hpp"
+#include "collision/ccd.hpp"
+#include "collision/topology.hpp"
+#include "core/no_zero_allocator.hpp"
+#include "shellcontract/types.hpp"
 
 namespace shellcontract::collision_pipeline {
 

@@ -8,8 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "collision/contact.hpp"
 #include "collision/self_collision/common.hpp"
-#include "shellcontract/collision/contact.hpp"
 
 namespace shellcontract::collision_pipeline {
 

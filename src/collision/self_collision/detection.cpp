@@ -2,8 +2,8 @@
 // blocks (the result does not depend on the threads).
 #include "collision/self_collision/detection.hpp"
 
-#include "shellcontract/collision/cull_batch.hpp"
-#include "shellcontract/core/stage_timer.hpp"
+#include "collision/cull_batch.hpp"
+#include "core/stage_timer.hpp"
 
 namespace shellcontract::collision_pipeline {
 

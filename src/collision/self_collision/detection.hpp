@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "collision/contact.hpp"
 #include "collision/self_collision/step_pairs.hpp"
-#include "shellcontract/collision/collision_stats.hpp"
-#include "shellcontract/collision/contact.hpp"
+#include "shellcontract/observer.hpp"
 
 namespace shellcontract::collision_pipeline {
 

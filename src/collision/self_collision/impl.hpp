@@ -4,12 +4,12 @@
 
 #include <memory>
 
+#include "collision/self_collision.hpp"
 #include "collision/self_collision/common.hpp"
 #include "collision/self_collision/contact_cache.hpp"
 #include "collision/self_collision/detection.hpp"
 #include "collision/self_collision/response.hpp"
 #include "collision/self_collision/step_broad_phase.hpp"
-#include "shellcontract/collision/self_collision.hpp"
 
 namespace shellcontract {
 

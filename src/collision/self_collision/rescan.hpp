@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "collision/self_collision/step_pairs.hpp"
-#include "shellcontract/collision/collision_stats.hpp"
+#include "shellcontract/observer.hpp"
 
 namespace shellcontract::collision_pipeline {
 

@@ -2,7 +2,7 @@
 // reverts vertices to x0 until no pair touches.
 #include "collision/self_collision/response.hpp"
 
-#include "shellcontract/core/stage_timer.hpp"
+#include "core/stage_timer.hpp"
 
 namespace shellcontract::collision_pipeline {
 

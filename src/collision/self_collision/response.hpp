@@ -6,7 +6,7 @@
 #include "collision/self_collision/detection.hpp"
 #include "collision/self_collision/rescan.hpp"
 #include "collision/self_collision/step_pairs.hpp"
-#include "shellcontract/collision/collision_options.hpp"
+#include "shellcontract/simulation_options.hpp"
 
 namespace shellcontract::collision_pipeline {
 

@@ -7,9 +7,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "collision/broad_phase.hpp"
 #include "collision/self_collision/common.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
-#include "shellcontract/collision/collision_options.hpp"
+#include "shellcontract/simulation_options.hpp"
 
 namespace shellcontract::collision_pipeline {
 

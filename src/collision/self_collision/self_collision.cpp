@@ -1,7 +1,7 @@
 // SelfCollision: its public calls, and resolve() wiring the pipeline's parts in order (contact
 // cache, broad phase, detection, response; docs/design/collision-pipeline.md).
 #include "collision/self_collision/impl.hpp"
-#include "shellcontract/core/stage_timer.hpp"
+#include "core/stage_timer.hpp"
 
 namespace shellcontract {
 

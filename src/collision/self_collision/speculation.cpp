@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/core/stage_timer.hpp"
+#include "core/stage_timer.hpp"
+#include "shellcontract/error.hpp"
 
 namespace shellcontract::collision_pipeline {
 

@@ -6,7 +6,7 @@
 
 #include "collision/broad_phase/scratch.hpp"
 #include "collision/self_collision/speculation.hpp"
-#include "shellcontract/core/stage_timer.hpp"
+#include "core/stage_timer.hpp"
 
 namespace shellcontract::collision_pipeline {
 

@@ -6,7 +6,7 @@
 
 #include <limits>
 
-#include "shellcontract/core/stage_timer.hpp"
+#include "core/stage_timer.hpp"
 
 namespace shellcontract {
 

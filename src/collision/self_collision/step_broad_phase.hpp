@@ -6,14 +6,14 @@
 
 #include <cstddef>
 
+#include "collision/broad_phase.hpp"
 #include "collision/self_collision/common.hpp"
 #include "collision/self_collision/contact_cache.hpp"
 #include "collision/self_collision/rest_pairs.hpp"
 #include "collision/self_collision/speculation.hpp"
 #include "collision/self_collision/step_pairs.hpp"
-#include "shellcontract/collision/broad_phase.hpp"
-#include "shellcontract/collision/collision_options.hpp"
-#include "shellcontract/collision/collision_stats.hpp"
+#include "shellcontract/observer.hpp"
+#include "shellcontract/simulation_options.hpp"
 
 namespace shellcontract::collision_pipeline {
 

@@ -17,8 +17,8 @@
 #include <fstream>
 #include <string>
 
-#include "shellcontract/core/error.hpp"
-#include "shellcontract/mesh/io.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace {
 

@@ -3,13 +3,13 @@
 #include <cstdio>
 #include <string>
 
-#include "shellcontract/mesh/io.hpp"
-#include "shellcontract/sim/option_table.hpp"
-#include "shellcontract/sim/run.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
 
 class CountFrames final : public shellcontract::RunObserver {
  public:
-  void frame(const shellcontract::Simulator&, const shellcontract::FrameMetrics&) override { ++frames; }
+  void frame(const shellcontract::FrameView&, const shellcontract::FrameMetrics&) override { ++frames; }
   int frames = 0;
 };
 

@@ -1,0 +1,72 @@
+// Runs that resume to the same bytes (docs/design/sweeps.md, "Checkpoints"): a run's whole state
+// between two steps saved to one file, atomically, and a run continued from that file that takes
+// the same steps as the run that wrote it. A checkpoint names the tool's version, a hash of the
+// input mesh and the run's options; one of another version, input or options is refused, saying
+// which. The file's contents are the library's own: a caller reads and writes them only here.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/options.hpp"
+
+namespace shellcontract {
+
+struct Checkpoint;  ///< a saved run, read by load_checkpoint
+struct SavedRun;    ///< a run's state at a step boundary, handed to RunCheckpointer::save
+
+/// A 64-bit hash of a mesh's vertex positions (their bits) and faces (vertex ids in order): what
+/// a checkpoint records of its input.
+std::uint64_t mesh_hash(const Mesh& mesh);
+
+/// Reads a checkpoint file.
+/// @throws InputError naming the file for a missing, truncated or corrupted checkpoint
+std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path);
+
+/// The frame the checkpoint was saved at (the resumed run goes on with the next one).
+int checkpoint_frame(const Checkpoint& c);
+/// The caller's log of the frames so far, as the saving run gave it (CheckpointInfo::log).
+const std::string& checkpoint_log(const Checkpoint& c);
+
+/// The options a resumed run runs with: the checkpoint's given options, then `command_line`'s
+/// given ones on top (its threads, or the same values again).
+/// @throws UsageError naming every option whose value differs from the checkpoint's
+RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_line);
+
+/// Refuses a checkpoint of another version or another input, saying which.
+/// @param input_name  how the message names `mesh` (a path, "the vertices and faces given")
+/// @throws InputError
+void check_checkpoint_input(const Checkpoint& c, const std::string& input_name, const Mesh& mesh);
+
+/// What a checkpoint records besides the run's state and options.
+struct CheckpointInfo {
+  std::string input;             ///< the input as the saving run names it (its path)
+  std::uint64_t input_hash = 0;  ///< mesh_hash of the mesh it runs
+  std::string log;               ///< the caller's log of the frames so far (the CLI: its CSV)
+};
+
+/// Writes `run` with the options it runs with and `info`, whole or not at all (a temporary file
+/// renamed).
+/// @throws UsageError if the file cannot be written
+void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,
+                      const CheckpointInfo& info);
+
+/// Checkpointing a run (run_contraction's last argument).
+class RunCheckpointer {
+ public:
+  virtual ~RunCheckpointer() = default;
+  /// The state to continue from (restored after the run is prepared), or nullptr.
+  virtual const Checkpoint* resume_from() const { return nullptr; }
+  /// After every frame that the run goes on from (after the observers): whether to save now.
+  virtual bool save_due(int frame) = 0;
+  /// Saves (write_checkpoint): `run` is the whole state, and the run would continue with the
+  /// next frame.
+  virtual void save(const SavedRun& run) = 0;
+  /// After save_due (and save): true stops the run here with RunStatus::Cancelled (a signal
+  /// asked for it; its state is saved).
+  virtual bool stop() { return false; }
+};
+
+}  // namespace shellcontract

@@ -1,0 +1,80 @@
+// Animated glTF 2.0 binary (.glb) of a run (docs/design/export.md): the mesh with one morph
+// target per exported frame, played by a STEP animation of the morph weights.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellcontract/types.hpp"
+
+namespace shellcontract {
+
+/// A per-vertex scalar field to show as colours (e.g. the fields of --fields).
+struct NamedVertexField {
+  std::string name;        ///< shown by the viewer, e.g. "mean_curvature"
+  Eigen::VectorXd values;  ///< #V values, any units
+};
+
+/// Everything the .glb holds. Positions are in the input's units and orientation.
+struct GltfAnimation {
+  Faces faces;                     ///< #F by 3, counter-clockwise seen from outside
+  std::vector<int> frame_numbers;  ///< the run's frame number of each entry of `frames`, increasing
+  std::vector<Positions> frames;   ///< #V by 3 each; frames[0] is the base mesh
+  double seconds_per_frame = 1.0 / 24.0;  ///< playback time between two consecutive run frames
+                                          ///< (keyframe k is at (frame_numbers[k] -
+                                          ///< frame_numbers[0]) * seconds_per_frame)
+  std::vector<NamedVertexField> colour_fields;  ///< optional; field i becomes attribute COLOR_i
+  int colour_frame = -1;  ///< the run frame whose values colour_fields hold; -1 unknown
+  /// Optional: per frame (parallel to `frames`), the values of a field on that frame (float,
+  /// #V each), so that a viewer colours each frame with its own values. Field name -> values.
+  std::vector<std::pair<std::string, std::vector<Eigen::VectorXf>>> frame_fields;
+  /// Optional texture coordinates (the input's, issue 56): uv holds (u, v) pairs, face_uv (#F by
+  /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
+  Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
+  Faces face_uv;
+};
+
+/// What write_gltf_animation wrote.
+struct GltfStats {
+  std::size_t bytes = 0;         ///< file size
+  std::size_t buffer_bytes = 0;  ///< binary chunk (positions, normals, colours, indices, keys)
+};
+
+/// Writes `animation` as a glTF 2.0 binary file, atomically (temporary file, then rename).
+///
+/// Layout: one scene, one node, one mesh with one triangle primitive whose POSITION and NORMAL
+/// (float32, area-weighted vertex normals, unit length) are frames[0]; for every later frame k a
+/// morph target holding the float32 displacements POSITION(k) - POSITION(0) and NORMAL(k) -
+/// NORMAL(0); one animation whose `weights` channel (STEP interpolation) has one keyframe per frame
+/// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Colour field i is a float
+/// VEC3 COLOR_i in linear RGB: its 2nd to 98th percentile mapped onto blue - white - red (the
+/// fields PLY's map), clamped outside; its values themselves are also a float SCALAR custom
+/// attribute named after it ("mean_curvature" -> _MEAN_CURVATURE; three.js: _mean_curvature).
+/// The mesh's `extras` hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields`
+/// (name, attribute, values_attribute, the value range mapped to the colours, and `frame`, the run
+/// frame whose values they are, when colour_frame is set).
+///
+/// Each of `frame_fields` is one float SCALAR accessor per frame (not a primitive attribute: glTF
+/// morph targets cannot carry it), listed in the mesh's extras `frame_fields` (name, accessors,
+/// and low / high: the 2nd and 98th percentiles of all its frames' values, one colour scale).
+///
+/// With texture coordinates, TEXCOORD_0 holds each vertex's (u, 1 - v): glTF's origin is the
+/// top-left corner, OBJ's and PLY's the bottom-left. A vertex with several texture coordinates (a
+/// seam) is split: glTF vertex i < #V is vertex i with the first coordinates its corners use, the
+/// copies follow; every attribute and every morph target is copied with it.
+/// @throws std::invalid_argument for inconsistent sizes (texture coordinates too), no frames, non-increasing frame
+///         numbers or a non-finite coordinate
+/// @throws UsageError if the file cannot be written
+GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& animation);
+
+/// The same file, freeing each frame of `animation` once it is in the file's buffer, so that the
+/// frames and the buffer are not both held whole (a large mesh's .glb is hundreds of MB); the
+/// frames are left empty.
+GltfStats write_gltf_animation(const std::string& path, GltfAnimation&& animation);
+
+/// Area-weighted vertex normals (unit length; (0, 0, 1) for a vertex whose faces have no area).
+Positions vertex_normals(const Positions& x, const Faces& faces);
+
+}  // namespace shellcontract

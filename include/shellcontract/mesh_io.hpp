@@ -1,0 +1,196 @@
+// Reading, checking and writing meshes (docs/architecture.md, "From a file to a contracted mesh"):
+// read_input_mesh and its checks, meshes from plain arrays (Python, C++ callers), OBJ and PLY
+// documents that keep their attributes, and the atomic writers every output goes through.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/types.hpp"
+
+namespace shellcontract {
+
+/// What the input check found and did. Warnings are for the user (printed on stderr by the CLI).
+struct InputReport {
+  std::size_t vertices = 0;
+  std::size_t faces = 0;            ///< after triangulation
+  std::size_t triangulated_faces = 0;  ///< input polygons with more than 3 vertices that were split
+  std::vector<std::size_t> zero_area_faces;  ///< face indices (output order) with ~zero area
+  bool reoriented = false;          ///< the mesh was inside-out and its faces were flipped
+  std::size_t components = 0;       ///< connected components
+  double volume = 0.0;              ///< enclosed volume after reorientation (input units; inf beyond ~1e102 per coordinate)
+  std::vector<std::string> warnings;
+  double read_seconds = 0.0;   ///< read_input_mesh: reading the file into a polygon soup
+  double check_seconds = 0.0;  ///< read_input_mesh: checking it and building the mesh
+};
+
+/// Reads OFF/OBJ/PLY/STL (by extension; read_polygon_soup) and checks that the mesh is a
+/// closed, manifold triangle mesh with finite coordinates, a nonzero finite bounding-box diagonal
+/// and a positive enclosed volume (measured as the simulator measures it): the one decision of
+/// what `check`, `run` and `regions` can use. Polygons are triangulated (with a warning); an
+/// inside-out mesh is reoriented (with a warning); zero-area faces are reported. Geometric tests
+/// run on coordinates normalized to a unit bounding-box diagonal, so any scale from 1e-150 to
+/// 1e150 gives the same answers.
+/// @throws InputError naming the file and the problem (and the face, vertex or line where known),
+///         for any file whatever its bytes (also when memory runs out while reading it)
+Mesh read_input_mesh(const std::string& path, InputReport* report = nullptr);
+
+/// read_input_mesh's checks on a polygon soup already in memory (points in input units): the
+/// same decision, for a mesh built by the program (repair_input_mesh). Messages start with `name`.
+/// @throws InputError as read_input_mesh
+Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
+                      const std::vector<std::vector<std::size_t>>& polygons, InputReport* report = nullptr);
+
+/// Writes the mesh connectivity with the vertex positions x (row i = vertex i, input units),
+/// keeping vertex and face order and each face's first corner, with CGAL's writer for the
+/// extension (OFF, OBJ, STL ASCII; PLY through write_ply_atomic) at 17 significant digits, so
+/// that the doubles read back bitwise. Written to a temporary file in the same folder, then
+/// renamed, so a failure never leaves a partial file.
+/// @throws UsageError if the file cannot be written or the extension is unknown
+/// @throws std::invalid_argument if x.rows() != number of vertices or the mesh has garbage
+void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x);
+
+/// The mesh to give write_ply_atomic: a copy of `mesh` (vertex and face order and each face's
+/// first corner kept) with its points set to x and no property maps, to which the caller
+/// attaches the properties to write.
+/// @param x #V by 3 positions, row i = vertex i
+/// @throws std::invalid_argument if x.rows() != number of vertices or the mesh has garbage
+Mesh mesh_for_output(const Mesh& mesh, const Positions& x);
+
+/// The one PLY writer (plain meshes, regions, fields): CGAL's Surface_mesh PLY writer, ASCII, 17
+/// significant digits, atomically (temporary file + rename). Every vertex and face property map
+/// of `mesh` with a simple type (int8..int64, float, double) is written as a property of its
+/// element, named without the "v:"/"f:" prefix, in the order the maps were attached;
+/// "v:color" / "f:color" (CGAL::IO::Color) become red, green, blue, alpha (uchar). Vertex
+/// properties follow x, y, z; face properties follow vertex_indices.
+/// @param mesh     usually built by mesh_for_output, so that only the maps meant for the file are on it
+/// @param comments written as "comment" lines of the header, one per line of the string
+/// @throws UsageError if the file cannot be written
+void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::string& comments = "");
+
+/// Writes text to path atomically (temporary file + rename). @throws UsageError on failure
+void write_text_atomic(const std::string& path, const std::string& text);
+
+/// Writes a file atomically through `write`, which writes straight into a temporary file next to
+/// `path` (no copy in memory: for large binary files written in a few large pieces, the .glb);
+/// then renames it over `path`. If `write` throws, no file is left and the exception passes.
+/// @throws UsageError if the file cannot be created or written
+void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+}  // namespace shellcontract
+
+// A checked Mesh from in-memory arrays (the Python module's numpy input, a C++ caller's buffers),
+// with the checks and messages of read_input_mesh (mesh/io.hpp) for a triangle soup.
+namespace shellcontract {
+
+/// A read-only view of a triangle soup held by the caller; nothing is copied until the Mesh is
+/// built. Rows are C-contiguous: vertex i is vertices[3i .. 3i+2], face j is faces[3j .. 3j+2].
+/// Exactly one of faces32 / faces64 is set.
+struct TriangleSoupView {
+  const double* vertices = nullptr;  ///< #V by 3, any length unit
+  std::size_t num_vertices = 0;
+  const std::int32_t* faces32 = nullptr;  ///< #F by 3 vertex indices, 0-based
+  const std::int64_t* faces64 = nullptr;  ///< #F by 3 vertex indices, 0-based
+  std::size_t num_faces = 0;
+};
+
+/// Builds the mesh of a triangle soup after the checks read_input_mesh applies to a file: finite
+/// coordinates, indices in range, no repeated corner, no duplicate face, no isolated vertex, every
+/// edge shared by exactly two faces in opposite directions (closed, manifold, consistently
+/// oriented), one fan per vertex. Zero-area faces are reported. Vertex and face order are kept,
+/// and each face lists its corners as given.
+/// @param name     what the messages call the input (read_input_mesh uses the file name)
+/// @param reorient flip inside-out components as read_input_mesh does (with a warning); false
+///                 keeps the faces exactly as given (writing a result back)
+/// @throws InputError "<name>: <problem>: <where and details>", as read_input_mesh
+Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name,
+                      InputReport* report = nullptr, bool reorient = true);
+
+}  // namespace shellcontract
+
+// An input file kept whole, so that a run's result keeps what the simulation does not use (issue
+// 56: texture coordinates, normals, groups, materials, polygons, extra PLY properties). The
+// simulation sees the triangle mesh read_input_mesh builds; the document writes the same file
+// with only the vertex positions (and, for OBJ, the normals) replaced. docs/design/attributes.md.
+namespace shellcontract {
+
+/// The file's texture coordinates as the simulation mesh's faces use them (for the glTF's
+/// TEXCOORD_0). A vertex may have several (a UV seam): the corners say which.
+struct CornerTexcoords {
+  std::vector<std::array<double, 2>> uv;  ///< the file's texture coordinates (u, v)
+  /// Per simulation face (face index order), per corner in the order vertices_around_face lists
+  /// them from the face's halfedge: an index into uv.
+  std::vector<std::array<std::size_t, 3>> face_uv;
+  bool empty() const { return uv.empty(); }
+};
+
+/// A mesh file kept as a document; the simulation's vertex i is the file's vertex i (the readers
+/// never weld or reorder vertices). The faces are the file's polygons in file order.
+class MeshDocument {
+ public:
+  virtual ~MeshDocument() = default;
+  /// "obj" or "ply": the extension of the files this document writes.
+  virtual std::string format() const = 0;
+  /// The whole file with the vertex positions x (#V by 3, input units); everything else as read.
+  /// @throws std::invalid_argument if x.rows() != vertex_count() or a coordinate is not finite
+  virtual std::string text(const Positions& x) const = 0;
+
+  std::size_t vertex_count() const { return vertex_count_; }
+  std::size_t polygon_count() const {
+    return polygon_start_.empty() ? 0 : polygon_start_.size() - 1;
+  }
+  /// Number of triangles read_input_mesh makes of the polygons (n corners: n - 2).
+  std::size_t triangle_count() const;
+  /// Whether this document stands for `mesh`, the mesh read_input_mesh made of the same file:
+  /// same vertex count, same triangle count, and each triangle's corners among the vertices of
+  /// the polygon it came from. False (the plain writer is then used) e.g. after `--repair`.
+  bool matches(const Mesh& mesh) const;
+  /// Texture coordinates by simulation face corner; empty when some corner of a polygon has none.
+  /// @pre matches(mesh)
+  CornerTexcoords texcoords(const Mesh& mesh) const;
+
+ protected:
+  /// The polygon each simulation face comes from: face i < #polygons is polygon i (its first
+  /// triangle), further triangles of split polygons follow in polygon order (read_input_mesh).
+  std::vector<std::size_t> face_origins() const;
+
+  std::size_t vertex_count_ = 0;
+  std::vector<std::size_t> polygon_start_;  ///< polygon p's corners are [start[p], start[p + 1])
+  std::vector<std::size_t> corner_vertex_;  ///< 0-based vertex index of each corner
+  std::vector<long long> corner_uv_;        ///< index into uv_ of each corner; -1 none
+  std::vector<std::array<double, 2>> uv_;   ///< the file's texture coordinates
+};
+
+/// The document of an OBJ or PLY file (by extension); nullptr for OFF and STL, which hold
+/// nothing besides positions and faces.
+/// @throws InputError naming the file and line if it cannot be read as a document
+std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path);
+
+/// An OBJ file's bytes as a document (src/mesh/obj_document.cpp): every line but `v` and `vn`
+/// is written back verbatim; `v` lines get the new positions (anything after x y z, such as
+/// vertex colours, kept); `vn` lines get the normals of the new positions.
+/// @param name the file's name, for messages
+/// @throws InputError "<name>: <problem>: line <n> ..." for a line it cannot read
+std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name, const std::string& bytes);
+
+/// A PLY file's bytes as a document (src/mesh/ply_document.cpp): header and every element byte
+/// for byte, but the vertices' x, y, z, written in their declared types and the file's format.
+/// @throws InputError "<name>: <problem>: ..." for a file it cannot read
+std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const std::string& bytes);
+
+/// Writes doc.text(x) to `path` atomically (write_text_atomic).
+/// @throws UsageError if the file cannot be written
+void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc,
+                                const Positions& x);
+
+/// The shortest text that reads back to exactly v (std::to_chars); used by the documents.
+std::string format_double(double v);
+
+}  // namespace shellcontract

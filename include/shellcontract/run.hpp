@@ -1,0 +1,93 @@
+// The library's entry point: a whole contraction run (docs/architecture.md): the regions, the time
+// loop with its stop criteria (frame count, stop ratio, target volume, stall), the run's status
+// and totals. The CLI, the Python module and the exporters are observers of this one loop
+// (shellcontract/observer.hpp).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/observer.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/simulation_options.hpp"
+#include "shellcontract/types.hpp"
+
+namespace shellcontract {
+
+/// How a run ended; RunResult::exit_code maps it onto the documented exit codes.
+enum class RunStatus {
+  Completed,         ///< every frame ran, or the stop ratio was reached, or the target is held
+  TargetNotReached,  ///< a target volume or stop ratio was not reached: the volume stalled or the
+                     ///< frames ran out
+  SimulationFailed,  ///< non-finite positions, a blow-up or out of memory; the state is the
+                     ///< last good step
+  NewIntersections,  ///< validation found self-intersections the input did not have
+  Cancelled,         ///< the observer asked to stop (a KeyboardInterrupt in Python)
+};
+
+/// The status as the summary writes it: "ok", "target not reached", "failed",
+/// "new self-intersections" or "cancelled".
+const char* status_name(RunStatus status);
+
+/// |V/V0 - R| within which a target volume counts as reached and held.
+inline constexpr double TARGET_VOLUME_TOLERANCE = 0.005;
+/// The volume has stalled when V/V0 changed by less than STALL_CHANGE over the last STALL_FRAMES
+/// frames while it is still off its target: contacts lock the shell, or the pressure is balanced.
+inline constexpr int STALL_FRAMES = 20;
+inline constexpr double STALL_CHANGE = 1e-4;
+
+/// What a run produced.
+struct RunResult {
+  RunStatus status = RunStatus::Completed;
+  std::string message;  ///< why it did not complete, for the user; empty when completed
+  int frames_run = 0;
+  double final_volume_ratio = 1.0;
+  double min_volume_ratio = 1.0;
+  /// Whether the target volume or stop ratio was reached (true when neither was asked for).
+  bool target_reached = true;
+  /// The first frame at which V/V0 was within TARGET_VOLUME_TOLERANCE of the target volume and
+  /// its ramp had ended (or the stop ratio's crossing frame); -1 if never.
+  int frame_target_reached = -1;
+  double wall_seconds = 0.0;     ///< the time loop
+  double regions_seconds = 0.0;  ///< selecting or reading the regions, before the loop
+  double prepare_seconds = 0.0;  ///< building the Simulator: rest state, constraints, collisions
+  long new_intersections = -1;   ///< at the last validated frame; -1 when never validated
+  std::size_t regions = 0;       ///< anisotropic regions used (or measured)
+  std::size_t anisotropic_faces = 0;
+  double region_inward_displacement = 0.0;  ///< Simulator::region_inward_displacement at the end
+  double outside_region_displacement = 0.0;  ///< Simulator::outside_region_displacement at the end
+  std::size_t degenerate_faces = 0;
+  std::size_t excluded_contact_pairs = 0;
+  /// The contact distance delta the run used (normalized units; --delta auto resolved for the
+  /// mesh); 0 with collisions off.
+  double contact_distance = 0.0;
+  double normalization_scale = 1.0;
+  /// The Gauss-Seidel order the run used (RunOptions::order resolved for the mesh).
+  ConstraintOrder order = ConstraintOrder::Sequential;
+  std::vector<std::string> warnings;
+  RunTotals totals;
+  Positions positions;  ///< final positions in the input's units, row i = vertex i
+
+  /// The process exit code of this result (README "Exit codes").
+  int exit_code() const;
+};
+
+class RunCheckpointer;  // shellcontract/checkpoint.hpp
+
+/// Runs the contraction of `mesh` (a checked, closed, outward-oriented triangle mesh from
+/// read_input_mesh, any units) to its end.
+/// @throws UsageError for invalid options, InputError for an unusable mesh or region file
+///         (before the first step), std::bad_alloc if preparing the run runs out of memory. A
+///         failing step is not thrown: it ends the run with RunStatus::SimulationFailed and the
+///         last good state; so does running out of memory (std::bad_alloc) in a step, in an
+///         observer's frame() or in the end's validation, and a std::runtime_error from a step
+///         (TBB's "pthread_create has failed" when the address space is exhausted), with a
+///         message that says so.
+/// @param checkpointer  continues from its checkpoint, and saves the state when it asks
+///         (shellcontract/checkpoint.hpp); InputError if its checkpoint does not fit the mesh and options
+RunResult run_contraction(const Mesh& mesh, const RunOptions& options,
+                          RunObserver* observer = nullptr, RunCheckpointer* checkpointer = nullptr);
+
+}  // namespace shellcontract

@@ -1,0 +1,26 @@
+// Reading a mesh file into a polygon soup, before any check (read_input_mesh's first step).
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/off_scan.hpp"
+#include "shellcontract/mesh.hpp"
+
+namespace shellcontract {
+
+/// The whole file's bytes. @throws InputError naming the file if it is missing, a folder or unreadable
+std::string read_file_bytes(const std::string& path);
+
+/// Reads the points and polygons of an OFF, OBJ, PLY or STL file in file order, with the line of
+/// each vertex and face where the format and reader know it (OFF, ascii PLY). OFF is read by
+/// scan_off (ascii and binary), PLY by read_ply, OBJ and STL by CGAL; OFF and OBJ may start with a
+/// UTF-8 byte-order mark and use "\r" line ends. Nothing is allocated from a declared count that the
+/// file's size does not bound.
+/// @param ext lower-case extension without the dot: "off", "obj", "ply" or "stl"
+/// @throws InputError "<path>: <problem>: <where>" if the file cannot be read as such
+void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
+                       std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines);
+
+}  // namespace shellcontract

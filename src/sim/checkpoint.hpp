@@ -1,0 +1,69 @@
+// What a checkpoint holds (shellcontract/checkpoint.hpp is the caller's side): the Simulator's
+// state, the run loop's and the caller's log so far, and the file's format.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellcontract/checkpoint.hpp"
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/simulator_state.hpp"
+
+namespace shellcontract {
+
+/// The version a checkpoint is written with and must be read by (the project's version).
+const char* checkpoint_tool_version();
+
+/// The run loop's own state at a step boundary (run_contraction): what its stop criteria and
+/// its result depend on besides the Simulator.
+struct RunProgress {
+  std::vector<double> history{1.0};  ///< V/V0 after each frame so far, frame 0 first
+  double min_volume_ratio = 1.0;
+  RunTotals totals;
+  long new_intersections = -1;
+  RunStatus status = RunStatus::Completed;  ///< NewIntersections once a frame found some
+  std::string message;
+  int frame_target_reached = -1;
+  std::int64_t last_pairs = 0;
+};
+
+/// Option name (CLI spelling) and value (the table's text).
+using OptionValues = std::vector<std::pair<std::string, std::string>>;
+
+/// Everything a resumed run needs besides the input mesh itself.
+struct Checkpoint {
+  std::string version;       ///< checkpoint_tool_version() of the writer
+  std::string input;         ///< the input's path as the saving run was given it
+  std::uint64_t input_hash = 0;  ///< mesh_hash of the mesh it ran
+  OptionValues given;        ///< the options given (RunOptions::given), less the threads
+  OptionValues resolved;     ///< every option's value after resolving, less the threads
+  SimulatorState sim;
+  RunProgress progress;
+  std::string log;           ///< the caller's log of the frames so far (the CLI: its CSV text)
+};
+
+/// The given options of `options` (their values as the table prints them), less the threads.
+OptionValues given_options(const RunOptions& options);
+/// Every option's value (the table's text) after resolve_run_options, less the threads, which
+/// do not change a run's result.
+OptionValues resolved_options(RunOptions options);
+
+/// Writes `c` to `path` whole or not at all (a temporary file renamed).
+/// @throws UsageError if the file cannot be written
+void write_checkpoint(const std::string& path, const Checkpoint& c);
+/// @throws InputError naming the file for a missing, truncated or corrupted checkpoint
+Checkpoint read_checkpoint(const std::string& path);
+
+/// A run's state at a step boundary: the Simulator's and the run loop's.
+class Simulator;
+
+struct SavedRun {
+  const Simulator& sim;
+  const RunProgress& progress;
+};
+
+}  // namespace shellcontract

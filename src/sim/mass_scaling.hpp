@@ -1,0 +1,38 @@
+// Mass scaling for the explicit pressure load (docs/design/defaults.md, "Mass scaling").
+// The pressure force is integrated explicitly, while the PBD membrane resists a displacement
+// with an effective stiffness of about m_i / dt^2 per vertex. Where the lumped mass is tiny next
+// to the pressure's stiffness around a vertex (finely meshed detail, slivers), the pressure
+// wins: the repaired mannequin-devil.off of CGAL's demo data blew up at step 16 of a default run
+// (lab/scripts/corpus_run.py), and at dt / 4 it did not. Raising those few masses removes that
+// without touching the time step of the whole mesh.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+
+#include "shellcontract/types.hpp"
+
+namespace shellcontract {
+
+/// The largest omega * dt that the mass scaling leaves to a vertex, where omega^2 = K_i / m_i and
+/// K_i = |P| / 3 * (perimeter of the vertex's one-ring) bounds the stiffness of the pressure
+/// force f_i = -P / 6 sum_j N_j with respect to the ring's vertices. Calibrated on the repaired
+/// mannequin-devil.off (lab/scripts/corpus_run.py; collisions off, default options otherwise): with
+/// no scaling it blew up at step 9, with a bound of 0.7 at step 17, 0.4 at step 51, and with
+/// 0.25 it ran (docs/design/defaults.md, "Mass scaling").
+inline constexpr double MAX_PRESSURE_OMEGA_DT = 0.25;
+
+/// Raises the mass of every vertex whose omega * dt (see MAX_PRESSURE_OMEGA_DT) exceeds the
+/// bound to the mass that meets it, m_i = K_i (dt / MAX_PRESSURE_OMEGA_DT)^2, but never above the
+/// mean vertex mass: the scaling evens out light vertices, and a pressure or time step too large
+/// for the whole mesh still blows up and is reported. The other masses, and every mass when
+/// P = 0, are unchanged.
+/// @param x         #V by 3 rest positions (normalized)
+/// @param faces     #F by 3 vertex indices
+/// @param pressure  the run's pressure P (its magnitude is used)
+/// @param inv_mass  #V inverse masses, changed in place (a zero, pinned, stays zero)
+/// @return the number of vertices whose mass was raised
+std::size_t scale_masses_for_pressure(const Positions& x, const Faces& faces, double pressure,
+                                      double dt, Eigen::VectorXd& inv_mass);
+
+}  // namespace shellcontract

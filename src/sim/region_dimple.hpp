@@ -1,0 +1,52 @@
+// The local contraction's shape (docs/math/local-contraction.md, section 4): a region sinks as a
+// dimple, the mirror image of a smaller cap around its apex, as a thin spherical shell does under
+// a local load. A cap that is flattened must lose area and so pulls its rim and the shell around
+// it in; a mirrored cap keeps its area (for a spherical cap the mirror is an isometry), so the
+// shell outside the dimple has nothing to answer. Eigen only.
+#pragma once
+
+#include <vector>
+
+#include "shellcontract/types.hpp"
+#include "sim/region_volume.hpp"
+
+namespace shellcontract {
+
+/// A region's faces ordered from its apex outward, with the rest cap volume of every prefix of
+/// that order, and the prefix now mirrored (the dimple).
+struct RegionDimple {
+  RegionCap whole;                 ///< the whole region's cap, rest_volume set
+  std::vector<int> order;          ///< the region's face ids, nearest to the apex first
+  std::vector<double> prefix_rest_volume;  ///< [k]: rest cap volume of the first k + 1 faces
+  int size = 0;                    ///< faces in the current dimple (0: none yet)
+  RegionCap dimple;                ///< cap of the first `size` faces of order, rest_volume set
+};
+
+/// The dimple order of a region at the rest positions: the apex is the region vertex farthest
+/// from the rim's centroid along the region's area-weighted normal, and the faces are sorted by
+/// the distance of their centroid from it (ties by face id, so the order is deterministic).
+/// Face ids outside [0, #F) are skipped.
+RegionDimple make_region_dimple(const Positions& rest, const Faces& faces,
+                                const std::vector<int>& region_faces);
+
+/// Cap volume (cap_volume) of every prefix of `order` at x, in one pass: with c the mean of the
+/// prefix's rim vertices, V = (sum over its faces of det(x_a, x_b, x_d) - c . sum over its
+/// boundary edges (i -> j) of x_i x x_j) / 6, both sums and the rim kept up to date face by face.
+std::vector<double> prefix_cap_volumes(const Positions& x, const Faces& faces,
+                                       const std::vector<int>& order);
+
+/// The smallest dimple whose rest cap volume reaches `volume`: the least k >= 1 with
+/// prefix_rest_volume[k - 1] >= volume, or all the faces if none does.
+int dimple_size_for(const RegionDimple& d, double volume);
+
+/// The rest cap volume V_k of the dimple a region mirrors at ramp progress s in [0, 1] with the
+/// shell, its caps cut off, at volume ratio rho: min(shrink s / rho, 1) rest_volume (the whole
+/// cap at most; rho <= 0 gives the whole cap). Its mirror image at the shell's scale, -rho V_k,
+/// takes 2 shrink s of the rest cap volume off the region beyond the shell's own share: on a shell
+/// at rest, shrink 0.5 leaves the cap with no volume and 1 turns the whole cap inside out.
+double dimple_rest_volume(double rest_volume, double shrink, double s, double rho);
+
+/// Makes the first k faces of d.order the dimple (rebuilding its cap only when k changed).
+void set_dimple_size(RegionDimple& d, const Faces& faces, int k);
+
+}  // namespace shellcontract
