@@ -9,24 +9,6 @@ machine sees the same load. --stages prints the finder's stage times of one more
 (SC_REGION_TIMING=1: wall and processor seconds per stage).
 
 Usage: /usr/bin/python3 lab/regions/bench_selection.py [--build build ...] [--repeat 5] [--stages]
-"""Benchmark of the region selection (issue "Regions a person would choose", item 6: bear within
-0.5 s, bear split in sixteen, 442k faces, within 5 s). Runnable, not a timed test: it prints the
-wall time of `shellcontract regions` (best of --repeat runs; the time includes reading the mesh and
-writing the PLY) on bear and on bear split in sixteen (two 1-to-4 midpoint subdivisions,
-written to a temporary OFF). Measure on an idle machine; timings on a shared, loaded machine mean
-nothing.
-
-Usage: /usr/bin/python3 lab/regions/bench_selection.py [--build build] [--repeat 3]
-"""Benchmark of the region selection (issue "Regions a person would choose", item 6: bear within
-0.5 s, bear split in sixteen, 442k faces, within 5 s). Runnable, not a timed test: it prints the
-wall time of `shellcontract regions` (median and best of --repeat runs; the time includes reading
-the mesh and writing the PLY) on bear and on bear split in sixteen (two 1-to-4 midpoint
-subdivisions, written to a temporary OFF), with the load average before and after. Given several
---build folders, their runs alternate (A B A B ...), so a before/after comparison on a shared
-machine sees the same load. --stages prints the finder's stage times of one more run
-(SC_REGION_TIMING=1: wall and processor seconds per stage).
-
-Usage: /usr/bin/python3 lab/regions/bench_selection.py [--build build ...] [--repeat 5] [--stages]
 """
 import argparse
 import os
