@@ -19,6 +19,8 @@ struct OptionSpec {
   std::string value_name;  ///< what the value is, e.g. "P" or "N"; empty for a switch
   std::string help;        ///< one sentence or two, ending with the accepted range
   bool is_switch = false;  ///< a flag without a value ("on" when given)
+  /// May be given several times on the command line: the values, joined by ';', are set at once.
+  bool repeatable = false;
   /// Parses `value` into `options`. @throws UsageError naming the option and the accepted range
   std::function<void(RunOptions&, const std::string&)> set;
   /// The option's value in `options` as text ("" for an unset optional value); get(RunOptions{})

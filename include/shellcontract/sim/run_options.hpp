@@ -69,6 +69,10 @@ struct RunOptions {
   std::string region_weight_file;
   /// The same weights given as numbers (Python region_weights=W), instead of the file.
   std::vector<double> vertex_weights;
+  /// --region-at: the regions are the spherical caps around the surface points nearest to
+  /// these (select_regions_at, as `regions --region-at`); resolve_run_options then sets regions
+  /// to Auto. Excludes a region source given otherwise.
+  std::vector<Vec3> region_points;
   /// RegionSource::Auto only: regions larger than this fraction of the total area are dropped
   /// (RegionOptions::max_area_fraction; a large one, such as bear's head, deflates the shell).
   double region_max_area = DEFAULT_REGION_MAX_AREA;
