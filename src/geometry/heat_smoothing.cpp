@@ -23,8 +23,9 @@ namespace {
 using SpMat = Eigen::SparseMatrix<double>;
 using Ldlt = Eigen::SimplicialLDLT<SpMat>;
 
-/// Beyond this many iterations the system is not what the preconditioner expects (it takes a
-/// few tens on meshes): the direct solver is used instead.
+/// Beyond this many iterations the system is not what the preconditioner expects (its count
+/// does not grow with the resolution and stays far below this on meshes): the direct solver is
+/// used instead.
 constexpr int MAX_ITERATIONS = 400;
 
 /// Aggregates in index order: a vertex whose neighbours are all free takes them; each vertex
