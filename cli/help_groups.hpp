@@ -22,7 +22,7 @@ inline const std::vector<std::pair<std::string, std::vector<std::string>>>& run_
       {"bending", {"bending", "k-b"}},
       {"solver", {"solver", "dt", "iterations", "damping", "order", "threads"}},
       {"local contraction (regions that sink in)",
-       {"regions", "region-weights", "region-shrink", "region-max-area", "inward", "aniso", "mu-a",
+       {"regions", "region-weights", "region-at", "region-shrink", "region-max-area", "inward", "aniso", "mu-a",
         "fiber", "fiber-target", "k-a", "inversion-aware", "measure-regions"}},
       {"collisions",
        {"collisions", "delta", "collision-rounds", "validate", "warm-start",

@@ -59,7 +59,8 @@ constexpr const char* RUN_EXIT_CODES =
 /// The table's options as text values for boost, switches as bool_switch, in the task groups of
 /// run --help (help_groups.hpp), each group added to `desc`.
 void add_table_options(po::options_description& desc, std::map<std::string, std::string>& values,
-                       std::map<std::string, bool>& switches) {
+                       std::map<std::string, bool>& switches,
+                       std::map<std::string, std::vector<std::string>>& lists) {
   const RunOptions defaults;
   const auto& groups = run_help_groups();
   std::vector<po::options_description> sections;
@@ -75,6 +76,11 @@ void add_table_options(po::options_description& desc, std::map<std::string, std:
     const std::string key = o.short_name ? o.name + "," + std::string(1, o.short_name) : o.name;
     if (o.is_switch) {
       section.add_options()(key.c_str(), po::bool_switch(&switches[o.name]), o.help.c_str());
+      continue;
+    }
+    if (o.repeatable) {  // every occurrence kept, set at once (joined by ';')
+      section.add_options()(key.c_str(), po::value(&lists[o.name])->composing()->value_name(o.value_name),
+                            o.help.c_str());
       continue;
     }
     const std::string def = o.get(defaults);
@@ -178,7 +184,8 @@ int command_run(int argc, char** argv) {
       "repair", po::bool_switch(&repair),
       "repair the input first if 'check' refuses it (as 'shellcontract repair' does; the output "
       "then has the repaired mesh's vertices and faces)");
-  add_table_options(desc, values, switches);
+  std::map<std::string, std::vector<std::string>> lists;
+  add_table_options(desc, values, switches, lists);
   desc.add_options()(
       "fields", po::value(&fields_prefix)->value_name("PREFIX"),
       "write PREFIX_start.ply and PREFIX_end.ply: per-vertex mean and Gaussian curvature, "
@@ -223,6 +230,10 @@ int command_run(int argc, char** argv) {
     for (const OptionSpec& o : run_option_table()) {
       if (o.is_switch) {
         if (switches[o.name]) o.set(options, "on");
+      } else if (o.repeatable) {
+        std::string joined;
+        for (const std::string& v : lists[o.name]) joined += (joined.empty() ? "" : ";") + v;
+        if (vm.count(o.name)) o.set(options, joined);
       } else if (vm.count(o.name) && !vm[o.name].defaulted()) {
         o.set(options, values[o.name]);
       }

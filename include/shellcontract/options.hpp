@@ -70,6 +70,10 @@ struct RunOptions {
   std::string region_weight_file;
   /// The same weights given as numbers (Python region_weights=W), instead of the file.
   std::vector<double> vertex_weights;
+  /// --region-at: the regions are the spherical caps around the surface points nearest to
+  /// these (select_regions_at, as `regions --region-at`); resolve_run_options then sets regions
+  /// to Auto. Excludes a region source given otherwise.
+  std::vector<Vec3> region_points;
   /// RegionSource::Auto only: regions larger than this fraction of the total area are dropped
   /// (RegionOptions::max_area_fraction; a large one, such as bear's head, deflates the shell).
   double region_max_area = DEFAULT_REGION_MAX_AREA;
@@ -127,6 +131,8 @@ struct OptionSpec {
   std::string value_name;  ///< what the value is, e.g. "P" or "N"; empty for a switch
   std::string help;        ///< one sentence or two, ending with the accepted range
   bool is_switch = false;  ///< a flag without a value ("on" when given)
+  /// May be given several times on the command line: the values, joined by ';', are set at once.
+  bool repeatable = false;
   /// Parses `value` into `options`. @throws UsageError naming the option and the accepted range
   std::function<void(RunOptions&, const std::string&)> set;
   /// The option's value in `options` as text ("" for an unset optional value); get(RunOptions{})

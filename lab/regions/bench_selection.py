@@ -1,15 +1,18 @@
 #!/usr/bin/python3
 """Benchmark of the region selection (issue "Regions a person would choose", item 6: bear within
 0.5 s, bear split in sixteen, 442k faces, within 5 s). Runnable, not a timed test: it prints the
-wall time of `shellcontract regions` (best of --repeat runs; the time includes reading the mesh and
-writing the PLY) on bear and on bear split in sixteen (two 1-to-4 midpoint subdivisions,
-written to a temporary OFF). Measure on an idle machine; timings on a shared, loaded machine mean
-nothing.
+wall time of `shellcontract regions` (median and best of --repeat runs; the time includes reading
+the mesh and writing the PLY) on bear and on bear split in sixteen (two 1-to-4 midpoint
+subdivisions, written to a temporary OFF), with the load average before and after. Given several
+--build folders, their runs alternate (A B A B ...), so a before/after comparison on a shared
+machine sees the same load. --stages prints the finder's stage times of one more run
+(SC_REGION_TIMING=1: wall and processor seconds per stage).
 
-Usage: /usr/bin/python3 lab/regions/bench_selection.py [--build build] [--repeat 3]
+Usage: /usr/bin/python3 lab/regions/bench_selection.py [--build build ...] [--repeat 5] [--stages]
 """
 import argparse
 import os
+import statistics
 import subprocess
 import sys
 import tempfile
@@ -46,21 +49,21 @@ def write_off(path, v, f):
         o.write("\n".join("3 %d %d %d" % tuple(t) for t in f) + "\n")
 
 
-def best_time(exe, mesh, tmp, repeat):
-    best = float("inf")
-    for _ in range(repeat):
-        t0 = time.perf_counter()
-        subprocess.run([exe, "regions", mesh, "-o", os.path.join(tmp, "b.ply")], check=True, stdout=subprocess.DEVNULL)
-        best = min(best, time.perf_counter() - t0)
-    return best
+def one_run(exe, mesh, tmp, env=None):
+    t0 = time.perf_counter()
+    out = subprocess.run([exe, "regions", mesh, "-o", os.path.join(tmp, "b.ply")], check=True,
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+    return time.perf_counter() - t0, out.stderr
 
 
 def main():
     ap = argparse.ArgumentParser()
-    ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
-    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--build", action="append", default=None, help="build folder (repeatable)")
+    ap.add_argument("--repeat", type=int, default=5)
+    ap.add_argument("--stages", action="store_true")
     a = ap.parse_args()
-    exe = os.path.join(a.build, "shellcontract")
+    builds = a.build or [os.path.join(common.ROOT, "build")]
+    exes = [os.path.join(b, "shellcontract") for b in builds]
     bear = common.mesh_path("bear")
     if not os.path.exists(bear):
         sys.exit("bear.off is absent: scripts/fetch_paper_meshes.sh")
@@ -70,7 +73,20 @@ def main():
         bear16 = os.path.join(tmp, "bear16.off")
         write_off(bear16, v16, f16)
         for label, mesh, n in (("bear", bear, len(f)), ("bear split in sixteen", bear16, len(f16))):
-            print(f"{label}: {n} faces, best of {a.repeat}: {best_time(exe, mesh, tmp, a.repeat):.2f} s")
+            load0 = os.getloadavg()[0]
+            times = {exe: [] for exe in exes}
+            for _ in range(a.repeat):
+                for exe in exes:
+                    times[exe].append(one_run(exe, mesh, tmp)[0])
+            load1 = os.getloadavg()[0]
+            for exe in exes:
+                t = sorted(times[exe])
+                print(f"{label}: {n} faces, {exe}: median {statistics.median(t):.2f} s, best {t[0]:.2f} s "
+                      f"of {a.repeat} (load average {load0:.1f} -> {load1:.1f})")
+                if a.stages:
+                    env = dict(os.environ, SC_REGION_TIMING="1")
+                    print("".join("    " + line + "\n" for line in one_run(exe, mesh, tmp, env)[1].splitlines()
+                                  if line.startswith("region timing")), end="")
 
 
 if __name__ == "__main__":

@@ -137,6 +137,23 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs) {
       continue;
     }
     const OptionSpec* spec = find_run_option(name);
+    // region_at=[(x, y, z), ...] (or one point): the CLI's repeated --region-at, joined by ';'.
+    if (spec && spec->name == "region-at" && !py::isinstance<py::str>(value)) {
+      const py::list points = py::module_::import("numpy").attr("asarray")(value, "float64").attr("tolist")();
+      std::string text;
+      const auto point_text = [&](const py::handle& p) {
+        if (!py::isinstance<py::list>(p) || py::len(p) != 3)
+          throw py::value_error("option region_at: expected points (x, y, z), got " + std::string(py::str(value)));
+        return option_text(name, p);
+      };
+      if (py::len(points) > 0 && !py::isinstance<py::list>(points[0])) {
+        text = point_text(points);  // one point
+      } else {
+        for (const py::handle& p : points) text += (text.empty() ? "" : ";") + point_text(p);
+      }
+      spec->set(options, text);  // UsageError (ValueError) for an empty list or a bad number
+      continue;
+    }
     if (!spec)
       throw py::type_error("contract() got an unknown option '" + name + "'; valid options: " + valid_names());
     spec->set(options, option_text(name, value));  // UsageError (ValueError) for a bad value

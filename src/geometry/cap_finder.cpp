@@ -1,7 +1,6 @@
 // The spherical-cap region finder (algorithm in region_selection.hpp and docs/design/regions.md):
 // diffusion-smoothed mean curvature -> seeds -> geodesic discs grown while a sphere fits ->
 // ranked, non-overlapping, compact caps.
-#include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -14,13 +13,19 @@
 #include <limits>
 #include <numeric>
 #include <optional>
-#include <queue>
 #include <string>
 #include <utility>
 #include <vector>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <ctime>
 
+#include "geometry/cap_grower.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/curvature.hpp"
+#include "geometry/heat_smoothing.hpp"
 #include "geometry/region_metrics.hpp"
 #include "geometry/sphere_moments.hpp"
 #include "shellcontract/error.hpp"
@@ -29,7 +34,28 @@
 namespace shellcontract {
 namespace {
 
+/// Wall and processor time of the finder's stages on stderr when SC_REGION_TIMING is set (for
+/// lab/regions/bench_selection.py; nothing is printed otherwise).
+class StageTimer {
+ public:
+  void lap(const char* stage) {
+    const auto wall = std::chrono::steady_clock::now();
+    const std::clock_t cpu = std::clock();
+    if (on_)
+      std::fprintf(stderr, "region timing: %-14s wall %.3f s  cpu %.3f s\n", stage,
+                   std::chrono::duration<double>(wall - wall_).count(), static_cast<double>(cpu - cpu_) / CLOCKS_PER_SEC);
+    wall_ = wall;
+    cpu_ = cpu;
+  }
+
+ private:
+  bool on_ = std::getenv("SC_REGION_TIMING") != nullptr;
+  std::chrono::steady_clock::time_point wall_ = std::chrono::steady_clock::now();
+  std::clock_t cpu_ = std::clock();
+};
+
 using detail::Cap;
+using detail::CapGrower;
 using detail::MeshArrays;
 using detail::mesh_arrays;
 
@@ -39,18 +65,14 @@ constexpr double PI = 3.14159265358979323846;
 /// noise of a scan; the others give the seeds: a fingertip or an ear is a maximum at the
 /// smaller ones, a head at the larger.
 constexpr std::array<double, 4> SEED_SCALES = {0.01, 0.02, 0.05, 0.1};
-/// Growth step of the discs, in units of the mesh's size (finer than the smallest part looked for).
-constexpr double GROWTH_STEP = 0.004;
-/// Vertices a disc needs before its fit is judged (fewer cannot tell a cap from noise), and
-/// after which a disc that never fitted is given up.
-constexpr std::size_t MIN_FIT_POINTS = 10, GIVE_UP_POINTS = 40;
 /// A candidate whose freely grown cap has more than this share of its faces on better caps is a
 /// fragment of a part already taken (non-maximum suppression).
 constexpr double MAX_COVERED = 0.5;
 
 /// H smoothed by one implicit heat step: (M + t L) u = M H, L the (positive semidefinite)
 /// cotangent Laplacian, M the mixed areas, t = (scale * size)^2. Mesh-independent in the limit,
-/// unlike ring averages, so a subdivided mesh gives the same smoothed field.
+/// unlike ring averages, so a subdivided mesh gives the same smoothed field. Solved directly on
+/// small meshes, iteratively on large ones (heat_smoothing.hpp).
 std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Positions& x, const CurvatureField& c) {
   const auto n = static_cast<Eigen::Index>(m.nv);
   std::vector<Eigen::Triplet<double>> lt;
@@ -68,31 +90,16 @@ std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Posit
       lt.emplace_back(i, i, w);
       lt.emplace_back(j, j, w);
     }
-  Eigen::SparseMatrix<double> L(n, n), M(n, n);
+  Eigen::SparseMatrix<double> L(n, n);
   L.setFromTriplets(lt.begin(), lt.end());
-  std::vector<Eigen::Triplet<double>> mt;
+  Eigen::VectorXd mass(n);
   // A zero mixed area (all faces degenerate) would make the row singular: a tiny positive mass.
   const double floor = 1e-12 * m.total_area / std::max<double>(1.0, static_cast<double>(m.nv));
-  for (Eigen::Index i = 0; i < n; ++i) mt.emplace_back(i, i, std::max(c.mixed_area(i), floor));
-  M.setFromTriplets(mt.begin(), mt.end());
-  const Eigen::VectorXd rhs = M * c.mean;
-  // The scales are independent systems: solved side by side (each solve is the same
-  // deterministic sequence of operations as alone, so the result does not depend on the threads).
-  std::vector<Eigen::VectorXd> out(SEED_SCALES.size());
-  std::vector<char> failed(SEED_SCALES.size(), 0);
-  tbb::parallel_for(std::size_t{0}, SEED_SCALES.size(), [&](std::size_t k) {
-    const double t = (SEED_SCALES[k] * m.size) * (SEED_SCALES[k] * m.size);
-    const Eigen::SparseMatrix<double> A = M + t * L;
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
-    if (solver.info() != Eigen::Success) {
-      failed[k] = 1;
-      return;
-    }
-    out[k] = solver.solve(rhs);
-  });
-  if (std::any_of(failed.begin(), failed.end(), [](char f) { return f != 0; }))
-    throw UsageError("select_spherical_regions: the smoothing system is singular");
-  return out;
+  for (Eigen::Index i = 0; i < n; ++i) mass(i) = std::max(c.mixed_area(i), floor);
+  const Eigen::VectorXd rhs = mass.cwiseProduct(c.mean);
+  std::vector<double> times;
+  for (double scale : SEED_SCALES) times.push_back((scale * m.size) * (scale * m.size));
+  return detail::heat_solves(L, mass, rhs, times, n > detail::HEAT_DIRECT_MAX_VERTICES);
 }
 
 /// Area-weighted median of |values|; 0 when the total weight is 0.
@@ -107,143 +114,6 @@ double weighted_median_abs(const Eigen::VectorXd& values, const std::vector<doub
     if ((acc += weights[i]) >= 0.5 * total) return v(i);
   return 0.0;
 }
-
-/// Grows discs from seeds (step 2). Scratch arrays are kept between seeds.
-class CapGrower {
- public:
-  CapGrower(const MeshArrays& m, const Positions& x, const CurvatureField& c, const Eigen::VectorXd& concave_field,
-            const RegionOptions& o)
-      : m_(m), x_(x), c_(c), concave_(concave_field), o_(o), dist_(m.nv, INF), popped_(m.nv, 0) {}
-
-  /// The cap around `seed`, not entering vertices with blocked[v] != 0. Nothing when no disc
-  /// passed the tests.
-  std::optional<Cap> grow(int seed, const std::vector<char>& blocked) {
-    reset();
-    const double h = GROWTH_STEP * m_.size;
-    detail::SphereMoments moments(Vec3(x_.row(seed)), m_.size);
-    const Vec3 n_seed(c_.normal.row(seed));
-    std::priority_queue<std::pair<double, int>, std::vector<std::pair<double, int>>, std::greater<>> heap;
-    dist_[static_cast<std::size_t>(seed)] = 0.0;
-    touched_.push_back(seed);
-    heap.emplace(0.0, seed);
-    double boundary = h, area = 0.0, concave = 0.0, last = 0.0;
-    std::optional<Cap> best;
-    bool stop = false, unbounded = false;
-    const auto judge = [&]() {
-      if (order_.size() < MIN_FIT_POINTS) return;
-      const std::optional<detail::SphereFit> f = moments.fit();
-      const bool pass = f && f->residual <= o_.fit_tolerance && n_seed.dot(Vec3(x_.row(seed)) - f->centre) > 0.0 &&
-                        concave <= o_.max_concave_fraction * area;
-      if (pass) {
-        if (!best) best = Cap{};
-        best->seed = seed;
-        best->rho = last;
-        best->sphere = *f;
-      } else if (best || order_.size() >= GIVE_UP_POINTS) {
-        stop = true;
-      }
-    };
-    while (!heap.empty() && !stop) {
-      const auto [d, v] = heap.top();
-      heap.pop();
-      const auto vi = static_cast<std::size_t>(v);
-      if (popped_[vi]) continue;
-      if (d > boundary) {
-        judge();
-        if (stop) break;
-        if (area > o_.max_area_fraction * m_.total_area) {
-          unbounded = true;  // still fitting at the size limit: no part ends here
-          break;
-        }
-        boundary = (std::floor(d / h) + 1.0) * h;
-      }
-      popped_[vi] = 1;
-      order_.push_back(v);
-      last = d;
-      moments.add(Vec3(x_.row(v)), m_.vertex_area[vi]);
-      area += m_.vertex_area[vi];
-      if (concave_(v) < 0.0) concave += m_.vertex_area[vi];
-      for (const auto& [w, len] : m_.nbr[vi]) {
-        const auto wi = static_cast<std::size_t>(w);
-        if (blocked[wi] || popped_[wi] || !(d + len < dist_[wi])) continue;
-        if (dist_[wi] == INF) touched_.push_back(w);
-        dist_[wi] = d + len;
-        heap.emplace(d + len, w);
-      }
-    }
-    if (heap.empty() && !stop) judge();  // the whole (blocked-off) component is the disc
-    if (!best) return std::nullopt;
-    best->unbounded = unbounded;
-    best->angle = best->sphere.radius > 0.0 ? best->rho / best->sphere.radius : 0.0;
-    best->faces = disc_faces(seed, best->rho, blocked);
-    return best;
-  }
-
-  /// The faces of the disc of radius rho: every corner reached and the mean corner distance
-  /// within rho; the edge-connected part touching the seed; notches (a face outside with two
-  /// neighbours inside) filled in synchronous passes, so the result does not depend on the
-  /// order of the faces.
-  std::vector<int> disc_faces(int seed, double rho, const std::vector<char>& blocked) {
-    std::vector<int> cand;
-    std::vector<char> in(m_.nf, 0), keep(m_.nf, 0);
-    for (int v : touched_)
-      for (int f : m_.vertex_faces[static_cast<std::size_t>(v)]) {
-        if (in[static_cast<std::size_t>(f)]) continue;
-        const auto& t = m_.tri[static_cast<std::size_t>(f)];
-        double sum = 0.0;
-        bool reached = true;
-        for (int w : t) {
-          reached = reached && !blocked[static_cast<std::size_t>(w)] && dist_[static_cast<std::size_t>(w)] < INF;
-          sum += dist_[static_cast<std::size_t>(w)];
-        }
-        if (reached && sum / 3.0 <= rho) in[static_cast<std::size_t>(f)] = 1, cand.push_back(f);
-      }
-    std::vector<int> stack;
-    for (int f : m_.vertex_faces[static_cast<std::size_t>(seed)])
-      if (in[static_cast<std::size_t>(f)] && !keep[static_cast<std::size_t>(f)]) keep[static_cast<std::size_t>(f)] = 1, stack.push_back(f);
-    std::vector<int> faces;
-    while (!stack.empty()) {
-      const int f = stack.back();
-      stack.pop_back();
-      faces.push_back(f);
-      for (int g : m_.face_nbr[static_cast<std::size_t>(f)])
-        if (g >= 0 && in[static_cast<std::size_t>(g)] && !keep[static_cast<std::size_t>(g)]) keep[static_cast<std::size_t>(g)] = 1, stack.push_back(g);
-    }
-    for (int pass = 0; pass < 3; ++pass) {
-      std::vector<int> add;
-      for (int f : faces)
-        for (int g : m_.face_nbr[static_cast<std::size_t>(f)]) {
-          if (g < 0 || keep[static_cast<std::size_t>(g)]) continue;
-          const auto& t = m_.tri[static_cast<std::size_t>(g)];
-          if (std::any_of(t.begin(), t.end(), [&](int w) { return blocked[static_cast<std::size_t>(w)] != 0; })) continue;
-          int inside = 0;
-          for (int k : m_.face_nbr[static_cast<std::size_t>(g)]) inside += (k >= 0 && keep[static_cast<std::size_t>(k)]) ? 1 : 0;
-          if (inside >= 2) add.push_back(g);
-        }
-      if (add.empty()) break;
-      for (int g : add)
-        if (!keep[static_cast<std::size_t>(g)]) keep[static_cast<std::size_t>(g)] = 1, faces.push_back(g);
-    }
-    std::sort(faces.begin(), faces.end());
-    return faces;
-  }
-
- private:
-  static constexpr double INF = std::numeric_limits<double>::infinity();
-  void reset() {
-    for (int v : touched_) dist_[static_cast<std::size_t>(v)] = INF, popped_[static_cast<std::size_t>(v)] = 0;
-    touched_.clear();
-    order_.clear();
-  }
-  const MeshArrays& m_;
-  const Positions& x_;
-  const CurvatureField& c_;
-  const Eigen::VectorXd& concave_;
-  const RegionOptions& o_;
-  std::vector<double> dist_;
-  std::vector<char> popped_;
-  std::vector<int> touched_, order_;
-};
 
 /// Fills a summary from a cap and its faces.
 RegionSummary summarise(const Mesh& mesh, const Positions& x, const MeshArrays& m, const Cap& cap, double h_ref) {
@@ -325,8 +195,10 @@ void check_region_options(const RegionOptions& o) {
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report) {
   check_region_options(options);
+  StageTimer timer;
   const CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
   const MeshArrays m = mesh_arrays(mesh, x);
+  timer.lap("curvature");
   RegionReport r;
   r.total_area = m.total_area;
   if (m.nv == 0 || !(m.total_area > 0.0)) {
@@ -334,6 +206,7 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
     return std::vector<int>(m.nf, -1);
   }
   const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c);
+  timer.lap("smoothing");
   const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
   // A mostly flat mesh (a cube: median |H| = 0) must not make every rounded spot "curved".
   const double h_ref = std::max(weighted_median_abs(u.back(), m.vertex_area), diagonal > 0.0 ? 1.0 / diagonal : 0.0);
@@ -346,29 +219,33 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
       const Eigen::VectorXd& s = u[k];
       const double val = s(static_cast<Eigen::Index>(v));
       if (!(val > 0.0)) continue;
-      if (std::all_of(m.nbr[v].begin(), m.nbr[v].end(), [&](const auto& w) { return val > s(w.first); }))
-        seeds.push_back(static_cast<int>(v));
+      bool peak = true;
+      for (int k = m.nbr_start[v]; k < m.nbr_start[v + 1] && peak; ++k) peak = val > s(m.nbr_to[static_cast<std::size_t>(k)]);
+      if (peak) seeds.push_back(static_cast<int>(v));
     }
   std::sort(seeds.begin(), seeds.end());
   seeds.erase(std::unique(seeds.begin(), seeds.end()), seeds.end());
   r.seed_vertices = seeds.size();
 
   // Step 2: free growth, to rank.
-  CapGrower grower(m, x, c, u.front(), options);
+  const std::vector<detail::GrowthVertex> gv = detail::growth_vertices(m, x, u.front());
+  CapGrower grower(m, gv, c, options);
   const double min_angle = options.min_cap_angle_deg * PI / 180.0;
   const auto curved = [&](const Cap& cap) {
     return cap.angle >= min_angle && cap.sphere.radius * options.min_curvature_contrast * h_ref <= 1.0;
   };
-  const std::vector<char> none(m.nv, 0);
   // Each seed's free growth depends on the seed alone: grown side by side, one grower (scratch
   // arrays) per thread, and read back in seed order, so the result does not depend on threads.
+  // Only the caps that may be kept need their faces (for the ranking and the coverage test).
+  const std::function<bool(const Cap&)> candidate = [&](const Cap& cap) { return !cap.unbounded && curved(cap); };
   std::vector<std::optional<Cap>> grown(seeds.size());
   tbb::enumerable_thread_specific<std::unique_ptr<CapGrower>> growers;
   tbb::parallel_for(std::size_t{0}, seeds.size(), [&](std::size_t i) {
     std::unique_ptr<CapGrower>& g = growers.local();
-    if (!g) g = std::make_unique<CapGrower>(m, x, c, u.front(), options);
-    grown[i] = g->grow(seeds[i], none);
+    if (!g) g = std::make_unique<CapGrower>(m, gv, c, options);
+    grown[i] = g->grow(seeds[i], nullptr, &candidate);
   });
+  timer.lap("free growth");
   std::vector<Cap> candidates;
   for (std::optional<Cap>& cap : grown)
     if (cap) {
@@ -397,7 +274,7 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
       covered += std::any_of(m.tri[static_cast<std::size_t>(f)].begin(), m.tri[static_cast<std::size_t>(f)].end(),
                              [&](int v) { return blocked[static_cast<std::size_t>(v)] != 0; });
     if (static_cast<double>(covered) > MAX_COVERED * static_cast<double>(first.faces.size())) continue;
-    std::optional<Cap> cap = grower.grow(first.seed, blocked);
+    std::optional<Cap> cap = grower.grow(first.seed, &blocked);
     if (!cap || cap->faces.empty()) continue;
     if (cap->unbounded) {
       ++r.dropped_large;
@@ -419,6 +296,7 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
       kept.emplace_back(std::move(*cap), s);
     }
   }
+  timer.lap("ranked growth");
   // Step 4: caps of one part (two sides of a head) are joined across a convex gap.
   std::vector<Cap> caps;
   for (auto& k : kept) caps.push_back(std::move(k.first));
@@ -428,6 +306,7 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
     const RegionSummary s = summarise(mesh, x, m, cap, h_ref);
     kept.emplace_back(std::move(cap), s);
   }
+  timer.lap("merge");
   std::vector<int> region = number_regions(kept, m.nf, r, false);
   if (report) *report = std::move(r);
   return region;
@@ -445,7 +324,8 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   RegionReport r;
   r.total_area = m.total_area;
   r.reference_mean_curvature = h_ref;
-  CapGrower grower(m, x, c, u.front(), options);
+  const std::vector<detail::GrowthVertex> gv = detail::growth_vertices(m, x, u.front());
+  CapGrower grower(m, gv, c, options);
   std::vector<char> blocked(m.nv, 0);
   std::vector<std::pair<Cap, RegionSummary>> kept;
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -468,7 +348,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     if (blocked[static_cast<std::size_t>(seed)])
       throw UsageError("region point " + std::to_string(i + 1) + " lies in the region of an earlier point");
     ++r.seed_vertices;
-    std::optional<Cap> cap = grower.grow(seed, blocked);
+    std::optional<Cap> cap = grower.grow(seed, &blocked);
     if (!cap || cap->faces.empty()) {
       // No convex sphere fits here: the seed's one-ring, so the user still gets a region.
       cap = Cap{};

@@ -20,7 +20,10 @@ struct MeshArrays {
   std::size_t nv = 0, nf = 0;
   std::vector<std::array<int, 3>> tri;
   std::vector<double> face_area, vertex_area;            ///< vertex: a third of the incident faces
-  std::vector<std::vector<std::pair<int, double>>> nbr;  ///< vertex -> (neighbour, edge length)
+  /// Vertex v's neighbours nbr_to[k] at edge length nbr_len[k], k in [nbr_start[v],
+  /// nbr_start[v + 1]) (flat arrays: the disc growth visits millions of them).
+  std::vector<int> nbr_start, nbr_to;
+  std::vector<double> nbr_len;
   std::vector<std::array<int, 3>> face_nbr;              ///< across each edge, -1 on a border
   std::vector<std::vector<int>> vertex_faces;
   double total_area = 0.0, size = 0.0;  ///< size = sqrt(total_area)

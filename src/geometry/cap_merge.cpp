@@ -26,7 +26,6 @@ MeshArrays mesh_arrays(const Mesh& mesh, const Positions& x) {
   m.tri.resize(m.nf);
   m.face_area.assign(m.nf, 0.0);
   m.vertex_area.assign(m.nv, 0.0);
-  m.nbr.resize(m.nv);
   m.face_nbr.assign(m.nf, {-1, -1, -1});
   m.vertex_faces.resize(m.nv);
   for (FaceIndex f : mesh.faces()) {
@@ -46,11 +45,22 @@ MeshArrays mesh_arrays(const Mesh& mesh, const Positions& x) {
       m.vertex_faces[static_cast<std::size_t>(v)].push_back(static_cast<int>(f.idx()));
     }
   }
+  // Each vertex lists its neighbours in the order of the mesh's edges.
+  m.nbr_start.assign(m.nv + 1, 0);
+  for (EdgeIndex e : mesh.edges())
+    for (int k = 0; k < 2; ++k) ++m.nbr_start[mesh.vertex(e, k).idx() + 1];
+  for (std::size_t v = 0; v < m.nv; ++v) m.nbr_start[v + 1] += m.nbr_start[v];
+  m.nbr_to.resize(static_cast<std::size_t>(m.nbr_start[m.nv]));
+  m.nbr_len.resize(m.nbr_to.size());
+  std::vector<int> fill(m.nbr_start.begin(), m.nbr_start.end() - 1);
   for (EdgeIndex e : mesh.edges()) {
     const int a = static_cast<int>(mesh.vertex(e, 0).idx()), b = static_cast<int>(mesh.vertex(e, 1).idx());
     const double len = (Vec3(x.row(a)) - Vec3(x.row(b))).norm();
-    m.nbr[static_cast<std::size_t>(a)].emplace_back(b, len);
-    m.nbr[static_cast<std::size_t>(b)].emplace_back(a, len);
+    for (const auto& [from, to] : {std::pair<int, int>{a, b}, std::pair<int, int>{b, a}}) {
+      const auto k = static_cast<std::size_t>(fill[static_cast<std::size_t>(from)]++);
+      m.nbr_to[k] = to;
+      m.nbr_len[k] = len;
+    }
   }
   m.size = std::sqrt(m.total_area);
   return m;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -81,6 +82,43 @@ OptionSpec region_option() {
                                                 : r.region_file;
   };
   o.bad_examples = {""};
+  return o;
+}
+
+/// --region-at X,Y,Z (repeatable; ';' separates the points of one value, as get() writes them).
+OptionSpec region_at_option() {
+  OptionSpec o;
+  o.name = "region-at";
+  o.value_name = "X,Y,Z";
+  o.repeatable = true;
+  o.help =
+      "a region around the surface point nearest to X,Y,Z (repeatable): the spherical cap there, "
+      "as `regions --region-at` picks it, in the input's coordinates; excludes --regions and "
+      "--region-weights";
+  o.set = [](RunOptions& r, const std::string& v) {
+    std::vector<Vec3> points;
+    std::size_t begin = 0;
+    do {
+      const std::size_t end = std::min(v.find(';', begin), v.size());
+      const std::string text = v.substr(begin, end - begin);
+      Vec3 p;
+      char c1 = 0, c2 = 0;
+      std::istringstream in(text);
+      if (!(in >> p.x() >> c1 >> p.y() >> c2 >> p.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
+          !p.allFinite())
+        bad("region-at", text, "a point X,Y,Z of three finite numbers");
+      points.push_back(p);
+      begin = end + 1;
+    } while (begin <= v.size());
+    r.region_points = points;
+  };
+  o.get = [](const RunOptions& r) {
+    std::string s;
+    for (const Vec3& p : r.region_points)
+      s += (s.empty() ? "" : ";") + shortest_text(p.x()) + "," + shortest_text(p.y()) + "," + shortest_text(p.z());
+    return s;
+  };
+  o.bad_examples = {"", "1,2", "1,2,3,4", "a,b,c", "1,2,nan", "1 2 3", "1,2,3;"};
   return o;
 }
 
@@ -255,6 +293,7 @@ std::vector<OptionSpec> build_table() {
                      [](R& r) -> AnisoKind& { return r.sim.solver.aniso; }));
   t.push_back(region_option());
   t.push_back(region_weights_option());
+  t.push_back(region_at_option());
   t.push_back(number("k-a", 0, "KAPPA",
                      "kappa_A: the inward term is k_A = kappa_A mu_A sqrt(face rest area)",
                      non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));

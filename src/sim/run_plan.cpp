@@ -120,6 +120,13 @@ void resolve_run_options(RunOptions& r) {
         !r.given.count("k_b"))
       r.sim.solver.k_bending = dihedral_k_bending_from_young(*r.young, r.poisson, *r.thickness);
   }
+  // Points are the regions too: the caps at them, selected like --regions auto's.
+  if (!r.region_points.empty()) {
+    if (r.given.count("regions") || !r.region_weight_file.empty() || !r.vertex_weights.empty())
+      throw UsageError(
+          "`region_at` excludes `regions` and `region_weights` (the caps at the points are the regions)");
+    r.regions = RegionSource::Auto;
+  }
   // Weights are the regions: another region source beside them is a contradiction.
   if (!r.region_weight_file.empty() || !r.vertex_weights.empty()) {
     if (r.regions != RegionSource::Weights && r.given.count("regions"))
@@ -151,6 +158,13 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
     case RegionSource::Auto: {
       RegionOptions o;
       o.max_area_fraction = options.region_max_area;
+      if (!options.region_points.empty()) {
+        const Positions x = positions_from_mesh(mesh);
+        const std::vector<int> ids = select_regions_at(mesh, x, options.region_points, o);
+        store_curvature(mesh, compute_curvature(mesh, x));  // as mark_spherical_regions does
+        store_regions(mesh, ids);
+        return options.region_points.size();
+      }
       return mark_spherical_regions(mesh, positions_from_mesh(mesh), o);
     }
     case RegionSource::Weights: {
