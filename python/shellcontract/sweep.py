@@ -1,10 +1,11 @@
 """python3 -m shellcontract.sweep SWEEP.json -o DIR: many contraction runs, on Dask distributed.
 
 Every job of the sweep file is validated before any runs; then the jobs run on an embedded local
-cluster (one worker process per core), on an existing cluster (--scheduler tcp://HOST:PORT), or
-one slice of them serially (--shard I/N, for Slurm or Kubernetes job arrays). Each job is
-`shellcontract run` in a process of its own; its outcome lands whole in DIR/jobs/<id>/ and a row
-of DIR/results.csv and results.json. Running the same file again skips the finished jobs.
+cluster (one worker per core, a thread of this process that waits for its job's process), on an
+existing cluster (--scheduler tcp://HOST:PORT), or one slice of them serially (--shard I/N, for
+Slurm or Kubernetes job arrays). Each job is `shellcontract run` in a process of its own; its
+outcome lands whole in DIR/jobs/<id>/ and a row of DIR/results.csv and results.json. Running the
+same file again skips the finished jobs.
 docs/design/sweeps.md says how and why.
 
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage
@@ -14,6 +15,7 @@ or a refused sweep file (nothing run), 3 some job could not get an outcome (cras
 
 import argparse
 import os
+import queue
 import shutil
 import subprocess
 import sys
@@ -139,7 +141,7 @@ def _embedded_cluster(workers):
 
 
 def _run_dask(jobs, todo, args, cli, progress, on_record):
-    from distributed import Client, as_completed
+    from distributed import Client
     cluster = None
     if args.scheduler:
         client = Client(args.scheduler, timeout="30s")
@@ -155,11 +157,16 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
             progress.message("Dask dashboard: not available (it needs the Python package bokeh, "
                              "which Debian 12 does not package)")
         progress.restart_clock()  # the ETA counts from the cluster's start, not its set-up
+        # Finished futures are handed over through a queue that this thread blocks on:
+        # distributed's as_completed looks for them every 100 ms.
+        finished = queue.SimpleQueue()
         for job in todo:
             f = client.submit(sweep_job.run_job, job.to_dict(), args.output, cli, args.job_timeout,
                               args.checkpoint_every, key="shellcontract-job-" + job.id, pure=False)
             futures[f] = job
-        for f in as_completed(list(futures)):
+            f.add_done_callback(finished.put)
+        for _ in range(len(futures)):
+            f = finished.get()
             job = futures[f]
             try:
                 record = f.result()
