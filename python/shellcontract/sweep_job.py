@@ -55,14 +55,16 @@ def _death_signal_prefix():
     global _SETPRIV
     if _SETPRIV is None:
         exe = shutil.which("setpriv")
+        prefix = [exe, "--pdeathsig", "TERM", "--"] if exe else []
         usable = False
-        if exe:
+        if exe:  # tried once: an old setpriv without the option, or one refused it, exits 1
             try:
-                usable = "--pdeathsig" in subprocess.run([exe, "--help"], capture_output=True,
-                                                        text=True, timeout=10).stdout
+                r = subprocess.run(prefix + [exe, "--help"], capture_output=True, text=True,
+                                   timeout=10)
+                usable = r.returncode == 0 and "--pdeathsig" in r.stdout
             except (OSError, subprocess.SubprocessError):
                 usable = False
-        _SETPRIV = [exe, "--pdeathsig", "TERM", "--"] if usable else []
+        _SETPRIV = prefix if usable else []
     return _SETPRIV
 
 
