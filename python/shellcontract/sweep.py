@@ -140,8 +140,17 @@ def _embedded_cluster(workers):
                         silence_logs=40)
 
 
+# The client looks for the source code of the call that submits a computation (walking the
+# stack, finding every frame's module: a fair part of a second, before the first job can start),
+# to show it on the dashboard; the sweep's tasks have no code worth showing, so every module is
+# skipped.
+CLIENT_CONFIG = {"distributed.diagnostics.computations.ignore-modules": [".*"]}
+
+
 def _run_dask(jobs, todo, args, cli, progress, on_record):
+    import dask
     from distributed import Client
+    dask.config.set(CLIENT_CONFIG)
     cluster = None
     if args.scheduler:
         client = Client(args.scheduler, timeout="30s")
@@ -160,9 +169,12 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
         # Finished futures are handed over through a queue that this thread blocks on:
         # distributed's as_completed looks for them every 100 ms.
         finished = queue.SimpleQueue()
-        for job in todo:
-            f = client.submit(sweep_job.run_job, job.to_dict(), args.output, cli, args.job_timeout,
-                              args.checkpoint_every, key="shellcontract-job-" + job.id, pure=False)
+        # One call for all the jobs: one graph for the scheduler, not one per job.
+        submitted = client.map(sweep_job.run_job, [job.to_dict() for job in todo],
+                               out_dir=args.output, cli=cli, timeout=args.job_timeout,
+                               checkpoint_every=args.checkpoint_every, pure=False,
+                               key=["shellcontract-job-" + job.id for job in todo])
+        for f, job in zip(submitted, todo):
             futures[f] = job
             f.add_done_callback(finished.put)
         for _ in range(len(futures)):
