@@ -282,10 +282,11 @@ def _wait(proc, timeout):
     if proc.returncode is None:
         try:
             _, status, usage = os.wait4(proc.pid, 0)
-        except ChildProcessError:  # reaped elsewhere: Popen knows its status
+        except ChildProcessError:  # reaped by a poll() in another thread (stop_running)
             return proc.wait(), None
-        proc.returncode = os.waitstatus_to_exitcode(status)
-        return proc.returncode, usage.ru_utime + usage.ru_stime
+        rc = os.waitstatus_to_exitcode(status)
+        proc.returncode = rc  # (a poll() elsewhere, finding no child, could overwrite it)
+        return rc, usage.ru_utime + usage.ru_stime
     return proc.returncode, None
 
 
