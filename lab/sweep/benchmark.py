@@ -60,6 +60,8 @@ def main():
         r = resource.getrusage(resource.RUSAGE_CHILDREN)
         return r.ru_utime + r.ru_stime
 
+    plain_job_cpu = {}  # job id -> CPU seconds of its plain call, last round
+
     def plain_calls(folder):
         """The jobs as plain CLI calls with their own arguments, one after the other."""
         os.makedirs(folder)
@@ -69,9 +71,11 @@ def main():
             job, mesh, *args = line.split()
             mesh = os.path.join(os.path.dirname(sweep_path), mesh)
             ext = os.path.splitext(mesh)[1]
+            before = children_cpu()
             rc = subprocess.run([cli, "run", mesh, "-o", os.path.join(folder, job + ext),
                                  "--log", os.path.join(folder, job + ".csv"), "--summary",
                                  os.path.join(folder, job + ".json"), "-q"] + args).returncode
+            plain_job_cpu[job] = children_cpu() - before
             if rc not in (0, 5):
                 sys.exit("plain run of job {} exited {}".format(job, rc))
         return time.monotonic() - start, children_cpu() - cpu
@@ -84,9 +88,24 @@ def main():
                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         return time.monotonic() - start, children_cpu() - cpu
 
+    job_ratios = []  # a sweep job's CPU over the same job's plain call in the same round
+
+    def jobs_cpu(folder):
+        """The CPU seconds of the sweep's job processes alone (cpu_seconds of the job records):
+        the rest of the sweep's CPU time is the engine's (Python, Dask, the results files)."""
+        total = 0.0
+        for job in os.listdir(os.path.join(folder, "jobs")):
+            with open(os.path.join(folder, "jobs", job, "job.json")) as f:
+                seconds = json.load(f).get("cpu_seconds") or 0.0
+            total += seconds
+            if seconds and plain_job_cpu.get(job):
+                job_ratios.append(seconds / plain_job_cpu[job])
+        return total
+
     # Rounds of the three, alternating, so that a slow spell of the machine falls on all three
     # alike; each sweep starts in an empty folder (nothing skipped).
-    rounds, cpu = [], []
+    load_start = os.getloadavg()
+    rounds, cpu, split = [], [], []
     for k in range(a.rounds):
         w = {"plain": plain_calls(os.path.join(a.out, "plain{}".format(k))),
              1: sweep_run(os.path.join(a.out, "sweep1_{}".format(k)), 1),
@@ -94,9 +113,12 @@ def main():
         t = {key: v[0] for key, v in w.items()}
         cpu.append({key: v[1] for key, v in w.items()})
         rounds.append(t)
+        jobs1 = jobs_cpu(os.path.join(a.out, "sweep1_{}".format(k)))
+        split.append((jobs1, cpu[-1][1] - jobs1))
         print("round {}: plain {:.1f} s, 1 worker {:.1f} s, 2 workers {:.1f} s (CPU {:.1f}, {:.1f}, "
-              "{:.1f} s)".format(k + 1, t["plain"], t[1], t[2], cpu[-1]["plain"], cpu[-1][1],
-                                 cpu[-1][2]), flush=True)
+              "{:.1f} s; 1 worker's CPU: jobs {:.2f} s, engine {:.2f} s)".format(
+                  k + 1, t["plain"], t[1], t[2], cpu[-1]["plain"], cpu[-1][1], cpu[-1][2],
+                  jobs1, cpu[-1][1] - jobs1), flush=True)
 
     n = len(listing)
     med = {key: statistics.median(t[key] for t in rounds) for key in ("plain", 1, 2)}
@@ -117,10 +139,23 @@ def main():
         "calls): {:+.1f} % in wall time, {:+.1f} % in CPU time (every process of the sweep, "
         "Dask's included)".format(speedup, overhead, cpu_overhead),
         "",
+        "the 1-worker sweep's CPU, split: its job processes {:+.1f} % against the plain calls, "
+        "the engine (every other process and thread) {:.1f} % of the plain calls' "
+        "(medians); one job's process against the same job's plain call in the same round: "
+        "{:+.1f} % (median of {} pairs)".format(
+            statistics.median(100.0 * (j / c["plain"] - 1.0) for (j, _), c in zip(split, cpu)),
+            statistics.median(100.0 * e / c["plain"] for (_, e), c in zip(split, cpu)),
+            100.0 * (statistics.median(job_ratios) - 1.0) if job_ratios else float("nan"),
+            len(job_ratios)),
+        "",
         "each round (plain, 1 worker, 2 workers; wall s / CPU s): " + "; ".join(
             "{:.1f}/{:.1f}, {:.1f}/{:.1f}, {:.1f}/{:.1f}".format(
                 t["plain"], c["plain"], t[1], c[1], t[2], c[2]) for t, c in zip(rounds, cpu)),
     ]
+    lines.insert(0, "load average (1, 5, 15 min) at the start {:.2f} {:.2f} {:.2f}, at the end "
+                    "{:.2f} {:.2f} {:.2f}; wall times taken above 1.5 are not a quiet "
+                    "machine's".format(*load_start, *os.getloadavg()))
+    lines.insert(1, "")
     print("\n".join(lines))
     if a.page:
         with open(a.page, "a") as f:

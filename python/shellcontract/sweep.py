@@ -1,10 +1,11 @@
 """python3 -m shellcontract.sweep SWEEP.json -o DIR: many contraction runs, on Dask distributed.
 
 Every job of the sweep file is validated before any runs; then the jobs run on an embedded local
-cluster (one worker process per core), on an existing cluster (--scheduler tcp://HOST:PORT), or
-one slice of them serially (--shard I/N, for Slurm or Kubernetes job arrays). Each job is
-`shellcontract run` in a process of its own; its outcome lands whole in DIR/jobs/<id>/ and a row
-of DIR/results.csv and results.json. Running the same file again skips the finished jobs.
+cluster (one worker per core, a thread of this process that waits for its job's process), on an
+existing cluster (--scheduler tcp://HOST:PORT), or one slice of them serially (--shard I/N, for
+Slurm or Kubernetes job arrays). Each job is `shellcontract run` in a process of its own; its
+outcome lands whole in DIR/jobs/<id>/ and a row of DIR/results.csv and results.json. Running the
+same file again skips the finished jobs.
 docs/design/sweeps.md says how and why.
 
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage
@@ -14,8 +15,8 @@ or a refused sweep file (nothing run), 3 some job could not get an outcome (cras
 
 import argparse
 import os
+import queue
 import shutil
-import signal
 import subprocess
 import sys
 
@@ -88,7 +89,7 @@ def parser():
                        help="run only the I-th of N slices of the jobs, serially in this process "
                             "(job arrays: Slurm, Kubernetes indexed jobs)")
     p.add_argument("--workers", type=positive_int, default=None,
-                   help="worker processes of the embedded cluster (default: the cores)")
+                   help="jobs at a time on the embedded cluster (default: the cores)")
     p.add_argument("--job-timeout", type=positive_float, default=None, metavar="SECONDS",
                    help="stop a job after this long (recorded as 'timeout'; a later sweep "
                         "resumes it from its checkpoint)")
@@ -112,35 +113,44 @@ def _has_dashboard():
 
 # Dask's background work, which shares the cores with the jobs: each worker's statistical
 # profiler samples its threads every 10 ms, every event loop checks its own latency every 20 ms,
-# the memory monitors run every 100 ms and the scheduler looks for work to steal every 100 ms, for
-# tasks that only wait for their child processes. Off, or slowed, in the embedded cluster
-# (lab/sweep/README.md).
+# the memory monitors run every 100 ms, the system monitors (the dashboard's CPU and memory plots)
+# and the cluster's widget every 500 ms, the client asks for the scheduler's state every 2 s and
+# the scheduler looks for work to steal every 100 ms, for tasks that only wait for their child
+# processes. Off, or slowed, in the embedded cluster (lab/sweep/README.md); work stealing stays
+# on, for the last jobs of a sweep with fewer jobs than twice the workers.
 QUIET_WORKERS = {"distributed.worker.profile.enabled": False,
                  "distributed.admin.tick.interval": "1s",
                  "distributed.worker.memory.monitor-interval": "1s",
+                 "distributed.admin.system-monitor.interval": "1s",
+                 "distributed.deploy.cluster-repr-interval": "1h",
+                 "distributed.client.scheduler-info-interval": "10s",
                  "distributed.scheduler.work-stealing-interval": "1s"}
 
 
 def _embedded_cluster(workers):
     import dask
     from distributed import LocalCluster
-    # The worker processes ignore SIGINT (an ignored signal stays ignored across their exec): a
-    # Ctrl-C at the terminal reaches the whole process group, and only this process should act
-    # on it (cancel, close the cluster, whose workers' jobs then save their checkpoints).
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
-    try:
-        # One thread per worker: each job is one process, which uses the worker's core.
-        # For this process's scheduler too; the nannies hand it to their workers.
-        dask.config.set(QUIET_WORKERS)
-        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
-                            dashboard_address="127.0.0.1:0" if _has_dashboard() else None,
-                            silence_logs=40)
-    finally:
-        signal.signal(signal.SIGINT, previous)
+    dask.config.set(QUIET_WORKERS)
+    # The workers are threads of this process, one per job at a time: a job is a process of its
+    # own (sweep_job), so a worker process would add no isolation, only a Python interpreter to
+    # start and heartbeats over TCP (lab/sweep/README.md). No memory limit: the workers hold no
+    # data (a job's memory is its process's), so nothing to monitor.
+    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=False, memory_limit=0,
+                        dashboard_address="127.0.0.1:0" if _has_dashboard() else None,
+                        silence_logs=40)
+
+
+# The client looks for the source code of the call that submits a computation (walking the
+# stack, finding every frame's module: a fair part of a second, before the first job can start),
+# to show it on the dashboard; the sweep's tasks have no code worth showing, so every module is
+# skipped.
+CLIENT_CONFIG = {"distributed.diagnostics.computations.ignore-modules": [".*"]}
 
 
 def _run_dask(jobs, todo, args, cli, progress, on_record):
-    from distributed import Client, as_completed
+    import dask
+    from distributed import Client
+    dask.config.set(CLIENT_CONFIG)
     cluster = None
     if args.scheduler:
         client = Client(args.scheduler, timeout="30s")
@@ -156,11 +166,19 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
             progress.message("Dask dashboard: not available (it needs the Python package bokeh, "
                              "which Debian 12 does not package)")
         progress.restart_clock()  # the ETA counts from the cluster's start, not its set-up
-        for job in todo:
-            f = client.submit(sweep_job.run_job, job.to_dict(), args.output, cli, args.job_timeout,
-                              args.checkpoint_every, key="shellcontract-job-" + job.id, pure=False)
+        # Finished futures are handed over through a queue that this thread blocks on:
+        # distributed's as_completed looks for them every 100 ms.
+        finished = queue.SimpleQueue()
+        # One call for all the jobs: one graph for the scheduler, not one per job.
+        submitted = client.map(sweep_job.run_job, [job.to_dict() for job in todo],
+                               out_dir=args.output, cli=cli, timeout=args.job_timeout,
+                               checkpoint_every=args.checkpoint_every, pure=False,
+                               key=["shellcontract-job-" + job.id for job in todo])
+        for f, job in zip(submitted, todo):
             futures[f] = job
-        for f in as_completed(list(futures)):
+            f.add_done_callback(finished.put)
+        for _ in range(len(futures)):
+            f = finished.get()
             job = futures[f]
             try:
                 record = f.result()
@@ -170,11 +188,16 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
             on_record(job, record)
     except KeyboardInterrupt:
         client.cancel(list(futures))
+        # The embedded workers are this process's threads: their jobs are told to stop here
+        # (SIGTERM: each saves its checkpoint) and waited for.
+        sweep_job.stop_running()
+        sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS)
         raise
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
+        sweep_job.allow_starting()
 
 
 def main(argv=None):
@@ -201,17 +224,16 @@ def main(argv=None):
         return 0
     os.makedirs(os.path.join(args.output, "jobs"), exist_ok=True)
     selected = jobs if args.shard is None else jobs[args.shard[0]::args.shard[1]]
-    todo = [j for j in selected if not sweep_job.is_done(sweep_job.read_record(args.output, j.id))]
-    table = sweep_results.write(jobs, varying, args.output, sweep_dir)
-    done = sum(1 for j in selected if sweep_job.is_done(sweep_job.read_record(args.output, j.id)))
+    tables = sweep_results.Writer(jobs, varying, args.output, sweep_dir)
+    todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
+    sweep_results.write(jobs, varying, args.output, sweep_dir, records=tables.records)
+    done = len(selected) - len(todo)
     progress = sweep_progress.Progress(len(selected), done=done)
     progress.message("{} jobs ({} in this run, {} done already) -> {}".format(
         len(jobs), len(todo), done, args.output))
-    latest = {}
 
     def on_record(job, record):
-        latest[job.id] = record
-        sweep_results.write(jobs, varying, args.output, sweep_dir, latest)
+        tables.record(job, record)
         progress.job_finished(record, job.label())
 
     try:
@@ -222,13 +244,13 @@ def main(argv=None):
         elif todo:  # nothing left to run: no cluster to start
             _run_dask(jobs, todo, args, cli, progress, on_record)
     except KeyboardInterrupt:
-        sweep_results.write(jobs, varying, args.output, sweep_dir, latest)
+        tables.flush()
         progress.close()
         print("shellcontract sweep: interrupted; run the same command again to finish the rest "
               "(finished jobs are kept, running ones resume from their checkpoints)",
               file=sys.stderr)
         return EXIT_INTERRUPTED
-    table = sweep_results.write(jobs, varying, args.output, sweep_dir, latest)
+    table = tables.flush()
     progress.close()
     ids = {j.id for j in selected}
     incomplete = [r for r in table if r["job"] in ids and

@@ -9,9 +9,11 @@ nothing of the compiled core, so that a worker needs only the CLI and this packa
 import ctypes
 import json
 import os
+import select
 import shutil
 import signal
 import subprocess
+import threading
 import time
 import uuid
 
@@ -40,6 +42,69 @@ def _die_with_parent():
     mid-job), so that the run writes its checkpoint and stops instead of running on orphaned."""
     if _PRCTL is not None:
         _PRCTL(PR_SET_PDEATHSIG, int(signal.SIGTERM))
+
+
+_SETPRIV = None  # [] when setpriv cannot set the parent-death signal
+
+
+def _death_signal_prefix():
+    """The same parent-death signal set by util-linux's setpriv, which then execs the run.
+    Preferred to Popen's preexec_fn: a preexec_fn makes Python fork the whole calling process
+    (its page tables copied, Python code run in the copy) instead of vfork-and-exec, which costs
+    a job more than all the rest of the engine (lab/sweep/README.md)."""
+    global _SETPRIV
+    if _SETPRIV is None:
+        exe = shutil.which("setpriv")
+        prefix = [exe, "--pdeathsig", "TERM", "--"] if exe else []
+        usable = False
+        if exe:  # tried once: an old setpriv without the option, or one refused it, exits 1
+            try:
+                r = subprocess.run(prefix + [exe, "--help"], capture_output=True, text=True,
+                                   timeout=10)
+                usable = r.returncode == 0 and "--pdeathsig" in r.stdout
+            except (OSError, subprocess.SubprocessError):
+                usable = False
+        _SETPRIV = prefix if usable else []
+    return _SETPRIV
+
+
+# The jobs this Python process runs now (their processes, and how many run_job calls are under
+# way): an embedded cluster's workers are threads of the sweep's process, so on Ctrl-C the sweep
+# stops them itself (stop_running, then wait_stopped).
+_RUNNING = set()
+_RUNNING_LOCK = threading.Lock()
+_stopping = False  # set by stop_running: no job starts any more
+_ACTIVE = threading.Condition()
+_active_calls = 0
+
+
+def stop_running():
+    """SIGTERM to every job process started here that still runs: each saves its checkpoint and
+    exits (its run_job then returns an 'interrupted' record). No job starts after this (until
+    allow_starting), so that a task a worker takes up meanwhile does not slip through."""
+    global _stopping
+    with _RUNNING_LOCK:
+        _stopping = True
+        procs = list(_RUNNING)
+    for proc in procs:
+        if proc.poll() is None:
+            try:
+                proc.terminate()
+            except OSError:
+                pass
+
+
+def allow_starting():
+    global _stopping
+    with _RUNNING_LOCK:
+        _stopping = False
+
+
+def wait_stopped(timeout):
+    """Waits until no run_job call is under way in this process (at most `timeout` seconds);
+    True if none is."""
+    with _ACTIVE:
+        return _ACTIVE.wait_for(lambda: _active_calls == 0, timeout)
 
 
 def paths(out_dir, job_id):
@@ -103,6 +168,18 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20):
     """Runs one job (a Job.to_dict()) unless DIR/jobs/<id>/ holds its outcome already; returns
     its record. An interrupted job (SIGTERM/SIGINT to the child) leaves its checkpoint and no
     record; the next attempt resumes from the checkpoint."""
+    global _active_calls
+    with _ACTIVE:
+        _active_calls += 1
+    try:
+        return _run_job(job, out_dir, cli, timeout, checkpoint_every)
+    finally:
+        with _ACTIVE:
+            _active_calls -= 1
+            _ACTIVE.notify_all()
+
+
+def _run_job(job, out_dir, cli, timeout, checkpoint_every):
     out_dir = os.path.abspath(out_dir)
     p = paths(out_dir, job["id"])
     old = read_record(out_dir, job["id"])
@@ -127,11 +204,22 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20):
     with open(os.path.join(work, "messages.txt"), "wb") as messages:
         # A session of its own: a Ctrl-C at the terminal reaches the sweep, which stops the
         # children itself (SIGTERM: they write their checkpoints).
-        proc = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
-                                start_new_session=True, preexec_fn=_die_with_parent)
+        prefix = _death_signal_prefix()
+        with _RUNNING_LOCK:
+            proc = None if _stopping else subprocess.Popen(
+                prefix + cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
+                start_new_session=True, preexec_fn=None if prefix else _die_with_parent)
+            if proc is not None:
+                _RUNNING.add(proc)
+        if proc is None:  # the sweep is stopping: the job is left for the next one
+            shutil.rmtree(work, ignore_errors=True)
+            return {"job": job["id"], "mesh": job["mesh"], "options": job["options"],
+                    "status": "interrupted", "exit_code": None, "message": "not started",
+                    "resumed": resumed, "output": ""}
         try:
+            cpu = None
             try:
-                rc = proc.wait(timeout=timeout)
+                rc, cpu = _wait(proc, timeout)
             except subprocess.TimeoutExpired:
                 timed_out = True
                 rc = _stop(proc)
@@ -139,6 +227,9 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20):
             _stop(proc)
             shutil.rmtree(work, ignore_errors=True)
             raise
+        finally:
+            with _RUNNING_LOCK:
+                _RUNNING.discard(proc)
     wall = time.monotonic() - start
     summary = None
     try:
@@ -150,7 +241,9 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20):
                                 _last_lines(os.path.join(work, "messages.txt")))
     record = {"job": job["id"], "mesh": job["mesh"], "options": job["options"],
               "status": status, "exit_code": rc, "message": message,
-              "wall_seconds": round(wall, 3), "resumed": resumed, "output": ""}
+              "wall_seconds": round(wall, 3),
+              "cpu_seconds": None if cpu is None else round(cpu, 3),
+              "resumed": resumed, "output": ""}
     for k in SUMMARY_FIELDS:
         record[k] = summary.get(k) if summary else None
     if status == "interrupted":
@@ -166,6 +259,35 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20):
         except OSError:
             pass
     return record
+
+
+def _wait(proc, timeout):
+    """Waits for the job's process: (its exit status as Popen's returncode, its CPU seconds, user
+    and system, or None where they cannot be had). With a timeout, a pidfd (Linux 5.3), which
+    becomes readable when the process ends, instead of Popen.wait(timeout), which wakes up
+    every few milliseconds to look."""
+    if timeout is not None:
+        try:
+            fd = os.pidfd_open(proc.pid)
+        except (AttributeError, OSError):  # no pidfd here: Popen's own polling
+            fd = None
+            proc.wait(timeout=timeout)
+        if fd is not None:
+            try:
+                ready, _, _ = select.select([fd], [], [], timeout)
+            finally:
+                os.close(fd)
+            if not ready:
+                raise subprocess.TimeoutExpired(proc.args, timeout)
+    if proc.returncode is None:
+        try:
+            _, status, usage = os.wait4(proc.pid, 0)
+        except ChildProcessError:  # reaped by a poll() in another thread (stop_running)
+            return proc.wait(), None
+        rc = os.waitstatus_to_exitcode(status)
+        proc.returncode = rc  # (a poll() elsewhere, finding no child, could overwrite it)
+        return rc, usage.ru_utime + usage.ru_stime
+    return proc.returncode, None
 
 
 def _stop(proc):

@@ -6,6 +6,7 @@ import csv
 import io
 import json
 import os
+import time
 import uuid
 
 from . import sweep_job
@@ -18,13 +19,18 @@ def columns(varying):
     return ["job", "mesh"] + list(varying) + list(RESULT_COLUMNS)
 
 
-def rows(jobs, varying, out_dir, sweep_dir, latest=None):
+def rows(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
     """The table's rows (dicts); `latest` maps job id -> a record newer than the folder's (an
-    interrupted attempt, which has no folder)."""
+    interrupted attempt, which has no folder). `records` (job id -> record or None) stands for
+    the job folders when given: a sweep reads each folder once, not every job's after each."""
     latest = latest or {}
     out = []
     for job in jobs:
-        record = sweep_job.read_record(out_dir, job.id) or latest.get(job.id)
+        if records is not None:
+            record = records.get(job.id)
+        else:
+            record = sweep_job.read_record(out_dir, job.id)
+        record = record or latest.get(job.id)
         row = {"job": job.id, "mesh": os.path.relpath(job.mesh, sweep_dir)}
         for name in varying:
             row[name] = job.varying.get(name, job.options.get(name, ""))
@@ -56,9 +62,9 @@ def _cell(v):
     return str(v)
 
 
-def write(jobs, varying, out_dir, sweep_dir, latest=None):
+def write(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
     """Writes both files; returns the rows."""
-    table = rows(jobs, varying, out_dir, sweep_dir, latest)
+    table = rows(jobs, varying, out_dir, sweep_dir, latest, records)
     names = columns(varying)
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
@@ -78,3 +84,34 @@ def counts(table):
     done = sum(1 for r in table if r["status"] in ("ok", "target not reached"))
     left = sum(1 for r in table if r["status"] == "pending")
     return done, len(table) - done - left, left
+
+
+class Writer:
+    """The tables rewritten while a sweep runs: from the records it holds (each job folder read
+    once), and at most once per INTERVAL_SECONDS and never more often than INTERVAL_COST times
+    the last write's duration, so that a sweep of many short jobs does not spend its time
+    rewriting a large table; the last write (flush) reads every folder again (another shard's
+    jobs may have finished meanwhile)."""
+    INTERVAL_SECONDS = 1.0
+    INTERVAL_COST = 20.0
+
+    def __init__(self, jobs, varying, out_dir, sweep_dir, clock=time.monotonic):
+        self.jobs, self.varying, self.out_dir, self.sweep_dir = jobs, varying, out_dir, sweep_dir
+        self.records = {j.id: sweep_job.read_record(out_dir, j.id) for j in jobs}
+        self.latest = {}
+        self.clock = clock
+        self.next_write = clock()
+
+    def record(self, job, record):
+        """A job's new outcome; rewrites the tables when due."""
+        self.latest[job.id] = record
+        self.records[job.id] = sweep_job.read_record(self.out_dir, job.id) or record
+        now = self.clock()
+        if now >= self.next_write:
+            write(self.jobs, self.varying, self.out_dir, self.sweep_dir, records=self.records)
+            took = self.clock() - now
+            self.next_write = now + max(self.INTERVAL_SECONDS, self.INTERVAL_COST * took)
+
+    def flush(self):
+        """Rewrites the tables from the job folders; returns the rows."""
+        return write(self.jobs, self.varying, self.out_dir, self.sweep_dir, self.latest)

@@ -1,0 +1,152 @@
+"""The sweep engine's ways of keeping its cost down (lab/sweep/README.md) keep what they replace:
+a job's run still gets SIGTERM (and saves) when the process that started it dies, through
+setpriv as through the preexec_fn fallback; Ctrl-C on the embedded cluster, whose workers are
+threads of the sweep's process, still stops the running jobs, which save; the results tables,
+rewritten at most once a second while the sweep runs, still end whole."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import pytest
+
+from shellcontract import sweep_file, sweep_job, sweep_results
+from test_sweep import done_jobs, results, sweep_env, wait_until, write_sweep
+
+pytest.importorskip("distributed")
+
+
+def processes_naming(text):
+    """Pids of the processes whose command line contains `text` (a test's own tmp_path)."""
+    pids = []
+    for name in os.listdir("/proc"):
+        if not name.isdigit() or int(name) == os.getpid():
+            continue
+        try:
+            with open("/proc/{}/cmdline".format(name), "rb") as f:
+                if text.encode() in f.read():
+                    pids.append(int(name))
+        except OSError:
+            pass
+    return pids
+
+
+def kill_left_over(tmp_path):
+    for pid in processes_naming(str(tmp_path)):
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except OSError:
+            pass
+
+
+# A job that runs far longer than the test: it ends only if it is told to.
+ENDLESS = {"meshes": ["meshes/ico3.off"], "options": {"frames": 1000000, "threads": 1}}
+
+STARTER = """import sys
+from shellcontract import sweep_job
+if sys.argv[1] == "preexec":
+    sweep_job._SETPRIV = []  # as on a machine without util-linux's setpriv
+sweep_job.run_job(__import__("json").loads(sys.argv[2]), sys.argv[3], sys.argv[4], None, 20)
+"""
+
+
+@pytest.mark.parametrize("launch", ["setpriv", "preexec"])
+def test_a_job_saves_and_stops_when_the_process_that_started_it_dies(cli, mesh_dir, tmp_path,
+                                                                     launch):
+    if launch == "setpriv" and not sweep_job._death_signal_prefix():
+        pytest.skip("no setpriv with --pdeathsig here")
+    path = write_sweep(tmp_path, mesh_dir, "endless.json", ENDLESS, meshes=("ico3.off",))
+    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
+    job = sweep_file.expand(str(path), sweep_file.load(str(path)), version)[0]
+    out = tmp_path / "out"
+    starter = subprocess.Popen([sys.executable, "-c", STARTER, launch, json.dumps(job.to_dict()),
+                                str(out), cli], env=sweep_env(cli))
+    try:
+        # The run is under way (it has saved once, so it has its signal handlers).
+        checkpoint = out / ".work" / "checkpoints" / (job.id + ".ckpt")
+        wait_until(checkpoint.is_file)
+        messages = list((out / ".work").glob(job.id + ".*/messages.txt"))
+        assert len(messages) == 1
+        starter.kill()  # SIGKILL: nothing of the starter's own code runs
+        starter.wait()
+        # Without the parent-death signal the run would go on (a million frames) and never
+        # print where it saved; with it, it gets SIGTERM, saves and exits 130.
+        wait_until(lambda: "--resume" in messages[0].read_text(), timeout=60)
+        wait_until(lambda: not processes_naming(str(tmp_path)), timeout=30)
+    finally:
+        if starter.poll() is None:
+            starter.kill()
+        kill_left_over(tmp_path)
+
+
+def test_ctrl_c_on_the_embedded_cluster_stops_the_jobs_which_save(cli, mesh_dir, tmp_path):
+    # Two jobs that end only if told to, one per worker: Ctrl-C certainly finds both running.
+    spec = dict(ENDLESS, grid={"pressure": [2, 3]})
+    path = write_sweep(tmp_path, mesh_dir, "endless.json", spec, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    checkpoints = out / ".work" / "checkpoints"
+    proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                             "--workers", "2", "--checkpoint-every", "5"], env=sweep_env(cli),
+                            stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        wait_until(lambda: checkpoints.is_dir() and len(list(checkpoints.glob("*.ckpt"))) == 2)
+        proc.send_signal(signal.SIGINT)
+        # Without the sweep stopping its workers' jobs itself, closing the cluster would wait
+        # for runs that never end.
+        _, err = proc.communicate(timeout=60)
+        assert proc.returncode == 130, err
+        # Both runs have ended (none goes on behind the sweep's back) and left nothing half-done:
+        # no working folder, no job folder, both jobs pending with their checkpoints.
+        assert processes_naming(str(tmp_path)) == []
+        assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"]
+        assert done_jobs(out) == []
+        assert [r["status"] for r in results(out)] == ["pending", "pending"]
+        assert {p.stem for p in checkpoints.glob("*.ckpt")} == {r["job"] for r in results(out)}
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+        kill_left_over(tmp_path)
+
+
+class Clock:
+    def __init__(self):
+        self.now = 100.0
+
+    def __call__(self):
+        return self.now
+
+
+def test_results_tables_are_rewritten_at_most_once_a_second_and_end_whole(mesh_dir, tmp_path):
+    spec = {"meshes": ["meshes/ico1.off"], "grid": {"pressure": [1, 2, 3]}}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
+    data = sweep_file.load(str(path))
+    jobs = sweep_file.expand(str(path), data, "test-version")
+    out = tmp_path / "out"
+    (out / "jobs").mkdir(parents=True)
+
+    def finish(job):
+        """A job's outcome as run_job leaves it: its folder with its record."""
+        record = {"job": job.id, "status": "ok", "exit_code": 0, "output": ""}
+        (out / "jobs" / job.id).mkdir()
+        (out / "jobs" / job.id / "job.json").write_text(json.dumps(record))
+        return record
+
+    def statuses():
+        return [r["status"] for r in results(out)]
+
+    clock = Clock()
+    tables = sweep_results.Writer(jobs, sweep_file.varying_names(data), str(out), str(tmp_path),
+                                  clock=clock)
+    tables.record(jobs[0], finish(jobs[0]))  # the first outcome is written at once
+    assert statuses() == ["ok", "pending", "pending"]
+    clock.now += 0.5
+    tables.record(jobs[1], finish(jobs[1]))  # half a second later: not yet
+    assert statuses() == ["ok", "pending", "pending"]
+    finish(jobs[2])  # another shard's job, which this sweep never hears of
+    clock.now += sweep_results.Writer.INTERVAL_SECONDS
+    tables.record(jobs[1], sweep_job.read_record(str(out), jobs[1].id))
+    assert statuses() == ["ok", "ok", "pending"]  # due: written, from what this sweep holds
+    tables.flush()  # the last write reads every folder
+    assert statuses() == ["ok", "ok", "ok"]
