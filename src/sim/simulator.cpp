@@ -14,6 +14,7 @@
 #include "shellcontract/mesh/eigen_point_map.hpp"
 #include "shellcontract/sim/local_contraction.hpp"
 #include "shellcontract/sim/mass_scaling.hpp"
+#include "shellcontract/sim/region_mirror.hpp"
 #include "shellcontract/sim/region_volume.hpp"
 #include "shellcontract/sim/region_weights.hpp"
 #include "shellcontract/sim/volume_constraint.hpp"
@@ -307,9 +308,17 @@ void Simulator::apply_region_contraction(Positions& x) {
     if (!(d.dimple.rest_volume > 0.0)) continue;
     const double target = -ratio * d.dimple.rest_volume;
     // One-sided: a dimple the global contraction has already sunk further is left alone.
-    if (cap_volume(x, d.dimple) > target)
-      project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
-                                 1e-12 * d.dimple.rest_volume);
+    if (!(cap_volume(x, d.dimple) > target)) continue;
+    // The mirror (an isometry) where the dimple has one; the volume projection otherwise.
+    if (options_.dimple_shape == DimpleShape::Mirror) {
+      if (d.mirror_size != d.size) {  // the dimple grew: a new rim, a new mirror
+        d.mirror = make_region_mirror(rest_x_, d.dimple);
+        d.mirror_size = d.size;
+      }
+      if (apply_region_mirror(x, d.dimple, d.mirror, inv_mass_, held_by_contact_, 1.0)) continue;
+    }
+    project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
+                               1e-12 * d.dimple.rest_volume);
   }
 }
 
