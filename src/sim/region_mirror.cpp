@@ -33,7 +33,8 @@ Vec3 reflect(const Vec3& p, const MirrorPlane& plane) {
   return p - 2.0 * (p - plane.point).dot(plane.normal) * plane.normal;
 }
 
-std::optional<Similarity> fit_similarity(const std::vector<Vec3>& from, const std::vector<Vec3>& to) {
+std::optional<Similarity> fit_similarity(const std::vector<Vec3>& from,
+                                         const std::vector<Vec3>& to) {
   if (from.size() != to.size() || from.size() < 3) return std::nullopt;
   if (!spans_plane(from) || !spans_plane(to)) return std::nullopt;
   const Vec3 cp = centroid(from), cq = centroid(to);
@@ -59,18 +60,25 @@ std::optional<Similarity> fit_similarity(const std::vector<Vec3>& from, const st
 
 const char* mirror_fallback_name(MirrorFallback f) {
   switch (f) {
-    case MirrorFallback::None: return "mirrorable";
-    case MirrorFallback::NoRim: return "fewer than 3 rim vertices";
-    case MirrorFallback::CollinearRim: return "collinear rim";
-    case MirrorFallback::NoArea: return "zero area vector";
-    case MirrorFallback::NoInteriorVertex: return "no interior vertex";
+    case MirrorFallback::None:
+      return "mirrorable";
+    case MirrorFallback::NoRim:
+      return "fewer than 3 rim vertices";
+    case MirrorFallback::CollinearRim:
+      return "collinear rim";
+    case MirrorFallback::NoArea:
+      return "zero area vector";
+    case MirrorFallback::NoInteriorVertex:
+      return "no interior vertex";
   }
   return "unknown";
 }
 
 RegionMirror make_region_mirror(const Positions& rest, const RegionCap& cap) {
   RegionMirror m;
-  auto at = [&](int local) { return Vec3(rest.row(cap.vertices[static_cast<std::size_t>(local)])); };
+  auto at = [&](int local) {
+    return Vec3(rest.row(cap.vertices[static_cast<std::size_t>(local)]));
+  };
   if (cap.rim.size() < 3) return m;  // NoRim
   for (int r : cap.rim) m.rest_rim.push_back(at(r));
   if (!spans_plane(m.rest_rim)) {
@@ -85,7 +93,8 @@ RegionMirror make_region_mirror(const Positions& rest, const RegionCap& cap) {
   Vec3 area = Vec3::Zero();
   double total = 0.0;
   for (Eigen::Index j = 0; j < cap.faces.rows(); ++j) {
-    const Vec3 e = (at(cap.faces(j, 1)) - at(cap.faces(j, 0))).cross(at(cap.faces(j, 2)) - at(cap.faces(j, 0)));
+    const Vec3 e = (at(cap.faces(j, 1)) - at(cap.faces(j, 0)))
+                       .cross(at(cap.faces(j, 2)) - at(cap.faces(j, 0)));
     area += e;
     total += e.norm();
   }
@@ -117,7 +126,8 @@ bool apply_region_mirror(Positions& x, const RegionCap& cap, const RegionMirror&
   const double share = std::min(beta, 1.0);
   for (std::size_t i = 0; i < mirror.moved.size(); ++i) {
     const int v = cap.vertices[static_cast<std::size_t>(mirror.moved[i])];
-    if (!(w(v) > 0.0) || (static_cast<std::size_t>(v) < held.size() && held[static_cast<std::size_t>(v)]))
+    if (!(w(v) > 0.0) ||
+        (static_cast<std::size_t>(v) < held.size() && held[static_cast<std::size_t>(v)]))
       continue;
     const Vec3 target = (*frame)(mirror.image[i]);
     x.row(v) += (share * (target - Vec3(x.row(v)))).transpose();

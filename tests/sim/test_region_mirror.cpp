@@ -1,7 +1,7 @@
 // The mirrored dimple (sim/region_mirror.hpp, docs/math/region-mirror.md): the reflection is an
-// isometry, the similarity fit recovers a known transform, a cap with a flat rim mirrors into a dent
-// of the same volume and edge lengths wherever its rim has gone, and the degenerate regions fall
-// back to the volume projection with a named reason.
+// isometry, the similarity fit recovers a known transform, a cap with a flat rim mirrors into a
+// dent of the same volume and edge lengths wherever its rim has gone, and the degenerate regions
+// fall back to the volume projection with a named reason.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -139,7 +139,8 @@ TEST(RegionMirror, AFlatRimCapBecomesADentOfTheSameShapeCarriedByItsRim) {
     EXPECT_NEAR((Vec3(x.row(i)) - frame(mirrored)).norm(), 0.0, 1e-12) << "vertex " << i;
   }
   for (const auto& [a, b] : edges_of(c.faces))
-    EXPECT_NEAR((x.row(a) - x.row(b)).norm(), frame.scale * (c.x.row(a) - c.x.row(b)).norm(), 1e-12);
+    EXPECT_NEAR((x.row(a) - x.row(b)).norm(), frame.scale * (c.x.row(a) - c.x.row(b)).norm(),
+                1e-12);
   const double rest_volume = cap_volume(c.x, cap);
   ASSERT_GT(rest_volume, 0.0);
   EXPECT_NEAR(cap_volume(x, cap), -std::pow(frame.scale, 3) * rest_volume, 1e-12);
@@ -212,7 +213,8 @@ TEST(RegionMirror, ARimCollapsedOntoALineGivesNoFrameAndMovesNothing) {
   EXPECT_FALSE(apply_region_mirror(x, cap, m, Eigen::VectorXd::Ones(x.rows()), {}, 1.0));
   EXPECT_EQ(x, before);
   std::vector<Vec3> from, to;
-  for (int r : cap.rim) from.push_back(c.x.row(cap.vertices[r])), to.push_back(x.row(cap.vertices[r]));
+  for (int r : cap.rim)
+    from.push_back(c.x.row(cap.vertices[r])), to.push_back(x.row(cap.vertices[r]));
   EXPECT_FALSE(fit_similarity(from, to).has_value());
   EXPECT_FALSE(fit_similarity(to, from).has_value());
   EXPECT_FALSE(fit_similarity({from[0], from[1]}, {to[0], to[1]}).has_value());

@@ -48,7 +48,8 @@ TEST(RegionMirrorRun, MirroredBumpsSinkLocally) {
   EXPECT_EQ(mirror.new_intersections, 0);
   EXPECT_GE(mirror.region_inward_displacement, 0.01);
   EXPECT_LE(mirror.outside_region_displacement, 0.1 * mirror.region_inward_displacement)
-      << "sink " << mirror.region_inward_displacement << ", rest " << mirror.outside_region_displacement;
+      << "sink " << mirror.region_inward_displacement << ", rest "
+      << mirror.outside_region_displacement;
   EXPECT_LT(mirror.outside_region_displacement, volume.outside_region_displacement);
 }
 

@@ -34,7 +34,8 @@ Vec3 reflect(const Vec3& p, const MirrorPlane& plane);
 /// centred cross-covariance, its reflection turned into a rotation). nullopt when the sizes differ,
 /// there are fewer than 3 points, or either set is collinear or a point (the rotation about the
 /// line, or the scale, is then not determined).
-std::optional<Similarity> fit_similarity(const std::vector<Vec3>& from, const std::vector<Vec3>& to);
+std::optional<Similarity> fit_similarity(const std::vector<Vec3>& from,
+                                         const std::vector<Vec3>& to);
 
 /// Why a region cannot be mirrored (it then keeps the volume projection).
 enum class MirrorFallback {
@@ -55,9 +56,9 @@ struct RegionMirror {
   MirrorFallback fallback = MirrorFallback::NoRim;
   MirrorPlane plane;
   Vec3 rest_centre = Vec3::Zero();  ///< the rest rim's centroid
-  std::vector<Vec3> rest_rim;  ///< rest rim points minus their centroid (cap.rim order)
-  std::vector<int> moved;      ///< indices into cap.vertices of the interior vertices
-  std::vector<Vec3> image;     ///< their mirror images, minus the rest rim's centroid
+  std::vector<Vec3> rest_rim;       ///< rest rim points minus their centroid (cap.rim order)
+  std::vector<int> moved;           ///< indices into cap.vertices of the interior vertices
+  std::vector<Vec3> image;          ///< their mirror images, minus the rest rim's centroid
 };
 
 /// The mirror of `cap` at the rest positions (fallback set when it has none).
