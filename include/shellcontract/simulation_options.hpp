@@ -309,6 +309,12 @@ enum class BendingModel { Isometric, Dihedral, None };
 /// becomes Force). None: no inward term.
 enum class InwardTerm { Projection, Force, Volume, None };
 
+/// The shape InwardTerm::Volume drives each region's dimple to: Volume projects the dimple's cap
+/// volume only (region_volume.hpp); Mirror moves its interior vertices onto the mirror image of
+/// the rest cap through the rim's plane, an isometry (region_mirror.hpp), and keeps the volume
+/// projection for a region that cannot be mirrored.
+enum class DimpleShape { Volume, Mirror };
+
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
 /// Volume mechanism, a region on a shell at its rest volume loses 2 * 0.7 = 1.4 times its rest cap
 /// volume, as a mirrored dimple (dimple_rest_volume). Chosen by measurement
@@ -407,6 +413,7 @@ struct SimOptions {
   /// How much the regions shrink, in [0, 1]: the local contraction's strength (dimple_rest_volume
   /// for InwardTerm::Volume, region_pressure for InwardTerm::Force).
   double region_shrink = DEFAULT_REGION_SHRINK;
+  DimpleShape dimple_shape = DimpleShape::Volume;  ///< InwardTerm::Volume's dimple (--dimple)
   /// Continuous collision detection and response (paper section 4). On by default: users expect
   /// a result that never passes through itself (design.md).
   bool collisions = true;

@@ -7,20 +7,20 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <memory>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
-#include <functional>
-#include <ctime>
 
 #include "geometry/cap_grower.hpp"
 #include "geometry/cap_internal.hpp"

@@ -310,6 +310,14 @@ std::vector<OptionSpec> build_table() {
                                  {"force", InwardTerm::Force},
                                  {"none", InwardTerm::None}},
              [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
+  t.push_back(choice("dimple",
+                     "the shape --inward volume sinks a region to: volume (the dimple's cap "
+                     "volume is projected, its shape free) | mirror (the cap mirrored through "
+                     "its rim's plane, an isometry, carried by the rim; volume where a region "
+                     "has no mirror: a collinear rim or no interior vertex)",
+                     Choices<DimpleShape>{{"volume", DimpleShape::Volume},
+                                          {"mirror", DimpleShape::Mirror}},
+                     [](R& r) -> DimpleShape& { return r.sim.dimple_shape; }));
   t.push_back(number("region-max-area", 0, "F",
                      "--regions auto: drop regions larger than this fraction of the surface "
                      "(0.05 keeps bear's head out, which deflates the whole shell)",

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "shellcontract/types.hpp"
+#include "sim/region_mirror.hpp"
 #include "sim/region_volume.hpp"
 
 namespace shellcontract {
@@ -20,6 +21,8 @@ struct RegionDimple {
   std::vector<double> prefix_rest_volume;  ///< [k]: rest cap volume of the first k + 1 faces
   int size = 0;                    ///< faces in the current dimple (0: none yet)
   RegionCap dimple;                ///< cap of the first `size` faces of order, rest_volume set
+  RegionMirror mirror;             ///< DimpleShape::Mirror: the dimple's mirror (see mirror_size)
+  int mirror_size = 0;             ///< the dimple size `mirror` was made for (0: none yet)
 };
 
 /// The dimple order of a region at the rest positions: the apex is the region vertex farthest

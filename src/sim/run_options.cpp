@@ -29,6 +29,8 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   check("region_shrink", !regions || s.inward_term == InwardTerm::None || k_a_projected,
         "the local contraction acts on the regions of `regions` (or `aniso`) with `inward` "
         "volume or force");
+  check("dimple", !regions || s.inward_term != InwardTerm::Volume,
+        "it is the shape of the dimples of `inward` volume on the regions of `regions`");
   check("k_a", !k_a_projected, "kappa_A acts with `aniso`, `inward` projection and `solver` pbd");
   check("inward", !regions, "the inward term acts on the regions of `regions` (or `aniso`)");
   check("mu_a", aniso && pbd && s.inward_term != InwardTerm::Projection,

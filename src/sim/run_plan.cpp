@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "geometry/curvature.hpp"
 #include "material/registry.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"

@@ -15,6 +15,7 @@
 #include "shellcontract/validation.hpp"
 #include "sim/local_contraction.hpp"
 #include "sim/mass_scaling.hpp"
+#include "sim/region_mirror.hpp"
 #include "sim/region_volume.hpp"
 #include "sim/region_weights.hpp"
 #include "sim/volume_constraint.hpp"
@@ -306,9 +307,17 @@ void Simulator::apply_region_contraction(Positions& x) {
     if (!(d.dimple.rest_volume > 0.0)) continue;
     const double target = -ratio * d.dimple.rest_volume;
     // One-sided: a dimple the global contraction has already sunk further is left alone.
-    if (cap_volume(x, d.dimple) > target)
-      project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
-                                 1e-12 * d.dimple.rest_volume);
+    if (!(cap_volume(x, d.dimple) > target)) continue;
+    // The mirror (an isometry) where the dimple has one; the volume projection otherwise.
+    if (options_.dimple_shape == DimpleShape::Mirror) {
+      if (d.mirror_size != d.size) {  // the dimple grew: a new rim, a new mirror
+        d.mirror = make_region_mirror(rest_x_, d.dimple);
+        d.mirror_size = d.size;
+      }
+      if (apply_region_mirror(x, d.dimple, d.mirror, inv_mass_, held_by_contact_, 1.0)) continue;
+    }
+    project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
+                               1e-12 * d.dimple.rest_volume);
   }
 }
 

@@ -1,0 +1,75 @@
+// The local contraction's dimple as a shape (docs/math/region-mirror.md): the region's cap mirrored
+// through the plane of its rim. A reflection keeps every edge length and every angle, so a dimple
+// that reaches its mirror image strains none of its faces and the rest of the shell has nothing to
+// answer; the volume projection of region_volume.hpp only fixes the cap's volume, and the strained
+// shape it reaches pulls on its rim. Eigen only.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "shellcontract/types.hpp"
+#include "sim/region_volume.hpp"
+
+namespace shellcontract {
+
+/// A plane through `point` with unit `normal`.
+struct MirrorPlane {
+  Vec3 point = Vec3::Zero();
+  Vec3 normal = Vec3::UnitZ();
+};
+
+/// x -> scale * rotation * x + translation (rotation proper, scale > 0).
+struct Similarity {
+  Mat3 rotation = Mat3::Identity();
+  double scale = 1.0;
+  Vec3 translation = Vec3::Zero();
+  Vec3 operator()(const Vec3& x) const { return scale * (rotation * x) + translation; }
+};
+
+/// The image of p in the plane: p - 2 ((p - point) . normal) normal. An isometry.
+Vec3 reflect(const Vec3& p, const MirrorPlane& plane);
+
+/// The similarity that maps `from` onto `to` best in least squares (Umeyama 1991: the SVD of the
+/// centred cross-covariance, its reflection turned into a rotation). nullopt when the sizes differ,
+/// there are fewer than 3 points, or either set is collinear or a point (the rotation about the
+/// line, or the scale, is then not determined).
+std::optional<Similarity> fit_similarity(const std::vector<Vec3>& from,
+                                         const std::vector<Vec3>& to);
+
+/// Why a region cannot be mirrored (it then keeps the volume projection).
+enum class MirrorFallback {
+  None,              ///< mirrorable
+  NoRim,             ///< fewer than 3 rim vertices (a closed component, or nothing)
+  CollinearRim,      ///< the rim's points lie on a line: no plane, no frame
+  NoArea,            ///< the region's area vector vanishes: no side to mirror to
+  NoInteriorVertex,  ///< every vertex is on the rim (e.g. a single face): nothing to move
+};
+
+/// A short phrase for the fallback ("collinear rim", ...).
+const char* mirror_fallback_name(MirrorFallback f);
+
+/// The rest data of a cap's mirror: the plane through the rest rim's centroid, normal to the cap's
+/// rest area vector (the rim polygon's vector area: its plane for a flat rim, outward), and the
+/// interior vertices' mirror images, all relative to the rest rim's centroid.
+struct RegionMirror {
+  MirrorFallback fallback = MirrorFallback::NoRim;
+  MirrorPlane plane;
+  Vec3 rest_centre = Vec3::Zero();  ///< the rest rim's centroid
+  std::vector<Vec3> rest_rim;       ///< rest rim points minus their centroid (cap.rim order)
+  std::vector<int> moved;           ///< indices into cap.vertices of the interior vertices
+  std::vector<Vec3> image;          ///< their mirror images, minus the rest rim's centroid
+};
+
+/// The mirror of `cap` at the rest positions (fallback set when it has none).
+RegionMirror make_region_mirror(const Positions& rest, const RegionCap& cap);
+
+/// Moves each interior vertex of the cap a share `beta` in (0, 1] of the way to its mirror image
+/// carried into the current frame: the similarity that best maps the rest rim onto the rim at x,
+/// so a shell that moves, turns or shrinks carries its dimples along. Rim vertices, held ones
+/// (held[v] != 0) and those with w = 0 stay. Returns false, moving nothing, when the mirror has a
+/// fallback or the current rim gives no similarity (collapsed onto a line).
+bool apply_region_mirror(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
+                         const Eigen::VectorXd& w, const std::vector<char>& held, double beta);
+
+}  // namespace shellcontract
