@@ -1,5 +1,5 @@
-// The CLI's observers of a run (sim/run.hpp): warnings and progress on stderr, the CSV log, the
-// start and end fields. Each has one job; cli/run.cpp picks those the options ask for.
+// The CLI's observers of a run (shellcontract/run.hpp): warnings and progress on stderr, the CSV
+// log, the start and end fields. Each has one job; cli/run.cpp picks those the options ask for.
 #pragma once
 
 #include <chrono>

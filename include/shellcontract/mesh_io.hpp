@@ -87,7 +87,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
 }  // namespace shellcontract
 
 // A checked Mesh from in-memory arrays (the Python module's numpy input, a C++ caller's buffers),
-// with the checks and messages of read_input_mesh (mesh/io.hpp) for a triangle soup.
+// with the checks and messages of read_input_mesh (shellcontract/mesh_io.hpp) for a triangle soup.
 namespace shellcontract {
 
 /// A read-only view of a triangle soup held by the caller; nothing is copied until the Mesh is

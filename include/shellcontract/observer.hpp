@@ -78,7 +78,7 @@ struct CollisionStepStats {
 }  // namespace shellcontract
 
 // The constraint energies of a configuration, as plain data (a leaf: a step's measurements,
-// sim/frame_metrics.hpp, carry them without the solver).
+// shellcontract/observer.hpp, carry them without the solver).
 namespace shellcontract {
 
 /// Sum of each kind of constraint energy at a configuration.

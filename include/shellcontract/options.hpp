@@ -33,7 +33,7 @@ enum class RegionSource {
 enum class OrderChoice { Auto, Sequential, Coloured };
 
 /// Default of RunOptions::region_max_area: RegionOptions{}.max_area_fraction
-/// (geometry/region_selection.hpp; a test holds the two equal).
+/// (shellcontract/regions.hpp; a test holds the two equal).
 inline constexpr double DEFAULT_REGION_MAX_AREA = 0.25;
 
 /// The order a run asking for `choice` uses.

@@ -14,8 +14,8 @@
 namespace shellcontract {
 
 struct FrameMetrics;  // sim/simulator.hpp
-struct InputReport;   // mesh/io.hpp
-struct RunResult;     // sim/run.hpp
+struct InputReport;   // shellcontract/mesh_io.hpp
+struct RunResult;     // shellcontract/run.hpp
 
 /// The log's columns in order (the CSV header, Python's log keys) and which hold integers.
 inline constexpr std::size_t LOG_COLUMN_COUNT = 15;

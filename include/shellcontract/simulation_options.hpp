@@ -62,8 +62,8 @@ struct BroadPhaseStats {
 
 }  // namespace shellcontract
 
-// Options of the collision handling, and the broad-phase inflation they imply. Light: the
-// configuration (sim/config.hpp) includes this, not the collision classes.
+// Options of the collision handling, and the broad-phase inflation they imply (plain data, not
+// the collision classes).
 namespace shellcontract {
 
 /// Options of the collision handling (normalized units: bounding-box diagonal 1).
@@ -114,8 +114,7 @@ double broad_phase_inflation(const CollisionOptions& options, double max_abs);
 }  // namespace shellcontract
 
 // The material's settings as plain data: which membrane and fibre energies, and their
-// parameters. A leaf: the run options (sim/config.hpp) include this, not the material classes
-// (material.hpp, registry.hpp).
+// parameters (not the material classes: shellcontract/material.hpp).
 namespace shellcontract {
 
 /// Isotropic membrane energy E_S (math-spec 6). Names: "stvk", "corotated", "linear",
@@ -138,8 +137,7 @@ struct MaterialParams {
 
 }  // namespace shellcontract
 
-// The constraint solver's settings as plain data. A leaf: the run options (sim/config.hpp)
-// include this, not the solver (solver.hpp).
+// The constraint solver's settings as plain data (not the solver, src/pbd/solver.hpp).
 namespace shellcontract {
 
 /// pbd: the paper's energy-as-constraint projection (C = E); xpbd: C = sqrt(2E) with compliance,
@@ -178,16 +176,16 @@ struct SolverSettings {
 
 }  // namespace shellcontract
 
-// The anisotropic regions' settings as plain data (fibre directions, k_A). A leaf: the run
-// options (sim/config.hpp) include this, not the anisotropy setup (anisotropy.hpp, which needs
-// the mesh). Which faces are regions is not an option here: the run plan resolves it into the
-// mesh's "f:region" map (sim/run_plan.hpp).
+// The anisotropic regions' settings as plain data (fibre directions, k_A), not the anisotropy setup
+// (src/sim/anisotropy.hpp, which needs the mesh). Which faces are regions is not an option here:
+// the run plan resolves it into the mesh's "f:region" map (sim/run_plan.hpp).
 namespace shellcontract {
 
 /// How the fibre direction a of a region face is chosen (the paper never gives one).
 enum class FiberMode {
-  /// Tangent direction from the face toward its region's area-weighted centre: shortening along
-  /// it pulls the region together (default; docs/design/anisotropy.md "Fibre direction" gives the measurement).
+  /// Tangent direction from the face toward its region's area-weighted centre: shortening along it
+  /// pulls the region together (default; docs/design/anisotropy.md "Fibre direction" gives the
+  /// measurement).
   TowardCentre,
   /// One user 3D direction d for every face: a = normalize(d . T1, d . T2) (math-spec 7).
   User,
@@ -203,8 +201,8 @@ struct AnisotropyOptions {
 
 }  // namespace shellcontract
 
-// Which pressure force a run applies, as plain data. A leaf: the run options (sim/config.hpp)
-// include this, not the pressure module (pressure.hpp).
+// Which pressure force a run applies, as plain data (not the pressure module,
+// src/sim/pressure.hpp).
 namespace shellcontract {
 
 /// energy: f_i = -(P/6) sum_{j ni i} N_j = -P dV/dx_i (default; no net force, work = -P dV).
@@ -290,8 +288,8 @@ Schedule parse_volume_schedule(const std::string& option, const std::string& tex
 
 // Plain option structs of a simulation run. Defaults are the paper's values where it gives
 // them, otherwise ours (math-spec 14); README.md "Options" documents how they were chosen.
-// A leaf: each module's settings come from its own leaf header beside it (no mesh, solver,
-// collision or material classes); the run plan (run_plan.hpp) resolves and checks them.
+// Plain data gathering the sections above (no mesh, solver, collision or material classes); the
+// run plan (src/sim/run_plan.hpp) resolves and checks them.
 namespace shellcontract {
 
 /// isometric: the paper's flat-rest model (math-spec 8.2); dihedral: rest-aware (8.3).
@@ -396,7 +394,8 @@ struct SimOptions {
   /// epsilon: stop at the step whose V/V0 would fall below epsilon, with the volume projected onto
   /// epsilon V0 in that step (docs/math/volume-control.md), so the run ends on epsilon (0 = off).
   double stop_volume_ratio = 0.0;
-  /// R: drive V/V0 to R and hold it there with a global volume constraint (docs/math/volume-control.md); 0 = off.
+  /// R: drive V/V0 to R and hold it there with a global volume constraint
+  /// (docs/math/volume-control.md); 0 = off.
   double target_volume = 0.0;
   /// Frames over which the constraint's target goes from V0 to R V0 (smoothstep ramp).
   int target_ramp_frames = DEFAULT_TARGET_RAMP_FRAMES;

@@ -19,7 +19,7 @@ inline constexpr const char* ARRAY_INPUT_NAME = "input arrays";
 
 /// Builds a checked mesh from vertices (N by 3, float64 used in place when C-contiguous, other
 /// real types converted) and faces (M by 3, int32 or int64 used in place when C-contiguous, other
-/// integer types converted), with mesh_from_arrays' checks (mesh/from_arrays.hpp).
+/// integer types converted), with mesh_from_arrays' checks (shellcontract/mesh_io.hpp).
 /// @throws py::type_error / py::value_error for a wrong dtype or shape; InputError for a mesh
 ///         the library refuses (ValueError in Python)
 Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputReport* report = nullptr,

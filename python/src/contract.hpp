@@ -1,5 +1,6 @@
-// shellcontract.contract and shellcontract.options: a run through run_contraction (sim/run.hpp)
-// with the options of the one option table (sim/option_table.hpp), as the CLI's `run` does.
+// shellcontract.contract and shellcontract.options: a run through run_contraction
+// (shellcontract/run.hpp) with the options of the one option table (shellcontract/options.hpp), as
+// the CLI's `run` does.
 #pragma once
 
 #include <pybind11/pybind11.h>

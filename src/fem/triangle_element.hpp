@@ -96,7 +96,7 @@ inline void lift_gradient(const TriangleFrame& fr, const Mat2& P, const Mat2& Dm
 }
 
 /// Energy E = Abar psi(Fbar) and vertex gradients of one triangle for a material M
-/// (any type with psi/pk1 as in material/material.hpp).
+/// (any type with psi/pk1 as in shellcontract/material.hpp).
 /// @return false when the element contributes nothing (degenerate rest triangle, all vertices
 /// coincident, or frame-dependent material on a collapsed triangle); E and g are then zero.
 template <class M, class D>

@@ -1,4 +1,4 @@
-// Free functions of the material interface (include/shellcontract/material/material.hpp).
+// Free functions of the material interface (include/shellcontract/material.hpp).
 #include "shellcontract/material.hpp"
 
 #include <cmath>

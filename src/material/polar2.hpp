@@ -2,7 +2,7 @@
 // sign(I4) (math-spec 5; Kim, de Goes, Iben 2019 "Anisotropic elasticity for inversion-safety
 // and element rehabilitation", and HOBAK's rotation-variant SVD).
 //
-// All functions take the 2x2 in-plane deformation gradient Fbar of material/material.hpp
+// All functions take the 2x2 in-plane deformation gradient Fbar of shellcontract/material.hpp
 // (current edge-aligned frame in its rows, rest frame in its columns; dimensionless) and, for the
 // fibre invariants, the unit fibre direction a in the REST frame (math-spec 7).
 //

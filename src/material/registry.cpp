@@ -1,4 +1,4 @@
-// Name <-> model registry (include/shellcontract/material/registry.hpp).
+// Name <-> model registry (material/registry.hpp).
 #include "material/registry.hpp"
 
 #include <array>

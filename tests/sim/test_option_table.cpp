@@ -1,4 +1,4 @@
-// The one table of run options (sim/option_table.hpp): every entry reads back its own default,
+// The one table of run options (shellcontract/options.hpp): every entry reads back its own default,
 // refuses values outside its range with a message naming it, and shows a clean default in --help.
 #include <gtest/gtest.h>
 

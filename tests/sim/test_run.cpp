@@ -1,5 +1,5 @@
-// The library's run entry point (sim/run.hpp): target volume reached and held, stop ratio and
-// stall handling, the observer's view of the run, cancellation, running out of memory, exit
+// The library's run entry point (shellcontract/run.hpp): target volume reached and held, stop ratio
+// and stall handling, the observer's view of the run, cancellation, running out of memory, exit
 // codes.
 #include <gtest/gtest.h>
 

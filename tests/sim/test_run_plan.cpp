@@ -1,7 +1,7 @@
 // The run plan (sim/run_plan.hpp): the one place where the options are resolved and checked and
 // the regions become the mesh's f:region map; option fields in the library's messages and each
 // front end's spelling of them; the summary and log row written once for the CLI and Python
-// (sim/run_report.hpp).
+// (shellcontract/report.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>

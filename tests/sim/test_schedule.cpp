@@ -1,6 +1,6 @@
-// Keyframed values (sim/schedule.hpp, docs/design/keyframes.md): the curve's closed forms and
-// invariants, the parser's messages, the option table's two forms, and whole runs that follow a
-// volume and a pressure schedule, measured with CGAL on the positions.
+// Keyframed values (shellcontract/simulation_options.hpp, docs/design/keyframes.md): the curve's
+// closed forms and invariants, the parser's messages, the option table's two forms, and whole runs
+// that follow a volume and a pressure schedule, measured with CGAL on the positions.
 #include <gtest/gtest.h>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
