@@ -1,7 +1,7 @@
 // shellcontract check IN [--json] [--against INPUT] [--fail-on-self-intersections]: reads and
 // checks a mesh the way `run` does, and prints what it found. Exit 0 if the mesh can be used, 2
 // (with the reason on stderr) if not, 1 on bad usage, 4 when it fails --against or
-// --fail-on-self-intersections (issue 56: a result can be refused, not only an input).
+// --fail-on-self-intersections (a result can be refused, not only an input).
 #include <boost/program_options.hpp>
 
 #include <algorithm>

@@ -81,7 +81,7 @@ class FrameExporter final : public RunObserver {
     }
   }
 
-  /// The input's texture coordinates, for the glTF's TEXCOORD_0 (issue 56); empty: none.
+  /// The input's texture coordinates, for the glTF's TEXCOORD_0; empty: none.
   void set_texcoords(const CornerTexcoords& t) {
     if (t.empty()) return;
     gltf_.uv.resize(static_cast<Eigen::Index>(t.uv.size()), 2);
@@ -125,7 +125,7 @@ class FrameExporter final : public RunObserver {
       gltf_.frames.push_back(x);
       // Each kept frame's own mean curvature (the default colour field, computed as
       // compute_vertex_fields does), so that a viewer colours every frame with its values, not
-      // the end's (issue 56).
+      // the end's.
       if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({"mean_curvature", {}});
       gltf_.frame_fields[0].second.push_back(
           compute_curvature(simulator_of(view).rest_mesh(), view.normalized_positions()).mean.cast<float>());

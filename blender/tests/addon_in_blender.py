@@ -1,4 +1,4 @@
-"""The add-on's acceptance inside Blender (issue 56, point 4), run by run_addon_test.py as
+"""The add-on's acceptance inside Blender, run by run_addon_test.py as
     blender -b --factory-startup --python-exit-code 1 --python addon_in_blender.py -- ARGS
 ARGS: --addon-dir DIR (the folder holding shellcontract_blender), --glb FILE (a CLI --gltf result
 to import). The shellcontract module comes from SHELLCONTRACT_PYTHONPATH (the add-on's own

@@ -30,7 +30,7 @@ struct GltfAnimation {
   /// Optional: per frame (parallel to `frames`), the values of a field on that frame (float,
   /// #V each), so that a viewer colours each frame with its own values. Field name -> values.
   std::vector<std::pair<std::string, std::vector<Eigen::VectorXf>>> frame_fields;
-  /// Optional texture coordinates (the input's, issue 56): uv holds (u, v) pairs, face_uv (#F by
+  /// Optional texture coordinates (the input's): uv holds (u, v) pairs, face_uv (#F by
   /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
   Faces face_uv;

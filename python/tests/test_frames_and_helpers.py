@@ -125,7 +125,7 @@ def test_arrays_are_refused_for_the_cli_reason(cli, mesh_dir, name):
 
 
 def test_contract_takes_what_regions_returns_and_per_face_labels(mesh_dir):
-    # Issue "Regions a person would choose", item 4: the three forms give the same run.
+    # The three forms of regions give the same run.
     vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
     found = shellcontract.regions(vertices, faces)
     labels = [-1] * len(faces)
@@ -141,7 +141,7 @@ def test_contract_takes_what_regions_returns_and_per_face_labels(mesh_dir):
 
 
 def test_region_strengths_scale_each_region(mesh_dir):
-    # Issue 55, item 3: a strength per region from Python. Strength 1 everywhere is the run
+    # A strength per region from Python. Strength 1 everywhere is the run
     # without strengths; 0.5 everywhere is region_shrink times 0.5, bit for bit (a power of two
     # keeps the area-weighted mean strength exact), so it sinks less.
     vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")

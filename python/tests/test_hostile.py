@@ -1,5 +1,5 @@
-"""The Python module never crashes the interpreter and refuses bad arguments by type (issue 53,
-point 6). Each test failed against the module before the fix as its docstring says."""
+"""The Python module never crashes the interpreter and refuses bad arguments by type. Each test
+failed against the module before the fix as its docstring says."""
 import os
 import subprocess
 import sys

@@ -1,4 +1,4 @@
-"""write_mesh(..., like=INPUT) keeps a textured OBJ whole (issue 56): every line but v and vn
+"""write_mesh(..., like=INPUT) keeps a textured OBJ whole: every line but v and vn
 as read, the given positions bitwise."""
 import numpy as np
 import pytest

@@ -1,4 +1,4 @@
-// Frame sequence export (issue 26): every exported frame of a run as its own mesh file, written on
+// Frame sequence export: every exported frame of a run as its own mesh file, written on
 // a background thread so that the writing overlaps the next simulation steps.
 #pragma once
 

@@ -1,4 +1,4 @@
-// An OBJ file kept as a document (issue 56, docs/design/attributes.md). The file's bytes are
+// An OBJ file kept as a document (docs/design/attributes.md). The file's bytes are
 // kept; writing replaces only the text of the `v` lines' x y z and of the `vn` lines, so texture
 // coordinates, face corners (v/vt/vn), groups, objects, materials, smoothing groups, comments and
 // polygons come back exactly as read.

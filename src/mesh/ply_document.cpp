@@ -1,4 +1,4 @@
-// A PLY file kept as a document (issue 56, docs/design/attributes.md): its header and every
+// A PLY file kept as a document (docs/design/attributes.md): its header and every
 // element come back byte for byte, but the vertices' x, y, z, which take the new positions in
 // their declared type and the file's format (ascii text, or binary of either byte order). Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other

@@ -1,4 +1,4 @@
-// Our own PLY reader (issue 30). CGAL 5.5's reader crashes on legal and on malformed files
+// Our own PLY reader. CGAL 5.5's reader crashes on legal and on malformed files
 // (README, Limitations), so read_input_mesh and reconstruct never hand it a PLY file.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Reading a mesh file into a polygon soup (read_input_mesh's first step, issue 30): the whole
+// Reading a mesh file into a polygon soup (read_input_mesh's first step): the whole
 // file is read into memory first, so that every reader can bound what a header declares by the
 // bytes that are really there.
 #include "mesh/read_polygon_soup.hpp"

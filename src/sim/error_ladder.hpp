@@ -1,4 +1,4 @@
-// Speed against error (design.md "Speed against error", item 1): run one scene at a ladder of
+// Speed against error (`shellcontract bench error`): run one scene at a ladder of
 // solver settings and compare each run with a reference run of the same physical model.
 //
 // The model and its reference (a choice, stated here and in the bench report):

@@ -1,4 +1,4 @@
-// `shellcontract run` keeps a textured asset whole (issue 56): the OBJ result has the input's
+// `shellcontract run` keeps a textured asset whole: the OBJ result has the input's
 // lines but for `v` and `vn`, its positions are those of the OFF the same run writes, its normals
 // those of its own polygons; a PLY result keeps its extra vertex properties.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// `shellcontract check OUT --against IN` and `--fail-on-self-intersections` (issue 56): a result
+// `shellcontract check OUT --against IN` and `--fail-on-self-intersections`: a result
 // can fail. The intersecting meshes are made here by moving vertices of a clean mesh through the
 // far side (so that the input has no pair and the result has some), and by a real run without
 // collisions; the counts are compared with plain `check`'s own count of the same file.

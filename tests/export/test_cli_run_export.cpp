@@ -1,4 +1,4 @@
-// The two exports of a real CLI run agree (issue 59, item 5): `shellcontract run --export-every 5
+// The two exports of a real CLI run agree: `shellcontract run --export-every 5
 // --export-dir DIR --gltf FILE.glb` on bumpy_sphere, and every keyframe of the .glb read back with
 // tinygltf (base + morph displacement) equals the frame sequence's file of the same frame to float
 // precision, in the same order, with the same frame numbers; its last keyframe is the result.

@@ -1,5 +1,5 @@
 // The two exports of one run agree: every frame of the .glb (base + morph displacement) equals the
-// frame sequence's file of that frame to float precision (issue 26).
+// frame sequence's file of that frame to float precision.
 #include <gtest/gtest.h>
 
 #include <limits>

@@ -1,4 +1,4 @@
-// The glTF of a textured input (issue 56): TEXCOORD_0 per corner as the OBJ gave it, vertices
+// The glTF of a textured input: TEXCOORD_0 per corner as the OBJ gave it, vertices
 // split at UV seams with their copies moving together in every morph target, and each colour
 // field's values as a custom attribute named after it. Read back with tinygltf's loader and
 // compared with what tests/support/textured_obj.hpp wrote.

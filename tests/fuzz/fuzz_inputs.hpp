@@ -1,5 +1,5 @@
 // Small valid meshes in every format the reader supports, and a seeded, deterministic mutator
-// over them (issue 30). Each seed file is an octahedron with vertices on {0, 1, 2}^3, so that
+// over them. Each seed file is an octahedron with vertices on {0, 1, 2}^3, so that
 // every PLY coordinate type (uchar to double) holds it exactly.
 #pragma once
 

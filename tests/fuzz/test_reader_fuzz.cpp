@@ -1,4 +1,4 @@
-// Mutation fuzzing of read_input_mesh and of `shellcontract check` (issue 30): whatever the
+// Mutation fuzzing of read_input_mesh and of `shellcontract check`: whatever the
 // bytes, the reader returns a mesh or throws InputError naming the file; it never crashes, hangs
 // or makes an allocation out of proportion to the file.
 //

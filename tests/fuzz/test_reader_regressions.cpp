@@ -1,5 +1,5 @@
 // Every input that crashed or misled the reader, kept as a named file under
-// tests/data/fuzz/regressions (issue 30), and the scale range 1e-150 .. 1e150.
+// tests/data/fuzz/regressions, and the scale range 1e-150 .. 1e150.
 #include <gtest/gtest.h>
 
 #include <cmath>

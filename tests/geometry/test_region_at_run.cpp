@@ -1,4 +1,4 @@
-// `run --region-at X,Y,Z` (issue 55 item 3): the run plan turns points into the spherical caps
+// `run --region-at X,Y,Z`: the run plan turns points into the spherical caps
 // around the nearest surface points. The nearest face is found here by brute force over every
 // triangle (its own closest-point code) and the bumps of bumpy_sphere are labelled in
 // meshes/bumpy_sphere.bumps.txt, independently of the finder. Without the option's plan branch

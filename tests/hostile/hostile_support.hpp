@@ -1,4 +1,4 @@
-// What the hostile-use tests share (issue 53, docs/design/output-safety.md): a fresh folder per
+// What the hostile-use tests share (docs/design/output-safety.md): a fresh folder per
 // test, the CLI, file bytes, and the root-only tools (mknod, tmpfs, bind mounts) with a skip
 // that says why where the machine cannot do them.
 #pragma once

@@ -1,4 +1,4 @@
-// Inputs are regular files, read completely or refused (issue 53, point 5). The CLI runs under
+// Inputs are regular files, read completely or refused. The CLI runs under
 // `timeout` and a memory limit, so that the code before the fix (which read devices and FIFOs
 // until memory ran out, or waited for a FIFO's writer forever) fails these tests instead of
 // hanging them.

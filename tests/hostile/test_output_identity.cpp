@@ -1,4 +1,4 @@
-// Outputs are checked by file identity, all of them, before any work (issue 53, point 1): no
+// Outputs are checked by file identity, all of them, before any work: no
 // output may be the input, however spelled, nor another output, nor an exported frame's name.
 // Each test was run against the code before the fix (cli/output_paths.cpp comparing paths, frame
 // 0's name only, `regions` checking nothing) and failed there as its comment says.

@@ -1,6 +1,6 @@
-// A finished result is never thrown away (issue 53, point 4): an output that fails (a full disk,
+// A finished result is never thrown away: an output that fails (a full disk,
 // a small tmpfs here) costs only itself; the others are written and the end names each one.
-// And the summary is valid UTF-8 whatever the bytes of the file names (point 7).
+// And the summary is valid UTF-8 whatever the bytes of the file names.
 #include "hostile/hostile_support.hpp"
 
 namespace shellcontract {

@@ -1,6 +1,6 @@
-// Only regular files are written or replaced, and what cannot be written is found before the run
-// (issue 53, points 1 and 2). Devices need mknod and read-only files a bind mount: as root (CI);
-// elsewhere those tests skip and say why. Each failed against the code before the fix as its
+// Only regular files are written or replaced, and what cannot be written is found before the
+// run. Devices need mknod and read-only files a bind mount: as root (CI); elsewhere those tests
+// skip and say why. Each failed against the code before the fix as its
 // comment says.
 #include <sys/file.h>
 #include <fcntl.h>

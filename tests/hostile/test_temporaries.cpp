@@ -1,4 +1,4 @@
-// Temporaries are unguessable and exclusive, and SIGINT/SIGTERM remove them (issue 53, point 3);
+// Temporaries are unguessable and exclusive, and SIGINT/SIGTERM remove them;
 // a path with a NUL names no file. Each failed against the code before the fix as its comment says.
 #include <sys/wait.h>
 

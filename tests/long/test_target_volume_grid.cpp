@@ -1,4 +1,4 @@
-// Issue "Control", item 1, the full grid: eight, hand, elk, bear, the kitten, bumpy_sphere and
+// The target-volume grid in full: eight, hand, elk, bear, the kitten, bumpy_sphere and
 // torus, each at R in {0.9, 0.7, 0.5, 0.3}, 400 frames; CGAL validation at the end, and at every
 // frame for the paper meshes at R = 0.5. Label "long" (ctest -L long).
 #include "support/target_volume_case.hpp"

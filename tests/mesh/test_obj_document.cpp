@@ -1,4 +1,4 @@
-// The OBJ document (issue 56): what the simulation does not use comes back verbatim, positions
+// The OBJ document: what the simulation does not use comes back verbatim, positions
 // are the given ones bitwise, normals are those of the new positions, texture coordinates follow
 // the simulation's triangles. Compared with what the generator wrote (tests/support/textured_obj.hpp)
 // and with normals computed here from the polygons' vector areas, not with the code under test.

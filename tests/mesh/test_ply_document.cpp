@@ -1,4 +1,4 @@
-// The PLY document (issue 56): extra vertex properties (texture coordinates, colours), face
+// The PLY document: extra vertex properties (texture coordinates, colours), face
 // properties, comments and other elements come back unchanged; x, y, z are the new positions in
 // their declared type. The layouts are written here by hand, so the bytes to compare are known.
 #include <gtest/gtest.h>

@@ -256,7 +256,7 @@ TEST(IsometricBatches, SkippedLanesAreUntouchedAndTheClampHolds) {
 }  // namespace shellcontract
 
 // The coloured order's fast path is chosen by the material trait, not by a type test: every
-// membrane material declares a batched projection (issue 58: no option off the fast path).
+// membrane material declares a batched projection (no option off the fast path).
 static_assert(shellcontract::BatchedMembraneProjection<shellcontract::Stvk>::value);
 static_assert(shellcontract::BatchedMembraneProjection<shellcontract::Corotated>::value);
 static_assert(shellcontract::BatchedMembraneProjection<shellcontract::Linear>::value);

@@ -1,6 +1,5 @@
-// The default run ends each paper mesh at the V/V0 the README states (issue "Control", item 5,
-// pinned to 0.02 by issue 59; the rest of the meshes in tests/long), and the local contraction's strength controls
-// how far regions sink (issue "Local contraction", items 1-2).
+// The default run ends each paper mesh at the V/V0 the README states, within 0.02 (the rest of
+// the meshes in tests/long), and the local contraction's strength controls how far regions sink.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -156,12 +155,12 @@ TEST(LocalContraction, FaceListsOfTheHandAndBearSinkLocally) {
   for (const char* name : {"hand", "bear"})
     if (!std::filesystem::exists(test::target_mesh_path(name)))
       GTEST_SKIP() << name << " is absent";
-  // Open (issue 55, item 2): on the cap finder's regions the rest of the shell moves by far more
+  // Open: on the cap finder's regions the rest of the shell moves by far more
   // than a tenth of the regions' sink. Not a rigid drift and independent of --region-shrink: the
   // volume-projected dimple is not isometric and the nearly bending-free shell drifts under it
   // (lab/regions/locality.md, which also measures a mirrored dimple). This is the acceptance test
   // of the fix; it stays until the model changes.
-  GTEST_SKIP() << "open (issue 55 item 2): the rest moves far more than a tenth of the sink; lab/regions/locality.md";
+  GTEST_SKIP() << "open: the rest moves far more than a tenth of the sink; lab/regions/locality.md";
   expect_local("hand", face_list_contraction("hand", RegionOptions{}));
   expect_local("bear", face_list_contraction("bear", RegionOptions{}));
 }

@@ -1,4 +1,4 @@
-// Properties of the code paths that only the goldens ran (issue 59, item 6): the goldens catch a
+// Properties of the code paths that only the goldens ran: the goldens catch a
 // change, these say whether the changed behaviour is still right.
 //  - hand_regions (PBD, -p 0, --regions auto --region-shrink 0.6): the regions sink, locally.
 //  - hand_aniso_arap (--aniso arap --inward force) and --inward projection (the paper's k_A
@@ -33,11 +33,11 @@ TEST(GoldenPaths, HandRegionsSinkLocallyUnderPbd) {
   // Fails with: --region-shrink 0 (nothing sinks), or a contraction that spreads to the shell.
   const std::string path = std::string(test::PAPER_MESH_DIR) + "/hand.off";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is absent";
-  // Open (issue 55, item 2): the spherical-cap finder's hand regions include the wrist's end and
+  // Open: the spherical-cap finder's hand regions include the wrist's end and
   // the back of the fist; sinking them moves the rest of the shell by far more than a fifth of
   // their sink, at every --region-max-area (lab/regions/locality.md). The old knuckle patches
   // passed. Stays until the model changes.
-  GTEST_SKIP() << "open (issue 55 item 2): the cap finder's hand regions do not sink 5x the rest; lab/regions/locality.md";
+  GTEST_SKIP() << "open: the cap finder's hand regions do not sink 5x the rest; lab/regions/locality.md";
   const RunResult r = run_with(read_input_mesh(path), {{"solver", "pbd"},
                                                        {"pressure", "0"},
                                                        {"regions", "auto"},

@@ -71,7 +71,7 @@ TEST(OptionTable, EveryOptionRefusesValuesOutsideItsRange) {
 }
 
 TEST(OptionTable, RangesFromTheIssue) {
-  // Values that were accepted silently before the table (issue 30): each must be refused.
+  // Values that were accepted silently before the table: each must be refused.
   const std::vector<std::pair<std::string, std::string>> refused = {{"mu", "nan"},
                                                                     {"lambda", "nan"},
                                                                     {"mu", "-1"},

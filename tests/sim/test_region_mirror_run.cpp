@@ -33,7 +33,7 @@ TEST(RegionMirrorRun, TheOptionParsesAndRejectsOtherShapes) {
 }
 
 TEST(RegionMirrorRun, MirroredBumpsSinkLocally) {
-  // The issue's locality (issue 55, item 2) on the bumps: each sinks at least 1 % of the diagonal
+  // Locality on the bumps: each sinks at least 1 % of the diagonal
   // on average and the rest of the shell (outside the bumps and their one-ring band) moves at
   // most a tenth of that, with no new self-intersection. The mirror strains no dimple face, so
   // the rest also moves less than with the volume projection, which leaves the dimple's shape

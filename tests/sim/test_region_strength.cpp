@@ -1,4 +1,4 @@
-// A strength per region (issue 55, item 3): the "S:" column of a face-list file scales the local
+// A strength per region: the "S:" column of a face-list file scales the local
 // contraction of that region. Checked against an independent way of asking for the same
 // contraction (--region-shrink scaled by S: bit for bit the same run), and against the plain file
 // (a column of 1 changes nothing, a smaller strength sinks the regions less).

@@ -1,5 +1,5 @@
 // The stiffness, the pressure and the air of a whole run pinned by closed forms on a coarse
-// sphere (issue 59, item 1), in the default suite. The numbers compared with come from the
+// sphere, in the default suite. The numbers compared with come from the
 // theory and the literal options below, the volume from the run's written positions (measured
 // here with the divergence theorem, not read from the run's own V/V0).
 //

@@ -1,6 +1,6 @@
 // Volumes measured with CGAL's PMP::volume on the positions a run wrote: an instrument that is
 // not the code under test (the run's V/V0 comes from the simulator's own volume), for the
-// target-volume tests (issue 59, item 2).
+// target-volume tests.
 #pragma once
 
 #include <CGAL/Polygon_mesh_processing/measure.h>

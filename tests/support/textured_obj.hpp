@@ -1,4 +1,4 @@
-// A textured OBJ made for the attribute tests (issue 56): a latitude-longitude sphere of quads
+// A textured OBJ made for the attribute tests: a latitude-longitude sphere of quads
 // with triangle caps, UVs with a seam (the vertices of longitude 0 have u = 0 and u = 1) and one
 // per pole triangle, one smooth normal per vertex, two groups with two materials, smoothing
 // groups, comments and vertex colours on some `v` lines. The generator also returns what it

@@ -1,4 +1,4 @@
-// libFuzzer target for the mesh reader (issue 30), beside the seeded mutator of
+// libFuzzer target for the mesh reader, beside the seeded mutator of
 // tests/fuzz/test_reader_fuzz.cpp: coverage-guided, so it finds inputs the mutator's fixed
 // mutations do not reach. The contract is the same: whatever the bytes, read_input_mesh returns
 // a mesh or throws InputError naming the file. Anything else is a finding: another exception
