@@ -28,10 +28,11 @@ foreach(f ${package_files})
   endif()
 endforeach()
 # The public surface is the facade (docs/architecture.md, "The public surface"): exactly these
-# headers, each including only the others and system headers, so that nothing private leaks.
+# headers and no folder, each including only the others and system headers, so that nothing
+# private leaks.
 set(facade checkpoint error export material mesh mesh_io observer options regions repair report
     run simulation_options types validation)
-file(GLOB_RECURSE headers RELATIVE ${prefix}/include ${prefix}/include/shellcontract/*)
+file(GLOB_RECURSE headers LIST_DIRECTORIES true RELATIVE ${prefix}/include ${prefix}/include/shellcontract/*)
 set(expected "")
 foreach(h ${facade})
   list(APPEND expected shellcontract/${h}.hpp)
