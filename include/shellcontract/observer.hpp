@@ -145,7 +145,7 @@ class FrameView {
  public:
   /// Made by run_contraction.
   explicit FrameView(const Simulator& sim) : sim_(&sim) {}
-  /// 0 at the rest state (RunObserver::started), then the number of steps taken.
+  /// The number of steps taken: 0 at the rest state, then 1, 2, ...
   int frame() const;
   /// Whether the run ends at this frame (its frame count, its stop ratio or its target).
   bool last() const;
@@ -170,7 +170,8 @@ class RunObserver {
   virtual ~RunObserver() = default;
   /// Something the user should know (degenerate faces, no regions found, ...), as it is found.
   virtual void warning(const std::string& /*text*/) {}
-  /// The run is prepared, before the first step (frame 0 = the rest state).
+  /// The run is prepared, before its first step: frame 0, the rest state (a resumed run: the
+  /// checkpoint's frame).
   virtual void started(const FrameView& /*view*/) {}
   /// After each step, with its measurements.
   virtual void frame(const FrameView& /*view*/, const FrameMetrics& /*metrics*/) {}
