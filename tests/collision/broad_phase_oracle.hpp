@@ -109,7 +109,7 @@ inline BruteForce brute_force(const Positions& x0, const Positions& x1, const Fa
   return r;
 }
 
-/// The pairs in sorted order (Grid emits them in its cell order).
+/// The pairs in sorted order.
 inline Pairs sorted(Pairs p) {
   std::sort(p.begin(), p.end());
   return p;
@@ -145,13 +145,12 @@ inline BruteForce expect_all_methods_match(const Positions& x0, const Positions&
     find_candidates(x0, x1, topo, inflation, got, &stats, m);
     const std::string where = label + ", method " + method_name(m) +
                               ", inflation " + std::to_string(inflation);
-    // Sorted, the output must equal brute force; and only Grid may emit out of order.
+    // Sorted, the output must equal brute force; and every method emits it sorted (Grid by
+    // its counting sort: test_grid_sorted_output.cpp).
     const Pairs vf = sorted(got.vertex_face), ee = sorted(got.edge_edge);
     EXPECT_TRUE(vf == want.vertex_face) << where << ": VF " << first_difference(vf, want.vertex_face);
     EXPECT_TRUE(ee == want.edge_edge) << where << ": EE " << first_difference(ee, want.edge_edge);
-    if (m != BroadPhaseMethod::Grid) {
-      EXPECT_TRUE(vf == got.vertex_face && ee == got.edge_edge) << where << ": not sorted";
-    }
+    EXPECT_TRUE(vf == got.vertex_face && ee == got.edge_edge) << where << ": not sorted";
     EXPECT_EQ(stats.no_culling_vertex_face, want.all_vf) << where;
     EXPECT_EQ(stats.no_culling_edge_edge, want.all_ee) << where;
     EXPECT_EQ(stats.vertex_face, static_cast<std::int64_t>(want.vertex_face.size())) << where;

@@ -1,8 +1,5 @@
 // The broad phase's public entry points: find_candidates dispatches to the method asked for
 // (and the Grid's fallback), the speculative broad phase's grid calls, the far-pair threshold.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/parallel_sort.h>
 
 #include <array>
 #include <cmath>
@@ -113,35 +110,6 @@ void query_kept_grid(const CandidatePairs& pairs, const CollisionTopology& topo,
       }
 }
 
-namespace {
-
-/// Sorts one list of the Grid's pairs by (first id, second id), each pair's close flag with it.
-/// Ids are below GRID_MAX_BOXES (2^29), so a pair and its flag pack into one 64-bit key.
-void sort_pairs(NoZeroVector<std::array<int, 2>>& pairs, NoZeroVector<std::uint8_t>& close,
-                std::vector<std::uint64_t>& keys) {
-  const std::size_t n = pairs.size();
-  keys.resize(n);
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i < r.end(); ++i)
-                        keys[i] = std::uint64_t(std::uint32_t(pairs[i][0])) << 33 |
-                                  std::uint64_t(std::uint32_t(pairs[i][1])) << 1 |
-                                  (close[i] ? 1u : 0u);
-                    });
-  // The pairs are unique, so the sorted sequence is unique: the same for any thread count.
-  tbb::parallel_sort(keys.begin(), keys.end());
-  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 8192),
-                    [&](const tbb::blocked_range<std::size_t>& r) {
-                      for (std::size_t i = r.begin(); i < r.end(); ++i) {
-                        pairs[i] = {static_cast<int>(keys[i] >> 33),
-                                    static_cast<int>((keys[i] >> 1) & 0xffffffffu)};
-                        close[i] = static_cast<std::uint8_t>(keys[i] & 1u);
-                      }
-                    });
-}
-
-}  // namespace
-
 void find_candidates(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
                      double inflation, CandidatePairs& out, BroadPhaseStats* stats,
                      BroadPhaseMethod method, double far_distance) {
@@ -166,7 +134,11 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
       reported = detail::bvh_pairs(topo, out);
       break;
     case BroadPhaseMethod::Grid:
-      reported = detail::grid_pairs(topo, far_gap, out);
+      // Sorted: the grid emits in the order of its cells, and a call may keep the last call's
+      // grid (its origin and cell size), which a fresh CandidatePairs (a resumed run's) does not
+      // have; the collision step's result depends on the pairs' order, so the order must come
+      // from the pairs alone: the same for any grid, any thread count and after a resume.
+      reported = detail::grid_pairs(topo, far_gap, out, false, true);
       if (reported < 0) {
         ran = BroadPhaseMethod::PrimitiveBoxes;
         detail::build_boxes(x0, x1, topo, inflation, *out.scratch, true, true);
@@ -178,13 +150,6 @@ void find_candidates(const Positions& x0, const Positions& x1, const CollisionTo
     // Only the grid has the exact boxes at hand when it emits a pair: the others flag none far.
     out.vertex_face_close.assign(out.vertex_face.size(), 1);
     out.edge_edge_close.assign(out.edge_edge.size(), 1);
-  } else {
-    // The grid emits in the order of its cells, and a call may keep the last call's grid (its
-    // origin and cell size), which a fresh CandidatePairs (a resumed run's) does not have: the
-    // collision step's result depends on the pairs' order, so the order must come from the pairs
-    // alone. Sorted, they are the same for any grid, any thread count and after a resume.
-    sort_pairs(out.vertex_face, out.vertex_face_close, out.scratch->sort_keys);
-    sort_pairs(out.edge_edge, out.edge_edge_close, out.scratch->sort_keys);
   }
   if (stats) {
     stats->no_culling_vertex_face = topo.all_vertex_face_pairs;

@@ -4,6 +4,7 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -126,7 +127,7 @@ bool cell_masks(const detail::GridCell& cell, std::size_t i, std::size_t j0, std
 }  // namespace
 
 std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, CandidatePairs& out,
-                        bool float_superset) {
+                        bool float_superset, bool sorted) {
   BroadPhaseScratch& s = *out.scratch;
   const std::size_t nv = static_cast<std::size_t>(topo.num_vertices);
   const std::size_t nf = static_cast<std::size_t>(topo.faces.rows());
@@ -436,16 +437,28 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   });
   s.grid_cell_loop_seconds = t_cells.elapsed();
   const StageTimer t_output;
-  // The chunks' pairs one after the other: the chunks are cut by entry counts, not by threads,
-  // so this order (cells, then rows within a cell) does not depend on the thread count. No sort:
-  // it is costly on a crowded scene (lab/history.md), and callers need a fixed order, not a sorted
-  // one.
   std::int64_t reported = 0;
+  for (const detail::GridChunk& c : s.chunks) reported += c.reported;
+  if (sorted) {
+    tbb::parallel_invoke(
+        [&] {
+          sort_chunk_keys(s.chunks, true, vf_shift, nv, s.sort_counts[0], s.sort_keys[0],
+                          out.vertex_face, out.vertex_face_close);
+        },
+        [&] {
+          sort_chunk_keys(s.chunks, false, ee_shift, ne, s.sort_counts[1], s.sort_keys[1],
+                          out.edge_edge, out.edge_edge_close);
+        });
+    s.grid_output_seconds = t_output.elapsed();
+    return reported;
+  }
+  // The chunks' pairs one after the other: the chunks are cut by entry counts, not by threads,
+  // so this order (cells, then rows within a cell) does not depend on the thread count (the
+  // speculative broad phase's order).
   std::size_t vf_total = 0, ee_total = 0;
   std::vector<std::size_t>& offset = s.chunk_offsets;  // VF offsets, then EE offsets, per chunk
   offset.assign(2 * GRID_CHUNKS, 0);
   for (std::size_t c = 0; c < GRID_CHUNKS; ++c) {
-    reported += s.chunks[c].reported;
     offset[c] = vf_total;
     offset[GRID_CHUNKS + c] = ee_total;
     vf_total += s.chunks[c].vf_keys.size();

@@ -247,6 +247,15 @@ std::uint64_t grid_sort_fill(const Grid& g, std::size_t nboxes, std::uint64_t en
 bool patch_grid(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
                 BroadPhaseScratch& s);
 
+/// The chunks' keys (a << shift | b) << 1 | close of one kind (vf: the VF lists, else the EE
+/// lists; unique pairs) into pairs[0..] and close[0..], sorted by (a, b): a counting sort by a
+/// (ids below `firsts`), then each a's few keys sorted among themselves. Linear in the pairs and
+/// the ids, where a comparison sort of all the pairs is not.
+/// count and sorted are its buffers, kept from call to call (grid_output.cpp).
+void sort_chunk_keys(const std::vector<GridChunk>& chunks, bool vf, int shift, std::size_t firsts,
+                     std::vector<std::uint32_t>& count, std::vector<std::uint64_t>& sorted,
+                     NoZeroVector<std::array<int, 2>>& pairs, NoZeroVector<std::uint8_t>& close);
+
 /// Method Grid (x0, x1 already in s.grid_vertex_boxes). A pair whose two boxes have a gap above
 /// far_gap on some axis is flagged 0 in out's close flags (see find_candidates). With
 /// float_superset and the AVX-512 loop, the pairs whose float boxes overlap, all flagged close
@@ -254,8 +263,11 @@ bool patch_grid(const Grid& g, const GridPrimitives& prim, std::size_t nboxes,
 /// (nothing done) if the grid would degenerate (see GRID_WORK_PER_BOX), otherwise the number of
 /// box pairs that overlap after rounding outward to float, adjacent ones included (VF, plus EE
 /// once per unordered pair).
+/// With `sorted`, the pairs are sorted by (first id, second id), each with its flag
+/// (find_candidates); otherwise they come in the order of the chunks, cells and rows
+/// (find_candidates_in_vertex_boxes), which does not depend on the thread count either.
 std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, CandidatePairs& out,
-                        bool float_superset = false);
+                        bool float_superset = false, bool sorted = false);
 
 #if SHELLCONTRACT_GRID_AVX512
 /// The cells [c0, c1) of the grid with the AVX-512 rows: the same cells, rows and pairs as the

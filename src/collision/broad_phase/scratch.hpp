@@ -144,7 +144,10 @@ struct BroadPhaseScratch {
   std::vector<detail::BroadPhaseBox> work_a;        ///< copies CGAL may reorder
   std::vector<detail::BroadPhaseBox> work_b;
   std::vector<std::uint64_t> vf_keys;      ///< packed (vertex << 32 | face) pair keys
-  std::vector<std::uint64_t> sort_keys;    ///< find_candidates' sort of the Grid's pairs
+  /// find_candidates' sort of the Grid's VF [0] and EE [1] pairs: the keys, and the counts
+  /// (then ends) of pairs per first id
+  std::array<std::vector<std::uint64_t>, 2> sort_keys;
+  std::array<std::vector<std::uint32_t>, 2> sort_counts;
   std::vector<std::uint64_t> ee_keys;      ///< packed (edge a << 32 | edge b) pair keys
   std::vector<detail::BvhNode> face_tree;  ///< Bvh method: tree over face boxes
   std::vector<int> face_order;             ///< face ids in leaf order
