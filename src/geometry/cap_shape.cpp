@@ -164,13 +164,34 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
     const int o = outside.of[f];
     if (o >= 0 && o != out && !foreign[static_cast<std::size_t>(o)]) flag[f] = 1;
   }
+  // The hemisphere about the region's own axis: the flood and the holes move the mean direction
+  // a little off the part's, so faces beyond 90 degrees of the final axis are cut until none is
+  // (cuts only, so it ends).
+  Vec3 final_axis = axis;
+  for (int round = 0; round < 20; ++round) {
+    std::vector<int> faces;
+    for (std::size_t f = 0; f < m.nf; ++f)
+      if (flag[f]) faces.push_back(static_cast<int>(f));
+    final_axis = cap_axis(m, x, faces, c);
+    if (final_axis.isZero()) return false;
+    bool cut = false;
+    for (int f : faces) {
+      const Vec3 d = centroid(m, x, f) - c;
+      if (!(d.dot(final_axis) >= cos_max * d.norm())) flag[static_cast<std::size_t>(f)] = 0, cut = true;
+    }
+    if (!cut) break;
+    const Components rest_pieces = components(m, flag);
+    const int biggest = largest(rest_pieces);
+    if (biggest < 0) return false;
+    for (std::size_t f = 0; f < m.nf; ++f) flag[f] = rest_pieces.of[f] == biggest ? 1 : 0;
+  }
   cap.faces.clear();
   for (std::size_t f = 0; f < m.nf; ++f) {
     if (owner_face[f] == id && !flag[f]) owner_face[f] = -1;
     if (flag[f]) owner_face[f] = id, cap.faces.push_back(static_cast<int>(f));
   }
   // Reported: the sphere that shaped the region, the RMS distance of the region's vertices to
-  // it (area weights) / its radius, and the widest face centroid from the axis.
+  // it (area weights) / its radius, and the widest face centroid from the region's axis.
   std::set<int> verts;
   for (int f : cap.faces)
     for (int v : m.tri[static_cast<std::size_t>(f)]) verts.insert(v);
@@ -184,7 +205,7 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
   for (int f : cap.faces) {
     const Vec3 d = centroid(m, x, f) - c;
     const double n = d.norm();
-    if (n > 0.0) angle = std::max(angle, std::acos(std::clamp(d.dot(axis) / n, -1.0, 1.0)));
+    if (n > 0.0) angle = std::max(angle, std::acos(std::clamp(d.dot(final_axis) / n, -1.0, 1.0)));
   }
   cap.angle = angle;
   return !cap.faces.empty();
