@@ -20,7 +20,6 @@
 #include <numeric>
 #include <optional>
 #include <string>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -348,18 +347,21 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
   // different seed of one arm can win).
   std::vector<Cap> caps;
   for (auto& k : kept) caps.push_back(std::move(k.first));
+  std::vector<int> in_part(m.nf, -1);
   for (std::size_t k = 0; k < caps.size(); ++k) {
-    std::set<int> faces(caps[k].faces.begin(), caps[k].faces.end());
+    const int id = static_cast<int>(k);
+    for (int f : caps[k].faces) in_part[static_cast<std::size_t>(f)] = id;
     for (const Cap* c : members[k])
       for (int f : c->faces) {
+        if (in_part[static_cast<std::size_t>(f)] == id) continue;
         bool other = false;  // a face touching another part stays that part's
         for (int v : m.tri[static_cast<std::size_t>(f)]) {
           const int p = vertex_part[static_cast<std::size_t>(v)];
-          other = other || (p >= 0 && p != static_cast<int>(k));
+          other = other || (p >= 0 && p != id);
         }
-        if (!other) faces.insert(f);
+        if (!other) in_part[static_cast<std::size_t>(f)] = id, caps[k].faces.push_back(f);
       }
-    caps[k].faces.assign(faces.begin(), faces.end());
+    std::sort(caps[k].faces.begin(), caps[k].faces.end());
   }
   timer.lap("parts");
   // Step 5: each region clipped to a hemisphere of its sphere, in one piece, its holes filled;

@@ -148,21 +148,46 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
   const int keep = largest(pieces);
   if (keep < 0) return false;
   for (std::size_t f = 0; f < m.nf; ++f) flag[f] = pieces.of[f] == keep ? 1 : 0;
-  // Holes: every component of the rest but the largest (the outside) lies inside the region. A
-  // hole within the hemisphere that holds no face of another region (a crease, a snout's base,
-  // scan noise) belongs to the part a person would circle; one that holds another region (an
-  // ear) stays out, and so does the far side of a nearly closed ball (beyond the hemisphere).
-  std::vector<char> rest(m.nf, 0);
-  for (std::size_t f = 0; f < m.nf; ++f) rest[f] = flag[f] ? 0 : 1;
-  const Components outside = components(m, rest);
-  const int out = largest(outside);
-  std::vector<char> foreign(outside.area.size(), 0);
-  for (std::size_t f = 0; f < m.nf; ++f)
-    if (outside.of[f] >= 0 && ((owner_face[f] >= 0 && owner_face[f] != id) || !within(f)))
-      foreign[static_cast<std::size_t>(outside.of[f])] = 1;
-  for (std::size_t f = 0; f < m.nf; ++f) {
-    const int o = outside.of[f];
-    if (o >= 0 && o != out && !foreign[static_cast<std::size_t>(o)]) flag[f] = 1;
+  // Holes: components of the other faces that lie inside the region. A hole within the
+  // hemisphere that holds no face of another region (a crease, a snout's base, scan noise)
+  // belongs to the part a person would circle; one that holds another region (an ear) stays
+  // out, and so does everything reaching beyond the hemisphere (the rest of the mesh, or the far
+  // side of a nearly closed ball). Each component is explored from the region's border and the
+  // search stops at the first face that disqualifies it, so the cost is the holes', not the
+  // mesh's.
+  enum : char { UNSEEN, OPEN, NOT_HOLE };
+  std::vector<char> seen(m.nf, UNSEEN);
+  std::vector<int> walk, members;
+  for (std::size_t f0 = 0; f0 < m.nf; ++f0) {
+    if (!flag[f0]) continue;
+    for (int start : m.face_nbr[f0]) {
+      if (start < 0 || flag[static_cast<std::size_t>(start)] || seen[static_cast<std::size_t>(start)] != UNSEEN) continue;
+      bool hole = true;
+      walk.assign(1, start);
+      members.clear();
+      seen[static_cast<std::size_t>(start)] = OPEN;
+      while (!walk.empty() && hole) {
+        const auto g = static_cast<std::size_t>(walk.back());
+        walk.pop_back();
+        members.push_back(static_cast<int>(g));
+        if ((owner_face[g] >= 0 && owner_face[g] != id) || !within(g)) {
+          hole = false;
+          break;
+        }
+        for (int h : m.face_nbr[g]) {
+          if (h < 0 || flag[static_cast<std::size_t>(h)]) continue;
+          const char st = seen[static_cast<std::size_t>(h)];
+          if (st == NOT_HOLE) hole = false;
+          if (st != UNSEEN) continue;
+          seen[static_cast<std::size_t>(h)] = OPEN;
+          walk.push_back(h);
+        }
+      }
+      for (int g : walk) members.push_back(g);
+      for (int g : members) seen[static_cast<std::size_t>(g)] = hole ? OPEN : NOT_HOLE;
+      if (hole)
+        for (int g : members) flag[static_cast<std::size_t>(g)] = 1;
+    }
   }
   // The hemisphere about the region's own axis: the flood and the holes move the mean direction
   // a little off the part's, so faces beyond 90 degrees of the final axis are cut until none is
