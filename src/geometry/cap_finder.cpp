@@ -365,7 +365,8 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
   }
   timer.lap("parts");
   // Step 5: each region clipped to a hemisphere of its sphere, in one piece, its holes filled;
-  // the size and shape filters again on the final faces.
+  // the size, shape and fit filters again on the final faces (the flood over the sphere can
+  // make a region larger than the cap that found it).
   std::vector<int> owner_face(m.nf, -1);
   for (std::size_t id = 0; id < caps.size(); ++id)
     for (int f : caps[id].faces) owner_face[static_cast<std::size_t>(f)] = static_cast<int>(id);
@@ -376,13 +377,17 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
     const RegionSummary s = shaped ? summarise(mesh, x, m, cap, h_ref) : RegionSummary{};
     // The final region must still fit its sphere as the growth asked (a cap on a sphere).
     const bool keep = shaped && s.area_fraction >= options.min_area_fraction &&
+                      s.area_fraction <= options.max_area_fraction &&
                       s.faces >= static_cast<std::size_t>(options.min_faces) &&
                       s.compactness <= options.max_compactness && s.residual <= options.fit_tolerance;
     if (keep) {
       kept.emplace_back(std::move(cap), s);
     } else {
-      ++(shaped && !(s.compactness <= options.max_compactness && s.residual <= options.fit_tolerance) ? r.dropped_shape
-                                                                                                         : r.dropped_small);
+      if (shaped && s.area_fraction > options.max_area_fraction)
+        ++r.dropped_large;
+      else
+        ++(shaped && !(s.compactness <= options.max_compactness && s.residual <= options.fit_tolerance) ? r.dropped_shape
+                                                                                                           : r.dropped_small);
       for (std::size_t f = 0; f < m.nf; ++f)
         if (owner_face[f] == static_cast<int>(id)) owner_face[f] = -1;
     }
