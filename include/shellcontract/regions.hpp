@@ -10,14 +10,20 @@
 //      max_concave_fraction of the disc is concave;
 //   3. candidates are ranked by their angular extent (arc radius / sphere radius: a fingertip or
 //      ear is close to a hemisphere, a patch of a flank is nearly flat); in that order each is
-//      grown again without entering the regions already accepted (non-maximum suppression; a
-//      candidate mostly inside better ones is skipped) and is kept when it is curved enough
-//      (1/radius >= min_curvature_contrast x the median |H|), spans at least
+//      grown again without entering the parts already accepted and kept when it is curved
+//      enough (1/radius >= min_curvature_contrast x the median |H|), spans at least
 //      min_cap_angle_deg, has an area share within [min, max]_area_fraction, at least
-//      min_faces faces and compactness perimeter^2 / (4 pi area) <= max_compactness;
-//   4. kept caps that are pieces of one part are joined (cap_internal.hpp,
-//      merge_adjacent_caps): across a convex gap, or two caps of one sphere across the band
-//      between them, when the union stays compact.
+//      min_faces faces and compactness perimeter^2 / (4 pi area) <= max_compactness. A
+//      candidate whose seed lies inside a kept cap, near a kept cap's sphere (within 2.2 radii
+//      of its centre) or whose free cap lies mostly on kept caps is not a part of its own: it
+//      joins that part;
+//   4. each part is its cap with the free caps of the candidates that joined it;
+//   5. each part becomes its region: the faces within a hemisphere of the part's fitted sphere
+//      (about the mean direction of its faces from the centre) that lie on that sphere or in
+//      the part, in one piece, holes filled unless another region is in them, the outline
+//      smoothed; filtered again (size, compactness, fit residual <= fit_tolerance), and a
+//      region whose centre lies within 1.2 radii of a larger region's centre is dropped as a
+//      piece of it. So no region spans more than a hemisphere (docs/math/cap-finder.md).
 // Every length is relative to the mesh's size (sqrt of its area), so the result does not
 // change under scaling, rotation, vertex order and (within the discretisation) resolution.
 #pragma once
@@ -72,7 +78,8 @@ struct RegionSummary {
   Vec3 centre = Vec3::Zero();    ///< centre of the fitted sphere (length)
   double radius = 0.0;           ///< radius of the fitted sphere (length)
   double residual = 0.0;         ///< RMS distance of the region's vertices to the sphere / radius
-  double cap_angle_deg = 0.0;    ///< geodesic radius of the region / sphere radius, degrees
+  double cap_angle_deg = 0.0;    ///< widest angle of a face centroid from the region's axis, seen
+                                 ///< from the sphere's centre, degrees (at most 90)
   double compactness = 0.0;      ///< perimeter^2 / (4 pi area) of the region's faces
   int seed_vertex = -1;          ///< vertex the region grew from
   double mean_curvature = 0.0;   ///< 1 / radius, 1/length

@@ -1,6 +1,6 @@
-// The spherical-cap region finder (algorithm in region_selection.hpp and docs/design/regions.md):
-// diffusion-smoothed mean curvature -> seeds -> geodesic discs grown while a sphere fits ->
-// ranked, non-overlapping, compact caps.
+// The spherical-cap region finder (algorithm in shellcontract/regions.hpp, docs/design/regions.md
+// and docs/math/cap-finder.md): diffusion-smoothed mean curvature -> seeds -> geodesic discs
+// grown while a sphere fits -> ranked parts, one per sphere -> each a hemisphere at most.
 #include <Eigen/SparseCore>
 
 #include <tbb/enumerable_thread_specific.h>
@@ -15,6 +15,7 @@
 #include <ctime>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -68,6 +69,16 @@ constexpr std::array<double, 4> SEED_SCALES = {0.01, 0.02, 0.05, 0.1};
 /// A candidate whose freely grown cap has more than this share of its faces on better caps is a
 /// fragment of a part already taken (non-maximum suppression).
 constexpr double MAX_COVERED = 0.5;
+/// A seed within this many radii of a kept part's sphere centre belongs to that part. A seed on
+/// the part's own surface lies about one radius away, somewhat more on a part that is not a
+/// sphere (the side or the sole of a foot); a seed of another part lies several radii away, and
+/// ears and tips rank before the larger parts they sit on. The bound sits between the two with a
+/// margin each way (measured on bear: lab/regions/finder.md).
+constexpr double SAME_PART_SEED = 2.2;
+/// A region whose sphere's centre is within this many radii of a larger region's centre is a
+/// piece of that region's part (two caps of one end sit about a radius apart; an ear's centre
+/// lies outside its head's sphere).
+constexpr double SAME_PART = 1.2;
 
 /// H smoothed by one implicit heat step: (M + t L) u = M H, L the (positive semidefinite)
 /// cotangent Laplacian, M the mixed areas, t = (scale * size)^2. Mesh-independent in the limit,
@@ -265,15 +276,46 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 
   // Step 3: in rank order, grown again around the regions already kept.
   std::vector<char> blocked(m.nv, 0);
+  // The part (index in kept) each blocked vertex belongs to, and the candidates each part took
+  // over (their free caps widen the part in step 4).
+  std::vector<int> vertex_part(m.nv, -1);
+  std::vector<std::vector<const Cap*>> members;
   std::vector<std::pair<Cap, RegionSummary>> kept;
   for (const Cap& first : candidates) {
-    if (blocked[static_cast<std::size_t>(first.seed)]) continue;  // inside a better cap
+    const auto join = [&](int part) {
+      if (part >= 0) members[static_cast<std::size_t>(part)].push_back(&first);
+    };
+    if (blocked[static_cast<std::size_t>(first.seed)]) {  // inside a better cap
+      join(vertex_part[static_cast<std::size_t>(first.seed)]);
+      continue;
+    }
+    // A seed near a kept part's sphere (the back of a head whose face was taken, the side of a
+    // foot) is that part's, whatever its own cap: one part, one region.
+    const Vec3 sp(x.row(first.seed));
+    int same = -1;
+    for (std::size_t k = 0; k < kept.size() && same < 0; ++k)
+      if ((sp - kept[k].first.sphere.centre).norm() <= SAME_PART_SEED * kept[k].first.sphere.radius)
+        same = static_cast<int>(k);
+    if (same >= 0) {
+      join(same);
+      continue;
+    }
     // Mostly covered by better caps: a fragment of a part already taken, not a part of its own.
     std::size_t covered = 0;
-    for (int f : first.faces)
-      covered += std::any_of(m.tri[static_cast<std::size_t>(f)].begin(), m.tri[static_cast<std::size_t>(f)].end(),
-                             [&](int v) { return blocked[static_cast<std::size_t>(v)] != 0; });
-    if (static_cast<double>(covered) > MAX_COVERED * static_cast<double>(first.faces.size())) continue;
+    std::map<int, std::size_t> by_part;
+    for (int f : first.faces) {
+      int part = -1;
+      for (int v : m.tri[static_cast<std::size_t>(f)])
+        if (blocked[static_cast<std::size_t>(v)]) part = vertex_part[static_cast<std::size_t>(v)];
+      if (part >= 0) ++covered, ++by_part[part];
+    }
+    if (static_cast<double>(covered) > MAX_COVERED * static_cast<double>(first.faces.size())) {
+      int best = -1;
+      for (const auto& [p, n] : by_part)
+        if (best < 0 || n > by_part[best]) best = p;
+      join(best);
+      continue;
+    }
     std::optional<Cap> cap = grower.grow(first.seed, &blocked);
     if (!cap || cap->faces.empty()) continue;
     if (cap->unbounded) {
@@ -293,20 +335,80 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
       ++r.dropped_shape;
     } else {
       block(m, *cap, blocked);
+      for (int f : cap->faces)
+        for (int v : m.tri[static_cast<std::size_t>(f)]) vertex_part[static_cast<std::size_t>(v)] = static_cast<int>(kept.size());
+      members.emplace_back();
       kept.emplace_back(std::move(*cap), s);
     }
   }
   timer.lap("ranked growth");
-  // Step 4: caps of one part (two sides of a head) are joined across a convex gap.
+  // Step 4: each part is its cap and the free caps of the seeds it took over, so its sphere and
+  // axis do not hang on which of its seeds ranked first (on bear and bear split in four a
+  // different seed of one arm can win).
   std::vector<Cap> caps;
   for (auto& k : kept) caps.push_back(std::move(k.first));
-  caps = detail::merge_adjacent_caps(mesh, m, x, u.front(), std::move(caps), options);
-  kept.clear();
-  for (Cap& cap : caps) {
-    const RegionSummary s = summarise(mesh, x, m, cap, h_ref);
-    kept.emplace_back(std::move(cap), s);
+  std::vector<int> in_part(m.nf, -1);
+  for (std::size_t k = 0; k < caps.size(); ++k) {
+    const int id = static_cast<int>(k);
+    for (int f : caps[k].faces) in_part[static_cast<std::size_t>(f)] = id;
+    for (const Cap* c : members[k])
+      for (int f : c->faces) {
+        if (in_part[static_cast<std::size_t>(f)] == id) continue;
+        bool other = false;  // a face touching another part stays that part's
+        for (int v : m.tri[static_cast<std::size_t>(f)]) {
+          const int p = vertex_part[static_cast<std::size_t>(v)];
+          other = other || (p >= 0 && p != id);
+        }
+        if (!other) in_part[static_cast<std::size_t>(f)] = id, caps[k].faces.push_back(f);
+      }
+    std::sort(caps[k].faces.begin(), caps[k].faces.end());
   }
-  timer.lap("merge");
+  timer.lap("parts");
+  // Step 5: each region clipped to a hemisphere of its sphere, in one piece, its holes filled;
+  // the size, shape and fit filters again on the final faces (the flood over the sphere can
+  // make a region larger than the cap that found it).
+  std::vector<int> owner_face(m.nf, -1);
+  for (std::size_t id = 0; id < caps.size(); ++id)
+    for (int f : caps[id].faces) owner_face[static_cast<std::size_t>(f)] = static_cast<int>(id);
+  kept.clear();
+  for (std::size_t id = 0; id < caps.size(); ++id) {
+    Cap& cap = caps[id];
+    const bool shaped = detail::shape_cap(m, x, cap, owner_face, static_cast<int>(id));
+    const RegionSummary s = shaped ? summarise(mesh, x, m, cap, h_ref) : RegionSummary{};
+    // The final region must still fit its sphere as the growth asked (a cap on a sphere).
+    const bool keep = shaped && s.area_fraction >= options.min_area_fraction &&
+                      s.area_fraction <= options.max_area_fraction &&
+                      s.faces >= static_cast<std::size_t>(options.min_faces) &&
+                      s.compactness <= options.max_compactness && s.residual <= options.fit_tolerance;
+    if (keep) {
+      kept.emplace_back(std::move(cap), s);
+    } else {
+      if (shaped && s.area_fraction > options.max_area_fraction)
+        ++r.dropped_large;
+      else
+        ++(shaped && !(s.compactness <= options.max_compactness && s.residual <= options.fit_tolerance) ? r.dropped_shape
+                                                                                                           : r.dropped_small);
+      for (std::size_t f = 0; f < m.nf; ++f)
+        if (owner_face[f] == static_cast<int>(id)) owner_face[f] = -1;
+    }
+  }
+  // A region whose sphere's centre lies within SAME_PART radii of a larger region's centre is a
+  // piece of that part's end (the side of a foot that a second seed grew after the first took
+  // the tip): dropped, its faces stay unassigned. Larger regions first, so a piece never keeps
+  // out the part it belongs to.
+  std::sort(kept.begin(), kept.end(), [](const auto& a, const auto& b) {
+    if (a.second.area != b.second.area) return a.second.area > b.second.area;
+    return a.first.faces.front() < b.first.faces.front();
+  });
+  std::vector<std::pair<Cap, RegionSummary>> parts;
+  for (auto& k : kept) {
+    const bool piece = std::any_of(parts.begin(), parts.end(), [&](const auto& p) {
+      return (p.second.centre - k.second.centre).norm() <= SAME_PART * p.second.radius;
+    });
+    if (!piece) parts.push_back(std::move(k));
+  }
+  kept = std::move(parts);
+  timer.lap("shape");
   std::vector<int> region = number_regions(kept, m.nf, r, false);
   if (report) *report = std::move(r);
   return region;

@@ -1,5 +1,5 @@
-// Private to the region finder (cap_finder.cpp, cap_merge.cpp): the mesh as flat arrays and a
-// grown cap.
+// Private to the region finder (cap_finder.cpp, cap_arrays.cpp, cap_shape.cpp): the mesh as flat
+// arrays, a grown cap and its final shape.
 #pragma once
 
 #include <array>
@@ -31,25 +31,36 @@ struct MeshArrays {
 
 MeshArrays mesh_arrays(const Mesh& mesh, const Positions& x);
 
-/// A grown cap: the disc's radius, its fitted sphere and its faces.
+/// The widest a region may be: its faces lie within this angle (radians) of its axis, seen from
+/// its sphere's centre: a hemisphere. A cap wider than a hemisphere is most of a limb or of a
+/// body (a paw's cap of 140 degrees reaches down the arm), and a dimple mirrored through the rim
+/// of such a cap turns the limb inside out (docs/math/cap-finder.md).
+constexpr double MAX_CAP_ANGLE = 0.5 * 3.14159265358979323846;
+
+/// A grown cap, or a region: its seed, the disc's radius, its fitted sphere and its faces.
 struct Cap {
   int seed = -1;
   double rho = 0.0;  ///< geodesic (edge-graph) radius of the accepted disc
   detail::SphereFit sphere;
-  double angle = 0.0;  ///< rho / radius, radians
+  /// Grown: the disc's angle from its area, acos(1 - area / (2 pi r^2)); shaped (shape_cap):
+  /// the widest face centroid from the axis. Radians.
+  double angle = 0.0;
   bool unbounded = false;  ///< the disc still fitted when it reached max_area_fraction
   std::vector<int> faces;
 };
 
-/// Merges kept caps that are parts of one part: two caps whose gap (the faces between them, with
-/// corners on both) is convex (at most options.max_concave_fraction of its corners' area has
-/// concave_field < 0) become one region with the gap, when the union stays within
-/// options.max_compactness and options.max_area_fraction. A crease between a head and an ear is
-/// concave and keeps them apart; two caps of one head meet on a convex band and are joined.
-/// Caps are taken in their order (the rank), so the result does not depend on the vertex order.
-/// The merged cap keeps the first cap's seed and the larger angle; its sphere is refitted.
-std::vector<Cap> merge_adjacent_caps(const Mesh& mesh, const MeshArrays& m, const Positions& x,
-                                     const Eigen::VectorXd& concave_field, std::vector<Cap> caps,
-                                     const RegionOptions& options);
+/// The area-weighted mean direction from c to the faces' centroids, normalised; zero when
+/// there is none (faces all around c).
+Vec3 cap_axis(const MeshArrays& m, const Positions& x, const std::vector<int>& faces, const Vec3& c);
+
+/// The final shape of region `id` (the part's faces in cap.faces; owner_face = region per face,
+/// -1 for none): with the sphere fitted to the part and its axis (cap_axis about that centre),
+/// the faces within MAX_CAP_ANGLE of the axis, flooded over the faces near the sphere (corners
+/// within twice the fit's residual of the radius, 0.02 to 0.1) within that angle that no other
+/// region owns; the largest edge-connected piece; its holes filled where they lie within the
+/// angle and hold no face of another region. Updates cap.faces, cap.sphere (residual: RMS
+/// distance of the region's vertices to the sphere / radius), cap.angle and owner_face. False
+/// when nothing is left or the part has no axis (faces all around its centre).
+bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<int>& owner_face, int id);
 
 }  // namespace shellcontract::detail

@@ -2,6 +2,7 @@
 
 #include <CGAL/IO/read_points.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <CGAL/Random.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/poisson_surface_reconstruction.h>
 #include <CGAL/property_map.h>
@@ -135,6 +136,9 @@ bool poisson_delaunay(const std::vector<PointWithNormal>& points, Mesh& mesh, do
                                                            options.distance * spacing);
   Tr tr;
   C2t3 c2t3(tr);
+  // The mesher draws its initial points from CGAL's default generator, which CGAL seeds with the
+  // clock: a fixed seed makes the same input give the same mesh on every run.
+  CGAL::get_default_random() = CGAL::Random(0);
   CGAL::make_surface_mesh(c2t3, surface, criteria, CGAL::Manifold_with_boundary_tag());
   if (tr.number_of_vertices() == 0 || c2t3.number_of_facets() == 0) return false;
   CGAL::facets_in_complex_2_to_triangle_mesh(c2t3, mesh);
