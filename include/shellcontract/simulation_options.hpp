@@ -412,7 +412,7 @@ struct SimOptions {
   /// How much the regions shrink, in [0, 1]: the local contraction's strength (dimple_rest_volume
   /// for InwardTerm::Volume, region_pressure for InwardTerm::Force).
   double region_shrink = DEFAULT_REGION_SHRINK;
-  DimpleShape dimple_shape = DimpleShape::Volume;  ///< InwardTerm::Volume's dimple (--dimple)
+  DimpleShape dimple_shape = DimpleShape::Mirror;  ///< InwardTerm::Volume's dimple (--dimple)
   /// Continuous collision detection and response (paper section 4). On by default: users expect
   /// a result that never passes through itself (design.md).
   bool collisions = true;
