@@ -308,9 +308,11 @@ enum class BendingModel { Isometric, Dihedral, None };
 enum class InwardTerm { Projection, Force, Volume, None };
 
 /// The shape InwardTerm::Volume drives each region's dimple to: Volume projects the dimple's cap
-/// volume only (region_volume.hpp); Mirror moves its interior vertices onto the mirror image of
-/// the rest cap through the rim's plane, an isometry (region_mirror.hpp), and keeps the volume
-/// projection for a region that cannot be mirrored.
+/// volume only (region_volume.hpp); Mirror (the default) moves its interior vertices onto the
+/// mirror image of the rest cap through the rim's plane, an isometry, carried by the shell away
+/// from the regions, the ring at the rim left to the solver and a vertex already deeper left
+/// where it is (region_mirror.hpp, docs/math/region-mirror.md), and keeps the volume projection
+/// for a region that cannot be mirrored.
 enum class DimpleShape { Volume, Mirror };
 
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
@@ -412,7 +414,7 @@ struct SimOptions {
   /// How much the regions shrink, in [0, 1]: the local contraction's strength (dimple_rest_volume
   /// for InwardTerm::Volume, region_pressure for InwardTerm::Force).
   double region_shrink = DEFAULT_REGION_SHRINK;
-  DimpleShape dimple_shape = DimpleShape::Volume;  ///< InwardTerm::Volume's dimple (--dimple)
+  DimpleShape dimple_shape = DimpleShape::Mirror;  ///< InwardTerm::Volume's dimple (--dimple)
   /// Continuous collision detection and response (paper section 4). On by default: users expect
   /// a result that never passes through itself (design.md).
   bool collisions = true;

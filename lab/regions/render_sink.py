@@ -4,9 +4,11 @@ mesh and the result of `shellcontract run MESH --regions FILE -p 0`, the regions
 side in docs/images/regions_<name>_sink.png, and prints the sink / rest measures
 (lab/regions/rest_motion.py).
 
-Default: bear's two ear tips. Usage:
+Default: bear's two ear tips. With --parts the regions are the labelled parts of labels.py's
+`parts_of` (sink.py's part_regions; --drop leaves some out) instead of --at points. Usage:
   /usr/bin/python3 lab/regions/render_sink.py [--build build] [--mesh bear]
-      [--at 0.393,0.822,-0.056 --at -0.348,0.936,-0.051] [--name bear_ears] [--azim 20]
+      [--at 0.393,0.822,-0.056 --at -0.348,0.936,-0.051 | --parts [--drop head]] [--name bear_ears]
+      [--azim 20]
 """
 import argparse
 import os
@@ -30,6 +32,26 @@ def ply_with_positions(ply_in, ply_out, positions):
     open(ply_out, "w").write("\n".join(lines))
 
 
+COLOURS = [(230, 40, 40), (40, 90, 230), (140, 230, 40), (230, 170, 30), (170, 60, 200),
+           (40, 200, 200), (230, 110, 170)]
+
+
+def write_region_ply(path, v, f, regions):
+    """An ASCII PLY as `regions` writes it (vertices first, then faces with an RGBA colour per
+    region, grey outside), for the labelled parts, which the tool does not colour."""
+    colour = [(160, 160, 160)] * len(f)
+    for k, r in enumerate(regions):
+        for j in r:
+            colour[j] = COLOURS[k % len(COLOURS)]
+    with open(path, "w") as fo:
+        fo.write("ply\nformat ascii 1.0\nelement vertex %d\nproperty double x\nproperty double y\n"
+                 "property double z\nelement face %d\nproperty list uchar int vertex_indices\n"
+                 "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
+                 "end_header\n" % (len(v), len(f)))
+        fo.write("".join("%.17g %.17g %.17g\n" % tuple(p) for p in v))
+        fo.write("".join("3 %d %d %d %d %d %d 255\n" % (tuple(t) + c) for t, c in zip(f, colour)))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
@@ -37,6 +59,8 @@ def main():
     ap.add_argument("--at", action="append", default=None)
     ap.add_argument("--name", default="bear_ears")
     ap.add_argument("--azim", default="20")
+    ap.add_argument("--parts", action="store_true", help="the labelled parts (labels.py), not --at")
+    ap.add_argument("--drop", default="", help="with --parts: comma-separated part names to leave out")
     a = ap.parse_args()
     points = a.at or ["0.393,0.822,-0.056", "-0.348,0.936,-0.051"]
     exe = os.path.join(a.build, "shellcontract")
@@ -44,8 +68,16 @@ def main():
     out_dir = os.path.join(common.ROOT, "docs", "images")
     with tempfile.TemporaryDirectory() as tmp:
         ply, listed, out = (os.path.join(tmp, n) for n in ("r.ply", "r.txt", "out.off"))
-        subprocess.run([exe, "regions", mesh, "-o", ply, "--face-list", listed] + ["--region-at=" + p for p in points],
-                       check=True, stdout=subprocess.DEVNULL)
+        if a.parts:
+            import sink  # noqa: E402 (its part_regions)
+            rest, faces = common.read_off(mesh)
+            regions = sink.part_regions(a.mesh, rest, faces, set(filter(None, a.drop.split(","))))
+            with open(listed, "w") as fo:
+                fo.write("".join(" ".join(map(str, r)) + "\n" for r in regions))
+            write_region_ply(ply, rest, faces, regions)
+        else:
+            subprocess.run([exe, "regions", mesh, "-o", ply, "--face-list", listed] +
+                           ["--region-at=" + p for p in points], check=True, stdout=subprocess.DEVNULL)
         subprocess.run([exe, "run", mesh, "--regions", listed, "-p", "0", "-o", out, "-q", "--validate", "end"],
                        check=True)
         after = os.path.join(tmp, "after.ply")

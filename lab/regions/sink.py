@@ -14,8 +14,17 @@ For each mesh (bear, hand, elk, kitten, bumpy_sphere):
 Pass: every region sinks >= 1 % of the diagonal, rest <= a tenth of the smallest sink, no new
 intersection, ratio >= 2.
 
+With --parts the regions are instead the labelled parts of lab/regions/labels.py's `parts_of`
+(the faces whose centroid lies within r of P, each face to the first part that takes it; parts
+named in --drop left out), written to a face list and run with `--regions FILE`: the local
+contraction on the caps a person would circle, whatever the finder proposes.
+
+With --face-list MESH=FILE (repeatable) the regions of MESH are the face list FILE (e.g. written
+by `shellcontract regions MESH --face-list FILE --region-at X,Y,Z ...`); only those meshes run.
+
 Usage: /usr/bin/python3 lab/regions/sink.py [--build build] [--meshes bear,hand,...] [--frames N]
-       [--run-args "--dimple mirror"] [--title T] [--out FILE [--append]]
+       [--run-args "--dimple mirror"] [--parts [--drop "head"]] [--face-list MESH=FILE ...]
+       [--title T] [--out FILE [--append]]
 """
 import argparse
 import json
@@ -61,18 +70,41 @@ def rest_motion(rest, faces, end, regions):
     return float(d.mean()) if len(d) else 0.0, float(np.percentile(d, 95)) if len(d) else 0.0
 
 
+def part_regions(name, rest, faces, drop):
+    """Face lists of the labelled parts of `name` (labels.parts_of), or None without labels."""
+    import labels  # noqa: E402 (read only: the labelled set is lab/regions/labels.py's)
+    parts = labels.parts_of(name, rest)
+    if parts is None:
+        return None
+    cent = common.face_centroids(rest, faces)
+    taken = np.zeros(len(faces), bool)
+    out = []
+    for part, p, r in parts:
+        mask = (np.linalg.norm(cent - p, axis=1) <= r) & ~taken
+        taken |= mask
+        if part not in drop and mask.any():
+            out.append([int(i) for i in np.flatnonzero(mask)])
+    return out
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
     ap.add_argument("--meshes", default=",".join(MESHES))
     ap.add_argument("--frames", type=int, default=0, help="0 = the tool's default")
     ap.add_argument("--run-args", default="", help="more options for every run, e.g. '--dimple mirror'")
+    ap.add_argument("--parts", action="store_true", help="sink the labelled parts (labels.py), not the finder's")
+    ap.add_argument("--drop", default="", help="with --parts: comma-separated part names to leave out")
+    ap.add_argument("--face-list", action="append", default=[], help="MESH=FILE: sink FILE's regions on MESH")
     ap.add_argument("--title", default="", help="the section's title (default: the run options)")
     ap.add_argument("--append", action="store_true", help="add a section to --out instead of rewriting it")
     ap.add_argument("--out", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "sink.md"))
     a = ap.parse_args()
     exe = os.path.join(a.build, "shellcontract")
     frames = (["--frames", str(a.frames)] if a.frames else []) + a.run_args.split()
+    given = dict(item.split("=", 1) for item in a.face_list)
+    if given:
+        a.meshes = ",".join(given)
     rows = ["| mesh | regions | smallest sink / diag | largest sink / diag | rest / diag (mean, 95 %) | "
             "rest / smallest sink | new intersections | default -p: smallest sink ratio on/off | pass |",
             "|---|---|---|---|---|---|---|---|---|"]
@@ -84,15 +116,28 @@ def main():
                 continue
             rest, faces = common.read_off(path)
             diag = float(np.linalg.norm(rest.max(0) - rest.min(0)))
-            regions, _, _ = common.auto_regions(exe, path, tmp)
+            if name in given:
+                source = os.path.abspath(given[name])
+                regions = common.read_face_list(source)
+            elif a.parts:
+                regions = part_regions(name, rest, faces, set(filter(None, a.drop.split(","))))
+                if regions is None:
+                    print(f"{name}: no labelled parts, skipped", file=sys.stderr)
+                    continue
+                source = os.path.join(tmp, name + "_parts.txt")
+                with open(source, "w") as fo:
+                    fo.write("".join(" ".join(map(str, r)) + "\n" for r in regions))
+            else:
+                regions, _, _ = common.auto_regions(exe, path, tmp)
+                source = "auto"
             if not regions:
                 rows.append(f"| {name} | 0 | - | - | - | - | - | - | no |")
                 continue
-            s0, end0 = run(exe, path, tmp, ["--regions", "auto", "-p", "0"] + frames)
+            s0, end0 = run(exe, path, tmp, ["--regions", source, "-p", "0"] + frames)
             sink = per_region_sink(rest, faces, end0, regions)
             rest_mean, rest95 = rest_motion(rest, faces, end0, regions)
-            s_on, end_on = run(exe, path, tmp, ["--regions", "auto"] + frames)
-            s_off, end_off = run(exe, path, tmp, ["--regions", "auto", "--inward", "none"] + frames)
+            s_on, end_on = run(exe, path, tmp, ["--regions", source] + frames)
+            s_off, end_off = run(exe, path, tmp, ["--regions", source, "--inward", "none"] + frames)
             on = per_region_sink(rest, faces, end_on, regions)
             off = per_region_sink(rest, faces, end_off, regions)
             ratios = [o / f if f > 1e-12 else np.inf for o, f in zip(on, off)]
@@ -104,7 +149,8 @@ def main():
                         f"{s0.get('new_intersections')} (on/off runs: {s_on.get('new_intersections')}/"
                         f"{s_off.get('new_intersections')}) | {min(ratios):.2f} | {'yes' if ok else 'no'} |")
             print(rows[-1], flush=True)
-    title = a.title or ("`run MESH --regions auto` " + " ".join(frames)).strip()
+    what = "FILE" if given else "the labelled parts" if a.parts else "auto"
+    title = a.title or (f"`run MESH --regions {what}` " + " ".join(frames)).strip()
     commit = subprocess.run(["git", "-C", common.ROOT, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip() or "unknown"
     command = " ".join(["lab/regions/sink.py"] + [f"'{x}'" if " " in x else x for x in sys.argv[1:]])

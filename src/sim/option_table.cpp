@@ -311,10 +311,11 @@ std::vector<OptionSpec> build_table() {
                                  {"none", InwardTerm::None}},
              [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
   t.push_back(choice("dimple",
-                     "the shape --inward volume sinks a region to: volume (the dimple's cap "
-                     "volume is projected, its shape free) | mirror (the cap mirrored through "
-                     "its rim's plane, an isometry, carried by the rim; volume where a region "
-                     "has no mirror: a collinear rim or no interior vertex)",
+                     "the shape --inward volume sinks a region to: mirror (default: the cap "
+                     "mirrored through its rim's plane, an isometry, carried by the shell away "
+                     "from the regions, the ring at the rim left to the solver; volume where a "
+                     "region has no mirror: a collinear rim or no interior vertex) | volume (the "
+                     "dimple's cap volume is projected, its shape free)",
                      Choices<DimpleShape>{{"volume", DimpleShape::Volume},
                                           {"mirror", DimpleShape::Mirror}},
                      [](R& r) -> DimpleShape& { return r.sim.dimple_shape; }));

@@ -112,24 +112,62 @@ RegionMirror make_region_mirror(const Positions& rest, const RegionCap& cap) {
       m.image.push_back(reflect(at(static_cast<int>(k)) - c, m.plane));
     }
   m.fallback = m.moved.empty() ? MirrorFallback::NoInteriorVertex : MirrorFallback::None;
+  std::vector<char> by_rim(cap.vertices.size(), 0);
+  for (Eigen::Index j = 0; j < cap.faces.rows(); ++j)
+    if (on_rim[static_cast<std::size_t>(cap.faces(j, 0))] ||
+        on_rim[static_cast<std::size_t>(cap.faces(j, 1))] ||
+        on_rim[static_cast<std::size_t>(cap.faces(j, 2))])
+      for (int k = 0; k < 3; ++k) by_rim[static_cast<std::size_t>(cap.faces(j, k))] = 1;
+  m.crease.assign(m.moved.size(), 0);
+  bool beyond = false;
+  for (std::size_t i = 0; i < m.moved.size(); ++i) {
+    m.crease[i] = by_rim[static_cast<std::size_t>(m.moved[i])];
+    beyond = beyond || !m.crease[i];
+  }
+  if (!beyond) m.crease.assign(m.moved.size(), 0);
   return m;
 }
 
 bool apply_region_mirror(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
                          const Eigen::VectorXd& w, const std::vector<char>& held, double beta) {
   if (mirror.fallback != MirrorFallback::None || !(beta > 0.0)) return false;
-  std::vector<Vec3> rim_now;
+  std::vector<Vec3> rim_rest, rim_now;
   rim_now.reserve(cap.rim.size());
   for (int r : cap.rim) rim_now.push_back(Vec3(x.row(cap.vertices[static_cast<std::size_t>(r)])));
-  const std::optional<Similarity> frame = fit_similarity(mirror.rest_rim, rim_now);
+  for (const Vec3& p : mirror.rest_rim) rim_rest.push_back(p + mirror.rest_centre);
+  const std::optional<Similarity> frame = fit_similarity(rim_rest, rim_now);
   if (!frame) return false;
-  const double share = std::min(beta, 1.0);
+  return apply_region_mirror_in(x, cap, mirror, *frame, w, held, MirrorStep{beta, false, false});
+}
+
+std::optional<Similarity> shell_frame(const Positions& rest, const Positions& x,
+                                      const std::vector<int>& vertices) {
+  std::vector<Vec3> from, to;
+  from.reserve(vertices.size());
+  to.reserve(vertices.size());
+  for (int v : vertices) {
+    from.push_back(Vec3(rest.row(v)));
+    to.push_back(Vec3(x.row(v)));
+  }
+  return fit_similarity(from, to);
+}
+
+bool apply_region_mirror_in(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
+                            const Similarity& frame, const Eigen::VectorXd& w,
+                            const std::vector<char>& held, const MirrorStep& step) {
+  if (mirror.fallback != MirrorFallback::None || !(step.beta > 0.0)) return false;
+  const double share = std::min(step.beta, 1.0);
+  // The rest plane's outward normal carried by the frame: the side the cap stood out to.
+  const Vec3 outward = frame.rotation * mirror.plane.normal;
   for (std::size_t i = 0; i < mirror.moved.size(); ++i) {
+    if (step.free_crease && i < mirror.crease.size() && mirror.crease[i]) continue;
     const int v = cap.vertices[static_cast<std::size_t>(mirror.moved[i])];
     if (!(w(v) > 0.0) ||
         (static_cast<std::size_t>(v) < held.size() && held[static_cast<std::size_t>(v)]))
       continue;
-    const Vec3 target = (*frame)(mirror.image[i]);
+    const Vec3 target = frame(mirror.image[i] + mirror.rest_centre);
+    // A mould: a vertex already deeper than its image (a load pushed it there) stays.
+    if (step.one_sided && (Vec3(x.row(v)) - target).dot(outward) <= 0.0) continue;
     x.row(v) += (share * (target - Vec3(x.row(v)))).transpose();
   }
   return true;

@@ -59,6 +59,11 @@ struct RegionMirror {
   std::vector<Vec3> rest_rim;       ///< rest rim points minus their centroid (cap.rim order)
   std::vector<int> moved;           ///< indices into cap.vertices of the interior vertices
   std::vector<Vec3> image;          ///< their mirror images, minus the rest rim's centroid
+  /// [i] != 0: moved[i] shares a face with a rim vertex (the crease ring). apply_region_mirror_in
+  /// leaves these to the solver when asked: the rim of a face prefix is not flat, so a crease
+  /// ring pinned to its images strains the faces at the rim, which pull on the shell every step.
+  /// All 0 when no interior vertex lies beyond the crease ring (a dimple of one ring still sinks).
+  std::vector<char> crease;
 };
 
 /// The mirror of `cap` at the rest positions (fallback set when it has none).
@@ -71,5 +76,31 @@ RegionMirror make_region_mirror(const Positions& rest, const RegionCap& cap);
 /// fallback or the current rim gives no similarity (collapsed onto a line).
 bool apply_region_mirror(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
                          const Eigen::VectorXd& w, const std::vector<char>& held, double beta);
+
+/// The similarity that carries the rest positions of `vertices` onto their positions at x (the
+/// shell's own frame when `vertices` are those away from every region): it does not depend on
+/// the regions' rims, so a rim pulled in by its dimple does not move the dimple's target.
+/// nullopt when fit_similarity has none (fewer than 3 vertices, collinear).
+std::optional<Similarity> shell_frame(const Positions& rest, const Positions& x,
+                                      const std::vector<int>& vertices);
+
+/// How apply_region_mirror_in moves a dimple's vertices.
+struct MirrorStep {
+  double beta = 1.0;         ///< share of the way to the image, in (0, 1]
+  /// Leave the crease ring (RegionMirror::crease) to the solver, which bends the fold where the
+  /// shell gives the least.
+  bool free_crease = false;
+  /// The image is a mould, not a place: a vertex already on the inner side of its image (along
+  /// the frame's plane normal; a load pushed it deeper) stays where it is.
+  bool one_sided = false;
+};
+
+/// Moves each interior vertex of the cap a share step.beta of the way to its mirror image carried
+/// by `frame` (from the rest positions' coordinates to the current ones); rim vertices, held ones
+/// (held[v] != 0) and those with w = 0 stay, and `step` may leave more alone. Returns false,
+/// moving nothing, when the mirror has a fallback.
+bool apply_region_mirror_in(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
+                            const Similarity& frame, const Eigen::VectorXd& w,
+                            const std::vector<char>& held, const MirrorStep& step);
 
 }  // namespace shellcontract

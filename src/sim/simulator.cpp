@@ -296,6 +296,12 @@ void Simulator::apply_region_contraction(Positions& x) {
   const double ratio = rest_outside > 0.0 ? (signed_volume(x, faces_) - caps_now) / rest_outside
                                           : signed_volume(x, faces_) / constraint_rest_volume_;
   if (!(ratio > 0.0)) return;  // a shell turned inside out has no caps to sink
+  // The mirrors follow the shell away from the regions (region_mirror.hpp, shell_frame), not
+  // their own rims, which their dimples pull in; the rim's fit is the fallback when nothing lies
+  // away from the regions.
+  std::optional<Similarity> frame;
+  if (options_.dimple_shape == DimpleShape::Mirror)
+    frame = shell_frame(rest_x_, x, outside_vertices_);
   // Vertices held by the last step's contacts stay (see apply_volume_control) and keep their
   // share of the correction (project_cap_volume_sharing).
   for (std::size_t i = 0; i < region_dimples_.size(); ++i) {
@@ -314,7 +320,10 @@ void Simulator::apply_region_contraction(Positions& x) {
         d.mirror = make_region_mirror(rest_x_, d.dimple);
         d.mirror_size = d.size;
       }
-      if (apply_region_mirror(x, d.dimple, d.mirror, inv_mass_, held_by_contact_, 1.0)) continue;
+      if (frame ? apply_region_mirror_in(x, d.dimple, d.mirror, *frame, inv_mass_,
+                                         held_by_contact_, MirrorStep{1.0, true, true})
+                : apply_region_mirror(x, d.dimple, d.mirror, inv_mass_, held_by_contact_, 1.0))
+        continue;
     }
     project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
                                1e-12 * d.dimple.rest_volume);

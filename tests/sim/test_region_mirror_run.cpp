@@ -25,6 +25,8 @@ RunResult bumps_at_rest_pressure(const std::string& dimple) {
 
 TEST(RegionMirrorRun, TheOptionParsesAndRejectsOtherShapes) {
   RunOptions o;
+  EXPECT_EQ(o.sim.dimple_shape, DimpleShape::Mirror);  // the default (region-mirror.md, 5)
+  set_run_option(o, "dimple", "volume");
   EXPECT_EQ(o.sim.dimple_shape, DimpleShape::Volume);
   set_run_option(o, "dimple", "mirror");
   EXPECT_EQ(o.sim.dimple_shape, DimpleShape::Mirror);
