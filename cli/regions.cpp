@@ -40,7 +40,8 @@ ones 'run --regions auto' uses, and writes the mesh as an ASCII PLY with one col
 Each region is a compact cap on a sphere (an ear, a head, a fingertip): seeds at maxima of the
 smoothed mean curvature grow geodesic discs while a sphere fits them (--fit-tolerance), the caps
 are ranked by the angle they span and kept when round (--max-compactness), curved (--min-cap-angle,
---contrast) and of a local size (--min-area-fraction, --max-area-fraction). --region-at X,Y,Z
+--contrast) and of a local size (--min-area-fraction, --max-area-fraction); caps on one part join
+into one region, clipped to a hemisphere of its fitted sphere. --region-at X,Y,Z
 (repeatable) instead picks the cap around the surface point nearest to each point. Every
 threshold is a ratio, so scaling or rotating the mesh does not change the result.
 
