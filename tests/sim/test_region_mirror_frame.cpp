@@ -18,13 +18,13 @@
 #include "shellcontract/run.hpp"
 #include "sim/region_mirror.hpp"
 #include "sim/rest_state.hpp"
+#include "support/flat_rim_cap.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
-/// A spherical cap of the unit sphere around +z with a flat rim (the last of `rings` rings of `n`
-/// vertices at polar angles up to theta), followed by four points off the cap that stand for the
+/// test::flat_rim_cap's cap, followed by four points off the cap that stand for the
 /// shell away from the region (no face uses them).
 struct CapAndShell {
   Positions x;
@@ -34,33 +34,18 @@ struct CapAndShell {
 };
 
 CapAndShell cap_and_shell(int rings = 4, int n = 12, double theta = 0.9) {
+  const test::FlatRimCap cap = test::flat_rim_cap(rings, n, theta);
   CapAndShell c;
-  const int cap_vertices = 1 + rings * n;
+  const auto cap_vertices = static_cast<int>(cap.x.rows());
   c.x.resize(cap_vertices + 4, 3);
-  c.x.row(0) << 0.0, 0.0, 1.0;
-  for (int r = 0; r < rings; ++r)
-    for (int i = 0; i < n; ++i) {
-      const double t = theta * (r + 1) / rings, p = 2.0 * M_PI * (i + 0.5 * r) / n;
-      c.x.row(1 + r * n + i) << std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t);
-    }
+  c.x.topRows(cap_vertices) = cap.x;
   c.x.row(cap_vertices + 0) << 0.0, 0.0, -1.0;
   c.x.row(cap_vertices + 1) << 1.0, 0.0, -0.5;
   c.x.row(cap_vertices + 2) << -0.5, 0.9, -0.4;
   c.x.row(cap_vertices + 3) << -0.5, -0.9, -0.2;
   for (int k = 0; k < 4; ++k) c.away.push_back(cap_vertices + k);
-  std::vector<Eigen::RowVector3i> f;
-  auto at = [&](int r, int i) { return 1 + r * n + ((i % n) + n) % n; };
-  for (int i = 0; i < n; ++i) f.emplace_back(0, at(0, i), at(0, i + 1));
-  for (int r = 0; r + 1 < rings; ++r)
-    for (int i = 0; i < n; ++i) {
-      f.emplace_back(at(r, i), at(r + 1, i), at(r + 1, i + 1));
-      f.emplace_back(at(r, i), at(r + 1, i + 1), at(r, i + 1));
-    }
-  c.faces.resize(static_cast<Eigen::Index>(f.size()), 3);
-  for (std::size_t j = 0; j < f.size(); ++j) {
-    c.faces.row(static_cast<Eigen::Index>(j)) = f[j];
-    c.region.push_back(static_cast<int>(j));
-  }
+  c.faces = cap.faces;
+  c.region = cap.region;
   return c;
 }
 
