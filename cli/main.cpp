@@ -1,5 +1,6 @@
 // shellcontract: contract a closed triangle mesh like a thin elastic shell under outside air
 // pressure (Sun et al., J. Software 2020). This file only dispatches to the subcommands.
+#include <cstddef>
 #include <cstring>
 #include <iostream>
 #include <new>
@@ -29,6 +30,18 @@ exit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed (NaN o
             out of memory, 4 new self-intersections found by validation, 5 target volume or stop
             ratio not reached
 )";
+
+/// Maps the main thread's first MiB of stack while there is room. That stack grows on demand, and
+/// under an address-space limit (`ulimit -v`, how the out-of-memory tests run) a growth that
+/// finds no room is a SIGSEGV, not a std::bad_alloc the commands report with exit code 3. Eigen
+/// keeps temporaries of up to 128 KiB on the stack (EIGEN_STACK_ALLOCATION_LIMIT: the sparse LDLT
+/// of the region finder's heat steps puts three vectors of the mesh's size there), so on a main
+/// thread whose stack had never been that deep the first factorization could be the crash.
+/// Pages once mapped stay mapped, so later frames within this depth need no new room.
+[[gnu::noinline]] void map_main_stack() {
+  volatile char frame[1 << 20];
+  for (std::size_t i = 0; i < sizeof(frame); i += 4096) frame[i] = 0;
+}
 
 /// The subcommand's exit code; 1 for an unknown one.
 int dispatch(const std::string& command, int argc, char** argv) {
@@ -67,6 +80,7 @@ int main(int argc, char** argv) {
     std::cout << "shellcontract " SHELLCONTRACT_VERSION "\n";
     return 0;
   }
+  map_main_stack();
   try {
     return dispatch(command, argc, argv);
   } catch (const std::bad_alloc&) {

@@ -2,21 +2,33 @@
 
 #include <algorithm>
 #include <array>
-#include <map>
+#include <vector>
 
 namespace shellcontract::soup {
 
 /// Duplicate faces (same three vertices in any order) would make a zero-volume double sheet.
 void check_no_duplicate_face(const std::string& path, const std::vector<Polygon>& tris, const Namer& name) {
   const std::size_t nf = tris.size();
-  std::map<std::array<std::size_t, 3>, std::size_t> seen;
+  // Sorted (corners, face) records: the faces with the same corners are one run, by face index.
+  // The face reported is the same as a scan in file order would give: the first face (in file
+  // order) whose corners an earlier face has, named with the earliest face of its run.
+  struct Corners {
+    std::array<std::size_t, 3> key;
+    std::size_t face;
+    bool operator<(const Corners& o) const { return key != o.key ? key < o.key : face < o.face; }
+  };
+  std::vector<Corners> sorted(nf);
   for (std::size_t f = 0; f < nf; ++f) {
-    std::array<std::size_t, 3> key{tris[f][0], tris[f][1], tris[f][2]};
-    std::sort(key.begin(), key.end());
-    const auto [it, inserted] = seen.emplace(key, f);
-    if (!inserted)
-      fail(path, "duplicate face", name.face(f) + " has the same corners as " + name.face(it->second));
+    sorted[f] = {{tris[f][0], tris[f][1], tris[f][2]}, f};
+    std::sort(sorted[f].key.begin(), sorted[f].key.end());
   }
+  std::sort(sorted.begin(), sorted.end());
+  std::size_t later = nf, earlier = nf;
+  for (std::size_t i = 1; i < nf; ++i)
+    if (sorted[i].key == sorted[i - 1].key && (i < 2 || sorted[i - 2].key != sorted[i].key) &&
+        sorted[i].face < later)
+      later = sorted[i].face, earlier = sorted[i - 1].face;
+  if (later < nf) fail(path, "duplicate face", name.face(later) + " has the same corners as " + name.face(earlier));
 }
 
 /// Isolated vertices have no mass and no forces; they would be free degrees of freedom. Checked

@@ -115,7 +115,15 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
       uses_sorted.push_back({key(a, b), f, a < b});
     }
   std::sort(uses_sorted.begin(), uses_sorted.end());
-  // Report the first problem in face order, so that the message does not depend on the sort.
+  // One pass over the runs: a valid mesh (the common case) has only runs of two opposite uses
+  // and needs no per-edge search. Only when some run is bad is the first problem looked up in
+  // face order (below), so that the message does not depend on the sort.
+  bool all_fine = uses_sorted.size() % 2 == 0;
+  for (std::size_t i = 0; all_fine && i < uses_sorted.size(); i += 2)
+    all_fine = i + 1 < uses_sorted.size() && uses_sorted[i].key == uses_sorted[i + 1].key &&
+               uses_sorted[i].forward != uses_sorted[i + 1].forward &&
+               (i + 2 == uses_sorted.size() || uses_sorted[i + 2].key != uses_sorted[i].key);
+  if (all_fine) return;
   for (std::size_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
@@ -139,20 +147,30 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
 /// manifold, consistently oriented edges, each link vertex has exactly one successor.
 template <class Tris>
 void check_vertex_fans(const std::string& path, const Tris& tris, std::size_t nv, const Namer& name) {
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> link(nv);
+  // Each vertex's link edges in one flat array (offsets by vertex, faces in file order within a
+  // vertex): one allocation instead of one per vertex.
+  std::vector<std::size_t> start(nv + 1, 0);
   for (const auto& t : tris)
-    for (int k = 0; k < 3; ++k) link[t[k]].emplace_back(t[(k + 1) % 3], t[(k + 2) % 3]);
+    for (int k = 0; k < 3; ++k) ++start[t[k] + 1];
+  for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+  std::vector<std::pair<std::size_t, std::size_t>> links(start[nv]);
+  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+  for (const auto& t : tris)
+    for (int k = 0; k < 3; ++k) links[fill[t[k]]++] = {t[(k + 1) % 3], t[(k + 2) % 3]};
   for (std::size_t v = 0; v < nv; ++v) {
-    const auto& l = link[v];
-    std::size_t steps = 0, cur = l[0].second;
-    while (cur != l[0].first && steps <= l.size()) {
-      const auto it = std::find_if(l.begin(), l.end(), [cur](const auto& e) { return e.first == cur; });
-      if (it == l.end()) break;  // cannot happen after the edge checks; never dereference end
+    const auto b = links.begin() + static_cast<std::ptrdiff_t>(start[v]);
+    const auto e = links.begin() + static_cast<std::ptrdiff_t>(start[v + 1]);
+    const auto size = static_cast<std::size_t>(e - b);
+    if (size == 0) continue;  // isolated vertices are reported by their own check
+    std::size_t steps = 0, cur = b->second;
+    while (cur != b->first && steps <= size) {
+      const auto it = std::find_if(b, e, [cur](const auto& l) { return l.first == cur; });
+      if (it == e) break;  // cannot happen after the edge checks; never dereference end
       cur = it->second;
       ++steps;
     }
-    if (steps + 1 != l.size())
-      fail(path, "non-manifold vertex", name.vertex(v) + ": its " + std::to_string(l.size()) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
+    if (steps + 1 != size)
+      fail(path, "non-manifold vertex", name.vertex(v) + ": its " + std::to_string(size) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
   }
 }
 
