@@ -139,7 +139,19 @@ RegionDimple make_region_dimple(const Positions& rest, const Faces& faces,
   // The cut whose cap is largest, among the normal and directions tilted from it: the rim of a
   // region on a surface that is not a sphere is not a plane section, and the plane that leaves
   // the most of it above may lie aslant.
-  const Vec3 n0 = d.axis, u = any_normal(n0), w = n0.cross(u);
+  // The azimuths start from the direction in which the rim rises along the normal (the
+  // rim's first moment of height, in the plane normal to n0), so that they turn with the mesh
+  // and a rotated mesh gets the rotated cut; a rim with no such direction (level, or rising
+  // symmetrically) starts from any normal.
+  const Vec3 n0 = d.axis;
+  Vec3 rise = Vec3::Zero();
+  for (int v : rim_vertices) {
+    const Vec3 q = at(v) - rim_centre;
+    rise += q.dot(n0) * (q - q.dot(n0) * n0);
+  }
+  const double rise_scale = edge * edge * static_cast<double>(rim_vertices.size());
+  const Vec3 u = rise.norm() > 1e-9 * rise_scale ? Vec3(rise.normalized()) : any_normal(n0);
+  const Vec3 w = n0.cross(u);
   const std::vector<int> across = faces_across(faces, d.order);
   double best = -std::numeric_limits<double>::infinity(), cut = 0.0;
   constexpr double PI = 3.14159265358979323846;
