@@ -89,9 +89,9 @@ TEST(RegionMirrorCut, TheDimpleStopsAtThePlaneCut) {
 }
 
 TEST(RegionMirrorCut, ARotatedRegionGetsTheRotatedCut) {
-  // A bent and leaning rim (corners above z = 0.1 + 0.4 x + 0.8 x^2, so the best cut tilts), on
-  // the icosphere and on the same icosphere rotated about a skew axis: the same limit, the same faces above the cut, and the rotated axis. (Not
-  // the same order: rounding orders equal heights.) The tilts tried start from the direction in
+  // A bent and leaning rim (corners above z = 0.1 + 0.4 x + 0.8 x^2), on the icosphere and on
+  // the same icosphere rotated about a skew axis: the same limit, the same faces above the cut,
+  // and the rotated axis. (Not the same order: rounding orders equal heights.) The tilts tried start from the direction in
   // which the rim rises, not from a coordinate axis. This test also passes with a coordinate-axis
   // start (checked): it guards the invariance, it does not single out the start.
   test::CapScene s = test::icosphere_cap(4, 2.0, 0.0, 1);
