@@ -17,7 +17,13 @@ namespace shellcontract {
 /// that order, and the prefix now mirrored (the dimple).
 struct RegionDimple {
   RegionCap whole;                 ///< the whole region's cap, rest_volume set
-  std::vector<int> order;          ///< the region's face ids, nearest to the apex first
+  /// The cut's direction (make_region_dimple): the region's normal unless the region is cut.
+  Vec3 axis = Vec3::UnitZ();
+  std::vector<int> order;          ///< the region's face ids, from the apex (or the cut's top) on
+  /// The faces of `order` above the cut (make_region_dimple): a prefix whose rim is near a plane
+  /// section, so that its mirror image meets the shell along its rim. dimple_size_for grows the
+  /// dimple no further.
+  int limit = 0;
   std::vector<double> prefix_rest_volume;  ///< [k]: rest cap volume of the first k + 1 faces
   int size = 0;                    ///< faces in the current dimple (0: none yet)
   RegionCap dimple;                ///< cap of the first `size` faces of order, rest_volume set
@@ -25,10 +31,23 @@ struct RegionDimple {
   int mirror_size = 0;             ///< the dimple size `mirror` was made for (0: none yet)
 };
 
-/// The dimple order of a region at the rest positions: the apex is the region vertex farthest
-/// from the rim's centroid along the region's area-weighted normal, and the faces are sorted by
-/// the distance of their centroid from it (ties by face id, so the order is deterministic).
-/// Face ids outside [0, #F) are skipped.
+/// How far below the region's highest rim point the cut lies, in mean edge lengths of the
+/// region. A rim that lies within that band of a plane is ragged, not bent: the crease ring,
+/// left to the solver (region_mirror.hpp), takes it up, and the region needs no cut. The bear's
+/// head and bottom and the kitten's head have rims 5-17 edges off any plane; the finder's other
+/// caps on the paper's meshes 0.5-3 (lab/regions/locality.md, "The cut").
+inline constexpr double CUT_TOLERANCE = 3.0;
+
+/// The dimple order of a region at the rest positions (docs/math/region-mirror.md, section 4).
+/// The apex is the region vertex farthest from the rim's centroid along the region's
+/// area-weighted normal, and the faces are sorted by the distance of their centroid from it
+/// (ties by face id, so the order is deterministic). Then the cut: among the normal and the
+/// directions tilted from it by 10 to 60 degrees (12 azimuths each), the axis whose cut (the
+/// plane normal to it through the highest rim vertex, lowered by CUT_TOLERANCE edge lengths)
+/// leaves the largest cap volume above it. If a face of the region reaches below that cut, the
+/// faces are instead sorted by the height of their lowest corner along the axis, highest first,
+/// and `limit` counts those above the cut; otherwise `limit` is every face and `axis` the
+/// normal. Face ids outside [0, #F) are skipped.
 RegionDimple make_region_dimple(const Positions& rest, const Faces& faces,
                                 const std::vector<int>& region_faces);
 
@@ -39,7 +58,7 @@ std::vector<double> prefix_cap_volumes(const Positions& x, const Faces& faces,
                                        const std::vector<int>& order);
 
 /// The smallest dimple whose rest cap volume reaches `volume`: the least k >= 1 with
-/// prefix_rest_volume[k - 1] >= volume, or all the faces if none does.
+/// prefix_rest_volume[k - 1] >= volume, or all the faces if none does; at most d.limit faces.
 int dimple_size_for(const RegionDimple& d, double volume);
 
 /// The rest cap volume V_k of the dimple a region mirrors at ramp progress s in [0, 1] with the
