@@ -313,7 +313,8 @@ std::vector<OptionSpec> build_table() {
   t.push_back(choice("dimple",
                      "the shape --inward volume sinks a region to: mirror (default: the cap "
                      "mirrored through its rim's plane, an isometry, carried by the shell away "
-                     "from the regions, the ring at the rim left to the solver; volume where a "
+                     "from the regions, the ring at the rim left to the solver; a region whose "
+                     "rim lies far off any plane sinks only its part above a plane cut; volume where a "
                      "region has no mirror: a collinear rim or no interior vertex) | volume (the "
                      "dimple's cap volume is projected, its shape free)",
                      Choices<DimpleShape>{{"volume", DimpleShape::Volume},
