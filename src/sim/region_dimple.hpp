@@ -33,16 +33,17 @@ struct RegionDimple {
 
 /// How far below the region's highest rim point the cut lies, in mean edge lengths of the
 /// region. A rim that lies within that band of a plane is ragged, not bent: the crease ring,
-/// left to the solver (region_mirror.hpp), takes it up, and the region needs no cut. The bear's
-/// head and bottom and the kitten's head have rims 5-17 edges off any plane; the finder's other
-/// caps on the paper's meshes 0.5-3 (lab/regions/locality.md, "The cut").
+/// left to the solver (region_mirror.hpp), takes it up, and the region needs no cut. Bent rims
+/// (a head cut out of a body) lie several times farther off; the measured rims and the choice
+/// of 3 are in lab/regions/locality.md, "The cut".
 inline constexpr double CUT_TOLERANCE = 3.0;
 
 /// The dimple order of a region at the rest positions (docs/math/region-mirror.md, section 4).
 /// The apex is the region vertex farthest from the rim's centroid along the region's
 /// area-weighted normal, and the faces are sorted by the distance of their centroid from it
 /// (ties by face id, so the order is deterministic). Then the cut: among the normal and the
-/// directions tilted from it by 10 to 60 degrees (12 azimuths each), the axis whose cut (the
+/// directions tilted from it by 10 to 60 degrees (12 azimuths each, from the direction in which
+/// the rim rises, so that the cut turns with the mesh), the axis whose cut (the
 /// plane normal to it through the highest rim vertex, lowered by CUT_TOLERANCE edge lengths)
 /// leaves the largest cap volume above it. If a face of the region reaches below that cut, the
 /// faces are instead sorted by the height of their lowest corner along the axis, highest first,
