@@ -1,6 +1,7 @@
 // The CCD broad phase's contract beyond brute-force equality (test_broad_phase.cpp has that):
 // inflation, reused output, the Grid's order for any thread count, its patching across steps, its
-// AVX-512 and float loops, and the refusal of mismatched input.
+// float loop, and the refusal of mismatched input (test_grid_simd_loops.cpp: the AVX-512 and AVX2
+// cell loops against the portable one).
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
@@ -218,67 +219,6 @@ TEST(BroadPhase, GridKeptForAnotherTopologyOfTheSameSizesIsPatchedForIt) {
   const Pairs vf = sorted(out.vertex_face), ee = sorted(out.edge_edge);
   EXPECT_TRUE(vf == want.vertex_face) << "VF " << first_difference(vf, want.vertex_face);
   EXPECT_TRUE(ee == want.edge_edge) << "EE " << first_difference(ee, want.edge_edge);
-}
-
-TEST(BroadPhase, GridAvx512LoopEqualsThePortableLoop) {
-  // The AVX-512 cell loop must emit exactly the portable loop's pairs, in its order, with its
-  // close flags: random motions from none (every box touching its neighbours) to large, cells
-  // of every size (so every tail of the 8-lane loop), inflation 0 (boxes that only touch),
-  // and far distances from 0 (every gap counts) to none.
-  if (!detail::grid_avx512_available()) GTEST_SKIP() << "no AVX-512 on this CPU";
-  std::mt19937 rng(23);
-  const TriMesh sphere = test::icosphere(3);
-  const TriMesh two = combine(test::icosphere(2), test::icosphere(2));
-  std::int64_t compared = 0, far_flags = 0, close_flags = 0;
-  int grid_runs = 0;
-  // One object whose loop alternates call by call: each loop must size its own cell buffers,
-  // whatever the other left behind in the shared scratch.
-  CandidatePairs switching;
-  switching.scratch->grid_patch = false;  // a fresh grid each call, as `portable`'s
-  for (const TriMesh* m : {&sphere, &two}) {
-    const CollisionTopology topo = make_collision_topology(m->faces, static_cast<int>(m->x.rows()));
-    for (double scale : {0.0, 0.01, 0.05, 0.12}) {
-      Positions x0 = m->x;
-      if (m == &two) x0.bottomRows(m->x.rows() / 2).rowwise() += Vec3(1.5, 0.2, 0.1).transpose();
-      x0 = random_motion(x0, 0.5 * scale, rng);
-      const Positions x1 = random_motion(x0, scale, rng);
-      for (double inflation : {0.0, 0.01, 0.05})
-        for (double far : {-1.0, 0.0, 0.005, 0.02}) {
-          CandidatePairs fast, portable;
-          BroadPhaseStats fast_stats, portable_stats;
-          portable.scratch->grid_isa = detail::GridIsa::Portable;
-          find_candidates(x0, x1, topo, inflation, fast, &fast_stats, BroadPhaseMethod::Grid, far);
-          find_candidates(x0, x1, topo, inflation, portable, &portable_stats,
-                          BroadPhaseMethod::Grid, far);
-          const std::string where = "scale " + std::to_string(scale) + ", inflation " +
-                                    std::to_string(inflation) + ", far " + std::to_string(far);
-          // Large motions with a large inflation make the grid fall back to PrimitiveBoxes
-          // (both calls alike); only the grid's own runs compare the two loops.
-          ASSERT_EQ(fast_stats.method_run, portable_stats.method_run) << where;
-          if (fast_stats.method_run != BroadPhaseMethod::Grid) continue;
-          ++grid_runs;
-          EXPECT_TRUE(fast.vertex_face == portable.vertex_face) << where;
-          EXPECT_TRUE(fast.edge_edge == portable.edge_edge) << where;
-          EXPECT_TRUE(fast.vertex_face_close == portable.vertex_face_close) << where;
-          EXPECT_TRUE(fast.edge_edge_close == portable.edge_edge_close) << where;
-          switching.scratch->grid_isa =
-              grid_runs % 2 ? detail::GridIsa::Portable : detail::GridIsa::Auto;
-          find_candidates(x0, x1, topo, inflation, switching, nullptr, BroadPhaseMethod::Grid, far);
-          EXPECT_TRUE(switching.vertex_face == portable.vertex_face) << where;
-          EXPECT_TRUE(switching.edge_edge_close == portable.edge_edge_close) << where;
-          // Exact overlaps, never more than the portable loop's float ones.
-          EXPECT_LE(fast_stats.box_overlaps, portable_stats.box_overlaps) << where;
-          compared += static_cast<std::int64_t>(fast.vertex_face.size() + fast.edge_edge.size());
-          for (const auto* flags : {&fast.vertex_face_close, &fast.edge_edge_close})
-            for (std::uint8_t f : *flags) ++(f ? close_flags : far_flags);
-        }
-    }
-  }
-  // The comparisons were not vacuous: most scenes ran the grid, many pairs, both flag values.
-  EXPECT_GE(grid_runs, 80);
-  EXPECT_GT(compared, 100000);
-  EXPECT_GT(far_flags, 1000);
-  EXPECT_GT(close_flags, 1000);
 }
 
 /// Compares a grid's pairs `got` (a superset) with brute force's `want`: how many pairs of want

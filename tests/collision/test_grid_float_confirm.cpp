@@ -1,11 +1,12 @@
-// The Grid method's exact pairs from the float cell loop plus a confirmation of each pair
-// (BroadPhaseScratch::grid_float_confirm, grid.cpp's confirm_keys) against the double cell loop
-// and brute force: the same pairs, in the same order, with the same close flags, so every
-// result downstream keeps its bits.
+// The Grid method's exact pairs from a float cell loop (AVX-512 or AVX2) plus a confirmation of
+// each pair (BroadPhaseScratch::grid_float_confirm, grid.cpp's confirm_keys) against an exact
+// cell loop (AVX-512's double loop, or the portable one) and brute force: the same pairs, in the
+// same order, with the same close flags, so every result downstream keeps its bits.
 #include <gtest/gtest.h>
 
 #include <random>
 #include <string>
+#include <vector>
 
 #include "collision/broad_phase.hpp"
 #include "collision/broad_phase/grid.hpp"
@@ -18,13 +19,23 @@ namespace {
 
 using namespace test;
 
-/// find_candidates (Grid) twice, with the confirmed float loop (the default) and with the double
-/// loop; asserts equal sequences and flags, and equality with brute force. Returns the pairs.
-std::size_t compare_loops(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
+/// The float loops this CPU runs: AVX-512 (GridIsa::Auto) and AVX2.
+std::vector<detail::GridIsa> float_loops() {
+  std::vector<detail::GridIsa> out;
+  if (detail::grid_avx512_available()) out.push_back(detail::GridIsa::Auto);
+  if (detail::grid_avx2_available()) out.push_back(detail::GridIsa::Avx2);
+  return out;
+}
+
+/// find_candidates (Grid) twice, with the confirmed float loop of `isa` (the default) and with
+/// an exact loop; asserts equal sequences and flags, and equality with brute force. Returns the
+/// pairs.
+std::size_t compare_loops(detail::GridIsa isa, const Positions& x0, const Positions& x1, const CollisionTopology& topo,
                           const Faces& faces, double inflation, double far,
                           const std::string& where, std::int64_t* far_flags = nullptr,
                           bool against_brute_force = true) {
   CandidatePairs confirmed, exact;
+  confirmed.scratch->grid_isa = isa;
   exact.scratch->grid_float_confirm = false;
   BroadPhaseStats cs, es;
   find_candidates(x0, x1, topo, inflation, confirmed, &cs, BroadPhaseMethod::Grid, far);
@@ -49,7 +60,7 @@ TEST(GridFloatConfirm, EqualsTheDoubleLoopOverManySteps) {
   // A level-3 sphere and two touching level-2 spheres over many steps: random jitter of every
   // size (none: boxes only touching; small; large jumps that cross the whole scene), with
   // inflations from 0 and far distances from 0 (every gap counts) to none.
-  if (!detail::grid_avx512_available()) GTEST_SKIP() << "no AVX-512: the portable loop runs";
+  if (float_loops().empty()) GTEST_SKIP() << "no AVX-512 or AVX2: the portable loop runs";
   std::mt19937 rng(58);
   const TriMesh sphere = icosphere(3);
   TriMesh apart = combine(icosphere(2), icosphere(2));
@@ -57,6 +68,7 @@ TEST(GridFloatConfirm, EqualsTheDoubleLoopOverManySteps) {
   const TriMesh& two = apart;
   std::size_t pairs = 0;
   std::int64_t far_flags = 0;
+  for (const detail::GridIsa isa : float_loops())
   for (const TriMesh* m : {&sphere, &two}) {
     const CollisionTopology topo = make_collision_topology(m->faces, static_cast<int>(m->x.rows()));
     Positions x0 = m->x;
@@ -65,7 +77,7 @@ TEST(GridFloatConfirm, EqualsTheDoubleLoopOverManySteps) {
       const Positions x1 = random_motion(x0, scale, rng);
       for (const double inflation : {0.0, 0.01})
         for (const double far : {-1.0, 0.0, 0.004})
-          pairs += compare_loops(x0, x1, topo, m->faces, inflation, far,
+          pairs += compare_loops(isa, x0, x1, topo, m->faces, inflation, far,
                                  "step " + std::to_string(step) + " inflation " +
                                      std::to_string(inflation) + " far " + std::to_string(far),
                                  &far_flags, far < 0.0);  // brute force once per scene
@@ -79,19 +91,21 @@ TEST(GridFloatConfirm, EqualsTheDoubleLoopOverManySteps) {
 TEST(GridFloatConfirm, CoplanarAndDegenerateScenes) {
   // A sphere squashed flat into z = 0 (every face coplanar, boxes flat on z), and the same
   // with every vertex at one of a few points (zero-size and coinciding boxes).
-  if (!detail::grid_avx512_available()) GTEST_SKIP() << "no AVX-512: the portable loop runs";
+  if (float_loops().empty()) GTEST_SKIP() << "no AVX-512 or AVX2: the portable loop runs";
   const TriMesh sphere = icosphere(2);
   const CollisionTopology topo =
       make_collision_topology(sphere.faces, static_cast<int>(sphere.x.rows()));
   Positions flat = sphere.x;
   flat.col(2).setZero();
-  compare_loops(flat, flat, topo, sphere.faces, 0.0, 0.0, "flat, still");
   Positions flat1 = flat;
   flat1.col(0).array() += 0.01;
-  compare_loops(flat, flat1, topo, sphere.faces, 0.001, 0.001, "flat, sliding");
   Positions points = sphere.x;
   for (Eigen::Index i = 0; i < points.rows(); ++i) points.row(i) = Vec3(static_cast<double>(i % 3), 0.0, 0.0).transpose();
-  compare_loops(points, points, topo, sphere.faces, 0.0, 0.0, "three points");
+  for (const detail::GridIsa isa : float_loops()) {
+    compare_loops(isa, flat, flat, topo, sphere.faces, 0.0, 0.0, "flat, still");
+    compare_loops(isa, flat, flat1, topo, sphere.faces, 0.001, 0.001, "flat, sliding");
+    compare_loops(isa, points, points, topo, sphere.faces, 0.0, 0.0, "three points");
+  }
 }
 
 TEST(GridFloatConfirm, DropsThePairsOnlyFloatRoundingJoins) {
@@ -100,14 +114,15 @@ TEST(GridFloatConfirm, DropsThePairsOnlyFloatRoundingJoins) {
   // must not hold them. Checked to fail with confirm_keys' overlap test removed (the extra
   // pairs stay; the other two tests fail too). EqualsTheDoubleLoopOverManySteps fails with the
   // close flag left at the float loop's 1.
-  if (!detail::grid_avx512_available()) GTEST_SKIP() << "no AVX-512: the portable loop runs";
+  if (float_loops().empty()) GTEST_SKIP() << "no AVX-512 or AVX2: the portable loop runs";
   const TriMesh one = icosphere(2);
   TriMesh two = combine(one, one);
   const double x_max = one.x.col(0).maxCoeff(), x_min = one.x.col(0).minCoeff();
   two.x.bottomRows(one.x.rows()).col(0).array() += x_max - x_min + 1e-13;
   const CollisionTopology topo = make_collision_topology(two.faces, static_cast<int>(two.x.rows()));
   ASSERT_GT(two.x.bottomRows(one.x.rows()).col(0).minCoeff() - x_max, 0.0);
-  for (const double far : {-1.0, 0.0}) compare_loops(two.x, two.x, topo, two.faces, 0.0, far, "gap");
+  for (const detail::GridIsa isa : float_loops())
+    for (const double far : {-1.0, 0.0}) compare_loops(isa, two.x, two.x, topo, two.faces, 0.0, far, "gap");
 }
 
 }  // namespace

@@ -191,7 +191,12 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   // find_candidates_in_vertex_boxes) or which confirm_keys cuts to the exact pairs
   // (grid_float_confirm).
   const bool avx512 = s.grid_isa == detail::GridIsa::Auto && detail::grid_avx512_available();
-  const bool float_cells = avx512 && (float_superset || s.grid_float_confirm);
+  // Without AVX-512, the exact pairs come from the AVX2 float loop and the confirmation (the
+  // same pairs, order and flags). The superset for find_candidates_in_vertex_boxes keeps the
+  // portable loop there: its callers take the pairs as they come, so they stay the exact ones.
+  const bool avx2 = !avx512 && s.grid_isa != detail::GridIsa::Portable && s.grid_float_confirm &&
+                    !float_superset && detail::grid_avx2_available();
+  const bool float_cells = (avx512 && (float_superset || s.grid_float_confirm)) || avx2;
   const bool confirm = float_cells && !float_superset;
   s.grid_vertex_floats.resize(avx512 && !float_cells ? 0 : nv);
   if (float_cells) {
@@ -357,6 +362,13 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
     out_chunk.reported = 0;
     detail::GridCell& cell = out_chunk.cell;
 #if SHELLCONTRACT_GRID_AVX512
+    if (avx2) {
+      grid_chunk_avx2(prim, start.data(), entry, s.chunk_cells[chunk], s.chunk_cells[chunk + 1],
+                      vf_shift, ee_shift, out_chunk);
+      confirm_keys(prim, true, vf_shift, far_gap, out_chunk.vf_keys);
+      confirm_keys(prim, false, ee_shift, far_gap, out_chunk.ee_keys);
+      return;
+    }
     if (float_cells) {
       grid_chunk_avx512<true>(prim, start.data(), entry, s.chunk_cells[chunk],
                               s.chunk_cells[chunk + 1], vf_shift, ee_shift, far_gap, out_chunk);

@@ -1,7 +1,7 @@
 // The Grid method's shared pieces: its tuning constants, the grid's geometry, the per-primitive
 // view of the vertex data, and the entry points of its parts (grid.cpp: construction and the
-// portable cell loop; grid_patch.cpp: the kept grid's patch; grid_avx512.cpp: the AVX-512 cell
-// loop).
+// portable cell loop; grid_patch.cpp: the kept grid's patch; grid_avx512.cpp and grid_avx2.cpp:
+// the AVX-512 and AVX2 cell loops).
 #pragma once
 
 #include <algorithm>
@@ -278,6 +278,11 @@ template <bool Float>
 void grid_chunk_avx512(const GridPrimitives& prim, const std::uint32_t* start,
                        const std::uint32_t* entry, std::size_t c0, std::size_t c1, int vf_shift,
                        int ee_shift, double far_gap, detail::GridChunk& out_chunk);
+/// The cells [c0, c1) with the AVX2 rows (grid_avx2.cpp): the keys of cell_rows_avx512_float
+/// (a superset of the exact pairs, every key flagged close) on 8 float lanes, in the same order.
+void grid_chunk_avx2(const GridPrimitives& prim, const std::uint32_t* start,
+                     const std::uint32_t* entry, std::size_t c0, std::size_t c1, int vf_shift,
+                     int ee_shift, detail::GridChunk& out_chunk);
 #endif
 
 }  // namespace detail

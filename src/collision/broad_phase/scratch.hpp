@@ -115,19 +115,22 @@ struct GridChunk {
   std::int64_t reported = 0;  ///< box overlaps (statistics, see BroadPhaseStats)
 };
 
-/// Which code the Grid method's cell loop runs. Both emit the same pairs in the same order with
-/// the same close flags (tested); Auto takes AVX-512 when the CPU has it (checked at run time).
-enum class GridIsa { Auto, Portable };
+/// Which code the Grid method's cell loop runs. All emit the same pairs in the same order with
+/// the same close flags (tested); Auto takes AVX-512 when the CPU has it, else AVX2 when it has
+/// that (checked at run time); Avx2 takes AVX2 even where AVX-512 is there (tests).
+enum class GridIsa { Auto, Avx2, Portable };
 
 /// True if GridIsa::Auto runs the AVX-512 cell loop on this CPU (AVX-512 F and VL, GCC x86-64).
 bool grid_avx512_available();
+/// True if the AVX2 cell loop can run on this CPU (AVX2, GCC x86-64).
+bool grid_avx2_available();
 
 }  // namespace detail
 
 /// Scratch buffers reused between calls, so a steady-state call does not allocate.
 struct BroadPhaseScratch {
   detail::GridIsa grid_isa =
-      detail::GridIsa::Auto;  ///< tests set Portable to compare the two cell loops
+      detail::GridIsa::Auto;  ///< tests set Portable or Avx2 to compare the cell loops
   /// find_candidates_in_vertex_boxes with the AVX-512 cell loop: test float boxes 16 lanes at a
   /// time and emit a superset of the exact pairs (see there); false: the exact pairs (tests and
   /// bench_broad_phase compare the two).
