@@ -127,6 +127,11 @@ class JsonSummary final : public SummaryWriter {
   void add_texts(const std::string& key, const std::vector<std::string>& v) override {
     o_.add(key, v);
   }
+  void add_numbers(const std::string& key, const std::vector<double>& v) override {
+    std::string raw = "[";
+    for (std::size_t i = 0; i < v.size(); ++i) raw += (i ? ", " : "") + json_number(v[i]);
+    o_.add_raw(key, raw + "]");
+  }
   void add_object(const std::string& key,
                   const std::function<void(SummaryWriter&)>& fill) override {
     JsonObject inner;

@@ -48,6 +48,13 @@ class SummaryWriter {
   virtual void add_number(const std::string& key, double value) = 0;
   virtual void add_text(const std::string& key, const std::string& value) = 0;
   virtual void add_texts(const std::string& key, const std::vector<std::string>& values) = 0;
+  /// A list of numbers. The default writes an object keyed "0", "1", ...; the CLI's JSON and
+  /// Python's dict write a list.
+  virtual void add_numbers(const std::string& key, const std::vector<double>& values) {
+    add_object(key, [&values](SummaryWriter& w) {
+      for (std::size_t i = 0; i < values.size(); ++i) w.add_number(std::to_string(i), values[i]);
+    });
+  }
   /// A nested object whose fields `fill` writes into the writer it is given.
   virtual void add_object(const std::string& key,
                           const std::function<void(SummaryWriter&)>& fill) = 0;

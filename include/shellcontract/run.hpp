@@ -57,6 +57,9 @@ struct RunResult {
   std::size_t regions = 0;       ///< anisotropic regions used (or measured)
   std::size_t anisotropic_faces = 0;
   double region_inward_displacement = 0.0;  ///< Simulator::region_inward_displacement at the end
+  /// The same for each region alone, in the regions' order (the regions file's lines, or the
+  /// automatic regions' ids); empty when there are none.
+  std::vector<double> region_sinks;
   double outside_region_displacement = 0.0;  ///< Simulator::outside_region_displacement at the end
   std::size_t degenerate_faces = 0;
   std::size_t excluded_contact_pairs = 0;

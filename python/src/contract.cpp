@@ -295,6 +295,9 @@ class DictSummary final : public SummaryWriter {
   void add_texts(const std::string& key, const std::vector<std::string>& v) override {
     d_[py::str(key)] = py::cast(v);
   }
+  void add_numbers(const std::string& key, const std::vector<double>& v) override {
+    d_[py::str(key)] = py::cast(v);
+  }
   void add_object(const std::string& key, const std::function<void(SummaryWriter&)>& fill) override {
     py::dict inner;
     DictSummary w(inner);

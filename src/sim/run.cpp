@@ -286,6 +286,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   }
   r.anisotropic_faces = sim.anisotropy_report().faces;
   r.region_inward_displacement = sim.region_inward_displacement();
+  r.region_sinks = sim.region_sinks();
   r.outside_region_displacement = sim.outside_region_displacement();
   r.degenerate_faces = rest.degenerate_faces;
   r.excluded_contact_pairs = sim.excluded_contact_pairs();

@@ -78,6 +78,7 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   count("anisotropic_faces", r.anisotropic_faces);
   w.add_number("region_inward_displacement", r.region_inward_displacement);
   w.add_number("outside_region_displacement", r.outside_region_displacement);
+  w.add_numbers("region_sinks", r.region_sinks);
   w.add_object("table2", [&](SummaryWriter& t) {
     for (const auto& [name, value] : r.totals.per_step(r.frames_run)) t.add_number(name, value);
   });

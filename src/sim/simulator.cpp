@@ -201,6 +201,17 @@ Simulator::Simulator(SimPlan plan)
     std::sort(region_vertices_.begin(), region_vertices_.end());
     region_vertices_.erase(std::unique(region_vertices_.begin(), region_vertices_.end()),
                            region_vertices_.end());
+    for (const std::vector<int>& region : regions) {
+      std::vector<std::size_t> members;
+      for (int f : region)
+        for (int k = 0; k < 3; ++k)
+          members.push_back(static_cast<std::size_t>(
+              std::lower_bound(region_vertices_.begin(), region_vertices_.end(), faces_(f, k)) -
+              region_vertices_.begin()));
+      std::sort(members.begin(), members.end());
+      members.erase(std::unique(members.begin(), members.end()), members.end());
+      region_members_.push_back(std::move(members));
+    }
     // The one-ring band around a region moves with its rim; the rest is what should stay.
     std::vector<char> near(static_cast<std::size_t>(x_.rows()), 0);
     for (int v : region_vertices_) near[static_cast<std::size_t>(v)] = 1;
@@ -446,6 +457,19 @@ double Simulator::region_inward_displacement() const {
     sum -= (x_.row(v) - rest_x_.row(v)).dot(region_normals_.row(static_cast<Eigen::Index>(i)));
   }
   return sum / static_cast<double>(region_vertices_.size());
+}
+
+std::vector<double> Simulator::region_sinks() const {
+  std::vector<double> out;
+  for (const std::vector<std::size_t>& members : region_members_) {
+    double sum = 0.0;
+    for (std::size_t i : members) {
+      const int v = region_vertices_[i];
+      sum -= (x_.row(v) - rest_x_.row(v)).dot(region_normals_.row(static_cast<Eigen::Index>(i)));
+    }
+    out.push_back(members.empty() ? 0.0 : sum / static_cast<double>(members.size()));
+  }
+  return out;
 }
 
 double Simulator::outside_region_displacement() const {

@@ -83,6 +83,9 @@ class Simulator {
   /// nbar_i the rest area-weighted unit vertex normal (normalized units; > 0 = moved inward).
   /// 0 when there are no regions. The paper's Fig. 20 measure (issue acceptance).
   double region_inward_displacement() const;
+  /// region_inward_displacement() of each region alone, in the regions' order: a region that
+  /// does not sink shows here even when the others carry the mean.
+  std::vector<double> region_sinks() const;
   /// How far the rest of the shell moved: the mean |x_i - xbar_i| over the vertices outside the
   /// regions and outside the one-ring band around them (normalized units; 0 when there are no
   /// regions). region_inward_displacement() over it is the local contraction's locality.
@@ -151,6 +154,8 @@ class Simulator {
   std::vector<int> region_vertices_;  ///< vertices of the regions, sorted, unique
   std::vector<int> outside_vertices_;  ///< neither in a region nor in its one-ring band
   Positions region_normals_;          ///< their rest unit normals, same order
+  /// Per region, the indices into region_vertices_ of its vertices.
+  std::vector<std::vector<std::size_t>> region_members_;
   double rest_volume_ = 0.0;
   double constraint_rest_volume_ = 0.0;  ///< V0 as signed_volume computes it (the constraint's)
   bool stop_volume_reached_ = false;
