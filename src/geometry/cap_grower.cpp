@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -128,6 +129,52 @@ CapGrower::CapGrower(const MeshArrays& m, const std::vector<GrowthVertex>& verti
     : m_(m), own_(std::make_unique<const GrowthGraph>(m, vertices)), g_(*own_), c_(c), o_(o),
       state_(vertices.size(), State{INF, false}), in_(m.nf, 0), keep_(m.nf, 0) {}
 
+void CapGrower::EntryHeap::push(const Entry& e) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &e.dist, sizeof bits);
+  const Key key = (Key{bits} << 64) | (Key{static_cast<std::uint32_t>(e.id)} << 32) | Key{static_cast<std::uint32_t>(e.slot)};
+  h_.push_back(key);
+  std::size_t i = h_.size() - 1;
+  while (i > 0) {
+    const std::size_t parent = (i - 1) / 4;
+    if (!(key < h_[parent])) break;
+    h_[i] = h_[parent];
+    i = parent;
+  }
+  h_[i] = key;
+}
+
+CapGrower::Entry CapGrower::EntryHeap::pop() {
+  const Key top = h_.front();
+  const Key last = h_.back();
+  h_.pop_back();
+  const std::size_t n = h_.size();
+  std::size_t i = 0;
+  for (;;) {
+    const std::size_t first = 4 * i + 1;
+    if (first >= n) break;
+    const std::size_t end = std::min(first + 4, n);
+    std::size_t least = first;
+    Key least_key = h_[first];
+    for (std::size_t c = first + 1; c < end; ++c) {
+      const Key k = h_[c];
+      const bool less = k < least_key;
+      least = less ? c : least;
+      least_key = less ? k : least_key;
+    }
+    if (!(least_key < last)) break;
+    h_[i] = least_key;
+    i = least;
+  }
+  if (n > 0) h_[i] = last;
+  Entry e;
+  const auto bits = static_cast<std::uint64_t>(top >> 64);
+  std::memcpy(&e.dist, &bits, sizeof bits);
+  e.id = static_cast<int>(static_cast<std::uint32_t>(top >> 32));
+  e.slot = static_cast<int>(static_cast<std::uint32_t>(top));
+  return e;
+}
+
 void CapGrower::reset() {
   for (int v : touched_) state_[static_cast<std::size_t>(v)] = State{INF, false};
   touched_.clear();
@@ -143,10 +190,9 @@ std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
   const Vec3 n_seed(c_.normal.row(seed));
   // A min-heap on (distance, mesh index): the order the growth adds its points in, whatever
   // the slots (no two entries tie: a vertex is pushed again only at a strictly smaller distance).
-  const auto later = [](const Entry& a, const Entry& b) { return a.dist > b.dist || (a.dist == b.dist && a.id > b.id); };
   state_[static_cast<std::size_t>(s)].dist = 0.0;
   touched_.push_back(s);
-  heap_.push_back(Entry{0.0, seed, s});
+  heap_.push(Entry{0.0, seed, s});
   double boundary = h, area = 0.0, concave = 0.0, last = 0.0;
   std::size_t popped = 0;
   std::optional<Cap> best;
@@ -167,9 +213,7 @@ std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
     }
   };
   while (!heap_.empty() && !stop) {
-    std::pop_heap(heap_.begin(), heap_.end(), later);
-    const Entry e = heap_.back();
-    heap_.pop_back();
+    const Entry e = heap_.pop();
     State& sv = state_[static_cast<std::size_t>(e.slot)];
     if (sv.popped) continue;
     if (e.dist > boundary) {
@@ -201,8 +245,7 @@ std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
         __builtin_prefetch(g_.nbr_begin(nb->slot) + 4);
       }
       sw.dist = dw;
-      heap_.push_back(Entry{dw, nb->id, nb->slot});
-      std::push_heap(heap_.begin(), heap_.end(), later);
+      heap_.push(Entry{dw, nb->id, nb->slot});
     }
   }
   if (heap_.empty() && !stop) judge();  // the whole (blocked-off) component is the disc

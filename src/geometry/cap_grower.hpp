@@ -95,6 +95,23 @@ class CapGrower {
     double dist;
     int id, slot;
   };
+  /// A 4-ary min-heap of entries on (distance, mesh index). An entry is kept as one 128-bit
+  /// key: the distance's bits (distances are >= 0 and finite, so their bit patterns order as
+  /// the numbers do), the mesh index, the slot; no two entries tie on the first two, so the
+  /// key orders as (distance, mesh index) and any heap pops the same sequence. Its sift-down
+  /// picks the least child by comparing keys without branches (std::pop_heap's binary sift
+  /// mispredicts about one branch per level, and the growth pops millions of entries).
+  class EntryHeap {
+   public:
+    __extension__ typedef unsigned __int128 Key;
+    bool empty() const { return h_.empty(); }
+    void clear() { h_.clear(); }
+    void push(const Entry& e);
+    Entry pop();
+
+   private:
+    std::vector<Key> h_;
+  };
   std::vector<int> disc_faces(int seed_slot, double rho, const std::vector<char>* blocked);
   void reset();
 
@@ -106,7 +123,7 @@ class CapGrower {
   std::vector<State> state_;  ///< by slot
   std::vector<char> in_, keep_;  ///< per face slot, all 0 between calls
   std::vector<int> touched_;     ///< slots
-  std::vector<Entry> heap_;
+  EntryHeap heap_;
 };
 
 }  // namespace shellcontract::detail
