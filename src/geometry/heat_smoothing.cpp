@@ -65,12 +65,16 @@ struct Pattern {
   const int* outer = nullptr;
   const int* inner = nullptr;
   std::vector<int> diag;  ///< index of (i, i) in inner; -1 when absent
+  /// L's value at each entry (0 where only M has one). An off-diagonal entry of M + t L is
+  /// 0 + t L_ij, as Eigen's sum computes it: formed on the fly, so that the systems of a
+  /// batch read one array of values instead of one each (the sweeps wait on memory).
+  std::vector<double> lval;
 };
 
-/// One system A u = b of the batch: A's values (on the shared pattern), its diagonal, the
+/// One system A u = b of the batch: its time (A = M + t L on the shared pattern), its diagonal, the
 /// coarse factor, and the conjugate-gradient state.
 struct System {
-  const double* val = nullptr;
+  double t = 0.0;
   Eigen::VectorXd diag;
   Ldlt coarse;
   Eigen::VectorXd u, r, z, p, Ap, residual;
@@ -93,7 +97,8 @@ void forward_sweep(const Pattern& a, System* const* s) {
     // multiply a non-zero z.
     for (int e = a.outer[i]; e < a.diag[static_cast<std::size_t>(i)]; ++e) {
       const int row = a.inner[e];
-      for (int k = 0; k < K; ++k) acc[k] -= s[k]->val[e] * s[k]->z(row);
+      const double l = a.lval[e];
+      for (int k = 0; k < K; ++k) acc[k] -= (0.0 + s[k]->t * l) * s[k]->z(row);
     }
     for (int k = 0; k < K; ++k) s[k]->z(i) = acc[k] / s[k]->diag(i);
   }
@@ -108,7 +113,8 @@ void backward_sweep(const Pattern& a, System* const* s) {
     for (int e = a.outer[i]; e < a.outer[i + 1]; ++e) {
       if (e == d) continue;
       const int row = a.inner[e];
-      for (int k = 0; k < K; ++k) acc[k] -= s[k]->val[e] * s[k]->z(row);
+      const double l = a.lval[e];
+      for (int k = 0; k < K; ++k) acc[k] -= (0.0 + s[k]->t * l) * s[k]->z(row);
     }
     for (int k = 0; k < K; ++k) s[k]->z(i) = acc[k] / s[k]->diag(i);
   }
@@ -122,9 +128,14 @@ void multiply_add(const Pattern& a, System* const* s, Eigen::VectorXd System::*o
   for (Eigen::Index j = 0; j < a.n; ++j) {
     double xj[K];
     for (int k = 0; k < K; ++k) xj[k] = sign * (s[k]->*x)(j);
+    const int d = a.diag[static_cast<std::size_t>(j)];
     for (int e = a.outer[j]; e < a.outer[j + 1]; ++e) {
       const int row = a.inner[e];
-      for (int k = 0; k < K; ++k) (s[k]->*out)(row) += s[k]->val[e] * xj[k];
+      const double l = a.lval[e];
+      if (e == d)
+        for (int k = 0; k < K; ++k) (s[k]->*out)(row) += s[k]->diag(row) * xj[k];
+      else
+        for (int k = 0; k < K; ++k) (s[k]->*out)(row) += (0.0 + s[k]->t * l) * xj[k];
     }
   }
 }
@@ -250,10 +261,10 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
   std::vector<int> used(times.size(), 0);
   // Every A_k = M + t_k L has the pattern of M + L (M's diagonal is all there).
   std::vector<SpMat> A(times.size());
-  for (std::size_t k = 0; k < times.size(); ++k) {
+  tbb::parallel_for(std::size_t{0}, times.size(), [&](std::size_t k) {
     A[k] = M + times[k] * L;
     A[k].makeCompressed();
-  }
+  });
   Pattern pattern;
   bool shared = iterative && !A.empty();
   if (shared) {
@@ -265,6 +276,16 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
       for (int e = pattern.outer[i]; e < pattern.outer[i + 1]; ++e)
         if (pattern.inner[e] == i) pattern.diag[static_cast<std::size_t>(i)] = e;
     shared = std::all_of(pattern.diag.begin(), pattern.diag.end(), [](int d) { return d >= 0; });
+    // L's values on A's pattern (L's entries are a subset of it: M adds only the diagonal).
+    pattern.lval.assign(static_cast<std::size_t>(A[0].nonZeros()), 0.0);
+    for (Eigen::Index i = 0; i < n && shared; ++i) {
+      int e = pattern.outer[i];
+      for (SpMat::InnerIterator it(L, i); it; ++it) {
+        while (e < pattern.outer[i + 1] && pattern.inner[e] < it.row()) ++e;
+        shared = shared && e < pattern.outer[i + 1] && pattern.inner[e] == it.row();
+        if (shared) pattern.lval[static_cast<std::size_t>(e)] = it.value();
+      }
+    }
     for (const SpMat& a : A)
       shared = shared && a.nonZeros() == A[0].nonZeros() &&
                std::equal(pattern.outer, pattern.outer + n + 1, a.outerIndexPtr()) &&
@@ -284,7 +305,7 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
       std::vector<System*> members;
       for (std::size_t k : batches[b]) {
         System& s = systems[k];
-        s.val = A[k].valuePtr();
+        s.t = times[k];
         s.diag = A[k].diagonal();
         s.coarse.compute(SpMat(Mc + times[k] * Lc));
         if (s.coarse.info() == Eigen::Success && (s.diag.array() > 0.0).all()) members.push_back(&s);
