@@ -239,8 +239,8 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
   r.seed_vertices = seeds.size();
 
   // Step 2: free growth, to rank.
-  const std::vector<detail::GrowthVertex> gv = detail::growth_vertices(m, x, u.front());
-  CapGrower grower(m, gv, c, options);
+  const detail::GrowthGraph graph(m, detail::growth_vertices(m, x, u.front()));
+  CapGrower grower(m, graph, c, options);
   const double min_angle = options.min_cap_angle_deg * PI / 180.0;
   const auto curved = [&](const Cap& cap) {
     return cap.angle >= min_angle && cap.sphere.radius * options.min_curvature_contrast * h_ref <= 1.0;
@@ -249,11 +249,18 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
   // arrays) per thread, and read back in seed order, so the result does not depend on threads.
   // Only the caps that may be kept need their faces (for the ranking and the coverage test).
   const std::function<bool(const Cap&)> candidate = [&](const Cap& cap) { return !cap.unbounded && curved(cap); };
+  // Seeds are taken in the graph's (spatial) order, so that a thread's successive discs overlap
+  // and find their vertices in the cache.
+  std::vector<std::size_t> by_slot(seeds.size());
+  std::iota(by_slot.begin(), by_slot.end(), std::size_t{0});
+  std::sort(by_slot.begin(), by_slot.end(),
+            [&](std::size_t a, std::size_t b) { return graph.slot(seeds[a]) < graph.slot(seeds[b]); });
   std::vector<std::optional<Cap>> grown(seeds.size());
   tbb::enumerable_thread_specific<std::unique_ptr<CapGrower>> growers;
-  tbb::parallel_for(std::size_t{0}, seeds.size(), [&](std::size_t i) {
+  tbb::parallel_for(std::size_t{0}, seeds.size(), [&](std::size_t k) {
     std::unique_ptr<CapGrower>& g = growers.local();
-    if (!g) g = std::make_unique<CapGrower>(m, gv, c, options);
+    if (!g) g = std::make_unique<CapGrower>(m, graph, c, options);
+    const std::size_t i = by_slot[k];
     grown[i] = g->grow(seeds[i], nullptr, &candidate);
   });
   timer.lap("free growth");

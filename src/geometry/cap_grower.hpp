@@ -2,9 +2,10 @@
 // (step 2 of the algorithm in region_selection.hpp).
 #pragma once
 
+#include <array>
 #include <functional>
+#include <memory>
 #include <optional>
-#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -24,11 +25,56 @@ struct GrowthVertex {
 
 std::vector<GrowthVertex> growth_vertices(const MeshArrays& m, const Positions& x, const Eigen::VectorXd& concave_field);
 
+/// The mesh as the growth walks it, its vertices renumbered ("slots") along a space-filling
+/// curve through their positions: a disc's records then lie close together in memory, where
+/// the mesh's own order (a subdivided mesh appends each level's midpoints) scatters a disc's
+/// neighbours over the whole array and every visit misses the cache. Only the memory layout
+/// changes: the growth still orders its vertices by (distance, mesh index), so every disc is
+/// the same as in the mesh's order. Built once, shared by the growers of all threads.
+class GrowthGraph {
+ public:
+  GrowthGraph(const MeshArrays& m, const std::vector<GrowthVertex>& vertices);
+
+  /// A neighbour of a slot: its slot, its mesh index and the edge's length.
+  struct Neighbour {
+    double len;
+    int slot, id;
+  };
+
+  std::size_t size() const { return vertex_.size(); }
+  int slot(int id) const { return slot_[static_cast<std::size_t>(id)]; }
+  int id(int slot) const { return id_[static_cast<std::size_t>(slot)]; }
+  const GrowthVertex& vertex(int slot) const { return vertex_[static_cast<std::size_t>(slot)]; }
+  const Neighbour* nbr_begin(int slot) const { return nbr_.data() + nbr_start_[static_cast<std::size_t>(slot)]; }
+  const Neighbour* nbr_end(int slot) const { return nbr_.data() + nbr_start_[static_cast<std::size_t>(slot) + 1]; }
+  /// Faces are renumbered too (face slots, in the order of their smallest corner slot): a
+  /// face's corners (vertex slots, in the mesh's corner order) and its neighbours across its
+  /// edges (face slots, -1 on a border).
+  struct Face {
+    std::array<int, 3> corner, nbr;
+  };
+  /// The face slots around a vertex slot, in the mesh's order.
+  const int* faces_begin(int slot) const { return face_.data() + face_start_[static_cast<std::size_t>(slot)]; }
+  const int* faces_end(int slot) const { return face_.data() + face_start_[static_cast<std::size_t>(slot) + 1]; }
+  const Face& face(int face_slot) const { return face_rec_[static_cast<std::size_t>(face_slot)]; }
+  int face_id(int face_slot) const { return face_id_[static_cast<std::size_t>(face_slot)]; }
+
+ private:
+  std::vector<int> slot_, id_, face_id_;
+  std::vector<GrowthVertex> vertex_;
+  std::vector<int> nbr_start_, face_start_, face_;
+  std::vector<Neighbour> nbr_;
+  std::vector<Face> face_rec_;
+};
+
 /// Grows discs from seeds. Scratch arrays are kept between seeds (reset through the lists of
 /// what a growth touched), so a growth costs what it visits, not the mesh's size; one grower
 /// per thread.
 class CapGrower {
  public:
+  /// With a graph shared between growers (it must outlive the grower).
+  CapGrower(const MeshArrays& m, const GrowthGraph& graph, const CurvatureField& c, const RegionOptions& o);
+  /// With a graph of its own.
   CapGrower(const MeshArrays& m, const std::vector<GrowthVertex>& vertices, const CurvatureField& c,
             const RegionOptions& o);
 
@@ -44,17 +90,40 @@ class CapGrower {
     double dist;
     bool popped;
   };
-  std::vector<int> disc_faces(int seed, double rho, const std::vector<char>* blocked);
+  /// A heap entry: tentative distance, mesh index (the tie-break, as in the mesh's order), slot.
+  struct Entry {
+    double dist;
+    int id, slot;
+  };
+  /// A 4-ary min-heap of entries on (distance, mesh index). An entry is kept as one 128-bit
+  /// key: the distance's bits (distances are >= 0 and finite, so their bit patterns order as
+  /// the numbers do), the mesh index, the slot; no two entries tie on the first two, so the
+  /// key orders as (distance, mesh index) and any heap pops the same sequence. Its sift-down
+  /// picks the least child by comparing keys without branches (std::pop_heap's binary sift
+  /// mispredicts about one branch per level, and the growth pops millions of entries).
+  class EntryHeap {
+   public:
+    __extension__ typedef unsigned __int128 Key;
+    bool empty() const { return h_.empty(); }
+    void clear() { h_.clear(); }
+    void push(const Entry& e);
+    Entry pop();
+
+   private:
+    std::vector<Key> h_;
+  };
+  std::vector<int> disc_faces(int seed_slot, double rho, const std::vector<char>* blocked);
   void reset();
 
   const MeshArrays& m_;
-  const std::vector<GrowthVertex>& v_;
+  std::unique_ptr<const GrowthGraph> own_;
+  const GrowthGraph& g_;
   const CurvatureField& c_;
   const RegionOptions& o_;
-  std::vector<State> state_;
-  std::vector<char> in_, keep_;  ///< per face, all 0 between calls
-  std::vector<int> touched_;
-  std::vector<std::pair<double, int>> heap_;
+  std::vector<State> state_;  ///< by slot
+  std::vector<char> in_, keep_;  ///< per face slot, all 0 between calls
+  std::vector<int> touched_;     ///< slots
+  EntryHeap heap_;
 };
 
 }  // namespace shellcontract::detail

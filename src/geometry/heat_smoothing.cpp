@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstddef>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "shellcontract/error.hpp"
@@ -56,67 +58,170 @@ std::vector<int> aggregate(const SpMat& L, int& count) {
   return agg;
 }
 
-/// The two-level preconditioner of A = M + t L and the conjugate-gradient loop.
-class TwoLevelSolver {
- public:
-  TwoLevelSolver(const SpMat& A, const std::vector<int>& agg, const SpMat& coarse)
-      : A_(A), agg_(agg), diag_(A.diagonal()), coarse_(coarse) {}
+/// The sparsity pattern the systems M + t L share (compressed columns; A is symmetric, so a
+/// column is also a row), with the position of each diagonal entry.
+struct Pattern {
+  Eigen::Index n = 0;
+  const int* outer = nullptr;
+  const int* inner = nullptr;
+  std::vector<int> diag;  ///< index of (i, i) in inner; -1 when absent
+  /// L's value at each entry (0 where only M has one). An off-diagonal entry of M + t L is
+  /// 0 + t L_ij, as Eigen's sum computes it: formed on the fly, so that the systems of a
+  /// batch read one array of values instead of one each (the sweeps wait on memory).
+  std::vector<double> lval;
+};
 
-  bool ok() const { return coarse_.info() == Eigen::Success && (diag_.array() > 0.0).all(); }
+/// One system A u = b of the batch: its time (A = M + t L on the shared pattern), its diagonal, the
+/// coarse factor, and the conjugate-gradient state.
+struct System {
+  double t = 0.0;
+  Eigen::VectorXd diag;
+  Ldlt coarse;
+  Eigen::VectorXd u, r, z, p, Ap, residual;
+  double target = 0.0, rz = 0.0;
+  int iterations = 0;
+  bool solved = false;  ///< converged (iterations: how many it took, 0 when b was already 0)
+};
 
-  /// Solves A u = b to HEAT_ITERATIVE_TOLERANCE; the iteration count, or -1 when it does not
-  /// converge.
-  int solve(const Eigen::VectorXd& b, Eigen::VectorXd& u) const {
-    const double target = HEAT_ITERATIVE_TOLERANCE * b.norm();
-    u = Eigen::VectorXd::Zero(b.size());
-    Eigen::VectorXd r = b;
-    if (!(r.norm() > target)) return 0;
-    Eigen::VectorXd z = precondition(r), p = z, Ap(b.size());
-    double rz = r.dot(z);
-    for (int it = 0; it < MAX_ITERATIONS; ++it) {
-      Ap.noalias() = A_ * p;
-      const double pAp = p.dot(Ap);
-      if (!(pAp > 0.0)) return -1;
-      const double alpha = rz / pAp;
-      u += alpha * p;
-      r -= alpha * Ap;
-      if (r.norm() <= target) return it + 1;
-      z = precondition(r);
-      const double rz_next = r.dot(z);
-      p = z + (rz_next / rz) * p;
-      rz = rz_next;
+/// The kernels below run K systems side by side, each with exactly the operations (and their
+/// order) it would have alone: the rows' sums are chains of dependent additions that leave the
+/// processor idle, and K independent chains fill it. Each system's sums keep Eigen's order (the
+/// sparse-times-vector product adds column by column), so a system's result does not depend on
+/// the batch it ran in.
+template <int K>
+void forward_sweep(const Pattern& a, System* const* s) {
+  for (Eigen::Index i = 0; i < a.n; ++i) {
+    double acc[K];
+    for (int k = 0; k < K; ++k) acc[k] = s[k]->r(i);
+    // z starts at 0 and the sweep goes up: only the entries above the diagonal (rows < i)
+    // multiply a non-zero z.
+    for (int e = a.outer[i]; e < a.diag[static_cast<std::size_t>(i)]; ++e) {
+      const int row = a.inner[e];
+      const double l = a.lval[e];
+      for (int k = 0; k < K; ++k) acc[k] -= (0.0 + s[k]->t * l) * s[k]->z(row);
     }
-    return -1;
+    for (int k = 0; k < K; ++k) s[k]->z(i) = acc[k] / s[k]->diag(i);
+  }
+}
+
+template <int K>
+void backward_sweep(const Pattern& a, System* const* s) {
+  for (Eigen::Index i = a.n - 1; i >= 0; --i) {
+    double acc[K];
+    for (int k = 0; k < K; ++k) acc[k] = s[k]->r(i);
+    const int d = a.diag[static_cast<std::size_t>(i)];
+    for (int e = a.outer[i]; e < a.outer[i + 1]; ++e) {
+      if (e == d) continue;
+      const int row = a.inner[e];
+      const double l = a.lval[e];
+      for (int k = 0; k < K; ++k) acc[k] -= (0.0 + s[k]->t * l) * s[k]->z(row);
+    }
+    for (int k = 0; k < K; ++k) s[k]->z(i) = acc[k] / s[k]->diag(i);
+  }
+}
+
+/// out_k = start_k + sign * A_k x_k, column by column (Eigen's order for y = A x, sign +1 and
+/// start 0, and for y = r - A x, sign -1 and start r).
+template <int K>
+void multiply_add(const Pattern& a, System* const* s, Eigen::VectorXd System::*out, const Eigen::VectorXd System::*x,
+                  double sign) {
+  for (Eigen::Index j = 0; j < a.n; ++j) {
+    double xj[K];
+    for (int k = 0; k < K; ++k) xj[k] = sign * (s[k]->*x)(j);
+    const int d = a.diag[static_cast<std::size_t>(j)];
+    for (int e = a.outer[j]; e < a.outer[j + 1]; ++e) {
+      const int row = a.inner[e];
+      const double l = a.lval[e];
+      if (e == d)
+        for (int k = 0; k < K; ++k) (s[k]->*out)(row) += s[k]->diag(row) * xj[k];
+      else
+        for (int k = 0; k < K; ++k) (s[k]->*out)(row) += (0.0 + s[k]->t * l) * xj[k];
+    }
+  }
+}
+
+/// The two-level preconditioner and the conjugate-gradient loop of a batch of systems.
+class TwoLevelBatch {
+ public:
+  TwoLevelBatch(const Pattern& a, const std::vector<int>& agg, std::vector<System*> systems)
+      : a_(a), agg_(agg), systems_(std::move(systems)) {}
+
+  /// Solves each A u = b to HEAT_ITERATIVE_TOLERANCE; a system marked solved holds u and its
+  /// iteration count, the others did not converge.
+  void solve(const Eigen::VectorXd& b) {
+    std::vector<System*> active;
+    for (System* s : systems_) {
+      s->target = HEAT_ITERATIVE_TOLERANCE * b.norm();
+      s->u = Eigen::VectorXd::Zero(b.size());
+      s->r = b;
+      s->iterations = 0;
+      s->solved = !(s->r.norm() > s->target);
+      if (!s->solved) active.push_back(s);
+    }
+    precondition(active);
+    for (System* s : active) {
+      s->p = s->z;
+      s->rz = s->r.dot(s->z);
+      s->Ap.resize(b.size());
+    }
+    for (int it = 0; it < MAX_ITERATIONS && !active.empty(); ++it) {
+      for (System* s : active) s->Ap.setZero();
+      run(active, [&](System* const* s, auto k) { multiply_add<decltype(k)::value>(a_, s, &System::Ap, &System::p, 1.0); });
+      std::vector<System*> next;
+      for (System* s : active) {
+        const double pAp = s->p.dot(s->Ap);
+        if (!(pAp > 0.0)) continue;  // not positive definite: the direct solver takes it
+        const double alpha = s->rz / pAp;
+        s->u += alpha * s->p;
+        s->r -= alpha * s->Ap;
+        if (s->r.norm() <= s->target) {
+          s->iterations = it + 1;
+          s->solved = true;
+          continue;
+        }
+        next.push_back(s);
+      }
+      active = std::move(next);
+      precondition(active);
+      for (System* s : active) {
+        const double rz_next = s->r.dot(s->z);
+        s->p = s->z + (rz_next / s->rz) * s->p;
+        s->rz = rz_next;
+      }
+    }
   }
 
  private:
-  /// One symmetric cycle: forward sweep, coarse correction, backward sweep (so the
-  /// preconditioner is symmetric positive definite, as conjugate gradients need).
-  Eigen::VectorXd precondition(const Eigen::VectorXd& r) const {
-    const Eigen::Index n = r.size();
-    Eigen::VectorXd z = Eigen::VectorXd::Zero(n);
-    for (Eigen::Index i = 0; i < n; ++i) sweep(r, z, i);
-    const Eigen::VectorXd residual = r - A_ * z;
-    Eigen::VectorXd rc = Eigen::VectorXd::Zero(coarse_.rows());
-    for (Eigen::Index i = 0; i < n; ++i) rc(agg_[static_cast<std::size_t>(i)]) += residual(i);
-    const Eigen::VectorXd ec = coarse_.solve(rc);
-    for (Eigen::Index i = 0; i < n; ++i) z(i) += ec(agg_[static_cast<std::size_t>(i)]);
-    for (Eigen::Index i = n - 1; i >= 0; --i) sweep(r, z, i);
-    return z;
+  /// Calls f(systems, std::integral_constant<int, K>) on the active systems, two at a time.
+  template <typename F>
+  static void run(const std::vector<System*>& active, F&& f) {
+    std::size_t i = 0;
+    for (; i + 2 <= active.size(); i += 2) f(active.data() + i, std::integral_constant<int, 2>{});
+    if (i < active.size()) f(active.data() + i, std::integral_constant<int, 1>{});
   }
 
-  /// Gauss-Seidel update of z_i (A is symmetric: column i is row i).
-  void sweep(const Eigen::VectorXd& r, Eigen::VectorXd& z, Eigen::Index i) const {
-    double s = r(i);
-    for (SpMat::InnerIterator it(A_, i); it; ++it)
-      if (it.row() != i) s -= it.value() * z(it.row());
-    z(i) = s / diag_(i);
+  /// One symmetric cycle on each system's r into its z: forward sweep, coarse correction,
+  /// backward sweep (so the preconditioner is symmetric positive definite, as conjugate
+  /// gradients need).
+  void precondition(const std::vector<System*>& active) const {
+    for (System* s : active) {
+      s->z = Eigen::VectorXd::Zero(s->r.size());
+      s->residual = s->r;
+    }
+    run(active, [&](System* const* s, auto k) { forward_sweep<decltype(k)::value>(a_, s); });
+    run(active, [&](System* const* s, auto k) { multiply_add<decltype(k)::value>(a_, s, &System::residual, &System::z, -1.0); });
+    for (System* s : active) {
+      Eigen::VectorXd rc = Eigen::VectorXd::Zero(s->coarse.rows());
+      for (Eigen::Index i = 0; i < a_.n; ++i) rc(agg_[static_cast<std::size_t>(i)]) += s->residual(i);
+      const Eigen::VectorXd ec = s->coarse.solve(rc);
+      for (Eigen::Index i = 0; i < a_.n; ++i) s->z(i) += ec(agg_[static_cast<std::size_t>(i)]);
+    }
+    run(active, [&](System* const* s, auto k) { backward_sweep<decltype(k)::value>(a_, s); });
   }
 
-  const SpMat& A_;
+  const Pattern& a_;
   const std::vector<int>& agg_;
-  Eigen::VectorXd diag_;
-  Ldlt coarse_;
+  std::vector<System*> systems_;
 };
 
 bool direct_solve(const SpMat& A, const Eigen::VectorXd& rhs, Eigen::VectorXd& u) {
@@ -151,19 +256,70 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
     Mc = Pt * M * P;
     Lc = Pt * L * P;
   }
-  // The times are independent systems: solved side by side (each solve is the same
-  // deterministic sequence of operations as alone, so the result does not depend on the threads).
   std::vector<Eigen::VectorXd> out(times.size());
   std::vector<char> failed(times.size(), 0);
   std::vector<int> used(times.size(), 0);
+  // Every A_k = M + t_k L has the pattern of M + L (M's diagonal is all there).
+  std::vector<SpMat> A(times.size());
   tbb::parallel_for(std::size_t{0}, times.size(), [&](std::size_t k) {
-    const SpMat A = M + times[k] * L;
-    if (iterative) {
-      const TwoLevelSolver solver(A, agg, SpMat(Mc + times[k] * Lc));
-      if (solver.ok() && (used[k] = solver.solve(rhs, out[k])) >= 0) return;
-      used[k] = 0;
+    A[k] = M + times[k] * L;
+    A[k].makeCompressed();
+  });
+  Pattern pattern;
+  bool shared = iterative && !A.empty();
+  if (shared) {
+    pattern.n = n;
+    pattern.outer = A[0].outerIndexPtr();
+    pattern.inner = A[0].innerIndexPtr();
+    pattern.diag.assign(static_cast<std::size_t>(n), -1);
+    for (Eigen::Index i = 0; i < n; ++i)
+      for (int e = pattern.outer[i]; e < pattern.outer[i + 1]; ++e)
+        if (pattern.inner[e] == i) pattern.diag[static_cast<std::size_t>(i)] = e;
+    shared = std::all_of(pattern.diag.begin(), pattern.diag.end(), [](int d) { return d >= 0; });
+    // L's values on A's pattern (L's entries are a subset of it: M adds only the diagonal).
+    pattern.lval.assign(static_cast<std::size_t>(A[0].nonZeros()), 0.0);
+    for (Eigen::Index i = 0; i < n && shared; ++i) {
+      int e = pattern.outer[i];
+      for (SpMat::InnerIterator it(L, i); it; ++it) {
+        while (e < pattern.outer[i + 1] && pattern.inner[e] < it.row()) ++e;
+        shared = shared && e < pattern.outer[i + 1] && pattern.inner[e] == it.row();
+        if (shared) pattern.lval[static_cast<std::size_t>(e)] = it.value();
+      }
     }
-    failed[k] = direct_solve(A, rhs, out[k]) ? 0 : 1;
+    for (const SpMat& a : A)
+      shared = shared && a.nonZeros() == A[0].nonZeros() &&
+               std::equal(pattern.outer, pattern.outer + n + 1, a.outerIndexPtr()) &&
+               std::equal(pattern.inner, pattern.inner + A[0].nonZeros(), a.innerIndexPtr());
+  }
+  std::vector<System> systems(times.size());
+  if (shared) {
+    // Two systems per batch, the shortest time with the longest (their iteration counts sum
+    // to about the same), the batches side by side: each system's arithmetic is the same
+    // whatever the batches and the threads.
+    std::vector<std::vector<std::size_t>> batches;
+    for (std::size_t lo = 0, hi = times.size(); lo < hi; ++lo) {
+      --hi;
+      batches.push_back(lo < hi ? std::vector<std::size_t>{lo, hi} : std::vector<std::size_t>{lo});
+    }
+    tbb::parallel_for(std::size_t{0}, batches.size(), [&](std::size_t b) {
+      std::vector<System*> members;
+      for (std::size_t k : batches[b]) {
+        System& s = systems[k];
+        s.t = times[k];
+        s.diag = A[k].diagonal();
+        s.coarse.compute(SpMat(Mc + times[k] * Lc));
+        if (s.coarse.info() == Eigen::Success && (s.diag.array() > 0.0).all()) members.push_back(&s);
+      }
+      TwoLevelBatch(pattern, agg, members).solve(rhs);
+    });
+  }
+  tbb::parallel_for(std::size_t{0}, times.size(), [&](std::size_t k) {
+    if (systems[k].solved) {
+      used[k] = systems[k].iterations;
+      out[k] = std::move(systems[k].u);
+      return;
+    }
+    failed[k] = direct_solve(A[k], rhs, out[k]) ? 0 : 1;
   });
   if (std::any_of(failed.begin(), failed.end(), [](char f) { return f != 0; }))
     throw UsageError("select_spherical_regions: the smoothing system is singular");

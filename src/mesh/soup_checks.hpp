@@ -107,14 +107,35 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
     bool operator<(const EdgeUse& o) const { return key != o.key ? key < o.key : face < o.face; }
   };
   auto key = [nv](std::size_t a, std::size_t b) { return static_cast<std::uint64_t>(std::min(a, b)) * nv + std::max(a, b); };
-  std::vector<EdgeUse> uses_sorted;
-  uses_sorted.reserve(3 * nf);
+  // Sorted by counting on the smaller vertex, then each vertex's few uses by (key, face): the
+  // order one std::sort of all uses gives, in linear time (the sort was most of this check).
+  std::vector<std::size_t> start(nv + 1, 0);
+  bool in_range = true;
   for (std::size_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
-      const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
-      uses_sorted.push_back({key(a, b), f, a < b});
+      const std::size_t low = std::min<std::size_t>(tris[f][k], tris[f][(k + 1) % 3]);
+      in_range = in_range && low < nv;
+      if (in_range) ++start[low + 1];
     }
-  std::sort(uses_sorted.begin(), uses_sorted.end());
+  std::vector<EdgeUse> uses_sorted(3 * nf);
+  if (in_range) {
+    for (std::size_t v = 0; v < nv; ++v) start[v + 1] += start[v];
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (std::size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
+        uses_sorted[fill[std::min(a, b)]++] = {key(a, b), f, a < b};
+      }
+    for (std::size_t v = 0; v < nv; ++v)
+      std::sort(uses_sorted.begin() + static_cast<std::ptrdiff_t>(start[v]), uses_sorted.begin() + static_cast<std::ptrdiff_t>(start[v + 1]));
+  } else {  // an index past the vertices (callers check first): the plain sort
+    for (std::size_t f = 0, i = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k, ++i) {
+        const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
+        uses_sorted[i] = {key(a, b), f, a < b};
+      }
+    std::sort(uses_sorted.begin(), uses_sorted.end());
+  }
   // One pass over the runs: a valid mesh (the common case) has only runs of two opposite uses
   // and needs no per-edge search. Only when some run is bad is the first problem looked up in
   // face order (below), so that the message does not depend on the sort.
