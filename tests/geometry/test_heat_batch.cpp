@@ -13,48 +13,17 @@
 #include <Eigen/SparseCore>
 
 #include "geometry/heat_smoothing.hpp"
-#include "support/mesh_fixtures.hpp"
+#include "support/heat_problem.hpp"
 
 namespace shellcontract {
 namespace {
 
-struct HeatProblem {
-  Eigen::SparseMatrix<double> L;
-  Eigen::VectorXd mass, rhs;
-  std::vector<double> times;
-};
+using test::HeatProblem;
 
-/// A bumpy icosphere, its cotangent Laplacian, a third of the incident areas as masses and a
-/// rough field h = z + sin 7x to smooth, at five times (an odd count leaves one system alone).
+/// A bumpy icosphere (support/heat_problem.hpp) and a rough field h = z + sin 7x to smooth, at
+/// five times (an odd count leaves one system alone).
 HeatProblem bumpy_problem() {
-  test::TriMesh m = test::icosphere(4);
-  for (Eigen::Index i = 0; i < m.x.rows(); ++i) {
-    const Eigen::Vector3d p = m.x.row(i);
-    m.x.row(i) *= 1.0 + 0.1 * std::sin(4 * p.x()) * std::sin(3 * p.y()) * std::sin(5 * p.z());
-  }
-  const Eigen::Index n = m.x.rows();
-  HeatProblem h;
-  h.mass = Eigen::VectorXd::Zero(n);
-  std::vector<Eigen::Triplet<double>> t;
-  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
-    const int c[3] = {m.faces(f, 0), m.faces(f, 1), m.faces(f, 2)};
-    const Eigen::Vector3d p0 = m.x.row(c[0]), p1 = m.x.row(c[1]), p2 = m.x.row(c[2]);
-    const double a = 0.5 * (p1 - p0).cross(p2 - p0).norm();
-    for (int k = 0; k < 3; ++k) {
-      h.mass(c[k]) += a / 3.0;
-      const int i = c[k], j = c[(k + 1) % 3], o = c[(k + 2) % 3];
-      const Eigen::Vector3d u = m.x.row(i) - m.x.row(o), v = m.x.row(j) - m.x.row(o);
-      const double w = 0.5 * u.dot(v) / u.cross(v).norm();
-      t.emplace_back(i, j, -w);
-      t.emplace_back(j, i, -w);
-      t.emplace_back(i, i, w);
-      t.emplace_back(j, j, w);
-    }
-  }
-  h.L.resize(n, n);
-  h.L.setFromTriplets(t.begin(), t.end());
-  h.rhs.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) h.rhs(i) = h.mass(i) * (m.x(i, 2) + std::sin(7 * m.x(i, 0)));
+  HeatProblem h = test::bumpy_heat_problem(4, 0.1, {4.0, 3.0, 5.0}, 7.0);
   h.times = {1e-4, 4e-4, 2.5e-3, 1e-2, 4e-2};
   return h;
 }

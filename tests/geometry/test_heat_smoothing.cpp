@@ -13,51 +13,18 @@
 #include <Eigen/SparseCore>
 
 #include "geometry/heat_smoothing.hpp"
-#include "support/mesh_fixtures.hpp"
+#include "support/heat_problem.hpp"
 
 namespace shellcontract {
 namespace {
 
-struct HeatProblem {
-  Eigen::SparseMatrix<double> L;
-  Eigen::VectorXd mass, rhs;
-  std::vector<double> times;
-};
+using test::HeatProblem;
 
-/// A bumpy sphere (radius 1 + 0.15 sin 3x sin 4y sin 5z), its cotangent Laplacian, a third of
-/// the incident areas as masses, h = z + sin 6x, and the finder's times at a size of 1.
+/// A bumpy sphere (radius 1 + 0.15 sin 3x sin 4y sin 5z; support/heat_problem.hpp),
+/// h = z + sin 6x, and the finder's times at a size of 1.
 HeatProblem bumpy_problem(int levels) {
-  test::TriMesh m = test::icosphere(levels);
-  for (Eigen::Index i = 0; i < m.x.rows(); ++i) {
-    const Eigen::Vector3d p = m.x.row(i);
-    m.x.row(i) *= 1.0 + 0.15 * std::sin(3 * p.x()) * std::sin(4 * p.y()) * std::sin(5 * p.z());
-  }
-  const Eigen::Index n = m.x.rows();
-  HeatProblem h;
-  h.mass = Eigen::VectorXd::Zero(n);
-  std::vector<Eigen::Triplet<double>> t;
-  double area = 0.0;
-  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
-    const int c[3] = {m.faces(f, 0), m.faces(f, 1), m.faces(f, 2)};
-    const Eigen::Vector3d p0 = m.x.row(c[0]), p1 = m.x.row(c[1]), p2 = m.x.row(c[2]);
-    const double a = 0.5 * (p1 - p0).cross(p2 - p0).norm();
-    area += a;
-    for (int k = 0; k < 3; ++k) {
-      h.mass(c[k]) += a / 3.0;
-      const int i = c[k], j = c[(k + 1) % 3], o = c[(k + 2) % 3];
-      const Eigen::Vector3d u = m.x.row(i) - m.x.row(o), v = m.x.row(j) - m.x.row(o);
-      const double w = 0.5 * u.dot(v) / u.cross(v).norm();
-      t.emplace_back(i, j, -w);
-      t.emplace_back(j, i, -w);
-      t.emplace_back(i, i, w);
-      t.emplace_back(j, j, w);
-    }
-  }
-  h.L.resize(n, n);
-  h.L.setFromTriplets(t.begin(), t.end());
-  h.rhs.resize(n);
-  for (Eigen::Index i = 0; i < n; ++i) h.rhs(i) = h.mass(i) * (m.x(i, 2) + std::sin(6 * m.x(i, 0)));
-  for (double s : {0.01, 0.02, 0.05, 0.1}) h.times.push_back(s * s * area);
+  HeatProblem h = test::bumpy_heat_problem(levels, 0.15, {3.0, 4.0, 5.0}, 6.0);
+  for (double s : {0.01, 0.02, 0.05, 0.1}) h.times.push_back(s * s * h.area);
   return h;
 }
 
