@@ -449,13 +449,15 @@ FrameMetrics Simulator::step() {
   return m;
 }
 
+double Simulator::inward_displacement(std::size_t i) const {
+  const int v = region_vertices_[i];
+  return -(x_.row(v) - rest_x_.row(v)).dot(region_normals_.row(static_cast<Eigen::Index>(i)));
+}
+
 double Simulator::region_inward_displacement() const {
   if (region_vertices_.empty()) return 0.0;
   double sum = 0.0;
-  for (std::size_t i = 0; i < region_vertices_.size(); ++i) {
-    const int v = region_vertices_[i];
-    sum -= (x_.row(v) - rest_x_.row(v)).dot(region_normals_.row(static_cast<Eigen::Index>(i)));
-  }
+  for (std::size_t i = 0; i < region_vertices_.size(); ++i) sum += inward_displacement(i);
   return sum / static_cast<double>(region_vertices_.size());
 }
 
@@ -463,10 +465,7 @@ std::vector<double> Simulator::region_sinks() const {
   std::vector<double> out;
   for (const std::vector<std::size_t>& members : region_members_) {
     double sum = 0.0;
-    for (std::size_t i : members) {
-      const int v = region_vertices_[i];
-      sum -= (x_.row(v) - rest_x_.row(v)).dot(region_normals_.row(static_cast<Eigen::Index>(i)));
-    }
+    for (std::size_t i : members) sum += inward_displacement(i);
     out.push_back(members.empty() ? 0.0 : sum / static_cast<double>(members.size()));
   }
   return out;

@@ -156,6 +156,8 @@ class Simulator {
   Positions region_normals_;          ///< their rest unit normals, same order
   /// Per region, the indices into region_vertices_ of its vertices.
   std::vector<std::vector<std::size_t>> region_members_;
+  /// -(x_v - xbar_v) . nbar_v of region vertex i (an index into region_vertices_).
+  double inward_displacement(std::size_t i) const;
   double rest_volume_ = 0.0;
   double constraint_rest_volume_ = 0.0;  ///< V0 as signed_volume computes it (the constraint's)
   bool stop_volume_reached_ = false;
