@@ -25,6 +25,7 @@
 
 #include "geometry/cap_grower.hpp"
 #include "geometry/cap_internal.hpp"
+#include "geometry/cotan_laplacian.hpp"
 #include "geometry/curvature.hpp"
 #include "geometry/heat_smoothing.hpp"
 #include "geometry/region_metrics.hpp"
@@ -86,23 +87,8 @@ constexpr double SAME_PART = 1.2;
 /// small meshes, iteratively on large ones (heat_smoothing.hpp).
 std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Positions& x, const CurvatureField& c) {
   const auto n = static_cast<Eigen::Index>(m.nv);
-  std::vector<Eigen::Triplet<double>> lt;
-  lt.reserve(m.nf * 9);
-  for (const auto& t : m.tri)
-    for (int k = 0; k < 3; ++k) {
-      const int i = t[static_cast<std::size_t>(k)], j = t[static_cast<std::size_t>((k + 1) % 3)],
-                o = t[static_cast<std::size_t>((k + 2) % 3)];
-      const Vec3 a = Vec3(x.row(i)) - Vec3(x.row(o)), b = Vec3(x.row(j)) - Vec3(x.row(o));
-      const double cross = a.cross(b).norm();
-      if (!(cross > 1e-14 * a.norm() * b.norm())) continue;  // degenerate: no weight
-      const double w = 0.5 * a.dot(b) / cross;
-      lt.emplace_back(i, j, -w);
-      lt.emplace_back(j, i, -w);
-      lt.emplace_back(i, i, w);
-      lt.emplace_back(j, j, w);
-    }
-  Eigen::SparseMatrix<double> L(n, n);
-  L.setFromTriplets(lt.begin(), lt.end());
+  // Built in parallel, with setFromTriplets' bits (cotan_laplacian.hpp).
+  const Eigen::SparseMatrix<double> L = detail::cotan_laplacian(m.tri, x);
   Eigen::VectorXd mass(n);
   // A zero mixed area (all faces degenerate) would make the row singular: a tiny positive mass.
   const double floor = 1e-12 * m.total_area / std::max<double>(1.0, static_cast<double>(m.nv));
