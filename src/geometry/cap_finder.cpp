@@ -191,15 +191,21 @@ void check_region_options(const RegionOptions& o) {
 
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report) {
+  return detail::select_spherical_regions(mesh, x, options, report, nullptr);
+}
+
+std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
+                                                  RegionReport* report, CurvatureField* curvature) {
   check_region_options(options);
   StageTimer timer;
-  const CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
+  CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
   const MeshArrays m = mesh_arrays(mesh, x);
   timer.lap("curvature");
   RegionReport r;
   r.total_area = m.total_area;
   if (m.nv == 0 || !(m.total_area > 0.0)) {
     if (report) *report = r;
+    if (curvature) *curvature = std::move(c);
     return std::vector<int>(m.nf, -1);
   }
   const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c);
@@ -404,6 +410,7 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
   timer.lap("shape");
   std::vector<int> region = number_regions(kept, m.nf, r, false);
   if (report) *report = std::move(r);
+  if (curvature) *curvature = std::move(c);
   return region;
 }
 

@@ -13,6 +13,10 @@
 #include "shellcontract/regions.hpp"
 #include "shellcontract/types.hpp"
 
+namespace shellcontract {
+struct CurvatureField;
+}
+
 namespace shellcontract::detail {
 
 /// Mesh arrays the finder works on (vertex and face indices = idx()).
@@ -62,5 +66,10 @@ Vec3 cap_axis(const MeshArrays& m, const Positions& x, const std::vector<int>& f
 /// distance of the region's vertices to the sphere / radius), cap.angle and owner_face. False
 /// when nothing is left or the part has no axis (faces all around its centre).
 bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<int>& owner_face, int id);
+
+/// select_spherical_regions, handing out the curvature field it computed (when curvature is not
+/// null): mark_spherical_regions stores it for the PLY instead of computing it a second time.
+std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
+                                          RegionReport* report, CurvatureField* curvature);
 
 }  // namespace shellcontract::detail

@@ -18,6 +18,7 @@
 #include <string>
 #include <utility>
 
+#include "geometry/cap_internal.hpp"
 #include "geometry/curvature.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/properties.hpp"
@@ -38,8 +39,9 @@ std::string line_error(const std::string& path, std::size_t line, const std::str
 
 std::size_t mark_spherical_regions(Mesh& mesh, const Positions& x, const RegionOptions& options,
                                    RegionReport* report) {
-  const std::vector<int> region = select_spherical_regions(mesh, x, options, report);
-  store_curvature(mesh, compute_curvature(mesh, x));  // for the PLY's per-vertex columns
+  CurvatureField curvature;  // the finder's own, for the PLY's per-vertex columns
+  const std::vector<int> region = detail::select_spherical_regions(mesh, x, options, report, &curvature);
+  store_curvature(mesh, curvature);
   store_regions(mesh, region);
   return regions_from_face_ids(region).size();
 }
