@@ -69,6 +69,9 @@ struct Pattern {
   /// 0 + t L_ij, as Eigen's sum computes it: formed on the fly, so that the systems of a
   /// batch read one array of values instead of one each (the sweeps wait on memory).
   std::vector<double> lval;
+  /// Each column's rows strictly increasing and lval(i, j) == lval(j, i) for every entry: the
+  /// products can be gathered by rows (multiply_add).
+  bool symmetric = false;
 };
 
 /// One system A u = b of the batch: its time (A = M + t L on the shared pattern), its diagonal, the
@@ -120,11 +123,32 @@ void backward_sweep(const Pattern& a, System* const* s) {
   }
 }
 
-/// out_k = start_k + sign * A_k x_k, column by column (Eigen's order for y = A x, sign +1 and
-/// start 0, and for y = r - A x, sign -1 and start r).
+/// out_k = start_k + sign * A_k x_k. Eigen's y = A x (sign +1, start 0) and y = r - A x (sign
+/// -1, start r) add column by column, so row i receives its terms in increasing column j. On a
+/// pattern whose values are symmetric bit for bit (Pattern::symmetric) row i's terms are
+/// column i's entries in increasing row: gathered row by row here, with the same products
+/// added in the same order (the same bits), one accumulator per row instead of scattered
+/// read-modify-writes (lab/regions/speed.md). Otherwise the column-by-column scatter.
 template <int K>
 void multiply_add(const Pattern& a, System* const* s, Eigen::VectorXd System::*out, const Eigen::VectorXd System::*x,
                   double sign) {
+  if (a.symmetric) {
+    for (Eigen::Index i = 0; i < a.n; ++i) {
+      double acc[K];
+      for (int k = 0; k < K; ++k) acc[k] = (s[k]->*out)(i);
+      const int d = a.diag[static_cast<std::size_t>(i)];
+      for (int e = a.outer[i]; e < a.outer[i + 1]; ++e) {
+        const int col = a.inner[e];
+        const double l = a.lval[e];
+        if (e == d)
+          for (int k = 0; k < K; ++k) acc[k] += s[k]->diag(i) * (sign * (s[k]->*x)(col));
+        else
+          for (int k = 0; k < K; ++k) acc[k] += (0.0 + s[k]->t * l) * (sign * (s[k]->*x)(col));
+      }
+      for (int k = 0; k < K; ++k) (s[k]->*out)(i) = acc[k];
+    }
+    return;
+  }
   for (Eigen::Index j = 0; j < a.n; ++j) {
     double xj[K];
     for (int k = 0; k < K; ++k) xj[k] = sign * (s[k]->*x)(j);
@@ -224,6 +248,23 @@ class TwoLevelBatch {
   std::vector<System*> systems_;
 };
 
+/// Whether the pattern's columns are sorted and its L values symmetric (Pattern::symmetric).
+bool symmetric_values(const Pattern& a) {
+  for (Eigen::Index i = 0; i < a.n; ++i)
+    for (int e = a.outer[i] + 1; e < a.outer[i + 1]; ++e)
+      if (!(a.inner[e - 1] < a.inner[e])) return false;
+  for (Eigen::Index i = 0; i < a.n; ++i)
+    for (int e = a.outer[i]; e < a.outer[i + 1]; ++e) {
+      const int j = a.inner[e];
+      const int* begin = a.inner + a.outer[j];
+      const int* end = a.inner + a.outer[j + 1];
+      const int* at = std::lower_bound(begin, end, static_cast<int>(i));
+      if (at == end || *at != i || !(a.lval[static_cast<std::size_t>(at - a.inner)] == a.lval[static_cast<std::size_t>(e)]))
+        return false;
+    }
+  return true;
+}
+
 bool direct_solve(const SpMat& A, const Eigen::VectorXd& rhs, Eigen::VectorXd& u) {
   const Ldlt solver(A);
   if (solver.info() != Eigen::Success) return false;
@@ -286,6 +327,7 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
         if (shared) pattern.lval[static_cast<std::size_t>(e)] = it.value();
       }
     }
+    pattern.symmetric = shared && symmetric_values(pattern);
     for (const SpMat& a : A)
       shared = shared && a.nonZeros() == A[0].nonZeros() &&
                std::equal(pattern.outer, pattern.outer + n + 1, a.outerIndexPtr()) &&
