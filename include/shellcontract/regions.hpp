@@ -196,8 +196,8 @@ void write_region_file(const std::string& path, const std::vector<int>& region_o
 /// @return {red, green, blue}, 0..255.
 std::array<unsigned char, 3> region_colour(int id);
 
-/// Writes the regions stored on the mesh as a PLY (write_ply_atomic: ASCII, 17 significant
-/// digits, vertex and face order kept, atomic) at positions x: per face `red green blue alpha`
+/// Writes the regions stored on the mesh as a PLY (the file write_ply_atomic gives: ASCII, 17
+/// significant digits, vertex and face order kept, atomic) at positions x: per face `red green blue alpha`
 /// (region_colour) and `int region` from "f:region"; per vertex `double mean_curvature` and
 /// `double gaussian_curvature` when those maps are attached (mark_spherical_regions stores them).
 /// @param x #V by 3 positions, row i = vertex i.

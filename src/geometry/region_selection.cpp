@@ -1,8 +1,7 @@
-// The region face-list file format, the f:region map and the coloured PLY; the selection itself
-// is in cap_finder.cpp (header has the algorithm and the meaning of every threshold).
+// The region face-list file format and the f:region map; the coloured PLY is in region_ply.cpp,
+// the selection itself in cap_finder.cpp (header has the algorithm and the meaning of every threshold).
 #include "shellcontract/regions.hpp"
 
-#include <CGAL/IO/Color.h>
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -167,54 +166,6 @@ void write_region_file(const std::string& path, const std::vector<int>& region_o
     text += '\n';
   }
   write_text_atomic(path, text);
-}
-
-std::array<unsigned char, 3> region_colour(int id) {
-  if (id < 0) return {160, 160, 160};
-  // Hue = id * golden angle (mod 1), full saturation, value 0.95; HSV -> RGB.
-  const double hue = std::fmod(static_cast<double>(id) * 0.6180339887498949, 1.0) * 6.0;
-  const double v = 0.95, s = 0.85;
-  const int sector = static_cast<int>(hue) % 6;
-  const double frac = hue - std::floor(hue);
-  const double p = v * (1.0 - s), q = v * (1.0 - s * frac), t = v * (1.0 - s * (1.0 - frac));
-  double r = v, g = t, b = p;
-  switch (sector) {
-    case 0: r = v; g = t; b = p; break;
-    case 1: r = q; g = v; b = p; break;
-    case 2: r = p; g = v; b = t; break;
-    case 3: r = p; g = q; b = v; break;
-    case 4: r = t; g = p; b = v; break;
-    default: r = v; g = p; b = q; break;
-  }
-  const auto byte = [](double c) { return static_cast<unsigned char>(std::lround(std::clamp(c, 0.0, 1.0) * 255.0)); };
-  return {byte(r), byte(g), byte(b)};
-}
-
-void write_region_ply(const std::string& path, const Mesh& mesh, const Positions& x) {
-  const std::vector<int> region_of_face = stored_regions(mesh);
-  const auto [H_in, has_H] = mesh.property_map<VertexIndex, double>(property::MEAN_CURVATURE);
-  const auto [K_in, has_K] = mesh.property_map<VertexIndex, double>(property::GAUSSIAN_CURVATURE);
-  if (static_cast<std::size_t>(x.rows()) != mesh.number_of_vertices())
-    throw UsageError("write_region_ply: " + std::to_string(x.rows()) + " positions for " +
-                     std::to_string(mesh.number_of_vertices()) + " vertices");
-  // Attached in the order of the file's columns: colour and id per face, curvature per vertex.
-  Mesh out = mesh_for_output(mesh, x);
-  auto colour = property::add_map<FaceIndex, CGAL::IO::Color>(out, property::FACE_COLOR);
-  auto id = property::add_map<FaceIndex, int>(out, property::REGION, -1);
-  for (FaceIndex f : out.faces()) {
-    const auto rgb = region_colour(region_of_face[f.idx()]);
-    colour[f] = CGAL::IO::Color(rgb[0], rgb[1], rgb[2]);
-    id[f] = region_of_face[f.idx()];
-  }
-  if (has_H && has_K) {
-    auto H = property::add_map<VertexIndex, double>(out, property::MEAN_CURVATURE);
-    auto K = property::add_map<VertexIndex, double>(out, property::GAUSSIAN_CURVATURE);
-    for (VertexIndex v : out.vertices()) {
-      H[v] = H_in[v];
-      K[v] = K_in[v];
-    }
-  }
-  write_ply_atomic(path, out, "shellcontract regions: face colour = region, grey = none");
 }
 
 }  // namespace shellcontract
