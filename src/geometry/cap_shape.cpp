@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
-#include <set>
 #include <vector>
 
 #include "geometry/cap_internal.hpp"
@@ -63,10 +62,20 @@ int largest(const Components& c) {
   return best;
 }
 
-std::optional<SphereFit> fit_faces(const MeshArrays& m, const Positions& x, const std::vector<int>& faces, int origin) {
-  std::set<int> verts;
+/// The faces' corners, each once, in increasing index (the order a std::set gave, without its
+/// node per vertex).
+std::vector<int> corners(const MeshArrays& m, const std::vector<int>& faces) {
+  std::vector<int> verts;
+  verts.reserve(3 * faces.size());
   for (int f : faces)
-    for (int v : m.tri[static_cast<std::size_t>(f)]) verts.insert(v);
+    for (int v : m.tri[static_cast<std::size_t>(f)]) verts.push_back(v);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  return verts;
+}
+
+std::optional<SphereFit> fit_faces(const MeshArrays& m, const Positions& x, const std::vector<int>& faces, int origin) {
+  const std::vector<int> verts = corners(m, faces);
   SphereMoments moments(Vec3(x.row(origin)), m.size);
   for (int v : verts) moments.add(Vec3(x.row(v)), m.vertex_area[static_cast<std::size_t>(v)]);
   return moments.fit();
@@ -131,9 +140,21 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
   // face inside with at most one neighbour inside) cut, in synchronous passes (so the result
   // does not depend on the face order). A clip through a triangulation leaves a staircase whose
   // teeth would add perimeter at every resolution.
+  // A face can change only when it or a neighbour is in the region (the first pass) or changed
+  // in the pass before: only those faces are examined, each once (add and cut are disjoint, so
+  // their order cannot matter), instead of every face of the mesh in every pass.
+  std::vector<std::size_t> look;
+  std::vector<char> listed(m.nf, 0);
+  const auto list = [&](std::size_t f) {
+    if (!listed[f]) listed[f] = 1, look.push_back(f);
+    for (int g : m.face_nbr[f])
+      if (g >= 0 && !listed[static_cast<std::size_t>(g)]) listed[static_cast<std::size_t>(g)] = 1, look.push_back(static_cast<std::size_t>(g));
+  };
+  for (std::size_t f = 0; f < m.nf; ++f)
+    if (flag[f]) list(f);
   for (int pass = 0; pass < SMOOTHING_PASSES; ++pass) {
     std::vector<std::size_t> add, cut;
-    for (std::size_t f = 0; f < m.nf; ++f) {
+    for (std::size_t f : look) {
       int inside = 0;
       for (int g : m.face_nbr[f]) inside += (g >= 0 && flag[static_cast<std::size_t>(g)]) ? 1 : 0;
       if (!flag[f] && inside >= 2 && within(f) && !(owner_face[f] >= 0 && owner_face[f] != id)) add.push_back(f);
@@ -142,6 +163,10 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
     if (add.empty() && cut.empty()) break;
     for (std::size_t f : add) flag[f] = 1;
     for (std::size_t f : cut) flag[f] = 0;
+    for (std::size_t f : look) listed[f] = 0;
+    look.clear();
+    for (std::size_t f : add) list(f);
+    for (std::size_t f : cut) list(f);
   }
   // One piece: the clip can cut off a sliver on the far side of the rim.
   const Components pieces = components(m, flag);
@@ -217,9 +242,7 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
   }
   // Reported: the sphere that shaped the region, the RMS distance of the region's vertices to
   // it (area weights) / its radius, and the widest face centroid from the region's axis.
-  std::set<int> verts;
-  for (int f : cap.faces)
-    for (int v : m.tri[static_cast<std::size_t>(f)]) verts.insert(v);
+  const std::vector<int> verts = corners(m, cap.faces);
   double w = 0.0, sq = 0.0;
   for (int v : verts) {
     const double e = (Vec3(x.row(v)) - c).norm() - r, a = m.vertex_area[static_cast<std::size_t>(v)];
