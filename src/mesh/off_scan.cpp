@@ -6,8 +6,10 @@
 // vertex and face for later messages, and keeps what it parsed (CGAL's reader, which the scan
 // once only checked files for, parsed them a second time).
 #include "mesh/off_scan.hpp"
+#include "mesh/off_number.hpp"
 
 #include <cctype>
+#include <charconv>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -107,12 +109,9 @@ class OffScanner {
       }
       double c4[4] = {0.0, 0.0, 0.0, 1.0};
       for (std::size_t k = 0; k < variant.vertex_numbers; ++k) {
-        // strtod reads the token in place: a token ends at a blank, '#' or the line's end, none
-        // of which a number contains, so it stops there or earlier (then the token is refused).
-        char* end = nullptr;
-        const double c = std::strtod(t[k].data(), &end);
+        double c = 0.0;
         // Hexadecimal floats are strtod's alone: CGAL's reader (a stream) refuses them, so do we.
-        if (end != t[k].data() + t[k].size() || t[k].find_first_of("xX") != std::string_view::npos)
+        if (!parse_off_number(t[k], c) || t[k].find_first_of("xX") != std::string_view::npos)
           fail(path_, "parse error", where() + ": '" + shorten(t[k]) + "' is not a number");
         if (k < 3 && !std::isfinite(c))
           fail(path_, "non-finite coordinate", where() + " has coordinate " + "xyz"[k] + " = " + std::string(t[k]));
@@ -276,6 +275,22 @@ class OffScanner {
 };
 
 }  // namespace
+
+bool parse_off_number(std::string_view token, double& value) {
+  const char* const first = token.data();
+  const char* const last = first + token.size();
+  double fast = 0.0;
+  const auto r = std::from_chars(first, last, fast, std::chars_format::general);
+  if (r.ec == std::errc() && r.ptr == last && std::isfinite(fast)) {
+    value = fast;
+    return true;
+  }
+  // A copy ends the token with a NUL, so strtod cannot read past it.
+  const std::string copy(token);
+  char* end = nullptr;
+  value = std::strtod(copy.c_str(), &end);
+  return end == copy.c_str() + copy.size();
+}
 
 OffScan scan_off(const std::string& path, const std::string& text) { return OffScanner(path, text).scan(); }
 
