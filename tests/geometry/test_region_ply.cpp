@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>  // getpid: one temporary folder per test process
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
