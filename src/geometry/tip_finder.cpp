@@ -125,7 +125,8 @@ class DiscGrower {
       for (int v : reached)
         for (int f : m_.vertex_faces[static_cast<std::size_t>(v)]) {
           const auto& t = m_.tri[static_cast<std::size_t>(f)];
-          // Each face once: listed from its corner with the smallest index among the reached.
+          // Each face once, listed from its corner of smallest index (only which corner lists
+          // it; the order below is by distance and position).
           double d = 0.0;
           bool all = true, first = true;
           for (int c : t) {
@@ -155,9 +156,8 @@ class DiscGrower {
         if (area > max_area) return std::nullopt;
         const bool stop =
             normal.norm() <= WRAPPED * area || concave_area > o_.max_concave_fraction * area;
-        if (i >= MIN_DISC_FACES &&
-            stop) {  // the faces before the one that wrapped or met the crease
-          order.resize(i);
+        if (i >= MIN_DISC_FACES && stop) {
+          order.resize(i);  // the faces before the one that wrapped or met the crease
           return Disc{centre, std::move(order)};
         }
       }
@@ -203,9 +203,10 @@ int top_centre(const MeshArrays& m, const Positions& x, const std::vector<double
   }
   Vec3 c = Vec3::Zero();
   double w = 0.0;
-  for (int v : members)
-    c += m.vertex_area[static_cast<std::size_t>(v)] * Vec3(x.row(v)),
-        w += m.vertex_area[static_cast<std::size_t>(v)];
+  for (int v : members) {
+    c += m.vertex_area[static_cast<std::size_t>(v)] * Vec3(x.row(v));
+    w += m.vertex_area[static_cast<std::size_t>(v)];
+  }
   if (!(w > 0.0)) return tip;
   c /= w;
   int best = tip;
@@ -287,9 +288,10 @@ std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x,
   std::vector<double> best(m.nf, EdgeDijkstra::NONE);
   for (std::size_t e = 0; e < ends.size(); ++e)
     for (const auto& [f, d] : ends[e].second.faces)
-      if (d < best[static_cast<std::size_t>(f)])
-        best[static_cast<std::size_t>(f)] = d,
+      if (d < best[static_cast<std::size_t>(f)]) {
+        best[static_cast<std::size_t>(f)] = d;
         owner[static_cast<std::size_t>(f)] = static_cast<int>(e);
+      }
   // Majority rule, synchronous (the face order cannot matter): a face joins the region that holds
   // at least two of its three edge neighbours; a face with at most one neighbour in its own
   // region leaves it.
