@@ -1,6 +1,6 @@
-// shellcontract regions IN -o OUT.ply [--face-list FILE] [thresholds]: shows the local spherical
-// regions that `run --regions auto` would choose. Exit 0 ok, 1 bad usage (also an unwritable
-// output), 2 bad input mesh.
+// shellcontract regions IN -o OUT.ply [--face-list FILE] [--method caps|tips] [thresholds]: shows the
+// local spherical regions that `run --regions auto` would choose (or, opt-in, the tip finder's).
+// Exit 0 ok, 1 bad usage (also an unwritable output), 2 bad input mesh.
 #include <boost/program_options.hpp>
 
 #include "command_line.hpp"
@@ -30,7 +30,7 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* REGIONS_USAGE = R"(usage: shellcontract regions INPUT -o OUT.ply [--face-list FILE] [thresholds]
+constexpr const char* REGIONS_USAGE = R"(usage: shellcontract regions INPUT -o OUT.ply [--face-list FILE] [--method caps|tips] [thresholds]
 
 Finds the local spherical regions (bumps, heads, fingertips) of a closed mesh by curvature, the
 ones 'run --regions auto' uses, and writes the mesh as an ASCII PLY with one colour per region
@@ -44,6 +44,12 @@ are ranked by the angle they span and kept when round (--max-compactness), curve
 into one region, clipped to a hemisphere of its fitted sphere. --region-at X,Y,Z
 (repeatable) instead picks the cap around the surface point nearest to each point. Every
 threshold is a ratio, so scaling or rotating the mesh does not change the result.
+
+--method tips (opt-in) finds the ends of protrusions instead (the end of an arm or a foot, an
+ear, a fingertip): a disc around each tip, grown until it wraps round the end or meets a
+concave crease (docs/math/tip-finder.md). It reads --max-concave-fraction, --max-compactness,
+--min-faces and the area fractions; --fit-tolerance, --min-cap-angle and --contrast do not
+apply, nor does --region-at. Pass its --face-list to 'run --regions FILE'.
 
 exit codes: 0 success, 1 bad usage or unwritable output, 2 the mesh cannot be used
 
@@ -63,6 +69,13 @@ Vec3 parse_point(const std::string& text) {
   if (!(in >> p.x() >> c1 >> p.y() >> c2 >> p.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() || !p.allFinite())
     throw UsageError("--region-at '" + text + "': expected three finite numbers X,Y,Z");
   return p;
+}
+
+/// --method's value; UsageError naming the allowed values otherwise.
+RegionMethod parse_method(const std::string& text) {
+  if (text == "caps") return RegionMethod::Caps;
+  if (text == "tips") return RegionMethod::Tips;
+  throw UsageError("--method '" + text + "': expected caps or tips");
 }
 
 /// The regions as an aligned table: one row per region (id order).
@@ -93,7 +106,7 @@ std::string shown(double value) {
 }  // namespace
 
 int command_regions(int argc, char** argv) {
-  std::string input, output, face_list;
+  std::string input, output, face_list, method = "caps";
   std::vector<std::string> points;
   std::vector<Vec3> at;
   RegionOptions options;
@@ -103,6 +116,8 @@ int command_regions(int argc, char** argv) {
       ("output,o", po::value(&output), "output mesh, .ply (face colours, region ids, curvature)")
       ("face-list", po::value(&face_list), "also write the regions as a face-list file (one line per region, "
                                            "0-based face ids; the format 'run --regions FILE' reads)")
+      ("method", po::value(&method)->default_value(method), "caps (spherical caps from curvature seeds) or tips "
+                                                           "(opt-in: the ends of protrusions)")
       ("region-at", po::value(&points)->composing(), "X,Y,Z: the cap around the surface point nearest to "
                                                       "this point (repeatable; replaces the automatic search)")
       ("fit-tolerance", po::value(&options.fit_tolerance)->default_value(options.fit_tolerance, shown(options.fit_tolerance)),
@@ -133,7 +148,10 @@ int command_regions(int argc, char** argv) {
                            options.min_curvature_contrast, options.max_compactness, options.min_area_fraction,
                            options.max_area_fraction})
       if (!std::isfinite(t) || t < 0.0) throw UsageError("every threshold must be a finite number >= 0");
+    options.method = parse_method(method);
     check_region_options(options);
+    if (options.method == RegionMethod::Tips && !points.empty())
+      throw UsageError("--region-at grows caps; it does not apply with --method tips");
     for (const std::string& p : points) at.push_back(parse_point(p));
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});

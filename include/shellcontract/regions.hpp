@@ -38,8 +38,22 @@
 
 namespace shellcontract {
 
+/// How select_spherical_regions finds the regions.
+enum class RegionMethod {
+  /// Spherical caps grown from curvature seeds (the file comment's steps; the default).
+  Caps,
+  /// Opt-in: discs around the tips of protrusions (the ends of arms, ears, fingertips), each
+  /// grown until it wraps round its end or meets a concave crease, the discs shared out by
+  /// nearest centre (docs/math/tip-finder.md). Uses max_concave_fraction, max_compactness,
+  /// min_faces and the area fractions; the sphere-fit thresholds (fit_tolerance,
+  /// min_cap_angle_deg, min_curvature_contrast) do not apply.
+  Tips,
+};
+
 /// Thresholds of select_spherical_regions. All are dimensionless (scale-free).
 struct RegionOptions {
+  /// The finder (Caps by default; the thresholds below say which method reads them).
+  RegionMethod method = RegionMethod::Caps;
   /// Growth: the disc grows while the RMS distance of its points to the fitted sphere is at most
   /// this fraction of the sphere's radius. Loose on purpose: the parts a person circles are
   /// rounded, not exact spheres (an ear is a flattened lobe, a paw's end a rounded disc), and a

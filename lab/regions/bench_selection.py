@@ -8,10 +8,15 @@ subdivisions, written to a temporary OFF), with the load average before and afte
 machine sees the same load. --stages prints the finder's stage times of one more run
 (SC_REGION_TIMING=1: wall and processor seconds per stage).
 
+--regions-args ARGS (repeatable) adds arguments to `shellcontract regions` ("--method tips"; ""
+for none): every build runs with every one, alternating as above.
+
 Usage: /usr/bin/python3 lab/regions/bench_selection.py [--build build ...] [--repeat 5] [--stages]
+       [--regions-args "ARGS" ...]
 """
 import argparse
 import os
+import shlex
 import statistics
 import subprocess
 import sys
@@ -49,9 +54,9 @@ def write_off(path, v, f):
         o.write("\n".join("3 %d %d %d" % tuple(t) for t in f) + "\n")
 
 
-def one_run(exe, mesh, tmp, env=None):
+def one_run(exe, mesh, tmp, env=None, extra=()):
     t0 = time.perf_counter()
-    out = subprocess.run([exe, "regions", mesh, "-o", os.path.join(tmp, "b.ply")], check=True,
+    out = subprocess.run([exe, "regions", mesh, "-o", os.path.join(tmp, "b.ply")] + list(extra), check=True,
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
     return time.perf_counter() - t0, out.stderr
 
@@ -61,9 +66,10 @@ def main():
     ap.add_argument("--build", action="append", default=None, help="build folder (repeatable)")
     ap.add_argument("--repeat", type=int, default=5)
     ap.add_argument("--stages", action="store_true")
+    ap.add_argument("--regions-args", action="append", default=None, help="extra arguments (repeatable)")
     a = ap.parse_args()
     builds = a.build or [os.path.join(common.ROOT, "build")]
-    exes = [os.path.join(b, "shellcontract") for b in builds]
+    variants = [(os.path.join(b, "shellcontract"), args) for b in builds for args in (a.regions_args or [""])]
     bear = common.mesh_path("bear")
     if not os.path.exists(bear):
         sys.exit("bear.off is absent: scripts/fetch_paper_meshes.sh")
@@ -74,18 +80,20 @@ def main():
         write_off(bear16, v16, f16)
         for label, mesh, n in (("bear", bear, len(f)), ("bear split in sixteen", bear16, len(f16))):
             load0 = os.getloadavg()[0]
-            times = {exe: [] for exe in exes}
+            times = {v: [] for v in variants}
             for _ in range(a.repeat):
-                for exe in exes:
-                    times[exe].append(one_run(exe, mesh, tmp)[0])
+                for exe, args in variants:
+                    times[(exe, args)].append(one_run(exe, mesh, tmp, extra=shlex.split(args))[0])
             load1 = os.getloadavg()[0]
-            for exe in exes:
-                t = sorted(times[exe])
-                print(f"{label}: {n} faces, {exe}: median {statistics.median(t):.2f} s, best {t[0]:.2f} s "
+            for exe, args in variants:
+                t = sorted(times[(exe, args)])
+                shown = exe + (" " + args if args else "")
+                print(f"{label}: {n} faces, {shown}: median {statistics.median(t):.2f} s, best {t[0]:.2f} s "
                       f"of {a.repeat} (load average {load0:.1f} -> {load1:.1f})")
                 if a.stages:
                     env = dict(os.environ, SC_REGION_TIMING="1")
-                    print("".join("    " + line + "\n" for line in one_run(exe, mesh, tmp, env)[1].splitlines()
+                    print("".join("    " + line + "\n"
+                                  for line in one_run(exe, mesh, tmp, env, shlex.split(args))[1].splitlines()
                                   if line.startswith("region timing")), end="")
 
 

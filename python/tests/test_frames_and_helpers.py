@@ -83,6 +83,62 @@ def test_regions_options_are_used_and_checked(mesh_dir):
         shellcontract.regions(vertices, faces, min_curvature_contrast=2.0)
 
 
+def capsule(r=1.0, length=4.0, rings=60, around=32):
+    """A closed capsule along z (cylinder of radius r and the given length, hemispherical ends),
+    rings equally spaced in arc length from pole to pole; faces outward."""
+    total = np.pi * r + length
+
+    def profile(s):
+        if s < 0.5 * np.pi * r:
+            a = s / r
+            return r * np.sin(a), 0.5 * length + r * np.cos(a)
+        if s < 0.5 * np.pi * r + length:
+            return r, 0.5 * length - (s - 0.5 * np.pi * r)
+        a = (total - s) / r
+        return r * np.sin(a), -0.5 * length - r * np.cos(a)
+    phi = 2 * np.pi * np.arange(around) / around
+    v = [[0.0, 0.0, 0.5 * length + r]]
+    for k in range(1, rings):
+        rho, z = profile(total * k / rings)
+        v += [[rho * np.cos(p), rho * np.sin(p), z] for p in phi]
+    v.append([0.0, 0.0, -0.5 * length - r])
+    ring = lambda k, j: 1 + (k - 1) * around + j % around  # noqa: E731
+    f = [[0, ring(1, j), ring(1, j + 1)] for j in range(around)]
+    for k in range(1, rings - 1):
+        for j in range(around):
+            f += [[ring(k, j), ring(k + 1, j), ring(k + 1, j + 1)], [ring(k, j), ring(k + 1, j + 1), ring(k, j + 1)]]
+    f += [[len(v) - 1, ring(rings - 1, j + 1), ring(rings - 1, j)] for j in range(around)]
+    v, f = np.array(v), np.array(f, dtype=np.int64)
+    if np.einsum("ij,ij->i", v[f[:, 0]], np.cross(v[f[:, 1]], v[f[:, 2]])).sum() < 0:
+        f = f[:, [0, 2, 1]]
+    return v, f
+
+
+def test_regions_method_tips_matches_the_cli_and_finds_the_capsule_ends(cli, tmp_path):
+    vertices, faces = capsule()
+    path = tmp_path / "capsule.off"
+    shellcontract.write_mesh(path, vertices, faces)
+    face_list = tmp_path / "tips.txt"
+    subprocess.run([cli, "regions", str(path), "-o", str(tmp_path / "t.ply"), "--method", "tips",
+                    "--face-list", str(face_list)], check=True, capture_output=True)
+    expected = [[int(t) for t in line.split()] for line in face_list.read_text().splitlines() if line.strip()]
+    got = shellcontract.regions(*shellcontract.read_mesh(path), method="tips")
+    assert [list(r) for r in got] == expected
+    # The two ends: one region holds the top pole's fan (the first 32 faces), the other the
+    # bottom's (the last 32).
+    assert len(got) == 2
+    top, bottom = set(range(32)), set(range(len(faces) - 32, len(faces)))
+    sets = [set(int(i) for i in r) for r in got]
+    assert (top <= sets[0] and bottom <= sets[1]) or (top <= sets[1] and bottom <= sets[0])
+
+
+def test_regions_method_caps_is_the_default(mesh_dir):
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    default = shellcontract.regions(vertices, faces)
+    assert len(default) == 3
+    assert [list(r) for r in shellcontract.regions(vertices, faces, method="caps")] == [list(r) for r in default]
+
+
 def test_write_then_read_gives_the_same_arrays(ico2, tmp_path):
     vertices, faces = ico2
     for ext in ("off", "obj", "ply"):

@@ -89,7 +89,8 @@ def test_write_mesh_never_replaces_a_fifo(tmp_path, ico2):
 
 @pytest.mark.parametrize("option,value", [("min_faces", "1"), ("min_faces", 1.5),
                                           ("contrast", "0.5"), ("min_area_fraction", None),
-                                          ("contrast_is_unknown", 1.0)])
+                                          ("contrast_is_unknown", 1.0), ("method", 1), ("method", None),
+                                          ("method", b"tips")])
 def test_regions_wrong_types_are_type_errors(ico2, option, value):
     """Before: a string for a float option raised RuntimeError (pybind11's cast_error)."""
     with pytest.raises(TypeError):
@@ -103,6 +104,17 @@ def test_regions_out_of_range_values_are_value_errors(ico2, option, value):
     """Before: NaN thresholds were accepted (and selected nothing, silently)."""
     with pytest.raises(ValueError):
         shellcontract.regions(*ico2, **{option: value})
+
+
+@pytest.mark.parametrize("value", ["blobs", "Tips", "", "caps "])
+def test_regions_unknown_method_is_a_value_error_naming_the_methods(ico2, value):
+    with pytest.raises(ValueError, match="expected 'caps' or 'tips'"):
+        shellcontract.regions(*ico2, method=value)
+
+
+def test_regions_region_at_with_method_tips_is_a_value_error(ico2):
+    with pytest.raises(ValueError, match="region_at"):
+        shellcontract.regions(*ico2, method="tips", region_at=[(0.0, 0.0, 1.0)])
 
 
 def test_a_uint64_index_is_reported_as_given(ico2):

@@ -30,6 +30,7 @@
 #include "geometry/heat_smoothing.hpp"
 #include "geometry/region_metrics.hpp"
 #include "geometry/sphere_moments.hpp"
+#include "geometry/tip_finder.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/regions.hpp"
 
@@ -60,6 +61,10 @@ using detail::Cap;
 using detail::CapGrower;
 using detail::MeshArrays;
 using detail::mesh_arrays;
+using detail::number_regions;
+using detail::reference_curvature;
+using detail::smoothed_curvature;
+using detail::summarise;
 
 constexpr double PI = 3.14159265358979323846;
 /// Diffusion lengths of the smoothed mean curvature, in units of the mesh's size sqrt(total
@@ -80,73 +85,6 @@ constexpr double SAME_PART_SEED = 2.2;
 /// piece of that region's part (two caps of one end sit about a radius apart; an ear's centre
 /// lies outside its head's sphere).
 constexpr double SAME_PART = 1.2;
-
-/// H smoothed by one implicit heat step: (M + t L) u = M H, L the (positive semidefinite)
-/// cotangent Laplacian, M the mixed areas, t = (scale * size)^2. Mesh-independent in the limit,
-/// unlike ring averages, so a subdivided mesh gives the same smoothed field. Solved directly on
-/// small meshes, iteratively on large ones (heat_smoothing.hpp).
-std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Positions& x, const CurvatureField& c) {
-  const auto n = static_cast<Eigen::Index>(m.nv);
-  // Built in parallel, with setFromTriplets' bits (cotan_laplacian.hpp).
-  const Eigen::SparseMatrix<double> L = detail::cotan_laplacian(m.tri, x);
-  Eigen::VectorXd mass(n);
-  // A zero mixed area (all faces degenerate) would make the row singular: a tiny positive mass.
-  const double floor = 1e-12 * m.total_area / std::max<double>(1.0, static_cast<double>(m.nv));
-  for (Eigen::Index i = 0; i < n; ++i) mass(i) = std::max(c.mixed_area(i), floor);
-  const Eigen::VectorXd rhs = mass.cwiseProduct(c.mean);
-  std::vector<double> times;
-  for (double scale : SEED_SCALES) times.push_back((scale * m.size) * (scale * m.size));
-  return detail::heat_solves(L, mass, rhs, times, n > detail::HEAT_DIRECT_MAX_VERTICES);
-}
-
-/// Area-weighted median of |values|; 0 when the total weight is 0.
-double weighted_median_abs(const Eigen::VectorXd& values, const std::vector<double>& weights) {
-  std::vector<std::size_t> order(weights.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  const auto v = [&](std::size_t i) { return std::abs(values(static_cast<Eigen::Index>(i))); };
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v(a) < v(b); });
-  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
-  double acc = 0.0;
-  for (std::size_t i : order)
-    if ((acc += weights[i]) >= 0.5 * total) return v(i);
-  return 0.0;
-}
-
-/// Fills a summary from a cap and its faces.
-RegionSummary summarise(const Mesh& mesh, const Positions& x, const MeshArrays& m, const Cap& cap, double h_ref) {
-  std::vector<char> flag(m.nf, 0);
-  for (int f : cap.faces) flag[static_cast<std::size_t>(f)] = 1;
-  const RegionShape shape = region_shape(mesh, x, flag);
-  RegionSummary s;
-  s.faces = cap.faces.size();
-  s.area = shape.area;
-  s.area_fraction = m.total_area > 0.0 ? shape.area / m.total_area : 0.0;
-  s.centre = cap.sphere.centre;
-  s.radius = cap.sphere.radius;
-  s.residual = cap.sphere.residual;
-  s.cap_angle_deg = cap.angle * 180.0 / PI;
-  s.compactness = shape.compactness;
-  s.seed_vertex = cap.seed;
-  s.mean_curvature = cap.sphere.radius > 0.0 ? 1.0 / cap.sphere.radius : 0.0;
-  s.contrast = h_ref > 0.0 ? s.mean_curvature / h_ref : 0.0;
-  return s;
-}
-
-/// Ids by decreasing area (ties: smallest face), the per-face id array and the report's list.
-std::vector<int> number_regions(std::vector<std::pair<Cap, RegionSummary>>& kept, std::size_t nf,
-                                RegionReport& r, bool keep_order) {
-  if (!keep_order)
-    std::sort(kept.begin(), kept.end(), [](const auto& a, const auto& b) {
-      if (a.second.area != b.second.area) return a.second.area > b.second.area;
-      return a.first.faces.front() < b.first.faces.front();
-    });
-  std::vector<int> region(nf, -1);
-  for (std::size_t id = 0; id < kept.size(); ++id) {
-    for (int f : kept[id].first.faces) region[static_cast<std::size_t>(f)] = static_cast<int>(id);
-    r.regions.push_back(kept[id].second);
-  }
-  return region;
-}
 
 void block(const MeshArrays& m, const Cap& cap, std::vector<char>& blocked) {
   for (int f : cap.faces)
@@ -177,6 +115,80 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
 
 }  // namespace
 
+namespace detail {
+
+/// H smoothed by one implicit heat step: (M + t L) u = M H, L the (positive semidefinite)
+/// cotangent Laplacian, M the mixed areas, t = (scale * size)^2. Mesh-independent in the limit,
+/// unlike ring averages, so a subdivided mesh gives the same smoothed field. Solved directly on
+/// small meshes, iteratively on large ones (heat_smoothing.hpp).
+std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Positions& x, const CurvatureField& c,
+                                                const std::vector<double>& scales) {
+  const auto n = static_cast<Eigen::Index>(m.nv);
+  // Built in parallel, with setFromTriplets' bits (cotan_laplacian.hpp).
+  const Eigen::SparseMatrix<double> L = detail::cotan_laplacian(m.tri, x);
+  Eigen::VectorXd mass(n);
+  // A zero mixed area (all faces degenerate) would make the row singular: a tiny positive mass.
+  const double floor = 1e-12 * m.total_area / std::max<double>(1.0, static_cast<double>(m.nv));
+  for (Eigen::Index i = 0; i < n; ++i) mass(i) = std::max(c.mixed_area(i), floor);
+  const Eigen::VectorXd rhs = mass.cwiseProduct(c.mean);
+  std::vector<double> times;
+  for (double scale : scales) times.push_back((scale * m.size) * (scale * m.size));
+  return detail::heat_solves(L, mass, rhs, times, n > detail::HEAT_DIRECT_MAX_VERTICES);
+}
+
+double weighted_median_abs(const Eigen::VectorXd& values, const std::vector<double>& weights) {
+  std::vector<std::size_t> order(weights.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto v = [&](std::size_t i) { return std::abs(values(static_cast<Eigen::Index>(i))); };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return v(a) < v(b); });
+  const double total = std::accumulate(weights.begin(), weights.end(), 0.0);
+  double acc = 0.0;
+  for (std::size_t i : order)
+    if ((acc += weights[i]) >= 0.5 * total) return v(i);
+  return 0.0;
+}
+
+RegionSummary summarise(const Mesh& mesh, const Positions& x, const MeshArrays& m, const Cap& cap, double h_ref) {
+  std::vector<char> flag(m.nf, 0);
+  for (int f : cap.faces) flag[static_cast<std::size_t>(f)] = 1;
+  const RegionShape shape = region_shape(mesh, x, flag);
+  RegionSummary s;
+  s.faces = cap.faces.size();
+  s.area = shape.area;
+  s.area_fraction = m.total_area > 0.0 ? shape.area / m.total_area : 0.0;
+  s.centre = cap.sphere.centre;
+  s.radius = cap.sphere.radius;
+  s.residual = cap.sphere.residual;
+  s.cap_angle_deg = cap.angle * 180.0 / PI;
+  s.compactness = shape.compactness;
+  s.seed_vertex = cap.seed;
+  s.mean_curvature = cap.sphere.radius > 0.0 ? 1.0 / cap.sphere.radius : 0.0;
+  s.contrast = h_ref > 0.0 ? s.mean_curvature / h_ref : 0.0;
+  return s;
+}
+
+std::vector<int> number_regions(std::vector<std::pair<Cap, RegionSummary>>& kept, std::size_t nf,
+                                RegionReport& r, bool keep_order) {
+  if (!keep_order)
+    std::sort(kept.begin(), kept.end(), [](const auto& a, const auto& b) {
+      if (a.second.area != b.second.area) return a.second.area > b.second.area;
+      return a.first.faces.front() < b.first.faces.front();
+    });
+  std::vector<int> region(nf, -1);
+  for (std::size_t id = 0; id < kept.size(); ++id) {
+    for (int f : kept[id].first.faces) region[static_cast<std::size_t>(f)] = static_cast<int>(id);
+    r.regions.push_back(kept[id].second);
+  }
+  return region;
+}
+
+double reference_curvature(const MeshArrays& m, const Positions& x, const Eigen::VectorXd& u_largest) {
+  const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+  return std::max(weighted_median_abs(u_largest, m.vertex_area), diagonal > 0.0 ? 1.0 / diagonal : 0.0);
+}
+
+}  // namespace detail
+
 void check_region_options(const RegionOptions& o) {
   const auto bad = [](const std::string& what) { throw UsageError("region options: " + what); };
   if (!(o.fit_tolerance >= 0.0)) bad("fit tolerance must be >= 0");
@@ -185,6 +197,7 @@ void check_region_options(const RegionOptions& o) {
   if (!(o.min_curvature_contrast >= 0.0)) bad("contrast must be >= 0");
   if (!(o.max_compactness >= 1.0)) bad("max compactness must be >= 1");
   if (o.min_faces < 1) bad("min faces must be >= 1");
+  if (o.method != RegionMethod::Caps && o.method != RegionMethod::Tips) bad("unknown method");
   if (!(o.min_area_fraction >= 0.0 && o.max_area_fraction <= 1.0 && o.min_area_fraction <= o.max_area_fraction))
     bad("area fractions must satisfy 0 <= min <= max <= 1");
 }
@@ -197,6 +210,7 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                                   RegionReport* report, CurvatureField* curvature) {
   check_region_options(options);
+  if (options.method == RegionMethod::Tips) return detail::select_tip_regions(mesh, x, options, report, curvature);
   StageTimer timer;
   CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
   const MeshArrays m = mesh_arrays(mesh, x);
@@ -208,11 +222,9 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
     if (curvature) *curvature = std::move(c);
     return std::vector<int>(m.nf, -1);
   }
-  const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c);
+  const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c, {SEED_SCALES.begin(), SEED_SCALES.end()});
   timer.lap("smoothing");
-  const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
-  // A mostly flat mesh (a cube: median |H| = 0) must not make every rounded spot "curved".
-  const double h_ref = std::max(weighted_median_abs(u.back(), m.vertex_area), diagonal > 0.0 ? 1.0 / diagonal : 0.0);
+  const double h_ref = reference_curvature(m, x, u.back());
   r.reference_mean_curvature = h_ref;
 
   // Step 1: strict one-ring maxima (ties make no seed, so the vertex order cannot matter).
@@ -420,9 +432,8 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   const CurvatureField c = compute_curvature(mesh, x);
   const MeshArrays m = mesh_arrays(mesh, x);
   if (m.nf == 0) throw UsageError("select_regions_at: the mesh has no face");
-  const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c);
-  const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
-  const double h_ref = std::max(weighted_median_abs(u.back(), m.vertex_area), diagonal > 0.0 ? 1.0 / diagonal : 0.0);
+  const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c, {SEED_SCALES.begin(), SEED_SCALES.end()});
+  const double h_ref = reference_curvature(m, x, u.back());
   RegionReport r;
   r.total_area = m.total_area;
   r.reference_mean_curvature = h_ref;

@@ -1,13 +1,16 @@
-// Private to the region finder (cap_finder.cpp, cap_arrays.cpp, cap_shape.cpp): the mesh as flat
-// arrays, a grown cap and its final shape.
+// Private to the region finders (cap_finder.cpp, cap_arrays.cpp, cap_shape.cpp, and the tip
+// finder tip_finder.cpp, which reuses their helpers): the mesh as flat arrays, a grown cap and
+// its final shape.
 #pragma once
 
 #include <array>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "geometry/curvature.hpp"
 #include "geometry/sphere_moments.hpp"
 #include "shellcontract/mesh.hpp"
 #include "shellcontract/regions.hpp"
@@ -71,5 +74,44 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
 /// null): mark_spherical_regions stores it for the PLY instead of computing it a second time.
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report, CurvatureField* curvature);
+
+/// The mean curvature c.mean smoothed by one implicit heat step per scale: (M + t L) u = M H, L
+/// the cotangent Laplacian, M the mixed areas, t = (scale * m.size)^2 (cap_finder.cpp). One
+/// field per scale, in the order given.
+std::vector<Eigen::VectorXd> smoothed_curvature(const MeshArrays& m, const Positions& x, const CurvatureField& c,
+                                                const std::vector<double>& scales);
+
+/// Area-weighted median of |values|; 0 when the total weight is 0.
+double weighted_median_abs(const Eigen::VectorXd& values, const std::vector<double>& weights);
+
+/// The reference curvature of a mesh: the area-weighted median |u| of the curvature smoothed at
+/// the largest scale, at least 1 / the bounding box's diagonal (a mostly flat mesh, a cube, must
+/// not make every rounded spot "curved").
+double reference_curvature(const MeshArrays& m, const Positions& x, const Eigen::VectorXd& u_largest);
+
+/// Fills a region's summary from its cap (sphere, angle, seed) and its faces.
+RegionSummary summarise(const Mesh& mesh, const Positions& x, const MeshArrays& m, const Cap& cap, double h_ref);
+
+/// Ids by decreasing area (ties: smallest face; none when keep_order), the per-face id array,
+/// and the report's list of summaries in id order.
+std::vector<int> number_regions(std::vector<std::pair<Cap, RegionSummary>>& kept, std::size_t nf, RegionReport& r,
+                                bool keep_order);
+
+/// The area-weighted least-squares sphere of the corners of `faces` (origin: a point near them,
+/// for conditioning); nothing when it is degenerate (SphereMoments::fit).
+std::optional<SphereFit> fit_faces(const MeshArrays& m, const Positions& x, const std::vector<int>& faces, int origin);
+
+/// Edge-connected components of the faces with flag[f] != 0, each with its area; components are
+/// numbered by their smallest face, so the numbering does not depend on anything but the faces.
+struct Components {
+  std::vector<int> of;  ///< per face, -1 outside the flagged set
+  std::vector<double> area;
+  std::vector<int> first;  ///< smallest face of each component
+};
+
+Components components(const MeshArrays& m, const std::vector<char>& flag);
+
+/// Index of the component of largest area (ties: the one with the smallest face; -1 if none).
+int largest(const Components& c);
 
 }  // namespace shellcontract::detail

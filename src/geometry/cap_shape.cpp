@@ -23,13 +23,7 @@ Vec3 centroid(const MeshArrays& m, const Positions& x, int f) {
   return (Vec3(x.row(t[0])) + Vec3(x.row(t[1])) + Vec3(x.row(t[2]))) / 3.0;
 }
 
-/// Edge-connected components of the faces with flag[f] != 0, each with its area; components are
-/// numbered by their smallest face, so the numbering does not depend on anything but the faces.
-struct Components {
-  std::vector<int> of;  ///< per face, -1 outside the flagged set
-  std::vector<double> area;
-  std::vector<int> first;  ///< smallest face of each component
-};
+}  // namespace
 
 Components components(const MeshArrays& m, const std::vector<char>& flag) {
   Components c;
@@ -54,7 +48,6 @@ Components components(const MeshArrays& m, const std::vector<char>& flag) {
   return c;
 }
 
-/// Index of the component of largest area (ties: the one with the smallest face; -1 if none).
 int largest(const Components& c) {
   int best = -1;
   for (std::size_t i = 0; i < c.area.size(); ++i)
@@ -84,8 +77,6 @@ std::optional<SphereFit> fit_faces(const MeshArrays& m, const Positions& x, cons
 /// Axis: the area-weighted mean direction from the centre to the faces (a property of the face
 /// set, not of the seed vertex, so a subdivided mesh gives the same axis); zero when there is
 /// none (a closed sphere).
-}  // namespace
-
 Vec3 cap_axis(const MeshArrays& m, const Positions& x, const std::vector<int>& faces, const Vec3& c) {
   Vec3 axis = Vec3::Zero();
   double area = 0.0;

@@ -22,82 +22,24 @@
 #include "shellcontract/regions.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
+#include "support/region_fixtures.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
+using test::compactness_by_edge_count;
+using test::face_sets;
+using test::paper_mesh;
+using test::split_in_four;
+using test::to_tri_mesh;
+using test::worst_subdivision_iou;
 constexpr double PI = 3.14159265358979323846;
-
-std::string paper_mesh(const std::string& name) { return std::string(test::PAPER_MESH_DIR) + "/" + name + ".off"; }
-
-test::TriMesh to_tri_mesh(const Mesh& mesh) {
-  test::TriMesh m;
-  m.x = positions_from_mesh(mesh);
-  m.faces.resize(static_cast<Eigen::Index>(mesh.number_of_faces()), 3);
-  for (FaceIndex f : mesh.faces()) {
-    int k = 0;
-    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
-      m.faces(static_cast<Eigen::Index>(f.idx()), k++) = static_cast<int>(v.idx());
-  }
-  return m;
-}
-
-/// The regions as a set of face sets (ids by area can swap between two regions of nearly the
-/// same area; the sets are what must not change).
-std::set<std::vector<int>> face_sets(const std::vector<int>& ids) {
-  const std::vector<std::vector<int>> lists = regions_from_face_ids(ids);
-  return {lists.begin(), lists.end()};
-}
 
 std::vector<int> select(const test::TriMesh& m, RegionReport* report = nullptr) {
   const Mesh mesh = test::to_surface_mesh(m);
   return select_spherical_regions(mesh, m.x, RegionOptions{}, report);
-}
-
-/// Midpoint subdivision: face j becomes faces 4j .. 4j+3 (corners, then the middle), each with a
-/// quarter of its area, so a face set of the coarse mesh maps to one of the fine mesh exactly.
-test::TriMesh split_in_four(const test::TriMesh& m) {
-  std::vector<Vec3> v;
-  for (Eigen::Index i = 0; i < m.x.rows(); ++i) v.emplace_back(m.x.row(i));
-  std::map<std::pair<int, int>, int> mid;
-  const auto midpoint = [&](int a, int b) {
-    const auto key = std::minmax(a, b);
-    const auto it = mid.find(key);
-    if (it != mid.end()) return it->second;
-    v.push_back(0.5 * (v[static_cast<std::size_t>(a)] + v[static_cast<std::size_t>(b)]));
-    return mid[key] = static_cast<int>(v.size()) - 1;
-  };
-  test::TriMesh out;
-  out.faces.resize(4 * m.faces.rows(), 3);
-  for (Eigen::Index j = 0; j < m.faces.rows(); ++j) {
-    const int a = m.faces(j, 0), b = m.faces(j, 1), c = m.faces(j, 2);
-    const int ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
-    out.faces.row(4 * j) << a, ab, ca;
-    out.faces.row(4 * j + 1) << b, bc, ab;
-    out.faces.row(4 * j + 2) << c, ca, bc;
-    out.faces.row(4 * j + 3) << ab, bc, ca;
-  }
-  out.x.resize(static_cast<Eigen::Index>(v.size()), 3);
-  for (std::size_t i = 0; i < v.size(); ++i) out.x.row(static_cast<Eigen::Index>(i)) = v[i].transpose();
-  return out;
-}
-
-/// Perimeter^2 / (4 pi area) of a face list, from an edge count over vertex pairs (not the
-/// halfedge walk of region_shape).
-double compactness_by_edge_count(const test::TriMesh& m, const std::vector<int>& faces) {
-  std::map<std::pair<int, int>, int> uses;
-  double area = 0.0;
-  for (int f : faces) {
-    const Vec3 p0(m.x.row(m.faces(f, 0))), p1(m.x.row(m.faces(f, 1))), p2(m.x.row(m.faces(f, 2)));
-    area += 0.5 * (p1 - p0).cross(p2 - p0).norm();
-    for (int k = 0; k < 3; ++k) ++uses[std::minmax(m.faces(f, k), m.faces(f, (k + 1) % 3))];
-  }
-  double perimeter = 0.0;
-  for (const auto& [e, n] : uses)
-    if (n == 1) perimeter += (Vec3(m.x.row(e.first)) - Vec3(m.x.row(e.second))).norm();
-  return perimeter * perimeter / (4.0 * PI * area);
 }
 
 /// The widest angle, seen from c, between a face centroid of `faces` and their axis (the
@@ -164,54 +106,11 @@ class BearInvariance : public ::testing::Test {
 };
 
 TEST_F(BearInvariance, RotationAndScalingGiveTheSameFaceSets) {
-  // A rotation about a generic axis and a scale that is not a power of two, so every
-  // coordinate changes in its last bits.
-  const Mat3 R = Eigen::AngleAxisd(1.234, Vec3(0.3, -0.5, 0.8).normalized()).toRotationMatrix();
-  test::TriMesh moved = m_;
-  for (Eigen::Index i = 0; i < moved.x.rows(); ++i)
-    moved.x.row(i) = (3.7 * R * Vec3(m_.x.row(i)) + Vec3(5.0, -2.0, 1.0)).transpose();
-  EXPECT_EQ(face_sets(select(moved)), face_sets(ids_));
+  EXPECT_EQ(face_sets(select(test::moved(m_))), face_sets(ids_));
 }
 
 TEST_F(BearInvariance, VertexOrderDoesNotMatter) {
-  std::vector<int> perm(static_cast<std::size_t>(m_.x.rows()));  // new index of each old vertex
-  std::iota(perm.begin(), perm.end(), 0);
-  std::shuffle(perm.begin(), perm.end(), std::mt19937(12345));
-  test::TriMesh shuffled = m_;
-  for (Eigen::Index i = 0; i < m_.x.rows(); ++i) shuffled.x.row(perm[static_cast<std::size_t>(i)]) = m_.x.row(i);
-  for (Eigen::Index j = 0; j < m_.faces.rows(); ++j)
-    for (int k = 0; k < 3; ++k) shuffled.faces(j, k) = perm[static_cast<std::size_t>(m_.faces(j, k))];
-  EXPECT_EQ(face_sets(select(shuffled)), face_sets(ids_));  // faces keep their order
-}
-
-/// Each region of `coarse` against the best-overlapping region of `fine` (= split_in_four of
-/// coarse: coarse face j is fine faces 4j .. 4j+3, a quarter of its area each, so IoU by face
-/// count is IoU by area), and each region of `fine` against those of `coarse`: the smallest of
-/// these best IoUs.
-double worst_subdivision_iou(const std::vector<int>& coarse_ids, const std::vector<int>& fine_ids, std::string* where) {
-  const std::vector<std::vector<int>> coarse = regions_from_face_ids(coarse_ids), fine = regions_from_face_ids(fine_ids);
-  const std::size_t nf = fine_ids.size();
-  const auto flags_of = [&](const std::vector<int>& faces, bool from_coarse) {
-    std::vector<char> flag(nf, 0);
-    for (int f : faces)
-      for (int k = 0; k < (from_coarse ? 4 : 1); ++k) flag[static_cast<std::size_t>(from_coarse ? 4 * f + k : f)] = 1;
-    return flag;
-  };
-  double worst = 1.0;
-  for (int side = 0; side < 2; ++side) {
-    const auto& these = side == 0 ? coarse : fine;
-    const auto& others = side == 0 ? fine : coarse;
-    for (std::size_t r = 0; r < these.size(); ++r) {
-      const std::vector<char> a = flags_of(these[r], side == 0);
-      double best = 0.0;
-      for (const std::vector<int>& o : others) best = std::max(best, face_set_iou(a, flags_of(o, side == 1)));
-      if (best < worst) {
-        worst = best;
-        *where = (side == 0 ? "region " : "region of the split mesh ") + std::to_string(r);
-      }
-    }
-  }
-  return worst;
+  EXPECT_EQ(face_sets(select(test::shuffle_vertices(m_, 12345))), face_sets(ids_));  // faces keep their order
 }
 
 TEST_F(BearInvariance, SplittingEveryFaceInFourFindsTheSameRegions) {
