@@ -93,7 +93,8 @@ struct RegionSummary {
   double radius = 0.0;           ///< radius of the fitted sphere (length)
   double residual = 0.0;         ///< RMS distance of the region's vertices to the sphere / radius
   double cap_angle_deg = 0.0;    ///< widest angle of a face centroid from the region's axis, seen
-                                 ///< from the sphere's centre, degrees (at most 90)
+                                 ///< from the sphere's centre, degrees (at most 90 for the cap
+                                 ///< finder; a tip region is not clipped to a hemisphere)
   double compactness = 0.0;      ///< perimeter^2 / (4 pi area) of the region's faces
   int seed_vertex = -1;          ///< vertex the region grew from
   double mean_curvature = 0.0;   ///< 1 / radius, 1/length
