@@ -35,10 +35,13 @@ def read_off(path):
 
 
 def read_face_list(path):
-    """Regions of a face-list file: one list of face ids per non-comment line."""
+    """Regions of a face-list file: one list of face ids per non-comment line (a leading strength
+    token "S:", as the tool reads it, is skipped)."""
     out = []
     for line in open(path):
         line = line.split("#")[0].split()
+        if line and line[0].endswith(":"):
+            line = line[1:]
         if line:
             out.append([int(t) for t in line])
     return out
