@@ -1,5 +1,6 @@
 // shellcontract regions IN -o OUT.ply [--face-list FILE] [--method caps|tips|parts] [thresholds]: shows the
-// local spherical regions that `run --regions auto` would choose (or, opt-in, the tip finder's).
+// local spherical regions that `run --regions auto` would choose (or, opt-in, the tip or part
+// finder's).
 // Exit 0 ok, 1 bad usage (also an unwritable output), 2 bad input mesh.
 #include <boost/program_options.hpp>
 
@@ -52,9 +53,9 @@ concave crease (docs/math/tip-finder.md). It reads --max-concave-fraction, --max
 apply, nor does --region-at. Pass its --face-list to 'run --regions FILE'.
 
 --method parts (opt-in) keeps the tip finder's ends and adds the cap finder's regions that tip
-regions cover at most half of (heads, bumps on a body); a tip region mostly inside such a
-region gives way to it (docs/math/part-finder.md). It reads the options of both finders; not
---region-at.
+regions cover at most half of (heads, bumps on a body), each grown to the ball of its fitted
+sphere; a tip region mostly inside such a region gives way to it (docs/math/part-finder.md). It
+reads the options of both finders; not --region-at.
 
 exit codes: 0 success, 1 bad usage or unwritable output, 2 the mesh cannot be used
 

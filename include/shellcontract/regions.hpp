@@ -48,9 +48,9 @@ enum class RegionMethod {
   /// min_faces and the area fractions; the sphere-fit thresholds (fit_tolerance,
   /// min_cap_angle_deg, min_curvature_contrast) do not apply.
   Tips,
-  /// Opt-in: the tip finder's regions with the cap finder's heads and bumps, a cap region kept
-  /// where tip regions cover at most half of it (docs/math/part-finder.md). Reads the options
-  /// of both finders.
+  /// Opt-in: the tip finder's regions with the cap finder's heads and bumps: a cap region that
+  /// tip regions cover at most half of is kept and grown to the ball of its fitted sphere
+  /// (docs/math/part-finder.md). Reads the options of both finders.
   Parts,
 };
 

@@ -97,8 +97,8 @@ int int_option(const std::string& name, const py::handle& value) {
   return static_cast<int>(v);
 }
 
-/// The method option of regions(): "caps", "tips" or "parts" (TypeError for a non-str, ValueError naming
-/// the allowed values otherwise), as the CLI's --method.
+/// The method option of regions(): "caps", "tips" or "parts" (TypeError for a non-str,
+/// ValueError naming the allowed values otherwise), as the CLI's --method.
 RegionMethod method_option(const py::handle& value) {
   if (!py::isinstance<py::str>(value))
     throw py::type_error("regions() option method: expected a str ('caps', 'tips' or 'parts'), got " +
@@ -112,8 +112,8 @@ RegionMethod method_option(const py::handle& value) {
 
 /// The regions `run --regions auto` would choose: one ascending face-index array per region.
 /// The options are the CLI's (`shellcontract regions --help`), with '_' or '-':
-/// regions(V, F, max_area_fraction=0.1), regions(V, F, method="tips") (opt-in: the tip finder), method="parts" (opt-in: tips with
-/// the caps' heads and bumps) or
+/// regions(V, F, max_area_fraction=0.1), regions(V, F, method="tips") (opt-in: the tip finder),
+/// method="parts" (opt-in: the tip finder's ends with the cap finder's heads and bumps) or
 /// regions(V, F, **{"region-at": [(x, y, z)]}).
 py::list regions(const py::handle& vertices, const py::handle& faces, const py::kwargs& kwargs) {
   RegionOptions o;
