@@ -23,7 +23,15 @@ It runs `shellcontract regions MESH --face-list F` (the cap finder) and the same
 - ballfF: ballF, but a ball that fails the filters falls back to its cap less the tip faces;
 - ballfr: ballf with F = 1 + the cap's fit residual (RMS distance / R, from the table): the
   sphere and the band of its fit's scatter. This is what `--method parts` does
-  (src/geometry/part_finder.cpp).
+  (src/geometry/part_finder.cpp);
+- ballfr+tips: ballfr, then each kept tip region (tip id order) adds the free faces edge-connected
+  to it within (1 + residual) R of its own fitted sphere (the tip finder's table), kept when the
+  grown region passes the filters;
+- ballfr+tips0.03: the same only for tip regions whose fit residual is at most 0.03 (a
+  threshold read off these meshes' residuals: not a rule to port);
+- ballfr+tipshell: ballfr, then each kept tip region adds the free faces edge-connected to it
+  whose three corners lie within a band of its sphere (clamp(2 residual, 0.02, 0.1) R, the band
+  of the cap finder's shape_cap): it continues over its sphere, not into the ball.
 
 Every rule's output goes through the same filters (largest piece, faces, area share,
 compactness) where it cuts a region. Columns: mean IoU over the 21 labelled parts, parts at
@@ -169,6 +177,9 @@ RULES = {
     "ballf1.0": lambda c, t, a, k: rule_ball(c, t, a, k, 1.0, True),
     "ballf1.1": lambda c, t, a, k: rule_ball(c, t, a, k, 1.1, True),
     "ballfr": lambda c, t, a, k: rule_ball(c, t, a, k, "residual", True),
+    "ballfr+tips": lambda c, t, a, k: rule_ball(c, t, a, k, "residual", True, True),
+    "ballfr+tips0.03": lambda c, t, a, k: rule_ball(c, t, a, k, "residual", True, True, 0.03),
+    "ballfr+tipshell": lambda c, t, a, k: rule_ball(c, t, a, k, "residual", True, True, np.inf, True),
 }
 
 
@@ -183,14 +194,16 @@ def spheres(table):
 
 
 def both(exe, path, tmp, nf):
-    global CAP_SPHERES
+    global CAP_SPHERES, TIP_SPHERES
     caps, table, _ = common.auto_regions(exe, path, tmp)
     CAP_SPHERES = spheres(table)
-    tips, _, _ = common.auto_regions(exe, path, tmp, ["--method", "tips"])
+    tips, table, _ = common.auto_regions(exe, path, tmp, ["--method", "tips"])
+    TIP_SPHERES = spheres(table)
     return masks(caps, nf), masks(tips, nf)
 
 
-def rule_ball(caps, tips, area, cover=0.5, factor=1.0, fallback=False):
+def rule_ball(caps, tips, area, cover=0.5, factor=1.0, fallback=False, tip_balls=False, tip_fit=np.inf,
+              tip_shell=False):
     """cover, then each kept cap region grows to the faces edge-connected to it whose centroid
     lies within factor x R of its fitted sphere's centre (a head is a ball, more than the
     hemisphere the cap finder clips it to), not entering another cap region or a kept tip."""
@@ -223,6 +236,24 @@ def rule_ball(caps, tips, area, cover=0.5, factor=1.0, fallback=False):
             if piece is not None and passes(piece, area):
                 out.append(piece)
                 claimed |= piece
+    if tip_balls:  # each kept tip region adds the free faces of its own sphere's ball
+        taken = claimed | tip_any
+        tip_index = [k for k, t in enumerate(tips) if any(t is kt for kt in kept_tips)]
+        for j, k in enumerate(tip_index):
+            centre, radius, residual = TIP_SPHERES[k]
+            if residual > tip_fit:  # only a tip region that is a ball (its sphere fits closely)
+                continue
+            t = out[j]
+            if tip_shell:  # faces whose corners all lie on the sphere, as the cap finder's shape_cap
+                band = min(max(2.0 * residual, 0.02), 0.1) * radius
+                dist = np.abs(np.linalg.norm(VERTS[FACES] - centre, axis=2) - radius)
+                inside = (dist.max(axis=1) <= band) & ~taken
+            else:
+                inside = (np.linalg.norm(cent - centre, axis=1) <= (1.0 + residual) * radius) & ~taken
+            grown = largest_piece(connected_to(inside | t, t), area)
+            if grown is not None and passes(grown, area):
+                taken |= grown
+                out[j] = grown
     return out
 
 
@@ -252,7 +283,7 @@ def best_iou(mask, regs, area):
 
 
 def main():
-    global FACES, EDGES, VERTS, AREA, CENT, CAP_SPHERES
+    global FACES, EDGES, VERTS, AREA, CENT, CAP_SPHERES, TIP_SPHERES
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
     ap.add_argument("--cover", type=float, default=0.5)
@@ -287,16 +318,16 @@ def main():
         bench_selection.write_off(fine, v4, f4)
         area4 = common.face_areas(v4, f4)
         cc, ct = both(exe, common.mesh_path("bear"), tmp, len(f))
-        sph_c = CAP_SPHERES
+        sph_c, tsph_c = CAP_SPHERES, TIP_SPHERES
         fc, ft = both(exe, fine, tmp, len(f4))
-        sph_f = CAP_SPHERES
+        sph_f, tsph_f = CAP_SPHERES, TIP_SPHERES
         area = common.face_areas(v, f)
         for rn, rule in RULES.items():
-            FACES, VERTS, AREA, CAP_SPHERES = f, v, area, sph_c
+            FACES, VERTS, AREA, CAP_SPHERES, TIP_SPHERES = f, v, area, sph_c, tsph_c
             CENT = common.face_centroids(v, f)
             EDGES = edge_map()
             coarse = [np.repeat(m, 4) for m in rule(cc, ct, area, a.cover)]
-            FACES, VERTS, AREA, CAP_SPHERES = f4, v4, area4, sph_f
+            FACES, VERTS, AREA, CAP_SPHERES, TIP_SPHERES = f4, v4, area4, sph_f, tsph_f
             CENT = common.face_centroids(v4, f4)
             EDGES = edge_map()
             finer = rule(fc, ft, area4, a.cover)
