@@ -15,9 +15,9 @@
 //      cap region or of a ball grown before. The cap finder clips a part to a hemisphere of its
 //      sphere; a head is the ball down to its neck, where the surface leaves the sphere;
 //   6. the filters of both finders (faces, area share, compactness) on each region, its largest
-//      edge-connected piece; a ball that fails them (a flat board's sphere is wide) falls back
-//      to its cap less the tip regions' faces; summaries from a sphere fitted to each region's
-//      faces, ids by decreasing area.
+//      edge-connected piece; a ball that fails them (ragged, from a sphere fitted loosely to a
+//      flat board) falls back to its cap less the tip regions' faces; summaries from a sphere
+//      fitted to each region's faces, ids by decreasing area.
 // Both finders are invariant under rotation, scaling and vertex order, and every rule here reads
 // only face areas, face sets (face order = input order) and distances to a fitted centre, so the
 // result is too.
