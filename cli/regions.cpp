@@ -1,5 +1,6 @@
-// shellcontract regions IN -o OUT.ply [--face-list FILE] [--method caps|tips] [thresholds]: shows the
-// local spherical regions that `run --regions auto` would choose (or, opt-in, the tip finder's).
+// shellcontract regions IN -o OUT.ply [--face-list FILE] [--method caps|tips|parts] [thresholds]: shows the
+// local spherical regions that `run --regions auto` would choose (or, opt-in, the tip or part
+// finder's).
 // Exit 0 ok, 1 bad usage (also an unwritable output), 2 bad input mesh.
 #include <boost/program_options.hpp>
 
@@ -30,7 +31,7 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* REGIONS_USAGE = R"(usage: shellcontract regions INPUT -o OUT.ply [--face-list FILE] [--method caps|tips] [thresholds]
+constexpr const char* REGIONS_USAGE = R"(usage: shellcontract regions INPUT -o OUT.ply [--face-list FILE] [--method caps|tips|parts] [thresholds]
 
 Finds the local spherical regions (bumps, heads, fingertips) of a closed mesh by curvature, the
 ones 'run --regions auto' uses, and writes the mesh as an ASCII PLY with one colour per region
@@ -50,6 +51,11 @@ ear, a fingertip): a disc around each tip, grown until it wraps round the end or
 concave crease (docs/math/tip-finder.md). It reads --max-concave-fraction, --max-compactness,
 --min-faces and the area fractions; --fit-tolerance, --min-cap-angle and --contrast do not
 apply, nor does --region-at. Pass its --face-list to 'run --regions FILE'.
+
+--method parts (opt-in) keeps the tip finder's ends and adds the cap finder's regions that tip
+regions cover at most half of (heads, bumps on a body), each grown to the ball of its fitted
+sphere; a tip region mostly inside such a region gives way to it (docs/math/part-finder.md). It
+reads the options of both finders; not --region-at.
 
 exit codes: 0 success, 1 bad usage or unwritable output, 2 the mesh cannot be used
 
@@ -75,7 +81,8 @@ Vec3 parse_point(const std::string& text) {
 RegionMethod parse_method(const std::string& text) {
   if (text == "caps") return RegionMethod::Caps;
   if (text == "tips") return RegionMethod::Tips;
-  throw UsageError("--method '" + text + "': expected caps or tips");
+  if (text == "parts") return RegionMethod::Parts;
+  throw UsageError("--method '" + text + "': expected caps, tips or parts");
 }
 
 /// The regions as an aligned table: one row per region (id order).
@@ -116,8 +123,9 @@ int command_regions(int argc, char** argv) {
       ("output,o", po::value(&output), "output mesh, .ply (face colours, region ids, curvature)")
       ("face-list", po::value(&face_list), "also write the regions as a face-list file (one line per region, "
                                            "0-based face ids; the format 'run --regions FILE' reads)")
-      ("method", po::value(&method)->default_value(method), "caps (spherical caps from curvature seeds) or tips "
-                                                           "(opt-in: the ends of protrusions)")
+      ("method", po::value(&method)->default_value(method), "caps (spherical caps from curvature seeds), tips "
+                                                           "(opt-in: the ends of protrusions) or parts (opt-in: "
+                                                           "tips with the caps' heads and bumps)")
       ("region-at", po::value(&points)->composing(), "X,Y,Z: the cap around the surface point nearest to "
                                                       "this point (repeatable; replaces the automatic search)")
       ("fit-tolerance", po::value(&options.fit_tolerance)->default_value(options.fit_tolerance, shown(options.fit_tolerance)),
@@ -150,8 +158,8 @@ int command_regions(int argc, char** argv) {
       if (!std::isfinite(t) || t < 0.0) throw UsageError("every threshold must be a finite number >= 0");
     options.method = parse_method(method);
     check_region_options(options);
-    if (options.method == RegionMethod::Tips && !points.empty())
-      throw UsageError("--region-at grows caps; it does not apply with --method tips");
+    if (options.method != RegionMethod::Caps && !points.empty())
+      throw UsageError("--region-at grows caps; it does not apply with --method " + method);
     for (const std::string& p : points) at.push_back(parse_point(p));
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});

@@ -48,6 +48,10 @@ enum class RegionMethod {
   /// min_faces and the area fractions; the sphere-fit thresholds (fit_tolerance,
   /// min_cap_angle_deg, min_curvature_contrast) do not apply.
   Tips,
+  /// Opt-in: the tip finder's regions with the cap finder's heads and bumps: a cap region that
+  /// tip regions cover at most half of is kept and grown to the ball of its fitted sphere
+  /// (docs/math/part-finder.md). Reads the options of both finders.
+  Parts,
 };
 
 /// Thresholds of select_spherical_regions. All are dimensionless (scale-free).

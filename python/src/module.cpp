@@ -97,21 +97,23 @@ int int_option(const std::string& name, const py::handle& value) {
   return static_cast<int>(v);
 }
 
-/// The method option of regions(): "caps" or "tips" (TypeError for a non-str, ValueError naming
-/// the allowed values otherwise), as the CLI's --method.
+/// The method option of regions(): "caps", "tips" or "parts" (TypeError for a non-str,
+/// ValueError naming the allowed values otherwise), as the CLI's --method.
 RegionMethod method_option(const py::handle& value) {
   if (!py::isinstance<py::str>(value))
-    throw py::type_error("regions() option method: expected a str ('caps' or 'tips'), got " +
+    throw py::type_error("regions() option method: expected a str ('caps', 'tips' or 'parts'), got " +
                          std::string(py::str(value.get_type().attr("__name__"))));
   const std::string text = value.cast<std::string>();
   if (text == "caps") return RegionMethod::Caps;
   if (text == "tips") return RegionMethod::Tips;
-  throw py::value_error("regions() option method: expected 'caps' or 'tips', got " + std::string(py::repr(value)));
+  if (text == "parts") return RegionMethod::Parts;
+  throw py::value_error("regions() option method: expected 'caps', 'tips' or 'parts', got " + std::string(py::repr(value)));
 }
 
 /// The regions `run --regions auto` would choose: one ascending face-index array per region.
 /// The options are the CLI's (`shellcontract regions --help`), with '_' or '-':
-/// regions(V, F, max_area_fraction=0.1), regions(V, F, method="tips") (opt-in: the tip finder) or
+/// regions(V, F, max_area_fraction=0.1), regions(V, F, method="tips") (opt-in: the tip finder),
+/// method="parts" (opt-in: the tip finder's ends with the cap finder's heads and bumps) or
 /// regions(V, F, **{"region-at": [(x, y, z)]}).
 py::list regions(const py::handle& vertices, const py::handle& faces, const py::kwargs& kwargs) {
   RegionOptions o;
@@ -140,8 +142,9 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
                            "max_concave_fraction, min_cap_angle, contrast, max_compactness, min_faces, "
                            "min_area_fraction, max_area_fraction, region_at, method");
   }
-  if (o.method == RegionMethod::Tips && !at.empty())
-    throw py::value_error("regions(): region_at grows caps; it does not apply with method='tips'");
+  if (o.method != RegionMethod::Caps && !at.empty())
+    throw py::value_error(std::string("regions(): region_at grows caps; it does not apply with method='") +
+                          (o.method == RegionMethod::Tips ? "tips" : "parts") + "'");
   const Mesh mesh = mesh_from_numpy(vertices, faces);
   const std::vector<int> ids = at.empty() ? select_spherical_regions(mesh, positions_from_mesh(mesh), o)
                                           : select_regions_at(mesh, positions_from_mesh(mesh), at, o);

@@ -108,7 +108,7 @@ def test_regions_out_of_range_values_are_value_errors(ico2, option, value):
 
 @pytest.mark.parametrize("value", ["blobs", "Tips", "", "caps "])
 def test_regions_unknown_method_is_a_value_error_naming_the_methods(ico2, value):
-    with pytest.raises(ValueError, match="expected 'caps' or 'tips'"):
+    with pytest.raises(ValueError, match="expected 'caps', 'tips' or 'parts'"):
         shellcontract.regions(*ico2, method=value)
 
 

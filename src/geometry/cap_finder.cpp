@@ -28,6 +28,7 @@
 #include "geometry/cotan_laplacian.hpp"
 #include "geometry/curvature.hpp"
 #include "geometry/heat_smoothing.hpp"
+#include "geometry/part_finder.hpp"
 #include "geometry/region_metrics.hpp"
 #include "geometry/sphere_moments.hpp"
 #include "geometry/tip_finder.hpp"
@@ -197,7 +198,8 @@ void check_region_options(const RegionOptions& o) {
   if (!(o.min_curvature_contrast >= 0.0)) bad("contrast must be >= 0");
   if (!(o.max_compactness >= 1.0)) bad("max compactness must be >= 1");
   if (o.min_faces < 1) bad("min faces must be >= 1");
-  if (o.method != RegionMethod::Caps && o.method != RegionMethod::Tips) bad("unknown method");
+  if (o.method != RegionMethod::Caps && o.method != RegionMethod::Tips && o.method != RegionMethod::Parts)
+    bad("unknown method");
   if (!(o.min_area_fraction >= 0.0 && o.max_area_fraction <= 1.0 && o.min_area_fraction <= o.max_area_fraction))
     bad("area fractions must satisfy 0 <= min <= max <= 1");
 }
@@ -211,6 +213,7 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
                                                   RegionReport* report, CurvatureField* curvature) {
   check_region_options(options);
   if (options.method == RegionMethod::Tips) return detail::select_tip_regions(mesh, x, options, report, curvature);
+  if (options.method == RegionMethod::Parts) return detail::select_part_regions(mesh, x, options, report, curvature);
   StageTimer timer;
   CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
   const MeshArrays m = mesh_arrays(mesh, x);

@@ -187,7 +187,7 @@ TEST(TipFinder, CliMethodChoosesTheFinderAndRefusesUnknownValues) {
   write_mesh_atomic(in, mesh, m.x);
   auto r = test::run_cli({"regions", in, "-o", out, "--method", "blobs"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("expected caps or tips"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("expected caps, tips or parts"), std::string::npos) << r.output;
   r = test::run_cli({"regions", in, "-o", out, "--method", "tips", "--region-at", "0,0,4"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   r = test::run_cli({"regions", in, "-o", out, "--method", "tips", "--face-list", list});
