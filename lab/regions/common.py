@@ -34,6 +34,19 @@ def read_off(path):
     return v, np.array(faces)
 
 
+def each_mesh(names):
+    """(name, path, rest vertices, faces, bounding-box diagonal) of each named mesh that exists;
+    an absent one is said on stderr and skipped (the kitten is made by scripts/make_kitten.sh)."""
+    import sys
+    for name in names:
+        path = mesh_path(name)
+        if not os.path.exists(path):
+            print(f"{name}: absent, skipped", file=sys.stderr)
+            continue
+        rest, faces = read_off(path)
+        yield name, path, rest, faces, float(np.linalg.norm(rest.max(0) - rest.min(0)))
+
+
 def read_face_list(path):
     """Regions of a face-list file: one list of face ids per non-comment line (a leading strength
     token "S:", as the tool reads it, is skipped)."""

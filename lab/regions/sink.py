@@ -109,13 +109,7 @@ def main():
             "rest / smallest sink | new intersections | default -p: smallest sink ratio on/off | pass |",
             "|---|---|---|---|---|---|---|---|---|"]
     with tempfile.TemporaryDirectory() as tmp:
-        for name in a.meshes.split(","):
-            path = common.mesh_path(name)
-            if not os.path.exists(path):
-                print(f"{name}: absent, skipped", file=sys.stderr)
-                continue
-            rest, faces = common.read_off(path)
-            diag = float(np.linalg.norm(rest.max(0) - rest.min(0)))
+        for name, path, rest, faces, diag in common.each_mesh(a.meshes.split(",")):
             if name in given:
                 source = os.path.abspath(given[name])
                 regions = common.read_face_list(source)

@@ -72,13 +72,7 @@ def main():
     lists = {rule: {} for rule in RULES}
     point1 = {rule: [] for rule in RULES}
     with tempfile.TemporaryDirectory() as tmp:
-        for name in a.meshes.split(","):
-            path = common.mesh_path(name)
-            if not os.path.exists(path):
-                print(f"{name}: absent, skipped", file=sys.stderr)
-                continue
-            rest, faces = common.read_off(path)
-            diag = float(np.linalg.norm(rest.max(0) - rest.min(0)))
+        for name, path, rest, faces, diag in common.each_mesh(a.meshes.split(",")):
             regions, _, _ = common.auto_regions(exe, path, tmp)
             t = [inside_strength(rest, faces, r) for r in regions]
             print(f"{name}: largest strength inside the shell per region: {t}", flush=True)

@@ -26,13 +26,7 @@ def main():
     ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
     a = ap.parse_args()
     exe = os.path.join(a.build, "shellcontract")
-    for name in a.meshes.split(","):
-        path = common.mesh_path(name)
-        if not os.path.exists(path):
-            print(f"{name}: absent, skipped", file=sys.stderr)
-            continue
-        rest, faces = common.read_off(path)
-        diag = float(np.linalg.norm(rest.max(0) - rest.min(0)))
+    for name, path, rest, faces, diag in common.each_mesh(a.meshes.split(",")):
         e1, e2 = rest[faces[:, 1]] - rest[faces[:, 0]], rest[faces[:, 2]] - rest[faces[:, 0]]
         area = 0.5 * np.linalg.norm(np.cross(e1, e2), axis=1)
         with tempfile.TemporaryDirectory() as tmp:

@@ -230,13 +230,7 @@ def main():
     extra = a.run_args.split() + (["--region-shrink", str(a.shrink)] if a.shrink != 0.7 else [])
     md = []
     with tempfile.TemporaryDirectory() as tmp:
-        for name in a.meshes.split(","):
-            path = common.mesh_path(name)
-            if not os.path.exists(path):
-                print(f"{name}: absent, skipped", file=sys.stderr)
-                continue
-            rest, faces = common.read_off(path)
-            diag = float(np.linalg.norm(rest.max(0) - rest.min(0)))
+        for name, path, rest, faces, diag in common.each_mesh(a.meshes.split(",")):
             normals = common.rest_normals(rest, faces)
             regions, out, _ = common.auto_regions(exe, path, tmp)
             table = region_table(out)
