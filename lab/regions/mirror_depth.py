@@ -47,10 +47,7 @@ def sinks(a):
     exe = os.path.join(a.build, "shellcontract")
     env = " ".join(f"{k}={os.environ[k]}" for k in ("SC_MIRROR_DEPTH", "SC_MIRROR_DEPTH_FILE") if k in os.environ)
     with tempfile.TemporaryDirectory() as tmp:
-        for name in a.meshes.split(","):
-            path = common.mesh_path(name)
-            rest, faces = common.read_off(path)
-            diag = float(np.linalg.norm(rest.max(0) - rest.min(0)))
+        for name, path, rest, faces, diag in common.each_mesh(a.meshes.split(",")):
             regions, _, _ = common.auto_regions(exe, path, tmp)
             frames = ["--frames", str(a.frames)] if a.frames else []
             _, end = run(exe, path, tmp, ["--regions", "auto", "-p", "0"] + frames)
@@ -81,12 +78,7 @@ def main():
           + " | chosen s |")
     print("|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
-        for name in a.meshes.split(","):
-            path = common.mesh_path(name)
-            if not os.path.exists(path):
-                print(f"{name}: absent, skipped", file=sys.stderr)
-                continue
-            rest, faces = common.read_off(path)
+        for name, path, rest, faces, _ in common.each_mesh(a.meshes.split(",")):
             regions, _, _ = common.auto_regions(exe, path, tmp)
             chosen = []
             for i, region in enumerate(regions):
