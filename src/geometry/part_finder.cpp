@@ -29,6 +29,8 @@
 #include <utility>
 #include <vector>
 
+#include <tbb/parallel_invoke.h>
+
 #include "geometry/cap_internal.hpp"
 #include "geometry/tip_finder.hpp"
 
@@ -105,13 +107,16 @@ Cap region_cap(const MeshArrays& m, const Positions& x, int seed, std::vector<in
 
 std::vector<int> select_part_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                      RegionReport* report, CurvatureField* curvature) {
-  // Step 1.
-  RegionOptions o = options;
-  o.method = RegionMethod::Caps;
+  // Step 1. The two finders read the mesh only and each gives the same result on any number of
+  // threads, so they run side by side: the tip finder's Dijkstra passes are serial, and the
+  // method would otherwise take the two finders' times added up.
+  RegionOptions caps = options, tips = options;
+  caps.method = RegionMethod::Caps;
+  tips.method = RegionMethod::Tips;
   RegionReport cap_report, tip_report;
-  const std::vector<int> cap_ids = select_spherical_regions(mesh, x, o, &cap_report, curvature);
-  o.method = RegionMethod::Tips;
-  const std::vector<int> tip_ids = select_tip_regions(mesh, x, o, &tip_report, nullptr);
+  std::vector<int> cap_ids, tip_ids;
+  tbb::parallel_invoke([&] { cap_ids = select_spherical_regions(mesh, x, caps, &cap_report, curvature); },
+                       [&] { tip_ids = select_tip_regions(mesh, x, tips, &tip_report, nullptr); });
   const MeshArrays m = mesh_arrays(mesh, x);
   RegionReport r;
   r.total_area = m.total_area;
