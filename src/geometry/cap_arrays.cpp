@@ -9,6 +9,22 @@
 
 namespace shellcontract::detail {
 
+FinderStart start_finder(const Mesh& mesh, const Positions& x) {
+  FinderStart start;
+  start.curvature = compute_curvature(mesh, x);  // first: it checks the mesh
+  start.arrays = mesh_arrays(mesh, x);
+  return start;
+}
+
+std::vector<int> no_regions(FinderStart& start, RegionReport* report, CurvatureField* curvature) {
+  if (report) {
+    *report = RegionReport{};
+    report->total_area = start.arrays.total_area;
+  }
+  if (curvature) *curvature = std::move(start.curvature);
+  return std::vector<int>(start.arrays.nf, -1);
+}
+
 MeshArrays mesh_arrays(const Mesh& mesh, const Positions& x) {
   MeshArrays m;
   m.nv = mesh.number_of_vertices();

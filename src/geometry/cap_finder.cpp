@@ -215,16 +215,13 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   if (options.method == RegionMethod::Tips) return detail::select_tip_regions(mesh, x, options, report, curvature);
   if (options.method == RegionMethod::Parts) return detail::select_part_regions(mesh, x, options, report, curvature);
   StageTimer timer;
-  CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
-  const MeshArrays m = mesh_arrays(mesh, x);
+  detail::FinderStart start = detail::start_finder(mesh, x);
   timer.lap("curvature");
+  if (start.empty()) return detail::no_regions(start, report, curvature);
+  CurvatureField& c = start.curvature;
+  const MeshArrays& m = start.arrays;
   RegionReport r;
   r.total_area = m.total_area;
-  if (m.nv == 0 || !(m.total_area > 0.0)) {
-    if (report) *report = r;
-    if (curvature) *curvature = std::move(c);
-    return std::vector<int>(m.nf, -1);
-  }
   const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c, {SEED_SCALES.begin(), SEED_SCALES.end()});
   timer.lap("smoothing");
   const double h_ref = reference_curvature(m, x, u.back());

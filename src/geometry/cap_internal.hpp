@@ -38,6 +38,21 @@ struct MeshArrays {
 
 MeshArrays mesh_arrays(const Mesh& mesh, const Positions& x);
 
+/// What every finder starts from: the curvature (compute_curvature also checks the mesh: garbage,
+/// sizes, degree) and the mesh arrays.
+struct FinderStart {
+  CurvatureField curvature;
+  MeshArrays arrays;
+  /// No vertex or no area: there is nothing to find.
+  bool empty() const { return arrays.nv == 0 || !(arrays.total_area > 0.0); }
+};
+
+FinderStart start_finder(const Mesh& mesh, const Positions& x);
+
+/// A finder's answer on an empty start: no face in a region, a report holding the total area,
+/// and the curvature handed to the caller where it asks for it.
+std::vector<int> no_regions(FinderStart& start, RegionReport* report, CurvatureField* curvature);
+
 /// The widest a region may be: its faces lie within this angle (radians) of its axis, seen from
 /// its sphere's centre: a hemisphere. A cap wider than a hemisphere is most of a limb or of a
 /// body (a paw's cap of 140 degrees reaches down the arm), and a dimple mirrored through the rim

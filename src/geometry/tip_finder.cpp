@@ -222,15 +222,12 @@ int top_centre(const MeshArrays& m, const Positions& x, const std::vector<double
 
 std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                     RegionReport* report, CurvatureField* curvature) {
-  CurvatureField c = compute_curvature(mesh, x);  // checks garbage, sizes and degree
-  const MeshArrays m = mesh_arrays(mesh, x);
+  FinderStart start = start_finder(mesh, x);
+  if (start.empty()) return no_regions(start, report, curvature);
+  CurvatureField& c = start.curvature;
+  const MeshArrays& m = start.arrays;
   RegionReport r;
   r.total_area = m.total_area;
-  if (m.nv == 0 || !(m.total_area > 0.0)) {
-    if (report) *report = r;
-    if (curvature) *curvature = std::move(c);
-    return std::vector<int>(m.nf, -1);
-  }
   const std::vector<Eigen::VectorXd> u =
       smoothed_curvature(m, x, c, {CONCAVE_SCALE, REFERENCE_SCALE});
   const double h_ref = reference_curvature(m, x, u.back());
