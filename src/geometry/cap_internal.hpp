@@ -1,6 +1,6 @@
 // Private to the region finders (cap_finder.cpp, cap_arrays.cpp, cap_shape.cpp, and the tip
-// finder tip_finder.cpp, which reuses their helpers): the mesh as flat arrays, a grown cap and
-// its final shape.
+// and part finders tip_finder.cpp and part_finder.cpp, which reuse their helpers): the mesh as
+// flat arrays, a grown cap and its final shape.
 #pragma once
 
 #include <array>
@@ -128,5 +128,19 @@ Components components(const MeshArrays& m, const std::vector<char>& flag);
 
 /// Index of the component of largest area (ties: the one with the smallest face; -1 if none).
 int largest(const Components& c);
+
+/// The faces of the largest edge-connected piece of `flag` (largest()), ascending; empty when
+/// flag is.
+std::vector<int> largest_piece(const MeshArrays& m, const std::vector<char>& flag);
+
+Vec3 face_centroid(const MeshArrays& m, const Positions& x, int f);
+
+/// A region of the tip and part finders as a report describes it: its faces and seed, the sphere
+/// fitted to its faces, and its widest face centroid from its axis (seen from the centre).
+Cap region_cap(const MeshArrays& m, const Positions& x, int seed, std::vector<int> faces);
+
+/// The report's counter of the first filter a region fails (too few faces or too small a share
+/// of the area, too large a share, not compact), or nullptr when it passes them all.
+std::size_t* failed_filter(const RegionSummary& s, const RegionOptions& o, RegionReport& r);
 
 }  // namespace shellcontract::detail

@@ -18,12 +18,42 @@ constexpr double MIN_BAND = 0.005, MAX_BAND = 0.1;
 /// teeth one or two faces deep.
 constexpr int SMOOTHING_PASSES = 3;
 
-Vec3 centroid(const MeshArrays& m, const Positions& x, int f) {
+}  // namespace
+
+Vec3 face_centroid(const MeshArrays& m, const Positions& x, int f) {
   const auto& t = m.tri[static_cast<std::size_t>(f)];
   return (Vec3(x.row(t[0])) + Vec3(x.row(t[1])) + Vec3(x.row(t[2]))) / 3.0;
 }
 
-}  // namespace
+std::vector<int> largest_piece(const MeshArrays& m, const std::vector<char>& flag) {
+  const Components pieces = components(m, flag);
+  const int big = largest(pieces);
+  std::vector<int> out;
+  for (std::size_t f = 0; f < m.nf; ++f)
+    if (big >= 0 && pieces.of[f] == big) out.push_back(static_cast<int>(f));
+  return out;
+}
+
+Cap region_cap(const MeshArrays& m, const Positions& x, int seed, std::vector<int> faces) {
+  Cap cap;
+  cap.seed = seed;
+  cap.faces = std::move(faces);
+  if (const auto fit = fit_faces(m, x, cap.faces, cap.seed)) cap.sphere = *fit;
+  const Vec3 axis = cap_axis(m, x, cap.faces, cap.sphere.centre);
+  for (int f : cap.faces) {
+    const Vec3 dir = face_centroid(m, x, f) - cap.sphere.centre;
+    if (dir.norm() > 0.0)
+      cap.angle = std::max(cap.angle, std::acos(std::clamp(dir.normalized().dot(axis), -1.0, 1.0)));
+  }
+  return cap;
+}
+
+std::size_t* failed_filter(const RegionSummary& s, const RegionOptions& o, RegionReport& r) {
+  if (s.area_fraction < o.min_area_fraction || s.faces < static_cast<std::size_t>(o.min_faces)) return &r.dropped_small;
+  if (s.area_fraction > o.max_area_fraction) return &r.dropped_large;
+  if (!(s.compactness <= o.max_compactness)) return &r.dropped_shape;
+  return nullptr;
+}
 
 Components components(const MeshArrays& m, const std::vector<char>& flag) {
   Components c;
@@ -81,7 +111,7 @@ Vec3 cap_axis(const MeshArrays& m, const Positions& x, const std::vector<int>& f
   Vec3 axis = Vec3::Zero();
   double area = 0.0;
   for (int f : faces) {
-    const Vec3 d = centroid(m, x, f) - c;
+    const Vec3 d = face_centroid(m, x, f) - c;
     const double n = d.norm();
     area += m.face_area[static_cast<std::size_t>(f)];
     if (n > 0.0) axis += m.face_area[static_cast<std::size_t>(f)] * d / n;
@@ -105,7 +135,7 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
   if (axis.isZero() || !(r > 0.0)) return false;
   const double band = std::clamp(2.0 * cap.sphere.residual, MIN_BAND, MAX_BAND) * r;
   const auto within = [&](std::size_t f) {
-    const Vec3 d = centroid(m, x, static_cast<int>(f)) - c;
+    const Vec3 d = face_centroid(m, x, static_cast<int>(f)) - c;
     return d.dot(axis) >= cos_max * d.norm();
   };
   const auto near = [&](std::size_t f) {
@@ -217,7 +247,7 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
     if (final_axis.isZero()) return false;
     bool cut = false;
     for (int f : faces) {
-      const Vec3 d = centroid(m, x, f) - c;
+      const Vec3 d = face_centroid(m, x, f) - c;
       if (!(d.dot(final_axis) >= cos_max * d.norm())) flag[static_cast<std::size_t>(f)] = 0, cut = true;
     }
     if (!cut) break;
@@ -242,7 +272,7 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
   cap.sphere.residual = w > 0.0 ? std::sqrt(sq / w) / r : 0.0;
   double angle = 0.0;
   for (int f : cap.faces) {
-    const Vec3 d = centroid(m, x, f) - c;
+    const Vec3 d = face_centroid(m, x, f) - c;
     const double n = d.norm();
     if (n > 0.0) angle = std::max(angle, std::acos(std::clamp(d.dot(final_axis) / n, -1.0, 1.0)));
   }

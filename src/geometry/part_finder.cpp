@@ -42,11 +42,6 @@ constexpr double COVERED = 0.5;
 /// Step 3: a tip region more than half inside one kept cap region is a piece of that part.
 constexpr double INSIDE = 0.5;
 
-Vec3 centroid(const MeshArrays& m, const Positions& x, int f) {
-  const auto& t = m.tri[static_cast<std::size_t>(f)];
-  return (Vec3(x.row(t[0])) + Vec3(x.row(t[1])) + Vec3(x.row(t[2]))) / 3.0;
-}
-
 /// Per region id (0..n-1 of `ids`, n = `count`), its area.
 std::vector<double> areas_of(const MeshArrays& m, const std::vector<int>& ids, std::size_t count) {
   std::vector<double> a(count, 0.0);
@@ -74,33 +69,6 @@ std::vector<char> reached_from(const MeshArrays& m, const std::vector<char>& fla
       }
   }
   return seen;
-}
-
-/// The faces of the largest edge-connected piece of `flag` (ties: the piece with the smallest
-/// face), ascending; empty when flag is.
-std::vector<int> largest_piece(const MeshArrays& m, const std::vector<char>& flag) {
-  const Components pieces = components(m, flag);
-  const int big = largest(pieces);
-  std::vector<int> out;
-  for (std::size_t f = 0; f < m.nf; ++f)
-    if (big >= 0 && pieces.of[f] == big) out.push_back(static_cast<int>(f));
-  return out;
-}
-
-/// A region as the report describes it: the sphere fitted to its faces, its axis and its widest
-/// face from the axis (as the tip finder's regions).
-Cap region_cap(const MeshArrays& m, const Positions& x, int seed, std::vector<int> faces) {
-  Cap cap;
-  cap.seed = seed;
-  cap.faces = std::move(faces);
-  if (const auto fit = fit_faces(m, x, cap.faces, cap.seed)) cap.sphere = *fit;
-  const Vec3 axis = cap_axis(m, x, cap.faces, cap.sphere.centre);
-  for (int f : cap.faces) {
-    const Vec3 dir = centroid(m, x, f) - cap.sphere.centre;
-    if (dir.norm() > 0.0)
-      cap.angle = std::max(cap.angle, std::acos(std::clamp(dir.normalized().dot(axis), -1.0, 1.0)));
-  }
-  return cap;
 }
 
 }  // namespace
@@ -156,13 +124,7 @@ std::vector<int> select_part_regions(const Mesh& mesh, const Positions& x, const
   // The filters; a failure is counted in the report when `count` (not for a ball that falls
   // back to its cap).
   const auto passes = [&](const RegionSummary& s, bool count) {
-    std::size_t* dropped = nullptr;
-    if (s.area_fraction < options.min_area_fraction || s.faces < static_cast<std::size_t>(options.min_faces))
-      dropped = &r.dropped_small;
-    else if (s.area_fraction > options.max_area_fraction)
-      dropped = &r.dropped_large;
-    else if (!(s.compactness <= options.max_compactness))
-      dropped = &r.dropped_shape;
+    std::size_t* dropped = failed_filter(s, options, r);
     if (dropped && count) ++*dropped;
     return dropped == nullptr;
   };
@@ -182,7 +144,7 @@ std::vector<int> select_part_regions(const Mesh& mesh, const Positions& x, const
     for (std::size_t f = 0; f < m.nf; ++f) {
       if (owner[f] >= 0) continue;
       free_cap[f] = cap_ids[f] == static_cast<int>(c) ? 1 : 0;
-      ball[f] = free_cap[f] || (cap_ids[f] < 0 && (centroid(m, x, static_cast<int>(f)) - sc.centre).norm() <= reach);
+      ball[f] = free_cap[f] || (cap_ids[f] < 0 && (face_centroid(m, x, static_cast<int>(f)) - sc.centre).norm() <= reach);
     }
     std::optional<std::pair<Cap, RegionSummary>> got;
     for (const std::vector<char>* flag : {&ball, &free_cap}) {

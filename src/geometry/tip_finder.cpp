@@ -60,11 +60,6 @@ bool before(const Positions& x, int a, int b) {
   return pa != pb ? pa < pb : a < b;
 }
 
-Vec3 face_centroid(const MeshArrays& m, const Positions& x, int f) {
-  const auto& t = m.tri[static_cast<std::size_t>(f)];
-  return (Vec3(x.row(t[0])) + Vec3(x.row(t[1])) + Vec3(x.row(t[2]))) / 3.0;
-}
-
 /// Step 1. Vertices that no source reaches (another connected component) average over the
 /// sources that do; farthest-point sampling places a source in every component it can.
 std::vector<double> protrusion(const MeshArrays& m, const Positions& x, EdgeDijkstra& dijkstra) {
@@ -317,35 +312,17 @@ std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x, const 
   for (std::size_t e = 0; e < ends.size(); ++e) {
     std::vector<char> flag(m.nf, 0);
     for (std::size_t f = 0; f < m.nf; ++f) flag[f] = owner[f] == static_cast<int>(e) ? 1 : 0;
-    const Components pieces = components(m, flag);
-    const int keep = largest(pieces);
-    Cap cap;
-    cap.seed = ends[e].second.centre;
-    for (std::size_t f = 0; f < m.nf; ++f)
-      if (keep >= 0 && pieces.of[f] == keep) cap.faces.push_back(static_cast<int>(f));
-    if (cap.faces.empty()) {
+    std::vector<int> faces = largest_piece(m, flag);
+    if (faces.empty()) {
       ++r.dropped_small;
       continue;
     }
-    if (const auto fit = fit_faces(m, x, cap.faces, cap.seed)) cap.sphere = *fit;
-    const Vec3 axis = cap_axis(m, x, cap.faces, cap.sphere.centre);
-    for (int f : cap.faces) {
-      const Vec3 dir = face_centroid(m, x, f) - cap.sphere.centre;
-      if (dir.norm() > 0.0)
-        cap.angle =
-            std::max(cap.angle, std::acos(std::clamp(dir.normalized().dot(axis), -1.0, 1.0)));
-    }
+    Cap cap = region_cap(m, x, ends[e].second.centre, std::move(faces));
     const RegionSummary s = summarise(mesh, x, m, cap, h_ref);
-    if (s.area_fraction < options.min_area_fraction ||
-        s.faces < static_cast<std::size_t>(options.min_faces)) {
-      ++r.dropped_small;
-    } else if (s.area_fraction > options.max_area_fraction) {
-      ++r.dropped_large;
-    } else if (!(s.compactness <= options.max_compactness)) {
-      ++r.dropped_shape;
-    } else {
+    if (std::size_t* dropped = failed_filter(s, options, r))
+      ++*dropped;
+    else
       kept.emplace_back(std::move(cap), s);
-    }
   }
   std::vector<int> region = number_regions(kept, m.nf, r, false);
   if (report) *report = std::move(r);
