@@ -123,10 +123,12 @@ inline __attribute__((always_inline)) std::int64_t row_avx2(const CellView& cell
     in = _mm256_and_ps(in, _mm256_cmp_ps(_mm256_loadu_ps(cell.lo[2] + j), hz, _CMP_LE_OQ));
     const __m256i first = _mm256_cmpeq_epi32(_mm256_or_si256(fi, load_ints(cell.flags + j)), all_first);
     const unsigned box = live & lane_bits(_mm256_and_ps(in, _mm256_castsi256_ps(first)));
-    if (box == 0) continue;  // most steps: the ids are not loaded
     box_hits += __builtin_popcount(box);
     // Adjacent iff a vertex id is shared; the -1/-2 placeholders never match (see ids()). The
-    // seven comparisons of the AVX-512 loop.
+    // seven comparisons of the AVX-512 loop. They run whether or not a box hit: on bear about a
+    // third of the 8-lane blocks have one, in no order a branch predictor learns, and the
+    // comparisons cost less than the mispredicted branch that skipped them
+    // (lab/kernels/collision_coherence.md, section 8).
     const __m256i qa = load_ints(cell.v[0] + j), qb = load_ints(cell.v[1] + j),
                   qc = load_ints(cell.v[2] + j);
     __m256i shared = _mm256_or_si256(_mm256_cmpeq_epi32(a, qa), _mm256_cmpeq_epi32(a, qb));
