@@ -34,6 +34,7 @@ import necks_geo as G  # noqa: E402
 STEP, SIGMA = 0.002, 0.01          # level spacing and smoothing, in bounding-box diagonals
 STOP, NECK = 0.25, 0.85            # L' down to a quarter; a neck narrows L to 0.85 or less
 MIN_FACES, LO, HI, COMPACT = 10, 0.002, 0.25, 2.0  # the other finders' filters
+WRAP = 0.75                        # variant wrap: a region has wrapped round its end
 
 
 def profile(mesh, d):
@@ -89,21 +90,35 @@ def passes(mesh, m):
     return m.sum() >= MIN_FACES and LO <= share <= HI and mesh.compactness(m) <= COMPACT
 
 
-def neck_regions(mesh, seeds, fallback=None):
+def neck_regions(mesh, seeds, fallback=None, nest=False, wrap=False, neck_only=False):
     """Steps 6-8: one region per seed, merged and filtered. fallback[i], when given, is kept in
-    place of seed i's region when that one is dropped or empty."""
+    place of seed i's region when that one is dropped or empty. Variants chosen after the first
+    measurement (necks.md): nest: regions are taken smallest first, merged only when their IoU
+    exceeds 1/2 (two seeds of one part), and a larger region loses the faces of the smaller ones
+    inside it (a head less its ears); wrap: a region must have wrapped round its end
+    (P^2 / (4 pi A) <= WRAP, a spherical cap's (1 + cos theta) / 2 at 60 degrees); neck_only: only
+    a cut at a neck makes a region (a seed without a neck gives its fallback or nothing)."""
     total = mesh.area.sum()
-    kept = []
+    cand = []
     for i, s in enumerate(seeds):
         d = mesh.distance(s)
-        cut, _, _ = cut_radius(mesh, d, total)
+        cut, _, neck = cut_radius(mesh, d, total)
         region = mesh.largest_piece(d[mesh.f].mean(axis=1) < cut)
-        if fallback is not None and not passes(mesh, region):
-            region = fallback[i].copy()
+        ok = passes(mesh, region) and (not wrap or mesh.compactness(region) <= WRAP) and \
+            (not neck_only or neck is not None)
+        if fallback is not None and not ok:
+            region, ok = fallback[i].copy(), True
+        if ok or not (nest or wrap or neck_only):
+            cand.append(region)
+    if nest:
+        cand.sort(key=lambda m: mesh.area[m].sum())
+    kept = []
+    for region in cand:
         merged = False
         for j, k in enumerate(kept):
             ov = mesh.area[region & k].sum()
-            if ov > 0.5 * min(mesh.area[region].sum(), mesh.area[k].sum()):
+            small = min(mesh.area[region].sum(), mesh.area[k].sum())
+            if (ov > 0.5 * mesh.area[region | k].sum()) if nest else (ov > 0.5 * small):
                 kept[j] = k | region
                 merged = True
                 break
@@ -138,7 +153,11 @@ def all_columns(exe, path, tmp, seeds_rule):
     parts = masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
     seeds = [deepest_vertex(mesh, m) for m in parts] if seeds_rule == "parts" else maxima_seeds(mesh)
     fb = parts if seeds_rule == "parts" else None
-    return v, f, mesh, {"necks": neck_regions(mesh, seeds), "necks+fallback": neck_regions(mesh, seeds, fb),
+    return v, f, mesh, {"necks": neck_regions(mesh, seeds), "necks+fb": neck_regions(mesh, seeds, fb),
+                        "nest": neck_regions(mesh, seeds, nest=True),
+                        "nest+fb": neck_regions(mesh, seeds, fb, nest=True),
+                        "wrap+fb": neck_regions(mesh, seeds, fb, nest=True, wrap=True),
+                        "neck-only+fb": neck_regions(mesh, seeds, fb, neck_only=True),
                         "parts": parts}
 
 
@@ -182,18 +201,22 @@ def timing(exe):
 
 
 def main():
+    global NECK, STOP
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
     ap.add_argument("--seeds", choices=["parts", "maxima"], default="parts")
     ap.add_argument("--curves")
     ap.add_argument("--time", action="store_true")
+    ap.add_argument("--neck", type=float, default=NECK, help="sensitivity: the neck ratio (0.85)")
+    ap.add_argument("--stop", type=float, default=STOP, help="sensitivity: the stop share of L' (0.25)")
     a = ap.parse_args()
+    NECK, STOP = a.neck, a.stop
     exe = os.path.join(a.build, "shellcontract")
     if a.curves:
         return curves(exe, a.curves, a.seeds)
     if a.time:
         return timing(exe)
-    cols = ["necks", "necks+fallback", "parts"]
+    cols = ["necks", "necks+fb", "nest", "nest+fb", "wrap+fb", "neck-only+fb", "parts"]
     res = {c: {"parts": [], "bumps": [], "comp": [], "n": []} for c in cols}
     with tempfile.TemporaryDirectory() as tmp:
         for name in common.PAPER + ["bumpy_sphere"]:

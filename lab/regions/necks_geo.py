@@ -45,9 +45,11 @@ class Mesh:
         self.h = float(np.linalg.norm(v[edges[:, 0]] - v[edges[:, 1]], axis=1).mean())
         t = self.h ** 2
         self.heat = spla.splu((M - t * self.L).tocsc())
-        # The Poisson matrix is singular (constants); a shift of 1e-9 of the mass fixes the
-        # constant and changes the distances by far less than the heat method's own error.
-        self.poisson = spla.splu((-self.L + 1e-9 * M).tocsc())
+        # The Poisson matrix is singular (constants); a shift of 1e-8 of its own diagonal scale
+        # (relative, so that it does not vanish on a fine mesh) fixes the constant and changes
+        # the distances by far less than the heat method's own error.
+        shift = 1e-8 * float(-self.L.diagonal().mean()) / float(mass.mean())
+        self.poisson = spla.splu((-self.L + shift * M).tocsc())
         # vertex adjacency (for persistence, pieces)
         self.adj = sp.csr_matrix((np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(nv, nv))
         self.adj = ((self.adj + self.adj.T) > 0).tocsr()
@@ -73,7 +75,11 @@ class Mesh:
         grad = np.zeros((len(f), 3))
         for k in range(3):  # grad u = sum_k u_k (N x e_k) / (2A)
             grad += u[f[:, k]][:, None] * np.cross(self.normal, self.e[k])
-        grad /= (2 * self.area)[:, None]
+        # u spans hundreds of decades on a fine mesh: scale each face's gradient by its largest
+        # component before normalising, or its norm underflows and X blows up; a face where u
+        # underflowed to 0 carries no direction (X = 0).
+        big = np.abs(grad).max(axis=1)
+        grad = grad / np.where(big > 0, big, 1.0)[:, None]
         X = -grad / np.maximum(np.linalg.norm(grad, axis=1), 1e-300)[:, None]
         div = np.zeros(len(v))
         for k in range(3):  # integrated divergence at corner k: 1/2 sum cot-weighted terms
