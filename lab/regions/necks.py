@@ -12,10 +12,12 @@ mean geodesic distance (--seeds maxima). Columns: necks (the rule alone), necks+
 parts region whose seed gives no kept neck region is kept as it is), parts (the finder alone).
 
 Usage: /usr/bin/python3 lab/regions/necks.py [--build build] [--seeds parts|maxima] [--curves MESH]
-       [--time] [--neck 0.85] [--stop 0.25] [--distance heat|dijkstra]
+       [--time] [--neck 0.85] [--stop 0.25] [--distance heat|dijkstra] [--label-seeds]
 (--curves MESH: print each seed's L(r), r_stop, neck and cut on MESH and stop; --time: time the
 stages on bear and bear split in sixteen and stop; --neck, --stop: the two thresholds, for the
-sensitivity runs of necks.md; --distance dijkstra: edge-graph distances instead of the heat method)
+sensitivity runs of necks.md; --distance dijkstra: edge-graph distances instead of the heat method;
+--label-seeds: the diagnostics of necks.md with seeds placed from the labels, on the elk and
+kitten, and of labels.py's elk feet)
 """
 import argparse
 import os
@@ -178,6 +180,50 @@ def curves(exe, name, seeds_rule):
         print("  L every 0.01: " + " ".join(f"{x:.2f}" for x in L[::5][:60]))
 
 
+def label_seeds(names):
+    """A diagnostic, not a rule: the cut from a seed placed with the labels (the labelled ball's
+    lowest vertex for a foot or the paws, its highest for the kitten's head), to tell a seed that
+    misses a part from a part whose L(r) has no neck."""
+    for name in names:
+        v, f, mesh = load(common.mesh_path(name))
+        cent = common.face_centroids(v, f)
+        for part, P, r in labels.parts_of(name, v):
+            ball = np.flatnonzero(np.linalg.norm(v - P, axis=1) <= r)
+            if "foot" in part or "paws" in part:
+                s = int(ball[np.argmin(v[ball, 1])])
+            elif name == "kitten" and part == "head":
+                s = int(ball[np.argmax(v[ball, 1])])
+            else:
+                continue
+            d = mesh.distance(s)
+            cut, stop, neck = cut_radius(mesh, d, mesh.area.sum())
+            reg = mesh.largest_piece(d[f].mean(axis=1) < cut)
+            lab = np.linalg.norm(cent - P, axis=1) <= r
+            L = profile(mesh, d)[1]
+            print(f"{name} {part}: seed {s}, r_stop {stop:.3f}, neck {neck}, cut {cut:.3f}, area share "
+                  f"{mesh.area[reg].sum() / mesh.area.sum():.3f}, IoU {best_iou(lab, [reg], mesh.area):.2f}")
+            print("  L every 0.02: " + " ".join(f"{x:.2f}" for x in L[::10][:30]))
+
+
+def elk_feet(exe):
+    """A diagnostic of labels.py's elk feet: the lowest vertex of each quadrant about the median
+    (x, z) is a foot's bottom only if each quadrant holds one foot. Prints, per labelled foot,
+    whether its bottom is the lowest vertex within 15 units (in x, z), and scores each column
+    against the foot the quadrants miss: labels.py's ball (25 up, radius 27) about the lowest
+    vertex within 15 of (26.8, 28.3), read off the neck regions' lowest vertices."""
+    path = common.mesh_path("elk")
+    with tempfile.TemporaryDirectory() as tmp:
+        v, f, mesh, regs = all_columns(exe, path, tmp, "parts")
+    for part, P, r in labels.parts_of("elk", v)[:4]:
+        near = np.linalg.norm(v[:, [0, 2]] - P[[0, 2]], axis=1) < 15
+        print(f"elk {part}: bottom y {P[1] - 25:.1f}, lowest y within 15 in (x, z) {v[near, 1].min():.1f}")
+    near = np.flatnonzero(np.linalg.norm(v[:, [0, 2]] - np.array([26.8, 28.3]), axis=1) < 15)
+    bottom = v[near[np.argmin(v[near, 1])]]
+    part = np.linalg.norm(common.face_centroids(v, f) - (bottom + [0, 25.0, 0]), axis=1) <= 27.0
+    print(f"unlabelled foot at {np.round(bottom, 1).tolist()}, {int(part.sum())} faces: " +
+          ", ".join(f"{c} {best_iou(part, rs, mesh.area):.2f}" for c, rs in regs.items()))
+
+
 def timing(exe):
     """Stage times on bear and bear split in sixteen (the seeds' parts regions not timed)."""
     v, f = common.read_off(common.mesh_path("bear"))
@@ -211,6 +257,7 @@ def main():
     ap.add_argument("--curves")
     ap.add_argument("--time", action="store_true")
     ap.add_argument("--distance", choices=["heat", "dijkstra"], default="heat")
+    ap.add_argument("--label-seeds", action="store_true", help="diagnostic: seeds placed with the labels")
     ap.add_argument("--neck", type=float, default=NECK, help="sensitivity: the neck ratio (0.85)")
     ap.add_argument("--stop", type=float, default=STOP, help="sensitivity: the stop share of L' (0.25)")
     a = ap.parse_args()
@@ -221,6 +268,9 @@ def main():
         return curves(exe, a.curves, a.seeds)
     if a.time:
         return timing(exe)
+    if a.label_seeds:
+        label_seeds(["elk", "kitten"])
+        return elk_feet(exe)
     cols = ["necks", "necks+fb", "nest", "nest+fb", "wrap+fb", "neck-only+fb", "parts"]
     res = {c: {"parts": [], "bumps": [], "comp": [], "n": []} for c in cols}
     with tempfile.TemporaryDirectory() as tmp:
