@@ -214,6 +214,19 @@ def elk_feet(exe):
     path = common.mesh_path("elk")
     with tempfile.TemporaryDirectory() as tmp:
         v, f, mesh, regs = all_columns(exe, path, tmp, "parts")
+        parts = masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
+    for p in parts:  # each neck region: its seed, the centre and mean radius of its rim, its span
+        s = deepest_vertex(mesh, p)
+        d = mesh.distance(s)
+        cut, _, neck = cut_radius(mesh, d, mesh.area.sum())
+        if neck is None:
+            continue
+        reg = mesh.largest_piece(d[f].mean(axis=1) < cut)
+        rim = v[np.unique(mesh.edge_vertices[(mesh.edge_face @ reg.astype(float)) == 1])]
+        span = v[np.unique(f[reg])]
+        print(f"neck region of seed {s} at {np.round(v[s], 1).tolist()}: rim centre "
+              f"{np.round(rim.mean(0), 1).tolist()}, rim radius {np.linalg.norm(rim - rim.mean(0), axis=1).mean():.1f}, "
+              f"span {np.round(span.min(0), 1).tolist()} to {np.round(span.max(0), 1).tolist()}")
     for part, P, r in labels.parts_of("elk", v)[:4]:
         near = np.linalg.norm(v[:, [0, 2]] - P[[0, 2]], axis=1) < 15
         print(f"elk {part}: bottom y {P[1] - 25:.1f}, lowest y within 15 in (x, z) {v[near, 1].min():.1f}")
