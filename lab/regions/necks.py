@@ -94,13 +94,14 @@ def passes(mesh, m):
 
 
 def neck_regions(mesh, seeds, fallback=None, nest=False, wrap=False, neck_only=False):
-    """Steps 6-8: one region per seed, merged and filtered. fallback[i], when given, is kept in
-    place of seed i's region when that one is dropped or empty. Variants chosen after the first
-    measurement (necks.md): nest: regions are taken smallest first, merged only when their IoU
-    exceeds 1/2 (two seeds of one part), and a larger region loses the faces of the smaller ones
-    inside it (a head less its ears); wrap: a region must have wrapped round its end
-    (P^2 / (4 pi A) <= WRAP, a spherical cap's (1 + cos theta) / 2 at 60 degrees); neck_only: only
-    a cut at a neck makes a region (a seed without a neck gives its fallback or nothing)."""
+    """Steps 6-8: one region per seed, merged (in seed order), then filtered. fallback[i], when
+    given, is kept in place of seed i's region when that one fails. Variants chosen after the
+    first measurement (necks.md); with any of them a failing region is dropped before merging:
+    nest: regions are taken smallest first, merged only when their IoU exceeds 1/2 (two seeds of
+    one part), and a larger region loses the faces of the smaller ones inside it (a head less
+    its ears); wrap: a region must have wrapped round its end (P^2 / (4 pi A) <= WRAP, a
+    spherical cap's (1 + cos theta) / 2 at 60 degrees); neck_only: only a cut at a neck makes a
+    region (a seed without a neck gives its fallback or nothing)."""
     total = mesh.area.sum()
     cand = []
     for i, s in enumerate(seeds):
@@ -225,7 +226,8 @@ def elk_feet(exe):
         rim = v[np.unique(mesh.edge_vertices[(mesh.edge_face @ reg.astype(float)) == 1])]
         span = v[np.unique(f[reg])]
         print(f"neck region of seed {s} at {np.round(v[s], 1).tolist()}: rim centre "
-              f"{np.round(rim.mean(0), 1).tolist()}, rim radius {np.linalg.norm(rim - rim.mean(0), axis=1).mean():.1f}, "
+              f"{np.round(rim.mean(0), 1).tolist()}, "
+              f"rim radius {np.linalg.norm(rim - rim.mean(0), axis=1).mean():.1f}, "
               f"span {np.round(span.min(0), 1).tolist()} to {np.round(span.max(0), 1).tolist()}")
     for part, P, r in labels.parts_of("elk", v)[:4]:
         near = np.linalg.norm(v[:, [0, 2]] - P[[0, 2]], axis=1) < 15
@@ -310,7 +312,8 @@ def main():
         _, _, mesh4, finer = all_columns(exe, fine, tmp, a.seeds)
         for c in cols:
             cm = [np.repeat(m, 4) for m in coarse[c]]
-            ious = ([best_iou(m, finer[c], mesh4.area) for m in cm] + [best_iou(m, cm, mesh4.area) for m in finer[c]])
+            ious = ([best_iou(m, finer[c], mesh4.area) for m in cm]
+                    + [best_iou(m, cm, mesh4.area) for m in finer[c]])
             res[c]["sub"] = min(ious) if ious else 0.0
     print("| part | " + " | ".join(cols) + " |")
     print("|---|" + "---:|" * len(cols))

@@ -68,7 +68,9 @@ class Mesh:
         ff.eliminate_zeros()
         self.face_adj = ff
 
-    dijkstra = False  # necks.py --distance dijkstra: edge-graph distance instead (a port could reuse edge_dijkstra.cpp)
+    # necks.py --distance dijkstra: edge-graph distances instead (what a port could take from
+    # src/geometry/edge_dijkstra.cpp)
+    dijkstra = False
 
     def distance(self, sources):
         """Geodesic distance to the vertex set `sources` (heat method, t = h^2)."""
