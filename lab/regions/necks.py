@@ -8,8 +8,9 @@ the length L(r) of its boundary. Cut at the first neck past where L stops growin
 at least 15 % and widens again), or, with no neck, where L stops growing (L' down to a quarter
 of its largest value so far: a limb's round end). Seeds: the deepest vertex of each region of
 `shellcontract regions MESH --method parts` (default) or the persistent maxima of a sampled
-mean geodesic distance (--seeds maxima). Columns: necks (the rule alone), necks+fallback (a
-parts region whose seed gives no kept neck region is kept as it is), parts (the finder alone).
+mean geodesic distance (--seeds maxima). Columns: necks (the rule alone), necks+fb (a parts
+region whose seed's region fails is kept as it is), the variants nest, nest+fb, wrap+fb and
+neck-only+fb (chosen after the first measurement; neck_regions), parts (the finder alone).
 
 Usage: /usr/bin/python3 lab/regions/necks.py [--build build] [--seeds parts|maxima] [--curves MESH]
        [--time] [--neck 0.85] [--stop 0.25] [--distance heat|dijkstra] [--label-seeds]
@@ -66,7 +67,7 @@ def cut_radius(mesh, d, total_area):
 
 
 def deepest_vertex(mesh, mask):
-    """The vertex of a face set farthest from the set's boundary vertices (heat distance)."""
+    """The vertex of a face set farthest from the set's boundary vertices (Mesh.distance)."""
     inside = mesh.edge_face @ mask.astype(float)
     rim = np.unique(mesh.edge_vertices[inside == 1])
     verts = np.unique(mesh.f[mask])
