@@ -1,5 +1,6 @@
-"""Geometry of the neck prototype (lab/regions/necks.py): the heat-method geodesic distance, the
-length of a distance's level sets, persistent maxima, face sets' perimeters. Lab code, not product.
+"""Geometry of the neck prototype (lab/regions/necks.py, its rule and tables in necks.md): the
+heat-method geodesic distance, the length of a distance's level sets, persistent maxima, face
+sets' perimeters. Lab code, not product; checked by necks_check.py.
 
 Every length is in units of the mesh's bounding-box diagonal (the caller scales the vertices), so
 that each threshold of necks.py is scale-free.
