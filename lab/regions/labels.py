@@ -48,11 +48,15 @@ def parts_of(name, v):
         return [("fingertip %d" % (k + 1),
                  extreme(v, z, 1, lambda v, a=edges[k], b=edges[k + 1]: (v[:, 0] >= a) & (v[:, 0] <= b)), 0.12)
                 for k in range(4)]
-    if name == "elk":  # a wooden toy: four ball feet (the lowest vertex of each quadrant in x, z)
-        cx, cz = np.median(v[:, 0]), np.median(v[:, 2])
+    if name == "elk":  # a wooden toy standing on four ball feet
+        # Each foot: a ball around the lowest vertex within 20 (in x and z) of a point written
+        # down from a render of the toy seen from below (lab/regions/elk_feet.png). The quadrants
+        # of the median x and z, used before, put no foot in one quadrant (it held the side of
+        # foot 1's leg) and two in another; the neck prototype found the unlabelled foot
+        # (lab/regions/necks.md).
         out = []
-        for k, (sx, sz) in enumerate([(-1, -1), (-1, 1), (1, -1), (1, 1)]):
-            box = (lambda v, sx=sx, sz=sz: (sx * (v[:, 0] - cx) > 0) & (sz * (v[:, 2] - cz) > 0) & (v[:, 1] < -40))
+        for k, (fx, fz) in enumerate([(22.8, -75.2), (-20.3, -13.5), (26.8, 28.3), (75.8, -26.7)]):
+            box = (lambda v, fx=fx, fz=fz: (np.abs(v[:, 0] - fx) < 20.0) & (np.abs(v[:, 2] - fz) < 20.0))
             bottom = extreme(v, y, -1, box)
             out.append(("ball foot %d" % (k + 1), bottom + np.array([0, 25.0, 0]), 27.0))
         # The head is a flat board whose snout points to -z: the nose is a ball around the
