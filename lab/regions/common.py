@@ -71,6 +71,21 @@ def auto_regions(exe, mesh, tmp, extra=()):
     return (read_face_list(listed) if os.path.exists(listed) else []), out, ply
 
 
+def face_masks(regions, nf):
+    """One boolean mask over the nf faces per region (a list of face indices)."""
+    out = []
+    for reg in regions:
+        m = np.zeros(nf, bool)
+        m[reg] = True
+        out.append(m)
+    return out
+
+
+def best_iou(mask, regs, area):
+    """The largest IoU by area of a face mask with any of the masks regs (0 if none)."""
+    return max([area[mask & r].sum() / max(area[mask | r].sum(), 1e-300) for r in regs], default=0.0)
+
+
 def face_centroids(v, f):
     return v[f].mean(axis=1)
 
@@ -85,3 +100,20 @@ def rest_normals(v, f):
     for k in range(3):
         np.add.at(n, f[:, k], cr)
     return n / np.maximum(np.linalg.norm(n, axis=1), 1e-300)[:, None]
+
+
+def print_rule_table(res, cols, names, counts):
+    """The prototypes' comparison table (heads_prototype.py, necks.py): a row per labelled part
+    (names, in res[c]["parts"] order: (mesh, part, IoU)) and the summary rows, a column per rule
+    in cols; counts(c) is the last row's cell (the regions per mesh)."""
+    print("| part | " + " | ".join(cols) + " |")
+    print("|---|" + "---:|" * len(cols))
+    for k, name in enumerate(names):
+        print(f"| {name} | " + " | ".join(f"{res[c]['parts'][k][2]:.2f}" for c in cols) + " |")
+    for label, fn in [("mean IoU", lambda c: f"{np.mean([p[2] for p in res[c]['parts']]):.3f}"),
+                      ("parts >= 0.5", lambda c: str(sum(p[2] >= 0.5 for p in res[c]['parts']))),
+                      ("bumpy_sphere bumps", lambda c: "/".join(f"{b:.2f}" for b in res[c]["bumps"])),
+                      ("bear vs bear x4 (min)", lambda c: f"{res[c]['sub']:.2f}"),
+                      ("largest compactness", lambda c: f"{max(res[c]['comp']):.2f}"),
+                      ("regions (eight hand elk bear kitten bumpy)", counts)]:
+        print(f"| **{label}** | " + " | ".join(fn(c) for c in cols) + " |")

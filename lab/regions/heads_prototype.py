@@ -55,14 +55,6 @@ import common  # noqa: E402
 import labels  # noqa: E402
 
 
-def masks(regions, nf):
-    out = []
-    for reg in regions:
-        m = np.zeros(nf, bool)
-        m[reg] = True
-        out.append(m)
-    return out
-
 
 def rule_union(caps, tips, area):
     taken = np.zeros_like(caps[0]) if caps else None
@@ -199,7 +191,7 @@ def both(exe, path, tmp, nf):
     CAP_SPHERES = spheres(table)
     tips, table, _ = common.auto_regions(exe, path, tmp, ["--method", "tips"])
     TIP_SPHERES = spheres(table)
-    return masks(caps, nf), masks(tips, nf)
+    return common.face_masks(caps, nf), common.face_masks(tips, nf)
 
 
 def rule_ball(caps, tips, area, cover=0.5, factor=1.0, fallback=False, tip_balls=False, tip_fit=np.inf,
@@ -275,12 +267,6 @@ def connected_to(mask, seed):
     return seen
 
 
-def best_iou(mask, regs, area):
-    best = 0.0
-    for r in regs:
-        best = max(best, area[mask & r].sum() / max(area[mask | r].sum(), 1e-300))
-    return best
-
 
 def main():
     global FACES, EDGES, VERTS, AREA, CENT, CAP_SPHERES, TIP_SPHERES
@@ -300,17 +286,17 @@ def main():
             CENT = common.face_centroids(v, f)
             EDGES = edge_map()
             if name == "bumpy_sphere":
-                bumps = masks(common.read_face_list(os.path.join(common.ROOT, "meshes", "bumpy_sphere.bumps.txt")), len(f))
+                bumps = common.face_masks(common.read_face_list(os.path.join(common.ROOT, "meshes", "bumpy_sphere.bumps.txt")), len(f))
             for rn, rule in RULES.items():
                 regs = rule(caps, tips, area, a.cover)
                 res[rn]["n"][name] = len(regs)
                 res[rn].setdefault("comp", []).extend(compactness(m) for m in regs)
                 if name == "bumpy_sphere":
-                    res[rn]["bumps"] = [best_iou(b, regs, area) for b in bumps]
+                    res[rn]["bumps"] = [common.best_iou(b, regs, area) for b in bumps]
                     continue
                 for part, P, r in labels.parts_of(name, v):
                     mask = np.linalg.norm(cent - P, axis=1) <= r
-                    res[rn]["parts"].append((name, part, best_iou(mask, regs, area)))
+                    res[rn]["parts"].append((name, part, common.best_iou(mask, regs, area)))
         # bear against bear x4
         v, f = common.read_off(common.mesh_path("bear"))
         v4, f4 = bench_selection.split_in_four(v, f)
@@ -331,20 +317,10 @@ def main():
             CENT = common.face_centroids(v4, f4)
             EDGES = edge_map()
             finer = rule(fc, ft, area4, a.cover)
-            ious = [best_iou(m, finer, area4) for m in coarse] + [best_iou(m, coarse, area4) for m in finer]
+            ious = [common.best_iou(m, finer, area4) for m in coarse] + [common.best_iou(m, coarse, area4) for m in finer]
             res[rn]["sub"] = min(ious) if ious else 0.0
-    names = [f"{m} {p}" for m, p, _ in res["tips"]["parts"]]
-    print("| part | " + " | ".join(RULES) + " |")
-    print("|---|" + "---:|" * len(RULES))
-    for k, nm in enumerate(names):
-        print(f"| {nm} | " + " | ".join(f"{res[r]['parts'][k][2]:.2f}" for r in RULES) + " |")
-    for label, fn in [("mean IoU", lambda r: f"{np.mean([p[2] for p in res[r]['parts']]):.3f}"),
-                      ("parts >= 0.5", lambda r: str(sum(p[2] >= 0.5 for p in res[r]['parts']))),
-                      ("bumpy_sphere bumps", lambda r: "/".join(f"{b:.2f}" for b in res[r]["bumps"])),
-                      ("bear vs bear x4 (min)", lambda r: f"{res[r]['sub']:.2f}"),
-                      ("largest compactness", lambda r: f"{max(res[r]['comp']):.2f}"),
-                      ("regions (eight hand elk bear kitten bumpy)", lambda r: " ".join(str(res[r]["n"][m]) for m in common.PAPER + ["bumpy_sphere"]))]:
-        print(f"| **{label}** | " + " | ".join(fn(r) for r in RULES) + " |")
+    common.print_rule_table(res, RULES, [f"{m} {p}" for m, p, _ in res["tips"]["parts"]],
+                            lambda r: " ".join(str(res[r]["n"][m]) for m in common.PAPER + ["bumpy_sphere"]))
 
 
 if __name__ == "__main__":

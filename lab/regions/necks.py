@@ -133,17 +133,6 @@ def neck_regions(mesh, seeds, fallback=None, nest=False, wrap=False, neck_only=F
     return [m for m in kept if passes(mesh, m)]
 
 
-def masks(regions, nf):
-    out = []
-    for reg in regions:
-        m = np.zeros(nf, bool)
-        m[reg] = True
-        out.append(m)
-    return out
-
-
-def best_iou(mask, regs, area):
-    return max([area[mask & r].sum() / max(area[mask | r].sum(), 1e-300) for r in regs], default=0.0)
 
 
 def load(path):
@@ -155,7 +144,7 @@ def load(path):
 def all_columns(exe, path, tmp, seeds_rule):
     """{column: list of face masks} of one mesh."""
     v, f, mesh = load(path)
-    parts = masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
+    parts = common.face_masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
     seeds = [deepest_vertex(mesh, m) for m in parts] if seeds_rule == "parts" else maxima_seeds(mesh)
     fb = parts if seeds_rule == "parts" else None
     return v, f, mesh, {"necks": neck_regions(mesh, seeds), "necks+fb": neck_regions(mesh, seeds, fb),
@@ -170,7 +159,7 @@ def curves(exe, name, seeds_rule):
     path = common.mesh_path(name)
     v, f, mesh = load(path)
     with tempfile.TemporaryDirectory() as tmp:
-        parts = masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
+        parts = common.face_masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
     seeds = [deepest_vertex(mesh, m) for m in parts] if seeds_rule == "parts" else maxima_seeds(mesh)
     for s in seeds:
         d = mesh.distance(s)
@@ -203,7 +192,7 @@ def label_seeds(names):
             lab = np.linalg.norm(cent - P, axis=1) <= r
             L = profile(mesh, d)[1]
             print(f"{name} {part}: seed {s}, r_stop {stop:.3f}, neck {neck}, cut {cut:.3f}, area share "
-                  f"{mesh.area[reg].sum() / mesh.area.sum():.3f}, IoU {best_iou(lab, [reg], mesh.area):.2f}")
+                  f"{mesh.area[reg].sum() / mesh.area.sum():.3f}, IoU {common.best_iou(lab, [reg], mesh.area):.2f}")
             print("  L every 0.02: " + " ".join(f"{x:.2f}" for x in L[::10][:30]))
 
 
@@ -216,7 +205,7 @@ def elk_feet(exe):
     path = common.mesh_path("elk")
     with tempfile.TemporaryDirectory() as tmp:
         v, f, mesh, regs = all_columns(exe, path, tmp, "parts")
-        parts = masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
+        parts = common.face_masks(common.auto_regions(exe, path, tmp, ["--method", "parts"])[0], len(f))
     for p in parts:  # each neck region: its seed, the centre and mean radius of its rim, its span
         s = deepest_vertex(mesh, p)
         d = mesh.distance(s)
@@ -237,7 +226,7 @@ def elk_feet(exe):
     bottom = v[near[np.argmin(v[near, 1])]]
     part = np.linalg.norm(common.face_centroids(v, f) - (bottom + [0, 25.0, 0]), axis=1) <= 27.0
     print(f"unlabelled foot at {np.round(bottom, 1).tolist()}, {int(part.sum())} faces: " +
-          ", ".join(f"{c} {best_iou(part, rs, mesh.area):.2f}" for c, rs in regs.items()))
+          ", ".join(f"{c} {common.best_iou(part, rs, mesh.area):.2f}" for c, rs in regs.items()))
 
 
 def timing(exe):
@@ -255,7 +244,7 @@ def timing(exe):
             if not G.Mesh.dijkstra:
                 mesh.distance(0)  # the factorisations, timed with the set-up
             t1 = time.perf_counter()
-            pm = masks(parts, len(ff))
+            pm = common.face_masks(parts, len(ff))
             seeds = [deepest_vertex(mesh, m) for m in pm]
             t2 = time.perf_counter()
             regs = neck_regions(mesh, seeds)
@@ -298,13 +287,13 @@ def main():
                 res[c]["n"].append(len(regs[c]))
                 res[c]["comp"] += [mesh.compactness(m) for m in regs[c]]
                 if name == "bumpy_sphere":
-                    bumps = masks(common.read_face_list(os.path.join(common.ROOT, "meshes",
+                    bumps = common.face_masks(common.read_face_list(os.path.join(common.ROOT, "meshes",
                                                                      "bumpy_sphere.bumps.txt")), len(f))
-                    res[c]["bumps"] = [best_iou(b, regs[c], area) for b in bumps]
+                    res[c]["bumps"] = [common.best_iou(b, regs[c], area) for b in bumps]
                     continue
                 for part, P, r in labels.parts_of(name, v):
                     mask = np.linalg.norm(cent - P, axis=1) <= r
-                    res[c]["parts"].append((name, part, best_iou(mask, regs[c], area)))
+                    res[c]["parts"].append((name, part, common.best_iou(mask, regs[c], area)))
         v, f = common.read_off(common.mesh_path("bear"))
         v4, f4 = bench_selection.split_in_four(v, f)
         fine = os.path.join(tmp, "bear4.off")
@@ -313,20 +302,11 @@ def main():
         _, _, mesh4, finer = all_columns(exe, fine, tmp, a.seeds)
         for c in cols:
             cm = [np.repeat(m, 4) for m in coarse[c]]
-            ious = ([best_iou(m, finer[c], mesh4.area) for m in cm]
-                    + [best_iou(m, cm, mesh4.area) for m in finer[c]])
+            ious = ([common.best_iou(m, finer[c], mesh4.area) for m in cm]
+                    + [common.best_iou(m, cm, mesh4.area) for m in finer[c]])
             res[c]["sub"] = min(ious) if ious else 0.0
-    print("| part | " + " | ".join(cols) + " |")
-    print("|---|" + "---:|" * len(cols))
-    for k, (m, p, _) in enumerate(res["parts"]["parts"]):
-        print(f"| {m} {p} | " + " | ".join(f"{res[c]['parts'][k][2]:.2f}" for c in cols) + " |")
-    for label, fn in [("mean IoU", lambda c: f"{np.mean([p[2] for p in res[c]['parts']]):.3f}"),
-                      ("parts >= 0.5", lambda c: str(sum(p[2] >= 0.5 for p in res[c]['parts']))),
-                      ("bumpy_sphere bumps", lambda c: "/".join(f"{b:.2f}" for b in res[c]["bumps"])),
-                      ("bear vs bear x4 (min)", lambda c: f"{res[c]['sub']:.2f}"),
-                      ("largest compactness", lambda c: f"{max(res[c]['comp']):.2f}"),
-                      ("regions (eight hand elk bear kitten bumpy)", lambda c: " ".join(map(str, res[c]["n"])))]:
-        print(f"| **{label}** | " + " | ".join(fn(c) for c in cols) + " |")
+    common.print_rule_table(res, cols, [f"{m} {p}" for m, p, _ in res["parts"]["parts"]],
+                            lambda c: " ".join(map(str, res[c]["n"])))
 
 
 if __name__ == "__main__":

@@ -59,6 +59,17 @@ def normalised(v, f):
     return G.Mesh((v - v.min(0)) / np.linalg.norm(v.max(0) - v.min(0)), f)
 
 
+def cut_from_pole(rho):
+    """The surface of revolution of radius rho(z), z in [0, 8], cut from its pole at z = 0 as
+    necks.py cuts a part: (cut, r_stop, neck, the region's face mask, the faces' mean z)."""
+    v, f = revolution(rho, 0.0, 8.0)
+    m = normalised(v, f)
+    d = m.distance(0)
+    cut, stop, neck = necks.cut_radius(m, d, m.area.sum())
+    region = m.largest_piece(d[m.f].mean(axis=1) < cut)
+    return cut, stop, neck, region, v[f].mean(axis=1)[:, 2]
+
+
 def report(name, ok, detail):
     print(f"{'PASS' if ok else 'FAIL'} {name}: {detail}")
     return 0 if ok else 1
@@ -88,12 +99,7 @@ def main():
         body = np.sqrt(max(0.0, 2.5 ** 2 - (z - 5.5) ** 2))
         neck = 0.4 if 1.5 <= z <= 4.0 else 0.0
         return max(a, body, neck, 1e-3)
-    v, f = revolution(ball_on_neck, 0.0, 8.0)
-    m = normalised(v, f)
-    d = m.distance(0)
-    cut, stop, neck = necks.cut_radius(m, d, m.area.sum())
-    region = m.largest_piece(d[m.f].mean(axis=1) < cut)
-    z = v[f].mean(axis=1)[:, 2]
+    cut, stop, neck, region, z = cut_from_pole(ball_on_neck)
     ok = neck is not None and region[z < 1.8].all() and not region[z > 3.5].any()
     bad += report("ball on a neck", ok, f"neck {neck}, r_stop {stop:.3f}, region z in "
                   f"[{z[region].min():.2f}, {z[region].max():.2f}] (A ends at 1.92, the body starts at 4.0)")
@@ -101,12 +107,7 @@ def main():
     def capsule(z):
         return max(np.sqrt(max(0.0, 1 - (z - 1) ** 2)) if z < 1 else
                    (1.0 if z <= 7 else np.sqrt(max(0.0, 1 - (z - 7) ** 2))), 1e-3)
-    v, f = revolution(capsule, 0.0, 8.0)
-    m = normalised(v, f)
-    d = m.distance(0)
-    cut, stop, neck = necks.cut_radius(m, d, m.area.sum())
-    region = m.largest_piece(d[m.f].mean(axis=1) < cut)
-    z = v[f].mean(axis=1)[:, 2]
+    cut, stop, neck, region, z = cut_from_pole(capsule)
     ok = neck is None and region[z < 0.5].all() and z[region].max() < 1.5
     bad += report("capsule end", ok, f"neck {neck}, cut {cut:.3f}, region z up to {z[region].max():.2f}")
     return bad
