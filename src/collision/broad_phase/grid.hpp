@@ -80,10 +80,10 @@ constexpr std::size_t GRID_PATCH_DIVISOR = 4;
 /// before the rebuild (lab/scripts/scale_benchmark.py --phases, the grid row).
 constexpr int GRID_PATCH_MAX_BACKOFF = 8;
 /// The kept grid is patched only in an arena of at most this many threads. The patch runs on
-/// one thread, the rebuild on all. On bear (coloured order, the grid's time per step over 30
-/// frames) a patched grid cost no more than a rebuild at one thread and a little more at two; two
-/// is kept for the default sequential order, whose speculative grid runs on the one thread the
-/// solve leaves free. The grid is the same either way: results do not depend on it.
+/// one thread, the rebuild on all. On bear at two threads the patched grid stage takes less than
+/// half of the parallel rebuild's, and a patch split over the threads was slower than the serial
+/// one (lab/kernels/collision_coherence.md, section 8). The grid is the same either way: results
+/// do not depend on it.
 constexpr int GRID_PATCH_MAX_THREADS = 2;
 /// Cells per task of the patched grid's pass over its cells (the pair work).
 constexpr std::size_t GRID_CELL_GRAIN = 16384;
