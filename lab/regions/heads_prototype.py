@@ -55,7 +55,6 @@ import common  # noqa: E402
 import labels  # noqa: E402
 
 
-
 def rule_union(caps, tips, area):
     taken = np.zeros_like(caps[0]) if caps else None
     for t in tips:
@@ -267,7 +266,6 @@ def connected_to(mask, seed):
     return seen
 
 
-
 def main():
     global FACES, EDGES, VERTS, AREA, CENT, CAP_SPHERES, TIP_SPHERES
     ap = argparse.ArgumentParser()
@@ -286,7 +284,8 @@ def main():
             CENT = common.face_centroids(v, f)
             EDGES = edge_map()
             if name == "bumpy_sphere":
-                bumps = common.face_masks(common.read_face_list(os.path.join(common.ROOT, "meshes", "bumpy_sphere.bumps.txt")), len(f))
+                listed = os.path.join(common.ROOT, "meshes", "bumpy_sphere.bumps.txt")
+                bumps = common.face_masks(common.read_face_list(listed), len(f))
             for rn, rule in RULES.items():
                 regs = rule(caps, tips, area, a.cover)
                 res[rn]["n"][name] = len(regs)

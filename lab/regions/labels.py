@@ -49,11 +49,12 @@ def parts_of(name, v):
                  extreme(v, z, 1, lambda v, a=edges[k], b=edges[k + 1]: (v[:, 0] >= a) & (v[:, 0] <= b)), 0.12)
                 for k in range(4)]
     if name == "elk":  # a wooden toy standing on four ball feet
-        # Each foot: a ball around the lowest vertex within 20 (in x and z) of a point written
-        # down from a render of the toy seen from below (lab/regions/elk_feet.png). The quadrants
-        # of the median x and z, used before, put no foot in one quadrant (it held the side of
-        # foot 1's leg) and two in another; the neck prototype found the unlabelled foot
-        # (lab/regions/necks.md).
+        # Each foot: a ball around the lowest vertex within 20 (in x and z) of an (x, z) point:
+        # feet 1, 2 and 4 at the former labels' lowest vertices, foot 3 at the foot the neck
+        # prototype's seeds found (lab/regions/necks.md, --label-seeds). The render
+        # lab/regions/elk_feet.png checks that each ball is a foot. The quadrants of the median x
+        # and z, used before, put no foot in one quadrant (it held the side of foot 1's leg) and
+        # two in another (labels_fix.md).
         out = []
         for k, (fx, fz) in enumerate([(22.8, -75.2), (-20.3, -13.5), (26.8, 28.3), (75.8, -26.7)]):
             box = (lambda v, fx=fx, fz=fz: (np.abs(v[:, 0] - fx) < 20.0) & (np.abs(v[:, 2] - fz) < 20.0))

@@ -133,8 +133,6 @@ def neck_regions(mesh, seeds, fallback=None, nest=False, wrap=False, neck_only=F
     return [m for m in kept if passes(mesh, m)]
 
 
-
-
 def load(path):
     v, f = common.read_off(path)
     lo, D = v.min(0), float(np.linalg.norm(v.max(0) - v.min(0)))
@@ -287,8 +285,8 @@ def main():
                 res[c]["n"].append(len(regs[c]))
                 res[c]["comp"] += [mesh.compactness(m) for m in regs[c]]
                 if name == "bumpy_sphere":
-                    bumps = common.face_masks(common.read_face_list(os.path.join(common.ROOT, "meshes",
-                                                                     "bumpy_sphere.bumps.txt")), len(f))
+                    listed = os.path.join(common.ROOT, "meshes", "bumpy_sphere.bumps.txt")
+                    bumps = common.face_masks(common.read_face_list(listed), len(f))
                     res[c]["bumps"] = [common.best_iou(b, regs[c], area) for b in bumps]
                     continue
                 for part, P, r in labels.parts_of(name, v):

@@ -9,7 +9,7 @@ known, so that a table of necks.md is not the only evidence that the code does w
 2. A ball on a neck: a surface of revolution, ball A (radius 1) on a cylinder of radius 0.4
    joined to a body (a ball of radius 2.5). From A's pole the rule must cut at a neck (not where
    L stops growing) and the region must hold A (every face with z < 1.8) and nothing of the body
-   (no face with z > 3.5).
+   (no face with z > 3.0; the body's radius passes the cylinder's 0.4 at z = 3.03).
 3. A capsule (a cylinder with round ends, no neck): the cut is where L stops growing, so the
    region is A's round end: no face beyond 1.5 radii from the pole along the axis.
 
@@ -100,9 +100,9 @@ def main():
         neck = 0.4 if 1.5 <= z <= 4.0 else 0.0
         return max(a, body, neck, 1e-3)
     cut, stop, neck, region, z = cut_from_pole(ball_on_neck)
-    ok = neck is not None and region[z < 1.8].all() and not region[z > 3.5].any()
+    ok = neck is not None and region[z < 1.8].all() and not region[z > 3.0].any()
     bad += report("ball on a neck", ok, f"neck {neck}, r_stop {stop:.3f}, region z in "
-                  f"[{z[region].min():.2f}, {z[region].max():.2f}] (A ends at 1.92, the body starts at 4.0)")
+                  f"[{z[region].min():.2f}, {z[region].max():.2f}] (A ends at 1.92, the body starts at 3.03)")
 
     def capsule(z):
         return max(np.sqrt(max(0.0, 1 - (z - 1) ** 2)) if z < 1 else

@@ -1,8 +1,10 @@
 // CGAL's shape-diameter-function segmentation (Surface_mesh_segmentation, Shapira et al. 2008)
 // on one mesh: its time and one segment id per face (lab/regions/sdf.md). A lab check of whether
 // CGAL already finds the parts of issue 55, point 1; not part of the product.
-// Build: g++ -O2 -DNDEBUG -std=c++17 lab/regions/sdf_segments.cpp -o /tmp/sdf -lgmp -lmpfr
-// Usage: /tmp/sdf MESH [CLUSTERS=5] [SMOOTHING=0.26] [OUT=seg.txt]
+// Build: mkdir -p /tmp/sdf && g++ -O2 -DNDEBUG -std=c++17 lab/regions/sdf_segments.cpp \
+//          -o /tmp/sdf/sdf -lgmp -lmpfr
+// Usage: /tmp/sdf/sdf MESH [CLUSTERS=5] [SMOOTHING=0.26] [OUT=seg.txt] (sdf.md runs it per mesh
+// with OUT=/tmp/sdf/NAME.seg, the layout sdf_iou.py reads)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/mesh_segmentation.h>

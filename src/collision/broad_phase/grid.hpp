@@ -80,10 +80,9 @@ constexpr std::size_t GRID_PATCH_DIVISOR = 4;
 /// before the rebuild (lab/scripts/scale_benchmark.py --phases, the grid row).
 constexpr int GRID_PATCH_MAX_BACKOFF = 8;
 /// The kept grid is patched only in an arena of at most this many threads. The patch runs on
-/// one thread, the rebuild on all. On bear at two threads the patched grid stage takes less than
-/// half of the parallel rebuild's, and a patch split over the threads was slower than the serial
-/// one (lab/kernels/collision_coherence.md, section 8). The grid is the same either way: results
-/// do not depend on it.
+/// one thread, the rebuild on all. Up to two threads the serial patch is cheaper than the parallel
+/// rebuild; a parallel patch has not paid so far (lab/kernels/collision_coherence.md, section 8).
+/// The grid is the same either way: results do not depend on it.
 constexpr int GRID_PATCH_MAX_THREADS = 2;
 /// Cells per task of the patched grid's pass over its cells (the pair work).
 constexpr std::size_t GRID_CELL_GRAIN = 16384;

@@ -125,10 +125,9 @@ inline __attribute__((always_inline)) std::int64_t row_avx2(const CellView& cell
     const unsigned box = live & lane_bits(_mm256_and_ps(in, _mm256_castsi256_ps(first)));
     box_hits += __builtin_popcount(box);
     // Adjacent iff a vertex id is shared; the -1/-2 placeholders never match (see ids()). The
-    // seven comparisons of the AVX-512 loop. They run whether or not a box hit: on bear about a
-    // third of the 8-lane blocks have one, in no order a branch predictor learns, and the
-    // comparisons cost less than the mispredicted branch that skipped them
-    // (lab/kernels/collision_coherence.md, section 8).
+    // seven comparisons of the AVX-512 loop. They run on every block: whether a block has a box
+    // hit varies without a pattern, so a branch on it is often mispredicted, while the branch on
+    // `pass` below is rarely taken (lab/kernels/collision_coherence.md, section 8).
     const __m256i qa = load_ints(cell.v[0] + j), qb = load_ints(cell.v[1] + j),
                   qc = load_ints(cell.v[2] + j);
     __m256i shared = _mm256_or_si256(_mm256_cmpeq_epi32(a, qa), _mm256_cmpeq_epi32(a, qb));
