@@ -25,7 +25,9 @@ int main(int argc, char** argv) {
   auto seg = m.add_property_map<F, std::size_t>("f:seg").first;
   std::size_t n = CGAL::segmentation_from_sdf_values(m, sdf, seg, k, lambda);
   auto t2 = std::chrono::steady_clock::now();
-  std::cerr << "faces " << m.number_of_faces() << " segments " << n << " sdf " << std::chrono::duration<double>(t1-t0).count() << " s, seg " << std::chrono::duration<double>(t2-t1).count() << " s\n";
+  std::cerr << "faces " << m.number_of_faces() << " segments " << n << " sdf "
+            << std::chrono::duration<double>(t1 - t0).count() << " s, seg "
+            << std::chrono::duration<double>(t2 - t1).count() << " s\n";
   std::ofstream o(argc > 4 ? argv[4] : "seg.txt");
   for (F f : m.faces()) o << seg[f] << "\n";
 }
