@@ -18,8 +18,15 @@ over the rounds:
 Only the simulation steps are timed on both sides (Blender: scene.frame_set; ours: the log's
 step_ms). Run it on a quiet machine; the figures mean nothing while other work shares the cores.
 
+With --default-run our side is the default run itself (`run MESH`, its 200 frames, both cores,
+no stop ratio) and Blender runs as many frames: the step ratio is then Blender's median frame
+over the whole run against our median step over the whole default run, the reading of "bear's
+default step" that the issue's own figure used (a whole run of ours, not its first frames);
+"to same V/V0" is not computed then.
+
 usage: lab/peers/side_by_side.py [--build build] [--meshes eight,hand,elk,bear] [--frames 20]
                                  [--rounds 3] [--out /tmp/side_by_side] [--page FILE]
+                                 [--default-run]
 """
 import argparse
 import csv
@@ -50,8 +57,9 @@ def blender_run(mesh, frames, prefix):
 
 def our_run(cli, mesh, stop_ratio, max_frames, prefix):
     cmd = [cli, "run", mesh, "-o", prefix + ".off", "--log", prefix + ".csv", "--summary",
-           prefix + ".json", "-q", "--threads", "2", "-n", str(max_frames),
-           "--stop-volume-ratio", "{:.6f}".format(stop_ratio)]
+           prefix + ".json", "-q", "--threads", "2"]
+    if stop_ratio is not None:  # else the default run: its own frames, no stop
+        cmd += ["-n", str(max_frames), "--stop-volume-ratio", "{:.6f}".format(stop_ratio)]
     rc = subprocess.run(cmd).returncode
     if rc not in (0, 5):
         sys.exit("{} exited {}".format(" ".join(cmd), rc))
@@ -60,7 +68,8 @@ def our_run(cli, mesh, stop_ratio, max_frames, prefix):
     steps = [float(r["step_ms"]) for r in rows]
     # The run ends at the frame where V/V0 reaches the stop value (the log's last value may be
     # above the printed 6-digit stop by its rounding); a run of all --max-frames did not reach it.
-    reached = len(rows) < max_frames or float(rows[-1]["volume_ratio"]) <= stop_ratio
+    reached = stop_ratio is not None and (len(rows) < max_frames or
+                                          float(rows[-1]["volume_ratio"]) <= stop_ratio)
     return {"step_ms": statistics.median(steps), "seconds": sum(steps) / 1000.0,
             "reached": reached, "frames": len(rows), "final_ratio": float(rows[-1]["volume_ratio"])}
 
@@ -75,6 +84,8 @@ def main():
     p.add_argument("--rounds", type=int, default=3)
     p.add_argument("--out", default="/tmp/shellcontract_side_by_side")
     p.add_argument("--page", default=None, help="append the table to this Markdown file")
+    p.add_argument("--default-run", action="store_true",
+                   help="ours: the default run (200 frames, no stop ratio); give --frames 200")
     a = p.parse_args()
     if not os.path.isfile(PEER):
         sys.exit("the peer script is missing: " + PEER)
@@ -87,16 +98,17 @@ def main():
         for m in meshes:
             mesh = os.path.join(a.mesh_dir, m + ".off")
             b = blender_run(mesh, a.frames, os.path.join(a.out, "{}_blender_{}".format(m, k)))
-            s = our_run(cli, mesh, b["final_ratio"], a.max_frames,
+            s = our_run(cli, mesh, None if a.default_run else b["final_ratio"], a.max_frames,
                         os.path.join(a.out, "{}_ours_{}".format(m, k)))
             results[m].append((b, s))
             print("round {} {}: Blender {:.1f} ms/frame to V/V0 {:.4f} in {:.2f} s; ours {:.2f} "
                   "ms/step, {} in {:.3f} s ({} frames)".format(
                       k + 1, m, b["frame_ms"], b["final_ratio"], b["seconds"], s["step_ms"],
-                      "reached" if s["reached"] else "stopped at {:.4f}".format(s["final_ratio"]),
+                      "reached" if s["reached"] else "ended at {:.4f}".format(s["final_ratio"]),
                       s["seconds"], s["frames"]), flush=True)
 
-    lines = ["{} rounds of {} Blender frames; medians over the rounds:".format(a.rounds, a.frames),
+    lines = ["{} rounds of {} Blender frames{}; medians over the rounds:".format(
+                 a.rounds, a.frames, ", ours the default run" if a.default_run else ""),
              "", "| mesh | Blender ms/frame | ours ms/step | step ratio | Blender's V/V0 | "
              "Blender s to it | ours s to it | to same V/V0 |", "|---|---:|---:|---:|---:|---:|---:|---:|"]
     for m in meshes:
@@ -111,7 +123,7 @@ def main():
             m, bms, sms, ratio, statistics.median(b["final_ratio"] for b, _ in rs),
             statistics.median(b["seconds"] for b, _ in rs),
             "{:.3f}".format(statistics.median(s["seconds"] for _, s in rs)) if reached else "-",
-            "{:.0f}x".format(same) if same is not None else "not reached"))
+            "-" if a.default_run else "{:.0f}x".format(same) if same is not None else "not reached"))
     print("\n".join(lines))
     if a.page:
         with open(a.page, "a") as f:
