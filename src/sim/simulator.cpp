@@ -18,6 +18,7 @@
 #include "sim/region_mirror.hpp"
 #include "sim/region_volume.hpp"
 #include "sim/region_weights.hpp"
+#include "sim/rest_frame.hpp"
 #include "sim/volume_constraint.hpp"
 
 namespace shellcontract {
@@ -279,15 +280,7 @@ void Simulator::apply_volume_control(Positions& x) {
 }
 
 void Simulator::follow_rest(Positions& x) const {
-  Vec3 moment = Vec3::Zero();
-  double mass = 0.0;
-  for (int v : outside_vertices_) {
-    const double w = inv_mass_(v);
-    if (!(w > 0.0)) continue;
-    moment += Vec3(x.row(v) - x_.row(v)) / w;
-    mass += 1.0 / w;
-  }
-  if (mass > 0.0) x.rowwise() -= (moment / mass).transpose();
+  follow_rest_frame(x, x_, inv_mass_, outside_vertices_);
 }
 
 void Simulator::apply_region_contraction(Positions& x) {

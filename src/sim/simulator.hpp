@@ -114,8 +114,7 @@ class Simulator {
   void apply_volume_control(Positions& x);
   /// Projects each region's dimple onto its mirror image of this frame (InwardTerm::Volume).
   void apply_region_contraction(Positions& x);
-  /// Moves x by minus the mass-weighted mean displacement of the outside vertices in this step
-  /// (a Galilean change of frame: no internal force, contact or shape changes).
+  /// Takes the outside vertices' rigid step (shift and turn) out of x (follow_rest_frame).
   void follow_rest(Positions& x) const;
 
   /// The run's threads for the step's own per-vertex work (simulator.cpp).

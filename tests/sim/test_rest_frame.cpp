@@ -1,0 +1,152 @@
+// The run's frame following the rest of the shell (sim/rest_frame.hpp): the outside vertices'
+// shift and turn taken out of every vertex, nothing else.
+#include <gtest/gtest.h>
+
+#include <random>
+#include <vector>
+
+#include "sim/rest_frame.hpp"
+#include "support/random_geometry.hpp"
+
+namespace shellcontract {
+namespace {
+
+struct Cloud {
+  Positions prev;
+  Eigen::VectorXd inv_mass;
+  std::vector<int> outside;
+};
+
+/// 40 random points with masses in [0.5, 2]; every third one is "in a region" (not outside).
+Cloud cloud(std::mt19937& rng) {
+  Cloud c;
+  c.prev.resize(40, 3);
+  c.inv_mass.resize(40);
+  std::uniform_real_distribution<double> mass(0.5, 2.0);
+  for (Eigen::Index i = 0; i < 40; ++i) {
+    c.prev.row(i) = (Vec3(0.3, -0.2, 0.5) + test::random_vec3(rng)).transpose();
+    c.inv_mass(i) = 1.0 / mass(rng);
+    if (i % 3 != 0) c.outside.push_back(static_cast<int>(i));
+  }
+  return c;
+}
+
+/// The outside vertices' mass-weighted displacement sum and angular displacement about their
+/// mass centre at prev.
+std::pair<Vec3, Vec3> rigid_sums(const Cloud& c, const Positions& x) {
+  Vec3 centre = Vec3::Zero(), shift = Vec3::Zero(), turn = Vec3::Zero();
+  double mass = 0.0;
+  for (int v : c.outside) {
+    if (!(c.inv_mass(v) > 0.0)) continue;
+    centre += Vec3(c.prev.row(v)) / c.inv_mass(v);
+    mass += 1.0 / c.inv_mass(v);
+  }
+  centre /= mass;
+  for (int v : c.outside) {
+    if (!(c.inv_mass(v) > 0.0)) continue;
+    const Vec3 d = x.row(v) - c.prev.row(v);
+    shift += d / c.inv_mass(v);
+    turn += (Vec3(c.prev.row(v)) - centre).cross(d) / c.inv_mass(v);
+  }
+  return {shift, turn};
+}
+
+TEST(RestFrame, AnyStepEndsWithoutNetShiftOrTurnOfTheRest) {
+  std::mt19937 rng(3);
+  for (int trial = 0; trial < 20; ++trial) {
+    const Cloud c = cloud(rng);
+    Positions x = c.prev;
+    for (Eigen::Index i = 0; i < x.rows(); ++i) x.row(i) += test::random_vec3(rng, 0.01).transpose();
+    const auto [shift0, turn0] = rigid_sums(c, x);
+    ASSERT_GT(shift0.norm(), 1e-3);  // the random step has a rigid part to take out
+    ASSERT_GT(turn0.norm(), 1e-3);
+    follow_rest_frame(x, c.prev, c.inv_mass, c.outside);
+    const auto [shift, turn] = rigid_sums(c, x);
+    EXPECT_LE(shift.norm(), 1e-14) << trial;
+    EXPECT_LE(turn.norm(), 1e-14) << trial;
+  }
+}
+
+TEST(RestFrame, ASmallRigidMotionOfEveryVertexIsUndoneToSecondOrder) {
+  // x = prev moved by the rotation exp(eps [a]) about a point and a translation: the rule takes
+  // out the linear part, so what is left is the rotation's second-order term, O(eps^2 |r|).
+  std::mt19937 rng(5);
+  const Cloud c = cloud(rng);
+  for (const double eps : {1e-2, 1e-3, 1e-4}) {
+    const Vec3 axis = test::random_vec3(rng).normalized();
+    const Mat3 rot = Eigen::AngleAxisd(eps, axis).toRotationMatrix();
+    const Vec3 pivot(1.0, 2.0, -1.0), t = eps * Vec3(0.7, -0.3, 0.2);
+    Positions x = c.prev;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      x.row(i) = (rot * (Vec3(c.prev.row(i)) - pivot) + pivot + t).transpose();
+    follow_rest_frame(x, c.prev, c.inv_mass, c.outside);
+    // |r| <= about 4 here (pivot off the cloud): the second-order term is at most eps^2 |r| / 2.
+    EXPECT_LE((x - c.prev).rowwise().norm().maxCoeff(), 2.0 * eps * eps) << eps;
+  }
+}
+
+TEST(RestFrame, AStepWithoutRigidPartIsLeftAlone) {
+  // A uniform scaling about the rest's mass centre has no net shift and no net turn: nothing is
+  // taken out, to rounding.
+  std::mt19937 rng(7);
+  const Cloud c = cloud(rng);
+  Vec3 centre = Vec3::Zero();
+  double mass = 0.0;
+  for (int v : c.outside) centre += Vec3(c.prev.row(v)) / c.inv_mass(v), mass += 1.0 / c.inv_mass(v);
+  centre /= mass;
+  Positions x = c.prev;
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    x.row(i) = (centre + 0.97 * (Vec3(c.prev.row(i)) - centre)).transpose();
+  const Positions scaled = x;
+  follow_rest_frame(x, c.prev, c.inv_mass, c.outside);
+  EXPECT_LE((x - scaled).cwiseAbs().maxCoeff(), 1e-14);
+}
+
+TEST(RestFrame, TheRegionsMoveWithTheRestAndMasslessVerticesDoNotCount) {
+  std::mt19937 rng(9);
+  Cloud c = cloud(rng);
+  // A rigid shift of the whole cloud, and one massless outside vertex moved far: it must not
+  // count (it is pinned by the solver, inv_mass 0), so the shift is taken out of every vertex,
+  // the regions' included, and the massless one keeps its own offset.
+  c.inv_mass(c.outside.front()) = 0.0;
+  const Vec3 t(0.01, -0.02, 0.005);
+  Positions x = c.prev;
+  x.rowwise() += t.transpose();
+  x.row(c.outside.front()) += Vec3(1.0, 1.0, 1.0).transpose();
+  follow_rest_frame(x, c.prev, c.inv_mass, c.outside);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const Vec3 expected = i == c.outside.front() ? Vec3(1.0, 1.0, 1.0) : Vec3::Zero();
+    EXPECT_LE((Vec3(x.row(i) - c.prev.row(i)) - expected).norm(), 1e-14) << i;
+  }
+}
+
+TEST(RestFrame, ARestOnALineIsOnlyShifted) {
+  // Outside vertices on a line have no defined turn about it: only the shift is taken out, and
+  // nothing becomes non-finite.
+  Cloud c;
+  c.prev.resize(6, 3);
+  c.inv_mass = Eigen::VectorXd::Ones(6);
+  for (int i = 0; i < 6; ++i) c.prev.row(i) = Vec3(0.1 * i, 0.2 * i, -0.1 * i).transpose();
+  c.outside = {0, 1, 2, 3};
+  Positions x = c.prev;
+  x.rowwise() += Vec3(0.01, 0.0, 0.0).transpose();
+  x(5, 1) += 0.3;  // a region vertex's own step stays
+  follow_rest_frame(x, c.prev, c.inv_mass, c.outside);
+  ASSERT_TRUE(x.allFinite());
+  for (int i = 0; i < 5; ++i) EXPECT_LE((x.row(i) - c.prev.row(i)).norm(), 1e-15) << i;
+  EXPECT_NEAR(x(5, 1) - c.prev(5, 1), 0.3, 1e-15);
+}
+
+TEST(RestFrame, NoMassOutsideMovesNothing) {
+  std::mt19937 rng(11);
+  Cloud c = cloud(rng);
+  c.inv_mass.setZero();
+  Positions x = c.prev;
+  x.rowwise() += Vec3(0.1, 0.1, 0.1).transpose();
+  const Positions before = x;
+  follow_rest_frame(x, c.prev, c.inv_mass, c.outside);
+  EXPECT_EQ(x, before);
+}
+
+}  // namespace
+}  // namespace shellcontract
