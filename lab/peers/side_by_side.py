@@ -18,8 +18,8 @@ over the rounds:
 Only the simulation steps are timed on both sides (Blender: scene.frame_set; ours: the log's
 step_ms). Run it on a quiet machine; the figures mean nothing while other work shares the cores.
 
-With --default-run our side is the default run itself (`run MESH`, its 200 frames, both cores,
-no stop ratio) and Blender runs as many frames: the step ratio is then Blender's median frame
+With --default-run our side is the default run (`run MESH --threads 2`: its 200 frames, both
+cores, no stop ratio) and Blender runs as many frames (--frames must be 200): the step ratio is then Blender's median frame
 over the whole run against our median step over the whole default run, the reading of "bear's
 default step" that the issue's own figure used (a whole run of ours, not its first frames);
 "to same V/V0" is not computed then.
@@ -87,6 +87,8 @@ def main():
     p.add_argument("--default-run", action="store_true",
                    help="ours: the default run (200 frames, no stop ratio); give --frames 200")
     a = p.parse_args()
+    if a.default_run and a.frames != 200:
+        p.error("--default-run compares the default run's 200 frames: give --frames 200")
     if not os.path.isfile(PEER):
         sys.exit("the peer script is missing: " + PEER)
     cli = os.path.join(a.build, "shellcontract")

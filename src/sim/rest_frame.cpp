@@ -37,6 +37,8 @@ void follow_rest_frame(Positions& x, const Positions& prev, const Eigen::VectorX
   if (!(moments(2) > TURN_RANK_TOLERANCE * moments(0))) return;
   const Vec3 omega = svd.solve(angular);
   if (!omega.allFinite()) return;
+  // The linear turn omega x r, not a finite rotation: it is what leaves the rest's net turn exactly
+  // zero, and it stretches the shell only by the square of one step's turn.
   for (Eigen::Index i = 0; i < x.rows(); ++i)
     x.row(i) -= omega.cross(Vec3(prev.row(i)) - centre).transpose();
 }
