@@ -21,7 +21,6 @@ Usage: /usr/bin/python3 lab/regions/fit_clip.py [--build DIR] [--meshes bear,han
 """
 import argparse
 import os
-import subprocess
 import sys
 import tempfile
 
@@ -29,7 +28,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
-from sink_fix import ious  # noqa: E402
+from sink_fix import ious, point1_summary, sink_rows  # noqa: E402
 from sink_why import dimple_image, dimple_order, image_outside  # noqa: E402
 from tips_clip import sphere  # noqa: E402
 
@@ -95,15 +94,8 @@ def main():
             with tempfile.TemporaryDirectory() as tmp:
                 regions, _, _ = common.auto_regions(exe, common.mesh_path(name), tmp)
             point1.append((name, ious(name, regions)))
-    every = [x for _, iou in point1 for x in iou]
-    print(f"\npoint 1: mean IoU {np.mean(every):.3f}, parts >= 0.5: {sum(x >= 0.5 for x in every)} of "
-          f"{len(every)} (" + ", ".join(f"{n} {np.mean(i):.2f}" for n, i in point1) + ")", flush=True)
-    args = [f"--face-list={m}={fl}" for m, fl in lists.items()]
-    out = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "sink.py"),
-                          "--build", a.build, "--out", os.path.join(keep, "sink.md"), "--title", "fit clip"] + args,
-                         capture_output=True, text=True).stdout
-    rows = [line for line in out.splitlines() if line.startswith("| ") and not line.startswith("| mesh")]
-    print("\n".join(dict.fromkeys(rows)))
+    print("\n" + point1_summary(point1), flush=True)
+    print("\n".join(sink_rows(a.build, lists, os.path.join(keep, "sink.md"), "fit clip")))
 
 
 if __name__ == "__main__":

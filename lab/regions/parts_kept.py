@@ -8,16 +8,13 @@ the best a rule dropping shallow regions could do (lab/regions/fit_clip.md).
 Usage: /usr/bin/python3 lab/regions/parts_kept.py   (build/shellcontract; lists in /tmp/parts1pc)
 """
 import os
-import subprocess
 import sys
 import tempfile
-
-import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
 from sink import per_region_sink, run  # noqa: E402
-from sink_fix import ious  # noqa: E402
+from sink_fix import ious, point1_summary, sink_rows  # noqa: E402
 
 MESHES = ["bear", "hand", "elk", "kitten", "bumpy_sphere"]
 
@@ -46,15 +43,9 @@ def main():
                 point1.append((name, iou))
         regions, _, _ = common.auto_regions(exe, common.mesh_path("eight"), tmp, ["--method", "parts"])
     point1.append(("eight", ious("eight", regions)))
-    every = [x for _, iou in point1 for x in iou]
-    print(f"point 1: mean IoU {np.mean(every):.3f}, parts >= 0.5: {sum(x >= 0.5 for x in every)} of "
-          f"{len(every)}", [(n, round(float(np.mean(i)), 2)) for n, i in point1], flush=True)
-    out = subprocess.run([sys.executable, os.path.join(common.ROOT, "lab", "regions", "sink.py"), "--build",
-                          os.path.join(common.ROOT, "build"), "--out", os.path.join(keep, "sink.md"), "--title",
-                          "parts kept"] + [f"--face-list={m}={f}" for m, f in lists.items()],
-                         capture_output=True, text=True).stdout
-    print("\n".join(dict.fromkeys(line for line in out.splitlines()
-                                  if line.startswith("| ") and not line.startswith("| mesh"))))
+    print(point1_summary(point1), flush=True)
+    print("\n".join(sink_rows(os.path.join(common.ROOT, "build"), lists, os.path.join(keep, "sink.md"),
+                               "parts kept")))
 
 
 if __name__ == "__main__":

@@ -60,6 +60,24 @@ def ious(name, regions):
     return out
 
 
+def point1_summary(point1):
+    """labels.py's point-1 summary of [(mesh, per-part IoUs)]: mean IoU, parts >= 0.5, per mesh."""
+    every = [x for _, iou in point1 for x in iou]
+    return (f"point 1: mean IoU {np.mean(every):.3f}, parts >= 0.5: {sum(x >= 0.5 for x in every)} of "
+            f"{len(every)} (" + ", ".join(f"{n} {np.mean(i):.2f}" for n, i in point1) + ")")
+
+
+def sink_rows(build, lists, out, title):
+    """sink.py's table rows for the face lists {mesh: file} (it writes its page to `out`). sink.py
+    prints each row twice (as it goes, then the section): each is returned once."""
+    args = [f"--face-list={m}={fl}" for m, fl in lists.items()]
+    text = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "sink.py"),
+                           "--build", build, "--out", out, "--title", title] + args,
+                          capture_output=True, text=True).stdout
+    return list(dict.fromkeys(line for line in text.splitlines()
+                              if line.startswith("| ") and not line.startswith("| mesh")))
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
@@ -98,15 +116,8 @@ def main():
             for rule in RULES:
                 point1[rule].append((name, ious(name, regions)))
     for rule in RULES:
-        every = [x for _, iou in point1[rule] for x in iou]
-        print(f"\n{rule}: point 1: mean IoU {np.mean(every):.2f}, parts >= 0.5: {sum(x >= 0.5 for x in every)} "
-              f"of {len(every)} (" + ", ".join(f"{n} {np.mean(i):.2f}" for n, i in point1[rule]) + ")")
-        args = [f"--face-list={m}={fl}" for m, fl in lists[rule].items()]
-        out = subprocess.run([sys.executable, os.path.join(os.path.dirname(os.path.abspath(__file__)), "sink.py"),
-                              "--build", a.build, "--out", os.path.join(keep, "sink.md"), "--title", rule] + args,
-                             capture_output=True, text=True).stdout
-        rows = [line for line in out.splitlines() if line.startswith("| ") and not line.startswith("| mesh")]
-        print("\n".join(dict.fromkeys(rows)))  # sink.py prints each row twice (as it goes, then the section)
+        print(f"\n{rule}: " + point1_summary(point1[rule]))
+        print("\n".join(sink_rows(a.build, lists[rule], os.path.join(keep, "sink.md"), rule)))
 
 
 if __name__ == "__main__":
