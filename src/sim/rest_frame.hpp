@@ -16,12 +16,13 @@ inline constexpr double TURN_RANK_TOLERANCE = 1e-9;
 
 /// Moves x (the step's end positions) so that the outside vertices (`outside`, indices into x)
 /// make no rigid step from `prev` (the step's start): first by minus their mass-weighted mean
-/// displacement, then by minus the best infinitesimal rotation of their displacement about their
-/// mass centre c at `prev` (omega with I omega = sum_k m_k r_k x d_k, r_k = prev_k - c, I the
-/// inertia of the r_k: the linearized Kabsch fit), applied to every vertex as x_i -= omega x
-/// (prev_i - c). Afterwards sum_k m_k d_k = 0 and sum_k m_k r_k x d_k = 0 (to rounding: the
-/// correction's own sum is I omega). Masses are 1 / inv_mass; vertices with inv_mass <= 0 are left
-/// out of the sums. docs/math/region-mirror.md, section 3.
+/// displacement, then by the affine map x_i -= omega x (x_i - c), c their mass centre at `prev`,
+/// with omega such that their net turn about c, sum_k m_k r_k x d_k (r_k = prev_k - c, d_k = x_k -
+/// prev_k), is zero afterwards (to first order omega is the linearized Kabsch rotation of the step,
+/// I omega = sum_k m_k r_k x d_k with I the inertia of the r_k). Afterwards sum_k m_k d_k = 0 and
+/// sum_k m_k r_k x d_k = 0 to rounding. Being affine, the map keeps a configuration free of
+/// intersections. Masses are 1 / inv_mass; vertices with inv_mass <= 0 are left out of the sums.
+/// docs/math/region-mirror.md, section 3.
 void follow_rest_frame(Positions& x, const Positions& prev, const Eigen::VectorXd& inv_mass,
                        const std::vector<int>& outside);
 
