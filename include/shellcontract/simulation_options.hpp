@@ -343,6 +343,10 @@ inline constexpr double DEFAULT_AIR_BALANCE = 0.5;
 /// shrinking volume quasi-statically, short enough to hold the target for most of a default run.
 inline constexpr int DEFAULT_TARGET_RAMP_FRAMES = 100;
 
+/// Smallest time step: XPBD divides by dt^2, which underflows below about 1e-154 (a run with
+/// --dt 1e-155 turned every position into NaN at its first step).
+inline constexpr double MIN_DT = 1e-100;
+
 /// Largest V/V0 a key of a keyframed target volume may ask: re-inflation to the rest volume and
 /// beyond it up to twice the volume; a larger ratio is taken for a typo (50 for 0.5).
 inline constexpr double MAX_KEYED_VOLUME_RATIO = 2.0;

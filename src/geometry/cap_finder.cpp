@@ -92,6 +92,19 @@ void block(const MeshArrays& m, const Cap& cap, std::vector<char>& blocked) {
     for (int v : m.tri[static_cast<std::size_t>(f)]) blocked[static_cast<std::size_t>(v)] = 1;
 }
 
+/// A --region-at point farther than this many bounding-box diagonals from the box's centre is
+/// taken at this distance, in its direction: its nearest surface point moves by about 1 /
+/// REGION_POINT_FAR of the diagonal, and no distance overflows (1e300 used to crash the seed).
+constexpr double REGION_POINT_FAR = 1e6;
+
+/// p, or the point at REGION_POINT_FAR diagonals from the centre in p's direction if p is farther.
+Vec3 pulled_in(const Vec3& p, const Vec3& centre, double diagonal) {
+  Vec3 d = p - centre;
+  if (!d.allFinite()) d = 0.5 * p - 0.5 * centre;  // both near the largest double: halved, finite
+  const double n = d.stableNorm(), limit = REGION_POINT_FAR * diagonal;
+  return n > limit ? Vec3(centre + d * (limit / n)) : p;
+}
+
 /// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
 Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
@@ -441,17 +454,21 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   CapGrower grower(m, gv, c, options);
   std::vector<char> blocked(m.nv, 0);
   std::vector<std::pair<Cap, RegionSummary>> kept;
+  const Vec3 lo = x.colwise().minCoeff().transpose(), hi = x.colwise().maxCoeff().transpose();
+  const Vec3 centre = 0.5 * lo + 0.5 * hi;
+  const double diagonal = (hi - lo).stableNorm();
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const Vec3& p = points[i];
-    if (!p.allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
-    // Nearest surface point (brute force: a handful of points), then its nearest corner.
+    if (!points[i].allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
+    const Vec3 p = pulled_in(points[i], centre, diagonal);
+    // Nearest surface point (brute force: a handful of points), then its nearest corner. The
+    // first face always sets a seed, whatever its distance.
     double best = std::numeric_limits<double>::infinity();
     int seed = -1;
     for (std::size_t f = 0; f < m.nf; ++f) {
       const auto& t = m.tri[f];
       const Vec3 q = closest_on_triangle(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])));
-      const double d = (q - p).squaredNorm();
-      if (d < best) {
+      const double d = (q - p).stableNorm();
+      if (seed < 0 || d < best) {
         best = d;
         seed = t[0];
         for (int v : t)

@@ -13,9 +13,15 @@
 namespace shellcontract {
 
 Vec2 fiber_in_rest_frame(const Vec3& d, const Vec3& T1, const Vec3& T2, bool& fallback) {
-  const Vec2 a(d.dot(T1), d.dot(T2));
+  // d scaled by a power of two (exact) to a largest component in [0.5, 1): the norms below can
+  // then neither overflow (--fiber 1e200,0,0 gave an infinite length and no fibre) nor underflow
+  // (1e-200), and the direction keeps its bits.
+  int e = 0;
+  std::frexp(d.cwiseAbs().maxCoeff(), &e);
+  const Vec3 u = d.allFinite() ? Vec3(std::ldexp(d.x(), -e), std::ldexp(d.y(), -e), std::ldexp(d.z(), -e)) : d;
+  const Vec2 a(u.dot(T1), u.dot(T2));
   const double len = a.norm();
-  fallback = !(len >= 1e-3 * d.norm()) || !(len > 0.0);
+  fallback = !(len >= 1e-3 * u.norm()) || !(len > 0.0);
   return fallback ? Vec2(1.0, 0.0) : Vec2(a / len);
 }
 

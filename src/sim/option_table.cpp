@@ -169,7 +169,7 @@ OptionSpec fiber_option() {
     char c1 = 0, c2 = 0;
     std::istringstream in(v);
     if (!(in >> d.x() >> c1 >> d.y() >> c2 >> d.z()) || c1 != ',' || c2 != ',' ||
-        !(in >> std::ws).eof() || !d.allFinite() || d.norm() == 0.0)
+        !(in >> std::ws).eof() || !d.allFinite() || d.cwiseAbs().maxCoeff() == 0.0)
       bad("fiber", v, "'centre' or a nonzero finite direction X,Y,Z");
     a.fiber_mode = FiberMode::User;
     a.user_direction = d;
@@ -220,7 +220,7 @@ std::vector<OptionSpec> build_table() {
                                             {"paper", PressureModel::Paper}},
                      [](R& r) -> PressureModel& { return r.sim.pressure_model; }));
   // ---- solver
-  t.push_back(number("dt", 0, "DT", "time step (normalized units)", between(0.0, 1.0, true, false),
+  t.push_back(number("dt", 0, "DT", "time step (normalized units)", between(MIN_DT, 1.0, false, false),
                      [](R& r) -> double& { return r.sim.dt; }));
   t.push_back(integer("iterations", 0, "N", "Gauss-Seidel sweeps per step (paper: 5)", 0,
                       MAX_ITERATIONS, [](R& r) -> int& { return r.sim.solver.iterations; }));

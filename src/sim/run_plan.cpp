@@ -3,6 +3,7 @@
 // "f:region" map.
 #include "sim/run_plan.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -20,12 +21,26 @@
 namespace shellcontract {
 namespace {
 
+/// The largest stiffness (mu, lambda, C10, C01, mu_A, k_B) a run accepts, in normalized units
+/// (the mesh scaled to a unit diagonal, where the default shell has mu about 0.77): far beyond
+/// any material, and far enough below the largest double that the energies and the XPBD
+/// compliances, which square and multiply stiffnesses, stay finite. Above about 1e155 a run
+/// went on as if the membrane had no stiffness at all.
+constexpr double MAX_STIFFNESS = 1e100;
+
 /// Every range and every rule between the simulation options, in one list (the option table
 /// refuses a bad value of one option as it is parsed; this also holds a caller that writes the
 /// fields).
 void check_sim_options_impl(const SimOptions& o) {
   auto fail = [](const std::string& what) { throw UsageError(what); };
-  if (!(o.dt > 0.0) || !std::isfinite(o.dt)) fail("`dt` must be positive and finite");
+  const MaterialParams& m = o.material_params;
+  for (const auto& [name, value] : {std::pair<const char*, double>{"mu", m.mu}, {"lambda", m.lambda},
+                                    {"c10", m.c10}, {"c01", m.c01}, {"mu_a", m.mu_aniso},
+                                    {"k_b", o.solver.k_bending}})
+    if (std::abs(value) > MAX_STIFFNESS)
+      fail(std::string("`") + name + "` must be at most " + shortest_text(MAX_STIFFNESS));
+  if (!(o.dt >= MIN_DT) || !std::isfinite(o.dt))
+    fail("`dt` must be finite and at least " + shortest_text(MIN_DT));
   if (o.frames < 0) fail("`frames` must be >= 0");
   if (o.solver.iterations < 0) fail("`iterations` must be >= 0");
   if (o.solver.threads < 0) fail("`threads` must be >= 0");
@@ -111,6 +126,13 @@ void resolve_run_options(RunOptions& r) {
     throw UsageError("`young` needs `thickness` (and the other way round)");
   if (r.young) {
     const MaterialParams lame = membrane_lame_from_young(*r.young, r.poisson, *r.thickness);
+    const double bending = dihedral_k_bending_from_young(*r.young, r.poisson, *r.thickness);
+    if (!(std::max({lame.mu, lame.lambda, bending}) <= MAX_STIFFNESS))
+      throw UsageError("`young` " + shortest_text(*r.young) + " and `thickness` " +
+                       shortest_text(*r.thickness) + " give the stiffnesses mu " +
+                       shortest_text(lame.mu) + ", lambda " + shortest_text(lame.lambda) +
+                       " and k_B " + shortest_text(bending) + "; each must be at most " +
+                       shortest_text(MAX_STIFFNESS));
     r.sim.material_params.mu = lame.mu;
     r.sim.material_params.lambda = lame.lambda;
     // Under xpbd k_B is a stiffness, so the material gives it too: the plate's bending rigidity

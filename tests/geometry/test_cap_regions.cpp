@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <random>
@@ -247,6 +248,31 @@ TEST(CapRegions, RegionAtPicksTheBumpUnderThePoint) {
     for (int f : truth[1 - p]) t[static_cast<std::size_t>(f)] = 1;
     EXPECT_GE(face_set_iou(a, t), 0.9) << "point " << p;
   }
+}
+
+TEST(CapRegions, RegionAtFarPointsPickTheBumpInTheirDirection) {
+  // A point far out along a bump's direction has that bump's top as its nearest surface point.
+  // Points at 1e155 and beyond overflowed every squared distance, and the seed search read
+  // blocked[-1] (a crash); now they are taken at a million diagonals in the same direction.
+  const std::vector<std::pair<Vec3, double>> bumps = {{Vec3(0, 0, 1), 0.55}, {Vec3(1, 0, -0.3), 0.45}};
+  test::TriMesh m;
+  const std::vector<std::vector<int>> truth = bumpy_sphere(m, bumps);
+  const Mesh mesh = test::to_surface_mesh(m);
+  const auto nf = static_cast<std::size_t>(m.faces.rows());
+  const double largest = std::numeric_limits<double>::max();
+  for (double far : {1e3, 1e155, 1e300, largest}) {
+    const std::vector<Vec3> points = {far * Vec3(1, 0, -0.3).normalized(), Vec3(0.0, 0.0, far)};
+    const std::vector<int> ids = select_regions_at(mesh, m.x, points, RegionOptions{});
+    for (std::size_t p = 0; p < 2; ++p) {
+      std::vector<char> a(nf, 0), t(nf, 0);
+      for (std::size_t f = 0; f < nf; ++f) a[f] = ids[f] == static_cast<int>(p);
+      for (int f : truth[1 - p]) t[static_cast<std::size_t>(f)] = 1;
+      EXPECT_GE(face_set_iou(a, t), 0.9) << "point " << p << " at " << far;
+    }
+  }
+  // Opposite extremes on every axis (p - centre overflows before it is halved): a region, no crash.
+  const std::vector<int> ids = select_regions_at(mesh, m.x, {Vec3(largest, -largest, largest)}, RegionOptions{});
+  EXPECT_GT(std::count(ids.begin(), ids.end(), 0), 0);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mesh/properties.hpp"
+#include "sim/anisotropy.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/regions.hpp"
 #include "sim/simulator.hpp"
@@ -69,6 +70,30 @@ TEST(AnisotropyMaps, BadFaceListsAreRefused) {
   EXPECT_THROW(face_ids_from_regions({{static_cast<int>(mesh.number_of_faces())}},
                                      mesh.number_of_faces()),
                UsageError);
+}
+
+TEST(AnisotropyMaps, FibreDirectionDoesNotDependOnTheLengthOfTheGivenDirection) {
+  // --fiber X,Y,Z is a direction: any nonzero finite length gives the same fibre, bit for bit.
+  // 1e200 made the in-plane length infinite (no fibre: a silent isotropic run) and 1e-200 made
+  // it 0 (the fallback).
+  const Vec3 T1 = Vec3(1, 2, 2) / 3.0, T2 = Vec3(2, -2, 1) / 3.0;  // orthonormal
+  const Vec3 d(0.3, -1.1, 0.7);
+  bool fallback = true;
+  const Vec2 want = fiber_in_rest_frame(d, T1, T2, fallback);
+  ASSERT_FALSE(fallback);
+  EXPECT_NEAR(want.norm(), 1.0, 1e-15);
+  for (double s : {1e-300, 1e-200, 1e-20, 0.5, 3.0, 1e20, 1e200, 1e300}) {
+    const Vec2 got = fiber_in_rest_frame(s * d, T1, T2, fallback);
+    EXPECT_FALSE(fallback) << "scale " << s;
+    EXPECT_NEAR((got - want).norm(), 0.0, 1e-15) << "scale " << s;
+  }
+  // A power of two scales exactly: the same bits.
+  EXPECT_EQ(fiber_in_rest_frame(std::ldexp(1.0, 600) * d, T1, T2, fallback), want);
+  // Normal to the face: the fallback, at any length.
+  for (double s : {1e-200, 1.0, 1e200}) {
+    EXPECT_EQ(fiber_in_rest_frame(s * T1.cross(T2), T1, T2, fallback), Vec2(1.0, 0.0));
+    EXPECT_TRUE(fallback) << "scale " << s;
+  }
 }
 
 }  // namespace

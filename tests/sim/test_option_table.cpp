@@ -87,6 +87,7 @@ TEST(OptionTable, RangesFromTheIssue) {
                                                                     {"target-volume", "-0.5"},
                                                                     {"pressure", "nan"},
                                                                     {"dt", "0"},
+                                                                    {"dt", "1e-155"},  // 1 / dt^2 overflowed: NaN
                                                                     {"damping", "1"}};
   for (const auto& [name, value] : refused) {
     RunOptions r;

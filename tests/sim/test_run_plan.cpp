@@ -57,6 +57,45 @@ TEST(RunPlan, ShellMaterialGivesMuLambdaAndKbInClosedForm) {
   EXPECT_EQ(plan_run(sphere(1), given).sim.options.solver.k_bending, 0.02);
 }
 
+TEST(RunPlan, StiffnessesThatWouldOverflowAreRefusedNamingWhatSetThem) {
+  // A stiffness of 1e200 ran as if the membrane had none (its squares overflow in the energies
+  // and compliances), and --thickness 1e102 was refused as "--k-b must be >= 0", an option not
+  // given. Every stiffness is now at most MAX_STIFFNESS (1e100), and the shell material's are
+  // refused under its own options.
+  for (const char* name : {"mu", "lambda", "c10", "c01", "mu-a", "k-b"}) {
+    RunOptions huge;
+    set_run_option(huge, name, "1e200");
+    const std::string m = spell_options(what_of([&] { plan_run(sphere(1), huge); }), OptionSpelling::Cli);
+    EXPECT_NE(m.find(std::string("--") + name + " must be at most 1e+100"), std::string::npos) << m;
+    RunOptions fine;
+    set_run_option(fine, name, "1e90");
+    EXPECT_NO_THROW(plan_run(sphere(1), fine)) << name;
+  }
+  for (const auto& [name, value] : {std::pair<const char*, const char*>{"young", "1e200"}, {"thickness", "1e102"}}) {
+    RunOptions shell;
+    set_run_option(shell, name, value);
+    const std::string m = spell_options(what_of([&] { plan_run(sphere(1), shell); }), OptionSpelling::Cli);
+    EXPECT_NE(m.find("--young"), std::string::npos) << m;
+    EXPECT_NE(m.find("--thickness"), std::string::npos) << m;
+    EXPECT_NE(m.find("at most 1e+100"), std::string::npos) << m;
+  }
+}
+
+TEST(RunPlan, TimeStepsWhoseSquareUnderflowsAreRefused) {
+  // XPBD divides by dt^2: --dt 1e-155 gave NaN positions at the first step. The smallest step
+  // MIN_DT keeps 1 / dt^2 finite and still runs.
+  SimOptions tiny;
+  tiny.dt = 1e-155;
+  EXPECT_NE(what_of([&] { plan_simulation(sphere(1), tiny); }).find("`dt` must be finite and at least 1e-100"),
+            std::string::npos);
+  RunOptions smallest;
+  set_run_option(smallest, "dt", "1e-100");
+  set_run_option(smallest, "frames", "2");
+  const RunResult r = run_contraction(sphere(1), smallest);
+  EXPECT_EQ(r.status, RunStatus::Completed) << r.message;
+  EXPECT_TRUE(std::isfinite(r.final_volume_ratio));
+}
+
 TEST(RunPlan, RegionFileBecomesTheRegionMapOfTheNormalizedMesh) {
   const Mesh mesh = sphere(2);
   const std::string path = ::testing::TempDir() + "run_plan_regions.txt";
