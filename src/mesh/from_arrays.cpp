@@ -79,9 +79,10 @@ void check_duplicates_and_isolated(const std::vector<Tri>& tris, std::size_t nv,
 }
 
 
-/// Flips the inside-out components (negative signed volume); returns the components' count.
-std::size_t orient_components(std::vector<Tri>& tris, const std::vector<Point3>& points, bool reorient,
-                              std::vector<std::string>& warnings, bool& reoriented) {
+/// Flips the inside-out components (negative signed volume of `points`, a unit-diagonal copy of
+/// the input scaled by `scale`); returns the components' count.
+std::size_t orient_components(std::vector<Tri>& tris, const std::vector<Point3>& points, double scale,
+                              bool reorient, std::vector<std::string>& warnings, bool& reoriented) {
   std::vector<std::size_t> parent(points.size());
   std::iota(parent.begin(), parent.end(), 0);
   for (const Tri& t : tris) {
@@ -119,7 +120,8 @@ std::size_t orient_components(std::vector<Tri>& tris, const std::vector<Point3>&
       }
     std::ostringstream w;
     w << "component " << c << " (" << count << " faces, starting at face " << first
-      << ") was inside-out (signed volume " << six_volume[c] / 6.0 << "); its faces were flipped";
+      << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
+      << "); its faces were flipped";
     warnings.push_back(w.str());
   }
   return n;
@@ -170,21 +172,32 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   by_index.origin = &identity;
   soup::check_edges(name, tris, nv, by_index);
   soup::check_vertex_fans(name, tris, nv, by_index);
-  std::vector<std::string> warnings;
-  bool reoriented = false;
-  const std::size_t components = orient_components(tris, points, reorient, warnings, reoriented);
-  std::vector<std::size_t> zero_area = zero_area_faces(tris, points);
-  if (!zero_area.empty())
-    warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + soup::list_indices(zero_area));
-
-  // What the simulator needs beyond a closed manifold, decided and measured as read_input_mesh
-  // does (a usable bounding box; a positive volume at a unit diagonal, scaled back).
+  // Orientation and zero areas on coordinates at a unit diagonal, as read_input_mesh decides
+  // them: in input units a mesh at 1e160 overflowed the signed volume (its sign lost) and one at
+  // 1e-160 underflowed it. A zero or non-finite diagonal is refused below, after these checks.
   Eigen::Vector3d lo = to_vec(points[0]), hi = lo;
   for (const Point3& p : points) {
     lo = lo.cwiseMin(to_vec(p));
     hi = hi.cwiseMax(to_vec(p));
   }
-  const double diagonal = (hi - lo).norm();
+  const double diagonal = bounding_diagonal(lo, hi);
+  const double scale = std::isfinite(diagonal) && diagonal > 0.0 ? diagonal : 1.0;
+  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  std::vector<Point3> unit;
+  unit.reserve(nv);
+  for (const Point3& p : points) {
+    const Eigen::Vector3d q = (to_vec(p) - centre) / scale;
+    unit.emplace_back(q.x(), q.y(), q.z());
+  }
+  std::vector<std::string> warnings;
+  bool reoriented = false;
+  const std::size_t components = orient_components(tris, unit, scale, reorient, warnings, reoriented);
+  std::vector<std::size_t> zero_area = zero_area_faces(tris, unit);
+  if (!zero_area.empty())
+    warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + soup::list_indices(zero_area));
+
+  // What the simulator needs beyond a closed manifold, decided and measured as read_input_mesh
+  // does (a usable bounding box; a positive volume at a unit diagonal, scaled back).
   if (!(std::isfinite(diagonal) && diagonal > 0.0))
     fail(name, "degenerate mesh", diagonal == 0.0 ? "zero bounding-box diagonal"
                                                   : "non-finite bounding-box diagonal: the coordinates span more than a double holds");

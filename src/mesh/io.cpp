@@ -214,7 +214,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     hi = hi.cwiseMax(to_vec(p));
   }
   const Vec3 centre = 0.5 * (lo + hi);
-  const double diagonal = (hi - lo).norm();
+  const double diagonal = bounding_diagonal(lo, hi);
   const bool usable_diagonal = std::isfinite(diagonal) && diagonal > 0.0;
   const double scale = usable_diagonal ? diagonal : 1.0;
   std::vector<Point3> unit;

@@ -12,6 +12,11 @@ struct Normalization {
   double scale = 1.0;
 };
 
+/// |hi - lo|, a bounding box's diagonal: Eigen's norm() where its squares are exact enough, and
+/// stableNorm() where they overflow or fall into the subnormals (a mesh at 1e160 or 1e-300 was
+/// refused for a span it has). The same bits as norm() for every other box.
+double bounding_diagonal(const Vec3& lo, const Vec3& hi);
+
 /// @throws InputError if the bounding box has zero diagonal or non-finite coordinates
 Normalization compute_normalization(const Positions& x);
 

@@ -71,6 +71,25 @@ TEST(FromArrays, SameMeshAndReportAsTheFileReader) {
   }
 }
 
+TEST(FromArrays, AMeshAtAnyFiniteScaleIsUsable) {
+  // The bounding box's diagonal at 1e160 overflowed in norm() (refused: "the coordinates span
+  // more than a double holds") and at 1e-300 underflowed to 0 (refused: "zero bounding-box
+  // diagonal"). Scaled by 2^k, a usable mesh stays usable; where its volume is a double, the
+  // report's volume scales by 2^3k.
+  const Arrays a = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off"));
+  InputReport plain;
+  from(a, &plain);
+  for (int k : {-1000, -600, -300, 300, 600, 1000}) {
+    Arrays scaled = a;
+    for (double& c : scaled.v) c = std::ldexp(c, k);
+    InputReport report;
+    EXPECT_NO_THROW(from(scaled, &report)) << "2^" << k;
+    if (std::abs(3 * k) < 1000) {
+      EXPECT_NEAR(report.volume / std::ldexp(plain.volume, 3 * k), 1.0, 1e-12) << "2^" << k;
+    }
+  }
+}
+
 TEST(FromArrays, Int32FacesGiveTheSameMesh) {
   const Arrays a = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off"));
   const std::vector<std::int32_t> f32(a.f.begin(), a.f.end());
