@@ -16,12 +16,14 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "geometry/curvature.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
 #include "shellcontract/regions.hpp"
 
 namespace shellcontract::cli {
@@ -152,10 +154,15 @@ int command_regions(int argc, char** argv) {
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUT.ply");
     if (lower_extension(output) != ".ply") throw UsageError("the output must be a .ply file (got '" + output + "')");
-    for (const double t : {options.fit_tolerance, options.max_concave_fraction, options.min_cap_angle_deg,
-                           options.min_curvature_contrast, options.max_compactness, options.min_area_fraction,
-                           options.max_area_fraction})
-      if (!std::isfinite(t) || t < 0.0) throw UsageError("every threshold must be a finite number >= 0");
+    for (const auto& [name, t] : {std::pair<const char*, double>{"--fit-tolerance", options.fit_tolerance},
+                                  {"--max-concave-fraction", options.max_concave_fraction},
+                                  {"--min-cap-angle", options.min_cap_angle_deg},
+                                  {"--contrast", options.min_curvature_contrast},
+                                  {"--max-compactness", options.max_compactness},
+                                  {"--min-area-fraction", options.min_area_fraction},
+                                  {"--max-area-fraction", options.max_area_fraction}})
+      if (!std::isfinite(t) || t < 0.0)
+        throw UsageError(std::string(name) + " must be a finite number >= 0 (got " + shortest_text(t) + ")");
     options.method = parse_method(method);
     check_region_options(options);
     if (options.method != RegionMethod::Caps && !points.empty())

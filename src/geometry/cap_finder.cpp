@@ -92,19 +92,6 @@ void block(const MeshArrays& m, const Cap& cap, std::vector<char>& blocked) {
     for (int v : m.tri[static_cast<std::size_t>(f)]) blocked[static_cast<std::size_t>(v)] = 1;
 }
 
-/// A --region-at point farther than this many bounding-box diagonals from the box's centre is
-/// taken at this distance, in its direction: its nearest surface point moves by about 1 /
-/// REGION_POINT_FAR of the diagonal, and no distance overflows (1e300 used to crash the seed).
-constexpr double REGION_POINT_FAR = 1e6;
-
-/// p, or the point at REGION_POINT_FAR diagonals from the centre in p's direction if p is farther.
-Vec3 pulled_in(const Vec3& p, const Vec3& centre, double diagonal) {
-  Vec3 d = p - centre;
-  if (!d.allFinite()) d = 0.5 * p - 0.5 * centre;  // both near the largest double: halved, finite
-  const double n = d.stableNorm(), limit = REGION_POINT_FAR * diagonal;
-  return n > limit ? Vec3(centre + d * (limit / n)) : p;
-}
-
 /// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
 Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;
@@ -225,6 +212,11 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                                   RegionReport* report, CurvatureField* curvature) {
   check_region_options(options);
+  if (const int k = finder_exponent(x); k != 0) {
+    const std::vector<int> ids = select_spherical_regions(mesh, scaled_by_power_of_two(x, k), options, report, curvature);
+    unscale_finder_results(k, report, curvature);
+    return ids;
+  }
   if (options.method == RegionMethod::Tips) return detail::select_tip_regions(mesh, x, options, report, curvature);
   if (options.method == RegionMethod::Parts) return detail::select_part_regions(mesh, x, options, report, curvature);
   StageTimer timer;
@@ -442,6 +434,12 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
                                    const RegionOptions& options, RegionReport* report) {
   check_region_options(options);
+  if (const int k = detail::finder_exponent(x); k != 0) {
+    const std::vector<int> ids = select_regions_at(mesh, detail::scaled_by_power_of_two(x, k),
+                                                   detail::scaled_by_power_of_two(points, k), options, report);
+    detail::unscale_finder_results(k, report, nullptr);
+    return ids;
+  }
   const CurvatureField c = compute_curvature(mesh, x);
   const MeshArrays m = mesh_arrays(mesh, x);
   if (m.nf == 0) throw UsageError("select_regions_at: the mesh has no face");
@@ -459,7 +457,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   const double diagonal = (hi - lo).stableNorm();
   for (std::size_t i = 0; i < points.size(); ++i) {
     if (!points[i].allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
-    const Vec3 p = pulled_in(points[i], centre, diagonal);
+    const Vec3 p = detail::pulled_in(points[i], centre, diagonal);
     // Nearest surface point (brute force: a handful of points), then its nearest corner. The
     // first face always sets a seed, whatever its distance.
     double best = std::numeric_limits<double>::infinity();

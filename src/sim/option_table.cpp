@@ -106,7 +106,9 @@ OptionSpec region_at_option() {
       std::istringstream in(text);
       if (!(in >> p.x() >> c1 >> p.y() >> c2 >> p.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
           !p.allFinite())
-        bad("region-at", text, "a point X,Y,Z of three finite numbers");
+        bad("region-at", text,
+            "a point X,Y,Z of three finite numbers" +
+                std::string(text.size() < v.size() ? " (in '" + v + "', points are separated by ';')" : ""));
       points.push_back(p);
       begin = end + 1;
     } while (begin <= v.size());

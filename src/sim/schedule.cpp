@@ -125,7 +125,8 @@ Schedule parse_schedule(const std::string& option, const std::string& text, cons
     if (frame_text.empty() || fr.ec != std::errc() ||
         fr.ptr != frame_text.data() + frame_text.size() || frame < 0 ||
         frame > std::numeric_limits<int>::max())
-      bad_key(option, index, key, "the frame '" + frame_text + "' is not an integer >= 0");
+      bad_key(option, index, key, "the frame '" + frame_text + "' is not an integer in [0, " +
+                                      std::to_string(std::numeric_limits<int>::max()) + "]");
     const char* vb = value_text.c_str();
     char* ve = nullptr;
     const double value = std::strtod(vb, &ve);

@@ -250,6 +250,35 @@ TEST(CapRegions, RegionAtPicksTheBumpUnderThePoint) {
   }
 }
 
+TEST(CapRegions, AMeshAtAnyScaleHasTheSameRegions) {
+  // Scaled by 2^k the regions are the same faces and their spheres scale by 2^k, at any k a
+  // double holds. Beyond about 1e77 the curvatures overflowed (no region at 1e100) and below
+  // about 1e-77 they underflowed (a singular smoothing system for --region-at at 1e-80).
+  const std::vector<std::pair<Vec3, double>> bumps = {{Vec3(0, 0, 1), 0.55}, {Vec3(1, 0, -0.3), 0.45}};
+  test::TriMesh m;
+  bumpy_sphere(m, bumps);
+  const Mesh mesh = test::to_surface_mesh(m);
+  RegionReport want;
+  const std::vector<int> ids = select_spherical_regions(mesh, m.x, RegionOptions{}, &want);
+  ASSERT_EQ(want.regions.size(), 2u);
+  const std::vector<Vec3> at = {Vec3(0.0, 0.0, 1.5)};
+  const std::vector<int> ids_at = select_regions_at(mesh, m.x, at, RegionOptions{});
+  for (int k : {-900, -300, 300, 900}) {
+    Positions x = m.x;
+    for (double& c : x.reshaped()) c = std::ldexp(c, k);
+    RegionReport got;
+    EXPECT_EQ(select_spherical_regions(mesh, x, RegionOptions{}, &got), ids) << "2^" << k;
+    ASSERT_EQ(got.regions.size(), want.regions.size()) << "2^" << k;
+    for (std::size_t r = 0; r < want.regions.size(); ++r) {
+      EXPECT_EQ(got.regions[r].radius, std::ldexp(want.regions[r].radius, k)) << "2^" << k;
+      EXPECT_EQ(got.regions[r].area_fraction, want.regions[r].area_fraction) << "2^" << k;
+    }
+    EXPECT_EQ(got.reference_mean_curvature, std::ldexp(want.reference_mean_curvature, -k)) << "2^" << k;
+    const std::vector<Vec3> scaled_at = {std::ldexp(1.5, k) * Vec3::UnitZ()};
+    EXPECT_EQ(select_regions_at(mesh, x, scaled_at, RegionOptions{}), ids_at) << "2^" << k;
+  }
+}
+
 TEST(CapRegions, RegionAtFarPointsPickTheBumpInTheirDirection) {
   // A point far out along a bump's direction has that bump's top as its nearest surface point.
   // Points at 1e155 and beyond overflowed every squared distance, and the seed search read

@@ -95,6 +95,19 @@ TEST(OptionTable, RangesFromTheIssue) {
   }
 }
 
+TEST(OptionTable, RegionAtNamesTheWholeValueAndItsSeparator) {
+  // "0;0;1" is read as three points; the message quoted only the first, '0'.
+  RunOptions r;
+  try {
+    set_run_option(r, "region-at", "0;0;1");
+    ADD_FAILURE() << "accepted";
+  } catch (const UsageError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("'0;0;1'"), std::string::npos) << m;
+    EXPECT_NE(m.find("separated by ';'"), std::string::npos) << m;
+  }
+}
+
 TEST(OptionTable, DeltaTakesAutoAndANumberEndsIt) {
   RunOptions r;
   set_run_option(r, "delta", "3e-5");

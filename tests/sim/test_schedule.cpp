@@ -140,6 +140,8 @@ TEST(Schedule, BadKeysAreRefusedNamingTheKey) {
   expect("target-volume", "0:0.5, 60:0.4", {"key 1", "rest volume"});
   expect("target-volume", "1.5:0.5", {"key 1", "'1.5'"});
   expect("pressure", "0:4, 10:x", {"`pressure`", "key 2", "'x'"});
+  // A frame past the largest int names the limit (it said "not an integer >= 0").
+  expect("pressure", "0:4, 2147483648:1", {"key 2", "'2147483648'", "[0, 2147483647]"});
 }
 
 TEST(Schedule, OptionTableTakesANumberOrKeys) {
