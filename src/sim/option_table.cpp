@@ -92,7 +92,7 @@ OptionSpec region_at_option() {
   o.value_name = "X,Y,Z";
   o.repeatable = true;
   o.help =
-      "a region around the surface point nearest to X,Y,Z (repeatable): the spherical cap there, "
+      "a region around the surface point nearest to X,Y,Z (repeatable, or X,Y,Z;X,Y,Z): the spherical cap there, "
       "as `regions --region-at` picks it, in the input's coordinates; excludes --regions and "
       "--region-weights";
   o.set = [](RunOptions& r, const std::string& v) {
