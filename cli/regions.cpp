@@ -96,8 +96,14 @@ std::string region_table(const RegionReport& report) {
     const RegionSummary& s = report.regions[r];
     std::ostringstream centre;
     centre << std::setprecision(4) << std::showpos << s.centre.x() << ", " << s.centre.y() << ", " << s.centre.z();
-    t << std::setw(4) << r << "  " << std::left << std::setw(36) << centre.str() << std::right << std::setprecision(4)
-      << std::setw(10) << s.radius << std::setprecision(2) << std::setw(10) << 100.0 * s.area_fraction
+    // Fixed-point for the usual sizes; a mesh at 1e150 or 1e-150 gets exponents, not 150 digits.
+    std::ostringstream radius;
+    if (std::abs(s.radius) >= 1e-4 && std::abs(s.radius) < 1e6)
+      radius << std::fixed << std::setprecision(4) << s.radius;
+    else
+      radius << ' ' << std::setprecision(4) << s.radius;  // the centre may fill its column
+    t << std::setw(4) << r << "  " << std::left << std::setw(36) << centre.str() << std::right
+      << std::setw(10) << radius.str() << std::setprecision(2) << std::setw(10) << 100.0 * s.area_fraction
       << std::setw(8) << s.faces << std::setw(10) << s.compactness << std::setprecision(3) << std::setw(10)
       << s.residual << std::setprecision(0) << std::setw(6) << s.cap_angle_deg << '\n';
   }

@@ -434,9 +434,12 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
                                    const RegionOptions& options, RegionReport* report) {
   check_region_options(options);
+  // Far points are pulled in before any scaling: scaled by 2^-k, a point far from a tiny mesh
+  // would overflow.
+  const std::vector<Vec3> near = detail::pulled_in(points, x);
   if (const int k = detail::finder_exponent(x); k != 0) {
     const std::vector<int> ids = select_regions_at(mesh, detail::scaled_by_power_of_two(x, k),
-                                                   detail::scaled_by_power_of_two(points, k), options, report);
+                                                   detail::scaled_by_power_of_two(near, k), options, report);
     detail::unscale_finder_results(k, report, nullptr);
     return ids;
   }
@@ -452,12 +455,9 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   CapGrower grower(m, gv, c, options);
   std::vector<char> blocked(m.nv, 0);
   std::vector<std::pair<Cap, RegionSummary>> kept;
-  const Vec3 lo = x.colwise().minCoeff().transpose(), hi = x.colwise().maxCoeff().transpose();
-  const Vec3 centre = 0.5 * lo + 0.5 * hi;
-  const double diagonal = (hi - lo).stableNorm();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    if (!points[i].allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
-    const Vec3 p = detail::pulled_in(points[i], centre, diagonal);
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    const Vec3& p = near[i];
+    if (!p.allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
     // Nearest surface point (brute force: a handful of points), then its nearest corner. The
     // first face always sets a seed, whatever its distance.
     double best = std::numeric_limits<double>::infinity();
@@ -465,7 +465,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     for (std::size_t f = 0; f < m.nf; ++f) {
       const auto& t = m.tri[f];
       const Vec3 q = closest_on_triangle(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])));
-      const double d = (q - p).stableNorm();
+      const double d = (q - p).squaredNorm();  // finite: p is pulled in, x near a unit size
       if (seed < 0 || d < best) {
         best = d;
         seed = t[0];

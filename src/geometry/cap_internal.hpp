@@ -85,21 +85,18 @@ Vec3 cap_axis(const MeshArrays& m, const Positions& x, const std::vector<int>& f
 /// when nothing is left or the part has no axis (faces all around its centre).
 bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<int>& owner_face, int id);
 
-/// The finders run on positions scaled by 2^-k (exactly), k = finder_exponent(x): 0 for a
-/// bounding-box diagonal in [2^-64, 2^64], else the exponent that brings it to about 1. Their
-/// curvatures, areas and smoothing over- or underflow far beyond that (a mesh at 1e100 found no
-/// region, one at 1e-80 a singular smoothing system); a power of two changes no bit of a
-/// dimensionless quantity, so the regions are those of the mesh at a usual scale (finder_scale.cpp).
-int finder_exponent(const Positions& x);
-/// x * 2^-k, exactly (barring subnormals); points likewise.
-Positions scaled_by_power_of_two(const Positions& x, int k);
+/// The finders run on x * 2^-k, k = finder_exponent(x) (curvature.hpp), where nothing over- or
+/// underflows; a power of two changes no bit of a dimensionless quantity, so the regions are
+/// those of the mesh at a usual scale. The points of --region-at likewise.
 std::vector<Vec3> scaled_by_power_of_two(const std::vector<Vec3>& points, int k);
 /// The report's and the curvature field's lengths, areas and curvatures of positions scaled by
 /// 2^-k, back in the units of the unscaled positions. Either may be null.
 void unscale_finder_results(int k, RegionReport* report, CurvatureField* curvature);
 /// The --region-at point p, or the point at REGION_POINT_FAR bounding-box diagonals from the
-/// box's centre in p's direction if p is farther (finder_scale.cpp).
+/// box's centre in p's direction if p is farther (finder_scale.cpp); points: each of them
+/// (non-finite ones as they are), with x's box.
 Vec3 pulled_in(const Vec3& p, const Vec3& centre, double diagonal);
+std::vector<Vec3> pulled_in(const std::vector<Vec3>& points, const Positions& x);
 
 /// select_spherical_regions, handing out the curvature field it computed (when curvature is not
 /// null): mark_spherical_regions stores it for the PLY instead of computing it a second time.

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 
 #include "mesh/properties.hpp"
@@ -11,6 +12,11 @@
 
 namespace shellcontract {
 namespace {
+
+/// A largest side in [2^-FREE_SCALE_EXPONENT, 2^FREE_SCALE_EXPONENT] is left as it is (see
+/// detail::finder_exponent): squares and cubes of lengths are far from the double's range there,
+/// and every mesh of a usual scale keeps its bits.
+constexpr int FREE_SCALE_EXPONENT = 64;
 
 constexpr double PI = 3.14159265358979323846;
 
@@ -56,6 +62,38 @@ Mesh::Property_map<VertexIndex, double> attach_vertex_map(Mesh& mesh, const char
 
 }  // namespace
 
+namespace detail {
+
+int finder_exponent(const Positions& x) {
+  if (x.rows() == 0 || !x.allFinite()) return 0;
+  // The largest side, not the diagonal: it cannot overflow where the coordinates do not.
+  const double side = (x.colwise().maxCoeff() - x.colwise().minCoeff()).maxCoeff();
+  if (!(side > 0.0) || !std::isfinite(side)) return 0;
+  int e = 0;
+  std::frexp(side, &e);
+  return std::abs(e) <= FREE_SCALE_EXPONENT ? 0 : e;
+}
+
+Positions scaled_by_power_of_two(const Positions& x, int k) {
+  Positions out(x.rows(), 3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (Eigen::Index d = 0; d < 3; ++d) out(i, d) = std::ldexp(x(i, d), -k);
+  return out;
+}
+
+void unscale_curvature(int k, CurvatureField& c) {
+  const auto times = [](Eigen::VectorXd& v, int e) {
+    for (double& a : v) a = std::ldexp(a, e);
+  };
+  times(c.mixed_area, 2 * k);
+  times(c.gaussian, -2 * k);
+  times(c.mean, -k);
+  times(c.k_max, -k);
+  times(c.k_min, -k);
+}
+
+}  // namespace detail
+
 CurvatureField compute_curvature(const Mesh& mesh, const Positions& x) {
   if (mesh.has_garbage())
     throw UsageError("compute_curvature: the mesh has removed elements; call collect_garbage() first");
@@ -64,6 +102,11 @@ CurvatureField compute_curvature(const Mesh& mesh, const Positions& x) {
     throw UsageError("compute_curvature: positions have " + std::to_string(x.rows()) + " rows, mesh has " +
                      std::to_string(nv) + " vertices");
 
+  if (const int k = detail::finder_exponent(x); k != 0) {
+    CurvatureField c = compute_curvature(mesh, detail::scaled_by_power_of_two(x, k));
+    detail::unscale_curvature(k, c);
+    return c;
+  }
   CurvatureField c;
   c.mixed_area = Eigen::VectorXd::Zero(nv);
   Eigen::VectorXd angle_sum = Eigen::VectorXd::Zero(nv);

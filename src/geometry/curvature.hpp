@@ -51,13 +51,26 @@ struct CurvatureField {
 /// for every closed mesh. A vertex with zero mixed area gets H = K = 0.
 ///
 /// @param mesh triangle mesh (connectivity only is used).
-/// @param x    vertex positions, #V by 3, row i = vertex i, any length unit.
+/// @param x    vertex positions, #V by 3, row i = vertex i, any length unit (any scale a double
+///             holds: see detail::finder_exponent).
 /// @pre  mesh is a pure triangle mesh without garbage (!mesh.has_garbage()), x.rows() ==
 ///       number_of_vertices. Boundary vertices are allowed, but their deficit is 2 pi minus the
 ///       angle sum (not the geodesic-curvature form), so K there is not meaningful.
 /// @return the per-vertex field (units: those of x).
 /// @throws UsageError if the preconditions on size, garbage or face degree fail.
 CurvatureField compute_curvature(const Mesh& mesh, const Positions& x);
+
+namespace detail {
+/// 0 when the largest side of x's bounding box is in [2^-64, 2^64], else the exponent k that
+/// brings it to [0.5, 1) in x * 2^-k. compute_curvature and the region finders work on x * 2^-k
+/// then, exactly (a power of two), where their squares of lengths neither over- nor underflow:
+/// at 1e100 the curvature was NaN and the finders found no region.
+int finder_exponent(const Positions& x);
+/// x * 2^-k, exactly (barring subnormals).
+Positions scaled_by_power_of_two(const Positions& x, int k);
+/// The field of x * 2^-k as the field of x: areas times 2^2k, curvatures times 2^-k or 2^-2k.
+void unscale_curvature(int k, CurvatureField& c);
+}  // namespace detail
 
 /// Writes field.mean into the vertex map "v:mean_curvature" and field.gaussian into
 /// "v:gaussian_curvature" (property.hpp names), creating the maps if they are not attached and

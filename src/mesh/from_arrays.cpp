@@ -182,7 +182,7 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   }
   const double diagonal = bounding_diagonal(lo, hi);
   const double scale = std::isfinite(diagonal) && diagonal > 0.0 ? diagonal : 1.0;
-  const Eigen::Vector3d centre = 0.5 * (lo + hi);
+  const Eigen::Vector3d centre = 0.5 * lo + 0.5 * hi;
   std::vector<Point3> unit;
   unit.reserve(nv);
   for (const Point3& p : points) {

@@ -213,7 +213,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     lo = lo.cwiseMin(to_vec(p));
     hi = hi.cwiseMax(to_vec(p));
   }
-  const Vec3 centre = 0.5 * (lo + hi);
+  const Vec3 centre = 0.5 * lo + 0.5 * hi;
   const double diagonal = bounding_diagonal(lo, hi);
   const bool usable_diagonal = std::isfinite(diagonal) && diagonal > 0.0;
   const double scale = usable_diagonal ? diagonal : 1.0;

@@ -17,7 +17,7 @@ Normalization compute_normalization(const Positions& x) {
   const Vec3 lo = x.colwise().minCoeff().transpose();
   const Vec3 hi = x.colwise().maxCoeff().transpose();
   Normalization n;
-  n.center = 0.5 * (lo + hi);
+  n.center = 0.5 * lo + 0.5 * hi;
   n.scale = bounding_diagonal(lo, hi);
   if (!std::isfinite(n.scale) || !(n.scale > 0.0))
     throw InputError("the mesh has a zero or non-finite bounding-box diagonal");

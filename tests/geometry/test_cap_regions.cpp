@@ -299,9 +299,24 @@ TEST(CapRegions, RegionAtFarPointsPickTheBumpInTheirDirection) {
       EXPECT_GE(face_set_iou(a, t), 0.9) << "point " << p << " at " << far;
     }
   }
-  // Opposite extremes on every axis (p - centre overflows before it is halved): a region, no crash.
-  const std::vector<int> ids = select_regions_at(mesh, m.x, {Vec3(largest, -largest, largest)}, RegionOptions{});
-  EXPECT_GT(std::count(ids.begin(), ids.end(), 0), 0);
+  // Beyond the largest double: a point whose offset from the centre has an infinite length
+  // (1.79e308 and -0.537e308, finite each), and one on a mesh centred at -2^1021 so that the
+  // offset itself overflows (p - centre is halved). Each keeps its direction: the second bump.
+  const auto second_bump = [&](const Mesh& on, const Positions& x, const Vec3& point) {
+    const std::vector<int> ids = select_regions_at(on, x, {point}, RegionOptions{});
+    std::vector<char> a(nf, 0), t(nf, 0);
+    for (std::size_t f = 0; f < nf; ++f) a[f] = ids[f] == 0;
+    for (int f : truth[1]) t[static_cast<std::size_t>(f)] = 1;
+    return face_set_iou(a, t);
+  };
+  EXPECT_GE(second_bump(mesh, m.x, Vec3(1.79e308, 0.0, -0.537e308)), 0.9);
+  Positions far_mesh = m.x;
+  for (Eigen::Index i = 0; i < far_mesh.rows(); ++i) {
+    for (Eigen::Index d = 0; d < 3; ++d) far_mesh(i, d) = std::ldexp(far_mesh(i, d), 1000);
+    far_mesh(i, 0) -= std::ldexp(1.0, 1021);
+  }
+  // p - centre is (1.94e308, 0, -0.51e308): near the bump's axis (1, 0, -0.3), and infinite.
+  EXPECT_GE(second_bump(mesh, far_mesh, Vec3(1.715e308, 0.0, -0.514e308)), 0.9);
 }
 
 }  // namespace

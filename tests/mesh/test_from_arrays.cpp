@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mesh/eigen_point_map.hpp"
@@ -87,6 +88,13 @@ TEST(FromArrays, AMeshAtAnyFiniteScaleIsUsable) {
     if (std::abs(3 * k) < 1000) {
       EXPECT_NEAR(report.volume / std::ldexp(plain.volume, 3 * k), 1.0, 1e-12) << "2^" << k;
     }
+    // Inside out at the same scale: flipped, as at a usual scale (in input units the signed
+    // volume overflowed to NaN at 2^600, or to 0 at 2^-600, and the mesh was not flipped).
+    Arrays inside_out = scaled;
+    for (std::size_t f = 0; f < inside_out.f.size(); f += 3) std::swap(inside_out.f[f + 1], inside_out.f[f + 2]);
+    InputReport flipped;
+    EXPECT_NO_THROW(from(inside_out, &flipped)) << "2^" << k;
+    EXPECT_TRUE(flipped.reoriented) << "2^" << k;
   }
 }
 
