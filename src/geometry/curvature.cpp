@@ -13,7 +13,7 @@
 namespace shellcontract {
 namespace {
 
-/// A largest side in [2^-FREE_SCALE_EXPONENT, 2^FREE_SCALE_EXPONENT] is left as it is (see
+/// A largest side in [2^-(FREE_SCALE_EXPONENT + 1), 2^FREE_SCALE_EXPONENT) is left as it is (see
 /// detail::finder_exponent): squares and cubes of lengths are far from the double's range there,
 /// and every mesh of a usual scale keeps its bits.
 constexpr int FREE_SCALE_EXPONENT = 64;
@@ -66,7 +66,8 @@ namespace detail {
 
 int finder_exponent(const Positions& x) {
   if (x.rows() == 0 || !x.allFinite()) return 0;
-  // The largest side, not the diagonal: it cannot overflow where the coordinates do not.
+  // The largest side, not the diagonal, whose squares overflow sooner; a side beyond the largest
+  // double (coordinates spanning more than it) is left alone.
   const double side = (x.colwise().maxCoeff() - x.colwise().minCoeff()).maxCoeff();
   if (!(side > 0.0) || !std::isfinite(side)) return 0;
   int e = 0;

@@ -61,7 +61,7 @@ struct CurvatureField {
 CurvatureField compute_curvature(const Mesh& mesh, const Positions& x);
 
 namespace detail {
-/// 0 when the largest side of x's bounding box is in [2^-64, 2^64], else the exponent k that
+/// 0 when the largest side of x's bounding box is in [2^-65, 2^64), else the exponent k that
 /// brings it to [0.5, 1) in x * 2^-k. compute_curvature and the region finders work on x * 2^-k
 /// then, exactly (a power of two), where their squares of lengths neither over- nor underflow:
 /// at 1e100 the curvature was NaN and the finders found no region.
