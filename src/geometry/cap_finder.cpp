@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "geometry/cap_grower.hpp"
+#include "core/power_of_two.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/cotan_laplacian.hpp"
 #include "geometry/curvature.hpp"
@@ -213,7 +214,7 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
                                                   RegionReport* report, CurvatureField* curvature) {
   check_region_options(options);
   if (const int k = finder_exponent(x); k != 0) {
-    const std::vector<int> ids = select_spherical_regions(mesh, scaled_by_power_of_two(x, k), options, report, curvature);
+    const std::vector<int> ids = select_spherical_regions(mesh, times_power_of_two(x, -k), options, report, curvature);
     unscale_finder_results(k, report, curvature);
     return ids;
   }
@@ -438,7 +439,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   // would overflow.
   const std::vector<Vec3> near = detail::pulled_in(points, x);
   if (const int k = detail::finder_exponent(x); k != 0) {
-    const std::vector<int> ids = select_regions_at(mesh, detail::scaled_by_power_of_two(x, k),
+    const std::vector<int> ids = select_regions_at(mesh, times_power_of_two(x, -k),
                                                    detail::scaled_by_power_of_two(near, k), options, report);
     detail::unscale_finder_results(k, report, nullptr);
     return ids;

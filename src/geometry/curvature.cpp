@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "core/power_of_two.hpp"
 #include "mesh/properties.hpp"
 #include "shellcontract/error.hpp"
 
@@ -70,27 +71,16 @@ int finder_exponent(const Positions& x) {
   // double (coordinates spanning more than it) is left alone.
   const double side = (x.colwise().maxCoeff() - x.colwise().minCoeff()).maxCoeff();
   if (!(side > 0.0) || !std::isfinite(side)) return 0;
-  int e = 0;
-  std::frexp(side, &e);
+  const int e = binary_exponent(side);
   return std::abs(e) <= FREE_SCALE_EXPONENT ? 0 : e;
 }
 
-Positions scaled_by_power_of_two(const Positions& x, int k) {
-  Positions out(x.rows(), 3);
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    for (Eigen::Index d = 0; d < 3; ++d) out(i, d) = std::ldexp(x(i, d), -k);
-  return out;
-}
-
 void unscale_curvature(int k, CurvatureField& c) {
-  const auto times = [](Eigen::VectorXd& v, int e) {
-    for (double& a : v) a = std::ldexp(a, e);
-  };
-  times(c.mixed_area, 2 * k);
-  times(c.gaussian, -2 * k);
-  times(c.mean, -k);
-  times(c.k_max, -k);
-  times(c.k_min, -k);
+  c.mixed_area = times_power_of_two(c.mixed_area, 2 * k);
+  c.gaussian = times_power_of_two(c.gaussian, -2 * k);
+  c.mean = times_power_of_two(c.mean, -k);
+  c.k_max = times_power_of_two(c.k_max, -k);
+  c.k_min = times_power_of_two(c.k_min, -k);
 }
 
 }  // namespace detail
@@ -104,7 +94,7 @@ CurvatureField compute_curvature(const Mesh& mesh, const Positions& x) {
                      std::to_string(nv) + " vertices");
 
   if (const int k = detail::finder_exponent(x); k != 0) {
-    CurvatureField c = compute_curvature(mesh, detail::scaled_by_power_of_two(x, k));
+    CurvatureField c = compute_curvature(mesh, times_power_of_two(x, -k));
     detail::unscale_curvature(k, c);
     return c;
   }

@@ -66,8 +66,6 @@ namespace detail {
 /// then, exactly (a power of two), where their squares of lengths neither over- nor underflow:
 /// at 1e100 the curvature was NaN and the finders found no region.
 int finder_exponent(const Positions& x);
-/// x * 2^-k, exactly (barring subnormals).
-Positions scaled_by_power_of_two(const Positions& x, int k);
 /// The field of x * 2^-k as the field of x: areas times 2^2k, curvatures times 2^-k or 2^-2k.
 void unscale_curvature(int k, CurvatureField& c);
 }  // namespace detail

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/power_of_two.hpp"
 #include "geometry/cap_internal.hpp"
 
 namespace shellcontract::detail {
@@ -13,14 +14,12 @@ namespace {
 /// REGION_POINT_FAR of the diagonal, and no distance overflows (1e300 used to crash the seed).
 constexpr double REGION_POINT_FAR = 1e6;
 
-Vec3 ldexp3(const Vec3& v, int e) { return {std::ldexp(v.x(), e), std::ldexp(v.y(), e), std::ldexp(v.z(), e)}; }
-
 }  // namespace
 
 std::vector<Vec3> scaled_by_power_of_two(const std::vector<Vec3>& points, int k) {
   std::vector<Vec3> out;
   out.reserve(points.size());
-  for (const Vec3& p : points) out.push_back(p.allFinite() ? ldexp3(p, -k) : p);
+  for (const Vec3& p : points) out.push_back(p.allFinite() ? Vec3(times_power_of_two(p, -k)) : p);
   return out;
 }
 
@@ -30,7 +29,7 @@ void unscale_finder_results(int k, RegionReport* report, CurvatureField* curvatu
     report->reference_mean_curvature = std::ldexp(report->reference_mean_curvature, -k);
     for (RegionSummary& r : report->regions) {
       r.area = std::ldexp(r.area, 2 * k);
-      r.centre = ldexp3(r.centre, k);
+      r.centre = times_power_of_two(r.centre, k);
       r.radius = std::ldexp(r.radius, k);
       r.mean_curvature = std::ldexp(r.mean_curvature, -k);
     }
@@ -46,9 +45,8 @@ Vec3 pulled_in(const Vec3& p, const Vec3& centre, double diagonal) {
   // centre.
   const double largest = d.cwiseAbs().maxCoeff();
   if (!(largest > 0.0)) return p;
-  int e = 0;
-  std::frexp(largest, &e);
-  const Vec3 u = ldexp3(d, -e);
+  const int e = binary_exponent(largest);
+  const Vec3 u = times_power_of_two(d, -e);
   const double n = u.norm(), limit = REGION_POINT_FAR * diagonal;
   return std::ldexp(n, e) > limit ? Vec3(centre + u * (limit / n)) : p;
 }

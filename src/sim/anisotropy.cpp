@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/power_of_two.hpp"
 #include "fem/triangle_element.hpp"
 #include "mesh/properties.hpp"
 #include "shellcontract/error.hpp"
@@ -16,9 +17,7 @@ Vec2 fiber_in_rest_frame(const Vec3& d, const Vec3& T1, const Vec3& T2, bool& fa
   // d scaled by a power of two (exact) to a largest component in [0.5, 1): the norms below can
   // then neither overflow (--fiber 1e200,0,0 gave an infinite length and no fibre) nor underflow
   // (1e-200), and the direction keeps its bits.
-  int e = 0;
-  std::frexp(d.cwiseAbs().maxCoeff(), &e);
-  const Vec3 u = d.allFinite() ? Vec3(std::ldexp(d.x(), -e), std::ldexp(d.y(), -e), std::ldexp(d.z(), -e)) : d;
+  const Vec3 u = d.allFinite() ? Vec3(times_power_of_two(d, -binary_exponent(d.cwiseAbs().maxCoeff()))) : d;
   const Vec2 a(u.dot(T1), u.dot(T2));
   const double len = a.norm();
   fallback = !(len >= 1e-3 * u.norm()) || !(len > 0.0);

@@ -22,8 +22,8 @@ void follow_rest_frame(Positions& x, const Positions& prev, const Eigen::VectorX
   x.rowwise() -= (moment / mass).transpose();
   // The turn: the projections do not conserve angular momentum, and the mirrors' frame follows
   // the rest, so nothing else stops a slow spin of the whole shell (lab/regions/sink_why.md,
-  // "What the drift is"; lab/regions/turn.md measures the rule). It is applied as an affine map of the current positions, x_i -= omega x (x_i - c): an
-  // invertible affine map keeps a configuration free of intersections (whether two triangles meet
+  // "What the drift is"; lab/regions/turn.md measures the rule). It is applied as an affine map
+  // of the current positions, x_i -= omega x (x_i - c): an invertible affine map keeps a configuration free of intersections (whether two triangles meet
   // does not change under it), so this step cannot undo what the collision response ensured. A
   // lever taken at the step's start instead would move vertices in contact relative to each other.
   // omega is chosen so that the rest's net turn about c, sum_k m_k r_k x d_k with r_k = prev_k - c

@@ -141,7 +141,7 @@ void resolve_run_options(RunOptions& r) {
     // not a stiffness.
     if (r.sim.solver.kind == SolverKind::Xpbd && r.sim.bending == BendingModel::Dihedral &&
         !r.given.count("k_b"))
-      r.sim.solver.k_bending = dihedral_k_bending_from_young(*r.young, r.poisson, *r.thickness);
+      r.sim.solver.k_bending = bending;
   }
   // Points are the regions too: the caps at them, selected like --regions auto's.
   if (!r.region_points.empty()) {
