@@ -6,10 +6,12 @@ each frame, prints the mean displacement from the input of the vertices outside 
 their one-ring band ("the rest", as sink.py takes it) over the bounding-box diagonal; the same
 after the best similarity (Umeyama) and after the best affine map of the rest, fitted by least
 squares (does a global motion explain it?); and the rest's mean motion since the previous frame.
-With --by-distance it also splits the last frame's rest by Euclidean distance to the nearest
-region vertex at rest.
+With --by-distance it also splits the last frame's rest (or that of --frame NNNN) by Euclidean
+distance to the nearest region vertex at rest; --sinks adds each frame's smallest region sink
+(sink.py's measure) and rest / smallest sink.
 
-Usage: /usr/bin/python3 lab/regions/rest_over_time.py BUILD_DIR/shellcontract MESH D [--by-distance]
+Usage: /usr/bin/python3 lab/regions/rest_over_time.py BUILD_DIR/shellcontract MESH D [--sinks]
+       [--by-distance [--frame NNNN]]
 """
 import glob
 import os
@@ -20,6 +22,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import common  # noqa: E402
+import sink  # noqa: E402
 
 
 def similarity_fit(P, Q):
@@ -53,17 +56,28 @@ def main():
     diag = np.linalg.norm(rest.max(0) - rest.min(0))
     mean = lambda d: float(np.linalg.norm(d, axis=1).mean() / diag)  # noqa: E731
     print(f"{name}: {len(regions)} regions, {keep.sum()} rest vertices")
-    print("| frame | rest / diag | after similarity (scale) | after affine | since previous frame |")
-    print("|---|---|---|---|---|")
+    sinks = "--sinks" in sys.argv
+    pick = sys.argv[sys.argv.index("--frame") + 1] if "--frame" in sys.argv else None
+    extra = " smallest sink / diag | rest / smallest sink |" if sinks else ""
+    print("| frame | rest / diag | after similarity (scale) | after affine | since previous frame |" + extra)
+    print("|---|---|---|---|---|" + ("---|---|" if sinks else ""))
     prev, last = None, None
-    for fn in sorted(glob.glob(os.path.join(frames, "*.off"))):
+    # Only the exported frames (NAME_NNNN.off), not an output that may share the folder.
+    for fn in sorted(f for f in glob.glob(os.path.join(frames, "*_*.off"))
+                     if os.path.splitext(f)[0].rsplit("_", 1)[-1].isdigit()):
         x = common.read_off(fn)[0]
         P, Q = rest[keep], x[keep]
         qs, s = similarity_fit(P, Q)
         step = "" if prev is None else f"{mean(Q - prev):.5f}"
         frame = os.path.splitext(os.path.basename(fn))[0].rsplit("_", 1)[-1]
-        print(f"| {frame} | {mean(Q - P):.5f} | {mean(Q - qs):.5f} ({s:.5f}) | {mean(Q - affine_fit(P, Q)):.5f} | {step} |")
-        prev, last = Q, x
+        row = f"| {frame} | {mean(Q - P):.5f} | {mean(Q - qs):.5f} ({s:.5f}) | {mean(Q - affine_fit(P, Q)):.5f} | {step} |"
+        if sinks:
+            smallest = min(sink.per_region_sink(rest, faces, x, regions)) / diag
+            row += f" {smallest:.4f} | {mean(Q - P) / smallest:.3f} |" if smallest > 0 else f" {smallest:.4f} | - |"
+        print(row)
+        prev = Q
+        if pick is None or frame == pick:
+            last = x
     if "--by-distance" in sys.argv and last is not None:
         from scipy.spatial import cKDTree
         dist = cKDTree(rest[in_region]).query(rest)[0] / diag
