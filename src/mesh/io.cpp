@@ -20,10 +20,7 @@
 // products of three coordinates).
 #include "shellcontract/mesh_io.hpp"
 
-#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
-#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
-#include <CGAL/property_map.h>
 
 #include <algorithm>
 #include <array>
@@ -43,6 +40,7 @@
 #include "shellcontract/error.hpp"
 
 #include "mesh/soup_checks.hpp"
+#include "mesh/soup_geometry.hpp"
 
 namespace shellcontract {
 namespace {
@@ -57,10 +55,8 @@ using soup::fail;
 using soup::list_indices;
 using soup::Namer;
 using soup::Polygon;
+using soup::to_vec;
 
-/// Faces with 2A below this fraction of the squared mean edge length count as zero-area
-/// (relative, so that the test does not depend on the mesh's units).
-constexpr double ZERO_AREA_RELATIVE = 1e-10;
 
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -71,7 +67,6 @@ std::string lower_extension(const std::string& path) {
 
 // ------------------------------------------- triangulation and orientation (soup_checks.hpp: connectivity)
 
-Vec3 to_vec(const Point3& p) { return Vec3(p.x(), p.y(), p.z()); }
 
 /// Fan-triangulates polygon `p` from the first corner whose fan triangles all face along the
 /// polygon's Newell normal (any convex polygon, and star-shaped ones seen from that corner).
@@ -94,89 +89,6 @@ std::vector<Polygon> fan_triangulate(const Polygon& p, const std::vector<Point3>
     if (ok || normal.squaredNorm() == 0.0) return tris;
   }
   return {};
-}
-
-/// Sets each face's halfedge so that vertices_around_face starts at the soup's first corner:
-/// then a written face lists its corners exactly as the input did (per-corner data such as UVs
-/// stay aligned). Also verifies that the conversion kept vertex and face order.
-void align_to_soup(Mesh& mesh, const std::vector<Polygon>& tris) {
-  if (mesh.number_of_faces() != tris.size())
-    throw std::logic_error("read_input_mesh: polygon_soup_to_polygon_mesh dropped faces of a checked soup");
-  for (const FaceIndex f : mesh.faces()) {
-    const Polygon& t = tris[f.idx()];
-    HalfedgeIndex h = mesh.halfedge(f);
-    for (int k = 0; k < 3 && mesh.target(h).idx() != t[0]; ++k) h = mesh.next(h);
-    if (mesh.target(h).idx() != t[0] || mesh.target(mesh.next(h)).idx() != t[1] ||
-        mesh.target(mesh.next(mesh.next(h))).idx() != t[2])
-      throw std::logic_error("read_input_mesh: face " + std::to_string(f.idx()) + " lost its input vertex order");
-    mesh.set_halfedge(f, h);
-  }
-}
-
-/// Components (PMP::connected_components, numbered in order of their first face) and their
-/// orientation: a component with negative signed volume is inside-out and gets flipped
-/// (swapping corners 1 and 2 keeps corner 0 first). Each component is taken as its own shell;
-/// a nested inner wall of a hollow solid would also be flipped outward (which
-/// PMP::orient_to_bound_a_volume would not do: it orients nested shells inward).
-/// @param mesh   built from tris (components are found on it)
-/// @param unit   the points at a unit bounding-box diagonal; scale = that diagonal (for the message)
-/// @return the number of components; inside-out ones are flipped in tris and named in warnings
-std::size_t orient_components(const Mesh& mesh, std::vector<Polygon>& tris, const std::vector<Point3>& unit,
-                              double scale, std::vector<std::string>& warnings) {
-  const std::size_t nf = tris.size();
-  std::vector<std::size_t> component_face(nf);
-  const std::size_t n_components = PMP::connected_components(mesh, CGAL::make_property_map(component_face));
-  std::vector<double> six_volume(n_components, 0.0);
-  std::vector<Vec3> origin_point(n_components);
-  std::vector<char> has_origin(n_components, 0);
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::size_t c = component_face[f];
-    // Measured from a point of the component: the closed-surface sum does not depend on the
-    // origin, and a nearby one avoids cancellation for components far from the centre.
-    if (!has_origin[c]) {
-      origin_point[c] = to_vec(unit[tris[f][0]]);
-      has_origin[c] = 1;
-    }
-    const Vec3 a = to_vec(unit[tris[f][0]]) - origin_point[c];
-    const Vec3 b = to_vec(unit[tris[f][1]]) - origin_point[c];
-    const Vec3 d = to_vec(unit[tris[f][2]]) - origin_point[c];
-    six_volume[c] += a.dot(b.cross(d));
-  }
-  for (std::size_t c = 0; c < n_components; ++c) {
-    if (six_volume[c] >= 0.0) continue;
-    std::size_t first = nf, count = 0;
-    for (std::size_t f = 0; f < nf; ++f)
-      if (component_face[f] == c) {
-        std::swap(tris[f][1], tris[f][2]);
-        first = std::min(first, f);
-        ++count;
-      }
-    std::ostringstream w;
-    w << "component " << c << " (" << count << " faces, starting at face " << first
-      << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
-      << "); its faces were flipped";
-    warnings.push_back(w.str());
-  }
-  return n_components;
-}
-
-/// Faces with (nearly) zero area on the normalized coordinates `unit`, ascending: 2A below
-/// ZERO_AREA_RELATIVE times the squared mean edge length. Reported, not refused (the rest state
-/// gives them no membrane energy).
-std::vector<std::size_t> zero_area_faces(const std::vector<Polygon>& tris, const std::vector<Point3>& unit) {
-  const std::size_t nf = tris.size();
-  std::vector<std::size_t> zero_area;
-  double edge_sum = 0.0;
-  for (const Polygon& t : tris)
-    for (int k = 0; k < 3; ++k) edge_sum += (to_vec(unit[t[k]]) - to_vec(unit[t[(k + 1) % 3]])).norm();
-  const double mean_edge = edge_sum / (3.0 * static_cast<double>(nf));
-  const double threshold = ZERO_AREA_RELATIVE * mean_edge * mean_edge;
-  for (std::size_t f = 0; f < nf; ++f) {
-    const Vec3 a = to_vec(unit[tris[f][0]]);
-    const double twice_area = (to_vec(unit[tris[f][1]]) - a).cross(to_vec(unit[tris[f][2]]) - a).norm();
-    if (twice_area < threshold) zero_area.push_back(f);
-  }
-  return zero_area;
 }
 
 /// Checks the soup, triangulates and orients it, and builds the mesh (read_input_mesh's work).
@@ -205,24 +117,10 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     }
   }
 
-  // Geometry is tested on normalized coordinates (see the file comment), with the bounding-box
-  // centre and diagonal that compute_normalization gives the simulator, so that both see the
-  // same numbers. A zero or non-finite diagonal is refused below, after the connectivity checks.
-  Vec3 lo = to_vec(points[0]), hi = lo;
-  for (const Point3& p : points) {
-    lo = lo.cwiseMin(to_vec(p));
-    hi = hi.cwiseMax(to_vec(p));
-  }
-  const Vec3 centre = 0.5 * lo + 0.5 * hi;
-  const double diagonal = bounding_diagonal(lo, hi);
-  const bool usable_diagonal = std::isfinite(diagonal) && diagonal > 0.0;
-  const double scale = usable_diagonal ? diagonal : 1.0;
-  std::vector<Point3> unit;
-  unit.reserve(nv);
-  for (const Point3& p : points) {
-    const Vec3 q = (to_vec(p) - centre) / scale;
-    unit.emplace_back(q.x(), q.y(), q.z());
-  }
+  // Geometry is tested on normalized coordinates (see the file comment). A zero or non-finite
+  // diagonal is refused below, after the connectivity checks.
+  const soup::UnitPoints normalized = soup::unit_points(points);
+  const std::vector<Point3>& unit = normalized.unit;
 
   // Per polygon: arity, index range, repeated corners. Then triangulate: polygon i's (first)
   // triangle keeps index i, further triangles of split polygons are appended at the end in
@@ -274,30 +172,20 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   // above (tests/mesh/test_soup_checks_vs_cgal.cpp compares them on mutated soups). CGAL's test
   // itself is not run again: its std::set of directed edges is a large share of reading a large
   // mesh (lab/pages/scale.md, lab/history.md). A gap in our checks cannot become undefined
-  // behaviour: Euler::add_face returns a null face for a face it cannot add, and align_to_soup
+  // behaviour: Euler::add_face returns a null face for a face it cannot add, and soup_mesh
   // refuses a mesh that lost a face or a face's corner order.
-  if (!usable_diagonal)
-    fail(path, "degenerate mesh", diagonal == 0.0 ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
-                                                  : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
-  Mesh mesh;
-  PMP::polygon_soup_to_polygon_mesh(points, tris, mesh);
-  align_to_soup(mesh, tris);
-
+  if (!normalized.usable())
+    fail(path, "degenerate mesh", normalized.diagonal == 0.0 ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
+                                                             : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
+  Mesh mesh = soup::soup_mesh(points, tris, "read_input_mesh");
   std::vector<std::string> warnings;
-  const std::size_t n_components = orient_components(mesh, tris, unit, scale, warnings);
-  const bool reoriented = !warnings.empty();
-  if (reoriented) {
-    // Rebuilt from the flipped soup (rare: only inside-out input pays for a second build), so
-    // that the mesh is the one a correctly oriented file gives, halfedge for halfedge.
-    mesh.clear();
-    PMP::polygon_soup_to_polygon_mesh(points, tris, mesh);
-    align_to_soup(mesh, tris);
-  }
+  const soup::Orientation oriented =
+      soup::orient_components(mesh, points, tris, unit, normalized.scale, true, "read_input_mesh", warnings);
   if (split > 0)
     warnings.push_back(std::to_string(split) + " polygons with more than 3 vertices were fan-triangulated into " +
                        std::to_string(split + extra.size()) + " triangles (the first keeps the polygon's face index, the others are appended after face " + std::to_string(polygons.size() - 1) + ")");
 
-  std::vector<std::size_t> zero_area = zero_area_faces(tris, unit);
+  std::vector<std::size_t> zero_area = soup::zero_area_faces(tris, unit);
   if (!zero_area.empty())
     warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + list_indices(zero_area));
 
@@ -320,10 +208,10 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     report->faces = mesh.number_of_faces();
     report->triangulated_faces = split;
     report->zero_area_faces = std::move(zero_area);
-    report->reoriented = reoriented;
-    report->components = n_components;
+    report->reoriented = oriented.reoriented;
+    report->components = oriented.components;
     // In input units; beyond about 1e102 per coordinate the cube of the scale overflows to inf.
-    report->volume = unit_volume * scale * scale * scale;
+    report->volume = unit_volume * normalized.scale * normalized.scale * normalized.scale;
     report->warnings = std::move(warnings);
   }
   return mesh;

@@ -1,0 +1,120 @@
+// The readers' shared geometric steps on a checked soup (soup_geometry.hpp).
+#include "mesh/soup_geometry.hpp"
+
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/property_map.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "mesh/normalization.hpp"
+
+namespace shellcontract::soup {
+
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+bool UnitPoints::usable() const { return std::isfinite(diagonal) && diagonal > 0.0; }
+
+UnitPoints unit_points(const std::vector<Point3>& points) {
+  UnitPoints u;
+  if (points.empty()) return u;
+  Vec3 lo = to_vec(points[0]), hi = lo;
+  for (const Point3& p : points) {
+    lo = lo.cwiseMin(to_vec(p));
+    hi = hi.cwiseMax(to_vec(p));
+  }
+  // compute_normalization's centre and diagonal, so that the readers and the simulator see the
+  // same numbers.
+  const Vec3 centre = 0.5 * lo + 0.5 * hi;
+  u.diagonal = bounding_diagonal(lo, hi);
+  u.scale = u.usable() ? u.diagonal : 1.0;
+  u.unit.reserve(points.size());
+  for (const Point3& p : points) {
+    const Vec3 q = (to_vec(p) - centre) / u.scale;
+    u.unit.emplace_back(q.x(), q.y(), q.z());
+  }
+  return u;
+}
+
+Mesh soup_mesh(const std::vector<Point3>& points, const std::vector<Polygon>& tris, const std::string& who) {
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(points, tris, mesh);
+  if (mesh.number_of_faces() != tris.size())
+    throw std::logic_error(who + ": polygon_soup_to_polygon_mesh dropped faces of a checked soup");
+  for (const FaceIndex f : mesh.faces()) {
+    const Polygon& t = tris[f.idx()];
+    HalfedgeIndex h = mesh.halfedge(f);
+    for (int k = 0; k < 3 && mesh.target(h).idx() != t[0]; ++k) h = mesh.next(h);
+    if (mesh.target(h).idx() != t[0] || mesh.target(mesh.next(h)).idx() != t[1] ||
+        mesh.target(mesh.next(mesh.next(h))).idx() != t[2])
+      throw std::logic_error(who + ": face " + std::to_string(f.idx()) + " lost its input vertex order");
+    mesh.set_halfedge(f, h);
+  }
+  return mesh;
+}
+
+Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std::vector<Polygon>& tris,
+                              const std::vector<Point3>& unit, double scale, bool reorient,
+                              const std::string& who, std::vector<std::string>& warnings) {
+  const std::size_t nf = tris.size();
+  std::vector<std::size_t> component_face(nf);
+  Orientation out;
+  out.components = PMP::connected_components(mesh, CGAL::make_property_map(component_face));
+  if (!reorient) return out;
+  std::vector<double> six_volume(out.components, 0.0);
+  std::vector<Vec3> origin_point(out.components);
+  std::vector<char> has_origin(out.components, 0);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::size_t c = component_face[f];
+    // Measured from a point of the component: the closed-surface sum does not depend on the
+    // origin, and a nearby one avoids cancellation for components far from the centre.
+    if (!has_origin[c]) {
+      origin_point[c] = to_vec(unit[tris[f][0]]);
+      has_origin[c] = 1;
+    }
+    const Vec3 a = to_vec(unit[tris[f][0]]) - origin_point[c];
+    const Vec3 b = to_vec(unit[tris[f][1]]) - origin_point[c];
+    const Vec3 d = to_vec(unit[tris[f][2]]) - origin_point[c];
+    six_volume[c] += a.dot(b.cross(d));
+  }
+  for (std::size_t c = 0; c < out.components; ++c) {
+    if (six_volume[c] >= 0.0) continue;
+    out.reoriented = true;
+    std::size_t first = nf, count = 0;
+    for (std::size_t f = 0; f < nf; ++f)
+      if (component_face[f] == c) {
+        std::swap(tris[f][1], tris[f][2]);
+        first = std::min(first, f);
+        ++count;
+      }
+    std::ostringstream w;
+    w << "component " << c << " (" << count << " faces, starting at face " << first
+      << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
+      << "); its faces were flipped";
+    warnings.push_back(w.str());
+  }
+  // Rebuilt from the flipped soup (rare: only inside-out input pays for a second build).
+  if (out.reoriented) mesh = soup_mesh(points, tris, who);
+  return out;
+}
+
+std::vector<std::size_t> zero_area_faces(const std::vector<Polygon>& tris, const std::vector<Point3>& unit) {
+  const std::size_t nf = tris.size();
+  std::vector<std::size_t> zero_area;
+  if (nf == 0) return zero_area;
+  double edge_sum = 0.0;
+  for (const Polygon& t : tris)
+    for (int k = 0; k < 3; ++k) edge_sum += (to_vec(unit[t[k]]) - to_vec(unit[t[(k + 1) % 3]])).norm();
+  const double mean_edge = edge_sum / (3.0 * static_cast<double>(nf));
+  const double threshold = ZERO_AREA_RELATIVE * mean_edge * mean_edge;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const Vec3 a = to_vec(unit[tris[f][0]]);
+    const double twice_area = (to_vec(unit[tris[f][1]]) - a).cross(to_vec(unit[tris[f][2]]) - a).norm();
+    if (twice_area < threshold) zero_area.push_back(f);
+  }
+  return zero_area;
+}
+
+}  // namespace shellcontract::soup

@@ -1,0 +1,64 @@
+// The geometric steps that read_input_mesh (io.cpp) and mesh_from_arrays (from_arrays.cpp) take
+// on a soup whose connectivity soup_checks.hpp has passed (private to src/mesh): its points at a
+// unit bounding-box diagonal, the CGAL mesh with each face's corners as the soup lists them, the
+// orientation of its components, and its zero-area faces. One implementation, so that a file and
+// the same arrays from Python give the same mesh, warnings and report.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "mesh/soup_checks.hpp"
+#include "shellcontract/mesh.hpp"
+
+namespace shellcontract::soup {
+
+inline Vec3 to_vec(const Point3& p) { return Vec3(p.x(), p.y(), p.z()); }
+
+/// Faces with 2A below this fraction of the squared mean edge length count as zero-area
+/// (relative, so that the test does not depend on the mesh's units).
+constexpr double ZERO_AREA_RELATIVE = 1e-10;
+
+/// The points moved to the bounding-box centre and divided by the diagonal, as
+/// compute_normalization gives the simulator: every geometric test of the readers (fan
+/// triangulation, orientation, volume, zero area) runs on them, so that meshes from 1e-150 to
+/// 1e150 get the answers they get at unit scale (no overflow or underflow in products of three
+/// coordinates).
+struct UnitPoints {
+  std::vector<Point3> unit;
+  double diagonal = 0.0;  ///< of the input; 0 or not finite for a mesh the caller must refuse
+  double scale = 1.0;     ///< the diagonal where it is finite and > 0, else 1 (then `unit` is only shifted)
+  bool usable() const;
+};
+UnitPoints unit_points(const std::vector<Point3>& points);
+
+/// The mesh of a checked triangle soup, each face's halfedge set so that vertices_around_face
+/// starts at the soup's first corner: a written face then lists its corners exactly as the input
+/// did (per-corner data such as UVs stay aligned). Throws std::logic_error (naming `who`) if the
+/// conversion dropped a face or lost a face's corner order, which the checks exclude.
+Mesh soup_mesh(const std::vector<Point3>& points, const std::vector<Polygon>& tris, const std::string& who);
+
+struct Orientation {
+  std::size_t components = 0;
+  bool reoriented = false;  ///< a component was flipped (and `mesh` rebuilt)
+};
+
+/// Components (PMP::connected_components, numbered in order of their first face) and their
+/// orientation: with `reorient`, a component with negative signed volume (on `unit`) is inside
+/// out and gets flipped (swapping corners 1 and 2 keeps corner 0 first), named in `warnings`
+/// with its volume in input units (`scale` cubed), and `mesh` is rebuilt from the flipped soup,
+/// so that it is the one a correctly oriented input gives, halfedge for halfedge. Each component
+/// is taken as its own shell: a nested inner wall of a hollow solid is flipped outward too
+/// (PMP::orient_to_bound_a_volume would orient it inward).
+/// @param mesh  soup_mesh(points, tris)
+Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std::vector<Polygon>& tris,
+                              const std::vector<Point3>& unit, double scale, bool reorient,
+                              const std::string& who, std::vector<std::string>& warnings);
+
+/// Faces with (nearly) zero area on `unit`, ascending: 2A below ZERO_AREA_RELATIVE times the
+/// squared mean edge length. Reported, not refused (the rest state gives them no membrane
+/// energy).
+std::vector<std::size_t> zero_area_faces(const std::vector<Polygon>& tris, const std::vector<Point3>& unit);
+
+}  // namespace shellcontract::soup
