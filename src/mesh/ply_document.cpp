@@ -2,9 +2,9 @@
 // element come back byte for byte, but the vertices' x, y, z, which take the new positions in
 // their declared type and the file's format (ascii text, or binary of either byte order). Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other
-// elements are therefore kept. Runs after read_ply accepted the same bytes (read_input_mesh), so
-// its checks are short; any surprise is an InputError and the caller falls back to the plain
-// writer.
+// elements are therefore kept. Runs after read_ply accepted the same bytes (read_input_mesh): the
+// header is read_ply's own (ply_header.hpp), the body's checks are short, and any surprise is an
+// InputError on which the caller falls back to the plain writer.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -16,42 +16,18 @@
 #include <string>
 #include <vector>
 
+#include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {
 
-struct PlyType {
-  const char* name;
-  int size;
-  bool integer;
-  bool is_signed;
-};
-constexpr PlyType TYPES[] = {
-    {"char", 1, true, true},    {"int8", 1, true, true},     {"uchar", 1, true, false},
-    {"uint8", 1, true, false},  {"short", 2, true, true},    {"int16", 2, true, true},
-    {"ushort", 2, true, false}, {"uint16", 2, true, false},  {"int", 4, true, true},
-    {"int32", 4, true, true},   {"uint", 4, true, false},    {"uint32", 4, true, false},
-    {"float", 4, false, true},  {"float32", 4, false, true}, {"double", 8, false, true},
-    {"float64", 8, false, true}};
-
-struct Property {
-  std::string name;
-  bool list = false;
-  const PlyType* count_type = nullptr;
-  const PlyType* type = nullptr;
-};
-struct Element {
-  std::string name;
-  std::size_t count = 0;
-  std::vector<Property> properties;
-};
-
 /// Where a vertex coordinate is in the file and how it is stored.
 struct Slot {
   std::size_t begin = 0, end = 0;  ///< ascii: the token's span; binary: [offset, offset + size)
-  const PlyType* type = nullptr;
+  ply::Type type = ply::Type::Float32;
+  bool set = false;
 };
 
 bool is_space(char c) {
@@ -68,68 +44,19 @@ class PlyDocument final : public MeshDocument {
   [[noreturn]] void fail(const std::string& what) const {
     throw InputError(name_ + ": PLY document: " + what);
   }
-  const PlyType* type_of(const std::string& t) const {
-    for (const PlyType& p : TYPES)
-      if (t == p.name) return &p;
-    fail("unknown property type '" + t + "'");
-  }
-  void parse_header();
   /// The next value of type t in the body at pos_ (and its span).
-  double next_value(const PlyType* t, Slot& where);
+  double next_value(ply::Type t, Slot& where);
 
   std::string name_, bytes_;
   bool ascii_ = true, big_endian_ = false;
-  std::vector<Element> elements_;
+  std::vector<ply::Element> elements_;
   std::size_t pos_ = 0;
   std::vector<Slot> slots_;  ///< 3 per vertex: x, y, z
 };
 
-void PlyDocument::parse_header() {
-  auto line_at = [&](std::string& line) {
-    const std::size_t e = bytes_.find_first_of("\r\n", pos_);
-    if (e == std::string::npos) fail("the header has no 'end_header' line");
-    line = bytes_.substr(pos_, e - pos_);
-    pos_ = e + 1;
-    if (bytes_[e] == '\r' && pos_ < bytes_.size() && bytes_[pos_] == '\n') ++pos_;
-  };
-  if (bytes_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;
-  for (std::string line;;) {
-    line_at(line);
-    std::vector<std::string> t;
-    for (std::size_t i = 0; i < line.size();) {
-      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-      const std::size_t b = i;
-      while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
-      if (i > b) t.push_back(line.substr(b, i - b));
-    }
-    if (t.empty()) continue;
-    if (t[0] == "end_header") break;
-    if (t[0] == "format" && t.size() >= 2) {
-      ascii_ = t[1] == "ascii";
-      big_endian_ = t[1] == "binary_big_endian";
-    } else if (t[0] == "element" && t.size() == 3) {
-      elements_.push_back(
-          {t[1], static_cast<std::size_t>(std::strtoull(t[2].c_str(), nullptr, 10)), {}});
-    } else if (t[0] == "property" && !elements_.empty()) {
-      Property p;
-      if (t.size() == 5 && t[1] == "list") {
-        p.list = true;
-        p.count_type = type_of(t[2]);
-        p.type = type_of(t[3]);
-        p.name = t[4];
-      } else if (t.size() == 3) {
-        p.type = type_of(t[1]);
-        p.name = t[2];
-      } else {
-        fail("bad property line '" + line + "'");
-      }
-      elements_.back().properties.push_back(p);
-    }
-  }
-}
-
-double PlyDocument::next_value(const PlyType* t, Slot& where) {
+double PlyDocument::next_value(ply::Type t, Slot& where) {
   where.type = t;
+  where.set = true;
   if (ascii_) {
     while (pos_ < bytes_.size() && is_space(bytes_[pos_])) ++pos_;
     where.begin = pos_;
@@ -142,14 +69,14 @@ double PlyDocument::next_value(const PlyType* t, Slot& where) {
     if (end != tok.c_str() + tok.size()) fail("'" + tok + "' is not a number");
     return v;
   }
-  const auto size = static_cast<std::size_t>(t->size);
+  const auto size = static_cast<std::size_t>(ply::size_of(t));
   if (bytes_.size() - pos_ < size) fail("the body ends early");
   unsigned char b[8];
   std::memcpy(b, bytes_.data() + pos_, size);
   if (big_endian_) std::reverse(b, b + size);
   where.begin = pos_;
   where.end = pos_ += size;
-  if (!t->integer) {
+  if (!ply::is_integer(t)) {
     if (size == 4) {
       float f;
       std::memcpy(&f, b, 4);
@@ -161,18 +88,23 @@ double PlyDocument::next_value(const PlyType* t, Slot& where) {
   }
   std::uint64_t u = 0;
   for (std::size_t i = size; i-- > 0;) u = (u << 8) | b[i];
-  if (t->is_signed && (u >> (8 * size - 1)) & 1u)
+  if (ply::is_signed(t) && (u >> (8 * size - 1)) & 1u)
     return static_cast<double>(static_cast<std::int64_t>(u) - (std::int64_t{1} << (8 * size)));
   return static_cast<double>(u);
 }
 
 PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     : name_(name), bytes_(std::move(bytes)) {
-  parse_header();
+  // read_ply's own header parse: the document runs after read_ply accepted these bytes.
+  ply::Header header = ply::read_ply_header(name_, bytes_);
+  ascii_ = header.format == ply::Format::Ascii;
+  big_endian_ = header.format == ply::Format::BinaryBigEndian;
+  elements_ = std::move(header.elements);
+  pos_ = header.body;
   bool vertices_seen = false, faces_seen = false;
   polygon_start_.push_back(0);
   std::vector<double> u_values, v_values;
-  for (const Element& e : elements_) {
+  for (const ply::Element& e : elements_) {
     const bool is_vertex = e.name == "vertex" && !vertices_seen;
     const bool is_face = e.name == "face" && !faces_seen;
     vertices_seen |= is_vertex;
@@ -195,7 +127,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     }
     for (std::size_t i = 0; i < e.count; ++i) {
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
-        const Property& p = e.properties[k];
+        const ply::Property& p = e.properties[k];
         Slot s;
         if (p.list) {
           const double n = next_value(p.count_type, s);
@@ -225,7 +157,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     }
   }
   for (const Slot& s : slots_)
-    if (!s.type) fail("a vertex lacks x, y or z");
+    if (!s.set) fail("a vertex lacks x, y or z");
   if (u_values.size() == vertex_count_ && v_values.size() == vertex_count_ && vertex_count_ > 0) {
     for (std::size_t i = 0; i < vertex_count_; ++i) uv_.push_back({u_values[i], v_values[i]});
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());  // per-vertex coordinates
@@ -250,38 +182,40 @@ std::string PlyDocument::text(const Positions& x) const {
     const double v = x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
     out.append(bytes_, at, s.begin - at);
     at = s.end;
-    if (s.type->integer) {
+    const int size = ply::size_of(s.type);
+    if (ply::is_integer(s.type)) {
       // Integer coordinates (legal, rare): the nearest integer the type holds.
-      const double lo = s.type->is_signed ? -std::ldexp(1.0, 8 * s.type->size - 1) : 0.0;
-      const double hi = std::ldexp(1.0, 8 * s.type->size - (s.type->is_signed ? 1 : 0)) - 1.0;
+      const bool is_signed = ply::is_signed(s.type);
+      const double lo = is_signed ? -std::ldexp(1.0, 8 * size - 1) : 0.0;
+      const double hi = std::ldexp(1.0, 8 * size - (is_signed ? 1 : 0)) - 1.0;
       const auto r = static_cast<std::int64_t>(std::clamp(std::nearbyint(v), lo, hi));
       if (ascii_) {
         out += std::to_string(r);
       } else {
         unsigned char b[8];
-        for (int i = 0; i < s.type->size; ++i)
+        for (int i = 0; i < size; ++i)
           b[i] = static_cast<unsigned char>((static_cast<std::uint64_t>(r) >> (8 * i)) & 0xff);
-        if (big_endian_) std::reverse(b, b + s.type->size);
-        out.append(reinterpret_cast<const char*>(b), static_cast<std::size_t>(s.type->size));
+        if (big_endian_) std::reverse(b, b + size);
+        out.append(reinterpret_cast<const char*>(b), static_cast<std::size_t>(size));
       }
       continue;
     }
     if (ascii_) {
       char buf[64];
       // A float property gets the shortest text of the float: what a reader stores anyway.
-      const auto r = s.type->size == 4 ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v))
+      const auto r = size == 4 ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v))
                                        : std::to_chars(buf, buf + sizeof buf, v);
       out.append(buf, r.ptr);
     } else {
       unsigned char b[8];
-      if (s.type->size == 4) {
+      if (size == 4) {
         const auto f = static_cast<float>(v);
         std::memcpy(b, &f, 4);
       } else {
         std::memcpy(b, &v, 8);
       }
-      if (big_endian_) std::reverse(b, b + s.type->size);
-      out.append(reinterpret_cast<const char*>(b), static_cast<std::size_t>(s.type->size));
+      if (big_endian_) std::reverse(b, b + size);
+      out.append(reinterpret_cast<const char*>(b), static_cast<std::size_t>(size));
     }
   }
   out.append(bytes_, at, std::string::npos);

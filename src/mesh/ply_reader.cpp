@@ -9,6 +9,8 @@
 // line, body line (ascii) or byte offset (binary).
 #include "mesh/ply_reader.hpp"
 
+#include "mesh/ply_header.hpp"
+
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -25,43 +27,23 @@
 namespace shellcontract {
 namespace {
 
-enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
+using ply::Element;
+using ply::Format;
+using ply::is_integer;
+using ply::Property;
+using ply::size_of;
+using ply::Type;
 
 struct TypeName {
   const char* name;
   Type type;
-  int size;  ///< bytes in a binary file
 };
 
 constexpr TypeName TYPES[] = {
-    {"char", Type::Int8, 1},     {"int8", Type::Int8, 1},       {"uchar", Type::UInt8, 1},  {"uint8", Type::UInt8, 1},
-    {"short", Type::Int16, 2},   {"int16", Type::Int16, 2},     {"ushort", Type::UInt16, 2}, {"uint16", Type::UInt16, 2},
-    {"int", Type::Int32, 4},     {"int32", Type::Int32, 4},     {"uint", Type::UInt32, 4},  {"uint32", Type::UInt32, 4},
-    {"float", Type::Float32, 4}, {"float32", Type::Float32, 4}, {"double", Type::Float64, 8}, {"float64", Type::Float64, 8}};
-
-bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
-
-int size_of(Type t) {
-  for (const TypeName& n : TYPES)
-    if (n.type == t) return n.size;
-  return 8;
-}
-
-struct Property {
-  std::string name;
-  bool list = false;
-  Type count_type = Type::UInt8;  ///< lists only
-  Type type = Type::Float32;      ///< the value's (or the list items') type
-};
-
-struct Element {
-  std::string name;
-  std::uint64_t count = 0;
-  std::size_t line = 0;  ///< header line that declares it
-  std::vector<Property> properties;
-};
-
-enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
+    {"char", Type::Int8},     {"int8", Type::Int8},       {"uchar", Type::UInt8},  {"uint8", Type::UInt8},
+    {"short", Type::Int16},   {"int16", Type::Int16},     {"ushort", Type::UInt16}, {"uint16", Type::UInt16},
+    {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},  {"uint32", Type::UInt32},
+    {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
 
@@ -76,6 +58,12 @@ std::string shorten(const std::string& s) {
 class PlyParser {
  public:
   PlyParser(const std::string& path, const std::string& bytes) : path_(path), bytes_(bytes) {}
+
+  /// The checked header and where the body starts (read_ply_header).
+  ply::Header header() {
+    parse_header();
+    return ply::Header{format_, elements_, pos_, body_line_};
+  }
 
   PlyData parse() {
     parse_header();
@@ -376,6 +364,30 @@ class PlyParser {
 };
 
 }  // namespace
+
+namespace ply {
+
+int size_of(Type t) {
+  switch (t) {
+    case Type::Int8:
+    case Type::UInt8: return 1;
+    case Type::Int16:
+    case Type::UInt16: return 2;
+    case Type::Int32:
+    case Type::UInt32:
+    case Type::Float32: return 4;
+    case Type::Float64: return 8;
+  }
+  return 8;
+}
+
+bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+bool is_signed(Type t) { return t != Type::UInt8 && t != Type::UInt16 && t != Type::UInt32; }
+
+Header read_ply_header(const std::string& path, const std::string& bytes) { return PlyParser(path, bytes).header(); }
+
+}  // namespace ply
 
 PlyData read_ply(const std::string& path, const std::string& bytes) { return PlyParser(path, bytes).parse(); }
 
