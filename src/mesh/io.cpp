@@ -57,7 +57,6 @@ using soup::Namer;
 using soup::Polygon;
 using soup::to_vec;
 
-
 std::string lower_extension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
@@ -65,8 +64,8 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-// ------------------------------------------- triangulation and orientation (soup_checks.hpp: connectivity)
-
+// ------------------------------------------- triangulation (connectivity: soup_checks.hpp; the
+// mesh, orientation and zero areas: soup_geometry.hpp)
 
 /// Fan-triangulates polygon `p` from the first corner whose fan triangles all face along the
 /// polygon's Newell normal (any convex polygon, and star-shaped ones seen from that corner).
