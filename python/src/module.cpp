@@ -182,9 +182,10 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
   const Mesh mesh = mesh_from_numpy(vertices, faces, nullptr, /*reorient=*/false);
   if (!like.empty()) {
     // The file `like` kept whole with these positions (docs/design/attributes.md): only for the
-    // mesh read_mesh(like) gives, written in like's format.
-    const std::unique_ptr<MeshDocument> doc = read_mesh_document(like);
+    // mesh read_mesh(like) gives, written in like's format. Read and checked first, so that a bad
+    // file gets the reader's message and the document parses only bytes the reader accepted.
     const Mesh read = read_input_mesh(like);
+    const std::unique_ptr<MeshDocument> doc = read_mesh_document(like);
     if (!doc || !path_has_extension(path, doc->format()))
       throw UsageError("write_mesh: like=" + like + ": only an OBJ or PLY file, written to a file of its format");
     const auto f = faces_to_numpy(read), g = py::array_t<std::int64_t>::ensure(faces);

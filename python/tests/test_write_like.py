@@ -34,3 +34,26 @@ def test_write_like_refuses_other_faces(tmp_path):
         shellcontract.write_mesh(tmp_path / "out.obj", v, f[:, [0, 2, 1]], like=src)
     with pytest.raises(ValueError, match="only an OBJ or PLY file"):
         shellcontract.write_mesh(tmp_path / "out.off", v, f, like=src)
+
+
+PLY_HEAD = "ply\nformat ascii 1.0\nelement vertex 4\n"
+PLY_BODY = ("element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+            "0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n")
+
+
+def test_a_bad_like_file_gets_the_readers_message(tmp_path):
+    # The file is read and checked before it is kept as a document, so a malformed one is
+    # refused as read_mesh refuses it, by the PLY reader: here a body shorter than the header
+    # declares, which the document alone would call "the body ends early".
+    good = tmp_path / "tet.ply"
+    good.write_text(PLY_HEAD + "property float x\nproperty float y\nproperty float z\n" + PLY_BODY)
+    v, f = shellcontract.read_mesh(good)
+    bad = tmp_path / "bad.ply"
+    bad.write_text(PLY_HEAD + "property float x\nproperty float y\nproperty float z\n" + PLY_BODY.split("0 0 1")[0])
+    with pytest.raises(ValueError) as read_error:
+        shellcontract.read_mesh(bad)
+    with pytest.raises(ValueError) as write_error:
+        shellcontract.write_mesh(tmp_path / "out.ply", v, f, like=bad)
+    assert "truncated file" in str(read_error.value)
+    assert str(write_error.value) == str(read_error.value)
+    assert not (tmp_path / "out.ply").exists()

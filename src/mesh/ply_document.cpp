@@ -2,9 +2,10 @@
 // element come back byte for byte, but the vertices' x, y, z, which take the new positions in
 // their declared type and the file's format (ascii text, or binary of either byte order). Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other
-// elements are therefore kept. Runs after read_ply accepted the same bytes (read_input_mesh): the
-// header is read_ply's own (ply_header.hpp), the body's checks are short, and any surprise is an
-// InputError on which the caller falls back to the plain writer.
+// elements are therefore kept. Its callers (the CLI's run, Python's write_mesh(like=...)) read the
+// same file with read_input_mesh first, so the bytes are ones read_ply accepted: the header is
+// read_ply's own (ply_header.hpp), the body's checks are short, and any surprise is an InputError
+// (the CLI then falls back to the plain writer).
 #include <algorithm>
 #include <charconv>
 #include <cmath>
