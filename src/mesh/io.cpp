@@ -23,13 +23,9 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include <algorithm>
-#include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdint>
 #include <filesystem>
-#include <iomanip>
-#include <map>
 #include <numeric>
 #include <sstream>
 #include <stdexcept>
