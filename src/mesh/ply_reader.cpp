@@ -9,8 +9,6 @@
 // line, body line (ascii) or byte offset (binary).
 #include "mesh/ply_reader.hpp"
 
-#include "mesh/ply_header.hpp"
-
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -22,6 +20,7 @@
 #include <string_view>
 #include <vector>
 
+#include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
