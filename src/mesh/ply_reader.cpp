@@ -6,7 +6,8 @@
 // The header is parsed and checked first; then every declared count is bounded by the bytes that
 // follow the header (each element instance needs a known minimum of bytes), and only then is
 // memory reserved. Every failure is an InputError naming the file, the problem and the header
-// line, body line (ascii) or byte offset (binary).
+// line, body line (ascii) or byte offset (binary). The header's parse and checks alone are
+// read_ply_header (ply_header.hpp), which the PLY document (ply_document.cpp) uses.
 #include "mesh/ply_reader.hpp"
 
 #include <cmath>
