@@ -28,12 +28,18 @@ def affine_residual(p, q):
     return np.linalg.norm(q - ph @ m, axis=1), m[:3].T
 
 
-def main():
-    frames = sys.argv[1]
+def read_frames(frames):
+    """The 201 frames out_000.off .. out_200.off (positions, steps x vertices x 3) and the mean
+    length of the first frame's edges."""
     x = np.array([common.read_off(os.path.join(frames, f"out_{i:03d}.off"))[0] for i in range(201)])
     f = common.read_off(os.path.join(frames, "out_000.off"))[1]
     e = np.unique(np.sort(np.vstack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), 1), axis=0)
-    edge = np.linalg.norm(x[0][e[:, 0]] - x[0][e[:, 1]], axis=1).mean()
+    return x, np.linalg.norm(x[0][e[:, 0]] - x[0][e[:, 1]], axis=1).mean()
+
+
+def main():
+    frames = sys.argv[1]
+    x, edge = read_frames(frames)
     print(f"mean edge {edge:.6g} (input units); every figure below is in mean edges")
     for k in (1, 2, 5, 10, 20):
         print(f"k = {k}")

@@ -181,7 +181,8 @@ int main(int argc, char** argv) {
     for (std::size_t f = nf * part / parts; f < nf * (part + 1) / parts; ++f) cur_f[f] = face_box(cur, f);
     for (std::size_t e = edges.size() * part / parts; e < edges.size() * (part + 1) / parts; ++e) cur_e[e] = edge_box(cur, e);
   };
-  for (int threads : {1, 2}) {
+  // Times run(cur, threads) -> survivors over the 5 steps, REPS calls each; prints the median.
+  auto measure = [&](const char* label, int threads, auto run) {
     std::vector<double> ms;
     std::size_t survivors = 0;
     for (int step = 0; step < 5; ++step) {
@@ -189,49 +190,39 @@ int main(int argc, char** argv) {
       vertex_boxes(step, 0.0, cur);
       for (int r = 0; r < reps; ++r) {
         const auto start = std::chrono::steady_clock::now();
-        if (threads == 1) {
-          primitive_boxes(cur, 0, 1);
-          survivors = filter_boxes(cur, 0, list.size());
-        } else {
-          std::size_t half = list.size() / 2, s2 = 0;
-          std::thread other([&] { primitive_boxes(cur, 1, 2); });
-          primitive_boxes(cur, 0, 2);
-          other.join();
-          std::thread other2([&] { s2 = filter_boxes(cur, half, list.size()); });
-          survivors = filter_boxes(cur, 0, half);
-          other2.join();
-          survivors += s2;
-        }
+        survivors = run(cur, threads);
         ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
       }
     }
     std::sort(ms.begin(), ms.end());
-    std::printf("boxes first, %d thread%s: median %.3f ms per step (%.2f ns per listed pair), %zu survivors at the last step\n",
-                threads, threads == 1 ? "" : "s", ms[ms.size() / 2], ms[ms.size() / 2] * 1e6 / static_cast<double>(list.size()), survivors);
-  }
-  for (int threads : {1, 2}) {
-    std::vector<double> ms;
-    std::size_t survivors = 0;
-    for (int step = 0; step < 5; ++step) {
-      std::vector<Box> cur;
-      vertex_boxes(step, 0.0, cur);
-      for (int r = 0; r < reps; ++r) {
-        const auto start = std::chrono::steady_clock::now();
-        if (threads == 1) {
-          survivors = filter(cur, 0, list.size());
-        } else {
-          std::size_t half = list.size() / 2, s2 = 0;
-          std::thread other([&] { s2 = filter(cur, half, list.size()); });
-          survivors = filter(cur, 0, half);
-          other.join();
-          survivors += s2;
-        }
-        ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+    std::printf("%s, %d thread%s: median %.3f ms per step (%.2f ns per listed pair), %zu survivors at the last step\n",
+                label, threads, threads == 1 ? "" : "s", ms[ms.size() / 2],
+                ms[ms.size() / 2] * 1e6 / static_cast<double>(list.size()), survivors);
+  };
+  // The list in one part, or in two halves on two threads (std::thread started per call).
+  auto halves = [&](int threads, auto part) {
+    if (threads == 1) return part(std::size_t{0}, list.size());
+    const std::size_t half = list.size() / 2;
+    std::size_t second = 0;
+    std::thread other([&] { second = part(half, list.size()); });
+    const std::size_t first = part(std::size_t{0}, half);
+    other.join();
+    return first + second;
+  };
+  for (int threads : {1, 2})
+    measure("boxes first", threads, [&](const std::vector<Box>& cur, int t) {
+      if (t == 1) {
+        primitive_boxes(cur, 0, 1);
+      } else {
+        std::thread other([&] { primitive_boxes(cur, 1, 2); });
+        primitive_boxes(cur, 0, 2);
+        other.join();
       }
-    }
-    std::sort(ms.begin(), ms.end());
-    std::printf("gathered per pair, %d thread%s: median %.3f ms per step (%.2f ns per listed pair), %zu survivors at the last step\n",
-                threads, threads == 1 ? "" : "s", ms[ms.size() / 2], ms[ms.size() / 2] * 1e6 / static_cast<double>(list.size()), survivors);
-  }
+      return halves(t, [&](std::size_t b, std::size_t e) { return filter_boxes(cur, b, e); });
+    });
+  for (int threads : {1, 2})
+    measure("gathered per pair", threads, [&](const std::vector<Box>& cur, int t) {
+      return halves(t, [&](std::size_t b, std::size_t e) { return filter(cur, b, e); });
+    });
   return 0;
 }

@@ -18,16 +18,12 @@ import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "regions"))
-import common  # noqa: E402
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from motion_per_step import read_frames  # noqa: E402
 
 
 def main():
-    frames = sys.argv[1]
-    x = np.array([common.read_off(os.path.join(frames, f"out_{i:03d}.off"))[0] for i in range(201)])
-    f = common.read_off(os.path.join(frames, "out_000.off"))[1]
-    e = np.unique(np.sort(np.vstack([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), 1), axis=0)
-    edge = np.linalg.norm(x[0][e[:, 0]] - x[0][e[:, 1]], axis=1).mean()
+    x, edge = read_frames(sys.argv[1])
     nv, steps = x.shape[1], x.shape[0] - 1
     print("| margin (mean edges) | rebuild when escaped > | builds | mean life, built in steps 0-39 | after | escaped vertices per step |")
     print("|---|---|---|---|---|---|")
