@@ -289,8 +289,10 @@ def check(vertices, faces):
 def regions(vertices, faces, **region_options):
     """The spherical regions ``--regions auto`` would choose: a list of face-index arrays, largest
     region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
-    ``max_area_fraction``, ... with '_' or '-'); ``region_at=[(x, y, z), ...]`` picks the caps
-    around the points instead."""
+    ``max_area_fraction``, ... with '_' or '-'); ``region_at`` picks the caps around points
+    instead, in the forms contract() takes: one point (x, y, z), a list or N by 3 array of points,
+    or the CLI's text 'X,Y,Z' ('X,Y,Z;X,Y,Z' for several). None, no point or a coordinate that
+    is not finite is an error (TypeError, ValueError naming region_at[i])."""
     return _core.regions(vertices, faces, **region_options)
 
 

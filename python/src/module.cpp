@@ -114,7 +114,7 @@ RegionMethod method_option(const py::handle& value) {
 /// The options are the CLI's (`shellcontract regions --help`), with '_' or '-':
 /// regions(V, F, max_area_fraction=0.1), regions(V, F, method="tips") (opt-in: the tip finder),
 /// method="parts" (opt-in: the tip finder's ends with the cap finder's heads and bumps) or
-/// regions(V, F, **{"region-at": [(x, y, z)]}).
+/// regions(V, F, **{"region-at": [(x, y, z)]}) (region_at in contract()'s forms: region_at_points).
 py::list regions(const py::handle& vertices, const py::handle& faces, const py::kwargs& kwargs) {
   RegionOptions o;
   std::vector<Vec3> at;
@@ -130,13 +130,8 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
     else if (name == "min-faces") o.min_faces = int_option(name, value);
     else if (name == "min-area-fraction") o.min_area_fraction = real_option(name, value);
     else if (name == "max-area-fraction") o.max_area_fraction = real_option(name, value);
-    else if (name == "region-at") {
-      for (const py::handle p : value) {
-        const auto xyz = p.cast<std::vector<double>>();
-        if (xyz.size() != 3) throw py::value_error("regions(): region_at takes points of three coordinates");
-        at.emplace_back(xyz[0], xyz[1], xyz[2]);
-      }
-    } else
+    else if (name == "region-at") at = region_at_points(value);  // contract()'s forms and checks
+    else
       throw py::type_error("regions() got an unknown option '" + key.cast<std::string>() +
                            "'; valid options (those of `shellcontract regions`, '-' or '_'): fit_tolerance, "
                            "max_concave_fraction, min_cap_angle, contrast, max_compactness, min_faces, "
