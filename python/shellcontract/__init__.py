@@ -79,6 +79,10 @@ def contract(vertices, faces, *, callback=None, **options):
     two forms, ``region_strengths`` (one value in [0, 1] per region) scales each region's
     region_shrink.
 
+    ``region_at`` takes one point (x, y, z), a list or N by 3 array of points, or the CLI's text
+    'X,Y,Z' ('X,Y,Z;X,Y,Z' for several); None is a TypeError, no point or a coordinate that is
+    not finite a ValueError (naming region_at[i]).
+
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
     cancels the run; resume=FILE continues such a run (the same vertices and faces; options, if
     given, must equal the checkpoint's, threads excepted) to the result the uninterrupted run
@@ -289,10 +293,9 @@ def check(vertices, faces):
 def regions(vertices, faces, **region_options):
     """The spherical regions ``--regions auto`` would choose: a list of face-index arrays, largest
     region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
-    ``max_area_fraction``, ... with '_' or '-'); ``region_at`` picks the caps around points
-    instead, in the forms contract() takes: one point (x, y, z), a list or N by 3 array of points,
-    or the CLI's text 'X,Y,Z' ('X,Y,Z;X,Y,Z' for several). None, no point or a coordinate that
-    is not finite is an error (TypeError, ValueError naming region_at[i])."""
+    ``max_area_fraction``, ... with '_' or '-'; ``min_faces`` from 1 to 2**31 - 1); ``region_at``
+    picks the caps around points instead, in the forms and with the errors of contract()'s
+    region_at (one point, a list or array of points, or 'X,Y,Z' text)."""
     return _core.regions(vertices, faces, **region_options)
 
 
