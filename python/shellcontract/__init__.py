@@ -15,6 +15,8 @@ import queue
 import tempfile
 import threading
 
+import numpy as np
+
 from . import _core
 
 __all__ = ["Option", "Result", "contract", "frames", "options", "check", "regions",
@@ -62,9 +64,24 @@ def contract(vertices, faces, *, callback=None, **options):
     current positions (input units) and that frame's log row as a dict; returning False stops the
     run (status "cancelled"). Ctrl-C stops the run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
-    unknown option. ``regions`` takes "auto", "none", a face-list file, what regions() returns
-    (a list of face-index arrays) or one label per face (-1 = none); with the last two,
-    ``region_strengths`` (one value in [0, 1] per region) scales each region's region_shrink.
+    unknown option.
+
+    ``regions`` (None, the default, is "not given") takes, told apart by type:
+
+    - a str or os.PathLike: "auto", "none" or a face-list file;
+    - one label per face (-1 = no region, else 0..n-1 without a gap): a 1-D numpy integer
+      array, or a flat list or tuple of ints;
+    - a list or tuple of regions, each a sequence or array of face indices (0-based, each face
+      in one region at most, no region empty): what regions() returns; [] = no regions.
+
+    Anything else is a TypeError. Labels and face indices must be integers (Python or numpy
+    ints): a float is refused even when its value is whole (2.0), and so is NaN. With the last
+    two forms, ``region_strengths`` (one value in [0, 1] per region) scales each region's
+    region_shrink.
+
+    ``region_at`` takes one point (x, y, z), a list or N by 3 array of points, or the CLI's text
+    'X,Y,Z' ('X,Y,Z;X,Y,Z' for several); None is a TypeError, no point or a coordinate that is
+    not finite a ValueError (naming region_at[i]).
 
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
     cancels the run; resume=FILE continues such a run (the same vertices and faces; options, if
@@ -75,6 +92,8 @@ def contract(vertices, faces, *, callback=None, **options):
     """
     options = dict(options)
     strengths = options.pop("region_strengths", None)
+    if options.get("regions", 0) is None:
+        del options["regions"]  # None: not given, the default
     regions = options.get("regions")
     if regions is None or isinstance(regions, (str, os.PathLike)):
         if strengths is not None:
@@ -104,22 +123,97 @@ def _strengths(strengths, num_regions):
     return values
 
 
+_REGIONS_FORMS = ("regions: expected 'auto', 'none' or a face-list file (str or os.PathLike), one "
+                  "label per face (a 1-D numpy integer array or a flat list of ints) or a list of "
+                  "face-index sequences")
+
+
+def _is_int(x):
+    # bool is an Integral, but True as face 1 is a mistake, not a face.
+    return isinstance(x, numbers.Integral) and not isinstance(x, bool)
+
+
 def _region_lists(regions, num_faces):
-    """Face lists from a list of face-index arrays, or from a per-face label array (one entry per
-    face, -1 = no region, labels 0..n-1)."""
-    try:
-        labels = [int(x) for x in regions]  # a flat sequence of integers: one label per face
-    except TypeError:
-        return [[int(i) for i in r] for r in regions]
+    """Face lists (one int64 array per region) from the forms contract() documents: a per-face
+    label array, or a list of face-index sequences. Checked here, by Python's indices, so that no
+    error names the temporary face-list file the library then reads."""
+    if isinstance(regions, np.ndarray):
+        if regions.ndim == 1 and np.issubdtype(regions.dtype, np.integer):
+            return _labels_to_lists(regions, num_faces)
+        raise TypeError(_REGIONS_FORMS + "; got a {}-D {} array".format(regions.ndim, regions.dtype))
+    if not isinstance(regions, (list, tuple)):
+        raise TypeError(_REGIONS_FORMS + "; got {}".format(type(regions).__name__))
+    if not regions:
+        return []
+    if all(_is_int(x) for x in regions):
+        return _labels_to_lists(np.array(regions, dtype=object), num_faces)
+    if all(_is_sequence(r) for r in regions):
+        return _face_lists(regions, num_faces)
+    # Neither form: name the first item that fits neither, or that breaks regions[0]'s form.
+    k = next((k for k, x in enumerate(regions) if not (_is_int(x) or _is_sequence(x))), None)
+    if k is not None:
+        why = "neither an int label nor a sequence of face indices"
+    else:
+        k = next(k for k, x in enumerate(regions) if _is_int(x) != _is_int(regions[0]))
+        why = "in a list whose regions[0] is " + ("an int label" if _is_int(regions[0]) else "a sequence")
+    raise TypeError(_REGIONS_FORMS + "; got regions[{}] = {!r} ({}), {}"
+                    .format(k, regions[k], type(regions[k]).__name__, why))
+
+
+def _is_sequence(x):
+    return isinstance(x, (list, tuple, range, np.ndarray))
+
+
+def _labels_to_lists(labels, num_faces):
+    """Face lists from one label per face (-1 = no region, labels 0..n-1 without a gap)."""
     if len(labels) != num_faces:
         raise ValueError("regions: a label array needs one entry per face ({} faces, {} labels)"
                          .format(num_faces, len(labels)))
-    out = [[] for _ in range(max(labels, default=-1) + 1)]
-    for face, label in enumerate(labels):
-        if label >= 0:
-            out[label].append(face)
-    if any(not r for r in out):
-        raise ValueError("regions: labels must be 0..n-1 without a gap")
+    # Compared before any conversion (Python ints of any size, in an object array, or a uint64
+    # array), so that no value wraps; a label >= the face count leaves a gap below it.
+    bad = np.flatnonzero((labels < -1) | (labels >= num_faces))
+    if len(bad):
+        raise ValueError("regions: face {} has label {}; labels are -1 (no region) or 0..n-1 without a "
+                         "gap".format(bad[0], labels[bad[0]]))
+    labels = labels.astype(np.int64)
+    counts = np.bincount(labels[labels >= 0])
+    if counts.size == 0:
+        return []
+    if np.any(counts == 0):
+        raise ValueError("regions: labels must be 0..n-1 without a gap (no face has label {})"
+                         .format(np.flatnonzero(counts == 0)[0]))
+    order = np.argsort(labels, kind="stable")
+    return np.split(order[len(labels) - counts.sum():], np.cumsum(counts)[:-1])
+
+
+def _face_lists(regions, num_faces):
+    """The regions as int64 arrays after checking each face: an integer, in range, in one region
+    at most; and no region empty (the file's empty line would shift the later regions)."""
+    out = []
+    owner = np.full(num_faces, -1, dtype=np.int64)
+    for k, r in enumerate(regions):
+        if isinstance(r, np.ndarray):
+            if r.ndim != 1 or not (np.issubdtype(r.dtype, np.integer) or r.size == 0):
+                raise TypeError("regions[{}]: expected a 1-D array of integer face indices, got a {}-D {} "
+                                "array".format(k, r.ndim, r.dtype))
+            faces = list(r.tolist())
+        else:
+            faces = list(r)
+            for i, f in enumerate(faces):
+                if not _is_int(f):
+                    raise TypeError("regions[{}][{}] = {!r}: face indices must be integers, not {}"
+                                    .format(k, i, f, type(f).__name__))
+        if not faces:
+            raise ValueError("regions[{}] is empty: every region needs at least one face".format(k))
+        for f in faces:
+            if not 0 <= f < num_faces:
+                raise ValueError("regions[{}]: face {} is out of range (the mesh has {} faces: 0..{})"
+                                 .format(k, f, num_faces, num_faces - 1))
+            if owner[f] >= 0:
+                where = "twice in it" if owner[f] == k else "also in regions[{}]".format(owner[f])
+                raise ValueError("regions[{}]: face {} is {}".format(k, f, where))
+            owner[f] = k
+        out.append(np.array(faces, dtype=np.int64))
     return out
 
 
@@ -199,8 +293,9 @@ def check(vertices, faces):
 def regions(vertices, faces, **region_options):
     """The spherical regions ``--regions auto`` would choose: a list of face-index arrays, largest
     region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
-    ``max_area_fraction``, ... with '_' or '-'); ``region_at=[(x, y, z), ...]`` picks the caps
-    around the points instead."""
+    ``max_area_fraction``, ... with '_' or '-'; ``min_faces`` from 1 to 2**31 - 1); ``region_at``
+    picks the caps around points instead, in the forms and with the errors of contract()'s
+    region_at (one point, a list or array of points, or 'X,Y,Z' text)."""
     return _core.regions(vertices, faces, **region_options)
 
 

@@ -124,6 +124,50 @@ std::string option_text(const std::string& name, const py::handle& value) {
                        std::string(py::str(value.get_type())));
 }
 
+}  // namespace
+
+std::string region_at_text(const py::handle& value) {
+  if (py::isinstance<py::str>(value)) return value.cast<std::string>();  // the CLI's text, parsed by the table
+  const auto type_name = [&] { return std::string(py::str(value.get_type().attr("__name__"))); };
+  const std::string forms = "region_at: expected a point (x, y, z), a list of points or the text 'X,Y,Z'";
+  // Sequences and arrays only: numpy would read None as NaN, bytes or a dict as one object.
+  if (value.is_none() || py::isinstance<py::bytes>(value) || py::isinstance<py::dict>(value) ||
+      !(PySequence_Check(value.ptr()) || py::hasattr(value, "__array__")))
+    throw py::type_error(forms + ", got " + type_name());
+  py::array_t<double, py::array::c_style> points;
+  try {
+    points = py::module_::import("numpy").attr("ascontiguousarray")(value, "float64")
+                 .cast<py::array_t<double, py::array::c_style>>();
+  } catch (const py::error_already_set&) {  // ragged, or an item that is not a number
+    throw py::value_error(forms + ", got " + std::string(py::repr(value)));
+  }
+  if (points.size() == 0) throw py::value_error("region_at: expected at least one point (x, y, z), got none");
+  const bool one = points.ndim() == 1;  // region_at=(x, y, z)
+  if (!((one && points.shape(0) == 3) || (points.ndim() == 2 && points.shape(1) == 3)))
+    throw py::value_error(forms + ", got " + std::string(py::repr(value)));
+  const py::ssize_t n = one ? 1 : points.shape(0);
+  const double* xyz = points.data();
+  std::string text;
+  for (py::ssize_t i = 0; i < n; ++i, xyz += 3) {
+    const auto digits = [](double c) { return py::repr(py::float_(c)).cast<std::string>(); };
+    // By Python's index here, before the table's message (which quotes the text only).
+    if (!std::isfinite(xyz[0]) || !std::isfinite(xyz[1]) || !std::isfinite(xyz[2]))
+      throw py::value_error("region_at" + (one ? std::string() : "[" + std::to_string(i) + "]") + " = (" +
+                            digits(xyz[0]) + ", " + digits(xyz[1]) + ", " + digits(xyz[2]) +
+                            ") is not a point of three finite numbers");
+    text += (text.empty() ? "" : ";") + digits(xyz[0]) + "," + digits(xyz[1]) + "," + digits(xyz[2]);
+  }
+  return text;
+}
+
+std::vector<Vec3> region_at_points(const py::handle& value) {
+  RunOptions options;
+  find_run_option("region_at")->set(options, region_at_text(value));
+  return options.region_points;
+}
+
+namespace {
+
 RunOptions options_from_kwargs(const py::kwargs& kwargs) {
   RunOptions options;
   for (const auto& [key, value] : kwargs) {
@@ -137,21 +181,8 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs) {
       continue;
     }
     const OptionSpec* spec = find_run_option(name);
-    // region_at=[(x, y, z), ...] (or one point): the CLI's repeated --region-at, joined by ';'.
-    if (spec && spec->name == "region-at" && !py::isinstance<py::str>(value)) {
-      const py::list points = py::module_::import("numpy").attr("asarray")(value, "float64").attr("tolist")();
-      std::string text;
-      const auto point_text = [&](const py::handle& p) {
-        if (!py::isinstance<py::list>(p) || py::len(p) != 3)
-          throw py::value_error("option region_at: expected points (x, y, z), got " + std::string(py::str(value)));
-        return option_text(name, p);
-      };
-      if (py::len(points) > 0 && !py::isinstance<py::list>(points[0])) {
-        text = point_text(points);  // one point
-      } else {
-        for (const py::handle& p : points) text += (text.empty() ? "" : ";") + point_text(p);
-      }
-      spec->set(options, text);  // UsageError (ValueError) for an empty list or a bad number
+    if (spec && spec->name == "region-at") {
+      spec->set(options, region_at_text(value));  // UsageError (ValueError) for bad text
       continue;
     }
     if (!spec)

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -82,7 +83,8 @@ double real_option(const std::string& name, const py::handle& value) {
   return v;
 }
 
-/// A non-negative integer option of regions() (TypeError for a float or a bool).
+/// A positive integer option of regions() (TypeError for a float or a bool): min_faces, whose
+/// range is the library's (check_region_options: >= 1) and the CLI's (--min-faces reads an int).
 int int_option(const std::string& name, const py::handle& value) {
   if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr()))
     throw py::type_error("regions() option " + name + ": expected an integer, got " +
@@ -91,9 +93,10 @@ int int_option(const std::string& name, const py::handle& value) {
   if (!i) throw py::error_already_set();
   int overflow = 0;
   const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
-  if (overflow != 0 || v < 0 || v > 1000)
-    throw py::value_error("regions() option " + name + ": expected an integer from 0 to 1000, got " +
-                          std::string(py::repr(value)));
+  constexpr long long most = std::numeric_limits<int>::max();
+  if (overflow != 0 || v < 1 || v > most)
+    throw py::value_error("regions() option " + name + ": expected an integer from 1 to " + std::to_string(most) +
+                          ", got " + std::string(py::repr(value)));
   return static_cast<int>(v);
 }
 
@@ -114,29 +117,25 @@ RegionMethod method_option(const py::handle& value) {
 /// The options are the CLI's (`shellcontract regions --help`), with '_' or '-':
 /// regions(V, F, max_area_fraction=0.1), regions(V, F, method="tips") (opt-in: the tip finder),
 /// method="parts" (opt-in: the tip finder's ends with the cap finder's heads and bumps) or
-/// regions(V, F, **{"region-at": [(x, y, z)]}).
+/// regions(V, F, **{"region-at": [(x, y, z)]}) (region_at in contract()'s forms: region_at_points).
 py::list regions(const py::handle& vertices, const py::handle& faces, const py::kwargs& kwargs) {
   RegionOptions o;
   std::vector<Vec3> at;
   for (const auto& [key, value] : kwargs) {
-    std::string name = key.cast<std::string>();
+    const std::string given = key.cast<std::string>();  // messages name the option as the caller spelt it
+    std::string name = given;
     std::replace(name.begin(), name.end(), '_', '-');
     if (name == "method") o.method = method_option(value);
-    else if (name == "fit-tolerance") o.fit_tolerance = real_option(name, value);
-    else if (name == "max-concave-fraction") o.max_concave_fraction = real_option(name, value);
-    else if (name == "min-cap-angle") o.min_cap_angle_deg = real_option(name, value);
-    else if (name == "contrast") o.min_curvature_contrast = real_option(name, value);
-    else if (name == "max-compactness") o.max_compactness = real_option(name, value);
-    else if (name == "min-faces") o.min_faces = int_option(name, value);
-    else if (name == "min-area-fraction") o.min_area_fraction = real_option(name, value);
-    else if (name == "max-area-fraction") o.max_area_fraction = real_option(name, value);
-    else if (name == "region-at") {
-      for (const py::handle p : value) {
-        const auto xyz = p.cast<std::vector<double>>();
-        if (xyz.size() != 3) throw py::value_error("regions(): region_at takes points of three coordinates");
-        at.emplace_back(xyz[0], xyz[1], xyz[2]);
-      }
-    } else
+    else if (name == "fit-tolerance") o.fit_tolerance = real_option(given, value);
+    else if (name == "max-concave-fraction") o.max_concave_fraction = real_option(given, value);
+    else if (name == "min-cap-angle") o.min_cap_angle_deg = real_option(given, value);
+    else if (name == "contrast") o.min_curvature_contrast = real_option(given, value);
+    else if (name == "max-compactness") o.max_compactness = real_option(given, value);
+    else if (name == "min-faces") o.min_faces = int_option(given, value);
+    else if (name == "min-area-fraction") o.min_area_fraction = real_option(given, value);
+    else if (name == "max-area-fraction") o.max_area_fraction = real_option(given, value);
+    else if (name == "region-at") at = region_at_points(value);  // contract()'s forms and checks
+    else
       throw py::type_error("regions() got an unknown option '" + key.cast<std::string>() +
                            "'; valid options (those of `shellcontract regions`, '-' or '_'): fit_tolerance, "
                            "max_concave_fraction, min_cap_angle, contrast, max_compactness, min_faces, "

@@ -1,0 +1,134 @@
+"""contract()'s regions argument: which form a value is read as, and the checks of labels and
+face lists (by Python's indices, never naming the temporary face-list file the library reads)."""
+import numpy as np
+import pytest
+
+import shellcontract
+
+
+@pytest.fixture(scope="module")
+def bumpy(mesh_dir):
+    return shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+
+
+def run(mesh, **options):
+    return shellcontract.contract(*mesh, frames=1, pressure=0.0, **options)
+
+
+def test_an_empty_list_from_regions_is_no_regions_like_auto_finding_none(mesh_dir):
+    """Before: the empty list was read as a label array (12 faces, 0 labels)."""
+    cube = shellcontract.read_mesh(mesh_dir / "cube.off")
+    found = shellcontract.regions(*cube)
+    assert found == []
+    empty = shellcontract.contract(*cube, regions=found, frames=2)
+    auto = shellcontract.contract(*cube, regions="auto", frames=2)
+    assert empty.summary["regions"] == auto.summary["regions"] == 0
+    assert any("no region" in w for w in empty.summary["warnings"])
+    assert (empty.vertices == auto.vertices).all()
+
+
+def test_one_face_regions_are_regions_not_labels(bumpy):
+    """Before: [array([3]), array([7])] was read as two labels."""
+    a = run(bumpy, regions=[np.array([3]), np.array([7])])
+    b = run(bumpy, regions=[[3], [7]])
+    assert a.summary["regions"] == b.summary["regions"] == 2
+    assert (a.vertices == b.vertices).all()
+
+
+def test_labels_and_face_lists_give_the_same_run(bumpy):
+    labels = np.full(len(bumpy[1]), -1)
+    labels[:10] = 0
+    labels[20:30] = 1
+    lists = [list(range(10)), list(range(20, 30))]
+    runs = [run(bumpy, regions=r) for r in (labels, list(labels), tuple(int(x) for x in labels), lists,
+                                             [np.array(r) for r in lists], tuple(lists))]
+    assert all(r.summary["regions"] == 2 for r in runs)
+    assert all((r.vertices == runs[0].vertices).all() for r in runs)
+
+
+@pytest.mark.parametrize("value,fragment", [
+    (b"auto", "got bytes"),
+    ({0: [1, 2]}, "got dict"),
+    (3, "got int"),
+    (np.array([[1, 2]]), "2-D int64 array"),
+    ([0, [1]], r"regions\[1\] = \[1\]"),
+    ([[1], 0], r"regions\[1\] = 0"),
+    ([[0], "ab"], r"regions\[1\] = 'ab'"),
+])
+def test_a_value_of_no_documented_form_is_a_type_error_saying_what_regions_takes(bumpy, value, fragment):
+    """Before: bytes, a dict or an int went down the label path ("4 labels", "1 labels")."""
+    with pytest.raises(TypeError, match="regions: expected 'auto', 'none' or a face-list file") as e:
+        run(bumpy, regions=value)
+    assert e.match(fragment)
+
+
+def test_regions_none_is_the_default(bumpy):
+    """Before: TypeError (option regions: expected a number, a string or a bool)."""
+    assert (run(bumpy, regions=None).vertices == run(bumpy).vertices).all()
+
+
+@pytest.mark.parametrize("regions,fragment", [
+    ([[0, 1, 99999]], r"regions\[0\]: face 99999 is out of range"),
+    ([[0, 1], [2, -1]], r"regions\[1\]: face -1 is out of range"),
+    ([[0, 1], [5, 1]], r"regions\[1\]: face 1 is also in regions\[0\]"),
+    ([[0, 1, 1]], r"regions\[0\]: face 1 is twice"),
+    ([[0, 1], [], [5, 6]], r"regions\[1\] is empty"),
+    ([np.array([0, 1]), np.array([], dtype=np.int64)], r"regions\[1\] is empty"),
+])
+def test_bad_face_lists_are_value_errors_naming_the_region_and_face(bumpy, regions, fragment):
+    """Before: the library's message named the temporary file (/tmp/.../regions.txt:1), and an
+    empty region was dropped, shifting the later regions."""
+    with pytest.raises(ValueError, match=fragment) as e:
+        run(bumpy, regions=regions)
+    assert "regions.txt" not in str(e.value)
+
+
+def test_an_empty_region_with_strengths_names_the_region(bumpy):
+    """Before: "/tmp/.../regions.txt:2: a strength with no face after it"."""
+    with pytest.raises(ValueError, match=r"regions\[1\] is empty"):
+        run(bumpy, regions=[[0, 1], [], [5, 6]], region_strengths=[1, 1, 1])
+
+
+@pytest.mark.parametrize("regions,fragment", [
+    ([[0, 1, 2.7]], r"regions\[0\]\[2\] = 2.7"),
+    ([[0, 1, 2.0]], r"regions\[0\]\[2\] = 2.0"),
+    ([[0, float("nan")]], r"regions\[0\]\[1\] = nan"),
+    ([[0, True]], r"regions\[0\]\[1\] = True"),
+    ([np.array([1.0, 2.0])], r"regions\[0\]: expected a 1-D array of integer face indices"),
+    ([0.5, 1], r"regions\[0\] = 0.5"),
+])
+def test_non_integer_face_indices_are_type_errors(bumpy, regions, fragment):
+    """Before: 2.7 was truncated to face 2 and the run went on."""
+    with pytest.raises(TypeError, match=fragment):
+        run(bumpy, regions=regions)
+
+
+def test_float_labels_are_refused_whatever_their_value(bumpy):
+    """Before: lab + 0.5 turned every -0.5 into region 0 and ran."""
+    labels = np.full(len(bumpy[1]), -1)
+    labels[:10] = 0
+    for value in (labels + 0.5, labels.astype(np.float64)):
+        with pytest.raises(TypeError, match="float64 array"):
+            run(bumpy, regions=value)
+
+
+@pytest.mark.parametrize("face,label,fragment", [
+    (5, -7, "face 5 has label -7"),
+    (5, 10**6, "face 5 has label 1000000"),
+    (5, 10**30, "face 5 has label 1000000000000000000000000000000"),
+])
+def test_labels_out_of_range_are_value_errors_naming_the_face(bumpy, face, label, fragment):
+    """Before: -7 was no region; a huge label built a list of that many regions."""
+    labels = [-1] * len(bumpy[1])
+    labels[face] = label
+    with pytest.raises(ValueError, match=fragment):
+        run(bumpy, regions=labels)
+
+
+def test_labels_with_a_gap_or_none_set(bumpy):
+    labels = np.full(len(bumpy[1]), -1)
+    assert run(bumpy, regions=labels).summary["regions"] == 0
+    labels[:10] = 0
+    labels[20:30] = 2
+    with pytest.raises(ValueError, match="no face has label 1"):
+        run(bumpy, regions=labels)

@@ -1,0 +1,67 @@
+"""region_at in regions() and contract(): one parser (the forms and errors are the same in both,
+by Python's indices)."""
+import numpy as np
+import pytest
+
+import shellcontract
+
+NAN = float("nan")
+
+
+@pytest.fixture(scope="module")
+def bumpy(mesh_dir):
+    return shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+
+
+def as_lists(regions):
+    return [list(r) for r in regions]
+
+
+@pytest.mark.parametrize("one_point", [(0.3, 0, 0), [0.3, 0, 0], "0.3,0,0", np.array([0.3, 0.0, 0.0]),
+                                       [(0.3, 0, 0)], np.array([[0.3, 0.0, 0.0]])])
+def test_regions_takes_the_region_at_forms_contract_takes(bumpy, one_point):
+    """Before: (x, y, z) and 'X,Y,Z' raised pybind11's "Unable to cast Python instance"."""
+    got = shellcontract.regions(*bumpy, region_at=one_point)
+    assert len(got) == 1
+    assert as_lists(got) == as_lists(shellcontract.regions(*bumpy, region_at=[(0.3, 0.0, 0.0)]))
+    assert shellcontract.contract(*bumpy, region_at=one_point, frames=1).summary["regions"] == 1
+
+
+@pytest.mark.parametrize("points", ["0.3,0,0;-0.3,0,0", [(0.3, 0, 0), (-0.3, 0, 0)],
+                                    np.array([[0.3, 0, 0, 9], [-0.3, 0, 0, 9]])[:, :3]])
+def test_regions_takes_several_points_in_every_form(bumpy, points):
+    got = shellcontract.regions(*bumpy, region_at=points)
+    assert as_lists(got) == as_lists(shellcontract.regions(*bumpy, region_at=[(0.3, 0, 0), (-0.3, 0, 0)]))
+    assert len(got) == 2
+
+
+@pytest.mark.parametrize("value,error,fragment", [
+    (None, TypeError, "region_at: expected a point"),
+    (b"0.3,0,0", TypeError, "got bytes"),
+    (5, TypeError, "got int"),
+    ([], ValueError, "region_at: expected at least one point"),
+    (np.zeros((0, 3)), ValueError, "region_at: expected at least one point"),
+    ([(1, 2)], ValueError, r"got \[\(1, 2\)\]"),
+    ("", ValueError, "region_at: '' is not a point"),
+    ("1,2", ValueError, "region_at: '1,2' is not a point"),
+])
+def test_region_at_errors_are_the_same_in_regions_and_contract(bumpy, value, error, fragment):
+    """Before: regions() gave "'NoneType' object is not iterable" for None and ran the automatic
+    search for [] (where contract() said "'' is not a point")."""
+    with pytest.raises(error, match=fragment):
+        shellcontract.regions(*bumpy, region_at=value)
+    with pytest.raises(error, match=fragment):
+        shellcontract.contract(*bumpy, region_at=value, frames=1)
+
+
+@pytest.mark.parametrize("value,fragment", [
+    ([(NAN, 0, 0)], r"region_at\[0\] = \(nan, 0.0, 0.0\) is not a point of three finite numbers"),
+    ([(1, 0, 0), (0, float("inf"), 0)], r"region_at\[1\] = \(0.0, inf, 0.0\)"),
+    ((NAN, 0, 0), r"region_at = \(nan, 0.0, 0.0\)"),
+])
+def test_a_point_that_is_not_finite_is_named_by_python_index(bumpy, value, fragment):
+    """Before: regions() said "region point 1 is not finite" (numbered from 1)."""
+    with pytest.raises(ValueError, match=fragment):
+        shellcontract.regions(*bumpy, region_at=value)
+    with pytest.raises(ValueError, match=fragment):
+        shellcontract.contract(*bumpy, region_at=value, frames=1)
