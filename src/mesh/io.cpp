@@ -31,6 +31,7 @@
 #include <stdexcept>
 
 #include "mesh/eigen_point_map.hpp"
+#include "mesh/file_safety.hpp"
 #include "mesh/normalization.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
@@ -231,8 +232,8 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   // of defence, so that no file can end the process with an uncaught exception.
   try {
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl") {
-      std::error_code ec;
-      if (!fs::exists(path, ec)) fail(path, "cannot open file", "no such file");
+      // What the path is (missing, a folder, a device) says more than its extension does.
+      regular_file_size(path);
       fail(path, "unknown extension", "'." + ext + "' (expected .off, .obj, .ply or .stl)");
     }
     const auto start = std::chrono::steady_clock::now();

@@ -445,5 +445,20 @@ TEST(BadInputOtherFormats, TruncatedPlyIsATruncatedFile) {
   }
 }
 
+// Before: a folder whose name has no known extension was "unknown extension: '.'"; it is named as
+// a folder, as a folder named like a mesh (x.off) is.
+TEST(BadInputOtherFormats, AFolderIsNamedAsAFolderWhateverItsName) {
+  TempDir dir;
+  for (const std::string name : {"plain", "meshes.d", "x.off"}) {
+    fs::create_directory(dir.file(name));
+    try {
+      read_input_mesh(dir.file(name));
+      FAIL() << name << " accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("it is a folder"), std::string::npos) << name << ": " << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace shellcontract
