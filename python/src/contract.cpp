@@ -451,7 +451,8 @@ py::dict resolve_options(const py::kwargs& kwargs) {
   for (const OptionSpec& o : run_option_table()) {
     const std::string name = python_name(o.name);
     if (!kwargs.contains(name)) continue;
-    const std::string text = option_text(name, kwargs[py::str(name)]);
+    const std::string text = o.name == "region-at" ? region_at_text(kwargs[py::str(name)])
+                                                   : option_text(name, kwargs[py::str(name)]);
     if (o.is_switch) {
       RunOptions probe;
       o.set(probe, text);  // the switch's own parse (on/off/true/false/1/0)

@@ -65,3 +65,12 @@ def test_a_point_that_is_not_finite_is_named_by_python_index(bumpy, value, fragm
         shellcontract.regions(*bumpy, region_at=value)
     with pytest.raises(ValueError, match=fragment):
         shellcontract.contract(*bumpy, region_at=value, frames=1)
+
+
+@pytest.mark.parametrize("value", [[(1, 0, 0)], (1, 0, 0), np.array([[1.0, 0.0, 0.0]]), "1,0,0"])
+def test_the_sweeps_option_check_takes_the_region_at_forms_of_contract(value):
+    """The sweep checks its jobs' options with resolve_options. Before: a list of points there was
+    read as keyframes ("keyframes are (frame, value) pairs")."""
+    args = list(shellcontract._core.resolve_options(region_at=value)["args"])
+    i = args.index("--region-at")
+    assert [float(c) for c in args[i + 1].split(",")] == [1.0, 0.0, 0.0]
