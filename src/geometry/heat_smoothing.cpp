@@ -364,7 +364,9 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
     failed[k] = direct_solve(A[k], rhs, out[k]) ? 0 : 1;
   });
   if (std::any_of(failed.begin(), failed.end(), [](char f) { return f != 0; }))
-    throw UsageError("select_spherical_regions: the smoothing system is singular");
+    // Singular only where the masses or the Laplacian are degenerate: the input's geometry.
+    throw InputError("region selection: the mesh's heat smoothing system is singular "
+                     "(triangles of zero or near-zero area?)");
   if (iterations) *iterations = used;
   return out;
 }

@@ -22,7 +22,7 @@ constexpr double HEAT_ITERATIVE_TOLERANCE = 1e-12;
 
 /// u_k = (M + t_k L)^{-1} rhs for every t_k; L symmetric positive semidefinite (both triangles
 /// stored), M diagonal positive (as a vector). Each solve is one deterministic sequence of
-/// operations whatever the threads. Throws UsageError when a system is singular. When
+/// operations whatever the threads. Throws InputError when a system is singular. When
 /// iterative, a system the iteration does not solve within its bound is solved directly;
 /// iterations (when given) receives each system's iteration count, 0 for a direct solve.
 std::vector<Eigen::VectorXd> heat_solves(const Eigen::SparseMatrix<double>& L, const Eigen::VectorXd& mass,

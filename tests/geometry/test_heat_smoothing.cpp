@@ -13,6 +13,7 @@
 #include <Eigen/SparseCore>
 
 #include "geometry/heat_smoothing.hpp"
+#include "shellcontract/error.hpp"
 #include "support/heat_problem.hpp"
 
 namespace shellcontract {
@@ -56,6 +57,17 @@ TEST(HeatSmoothing, IterationCountDoesNotGrowWithTheResolution) {
     ASSERT_GT(nf[k], 0);
     EXPECT_LE(nf[k], nc[k] * 1.4 + 2) << "time " << k << ": " << nc[k] << " then " << nf[k] << " iterations";
   }
+}
+
+// A singular system (a vertex of zero mass and no Laplacian row: what degenerate input geometry
+// would give) is the input's fault, not the caller's: InputError (exit code 2), not UsageError.
+TEST(HeatSolves, ASingularSystemIsAnInputError) {
+  Eigen::SparseMatrix<double> L(2, 2);
+  L.insert(0, 0) = 0.0;
+  L.insert(1, 1) = 0.0;
+  const Eigen::VectorXd mass = Eigen::Vector2d(1.0, 0.0);
+  const Eigen::VectorXd rhs = Eigen::Vector2d(1.0, 1.0);
+  EXPECT_THROW(detail::heat_solves(L, mass, rhs, {0.1}, false), InputError);
 }
 
 }  // namespace
