@@ -52,10 +52,10 @@ constexpr const char* RUN_USAGE =
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
-    "            3 simulation failed or out of memory\n"
-    "            (the last good state written; nothing if memory ran out before the first frame\n"
-    "            or while writing), 4 new self-intersections found by --validate, 5 the target\n"
-    "            volume or stop ratio was not reached (result written)\n";
+    "            3 simulation failed or out of memory (the last good state written; nothing if\n"
+    "            memory ran out before the first frame or while writing), 4 new self-intersections\n"
+    "            found by --validate, 5 the target volume or stop ratio was not reached (result\n"
+    "            written)\n";
 
 /// The table's options as text values for boost, switches as bool_switch, in the task groups of
 /// run --help (help_groups.hpp), each group added to `desc`.

@@ -198,8 +198,7 @@ void check_region_options(const RegionOptions& o) {
   if (!(o.max_concave_fraction >= 0.0 && o.max_concave_fraction <= 1.0)) bad("max concave fraction must be in [0, 1]");
   if (!(o.min_cap_angle_deg >= 0.0 && o.min_cap_angle_deg <= 180.0)) bad("min cap angle must be in [0, 180] degrees");
   if (!(o.min_curvature_contrast >= 0.0)) bad("contrast must be >= 0");
-  // A cap on a sphere is below 1 (a hemisphere is 0.5), so any bound > 0 is a real choice.
-  if (!(o.max_compactness > 0.0)) bad("max compactness must be > 0");
+  if (!(o.max_compactness > 0.0)) bad("max compactness must be > 0");  // a cap on a sphere is below 1
   if (o.min_faces < 1) bad("min faces must be >= 1");
   if (o.method != RegionMethod::Caps && o.method != RegionMethod::Tips && o.method != RegionMethod::Parts)
     bad("unknown method");
