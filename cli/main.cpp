@@ -17,7 +17,7 @@ commands:
   run INPUT -o OUTPUT [options]    contract a closed mesh (see 'shellcontract run --help')
   check INPUT [--json]             report whether a mesh can be used, and why not
   repair INPUT -o OUTPUT           make a refused mesh usable (fill holes, stitch, orient ...)
-  regions INPUT -o OUT.ply         the spherical regions that --regions auto would choose
+  regions INPUT [-o OUT.ply]       the spherical regions that --regions auto would choose
   reconstruct POINTS -o OUT        closed surface from an oriented point set (the kitten)
   bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
   bench error INPUT [options]      speed against error of the solver (table, CSV, gnuplot plot)
@@ -26,9 +26,17 @@ commands:
   shellcontract <command> --help   options of one command
   shellcontract --version
 
-exit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed (NaN or blow-up) or
-            out of memory, 4 new self-intersections found by validation, 5 target volume or stop
-            ratio not reached
+exit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),
+            3 simulation failed (NaN or blow-up) or out of memory, 4 new self-intersections found
+            by validation, 5 target volume or stop ratio not reached
+)";
+
+constexpr const char* BENCH_USAGE = R"(usage: shellcontract bench <ccd|error> [options]
+
+  bench ccd --queries DIR          CCD narrow phase against benchmark queries with ground truth
+  bench error INPUT [options]      speed against error of the solver (table, CSV, gnuplot plot)
+
+  shellcontract bench ccd --help, shellcontract bench error --help: options of one benchmark
 )";
 
 /// Maps the main thread's first MiB of stack while there is room. That stack grows on demand, and
@@ -57,6 +65,11 @@ int dispatch(const std::string& command, int argc, char** argv) {
       return shellcontract::cli::command_bench_ccd(argc - 2, argv + 2);
     if (argc >= 3 && std::strcmp(argv[2], "error") == 0)
       return shellcontract::cli::command_bench_error(argc - 2, argv + 2);
+    // 'shellcontract <command> --help' holds for bench too: its subcommands.
+    if (argc >= 3 && (std::strcmp(argv[2], "--help") == 0 || std::strcmp(argv[2], "-h") == 0)) {
+      std::cout << BENCH_USAGE;
+      return 0;
+    }
     std::cerr << "shellcontract bench: expected 'ccd' or 'error' (try 'shellcontract bench error --help')\n";
     return 1;
   }

@@ -1,5 +1,5 @@
-// shellcontract regions IN -o OUT.ply [--face-list FILE] [--method caps|tips|parts] [thresholds]: shows the
-// local spherical regions that `run --regions auto` would choose (or, opt-in, the tip or part
+// shellcontract regions IN [-o OUT.ply] [--face-list FILE] [--method caps|tips|parts] [thresholds]: shows
+// the local spherical regions that `run --regions auto` would choose (or, opt-in, the tip or part
 // finder's).
 // Exit 0 ok, 1 bad usage (also an unwritable output), 2 bad input mesh.
 #include <boost/program_options.hpp>
@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,19 +34,21 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* REGIONS_USAGE = R"(usage: shellcontract regions INPUT -o OUT.ply [--face-list FILE] [--method caps|tips|parts] [thresholds]
+constexpr const char* REGIONS_USAGE = R"(usage: shellcontract regions INPUT [-o OUT.ply] [--face-list FILE] [--method caps|tips|parts] [thresholds]
 
 Finds the local spherical regions (bumps, heads, fingertips) of a closed mesh by curvature, the
-ones 'run --regions auto' uses, and writes the mesh as an ASCII PLY with one colour per region
-(grey = none), a per-face 'region' id and per-vertex 'mean_curvature' / 'gaussian_curvature'
-(input units). Prints the regions with their face count and area fraction.
+ones 'run --regions auto' uses, and prints them with their face count and area fraction ('-'
+where a region has no fitted sphere). With -o it also writes the mesh as an ASCII PLY with one
+colour per region (grey = none), a per-face 'region' id and per-vertex 'mean_curvature' /
+'gaussian_curvature' (input units); with --face-list, the regions as a face list.
 
 Each region is a compact cap on a sphere (an ear, a head, a fingertip): seeds at maxima of the
 smoothed mean curvature grow geodesic discs while a sphere fits them (--fit-tolerance), the caps
 are ranked by the angle they span and kept when round (--max-compactness), curved (--min-cap-angle,
 --contrast) and of a local size (--min-area-fraction, --max-area-fraction); caps on one part join
 into one region, clipped to a hemisphere of its fitted sphere. --region-at X,Y,Z
-(repeatable) instead picks the cap around the surface point nearest to each point. Every
+(repeatable, or X,Y,Z;X,Y,Z as for run) instead picks the cap around the surface point nearest
+to each point (its one-ring where no convex sphere fits there). Every
 threshold is a ratio, so scaling or rotating the mesh does not change the result.
 
 --method tips (opt-in) finds the ends of protrusions instead (the end of an arm or a foot, an
@@ -59,7 +62,11 @@ regions cover at most half of (heads, bumps on a body), each grown to the ball o
 sphere; a tip region mostly inside such a region gives way to it (docs/math/part-finder.md). It
 reads the options of both finders; not --region-at.
 
-exit codes: 0 success, 1 bad usage or unwritable output, 2 the mesh cannot be used
+A face-list line is one region: its 0-based face ids, separated by spaces. 'run --regions FILE'
+also reads a strength in front of a line, 'S: ids' with S in [0, 1] (the share of
+--region-shrink that region sinks with; 1 without one); this command writes none.
+
+exit codes: 0 success, 1 bad usage or unwritable output, 2 bad input (the mesh cannot be used)
 
 options)";
 
@@ -69,14 +76,19 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-/// "X,Y,Z" -> point; UsageError naming the text otherwise.
-Vec3 parse_point(const std::string& text) {
-  std::istringstream in(text);
-  Vec3 p;
-  char c1 = 0, c2 = 0;
-  if (!(in >> p.x() >> c1 >> p.y() >> c2 >> p.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() || !p.allFinite())
-    throw UsageError("--region-at '" + text + "': expected three finite numbers X,Y,Z");
-  return p;
+/// The points of the --region-at values, read by `run --region-at`'s own entry of the option
+/// table, so that both commands take the same forms (repeated, or X,Y,Z;X,Y,Z). UsageError
+/// naming the option by field, as the table's entries do (spell_options spells it).
+std::vector<Vec3> parse_region_points(const std::vector<std::string>& values) {
+  std::string joined;
+  for (const std::string& v : values) joined += (joined.empty() ? "" : ";") + v;
+  for (const OptionSpec& spec : run_option_table())
+    if (spec.name == "region-at") {
+      RunOptions run;
+      spec.set(run, joined);
+      return run.region_points;
+    }
+  throw std::logic_error("the run option table has no region-at");
 }
 
 /// --method's value; UsageError naming the allowed values otherwise.
@@ -94,18 +106,32 @@ std::string region_table(const RegionReport& report) {
   t << "  id  centre (x, y, z)                      radius      area %   faces  compact.  residual  angle\n";
   for (std::size_t r = 0; r < report.regions.size(); ++r) {
     const RegionSummary& s = report.regions[r];
+    // A region without a sphere (a --region-at one-ring) has no centre, radius, fit or angle.
     std::ostringstream centre;
-    centre << std::setprecision(4) << std::showpos << s.centre.x() << ", " << s.centre.y() << ", " << s.centre.z();
+    if (s.fitted)
+      centre << std::setprecision(4) << std::showpos << s.centre.x() << ", " << s.centre.y() << ", " << s.centre.z();
+    else
+      centre << '-';
     // Fixed-point for the usual sizes; a mesh at 1e150 or 1e-150 gets exponents, not 150 digits.
-    std::ostringstream radius;
-    if (std::abs(s.radius) >= 1e-4 && std::abs(s.radius) < 1e6)
+    std::ostringstream radius, residual, angle;
+    if (!s.fitted)
+      radius << '-';
+    else if (std::abs(s.radius) >= 1e-4 && std::abs(s.radius) < 1e6)
       radius << std::fixed << std::setprecision(4) << s.radius;
     else
       radius << ' ' << std::setprecision(4) << s.radius;  // the centre may fill its column
+    if (s.fitted)
+      residual << std::fixed << std::setprecision(3) << s.residual;
+    else
+      residual << '-';
+    if (s.fitted)
+      angle << std::fixed << std::setprecision(0) << s.cap_angle_deg;
+    else
+      angle << '-';
     t << std::setw(4) << r << "  " << std::left << std::setw(36) << centre.str() << std::right
       << std::setw(10) << radius.str() << std::setprecision(2) << std::setw(10) << 100.0 * s.area_fraction
-      << std::setw(8) << s.faces << std::setw(10) << s.compactness << std::setprecision(3) << std::setw(10)
-      << s.residual << std::setprecision(0) << std::setw(6) << s.cap_angle_deg << '\n';
+      << std::setw(8) << s.faces << std::setw(10) << s.compactness << std::setw(10) << residual.str()
+      << std::setw(6) << angle.str() << '\n';
   }
   return t.str();
 }
@@ -128,14 +154,17 @@ int command_regions(int argc, char** argv) {
   po::options_description visible;
   visible.add_options()
       ("help,h", "show this help")
-      ("output,o", po::value(&output), "output mesh, .ply (face colours, region ids, curvature)")
+      ("output,o", po::value(&output), "write the mesh as a .ply (face colours, region ids, curvature); "
+                                       "without it, only the table (and --face-list)")
       ("face-list", po::value(&face_list), "also write the regions as a face-list file (one line per region, "
-                                           "0-based face ids; the format 'run --regions FILE' reads)")
+                                           "0-based face ids; the format 'run --regions FILE' reads, where a "
+                                           "line may also start with a strength 'S:', S in [0, 1])")
       ("method", po::value(&method)->default_value(method), "caps (spherical caps from curvature seeds), tips "
                                                            "(opt-in: the ends of protrusions) or parts (opt-in: "
                                                            "tips with the caps' heads and bumps)")
       ("region-at", po::value(&points)->composing(), "X,Y,Z: the cap around the surface point nearest to "
-                                                      "this point (repeatable; replaces the automatic search)")
+                                                      "this point (repeatable, or X,Y,Z;X,Y,Z; replaces the "
+                                                      "automatic search)")
       ("fit-tolerance", po::value(&options.fit_tolerance)->default_value(options.fit_tolerance, shown(options.fit_tolerance)),
        "growth: RMS distance to the fitted sphere at most this fraction of its radius")
       ("max-concave-fraction", po::value(&options.max_concave_fraction)->default_value(options.max_concave_fraction, shown(options.max_concave_fraction)),
@@ -145,7 +174,8 @@ int command_regions(int argc, char** argv) {
       ("contrast", po::value(&options.min_curvature_contrast)->default_value(options.min_curvature_contrast, shown(options.min_curvature_contrast)),
        "keep caps whose curvature 1/radius is at least this multiple of the area-weighted median |H|")
       ("max-compactness", po::value(&options.max_compactness)->default_value(options.max_compactness, shown(options.max_compactness)),
-       "keep caps with perimeter^2 / (4 pi area) at most this (1 = disc)")
+       "keep caps with perimeter^2 / (4 pi area) at most this (> 0; 1 = a flat disc, 0.5 = a "
+       "hemisphere, larger = longer or more ragged)")
       ("min-faces", po::value(&options.min_faces)->default_value(options.min_faces), "keep caps with at least this many faces")
       ("min-area-fraction", po::value(&options.min_area_fraction)->default_value(options.min_area_fraction, shown(options.min_area_fraction)),
        "drop regions smaller than this fraction of the total area")
@@ -158,8 +188,7 @@ int command_regions(int argc, char** argv) {
       return static_cast<int>(ExitCode::Success);
     }
     if (input.empty()) throw UsageError("missing INPUT mesh");
-    if (output.empty()) throw UsageError("missing -o OUT.ply");
-    if (lower_extension(output) != ".ply") throw UsageError("the output must be a .ply file (got '" + output + "')");
+    if (!output.empty() && lower_extension(output) != ".ply") throw UsageError("the output must be a .ply file (got '" + output + "')");
     for (const auto& [name, t] : {std::pair<const char*, double>{"--fit-tolerance", options.fit_tolerance},
                                   {"--max-concave-fraction", options.max_concave_fraction},
                                   {"--min-cap-angle", options.min_cap_angle_deg},
@@ -169,20 +198,22 @@ int command_regions(int argc, char** argv) {
                                   {"--max-area-fraction", options.max_area_fraction}})
       if (!std::isfinite(t) || t < 0.0)
         throw UsageError(std::string(name) + " must be a finite number >= 0 (got " + shortest_text(t) + ")");
+    if (!(options.max_compactness > 0.0))
+      throw UsageError("--max-compactness must be a finite number > 0 (got " + shortest_text(options.max_compactness) + ")");
     options.method = parse_method(method);
     check_region_options(options);
     if (options.method != RegionMethod::Caps && !points.empty())
       throw UsageError("--region-at grows caps; it does not apply with --method " + method);
-    for (const std::string& p : points) at.push_back(parse_point(p));
+    if (!points.empty()) at = parse_region_points(points);
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});
-    plan.outputs.push_back({"-o", output});
+    if (!output.empty()) plan.outputs.push_back({"-o", output});
     if (!face_list.empty()) plan.outputs.push_back({"--face-list", face_list});
     check_planned_outputs(plan);  // none is the input or the other, all writable (output_paths.hpp)
   } catch (const po::error& e) {
     return usage_error("regions", e.what());
   } catch (const UsageError& e) {
-    return usage_error("regions", e.what());
+    return usage_error("regions", spell_options(e.what(), OptionSpelling::Cli));
   }
 
   try {
@@ -197,7 +228,7 @@ int command_regions(int argc, char** argv) {
       store_regions(mesh, select_regions_at(mesh, x, at, options, &report));
       store_curvature(mesh, compute_curvature(mesh, x));
     }
-    write_region_ply(output, mesh, x);
+    if (!output.empty()) write_region_ply(output, mesh, x);
     if (!face_list.empty()) write_region_file(face_list, stored_regions(mesh));
 
     std::ostringstream out;
@@ -210,7 +241,7 @@ int command_regions(int argc, char** argv) {
         << report.dropped_large << " large, " << report.dropped_shape << " not compact\n"
         << "regions: " << report.regions.size() << '\n';
     out << region_table(report);
-    out << "wrote: " << output << '\n';
+    if (!output.empty()) out << "wrote: " << output << '\n';
     if (!face_list.empty()) out << "wrote: " << face_list << '\n';
     std::cout << out.str();
     return static_cast<int>(ExitCode::Success);

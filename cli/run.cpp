@@ -51,10 +51,11 @@ constexpr const char* RUN_USAGE =
     "polygons and extra PLY properties are kept (docs/design/attributes.md).\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
-    "\nexit codes: 0 success, 1 bad usage, 2 bad input mesh, 3 simulation failed or out of memory\n"
-    "            (the last good state written; nothing if memory ran out before the first frame\n"
-    "            or while writing), 4 new self-intersections found by --validate, 5 the target\n"
-    "            volume or stop ratio was not reached (result written)\n";
+    "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
+    "            3 simulation failed or out of memory (the last good state written; nothing if\n"
+    "            memory ran out before the first frame or while writing), 4 new self-intersections\n"
+    "            found by --validate, 5 the target volume or stop ratio was not reached (result\n"
+    "            written)\n";
 
 /// The table's options as text values for boost, switches as bool_switch, in the task groups of
 /// run --help (help_groups.hpp), each group added to `desc`.
@@ -355,7 +356,11 @@ int command_run(int argc, char** argv) {
         options.regions == RegionSource::Auto ||
         (options.regions == RegionSource::None && !options.given.count("regions") &&
          (options.sim.solver.aniso != AnisoKind::None || options.measure_regions));
-    ProgressPrinter progress(options.sim.frames, auto_regions);
+    // --region-at makes the regions Auto too (resolve_run_options): its caps are at the points.
+    ProgressPrinter progress(options.sim.frames,
+                             !auto_regions                   ? std::string()
+                             : options.region_points.empty() ? "selected by curvature"
+                                                             : "grown at the --region-at points");
     if (!quiet) observers.add(progress);
     CsvLog csv;
     if (!log_path.empty() || !checkpoint_path.empty()) observers.add(csv);

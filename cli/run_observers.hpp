@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "shellcontract/error.hpp"
 #include "shellcontract/report.hpp"
@@ -39,17 +40,18 @@ class WarningPrinter final : public RunObserver {
 /// a second or more (bear subdivided three times: about 4 s).
 class ProgressPrinter final : public RunObserver {
  public:
-  /// Made just before the run starts preparing.
-  ProgressPrinter(int frames, bool auto_regions)
-      : frames_(frames), auto_regions_(auto_regions), made_(std::chrono::steady_clock::now()) {}
+  /// Made just before the run starts preparing. `regions_origin` says where regions the user did
+  /// not list came from ("selected by curvature"); empty: no line about the regions.
+  ProgressPrinter(int frames, std::string regions_origin)
+      : frames_(frames), regions_origin_(std::move(regions_origin)), made_(std::chrono::steady_clock::now()) {}
   void started(const FrameView& view) override {
     start_ = last_ = std::chrono::steady_clock::now();
     const double prepare = std::chrono::duration<double>(start_ - made_).count();
     if (prepare >= 1.0)
       std::cerr << "prepared in " << std::setprecision(3) << prepare << " s\n";
     const std::size_t regions = view.regions();
-    if (auto_regions_ && regions > 0)
-      std::cerr << "regions: " << regions << " spherical regions selected by curvature\n";
+    if (!regions_origin_.empty() && regions > 0)
+      std::cerr << "regions: " << regions << " spherical regions " << regions_origin_ << '\n';
   }
   void frame(const FrameView& view, const FrameMetrics& m) override {
     const auto now = std::chrono::steady_clock::now();
@@ -63,7 +65,7 @@ class ProgressPrinter final : public RunObserver {
 
  private:
   int frames_;
-  bool auto_regions_;
+  std::string regions_origin_;
   std::chrono::steady_clock::time_point made_, start_, last_;
 };
 

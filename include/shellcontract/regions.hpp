@@ -75,8 +75,9 @@ struct RegionOptions {
   /// between bumps, is no more curved than the typical surface; a head or a ball foot is. (A
   /// plain sphere has no region anyway: its caps never end, see max_area_fraction.)
   double min_curvature_contrast = 1.1;
-  /// Kept only when perimeter^2 / (4 pi area) is at most this (1 = a flat disc; slivers, rims
-  /// and L or X shapes are far above 2).
+  /// Kept only when perimeter^2 / (4 pi area) is at most this, any value > 0 (1 = a flat disc,
+  /// 0.5 = a hemisphere: a cap on a sphere is below 1; slivers, rims and L or X shapes are far
+  /// above 2).
   double max_compactness = 2.0;
   /// Kept only with at least this many faces (fewer cannot be judged round).
   int min_faces = 10;
@@ -100,6 +101,10 @@ struct RegionSummary {
                                  ///< from the sphere's centre, degrees (at most 90 for the cap
                                  ///< finder; a tip region is not clipped to a hemisphere)
   double compactness = 0.0;      ///< perimeter^2 / (4 pi area) of the region's faces
+  /// false when no sphere was fitted: a select_regions_at point where no convex sphere fits gets
+  /// its seed's one-ring as is. centre, radius, residual, cap_angle_deg, mean_curvature and
+  /// contrast are then not measured (left 0).
+  bool fitted = true;
   int seed_vertex = -1;          ///< vertex the region grew from
   double mean_curvature = 0.0;   ///< 1 / radius, 1/length
   double contrast = 0.0;         ///< mean_curvature / reference_mean_curvature
@@ -142,7 +147,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
                                    const RegionOptions& options, RegionReport* report = nullptr);
 
 /// Throws UsageError naming the first option out of range (tolerances >= 0, fractions in
-/// [0, 1], min <= max, min_faces >= 1).
+/// [0, 1], min <= max, max_compactness > 0, min_faces >= 1).
 void check_region_options(const RegionOptions& options);
 
 

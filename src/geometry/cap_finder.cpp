@@ -161,6 +161,7 @@ RegionSummary summarise(const Mesh& mesh, const Positions& x, const MeshArrays& 
   s.centre = cap.sphere.centre;
   s.radius = cap.sphere.radius;
   s.residual = cap.sphere.residual;
+  s.fitted = cap.sphere.radius > 0.0;  // a fallback one-ring (select_regions_at) has no sphere
   s.cap_angle_deg = cap.angle * 180.0 / PI;
   s.compactness = shape.compactness;
   s.seed_vertex = cap.seed;
@@ -197,7 +198,7 @@ void check_region_options(const RegionOptions& o) {
   if (!(o.max_concave_fraction >= 0.0 && o.max_concave_fraction <= 1.0)) bad("max concave fraction must be in [0, 1]");
   if (!(o.min_cap_angle_deg >= 0.0 && o.min_cap_angle_deg <= 180.0)) bad("min cap angle must be in [0, 180] degrees");
   if (!(o.min_curvature_contrast >= 0.0)) bad("contrast must be >= 0");
-  if (!(o.max_compactness >= 1.0)) bad("max compactness must be >= 1");
+  if (!(o.max_compactness > 0.0)) bad("max compactness must be > 0");  // a cap on a sphere is below 1
   if (o.min_faces < 1) bad("min faces must be >= 1");
   if (o.method != RegionMethod::Caps && o.method != RegionMethod::Tips && o.method != RegionMethod::Parts)
     bad("unknown method");

@@ -66,7 +66,9 @@ OptionSpec region_option() {
   o.value_name = "auto|none|FILE";
   o.help =
       "regions that sink in (the local contraction, --region-shrink): auto (spherical regions "
-      "found by curvature), none, or a file with one line per region of 0-based face ids; "
+      "found by curvature), none, or a file with one line per region of 0-based face ids, "
+      "optionally after a strength 'S:' in [0, 1] ('0.5: 12 13 14': the share of --region-shrink "
+      "that region sinks with; 1 without); the regions must leave faces out (their rim); "
       "default none, auto with --aniso";
   o.set = [](RunOptions& r, const std::string& v) {
     if (v.empty()) bad("regions", v, "auto, none or a file name");

@@ -5,6 +5,7 @@
 #include <unistd.h>  // getpid: one temporary folder per test process
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iterator>
 #include <filesystem>
@@ -230,8 +231,13 @@ TEST(RegionSelection, BadOptionsAreUsageErrors) {
   o.fit_tolerance = -0.1;
   EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
   o = RegionOptions{};
-  o.max_compactness = 0.5;
+  o.max_compactness = 0.0;
   EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
+  o.max_compactness = std::nan("");
+  EXPECT_THROW(select_spherical_regions(mesh, m.x, o), UsageError);
+  // A cap on a sphere is below 1 (a hemisphere is 0.5): a bound below 1 is a real threshold.
+  o.max_compactness = 0.5;
+  EXPECT_NO_THROW(check_region_options(o));
   o = RegionOptions{};
   o.min_area_fraction = 0.5;
   o.max_area_fraction = 0.1;

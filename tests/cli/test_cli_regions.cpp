@@ -1,0 +1,144 @@
+// Regions on the command line: `run --regions FILE` / `--region-weights` refusing regions without
+// a rim and naming an empty file, `regions` with or without -o, its --region-at forms and table,
+// and the help texts that describe them.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "support/cli_runner.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_cli;
+
+class CliRegions : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_cli_regions_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  static std::string mesh(const std::string& name) { return std::string(test::MESH_DIR) + "/" + name; }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  static bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+  /// The text with every run of blanks and line breaks as one space (help text wraps anywhere).
+  static std::string squeezed(const std::string& text) {
+    std::string s;
+    for (char c : text)
+      if (c != ' ' && c != '\n' && c != '\t') s += c;
+      else if (!s.empty() && s.back() != ' ') s += ' ';
+    return s;
+  }
+  fs::path dir_;
+};
+
+// meshes/cube.off: 8 vertices, 12 triangles, corners at 0 and 1.
+TEST_F(CliRegions, RunRefusesRegionsCoveringEveryFaceBeforeTheRun) {
+  {
+    std::ofstream all(path("all.txt"));
+    for (int f = 0; f < 12; ++f) all << f << ' ';
+    all << '\n';
+    std::ofstream weights(path("w.txt"));
+    for (int v = 0; v < 8; ++v) weights << "1\n";
+  }
+  auto r = run_cli({"run", mesh("cube.off"), "--regions", path("all.txt"), "-p", "0", "-n", "5", "-o", path("o.off")});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(has(r.output, "all.txt: the regions cover every face")) << r.output;
+  EXPECT_FALSE(has(r.output, "blow-up")) << r.output;
+  EXPECT_FALSE(fs::exists(path("o.off")));
+  r = run_cli({"run", mesh("cube.off"), "--region-weights", path("w.txt"), "-p", "0", "-n", "5", "-o", path("o.off")});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_TRUE(has(r.output, "w.txt: the regions cover every face")) << r.output;
+  EXPECT_FALSE(fs::exists(path("o.off")));
+}
+
+TEST_F(CliRegions, RunWarnsNamingARegionFileThatListsNoRegion) {
+  std::ofstream(path("empty.txt")) << "# only a comment\n\n";
+  const auto r = run_cli({"run", mesh("cube.off"), "--regions", path("empty.txt"), "-n", "2", "-q", "-o", path("o.off")});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(r.output, "warning: --regions " + path("empty.txt") + ": the file lists no region")) << r.output;
+}
+
+TEST_F(CliRegions, RunSaysItsRegionsCameFromTheGivenPoints) {
+  const auto r = run_cli({"run", mesh("ico2.off"), "--region-at", "0,0,2", "-n", "2", "-o", path("o.off")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(r.output, "regions: 1 spherical regions grown at the --region-at points")) << r.output;
+  EXPECT_FALSE(has(r.output, "selected by curvature")) << r.output;
+}
+
+TEST_F(CliRegions, RegionsWithoutOutputPrintsTheTableAndWritesTheFaceList) {
+  auto r = run_cli({"regions", mesh("bumpy_sphere.off")});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(r.output, "  id  centre")) << r.output;
+  EXPECT_FALSE(has(r.output, "wrote:")) << r.output;
+  r = run_cli({"regions", mesh("bumpy_sphere.off"), "--face-list", path("f.txt")});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(path("f.txt")));
+  EXPECT_TRUE(has(r.output, "wrote: " + path("f.txt"))) << r.output;
+  // The output checks still hold for what is written: the face list cannot be the input.
+  r = run_cli({"regions", mesh("bumpy_sphere.off"), "--face-list", mesh("bumpy_sphere.off")});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  r = run_cli({"regions", mesh("bumpy_sphere.off"), "-o", path("r.off")});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_FALSE(fs::exists(path("r.off")));
+}
+
+TEST_F(CliRegions, RegionsTakesTheRegionAtFormsOfRun) {
+  auto r = run_cli({"regions", mesh("cube.off"), "--region-at=2,2,2;-1,-1,-1"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(r.output, "regions: 2\n")) << r.output;
+  r = run_cli({"regions", mesh("cube.off"), "--region-at", "2,2"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(has(r.output, "--region-at: '2,2' is not a point X,Y,Z")) << r.output;
+}
+
+TEST_F(CliRegions, AFallbackRegionShowsNoSphere) {
+  // At a cube's corner no convex sphere fits: the corner's one-ring, with no centre to show.
+  const auto r = run_cli({"regions", mesh("cube.off"), "--region-at", "2,2,2"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(has(r.output, "+0, +0, +0")) << r.output;
+  const std::size_t row = r.output.find("\n   0  ");
+  ASSERT_NE(row, std::string::npos) << r.output;
+  EXPECT_EQ(r.output.substr(row + 7, 1), "-") << r.output;
+}
+
+TEST_F(CliRegions, MaxCompactnessBelowOneIsAThreshold) {
+  // A cap on a sphere is below 1 (a hemisphere 0.5), so a bound below 1 must be accepted.
+  auto r = run_cli({"regions", mesh("bumpy_sphere.off"), "--max-compactness", "0.5"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  r = run_cli({"regions", mesh("bumpy_sphere.off"), "--max-compactness", "0"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(has(r.output, "--max-compactness must be a finite number > 0")) << r.output;
+  r = run_cli({"regions", "--help"});
+  EXPECT_TRUE(has(squeezed(r.output), "1 = a flat disc, 0.5 = a hemisphere")) << r.output;
+}
+
+TEST_F(CliRegions, HelpTextsDescribeTheStrengthColumnAndTheExitCodes) {
+  auto r = run_cli({"run", "--help"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(squeezed(r.output), "strength 'S:' in [0, 1]")) << r.output;
+  EXPECT_TRUE(has(r.output, "2 bad input (mesh, face list")) << r.output;
+  EXPECT_FALSE(has(r.output, "2 bad input mesh")) << r.output;
+  r = run_cli({"regions", "--help"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(squeezed(r.output), "'S: ids'")) << r.output;
+  r = run_cli({"--help"});
+  EXPECT_FALSE(has(r.output, "2 bad input mesh")) << r.output;
+}
+
+TEST_F(CliRegions, BenchHelpShowsItsSubcommands) {
+  const auto r = run_cli({"bench", "--help"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(r.output, "bench ccd") && has(r.output, "bench error")) << r.output;
+}
+
+}  // namespace
+}  // namespace shellcontract
