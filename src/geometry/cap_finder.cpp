@@ -463,7 +463,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     // Nearest surface point (brute force: a handful of points), then its nearest corner. The
     // first face always sets a seed, whatever its distance.
     double best = std::numeric_limits<double>::infinity();
-    int seed = -1;
+    int seed = -1, nearest = -1;
     for (std::size_t f = 0; f < m.nf; ++f) {
       const auto& t = m.tri[f];
       const Vec3 q = closest_on_triangle(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])));
@@ -471,6 +471,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
       if (seed < 0 || d < best) {
         best = d;
         seed = t[0];
+        nearest = static_cast<int>(f);
         for (int v : t)
           if ((Vec3(x.row(v)) - q).squaredNorm() < (Vec3(x.row(seed)) - q).squaredNorm()) seed = v;
       }
@@ -488,6 +489,11 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     } else {
       ++r.candidates;
     }
+    // The cap grows by vertices from the face's nearest corner; on a coarse mesh it can hold that
+    // corner and not the face, and the region would miss the point the user pointed at.
+    const auto holds = [&](const Cap& k) { return std::binary_search(k.faces.begin(), k.faces.end(), nearest); };
+    if (!holds(*cap) && std::none_of(kept.begin(), kept.end(), [&](const auto& k) { return holds(k.first); }))
+      cap->faces.insert(std::upper_bound(cap->faces.begin(), cap->faces.end(), nearest), nearest);
     const RegionSummary s = summarise(mesh, x, m, *cap, h_ref);
     block(m, *cap, blocked);
     kept.emplace_back(std::move(*cap), s);

@@ -123,6 +123,20 @@ TEST(RegionAtRun, EachPointGetsTheCapAroundItsNearestSurfacePoint) {
   }
 }
 
+// On a coarse mesh the nearest surface point's face can be large: the elk's face nearest to this
+// point (next to its nose) is 1.5 units away, its nearest corner 13.5 (the diagonal is 270). The
+// cap grown from that corner held two of the face's corners but not the face, so the region the
+// artist pointed at did not hold the point.
+TEST(RegionAtRun, TheRegionHoldsThePointedAtFaceOnACoarseMesh) {
+  const Mesh mesh = read_input_mesh(std::string(test::PAPER_MESH_DIR) + "/elk.off");
+  const Positions x = positions_from_mesh(mesh);
+  const Vec3 p(68.0, -5.0, -86.0);
+  std::size_t count = 0;
+  const std::vector<int> ids = run_regions(mesh, point_text(p), &count);
+  ASSERT_EQ(count, 1u);
+  EXPECT_EQ(ids[nearest_face(mesh, x, p)], 0);
+}
+
 TEST(RegionAtRun, TheOptionReadsBackAndRefusesMalformedPoints) {
   RunOptions o;
   set_run_option(o, "region-at", "0.1,-2,3e-3;4,5,6");
