@@ -193,12 +193,11 @@ int command_regions(int argc, char** argv) {
                                   {"--max-concave-fraction", options.max_concave_fraction},
                                   {"--min-cap-angle", options.min_cap_angle_deg},
                                   {"--contrast", options.min_curvature_contrast},
-                                  {"--max-compactness", options.max_compactness},
                                   {"--min-area-fraction", options.min_area_fraction},
                                   {"--max-area-fraction", options.max_area_fraction}})
       if (!std::isfinite(t) || t < 0.0)
         throw UsageError(std::string(name) + " must be a finite number >= 0 (got " + shortest_text(t) + ")");
-    if (!(options.max_compactness > 0.0))
+    if (!std::isfinite(options.max_compactness) || !(options.max_compactness > 0.0))
       throw UsageError("--max-compactness must be a finite number > 0 (got " + shortest_text(options.max_compactness) + ")");
     options.method = parse_method(method);
     check_region_options(options);

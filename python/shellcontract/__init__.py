@@ -104,6 +104,15 @@ def contract(vertices, faces, *, callback=None, **options):
     # library as a temporary face-list file, the format `run --regions FILE` reads, with each
     # region's strength as its "S:" column.
     lists = _region_lists(regions, len(faces))
+    if not lists:
+        # No region: run as "none", warned as a file that lists none is, but naming the argument
+        # (an empty temporary file would be named in the warning instead).
+        if strengths is not None:
+            _strengths(strengths, 0)
+        result = Result(_core.contract(vertices, faces, callback=callback, **dict(options, regions="none")))
+        result.summary.setdefault("warnings", []).append(
+            "regions: the list holds no region: the local contraction has no effect")
+        return result
     prefixes = [""] * len(lists) if strengths is None else ["{!r}: ".format(s) for s in _strengths(strengths, len(lists))]
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "regions.txt")

@@ -77,9 +77,11 @@ double real_option(const std::string& name, const py::handle& value) {
                          std::string(py::str(value.get_type().attr("__name__"))));
   const double v = PyFloat_AsDouble(value.ptr());
   if (v == -1.0 && PyErr_Occurred()) throw py::error_already_set();
-  if (!std::isfinite(v) || v < 0.0)
-    throw py::value_error("regions() option " + name + ": expected a finite number >= 0, got " +
-                          std::string(py::repr(value)));
+  // max_compactness bounds a ratio that is positive for any region (a cap on a sphere is below 1).
+  const bool positive = name == "max_compactness" || name == "max-compactness";
+  if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0))
+    throw py::value_error("regions() option " + name + ": expected a finite number " +
+                          (positive ? "> 0" : ">= 0") + ", got " + std::string(py::repr(value)));
   return v;
 }
 

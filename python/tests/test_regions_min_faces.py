@@ -33,3 +33,12 @@ def test_a_bad_value_names_the_option_as_the_caller_spelt_it(bumpy, given, value
     """Before: min_faces and fit_tolerance were named min-faces and fit-tolerance."""
     with pytest.raises(ValueError, match=named):
         shellcontract.regions(*bumpy, **{given: value})
+
+
+@pytest.mark.parametrize("value", [0, -1.0, float("inf"), float("nan")])
+def test_max_compactness_says_it_must_be_positive_for_every_bad_value(bumpy, value):
+    """A cap on a sphere measures below 1, so any bound > 0 is a threshold; 0 had another message
+    ("region options: max compactness must be > 0") than -1 ("expected a finite number >= 0")."""
+    with pytest.raises(ValueError, match=r"max_compactness: expected a finite number > 0"):
+        shellcontract.regions(*bumpy, max_compactness=value)
+    assert shellcontract.regions(*bumpy, max_compactness=0.5) is not None

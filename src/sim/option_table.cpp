@@ -68,7 +68,8 @@ OptionSpec region_option() {
       "regions that sink in (the local contraction, --region-shrink): auto (spherical regions "
       "found by curvature), none, or a file with one line per region of 0-based face ids, "
       "optionally after a strength 'S:' in [0, 1] ('0.5: 12 13 14': the share of --region-shrink "
-      "that region sinks with; 1 without); the regions must leave faces out (their rim); "
+      "that region sinks with; 1 without); a region should be a part of the surface (a file "
+      "that lists no region is a warning, one over most of a closed surface can fail the run); "
       "default none, auto with --aniso";
   o.set = [](RunOptions& r, const std::string& v) {
     if (v.empty()) bad("regions", v, "auto, none or a file name");

@@ -16,7 +16,6 @@
 #include "shellcontract/material.hpp"
 #include "shellcontract/regions.hpp"
 #include "sim/contact_distance.hpp"
-#include "sim/region_rim.hpp"
 #include "sim/region_weights.hpp"
 
 namespace shellcontract {
@@ -171,26 +170,7 @@ void resolve_run_options(RunOptions& r) {
   resolve_sim_options(r.sim);  // and the checks of every simulation option
 }
 
-namespace {
-
-/// How an InputError names where the regions of `options` come from: the file, or in words (no
-/// option names: an InputError reaches Python as written, unspelled).
-std::string region_source_name(const RunOptions& options) {
-  switch (options.regions) {
-    case RegionSource::File:
-      return options.region_file;
-    case RegionSource::Auto:
-      return options.region_points.empty() ? "the regions found by curvature" : "the regions at the given points";
-    case RegionSource::Weights:
-      return options.region_weight_file.empty() ? "the region weights" : options.region_weight_file;
-    case RegionSource::None:
-      break;
-  }
-  return "the regions";
-}
-
-/// mark_run_regions without the rim check.
-std::size_t mark_regions_of_source(Mesh& mesh, const RunOptions& options) {
+std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
   switch (options.regions) {
     case RegionSource::File: {
       const RegionFile file = read_region_file_with_strengths(options.region_file, mesh.number_of_faces());
@@ -223,15 +203,6 @@ std::size_t mark_regions_of_source(Mesh& mesh, const RunOptions& options) {
   }
   store_regions(mesh, std::vector<int>(mesh.number_of_faces(), -1));
   return 0;
-}
-
-}  // namespace
-
-std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
-  const std::size_t count = mark_regions_of_source(mesh, options);
-  // Every source, so that the CLI, Python and a sweep refuse the same files and weights.
-  if (count > 0) check_regions_have_rims(mesh, stored_regions(mesh), region_source_name(options));
-  return count;
 }
 
 SimPlan plan_simulation(Mesh mesh, SimOptions options) {
@@ -273,9 +244,9 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
                             ": the file lists no region (only blank or comment lines): the local "
                             "contraction has no effect");
   else if (o.regions == RegionSource::Weights && plan.regions == 0 && !o.measure_regions)
-    plan.warnings.push_back("`region_weights` " +
-                            (o.region_weight_file.empty() ? std::string() : o.region_weight_file + ": ") +
-                            "every weight is 0, so no face is in a region: the local contraction "
+    plan.warnings.push_back("`region_weights`" +
+                            (o.region_weight_file.empty() ? std::string() : " " + o.region_weight_file) +
+                            ": every weight is 0, so no face is in a region: the local contraction "
                             "has no effect");
   else if (o.regions != RegionSource::None && plan.regions == 0 && !o.measure_regions)
     plan.warnings.push_back("`regions` auto found no region: the local contraction has no effect");

@@ -53,11 +53,8 @@ SimPlan plan_simulation(Mesh mesh, SimOptions options);
 /// weights, or none (every face -1). plan_run calls it on its copy of the mesh after
 /// resolve_run_options, which selects Auto only when something acts on the regions or they are
 /// measured.
-/// Regions that leave no rim (together every face, or one a whole closed part) are refused
-/// (sim/region_rim.hpp).
 /// @return the number of regions
-/// @throws InputError for an unreadable or out-of-range region file, and for regions without a
-///         rim, naming the file (or the option) they came from
+/// @throws InputError for an unreadable or out-of-range region file
 std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
 
 /// Runs a plan (plan_run(mesh, options), or a plan a caller put together from plan_simulation):
