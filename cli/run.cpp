@@ -359,8 +359,8 @@ int command_run(int argc, char** argv) {
     // --region-at makes the regions Auto too (resolve_run_options): its caps are at the points.
     ProgressPrinter progress(options.sim.frames,
                              !auto_regions                   ? std::string()
-                             : options.region_points.empty() ? "selected by curvature"
-                                                             : "grown at the --region-at points");
+                             : options.region_points.empty() ? "spherical regions selected by curvature"
+                                                             : "regions grown at the --region-at points");
     if (!quiet) observers.add(progress);
     CsvLog csv;
     if (!log_path.empty() || !checkpoint_path.empty()) observers.add(csv);

@@ -41,7 +41,7 @@ class WarningPrinter final : public RunObserver {
 class ProgressPrinter final : public RunObserver {
  public:
   /// Made just before the run starts preparing. `regions_origin` says where regions the user did
-  /// not list came from ("selected by curvature"); empty: no line about the regions.
+  /// not list came from ("spherical regions selected by curvature"); empty: no line about the regions.
   ProgressPrinter(int frames, std::string regions_origin)
       : frames_(frames), regions_origin_(std::move(regions_origin)), made_(std::chrono::steady_clock::now()) {}
   void started(const FrameView& view) override {
@@ -51,7 +51,7 @@ class ProgressPrinter final : public RunObserver {
       std::cerr << "prepared in " << std::setprecision(3) << prepare << " s\n";
     const std::size_t regions = view.regions();
     if (!regions_origin_.empty() && regions > 0)
-      std::cerr << "regions: " << regions << " spherical regions " << regions_origin_ << '\n';
+      std::cerr << "regions: " << regions << " " << regions_origin_ << '\n';
   }
   void frame(const FrameView& view, const FrameMetrics& m) override {
     const auto now = std::chrono::steady_clock::now();
