@@ -489,11 +489,13 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     } else {
       ++r.candidates;
     }
-    // The cap grows by vertices from the face's nearest corner; on a coarse mesh it can hold that
-    // corner and not the face, and the region would miss the point the user pointed at.
-    const auto holds = [&](const Cap& k) { return std::binary_search(k.faces.begin(), k.faces.end(), nearest); };
-    if (!holds(*cap) && std::none_of(kept.begin(), kept.end(), [&](const auto& k) { return holds(k.first); }))
-      cap->faces.insert(std::upper_bound(cap->faces.begin(), cap->faces.end(), nearest), nearest);
+    // On a coarse mesh the cap grown by vertices can miss the pointed-at face: the seed's fan joins
+    // (edge-connected; in no earlier region, or the seed would be blocked).
+    if (!std::binary_search(cap->faces.begin(), cap->faces.end(), nearest)) {
+      for (int f : m.vertex_faces[static_cast<std::size_t>(seed)]) cap->faces.push_back(f);
+      std::sort(cap->faces.begin(), cap->faces.end());
+      cap->faces.erase(std::unique(cap->faces.begin(), cap->faces.end()), cap->faces.end());
+    }
     const RegionSummary s = summarise(mesh, x, m, *cap, h_ref);
     block(m, *cap, blocked);
     kept.emplace_back(std::move(*cap), s);

@@ -5,6 +5,8 @@
 // the run has no region (mark_run_regions returns 0 and every face is -1), and every test fails.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -135,6 +137,39 @@ TEST(RegionAtRun, TheRegionHoldsThePointedAtFaceOnACoarseMesh) {
   const std::vector<int> ids = run_regions(mesh, point_text(p), &count);
   ASSERT_EQ(count, 1u);
   EXPECT_EQ(ids[nearest_face(mesh, x, p)], 0);
+}
+
+/// Whether the faces with id `id` form one piece across shared edges.
+bool edge_connected(const Mesh& mesh, const std::vector<int>& ids, int id) {
+  std::vector<std::size_t> todo;
+  std::set<std::size_t> seen;
+  for (std::size_t f = 0; f < ids.size() && todo.empty(); ++f)
+    if (ids[f] == id) todo.push_back(f), seen.insert(f);
+  while (!todo.empty()) {
+    const FaceIndex f(static_cast<std::uint32_t>(todo.back()));
+    todo.pop_back();
+    for (HalfedgeIndex h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) {
+      const FaceIndex g = mesh.face(mesh.opposite(h));
+      if (g != Mesh::null_face() && ids[g.idx()] == id && seen.insert(g.idx()).second) todo.push_back(g.idx());
+    }
+  }
+  return seen.size() == static_cast<std::size_t>(std::count(ids.begin(), ids.end(), id));
+}
+
+// The second point lies on a face next to the first region: two of that face's corners are the
+// first region's, so the cap grown from its third corner could hold neither it nor its two
+// neighbours at that corner. Adding the face alone joined it to the region at one vertex only.
+TEST(RegionAtRun, TheAddedPointedAtFaceKeepsTheRegionInOnePiece) {
+  const Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off");
+  const Positions x = positions_from_mesh(mesh);
+  const Vec3 p(-0.40424914524207767, -0.08691534297209211, -0.28049156133586095);
+  std::size_t count = 0;
+  const std::vector<int> ids =
+      run_regions(mesh, "-0.023345402668506817,0.28624826916607343,-0.4258135234879707;" + point_text(p), &count);
+  ASSERT_EQ(count, 2u);
+  EXPECT_EQ(ids[nearest_face(mesh, x, p)], 1);
+  EXPECT_TRUE(edge_connected(mesh, ids, 0));
+  EXPECT_TRUE(edge_connected(mesh, ids, 1));
 }
 
 TEST(RegionAtRun, TheOptionReadsBackAndRefusesMalformedPoints) {
