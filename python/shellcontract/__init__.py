@@ -110,8 +110,11 @@ def contract(vertices, faces, *, callback=None, **options):
         if strengths is not None:
             _strengths(strengths, 0)
         result = Result(_core.contract(vertices, faces, callback=callback, **dict(options, regions="none")))
-        result.summary.setdefault("warnings", []).append(
-            "regions: the list holds no region: the local contraction has no effect")
+        warnings = result.summary.setdefault("warnings", [])
+        # As the library warns of an empty face-list file: not when the regions are only measured,
+        # and once (an aniso option's warning already says no region was given).
+        if not options.get("measure_regions") and not any("no region" in w for w in warnings):
+            warnings.append("regions: the list holds no region: the local contraction has no effect")
         return result
     prefixes = [""] * len(lists) if strengths is None else ["{!r}: ".format(s) for s in _strengths(strengths, len(lists))]
     with tempfile.TemporaryDirectory() as tmp:

@@ -136,3 +136,12 @@ def test_labels_with_a_gap_or_none_set(bumpy):
     labels[20:30] = 2
     with pytest.raises(ValueError, match="no face has label 1"):
         run(bumpy, regions=labels)
+
+
+@pytest.mark.parametrize("extra,warned", [({"measure_regions": True}, 0), ({"aniso": "arap"}, 1)])
+def test_an_empty_list_warns_as_an_empty_face_list_file_does(mesh_dir, extra, warned):
+    """regions=[] runs as "none"; its warning follows the library's for an empty file: none when
+    the regions are only measured, and one (the aniso option's) where that option already warns."""
+    cube = shellcontract.read_mesh(mesh_dir / "cube.off")
+    result = shellcontract.contract(*cube, regions=[], frames=2, **extra)
+    assert sum("no region" in w for w in result.summary["warnings"]) == warned, result.summary["warnings"]
