@@ -58,7 +58,10 @@ def _cell(v):
     if isinstance(v, float):
         return repr(v)
     if isinstance(v, (list, tuple)):
-        return ",".join(_cell(x) for x in v)
+        # Points of region_at, [[x, y, z], ...]: the CLI's text, 'X,Y,Z;X,Y,Z', so that the cell
+        # tells the points apart.
+        sep = ";" if any(isinstance(x, (list, tuple)) for x in v) else ","
+        return sep.join(_cell(x) for x in v)
     return str(v)
 
 

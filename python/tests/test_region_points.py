@@ -74,3 +74,11 @@ def test_the_sweeps_option_check_takes_the_region_at_forms_of_contract(value):
     args = list(shellcontract._core.resolve_options(region_at=value)["args"])
     i = args.index("--region-at")
     assert [float(c) for c in args[i + 1].split(",")] == [1.0, 0.0, 0.0]
+
+
+def test_the_sweeps_results_write_several_points_as_the_cli_text():
+    """results.csv's cell for region_at=[[x, y, z], ...]: before, all coordinates in one
+    comma list, so the points could not be told apart."""
+    from shellcontract.sweep_results import _cell
+    assert _cell([[0.5, 1.0, -2.0], [3.0, 0.0, 1.0]]) == "0.5,1.0,-2.0;3.0,0.0,1.0"
+    assert _cell([0.0, 0.0, 1.0]) == "0.0,0.0,1.0"  # one point (or a fibre direction): unchanged
