@@ -12,6 +12,12 @@ KEY_PREFIX = "shellcontract "
 RUNNING = {}
 
 
+# Edit Mode keeps its own copy of the mesh: the module would read the positions from before the
+# edits, and shape keys written now are replaced by the edit copy's (without them) when it ends.
+EDIT_MODE = ("the object is in Edit Mode; switch to Object Mode (Tab) first: shape keys written in "
+             "Edit Mode are lost when it ends")
+
+
 def _preferences(context):
     addon = context.preferences.addons.get(__package__)
     return addon.preferences if addon else None
@@ -128,6 +134,8 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
 
     def _prepare(self, context):
         obj = context.active_object
+        if obj.mode == "EDIT":
+            raise runner.AddonError(EDIT_MODE)
         prefs = _preferences(context)
         module = runner.import_shellcontract(prefs.module_path if prefs else "")
         vertices, faces = mesh_arrays(obj)
@@ -147,13 +155,18 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             s.status = "cancelled at frame {}".format(job.progress)
             self.report({"WARNING"}, "ShellContract: cancelled; the object is unchanged")
             return {"CANCELLED"}
+        if result.summary["frames_run"] < 1:  # failed at its first step: nothing to key
+            s.status = "no frame was run"
+            self.report({"ERROR"}, "ShellContract: no frame was run ({}); the object is unchanged".format(
+                result.summary.get("failure") or result.status))
+            return {"CANCELLED"}
+        if obj.mode == "EDIT":  # entered during a threaded run
+            s.status = "not written: the object is in Edit Mode"
+            self.report({"ERROR"}, "ShellContract: the result was not written: " + EDIT_MODE)
+            return {"CANCELLED"}
         # The last frame is the result's own positions (a run may end early: a stall, a failure).
         job.frames[result.summary["frames_run"]] = result.vertices
         job.frames = {n: v for n, v in job.frames.items() if n <= result.summary["frames_run"]}
-        if not job.frames:
-            s.status = "no frame was run"
-            self.report({"ERROR"}, "ShellContract: {}".format(result.summary["failure"]))
-            return {"CANCELLED"}
         write_shape_keys(context, obj, job)
         s.status = "{}: {} frames, V/V0 {:.4f}".format(
             result.status, result.summary["frames_run"], result.summary["final_volume_ratio"])

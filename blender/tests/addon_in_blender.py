@@ -159,6 +159,31 @@ def main():
           and len(obj2.data.shape_keys.key_blocks) == keys_before,
           "a missing vertex group is refused, naming it, and nothing changes")
 
+    # A run that fails at its first step keys nothing and keeps the earlier result.
+    obj2.shellcontract.region_group = ""
+    obj2.animation_data_clear()  # the target's keys (the result's keys are on the mesh's Key)
+    obj2.shellcontract.target_volume = 0.0
+    obj2.shellcontract.pressure = -1e6
+    try:
+        bpy.ops.object.shellcontract_contract()
+        refused = ""
+    except RuntimeError as e:
+        refused = str(e)
+    check("no frame was run" in refused and len(obj2.data.shape_keys.key_blocks) == keys_before,
+          "a run that fails at its first step is an error and keeps the earlier keys: " + refused)
+    obj2.shellcontract.pressure = 4.0
+
+    # Edit Mode keeps its own mesh: contracting there is refused, and the keys survive it.
+    bpy.ops.object.mode_set(mode="EDIT")
+    try:
+        bpy.ops.object.shellcontract_contract()
+        refused = ""
+    except RuntimeError as e:
+        refused = str(e)
+    bpy.ops.object.mode_set(mode="OBJECT")
+    check("Edit Mode" in refused and len(obj2.data.shape_keys.key_blocks) == keys_before,
+          "contracting in Edit Mode is refused and the keys are kept: " + refused)
+
     # The UI's path: the run in a worker thread while this (Blender's) thread goes on, and a
     # cancel that stops it after the current step, leaving the object alone.
     import time
