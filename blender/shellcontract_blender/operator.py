@@ -168,11 +168,15 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         job.frames[result.summary["frames_run"]] = result.vertices
         job.frames = {n: v for n, v in job.frames.items() if n <= result.summary["frames_run"]}
         write_shape_keys(context, obj, job)
+        # The library's warnings (e.g. a vertex group whose weights are all 0: no region) go with
+        # the status, so that an ineffective setting is not reported as a plain success.
+        warnings = list(result.summary.get("warnings", []))
         s.status = "{}: {} frames, V/V0 {:.4f}".format(
-            result.status, result.summary["frames_run"], result.summary["final_volume_ratio"])
+            result.status, result.summary["frames_run"], result.summary["final_volume_ratio"]) + "".join(
+            "; warning: " + w for w in warnings)
         obj["shellcontract_final_volume_ratio"] = result.summary["final_volume_ratio"]
         obj["shellcontract_regions"] = result.summary["regions"]
-        level = {"INFO"} if result.status == "ok" else {"WARNING"}
+        level = {"INFO"} if result.status == "ok" and not warnings else {"WARNING"}
         self.report(level, "ShellContract: " + s.status +
                     ("" if result.status == "ok" else " ({})".format(result.summary["failure"])))
         return {"FINISHED"}

@@ -159,6 +159,15 @@ def main():
           and len(obj2.data.shape_keys.key_blocks) == keys_before,
           "a missing vertex group is refused, naming it, and nothing changes")
 
+    # A vertex group without weights makes no region: a success, but not a silent one.
+    obj2.vertex_groups.new(name="empty")
+    obj2.shellcontract.region_group = "empty"
+    obj2.shellcontract.frames = 5
+    check(bpy.ops.object.shellcontract_contract() == {"FINISHED"}
+          and "warning" in obj2.shellcontract.status and "every weight is 0" in obj2.shellcontract.status,
+          "an empty vertex group runs with a warning in the status: " + obj2.shellcontract.status)
+    keys_before = len(obj2.data.shape_keys.key_blocks)
+
     # A run that fails at its first step keys nothing and keeps the earlier result.
     obj2.shellcontract.region_group = ""
     obj2.animation_data_clear()  # the target's keys (the result's keys are on the mesh's Key)
