@@ -213,7 +213,17 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
   for (const auto& [name, value] : c.given) set_run_option(options, name, value);
   for (const OptionSpec& o : run_option_table())
     if (command_line.given.count(option_field(o.name))) o.set(options, o.get(command_line));
-  const OptionValues now = resolved_options(options);
+  OptionValues now;
+  try {
+    now = resolved_options(options);
+  } catch (const UsageError& e) {
+    // An option given that excludes one of the checkpoint's: the mismatch is the user's news,
+    // the exclusion only its form.
+    std::string own;
+    for (const auto& [name, value] : c.given) own += (own.empty() ? "--" : ", --") + name + " " + value;
+    throw UsageError("the checkpoint was written with other options: the options given do not go with its own (" +
+                     own + "): " + e.what());
+  }
   std::string differ;
   for (const auto& [name, value] : now)
     if (describe(c.resolved, name) != (value.empty() ? "unset" : value))

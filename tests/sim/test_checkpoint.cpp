@@ -209,6 +209,25 @@ TEST(Checkpoint, RefusesOtherOptionsNamingThem) {
   EXPECT_EQ(taken.sim.pressure, 2.0);
 }
 
+// Options given that exclude one of the checkpoint's (--regions auto against its --region-at) are
+// a mismatch with the checkpoint, named as such: before, the message was the exclusion alone
+// ("--region-at excludes --regions"), about an option the command line did not hold.
+TEST(Checkpoint, OptionsThatExcludeTheCheckpointsAreNamedAsAMismatch) {
+  const Mesh mesh = read("ico1.off");
+  const RunOptions options = options_from({{"frames", "6"}, {"pressure", "0"}, {"region-at", "0,0,1"}});
+  MemoryCheckpointer saver(mesh, options, 3, true);
+  run_contraction(mesh, options, nullptr, &saver);
+  ASSERT_TRUE(saver.saved.has_value());
+  try {
+    options_for_resume(*saver.saved, options_from({{"regions", "auto"}}));
+    FAIL() << "options that exclude the checkpoint's accepted";
+  } catch (const UsageError& e) {
+    const std::string msg = e.what();
+    EXPECT_NE(msg.find("the checkpoint was written with other options"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("--region-at"), std::string::npos) << msg;
+  }
+}
+
 TEST(Checkpoint, RefusesAnotherInputOrVersionAndDamagedFiles) {
   const Mesh mesh = read("ico1.off");
   const RunOptions options = options_from({{"frames", "10"}});
