@@ -1,6 +1,5 @@
 #include "mesh/reconstruction.hpp"
 
-#include <CGAL/IO/read_points.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Random.h>
 #include <CGAL/compute_average_spacing.h>
@@ -10,8 +9,10 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <new>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -28,6 +29,33 @@ namespace {
 
 using Vector3 = Kernel::Vector_3;
 using PointWithNormal = std::pair<Point3, Vector3>;
+
+/// The lines "x y z nx ny nz" of a text point set (blank lines and '#' comments skipped), each
+/// checked here so that a bad line is named: CGAL's reader took three numbers as a point with no
+/// normal (the solve then never ended) and printed its own message without the file.
+void read_point_lines(const std::string& path, std::vector<PointWithNormal>& points) {
+  std::istringstream in(read_regular_file(path));
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    std::istringstream fields(line);
+    std::vector<double> v;
+    for (std::string token; fields >> token;) {
+      char* end = nullptr;
+      const double x = std::strtod(token.c_str(), &end);
+      if (end == token.c_str() || *end != '\0' || !std::isfinite(x))
+        throw InputError(path + ": line " + std::to_string(number) + ": '" + token + "' is not a finite number");
+      v.push_back(x);
+    }
+    if (v.size() != 6)
+      throw InputError(path + ": line " + std::to_string(number) + ": " + std::to_string(v.size()) +
+                       " numbers; an oriented point set has 6 per line (x y z nx ny nz)");
+    if (v[3] == 0.0 && v[4] == 0.0 && v[5] == 0.0)
+      throw InputError(path + ": line " + std::to_string(number) + ": the normal is zero");
+    points.emplace_back(Point3(v[0], v[1], v[2]), Vector3(v[3], v[4], v[5]));
+  }
+}
 
 /// The oriented points of `path`: PLY through our reader (CGAL 5.5's crashes, see ply_reader),
 /// anything else through CGAL::IO::read_points, with its allocation failures turned into an
@@ -47,16 +75,7 @@ std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
       points.emplace_back(Point3(d.points[i][0], d.points[i][1], d.points[i][2]),
                           Vector3(d.normals[i][0], d.normals[i][1], d.normals[i][2]));
   } else {
-    try {
-      if (!CGAL::IO::read_points(path, std::back_inserter(points),
-                                 CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>())
-                                     .normal_map(CGAL::Second_of_pair_property_map<PointWithNormal>())))
-        throw InputError(path + ": cannot read an oriented point set (x y z nx ny nz per line)");
-    } catch (const std::bad_alloc&) {
-      throw InputError(path + ": out of memory: a count in the file is larger than the file can hold");
-    } catch (const std::length_error&) {
-      throw InputError(path + ": too large: a count in the file is beyond what can be stored");
-    }
+    read_point_lines(path, points);
   }
   // Poisson reconstruction needs finite points and normals: a NaN would poison the solve.
   for (std::size_t i = 0; i < points.size(); ++i) {
@@ -67,6 +86,35 @@ std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
       throw InputError(path + ": non-finite coordinate: point " + std::to_string(i) + " has a non-finite coordinate or normal");
   }
   return points;
+}
+
+/// The bounding box's diagonal over the points' average spacing beyond which the input is refused.
+constexpr double MAX_SPREAD_OVER_SPACING = 1e6;
+
+double min_of(const std::vector<PointWithNormal>& p, int d) {
+  double m = p.front().first[d];
+  for (const PointWithNormal& q : p) m = std::min(m, q.first[d]);
+  return m;
+}
+double max_of(const std::vector<PointWithNormal>& p, int d) {
+  double m = p.front().first[d];
+  for (const PointWithNormal& q : p) m = std::max(m, q.first[d]);
+  return m;
+}
+
+/// Refuses points that all lie in one plane (exactly: CGAL's orientation predicate): they
+/// enclose no volume, and the Delaunay triangulation under the Poisson solve is then flat, on
+/// which CGAL's solve crashed (a segmentation fault on a flat disc of points).
+void check_spread(const std::string& path, const std::vector<PointWithNormal>& p) {
+  const Point3& a = p.front().first;
+  std::size_t i = 1;
+  while (i < p.size() && p[i].first == a) ++i;
+  std::size_t j = i + 1;
+  while (j < p.size() && CGAL::collinear(a, p[i].first, p[j].first)) ++j;
+  std::size_t k = j + 1;
+  while (k < p.size() && CGAL::coplanar(a, p[i].first, p[j].first, p[k].first)) ++k;
+  if (k >= p.size())
+    throw InputError(path + ": the points lie in one plane (or on a line): they enclose no volume");
 }
 
 using PoissonFunction = CGAL::Poisson_reconstruction_function<Kernel>;
@@ -151,9 +199,18 @@ Mesh reconstruct_from_oriented_points(const std::string& path, const Reconstruct
   std::vector<PointWithNormal> points = read_oriented_points(path);
   if (points.size() < 10)
     throw InputError(path + ": only " + std::to_string(points.size()) + " points; need an oriented point set");
+  check_spread(path, points);
   const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(
       points, options.spacing_neighbours,
       CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>()));
+  // A point far from the others (or a huge coordinate) makes the solve's domain that much larger
+  // than the sampling: the arithmetic then overflowed (SIGFPE) on a coordinate of 1e308.
+  const double diagonal = CGAL::approximate_sqrt(CGAL::squared_distance(
+      Point3(min_of(points, 0), min_of(points, 1), min_of(points, 2)),
+      Point3(max_of(points, 0), max_of(points, 1), max_of(points, 2))));
+  if (spacing > 0.0 && !(diagonal / spacing <= MAX_SPREAD_OVER_SPACING))
+    throw InputError(path + ": the points span more than a million times their average spacing: a stray "
+                     "point far from the others, or a huge coordinate?");
   Mesh mesh;
   if (!(spacing > 0.0) || !poisson_delaunay(points, mesh, spacing, options))
     throw InputError(path + ": Poisson surface reconstruction failed (no surface found)");
