@@ -58,7 +58,7 @@ void read_point_lines(const std::string& path, std::vector<PointWithNormal>& poi
 }
 
 /// The oriented points of `path`: PLY through our reader (CGAL 5.5's crashes, see ply_reader),
-/// anything else through CGAL::IO::read_points, with its allocation failures turned into an
+/// anything else as text lines (read_point_lines), with allocation failures turned into an
 /// InputError naming the file.
 std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -75,7 +75,12 @@ std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
       points.emplace_back(Point3(d.points[i][0], d.points[i][1], d.points[i][2]),
                           Vector3(d.normals[i][0], d.normals[i][1], d.normals[i][2]));
   } else {
-    read_point_lines(path, points);
+    try {
+      read_point_lines(path, points);
+    } catch (const std::bad_alloc&) {
+      throw InputError(path + ": out of memory: reading its " + std::to_string(points.size()) +
+                       " points needs more memory than there is");
+    }
   }
   // Poisson reconstruction needs finite points and normals: a NaN would poison the solve.
   for (std::size_t i = 0; i < points.size(); ++i) {
