@@ -264,6 +264,12 @@ int command_check(int argc, char** argv) {
     }
     return static_cast<int>(ExitCode::Success);
   } catch (const UsageError& e) {
+    // --json promises an object on stdout whatever the outcome (here: meshes that are not the same).
+    if (json) {
+      JsonObject o;
+      o.add("file", input).add("against", against).add("error", std::string(e.what()));
+      std::cout << o.str() << '\n';
+    }
     return usage_error("check", e.what());
   } catch (const InputError& e) {
     std::cerr << "shellcontract check: " << e.what() << '\n';

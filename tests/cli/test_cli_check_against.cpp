@@ -181,6 +181,10 @@ TEST_F(CliCheckAgainst, MeshesThatAreNotTheSameAreBadUsage) {
   const RunResult r = run_cli({"check", mesh_path("ico2.off"), "--against", mesh_path("ico1.off")});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("is not a result of"), std::string::npos) << r.output;
+  // --json prints its object here too (before, only the message on stderr).
+  const RunResult j = run_cli({"check", mesh_path("ico2.off"), "--against", mesh_path("ico1.off"), "--json"});
+  EXPECT_EQ(j.exit_code, 1) << j.output;
+  EXPECT_NE(j.output.find("\"error\": \""), std::string::npos) << j.output;
   const RunResult missing = run_cli({"check", mesh_path("ico2.off"), "--against", file("nothing.off"), "--json"});
   EXPECT_EQ(missing.exit_code, 2) << missing.output;
   EXPECT_NE(missing.output.find("nothing.off"), std::string::npos) << missing.output;
