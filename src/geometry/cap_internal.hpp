@@ -103,6 +103,15 @@ std::vector<Vec3> pulled_in(const std::vector<Vec3>& points, const Positions& x)
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report, CurvatureField* curvature);
 
+/// Diffusion lengths of the smoothed mean curvature, in units of the mesh's size sqrt(total
+/// area). The first marks concave spots (creases between a part and its body) without the
+/// noise of a scan; the others give the seeds: a fingertip or an ear is a maximum at the
+/// smaller ones, a head at the larger.
+inline constexpr std::array<double, 4> SEED_SCALES = {0.01, 0.02, 0.05, 0.1};
+
+/// Marks the corners of the cap's faces: a later cap may not grow over them.
+void block(const MeshArrays& m, const Cap& cap, std::vector<char>& blocked);
+
 /// The mean curvature c.mean smoothed by one implicit heat step per scale: (M + t L) u = M H, L
 /// the cotangent Laplacian, M the mixed areas, t = (scale * m.size)^2 (cap_finder.cpp). One
 /// field per scale, in the order given.

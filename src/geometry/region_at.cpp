@@ -1,0 +1,129 @@
+// select_regions_at (shellcontract/regions.hpp): the cap around the surface point nearest to each
+// given point, grown with the cap finder's growth (cap_grower.hpp) but without its ranking, the
+// way an artist points at an ear.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/power_of_two.hpp"
+#include "geometry/cap_grower.hpp"
+#include "geometry/cap_internal.hpp"
+#include "geometry/curvature.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/regions.hpp"
+
+namespace shellcontract {
+namespace {
+
+using detail::block;
+using detail::Cap;
+using detail::CapGrower;
+using detail::MeshArrays;
+using detail::mesh_arrays;
+using detail::number_regions;
+using detail::reference_curvature;
+using detail::SEED_SCALES;
+using detail::smoothed_curvature;
+using detail::summarise;
+
+/// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
+Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+  const double denom = va + vb + vc;
+  if (!(std::abs(denom) > 0.0)) return a;  // degenerate triangle
+  return a + ab * (vb / denom) + ac * (vc / denom);
+}
+
+}  // namespace
+
+std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
+                                   const RegionOptions& options, RegionReport* report) {
+  check_region_options(options);
+  // Far points are pulled in before any scaling: scaled by 2^-k, a point far from a tiny mesh
+  // would overflow.
+  const std::vector<Vec3> near = detail::pulled_in(points, x);
+  if (const int k = detail::finder_exponent(x); k != 0) {
+    const std::vector<int> ids = select_regions_at(mesh, times_power_of_two(x, -k),
+                                                   detail::scaled_by_power_of_two(near, k), options, report);
+    detail::unscale_finder_results(k, report, nullptr);
+    return ids;
+  }
+  const CurvatureField c = compute_curvature(mesh, x);
+  const MeshArrays m = mesh_arrays(mesh, x);
+  if (m.nf == 0) throw UsageError("select_regions_at: the mesh has no face");
+  const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c, {SEED_SCALES.begin(), SEED_SCALES.end()});
+  const double h_ref = reference_curvature(m, x, u.back());
+  RegionReport r;
+  r.total_area = m.total_area;
+  r.reference_mean_curvature = h_ref;
+  const std::vector<detail::GrowthVertex> gv = detail::growth_vertices(m, x, u.front());
+  CapGrower grower(m, gv, c, options);
+  std::vector<char> blocked(m.nv, 0);
+  std::vector<std::pair<Cap, RegionSummary>> kept;
+  for (std::size_t i = 0; i < near.size(); ++i) {
+    const Vec3& p = near[i];
+    if (!p.allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
+    // Nearest surface point (brute force: a handful of points), then its nearest corner. The
+    // first face always sets a seed, whatever its distance.
+    double best = std::numeric_limits<double>::infinity();
+    int seed = -1, nearest = -1;
+    for (std::size_t f = 0; f < m.nf; ++f) {
+      const auto& t = m.tri[f];
+      const Vec3 q = closest_on_triangle(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])));
+      const double d = (q - p).squaredNorm();  // finite: p is pulled in, x near a unit size
+      if (seed < 0 || d < best) {
+        best = d;
+        seed = t[0];
+        nearest = static_cast<int>(f);
+        for (int v : t)
+          if ((Vec3(x.row(v)) - q).squaredNorm() < (Vec3(x.row(seed)) - q).squaredNorm()) seed = v;
+      }
+    }
+    if (blocked[static_cast<std::size_t>(seed)])
+      throw UsageError("region point " + std::to_string(i + 1) + " lies in the region of an earlier point");
+    ++r.seed_vertices;
+    std::optional<Cap> cap = grower.grow(seed, &blocked);
+    if (!cap || cap->faces.empty()) {
+      // No convex sphere fits here: the seed's one-ring, so the user still gets a region.
+      cap = Cap{};
+      cap->seed = seed;
+      for (int f : m.vertex_faces[static_cast<std::size_t>(seed)]) cap->faces.push_back(f);
+      std::sort(cap->faces.begin(), cap->faces.end());
+    } else {
+      ++r.candidates;
+    }
+    // On a coarse mesh the cap grown by vertices can miss the pointed-at face: the seed's fan joins
+    // (edge-connected; in no earlier region, or the seed would be blocked).
+    if (!std::binary_search(cap->faces.begin(), cap->faces.end(), nearest)) {
+      for (int f : m.vertex_faces[static_cast<std::size_t>(seed)]) cap->faces.push_back(f);
+      std::sort(cap->faces.begin(), cap->faces.end());
+      cap->faces.erase(std::unique(cap->faces.begin(), cap->faces.end()), cap->faces.end());
+    }
+    const RegionSummary s = summarise(mesh, x, m, *cap, h_ref);
+    block(m, *cap, blocked);
+    kept.emplace_back(std::move(*cap), s);
+  }
+  std::vector<int> region = number_regions(kept, m.nf, r, true);
+  if (report) *report = std::move(r);
+  return region;
+}
+
+}  // namespace shellcontract
