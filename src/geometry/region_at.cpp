@@ -52,6 +52,24 @@ Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3
   return a + ab * (vb / denom) + ac * (vc / denom);
 }
 
+/// "1st", "2nd", "3rd", "11th": messages name the points by ordinal, which reads the same whether
+/// the caller counts from 0 (Python's region_at[i]) or from 1 (the CLI's list).
+std::string ordinal(std::size_t n) {
+  const std::size_t tens = n % 100, ones = n % 10;
+  const char* suffix = (tens >= 11 && tens <= 13) ? "th" : ones == 1 ? "st" : ones == 2 ? "nd" : ones == 3 ? "rd" : "th";
+  return std::to_string(n) + suffix;
+}
+
+/// The earlier point whose region holds vertex v (its ordinal), or "an earlier point" when v was
+/// blocked by a region's band rather than by one of its faces.
+std::string owner_of(const MeshArrays& m, const std::vector<std::pair<Cap, RegionSummary>>& kept, int v) {
+  for (std::size_t j = 0; j < kept.size(); ++j)
+    for (int f : kept[j].first.faces)
+      for (int c : m.tri[static_cast<std::size_t>(f)])
+        if (c == v) return "the " + ordinal(j + 1) + " point";
+  return "an earlier point";
+}
+
 }  // namespace
 
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
@@ -80,7 +98,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   std::vector<std::pair<Cap, RegionSummary>> kept;
   for (std::size_t i = 0; i < near.size(); ++i) {
     const Vec3& p = near[i];
-    if (!p.allFinite()) throw UsageError("region point " + std::to_string(i + 1) + " is not finite");
+    if (!p.allFinite()) throw UsageError("the " + ordinal(i + 1) + " region point is not finite");
     // Nearest surface point (brute force: a handful of points), then its nearest corner. The
     // first face always sets a seed, whatever its distance.
     double best = std::numeric_limits<double>::infinity();
@@ -98,7 +116,8 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
       }
     }
     if (blocked[static_cast<std::size_t>(seed)])
-      throw UsageError("region point " + std::to_string(i + 1) + " lies in the region of an earlier point");
+      throw UsageError("the " + ordinal(i + 1) + " region point lies in the region of " +
+                       owner_of(m, kept, seed) + "; give points on different parts");
     ++r.seed_vertices;
     std::optional<Cap> cap = grower.grow(seed, &blocked);
     if (!cap || cap->faces.empty()) {

@@ -19,6 +19,7 @@
 
 #include "geometry/region_metrics.hpp"
 #include "mesh/eigen_point_map.hpp"
+#include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
 #include "support/cgal_mesh.hpp"
@@ -247,6 +248,26 @@ TEST(CapRegions, RegionAtPicksTheBumpUnderThePoint) {
     for (std::size_t f = 0; f < nf; ++f) a[f] = ids[f] == static_cast<int>(p);
     for (int f : truth[1 - p]) t[static_cast<std::size_t>(f)] = 1;
     EXPECT_GE(face_set_iou(a, t), 0.9) << "point " << p;
+  }
+}
+
+TEST(CapRegions, RegionAtNamesThePointsThatShareARegionByOrdinal) {
+  // Two points over the same bump: the second is refused, naming both by ordinal ("2nd", "1st"),
+  // which reads the same to a Python caller counting from 0 and a CLI user counting from 1.
+  // Before, the message said "region point 2 ... of an earlier point" (Python's region_at[1]).
+  const std::vector<std::pair<Vec3, double>> bumps = {{Vec3(0, 0, 1), 0.55}, {Vec3(1, 0, -0.3), 0.45}};
+  test::TriMesh m;
+  bumpy_sphere(m, bumps);
+  const Mesh mesh = test::to_surface_mesh(m);
+  const std::vector<Vec3> points = {2.0 * Vec3(1, 0, -0.3).normalized(), Vec3(0.0, 0.0, 1.5),
+                                    Vec3(0.01, 0.0, 1.5)};
+  try {
+    select_regions_at(mesh, m.x, points, RegionOptions{});
+    ADD_FAILURE() << "two points on one bump were accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("the 3rd region point lies in the region of the 2nd point"),
+              std::string::npos)
+        << e.what();
   }
 }
 
