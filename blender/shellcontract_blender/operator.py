@@ -143,6 +143,13 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         keep = runner.kept_frames(obj.shellcontract.frames, obj.shellcontract.frame_step)
         return obj, runner.Job(module, vertices, faces, options, keep)
 
+    def _refuse(self, context, error):
+        """A run refused before it starts: the panel's status says why, as for a failed run, so
+        that it does not keep showing the previous run's result."""
+        context.active_object.shellcontract.status = "error: {}".format(error)
+        self.report({"ERROR"}, "ShellContract: {}".format(error))
+        return {"CANCELLED"}
+
     def _finish(self, context, obj, job):
         s = obj.shellcontract
         RUNNING.pop(obj.name, None)
@@ -186,8 +193,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         try:
             obj, job = self._prepare(context)
         except (runner.AddonError, ValueError, TypeError) as e:
-            self.report({"ERROR"}, "ShellContract: {}".format(e))
-            return {"CANCELLED"}
+            return self._refuse(context, e)
         job.run()
         return self._finish(context, obj, job)
 
@@ -197,8 +203,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         try:
             obj, job = self._prepare(context)
         except (runner.AddonError, ValueError, TypeError) as e:
-            self.report({"ERROR"}, "ShellContract: {}".format(e))
-            return {"CANCELLED"}
+            return self._refuse(context, e)
         self._obj_name = obj.name
         self._job = job
         RUNNING[obj.name] = job

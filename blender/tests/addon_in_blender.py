@@ -158,6 +158,8 @@ def main():
     check("no such group" in refused and "vertex group" in refused
           and len(obj2.data.shape_keys.key_blocks) == keys_before,
           "a missing vertex group is refused, naming it, and nothing changes")
+    check(obj2.shellcontract.status.startswith("error: ") and "no such group" in obj2.shellcontract.status,
+          "the status says why a run was refused: " + obj2.shellcontract.status)
 
     # A vertex group without weights makes no region: a success, but not a silent one.
     obj2.vertex_groups.new(name="empty")
@@ -190,8 +192,9 @@ def main():
     except RuntimeError as e:
         refused = str(e)
     bpy.ops.object.mode_set(mode="OBJECT")
-    check("Edit Mode" in refused and len(obj2.data.shape_keys.key_blocks) == keys_before,
-          "contracting in Edit Mode is refused and the keys are kept: " + refused)
+    check("Edit Mode" in refused and len(obj2.data.shape_keys.key_blocks) == keys_before
+          and "Edit Mode" in obj2.shellcontract.status,
+          "contracting in Edit Mode is refused, the status says so and the keys are kept: " + refused)
 
     # The UI's path: the run in a worker thread while this (Blender's) thread goes on, and a
     # cancel that stops it after the current step, leaving the object alone.
