@@ -28,7 +28,8 @@ commands:
 
 exit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),
             3 simulation failed (NaN or blow-up) or out of memory, 4 new self-intersections found
-            by validation, 5 target volume or stop ratio not reached
+            by validation, 5 target volume or stop ratio not reached, 130 interrupted (Ctrl-C,
+            SIGTERM)
 )";
 
 constexpr const char* BENCH_USAGE = R"(usage: shellcontract bench <ccd|error> [options]

@@ -113,11 +113,13 @@ TEST_F(CliRegions, HelpTextsDescribeTheStrengthColumnAndTheExitCodes) {
   EXPECT_TRUE(has(squeezed(r.output), "strength 'S:' in [0, 1]")) << r.output;
   EXPECT_TRUE(has(r.output, "2 bad input (mesh, face list")) << r.output;
   EXPECT_FALSE(has(r.output, "2 bad input mesh")) << r.output;
+  EXPECT_TRUE(has(r.output, "130 interrupted")) << r.output;  // the code a Ctrl-C'd run returns
   r = run_cli({"regions", "--help"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_TRUE(has(squeezed(r.output), "'S: ids'")) << r.output;
   r = run_cli({"--help"});
   EXPECT_FALSE(has(r.output, "2 bad input mesh")) << r.output;
+  EXPECT_TRUE(has(r.output, "130 interrupted")) << r.output;
 }
 
 TEST_F(CliRegions, BenchHelpShowsItsSubcommands) {
