@@ -168,7 +168,8 @@ std::vector<Vec3> region_at_points(const py::handle& value) {
 
 namespace {
 
-RunOptions options_from_kwargs(const py::kwargs& kwargs) {
+/// also_valid: the caller's own arguments, listed after the table's in the unknown-option error.
+RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also_valid = "") {
   RunOptions options;
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
@@ -186,7 +187,8 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs) {
       continue;
     }
     if (!spec)
-      throw py::type_error("contract() got an unknown option '" + name + "'; valid options: " + valid_names());
+      throw py::type_error("contract() got an unknown option '" + name + "'; valid options: " + valid_names() +
+                           also_valid);
     spec->set(options, option_text(name, value));  // UsageError (ValueError) for a bad value
   }
   resolve_run_options(options);
@@ -393,7 +395,7 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   }
   if (checkpoint_every < 0 || (checkpoint_every > 0 && checkpoint_path.empty()))
     throw py::value_error("checkpoint_every: expected an integer >= 1, with checkpoint=FILE");
-  RunOptions options = options_from_kwargs(kwargs);
+  RunOptions options = options_from_kwargs(kwargs, ", checkpoint, checkpoint_every, resume");
   std::shared_ptr<const Checkpoint> resume;
   if (!resume_path.empty()) {
     resume = load_checkpoint(resume_path);

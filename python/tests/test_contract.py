@@ -111,8 +111,11 @@ def test_open_mesh_raises_value_error(ico2):
 
 def test_unknown_option_raises_and_lists_valid_ones(ico2):
     vertices, faces = ico2
-    with pytest.raises(TypeError, match="unknown option 'presure'.*pressure.*k_b"):
+    with pytest.raises(TypeError, match="unknown option 'presure'.*pressure.*k_b") as raised:
         shellcontract.contract(vertices, faces, presure=2.0)
+    # contract()'s own arguments are valid options too (they were missing from the list).
+    for name in ("checkpoint", "checkpoint_every", "resume"):
+        assert name in str(raised.value).split("valid options: ")[1].split(", ")
 
 
 def test_bad_option_value_raises_value_error(ico2):
