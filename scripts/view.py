@@ -10,6 +10,7 @@ those files and the viewer folder are served, on 127.0.0.1. three.js is served f
 scripts/install_deps.sh installs (npm ci). Stop with Ctrl-C.
 """
 import argparse
+import errno
 import functools
 import http.server
 import os
@@ -41,13 +42,39 @@ class Handler(http.server.SimpleHTTPRequestHandler):
             super().log_message(fmt, *args)
 
 
+MESH_EXTENSIONS = (".glb", ".off", ".obj", ".ply", ".stl")  # what viewer/src/mesh_files.js reads
+LOG_EXTENSIONS = (".csv", ".json")
+
+
+def port_number(text):
+    try:
+        port = int(text)
+    except ValueError:
+        port = -1
+    if not 0 <= port <= 65535:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a port number (0 to 65535)")
+    return port
+
+
+def checked_file(path, extensions, what):
+    """The path, if it is a readable file the viewer can show; else the reason, at once (the page
+    would only say so in the browser's console)."""
+    if os.path.isdir(path):
+        sys.exit(f"view.py: {path}: it is a folder, not {what}")
+    if not os.path.isfile(path):
+        sys.exit(f"view.py: no such file: {path}")
+    if not path.lower().endswith(extensions):
+        sys.exit(f"view.py: {path}: not {what} ({', '.join(extensions)})")
+    return path
+
+
 def main():
     ap = argparse.ArgumentParser(description="Serve the ShellContract viewer with a run's .glb or meshes")
     ap.add_argument("glb", metavar="FILE",
                     help="the run's animated glTF (shellcontract run ... --gltf RUN.glb) or a mesh (.off, .obj, .ply, .stl)")
     ap.add_argument("compare", metavar="FILE2", nargs="?", help="a second .glb or mesh, shown beside the first")
     ap.add_argument("--log", help="the run's --log CSV or --summary JSON, for the V/V0 plot")
-    ap.add_argument("--port", type=int, default=8765, help="port on 127.0.0.1 (0: any free port)")
+    ap.add_argument("--port", type=port_number, default=8765, help="port on 127.0.0.1 (0: any free port)")
     ap.add_argument("--open", action="store_true", help="also open the page in the default browser")
     args = ap.parse_args()
 
@@ -57,8 +84,10 @@ def main():
     for key, path in (("file", args.glb), ("compare", args.compare), ("log", args.log)):
         if path is None:
             continue
-        if not os.path.isfile(path):
-            sys.exit(f"view.py: no such file: {path}")
+        if key == "log":
+            checked_file(path, LOG_EXTENSIONS, "a --log CSV or a --summary JSON")
+        else:
+            checked_file(path, MESH_EXTENSIONS, "a .glb or a mesh")
         name = os.path.basename(path)
         if name in run_files and run_files[name] != os.path.abspath(path):
             name = f"{key}_{name}"  # two files of the same name (before/out.off, after/out.off)
@@ -66,7 +95,11 @@ def main():
         query[key] = "/run/" + urllib.parse.quote(name)
 
     handler = functools.partial(Handler, run_files=run_files)
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), handler)
+    try:
+        server = http.server.ThreadingHTTPServer(("127.0.0.1", args.port), handler)
+    except OSError as e:
+        sys.exit(f"view.py: cannot serve on 127.0.0.1:{args.port}: {e.strerror or e}"
+                 + (" (another viewer? use --port 0 for any free port)" if e.errno == errno.EADDRINUSE else ""))
     url = f"http://127.0.0.1:{server.server_address[1]}/index.html?" + urllib.parse.urlencode(query, safe="/")
     print(url, flush=True)
     if args.open:

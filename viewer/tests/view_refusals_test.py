@@ -1,0 +1,51 @@
+"""scripts/view.py refuses what the viewer cannot show, at once and with the reason, instead of
+serving a page that fails in the browser's console or ending in a traceback.
+
+Run by CTest (view_refusals): python3 -m pytest viewer/tests/view_refusals_test.py."""
+import os
+import socket
+import subprocess
+import sys
+
+import pytest
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+VIEW = os.path.join(REPO, "scripts", "view.py")
+MESH = os.path.join(REPO, "meshes", "ico2.off")
+
+
+def view(*args):
+    """view.py's exit code and stderr; a server that starts is stopped by the timeout (a failure)."""
+    try:
+        r = subprocess.run([sys.executable, VIEW, *args], capture_output=True, text=True, timeout=20)
+    except subprocess.TimeoutExpired:
+        pytest.fail("view.py started serving: " + " ".join(args))
+    return r.returncode, r.stderr
+
+
+def test_a_folder_is_named_as_a_folder(tmp_path):
+    code, err = view(str(tmp_path))
+    assert code == 1 and "it is a folder" in err, err
+
+
+def test_a_file_the_viewer_cannot_read_is_refused(tmp_path):
+    notes = tmp_path / "notes.txt"
+    notes.write_text("not a mesh\n")
+    code, err = view(str(notes))
+    assert code == 1 and "not a .glb or a mesh" in err, err
+    code, err = view(MESH, "--log", str(notes))
+    assert code == 1 and "not a --log CSV or a --summary JSON" in err, err
+
+
+@pytest.mark.parametrize("port", ["-5", "65536", "x"])
+def test_a_port_out_of_range_is_a_usage_error(port):
+    code, err = view(MESH, "--port", port)
+    assert code == 2 and "is not a port number" in err and "Traceback" not in err, err
+
+
+def test_a_port_in_use_says_so():
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        code, err = view(MESH, "--port", str(taken.getsockname()[1]))
+    assert code == 1 and "cannot serve" in err and "--port 0" in err and "Traceback" not in err, err
