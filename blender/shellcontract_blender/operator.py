@@ -34,6 +34,11 @@ def _keys_of(obj, prop):
     return [(kp.co[0], kp.co[1]) for kp in fc.keyframe_points]
 
 
+def _default(settings, prop):
+    """The property's default, as declared in properties.py."""
+    return settings.bl_rna.properties[prop].default
+
+
 def mesh_arrays(obj):
     """Vertices (local coordinates, the base mesh's) and triangles of the object's mesh: the
     loop triangles, so quads and n-gons stay as they are in Blender, and the shape keys move the
@@ -70,10 +75,16 @@ def run_options(context, obj):
         options["target_volume"] = runner.schedule_text(volume_keys, start, "Target volume")
     elif s.target_volume > 0.0:
         options["target_volume"] = s.target_volume
+    # With a target volume (a number or keys) the volume constraint decides the volume and the
+    # pressure has no effect (the library warns when it is given). Passed only where the user
+    # asked for it: keyed, set off its default, or with the target off, where it decides. The
+    # default is the library's own (checked in addon_in_blender.py), so leaving it out at the
+    # default runs the same.
     pressure_keys = _keys_of(obj, "pressure")
+    target_on = "target_volume" in options
     if pressure_keys:
         options["pressure"] = runner.schedule_text(pressure_keys, start, "Pressure")
-    else:
+    elif not target_on or s.pressure != _default(s, "pressure"):
         options["pressure"] = s.pressure
     if s.region_group:
         options["region_weights"] = vertex_group_weights(obj, s.region_group)

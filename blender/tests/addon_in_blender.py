@@ -77,6 +77,57 @@ def uv_sphere():
     return obj
 
 
+def pressure_combinations(shellcontract, obj):
+    """The pressure goes to the run only where it has an effect or the user asked for it: not
+    with a target volume (a number or keys) at its default, which is the library's own."""
+    from shellcontract_blender import operator
+    s = obj.shellcontract
+    default = s.bl_rna.properties["pressure"].default
+    library = [o.default for o in shellcontract.options() if o.name == "pressure"]
+    check(library and float(library[0]) == default,
+          "the Pressure field's default {} is the library's ({}): leaving it out runs the same"
+          .format(default, library))
+    ctx = bpy.context
+
+    def given(setup):
+        obj.animation_data_clear()
+        s.target_volume, s.pressure = 0.6, default
+        setup()
+        return operator.run_options(ctx, obj)
+
+    def key(prop, values):
+        for frame, value in values:
+            setattr(s, prop, value)
+            obj.keyframe_insert("shellcontract." + prop, frame=ctx.scene.frame_start + frame)
+
+    cases = [
+        ("target 0.6, default pressure", lambda: None, False),
+        ("keyed target, default pressure", lambda: key("target_volume", [(0, 1.0), (20, 0.7)]),
+         False),
+        ("target off: the pressure decides", lambda: setattr(s, "target_volume", 0.0), True),
+        ("target 0.6, pressure set to 8 (warned: no effect)", lambda: setattr(s, "pressure", 8.0),
+         True),
+        ("target 0.6, keyed pressure (warned: no effect)",
+         lambda: key("pressure", [(0, 4.0), (20, 8.0)]), True),
+        ("keyed target and keyed pressure (warned)",
+         lambda: (key("target_volume", [(0, 1.0), (20, 0.7)]),
+                  key("pressure", [(0, 4.0), (20, 8.0)])), True),
+        ("target off, keyed pressure", lambda: (key("pressure", [(0, 4.0), (20, 8.0)]),
+                                                setattr(s, "target_volume", 0.0)), True),
+    ]
+    for name, setup, passed in cases:
+        options = given(setup)
+        check(("pressure" in options) == passed, "{}: pressure {}".format(
+            name, "given ({})".format(options.get("pressure")) if passed else "left out"))
+    given(lambda: setattr(s, "pressure", 8.0))
+    s.frames = 3
+    check(bpy.ops.object.shellcontract_contract() == {"FINISHED"}
+          and "has no effect" in s.status,
+          "a pressure set off its default with a target volume is warned about: " + s.status)
+    obj.animation_data_clear()
+    s.target_volume, s.pressure = 0.6, default
+
+
 def main():
     a = args()
     sys.path.insert(0, a.addon_dir)
@@ -103,6 +154,10 @@ def main():
     result = bpy.ops.object.shellcontract_contract()
     check(result == {"FINISHED"}, "the operator runs to the end in background mode: " + s.status)
     check(obj["shellcontract_regions"] == 1, "the vertex group's weights made one region")
+    # The defaults set nothing that has no effect: no warning (the pressure is left out with a
+    # target volume, as the CLI's --target-volume 0.6 alone leaves -p out).
+    check(s.status.startswith("ok:") and "warning" not in s.status,
+          "a run at the default settings has no warning: " + s.status)
 
     keys = obj.data.shape_keys
     check(keys is not None and len(keys.key_blocks) > 10, "shape keys were written ({})".format(
@@ -135,8 +190,9 @@ def main():
         obj2.keyframe_insert('shellcontract.target_volume', frame=frame)
     obj2.shellcontract.frames = 100
     obj2.shellcontract.region_group = ""
-    check(bpy.ops.object.shellcontract_contract() == {"FINISHED"},
-          "a keyframed target runs: " + obj2.shellcontract.status)
+    check(bpy.ops.object.shellcontract_contract() == {"FINISHED"}
+          and "warning" not in obj2.shellcontract.status,
+          "a keyframed target runs, without a warning: " + obj2.shellcontract.status)
     rest2 = np.empty(len(obj2.data.vertices) * 3)
     obj2.data.vertices.foreach_get("co", rest2)
     kb = obj2.data.shape_keys.key_blocks
@@ -146,6 +202,8 @@ def main():
         r = volume_of(obj2, key_positions(by_frame[frame])) / v0
         check(abs(r - value) <= 0.005, "keyed target: V/V0 {:.4f} at frame {} (key {})".format(
             r, frame, value))
+
+    pressure_combinations(shellcontract, obj2)
 
     # An error report of an operator called from a script is a RuntimeError with its text.
     obj2.shellcontract.region_group = "no such group"
