@@ -55,7 +55,7 @@ def mesh_arrays(obj):
 def vertex_group_weights(obj, name):
     group = obj.vertex_groups.get(name)
     if group is None:
-        raise runner.AddonError("region group '{}': {} has no such vertex group (it has: {})".format(
+        raise runner.AddonError("Region group '{}': {} has no such vertex group (it has: {})".format(
             name, obj.name, ", ".join(g.name for g in obj.vertex_groups) or "none"))
     weights = np.zeros(len(obj.data.vertices), dtype=np.float64)
     for v in obj.data.vertices:
@@ -69,12 +69,13 @@ def run_options(context, obj):
     """The contract() options of the object's settings, with keyframed settings as schedules."""
     s = obj.shellcontract
     start = context.scene.frame_start
-    options = {"frames": s.frames, "thickness": s.thickness, "collisions": s.collisions}
+    options = {"frames": s.frames, "thickness": float(runner.float32_text(s.thickness)),
+               "collisions": s.collisions}
     volume_keys = _keys_of(obj, "target_volume")
     if volume_keys:
-        options["target_volume"] = runner.schedule_text(volume_keys, start, "Target volume")
-    elif s.target_volume > 0.0:
-        options["target_volume"] = s.target_volume
+        options["target_volume"] = runner.target_volume_schedule(volume_keys, start)
+    elif runner.unkeyed_target_volume(s.target_volume) > 0.0:
+        options["target_volume"] = runner.unkeyed_target_volume(s.target_volume)
     # With a target volume (a number or keys) the volume constraint decides the volume and the
     # pressure has no effect (the library warns when it is given). Passed only where the user
     # asked for it: keyed, set off its default, or with the target off, where it decides. The
@@ -83,12 +84,12 @@ def run_options(context, obj):
     pressure_keys = _keys_of(obj, "pressure")
     target_on = "target_volume" in options
     if pressure_keys:
-        options["pressure"] = runner.schedule_text(pressure_keys, start, "Pressure")
+        options["pressure"] = runner.pressure_schedule(pressure_keys, start)
     elif not target_on or s.pressure != _default(s, "pressure"):
-        options["pressure"] = s.pressure
+        options["pressure"] = float(runner.float32_text(s.pressure))
     if s.region_group:
         options["region_weights"] = vertex_group_weights(obj, s.region_group)
-        options["region_shrink"] = s.region_shrink
+        options["region_shrink"] = float(runner.float32_text(s.region_shrink))
     return options
 
 
@@ -164,9 +165,11 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
     def _finish(self, context, obj, job):
         s = obj.shellcontract
         RUNNING.pop(obj.name, None)
+        start = context.scene.frame_start
         if job.error is not None:
-            s.status = "error: {}".format(job.error)
-            self.report({"ERROR"}, "ShellContract: {}".format(job.error))
+            error = runner.addon_terms(job.error, start)
+            s.status = "error: {}".format(error)
+            self.report({"ERROR"}, "ShellContract: {}".format(error))
             return {"CANCELLED"}
         result = job.result
         if result.status == "cancelled":
@@ -176,7 +179,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         if result.summary["frames_run"] < 1:  # failed at its first step: nothing to key
             s.status = "no frame was run"
             self.report({"ERROR"}, "ShellContract: no frame was run ({}); the object is unchanged".format(
-                result.summary.get("failure") or result.status))
+                runner.addon_terms(result.summary.get("failure") or result.status, start)))
             return {"CANCELLED"}
         if obj.mode == "EDIT":  # entered during a threaded run
             s.status = "not written: the object is in Edit Mode"
@@ -188,7 +191,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         write_shape_keys(context, obj, job)
         # The library's warnings (e.g. a vertex group whose weights are all 0: no region) go with
         # the status, so that an ineffective setting is not reported as a plain success.
-        warnings = list(result.summary.get("warnings", []))
+        warnings = [runner.addon_terms(w, start) for w in result.summary.get("warnings", [])]
         s.status = "{}: {} frames, V/V0 {:.4f}".format(
             result.status, result.summary["frames_run"], result.summary["final_volume_ratio"]) + "".join(
             "; warning: " + w for w in warnings)
@@ -196,7 +199,8 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         obj["shellcontract_regions"] = result.summary["regions"]
         level = {"INFO"} if result.status == "ok" and not warnings else {"WARNING"}
         self.report(level, "ShellContract: " + s.status +
-                    ("" if result.status == "ok" else " ({})".format(result.summary["failure"])))
+                    ("" if result.status == "ok" else " ({})".format(
+                        runner.addon_terms(result.summary["failure"], start))))
         return {"FINISHED"}
 
     def execute(self, context):

@@ -128,6 +128,69 @@ def pressure_combinations(shellcontract, obj):
     s.target_volume, s.pressure = 0.6, default
 
 
+def refusal():
+    """The text of the RuntimeError the operator raises when it reports an error, or ''."""
+    try:
+        bpy.ops.object.shellcontract_contract()
+    except RuntimeError as e:
+        return str(e)
+    return ""
+
+
+def target_volume_messages(obj):
+    """The Target volume's rules, refused before the run in the panel's terms: field names,
+    timeline frames, values as Blender shows them (float32 rounded), no CLI syntax."""
+    from shellcontract_blender import operator
+    s = obj.shellcontract
+    start = bpy.context.scene.frame_start
+
+    def cli_free(text):
+        return ("target_volume" not in text and "00000" not in text and "0:1" not in text
+                and "[0, 1)" not in text)
+
+    obj.animation_data_clear()
+    s.frames = 5
+    for value in (1.0, 1.2):
+        s.target_volume = value
+        text = refusal()
+        check("Target volume {:g}".format(value) in text and "keyframe" in text and cli_free(text)
+              and s.status.startswith("error: "),
+              "an unkeyed Target volume {:g} is refused in the panel's terms: {}".format(value, text))
+    s.target_volume = 0.6
+    obj.keyframe_insert("shellcontract.target_volume", frame=start)
+    text = refusal()
+    check("Target volume" in text and "frame {}".format(start) in text and " 0.6" in text
+          and cli_free(text),
+          "a first key other than 1 at the start frame is refused by its timeline frame: " + text)
+    obj.animation_data_clear()
+    for frame, value in ((0, 1.0), (20, 0.0)):
+        s.target_volume = value
+        obj.keyframe_insert("shellcontract.target_volume", frame=start + frame)
+    text = refusal()
+    check("frame {} is 0".format(start + 20) in text and cli_free(text),
+          "a key of 0 is refused by its timeline frame: " + text)
+    obj.animation_data_clear()
+    for frame, value in ((0, 1.0), (10.2, 0.8), (10.4, 0.7)):
+        s.target_volume = value
+        obj.keyframe_insert("shellcontract.target_volume", frame=start + frame)
+    text = refusal()
+    check("frames {:g} and {:g}".format(start + 10.2, start + 10.4) in text and cli_free(text),
+          "two keys on one frame are refused by their timeline frames: " + text)
+    obj.animation_data_clear()
+    for frame, value in ((0, 1.0), (40, 0.6), (80, 0.9)):
+        s.target_volume = value
+        obj.keyframe_insert("shellcontract.target_volume", frame=start + frame)
+    check(operator.run_options(bpy.context, obj)["target_volume"] == "0:1, 40:0.6, 80:0.9",
+          "the keys go to the run as the values Blender shows: {}".format(
+              operator.run_options(bpy.context, obj)["target_volume"]))
+    check(bpy.ops.object.shellcontract_contract() == {"FINISHED"}
+          and "the key at frame {} comes after the run's last frame {}".format(
+              start + 80, start + 5) in s.status and cli_free(s.status),
+          "a key after the last frame is warned about in timeline frames: " + s.status)
+    obj.animation_data_clear()
+    s.target_volume = 0.6
+
+
 def main():
     a = args()
     sys.path.insert(0, a.addon_dir)
@@ -204,6 +267,7 @@ def main():
             r, frame, value))
 
     pressure_combinations(shellcontract, obj2)
+    target_volume_messages(obj2)
 
     # An error report of an operator called from a script is a RuntimeError with its text.
     obj2.shellcontract.region_group = "no such group"
