@@ -42,14 +42,17 @@ def _default(settings, prop):
 def mesh_arrays(obj):
     """Vertices (local coordinates, the base mesh's) and triangles of the object's mesh: the
     loop triangles, so quads and n-gons stay as they are in Blender, and the shape keys move the
-    mesh's own vertices."""
+    mesh's own vertices; and the polygon of each triangle (the library's messages number the
+    triangles, the add-on's the mesh's faces)."""
     mesh = obj.data
     vertices = np.empty(len(mesh.vertices) * 3, dtype=np.float64)
     mesh.vertices.foreach_get("co", vertices)
     mesh.calc_loop_triangles()
     faces = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int64)
     mesh.loop_triangles.foreach_get("vertices", faces)
-    return vertices.reshape(-1, 3), faces.reshape(-1, 3)
+    polygon_of = np.empty(len(mesh.loop_triangles), dtype=np.int64)
+    mesh.loop_triangles.foreach_get("polygon_index", polygon_of)
+    return vertices.reshape(-1, 3), faces.reshape(-1, 3), polygon_of.tolist()
 
 
 def vertex_group_weights(obj, name):
@@ -150,10 +153,10 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             raise runner.AddonError(EDIT_MODE)
         prefs = _preferences(context)
         module = runner.import_shellcontract(prefs.module_path if prefs else "")
-        vertices, faces = mesh_arrays(obj)
+        vertices, faces, polygon_of = mesh_arrays(obj)
         options = run_options(context, obj)
         keep = runner.kept_frames(obj.shellcontract.frames, obj.shellcontract.frame_step)
-        return obj, runner.Job(module, vertices, faces, options, keep)
+        return obj, runner.Job(module, vertices, faces, options, keep, polygon_of)
 
     def _refuse(self, context, error):
         """A run refused before it starts: the panel's status says why, as for a failed run, so
@@ -166,8 +169,12 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         s = obj.shellcontract
         RUNNING.pop(obj.name, None)
         start = context.scene.frame_start
+
+        def terms(message):  # the library's message in the add-on's terms
+            return runner.addon_terms(message, start, obj.name, job.polygon_of)
+
         if job.error is not None:
-            error = runner.addon_terms(job.error, start)
+            error = terms(job.error)
             s.status = "error: {}".format(error)
             self.report({"ERROR"}, "ShellContract: {}".format(error))
             return {"CANCELLED"}
@@ -179,7 +186,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         if result.summary["frames_run"] < 1:  # failed at its first step: nothing to key
             s.status = "no frame was run"
             self.report({"ERROR"}, "ShellContract: no frame was run ({}); the object is unchanged".format(
-                runner.addon_terms(result.summary.get("failure") or result.status, start)))
+                terms(result.summary.get("failure") or result.status)))
             return {"CANCELLED"}
         if obj.mode == "EDIT":  # entered during a threaded run
             s.status = "not written: the object is in Edit Mode"
@@ -191,7 +198,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         write_shape_keys(context, obj, job)
         # The library's warnings (e.g. a vertex group whose weights are all 0: no region) go with
         # the status, so that an ineffective setting is not reported as a plain success.
-        warnings = [runner.addon_terms(w, start) for w in result.summary.get("warnings", [])]
+        warnings = [terms(w) for w in result.summary.get("warnings", [])]
         s.status = "{}: {} frames, V/V0 {:.4f}".format(
             result.status, result.summary["frames_run"], result.summary["final_volume_ratio"]) + "".join(
             "; warning: " + w for w in warnings)
@@ -200,7 +207,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         level = {"INFO"} if result.status == "ok" and not warnings else {"WARNING"}
         self.report(level, "ShellContract: " + s.status +
                     ("" if result.status == "ok" else " ({})".format(
-                        runner.addon_terms(result.summary["failure"], start))))
+                        terms(result.summary["failure"]))))
         return {"FINISHED"}
 
     def execute(self, context):

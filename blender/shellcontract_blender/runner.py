@@ -152,9 +152,12 @@ _KEY_AFTER_END = re.compile(
     r"the schedule's value there, (\S+)$")
 
 
-def addon_terms(message, start):
+def addon_terms(message, start, mesh_name="", polygon_of=None):
     """A message of the library (an error or a warning) in the add-on's terms: the panel's
-    field names, timeline frames (scene start + simulation frame), rounded values."""
+    field names, timeline frames (scene start + simulation frame), rounded values; a mesh
+    problem names the object's mesh, not 'input arrays', and its face numbers are the mesh's
+    faces (polygons, as the Spreadsheet numbers them), not the loop triangles the run was given
+    (polygon_of[t]: the polygon of triangle t). Vertex numbers are the mesh's own already."""
     text = str(message)
     m = _KEY_AFTER_END.match(text)
     if m and m.group(1) in FIELD_NAMES:
@@ -162,6 +165,10 @@ def addon_terms(message, start):
                 "run ends on the way to it, at {:.4g}".format(
                     FIELD_NAMES[m.group(1)], start + int(m.group(2)), start + int(m.group(3)),
                     float(m.group(4))))
+    if text.startswith(ARRAY_INPUT + ": "):
+        text = "the mesh of {}: {}".format(mesh_name, text[len(ARRAY_INPUT) + 2:])
+    if polygon_of is not None:
+        text = polygon_numbers(text, polygon_of)
     # A message that begins with an option's name, and the underscore names anywhere.
     head = re.match(r"^(\w+)(:| has no effect)", text)
     if head and head.group(1) in FIELD_NAMES:
@@ -169,6 +176,32 @@ def addon_terms(message, start):
     for name, field in FIELD_NAMES.items():
         if "_" in name:
             text = re.sub(r"\b{}\b".format(name), field, text)
+    return text
+
+
+ARRAY_INPUT = "input arrays"  # the library's name of a mesh given as arrays
+
+
+def polygon_numbers(text, polygon_of):
+    """The triangle numbers of a mesh message as the mesh's face (polygon) numbers: 'face T',
+    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...'."""
+    def poly(t):
+        t = int(t)
+        return str(polygon_of[t]) if 0 <= t < len(polygon_of) else str(t)
+
+    def listed(numbers, once=False):  # once: each face once (its triangles are listed apart)
+        out = []
+        for item in numbers.split(", "):
+            p = poly(item) if item.isdigit() else item
+            if not (once and p in out):
+                out.append(p)
+        return ", ".join(out)
+
+    text = re.sub(r"\bface (\d+)\b", lambda m: "face " + poly(m.group(1)), text)
+    text = re.sub(r"\bfaces \(((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)\)",
+                  lambda m: "faces (" + listed(m.group(1)) + ")", text)
+    text = re.sub(r"\bfaces have \(nearly\) zero area: ((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)",
+                  lambda m: "faces have (nearly) zero area: " + listed(m.group(1), True), text)
     return text
 
 
@@ -186,10 +219,11 @@ class Job:
     progress: the last frame done; frames: {frame: positions} for the kept frames; cancel():
     the run stops after the current step (status "cancelled")."""
 
-    def __init__(self, module, vertices, faces, options, keep):
+    def __init__(self, module, vertices, faces, options, keep, polygon_of=None):
         self.module = module
         self.vertices = vertices
         self.faces = faces
+        self.polygon_of = polygon_of  # the mesh's polygon of each triangle, for messages
         self.options = options
         self.keep = set(keep)
         self.progress = 0

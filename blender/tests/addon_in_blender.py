@@ -191,6 +191,40 @@ def target_volume_messages(obj):
     s.target_volume = 0.6
 
 
+def mesh_messages():
+    """A mesh the library refuses: the message names the object's mesh (not 'input arrays') and
+    its face numbers are the mesh's faces (polygons), not the loop triangles the run was given."""
+    import re
+    from shellcontract_blender import runner
+    bpy.ops.object.select_all(action="SELECT")
+    bpy.ops.object.delete()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
+    obj = bpy.context.active_object
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bm.faces.ensure_lookup_table()
+    bm.faces.remove(bm.faces[len(bm.faces) // 2])  # a quad of the middle: triangle n != face n
+    bm.to_mesh(obj.data)
+    bm.free()
+    text = refusal()
+    m = re.search(r"edge \((\d+), (\d+)\) of face (\d+)", text)
+    polygons = obj.data.polygons
+    check(m is not None and "input arrays" not in text and "the mesh of " + obj.name in text
+          and int(m.group(3)) < len(polygons)
+          and {int(m.group(1)), int(m.group(2))} <= set(polygons[int(m.group(3))].vertices),
+          "an open mesh is refused naming the mesh's face that has the open edge: " + text)
+    # The library's lists of faces, by triangle, as the mesh's faces.
+    polygon_of = [0, 0, 1, 2, 2, 3]
+    for before, after in (
+            ("edge (1, 2) is shared by 3 faces (1, 3, 5), at most 2 allowed",
+             "edge (1, 2) is shared by 3 faces (0, 2, 3), at most 2 allowed"),
+            ("2 faces have (nearly) zero area: 3, 4", "2 faces have (nearly) zero area: 2"),
+            ("component 0 (6 faces, starting at face 2) was inside-out",
+             "component 0 (6 faces, starting at face 1) was inside-out")):
+        check(runner.polygon_numbers(before, polygon_of) == after,
+              "'{}' reads '{}'".format(before, runner.polygon_numbers(before, polygon_of)))
+
+
 def main():
     a = args()
     sys.path.insert(0, a.addon_dir)
@@ -335,6 +369,8 @@ def main():
     check(job.error is None and job.result.status == "cancelled" and running_after_start
           and 3 <= reported <= job.progress < 5000,
           "a threaded run reports progress and cancels (frame {})".format(job.progress))
+
+    mesh_messages()
 
     if a.glb:
         bpy.ops.import_scene.gltf(filepath=a.glb)
