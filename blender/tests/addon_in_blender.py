@@ -4,14 +4,18 @@ ARGS: --addon-dir DIR (the folder holding shellcontract_blender), --glb FILE (a 
 to import). The shellcontract module comes from SHELLCONTRACT_PYTHONPATH (the add-on's own
 lookup). Any failed check raises, and Blender exits with 1.
 
-Checks: the add-on enables from the source tree; on a UV sphere with a UV map and a vertex group,
+Checks: the add-on enables from the source tree; docs/blender.md gives the settings' defaults
+of properties.py and its scripting example runs as written; on a UV sphere with a UV map and a vertex group,
 bpy.ops.object.shellcontract_contract() at target 0.6 runs to the end in background mode and
 leaves shape keys and timeline keys; the last key's V/V0, measured with bmesh (not the module's
 number), is within 0.005 of 0.6; the UVs are unchanged; the project's own check
 (shellcontract.check) finds no self-intersecting pair that the input lacks; a keyframed target
-(1 -> 0.6 -> 0.9) becomes a schedule the last key of which is 0.9; a missing vertex group is
-refused; the threaded run of the UI reports progress and cancels; and the CLI's .glb imports
-(the numpy.bool shim)."""
+(1 -> 0.6 -> 0.9) becomes a schedule the last key of which is 0.9; a run at the defaults and
+the keyed one end without a warning (the pressure is passed only where it has an effect or was
+asked for); the Target volume's refusals and the library's messages speak the panel's terms
+(field names, timeline frames, float32-rounded values); a missing vertex group is refused; the
+threaded run of the UI reports progress and cancels; an open mesh's message names the mesh's
+own face; and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0."""
 
 import argparse
 import sys
@@ -225,6 +229,64 @@ def mesh_messages():
               "'{}' reads '{}'".format(before, runner.polygon_numbers(before, polygon_of)))
 
 
+def doc_path(addon_dir):
+    import os
+    return os.path.join(os.path.dirname(os.path.abspath(addon_dir)), "docs", "blender.md")
+
+
+def doc_section(doc, title):
+    """The lines of docs/blender.md's section '## title' (to the next '## ')."""
+    lines = doc.split("\n")
+    start = lines.index("## " + title) + 1
+    end = next((i for i in range(start, len(lines)) if lines[i].startswith("## ")), len(lines))
+    return lines[start:end]
+
+
+def doc_example_runs(addon_dir):
+    """The scripting example of docs/blender.md runs as written (its first indented block), in
+    the factory scene where it starts (the default cube active), and writes its result."""
+    import textwrap
+    with open(doc_path(addon_dir)) as f:
+        section = doc_section(f.read(), "Scripting and background mode")
+    first = next(i for i, line in enumerate(section) if line.startswith("    "))
+    end = next((i for i in range(first, len(section))
+                if section[i] and not section[i].startswith("    ")), len(section))
+    code = textwrap.dedent("\n".join(section[first:end]))
+    namespace = {}
+    exec(compile(code, "docs/blender.md (Scripting)", "exec"), namespace)
+    obj = bpy.context.active_object
+    keys = obj.data.shape_keys
+    check(obj.shellcontract.status.startswith("ok:") and keys is not None
+          and len(keys.key_blocks) > 1 and "except RuntimeError" in code,
+          "the scripting example of docs/blender.md runs as written, catching a refusal: " +
+          obj.shellcontract.status)
+
+
+def doc_defaults(addon_dir):
+    """docs/blender.md's table of settings gives each one's default as properties.py has it."""
+    from shellcontract_blender import properties, runner
+    with open(doc_path(addon_dir)) as f:
+        section = doc_section(f.read(), "Use")
+    header = next(line for line in section if line.startswith("| setting"))
+    columns = [c.strip() for c in header.strip("|").split("|")]
+    rows = [[c.strip() for c in line.strip("|").split("|")] for line in section
+            if line.startswith("| ") and line is not header and not line.startswith("| ---")]
+    rna = properties.ShellContractSettings.bl_rna.properties
+    shown = {}
+    for row in rows:
+        prop = row[1].strip("`").split(".")[-1]
+        shown[prop] = row[columns.index("default")] if "default" in columns else None
+    for prop in shown:
+        p = rna[prop]
+        expected = {"FLOAT": lambda: runner.float32_text(p.default),
+                    "INT": lambda: str(p.default),
+                    "BOOLEAN": lambda: "on" if p.default else "off",
+                    "STRING": lambda: p.default or "empty"}[p.type]()
+        check(shown[prop] == expected, "docs/blender.md gives {}'s default as {} ({})".format(
+            prop, expected, shown[prop]))
+    check(len(shown) == 8, "docs/blender.md's table has the 8 settings of the panel")
+
+
 def main():
     a = args()
     sys.path.insert(0, a.addon_dir)
@@ -233,6 +295,8 @@ def main():
           "the add-on enables from the source tree")
     from shellcontract_blender import runner
     shellcontract = runner.import_shellcontract()  # the add-on's own lookup
+    doc_defaults(a.addon_dir)
+    doc_example_runs(a.addon_dir)
 
     obj = uv_sphere()
     check(len(obj.data.uv_layers) == 1, "the sphere has a UV map")
@@ -377,6 +441,10 @@ def main():
         imported = [o for o in bpy.context.selected_objects if o.type == "MESH"]
         check(imported and imported[0].data.shape_keys is not None,
               "the CLI's .glb imports with its morph targets as shape keys")
+        # docs/blender.md: its keys are at frames 0..N (the add-on's at scene start + n).
+        ad = imported[0].data.shape_keys.animation_data
+        first = min(kp.co[0] for fc in ad.action.fcurves for kp in fc.keyframe_points)
+        check(first == 0.0, "the .glb's keys start at frame 0 ({:g})".format(first))
 
 
 main()
