@@ -5,9 +5,9 @@ to import). The shellcontract module comes from SHELLCONTRACT_PYTHONPATH (the ad
 lookup). Any failed check raises, and Blender exits with 1.
 
 Checks: the add-on enables from the source tree; docs/blender.md gives the settings' defaults
-of properties.py and its scripting example runs as written; on a UV sphere with a UV map and a vertex group,
-bpy.ops.object.shellcontract_contract() at target 0.6 runs to the end in background mode and
-leaves shape keys and timeline keys; the last key's V/V0, measured with bmesh (not the module's
+of properties.py and its scripting example runs as written; on a UV sphere with a UV map and a
+vertex group, bpy.ops.object.shellcontract_contract() at target 0.6 runs to the end in
+background mode and leaves shape keys and timeline keys; the last key's V/V0, measured with bmesh (not the module's
 number), is within 0.005 of 0.6; the UVs are unchanged; the project's own check
 (shellcontract.check) finds no self-intersecting pair that the input lacks; a keyframed target
 (1 -> 0.6 -> 0.9) becomes a schedule the last key of which is 0.9; a run at the defaults and
@@ -159,7 +159,8 @@ def target_volume_messages(obj):
         text = refusal()
         check("Target volume {:g}".format(value) in text and "keyframe" in text and cli_free(text)
               and s.status.startswith("error: "),
-              "an unkeyed Target volume {:g} is refused in the panel's terms: {}".format(value, text))
+              "an unkeyed Target volume {:g} is refused in the panel's terms: {}".format(
+                  value, text))
     s.target_volume = 0.6
     obj.keyframe_insert("shellcontract.target_volume", frame=start)
     text = refusal()
