@@ -34,23 +34,31 @@ def _keys_of(obj, prop):
     return [(kp.co[0], kp.co[1]) for kp in fc.keyframe_points]
 
 
+def _default(settings, prop):
+    """The property's default, as declared in properties.py."""
+    return settings.bl_rna.properties[prop].default
+
+
 def mesh_arrays(obj):
     """Vertices (local coordinates, the base mesh's) and triangles of the object's mesh: the
     loop triangles, so quads and n-gons stay as they are in Blender, and the shape keys move the
-    mesh's own vertices."""
+    mesh's own vertices; and the polygon of each triangle (the library's messages number the
+    triangles, the add-on's the mesh's faces)."""
     mesh = obj.data
     vertices = np.empty(len(mesh.vertices) * 3, dtype=np.float64)
     mesh.vertices.foreach_get("co", vertices)
     mesh.calc_loop_triangles()
     faces = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int64)
     mesh.loop_triangles.foreach_get("vertices", faces)
-    return vertices.reshape(-1, 3), faces.reshape(-1, 3)
+    polygon_of = np.empty(len(mesh.loop_triangles), dtype=np.int64)
+    mesh.loop_triangles.foreach_get("polygon_index", polygon_of)
+    return vertices.reshape(-1, 3), faces.reshape(-1, 3), polygon_of.tolist()
 
 
 def vertex_group_weights(obj, name):
     group = obj.vertex_groups.get(name)
     if group is None:
-        raise runner.AddonError("region group '{}': {} has no such vertex group (it has: {})".format(
+        raise runner.AddonError("Region group '{}': {} has no such vertex group (it has: {})".format(
             name, obj.name, ", ".join(g.name for g in obj.vertex_groups) or "none"))
     weights = np.zeros(len(obj.data.vertices), dtype=np.float64)
     for v in obj.data.vertices:
@@ -64,20 +72,27 @@ def run_options(context, obj):
     """The contract() options of the object's settings, with keyframed settings as schedules."""
     s = obj.shellcontract
     start = context.scene.frame_start
-    options = {"frames": s.frames, "thickness": s.thickness, "collisions": s.collisions}
+    options = {"frames": s.frames, "thickness": float(runner.float32_text(s.thickness)),
+               "collisions": s.collisions}
     volume_keys = _keys_of(obj, "target_volume")
     if volume_keys:
-        options["target_volume"] = runner.schedule_text(volume_keys, start, "Target volume")
-    elif s.target_volume > 0.0:
-        options["target_volume"] = s.target_volume
+        options["target_volume"] = runner.target_volume_schedule(volume_keys, start)
+    elif runner.unkeyed_target_volume(s.target_volume) > 0.0:
+        options["target_volume"] = runner.unkeyed_target_volume(s.target_volume)
+    # With a target volume (a number or keys) the volume constraint decides the volume and the
+    # pressure has no effect (the library warns when it is given). Passed only where the user
+    # asked for it: keyed, set off its default, or with the target off, where it decides. The
+    # default is the library's own (checked in addon_in_blender.py), so leaving it out at the
+    # default runs the same.
     pressure_keys = _keys_of(obj, "pressure")
+    target_on = "target_volume" in options
     if pressure_keys:
-        options["pressure"] = runner.schedule_text(pressure_keys, start, "Pressure")
-    else:
-        options["pressure"] = s.pressure
+        options["pressure"] = runner.pressure_schedule(pressure_keys, start)
+    elif not target_on or s.pressure != _default(s, "pressure"):
+        options["pressure"] = float(runner.float32_text(s.pressure))
     if s.region_group:
         options["region_weights"] = vertex_group_weights(obj, s.region_group)
-        options["region_shrink"] = s.region_shrink
+        options["region_shrink"] = float(runner.float32_text(s.region_shrink))
     return options
 
 
@@ -138,10 +153,10 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             raise runner.AddonError(EDIT_MODE)
         prefs = _preferences(context)
         module = runner.import_shellcontract(prefs.module_path if prefs else "")
-        vertices, faces = mesh_arrays(obj)
+        vertices, faces, polygon_of = mesh_arrays(obj)
         options = run_options(context, obj)
         keep = runner.kept_frames(obj.shellcontract.frames, obj.shellcontract.frame_step)
-        return obj, runner.Job(module, vertices, faces, options, keep)
+        return obj, runner.Job(module, vertices, faces, options, keep, polygon_of)
 
     def _refuse(self, context, error):
         """A run refused before it starts: the panel's status says why, as for a failed run, so
@@ -153,9 +168,15 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
     def _finish(self, context, obj, job):
         s = obj.shellcontract
         RUNNING.pop(obj.name, None)
+        start = context.scene.frame_start
+
+        def terms(message):  # the library's message in the add-on's terms
+            return runner.addon_terms(message, start, obj.name, job.polygon_of)
+
         if job.error is not None:
-            s.status = "error: {}".format(job.error)
-            self.report({"ERROR"}, "ShellContract: {}".format(job.error))
+            error = terms(job.error)
+            s.status = "error: {}".format(error)
+            self.report({"ERROR"}, "ShellContract: {}".format(error))
             return {"CANCELLED"}
         result = job.result
         if result.status == "cancelled":
@@ -165,7 +186,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         if result.summary["frames_run"] < 1:  # failed at its first step: nothing to key
             s.status = "no frame was run"
             self.report({"ERROR"}, "ShellContract: no frame was run ({}); the object is unchanged".format(
-                result.summary.get("failure") or result.status))
+                terms(result.summary.get("failure") or result.status)))
             return {"CANCELLED"}
         if obj.mode == "EDIT":  # entered during a threaded run
             s.status = "not written: the object is in Edit Mode"
@@ -177,7 +198,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         write_shape_keys(context, obj, job)
         # The library's warnings (e.g. a vertex group whose weights are all 0: no region) go with
         # the status, so that an ineffective setting is not reported as a plain success.
-        warnings = list(result.summary.get("warnings", []))
+        warnings = [terms(w) for w in result.summary.get("warnings", [])]
         s.status = "{}: {} frames, V/V0 {:.4f}".format(
             result.status, result.summary["frames_run"], result.summary["final_volume_ratio"]) + "".join(
             "; warning: " + w for w in warnings)
@@ -185,7 +206,8 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         obj["shellcontract_regions"] = result.summary["regions"]
         level = {"INFO"} if result.status == "ok" and not warnings else {"WARNING"}
         self.report(level, "ShellContract: " + s.status +
-                    ("" if result.status == "ok" else " ({})".format(result.summary["failure"])))
+                    ("" if result.status == "ok" else " ({})".format(
+                        terms(result.summary["failure"]))))
         return {"FINISHED"}
 
     def execute(self, context):

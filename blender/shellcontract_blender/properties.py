@@ -23,8 +23,11 @@ class ShellContractSettings(bpy.types.PropertyGroup):
     # the run's schedules, timeline frame = scene start + simulation frame.
     target_volume: bpy.props.FloatProperty(
         name="Target volume",
-        description="V/V0 to reach and hold (0 = off, the pressure decides); keyframe it to "
-                    "deflate and re-inflate over time (keys up to 2)",
+        description="V/V0 to reach and hold, below 1 (0 = off: the pressure decides). "
+                    "Keyframed, it deflates and re-inflates over time: keys above 0 and up to "
+                    "2, 1 at the scene's start frame",
+        # The range is the keys' (0, 2] with the unkeyed 0 = off; an unkeyed value is below 1,
+        # checked when Contract runs (runner.unkeyed_target_volume), as one property has one range.
         default=0.6, min=0.0, max=2.0, soft_max=1.0, precision=3,
     )
     frames: bpy.props.IntProperty(

@@ -2,7 +2,10 @@
 and a job that runs shellcontract.contract in a thread and keeps the frames for the shape keys.
 No bpy here, so that it can be read and tested on its own."""
 
+import math
 import os
+import re
+import struct
 import sys
 import threading
 
@@ -38,17 +41,168 @@ def bpy_abspath(path):
         return os.path.normpath(path)
 
 
-def schedule_text(keys, start, name):
-    """'F:V, ...' for the keyframes (timeline frame, value) of a setting, simulation frame =
-    timeline frame - start. A key before the start has no simulation frame: AddonError."""
-    parts = []
+def float32_text(value):
+    """The shortest text of a float32 setting (Blender stores FloatProperty values and keyframe
+    values as float32): 0.6, not 0.6000000238418579 -- what the user typed, and what the run
+    is given, so that its record reads the same."""
+    f = struct.unpack("f", struct.pack("f", value))[0]
+    if not math.isfinite(f):
+        return repr(f)
+    for digits in range(1, 10):
+        text = "{:.{}g}".format(f, digits)
+        if struct.unpack("f", struct.pack("f", float(text)))[0] == f:
+            return text
+    return repr(f)
+
+
+def frame_text(frame):
+    """A timeline frame as Blender shows it: 41, or 40.5 for a key between frames."""
+    return "{:g}".format(frame)
+
+
+# The library's rules for the two keyframable settings (docs/design/keyframes.md): an unkeyed
+# target volume is a V/V0 in [0, 1) held after a ramp, 0 = off (the pressure decides); keys are
+# in (0, 2], and at simulation frame 0 (the scene's start frame) the shell is at its rest volume,
+# so a key there is 1 (a later first key is reached from 1). Keyed pressures are in
+# [-1e6, 1e6], as the Pressure field. Checked here so that a refusal speaks the panel's terms.
+MAX_KEYED_VOLUME = 2.0
+MAX_PRESSURE = 1e6
+
+
+def unkeyed_target_volume(value):
+    """The Target volume field's value for the run (0 = off) or AddonError."""
+    v = float(float32_text(value))
+    if not (0.0 <= v < 1.0):
+        raise AddonError(
+            "Target volume {}: without keyframes it is a V/V0 below 1, reached and held (0 = "
+            "off: the Pressure decides); to re-inflate to 1 or above (at most {}), keyframe "
+            "it".format(float32_text(value), float32_text(MAX_KEYED_VOLUME)))
+    return v
+
+
+def schedule_keys(keys, start, field):
+    """(simulation frame, value) of the keyframes (timeline frame, value) of a setting,
+    simulation frame = timeline frame - the scene's start frame, values as float32 shows them.
+    A key before the start, or two keys on one frame, is an AddonError in timeline frames."""
+    out = []
+    previous = None
     for frame, value in sorted(keys):
         sim_frame = int(round(frame - start))
         if sim_frame < 0:
-            raise AddonError("{}: the key at frame {:g} comes before the scene's start frame {} "
-                             "(simulation frame 0)".format(name, frame, start))
-        parts.append("{}:{!r}".format(sim_frame, float(value)))
-    return ", ".join(parts)
+            raise AddonError("{}: the key at frame {} comes before the scene's start frame {}, "
+                             "where the run starts; move it to frame {} or later".format(
+                                 field, frame_text(frame), start, start))
+        if previous is not None and sim_frame == out[-1][0]:
+            raise AddonError("{}: the keys at frames {} and {} fall on the same frame {} (the "
+                             "run takes one value per frame); move one of them".format(
+                                 field, frame_text(previous), frame_text(frame),
+                                 start + sim_frame))
+        previous = frame
+        out.append((sim_frame, float(float32_text(value))))
+    return out
+
+
+def target_volume_schedule(keys, start):
+    """The run's target_volume text 'F:V, ...' for the Target volume's keyframes, or
+    AddonError naming the key by its timeline frame."""
+    pairs = schedule_keys(keys, start, "Target volume")
+    for sim_frame, v in pairs:
+        if not (0.0 < v <= MAX_KEYED_VOLUME):
+            raise AddonError(
+                "Target volume: the key at frame {} is {}; a keyed Target volume is a V/V0 above "
+                "0 and at most {} (0 = off is for a Target volume without keys)".format(
+                    start + sim_frame, float32_text(v), float32_text(MAX_KEYED_VOLUME)))
+    if pairs[0][0] == 0 and pairs[0][1] != 1.0:
+        raise AddonError(
+            "Target volume: the key at frame {} (the scene's start frame) is {}; the run starts "
+            "at the rest volume, V/V0 = 1, so a key there must be 1 (or key a later frame "
+            "only: the run goes there from 1)".format(start, float32_text(pairs[0][1])))
+    return _schedule_text(pairs)
+
+
+def pressure_schedule(keys, start):
+    """The run's pressure text 'F:P, ...' for the Pressure's keyframes, or AddonError."""
+    pairs = schedule_keys(keys, start, "Pressure")
+    for sim_frame, v in pairs:
+        if not (-MAX_PRESSURE <= v <= MAX_PRESSURE):
+            raise AddonError("Pressure: the key at frame {} is {}; a Pressure is between {} and "
+                             "{}".format(start + sim_frame, float32_text(v),
+                                         float32_text(-MAX_PRESSURE), float32_text(MAX_PRESSURE)))
+    return _schedule_text(pairs)
+
+
+def _schedule_text(pairs):
+    return ", ".join("{}:{}".format(f, float32_text(v)) for f, v in pairs)
+
+
+# The panel's names of the options the add-on passes, for the library's messages (which name
+# them as Python does).
+FIELD_NAMES = {
+    "target_volume": "Target volume",
+    "pressure": "Pressure",
+    "frames": "Frames",
+    "thickness": "Thickness",
+    "collisions": "Collisions",
+    "region_weights": "Region group",
+    "region_shrink": "Region shrink",
+}
+
+_KEY_AFTER_END = re.compile(
+    r"^(\w+): the key at frame (\d+) comes after the last frame \((\d+)\); the run ends on "
+    r"the schedule's value there, (\S+)$")
+
+
+def addon_terms(message, start, mesh_name="", polygon_of=None):
+    """A message of the library (an error or a warning) in the add-on's terms: the panel's
+    field names, timeline frames (scene start + simulation frame), rounded values; a mesh
+    problem names the object's mesh, not 'input arrays', and its face numbers are the mesh's
+    faces (polygons, as the Spreadsheet numbers them), not the loop triangles the run was given
+    (polygon_of[t]: the polygon of triangle t). Vertex numbers are the mesh's own already."""
+    text = str(message)
+    m = _KEY_AFTER_END.match(text)
+    if m and m.group(1) in FIELD_NAMES:
+        return ("{}: the key at frame {} comes after the run's last frame {}; the "
+                "run ends on the way to it, at {:.4g}".format(
+                    FIELD_NAMES[m.group(1)], start + int(m.group(2)), start + int(m.group(3)),
+                    float(m.group(4))))
+    if text.startswith(ARRAY_INPUT + ": "):
+        text = "the mesh of {}: {}".format(mesh_name, text[len(ARRAY_INPUT) + 2:])
+    if polygon_of is not None:
+        text = polygon_numbers(text, polygon_of)
+    # A message that begins with an option's name, and the underscore names anywhere.
+    head = re.match(r"^(\w+)(:| has no effect)", text)
+    if head and head.group(1) in FIELD_NAMES:
+        text = FIELD_NAMES[head.group(1)] + text[len(head.group(1)):]
+    for name, field in FIELD_NAMES.items():
+        if "_" in name:
+            text = re.sub(r"\b{}\b".format(name), field, text)
+    return text
+
+
+ARRAY_INPUT = "input arrays"  # the library's name of a mesh given as arrays
+
+
+def polygon_numbers(text, polygon_of):
+    """The triangle numbers of a mesh message as the mesh's face (polygon) numbers: 'face T',
+    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...'."""
+    def poly(t):
+        t = int(t)
+        return str(polygon_of[t]) if 0 <= t < len(polygon_of) else str(t)
+
+    def listed(numbers, once=False):  # once: each face once (its triangles are listed apart)
+        out = []
+        for item in numbers.split(", "):
+            p = poly(item) if item.isdigit() else item
+            if not (once and p in out):
+                out.append(p)
+        return ", ".join(out)
+
+    text = re.sub(r"\bface (\d+)\b", lambda m: "face " + poly(m.group(1)), text)
+    text = re.sub(r"\bfaces \(((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)\)",
+                  lambda m: "faces (" + listed(m.group(1)) + ")", text)
+    text = re.sub(r"\bfaces have \(nearly\) zero area: ((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)",
+                  lambda m: "faces have (nearly) zero area: " + listed(m.group(1), True), text)
+    return text
 
 
 def kept_frames(frames, step):
@@ -65,10 +219,11 @@ class Job:
     progress: the last frame done; frames: {frame: positions} for the kept frames; cancel():
     the run stops after the current step (status "cancelled")."""
 
-    def __init__(self, module, vertices, faces, options, keep):
+    def __init__(self, module, vertices, faces, options, keep, polygon_of=None):
         self.module = module
         self.vertices = vertices
         self.faces = faces
+        self.polygon_of = polygon_of  # the mesh's polygon of each triangle, for messages
         self.options = options
         self.keep = set(keep)
         self.progress = 0
