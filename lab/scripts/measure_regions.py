@@ -46,7 +46,7 @@ def run(exe, mesh, frames, pressure, extra, tmp):
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # lab/scripts/ -> the repository
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(root, "build"))
     ap.add_argument("--frames", type=int, default=100)

@@ -25,7 +25,7 @@ PAPER = {"elk": (2.69e9, 10256.66, 20.88), "bear": (1.70e9, 6772.54, 5.66),
 
 
 def main():
-    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # lab/scripts/ -> the repository
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--build", default=os.path.join(root, "build"))
     ap.add_argument("--frames", type=int, default=200)
