@@ -73,6 +73,13 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
                 " is at or below the air balance " + shortest_text(s.air_balance) +
                 ": the air inside stops the shell above it, so the run may stall first (lower "
                 "`air_balance`, 0 = no air)");
+  // The paper's isometric bending is flat at rest. Its PBD projection is a correction that the
+  // membrane outweighs, but under the XPBD shell it carries the material's bending stiffness, so
+  // a closed curved mesh is driven flat and loses volume with no pressure at all.
+  if (s.bending == BendingModel::Isometric && !pbd && r.given.count("bending"))
+    w.push_back("`bending` isometric has a flat rest state: under `solver` xpbd it drives a curved "
+                "shell flat, so the mesh contracts even at `pressure` 0 (it is the paper's bending "
+                "for `solver` pbd; the default dihedral bending is at rest on the input)");
   check("pressure", s.target_volume > 0.0,
         "with `target_volume` the volume constraint decides the volume (the pressure only adds "
         "momentum "
