@@ -21,7 +21,13 @@ int command_reconstruct(int argc, char** argv) {
   po::options_description visible(
       "usage: shellcontract reconstruct POINTS.xyz -o OUT.off\n\n"
       "Closed surface from an oriented point set (x y z nx ny nz per line) with CGAL's Poisson\n"
-      "surface reconstruction, e.g. the paper's kitten from data/points_3/kitten.xyz.\n\noptions");
+      "surface reconstruction, e.g. the paper's kitten from data/points_3/kitten.xyz. A position given\n"
+      "on several lines counts once.\n\n"
+      "exit codes: 0 success, 1 bad usage, 2 an unusable point set (the message names the file and\n"
+      "            line): fewer than 10 points, a stray point far from the others, coordinates beyond\n"
+      "            1e30, one position with normals 90 degrees apart, all in one plane...; or no closed\n"
+      "            surface came out\n\n"
+      "options");
   visible.add_options()("help,h", "show this help")("output,o", po::value(&output), "output mesh")(
       "angle", po::value(&options.angle)->default_value(options.angle), "min triangle angle, degrees")(
       "radius", po::value(&options.radius)->default_value(options.radius),

@@ -20,6 +20,7 @@
 
 #include "mesh/file_safety.hpp"
 #include "mesh/ply_reader.hpp"
+#include "mesh/point_set_checks.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 
@@ -28,12 +29,11 @@ namespace shellcontract {
 namespace {
 
 using Vector3 = Kernel::Vector_3;
-using PointWithNormal = std::pair<Point3, Vector3>;
 
 /// The lines "x y z nx ny nz" of a text point set (blank lines and '#' comments skipped), each
 /// checked here so that a bad line is named: CGAL's reader took three numbers as a point with no
 /// normal (the solve then never ended) and printed its own message without the file.
-void read_point_lines(const std::string& path, std::vector<PointWithNormal>& points) {
+void read_point_lines(const std::string& path, OrientedPoints& points) {
   std::istringstream in(read_regular_file(path));
   std::string line;
   for (std::size_t number = 1; std::getline(in, line); ++number) {
@@ -53,73 +53,46 @@ void read_point_lines(const std::string& path, std::vector<PointWithNormal>& poi
                        " numbers; an oriented point set has 6 per line (x y z nx ny nz)");
     if (v[3] == 0.0 && v[4] == 0.0 && v[5] == 0.0)
       throw InputError(path + ": line " + std::to_string(number) + ": the normal is zero");
-    points.emplace_back(Point3(v[0], v[1], v[2]), Vector3(v[3], v[4], v[5]));
+    points.points.emplace_back(Point3(v[0], v[1], v[2]), Vector3(v[3], v[4], v[5]));
+    points.lines.push_back(number);
   }
 }
 
 /// The oriented points of `path`: PLY through our reader (CGAL 5.5's crashes, see ply_reader),
 /// anything else as text lines (read_point_lines), with allocation failures turned into an
 /// InputError naming the file.
-std::vector<PointWithNormal> read_oriented_points(const std::string& path) {
+OrientedPoints read_oriented_points(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  std::vector<PointWithNormal> points;
+  OrientedPoints points;
+  points.path = path;
   // A regular file or nothing: CGAL's reader would read /dev/zero or a FIFO until memory ends.
   regular_file_size(path);
   if (ext == ".ply") {
     const PlyData d = read_ply(path, read_file_bytes(path));
     if (d.normals.size() != d.points.size())
       throw InputError(path + ": no normals: the vertex element has no nx, ny, nz properties; need an oriented point set");
-    points.reserve(d.points.size());
+    points.points.reserve(d.points.size());
     for (std::size_t i = 0; i < d.points.size(); ++i)
-      points.emplace_back(Point3(d.points[i][0], d.points[i][1], d.points[i][2]),
-                          Vector3(d.normals[i][0], d.normals[i][1], d.normals[i][2]));
+      points.points.emplace_back(Point3(d.points[i][0], d.points[i][1], d.points[i][2]),
+                                 Vector3(d.normals[i][0], d.normals[i][1], d.normals[i][2]));
   } else {
     try {
       read_point_lines(path, points);
     } catch (const std::bad_alloc&) {
-      throw InputError(path + ": out of memory: reading its " + std::to_string(points.size()) +
+      throw InputError(path + ": out of memory: reading its " + std::to_string(points.points.size()) +
                        " points needs more memory than there is");
     }
   }
   // Poisson reconstruction needs finite points and normals: a NaN would poison the solve.
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Point3& p = points[i].first;
-    const Vector3& n = points[i].second;
+  for (std::size_t i = 0; i < points.points.size(); ++i) {
+    const Point3& p = points.points[i].first;
+    const Vector3& n = points.points[i].second;
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()) || !std::isfinite(n.x()) ||
         !std::isfinite(n.y()) || !std::isfinite(n.z()))
-      throw InputError(path + ": non-finite coordinate: point " + std::to_string(i) + " has a non-finite coordinate or normal");
+      throw InputError(path + ": " + points.where(i) + ": a non-finite coordinate or normal");
   }
   return points;
-}
-
-/// The bounding box's diagonal over the points' average spacing beyond which the input is refused.
-constexpr double MAX_SPREAD_OVER_SPACING = 1e6;
-
-double min_of(const std::vector<PointWithNormal>& p, int d) {
-  double m = p.front().first[d];
-  for (const PointWithNormal& q : p) m = std::min(m, q.first[d]);
-  return m;
-}
-double max_of(const std::vector<PointWithNormal>& p, int d) {
-  double m = p.front().first[d];
-  for (const PointWithNormal& q : p) m = std::max(m, q.first[d]);
-  return m;
-}
-
-/// Refuses points that all lie in one plane (exactly: CGAL's orientation predicate): they
-/// enclose no volume, and the Delaunay triangulation under the Poisson solve is then flat, on
-/// which CGAL's solve crashed (a segmentation fault on a flat disc of points).
-void check_spread(const std::string& path, const std::vector<PointWithNormal>& p) {
-  const Point3& a = p.front().first;
-  std::size_t i = 1;
-  while (i < p.size() && p[i].first == a) ++i;
-  std::size_t j = i + 1;
-  while (j < p.size() && CGAL::collinear(a, p[i].first, p[j].first)) ++j;
-  std::size_t k = j + 1;
-  while (k < p.size() && CGAL::coplanar(a, p[i].first, p[j].first, p[k].first)) ++k;
-  if (k >= p.size())
-    throw InputError(path + ": the points lie in one plane (or on a line): they enclose no volume");
 }
 
 using PoissonFunction = CGAL::Poisson_reconstruction_function<Kernel>;
@@ -201,21 +174,13 @@ bool poisson_delaunay(const std::vector<PointWithNormal>& points, Mesh& mesh, do
 }  // namespace
 
 Mesh reconstruct_from_oriented_points(const std::string& path, const ReconstructionOptions& options) {
-  std::vector<PointWithNormal> points = read_oriented_points(path);
-  if (points.size() < 10)
-    throw InputError(path + ": only " + std::to_string(points.size()) + " points; need an oriented point set");
-  check_spread(path, points);
+  // Each position once, with its first line's normal: the solve's triangulation keeps one vertex
+  // per position anyway (whichever it meets first), and repeated positions made the average
+  // spacing, hence the triangles, smaller, down to zero.
+  const std::vector<PointWithNormal> points = checked_points(read_oriented_points(path), options.spacing_neighbours);
   const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(
       points, options.spacing_neighbours,
       CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>()));
-  // A point far from the others (or a huge coordinate) makes the solve's domain that much larger
-  // than the sampling: the arithmetic then overflowed (SIGFPE) on a coordinate of 1e308.
-  const double diagonal = CGAL::approximate_sqrt(CGAL::squared_distance(
-      Point3(min_of(points, 0), min_of(points, 1), min_of(points, 2)),
-      Point3(max_of(points, 0), max_of(points, 1), max_of(points, 2))));
-  if (spacing > 0.0 && !(diagonal / spacing <= MAX_SPREAD_OVER_SPACING))
-    throw InputError(path + ": the points span more than a million times their average spacing: a stray "
-                     "point far from the others, or a huge coordinate?");
   Mesh mesh;
   if (!(spacing > 0.0) || !poisson_delaunay(points, mesh, spacing, options))
     throw InputError(path + ": Poisson surface reconstruction failed (no surface found)");

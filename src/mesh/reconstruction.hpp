@@ -18,8 +18,10 @@ struct ReconstructionOptions {
 
 /// Reads an oriented point set ("x y z nx ny nz" per line, .xyz / .pwn) and reconstructs a closed
 /// surface with CGAL::poisson_surface_reconstruction_delaunay (Kazhdan et al. 2006).
-/// @throws InputError if the file cannot be read, has too few points, or the reconstruction
-///         fails or is not a closed triangle mesh
+/// A position given on several lines counts once (its first line's normal).
+/// @throws InputError if the file cannot be read, its points fail checked_points
+///         (mesh/point_set_checks.hpp: too few, huge coordinates, a stray point, no volume...),
+///         or the reconstruction fails or is not a closed triangle mesh
 Mesh reconstruct_from_oriented_points(const std::string& path, const ReconstructionOptions& options = {});
 
 }  // namespace shellcontract

@@ -2,6 +2,7 @@
 // back as a closed, outward surface with the sphere's volume.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/validation.hpp"
 #include "support/mesh_fixtures.hpp"
+#include "support/random_geometry.hpp"
 
 namespace shellcontract {
 namespace {
@@ -93,12 +95,95 @@ TEST(Reconstruction, HostilePointSetsAreInputErrorsNamingTheProblem) {
   std::string flat;
   for (int i = 0; i < 40; ++i) flat += std::to_string(std::cos(i)) + " " + std::to_string(std::sin(1.7 * i)) + " 0 0 0 1\n";
   EXPECT_NE(error_of(points_file("flat", flat)).find("lie in one plane"), std::string::npos);
-  EXPECT_NE(error_of(points_file("huge", sphere_lines("1e308 2 3 0 0 1\n"))).find("average spacing"), std::string::npos);
+  EXPECT_NE(error_of(points_file("huge", sphere_lines("1e308 2 3 0 0 1\n")))
+                .find("line 163: coordinate 1e+308 is beyond"),
+            std::string::npos);
   std::string three;
   for (int i = 0; i < 40; ++i) three += std::to_string(std::cos(i)) + " " + std::to_string(std::sin(i)) + " " + std::to_string(i) + "\n";
   EXPECT_NE(error_of(points_file("three", three)).find("line 1: 3 numbers"), std::string::npos);
   EXPECT_NE(error_of(points_file("token", sphere_lines("1 2 abc 0 0 1\n"))).find("'abc' is not a finite number"), std::string::npos);
   EXPECT_NE(error_of(points_file("zero", sphere_lines("0.1 0.2 0.3 0 0 0\n"))).find("the normal is zero"), std::string::npos);
+}
+
+/// 200 random points of a sphere of radius `radius` (a fixed seed; on a regular sampling such as an
+/// icosphere's vertices CGAL's mesher finds no surface), normals of length `normal_length`
+/// outward, each line `copies` times in a row, then `extra`.
+std::string random_sphere_lines(const std::string& extra = "", double radius = 1.0, double normal_length = 1.0,
+                                int copies = 1) {
+  std::mt19937 rng(5);
+  std::ostringstream out;
+  out.precision(17);
+  for (int i = 0; i < 200;) {
+    const Vec3 v = test::random_vec3(rng);
+    if (v.norm() < 0.1 || v.norm() > 1.0) continue;  // uniform directions: inside the ball only
+    ++i;
+    const Vec3 p = radius * v.normalized(), n = normal_length * v.normalized();
+    for (int c = 0; c < copies; ++c)
+      out << p.x() << ' ' << p.y() << ' ' << p.z() << ' ' << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+  }
+  return out.str() + extra;
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// Before: a point 1000 radii off a 200-point sphere was wrapped in a surface of its own (a review
+// saw such a set never end); a point at 1e150 never ended, nor did a sphere 1e40 across or normals
+// of length 1e-200; a sphere 1e-14 across aborted in a CGAL assertion. The guard compared the
+// extent with the average spacing, which a stray point inflates as much as the extent.
+TEST(Reconstruction, StrayPointsAndExtremeMagnitudesAreInputErrorsNamingTheLine) {
+  const std::string stray = error_of(points_file("stray", random_sphere_lines("1000 0 0 1 0 0\n")));
+  EXPECT_TRUE(has(stray, "line 201: point (1000, 0, 0) lies on average") && has(stray, "stray point")) << stray;
+  const std::string three = random_sphere_lines("1000 0 0 1 0 0\n1000.01 0 0 1 0 0\n1000 0.01 0 1 0 0\n");
+  EXPECT_TRUE(has(error_of(points_file("three_strays", three)), "stray point"));
+  EXPECT_TRUE(has(error_of(points_file("e150", random_sphere_lines("1e150 2 3 0 0 1\n"))),
+                  "line 201: coordinate 1e+150 is beyond"));
+  EXPECT_TRUE(has(error_of(points_file("big", random_sphere_lines("", 1e40))), "line 1: coordinate"));
+  EXPECT_TRUE(has(error_of(points_file("small", random_sphere_lines("", 1e-14))), "median spacing is"));
+  EXPECT_TRUE(has(error_of(points_file("short_normals", random_sphere_lines("", 1.0, 1e-200))),
+                  "line 1: the normal's length 1e-200"));
+  // A group of points far away has neighbours of its own: the extent check refuses it.
+  std::string group;
+  for (int i = 0; i < 10; ++i)
+    group += std::to_string(1e7 + 0.03 * i) + " " + std::to_string(0.05 * (i % 3)) + " " +
+             std::to_string(0.07 * (i % 4)) + " 1 0 0\n";
+  EXPECT_TRUE(has(error_of(points_file("group", random_sphere_lines(group))), "times their median spacing"));
+  // A PLY's points are named by vertex (from 0).
+  const fs::path ply = fs::temp_directory_path() / "shellcontract_rec_stray.ply";
+  std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 201\nproperty double x\nproperty double y\n"
+                        "property double z\nproperty double nx\nproperty double ny\nproperty double nz\nend_header\n"
+                     << random_sphere_lines("1000 0 0 1 0 0\n");
+  EXPECT_TRUE(has(error_of(ply.string()), "vertex 200: point (1000, 0, 0)"));
+}
+
+std::vector<Point3> sorted_points(const Mesh& mesh) {
+  std::vector<Point3> p(mesh.points().begin(), mesh.points().end());
+  std::sort(p.begin(), p.end());
+  return p;
+}
+
+// Before: each point given 8 times made the average spacing zero ("no surface found"); one
+// position with opposite normals was reconstructed from whichever the solve met first; 200 copies
+// of one point were said to lie in one plane.
+TEST(Reconstruction, RepeatedPositionsCountOnceAndMustAgree) {
+  const Mesh once = reconstruct_from_oriented_points(points_file("once", random_sphere_lines()));
+  const Mesh eight = reconstruct_from_oriented_points(points_file("eight", random_sphere_lines("", 1.0, 1.0, 8)));
+  fs::remove(fs::temp_directory_path() / "shellcontract_rec_once.xyz");
+  fs::remove(fs::temp_directory_path() / "shellcontract_rec_eight.xyz");
+  // The same surface; its faces may come out in another order (CGAL orders them by address).
+  EXPECT_EQ(sorted_points(once), sorted_points(eight));
+  EXPECT_EQ(once.number_of_faces(), eight.number_of_faces());
+  const std::string first = random_sphere_lines().substr(0, random_sphere_lines().find('\n'));
+  std::istringstream fields(first);
+  double v[6];
+  for (double& x : v) fields >> x;
+  std::ostringstream flipped;
+  flipped.precision(17);
+  flipped << v[0] << ' ' << v[1] << ' ' << v[2] << ' ' << -v[3] << ' ' << -v[4] << ' ' << -v[5] << '\n';
+  EXPECT_TRUE(has(error_of(points_file("flipped", random_sphere_lines(flipped.str()))),
+                  "line 1 and line 201: the same point"));
+  std::string same;
+  for (int i = 0; i < 200; ++i) same += "0.5 0.5 0.5 0 0 1\n";
+  EXPECT_TRUE(has(error_of(points_file("same", same)), "all the points are at one position (0.5, 0.5, 0.5)"));
 }
 
 }  // namespace
