@@ -291,6 +291,23 @@ def test_cli_front_runs_the_sweep_module(cli, mesh_dir, tmp_path):
     assert not (tmp_path / "out").exists()  # a dry run writes nothing
 
 
+def test_cli_front_says_where_it_looked_for_a_missing_package(cli, mesh_dir, tmp_path):
+    # The executable alone, with no package beside it (neither <dir>/python, as in the build
+    # tree, nor the install's lib/python3/dist-packages) and none on PYTHONPATH.
+    lone = tmp_path / "bin"
+    lone.mkdir()
+    shutil.copy(cli, lone / "shellcontract")
+    path = write_sweep(tmp_path, mesh_dir, "small.json", SMALL)
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "SHELLCONTRACT_CLI")}
+    r = subprocess.run([str(lone / "shellcontract"), "sweep", str(path), "-o", str(tmp_path / "o"),
+                        "--dry-run"], capture_output=True, text=True, env=env, timeout=120)
+    assert r.returncode == 1, r.stderr
+    assert "cannot import the Python package shellcontract" in r.stderr, r.stderr
+    assert "looked for it in {}".format(lone / "python") in r.stderr, r.stderr
+    assert str(tmp_path / "lib" / "python3" / "dist-packages") in r.stderr, r.stderr
+    assert "Traceback" not in r.stderr
+
+
 def test_progress_is_a_bar_on_a_terminal_and_lines_otherwise():
     import io
     from shellcontract.sweep_progress import Progress
