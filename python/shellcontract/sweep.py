@@ -16,9 +16,8 @@ or a refused sweep file (nothing run), 3 some job could not get an outcome (cras
 import argparse
 import os
 import queue
-import shutil
-import subprocess
 import sys
+import uuid
 
 from . import sweep_file, sweep_job, sweep_progress, sweep_results
 
@@ -29,22 +28,21 @@ EXIT_INTERRUPTED = 130
 RETRIED_STATUSES = ("crashed", "killed", "timeout")
 
 
-def find_cli(given=None):
-    """The `shellcontract` executable: --cli, $SHELLCONTRACT_CLI, the build tree this package
-    was built in (<build>/python/shellcontract -> <build>/shellcontract), then PATH."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [given, os.environ.get("SHELLCONTRACT_CLI"),
-                  os.path.join(here, os.pardir, os.pardir, "shellcontract"),
-                  shutil.which("shellcontract")]
-    for c in candidates:
-        if c and os.path.isfile(c) and os.access(c, os.X_OK):
-            return os.path.abspath(c)
-    return None
+find_cli = sweep_job.find_cli
+cli_version = sweep_job.cli_version
 
 
-def cli_version(cli):
-    out = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True)
-    return out.stdout.strip()
+class Interrupted(Exception):
+    """Ctrl-C: the sweep stopped its jobs; `still_running` jobs (None: unknown) had not ended
+    when it gave up waiting."""
+
+    def __init__(self, still_running=0):
+        super().__init__(still_running)
+        self.still_running = still_running
+
+
+class WorkersUnusable(Exception):
+    """An existing cluster's workers that cannot run the jobs (the message says which, why)."""
 
 
 def parse_shard(text):
@@ -147,11 +145,72 @@ def _embedded_cluster(workers):
 CLIENT_CONFIG = {"distributed.diagnostics.computations.ignore-modules": [".*"]}
 
 
-def _run_dask(jobs, todo, args, cli, progress, on_record):
+# Evaluated on each worker of an existing cluster (Client.run(eval, ...), eval being importable
+# everywhere): whether it can import the package, without the package on the client's side of
+# the call. A worker that cannot import it would otherwise fail every task it takes up in a way
+# Dask does not report to the client (the sweep would wait for ever).
+_IMPORT_PROBE = "__import__('shellcontract.sweep_job').sweep_job.__file__"
+
+
+def _check_workers(client, cli, version, own_cli, progress):
+    """Every worker of an existing cluster can import the package and finds an executable of the
+    sweep's version (sweep_job.worker_cli); raises WorkersUnusable naming each one that cannot.
+    Workers that join later are checked by their first job (which then crashes, saying why)."""
+    workers = sorted(client.scheduler_info().get("workers", {}))
+    if not workers:
+        progress.message("the cluster has no workers yet: the jobs wait for the first to join")
+        return
+    problems = []
+    imported = client.run(eval, _IMPORT_PROBE, workers=workers, on_error="return")
+    usable = []
+    for w in workers:
+        r = imported.get(w)
+        if isinstance(r, BaseException):
+            problems.append("{}: cannot import the shellcontract package ({}: {}); every worker "
+                            "needs it importable (PYTHONPATH)".format(w, type(r).__name__, r))
+        else:
+            usable.append(w)
+    if usable:
+        described = client.run(sweep_job.describe_worker, cli, version, own_cli, workers=usable,
+                               on_error="return")
+        for w in usable:
+            r = described.get(w)
+            if isinstance(r, BaseException):
+                problems.append("{}: {}: {}".format(w, type(r).__name__, r))
+            elif r[1] is not None:
+                problems.append("{}: {}".format(w, r[1]))
+    if problems:
+        raise WorkersUnusable("; ".join(problems))
+
+
+def _stop_on_workers(client, token):
+    """Ctrl-C on an existing cluster: every worker stops this sweep's jobs (SIGTERM: each saves
+    its checkpoint; none starts after), and the sweep waits for them; returns how many still
+    ran when it gave up (None: a worker did not answer)."""
+    import time
+    deadline = time.monotonic() + sweep_job.STOP_GRACE_SECONDS + 5
+    try:
+        client.run(sweep_job.stop_running, token, on_error="return")
+        while True:
+            counts = client.run(sweep_job.active_calls, token, on_error="return")
+            if any(isinstance(n, BaseException) for n in counts.values()):
+                return None
+            still = sum(counts.values())
+            if still == 0 or time.monotonic() > deadline:
+                return still
+            time.sleep(0.2)
+    except Exception:  # the scheduler or the connection is gone
+        return None
+
+
+def _run_dask(jobs, todo, args, cli, version, token, progress, on_record):
     import dask
     from distributed import Client
     dask.config.set(CLIENT_CONFIG)
     cluster = None
+    # On an existing cluster each worker runs its own executable (unless --cli names one), of the
+    # sweep's version; the embedded workers run this machine's.
+    own_cli = None if not args.scheduler else args.cli is None
     if args.scheduler:
         client = Client(args.scheduler, timeout="30s")
     else:
@@ -159,6 +218,8 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
         client = Client(cluster)
     futures = {}
     try:
+        if args.scheduler:
+            _check_workers(client, cli, version, own_cli, progress)
         if args.scheduler or _has_dashboard():
             # The scheduler's own dashboard when it has one (it says where).
             progress.message("Dask dashboard: {}".format(client.dashboard_link))
@@ -172,7 +233,8 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
         # One call for all the jobs: one graph for the scheduler, not one per job.
         submitted = client.map(sweep_job.run_job, [job.to_dict() for job in todo],
                                out_dir=args.output, cli=cli, timeout=args.job_timeout,
-                               checkpoint_every=args.checkpoint_every, pure=False,
+                               checkpoint_every=args.checkpoint_every, sweep=token,
+                               own_cli=own_cli, version=version, pure=False,
                                key=["shellcontract-job-" + job.id for job in todo])
         for f, job in zip(submitted, todo):
             futures[f] = job
@@ -188,16 +250,21 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
             on_record(job, record)
     except KeyboardInterrupt:
         client.cancel(list(futures))
-        # The embedded workers are this process's threads: their jobs are told to stop here
-        # (SIGTERM: each saves its checkpoint) and waited for.
-        sweep_job.stop_running()
-        sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS)
-        raise
+        if args.scheduler:
+            # A cancelled task that runs goes on in its worker's thread: the workers are asked
+            # to stop this sweep's jobs (SIGTERM: each saves its checkpoint).
+            still = _stop_on_workers(client, token)
+        else:
+            # The embedded workers are this process's threads: their jobs are told to stop here
+            # and waited for.
+            sweep_job.stop_running(token)
+            still = (0 if sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS, token)
+                     else sweep_job.active_calls(token))
+        raise Interrupted(still)
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
-        sweep_job.allow_starting()
 
 
 def main(argv=None):
@@ -236,20 +303,33 @@ def main(argv=None):
         tables.record(job, record)
         progress.job_finished(record, job.label())
 
+    token = uuid.uuid4().hex  # this sweep's jobs, for stopping them (sweep_job.stop_running)
     try:
         if args.shard is not None:
             for job in todo:
                 on_record(job, sweep_job.run_job(job.to_dict(), args.output, cli, args.job_timeout,
-                                                 args.checkpoint_every))
+                                                 args.checkpoint_every, sweep=token))
         elif todo:  # nothing left to run: no cluster to start
-            _run_dask(jobs, todo, args, cli, progress, on_record)
-    except KeyboardInterrupt:
+            _run_dask(jobs, todo, args, cli, version, token, progress, on_record)
+    except (KeyboardInterrupt, Interrupted) as e:
         tables.flush()
         progress.close()
+        still = e.still_running if isinstance(e, Interrupted) else 0
+        if still == 0:
+            how = "finished jobs are kept, the running ones saved their checkpoints and resume from them"
+        else:
+            how = ("finished jobs are kept; {} did not stop within {:g} s and may still run on the "
+                   "workers: their outcomes are kept when they end".format(
+                       "some jobs" if still is None else "{} job{}".format(still, "s" * (still > 1)),
+                       sweep_job.STOP_GRACE_SECONDS))
         print("shellcontract sweep: interrupted; run the same command again to finish the rest "
-              "(finished jobs are kept, running ones resume from their checkpoints)",
-              file=sys.stderr)
+              "({})".format(how), file=sys.stderr)
         return EXIT_INTERRUPTED
+    except WorkersUnusable as e:
+        tables.flush()
+        progress.close()
+        print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
+        return EXIT_USAGE
     table = tables.flush()
     progress.close()
     ids = {j.id for j in selected}

@@ -32,9 +32,9 @@ def sweep_env(cli):
     return env
 
 
-def run_sweep(cli, args, **kw):
+def run_sweep(cli, args, timeout=240, **kw):
     return subprocess.run([sys.executable, "-m", "shellcontract.sweep"] + args, env=sweep_env(cli),
-                          capture_output=True, text=True, timeout=240, **kw)
+                          capture_output=True, text=True, timeout=timeout, **kw)
 
 
 def write_sweep(tmp_path, mesh_dir, name, spec, meshes=("ico1.off", "octahedron.off")):

@@ -4,7 +4,6 @@ edited file reruns its jobs (from scratch, not from a checkpoint of the old file
 import json
 import os
 import subprocess
-import sys
 
 import pytest
 
