@@ -16,10 +16,11 @@ or a refused sweep file (nothing run), 3 some job could not get an outcome (cras
 import argparse
 import os
 import queue
+import subprocess
 import sys
 import uuid
 
-from . import sweep_file, sweep_job, sweep_progress, sweep_results
+from . import sweep_file, sweep_job, sweep_output, sweep_progress, sweep_results
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
@@ -267,6 +268,11 @@ def _run_dask(jobs, todo, args, cli, version, token, progress, on_record):
             cluster.close()
 
 
+def _os_error_text(e):
+    where = e.filename if e.filename is not None else ""
+    return "{}{}".format(where + ": " if where else "", e.strerror or e)
+
+
 def main(argv=None):
     args = parser().parse_args(argv)
     cli = find_cli(args.cli)
@@ -274,14 +280,30 @@ def main(argv=None):
         print("shellcontract sweep: cannot find the shellcontract executable (--cli PATH or "
               "SHELLCONTRACT_CLI)", file=sys.stderr)
         return EXIT_USAGE
+    try:
+        version = cli_version(cli)
+    except (OSError, subprocess.SubprocessError) as e:
+        print("shellcontract sweep: {} --version failed ({})".format(cli, e), file=sys.stderr)
+        return EXIT_USAGE
     args.output = os.path.abspath(args.output)
     try:
         data = sweep_file.load(args.sweep)
-        version = cli_version(cli)
         jobs = sweep_file.expand(args.sweep, data, version)
-    except sweep_file.SweepError as e:
+        sweep_output.check(args.output, args.sweep)
+    except (sweep_file.SweepError, sweep_output.OutputError) as e:
         print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
         return EXIT_USAGE
+    try:
+        return _run(args, cli, version, data, jobs)
+    except sweep_output.OutputError as e:
+        print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
+        return EXIT_USAGE
+    except OSError as e:  # DIR unwritable, full, changed under the sweep
+        print("shellcontract sweep: {}".format(_os_error_text(e)), file=sys.stderr)
+        return EXIT_USAGE
+
+
+def _run(args, cli, version, data, jobs):
     varying = sweep_file.varying_names(data)
     sweep_dir = os.path.dirname(os.path.abspath(args.sweep))
     if args.dry_run:
@@ -289,7 +311,7 @@ def main(argv=None):
             print("{}  {}  {}".format(job.id, os.path.relpath(job.mesh, sweep_dir),
                                       " ".join(job.args)))
         return 0
-    os.makedirs(os.path.join(args.output, "jobs"), exist_ok=True)
+    sweep_output.claim(args.output, args.sweep)
     selected = jobs if args.shard is None else jobs[args.shard[0]::args.shard[1]]
     tables = sweep_results.Writer(jobs, varying, args.output, sweep_dir)
     todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
@@ -318,10 +340,9 @@ def main(argv=None):
         if still == 0:
             how = "finished jobs are kept, the running ones saved their checkpoints and resume from them"
         else:
-            how = ("finished jobs are kept; {} did not stop within {:g} s and may still run on the "
+            how = ("finished jobs are kept; {} did not stop in time and may still run on the "
                    "workers: their outcomes are kept when they end".format(
-                       "some jobs" if still is None else "{} job{}".format(still, "s" * (still > 1)),
-                       sweep_job.STOP_GRACE_SECONDS))
+                       "some jobs" if still is None else "{} job{}".format(still, "s" * (still > 1))))
         print("shellcontract sweep: interrupted; run the same command again to finish the rest "
               "({})".format(how), file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -339,6 +360,8 @@ def main(argv=None):
     print("shellcontract sweep: {} done, {} failed, {} left; results in {}".format(
         done, failed, left, os.path.join(args.output, "results.csv")), file=sys.stderr)
     return EXIT_INCOMPLETE if incomplete else 0
+
+
 
 
 if __name__ == "__main__":

@@ -114,10 +114,10 @@ def test_embedded_cluster_equals_serial_runs(cli, mesh_dir, tmp_path):
     assert again.returncode == 0, again.stderr
     assert "8 done already" in again.stderr
     assert {p: os.stat(p).st_ino for p in (out / "jobs").glob("*/job.json")} == before
-    # One option changed for one grid value: only the jobs it touches run.
+    # One option of the file changed for one grid value: only the jobs it touches run.
     changed = dict(SMALL, grid={"pressure": [2, 3], "frames": [6, 9]})
-    path2 = write_sweep(tmp_path, mesh_dir, "changed.json", changed)
-    third = run_sweep(cli, [str(path2), "-o", str(out), "--shard", "0/1"])
+    path = write_sweep(tmp_path, mesh_dir, "small.json", changed)
+    third = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert third.returncode == 0, third.stderr
     assert "4 done already" in third.stderr
 
