@@ -56,22 +56,50 @@ def parse_shard(text):
     return i, n
 
 
-def positive_float(text):
-    v = float(text)
-    if not v > 0:
-        raise argparse.ArgumentTypeError("expected a number > 0, got {!r}".format(text))
+# The longest --job-timeout: far beyond any job (about 31 years), and within what the waits can
+# take (select's timeout overflows near 9.2e9 s).
+MAX_JOB_TIMEOUT = 1e9
+# --checkpoint-every goes to `shellcontract run`, which takes an int.
+MAX_CHECKPOINT_EVERY = 2**31 - 1
+
+
+def job_timeout(text):
+    try:
+        v = float(text)
+    except ValueError:
+        v = None
+    if v is None or not 0 < v <= MAX_JOB_TIMEOUT:  # (also NaN and inf)
+        raise argparse.ArgumentTypeError(
+            "expected a number of seconds > 0 and <= {:g}, got {!r}".format(MAX_JOB_TIMEOUT, text))
     return v
 
 
-def positive_int(text):
-    v = int(text)
-    if v < 1:
-        raise argparse.ArgumentTypeError("expected an integer >= 1, got {!r}".format(text))
+def positive_int(text, most=None):
+    try:
+        v = int(text)
+    except ValueError:
+        v = None
+    if v is None or v < 1 or (most is not None and v > most):
+        raise argparse.ArgumentTypeError("expected an integer >= 1{}, got {!r}".format(
+            "" if most is None else " and <= {}".format(most), text))
     return v
+
+
+def checkpoint_every(text):
+    return positive_int(text, MAX_CHECKPOINT_EVERY)
+
+
+class _Parser(argparse.ArgumentParser):
+    """Bad usage exits 1, as the tool's other commands do (argparse's own is 2, which is the
+    tool's 'unusable input')."""
+
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        self.exit(EXIT_USAGE, "{}: error: {}\n".format(self.prog, message))
 
 
 def parser():
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="shellcontract sweep",
         description="Run every job of a sweep file (meshes x options grid x runs) on Dask "
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
@@ -89,10 +117,10 @@ def parser():
                             "(job arrays: Slurm, Kubernetes indexed jobs)")
     p.add_argument("--workers", type=positive_int, default=None,
                    help="jobs at a time on the embedded cluster (default: the cores)")
-    p.add_argument("--job-timeout", type=positive_float, default=None, metavar="SECONDS",
+    p.add_argument("--job-timeout", type=job_timeout, default=None, metavar="SECONDS",
                    help="stop a job after this long (recorded as 'timeout'; a later sweep "
                         "resumes it from its checkpoint)")
-    p.add_argument("--checkpoint-every", type=positive_int, default=20, metavar="N",
+    p.add_argument("--checkpoint-every", type=checkpoint_every, default=20, metavar="N",
                    help="each job saves its state every N frames (a lost worker's job resumes "
                         "from there); default 20")
     p.add_argument("--cli", metavar="PATH", help="the shellcontract executable")
