@@ -348,6 +348,10 @@ def _run(args, cli, version, data, jobs):
     progress = sweep_progress.Progress(len(selected), done=done)
     progress.message("{} jobs ({} in this run, {} done already) -> {}".format(
         len(jobs), len(todo), done, args.output))
+    stale = sweep_job.clean_stale_attempts(args.output)
+    if stale:
+        progress.message("removed the working folders of {} attempt{} that a killed sweep left in "
+                         "{}".format(stale, "s" * (stale > 1), os.path.join(args.output, ".work")))
 
     def on_record(job, record):
         tables.record(job, record)

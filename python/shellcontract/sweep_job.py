@@ -7,8 +7,10 @@ nothing of the compiled core, so that a worker needs only the CLI and this packa
 """
 
 import ctypes
+import fcntl
 import json
 import os
+import re
 import select
 import shutil
 import signal
@@ -264,6 +266,92 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, ow
             _ACTIVE.notify_all()
 
 
+# An attempt's working folder DIR/.work/<id>.<random>/ (and <id>.<random>.old, an earlier outcome
+# being replaced) is in use while DIR/.work/<id>.<random>.lock is locked (flock): by run_job and by
+# the job's process, which inherits the lock. A sweep killed with SIGKILL leaves its attempts'
+# folders behind with their locks released; the next sweep removes them (clean_stale_attempts).
+_ATTEMPT = re.compile(r"^([0-9a-f]{16}\.[0-9a-f]{8})(\.old|\.lock)?$")
+
+
+def _same_file(fd, path):
+    try:
+        a, b = os.fstat(fd), os.stat(path)
+    except OSError:
+        return False
+    return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
+
+
+def _lock_attempt(work_root, job_id):
+    """A new attempt's name and its lock file's descriptor, locked (or unlocked where the file
+    system has no locks: then no sweep ever takes its folder for stale)."""
+    while True:
+        name = "{}.{}".format(job_id, uuid.uuid4().hex[:8])
+        path = os.path.join(work_root, name + ".lock")
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o644)
+        except FileExistsError:
+            continue
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            pass  # a cleaner holds it for a moment, and removes it: another name
+        except OSError:
+            return name, fd  # no locks here
+        else:
+            # A cleaner may have locked and removed the new file before this lock: the lock
+            # counts only if it is on the file at the path.
+            if _same_file(fd, path):
+                return name, fd
+        os.close(fd)
+
+
+def _release_attempt(work_root, name, fd):
+    try:
+        os.remove(os.path.join(work_root, name + ".lock"))
+    except OSError:
+        pass
+    os.close(fd)
+
+
+def clean_stale_attempts(out_dir):
+    """Removes the working folders in DIR/.work of attempts that no process holds any more (a
+    sweep or worker killed with SIGKILL); returns how many attempts were removed. An attempt
+    whose lock cannot be taken is running (or the file system has no locks) and is left."""
+    work_root = os.path.join(out_dir, ".work")
+    try:
+        names = os.listdir(work_root)
+    except OSError:
+        return 0
+    attempts = {}
+    for n in names:
+        m = _ATTEMPT.match(n)
+        if m:
+            attempts.setdefault(m.group(1), set()).add(m.group(2) or "")
+    removed = 0
+    for name, kinds in sorted(attempts.items()):
+        lock = os.path.join(work_root, name + ".lock")
+        fd = None
+        if ".lock" in kinds:
+            try:
+                fd = os.open(lock, os.O_RDWR)
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:  # held (running), gone meanwhile, or no locks here
+                if fd is not None:
+                    os.close(fd)
+                continue
+            if not _same_file(fd, lock):  # another cleaner removed it meanwhile
+                os.close(fd)
+                continue
+        # Without a lock file the attempt is over: a running one holds its lock file until its
+        # folder is gone (_lock_attempt makes the lock before the folder).
+        for suffix in ("", ".old"):
+            shutil.rmtree(os.path.join(work_root, name + suffix), ignore_errors=True)
+        if fd is not None:
+            _release_attempt(work_root, name, fd)
+        removed += 1
+    return removed
+
+
 def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep):
     out_dir = os.path.abspath(out_dir)
     p = paths(out_dir, job["id"])
@@ -273,7 +361,15 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep):
         return old
     os.makedirs(os.path.dirname(p["checkpoint"]), exist_ok=True)
     os.makedirs(os.path.join(out_dir, "jobs"), exist_ok=True)
-    work = os.path.join(p["work"], "{}.{}".format(job["id"], uuid.uuid4().hex[:8]))
+    name, lock_fd = _lock_attempt(p["work"], job["id"])
+    try:
+        return _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
+                            os.path.join(p["work"], name), lock_fd)
+    finally:
+        _release_attempt(p["work"], name, lock_fd)
+
+
+def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, lock_fd):
     os.makedirs(work)
     ext = os.path.splitext(job["mesh"])[1].lower() or ".off"
     mesh_name = os.path.splitext(os.path.basename(job["mesh"]))[0] + ext
@@ -291,9 +387,12 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep):
         # children itself (SIGTERM: they write their checkpoints).
         prefix = _death_signal_prefix()
         with _RUNNING_LOCK:
+            # The job's process inherits the attempt's lock (pass_fds), so that its folder is
+            # in use as long as the process runs, even after this one is gone.
             proc = None if _is_stopped(sweep) else subprocess.Popen(
                 prefix + cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
-                start_new_session=True, preexec_fn=None if prefix else _die_with_parent)
+                start_new_session=True, preexec_fn=None if prefix else _die_with_parent,
+                pass_fds=(lock_fd,))
             if proc is not None:
                 _RUNNING[proc] = sweep
         if proc is None:  # the sweep is stopping: the job is left for the next one

@@ -165,12 +165,32 @@ def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_pa
     proc.wait()
     finished = {p.parent.name: (os.stat(p).st_ino, p.read_text()) for p in done_jobs(out)}
     assert 2 <= len(finished) < 6, "make the jobs longer: the sweep ended before the kill"
+    # The killed sweep's runs got SIGTERM (the parent-death signal): they save and end.
+    wait_until(lambda: not runs_reading(tmp_path / "meshes"), timeout=60)
+    left = [p.name for p in (out / ".work").iterdir() if p.name != "checkpoints"]
     again = run_sweep(cli, [str(path), "-o", str(out), "--workers", "2"])
     assert again.returncode == 0, again.stderr
     for job, (inode, text) in finished.items():
         p = out / "jobs" / job / "job.json"
         assert os.stat(p).st_ino == inode and p.read_text() == text, "job {} was redone".format(job)
     assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+    # The killed sweep's working folders are gone (the rerun removed them: nobody held them).
+    if left:
+        assert "that a killed sweep left" in again.stderr, again.stderr
+    assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"], left
+
+
+def runs_reading(folder):
+    """Pids of the processes whose command line names `folder` (the jobs' runs of a test)."""
+    pids = []
+    for name in os.listdir("/proc"):
+        try:
+            with open("/proc/{}/cmdline".format(name), "rb") as f:
+                if str(folder).encode() in f.read():
+                    pids.append(int(name))
+        except (OSError, ValueError):
+            pass
+    return pids
 
 
 def free_port():
