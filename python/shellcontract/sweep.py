@@ -345,7 +345,12 @@ def _run(args, cli, version, data, jobs):
     todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
     sweep_results.write(jobs, varying, args.output, sweep_dir, records=tables.records)
     done = len(selected) - len(todo)
-    progress = sweep_progress.Progress(len(selected), done=done)
+    # The progress counts finished jobs as the final summary does: a result (ok, target not
+    # reached) is done, any other final outcome (failed, bad input, ...) failed.
+    earlier = [tables.records[j.id]["status"] for j in selected if j not in todo]
+    results_before = sum(1 for status in earlier if status in sweep_progress.RESULT_STATUSES)
+    progress = sweep_progress.Progress(len(selected), done=results_before,
+                                       failed=done - results_before)
     progress.message("{} jobs ({} in this run, {} done already) -> {}".format(
         len(jobs), len(todo), done, args.output))
     stale = sweep_job.clean_stale_attempts(args.output)

@@ -11,6 +11,7 @@ import hashlib
 import itertools
 import json
 import os
+import re
 
 from . import _core
 
@@ -95,6 +96,12 @@ def load(path):
     runs = data.get("runs", [{}])
     if not isinstance(runs, list) or not runs or not all(isinstance(r, dict) for r in runs):
         _fail(path, "'runs' must be a non-empty list of objects (option name -> value)")
+    for i, run in enumerate(runs):
+        for name in run:
+            if name in grid:
+                _fail(path, "runs[{}]: option {!r} is also in 'grid' (the run's value would replace "
+                            "every grid value, collapsing that axis): put it in one of them".format(
+                                i, name))
     for where, table in [("options", options)] + [("runs[{}]".format(i), r) for i, r in
                                                   enumerate(runs)]:
         for name, value in table.items():
@@ -123,6 +130,17 @@ def expand_meshes(path, patterns):
             if m not in out:
                 out.append(m)
     return out
+
+
+def _option_error(e):
+    """The library's message for a bad option, worded for a sweep file: its unknown-option error
+    names the Python call that shares its parser ("contract() got an unknown option 'x'")."""
+    text = str(e)
+    m = re.match(r"\w+\(\) got an unknown option ('[^']*')", text)
+    if m:
+        text = "unknown option {} (options are the Python names of shellcontract.options()){}".format(
+            m.group(1), text[m.end():])
+    return text
 
 
 def _with_paths(path, options):
@@ -210,7 +228,7 @@ def expand(path, data, version, check_mesh=None):
                 try:
                     checked = _core.resolve_options(**absolute)
                 except (TypeError, ValueError) as e:
-                    _fail(path, "{}: {}".format(where, e))
+                    _fail(path, "{}: {}".format(where, _option_error(e)))
                 file_shas = {}
                 for name, file in input_files(absolute).items():
                     try:

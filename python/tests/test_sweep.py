@@ -249,6 +249,11 @@ def test_real_scheduler_with_a_worker_killed_mid_sweep(cli, mesh_dir, tmp_path):
 
 @pytest.mark.parametrize("spec,expected", [
     ({"meshes": ["meshes/*.off"], "grid": {"presure": [1, 2]}}, "unknown option 'presure'"),
+    ({"meshes": ["meshes/ico1.off"], "options": {"presure": 1}},
+     "job 0 (mesh meshes/ico1.off, options {\"presure\": 1}): unknown option 'presure' (options are "
+     "the Python names of shellcontract.options()); valid options: pressure, "),
+    ({"meshes": ["meshes/*.off"], "grid": {"pressure": [1, 2]}, "runs": [{"pressure": 3}]},
+     "runs[0]: option 'pressure' is also in 'grid'"),
     ({"meshes": ["meshes/*.off"], "grid": {"damping": [0.1, 1.5]}}, "--damping: '1.5'"),
     ({"meshes": ["meshes/*.off", "meshes/missing.off"]}, "missing.off"),
     ({"meshes": ["meshes/*.stl"]}, "matches no file"),
@@ -265,6 +270,7 @@ def test_bad_sweep_files_are_refused_naming_the_job_and_nothing_runs(cli, mesh_d
     r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert r.returncode == 1, r.stderr
     assert "refused, nothing run" in r.stderr and expected in r.stderr, r.stderr
+    assert "contract()" not in r.stderr  # the sweep's options, not a Python call's arguments
     assert not out.exists()
 
 
