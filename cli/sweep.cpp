@@ -50,7 +50,12 @@ std::vector<fs::path> package_candidates(const fs::path& dir) {
 // Run by the interpreter instead of `-m shellcontract.sweep`, so that a package it cannot import
 // is said in words (sys.argv[1] is the text saying where it was looked for) rather than as
 // "No module named 'shellcontract'".
+// The current folder (sys.path[0], '' under -c) is dropped: the package is the one found next to
+// this executable or on PYTHONPATH, not a shellcontract/ folder where the sweep is started (the
+// source tree's python/, which has no compiled module).
 constexpr const char* BOOTSTRAP = R"(import sys
+if sys.path and sys.path[0] == "":
+    del sys.path[0]
 looked = sys.argv.pop(1)
 try:
     from shellcontract import sweep

@@ -8,9 +8,10 @@ outcome lands whole in DIR/jobs/<id>/ and a row of DIR/results.csv and results.j
 same file again skips the finished jobs.
 docs/design/sweeps.md says how and why.
 
-Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage
-or a refused sweep file (nothing run), 3 some job could not get an outcome (crash, kill, timeout),
-130 interrupted (run the same command again to finish).
+Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
+or a refused sweep file, output folder or cluster (nothing run), or an output folder that cannot
+be written, 3 some job could not get an outcome (crash, kill, timeout), 130 interrupted (run the
+same command again to finish).
 """
 
 import argparse
@@ -104,10 +105,11 @@ def parser():
         description="Run every job of a sweep file (meshes x options grid x runs) on Dask "
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
-               "refused sweep file (nothing run), 3 some job crashed, was killed or timed out, "
-               "130 interrupted (run the same command again to finish)")
+               "refused sweep file, output folder or cluster (nothing run), 3 some job crashed, "
+               "was killed or timed out, 130 interrupted (run the same command again to finish)")
     p.add_argument("sweep", metavar="SWEEP.json")
-    p.add_argument("-o", "--output", metavar="DIR", required=True, help="results folder")
+    p.add_argument("-o", "--output", metavar="DIR", required=True,
+                   help="results folder: new, empty, or this sweep file's from an earlier sweep")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                        help="an existing Dask cluster (dask scheduler / dask worker); DIR and the "
@@ -123,7 +125,10 @@ def parser():
     p.add_argument("--checkpoint-every", type=checkpoint_every, default=20, metavar="N",
                    help="each job saves its state every N frames (a lost worker's job resumes "
                         "from there); default 20")
-    p.add_argument("--cli", metavar="PATH", help="the shellcontract executable")
+    p.add_argument("--cli", metavar="PATH",
+                   help="the shellcontract executable (default: $SHELLCONTRACT_CLI, the build "
+                        "tree, PATH; with --scheduler each worker finds its own unless this is "
+                        "given)")
     p.add_argument("--dry-run", action="store_true",
                    help="validate the sweep file and list the jobs; run nothing")
     return p

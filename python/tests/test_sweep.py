@@ -325,8 +325,11 @@ def test_cli_front_says_where_it_looked_for_a_missing_package(cli, mesh_dir, tmp
     shutil.copy(cli, lone / "shellcontract")
     path = write_sweep(tmp_path, mesh_dir, "small.json", SMALL)
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "SHELLCONTRACT_CLI")}
+    # Started from the folder holding the built package: the current folder is not looked in.
+    import shellcontract
+    cwd = os.path.dirname(os.path.dirname(os.path.abspath(shellcontract.__file__)))
     r = subprocess.run([str(lone / "shellcontract"), "sweep", str(path), "-o", str(tmp_path / "o"),
-                        "--dry-run"], capture_output=True, text=True, env=env, timeout=120)
+                        "--dry-run"], capture_output=True, text=True, env=env, timeout=120, cwd=cwd)
     assert r.returncode == 1, r.stderr
     assert "cannot import the Python package shellcontract" in r.stderr, r.stderr
     assert "looked for it in {}".format(lone / "python") in r.stderr, r.stderr
