@@ -44,7 +44,8 @@ fs::path executable_dir() {
 std::vector<fs::path> package_candidates(const fs::path& dir) {
   if (dir.empty()) return {};
   const fs::path installed(SHELLCONTRACT_PYTHON_DIR_FROM_BIN);
-  return {dir / "python", installed.is_absolute() ? installed : (dir / installed).lexically_normal()};
+  return {dir / "python",
+          installed.is_absolute() ? installed : (dir / installed).lexically_normal()};
 }
 
 // Run by the interpreter instead of `-m shellcontract.sweep`, so that a package it cannot import

@@ -352,7 +352,8 @@ def _run(args, cli, version, data, jobs):
     done = len(selected) - len(todo)
     # The progress counts finished jobs as the final summary does: a result (ok, target not
     # reached) is done, any other final outcome (failed, bad input, ...) failed.
-    earlier = [tables.records[j.id]["status"] for j in selected if j not in todo]
+    running = {j.id for j in todo}
+    earlier = [tables.records[j.id]["status"] for j in selected if j.id not in running]
     results_before = sum(1 for status in earlier if status in sweep_progress.RESULT_STATUSES)
     progress = sweep_progress.Progress(len(selected), done=results_before,
                                        failed=done - results_before)
@@ -380,11 +381,12 @@ def _run(args, cli, version, data, jobs):
         progress.close()
         still = e.still_running if isinstance(e, Interrupted) else 0
         if still == 0:
-            how = "finished jobs are kept, the running ones saved their checkpoints and resume from them"
+            how = ("finished jobs are kept, the running ones saved their checkpoints and resume "
+                   "from them")
         else:
+            which = "some jobs" if still is None else "{} job{}".format(still, "s" * (still > 1))
             how = ("finished jobs are kept; {} did not stop in time and may still run on the "
-                   "workers: their outcomes are kept when they end".format(
-                       "some jobs" if still is None else "{} job{}".format(still, "s" * (still > 1))))
+                   "workers: their outcomes are kept when they end".format(which))
         print("shellcontract sweep: interrupted; run the same command again to finish the rest "
               "({})".format(how), file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -402,8 +404,6 @@ def _run(args, cli, version, data, jobs):
     print("shellcontract sweep: {} done, {} failed, {} left; results in {}".format(
         done, failed, left, os.path.join(args.output, "results.csv")), file=sys.stderr)
     return EXIT_INCOMPLETE if incomplete else 0
-
-
 
 
 if __name__ == "__main__":

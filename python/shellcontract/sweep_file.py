@@ -99,9 +99,9 @@ def load(path):
     for i, run in enumerate(runs):
         for name in run:
             if name in grid:
-                _fail(path, "runs[{}]: option {!r} is also in 'grid' (the run's value would replace "
-                            "every grid value, collapsing that axis): put it in one of them".format(
-                                i, name))
+                _fail(path, "runs[{}]: option {!r} is also in 'grid' (the run's value would "
+                            "replace every grid value, collapsing that axis): put it in one of "
+                            "them".format(i, name))
     for where, table in [("options", options)] + [("runs[{}]".format(i), r) for i, r in
                                                   enumerate(runs)]:
         for name, value in table.items():
@@ -138,8 +138,8 @@ def _option_error(e):
     text = str(e)
     m = re.match(r"\w+\(\) got an unknown option ('[^']*')", text)
     if m:
-        text = "unknown option {} (options are the Python names of shellcontract.options()){}".format(
-            m.group(1), text[m.end():])
+        text = ("unknown option {} (options are the Python names of shellcontract.options())"
+                "{}".format(m.group(1), text[m.end():]))
     return text
 
 
