@@ -27,3 +27,23 @@ if(SHELLCONTRACT_BUILD_PYTHON)
   # position-independent (a thread-local in CGAL's headers otherwise fails to link).
   set_target_properties(shellcontract PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endif()
+
+# Where `cmake --install` puts the package (the module and the pure-Python files), relative to the
+# prefix: Debian's folder for Python 3 packages, on the system interpreter's path for the prefix
+# /usr. `shellcontract sweep` finds it relative to its own executable (cli/sweep.cpp), so an
+# installed tree works wherever it is installed (--prefix P) without PYTHONPATH.
+set(SHELLCONTRACT_PYTHON_INSTALL_DIR "lib/python3/dist-packages" CACHE STRING
+    "Folder (relative to the install prefix) the shellcontract Python package is installed into")
+if(IS_ABSOLUTE "${SHELLCONTRACT_PYTHON_INSTALL_DIR}" OR IS_ABSOLUTE "${CMAKE_INSTALL_BINDIR}")
+  # Not relocatable: the CLI looks in the absolute folder.
+  set(_python_dir "${SHELLCONTRACT_PYTHON_INSTALL_DIR}")
+  if(NOT IS_ABSOLUTE "${_python_dir}")
+    set(_python_dir "${CMAKE_INSTALL_PREFIX}/${_python_dir}")
+  endif()
+  set(SHELLCONTRACT_PYTHON_DIR_FROM_BIN "${_python_dir}")
+else()
+  file(RELATIVE_PATH SHELLCONTRACT_PYTHON_DIR_FROM_BIN "/prefix/${CMAKE_INSTALL_BINDIR}"
+       "/prefix/${SHELLCONTRACT_PYTHON_INSTALL_DIR}")
+endif()
+target_compile_definitions(shellcontract_cli PRIVATE
+  SHELLCONTRACT_PYTHON_DIR_FROM_BIN="${SHELLCONTRACT_PYTHON_DIR_FROM_BIN}")

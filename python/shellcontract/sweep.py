@@ -8,19 +8,20 @@ outcome lands whole in DIR/jobs/<id>/ and a row of DIR/results.csv and results.j
 same file again skips the finished jobs.
 docs/design/sweeps.md says how and why.
 
-Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage
-or a refused sweep file (nothing run), 3 some job could not get an outcome (crash, kill, timeout),
-130 interrupted (run the same command again to finish).
+Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
+or a refused sweep file, output folder or cluster (nothing run), or an output folder that cannot
+be written, 3 some job could not get an outcome (crash, kill, timeout), 130 interrupted (run the
+same command again to finish).
 """
 
 import argparse
 import os
 import queue
-import shutil
 import subprocess
 import sys
+import uuid
 
-from . import sweep_file, sweep_job, sweep_progress, sweep_results
+from . import sweep_file, sweep_job, sweep_output, sweep_progress, sweep_results
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
@@ -29,22 +30,21 @@ EXIT_INTERRUPTED = 130
 RETRIED_STATUSES = ("crashed", "killed", "timeout")
 
 
-def find_cli(given=None):
-    """The `shellcontract` executable: --cli, $SHELLCONTRACT_CLI, the build tree this package
-    was built in (<build>/python/shellcontract -> <build>/shellcontract), then PATH."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [given, os.environ.get("SHELLCONTRACT_CLI"),
-                  os.path.join(here, os.pardir, os.pardir, "shellcontract"),
-                  shutil.which("shellcontract")]
-    for c in candidates:
-        if c and os.path.isfile(c) and os.access(c, os.X_OK):
-            return os.path.abspath(c)
-    return None
+find_cli = sweep_job.find_cli
+cli_version = sweep_job.cli_version
 
 
-def cli_version(cli):
-    out = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True)
-    return out.stdout.strip()
+class Interrupted(Exception):
+    """Ctrl-C: the sweep stopped its jobs; `still_running` jobs (None: unknown) had not ended
+    when it gave up waiting."""
+
+    def __init__(self, still_running=0):
+        super().__init__(still_running)
+        self.still_running = still_running
+
+
+class WorkersUnusable(Exception):
+    """An existing cluster's workers that cannot run the jobs (the message says which, why)."""
 
 
 def parse_shard(text):
@@ -57,30 +57,59 @@ def parse_shard(text):
     return i, n
 
 
-def positive_float(text):
-    v = float(text)
-    if not v > 0:
-        raise argparse.ArgumentTypeError("expected a number > 0, got {!r}".format(text))
+# The longest --job-timeout: far beyond any job (about 31 years), and within what the waits can
+# take (select's timeout overflows near 9.2e9 s).
+MAX_JOB_TIMEOUT = 1e9
+# --checkpoint-every goes to `shellcontract run`, which takes an int.
+MAX_CHECKPOINT_EVERY = 2**31 - 1
+
+
+def job_timeout(text):
+    try:
+        v = float(text)
+    except ValueError:
+        v = None
+    if v is None or not 0 < v <= MAX_JOB_TIMEOUT:  # (also NaN and inf)
+        raise argparse.ArgumentTypeError(
+            "expected a number of seconds > 0 and <= {:g}, got {!r}".format(MAX_JOB_TIMEOUT, text))
     return v
 
 
-def positive_int(text):
-    v = int(text)
-    if v < 1:
-        raise argparse.ArgumentTypeError("expected an integer >= 1, got {!r}".format(text))
+def positive_int(text, most=None):
+    try:
+        v = int(text)
+    except ValueError:
+        v = None
+    if v is None or v < 1 or (most is not None and v > most):
+        raise argparse.ArgumentTypeError("expected an integer >= 1{}, got {!r}".format(
+            "" if most is None else " and <= {}".format(most), text))
     return v
+
+
+def checkpoint_every(text):
+    return positive_int(text, MAX_CHECKPOINT_EVERY)
+
+
+class _Parser(argparse.ArgumentParser):
+    """Bad usage exits 1, as the tool's other commands do (argparse's own is 2, which is the
+    tool's 'unusable input')."""
+
+    def error(self, message):
+        self.print_usage(sys.stderr)
+        self.exit(EXIT_USAGE, "{}: error: {}\n".format(self.prog, message))
 
 
 def parser():
-    p = argparse.ArgumentParser(
+    p = _Parser(
         prog="shellcontract sweep",
         description="Run every job of a sweep file (meshes x options grid x runs) on Dask "
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
-               "refused sweep file (nothing run), 3 some job crashed, was killed or timed out, "
-               "130 interrupted (run the same command again to finish)")
+               "refused sweep file, output folder or cluster (nothing run), 3 some job crashed, "
+               "was killed or timed out, 130 interrupted (run the same command again to finish)")
     p.add_argument("sweep", metavar="SWEEP.json")
-    p.add_argument("-o", "--output", metavar="DIR", required=True, help="results folder")
+    p.add_argument("-o", "--output", metavar="DIR", required=True,
+                   help="results folder: new, empty, or this sweep file's from an earlier sweep")
     where = p.add_mutually_exclusive_group()
     where.add_argument("--scheduler", metavar="tcp://HOST:PORT",
                        help="an existing Dask cluster (dask scheduler / dask worker); DIR and the "
@@ -90,13 +119,16 @@ def parser():
                             "(job arrays: Slurm, Kubernetes indexed jobs)")
     p.add_argument("--workers", type=positive_int, default=None,
                    help="jobs at a time on the embedded cluster (default: the cores)")
-    p.add_argument("--job-timeout", type=positive_float, default=None, metavar="SECONDS",
+    p.add_argument("--job-timeout", type=job_timeout, default=None, metavar="SECONDS",
                    help="stop a job after this long (recorded as 'timeout'; a later sweep "
                         "resumes it from its checkpoint)")
-    p.add_argument("--checkpoint-every", type=positive_int, default=20, metavar="N",
+    p.add_argument("--checkpoint-every", type=checkpoint_every, default=20, metavar="N",
                    help="each job saves its state every N frames (a lost worker's job resumes "
                         "from there); default 20")
-    p.add_argument("--cli", metavar="PATH", help="the shellcontract executable")
+    p.add_argument("--cli", metavar="PATH",
+                   help="the shellcontract executable (default: $SHELLCONTRACT_CLI, the build "
+                        "tree, PATH; with --scheduler each worker finds its own unless this is "
+                        "given)")
     p.add_argument("--dry-run", action="store_true",
                    help="validate the sweep file and list the jobs; run nothing")
     return p
@@ -147,11 +179,72 @@ def _embedded_cluster(workers):
 CLIENT_CONFIG = {"distributed.diagnostics.computations.ignore-modules": [".*"]}
 
 
-def _run_dask(jobs, todo, args, cli, progress, on_record):
+# Evaluated on each worker of an existing cluster (Client.run(eval, ...), eval being importable
+# everywhere): whether it can import the package, without the package on the client's side of
+# the call. A worker that cannot import it would otherwise fail every task it takes up in a way
+# Dask does not report to the client (the sweep would wait for ever).
+_IMPORT_PROBE = "__import__('shellcontract.sweep_job').sweep_job.__file__"
+
+
+def _check_workers(client, cli, version, own_cli, progress):
+    """Every worker of an existing cluster can import the package and finds an executable of the
+    sweep's version (sweep_job.worker_cli); raises WorkersUnusable naming each one that cannot.
+    Workers that join later are checked by their first job (which then crashes, saying why)."""
+    workers = sorted(client.scheduler_info().get("workers", {}))
+    if not workers:
+        progress.message("the cluster has no workers yet: the jobs wait for the first to join")
+        return
+    problems = []
+    imported = client.run(eval, _IMPORT_PROBE, workers=workers, on_error="return")
+    usable = []
+    for w in workers:
+        r = imported.get(w)
+        if isinstance(r, BaseException):
+            problems.append("{}: cannot import the shellcontract package ({}: {}); every worker "
+                            "needs it importable (PYTHONPATH)".format(w, type(r).__name__, r))
+        else:
+            usable.append(w)
+    if usable:
+        described = client.run(sweep_job.describe_worker, cli, version, own_cli, workers=usable,
+                               on_error="return")
+        for w in usable:
+            r = described.get(w)
+            if isinstance(r, BaseException):
+                problems.append("{}: {}: {}".format(w, type(r).__name__, r))
+            elif r[1] is not None:
+                problems.append("{}: {}".format(w, r[1]))
+    if problems:
+        raise WorkersUnusable("; ".join(problems))
+
+
+def _stop_on_workers(client, token):
+    """Ctrl-C on an existing cluster: every worker stops this sweep's jobs (SIGTERM: each saves
+    its checkpoint; none starts after), and the sweep waits for them; returns how many still
+    ran when it gave up (None: a worker did not answer)."""
+    import time
+    deadline = time.monotonic() + sweep_job.STOP_GRACE_SECONDS + 5
+    try:
+        client.run(sweep_job.stop_running, token, on_error="return")
+        while True:
+            counts = client.run(sweep_job.active_calls, token, on_error="return")
+            if any(isinstance(n, BaseException) for n in counts.values()):
+                return None
+            still = sum(counts.values())
+            if still == 0 or time.monotonic() > deadline:
+                return still
+            time.sleep(0.2)
+    except Exception:  # the scheduler or the connection is gone
+        return None
+
+
+def _run_dask(jobs, todo, args, cli, version, token, progress, on_record):
     import dask
     from distributed import Client
     dask.config.set(CLIENT_CONFIG)
     cluster = None
+    # On an existing cluster each worker runs its own executable (unless --cli names one), of the
+    # sweep's version; the embedded workers run this machine's.
+    own_cli = None if not args.scheduler else args.cli is None
     if args.scheduler:
         client = Client(args.scheduler, timeout="30s")
     else:
@@ -159,6 +252,8 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
         client = Client(cluster)
     futures = {}
     try:
+        if args.scheduler:
+            _check_workers(client, cli, version, own_cli, progress)
         if args.scheduler or _has_dashboard():
             # The scheduler's own dashboard when it has one (it says where).
             progress.message("Dask dashboard: {}".format(client.dashboard_link))
@@ -172,7 +267,8 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
         # One call for all the jobs: one graph for the scheduler, not one per job.
         submitted = client.map(sweep_job.run_job, [job.to_dict() for job in todo],
                                out_dir=args.output, cli=cli, timeout=args.job_timeout,
-                               checkpoint_every=args.checkpoint_every, pure=False,
+                               checkpoint_every=args.checkpoint_every, sweep=token,
+                               own_cli=own_cli, version=version, pure=False,
                                key=["shellcontract-job-" + job.id for job in todo])
         for f, job in zip(submitted, todo):
             futures[f] = job
@@ -188,16 +284,26 @@ def _run_dask(jobs, todo, args, cli, progress, on_record):
             on_record(job, record)
     except KeyboardInterrupt:
         client.cancel(list(futures))
-        # The embedded workers are this process's threads: their jobs are told to stop here
-        # (SIGTERM: each saves its checkpoint) and waited for.
-        sweep_job.stop_running()
-        sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS)
-        raise
+        if args.scheduler:
+            # A cancelled task that runs goes on in its worker's thread: the workers are asked
+            # to stop this sweep's jobs (SIGTERM: each saves its checkpoint).
+            still = _stop_on_workers(client, token)
+        else:
+            # The embedded workers are this process's threads: their jobs are told to stop here
+            # and waited for.
+            sweep_job.stop_running(token)
+            still = (0 if sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS, token)
+                     else sweep_job.active_calls(token))
+        raise Interrupted(still)
     finally:
         client.close()
         if cluster is not None:
             cluster.close()
-        sweep_job.allow_starting()
+
+
+def _os_error_text(e):
+    where = e.filename if e.filename is not None else ""
+    return "{}{}".format(where + ": " if where else "", e.strerror or e)
 
 
 def main(argv=None):
@@ -207,14 +313,30 @@ def main(argv=None):
         print("shellcontract sweep: cannot find the shellcontract executable (--cli PATH or "
               "SHELLCONTRACT_CLI)", file=sys.stderr)
         return EXIT_USAGE
+    try:
+        version = cli_version(cli)
+    except (OSError, subprocess.SubprocessError) as e:
+        print("shellcontract sweep: {} --version failed ({})".format(cli, e), file=sys.stderr)
+        return EXIT_USAGE
     args.output = os.path.abspath(args.output)
     try:
         data = sweep_file.load(args.sweep)
-        version = cli_version(cli)
         jobs = sweep_file.expand(args.sweep, data, version)
-    except sweep_file.SweepError as e:
+        sweep_output.check(args.output, args.sweep)
+    except (sweep_file.SweepError, sweep_output.OutputError) as e:
         print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
         return EXIT_USAGE
+    try:
+        return _run(args, cli, version, data, jobs)
+    except sweep_output.OutputError as e:
+        print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
+        return EXIT_USAGE
+    except OSError as e:  # DIR unwritable, full, changed under the sweep
+        print("shellcontract sweep: {}".format(_os_error_text(e)), file=sys.stderr)
+        return EXIT_USAGE
+
+
+def _run(args, cli, version, data, jobs):
     varying = sweep_file.varying_names(data)
     sweep_dir = os.path.dirname(os.path.abspath(args.sweep))
     if args.dry_run:
@@ -222,34 +344,57 @@ def main(argv=None):
             print("{}  {}  {}".format(job.id, os.path.relpath(job.mesh, sweep_dir),
                                       " ".join(job.args)))
         return 0
-    os.makedirs(os.path.join(args.output, "jobs"), exist_ok=True)
+    sweep_output.claim(args.output, args.sweep)
     selected = jobs if args.shard is None else jobs[args.shard[0]::args.shard[1]]
     tables = sweep_results.Writer(jobs, varying, args.output, sweep_dir)
     todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
     sweep_results.write(jobs, varying, args.output, sweep_dir, records=tables.records)
     done = len(selected) - len(todo)
-    progress = sweep_progress.Progress(len(selected), done=done)
+    # The progress counts finished jobs as the final summary does: a result (ok, target not
+    # reached) is done, any other final outcome (failed, bad input, ...) failed.
+    running = {j.id for j in todo}
+    earlier = [tables.records[j.id]["status"] for j in selected if j.id not in running]
+    results_before = sum(1 for status in earlier if status in sweep_progress.RESULT_STATUSES)
+    progress = sweep_progress.Progress(len(selected), done=results_before,
+                                       failed=done - results_before)
     progress.message("{} jobs ({} in this run, {} done already) -> {}".format(
         len(jobs), len(todo), done, args.output))
+    stale = sweep_job.clean_stale_attempts(args.output)
+    if stale:
+        progress.message("removed the working folders of {} attempt{} that a killed sweep left in "
+                         "{}".format(stale, "s" * (stale > 1), os.path.join(args.output, ".work")))
 
     def on_record(job, record):
         tables.record(job, record)
         progress.job_finished(record, job.label())
 
+    token = uuid.uuid4().hex  # this sweep's jobs, for stopping them (sweep_job.stop_running)
     try:
         if args.shard is not None:
             for job in todo:
                 on_record(job, sweep_job.run_job(job.to_dict(), args.output, cli, args.job_timeout,
-                                                 args.checkpoint_every))
+                                                 args.checkpoint_every, sweep=token))
         elif todo:  # nothing left to run: no cluster to start
-            _run_dask(jobs, todo, args, cli, progress, on_record)
-    except KeyboardInterrupt:
+            _run_dask(jobs, todo, args, cli, version, token, progress, on_record)
+    except (KeyboardInterrupt, Interrupted) as e:
         tables.flush()
         progress.close()
+        still = e.still_running if isinstance(e, Interrupted) else 0
+        if still == 0:
+            how = ("finished jobs are kept, the running ones saved their checkpoints and resume "
+                   "from them")
+        else:
+            which = "some jobs" if still is None else "{} job{}".format(still, "s" * (still > 1))
+            how = ("finished jobs are kept; {} did not stop in time and may still run on the "
+                   "workers: their outcomes are kept when they end".format(which))
         print("shellcontract sweep: interrupted; run the same command again to finish the rest "
-              "(finished jobs are kept, running ones resume from their checkpoints)",
-              file=sys.stderr)
+              "({})".format(how), file=sys.stderr)
         return EXIT_INTERRUPTED
+    except WorkersUnusable as e:
+        tables.flush()
+        progress.close()
+        print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
+        return EXIT_USAGE
     table = tables.flush()
     progress.close()
     ids = {j.id for j in selected}

@@ -11,12 +11,14 @@ import hashlib
 import itertools
 import json
 import os
+import re
 
 from . import _core
 
 TOP_LEVEL_KEYS = ("meshes", "options", "grid", "runs")
-# Options whose value is a file name: relative to the sweep file, as the meshes are.
-PATH_OPTIONS = {"regions": ("auto", "none")}
+# Options whose value is a file name (the keywords they take instead): relative to the sweep
+# file, as the meshes are; a job's id covers the file's bytes, not its name.
+PATH_OPTIONS = {"regions": ("auto", "none"), "region_weights": ()}
 # Options that do not change a run's result (the library guarantees the same bytes for any
 # thread count), left out of the job id so that a change of them reruns nothing.
 RESULT_NEUTRAL = ("threads",)
@@ -94,6 +96,12 @@ def load(path):
     runs = data.get("runs", [{}])
     if not isinstance(runs, list) or not runs or not all(isinstance(r, dict) for r in runs):
         _fail(path, "'runs' must be a non-empty list of objects (option name -> value)")
+    for i, run in enumerate(runs):
+        for name in run:
+            if name in grid:
+                _fail(path, "runs[{}]: option {!r} is also in 'grid' (the run's value would "
+                            "replace every grid value, collapsing that axis): put it in one of "
+                            "them".format(i, name))
     for where, table in [("options", options)] + [("runs[{}]".format(i), r) for i, r in
                                                   enumerate(runs)]:
         for name, value in table.items():
@@ -124,6 +132,17 @@ def expand_meshes(path, patterns):
     return out
 
 
+def _option_error(e):
+    """The library's message for a bad option, worded for a sweep file: its unknown-option error
+    names the Python call that shares its parser ("contract() got an unknown option 'x'")."""
+    text = str(e)
+    m = re.match(r"\w+\(\) got an unknown option ('[^']*')", text)
+    if m:
+        text = ("unknown option {} (options are the Python names of shellcontract.options())"
+                "{}".format(m.group(1), text[m.end():]))
+    return text
+
+
 def _with_paths(path, options):
     """Options whose value is a file, made absolute (relative to the sweep file)."""
     base = os.path.dirname(os.path.abspath(path))
@@ -135,8 +154,11 @@ def _with_paths(path, options):
     return out
 
 
-def file_sha256(path, cache={}):
-    """The mesh's bytes' SHA-256 (cached per path for one sweep)."""
+def file_sha256(path, cache=None):
+    """The file's bytes' SHA-256; `cache` (path -> digest), where given, is one expansion's, so
+    that a file is read once per sweep and a changed file is read again by the next."""
+    if cache is None:
+        cache = {}
     if path not in cache:
         h = hashlib.sha256()
         with open(path, "rb") as f:
@@ -146,10 +168,26 @@ def file_sha256(path, cache={}):
     return cache[path]
 
 
-def job_id(mesh_sha, resolved, version):
-    """A stable id: the mesh's bytes, every resolved option (less the result-neutral ones) and
-    the tool's version. The same job in another sweep file has the same id."""
+def input_files(options):
+    """The files a job reads besides its mesh: option name -> path, for every path option
+    (PATH_OPTIONS) whose value is a file rather than one of its keywords. `options` as
+    _with_paths gives them (absolute paths)."""
+    out = {}
+    for name, keywords in PATH_OPTIONS.items():
+        v = options.get(name)
+        if isinstance(v, str) and v not in keywords:
+            out[name] = v
+    return out
+
+
+def job_id(mesh_sha, resolved, version, file_shas=None):
+    """A stable id: the mesh's bytes, every resolved option (less the result-neutral ones), the
+    bytes of every other file the job reads (`file_shas`: option name -> SHA-256, standing for
+    the option's path, so that an edited file is another job and a moved one is not) and the
+    tool's version. The same job in another sweep file has the same id."""
     key = {k: v for k, v in resolved.items() if k not in RESULT_NEUTRAL}
+    for name, sha in (file_shas or {}).items():
+        key[name] = "file sha256:" + sha
     text = json.dumps({"mesh": mesh_sha, "options": key, "version": version}, sort_keys=True)
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
 
@@ -162,6 +200,7 @@ def expand(path, data, version, check_mesh=None):
     reader with the CLI's checks).
     """
     check_mesh = check_mesh or (lambda m: _core.read_mesh(m))
+    cache = {}  # path -> SHA-256, for this expansion only (a later one reads the files again)
     meshes = expand_meshes(path, data["meshes"])
     for m in meshes:
         try:
@@ -185,14 +224,22 @@ def expand(path, data, version, check_mesh=None):
                 where = "job {} (mesh {}, options {})".format(
                     index, os.path.relpath(mesh, os.path.dirname(os.path.abspath(path))),
                     json.dumps(options, sort_keys=True))
+                absolute = _with_paths(path, options)
                 try:
-                    checked = _core.resolve_options(**_with_paths(path, options))
+                    checked = _core.resolve_options(**absolute)
                 except (TypeError, ValueError) as e:
-                    _fail(path, "{}: {}".format(where, e))
-                regions = checked["resolved"].get("regions", "")
-                if regions not in ("", "auto", "none") and not os.path.isfile(regions):
-                    _fail(path, "{}: regions file {} is not readable".format(where, regions))
-                jid = job_id(file_sha256(mesh), checked["resolved"], version)
+                    _fail(path, "{}: {}".format(where, _option_error(e)))
+                file_shas = {}
+                for name, file in input_files(absolute).items():
+                    try:
+                        if not os.path.isfile(file):
+                            raise OSError("not a file" if os.path.exists(file) else
+                                          "no such file")
+                        file_shas[name] = file_sha256(file, cache)
+                    except OSError as e:
+                        _fail(path, "{}: {} file {} is not readable ({})".format(
+                            where, name, file, e.strerror or e))
+                jid = job_id(file_sha256(mesh, cache), checked["resolved"], version, file_shas)
                 if jid in seen:  # the same run twice (e.g. a grid value equal to the default)
                     continue
                 seen.add(jid)

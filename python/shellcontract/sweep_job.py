@@ -7,8 +7,10 @@ nothing of the compiled core, so that a worker needs only the CLI and this packa
 """
 
 import ctypes
+import fcntl
 import json
 import os
+import re
 import select
 import shutil
 import signal
@@ -68,43 +70,120 @@ def _death_signal_prefix():
     return _SETPRIV
 
 
-# The jobs this Python process runs now (their processes, and how many run_job calls are under
-# way): an embedded cluster's workers are threads of the sweep's process, so on Ctrl-C the sweep
-# stops them itself (stop_running, then wait_stopped).
-_RUNNING = set()
+# The jobs this Python process runs now, by sweep (a token per sweep command): their processes,
+# and how many run_job calls are under way. An embedded cluster's workers are threads of the
+# sweep's process, so on Ctrl-C the sweep stops them itself (stop_running, then wait_stopped); on
+# an existing cluster it asks every worker to do the same (Client.run). A token, not the whole
+# process: a worker of a shared cluster may hold another sweep's jobs, which go on.
+_RUNNING = {}  # Popen -> sweep token
 _RUNNING_LOCK = threading.Lock()
-_stopping = False  # set by stop_running: no job starts any more
+_STOPPED = set()  # sweep tokens told to stop: none of their jobs starts any more
 _ACTIVE = threading.Condition()
-_active_calls = 0
+_active_calls = {}  # sweep token -> run_job calls under way
 
 
-def stop_running():
-    """SIGTERM to every job process started here that still runs: each saves its checkpoint and
-    exits (its run_job then returns an 'interrupted' record). No job starts after this (until
-    allow_starting), so that a task a worker takes up meanwhile does not slip through."""
-    global _stopping
+def stop_running(sweep=None):
+    """SIGTERM to every job process of the sweep `sweep` (None: of every sweep) started here that
+    still runs: each saves its checkpoint and exits (its run_job then returns an 'interrupted'
+    record). No job of that sweep starts after this, so that a task a worker takes up meanwhile
+    does not slip through. Returns how many run_job calls of it are under way."""
     with _RUNNING_LOCK:
-        _stopping = True
-        procs = list(_RUNNING)
+        _STOPPED.add(sweep)
+        procs = [p for p, token in _RUNNING.items() if sweep is None or token == sweep]
     for proc in procs:
         if proc.poll() is None:
             try:
                 proc.terminate()
             except OSError:
                 pass
+    return active_calls(sweep)
 
 
-def allow_starting():
-    global _stopping
+def allow_starting(sweep=None):
     with _RUNNING_LOCK:
-        _stopping = False
+        _STOPPED.discard(sweep)
 
 
-def wait_stopped(timeout):
-    """Waits until no run_job call is under way in this process (at most `timeout` seconds);
-    True if none is."""
+def _is_stopped(sweep):
+    return None in _STOPPED or sweep in _STOPPED
+
+
+def active_calls(sweep=None):
+    """How many run_job calls of the sweep `sweep` (None: of any) are under way here."""
     with _ACTIVE:
-        return _ACTIVE.wait_for(lambda: _active_calls == 0, timeout)
+        return sum(n for token, n in _active_calls.items() if sweep is None or token == sweep)
+
+
+def wait_stopped(timeout, sweep=None):
+    """Waits until no run_job call of the sweep `sweep` (None: of any) is under way in this
+    process (at most `timeout` seconds); True if none is."""
+    with _ACTIVE:
+        return _ACTIVE.wait_for(lambda: not any(
+            n for token, n in _active_calls.items() if sweep is None or token == sweep), timeout)
+
+
+def find_cli(given=None):
+    """The `shellcontract` executable here: `given` (--cli), $SHELLCONTRACT_CLI, the build tree
+    this package was built in (<build>/python/shellcontract -> <build>/shellcontract), then
+    PATH; None if none is an executable file."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    candidates = [given, os.environ.get("SHELLCONTRACT_CLI"),
+                  os.path.join(here, os.pardir, os.pardir, "shellcontract"),
+                  shutil.which("shellcontract")]
+    for c in candidates:
+        if c and os.path.isfile(c) and os.access(c, os.X_OK):
+            return os.path.abspath(c)
+    return None
+
+
+_VERSIONS = {}  # (path, mtime, size) -> the executable's --version
+
+
+def cli_version(cli):
+    """`cli --version`, asked once per executable file (a replaced file is asked again)."""
+    st = os.stat(cli)
+    key = (cli, st.st_mtime_ns, st.st_size)
+    if key not in _VERSIONS:
+        out = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True,
+                             timeout=60)
+        _VERSIONS[key] = out.stdout.strip()
+    return _VERSIONS[key]
+
+
+class WorkerError(RuntimeError):
+    """A worker that cannot run the sweep's jobs (no executable, another version)."""
+
+
+def worker_cli(client_cli, version, own=True):
+    """The executable a worker of an existing cluster runs. `own`: its own (find_cli: its
+    $SHELLCONTRACT_CLI, the build tree of its package, its PATH), else the client's path where
+    that exists on the worker too; not `own` (the sweep's --cli): the client's path. Its version
+    must be the sweep's (the job ids and checkpoints name it). Raises WorkerError saying what is
+    wrong."""
+    cli = find_cli() if own else None
+    if cli is None and client_cli and os.path.isfile(client_cli) and os.access(client_cli, os.X_OK):
+        cli = client_cli
+    if cli is None:
+        raise WorkerError(
+            "no shellcontract executable on this worker (its SHELLCONTRACT_CLI, its PATH, the "
+            "client's {})".format(client_cli) if own else
+            "no executable {} on this worker (--cli)".format(client_cli))
+    try:
+        found = cli_version(cli)
+    except (OSError, subprocess.SubprocessError) as e:
+        raise WorkerError("{} --version failed ({})".format(cli, e))
+    if version is not None and found != version:
+        raise WorkerError("{} is version {}, the sweep's is {}".format(cli, found, version))
+    return cli
+
+
+def describe_worker(client_cli, version, own=True):
+    """For the sweep's check of an existing cluster's workers before anything runs (Client.run):
+    (the executable this worker runs, None) or (None, what is wrong)."""
+    try:
+        return worker_cli(client_cli, version, own), None
+    except WorkerError as e:
+        return None, str(e)
 
 
 def paths(out_dir, job_id):
@@ -164,22 +243,116 @@ def _classify(rc, timed_out, summary, messages):
     return status, failure
 
 
-def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20):
+def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, own_cli=None,
+            version=None):
     """Runs one job (a Job.to_dict()) unless DIR/jobs/<id>/ holds its outcome already; returns
     its record. An interrupted job (SIGTERM/SIGINT to the child) leaves its checkpoint and no
-    record; the next attempt resumes from the checkpoint."""
-    global _active_calls
+    record; the next attempt resumes from the checkpoint.
+
+    `sweep` is the sweep's token (stop_running). `own_cli` not None: a worker of an existing
+    cluster, which runs worker_cli(cli, version, own_cli) (its own executable if `own_cli`, else
+    the client's `cli`, of the sweep's version); None: `cli` as it is (this machine's)."""
     with _ACTIVE:
-        _active_calls += 1
+        _active_calls[sweep] = _active_calls.get(sweep, 0) + 1
     try:
-        return _run_job(job, out_dir, cli, timeout, checkpoint_every)
+        if own_cli is not None:
+            cli = worker_cli(cli, version, own_cli)
+        return _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep)
     finally:
         with _ACTIVE:
-            _active_calls -= 1
+            _active_calls[sweep] -= 1
+            if not _active_calls[sweep]:
+                del _active_calls[sweep]
             _ACTIVE.notify_all()
 
 
-def _run_job(job, out_dir, cli, timeout, checkpoint_every):
+# An attempt's working folder DIR/.work/<id>.<random>/ (and <id>.<random>.old, an earlier outcome
+# being replaced) is in use while DIR/.work/<id>.<random>.lock is locked (flock): by run_job and by
+# the job's process, which inherits the lock. A sweep killed with SIGKILL leaves its attempts'
+# folders behind with their locks released; the next sweep removes them (clean_stale_attempts).
+_ATTEMPT = re.compile(r"^([0-9a-f]{16}\.[0-9a-f]{8})(\.old|\.lock)?$")
+
+
+def _same_file(fd, path):
+    try:
+        a, b = os.fstat(fd), os.stat(path)
+    except OSError:
+        return False
+    return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
+
+
+def _lock_attempt(work_root, job_id):
+    """A new attempt's name and its lock file's descriptor, locked (or unlocked where the file
+    system has no locks: then no sweep ever takes its folder for stale)."""
+    while True:
+        name = "{}.{}".format(job_id, uuid.uuid4().hex[:8])
+        path = os.path.join(work_root, name + ".lock")
+        try:
+            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o644)
+        except FileExistsError:
+            continue
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            pass  # a cleaner holds it for a moment, and removes it: another name
+        except OSError:
+            return name, fd  # no locks here
+        else:
+            # A cleaner may have locked and removed the new file before this lock: the lock
+            # counts only if it is on the file at the path.
+            if _same_file(fd, path):
+                return name, fd
+        os.close(fd)
+
+
+def _release_attempt(work_root, name, fd):
+    try:
+        os.remove(os.path.join(work_root, name + ".lock"))
+    except OSError:
+        pass
+    os.close(fd)
+
+
+def clean_stale_attempts(out_dir):
+    """Removes the working folders in DIR/.work of attempts that no process holds any more (a
+    sweep or worker killed with SIGKILL); returns how many attempts were removed. An attempt
+    whose lock cannot be taken is running (or the file system has no locks) and is left."""
+    work_root = os.path.join(out_dir, ".work")
+    try:
+        names = os.listdir(work_root)
+    except OSError:
+        return 0
+    attempts = {}
+    for n in names:
+        m = _ATTEMPT.match(n)
+        if m:
+            attempts.setdefault(m.group(1), set()).add(m.group(2) or "")
+    removed = 0
+    for name, kinds in sorted(attempts.items()):
+        lock = os.path.join(work_root, name + ".lock")
+        fd = None
+        if ".lock" in kinds:
+            try:
+                fd = os.open(lock, os.O_RDWR)
+                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:  # held (running), gone meanwhile, or no locks here
+                if fd is not None:
+                    os.close(fd)
+                continue
+            if not _same_file(fd, lock):  # another cleaner removed it meanwhile
+                os.close(fd)
+                continue
+        # Without a lock file the attempt is over: a running one holds its lock file until its
+        # folder is gone (_lock_attempt makes the lock before the folder).
+        for suffix in ("", ".old"):
+            shutil.rmtree(os.path.join(work_root, name + suffix), ignore_errors=True)
+        if fd is not None:
+            _release_attempt(work_root, name, fd)
+        removed += 1
+    return removed
+
+
+def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep):
     out_dir = os.path.abspath(out_dir)
     p = paths(out_dir, job["id"])
     old = read_record(out_dir, job["id"])
@@ -188,7 +361,15 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every):
         return old
     os.makedirs(os.path.dirname(p["checkpoint"]), exist_ok=True)
     os.makedirs(os.path.join(out_dir, "jobs"), exist_ok=True)
-    work = os.path.join(p["work"], "{}.{}".format(job["id"], uuid.uuid4().hex[:8]))
+    name, lock_fd = _lock_attempt(p["work"], job["id"])
+    try:
+        return _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
+                            os.path.join(p["work"], name), lock_fd)
+    finally:
+        _release_attempt(p["work"], name, lock_fd)
+
+
+def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, lock_fd):
     os.makedirs(work)
     ext = os.path.splitext(job["mesh"])[1].lower() or ".off"
     mesh_name = os.path.splitext(os.path.basename(job["mesh"]))[0] + ext
@@ -206,11 +387,14 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every):
         # children itself (SIGTERM: they write their checkpoints).
         prefix = _death_signal_prefix()
         with _RUNNING_LOCK:
-            proc = None if _stopping else subprocess.Popen(
+            # The job's process inherits the attempt's lock (pass_fds), so that its folder is
+            # in use as long as the process runs, even after this one is gone.
+            proc = None if _is_stopped(sweep) else subprocess.Popen(
                 prefix + cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
-                start_new_session=True, preexec_fn=None if prefix else _die_with_parent)
+                start_new_session=True, preexec_fn=None if prefix else _die_with_parent,
+                pass_fds=(lock_fd,))
             if proc is not None:
-                _RUNNING.add(proc)
+                _RUNNING[proc] = sweep
         if proc is None:  # the sweep is stopping: the job is left for the next one
             shutil.rmtree(work, ignore_errors=True)
             return {"job": job["id"], "mesh": job["mesh"], "options": job["options"],
@@ -229,7 +413,7 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every):
             raise
         finally:
             with _RUNNING_LOCK:
-                _RUNNING.discard(proc)
+                _RUNNING.pop(proc, None)
     wall = time.monotonic() - start
     summary = None
     try:

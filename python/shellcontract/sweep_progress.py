@@ -5,6 +5,8 @@ import sys
 import time
 
 BAR_WIDTH = 30
+# Outcomes that are a result (counted as done); every other one counts as failed.
+RESULT_STATUSES = ("ok", "target not reached")
 
 
 def _duration(seconds):
@@ -66,7 +68,7 @@ class Progress:
 
     def job_finished(self, record, label):
         self.finished_here += 1
-        if record["status"] in ("ok", "target not reached"):
+        if record["status"] in RESULT_STATUSES:
             self.done += 1
         else:
             self.failed += 1
@@ -74,7 +76,7 @@ class Progress:
         if record.get("message") and record["status"] not in ("ok",):
             text += " ({})".format(record["message"])
         if self.tty:
-            if record["status"] not in ("ok", "target not reached"):
+            if record["status"] not in RESULT_STATUSES:
                 self.message(text)
             else:
                 self.draw()

@@ -3,13 +3,15 @@ from the jobs' records (DIR/jobs/<id>/job.json); a job without one is "pending".
 written whole and renamed, so a reader never sees half a table."""
 
 import csv
+import decimal
 import io
 import json
+import math
 import os
 import time
 import uuid
 
-from . import sweep_job
+from . import sweep_job, sweep_progress
 
 RESULT_COLUMNS = ("status", "exit_code", "final_volume_ratio", "frames_run", "wall_seconds",
                   "peak_memory_mb", "new_intersections", "output")
@@ -52,11 +54,42 @@ def _atomic(path, text):
     os.replace(tmp, path)
 
 
+def shortest_text(x):
+    """A float as the tool writes numbers (C++'s std::to_chars: the fewest digits that read back
+    as the same double, fixed or scientific notation whichever is shorter, fixed on a tie), so
+    that a cell reads like the tool's own text of the value (its --summary, its resolved
+    options): 1e6 is 1e+06, 250000.0 is 250000, 0.0001 is 1e-04."""
+    if math.isnan(x):
+        return "nan"
+    if math.isinf(x):
+        return "inf" if x > 0 else "-inf"
+    sign = "-" if math.copysign(1.0, x) < 0 else ""
+    if x == 0:
+        return sign + "0"
+    _, digits, exp = decimal.Decimal(repr(abs(x))).as_tuple()  # repr: the fewest digits
+    digits = list(digits)
+    while len(digits) > 1 and digits[-1] == 0:
+        digits.pop()
+        exp += 1
+    ds = "".join(str(d) for d in digits)
+    n = len(ds)
+    if exp >= 0:  # an integer: printf's %.0f, the double's exact value (past 2^53, more digits)
+        fixed = str(int(abs(x)))
+    elif n + exp > 0:
+        fixed = ds[:n + exp] + "." + ds[n + exp:]
+    else:
+        fixed = "0." + "0" * -(n + exp) + ds
+    e = exp + n - 1
+    scientific = "{}{}e{}{:02d}".format(ds[0], "." + ds[1:] if n > 1 else "", "-" if e < 0 else "+",
+                                        abs(e))
+    return sign + (fixed if len(fixed) <= len(scientific) else scientific)
+
+
 def _cell(v):
     if isinstance(v, bool):
         return "on" if v else "off"
     if isinstance(v, float):
-        return repr(v)
+        return shortest_text(v)
     if isinstance(v, (list, tuple)):
         # Points of region_at, [[x, y, z], ...]: the CLI's text, 'X,Y,Z;X,Y,Z', so that the cell
         # tells the points apart.
@@ -84,7 +117,7 @@ def write(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
 def counts(table):
     """(done, failed, left): done = an outcome the same run would give again that is a result
     (ok or target not reached); failed = any other recorded outcome; left = pending."""
-    done = sum(1 for r in table if r["status"] in ("ok", "target not reached"))
+    done = sum(1 for r in table if r["status"] in sweep_progress.RESULT_STATUSES)
     left = sum(1 for r in table if r["status"] == "pending")
     return done, len(table) - done - left, left
 

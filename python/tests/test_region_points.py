@@ -78,7 +78,11 @@ def test_the_sweeps_option_check_takes_the_region_at_forms_of_contract(value):
 
 def test_the_sweeps_results_write_several_points_as_the_cli_text():
     """results.csv's cell for region_at=[[x, y, z], ...]: before, all coordinates in one
-    comma list, so the points could not be told apart."""
+    comma list, so the points could not be told apart. The numbers as the tool writes them, the
+    same text as its resolved option."""
+    from shellcontract import _core
     from shellcontract.sweep_results import _cell
-    assert _cell([[0.5, 1.0, -2.0], [3.0, 0.0, 1.0]]) == "0.5,1.0,-2.0;3.0,0.0,1.0"
-    assert _cell([0.0, 0.0, 1.0]) == "0.0,0.0,1.0"  # one point (or a fibre direction): unchanged
+    points = [[0.5, 1.0, -2.0], [3.0, 0.0, 1.0]]
+    assert _cell(points) == "0.5,1,-2;3,0,1"
+    assert _cell(points) == _core.resolve_options(region_at=points)["resolved"]["region_at"]
+    assert _cell([0.0, 0.0, 1.0]) == "0,0,1"  # one point (or a fibre direction): one list

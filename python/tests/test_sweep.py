@@ -32,9 +32,9 @@ def sweep_env(cli):
     return env
 
 
-def run_sweep(cli, args, **kw):
+def run_sweep(cli, args, timeout=240, **kw):
     return subprocess.run([sys.executable, "-m", "shellcontract.sweep"] + args, env=sweep_env(cli),
-                          capture_output=True, text=True, timeout=240, **kw)
+                          capture_output=True, text=True, timeout=timeout, **kw)
 
 
 def write_sweep(tmp_path, mesh_dir, name, spec, meshes=("ico1.off", "octahedron.off")):
@@ -114,10 +114,10 @@ def test_embedded_cluster_equals_serial_runs(cli, mesh_dir, tmp_path):
     assert again.returncode == 0, again.stderr
     assert "8 done already" in again.stderr
     assert {p: os.stat(p).st_ino for p in (out / "jobs").glob("*/job.json")} == before
-    # One option changed for one grid value: only the jobs it touches run.
+    # One option of the file changed for one grid value: only the jobs it touches run.
     changed = dict(SMALL, grid={"pressure": [2, 3], "frames": [6, 9]})
-    path2 = write_sweep(tmp_path, mesh_dir, "changed.json", changed)
-    third = run_sweep(cli, [str(path2), "-o", str(out), "--shard", "0/1"])
+    path = write_sweep(tmp_path, mesh_dir, "small.json", changed)
+    third = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert third.returncode == 0, third.stderr
     assert "4 done already" in third.stderr
 
@@ -165,12 +165,32 @@ def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_pa
     proc.wait()
     finished = {p.parent.name: (os.stat(p).st_ino, p.read_text()) for p in done_jobs(out)}
     assert 2 <= len(finished) < 6, "make the jobs longer: the sweep ended before the kill"
+    # The killed sweep's runs got SIGTERM (the parent-death signal): they save and end.
+    wait_until(lambda: not runs_reading(tmp_path / "meshes"), timeout=60)
+    left = [p.name for p in (out / ".work").iterdir() if p.name != "checkpoints"]
     again = run_sweep(cli, [str(path), "-o", str(out), "--workers", "2"])
     assert again.returncode == 0, again.stderr
     for job, (inode, text) in finished.items():
         p = out / "jobs" / job / "job.json"
         assert os.stat(p).st_ino == inode and p.read_text() == text, "job {} was redone".format(job)
     assert_equals_serial(out, serial_reference(cli, path, tmp_path))
+    # The killed sweep's working folders are gone (the rerun removed them: nobody held them).
+    if left:
+        assert "that a killed sweep left" in again.stderr, again.stderr
+    assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"], left
+
+
+def runs_reading(folder):
+    """Pids of the processes whose command line names `folder` (the jobs' runs of a test)."""
+    pids = []
+    for name in os.listdir("/proc"):
+        try:
+            with open("/proc/{}/cmdline".format(name), "rb") as f:
+                if str(folder).encode() in f.read():
+                    pids.append(int(name))
+        except (OSError, ValueError):
+            pass
+    return pids
 
 
 def free_port():
@@ -229,6 +249,11 @@ def test_real_scheduler_with_a_worker_killed_mid_sweep(cli, mesh_dir, tmp_path):
 
 @pytest.mark.parametrize("spec,expected", [
     ({"meshes": ["meshes/*.off"], "grid": {"presure": [1, 2]}}, "unknown option 'presure'"),
+    ({"meshes": ["meshes/ico1.off"], "options": {"presure": 1}},
+     "job 0 (mesh meshes/ico1.off, options {\"presure\": 1}): unknown option 'presure' (options are "
+     "the Python names of shellcontract.options()); valid options: pressure, "),
+    ({"meshes": ["meshes/*.off"], "grid": {"pressure": [1, 2]}, "runs": [{"pressure": 3}]},
+     "runs[0]: option 'pressure' is also in 'grid'"),
     ({"meshes": ["meshes/*.off"], "grid": {"damping": [0.1, 1.5]}}, "--damping: '1.5'"),
     ({"meshes": ["meshes/*.off", "meshes/missing.off"]}, "missing.off"),
     ({"meshes": ["meshes/*.stl"]}, "matches no file"),
@@ -245,6 +270,7 @@ def test_bad_sweep_files_are_refused_naming_the_job_and_nothing_runs(cli, mesh_d
     r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert r.returncode == 1, r.stderr
     assert "refused, nothing run" in r.stderr and expected in r.stderr, r.stderr
+    assert "contract()" not in r.stderr  # the sweep's options, not a Python call's arguments
     assert not out.exists()
 
 
@@ -289,6 +315,26 @@ def test_cli_front_runs_the_sweep_module(cli, mesh_dir, tmp_path):
     lines = r.stdout.splitlines()
     assert len(lines) == 8 and all("--pressure" in line and "--frames" in line for line in lines)
     assert not (tmp_path / "out").exists()  # a dry run writes nothing
+
+
+def test_cli_front_says_where_it_looked_for_a_missing_package(cli, mesh_dir, tmp_path):
+    # The executable alone, with no package beside it (neither <dir>/python, as in the build
+    # tree, nor the install's lib/python3/dist-packages) and none on PYTHONPATH.
+    lone = tmp_path / "bin"
+    lone.mkdir()
+    shutil.copy(cli, lone / "shellcontract")
+    path = write_sweep(tmp_path, mesh_dir, "small.json", SMALL)
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "SHELLCONTRACT_CLI")}
+    # Started from the folder holding the built package: the current folder is not looked in.
+    import shellcontract
+    cwd = os.path.dirname(os.path.dirname(os.path.abspath(shellcontract.__file__)))
+    r = subprocess.run([str(lone / "shellcontract"), "sweep", str(path), "-o", str(tmp_path / "o"),
+                        "--dry-run"], capture_output=True, text=True, env=env, timeout=120, cwd=cwd)
+    assert r.returncode == 1, r.stderr
+    assert "cannot import the Python package shellcontract" in r.stderr, r.stderr
+    assert "looked for it in {}".format(lone / "python") in r.stderr, r.stderr
+    assert str(tmp_path / "lib" / "python3" / "dist-packages") in r.stderr, r.stderr
+    assert "Traceback" not in r.stderr
 
 
 def test_progress_is_a_bar_on_a_terminal_and_lines_otherwise():

@@ -150,3 +150,41 @@ def test_results_tables_are_rewritten_at_most_once_a_second_and_end_whole(mesh_d
     assert statuses() == ["ok", "ok", "pending"]  # due: written, from what this sweep holds
     tables.flush()  # the last write reads every folder
     assert statuses() == ["ok", "ok", "ok"]
+
+
+def test_working_folders_a_killed_sweep_left_are_removed_and_running_ones_kept(cli, mesh_dir,
+                                                                               tmp_path):
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                        "--shard", "0/1"], env=sweep_env(cli), capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    work = out / ".work"
+    # What a sweep killed with SIGKILL leaves: attempts' folders (one replacing an earlier
+    # outcome, .old), their lock files released, or none (killed before the lock was made).
+    for name in ("0123456789abcdef.0badf00d", "0123456789abcdef.0badf00d.old",
+                 "fedcba9876543210.12345678"):
+        (work / name).mkdir()
+        (work / name / "messages.txt").write_text("half a run\n")
+    (work / "0123456789abcdef.0badf00d.lock").write_text("")
+    # An attempt that runs (its lock held by another process: another shard, a worker).
+    live = work / "1111111111111111.22222222"
+    live.mkdir()
+    (work / (live.name + ".lock")).write_text("")
+    holder = subprocess.Popen(
+        [sys.executable, "-c", "import fcntl, os, sys, time\n"
+         "fd = os.open(sys.argv[1], os.O_RDWR); fcntl.flock(fd, fcntl.LOCK_EX)\n"
+         "print('locked', flush=True); time.sleep(120)", str(work / (live.name + ".lock"))],
+        stdout=subprocess.PIPE, text=True)
+    try:
+        assert holder.stdout.readline().strip() == "locked"
+        r = subprocess.run([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                            "--shard", "0/1"], env=sweep_env(cli), capture_output=True, text=True)
+        assert r.returncode == 0, r.stderr
+        assert "removed the working folders of 2 attempts that a killed sweep left" in r.stderr
+        assert sorted(p.name for p in work.iterdir()) == [
+            "1111111111111111.22222222", "1111111111111111.22222222.lock", "checkpoints"]
+    finally:
+        holder.kill()
+        holder.wait()

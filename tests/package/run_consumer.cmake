@@ -1,5 +1,6 @@
 # cmake -P script for the package_consumer test (tests/package/CMakeLists.txt): install into a
-# fresh prefix, check what was installed, build the consumer against it and run it.
+# fresh prefix, check what was installed, build the consumer against it and run it; with the Python
+# module (PYTHON_PACKAGE), run the installed `shellcontract sweep` and import the installed package.
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -55,6 +56,38 @@ foreach(h ${headers})
     endif()
   endforeach()
 endforeach()
+
+if(PYTHON_PACKAGE)
+  set(package ${prefix}/${PYTHON_INSTALL_DIR}/shellcontract)
+  file(GLOB core ${package}/_core*.so)
+  if(NOT core)
+    message(FATAL_ERROR "not installed: the Python module ${package}/_core*.so")
+  endif()
+  foreach(f __init__.py sweep.py sweep_file.py sweep_job.py sweep_output.py sweep_progress.py
+            sweep_results.py)
+    if(NOT EXISTS ${package}/${f})
+      message(FATAL_ERROR "not installed: ${package}/${f}")
+    endif()
+  endforeach()
+  # The installed sweep finds the installed package next to its executable: no PYTHONPATH, no
+  # SHELLCONTRACT_CLI, and nothing of the build tree.
+  file(WRITE ${WORK_DIR}/sweep.json "{\"meshes\": [\"${MESH}\"], \"grid\": {\"frames\": [3, 4]}}")
+  execute_process(
+    COMMAND ${CMAKE_COMMAND} -E env --unset=PYTHONPATH --unset=SHELLCONTRACT_CLI
+            ${prefix}/bin/shellcontract sweep ${WORK_DIR}/sweep.json -o ${WORK_DIR}/sweep-out --dry-run
+    WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "--frames 3" OR NOT out MATCHES "--frames 4")
+    message(FATAL_ERROR "installed `shellcontract sweep --dry-run` failed (${rc}):\n${out}\n${err}")
+  endif()
+  execute_process(
+    COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_INSTALL_DIR}
+            ${PYTHON} -c "import shellcontract; print(shellcontract.__file__)"
+    WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(FIND "${out}" "${package}/__init__.py" at)
+  if(NOT rc EQUAL 0 OR NOT at EQUAL 0)
+    message(FATAL_ERROR "the installed package is not the one imported (${rc}):\n${out}\n${err}")
+  endif()
+endif()
 
 set(launcher "")
 if(COMPILER_LAUNCHER)

@@ -1,0 +1,103 @@
+"""The sweep's output folder DIR (docs/design/sweeps.md, "Results"): a folder of one sweep file,
+marked as such by DIR/.shellcontract-sweep.json, so that the sweep never writes over files it did
+not write (a results.csv of the user's, the folder of the sweep file itself) and two sweep files
+never share one results table."""
+
+import json
+import os
+import time
+
+MARKER = ".shellcontract-sweep.json"
+# The entries the sweep writes in DIR (besides the marker and its temporary files).
+OWNED = ("results.csv", "results.json", "jobs", ".work")
+
+
+class OutputError(Exception):
+    """DIR cannot be the sweep's (the message names the path and why)."""
+
+
+def _read_marker(path):
+    """The marker's sweep file; another shard may be writing it right now (it is created empty,
+    then written), so an empty or half-written one is read again for a little while."""
+    deadline = time.monotonic() + 5.0
+    while True:
+        try:
+            with open(path) as f:
+                data = json.load(f)
+            if isinstance(data, dict) and isinstance(data.get("sweep_file"), str):
+                return data["sweep_file"]
+            problem = "it names no sweep file"
+        except ValueError as e:
+            problem = "not valid JSON ({})".format(e)
+        except OSError as e:
+            raise OutputError("{}: cannot read it ({})".format(path, e.strerror or e))
+        if time.monotonic() > deadline:
+            raise OutputError("{}: the sweep's marker is damaged ({}); it says which sweep file "
+                              "the folder's results belong to".format(path, problem))
+        time.sleep(0.05)
+
+
+def check(out_dir, sweep_path):
+    """Whether DIR can hold this sweep file's results, without writing anything: it does not
+    exist, or it is empty, or its marker names this sweep file. Raises OutputError otherwise."""
+    sweep_file = os.path.realpath(sweep_path)
+    if not os.path.exists(out_dir):
+        if os.path.islink(out_dir):
+            raise OutputError("{}: a link to nothing, not a folder".format(out_dir))
+        return
+    if not os.path.isdir(out_dir):
+        raise OutputError("{}: not a folder (-o names the folder the results go to)".format(
+            out_dir))
+    try:
+        entries = sorted(os.listdir(out_dir))
+    except OSError as e:
+        raise OutputError("{}: cannot list it ({})".format(out_dir, e.strerror or e))
+    if MARKER in entries:
+        owner = _read_marker(os.path.join(out_dir, MARKER))
+        if owner != sweep_file:
+            raise OutputError(
+                "{} holds the results of another sweep file, {}; a folder holds one sweep file's "
+                "results (its table lists that file's jobs): choose another -o folder, or edit "
+                "that file and run it again (its finished jobs are kept)".format(out_dir, owner))
+        for name in OWNED:
+            p = os.path.join(out_dir, name)
+            want_dir = name in ("jobs", ".work")
+            if os.path.lexists(p) and (os.path.isdir(p) != want_dir or os.path.islink(p)):
+                raise OutputError("{}: expected the sweep's {}, found {}".format(
+                    p, "folder" if want_dir else "file",
+                    "a link" if os.path.islink(p) else "a folder" if os.path.isdir(p) else
+                    "a file"))
+        return
+    if entries:
+        shown = ", ".join(entries[:5]) + (", ..." if len(entries) > 5 else "")
+        raise OutputError(
+            "{} holds files that no sweep wrote ({}); the sweep writes results.csv, results.json, "
+            "jobs/ and .work/ there: choose a new or empty -o folder".format(out_dir, shown))
+
+
+def claim(out_dir, sweep_path):
+    """check(), then DIR made the sweep file's: created with its marker, jobs/ and .work/.
+    Shards of one sweep may claim the same new folder at once."""
+    check(out_dir, sweep_path)
+    sweep_file = os.path.realpath(sweep_path)
+    marker = os.path.join(out_dir, MARKER)
+    try:
+        os.makedirs(out_dir, exist_ok=True)
+        try:
+            fd = os.open(marker, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o644)
+        except FileExistsError:
+            # A shard of the same sweep got here first (or check() saw the marker already).
+            owner = _read_marker(marker)
+            if owner != sweep_file:
+                raise OutputError("{} holds the results of another sweep file, {}".format(
+                    out_dir, owner))
+        else:
+            with os.fdopen(fd, "w") as f:
+                json.dump({"sweep_file": sweep_file,
+                           "written_by": "shellcontract sweep (docs/design/sweeps.md)"}, f,
+                          indent=1)
+                f.write("\n")
+        for name in ("jobs", ".work"):
+            os.makedirs(os.path.join(out_dir, name), exist_ok=True)
+    except OSError as e:
+        raise OutputError("{}: {}".format(e.filename or out_dir, e.strerror or e))

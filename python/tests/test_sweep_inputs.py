@@ -1,0 +1,108 @@
+"""The files a sweep's jobs read besides their meshes (a regions face list, region weights):
+usable in a sweep file, relative to it, and part of each job's id by their bytes, so that an
+edited file reruns its jobs (from scratch, not from a checkpoint of the old file)."""
+import json
+import os
+import subprocess
+
+import pytest
+
+from shellcontract import sweep, sweep_file
+from test_sweep import results, run_sweep, write_sweep
+
+pytest.importorskip("distributed")
+
+ICO2_VERTICES = 162
+
+
+def version(cli):
+    return subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
+
+
+def jobs_of(cli, path):
+    return sweep_file.expand(str(path), sweep_file.load(str(path)), version(cli))
+
+
+def test_region_weights_in_a_sweep_file_relative_to_it(cli, mesh_dir, tmp_path):
+    (tmp_path / "w.txt").write_text("".join("{}\n".format(i % 2) for i in range(ICO2_VERTICES)))
+    spec = {"meshes": ["meshes/ico2.off"],
+            "options": {"frames": 4, "pressure": 0, "region_weights": "w.txt"}}
+    path = write_sweep(tmp_path, mesh_dir, "w.json", spec, meshes=("ico2.off",))
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    # Run from another folder: the weights file is found next to the sweep file.
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"], cwd=str(elsewhere))
+    assert r.returncode == 0, r.stderr
+    assert "--region-weights " + str(tmp_path / "w.txt") in r.stdout, r.stdout
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--shard", "0/1"],
+                  cwd=str(elsewhere))
+    assert r.returncode == 0, r.stderr
+    assert [row["status"] for row in results(tmp_path / "out")] == ["ok"]
+    # A weights file that is not there is refused like a missing regions file.
+    spec["options"]["region_weights"] = "missing.txt"
+    path.write_text(json.dumps(spec))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out2"), "--dry-run"])
+    assert r.returncode == 1, r.stderr
+    assert "region_weights file {} is not readable".format(tmp_path / "missing.txt") in r.stderr
+
+
+@pytest.mark.parametrize("name,first,second", [
+    ("regions", "0 1 2 3 4 5\n", "100 101 102 103 104 105\n"),
+    ("region_weights", "1\n" * ICO2_VERTICES, "0.5\n" * ICO2_VERTICES),
+], ids=["regions", "region_weights"])
+def test_the_job_id_covers_the_bytes_of_every_input_file(cli, mesh_dir, tmp_path, name, first,
+                                                         second):
+    data = tmp_path / "input.txt"
+    data.write_text(first)
+    spec = {"meshes": ["meshes/ico2.off"], "options": {"frames": 4, name: "input.txt"}}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico2.off",))
+    before = jobs_of(cli, path)[0].id
+    data.write_text(second)
+    assert jobs_of(cli, path)[0].id != before
+    # The same bytes under another name (a moved file) are the same job.
+    data.write_text(first)
+    os.rename(data, tmp_path / "moved.txt")
+    spec["options"][name] = "moved.txt"
+    path.write_text(json.dumps(spec))
+    assert jobs_of(cli, path)[0].id == before
+
+
+def test_an_edited_regions_file_reruns_its_job_and_not_from_the_old_checkpoint(cli, mesh_dir,
+                                                                                tmp_path):
+    regions = tmp_path / "regions.txt"
+    regions.write_text("0 1 2 3 4 5\n")
+    spec = {"meshes": ["meshes/ico2.off"], "options": {"regions": "regions.txt"},
+            "runs": [{"frames": 4}, {"frames": 1000000, "threads": 1}]}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico2.off",))
+    out = tmp_path / "out"
+    # The long job times out, leaving its checkpoint for a later sweep to resume.
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--job-timeout", "2"])
+    assert r.returncode == 3, r.stderr
+    first = results(out)
+    assert [row["status"] for row in first] == ["ok", "timeout"]
+    assert (out / ".work" / "checkpoints" / (first[1]["job"] + ".ckpt")).is_file()
+    regions.write_text("100 101 102 103 104 105\n")
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--job-timeout", "2"])
+    assert r.returncode == 3, r.stderr
+    assert "2 in this run, 0 done already" in r.stderr, r.stderr
+    second = results(out)
+    assert [row["status"] for row in second] == ["ok", "timeout"]
+    assert {row["job"] for row in second}.isdisjoint(row["job"] for row in first)
+    # The long job started over with the new regions: the old file's checkpoint is not its.
+    record = json.loads((out / "jobs" / second[1]["job"] / "job.json").read_text())
+    assert record["resumed"] is False
+
+
+def test_a_second_sweep_in_one_process_reads_a_changed_mesh_again(cli, mesh_dir, tmp_path,
+                                                                  monkeypatch, capsys):
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    monkeypatch.setenv("SHELLCONTRACT_CLI", cli)
+    assert sweep.main([str(path), "-o", str(out), "--shard", "0/1"]) == 0
+    assert "1 in this run, 0 done already" in capsys.readouterr().err
+    # Another mesh's bytes under the same name: another job, which runs.
+    (tmp_path / "meshes" / "ico1.off").write_bytes((mesh_dir / "ico2.off").read_bytes())
+    assert sweep.main([str(path), "-o", str(out), "--shard", "0/1"]) == 0
+    assert "1 in this run, 0 done already" in capsys.readouterr().err
+    assert len(list((out / "jobs").iterdir())) == 2

@@ -1,0 +1,46 @@
+"""The sweep's command line: bad usage exits 1 (the tool's 'bad usage'; 2 is its 'unusable
+input'), with argparse's message and no traceback; --job-timeout and --checkpoint-every are
+refused outside what the waits and `shellcontract run` can take, instead of every job crashing or
+being 'bad usage' later."""
+import pytest
+
+from test_sweep import run_sweep, write_sweep
+
+SPEC = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}}
+
+
+@pytest.mark.parametrize("args,expected", [
+    ([], "the following arguments are required"),
+    (["--no-such-flag"], "unrecognized arguments: --no-such-flag"),
+    (["--shard", "3/2"], "expected 0 <= I < N"),
+    (["--shard", "x"], "expected I/N"),
+    (["--workers", "0"], "expected an integer >= 1"),
+    (["--job-timeout", "inf"], "expected a number of seconds > 0 and <= 1e+09, got 'inf'"),
+    (["--job-timeout", "1e10"], "got '1e10'"),
+    (["--job-timeout", "nan"], "got 'nan'"),
+    (["--job-timeout", "0"], "got '0'"),
+    (["--job-timeout", "soon"], "got 'soon'"),
+    (["--checkpoint-every", "0"], "expected an integer >= 1 and <= 2147483647"),
+    (["--checkpoint-every", "99999999999"], "got '99999999999'"),
+], ids=lambda v: " ".join(v) if isinstance(v, list) else None)
+def test_bad_usage_exits_1_with_a_message(cli, mesh_dir, tmp_path, args, expected):
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
+    base = [str(path), "-o", str(tmp_path / "out"), "--dry-run"] if args else []
+    r = run_sweep(cli, base + args)
+    assert r.returncode == 1, (r.returncode, r.stderr)
+    assert "shellcontract sweep: error: " in r.stderr and expected in r.stderr, r.stderr
+    assert "Traceback" not in r.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_largest_job_timeout_is_taken(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--shard", "0/1",
+                        "--job-timeout", "1e9"])
+    assert r.returncode == 0, r.stderr
+    assert "1 done, 0 failed, 0 left" in r.stderr
+
+
+def test_help_exits_0(cli):
+    r = run_sweep(cli, ["--help"])
+    assert r.returncode == 0 and "SWEEP.json" in r.stdout

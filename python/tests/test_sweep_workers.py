@@ -1,0 +1,161 @@
+"""An existing cluster's workers (--scheduler): each runs its own `shellcontract` executable
+(its SHELLCONTRACT_CLI, its PATH), checked to be the sweep's version; a worker that cannot import
+the package or finds no usable executable is refused before anything runs, naming it; Ctrl-C
+stops the sweep's jobs on the workers (each saves its checkpoint) and leaves the workers usable."""
+import json
+import os
+import shutil
+import signal
+import subprocess
+import sys
+
+import pytest
+
+from shellcontract import sweep_job
+from test_sweep import free_port, results, run_sweep, sweep_env, wait_until, write_sweep
+from test_sweep_engine import ENDLESS, kill_left_over, processes_naming
+
+pytest.importorskip("distributed")
+
+SMALL = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3]}}
+
+
+@pytest.fixture
+def cluster(tmp_path):
+    """A `dask scheduler`; start(env, nthreads) adds a `dask worker` with that environment."""
+    dask = shutil.which("dask")
+    if dask is None:
+        pytest.skip("the dask command (python3-distributed) is not installed")
+    port = free_port()
+    address = "tcp://127.0.0.1:{}".format(port)
+    logs = open(tmp_path / "dask.log", "w")
+    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
+                               "--dashboard-address", "127.0.0.1:{}".format(free_port())],
+                              stdout=logs, stderr=logs)]
+
+    def start(env, nthreads=1):
+        procs.append(subprocess.Popen(
+            [dask, "worker", address, "--nworkers", "1", "--nthreads", str(nthreads),
+             "--no-nanny", "--host", "127.0.0.1", "--no-dashboard"], env=env, stdout=logs,
+            stderr=logs))
+        # Joined: the scheduler knows it (a sweep started before would find no worker).
+        from distributed import Client
+        with Client(address, timeout="30s") as client:
+            client.wait_for_workers(len(procs) - 1, timeout=60)
+        return procs[-1]
+
+    try:
+        yield address, start
+    finally:
+        for p in procs:
+            if p.poll() is None:
+                p.terminate()
+        for p in procs:
+            try:
+                p.wait(timeout=20)
+            except subprocess.TimeoutExpired:
+                p.kill()
+        logs.close()
+        kill_left_over(tmp_path)
+
+
+def fake_cli(tmp_path, cli, version=None):
+    """A stand-in executable that notes each call in calls.txt, then is the real one (or says
+    another version)."""
+    fake = tmp_path / "fake_cli.sh"
+    lines = ["#!/bin/sh", "echo \"$*\" >> '{}'".format(tmp_path / "calls.txt")]
+    if version:
+        lines.append("[ \"$1\" = --version ] && {{ echo '{}'; exit 0; }}".format(version))
+    lines.append("exec '{}' \"$@\"".format(cli))
+    fake.write_text("\n".join(lines) + "\n")
+    fake.chmod(0o755)
+    return fake
+
+
+def test_each_worker_runs_its_own_executable(cli, mesh_dir, tmp_path, cluster):
+    address, start = cluster
+    env = sweep_env(cli)
+    env["SHELLCONTRACT_CLI"] = str(fake_cli(tmp_path, cli))
+    start(env)
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SMALL, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    # The client's SHELLCONTRACT_CLI is the real executable (sweep_env); the worker's, the fake.
+    r = run_sweep(cli, [str(path), "-o", str(out), "--scheduler", address])
+    assert r.returncode == 0, r.stderr
+    assert [row["status"] for row in results(out)] == ["ok", "ok"]
+    calls = (tmp_path / "calls.txt").read_text().splitlines()
+    assert sum(c.startswith("run ") for c in calls) == 2, calls
+
+
+def test_a_worker_of_another_version_is_refused_before_anything_runs(cli, mesh_dir, tmp_path,
+                                                                      cluster):
+    address, start = cluster
+    env = sweep_env(cli)
+    env["SHELLCONTRACT_CLI"] = str(fake_cli(tmp_path, cli, version="shellcontract 0.0.1"))
+    start(env)
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SMALL, meshes=("ico1.off",))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--scheduler", address])
+    assert r.returncode == 1, r.stderr
+    assert "refused, nothing run" in r.stderr and "is version shellcontract 0.0.1" in r.stderr
+    assert "tcp://127.0.0.1:" in r.stderr  # the worker is named
+    assert not any(c.startswith("run ") for c in (tmp_path / "calls.txt").read_text().splitlines())
+
+
+def test_a_worker_that_cannot_import_the_package_is_refused_not_waited_for(cli, mesh_dir,
+                                                                          tmp_path, cluster):
+    address, start = cluster
+    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    start(env)
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SMALL, meshes=("ico1.off",))
+    try:
+        r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--scheduler", address],
+                      timeout=90)
+    except subprocess.TimeoutExpired:
+        pytest.fail("the sweep waited for a worker that cannot import the package")
+    assert r.returncode == 1, r.stderr
+    assert "cannot import the shellcontract package" in r.stderr, r.stderr
+    assert "Traceback" not in r.stderr
+
+
+def test_worker_cli_falls_back_to_the_clients_path_and_checks_the_version(cli, monkeypatch,
+                                                                           tmp_path):
+    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
+    monkeypatch.setattr(sweep_job, "find_cli", lambda given=None: None)  # none of its own
+    assert sweep_job.worker_cli(cli, version) == cli
+    with pytest.raises(sweep_job.WorkerError, match="no shellcontract executable"):
+        sweep_job.worker_cli(str(tmp_path / "missing"), version)
+    with pytest.raises(sweep_job.WorkerError, match="the sweep's is other 1.0"):
+        sweep_job.worker_cli(cli, "other 1.0")
+
+
+def test_ctrl_c_stops_the_jobs_on_the_workers_which_save(cli, mesh_dir, tmp_path, cluster):
+    address, start = cluster
+    start(sweep_env(cli), nthreads=2)
+    spec = dict(ENDLESS, grid={"pressure": [2, 3]})
+    path = write_sweep(tmp_path, mesh_dir, "endless.json", spec, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    checkpoints = out / ".work" / "checkpoints"
+    proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                             "--scheduler", address, "--checkpoint-every", "5"],
+                            env=sweep_env(cli), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True)
+    try:
+        wait_until(lambda: checkpoints.is_dir() and len(list(checkpoints.glob("*.ckpt"))) == 2)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=90)
+        assert proc.returncode == 130, err
+        assert "saved their checkpoints and resume from them" in err, err
+        # No run goes on behind the sweep's back on the worker; both jobs pending, with their
+        # checkpoints, nothing half-done.
+        wait_until(lambda: not processes_naming(str(tmp_path / "meshes")), timeout=10)
+        assert [r["status"] for r in results(out)] == ["pending", "pending"]
+        assert {p.stem for p in checkpoints.glob("*.ckpt")} == {r["job"] for r in results(out)}
+        assert not [p for p in (out / ".work").iterdir() if p.name != "checkpoints"]
+    finally:
+        if proc.poll() is None:
+            proc.kill()
+    # The worker still runs other sweeps' jobs (the stop was this sweep's alone).
+    small = write_sweep(tmp_path, mesh_dir, "s.json", SMALL, meshes=("ico1.off",))
+    r = run_sweep(cli, [str(small), "-o", str(tmp_path / "out2"), "--scheduler", address])
+    assert r.returncode == 0, r.stderr
+    assert json.loads((tmp_path / "out2" / "results.json").read_text())[0]["status"] == "ok"
