@@ -37,8 +37,9 @@ What OUTPUT keeps:
   groups, materials, colours, extra PLY properties and comments are dropped, each one named in
   the report ("dropped from OUTPUT ..."); a binary PLY stays binary, a binary STL too in an STL.
 
-exit codes: 0 OUTPUT written and usable, 1 bad usage, 2 the input cannot be repaired into a usable
-            mesh (the message says why; nothing is written)
+exit codes: 0 OUTPUT written and usable, 1 bad usage (also: an STL OUTPUT in which two vertices
+            would be stored at one position, which an STL reader merges), 2 the input cannot be
+            repaired into a usable mesh (the message says why; nothing is written)
 
 options)";
 

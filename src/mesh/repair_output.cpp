@@ -7,10 +7,14 @@
 #include <array>
 #include <cctype>
 #include <filesystem>
+#include <iomanip>
+#include <map>
+#include <sstream>
 
 #include "mesh/file_extras.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/soup_writer.hpp"
+#include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
@@ -54,6 +58,28 @@ std::vector<Polygon> file_triangles(const Mesh& mesh, const std::vector<Polygon>
   return triangles;
 }
 
+/// An STL stores each facet's corners as coordinates, and its readers (CGAL's, ours) merge equal
+/// ones into one vertex: two vertices at the same stored position (repair splits a pinched vertex
+/// into two such; floats can make two close ones equal) would come back as one, a mesh other than
+/// the one written, and `check` would refuse it.
+/// @throws UsageError naming both vertices and the position
+void require_distinct_stl_positions(const std::string& output, const std::vector<Point3>& points, bool floats) {
+  std::map<std::array<double, 3>, std::size_t> seen;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    std::array<double, 3> key{points[i].x(), points[i].y(), points[i].z()};
+    if (floats)
+      for (double& c : key) c = static_cast<float>(c);
+    const auto [at, fresh] = seen.emplace(key, i);
+    if (fresh) continue;
+    std::ostringstream where;
+    where << std::setprecision(9) << '(' << key[0] << ", " << key[1] << ", " << key[2] << ')';
+    throw UsageError("cannot write '" + output + "': an STL keeps no vertex identity, and vertices " +
+                     std::to_string(at->second) + " and " + std::to_string(i) + " would both be stored at " +
+                     where.str() + (floats ? " (as 32-bit floats)" : "") +
+                     ": read back, they would be one vertex, and the mesh another; write .off, .obj or .ply");
+  }
+}
+
 }  // namespace
 
 std::string RepairOutput::kind_name() const {
@@ -87,7 +113,13 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
     if (report.polygons_triangulated > 0)
       o.dropped.push_back(std::to_string(report.polygons_triangulated) +
                           " polygons with more than 3 corners (triangulated)");
-    write_mesh_atomic(output, mesh, positions_from_mesh(mesh), o.binary);
+    const Positions x = positions_from_mesh(mesh);
+    if (out_ext == "stl") {
+      std::vector<Point3> points;
+      for (Eigen::Index i = 0; i < x.rows(); ++i) points.emplace_back(x(i, 0), x(i, 1), x(i, 2));
+      require_distinct_stl_positions(output, points, o.binary);
+    }
+    write_mesh_atomic(output, mesh, x, o.binary);
     return o;
   }
   o.kind = RepairOutput::Kind::Converted;
@@ -103,6 +135,7 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
                           std::to_string(mesh.number_of_faces() - (polygons.size() - split)) +
                           " triangles written for them)");
     polygons = file_triangles(mesh, polygons);
+    require_distinct_stl_positions(output, points, o.binary);
   }
   write_polygon_soup_atomic(output, points, polygons, o.binary);
   return o;

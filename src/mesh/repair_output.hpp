@@ -37,7 +37,8 @@ struct RepairOutput {
 /// an STL (floats); otherwise text, and "the binary encoding" is among the dropped.
 /// Written atomically (write_file_atomic): a failure leaves no file.
 /// @throws InputError naming the input if it cannot be read again
-/// @throws UsageError if the output cannot be written
+/// @throws UsageError if the output cannot be written, or is an STL in which two vertices would
+///         be stored at the same position (an STL reader merges them: another mesh)
 RepairOutput write_repair_output(const std::string& input, const std::string& output, const Mesh& mesh,
                                  const RepairReport& report);
 

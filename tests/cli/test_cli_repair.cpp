@@ -230,4 +230,24 @@ TEST_F(CliRepair, ARepairedBinaryStlStaysBinary) {
   EXPECT_EQ(run_cli({"check", out("closed.ply")}).exit_code, 0);
 }
 
+// Repair splits a pinched vertex into two at the same position; an STL stores positions only, and
+// reading it merges them again: before, the STL was written and announced usable, and `check`
+// refused it.
+TEST_F(CliRepair, AnStlThatWouldMergeTwoVerticesIsNotWritten) {
+  const std::string in = write("pinch.off",
+                               "OFF\n7 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n-1 0 0\n0 -1 0\n0 0 -1\n"
+                               "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 4 5\n3 0 6 4\n3 0 5 6\n3 4 6 5\n");
+  ASSERT_EQ(run_cli({"check", in}).exit_code, 2);
+  const RunResult r = run_cli({"repair", in, "-o", out("pinch.stl")});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write '" + out("pinch.stl") + "': an STL keeps no vertex identity"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out("pinch.stl")));
+  // The same mesh in a format with vertex numbers is usable, and a usable copy of it cannot be an STL either.
+  ASSERT_EQ(run_cli({"repair", in, "-o", out("split.off")}).exit_code, 0);
+  EXPECT_EQ(run_cli({"check", out("split.off")}).exit_code, 0);
+  EXPECT_EQ(run_cli({"repair", out("split.off"), "-o", out("again.stl")}).exit_code, 1);
+  EXPECT_FALSE(fs::exists(out("again.stl")));
+}
+
 }  // namespace
