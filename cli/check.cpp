@@ -36,7 +36,8 @@ constexpr const char* CHECK_USAGE = R"(usage: shellcontract check MESH [--json] 
 Reads MESH (.off, .obj, .ply, .stl) with the same checks as 'run' and reports: vertices, faces,
 edges, connected components, Euler characteristic and genus, closed, manifold, enclosed volume,
 bounding-box diagonal, zero-area faces and self-intersecting face pairs.
-Polygons are triangulated and inside-out components flipped, as 'run' would (see the warnings).
+Polygons are triangulated and inside-out components flipped, as 'run' would (see the warnings;
+with --against, each warning names its file, MESH or INPUT).
 With --against, MESH is a result of 'run' on INPUT (same vertices and faces, moved): the face
 pairs that intersect in MESH but not in INPUT are counted (compared polygon by polygon, so a quad
 split along its other diagonal is the same quad).
@@ -161,7 +162,13 @@ int command_check(int argc, char** argv) {
   try {
     InputReport report;
     const Mesh mesh = read_input_mesh(input, &report);
-    for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
+    // With --against two files are read, and a warning (a polygon split, a face of zero area)
+    // is about one of them: it names its file.
+    const auto print_warnings = [&against](const std::string& file, const InputReport& r) {
+      for (const std::string& w : r.warnings)
+        std::cerr << "warning: " << (against.empty() ? std::string() : file + ": ") << w << '\n';
+    };
+    print_warnings(input, report);
     const Positions x = positions_from_mesh(mesh);
     const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
     const std::vector<FacePair> pairs = self_intersecting_pairs(mesh, x);
@@ -175,9 +182,11 @@ int command_check(int argc, char** argv) {
     // A result judged against its input, or on its own (exit 4 when it fails).
     std::vector<FacePair> fresh;
     std::size_t input_pair_count = 0;
+    InputReport against_report;
     if (!against.empty()) {
       stage = against;
-      const Mesh input_mesh = read_input_mesh(against);
+      const Mesh input_mesh = read_input_mesh(against, &against_report);
+      print_warnings(against, against_report);
       const std::vector<FacePair> input_pairs = self_intersecting_pairs(input_mesh, positions_from_mesh(input_mesh));
       input_pair_count = input_pairs.size();
       fresh = new_pairs(input, mesh, pairs, against, input_mesh, input_pairs);
@@ -208,7 +217,8 @@ int command_check(int argc, char** argv) {
         std::string fresh_json = "[";
         for (std::size_t i = 0; i < fresh.size(); ++i)
           fresh_json += (i ? ", " : "") + json_array({fresh[i].first.idx(), fresh[i].second.idx()});
-        o.add("against", against).add("input_self_intersecting_pairs", input_pair_count)
+        o.add("against", against).add("against_warnings", against_report.warnings)
+            .add("input_self_intersecting_pairs", input_pair_count)
             .add("new_self_intersecting_pairs", fresh.size()).add_raw("new_self_intersections", fresh_json + "]");
       }
       if (!against.empty() || fail_on_intersections) o.add("passes", !fails).add("failure", verdict);

@@ -1,16 +1,18 @@
 // shellcontract repair IN -o OUT [--json] [--max-hole-edges N]: makes a refused mesh usable with
-// CGAL's repair functions (repair_input_mesh) and writes it; on failure writes nothing.
+// CGAL's repair functions (repair_input_mesh) and writes it (write_repair_output: a usable input
+// unchanged), naming what the output does not carry; on failure writes nothing.
 #include "shellcontract/repair.hpp"
 
 #include <boost/program_options.hpp>
 
 #include <iostream>
 #include <string>
+#include <vector>
 
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
-#include "mesh/eigen_point_map.hpp"
+#include "mesh/repair_output.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
 
@@ -24,19 +26,31 @@ constexpr const char* REPAIR_USAGE = R"(usage: shellcontract repair INPUT -o OUT
 Makes a mesh that 'check' refuses usable, with CGAL's Polygon Mesh Processing: merges duplicate
 points and faces, removes degenerate faces, orients the faces consistently, stitches borders,
 fills every hole (triangulate, refine and fair), drops components that are still open or enclose
-no volume, orients each component outward, and checks the result as 'check' does. A mesh that
-'check' accepts is written unchanged. Prints what changed on stderr (--json: on stdout).
-The output's vertex and face order is not the input's (repair renumbers).
+no volume, orients each component outward, and checks the result as 'check' does. Prints what
+changed, and what OUTPUT does not carry, on stderr (--json: on stdout).
 
-exit codes: 0 OUTPUT written and usable, 1 bad usage, 2 the input cannot be repaired into a usable
-            mesh (the message says why; nothing is written)
+What OUTPUT keeps:
+  a mesh 'check' accepts is not rewritten: an OUTPUT of its format is a byte-for-byte copy (UVs,
+  normals, groups, materials, quads, comments, extra PLY properties, binary STL or PLY); another
+  format gets its vertices and polygons as read, in their order and winding (STL: triangles).
+  A repaired mesh has new vertices and triangles in another order: the input's UVs, normals,
+  groups, materials, colours, extra PLY properties and comments are dropped, each one named in
+  the report ("dropped from OUTPUT ..."); a binary PLY stays binary, a binary STL too in an STL.
+
+exit codes: 0 OUTPUT written and usable, 1 bad usage (also: an STL OUTPUT in which two vertices
+            would be stored at one position, which an STL reader merges), 2 the input cannot be
+            repaired into a usable mesh (the message says why; nothing is written)
 
 options)";
 
-JsonObject report_json(const std::string& input, const std::string& output, const RepairReport& r) {
+JsonObject report_json(const std::string& input, const std::string& output, const RepairReport& r,
+                       const RepairOutput* written) {
   JsonObject o;
   o.add("file", input)
-      .add("output", r.usable ? output : std::string())
+      .add("output", written ? output : std::string())
+      .add("written_as", written ? written->kind_name() : std::string())
+      .add("binary", written && written->binary)
+      .add("dropped", written ? written->dropped : std::vector<std::string>())
       .add("usable", r.usable)
       .add("already_usable", r.already_usable)
       .add("input_problem", r.input_problem)
@@ -99,24 +113,34 @@ int command_repair(int argc, char** argv) {
   }
 
   RepairReport r;
+  RepairOutput written;
   try {
     const Mesh mesh = repair_input_mesh(input, &r, max_hole_edges);
-    write_mesh_atomic(output, mesh, positions_from_mesh(mesh));
+    written = write_repair_output(input, output, mesh, r);
   } catch (const InputError& e) {
     std::cerr << "shellcontract repair: " << e.what() << '\n';
-    if (json) std::cout << report_json(input, output, r).str() << '\n';
+    if (json) std::cout << report_json(input, output, r, nullptr).str() << '\n';
     return static_cast<int>(ExitCode::BadInput);
   } catch (const UsageError& e) {
     std::cerr << "shellcontract repair: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadUsage);
   }
   if (json) {
-    std::cout << report_json(input, output, r).str() << '\n';
+    std::cout << report_json(input, output, r, &written).str() << '\n';
   } else {
     if (!r.already_usable) std::cerr << "input refused as read: " << r.input_problem << '\n';
     for (const std::string& line : r.summary_lines()) std::cerr << line << '\n';
-    std::cerr << "wrote " << output << ": " << r.input_report.vertices << " vertices, "
-              << r.input_report.faces << " faces, usable\n";
+    if (!written.dropped.empty()) {
+      std::cerr << (written.kind == RepairOutput::Kind::Converted
+                        ? "not carried into " + output + " (another format: it gets the vertices and polygons; " +
+                              "an output in the input's format would be an unchanged copy): "
+                        : "dropped from " + output + " (repair writes only its rebuilt vertices and faces): ");
+      for (std::size_t i = 0; i < written.dropped.size(); ++i) std::cerr << (i ? "; " : "") << written.dropped[i];
+      std::cerr << '\n';
+    }
+    std::cerr << "wrote " << output << ": " << r.input_report.vertices << " vertices, " << r.input_report.faces
+              << " faces, usable"
+              << (written.kind == RepairOutput::Kind::Copy ? " (the input's bytes, unchanged)" : "") << '\n';
   }
   return static_cast<int>(ExitCode::Success);
 }

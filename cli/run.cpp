@@ -26,6 +26,8 @@
 #include "export_observer.hpp"
 #include "help_groups.hpp"
 #include "json_writer.hpp"
+#include "mesh/file_extras.hpp"
+#include "mesh/read_polygon_soup.hpp"
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
 #include "run_observers.hpp"
@@ -345,7 +347,17 @@ int command_run(int argc, char** argv) {
       }
       if (document && !document->matches(mesh)) {
         std::cerr << "warning: the result is written without the input's attributes: "
-                  << (repair ? "--repair changed the mesh" : "the mesh is not the file's") << '\n';
+                  << (repair ? "--repair changed the mesh" : "the mesh is not the file's");
+        // Which ones, named as `repair` names them: nothing is dropped without a word.
+        try {
+          const FileExtras extras = describe_file_extras(lower_extension(input), read_file_bytes(input));
+          for (std::size_t i = 0; i < extras.items.size(); ++i)
+            std::cerr << (i ? "; " : " (dropped: ") << extras.items[i];
+          if (!extras.items.empty()) std::cerr << ')';
+        } catch (const InputError&) {
+          // The file went away after it was read: the warning stays without the list.
+        }
+        std::cerr << '\n';
         document.reset();
       }
     }

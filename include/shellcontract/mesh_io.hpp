@@ -50,12 +50,14 @@ Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
 
 /// Writes the mesh connectivity with the vertex positions x (row i = vertex i, input units),
 /// keeping vertex and face order and each face's first corner, with CGAL's writer for the
-/// extension (OFF, OBJ, STL ASCII; PLY through write_ply_atomic) at 17 significant digits, so
+/// extension (OFF, OBJ, STL; PLY through write_ply_atomic) at 17 significant digits, so
 /// that the doubles read back bitwise. Written to a temporary file in the same folder, then
 /// renamed, so a failure never leaves a partial file.
+/// @param binary a binary PLY (little-endian doubles: still bitwise) or STL (32-bit floats: the
+///        positions rounded to float); OFF and OBJ are text whatever it says
 /// @throws UsageError if the file cannot be written or the extension is unknown
 /// @throws std::invalid_argument if x.rows() != number of vertices or the mesh has garbage
-void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x);
+void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary = false);
 
 /// The mesh to give write_ply_atomic: a copy of `mesh` (vertex and face order and each face's
 /// first corner kept) with its points set to x and no property maps, to which the caller
@@ -64,8 +66,8 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
 /// @throws std::invalid_argument if x.rows() != number of vertices or the mesh has garbage
 Mesh mesh_for_output(const Mesh& mesh, const Positions& x);
 
-/// The one PLY writer (plain meshes, regions, fields): CGAL's Surface_mesh PLY writer, ASCII, 17
-/// significant digits, atomically (temporary file + rename). Every vertex and face property map
+/// The one PLY writer (plain meshes, regions, fields): CGAL's Surface_mesh PLY writer, ASCII with 17
+/// significant digits (or binary little-endian), atomically (temporary file + rename). Every vertex and face property map
 /// of `mesh` with a simple type (int8..int64, float, double) is written as a property of its
 /// element, named without the "v:"/"f:" prefix, in the order the maps were attached;
 /// "v:color" / "f:color" (CGAL::IO::Color) become red, green, blue, alpha (uchar). Vertex
@@ -73,7 +75,8 @@ Mesh mesh_for_output(const Mesh& mesh, const Positions& x);
 /// @param mesh     usually built by mesh_for_output, so that only the maps meant for the file are on it
 /// @param comments written as "comment" lines of the header, one per line of the string
 /// @throws UsageError if the file cannot be written
-void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::string& comments = "");
+void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::string& comments = "",
+                      bool binary = false);
 
 /// Writes text to path atomically (temporary file + rename). @throws UsageError on failure
 void write_text_atomic(const std::string& path, const std::string& text);

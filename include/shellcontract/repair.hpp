@@ -50,7 +50,7 @@ struct RepairReport {
 /// fairing where fairing fails), drop components that are still open or enclose no volume,
 /// orient each component outward, and run the usability check (check_input_soup) on the result.
 /// Geometry runs on coordinates normalized to a unit bounding-box diagonal; the result is in
-/// input units.
+/// input units, and the input's vertices that it keeps have their input coordinates bit for bit.
 /// @param max_hole_edges holes with more boundary edges are left open (so their component is
 ///        dropped); 0 = no limit
 /// @throws InputError "<path>: cannot repair: <why>" when the file cannot be read, or when the

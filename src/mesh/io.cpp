@@ -12,9 +12,9 @@
 // vertex and face order, which users rely on (textures, per-vertex data); read_input_mesh
 // verifies that it was kept.
 //
-// The soup comes from CGAL::IO::read_OBJ/STL, or from our own PLY and OFF readers (ply_reader.cpp:
-// CGAL 5.5's crashes; off_scan.cpp: CGAL's trusts declared counts, misreads binary OFF and parses
-// slowly). Every geometric test (triangulation, orientation, volume, zero area)
+// The soup comes from CGAL::IO::read_STL, or from our own OBJ, PLY and OFF readers (obj_scan.cpp:
+// CGAL 5.5's names no line; ply_reader.cpp: CGAL 5.5's crashes; off_scan.cpp: CGAL's trusts
+// declared counts, misreads binary OFF and parses slowly). Every geometric test (triangulation, orientation, volume, zero area)
 // runs on coordinates normalized to the bounding-box centre and a unit diagonal, so that meshes
 // from 1e-150 to 1e150 get the same answers as at unit scale (no overflow or underflow in
 // products of three coordinates).

@@ -3,7 +3,7 @@
 // coordinates, face corners (v/vt/vn), groups, objects, materials, smoothing groups, comments and
 // polygons come back exactly as read.
 //
-// Vertex i of the simulation is the i-th `v` line: CGAL's read_OBJ, which read_input_mesh uses,
+// Vertex i of the simulation is the i-th `v` line: scan_obj, which read_input_mesh uses,
 // keeps the `v` lines in order and never merges duplicates, so no map is needed besides the
 // identity (MeshDocument::matches checks it). Quads and larger polygons are fan-triangulated for
 // the simulation only; their corners keep their vertices here, which move with the simulation.

@@ -3,7 +3,6 @@
 // bytes that are really there.
 #include "mesh/read_polygon_soup.hpp"
 
-#include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/STL.h>
 
 #include <algorithm>
@@ -15,6 +14,7 @@
 #include <sstream>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/obj_scan.hpp"
 #include "mesh/ply_reader.hpp"
 #include "shellcontract/error.hpp"
 
@@ -67,17 +67,22 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
     lines = std::move(scan.lines);
     return;
   }
+  if (ext == "obj") {  // read by the scan (obj_scan.hpp says why not by CGAL)
+    ObjScan scan = scan_obj(path, bytes);
+    points.reserve(scan.points.size());
+    for (const auto& p : scan.points) points.emplace_back(p[0], p[1], p[2]);
+    polygons = std::move(scan.faces);
+    lines = std::move(scan.lines);
+    return;
+  }
   std::istringstream in(bytes);
   // An exception inside a stream operation (std::bad_alloc while CGAL's reader reads a line)
   // would otherwise only set badbit, and the reader would return the part read so far.
   in.exceptions(std::ios::badbit);
-  bool ok = false;
-  // Direct calls rather than CGAL's read_polygon_soup: the extension is already known.
-  if (ext == "obj") ok = CGAL::IO::read_OBJ(in, points, polygons);
-  else ok = CGAL::IO::read_STL(in, points, polygons);
+  // A direct call rather than CGAL's read_polygon_soup: the extension is already known.
+  const bool ok = CGAL::IO::read_STL(in, points, polygons);
   if (in.bad()) fail(path, "cannot read file", "the reader's stream failed");
-  if (!ok)
-    fail(path, "parse error", "CGAL could not read it as a ." + ext + " file (truncated file or garbage)");
+  if (!ok) fail(path, "parse error", "CGAL could not read it as a .stl file (truncated file or garbage)");
 }
 
 }  // namespace shellcontract

@@ -18,6 +18,7 @@
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iterator>
@@ -244,8 +245,15 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
     r.failure = "its bounding box has a zero or non-finite diagonal";
     cannot_repair(path, r.failure);
   }
-  for (Point3& p : points)
-    p = Point3((p.x() - centre[0]) / diagonal, (p.y() - centre[1]) / diagonal, (p.z() - centre[2]) / diagonal);
+  // Repair merges, splits and adds vertices but moves none of the input's (fairing moves only a
+  // fill's new vertices), and (x - c) / d * d + c is not always x: each input point is found again
+  // by its normalized position, so that the vertices the repair kept keep their coordinates.
+  std::map<std::array<double, 3>, Point3> input_point;
+  for (Point3& p : points) {
+    const Point3 unit((p.x() - centre[0]) / diagonal, (p.y() - centre[1]) / diagonal, (p.z() - centre[2]) / diagonal);
+    input_point.emplace(std::array<double, 3>{unit.x(), unit.y(), unit.z()}, p);
+    p = unit;
+  }
 
   Mesh mesh;
   try {
@@ -270,13 +278,18 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
     cannot_repair(path, r.failure);
   }
 
-  // Back to a soup in input units, then the one usability check.
+  // Back to a soup in input units (the input's own coordinates where the vertex is the input's),
+  // then the one usability check.
   std::vector<Point3> out_points;
   std::map<VertexIndex, std::size_t> index;
   for (const VertexIndex v : mesh.vertices()) {
     const Point3& p = mesh.point(v);
     index[v] = out_points.size();
-    out_points.emplace_back(p.x() * diagonal + centre[0], p.y() * diagonal + centre[1], p.z() * diagonal + centre[2]);
+    const auto known = input_point.find({p.x(), p.y(), p.z()});
+    if (known != input_point.end())
+      out_points.push_back(known->second);
+    else
+      out_points.emplace_back(p.x() * diagonal + centre[0], p.y() * diagonal + centre[1], p.z() * diagonal + centre[2]);
   }
   std::vector<Polygon> out_faces;
   out_faces.reserve(mesh.number_of_faces());

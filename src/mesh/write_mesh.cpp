@@ -25,11 +25,13 @@
 
 #include <CGAL/IO/OBJ.h>
 #include <CGAL/IO/OFF.h>
+#include <CGAL/IO/PLY.h>
 #include <CGAL/IO/STL.h>
 #include <CGAL/Surface_mesh/IO/PLY.h>
 
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/soup_writer.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -67,10 +69,12 @@ class ToCharsDoublePut : public std::num_put<char> {
 
 /// Writes through `fill` into memory first, then the whole into the file (write_file_atomic).
 /// CGAL's writers end every line with std::endl, and a flush per line to a file costs a system
-/// call each (one write per file instead). A throwing `fill` leaves no file behind.
-void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill) {
+/// call each (one write per file instead). A throwing `fill` leaves no file behind. `binary` sets
+/// the stream's CGAL mode, which CGAL's PLY and STL writers follow.
+void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill, bool binary = false) {
   std::ostringstream text;
   text.imbue(std::locale(text.getloc(), new ToCharsDoublePut));  // the locale owns the facet
+  CGAL::IO::set_mode(text, binary ? CGAL::IO::BINARY : CGAL::IO::ASCII);
   fill(text);
   const std::string bytes = std::move(text).str();
   write_file_atomic(path, [&](std::ostream& out) {
@@ -107,23 +111,23 @@ Mesh mesh_for_output(const Mesh& mesh, const Positions& x) {
   return out;
 }
 
-void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::string& comments) {
+void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::string& comments, bool binary) {
   if (mesh.has_garbage())
     throw std::invalid_argument("write_ply_atomic: the mesh has removed elements; call collect_garbage() first");
   write_atomic(path, [&](std::ostream& out) {
     if (!CGAL::IO::write_PLY(out, mesh, comments, CGAL::parameters::stream_precision(FULL_PRECISION)))
       throw UsageError("cannot write '" + path + "': CGAL's PLY writer failed");
-  });
+  }, binary);
 }
 
-void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x) {
+void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary) {
   check_positions(mesh, x, "write_mesh_atomic");
   const std::string ext = lower_extension(path);
   if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
     throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
   if (ext == "ply") {
     // CGAL 5.5's Surface_mesh PLY writer takes the mesh's own points (no vertex_point_map).
-    write_ply_atomic(path, mesh_for_output(mesh, x));
+    write_ply_atomic(path, mesh_for_output(mesh, x), "", binary);
     return;
   }
   // The other writers read the positions through the point map: no mesh copy. They write
@@ -133,9 +137,31 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
     bool ok = false;
     if (ext == "off") ok = CGAL::IO::write_OFF(out, mesh, np);
     else if (ext == "obj") ok = CGAL::IO::write_OBJ(out, mesh, np);
-    else ok = CGAL::IO::write_STL(out, mesh, np);  // ASCII: the stream is not in binary mode
+    else ok = CGAL::IO::write_STL(out, mesh, np);  // binary when the stream's mode says so
     if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
-  });
+  }, binary && (ext == "stl"));
+}
+
+void write_polygon_soup_atomic(const std::string& path, const std::vector<Point3>& points,
+                               const std::vector<std::vector<std::size_t>>& polygons, bool binary) {
+  const std::string ext = lower_extension(path);
+  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
+    throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
+  for (const auto& p : polygons) {
+    if (ext == "stl" && p.size() != 3)
+      throw std::invalid_argument("write_polygon_soup_atomic: an STL file holds triangles only");
+    for (const std::size_t v : p)
+      if (v >= points.size()) throw std::invalid_argument("write_polygon_soup_atomic: a polygon names a missing point");
+  }
+  const auto np = CGAL::parameters::stream_precision(FULL_PRECISION);
+  write_atomic(path, [&](std::ostream& out) {
+    bool ok = false;
+    if (ext == "off") ok = CGAL::IO::write_OFF(out, points, polygons, np);
+    else if (ext == "obj") ok = CGAL::IO::write_OBJ(out, points, polygons, np);
+    else if (ext == "ply") ok = CGAL::IO::write_PLY(out, points, polygons, np);
+    else ok = CGAL::IO::write_STL(out, points, polygons, np);
+    if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
+  }, binary && (ext == "ply" || ext == "stl"));
 }
 
 void write_text_atomic(const std::string& path, const std::string& text) {

@@ -1,11 +1,13 @@
 // `shellcontract check` as a user runs it: exit codes and messages (design.md, Exit codes).
 // Runs the built executable (SHELLCONTRACT_CLI_PATH); skipped when it has not been built.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,18 @@ TEST_F(CliCheck, BadUsageExitsOne) {
   const RunResult help = run_cli({"check", "--help"});
   EXPECT_EQ(help.exit_code, 0);
   EXPECT_NE(help.output.find("--json"), std::string::npos) << help.output;
+}
+
+// An OBJ's errors name the file and the line, with exit 2 (before: "CGAL could not read it").
+TEST_F(CliCheck, ObjErrorsNameTheFileAndTheLine) {
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("shellcontract_check_obj_" + std::to_string(::getpid()) + ".obj")).string();
+  std::ofstream(path) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 9\n";
+  const RunResult r = run_cli({"check", path});
+  std::filesystem::remove(path);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(path + ": vertex index out of range: face 3 (line 8) refers to vertex 9"), std::string::npos)
+      << r.output;
 }
 
 struct BadFile {

@@ -177,6 +177,25 @@ TEST_F(CliCheckAgainst, QuadsSplitAlongTheOtherDiagonalAreTheSameQuads) {
   EXPECT_EQ(number_after(r.output, "new_self_intersecting_pairs: "), 0) << r.output;
 }
 
+// Two files are read: a warning says which one it is about (before, the result's polygon warning
+// came without a file name, and the input's was not printed at all).
+TEST_F(CliCheckAgainst, EachWarningNamesItsFile) {
+  const std::string in = mesh_path("cube_quads.off"), out = file("copy.off");
+  fs::copy_file(in, out);
+  const RunResult r = run_cli({"check", out, "--against", in});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: " + out + ": 6 polygons with more than 3 vertices were fan-triangulated"),
+            std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("warning: " + in + ": 6 polygons with more than 3 vertices were fan-triangulated"),
+            std::string::npos) << r.output;
+  const RunResult j = run_cli({"check", out, "--against", in, "--json"});
+  EXPECT_EQ(j.exit_code, 0) << j.output;
+  EXPECT_NE(j.output.find("\"against_warnings\": [\"6 polygons"), std::string::npos) << j.output;
+  // One file: the warning as before ("file:" on stdout names it).
+  const RunResult one = run_cli({"check", out});
+  EXPECT_NE(one.output.find("warning: 6 polygons"), std::string::npos) << one.output;
+}
+
 TEST_F(CliCheckAgainst, MeshesThatAreNotTheSameAreBadUsage) {
   const RunResult r = run_cli({"check", mesh_path("ico2.off"), "--against", mesh_path("ico1.off")});
   EXPECT_EQ(r.exit_code, 1) << r.output;

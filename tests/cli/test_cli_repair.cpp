@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "support/cli_runner.hpp"
+#include "support/textured_obj.hpp"
 #include "test_paths.hpp"
 
 namespace {
@@ -50,6 +53,35 @@ std::string mesh_path(const std::string& name) { return std::string(shellcontrac
 const char* OPEN_CUBE =
     "OFF\n8 10 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0 0 1\n1 0 1\n1 1 1\n0 1 1\n"
     "3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+
+/// meshes/cube.off as a binary STL (80-byte header, facet count, 50 bytes per facet), the last
+/// `missing` facets left out (missing = 1: an open box).
+std::string binary_stl_cube(std::size_t missing = 0) {
+  const float x[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int f[12][3] = {{0, 3, 2}, {0, 2, 1}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4},
+                        {1, 2, 6}, {1, 6, 5}, {2, 3, 7}, {2, 7, 6}, {3, 0, 4}, {3, 4, 7}};
+  std::string s = "binary cube";
+  s.resize(80, ' ');
+  const std::uint32_t n = 12 - static_cast<std::uint32_t>(missing);
+  s.append(reinterpret_cast<const char*>(&n), 4);  // little-endian, as the machines the tests run on
+  for (std::uint32_t t = 0; t < n; ++t) {
+    const float normal[3] = {0, 0, 0};
+    s.append(reinterpret_cast<const char*>(normal), 12);
+    for (const int v : f[t]) s.append(reinterpret_cast<const char*>(x[v]), 12);
+    s.append(2, '\0');
+  }
+  return s;
+}
+
+/// The textured sphere without its polygon `skip`'s `f` line: a hole.
+std::string without_face(const std::string& obj, std::size_t skip) {
+  std::istringstream in(obj);
+  std::string out;
+  std::size_t face = 0;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("f ", 0) != 0 || face++ != skip) out += line + "\n";
+  return out;
+}
 
 TEST_F(CliRepair, OpenCubeIsRepairedWrittenAndThenUsable) {
   const std::string in = write("open_cube.off", OPEN_CUBE);
@@ -108,6 +140,114 @@ TEST_F(CliRepair, RunRepairLeavesAUsableMeshsRunUnchanged) {
   ASSERT_EQ(run_cli({"run", in, "-o", out("plain.off"), "--frames", "5", "-q"}).exit_code, 0);
   ASSERT_EQ(run_cli({"run", in, "-o", out("repair.off"), "--frames", "5", "-q", "--repair"}).exit_code, 0);
   EXPECT_EQ(slurp(out("plain.off")), slurp(out("repair.off")));
+}
+
+// --------------------------------------------- what the output keeps (a usable input is not rewritten)
+
+TEST_F(CliRepair, AUsableTexturedObjIsCopiedByteForByte) {
+  const std::string text = shellcontract::test::textured_uv_sphere().text;
+  const std::string in = write("sphere.obj", text);
+  const RunResult r = run_cli({"repair", in, "-o", out("copy.obj")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // Before: "nothing changed", and the file was rewritten by CGAL's writer without its UVs,
+  // normals, groups and materials, and with its quads split.
+  EXPECT_EQ(slurp(out("copy.obj")), text);
+  EXPECT_NE(r.output.find("nothing changed"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("(the input's bytes, unchanged)"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("dropped"), std::string::npos) << r.output;
+}
+
+TEST_F(CliRepair, AUsableBinaryStlStaysTheSameBinaryStl) {
+  const std::string bytes = binary_stl_cube();
+  const std::string in = write("cube.stl", bytes);
+  ASSERT_EQ(run_cli({"check", in}).exit_code, 0);
+  const RunResult r = run_cli({"repair", in, "-o", out("copy.STL")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(slurp(out("copy.STL")), bytes);  // before: an ASCII STL
+}
+
+TEST_F(CliRepair, AUsableObjInAnotherFormatKeepsItsPolygonsAndNamesWhatItDoesNotCarry) {
+  const std::string in = write("sphere.obj", shellcontract::test::textured_uv_sphere().text);
+  const RunResult r = run_cli({"repair", in, "-o", out("sphere.ply")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // 96 polygons as read (72 quads), not the 168 triangles of before.
+  EXPECT_NE(slurp(out("sphere.ply")).find("element face 96\n"), std::string::npos);
+  for (const char* s : {"not carried into " , "115 texture coordinates (vt)", "86 normals (vn)",
+                        "2 groups (g upper, lower)", "2 materials (usemtl north, south)"})
+    EXPECT_NE(r.output.find(s), std::string::npos) << s << " not in:\n" << r.output;
+  const RunResult c = run_cli({"check", out("sphere.ply")});
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("triangulated_faces: 72\n"), std::string::npos) << c.output;
+
+  const RunResult j = run_cli({"repair", in, "-o", out("sphere.stl"), "--json"});
+  ASSERT_EQ(j.exit_code, 0) << j.output;
+  EXPECT_NE(j.output.find("\"written_as\": \"converted\""), std::string::npos) << j.output;
+  EXPECT_NE(j.output.find("72 polygons with more than 3 corners (STL holds triangles: 144 triangles"),
+            std::string::npos) << j.output;
+  EXPECT_EQ(run_cli({"check", out("sphere.stl")}).exit_code, 0);
+}
+
+TEST_F(CliRepair, AUsableInsideOutMeshKeepsItsWindingInAnotherFormat) {
+  // As a copy would: the file's faces, not the ones read_input_mesh turns outward for a run.
+  const RunResult r = run_cli({"repair", mesh_path("inside_out_sphere.off"), "-o", out("s.stl")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const RunResult c = run_cli({"check", out("s.stl")});
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+  EXPECT_NE(c.output.find("reoriented: yes"), std::string::npos) << c.output;
+}
+
+TEST_F(CliRepair, ARepairedTexturedObjNamesEverythingItDrops) {
+  const std::string in = write("holed.obj", without_face(shellcontract::test::textured_uv_sphere().text, 4));
+  ASSERT_EQ(run_cli({"check", in}).exit_code, 2);
+  const RunResult r = run_cli({"repair", in, "-o", out("fixed.obj")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // Before: the attributes went without a word.
+  for (const char* s : {"dropped from ", "115 texture coordinates (vt)", "86 normals (vn)", "2 groups (g upper, lower)",
+                        "2 materials (usemtl north, south)", "the material library (mtllib sphere.mtl)",
+                        "72 polygons with more than 3 corners (triangulated)"})
+    EXPECT_NE(r.output.find(s), std::string::npos) << s << " not in:\n" << r.output;
+  const RunResult j = run_cli({"repair", in, "-o", out("fixed2.obj"), "--json"});
+  EXPECT_NE(j.output.find("\"written_as\": \"repaired\""), std::string::npos) << j.output;
+  EXPECT_NE(j.output.find("\"dropped\": [\"115 texture coordinates (vt)\""), std::string::npos) << j.output;
+}
+
+TEST_F(CliRepair, ARepairedBinaryStlStaysBinary) {
+  const std::string in = write("open.stl", binary_stl_cube(1));
+  ASSERT_EQ(run_cli({"check", in}).exit_code, 2);
+  const RunResult r = run_cli({"repair", in, "-o", out("closed.stl")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string bytes = slurp(out("closed.stl"));
+  std::uint32_t n = 0;
+  ASSERT_GE(bytes.size(), 84u);
+  std::memcpy(&n, bytes.data() + 80, 4);
+  EXPECT_EQ(n, 12u);
+  EXPECT_EQ(bytes.size(), 84u + 50u * 12u);  // before: "solid ..." text
+  EXPECT_EQ(run_cli({"check", out("closed.stl")}).exit_code, 0);
+  EXPECT_NE(r.output.find("the 80-byte header ('binary cube')"), std::string::npos) << r.output;
+  // A PLY holds doubles: binary too.
+  ASSERT_EQ(run_cli({"repair", in, "-o", out("closed.ply")}).exit_code, 0);
+  EXPECT_NE(slurp(out("closed.ply")).find("format binary_little_endian 1.0"), std::string::npos);
+  EXPECT_EQ(run_cli({"check", out("closed.ply")}).exit_code, 0);
+}
+
+// Repair splits a pinched vertex into two at the same position; an STL stores positions only, and
+// reading it merges them again: before, the STL was written and announced usable, and `check`
+// refused it.
+TEST_F(CliRepair, AnStlThatWouldMergeTwoVerticesIsNotWritten) {
+  const std::string in = write("pinch.off",
+                               "OFF\n7 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n-1 0 0\n0 -1 0\n0 0 -1\n"
+                               "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 0 4 5\n3 0 6 4\n3 0 5 6\n3 4 6 5\n");
+  ASSERT_EQ(run_cli({"check", in}).exit_code, 2);
+  const RunResult r = run_cli({"repair", in, "-o", out("pinch.stl")});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("cannot write '" + out("pinch.stl") + "': an STL keeps no vertex identity"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out("pinch.stl")));
+  // The same mesh in a format with vertex numbers is usable, and a usable copy of it cannot be an STL either.
+  ASSERT_EQ(run_cli({"repair", in, "-o", out("split.off")}).exit_code, 0);
+  EXPECT_EQ(run_cli({"check", out("split.off")}).exit_code, 0);
+  EXPECT_EQ(run_cli({"repair", out("split.off"), "-o", out("again.stl")}).exit_code, 1);
+  EXPECT_FALSE(fs::exists(out("again.stl")));
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -180,6 +181,35 @@ TEST_F(Repair, PointCloudCannotBeRepaired) {
     EXPECT_EQ(msg.rfind(path + ": cannot repair: ", 0), 0u) << msg;
     EXPECT_NE(msg.find("0 faces"), std::string::npos) << msg;
   }
+}
+
+// Repair merges, splits and adds vertices but moves none of the input's (a hole's fill moves only
+// its own new vertices): those come back with their input coordinates, bit for bit. Before, every
+// coordinate went through (x - c) / d * d + c, which changes the last bits of many.
+TEST_F(Repair, VerticesRepairDoesNotMoveKeepTheirExactCoordinates) {
+  std::vector<std::array<double, 3>> pts;
+  // A box some of whose coordinates the old round trip changed in their last bits.
+  for (const auto& p : CUBE_POINTS)
+    pts.push_back({p[0] * 0.29 + 0.17, p[1] * 0.71 + 0.23, p[2] * 1.13 + 0.31});
+  const std::string path = (dir / "open_cube.off").string();
+  {
+    std::ofstream f(path);
+    f << std::setprecision(17) << "OFF\n8 10 0\n";
+    for (const auto& p : pts) f << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+    for (std::size_t t = 2; t < CUBE_FACES.size(); ++t)
+      f << "3 " << CUBE_FACES[t][0] << ' ' << CUBE_FACES[t][1] << ' ' << CUBE_FACES[t][2] << '\n';
+  }
+  RepairReport r;
+  const Mesh m = repair_input_mesh(path, &r);
+  ASSERT_EQ(r.holes_filled, 1u);
+  ASSERT_EQ(r.hole_vertices_added, 0u);
+  ASSERT_EQ(m.number_of_vertices(), 8u);
+  std::size_t exact = 0;
+  for (const VertexIndex v : m.vertices()) {
+    const Point3& q = m.point(v);
+    for (const auto& p : pts) exact += q.x() == p[0] && q.y() == p[1] && q.z() == p[2];
+  }
+  EXPECT_EQ(exact, 8u);
 }
 
 }  // namespace

@@ -1,0 +1,133 @@
+// The OBJ reader (see obj_scan.hpp): line by line, as the OFF scan, so that every error names its
+// line and every vertex and face keeps its line for the checks' messages.
+#include "mesh/obj_scan.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <string_view>
+
+#include "mesh/off_number.hpp"
+#include "shellcontract/error.hpp"
+
+namespace shellcontract {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
+  throw InputError(path + ": " + problem + ": " + details);
+}
+
+/// A token for a message: at most 20 characters, non-printable bytes as '?'.
+std::string shorten(std::string_view s) {
+  std::string r = s.size() > 20 ? std::string(s.substr(0, 20)) + "..." : std::string(s);
+  for (char& c : r)
+    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
+  return r;
+}
+
+/// isspace of the "C" locale, whatever locale a host program (Python) has set.
+bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+/// The statements CGAL::IO::read_OBJ skips (CGAL/IO/OBJ.h): reading more or fewer files than it
+/// did would change which inputs are usable. Comments (a first token starting with '#') too.
+bool skipped_statement(std::string_view k) {
+  static constexpr std::string_view skipped[] = {
+      "vt", "vn", "vp", "bevel", "lod", "ctech", "c_interp", "usemap", "usemtl", "stech", "d_interp",
+      "mtllib", "shadow_obj", "trace_obj", "o", "g", "s", "p", "cstype", "deg", "step", "bmat", "con",
+      "curv", "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end", "surf_1", "q0_1", "q1_1",
+      "curv2d_1", "surf_2", "q0_2", "q1_2", "curv2d_2", "bsp", "bzp", "cdc", "cdp", "res"};
+  return k.front() == '#' || std::find(std::begin(skipped), std::end(skipped), k) != std::end(skipped);
+}
+
+/// A corner's vertex index as written ("3", "-1", "+2"): false unless the whole of `tok` is one
+/// that fits a long long.
+bool parse_index(std::string_view tok, long long& value) {
+  const char* p = tok.data();
+  const char* const e = p + tok.size();
+  const bool negative = p != e && *p == '-';
+  if (p != e && (*p == '+' || *p == '-')) ++p;
+  if (p == e) return false;
+  unsigned long long v = 0;
+  const unsigned long long limit = static_cast<unsigned long long>(LLONG_MAX);
+  for (; p != e; ++p) {
+    const unsigned d = static_cast<unsigned>(static_cast<unsigned char>(*p)) - '0';
+    if (d >= 10 || v > (limit - d) / 10) return false;
+    v = v * 10 + d;
+  }
+  value = negative ? -static_cast<long long>(v) : static_cast<long long>(v);
+  return true;
+}
+
+}  // namespace
+
+ObjScan scan_obj(const std::string& path, const std::string& text_in) {
+  const std::string_view text(text_in);
+  ObjScan scan;
+  std::vector<std::string_view> t;
+  std::size_t line = 0;
+  for (std::size_t pos = 0; pos < text.size();) {
+    ++line;
+    std::size_t eol = text.find('\n', pos);
+    if (eol == std::string_view::npos) eol = text.size();
+    const std::string_view s = text.substr(pos, eol - pos);
+    pos = eol + 1;
+    t.clear();
+    for (std::size_t i = 0; i < s.size();) {
+      while (i < s.size() && blank(s[i])) ++i;
+      const std::size_t start = i;
+      while (i < s.size() && !blank(s[i])) ++i;
+      if (i > start) t.push_back(s.substr(start, i - start));
+    }
+    if (t.empty()) continue;
+    if (t[0] == "v") {
+      const std::size_t i = scan.points.size();
+      auto where = [&] { return "vertex " + std::to_string(i) + " (line " + std::to_string(line) + ")"; };
+      if (t.size() < 4)
+        fail(path, "parse error", where() + " has " + std::to_string(t.size() - 1) + " numbers, expected 3 (x y z)");
+      std::array<double, 3> p{};
+      for (std::size_t k = 0; k < 3; ++k) {
+        // Hexadecimal floats are strtod's alone: CGAL's reader (a stream) refuses them, so do we.
+        if (!parse_off_number(t[k + 1], p[k]) || t[k + 1].find_first_of("xX") != std::string_view::npos)
+          fail(path, "parse error", where() + ": '" + shorten(t[k + 1]) + "' is not a number");
+        if (!std::isfinite(p[k]))
+          fail(path, "non-finite coordinate", where() + " has coordinate " + "xyz"[k] + " = " + shorten(t[k + 1]));
+      }
+      scan.points.push_back(p);
+      scan.lines.vertex_line.push_back(line);
+    } else if (t[0] == "f") {
+      const std::size_t j = scan.faces.size();
+      auto where = [&] { return "face " + std::to_string(j) + " (line " + std::to_string(line) + ")"; };
+      std::vector<std::size_t> face;
+      for (std::size_t k = 1; k < t.size() && t[k].front() != '#'; ++k) {
+        const std::string_view v = t[k].substr(0, t[k].find('/'));
+        long long i = 0;
+        if (!parse_index(v, i))
+          fail(path, "parse error", where() + ": corner '" + shorten(t[k]) + "' does not start with a vertex index");
+        const long long defined = static_cast<long long>(scan.points.size());
+        if (i == 0)
+          fail(path, "vertex index out of range", where() + " has the vertex index 0 (OBJ counts vertices from 1)");
+        if (i < 0 && defined + i < 0)
+          fail(path, "vertex index out of range", where() + " has the relative vertex index " + std::to_string(i) +
+                                                      ", but only " + std::to_string(defined) + " vertices are defined before it");
+        // Positive indices may name a vertex further down the file: checked after the last line.
+        face.push_back(static_cast<std::size_t>(i > 0 ? i - 1 : defined + i));
+      }
+      scan.faces.push_back(std::move(face));
+      scan.lines.face_line.push_back(line);
+    } else if (!skipped_statement(t[0])) {
+      fail(path, "parse error", "line " + std::to_string(line) + ": unsupported OBJ statement '" + shorten(t[0]) + "'");
+    }
+  }
+  const std::size_t nv = scan.points.size();
+  for (std::size_t j = 0; j < scan.faces.size(); ++j)
+    for (const std::size_t v : scan.faces[j])
+      if (v >= nv)
+        fail(path, "vertex index out of range",
+             "face " + std::to_string(j) + " (line " + std::to_string(scan.lines.face_line[j]) + ") refers to vertex " +
+                 std::to_string(v + 1) + ", but the file has " +
+                 (nv == 0 ? std::string("no vertices")
+                          : std::to_string(nv) + " vertices (OBJ counts from 1: 1.." + std::to_string(nv) + ")"));
+  return scan;
+}
+
+}  // namespace shellcontract
