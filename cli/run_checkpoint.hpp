@@ -8,7 +8,9 @@
 #include <iostream>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "mesh/file_safety.hpp"
 #include "run_observers.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
@@ -19,7 +21,9 @@ namespace checkpoint_signal {
 inline volatile std::sig_atomic_t received = 0;
 extern "C" inline void on_signal(int sig) {
   received = sig;
-  std::signal(sig, SIG_DFL);  // a second Ctrl-C ends the process at once
+  // A second Ctrl-C ends the process at once, removing the temporary of a checkpoint it cuts
+  // short (the save after the first one is the likely place for it).
+  end_on_next_signal(sig);
 }
 }  // namespace checkpoint_signal
 
