@@ -287,6 +287,7 @@ int command_run(int argc, char** argv) {
       throw UsageError("--export-every has no effect without --export-dir or --gltf");
     plan.inputs.push_back({"INPUT", input});
     if (options.regions == RegionSource::File) plan.inputs.push_back({"--regions", options.region_file});
+    if (!options.region_weight_file.empty()) plan.inputs.push_back({"--region-weights", options.region_weight_file});
     if (!exports.dir.empty()) {
       exports.name = std::filesystem::path(output).stem().string();
       exports.ext = ext;
