@@ -32,13 +32,16 @@ class CliCheckpointer final : public RunCheckpointer {
   /// @param path    where to save ("" : never; then signals keep their default action)
   /// @param every   frames between saves (0: only on a signal)
   /// @param resume  the checkpoint the run continues from, or nullptr
+  /// @param inputs  run_inputs of the run (its face list or weights file), for the checkpoint
   CliCheckpointer(std::string path, int every, const Checkpoint* resume, std::string input,
-                  std::uint64_t input_hash, const RunOptions& options, const CsvLog& log)
+                  std::uint64_t input_hash, std::vector<RunInput> inputs, const RunOptions& options,
+                  const CsvLog& log)
       : path_(std::move(path)),
         every_(every),
         resume_(resume),
         input_(std::move(input)),
         hash_(input_hash),
+        inputs_(std::move(inputs)),
         options_(options),
         log_(log) {
     if (path_.empty()) return;
@@ -59,7 +62,7 @@ class CliCheckpointer final : public RunCheckpointer {
 
   void save(const SavedRun& run) override {
     try {
-      write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, log_.text()});
+      write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, log_.text(), inputs_});
       saved_frame_ = frame_;
     } catch (const UsageError& e) {
       // The run goes on without it (a full disk should not cost the run); said once.
@@ -81,6 +84,7 @@ class CliCheckpointer final : public RunCheckpointer {
   const Checkpoint* resume_;
   std::string input_;
   std::uint64_t hash_;
+  std::vector<RunInput> inputs_;
   RunOptions options_;
   const CsvLog& log_;
   int frame_ = 0;  ///< the frame of the last save_due, which save() saves
