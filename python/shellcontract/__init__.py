@@ -62,8 +62,11 @@ def contract(vertices, faces, *, callback=None, **options):
     """Contracts a closed triangle mesh and returns a Result.
 
     callback(frame, vertices, metrics) is called after every step (frame = 1, 2, ...) with the
-    current positions (input units) and that frame's log row as a dict; returning False stops the
-    run (status "cancelled"). Ctrl-C stops the run cleanly and raises KeyboardInterrupt.
+    current positions (input units) and that frame's log row as a dict; returning a false value
+    stops the run (status "cancelled"): False, numpy's False_ (``v[:, 2].max() > 10``), 0.
+    Returning None (or nothing) goes on, as does any true value; a value without a truth value
+    (an array of several elements) raises its error, as ``if value:`` would. Ctrl-C stops the
+    run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
     unknown option.
 

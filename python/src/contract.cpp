@@ -229,7 +229,14 @@ class PythonObserver final : public RunObserver {
       py::dict metrics;
       for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
       const py::object answer = callback_(m.frame, positions_to_numpy(view.positions()), metrics);
-      if (answer.is(py::bool_(false))) stop_ = true;  // only False stops; None (no return) goes on
+      // A false value stops: False, numpy's False_ (a comparison's result), 0. None, what a
+      // callback without a return gives, goes on. A value with no truth value (a numpy array of
+      // several elements) raises, as `if answer:` would.
+      if (!answer.is_none()) {
+        const int truth = PyObject_IsTrue(answer.ptr());
+        if (truth < 0) throw py::error_already_set();
+        if (truth == 0) stop_ = true;
+      }
     } catch (py::error_already_set& e) {
       e.restore();  // back into the interpreter's error indicator, then kept for after the run
       keep_error();

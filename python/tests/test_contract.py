@@ -39,6 +39,19 @@ def test_returning_none_goes_on(ico2):
     assert result.status == "ok" and result.summary["frames_run"] == 6
 
 
+def test_a_numpy_false_from_the_callback_stops_the_run(ico2):
+    """Before: only Python's False stopped; np.False_ (a comparison's result) ran every frame."""
+    v, f = ico2
+    r = shellcontract.contract(v, f, frames=20, callback=lambda frame, vv, m: np.int64(frame) < 3)
+    assert r.status == "cancelled" and r.summary["frames_run"] == 3
+    r = shellcontract.contract(v, f, frames=20, callback=lambda frame, vv, m: 0 if frame == 2 else 1)
+    assert r.status == "cancelled" and r.summary["frames_run"] == 2
+    r = shellcontract.contract(v, f, frames=4, callback=lambda frame, vv, m: None)
+    assert r.status == "ok" and r.summary["frames_run"] == 4
+    with pytest.raises(ValueError, match="truth value of an array"):
+        shellcontract.contract(v, f, frames=4, callback=lambda frame, vv, m: vv[:, 2] > 0)
+
+
 def test_callback_exception_stops_and_propagates(ico2):
     vertices, faces = ico2
 
