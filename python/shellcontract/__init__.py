@@ -324,4 +324,4 @@ def write_mesh(path, vertices, faces, like=None):
     """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output.
     like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
     the new positions (UVs, normals, groups, materials, polygons, extra properties kept)."""
-    _core.write_mesh(path, vertices, faces, "" if like is None else str(like))
+    _core.write_mesh(path, vertices, faces, like)  # str or os.PathLike (or None)

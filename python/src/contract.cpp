@@ -74,6 +74,11 @@ struct ActiveRun {
   ActiveRun& operator=(const ActiveRun&) = delete;
 };
 
+/// A file name as Python takes one: a str or an os.PathLike (not bytes: a value of an option).
+bool is_path(const py::handle& value) {
+  return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
+}
+
 std::string python_name(std::string cli_name) {
   for (char& c : cli_name)
     if (c == '-') c = '_';
@@ -87,11 +92,12 @@ std::string valid_names() {
 }
 
 /// The text the CLI would receive for a Python value: bool -> on/off, float -> repr (the shortest
-/// text that reads back as the same double), int and str as they are, a sequence -> "a,b,c"
-/// (--fiber X,Y,Z).
+/// text that reads back as the same double), int and str as they are, an os.PathLike as its
+/// path, a sequence -> "a,b,c" (--fiber X,Y,Z).
 std::string option_text(const std::string& name, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) return path_argument(value, "option " + name);  // a file name
   // A numpy array or scalar goes by its Python value (an array also passes PyIndex_Check).
   if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
     return option_text(name, value.attr("tolist")());
@@ -174,8 +180,7 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
     // region_weights=W: the weights themselves (a file name goes through the table as text).
-    if (find_run_option(name) && find_run_option(name)->name == "region-weights" &&
-        !py::isinstance<py::str>(value)) {
+    if (find_run_option(name) && find_run_option(name)->name == "region-weights" && !is_path(value)) {
       options.vertex_weights = py::cast<std::vector<double>>(
           py::module_::import("numpy").attr("asarray")(value, "float64").attr("ravel")().attr("tolist")());
       options.given.insert("region_weights");
