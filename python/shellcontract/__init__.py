@@ -87,12 +87,18 @@ def contract(vertices, faces, *, callback=None, **options):
     'X,Y,Z' ('X,Y,Z;X,Y,Z' for several); None is a TypeError, no point or a coordinate that is
     not finite a ValueError (naming region_at[i]).
 
+    File names (regions, region_weights, checkpoint, resume) are a str or an os.PathLike.
+
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
-    cancels the run; resume=FILE continues such a run (the same vertices and faces; options, if
-    given, must equal the checkpoint's, threads excepted) to the result the uninterrupted run
-    gives, bit for bit, its log included (``shellcontract run --checkpoint/--resume``, whose
-    checkpoints this reads and the other way round). ValueError for a checkpoint of another
-    mesh, other options or another version, saying which.
+    cancels the run; FILE is checked before the run as the CLI checks its outputs (ValueError
+    for a missing folder, a folder in its place, an input's file). resume=FILE continues such a
+    run (the same vertices and faces; options, if given, must equal the checkpoint's, threads
+    excepted) to the result the uninterrupted run gives, bit for bit, its log included
+    (``shellcontract run --checkpoint/--resume``, whose checkpoints this reads and the other way
+    round). ValueError for a checkpoint of another mesh, other options or another version, or
+    whose face-list or weights file has changed since, saying which. Regions or weights given as
+    arrays are not in the checkpoint: give the same ones again to resume (compared by their
+    values: the regions as face sets with their strengths, the weights bit for bit).
     """
     options = dict(options)
     strengths = options.pop("region_strengths", None)
@@ -123,9 +129,12 @@ def contract(vertices, faces, *, callback=None, **options):
     prefixes = [""] * len(lists) if strengths is None else ["{!r}: ".format(s) for s in _strengths(strengths, len(lists))]
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "regions.txt")
+        # Each region's faces in ascending order: the same regions give the same file whatever
+        # the order they were listed in, and a checkpoint knows them by the file's hash.
         with open(path, "w") as f:
-            f.write("".join(p + " ".join(str(int(i)) for i in r) + "\n" for p, r in zip(prefixes, lists)))
-        return Result(_core.contract(vertices, faces, callback=callback, **dict(options, regions=path)))
+            f.write("".join(p + " ".join(str(int(i)) for i in np.sort(r)) + "\n" for p, r in zip(prefixes, lists)))
+        return Result(_core.contract(vertices, faces, callback=callback,
+                                     **dict(options, regions=path, _regions_from_arrays=True)))
 
 
 def _strengths(strengths, num_regions):

@@ -200,7 +200,8 @@ PYBIND11_MODULE(_core, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      // An input's option by Python's name too (a changed face-list file of `regions`).
+      PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());
     } catch (const UsageError& e) {
       // Options by Python's names (the library names them by field, option_table.hpp).
       PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());
