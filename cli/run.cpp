@@ -232,14 +232,7 @@ int command_run(int argc, char** argv) {
       return 0;
     }
     if (!resume_path.empty()) resume = read_checkpoint(resume_path);  // InputError: exit 2
-    if (input.empty() && !resume_path.empty()) {
-      if (resume.input == ARRAYS_INPUT)
-        throw UsageError("checkpoint " + resume_path +
-                         " was written by a run of a mesh given as arrays (Python), with no file to "
-                         "resume it from: give the mesh as INPUT (shellcontract run INPUT --resume " +
-                         resume_path + " -o OUTPUT)");
-      input = resume.input;
-    }
+    if (input.empty() && !resume_path.empty()) input = checkpoint_input(resume, resume_path);
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
     for (const OptionSpec& o : run_option_table()) {

@@ -14,6 +14,7 @@
 #include "run_observers.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
+#include "sim/checkpoint.hpp"
 
 namespace shellcontract::cli {
 
@@ -26,6 +27,16 @@ extern "C" inline void on_signal(int sig) {
   end_on_next_signal(sig);
 }
 }  // namespace checkpoint_signal
+
+/// The input of `run --resume PATH` without INPUT: the checkpoint's.
+/// @throws UsageError for a checkpoint of a mesh given as arrays (Python), which names no file
+inline std::string checkpoint_input(const Checkpoint& c, const std::string& path) {
+  if (c.input == ARRAYS_INPUT)
+    throw UsageError("checkpoint " + path +
+                     " was written by a run of a mesh given as arrays (Python), with no file to resume it "
+                     "from: give the mesh as INPUT (shellcontract run INPUT --resume " + path + " -o OUTPUT)");
+  return c.input;
+}
 
 class CliCheckpointer final : public RunCheckpointer {
  public:

@@ -26,10 +26,10 @@
 #include <vector>
 
 #include "arrays.hpp"
+#include "checkpointing.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
-#include "shellcontract/output_files.hpp"
 #include "shellcontract/report.hpp"
 #include "shellcontract/run.hpp"
 
@@ -363,90 +363,26 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   return s;
 }
 
-/// contract(checkpoint=FILE, checkpoint_every=N, resume=FILE): saves every N frames and when
-/// the run is cancelled by a signal (Ctrl-C: KeyboardInterrupt); the log travels as the CLI's
-/// CSV text.
-class PythonCheckpointer final : public RunCheckpointer {
- public:
-  PythonCheckpointer(std::string path, int every, const Checkpoint* resume, std::uint64_t hash,
-                     std::vector<RunInput> inputs, const RunOptions& options, PythonObserver& observer)
-      : path_(std::move(path)), every_(every), resume_(resume), hash_(hash), inputs_(std::move(inputs)),
-        options_(options), observer_(observer) {}
-  const Checkpoint* resume_from() const override { return resume_; }
-  bool save_due(int frame) override {
-    if (path_.empty()) return false;
-    return (every_ > 0 && frame % every_ == 0) || observer_.cancelled();
-  }
-  void save(const SavedRun& run) override {
-    write_checkpoint(path_, run, options_, CheckpointInfo{ARRAYS_INPUT, hash_, observer_.csv_text(), inputs_});
-  }
-
- private:
-  std::string path_;
-  int every_;
-  const Checkpoint* resume_;
-  std::uint64_t hash_;
-  std::vector<RunInput> inputs_;
-  RunOptions options_;
-  PythonObserver& observer_;
-};
-
 }  // namespace
 
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
                   const py::kwargs& all_kwargs) {
   if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
     throw py::type_error("callback must be callable(frame, vertices, metrics) or None");
-  std::string checkpoint_path, resume_path;
-  int checkpoint_every = 0;
-  bool regions_from_arrays = false;
   py::kwargs kwargs;
-  for (const auto& [key, value] : all_kwargs) {
-    const std::string name = key.cast<std::string>();
-    // None: not given, as for regions.
-    if (name == "checkpoint") checkpoint_path = value.is_none() ? "" : path_argument(value, "checkpoint");
-    else if (name == "resume") resume_path = value.is_none() ? "" : path_argument(value, "resume");
-    else if (name == "checkpoint_every") checkpoint_every = value.cast<int>();
-    // The package's own flag: its `regions` file is the arrays it was given, written out.
-    else if (name == "_regions_from_arrays") regions_from_arrays = PyObject_IsTrue(value.ptr()) == 1;
-    else kwargs[key] = value;
-  }
-  if (checkpoint_every < 0 || (checkpoint_every > 0 && checkpoint_path.empty()))
-    throw py::value_error("checkpoint_every: expected an integer >= 1, with checkpoint=FILE");
+  const CheckpointArguments checkpoint = take_checkpoint_arguments(all_kwargs, kwargs);
   RunOptions options = options_from_kwargs(kwargs, ", checkpoint, checkpoint_every, resume");
-  std::shared_ptr<const Checkpoint> resume;
-  if (!resume_path.empty()) {
-    resume = load_checkpoint(resume_path);
-    options = options_for_resume(*resume, options);
-    resolve_run_options(options);
-    options.sim.frame_energies = true;
-  }
-  // The files the run reads (a face list, a weights file) as it starts, recorded in its
-  // checkpoints; a resumed run's must be the checkpoint's.
-  std::vector<RunInput> inputs;
-  if (!checkpoint_path.empty() || !resume_path.empty()) {
-    inputs = run_inputs(options);
-    for (RunInput& in : inputs)
-      if (in.option == "regions" && regions_from_arrays) in.arrays = true;
-  }
-  if (resume) check_checkpoint_files(*resume, inputs);
-  // Before the run, as the CLI checks its outputs: a checkpoint that cannot be written would
-  // otherwise be found only at the first save, or after the whole run.
-  if (!checkpoint_path.empty()) {
-    std::vector<NamedFile> read;
-    if (options.regions == RegionSource::File && !regions_from_arrays) read.push_back({"regions", options.region_file});
-    if (!options.region_weight_file.empty()) read.push_back({"region_weights", options.region_weight_file});
-    check_output_files({{"checkpoint", checkpoint_path}}, read);
-  }
+  const PreparedCheckpoint prepared = prepare_checkpoint(checkpoint, options);  // before the mesh
   InputReport report;
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
   PythonObserver observer(callback);
-  if (!resume_path.empty()) {
-    check_checkpoint_input(*resume, "the vertices and faces given", mesh);
-    observer.restore_csv(checkpoint_log(*resume));
+  if (prepared.resume) {
+    check_checkpoint_input(*prepared.resume, "the vertices and faces given", mesh);
+    observer.restore_csv(checkpoint_log(*prepared.resume));
   }
-  PythonCheckpointer checkpointer(checkpoint_path, checkpoint_every, resume.get(), mesh_hash(mesh),
-                                  std::move(inputs), options, observer);
+  PythonCheckpointer checkpointer(checkpoint, prepared, mesh_hash(mesh), options,
+                                  [&observer] { return observer.csv_text(); },
+                                  [&observer] { return observer.cancelled(); });
   RunResult r;
   {
     const ActiveRun active;  // destroyed after the GIL is taken back
