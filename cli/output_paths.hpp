@@ -10,14 +10,12 @@
 
 #include "json_writer.hpp"
 #include "mesh/file_safety.hpp"
+#include "shellcontract/output_files.hpp"
 
 namespace shellcontract::cli {
 
-/// One file a command reads or writes and the option that names it.
-struct PlannedOutput {
-  std::string option;  ///< e.g. "-o" or "--summary" ("INPUT" or "--regions" for an input)
-  std::string path;
-};
+/// One file a command reads or writes and the option that names it (check_output_files).
+using PlannedOutput = NamedFile;
 
 /// The frame files of --export-dir: DIR/<stem>_<frame>.<ext>, the frame zero-padded to the
 /// digits of max_frame (frame_file_name). Any frame from 0 to max_frame may be written (a run
@@ -35,13 +33,9 @@ struct OutputPlan {
   PlannedFrames frames;
 };
 
-/// Checks a command's outputs by file identity (device and inode; for a file that does not exist
-/// yet, its folder's device and inode and its name), so that hard links, symbolic links and bind
-/// mounts are seen through: no output (every frame name included) may be an input or another
-/// output. An existing output must be a writable regular file (a device, FIFO, socket or folder
-/// is never replaced). Each output folder is probed by creating and removing a file with a name
-/// of the output's length, so that a missing or read-only folder, a parent that is a file or a
-/// name too long is found now. Creates nothing that stays (the export folder is made by
+/// check_output_files (the library's, shared with Python) and the export folder's frames: no
+/// frame name may be an input or an output, and the folder (or the nearest existing parent that
+/// will hold it) must take new files. Creates nothing that stays (the export folder is made by
 /// prepare_export_folder).
 /// @throws UsageError naming the option, the path and the reason (exit code 1)
 void check_planned_outputs(const OutputPlan& plan);

@@ -186,6 +186,7 @@ int command_run(int argc, char** argv) {
   std::string checkpoint_path, resume_path;
   int checkpoint_every = 0;
   Checkpoint resume;
+  std::vector<RunInput> inputs;
   po::options_description desc(RUN_USAGE, 100, 50);
   desc.add_options()("help,h", "show this help")(
       "output,o", po::value(&output)->value_name("FILE"),
@@ -222,8 +223,8 @@ int command_run(int argc, char** argv) {
       "with --checkpoint: frames between saves (default: only on a signal)")(
       "resume", po::value(&resume_path)->value_name("FILE"),
       "continue the run saved in FILE (its input, unless INPUT is given, and its options; options "
-      "given must equal its own, --threads excepted): the same result, to the byte, as the run "
-      "that was not interrupted");
+      "given must equal its own, --threads excepted; the face list or weights file must not have "
+      "changed): the same result, to the byte, as the run that was not interrupted");
   FieldColour colour = FieldColour::MeanCurvature;
   std::unique_ptr<ExportFolderLock> export_lock;  // held until the run's files are written
   try {
@@ -233,7 +234,7 @@ int command_run(int argc, char** argv) {
       return 0;
     }
     if (!resume_path.empty()) resume = read_checkpoint(resume_path);  // InputError: exit 2
-    if (input.empty() && !resume_path.empty()) input = resume.input;
+    if (input.empty() && !resume_path.empty()) input = checkpoint_input(resume, resume_path);
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
     for (const OptionSpec& o : run_option_table()) {
@@ -249,6 +250,10 @@ int command_run(int argc, char** argv) {
     }
     if (!resume_path.empty()) options = options_for_resume(resume, options);
     resolve_run_options(options);
+    // The face list or weights file as the run starts, recorded in its checkpoints; a resumed
+    // run's must be the checkpoint's (InputError: exit 2).
+    if (!checkpoint_path.empty() || !resume_path.empty()) inputs = run_inputs(options);
+    if (!resume_path.empty()) check_checkpoint_files(resume, inputs);
     // Only the CSV log reports the energies; a checkpointed run keeps them for the log of the
     // run that resumes it (they are measured, the state does not depend on them).
     options.sim.frame_energies = !log_path.empty() || !checkpoint_path.empty();
@@ -289,6 +294,7 @@ int command_run(int argc, char** argv) {
       throw UsageError("--export-every has no effect without --export-dir or --gltf");
     plan.inputs.push_back({"INPUT", input});
     if (options.regions == RegionSource::File) plan.inputs.push_back({"--regions", options.region_file});
+    if (!options.region_weight_file.empty()) plan.inputs.push_back({"--region-weights", options.region_weight_file});
     if (!exports.dir.empty()) {
       exports.name = std::filesystem::path(output).stem().string();
       exports.ext = ext;
@@ -305,7 +311,7 @@ int command_run(int argc, char** argv) {
   } catch (const UsageError& e) {
     return usage_error("run", spell_options(e.what(), OptionSpelling::Cli));
   } catch (const InputError& e) {
-    std::cerr << "shellcontract run: " << e.what() << '\n';
+    std::cerr << "shellcontract run: " << spell_options(e.what(), OptionSpelling::Cli) << '\n';
     return static_cast<int>(ExitCode::BadInput);
   }
 
@@ -383,7 +389,7 @@ int command_run(int argc, char** argv) {
     }
     CliCheckpointer checkpointer(checkpoint_path, checkpoint_every,
                                  resume_path.empty() ? nullptr : &resume, input, mesh_hash(mesh),
-                                 options, csv);
+                                 inputs, options, csv);
     FieldsWriter fields(fields_prefix, colour);
     if (!fields_prefix.empty()) observers.add(fields);
     FrameExporter exporter(exports, mesh, options.sim.frames);
@@ -485,7 +491,7 @@ int command_run(int argc, char** argv) {
     }
     return r.exit_code();
   } catch (const InputError& e) {
-    std::cerr << "shellcontract run: " << e.what() << '\n';
+    std::cerr << "shellcontract run: " << spell_options(e.what(), OptionSpelling::Cli) << '\n';
     return static_cast<int>(ExitCode::BadInput);
   } catch (const UsageError& e) {
     std::cerr << "shellcontract run: " << spell_options(e.what(), OptionSpelling::Cli) << '\n';

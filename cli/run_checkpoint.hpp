@@ -8,10 +8,13 @@
 #include <iostream>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "mesh/file_safety.hpp"
 #include "run_observers.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
+#include "sim/checkpoint.hpp"
 
 namespace shellcontract::cli {
 
@@ -19,22 +22,37 @@ namespace checkpoint_signal {
 inline volatile std::sig_atomic_t received = 0;
 extern "C" inline void on_signal(int sig) {
   received = sig;
-  std::signal(sig, SIG_DFL);  // a second Ctrl-C ends the process at once
+  // A second Ctrl-C ends the process at once, removing the temporary of a checkpoint it cuts
+  // short (the save after the first one is the likely place for it).
+  end_on_next_signal(sig);
 }
 }  // namespace checkpoint_signal
+
+/// The input of `run --resume PATH` without INPUT: the checkpoint's.
+/// @throws UsageError for a checkpoint of a mesh given as arrays (Python), which names no file
+inline std::string checkpoint_input(const Checkpoint& c, const std::string& path) {
+  if (c.input == ARRAYS_INPUT)
+    throw UsageError("checkpoint " + path +
+                     " was written by a run of a mesh given as arrays (Python), with no file to resume it "
+                     "from: give the mesh as INPUT (shellcontract run INPUT --resume " + path + " -o OUTPUT)");
+  return c.input;
+}
 
 class CliCheckpointer final : public RunCheckpointer {
  public:
   /// @param path    where to save ("" : never; then signals keep their default action)
   /// @param every   frames between saves (0: only on a signal)
   /// @param resume  the checkpoint the run continues from, or nullptr
+  /// @param inputs  run_inputs of the run (its face list or weights file), for the checkpoint
   CliCheckpointer(std::string path, int every, const Checkpoint* resume, std::string input,
-                  std::uint64_t input_hash, const RunOptions& options, const CsvLog& log)
+                  std::uint64_t input_hash, std::vector<RunInput> inputs, const RunOptions& options,
+                  const CsvLog& log)
       : path_(std::move(path)),
         every_(every),
         resume_(resume),
         input_(std::move(input)),
         hash_(input_hash),
+        inputs_(std::move(inputs)),
         options_(options),
         log_(log) {
     if (path_.empty()) return;
@@ -55,7 +73,7 @@ class CliCheckpointer final : public RunCheckpointer {
 
   void save(const SavedRun& run) override {
     try {
-      write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, log_.text()});
+      write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, log_.text(), inputs_});
       saved_frame_ = frame_;
     } catch (const UsageError& e) {
       // The run goes on without it (a full disk should not cost the run); said once.
@@ -77,6 +95,7 @@ class CliCheckpointer final : public RunCheckpointer {
   const Checkpoint* resume_;
   std::string input_;
   std::uint64_t hash_;
+  std::vector<RunInput> inputs_;
   RunOptions options_;
   const CsvLog& log_;
   int frame_ = 0;  ///< the frame of the last save_due, which save() saves

@@ -1,13 +1,15 @@
 // Runs that resume to the same bytes (docs/design/sweeps.md, "Checkpoints"): a run's whole state
 // between two steps saved to one file, atomically, and a run continued from that file that takes
 // the same steps as the run that wrote it. A checkpoint names the tool's version, a hash of the
-// input mesh and the run's options; one of another version, input or options is refused, saying
-// which. The file's contents are the library's own: a caller reads and writes them only here.
+// input mesh, a hash of every other file the run reads (a face list, a weights file) and the
+// run's options; one of another version, input or options is refused, saying which. The file's
+// contents are the library's own: a caller reads and writes them only here.
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "shellcontract/mesh.hpp"
 #include "shellcontract/options.hpp"
@@ -16,6 +18,10 @@ namespace shellcontract {
 
 struct Checkpoint;  ///< a saved run, read by load_checkpoint
 struct SavedRun;    ///< a run's state at a step boundary, handed to RunCheckpointer::save
+
+/// CheckpointInfo::input of a run of a mesh given as arrays (Python's vertices and faces): there
+/// is no file to resume it from, so a resumed run must be given the mesh.
+inline constexpr const char* ARRAYS_INPUT = "<arrays>";
 
 /// A 64-bit hash of a mesh's vertex positions (their bits) and faces (vertex ids in order): what
 /// a checkpoint records of its input.
@@ -31,8 +37,10 @@ int checkpoint_frame(const Checkpoint& c);
 const std::string& checkpoint_log(const Checkpoint& c);
 
 /// The options a resumed run runs with: the checkpoint's given options, then `command_line`'s
-/// given ones on top (its threads, or the same values again).
-/// @throws UsageError naming every option whose value differs from the checkpoint's
+/// given ones on top (its threads, or the same values again). A face-list or weights file is
+/// compared by its contents (check_checkpoint_files), not by its path, as the mesh is.
+/// @throws UsageError naming every option whose value differs from the checkpoint's, or one the
+///         checkpoint's run was given as arrays (RunInput::arrays) that `command_line` lacks
 RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_line);
 
 /// Refuses a checkpoint of another version or another input, saying which.
@@ -40,11 +48,35 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
 /// @throws InputError
 void check_checkpoint_input(const Checkpoint& c, const std::string& input_name, const Mesh& mesh);
 
+/// A file a run reads besides the mesh (--regions FILE, --region-weights FILE), or the numbers
+/// given in its place (Python's arrays), with a hash of its contents: what a checkpoint records
+/// of it, so that a resumed run refuses a file changed in between.
+struct RunInput {
+  std::string option;      ///< the option's field: "regions" or "region_weights"
+  std::string file;        ///< the file the run reads ("" for weights given as numbers)
+  bool arrays = false;     ///< given as arrays (Python): `file`, if any, is a temporary copy
+  std::uint64_t hash = 0;  ///< FNV-1a of the file's bytes, or of the numbers' bits
+};
+
+/// The inputs of a run with `options` (resolved) besides its mesh: the face-list file, the
+/// weights file or the weights given as numbers (arrays set for the latter). A caller that
+/// wrote arrays into a temporary face-list file (Python) sets `arrays` on that entry itself.
+/// @throws InputError naming a file that cannot be read
+std::vector<RunInput> run_inputs(const RunOptions& options);
+
+/// Refuses a checkpoint whose run read other contents than `inputs` (run_inputs of the resumed
+/// run, after options_for_resume), naming the file or the option given as arrays; and one
+/// written before checkpoints recorded their inputs (format 1) when `inputs` is not empty,
+/// since those files cannot be checked.
+/// @throws InputError
+void check_checkpoint_files(const Checkpoint& c, const std::vector<RunInput>& inputs);
+
 /// What a checkpoint records besides the run's state and options.
 struct CheckpointInfo {
-  std::string input;             ///< the input as the saving run names it (its path)
+  std::string input;             ///< the input as the saving run names it (its path, ARRAYS_INPUT)
   std::uint64_t input_hash = 0;  ///< mesh_hash of the mesh it runs
   std::string log;               ///< the caller's log of the frames so far (the CLI: its CSV)
+  std::vector<RunInput> inputs;  ///< run_inputs of the run, taken before it started
 };
 
 /// Writes `run` with the options it runs with and `info`, whole or not at all (a temporary file

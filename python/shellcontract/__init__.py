@@ -62,8 +62,11 @@ def contract(vertices, faces, *, callback=None, **options):
     """Contracts a closed triangle mesh and returns a Result.
 
     callback(frame, vertices, metrics) is called after every step (frame = 1, 2, ...) with the
-    current positions (input units) and that frame's log row as a dict; returning False stops the
-    run (status "cancelled"). Ctrl-C stops the run cleanly and raises KeyboardInterrupt.
+    current positions (input units) and that frame's log row as a dict; returning a false value
+    stops the run (status "cancelled"): False, numpy's False_ (``v[:, 2].max() > 10``), 0.
+    Returning None (or nothing) goes on, as does any true value; a value without a truth value
+    (an array of several elements) raises its error, as ``if value:`` would. Ctrl-C stops the
+    run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
     unknown option.
 
@@ -84,12 +87,18 @@ def contract(vertices, faces, *, callback=None, **options):
     'X,Y,Z' ('X,Y,Z;X,Y,Z' for several); None is a TypeError, no point or a coordinate that is
     not finite a ValueError (naming region_at[i]).
 
+    File names (regions, region_weights, checkpoint, resume) are a str or an os.PathLike.
+
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
-    cancels the run; resume=FILE continues such a run (the same vertices and faces; options, if
-    given, must equal the checkpoint's, threads excepted) to the result the uninterrupted run
-    gives, bit for bit, its log included (``shellcontract run --checkpoint/--resume``, whose
-    checkpoints this reads and the other way round). ValueError for a checkpoint of another
-    mesh, other options or another version, saying which.
+    cancels the run; FILE is checked before the run as the CLI checks its outputs (ValueError
+    for a missing folder, a folder in its place, an input's file). resume=FILE continues such a
+    run (the same vertices and faces; options, if given, must equal the checkpoint's, threads
+    excepted) to the result the uninterrupted run gives, bit for bit, its log included
+    (``shellcontract run --checkpoint/--resume``, whose checkpoints this reads and the other way
+    round). ValueError for a checkpoint of another mesh, other options or another version, or
+    whose face-list or weights file has changed since, saying which. Regions or weights given as
+    arrays are not in the checkpoint: give the same ones again to resume (compared by their
+    values: the regions as face sets with their strengths, the weights bit for bit).
     """
     options = dict(options)
     strengths = options.pop("region_strengths", None)
@@ -120,9 +129,12 @@ def contract(vertices, faces, *, callback=None, **options):
     prefixes = [""] * len(lists) if strengths is None else ["{!r}: ".format(s) for s in _strengths(strengths, len(lists))]
     with tempfile.TemporaryDirectory() as tmp:
         path = os.path.join(tmp, "regions.txt")
+        # Each region's faces in ascending order: the same regions give the same file whatever
+        # the order they were listed in, and a checkpoint knows them by the file's hash.
         with open(path, "w") as f:
-            f.write("".join(p + " ".join(str(int(i)) for i in r) + "\n" for p, r in zip(prefixes, lists)))
-        return Result(_core.contract(vertices, faces, callback=callback, **dict(options, regions=path)))
+            f.write("".join(p + " ".join(str(int(i)) for i in np.sort(r)) + "\n" for p, r in zip(prefixes, lists)))
+        return Result(_core.contract(vertices, faces, callback=callback,
+                                     **dict(options, regions=path, _regions_from_arrays=True)))
 
 
 def _strengths(strengths, num_regions):
@@ -321,4 +333,4 @@ def write_mesh(path, vertices, faces, like=None):
     """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output.
     like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
     the new positions (UVs, normals, groups, materials, polygons, extra properties kept)."""
-    _core.write_mesh(path, vertices, faces, "" if like is None else str(like))
+    _core.write_mesh(path, vertices, faces, like)  # str or os.PathLike (or None)

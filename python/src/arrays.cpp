@@ -107,4 +107,15 @@ Positions positions_from_numpy(const py::handle& vertices) {
   return x;
 }
 
+std::string path_argument(const py::handle& path, const std::string& what) {
+  if (!py::isinstance<py::str>(path) && !py::isinstance<py::bytes>(path) &&
+      !PyObject_HasAttrString(path.ptr(), "__fspath__"))
+    throw py::type_error(what + " must be a str or an os.PathLike, got " +
+                         std::string(py::str(path.get_type().attr("__name__"))));
+  const py::object p = py::module_::import("os").attr("fspath")(path);
+  const std::string s = py::isinstance<py::bytes>(p) ? std::string(p.cast<py::bytes>()) : p.cast<std::string>();
+  if (s.find('\0') != std::string::npos) throw py::value_error(what + " must not hold a NUL byte");
+  return s;
+}
+
 }  // namespace shellcontract::python

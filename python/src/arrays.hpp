@@ -1,10 +1,11 @@
-// numpy arrays <-> the library's Mesh and Positions for the Python module.
+// numpy arrays <-> the library's Mesh and Positions for the Python module, and file names.
 #pragma once
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <cstdint>
+#include <string>
 
 #include "shellcontract/mesh.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -33,5 +34,10 @@ py::array_t<std::int64_t> faces_to_numpy(const Mesh& mesh);
 
 /// The positions of an N by 3 array as the library's Positions (a copy).
 Positions positions_from_numpy(const py::handle& vertices);
+
+/// A file path from Python: str or os.PathLike (bytes too), as os.fspath takes it; TypeError for
+/// anything else (None must not become a file named "None"), ValueError for a NUL byte. `what`
+/// names the argument in the messages ("path", "checkpoint").
+std::string path_argument(const py::handle& path, const std::string& what = "path");
 
 }  // namespace shellcontract::python

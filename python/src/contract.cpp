@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "arrays.hpp"
+#include "checkpointing.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
@@ -74,6 +75,11 @@ struct ActiveRun {
   ActiveRun& operator=(const ActiveRun&) = delete;
 };
 
+/// A file name as Python takes one: a str or an os.PathLike (not bytes: a value of an option).
+bool is_path(const py::handle& value) {
+  return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
+}
+
 std::string python_name(std::string cli_name) {
   for (char& c : cli_name)
     if (c == '-') c = '_';
@@ -87,11 +93,12 @@ std::string valid_names() {
 }
 
 /// The text the CLI would receive for a Python value: bool -> on/off, float -> repr (the shortest
-/// text that reads back as the same double), int and str as they are, a sequence -> "a,b,c"
-/// (--fiber X,Y,Z).
+/// text that reads back as the same double), int and str as they are, an os.PathLike as its
+/// path, a sequence -> "a,b,c" (--fiber X,Y,Z).
 std::string option_text(const std::string& name, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  if (py::hasattr(value, "__fspath__")) return path_argument(value, "option " + name);  // a file name
   // A numpy array or scalar goes by its Python value (an array also passes PyIndex_Check).
   if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
     return option_text(name, value.attr("tolist")());
@@ -174,8 +181,7 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
     // region_weights=W: the weights themselves (a file name goes through the table as text).
-    if (find_run_option(name) && find_run_option(name)->name == "region-weights" &&
-        !py::isinstance<py::str>(value)) {
+    if (find_run_option(name) && find_run_option(name)->name == "region-weights" && !is_path(value)) {
       options.vertex_weights = py::cast<std::vector<double>>(
           py::module_::import("numpy").attr("asarray")(value, "float64").attr("ravel")().attr("tolist")());
       options.given.insert("region_weights");
@@ -229,7 +235,14 @@ class PythonObserver final : public RunObserver {
       py::dict metrics;
       for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
       const py::object answer = callback_(m.frame, positions_to_numpy(view.positions()), metrics);
-      if (answer.is(py::bool_(false))) stop_ = true;  // only False stops; None (no return) goes on
+      // A false value stops: False, numpy's False_ (a comparison's result), 0. None, what a
+      // callback without a return gives, goes on. A value with no truth value (a numpy array of
+      // several elements) raises, as `if answer:` would.
+      if (!answer.is_none()) {
+        const int truth = PyObject_IsTrue(answer.ptr());
+        if (truth < 0) throw py::error_already_set();
+        if (truth == 0) stop_ = true;
+      }
     } catch (py::error_already_set& e) {
       e.restore();  // back into the interpreter's error indicator, then kept for after the run
       keep_error();
@@ -350,69 +363,26 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   return s;
 }
 
-/// contract(checkpoint=FILE, checkpoint_every=N, resume=FILE): saves every N frames and when
-/// the run is cancelled by a signal (Ctrl-C: KeyboardInterrupt); the log travels as the CLI's
-/// CSV text.
-class PythonCheckpointer final : public RunCheckpointer {
- public:
-  PythonCheckpointer(std::string path, int every, const Checkpoint* resume, std::uint64_t hash,
-                     const RunOptions& options, PythonObserver& observer)
-      : path_(std::move(path)), every_(every), resume_(resume), hash_(hash), options_(options),
-        observer_(observer) {}
-  const Checkpoint* resume_from() const override { return resume_; }
-  bool save_due(int frame) override {
-    if (path_.empty()) return false;
-    return (every_ > 0 && frame % every_ == 0) || observer_.cancelled();
-  }
-  void save(const SavedRun& run) override {
-    write_checkpoint(path_, run, options_, CheckpointInfo{"<arrays>", hash_, observer_.csv_text()});
-  }
-
- private:
-  std::string path_;
-  int every_;
-  const Checkpoint* resume_;
-  std::uint64_t hash_;
-  RunOptions options_;
-  PythonObserver& observer_;
-};
-
 }  // namespace
 
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
                   const py::kwargs& all_kwargs) {
   if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
     throw py::type_error("callback must be callable(frame, vertices, metrics) or None");
-  std::string checkpoint_path, resume_path;
-  int checkpoint_every = 0;
   py::kwargs kwargs;
-  for (const auto& [key, value] : all_kwargs) {
-    const std::string name = key.cast<std::string>();
-    if (name == "checkpoint") checkpoint_path = py::str(value);
-    else if (name == "resume") resume_path = py::str(value);
-    else if (name == "checkpoint_every") checkpoint_every = value.cast<int>();
-    else kwargs[key] = value;
-  }
-  if (checkpoint_every < 0 || (checkpoint_every > 0 && checkpoint_path.empty()))
-    throw py::value_error("checkpoint_every: expected an integer >= 1, with checkpoint=FILE");
+  const CheckpointArguments checkpoint = take_checkpoint_arguments(all_kwargs, kwargs);
   RunOptions options = options_from_kwargs(kwargs, ", checkpoint, checkpoint_every, resume");
-  std::shared_ptr<const Checkpoint> resume;
-  if (!resume_path.empty()) {
-    resume = load_checkpoint(resume_path);
-    options = options_for_resume(*resume, options);
-    resolve_run_options(options);
-    options.sim.frame_energies = true;
-  }
+  const PreparedCheckpoint prepared = prepare_checkpoint(checkpoint, options);  // before the mesh
   InputReport report;
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
   PythonObserver observer(callback);
-  if (!resume_path.empty()) {
-    check_checkpoint_input(*resume, "the vertices and faces given", mesh);
-    observer.restore_csv(checkpoint_log(*resume));
+  if (prepared.resume) {
+    check_checkpoint_input(*prepared.resume, "the vertices and faces given", mesh);
+    observer.restore_csv(checkpoint_log(*prepared.resume));
   }
-  PythonCheckpointer checkpointer(checkpoint_path, checkpoint_every,
-                                  resume.get(), mesh_hash(mesh), options,
-                                  observer);
+  PythonCheckpointer checkpointer(checkpoint, prepared, mesh_hash(mesh), options,
+                                  [&observer] { return observer.csv_text(); },
+                                  [&observer] { return observer.cancelled(); });
   RunResult r;
   {
     const ActiveRun active;  // destroyed after the GIL is taken back

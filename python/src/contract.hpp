@@ -17,8 +17,8 @@ namespace py = pybind11;
 /// Contracts the mesh (vertices N by 3, faces M by 3) with the keyword options (the table's names
 /// with underscores; values as numbers, strings or bools, turned into the text the CLI would get).
 /// The GIL is released during the run; `callback(frame, vertices, metrics)` runs after each step
-/// with the GIL held, and returning False cancels the run. A KeyboardInterrupt cancels the run and
-/// is raised when it has returned.
+/// with the GIL held, and returning a false value (False, numpy's False_, 0; not None) cancels
+/// the run. A KeyboardInterrupt cancels the run and is raised when it has returned.
 /// @return dict with vertices, faces, log (column -> array), summary (dict), status
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
                   const py::kwargs& options);

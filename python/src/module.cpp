@@ -158,27 +158,15 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
   return out;
 }
 
-/// A file path from Python: str or os.PathLike (bytes too), as os.fspath takes it; TypeError for
-/// anything else (None must not become a file named "None"), ValueError for a NUL byte.
-std::string path_argument(const py::handle& path) {
-  if (!py::isinstance<py::str>(path) && !py::isinstance<py::bytes>(path) &&
-      !PyObject_HasAttrString(path.ptr(), "__fspath__"))
-    throw py::type_error("path must be a str or an os.PathLike, got " +
-                         std::string(py::str(path.get_type().attr("__name__"))));
-  const py::object p = py::module_::import("os").attr("fspath")(path);
-  const std::string s = py::isinstance<py::bytes>(p) ? std::string(p.cast<py::bytes>()) : p.cast<std::string>();
-  if (s.find('\0') != std::string::npos) throw py::value_error("path must not hold a NUL byte");
-  return s;
-}
-
 py::tuple read_mesh(const py::handle& path) {
   const Mesh mesh = read_input_mesh(path_argument(path));
   return py::make_tuple(positions_to_numpy(positions_from_mesh(mesh)), faces_to_numpy(mesh));
 }
 
 void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py::handle& faces,
-                const std::string& like) {
+                const py::handle& like_arg) {
   const std::string path = path_argument(path_arg);
+  const std::string like = like_arg.is_none() ? std::string() : path_argument(like_arg, "like");
   // The faces are written as given (no reorientation): this writes a result back.
   const Mesh mesh = mesh_from_numpy(vertices, faces, nullptr, /*reorient=*/false);
   if (!like.empty()) {
@@ -212,7 +200,8 @@ PYBIND11_MODULE(_core, m) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const InputError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      // An input's option by Python's name too (a changed face-list file of `regions`).
+      PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());
     } catch (const UsageError& e) {
       // Options by Python's names (the library names them by field, option_table.hpp).
       PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());
@@ -228,5 +217,5 @@ PYBIND11_MODULE(_core, m) {
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));
   m.def("regions", &regions, py::arg("vertices"), py::arg("faces"));
   m.def("read_mesh", &read_mesh, py::arg("path"));
-  m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::arg("like") = "");
+  m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::arg("like") = py::none());
 }

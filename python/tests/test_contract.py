@@ -39,6 +39,19 @@ def test_returning_none_goes_on(ico2):
     assert result.status == "ok" and result.summary["frames_run"] == 6
 
 
+def test_a_numpy_false_from_the_callback_stops_the_run(ico2):
+    """Before: only Python's False stopped; np.False_ (a comparison's result) ran every frame."""
+    v, f = ico2
+    r = shellcontract.contract(v, f, frames=20, callback=lambda frame, vv, m: np.int64(frame) < 3)
+    assert r.status == "cancelled" and r.summary["frames_run"] == 3
+    r = shellcontract.contract(v, f, frames=20, callback=lambda frame, vv, m: 0 if frame == 2 else 1)
+    assert r.status == "cancelled" and r.summary["frames_run"] == 2
+    r = shellcontract.contract(v, f, frames=4, callback=lambda frame, vv, m: None)
+    assert r.status == "ok" and r.summary["frames_run"] == 4
+    with pytest.raises(ValueError, match="truth value of an array"):
+        shellcontract.contract(v, f, frames=4, callback=lambda frame, vv, m: vv[:, 2] > 0)
+
+
 def test_callback_exception_stops_and_propagates(ico2):
     vertices, faces = ico2
 
@@ -224,3 +237,25 @@ def test_delta_auto_and_the_contact_distance_used(ico2):
     assert result.summary["contact_distance"] == 5e-5
     result = shellcontract.contract(vertices, faces, frames=0, collisions=False)
     assert result.summary["contact_distance"] == 0.0
+
+
+def test_file_names_may_be_path_objects(tmp_path, ico2):
+    """Before: regions=Path raised 'option regions: expected a number, a string or a bool',
+    region_weights=Path a TypeError from float()."""
+    v, f = ico2
+    reg = tmp_path / "reg.txt"
+    reg.write_text("0 1 2 3 4\n")
+    by_path = shellcontract.contract(v, f, regions=reg, frames=10, pressure=0)
+    by_str = shellcontract.contract(v, f, regions=str(reg), frames=10, pressure=0)
+    np.testing.assert_array_equal(by_path.vertices, by_str.vertices)
+    weights = tmp_path / "w.txt"
+    weights.write_text("".join("1\n" if i < 5 else "0\n" for i in range(len(v))))
+    by_path = shellcontract.contract(v, f, region_weights=weights, frames=10, pressure=0)
+    by_str = shellcontract.contract(v, f, region_weights=str(weights), frames=10, pressure=0)
+    np.testing.assert_array_equal(by_path.vertices, by_str.vertices)
+    ckpt = tmp_path / "c.ckpt"
+    shellcontract.contract(v, f, callback=lambda fr, vv, m: fr < 4, checkpoint=ckpt,
+                           checkpoint_every=4, regions=reg, frames=10, pressure=0)
+    resumed = shellcontract.contract(v, f, resume=ckpt)
+    whole = shellcontract.contract(v, f, regions=reg, frames=10, pressure=0)
+    np.testing.assert_array_equal(resumed.vertices, whole.vertices)

@@ -1,4 +1,5 @@
 """frames(), check(), regions(), read_mesh() and write_mesh(), each against the CLI's answer."""
+import pathlib
 import re
 import subprocess
 
@@ -152,6 +153,18 @@ def test_write_then_read_gives_the_same_arrays(ico2, tmp_path):
 def test_read_mesh_refuses_like_the_cli(mesh_dir):
     with pytest.raises(ValueError, match="non-finite coordinate"):
         shellcontract.read_mesh(mesh_dir / "bad" / "nan.off")
+
+
+def test_a_file_without_extension_is_said_to_have_none(tmp_path):
+    """Before: "unknown extension: '.'"."""
+    plain = tmp_path / "mesh_without_extension"
+    plain.write_text("OFF\n")
+    with pytest.raises(ValueError, match=r"has no extension: expected \.off, \.obj, \.ply or \.stl") as e:
+        shellcontract.read_mesh(plain)
+    assert "'.'" not in str(e.value)
+    with pytest.raises(ValueError, match="unknown extension: '.xyz'"):
+        (tmp_path / "m.xyz").write_text("x")
+        shellcontract.read_mesh(pathlib.Path(tmp_path / "m.xyz"))
 
 
 def off_arrays(path):

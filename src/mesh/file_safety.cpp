@@ -162,6 +162,13 @@ void unregister_temporary(int slot) {
   slot_live[slot].store(false, std::memory_order_release);
 }
 
+void end_on_next_signal(int sig) {
+  struct sigaction ours {};
+  ours.sa_handler = remove_temporaries_and_reraise;
+  sigemptyset(&ours.sa_mask);
+  ::sigaction(sig, &ours, nullptr);
+}
+
 // ------------------------------------------------------------------------------------ reading
 
 namespace {

@@ -44,6 +44,13 @@ int register_temporary(const std::string& path);
 /// Forgets a slot of register_temporary (after the file was renamed or removed).
 void unregister_temporary(int slot);
 
+/// For a program whose own SIGINT or SIGTERM handler lets it stop at its own pace (a run that
+/// saves its checkpoint first): called from that handler, gives the next `sig` the default
+/// action (the process ends at once) with the registered temporaries removed first, which the
+/// handler installed by register_temporary would not do, `sig` having had a handler of the
+/// program's own then. Async-signal-safe.
+void end_on_next_signal(int sig);
+
 /// The whole content of a regular file. Folders, devices, FIFOs and sockets are refused before
 /// anything is read (a FIFO is not even opened for long: O_NONBLOCK), so /dev/zero or a pipe
 /// that never ends cannot fill the memory. Every read is checked: a read error or a file larger

@@ -234,6 +234,8 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl") {
       // What the path is (missing, a folder, a device) says more than its extension does.
       regular_file_size(path);
+      // The format is told by the extension alone, so a file without one names none.
+      if (ext.empty()) fail(path, "the file name has no extension", "expected .off, .obj, .ply or .stl");
       fail(path, "unknown extension", "'." + ext + "' (expected .off, .obj, .ply or .stl)");
     }
     const auto start = std::chrono::steady_clock::now();

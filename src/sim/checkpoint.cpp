@@ -1,12 +1,10 @@
 #include "sim/checkpoint.hpp"
 
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <memory>
-#include <sstream>
 #include <type_traits>
 
+#include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
@@ -23,23 +21,18 @@ namespace {
 // everything before it (a truncated or damaged file is refused, not resumed into another run).
 // Numbers are the machine's own bytes: a checkpoint moves between machines of one architecture
 // (the sweep's workers), where the doubles read back bit for bit.
+// Format 2 added the run's inputs (RunInput) after the input's hash. Format 1 is still read:
+// the tool's version did not change with it, so checkpoints of format 1 can be waiting to be
+// resumed (a sweep's); check_checkpoint_files refuses them only where there is a file to check.
 constexpr char MAGIC[] = "SHELLCONTRACT-CHECKPOINT\n";
-constexpr std::uint32_t FORMAT = 1;
+constexpr std::uint32_t FORMAT = 2;
+constexpr std::uint32_t FORMAT_WITHOUT_INPUTS = 1;
 // Options that do not change a run's result (the library's guarantee: the same bytes at any
 // thread count): a run may resume with other values.
 constexpr const char* RESULT_NEUTRAL = "threads";
 
 static_assert(std::is_trivially_copyable_v<RunTotals>,
               "RunTotals is saved as its bytes; a member that is not (a vector) needs a field");
-
-std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ull) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= p[i];
-    h *= 1099511628211ull;
-  }
-  return h;
-}
 
 class Writer {
  public:
@@ -177,6 +170,15 @@ std::string describe(const OptionValues& o, const std::string& name) {
 
 const char* checkpoint_tool_version() { return SHELLCONTRACT_VERSION; }
 
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= p[i];
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
 std::uint64_t mesh_hash(const Mesh& mesh) {
   std::uint64_t h = fnv1a("mesh", 4);
   for (VertexIndex v : mesh.vertices()) {
@@ -209,10 +211,33 @@ OptionValues resolved_options(RunOptions options) {
 }
 
 RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_line) {
+  // An option the checkpoint's run was given as arrays (Python) holds a temporary file or
+  // nothing in the checkpoint: only the caller can give it again.
+  for (const RunInput& in : c.inputs)
+    if (in.arrays && !command_line.given.count(in.option))
+      throw UsageError("the checkpoint's `" + in.option +
+                       "` were given as arrays (from Python), which it does not hold: give the same `" +
+                       in.option + "` again");
+  const auto given_as_arrays = [&](const std::string& name) {
+    for (const RunInput& in : c.inputs)
+      if (in.arrays && in.option == option_field(name)) return true;
+    return false;
+  };
   RunOptions options;
-  for (const auto& [name, value] : c.given) set_run_option(options, name, value);
+  for (const auto& [name, value] : c.given)
+    // Weights given as numbers have no text (format 1 recorded them as an empty file name).
+    if (!given_as_arrays(name) && !(name == "region-weights" && value.empty()))
+      set_run_option(options, name, value);
   for (const OptionSpec& o : run_option_table())
-    if (command_line.given.count(option_field(o.name))) o.set(options, o.get(command_line));
+    if (command_line.given.count(option_field(o.name))) {
+      if (o.name == "region-weights" && command_line.region_weight_file.empty()) {
+        // Weights given as numbers (Python's region_weights=W) have no text to set them by.
+        options.vertex_weights = command_line.vertex_weights;
+        options.given.insert("region_weights");
+        continue;
+      }
+      o.set(options, o.get(command_line));
+    }
   OptionValues now;
   try {
     now = resolved_options(options);
@@ -224,11 +249,24 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
     throw UsageError("the checkpoint was written with other options: the options given do not go with its own (" +
                      own + "): " + e.what());
   }
+  // A face-list or weights file is compared by its contents (check_checkpoint_files), as the mesh
+  // is: its path may differ (a copy, another machine, Python's temporary file of its arrays).
+  const auto compared = [](const std::string& name, const std::string& value) {
+    const bool file = (name == "regions" && !value.empty() && value != "auto" && value != "none" &&
+                       value != "weights") ||
+                      (name == "region-weights" && !value.empty());
+    return file ? std::string("a file") : value.empty() ? std::string("unset") : value;
+  };
+  const auto theirs = [&](const std::string& name) {
+    return given_as_arrays(name) ? std::string("given as arrays") : describe(c.resolved, name);
+  };
   std::string differ;
-  for (const auto& [name, value] : now)
-    if (describe(c.resolved, name) != (value.empty() ? "unset" : value))
+  for (const auto& [name, value] : now) {
+    const std::string then = describe(c.resolved, name);
+    if (compared(name, then == "unset" ? "" : then) != compared(name, value))
       differ += (differ.empty() ? "" : ", ") + ("--" + name + " " + (value.empty() ? "unset" : value) +
-                                                 " (the checkpoint's: " + describe(c.resolved, name) + ")");
+                                                 " (the checkpoint's: " + theirs(name) + ")");
+  }
   if (differ.size() == 0 && now.size() != c.resolved.size())
     differ = "the checkpoint lists other options";
   if (!differ.empty())
@@ -258,6 +296,7 @@ void write_checkpoint(const std::string& path, const SavedRun& run, const RunOpt
   c.version = checkpoint_tool_version();
   c.input = info.input;
   c.input_hash = info.input_hash;
+  c.inputs = info.inputs;
   c.given = given_options(options);
   c.resolved = resolved_options(options);
   c.sim = run.sim.state();
@@ -273,6 +312,13 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.text(c.version);
   w.text(c.input);
   w.pod(c.input_hash);
+  w.size(c.inputs.size());
+  for (const RunInput& in : c.inputs) {
+    w.text(in.option);
+    w.text(in.file);
+    w.pod(static_cast<std::uint8_t>(in.arrays));
+    w.pod(in.hash);
+  }
   w.options(c.given);
   w.options(c.resolved);
   const SimulatorState& s = c.sim;
@@ -303,9 +349,13 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("checkpoint " + path + ": cannot open (" + std::strerror(errno) + ")");
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes;
+  try {
+    // A regular file only: a folder is "it is a folder", not a stream's read error.
+    bytes = read_regular_file(path);
+  } catch (const InputError& e) {
+    throw InputError("checkpoint " + std::string(e.what()));
+  }
   Reader r(bytes, path);
   if (bytes.compare(0, sizeof MAGIC - 1, MAGIC) != 0)
     throw InputError("checkpoint " + path + ": not a shellcontract checkpoint");
@@ -316,11 +366,22 @@ Checkpoint read_checkpoint(const std::string& path) {
   std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
   if (fnv1a(bytes.data(), bytes.size() - sizeof stored) != stored)
     r.fail("its checksum does not match (truncated or damaged)");
-  if (r.pod<std::uint32_t>() != FORMAT) r.fail("another checkpoint format");
+  const auto format = r.pod<std::uint32_t>();
+  if (format != FORMAT && format != FORMAT_WITHOUT_INPUTS) r.fail("another checkpoint format");
   Checkpoint c;
   c.version = r.text();
   c.input = r.text();
   c.input_hash = r.pod<std::uint64_t>();
+  c.inputs_recorded = format != FORMAT_WITHOUT_INPUTS;
+  if (c.inputs_recorded) {
+    c.inputs.resize(r.size());
+    for (RunInput& in : c.inputs) {
+      in.option = r.text();
+      in.file = r.text();
+      in.arrays = r.pod<std::uint8_t>() != 0;
+      in.hash = r.pod<std::uint64_t>();
+    }
+  }
   c.given = r.options();
   c.resolved = r.options();
   SimulatorState& s = c.sim;

@@ -39,6 +39,9 @@ struct Checkpoint {
   std::string version;       ///< checkpoint_tool_version() of the writer
   std::string input;         ///< the input's path as the saving run was given it
   std::uint64_t input_hash = 0;  ///< mesh_hash of the mesh it ran
+  std::vector<RunInput> inputs;  ///< the other files it read (run_inputs)
+  /// False for a checkpoint of format 1, which did not record `inputs` (check_checkpoint_files).
+  bool inputs_recorded = true;
   OptionValues given;        ///< the options given (RunOptions::given), less the threads
   OptionValues resolved;     ///< every option's value after resolving, less the threads
   SimulatorState sim;
@@ -52,10 +55,15 @@ OptionValues given_options(const RunOptions& options);
 /// do not change a run's result.
 OptionValues resolved_options(RunOptions options);
 
+/// FNV-1a over `n` bytes, continuing from `h`: the checkpoint's checksum and its inputs' hashes.
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ull);
+
 /// Writes `c` to `path` whole or not at all (a temporary file renamed).
 /// @throws UsageError if the file cannot be written
 void write_checkpoint(const std::string& path, const Checkpoint& c);
-/// @throws InputError naming the file for a missing, truncated or corrupted checkpoint
+/// Reads format 2 and format 1 (written before the inputs were recorded).
+/// @throws InputError naming the file for a missing, truncated or corrupted checkpoint, or a
+///         folder, device or FIFO in its place
 Checkpoint read_checkpoint(const std::string& path);
 
 /// A run's state at a step boundary: the Simulator's and the run loop's.

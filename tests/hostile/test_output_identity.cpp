@@ -45,6 +45,21 @@ TEST_F(Hostile, RegionsOutputThatIsTheInputIsRefused) {
   EXPECT_EQ(test::slurp(in), before);
 }
 
+// Before: the --region-weights file was no input to the check; --log over it replaced the
+// weights (exit 0).
+TEST_F(Hostile, AnOutputOverTheWeightsFileIsRefused) {
+  const fs::path weights = dir_ / "w.txt";
+  std::string text;
+  for (int v = 0; v < 162; ++v) text += v < 5 ? "1\n" : "0\n";  // ico2's vertices
+  test::spit(weights, text);
+  const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n", "2", "-q",
+                          "--region-weights", weights.string(), "--log", weights.string()});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("is the file of --region-weights"), std::string::npos) << r.output;
+  EXPECT_EQ(test::slurp(weights), text);
+  EXPECT_FALSE(fs::exists(dir_ / "o.off"));
+}
+
 // Before: paths were compared, so a hard link to the input passed (exit 0).
 TEST_F(Hostile, AHardLinkToTheInputIsTheInput) {
   const fs::path in = dir_ / "in.off", link = dir_ / "out.off";

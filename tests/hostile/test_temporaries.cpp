@@ -4,6 +4,7 @@
 
 #include <csignal>
 
+#include "../../cli/run_checkpoint.hpp"  // the CLI's own handler of a checkpointed run's signals
 #include "hostile/hostile_support.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
@@ -88,6 +89,38 @@ TEST_F(Hostile, SigtermAndSigintDuringAWriteRemoveTheTemporary) {
     EXPECT_EQ(WTERMSIG(status), sig);
     EXPECT_TRUE(test::listing(dir_).empty()) << "left behind: " << test::listing(dir_).front();
   }
+}
+
+// Before: with --checkpoint, the CLI's handler gave a second SIGINT its default action, so a
+// checkpoint being saved after the first Ctrl-C left its hidden temporary (".c.ckpt.tmp.XXXX")
+// in the user's folder when a second Ctrl-C came during the save.
+TEST_F(Hostile, ASecondCtrlCDuringACheckpointSaveRemovesItsTemporary) {
+  const fs::path target = dir_ / "c.ckpt";
+  const pid_t child = ::fork();
+  if (child == 0) {
+    struct sigaction sa {};
+    sa.sa_handler = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(SIGINT, &sa, nullptr);
+    try {
+      write_text_atomic(target.string(), "an earlier save");  // --checkpoint-every
+      ::raise(SIGINT);  // the first Ctrl-C: the run saves after its step, then stops
+      write_file_atomic(target.string(), [&](std::ostream& out) {
+        out << std::string(1 << 20, 'a');
+        out.flush();
+        ::raise(SIGINT);  // the second, during that save
+        out << "never";
+      });
+    } catch (...) {
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "the second Ctrl-C must still end the process at once";
+  EXPECT_EQ(WTERMSIG(status), SIGINT);
+  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"c.ckpt"}) << "a temporary was left behind";
+  EXPECT_EQ(test::slurp(target), "an earlier save");
 }
 
 // Before: write_mesh_atomic("a.off\0/../b.off") wrote a.off (the C path ends at the NUL).

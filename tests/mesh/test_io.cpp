@@ -460,5 +460,23 @@ TEST(BadInputOtherFormats, AFolderIsNamedAsAFolderWhateverItsName) {
   }
 }
 
+// Before: a file whose name has no extension was "unknown extension: '.'", an extension it does not
+// have; now it is said to have none, with the ones that are read.
+TEST(BadInputOtherFormats, AFileWithoutExtensionIsSaidToHaveNone) {
+  TempDir dir;
+  for (const std::string name : {"plain", "trailing."}) {
+    write_file(dir.file(name), "OFF\n");
+    try {
+      read_input_mesh(dir.file(name));
+      FAIL() << name << " accepted";
+    } catch (const InputError& e) {
+      const std::string msg = e.what();
+      EXPECT_NE(msg.find(": the file name has no extension: expected .off, .obj, .ply or .stl"), std::string::npos)
+          << name << ": " << msg;
+      EXPECT_EQ(msg.find("'.'"), std::string::npos) << name << ": " << msg;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace shellcontract

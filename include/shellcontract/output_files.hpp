@@ -1,0 +1,29 @@
+// The check of a command's output files before any work (docs/design/output-safety.md), shared
+// by the CLI (cli/output_paths.hpp adds its export folder) and the Python module (contract()'s
+// checkpoint=).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace shellcontract {
+
+/// A file a command writes or reads, and the option that names it in messages ("-o",
+/// "--summary"; "INPUT" or "--regions" for an input; Python's "checkpoint").
+struct NamedFile {
+  std::string option;
+  std::string path;
+};
+
+/// Checks a command's outputs before any work, so that a run does not fail after minutes because
+/// its output folder is missing, nor write over its own input: by file identity (device and
+/// inode; for a file that does not exist yet, its folder's and its name), so that hard links,
+/// symbolic links and bind mounts are seen through, no output may be an input or another output;
+/// an existing output must be a writable regular file (a folder, device, FIFO or socket is never
+/// replaced); each output's folder is probed by creating and removing a file with a name of the
+/// output's length (a missing or read-only folder, a parent that is a file, a name too long).
+/// Creates nothing that stays.
+/// @throws UsageError naming the option, the path and the reason
+void check_output_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs);
+
+}  // namespace shellcontract

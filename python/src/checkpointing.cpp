@@ -1,0 +1,70 @@
+#include "checkpointing.hpp"
+
+#include <utility>
+
+#include "arrays.hpp"
+#include "shellcontract/output_files.hpp"
+
+namespace shellcontract::python {
+
+CheckpointArguments take_checkpoint_arguments(const py::kwargs& kwargs, py::kwargs& options) {
+  CheckpointArguments a;
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = key.cast<std::string>();
+    // None: not given, as for regions.
+    if (name == "checkpoint") a.checkpoint = value.is_none() ? "" : path_argument(value, "checkpoint");
+    else if (name == "resume") a.resume = value.is_none() ? "" : path_argument(value, "resume");
+    else if (name == "checkpoint_every") a.every = value.cast<int>();
+    else if (name == "_regions_from_arrays") a.regions_from_arrays = PyObject_IsTrue(value.ptr()) == 1;
+    else options[key] = value;
+  }
+  if (a.every < 0 || (a.every > 0 && a.checkpoint.empty()))
+    throw py::value_error("checkpoint_every: expected an integer >= 1, with checkpoint=FILE");
+  return a;
+}
+
+PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOptions& options) {
+  PreparedCheckpoint p;
+  if (!args.resume.empty()) {
+    p.resume = load_checkpoint(args.resume);
+    options = options_for_resume(*p.resume, options);
+    resolve_run_options(options);
+    options.sim.frame_energies = true;  // the log always carries them (contract())
+  }
+  if (args.checkpoint.empty() && args.resume.empty()) return p;
+  p.inputs = run_inputs(options);
+  for (RunInput& in : p.inputs)
+    if (in.option == "regions" && args.regions_from_arrays) in.arrays = true;
+  if (p.resume) check_checkpoint_files(*p.resume, p.inputs);
+  if (!args.checkpoint.empty()) {
+    std::vector<NamedFile> read;
+    if (options.regions == RegionSource::File && !args.regions_from_arrays)
+      read.push_back({"regions", options.region_file});
+    if (!options.region_weight_file.empty()) read.push_back({"region_weights", options.region_weight_file});
+    check_output_files({{"checkpoint", args.checkpoint}}, read);
+  }
+  return p;
+}
+
+PythonCheckpointer::PythonCheckpointer(const CheckpointArguments& args, const PreparedCheckpoint& prepared,
+                                       std::uint64_t mesh_hash, const RunOptions& options,
+                                       std::function<std::string()> log, std::function<bool()> cancelled)
+    : path_(args.checkpoint),
+      every_(args.every),
+      resume_(prepared.resume),
+      hash_(mesh_hash),
+      inputs_(prepared.inputs),
+      options_(options),
+      log_(std::move(log)),
+      cancelled_(std::move(cancelled)) {}
+
+bool PythonCheckpointer::save_due(int frame) {
+  if (path_.empty()) return false;
+  return (every_ > 0 && frame % every_ == 0) || cancelled_();
+}
+
+void PythonCheckpointer::save(const SavedRun& run) {
+  write_checkpoint(path_, run, options_, CheckpointInfo{ARRAYS_INPUT, hash_, log_(), inputs_});
+}
+
+}  // namespace shellcontract::python

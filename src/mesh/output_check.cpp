@@ -1,0 +1,122 @@
+#include "mesh/output_check.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <filesystem>
+
+#include "mesh/file_safety.hpp"
+#include "shellcontract/error.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Longest name write_file_atomic gives a temporary (file_safety.cpp: "." + 40 characters of
+/// the name + ".tmp." + 12 random ones, rounded up): the probe is at least this long.
+constexpr std::size_t TEMPORARY_NAME_LENGTH = 60;
+
+/// An existing output that may be replaced: a writable regular file (or a dangling link).
+void check_existing(const FileIdentity& o) {
+  if (!o.exists) return;
+  if (S_ISDIR(o.file.st_mode)) refuse_file(o.option, o.path, "is a folder, not a file");
+  if (!S_ISREG(o.file.st_mode))
+    refuse_file(o.option, o.path,
+                "exists and is not a regular file (a device, FIFO or socket); it is never replaced");
+  if (::faccessat(AT_FDCWD, o.path.c_str(), W_OK, AT_EACCESS) != 0) {
+    const int e = errno;
+    refuse_file(o.option, o.path, "exists and is not writable (" + file_error_text(e) + ")");
+  }
+}
+
+}  // namespace
+
+bool same_inode(const struct stat& a, const struct stat& b) {
+  return a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
+
+bool same_file(const FileIdentity& a, const FileIdentity& b) {
+  if (a.exists && b.exists && same_inode(a.file, b.file)) return true;
+  return a.folder_known && b.folder_known && same_inode(a.folder, b.folder) && a.name == b.name;
+}
+
+std::string quoted_path(const std::string& s) { return "'" + printable(s, 1000) + "'"; }
+
+FileIdentity identify_file(const std::string& option, const std::string& path) {
+  FileIdentity id;
+  id.option = option;
+  id.path = path;
+  const fs::path p(path);
+  id.name = p.filename().string();
+  id.folder_path = p.has_parent_path() ? p.parent_path().string() : std::string(".");
+  id.exists = ::stat(path.c_str(), &id.file) == 0;
+  id.folder_known = ::stat(id.folder_path.c_str(), &id.folder) == 0 && S_ISDIR(id.folder.st_mode);
+  return id;
+}
+
+std::optional<std::string> folder_problem(const std::string& folder, std::size_t name_length) {
+  struct stat st {};
+  if (::stat(folder.c_str(), &st) != 0) {
+    const int e = errno;
+    if (e == ENOENT) return "the folder " + quoted_path(folder) + " does not exist";
+    if (e == ENOTDIR) return "the folder " + quoted_path(folder) + " cannot exist: a part of its path is a file";
+    return "the folder " + quoted_path(folder) + " cannot be used (" + file_error_text(e) + ")";
+  }
+  if (!S_ISDIR(st.st_mode)) return quoted_path(folder) + " is a file, not a folder";
+  const ExclusiveFile probe =
+      create_exclusive_file(folder, "shellcontract-probe", std::max(name_length, TEMPORARY_NAME_LENGTH));
+  if (probe.fd < 0) {
+    const int e = errno;
+    if (e == ENAMETOOLONG)
+      return "the file name is too long (" + std::to_string(name_length) + " characters) for the folder " +
+             quoted_path(folder);
+    return "cannot create a file in the folder " + quoted_path(folder) + " (" + file_error_text(e) + ")";
+  }
+  const int slot = register_temporary(probe.path);  // removed on SIGINT/SIGTERM too
+  ::close(probe.fd);
+  ::unlink(probe.path.c_str());
+  unregister_temporary(slot);
+  return std::nullopt;
+}
+
+void refuse_file(const std::string& option, const std::string& path, const std::string& why) {
+  throw UsageError(option + " " + quoted_path(path) + ": " + why);
+}
+
+void check_output_identities(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs,
+                             std::vector<FileIdentity>& output_ids, std::vector<FileIdentity>& input_ids) {
+  for (const NamedFile& in : inputs) {
+    if (in.path.empty() || in.path.find('\0') != std::string::npos) continue;  // the reader says why
+    FileIdentity id = identify_file(in.option, in.path);
+    if (id.exists || id.folder_known) input_ids.push_back(std::move(id));
+  }
+  for (const NamedFile& o : outputs) {
+    require_usable_path(o.path, o.option);
+    FileIdentity id = identify_file(o.option, o.path);
+    if (id.name.empty() || id.name == "." || id.name == "..")
+      refuse_file(o.option, o.path, "names a folder, not a file");
+    for (const FileIdentity& in : input_ids)
+      if (same_file(id, in))
+        refuse_file(o.option, o.path,
+                    (in.option == "INPUT" ? std::string("is the input file") : "is the file of " + in.option) +
+                        (in.path == o.path ? "" : " (" + quoted_path(in.path) + ")") + "; choose another name");
+    for (const FileIdentity& other : output_ids)
+      if (same_file(id, other))
+        refuse_file(o.option, o.path,
+                    "is also the file of " + other.option + " (" + quoted_path(other.path) +
+                        "); each output needs its own file");
+    check_existing(id);
+    if (const auto why = folder_problem(id.folder_path, id.name.size())) refuse_file(o.option, o.path, *why);
+    output_ids.push_back(std::move(id));
+  }
+}
+
+void check_output_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs) {
+  std::vector<FileIdentity> output_ids, input_ids;
+  check_output_identities(outputs, inputs, output_ids, input_ids);
+}
+
+}  // namespace shellcontract
