@@ -46,9 +46,10 @@ constexpr const char* RUN_USAGE =
     "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL) like a thin elastic shell under an\n"
     "outside pressure. The mesh is normalized to a unit bounding-box diagonal for the\n"
     "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
-    "Output keeps the input's vertex and face order. An OBJ or PLY output of an input of the same\n"
-    "format is the input file with new positions (OBJ: and normals): UVs, groups, materials,\n"
-    "polygons and extra PLY properties are kept (docs/design/attributes.md).\n\noutputs and general";
+    "Output keeps the input's vertex and face order. An OBJ or PLY output (and frame) of an input\n"
+    "of the same format is the input file with new positions (OBJ: and normals): UVs, groups,\n"
+    "materials, polygons and extra PLY properties are kept (docs/design/attributes.md).\n\n"
+    "outputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
@@ -202,7 +203,8 @@ int command_run(int argc, char** argv) {
       "with --export-dir or --gltf: keep every N-th frame (and the first and last); default for "
       "--gltf alone: about 100 frames of the run")(
       "export-dir", po::value(&exports.dir)->value_name("DIR"),
-      "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing)")(
+      "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing), "
+      "each written as -o is (an OBJ or PLY input's attributes kept)")(
       "export-failure", po::value(&export_failure)->default_value(export_failure)->value_name("WHAT"),
       "when a frame file cannot be written (a full disk): warn (the export stops, the run goes "
       "on) or stop (the run ends there); either way the result, log and summary are written")(
@@ -335,7 +337,7 @@ int command_run(int argc, char** argv) {
     // (UVs, normals, groups, materials, polygons, extra properties; docs/design/attributes.md).
     // Held only where it is used (it is the whole file): an output of the input's format, or the
     // glTF's texture coordinates.
-    std::unique_ptr<MeshDocument> document;
+    std::shared_ptr<const MeshDocument> document;  // shared with the frame writer's thread
     if (lower_extension(input) == lower_extension(output) || !exports.gltf.empty()) {
       try {
         document = read_mesh_document(input);
@@ -376,6 +378,7 @@ int command_run(int argc, char** argv) {
     FrameExporter exporter(exports, mesh, options.sim.frames);
     if (!exports.dir.empty() || !exports.gltf.empty()) observers.add(exporter);
     if (document && !exports.gltf.empty()) exporter.set_texcoords(document->texcoords(mesh));
+    exporter.set_document(document);
 
     faces = std::to_string(mesh.number_of_faces()) + " faces";
     // run_contraction ends the run itself when memory runs out during the frames.
