@@ -48,8 +48,9 @@ constexpr const char* RUN_USAGE =
     "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
     "Output keeps the input's vertex and face order. An OBJ or PLY output (and frame) of an input\n"
     "of the same format is the input file with new positions (OBJ: and normals): UVs, groups,\n"
-    "materials, polygons and extra PLY properties are kept (docs/design/attributes.md).\n\n"
-    "outputs and general";
+    "materials, polygons and extra PLY properties are kept (docs/design/attributes.md). A mesh\n"
+    "open only because its vertices are split along UV seams (copies at the same position) is\n"
+    "welded for the simulation; the outputs keep every copy.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
@@ -327,6 +328,7 @@ int command_run(int argc, char** argv) {
     const double read_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
     for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
+    for (const std::string& n : report.notes) std::cerr << "note: " << n << '\n';
     // A large mesh takes seconds to read and check (bear subdivided three times, 1.77 M faces:
     // about 3 s), before any frame's progress line.
     if (!quiet && read_seconds >= 1.0)
@@ -422,7 +424,7 @@ int command_run(int argc, char** argv) {
     if (!exports.gltf.empty()) attempt("--gltf", exports.gltf, [&] { exporter.write_gltf(); });
     attempt("-o", output, [&] {
       if (document && document->format() == lower_extension(output))
-        write_mesh_document_atomic(output, *document, r.positions);
+        write_mesh_document_atomic(output, *document, input_positions(mesh, r.positions));
       else
         write_mesh_atomic(output, mesh, r.positions);
     });

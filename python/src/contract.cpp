@@ -28,6 +28,7 @@
 #include "arrays.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/report.hpp"
 #include "shellcontract/run.hpp"
@@ -204,7 +205,10 @@ py::object column_value(std::size_t c, double v) {
 /// the GIL held: the run itself executes with the GIL released.
 class PythonObserver final : public RunObserver {
  public:
-  explicit PythonObserver(py::object callback) : callback_(std::move(callback)), has_callback_(!callback_.is_none()) {}
+  /// @param mesh the run's input mesh: the callback gets the input's vertices (a mesh welded
+  ///             along its seams gives every copy its vertex's position)
+  PythonObserver(py::object callback, const Mesh& mesh)
+      : callback_(std::move(callback)), has_callback_(!callback_.is_none()), mesh_(mesh) {}
 
   ~PythonObserver() override {
     // A pending error is only dropped when contract() itself throws before taking it.
@@ -226,7 +230,7 @@ class PythonObserver final : public RunObserver {
     try {
       py::dict metrics;
       for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
-      const py::object answer = callback_(m.frame, positions_to_numpy(view.positions()), metrics);
+      const py::object answer = callback_(m.frame, positions_to_numpy(input_positions(mesh_, view.positions())), metrics);
       if (answer.is(py::bool_(false))) stop_ = true;  // only False stops; None (no return) goes on
     } catch (py::error_already_set& e) {
       e.restore();  // back into the interpreter's error indicator, then kept for after the run
@@ -307,6 +311,7 @@ class PythonObserver final : public RunObserver {
 
   py::object callback_;
   bool has_callback_;
+  const Mesh& mesh_;
   std::chrono::steady_clock::time_point last_poll_{};
   bool stop_ = false;
   PyObject* error_type_ = nullptr;
@@ -403,7 +408,7 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   }
   InputReport report;
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
-  PythonObserver observer(callback);
+  PythonObserver observer(callback, mesh);
   if (!resume_path.empty()) {
     check_checkpoint_input(*resume, "the vertices and faces given", mesh);
     observer.restore_csv(checkpoint_log(*resume));
@@ -423,7 +428,7 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   }
   observer.raise_if_error();
   py::dict out;
-  out["vertices"] = positions_to_numpy(r.positions);
+  out["vertices"] = positions_to_numpy(input_positions(mesh, r.positions));  // the input's, copies too
   out["faces"] = faces_to_numpy(mesh);
   out["log"] = observer.log();
   out["summary"] = summary(report, options, r);

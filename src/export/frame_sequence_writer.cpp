@@ -122,7 +122,7 @@ void FrameSequenceWriter::work() {
       // As the run's -o output is written (cli/run.cpp), so that a frame and the result of a run
       // that ends there are the same file.
       if (document_)
-        write_mesh_document_atomic(path, *document_, item.second);
+        write_mesh_document_atomic(path, *document_, input_positions(mesh_, item.second));
       else
         write_mesh_atomic(path, mesh_, item.second);
       bytes = std::filesystem::file_size(path);

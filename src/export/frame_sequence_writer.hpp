@@ -38,7 +38,8 @@ std::string frame_file_name(const std::string& dir, const std::string& name, con
 /// copied positions. Each file is written as the run's -o output is: through the input's document
 /// when one is given (an OBJ or PLY input written in its own format: UVs, normals, groups,
 /// materials, polygons and extra properties kept; docs/design/attributes.md), else with
-/// write_mesh_atomic (OFF, OBJ, PLY or STL, full precision). Both write atomically (write_file_atomic: an exclusive
+/// write_mesh_atomic (OFF, OBJ, PLY or STL, full precision); a mesh welded along its seams gets
+/// its input's vertices back either way. Both write atomically (write_file_atomic: an exclusive
 /// temporary, renamed). It only reads the positions it is given, so exporting cannot change a
 /// simulation; the file contents depend only on the positions, the connectivity and the document
 /// (not on timing).
