@@ -5,6 +5,7 @@
 #include <boost/program_options.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -84,21 +85,23 @@ std::vector<FacePair> new_pairs(const std::string& path, const Mesh& mesh, const
                                 const std::string& input_path, const Mesh& input_mesh,
                                 const std::vector<FacePair>& input_pairs) {
   const std::string not_same = path + " is not a result of " + input_path + ": ";
-  if (mesh.number_of_vertices() != input_mesh.number_of_vertices() || mesh.number_of_faces() != input_mesh.number_of_faces())
-    throw UsageError(not_same + std::to_string(mesh.number_of_vertices()) + " vertices and " +
+  // Vertices as the files number them (a mesh welded along its seams too: mesh_io.hpp).
+  const std::size_t nv = input_vertex_count(mesh), input_nv = input_vertex_count(input_mesh);
+  if (nv != input_nv || mesh.number_of_faces() != input_mesh.number_of_faces())
+    throw UsageError(not_same + std::to_string(nv) + " vertices and " +
                      std::to_string(mesh.number_of_faces()) + " faces against " +
-                     std::to_string(input_mesh.number_of_vertices()) + " and " +
+                     std::to_string(input_nv) + " and " +
                      std::to_string(input_mesh.number_of_faces()));
   const Polygons in = read_polygons(input_path);
-  std::vector<std::vector<std::size_t>> polygons_of(input_mesh.number_of_vertices());
+  std::vector<std::vector<std::size_t>> polygons_of(input_nv);
   for (std::size_t p = 0; p < in.polygons.size(); ++p)
     for (const std::size_t v : in.polygons[p]) polygons_of[v].push_back(p);
   // The input polygon of each result face: the one polygon around its first vertex that holds
   // all three of its vertices.
   std::vector<std::size_t> polygon(mesh.number_of_faces());
+  const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
   for (const FaceIndex f : mesh.faces()) {
-    std::vector<std::size_t> fv;
-    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) fv.push_back(v.idx());
+    const std::array<std::size_t, 3>& fv = corners[f.idx()];
     bool found = false;
     for (const std::size_t p : polygons_of[fv[0]]) {
       const auto& poly = in.polygons[p];
@@ -167,6 +170,8 @@ int command_check(int argc, char** argv) {
     const auto print_warnings = [&against](const std::string& file, const InputReport& r) {
       for (const std::string& w : r.warnings)
         std::cerr << "warning: " << (against.empty() ? std::string() : file + ": ") << w << '\n';
+      for (const std::string& n : r.notes)
+        std::cerr << "note: " << (against.empty() ? std::string() : file + ": ") << n << '\n';
     };
     print_warnings(input, report);
     const Positions x = positions_from_mesh(mesh);

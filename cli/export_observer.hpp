@@ -3,6 +3,7 @@
 #pragma once
 
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -44,8 +45,11 @@ class FrameExporter final : public RunObserver {
   }
 
   void started(const FrameView& view) override {
+    // The frames are written as -o is: through the input's document when it is of their format.
     if (!request_.dir.empty())
-      writer_.emplace(request_.dir, request_.name, request_.ext, mesh_, max_frame_);
+      writer_.emplace(request_.dir, request_.name, request_.ext, mesh_, max_frame_,
+                      FrameSequenceWriter::DEFAULT_QUEUE_CAPACITY,
+                      document_ && document_->format() == request_.ext ? document_ : nullptr);
     if (!request_.gltf.empty()) gltf_.faces = faces_array(mesh_);
     take(0, view);
   }
@@ -80,6 +84,9 @@ class FrameExporter final : public RunObserver {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
   }
+
+  /// The input kept whole (read_mesh_document, matching the mesh), for frame files of its format.
+  void set_document(std::shared_ptr<const MeshDocument> document) { document_ = std::move(document); }
 
   /// The input's texture coordinates, for the glTF's TEXCOORD_0; empty: none.
   void set_texcoords(const CornerTexcoords& t) {
@@ -136,6 +143,7 @@ class FrameExporter final : public RunObserver {
 
   ExportRequest request_;
   const Mesh& mesh_;
+  std::shared_ptr<const MeshDocument> document_;
   int max_frame_ = 0;
   int last_ = -1;
   std::optional<FrameSequenceWriter> writer_;

@@ -219,6 +219,7 @@ int command_regions(int argc, char** argv) {
     InputReport input_report;
     Mesh mesh = read_input_mesh(input, &input_report);
     for (const std::string& w : input_report.warnings) std::cerr << "warning: " << w << '\n';
+    for (const std::string& n : input_report.notes) std::cerr << "note: " << n << '\n';
     const Positions x = positions_from_mesh(mesh);
     RegionReport report;
     if (at.empty()) {

@@ -48,9 +48,11 @@ constexpr const char* RUN_USAGE =
     "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL) like a thin elastic shell under an\n"
     "outside pressure. The mesh is normalized to a unit bounding-box diagonal for the\n"
     "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
-    "Output keeps the input's vertex and face order. An OBJ or PLY output of an input of the same\n"
-    "format is the input file with new positions (OBJ: and normals): UVs, groups, materials,\n"
-    "polygons and extra PLY properties are kept (docs/design/attributes.md).\n\noutputs and general";
+    "Output keeps the input's vertex and face order. An OBJ or PLY output (and frame) of an input\n"
+    "of the same format is the input file with new positions (OBJ: and normals): UVs, groups,\n"
+    "materials, polygons and extra PLY properties are kept (docs/design/attributes.md). A mesh\n"
+    "open only because its vertices are split along UV seams (copies at the same position) is\n"
+    "welded for the simulation; the outputs keep every copy.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
@@ -206,7 +208,8 @@ int command_run(int argc, char** argv) {
       "with --export-dir or --gltf: keep every N-th frame (and the first and last); default for "
       "--gltf alone: about 100 frames of the run")(
       "export-dir", po::value(&exports.dir)->value_name("DIR"),
-      "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing)")(
+      "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing), "
+      "each written as -o is (an OBJ or PLY input's attributes kept)")(
       "export-failure", po::value(&export_failure)->default_value(export_failure)->value_name("WHAT"),
       "when a frame file cannot be written (a full disk): warn (the export stops, the run goes "
       "on) or stop (the run ends there); either way the result, log and summary are written")(
@@ -334,6 +337,7 @@ int command_run(int argc, char** argv) {
     const double read_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
     for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
+    for (const std::string& n : report.notes) std::cerr << "note: " << n << '\n';
     // A large mesh takes seconds to read and check (bear subdivided three times, 1.77 M faces:
     // about 3 s), before any frame's progress line.
     if (!quiet && read_seconds >= 1.0)
@@ -344,7 +348,7 @@ int command_run(int argc, char** argv) {
     // (UVs, normals, groups, materials, polygons, extra properties; docs/design/attributes.md).
     // Held only where it is used (it is the whole file): an output of the input's format, or the
     // glTF's texture coordinates.
-    std::unique_ptr<MeshDocument> document;
+    std::shared_ptr<const MeshDocument> document;  // shared with the frame writer's thread
     if (lower_extension(input) == lower_extension(output) || !exports.gltf.empty()) {
       try {
         document = read_mesh_document(input);
@@ -395,6 +399,7 @@ int command_run(int argc, char** argv) {
     FrameExporter exporter(exports, mesh, options.sim.frames);
     if (!exports.dir.empty() || !exports.gltf.empty()) observers.add(exporter);
     if (document && !exports.gltf.empty()) exporter.set_texcoords(document->texcoords(mesh));
+    exporter.set_document(document);
 
     faces = std::to_string(mesh.number_of_faces()) + " faces";
     // run_contraction ends the run itself when memory runs out during the frames.
@@ -438,7 +443,7 @@ int command_run(int argc, char** argv) {
     if (!exports.gltf.empty()) attempt("--gltf", exports.gltf, [&] { exporter.write_gltf(); });
     attempt("-o", output, [&] {
       if (document && document->format() == lower_extension(output))
-        write_mesh_document_atomic(output, *document, r.positions);
+        write_mesh_document_atomic(output, *document, input_positions(mesh, r.positions));
       else
         write_mesh_atomic(output, mesh, r.positions);
     });

@@ -27,6 +27,11 @@ struct InputReport {
   std::size_t components = 0;       ///< connected components
   double volume = 0.0;              ///< enclosed volume after reorientation (input units; inf beyond ~1e102 per coordinate)
   std::vector<std::string> warnings;
+  /// Input vertices welded into another at the same position (a mesh split along its UV seams:
+  /// docs/design/attributes.md, "Seams"); 0 for a mesh that is closed as given.
+  std::size_t welded_vertices = 0;
+  /// What the check did that is worth saying but is no problem (the CLI prints "note: ...").
+  std::vector<std::string> notes;
   double read_seconds = 0.0;   ///< read_input_mesh: reading the file into a polygon soup
   double check_seconds = 0.0;  ///< read_input_mesh: checking it and building the mesh
 };
@@ -35,7 +40,9 @@ struct InputReport {
 /// closed, manifold triangle mesh with finite coordinates, a nonzero finite bounding-box diagonal
 /// and a positive enclosed volume (measured as the simulator measures it): the one decision of
 /// what `check`, `run` and `regions` can use. Polygons are triangulated (with a warning); an
-/// inside-out mesh is reoriented (with a warning); zero-area faces are reported. Geometric tests
+/// inside-out mesh is reoriented (with a warning); zero-area faces are reported. A mesh that is
+/// open as given, but closed once its vertices at bitwise-identical positions are welded (split
+/// UV seams), is returned welded, with a note (see "Seams" below). Geometric tests
 /// run on coordinates normalized to a unit bounding-box diagonal, so any scale from 1e-150 to
 /// 1e150 gives the same answers.
 /// @throws InputError naming the file and the problem (and the face, vertex or line where known),
@@ -52,18 +59,22 @@ Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
 /// keeping vertex and face order and each face's first corner, with CGAL's writer for the
 /// extension (OFF, OBJ, STL; PLY through write_ply_atomic) at 17 significant digits, so
 /// that the doubles read back bitwise. Written to a temporary file in the same folder, then
-/// renamed, so a failure never leaves a partial file.
+/// renamed, so a failure never leaves a partial file. A welded mesh is written with its input's
+/// vertices and faces (mesh_for_output).
+/// @param x one row per mesh vertex, or (a welded mesh) one per input vertex
 /// @param binary a binary PLY (little-endian doubles: still bitwise) or STL (32-bit floats: the
 ///        positions rounded to float); OFF and OBJ are text whatever it says
 /// @throws UsageError if the file cannot be written or the extension is unknown
-/// @throws std::invalid_argument if x.rows() != number of vertices or the mesh has garbage
+/// @throws std::invalid_argument if x has another number of rows or the mesh has garbage
 void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary = false);
 
 /// The mesh to give write_ply_atomic: a copy of `mesh` (vertex and face order and each face's
 /// first corner kept) with its points set to x and no property maps, to which the caller
-/// attaches the properties to write.
-/// @param x #V by 3 positions, row i = vertex i
-/// @throws std::invalid_argument if x.rows() != number of vertices or the mesh has garbage
+/// attaches the properties to write. For a welded mesh, the input's vertices and faces instead
+/// (input_faces, input_positions): vertex i of the copy is input vertex i, whose data is that of
+/// mesh vertex input_vertex_map(mesh)[i].
+/// @param x #V by 3 positions, row i = vertex i; or (a welded mesh) one row per input vertex
+/// @throws std::invalid_argument if x has another number of rows or the mesh has garbage
 Mesh mesh_for_output(const Mesh& mesh, const Positions& x);
 
 /// The one PLY writer (plain meshes, regions, fields): CGAL's Surface_mesh PLY writer, ASCII with 17
@@ -87,6 +98,32 @@ void write_text_atomic(const std::string& path, const std::string& text);
 /// @throws UsageError if the file cannot be created or written
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+// Seams (docs/design/attributes.md): read_input_mesh and mesh_from_arrays weld an input that is
+// open only because its vertices are split at UV seams (copies at bitwise-identical positions).
+// The simulation runs on the welded mesh; its f:input_corners property map keeps each face's
+// corners as the input numbered them, from which every output gives the input's vertices back,
+// each copy at its welded vertex's position. For any other mesh these are the identity.
+
+/// Whether the mesh is a welded input's (it carries the input's corners).
+bool has_welded_seams(const Mesh& mesh);
+
+/// The input's vertex count: mesh.number_of_vertices() plus the welded copies.
+std::size_t input_vertex_count(const Mesh& mesh);
+
+/// Per input vertex, the mesh vertex it was welded into (the identity for a mesh not welded).
+std::vector<std::size_t> input_vertex_map(const Mesh& mesh);
+
+/// Per face (face order), its corners as the input numbered them, in the order
+/// vertices_around_face lists the face's corners from its halfedge (the mesh's own corner
+/// vertices for a mesh not welded).
+std::vector<std::array<std::size_t, 3>> input_faces(const Mesh& mesh);
+
+/// Positions of the input's vertices: x (one row per mesh vertex) with each copy given its
+/// welded vertex's row. x as it is when it already has one row per input vertex (or the mesh
+/// was not welded).
+/// @throws std::invalid_argument if x has neither the mesh's nor the input's vertex count
+Positions input_positions(const Mesh& mesh, const Positions& x);
+
 }  // namespace shellcontract
 
 // A checked Mesh from in-memory arrays (the Python module's numpy input, a C++ caller's buffers),
@@ -108,7 +145,8 @@ struct TriangleSoupView {
 /// coordinates, indices in range, no repeated corner, no duplicate face, no isolated vertex, every
 /// edge shared by exactly two faces in opposite directions (closed, manifold, consistently
 /// oriented), one fan per vertex. Zero-area faces are reported. Vertex and face order are kept,
-/// and each face lists its corners as given.
+/// and each face lists its corners as given. Arrays that are open only along split seams are
+/// welded as read_input_mesh welds a file ("Seams" above).
 /// @param name     what the messages call the input (read_input_mesh uses the file name)
 /// @param reorient flip inside-out components as read_input_mesh does (with a warning); false
 ///                 keeps the faces exactly as given (writing a result back)
@@ -135,13 +173,15 @@ struct CornerTexcoords {
 };
 
 /// A mesh file kept as a document; the simulation's vertex i is the file's vertex i (the readers
-/// never weld or reorder vertices). The faces are the file's polygons in file order.
+/// never reorder vertices; a mesh they welded along its seams names the file's vertices in
+/// input_faces). The faces are the file's polygons in file order.
 class MeshDocument {
  public:
   virtual ~MeshDocument() = default;
   /// "obj" or "ply": the extension of the files this document writes.
   virtual std::string format() const = 0;
   /// The whole file with the vertex positions x (#V by 3, input units); everything else as read.
+  /// A welded mesh's positions are given as input_positions(mesh, x).
   /// @throws std::invalid_argument if x.rows() != vertex_count() or a coordinate is not finite
   virtual std::string text(const Positions& x) const = 0;
 
@@ -152,8 +192,8 @@ class MeshDocument {
   /// Number of triangles read_input_mesh makes of the polygons (n corners: n - 2).
   std::size_t triangle_count() const;
   /// Whether this document stands for `mesh`, the mesh read_input_mesh made of the same file:
-  /// same vertex count, same triangle count, and each triangle's corners among the vertices of
-  /// the polygon it came from. False (the plain writer is then used) e.g. after `--repair`.
+  /// same (input) vertex count, same triangle count, and each triangle's (input) corners among
+  /// the vertices of the polygon it came from. False (the plain writer is then used) e.g. after `--repair`.
   bool matches(const Mesh& mesh) const;
   /// Texture coordinates by simulation face corner; empty when some corner of a polygon has none.
   /// @pre matches(mesh)

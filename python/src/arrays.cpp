@@ -92,11 +92,10 @@ py::array_t<double> positions_to_numpy(const Positions& x) {
 py::array_t<std::int64_t> faces_to_numpy(const Mesh& mesh) {
   py::array_t<std::int64_t> out({static_cast<py::ssize_t>(mesh.number_of_faces()), py::ssize_t{3}});
   std::int64_t* p = out.mutable_data();
-  for (const FaceIndex f : mesh.faces()) {
-    // Corners from the face's halfedge, as write_mesh_atomic lists them.
-    HalfedgeIndex h = mesh.halfedge(f);
-    for (int k = 0; k < 3; ++k, h = mesh.next(h)) *p++ = static_cast<std::int64_t>(mesh.target(h).idx());
-  }
+  // Corners from the face's halfedge, as write_mesh_atomic lists them, by the input's vertices
+  // (a mesh welded along its seams gives its copies back).
+  for (const auto& corners : input_faces(mesh))
+    for (const std::size_t v : corners) *p++ = static_cast<std::int64_t>(v);
   return out;
 }
 

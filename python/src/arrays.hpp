@@ -29,7 +29,8 @@ Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputR
 /// The positions as a new N by 3 float64 array.
 py::array_t<double> positions_to_numpy(const Positions& x);
 
-/// The mesh's faces as a new M by 3 int64 array, corners in the mesh's order (as written).
+/// The mesh's faces as a new M by 3 int64 array, corners in the mesh's order (as written), by
+/// the input's vertices (input_faces: a mesh welded along its seams gives its copies back).
 py::array_t<std::int64_t> faces_to_numpy(const Mesh& mesh);
 
 /// The positions of an N by 3 array as the library's Positions (a copy).

@@ -29,6 +29,7 @@
 #include "checkpointing.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/report.hpp"
 #include "shellcontract/run.hpp"
@@ -212,7 +213,10 @@ py::object column_value(std::size_t c, double v) {
 /// the GIL held: the run itself executes with the GIL released.
 class PythonObserver final : public RunObserver {
  public:
-  explicit PythonObserver(py::object callback) : callback_(std::move(callback)), has_callback_(!callback_.is_none()) {}
+  /// @param mesh the run's input mesh: the callback gets the input's vertices (a mesh welded
+  ///             along its seams gives every copy its vertex's position)
+  PythonObserver(py::object callback, const Mesh& mesh)
+      : callback_(std::move(callback)), has_callback_(!callback_.is_none()), mesh_(mesh) {}
 
   ~PythonObserver() override {
     // A pending error is only dropped when contract() itself throws before taking it.
@@ -234,7 +238,7 @@ class PythonObserver final : public RunObserver {
     try {
       py::dict metrics;
       for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) metrics[LOG_COLUMNS[c]] = column_value(c, rows_.back()[c]);
-      const py::object answer = callback_(m.frame, positions_to_numpy(view.positions()), metrics);
+      const py::object answer = callback_(m.frame, positions_to_numpy(input_positions(mesh_, view.positions())), metrics);
       // A false value stops: False, numpy's False_ (a comparison's result), 0. None, what a
       // callback without a return gives, goes on. A value with no truth value (a numpy array of
       // several elements) raises, as `if answer:` would.
@@ -322,6 +326,7 @@ class PythonObserver final : public RunObserver {
 
   py::object callback_;
   bool has_callback_;
+  const Mesh& mesh_;
   std::chrono::steady_clock::time_point last_poll_{};
   bool stop_ = false;
   PyObject* error_type_ = nullptr;
@@ -375,7 +380,7 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   const PreparedCheckpoint prepared = prepare_checkpoint(checkpoint, options);  // before the mesh
   InputReport report;
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
-  PythonObserver observer(callback);
+  PythonObserver observer(callback, mesh);
   if (prepared.resume) {
     check_checkpoint_input(*prepared.resume, "the vertices and faces given", mesh);
     observer.restore_csv(checkpoint_log(*prepared.resume));
@@ -395,7 +400,7 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   }
   observer.raise_if_error();
   py::dict out;
-  out["vertices"] = positions_to_numpy(r.positions);
+  out["vertices"] = positions_to_numpy(input_positions(mesh, r.positions));  // the input's, copies too
   out["faces"] = faces_to_numpy(mesh);
   out["log"] = observer.log();
   out["summary"] = summary(report, options, r);

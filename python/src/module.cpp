@@ -60,6 +60,7 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   d["volume"] = report.volume;
   d["bounding_box_diagonal"] = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
   d["reoriented"] = report.reoriented;
+  d["welded_vertices"] = report.welded_vertices;
   d["zero_area_faces"] = report.zero_area_faces;
   d["self_intersections"] = pair_array;
   d["warnings"] = report.warnings;
@@ -160,7 +161,8 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
 
 py::tuple read_mesh(const py::handle& path) {
   const Mesh mesh = read_input_mesh(path_argument(path));
-  return py::make_tuple(positions_to_numpy(positions_from_mesh(mesh)), faces_to_numpy(mesh));
+  // The file's vertices, a mesh welded along its seams included: contract() welds them again.
+  return py::make_tuple(positions_to_numpy(input_positions(mesh, positions_from_mesh(mesh))), faces_to_numpy(mesh));
 }
 
 void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py::handle& faces,

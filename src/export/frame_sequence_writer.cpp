@@ -44,11 +44,13 @@ std::string frame_file_name(const std::string& dir, const std::string& name, con
 
 FrameSequenceWriter::FrameSequenceWriter(std::string dir, std::string name, std::string ext,
                                          const Mesh& mesh, int max_frame,
-                                         std::size_t queue_capacity)
+                                         std::size_t queue_capacity,
+                                         std::shared_ptr<const MeshDocument> document)
     : dir_(std::move(dir)),
       name_(std::move(name)),
       ext_(std::move(ext)),
       mesh_(mesh),
+      document_(std::move(document)),
       max_frame_(max_frame),
       capacity_(std::max<std::size_t>(queue_capacity, 1)) {
   std::transform(ext_.begin(), ext_.end(), ext_.begin(),
@@ -61,6 +63,8 @@ FrameSequenceWriter::FrameSequenceWriter(std::string dir, std::string name, std:
   if (mesh_.has_garbage())
     throw std::invalid_argument(
         "FrameSequenceWriter: the mesh has removed elements; call collect_garbage() first");
+  if (document_ && (document_->format() != ext_ || !document_->matches(mesh_)))
+    throw std::invalid_argument("FrameSequenceWriter: the document is not one of this mesh in ." + ext_);
   thread_ = std::thread([this] { work(); });
 }
 
@@ -115,7 +119,12 @@ void FrameSequenceWriter::work() {
     std::exception_ptr error;
     try {
       const std::string path = file_name(item.first);
-      write_mesh_atomic(path, mesh_, item.second);
+      // As the run's -o output is written (cli/run.cpp), so that a frame and the result of a run
+      // that ends there are the same file.
+      if (document_)
+        write_mesh_document_atomic(path, *document_, input_positions(mesh_, item.second));
+      else
+        write_mesh_atomic(path, mesh_, item.second);
       bytes = std::filesystem::file_size(path);
     } catch (...) {
       error = std::current_exception();

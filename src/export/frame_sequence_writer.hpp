@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -15,6 +16,8 @@
 #include "shellcontract/types.hpp"
 
 namespace shellcontract {
+
+class MeshDocument;
 
 /// What exporting cost; the CLI puts it in the run's summary.
 struct ExportStats {
@@ -31,10 +34,15 @@ struct ExportStats {
 std::string frame_file_name(const std::string& dir, const std::string& name, const std::string& ext,
                             int frame, int max_frame);
 
-/// Writes frames of a run as separate mesh files (OFF, OBJ, PLY or STL; write_mesh_atomic's format
-/// and precision), one background thread, a bounded queue of copied positions. It only reads the
-/// positions it is given, so exporting cannot change a simulation; the file contents depend only
-/// on the positions and the connectivity (not on timing).
+/// Writes frames of a run as separate mesh files, one background thread, a bounded queue of
+/// copied positions. Each file is written as the run's -o output is: through the input's document
+/// when one is given (an OBJ or PLY input written in its own format: UVs, normals, groups,
+/// materials, polygons and extra properties kept; docs/design/attributes.md), else with
+/// write_mesh_atomic (OFF, OBJ, PLY or STL, full precision); a mesh welded along its seams gets
+/// its input's vertices back either way. Both write atomically (write_file_atomic: an exclusive
+/// temporary, renamed). It only reads the positions it is given, so exporting cannot change a
+/// simulation; the file contents depend only on the positions, the connectivity and the document
+/// (not on timing).
 ///
 /// Errors (unwritable folder, disk full) happen on the writer thread: the frames after the first
 /// error are dropped and finish() rethrows that error. write() throws only for bad arguments.
@@ -48,10 +56,15 @@ class FrameSequenceWriter {
   /// @param ext "off", "obj", "ply" or "stl" (without the dot, any case)
   /// @param mesh connectivity (copied: the caller may change or destroy it afterwards)
   /// @param max_frame largest frame number that will be written; sets the zero-padding width
+  /// @param document  the input's document (shared: it is the whole input file), for the files
+  ///                  when its format is `ext`; it must stand for `mesh` (MeshDocument::matches).
+  ///                  nullptr: write_mesh_atomic
   /// @pre mesh is a triangle mesh without garbage
   /// @throws UsageError for an unknown extension
+  /// @throws std::invalid_argument for a document of another format or another mesh
   FrameSequenceWriter(std::string dir, std::string name, std::string ext, const Mesh& mesh,
-                      int max_frame, std::size_t queue_capacity = DEFAULT_QUEUE_CAPACITY);
+                      int max_frame, std::size_t queue_capacity = DEFAULT_QUEUE_CAPACITY,
+                      std::shared_ptr<const MeshDocument> document = nullptr);
   /// Joins the thread; an error not collected by finish() is dropped.
   ~FrameSequenceWriter();
   FrameSequenceWriter(const FrameSequenceWriter&) = delete;
@@ -80,6 +93,7 @@ class FrameSequenceWriter {
 
   std::string dir_, name_, ext_;
   Mesh mesh_;
+  std::shared_ptr<const MeshDocument> document_;
   int max_frame_;
   std::size_t capacity_;
 

@@ -13,12 +13,14 @@
 #include <cmath>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/normalization.hpp"
+#include "mesh/seam_weld.hpp"
 #include "mesh/soup_checks.hpp"
 #include "mesh/soup_geometry.hpp"
 #include "shellcontract/error.hpp"
@@ -90,8 +92,11 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
     points.emplace_back(p[0], p[1], p[2]);
   }
   std::vector<Tri> tris = read_faces(soup, name);
-  check_duplicates_and_isolated(tris, nv, name);
+  std::vector<soup::Polygon> polygons;
+  polygons.reserve(tris.size());
+  for (const Tri& t : tris) polygons.emplace_back(t.begin(), t.end());
   // The reader's edge and fan checks, with faces and vertices named by their index (no lines).
+  // Arrays that are open only along split seams are simulated welded (seam_weld.hpp).
   const SourceLines no_lines;
   std::vector<std::size_t> identity(tris.size());
   std::iota(identity.begin(), identity.end(), std::size_t{0});
@@ -99,8 +104,20 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   by_index.lines = &no_lines;
   by_index.points = &points;
   by_index.origin = &identity;
-  soup::check_edges(name, tris, nv, by_index);
-  soup::check_vertex_fans(name, tris, nv, by_index);
+  std::optional<soup::SeamWeld> weld;
+  try {
+    check_duplicates_and_isolated(tris, nv, name);
+    soup::check_edges(name, tris, nv, by_index);
+    soup::check_vertex_fans(name, tris, nv, by_index);
+  } catch (const InputError& refusal) {
+    weld = soup::weld_seams(points, polygons, refusal);  // or throws the refusal, with a hint
+  }
+  std::vector<soup::Polygon> input_polygons;
+  if (weld) {
+    input_polygons = std::move(polygons);
+    polygons = weld->tris;
+    points = weld->points;
+  }
   // The mesh, its orientation and zero areas as read_input_mesh decides them (soup_geometry.hpp),
   // on coordinates at a unit diagonal: in input units a mesh at 1e160 overflowed the signed
   // volume (its sign lost) and one at 1e-160 underflowed it.
@@ -108,13 +125,11 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   if (!normalized.usable())
     fail(name, "degenerate mesh", normalized.diagonal == 0.0 ? "zero bounding-box diagonal"
                                                              : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
-  std::vector<soup::Polygon> polygons;
-  polygons.reserve(tris.size());
-  for (const Tri& t : tris) polygons.emplace_back(t.begin(), t.end());
   Mesh mesh = soup::soup_mesh(points, polygons, "mesh_from_arrays");
   std::vector<std::string> warnings;
   const soup::Orientation oriented = soup::orient_components(mesh, points, polygons, normalized.unit, normalized.scale,
                                                              reorient, "mesh_from_arrays", warnings);
+  if (weld) soup::store_input_corners(mesh, *weld, input_polygons);
   std::vector<std::size_t> zero_area = soup::zero_area_faces(polygons, normalized.unit);
   if (!zero_area.empty())
     warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + soup::list_indices(zero_area));
@@ -142,6 +157,9 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
     report->components = oriented.components;
     report->volume = unit_volume * normalized.diagonal * normalized.diagonal * normalized.diagonal;
     report->warnings = std::move(warnings);
+    report->welded_vertices = weld ? weld->copies() : 0;
+    report->notes.clear();
+    if (weld) report->notes.push_back(soup::weld_note(*weld));
   }
   return mesh;
 }

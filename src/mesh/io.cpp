@@ -27,6 +27,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -36,6 +37,7 @@
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 
+#include "mesh/seam_weld.hpp"
 #include "mesh/soup_checks.hpp"
 #include "mesh/soup_geometry.hpp"
 
@@ -115,7 +117,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
 
   // Geometry is tested on normalized coordinates (see the file comment). A zero or non-finite
   // diagonal is refused below, after the connectivity checks.
-  const soup::UnitPoints normalized = soup::unit_points(points);
+  soup::UnitPoints normalized = soup::unit_points(points);
   const std::vector<Point3>& unit = normalized.unit;
 
   // Per polygon: arity, index range, repeated corners. Then triangulate: polygon i's (first)
@@ -157,11 +159,24 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   origin.insert(origin.end(), extra_origin.begin(), extra_origin.end());
   name.origin = &origin;
 
-  // Connectivity, in the order of the problems' importance (each names what it finds).
-  check_no_duplicate_face(path, tris, name);
-  check_edges(path, tris, nv, name);
-  check_no_isolated_vertex(path, tris, nv, name);
-  check_vertex_fans(path, tris, nv, name);
+  // Connectivity, in the order of the problems' importance (each names what it finds). A soup
+  // that is open only along split seams is simulated welded (seam_weld.hpp).
+  std::optional<soup::SeamWeld> weld;
+  try {
+    check_no_duplicate_face(path, tris, name);
+    check_edges(path, tris, nv, name);
+    check_no_isolated_vertex(path, tris, nv, name);
+    check_vertex_fans(path, tris, nv, name);
+  } catch (const InputError& refusal) {
+    weld = soup::weld_seams(points, tris, refusal);  // or throws the refusal, with a hint
+  }
+  std::vector<Polygon> input_tris;
+  if (weld) {
+    input_tris = std::move(tris);
+    tris = weld->tris;
+    points = weld->points;
+    normalized = soup::unit_points(points);  // the same box: the copies are at its points
+  }
 
   // The soup is now what polygon_soup_to_polygon_mesh requires (in release builds it only
   // asserts that): each condition of PMP::is_polygon_soup_a_polygon_mesh is one of the checks
@@ -177,6 +192,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   std::vector<std::string> warnings;
   const soup::Orientation oriented =
       soup::orient_components(mesh, points, tris, unit, normalized.scale, true, "read_input_mesh", warnings);
+  if (weld) soup::store_input_corners(mesh, *weld, input_tris);
   if (split > 0)
     warnings.push_back(std::to_string(split) + " polygons with more than 3 vertices were fan-triangulated into " +
                        std::to_string(split + extra.size()) + " triangles (the first keeps the polygon's face index, the others are appended after face " + std::to_string(polygons.size() - 1) + ")");
@@ -209,6 +225,9 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     // In input units; beyond about 1e102 per coordinate the cube of the scale overflows to inf.
     report->volume = unit_volume * normalized.scale * normalized.scale * normalized.scale;
     report->warnings = std::move(warnings);
+    report->welded_vertices = weld ? weld->copies() : 0;
+    report->notes.clear();
+    if (weld) report->notes.push_back(soup::weld_note(*weld));
   }
   return mesh;
 }

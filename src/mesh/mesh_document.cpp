@@ -40,18 +40,20 @@ std::vector<std::size_t> MeshDocument::face_origins() const {
 }
 
 bool MeshDocument::matches(const Mesh& mesh) const {
-  if (mesh.has_garbage() || mesh.number_of_vertices() != vertex_count_ || polygon_count() == 0)
+  // By the input's vertices: a mesh welded along its seams (mesh_io.hpp) names them too.
+  if (mesh.has_garbage() || input_vertex_count(mesh) != vertex_count_ || polygon_count() == 0)
     return false;
   for (std::size_t p = 0; p < polygon_count(); ++p)
     if (polygon_start_[p + 1] - polygon_start_[p] < 3) return false;
   if (mesh.number_of_faces() != triangle_count()) return false;
   const std::vector<std::size_t> origin = face_origins();
-  for (const FaceIndex f : mesh.faces()) {
-    const std::size_t p = origin[f.idx()];
+  const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
+  for (std::size_t f = 0; f < corners.size(); ++f) {
+    const std::size_t p = origin[f];
     const auto b = corner_vertex_.begin() + static_cast<std::ptrdiff_t>(polygon_start_[p]);
     const auto e = corner_vertex_.begin() + static_cast<std::ptrdiff_t>(polygon_start_[p + 1]);
-    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh))
-      if (std::find(b, e, static_cast<std::size_t>(v.idx())) == e) return false;
+    for (const std::size_t v : corners[f])
+      if (std::find(b, e, v) == e) return false;
   }
   return true;
 }
@@ -62,19 +64,20 @@ CornerTexcoords MeshDocument::texcoords(const Mesh& mesh) const {
       std::any_of(corner_uv_.begin(), corner_uv_.end(), [](long long i) { return i < 0; }))
     return t;
   const std::vector<std::size_t> origin = face_origins();
+  // Corners in the order of faces_array (vertices_around_face from the face's halfedge), by the
+  // input's vertex (a welded mesh's too); a vertex appears once in a polygon (read_input_mesh
+  // refuses repeats), so it names the corner.
+  const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
   t.face_uv.resize(mesh.number_of_faces());
-  for (const FaceIndex f : mesh.faces()) {
-    const std::size_t p = origin[f.idx()];
-    int k = 0;
-    // Corners in the order of faces_array (vertices_around_face from the face's halfedge); a
-    // vertex appears once in a polygon (read_input_mesh refuses repeats), so it names the corner.
-    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) {
+  for (std::size_t f = 0; f < corners.size(); ++f) {
+    const std::size_t p = origin[f];
+    for (std::size_t k = 0; k < 3; ++k) {
       std::size_t c = polygon_start_[p];
-      while (c < polygon_start_[p + 1] && corner_vertex_[c] != v.idx()) ++c;
+      while (c < polygon_start_[p + 1] && corner_vertex_[c] != corners[f][k]) ++c;
       if (c == polygon_start_[p + 1])
         throw std::invalid_argument(
             "MeshDocument::texcoords: the mesh is not this document's (call matches first)");
-      t.face_uv[f.idx()][static_cast<std::size_t>(k++)] = static_cast<std::size_t>(corner_uv_[c]);
+      t.face_uv[f][k] = static_cast<std::size_t>(corner_uv_[c]);
     }
   }
   t.uv = uv_;

@@ -18,6 +18,9 @@ inline constexpr const char* REGION = "f:region";                   ///< int, -1
 inline constexpr const char* ISOMETRIC_BENDING = "e:isometric_bending";  ///< IsometricBendingRest
 inline constexpr const char* DIHEDRAL_BENDING = "e:dihedral_bending";    ///< DihedralBendingRest
 inline constexpr const char* HINGE = "e:hinge";                     ///< HingeVertices stencil
+/// std::array<std::size_t, 3>: a welded input's face corners as the input numbered them
+/// (src/mesh/seam_weld.hpp); absent on a mesh whose input was closed as given.
+inline constexpr const char* INPUT_CORNERS = "f:input_corners";
 /// Output only (write_ply_atomic): CGAL's PLY writer turns these exact names, of type
 /// CGAL::IO::Color, into red, green, blue, alpha columns.
 inline constexpr const char* VERTEX_COLOR = "v:color";

@@ -31,6 +31,7 @@
 
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/soup_geometry.hpp"
 #include "mesh/soup_writer.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -94,11 +95,28 @@ void check_positions(const Mesh& mesh, const Positions& x, const char* who) {
                                 std::to_string(mesh.number_of_vertices()) + " vertices");
 }
 
+/// mesh_for_output of a welded mesh: the input's vertices (x expanded by input_positions) and
+/// faces, in order, each face from its first input corner. The input as given is a polygon mesh
+/// with boundary (weld_seams checked it with CGAL), which soup_mesh builds.
+Mesh input_mesh_for_output(const Mesh& mesh, const Positions& x) {
+  if (mesh.has_garbage())
+    throw std::invalid_argument("mesh_for_output: the mesh has removed elements; call collect_garbage() first");
+  const Positions in = input_positions(mesh, x);
+  std::vector<Point3> points;
+  points.reserve(static_cast<std::size_t>(in.rows()));
+  for (Eigen::Index i = 0; i < in.rows(); ++i) points.emplace_back(in(i, 0), in(i, 1), in(i, 2));
+  std::vector<std::vector<std::size_t>> faces;
+  faces.reserve(mesh.number_of_faces());
+  for (const auto& f : input_faces(mesh)) faces.emplace_back(f.begin(), f.end());
+  return soup::soup_mesh(points, faces, "mesh_for_output");
+}
+
 }  // namespace
 
 // ================================================================================== writing
 
 Mesh mesh_for_output(const Mesh& mesh, const Positions& x) {
+  if (has_welded_seams(mesh)) return input_mesh_for_output(mesh, x);
   check_positions(mesh, x, "mesh_for_output");
   // A copy keeps every face's halfedge, so each face lists its corners from the same vertex as
   // the input (per-corner data such as UVs stay aligned); the maps go, the caller adds its own.
@@ -121,8 +139,14 @@ void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::stri
 }
 
 void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary) {
-  check_positions(mesh, x, "write_mesh_atomic");
   const std::string ext = lower_extension(path);
+  if (has_welded_seams(mesh)) {
+    // The input's vertices and faces, each copy at its vertex's position: a mesh of its own.
+    const Mesh out = input_mesh_for_output(mesh, x);
+    write_mesh_atomic(path, out, positions_from_mesh(out), binary);
+    return;
+  }
+  check_positions(mesh, x, "write_mesh_atomic");
   if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
     throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
   if (ext == "ply") {

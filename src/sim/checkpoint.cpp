@@ -191,6 +191,14 @@ std::uint64_t mesh_hash(const Mesh& mesh) {
       const std::uint32_t i = v.idx();
       h = fnv1a(&i, sizeof i, h);
     }
+  // A welded input (mesh_io.hpp, "Seams") is also its input's corners: the same welded mesh
+  // from a file split otherwise writes other outputs. (A mesh closed as given hashes as before.)
+  if (has_welded_seams(mesh))
+    for (const auto& corners : input_faces(mesh))
+      for (const std::size_t c : corners) {
+        const std::uint64_t i = c;
+        h = fnv1a(&i, sizeof i, h);
+      }
   return h;
 }
 

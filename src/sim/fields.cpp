@@ -78,7 +78,9 @@ void write_fields_ply(const std::string& path, const Simulator& sim, const Posit
   const double lo = field_percentile(values, 0.02), hi = field_percentile(values, 0.98);
   // Attached in the order of the file's columns. The fields stay float, as they always were:
   // they are for looking at, and half the size of doubles.
+  // The input's vertices (a welded mesh's copies too, each with its vertex's values).
   Mesh out = mesh_for_output(sim.rest_mesh(), x);
+  const std::vector<std::size_t> of = input_vertex_map(sim.rest_mesh());
   auto rgb = property::add_map<VertexIndex, CGAL::IO::Color>(out, property::VERTEX_COLOR);
   const std::pair<const char*, const Eigen::VectorXd*> columns[] = {
       {property::MEAN_CURVATURE, &fields.mean_curvature},
@@ -87,10 +89,10 @@ void write_fields_ply(const std::string& path, const Simulator& sim, const Posit
       {property::ENERGY_DENSITY, &fields.energy_density}};
   for (const auto& [name, field] : columns) {
     auto map = property::add_map<VertexIndex, float>(out, name);
-    for (VertexIndex v : out.vertices()) map[v] = static_cast<float>((*field)(static_cast<Eigen::Index>(v.idx())));
+    for (VertexIndex v : out.vertices()) map[v] = static_cast<float>((*field)(static_cast<Eigen::Index>(of[v.idx()])));
   }
   for (VertexIndex v : out.vertices()) {
-    const auto i = static_cast<Eigen::Index>(v.idx());
+    const auto i = static_cast<Eigen::Index>(of[v.idx()]);
     const double t = hi > lo ? (c(i) - lo) / (hi - lo) : 0.5;  // constant field: white
     const Eigen::Vector3i c8 = field_colour(t);
     rgb[v] = CGAL::IO::Color(static_cast<unsigned char>(c8(0)), static_cast<unsigned char>(c8(1)),

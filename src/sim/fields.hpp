@@ -36,7 +36,8 @@ double field_percentile(std::vector<double> values, double q);
 
 /// Writes the mesh at positions x (input units) as ASCII PLY with per-vertex colour (from
 /// `colour`) and the float properties mean_curvature, gaussian_curvature, pressure and
-/// energy_density (normalized units), atomically (temporary file + rename).
+/// energy_density (normalized units), atomically (temporary file + rename). A mesh welded along
+/// its seams is written with its input's vertices, each copy with its vertex's values.
 /// @throws UsageError if the file cannot be written
 void write_fields_ply(const std::string& path, const Simulator& sim, const Positions& x,
                       const VertexFields& fields, FieldColour colour);

@@ -1,6 +1,7 @@
 #include "sim/region_weights.hpp"
 
 #include <algorithm>
+#include <array>
 
 #include <cmath>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
 
 namespace shellcontract {
@@ -76,13 +78,12 @@ void check_vertex_weights(const std::vector<double>& weights, std::size_t num_ve
 }
 
 std::vector<double> face_weights(const Mesh& mesh, const std::vector<double>& vertex_weights) {
-  std::vector<double> out(mesh.number_of_faces(), 0.0);
-  for (FaceIndex f : mesh.faces()) {
-    double sum = 0.0;
-    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
-      sum += vertex_weights[v.idx()];
-    out[f.idx()] = sum / 3.0;
-  }
+  // The weights are the input's, one per input vertex: a mesh welded along its seams
+  // (mesh_io.hpp) reads each corner's weight from the copy the face used.
+  const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
+  std::vector<double> out(corners.size(), 0.0);
+  for (std::size_t f = 0; f < corners.size(); ++f)
+    out[f] = (vertex_weights[corners[f][0]] + vertex_weights[corners[f][1]] + vertex_weights[corners[f][2]]) / 3.0;
   return out;
 }
 

@@ -14,6 +14,7 @@
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/material.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
 #include "sim/contact_distance.hpp"
 #include "sim/region_weights.hpp"
@@ -191,12 +192,13 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
       return mark_spherical_regions(mesh, positions_from_mesh(mesh), o);
     }
     case RegionSource::Weights: {
+      // One weight per input vertex (a welded mesh's copies included: mesh_io.hpp, "Seams").
       if (!options.vertex_weights.empty()) {
-        check_vertex_weights(options.vertex_weights, mesh.number_of_vertices(), "region_weights");
+        check_vertex_weights(options.vertex_weights, input_vertex_count(mesh), "region_weights");
         return mark_weighted_regions(mesh, options.vertex_weights);
       }
       return mark_weighted_regions(
-          mesh, read_vertex_weights(options.region_weight_file, mesh.number_of_vertices()));
+          mesh, read_vertex_weights(options.region_weight_file, input_vertex_count(mesh)));
     }
     case RegionSource::None:
       break;

@@ -56,6 +56,7 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   count("faces", report.faces);
   count("components", report.components);
   w.add_bool("reoriented", report.reoriented);
+  count("welded_vertices", report.welded_vertices);  // seam copies (mesh_io.hpp, "Seams")
   count("degenerate_faces", r.degenerate_faces);
   w.add_number("normalization_scale", r.normalization_scale);
   w.add_object("options", [&](SummaryWriter& o) {

@@ -1,6 +1,7 @@
 // `shellcontract run` keeps a textured asset whole: the OBJ result has the input's
 // lines but for `v` and `vn`, its positions are those of the OFF the same run writes, its normals
-// those of its own polygons; a PLY result keeps its extra vertex properties.
+// those of its own polygons; a PLY result keeps its extra vertex properties; the exported frames
+// are written as the result is.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -174,6 +175,28 @@ TEST_F(CliAttributes, PlyKeepsItsTextureCoordinatesAndColours) {
       EXPECT_EQ(std::strtod(tb[i].c_str(), nullptr), x(static_cast<Eigen::Index>(i / 8), static_cast<Eigen::Index>(i % 8))) << "token " << i;
     else
       EXPECT_EQ(tb[i], ta[i]) << "token " << i;  // s, t, colours, faces
+  }
+}
+
+TEST_F(CliAttributes, ExportedFramesOfAnObjAreWrittenAsItsResultIs) {
+  // --export-dir's frames go through -o's writer: each is the input file with that frame's
+  // positions and normals (vt, quads, groups, materials, the object kept), the last one the result.
+  const shellcontract::test::TexturedObj t = shellcontract::test::textured_uv_sphere();
+  const std::string in = file("ball.obj");
+  std::ofstream(in) << t.text;
+  std::vector<std::string> args = run_args(in, file("out.obj"));
+  args.insert(args.end(), {"--export-every", "4", "--export-dir", file("frames")});
+  const RunResult r = run_cli(args);
+  ASSERT_TRUE(r.exit_code == 0 || r.exit_code == 5) << r.output;
+  EXPECT_EQ(read_text(file("frames/out_8.obj")), read_text(file("out.obj")));
+  const std::vector<std::string> a = lines_of(t.text);
+  for (const char* frame : {"frames/out_0.obj", "frames/out_4.obj"}) {
+    const std::vector<std::string> b = lines_of(read_text(file(frame)));
+    ASSERT_EQ(b.size(), a.size()) << frame;
+    for (std::size_t i = 0; i < a.size(); ++i)
+      if (a[i].rfind("v ", 0) != 0 && a[i].rfind("vn ", 0) != 0) {
+        EXPECT_EQ(b[i], a[i]) << frame << " line " << i + 1;
+      }
   }
 }
 

@@ -121,7 +121,9 @@ TEST_F(Repair, InsideOutOpenCubeIsFilledAndTurnedOutward) {
 }
 
 TEST_F(Repair, DuplicatedVerticesAreStitched) {
-  // A triangle soup as STL stores it: each face has its own three points (36 points).
+  // A triangle soup as STL stores it: each face has its own three points (36 points). Welded
+  // at its identical positions it is the cube, which read_input_mesh does itself (seams,
+  // mesh_io.hpp); with one facet repeated, welding gives a duplicate face and repair is needed.
   std::vector<std::array<double, 3>> pts;
   std::vector<std::array<int, 3>> faces;
   for (const auto& t : CUBE_FACES) {
@@ -129,10 +131,17 @@ TEST_F(Repair, DuplicatedVerticesAreStitched) {
     for (int k = 0; k < 3; ++k) pts.push_back(CUBE_POINTS[t[k]]);
     faces.push_back({base, base + 1, base + 2});
   }
-  const std::string path = write_off("soup.off", pts, faces);
+  RepairReport as_read;
+  EXPECT_EQ(repair_input_mesh(write_off("soup.off", pts, faces), &as_read).number_of_vertices(), 8u);
+  EXPECT_TRUE(as_read.already_usable);
+  EXPECT_EQ(as_read.input_report.welded_vertices, 36u - 8u);
+  for (int k = 0; k < 3; ++k) pts.push_back(pts[static_cast<std::size_t>(k)]);
+  faces.push_back({36, 37, 38});
+  const std::string path = write_off("repeated.off", pts, faces);
   RepairReport r;
   const Mesh m = repair_input_mesh(path, &r);
-  EXPECT_EQ(r.duplicate_points_merged, 36u - 8u);
+  EXPECT_FALSE(r.already_usable);
+  EXPECT_EQ(r.duplicate_points_merged, 39u - 8u);
   EXPECT_EQ(m.number_of_vertices(), 8u);
   EXPECT_EQ(m.number_of_faces(), 12u);
   EXPECT_EQ(r.holes_filled, 0u);

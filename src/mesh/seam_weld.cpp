@@ -1,0 +1,155 @@
+// Welding the vertices that a UV seam split (seam_weld.hpp).
+#include "mesh/seam_weld.hpp"
+
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "mesh/properties.hpp"
+
+namespace shellcontract::soup {
+namespace {
+
+using Bits = std::array<std::uint64_t, 3>;
+
+/// A position's bits: equal bits are the same position, whatever the values compare as.
+Bits bits_of(const Point3& p) {
+  const double c[3] = {p.x(), p.y(), p.z()};
+  Bits b;
+  std::memcpy(b.data(), c, sizeof c);
+  return b;
+}
+
+/// "open boundary" of an InputError thrown with an empty file name (": open boundary: ...").
+std::string problem_of(const InputError& e) {
+  std::string s = e.what();
+  if (s.rfind(": ", 0) == 0) s.erase(0, 2);
+  return s.substr(0, s.find(": "));
+}
+
+}  // namespace
+
+SeamWeld weld_identical_positions(const std::vector<Point3>& points, const std::vector<Polygon>& tris) {
+  const std::size_t nv = points.size();
+  std::vector<Bits> key(nv);
+  for (std::size_t i = 0; i < nv; ++i) key[i] = bits_of(points[i]);
+  std::vector<std::size_t> order(nv);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  // By position, then by index: each run of equal positions starts at its first copy.
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return key[a] != key[b] ? key[a] < key[b] : a < b;
+  });
+  std::vector<std::size_t> first(nv);
+  for (std::size_t r = 0; r < nv; ++r)
+    first[order[r]] = r > 0 && key[order[r]] == key[order[r - 1]] ? first[order[r - 1]] : order[r];
+  SeamWeld w;
+  w.welded_of.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    if (first[i] == i) {
+      w.welded_of[i] = w.points.size();
+      w.points.push_back(points[i]);
+    } else {
+      w.welded_of[i] = w.welded_of[first[i]];  // first[i] < i: already numbered
+    }
+  }
+  w.tris = tris;
+  for (Polygon& t : w.tris)
+    for (std::size_t& v : t) v = w.welded_of[v];
+  return w;
+}
+
+bool has_boundary_edge(const std::vector<Polygon>& tris, std::size_t nv) {
+  std::vector<std::uint64_t> edges;
+  edges.reserve(3 * tris.size());
+  for (const Polygon& t : tris)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::size_t a = t[k], b = t[(k + 1) % 3];
+      edges.push_back(static_cast<std::uint64_t>(std::min(a, b)) * nv + std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) return true;
+    i = j;
+  }
+  return false;
+}
+
+SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon>& tris,
+                    const InputError& refusal) {
+  if (!has_boundary_edge(tris, points.size())) throw refusal;
+  SeamWeld weld = weld_identical_positions(points, tris);
+  if (weld.copies() == 0) throw refusal;
+  const auto no_weld = [&](const std::string& why) {
+    throw InputError(std::string(refusal.what()) + "; " + std::to_string(weld.copies()) +
+                     " vertices are at the position of another vertex (a mesh split along its UV "
+                     "seams?), but welding them does not make it a closed manifold mesh: " + why);
+  };
+  for (std::size_t f = 0; f < weld.tris.size(); ++f) {
+    const Polygon& t = weld.tris[f];
+    if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
+      no_weld("after welding, face " + std::to_string(f) + " has two corners at one position");
+  }
+  // The reader's own checks on the welded soup; only the problem's name goes into the hint
+  // (the welded numbering is not the file's).
+  const std::size_t nv = weld.points.size();
+  const SourceLines no_lines;
+  std::vector<std::size_t> identity(weld.tris.size());
+  std::iota(identity.begin(), identity.end(), std::size_t{0});
+  Namer by_index;
+  by_index.lines = &no_lines;
+  by_index.points = &weld.points;
+  by_index.origin = &identity;
+  try {
+    check_no_duplicate_face("", weld.tris, by_index);
+    check_edges("", weld.tris, nv, by_index);
+    check_no_isolated_vertex("", weld.tris, nv, by_index);
+    check_vertex_fans("", weld.tris, nv, by_index);
+  } catch (const InputError& e) {
+    no_weld("after welding, " + problem_of(e));
+  }
+  // The outputs give the input's vertices back (input_faces): every one must be a face's corner,
+  // and the soup as given an open surface that a Surface_mesh can hold.
+  std::vector<char> used(points.size(), 0);
+  for (const Polygon& t : tris)
+    for (std::size_t v : t) used[v] = 1;
+  for (std::size_t v = 0; v < points.size(); ++v)
+    if (!used[v]) no_weld("vertex " + std::to_string(v) + " is not used by any face");
+  if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(tris))
+    no_weld("as given, its faces are not a polygon mesh with boundary (separate fans meet at a vertex)");
+  return weld;
+}
+
+std::string weld_note(const SeamWeld& weld) {
+  return std::to_string(weld.copies()) + " seam vertices were welded: the input's " +
+         std::to_string(weld.welded_of.size()) + " vertices include copies at the same position " +
+         "(as a UV seam splits them), simulated as one closed mesh of " +
+         std::to_string(weld.points.size()) + " vertices; every output keeps the input's " +
+         std::to_string(weld.welded_of.size()) + " vertices, each copy at its vertex's position";
+}
+
+void store_input_corners(Mesh& mesh, const SeamWeld& weld, const std::vector<Polygon>& input_tris) {
+  auto corners = property::add_map<FaceIndex, std::array<std::size_t, 3>>(mesh, property::INPUT_CORNERS);
+  for (const FaceIndex f : mesh.faces()) {
+    const Polygon& t = input_tris[f.idx()];
+    std::size_t k = 0;
+    // The mesh's corner order (reorientation may have swapped two corners of the soup's face):
+    // each corner's input vertex is the one of the face that was welded into it.
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) {
+      std::size_t j = 0;
+      while (j < 3 && weld.welded_of[t[j]] != v.idx()) ++j;
+      if (j == 3 || k == 3)
+        throw std::logic_error("store_input_corners: face " + std::to_string(f.idx()) + " is not the welded face");
+      corners[f][k++] = t[j];
+    }
+  }
+}
+
+}  // namespace shellcontract::soup
