@@ -35,8 +35,10 @@ inline const std::vector<std::pair<std::string, std::vector<std::string>>>& run_
 /// The default run --help shows for an option whose table default is replaced under the
 /// default solver (xpbd) by a value derived from other options; empty to show the table's.
 inline std::string run_help_shown_default(const std::string& name) {
-  if (name == "mu" || name == "lambda") return "derived from --young";
-  if (name == "k-b") return "derived from --young";
+  // The table's values apply where the shell material does not: under --solver pbd or
+  // --material mooney-rivlin (mu, lambda, k_B), and with --bending isometric (k_B); run_plan.cpp.
+  if (name == "mu" || name == "lambda") return "derived from --young, else 1";
+  if (name == "k-b") return "derived from --young, else 0.01";
   if (name == "damping") return "0.1, pbd: 0.2";
   return {};
 }

@@ -93,7 +93,7 @@ int command_repair(int argc, char** argv) {
       "json", po::bool_switch(&json), "print the report as a JSON object on stdout")(
       "max-hole-edges", po::value(&max_hole_edges)->value_name("N"),
       "leave holes with more than N boundary edges open (their component is then dropped); "
-      "default: fill every hole");
+      "default (or 0): fill every hole");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {

@@ -271,7 +271,8 @@ std::vector<OptionSpec> build_table() {
                               "Young's modulus (with --thickness): sets mu and lambda, and with "
                               "--solver xpbd and dihedral bending also k_B (unless --k-b is "
                               "given): E h^3 / (36 (1 - nu^2)). The default shell material "
-                              "applies under xpbd unless --mu or --lambda is given",
+                              "applies under xpbd unless --mu or --lambda is given or --material "
+                              "is mooney-rivlin",
                               positive(),
                               [](R& r) -> std::optional<double>& { return r.young; }));
   t.push_back(number("poisson", 0, "NU", "Poisson ratio (with --young)",

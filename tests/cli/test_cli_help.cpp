@@ -4,10 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "shellcontract/options.hpp"
 #include "support/cli_runner.hpp"
+#include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
@@ -50,12 +55,59 @@ TEST(CliHelp, RunHelpMarksTheDerivedDefaults) {
   const auto r = run_cli({"run", "--help"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // Under the default solver (xpbd) mu, lambda and k_B come from --young and --thickness: the
-  // table's pbd defaults (1, 1, 0.01) would be wrong to show as what applies.
+  // table's pbd defaults (1, 1, 0.01) would be wrong to show as what applies, and as wrong to
+  // leave out, since they apply elsewhere (under pbd, for example):
+  // RunHelpDerivedDefaultsAreWhatARunResolves checks them against runs.
   for (const char* opt :
-       {"--mu MU (=derived from --young)", "--lambda LAMBDA (=derived from --young)",
-        "--k-b KB (=derived from --young)", "--damping D (=0.1, pbd: 0.2)"})
+       {"--mu MU (=derived from --young, else 1)", "--lambda LAMBDA (=derived from --young, else 1)",
+        "--k-b KB (=derived from --young, else 0.01)", "--damping D (=0.1, pbd: 0.2)"})
     EXPECT_NE(r.output.find(opt), std::string::npos) << opt;
   EXPECT_EQ(r.output.find("--mu MU (=1)"), std::string::npos);
+}
+
+/// The value of "key": "..." in the summary's "options" object (the summary writes each option's
+/// resolved text as a string).
+std::string summary_option(const fs::path& summary, const std::string& key) {
+  std::ifstream in(summary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t options = text.find("\"options\"");
+  const std::size_t at = text.find("\"" + key + "\": \"", options);
+  if (options == std::string::npos || at == std::string::npos) return "(missing)";
+  const std::size_t begin = at + key.size() + 5;
+  return text.substr(begin, text.find('"', begin) - begin);
+}
+
+TEST(CliHelp, RunHelpDerivedDefaultsAreWhatARunResolves) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  const fs::path dir = fs::temp_directory_path() / "shellcontract_cli_help_defaults";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const auto resolved = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{"run", std::string(test::MESH_DIR) + "/ico2.off", "-o",
+                                  (dir / "o.off").string(), "-n", "0", "-q", "--summary",
+                                  (dir / "s.json").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    std::map<std::string, std::string> v;
+    for (const char* key : {"mu", "lambda", "k-b", "damping"}) v[key] = summary_option(dir / "s.json", key);
+    return v;
+  };
+  // The default run: derived from the shell material (none of the table's values).
+  const auto xpbd = resolved({});
+  EXPECT_NE(xpbd.at("mu"), "1");
+  EXPECT_NE(xpbd.at("lambda"), "1");
+  EXPECT_NE(xpbd.at("k-b"), "0.01");
+  EXPECT_EQ(xpbd.at("damping"), "0.1");
+  // "else": the table's values.
+  const auto pbd = resolved({"--solver", "pbd"});
+  EXPECT_EQ(pbd, (std::map<std::string, std::string>{
+                     {"mu", "1"}, {"lambda", "1"}, {"k-b", "0.01"}, {"damping", "0.2"}}));
+  const auto mooney = resolved({"--material", "mooney-rivlin"});
+  EXPECT_EQ(mooney.at("mu"), "1");
+  EXPECT_EQ(mooney.at("k-b"), "0.01");
+  EXPECT_EQ(resolved({"--bending", "isometric"}).at("k-b"), "0.01");
+  fs::remove_all(dir);
 }
 
 }  // namespace
