@@ -205,8 +205,8 @@ int command_run(int argc, char** argv) {
       "fields-colour", po::value(&fields_colour)->default_value(fields_colour)->value_name("NAME"),
       "mean | gaussian | pressure | energy: blue-white-red over the 2nd-98th percentile")(
       "export-every", po::value(&exports.every)->value_name("N"),
-      "with --export-dir or --gltf: keep every N-th frame (and the first and last); default for "
-      "--gltf alone: about 100 frames of the run")(
+      "with --export-dir or --gltf: keep every N-th frame (and the first and last); default: "
+      "about 100 frames of the run (N = --frames / 100, rounded up)")(
       "export-dir", po::value(&exports.dir)->value_name("DIR"),
       "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing), "
       "each written as -o is (an OBJ or PLY input's attributes kept)")(

@@ -65,6 +65,21 @@ TEST_F(CliExport, FramesAreWrittenAndTheResultIsUnchanged) {
   EXPECT_NE(summary.find("\"gltf_bytes\""), std::string::npos) << summary;
 }
 
+// Without --export-every, --export-dir (like --gltf) keeps about 100 frames: every
+// ceil(frames / 100)-th, and the last (run --help, docs/cli.md). Its help said this of --gltf alone.
+TEST_F(CliExport, ExportDirAloneKeepsAboutAHundredFrames) {
+  const std::string ico = std::string(test::MESH_DIR) + "/ico2.off";
+  const auto r = run_cli({"run", ico, "-o", (dir_ / "o.off").string(), "-n", "250", "-q",
+                          "--collisions", "off", "--export-dir", (dir_ / "frames").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir_ / "frames")) ++files;
+  EXPECT_EQ(files, 85);  // 0, 3, ..., 249 and 250
+  for (const char* name : {"o_000.off", "o_003.off", "o_249.off", "o_250.off"})
+    EXPECT_TRUE(fs::exists(dir_ / "frames" / name)) << name;
+  EXPECT_FALSE(fs::exists(dir_ / "frames" / "o_001.off"));
+}
+
 TEST_F(CliExport, ExportOptionsAreChecked) {
   const std::string out = (dir_ / "o.off").string();
   EXPECT_EQ(run_cli({"run", in(), "-o", out, "--export-every", "5"}).exit_code, 1);
