@@ -17,6 +17,7 @@ same command again to finish).
 import argparse
 import os
 import queue
+import shlex
 import subprocess
 import sys
 import uuid
@@ -340,9 +341,10 @@ def _run(args, cli, version, data, jobs):
     varying = sweep_file.varying_names(data)
     sweep_dir = os.path.dirname(os.path.abspath(args.sweep))
     if args.dry_run:
+        # The mesh and `run`'s arguments quoted for a shell ('0:1, 60:0.5' is one argument).
         for job in jobs:
-            print("{}  {}  {}".format(job.id, os.path.relpath(job.mesh, sweep_dir),
-                                      " ".join(job.args)))
+            print("{}  {}  {}".format(job.id, shlex.quote(os.path.relpath(job.mesh, sweep_dir)),
+                                      " ".join(shlex.quote(a) for a in job.args)))
         return 0
     sweep_output.claim(args.output, args.sweep)
     selected = jobs if args.shard is None else jobs[args.shard[0]::args.shard[1]]

@@ -423,22 +423,24 @@ py::dict resolve_options(const py::kwargs& kwargs) {
     // The sweep's check of its jobs: a command of the CLI, so the options go by their flags.
     throw py::value_error(spell_options(e.what(), OptionSpelling::Cli));
   }
-  // The arguments in table order (the CLI parses them in that order whatever the order given).
+  // The arguments in table order (the CLI parses them in that order whatever the order given),
+  // each value as the table writes it back (get): numbers in the tool's shortest form (1e+06,
+  // not Python's 1000000.0), as --help, the summary and the sweep's results write them.
   py::list args;
   for (const OptionSpec& o : run_option_table()) {
     const std::string name = python_name(o.name);
     if (!kwargs.contains(name)) continue;
     const std::string text = o.name == "region-at" ? region_at_text(kwargs[py::str(name)])
                                                    : option_text(name, kwargs[py::str(name)]);
+    RunOptions probe;
+    o.set(probe, text);  // the option's own parse (a switch's on/off/true/false/1/0)
     if (o.is_switch) {
-      RunOptions probe;
-      o.set(probe, text);  // the switch's own parse (on/off/true/false/1/0)
       if (o.get(probe) == o.get(RunOptions{})) continue;  // off: the flag is left out
       args.append("--" + o.name);
       continue;
     }
     args.append("--" + o.name);
-    args.append(text);
+    args.append(o.get(probe));
   }
   py::dict resolved;
   for (const OptionSpec& o : run_option_table()) resolved[py::str(python_name(o.name))] = o.get(options);

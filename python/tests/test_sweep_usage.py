@@ -44,3 +44,31 @@ def test_the_largest_job_timeout_is_taken(cli, mesh_dir, tmp_path):
 def test_help_exits_0(cli):
     r = run_sweep(cli, ["--help"])
     assert r.returncode == 0 and "SWEEP.json" in r.stdout
+
+
+def test_the_jobs_arguments_write_numbers_as_the_tool_does(cli, mesh_dir, tmp_path):
+    """--dry-run lists `run`'s arguments as the tool writes numbers (--help, the summary, the
+    results' cells): the shortest text that reads back, 1e+06 and 0:1. Before: Python's repr,
+    1000000.0 and 0:1.0, and a keyframe text split over words."""
+    import shlex
+    from shellcontract import _core
+    from shellcontract.sweep_results import _cell
+    args = list(_core.resolve_options(pressure=1e6, delta=1e-5, young=1000000.0, thickness=0.002,
+                                      frames=10, target_volume=[(0, 1.0), (60, 0.5)],
+                                      fiber=[1.0, 0, 0], collisions=False)["args"])
+    assert args == ["--pressure", "1e+06", "--target-volume", "0:1, 60:0.5", "--frames", "10",
+                    "--young", "1e+06", "--thickness", "0.002", "--fiber", "1,0,0",
+                    "--collisions", "off", "--delta", "1e-05"]
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4, "delta": 1e-5},
+            "grid": {"pressure": [1e6, 2.0]}, "runs": [{"target_volume": [[0, 1.0], [60, 0.5]]}]}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"])
+    assert r.returncode == 0, r.stderr
+    lines = r.stdout.splitlines()
+    assert len(lines) == 2, r.stdout
+    for line, pressure in zip(lines, (1e6, 2.0)):
+        words = shlex.split(line)[2:]
+        assert words[words.index("--pressure") + 1] == _cell(pressure)  # 1e+06, 2
+        assert words[words.index("--target-volume") + 1] == "0:1, 60:0.5"
+        assert words[words.index("--delta") + 1] == "1e-05"
+    assert not (tmp_path / "out").exists()
