@@ -51,13 +51,6 @@ exit codes: 0 the mesh can be used (self-intersections already in the input are 
 
 options)";
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 /// A file's polygons (as its reader gives them) and, per face of the mesh read_input_mesh makes
 /// of it, the polygon that face comes from: face i < #polygons is polygon i's first triangle,
 /// the other triangles of split polygons follow in polygon order.

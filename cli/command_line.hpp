@@ -2,7 +2,10 @@
 // and the one way a subcommand reports bad usage (README "Exit codes": 1).
 #pragma once
 
+#include <algorithm>
 #include <boost/program_options.hpp>
+#include <cctype>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -17,6 +20,16 @@ inline int usage_error(const std::string& command, const std::string& what) {
   std::cerr << "shellcontract " << command << ": " << what << "\n(see 'shellcontract " << command
             << " --help')\n";
   return static_cast<int>(ExitCode::BadUsage);
+}
+
+/// A path's extension in lower case without its dot ("OBJ" -> "obj"; "" when it has none): the
+/// name by which the readers and writers pick a format.
+inline std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
 }
 
 /// Parses the arguments of a subcommand that takes the options of `visible` and one positional

@@ -70,12 +70,6 @@ exit codes: 0 success, 1 bad usage or unwritable output, 2 bad input (the mesh c
 
 options)";
 
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 /// The points of the --region-at values, read by `run --region-at`'s own entry of the option
 /// table, so that both commands take the same forms (repeated, or X,Y,Z;X,Y,Z). UsageError
 /// naming the option by field, as the table's entries do (spell_options spells it).
@@ -188,7 +182,7 @@ int command_regions(int argc, char** argv) {
       return static_cast<int>(ExitCode::Success);
     }
     if (input.empty()) throw UsageError("missing INPUT mesh");
-    if (!output.empty() && lower_extension(output) != ".ply") throw UsageError("the output must be a .ply file (got '" + output + "')");
+    if (!output.empty() && lower_extension(output) != "ply") throw UsageError("the output must be a .ply file (got '" + output + "')");
     for (const auto& [name, t] : {std::pair<const char*, double>{"--fit-tolerance", options.fit_tolerance},
                                   {"--max-concave-fraction", options.max_concave_fraction},
                                   {"--min-cap-angle", options.min_cap_angle_deg},

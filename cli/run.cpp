@@ -2,15 +2,11 @@
 // call run_contraction with the CLI's observers, write the files and return the exit code.
 #include "shellcontract/run.hpp"
 
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <boost/program_options.hpp>
-#include <cctype>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <iomanip>
 #include <iostream>
@@ -31,6 +27,7 @@
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
 #include "run_observers.hpp"
+#include "run_summary.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
@@ -97,82 +94,6 @@ void add_table_options(po::options_description& desc, std::map<std::string, std:
   }
   for (const po::options_description& section : sections)
     if (!section.options().empty()) desc.add(section);
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
-JsonObject export_json(const FrameExporter& e) {
-  const ExportStats f = e.frame_stats();
-  JsonObject o;
-  o.add("every", e.every())
-      .add("frames_written", f.frames_written)
-      .add("frame_bytes", static_cast<std::size_t>(f.bytes))
-      .add("simulation_thread_seconds", f.caller_seconds + e.gltf_copy_seconds())
-      .add("writer_thread_seconds", f.writer_seconds)
-      .add("gltf_bytes", e.gltf_bytes())
-      .add("gltf_seconds", e.gltf_seconds());
-  return o;
-}
-
-/// The library's summary (write_run_summary) into a JSON object.
-class JsonSummary final : public SummaryWriter {
- public:
-  explicit JsonSummary(JsonObject& o) : o_(o) {}
-  void add_bool(const std::string& key, bool v) override { o_.add(key, v); }
-  void add_integer(const std::string& key, long long v) override {
-    o_.add_raw(key, std::to_string(v));
-  }
-  void add_number(const std::string& key, double v) override { o_.add(key, v); }
-  void add_text(const std::string& key, const std::string& v) override { o_.add(key, v); }
-  void add_texts(const std::string& key, const std::vector<std::string>& v) override {
-    o_.add(key, v);
-  }
-  void add_numbers(const std::string& key, const std::vector<double>& v) override {
-    std::string raw = "[";
-    for (std::size_t i = 0; i < v.size(); ++i) raw += (i ? ", " : "") + json_number(v[i]);
-    o_.add_raw(key, raw + "]");
-  }
-  void add_object(const std::string& key,
-                  const std::function<void(SummaryWriter&)>& fill) override {
-    JsonObject inner;
-    JsonSummary w(inner);
-    fill(w);
-    o_.add(key, inner);
-  }
-
- private:
-  JsonObject& o_;
-};
-
-JsonObject summary_json(const std::string& input, const std::string& output,
-                        const InputReport& report, const RunOptions& options, const RunResult& r) {
-  JsonObject s;
-  JsonSummary w(s);
-  const SummaryFiles files{input, output};
-  write_run_summary(w, report, options, r, OptionSpelling::Cli, &files);
-  return s;
-}
-
-/// The process's peak resident memory so far. Linux's VmHWM (/proc/self/status, in kB) first:
-/// getrusage's ru_maxrss keeps, across exec, the peak of the process that forked this one, so a
-/// tool started from a script reported the script's peak, not its own, for a small mesh
-/// (tests/cli/test_cli_run_control.cpp). getrusage (KiB on Linux) where /proc is not there.
-double peak_memory_mb() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("VmHWM:", 0) == 0) {
-      const double kb = std::strtod(line.c_str() + 6, nullptr);
-      if (kb > 0.0) return kb / 1024.0;
-    }
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return static_cast<double>(u.ru_maxrss) / 1024.0;
 }
 
 }  // namespace
