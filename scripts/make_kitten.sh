@@ -8,6 +8,7 @@ cd "$(dirname "$0")/.."
 build="${1:-build}"
 [ -f data/points_3/kitten.xyz ] || scripts/fetch_paper_meshes.sh
 # --radius 1: triangles up to one average point spacing (about 8200 faces, genus 1: the tail
-# loop; the mesher's random initial points are seeded, so every run gives the same mesh).
+# loop; the mesher's random initial points are seeded and the faces written in a canonical
+# order, so every run gives the same file).
 "$build/shellcontract" reconstruct data/points_3/kitten.xyz -o data/meshes/kitten.off --radius 1
 "$build/shellcontract" check data/meshes/kitten.off

@@ -24,12 +24,16 @@ def _preferences(context):
 
 
 def _keys_of(obj, prop):
-    """The keyframes (frame, value) of obj.shellcontract.<prop>, or None when not animated."""
+    """The keyframes (frame, value) of obj.shellcontract.<prop>, or None when not animated.
+
+    Only the active action's F-curve is read, and not when it is muted: Blender does not play a
+    muted F-curve, and the run should follow what the timeline shows. NLA strips are not read
+    (docs/blender.md), so a muted one is not either."""
     ad = obj.animation_data
     if ad is None or ad.action is None:
         return None
     fc = ad.action.fcurves.find("shellcontract." + prop)
-    if fc is None or len(fc.keyframe_points) == 0:
+    if fc is None or fc.mute or len(fc.keyframe_points) == 0:
         return None
     return [(kp.co[0], kp.co[1]) for kp in fc.keyframe_points]
 

@@ -196,6 +196,27 @@ def target_volume_messages(obj):
     s.target_volume = 0.6
 
 
+def muted_keys():
+    """Keys Blender does not play are not the run's: a muted F-curve of the Target volume leaves
+    the field's own value."""
+    from shellcontract_blender import operator
+    obj = uv_sphere()
+    s = obj.shellcontract
+    start = bpy.context.scene.frame_start
+    for frame, value in ((0, 1.0), (40, 0.6), (80, 0.9)):
+        s.target_volume = value
+        obj.keyframe_insert("shellcontract.target_volume", frame=start + frame)
+    s.target_volume = 0.7
+    keyed = operator.run_options(bpy.context, obj)["target_volume"]
+    check(keyed == "0:1, 40:0.6, 80:0.9", "the keys are read while they play: {}".format(keyed))
+    fc = obj.animation_data.action.fcurves.find("shellcontract.target_volume")
+    fc.mute = True
+    unkeyed = operator.run_options(bpy.context, obj)["target_volume"]
+    check(unkeyed == 0.7 or str(unkeyed) == "0.7",
+          "a muted F-curve is not read as keys: {!r}".format(unkeyed))
+    bpy.data.objects.remove(obj)
+
+
 def mesh_messages():
     """A mesh the library refuses: the message names the object's mesh (not 'input arrays') and
     its face numbers are the mesh's faces (polygons), not the loop triangles the run was given."""
@@ -435,6 +456,7 @@ def main():
           and 3 <= reported <= job.progress < 5000,
           "a threaded run reports progress and cancels (frame {})".format(job.progress))
 
+    muted_keys()
     mesh_messages()
 
     if a.glb:

@@ -224,7 +224,10 @@ std::array<unsigned char, 3> region_colour(int id);
 /// significant digits, vertex and face order kept, atomic) at positions x: per face `red green blue alpha`
 /// (region_colour) and `int region` from "f:region"; per vertex `double mean_curvature` and
 /// `double gaussian_curvature` when those maps are attached (mark_spherical_regions stores them).
-/// @param x #V by 3 positions, row i = vertex i.
+/// A mesh welded along its seams (mesh_io.hpp, "Seams") is written with its input's vertices and
+/// faces, as mesh_for_output gives them: each copy at its welded vertex's position and with its
+/// curvature; faces (and so the region ids) in the mesh's face order.
+/// @param x #V by 3 positions, row i = vertex i; or (a welded mesh) one row per input vertex.
 /// @throws UsageError when x does not match the mesh or the file cannot be written.
 void write_region_ply(const std::string& path, const Mesh& mesh, const Positions& x);
 

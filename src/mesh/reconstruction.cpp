@@ -7,6 +7,7 @@
 #include <CGAL/property_map.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
@@ -171,6 +172,34 @@ bool poisson_delaunay(const std::vector<PointWithNormal>& points, Mesh& mesh, do
   return true;
 }
 
+/// The mesh with its faces in a canonical order: each face rotated to start at its smallest
+/// vertex index (orientation kept), the faces sorted by their three indices. CGAL's export
+/// (facets_in_complex_2_to_triangle_mesh) lists the facets of a std::set ordered by cell
+/// address, so the same surface came out in another face order whenever the allocator placed
+/// the triangulation's cells differently (another malloc setting, another process history).
+/// The vertices come in the triangulation's container order, which follows its insertions, not
+/// addresses: they are kept as they are.
+Mesh with_canonical_face_order(const Mesh& mesh) {
+  using Corners = std::array<Mesh::size_type, 3>;
+  std::vector<Corners> faces;
+  faces.reserve(mesh.number_of_faces());
+  for (const FaceIndex f : mesh.faces()) {
+    Corners c{};
+    std::size_t k = 0;
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) c[k++] = v.idx();
+    std::rotate(c.begin(), std::min_element(c.begin(), c.end()), c.end());
+    faces.push_back(c);
+  }
+  std::sort(faces.begin(), faces.end());
+  Mesh out;
+  out.reserve(mesh.number_of_vertices(), mesh.number_of_edges(), mesh.number_of_faces());
+  for (const VertexIndex v : mesh.vertices()) out.add_vertex(mesh.point(v));
+  for (const Corners& c : faces)
+    if (out.add_face(VertexIndex(c[0]), VertexIndex(c[1]), VertexIndex(c[2])) == Mesh::null_face())
+      throw std::logic_error("with_canonical_face_order: a face of a closed manifold mesh was refused");
+  return out;
+}
+
 }  // namespace
 
 Mesh reconstruct_from_oriented_points(const std::string& path, const ReconstructionOptions& options) {
@@ -190,7 +219,7 @@ Mesh reconstruct_from_oriented_points(const std::string& path, const Reconstruct
   if (!CGAL::Polygon_mesh_processing::is_outward_oriented(mesh))
     CGAL::Polygon_mesh_processing::reverse_face_orientations(mesh);
   mesh.collect_garbage();
-  return mesh;
+  return with_canonical_face_order(mesh);
 }
 
 }  // namespace shellcontract

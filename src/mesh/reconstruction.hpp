@@ -19,6 +19,8 @@ struct ReconstructionOptions {
 /// Reads an oriented point set ("x y z nx ny nz" per line, .xyz / .pwn) and reconstructs a closed
 /// surface with CGAL::poisson_surface_reconstruction_delaunay (Kazhdan et al. 2006).
 /// A position given on several lines counts once (its first line's normal).
+/// The faces come in a canonical order, whatever the allocator did: each face starts at its
+/// smallest vertex index (orientation kept) and the faces are sorted by their indices.
 /// @throws InputError if the file cannot be read, its points fail checked_points
 ///         (mesh/point_set_checks.hpp: too few, huge coordinates, a stray point, no volume...),
 ///         or the reconstruction fails or is not a closed triangle mesh

@@ -3,11 +3,12 @@
 // gives the file's vertices back, each copy at its welded vertex's position: -o (through the
 // PLY document: header, s, t and faces as read), the plain writer, the frames of --export-dir
 // (the same writer as -o), the .glb's texture coordinates, --fields, a checkpoint's resume, and
-// `check --against` of the result.
+// `check --against` of the result; and `regions -o`, on the file's vertices too.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -146,6 +147,63 @@ TEST_F(CliSeams, ASeamSplitRunResumedFromItsCheckpointEqualsTheWholeRun) {
   const RunResult resumed = run_cli({"run", "--resume", file("c.ckpt"), "-o", file("resumed.ply"), "-q"});
   ASSERT_EQ(resumed.exit_code, whole.exit_code) << resumed.output;
   EXPECT_EQ(read_text(file("resumed.ply")), read_text(file("whole.ply")));
+}
+
+TEST_F(CliSeams, TheRegionsPlyOfASeamSplitMeshHasTheFilesVerticesAndFaces) {
+  // A cap at the pole, where each pole triangle has its own copy of the pole vertex.
+  const RunResult r = run_cli({"regions", in_, "--region-at", "0,0,1", "-o", file("r.ply"), "--face-list", file("f.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::istringstream in(read_text(file("r.ply")));
+  std::size_t nv = 0, nf = 0;
+  for (std::string line; std::getline(in, line) && line != "end_header";) {
+    std::istringstream l(line);
+    std::string word, element;
+    l >> word >> element;
+    if (word == "element") (element == "vertex" ? l >> nv : l >> nf);
+  }
+  ASSERT_EQ(nv, static_cast<std::size_t>(mesh_.x.rows()));
+  ASSERT_EQ(nf, mesh_.tris.size());
+  // x y z H K per vertex: the file's positions (regions does not move them), and each copy
+  // with the curvature of the vertices it was welded with.
+  std::vector<std::array<double, 2>> hk(nv);
+  for (std::size_t i = 0; i < nv; ++i) {
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      std::string c;
+      in >> c;
+      EXPECT_EQ(std::strtod(c.c_str(), nullptr), mesh_.x(static_cast<Eigen::Index>(i), k)) << "vertex " << i;
+    }
+    in >> hk[i][0] >> hk[i][1];
+    for (std::size_t j = 0; j < i; ++j)
+      if (mesh_.closed_vertex[i] == mesh_.closed_vertex[j]) {
+        EXPECT_EQ(hk[i], hk[j]) << "copies " << j << " and " << i;
+      }
+  }
+  // Each face on the file's corners (from any of them, in the file's direction), with the
+  // region that the face list gives its index.
+  std::vector<int> listed(nf, -1);
+  std::istringstream list(read_text(file("f.txt")));
+  int region = 0;
+  for (std::string line; std::getline(list, line); ++region) {
+    std::istringstream ids(line);
+    for (std::size_t f; ids >> f;) listed.at(f) = region;
+  }
+  ASSERT_GE(region, 1) << "a region at the pole";
+  std::size_t in_region = 0;
+  for (std::size_t f = 0; f < nf; ++f) {
+    std::size_t degree = 0, rgba = 0;
+    std::array<std::size_t, 3> c{};
+    int id = -2;
+    in >> degree >> c[0] >> c[1] >> c[2];
+    for (int k = 0; k < 4; ++k) in >> rgba;
+    in >> id;
+    ASSERT_EQ(degree, 3u) << "face " << f;
+    std::array<std::size_t, 3> want = mesh_.tris[f];
+    std::rotate(want.begin(), std::find(want.begin(), want.end(), c[0]), want.end());
+    EXPECT_EQ(c, want) << "face " << f;
+    EXPECT_EQ(id, listed[f]) << "face " << f;
+    in_region += id >= 0;
+  }
+  EXPECT_GT(in_region, 0u);
 }
 
 }  // namespace
