@@ -119,6 +119,8 @@ class FrameExporter final : public RunObserver {
   int every() const { return request_.every; }
   /// Why the frame files stopped being written; empty when they all were.
   const std::string& export_error() const { return export_error_; }
+  /// The warnings of writing the frame files (FrameSequenceWriter::warnings), once each.
+  std::vector<std::string> frame_warnings() const { return writer_ ? writer_->warnings() : std::vector<std::string>{}; }
 
  private:
   void take(int frame, const FrameView& view) {

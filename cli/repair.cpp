@@ -51,6 +51,8 @@ JsonObject report_json(const std::string& input, const std::string& output, cons
       .add("written_as", written ? written->kind_name() : std::string())
       .add("binary", written && written->binary)
       .add("dropped", written ? written->dropped : std::vector<std::string>())
+      .add("material_paths_rewritten", written && written->material_paths_rewritten)
+      .add("warnings", written ? written->warnings : std::vector<std::string>())
       .add("usable", r.usable)
       .add("already_usable", r.already_usable)
       .add("input_problem", r.input_problem)
@@ -125,6 +127,7 @@ int command_repair(int argc, char** argv) {
     std::cerr << "shellcontract repair: " << e.what() << '\n';
     return static_cast<int>(ExitCode::BadUsage);
   }
+  for (const std::string& w : written.warnings) std::cerr << "warning: " << w << '\n';
   if (json) {
     std::cout << report_json(input, output, r, &written).str() << '\n';
   } else {
@@ -140,7 +143,11 @@ int command_repair(int argc, char** argv) {
     }
     std::cerr << "wrote " << output << ": " << r.input_report.vertices << " vertices, " << r.input_report.faces
               << " faces, usable"
-              << (written.kind == RepairOutput::Kind::Copy ? " (the input's bytes, unchanged)" : "") << '\n';
+              << (written.kind != RepairOutput::Kind::Copy ? ""
+                  : written.material_paths_rewritten
+                      ? " (the input's bytes, but the mtllib paths rewritten to name the same files from its folder)"
+                      : " (the input's bytes, unchanged)")
+              << '\n';
   }
   return static_cast<int>(ExitCode::Success);
 }

@@ -347,6 +347,7 @@ int command_run(int argc, char** argv) {
                   std::to_string(exporter.frame_stats().frames_written) +
                       " frames written, then failed: " + exporter.export_error());
     }
+    for (const std::string& w : exporter.frame_warnings()) std::cerr << "warning: " << w << '\n';
     if (!fields.error().empty()) outputs.add("--fields", fields_prefix, "failed: " + fields.error());
     const auto attempt = [&](const char* option, const std::string& path, const std::function<void()>& write) {
       stage = "writing " + path;
@@ -363,10 +364,13 @@ int command_run(int argc, char** argv) {
     };
     if (!exports.gltf.empty()) attempt("--gltf", exports.gltf, [&] { exporter.write_gltf(); });
     attempt("-o", output, [&] {
-      if (document && document->format() == lower_extension(output))
-        write_mesh_document_atomic(output, *document, input_positions(mesh, r.positions));
-      else
+      if (document && document->format() == lower_extension(output)) {
+        std::vector<std::string> doc_warnings;  // a material library that does not exist
+        write_mesh_document_atomic(output, *document, input_positions(mesh, r.positions), &doc_warnings);
+        for (const std::string& w : doc_warnings) std::cerr << "warning: " << w << '\n';
+      } else {
         write_mesh_atomic(output, mesh, r.positions);
+      }
     });
     if (!log_path.empty()) attempt("--log", log_path, [&] { write_text_atomic(log_path, csv.text()); });
     if (!summary_path.empty()) {

@@ -184,6 +184,17 @@ class MeshDocument {
   /// A welded mesh's positions are given as input_positions(mesh, x).
   /// @throws std::invalid_argument if x.rows() != vertex_count() or a coordinate is not finite
   virtual std::string text(const Positions& x) const = 0;
+  /// text(x) for a file written to `output_path`: an OBJ's mtllib paths, relative to the file's
+  /// folder, are rewritten to name the same .mtl files from the output's folder when it is
+  /// another (docs/design/attributes.md, "Material libraries"); a library that does not exist is
+  /// written as read, with a warning naming the input file and line appended to `warnings`.
+  /// Everything else as text(x).
+  virtual std::string text_for(const std::string& output_path, const Positions& x,
+                               std::vector<std::string>* warnings) const {
+    (void)output_path;
+    (void)warnings;
+    return text(x);
+  }
 
   std::size_t vertex_count() const { return vertex_count_; }
   std::size_t polygon_count() const {
@@ -218,20 +229,26 @@ std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path);
 
 /// An OBJ file's bytes as a document (src/mesh/obj_document.cpp): every line but `v` and `vn`
 /// is written back verbatim; `v` lines get the new positions (anything after x y z, such as
-/// vertex colours, kept); `vn` lines get the normals of the new positions.
+/// vertex colours, kept); `vn` lines get the normals of the new positions; the names of `mtllib`
+/// lines are rewritten for a file in another folder (text_for).
 /// @param name the file's name, for messages
+/// @param path the file the bytes are (read_mesh_document: `name`), whose folder its relative
+///             mtllib paths start from (text_for); empty: unknown, text_for writes them as read
 /// @throws InputError "<name>: <problem>: line <n> ..." for a line it cannot read
-std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name, const std::string& bytes);
+std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name, const std::string& bytes,
+                                                 const std::string& path = {});
 
 /// A PLY file's bytes as a document (src/mesh/ply_document.cpp): header and every element byte
 /// for byte, but the vertices' x, y, z, written in their declared types and the file's format.
 /// @throws InputError "<name>: <problem>: ..." for a file it cannot read
 std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const std::string& bytes);
 
-/// Writes doc.text(x) to `path` atomically (write_text_atomic).
+/// Writes doc.text_for(path, x, warnings) to `path` atomically (write_text_atomic): an OBJ
+/// written to another folder than its input's names the same material libraries.
+/// @param warnings where the warnings go (a material library that does not exist); may be null
 /// @throws UsageError if the file cannot be written
 void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc,
-                                const Positions& x);
+                                const Positions& x, std::vector<std::string>* warnings = nullptr);
 
 /// The shortest text that reads back to exactly v (std::to_chars); used by the documents.
 std::string format_double(double v);

@@ -182,7 +182,10 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
     const auto f = faces_to_numpy(read), g = py::array_t<std::int64_t>::ensure(faces);
     if (!g || g.size() != f.size() || !std::equal(f.data(), f.data() + f.size(), g.data()) || !doc->matches(read))
       throw UsageError("write_mesh: like=" + like + ": the faces are not those read_mesh gives for it");
-    write_mesh_document_atomic(path, *doc, positions_from_numpy(vertices));
+    std::vector<std::string> warnings;  // a material library of like's that does not exist
+    write_mesh_document_atomic(path, *doc, positions_from_numpy(vertices), &warnings);
+    for (const std::string& w : warnings)
+      py::module_::import("warnings").attr("warn")(w, py::module_::import("builtins").attr("UserWarning"), 2);
     return;
   }
   write_mesh_atomic(path, mesh, positions_from_numpy(vertices));

@@ -57,3 +57,20 @@ def test_a_bad_like_file_gets_the_readers_message(tmp_path):
     assert "truncated file" in str(read_error.value)
     assert str(write_error.value) == str(read_error.value)
     assert not (tmp_path / "out.ply").exists()
+
+
+def test_write_like_elsewhere_names_the_same_material_library(tmp_path):
+    (tmp_path / "in").mkdir()
+    (tmp_path / "out").mkdir()
+    src = tmp_path / "in" / "tet.obj"
+    src.write_text(OBJ)
+    (tmp_path / "in" / "t.mtl").write_text("newmtl red\nKd 1 0 0\n")
+    v, f = shellcontract.read_mesh(src)
+    out = tmp_path / "out" / "r.obj"
+    shellcontract.write_mesh(out, v, f, like=src)
+    name = next(l for l in out.read_text().splitlines() if l.startswith("mtllib ")).split(" ", 1)[1]
+    assert (out.parent / name).samefile(tmp_path / "in" / "t.mtl")
+    (tmp_path / "in" / "t.mtl").unlink()
+    with pytest.warns(UserWarning, match=r"line 2: material library 't.mtl' not found"):
+        shellcontract.write_mesh(out, v, f, like=src)
+    assert "mtllib t.mtl" in out.read_text().splitlines()

@@ -117,12 +117,13 @@ void FrameSequenceWriter::work() {
     const auto start = Clock::now();
     std::uint64_t bytes = 0;
     std::exception_ptr error;
+    std::vector<std::string> warnings;
     try {
       const std::string path = file_name(item.first);
       // As the run's -o output is written (cli/run.cpp), so that a frame and the result of a run
       // that ends there are the same file.
       if (document_)
-        write_mesh_document_atomic(path, *document_, input_positions(mesh_, item.second));
+        write_mesh_document_atomic(path, *document_, input_positions(mesh_, item.second), &warnings);
       else
         write_mesh_atomic(path, mesh_, item.second);
       bytes = std::filesystem::file_size(path);
@@ -138,6 +139,10 @@ void FrameSequenceWriter::work() {
     } else {
       ++stats_.frames_written;
       stats_.bytes += bytes;
+      if (document_ && !warned_) {
+        warnings_ = std::move(warnings);
+        warned_ = true;
+      }
     }
     queue_changed_.notify_all();
   }
@@ -163,6 +168,11 @@ void FrameSequenceWriter::finish() {
 bool FrameSequenceWriter::failed() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return error_ != nullptr;
+}
+
+std::vector<std::string> FrameSequenceWriter::warnings() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return warnings_;
 }
 
 ExportStats FrameSequenceWriter::stats() const {

@@ -11,6 +11,7 @@
 #include <string>
 #include <thread>
 #include <utility>
+#include <vector>
 
 #include "shellcontract/mesh.hpp"
 #include "shellcontract/types.hpp"
@@ -88,6 +89,11 @@ class FrameSequenceWriter {
   /// Whether a frame failed to be written (safe to call at any time); finish() rethrows it.
   bool failed() const;
 
+  /// What writing the first frame file through the document warned about (a material library
+  /// of the OBJ that does not exist: write_mesh_document_atomic); the later frames are in the
+  /// same folder and would say the same. Safe to call at any time.
+  std::vector<std::string> warnings() const;
+
  private:
   void work();
 
@@ -104,6 +110,8 @@ class FrameSequenceWriter {
   bool finished_ = false;
   std::exception_ptr error_;
   ExportStats stats_;
+  std::vector<std::string> warnings_;
+  bool warned_ = false;  ///< warnings_ holds the first document frame's
   std::thread thread_;
 };
 

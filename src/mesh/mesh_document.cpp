@@ -88,14 +88,14 @@ std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".obj") return parse_obj_document(path, read_file_bytes(path));
+  if (ext == ".obj") return parse_obj_document(path, read_file_bytes(path), path);
   if (ext == ".ply") return parse_ply_document(path, read_file_bytes(path));
   return nullptr;
 }
 
 void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc,
-                                const Positions& x) {
-  write_text_atomic(path, doc.text(x));
+                                const Positions& x, std::vector<std::string>* warnings) {
+  write_text_atomic(path, doc.text_for(path, x, warnings));
 }
 
 }  // namespace shellcontract

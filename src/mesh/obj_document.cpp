@@ -1,7 +1,8 @@
 // An OBJ file kept as a document (docs/design/attributes.md). The file's bytes are
 // kept; writing replaces only the text of the `v` lines' x y z and of the `vn` lines, so texture
 // coordinates, face corners (v/vt/vn), groups, objects, materials, smoothing groups, comments and
-// polygons come back exactly as read.
+// polygons come back exactly as read. A file written to another folder also gets its `mtllib`
+// paths rewritten, so that they name the same .mtl files from there (obj_material_paths.hpp).
 //
 // Vertex i of the simulation is the i-th `v` line: scan_obj, which read_input_mesh uses,
 // keeps the `v` lines in order and never merges duplicates, so no map is needed besides the
@@ -17,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/obj_material_paths.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -41,10 +43,14 @@ Span next_token(const std::string& s, std::size_t& at, std::size_t end) {
 
 class ObjDocument final : public MeshDocument {
  public:
-  ObjDocument(const std::string& name, std::string bytes);
+  ObjDocument(const std::string& name, std::string bytes, std::string path);
 
   std::string format() const override { return "obj"; }
-  std::string text(const Positions& x) const override;
+  std::string text(const Positions& x) const override { return compose(x, {}); }
+  std::string text_for(const std::string& output_path, const Positions& x,
+                       std::vector<std::string>* warnings) const override {
+    return compose(x, material_library_edits(bytes_, mtllib_, path_, output_path, warnings));
+  }
 
  private:
   [[noreturn]] void fail(std::size_t line, const std::string& problem,
@@ -56,9 +62,13 @@ class ObjDocument final : public MeshDocument {
   long long index(const std::string& token, std::size_t count, std::size_t line,
                   const char* what) const;
   void read_face(std::size_t at, std::size_t end, std::size_t line);
+  /// The file with the positions x, the normals of their polygons and `edits` (mtllib lines).
+  std::string compose(const Positions& x, std::vector<TextEdit> edits) const;
 
   std::string name_;
   std::string bytes_;
+  std::string path_;                  ///< the file read; empty: unknown
+  std::vector<MtllibLine> mtllib_;    ///< the spans of the mtllib lines' names
   std::vector<Span> v_numbers_;       ///< per `v` line: the span of its "x y z" text
   std::vector<Span> vn_text_;         ///< per `vn` line: the span from "vn" to the line's end
   std::vector<long long> corner_vn_;  ///< per corner: index of its `vn` line; -1 none
@@ -115,8 +125,8 @@ void ObjDocument::read_face(std::size_t at, std::size_t end, std::size_t line) {
   polygon_start_.push_back(corner_vertex_.size());
 }
 
-ObjDocument::ObjDocument(const std::string& name, std::string bytes)
-    : name_(name), bytes_(std::move(bytes)) {
+ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string path)
+    : name_(name), bytes_(std::move(bytes)), path_(std::move(path)) {
   polygon_start_.push_back(0);
   // Lines end at "\n" ("\r\n" too: the "\r" counts as space); a file with no "\n" at all ends
   // its lines with a lone "\r" (classic Mac), as read_polygon_soup accepts.
@@ -147,6 +157,8 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes)
       vn_text_.push_back({key.begin, e});
     } else if (k == "f") {
       read_face(at, end, line);
+    } else if (k == "mtllib") {
+      mtllib_.push_back(mtllib_line(bytes_, at, end, line));
     }
     begin = end + 1;
   }
@@ -160,7 +172,7 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes)
     }
 }
 
-std::string ObjDocument::text(const Positions& x) const {
+std::string ObjDocument::compose(const Positions& x, std::vector<TextEdit> edits) const {
   if (static_cast<std::size_t>(x.rows()) != vertex_count_)
     throw std::invalid_argument("ObjDocument::text: " + std::to_string(x.rows()) +
                                 " positions for " + std::to_string(vertex_count_) + " vertices");
@@ -185,41 +197,34 @@ std::string ObjDocument::text(const Positions& x) const {
       if (corner_vn_[c] >= 0) normal[static_cast<std::size_t>(corner_vn_[c])] += newell;
   }
 
-  // The pieces to replace, in file order (v and vn spans never overlap).
-  std::vector<std::pair<Span, std::string>> edits;
-  edits.reserve(v_numbers_.size() + vn_text_.size());
+  // The pieces to replace, in file order (v, vn and mtllib spans are on lines of their own).
+  edits.reserve(edits.size() + v_numbers_.size() + vn_text_.size());
   for (std::size_t i = 0; i < v_numbers_.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
-    edits.push_back({v_numbers_[i], format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' +
-                                        format_double(x(r, 2))});
+    edits.push_back({v_numbers_[i].begin, v_numbers_[i].end,
+                     format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' +
+                         format_double(x(r, 2))});
   }
   for (std::size_t j = 0; j < vn_text_.size(); ++j) {
     const double len = normal[j].norm();
     // A normal no polygon uses, or whose polygons have no area now, keeps its line.
     if (!(len > 0.0) || !std::isfinite(len)) continue;
     const Vec3 n = normal[j] / len;
-    edits.push_back({vn_text_[j], "vn " + format_double(n.x()) + ' ' + format_double(n.y()) + ' ' +
-                                      format_double(n.z())});
+    edits.push_back({vn_text_[j].begin, vn_text_[j].end,
+                     "vn " + format_double(n.x()) + ' ' + format_double(n.y()) + ' ' +
+                         format_double(n.z())});
   }
   std::sort(edits.begin(), edits.end(),
-            [](const auto& a, const auto& b) { return a.first.begin < b.first.begin; });
-  std::string out;
-  out.reserve(bytes_.size() + bytes_.size() / 4);
-  std::size_t at = 0;
-  for (const auto& [span, replacement] : edits) {
-    out.append(bytes_, at, span.begin - at);
-    out += replacement;
-    at = span.end;
-  }
-  out.append(bytes_, at, std::string::npos);
-  return out;
+            [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
+  return apply_edits(bytes_, edits);
 }
 
 }  // namespace
 
 std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name,
-                                                 const std::string& bytes) {
-  return std::make_unique<ObjDocument>(name, bytes);
+                                                 const std::string& bytes,
+                                                 const std::string& path) {
+  return std::make_unique<ObjDocument>(name, bytes, path);
 }
 
 }  // namespace shellcontract

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "mesh/file_extras.hpp"
+#include "mesh/obj_material_paths.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/soup_writer.hpp"
 #include "shellcontract/error.hpp"
@@ -99,7 +100,14 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
   RepairOutput o;
   if (report.already_usable && in_ext == out_ext) {
     o.binary = extras.binary;
-    write_text_atomic(output, bytes);
+    if (in_ext == "obj") {
+      // A copy elsewhere must still find its materials (the mtllib paths are relative).
+      const std::string moved = relocate_material_libraries(bytes, input, output, &o.warnings);
+      o.material_paths_rewritten = moved != bytes;
+      write_text_atomic(output, moved);
+    } else {
+      write_text_atomic(output, bytes);
+    }
     return o;
   }
   o.dropped = extras.items;

@@ -21,13 +21,20 @@ struct RepairOutput {
   /// What of the input the output does not carry, one phrase each ("154 texture coordinates
   /// (vt)", "72 polygons with more than 3 corners (triangulated)"); empty for a copy.
   std::vector<std::string> dropped;
+  /// A copy of an OBJ into another folder: its mtllib paths were rewritten to name the same
+  /// .mtl files from there (obj_material_paths.hpp); the other bytes are the input's.
+  bool material_paths_rewritten = false;
+  /// "<input>: line <n>: ..." for a material library that does not exist (kept as written).
+  std::vector<std::string> warnings;
   /// "copy", "converted" or "repaired".
   std::string kind_name() const;
 };
 
 /// Writes `repair`'s output: `mesh` and `report` are what repair_input_mesh returned for `input`.
 /// - A usable input (report.already_usable) to the same format (extension, in any case): the
-///   input's bytes, unchanged (UVs, groups, materials, polygons, comments, a binary encoding...).
+///   input's bytes, unchanged (UVs, groups, materials, polygons, comments, a binary encoding...),
+///   but for an OBJ's mtllib paths when the output is in another folder: they are rewritten to
+///   name the same .mtl files from there (material_paths_rewritten, warnings).
 /// - A usable input to another format: the file's own vertices and polygons as read (their order,
 ///   corners and winding, also of an inside-out input); an STL gets the triangles read_input_mesh
 ///   makes of the polygons, in the polygons' winding. What the format cannot hold is dropped.
