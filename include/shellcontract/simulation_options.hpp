@@ -318,9 +318,9 @@ enum class DimpleShape { Volume, Mirror };
 /// Default strength of the local contraction (SimOptions::region_shrink, in [0, 1]): with the
 /// Volume mechanism, a region on a shell at its rest volume loses 2 * 0.7 = 1.4 times its rest cap
 /// volume, as a mirrored dimple (dimple_rest_volume). Chosen by measurement
-/// (lab/pages/local-contraction.md, sections 1-2): at -p 0 it sinks bumpy_sphere's bumps much
-/// farther than the rest of the shell moves, the smallest one by more than its radius; 1 adds
-/// little more depth and less locality.
+/// (lab/pages/local-contraction.md, section 2): at -p 0 the ratio of the regions' sink to the
+/// rest's motion on bumpy_sphere is largest near this strength; 1 sinks deeper but moves the rest
+/// more, so the dimple is less local.
 inline constexpr double DEFAULT_REGION_SHRINK = 0.7;
 
 /// When CGAL's self-intersection test checks the result (new intersections vs the input's).
