@@ -18,8 +18,11 @@ rm -rf "$bundle"
 mkdir -p "$bundle/lib"
 cp "$tool" "$bundle/shellcontract"
 cp data/meshes/bear.off "$bundle/bear.off"
+# The kernels' benchmark too, when it is built (lab/scripts/kernels_on_device.sh runs it).
+bench="$build/lab/benchmarks/bench_projection"
+[ -x "$bench" ] && cp "$bench" "$bundle/bench_projection"
 # ldd's "name => path (address)" lines; the C library, the loader and the vDSO stay behind.
-ldd "$tool" | awk '$2 == "=>" && $3 ~ /^\// {print $3}' | while read -r lib; do
+{ ldd "$tool"; [ -x "$bench" ] && ldd "$bench"; } | sort -u | awk '$2 == "=>" && $3 ~ /^\// {print $3}' | while read -r lib; do
   case "$(basename "$lib")" in
     libc.so.*|libm.so.*|ld-linux*|libpthread.so.*|libdl.so.*|librt.so.*) ;;
     *) cp -L "$lib" "$bundle/lib/" ;;
