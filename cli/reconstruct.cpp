@@ -23,18 +23,23 @@ int command_reconstruct(int argc, char** argv) {
       "Closed surface from an oriented point set (x y z nx ny nz per line) with CGAL's Poisson\n"
       "surface reconstruction, e.g. the paper's kitten from data/points_3/kitten.xyz. A position given\n"
       "on several lines counts once. The faces are written in a canonical order (each from its smallest\n"
-      "vertex index, sorted), so the same points give the same file whatever the allocator does.\n\n"
-      "exit codes: 0 success, 1 bad usage, 2 an unusable point set (the message names the file and\n"
-      "            line): fewer than 10 points, a stray point far from the others, coordinates beyond\n"
-      "            1e30, one position with normals 90 degrees apart, all in one plane...; or no closed\n"
-      "            surface came out\n\n"
+      "vertex index, sorted), so the same points give the same file whatever the allocator does.\n"
+      "--radius and --distance are multiples of the average distance from a point to its 6 nearest\n"
+      "neighbours; out of their ranges (and an --angle above 30) CGAL's surface mesher may not end.\n\n"
+      "exit codes: 0 success, 1 bad usage (also a criterion out of its range), 2 an unusable point\n"
+      "            set (the message names the file and line): fewer than 10 points, a stray point\n"
+      "            far from the others, coordinates beyond 1e30, one position with normals 90 degrees\n"
+      "            apart, all in one plane...; or no closed surface came out (also: CGAL's surface\n"
+      "            mesher stopped on one of its own checks)\n\n"
       "options");
   visible.add_options()("help,h", "show this help")("output,o", po::value(&output), "output mesh")(
-      "angle", po::value(&options.angle)->default_value(options.angle), "min triangle angle, degrees")(
+      "angle", po::value(&options.angle)->default_value(options.angle),
+      "min triangle angle, degrees in [0, 30] (CGAL's surface mesher ends for sure only up to 30; "
+      "0: no angle bound)")(
       "radius", po::value(&options.radius)->default_value(options.radius),
-      "max triangle size, x average point spacing")(
+      "max triangle size, x average point spacing, in [0.5, 1e6]")(
       "distance", po::value(&options.distance)->default_value(options.distance),
-      "approximation error, x average point spacing");
+      "approximation error, x average point spacing, in [0.1, 1e6]");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
@@ -43,6 +48,8 @@ int command_reconstruct(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("missing POINTS file");
     if (output.empty()) throw UsageError("missing -o OUT");
+    // Before any file is read or written: out of these ranges the mesher may never end.
+    check_reconstruction_options(options, "--");
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});
     plan.outputs.push_back({"-o", output});

@@ -87,15 +87,17 @@ JsonObject report_json(const std::string& input, const std::string& output, cons
 int command_repair(int argc, char** argv) {
   std::string input, output;
   bool json = false;
-  std::size_t max_hole_edges = 0;
+  // Signed, so that a negative N is read as given and refused: Boost reads "-1" into an unsigned
+  // type as its wrapped value, which filled every hole silently.
+  long long max_hole_edges = 0;
   po::options_description visible;
   visible.add_options()("help,h", "show this help")(
       "output,o", po::value(&output)->value_name("FILE"),
       "repaired mesh (format from the extension: off, obj, ply, stl)")(
       "json", po::bool_switch(&json), "print the report as a JSON object on stdout")(
       "max-hole-edges", po::value(&max_hole_edges)->value_name("N"),
-      "leave holes with more than N boundary edges open (their component is then dropped); "
-      "default (or 0): fill every hole");
+      "leave holes with more than N boundary edges open (their component is then dropped); an "
+      "integer >= 0; default (or 0): fill every hole");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
@@ -104,6 +106,9 @@ int command_repair(int argc, char** argv) {
     }
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
+    if (max_hole_edges < 0)
+      throw UsageError("--max-hole-edges " + std::to_string(max_hole_edges) +
+                       ": must be an integer >= 0 (0: fill every hole)");
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});
     plan.outputs.push_back({"-o", output});
@@ -117,7 +122,7 @@ int command_repair(int argc, char** argv) {
   RepairReport r;
   RepairOutput written;
   try {
-    const Mesh mesh = repair_input_mesh(input, &r, max_hole_edges);
+    const Mesh mesh = repair_input_mesh(input, &r, static_cast<std::size_t>(max_hole_edges));
     written = write_repair_output(input, output, mesh, r);
   } catch (const InputError& e) {
     std::cerr << "shellcontract repair: " << e.what() << '\n';

@@ -4,6 +4,7 @@
 #include <CGAL/Random.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/poisson_surface_reconstruction.h>
+#include <CGAL/assertions.h>
 #include <CGAL/property_map.h>
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 #include "mesh/point_set_checks.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"  // shortest_text
 
 namespace shellcontract {
 
@@ -147,8 +149,9 @@ class PoissonValue {
 /// with one more check: when the surface mesher finds vertices but no facet, CGAL's
 /// facets_in_complex_2_to_triangle_mesh segfaults on the empty complex (400 points on a unit
 /// sphere did it); here that is a failed reconstruction.
-bool poisson_delaunay(const std::vector<PointWithNormal>& points, Mesh& mesh, double spacing,
-                      const ReconstructionOptions& options) {
+/// @throws InputError naming `path` when CGAL's mesher fails one of its own checks
+bool poisson_delaunay(const std::string& path, const std::vector<PointWithNormal>& points, Mesh& mesh,
+                      double spacing, const ReconstructionOptions& options) {
   using Tr = CGAL::Surface_mesher::Surface_mesh_default_triangulation_3_generator<Kernel>::Type;
   using C2t3 = CGAL::Surface_mesh_complex_2_in_triangulation_3<Tr>;
   using Surface = CGAL::Implicit_surface_3<Kernel, PoissonValue>;
@@ -166,7 +169,16 @@ bool poisson_delaunay(const std::vector<PointWithNormal>& points, Mesh& mesh, do
   // The mesher draws its initial points from CGAL's default generator, which CGAL seeds with the
   // clock: a fixed seed makes the same input give the same mesh on every run.
   CGAL::get_default_random() = CGAL::Random(0);
-  CGAL::make_surface_mesh(c2t3, surface, criteria, CGAL::Manifold_with_boundary_tag());
+  try {
+    CGAL::make_surface_mesh(c2t3, surface, criteria, CGAL::Manifold_with_boundary_tag());
+  } catch (const CGAL::Failure_exception& e) {
+    // Fine criteria near a sharp fold can make the oracle return a point already inserted, which
+    // CGAL's mesher asserts against ("is already inserted on surface"); that ended the process.
+    std::string why = e.message().empty() ? e.expression() : e.message();
+    while (!why.empty() && std::isspace(static_cast<unsigned char>(why.back()))) why.pop_back();
+    throw InputError(path + ": Poisson surface reconstruction failed: CGAL's surface mesher stopped (" + why +
+                     "); a larger distance or radius may get through");
+  }
   if (tr.number_of_vertices() == 0 || c2t3.number_of_facets() == 0) return false;
   CGAL::facets_in_complex_2_to_triangle_mesh(c2t3, mesh);
   return true;
@@ -200,9 +212,50 @@ Mesh with_canonical_face_order(const Mesh& mesh) {
   return out;
 }
 
+/// "NAME VALUE is not WHAT" as a UsageError.
+[[noreturn]] void refuse(const std::string& name, double value, const std::string& what) {
+  throw UsageError(name + " " + shortest_text(value) + ": " + what);
+}
+
 }  // namespace
 
+void check_reconstruction_options(const ReconstructionOptions& o, const std::string& prefix) {
+  // CGAL's surface mesher (Boissonnat and Oudot's Delaunay refinement) is guaranteed to end only
+  // for an angular bound of at most 30 degrees (CGAL manual, 3D Surface Mesh Generation,
+  // "Meshing Criteria"). 0 switches the angle criterion off. A negative bound is not refused by
+  // CGAL: its criterion squares the sine, so -40 would act as 40.
+  if (!(o.angle >= 0.0 && o.angle <= RECONSTRUCTION_MAX_ANGLE))
+    refuse(prefix + "angle", o.angle,
+           "the smallest triangle angle must be a number in [0, 30] degrees (CGAL's surface mesher "
+           "is guaranteed to end only up to 30; 0: no angle bound)");
+  // The radius bound is the largest surface Delaunay ball, x the average point spacing (the
+  // spacing this file computes from the points). The vertices grow as 1 / radius^2 and
+  // triangles much smaller than the spacing show nothing of the points that larger ones do not,
+  // so half the spacing is the floor: a smaller one only makes the refinement run away.
+  // CGAL reads 0 as "no bound"; here the option is a size and 0 is refused with the rest.
+  // The upper bound keeps radius x spacing finite (coordinates are at most 1e30: checked_points).
+  if (!(o.radius >= RECONSTRUCTION_MIN_RADIUS && o.radius <= RECONSTRUCTION_MAX_SPACINGS))
+    refuse(prefix + "radius", o.radius,
+           "the largest triangle size is a multiple of the average point spacing and must be a "
+           "number in [0.5, 1e6] (below half the spacing the refinement runs away)");
+  // The distance bound is the largest distance between a facet's circumcentre and its surface
+  // Delaunay ball's centre, x the average spacing; it also sets the implicit surface oracle's
+  // bisection error (distance x spacing / 1000, poisson_delaunay), so 0 makes that bisection
+  // never reach its error and the mesher never end. Where the surface bends, the vertices grow
+  // as 1 / distance, and bounds far below the spacing make the oracle return points already
+  // inserted (a CGAL assertion): a tenth of the spacing is the floor.
+  if (!(o.distance >= RECONSTRUCTION_MIN_DISTANCE && o.distance <= RECONSTRUCTION_MAX_SPACINGS))
+    refuse(prefix + "distance", o.distance,
+           "the approximation error is a multiple of the average point spacing and must be a "
+           "number in [0.1, 1e6] (0 never ends; below a tenth of the spacing the refinement "
+           "runs away)");
+  if (o.spacing_neighbours < 1)
+    throw UsageError(prefix + "spacing_neighbours " + std::to_string(o.spacing_neighbours) +
+                     ": the neighbours of the average spacing estimate must be at least 1");
+}
+
 Mesh reconstruct_from_oriented_points(const std::string& path, const ReconstructionOptions& options) {
+  check_reconstruction_options(options);
   // Each position once, with its first line's normal: the solve's triangulation keeps one vertex
   // per position anyway (whichever it meets first), and repeated positions made the average
   // spacing, hence the triangles, smaller, down to zero.
@@ -211,7 +264,7 @@ Mesh reconstruct_from_oriented_points(const std::string& path, const Reconstruct
       points, options.spacing_neighbours,
       CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>()));
   Mesh mesh;
-  if (!(spacing > 0.0) || !poisson_delaunay(points, mesh, spacing, options))
+  if (!(spacing > 0.0) || !poisson_delaunay(path, points, mesh, spacing, options))
     throw InputError(path + ": Poisson surface reconstruction failed (no surface found)");
   if (!CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh))
     throw InputError(path + ": the reconstructed surface is not a closed triangle mesh");

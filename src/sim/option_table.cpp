@@ -70,7 +70,7 @@ OptionSpec region_option() {
       "optionally after a strength 'S:' in [0, 1] ('0.5: 12 13 14': the share of --region-shrink "
       "that region sinks with; 1 without); a region should be a part of the surface (a file "
       "that lists no region is a warning, one over most of a closed surface can fail the run); "
-      "default none, auto with --aniso";
+      "default none, auto with --aniso or --measure-regions";
   o.set = [](RunOptions& r, const std::string& v) {
     if (v.empty()) bad("regions", v, "auto, none or a file name");
     r.regions = v == "auto"   ? RegionSource::Auto
@@ -345,8 +345,9 @@ std::vector<OptionSpec> build_table() {
   t.push_back(fiber_option());
   t.push_back(
       flag("measure-regions",
-           "select the regions (auto) only to report how far they sink in (summary) in a run "
-           "that does not contract them; with --regions or --aniso they are contracted too",
+           "report how far the regions sink in (summary); without --regions, --region-weights, "
+           "--region-at or --aniso it selects --regions auto and contracts nothing (--inward "
+           "none: the baseline run); with one of them the regions are contracted as usual",
            [](R& r) -> bool& { return r.measure_regions; }));
   t.push_back(flag("inversion-aware", "orientation s = sign(n . n_ref) for the anisotropic faces",
                    [](R& r) -> bool& { return r.sim.solver.inversion_aware; }));

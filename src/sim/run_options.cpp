@@ -33,6 +33,13 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
         "it is the shape of the dimples of `inward` volume on the regions of `regions`");
   check("k_a", !k_a_projected, "kappa_A acts with `aniso`, `inward` projection and `solver` pbd");
   check("inward", !regions, "the inward term acts on the regions of `regions` (or `aniso`)");
+  // measure_regions with no region source and no aniso selects the regions only to measure them
+  // (resolve_run_options sets inward none): an inward term given there is overridden.
+  const bool measure_only = r.measure_regions && r.regions == RegionSource::Auto && !aniso &&
+                            !r.given.count("regions") && r.region_points.empty();
+  check("inward", measure_only,
+        "`measure_regions` without `regions`, `region_weights`, `region_at` or `aniso` only "
+        "measures the regions, it does not contract them");
   check("mu_a", aniso && pbd && s.inward_term != InwardTerm::Projection,
         "a PBD projection does not depend on the stiffness (mu_A acts with `solver` xpbd, or "
         "through k_A with `inward` projection)");

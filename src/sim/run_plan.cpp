@@ -26,7 +26,8 @@ namespace {
 /// (the mesh scaled to a unit diagonal, where the default shell has mu about 0.77): far beyond
 /// any material, and far enough below the largest double that the energies and the XPBD
 /// compliances, which square and multiply stiffnesses, stay finite. Above about 1e155 a run
-/// went on as if the membrane had no stiffness at all.
+/// went on as if the membrane had no stiffness at all. kappa_A is held to it too: k_A is
+/// kappa_A x mu_A x sqrt(face area), and an unbounded kappa_A times mu_A overflowed to inf.
 constexpr double MAX_STIFFNESS = 1e100;
 
 /// Every range and every rule between the simulation options, in one list (the option table
@@ -37,7 +38,7 @@ void check_sim_options_impl(const SimOptions& o) {
   const MaterialParams& m = o.material_params;
   for (const auto& [name, value] : {std::pair<const char*, double>{"mu", m.mu}, {"lambda", m.lambda},
                                     {"c10", m.c10}, {"c01", m.c01}, {"mu_a", m.mu_aniso},
-                                    {"k_b", o.solver.k_bending}})
+                                    {"k_b", o.solver.k_bending}, {"k_a", o.anisotropy.kappa_a}})
     if (std::abs(value) > MAX_STIFFNESS)
       fail(std::string("`") + name + "` must be at most " + shortest_text(MAX_STIFFNESS));
   if (!(o.dt >= MIN_DT) || !std::isfinite(o.dt))

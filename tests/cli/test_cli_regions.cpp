@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
@@ -120,6 +121,32 @@ TEST_F(CliRegions, HelpTextsDescribeTheStrengthColumnAndTheExitCodes) {
   r = run_cli({"--help"});
   EXPECT_FALSE(has(r.output, "2 bad input mesh")) << r.output;
   EXPECT_TRUE(has(r.output, "130 interrupted")) << r.output;
+}
+
+// The paper's k_A = kappa_A mu_A sqrt(face rest area): --k-a had no upper bound, so --k-a 1e300
+// with --mu-a 1e100 made k_A infinite and the first step's positions non-finite (exit 3).
+// kappa_A is held to the stiffnesses' bound, 1e100, and refused as bad usage above it; the
+// region options' other bad values (NaN, inf, negative, zero where it means nothing) are refused.
+TEST_F(CliRegions, RunRefusesRegionOptionsOutOfRange) {
+  const std::vector<std::vector<std::string>> bad = {
+      {"--k-a", "1e300", "--mu-a", "1e100"}, {"--k-a", "nan"},        {"--k-a", "-1"},
+      {"--mu-a", "inf"},                      {"--mu-a", "1e200"},      {"--region-shrink", "nan"},
+      {"--region-shrink", "1.5"},             {"--region-max-area", "0"}, {"--region-max-area", "inf"},
+      {"--fiber-target", "0"},                {"--fiber", "0,0,0"},     {"--fiber", "nan,0,1"},
+      {"--region-at", "inf,0,0"}};
+  for (const std::vector<std::string>& options : bad) {
+    std::vector<std::string> args = {"run", mesh("bumpy_sphere.off"), "-o", path("o.off"), "-n", "2", "-q",
+                                     "--aniso", "arap", "--solver", "pbd", "--inward", "projection"};
+    args.insert(args.end(), options.begin(), options.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 1) << options[0] << ' ' << options[1] << ": " << r.output;
+    EXPECT_TRUE(has(r.output, options[0])) << r.output;
+    EXPECT_FALSE(fs::exists(path("o.off"))) << options[0] << ' ' << options[1];
+    fs::remove(path("o.off"));
+  }
+  const auto fine = run_cli({"run", mesh("bumpy_sphere.off"), "-o", path("o.off"), "-n", "2", "-q", "--aniso", "arap",
+                             "--solver", "pbd", "--inward", "projection", "--k-a", "1e100", "--mu-a", "1e100"});
+  EXPECT_EQ(fine.exit_code, 0) << fine.output;
 }
 
 TEST_F(CliRegions, BenchHelpShowsItsSubcommands) {

@@ -126,6 +126,25 @@ TEST_F(CliRepair, MissingOutputIsBadUsage) {
   EXPECT_EQ(run_cli({"repair", mesh_path("cube.off"), "-o", mesh_path("cube.off")}).exit_code, 1);
 }
 
+// --max-hole-edges was read into an unsigned type, so -1 became its wrapped value: accepted,
+// every hole filled, exit 0. A negative count is bad usage now, before anything is written;
+// 0 still means "fill every hole" (docs/cli.md).
+TEST_F(CliRepair, ANegativeMaxHoleEdgesIsBadUsageAndNothingIsWritten) {
+  const std::string in = write("open_cube.off", OPEN_CUBE);
+  for (const char* n : {"-1", "-4", "-9223372036854775808"}) {
+    const RunResult r = run_cli({"repair", in, "-o", out("closed.off"), "--max-hole-edges", n});
+    EXPECT_EQ(r.exit_code, 1) << n << ": " << r.output;
+    EXPECT_NE(r.output.find("--max-hole-edges"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(">= 0"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out("closed.off"))) << n;
+  }
+  for (const char* n : {"1.5", "nan", "inf", "ten"})
+    EXPECT_EQ(run_cli({"repair", in, "-o", out("closed.off"), "--max-hole-edges", n}).exit_code, 1) << n;
+  const RunResult zero = run_cli({"repair", in, "-o", out("closed.off"), "--max-hole-edges", "0"});
+  EXPECT_EQ(zero.exit_code, 0) << zero.output;
+  EXPECT_NE(zero.output.find("1 holes filled"), std::string::npos) << zero.output;
+}
+
 TEST_F(CliRepair, RunRepairRunsAnOpenMesh) {
   const std::string in = write("open_cube.off", OPEN_CUBE);
   EXPECT_EQ(run_cli({"run", in, "-o", out("a.off"), "--frames", "3", "-q"}).exit_code, 2);

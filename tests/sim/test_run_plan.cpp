@@ -62,7 +62,7 @@ TEST(RunPlan, StiffnessesThatWouldOverflowAreRefusedNamingWhatSetThem) {
   // and compliances), and --thickness 1e102 was refused as "--k-b must be >= 0", an option not
   // given. Every stiffness is now at most MAX_STIFFNESS (1e100), and the shell material's are
   // refused under its own options.
-  for (const char* name : {"mu", "lambda", "c10", "c01", "mu-a", "k-b"}) {
+  for (const char* name : {"mu", "lambda", "c10", "c01", "mu-a", "k-b", "k-a"}) {
     RunOptions huge;
     set_run_option(huge, name, "1e200");
     const std::string m = spell_options(what_of([&] { plan_run(sphere(1), huge); }), OptionSpelling::Cli);
