@@ -7,6 +7,8 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -153,6 +155,44 @@ TEST(MtlReader, TheMaterialOfMostFacesIsKeptAndTheOthersNamedAsDropped) {
   EXPECT_TRUE(contains(w, "x.obj: line 2: material library")) << ::testing::PrintToString(w);
   EXPECT_TRUE(contains(w, dir.file("m.mtl") + ": line 5: map_Kd")) << ::testing::PrintToString(w);
   EXPECT_TRUE(contains(w, "neither PNG nor JPEG")) << ::testing::PrintToString(w);
+}
+
+TEST(MtlReader, TheDocumentNamesEachFacesMaterialAndItsLibraries) {
+  test::ScratchDir dir("material_doc");
+  std::string obj = test::write_textured_octahedron(dir.str(), "gem", true);
+  {  // the second half of the faces under another material, the last one under none
+    std::ifstream in(obj);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("f 3/3 1/1 6/6"), 0, "usemtl other # a comment\n");
+    text.replace(text.find("f 1/1 4/4 6/6"), 0, "usemtl\n");
+    std::ofstream(obj) << text;
+  }
+  const Mesh mesh = read_input_mesh(obj);
+  const auto doc = read_mesh_document(obj);
+  ASSERT_TRUE(doc && doc->matches(mesh));
+  const FaceMaterials fm = doc->face_materials(mesh);
+  EXPECT_EQ(fm.names, (std::vector<std::string>{"skin", "other"}));
+  EXPECT_EQ(fm.face_material, (std::vector<int>{0, 0, 0, 0, 1, 1, 1, -1}));
+  ASSERT_EQ(fm.libraries.size(), 1u);
+  EXPECT_TRUE(fm.libraries[0].found);
+  EXPECT_EQ(fs::path(fm.libraries[0].path), fs::path(dir.file("gem.mtl")));
+  EXPECT_EQ(fm.libraries[0].line, 1u);
+}
+
+TEST(GltfMaterial, TheLibraryKeepsItsDefaultNameAndRefusesAnImageWithoutTexcoords) {
+  test::ScratchDir dir("material_lib");
+  GltfAnimation a;
+  a.faces.resize(1, 3);
+  a.faces << 0, 1, 2;
+  Positions x(3, 3);
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  a.frames = {x};
+  a.frame_numbers = {0};
+  EXPECT_EQ(a.name, "shell");
+  write_gltf_animation(dir.file("a.glb"), a);
+  EXPECT_EQ(test::load_glb(dir.file("a.glb")).meshes.at(0).name, "shell");
+  a.material = GltfMaterial{"m", {1, 1, 1, 1}, test::tiny_png(), "image/png"};
+  EXPECT_THROW(write_gltf_animation(dir.file("b.glb"), a), std::invalid_argument);
 }
 
 }  // namespace
