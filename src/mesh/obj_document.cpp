@@ -170,11 +170,13 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
     begin = end + 1;
   }
   vertex_count_ = v_numbers_.size();
-  // The libraries, by the names mtllib_names finds (a name with spaces in it too).
-  const std::filesystem::path folder = std::filesystem::path(path_.empty() ? name_ : path_).parent_path();
-  for (const MtllibLine& l : mtllib_)
-    for (const MtllibName& n : mtllib_names(bytes_, l, folder))
-      materials_.libraries.push_back({(folder / n.name).string(), l.line, n.found});
+  // The libraries, by the names mtllib_names finds (a name with spaces in it too); without the
+  // file's path their folder is unknown, and so are they.
+  const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+  if (!path_.empty())
+    for (const MtllibLine& l : mtllib_)
+      for (const MtllibName& n : mtllib_names(bytes_, l, folder))
+        materials_.libraries.push_back({(folder / n.name).string(), l.line, n.found});
   materials_.source = name_;
   // A texture coordinate only where every corner of every polygon has one (the glTF's TEXCOORD_0
   // needs one per vertex): otherwise none at all.
