@@ -100,6 +100,11 @@ class FrameExporter final : public RunObserver {
         gltf_.face_uv(static_cast<Eigen::Index>(f), k) = static_cast<int>(t.face_uv[f][static_cast<std::size_t>(k)]);
   }
 
+  /// The glTF's node and mesh name (the input's stem).
+  void set_gltf_name(std::string name) { gltf_.name = std::move(name); }
+  /// The glTF's material (gltf_material: the OBJ's .mtl); none: no material.
+  void set_material(std::optional<GltfMaterial> material) { gltf_.material = std::move(material); }
+
   /// Writes the .glb of --gltf, after the run: the simulator's memory is free by then (written
   /// from finished(), the file raised a large mesh's peak far above its run's; lab/history.md).
   void write_gltf() {

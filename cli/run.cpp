@@ -19,6 +19,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "export/gltf_material.hpp"
 #include "export_observer.hpp"
 #include "help_groups.hpp"
 #include "json_writer.hpp"
@@ -136,7 +137,8 @@ int command_run(int argc, char** argv) {
       "on) or stop (the run ends there); either way the result, log and summary are written")(
       "gltf", po::value(&exports.gltf)->value_name("FILE.glb"),
       "write the kept frames as one animated glTF 2.0 binary (morph targets, normals, colour "
-      "fields); open it with scripts/view.py")("log", po::value(&log_path)->value_name("FILE.csv"),
+      "fields), named after the input; an OBJ's material (.mtl Kd, d, map_Kd PNG/JPEG embedded; "
+      "the material of the most faces when there are several); open it with scripts/view.py")("log", po::value(&log_path)->value_name("FILE.csv"),
                                                "per-frame CSV log")(
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
       "quiet,q", po::bool_switch(&quiet), "no progress on stderr")(
@@ -319,7 +321,17 @@ int command_run(int argc, char** argv) {
     if (!fields_prefix.empty()) observers.add(fields);
     FrameExporter exporter(exports, mesh, options.sim.frames);
     if (!exports.dir.empty() || !exports.gltf.empty()) observers.add(exporter);
-    if (document && !exports.gltf.empty()) exporter.set_texcoords(document->texcoords(mesh));
+    if (!exports.gltf.empty()) {
+      exporter.set_gltf_name(std::filesystem::path(input).stem().string());
+      if (document) {
+        const CornerTexcoords uv = document->texcoords(mesh);
+        exporter.set_texcoords(uv);
+        // The OBJ's material (the .mtl's Kd, d and map_Kd): a problem with it is a warning.
+        std::vector<std::string> material_warnings;
+        exporter.set_material(gltf_material(document->face_materials(mesh), !uv.empty(), material_warnings));
+        for (const std::string& w : material_warnings) std::cerr << "warning: " << w << '\n';
+      }
+    }
     exporter.set_document(document);
 
     faces = std::to_string(mesh.number_of_faces()) + " faces";

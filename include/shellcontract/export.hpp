@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -17,8 +19,19 @@ struct NamedVertexField {
   Eigen::VectorXd values;  ///< #V values, any units
 };
 
+/// A glTF PBR material (metallic-roughness) for the whole mesh, e.g. from an OBJ's .mtl.
+struct GltfMaterial {
+  std::string name;
+  std::array<double, 4> base_colour{1.0, 1.0, 1.0, 1.0};  ///< baseColorFactor, RGBA in [0, 1]
+  /// Optional base colour texture: the image file's bytes, embedded as they are in the .glb's
+  /// buffer, and its mimeType ("image/png" or "image/jpeg"). Empty: no texture.
+  std::vector<unsigned char> image;
+  std::string image_mime_type;
+};
+
 /// Everything the .glb holds. Positions are in the input's units and orientation.
 struct GltfAnimation {
+  std::string name = "shell";      ///< the node's and the mesh's name (the CLI: the input's stem)
   Faces faces;                     ///< #F by 3, counter-clockwise seen from outside
   std::vector<int> frame_numbers;  ///< the run's frame number of each entry of `frames`, increasing
   std::vector<Positions> frames;   ///< #V by 3 each; frames[0] is the base mesh
@@ -34,6 +47,8 @@ struct GltfAnimation {
   /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
   Faces face_uv;
+  /// Optional material of the primitive. Its texture needs texture coordinates (TEXCOORD_0).
+  std::optional<GltfMaterial> material;
 };
 
 /// What write_gltf_animation wrote.
@@ -64,8 +79,15 @@ struct GltfStats {
 /// top-left corner, OBJ's and PLY's the bottom-left. A vertex with several texture coordinates (a
 /// seam) is split: glTF vertex i < #V is vertex i with the first coordinates its corners use, the
 /// copies follow; every attribute and every morph target is copied with it.
+///
+/// The node and the mesh are called `name`. With a material, the primitive references it:
+/// pbrMetallicRoughness with baseColorFactor = base_colour, metallicFactor 0 (an OBJ's diffuse
+/// surfaces are not metal; glTF's default, 1, renders them dark), alphaMode BLEND when the alpha
+/// is below 1; its image, when given, is one bufferView of the .glb's buffer (the file stays
+/// self-contained) read by a texture with a linear, repeating sampler on TEXCOORD_0.
 /// @throws std::invalid_argument for inconsistent sizes (texture coordinates too), no frames, non-increasing frame
-///         numbers or a non-finite coordinate
+///         numbers, a non-finite coordinate, or a material image without texture coordinates or
+///         mime type
 /// @throws UsageError if the file cannot be written
 GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& animation);
 

@@ -172,6 +172,22 @@ struct CornerTexcoords {
   bool empty() const { return uv.empty(); }
 };
 
+/// The materials an OBJ's faces use (`usemtl`) and the libraries that define them (`mtllib`),
+/// for the glTF's material.
+struct FaceMaterials {
+  std::vector<std::string> names;  ///< the material names, in order of first use
+  /// Per simulation face (face index order): an index into names; -1 for a face after no usemtl.
+  std::vector<int> face_material;
+  struct Library {
+    std::string path;      ///< the .mtl file as the process finds it (from the OBJ's folder)
+    std::size_t line = 0;  ///< the OBJ's mtllib line that names it
+    bool found = false;    ///< the file exists
+  };
+  std::vector<Library> libraries;
+  std::string source;  ///< the OBJ file, for messages
+  bool empty() const { return names.empty(); }
+};
+
 /// A mesh file kept as a document; the simulation's vertex i is the file's vertex i (the readers
 /// never reorder vertices; a mesh they welded along its seams names the file's vertices in
 /// input_faces). The faces are the file's polygons in file order.
@@ -209,6 +225,10 @@ class MeshDocument {
   /// Texture coordinates by simulation face corner; empty when some corner of a polygon has none.
   /// @pre matches(mesh)
   CornerTexcoords texcoords(const Mesh& mesh) const;
+  /// The material of each simulation face and the material libraries (OBJ); empty for a file
+  /// with no usemtl line (and for PLY).
+  /// @pre matches(mesh)
+  FaceMaterials face_materials(const Mesh& mesh) const;
 
  protected:
   /// The polygon each simulation face comes from: face i < #polygons is polygon i (its first
@@ -220,6 +240,8 @@ class MeshDocument {
   std::vector<std::size_t> corner_vertex_;  ///< 0-based vertex index of each corner
   std::vector<long long> corner_uv_;        ///< index into uv_ of each corner; -1 none
   std::vector<std::array<double, 2>> uv_;   ///< the file's texture coordinates
+  std::vector<int> polygon_material_;       ///< per polygon: index into materials_.names; -1 none
+  FaceMaterials materials_;                 ///< names, libraries, source (face_material unused)
 };
 
 /// The document of an OBJ or PLY file (by extension); nullptr for OFF and STL, which hold

@@ -169,6 +169,45 @@ void check_input(const GltfAnimation& a) {
   }
   if (!(a.seconds_per_frame > 0.0))
     throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
+  if (a.material && !a.material->image.empty()) {
+    if (a.face_uv.rows() == 0)
+      throw std::invalid_argument("write_gltf_animation: a material image without texture coordinates");
+    if (a.material->image_mime_type.empty())
+      throw std::invalid_argument("write_gltf_animation: a material image without a mime type");
+  }
+  if (a.material)
+    for (const double c : a.material->base_colour)
+      if (!(c >= 0.0 && c <= 1.0))
+        throw std::invalid_argument("write_gltf_animation: a base colour component outside [0, 1]");
+}
+
+/// Adds `m` to the model (with its image in the buffer); returns the material's index.
+int add_material(tinygltf::Model& model, BufferBuilder& bb, const GltfMaterial& m) {
+  tinygltf::Material mat;
+  mat.name = m.name;
+  mat.pbrMetallicRoughness.baseColorFactor.assign(m.base_colour.begin(), m.base_colour.end());
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  if (m.base_colour[3] < 1.0) mat.alphaMode = "BLEND";
+  if (!m.image.empty()) {
+    tinygltf::Image image;
+    image.name = m.name;
+    image.mimeType = m.image_mime_type;
+    image.bufferView = bb.add_view(m.image.data(), m.image.size(), 0);
+    model.images.push_back(image);
+    tinygltf::Sampler sampler;  // OBJ texture coordinates may leave [0, 1]: repeat, as OBJ viewers do
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
+    model.samplers.push_back(sampler);
+    tinygltf::Texture texture;
+    texture.source = static_cast<int>(model.images.size()) - 1;
+    texture.sampler = static_cast<int>(model.samplers.size()) - 1;
+    model.textures.push_back(texture);
+    mat.pbrMetallicRoughness.baseColorTexture.index = static_cast<int>(model.textures.size()) - 1;
+    mat.pbrMetallicRoughness.baseColorTexture.texCoord = 0;  // TEXCOORD_0
+  }
+  model.materials.push_back(mat);
+  return static_cast<int>(model.materials.size()) - 1;
 }
 
 tinygltf::Value string_array(const std::vector<std::string>& s) {
@@ -267,7 +306,8 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
          (2 + a.colour_fields.size() + 2 * (nk - 1)) * vec3 +  // attributes and targets
          (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
          a.frame_fields.size() * nk * (4 * nv + 3) +                                   // frame fields
-         4 * nk + 3 + 4 * nk * (nk - 1) + 3;                   // keys and weights
+         4 * nk + 3 + 4 * nk * (nk - 1) + 3 +                  // keys and weights
+         (a.material ? a.material->image.size() + 3 : 0);     // embedded image
 }
 
 /// write_gltf_animation; with `consumed` (a.frames itself), each frame after frame 0 is freed
@@ -349,8 +389,10 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
     target_names.push_back("frame_" + std::to_string(a.frame_numbers[k]));
   }
 
+  if (a.material) prim.material = add_material(model, bb, *a.material);
+
   tinygltf::Mesh mesh;
-  mesh.name = "shell";
+  mesh.name = a.name;
   mesh.primitives.push_back(prim);
   mesh.weights.assign(prim.targets.size(), 0.0);
   tinygltf::Value::Array frame_numbers;
@@ -364,7 +406,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   model.meshes.push_back(mesh);
 
   tinygltf::Node node;
-  node.name = "shell";
+  node.name = a.name;
   node.mesh = 0;
   model.nodes.push_back(node);
   tinygltf::Scene scene;

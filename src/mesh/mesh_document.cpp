@@ -84,6 +84,18 @@ CornerTexcoords MeshDocument::texcoords(const Mesh& mesh) const {
   return t;
 }
 
+FaceMaterials MeshDocument::face_materials(const Mesh& mesh) const {
+  FaceMaterials m = materials_;
+  if (m.names.empty() || polygon_material_.size() != polygon_count()) return FaceMaterials{};
+  const std::vector<std::size_t> origin = face_origins();
+  if (origin.size() != mesh.number_of_faces())
+    throw std::invalid_argument(
+        "MeshDocument::face_materials: the mesh is not this document's (call matches first)");
+  m.face_material.resize(origin.size());
+  for (std::size_t f = 0; f < origin.size(); ++f) m.face_material[f] = polygon_material_[origin[f]];
+  return m;
+}
+
 std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),

@@ -12,6 +12,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -62,6 +63,8 @@ class ObjDocument final : public MeshDocument {
   long long index(const std::string& token, std::size_t count, std::size_t line,
                   const char* what) const;
   void read_face(std::size_t at, std::size_t end, std::size_t line);
+  /// A usemtl line's name, [at, end) the line after its keyword: the faces that follow use it.
+  void use_material(std::size_t at, std::size_t end);
   /// The file with the positions x, the normals of their polygons and `edits` (mtllib lines).
   std::string compose(const Positions& x, std::vector<TextEdit> edits) const;
 
@@ -72,6 +75,7 @@ class ObjDocument final : public MeshDocument {
   std::vector<Span> v_numbers_;       ///< per `v` line: the span of its "x y z" text
   std::vector<Span> vn_text_;         ///< per `vn` line: the span from "vn" to the line's end
   std::vector<long long> corner_vn_;  ///< per corner: index of its `vn` line; -1 none
+  int material_ = -1;                 ///< the material of the faces read next (usemtl); -1 none
 };
 
 double ObjDocument::number(const Span& t, std::size_t line, const char* what) const {
@@ -123,6 +127,7 @@ void ObjDocument::read_face(std::size_t at, std::size_t end, std::size_t line) {
   }
   if (corners == 0) fail(line, "parse error", "a face without corners");
   polygon_start_.push_back(corner_vertex_.size());
+  polygon_material_.push_back(material_);
 }
 
 ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string path)
@@ -159,10 +164,20 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
       read_face(at, end, line);
     } else if (k == "mtllib") {
       mtllib_.push_back(mtllib_line(bytes_, at, end, line));
+    } else if (k == "usemtl") {
+      use_material(at, end);
     }
     begin = end + 1;
   }
   vertex_count_ = v_numbers_.size();
+  // The libraries, by the names mtllib_names finds (a name with spaces in it too); without the
+  // file's path their folder is unknown, and so are they.
+  const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
+  if (!path_.empty())
+    for (const MtllibLine& l : mtllib_)
+      for (const MtllibName& n : mtllib_names(bytes_, l, folder))
+        materials_.libraries.push_back({(folder / n.name).string(), l.line, n.found});
+  materials_.source = name_;
   // A texture coordinate only where every corner of every polygon has one (the glTF's TEXCOORD_0
   // needs one per vertex): otherwise none at all.
   for (const long long t : corner_uv_)
@@ -170,6 +185,21 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
       corner_uv_.assign(corner_uv_.size(), -1);
       break;
     }
+}
+
+void ObjDocument::use_material(std::size_t at, std::size_t end) {
+  // The name is the rest of the line (names with spaces exist), without a comment at its end.
+  while (at < end && is_space(bytes_[at])) ++at;
+  std::size_t e = std::min(end, bytes_.find('#', at));
+  while (e > at && is_space(bytes_[e - 1])) --e;
+  const std::string name = bytes_.substr(at, e - at);
+  if (name.empty()) {
+    material_ = -1;
+    return;
+  }
+  const auto found = std::find(materials_.names.begin(), materials_.names.end(), name);
+  material_ = static_cast<int>(found - materials_.names.begin());
+  if (found == materials_.names.end()) materials_.names.push_back(name);
 }
 
 std::string ObjDocument::compose(const Positions& x, std::vector<TextEdit> edits) const {

@@ -1,0 +1,250 @@
+#include "export/gltf_material.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <optional>
+#include <sstream>
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool is_space(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
+
+std::vector<std::string> tokens(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t i = 0;
+  while (i < s.size()) {
+    while (i < s.size() && is_space(s[i])) ++i;
+    const std::size_t b = i;
+    while (i < s.size() && !is_space(s[i])) ++i;
+    if (i > b) out.push_back(s.substr(b, i - b));
+  }
+  return out;
+}
+
+std::string trimmed(const std::string& s) {
+  std::size_t b = 0, e = s.size();
+  while (b < e && is_space(s[b])) ++b;
+  while (e > b && is_space(s[e - 1])) --e;
+  return s.substr(b, e - b);
+}
+
+/// The whole token as a finite double, or nothing.
+std::optional<double> number(const std::string& t) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+/// The file name of a map_Kd line's arguments: its options (-o u v w, -clamp on, ...) skipped;
+/// the rest of the line, spaces included (names with spaces exist).
+std::string map_file_name(const std::string& args) {
+  // The options and how many arguments each takes; -o, -s and -t take one to three numbers.
+  static const std::map<std::string, int> fixed = {
+      {"-blendu", 1}, {"-blendv", 1}, {"-bm", 1}, {"-boost", 1}, {"-cc", 1}, {"-clamp", 1},
+      {"-imfchan", 1}, {"-mm", 2}, {"-texres", 1}, {"-type", 1}};
+  std::size_t at = 0;
+  auto next = [&](bool consume) {
+    std::size_t i = at;
+    while (i < args.size() && is_space(args[i])) ++i;
+    std::size_t e = i;
+    while (e < args.size() && !is_space(args[e])) ++e;
+    if (consume) at = e;
+    return args.substr(i, e - i);
+  };
+  for (std::string t = next(false); !t.empty() && t[0] == '-'; t = next(false)) {
+    next(true);
+    const auto f = fixed.find(t);
+    if (f != fixed.end()) {
+      for (int k = 0; k < f->second; ++k) next(true);
+    } else if (t == "-o" || t == "-s" || t == "-t") {
+      for (int k = 0; k < 3 && number(next(false)); ++k) next(true);
+    }
+    // An unknown option: only the option itself is skipped.
+  }
+  return trimmed(args.substr(at));
+}
+
+std::vector<unsigned char> read_bytes(const std::string& path, bool& ok) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ok = in.good() || in.eof();
+  if (in.bad()) ok = false;
+  return bytes;
+}
+
+}  // namespace
+
+std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& bytes,
+                                   std::vector<std::string>& warnings) {
+  std::vector<MtlMaterial> out;
+  const fs::path folder = fs::path(name).parent_path();
+  auto warn = [&](std::size_t line, const std::string& what) {
+    warnings.push_back(name + ": line " + std::to_string(line) + ": " + what);
+  };
+  std::istringstream in(bytes);
+  std::string text;
+  bool has_d = false;
+  for (std::size_t line = 1; std::getline(in, text); ++line) {
+    const std::size_t hash = text.find('#');
+    if (hash != std::string::npos) text.resize(hash);
+    std::size_t at = 0;
+    while (at < text.size() && is_space(text[at])) ++at;
+    std::size_t key_end = at;
+    while (key_end < text.size() && !is_space(text[key_end])) ++key_end;
+    const std::string key = text.substr(at, key_end - at);
+    const std::string rest = text.substr(key_end);
+    if (key == "newmtl") {
+      out.emplace_back();
+      out.back().name = trimmed(rest);
+      out.back().file = name;
+      has_d = false;
+      continue;
+    }
+    if (key != "Kd" && key != "d" && key != "Tr" && key != "map_Kd") continue;
+    if (out.empty()) {
+      warn(line, key + " before any newmtl: ignored");
+      continue;
+    }
+    MtlMaterial& m = out.back();
+    const std::vector<std::string> t = tokens(rest);
+    if (key == "Kd") {
+      if (!t.empty() && (t[0] == "spectral" || t[0] == "xyz")) {
+        warn(line, "Kd " + t[0] + " is not supported: Kd left at white");
+        continue;
+      }
+      // One number means the same for red, green and blue (the MTL spec).
+      std::array<double, 3> kd{};
+      bool good = t.size() == 1 || t.size() == 3;
+      for (std::size_t k = 0; good && k < 3; ++k) {
+        const auto v = number(t[t.size() == 1 ? 0 : k]);
+        good = v.has_value() && *v >= 0.0;
+        if (good) kd[k] = std::min(*v, 1.0);  // glTF's base colour ends at 1
+      }
+      if (good)
+        m.kd = kd;
+      else
+        warn(line, "Kd '" + trimmed(rest) + "' is not three non-negative numbers: ignored");
+    } else if (key == "d" || key == "Tr") {
+      std::size_t i = 0;
+      if (key == "d" && t.size() == 2 && t[0] == "-halo") i = 1;  // the halo form: its factor
+      const auto v = t.size() == i + 1 ? number(t[i]) : std::nullopt;
+      if (!v || *v < 0.0 || *v > 1.0) {
+        warn(line, key + " '" + trimmed(rest) + "' is not a number in [0, 1]: ignored");
+      } else if (key == "d") {
+        m.alpha = *v;
+        has_d = true;
+      } else if (!has_d) {
+        m.alpha = 1.0 - *v;
+      }
+    } else {  // map_Kd
+      const std::string file = map_file_name(rest);
+      if (file.empty()) {
+        warn(line, "map_Kd without a file name: ignored");
+        continue;
+      }
+      const fs::path p(file);
+      m.texture = p.is_absolute() ? file : (folder / p).string();
+      m.texture_line = line;
+    }
+  }
+  return out;
+}
+
+std::string image_mime_type(const std::vector<unsigned char>& b) {
+  static const unsigned char png[] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (b.size() >= 8 && std::equal(png, png + 8, b.begin())) return "image/png";
+  if (b.size() >= 3 && b[0] == 0xFF && b[1] == 0xD8 && b[2] == 0xFF) return "image/jpeg";
+  return {};
+}
+
+std::optional<GltfMaterial> gltf_material(const FaceMaterials& materials, bool has_texcoords,
+                                          std::vector<std::string>& warnings) {
+  if (materials.empty()) return std::nullopt;
+  // The material of the most faces (the first used among equals).
+  std::vector<std::size_t> count(materials.names.size(), 0);
+  for (const int m : materials.face_material)
+    if (m >= 0) ++count[static_cast<std::size_t>(m)];
+  std::size_t best = 0, used = 0;
+  for (std::size_t i = 0; i < count.size(); ++i) {
+    if (count[i] > count[best]) best = i;
+    if (count[i] > 0) ++used;
+  }
+  if (count[best] == 0) return std::nullopt;
+  const std::string& wanted = materials.names[best];
+  if (used > 1)
+    warnings.push_back(materials.source + ": the faces use " + std::to_string(used) +
+                       " materials; the glTF has one primitive with material '" + wanted +
+                       "' (" + std::to_string(count[best]) + " of " +
+                       std::to_string(materials.face_material.size()) + " faces): " +
+                       std::to_string(used - 1) + " dropped");
+
+  std::optional<MtlMaterial> found;
+  for (const FaceMaterials::Library& lib : materials.libraries) {
+    if (!lib.found) {
+      warnings.push_back(materials.source + ": line " + std::to_string(lib.line) +
+                         ": material library '" + lib.path + "' not found: the glTF has no material from it");
+      continue;
+    }
+    bool ok = false;
+    const std::vector<unsigned char> bytes = read_bytes(lib.path, ok);
+    if (!ok) {
+      warnings.push_back(materials.source + ": line " + std::to_string(lib.line) +
+                         ": material library '" + lib.path + "' cannot be read");
+      continue;
+    }
+    // Every library is read (and warns) even after a match: the first definition wins, as in
+    // the order the OBJ names them.
+    for (MtlMaterial& m : parse_mtl(lib.path, std::string(bytes.begin(), bytes.end()), warnings))
+      if (!found && m.name == wanted) found = std::move(m);
+  }
+  if (!found) {
+    warnings.push_back(materials.source + ": material '" + wanted +
+                       "' is defined in none of its material libraries: the glTF has no material");
+    return std::nullopt;
+  }
+
+  GltfMaterial g;
+  g.name = found->name;
+  g.base_colour = {found->kd[0], found->kd[1], found->kd[2], found->alpha};
+  if (found->texture.empty()) return g;
+  const std::string where = found->file + ": line " + std::to_string(found->texture_line) + ": ";
+  if (!has_texcoords) {
+    warnings.push_back(where + "map_Kd '" + found->texture +
+                       "' not embedded: the mesh has no texture coordinates on every face");
+    return g;
+  }
+  std::error_code ec;
+  if (!fs::is_regular_file(found->texture, ec)) {
+    warnings.push_back(where + "map_Kd '" + found->texture +
+                       "' not found: the glTF's material has no texture");
+    return g;
+  }
+  bool ok = false;
+  std::vector<unsigned char> image = read_bytes(found->texture, ok);
+  if (!ok) {
+    warnings.push_back(where + "map_Kd '" + found->texture +
+                       "' cannot be read: the glTF's material has no texture");
+    return g;
+  }
+  g.image_mime_type = image_mime_type(image);
+  if (g.image_mime_type.empty()) {
+    warnings.push_back(where + "map_Kd '" + found->texture +
+                       "' is neither PNG nor JPEG (glTF's image types): the glTF's material has no texture");
+    return g;
+  }
+  g.image = std::move(image);
+  return g;
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,46 @@
+// The glTF material of an OBJ input (docs/design/export.md, "Materials"): the .mtl files its
+// mtllib lines name, read for the keys a base colour needs (newmtl, Kd, d, Tr, map_Kd), and the
+// material most of its faces use, with its diffuse texture's file embedded.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "shellcontract/export.hpp"
+#include "shellcontract/mesh_io.hpp"
+
+namespace shellcontract {
+
+/// One `newmtl` of a .mtl file, as far as a glTF base colour goes.
+struct MtlMaterial {
+  std::string name;
+  std::array<double, 3> kd{1.0, 1.0, 1.0};  ///< Kd; white when absent (map_Kd alone shows as is)
+  double alpha = 1.0;                        ///< d, or 1 - Tr; d wins when both are given
+  std::string texture;       ///< map_Kd's file, relative paths from the .mtl's folder; empty none
+  std::size_t texture_line = 0;  ///< the map_Kd line (1-based)
+  std::string file;              ///< the .mtl file, for messages
+};
+
+/// The materials of a .mtl file's bytes. Other keys are skipped. A line that cannot be read (a
+/// Kd without three numbers, a d outside [0, 1], a key before any newmtl) is a warning
+/// "<name>: line <n>: ..." appended to `warnings`, and the key is left at its default.
+/// @param name the file, for messages; relative map_Kd paths start from its folder
+std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& bytes,
+                                   std::vector<std::string>& warnings);
+
+/// The material of the mesh's faces for the glTF, or none when no face names one that a library
+/// defines. Several materials: the one of the most faces (the first used among equals), with one
+/// warning naming how many were dropped (the glTF has one primitive). Its texture (map_Kd) is
+/// embedded when the file exists and is a PNG or JPEG (by its first bytes) and `has_texcoords`;
+/// otherwise the material is written without it, with a warning naming the .mtl file and line.
+/// A library that is missing or unreadable is a warning too. Never throws for the files' contents.
+std::optional<GltfMaterial> gltf_material(const FaceMaterials& materials, bool has_texcoords,
+                                          std::vector<std::string>& warnings);
+
+/// "image/png" or "image/jpeg" by the file's signature; empty for anything else.
+std::string image_mime_type(const std::vector<unsigned char>& bytes);
+
+}  // namespace shellcontract

@@ -1,0 +1,199 @@
+// The glTF of an OBJ with a material (docs/design/export.md, "Materials"): the node and mesh are
+// named after the input's stem; the .mtl's Kd (and d) is the base colour; map_Kd's PNG is embedded
+// in the .glb's buffer and sampled with TEXCOORD_0; a texture that cannot be used is a warning
+// naming the .mtl and line, never a failed run.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "export/gltf_material.hpp"
+#include "export_fixtures.hpp"
+#include "gltf_reader.hpp"
+#include "support/cli_runner.hpp"
+#include "support/textured_octahedron.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+test::RunResult run_to_glb(const std::string& input, const test::ScratchDir& dir) {
+  return test::run_cli({"run", input, "-o", dir.file("out.obj"), "-n", "4", "-q", "--gltf",
+                        dir.file("run.glb")});
+}
+
+bool contains(const std::vector<std::string>& ws, const std::string& s) {
+  for (const std::string& w : ws)
+    if (w.find(s) != std::string::npos) return true;
+  return false;
+}
+
+TEST(GltfMaterial, TexturedObjGivesANamedMeshWithItsMaterialAndEmbeddedImage) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  test::ScratchDir dir("material");
+  const std::string obj = test::write_textured_octahedron(dir.str(), "gem", true);
+  const auto r = run_to_glb(obj, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("warning"), std::string::npos) << r.output;
+
+  const tinygltf::Model m = test::load_glb(dir.file("run.glb"));
+  ASSERT_EQ(m.nodes.size(), 1u);
+  ASSERT_EQ(m.meshes.size(), 1u);
+  EXPECT_EQ(m.nodes[0].name, "gem");
+  EXPECT_EQ(m.meshes[0].name, "gem");
+  ASSERT_EQ(m.meshes[0].primitives.size(), 1u);
+  const tinygltf::Primitive& p = m.meshes[0].primitives[0];
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_EQ(p.material, 0);
+  const tinygltf::Material& mat = m.materials[0];
+  EXPECT_EQ(mat.name, "skin");
+  EXPECT_EQ(mat.pbrMetallicRoughness.baseColorFactor, (std::vector<double>{0.8, 0.2, 0.1, 1.0}));
+  EXPECT_EQ(mat.pbrMetallicRoughness.metallicFactor, 0.0);
+
+  // The texture: its image is the PNG file's bytes, in a view of the .glb's own buffer.
+  const int t = mat.pbrMetallicRoughness.baseColorTexture.index;
+  ASSERT_GE(t, 0);
+  EXPECT_EQ(mat.pbrMetallicRoughness.baseColorTexture.texCoord, 0);
+  ASSERT_TRUE(p.attributes.count("TEXCOORD_0"));
+  const tinygltf::Texture& tex = m.textures.at(static_cast<std::size_t>(t));
+  EXPECT_GE(tex.sampler, 0);
+  const tinygltf::Image& img = m.images.at(static_cast<std::size_t>(tex.source));
+  EXPECT_EQ(img.mimeType, "image/png");
+  EXPECT_TRUE(img.uri.empty());
+  ASSERT_GE(img.bufferView, 0);
+  const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(img.bufferView));
+  ASSERT_EQ(m.buffers.size(), 1u);
+  EXPECT_TRUE(m.buffers[0].uri.empty());
+  const auto* b = m.buffers[0].data.data() + view.byteOffset;
+  EXPECT_EQ(std::vector<unsigned char>(b, b + view.byteLength), test::tiny_png());
+}
+
+TEST(GltfMaterial, MissingTextureWarnsWithMtlLineAndKeepsTheColour) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  test::ScratchDir dir("material_missing");
+  const std::string obj = test::write_textured_octahedron(dir.str(), "gem", false);
+  const auto r = run_to_glb(obj, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: " + dir.file("gem.mtl") + ": line " +
+                          std::to_string(test::OCTAHEDRON_MAP_KD_LINE) + ": map_Kd"),
+            std::string::npos)
+      << r.output;
+
+  const tinygltf::Model m = test::load_glb(dir.file("run.glb"));
+  ASSERT_EQ(m.materials.size(), 1u);
+  EXPECT_EQ(m.meshes.at(0).primitives.at(0).material, 0);
+  EXPECT_EQ(m.materials[0].pbrMetallicRoughness.baseColorFactor,
+            (std::vector<double>{0.8, 0.2, 0.1, 1.0}));
+  EXPECT_EQ(m.materials[0].pbrMetallicRoughness.baseColorTexture.index, -1);
+  EXPECT_TRUE(m.images.empty());
+  EXPECT_TRUE(m.textures.empty());
+}
+
+TEST(GltfMaterial, AnOffInputIsNamedAfterItsStemWithoutMaterial) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  test::ScratchDir dir("material_off");
+  const auto r = test::run_cli({"run", std::string(test::MESH_DIR) + "/ico2.off", "-o",
+                                dir.file("out.off"), "-n", "3", "-q", "--gltf", dir.file("run.glb")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const tinygltf::Model m = test::load_glb(dir.file("run.glb"));
+  EXPECT_EQ(m.nodes.at(0).name, "ico2");
+  EXPECT_EQ(m.meshes.at(0).name, "ico2");
+  EXPECT_TRUE(m.materials.empty());
+  EXPECT_EQ(m.meshes[0].primitives.at(0).material, -1);
+}
+
+TEST(MtlReader, ReadsKdAlphaAndMapKdSkippingOptionsAndWarnsOnBadLines) {
+  std::vector<std::string> w;
+  const auto ms = parse_mtl("dir/a.mtl",
+                            "Kd 1 1 1\n"                       // 1: before newmtl
+                            "newmtl one\n"                      // 2
+                            "Kd 0.25 0.5 0.125  # comment\n"    // 3
+                            "Tr 0.25\n"                         // 4
+                            "map_Kd -s 1 1 1 -bm 0.5 my tex.jpg\n"  // 5
+                            "newmtl two\n"                      // 6
+                            "Kd 0.3 oops 0.1\n"                 // 7
+                            "d 0.5\n"                           // 8
+                            "Tr 0.9\n"                          // 9: d wins
+                            "Kd 0.7\n",                         // 10: one number for all three
+                            w);
+  ASSERT_EQ(ms.size(), 2u);
+  EXPECT_EQ(ms[0].name, "one");
+  EXPECT_EQ(ms[0].kd, (std::array<double, 3>{0.25, 0.5, 0.125}));
+  EXPECT_EQ(ms[0].alpha, 0.75);
+  EXPECT_EQ(ms[0].texture, (fs::path("dir") / "my tex.jpg").string());
+  EXPECT_EQ(ms[0].texture_line, 5u);
+  EXPECT_EQ(ms[1].kd, (std::array<double, 3>{0.7, 0.7, 0.7}));
+  EXPECT_EQ(ms[1].alpha, 0.5);
+  EXPECT_TRUE(contains(w, "dir/a.mtl: line 1: Kd before any newmtl")) << ::testing::PrintToString(w);
+  EXPECT_TRUE(contains(w, "dir/a.mtl: line 7: Kd")) << ::testing::PrintToString(w);
+  EXPECT_EQ(w.size(), 2u) << ::testing::PrintToString(w);
+}
+
+TEST(MtlReader, TheMaterialOfMostFacesIsKeptAndTheOthersNamedAsDropped) {
+  test::ScratchDir dir("material_many");
+  std::ofstream(dir.file("m.mtl")) << "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\nmap_Kd t.bmp\n";
+  std::ofstream(dir.file("t.bmp")) << "BM not a glTF image";
+  FaceMaterials fm;
+  fm.names = {"a", "b", "c"};
+  fm.face_material = {0, 1, 1, -1, 1, 2};
+  fm.libraries = {{dir.file("m.mtl"), 1, true}, {dir.file("gone.mtl"), 2, false}};
+  fm.source = "x.obj";
+  std::vector<std::string> w;
+  const auto g = gltf_material(fm, true, w);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(g->name, "b");
+  EXPECT_EQ(g->base_colour, (std::array<double, 4>{0.0, 1.0, 0.0, 1.0}));
+  EXPECT_TRUE(g->image.empty());
+  EXPECT_TRUE(contains(w, "x.obj: the faces use 3 materials")) << ::testing::PrintToString(w);
+  EXPECT_TRUE(contains(w, "2 dropped")) << ::testing::PrintToString(w);
+  EXPECT_TRUE(contains(w, "x.obj: line 2: material library")) << ::testing::PrintToString(w);
+  EXPECT_TRUE(contains(w, dir.file("m.mtl") + ": line 5: map_Kd")) << ::testing::PrintToString(w);
+  EXPECT_TRUE(contains(w, "neither PNG nor JPEG")) << ::testing::PrintToString(w);
+}
+
+TEST(MtlReader, TheDocumentNamesEachFacesMaterialAndItsLibraries) {
+  test::ScratchDir dir("material_doc");
+  std::string obj = test::write_textured_octahedron(dir.str(), "gem", true);
+  {  // the second half of the faces under another material, the last one under none
+    std::ifstream in(obj);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("f 3/3 1/1 6/6"), 0, "usemtl other # a comment\n");
+    text.replace(text.find("f 1/1 4/4 6/6"), 0, "usemtl\n");
+    std::ofstream(obj) << text;
+  }
+  const Mesh mesh = read_input_mesh(obj);
+  const auto doc = read_mesh_document(obj);
+  ASSERT_TRUE(doc && doc->matches(mesh));
+  const FaceMaterials fm = doc->face_materials(mesh);
+  EXPECT_EQ(fm.names, (std::vector<std::string>{"skin", "other"}));
+  EXPECT_EQ(fm.face_material, (std::vector<int>{0, 0, 0, 0, 1, 1, 1, -1}));
+  ASSERT_EQ(fm.libraries.size(), 1u);
+  EXPECT_TRUE(fm.libraries[0].found);
+  EXPECT_EQ(fs::path(fm.libraries[0].path), fs::path(dir.file("gem.mtl")));
+  EXPECT_EQ(fm.libraries[0].line, 1u);
+}
+
+TEST(GltfMaterial, TheLibraryKeepsItsDefaultNameAndRefusesAnImageWithoutTexcoords) {
+  test::ScratchDir dir("material_lib");
+  GltfAnimation a;
+  a.faces.resize(1, 3);
+  a.faces << 0, 1, 2;
+  Positions x(3, 3);
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0;
+  a.frames = {x};
+  a.frame_numbers = {0};
+  EXPECT_EQ(a.name, "shell");
+  write_gltf_animation(dir.file("a.glb"), a);
+  EXPECT_EQ(test::load_glb(dir.file("a.glb")).meshes.at(0).name, "shell");
+  a.material = GltfMaterial{"m", {1, 1, 1, 1}, test::tiny_png(), "image/png"};
+  EXPECT_THROW(write_gltf_animation(dir.file("b.glb"), a), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace shellcontract
