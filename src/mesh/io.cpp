@@ -34,6 +34,7 @@
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/normalization.hpp"
+#include "mesh/polygon_split.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 
@@ -63,31 +64,8 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-// ------------------------------------------- triangulation (connectivity: soup_checks.hpp; the
-// mesh, orientation and zero areas: soup_geometry.hpp)
-
-/// Fan-triangulates polygon `p` from the first corner whose fan triangles all face along the
-/// polygon's Newell normal (any convex polygon, and star-shaped ones seen from that corner).
-/// @return the triangles, or an empty vector when no corner works (non-convex polygon)
-std::vector<Polygon> fan_triangulate(const Polygon& p, const std::vector<Point3>& pts) {
-  const std::size_t n = p.size();
-  Vec3 normal = Vec3::Zero();
-  for (std::size_t i = 0; i < n; ++i) normal += to_vec(pts[p[i]]).cross(to_vec(pts[p[(i + 1) % n]]));
-  for (std::size_t k = 0; k < n; ++k) {
-    std::vector<Polygon> tris;
-    bool ok = true;
-    for (std::size_t j = 1; j + 1 < n && ok; ++j) {
-      Polygon t{p[k], p[(k + j) % n], p[(k + j + 1) % n]};
-      const Vec3 a = to_vec(pts[t[0]]), b = to_vec(pts[t[1]]), c = to_vec(pts[t[2]]);
-      ok = (b - a).cross(c - a).dot(normal) > 0.0;
-      tris.push_back(std::move(t));
-    }
-    // A flat (zero-normal) polygon has no good corner; corner 0 gives zero-area triangles,
-    // which are then reported like any other zero-area face.
-    if (ok || normal.squaredNorm() == 0.0) return tris;
-  }
-  return {};
-}
+// ------------------------------------------- triangulation (polygons: polygon_split.hpp;
+// connectivity: soup_checks.hpp; the mesh, orientation and zero areas: soup_geometry.hpp)
 
 /// Checks the soup, triangulates and orients it, and builds the mesh (read_input_mesh's work).
 Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
@@ -145,9 +123,11 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
       tris[i] = p;
       continue;
     }
-    std::vector<Polygon> t = fan_triangulate(p, unit);
+    std::vector<Polygon> t = soup::split_polygon(p, unit);
     if (t.empty())
-      fail(path, "non-convex polygon", name.polygon(i) + " has " + std::to_string(p.size()) + " vertices and no corner from which a fan triangulates it; triangulate it before");
+      fail(path, "non-convex polygon", name.polygon(i) + " has " + std::to_string(p.size()) +
+                                           " vertices and neither a fan nor ear clipping splits it into triangles without overlap or zero area;"
+                                           " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) and read the result");
     ++split;
     tris[i] = t[0];
     for (std::size_t k = 1; k < t.size(); ++k) {

@@ -1,0 +1,142 @@
+// Splitting a polygon into triangles for the simulation (polygon_split.hpp).
+#include "mesh/polygon_split.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+
+#include "mesh/soup_geometry.hpp"
+
+namespace shellcontract::soup {
+namespace {
+
+Vec3 newell_normal(const Polygon& p, const std::vector<Point3>& pts) {
+  const std::size_t n = p.size();
+  Vec3 normal = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i) normal += to_vec(pts[p[i]]).cross(to_vec(pts[p[(i + 1) % n]]));
+  return normal;
+}
+
+/// Twice the triangle's vector area.
+Vec3 area_vector(const Polygon& t, const std::vector<Point3>& pts) {
+  const Vec3 a = to_vec(pts[t[0]]);
+  return (to_vec(pts[t[1]]) - a).cross(to_vec(pts[t[2]]) - a);
+}
+
+/// Polygon `p`'s fan from corner k.
+std::vector<Polygon> fan(const Polygon& p, std::size_t k) {
+  const std::size_t n = p.size();
+  std::vector<Polygon> tris;
+  for (std::size_t j = 1; j + 1 < n; ++j) tris.push_back({p[k], p[(k + j) % n], p[(k + j + 1) % n]});
+  return tris;
+}
+
+/// Below this, 2A counts as zero: ZERO_AREA_RELATIVE times the squared mean edge length of the
+/// polygon (the threshold zero_area_faces applies with the mesh's mean edge).
+double zero_area_threshold(const Polygon& p, const std::vector<Point3>& pts) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) sum += (to_vec(pts[p[i]]) - to_vec(pts[p[(i + 1) % p.size()]])).norm();
+  const double mean = sum / static_cast<double>(p.size());
+  return ZERO_AREA_RELATIVE * mean * mean;
+}
+
+/// Rule 2: the quad's least folded diagonal.
+std::vector<Polygon> least_folded_diagonal(const Polygon& p, const std::vector<Point3>& pts) {
+  const double zero = zero_area_threshold(p, pts);
+  double best = -std::numeric_limits<double>::infinity();
+  std::size_t best_k = 0;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::vector<Polygon> t = fan(p, k);
+    const Vec3 a = area_vector(t[0], pts), b = area_vector(t[1], pts);
+    // A zero-area triangle ranks below every folded pair (cosines lie in [-1, 1]).
+    const double score = (a.norm() < zero || b.norm() < zero) ? -2.0 : a.normalized().dot(b.normalized());
+    if (score > best) {
+      best = score;
+      best_k = k;
+    }
+  }
+  return fan(p, best_k);
+}
+
+/// Rule 3: ear clipping in the plane of `normal`; empty when no ear is left to cut.
+std::vector<Polygon> ear_clip(const Polygon& p, const std::vector<Point3>& pts, const Vec3& normal) {
+  const Vec3 w = normal.normalized();
+  const Vec3 u = (std::abs(w.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(w).normalized();
+  const Vec3 v = w.cross(u);  // (u, v, w) right-handed: the polygon winds counter-clockwise in (u, v)
+  struct P2 {
+    double x, y;
+  };
+  std::vector<P2> q;
+  for (const std::size_t i : p) q.push_back({to_vec(pts[i]).dot(u), to_vec(pts[i]).dot(v)});
+  const auto cross = [&q](std::size_t a, std::size_t b, std::size_t c) {
+    return (q[b].x - q[a].x) * (q[c].y - q[a].y) - (q[b].y - q[a].y) * (q[c].x - q[a].x);
+  };
+  std::vector<std::size_t> left(p.size());
+  for (std::size_t i = 0; i < left.size(); ++i) left[i] = i;
+  std::vector<Polygon> tris;
+  while (left.size() > 3) {
+    const std::size_t m = left.size();
+    bool cut = false;
+    for (std::size_t i = 0; i < m && !cut; ++i) {
+      const std::size_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
+      if (!(cross(a, b, c) > 0.0)) continue;  // a reflex or flat corner is no ear
+      bool empty = true;
+      for (std::size_t j = 0; j < m && empty; ++j) {
+        const std::size_t o = left[j];
+        if (o == a || o == b || o == c) continue;
+        empty = cross(a, b, o) < 0.0 || cross(b, c, o) < 0.0 || cross(c, a, o) < 0.0;  // outside, not on it
+      }
+      if (!empty) continue;
+      tris.push_back({p[a], p[b], p[c]});
+      left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
+      cut = true;
+    }
+    if (!cut) return {};
+  }
+  if (!(cross(left[0], left[1], left[2]) > 0.0)) return {};
+  tris.push_back({p[left[0]], p[left[1]], p[left[2]]});
+  return tris;
+}
+
+/// Rule 4: the fan that agrees best with `normal` and has no zero-area triangle; empty if none.
+std::vector<Polygon> best_fan(const Polygon& p, const std::vector<Point3>& pts, const Vec3& normal) {
+  const double zero = zero_area_threshold(p, pts);
+  const Vec3 w = normal.normalized();
+  double best = -std::numeric_limits<double>::infinity();
+  std::vector<Polygon> chosen;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    std::vector<Polygon> t = fan(p, k);
+    double worst = 1.0;
+    for (const Polygon& tri : t) {
+      const Vec3 a = area_vector(tri, pts);
+      worst = a.norm() < zero ? -std::numeric_limits<double>::infinity() : std::min(worst, a.normalized().dot(w));
+    }
+    if (worst > best) {
+      best = worst;
+      chosen = std::move(t);
+    }
+  }
+  return chosen;
+}
+
+}  // namespace
+
+std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& pts) {
+  const Vec3 normal = newell_normal(p, pts);
+  // A flat (zero-normal) polygon has no good corner; corner 0 gives zero-area triangles,
+  // which are then reported like any other zero-area face.
+  if (normal.squaredNorm() == 0.0) return fan(p, 0);
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    std::vector<Polygon> tris = fan(p, k);
+    bool ok = true;
+    for (const Polygon& t : tris) ok = ok && area_vector(t, pts).dot(normal) > 0.0;
+    if (ok) return tris;
+  }
+  if (p.size() == 4) return least_folded_diagonal(p, pts);
+  std::vector<Polygon> tris = ear_clip(p, pts, normal);
+  if (!tris.empty()) return tris;
+  return best_fan(p, pts, normal);
+}
+
+}  // namespace shellcontract::soup

@@ -1,0 +1,29 @@
+// How read_input_mesh (io.cpp) splits a polygon of more than three corners into triangles for the
+// simulation (private to src/mesh; docs/design/attributes.md, "The document"). The rule must
+// accept every polygon file that `run` writes: an output's polygons are the input's, with corners
+// moved by the simulation, which bent and may have folded them along the diagonals of their split.
+#pragma once
+
+#include <vector>
+
+#include "mesh/soup_checks.hpp"
+#include "shellcontract/mesh.hpp"
+
+namespace shellcontract::soup {
+
+/// The triangles of polygon `p` (more than three distinct corners, indices into `pts`, which are
+/// at a unit bounding-box diagonal), each wound like the polygon, in this order of preference:
+/// 1. a fan from the first corner whose fan triangles all face along the polygon's Newell normal
+///    (any convex polygon, and star-shaped ones seen from that corner); a polygon with a zero
+///    Newell normal (flat) gets corner 0's fan, whose zero-area triangles are then reported;
+/// 2. a quad that no corner fans (folded or bent, as `run` may leave it): the diagonal whose two
+///    triangles' normals agree most (the least folded), ties to the diagonal from corner 0; a
+///    diagonal with a zero-area triangle only when the other one has one too;
+/// 3. a larger polygon: ear clipping of the polygon projected on the plane of its Newell normal
+///    (any simple polygon in that projection);
+/// 4. a fan from the corner whose triangles' normals agree best with the Newell normal (the
+///    largest smallest cosine), among those fans that have no zero-area triangle.
+/// @return the triangles, or an empty vector when none of these applies (then refused)
+std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& pts);
+
+}  // namespace shellcontract::soup
