@@ -75,24 +75,29 @@ std::vector<Polygon> ear_clip(const Polygon& p, const std::vector<Point3>& pts, 
   std::vector<std::size_t> left(p.size());
   for (std::size_t i = 0; i < left.size(); ++i) left[i] = i;
   std::vector<Polygon> tris;
+  // Walk round the polygon, cutting each ear found; after a cut the walk goes on at the ear's
+  // previous corner (whose angle changed), and a full round without a cut gives up.
+  std::size_t i = 0, tried = 0;
   while (left.size() > 3) {
     const std::size_t m = left.size();
-    bool cut = false;
-    for (std::size_t i = 0; i < m && !cut; ++i) {
-      const std::size_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
-      if (!(cross(a, b, c) > 0.0)) continue;  // a reflex or flat corner is no ear
-      bool empty = true;
-      for (std::size_t j = 0; j < m && empty; ++j) {
-        const std::size_t o = left[j];
-        if (o == a || o == b || o == c) continue;
-        empty = cross(a, b, o) < 0.0 || cross(b, c, o) < 0.0 || cross(c, a, o) < 0.0;  // outside, not on it
-      }
-      if (!empty) continue;
-      tris.push_back({p[a], p[b], p[c]});
-      left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
-      cut = true;
+    if (tried == m) return {};
+    i %= m;
+    const std::size_t a = left[(i + m - 1) % m], b = left[i], c = left[(i + 1) % m];
+    bool ear = cross(a, b, c) > 0.0;  // a reflex or flat corner is no ear
+    for (std::size_t j = 0; j < m && ear; ++j) {
+      const std::size_t o = left[j];
+      if (o == a || o == b || o == c) continue;
+      ear = cross(a, b, o) < 0.0 || cross(b, c, o) < 0.0 || cross(c, a, o) < 0.0;  // outside, not on it
     }
-    if (!cut) return {};
+    if (!ear) {
+      ++i;
+      ++tried;
+      continue;
+    }
+    tris.push_back({p[a], p[b], p[c]});
+    left.erase(left.begin() + static_cast<std::ptrdiff_t>(i));
+    i = (i + m - 2) % (m - 1);
+    tried = 0;
   }
   if (!(cross(left[0], left[1], left[2]) > 0.0)) return {};
   tris.push_back({p[left[0]], p[left[1]], p[left[2]]});

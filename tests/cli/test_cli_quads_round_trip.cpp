@@ -54,7 +54,8 @@ std::string seam_split_quad_sphere(int nu, int nv) {
     const double th = pi * j / nv, ph = 2.0 * pi * (i % nu) / nu;
     const double s = (j == 0 || j == nv) ? 0.0 : std::sin(th);
     const double z = j == 0 ? 1.0 : j == nv ? -1.0 : std::cos(th);
-    v << "v " << s * std::cos(ph) << ' ' << s * std::sin(ph) << ' ' << z << '\n';
+    // + 0.0: the pole's copies at 0.0, not -0.0 (the seam weld welds bitwise-equal positions only).
+    v << "v " << s * std::cos(ph) + 0.0 << ' ' << s * std::sin(ph) + 0.0 << ' ' << z << '\n';
     vt << "vt " << static_cast<double>(i) / nu << ' ' << 1.0 - static_cast<double>(j) / nv << '\n';
     return it->second;
   };
@@ -62,13 +63,10 @@ std::string seam_split_quad_sphere(int nu, int nv) {
   int k = 0;
   for (int j = 0; j < nv; ++j)
     for (int i = 0; i < nu; ++i, ++k) {
-      std::vector<int> c;
-      if (j == 0)
-        c = {vertex(i, j), vertex(i, j + 1), vertex(i + 1, j + 1)};
-      else if (j == nv - 1)
-        c = {vertex(i, j), vertex(i, j + 1), vertex(i + 1, j)};
-      else
-        c = {vertex(i, j), vertex(i, j + 1), vertex(i + 1, j + 1), vertex(i + 1, j)};
+      // A quad's corners (i, j), (i, j + 1), (i + 1, j + 1), (i + 1, j); a pole triangle drops one.
+      std::vector<int> c{vertex(i, j), vertex(i, j + 1)};
+      if (j != nv - 1) c.push_back(vertex(i + 1, j + 1));
+      if (j != 0) c.push_back(vertex(i + 1, j));
       if (k == 0) f << "usemtl red\n";
       if (k == cells / 2) f << "usemtl blue\n";
       f << 'f';

@@ -37,15 +37,16 @@ Vec3 newell(const Polygon& p, const std::vector<Point3>& pts) {
   return n;
 }
 
-/// True when no corner's fan has all its triangles along the Newell normal (the old reader's
-/// only rule, which refused such a polygon).
+/// True when every corner's fan has a triangle that faces against the Newell normal, clearly (not
+/// at zero, which rounding on the reader's normalized coordinates may turn either way): the old
+/// reader, which took only a fan whose triangles all face along it, refused such a polygon.
 bool no_fan_corner(const Polygon& p, const std::vector<Point3>& pts) {
   const Vec3 n = newell(p, pts);
   for (std::size_t k = 0; k < p.size(); ++k) {
-    bool ok = true;
+    bool against = false;
     for (std::size_t j = 1; j + 1 < p.size(); ++j)
-      ok = ok && area_vector({p[k], p[(k + j) % p.size()], p[(k + j + 1) % p.size()]}, pts).dot(n) > 0.0;
-    if (ok) return false;
+      against = against || area_vector({p[k], p[(k + j) % p.size()], p[(k + j + 1) % p.size()]}, pts).dot(n) < -1e-9;
+    if (!against) return false;
   }
   return true;
 }
@@ -77,8 +78,8 @@ void expect_wound_like(const std::vector<Polygon>& tris, const Polygon& p) {
 
 // Butterflies bent along one diagonal past the point where a fan from any corner has a triangle
 // facing against the polygon's normal.
-const std::vector<Point3> BENT_ALONG_02{{1, 0, 0}, {-2, 0, 1}, {2, -2, 1}, {0, 0, -1}};
-const std::vector<Point3> BENT_ALONG_13{{0, -2, 1}, {-1, 1, 0}, {-2, 1, 0}, {1, 1, 1}};
+const std::vector<Point3> BENT_ALONG_02{{0, 0, -1}, {0, 2, 1}, {0, -1, 0}, {-1, 1, -1}};
+const std::vector<Point3> BENT_ALONG_13{{0, 0, 1}, {1, 0, 1}, {1, -2, -1}, {2, 0, 0}};
 
 TEST(SplitPolygon, AFoldedQuadIsSplitAlongItsLeastFoldedDiagonal) {
   const Polygon quad{0, 1, 2, 3};
