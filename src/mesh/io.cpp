@@ -126,8 +126,8 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     std::vector<Polygon> t = soup::split_polygon(p, unit);
     if (t.empty())
       fail(path, "non-convex polygon", name.polygon(i) + " has " + std::to_string(p.size()) +
-                                           " vertices and neither a fan nor ear clipping splits it into triangles without overlap or zero area;"
-                                           " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) and read the result");
+                                           " vertices, and neither ear clipping nor a fan without a zero-area triangle splits it;"
+                                           " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) before using the file");
     ++split;
     tris[i] = t[0];
     for (std::size_t k = 1; k < t.size(); ++k) {

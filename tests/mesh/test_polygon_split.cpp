@@ -130,6 +130,22 @@ TEST(SplitPolygon, AFlatPolygonGetsTheFanOfCorner0) {
   EXPECT_EQ(split_polygon({0, 1, 2, 3, 4}, p), (std::vector<Polygon>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}}));
 }
 
+TEST(SplitPolygon, APolygonEveryFanOfWhichHasAZeroAreaTriangleAndNoEarIsRefused) {
+  // Corners 1 and 2 at one position: every fan has a triangle with both (or one at either's place).
+  const std::vector<Point3> p{{0, 2, 0}, {0, 1, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}};
+  EXPECT_TRUE(split_polygon({0, 1, 2, 3, 4}, p).empty());
+  // The reader's refusal says what to do (it ended "triangulate it before").
+  try {
+    shellcontract::check_input_soup("pentagon", p, {{0, 1, 2, 3, 4}}, nullptr);
+    ADD_FAILURE() << "read";
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("pentagon: non-convex polygon: "), std::string::npos) << m;
+    EXPECT_NE(m.find("triangulate it in your modelling tool (Blender: Face > Triangulate Faces) before using the file"),
+              std::string::npos) << m;
+  }
+}
+
 // Through the reader: a square pyramid whose base is a folded quad. Before, read_input_mesh
 // refused it ("non-convex polygon: face 0 ... has 4 vertices and no corner from which a fan
 // triangulates it").
