@@ -194,6 +194,14 @@ int command_run(int argc, char** argv) {
     if (export_failure != "warn" && export_failure != "stop")
       throw UsageError("--export-failure: '" + export_failure + "' is not warn or stop");
     exports.stop_run_on_failure = export_failure == "stop";
+    // Options that shape an output not asked for: warnings, as for the run's own options
+    // (ineffective_options), not errors, so that a script can keep them while it toggles the output.
+    const auto given = [&](const char* name) { return vm.count(name) && !vm[name].defaulted(); };
+    if (given("fields-colour") && fields_prefix.empty())
+      std::cerr << "warning: --fields-colour has no effect: it colours the files of --fields\n";
+    if (given("export-failure") && exports.dir.empty() && exports.gltf.empty())
+      std::cerr << "warning: --export-failure has no effect: it is what a failed frame file of "
+                   "--export-dir or --gltf does\n";
     const std::string ext = lower_extension(output);
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
       throw UsageError("-o " + output + ": unknown mesh format '." + ext +
@@ -219,6 +227,15 @@ int command_run(int argc, char** argv) {
     if (vm.count("export-every") && exports.dir.empty() && exports.gltf.empty())
       throw UsageError("--export-every has no effect without --export-dir or --gltf");
     plan.inputs.push_back({"INPUT", input});
+    // The checkpoint a run resumes is one of its inputs: only --checkpoint may name it (a resumed
+    // run that goes on saving to the same file); a log or summary over it would destroy the only
+    // copy of the state. With --checkpoint on the same file, any other output over it is already
+    // refused as the same file as --checkpoint.
+    if (!resume_path.empty()) {
+      std::error_code ec;
+      if (checkpoint_path.empty() || !std::filesystem::equivalent(resume_path, checkpoint_path, ec))
+        plan.inputs.push_back({"--resume", resume_path});
+    }
     if (options.regions == RegionSource::File) plan.inputs.push_back({"--regions", options.region_file});
     if (!options.region_weight_file.empty()) plan.inputs.push_back({"--region-weights", options.region_weight_file});
     if (!exports.dir.empty()) {
@@ -386,7 +403,11 @@ int command_run(int argc, char** argv) {
     });
     if (!log_path.empty()) attempt("--log", log_path, [&] { write_text_atomic(log_path, csv.text()); });
     if (!summary_path.empty()) {
-      JsonObject summary = summary_json(input, output, report, options, r);
+      // The summary is written last: an output that failed before it makes the process exit 1,
+      // and the summary says so (its own failure is reported on stderr only).
+      JsonObject summary = summary_json(input, output, report, options, r,
+                                        outputs.failed() ? std::optional<int>(static_cast<int>(ExitCode::BadUsage))
+                                                         : std::nullopt);
       JsonObject setup;
       setup.add("read_and_check_seconds", read_seconds)
           .add("read_seconds", report.read_seconds)

@@ -59,10 +59,11 @@ JsonObject export_json(const FrameExporter& e) {
 
 
 JsonObject summary_json(const std::string& input, const std::string& output,
-                        const InputReport& report, const RunOptions& options, const RunResult& r) {
+                        const InputReport& report, const RunOptions& options, const RunResult& r,
+                        std::optional<int> exit_code) {
   JsonObject s;
   JsonSummary w(s);
-  const SummaryFiles files{input, output};
+  const SummaryFiles files{input, output, exit_code};
   write_run_summary(w, report, options, r, OptionSpelling::Cli, &files);
   return s;
 }

@@ -2,6 +2,7 @@
 // with what only the CLI knows (its exports, the process's peak memory).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "export_observer.hpp"
@@ -15,9 +16,11 @@ namespace shellcontract::cli {
 /// The frame and glTF exports' counts and times.
 JsonObject export_json(const FrameExporter& e);
 
-/// The library's summary of a finished run, with the input and output files named.
+/// The library's summary of a finished run, with the input and output files named, and the
+/// process's exit code where it is not the run's (exit_code).
 JsonObject summary_json(const std::string& input, const std::string& output,
-                        const InputReport& report, const RunOptions& options, const RunResult& r);
+                        const InputReport& report, const RunOptions& options, const RunResult& r,
+                        std::optional<int> exit_code = std::nullopt);
 
 /// The process's peak resident memory so far, in MiB.
 double peak_memory_mb();

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,9 @@ class SummaryWriter {
 /// The input and output files, for a summary that names them (the CLI's).
 struct SummaryFiles {
   std::string input, output;
+  /// The process's exit code where the front end's own outputs change it (an output that could
+  /// not be written: exit 1); the run's (RunResult::exit_code) when not set.
+  std::optional<int> exit_code;
 };
 
 /// Writes the run's summary: status, input, options (each table option under its name in

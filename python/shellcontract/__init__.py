@@ -49,8 +49,12 @@ class Result:
         self.status = raw["status"]
 
     def __repr__(self):
-        return "Result(status={!r}, frames_run={}, final_volume_ratio={:.6g})".format(
-            self.status, self.summary["frames_run"], self.summary["final_volume_ratio"])
+        # Angle brackets: not a call that rebuilds the object, and every name shown is one to
+        # read (frames_run is a summary key, not an attribute).
+        return "<Result status={!r}, {} vertices, summary['frames_run']={}, " \
+            "summary['final_volume_ratio']={:.6g}>".format(
+                self.status, len(self.vertices), self.summary["frames_run"],
+                self.summary["final_volume_ratio"])
 
 
 def options():

@@ -229,3 +229,18 @@ def test_region_strengths_scale_each_region(mesh_dir):
         shellcontract.contract(vertices, faces, regions=found, region_strengths=[1, 1.5, 1], frames=1)
     with pytest.raises(ValueError, match="face lists or labels"):
         shellcontract.contract(vertices, faces, regions="auto", region_strengths=[1], frames=1)
+
+
+def test_the_result_repr_names_only_what_can_be_read(ico2):
+    # Before, repr gave "Result(status='ok', frames_run=2, ...)", but result.frames_run raised
+    # AttributeError: each name the repr shows must be an attribute or a summary key.
+    vertices, faces = ico2
+    result = shellcontract.contract(vertices, faces, frames=2)
+    text = repr(result)
+    assert text.startswith("<Result status='ok'")
+    for key in re.findall(r"summary\['(\w+)'\]", text):
+        assert key in result.summary
+    for name in re.findall(r"[<,] (\w+)=", text):
+        assert hasattr(result, name), name
+    assert "frames_run=" not in text.replace("summary['frames_run']=", "")
+    assert str(len(vertices)) + " vertices" in text

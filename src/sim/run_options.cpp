@@ -52,6 +52,7 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
           "it is a Mooney-Rivlin parameter (`material` mooney-rivlin)");
   for (const char* name : {"mu", "lambda"})
     check(name, s.material == MaterialKind::MooneyRivlin, "Mooney-Rivlin takes `c10` and `c01`");
+  check("density", s.mass == MassModel::Unit, "`mass` unit gives every vertex the mass 1");
   check("poisson", !r.young.has_value(), "the Poisson ratio is used with `young` and `thickness`");
   check("k_b", s.bending == BendingModel::None, "`bending` none");
   for (const char* name : {"delta", "collision_rounds", "warm_start", "speculative_broad_phase"})

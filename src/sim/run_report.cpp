@@ -47,7 +47,7 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   };
   w.add_text("status", status_name(r.status));
   w.add_text("failure", r.message);
-  w.add_integer("exit_code", r.exit_code());
+  w.add_integer("exit_code", files && files->exit_code ? *files->exit_code : r.exit_code());
   if (files) {
     w.add_text("input", files->input);
     w.add_text("output", files->output);

@@ -111,5 +111,27 @@ TEST_F(CliResumeInputs, ACheckpointOfArraysWithoutInputSaysToGiveInput) {
   EXPECT_EQ(read(out("x.off")), read(out("whole.off")));
 }
 
+// Before: exit 0, and the checkpoint was the log's CSV (or the summary's JSON): resuming it again
+// failed with "not a shellcontract checkpoint", the run's saved state lost.
+TEST_F(CliResumeInputs, NoOutputButCheckpointMayBeTheResumedCheckpoint) {
+  checkpointed_run({});
+  const std::string saved = read(out("c.ckpt"));
+  fs::create_symlink(out("c.ckpt"), out("link.ckpt"));
+  for (const std::string option : {"--log", "--summary"})
+    for (const std::string target : {out("c.ckpt"), out("link.ckpt")}) {
+      const auto r = run_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), option, target, "-q"});
+      EXPECT_EQ(r.exit_code, 1) << option << " " << target << ": " << r.output;
+      EXPECT_NE(r.output.find(option), std::string::npos) << r.output;
+      EXPECT_NE(r.output.find("--resume"), std::string::npos) << r.output;
+      EXPECT_FALSE(fs::exists(out("r.off")));
+      EXPECT_EQ(read(out("c.ckpt")), saved) << option << " " << target;
+    }
+  // --checkpoint on the resumed file goes on saving there, as before.
+  const auto same = run_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), "--checkpoint",
+                             out("link.ckpt"), "-q"});
+  EXPECT_EQ(same.exit_code, 0) << same.output;
+  EXPECT_EQ(read(out("r.off")), read(out("whole.off")));
+}
+
 }  // namespace
 }  // namespace shellcontract

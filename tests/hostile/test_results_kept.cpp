@@ -24,6 +24,8 @@ TEST_F(Hostile, AFullDiskStopsTheExportNotTheResult) {
   EXPECT_NE(r.output.find("disk is full"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("-o " + (dir_ / "o.off").string() + ": written"), std::string::npos) << r.output;
   EXPECT_NE(test::slurp(dir_ / "s.json").find("\"--export-dir\": \""), std::string::npos);
+  // The summary's exit code is the process's (before: 0, with "status": "ok").
+  EXPECT_NE(test::slurp(dir_ / "s.json").find("\"exit_code\": 1,"), std::string::npos) << test::slurp(dir_ / "s.json");
   // The result is the one a run without export gives.
   ASSERT_EQ(run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "ref.off").string(), "-n", "20", "-q"})
                 .exit_code,
@@ -50,6 +52,8 @@ TEST_F(Hostile, AFullDiskEndsTheRunWhenAskedAndKeepsItsResult) {
   const std::size_t at = summary.find("\"frames_run\": ");
   ASSERT_NE(at, std::string::npos) << summary;
   EXPECT_LT(std::stoi(summary.substr(at + 14)), 200) << "the run did not stop at the failure";
+  // Before: "exit_code": 130, the code of Ctrl-C, while the process exited 1.
+  EXPECT_NE(summary.find("\"exit_code\": 1,"), std::string::npos) << summary;
   // A value other than warn or stop is refused before any work.
   const auto bad = run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "b.off").string(),
                             "--export-failure", "maybe"});

@@ -1,0 +1,88 @@
+// Options that have no effect with the others are a warning on stderr (docs/cli.md), also those of
+// the outputs: before, `--density` under `--mass unit`, `--fields-colour` without `--fields` and
+// `--export-failure` without `--export-dir` or `--gltf` were dropped without a word (and the result
+// of `--mass unit --density 3` was byte for byte that of `--mass unit`). And a warning that is not
+// the tool's: more --threads than the machine has printed TBB's "TBB Warning: The number of workers
+// is currently limited to ..." past -q.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "support/cli_runner.hpp"
+#include "test_paths.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using shellcontract::test::RunResult;
+using shellcontract::test::run_cli;
+
+class CliIgnoredOptions : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_cli_ignored_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  RunResult run(const std::vector<std::string>& extra) {
+    std::vector<std::string> args{"run", std::string(shellcontract::test::MESH_DIR) + "/ico1.off", "-o",
+                                  (dir_ / "o.off").string(), "-n", "2", "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args);
+  }
+  fs::path dir_;
+};
+
+TEST_F(CliIgnoredOptions, EachOptionWithoutEffectIsAWarningNamingIt) {
+  const struct {
+    std::vector<std::string> args;
+    std::string warning;
+  } cases[] = {
+      {{"--mass", "unit", "--density", "3"}, "--density has no effect"},
+      {{"--fields-colour", "energy"}, "--fields-colour has no effect"},
+      {{"--export-failure", "stop"}, "--export-failure has no effect"},
+  };
+  for (const auto& c : cases) {
+    const RunResult r = run(c.args);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: " + c.warning), std::string::npos) << c.args[0] << ": " << r.output;
+  }
+}
+
+TEST_F(CliIgnoredOptions, TheSameOptionsWhereTheyActGiveNoWarning) {
+  const std::string fields = (dir_ / "f").string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--density", "3"},
+        std::vector<std::string>{"--fields", fields, "--fields-colour", "energy"},
+        std::vector<std::string>{"--export-dir", (dir_ / "frames").string(), "--export-failure", "stop"}}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("has no effect"), std::string::npos) << args[0] << ": " << r.output;
+  }
+}
+
+TEST_F(CliIgnoredOptions, MoreThreadsThanTheMachineHasRunQuietlyToTheSameBytes) {
+  // 256 threads: more than this test's machines have (the test shows nothing on a bigger one).
+  const RunResult many = run({"--threads", "256"});
+  ASSERT_EQ(many.exit_code, 0) << many.output;
+  EXPECT_EQ(many.output, "");
+  const std::string bytes = [&] {
+    std::ifstream in(dir_ / "o.off", std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  }();
+  const RunResult one = run({"--threads", "1"});
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  std::ifstream in(dir_ / "o.off", std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), bytes);
+}
+
+}  // namespace
