@@ -64,3 +64,16 @@ def test_a_problem_without_faces_stays_a_plain_value_error(ico2):
     with pytest.raises(ValueError, match="non-finite coordinate") as e:
         shellcontract.contract(v, f, frames=1)
     assert not isinstance(e.value, shellcontract.MeshError)
+
+
+def test_mesh_error_pickles_with_its_faces(ico2):
+    """A sweep's worker hands errors back pickled: the class is found as shellcontract.MeshError
+    and `faces` comes along."""
+    import pickle
+    v, f = ico2
+    f = f.copy()
+    f[3, 1] = f[3, 0]
+    with pytest.raises(shellcontract.MeshError) as e:
+        shellcontract.check(v, f)
+    back = pickle.loads(pickle.dumps(e.value))
+    assert type(back) is shellcontract.MeshError and back.faces == [3] and str(back) == str(e.value)
