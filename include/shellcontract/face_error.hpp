@@ -15,7 +15,9 @@ namespace shellcontract {
 /// The input mesh cannot be used because of some of its faces (exit code 2, as any InputError).
 /// what() is the message as an InputError would read; faces() are the triangle indices it is
 /// about (0-based, in the triangulated soup the checks ran on, the order the message names them),
-/// all of them: a message that shortens its list with "..." still has the whole list here.
+/// all of them: a message that shortens its list with "..." still has the whole list here. A
+/// file's polygon refused before triangulation is given by its index, which is also the index of
+/// its first triangle (the others are appended after the last polygon).
 class FaceListError : public InputError {
  public:
   FaceListError(const std::string& message, std::vector<std::size_t> faces)
