@@ -165,10 +165,15 @@ def addon_terms(message, start, mesh_name="", polygon_of=None):
                 "run ends on the way to it, at {:.4g}".format(
                     FIELD_NAMES[m.group(1)], start + int(m.group(2)), start + int(m.group(3)),
                     float(m.group(4))))
-    if text.startswith(ARRAY_INPUT + ": "):
-        text = "the mesh of {}: {}".format(mesh_name, text[len(ARRAY_INPUT) + 2:])
-    if polygon_of is not None:
-        text = polygon_numbers(text, polygon_of)
+    faces = getattr(message, "faces", None)  # shellcontract.MeshError: the triangles to blame
+    if polygon_of is not None and isinstance(faces, list) and faces:
+        text = face_error_text(text, faces, polygon_of, mesh_name)
+    else:
+        if text.startswith(ARRAY_INPUT + ": "):
+            text = "the mesh of {}: {}".format(mesh_name, text[len(ARRAY_INPUT) + 2:])
+        if polygon_of is not None:
+            # Warnings (text only) and errors without a face list: the numbers in the text.
+            text = polygon_numbers(text, polygon_of)
     # A message that begins with an option's name, and the underscore names anywhere.
     head = re.match(r"^(\w+)(:| has no effect)", text)
     if head and head.group(1) in FIELD_NAMES:
@@ -182,9 +187,37 @@ def addon_terms(message, start, mesh_name="", polygon_of=None):
 ARRAY_INPUT = "input arrays"  # the library's name of a mesh given as arrays
 
 
+def mesh_faces(faces, polygon_of):
+    """The mesh's faces (polygons) of triangles `faces`, each once, in the order given."""
+    out = []
+    for t in faces:
+        t = int(t)
+        p = polygon_of[t] if 0 <= t < len(polygon_of) else t
+        if p not in out:
+            out.append(p)
+    return out
+
+
+def face_error_text(text, faces, polygon_of, mesh_name):
+    """A MeshError's message, built from its `faces` (triangle numbers, all of them) mapped to
+    the mesh's faces, not from the numbers in its text: 'the mesh of NAME: PROBLEM: face P'
+    (or 'faces P1, P2'), then the library's own words, which count the run's triangles."""
+    polygons = mesh_faces(faces, polygon_of)
+    where = "face" if len(polygons) == 1 else "faces"
+    where += " " + ", ".join(str(p) for p in polygons)
+    rest = text[len(ARRAY_INPUT) + 2:] if text.startswith(ARRAY_INPUT + ": ") else text
+    problem, sep, details = rest.partition(": ")
+    if not sep:  # no "PROBLEM: details" form: the whole text is the library's words
+        problem, details = "", rest
+    head = "the mesh of {}: ".format(mesh_name) + (problem + ": " if problem else "") + where
+    return "{} (the library's words, numbering the triangles the run was given: {})".format(head, details)
+
+
 def polygon_numbers(text, polygon_of):
     """The triangle numbers of a mesh message as the mesh's face (polygon) numbers: 'face T',
-    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...'."""
+    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...'. For the library's
+    warnings, which are text only, and errors without a face list; a MeshError's faces come
+    from its `faces` (face_error_text)."""
     def poly(t):
         t = int(t)
         return str(polygon_of[t]) if 0 <= t < len(polygon_of) else str(t)

@@ -15,7 +15,7 @@ the keyed one end without a warning (the pressure is passed only where it has an
 asked for); the Target volume's refusals and the library's messages speak the panel's terms
 (field names, timeline frames, float32-rounded values); a missing vertex group is refused; the
 threaded run of the UI reports progress and cancels; an open mesh's message names the mesh's
-own face; and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0."""
+own face, taken from the MeshError's `faces`; and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0."""
 
 import argparse
 import sys
@@ -233,14 +233,30 @@ def mesh_messages():
     bm.to_mesh(obj.data)
     bm.free()
     text = refusal()
-    m = re.search(r"edge \((\d+), (\d+)\) of face (\d+)", text)
+    face = re.search(r"the mesh of {}: open boundary: face (\d+) ".format(re.escape(obj.name)), text)
+    edge = re.search(r"edge \((\d+), (\d+)\) of face", text)
     polygons = obj.data.polygons
-    check(m is not None and "input arrays" not in text and "the mesh of " + obj.name in text
-          and int(m.group(3)) < len(polygons)
-          and {int(m.group(1)), int(m.group(2))} <= set(polygons[int(m.group(3))].vertices),
+    check(face is not None and edge is not None and "input arrays" not in text
+          and int(face.group(1)) < len(polygons)
+          and {int(edge.group(1)), int(edge.group(2))} <= set(polygons[int(face.group(1))].vertices),
           "an open mesh is refused naming the mesh's face that has the open edge: " + text)
-    # The library's lists of faces, by triangle, as the mesh's faces.
+    # A MeshError's faces are its `faces` (triangles) as the mesh's faces, not numbers read
+    # from its text: a message without numbers still names them.
+    import shellcontract
     polygon_of = [0, 0, 1, 2, 2, 3]
+    error = shellcontract.MeshError("input arrays: non-manifold edge: somewhere")
+    error.faces = [1, 3, 4, 5]
+    text = runner.addon_terms(error, 1, "Cube", polygon_of)
+    check(text.startswith("the mesh of Cube: non-manifold edge: faces 0, 2, 3 (")
+          and text.endswith(": somewhere)"),
+          "a MeshError names the mesh's faces of its `faces`: " + text)
+    error = shellcontract.MeshError("input arrays: open boundary: edge (1, 2) of face 99 ...")
+    error.faces = [2]
+    text = runner.addon_terms(error, 1, "Cube", polygon_of)
+    check(text.startswith("the mesh of Cube: open boundary: face 1 ("),
+          "the face comes from `faces`, not from the text's 'face 99': " + text)
+    # Warnings (text only), and errors without `faces`: the library's lists of faces, by
+    # triangle, read from the text as the mesh's faces.
     for before, after in (
             ("edge (1, 2) is shared by 3 faces (1, 3, 5), at most 2 allowed",
              "edge (1, 2) is shared by 3 faces (0, 2, 3), at most 2 allowed"),

@@ -5,6 +5,11 @@ outward or inward oriented, closed and manifold). The options of ``contract`` ar
 ``shellcontract run`` with underscores (``k_b`` for ``--k-b``), with the same defaults and
 ranges; ``options()`` lists them. The same input and options give the same result as the CLI,
 to the last bit.
+
+A mesh the library refuses raises ValueError with the CLI's message; where particular faces are
+to blame (an open boundary, a non-manifold edge, a duplicate or degenerate face, ...) it is a
+``MeshError``, a ValueError whose ``faces`` lists their indices into the faces array (all of
+them, even where the message shortens its list with "...").
 """
 
 import atexit
@@ -19,8 +24,12 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Option", "Result", "contract", "frames", "options", "check", "regions",
+__all__ = ["Option", "Result", "MeshError", "contract", "frames", "options", "check", "regions",
            "read_mesh", "write_mesh"]
+
+# A ValueError for a mesh refused because of some of its faces, with their indices as `faces`
+# (a list of int); `except ValueError` catches it as before.
+MeshError = _core.MeshError
 
 Option = collections.namedtuple("Option", "name default help cli_name")
 Option.__doc__ = "One run option: Python name, default as text ('' when unset), help, CLI name."
@@ -71,8 +80,9 @@ def contract(vertices, faces, *, callback=None, **options):
     Returning None (or nothing) goes on, as does any true value; a value without a truth value
     (an array of several elements) raises its error, as ``if value:`` would. Ctrl-C stops the
     run cleanly and raises KeyboardInterrupt.
-    Raises ValueError for a mesh the library refuses or a bad option value, TypeError for an
-    unknown option.
+    Raises ValueError for a mesh the library refuses or a bad option value (MeshError, a
+    ValueError with the faces' indices as ``faces``, where particular faces are to blame),
+    TypeError for an unknown option.
 
     ``regions`` (None, the default, is "not given") takes, told apart by type:
 
@@ -315,7 +325,8 @@ def frames(vertices, faces, every=1, **options):
 
 def check(vertices, faces):
     """What ``shellcontract check`` reports (counts, genus, volume, self-intersecting face pairs);
-    raises ValueError with the reason when the mesh cannot be used."""
+    raises ValueError with the reason when the mesh cannot be used (MeshError, with ``faces``,
+    where particular faces are to blame)."""
     return _core.check(vertices, faces)
 
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract::python {
@@ -62,9 +63,10 @@ static void check_uint64_indices(const py::handle& faces, std::size_t num_vertic
   const std::uint64_t* p = u.data();
   for (py::ssize_t i = 0; i < u.size(); ++i)
     if (p[i] >= num_vertices)
-      throw InputError(std::string(ARRAY_INPUT_NAME) + ": vertex index out of range: face " + std::to_string(i / 3) +
-                       " refers to vertex " + std::to_string(p[i]) + ", but the mesh has " +
-                       std::to_string(num_vertices) + " vertices");
+      throw FaceListError(std::string(ARRAY_INPUT_NAME) + ": vertex index out of range: face " + std::to_string(i / 3) +
+                              " refers to vertex " + std::to_string(p[i]) + ", but the mesh has " +
+                              std::to_string(num_vertices) + " vertices",
+                          {static_cast<std::size_t>(i / 3)});
 }
 
 Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputReport* report, bool reorient) {

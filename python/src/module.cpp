@@ -17,6 +17,7 @@
 
 #include "arrays.hpp"
 #include "contract.hpp"
+#include "mesh_error.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
@@ -201,9 +202,14 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "ShellContract's compiled core; use the shellcontract package";
   // The library's errors as Python's: a bad mesh or a bad option value is a ValueError with the
   // library's message (what the CLI prints before exiting with 2 or 1).
+  // A mesh refused for particular faces is a MeshError, a ValueError with their indices as
+  // `faces` (mesh_error.hpp).
+  register_mesh_error(m);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
+    } catch (const FaceListError& e) {
+      set_mesh_error(e, spell_options(e.what(), OptionSpelling::Python));
     } catch (const InputError& e) {
       // An input's option by Python's name too (a changed face-list file of `regions`).
       PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());

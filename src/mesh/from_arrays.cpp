@@ -32,6 +32,7 @@ namespace {
 using Tri = std::array<std::size_t, 3>;
 
 using soup::fail;
+using soup::fail_faces;
 
 std::string face_name(std::size_t f) { return "face " + std::to_string(f); }
 std::string vertex_name(std::size_t v) { return "vertex " + std::to_string(v); }
@@ -43,13 +44,13 @@ std::vector<Tri> read_faces(const TriangleSoupView& s, const std::string& name) 
     for (int k = 0; k < 3; ++k) {
       const std::int64_t v = s.faces32 ? s.faces32[3 * f + k] : s.faces64[3 * f + k];
       if (v < 0)
-        fail(name, "vertex index out of range", face_name(f) + " has the negative index " + std::to_string(v));
+        fail_faces(name, "vertex index out of range", face_name(f) + " has the negative index " + std::to_string(v), {f});
       if (static_cast<std::uint64_t>(v) >= s.num_vertices)
-        fail(name, "vertex index out of range", face_name(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has " + std::to_string(s.num_vertices) + " vertices (0.." + std::to_string(s.num_vertices - 1) + ")");
+        fail_faces(name, "vertex index out of range", face_name(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has " + std::to_string(s.num_vertices) + " vertices (0.." + std::to_string(s.num_vertices - 1) + ")", {f});
       tris[f][k] = static_cast<std::size_t>(v);
       for (int l = 0; l < k; ++l)
         if (tris[f][l] == tris[f][k])
-          fail(name, "degenerate face", face_name(f) + " uses vertex " + std::to_string(v) + " twice");
+          fail_faces(name, "degenerate face", face_name(f) + " uses vertex " + std::to_string(v) + " twice", {f});
     }
   }
   return tris;
@@ -62,7 +63,7 @@ void check_duplicates_and_isolated(const std::vector<Tri>& tris, std::size_t nv,
     std::sort(key.begin(), key.end());
     const auto [it, inserted] = seen.emplace(key, f);
     if (!inserted)
-      fail(name, "duplicate face", face_name(f) + " has the same vertices (" + std::to_string(key[0]) + ", " + std::to_string(key[1]) + ", " + std::to_string(key[2]) + ") as " + face_name(it->second));
+      fail_faces(name, "duplicate face", face_name(f) + " has the same vertices (" + std::to_string(key[0]) + ", " + std::to_string(key[1]) + ", " + std::to_string(key[2]) + ") as " + face_name(it->second), {f, it->second});
   }
   std::vector<char> used(nv, 0);
   for (const Tri& t : tris)

@@ -52,6 +52,7 @@ using soup::check_no_duplicate_face;
 using soup::check_no_isolated_vertex;
 using soup::check_vertex_fans;
 using soup::fail;
+using soup::fail_faces;
 using soup::list_indices;
 using soup::Namer;
 using soup::Polygon;
@@ -111,13 +112,13 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const Polygon& p = polygons[i];
     if (p.size() < 3)
-      fail(path, "degenerate face", name.polygon(i) + " has " + std::to_string(p.size()) + " vertices");
+      fail_faces(path, "degenerate face", name.polygon(i) + " has " + std::to_string(p.size()) + " vertices", {i});
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (p[k] >= nv)
-        fail(path, "vertex index out of range", name.polygon(i) + " refers to vertex " + std::to_string(p[k]) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
+        fail_faces(path, "vertex index out of range", name.polygon(i) + " refers to vertex " + std::to_string(p[k]) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")", {i});
       for (std::size_t l = 0; l < k; ++l)
         if (p[l] == p[k])
-          fail(path, "degenerate face", name.polygon(i) + (name.stl ? " uses " + name.vertex(p[k]) + " twice" : " uses vertex " + std::to_string(p[k]) + " twice"));
+          fail_faces(path, "degenerate face", name.polygon(i) + (name.stl ? " uses " + name.vertex(p[k]) + " twice" : " uses vertex " + std::to_string(p[k]) + " twice"), {i});
     }
     if (p.size() == 3) {
       tris[i] = p;
@@ -125,9 +126,11 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     }
     std::vector<Polygon> t = soup::split_polygon(p, unit);
     if (t.empty())
-      fail(path, "non-convex polygon", name.polygon(i) + " has " + std::to_string(p.size()) +
-                                           " vertices, and neither ear clipping nor a fan without a zero-area triangle splits it;"
-                                           " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) before using the file");
+      fail_faces(path, "non-convex polygon",
+                 name.polygon(i) + " has " + std::to_string(p.size()) +
+                     " vertices, and neither ear clipping nor a fan without a zero-area triangle splits it;"
+                     " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) before using the file",
+                 {i});
     ++split;
     tris[i] = t[0];
     for (std::size_t k = 1; k < t.size(); ++k) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "mesh/properties.hpp"
+#include "shellcontract/face_error.hpp"
 
 namespace shellcontract::soup {
 namespace {
@@ -84,18 +85,25 @@ bool has_boundary_edge(const std::vector<Polygon>& tris, std::size_t nv) {
 
 SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon>& tris,
                     const InputError& refusal) {
-  if (!has_boundary_edge(tris, points.size())) throw refusal;
+  if (!has_boundary_edge(tris, points.size())) rethrow_input_error(refusal);
   SeamWeld weld = weld_identical_positions(points, tris);
-  if (weld.copies() == 0) throw refusal;
-  const auto no_weld = [&](const std::string& why) {
-    throw InputError(std::string(refusal.what()) + "; " + std::to_string(weld.copies()) +
-                     " vertices are at the position of another vertex (a mesh split along its UV "
-                     "seams?), but welding them does not make it a closed manifold mesh: " + why);
+  if (weld.copies() == 0) rethrow_input_error(refusal);
+  // The refusal with a hint; a refusal of particular faces keeps them, with the welded soup's
+  // face the hint names (the same index: welding renumbers vertices, not faces).
+  const auto no_weld = [&](const std::string& why, std::vector<std::size_t> hint_faces = {}) {
+    const std::string message = std::string(refusal.what()) + "; " + std::to_string(weld.copies()) +
+                                " vertices are at the position of another vertex (a mesh split along its UV "
+                                "seams?), but welding them does not make it a closed manifold mesh: " + why;
+    const auto* about_faces = dynamic_cast<const FaceListError*>(&refusal);
+    if (!about_faces && hint_faces.empty()) throw InputError(message);
+    std::vector<std::size_t> faces = about_faces ? about_faces->faces() : std::vector<std::size_t>{};
+    faces.insert(faces.end(), hint_faces.begin(), hint_faces.end());
+    throw FaceListError(message, std::move(faces));
   };
   for (std::size_t f = 0; f < weld.tris.size(); ++f) {
     const Polygon& t = weld.tris[f];
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-      no_weld("after welding, face " + std::to_string(f) + " has two corners at one position");
+      no_weld("after welding, face " + std::to_string(f) + " has two corners at one position", {f});
   }
   // The reader's own checks on the welded soup; only the problem's name goes into the hint
   // (the welded numbering is not the file's).

@@ -43,7 +43,7 @@ void check_no_duplicate_face(const std::string& path, const std::vector<Polygon>
     if (sorted[i].key == sorted[i - 1].key && (i < 2 || sorted[i - 2].key != sorted[i].key) &&
         sorted[i].face < later)
       later = sorted[i].face, earlier = sorted[i - 1].face;
-  if (later < nf) fail(path, "duplicate face", name.face(later) + " has the same corners as " + name.face(earlier));
+  if (later < nf) fail_faces(path, "duplicate face", name.face(later) + " has the same corners as " + name.face(earlier), {later, earlier});
 }
 
 /// Isolated vertices have no mass and no forces; they would be free degrees of freedom. Checked

@@ -16,6 +16,7 @@
 
 #include "mesh/off_scan.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh.hpp"
 
 namespace shellcontract::soup {
@@ -29,6 +30,13 @@ constexpr std::size_t MAX_LISTED = 10;
 /// test) finds the problem name and its place in a fixed spot.
 [[noreturn]] inline void fail(const std::string& path, const std::string& problem, const std::string& details) {
   throw InputError(path + ": " + problem + ": " + details);
+}
+
+/// fail, for a problem of particular faces: a FaceListError that carries their triangle indices
+/// (all of them, where the message lists only the first MAX_LISTED).
+[[noreturn]] inline void fail_faces(const std::string& path, const std::string& problem, const std::string& details,
+                                    std::vector<std::size_t> faces) {
+  throw FaceListError(path + ": " + problem + ": " + details, std::move(faces));
 }
 
 inline std::string list_indices(const std::vector<std::size_t>& ids) {
@@ -154,13 +162,15 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
       if (count == 2 && first[0].forward != first[1].forward) continue;
       const std::string edge = name.edge(a, b);
       if (count == 1)
-        fail(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed");
+        fail_faces(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed", {f});
       if (count > 2) {
+        std::vector<std::size_t> sharing(count);
+        for (std::size_t u = 0; u < count; ++u) sharing[u] = first[static_cast<std::ptrdiff_t>(u)].face;
         std::string fs_list;
-        for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) fs_list += (u ? ", " : "") + std::to_string(first[static_cast<std::ptrdiff_t>(u)].face);
-        fail(path, "non-manifold edge", name.edge(std::min(a, b), std::max(a, b)) + " is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed");
+        for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) fs_list += (u ? ", " : "") + std::to_string(sharing[u]);
+        fail_faces(path, "non-manifold edge", name.edge(std::min(a, b), std::max(a, b)) + " is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed", std::move(sharing));
       }
-      fail(path, "inconsistent orientation", name.face(first[0].face) + " and " + name.face(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)");
+      fail_faces(path, "inconsistent orientation", name.face(first[0].face) + " and " + name.face(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)", {first[0].face, first[1].face});
     }
 }
 

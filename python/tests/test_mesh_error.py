@@ -1,0 +1,79 @@
+"""shellcontract.MeshError: a mesh refused because of particular faces raises a ValueError
+subclass whose `faces` lists their indices into the faces array, all of them (the message lists
+at most ten), so that a caller with its own face numbering (the Blender add-on) maps them
+without reading the message's text."""
+import numpy as np
+import pytest
+
+import shellcontract
+
+
+def test_mesh_error_is_a_value_error():
+    assert issubclass(shellcontract.MeshError, ValueError)
+    assert shellcontract.MeshError.__name__ == "MeshError"
+    assert "MeshError" in shellcontract.__all__
+
+
+def test_degenerate_face_names_it(ico2):
+    v, f = ico2
+    f = f.copy()
+    f[7, 2] = f[7, 0]
+    with pytest.raises(shellcontract.MeshError, match="degenerate face: face 7 uses vertex") as e:
+        shellcontract.contract(v, f, frames=1)
+    assert isinstance(e.value, ValueError)
+    assert e.value.faces == [7]
+    assert all(type(i) is int for i in e.value.faces)
+
+
+def test_non_manifold_edge_lists_every_face(ico2):
+    """Eleven triangles added on face 0's first edge: 13 faces share it, the message lists ten,
+    `faces` all 13 (in the message's order: by index)."""
+    v, f = ico2
+    a, b = int(f[0, 0]), int(f[0, 1])
+    other = [i for i in range(1, len(f)) if {a, b} <= set(int(x) for x in f[i])]
+    assert len(other) == 1
+    extra_v = v.mean(axis=0) + 0.01 * np.arange(1, 12)[:, None] * np.array([1.0, 0.3, 0.7])
+    extra_f = [[b, a, len(v) + k] for k in range(11)]
+    v2 = np.vstack([v, extra_v])
+    f2 = np.vstack([f, np.array(extra_f, dtype=f.dtype)])
+    with pytest.raises(ValueError, match=r"non-manifold edge: .* is shared by 13 faces \(") as e:
+        shellcontract.contract(v2, f2, frames=1)
+    assert type(e.value) is shellcontract.MeshError
+    expected = [0, other[0]] + list(range(len(f), len(f) + 11))
+    assert e.value.faces == expected
+    listed = str(e.value).split("faces (")[1].split(")")[0]
+    assert listed == ", ".join(str(i) for i in expected[:10])
+
+
+def test_open_boundary_names_the_face(ico2):
+    v, f = ico2
+    removed = 10
+    f2 = np.delete(f, removed, axis=0)
+    with pytest.raises(shellcontract.MeshError, match="open boundary") as e:
+        shellcontract.check(v, f2)
+    (face,) = e.value.faces
+    assert "of face {} has no neighbouring face".format(face) in str(e.value)
+    # The face with the open edge shares an edge with the removed one.
+    assert len(set(int(x) for x in f2[face]) & set(int(x) for x in f[removed])) == 2
+
+
+def test_a_problem_without_faces_stays_a_plain_value_error(ico2):
+    v, f = ico2
+    v = v.copy()
+    v[3, 1] = np.nan
+    with pytest.raises(ValueError, match="non-finite coordinate") as e:
+        shellcontract.contract(v, f, frames=1)
+    assert not isinstance(e.value, shellcontract.MeshError)
+
+
+def test_mesh_error_pickles_with_its_faces(ico2):
+    """A sweep's worker hands errors back pickled: the class is found as shellcontract.MeshError
+    and `faces` comes along."""
+    import pickle
+    v, f = ico2
+    f = f.copy()
+    f[3, 1] = f[3, 0]
+    with pytest.raises(shellcontract.MeshError) as e:
+        shellcontract.check(v, f)
+    back = pickle.loads(pickle.dumps(e.value))
+    assert type(back) is shellcontract.MeshError and back.faces == [3] and str(back) == str(e.value)
