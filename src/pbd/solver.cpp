@@ -13,6 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include "bending/isometric_bending.hpp"
+#include "core/arena_threads.hpp"
 #include "material/stvk.hpp"
 #include "pbd/colour_schedule.hpp"
 #include "pbd/colouring.hpp"
@@ -116,10 +117,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
         membrane_colours_ = regional_in_place(set_.membranes, membrane_colours_, part);
         isometric_colours_ = regional_in_place(set_.isometric_hinges, isometric_colours_, part);
       }
-      // The value of `automatic` is copied first: binding the static member to the conditional's
-      // lvalue would odr-use it, and TBB 2021 does not define it out of line (link error).
-      const int automatic = tbb::task_arena::automatic;
-      arena_ = std::make_unique<tbb::task_arena>(settings_.threads > 0 ? settings_.threads : automatic);
+      arena_ = std::make_unique<tbb::task_arena>(arena_threads(settings_.threads));
     } else {
       membrane_colours_ = {0, set_.membranes.size()};
       isometric_colours_ = {0, set_.isometric_hinges.size()};

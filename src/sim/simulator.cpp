@@ -1,16 +1,15 @@
 #include "sim/simulator.hpp"
 
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <optional>
 #include <string>
 #include <utility>
 
+#include "core/arena_threads.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/regions.hpp"
@@ -65,20 +64,9 @@ double peak_pressure_magnitude(const SimOptions& o) {
 /// runs in parallel in the run's thread count: serial, it was a large share of the step at 16
 /// threads on a 16-core machine (a step timer build, not kept; lab/pages/scale.md,
 /// "Sixteen cores").
-///
-/// A thread count above the machine's is honoured for the simulator's life (every arena of the
-/// run, the solver's and the collisions' too): the results do not depend on it, and without a
-/// raised limit TBB runs fewer workers than asked and prints a warning of its own, which no
-/// front end can keep quiet (-q).
 struct Simulator::StepArena {
-  std::optional<tbb::global_control> limit;
   tbb::task_arena arena;
-  explicit StepArena(int threads)
-      : limit(threads > tbb::this_task_arena::max_concurrency()
-                  ? std::make_optional<tbb::global_control>(
-                        tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(threads))
-                  : std::nullopt),
-        arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+  explicit StepArena(int threads) : arena(arena_threads(threads)) {}
 };
 
 namespace {

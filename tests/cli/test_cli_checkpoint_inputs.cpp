@@ -117,8 +117,8 @@ TEST_F(CliResumeInputs, NoOutputButCheckpointMayBeTheResumedCheckpoint) {
   checkpointed_run({});
   const std::string saved = read(out("c.ckpt"));
   fs::create_symlink(out("c.ckpt"), out("link.ckpt"));
-  for (const std::string option : {"--log", "--summary"})
-    for (const std::string target : {out("c.ckpt"), out("link.ckpt")}) {
+  for (const char* option : {"--log", "--summary"})
+    for (const std::string& target : {out("c.ckpt"), out("link.ckpt")}) {
       const auto r = run_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), option, target, "-q"});
       EXPECT_EQ(r.exit_code, 1) << option << " " << target << ": " << r.output;
       EXPECT_NE(r.output.find(option), std::string::npos) << r.output;

@@ -236,7 +236,7 @@ TEST(RunReport, SummaryNamesTheOptionsInEachFrontEndsSpelling) {
   const InputReport report;
   std::vector<std::string> cli, python;
   KeyRecorder c(cli), p(python);
-  const SummaryFiles files{"in.off", "out.off"};
+  const SummaryFiles files{"in.off", "out.off", std::nullopt};
   write_run_summary(c, report, options, r, OptionSpelling::Cli, &files);
   write_run_summary(p, report, options, r, OptionSpelling::Python);
   EXPECT_TRUE(has(cli, "options.k-b") && has(cli, "options.stop-volume-ratio"));

@@ -16,6 +16,7 @@
 
 #include "collision/ccd.hpp"
 #include "collision/topology.hpp"
+#include "core/arena_threads.hpp"
 #include "core/no_zero_allocator.hpp"
 #include "shellcontract/types.hpp"
 
@@ -63,7 +64,7 @@ struct LiveUnit {
 struct Workers {
   tbb::task_arena arena;
   tbb::task_group background;  ///< the speculative broad phase (SelfCollision::predict)
-  explicit Workers(int threads) : arena(threads > 0 ? threads : tbb::task_arena::automatic) {}
+  explicit Workers(int threads) : arena(arena_threads(threads)) {}
 };
 
 /// Runs body(block, begin, end) for the fixed blocks [begin, end) of VERTEX_BLOCK vertices of n,
