@@ -141,5 +141,37 @@ TEST_F(CliInterrupt, SignalsAtVariedMomentsLeaveNoTemporaryAndExit130) {
   }
 }
 
+// What an interrupted run leaves (docs/cli.md, run --help): its finished frames, each complete,
+// and nothing else; the same command is refused while they are there, with the reason, and
+// accepted once they are removed.
+TEST_F(CliInterrupt, InterruptedRunLeavesCompleteFramesAndTheRerunSaysWhy) {
+  int fd = -1;
+  const pid_t pid = spawn(exporting_run(), 0, fd);
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  ::kill(pid, SIGINT);
+  const int status = finish(pid, fd);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_FALSE(fs::exists(out("r.off")));
+  EXPECT_FALSE(fs::exists(out("r.glb")));
+  int frames = 0;
+  for (const auto& e : fs::directory_iterator(out("frames"))) {
+    ++frames;
+    const std::string text = test::run_command("tail -c 1 " + test::quoted(e.path().string())).output;
+    EXPECT_EQ(text, "\n") << e.path() << " is not a complete file";
+  }
+  ASSERT_GT(frames, 0) << "no frame finished before the signal";
+  std::vector<std::string> again = exporting_run();
+  again[5] = "20";  // -n: the same folder and names, a short run
+  const auto refused = test::run_cli(again);
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find("an interrupted run leaves the frames it finished"), std::string::npos)
+      << refused.output;
+  fs::remove_all(out("frames"));
+  const auto rerun = test::run_cli(again);
+  EXPECT_EQ(rerun.exit_code, 0) << rerun.output;
+}
+
 }  // namespace
 }  // namespace shellcontract
