@@ -8,6 +8,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "mesh/file_safety.hpp"
 
 namespace {
 
@@ -95,6 +96,12 @@ int main(int argc, char** argv) {
     return 0;
   }
   map_main_stack();
+  // One ending for Ctrl-C and SIGTERM in every command, with or without --checkpoint: the
+  // temporaries removed, exit code 130 (docs/cli.md). Installed now, not at the first temporary,
+  // so that a signal before any file is written ends the same way. Where the signal is ignored
+  // (a background job of a script), it stays ignored.
+  shellcontract::set_interrupt_exit_status(130);
+  shellcontract::install_interrupt_cleanup();
   try {
     return dispatch(command, argc, argv);
   } catch (const std::bad_alloc&) {

@@ -115,7 +115,8 @@ std::unique_ptr<ExportFolderLock> prepare_export_folder(const PlannedFrames& f) 
     if (is_frame_name(name, f))
       refuse_file("--export-dir", f.dir,
              "already holds frame files of another run (" + quoted_path(name) +
-                 "); remove them or choose another --export-dir, so that two runs' frames never mix");
+                 "; an interrupted run leaves the frames it finished); remove them or choose another "
+                 "--export-dir, so that two runs' frames never mix");
   }
   if (ec) refuse_file("--export-dir", f.dir, "cannot list the folder (" + file_error_text(ec.value()) + ")");
   return lock;

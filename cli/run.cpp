@@ -57,8 +57,9 @@ constexpr const char* RUN_EXIT_CODES =
     "            3 simulation failed or out of memory (the last good state written; nothing if\n"
     "            memory ran out before the first frame or while writing), 4 new self-intersections\n"
     "            found by --validate, 5 the target volume or stop ratio was not reached (result\n"
-    "            written), 130 interrupted by Ctrl-C or SIGTERM (no output; with --checkpoint\n"
-    "            the state is saved for --resume)\n";
+    "            written), 130 interrupted by Ctrl-C or SIGTERM (no result, log or summary; the\n"
+    "            finished --export-dir frames stay: remove them to rerun; with --checkpoint the\n"
+    "            state is saved for --resume)\n";
 
 /// The table's options as text values for boost, switches as bool_switch, in the task groups of
 /// run --help (help_groups.hpp), each group added to `desc`.

@@ -5,6 +5,7 @@
 
 #include <csignal>
 #include <cstdint>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <utility>
@@ -35,6 +36,14 @@ inline std::string checkpoint_input(const Checkpoint& c, const std::string& path
     throw UsageError("checkpoint " + path +
                      " was written by a run of a mesh given as arrays (Python), with no file to resume it "
                      "from: give the mesh as INPUT (shellcontract run INPUT --resume " + path + " -o OUTPUT)");
+  // The path is the one the interrupted run was given, relative to the folder it started in:
+  // from another folder it names nothing, and the user must learn where it came from.
+  std::error_code ec;
+  if (!std::filesystem::exists(c.input, ec))
+    throw InputError("the input mesh '" + printable(c.input) + "' recorded in checkpoint " + path +
+                     " cannot be opened: no such file (a relative path is relative to the folder the "
+                     "interrupted run started in); run from that folder, or give the mesh as INPUT "
+                     "(shellcontract run INPUT --resume " + path + " -o OUTPUT)");
   return c.input;
 }
 

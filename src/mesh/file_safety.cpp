@@ -3,6 +3,7 @@
 #include "mesh/file_safety.hpp"
 
 #include <fcntl.h>
+#include <pthread.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -12,7 +13,9 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <ctime>
 #include <mutex>
 
 #include "shellcontract/error.hpp"
@@ -35,9 +38,26 @@ std::array<std::atomic<bool>, SLOTS> slot_live{};
 std::array<std::array<char, PATH_BYTES>, SLOTS> slot_path{};
 std::mutex slot_mutex;  // claiming a slot (not used by the handler)
 
+/// Temporaries being created (create_registered_temporary), and whether the handler has begun.
+/// Both sequentially consistent: a creator increments `creating` then reads `ending`, the handler
+/// sets `ending` then reads `creating`, so either the creator sees `ending` (and creates nothing)
+/// or the handler sees the creation and waits for its registration.
+std::atomic<int> creating{0};
+std::atomic<bool> ending{false};
+std::atomic<int> exit_status{-1};
+
 extern "C" void remove_temporaries_and_reraise(int sig) {
+  ending.store(true);
+  // Never on the thread of a creation (it blocks the signals), so this ends: an open and a few
+  // stores.
+  while (creating.load() != 0) {
+    struct timespec pause_ts {0, 100000};
+    ::nanosleep(&pause_ts, nullptr);
+  }
   for (int i = 0; i < SLOTS; ++i)
     if (slot_live[i].load(std::memory_order_acquire)) ::unlink(slot_path[i].data());
+  const int status = exit_status.load();
+  if (status >= 0) ::_exit(status);
   // The default action (end the process, exit status 128 + signal) as if we were not here.
   struct sigaction dfl {};
   dfl.sa_handler = SIG_DFL;
@@ -167,6 +187,49 @@ void end_on_next_signal(int sig) {
   ours.sa_handler = remove_temporaries_and_reraise;
   sigemptyset(&ours.sa_mask);
   ::sigaction(sig, &ours, nullptr);
+}
+
+void install_interrupt_cleanup() { install_handler_once(); }
+
+void set_interrupt_exit_status(int status) { exit_status.store(status); }
+
+RegisteredTemporary create_registered_temporary(const std::string& dir, const std::string& hint,
+                                                std::size_t name_length) {
+  install_handler_once();
+  sigset_t signals, old;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  ::pthread_sigmask(SIG_BLOCK, &signals, &old);
+  creating.fetch_add(1);
+  if (ending.load()) {
+    // The handler has begun on another thread and will end the process; creating a file now
+    // could only leave it behind.
+    creating.fetch_sub(1);
+    for (;;) ::pause();
+  }
+  RegisteredTemporary t;
+  const ExclusiveFile f = create_exclusive_file(dir, hint, name_length);
+  const int error = errno;
+  t.fd = f.fd;
+  t.path = f.path;
+  if (t.fd >= 0) {
+    // Tests only: hold here, the file created and not yet registered, the window a signal used
+    // to find (tests/cli/test_cli_interrupt.cpp waits for the line, then signals).
+    static const char* const hold = std::getenv("SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS");
+    if (hold && *hold) {
+      static constexpr char line[] = "shellcontract test: temporary created\n";
+      (void)!::write(2, line, sizeof line - 1);
+      const long ms = std::atol(hold);
+      struct timespec ts {ms / 1000, (ms % 1000) * 1000000L};
+      ::nanosleep(&ts, nullptr);
+    }
+    t.slot = register_temporary(t.path);
+  }
+  creating.fetch_sub(1);
+  ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+  errno = error;
+  return t;
 }
 
 // ------------------------------------------------------------------------------------ reading

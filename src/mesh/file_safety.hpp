@@ -37,18 +37,46 @@ struct ExclusiveFile {
 ExclusiveFile create_exclusive_file(const std::string& dir, const std::string& hint,
                                     std::size_t name_length = 0);
 
+/// create_exclusive_file and register_temporary as one step that no SIGINT or SIGTERM can split:
+/// the signal handler waits until every temporary being created is registered, and a temporary
+/// asked for once the handler has begun is never created (that thread waits for the end). The
+/// signals are blocked on the calling thread meanwhile, so the handler never waits for itself.
+/// Without this, a signal between the open and the registration (or a frame writer's thread
+/// creating one while another thread runs the handler) left the temporary behind.
+/// @return fd = -1 and errno set when the file cannot be created (nothing registered); else
+///         the file and its slot for unregister_temporary (-1: all slots in use, not removed)
+struct RegisteredTemporary {
+  int fd = -1;
+  std::string path;
+  int slot = -1;
+};
+RegisteredTemporary create_registered_temporary(const std::string& dir, const std::string& hint,
+                                                std::size_t name_length = 0);
+
 /// Adds `path` to the temporaries that SIGINT and SIGTERM remove before the process ends
 /// (the handler is installed on first use, only where the signal has its default action).
+/// Prefer create_registered_temporary: a file created before this call is not covered meanwhile.
 /// @return a slot for unregister_temporary; -1 when all slots are in use (not removed then)
 int register_temporary(const std::string& path);
 /// Forgets a slot of register_temporary (after the file was renamed or removed).
 void unregister_temporary(int slot);
 
+/// Installs now the handler that register_temporary installs on first use (where SIGINT and
+/// SIGTERM have their default action), so that a signal ends the process the same way whether
+/// or not a temporary was ever made.
+void install_interrupt_cleanup();
+
+/// How the handler ends the process after removing the temporaries: -1 (the default, for a
+/// library inside someone else's process) re-raises the signal with its default action, so the
+/// process ends by the signal as if the handler were not there; 0..255 calls _exit(status)
+/// (the CLI: 130 for SIGINT and SIGTERM alike, docs/cli.md).
+void set_interrupt_exit_status(int status);
+
 /// For a program whose own SIGINT or SIGTERM handler lets it stop at its own pace (a run that
-/// saves its checkpoint first): called from that handler, gives the next `sig` the default
-/// action (the process ends at once) with the registered temporaries removed first, which the
-/// handler installed by register_temporary would not do, `sig` having had a handler of the
-/// program's own then. Async-signal-safe.
+/// saves its checkpoint first): called from that handler, gives the next `sig` the handler of
+/// register_temporary (the registered temporaries removed, then the process ends as
+/// set_interrupt_exit_status says), which would not run otherwise, `sig` having had a handler of
+/// the program's own then. Async-signal-safe.
 void end_on_next_signal(int sig);
 
 /// The whole content of a regular file. Folders, devices, FIFOs and sockets are refused before

@@ -66,8 +66,8 @@ std::optional<std::string> folder_problem(const std::string& folder, std::size_t
     return "the folder " + quoted_path(folder) + " cannot be used (" + file_error_text(e) + ")";
   }
   if (!S_ISDIR(st.st_mode)) return quoted_path(folder) + " is a file, not a folder";
-  const ExclusiveFile probe =
-      create_exclusive_file(folder, "shellcontract-probe", std::max(name_length, TEMPORARY_NAME_LENGTH));
+  const RegisteredTemporary probe =  // removed on SIGINT/SIGTERM too
+      create_registered_temporary(folder, "shellcontract-probe", std::max(name_length, TEMPORARY_NAME_LENGTH));
   if (probe.fd < 0) {
     const int e = errno;
     if (e == ENAMETOOLONG)
@@ -75,10 +75,9 @@ std::optional<std::string> folder_problem(const std::string& folder, std::size_t
              quoted_path(folder);
     return "cannot create a file in the folder " + quoted_path(folder) + " (" + file_error_text(e) + ")";
   }
-  const int slot = register_temporary(probe.path);  // removed on SIGINT/SIGTERM too
   ::close(probe.fd);
   ::unlink(probe.path.c_str());
-  unregister_temporary(slot);
+  unregister_temporary(probe.slot);
   return std::nullopt;
 }
 

@@ -275,14 +275,14 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   const fs::path target(path);
   const std::string dir = target.has_parent_path() ? target.parent_path().string() : std::string(".");
   // Same folder, so that rename is atomic (same file system). The name is random and created
-  // exclusively (never an existing file, never through a link planted there), and registered so
-  // that SIGINT and SIGTERM remove it (file_safety.hpp).
-  const ExclusiveFile tmp = create_exclusive_file(dir, target.filename().string() + ".tmp");
+  // exclusively (never an existing file, never through a link planted there), and registered in
+  // the same step, so that SIGINT and SIGTERM remove it at any moment (file_safety.hpp).
+  const RegisteredTemporary tmp = create_registered_temporary(dir, target.filename().string() + ".tmp");
   if (tmp.fd < 0) {
     const int e = errno;
     cannot_write(path, "cannot create a file in the folder '" + printable(dir) + "' (" + file_error_text(e) + ")");
   }
-  const int slot = register_temporary(tmp.path);
+  const int slot = tmp.slot;
   const auto discard = [&] {
     ::unlink(tmp.path.c_str());
     unregister_temporary(slot);

@@ -187,6 +187,21 @@ TEST_F(CliCheckpoint, SigtermSavesStopsWith130AndWritesNothingElse) {
   expect_equals_whole("r");
 }
 
+// The checkpoint keeps the input path as the run was given it; resumed from another folder,
+// the message says where the path came from and that INPUT can be given.
+TEST_F(CliCheckpoint, ResumedElsewhereNamesTheRecordedInputPath) {
+  fs::copy_file(mesh("ico2.off"), out("rel.off"));
+  const auto made = test::run_command("cd " + test::quoted(dir_.string()) + " && " +
+                                      test::cli_command({"run", "rel.off", "-o", "a.off", "-q", "--frames", "4",
+                                                         "--checkpoint", "a.ckpt", "--checkpoint-every", "2"}));
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const auto r = test::run_command("cd / && " + test::cli_command({"run", "--resume", out("a.ckpt"), "-o", out("b.off")}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("'rel.off' recorded in checkpoint " + out("a.ckpt")), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("give the mesh as INPUT"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out("b.off")));
+}
+
 TEST_F(CliCheckpoint, RefusesAnotherInputOrOtherOptionsSayingWhich) {
   std::vector<std::string> args{"run", mesh("ico2.off"), "-o", out("a.off"), "-q", "--frames", "10",
                                 "--checkpoint", out("a.ckpt"), "--checkpoint-every", "3"};

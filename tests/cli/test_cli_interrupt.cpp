@@ -1,0 +1,177 @@
+// Ctrl-C and SIGTERM during a run (docs/design/output-safety.md, docs/cli.md): no temporary is
+// left behind at any moment, and the run ends with exit code 130 with or without --checkpoint.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/cli_runner.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Starts the CLI with `args`; stdout to /dev/null, stderr to the returned pipe's read end.
+/// `hold_ms` > 0 sets SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS (file_safety.cpp's test hook).
+pid_t spawn(const std::vector<std::string>& args, int hold_ms, int& stderr_fd) {
+  int fds[2];
+  if (::pipe(fds) != 0) return -1;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(fds[1], 2);
+    ::close(fds[0]);
+    // A signal ignored by whoever started the tests would stay ignored in the run.
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
+    if (hold_ms > 0) ::setenv("SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS", std::to_string(hold_ms).c_str(), 1);
+    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_CLI_PATH)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(SHELLCONTRACT_CLI_PATH, argv.data());
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  stderr_fd = fds[0];
+  return pid;
+}
+
+/// Reads the pipe until `text` has appeared `count` times (false: the pipe ended first).
+bool await_lines(int fd, const std::string& text, int count) {
+  std::string seen;
+  char buf[512];
+  for (;;) {
+    std::size_t found = 0;
+    for (std::size_t at = seen.find(text); at != std::string::npos; at = seen.find(text, at + 1)) ++found;
+    if (static_cast<int>(found) >= count) return true;
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n <= 0) return false;
+    seen.append(buf, static_cast<std::size_t>(n));
+  }
+}
+
+/// Waits for `pid` (the pipe drained so that it never blocks on stderr); returns its status.
+int finish(pid_t pid, int fd) {
+  char buf[512];
+  while (::read(fd, buf, sizeof buf) > 0) {
+  }
+  ::close(fd);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return status;
+}
+
+std::vector<std::string> temporaries(const fs::path& dir) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  for (const auto& e : fs::recursive_directory_iterator(dir, ec))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos ||
+        e.path().filename().string().find("shellcontract-probe") != std::string::npos)
+      found.push_back(e.path().string());
+  return found;
+}
+
+class CliInterrupt : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_cli_interrupt_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string out(const std::string& name) const { return (dir_ / name).string(); }
+  /// A run that outlasts every signal below, exporting every frame (its own thread) and a glTF.
+  std::vector<std::string> exporting_run() const {
+    return {"run", std::string(test::MESH_DIR) + "/ico2.off", "-o", out("r.off"), "-n", "20000",
+            "--export-dir", out("frames"), "--export-every", "1", "--gltf", out("r.glb"), "-q"};
+  }
+  fs::path dir_;
+};
+
+// Deterministic: the test hook holds each temporary right after its creation; the signal lands
+// there (the n-th temporary: the output checks' probes first, then frames on the writer's thread).
+// Before the fix the file was registered for removal only after that point and survived.
+TEST_F(CliInterrupt, SignalRightAfterATemporaryIsCreatedLeavesNone) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    for (const int nth : {1, 4, 9}) {
+      fs::remove_all(out("frames"));
+      int fd = -1;
+      const pid_t pid = spawn(exporting_run(), 150, fd);
+      ASSERT_GT(pid, 0);
+      ASSERT_TRUE(await_lines(fd, "shellcontract test: temporary created", nth));
+      ::kill(pid, sig);
+      const int status = finish(pid, fd);
+      ASSERT_TRUE(WIFEXITED(status)) << "signal " << sig << ", temporary " << nth << ": ended by signal "
+                                     << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+      EXPECT_EQ(WEXITSTATUS(status), 130);
+      EXPECT_EQ(temporaries(dir_), std::vector<std::string>{}) << "signal " << sig << ", temporary " << nth;
+      EXPECT_FALSE(fs::exists(out("r.off")));
+    }
+  }
+}
+
+// As a user meets it: Ctrl-C or SIGTERM at varied moments of an exporting run, without
+// --checkpoint. Every one ends with 130 (not by the signal) and leaves no temporary.
+TEST_F(CliInterrupt, SignalsAtVariedMomentsLeaveNoTemporaryAndExit130) {
+  for (int i = 0; i < 24; ++i) {
+    fs::remove_all(out("frames"));
+    int fd = -1;
+    const pid_t pid = spawn(exporting_run(), 0, fd);
+    ASSERT_GT(pid, 0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20 + 37 * i % 400));
+    const int sig = i % 2 ? SIGTERM : SIGINT;
+    ::kill(pid, sig);
+    const int status = finish(pid, fd);
+    ASSERT_TRUE(WIFEXITED(status)) << "run " << i << " ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+    EXPECT_EQ(WEXITSTATUS(status), 130) << "run " << i;
+    EXPECT_EQ(temporaries(dir_), std::vector<std::string>{}) << "run " << i << ", signal " << sig;
+  }
+}
+
+// What an interrupted run leaves (docs/cli.md, run --help): its finished frames, each complete,
+// and nothing else; the same command is refused while they are there, with the reason, and
+// accepted once they are removed.
+TEST_F(CliInterrupt, InterruptedRunLeavesCompleteFramesAndTheRerunSaysWhy) {
+  int fd = -1;
+  const pid_t pid = spawn(exporting_run(), 0, fd);
+  ASSERT_GT(pid, 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(400));
+  ::kill(pid, SIGINT);
+  const int status = finish(pid, fd);
+  ASSERT_TRUE(WIFEXITED(status));
+  ASSERT_EQ(WEXITSTATUS(status), 130);
+  EXPECT_FALSE(fs::exists(out("r.off")));
+  EXPECT_FALSE(fs::exists(out("r.glb")));
+  int frames = 0;
+  for (const auto& e : fs::directory_iterator(out("frames"))) {
+    ++frames;
+    const std::string text = test::run_command("tail -c 1 " + test::quoted(e.path().string())).output;
+    EXPECT_EQ(text, "\n") << e.path() << " is not a complete file";
+  }
+  ASSERT_GT(frames, 0) << "no frame finished before the signal";
+  std::vector<std::string> again = exporting_run();
+  again[5] = "20";  // -n: the same folder and names, a short run
+  const auto refused = test::run_cli(again);
+  EXPECT_EQ(refused.exit_code, 1) << refused.output;
+  EXPECT_NE(refused.output.find("an interrupted run leaves the frames it finished"), std::string::npos)
+      << refused.output;
+  fs::remove_all(out("frames"));
+  const auto rerun = test::run_cli(again);
+  EXPECT_EQ(rerun.exit_code, 0) << rerun.output;
+}
+
+}  // namespace
+}  // namespace shellcontract
