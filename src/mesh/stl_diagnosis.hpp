@@ -1,0 +1,26 @@
+// Why CGAL's STL reader refused a file, and where (read_polygon_soup's message). CGAL reads every
+// STL file that it accepts; when it refuses one it returns a bare `false`, and the message said
+// neither where nor what. This scan runs only then: it walks the file as CGAL's reader does
+// (CGAL/IO/STL/STL_reader.h) and says where that reading stops, in the words of the STL grammar.
+#pragma once
+
+#include <string>
+
+namespace shellcontract {
+
+/// The problem ("parse error", "truncated file", "non-finite coordinate", "not a triangle mesh")
+/// and where it is ("line 11: expected 'vertex X Y Z' with three numbers, got 'vertex abc 0 1'"),
+/// as the other readers word them after the file's name.
+struct StlDiagnosis {
+  std::string problem;
+  std::string details;
+};
+
+/// Diagnoses a file that CGAL::IO::read_STL refused. ASCII or binary is decided as the bytes
+/// allow: a file of text (no control bytes but blanks and line ends) is diagnosed as ASCII, any
+/// other as binary (80-byte header, uint32 facet count, 50 bytes a facet), whatever its first
+/// word: binary files may begin with "solid", and CGAL tries both readings before refusing.
+/// @return an empty problem if the scan finds nothing wrong (the caller keeps a general message)
+StlDiagnosis diagnose_stl(const std::string& bytes);
+
+}  // namespace shellcontract
