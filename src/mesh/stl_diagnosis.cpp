@@ -40,7 +40,7 @@ bool is_text(const std::string& bytes) {
 
 class AsciiScan {
  public:
-  explicit AsciiScan(const std::string& text) : text_(text), in_(text) {}
+  explicit AsciiScan(const std::string& text) : text_(text) {}
 
   StlDiagnosis run() {
     bool in_solid = false, solid_found = false;
@@ -107,19 +107,20 @@ class AsciiScan {
     if (pos_ >= text_.size())
       return {"truncated file", "the file ends at " + last_line() + " inside " + facet_begun + ", in the vertex of line " +
                                     std::to_string(vertex_line) + " (expected 'vertex X Y Z')"};
-    in_.clear();
-    in_.seekg(static_cast<std::streamoff>(pos_));
+    // A number holds no blank, so a stream over the next word alone reads what CGAL's stream
+    // over the whole file reads from there (and the file is not copied).
+    std::size_t end = pos_;
+    while (end < text_.size() && !blank(text_[end])) ++end;
+    const std::string token = text_.substr(pos_, end - pos_);
+    std::istringstream in(token);
     double x = 0.0;
-    if (in_ >> x) {
-      const std::streamoff p = in_.tellg();
-      pos_ = p < 0 ? text_.size() : static_cast<std::size_t>(p);
+    if (in >> x) {
+      const std::streamoff p = in.tellg();
+      pos_ += p < 0 ? token.size() : static_cast<std::size_t>(p);
       return {};
     }
     // A token that strtod reads in full to a non-finite value ("nan", "inf", "1e999"): the stream
     // refuses it as a number, the message says why.
-    std::size_t end = pos_;
-    while (end < text_.size() && !blank(text_[end])) ++end;
-    const std::string token = text_.substr(pos_, end - pos_);
     char* stop = nullptr;
     const double v = std::strtod(token.c_str(), &stop);
     // The vertex's line; the number's too where CGAL read on to a later line for it.
@@ -173,7 +174,6 @@ class AsciiScan {
   }
 
   const std::string& text_;
-  std::istringstream in_;  ///< over text_, for the numbers only (CGAL's extraction)
   std::size_t pos_ = 0;    ///< the next byte to read
   std::size_t at_ = 0;     ///< the first byte of the last word
   std::size_t counted_ = 0, line_ = 1;
