@@ -19,7 +19,10 @@ struct StlDiagnosis {
 /// Diagnoses a file that CGAL::IO::read_STL refused. ASCII or binary is decided as the bytes
 /// allow: a file of text (no control bytes but blanks and line ends) is diagnosed as ASCII, any
 /// other as binary (80-byte header, uint32 facet count, 50 bytes a facet), whatever its first
-/// word: binary files may begin with "solid", and CGAL tries both readings before refusing.
+/// word: binary files may begin with "solid", and CGAL tries both readings before refusing. (CGAL
+/// 5.5's read_STL has no size rule: it tries ASCII first after a first word "solid" and a blank,
+/// binary first otherwise, then the other; a binary file of 84 + 50 x count bytes or more is always
+/// read, so a refused binary file is one cut short.)
 /// @return an empty problem if the scan finds nothing wrong (the caller keeps a general message)
 StlDiagnosis diagnose_stl(const std::string& bytes);
 
