@@ -83,7 +83,12 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
   // A direct call rather than CGAL's read_polygon_soup: the extension is already known.
   const bool ok = CGAL::IO::read_STL(in, points, polygons);
   if (in.bad()) fail(path, "cannot read file", "the reader's stream failed");
-  if (ok) return;
+  if (ok) {
+    // A NaN in a binary file: CGAL gives no error and puts another point in its place.
+    const StlDiagnosis d = non_finite_in_binary_stl(bytes);
+    if (!d.problem.empty()) fail(path, d.problem, d.details);
+    return;
+  }
   // CGAL says only that it failed: the diagnosis says where (stl_diagnosis.hpp). Valid files are
   // read by CGAL alone, as before.
   const StlDiagnosis d = diagnose_stl(bytes);

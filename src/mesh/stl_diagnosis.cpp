@@ -179,6 +179,8 @@ class AsciiScan {
   std::size_t counted_ = 0, line_ = 1;
 };
 
+StlDiagnosis binary_non_finite(const std::string& bytes, std::uint32_t count);
+
 StlDiagnosis diagnose_binary(const std::string& bytes) {
   const std::uint64_t size = bytes.size();
   if (size < 84)
@@ -196,6 +198,11 @@ StlDiagnosis diagnose_binary(const std::string& bytes) {
       s += "it ends after " + std::to_string(whole) + " whole facets";
     return {"truncated file", s};
   }
+  return binary_non_finite(bytes, count);
+}
+
+/// The first non-finite vertex coordinate of a binary file's `count` facets (all in the file).
+StlDiagnosis binary_non_finite(const std::string& bytes, std::uint32_t count) {
   for (std::uint64_t f = 0; f < count; ++f)
     for (int c = 0; c < 3; ++c)
       for (int k = 0; k < 3; ++k) {
@@ -212,7 +219,29 @@ StlDiagnosis diagnose_binary(const std::string& bytes) {
   return {};
 }
 
+/// As CGAL 5.5's read_STL decides: after blanks, "solid" and a blank ('\n', '\r', ' ') make it
+/// try ASCII first. Fewer than 6 bytes there: CGAL reads an empty file.
+enum class FirstTry { ascii, binary, nothing };
+FirstTry cgal_first_try(const std::string& bytes) {
+  std::size_t i = 0;
+  while (i < bytes.size() && blank(bytes[i])) ++i;
+  if (bytes.size() - i < 6) return FirstTry::nothing;
+  const char c = bytes[i + 5];
+  return bytes.compare(i, 5, "solid") == 0 && (c == '\n' || c == '\r' || c == ' ') ? FirstTry::ascii : FirstTry::binary;
+}
+
 }  // namespace
+
+StlDiagnosis non_finite_in_binary_stl(const std::string& bytes) {
+  const FirstTry first = cgal_first_try(bytes);
+  if (first == FirstTry::nothing || bytes.size() < 84) return {};
+  std::uint32_t count = 0;
+  std::memcpy(&count, bytes.data() + 80, sizeof count);
+  if (bytes.size() < 84 + 50 * static_cast<std::uint64_t>(count)) return {};  // not read as binary
+  // A file that begins with "solid" was read as binary only if CGAL's ASCII reading failed.
+  if (first == FirstTry::ascii && AsciiScan(bytes).run().problem.empty()) return {};
+  return binary_non_finite(bytes, count);
+}
 
 StlDiagnosis diagnose_stl(const std::string& bytes) {
   if (is_text(bytes)) return AsciiScan(bytes).run();

@@ -26,4 +26,11 @@ struct StlDiagnosis {
 /// @return an empty problem if the scan finds nothing wrong (the caller keeps a general message)
 StlDiagnosis diagnose_stl(const std::string& bytes);
 
+/// A file that CGAL::IO::read_STL accepted: if CGAL read it as binary, its first non-finite vertex
+/// coordinate, with the facet and corner ("non-finite coordinate"). CGAL keeps an infinite one
+/// (the checks after it refuse it), but it merges a NaN point with another one of its points
+/// (its std::map of points cannot order NaN), and the file was read as a valid mesh.
+/// @return an empty problem if the file was read as ASCII or every coordinate is finite
+StlDiagnosis non_finite_in_binary_stl(const std::string& bytes);
+
 }  // namespace shellcontract

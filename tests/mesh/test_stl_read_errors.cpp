@@ -60,6 +60,13 @@ std::string binary(const std::string& header) {
   return s;
 }
 
+/// A binary tetrahedron with coordinate k of corner c of facet f set to v.
+std::string binary_with(const std::string& header, int f, int c, int k, float v) {
+  std::string s = binary(header);
+  std::memcpy(&s[84 + 50 * f + 12 * (c + 1) + 4 * k], &v, 4);
+  return s;
+}
+
 struct StlCase {
   std::string name, bytes;
   std::vector<std::string> expected;  ///< substrings of the message besides the file's name
@@ -159,6 +166,14 @@ INSTANTIATE_TEST_SUITE_P(
         // Binary files may begin with "solid": diagnosed as binary all the same.
         StlCase{"binary_solid_cut", binary("solid exported by a CAD tool").substr(0, 200),
                 {": truncated file: the header says 4 facets (284 bytes), the file has 200 bytes"}},
+        // CGAL reads these without an error, and puts another point in place of a NaN one: the
+        // file was a usable tetrahedron.
+        StlCase{"binary_nan", binary_with("exported", 3, 1, 1, std::numeric_limits<float>::quiet_NaN()),
+                {": non-finite coordinate: facet 3 (bytes 234 to 283) has corner 1 with coordinate y = "}},
+        StlCase{"binary_solid_nan", binary_with("solid exported by a CAD tool", 0, 2, 0, std::numeric_limits<float>::quiet_NaN()),
+                {": non-finite coordinate: facet 0 (bytes 84 to 133) has corner 2 with coordinate x = "}},
+        StlCase{"binary_inf", binary_with("exported", 1, 0, 2, -std::numeric_limits<float>::infinity()),
+                {": non-finite coordinate: facet 1 (bytes 134 to 183) has corner 0 with coordinate z = -inf"}},
         StlCase{"binary_short", binary("exported").substr(0, 82), {": truncated file: the file has 82 bytes", "at least 84"}}),
     [](const ::testing::TestParamInfo<StlCase>& i) { return i.param.name; });
 
