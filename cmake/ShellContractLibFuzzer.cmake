@@ -9,7 +9,7 @@ endif()
 set(_fuzz_sanitizers -fsanitize=fuzzer,address,undefined)
 set(_reader_sources
   src/mesh/io.cpp src/mesh/read_polygon_soup.cpp src/mesh/ply_reader.cpp src/mesh/off_scan.cpp
-  src/mesh/obj_scan.cpp
+  src/mesh/obj_scan.cpp src/mesh/stl_diagnosis.cpp
   src/mesh/normalization.cpp src/mesh/eigen_point_map.cpp src/validation/volume.cpp)
 list(TRANSFORM _reader_sources PREPEND ${PROJECT_SOURCE_DIR}/)
 add_executable(reader_fuzzer ${PROJECT_SOURCE_DIR}/tests/fuzz/libfuzzer/reader_fuzzer.cpp ${_reader_sources})

@@ -16,6 +16,7 @@
 #include "mesh/file_safety.hpp"
 #include "mesh/obj_scan.hpp"
 #include "mesh/ply_reader.hpp"
+#include "mesh/stl_diagnosis.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -82,7 +83,17 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
   // A direct call rather than CGAL's read_polygon_soup: the extension is already known.
   const bool ok = CGAL::IO::read_STL(in, points, polygons);
   if (in.bad()) fail(path, "cannot read file", "the reader's stream failed");
-  if (!ok) fail(path, "parse error", "CGAL could not read it as a .stl file (truncated file or garbage)");
+  if (ok) {
+    // A NaN in a binary file: CGAL gives no error and puts another point in its place.
+    const StlDiagnosis d = non_finite_in_binary_stl(bytes);
+    if (!d.problem.empty()) fail(path, d.problem, d.details);
+    return;
+  }
+  // CGAL says only that it failed: the diagnosis says where (stl_diagnosis.hpp). Valid files are
+  // read by CGAL alone, as before.
+  const StlDiagnosis d = diagnose_stl(bytes);
+  if (!d.problem.empty()) fail(path, d.problem, d.details);
+  fail(path, "parse error", "CGAL could not read it as a .stl file (truncated file or garbage)");
 }
 
 }  // namespace shellcontract

@@ -15,7 +15,8 @@ std::string read_file_bytes(const std::string& path);
 
 /// Reads the points and polygons of an OFF, OBJ, PLY or STL file in file order, with the line of
 /// each vertex and face where the format and reader know it (OBJ, ascii OFF and PLY). OFF is read
-/// by scan_off (ascii and binary), OBJ by scan_obj, PLY by read_ply, STL by CGAL; OFF and OBJ may start with a
+/// by scan_off (ascii and binary), OBJ by scan_obj, PLY by read_ply, STL by CGAL (a file it refuses
+/// by diagnose_stl, for the message's line or byte); OFF and OBJ may start with a
 /// UTF-8 byte-order mark and use "\r" line ends. Nothing is allocated from a declared count that the
 /// file's size does not bound.
 /// @param ext lower-case extension without the dot: "off", "obj", "ply" or "stl"

@@ -1,0 +1,210 @@
+// STL files that read_input_mesh refuses: every message names the file and where, the line of an
+// ASCII file or the counts and sizes of a binary one, as for OFF, OBJ and PLY (before, CGAL's
+// reader gave "CGAL could not read it as a .stl file (truncated file or garbage)" for all of
+// them). Valid files are still read by CGAL alone: the success-path checks below.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "mesh/stl_diagnosis.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+const float P[4][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+const int F[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+
+/// The lines of an ASCII tetrahedron: "solid t" on line 1, facet f on lines 2 + 7f to 8 + 7f (its
+/// vertices on 4 + 7f to 6 + 7f), "endsolid t" on line 30. lines[i] is line i + 1.
+std::vector<std::string> ascii_lines() {
+  std::vector<std::string> l{"solid t"};
+  for (const auto& f : F) {
+    l.push_back("  facet normal 0 0 0");
+    l.push_back("    outer loop");
+    for (int c = 0; c < 3; ++c)
+      l.push_back("      vertex " + std::to_string(static_cast<int>(P[f[c]][0])) + " " + std::to_string(static_cast<int>(P[f[c]][1])) +
+                  " " + std::to_string(static_cast<int>(P[f[c]][2])));
+    l.push_back("    endloop");
+    l.push_back("  endfacet");
+  }
+  l.push_back("endsolid t");
+  return l;
+}
+
+std::string join(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const auto& l : lines) s += l + "\n";
+  return s;
+}
+
+/// A binary tetrahedron; `header` starts the 80-byte header.
+std::string binary(const std::string& header) {
+  std::string s(84 + 50 * 4, '\0');
+  std::memcpy(&s[0], header.data(), header.size());
+  const std::uint32_t n = 4;
+  std::memcpy(&s[80], &n, 4);
+  for (int f = 0; f < 4; ++f)
+    for (int c = 0; c < 3; ++c) std::memcpy(&s[84 + 50 * f + 12 * (c + 1)], P[F[f][c]], 12);
+  return s;
+}
+
+/// A binary tetrahedron with coordinate k of corner c of facet f set to v.
+std::string binary_with(const std::string& header, int f, int c, int k, float v) {
+  std::string s = binary(header);
+  std::memcpy(&s[84 + 50 * f + 12 * (c + 1) + 4 * k], &v, 4);
+  return s;
+}
+
+struct StlCase {
+  std::string name, bytes;
+  std::vector<std::string> expected;  ///< substrings of the message besides the file's name
+};
+
+void PrintTo(const StlCase& c, std::ostream* os) { *os << c.name; }
+
+class TempDir {
+ public:
+  TempDir() : dir_(fs::temp_directory_path() / ("shellcontract_stl_errors_" + std::to_string(::getpid()))) { fs::create_directories(dir_); }
+  ~TempDir() { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& bytes) const {
+    const std::string path = (dir_ / (name + ".stl")).string();
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  }
+
+ private:
+  fs::path dir_;
+};
+
+class StlReadErrors : public ::testing::TestWithParam<StlCase> {};
+
+TEST_P(StlReadErrors, NameTheFileAndWhere) {
+  const StlCase& c = GetParam();
+  const TempDir dir;
+  const std::string path = dir.write(c.name, c.bytes);
+  try {
+    read_input_mesh(path);
+    ADD_FAILURE() << c.name << ": accepted";
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
+    EXPECT_EQ(msg.find("CGAL could not read it"), std::string::npos) << msg;
+    for (const std::string& s : c.expected) EXPECT_NE(msg.find(s), std::string::npos) << c.name << ": '" << s << "' not in: " << msg;
+  }
+}
+
+std::string ascii_with(int line, const std::string& text) {
+  auto l = ascii_lines();
+  l[line - 1] = text;
+  return join(l);
+}
+std::string ascii_without(int line) {
+  auto l = ascii_lines();
+  l.erase(l.begin() + (line - 1));
+  return join(l);
+}
+std::string ascii_inserted(int before, const std::string& text) {
+  auto l = ascii_lines();
+  l.insert(l.begin() + (before - 1), text);
+  return join(l);
+}
+std::string ascii_first(int n) {
+  auto l = ascii_lines();
+  l.resize(n);
+  return join(l);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Files, StlReadErrors,
+    ::testing::Values(
+        // The review's case: a word where the first coordinate of facet 1's first vertex is.
+        StlCase{"bad_number", ascii_with(11, "      vertex abc 0 1"),
+                {": parse error: line 11: expected 'vertex X Y Z' with three numbers, got 'vertex abc 0 1'"}},
+        StlCase{"two_numbers", ascii_with(12, "      vertex 1 0"),
+                {": parse error: line 12: expected 'vertex X Y Z' with three numbers, got 'vertex 1 0' (then line 13: 'vertex')"}},
+        StlCase{"four_vertices", ascii_inserted(14, "      vertex 1 1 1"),
+                {": parse error: line 14: a 4th vertex in the facet begun on line 9, got 'vertex 1 1 1'", "triangles"}},
+        StlCase{"two_vertices", ascii_without(13),
+                {": parse error: line 14: the facet begun on line 9 ends with 2 vertices", "triangles"}},
+        StlCase{"no_endsolid", ascii_first(29),
+                {": truncated file: the solid begun on line 1 has no 'endsolid': the file ends at line 29 ('endfacet')"}},
+        StlCase{"cut_in_a_facet", ascii_first(12),
+                {": truncated file: the file ends at line 12 ('vertex 1 0 0') inside the facet begun on line 9"}},
+        StlCase{"cut_in_a_vertex", join(ascii_lines()).substr(0, ascii_first(11).size() + 14),
+                {": truncated file: the file ends at line 12", "in the vertex of line 12"}},
+        StlCase{"nan", ascii_with(11, "      vertex 0 nan 0"), {": non-finite coordinate: line 11:", "coordinate y = nan"}},
+        StlCase{"overflow", ascii_with(25, "      vertex 0 0 1e999"), {": non-finite coordinate: line 25:", "begun on line 23", "z = 1e999"}},
+        StlCase{"crlf_bad_number", [] {
+                  std::string s;
+                  auto l = ascii_lines();
+                  l[10] = "vertex 0 0 x";
+                  for (const auto& t : l) s += t + "\r\n";
+                  return s;
+                }(),
+                {": parse error: line 11: expected 'vertex X Y Z' with three numbers, got 'vertex 0 0 x'"}},
+        StlCase{"no_solid", [] {
+                  std::string s;
+                  for (int i = 0; i < 10; ++i) s += "hello world\n";  // past 84 bytes: not read as an empty binary file
+                  return s;
+                }(), {": parse error: no 'solid NAME'"}},
+        StlCase{"binary_cut", binary("exported").substr(0, 200),
+                {": truncated file: the header says 4 facets (284 bytes), the file has 200 bytes; facet 2 is cut after 16 of its 50 bytes"}},
+        StlCase{"binary_cut_between_facets", binary("exported").substr(0, 184),
+                {": truncated file: the header says 4 facets (284 bytes), the file has 184 bytes; it ends after 2 whole facets"}},
+        // Binary files may begin with "solid": diagnosed as binary all the same.
+        StlCase{"binary_solid_cut", binary("solid exported by a CAD tool").substr(0, 200),
+                {": truncated file: the header says 4 facets (284 bytes), the file has 200 bytes"}},
+        // CGAL reads these without an error, and puts another point in place of a NaN one: the
+        // file was a usable tetrahedron.
+        StlCase{"binary_nan", binary_with("exported", 3, 1, 1, std::numeric_limits<float>::quiet_NaN()),
+                {": non-finite coordinate: facet 3 (bytes 234 to 283) has corner 1 with coordinate y = "}},
+        StlCase{"binary_solid_nan", binary_with("solid exported by a CAD tool", 0, 2, 0, std::numeric_limits<float>::quiet_NaN()),
+                {": non-finite coordinate: facet 0 (bytes 84 to 133) has corner 2 with coordinate x = "}},
+        StlCase{"binary_inf", binary_with("exported", 1, 0, 2, -std::numeric_limits<float>::infinity()),
+                {": non-finite coordinate: facet 1 (bytes 134 to 183) has corner 0 with coordinate z = -inf"}},
+        StlCase{"binary_short", binary("exported").substr(0, 82), {": truncated file: the file has 82 bytes", "at least 84"}}),
+    [](const ::testing::TestParamInfo<StlCase>& i) { return i.param.name; });
+
+// Success path: what CGAL reads is read as before, and the diagnosis finds nothing in it.
+TEST(StlReadSuccess, AsciiAndBinaryTetrahedraAreRead) {
+  const TempDir dir;
+  for (const auto& [name, bytes] : std::vector<std::pair<std::string, std::string>>{
+           {"ascii", join(ascii_lines())}, {"binary", binary("exported")}, {"binary_solid", binary("solid exported by a CAD tool")},
+           {"binary_solid_newline", binary("solid \n")}}) {
+    const Mesh m = read_input_mesh(dir.write(name, bytes));
+    EXPECT_EQ(m.number_of_vertices(), 4u) << name;
+    EXPECT_EQ(m.number_of_faces(), 4u) << name;
+    EXPECT_TRUE(diagnose_stl(bytes).problem.empty()) << name << ": " << diagnose_stl(bytes).details;
+  }
+}
+
+// CGAL accepts a binary file longer than its facets need (the rest is ignored): still read.
+TEST(StlReadSuccess, BinaryWithTrailingBytesIsRead) {
+  const TempDir dir;
+  const Mesh m = read_input_mesh(dir.write("trailing", binary("exported") + std::string(7, 'x')));
+  EXPECT_EQ(m.number_of_faces(), 4u);
+}
+
+TEST(StlDiagnosis, BinaryNonFiniteCoordinateNamesTheFacet) {
+  std::string b = binary("exported");
+  const float inf = std::numeric_limits<float>::infinity();
+  std::memcpy(&b[84 + 50 * 3 + 12 * 2 + 4], &inf, 4);  // facet 3, corner 1, y
+  const StlDiagnosis d = diagnose_stl(b);
+  EXPECT_EQ(d.problem, "non-finite coordinate");
+  EXPECT_NE(d.details.find("facet 3 (bytes 234 to 283) has corner 1 with coordinate y = inf"), std::string::npos) << d.details;
+}
+
+}  // namespace
+}  // namespace shellcontract
