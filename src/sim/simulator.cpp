@@ -268,7 +268,12 @@ void Simulator::apply_volume_control(Positions& x) {
   const Eigen::VectorXd w = free_inverse_masses(inv_mass_, held_by_contact_);
   if (options_.target_volume > 0.0) {
     const double target = constraint_rest_volume_ * volume_target(frame_ + 1);
-    project_volume(x, faces_, w, target, tolerance);
+    // At most a hundredth of the mesh (the normalized bounding-box diagonal) per step: a ramp
+    // spread over the free vertices asks far less, and a target that the contacts will not let
+    // the shell reach then ends short of it ("target not reached", exit 5) instead of sending the
+    // few free vertices beyond the mesh (project_volume's max_move).
+    constexpr double VOLUME_MAX_MOVE = 0.01;
+    project_volume(x, faces_, w, target, tolerance, 4, VOLUME_MAX_MOVE);
   } else if (options_.stop_volume_ratio > 0.0) {
     // The step that would cross epsilon ends on it: the run stops at the crossing frame with
     // V/V0 = epsilon up to the collision response, instead of one step's change below it.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shellcontract {
 void volume_gradient(const Positions& x, const Faces& faces, Positions& g) {
@@ -25,7 +26,7 @@ double signed_volume(const Positions& x, const Faces& faces) {
 }
 
 int project_volume(Positions& x, const Faces& faces, const Eigen::VectorXd& w, double target,
-                   double tolerance, int max_steps) {
+                   double tolerance, int max_steps, double max_move) {
   Positions g;
   int steps = 0;
   for (; steps < max_steps; ++steps) {
@@ -37,6 +38,13 @@ int project_volume(Positions& x, const Faces& faces, const Eigen::VectorXd& w, d
     // No gradient (every vertex fixed, or a collapsed mesh): nothing can move V.
     if (!(denominator > 0.0) || !std::isfinite(denominator)) break;
     const double lambda = c / denominator;
+    const double largest = std::abs(lambda) * (g.rowwise().norm().array() * w.array()).maxCoeff();
+    if (largest > max_move) {
+      // Part of the way, the rest left to the next steps (max_move's comment in the header).
+      x -= (lambda * max_move / largest) * (g.array().colwise() * w.array()).matrix();
+      ++steps;
+      break;
+    }
     x -= lambda * (g.array().colwise() * w.array()).matrix();
   }
   return steps;

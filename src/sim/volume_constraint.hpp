@@ -3,6 +3,8 @@
 // masses. Eigen only.
 #pragma once
 
+#include <limits>
+
 #include "shellcontract/types.hpp"
 
 namespace shellcontract {
@@ -19,9 +21,15 @@ void volume_gradient(const Positions& x, const Faces& faces, Positions& g);
 /// lambda = (V - target) / sum_i w_i |dV/dx_i|^2, until |V - target| <= tolerance or
 /// max_steps steps (V is cubic in x, so a few steps reach rounding level).
 /// @param w  inverse masses (#V); a vertex with w = 0 does not move
+/// @param max_move  the farthest a vertex may move in this call: a step that would move one
+///                  farther is scaled down to it and ends the call, short of the target. When the
+///                  contacts hold most vertices, the few free ones take the whole correction, and
+///                  a target the shell cannot reach without passing through itself sent them
+///                  beyond the mesh in one step (a blow-up); capped, the run ends short of it.
 /// @return the steps taken; x is unchanged when the constraint has no gradient (all w = 0)
 int project_volume(Positions& x, const Faces& faces, const Eigen::VectorXd& w, double target,
-                   double tolerance, int max_steps = 4);
+                   double tolerance, int max_steps = 4,
+                   double max_move = std::numeric_limits<double>::infinity());
 
 /// The target volume of frame n of a ramp from V0 to R V0 over `ramp` frames, with the smoothstep
 /// s(t) = 3t^2 - 2t^3 (zero rate at both ends, so the shell starts and stops gently):

@@ -65,6 +65,35 @@ TEST(VolumeConstraint, ProjectionReachesTheTargetAndMovesByTheWeights) {
   EXPECT_EQ(y, m.x);
 }
 
+// A few free vertices take the whole correction: without a cap the projection sends them far
+// beyond the mesh (what made a target the contacts would not allow a blow-up); with max_move none
+// moves farther than it, the volume moves toward the target and stops short of it.
+TEST(VolumeConstraint, MaxMoveCapsEachVertexAndStopsShortOfTheTarget) {
+  const test::TriMesh m = test::icosphere(2);  // unit radius
+  const double v0 = signed_volume(m.x, m.faces);
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(m.x.rows());
+  for (Eigen::Index i : {0, 1, 2}) w(i) = 1.0;  // held by contacts but three
+  Positions free_run = m.x;
+  project_volume(free_run, m.faces, w, 0.1 * v0, 1e-12 * v0);
+  EXPECT_GT((free_run - m.x).rowwise().norm().maxCoeff(), 1.0) << "the uncapped case this guards";
+  const double cap = 0.01;
+  Positions x = m.x;
+  project_volume(x, m.faces, w, 0.1 * v0, 1e-12 * v0, 4, cap);
+  const Eigen::VectorXd moved = (x - m.x).rowwise().norm();
+  EXPECT_LE(moved.maxCoeff(), cap * (1.0 + 1e-12));
+  EXPECT_GT(moved.maxCoeff(), 0.5 * cap);
+  const double v = signed_volume(x, m.faces);
+  EXPECT_LT(v, v0);
+  EXPECT_GT(v, 0.1 * v0);
+  for (Eigen::Index i = 3; i < x.rows(); ++i) EXPECT_EQ(x.row(i), m.x.row(i)) << "vertex " << i;
+  // A correction within the cap is the uncapped projection, bit for bit.
+  Positions a = m.x, b = m.x;
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(m.x.rows());
+  project_volume(a, m.faces, ones, 0.999 * v0, 1e-12 * v0);
+  project_volume(b, m.faces, ones, 0.999 * v0, 1e-12 * v0, 4, cap);
+  EXPECT_EQ(a, b);
+}
+
 TEST(VolumeConstraint, RampStartsAtV0EndsAtTheTargetAndIsMonotone) {
   EXPECT_DOUBLE_EQ(target_volume_at(0, 100, 2.0, 0.5), 2.0);
   EXPECT_DOUBLE_EQ(target_volume_at(100, 100, 2.0, 0.5), 1.0);
