@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -11,10 +12,19 @@
 #include <optional>
 #include <sstream>
 
+#include "mesh/file_safety.hpp"
+#include "shellcontract/error.hpp"
+
 namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
+
+/// A material library is a short text of definitions; the bound keeps a wrong file from
+/// filling the memory.
+constexpr std::uint64_t MAX_MTL_BYTES = std::uint64_t{64} << 20;
+/// A .glb's chunk lengths are 32-bit: an image past a quarter of that leaves the frames too little.
+constexpr std::uint64_t MAX_TEXTURE_BYTES = std::uint64_t{1} << 30;
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
 
@@ -75,12 +85,16 @@ std::string map_file_name(const std::string& args) {
   return trimmed(args.substr(at));
 }
 
-std::vector<unsigned char> read_bytes(const std::string& path, bool& ok) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  ok = in.good() || in.eof();
-  if (in.bad()) ok = false;
-  return bytes;
+/// A file's bytes, or the reason it cannot be had: read_regular_file's refusals (a folder, a
+/// device such as /dev/zero, a FIFO that would block or never end, a file beyond `max_bytes`) as
+/// well as a read error, so that a material never stalls or fills the memory of the run.
+std::optional<std::string> read_bytes(const std::string& path, std::uint64_t max_bytes, std::string& why) {
+  try {
+    return read_regular_file(path, max_bytes);
+  } catch (const InputError& e) {
+    why = e.what();
+    return std::nullopt;
+  }
 }
 
 }  // namespace
@@ -196,16 +210,16 @@ std::optional<GltfMaterial> gltf_material(const FaceMaterials& materials, bool h
                          ": material library '" + lib.path + "' not found: the glTF has no material from it");
       continue;
     }
-    bool ok = false;
-    const std::vector<unsigned char> bytes = read_bytes(lib.path, ok);
-    if (!ok) {
+    std::string why;
+    const std::optional<std::string> bytes = read_bytes(lib.path, MAX_MTL_BYTES, why);
+    if (!bytes) {
       warnings.push_back(materials.source + ": line " + std::to_string(lib.line) +
-                         ": material library '" + lib.path + "' cannot be read");
+                         ": material library '" + lib.path + "' cannot be read (" + why + ")");
       continue;
     }
     // Every library is read (and warns) even after a match: the first definition wins, as in
     // the order the OBJ names them.
-    for (MtlMaterial& m : parse_mtl(lib.path, std::string(bytes.begin(), bytes.end()), warnings))
+    for (MtlMaterial& m : parse_mtl(lib.path, *bytes, warnings))
       if (!found && m.name == wanted) found = std::move(m);
   }
   if (!found) {
@@ -225,18 +239,19 @@ std::optional<GltfMaterial> gltf_material(const FaceMaterials& materials, bool h
     return g;
   }
   std::error_code ec;
-  if (!fs::is_regular_file(found->texture, ec)) {
+  if (!fs::exists(found->texture, ec)) {
     warnings.push_back(where + "map_Kd '" + found->texture +
                        "' not found: the glTF's material has no texture");
     return g;
   }
-  bool ok = false;
-  std::vector<unsigned char> image = read_bytes(found->texture, ok);
-  if (!ok) {
-    warnings.push_back(where + "map_Kd '" + found->texture +
-                       "' cannot be read: the glTF's material has no texture");
+  std::string why;
+  const std::optional<std::string> read = read_bytes(found->texture, MAX_TEXTURE_BYTES, why);
+  if (!read) {
+    warnings.push_back(where + "map_Kd '" + found->texture + "' cannot be read (" + why +
+                       "): the glTF's material has no texture");
     return g;
   }
+  std::vector<unsigned char> image(read->begin(), read->end());
   g.image_mime_type = image_mime_type(image);
   if (g.image_mime_type.empty()) {
     warnings.push_back(where + "map_Kd '" + found->texture +

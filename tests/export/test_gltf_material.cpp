@@ -3,6 +3,7 @@
 // in the .glb's buffer and sampled with TEXCOORD_0; a texture that cannot be used is a warning
 // naming the .mtl and line, never a failed run.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <array>
 #include <filesystem>
@@ -93,6 +94,26 @@ TEST(GltfMaterial, MissingTextureWarnsWithMtlLineAndKeepsTheColour) {
   EXPECT_EQ(m.materials[0].pbrMetallicRoughness.baseColorTexture.index, -1);
   EXPECT_TRUE(m.images.empty());
   EXPECT_TRUE(m.textures.empty());
+}
+
+// Before: the material library and the texture were read with a plain stream, so a FIFO as the
+// .mtl blocked the run for ever (a device such as /dev/zero would have filled the memory). Both
+// are now read as regular files only: a warning, and the glTF without that material.
+TEST(GltfMaterial, AFifoAsTheLibraryOrTheTextureIsAWarningNotAHang) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  for (const char* replaced : {"gem.mtl", "tex.png"}) {
+    test::ScratchDir dir(std::string("material_fifo_") + replaced);
+    const std::string obj = test::write_textured_octahedron(dir.str(), "gem", true);
+    fs::remove(dir.file(replaced));
+    ASSERT_EQ(::mkfifo(dir.file(replaced).c_str(), 0600), 0);
+    const auto r = test::run_command(
+        "timeout 60 " + test::cli_command({"run", obj, "-o", dir.file("out.obj"), "-n", "4", "-q",
+                                           "--gltf", dir.file("run.glb")}));
+    ASSERT_EQ(r.exit_code, 0) << replaced << ": " << r.output;
+    EXPECT_NE(r.output.find("cannot be read"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(dir.file(replaced)), std::string::npos) << r.output;
+    EXPECT_TRUE(fs::exists(dir.file("run.glb")));
+  }
 }
 
 TEST(GltfMaterial, AnOffInputIsNamedAfterItsStemWithoutMaterial) {
