@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/line_tokens.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -26,24 +27,18 @@ constexpr std::uint64_t MAX_MTL_BYTES = std::uint64_t{64} << 20;
 /// A .glb's chunk lengths are 32-bit: an image past a quarter of that leaves the frames too little.
 constexpr std::uint64_t MAX_TEXTURE_BYTES = std::uint64_t{1} << 30;
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
-
 std::vector<std::string> tokens(const std::string& s) {
   std::vector<std::string> out;
-  std::size_t i = 0;
-  while (i < s.size()) {
-    while (i < s.size() && is_space(s[i])) ++i;
-    const std::size_t b = i;
-    while (i < s.size() && !is_space(s[i])) ++i;
-    if (i > b) out.push_back(s.substr(b, i - b));
-  }
+  std::size_t at = 0;
+  for (Span t = next_token(s, at, s.size()); t.begin != t.end; t = next_token(s, at, s.size()))
+    out.push_back(s.substr(t.begin, t.end - t.begin));
   return out;
 }
 
 std::string trimmed(const std::string& s) {
   std::size_t b = 0, e = s.size();
-  while (b < e && is_space(s[b])) ++b;
-  while (e > b && is_space(s[e - 1])) --e;
+  while (b < e && is_line_space(s[b])) ++b;
+  while (e > b && is_line_space(s[e - 1])) --e;
   return s.substr(b, e - b);
 }
 
@@ -65,12 +60,10 @@ std::string map_file_name(const std::string& args) {
       {"-imfchan", 1}, {"-mm", 2}, {"-texres", 1}, {"-type", 1}};
   std::size_t at = 0;
   auto next = [&](bool consume) {
-    std::size_t i = at;
-    while (i < args.size() && is_space(args[i])) ++i;
-    std::size_t e = i;
-    while (e < args.size() && !is_space(args[e])) ++e;
-    if (consume) at = e;
-    return args.substr(i, e - i);
+    std::size_t after = at;
+    const Span t = next_token(args, after, args.size());
+    if (consume) at = after;
+    return args.substr(t.begin, t.end - t.begin);
   };
   for (std::string t = next(false); !t.empty() && t[0] == '-'; t = next(false)) {
     next(true);
@@ -113,9 +106,9 @@ std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& b
     const std::size_t hash = text.find('#');
     if (hash != std::string::npos) text.resize(hash);
     std::size_t at = 0;
-    while (at < text.size() && is_space(text[at])) ++at;
+    while (at < text.size() && is_line_space(text[at])) ++at;
     std::size_t key_end = at;
-    while (key_end < text.size() && !is_space(text[key_end])) ++key_end;
+    while (key_end < text.size() && !is_line_space(text[key_end])) ++key_end;
     const std::string key = text.substr(at, key_end - at);
     const std::string rest = text.substr(key_end);
     if (key == "newmtl") {

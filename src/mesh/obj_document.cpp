@@ -19,28 +19,13 @@
 #include <utility>
 #include <vector>
 
+#include "mesh/line_tokens.hpp"
 #include "mesh/obj_material_paths.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {
-
-/// A span of the file's bytes, [begin, end).
-struct Span {
-  std::size_t begin = 0, end = 0;
-};
-
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
-
-/// The next whitespace-separated token of [at, end) in s; empty span at end when none.
-Span next_token(const std::string& s, std::size_t& at, std::size_t end) {
-  while (at < end && is_space(s[at])) ++at;
-  Span t{at, at};
-  while (at < end && !is_space(s[at])) ++at;
-  t.end = at;
-  return t;
-}
 
 class ObjDocument final : public MeshDocument {
  public:
@@ -158,7 +143,7 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
       uv_.push_back({u, tv.begin == tv.end ? 0.0 : number(tv, line, "v")});
     } else if (k == "vn") {
       std::size_t e = end;
-      while (e > key.begin && is_space(bytes_[e - 1])) --e;  // keep a "\r" of "\r\n" outside
+      while (e > key.begin && is_line_space(bytes_[e - 1])) --e;  // keep a "\r" of "\r\n" outside
       vn_text_.push_back({key.begin, e});
     } else if (k == "f") {
       read_face(at, end, line);
@@ -189,9 +174,9 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
 
 void ObjDocument::use_material(std::size_t at, std::size_t end) {
   // The name is the rest of the line (names with spaces exist), without a comment at its end.
-  while (at < end && is_space(bytes_[at])) ++at;
+  while (at < end && is_line_space(bytes_[at])) ++at;
   std::size_t e = std::min(end, bytes_.find('#', at));
-  while (e > at && is_space(bytes_[e - 1])) --e;
+  while (e > at && is_line_space(bytes_[e - 1])) --e;
   const std::string name = bytes_.substr(at, e - at);
   if (name.empty()) {
     material_ = -1;

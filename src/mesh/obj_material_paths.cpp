@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/line_tokens.hpp"
 
 namespace shellcontract {
 
@@ -13,11 +14,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool is_space(char c) { return c == ' ' || c == '\t' || c == '\v' || c == '\f' || c == '\r'; }
-
 bool has_space(const std::string& s) {
   for (const char c : s)
-    if (is_space(c)) return true;
+    if (is_line_space(c)) return true;
   return false;
 }
 
@@ -44,14 +43,14 @@ bool is_file(const fs::path& p) {
 }  // namespace
 
 MtllibLine mtllib_line(const std::string& bytes, std::size_t at, std::size_t end, std::size_t line) {
-  while (at < end && is_space(bytes[at])) ++at;
+  while (at < end && is_line_space(bytes[at])) ++at;
   // A comment after the names ends them: a token that starts with '#'.
   for (std::size_t i = at; i < end; ++i)
-    if (bytes[i] == '#' && (i == at || is_space(bytes[i - 1]))) {
+    if (bytes[i] == '#' && (i == at || is_line_space(bytes[i - 1]))) {
       end = i;
       break;
     }
-  while (end > at && is_space(bytes[end - 1])) --end;
+  while (end > at && is_line_space(bytes[end - 1])) --end;
   return MtllibLine{line, at, end};
 }
 
@@ -64,8 +63,8 @@ std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes) {
     std::size_t end = bytes.find(eol, begin);
     if (end == std::string::npos) end = bytes.size();
     std::size_t at = begin;
-    while (at < end && is_space(bytes[at])) ++at;
-    if (bytes.compare(at, 6, "mtllib") == 0 && (at + 6 == end || is_space(bytes[at + 6])))
+    while (at < end && is_line_space(bytes[at])) ++at;
+    if (bytes.compare(at, 6, "mtllib") == 0 && (at + 6 == end || is_line_space(bytes[at + 6])))
       lines.push_back(mtllib_line(bytes, at + 6, end, line));
     begin = end + 1;
   }
@@ -75,12 +74,9 @@ std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes) {
 std::vector<MtllibName> mtllib_names(const std::string& bytes, const MtllibLine& line,
                                      const fs::path& obj_folder) {
   std::vector<std::pair<std::size_t, std::size_t>> tokens;
-  for (std::size_t at = line.begin; at < line.end;) {
-    while (at < line.end && is_space(bytes[at])) ++at;
-    const std::size_t b = at;
-    while (at < line.end && !is_space(bytes[at])) ++at;
-    if (at > b) tokens.emplace_back(b, at);
-  }
+  std::size_t at = line.begin;
+  for (Span t = next_token(bytes, at, line.end); t.begin != t.end; t = next_token(bytes, at, line.end))
+    tokens.emplace_back(t.begin, t.end);
   std::vector<MtllibName> names;
   for (std::size_t i = 0; i < tokens.size();) {
     std::size_t j = i;
