@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/sphere_points.hpp"
 
 namespace {
 
@@ -31,16 +32,7 @@ class CliReconstruct : public ::testing::Test {
     dir_ = fs::temp_directory_path() / ("shellcontract_cli_reconstruct_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
-    // A unit sphere sampled on a Fibonacci spiral, outward normals.
-    std::ofstream out(file("sphere.xyz"));
-    out.precision(17);
-    const int n = 3000;
-    const double golden = 3.14159265358979323846 * (3.0 - std::sqrt(5.0));
-    for (int i = 0; i < n; ++i) {
-      const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z), t = golden * i;
-      const double x = r * std::cos(t), y = r * std::sin(t);
-      out << x << ' ' << y << ' ' << z << ' ' << x << ' ' << y << ' ' << z << '\n';
-    }
+    shellcontract::test::write_sphere_xyz(file("sphere.xyz"));  // outward normals
   }
   void TearDown() override { fs::remove_all(dir_); }
   std::string file(const std::string& name) const { return (dir_ / name).string(); }
