@@ -22,6 +22,7 @@
 
 #include "pbd/aniso_frames.hpp"
 #include "pbd/membrane_energy.hpp"
+#include "pbd/rest_slots.hpp"
 #include "pbd/regional_order.hpp"
 #include "pbd/sweep_phases.hpp"
 
@@ -162,6 +163,16 @@ class GaussSeidelSolver final : public ConstraintSolver {
     }
     aniso_normal_.resize(set_.anisotropic.size(), Vec3::Zero());
     aniso_orientation_.resize(set_.anisotropic.size(), 1.0);
+    rest_slots_ = MembraneRestSlots(set_.membranes, membrane_colours_);
+    hinge_slots_ = HingeRestSlots(dihedral_colours_);
+  }
+
+  bool set_membrane_rest(int face, const Mat2& Dm_inv, double rest_area) override {
+    return rest_slots_.set(face, Dm_inv, rest_area, set_.membranes, packed_membranes_,
+                           membrane_batches_);
+  }
+  void set_dihedral_rest_angle(std::size_t record, double rest_angle) override {
+    hinge_slots_.set_angle(record, rest_angle, set_.dihedral_hinges, dihedral_batches_);
   }
 
   void solve(Positions& x, const Eigen::VectorXd& inv_mass) override {
@@ -464,6 +475,8 @@ class GaussSeidelSolver final : public ConstraintSolver {
   bool first_padded_ = false;        ///< a sweep starts on padded_ (pack before the first)
   bool last_padded_ = false;         ///< a sweep ends on padded_ (unpack after the last)
   std::vector<PaddedVertex> padded_; ///< Coloured order: the batches' state (x, y, z, w rows)
+  MembraneRestSlots rest_slots_;  ///< set_membrane_rest's map
+  HingeRestSlots hinge_slots_;    ///< set_dihedral_rest_angle's
   ColouredBatches<MembraneBatch> membrane_batches_;    ///< Coloured order, StVK only
   ColouredBatches<IsometricBatch> isometric_batches_;  ///< Coloured order only
   ColouredBatches<DihedralBatch> dihedral_batches_;    ///< Coloured order only

@@ -2,6 +2,7 @@
 // (paper Steps 3-5, math-spec 2 step 2 and 9.4), in PBD or XPBD mode.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -54,6 +55,15 @@ class ConstraintSolver {
 
   /// Colours used per constraint kind (Coloured order; zeros for Sequential).
   virtual ColourCounts colour_counts() const = 0;
+
+  /// Gives face's membrane a new rest shape (Dm^-1 as triangle_rest makes it, and the rest area)
+  /// for the solves and energies from now on; its step clamp and mass stay. The anisotropic
+  /// records keep theirs.
+  /// @return false when the face has no membrane record (degenerate at rest)
+  virtual bool set_membrane_rest(int face, const Mat2& Dm_inv, double rest_area) = 0;
+
+  /// Sets the rest angle of constraints().dihedral_hinges[record] (kappa_bar kept).
+  virtual void set_dihedral_rest_angle(std::size_t record, double rest_angle) = 0;
 };
 
 /// Builds a solver for the given membrane material and the anisotropic energy of

@@ -319,7 +319,7 @@ void Simulator::apply_region_contraction(Positions& x) {
     const double strength = options_.region_shrink * dimple_weight_[i];
     const double wanted = dimple_rest_volume(d.whole.rest_volume, strength, s, ratio);
     if (!(wanted > 0.0)) continue;
-    set_dimple_size(d, faces_, dimple_size_for(d, wanted));
+    resize_dimple(i, dimple_size_for(d, wanted));
     if (!(d.dimple.rest_volume > 0.0)) continue;
     const double target = -ratio * d.dimple.rest_volume;
     // One-sided: a dimple the global contraction has already sunk further is left alone.
@@ -338,6 +338,20 @@ void Simulator::apply_region_contraction(Positions& x) {
     project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
                                1e-12 * d.dimple.rest_volume);
   }
+}
+
+void Simulator::resize_dimple(std::size_t i, int size) {
+  RegionDimple& d = region_dimples_[i];
+  const int before = d.size;
+  set_dimple_size(d, faces_, size);
+  if (options_.dimple_shape != DimpleShape::Mirror || d.size == before) return;
+  if (dimple_rest_.size() != region_dimples_.size()) {
+    dimple_rest_.resize(region_dimples_.size());
+    std::vector<std::vector<int>> regions;
+    for (const RegionDimple& r : region_dimples_) regions.push_back(r.order);
+    hinge_index_ = HingeIndex(solver_->constraints().dihedral_hinges, faces_, regions);
+  }
+  set_dimple_rest(*solver_, hinge_index_, rest_x_, faces_, d, dimple_rest_[i]);
 }
 
 FrameMetrics Simulator::step() {

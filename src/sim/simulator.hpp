@@ -16,6 +16,7 @@
 #include "shellcontract/simulation_options.hpp"
 #include "shellcontract/types.hpp"
 #include "sim/anisotropy.hpp"
+#include "sim/dimple_rest.hpp"
 #include "sim/pressure.hpp"
 #include "sim/region_dimple.hpp"
 #include "sim/rest_state.hpp"
@@ -114,6 +115,9 @@ class Simulator {
   void apply_volume_control(Positions& x);
   /// Projects each region's dimple onto its mirror image of this frame (InwardTerm::Volume).
   void apply_region_contraction(Positions& x);
+  /// set_dimple_size of dimple i, and under DimpleShape::Mirror its dimpled rest shape
+  /// (set_dimple_rest) when the size changes.
+  void resize_dimple(std::size_t i, int size);
   /// Takes the outside vertices' rigid step (shift and turn) out of x (follow_rest_frame).
   void follow_rest(Positions& x) const;
 
@@ -131,6 +135,9 @@ class Simulator {
   Faces inward_faces_;      ///< anisotropic faces that get the local extra pressure
   Positions region_force_;  ///< its forces (buffer)
   std::vector<RegionDimple> region_dimples_;  ///< InwardTerm::Volume: regions with a cap to sink
+  /// [i]: what dimple i's dimpled rest state changed in the solver (set_dimple_rest)
+  std::vector<DimpleRestChange> dimple_rest_;
+  HingeIndex hinge_index_;  ///< the solver's hinges by edge (set_dimple_rest)
   int regions_without_cap_ = 0;         ///< regions left alone: flat or dented at rest
   /// Weighted regions (sim/region_weights.hpp): each dimple's strength factor, the rest
   /// area-weighted mean of its faces' weights, and each inward face's weight; 1 and empty

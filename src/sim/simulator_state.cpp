@@ -45,8 +45,8 @@ void Simulator::restore(SimulatorState s) {
   x_ = std::move(s.x);
   v_ = std::move(s.v);
   held_by_contact_ = std::move(s.held_by_contact);
-  for (std::size_t i = 0; i < region_dimples_.size(); ++i)
-    set_dimple_size(region_dimples_[i], faces_, s.dimple_sizes[i]);
+  // Through resize_dimple, so that the dimples' rest shapes are those of the run that wrote it.
+  for (std::size_t i = 0; i < region_dimples_.size(); ++i) resize_dimple(i, s.dimple_sizes[i]);
   if (collision_) collision_->restore_persistent_state(std::move(s.collision));
 }
 

@@ -2,6 +2,8 @@
 // the meshes in tests/long), and the local contraction's strength controls how far regions sink.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -163,6 +165,23 @@ TEST(LocalContraction, FaceListsOfTheHandAndBearSinkLocally) {
   GTEST_SKIP() << "open: the rest moves far more than a tenth of the sink; lab/regions/locality.md";
   expect_local("hand", face_list_contraction("hand", RegionOptions{}));
   expect_local("bear", face_list_contraction("bear", RegionOptions{}));
+}
+
+TEST(LocalContraction, BearsAutomaticRegionsSinkTenTimesFartherThanTheRestMoves) {
+  // Issue "Regions a person would choose", item 2, on bear: at -p 0 over the default 200 frames,
+  // every region the finder chooses sinks at least ten times as far as the shell away from the
+  // regions moves, with no new self-intersection. Fails without the dimple's rest state
+  // (docs/math/region-mirror.md, section 6): the placed dimples' own stress then kept pulling
+  // the shell, whose rest moved 0.17 of the smallest sink. The hand and the elk do not pass yet
+  // (lab/regions/rest_over_time.md).
+  if (!std::filesystem::exists(test::target_mesh_path("bear"))) GTEST_SKIP() << "bear is absent";
+  const RunResult r = face_list_contraction("bear", RegionOptions{});
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
+  EXPECT_EQ(r.new_intersections, 0);
+  ASSERT_FALSE(r.region_sinks.empty());
+  const double smallest = *std::min_element(r.region_sinks.begin(), r.region_sinks.end());
+  EXPECT_GE(smallest, 10.0 * r.outside_region_displacement)
+      << "smallest sink " << smallest << ", rest " << r.outside_region_displacement;
 }
 
 TEST(LocalContraction, UnderTheDefaultPressureTheBumpsSinkTwiceAsFar) {

@@ -1,0 +1,49 @@
+// The rest state of a mirrored dimple (docs/math/region-mirror.md, section 6): the local
+// contraction changes the region's rest shape, not only where its vertices are put.
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <utility>
+#include <vector>
+
+#include "pbd/solver.hpp"
+#include "shellcontract/types.hpp"
+#include "sim/region_dimple.hpp"
+
+namespace shellcontract {
+
+/// The solver's dihedral hinges by their edge, with the rest angles they were built with, and
+/// the region of each face.
+struct HingeIndex {
+  HingeIndex() = default;
+  /// @param regions  the faces of each region
+  HingeIndex(const std::vector<DihedralHingeConstraint>& hinges, const Faces& mesh_faces,
+             const std::vector<std::vector<int>>& regions);
+  std::map<std::pair<int, int>, std::size_t> record_of_edge;  ///< (lower, higher vertex id)
+  std::vector<double> built_angle;                             ///< per record
+  std::map<std::pair<int, int>, std::pair<int, int>> faces_of_edge;  ///< its two faces (-1: none)
+  std::vector<int> region_of_face;                                   ///< -1: none
+};
+
+/// What set_dimple_rest changed for one dimple (so the next call can undo it).
+struct DimpleRestChange {
+  std::vector<int> faces;           ///< faces whose membranes have a dimpled rest shape
+  std::vector<std::size_t> hinges;  ///< hinge records with a dimpled rest angle
+};
+
+/// Gives d's current dimple (its first d.size faces of d.order) the rest state it has on its
+/// mirror image at rest: each interior vertex of the dimple (crease ring included) at its image,
+/// each rim vertex, and every vertex outside the dimple, where it is at rest. The dimple's
+/// membranes take their triangles' shape there (a degenerate one keeps its own) and the dihedral
+/// hinges on the dimple's edges their angle there (the rim's fold included), except a rim hinge
+/// whose other face is in another region: two dimples would both set it, and its angle would
+/// depend on which of them changed size last (a resumed run would not be the run). What `change`
+/// records (the last call's) is first put back, so that a dimple that shrinks or has no mirror
+/// (make_region_mirror's fallback) leaves nothing behind; `change` becomes this call's.
+/// @param rest        the rest positions the solver was built from
+/// @param mesh_faces  #F by 3, the mesh's faces
+void set_dimple_rest(ConstraintSolver& solver, const HingeIndex& hinges, const Positions& rest,
+                     const Faces& mesh_faces, const RegionDimple& d, DimpleRestChange& change);
+
+}  // namespace shellcontract
