@@ -4,6 +4,8 @@
 // (shellcontract/observer.hpp).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -31,8 +33,26 @@ enum class RunStatus {
 /// "new self-intersections" or "cancelled".
 const char* status_name(RunStatus status);
 
-/// |V/V0 - R| within which a target volume counts as reached and held.
+/// |V/V0 - R| within which a target volume counts as reached and held, for R >= 0.1
+/// (docs/math/volume-control.md, section 4).
 inline constexpr double TARGET_VOLUME_TOLERANCE = 0.005;
+/// The same as a fraction of R, which bounds it below R = 0.1: there an absolute 0.005 is more
+/// than 5 % of R, and at R <= 0.005 it is all of R, so that a shell collapsed to V/V0 near 0
+/// counted as having reached R = 0.001.
+inline constexpr double TARGET_VOLUME_RELATIVE_TOLERANCE = 0.05;
+
+/// The tolerance on V/V0 for the goal R: min(TARGET_VOLUME_TOLERANCE,
+/// TARGET_VOLUME_RELATIVE_TOLERANCE * R). The two bounds meet at R = 0.1, so it has no jump.
+inline double target_volume_tolerance(double goal) {
+  return std::min(TARGET_VOLUME_TOLERANCE, TARGET_VOLUME_RELATIVE_TOLERANCE * std::abs(goal));
+}
+
+/// Whether V/V0 = `volume_ratio` has reached the goal R (a target volume, or the stop ratio's
+/// stall check): |V/V0 - R| <= target_volume_tolerance(R). False for a non-finite V/V0.
+inline bool target_volume_reached(double volume_ratio, double goal) {
+  return std::abs(volume_ratio - goal) <= target_volume_tolerance(goal);
+}
+
 /// The volume has stalled when V/V0 changed by less than STALL_CHANGE over the last STALL_FRAMES
 /// frames while it is still off its target: contacts lock the shell, or the pressure is balanced.
 inline constexpr int STALL_FRAMES = 20;
@@ -47,7 +67,7 @@ struct RunResult {
   double min_volume_ratio = 1.0;
   /// Whether the target volume or stop ratio was reached (true when neither was asked for).
   bool target_reached = true;
-  /// The first frame at which V/V0 was within TARGET_VOLUME_TOLERANCE of the target volume and
+  /// The first frame at which V/V0 was within target_volume_tolerance of the target volume and
   /// its ramp had ended (or the stop ratio's crossing frame); -1 if never.
   int frame_target_reached = -1;
   double wall_seconds = 0.0;     ///< the time loop

@@ -206,7 +206,8 @@ std::vector<OptionSpec> build_table() {
                      [](R& r) -> double& { return r.sim.air_balance; }));
   t.push_back(with_keyframes(number("target-volume", 0, "R",
                      "drive V/V0 to R and hold it there (a global volume constraint); 0 = off, the "
-                     "pressure alone decides",
+                     "pressure alone decides. Reached when the end's V/V0 is within min(0.005, 5 % "
+                     "of R) of R, else exit 5",
                      between(0.0, 1.0, false, true),
                      [](R& r) -> double& { return r.sim.target_volume; }), KeyedValue::TargetVolume));
   t.push_back(integer("target-ramp", 0, "N",

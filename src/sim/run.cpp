@@ -71,8 +71,28 @@ namespace {
 
 std::string ratio_text(double r) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4f", r);
+  // Four decimals hide a small ratio (a collapse to 1e-7 read as 0.0000): those get digits.
+  std::snprintf(buf, sizeof buf, r == 0.0 || std::abs(r) >= 0.01 ? "%.4f" : "%.3g", r);
   return buf;
+}
+
+/// How far the run ended from its goal, for the message of a target not reached: a factor where
+/// V/V0 is off by more than 2 either way (a collapse far below a small target), otherwise the
+/// difference and its share of the goal; for a target volume, also the tolerance it missed.
+std::string miss_text(double ratio, double goal, bool target) {
+  char buf[96];
+  if (goal > 0.0 && ratio > 0.0 && (ratio < 0.5 * goal || ratio > 2.0 * goal)) {
+    const bool below = ratio < goal;
+    std::snprintf(buf, sizeof buf, "%.3g times %s than the %s", below ? goal / ratio : ratio / goal,
+                  below ? "smaller" : "larger", target ? "target" : "stop ratio");
+  } else {
+    const double off = ratio - goal;
+    std::snprintf(buf, sizeof buf, "%s %s it (%.3g %% of it)", ratio_text(std::abs(off)).c_str(),
+                  off < 0.0 ? "below" : "above", 100.0 * std::abs(off) / goal);
+  }
+  std::string text = buf;
+  if (target) text += "; it counts as reached within " + ratio_text(target_volume_tolerance(goal));
+  return text;
 }
 
 /// Ends the run on std::bad_alloc (`when`: where it ran out), keeping the state as it is: the
@@ -198,7 +218,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
     history.push_back(m.volume_ratio);
     if (has_target && r.frame_target_reached < 0 &&
         std::abs(sim.volume_target(m.frame) - s.target_volume) < 1e-12 &&
-        std::abs(m.volume_ratio - s.target_volume) <= TARGET_VOLUME_TOLERANCE)
+        target_volume_reached(m.volume_ratio, s.target_volume))
       r.frame_target_reached = m.frame;
     try {
       obs.frame(view, m);
@@ -215,7 +235,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
         static_cast<int>(history.size()) > STALL_FRAMES) {
       const double change = std::abs(m.volume_ratio - history[history.size() - 1 - STALL_FRAMES]);
       const double goal = has_target ? sim.volume_target(m.frame) : s.stop_volume_ratio;
-      if (change < STALL_CHANGE && std::abs(m.volume_ratio - goal) > TARGET_VOLUME_TOLERANCE) {
+      if (change < STALL_CHANGE && !target_volume_reached(m.volume_ratio, goal)) {
         stalled = "the volume stalled at V/V0 " + ratio_text(m.volume_ratio) + " (less than " +
                   ratio_text(STALL_CHANGE) + " change over " + std::to_string(STALL_FRAMES) +
                   " frames) at frame " + std::to_string(m.frame);
@@ -270,7 +290,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
     // A schedule's goal is its value at the last frame run (a key after it is never reached).
     const double goal =
         s.target_volume_schedule.empty() ? s.target_volume : sim.volume_target(sim.frame());
-    r.target_reached = std::abs(r.final_volume_ratio - goal) <= TARGET_VOLUME_TOLERANCE;
+    r.target_reached = target_volume_reached(r.final_volume_ratio, goal);
   }
   if (!r.target_reached && r.status == RunStatus::Completed) {
     r.status = RunStatus::TargetNotReached;
@@ -282,7 +302,8 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
         what + ratio_text(goal) + " not reached: " +
         (stalled.empty() ? "the frames ran out at V/V0 " + ratio_text(r.final_volume_ratio) +
                                " (frame " + std::to_string(r.frames_run) + ")"
-                         : stalled);
+                         : stalled) +
+        "; V/V0 ended " + miss_text(r.final_volume_ratio, goal, has_target);
   }
   r.anisotropic_faces = sim.anisotropy_report().faces;
   r.region_inward_displacement = sim.region_inward_displacement();

@@ -195,6 +195,31 @@ TEST_F(CliRunControl, AStalledTargetExitsWith5AndWritesTheResult) {
   EXPECT_NE(read(out("s.json")).find("\"target_reached\": false"), std::string::npos);
 }
 
+TEST_F(CliRunControl, ASmallTargetIsHeldToAShareOfItselfNotTo0005) {
+  // ico1 driven to V/V0 0.001 in 10 frames collapses to far less. Within 0.005 of the target,
+  // the absolute tolerance alone reported it reached with exit 0; the acceptance is
+  // min(0.005, 5 % of R) (docs/math/volume-control.md), so it is exit 5, and says by how much.
+  const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--target-volume", "0.001",
+                          "-n", "10", "--summary", out("s.json")});
+  EXPECT_EQ(r.exit_code, 5) << r.output;
+  EXPECT_NE(r.output.find("target volume 0.001 not reached"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("times smaller than the target"), std::string::npos) << r.output;
+  EXPECT_NE(read(out("s.json")).find("\"target_reached\": false"), std::string::npos);
+  // The written file, measured with CGAL: the collapse that the old acceptance took as reached.
+  ASSERT_TRUE(fs::exists(out("o.off")));
+  const double written = test::cgal_volume(test::cgal_read(out("o.off"))) /
+                         test::cgal_volume(test::cgal_read(mesh("ico1.off")));
+  EXPECT_LT(std::abs(written - 0.001), 0.005);
+  EXPECT_LT(written, 0.0005);
+  // A small target the shell does reach still counts: ico2 at 0.05, within 5 % of it.
+  const auto held = run_cli({"run", mesh("ico2.off"), "-o", out("held.off"), "--target-volume",
+                             "0.05", "-q"});
+  EXPECT_EQ(held.exit_code, 0) << held.output;
+  const double held_ratio = test::cgal_volume(test::cgal_read(out("held.off"))) /
+                            test::cgal_volume(test::cgal_read(mesh("ico2.off")));
+  EXPECT_NEAR(held_ratio, 0.05, 0.0025);
+}
+
 TEST_F(CliRunControl, OutputsAreCheckedBeforeTheSimulation) {
   const std::string in = mesh("ico2.off");
   struct Case {

@@ -123,6 +123,49 @@ TEST(Run, AStalledVolumeStopsTheRunWithExitCode5) {
   EXPECT_EQ(rec.n_finished, 1);
 }
 
+TEST(Run, ASmallTargetIsNotReachedByACollapseFarBelowIt) {
+  // docs/math/volume-control.md, section 4: |V/V0 - R| <= min(0.005, 0.05 R), written out here
+  // as numbers. An absolute 0.005 alone took V/V0 7e-8 (a collapsed shell) as reaching R = 0.001.
+  EXPECT_FALSE(target_volume_reached(7e-8, 0.001));
+  EXPECT_FALSE(target_volume_reached(0.0, 0.001));
+  EXPECT_FALSE(target_volume_reached(0.006, 0.001));
+  EXPECT_TRUE(target_volume_reached(0.00104, 0.001));  // 5 % of R: 5e-5
+  EXPECT_TRUE(target_volume_reached(0.00096, 0.001));
+  EXPECT_FALSE(target_volume_reached(0.00106, 0.001));
+  EXPECT_FALSE(target_volume_reached(0.00094, 0.001));
+  EXPECT_TRUE(target_volume_reached(0.0209, 0.02));
+  EXPECT_FALSE(target_volume_reached(0.0227, 0.02));  // 13 % above R
+  // From R = 0.1 up the tolerance is the absolute 0.005 it always was.
+  EXPECT_TRUE(target_volume_reached(0.1049, 0.1));
+  EXPECT_FALSE(target_volume_reached(0.1051, 0.1));
+  EXPECT_TRUE(target_volume_reached(0.3049, 0.3));
+  EXPECT_TRUE(target_volume_reached(0.5004, 0.5));
+  EXPECT_TRUE(target_volume_reached(0.4951, 0.5));
+  EXPECT_FALSE(target_volume_reached(0.5051, 0.5));
+  EXPECT_FALSE(target_volume_reached(0.4949, 0.5));
+  EXPECT_TRUE(target_volume_reached(1.9951, 2.0));  // a keyframe may inflate to 2
+  EXPECT_FALSE(target_volume_reached(1.9949, 2.0));
+  // A non-finite volume reaches nothing.
+  EXPECT_FALSE(target_volume_reached(std::nan(""), 0.5));
+  EXPECT_FALSE(target_volume_reached(HUGE_VAL, 0.5));
+}
+
+TEST(Run, ACollapseFarBelowASmallTargetEndsWithExitCode5) {
+  // ico1 collapses to V/V0 below 1e-6 when driven to 0.001 in 10 frames; within the old absolute
+  // 0.005 of the target, this ended with exit 0. The message says how far off it is.
+  RunOptions o;
+  o.sim.frames = 10;
+  o.sim.target_volume = 0.001;
+  const RunResult r = run_contraction(sphere(1), o);
+  ASSERT_LT(r.final_volume_ratio, 0.0005) << "the premise: the shell collapses far below R";
+  EXPECT_EQ(r.status, RunStatus::TargetNotReached) << r.message;
+  EXPECT_FALSE(r.target_reached);
+  EXPECT_EQ(r.exit_code(), 5);
+  EXPECT_NE(r.message.find("target volume 0.001 not reached"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("times smaller than the target"), std::string::npos) << r.message;
+  EXPECT_EQ(r.frame_target_reached, -1);
+}
+
 TEST(Run, FramesRunningOutBeforeTheStopRatioIsReported) {
   RunOptions o;
   o.sim.frames = 5;
