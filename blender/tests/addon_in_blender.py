@@ -240,6 +240,21 @@ def mesh_messages():
           and int(face.group(1)) < len(polygons)
           and {int(edge.group(1)), int(edge.group(2))} <= set(polygons[int(face.group(1))].vertices),
           "an open mesh is refused naming the mesh's face that has the open edge: " + text)
+    # Two cubes that share one corner (the second is the first mirrored through its corner 7): the
+    # pinch is a MeshError whose faces are the six quads around vertex 7, each named once.
+    corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    second = list(range(8, 15)) + [7]  # the mirror's corner i; mirrored, so its quads are flipped
+    faces = quads + [tuple(second[i] for i in reversed(q)) for q in quads]
+    obj = bpy.data.objects.new("Pinched", bpy.data.meshes.new("pinched"))
+    obj.data.from_pydata(corners + [(2 - x, 2 - y, 2 - z) for (x, y, z) in corners[:7]], [], faces)
+    bpy.context.collection.objects.link(obj)
+    bpy.context.view_layer.objects.active = obj
+    text = refusal()
+    named = re.search(r"the mesh of Pinched: non-manifold vertex: faces ([\d, ]+) \(", text)
+    check(named is not None and [int(n) for n in named.group(1).split(", ")] == [1, 3, 5, 7, 9, 11]
+          and re.search(r": vertex 7: its \d+ faces form several fans", text) is not None,
+          "a pinched mesh is refused naming the faces around the vertex: " + text)
     # A MeshError's faces are its `faces` (triangles) as the mesh's faces, not numbers read
     # from its text: a message without numbers still names them.
     import shellcontract

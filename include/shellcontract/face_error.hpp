@@ -14,7 +14,8 @@ namespace shellcontract {
 
 /// The input mesh cannot be used because of some of its faces (exit code 2, as any InputError).
 /// what() is the message as an InputError would read; faces() are the triangle indices it is
-/// about (0-based, in the triangulated soup the checks ran on, the order the message names them),
+/// about (0-based, in the triangulated soup the checks ran on, the order the message names them;
+/// for a non-manifold vertex, the faces around it in index order),
 /// all of them: a message that shortens its list with "..." still has the whole list here. A
 /// file's polygon refused before triangulation is given by its index, which is also the index of
 /// its first triangle (the others are appended after the last polygon).

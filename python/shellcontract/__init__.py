@@ -7,7 +7,7 @@ ranges; ``options()`` lists them. The same input and options give the same resul
 to the last bit.
 
 A mesh the library refuses raises ValueError with the CLI's message; where particular faces are
-to blame (an open boundary, a non-manifold edge, a duplicate or degenerate face, ...) it is a
+to blame (an open boundary, a non-manifold edge or vertex, a duplicate or degenerate face, ...) it is a
 ``MeshError``, a ValueError whose ``faces`` lists their indices into the faces array (all of
 them, even where the message shortens its list with "...").
 """

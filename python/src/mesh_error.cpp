@@ -14,9 +14,9 @@ PyObject* mesh_error_type = nullptr;
 constexpr const char* MESH_ERROR_DOC =
     "The mesh cannot be used because of some of its faces (a ValueError).\n\n"
     "faces: list of int, the 0-based indices into the faces array the message is about, in the\n"
-    "order the message names them, all of them even where the message shortens its list with\n"
-    "'...'. Other refused meshes (a bad vertex, an isolated vertex, no volume) raise a plain\n"
-    "ValueError.";
+    "order the message names them (for a non-manifold vertex: the faces around it, by index),\n"
+    "all of them even where the message shortens its list with '...'. Other refused meshes (a\n"
+    "non-finite coordinate, an isolated vertex, no volume) raise a plain ValueError.";
 
 }  // namespace
 

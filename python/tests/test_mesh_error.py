@@ -1,6 +1,6 @@
-"""shellcontract.MeshError: a mesh refused because of particular faces raises a ValueError
-subclass whose `faces` lists their indices into the faces array, all of them (the message lists
-at most ten), so that a caller with its own face numbering (the Blender add-on) maps them
+"""shellcontract.MeshError: a mesh refused because of particular faces (or of a non-manifold
+vertex: the faces around it) raises a ValueError subclass whose `faces` lists their indices into
+the faces array, all of them (the message lists at most ten), so that a caller with its own face numbering (the Blender add-on) maps them
 without reading the message's text."""
 import numpy as np
 import pytest
@@ -55,6 +55,27 @@ def test_open_boundary_names_the_face(ico2):
     assert "of face {} has no neighbouring face".format(face) in str(e.value)
     # The face with the open edge shares an edge with the removed one.
     assert len(set(int(x) for x in f2[face]) & set(int(x) for x in f[removed])) == 2
+
+
+def test_non_manifold_vertex_lists_the_faces_around_it():
+    """Two tetrahedra that share vertex 0 only: the vertex is refused with its six faces (it was
+    a plain ValueError), so that the Blender add-on names the faces of the pinch."""
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1], [-1, 0, 0], [0, -1, 0], [0, 0, -1]], dtype=float)
+    f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3], [0, 4, 5], [0, 6, 4], [0, 5, 6], [4, 6, 5]])
+    with pytest.raises(shellcontract.MeshError) as e:
+        shellcontract.check(v, f)
+    assert str(e.value) == ("input arrays: non-manifold vertex: vertex 0: its 6 faces form several fans "
+                            "(the fan through its first face has 3); the surface pinches there")
+    assert e.value.faces == [0, 1, 2, 4, 5, 6]
+
+
+def test_an_isolated_vertex_stays_a_plain_value_error(ico2):
+    """No face touches an isolated vertex: there is no face to name, so no MeshError."""
+    v, f = ico2
+    v = np.vstack([v, [[5.0, 5.0, 5.0]]])
+    with pytest.raises(ValueError, match="isolated vertex: vertex {} is not used by any face".format(len(v) - 1)) as e:
+        shellcontract.check(v, f)
+    assert not isinstance(e.value, shellcontract.MeshError)
 
 
 def test_a_problem_without_faces_stays_a_plain_value_error(ico2):

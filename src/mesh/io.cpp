@@ -23,6 +23,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -68,6 +69,24 @@ std::string lower_extension(const std::string& path) {
 // ------------------------------------------- triangulation (polygons: polygon_split.hpp;
 // connectivity: soup_checks.hpp; the mesh, orientation and zero areas: soup_geometry.hpp)
 
+/// The warning for the polygons split into triangles: how many each rule of split_polygon split,
+/// since a user who sees an odd fold there needs to know whether a fan, a diagonal or ear
+/// clipping made the triangles (docs/design/attributes.md).
+std::string split_warning(std::size_t split, std::size_t triangles, const std::array<std::size_t, soup::SPLIT_RULES>& by_rule,
+                          std::size_t polygons) {
+  static const char* const HOW[soup::SPLIT_RULES] = {
+      "by a fan from a corner", "by corner 0's fan (a flat polygon, no normal)",
+      "along a folded quad's least folded diagonal", "by ear clipping",
+      "by the fan that best follows the polygon's normal"};
+  std::string how;
+  for (std::size_t r = 0; r < by_rule.size(); ++r)
+    if (by_rule[r] > 0) how += (how.empty() ? "" : ", ") + std::to_string(by_rule[r]) + " " + HOW[r];
+  const bool one = split == 1;
+  return std::to_string(split) + (one ? " polygon" : " polygons") + " with more than 3 vertices " + (one ? "was" : "were") +
+         " split into " + std::to_string(triangles) + " triangles (" + how + "; the first triangle of each keeps the polygon's face index, the others are appended after face " +
+         std::to_string(polygons - 1) + ")";
+}
+
 /// Checks the soup, triangulates and orients it, and builds the mesh (read_input_mesh's work).
 Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
                 const std::vector<Polygon>& polygons, const SourceLines& lines, InputReport* report) {
@@ -108,6 +127,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   std::vector<Polygon> extra;
   std::vector<std::size_t> extra_origin;
   std::size_t split = 0;
+  std::array<std::size_t, soup::SPLIT_RULES> by_rule{};  // polygons split by each soup::SplitRule, for the warning
 
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const Polygon& p = polygons[i];
@@ -124,7 +144,8 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
       tris[i] = p;
       continue;
     }
-    std::vector<Polygon> t = soup::split_polygon(p, unit);
+    soup::SplitRule rule = soup::SplitRule::fan;
+    std::vector<Polygon> t = soup::split_polygon(p, unit, &rule);
     if (t.empty())
       fail_faces(path, "non-convex polygon",
                  name.polygon(i) + " has " + std::to_string(p.size()) +
@@ -132,6 +153,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
                      " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) before using the file",
                  {i});
     ++split;
+    ++by_rule[static_cast<std::size_t>(rule)];
     tris[i] = t[0];
     for (std::size_t k = 1; k < t.size(); ++k) {
       extra.push_back(std::move(t[k]));
@@ -177,8 +199,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
       soup::orient_components(mesh, points, tris, unit, normalized.scale, true, "read_input_mesh", warnings);
   if (weld) soup::store_input_corners(mesh, *weld, input_tris);
   if (split > 0)
-    warnings.push_back(std::to_string(split) + " polygons with more than 3 vertices were fan-triangulated into " +
-                       std::to_string(split + extra.size()) + " triangles (the first keeps the polygon's face index, the others are appended after face " + std::to_string(polygons.size() - 1) + ")");
+    warnings.push_back(split_warning(split, split + extra.size(), by_rule, polygons.size()));
 
   std::vector<std::size_t> zero_area = soup::zero_area_faces(tris, unit);
   if (!zero_area.empty())

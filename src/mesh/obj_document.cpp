@@ -6,8 +6,9 @@
 //
 // Vertex i of the simulation is the i-th `v` line: scan_obj, which read_input_mesh uses,
 // keeps the `v` lines in order and never merges duplicates, so no map is needed besides the
-// identity (MeshDocument::matches checks it). Quads and larger polygons are fan-triangulated for
-// the simulation only; their corners keep their vertices here, which move with the simulation.
+// identity (MeshDocument::matches checks it). Quads and larger polygons are split into triangles for
+// the simulation only (by a fan, a quad's diagonal or ear clipping: polygon_split.hpp); their
+// corners keep their vertices here, which move with the simulation.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>

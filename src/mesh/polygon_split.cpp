@@ -127,21 +127,25 @@ std::vector<Polygon> best_fan(const Polygon& p, const std::vector<Point3>& pts, 
 
 }  // namespace
 
-std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& pts) {
+std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& pts, SplitRule* rule) {
+  const auto by = [rule](SplitRule r, std::vector<Polygon> tris) {
+    if (rule != nullptr && !tris.empty()) *rule = r;
+    return tris;
+  };
   const Vec3 normal = newell_normal(p, pts);
   // A flat (zero-normal) polygon has no good corner; corner 0 gives zero-area triangles,
   // which are then reported like any other zero-area face.
-  if (normal.squaredNorm() == 0.0) return fan(p, 0);
+  if (normal.squaredNorm() == 0.0) return by(SplitRule::flat, fan(p, 0));
   for (std::size_t k = 0; k < p.size(); ++k) {
     std::vector<Polygon> tris = fan(p, k);
     bool ok = true;
     for (const Polygon& t : tris) ok = ok && area_vector(t, pts).dot(normal) > 0.0;
-    if (ok) return tris;
+    if (ok) return by(SplitRule::fan, std::move(tris));
   }
-  if (p.size() == 4) return least_folded_diagonal(p, pts);
+  if (p.size() == 4) return by(SplitRule::diagonal, least_folded_diagonal(p, pts));
   std::vector<Polygon> tris = ear_clip(p, pts, normal);
-  if (!tris.empty()) return tris;
-  return best_fan(p, pts, normal);
+  if (!tris.empty()) return by(SplitRule::ear_clip, std::move(tris));
+  return by(SplitRule::best_fan, best_fan(p, pts, normal));
 }
 
 }  // namespace shellcontract::soup

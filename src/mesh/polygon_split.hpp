@@ -4,12 +4,17 @@
 // moved by the simulation, which bent and may have folded them along the diagonals of their split.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 #include "mesh/soup_checks.hpp"
 #include "shellcontract/mesh.hpp"
 
 namespace shellcontract::soup {
+
+/// The rules of split_polygon below, numbered as there; `flat` is rule 1's zero-normal case.
+enum class SplitRule { fan, flat, diagonal, ear_clip, best_fan };
+constexpr std::size_t SPLIT_RULES = 5;  ///< SplitRule's values, for counting by rule
 
 /// The triangles of polygon `p` (more than three distinct corners, indices into `pts`, which are
 /// at a unit bounding-box diagonal), each wound like the polygon, in this order of preference:
@@ -23,7 +28,10 @@ namespace shellcontract::soup {
 ///    (any simple polygon in that projection);
 /// 4. a fan from the corner whose triangles' normals agree best with the Newell normal (the
 ///    largest smallest cosine), among those fans that have no zero-area triangle.
+/// @param rule if given, set to the rule that split it (left unchanged when refused), so that the
+///        reader's warning says which rules it used
 /// @return the triangles, or an empty vector when none of these applies (then refused)
-std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& pts);
+std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& pts,
+                                   SplitRule* rule = nullptr);
 
 }  // namespace shellcontract::soup

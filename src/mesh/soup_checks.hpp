@@ -175,7 +175,8 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
 }
 
 /// Vertices: the faces around a vertex must form one fan (their link edges one cycle). With
-/// manifold, consistently oriented edges, each link vertex has exactly one successor.
+/// manifold, consistently oriented edges, each link vertex has exactly one successor. A vertex
+/// that fails is refused with all its faces (a FaceListError, in face order).
 template <class Tris>
 void check_vertex_fans(const std::string& path, const Tris& tris, std::size_t nv, const Namer& name) {
   // Each vertex's link edges in one flat array (offsets by vertex, faces in file order within a
@@ -200,8 +201,13 @@ void check_vertex_fans(const std::string& path, const Tris& tris, std::size_t nv
       cur = it->second;
       ++steps;
     }
-    if (steps + 1 != size)
-      fail(path, "non-manifold vertex", name.vertex(v) + ": its " + std::to_string(size) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there");
+    if (steps + 1 == size) continue;
+    // The faces around the vertex, as the refusal's faces: a front end (the Blender add-on) shows
+    // the pinch by them. Found by a scan of all faces, once, for the refusal only.
+    std::vector<std::size_t> around;
+    for (std::size_t f = 0; f < tris.size(); ++f)
+      if (tris[f][0] == v || tris[f][1] == v || tris[f][2] == v) around.push_back(f);
+    fail_faces(path, "non-manifold vertex", name.vertex(v) + ": its " + std::to_string(size) + " faces form several fans (the fan through its first face has " + std::to_string(steps + 1) + "); the surface pinches there", std::move(around));
   }
 }
 

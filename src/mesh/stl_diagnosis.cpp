@@ -2,8 +2,10 @@
 // step by step: at the top level only "solid", "facet" and "endsolid" count (other words, such as
 // a solid's name, are skipped), inside a facet only "vertex" and "endfacet" ("normal", "outer
 // loop", "endloop" are skipped), and a vertex's numbers are read by the same stream extraction
-// (`is >> double`) from the same place. What CGAL skips is not reported: the scan names the place
-// where CGAL's reading stops, never an earlier line that CGAL reads without complaint.
+// (`is >> double`) from the same place. What CGAL skips is not reported: the scan reports only a
+// file whose reading CGAL stops, at the place where it stops, except for a facet whose 'endloop'
+// or 'endfacet' line is missing: CGAL reads on into what follows and stops there (at the next
+// facet's first vertex), and the scan names the line where the closing word was expected.
 #include "mesh/stl_diagnosis.hpp"
 
 #include <cmath>
@@ -77,6 +79,15 @@ class AsciiScan {
   StlDiagnosis facet(std::size_t begun) {
     const std::string facet_begun = "the facet begun on line " + std::to_string(begun);
     int count = 0;
+    // After the 3rd vertex only 'endloop' and 'endfacet' belong. CGAL skips any other word there
+    // and fails only later (at the next facet's first vertex, taken for a 4th, or at the end of
+    // the file), so the first such word, where the closing line was missing, is kept to name it.
+    bool endloop = false;
+    std::size_t stray_at = 0, stray_line = 0;
+    const auto missing = [&]() -> StlDiagnosis {
+      return {"parse error", where(stray_line) + ": expected '" + (endloop ? "endfacet" : "endloop") + "' after the 3 vertices of " +
+                                 facet_begun + ", got " + quote(line_text(stray_at))};
+    };
     std::string_view w;
     while (word(w)) {
       const std::size_t line = line_at(at_);
@@ -86,18 +97,33 @@ class AsciiScan {
                                      (count == 1 ? " vertex" : " vertices") + "; STL facets are triangles (3 vertices)"};
         return {};
       }
+      if (count == 3 && stray_line == 0) {
+        if (w == "endloop" && !endloop) {
+          endloop = true;
+          continue;
+        }
+        if (w != "vertex" || endloop) {  // a vertex right after the 3rd is a 4th (below)
+          stray_at = at_;
+          stray_line = line;
+        }
+      }
       if (w != "vertex") continue;
       const std::size_t vertex_at = at_;
-      if (count >= 3)
+      if (count >= 3) {
+        if (stray_line != 0) return missing();
         return {"parse error", where(line) + ": a 4th vertex in " + facet_begun + ", got " + quote(line_text(vertex_at)) +
                                    "; STL facets are triangles (3 vertices)"};
+      }
       for (int k = 0; k < 3; ++k) {
         StlDiagnosis d = number(vertex_at, k, facet_begun);
         if (!d.problem.empty()) return d;
       }
       ++count;
     }
-    return {"truncated file", "the file ends at " + last_line() + " inside " + facet_begun + " (expected 'endfacet')"};
+    if (stray_line != 0) return missing();
+    const std::string expected = count < 3 ? "vertex " + std::to_string(count + 1) + " of 3"
+                                           : std::string(endloop ? "'endfacet'" : "'endloop'") + " after its 3 vertices";
+    return {"truncated file", "the file ends at " + last_line() + " inside " + facet_begun + " (expected " + expected + ")"};
   }
 
   /// Coordinate k of the vertex whose word "vertex" is at byte `vertex_at`, read as CGAL reads it.

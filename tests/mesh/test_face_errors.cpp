@@ -1,6 +1,6 @@
-// FaceListError: a soup refused because of particular faces throws the InputError subclass with
-// their triangle indices as data, all of them even where the message lists only the first ten;
-// its message is the InputError's as before.
+// FaceListError: a soup refused because of particular faces (or of a non-manifold vertex: the
+// faces around it) throws the InputError subclass with their triangle indices as data, all of
+// them even where the message lists only the first ten; its message is the InputError's as before.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -117,6 +117,27 @@ TEST(FaceErrors, AFileReaderRefusalCarriesItsFacesToo) {
     EXPECT_EQ(e.faces(), (std::vector<std::size_t>{polygons.size() - 1, 3}));
     EXPECT_NE(std::string(e.what()).find("duplicate face"), std::string::npos) << e.what();
   }
+}
+
+// A non-manifold vertex is refused with the faces around it (before, a plain InputError): two
+// tetrahedra that share vertex 0 only, through the file reader and through the arrays.
+TEST(FaceErrors, ANonManifoldVertexCarriesTheFacesAroundIt) {
+  const std::string path = std::string(test::MESH_DIR) + "/bad/nonmanifold_vertex.off";
+  const std::string fans = ": its 6 faces form several fans (the fan through its first face has 3); the surface pinches there";
+  const std::vector<std::size_t> around{0, 1, 2, 4, 5, 6};  // face 3 and face 7 do not touch vertex 0
+  try {
+    read_input_mesh(path);
+    ADD_FAILURE() << "accepted";
+  } catch (const FaceListError& e) {
+    EXPECT_EQ(e.faces(), around);
+    EXPECT_EQ(std::string(e.what()), path + ": non-manifold vertex: vertex 0 (line 4)" + fans);
+  }
+  Arrays a;
+  a.v = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};
+  a.f = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 4, 5, 0, 6, 4, 0, 5, 6, 4, 6, 5};
+  const FaceListError e = refusal(a);
+  EXPECT_EQ(e.faces(), around);
+  EXPECT_EQ(std::string(e.what()), "arrays: non-manifold vertex: vertex 0" + fans);
 }
 
 TEST(FaceErrors, RethrowKeepsTheType) {

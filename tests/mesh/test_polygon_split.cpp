@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <string>
@@ -23,6 +24,7 @@ using shellcontract::Mesh;
 using shellcontract::Point3;
 using shellcontract::Vec3;
 using shellcontract::soup::Polygon;
+using shellcontract::soup::SplitRule;
 using shellcontract::soup::split_polygon;
 using shellcontract::soup::to_vec;
 
@@ -146,6 +148,50 @@ TEST(SplitPolygon, APolygonEveryFanOfWhichHasAZeroAreaTriangleAndNoEarIsRefused)
   }
 }
 
+TEST(SplitPolygon, SaysWhichRuleSplitIt) {
+  const auto rule_of = [](const Polygon& p, const std::vector<Point3>& pts) {
+    SplitRule r = SplitRule::best_fan;  // a value no case below expects
+    EXPECT_FALSE(split_polygon(p, pts, &r).empty());
+    return r;
+  };
+  EXPECT_EQ(rule_of({0, 1, 2, 3}, {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.1}, {0, 1, 0}}), SplitRule::fan);
+  EXPECT_EQ(rule_of({0, 1, 2, 3}, BENT_ALONG_02), SplitRule::diagonal);
+  EXPECT_EQ(rule_of({0, 1, 2, 3, 4}, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}, {4, 0, 0}}), SplitRule::flat);
+  const std::vector<Point3> comb{{0, 0, 0}, {5, 0, 0}, {5, 2, 0}, {4, 2, 0}, {4, 1, 0}, {3, 1, 0},
+                                 {3, 2, 0}, {2, 2, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}};
+  EXPECT_EQ(rule_of({0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11}, comb), SplitRule::ear_clip);
+  // A refused polygon leaves it as it was.
+  SplitRule r = SplitRule::diagonal;
+  EXPECT_TRUE(split_polygon({0, 1, 2, 3, 4}, {{0, 2, 0}, {0, 1, 0}, {0, 1, 0}, {1, 1, 0}, {2, 1, 0}}, &r).empty());
+  EXPECT_EQ(r, SplitRule::diagonal);
+}
+
+// Through the reader: the warning counts the polygons by the rule that split them. Before, it said
+// "fan-triangulated" whatever the rule: here the comb prism's two comb faces are ear-clipped, its
+// twelve rectangular sides fanned.
+TEST(ReadInputMeshPolygons, TheWarningSaysWhichRulesSplitThePolygons) {
+  const std::vector<std::array<double, 2>> comb{{0, 0}, {5, 0}, {5, 2}, {4, 2}, {4, 1}, {3, 1},
+                                                {3, 2}, {2, 2}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+  const std::size_t n = comb.size();
+  std::vector<Point3> points;
+  for (const double z : {0.0, 1.0})
+    for (const auto& c : comb) points.emplace_back(c[0], c[1], z);
+  std::vector<std::vector<std::size_t>> polygons(2);
+  for (std::size_t i = 0; i < n; ++i) {
+    polygons[0].push_back(n - 1 - i);  // the bottom, seen from below
+    polygons[1].push_back(n + i);      // the top, counter-clockwise seen from above
+  }
+  for (std::size_t i = 0; i < n; ++i) polygons.push_back({i, (i + 1) % n, n + (i + 1) % n, n + i});
+  InputReport report;
+  const Mesh mesh = shellcontract::check_input_soup("comb prism", points, polygons, &report);
+  EXPECT_EQ(mesh.number_of_faces(), 2 * (n - 2) + 2 * n);
+  EXPECT_NEAR(report.volume, 8.0, 1e-12);
+  ASSERT_EQ(report.warnings.size(), 1u);
+  EXPECT_EQ(report.warnings[0],
+            "14 polygons with more than 3 vertices were split into 44 triangles (12 by a fan from a corner, 2 by ear "
+            "clipping; the first triangle of each keeps the polygon's face index, the others are appended after face 13)");
+}
+
 // Through the reader: a square pyramid whose base is a folded quad. Before, read_input_mesh
 // refused it ("non-convex polygon: face 0 ... has 4 vertices and no corner from which a fan
 // triangulates it").
@@ -159,6 +205,10 @@ TEST(ReadInputMeshPolygons, APyramidOnAFoldedQuadIsRead) {
     const Mesh mesh = shellcontract::check_input_soup("pyramid", points, polygons, &report);
     EXPECT_EQ(mesh.number_of_faces(), 6u);
     EXPECT_EQ(report.triangulated_faces, 1u);
+    EXPECT_NE(std::find(report.warnings.begin(), report.warnings.end(),
+                        "1 polygon with more than 3 vertices was split into 2 triangles (1 along a folded quad's least folded "
+                        "diagonal; the first triangle of each keeps the polygon's face index, the others are appended after face 4)"),
+              report.warnings.end());
   }
 }
 

@@ -70,6 +70,7 @@ std::string binary_with(const std::string& header, int f, int c, int k, float v)
 struct StlCase {
   std::string name, bytes;
   std::vector<std::string> expected;  ///< substrings of the message besides the file's name
+  bool whole = false;                 ///< expected[0] is the whole message after the file's name
 };
 
 void PrintTo(const StlCase& c, std::ostream* os) { *os << c.name; }
@@ -102,6 +103,9 @@ TEST_P(StlReadErrors, NameTheFileAndWhere) {
     EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
     EXPECT_EQ(msg.find("CGAL could not read it"), std::string::npos) << msg;
     for (const std::string& s : c.expected) EXPECT_NE(msg.find(s), std::string::npos) << c.name << ": '" << s << "' not in: " << msg;
+    if (c.whole) {
+      EXPECT_EQ(msg, path + c.expected.at(0));
+    }
   }
 }
 
@@ -135,13 +139,38 @@ INSTANTIATE_TEST_SUITE_P(
         StlCase{"two_numbers", ascii_with(12, "      vertex 1 0"),
                 {": parse error: line 12: expected 'vertex X Y Z' with three numbers, got 'vertex 1 0' (then line 13: 'vertex')"}},
         StlCase{"four_vertices", ascii_inserted(14, "      vertex 1 1 1"),
-                {": parse error: line 14: a 4th vertex in the facet begun on line 9, got 'vertex 1 1 1'", "triangles"}},
+                {": parse error: line 14: a 4th vertex in the facet begun on line 9, got 'vertex 1 1 1'; STL facets are triangles (3 vertices)"},
+                true},
         StlCase{"two_vertices", ascii_without(13),
                 {": parse error: line 14: the facet begun on line 9 ends with 2 vertices", "triangles"}},
         StlCase{"no_endsolid", ascii_first(29),
                 {": truncated file: the solid begun on line 1 has no 'endsolid': the file ends at line 29 ('endfacet')"}},
         StlCase{"cut_in_a_facet", ascii_first(12),
-                {": truncated file: the file ends at line 12 ('vertex 1 0 0') inside the facet begun on line 9"}},
+                {": truncated file: the file ends at line 12 ('vertex 1 0 0') inside the facet begun on line 9 (expected vertex 3 of 3)"},
+                true},
+        // A facet's closing line missing: CGAL reads on into the next facet and stops at its first
+        // vertex, as a 4th; the message names the line where the closing word was expected (it
+        // said "a 4th vertex in the facet begun on line 9").
+        StlCase{"no_endfacet", ascii_without(15),
+                {": parse error: line 15: expected 'endfacet' after the 3 vertices of the facet begun on line 9, got 'facet normal 0 0 0'"},
+                true},
+        StlCase{"no_endloop_nor_endfacet", [] {
+                  auto l = ascii_lines();
+                  l.erase(l.begin() + 13, l.begin() + 15);  // lines 14 and 15
+                  return join(l);
+                }(),
+                {": parse error: line 14: expected 'endloop' after the 3 vertices of the facet begun on line 9, got 'facet normal 0 0 0'"},
+                true},
+        // The last facet's: CGAL reads 'endsolid' as a word inside the facet and reaches the end.
+        StlCase{"last_facet_no_endfacet", ascii_without(29),
+                {": parse error: line 29: expected 'endfacet' after the 3 vertices of the facet begun on line 23, got 'endsolid t'"},
+                true},
+        StlCase{"cut_after_the_vertices", ascii_first(13),
+                {": truncated file: the file ends at line 13 ('vertex 0 0 1') inside the facet begun on line 9 (expected 'endloop' after its 3 vertices)"},
+                true},
+        StlCase{"cut_after_endloop", ascii_first(14),
+                {": truncated file: the file ends at line 14 ('endloop') inside the facet begun on line 9 (expected 'endfacet' after its 3 vertices)"},
+                true},
         StlCase{"cut_in_a_vertex", join(ascii_lines()).substr(0, ascii_first(11).size() + 14),
                 {": truncated file: the file ends at line 12", "in the vertex of line 12"}},
         StlCase{"nan", ascii_with(11, "      vertex 0 nan 0"), {": non-finite coordinate: line 11:", "coordinate y = nan"}},
@@ -188,6 +217,16 @@ TEST(StlReadSuccess, AsciiAndBinaryTetrahedraAreRead) {
     EXPECT_EQ(m.number_of_faces(), 4u) << name;
     EXPECT_TRUE(diagnose_stl(bytes).problem.empty()) << name << ": " << diagnose_stl(bytes).details;
   }
+}
+
+// CGAL skips the words 'outer loop' and 'endloop' inside a facet: a facet without its 'endloop'
+// line is read (only 'endfacet' closes a facet), and the diagnosis finds nothing to report.
+TEST(StlReadSuccess, AFacetWithoutEndloopIsRead) {
+  const TempDir dir;
+  const std::string bytes = ascii_without(14);
+  const Mesh m = read_input_mesh(dir.write("no_endloop", bytes));
+  EXPECT_EQ(m.number_of_faces(), 4u);
+  EXPECT_TRUE(diagnose_stl(bytes).problem.empty()) << diagnose_stl(bytes).details;
 }
 
 // CGAL accepts a binary file longer than its facets need (the rest is ignored): still read.
