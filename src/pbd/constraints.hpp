@@ -3,6 +3,7 @@
 // projection reads, so a sweep streams through memory.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -66,6 +67,20 @@ struct ConstraintSet {
   /// used only by the paper's in-projection inward term.
   std::vector<double> anisotropic_k_a;
 };
+
+/// One more than the largest vertex id any constraint of `set` names (0 for an empty set).
+inline int vertex_count(const ConstraintSet& set) {
+  int n = 0;
+  const auto grow = [&n](const auto& records) {
+    for (const auto& c : records)
+      for (int v : c.v) n = std::max(n, v + 1);
+  };
+  grow(set.membranes);
+  grow(set.isometric_hinges);
+  grow(set.dihedral_hinges);
+  grow(set.anisotropic);
+  return n;
+}
 
 /// beta_max of the PBD step clamp (math-spec 9.1d, 14).
 inline constexpr double STEP_CLAMP_FACTOR = 0.2;

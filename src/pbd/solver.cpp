@@ -82,15 +82,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
       // of them (lab/pages/scale.md, "The dihedral hinges in batches").
       regional_ = BatchedMembraneProjection<M>::value && !set_.membranes.empty() &&
                   set_.dihedral_hinges.empty() && set_.anisotropic.empty();
-      int num_vertices = 0;
-      for (const auto& c : set_.membranes)
-        for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
-      for (const auto& c : set_.isometric_hinges)
-        for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
-      for (const auto& c : set_.dihedral_hinges)
-        for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
-      for (const auto& c : set_.anisotropic)
-        for (int v : c.v) num_vertices = std::max(num_vertices, v + 1);
+      const int num_vertices = vertex_count(set_);
       // Padded rows in breadth-first order; the parts are cut in that order.
       row_vertex_ = breadth_first_rows(set_.membranes, num_vertices);
       vertex_row_.resize(row_vertex_.size());
