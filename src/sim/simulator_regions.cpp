@@ -71,13 +71,17 @@ void Simulator::resize_dimple(std::size_t i, int size) {
   const int before = d.size;
   set_dimple_size(d, faces_, size);
   if (options_.dimple_shape != DimpleShape::Mirror || d.size == before) return;
+  // The new rim's mirror, made once for both its users: the rest state below and the placement
+  // in apply_region_contraction, which makes none while mirror_size is the size.
+  d.mirror = make_region_mirror(rest_x_, d.dimple);
+  d.mirror_size = d.size;
   if (dimple_rest_.size() != region_dimples_.size()) {
     dimple_rest_.resize(region_dimples_.size());
     std::vector<std::vector<int>> regions;
     for (const RegionDimple& r : region_dimples_) regions.push_back(r.order);
     hinge_index_ = HingeIndex(solver_->constraints().dihedral_hinges, faces_, regions);
   }
-  set_dimple_rest(*solver_, hinge_index_, rest_x_, faces_, d, dimple_rest_[i]);
+  set_dimple_rest(*solver_, hinge_index_, rest_x_, faces_, d, d.mirror, dimple_rest_[i]);
 }
 
 }  // namespace shellcontract
