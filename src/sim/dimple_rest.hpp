@@ -34,9 +34,12 @@ struct HingeIndex {
 struct DimpleRestChange {
   std::vector<int> faces;           ///< faces whose membranes have a dimpled rest shape
   std::vector<std::size_t> hinges;  ///< hinge records with a dimpled rest angle
-  /// Scratch of set_dimple_rest, all 0 between calls: per hinge record, whether this call set it
-  /// (an edge inside the dimple is met from both its faces).
-  std::vector<char> hinge_set;
+  /// Scratch of set_dimple_rest, all 0 between calls: per face and per hinge record, whether
+  /// this call set it (an edge inside the dimple is met from both its faces; what the last call
+  /// set and this one sets again needs no putting back).
+  std::vector<char> face_set, hinge_set;
+  /// Scratch, all -1 between calls: per vertex, its index in the dimple's vertices.
+  std::vector<int> dimple_slot;
 };
 
 /// Gives d's current dimple (its first d.size faces of d.order) the rest state it has on its
@@ -46,8 +49,9 @@ struct DimpleRestChange {
 /// hinges on the dimple's edges their angle there (the rim's fold included), except a rim hinge
 /// whose other face is in another region: two dimples would both set it, and its angle would
 /// depend on which of them changed size last (a resumed run would not be the run). What `change`
-/// records (the last call's) is first put back, so that a dimple that shrinks or has no mirror
-/// (make_region_mirror's fallback) leaves nothing behind; `change` becomes this call's.
+/// records (the last call's) and this call does not set again is put back, so that a dimple that
+/// shrinks or has no mirror (make_region_mirror's fallback) leaves nothing behind; `change`
+/// becomes this call's.
 /// @param rest        the rest positions the solver was built from
 /// @param mesh_faces  #F by 3, the mesh's faces
 /// @param mirror      make_region_mirror(rest, d.dimple), which the caller keeps for the dimple

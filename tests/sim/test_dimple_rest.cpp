@@ -136,6 +136,67 @@ TEST_P(DimpleRest, TwoTouchingDimplesGiveTheSameRestInEitherOrder) {
   EXPECT_EQ(x, y);
 }
 
+TEST_P(DimpleRest, ARunOfSizesEndsAsItsLastSizeAlone) {
+  // A run resizes a dimple nearly every step, and each call puts back only what it does not set
+  // again: after growing, shrinking past a size, to 0 and growing again, the solver and the
+  // record of what was set are those of one call at the last size.
+  Fixture f;
+  const auto changed = f.solver(GetParam());
+  const HingeIndex index(changed->constraints().dihedral_hinges, f.s.m.faces, {f.s.region});
+  DimpleRestChange a;
+  const int n = static_cast<int>(f.d.order.size());
+  for (int size : {1, 3, n / 4, n / 2, n / 2 + 1, n / 3, 0, n / 5, 3 * n / 4, n * 2 / 3}) {
+    set_dimple_size(f.d, f.s.m.faces, size);
+    set_dimple_rest(*changed, index, f.s.m.x, f.s.m.faces, f.d, a);
+  }
+  const auto direct = f.solver(GetParam());
+  DimpleRestChange b;
+  set_dimple_rest(*direct, index, f.s.m.x, f.s.m.faces, f.d, make_region_mirror(f.s.m.x, f.d.dimple),
+                  b);
+  EXPECT_EQ(a.faces, b.faces);
+  EXPECT_EQ(a.hinges, b.hinges);
+  EXPECT_EQ(changed->constraints().dihedral_hinges.size(), direct->constraints().dihedral_hinges.size());
+  for (std::size_t h = 0; h < direct->constraints().dihedral_hinges.size(); ++h)
+    EXPECT_EQ(changed->constraints().dihedral_hinges[h].rest.rest_angle,
+              direct->constraints().dihedral_hinges[h].rest.rest_angle) << "hinge " << h;
+  Positions start = f.dimpled();
+  start.array() *= 0.97;
+  Positions x = start, y = start;
+  changed->solve(x, f.w);
+  direct->solve(y, f.w);
+  EXPECT_EQ(x, y);
+}
+
+TEST(HingeIndex, EachFaceEdgeKnowsItsHingeAndTheFaceAcross) {
+  Fixture f;
+  const auto solver = f.solver(ConstraintOrder::Sequential);
+  const std::vector<DihedralHingeConstraint>& hinges = solver->constraints().dihedral_hinges;
+  const Faces& faces = f.s.m.faces;
+  const HingeIndex index(hinges, faces, {f.s.region});
+  ASSERT_EQ(index.record_of_face_edge.size(), static_cast<std::size_t>(3 * faces.rows()));
+  const auto has_edge = [&](Eigen::Index g, int a, int b) {
+    for (int e = 0; e < 3; ++e)
+      if (std::minmax(faces(g, e), faces(g, (e + 1) % 3)) == std::minmax(a, b)) return true;
+    return false;
+  };
+  int with_hinge = 0;
+  for (Eigen::Index g = 0; g < faces.rows(); ++g)
+    for (int e = 0; e < 3; ++e) {
+      const int a = faces(g, e), b = faces(g, (e + 1) % 3);
+      const auto slot = static_cast<std::size_t>(3 * g + e);
+      const int across = index.face_across[slot];
+      ASSERT_GE(across, 0);  // a closed mesh
+      EXPECT_NE(across, g);
+      EXPECT_TRUE(has_edge(across, a, b));
+      const int record = index.record_of_face_edge[slot];
+      if (record < 0) continue;
+      ++with_hinge;
+      const DihedralHingeConstraint& c = hinges[static_cast<std::size_t>(record)];
+      EXPECT_EQ(std::minmax(c.v[0], c.v[1]), std::minmax(a, b));
+    }
+  EXPECT_EQ(with_hinge, static_cast<int>(2 * hinges.size()));  // every hinge from both its faces
+}
+
 INSTANTIATE_TEST_SUITE_P(Orders, DimpleRest,
                          ::testing::Values(ConstraintOrder::Sequential, ConstraintOrder::Coloured));
 
