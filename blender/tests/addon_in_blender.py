@@ -276,6 +276,7 @@ def mesh_messages():
             ("edge (1, 2) is shared by 3 faces (1, 3, 5), at most 2 allowed",
              "edge (1, 2) is shared by 3 faces (0, 2, 3), at most 2 allowed"),
             ("2 faces have (nearly) zero area: 3, 4", "2 faces have (nearly) zero area: 2"),
+            ("1 face has (nearly) zero area: 4", "1 face has (nearly) zero area: 2"),
             ("component 0 (6 faces, starting at face 2) was inside-out",
              "component 0 (6 faces, starting at face 1) was inside-out")):
         check(runner.polygon_numbers(before, polygon_of) == after,

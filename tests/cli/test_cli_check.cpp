@@ -59,7 +59,7 @@ TEST_F(CliCheck, JsonReportsZeroAreaFace) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("\"zero_area_faces\": [13]"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\"vertices\": 9"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("warning: 1 faces have (nearly) zero area: 13"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("warning: 1 face has (nearly) zero area: 13"), std::string::npos) << r.output;
 }
 
 // A face with collinear corners is a zero-area face, not a face that intersects itself: CGAL
