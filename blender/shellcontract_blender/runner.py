@@ -215,9 +215,9 @@ def face_error_text(text, faces, polygon_of, mesh_name):
 
 def polygon_numbers(text, polygon_of):
     """The triangle numbers of a mesh message as the mesh's face (polygon) numbers: 'face T',
-    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...'. For the library's
-    warnings, which are text only, and errors without a face list; a MeshError's faces come
-    from its `faces` (face_error_text)."""
+    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...' ('1 face has' for
+    one). For the library's warnings, which are text only, and errors without a face list; a
+    MeshError's faces come from its `faces` (face_error_text)."""
     def poly(t):
         t = int(t)
         return str(polygon_of[t]) if 0 <= t < len(polygon_of) else str(t)
@@ -233,8 +233,8 @@ def polygon_numbers(text, polygon_of):
     text = re.sub(r"\bface (\d+)\b", lambda m: "face " + poly(m.group(1)), text)
     text = re.sub(r"\bfaces \(((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)\)",
                   lambda m: "faces (" + listed(m.group(1)) + ")", text)
-    text = re.sub(r"\bfaces have \(nearly\) zero area: ((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)",
-                  lambda m: "faces have (nearly) zero area: " + listed(m.group(1), True), text)
+    text = re.sub(r"\b(faces have|face has) \(nearly\) zero area: ((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)",
+                  lambda m: m.group(1) + " (nearly) zero area: " + listed(m.group(2), True), text)
     return text
 
 

@@ -16,7 +16,9 @@ namespace shellcontract {
 using FacePair = std::pair<FaceIndex, FaceIndex>;
 
 /// All pairs of faces that intersect when the vertices are at x. Faces sharing a vertex or an
-/// edge count only if they intersect beyond the shared element (CGAL's definition).
+/// edge count only if they intersect beyond the shared element (CGAL's definition). A face whose
+/// corners are collinear at x (zero area: read_input_mesh warns of it) is in no pair: it is not
+/// two faces that intersect, and CGAL tests it against no other face.
 /// @param mesh  triangle mesh (connectivity; its own points are ignored)
 /// @param x     #V by 3 positions, row i = vertex i, any length unit
 /// @pre !mesh.has_garbage(), x.rows() == number of vertices, triangle mesh
@@ -25,7 +27,8 @@ using FacePair = std::pair<FaceIndex, FaceIndex>;
 std::vector<FacePair> self_intersecting_pairs(const Mesh& mesh, const Positions& x);
 
 /// Whether any two faces intersect at positions x; stops at the first pair found (cheaper than
-/// self_intersecting_pairs when the answer is usually "no").
+/// self_intersecting_pairs when the answer is usually "no"); a face with collinear corners does
+/// not count, as there.
 /// @pre as for self_intersecting_pairs
 bool does_self_intersect(const Mesh& mesh, const Positions& x);
 

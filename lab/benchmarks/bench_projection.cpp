@@ -15,7 +15,6 @@
 #include <algorithm>
 #include <cstring>
 #include <iostream>
-#include <random>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -25,8 +24,7 @@
 #include "pbd/constraint_batches.hpp"
 #include "pbd/constraint_kernels.hpp"
 #include "pbd/solver.hpp"
-#include "shellcontract/mesh_io.hpp"
-#include "sim/simulator.hpp"
+#include "projection_scene.hpp"
 
 namespace {
 
@@ -34,30 +32,10 @@ using namespace shellcontract;
 
 std::string g_mesh = std::string(SHELLCONTRACT_PAPER_MESH_DIR) + "/bear.off";
 
-/// The scene: constraints of the normalized mesh and a compressed, perturbed state.
-struct Scene {
-  ConstraintSet membranes_and_isometric;
-  ConstraintSet dihedral;
-  Eigen::VectorXd w;
-  Positions x;
-};
+using Scene = lab::ProjectionScene;
 
 const Scene& scene() {
-  static const Scene s = [] {
-    Scene sc;
-    const Mesh mesh = read_input_mesh(g_mesh);
-    SimOptions opt;
-    opt.frames = 0;
-    Simulator sim(mesh, opt);
-    sc.membranes_and_isometric = pack_constraints(sim.rest_mesh(), BendingModel::Isometric);
-    sc.dihedral = pack_constraints(sim.rest_mesh(), BendingModel::Dihedral);
-    sc.w = inverse_masses(sim.rest_mesh());
-    std::mt19937 rng(1);
-    std::normal_distribution<double> n(0.0, 1e-3);
-    sc.x = 0.9 * sim.positions();
-    for (Eigen::Index i = 0; i < sc.x.size(); ++i) sc.x.data()[i] += n(rng);
-    return sc;
-  }();
+  static const Scene s = lab::make_projection_scene(g_mesh);
   return s;
 }
 

@@ -1,5 +1,6 @@
 // A/B of the batched dihedral kernel in one binary: an older dihedral_batches.cpp (OLD_KERNEL, its
-// public functions renamed old_*) against the tree's, on bear, one thread, PBD (/0) and XPBD (/1),
+// public functions renamed old_*) against the tree's, on bench_projection's scene of bear
+// (lab/benchmarks/projection_scene.hpp), one thread, PBD (/0) and XPBD (/1),
 // the repetitions interleaved at random; first it prints how many vertices differ after three
 // sweeps of each from the same state. Build and run: lab/kernels/README.md, "The dihedral kernel
 // in three phases".
@@ -12,36 +13,23 @@
 #undef make_dihedral_batches
 #undef batch_atan2
 #undef project_dihedral_hinge_batches
-#include <random>
 #include <string>
 #include <vector>
+#include "../benchmarks/projection_scene.hpp"
 #include "pbd/colouring.hpp"
 #include "pbd/constraint_kernels.hpp"
 #include "pbd/solver.hpp"
-#include "shellcontract/mesh_io.hpp"
-#include "sim/simulator.hpp"
 
 namespace {
 using namespace shellcontract;
-struct Scene {
-  ConstraintSet dihedral;
-  Eigen::VectorXd w;
-  Positions x;
+// bench_projection's scene (its dihedral hinges, masses and state), with the hinges in
+// colour order and packed into batches as the Coloured solver holds them.
+struct Scene : lab::ProjectionScene {
   ColouredBatches<DihedralBatch> b;
 };
 const Scene& scene() {
   static const Scene s = [] {
-    Scene sc;
-    const Mesh mesh = read_input_mesh(BEAR_OFF);
-    SimOptions opt;
-    opt.frames = 0;
-    Simulator sim(mesh, opt);
-    sc.dihedral = pack_constraints(sim.rest_mesh(), BendingModel::Dihedral);
-    sc.w = inverse_masses(sim.rest_mesh());
-    std::mt19937 rng(1);
-    std::normal_distribution<double> n(0.0, 1e-3);
-    sc.x = 0.9 * sim.positions();
-    for (Eigen::Index i = 0; i < sc.x.size(); ++i) sc.x.data()[i] += n(rng);
+    Scene sc{lab::make_projection_scene(BEAR_OFF), {}};
     std::vector<DihedralHingeConstraint> c = sc.dihedral.dihedral_hinges;
     const Colouring col = colour_constraints(c);
     apply_order(c, col.order);

@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/plural.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/normalization.hpp"
 #include "mesh/seam_weld.hpp"
@@ -46,7 +47,7 @@ std::vector<Tri> read_faces(const TriangleSoupView& s, const std::string& name) 
       if (v < 0)
         fail_faces(name, "vertex index out of range", face_name(f) + " has the negative index " + std::to_string(v), {f});
       if (static_cast<std::uint64_t>(v) >= s.num_vertices)
-        fail_faces(name, "vertex index out of range", face_name(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has " + std::to_string(s.num_vertices) + " vertices (0.." + std::to_string(s.num_vertices - 1) + ")", {f});
+        fail_faces(name, "vertex index out of range", face_name(f) + " refers to vertex " + std::to_string(v) + ", but the mesh has " + counted(s.num_vertices, "vertex", "vertices") + " (0.." + std::to_string(s.num_vertices - 1) + ")", {f});
       tris[f][k] = static_cast<std::size_t>(v);
       for (int l = 0; l < k; ++l)
         if (tris[f][l] == tris[f][k])
@@ -79,7 +80,7 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   if ((soup.faces32 == nullptr) == (soup.faces64 == nullptr))
     throw std::invalid_argument("mesh_from_arrays: set exactly one of faces32 and faces64");
   if (soup.num_vertices == 0 || soup.num_faces == 0)
-    fail(name, "empty mesh", std::to_string(soup.num_vertices) + " vertices and " + std::to_string(soup.num_faces) + " faces");
+    fail(name, "empty mesh", counted(soup.num_vertices, "vertex", "vertices") + " and " + counted(soup.num_faces, "face", "faces"));
   const std::size_t nv = soup.num_vertices;
   std::vector<Point3> points;
   points.reserve(nv);
@@ -133,7 +134,8 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   if (weld) soup::store_input_corners(mesh, *weld, input_polygons);
   std::vector<std::size_t> zero_area = soup::zero_area_faces(polygons, normalized.unit);
   if (!zero_area.empty())
-    warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + soup::list_indices(zero_area));
+    warnings.push_back(counted(zero_area.size(), "face", "faces") + one_or_many(zero_area.size(), " has", " have") +
+                       " (nearly) zero area: " + soup::list_indices(zero_area));
 
   // What the simulator needs beyond a closed manifold, decided and measured as read_input_mesh
   // does (a positive volume at a unit diagonal, scaled back).

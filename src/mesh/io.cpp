@@ -32,6 +32,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/plural.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/normalization.hpp"
@@ -91,7 +92,7 @@ std::string split_warning(std::size_t split, std::size_t triangles, const std::a
 Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
                 const std::vector<Polygon>& polygons, const SourceLines& lines, InputReport* report) {
   if (points.empty() || polygons.empty())
-    fail(path, "empty mesh", std::to_string(points.size()) + " vertices and " + std::to_string(polygons.size()) + " faces");
+    fail(path, "empty mesh", counted(points.size(), "vertex", "vertices") + " and " + counted(polygons.size(), "face", "faces"));
   Namer name;
   name.lines = &lines;
   name.points = &points;
@@ -132,10 +133,10 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const Polygon& p = polygons[i];
     if (p.size() < 3)
-      fail_faces(path, "degenerate face", name.polygon(i) + " has " + std::to_string(p.size()) + " vertices", {i});
+      fail_faces(path, "degenerate face", name.polygon(i) + " has " + counted(p.size(), "vertex", "vertices"), {i});
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (p[k] >= nv)
-        fail_faces(path, "vertex index out of range", name.polygon(i) + " refers to vertex " + std::to_string(p[k]) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")", {i});
+        fail_faces(path, "vertex index out of range", name.polygon(i) + " refers to vertex " + std::to_string(p[k]) + ", but the file has " + counted(nv, "vertex", "vertices") + " (0.." + std::to_string(nv - 1) + ")", {i});
       for (std::size_t l = 0; l < k; ++l)
         if (p[l] == p[k])
           fail_faces(path, "degenerate face", name.polygon(i) + (name.stl ? " uses " + name.vertex(p[k]) + " twice" : " uses vertex " + std::to_string(p[k]) + " twice"), {i});
@@ -203,7 +204,8 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
 
   std::vector<std::size_t> zero_area = soup::zero_area_faces(tris, unit);
   if (!zero_area.empty())
-    warnings.push_back(std::to_string(zero_area.size()) + " faces have (nearly) zero area: " + list_indices(zero_area));
+    warnings.push_back(counted(zero_area.size(), "face", "faces") + one_or_many(zero_area.size(), " has", " have") +
+                       " (nearly) zero area: " + list_indices(zero_area));
 
   // What the simulator needs beyond a closed manifold (one decision for `check` and `run`): a
   // bounding box to normalize by (checked above, before building the mesh), and a positive

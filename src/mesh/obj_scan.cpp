@@ -7,6 +7,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "core/plural.hpp"
 #include "mesh/off_number.hpp"
 #include "shellcontract/error.hpp"
 
@@ -108,7 +109,7 @@ ObjScan scan_obj(const std::string& path, const std::string& text_in) {
           fail(path, "vertex index out of range", where() + " has the vertex index 0 (OBJ counts vertices from 1)");
         if (i < 0 && defined + i < 0)
           fail(path, "vertex index out of range", where() + " has the relative vertex index " + std::to_string(i) +
-                                                      ", but only " + std::to_string(defined) + " vertices are defined before it");
+                                                      ", but only " + counted(static_cast<std::size_t>(defined), "vertex is", "vertices are") + " defined before it");
         // Positive indices may name a vertex further down the file: checked after the last line.
         face.push_back(static_cast<std::size_t>(i > 0 ? i - 1 : defined + i));
       }
@@ -126,7 +127,7 @@ ObjScan scan_obj(const std::string& path, const std::string& text_in) {
              "face " + std::to_string(j) + " (line " + std::to_string(scan.lines.face_line[j]) + ") refers to vertex " +
                  std::to_string(v + 1) + ", but the file has " +
                  (nv == 0 ? std::string("no vertices")
-                          : std::to_string(nv) + " vertices (OBJ counts from 1: 1.." + std::to_string(nv) + ")"));
+                          : counted(nv, "vertex", "vertices") + " (OBJ counts from 1: 1.." + std::to_string(nv) + ")"));
   return scan;
 }
 

@@ -19,6 +19,7 @@
 #include <regex>
 #include <string_view>
 
+#include "core/plural.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -80,7 +81,7 @@ class OffScanner {
     const std::size_t nv = count(t[0], "vertex count");
     const std::size_t nf = count(t[1], "face count");
     if (nv == 0 || nf == 0)
-      fail(path_, "empty mesh", "line " + std::to_string(counts_line) + " announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces");
+      fail(path_, "empty mesh", "line " + std::to_string(counts_line) + " announces " + counted(nv, "vertex", "vertices") + " and " + counted(nf, "face", "faces"));
     // The edge count is not used, but CGAL 5.5's OFF header reader doubles it in an int
     // (File_header_OFF_impl.h:404): beyond INT_MAX / 2 a signed overflow, undefined behaviour that
     // UBSan reports (scripts/sanitize.sh); beyond INT_MAX its read fails. Refused here, with a reason.
@@ -92,7 +93,7 @@ class OffScanner {
         fail(path_, "parse error", "line " + std::to_string(counts_line) + ": edge count " + shorten(t[2]) + " is out of range (at most " + std::to_string(INT_MAX / 2) + ")");
     }
 
-    const std::string announced = "the header (line " + std::to_string(counts_line) + ") announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces";
+    const std::string announced = "the header (line " + std::to_string(counts_line) + ") announces " + counted(nv, "vertex", "vertices") + " and " + counted(nf, "face", "faces");
     OffScan scan;
     SourceLines& out = scan.lines;
     // Never reserve a declared count as such: a vertex line has at least 6 bytes.
@@ -100,7 +101,7 @@ class OffScanner {
     scan.points.reserve(std::min(nv, text_.size() / 6 + 1));
     for (std::size_t i = 0; i < nv; ++i) {
       if (!next(t))
-        fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(i) + " vertices (line " + std::to_string(line_) + ")");
+        fail(path_, "truncated file", announced + ", but the file ends after " + counted(i, "vertex", "vertices") + " (line " + std::to_string(line_) + ")");
       // Built only for a message (see next()): most files never need one.
       auto where = [&] { return "vertex " + std::to_string(i) + " (line " + std::to_string(line_) + ")"; };
       if (t.size() < variant.vertex_numbers) {
@@ -127,18 +128,18 @@ class OffScanner {
     scan.faces.reserve(std::min(nf, text_.size() / 8 + 1));
     for (std::size_t j = 0; j < nf; ++j) {
       if (!next(t))
-        fail(path_, "truncated file", announced + ", but the file ends after " + std::to_string(j) + " faces (line " + std::to_string(line_) + ")");
+        fail(path_, "truncated file", announced + ", but the file ends after " + counted(j, "face", "faces") + " (line " + std::to_string(line_) + ")");
       auto where = [&] { return "face " + std::to_string(j) + " (line " + std::to_string(line_) + ")"; };
       const std::size_t n = index(t[0], [&] { return where() + ": vertex count"; });
       if (t.size() - 1 < n) {
         if (at_end()) fail(path_, "truncated file", announced + ", but the file ends inside " + where());
-        fail(path_, "parse error", where() + " announces " + std::to_string(n) + " vertices but lists " + std::to_string(t.size() - 1));
+        fail(path_, "parse error", where() + " announces " + counted(n, "vertex", "vertices") + " but lists " + std::to_string(t.size() - 1));
       }
       std::vector<std::size_t> face(n);
       for (std::size_t k = 1; k <= n; ++k) {
         const std::size_t v = index(t[k], where);
         if (v >= nv)
-          fail(path_, "vertex index out of range", where() + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices (0.." + std::to_string(nv - 1) + ")");
+          fail(path_, "vertex index out of range", where() + " refers to vertex " + std::to_string(v) + ", but the file has " + counted(nv, "vertex", "vertices") + " (0.." + std::to_string(nv - 1) + ")");
         face[k - 1] = v;
       }
       scan.faces.push_back(std::move(face));
@@ -230,10 +231,13 @@ class OffScanner {
     const std::int32_t nv = int32("the vertex count"), nf = int32("the face count");
     int32("the edge count");
     if (nv <= 0 || nf <= 0)
-      fail(path_, "empty mesh", "binary OFF: the header announces " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces");
+      fail(path_, "empty mesh", "binary OFF: the header announces " + std::to_string(nv) + " " +
+                                     // A negative count is refused too; it reads as a plural.
+                                     one_or_many(static_cast<std::size_t>(nv), "vertex", "vertices") + " and " +
+                                     std::to_string(nf) + " " + one_or_many(static_cast<std::size_t>(nf), "face", "faces"));
     const std::size_t vertex_bytes = 12 * static_cast<std::size_t>(nv);
     if (text_.size() - pos < vertex_bytes || (text_.size() - pos - vertex_bytes) / 8 < static_cast<std::size_t>(nf))
-      fail(path_, "truncated file", "binary OFF: the header announces " + std::to_string(nv) + " vertices (12 bytes each) and " + std::to_string(nf) + " faces (8 bytes at least), but only " + std::to_string(text_.size() - pos) + " bytes follow");
+      fail(path_, "truncated file", "binary OFF: the header announces " + counted(static_cast<std::size_t>(nv), "vertex", "vertices") + " (12 bytes each) and " + counted(static_cast<std::size_t>(nf), "face", "faces") + " (8 bytes at least), but only " + std::to_string(text_.size() - pos) + " bytes follow");
     out.points.reserve(static_cast<std::size_t>(nv));
     for (std::int32_t i = 0; i < nv; ++i) {
       std::array<double, 3> p{};
@@ -250,14 +254,14 @@ class OffScanner {
       const std::string where = "face " + std::to_string(f);
       const std::int32_t n = int32(where + "'s corner count");
       if (n < 0 || static_cast<std::size_t>(n) > (text_.size() - pos) / 4)
-        fail(path_, "parse error", "binary OFF: " + where + " announces " + std::to_string(n) + " corners (byte offset " + std::to_string(pos - 4) + ")");
+        fail(path_, "parse error", "binary OFF: " + where + " announces " + counted(static_cast<std::size_t>(n), "corner", "corners") + " (byte offset " + std::to_string(pos - 4) + ")");
       std::vector<std::size_t> face;
       face.reserve(static_cast<std::size_t>(n));
       for (std::int32_t k = 0; k < n; ++k) {
         const std::int32_t v = int32(where);
         face.push_back(static_cast<std::size_t>(v));
         if (v < 0 || v >= nv)
-          fail(path_, "vertex index out of range", "binary OFF: " + where + " refers to vertex " + std::to_string(v) + ", but the file has " + std::to_string(nv) + " vertices");
+          fail(path_, "vertex index out of range", "binary OFF: " + where + " refers to vertex " + std::to_string(v) + ", but the file has " + counted(static_cast<std::size_t>(nv), "vertex", "vertices"));
       }
       const std::int32_t colours = int32(where + "'s colour count");
       if (colours < 0 || colours > 4 || text_.size() - pos < 4 * static_cast<std::size_t>(colours))

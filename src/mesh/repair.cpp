@@ -27,6 +27,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "core/plural.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 
@@ -169,26 +170,29 @@ void keep_closed_components(Mesh& mesh, RepairReport& r) {
 std::vector<std::string> RepairReport::summary_lines() const {
   std::vector<std::string> out;
   if (already_usable) return {"the mesh was usable as read: nothing changed"};
-  auto line = [&out](std::size_t n, const std::string& what) {
-    if (n > 0) out.push_back(std::to_string(n) + " " + what);
+  auto line = [&out](std::size_t n, const char* one, const char* many) {
+    if (n > 0) out.push_back(counted(n, one, many));
   };
-  line(duplicate_points_merged, "duplicate points merged");
-  line(soup_polygons_removed, "duplicate, degenerate or invalid polygons removed");
-  line(points_duplicated_to_orient, "points split at non-manifold places to orient the faces");
-  line(polygons_triangulated, "polygons triangulated");
-  line(border_edges_stitched, "border edge pairs stitched");
-  line(degenerate_faces_removed, "degenerate faces removed");
-  line(isolated_vertices_removed, "isolated vertices removed");
+  line(duplicate_points_merged, "duplicate point merged", "duplicate points merged");
+  line(soup_polygons_removed, "duplicate, degenerate or invalid polygon removed",
+       "duplicate, degenerate or invalid polygons removed");
+  line(points_duplicated_to_orient, "point split at a non-manifold place to orient the faces",
+       "points split at non-manifold places to orient the faces");
+  line(polygons_triangulated, "polygon triangulated", "polygons triangulated");
+  line(border_edges_stitched, "border edge pair stitched", "border edge pairs stitched");
+  line(degenerate_faces_removed, "degenerate face removed", "degenerate faces removed");
+  line(isolated_vertices_removed, "isolated vertex removed", "isolated vertices removed");
   if (holes_filled > 0)
-    out.push_back(std::to_string(holes_filled) + " holes filled with " + std::to_string(hole_faces_added) +
-                  " faces and " + std::to_string(hole_vertices_added) + " vertices (largest: " +
-                  std::to_string(largest_hole_edges) + " boundary edges" +
+    out.push_back(counted(holes_filled, "hole", "holes") + " filled with " + counted(hole_faces_added, "face", "faces") +
+                  " and " + counted(hole_vertices_added, "vertex", "vertices") + " (largest: " +
+                  counted(largest_hole_edges, "boundary edge", "boundary edges") +
                   (holes_not_faired > 0 ? ", " + std::to_string(holes_not_faired) + " not faired" : "") + ")");
-  line(holes_unfilled, "holes left open");
-  line(hole_self_intersections, "self-intersecting face pairs involve the holes' new faces (kept: not refused)");
+  line(holes_unfilled, "hole left open", "holes left open");
+  line(hole_self_intersections, "self-intersecting face pair involves the holes' new faces (kept: not refused)",
+       "self-intersecting face pairs involve the holes' new faces (kept: not refused)");
   if (components_dropped > 0)
-    out.push_back(std::to_string(components_dropped) + " components dropped (" + std::to_string(faces_dropped) +
-                  " faces): still open, or enclosing no volume");
+    out.push_back(counted(components_dropped, "component", "components") + " dropped (" +
+                  counted(faces_dropped, "face", "faces") + "): still open, or enclosing no volume");
   return out;
 }
 
@@ -273,8 +277,8 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
     cannot_repair(path, r.failure);
   }
   if (mesh.number_of_faces() == 0) {
-    r.failure = "no component encloses a volume after repair (" + std::to_string(r.components_dropped) +
-                " components dropped: still open, or flat)";
+    r.failure = "no component encloses a volume after repair (" +
+                counted(r.components_dropped, "component", "components") + " dropped: still open, or flat)";
     cannot_repair(path, r.failure);
   }
 

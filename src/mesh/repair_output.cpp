@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 
+#include "core/plural.hpp"
 #include "mesh/file_extras.hpp"
 #include "mesh/obj_material_paths.hpp"
 #include "mesh/read_polygon_soup.hpp"
@@ -119,8 +120,8 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
   if (!report.already_usable) {
     o.kind = RepairOutput::Kind::Repaired;
     if (report.polygons_triangulated > 0)
-      o.dropped.push_back(std::to_string(report.polygons_triangulated) +
-                          " polygons with more than 3 corners (triangulated)");
+      o.dropped.push_back(counted(report.polygons_triangulated, "polygon", "polygons") +
+                          " with more than 3 corners (triangulated)");
     const Positions x = positions_from_mesh(mesh);
     if (out_ext == "stl") {
       std::vector<Point3> points;
@@ -139,7 +140,7 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
     const auto split = static_cast<std::size_t>(
         std::count_if(polygons.begin(), polygons.end(), [](const Polygon& p) { return p.size() > 3; }));
     if (split > 0)
-      o.dropped.push_back(std::to_string(split) + " polygons with more than 3 corners (STL holds triangles: " +
+      o.dropped.push_back(counted(split, "polygon", "polygons") + " with more than 3 corners (STL holds triangles: " +
                           std::to_string(mesh.number_of_faces() - (polygons.size() - split)) +
                           " triangles written for them)");
     polygons = file_triangles(mesh, polygons);

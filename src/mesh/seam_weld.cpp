@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/plural.hpp"
 #include "mesh/properties.hpp"
 #include "shellcontract/face_error.hpp"
 
@@ -91,8 +92,8 @@ SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon
   // The refusal with a hint; a refusal of particular faces keeps them, with the welded soup's
   // face the hint names (the same index: welding renumbers vertices, not faces).
   const auto no_weld = [&](const std::string& why, std::vector<std::size_t> hint_faces = {}) {
-    const std::string message = std::string(refusal.what()) + "; " + std::to_string(weld.copies()) +
-                                " vertices are at the position of another vertex (a mesh split along its UV "
+    const std::string message = std::string(refusal.what()) + "; " + counted(weld.copies(), "vertex is", "vertices are") +
+                                " at the position of another vertex (a mesh split along its UV "
                                 "seams?), but welding them does not make it a closed manifold mesh: " + why;
     const auto* about_faces = dynamic_cast<const FaceListError*>(&refusal);
     if (!about_faces && hint_faces.empty()) throw InputError(message);
@@ -136,7 +137,7 @@ SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon
 }
 
 std::string weld_note(const SeamWeld& weld) {
-  return std::to_string(weld.copies()) + " seam vertices were welded: the input's " +
+  return counted(weld.copies(), "seam vertex was", "seam vertices were") + " welded: the input's " +
          std::to_string(weld.welded_of.size()) + " vertices include copies at the same position " +
          "(as a UV seam splits them), simulated as one closed mesh of " +
          std::to_string(weld.points.size()) + " vertices; every output keeps the input's " +

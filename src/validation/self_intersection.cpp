@@ -2,6 +2,7 @@
 // array as vertex point map (no mesh copy).
 #include "shellcontract/validation.hpp"
 
+#include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 
 #include <algorithm>
@@ -29,12 +30,27 @@ void check_preconditions(const Mesh& mesh, const Positions& x, const char* who) 
 
 FacePair ordered(FaceIndex a, FaceIndex b) { return a < b ? FacePair(a, b) : FacePair(b, a); }
 
+// The faces that are triangles at x, not segments or points. CGAL reports a degenerate face f
+// (collinear corners) as the pair (f, f) and tests it against no other face; such a pair is no
+// intersection of two faces, and read_input_mesh already reports the face as one of (nearly)
+// zero area. Leaving these faces out of the range gives the same pairs without the (f, f) ones,
+// and keeps does_self_intersect from answering yes for a mesh that only has a degenerate face.
+std::vector<FaceIndex> triangle_faces(const Mesh& mesh, const Positions& x) {
+  const EigenPointMap points(x);
+  std::vector<FaceIndex> faces;
+  faces.reserve(mesh.number_of_faces());
+  for (const FaceIndex f : mesh.faces())
+    if (!PMP::is_degenerate_triangle_face(f, mesh, CGAL::parameters::vertex_point_map(points))) faces.push_back(f);
+  return faces;
+}
+
 }  // namespace
 
 std::vector<FacePair> self_intersecting_pairs(const Mesh& mesh, const Positions& x) {
   check_preconditions(mesh, x, "self_intersecting_pairs");
   std::vector<FacePair> pairs;
-  PMP::self_intersections(mesh, std::back_inserter(pairs), CGAL::parameters::vertex_point_map(EigenPointMap(x)));
+  PMP::self_intersections(triangle_faces(mesh, x), mesh, std::back_inserter(pairs),
+                          CGAL::parameters::vertex_point_map(EigenPointMap(x)));
   for (FacePair& p : pairs) p = ordered(p.first, p.second);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
@@ -43,7 +59,7 @@ std::vector<FacePair> self_intersecting_pairs(const Mesh& mesh, const Positions&
 
 bool does_self_intersect(const Mesh& mesh, const Positions& x) {
   check_preconditions(mesh, x, "does_self_intersect");
-  return PMP::does_self_intersect(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(x)));
+  return PMP::does_self_intersect(triangle_faces(mesh, x), mesh, CGAL::parameters::vertex_point_map(EigenPointMap(x)));
 }
 
 std::size_t new_self_intersections(const Mesh& mesh, const Positions& x, const std::vector<FacePair>& baseline) {

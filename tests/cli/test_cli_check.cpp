@@ -59,7 +59,25 @@ TEST_F(CliCheck, JsonReportsZeroAreaFace) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("\"zero_area_faces\": [13]"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("\"vertices\": 9"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("warning: 1 faces have (nearly) zero area: 13"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("warning: 1 face has (nearly) zero area: 13"), std::string::npos) << r.output;
+}
+
+// A face with collinear corners is a zero-area face, not a face that intersects itself: CGAL
+// reports it as the pair 13-13, which `check` listed among the self-intersecting pairs (the two
+// left are faces that touch along the degenerate face's line: test_self_intersection.cpp).
+TEST_F(CliCheck, ZeroAreaFaceIsNoSelfIntersectingPair) {
+  const RunResult r = run_cli({"check", mesh_path("zero_area_face.off")});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("\nzero_area_faces: 1 (13)\n"
+                          "self_intersecting_pairs: 2 (0-1 0-12)\n"
+                          "usable: yes\n"),
+            std::string::npos)
+      << r.output;
+  const RunResult j = run_cli({"check", mesh_path("zero_area_face.off"), "--json"});
+  EXPECT_NE(j.output.find("\"self_intersecting_pairs\": 2,\n"
+                          "  \"self_intersections\": [[0, 1], [0, 12]],\n"),
+            std::string::npos)
+      << j.output;
 }
 
 TEST_F(CliCheck, BadUsageExitsOne) {

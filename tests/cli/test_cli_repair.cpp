@@ -89,7 +89,10 @@ TEST_F(CliRepair, OpenCubeIsRepairedWrittenAndThenUsable) {
   ASSERT_EQ(run_cli({"check", in}).exit_code, 2);
   const RunResult r = run_cli({"repair", in, "-o", o});
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("1 holes filled"), std::string::npos) << r.output;
+  // One hole: the count and its words agree ("1 hole", not "1 holes").
+  EXPECT_NE(r.output.find("\n1 hole filled with 2 faces and 0 vertices (largest: 4 boundary edges)\n"),
+            std::string::npos)
+      << r.output;
   const RunResult c = run_cli({"check", o});
   EXPECT_EQ(c.exit_code, 0) << c.output;
   EXPECT_NE(c.output.find("faces: 12\n"), std::string::npos) << c.output;
@@ -142,7 +145,7 @@ TEST_F(CliRepair, ANegativeMaxHoleEdgesIsBadUsageAndNothingIsWritten) {
     EXPECT_EQ(run_cli({"repair", in, "-o", out("closed.off"), "--max-hole-edges", n}).exit_code, 1) << n;
   const RunResult zero = run_cli({"repair", in, "-o", out("closed.off"), "--max-hole-edges", "0"});
   EXPECT_EQ(zero.exit_code, 0) << zero.output;
-  EXPECT_NE(zero.output.find("1 holes filled"), std::string::npos) << zero.output;
+  EXPECT_NE(zero.output.find("1 hole filled"), std::string::npos) << zero.output;
 }
 
 TEST_F(CliRepair, RunRepairRunsAnOpenMesh) {
@@ -150,7 +153,7 @@ TEST_F(CliRepair, RunRepairRunsAnOpenMesh) {
   EXPECT_EQ(run_cli({"run", in, "-o", out("a.off"), "--frames", "3", "-q"}).exit_code, 2);
   const RunResult r = run_cli({"run", in, "-o", out("b.off"), "--frames", "3", "-q", "--repair"});
   EXPECT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_NE(r.output.find("holes filled"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("  1 hole filled with 2 faces"), std::string::npos) << r.output;
   EXPECT_EQ(run_cli({"check", out("b.off")}).exit_code, 0);
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -55,6 +56,21 @@ TEST(SelfIntersection, PushedThroughVertexIsFoundOnPositionsOnly) {
   std::vector<FacePair> swapped;
   for (const FacePair& p : pairs) swapped.emplace_back(p.second, p.first);
   EXPECT_EQ(new_self_intersections(mesh, x, swapped), 0u);
+}
+
+// zero_area_face.off: a unit cube whose face 13 (0, 2, 8) has its corners on one line, vertex 8 at
+// the middle of the bottom's diagonal 0-2. CGAL reports such a face as the pair (13, 13); that is
+// no intersection of two faces (read_input_mesh reports the face as one of zero area), so it is in
+// no pair. The two pairs left are real contacts: faces 1 (0, 8, 1) and 12 (8, 2, 1) lie along
+// face 0's edge 0-2 without sharing it.
+TEST(SelfIntersection, ZeroAreaFaceIsNotAPairWithItself) {
+  InputReport report;
+  const Mesh mesh = read_input_mesh(mesh_path("zero_area_face.off"), &report);
+  ASSERT_EQ(report.zero_area_faces, std::vector<std::size_t>{13});
+  const Positions x = positions_from_mesh(mesh);
+  const std::vector<FacePair> expected{{FaceIndex(0), FaceIndex(1)}, {FaceIndex(0), FaceIndex(12)}};
+  EXPECT_EQ(self_intersecting_pairs(mesh, x), expected);
+  EXPECT_EQ(new_self_intersections(mesh, x, expected), 0u);
 }
 
 TEST(SelfIntersection, ElkHasSevenPreExistingPairs) {

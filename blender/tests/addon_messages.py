@@ -1,0 +1,73 @@
+"""The library's mesh messages in the add-on's terms: an open or pinched mesh is refused naming
+the object's mesh and its own faces (polygons), not the triangles the run was given."""
+
+import bmesh
+import bpy
+
+from addon_helpers import check, refusal
+
+
+def mesh_messages():
+    """A mesh the library refuses: the message names the object's mesh (not 'input arrays') and
+    its face numbers are the mesh's faces (polygons), not the loop triangles the run was given."""
+    import re
+    from shellcontract_blender import runner
+    bpy.ops.object.select_all(action="SELECT")
+    bpy.ops.object.delete()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
+    obj = bpy.context.active_object
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bm.faces.ensure_lookup_table()
+    bm.faces.remove(bm.faces[len(bm.faces) // 2])  # a quad of the middle: triangle n != face n
+    bm.to_mesh(obj.data)
+    bm.free()
+    text = refusal()
+    face = re.search(r"the mesh of {}: open boundary: face (\d+) ".format(re.escape(obj.name)), text)
+    edge = re.search(r"edge \((\d+), (\d+)\) of face", text)
+    polygons = obj.data.polygons
+    check(face is not None and edge is not None and "input arrays" not in text
+          and int(face.group(1)) < len(polygons)
+          and {int(edge.group(1)), int(edge.group(2))} <= set(polygons[int(face.group(1))].vertices),
+          "an open mesh is refused naming the mesh's face that has the open edge: " + text)
+    # Two cubes that share one corner (the second is the first mirrored through its corner 7): the
+    # pinch is a MeshError whose faces are the six quads around vertex 7, each named once.
+    corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
+    quads = [(0, 1, 3, 2), (4, 6, 7, 5), (0, 4, 5, 1), (2, 3, 7, 6), (0, 2, 6, 4), (1, 5, 7, 3)]
+    second = list(range(8, 15)) + [7]  # the mirror's corner i; mirrored, so its quads are flipped
+    faces = quads + [tuple(second[i] for i in reversed(q)) for q in quads]
+    obj = bpy.data.objects.new("Pinched", bpy.data.meshes.new("pinched"))
+    obj.data.from_pydata(corners + [(2 - x, 2 - y, 2 - z) for (x, y, z) in corners[:7]], [], faces)
+    bpy.context.collection.objects.link(obj)
+    bpy.context.view_layer.objects.active = obj
+    text = refusal()
+    named = re.search(r"the mesh of Pinched: non-manifold vertex: faces ([\d, ]+) \(", text)
+    check(named is not None and [int(n) for n in named.group(1).split(", ")] == [1, 3, 5, 7, 9, 11]
+          and re.search(r": vertex 7: its \d+ faces form several fans", text) is not None,
+          "a pinched mesh is refused naming the faces around the vertex: " + text)
+    # A MeshError's faces are its `faces` (triangles) as the mesh's faces, not numbers read
+    # from its text: a message without numbers still names them.
+    import shellcontract
+    polygon_of = [0, 0, 1, 2, 2, 3]
+    error = shellcontract.MeshError("input arrays: non-manifold edge: somewhere")
+    error.faces = [1, 3, 4, 5]
+    text = runner.addon_terms(error, 1, "Cube", polygon_of)
+    check(text.startswith("the mesh of Cube: non-manifold edge: faces 0, 2, 3 (")
+          and text.endswith(": somewhere)"),
+          "a MeshError names the mesh's faces of its `faces`: " + text)
+    error = shellcontract.MeshError("input arrays: open boundary: edge (1, 2) of face 99 ...")
+    error.faces = [2]
+    text = runner.addon_terms(error, 1, "Cube", polygon_of)
+    check(text.startswith("the mesh of Cube: open boundary: face 1 ("),
+          "the face comes from `faces`, not from the text's 'face 99': " + text)
+    # Warnings (text only), and errors without `faces`: the library's lists of faces, by
+    # triangle, read from the text as the mesh's faces.
+    for before, after in (
+            ("edge (1, 2) is shared by 3 faces (1, 3, 5), at most 2 allowed",
+             "edge (1, 2) is shared by 3 faces (0, 2, 3), at most 2 allowed"),
+            ("2 faces have (nearly) zero area: 3, 4", "2 faces have (nearly) zero area: 2"),
+            ("1 face has (nearly) zero area: 4", "1 face has (nearly) zero area: 2"),
+            ("component 0 (6 faces, starting at face 2) was inside-out",
+             "component 0 (6 faces, starting at face 1) was inside-out")):
+        check(runner.polygon_numbers(before, polygon_of) == after,
+              "'{}' reads '{}'".format(before, runner.polygon_numbers(before, polygon_of)))
