@@ -27,8 +27,8 @@ struct RegionDimple {
   std::vector<double> prefix_rest_volume;  ///< [k]: rest cap volume of the first k + 1 faces
   int size = 0;                    ///< faces in the current dimple (0: none yet)
   RegionCap dimple;                ///< cap of the first `size` faces of order, rest_volume set
-  RegionMirror mirror;             ///< DimpleShape::Mirror: the dimple's mirror (see mirror_size)
-  int mirror_size = 0;             ///< the dimple size `mirror` was made for (0: none yet)
+  /// DimpleShape::Mirror: the current dimple's mirror (Simulator::resize_dimple makes it)
+  RegionMirror mirror;
 };
 
 /// How far below the region's highest rim point the cut lies, in mean edge lengths of the

@@ -51,11 +51,8 @@ void Simulator::apply_region_contraction(Positions& x) {
     // One-sided: a dimple the global contraction has already sunk further is left alone.
     if (!(cap_volume(x, d.dimple) > target)) continue;
     // The mirror (an isometry) where the dimple has one; the volume projection otherwise.
+    // resize_dimple made d.mirror for the dimple's current size.
     if (options_.dimple_shape == DimpleShape::Mirror) {
-      if (d.mirror_size != d.size) {  // the dimple grew: a new rim, a new mirror
-        d.mirror = make_region_mirror(rest_x_, d.dimple);
-        d.mirror_size = d.size;
-      }
       if (frame ? apply_region_mirror_in(x, d.dimple, d.mirror, *frame, inv_mass_,
                                          held_by_contact_, MirrorStep{1.0, true, true})
                 : apply_region_mirror(x, d.dimple, d.mirror, inv_mass_, held_by_contact_, 1.0))
@@ -72,9 +69,9 @@ void Simulator::resize_dimple(std::size_t i, int size) {
   set_dimple_size(d, faces_, size);
   if (options_.dimple_shape != DimpleShape::Mirror || d.size == before) return;
   // The new rim's mirror, made once for both its users: the rest state below and the placement
-  // in apply_region_contraction, which makes none while mirror_size is the size.
+  // in apply_region_contraction. The Simulator changes a dimple's size only here, so under
+  // DimpleShape::Mirror d.mirror is always the current dimple's.
   d.mirror = make_region_mirror(rest_x_, d.dimple);
-  d.mirror_size = d.size;
   if (dimple_rest_.size() != region_dimples_.size()) {
     dimple_rest_.resize(region_dimples_.size());
     std::vector<std::vector<int>> regions;
