@@ -259,8 +259,9 @@ void project_isometric_hinge_batches(const IsometricBatch* batches, std::size_t 
 
 /// Projects `count` dihedral hinge batches in order (project_dihedral_hinge per lane, math-spec
 /// 8.3): PBD when lambda == nullptr, else XPBD with the multiplier of lane k of batch b at
-/// lambda[4 b + k]. The AVX2 path takes each lane's angle from std::atan2, as the scalar kernel
-/// does, and the rest four lanes at a time. xw and ctx as for project_stvk_membrane_batches.
+/// lambda[4 b + k]. The AVX2 path takes the four lanes' angles from one four-lane atan2
+/// (batch_atan2's, a few ulp from std::atan2) and divides by reciprocals, so it agrees with the
+/// scalar kernel to rounding, not bit for bit. xw and ctx as for project_stvk_membrane_batches.
 /// \pre no two real lanes of a batch share a vertex (one colour)
 void project_dihedral_hinge_batches(const DihedralBatch* batches, std::size_t count,
                                     double k_bending, PaddedVertex* xw,
