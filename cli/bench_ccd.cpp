@@ -7,21 +7,20 @@
 // file and line).
 #include <boost/program_options.hpp>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
-#include <unistd.h>
 #include <vector>
 
 #include "collision/ccd_benchmark.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "output_paths.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace po = boost::program_options;
 
@@ -108,25 +107,6 @@ std::string rows_json(const std::string& dir, const CcdOptions& opt, int repeat,
   return top.str() + "\n";
 }
 
-/// Writes text to path atomically: a temporary file in the same directory, then rename.
-void write_atomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw UsageError("cannot write '" + tmp + "'");
-    out << text;
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw UsageError("cannot write '" + tmp + "'");
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw UsageError("cannot rename '" + tmp + "' to '" + path + "'");
-  }
-}
-
 }  // namespace
 
 int command_bench_ccd(int argc, char** argv) {
@@ -176,6 +156,14 @@ int command_bench_ccd(int argc, char** argv) {
 
     const std::vector<std::string> paths = find_ccd_query_files(dir);
     if (paths.empty()) throw UsageError("no query files (*.csv) under '" + dir + "'");
+    // --json may be none of the query files and must be writable, checked before the (long)
+    // benchmark: docs/design/output-safety.md.
+    if (!json_path.empty()) {
+      OutputPlan plan;
+      plan.outputs.push_back({"--json", json_path});
+      for (const std::string& p : paths) plan.inputs.push_back({"--queries", p});
+      check_planned_outputs(plan);
+    }
     std::vector<CcdQueryFile> files;
     for (const std::string& p : paths) {
       const std::string name =
@@ -185,7 +173,7 @@ int command_bench_ccd(int argc, char** argv) {
 
     const std::vector<CcdBenchmarkRow> rows = run_ccd_tolerance_sweep(files, tolerances, opt, repeat);
     print_table(rows, std::cout);
-    if (!json_path.empty()) write_atomically(json_path, rows_json(dir, opt, repeat, rows));
+    if (!json_path.empty()) write_text_atomic(json_path, rows_json(dir, opt, repeat, rows));
     return static_cast<int>(ExitCode::Success);
   } catch (const po::error& e) {
     return usage_error("bench ccd", e.what());

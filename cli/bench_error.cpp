@@ -9,7 +9,9 @@
 #include <boost/program_options.hpp>
 #include <cmath>
 #include <cstdio>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -21,6 +23,8 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "mesh/file_safety.hpp"
+#include "output_paths.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
@@ -199,6 +203,32 @@ std::string gnuplot_script(const std::string& csv, const std::string& out, const
   return g.str();
 }
 
+/// A new temporary file in the system's temporary folder holding text, created exclusively and
+/// registered for removal on SIGINT and SIGTERM (mesh/file_safety.hpp), so that no file already
+/// there is replaced and none is left behind by Ctrl-C; the caller removes it and unregisters.
+/// @throws UsageError when it cannot be made or written
+RegisteredTemporary temporary_csv(const std::string& text) {
+  const std::string folder = std::filesystem::temp_directory_path().string();
+  RegisteredTemporary t = create_registered_temporary(folder, "shellcontract_bench_error.csv");
+  if (t.fd < 0) throw UsageError("cannot create a temporary file in '" + folder + "': " + std::strerror(errno));
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(t.fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int e = n < 0 ? errno : EIO;
+      ::close(t.fd);
+      ::unlink(t.path.c_str());
+      unregister_temporary(t.slot);
+      throw UsageError("cannot write the temporary file '" + t.path + "': " + std::strerror(e));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(t.fd);
+  t.fd = -1;
+  return t;
+}
+
 bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
 
 }  // namespace
@@ -270,6 +300,13 @@ int command_bench_error(int argc, char** argv) {
       if (!gnuplot_available())
         throw UsageError("--plot needs gnuplot, which is not installed (Debian: apt-get install gnuplot-nox)");
     }
+    // Neither output may be the mesh or the other, and both must be writable, checked before
+    // the (long) runs: docs/design/output-safety.md.
+    OutputPlan plan;
+    plan.inputs.push_back({"INPUT", input});
+    if (!csv.empty()) plan.outputs.push_back({"--csv", csv});
+    if (!plot.empty()) plan.outputs.push_back({"--plot", plot});
+    check_planned_outputs(plan);
   } catch (const po::error& e) {
     return usage_error("bench error", e.what());
   } catch (const UsageError& e) {
@@ -318,10 +355,10 @@ int command_bench_error(int argc, char** argv) {
     if (!csv.empty()) write_text_atomic(csv, text);
     if (!plot.empty()) {
       // gnuplot reads the CSV; without --csv it goes to a temporary file removed afterwards.
+      RegisteredTemporary temporary;
       if (data_file.empty()) {
-        data_file = (std::filesystem::temp_directory_path() /
-                     ("shellcontract_bench_error_" + std::to_string(::getpid()) + ".csv")).string();
-        write_text_atomic(data_file, text);
+        temporary = temporary_csv(text);
+        data_file = temporary.path;
       }
       const std::string title = std::filesystem::path(input).filename().string() + ": " +
                                 std::to_string(res.frames) + " steps, dt " + fmt(res.dt);
@@ -332,7 +369,10 @@ int command_bench_error(int argc, char** argv) {
         std::fwrite(script.data(), 1, script.size(), pipe);
         status = ::pclose(pipe);
       }
-      if (csv.empty()) std::filesystem::remove(data_file);
+      if (csv.empty()) {
+        ::unlink(data_file.c_str());
+        unregister_temporary(temporary.slot);
+      }
       if (status != 0) throw UsageError("gnuplot failed to draw '" + plot + "'");
       if (!quiet) std::cerr << "plot written to " << plot << '\n';
     }
