@@ -144,6 +144,7 @@ int command_bench_ccd(int argc, char** argv) {
       std::cout << desc << '\n';
       return static_cast<int>(ExitCode::Success);
     }
+    refuse_empty_values(vm);
     po::notify(vm);
     if (dir.empty()) throw UsageError("--queries DIR is required");
     if (!(opt.tolerance >= 0.0) || !std::isfinite(opt.tolerance))

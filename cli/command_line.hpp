@@ -32,9 +32,24 @@ inline std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+/// Refuses an option given with an empty value (`--log ""`): a script whose variable is unset
+/// would otherwise turn that output off, or a --resume into a fresh run, without a word. No
+/// option of any command takes an empty string.
+/// @throws UsageError naming the option ("INPUT" for the positional one)
+inline void refuse_empty_values(const boost::program_options::variables_map& vm) {
+  for (const auto& [name, value] : vm) {
+    if (value.defaulted()) continue;
+    const auto* text = boost::any_cast<std::string>(&value.value());
+    if (text != nullptr && text->empty())
+      throw UsageError(name == "input" ? std::string("INPUT: an empty file name")
+                                       : "--" + name + ": empty; give a value or leave the option out");
+  }
+}
+
 /// Parses the arguments of a subcommand that takes the options of `visible` and one positional
 /// INPUT (stored into `input` unless help was asked for).
-/// @throws boost::program_options::error for an unknown option or a bad value
+/// @throws boost::program_options::error for an unknown option or a bad value; UsageError for
+///         an empty value (refuse_empty_values)
 /// @return the parsed values; `vm.count("help")` tells whether --help was given
 inline boost::program_options::variables_map parse_command_line(
     int argc, char** argv, const boost::program_options::options_description& visible,
@@ -48,7 +63,9 @@ inline boost::program_options::variables_map parse_command_line(
   positional.add("input", 1);
   po::variables_map vm;
   po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-  if (!vm.count("help")) po::notify(vm);
+  if (vm.count("help")) return vm;
+  refuse_empty_values(vm);
+  po::notify(vm);
   return vm;
 }
 

@@ -70,6 +70,24 @@ TEST_F(CliIgnoredOptions, TheSameOptionsWhereTheyActGiveNoWarning) {
   }
 }
 
+// Before: an empty value turned the output off (or --resume into a fresh run), exit 0 and
+// nothing said: a script's unset variable went unnoticed.
+TEST_F(CliIgnoredOptions, AnEmptyValueIsRefusedNamingTheOption) {
+  for (const char* option : {"--log", "--summary", "--gltf", "--checkpoint", "--export-dir", "--fields", "--resume"}) {
+    const RunResult r = run({option, ""});
+    EXPECT_EQ(r.exit_code, 1) << option << ": " << r.output;
+    EXPECT_NE(r.output.find(std::string(option) + ": empty"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "o.off")) << option;
+  }
+  const RunResult regions = run_cli({"regions", std::string(shellcontract::test::MESH_DIR) + "/ico1.off",
+                                     "--face-list", ""});
+  EXPECT_EQ(regions.exit_code, 1) << regions.output;
+  EXPECT_NE(regions.output.find("--face-list: empty"), std::string::npos) << regions.output;
+  const RunResult input = run_cli({"check", ""});
+  EXPECT_EQ(input.exit_code, 1) << input.output;
+  EXPECT_NE(input.output.find("INPUT: an empty file name"), std::string::npos) << input.output;
+}
+
 TEST_F(CliIgnoredOptions, MoreThreadsThanTheMachineHasRunQuietlyToTheSameBytes) {
   // 256 threads: more than this test's machines have (the test shows nothing on a bigger one).
   const RunResult many = run({"--threads", "256"});
