@@ -88,6 +88,9 @@ void check_planned_outputs(const OutputPlan& plan) {
 }
 
 ExportFolderLock::~ExportFolderLock() {
+  // Removed while still locked, so that no second run takes the folder in between.
+  std::error_code ec;
+  if (created_ && fs::is_empty(dir_, ec) && !ec) fs::remove(dir_, ec);  // removes only an empty folder
   if (fd_ >= 0) ::close(fd_);  // closing releases the lock
 }
 
@@ -97,16 +100,14 @@ std::unique_ptr<ExportFolderLock> prepare_export_folder(const PlannedFrames& f) 
   const bool created = fs::create_directories(f.dir, ec);
   if (ec)
     refuse_file("--export-dir", f.dir, "cannot create the folder (" + file_error_text(ec.value()) + ")");
-  const auto undo = [&] {
-    if (created) fs::remove(f.dir, ec);  // only the (empty) folder made here
-  };
   const int fd = ::open(f.dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (fd < 0) {
     const int e = errno;
-    undo();
+    if (created) fs::remove(f.dir, ec);  // only the (empty) folder made here
     refuse_file("--export-dir", f.dir, "cannot open the folder (" + file_error_text(e) + ")");
   }
-  auto lock = std::make_unique<ExportFolderLock>(fd);
+  // From here a refusal below ends the lock, which removes the folder again if it made it.
+  auto lock = std::make_unique<ExportFolderLock>(fd, f.dir, created);
   if (::flock(fd, LOCK_EX | LOCK_NB) != 0)
     refuse_file("--export-dir", f.dir,
            "another shellcontract run is writing its frames into this folder; choose another --export-dir");

@@ -41,16 +41,20 @@ struct OutputPlan {
 void check_planned_outputs(const OutputPlan& plan);
 
 /// Held while a run writes frames into its export folder: a second run with the same folder is
-/// refused while the first runs (an advisory lock on the folder).
+/// refused while the first runs (an advisory lock on the folder). A folder that
+/// prepare_export_folder created is removed again when the lock ends if it is still empty: a
+/// run refused or failed before its first frame (a bad mesh, a bad face list) creates nothing.
 class ExportFolderLock {
  public:
-  explicit ExportFolderLock(int fd) : fd_(fd) {}
+  ExportFolderLock(int fd, std::string dir, bool created) : fd_(fd), dir_(std::move(dir)), created_(created) {}
   ~ExportFolderLock();
   ExportFolderLock(const ExportFolderLock&) = delete;
   ExportFolderLock& operator=(const ExportFolderLock&) = delete;
 
  private:
   int fd_;
+  std::string dir_;
+  bool created_;
 };
 
 /// After check_planned_outputs: creates the export folder if missing, locks it, and refuses it

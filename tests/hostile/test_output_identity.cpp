@@ -128,6 +128,21 @@ TEST_F(Hostile, ARefusedRunCreatesNoExportFolder) {
   EXPECT_NE(r.output.find("does not exist"), std::string::npos) << r.output;
 }
 
+// Before: a run refused after the outputs' check (a bad face list, an unreadable mesh: exit 2)
+// left the empty export folder it had made. A folder that was there already stays.
+TEST_F(Hostile, ARunRefusedForItsInputLeavesNoExportFolder) {
+  test::spit(dir_ / "r.txt", "-1 2 3\n");
+  const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n", "3", "-q",
+                          "--export-dir", (dir_ / "frames").string(), "--regions", (dir_ / "r.txt").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"r.txt"}) << r.output;
+  fs::create_directories(dir_ / "kept");
+  const auto again = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n", "3", "-q",
+                              "--export-dir", (dir_ / "kept").string(), "--regions", (dir_ / "r.txt").string()});
+  EXPECT_EQ(again.exit_code, 2) << again.output;
+  EXPECT_TRUE(fs::is_directory(dir_ / "kept")) << "a folder the run did not make was removed";
+}
+
 // Before: "folder does not exist" when the parent was a file; now it says so.
 TEST_F(Hostile, AParentThatIsAFileIsNamed) {
   test::spit(dir_ / "file.txt", "x");
