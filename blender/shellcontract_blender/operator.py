@@ -84,8 +84,8 @@ def run_options(context, obj):
     elif runner.unkeyed_target_volume(s.target_volume) > 0.0:
         options["target_volume"] = runner.unkeyed_target_volume(s.target_volume)
     # With a target volume (a number or keys) the volume constraint decides the volume and the
-    # pressure has no effect (the library warns when it is given). Passed only where the user
-    # asked for it: keyed, set off its default, or with the target off, where it decides. The
+    # pressure only changes the way there (docs/math/volume-control.md). Passed only where the
+    # user asked for it: keyed, set off its default, or with the target off, where it decides. The
     # default is the library's own (checked in addon_in_blender.py), so leaving it out at the
     # default runs the same.
     pressure_keys = _keys_of(obj, "pressure")
