@@ -52,6 +52,12 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
           "it is a Mooney-Rivlin parameter (`material` mooney-rivlin)");
   for (const char* name : {"mu", "lambda"})
     check(name, s.material == MaterialKind::MooneyRivlin, "Mooney-Rivlin takes `c10` and `c01`");
+  // resolve_default_run: a shell material given by `young` or `thickness` sets mu and lambda,
+  // over values given for them.
+  const bool shell_given = r.given.count("young") || r.given.count("thickness");
+  for (const char* name : {"mu", "lambda"})
+    check(name, shell_given && s.material != MaterialKind::MooneyRivlin,
+          "`young` and `thickness` set mu and lambda (leave both out to give mu and lambda)");
   check("density", s.mass == MassModel::Unit, "`mass` unit gives every vertex the mass 1");
   check("poisson", !r.young.has_value(), "the Poisson ratio is used with `young` and `thickness`");
   check("k_b", s.bending == BendingModel::None, "`bending` none");

@@ -50,6 +50,9 @@ TEST_F(CliIgnoredOptions, EachOptionWithoutEffectIsAWarningNamingIt) {
       {{"--mass", "unit", "--density", "3"}, "--density has no effect"},
       {{"--fields-colour", "energy"}, "--fields-colour has no effect"},
       {{"--export-failure", "stop"}, "--export-failure has no effect"},
+      // Before: silently set by the shell material (summary mu 0.769 for --mu 1).
+      {{"--mu", "1", "--young", "1000"}, "--mu has no effect"},
+      {{"--lambda", "1", "--thickness", "0.01"}, "--lambda has no effect"},
   };
   for (const auto& c : cases) {
     const RunResult r = run(c.args);
