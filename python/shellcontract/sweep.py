@@ -310,6 +310,10 @@ def _os_error_text(e):
 def main(argv=None):
     args = parser().parse_args(argv)
     cli = find_cli(args.cli)
+    if cli is None and args.cli is not None:
+        print("shellcontract sweep: --cli {}: not an executable file".format(args.cli),
+              file=sys.stderr)
+        return EXIT_USAGE
     if cli is None:
         print("shellcontract sweep: cannot find the shellcontract executable (--cli PATH or "
               "SHELLCONTRACT_CLI)", file=sys.stderr)

@@ -123,11 +123,16 @@ def wait_stopped(timeout, sweep=None):
 
 
 def find_cli(given=None):
-    """The `shellcontract` executable here: `given` (--cli), $SHELLCONTRACT_CLI, the build tree
-    this package was built in (<build>/python/shellcontract -> <build>/shellcontract), then
-    PATH; None if none is an executable file."""
+    """The `shellcontract` executable here: `given` (--cli) alone when given (None when it is
+    not an executable file: a path the user named is never replaced by another executable),
+    else $SHELLCONTRACT_CLI, the build tree this package was built in
+    (<build>/python/shellcontract -> <build>/shellcontract), then PATH; None if none is an
+    executable file."""
+    if given is not None:
+        ok = os.path.isfile(given) and os.access(given, os.X_OK)
+        return os.path.abspath(given) if ok else None
     here = os.path.dirname(os.path.abspath(__file__))
-    candidates = [given, os.environ.get("SHELLCONTRACT_CLI"),
+    candidates = [os.environ.get("SHELLCONTRACT_CLI"),
                   os.path.join(here, os.pardir, os.pardir, "shellcontract"),
                   shutil.which("shellcontract")]
     for c in candidates:

@@ -285,6 +285,20 @@ def test_bad_sweep_files_are_refused_naming_the_job_and_nothing_runs(cli, mesh_d
     assert not out.exists()
 
 
+def test_a_cli_that_is_no_executable_is_refused_not_replaced(cli, mesh_dir, tmp_path):
+    # Before: --cli /nonexistent (or a file that is not executable) was passed over for the
+    # next candidate ($SHELLCONTRACT_CLI here) and the sweep ran, exit 0.
+    path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"], "options": {"frames": 2}})
+    text = tmp_path / "not_executable"
+    text.write_text("#!/bin/sh\n")
+    for given in (tmp_path / "missing", text):
+        out = tmp_path / "out"
+        r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--cli", str(given)])
+        assert r.returncode == 1, r.stderr
+        assert "--cli {}: not an executable file".format(given) in r.stderr, r.stderr
+        assert not out.exists()
+
+
 def test_unreadable_mesh_and_bad_json_are_refused(cli, mesh_dir, tmp_path):
     folder = tmp_path / "meshes"
     folder.mkdir()
