@@ -51,10 +51,14 @@ def test_open_boundary_names_the_face(ico2):
     f2 = np.delete(f, removed, axis=0)
     with pytest.raises(shellcontract.MeshError, match="open boundary") as e:
         shellcontract.check(v, f2)
-    (face,) = e.value.faces
-    assert "of face {} has no neighbouring face".format(face) in str(e.value)
-    # The face with the open edge shares an edge with the removed one.
-    assert len(set(int(x) for x in f2[face]) & set(int(x) for x in f[removed])) == 2
+    # Every face with an open edge: the removed face's three neighbours (sharing two vertices
+    # with it), as indices into f2; the message names the first.
+    gone = set(int(x) for x in f[removed])
+    expected = [i for i, face in enumerate(f2) if len(set(int(x) for x in face) & gone) == 2]
+    assert len(expected) == 3
+    assert list(e.value.faces) == expected
+    assert "of face {} has no neighbouring face".format(expected[0]) in str(e.value)
+    assert "(3 faces in all have such edges)" in str(e.value)
 
 
 def test_non_manifold_vertex_lists_the_faces_around_it():

@@ -153,6 +153,24 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
                uses_sorted[i].forward != uses_sorted[i + 1].forward &&
                (i + 2 == uses_sorted.size() || uses_sorted[i + 2].key != uses_sorted[i].key);
   if (all_fine) return;
+  // Every face on an edge of one kind of problem (MeshError's `faces` lists them all; the
+  // message names the first, in face order).
+  const auto faces_on_runs = [&](auto bad_run) {
+    std::vector<std::size_t> faces;
+    for (std::size_t i = 0; i < uses_sorted.size();) {
+      std::size_t j = i + 1;
+      while (j < uses_sorted.size() && uses_sorted[j].key == uses_sorted[i].key) ++j;
+      if (bad_run(i, j))
+        for (std::size_t u = i; u < j; ++u) faces.push_back(uses_sorted[u].face);
+      i = j;
+    }
+    std::sort(faces.begin(), faces.end());
+    faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+    return faces;
+  };
+  const auto more = [](std::size_t n) {
+    return n > 1 ? " (" + std::to_string(n) + " faces in all have such edges)" : std::string();
+  };
   for (std::size_t f = 0; f < nf; ++f)
     for (int k = 0; k < 3; ++k) {
       const std::size_t a = tris[f][k], b = tris[f][(k + 1) % 3];
@@ -161,16 +179,24 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
       while (first + static_cast<std::ptrdiff_t>(count) != uses_sorted.end() && first[static_cast<std::ptrdiff_t>(count)].key == key(a, b)) ++count;
       if (count == 2 && first[0].forward != first[1].forward) continue;
       const std::string edge = name.edge(a, b);
-      if (count == 1)
-        fail_faces(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed", {f});
+      if (count == 1) {
+        std::vector<std::size_t> open = faces_on_runs([](std::size_t i, std::size_t j) { return j - i == 1; });
+        const std::string all = more(open.size());
+        fail_faces(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed" + all, std::move(open));
+      }
       if (count > 2) {
         std::vector<std::size_t> sharing(count);
         for (std::size_t u = 0; u < count; ++u) sharing[u] = first[static_cast<std::ptrdiff_t>(u)].face;
         std::string fs_list;
         for (std::size_t u = 0; u < count && u < MAX_LISTED; ++u) fs_list += (u ? ", " : "") + std::to_string(sharing[u]);
-        fail_faces(path, "non-manifold edge", name.edge(std::min(a, b), std::max(a, b)) + " is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed", std::move(sharing));
+        std::vector<std::size_t> crowded = faces_on_runs([](std::size_t i, std::size_t j) { return j - i > 2; });
+        fail_faces(path, "non-manifold edge", name.edge(std::min(a, b), std::max(a, b)) + " is shared by " + std::to_string(count) + " faces (" + fs_list + "), at most 2 allowed" + more(crowded.size()), std::move(crowded));
       }
-      fail_faces(path, "inconsistent orientation", name.face(first[0].face) + " and " + name.face(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)", {first[0].face, first[1].face});
+      std::vector<std::size_t> flipped = faces_on_runs([&](std::size_t i, std::size_t j) {
+        return j - i == 2 && uses_sorted[i].forward == uses_sorted[i + 1].forward;
+      });
+      const std::string all = more(flipped.size());
+      fail_faces(path, "inconsistent orientation", name.face(first[0].face) + " and " + name.face(first[1].face) + " traverse " + edge + " in the same direction (the surface is not consistently oriented there)" + all, std::move(flipped));
     }
 }
 
