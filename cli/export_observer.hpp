@@ -102,8 +102,11 @@ class FrameExporter final : public RunObserver {
 
   /// The glTF's node and mesh name (the input's stem).
   void set_gltf_name(std::string name) { gltf_.name = std::move(name); }
-  /// The glTF's material (gltf_material: the OBJ's .mtl); none: no material.
-  void set_material(std::optional<GltfMaterial> material) { gltf_.material = std::move(material); }
+  /// The glTF's materials and each face's (gltf_materials: the OBJ's .mtl); empty: none.
+  void set_materials(std::vector<GltfMaterial> materials, std::vector<int> face_material) {
+    gltf_.materials = std::move(materials);
+    gltf_.face_material = std::move(face_material);
+  }
 
   /// Writes the .glb of --gltf, after the run: the simulator's memory is free by then (written
   /// from finished(), the file raised a large mesh's peak far above its run's; lab/history.md).

@@ -15,6 +15,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command_line.hpp"
@@ -344,9 +345,10 @@ int command_run(int argc, char** argv) {
       if (document) {
         const CornerTexcoords uv = document->texcoords(mesh);
         exporter.set_texcoords(uv);
-        // The OBJ's material (the .mtl's Kd, d and map_Kd): a problem with it is a warning.
+        // The OBJ's materials (the .mtl's Kd, d and map_Kd): a problem with one is a warning.
         std::vector<std::string> material_warnings;
-        exporter.set_material(gltf_material(document->face_materials(mesh), !uv.empty(), material_warnings));
+        GltfFaceMaterials m = gltf_materials(document->face_materials(mesh), !uv.empty(), material_warnings);
+        exporter.set_materials(std::move(m.materials), std::move(m.face_material));
         for (const std::string& w : material_warnings) std::cerr << "warning: " << w << '\n';
       }
     }

@@ -4,7 +4,6 @@
 
 #include <Eigen/Core>
 #include <array>
-#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -19,7 +18,7 @@ struct NamedVertexField {
   Eigen::VectorXd values;  ///< #V values, any units
 };
 
-/// A glTF PBR material (metallic-roughness) for the whole mesh, e.g. from an OBJ's .mtl.
+/// A glTF PBR material (metallic-roughness) for some or all of the faces, e.g. from an OBJ's .mtl.
 struct GltfMaterial {
   std::string name;
   std::array<double, 4> base_colour{1.0, 1.0, 1.0, 1.0};  ///< baseColorFactor, RGBA in [0, 1]
@@ -47,8 +46,12 @@ struct GltfAnimation {
   /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
   Faces face_uv;
-  /// Optional material of the primitive. Its texture needs texture coordinates (TEXCOORD_0).
-  std::optional<GltfMaterial> material;
+  /// Optional materials (an OBJ's usemtl materials, from its .mtl files). A texture needs
+  /// texture coordinates (TEXCOORD_0).
+  std::vector<GltfMaterial> materials;
+  /// Per face (#F, like faces): an index into materials, or -1 for a face without material
+  /// (glTF's default material). Empty: every face has materials[0], or none when there is none.
+  std::vector<int> face_material;
 };
 
 /// What write_gltf_animation wrote.
@@ -59,10 +62,10 @@ struct GltfStats {
 
 /// Writes `animation` as a glTF 2.0 binary file, atomically (temporary file, then rename).
 ///
-/// Layout: one scene, one node, one mesh with one triangle primitive whose POSITION and NORMAL
-/// (float32, area-weighted vertex normals, unit length) are frames[0]; for every later frame k a
-/// morph target holding the float32 displacements POSITION(k) - POSITION(0) and NORMAL(k) -
-/// NORMAL(0); one animation whose `weights` channel (STEP interpolation) has one keyframe per frame
+/// Layout: one scene, one node, one mesh with triangle primitives (one per material, below)
+/// whose POSITION and NORMAL (float32, area-weighted vertex normals, unit length) are
+/// frames[0]; for every later frame k a morph target holding the float32 displacements
+/// POSITION(k) - POSITION(0) and NORMAL(k) - NORMAL(0); one animation whose `weights` channel (STEP interpolation) has one keyframe per frame
 /// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Colour field i is a float
 /// VEC3 COLOR_i in linear RGB: its 2nd to 98th percentile mapped onto blue - white - red (the
 /// fields PLY's map), clamped outside; its values themselves are also a float SCALAR custom
@@ -80,14 +83,20 @@ struct GltfStats {
 /// seam) is split: glTF vertex i < #V is vertex i with the first coordinates its corners use, the
 /// copies follow; every attribute and every morph target is copied with it.
 ///
-/// The node and the mesh are called `name`. With a material, the primitive references it:
-/// pbrMetallicRoughness with baseColorFactor = base_colour, metallicFactor 0 (an OBJ's diffuse
-/// surfaces are not metal; glTF's default, 1, renders them dark), alphaMode BLEND when the alpha
-/// is below 1; its image, when given, is one bufferView of the .glb's buffer (the file stays
-/// self-contained) read by a texture with a linear, repeating sampler on TEXCOORD_0.
-/// @throws std::invalid_argument for inconsistent sizes (texture coordinates too), no frames, non-increasing frame
-///         numbers, a non-finite coordinate, or a material image without texture coordinates or
-///         mime type
+/// The node and the mesh are called `name`. Primitives: one per material its faces use (a face
+/// of none, face_material -1, in one more without material), in the order of each one's first
+/// face; each has its own indices (its faces, in their order in `faces`) and shares every
+/// attribute accessor, every morph target's accessors and so the mesh's weights and animation
+/// with the others (glTF wants the same number of targets on every primitive of a mesh). One
+/// material for every face (or none): one primitive. The glTF's materials are those used, in the
+/// order of their primitives: pbrMetallicRoughness with baseColorFactor = base_colour,
+/// metallicFactor 0 (an OBJ's diffuse surfaces are not metal; glTF's default, 1, renders them
+/// dark), alphaMode BLEND when the alpha is below 1; an image, when given, is one bufferView of
+/// the .glb's buffer (the file stays self-contained) read by a texture with a linear, repeating
+/// sampler on TEXCOORD_0; materials whose images are the same bytes share one image and texture.
+/// @throws std::invalid_argument for inconsistent sizes (texture coordinates and face_material
+///         too), no frames, non-increasing frame numbers, a non-finite coordinate, a material
+///         index out of range, or a material image without texture coordinates or mime type
 /// @throws UsageError if the file cannot be written
 GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& animation);
 

@@ -11,6 +11,8 @@
 #include <utility>
 
 #include "export/field_colours.hpp"
+#include "export/gltf_buffer.hpp"
+#include "export/gltf_primitives.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -18,107 +20,9 @@ namespace shellcontract {
 
 namespace {
 
-using Floats3 = Eigen::Matrix<float, Eigen::Dynamic, 3, Eigen::RowMajor>;
-using Floats2 = Eigen::Matrix<float, Eigen::Dynamic, 2, Eigen::RowMajor>;
-
-/// Appends arrays to the model's one buffer and makes views and accessors on them.
-class BufferBuilder {
- public:
-  /// `capacity`: the bytes the buffer will hold (its growth by doubling would hold up to twice
-  /// as many for a moment, hundreds of MB for a large mesh's frames).
-  BufferBuilder(tinygltf::Model& model, std::size_t capacity) : model_(model) {
-    model_.buffers.resize(1);
-    model_.buffers[0].data.reserve(capacity);
-  }
-
-  /// A view on a copy of `bytes` bytes at `data` (4-byte aligned); target 0 means none.
-  int add_view(const void* data, std::size_t bytes, int target) {
-    std::vector<unsigned char>& buf = model_.buffers[0].data;
-    while (buf.size() % 4 != 0) buf.push_back(0);
-    tinygltf::BufferView view;
-    view.buffer = 0;
-    view.byteOffset = buf.size();
-    view.byteLength = bytes;
-    view.target = target;
-    const auto* p = static_cast<const unsigned char*>(data);
-    buf.insert(buf.end(), p, p + bytes);
-    model_.bufferViews.push_back(view);
-    return static_cast<int>(model_.bufferViews.size()) - 1;
-  }
-
-  /// A float VEC3 vertex attribute; with_bounds adds min/max (required for POSITION).
-  int add_vec3(const Floats3& a, bool with_bounds) {
-    tinygltf::Accessor acc;
-    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
-                              TINYGLTF_TARGET_ARRAY_BUFFER);
-    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    acc.count = static_cast<std::size_t>(a.rows());
-    acc.type = TINYGLTF_TYPE_VEC3;
-    if (with_bounds) {
-      const Eigen::RowVector3f lo = a.colwise().minCoeff(), hi = a.colwise().maxCoeff();
-      acc.minValues = {lo(0), lo(1), lo(2)};
-      acc.maxValues = {hi(0), hi(1), hi(2)};
-    }
-    return push(acc);
-  }
-
-  /// A float VEC2 vertex attribute (texture coordinates).
-  int add_vec2(const Floats2& a) {
-    tinygltf::Accessor acc;
-    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
-                              TINYGLTF_TARGET_ARRAY_BUFFER);
-    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    acc.count = static_cast<std::size_t>(a.rows());
-    acc.type = TINYGLTF_TYPE_VEC2;
-    return push(acc);
-  }
-
-  /// A float SCALAR vertex attribute (a field's values).
-  int add_vertex_scalars(const Eigen::VectorXf& a) {
-    tinygltf::Accessor acc;
-    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
-                              TINYGLTF_TARGET_ARRAY_BUFFER);
-    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    acc.count = static_cast<std::size_t>(a.size());
-    acc.type = TINYGLTF_TYPE_SCALAR;
-    return push(acc);
-  }
-
-  /// A float SCALAR array (animation keys and weights); with_bounds adds min/max.
-  int add_scalars(const std::vector<float>& a, bool with_bounds) {
-    tinygltf::Accessor acc;
-    acc.bufferView = add_view(a.data(), sizeof(float) * a.size(), 0);
-    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
-    acc.count = a.size();
-    acc.type = TINYGLTF_TYPE_SCALAR;
-    if (with_bounds) {
-      acc.minValues = {*std::min_element(a.begin(), a.end())};
-      acc.maxValues = {*std::max_element(a.begin(), a.end())};
-    }
-    return push(acc);
-  }
-
-  /// Triangle indices as unsigned 32-bit integers.
-  int add_indices(const Faces& faces) {
-    std::vector<std::uint32_t> idx(static_cast<std::size_t>(faces.size()));
-    for (Eigen::Index i = 0; i < faces.size(); ++i)
-      idx[static_cast<std::size_t>(i)] = static_cast<std::uint32_t>(faces.data()[i]);
-    tinygltf::Accessor acc;
-    acc.bufferView = add_view(idx.data(), sizeof(std::uint32_t) * idx.size(),
-                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    acc.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    acc.count = idx.size();
-    acc.type = TINYGLTF_TYPE_SCALAR;
-    return push(acc);
-  }
-
- private:
-  int push(const tinygltf::Accessor& acc) {
-    model_.accessors.push_back(acc);
-    return static_cast<int>(model_.accessors.size()) - 1;
-  }
-  tinygltf::Model& model_;
-};
+using gltf::BufferBuilder;
+using gltf::Floats2;
+using gltf::Floats3;
 
 void check_input(const GltfAnimation& a) {
   if (a.frames.empty()) throw std::invalid_argument("write_gltf_animation: no frames");
@@ -169,45 +73,7 @@ void check_input(const GltfAnimation& a) {
   }
   if (!(a.seconds_per_frame > 0.0))
     throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
-  if (a.material && !a.material->image.empty()) {
-    if (a.face_uv.rows() == 0)
-      throw std::invalid_argument("write_gltf_animation: a material image without texture coordinates");
-    if (a.material->image_mime_type.empty())
-      throw std::invalid_argument("write_gltf_animation: a material image without a mime type");
-  }
-  if (a.material)
-    for (const double c : a.material->base_colour)
-      if (!(c >= 0.0 && c <= 1.0))
-        throw std::invalid_argument("write_gltf_animation: a base colour component outside [0, 1]");
-}
-
-/// Adds `m` to the model (with its image in the buffer); returns the material's index.
-int add_material(tinygltf::Model& model, BufferBuilder& bb, const GltfMaterial& m) {
-  tinygltf::Material mat;
-  mat.name = m.name;
-  mat.pbrMetallicRoughness.baseColorFactor.assign(m.base_colour.begin(), m.base_colour.end());
-  mat.pbrMetallicRoughness.metallicFactor = 0.0;
-  if (m.base_colour[3] < 1.0) mat.alphaMode = "BLEND";
-  if (!m.image.empty()) {
-    tinygltf::Image image;
-    image.name = m.name;
-    image.mimeType = m.image_mime_type;
-    image.bufferView = bb.add_view(m.image.data(), m.image.size(), 0);
-    model.images.push_back(image);
-    tinygltf::Sampler sampler;  // OBJ texture coordinates may leave [0, 1]: repeat, as OBJ viewers do
-    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_REPEAT;
-    model.samplers.push_back(sampler);
-    tinygltf::Texture texture;
-    texture.source = static_cast<int>(model.images.size()) - 1;
-    texture.sampler = static_cast<int>(model.samplers.size()) - 1;
-    model.textures.push_back(texture);
-    mat.pbrMetallicRoughness.baseColorTexture.index = static_cast<int>(model.textures.size()) - 1;
-    mat.pbrMetallicRoughness.baseColorTexture.texCoord = 0;  // TEXCOORD_0
-  }
-  model.materials.push_back(mat);
-  return static_cast<int>(model.materials.size()) - 1;
+  gltf::check_materials(a);
 }
 
 tinygltf::Value string_array(const std::vector<std::string>& s) {
@@ -302,12 +168,12 @@ std::string custom_attribute(const std::string& name) {
 std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
   const std::size_t nk = a.frames.size();
   const std::size_t vec3 = 12 * nv + 3;
-  return 4 * static_cast<std::size_t>(a.faces.size()) + 3 +    // indices
+  return 4 * static_cast<std::size_t>(a.faces.size()) + 3 * (1 + a.materials.size()) +  // indices
          (2 + a.colour_fields.size() + 2 * (nk - 1)) * vec3 +  // attributes and targets
          (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
          a.frame_fields.size() * nk * (4 * nv + 3) +                                   // frame fields
          4 * nk + 3 + 4 * nk * (nk - 1) + 3 +                  // keys and weights
-         (a.material ? a.material->image.size() + 3 : 0);     // embedded image
+         gltf::material_bytes(a.materials);                  // embedded images
 }
 
 /// write_gltf_animation; with `consumed` (a.frames itself), each frame after frame 0 is freed
@@ -321,9 +187,13 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   model.asset.generator = "shellcontract";
   BufferBuilder bb(model, buffer_capacity(a, split.source.size()));
 
+  // The primitives' indices first (a single primitive's file is laid out as before materials
+  // made several); everything else is one set, shared by every primitive.
+  const std::vector<gltf::PrimitiveFaces> parts = gltf::faces_by_material(a, split.faces);
+  std::vector<int> indices;
+  for (const gltf::PrimitiveFaces& p : parts) indices.push_back(bb.add_indices(p.faces));
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.indices = bb.add_indices(split.faces);
   const Floats3 x0 = a.frames[0].cast<float>();
   const Positions x0_stored = x0.cast<double>();  // what a reader gets for frame 0
   // Normals on the simulation's mesh, so that a seam's copies share theirs (no visible seam).
@@ -389,11 +259,15 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
     target_names.push_back("frame_" + std::to_string(a.frame_numbers[k]));
   }
 
-  if (a.material) prim.material = add_material(model, bb, *a.material);
+  const std::vector<int> materials = gltf::add_materials(model, bb, a.materials, parts);
 
   tinygltf::Mesh mesh;
   mesh.name = a.name;
-  mesh.primitives.push_back(prim);
+  for (std::size_t p = 0; p < parts.size(); ++p) {
+    prim.indices = indices[p];
+    prim.material = materials[p];
+    mesh.primitives.push_back(prim);
+  }
   mesh.weights.assign(prim.targets.size(), 0.0);
   tinygltf::Value::Array frame_numbers;
   for (int f : a.frame_numbers) frame_numbers.emplace_back(f);

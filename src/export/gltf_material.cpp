@@ -175,28 +175,57 @@ std::string image_mime_type(const std::vector<unsigned char>& b) {
   return {};
 }
 
-std::optional<GltfMaterial> gltf_material(const FaceMaterials& materials, bool has_texcoords,
-                                          std::vector<std::string>& warnings) {
-  if (materials.empty()) return std::nullopt;
-  // The material of the most faces (the first used among equals).
-  std::vector<std::size_t> count(materials.names.size(), 0);
-  for (const int m : materials.face_material)
-    if (m >= 0) ++count[static_cast<std::size_t>(m)];
-  std::size_t best = 0, used = 0;
-  for (std::size_t i = 0; i < count.size(); ++i) {
-    if (count[i] > count[best]) best = i;
-    if (count[i] > 0) ++used;
-  }
-  if (count[best] == 0) return std::nullopt;
-  const std::string& wanted = materials.names[best];
-  if (used > 1)
-    warnings.push_back(materials.source + ": the faces use " + std::to_string(used) +
-                       " materials; the glTF has one primitive with material '" + wanted +
-                       "' (" + std::to_string(count[best]) + " of " +
-                       std::to_string(materials.face_material.size()) + " faces): " +
-                       std::to_string(used - 1) + " dropped");
+namespace {
 
-  std::optional<MtlMaterial> found;
+/// The glTF material of `m`, its texture embedded when it can be (else a warning, and none).
+GltfMaterial to_gltf(const MtlMaterial& m, bool has_texcoords, std::vector<std::string>& warnings) {
+  GltfMaterial g;
+  g.name = m.name;
+  g.base_colour = {m.kd[0], m.kd[1], m.kd[2], m.alpha};
+  if (m.texture.empty()) return g;
+  const std::string where = m.file + ": line " + std::to_string(m.texture_line) + ": ";
+  if (!has_texcoords) {
+    warnings.push_back(where + "map_Kd '" + m.texture +
+                       "' not embedded: the mesh has no texture coordinates on every face");
+    return g;
+  }
+  std::error_code ec;
+  if (!fs::exists(m.texture, ec)) {
+    warnings.push_back(where + "map_Kd '" + m.texture +
+                       "' not found: the glTF's material has no texture");
+    return g;
+  }
+  std::string why;
+  const std::optional<std::string> read = read_bytes(m.texture, MAX_TEXTURE_BYTES, why);
+  if (!read) {
+    warnings.push_back(where + "map_Kd '" + m.texture + "' cannot be read (" + why +
+                       "): the glTF's material has no texture");
+    return g;
+  }
+  std::vector<unsigned char> image(read->begin(), read->end());
+  g.image_mime_type = image_mime_type(image);
+  if (g.image_mime_type.empty()) {
+    warnings.push_back(where + "map_Kd '" + m.texture +
+                       "' is neither PNG nor JPEG (glTF's image types): the glTF's material has no texture");
+    return g;
+  }
+  g.image = std::move(image);
+  return g;
+}
+
+}  // namespace
+
+GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoords,
+                                 std::vector<std::string>& warnings) {
+  GltfFaceMaterials out;
+  std::vector<bool> used(materials.names.size(), false);
+  for (const int m : materials.face_material)
+    if (m >= 0 && static_cast<std::size_t>(m) < used.size()) used[static_cast<std::size_t>(m)] = true;
+  if (std::find(used.begin(), used.end(), true) == used.end()) return out;
+
+  // Every library is read (and warns) even when an earlier one defines every material: the
+  // first definition wins, in the order the OBJ names them.
+  std::vector<std::optional<MtlMaterial>> found(materials.names.size());
   for (const FaceMaterials::Library& lib : materials.libraries) {
     if (!lib.found) {
       warnings.push_back(materials.source + ": line " + std::to_string(lib.line) +
@@ -210,49 +239,31 @@ std::optional<GltfMaterial> gltf_material(const FaceMaterials& materials, bool h
                          ": material library '" + lib.path + "' cannot be read (" + why + ")");
       continue;
     }
-    // Every library is read (and warns) even after a match: the first definition wins, as in
-    // the order the OBJ names them.
     for (MtlMaterial& m : parse_mtl(lib.path, *bytes, warnings))
-      if (!found && m.name == wanted) found = std::move(m);
-  }
-  if (!found) {
-    warnings.push_back(materials.source + ": material '" + wanted +
-                       "' is defined in none of its material libraries: the glTF has no material");
-    return std::nullopt;
+      for (std::size_t i = 0; i < materials.names.size(); ++i)
+        if (used[i] && !found[i] && m.name == materials.names[i]) found[i] = m;
   }
 
-  GltfMaterial g;
-  g.name = found->name;
-  g.base_colour = {found->kd[0], found->kd[1], found->kd[2], found->alpha};
-  if (found->texture.empty()) return g;
-  const std::string where = found->file + ": line " + std::to_string(found->texture_line) + ": ";
-  if (!has_texcoords) {
-    warnings.push_back(where + "map_Kd '" + found->texture +
-                       "' not embedded: the mesh has no texture coordinates on every face");
-    return g;
+  // glTF materials in the order of first use; a face of an undefined one gets none.
+  std::vector<int> index(materials.names.size(), -1);
+  for (std::size_t i = 0; i < materials.names.size(); ++i) {
+    if (!used[i]) continue;
+    if (!found[i]) {
+      warnings.push_back(materials.source + ": material '" + materials.names[i] +
+                         "' is defined in none of its material libraries: its faces have no "
+                         "material in the glTF");
+      continue;
+    }
+    index[i] = static_cast<int>(out.materials.size());
+    out.materials.push_back(to_gltf(*found[i], has_texcoords, warnings));
   }
-  std::error_code ec;
-  if (!fs::exists(found->texture, ec)) {
-    warnings.push_back(where + "map_Kd '" + found->texture +
-                       "' not found: the glTF's material has no texture");
-    return g;
-  }
-  std::string why;
-  const std::optional<std::string> read = read_bytes(found->texture, MAX_TEXTURE_BYTES, why);
-  if (!read) {
-    warnings.push_back(where + "map_Kd '" + found->texture + "' cannot be read (" + why +
-                       "): the glTF's material has no texture");
-    return g;
-  }
-  std::vector<unsigned char> image(read->begin(), read->end());
-  g.image_mime_type = image_mime_type(image);
-  if (g.image_mime_type.empty()) {
-    warnings.push_back(where + "map_Kd '" + found->texture +
-                       "' is neither PNG nor JPEG (glTF's image types): the glTF's material has no texture");
-    return g;
-  }
-  g.image = std::move(image);
-  return g;
+  if (out.materials.empty()) return out;
+  out.face_material.reserve(materials.face_material.size());
+  for (const int m : materials.face_material)
+    out.face_material.push_back(m >= 0 && static_cast<std::size_t>(m) < index.size()
+                                    ? index[static_cast<std::size_t>(m)]
+                                    : -1);
+  return out;
 }
 
 }  // namespace shellcontract

@@ -1,11 +1,10 @@
-// The glTF material of an OBJ input (docs/design/export.md, "Materials"): the .mtl files its
+// The glTF materials of an OBJ input (docs/design/export.md, "Name and material"): the .mtl files its
 // mtllib lines name, read for the keys a base colour needs (newmtl, Kd, d, Tr, map_Kd), and the
-// material most of its faces use, with its diffuse texture's file embedded.
+// materials its faces use, with their diffuse textures' files embedded.
 #pragma once
 
 #include <array>
 #include <cstddef>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,14 +30,21 @@ struct MtlMaterial {
 std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& bytes,
                                    std::vector<std::string>& warnings);
 
-/// The material of the mesh's faces for the glTF, or none when no face names one that a library
-/// defines. Several materials: the one of the most faces (the first used among equals), with one
-/// warning naming how many were dropped (the glTF has one primitive). Its texture (map_Kd) is
-/// embedded when the file exists and is a PNG or JPEG (by its first bytes) and `has_texcoords`;
-/// otherwise the material is written without it, with a warning naming the .mtl file and line.
-/// A library that is missing or unreadable is a warning too. Never throws for the files' contents.
-std::optional<GltfMaterial> gltf_material(const FaceMaterials& materials, bool has_texcoords,
-                                          std::vector<std::string>& warnings);
+/// The glTF materials of an OBJ's faces and which face has which.
+struct GltfFaceMaterials {
+  std::vector<GltfMaterial> materials;  ///< the defined materials the faces use, in order of first use
+  std::vector<int> face_material;       ///< per face: index into materials; -1 none (empty: no face has one)
+};
+
+/// The materials of the mesh's faces for the glTF (GltfAnimation::materials and face_material):
+/// each material a face uses and a library defines (the first definition in the order of the
+/// mtllib lines). A face of a material that no library defines has none, with one warning per
+/// such material. A texture (map_Kd) is embedded when the file exists and is a PNG or JPEG (by
+/// its first bytes) and `has_texcoords`; otherwise the material is written without it, with a
+/// warning naming the .mtl file and line. A library that is missing or unreadable is a warning
+/// too. Never throws for the files' contents.
+GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoords,
+                                 std::vector<std::string>& warnings);
 
 /// "image/png" or "image/jpeg" by the file's signature; empty for anything else.
 std::string image_mime_type(const std::vector<unsigned char>& bytes);

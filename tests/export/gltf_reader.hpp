@@ -5,8 +5,10 @@
 #include <tiny_gltf.h>
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace shellcontract::test {
 
@@ -22,6 +24,23 @@ inline Floats read_floats(const tinygltf::Model& m, int index) {
   Floats out(static_cast<Eigen::Index>(acc.count), cols);
   const std::size_t bytes = sizeof(float) * acc.count * static_cast<std::size_t>(cols);
   EXPECT_LE(acc.byteOffset + bytes, view.byteLength);
+  std::memcpy(out.data(),
+              m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset +
+                  acc.byteOffset,
+              bytes);
+  return out;
+}
+
+/// The indices of accessor `index` (unsigned 32-bit, the writer's type).
+inline std::vector<std::uint32_t> read_indices(const tinygltf::Model& m, int index) {
+  const tinygltf::Accessor& acc = m.accessors.at(static_cast<std::size_t>(index));
+  EXPECT_EQ(acc.componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+  EXPECT_EQ(acc.type, TINYGLTF_TYPE_SCALAR);
+  const tinygltf::BufferView& view = m.bufferViews.at(static_cast<std::size_t>(acc.bufferView));
+  std::vector<std::uint32_t> out(acc.count);
+  const std::size_t bytes = sizeof(std::uint32_t) * acc.count;
+  EXPECT_LE(acc.byteOffset + bytes, view.byteLength);
+  if (acc.byteOffset + bytes > view.byteLength) return {};
   std::memcpy(out.data(),
               m.buffers.at(static_cast<std::size_t>(view.buffer)).data.data() + view.byteOffset +
                   acc.byteOffset,

@@ -156,26 +156,42 @@ TEST(MtlReader, ReadsKdAlphaAndMapKdSkippingOptionsAndWarnsOnBadLines) {
   EXPECT_EQ(w.size(), 2u) << ::testing::PrintToString(w);
 }
 
-TEST(MtlReader, TheMaterialOfMostFacesIsKeptAndTheOthersNamedAsDropped) {
+// Before: the material of the most faces was kept for all of them and the others dropped. Now
+// every defined material a face uses is kept (in order of first use), and a face of an undefined
+// one has none.
+TEST(MtlReader, EveryUsedMaterialIsKeptAndAnUndefinedOneLeavesItsFacesWithout) {
   test::ScratchDir dir("material_many");
-  std::ofstream(dir.file("m.mtl")) << "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\nmap_Kd t.bmp\n";
+  std::ofstream(dir.file("m.mtl")) << "newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\nmap_Kd t.bmp\n"
+                                      "newmtl unused\nKd 0 0 1\n";
   std::ofstream(dir.file("t.bmp")) << "BM not a glTF image";
   FaceMaterials fm;
-  fm.names = {"a", "b", "c"};
-  fm.face_material = {0, 1, 1, -1, 1, 2};
+  fm.names = {"b", "a", "c", "d"};
+  fm.face_material = {1, 0, 0, -1, 0, 2};  // d: a usemtl line with no face after it
   fm.libraries = {{dir.file("m.mtl"), 1, true}, {dir.file("gone.mtl"), 2, false}};
   fm.source = "x.obj";
   std::vector<std::string> w;
-  const auto g = gltf_material(fm, true, w);
-  ASSERT_TRUE(g.has_value());
-  EXPECT_EQ(g->name, "b");
-  EXPECT_EQ(g->base_colour, (std::array<double, 4>{0.0, 1.0, 0.0, 1.0}));
-  EXPECT_TRUE(g->image.empty());
-  EXPECT_TRUE(contains(w, "x.obj: the faces use 3 materials")) << ::testing::PrintToString(w);
-  EXPECT_TRUE(contains(w, "2 dropped")) << ::testing::PrintToString(w);
+  const GltfFaceMaterials g = gltf_materials(fm, true, w);
+  ASSERT_EQ(g.materials.size(), 2u);
+  EXPECT_EQ(g.materials[0].name, "b");
+  EXPECT_EQ(g.materials[0].base_colour, (std::array<double, 4>{0.0, 1.0, 0.0, 1.0}));
+  EXPECT_TRUE(g.materials[0].image.empty());
+  EXPECT_EQ(g.materials[1].name, "a");
+  EXPECT_EQ(g.materials[1].base_colour, (std::array<double, 4>{1.0, 0.0, 0.0, 1.0}));
+  EXPECT_EQ(g.face_material, (std::vector<int>{1, 0, 0, -1, 0, -1}));
+  EXPECT_TRUE(contains(w, "x.obj: material 'c' is defined in none")) << ::testing::PrintToString(w);
+  EXPECT_FALSE(contains(w, "'d'")) << ::testing::PrintToString(w);
+  EXPECT_FALSE(contains(w, "dropped")) << ::testing::PrintToString(w);
   EXPECT_TRUE(contains(w, "x.obj: line 2: material library")) << ::testing::PrintToString(w);
   EXPECT_TRUE(contains(w, dir.file("m.mtl") + ": line 5: map_Kd")) << ::testing::PrintToString(w);
   EXPECT_TRUE(contains(w, "neither PNG nor JPEG")) << ::testing::PrintToString(w);
+  EXPECT_EQ(w.size(), 3u) << ::testing::PrintToString(w);
+
+  // No face uses a defined material: no material at all (and no face_material).
+  fm.face_material = {2, -1};
+  w.clear();
+  const GltfFaceMaterials none = gltf_materials(fm, true, w);
+  EXPECT_TRUE(none.materials.empty());
+  EXPECT_TRUE(none.face_material.empty());
 }
 
 TEST(MtlReader, TheDocumentNamesEachFacesMaterialAndItsLibraries) {
@@ -212,7 +228,7 @@ TEST(GltfMaterial, TheLibraryKeepsItsDefaultNameAndRefusesAnImageWithoutTexcoord
   EXPECT_EQ(a.name, "shell");
   write_gltf_animation(dir.file("a.glb"), a);
   EXPECT_EQ(test::load_glb(dir.file("a.glb")).meshes.at(0).name, "shell");
-  a.material = GltfMaterial{"m", {1, 1, 1, 1}, test::tiny_png(), "image/png"};
+  a.materials = {GltfMaterial{"m", {1, 1, 1, 1}, test::tiny_png(), "image/png"}};
   EXPECT_THROW(write_gltf_animation(dir.file("b.glb"), a), std::invalid_argument);
 }
 

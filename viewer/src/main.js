@@ -6,8 +6,8 @@
 // glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on that frame
 // and never on the others; a mesh file is coloured with its own values.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
-// For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes, shown,
-// colourValues (per pane, the values its colours show), ...}.
+// For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes (with their
+// meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -86,20 +86,31 @@ function setStatus(text, isError = false) {
 // ---------------------------------------------------------------- loading
 async function glbPane(arrayBuffer, name) {
   const gltf = await new GLTFLoader().parseAsync(arrayBuffer, '');
-  let shell = null;
-  gltf.scene.traverse((o) => { if (!shell && o.isMesh) shell = o; });
-  if (!shell) throw new Error(`${name}: no mesh`);
-  const extras = shell.userData ?? {};
+  // three makes one mesh per glTF primitive: an OBJ with several materials has one primitive per
+  // material, all on the same vertices and morph targets, so every one is moved and coloured
+  // alike. Those of the first glTF mesh are the shell (another file may hold other meshes).
+  const meshes = [];
+  const meshOf = (o) => gltf.parser.associations.get(o)?.meshes;
+  gltf.scene.traverse((o) => { if (o.isMesh && (!meshes.length || meshOf(o) === meshOf(meshes[0]))) meshes.push(o); });
+  if (!meshes.length) throw new Error(`${name}: no mesh`);
+  const shell = meshes[0];
+  // The glTF mesh's extras: three puts them on each primitive's mesh; a loader that puts them on
+  // the group of a multi-primitive mesh instead is looked up through the parents.
+  let extras = {};
+  for (let o = shell; o; o = o.parent) {
+    if (o.userData && (o.userData.frame_numbers || o.userData.colour_fields)) { extras = o.userData; break; }
+  }
   const targets = shell.morphTargetInfluences ? shell.morphTargetInfluences.length : 0;
   const frameNumbers = Array.isArray(extras.frame_numbers) ? extras.frame_numbers : Array.from({ length: targets + 1 }, (_, k) => k);
   const track = gltf.animations[0]?.tracks[0];
-  // Colour fields: COLOR_0 is three's 'color', COLOR_n its 'color_n'.
+  // Colour fields: COLOR_0 is three's 'color', COLOR_n its 'color_n'; per mesh, kept aside
+  // before a choice replaces its 'color'.
   const colourInfo = Array.isArray(extras.colour_fields) ? extras.colour_fields : [];
   const geometry = shell.geometry;
-  const colourAttributes = colourInfo.map((f, i) => {
+  const colourAttributes = meshes.map((m) => colourInfo.map((f, i) => {
     const a = typeof f.attribute === 'string' ? f.attribute : `COLOR_${i}`;
-    return geometry.getAttribute(a === 'COLOR_0' ? 'color' : a.toLowerCase());
-  });
+    return m.geometry.getAttribute(a === 'COLOR_0' ? 'color' : a.toLowerCase());
+  }));
   // Fields with each frame's own values (extras.frame_fields: one accessor per frame), by name.
   const frameFields = {};
   for (const f of Array.isArray(extras.frame_fields) ? extras.frame_fields : []) {
@@ -107,10 +118,10 @@ async function glbPane(arrayBuffer, name) {
     const values = await Promise.all(f.accessors.map((i) => gltf.parser.getDependency('accessor', i)));
     frameFields[f.name] = { values: values.map((a) => a.array), low: Number(f.low), high: Number(f.high), colours: [] };
   }
-  shell.material = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
+  for (const m of meshes) m.material = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
   const { scene, sun } = makeScene();
   scene.add(gltf.scene);
-  return { name, kind: 'glb', scene, sun, object: gltf.scene, meshes: [shell], vertices: geometry.getAttribute('position').count,
+  return { name, kind: 'glb', scene, sun, object: gltf.scene, meshes, vertices: geometry.getAttribute('position').count,
            frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, colourAttributes,
            frameFields };
 }
@@ -170,7 +181,7 @@ function showPanes(newPanes) {
   scrubber.disabled = !glb;
   el('play').disabled = !glb || state.frameNumbers.length < 2;
   el('goto').disabled = !glb;
-  state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices }));
+  state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(first);
   setKeyframe(0);
   setStatus(panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '')).join('  |  '));
@@ -191,7 +202,7 @@ function setSideBySide(on) {
     panes = [glb];
   }
   state.sideBySide = panes.length === 2;
-  state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices }));
+  state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(state.colour);
   setKeyframe(state.keyframe);
 }
@@ -234,9 +245,11 @@ function setKeyframe(k) {
   for (const p of panes) {
     if (p.kind !== 'glb') continue;
     const kp = p.fixed ?? k;
-    const influences = p.meshes[0].morphTargetInfluences ?? [];
-    influences.fill(0);
-    if (kp > 0) influences[kp - 1] = 1;  // the glTF's STEP keyframe kp
+    for (const m of p.meshes) {
+      const influences = m.morphTargetInfluences ?? [];
+      influences.fill(0);
+      if (kp > 0) influences[kp - 1] = 1;  // the glTF's STEP keyframe kp
+    }
   }
   el('scrubber').value = String(k);
   const frame = state.frameNumbers[k];
@@ -295,7 +308,7 @@ function applyColours() {
         } else if (info && (info.frame === undefined || info.frame === frame)) {
           // A field of one frame ('frame' in the extras) is shown on that frame only; without
           // 'frame', on any.
-          attr = p.colourAttributes[i];
+          attr = p.colourAttributes[j][i];
         }
         if (info && !perFrame && j === 0) {
           notes.push(`${info.name}: blue ${Number(info.low).toPrecision(3)}, red ${Number(info.high).toPrecision(3)} (its 2nd to 98th percentile)` +
@@ -370,6 +383,8 @@ window.addEventListener('keydown', (e) => {
   if (e.key === 'ArrowLeft') setKeyframe(state.keyframe - 1);
 });
 state.jumpToFrame = jumpToFrame;
+/** For tests: per pane, per mesh (a glTF primitive each), its morph target influences. */
+state.influences = () => panes.map((p) => p.meshes.map((m) => Array.from(m.morphTargetInfluences ?? [])));
 /** For tests: per pane, the mean red (linear) of the colours it shows; null for a plain pane. */
 state.colourMeans = () => panes.map((p) => {
   let sum = 0, n = 0;

@@ -1,11 +1,12 @@
 // Headless check (Debian's Chromium, puppeteer-core) of what issue 56 asked of the viewer: it
 // opens result meshes (OFF, OBJ, PLY, STL), shows two files side by side (and a .glb's first
 // frame beside its current one), colours each pane and each frame with its own values (a glTF
-// field of one frame only on that frame), and jumps to a frame. The files come from real runs of
-// the CLI on a small mesh, made here in a temporary folder.
+// field of one frame only on that frame), and jumps to a frame; a .glb of several primitives (an
+// OBJ with two materials) plays and colours every one. The files come from real runs of the CLI on
+// a small mesh, made here in a temporary folder.
 // Usage: node viewer/tests/viewer_meshes_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -40,6 +41,23 @@ for (const ext of ['obj', 'ply', 'stl']) cli('run', args.mesh, '-o', file(`out.$
 const countLine = readFileSync(args.mesh, 'utf8').split(/\r?\n/).map((l) => l.split('#')[0].trim())
   .filter((l) => l && l !== 'OFF')[0].split(/\s+/);
 const nv = Number(countLine[0]), nf = Number(countLine[1]);
+// The same mesh as an OBJ whose faces use two materials (by the side of z = 0 their centroid
+// is on), and the runs of both with the same options: the .glb of the OBJ has two primitives.
+{
+  const lines = readFileSync(args.mesh, 'utf8').split(/\r?\n/).map((l) => l.split('#')[0].trim())
+    .filter((l) => l && l !== 'OFF').slice(1);
+  const v = lines.slice(0, nv).map((l) => l.split(/\s+/));
+  let obj = 'mtllib two.mtl\n' + v.map((c) => `v ${c[0]} ${c[1]} ${c[2]}\n`).join('');
+  for (const l of lines.slice(nv, nv + nf)) {
+    const f = l.split(/\s+/).slice(1, 4).map(Number);
+    const z = f.reduce((s, i) => s + Number(v[i][2]), 0);
+    obj += `usemtl ${z > 0 ? 'top' : 'bottom'}\nf ${f.map((i) => i + 1).join(' ')}\n`;
+  }
+  writeFileSync(file('two.obj'), obj);
+  writeFileSync(file('two.mtl'), 'newmtl top\nKd 0.9 0.1 0.1\nnewmtl bottom\nKd 0.1 0.1 0.9\n');
+  cli('run', file('two.obj'), '-o', file('two_out.obj'), ...runOptions, '--gltf', file('two.glb'), '--export-every', '5');
+  cli('run', args.mesh, '-o', file('one_out.off'), ...runOptions, '--gltf', file('one.glb'), '--export-every', '5');
+}
 
 /** Starts scripts/view.py with the files; resolves to {server, url}. */
 function serve(...files) {
@@ -222,6 +240,25 @@ try {
   await page.keyboard.press('End');
   const dEnd = await differing(await shot('left'), await shot('right'));
   check(dEnd > 0.01, `on the last frame the panes differ (${(100 * dEnd).toFixed(1)} % of the pixels)`);
+
+  // Two materials, two primitives (three.js: two meshes): each plays the frames and wears the
+  // colour field, so the picture is the one-primitive file's, frame for frame.
+  s = await open(file('two.glb'));
+  check(!s.error && s.panes[0]?.meshes === 2, `two.glb opens as two meshes (${s.error ?? s.panes[0]?.meshes})`);
+  const both = await page.evaluate(() => window.viewer.colourMeans()[0]);
+  check(both !== null && s.shown[0] !== 'none', `every primitive wears the colour field (shown: ${s.shown[0]}, mean red ${both})`);
+  await page.focus('#scrubber');
+  await page.keyboard.press('End');
+  const inf = await page.evaluate(() => window.viewer.influences()[0]);
+  check(inf.length === 2 && inf.every((a) => a.length === 4 && a[3] === 1 && a.slice(0, 3).every((x) => x === 0)),
+        `on the last frame every primitive shows the last morph target (${JSON.stringify(inf)})`);
+  const twoLast = await shot();
+  s = await open(file('one.glb'));
+  check(s.panes[0]?.meshes === 1, `one.glb (the OFF's run) opens as one mesh (${s.panes[0]?.meshes})`);
+  await page.focus('#scrubber');
+  await page.keyboard.press('End');
+  const dTwo = await differing(twoLast, await shot());
+  check(dTwo < 0.002, `the two-primitive file's last frame looks as the one-primitive file's (${(100 * dTwo).toFixed(2)} % differ)`);
 
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
 } finally {
