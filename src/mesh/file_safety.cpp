@@ -101,20 +101,49 @@ std::string random_chars(std::size_t n) {
 
 }  // namespace
 
+namespace {
+
+/// The length of the well-formed UTF-8 sequence that starts at s[i] (RFC 3629: no overlong
+/// forms, no surrogates, at most U+10FFFF), 0 if none does; a C1 control counts as none.
+std::size_t utf8_length(std::string_view s, std::size_t i) {
+  const auto at = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = at(i);
+  std::size_t n = 0;
+  unsigned char lo = 0x80, hi = 0xBF;  // the allowed range of the second byte
+  if (c >= 0xC2 && c <= 0xDF) n = 2;
+  else if (c == 0xE0) n = 3, lo = 0xA0;
+  else if (c == 0xED) n = 3, hi = 0x9F;
+  else if (c >= 0xE1 && c <= 0xEF) n = 3;
+  else if (c == 0xF0) n = 4, lo = 0x90;
+  else if (c >= 0xF1 && c <= 0xF3) n = 4;
+  else if (c == 0xF4) n = 4, hi = 0x8F;
+  if (n == 0 || i + n > s.size()) return 0;
+  if (at(i + 1) < lo || at(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < n; ++k)
+    if (at(i + k) < 0x80 || at(i + k) > 0xBF) return 0;
+  if (c == 0xC2 && at(i + 1) <= 0x9F) return 0;  // U+0080..U+009F, the C1 controls
+  return n;
+}
+
+}  // namespace
+
 std::string printable(std::string_view s, std::size_t max_chars) {
   std::string out;
-  for (const char ch : s) {
+  for (std::size_t i = 0; i < s.size();) {
     if (out.size() >= max_chars) {
       out += "...";
       break;
     }
-    const auto c = static_cast<unsigned char>(ch);
-    if (c < 0x20 || c == 0x7f) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    const std::size_t n = c < 0x80 ? (c < 0x20 || c == 0x7f ? 0 : 1) : utf8_length(s, i);
+    if (n == 0) {
       char buf[8];
       std::snprintf(buf, sizeof buf, "\\x%02x", c);
       out += buf;
+      ++i;
     } else {
-      out += ch;
+      out.append(s.substr(i, n));
+      i += n;
     }
   }
   return out;

@@ -9,9 +9,12 @@
 
 namespace shellcontract {
 
-/// `s` as printable text for a message: bytes below 0x20 (NUL included) and 0x7f become \xNN,
-/// and text longer than `max_chars` is cut with "...". A message built from file contents is
-/// then never cut at a NUL nor able to move the terminal's cursor.
+/// `s` as printable text for a message: bytes below 0x20 (NUL included) and 0x7f, bytes that are
+/// not part of a well-formed UTF-8 sequence (0xFF, a Latin-1 byte) and the UTF-8 encodings of
+/// the C1 controls (U+0080..U+009F, which a UTF-8 terminal obeys like ESC) become \xNN, byte by
+/// byte; well-formed UTF-8 text stays as it is. Text longer than `max_chars` bytes is cut with
+/// "...". A message built from file contents is then never cut at a NUL nor able to move the
+/// terminal's cursor.
 std::string printable(std::string_view s, std::size_t max_chars = 200);
 
 /// Plain words for an errno of a file operation ("no space left on the device (disk full)",

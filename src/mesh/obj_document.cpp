@@ -24,6 +24,7 @@
 #include "mesh/obj_material_paths.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "mesh/file_safety.hpp"
 
 namespace shellcontract {
 namespace {
@@ -80,7 +81,7 @@ long long ObjDocument::index(const std::string& token, std::size_t count, std::s
   char* end = nullptr;
   const long long i = std::strtoll(token.c_str(), &end, 10);
   if (token.empty() || end != token.c_str() + token.size())
-    fail(line, "parse error", std::string(what) + " index '" + token + "' is not an integer");
+    fail(line, "parse error", std::string(what) + " index '" + printable(token) + "' is not an integer");
   const long long n = static_cast<long long>(count);
   // Negative indices count back from the last element defined so far (OBJ's relative references).
   const long long zero_based = i > 0 ? i - 1 : n + i;

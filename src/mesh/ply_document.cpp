@@ -20,6 +20,7 @@
 #include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "mesh/file_safety.hpp"
 
 namespace shellcontract {
 namespace {
@@ -67,7 +68,7 @@ double PlyDocument::next_value(ply::Type t, Slot& where) {
     const std::string tok = bytes_.substr(where.begin, where.end - where.begin);
     char* end = nullptr;
     const double v = std::strtod(tok.c_str(), &end);
-    if (end != tok.c_str() + tok.size()) fail("'" + tok + "' is not a number");
+    if (end != tok.c_str() + tok.size()) fail("'" + printable(tok) + "' is not a number");
     return v;
   }
   const auto size = static_cast<std::size_t>(ply::size_of(t));

@@ -48,7 +48,7 @@ void read_point_lines(const std::string& path, OrientedPoints& points) {
       char* end = nullptr;
       const double x = std::strtod(token.c_str(), &end);
       if (end == token.c_str() || *end != '\0' || !std::isfinite(x))
-        throw InputError(path + ": line " + std::to_string(number) + ": '" + token + "' is not a finite number");
+        throw InputError(path + ": line " + std::to_string(number) + ": '" + printable(token) + "' is not a finite number");
       v.push_back(x);
     }
     if (v.size() != 6)

@@ -13,6 +13,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
+#include "mesh/file_safety.hpp"
 
 namespace shellcontract {
 
@@ -39,13 +40,13 @@ std::vector<double> read_vertex_weights(const std::string& path, std::size_t num
     std::string token, extra;
     if (!(tokens >> token) || token[0] == '#') continue;
     if (tokens >> extra)
-      line_error(path, line, "'" + extra + "' after the weight: one weight per line (vertex " +
+      line_error(path, line, "'" + printable(extra) + "' after the weight: one weight per line (vertex " +
                                  std::to_string(weights.size()) + ")");
     const char* b = token.c_str();
     char* e = nullptr;
     const double w = std::strtod(b, &e);
     if (e != b + token.size() || !std::isfinite(w))
-      line_error(path, line, "'" + token + "' is not a weight (a number in [0, 1])");
+      line_error(path, line, "'" + printable(token) + "' is not a weight (a number in [0, 1])");
     if (!valid_weight(w))
       line_error(path, line, "weight " + token + " of vertex " + std::to_string(weights.size()) +
                                  " is outside [0, 1]");

@@ -73,6 +73,28 @@ TEST_F(Hostile, ARegionFileWithNulBytesGetsAPrintableMessage) {
   EXPECT_EQ(r.output.find('\0'), std::string::npos);
 }
 
+// Before: the weights and point-set readers quoted their tokens as they were (ESC, BEL and
+// \x01 reached the terminal), and every reader's escaping let 0xFF or a UTF-8 encoded C1
+// control (U+009B, a CSI to a UTF-8 terminal) through. Well-formed UTF-8 stays readable.
+TEST_F(Hostile, ControlAndNonUtf8BytesOfAnInputAreEscapedInItsMessage) {
+  const std::string nasty = "a\x1b[31m\x07\xff\xc2\x9b\xc3\xa9";  // ESC [31m BEL 0xFF U+009B e-acute
+  const std::string shown = "a\\x1b[31m\\x07\\xff\\xc2\\x9b\xc3\xa9";
+  test::spit(dir_ / "w.txt", nasty + "\n");
+  test::spit(dir_ / "r.txt", "1 2 " + nasty + "\n");
+  test::spit(dir_ / "p.xyz", "1 2 " + nasty + " 4 5 6\n");
+  const std::string mesh = test::mesh("ico2.off"), out = (dir_ / "o.off").string();
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"run", mesh, "-o", out, "-q", "--region-weights", (dir_ / "w.txt").string()},
+        std::vector<std::string>{"run", mesh, "-o", out, "-q", "--regions", (dir_ / "r.txt").string()},
+        std::vector<std::string>{"reconstruct", (dir_ / "p.xyz").string(), "-o", out}}) {
+    const auto r = test::run_cli(args);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("'" + shown + "'"), std::string::npos) << args[4] << ": " << r.output;
+    for (const char c : {'\x1b', '\x07', '\xff', '\x9b'})
+      EXPECT_EQ(r.output.find(c), std::string::npos) << args[4] << ": a raw byte " << int(static_cast<unsigned char>(c));
+  }
+}
+
 /// Closed tetrahedron number t of an OBJ (vertices 4t+1 .. 4t+4).
 std::string tetrahedron(int t) {
   const std::string x = std::to_string(3 * t), x1 = std::to_string(3 * t + 1);
