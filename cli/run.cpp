@@ -20,6 +20,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "core/plural.hpp"
 #include "export/gltf_material.hpp"
 #include "export_observer.hpp"
 #include "help_groups.hpp"
@@ -379,8 +380,12 @@ int command_run(int argc, char** argv) {
                   std::to_string(exporter.frame_stats().frames_written) +
                       " frames written, then failed: " + exporter.export_error());
     }
+    else if (!exports.dir.empty())
+      outputs.add("--export-dir", exports.dir,
+                  "written (" + counted(static_cast<std::size_t>(exporter.frame_stats().frames_written), "frame", "frames") + ")");
     for (const std::string& w : exporter.frame_warnings()) std::cerr << "warning: " << w << '\n';
     if (!fields.error().empty()) outputs.add("--fields", fields_prefix, "failed: " + fields.error());
+    else if (!fields_prefix.empty()) outputs.add("--fields", fields_prefix, "written (_start.ply and _end.ply)");
     const auto attempt = [&](const char* option, const std::string& path, const std::function<void()>& write) {
       stage = "writing " + path;
       try {

@@ -33,6 +33,24 @@ TEST_F(Hostile, AFullDiskStopsTheExportNotTheResult) {
   EXPECT_EQ(test::slurp(dir_ / "o.off"), test::slurp(dir_ / "ref.off"));
 }
 
+// Before: the summary's "outputs" left out --export-dir and --fields when they were written
+// (docs/cli.md: it says which outputs were written).
+TEST_F(Hostile, TheSummaryNamesEveryOutputWritten) {
+  const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n", "4", "-q",
+                          "--export-every", "2", "--export-dir", (dir_ / "frames").string(), "--fields",
+                          (dir_ / "f").string(), "--log", (dir_ / "log.csv").string(), "--summary",
+                          (dir_ / "s.json").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string summary = test::slurp(dir_ / "s.json");
+  // Frames 0, 2 and 4: three files, as many as the folder holds.
+  EXPECT_EQ(test::listing(dir_ / "frames").size(), 3u);
+  EXPECT_NE(summary.find("\"--export-dir\": \"written (3 frames)\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"--fields\": \"written"), std::string::npos) << summary;
+  EXPECT_TRUE(fs::exists(dir_ / "f_start.ply") && fs::exists(dir_ / "f_end.ply"));
+  for (const char* option : {"-o", "--log"})
+    EXPECT_NE(summary.find("\"" + std::string(option) + "\": \"written\""), std::string::npos) << summary;
+}
+
 // --export-failure stop: the user asked that a failed frame file end the run. The run stops
 // early (fewer frames than asked), and the result, log and summary of where it stopped are still
 // written. Without the option the run would go on to frame 200.
