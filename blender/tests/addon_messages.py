@@ -19,17 +19,22 @@ def mesh_messages():
     bm = bmesh.new()
     bm.from_mesh(obj.data)
     bm.faces.ensure_lookup_table()
-    bm.faces.remove(bm.faces[len(bm.faces) // 2])  # a quad of the middle: triangle n != face n
+    removed = bm.faces[len(bm.faces) // 2]  # a quad of the middle: triangle n != face n
+    hole = {v.index for v in removed.verts}
+    bm.faces.remove(removed)
     bm.to_mesh(obj.data)
     bm.free()
     text = refusal()
-    face = re.search(r"the mesh of {}: open boundary: face (\d+) ".format(re.escape(obj.name)), text)
+    # Every face with an open edge, as the mesh's faces: the removed quad's four neighbours.
+    faces = re.search(r"the mesh of {}: open boundary: faces? ([\d, ]+) ".format(re.escape(obj.name)), text)
     edge = re.search(r"edge \((\d+), (\d+)\) of face", text)
     polygons = obj.data.polygons
-    check(face is not None and edge is not None and "input arrays" not in text
-          and int(face.group(1)) < len(polygons)
-          and {int(edge.group(1)), int(edge.group(2))} <= set(polygons[int(face.group(1))].vertices),
-          "an open mesh is refused naming the mesh's face that has the open edge: " + text)
+    named = [int(n) for n in faces.group(1).split(", ")] if faces else []
+    check(faces is not None and edge is not None and "input arrays" not in text
+          and len(named) == 4 and all(n < len(polygons) for n in named)
+          and all(len(set(polygons[n].vertices) & hole) == 2 for n in named)
+          and any({int(edge.group(1)), int(edge.group(2))} <= set(polygons[n].vertices) for n in named),
+          "an open mesh is refused naming the mesh's faces that have an open edge: " + text)
     # Two cubes that share one corner (the second is the first mirrored through its corner 7): the
     # pinch is a MeshError whose faces are the six quads around vertex 7, each named once.
     corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
