@@ -292,7 +292,7 @@ int command_bench_error(int argc, char** argv) {
     if (opt.frames < 1) throw UsageError("--frames must be >= 1");
     if (opt.xpbd_reference_iterations < 1 || opt.xpbd_reference_substeps < 1 || opt.pbd_reference_iterations < 1)
       throw UsageError("reference iterations and substeps must be >= 1");
-    if (!(base.dt > 0.0) || !std::isfinite(base.dt)) throw UsageError("--dt must be positive");
+    if (!(base.dt > 0.0) || !std::isfinite(base.dt)) throw UsageError("--dt must be a finite number > 0");
     if (!plot.empty()) {
       const auto ext = std::filesystem::path(plot).extension();
       if (ext != ".png" && ext != ".svg") throw UsageError("--plot: expected a .png or .svg file, got '" + plot + "'");

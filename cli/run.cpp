@@ -27,6 +27,7 @@
 #include "json_writer.hpp"
 #include "mesh/file_extras.hpp"
 #include "mesh/read_polygon_soup.hpp"
+#include "mesh/output_check.hpp"
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
 #include "run_observers.hpp"
@@ -207,8 +208,10 @@ int command_run(int argc, char** argv) {
                    "--export-dir or --gltf does\n";
     const std::string ext = lower_extension(output);
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
-      throw UsageError("-o " + output + ": unknown mesh format '." + ext +
-                       "' (expected .off, .obj, .ply or .stl)");
+      throw UsageError("-o " + quoted_path(output) +
+                       (ext.empty() ? std::string(": no file extension to name the mesh format")
+                                    : ": unknown mesh format '." + printable(ext) + "'") +
+                       " (expected .off, .obj, .ply or .stl)");
     OutputPlan plan;
     std::vector<PlannedOutput>& planned = plan.outputs;
     planned.push_back({"-o", output});

@@ -32,7 +32,7 @@ class CliRunControl : public ::testing::Test {
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_control_" +
+           ("shellcontract_cli_control_" + std::to_string(::getpid()) + "_" +
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
@@ -232,6 +232,7 @@ TEST_F(CliRunControl, OutputsAreCheckedBeforeTheSimulation) {
       {{"-o", out("o.off"), "--log", out("./o.off")}, "is also the file of -o"},
       {{"-o", in}, "is the input file"},
       {{"-o", out("o.xyz")}, "unknown mesh format"},
+      {{"-o", out("o")}, "no file extension to name the mesh format"},
       {{"-o", out("o.off"), "--summary", dir_.string()}, "is a folder"},
   };
   for (const Case& c : cases) {
