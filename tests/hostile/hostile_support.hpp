@@ -57,7 +57,8 @@ class Hostile : public ::testing::Test {
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_hostile_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("shellcontract_hostile_" + std::to_string(::getpid()) + "_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     for (auto it = mounts_.rbegin(); it != mounts_.rend(); ++it) ::umount2(it->c_str(), MNT_DETACH);
     std::error_code ec;
     fs::remove_all(dir_, ec);
