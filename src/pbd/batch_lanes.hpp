@@ -47,8 +47,8 @@ ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
     for (std::size_t first = colour_offsets[c]; first < end; first += BATCH_LANES) {
       Batch b{};
       b.count = static_cast<int>(std::min<std::size_t>(BATCH_LANES, end - first));
-      // The membrane kernel pipelines its loads, the dihedral one projects such pairs together
-      // (loading early did not pay for the isometric hinges).
+      // The StVK membrane and the dihedral kernels project such pairs together (loading early
+      // did not pay for the isometric hinges).
       if constexpr (std::is_same_v<Batch, MembraneBatch> || std::is_same_v<Batch, DihedralBatch>)
         b.same_colour_next = first + BATCH_LANES < end;
       for (int k = 0; k < BATCH_LANES; ++k) {

@@ -60,74 +60,145 @@ void isometric_batches_scalar(const IsometricBatch* batches, std::size_t count, 
 /// Lane k reads row k of a 4 by 3 block (the XPBD hinge multipliers of one batch).
 constexpr int LANE_IDS[BATCH_LANES] = {0, 1, 2, 3};
 
-/// project_membrane for StVK, four lanes at a time; each line mirrors constraint_kernels.hpp.
+/// Rows of the first `count` lanes (all four when Full) moved by -d, w unchanged. The rows are
+/// read again here rather than kept in registers from the gather (no other lane of the batch
+/// writes them): fewer values live across the arithmetic. Padding lanes are never written.
+template <bool Full>
+SC_AVX2_INLINE void move_rows(PaddedVertex* xw, const int* v, int count, const V3& d) {
+  const V zero = _mm256_setzero_pd();
+  const V xy02 = _mm256_unpacklo_pd(d.x, d.y), xy13 = _mm256_unpackhi_pd(d.x, d.y);
+  const V z02 = _mm256_unpacklo_pd(d.z, zero), z13 = _mm256_unpackhi_pd(d.z, zero);
+  const V rows[BATCH_LANES] = {_mm256_permute2f128_pd(xy02, z02, 0x20), _mm256_permute2f128_pd(xy13, z13, 0x20),
+                               _mm256_permute2f128_pd(xy02, z02, 0x31), _mm256_permute2f128_pd(xy13, z13, 0x31)};
+  for (int k = 0; k < BATCH_LANES; ++k) {
+    if (!Full && k > 0 && k >= count) break;
+    double* p = &xw[v[k]].x;
+    _mm256_store_pd(p, _mm256_load_pd(p) - rows[k]);
+  }
+}
+
+/// Two batches of one colour (they share no vertex), their rest data and rows as lanes of W, as
+/// the dihedral kernel pairs them: the two chains interleave. A batch without a partner goes
+/// through the same code with itself as the second, whose results are dropped, so that every
+/// batch is computed by the same instructions whether it is paired or not and the result does
+/// not depend on where the threads' chunks cut a colour.
+struct MembranePair {
+  const MembraneBatch* c0;
+  const MembraneBatch* c1;  ///< of c0's colour, or c0 itself when `second` is false
+  bool second;              ///< c1 is a batch of its own (store its results)
+  W load(const double (MembraneBatch::*f)[BATCH_LANES]) const {
+    return {_mm256_load_pd(c0->*f), _mm256_load_pd(c1->*f)};
+  }
+  void rows(const PaddedVertex* xw, int j, L3<W>& x, W& w) const {
+    const V4 r0 = gather(xw, c0->v[j]), r1 = gather(xw, c1->v[j]);
+    x = {{r0.x.x, r1.x.x}, {r0.x.y, r1.x.y}, {r0.x.z, r1.x.z}};
+    w = {r0.w, r1.w};
+  }
+  /// Moves vertex j's rows by -d[j]; one test for the common case of two full batches.
+  void move(PaddedVertex* xw, const L3<W> (&d)[3]) const {
+    if (second && c0->count == BATCH_LANES && c1->count == BATCH_LANES) {
+      for (int j = 0; j < 3; ++j) move_rows<true>(xw, c0->v[j], BATCH_LANES, V3{d[j].x.a, d[j].y.a, d[j].z.a});
+      for (int j = 0; j < 3; ++j) move_rows<true>(xw, c1->v[j], BATCH_LANES, V3{d[j].x.b, d[j].y.b, d[j].z.b});
+      return;
+    }
+    for (int j = 0; j < 3; ++j) move_rows<false>(xw, c0->v[j], c0->count, V3{d[j].x.a, d[j].y.a, d[j].z.a});
+    if (second)
+      for (int j = 0; j < 3; ++j) move_rows<false>(xw, c1->v[j], c1->count, V3{d[j].x.b, d[j].y.b, d[j].z.b});
+  }
+  W load_lambda(const double* lam) const {
+    return {_mm256_loadu_pd(lam), _mm256_loadu_pd(second ? lam + BATCH_LANES : lam)};
+  }
+  void store_lambda(double* lam, W l) const {
+    _mm256_storeu_pd(lam, l.a);
+    if (second) _mm256_storeu_pd(lam + BATCH_LANES, l.b);
+  }
+};
+
+/// The material's and the context's constants, as lanes of W.
+struct StvkLanes {
+  W one, quarter, two, mu, half_lam, floor, tiny, at;
+};
+
+/// project_membrane for StVK on the lanes of a pair of batches (math-spec 4.4, 9.1, 9.2). The
+/// quantities are the scalar kernel's, arranged for fewer instructions: the energy from S:D,
+/// the gradients as combinations of the columns of F, the third from translation invariance.
+/// The results differ from constraint_kernels.hpp's by rounding only.
+/// @param lam  XPBD: the pair's multipliers (lambda + 4 b); unused for PBD
+template <bool Xpbd>
+SC_AVX2_INLINE void membrane_lanes(const MembranePair& c, PaddedVertex* xw, const StvkLanes& k,
+                                   double* lam) {
+  L3<W> x1, x2, x3;
+  W w0, w1, w2;
+  c.rows(xw, 0, x1, w0);
+  c.rows(xw, 1, x2, w1);
+  c.rows(xw, 2, x3, w2);
+  const W dm00 = c.load(&MembraneBatch::dm00), dm01 = c.load(&MembraneBatch::dm01);
+  const W dm11 = c.load(&MembraneBatch::dm11), area = c.load(&MembraneBatch::rest_area);
+  // F = [e1 e2] Dm^-1 = [f0 f1] (Dm^-1 upper triangular), C = F^T F, D = C - I = 2 E, and
+  // S = 2 mu E + lambda tr(E) I = mu D + (lambda / 2) tr(D) I.
+  const L3<W> e1 = x1 - x3, e2 = x2 - x3;
+  const L3<W> f0 = e1 * dm00;
+  const L3<W> f1 = e1 * dm01 + e2 * dm11;
+  const W d00 = f0.z * f0.z + (f0.y * f0.y + fmsub(f0.x, f0.x, k.one));
+  const W d11 = f1.z * f1.z + (f1.y * f1.y + fmsub(f1.x, f1.x, k.one));
+  const W c01 = dot(f0, f1);
+  const W t = k.half_lam * (d00 + d11);
+  const W s00 = k.mu * d00 + t, s11 = k.mu * d11 + t, s01 = k.mu * c01;
+  // psi = S:E / 2 = S:D / 4 (S:E = 2 mu E:E + lambda tr(E)^2 = 2 psi).
+  const W E = (area * k.quarter) * (s00 * d00 + s11 * d11 + (s01 + s01) * c01);
+  // Abar P3 Dm^-T with P3 = F S: the gradients for x1 and x2 are f0 a_i + f1 b_i, the one for x3
+  // is -(g0 + g1), computed as h = g0 + g1 from the summed coefficients.
+  const W ad00 = area * dm00, ad01 = area * dm01, ad11 = area * dm11;
+  const W a0 = s00 * ad00 + s01 * ad01, b0 = s01 * ad00 + s11 * ad01;
+  const W a1 = s01 * ad11, b1 = s11 * ad11;
+  const L3<W> g0 = f0 * a0 + f1 * b0, g1 = f0 * a1 + f1 * b1, h = f0 * (a0 + a1) + f1 * (b0 + b1);
+  const W n0 = dot(g0, g0), n1 = dot(g1, g1), n2 = dot(h, h);
+  const W G = w0 * n0 + w1 * n1 + w2 * n2;
+  // The skips of math-spec 9.1(d), per lane; padding lanes have E = 0.
+  const W active = vand(cmp_gt(E, k.floor * area), cmp_gt(G, k.tiny));
+  const int bits = lane_bits(active);
+  if (bits == 0) return;
+  W sigma;  // dx_i = -sigma w_i g_i
+  if (!Xpbd) {
+    sigma = E / G;
+    // The clamp: the longest step sigma^2 max(w_i^2 n_i) against max_step^2, compared as
+    // E^2 m > (max_step G)^2 so as not to wait for the division; a clamped lane's step is then
+    // max_step / sqrt(m) (the clamp is rare).
+    const W m = vmax(vmax(w0 * w0 * n0, w1 * w1 * n1), w2 * w2 * n2);
+    const W max_step = c.load(&MembraneBatch::max_step);
+    const W mg = max_step * G;
+    const W clamp = cmp_gt(E * E * m, mg * mg);
+    if (lane_bits(vand(clamp, active)) != 0) sigma = blend(sigma, max_step / vsqrt(m), clamp);
+  } else {
+    // Division-free form of math-spec 9.2 with C = sqrt(2E) (E > 0 on active lanes).
+    const W l = c.load_lambda(lam);
+    const W C = vsqrt(vmax(k.two * E, lanes_splat<W>(0.0)));
+    sigma = C * (C + k.at * l) / (G + k.at * C * C);
+    c.store_lambda(lam, blend(l, l - C * sigma, active));
+  }
+  const W s0 = sigma * w0, s1 = sigma * w1, s2 = vxor(sigma * w2, lanes_splat<W>(-0.0));
+  L3<W> d[3] = {g0 * s0, g1 * s1, h * s2};  // h (-s2) = -h s2 = g2 s2
+  // Inactive lanes move by +0 whatever their g (inf or NaN included), so x - d == x exactly;
+  // with every lane active that mask is the identity.
+  if (bits != (1 << (2 * BATCH_LANES)) - 1)
+    for (L3<W>& dj : d) dj = {vand(dj.x, active), vand(dj.y, active), vand(dj.z, active)};
+  c.move(xw, d);
+}
+
+/// Batches in pairs where two consecutive ones are of one colour, else one at a time (see
+/// MembranePair).
+template <bool Xpbd>
 void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* batches,
                            std::size_t count, PaddedVertex* xw, const ProjectionContext& ctx,
                            double* lambda) {
-  const V one = splat(1.0), half = splat(0.5), two = splat(2.0);
-  const V vmu = splat(mu), two_mu = splat(2.0 * mu), vlam = splat(lambda_lame);
-  const V floor = splat(ctx.energy_floor), tiny = splat(1e-300), at = splat(ctx.alpha_tilde);
-  // Software pipelining: the rows of batch b + 1 are loaded before the stores of batch b when
-  // the two are of the same colour (same_colour_next: they share no vertex, so the rows read are
-  // the same either way), else after them. Loads that follow the previous batch's stores in
-  // program order start later; measured faster on bear (BM_MembraneStvkPbdColouredOrder/batched:1,
-  // lab/history.md).
-  V4 next1, next2, next3;
-  auto load_next = [&](const MembraneBatch& c) {
-    next1 = gather(xw, c.v[0]), next2 = gather(xw, c.v[1]), next3 = gather(xw, c.v[2]);
-  };
-  if (count > 0) load_next(batches[0]);
-  for (std::size_t b = 0; b < count; ++b) {
-    const MembraneBatch& c = batches[b];
-    const V4 r1 = next1, r2 = next2, r3 = next3;
-    const bool early = b + 1 < count && c.same_colour_next;
-    const bool late = b + 1 < count && !c.same_colour_next;
-    const V3 &x1 = r1.x, &x2 = r2.x, &x3 = r3.x;
-    const V w0 = r1.w, w1 = r2.w, w2 = r3.w;
-    const V dm00 = _mm256_load_pd(c.dm00), dm01 = _mm256_load_pd(c.dm01);
-    const V dm11 = _mm256_load_pd(c.dm11), area = _mm256_load_pd(c.rest_area);
-    // C-form (math-spec 4.4): F = [e1 e2] Dm^-1, C = F^T F, S = 2 mu E + lambda tr(E) I.
-    const V3 e1 = x1 - x3, e2 = x2 - x3;
-    const V3 f0 = e1 * dm00;
-    const V3 f1 = e1 * dm01 + e2 * dm11;
-    const V e00 = half * (dot(f0, f0) - one), e11 = half * (dot(f1, f1) - one);
-    const V e01 = half * dot(f0, f1);
-    const V tr = e00 + e11;
-    const V s00 = two_mu * e00 + vlam * tr, s11 = two_mu * e11 + vlam * tr, s01 = two_mu * e01;
-    const V psi = vmu * (e00 * e00 + e11 * e11 + two * e01 * e01) + half * vlam * tr * tr;
-    const V3 p0 = f0 * s00 + f1 * s01, p1 = f0 * s01 + f1 * s11;  // P3 = F S
-    const V3 g0 = (p0 * dm00 + p1 * dm01) * area;                  // Abar P3 Dm^-T
-    const V3 g1 = (p1 * dm11) * area;
-    const V3 g2 = V3{-g0.x - g1.x, -g0.y - g1.y, -g0.z - g1.z};
-    const V E = area * psi;
-    const V n0 = dot(g0, g0), n1 = dot(g1, g1), n2 = dot(g2, g2);
-    const V G = w0 * n0 + w1 * n1 + w2 * n2;
-    // The skips of math-spec 9.1(d), per lane; padding lanes have E = 0.
-    const V active = _mm256_and_pd(greater(E, floor * area), greater(G, tiny));
-    if (early) load_next(batches[b + 1]);
-    if (_mm256_movemask_pd(active) != 0) {
-      V sigma;  // dx_i = -sigma w_i g_i
-      if (lambda == nullptr) {
-        sigma = E / G;
-        const V a0 = sigma * w0, a1 = sigma * w1, a2 = sigma * w2;
-        const V longest_sq = _mm256_max_pd(_mm256_max_pd(a0 * a0 * n0, a1 * a1 * n1), a2 * a2 * n2);
-        const V max_step = _mm256_load_pd(c.max_step);
-        const V clamp = greater(longest_sq, max_step * max_step);
-        if (_mm256_movemask_pd(_mm256_and_pd(clamp, active)) != 0)  // the clamp is rare
-          sigma = _mm256_blendv_pd(sigma, sigma * (max_step / _mm256_sqrt_pd(longest_sq)), clamp);
-      } else {
-        // XPBD, division-free form of math-spec 9.2 with C = sqrt(2E) (E > 0 on active lanes).
-        double* lam = lambda + BATCH_LANES * b;
-        const V l = _mm256_loadu_pd(lam);
-        const V C = _mm256_sqrt_pd(_mm256_max_pd(two * E, _mm256_setzero_pd()));
-        sigma = C * (C + at * l) / (G + at * C * C);
-        _mm256_storeu_pd(lam, _mm256_blendv_pd(l, l - C * sigma, active));
-      }
-      scatter(xw, c.v[0], c.count, x1 - masked(g0 * (sigma * w0), active), w0);
-      scatter(xw, c.v[1], c.count, x2 - masked(g1 * (sigma * w1), active), w1);
-      scatter(xw, c.v[2], c.count, x3 - masked(g2 * (sigma * w2), active), w2);
-    }
-    if (late) load_next(batches[b + 1]);
+  const auto s = [](double a) { return lanes_splat<W>(a); };
+  const StvkLanes k{s(1.0), s(0.25), s(2.0), s(mu), s(0.5 * lambda_lame), s(ctx.energy_floor),
+                    s(1e-300), s(ctx.alpha_tilde)};
+  for (std::size_t b = 0; b < count;) {
+    const bool pair = b + 1 < count && batches[b].same_colour_next;
+    membrane_lanes<Xpbd>(MembranePair{batches + b, batches + (pair ? b + 1 : b), pair}, xw, k,
+                         Xpbd ? lambda + BATCH_LANES * b : nullptr);
+    b += pair ? 2 : 1;
   }
 }
 
@@ -259,7 +330,10 @@ void project_stvk_membrane_batches(const Stvk& material, const MembraneBatch* ba
                                    const ProjectionContext& ctx, double* lambda, BatchIsa isa) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (isa == BatchIsa::Auto && batch_avx2_available()) {
-    membrane_batches_avx2(material.mu(), material.lambda(), batches, count, xw, ctx, lambda);
+    if (lambda)
+      membrane_batches_avx2<true>(material.mu(), material.lambda(), batches, count, xw, ctx, lambda);
+    else
+      membrane_batches_avx2<false>(material.mu(), material.lambda(), batches, count, xw, ctx, nullptr);
     return;
   }
 #endif

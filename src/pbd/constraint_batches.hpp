@@ -67,7 +67,7 @@ struct alignas(32) MembraneBatch {
   int v[3][BATCH_LANES];  ///< v[j][k]: vertex j of lane k
   int count;              ///< real lanes, 1..4
   int same_colour_next;   ///< 1 when batch + 1 is of the same colour (shares no vertex with this
-                          ///< one: the AVX2 kernel loads its rows before this batch's stores)
+                          ///< one: the StVK AVX2 kernel then projects the two together)
 };
 
 /// Four isometric hinges of one colour (IsometricHingeConstraint fields, stencil order of
