@@ -161,13 +161,13 @@ SC_AVX2_INLINE void membrane_lanes(const MembranePair& c, PaddedVertex* xw, cons
   W sigma;  // dx_i = -sigma w_i g_i
   if (!Xpbd) {
     sigma = E / G;
-    // The clamp: the longest step sigma^2 max(w_i^2 n_i) against max_step^2, compared as
-    // E^2 m > (max_step G)^2 so as not to wait for the division; a clamped lane's step is then
-    // max_step / sqrt(m) (the clamp is rare).
+    // The clamp: the longest step sigma^2 max(w_i^2 n_i) against max_step^2; a clamped lane's
+    // step is then max_step / sqrt(m) (the clamp is rare). Compared through sigma, which is
+    // scale-free under PBD: E^2 m against (max_step G)^2 overflows to inf = inf, and so skips
+    // the clamp, once mu is above about 1e75 (the options allow 1e100).
     const W m = vmax(vmax(w0 * w0 * n0, w1 * w1 * n1), w2 * w2 * n2);
     const W max_step = c.load(&MembraneBatch::max_step);
-    const W mg = max_step * G;
-    const W clamp = cmp_gt(E * E * m, mg * mg);
+    const W clamp = cmp_gt(sigma * sigma * m, max_step * max_step);
     if (lane_bits(vand(clamp, active)) != 0) sigma = blend(sigma, max_step / vsqrt(m), clamp);
   } else {
     // Division-free form of math-spec 9.2 with C = sqrt(2E) (E > 0 on active lanes).
