@@ -46,7 +46,8 @@ void check_planned_outputs(const OutputPlan& plan);
 /// run refused or failed before its first frame (a bad mesh, a bad face list) creates nothing.
 class ExportFolderLock {
  public:
-  ExportFolderLock(int fd, std::string dir, bool created) : fd_(fd), dir_(std::move(dir)), created_(created) {}
+  ExportFolderLock(int fd, std::string dir, bool created)
+      : fd_(fd), dir_(std::move(dir)), created_(created) {}
   ~ExportFolderLock();
   ExportFolderLock(const ExportFolderLock&) = delete;
   ExportFolderLock& operator=(const ExportFolderLock&) = delete;

@@ -382,10 +382,10 @@ int command_run(int argc, char** argv) {
       outputs.add("--export-dir", exports.dir,
                   std::to_string(exporter.frame_stats().frames_written) +
                       " frames written, then failed: " + exporter.export_error());
+    } else if (!exports.dir.empty()) {
+      const auto frames = static_cast<std::size_t>(exporter.frame_stats().frames_written);
+      outputs.add("--export-dir", exports.dir, "written (" + counted(frames, "frame", "frames") + ")");
     }
-    else if (!exports.dir.empty())
-      outputs.add("--export-dir", exports.dir,
-                  "written (" + counted(static_cast<std::size_t>(exporter.frame_stats().frames_written), "frame", "frames") + ")");
     for (const std::string& w : exporter.frame_warnings()) std::cerr << "warning: " << w << '\n';
     if (!fields.error().empty()) outputs.add("--fields", fields_prefix, "failed: " + fields.error());
     else if (!fields_prefix.empty()) outputs.add("--fields", fields_prefix, "written (_start.ply and _end.ply)");

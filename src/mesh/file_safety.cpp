@@ -99,10 +99,6 @@ std::string random_chars(std::size_t n) {
   return bytes;
 }
 
-}  // namespace
-
-namespace {
-
 /// The length of the well-formed UTF-8 sequence that starts at s[i] (RFC 3629: no overlong
 /// forms, no surrogates, at most U+10FFFF), 0 if none does; a C1 control counts as none.
 std::size_t utf8_length(std::string_view s, std::size_t i) {
