@@ -6,6 +6,7 @@
 #include <CGAL/poisson_surface_reconstruction.h>
 #include <CGAL/assertions.h>
 #include <CGAL/property_map.h>
+#include <Eigen/Dense>
 
 #include <algorithm>
 #include <array>
@@ -100,6 +101,34 @@ OrientedPoints read_oriented_points(const std::string& path) {
 
 using PoissonFunction = CGAL::Poisson_reconstruction_function<Kernel>;
 
+/// A hint for a failed reconstruction whose points all lie on one sphere (the least-squares
+/// sphere |p|^2 = 2 c.p + k through them, to 1e-9 of its radius; "" otherwise). Cospherical
+/// points are the Delaunay triangulation's degenerate case: every tetrahedron has the same
+/// circumsphere. The Poisson solve found no surface for evenly spread points (a Fibonacci
+/// lattice) on a sphere with exact normals, while the same points with a little noise went
+/// through (an icosphere's vertices, also on one sphere, go through as they are).
+std::string cospherical_hint(const std::vector<PointWithNormal>& points) {
+  if (points.size() < 5) return "";
+  Eigen::MatrixX4d a(static_cast<Eigen::Index>(points.size()), 4);
+  Eigen::VectorXd b(a.rows());
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    const Point3& p = points[static_cast<std::size_t>(i)].first;
+    a.row(i) << 2 * p.x(), 2 * p.y(), 2 * p.z(), 1.0;
+    b(i) = p.x() * p.x() + p.y() * p.y() + p.z() * p.z();
+  }
+  const Eigen::Vector4d fit = a.colPivHouseholderQr().solve(b);
+  const Eigen::Vector3d c = fit.head<3>();
+  const double r_sq = fit(3) + c.squaredNorm();
+  if (!(r_sq > 0.0) || !std::isfinite(r_sq)) return "";
+  const double r = std::sqrt(r_sq);
+  for (const PointWithNormal& pn : points) {
+    const Eigen::Vector3d p(pn.first.x(), pn.first.y(), pn.first.z());
+    if (!(std::abs((p - c).norm() - r) <= 1e-9 * r)) return "";
+  }
+  return ": the points all lie on one sphere, a degenerate case for the Delaunay triangulation "
+         "the solve is built on; a little noise on the points may get through";
+}
+
 /// The value of a PoissonFunction at a point: CGAL 5.5's operator() repeated line for line (same
 /// locate, same barycentric arithmetic, so the same values), because CGAL's own binds a reference
 /// to a null pointer (Cell_hint::get, Poisson_reconstruction_function.h:265) on the first call of
@@ -155,6 +184,10 @@ bool poisson_delaunay(const std::string& path, const std::vector<PointWithNormal
   using Tr = CGAL::Surface_mesher::Surface_mesh_default_triangulation_3_generator<Kernel>::Type;
   using C2t3 = CGAL::Surface_mesh_complex_2_in_triangulation_3<Tr>;
   using Surface = CGAL::Implicit_surface_3<Kernel, PoissonValue>;
+  // The solve's refinement and the mesher's initial points draw from CGAL's default generator,
+  // which CGAL seeds with the clock and which keeps its state between calls: seeded here, before
+  // either, the same input gives the same mesh on every run and every call in one process.
+  CGAL::get_default_random() = CGAL::Random(0);
   PoissonFunction function(points.begin(), points.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
                     CGAL::Second_of_pair_property_map<PointWithNormal>());
   if (!function.compute_implicit_function()) return false;
@@ -166,9 +199,6 @@ bool poisson_delaunay(const std::string& path, const std::vector<PointWithNormal
                                                            options.distance * spacing);
   Tr tr;
   C2t3 c2t3(tr);
-  // The mesher draws its initial points from CGAL's default generator, which CGAL seeds with the
-  // clock: a fixed seed makes the same input give the same mesh on every run.
-  CGAL::get_default_random() = CGAL::Random(0);
   try {
     CGAL::make_surface_mesh(c2t3, surface, criteria, CGAL::Manifold_with_boundary_tag());
   } catch (const CGAL::Failure_exception& e) {
@@ -265,7 +295,8 @@ Mesh reconstruct_from_oriented_points(const std::string& path, const Reconstruct
       CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>()));
   Mesh mesh;
   if (!(spacing > 0.0) || !poisson_delaunay(path, points, mesh, spacing, options))
-    throw InputError(path + ": Poisson surface reconstruction failed (no surface found)");
+    throw InputError(path + ": Poisson surface reconstruction failed (no surface found)" +
+                     cospherical_hint(points));
   if (!CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh))
     throw InputError(path + ": the reconstructed surface is not a closed triangle mesh");
   // Outward orientation, as the simulator expects (math-spec 1.1).
