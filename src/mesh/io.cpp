@@ -39,6 +39,7 @@
 #include "mesh/polygon_split.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 
 #include "mesh/seam_weld.hpp"
 #include "mesh/soup_checks.hpp"
@@ -264,9 +265,22 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
       fail(path, "unknown extension", "'." + ext + "' (expected .off, .obj, .ply or .stl)");
     }
     const auto start = std::chrono::steady_clock::now();
-    read_polygon_soup(path, ext, points, polygons, lines);
+    std::vector<std::string> read_warnings;  // lines after an OFF's declared faces
+    read_polygon_soup(path, ext, points, polygons, lines, &read_warnings);
     const auto read = std::chrono::steady_clock::now();
-    Mesh mesh = check_soup(path, ext, points, polygons, lines, report);
+    Mesh mesh = [&] {
+      try {
+        return check_soup(path, ext, points, polygons, lines, report);
+      } catch (const FaceListError& e) {
+        // Faces left unread (more than the header counts) open the mesh: the refusal says so.
+        if (read_warnings.empty()) throw;
+        throw FaceListError(std::string(e.what()) + " (" + read_warnings.front() + ")", e.faces());
+      } catch (const InputError& e) {
+        if (read_warnings.empty()) throw;
+        throw InputError(std::string(e.what()) + " (" + read_warnings.front() + ")");
+      }
+    }();
+    if (report) report->warnings.insert(report->warnings.begin(), read_warnings.begin(), read_warnings.end());
     if (report) {
       report->read_seconds = std::chrono::duration<double>(read - start).count();
       report->check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - read).count();

@@ -145,6 +145,17 @@ class OffScanner {
       scan.faces.push_back(std::move(face));
       out.face_line.push_back(line_);
     }
+    // Lines after the declared faces are not read: more faces than the header says, or another
+    // file appended. Said, so that a mesh that then fails its checks (an open boundary where the
+    // dropped faces were) is not a riddle.
+    if (next(t)) {
+      const std::size_t first = line_;
+      std::size_t more = 1;
+      while (next(t)) ++more;
+      scan.ignored_tail = path_ + ": line " + std::to_string(first) + ": " + counted(more, "line", "lines") +
+                          " after the " + counted(nf, "declared face", "declared faces") +
+                          " not read (the header's counts decide what is read)";
+    }
     return scan;
   }
 

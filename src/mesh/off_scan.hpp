@@ -24,6 +24,9 @@ struct OffScan {
   SourceLines lines;    ///< ascii: the line of every vertex and face
   std::vector<std::array<double, 3>> points;    ///< x / w, y / w, z / w (w = 1 unless "4OFF")
   std::vector<std::vector<std::size_t>> faces;  ///< each face's vertex indices, colours dropped
+  /// Content after the declared faces, which is not read (ascii: "<path>: line N: ..."); empty
+  /// when there is none but blank and comment lines.
+  std::string ignored_tail;
 };
 
 /// Reads an OFF file held in memory (a UTF-8 byte-order mark and the line ends already

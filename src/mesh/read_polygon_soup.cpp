@@ -46,7 +46,8 @@ std::string read_file_bytes(const std::string& path) {
 }
 
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
-                       std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines) {
+                       std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines,
+                       std::vector<std::string>* warnings) {
   std::string bytes = read_file_bytes(path);
   if (std::all_of(bytes.begin(), bytes.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); }))
     fail(path, "empty file", "the file holds no data");
@@ -62,6 +63,7 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
   if (ext != "stl") normalize_text(bytes);
   if (ext == "off") {  // read by the scan (off_scan.hpp says why not by CGAL)
     OffScan scan = scan_off(path, bytes);
+    if (warnings && !scan.ignored_tail.empty()) warnings->push_back(scan.ignored_tail);
     points.reserve(scan.points.size());
     for (const auto& p : scan.points) points.emplace_back(p[0], p[1], p[2]);
     polygons = std::move(scan.faces);

@@ -20,8 +20,10 @@ std::string read_file_bytes(const std::string& path);
 /// UTF-8 byte-order mark and use "\r" line ends. Nothing is allocated from a declared count that the
 /// file's size does not bound.
 /// @param ext lower-case extension without the dot: "off", "obj", "ply" or "stl"
+/// @param warnings  if given, gets what was read past (an OFF's lines after its declared faces)
 /// @throws InputError "<path>: <problem>: <where>" if the file cannot be read as such
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
-                       std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines);
+                       std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines,
+                       std::vector<std::string>* warnings = nullptr);
 
 }  // namespace shellcontract
