@@ -8,8 +8,10 @@ to the last bit.
 
 A mesh the library refuses raises ValueError with the CLI's message; where particular faces are
 to blame (an open boundary, a non-manifold edge or vertex, a duplicate or degenerate face, ...) it is a
-``MeshError``, a ValueError whose ``faces`` lists their indices into the faces array (all of
-them, even where the message shortens its list with "...").
+``MeshError``, a ValueError whose ``faces`` lists the indices into the faces array of the faces
+the message is about, all of them even where the message shortens its list with "...": for an
+open boundary, an inconsistent orientation or a non-manifold edge every face with such an edge;
+for a duplicate face the pair found first, for a degenerate face the first one.
 """
 
 import atexit
@@ -116,14 +118,18 @@ def contract(vertices, faces, *, callback=None, **options):
     """
     options = dict(options)
     strengths = options.pop("region_strengths", None)
-    if options.get("regions", 0) is None:
-        del options["regions"]  # None: not given, the default
+    for name in ("regions", "region_weights"):
+        if name in options and options[name] is None:
+            del options[name]  # None: not given, the default
+    weights_array = "region_weights" in options and not isinstance(options["region_weights"],
+                                                                     (str, bytes, os.PathLike))
     regions = options.get("regions")
     if regions is None or isinstance(regions, (str, os.PathLike)):
         if strengths is not None:
             raise ValueError("region_strengths needs regions given as face lists or labels "
                              "(a face-list file takes them as its 'S:' column)")
-        return Result(_core.contract(vertices, faces, callback=callback, **options))
+        return _given_arrays(Result(_core.contract(vertices, faces, callback=callback, **options)),
+                             weights=weights_array)
     # Face lists (what regions() returns) or one label per face (-1 = none): handed to the
     # library as a temporary face-list file, the format `run --regions FILE` reads, with each
     # region's strength as its "S:" column.
@@ -147,12 +153,34 @@ def contract(vertices, faces, *, callback=None, **options):
         # the order they were listed in, and a checkpoint knows them by the file's hash.
         with open(path, "w") as f:
             f.write("".join(p + " ".join(str(int(i)) for i in np.sort(r)) + "\n" for p, r in zip(prefixes, lists)))
-        return Result(_core.contract(vertices, faces, callback=callback,
-                                     **dict(options, regions=path, _regions_from_arrays=True)))
+        result = Result(_core.contract(vertices, faces, callback=callback,
+                                       **dict(options, regions=path, _regions_from_arrays=True)))
+    return _given_arrays(result, regions=len(lists),
+                         strengths=None if strengths is None else _strengths(strengths, len(lists)),
+                         weights=weights_array)
+
+
+def _given_arrays(result, regions=None, strengths=None, weights=False):
+    """The summary's options say that regions or weights were arrays, not the temporary file the
+    regions went through (deleted by now) or an empty weights file name."""
+    options = result.summary.get("options")
+    if isinstance(options, dict):
+        if regions is not None:
+            options["regions"] = "<{} regions given as arrays>".format(regions)
+        if strengths is not None:
+            options["region_strengths"] = list(strengths)
+        if weights:
+            options["region_weights"] = "<weights given as an array>"
+    return result
 
 
 def _strengths(strengths, num_regions):
     """One float in [0, 1] per region (the share of region_shrink each region sinks with)."""
+    if isinstance(strengths, (str, bytes)) or np.ndim(strengths) != 1:
+        raise TypeError("region_strengths: expected one number per region (a list or a 1-D array), "
+                        "got {!r}".format(strengths))
+    if any(isinstance(s, (bool, np.bool_)) for s in strengths):
+        raise TypeError("region_strengths: expected numbers in [0, 1], not bools")
     values = [float(s) for s in strengths]
     if len(values) != num_regions:
         raise ValueError("region_strengths: {} values for {} regions".format(len(values), num_regions))
@@ -340,12 +368,16 @@ def regions(vertices, faces, **region_options):
 
 
 def read_mesh(path):
-    """Reads OFF/OBJ/PLY/STL with the CLI's checks; returns (vertices, faces)."""
+    """Reads OFF/OBJ/PLY/STL with the CLI's checks; returns (vertices, faces): the triangles as
+    the run takes them, polygons split and a component that is inside out turned outward (so a
+    file's face order or corner order may differ; write_mesh's `like` keeps the file's own)."""
     return _core.read_mesh(path)  # str or os.PathLike; TypeError otherwise
 
 
 def write_mesh(path, vertices, faces, like=None):
-    """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output.
+    """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output. The
+    mesh must pass the same checks as an input (closed, manifold, no isolated vertex: MeshError
+    or ValueError otherwise), so that what is written can be read back.
     like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
     the new positions (UVs, normals, groups, materials, polygons, extra properties kept)."""
     _core.write_mesh(path, vertices, faces, like)  # str or os.PathLike (or None)

@@ -1,11 +1,32 @@
 #include "checkpointing.hpp"
 
+#include <limits>
 #include <utility>
 
 #include "arrays.hpp"
 #include "shellcontract/output_files.hpp"
 
 namespace shellcontract::python {
+
+namespace {
+
+/// checkpoint_every as an int >= 1 (None: not given), refused with the option's words otherwise:
+/// pybind11's cast said only "Unable to cast Python instance to C++ type", took True for 1 and
+/// 2**40 failed the same way.
+int every_argument(const py::handle& value) {
+  const char* expected = "checkpoint_every: expected an integer >= 1, with checkpoint=FILE";
+  if (value.is_none()) return 0;
+  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) throw py::type_error(expected);
+  const long long n = PyLong_AsLongLong(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())).ptr());
+  if (PyErr_Occurred()) {
+    PyErr_Clear();
+    throw py::value_error(expected);
+  }
+  if (n < 1 || n > std::numeric_limits<int>::max()) throw py::value_error(expected);
+  return static_cast<int>(n);
+}
+
+}  // namespace
 
 CheckpointArguments take_checkpoint_arguments(const py::kwargs& kwargs, py::kwargs& options) {
   CheckpointArguments a;
@@ -14,7 +35,7 @@ CheckpointArguments take_checkpoint_arguments(const py::kwargs& kwargs, py::kwar
     // None: not given, as for regions.
     if (name == "checkpoint") a.checkpoint = value.is_none() ? "" : path_argument(value, "checkpoint");
     else if (name == "resume") a.resume = value.is_none() ? "" : path_argument(value, "resume");
-    else if (name == "checkpoint_every") a.every = value.cast<int>();
+    else if (name == "checkpoint_every") a.every = every_argument(value);
     else if (name == "_regions_from_arrays") a.regions_from_arrays = PyObject_IsTrue(value.ptr()) == 1;
     else options[key] = value;
   }

@@ -145,3 +145,49 @@ def test_an_empty_list_warns_as_an_empty_face_list_file_does(mesh_dir, extra, wa
     cube = shellcontract.read_mesh(mesh_dir / "cube.off")
     result = shellcontract.contract(*cube, regions=[], frames=2, **extra)
     assert sum("no region" in w for w in result.summary["warnings"]) == warned, result.summary["warnings"]
+
+
+def test_the_summary_says_regions_and_weights_came_as_arrays(bumpy):
+    # Before: options["regions"] was the deleted temporary file the lists went through, the
+    # weights '' as if not given, and the strengths were nowhere.
+    v, f = bumpy
+    r = shellcontract.contract(v, f, frames=2, regions=shellcontract.regions(v, f),
+                               region_strengths=np.array([0.5, 1, 1]))
+    assert r.summary["options"]["regions"] == "<3 regions given as arrays>"
+    assert r.summary["options"]["region_strengths"] == [0.5, 1.0, 1.0]
+    w = shellcontract.contract(v, f, frames=2, region_weights=np.linspace(0, 1, len(v)))
+    assert w.summary["options"]["region_weights"] == "<weights given as an array>"
+
+
+def test_region_weights_none_is_the_default(bumpy):
+    # Before: None was read as one NaN weight ("1 weights for 642 vertices").
+    v, f = bumpy
+    r = shellcontract.contract(v, f, frames=2, region_weights=None)
+    assert r.vertices.tolist() == shellcontract.contract(v, f, frames=2).vertices.tolist()
+
+
+@pytest.mark.parametrize("strengths, fragment", [
+    (0.5, "one number per region"), ("0.5,1,1", "one number per region"),
+    ([True, False, True], "not bools"), ([[0.5, 1, 1]], "one number per region")])
+def test_region_strengths_of_another_shape_are_type_errors_saying_what_they_take(bumpy, strengths, fragment):
+    # Before: 0.5 gave "'float' object is not iterable" and "0.5,1,1" was walked by character.
+    v, f = bumpy
+    with pytest.raises(TypeError, match=fragment):
+        shellcontract.contract(v, f, frames=2, regions=shellcontract.regions(v, f), region_strengths=strengths)
+
+
+@pytest.mark.parametrize("every, error", [(1.5, TypeError), ("2", TypeError), (True, TypeError),
+                                          (0, ValueError), (2**40, ValueError)])
+def test_checkpoint_every_of_another_kind_says_what_it_takes(bumpy, tmp_path, every, error):
+    # Before: pybind11's "Unable to cast Python instance to C++ type"; True was taken as 1 and 0
+    # was accepted.
+    v, f = bumpy
+    with pytest.raises(error, match="checkpoint_every: expected an integer >= 1"):
+        shellcontract.contract(v, f, frames=2, checkpoint=str(tmp_path / "c.ckpt"), checkpoint_every=every)
+
+
+def test_an_empty_file_name_is_refused_as_the_cli_refuses_it(bumpy):
+    v, f = bumpy
+    for name in ("checkpoint", "resume"):
+        with pytest.raises(ValueError, match="{} must not be empty".format(name)):
+            shellcontract.contract(v, f, frames=2, **{name: ""})
