@@ -113,3 +113,15 @@ def test_the_cli_says_to_give_input_for_a_checkpoint_of_arrays(cli, tmp_path, ic
     r = subprocess.run([cli, "run", str(mesh_dir / "ico2.off"), "--resume", str(ckpt), "-o",
                         str(tmp_path / "x.off"), "-q"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
+
+
+def test_resuming_with_other_options_names_them_as_python_does(tmp_path, ico2):
+    """Before: 'other options: --frames 11 (the checkpoint's: 10)', the CLI's spelling."""
+    v, f = ico2
+    path = str(tmp_path / "c.ckpt")
+    checkpointed(v, f, path)
+    with pytest.raises(ValueError) as e:
+        shellcontract.contract(v, f, resume=path, **dict(OPTIONS, frames=11, target_volume=0.5))
+    text = str(e.value)
+    assert "frames 11 (the checkpoint's: 10)" in text and "target_volume 0.5" in text, text
+    assert "--" not in text, text

@@ -272,7 +272,8 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
   for (const auto& [name, value] : now) {
     const std::string then = describe(c.resolved, name);
     if (compared(name, then == "unset" ? "" : then) != compared(name, value))
-      differ += (differ.empty() ? "" : ", ") + ("--" + name + " " + (value.empty() ? "unset" : value) +
+      // `field`, so that each front end spells the option its own way (spell_options).
+      differ += (differ.empty() ? "" : ", ") + ("`" + option_field(name) + "` " + (value.empty() ? "unset" : value) +
                                                  " (the checkpoint's: " + theirs(name) + ")");
   }
   if (differ.size() == 0 && now.size() != c.resolved.size())

@@ -198,7 +198,9 @@ TEST(Checkpoint, RefusesOtherOptionsNamingThem) {
     options_for_resume(*saver.saved, other);
     FAIL() << "other options accepted";
   } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("--pressure 3"), std::string::npos) << e.what();
+    // By field, which each front end spells its own way (the CLI's --pressure, Python's pressure).
+    EXPECT_NE(std::string(e.what()).find("`pressure` 3"), std::string::npos) << e.what();
+    EXPECT_NE(spell_options(e.what(), OptionSpelling::Cli).find("--pressure 3 (the checkpoint's: 2)"), std::string::npos);
     EXPECT_EQ(std::string(e.what()).find("threads"), std::string::npos) << e.what();
   }
   // The same values again, and another thread count, are accepted; nothing given takes the

@@ -169,7 +169,7 @@ TEST_F(CheckpointInputs, RegionsGivenAsArraysAreKnownByContentsNotByTheTemporary
   RunOptions automatic;
   set_run_option(automatic, "regions", "auto");
   const std::string other = refusal([&] { options_for_resume(c, automatic); });
-  EXPECT_NE(other.find("--regions auto (the checkpoint's: given as arrays)"), std::string::npos) << other;
+  EXPECT_NE(other.find("`regions` auto (the checkpoint's: given as arrays)"), std::string::npos) << other;
 }
 
 /// `bytes` (a format 2 checkpoint whose run read no file) rewritten as format 1: no inputs list
