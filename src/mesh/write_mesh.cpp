@@ -288,6 +288,12 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
     unregister_temporary(slot);
   };
   int error = 0;
+  // A file replaced keeps its permissions (a private 0600 result stays private); a new one gets
+  // the temporary's, 0666 less the umask.
+  struct stat before {};
+  if (::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode) &&
+      ::fchmod(tmp.fd, before.st_mode & 07777) != 0)
+    error = errno;
   {
     FdBuf buf(tmp.fd);
     std::ostream out(&buf);
@@ -302,7 +308,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
       if (buf.error()) cannot_write(path, file_error_text(buf.error()));
       throw;
     }
-    error = buf.error();
+    if (!error) error = buf.error();
     if (!error && !out) error = EIO;
   }
   if (::close(tmp.fd) != 0 && !error) error = errno;  // NFS reports some write errors here

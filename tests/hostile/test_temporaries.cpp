@@ -26,6 +26,24 @@ std::vector<std::string> temporaries_while_writing(const fs::path& target) {
   return seen;
 }
 
+// Before: a replaced file took the temporary's permissions, 0666 less the umask: a private
+// 0600 result became readable by everyone (found by a review of the Python module's write_mesh).
+TEST_F(Hostile, AReplacedFileKeepsItsPermissions) {
+  const fs::path kept = dir_ / "private.txt", fresh = dir_ / "new.txt";
+  test::spit(kept, "old");
+  ASSERT_EQ(::chmod(kept.c_str(), 0600), 0);
+  write_file_atomic(kept.string(), [](std::ostream& out) { out << "new"; });
+  write_file_atomic(fresh.string(), [](std::ostream& out) { out << "new"; });
+  struct stat st {};
+  ASSERT_EQ(::stat(kept.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0600u);
+  EXPECT_EQ(test::slurp(kept), "new");
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ASSERT_EQ(::stat(fresh.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 07777, 0666u & ~mask) << "a new file: 0666 less the umask";
+}
+
 // Before: ".o.off.tmp-PID-0", the process id and a counter: a link planted under the next name
 // was followed. Now: a random name, created O_EXCL | O_NOFOLLOW.
 TEST_F(Hostile, TemporaryNamesCannotBeGuessed) {
