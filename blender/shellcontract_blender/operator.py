@@ -196,6 +196,12 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             s.status = "not written: the object is in Edit Mode"
             self.report({"ERROR"}, "ShellContract: the result was not written: " + EDIT_MODE)
             return {"CANCELLED"}
+        if len(obj.data.vertices) != len(result.vertices):  # edited during a threaded run
+            s.status = "not written: the mesh was edited during the run"
+            self.report({"ERROR"}, "ShellContract: the result was not written: the mesh has {} "
+                        "vertices now, the run had {}; the object is unchanged".format(
+                            len(obj.data.vertices), len(result.vertices)))
+            return {"CANCELLED"}
         # The last frame is the result's own positions (a run may end early: a stall, a failure).
         job.frames[result.summary["frames_run"]] = result.vertices
         job.frames = {n: v for n, v in job.frames.items() if n <= result.summary["frames_run"]}

@@ -33,7 +33,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from addon_docs import doc_defaults, doc_example_runs  # noqa: E402
 from addon_helpers import check  # noqa: E402
 from addon_messages import mesh_messages  # noqa: E402
-from addon_runs import contract_sphere, glb_import, keyed_target, refused_runs, threaded_run  # noqa: E402
+from addon_runs import (contract_sphere, edited_during_run, glb_import, keyed_target,  # noqa: E402
+                        refused_runs, threaded_run)
 from addon_settings import muted_keys, pressure_combinations, target_volume_messages  # noqa: E402
 
 
@@ -62,6 +63,7 @@ def main():
     target_volume_messages(obj2)
     refused_runs(obj2)
     threaded_run(shellcontract, runner, rest, faces)
+    edited_during_run(shellcontract, runner, rest, faces)
     muted_keys()
     mesh_messages()
     if a.glb:

@@ -168,3 +168,30 @@ def glb_import(path):
     ad = imported[0].data.shape_keys.animation_data
     first = min(kp.co[0] for fc in ad.action.fcurves for kp in fc.keyframe_points)
     check(first == 0.0, "the .glb's keys start at frame 0 ({:g})".format(first))
+
+
+def edited_during_run(shellcontract, runner, rest, faces):
+    """A threaded run whose mesh was edited meanwhile (a modifier applied, vertices deleted):
+    the result is not written and the object is left as it was (before, its keys were removed
+    and foreach_set failed on the new vertex count, the object half changed)."""
+    from shellcontract_blender.operator import OBJECT_OT_shellcontract_contract as Op
+
+    class Reports:  # the operator's report(), which _finish calls, outside an invocation
+        def __init__(self):
+            self.lines = []
+
+        def report(self, level, text):
+            self.lines.append(text)
+
+    job = runner.Job(shellcontract, rest, faces, {"frames": 3}, keep=[])
+    job.run()
+    bpy.ops.mesh.primitive_cube_add()  # another vertex count than the sphere the job ran on
+    cube = bpy.context.active_object
+    cube.shellcontract.frames = 3
+    reports = Reports()
+    outcome = Op._finish(reports, bpy.context, cube, job)
+    check(outcome == {"CANCELLED"} and cube.data.shape_keys is None
+          and "edited during the run" in cube.shellcontract.status
+          and any("8 vertices now" in line for line in reports.lines),
+          "a mesh edited during a threaded run is left unchanged: " + "; ".join(reports.lines))
+    bpy.data.objects.remove(cube)
