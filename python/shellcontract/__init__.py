@@ -32,6 +32,7 @@ __all__ = ["Option", "Result", "MeshError", "contract", "frames", "options", "ch
 # A ValueError for a mesh refused because of some of its faces, with their indices as `faces`
 # (a list of int); `except ValueError` catches it as before.
 MeshError = _core.MeshError
+__version__ = _core.__version__  # what `shellcontract --version` prints and checkpoints name
 
 Option = collections.namedtuple("Option", "name default help cli_name")
 Option.__doc__ = "One run option: Python name, default as text ('' when unset), help, CLI name."

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -125,10 +126,13 @@ RegionMethod method_option(const py::handle& value) {
 py::list regions(const py::handle& vertices, const py::handle& faces, const py::kwargs& kwargs) {
   RegionOptions o;
   std::vector<Vec3> at;
+  std::set<std::string> seen;  // one option by both spellings: refused, not the last one taken
   for (const auto& [key, value] : kwargs) {
     const std::string given = key.cast<std::string>();  // messages name the option as the caller spelt it
     std::string name = given;
     std::replace(name.begin(), name.end(), '_', '-');
+    if (!seen.insert(name).second)
+      throw py::type_error("regions() got the option '" + given + "' twice (as '-' and as '_')");
     if (name == "method") o.method = method_option(value);
     else if (name == "fit-tolerance") o.fit_tolerance = real_option(given, value);
     else if (name == "max-concave-fraction") o.max_concave_fraction = real_option(given, value);
@@ -149,8 +153,14 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
     throw py::value_error(std::string("regions(): region_at grows caps; it does not apply with method='") +
                           (o.method == RegionMethod::Tips ? "tips" : "parts") + "'");
   const Mesh mesh = mesh_from_numpy(vertices, faces);
-  const std::vector<int> ids = at.empty() ? select_spherical_regions(mesh, positions_from_mesh(mesh), o)
-                                          : select_regions_at(mesh, positions_from_mesh(mesh), at, o);
+  std::vector<int> ids;
+  {
+    // The search reads only the mesh made above: other Python threads (Blender's interface) go
+    // on meanwhile, as during contract().
+    py::gil_scoped_release free;
+    ids = at.empty() ? select_spherical_regions(mesh, positions_from_mesh(mesh), o)
+                     : select_regions_at(mesh, positions_from_mesh(mesh), at, o);
+  }
   py::list out;
   for (const std::vector<int>& r : regions_from_face_ids(ids)) {
     py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.size()));
@@ -196,6 +206,7 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
 }  // namespace shellcontract::python
 
 PYBIND11_MODULE(_core, m) {
+  m.attr("__version__") = SHELLCONTRACT_VERSION;
   namespace py = pybind11;
   using namespace shellcontract;
   using namespace shellcontract::python;

@@ -244,3 +244,16 @@ def test_the_result_repr_names_only_what_can_be_read(ico2):
         assert hasattr(result, name), name
     assert "frames_run=" not in text.replace("summary['frames_run']=", "")
     assert str(len(vertices)) + " vertices" in text
+
+
+def test_the_version_is_the_cli_s(cli):
+    # Before: no __version__, though checkpoints are refused for "another version".
+    out = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True).stdout.split()
+    assert shellcontract.__version__ == out[-1]
+
+
+def test_regions_refuses_an_option_given_by_both_spellings(mesh_dir):
+    # Before: region-at and region_at both given, the last one silently won.
+    v, f = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    with pytest.raises(TypeError, match="given .*twice|twice"):
+        shellcontract.regions(v, f, **{"region-at": v[0], "region_at": v[1]})
