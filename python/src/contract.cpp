@@ -196,7 +196,17 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also
     if (!spec)
       throw py::type_error("contract() got an unknown option '" + name + "'; valid options: " + valid_names() +
                            also_valid);
-    spec->set(options, option_text(name, value));  // UsageError (ValueError) for a bad value
+    try {
+      spec->set(options, option_text(name, value));  // UsageError (ValueError) for a bad value
+    } catch (const UsageError& e) {
+      // A bool reaches the table as on/off, which only the on/off options take: a number's
+      // refusal would otherwise read "frames: 'on' is not an integer".
+      if (py::isinstance<py::bool_>(value))
+        throw py::type_error(name + ": got the bool " + std::string(value.cast<bool>() ? "True" : "False") +
+                             ", which only on/off options take (" +
+                             spell_options(e.what(), OptionSpelling::Python) + ")");
+      throw;
+    }
   }
   resolve_run_options(options);
   // The log always carries the energies (the CLI computes them when --log is given).

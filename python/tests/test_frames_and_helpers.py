@@ -257,3 +257,11 @@ def test_regions_refuses_an_option_given_by_both_spellings(mesh_dir):
     v, f = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
     with pytest.raises(TypeError, match="given .*twice|twice"):
         shellcontract.regions(v, f, **{"region-at": v[0], "region_at": v[1]})
+
+
+def test_a_bool_for_a_number_says_it_is_a_bool(ico2):
+    # Before: "frames: 'on' is not an integer", a ValueError about a value never given.
+    v, f = ico2
+    with pytest.raises(TypeError, match="frames: got the bool True, which only on/off options take"):
+        shellcontract.contract(v, f, frames=True)
+    assert shellcontract.contract(v, f, frames=2, collisions=False).status == "ok"
