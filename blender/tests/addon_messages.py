@@ -30,11 +30,13 @@ def mesh_messages():
     edge = re.search(r"edge \((\d+), (\d+)\) of face", text)
     polygons = obj.data.polygons
     named = [int(n) for n in faces.group(1).split(", ")] if faces else []
+    # The faces around the hole, from the mesh itself: those sharing an edge (two corners) with it.
+    around = sorted(p.index for p in polygons if len(set(p.vertices) & hole) >= 2)
     check(faces is not None and edge is not None and "input arrays" not in text
-          and len(named) == 4 and all(n < len(polygons) for n in named)
-          and all(len(set(polygons[n].vertices) & hole) == 2 for n in named)
+          and sorted(named) == around and len(around) >= 3
           and any({int(edge.group(1)), int(edge.group(2))} <= set(polygons[n].vertices) for n in named),
-          "an open mesh is refused naming the mesh's faces that have an open edge: " + text)
+          "an open mesh is refused naming the mesh's faces that have an open edge ({} around the "
+          "hole): {}".format(around, text))
     # Two cubes that share one corner (the second is the first mirrored through its corner 7): the
     # pinch is a MeshError whose faces are the six quads around vertex 7, each named once.
     corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
