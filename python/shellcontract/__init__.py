@@ -85,7 +85,8 @@ def contract(vertices, faces, *, callback=None, **options):
     run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value (MeshError, a
     ValueError with the faces' indices as ``faces``, where particular faces are to blame),
-    TypeError for an unknown option.
+    TypeError for an unknown option. The options are the CLI's with '_' for '-'; ``lambda``,
+    a Python keyword, is also ``lambda_``.
 
     ``regions`` (None, the default, is "not given") takes, told apart by type:
 
@@ -118,6 +119,10 @@ def contract(vertices, faces, *, callback=None, **options):
     values: the regions as face sets with their strengths, the weights bit for bit).
     """
     options = dict(options)
+    if "lambda_" in options:  # `lambda` is a Python keyword: lambda_=0.5 works where lambda=0.5 cannot
+        if "lambda" in options:
+            raise TypeError("contract() got lambda and lambda_, the same option")
+        options["lambda"] = options.pop("lambda_")
     strengths = options.pop("region_strengths", None)
     for name in ("regions", "region_weights"):
         if name in options and options[name] is None:
@@ -314,6 +319,8 @@ def frames(vertices, faces, every=1, **options):
     (StopIteration.value, or ``result = yield from frames(...)``) is the Result. Closing the
     generator early cancels the run.
     """
+    if "callback" in options:
+        raise TypeError("frames() takes no callback: it yields the frames (contract() takes one)")
     if isinstance(every, bool) or not isinstance(every, numbers.Integral):
         raise TypeError("every must be an integer, got {}".format(type(every).__name__))
     if every < 1:

@@ -265,3 +265,16 @@ def test_a_bool_for_a_number_says_it_is_a_bool(ico2):
     with pytest.raises(TypeError, match="frames: got the bool True, which only on/off options take"):
         shellcontract.contract(v, f, frames=True)
     assert shellcontract.contract(v, f, frames=2, collisions=False).status == "ok"
+
+
+def test_lambda_is_also_lambda_and_frames_takes_no_callback(ico2):
+    # Before: lambda_ was an unknown option (lambda, a keyword, only through **{"lambda": x}),
+    # and frames(..., callback=f) failed with "multiple values for keyword argument 'callback'".
+    v, f = ico2
+    a = shellcontract.contract(v, f, frames=2, **{"lambda": 0.7})
+    b = shellcontract.contract(v, f, frames=2, lambda_=0.7)
+    assert a.vertices.tolist() == b.vertices.tolist() and float(b.summary["options"]["lambda"]) == 0.7
+    with pytest.raises(TypeError, match="the same option"):
+        shellcontract.contract(v, f, frames=2, lambda_=0.7, **{"lambda": 0.7})
+    with pytest.raises(TypeError, match="frames\\(\\) takes no callback"):
+        next(shellcontract.frames(v, f, callback=lambda *a: None, frames=2))
