@@ -177,8 +177,12 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         def terms(message):  # the library's message in the add-on's terms
             return runner.addon_terms(message, start, obj.name, job.polygon_of)
 
+        if isinstance(job.error, KeyboardInterrupt):  # Ctrl-C under blender -b: it has no text
+            s.status = "interrupted (Ctrl-C)"
+            self.report({"WARNING"}, "ShellContract: interrupted (Ctrl-C); the object is unchanged")
+            return {"CANCELLED"}
         if job.error is not None:
-            error = terms(job.error)
+            error = terms(job.error) or type(job.error).__name__
             s.status = "error: {}".format(error)
             self.report({"ERROR"}, "ShellContract: {}".format(error))
             return {"CANCELLED"}

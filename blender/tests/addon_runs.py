@@ -195,3 +195,14 @@ def edited_during_run(shellcontract, runner, rest, faces):
           and any("8 vertices now" in line for line in reports.lines),
           "a mesh edited during a threaded run is left unchanged: " + "; ".join(reports.lines))
     bpy.data.objects.remove(cube)
+
+    # Ctrl-C under blender -b ends the run with a KeyboardInterrupt, which has no text: before,
+    # the report was "ShellContract: " and the status "error: ".
+    sphere = bpy.data.objects.get("Sphere") or bpy.context.view_layer.objects.active
+    interrupted = runner.Job(shellcontract, rest, faces, {"frames": 3}, keep=[])
+    interrupted.error = KeyboardInterrupt()
+    reports = Reports()
+    outcome = Op._finish(reports, bpy.context, sphere, interrupted)
+    check(outcome == {"CANCELLED"} and sphere.shellcontract.status == "interrupted (Ctrl-C)"
+          and reports.lines == ["ShellContract: interrupted (Ctrl-C); the object is unchanged"],
+          "a run ended by Ctrl-C says so: " + "; ".join(reports.lines))
