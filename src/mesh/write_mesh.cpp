@@ -289,11 +289,11 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   };
   int error = 0;
   // A file replaced keeps its permissions (a private 0600 result stays private); a new one gets
-  // the temporary's, 0666 less the umask.
+  // the temporary's, 0666 less the umask. Best effort: a file system without modes (FAT) refuses
+  // fchmod, and the result is still written.
   struct stat before {};
-  if (::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode) &&
-      ::fchmod(tmp.fd, before.st_mode & 07777) != 0)
-    error = errno;
+  if (::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode))
+    (void)::fchmod(tmp.fd, before.st_mode & 07777);
   {
     FdBuf buf(tmp.fd);
     std::ostream out(&buf);
@@ -308,7 +308,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
       if (buf.error()) cannot_write(path, file_error_text(buf.error()));
       throw;
     }
-    if (!error) error = buf.error();
+    error = buf.error();
     if (!error && !out) error = EIO;
   }
   if (::close(tmp.fd) != 0 && !error) error = errno;  // NFS reports some write errors here
