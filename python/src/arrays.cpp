@@ -117,7 +117,7 @@ std::string path_argument(const py::handle& path, const std::string& what) {
   const std::string s = py::isinstance<py::bytes>(p) ? std::string(p.cast<py::bytes>()) : p.cast<std::string>();
   if (s.find('\0') != std::string::npos) throw py::value_error(what + " must not hold a NUL byte");
   // As the CLI: an empty name is not "none" (None is), so that an unset variable is not silent.
-  if (s.empty()) throw py::value_error(what + " must not be empty (None leaves it out)");
+  if (s.empty()) throw py::value_error(what + " must not be empty");
   return s;
 }
 
