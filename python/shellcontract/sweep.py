@@ -323,6 +323,15 @@ def main(argv=None):
     except (OSError, subprocess.SubprocessError) as e:
         print("shellcontract sweep: {} --version failed ({})".format(cli, e), file=sys.stderr)
         return EXIT_USAGE
+    # Any executable answers --version somehow (/bin/true with nothing): one that is not the
+    # tool would have its jobs recorded as ok without a result.
+    if not version.startswith("shellcontract "):
+        print("shellcontract sweep: {} is not the shellcontract executable (its --version printed "
+              "{!r})".format(cli, version), file=sys.stderr)
+        return EXIT_USAGE
+    if not args.output:
+        print("shellcontract sweep: -o: empty; give the output folder", file=sys.stderr)
+        return EXIT_USAGE
     args.output = os.path.abspath(args.output)
     try:
         data = sweep_file.load(args.sweep)

@@ -192,6 +192,11 @@ def job_id(mesh_sha, resolved, version, file_shas=None):
     return hashlib.sha256(text.encode("utf-8")).hexdigest()[:16]
 
 
+# The most jobs one sweep file may make: far more than a machine or a small cluster runs in a
+# sweep, so that a mistyped grid is refused before its expansion exhausts the memory.
+MAX_JOBS = 100000
+
+
 def expand(path, data, version, check_mesh=None):
     """The jobs of a loaded sweep file, validated; raises SweepError naming the first bad job
     (nothing is run before every job has passed).
@@ -210,6 +215,14 @@ def expand(path, data, version, check_mesh=None):
             _fail(path, text if text.startswith(m) else "mesh {}: {}".format(m, text))
     grid = data["grid"]
     names = list(grid)
+    # Counted before the grid is made: its product is built whole, and a grid of a hundred
+    # million points ended in a MemoryError instead of a message.
+    count = len(meshes) * len(data["runs"])
+    for values in grid.values():
+        count *= len(values)
+    if count > MAX_JOBS:
+        _fail(path, "the meshes, grid and runs make {} jobs; at most {} in one sweep file (split "
+                    "it, or shard it over several files)".format(count, MAX_JOBS))
     points = [dict(zip(names, values)) for values in itertools.product(*grid.values())] or [{}]
     jobs, seen, index = [], set(), -1
     for mesh in meshes:

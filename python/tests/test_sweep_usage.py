@@ -72,3 +72,22 @@ def test_the_jobs_arguments_write_numbers_as_the_tool_does(cli, mesh_dir, tmp_pa
         assert words[words.index("--target-volume") + 1] == "0:1, 60:0.5"
         assert words[words.index("--delta") + 1] == "1e-05"
     assert not (tmp_path / "out").exists()
+
+
+
+def test_another_executable_a_huge_grid_and_an_empty_folder_are_refused(cli, mesh_dir, tmp_path):
+    """Before: --cli /bin/true ran every job as 'ok' without a result (and a rerun skipped them);
+    a grid of 10^8 points ended in a MemoryError; -o "" took the current folder."""
+    import shutil
+    path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"], "options": {"frames": 2}})
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--shard", "0/1", "--cli", shutil.which("true")])
+    assert r.returncode == 1 and "is not the shellcontract executable" in r.stderr, r.stderr
+    assert not (tmp_path / "out").exists()
+    tens = [0.5 + i / 20 for i in range(10)]
+    huge = write_sweep(tmp_path, mesh_dir, "huge.json", {
+        "meshes": ["meshes/ico1.off"],
+        "grid": {name: tens for name in ("pressure", "air_balance", "poisson", "target_ramp", "young", "delta")}})
+    r = run_sweep(cli, [str(huge), "-o", str(tmp_path / "out2"), "--dry-run"])
+    assert r.returncode == 1 and "make 1000000 jobs; at most 100000" in r.stderr, r.stderr
+    r = run_sweep(cli, [str(path), "-o", "", "--dry-run"])
+    assert r.returncode == 1 and "-o: empty" in r.stderr, r.stderr
