@@ -332,6 +332,15 @@ def main(argv=None):
     if not args.output:
         print("shellcontract sweep: -o: empty; give the output folder", file=sys.stderr)
         return EXIT_USAGE
+    if args.scheduler is not None:
+        # Checked before DIR is claimed (a traceback from the client before: 'bogus').
+        from distributed.comm.addressing import parse_address, parse_host_port
+        try:
+            parse_host_port(parse_address(args.scheduler)[1])
+        except ValueError as e:
+            print("shellcontract sweep: refused, nothing run: --scheduler {!r} is not an address "
+                  "tcp://HOST:PORT ({})".format(args.scheduler, e), file=sys.stderr)
+            return EXIT_USAGE
     args.output = os.path.abspath(args.output)
     try:
         data = sweep_file.load(args.sweep)
