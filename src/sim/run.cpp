@@ -283,6 +283,12 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
 
   r.frames_run = sim.frame();
   r.final_volume_ratio = sim.volume_ratio();
+  // A shell pushed through itself (`collisions` off) can end inside out: no face pair then
+  // intersects (the validation finds nothing), but the enclosed volume is negative.
+  if (r.frames_run > 0 && r.final_volume_ratio <= 0.0)
+    warn(r, obs, "V/V0 ended at " + shortest_text(r.final_volume_ratio) +
+                     ": the shell passed through itself and is inside out" +
+                     (s.collisions ? std::string() : " (`collisions` off)"));
   if (has_stop) {
     r.target_reached = sim.stop_volume_reached();
     if (r.target_reached) r.frame_target_reached = sim.frame();

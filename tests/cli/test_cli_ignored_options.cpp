@@ -114,6 +114,21 @@ TEST_F(CliIgnoredOptions, AnEmptyValueIsRefusedNamingTheOption) {
   EXPECT_NE(input.output.find("INPUT: an empty file name"), std::string::npos) << input.output;
 }
 
+// Before: pushed through itself with collisions off, ico2 ended inside out (V/V0 -15.2) with
+// status ok, exit 0 and no word: no face pair intersects there, so --validate end found nothing.
+TEST_F(CliIgnoredOptions, AShellThatEndsInsideOutIsWarnedAbout) {
+  const RunResult r = run_cli({"run", std::string(shellcontract::test::MESH_DIR) + "/ico2.off", "-o",
+                               (dir_ / "o.off").string(), "-n", "20", "-q", "-p", "200", "--collisions", "off",
+                               "--air-balance", "0", "--summary", (dir_ / "s.json").string()});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: V/V0 ended at -"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the shell passed through itself and is inside out (--collisions off)"),
+            std::string::npos) << r.output;
+  // The default run of the same mesh ends above 0 and says nothing of the kind.
+  const RunResult plain = run({});
+  EXPECT_EQ(plain.output.find("inside out"), std::string::npos) << plain.output;
+}
+
 TEST_F(CliIgnoredOptions, MoreThreadsThanTheMachineHasRunQuietlyToTheSameBytes) {
   // 256 threads: more than this test's machines have (the test shows nothing on a bigger one).
   const RunResult many = run({"--threads", "256"});
