@@ -44,6 +44,15 @@ def check(out_dir, sweep_path):
     if not os.path.exists(out_dir):
         if os.path.islink(out_dir):
             raise OutputError("{}: a link to nothing, not a folder".format(out_dir))
+        # It will be made with its parents: the nearest one that exists must be a folder that
+        # takes new entries (a file there ended the real run only, --dry-run said yes).
+        parent = os.path.dirname(os.path.abspath(out_dir))
+        while not os.path.exists(parent) and os.path.dirname(parent) != parent:
+            parent = os.path.dirname(parent)
+        if not os.path.isdir(parent):
+            raise OutputError("{}: {} is a file, not a folder".format(out_dir, parent))
+        if not os.access(parent, os.W_OK | os.X_OK):
+            raise OutputError("{}: the folder {} cannot take new entries".format(out_dir, parent))
         return
     if not os.path.isdir(out_dir):
         raise OutputError("{}: not a folder (-o names the folder the results go to)".format(

@@ -91,6 +91,10 @@ def test_another_executable_a_huge_grid_and_an_empty_folder_are_refused(cli, mes
     assert r.returncode == 1 and "make 1000000 jobs; at most 100000" in r.stderr, r.stderr
     r = run_sweep(cli, [str(path), "-o", "", "--dry-run"])
     assert r.returncode == 1 and "-o: empty" in r.stderr, r.stderr
+    # Before: --dry-run said yes to a folder under a file; the real run then failed.
+    (tmp_path / "afile").write_text("x")
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "afile" / "sub"), "--dry-run"])
+    assert r.returncode == 1 and "is a file, not a folder" in r.stderr, r.stderr
     # Before: a traceback from the Dask client, after DIR was claimed.
     r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out3"), "--scheduler", "bogus"])
     assert r.returncode == 1 and "--scheduler 'bogus' is not an address" in r.stderr, r.stderr
