@@ -65,6 +65,12 @@ def checked_file(path, extensions, what):
         sys.exit(f"view.py: no such file: {path}")
     if not path.lower().endswith(extensions):
         sys.exit(f"view.py: {path}: not {what} ({', '.join(extensions)})")
+    # A binary glTF starts with its magic, "glTF" (glTF 2.0, 4.4.3.1): anything else would only
+    # fail in the browser's console.
+    if path.lower().endswith(".glb"):
+        with open(path, "rb") as f:
+            if f.read(4) != b"glTF":
+                sys.exit(f"view.py: {path}: not a binary glTF (it does not start with 'glTF')")
     return path
 
 
@@ -74,7 +80,8 @@ def main():
                     help="the run's animated glTF (shellcontract run ... --gltf RUN.glb) or a mesh (.off, .obj, .ply, .stl)")
     ap.add_argument("compare", metavar="FILE2", nargs="?", help="a second .glb or mesh, shown beside the first")
     ap.add_argument("--log", help="the run's --log CSV or --summary JSON, for the V/V0 plot")
-    ap.add_argument("--port", type=port_number, default=8765, help="port on 127.0.0.1 (0: any free port)")
+    ap.add_argument("--port", type=port_number, default=8765,
+                    help="port on 127.0.0.1 (default: %(default)s; 0: any free port)")
     ap.add_argument("--open", action="store_true", help="also open the page in the default browser")
     args = ap.parse_args()
 
@@ -107,7 +114,7 @@ def main():
     try:
         server.serve_forever()
     except KeyboardInterrupt:
-        pass
+        sys.exit(130)  # as the tool: stopped by Ctrl-C
 
 
 if __name__ == "__main__":

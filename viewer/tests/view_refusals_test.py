@@ -49,3 +49,16 @@ def test_a_port_in_use_says_so():
         taken.listen()
         code, err = view(MESH, "--port", str(taken.getsockname()[1]))
     assert code == 1 and "cannot serve" in err and "--port 0" in err and "Traceback" not in err, err
+
+
+def test_a_glb_that_is_not_a_binary_gltf_is_refused(tmp_path):
+    # Before: served, and the page failed in the browser's console.
+    fake = tmp_path / "fake.glb"
+    fake.write_bytes(b"OFF\n3 1 0\n")
+    code, err = view(str(fake))
+    assert code == 1 and "not a binary glTF" in err, err
+
+
+def test_the_help_names_the_default_port():
+    r = subprocess.run([sys.executable, VIEW, "--help"], capture_output=True, text=True, timeout=20)
+    assert r.returncode == 0 and "default: 8765" in r.stdout, r.stdout
