@@ -99,3 +99,22 @@ def test_another_executable_a_huge_grid_and_an_empty_folder_are_refused(cli, mes
     r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out3"), "--scheduler", "bogus"])
     assert r.returncode == 1 and "--scheduler 'bogus' is not an address" in r.stderr, r.stderr
     assert "Traceback" not in r.stderr and not (tmp_path / "out3").exists()
+
+
+def test_a_sweep_whose_stderr_reader_goes_away_runs_every_job(cli, mesh_dir, tmp_path):
+    """Before: `sweep ... 2>&1 | head -1` ended at the next progress line with 'Broken pipe',
+    exit 1 (documented as 'nothing run'), the jobs left pending."""
+    import csv
+    import subprocess
+    import sys
+    from test_sweep import sweep_env
+    path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"],
+                                                       "grid": {"frames": [2, 3, 4]}})
+    out = tmp_path / "out"
+    p = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
+                          "--shard", "0/1"], env=sweep_env(cli), stdout=subprocess.DEVNULL,
+                         stderr=subprocess.PIPE)
+    p.stderr.close()  # the reader is gone before the first line
+    assert p.wait(timeout=120) == 0
+    with open(out / "results.csv") as f:
+        assert [row["status"] for row in csv.DictReader(f)] == ["ok", "ok", "ok"]
