@@ -37,6 +37,11 @@ class Handler(http.server.SimpleHTTPRequestHandler):
             return self.run_files.get(p[len("/run/"):], os.path.join(VIEWER, "__missing__"))
         return super().translate_path(path)
 
+    def list_directory(self, path):
+        # The page, its scripts and the run's files, not a listing of the viewer's folders.
+        self.send_error(404, "No listing")
+        return None
+
     def log_message(self, fmt, *args):  # quiet: errors only
         if len(args) > 1 and str(args[1]).startswith(("4", "5")):
             super().log_message(fmt, *args)

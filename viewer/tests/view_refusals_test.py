@@ -62,3 +62,21 @@ def test_a_glb_that_is_not_a_binary_gltf_is_refused(tmp_path):
 def test_the_help_names_the_default_port():
     r = subprocess.run([sys.executable, VIEW, "--help"], capture_output=True, text=True, timeout=20)
     assert r.returncode == 0 and "default: 8765" in r.stdout, r.stdout
+
+
+def test_folders_are_not_listed():
+    # Before: /tests/ (any folder of viewer/) was served as a directory listing.
+    import urllib.error
+    import urllib.request
+    p = subprocess.Popen([sys.executable, VIEW, MESH, "--port", "0"], stdout=subprocess.PIPE, text=True)
+    try:
+        url = p.stdout.readline().strip()
+        root = url[:url.index("/index.html")]
+        with urllib.request.urlopen(url, timeout=10) as page:
+            assert page.status == 200
+        with pytest.raises(urllib.error.HTTPError) as e:
+            urllib.request.urlopen(root + "/tests/", timeout=10)
+        assert e.value.code == 404
+    finally:
+        p.terminate()
+        p.wait(timeout=10)
