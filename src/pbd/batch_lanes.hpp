@@ -248,6 +248,36 @@ SC_AVX2_INLINE W blend(W p, W q, W m) { return {blend(p.a, q.a, m.a), blend(p.b,
 SC_AVX2_INLINE W fmsub(W p, W q, W r) { return {fmsub(p.a, q.a, r.a), fmsub(p.b, q.b, r.b)}; }
 SC_AVX2_INLINE int lane_bits(W p) { return lane_bits(p.a) | lane_bits(p.b) << BATCH_LANES; }
 
+/// Two batches of one colour (they share no vertex, so their lanes are independent as a batch's
+/// are), their rest data and vertex rows as lanes of W, for the kernels that pair batches
+/// (dihedral, StVK membrane: the two dependency chains interleave). A batch without a partner
+/// goes through the same code with itself as the second, whose results are dropped: every batch
+/// is then computed by the same instructions whether it is paired or not (the two halves of W
+/// round alike, a lone V path might contract multiply-adds differently), so the result does not
+/// depend on where the threads' chunks cut a colour. Each kernel adds its own write-back.
+template <class Batch>
+struct BatchPair {
+  const Batch* c0;
+  const Batch* c1;  ///< of c0's colour, or c0 itself when `second` is false
+  bool second;      ///< c1 is a batch of its own (store its results)
+  using T = W;
+  W load(const double (Batch::*f)[BATCH_LANES]) const {
+    return {_mm256_load_pd(c0->*f), _mm256_load_pd(c1->*f)};
+  }
+  void rows(const PaddedVertex* xw, int j, L3<W>& x, W& w) const {
+    const V4 r0 = gather(xw, c0->v[j]), r1 = gather(xw, c1->v[j]);
+    x = {{r0.x.x, r1.x.x}, {r0.x.y, r1.x.y}, {r0.x.z, r1.x.z}};
+    w = {r0.w, r1.w};
+  }
+  W load_lambda(const double* lam) const {
+    return {_mm256_loadu_pd(lam), _mm256_loadu_pd(second ? lam + BATCH_LANES : lam)};
+  }
+  void store_lambda(double* lam, W l) const {
+    _mm256_storeu_pd(lam, l.a);
+    if (second) _mm256_storeu_pd(lam + BATCH_LANES, l.b);
+  }
+};
+
 /// atan2(y, x) on four lanes, within a few ulp of std::atan2 (tests/pbd/test_lane_math.cpp), so
 /// that the dihedral kernel needs no libm call per lane. Branch-free: the quotient
 /// t = min(|x|, |y|) / max(|x|, |y|) in [0, 1] is reduced to |u| <= 0.66 by u = (t - 1) / (t + 1)

@@ -77,23 +77,8 @@ SC_AVX2_INLINE void move_rows(PaddedVertex* xw, const int* v, int count, const V
   }
 }
 
-/// Two batches of one colour (they share no vertex), their rest data and rows as lanes of W, as
-/// the dihedral kernel pairs them: the two chains interleave. A batch without a partner goes
-/// through the same code with itself as the second, whose results are dropped, so that every
-/// batch is computed by the same instructions whether it is paired or not and the result does
-/// not depend on where the threads' chunks cut a colour.
-struct MembranePair {
-  const MembraneBatch* c0;
-  const MembraneBatch* c1;  ///< of c0's colour, or c0 itself when `second` is false
-  bool second;              ///< c1 is a batch of its own (store its results)
-  W load(const double (MembraneBatch::*f)[BATCH_LANES]) const {
-    return {_mm256_load_pd(c0->*f), _mm256_load_pd(c1->*f)};
-  }
-  void rows(const PaddedVertex* xw, int j, L3<W>& x, W& w) const {
-    const V4 r0 = gather(xw, c0->v[j]), r1 = gather(xw, c1->v[j]);
-    x = {{r0.x.x, r1.x.x}, {r0.x.y, r1.x.y}, {r0.x.z, r1.x.z}};
-    w = {r0.w, r1.w};
-  }
+/// A pair of batches (BatchPair) whose rows are moved by their steps.
+struct MembranePair : BatchPair<MembraneBatch> {
   /// Moves vertex j's rows by -d[j]; one test for the common case of two full batches.
   void move(PaddedVertex* xw, const L3<W> (&d)[3]) const {
     if (second && c0->count == BATCH_LANES && c1->count == BATCH_LANES) {
@@ -104,13 +89,6 @@ struct MembranePair {
     for (int j = 0; j < 3; ++j) move_rows<false>(xw, c0->v[j], c0->count, V3{d[j].x.a, d[j].y.a, d[j].z.a});
     if (second)
       for (int j = 0; j < 3; ++j) move_rows<false>(xw, c1->v[j], c1->count, V3{d[j].x.b, d[j].y.b, d[j].z.b});
-  }
-  W load_lambda(const double* lam) const {
-    return {_mm256_loadu_pd(lam), _mm256_loadu_pd(second ? lam + BATCH_LANES : lam)};
-  }
-  void store_lambda(double* lam, W l) const {
-    _mm256_storeu_pd(lam, l.a);
-    if (second) _mm256_storeu_pd(lam + BATCH_LANES, l.b);
   }
 };
 
@@ -196,7 +174,7 @@ void membrane_batches_avx2(double mu, double lambda_lame, const MembraneBatch* b
                     s(1e-300), s(ctx.alpha_tilde)};
   for (std::size_t b = 0; b < count;) {
     const bool pair = b + 1 < count && batches[b].same_colour_next;
-    membrane_lanes<Xpbd>(MembranePair{batches + b, batches + (pair ? b + 1 : b), pair}, xw, k,
+    membrane_lanes<Xpbd>(MembranePair{{batches + b, batches + (pair ? b + 1 : b), pair}}, xw, k,
                          Xpbd ? lambda + BATCH_LANES * b : nullptr);
     b += pair ? 2 : 1;
   }

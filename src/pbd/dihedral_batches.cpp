@@ -58,34 +58,11 @@ SC_AVX2_INLINE T neg(T a) { return vxor(a, lanes_splat<T>(-0.0)); }
 template <class T>
 SC_AVX2_INLINE L3<T> neg(const L3<T>& a) { return {neg(a.x), neg(a.y), neg(a.z)}; }
 
-/// The two batches a kernel pass works on, their rest data and vertex rows as lanes of W. A
-/// batch without a partner goes through the same code with itself as the second, whose results
-/// are dropped: every batch is then computed by the same instructions whether it is paired or
-/// not (the two halves of W round alike, a lone V path might contract multiply-adds
-/// differently), so the result does not depend on where the threads' chunks cut a colour.
-struct TwoBatches {
-  const DihedralBatch* c0;
-  const DihedralBatch* c1;  ///< of c0's colour, or c0 itself when `second` is false
-  bool second;              ///< c1 is a batch of its own (store its results)
-  using T = W;
-  W load(const double (DihedralBatch::*f)[BATCH_LANES]) const {
-    return {_mm256_load_pd(c0->*f), _mm256_load_pd(c1->*f)};
-  }
-  void rows(const PaddedVertex* xw, int j, L3<W>& x, W& w) const {
-    const V4 r0 = gather(xw, c0->v[j]), r1 = gather(xw, c1->v[j]);
-    x = {{r0.x.x, r1.x.x}, {r0.x.y, r1.x.y}, {r0.x.z, r1.x.z}};
-    w = {r0.w, r1.w};
-  }
+/// A pair of batches (BatchPair) written back with their w, as gather read them.
+struct TwoBatches : BatchPair<DihedralBatch> {
   void store(PaddedVertex* xw, int j, const L3<W>& x, W w) const {
     scatter(xw, c0->v[j], c0->count, V3{x.x.a, x.y.a, x.z.a}, w.a);
     if (second) scatter(xw, c1->v[j], c1->count, V3{x.x.b, x.y.b, x.z.b}, w.b);
-  }
-  W load_lambda(const double* lam) const {
-    return {_mm256_loadu_pd(lam), _mm256_loadu_pd(second ? lam + BATCH_LANES : lam)};
-  }
-  void store_lambda(double* lam, W l) const {
-    _mm256_storeu_pd(lam, l.a);
-    if (second) _mm256_storeu_pd(lam + BATCH_LANES, l.b);
   }
 };
 
@@ -196,7 +173,7 @@ void dihedral_batches_avx2(const DihedralBatch* batches, std::size_t count, doub
   while (b < count) {
     double* lam = lambda ? lambda + BATCH_LANES * b : nullptr;
     const bool pair = b + 1 < count && batches[b].same_colour_next;
-    dihedral_lanes(TwoBatches{batches + b, batches + (pair ? b + 1 : b), pair}, xw, k_bending,
+    dihedral_lanes(TwoBatches{{batches + b, batches + (pair ? b + 1 : b), pair}}, xw, k_bending,
                    ctx.alpha_tilde, lam);
     b += pair ? 2 : 1;
   }
