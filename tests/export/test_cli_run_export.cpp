@@ -20,17 +20,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The positions of a mesh file read with CGAL's reader, row i = vertex i.
-Positions positions_of(const std::string& path) {
-  const Mesh m = test::cgal_read(path);
-  Positions x(static_cast<Eigen::Index>(m.number_of_vertices()), 3);
-  for (const VertexIndex v : m.vertices()) {
-    const Point3& p = m.point(v);
-    x.row(static_cast<Eigen::Index>(v.idx())) << p.x(), p.y(), p.z();
-  }
-  return x;
-}
-
 TEST(CliRunExport, TheGlbOfARunEqualsItsFrameSequence) {
   if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
   test::ScratchDir dir("cli_run");
@@ -51,7 +40,7 @@ TEST(CliRunExport, TheGlbOfARunEqualsItsFrameSequence) {
   ASSERT_EQ(numbers.ArrayLen(), want_frames.size());
 
   const test::Floats base = test::read_floats(m, p.attributes.at("POSITION"));
-  const Positions first = positions_of(frames + "/run_00.off");
+  const Positions first = test::cgal_read_positions(frames + "/run_00.off");
   const double extent = first.cwiseAbs().maxCoeff();
   // One float rounding of the base, of the displacement and of their sum.
   const double tol = 4.0 * extent * std::numeric_limits<float>::epsilon();
@@ -60,7 +49,7 @@ TEST(CliRunExport, TheGlbOfARunEqualsItsFrameSequence) {
     EXPECT_EQ(numbers.Get(static_cast<int>(k)).GetNumberAsInt(), want_frames[k]);
     char name[32];
     std::snprintf(name, sizeof name, "/run_%02d.off", want_frames[k]);
-    const Positions file = positions_of(frames + name);
+    const Positions file = test::cgal_read_positions(frames + name);
     test::Floats xk = base;
     if (k > 0) xk += test::read_floats(m, p.targets[k - 1].at("POSITION"));
     ASSERT_EQ(xk.rows(), file.rows());
@@ -69,7 +58,7 @@ TEST(CliRunExport, TheGlbOfARunEqualsItsFrameSequence) {
   }
   // The last keyframe is the result the run wrote.
   test::Floats last = base + test::read_floats(m, p.targets.back().at("POSITION"));
-  EXPECT_LE((last.cast<double>() - positions_of(dir.file("run.off"))).cwiseAbs().maxCoeff(), tol);
+  EXPECT_LE((last.cast<double>() - test::cgal_read_positions(dir.file("run.off"))).cwiseAbs().maxCoeff(), tol);
   // The run moved far more than the tolerance: a frame out of place would be seen.
   EXPECT_GT(motion, 100.0 * tol);
 }

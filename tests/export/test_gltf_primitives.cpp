@@ -67,17 +67,6 @@ std::vector<std::pair<std::string, std::vector<Triangle>>> faces_by_usemtl(
   return out;
 }
 
-/// The positions of a mesh file read with CGAL's reader, row i = vertex i.
-Positions positions_of(const std::string& path) {
-  const Mesh m = test::cgal_read(path);
-  Positions x(static_cast<Eigen::Index>(m.number_of_vertices()), 3);
-  for (const VertexIndex v : m.vertices()) {
-    const Point3& p = m.point(v);
-    x.row(static_cast<Eigen::Index>(v.idx())) << p.x(), p.y(), p.z();
-  }
-  return x;
-}
-
 std::size_t count_of(const std::string& text, const std::string& s) {
   std::size_t n = 0;
   for (std::size_t at = text.find(s); at != std::string::npos; at = text.find(s, at + 1)) ++n;
@@ -155,11 +144,11 @@ TEST(GltfPrimitives, EachMaterialOfAnObjIsAPrimitiveWithExactlyItsFaces) {
   const std::vector<int> want_frames = {0, 2, 4, 6};
   ASSERT_EQ(p0.targets.size() + 1, want_frames.size());
   const test::Floats base = test::read_floats(m, p0.attributes.at("POSITION"));
-  const Positions first = positions_of(frames + "/run_0.off");
+  const Positions first = test::cgal_read_positions(frames + "/run_0.off");
   const double tol = 4.0 * first.cwiseAbs().maxCoeff() * std::numeric_limits<float>::epsilon();
   double motion = 0.0;
   for (std::size_t k = 0; k < want_frames.size(); ++k) {
-    const Positions file = positions_of(frames + "/run_" + std::to_string(want_frames[k]) + ".off");
+    const Positions file = test::cgal_read_positions(frames + "/run_" + std::to_string(want_frames[k]) + ".off");
     test::Floats xk = base;
     if (k > 0) xk += test::read_floats(m, p0.targets[k - 1].at("POSITION"));
     ASSERT_EQ(xk.rows(), file.rows());

@@ -40,4 +40,15 @@ inline Mesh cgal_read(const std::string& path) {
   return m;
 }
 
+/// The positions of a mesh file read with CGAL's reader (cgal_read), row i = vertex i.
+inline Positions cgal_read_positions(const std::string& path) {
+  const Mesh m = cgal_read(path);
+  Positions x(static_cast<Eigen::Index>(m.number_of_vertices()), 3);
+  for (const VertexIndex v : m.vertices()) {
+    const Point3& p = m.point(v);
+    x.row(static_cast<Eigen::Index>(v.idx())) << p.x(), p.y(), p.z();
+  }
+  return x;
+}
+
 }  // namespace shellcontract::test
