@@ -187,13 +187,13 @@ CLIENT_CONFIG = {"distributed.diagnostics.computations.ignore-modules": [".*"]}
 _IMPORT_PROBE = "__import__('shellcontract.sweep_job').sweep_job.__file__"
 
 
-def _check_workers(client, cli, version, own_cli, progress):
+def _check_workers(client, cli, version, own_cli, message):
     """Every worker of an existing cluster can import the package and finds an executable of the
     sweep's version (sweep_job.worker_cli); raises WorkersUnusable naming each one that cannot.
     Workers that join later are checked by their first job (which then crashes, saying why)."""
     workers = sorted(client.scheduler_info().get("workers", {}))
     if not workers:
-        progress.message("the cluster has no workers yet: the jobs wait for the first to join")
+        message("the cluster has no workers yet: the jobs wait for the first to join")
         return
     problems = []
     imported = client.run(eval, _IMPORT_PROBE, workers=workers, on_error="return")
@@ -238,23 +238,37 @@ def _stop_on_workers(client, token):
         return None
 
 
-def _run_dask(jobs, todo, args, cli, version, token, progress, on_record):
+def _connect(args, cli, version):
+    """A client of the existing cluster (--scheduler) whose workers have passed _check_workers;
+    made before DIR is claimed, so that a refused cluster leaves no folder behind. Raises
+    WorkersUnusable, or OSError when the scheduler does not answer."""
+    import dask
+    from distributed import Client
+    dask.config.set(CLIENT_CONFIG)
+    client = Client(args.scheduler, timeout="30s")
+    try:
+        # Each worker runs its own executable (unless --cli names one), of the sweep's version.
+        _check_workers(client, cli, version, args.cli is None,
+                       lambda text: print("shellcontract sweep: " + text, file=sys.stderr))
+    except BaseException:
+        client.close()
+        raise
+    return client
+
+
+def _run_dask(todo, args, cli, version, token, progress, on_record, client=None):
+    """The jobs on the existing cluster of `client` (from _connect), or on an embedded one."""
     import dask
     from distributed import Client
     dask.config.set(CLIENT_CONFIG)
     cluster = None
-    # On an existing cluster each worker runs its own executable (unless --cli names one), of the
-    # sweep's version; the embedded workers run this machine's.
     own_cli = None if not args.scheduler else args.cli is None
-    if args.scheduler:
-        client = Client(args.scheduler, timeout="30s")
-    else:
+    if client is None:
+        # The embedded workers run this machine's executable.
         cluster = _embedded_cluster(args.workers or os.cpu_count() or 1)
         client = Client(cluster)
     futures = {}
     try:
-        if args.scheduler:
-            _check_workers(client, cli, version, own_cli, progress)
         if args.scheduler or _has_dashboard():
             # The scheduler's own dashboard when it has one (it says where).
             progress.message("Dask dashboard: {}".format(client.dashboard_link))
@@ -297,8 +311,8 @@ def _run_dask(jobs, todo, args, cli, version, token, progress, on_record):
                      else sweep_job.active_calls(token))
         raise Interrupted(still)
     finally:
-        client.close()
-        if cluster is not None:
+        if cluster is not None:  # an existing cluster's client is its caller's to close
+            client.close()
             cluster.close()
 
 
@@ -392,14 +406,30 @@ def main(argv=None):
 def _run(args, cli, version, data, jobs):
     varying = sweep_file.varying_names(data)
     sweep_dir = os.path.dirname(os.path.abspath(args.sweep))
+    selected = jobs if args.shard is None else jobs[args.shard[0]::args.shard[1]]
     if args.dry_run:
-        # The mesh and `run`'s arguments quoted for a shell ('0:1, 60:0.5' is one argument).
-        for job in jobs:
+        # The mesh and `run`'s arguments quoted for a shell ('0:1, 60:0.5' is one argument);
+        # with --shard, that shard's jobs only.
+        for job in selected:
             print("{}  {}  {}".format(job.id, shlex.quote(os.path.relpath(job.mesh, sweep_dir)),
                                       " ".join(shlex.quote(a) for a in job.args)))
         return 0
+    client = None
+    if args.scheduler:
+        try:
+            client = _connect(args, cli, version)
+        except WorkersUnusable as e:
+            print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
+            return EXIT_USAGE
+    try:
+        return _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, client)
+    finally:
+        if client is not None:
+            client.close()
+
+
+def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, client):
     sweep_output.claim(args.output, args.sweep)
-    selected = jobs if args.shard is None else jobs[args.shard[0]::args.shard[1]]
     tables = sweep_results.Writer(jobs, varying, args.output, sweep_dir)
     todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
     sweep_results.write(jobs, varying, args.output, sweep_dir, records=tables.records)
@@ -429,7 +459,7 @@ def _run(args, cli, version, data, jobs):
                 on_record(job, sweep_job.run_job(job.to_dict(), args.output, cli, args.job_timeout,
                                                  args.checkpoint_every, sweep=token))
         elif todo:  # nothing left to run: no cluster to start
-            _run_dask(jobs, todo, args, cli, version, token, progress, on_record)
+            _run_dask(todo, args, cli, version, token, progress, on_record, client)
     except (KeyboardInterrupt, Interrupted) as e:
         tables.flush()
         progress.close()
@@ -444,11 +474,6 @@ def _run(args, cli, version, data, jobs):
         print("shellcontract sweep: interrupted; run the same command again to finish the rest "
               "({})".format(how), file=sys.stderr)
         return EXIT_INTERRUPTED
-    except WorkersUnusable as e:
-        tables.flush()
-        progress.close()
-        print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
-        return EXIT_USAGE
     table = tables.flush()
     progress.close()
     ids = {j.id for j in selected}

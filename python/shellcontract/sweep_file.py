@@ -60,6 +60,21 @@ def _check_value(path, where, name, value):
                     "list of numbers".format(where, name, value))
 
 
+class _DuplicateKey(Exception):
+    pass
+
+
+def _unique_keys(pairs):
+    """json's object hook: an object whose key repeats is refused (json keeps the last value
+    silently, so a sweep file with "pressure" twice ran only one of them)."""
+    out = {}
+    for key, value in pairs:
+        if key in out:
+            raise _DuplicateKey(key)
+        out[key] = value
+    return out
+
+
 def load(path):
     """Reads and checks the sweep file's structure; returns its dict."""
     try:
@@ -68,7 +83,10 @@ def load(path):
     except OSError as e:
         raise SweepError("{}: cannot read the sweep file ({})".format(path, e.strerror))
     try:
-        data = json.loads(text.decode("utf-8"))
+        data = json.loads(text.decode("utf-8"), object_pairs_hook=_unique_keys)
+    except _DuplicateKey as e:
+        raise SweepError("{}: the key {!r} is given twice in one object (JSON readers keep one of "
+                         "the two values; give it once)".format(path, e.args[0]))
     except (UnicodeDecodeError, ValueError) as e:
         raise SweepError("{}: not valid JSON ({})".format(path, e))
     if not isinstance(data, dict):
@@ -93,6 +111,11 @@ def load(path):
             _fail(path, "grid option {!r}: expected a non-empty list of values".format(name))
         if name in options:
             _fail(path, "option {!r} is both in 'options' and in 'grid'".format(name))
+        if name in RESULT_NEUTRAL and len(values) > 1:
+            # Its jobs have one id, so all but the first would be dropped as repeats.
+            _fail(path, "grid option {!r}: it does not change a run's result (the same bytes at "
+                        "any value), so each of its values would be the same job; give it in "
+                        "'options' (to time it, use shellcontract bench)".format(name))
     runs = data.get("runs", [{}])
     if not isinstance(runs, list) or not runs or not all(isinstance(r, dict) for r in runs):
         _fail(path, "'runs' must be a non-empty list of objects (option name -> value)")

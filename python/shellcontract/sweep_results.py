@@ -11,7 +11,7 @@ import os
 import time
 import uuid
 
-from . import sweep_job, sweep_progress
+from . import sweep_file, sweep_job, sweep_progress
 
 RESULT_COLUMNS = ("status", "exit_code", "final_volume_ratio", "frames_run", "wall_seconds",
                   "peak_memory_mb", "new_intersections", "output")
@@ -98,6 +98,16 @@ def _cell(v):
     return str(v)
 
 
+def _option_cell(job, name, value):
+    """An option's cell: the tool's own text of the value (its resolved options), so that an
+    integer in the file (1000000) reads as the same number given as a float (1e+06) does, and a
+    keyframe list as the CLI's '0:1, 60:0.5'. A file option keeps the file's text (its resolved
+    text is the absolute path), and an option the job does not give stays empty."""
+    if value == "" or name in sweep_file.PATH_OPTIONS:
+        return _cell(value)
+    return job.resolved.get(name, _cell(value))
+
+
 def write(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
     """Writes both files; returns the rows."""
     table = rows(jobs, varying, out_dir, sweep_dir, latest, records)
@@ -105,8 +115,9 @@ def write(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(names)
-    for row in table:
-        w.writerow([_cell(row[n]) for n in names])
+    for job, row in zip(jobs, table):
+        w.writerow([_option_cell(job, n, row[n]) if n in varying else _cell(row[n])
+                    for n in names])
     os.makedirs(out_dir, exist_ok=True)
     _atomic(os.path.join(out_dir, "results.csv"), buf.getvalue())
     _atomic(os.path.join(out_dir, "results.json"),

@@ -176,6 +176,19 @@ std::vector<Vec3> region_at_points(const py::handle& value) {
 
 namespace {
 
+/// A list, a tuple or an array that is not 0-dimensional (a numpy scalar is one value).
+bool is_sequence(const py::handle& value) {
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) return true;
+  return py::hasattr(value, "tolist") && py::hasattr(value, "ndim") && value.attr("ndim").cast<int>() > 0;
+}
+
+/// The options whose text may be a list, by the table's own value names: keyframes (pressure,
+/// target_volume: "P|KEYS") and a direction (fiber: "centre|X,Y,Z"); region_at and
+/// region_weights are read before the table.
+bool takes_sequence(const OptionSpec& spec) {
+  return spec.value_name.find("KEYS") != std::string::npos || spec.value_name.find(',') != std::string::npos;
+}
+
 /// also_valid: the caller's own arguments, listed after the table's in the unknown-option error.
 RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also_valid = "") {
   RunOptions options;
@@ -196,6 +209,11 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also
     if (!spec)
       throw py::type_error("contract() got an unknown option '" + name + "'; valid options: " + valid_names() +
                            also_valid);
+    // A list for an option of one value would reach the table as its items' text: frames=[2]
+    // ran 2 frames, and a sweep file's "frames": [5] read as 5, where a list of values was meant.
+    if (is_sequence(value) && !takes_sequence(*spec))
+      throw py::type_error(name + ": got " + std::string(py::str(py::repr(value))) +
+                           "; it takes one value, not a list");
     try {
       spec->set(options, option_text(name, value));  // UsageError (ValueError) for a bad value
     } catch (const UsageError& e) {
@@ -460,11 +478,51 @@ py::dict resolve_options(const py::kwargs& kwargs) {
   return out;
 }
 
+namespace {
+
+/// The table's help with the other options named as Python names them: "--young" and "-p" are
+/// the CLI's spellings, and contract() has no argument "--young". Only names of run options
+/// change ("--help" or a command's "regions --region-at" keep their dashes where no run option
+/// matches).
+std::string python_help(const std::string& help) {
+  const auto is_name_char = [](char c) { return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '-'; };
+  std::string out;
+  std::size_t i = 0;
+  while (i < help.size()) {
+    const bool start = i == 0 || !is_name_char(help[i - 1]);
+    if (start && help.compare(i, 2, "--") == 0) {
+      std::size_t end = i + 2;
+      while (end < help.size() && is_name_char(help[end])) ++end;
+      while (end > i + 2 && help[end - 1] == '-') --end;  // "--frames-" ends a phrase, not a name
+      const OptionSpec* o = find_run_option(help.substr(i + 2, end - i - 2));
+      if (o && o->name == help.substr(i + 2, end - i - 2)) {
+        out += python_name(o->name);
+        i = end;
+        continue;
+      }
+    } else if (start && help[i] == '-' && i + 1 < help.size() &&
+               (i + 2 == help.size() || !is_name_char(help[i + 2]))) {
+      const OptionSpec* o = nullptr;
+      for (const OptionSpec& candidate : run_option_table())
+        if (candidate.short_name != 0 && candidate.short_name == help[i + 1]) o = &candidate;
+      if (o) {  // "-p > 0"
+        out += python_name(o->name);
+        i += 2;
+        continue;
+      }
+    }
+    out += help[i++];
+  }
+  return out;
+}
+
+}  // namespace
+
 py::list option_table() {
   const RunOptions defaults;
   py::list out;
   for (const OptionSpec& o : run_option_table())
-    out.append(py::make_tuple(python_name(o.name), o.get(defaults), o.help, o.name));
+    out.append(py::make_tuple(python_name(o.name), o.get(defaults), python_help(o.help), o.name));
   return out;
 }
 

@@ -162,6 +162,20 @@ def test_options_are_the_table_and_its_defaults(ico2):
             assert reported[o.name] == o.default, o.name
 
 
+def test_option_help_names_the_other_options_as_python_does():
+    """Before: the help read "--young", "--thickness", "-p > 0", names contract() does not take."""
+    import re
+    table = shellcontract.options()
+    flags = {"--" + o.cli_name for o in table} | {"-p", "-n"}
+    for o in table:
+        found = set(re.findall(r"(?<![\w-])--?[a-z][a-z0-9-]*", o.help))
+        assert not (found & flags), (o.name, found & flags, o.help)
+    young = next(o for o in table if o.name == "young").help
+    assert "(with thickness)" in young and "unless k_b is given" in young, young
+    inward = next(o for o in table if o.name == "inward").help
+    assert "under pressure > 0 without target_volume" in inward, inward
+
+
 def test_bool_and_string_values(ico2):
     vertices, faces = ico2
     result = shellcontract.contract(vertices, faces, frames=2, collisions=False, solver="xpbd")

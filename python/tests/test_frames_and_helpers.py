@@ -278,3 +278,19 @@ def test_lambda_is_also_lambda_and_frames_takes_no_callback(ico2):
         shellcontract.contract(v, f, frames=2, lambda_=0.7, **{"lambda": 0.7})
     with pytest.raises(TypeError, match="frames\\(\\) takes no callback"):
         next(shellcontract.frames(v, f, callback=lambda *a: None, frames=2))
+
+
+def test_a_list_for_an_option_of_one_value_is_refused(ico2):
+    # Before: frames=[2] ran 2 frames (the list's items reached the option table as text), and a
+    # sweep file's "frames": [5] read as 5.
+    v, f = ico2
+    for bad in ([2], (2,), np.array([2])):
+        with pytest.raises(TypeError, match="frames: got .*it takes one value"):
+            shellcontract.contract(v, f, frames=bad)
+    with pytest.raises(TypeError, match="damping: got"):
+        shellcontract.contract(v, f, frames=2, damping=[0.1])
+    # The options that take a list, and a numpy scalar, still work.
+    r = shellcontract.contract(v, f, frames=np.int64(2), collisions=False, fiber=[1, 0, 0],
+                               aniso="active-fiber", target_volume=[(0, 1.0), (2, 0.9)],
+                               pressure=[(0, 4), (2, 3)])
+    assert r.status in ("ok", "target not reached")

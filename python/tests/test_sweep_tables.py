@@ -50,6 +50,26 @@ def test_numbers_in_the_table_read_as_the_tools_own(cli, mesh_dir, tmp_path):
     assert cells == [job.resolved["pressure"] for job in jobs]
 
 
+def test_an_integer_in_the_file_reads_as_the_same_number_given_as_a_float(cli, mesh_dir,
+                                                                            tmp_path):
+    # JSON 1000000 beside 1e6: one number, one text (the tool's), in every column type.
+    spec = {"meshes": ["meshes/ico1.off"],
+            "grid": {"pressure": [1000000, 0.5], "frames": [10, 12]},
+            "runs": [{"target_volume": [[0, 1], [60, 0.5]]}, {"air_balance": 0}]}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
+    data = sweep_file.load(str(path))
+    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
+    jobs = sweep_file.expand(str(path), data, version)
+    out = tmp_path / "out"
+    sweep_results.write(jobs, sweep_file.varying_names(data), str(out), str(tmp_path))
+    with open(out / "results.csv") as f:
+        table = list(csv.DictReader(f))
+    assert [row["pressure"] for row in table] == ["1e+06"] * 4 + ["0.5"] * 4
+    assert [row["frames"] for row in table] == ["10", "10", "12", "12"] * 2
+    assert [row["target_volume"] for row in table] == ["0:1, 60:0.5", ""] * 4
+    assert [row["air_balance"] for row in table] == ["", "0"] * 4
+
+
 @pytest.mark.parametrize("value,text", [
     (1e6, "1e+06"), (1e5, "1e+05"), (123456.0, "123456"), (1e-5, "1e-05"), (0.003, "0.003"),
     (-2.5, "-2.5"), (0.1 + 0.2, "0.30000000000000004"), (2.0 ** 70, "1180591620717411303424"),

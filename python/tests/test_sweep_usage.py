@@ -118,3 +118,33 @@ def test_a_sweep_whose_stderr_reader_goes_away_runs_every_job(cli, mesh_dir, tmp
     assert p.wait(timeout=120) == 0
     with open(out / "results.csv") as f:
         assert [row["status"] for row in csv.DictReader(f)] == ["ok", "ok", "ok"]
+
+
+def test_silent_merges_are_refused_and_a_dry_run_lists_its_shard(cli, mesh_dir, tmp_path):
+    """Before: a key given twice kept its last value, a grid over threads collapsed into one job,
+    and "frames": [5] ran 5 frames, all with exit 0; --dry-run --shard listed every job."""
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
+    path.write_text('{"meshes": ["meshes/ico1.off"], "options": {"frames": 4, "frames": 6}}')
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"])
+    assert r.returncode == 1 and "the key 'frames' is given twice" in r.stderr, r.stderr
+    for spec, expected in [
+            ({"meshes": ["meshes/ico1.off"], "grid": {"threads": [1, 2]}},
+             "grid option 'threads': it does not change a run's result"),
+            ({"meshes": ["meshes/ico1.off"], "options": {"frames": [5]}},
+             "frames: got [5]; it takes one value")]:
+        path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
+        r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"])
+        assert r.returncode == 1 and expected in r.stderr, r.stderr
+        assert "Traceback" not in r.stderr
+    assert not (tmp_path / "out").exists()
+    # A single thread count is an option like any other.
+    path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"],
+                                                      "grid": {"threads": [1], "pressure": [1, 2, 3]}},
+                       meshes=("ico1.off",))
+    listed = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"])
+    assert listed.returncode == 0, listed.stderr
+    every = listed.stdout.splitlines()
+    assert len(every) == 3
+    shards = [run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run", "--shard",
+                              "{}/2".format(i)]).stdout.splitlines() for i in range(2)]
+    assert shards == [every[0::2], every[1::2]], shards

@@ -97,6 +97,7 @@ def test_a_worker_of_another_version_is_refused_before_anything_runs(cli, mesh_d
     r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--scheduler", address])
     assert r.returncode == 1, r.stderr
     assert "refused, nothing run" in r.stderr and "is version shellcontract 0.0.1" in r.stderr
+    assert not (tmp_path / "out").exists()  # before: DIR was claimed, its jobs "pending"
     assert "tcp://127.0.0.1:" in r.stderr  # the worker is named
     assert not any(c.startswith("run ") for c in (tmp_path / "calls.txt").read_text().splitlines())
 
@@ -115,6 +116,7 @@ def test_a_worker_that_cannot_import_the_package_is_refused_not_waited_for(cli, 
     assert r.returncode == 1, r.stderr
     assert "cannot import the shellcontract package" in r.stderr, r.stderr
     assert "Traceback" not in r.stderr
+    assert not (tmp_path / "out").exists()
 
 
 def test_worker_cli_falls_back_to_the_clients_path_and_checks_the_version(cli, monkeypatch,
