@@ -212,6 +212,9 @@ function setSideBySide(on) {
     glb.object.traverse((o) => original.push(o));
     object.traverse((o) => copy.push(o));
     const meshes = glb.meshes.map((m) => copy[original.indexOf(m)]);
+    // Object3D.clone shares the geometry, and a choice of colours sets the geometry's 'color':
+    // each pane needs its own geometry, or both would show the colours written last.
+    for (const m of meshes) m.geometry = paneGeometry(m.geometry);
     const looks = glb.looks.map((l) => ({ field: l.field.clone(), file: l.file ? l.file.clone() : null }));
     const { scene, sun } = makeScene();
     scene.add(object);
@@ -223,6 +226,27 @@ function setSideBySide(on) {
   state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(state.colour);
   setKeyframe(state.keyframe);
+}
+
+/**
+ * A new geometry on the same index, attributes and morph targets: its own table of attributes,
+ * so that setting its 'color' leaves the other pane's alone. The attributes themselves are only
+ * read (the frames are chosen by each mesh's own morph influences), so they are shared, not
+ * copied: a run's morph targets can be most of the file.
+ */
+function paneGeometry(g) {
+  const c = new THREE.BufferGeometry();
+  c.setIndex(g.index);
+  for (const [k, a] of Object.entries(g.attributes)) c.setAttribute(k, a);
+  for (const [k, list] of Object.entries(g.morphAttributes)) c.morphAttributes[k] = list.slice();
+  c.morphTargetsRelative = g.morphTargetsRelative;
+  for (const gr of g.groups) c.addGroup(gr.start, gr.count, gr.materialIndex);
+  c.setDrawRange(g.drawRange.start, g.drawRange.count);
+  c.boundingBox = g.boundingBox ? g.boundingBox.clone() : null;
+  c.boundingSphere = g.boundingSphere ? g.boundingSphere.clone() : null;
+  c.name = g.name;
+  c.userData = g.userData;
+  return c;
 }
 
 function loadLog(text, name) {

@@ -2,7 +2,8 @@
 // opens result meshes (OFF, OBJ, PLY, STL), shows two files side by side (and a .glb's first
 // frame beside its current one), colours each pane and each frame with its own values (a glTF
 // field of one frame only on that frame), and jumps to a frame; a .glb of several primitives (an
-// OBJ with two materials) plays and colours every one; with no field chosen a .glb's primitives wear their materials (base
+// OBJ with two materials) plays and colours every one; the two panes of "before | after" wear each
+// its own frame's colours; with no field chosen a .glb's primitives wear their materials (base
 // colour, texture). The files come from real runs of the CLI on a small mesh, made here in a
 // temporary folder.
 // Usage: node viewer/tests/viewer_meshes_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
@@ -293,6 +294,25 @@ try {
   await page.keyboard.press('End');
   const dEnd = await differing(await shot('left'), await shot('right'));
   check(dEnd > 0.01, `on the last frame the panes differ (${(100 * dEnd).toFixed(1)} % of the pixels)`);
+  // Each pane wears its own frame's colours: the colours read back from each pane's geometry are
+  // those of frame 0 (left) and of the last frame (right), as seen one pane at a time above.
+  await page.select('#colour', '0');
+  const sbMeans = await page.evaluate(() => window.viewer.colourMeans());
+  check(sbMeans[0] !== null && sbMeans[1] !== null && Math.abs(sbMeans[0] - frame0Mean) < 1e-6 && Math.abs(sbMeans[1] - lastMean) < 1e-6,
+        `side by side, the left pane wears frame 0's colours and the right the last frame's (mean red ${sbMeans.map((m) => m?.toFixed(4))}, expected ${frame0Mean?.toFixed(4)}, ${lastMean?.toFixed(4)})`);
+  const sbInf = await page.evaluate(() => window.viewer.influences());
+  check(sbInf[0][0].every((x) => x === 0) && sbInf[1][0].at(-1) === 1 && sbInf[1][0].slice(0, -1).every((x) => x === 0),
+        `side by side, the left pane is at frame 0 and the right at the last frame (influences ${JSON.stringify(sbInf)})`);
+  await page.select('#colour', '1');
+  const sbShown = await page.evaluate(() => ({ shown: window.viewer.shown, means: window.viewer.colourMeans() }));
+  check(JSON.stringify(sbShown.shown) === '["none","gaussian_curvature"]' && sbShown.means[0] === null && sbShown.means[1] !== null,
+        `a field of the last frame only colours the right pane only (${JSON.stringify(sbShown)})`);
+  await page.select('#colour', '0');
+  await page.focus('#scrubber');
+  await page.keyboard.press('Home');
+  const sbHome = await page.evaluate(() => window.viewer.colourMeans());
+  check(Math.abs(sbHome[0] - frame0Mean) < 1e-6 && Math.abs(sbHome[1] - frame0Mean) < 1e-6,
+        `back on frame 0 both panes wear frame 0's colours (mean red ${sbHome.map((m) => m?.toFixed(4))})`);
 
   // Two materials, two primitives (three.js: two meshes): each plays the frames and wears the
   // colour field, so the picture is the one-primitive file's, frame for frame.
