@@ -4,10 +4,12 @@
 // shown side by side (before and after, one camera); a single .glb can show its first frame beside
 // the current one. Each frame is coloured with its own values where the file has them (the
 // glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on that frame
-// and never on the others; a mesh file is coloured with its own values.
+// and never on the others; a mesh file is coloured with its own values. With no field shown, a
+// .glb's primitives wear the file's materials (base colour, texture).
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes (with their
-// meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show), ...}.
+// meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show),
+// looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
@@ -22,7 +24,7 @@ const state = {
   ready: false, error: null, keyframe: 0, frameNumbers: [], times: [], log: null, summary: null,
   colourFields: [], colour: '-1', playing: false, sideBySide: false,
   panes: [],   // per pane: {name, kind: 'glb' | 'mesh', vertices, frame (glb: shown run frame)}
-  shown: [],   // per pane: the colours it shows ('none', a field's name, or 'file colours')
+  shown: [],   // per pane: the colours it shows ('none', a field's name, 'file colours' or 'file materials')
 };
 window.viewer = state;
 
@@ -34,7 +36,7 @@ view.appendChild(renderer.domElement);
 const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 100);
 const controls = new OrbitControls(camera, renderer.domElement);
 controls.addEventListener('change', render);
-/** @type {{name, kind, scene, sun, object, meshes, vertices, frameNumbers?, colourInfo?, colourAttributes?, fixed?, fields?, fileColours?}[]} */
+/** @type {{name, kind, scene, sun, object, meshes, vertices, frameNumbers?, colourInfo?, colourAttributes?, looks?, fixed?, fields?, fileColours?}[]} */
 let panes = [];
 
 function makeScene() {
@@ -118,12 +120,24 @@ async function glbPane(arrayBuffer, name) {
     const values = await Promise.all(f.accessors.map((i) => gltf.parser.getDependency('accessor', i)));
     frameFields[f.name] = { values: values.map((a) => a.array), low: Number(f.low), high: Number(f.high), colours: [] };
   }
-  for (const m of meshes) m.material = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
+  // Per mesh two materials: the viewer's, for a field's colours (or the plain colour), and the
+  // file's own (an OBJ's material: base colour, texture on TEXCOORD_0), drawn when no field is.
+  // A primitive without a glTF material keeps the plain colour: glTF's default material is a
+  // white metal, near black under these lights.
+  const looks = meshes.map((m) => {
+    const field = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
+    if (gltf.parser.associations.get(m.material)?.materials === undefined) return { field, file: null };
+    const file = m.material.clone();
+    file.vertexColors = false;  // the loader turns them on for COLOR_0, which here is a field's colours
+    file.side = THREE.DoubleSide;  // as the viewer's: a folded shell shows its back faces
+    return { field, file };
+  });
+  for (const [j, m] of meshes.entries()) m.material = looks[j].field;
   const { scene, sun } = makeScene();
   scene.add(gltf.scene);
   return { name, kind: 'glb', scene, sun, object: gltf.scene, meshes, vertices: geometry.getAttribute('position').count,
            frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, colourAttributes,
-           frameFields };
+           frameFields, looks };
 }
 
 function meshPane(arrayBuffer, name) {
@@ -193,11 +207,18 @@ function setSideBySide(on) {
   if (!glb) return;
   if (on && panes.length === 1) {
     const object = glb.object.clone(true);
-    const meshes = [];
-    object.traverse((o) => { if (o.isMesh) { o.material = o.material.clone(); meshes.push(o); } });
+    // The clone's meshes in the order of the pane's (the same traversal of the same tree).
+    const original = [], copy = [];
+    glb.object.traverse((o) => original.push(o));
+    object.traverse((o) => copy.push(o));
+    const meshes = glb.meshes.map((m) => copy[original.indexOf(m)]);
+    // Object3D.clone shares the geometry, and a choice of colours sets the geometry's 'color':
+    // each pane needs its own geometry, or both would show the colours written last.
+    for (const m of meshes) m.geometry = paneGeometry(m.geometry);
+    const looks = glb.looks.map((l) => ({ field: l.field.clone(), file: l.file ? l.file.clone() : null }));
     const { scene, sun } = makeScene();
     scene.add(object);
-    panes = [{ ...glb, scene, sun, object, meshes, fixed: 0 }, glb];
+    panes = [{ ...glb, scene, sun, object, meshes, looks, fixed: 0 }, glb];
   } else if (!on) {
     panes = [glb];
   }
@@ -205,6 +226,27 @@ function setSideBySide(on) {
   state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(state.colour);
   setKeyframe(state.keyframe);
+}
+
+/**
+ * A new geometry on the same index, attributes and morph targets: its own table of attributes,
+ * so that setting its 'color' leaves the other pane's alone. The attributes themselves are only
+ * read (the frames are chosen by each mesh's own morph influences), so they are shared, not
+ * copied: a run's morph targets can be most of the file.
+ */
+function paneGeometry(g) {
+  const c = new THREE.BufferGeometry();
+  c.setIndex(g.index);
+  for (const [k, a] of Object.entries(g.attributes)) c.setAttribute(k, a);
+  for (const [k, list] of Object.entries(g.morphAttributes)) c.morphAttributes[k] = list.slice();
+  c.morphTargetsRelative = g.morphTargetsRelative;
+  for (const gr of g.groups) c.addGroup(gr.start, gr.count, gr.materialIndex);
+  c.setDrawRange(g.drawRange.start, g.drawRange.count);
+  c.boundingBox = g.boundingBox ? g.boundingBox.clone() : null;
+  c.boundingSphere = g.boundingSphere ? g.boundingSphere.clone() : null;
+  c.name = g.name;
+  c.userData = g.userData;
+  return c;
 }
 
 function loadLog(text, name) {
@@ -291,9 +333,8 @@ function applyColours() {
   }
   const values = panes.map(() => null);  // per pane: the values its colours show, if any
   state.shown = panes.map((p, pi) => {
-    let shown = 'none';
+    let shown = 'none', fileMaterials = false;
     p.meshes.forEach((m, j) => {
-      const mat = m.material;
       let attr = null;
       if (p.kind === 'glb' && /^\d+$/.test(choice)) {
         const i = Number(choice), info = p.colourInfo[i];
@@ -327,11 +368,18 @@ function applyColours() {
         }
       }
       if (attr) m.geometry.setAttribute('color', attr);
+      if (p.kind === 'glb') {
+        // A field's colours when one is shown, else the file's material where it has one.
+        const file = attr ? null : p.looks[j].file;
+        m.material = file ?? p.looks[j].field;
+        if (file) { fileMaterials = true; return; }
+      }
+      const mat = m.material;
       mat.vertexColors = !!attr;
       mat.color.set(attr ? 0xffffff : 0xd8c8b0);
       mat.needsUpdate = true;
     });
-    return shown;
+    return shown === 'none' && fileMaterials ? 'file materials' : shown;
   });
   state.colourValues = values;
   el('colour-note').textContent = el('colour').options.length > 1 ? [...new Set(notes)].join('; ') : 'these files have no colours';
@@ -396,6 +444,13 @@ state.colourMeans = () => panes.map((p) => {
   }
   return n ? sum / n : null;
 });
+/** For tests: per pane, per mesh, the material drawn: its name, colour (linear RGB), opacity,
+ * the size of its texture (null without), whether it shows vertex colours. */
+state.looks = () => panes.map((p) => p.meshes.map((m) => ({
+  name: m.material.name, colour: m.material.color.toArray(), opacity: m.material.opacity,
+  texture: m.material.map?.image ? [m.material.map.image.width, m.material.map.image.height] : null,
+  vertexColors: m.material.vertexColors,
+})));
 
 resize();
 updatePlot();

@@ -2,14 +2,17 @@
 // opens result meshes (OFF, OBJ, PLY, STL), shows two files side by side (and a .glb's first
 // frame beside its current one), colours each pane and each frame with its own values (a glTF
 // field of one frame only on that frame), and jumps to a frame; a .glb of several primitives (an
-// OBJ with two materials) plays and colours every one. The files come from real runs of the CLI on
-// a small mesh, made here in a temporary folder.
+// OBJ with two materials) plays and colours every one; the two panes of "before | after" wear each
+// its own frame's colours; with no field chosen a .glb's primitives wear their materials (base
+// colour, texture). The files come from real runs of the CLI on a small mesh, made here in a
+// temporary folder.
 // Usage: node viewer/tests/viewer_meshes_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
 import { spawn, spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { deflateSync } from 'node:zlib';
 import puppeteer from 'puppeteer-core';
 
 const args = Object.fromEntries(process.argv.slice(2).reduce((acc, a, i, all) => {
@@ -57,6 +60,57 @@ const nv = Number(countLine[0]), nf = Number(countLine[1]);
   writeFileSync(file('two.mtl'), 'newmtl top\nKd 0.9 0.1 0.1\nnewmtl bottom\nKd 0.1 0.1 0.9\n');
   cli('run', file('two.obj'), '-o', file('two_out.obj'), ...runOptions, '--gltf', file('two.glb'), '--export-every', '5');
   cli('run', args.mesh, '-o', file('one_out.off'), ...runOptions, '--gltf', file('one.glb'), '--export-every', '5');
+  // Three materials by the side of x = 0 the face is on: red and blue base colours, and a white
+  // one with a green texture in the band between; the first faces have none. Every vertex has a
+  // texture coordinate (its x and y), as the exporter writes TEXCOORD_0 for all or none.
+  let three = 'mtllib three.mtl\n' + v.map((c) => `v ${c[0]} ${c[1]} ${c[2]}\n`).join('') +
+    v.map((c) => `vt ${0.5 + Number(c[0])} ${0.5 + Number(c[1])}\n`).join('');
+  lines.slice(nv, nv + nf).forEach((l, k) => {
+    const f = l.split(/\s+/).slice(1, 4).map(Number);
+    const x = f.reduce((s, i) => s + Number(v[i][0]), 0) / 3;
+    if (k >= 3) three += `usemtl ${x > 0.15 ? 'red' : x < -0.15 ? 'blue' : 'skin'}\n`;
+    three += `f ${f.map((i) => `${i + 1}/${i + 1}`).join(' ')}\n`;
+  });
+  writeFileSync(file('three.obj'), three);
+  writeFileSync(file('three.mtl'), 'newmtl red\nKd 0.9 0.1 0.1\nnewmtl blue\nKd 0.1 0.1 0.9\nnewmtl skin\nKd 1 1 1\nmap_Kd green.png\n');
+  writeFileSync(file('green.png'), solidPng(4, 4, [40, 190, 60]));
+  cli('run', file('three.obj'), '-o', file('three_out.obj'), ...runOptions, '--gltf', file('three.glb'), '--export-every', '5');
+}
+
+/** A PNG of w x h pixels of one RGB colour (8 bits, no alpha). */
+function solidPng(w, h, rgb) {
+  const table = Array.from({ length: 256 }, (_, n) => {
+    let c = n;
+    for (let k = 0; k < 8; k++) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+    return c >>> 0;
+  });
+  const crc = (buf) => {
+    let c = 0xffffffff;
+    for (const x of buf) c = table[(c ^ x) & 0xff] ^ (c >>> 8);
+    return (c ^ 0xffffffff) >>> 0;
+  };
+  const chunk = (type, data) => {
+    const body = Buffer.concat([Buffer.from(type, 'ascii'), data]);
+    const head = Buffer.alloc(4), tail = Buffer.alloc(4);
+    head.writeUInt32BE(data.length);
+    tail.writeUInt32BE(crc(body));
+    return Buffer.concat([head, body, tail]);
+  };
+  const ihdr = Buffer.alloc(13);
+  ihdr.writeUInt32BE(w, 0);
+  ihdr.writeUInt32BE(h, 4);
+  ihdr[8] = 8;  // bits per channel
+  ihdr[9] = 2;  // RGB
+  const row = [0, ...Array.from({ length: w }, () => rgb).flat()];  // filter byte 0, then the pixels
+  const pixels = Buffer.from(Array.from({ length: h }, () => row).flat());
+  return Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr),
+    chunk('IDAT', deflateSync(pixels)), chunk('IEND', Buffer.alloc(0))]);
+}
+
+/** The JSON chunk of a .glb, read here, not by the page. */
+function glbJson(glbPath) {
+  const b = readFileSync(glbPath);
+  return JSON.parse(b.subarray(20, 20 + b.readUInt32LE(12)).toString('utf8'));
 }
 
 /** Starts scripts/view.py with the files; resolves to {server, url}. */
@@ -240,6 +294,25 @@ try {
   await page.keyboard.press('End');
   const dEnd = await differing(await shot('left'), await shot('right'));
   check(dEnd > 0.01, `on the last frame the panes differ (${(100 * dEnd).toFixed(1)} % of the pixels)`);
+  // Each pane wears its own frame's colours: the colours read back from each pane's geometry are
+  // those of frame 0 (left) and of the last frame (right), as seen one pane at a time above.
+  await page.select('#colour', '0');
+  const sbMeans = await page.evaluate(() => window.viewer.colourMeans());
+  check(sbMeans[0] !== null && sbMeans[1] !== null && Math.abs(sbMeans[0] - frame0Mean) < 1e-6 && Math.abs(sbMeans[1] - lastMean) < 1e-6,
+        `side by side, the left pane wears frame 0's colours and the right the last frame's (mean red ${sbMeans.map((m) => m?.toFixed(4))}, expected ${frame0Mean?.toFixed(4)}, ${lastMean?.toFixed(4)})`);
+  const sbInf = await page.evaluate(() => window.viewer.influences());
+  check(sbInf[0][0].every((x) => x === 0) && sbInf[1][0].at(-1) === 1 && sbInf[1][0].slice(0, -1).every((x) => x === 0),
+        `side by side, the left pane is at frame 0 and the right at the last frame (influences ${JSON.stringify(sbInf)})`);
+  await page.select('#colour', '1');
+  const sbShown = await page.evaluate(() => ({ shown: window.viewer.shown, means: window.viewer.colourMeans() }));
+  check(JSON.stringify(sbShown.shown) === '["none","gaussian_curvature"]' && sbShown.means[0] === null && sbShown.means[1] !== null,
+        `a field of the last frame only colours the right pane only (${JSON.stringify(sbShown)})`);
+  await page.select('#colour', '0');
+  await page.focus('#scrubber');
+  await page.keyboard.press('Home');
+  const sbHome = await page.evaluate(() => window.viewer.colourMeans());
+  check(Math.abs(sbHome[0] - frame0Mean) < 1e-6 && Math.abs(sbHome[1] - frame0Mean) < 1e-6,
+        `back on frame 0 both panes wear frame 0's colours (mean red ${sbHome.map((m) => m?.toFixed(4))})`);
 
   // Two materials, two primitives (three.js: two meshes): each plays the frames and wears the
   // colour field, so the picture is the one-primitive file's, frame for frame.
@@ -259,6 +332,62 @@ try {
   await page.keyboard.press('End');
   const dTwo = await differing(twoLast, await shot());
   check(dTwo < 0.002, `the two-primitive file's last frame looks as the one-primitive file's (${(100 * dTwo).toFixed(2)} % differ)`);
+
+  // The file's materials: three.glb has a primitive per material (red, blue, white with a green
+  // texture) and one without. A field's colours replace them; with none chosen each primitive
+  // wears its own material's base colour and texture (as the .glb's JSON says), and the picture
+  // has red, blue and green in it.
+  s = await open(file('three.glb'));
+  const json = glbJson(file('three.glb'));
+  const prims = json.meshes[0].primitives;
+  const defs = prims.map((p) => (p.material === undefined ? null : json.materials[p.material]));
+  check(!s.error && prims.length === 4 && s.panes[0]?.meshes === 4 && defs.filter((d) => d).length === 3,
+        `three.glb opens as four meshes, three with a material (${s.error ?? `${s.panes[0]?.meshes} meshes, ${prims.length} primitives`})`);
+  const pageLooks = async () => (await page.evaluate(() => window.viewer.looks?.()))?.[0] ?? [];
+  let looks = await pageLooks();
+  check(s.shown[0] === 'mean_curvature' && looks.length === 4 && looks.every((l) => l.vertexColors && !l.texture && l.colour.every((c) => c === 1)),
+        `with a field chosen every primitive wears the field's colours (shown ${s.shown[0]}; ${JSON.stringify(looks)})`);
+  await page.select('#colour', '-1');
+  looks = await pageLooks();
+  const shownNone = await page.evaluate(() => window.viewer.shown[0]);
+  check(shownNone === 'file materials', `with no field chosen the pane shows the file's materials (shown: ${shownNone})`);
+  const plain = [0xd8, 0xc8, 0xb0].map(linear);
+  const near = (a, b) => a.length === b.length && a.every((x, i) => Math.abs(x - b[i]) < 1e-6);
+  defs.forEach((d, i) => {
+    const l = looks[i];
+    if (!d) {
+      check(l && !l.vertexColors && !l.texture && near(l.colour, plain),
+            `primitive ${i}, without material, is the plain colour (${JSON.stringify(l)})`);
+      return;
+    }
+    const factor = d.pbrMetallicRoughness?.baseColorFactor ?? [1, 1, 1, 1];
+    const textured = d.pbrMetallicRoughness?.baseColorTexture !== undefined;
+    check(l && l.name === d.name && !l.vertexColors && near(l.colour, factor.slice(0, 3)) && Math.abs(l.opacity - factor[3]) < 1e-6 &&
+          (textured ? JSON.stringify(l.texture) === '[4,4]' : l.texture === null),
+          `primitive ${i} wears material ${d.name}: base colour ${factor.join(' ')}${textured ? ', the 4 x 4 texture' : ''} (${JSON.stringify(l)})`);
+  });
+  const factors = defs.filter((d) => d).map((d) => JSON.stringify(d.pbrMetallicRoughness?.baseColorFactor ?? [1, 1, 1, 1]));
+  check(new Set(factors).size === 3, `the three materials have different base colours (${factors.join(', ')})`);
+  /** Fractions of the pixels that are mostly red, mostly green, mostly blue. */
+  const hues = (a) => page.evaluate(async (a) => {
+    const img = new Image();
+    img.src = `data:image/png;base64,${a}`;
+    await img.decode();
+    const c = new OffscreenCanvas(img.width, img.height);
+    const ctx = c.getContext('2d');
+    ctx.drawImage(img, 0, 0);
+    const p = ctx.getImageData(0, 0, img.width, img.height).data;
+    const n = [0, 0, 0];
+    for (let i = 0; i < p.length; i += 4) {
+      for (let k = 0; k < 3; k++) if (p[i + k] > p[i + (k + 1) % 3] + 40 && p[i + k] > p[i + (k + 2) % 3] + 40) n[k]++;
+    }
+    return n.map((x) => x / (p.length / 4));
+  }, a);
+  const rgb = await hues(await shot());
+  check(rgb.every((f) => f > 0.005), `the picture has the materials' red, the texture's green and blue (${rgb.map((f) => (100 * f).toFixed(1)).join(', ')} % of the pixels)`);
+  await page.select('#colour', '0');
+  const fieldLooks = await pageLooks();
+  check(fieldLooks.length === 4 && fieldLooks.every((l) => l.vertexColors && !l.texture), 'choosing a field again replaces the materials');
 
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
 } finally {
