@@ -110,7 +110,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
         membrane_colours_ = regional_in_place(set_.membranes, membrane_colours_, part);
         isometric_colours_ = regional_in_place(set_.isometric_hinges, isometric_colours_, part);
       }
-      arena_ = std::make_unique<tbb::task_arena>(arena_threads(settings_.threads));
+      arena_ = &shared_arena(settings_.threads);
     } else {
       membrane_colours_ = {0, set_.membranes.size()};
       isometric_colours_ = {0, set_.isometric_hinges.size()};
@@ -461,7 +461,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
   std::vector<PackedMembrane> packed_membranes_;
   std::vector<PackedMembrane> packed_aniso_;      ///< set_.anisotropic, packed, same order
   std::vector<ElementMaterialData> aniso_data_;   ///< fibre of each anisotropic face
-  std::unique_ptr<tbb::task_arena> arena_;        ///< Coloured order only: settings.threads
+  tbb::task_arena* arena_ = nullptr;  ///< Coloured order only: shared_arena(settings.threads)
   ColourSchedule schedule_;          ///< Coloured order only: the phases of a solve (first solve)
   bool schedule_built_ = false;
   bool first_padded_ = false;        ///< a sweep starts on padded_ (pack before the first)

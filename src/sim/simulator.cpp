@@ -63,8 +63,8 @@ double peak_pressure_magnitude(const SimOptions& o) {
 /// threads on a 16-core machine (a step timer build, not kept; lab/pages/scale.md,
 /// "Sixteen cores").
 struct Simulator::StepArena {
-  tbb::task_arena arena;
-  explicit StepArena(int threads) : arena(arena_threads(threads)) {}
+  tbb::task_arena& arena;  ///< the process's arena of the run's thread count (shared_arena)
+  explicit StepArena(int threads) : arena(shared_arena(threads)) {}
 };
 
 namespace {

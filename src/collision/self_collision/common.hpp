@@ -62,9 +62,9 @@ struct LiveUnit {
 
 /// The thread arena of every stage and the speculative broad phase's task group.
 struct Workers {
-  tbb::task_arena arena;
+  tbb::task_arena& arena;      ///< the process's arena of the run's thread count (shared_arena)
   tbb::task_group background;  ///< the speculative broad phase (SelfCollision::predict)
-  explicit Workers(int threads) : arena(arena_threads(threads)) {}
+  explicit Workers(int threads) : arena(shared_arena(threads)) {}
 };
 
 /// Runs body(block, begin, end) for the fixed blocks [begin, end) of VERTEX_BLOCK vertices of n,
