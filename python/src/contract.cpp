@@ -93,9 +93,9 @@ std::string valid_names() {
   return s;
 }
 
-/// The text the CLI would receive for a Python value: bool -> on/off, float -> repr (the shortest
-/// text that reads back as the same double), int and str as they are, an os.PathLike as its
-/// path, a sequence -> "a,b,c" (--fiber X,Y,Z).
+/// The text the CLI would receive for a Python value: bool -> on/off, float -> shortest_text (the
+/// shortest text that reads back as the same double), int and str as they are, an os.PathLike as
+/// its path, a sequence -> "a,b,c" (--fiber X,Y,Z).
 std::string option_text(const std::string& name, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
@@ -103,7 +103,9 @@ std::string option_text(const std::string& name, const py::handle& value) {
   // A numpy array or scalar goes by its Python value (an array also passes PyIndex_Check).
   if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
     return option_text(name, value.attr("tolist")());
-  if (py::isinstance<py::float_>(value)) return py::repr(py::float_(value.cast<double>()));
+  // The tool's own text (shortest_text: 2e+06, not Python's 2000000.0), so that a refusal quotes
+  // the value as the CLI and the summary write it.
+  if (py::isinstance<py::float_>(value)) return shortest_text(value.cast<double>());
   if (PyIndex_Check(value.ptr())) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
   // Keyframes as (frame, value) pairs (target_volume=[(0, 1), (60, 0.5)]): the CLI's
   // "0:1, 60:0.5".

@@ -294,3 +294,13 @@ def test_a_list_for_an_option_of_one_value_is_refused(ico2):
                                aniso="active-fiber", target_volume=[(0, 1.0), (2, 0.9)],
                                pressure=[(0, 4), (2, 3)])
     assert r.status in ("ok", "target not reached")
+
+
+def test_a_refused_float_is_quoted_as_the_tool_writes_it(ico2):
+    # Before: "--pressure: '2000000.0' is not a number", Python's repr where the CLI, --help and
+    # the summary write 2e+06.
+    v, f = ico2
+    with pytest.raises(ValueError, match="pressure: '2e\\+06' is not a number in \\[-1e\\+06, 1e\\+06\\]"):
+        shellcontract.contract(v, f, pressure=2e6)
+    # A whole float for an integer option is that integer (a JSON sweep file's 10.0).
+    assert shellcontract.contract(v, f, frames=2.0, collisions=False).summary["options"]["frames"] == "2"
