@@ -1,7 +1,13 @@
 #include "mesh/reconstruction.hpp"
 
+#include <CGAL/Delaunay_triangulation_3.h>
+#include <CGAL/Delaunay_triangulation_cell_base_with_circumcenter_3.h>
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <CGAL/Random.h>
+#include <CGAL/Robust_circumcenter_traits_3.h>
+#include <CGAL/Surface_mesh_cell_base_3.h>
+#include <CGAL/Surface_mesh_vertex_base_3.h>
+#include <CGAL/Triangulation_data_structure_3.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/poisson_surface_reconstruction.h>
 #include <CGAL/assertions.h>
@@ -12,6 +18,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <filesystem>
 #include <new>
@@ -104,9 +111,10 @@ using PoissonFunction = CGAL::Poisson_reconstruction_function<Kernel>;
 /// A hint for a failed reconstruction whose points all lie on one sphere (the least-squares
 /// sphere |p|^2 = 2 c.p + k through them, to 1e-9 of its radius; "" otherwise). Cospherical
 /// points are the Delaunay triangulation's degenerate case: every tetrahedron has the same
-/// circumsphere. The Poisson solve found no surface for evenly spread points (a Fibonacci
-/// lattice) on a sphere with exact normals, while the same points with a little noise went
-/// through (an icosphere's vertices, also on one sphere, go through as they are).
+/// circumsphere. The reconstruction failed (the mesher found an open surface) for evenly
+/// spread points (a Fibonacci lattice) on a sphere with exact normals, while the same points
+/// with a little noise went through (an icosphere's vertices, also on one sphere, go through as
+/// they are).
 std::string cospherical_hint(const std::vector<PointWithNormal>& points) {
   if (points.size() < 5) return "";
   Eigen::MatrixX4d a(static_cast<Eigen::Index>(points.size()), 4);
@@ -174,6 +182,47 @@ class PoissonValue {
   mutable Cell_handle hint_;
 };
 
+/// A triangulation vertex or cell base `Base` with a creation stamp. CGAL's handles compare by
+/// Compact_container's Time_stamper::less: by address unless the element declares Has_timestamp
+/// (as Mesh_3's bases do). The surface mesher picks its next bad vertex, bad edge and bad facet from
+/// containers ordered by handle (Surface_mesher_manifold.h's std::set<Vertex_handle>,
+/// Surface_mesher_regular_edges.h's set of vertex pairs, Surface_mesher.h's Double_map of facets),
+/// so with addresses the refinement order, and on degenerate input the outcome, followed wherever
+/// malloc put the triangulation's blocks: a second call in one process, reusing the first call's
+/// freed memory, ended otherwise than the first. With stamps the order is that of creation.
+template <class Base>
+class Stamped : public Base {
+ public:
+  using Has_timestamp = CGAL::Tag_true;
+  template <class Tds2>
+  struct Rebind_TDS {
+    using Other = Stamped<typename Base::template Rebind_TDS<Tds2>::Other>;
+  };
+  using Base::Base;
+  Stamped() = default;
+  // A copy is another element: the container stamps it when it is inserted (stamp -1: none yet).
+  Stamped(const Stamped& other) : Base(other) {}
+  Stamped& operator=(const Stamped& other) {
+    Base::operator=(other);
+    return *this;
+  }
+  ~Stamped() = default;
+  std::size_t time_stamp() const { return time_stamp_; }
+  void set_time_stamp(const std::size_t& stamp) { time_stamp_ = stamp; }
+
+ private:
+  std::size_t time_stamp_ = std::size_t(-1);
+};
+
+/// CGAL's Surface_mesh_default_triangulation_3_generator (Surface_mesh_default_triangulation_3.h)
+/// with stamped vertices and cells.
+using MesherTraits = CGAL::Robust_circumcenter_traits_3<Kernel>;
+using MesherTds = CGAL::Triangulation_data_structure_3<
+    Stamped<CGAL::Surface_mesh_vertex_base_3<MesherTraits>>,
+    Stamped<CGAL::Delaunay_triangulation_cell_base_with_circumcenter_3<
+        MesherTraits, CGAL::Surface_mesh_cell_base_3<MesherTraits>>>>;
+using MesherTriangulation = CGAL::Delaunay_triangulation_3<MesherTraits, MesherTds>;
+
 /// CGAL::poisson_surface_reconstruction_delaunay (CGAL 5.5, poisson_surface_reconstruction.h)
 /// with one more check: when the surface mesher finds vertices but no facet, CGAL's
 /// facets_in_complex_2_to_triangle_mesh segfaults on the empty complex (400 points on a unit
@@ -181,12 +230,13 @@ class PoissonValue {
 /// @throws InputError naming `path` when CGAL's mesher fails one of its own checks
 bool poisson_delaunay(const std::string& path, const std::vector<PointWithNormal>& points, Mesh& mesh,
                       double spacing, const ReconstructionOptions& options) {
-  using Tr = CGAL::Surface_mesher::Surface_mesh_default_triangulation_3_generator<Kernel>::Type;
+  using Tr = MesherTriangulation;
   using C2t3 = CGAL::Surface_mesh_complex_2_in_triangulation_3<Tr>;
   using Surface = CGAL::Implicit_surface_3<Kernel, PoissonValue>;
-  // The solve's refinement and the mesher's initial points draw from CGAL's default generator,
-  // which CGAL seeds with the clock and which keeps its state between calls: seeded here, before
-  // either, the same input gives the same mesh on every run and every call in one process.
+  // The mesher's initial points (Implicit_surface_oracle_3's Construct_initial_points) draw from
+  // CGAL's default generator, which CGAL seeds with the clock and which keeps its state between
+  // calls: seeded here. The mesher's refinement order, which followed the heap, is fixed by the
+  // stamps of MesherTriangulation (Stamped).
   CGAL::get_default_random() = CGAL::Random(0);
   PoissonFunction function(points.begin(), points.end(), CGAL::First_of_pair_property_map<PointWithNormal>(),
                     CGAL::Second_of_pair_property_map<PointWithNormal>());
@@ -298,7 +348,7 @@ Mesh reconstruct_from_oriented_points(const std::string& path, const Reconstruct
     throw InputError(path + ": Poisson surface reconstruction failed (no surface found)" +
                      cospherical_hint(points));
   if (!CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh))
-    throw InputError(path + ": the reconstructed surface is not a closed triangle mesh");
+    throw InputError(path + ": the reconstructed surface is not a closed triangle mesh" + cospherical_hint(points));
   // Outward orientation, as the simulator expects (math-spec 1.1).
   if (!CGAL::Polygon_mesh_processing::is_outward_oriented(mesh))
     CGAL::Polygon_mesh_processing::reverse_face_orientations(mesh);
