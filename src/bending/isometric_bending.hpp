@@ -3,7 +3,7 @@
 // K and the rest areas A0, A1 are computed once from the rest mesh. Stencil order: hinge.hpp.
 //
 // \note Curved rest states are NOT rest states of this model: E_B(xbar) > 0 on every non-flat
-// hinge, so it pulls each hinge toward flat (math-spec 8.2, 12.3).
+// hinge, so it pulls each hinge toward flat (math-spec 8.2, 12 item 3).
 #pragma once
 
 #include <Eigen/Core>

@@ -34,7 +34,8 @@ VertexFaces vertex_faces(const Faces& faces, Eigen::Index num_vertices);
 void pressure_forces(const Positions& x, const Faces& faces, const VertexFaces& around, double P,
                      PressureModel model, Positions& f);
 
-/// Net over-pressure on a shell that encloses isothermal air (Boyle's law, math-spec 3.1).
+/// Net over-pressure on a shell that encloses isothermal air (Boyle's law,
+/// docs/math/air-pressure.md section 1; the load of math-spec 3).
 /// The outside pressure is P / (1 - R) and the air's is P R / ((1 - R) v) at volume ratio
 /// v = V/V0, so the net pressure is P at the rest volume and vanishes at v = R: the shell slows
 /// down and stops near R instead of collapsing until contact. R = 0 is no air: P at any volume.

@@ -29,7 +29,7 @@ using test::FCase;
 using test::material_cases;
 using test::rot2;
 
-/// Relative PK1-vs-FD tolerance (math-spec 13 item 2).
+/// Relative PK1-vs-FD tolerance (math-spec 13: item 3's check with item 2's relative bound).
 constexpr double FD_TOL = 1e-6;
 
 /// What each model is expected to be; written from the math-spec, not from the code.
