@@ -421,6 +421,9 @@ def _run(args, cli, version, data, jobs):
         except WorkersUnusable as e:
             print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
             return EXIT_USAGE
+        except KeyboardInterrupt:  # while connecting (up to 30 s) or checking the workers
+            print("shellcontract sweep: interrupted before anything ran", file=sys.stderr)
+            return EXIT_INTERRUPTED
     try:
         return _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, client)
     finally:

@@ -148,3 +148,25 @@ def test_silent_merges_are_refused_and_a_dry_run_lists_its_shard(cli, mesh_dir, 
     shards = [run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run", "--shard",
                               "{}/2".format(i)]).stdout.splitlines() for i in range(2)]
     assert shards == [every[0::2], every[1::2]], shards
+
+
+def test_ctrl_c_while_connecting_to_a_scheduler_ends_with_130_and_no_folder(cli, mesh_dir, tmp_path):
+    """The client connects to --scheduler (retrying up to 30 s) before DIR is claimed; Ctrl-C
+    there ends the sweep as interrupted (exit 130), not with a traceback."""
+    import signal
+    import subprocess
+    import sys
+    import time
+    from test_sweep import free_port, sweep_env
+    pytest.importorskip("distributed")
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
+    nobody = "tcp://127.0.0.1:{}".format(free_port())  # nothing listens: the client retries
+    p = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o",
+                          str(tmp_path / "out"), "--scheduler", nobody], env=sweep_env(cli),
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    time.sleep(4)  # past the imports, into the connection's retries
+    p.send_signal(signal.SIGINT)
+    _, err = p.communicate(timeout=60)
+    assert p.returncode == 130, err
+    assert "interrupted before anything ran" in err and "Traceback" not in err, err
+    assert not (tmp_path / "out").exists()
