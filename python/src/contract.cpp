@@ -81,15 +81,9 @@ bool is_path(const py::handle& value) {
   return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
 }
 
-std::string python_name(std::string cli_name) {
-  for (char& c : cli_name)
-    if (c == '-') c = '_';
-  return cli_name;
-}
-
 std::string valid_names() {
   std::string s;
-  for (const OptionSpec& o : run_option_table()) s += (s.empty() ? "" : ", ") + python_name(o.name);
+  for (const OptionSpec& o : run_option_table()) s += (s.empty() ? "" : ", ") + python_option_name(o.name);
   return s;
 }
 
@@ -458,7 +452,7 @@ py::dict resolve_options(const py::kwargs& kwargs) {
   // not Python's 1000000.0), as --help, the summary and the sweep's results write them.
   py::list args;
   for (const OptionSpec& o : run_option_table()) {
-    const std::string name = python_name(o.name);
+    const std::string name = python_option_name(o.name);
     if (!kwargs.contains(name)) continue;
     const std::string text = o.name == "region-at" ? region_at_text(kwargs[py::str(name)])
                                                    : option_text(name, kwargs[py::str(name)]);
@@ -473,58 +467,10 @@ py::dict resolve_options(const py::kwargs& kwargs) {
     args.append(o.get(probe));
   }
   py::dict resolved;
-  for (const OptionSpec& o : run_option_table()) resolved[py::str(python_name(o.name))] = o.get(options);
+  for (const OptionSpec& o : run_option_table()) resolved[py::str(python_option_name(o.name))] = o.get(options);
   py::dict out;
   out["resolved"] = resolved;
   out["args"] = args;
-  return out;
-}
-
-namespace {
-
-/// The table's help with the other options named as Python names them: "--young" and "-p" are
-/// the CLI's spellings, and contract() has no argument "--young". Only names of run options
-/// change ("--help" or a command's "regions --region-at" keep their dashes where no run option
-/// matches).
-std::string python_help(const std::string& help) {
-  const auto is_name_char = [](char c) { return std::islower(static_cast<unsigned char>(c)) || std::isdigit(static_cast<unsigned char>(c)) || c == '-'; };
-  std::string out;
-  std::size_t i = 0;
-  while (i < help.size()) {
-    const bool start = i == 0 || !is_name_char(help[i - 1]);
-    if (start && help.compare(i, 2, "--") == 0) {
-      std::size_t end = i + 2;
-      while (end < help.size() && is_name_char(help[end])) ++end;
-      while (end > i + 2 && help[end - 1] == '-') --end;  // "--frames-" ends a phrase, not a name
-      const OptionSpec* o = find_run_option(help.substr(i + 2, end - i - 2));
-      if (o && o->name == help.substr(i + 2, end - i - 2)) {
-        out += python_name(o->name);
-        i = end;
-        continue;
-      }
-    } else if (start && help[i] == '-' && i + 1 < help.size() &&
-               (i + 2 == help.size() || !is_name_char(help[i + 2]))) {
-      const OptionSpec* o = nullptr;
-      for (const OptionSpec& candidate : run_option_table())
-        if (candidate.short_name != 0 && candidate.short_name == help[i + 1]) o = &candidate;
-      if (o) {  // "-p > 0"
-        out += python_name(o->name);
-        i += 2;
-        continue;
-      }
-    }
-    out += help[i++];
-  }
-  return out;
-}
-
-}  // namespace
-
-py::list option_table() {
-  const RunOptions defaults;
-  py::list out;
-  for (const OptionSpec& o : run_option_table())
-    out.append(py::make_tuple(python_name(o.name), o.get(defaults), python_help(o.help), o.name));
   return out;
 }
 

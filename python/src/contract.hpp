@@ -45,7 +45,11 @@ std::string region_at_text(const py::handle& value);
 /// own parser: the same forms, the same errors), for regions().
 std::vector<Vec3> region_at_points(const py::handle& value);
 
-/// The option table: one (python_name, default, help, cli_name) tuple per option, in --help order.
+/// The option table: one (python_name, default, help, cli_name) tuple per option, in --help order
+/// (option_table.cpp), the help naming the other options as Python does.
 py::list option_table();
+
+/// An option's Python name: the table's CLI name with '_' for '-' (k-b -> k_b).
+std::string python_option_name(std::string cli_name);
 
 }  // namespace shellcontract::python
