@@ -109,7 +109,11 @@ class RunCheckpointer;  // shellcontract/checkpoint.hpp
 ///         (TBB's "pthread_create has failed" when the address space is exhausted), with a
 ///         message that says so.
 /// @param checkpointer  continues from its checkpoint, and saves the state when it asks
-///         (shellcontract/checkpoint.hpp); InputError if its checkpoint does not fit the mesh and options
+///         (shellcontract/checkpoint.hpp); InputError if its checkpoint does not fit the mesh and
+///         options: another version or mesh (check_checkpoint_input), or options that resolve to
+///         other values than the checkpoint's (the threads aside; options_for_resume gives the
+///         ones that fit). The face-list and weights files are the caller's to check
+///         (check_checkpoint_files).
 RunResult run_contraction(const Mesh& mesh, const RunOptions& options,
                           RunObserver* observer = nullptr, RunCheckpointer* checkpointer = nullptr);
 
