@@ -150,7 +150,10 @@ struct TriangleSoupView {
 /// @param name     what the messages call the input (read_input_mesh uses the file name)
 /// @param reorient flip inside-out components as read_input_mesh does (with a warning); false
 ///                 keeps the faces exactly as given (writing a result back)
-/// @throws InputError "<name>: <problem>: <where and details>", as read_input_mesh
+/// @throws InputError "<name>: <problem>: <where and details>", as read_input_mesh (an empty
+///         soup: "empty mesh")
+/// @throws std::invalid_argument for a view that is not one: none or both of faces32 and
+///         faces64 set, or no vertices array for its vertex count
 Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name,
                       InputReport* report = nullptr, bool reorient = true);
 

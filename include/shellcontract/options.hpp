@@ -101,8 +101,9 @@ std::vector<std::string> ineffective_options(const RunOptions& options);
 /// others (mu and lambda from young; the solver's time step and threads, the collision threads
 /// and the speculative broad phase) and checks every option and the rules between them. The
 /// mesh-free part of the run plan (run_plan.hpp, src/sim/run_plan.cpp): every default and rule
-/// has this one owner. Idempotent, so that a caller (the CLI, to refuse bad options before it
-/// reads the mesh) may resolve what plan_run resolves again.
+/// has this one owner. Every option's value must lie in the option table's range, as its text
+/// would (a caller that writes the fields is held to it too). Idempotent, so that a caller (the
+/// CLI, to refuse bad options before it reads the mesh) may resolve what plan_run resolves again.
 /// @throws UsageError naming the option by its field (`target_volume`; option_table.hpp spells it
 ///         for the CLI or Python)
 void resolve_run_options(RunOptions& options);

@@ -108,8 +108,15 @@ class RunCheckpointer;  // shellcontract/checkpoint.hpp
 ///         observer's frame() or in the end's validation, and a std::runtime_error from a step
 ///         (TBB's "pthread_create has failed" when the address space is exhausted), with a
 ///         message that says so.
+///         An exception that the observer or the checkpointer throws (besides std::bad_alloc from
+///         an observer's frame() or finished(), above) passes out of run_contraction unchanged;
+///         the run ends where it was thrown.
 /// @param checkpointer  continues from its checkpoint, and saves the state when it asks
-///         (shellcontract/checkpoint.hpp); InputError if its checkpoint does not fit the mesh and options
+///         (shellcontract/checkpoint.hpp); InputError if its checkpoint does not fit the mesh and
+///         options: another version or mesh (check_checkpoint_input), or options that resolve to
+///         other values than the checkpoint's (the threads aside; options_for_resume gives the
+///         ones that fit). The face-list and weights files are the caller's to check
+///         (check_checkpoint_files).
 RunResult run_contraction(const Mesh& mesh, const RunOptions& options,
                           RunObserver* observer = nullptr, RunCheckpointer* checkpointer = nullptr);
 

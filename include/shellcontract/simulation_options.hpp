@@ -234,8 +234,9 @@ struct Keyframe {
 class Schedule {
  public:
   Schedule() = default;
-  /// @param keys  frames >= 0 and strictly increasing, values finite (check_keys) -- not checked
-  ///              here; make_schedule is the checking constructor
+  /// @param keys  frames >= 0 and strictly increasing, values finite -- not checked here;
+  ///              parse_schedule is the checking constructor, and a run refuses a schedule
+  ///              whose keys break these rules (resolve_run_options)
   explicit Schedule(std::vector<Keyframe> keys);
 
   bool empty() const { return keys_.empty(); }

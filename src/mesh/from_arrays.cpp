@@ -77,10 +77,15 @@ void check_duplicates_and_isolated(const std::vector<Tri>& tris, std::size_t nv,
 }  // namespace
 
 Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, InputReport* report, bool reorient) {
-  if ((soup.faces32 == nullptr) == (soup.faces64 == nullptr))
-    throw std::invalid_argument("mesh_from_arrays: set exactly one of faces32 and faces64");
+  // An empty soup is an unusable input whatever its pointers (an empty array may have none).
   if (soup.num_vertices == 0 || soup.num_faces == 0)
     fail(name, "empty mesh", counted(soup.num_vertices, "vertex", "vertices") + " and " + counted(soup.num_faces, "face", "faces"));
+  if ((soup.faces32 == nullptr) == (soup.faces64 == nullptr))
+    throw std::invalid_argument("mesh_from_arrays: set exactly one of faces32 and faces64");
+  // A view with a count but no data is the caller's mistake, not a mesh: reading it would crash.
+  if (soup.vertices == nullptr)
+    throw std::invalid_argument("mesh_from_arrays: vertices is null for " +
+                                std::to_string(soup.num_vertices) + " vertices");
   const std::size_t nv = soup.num_vertices;
   std::vector<Point3> points;
   points.reserve(nv);

@@ -218,6 +218,42 @@ OptionValues resolved_options(RunOptions options) {
   return out;
 }
 
+namespace {
+
+/// The options of `now` (resolved_options) whose values differ from the checkpoint's, each as
+/// "`field` VALUE (the checkpoint's: THEIRS)"; empty when they are the same.
+std::string options_differing(const Checkpoint& c, const OptionValues& now) {
+  const auto given_as_arrays = [&](const std::string& name) {
+    for (const RunInput& in : c.inputs)
+      if (in.arrays && in.option == option_field(name)) return true;
+    return false;
+  };
+  // A face-list or weights file is compared by its contents (check_checkpoint_files), as the mesh
+  // is: its path may differ (a copy, another machine, Python's temporary file of its arrays).
+  const auto compared = [](const std::string& name, const std::string& value) {
+    const bool file = (name == "regions" && !value.empty() && value != "auto" && value != "none" &&
+                       value != "weights") ||
+                      (name == "region-weights" && !value.empty());
+    return file ? std::string("a file") : value.empty() ? std::string("unset") : value;
+  };
+  const auto theirs = [&](const std::string& name) {
+    return given_as_arrays(name) ? std::string("given as arrays") : describe(c.resolved, name);
+  };
+  std::string differ;
+  for (const auto& [name, value] : now) {
+    const std::string then = describe(c.resolved, name);
+    if (compared(name, then == "unset" ? "" : then) != compared(name, value))
+      // `field`, so that each front end spells the option its own way (spell_options).
+      differ += (differ.empty() ? "" : ", ") + ("`" + option_field(name) + "` " + (value.empty() ? "unset" : value) +
+                                                 " (the checkpoint's: " + theirs(name) + ")");
+  }
+  if (differ.empty() && now.size() != c.resolved.size())
+    differ = "the checkpoint lists other options";
+  return differ;
+}
+
+}  // namespace
+
 RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_line) {
   // An option the checkpoint's run was given as arrays (Python) holds a temporary file or
   // nothing in the checkpoint: only the caller can give it again.
@@ -257,27 +293,7 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
     throw UsageError("the checkpoint was written with other options: the options given do not go with its own (" +
                      own + "): " + e.what());
   }
-  // A face-list or weights file is compared by its contents (check_checkpoint_files), as the mesh
-  // is: its path may differ (a copy, another machine, Python's temporary file of its arrays).
-  const auto compared = [](const std::string& name, const std::string& value) {
-    const bool file = (name == "regions" && !value.empty() && value != "auto" && value != "none" &&
-                       value != "weights") ||
-                      (name == "region-weights" && !value.empty());
-    return file ? std::string("a file") : value.empty() ? std::string("unset") : value;
-  };
-  const auto theirs = [&](const std::string& name) {
-    return given_as_arrays(name) ? std::string("given as arrays") : describe(c.resolved, name);
-  };
-  std::string differ;
-  for (const auto& [name, value] : now) {
-    const std::string then = describe(c.resolved, name);
-    if (compared(name, then == "unset" ? "" : then) != compared(name, value))
-      // `field`, so that each front end spells the option its own way (spell_options).
-      differ += (differ.empty() ? "" : ", ") + ("`" + option_field(name) + "` " + (value.empty() ? "unset" : value) +
-                                                 " (the checkpoint's: " + theirs(name) + ")");
-  }
-  if (differ.size() == 0 && now.size() != c.resolved.size())
-    differ = "the checkpoint lists other options";
+  const std::string differ = options_differing(c, now);
   if (!differ.empty())
     throw UsageError("the checkpoint was written with other options: " + differ);
   return options;
@@ -290,6 +306,14 @@ void check_checkpoint_input(const Checkpoint& c, const std::string& path, const 
   if (mesh_hash(mesh) != c.input_hash)
     throw InputError("the checkpoint is of another input: " + path + " is not the mesh " +
                      c.input + " it was written for (or that file has changed)");
+}
+
+void check_checkpoint_fits(const Checkpoint& c, const Mesh& mesh, const RunOptions& options) {
+  check_checkpoint_input(c, "the mesh given", mesh);
+  const std::string differ = options_differing(c, resolved_options(options));
+  if (!differ.empty())
+    throw InputError("the checkpoint does not fit this run: it was written with other options: " +
+                     differ);
 }
 
 std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path) {

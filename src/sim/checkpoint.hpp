@@ -66,6 +66,14 @@ void write_checkpoint(const std::string& path, const Checkpoint& c);
 ///         folder, device or FIFO in its place
 Checkpoint read_checkpoint(const std::string& path);
 
+/// What run_contraction checks of the checkpoint it resumes from: check_checkpoint_input, and
+/// that `options` resolve to the checkpoint's options (as options_for_resume compares them: the
+/// threads aside, a face-list or weights file by its contents, check_checkpoint_files).
+/// Without it a checkpoint of another mesh with as many vertices, or of other options, was
+/// continued into a result that is neither run's.
+/// @throws InputError naming what differs; UsageError for options that do not resolve
+void check_checkpoint_fits(const Checkpoint& c, const Mesh& mesh, const RunOptions& options);
+
 /// A run's state at a step boundary: the Simulator's and the run loop's.
 class Simulator;
 

@@ -124,6 +124,10 @@ void warn(RunResult& r, RunObserver& o, const std::string& text) {
 
 RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserver* observer,
                           RunCheckpointer* checkpointer) {
+  // The Simulator's restore checks only the state's sizes: a checkpoint of another mesh with as
+  // many vertices, or of other options, would be continued silently into neither run's result.
+  if (const Checkpoint* c = checkpointer ? checkpointer->resume_from() : nullptr)
+    check_checkpoint_fits(*c, mesh, options);
   return run_contraction(plan_run(mesh, options), observer, checkpointer);
 }
 

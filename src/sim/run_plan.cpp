@@ -105,6 +105,27 @@ void resolve_default_run(RunOptions& r) {
     r.sim.damping = DEFAULT_DAMPING;
 }
 
+/// Holds a caller that writes the fields (C++) to the ranges the option table holds the CLI and
+/// Python to: each option's value, as the table prints it, must parse back through the table.
+/// check_sim_options alone let through values the table refuses (mu = -1 or NaN, density = inf,
+/// delta = 0.5, a zero fibre direction, keyframes out of order), and such a run went on to a
+/// result that ignored them or made no sense.
+/// Called after resolve_default_run: mu and lambda that the shell material (young, thickness)
+/// is about to set are not checked, since a resolved run's lambda is negative for a negative
+/// Poisson ratio, which the table accepts.
+void check_table_ranges(const RunOptions& r) {
+  const bool lame_from_shell = r.young.has_value() && r.thickness.has_value();
+  for (const OptionSpec& o : run_option_table()) {
+    if (lame_from_shell && (o.name == "mu" || o.name == "lambda")) continue;
+    const std::string text = o.get(r);
+    // "" is an unset optional value, or weights or points not given; but for `regions` it is
+    // RegionSource::File without a file, which the table refuses.
+    if (text.empty() && o.name != "regions") continue;
+    RunOptions scratch;
+    o.set(scratch, text);  // UsageError naming the option by its field, as for the CLI's text
+  }
+}
+
 }  // namespace
 
 void check_sim_options(const SimOptions& o) { check_sim_options_impl(o); }
@@ -124,6 +145,7 @@ void resolve_sim_options(SimOptions& o) {
 void resolve_run_options(RunOptions& r) {
   r.sim.solver.order = order_for(r.order);
   resolve_default_run(r);
+  check_table_ranges(r);
   if (r.young.has_value() != r.thickness.has_value())
     throw UsageError("`young` needs `thickness` (and the other way round)");
   if (r.young) {

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -146,6 +147,19 @@ TEST(FromArrays, BadSoupsNameTheirProblem) {
   EXPECT_EQ(with([](Arrays& a) { a.f.insert(a.f.end(), {a.f[0], a.f[2], a.f[1]}); }), "duplicate face");
   EXPECT_EQ(with([](Arrays& a) { a.v.insert(a.v.end(), {0.0, 0.0, 0.0}); }), "isolated vertex");
   EXPECT_EQ(with([](Arrays& a) { a.f.clear(); }), "empty mesh");
+}
+
+// A view with counts but no vertex data is refused as the caller's mistake (it was read through
+// a null pointer: a segmentation fault), and an empty soup is an empty mesh whatever its
+// pointers (it was "set exactly one of faces32 and faces64" when it had none).
+TEST(FromArrays, AViewWithoutDataIsRefusedNotRead) {
+  const Arrays good = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico1.off"));
+  TriangleSoupView s;
+  s.num_vertices = good.v.size() / 3;
+  s.faces64 = good.f.data();
+  s.num_faces = good.f.size() / 3;
+  EXPECT_THROW(mesh_from_arrays(s, "arrays"), std::invalid_argument);
+  EXPECT_EQ(problem_of([] { mesh_from_arrays(TriangleSoupView{}, "arrays"); }), "empty mesh");
 }
 
 }  // namespace

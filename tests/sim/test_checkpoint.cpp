@@ -230,6 +230,43 @@ TEST(Checkpoint, OptionsThatExcludeTheCheckpointsAreNamedAsAMismatch) {
   }
 }
 
+// run_contraction itself refuses a checkpoint that is not of its mesh and options (run.hpp:
+// "InputError if its checkpoint does not fit the mesh and options"). Before, only the state's
+// sizes were checked: the checkpoint of ico1 continued on ico1 stretched ended at V/V0 1.4 with
+// status ok, and one of another pressure or frame count ran on as if it were this run's.
+TEST(Checkpoint, RunContractionRefusesACheckpointOfAnotherMeshOrOtherOptions) {
+  const Mesh mesh = read("ico1.off");
+  const RunOptions options = options_from({{"frames", "10"}, {"pressure", "2"}});
+  MemoryCheckpointer saver(mesh, options, 4, /*stop=*/true);
+  run_contraction(mesh, options, nullptr, &saver);
+  ASSERT_TRUE(saver.saved.has_value());
+  MemoryCheckpointer resumer(&*saver.saved);
+  // The same connectivity at other positions: as many vertices, so the state fits its arrays.
+  Mesh stretched = mesh;
+  for (const VertexIndex v : stretched.vertices()) {
+    const Point3 p = stretched.point(v);
+    stretched.point(v) = Point3(2.0 * p.x() + 1.0, 0.5 * p.y(), p.z());
+  }
+  const auto refusal = [&](const Mesh& m, const RunOptions& o) -> std::string {
+    try {
+      run_contraction(m, o, nullptr, &resumer);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_NE(refusal(stretched, options).find("another input"), std::string::npos);
+  const std::string pressure = refusal(mesh, options_from({{"frames", "10"}, {"pressure", "3"}}));
+  EXPECT_NE(pressure.find("`pressure` 3 (the checkpoint's: 2)"), std::string::npos) << pressure;
+  const std::string frames = refusal(mesh, options_from({{"frames", "3"}, {"pressure", "2"}}));
+  EXPECT_NE(frames.find("`frames` 3"), std::string::npos) << frames;
+  // Its own mesh and options, at another thread count, resume to the whole run's bytes.
+  const RunResult whole = run_contraction(mesh, options);
+  const RunResult resumed = run_contraction(
+      mesh, options_from({{"frames", "10"}, {"pressure", "2"}, {"threads", "1"}}), nullptr, &resumer);
+  expect_same_run(whole, resumed);
+}
+
 TEST(Checkpoint, RefusesAnotherInputOrVersionAndDamagedFiles) {
   const Mesh mesh = read("ico1.off");
   const RunOptions options = options_from({{"frames", "10"}});

@@ -149,6 +149,61 @@ TEST(RunPlan, RulesNameTheFieldsAndEachFrontEndSpellsThem) {
   EXPECT_EQ(what_of([&] { plan_simulation(sphere(1), pbd); }).rfind("`k_b`: in pbd mode", 0), 0u);
 }
 
+// A C++ caller that writes RunOptions' fields is held to the option table's ranges
+// (docs/design/run-plan.md: "a caller that writes the fields is held by the same checks"). The
+// values the table was made to refuse (OptionTable.RangesFromTheIssue) were accepted when written
+// on the struct: mu = -1 or NaN ran a default run as if the membrane were not there, density = inf
+// ended at V/V0 1 with status ok, delta = 0.5 inflated the shell, keyframes out of order ran.
+TEST(RunPlan, FieldsWrittenOutsideTheTableAreHeldToItsRanges) {
+  const double nan = std::nan("");
+  const std::vector<std::pair<std::string, std::function<void(RunOptions&)>>> cases = {
+      {"mu", [](RunOptions& o) { o.sim.material_params.mu = -1.0; }},
+      {"mu", [&](RunOptions& o) { o.sim.material_params.mu = nan; }},
+      {"lambda", [&](RunOptions& o) { o.sim.material_params.lambda = nan; }},
+      {"c10", [](RunOptions& o) { o.sim.material_params.c10 = -1.0; }},
+      {"c01", [&](RunOptions& o) { o.sim.material_params.c01 = nan; }},
+      {"density", [](RunOptions& o) { o.sim.density = INFINITY; }},
+      {"mu_a", [](RunOptions& o) { o.sim.material_params.mu_aniso = -1.0; }},
+      {"k_a", [&](RunOptions& o) { o.sim.anisotropy.kappa_a = nan; }},
+      {"fiber_target", [](RunOptions& o) { o.sim.material_params.fiber_target = 2.0; }},
+      {"delta", [](RunOptions& o) { o.sim.collision.delta = 0.5; }},
+      {"fiber", [](RunOptions& o) {
+         o.sim.anisotropy.fiber_mode = FiberMode::User;
+         o.sim.anisotropy.user_direction = Vec3::Zero();
+       }},
+      {"pressure", [](RunOptions& o) {
+         o.sim.pressure_schedule = Schedule({{0, 4.0}, {20, 1.0}, {10, 2.0}});
+         o.sim.pressure = 4.0;
+       }},
+      {"target_volume", [](RunOptions& o) {
+         o.sim.target_volume_schedule = Schedule({{0, 1.0}, {10, 0.7}, {10, 0.9}});
+         o.sim.target_volume = 0.9;
+       }},
+      {"material", [](RunOptions& o) { o.sim.material = static_cast<MaterialKind>(42); }},
+      {"regions", [](RunOptions& o) { o.regions = RegionSource::File; }},  // no file named
+  };
+  for (const auto& [field, write] : cases) {
+    RunOptions o;
+    o.sim.frames = 5;
+    write(o);
+    const std::string m = what_of([&] { run_contraction(sphere(1), o); });
+    EXPECT_EQ(m.rfind("`" + field + "`", 0), 0u) << field << ": " << m;
+  }
+  // Values the table accepts still run, written on the struct: a negative Poisson ratio (whose
+  // resolved lambda is negative), the paper's pbd settings, a schedule in order.
+  RunOptions fine;
+  fine.sim.frames = 3;
+  fine.poisson = -0.5;
+  EXPECT_NO_THROW(run_contraction(sphere(1), fine));
+  RunOptions resolved = fine;
+  resolve_run_options(resolved);
+  EXPECT_LT(resolved.sim.material_params.lambda, 0.0);
+  EXPECT_NO_THROW(resolve_run_options(resolved));  // idempotent
+  fine.sim.solver.kind = SolverKind::Pbd;
+  fine.sim.pressure_schedule = Schedule({{0, 4.0}, {10, 2.0}});
+  EXPECT_NO_THROW(run_contraction(sphere(1), fine));
+}
+
 TEST(RunPlan, GivenRecordsFieldNamesNotFlags) {
   RunOptions o;
   set_run_option(o, "k-b", "0.02");
