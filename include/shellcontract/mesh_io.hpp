@@ -65,7 +65,8 @@ Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
 /// @param binary a binary PLY (little-endian doubles: still bitwise) or STL (32-bit floats: the
 ///        positions rounded to float); OFF and OBJ are text whatever it says
 /// @throws UsageError if the file cannot be written or the extension is unknown
-/// @throws std::invalid_argument if x has another number of rows or the mesh has garbage
+/// @throws std::invalid_argument if x has another number of rows, a coordinate that is not
+///         finite, or the mesh has garbage
 void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary = false);
 
 /// The mesh to give write_ply_atomic: a copy of `mesh` (vertex and face order and each face's

@@ -132,7 +132,7 @@ struct RegionReport {
 /// @pre  x.rows() == number_of_vertices; options in range (check_region_options).
 /// @return one entry per face (index = face index = input face order): the region id, or -1.
 ///         Ids are 0..n-1 ordered by decreasing area, ties by smallest face index.
-/// @throws UsageError on a precondition failure.
+/// @throws UsageError on a precondition failure, or a position that is not finite.
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report = nullptr);
 
@@ -164,7 +164,8 @@ std::size_t mark_spherical_regions(Mesh& mesh, const Positions& x, const RegionO
 /// Writes the region ids into the face map "f:region" (properties.hpp), creating it if missing
 /// and overwriting it otherwise.
 /// @param region_of_face one entry per face, id or -1.
-/// @throws UsageError if the size differs from number_of_faces.
+/// @throws UsageError if the size differs from number_of_faces, an id is below -1, or the mesh has
+///         removed elements (Surface_mesh garbage: collect it first).
 void store_regions(Mesh& mesh, const std::vector<int>& region_of_face);
 
 /// The ids of the face map "f:region": one entry per face, -1 for no region; all -1 when the
@@ -212,7 +213,8 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
 /// + rename).
 /// @param region_of_face one entry per face, id or -1; the ids used must be 0..n-1 without a
 ///        gap (an empty line would be skipped on reading and shift the later ids).
-/// @throws UsageError if an id in 0..max has no face, or the file cannot be written.
+/// @throws UsageError if an id is below -1 or an id in 0..max has no face, or the file cannot be
+///         written.
 void write_region_file(const std::string& path, const std::vector<int>& region_of_face);
 
 /// Display colour of a region: id >= 0 gets a saturated hue stepped by the golden angle (so

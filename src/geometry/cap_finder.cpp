@@ -189,6 +189,11 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                                   RegionReport* report, CurvatureField* curvature) {
   check_region_options(options);
+  // A NaN position would make every curvature and fit NaN, and the finder would answer "no
+  // region" as if the mesh were smooth.
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (!x.row(i).allFinite())
+      throw UsageError("select_spherical_regions: vertex " + std::to_string(i) + " has a coordinate that is not finite");
   if (const int k = finder_exponent(x); k != 0) {
     const std::vector<int> ids = select_spherical_regions(mesh, times_power_of_two(x, -k), options, report, curvature);
     unscale_finder_results(k, report, curvature);

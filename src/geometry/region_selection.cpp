@@ -45,10 +45,26 @@ std::size_t mark_spherical_regions(Mesh& mesh, const Positions& x, const RegionO
   return regions_from_face_ids(region).size();
 }
 
+namespace {
+
+/// Region ids are -1 (none) or a region's index: a lower one was read as "none" without a word.
+void check_region_ids(const char* who, const std::vector<int>& region_of_face) {
+  for (std::size_t f = 0; f < region_of_face.size(); ++f)
+    if (region_of_face[f] < -1)
+      throw UsageError(std::string(who) + ": face " + std::to_string(f) + " has region id " +
+                       std::to_string(region_of_face[f]) + " (ids are -1 for none, or 0, 1, ...)");
+}
+
+}  // namespace
+
 void store_regions(Mesh& mesh, const std::vector<int>& region_of_face) {
-  if (region_of_face.size() != mesh.number_of_faces() || mesh.has_garbage())
+  // Face f's id is region_of_face[f]: with removed faces (garbage) the indices are not 0..n-1.
+  if (mesh.has_garbage())
+    throw UsageError("store_regions: the mesh has removed elements (call collect_garbage first)");
+  if (region_of_face.size() != mesh.number_of_faces())
     throw UsageError("store_regions: " + std::to_string(region_of_face.size()) + " ids for " +
                      std::to_string(mesh.number_of_faces()) + " faces");
+  check_region_ids("store_regions", region_of_face);
   Mesh::Property_map<FaceIndex, int> map;
   try {
     map = property::get_map<FaceIndex, int>(mesh, property::REGION);
@@ -156,6 +172,7 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
 }
 
 void write_region_file(const std::string& path, const std::vector<int>& region_of_face) {
+  check_region_ids("write_region_file", region_of_face);
   const std::vector<std::vector<int>> regions = regions_from_face_ids(region_of_face);
   std::string text;
   for (std::size_t r = 0; r < regions.size(); ++r) {

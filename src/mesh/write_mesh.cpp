@@ -147,6 +147,12 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
     return;
   }
   check_positions(mesh, x, "write_mesh_atomic");
+  // A NaN or an infinity would be written as "nan" or "inf": a file that no reader, ours
+  // included, takes back.
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (!x.row(i).allFinite())
+      throw std::invalid_argument("write_mesh_atomic: vertex " + std::to_string(i) +
+                                  " has a coordinate that is not finite; nothing written to '" + path + "'");
   if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
     throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
   if (ext == "ply") {

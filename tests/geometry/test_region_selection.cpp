@@ -134,6 +134,45 @@ TEST_F(BumpySphere, StoreRegionsWritesTheFaceMap) {
   for (FaceIndex f : mesh_.faces()) EXPECT_EQ(map[f], region[f.idx()]);
 }
 
+// Before: a NaN position gave no region (every curvature NaN), as if the mesh were smooth.
+TEST_F(BumpySphere, PositionsThatAreNotFiniteAreAUsageErrorNamingTheVertex) {
+  for (const RegionMethod method : {RegionMethod::Caps, RegionMethod::Tips, RegionMethod::Parts}) {
+    Positions x = x_;
+    x(7, 0) = std::nan("");
+    RegionOptions o;
+    o.method = method;
+    try {
+      select_spherical_regions(mesh_, x, o);
+      ADD_FAILURE() << "a NaN position was accepted";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("vertex 7"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Before: an id of -7 was stored (and written) as if it were -1, and a mesh with removed faces was
+// refused as "319 ids for 319 faces".
+TEST_F(BumpySphere, StoreRegionsRefusesIdsBelowMinusOneAndGarbageSayingWhich) {
+  std::vector<int> region(mesh_.number_of_faces(), -1);
+  region[5] = -7;
+  try {
+    store_regions(mesh_, region);
+    ADD_FAILURE() << "an id of -7 was stored";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("face 5 has region id -7"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(write_region_file(temp_path("minus_seven.txt"), region), UsageError);
+  EXPECT_FALSE(std::filesystem::exists(temp_path("minus_seven.txt")));
+  Mesh removed = mesh_;
+  removed.remove_face(*removed.faces().begin());
+  try {
+    store_regions(removed, std::vector<int>(removed.number_of_faces(), -1));
+    ADD_FAILURE() << "a mesh with garbage was accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("removed elements"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(BumpySphere, MarkWritesTheSelectionAndTheCurvatureIntoTheMaps) {
   RegionReport expected_report, report;
   const std::vector<int> expected = select_spherical_regions(mesh_, x_, RegionOptions{}, &expected_report);

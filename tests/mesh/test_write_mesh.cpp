@@ -113,6 +113,23 @@ TEST_F(PlyWithProperties, MeshForOutputDropsTheMapsAndKeepsCorners) {
   EXPECT_THROW(mesh_for_output(mesh_, x_.topRows(3)), std::invalid_argument);
 }
 
+// Before: a NaN was written as "nan" (OFF, OBJ, PLY) into a file that no reader takes back.
+TEST_F(PlyWithProperties, PositionsThatAreNotFiniteAreRefusedAndNothingIsWritten) {
+  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL})
+    for (const char* ext : {"off", "obj", "ply", "stl"}) {
+      Positions x = x_;
+      x(2, 1) = bad;
+      const std::string path = temp_file(std::string("not_finite.") + ext);
+      try {
+        write_mesh_atomic(path, mesh_, x);
+        ADD_FAILURE() << ext << ": written";
+      } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("vertex 2"), std::string::npos) << e.what();
+      }
+      EXPECT_FALSE(fs::exists(path)) << ext;
+    }
+}
+
 TEST_F(PlyWithProperties, FilesHoldExactlyWhatCgalWritesAtSeventeenDigits) {
   // write_atomic formats doubles with to_chars instead of the stream's printf; the bytes must
   // be those of CGAL's writer on a plain stream at precision 17.
