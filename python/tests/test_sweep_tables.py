@@ -34,9 +34,9 @@ def test_progress_counts_an_earlier_failure_as_failed(cli, mesh_dir, tmp_path):
     assert "shellcontract sweep: 1 done, 1 failed, 0 left" in r.stderr
 
 
-def test_numbers_in_the_table_read_as_the_tools_own(cli, mesh_dir, tmp_path):
-    spec = {"meshes": ["meshes/ico1.off"],
-            "grid": {"pressure": [1e6, 250000.0, 0.0001, 0.001, 0.5, 2, 3.0]}}
+def written_table(cli, mesh_dir, tmp_path, spec):
+    """The jobs of `spec` (a sweep file on ico1) and the rows of the results.csv written for them,
+    with no job run."""
     path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
     data = sweep_file.load(str(path))
     version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
@@ -44,7 +44,14 @@ def test_numbers_in_the_table_read_as_the_tools_own(cli, mesh_dir, tmp_path):
     out = tmp_path / "out"
     sweep_results.write(jobs, sweep_file.varying_names(data), str(out), str(tmp_path))
     with open(out / "results.csv") as f:
-        cells = [row["pressure"] for row in csv.DictReader(f)]
+        return jobs, list(csv.DictReader(f))
+
+
+def test_numbers_in_the_table_read_as_the_tools_own(cli, mesh_dir, tmp_path):
+    spec = {"meshes": ["meshes/ico1.off"],
+            "grid": {"pressure": [1e6, 250000.0, 0.0001, 0.001, 0.5, 2, 3.0]}}
+    jobs, table = written_table(cli, mesh_dir, tmp_path, spec)
+    cells = [row["pressure"] for row in table]
     assert cells == ["1e+06", "250000", "1e-04", "0.001", "0.5", "2", "3"]
     # Each the library's own text of the value (its resolved options, its --summary).
     assert cells == [job.resolved["pressure"] for job in jobs]
@@ -56,14 +63,7 @@ def test_an_integer_in_the_file_reads_as_the_same_number_given_as_a_float(cli, m
     spec = {"meshes": ["meshes/ico1.off"],
             "grid": {"pressure": [1000000, 0.5], "frames": [10, 12]},
             "runs": [{"target_volume": [[0, 1], [60, 0.5]]}, {"air_balance": 0}]}
-    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
-    data = sweep_file.load(str(path))
-    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
-    jobs = sweep_file.expand(str(path), data, version)
-    out = tmp_path / "out"
-    sweep_results.write(jobs, sweep_file.varying_names(data), str(out), str(tmp_path))
-    with open(out / "results.csv") as f:
-        table = list(csv.DictReader(f))
+    _, table = written_table(cli, mesh_dir, tmp_path, spec)
     assert [row["pressure"] for row in table] == ["1e+06"] * 4 + ["0.5"] * 4
     assert [row["frames"] for row in table] == ["10", "10", "12", "12"] * 2
     assert [row["target_volume"] for row in table] == ["0:1, 60:0.5", ""] * 4
