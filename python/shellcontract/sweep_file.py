@@ -247,7 +247,7 @@ def expand(path, data, version, check_mesh=None):
         _fail(path, "the meshes, grid and runs make {} jobs; at most {} in one sweep file (split "
                     "it, or shard it over several files)".format(count, MAX_JOBS))
     points = [dict(zip(names, values)) for values in itertools.product(*grid.values())] or [{}]
-    jobs, seen, index = [], set(), -1
+    jobs, seen, index = [], {}, -1  # seen: job id -> the job kept for it
     for mesh in meshes:
         for point in points:
             for run in data["runs"]:
@@ -276,11 +276,24 @@ def expand(path, data, version, check_mesh=None):
                         _fail(path, "{}: {} file {} is not readable ({})".format(
                             where, name, file, e.strerror or e))
                 jid = job_id(file_sha256(mesh, cache), checked["resolved"], version, file_shas)
-                if jid in seen:  # the same run twice (e.g. a grid value equal to the default)
+                kept = seen.get(jid)
+                if kept is not None:
+                    # The same run twice (e.g. a grid value equal to the default) is run once.
+                    # Runs that differ only in a result-neutral option share an id as well, but
+                    # the user asked for each of them: dropping all but the first would lose
+                    # that option's values silently, as the grid check above says.
+                    for name in RESULT_NEUTRAL:
+                        if kept.resolved.get(name) != checked["resolved"].get(name):
+                            _fail(path, "{}: differs from {} only in {!r}, which does not "
+                                        "change a run's result (the same bytes at any value), "
+                                        "so it would be the same job; give {!r} once (to time "
+                                        "it, use shellcontract bench)".format(
+                                            where, kept.label(), name, name))
                     continue
-                seen.add(jid)
-                jobs.append(Job(len(jobs), mesh, options, list(checked["args"]),
-                                checked["resolved"], jid, varying))
+                job = Job(len(jobs), mesh, options, list(checked["args"]), checked["resolved"],
+                          jid, varying)
+                seen[jid] = job
+                jobs.append(job)
     return jobs
 
 

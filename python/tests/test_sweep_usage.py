@@ -121,8 +121,9 @@ def test_a_sweep_whose_stderr_reader_goes_away_runs_every_job(cli, mesh_dir, tmp
 
 
 def test_silent_merges_are_refused_and_a_dry_run_lists_its_shard(cli, mesh_dir, tmp_path):
-    """Before: a key given twice kept its last value, a grid over threads collapsed into one job,
-    and "frames": [5] ran 5 frames, all with exit 0; --dry-run --shard listed every job."""
+    """Before: a key given twice kept its last value, a grid over threads (or runs that differ
+    only in threads) collapsed into one job, and "frames": [5] ran 5 frames, all with exit 0;
+    --dry-run --shard listed every job."""
     path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
     path.write_text('{"meshes": ["meshes/ico1.off"], "options": {"frames": 4, "frames": 6}}')
     r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"])
@@ -131,7 +132,10 @@ def test_silent_merges_are_refused_and_a_dry_run_lists_its_shard(cli, mesh_dir, 
             ({"meshes": ["meshes/ico1.off"], "grid": {"threads": [1, 2]}},
              "grid option 'threads': it does not change a run's result"),
             ({"meshes": ["meshes/ico1.off"], "options": {"frames": [5]}},
-             "frames: got [5]; it takes one value")]:
+             "frames: got [5]; it takes one value"),
+            # Runs that differ only in threads: one id, so the second was dropped silently.
+            ({"meshes": ["meshes/ico1.off"], "runs": [{"threads": 1}, {"threads": 2}]},
+             "differs from job 0 (ico1.off, threads=1) only in 'threads'")]:
         path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico1.off",))
         r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"])
         assert r.returncode == 1 and expected in r.stderr, r.stderr
