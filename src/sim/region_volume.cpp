@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <utility>
 
 namespace shellcontract {
@@ -33,18 +32,27 @@ RegionCap make_region_cap(const Faces& faces, const std::vector<int>& region_fac
                             cap.vertices.begin());
   };
   cap.faces.resize(static_cast<Eigen::Index>(kept.size()), 3);
-  // An undirected edge used by one region face is on the rim.
-  std::map<std::pair<int, int>, int> uses;
+  // An undirected edge used by one region face is on the rim. The edges are counted in a sorted
+  // vector rather than a map: a dimple is rebuilt at every change of its size during the ramp.
+  std::vector<std::pair<int, int>> edges;
+  edges.reserve(3 * kept.size());
   for (std::size_t i = 0; i < kept.size(); ++i)
     for (int k = 0; k < 3; ++k) {
       const int a = local(faces(kept[i], k)), b = local(faces(kept[i], (k + 1) % 3));
       cap.faces(static_cast<Eigen::Index>(i), k) = a;
-      ++uses[{std::min(a, b), std::max(a, b)}];
+      edges.emplace_back(std::min(a, b), std::max(a, b));
     }
+  std::sort(edges.begin(), edges.end());
   std::vector<char> on_rim(cap.vertices.size(), 0);
-  for (const auto& [edge, count] : uses)
-    if (count == 1) on_rim[static_cast<std::size_t>(edge.first)] =
-                        on_rim[static_cast<std::size_t>(edge.second)] = 1;
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && edges[j] == edges[i]) ++j;
+    if (j - i == 1) {
+      on_rim[static_cast<std::size_t>(edges[i].first)] = 1;
+      on_rim[static_cast<std::size_t>(edges[i].second)] = 1;
+    }
+    i = j;
+  }
   for (std::size_t i = 0; i < on_rim.size(); ++i)
     if (on_rim[i]) cap.rim.push_back(static_cast<int>(i));
   return cap;
