@@ -3,6 +3,7 @@
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shellcontract {
 namespace {
@@ -10,6 +11,13 @@ namespace {
 /// Relative size below which a singular value counts as zero: the points are then collinear (the
 /// second) or a single point (the first), far above rounding for meshes of any scale.
 constexpr double RANK_TOLERANCE = 1e-9;
+
+/// RegionMirror::max_step over the shortest rest edge at the vertex. A blocked vertex then moves
+/// back and forth by at most half an edge, too little to show in a shaded frame, and a dimple
+/// still keeps up with the regions' ramp in a run of the default length; a fifth of an edge (the
+/// constraints' STEP_CLAMP_FACTOR per projection) made large dimples lag in short runs, a whole
+/// edge left blocked vertices flickering (lab/regions/mirror_step.md).
+constexpr double MIRROR_STEP_FACTOR = 0.5;
 
 Vec3 centroid(const std::vector<Vec3>& p) {
   Vec3 c = Vec3::Zero();
@@ -125,19 +133,40 @@ RegionMirror make_region_mirror(const Positions& rest, const RegionCap& cap) {
     beyond = beyond || !m.crease[i];
   }
   if (!beyond) m.crease.assign(m.moved.size(), 0);
+  // The step bound of each interior vertex: the shortest rest edge of the cap's faces at it.
+  std::vector<double> shortest(cap.vertices.size(), std::numeric_limits<double>::infinity());
+  for (Eigen::Index j = 0; j < cap.faces.rows(); ++j)
+    for (int k = 0; k < 3; ++k) {
+      const int a = cap.faces(j, k), b = cap.faces(j, (k + 1) % 3);
+      const double len = (at(a) - at(b)).norm();
+      if (!(len > 0.0)) continue;  // a collapsed edge bounds nothing
+      for (int u : {a, b}) {
+        double& s = shortest[static_cast<std::size_t>(u)];
+        s = std::min(s, len);
+      }
+    }
+  m.max_step.reserve(m.moved.size());
+  for (int k : m.moved)
+    m.max_step.push_back(MIRROR_STEP_FACTOR * shortest[static_cast<std::size_t>(k)]);
   return m;
 }
 
 bool apply_region_mirror(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
                          const Eigen::VectorXd& w, const std::vector<char>& held, double beta) {
-  if (mirror.fallback != MirrorFallback::None || !(beta > 0.0)) return false;
+  return apply_region_mirror(x, cap, mirror, w, held, MirrorStep{beta, false, false, false});
+}
+
+bool apply_region_mirror(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
+                         const Eigen::VectorXd& w, const std::vector<char>& held,
+                         const MirrorStep& step) {
+  if (mirror.fallback != MirrorFallback::None || !(step.beta > 0.0)) return false;
   std::vector<Vec3> rim_rest, rim_now;
   rim_now.reserve(cap.rim.size());
   for (int r : cap.rim) rim_now.push_back(Vec3(x.row(cap.vertices[static_cast<std::size_t>(r)])));
   for (const Vec3& p : mirror.rest_rim) rim_rest.push_back(p + mirror.rest_centre);
   const std::optional<Similarity> frame = fit_similarity(rim_rest, rim_now);
   if (!frame) return false;
-  return apply_region_mirror_in(x, cap, mirror, *frame, w, held, MirrorStep{beta, false, false});
+  return apply_region_mirror_in(x, cap, mirror, *frame, w, held, step);
 }
 
 std::optional<Similarity> shell_frame(const Positions& rest, const Positions& x,
@@ -168,7 +197,12 @@ bool apply_region_mirror_in(Positions& x, const RegionCap& cap, const RegionMirr
     const Vec3 target = frame(mirror.image[i] + mirror.rest_centre);
     // A mould: a vertex already deeper than its image (a load pushed it there) stays.
     if (step.one_sided && (Vec3(x.row(v)) - target).dot(outward) <= 0.0) continue;
-    x.row(v) += (share * (target - Vec3(x.row(v)))).transpose();
+    Vec3 move = share * (target - Vec3(x.row(v)));
+    if (step.clamp && i < mirror.max_step.size()) {
+      const double length = move.norm();
+      if (length > mirror.max_step[i]) move *= mirror.max_step[i] / length;
+    }
+    x.row(v) += move.transpose();
   }
   return true;
 }

@@ -64,6 +64,9 @@ struct RegionMirror {
   /// ring pinned to its images strains the faces at the rim, which pull on the shell every step.
   /// All 0 when no interior vertex lies beyond the crease ring (a dimple of one ring still sinks).
   std::vector<char> crease;
+  /// [i]: the longest step moved[i] takes toward its image in one call when MirrorStep::clamp
+  /// is set: half the shortest rest edge of the cap's faces at it (+inf if all those edges are 0).
+  std::vector<double> max_step;
 };
 
 /// The mirror of `cap` at the rest positions (fallback set when it has none).
@@ -93,6 +96,14 @@ struct MirrorStep {
   /// The image is a mould, not a place: a vertex already on the inner side of its image (along
   /// the frame's plane normal; a load pushed it deeper) stays where it is.
   bool one_sided = false;
+  /// Each vertex moves at most RegionMirror::max_step toward its image per call, as a constraint
+  /// projection's step is clamped. Unclamped, a vertex whose image lies behind another part of
+  /// the shell (a limb flattened by the pressure) jumps the whole way there, the collision
+  /// response throws it back, it is left alone for one step as held by contact, and jumps again:
+  /// a flicker of up to a tenth of the diagonal every other frame, and thousands of contacts per
+  /// step. Clamped, it comes to rest against the obstacle; an image that can be reached is
+  /// reached a few steps later, since the dimple grows with a ramp of many steps.
+  bool clamp = false;
 };
 
 /// Moves each interior vertex of the cap a share step.beta of the way to its mirror image carried
@@ -102,5 +113,10 @@ struct MirrorStep {
 bool apply_region_mirror_in(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
                             const Similarity& frame, const Eigen::VectorXd& w,
                             const std::vector<char>& held, const MirrorStep& step);
+
+/// apply_region_mirror (the frame fitted to the rim), moving as `step` says (beta = step.beta).
+bool apply_region_mirror(Positions& x, const RegionCap& cap, const RegionMirror& mirror,
+                         const Eigen::VectorXd& w, const std::vector<char>& held,
+                         const MirrorStep& step);
 
 }  // namespace shellcontract

@@ -54,8 +54,9 @@ void Simulator::apply_region_contraction(Positions& x) {
     // resize_dimple made d.mirror for the dimple's current size.
     if (options_.dimple_shape == DimpleShape::Mirror) {
       if (frame ? apply_region_mirror_in(x, d.dimple, d.mirror, *frame, inv_mass_,
-                                         held_by_contact_, MirrorStep{1.0, true, true})
-                : apply_region_mirror(x, d.dimple, d.mirror, inv_mass_, held_by_contact_, 1.0))
+                                         held_by_contact_, MirrorStep{1.0, true, true, true})
+                : apply_region_mirror(x, d.dimple, d.mirror, inv_mass_, held_by_contact_,
+                                      MirrorStep{1.0, false, false, true}))
         continue;
     }
     project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
