@@ -196,8 +196,12 @@ try {
       if (Math.abs(pa[i] - pb[i]) + Math.abs(pa[i + 1] - pb[i + 1]) + Math.abs(pa[i + 2] - pb[i + 2]) > 24) n++;
     return n / (pa.length / 4);
   }, a, b);
-  /** Fraction of pixels that are not the background (0xf4f4f2). */
-  const covered = (a) => page.evaluate(async (a) => {
+  /**
+   * What a screenshot shows, from one decode of its PNG: `covered`, the fraction of the pixels
+   * that are not the background (0xf4f4f2), and `hues`, the fractions that are mostly red, mostly
+   * green and mostly blue.
+   */
+  const pixels = (a) => page.evaluate(async (a) => {
     const img = new Image();
     img.src = `data:image/png;base64,${a}`;
     await img.decode();
@@ -205,9 +209,14 @@ try {
     const ctx = c.getContext('2d');
     ctx.drawImage(img, 0, 0);
     const p = ctx.getImageData(0, 0, img.width, img.height).data;
-    let n = 0;
-    for (let i = 0; i < p.length; i += 4) if (Math.abs(p[i] - 0xf4) + Math.abs(p[i + 1] - 0xf4) + Math.abs(p[i + 2] - 0xf2) > 24) n++;
-    return n / (p.length / 4);
+    let covered = 0;
+    const hues = [0, 0, 0];
+    for (let i = 0; i < p.length; i += 4) {
+      if (Math.abs(p[i] - 0xf4) + Math.abs(p[i + 1] - 0xf4) + Math.abs(p[i + 2] - 0xf2) > 24) covered++;
+      for (let k = 0; k < 3; k++) if (p[i + k] > p[i + (k + 1) % 3] + 40 && p[i + k] > p[i + (k + 2) % 3] + 40) hues[k]++;
+    }
+    const n = p.length / 4;
+    return { covered: covered / n, hues: hues.map((x) => x / n) };
   }, a);
 
   // Every mesh format opens, with the file's vertices (OBJ and STL: three corners per face).
@@ -217,7 +226,7 @@ try {
     check(!s.error && s.panes.length === 1 && s.panes[0].vertices === count,
           `out.${ext} opens (${s.error ?? `${s.panes[0]?.vertices} vertices, expected ${count}`})`);
     pictures[ext] = await shot();
-    const c = await covered(pictures[ext]);
+    const c = (await pixels(pictures[ext])).covered;
     check(c > 0.02, `out.${ext} is drawn (${(100 * c).toFixed(1)} % of the pixels)`);
   }
   // OFF and PLY hold the same indexed mesh: the same picture.
@@ -368,22 +377,7 @@ try {
   });
   const factors = defs.filter((d) => d).map((d) => JSON.stringify(d.pbrMetallicRoughness?.baseColorFactor ?? [1, 1, 1, 1]));
   check(new Set(factors).size === 3, `the three materials have different base colours (${factors.join(', ')})`);
-  /** Fractions of the pixels that are mostly red, mostly green, mostly blue. */
-  const hues = (a) => page.evaluate(async (a) => {
-    const img = new Image();
-    img.src = `data:image/png;base64,${a}`;
-    await img.decode();
-    const c = new OffscreenCanvas(img.width, img.height);
-    const ctx = c.getContext('2d');
-    ctx.drawImage(img, 0, 0);
-    const p = ctx.getImageData(0, 0, img.width, img.height).data;
-    const n = [0, 0, 0];
-    for (let i = 0; i < p.length; i += 4) {
-      for (let k = 0; k < 3; k++) if (p[i + k] > p[i + (k + 1) % 3] + 40 && p[i + k] > p[i + (k + 2) % 3] + 40) n[k]++;
-    }
-    return n.map((x) => x / (p.length / 4));
-  }, a);
-  const rgb = await hues(await shot());
+  const rgb = (await pixels(await shot())).hues;
   check(rgb.every((f) => f > 0.005), `the picture has the materials' red, the texture's green and blue (${rgb.map((f) => (100 * f).toFixed(1)).join(', ')} % of the pixels)`);
   await page.select('#colour', '0');
   const fieldLooks = await pageLooks();
