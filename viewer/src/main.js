@@ -5,7 +5,8 @@
 // the current one. Each frame is coloured with its own values where the file has them (the
 // glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on that frame
 // and never on the others; a mesh file is coloured with its own values. With no field shown, a
-// .glb's primitives wear the file's materials (base colour, texture).
+// .glb's primitives wear the file's materials (base colour, texture), and a file with materials
+// opens so.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes (with their
 // meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show),
@@ -88,16 +89,20 @@ function showPanes(newPanes) {
   el('side-by-side').disabled = !(panes.length === 1 && glb && glb.frameNumbers.length > 1);
 
   // Colour choices: the glTF's fields by index; a mesh file's own colours and scalar fields.
+  // With none chosen, a file with materials wears them.
+  const materials = panes.some((p) => p.looks?.some((l) => l.file));
   const select = el('colour');
-  select.replaceChildren(new Option('none', '-1'));
+  select.replaceChildren(new Option(materials ? 'none (file materials)' : 'none', '-1'));
   state.colourFields = glb ? glb.colourInfo : [];
   state.colourFields.forEach((f, i) => select.add(new Option(f.name, String(i))));
   if (panes.some((p) => p.kind === 'mesh' && p.fileColours)) select.add(new Option('file colours', 'file'));
   const names = [...new Set(panes.flatMap((p) => (p.kind === 'mesh' ? p.fields.map((f) => f.name) : [])))];
   names.forEach((n) => select.add(new Option(n, `field:${n}`)));
-  // First choice: the glTF's first field, else the files' own colours, else their first field.
+  // First choice: the files' materials where they have some (how the file says it looks; the
+  // fields stay in the menu), else the glTF's first field, else the files' own colours, else their
+  // first field.
   const values = [...select.options].map((o) => o.value);
-  const first = values.includes('0') ? '0' : values.includes('file') ? 'file' : (values[1] ?? '-1');
+  const first = materials ? '-1' : values.includes('0') ? '0' : values.includes('file') ? 'file' : (values[1] ?? '-1');
 
   // Camera on the first frame's bounding box of every pane.
   const box = new THREE.Box3();
@@ -269,7 +274,11 @@ function applyColours() {
     return shown === 'none' && fileMaterials ? 'file materials' : shown;
   });
   state.colourValues = values;
-  el('colour-note').textContent = el('colour').options.length > 1 ? [...new Set(notes)].join('; ') : 'these files have no colours';
+  // The note says what is shown: a file with materials and no colour fields is not plain.
+  const withMaterials = panes.filter((p, i) => state.shown[i] === 'file materials').map((p) => p.name);
+  if (withMaterials.length) notes.push(`the materials of ${[...new Set(withMaterials)].join(' and ')} are shown`);
+  if (el('colour').options.length === 1) notes.unshift(`no colour fields in ${panes.length > 1 ? 'these files' : 'this file'}`);
+  el('colour-note').textContent = [...new Set(notes)].join('; ');
 }
 
 function updatePlot() {

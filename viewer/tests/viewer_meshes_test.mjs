@@ -159,11 +159,14 @@ try {
         `back on frame 0 both panes wear frame 0's colours (mean red ${sbHome.map((m) => m?.toFixed(4))})`);
 
   // Two materials, two primitives (three.js: two meshes): each plays the frames and wears the
-  // colour field, so the picture is the one-primitive file's, frame for frame.
+  // colour field, so the picture is the one-primitive file's, frame for frame. (The file opens
+  // showing its materials: viewer_materials_test.mjs; here its first field is chosen.)
   s = await open(file('two.glb'));
   check(!s.error && s.panes[0]?.meshes === 2, `two.glb opens as two meshes (${s.error ?? s.panes[0]?.meshes})`);
+  await page.select('#colour', '0');
+  s.shown = await page.evaluate(() => window.viewer.shown);
   const both = await page.evaluate(() => window.viewer.colourMeans()[0]);
-  check(both !== null && s.shown[0] !== 'none', `every primitive wears the colour field (shown: ${s.shown[0]}, mean red ${both})`);
+  check(both !== null && s.shown[0] === 'mean_curvature', `every primitive wears the colour field (shown: ${s.shown[0]}, mean red ${both})`);
   await page.focus('#scrubber');
   await page.keyboard.press('End');
   const inf = await page.evaluate(() => window.viewer.influences()[0]);
