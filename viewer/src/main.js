@@ -1,12 +1,12 @@
 // ShellContract viewer: plays the morph-target animation of a run's .glb (one target per exported
 // frame, STEP keyframes), scrubs it and jumps to a frame, plots V/V0 from the run's CSV log or JSON
-// summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL). Two files are
-// shown side by side (before and after, one camera); a single .glb can show its first frame beside
-// the current one. Each frame is coloured with its own values where the file has them (the
-// glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on that frame
-// and never on the others; a mesh file is coloured with its own values. With no field shown, a
-// .glb's primitives wear the file's materials (base colour, texture), and a file with materials
-// opens so.
+// summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL; an OBJ with
+// the .mtl and textures chosen with it). Two files are shown side by side (before and after, one
+// camera); a single .glb can show its first frame beside the current one. Each frame is coloured
+// with its own values where the file has them (the glTF's extras.frame_fields); a field of one
+// frame only (extras 'frame') is shown on that frame and never on the others; a mesh file is
+// coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
+// wear its materials (base colour, texture), and a file with materials opens so.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes (with their
 // meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show),
@@ -123,7 +123,8 @@ function showPanes(newPanes) {
   state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(first);
   setKeyframe(0);
-  setStatus(panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '')).join('  |  '));
+  setStatus(panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '') +
+                     (p.notes?.length ? ` (${p.notes.join('; ')})` : '')).join('  |  '));
 }
 
 /** A single .glb's first frame beside its current frame (or back to one pane). */
@@ -158,13 +159,17 @@ async function fetchChecked(url) {
   return r;
 }
 
+/** What an OBJ may name (mtllib, map_Kd): opened with it, not on their own. */
+const COMPANION_EXTENSIONS = ['mtl', 'png', 'jpg', 'jpeg', 'gif', 'webp', 'bmp'];
+
 async function openFiles(files) {
   const models = [];
+  const companions = files.filter((f) => COMPANION_EXTENSIONS.includes(extensionOf(f.name)));
   for (const f of files) {
     try {
       const ext = extensionOf(f.name);
-      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) models.push(await makePane(await f.arrayBuffer(), f.name));
-      else loadLog(await f.text(), f.name);
+      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) models.push(await makePane(await f.arrayBuffer(), f.name, companions));
+      else if (!companions.includes(f)) loadLog(await f.text(), f.name);
     } catch (e) { setStatus(`${f.name}: ${e.message}`, true); }
   }
   if (models.length) showPanes(models.slice(0, 2));
@@ -260,12 +265,10 @@ function applyColours() {
         }
       }
       if (attr) m.geometry.setAttribute('color', attr);
-      if (p.kind === 'glb') {
-        // A field's colours when one is shown, else the file's material where it has one.
-        const file = attr ? null : p.looks[j].file;
-        m.material = file ?? p.looks[j].field;
-        if (file) { fileMaterials = true; return; }
-      }
+      // A field's colours when one is shown, else the file's material where it has one.
+      const file = attr ? null : p.looks[j].file;
+      m.material = file ?? p.looks[j].field;
+      if (file) { fileMaterials = true; return; }
       const mat = m.material;
       mat.vertexColors = !!attr;
       mat.color.set(attr ? 0xffffff : 0xd8c8b0);
@@ -340,13 +343,15 @@ state.colourMeans = () => panes.map((p) => {
   }
   return n ? sum / n : null;
 });
-/** For tests: per pane, per mesh, the material drawn: its name, colour (linear RGB), opacity,
- * the size of its texture (null without), whether it shows vertex colours. */
-state.looks = () => panes.map((p) => p.meshes.map((m) => ({
-  name: m.material.name, colour: m.material.color.toArray(), opacity: m.material.opacity,
-  texture: m.material.map?.image ? [m.material.map.image.width, m.material.map.image.height] : null,
-  vertexColors: m.material.vertexColors,
-})));
+/** For tests: per pane, per mesh, the material drawn (an array for an OBJ's mesh of several, one
+ * per group): its name, colour (linear RGB), opacity, the size of its texture (null without),
+ * whether it shows vertex colours. */
+const look = (material) => ({
+  name: material.name, colour: material.color.toArray(), opacity: material.opacity,
+  texture: material.map?.image ? [material.map.image.width, material.map.image.height] : null,
+  vertexColors: material.vertexColors,
+});
+state.looks = () => panes.map((p) => p.meshes.map((m) => (Array.isArray(m.material) ? m.material.map(look) : look(m.material))));
 
 resize();
 updatePlot();

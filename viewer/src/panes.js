@@ -3,6 +3,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { extensionOf, loadMeshFile, MESH_EXTENSIONS } from './mesh_files.js';
+import { loadObjMaterials } from './obj_materials.js';
 
 /** A scene with the viewer's background and lights; `sun` follows the camera (main.js render). */
 export function makeScene() {
@@ -68,20 +69,43 @@ async function glbPane(arrayBuffer, name) {
            frameFields, looks };
 }
 
-function meshPane(arrayBuffer, name) {
+/**
+ * A result mesh's pane; an OBJ's materials come from the .mtl files and textures among
+ * `companions` (the other files of the selection). `notes` names what could not be used.
+ */
+async function meshPane(arrayBuffer, name, companions) {
   const m = loadMeshFile(arrayBuffer, name);
   const { scene, sun } = makeScene();
   scene.add(m.object);
   // The file's own colours, kept aside: the colour choice may replace them.
   const fileColourAttributes = m.meshes.map((s) => s.geometry.getAttribute('color'));
+  // As a .glb's: the viewer's material for a field's colours (or the plain colour), and the
+  // file's materials, one per group of an OBJ's faces, drawn when no field is.
+  let looks = m.meshes.map((s) => ({ field: s.material, file: null }));
+  let notes = [];
+  if (m.materialLibraries.length) {
+    const loaded = await loadObjMaterials(name, m.materialLibraries, companions);
+    notes = loaded.notes;
+    if (loaded.materials.size) {
+      // Faces without a material (or of one no .mtl defines) are the plain colour, as in the .glb.
+      const plain = new THREE.MeshStandardMaterial({ color: 0xd8c8b0, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
+      const fileMaterial = (n) => loaded.materials.get(n) ?? plain;
+      looks = m.meshes.map((s, j) => {
+        const names = m.materialNames[j];
+        const used = [names].flat().some((n) => loaded.materials.has(n));
+        return { field: s.material, file: used ? (Array.isArray(names) ? names.map(fileMaterial) : fileMaterial(names)) : null };
+      });
+    }
+  }
   return { name, kind: 'mesh', scene, sun, object: m.object, meshes: m.meshes, vertices: m.vertices, fields: m.fields,
-           fileColours: m.fileColours, fileColourAttributes };
+           fileColours: m.fileColours, fileColourAttributes, looks, notes };
 }
 
-export async function makePane(arrayBuffer, name) {
+/** A pane of the file: a .glb or a result mesh (`companions`: the other files opened with it). */
+export async function makePane(arrayBuffer, name, companions = []) {
   const ext = extensionOf(name);
   if (ext === 'glb') return glbPane(arrayBuffer, name);
-  if (MESH_EXTENSIONS.includes(ext)) return meshPane(arrayBuffer, name);
+  if (MESH_EXTENSIONS.includes(ext)) return meshPane(arrayBuffer, name, companions);
   throw new Error(`${name}: not a .glb or a mesh (.off, .obj, .ply, .stl)`);
 }
 

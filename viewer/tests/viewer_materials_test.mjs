@@ -1,7 +1,9 @@
 // Headless check (Debian's Chromium, puppeteer-core) of the viewer and the materials of the files
 // it opens: a .glb of an OBJ with materials (base colour, alpha, texture) opens showing them and
 // wears them where no colour field is shown, a field's colours replace them, and the colour note
-// says what is shown (also for a file with materials and no colour fields). The files come from a run of the CLI
+// says what is shown (also for a file with materials and no colour fields); an OBJ opened with
+// its .mtl and textures in one selection wears its materials as its .glb does, and one opened
+// without them is drawn plain with a note naming what is missing. The files come from a run of the CLI
 // on a small mesh written as an OBJ with three materials, made here in a temporary folder.
 // Usage: node viewer/tests/viewer_materials_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
 import {
@@ -26,7 +28,7 @@ writeEditedGlb(file('three.glb'), file('three_no_fields.glb'), (json) => {
   return json;
 });
 
-const { page, consoleErrors, shot, open, pixels, close } = await startViewer(args.chromium);
+const { page, consoleErrors, shot, open, pick, pixels, close } = await startViewer(args.chromium);
 try {
   // The file's materials: three.glb has a primitive per material (red, blue, white with a green
   // texture) and one without. It opens showing them ("none" chosen), as the .glb's JSON says, and
@@ -86,6 +88,55 @@ try {
         `three_no_fields.glb offers no colour field and shows its materials (${s.error ?? `menu ${JSON.stringify(plainMenu)}, shown ${s.shown[0]}`})`);
   check(/no colour fields/.test(note) && /materials/.test(note) && !/no colours/.test(note),
         `the note says there are no colour fields and the materials are shown ("${note}")`);
+
+  // An OBJ opened with its .mtl and texture in one selection (the file picker; a drop is the same
+  // path), beside its run's .glb: the OBJ opens showing its materials, each group of faces wearing
+  // the material the .glb's primitive of the same name wears (base colour, opacity, texture; the
+  // faces before the first usemtl the plain colour, as the .glb's primitive without material).
+  s = await pick(file('three.obj'), file('three.mtl'), file('green.png'), file('three.glb'));
+  const status = () => page.$eval('#status', (e) => e.textContent);
+  let text = await status();
+  check(!s.error && s.panes.length === 2 && s.panes[0].name === 'three.obj' && s.panes[1].name === 'three.glb',
+        `three.obj with three.mtl and green.png opens beside three.glb (${s.error ?? s.panes.map((p) => p.name).join(', ')}; "${text}")`);
+  check(JSON.stringify(s.shown) === '["file materials","file materials"]', `both panes open showing their materials (${JSON.stringify(s.shown)})`);
+  /** A pane's looks by material name (an OBJ's mesh has one per group of faces). */
+  const byName = (paneLooks) => {
+    const m = new Map();
+    for (const l of paneLooks.flat()) if (!m.has(l.name)) m.set(l.name, l);
+    return m;
+  };
+  const both = await page.evaluate(() => window.viewer.looks());
+  const [objLooks, glbLooks] = both.map(byName);
+  check([...glbLooks.keys()].sort().join() === [...objLooks.keys()].sort().join(),
+        `the OBJ's groups have the .glb's materials (${[...objLooks.keys()].map((n) => JSON.stringify(n)).join(', ')})`);
+  for (const [n, g] of glbLooks) {
+    const o = objLooks.get(n);
+    check(o && !o.vertexColors && near(o.colour, g.colour) && Math.abs(o.opacity - g.opacity) < 1e-6 && JSON.stringify(o.texture) === JSON.stringify(g.texture),
+          `the OBJ's material ${JSON.stringify(n)} looks as the .glb's (${JSON.stringify(o)} vs ${JSON.stringify(g)})`);
+  }
+  const objRgb = (await pixels(await shot('left'))).hues;
+  check(objRgb.every((f) => f > 0.005), `the OBJ's picture has red, the texture's green and blue (${objRgb.map((f) => (100 * f).toFixed(1)).join(', ')} % of the pixels)`);
+  check(!/not opened|cannot be read/.test(text), `nothing is missing ("${text}")`);
+
+  // The OBJ alone: drawn plain, and the status names the .mtl it did not get (not an error).
+  s = await pick(file('three.obj'));
+  text = await status();
+  check(!s.error && s.panes.length === 1 && s.shown[0] === 'none', `three.obj alone opens plain (${s.error ?? `shown ${s.shown[0]}`})`);
+  check(/three\.mtl \(named by three\.obj\) was not opened with it/.test(text), `the status names the missing .mtl ("${text}")`);
+  // The same through view.py (a URL: only the OBJ is served).
+  s = await open(file('three.obj'));
+  text = await status();
+  check(!s.error && /three\.mtl \(named by three\.obj\) was not opened with it/.test(text), `served alone, the same note ("${s.error ?? text}")`);
+
+  // The OBJ and its .mtl without the texture: the materials, the textured one without its
+  // texture, and the status names the missing texture.
+  s = await pick(file('three.obj'), file('three.mtl'));
+  text = await status();
+  const noTexture = byName((await page.evaluate(() => window.viewer.looks()))[0]);
+  check(!s.error && s.shown[0] === 'file materials' && noTexture.get('skin')?.texture === null && near(noTexture.get('skin')?.colour ?? [], [1, 1, 1]) &&
+        near(noTexture.get('red')?.colour ?? [], [0.9, 0.1, 0.1]),
+        `without green.png the OBJ wears its materials, skin untextured (${s.error ?? JSON.stringify([...noTexture.values()])})`);
+  check(/green\.png \(the texture of skin in three\.mtl\) was not opened with three\.obj/.test(text), `the status names the missing texture ("${text}")`);
 
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
 } finally {
