@@ -15,7 +15,7 @@ import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { colourAttribute, range } from './colour_map.js';
 import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
-import { firstFramePane, makePane } from './panes.js';
+import { disposePane, firstFramePane, makePane } from './panes.js';
 import { drawPlot } from './plot.js';
 import { parseCsvLog, parseJsonSummary, ratioAt } from './run_log.js';
 
@@ -80,6 +80,7 @@ function setStatus(text, isError = false) {
 // ---------------------------------------------------------------- loading
 /** Shows the panes made of the files (one, or two side by side) and resets the frame and colours. */
 function showPanes(newPanes) {
+  for (const p of panes) if (!newPanes.includes(p)) disposePane(p);
   panes = newPanes;
   const glb = panes.find((p) => p.kind === 'glb');
   state.frameNumbers = glb ? glb.frameNumbers : [0];
@@ -134,6 +135,7 @@ function setSideBySide(on) {
   if (on && panes.length === 1) {
     panes = [firstFramePane(glb), glb];
   } else if (!on) {
+    for (const p of panes) if (p !== glb) disposePane(p, glb);
     panes = [glb];
   }
   state.sideBySide = panes.length === 2;
@@ -346,6 +348,8 @@ state.colourMeans = () => panes.map((p) => {
 /** For tests: per pane, per mesh, the material drawn (an array for an OBJ's mesh of several, one
  * per group): its name, colour (linear RGB), opacity, the size of its texture (null without),
  * whether it shows vertex colours. */
+/** For tests: three.js's count of the geometries and textures on the GPU (renderer.info.memory). */
+state.memory = () => ({ ...renderer.info.memory });
 const look = (material) => ({
   name: material.name, colour: material.color.toArray(), opacity: material.opacity,
   texture: material.map?.image ? [material.map.image.width, material.map.image.height] : null,

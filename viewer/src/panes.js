@@ -146,3 +146,42 @@ function paneGeometry(g) {
   c.userData = g.userData;
   return c;
 }
+
+/**
+ * Frees what the pane holds on the GPU, as three.js's "How to dispose of objects" says: its
+ * geometries (their buffers and morph-target textures), materials and textures, except what the
+ * pane `keep` still draws: the first-frame pane of "before | after" shares the index, attributes
+ * and textures of the pane it was made from. (Both panes draw through the page's one renderer,
+ * into two viewports: there is no renderer or render target of a pane to dispose.)
+ */
+export function disposePane(p, keep = null) {
+  const kept = new Set();
+  for (const m of keep?.meshes ?? []) {
+    kept.add(m.geometry).add(m.geometry.index);
+    for (const a of Object.values(m.geometry.attributes)) kept.add(a);
+  }
+  for (const mat of (keep?.looks ?? []).flatMap(materialsOf)) {
+    kept.add(mat);
+    for (const t of texturesOf(mat)) kept.add(t);
+  }
+  for (const m of p.meshes) {
+    const g = m.geometry;
+    if (kept.has(g)) continue;
+    // dispose() deletes the GPU buffers of the geometry's index and attributes, also those that
+    // another geometry draws: the kept pane's are taken off this one first.
+    if (kept.has(g.index)) g.setIndex(null);
+    for (const [k, a] of Object.entries(g.attributes)) if (kept.has(a)) g.deleteAttribute(k);
+    g.dispose();
+  }
+  const materials = new Set([...p.looks.flatMap(materialsOf), ...p.meshes.flatMap((m) => [m.material].flat())]);
+  for (const mat of materials) {
+    if (kept.has(mat)) continue;
+    for (const t of texturesOf(mat)) if (!kept.has(t)) t.dispose();
+    mat.dispose();
+  }
+}
+
+/** The materials of a mesh's look: the viewer's and the file's (one, or one per group). */
+const materialsOf = (look) => [look.field, look.file].flat().filter(Boolean);
+/** The textures a material uses (map, normalMap, ...). */
+const texturesOf = (material) => Object.values(material).filter((v) => v?.isTexture);

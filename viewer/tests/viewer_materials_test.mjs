@@ -3,7 +3,8 @@
 // wears them where no colour field is shown, a field's colours replace them, and the colour note
 // says what is shown (also for a file with materials and no colour fields); an OBJ opened with
 // its .mtl and textures in one selection wears its materials as its .glb does, and one opened
-// without them is drawn plain with a note naming what is missing. The files come from a run of the CLI
+// without them is drawn plain with a note naming what is missing; turning "before | after" off
+// (or opening other files) frees the GPU memory of the panes that go. The files come from a run of the CLI
 // on a small mesh written as an OBJ with three materials, made here in a temporary folder.
 // Usage: node viewer/tests/viewer_materials_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
 import {
@@ -28,7 +29,7 @@ writeEditedGlb(file('three.glb'), file('three_no_fields.glb'), (json) => {
   return json;
 });
 
-const { page, consoleErrors, shot, open, pick, pixels, close } = await startViewer(args.chromium);
+const { page, consoleErrors, differing, shot, open, pick, pixels, close } = await startViewer(args.chromium);
 try {
   // The file's materials: three.glb has a primitive per material (red, blue, white with a green
   // texture) and one without. It opens showing them ("none" chosen), as the .glb's JSON says, and
@@ -137,6 +138,43 @@ try {
         near(noTexture.get('red')?.colour ?? [], [0.9, 0.1, 0.1]),
         `without green.png the OBJ wears its materials, skin untextured (${s.error ?? JSON.stringify([...noTexture.values()])})`);
   check(/green\.png \(the texture of skin in three\.mtl\) was not opened with three\.obj/.test(text), `the status names the missing texture ("${text}")`);
+
+  // "before | after" on and off frees the first-frame pane's GPU memory (renderer.info): its
+  // geometries and their morph-target textures; what it shares with the pane that stays (the
+  // attributes, the index, the file's texture) stays, so that pane looks as before. Opening other
+  // files frees the panes shown before.
+  s = await open(file('three.glb'));
+  const memory = () => page.evaluate(() => window.viewer.memory());
+  const toggle = async () => { await page.click('#side-by-side'); return shot(); };
+  const single = await shot();
+  const m0 = await memory();
+  await toggle();
+  const m1 = await memory();
+  check(m1.geometries > m0.geometries && m1.textures > m0.textures,
+        `side by side, the second pane's geometries and textures are on the GPU (${JSON.stringify(m0)}, then ${JSON.stringify(m1)})`);
+  const back = await toggle();
+  const m2 = await memory();
+  check(m2.geometries === m0.geometries && m2.textures === m0.textures,
+        `turned off, they are freed (${JSON.stringify(m2)}; one pane: ${JSON.stringify(m0)})`);
+  const dBack = await differing(single, back);
+  check(dBack < 0.002, `the pane left looks as before, materials and texture included (${(100 * dBack).toFixed(2)} % differ)`);
+  await page.select('#colour', '0');
+  await page.focus('#scrubber');
+  await page.keyboard.press('End');
+  const lastColoured = await shot();
+  const m3 = await memory();
+  await toggle();
+  const lastBack = await toggle();
+  const m4 = await memory();
+  check(m4.geometries === m3.geometries && m4.textures === m3.textures && m3.geometries === m0.geometries,
+        `on the last frame with a field, on and off again frees them too (${JSON.stringify(m3)}, then ${JSON.stringify(m4)})`);
+  const dLast = await differing(lastColoured, lastBack);
+  check(dLast < 0.002, `and the pane left still shows the field on the last frame (${(100 * dLast).toFixed(2)} % differ)`);
+  s = await pick(file('three.glb'));
+  await shot();
+  const m5 = await memory();
+  check(!s.error && m5.geometries === m0.geometries && m5.textures === m0.textures,
+        `opening the file again frees the pane it replaces (${JSON.stringify(m5)}; one pane: ${JSON.stringify(m0)})`);
 
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
 } finally {
