@@ -1,20 +1,21 @@
 // ShellContract viewer: plays the morph-target animation of a run's .glb (one target per exported
 // frame, STEP keyframes), scrubs it and jumps to a frame, plots V/V0 from the run's CSV log or JSON
-// summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL). Two files are
-// shown side by side (before and after, one camera); a single .glb can show its first frame beside
-// the current one. Each frame is coloured with its own values where the file has them (the
-// glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on that frame
-// and never on the others; a mesh file is coloured with its own values. With no field shown, a
-// .glb's primitives wear the file's materials (base colour, texture).
+// summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL; an OBJ with
+// the .mtl and textures chosen with it). Two files are shown side by side (before and after, one
+// camera); a single .glb can show its first frame beside the current one. Each frame is coloured
+// with its own values where the file has them (the glTF's extras.frame_fields); a field of one
+// frame only (extras 'frame') is shown on that frame and never on the others; a mesh file is
+// coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
+// wear its materials (base colour, texture), and a file with materials opens so.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes (with their
 // meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show),
 // looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { colourAttribute, range } from './colour_map.js';
-import { extensionOf, loadMeshFile, MESH_EXTENSIONS } from './mesh_files.js';
+import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
+import { disposePane, firstFramePane, makePane } from './panes.js';
 import { drawPlot } from './plot.js';
 import { parseCsvLog, parseJsonSummary, ratioAt } from './run_log.js';
 
@@ -38,15 +39,6 @@ const controls = new OrbitControls(camera, renderer.domElement);
 controls.addEventListener('change', render);
 /** @type {{name, kind, scene, sun, object, meshes, vertices, frameNumbers?, colourInfo?, colourAttributes?, looks?, fixed?, fields?, fileColours?}[]} */
 let panes = [];
-
-function makeScene() {
-  const scene = new THREE.Scene();
-  scene.background = new THREE.Color(0xf4f4f2);
-  scene.add(new THREE.HemisphereLight(0xffffff, 0x808080, 1.6));
-  const sun = new THREE.DirectionalLight(0xffffff, 1.8);
-  scene.add(sun);
-  return { scene, sun };
-}
 
 function resize() {
   renderer.setSize(view.clientWidth, view.clientHeight);
@@ -86,79 +78,9 @@ function setStatus(text, isError = false) {
 }
 
 // ---------------------------------------------------------------- loading
-async function glbPane(arrayBuffer, name) {
-  const gltf = await new GLTFLoader().parseAsync(arrayBuffer, '');
-  // three makes one mesh per glTF primitive: an OBJ with several materials has one primitive per
-  // material, all on the same vertices and morph targets, so every one is moved and coloured
-  // alike. Those of the first glTF mesh are the shell (another file may hold other meshes).
-  const meshes = [];
-  const meshOf = (o) => gltf.parser.associations.get(o)?.meshes;
-  gltf.scene.traverse((o) => { if (o.isMesh && (!meshes.length || meshOf(o) === meshOf(meshes[0]))) meshes.push(o); });
-  if (!meshes.length) throw new Error(`${name}: no mesh`);
-  const shell = meshes[0];
-  // The glTF mesh's extras: three puts them on each primitive's mesh; a loader that puts them on
-  // the group of a multi-primitive mesh instead is looked up through the parents.
-  let extras = {};
-  for (let o = shell; o; o = o.parent) {
-    if (o.userData && (o.userData.frame_numbers || o.userData.colour_fields)) { extras = o.userData; break; }
-  }
-  const targets = shell.morphTargetInfluences ? shell.morphTargetInfluences.length : 0;
-  const frameNumbers = Array.isArray(extras.frame_numbers) ? extras.frame_numbers : Array.from({ length: targets + 1 }, (_, k) => k);
-  const track = gltf.animations[0]?.tracks[0];
-  // Colour fields: COLOR_0 is three's 'color', COLOR_n its 'color_n'; per mesh, kept aside
-  // before a choice replaces its 'color'.
-  const colourInfo = Array.isArray(extras.colour_fields) ? extras.colour_fields : [];
-  const geometry = shell.geometry;
-  const colourAttributes = meshes.map((m) => colourInfo.map((f, i) => {
-    const a = typeof f.attribute === 'string' ? f.attribute : `COLOR_${i}`;
-    return m.geometry.getAttribute(a === 'COLOR_0' ? 'color' : a.toLowerCase());
-  }));
-  // Fields with each frame's own values (extras.frame_fields: one accessor per frame), by name.
-  const frameFields = {};
-  for (const f of Array.isArray(extras.frame_fields) ? extras.frame_fields : []) {
-    if (!Array.isArray(f.accessors) || f.accessors.length !== frameNumbers.length) continue;
-    const values = await Promise.all(f.accessors.map((i) => gltf.parser.getDependency('accessor', i)));
-    frameFields[f.name] = { values: values.map((a) => a.array), low: Number(f.low), high: Number(f.high), colours: [] };
-  }
-  // Per mesh two materials: the viewer's, for a field's colours (or the plain colour), and the
-  // file's own (an OBJ's material: base colour, texture on TEXCOORD_0), drawn when no field is.
-  // A primitive without a glTF material keeps the plain colour: glTF's default material is a
-  // white metal, near black under these lights.
-  const looks = meshes.map((m) => {
-    const field = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
-    if (gltf.parser.associations.get(m.material)?.materials === undefined) return { field, file: null };
-    const file = m.material.clone();
-    file.vertexColors = false;  // the loader turns them on for COLOR_0, which here is a field's colours
-    file.side = THREE.DoubleSide;  // as the viewer's: a folded shell shows its back faces
-    return { field, file };
-  });
-  for (const [j, m] of meshes.entries()) m.material = looks[j].field;
-  const { scene, sun } = makeScene();
-  scene.add(gltf.scene);
-  return { name, kind: 'glb', scene, sun, object: gltf.scene, meshes, vertices: geometry.getAttribute('position').count,
-           frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, colourAttributes,
-           frameFields, looks };
-}
-
-function meshPane(arrayBuffer, name) {
-  const m = loadMeshFile(arrayBuffer, name);
-  const { scene, sun } = makeScene();
-  scene.add(m.object);
-  // The file's own colours, kept aside: the colour choice may replace them.
-  const fileColourAttributes = m.meshes.map((s) => s.geometry.getAttribute('color'));
-  return { name, kind: 'mesh', scene, sun, object: m.object, meshes: m.meshes, vertices: m.vertices, fields: m.fields,
-           fileColours: m.fileColours, fileColourAttributes };
-}
-
-async function makePane(arrayBuffer, name) {
-  const ext = extensionOf(name);
-  if (ext === 'glb') return glbPane(arrayBuffer, name);
-  if (MESH_EXTENSIONS.includes(ext)) return meshPane(arrayBuffer, name);
-  throw new Error(`${name}: not a .glb or a mesh (.off, .obj, .ply, .stl)`);
-}
-
 /** Shows the panes made of the files (one, or two side by side) and resets the frame and colours. */
 function showPanes(newPanes) {
+  for (const p of panes) if (!newPanes.includes(p)) disposePane(p);
   panes = newPanes;
   const glb = panes.find((p) => p.kind === 'glb');
   state.frameNumbers = glb ? glb.frameNumbers : [0];
@@ -168,16 +90,20 @@ function showPanes(newPanes) {
   el('side-by-side').disabled = !(panes.length === 1 && glb && glb.frameNumbers.length > 1);
 
   // Colour choices: the glTF's fields by index; a mesh file's own colours and scalar fields.
+  // With none chosen, a file with materials wears them.
+  const materials = panes.some((p) => p.looks?.some((l) => l.file));
   const select = el('colour');
-  select.replaceChildren(new Option('none', '-1'));
+  select.replaceChildren(new Option(materials ? 'none (file materials)' : 'none', '-1'));
   state.colourFields = glb ? glb.colourInfo : [];
   state.colourFields.forEach((f, i) => select.add(new Option(f.name, String(i))));
   if (panes.some((p) => p.kind === 'mesh' && p.fileColours)) select.add(new Option('file colours', 'file'));
   const names = [...new Set(panes.flatMap((p) => (p.kind === 'mesh' ? p.fields.map((f) => f.name) : [])))];
   names.forEach((n) => select.add(new Option(n, `field:${n}`)));
-  // First choice: the glTF's first field, else the files' own colours, else their first field.
+  // First choice: the files' materials where they have some (how the file says it looks; the
+  // fields stay in the menu), else the glTF's first field, else the files' own colours, else their
+  // first field.
   const values = [...select.options].map((o) => o.value);
-  const first = values.includes('0') ? '0' : values.includes('file') ? 'file' : (values[1] ?? '-1');
+  const first = materials ? '-1' : values.includes('0') ? '0' : values.includes('file') ? 'file' : (values[1] ?? '-1');
 
   // Camera on the first frame's bounding box of every pane.
   const box = new THREE.Box3();
@@ -198,7 +124,8 @@ function showPanes(newPanes) {
   state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(first);
   setKeyframe(0);
-  setStatus(panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '')).join('  |  '));
+  setStatus(panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '') +
+                     (p.notes?.length ? ` (${p.notes.join('; ')})` : '')).join('  |  '));
 }
 
 /** A single .glb's first frame beside its current frame (or back to one pane). */
@@ -206,47 +133,15 @@ function setSideBySide(on) {
   const glb = panes.find((p) => p.kind === 'glb' && p.fixed === undefined);
   if (!glb) return;
   if (on && panes.length === 1) {
-    const object = glb.object.clone(true);
-    // The clone's meshes in the order of the pane's (the same traversal of the same tree).
-    const original = [], copy = [];
-    glb.object.traverse((o) => original.push(o));
-    object.traverse((o) => copy.push(o));
-    const meshes = glb.meshes.map((m) => copy[original.indexOf(m)]);
-    // Object3D.clone shares the geometry, and a choice of colours sets the geometry's 'color':
-    // each pane needs its own geometry, or both would show the colours written last.
-    for (const m of meshes) m.geometry = paneGeometry(m.geometry);
-    const looks = glb.looks.map((l) => ({ field: l.field.clone(), file: l.file ? l.file.clone() : null }));
-    const { scene, sun } = makeScene();
-    scene.add(object);
-    panes = [{ ...glb, scene, sun, object, meshes, looks, fixed: 0 }, glb];
+    panes = [firstFramePane(glb), glb];
   } else if (!on) {
+    for (const p of panes) if (p !== glb) disposePane(p, glb);
     panes = [glb];
   }
   state.sideBySide = panes.length === 2;
   state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(state.colour);
   setKeyframe(state.keyframe);
-}
-
-/**
- * A new geometry on the same index, attributes and morph targets: its own table of attributes,
- * so that setting its 'color' leaves the other pane's alone. The attributes themselves are only
- * read (the frames are chosen by each mesh's own morph influences), so they are shared, not
- * copied: a run's morph targets can be most of the file.
- */
-function paneGeometry(g) {
-  const c = new THREE.BufferGeometry();
-  c.setIndex(g.index);
-  for (const [k, a] of Object.entries(g.attributes)) c.setAttribute(k, a);
-  for (const [k, list] of Object.entries(g.morphAttributes)) c.morphAttributes[k] = list.slice();
-  c.morphTargetsRelative = g.morphTargetsRelative;
-  for (const gr of g.groups) c.addGroup(gr.start, gr.count, gr.materialIndex);
-  c.setDrawRange(g.drawRange.start, g.drawRange.count);
-  c.boundingBox = g.boundingBox ? g.boundingBox.clone() : null;
-  c.boundingSphere = g.boundingSphere ? g.boundingSphere.clone() : null;
-  c.name = g.name;
-  c.userData = g.userData;
-  return c;
 }
 
 function loadLog(text, name) {
@@ -266,13 +161,17 @@ async function fetchChecked(url) {
   return r;
 }
 
+/** What an OBJ may name (mtllib, map_Kd): opened with it, not on their own. */
+const COMPANION_EXTENSIONS = ['mtl', 'png', 'jpg', 'jpeg', 'gif', 'webp', 'bmp'];
+
 async function openFiles(files) {
   const models = [];
+  const companions = files.filter((f) => COMPANION_EXTENSIONS.includes(extensionOf(f.name)));
   for (const f of files) {
     try {
       const ext = extensionOf(f.name);
-      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) models.push(await makePane(await f.arrayBuffer(), f.name));
-      else loadLog(await f.text(), f.name);
+      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) models.push(await makePane(await f.arrayBuffer(), f.name, companions));
+      else if (!companions.includes(f)) loadLog(await f.text(), f.name);
     } catch (e) { setStatus(`${f.name}: ${e.message}`, true); }
   }
   if (models.length) showPanes(models.slice(0, 2));
@@ -368,12 +267,10 @@ function applyColours() {
         }
       }
       if (attr) m.geometry.setAttribute('color', attr);
-      if (p.kind === 'glb') {
-        // A field's colours when one is shown, else the file's material where it has one.
-        const file = attr ? null : p.looks[j].file;
-        m.material = file ?? p.looks[j].field;
-        if (file) { fileMaterials = true; return; }
-      }
+      // A field's colours when one is shown, else the file's material where it has one.
+      const file = attr ? null : p.looks[j].file;
+      m.material = file ?? p.looks[j].field;
+      if (file) { fileMaterials = true; return; }
       const mat = m.material;
       mat.vertexColors = !!attr;
       mat.color.set(attr ? 0xffffff : 0xd8c8b0);
@@ -382,7 +279,11 @@ function applyColours() {
     return shown === 'none' && fileMaterials ? 'file materials' : shown;
   });
   state.colourValues = values;
-  el('colour-note').textContent = el('colour').options.length > 1 ? [...new Set(notes)].join('; ') : 'these files have no colours';
+  // The note says what is shown: a file with materials and no colour fields is not plain.
+  const withMaterials = panes.filter((p, i) => state.shown[i] === 'file materials').map((p) => p.name);
+  if (withMaterials.length) notes.push(`the materials of ${[...new Set(withMaterials)].join(' and ')} are shown`);
+  if (el('colour').options.length === 1) notes.unshift(`no colour fields in ${panes.length > 1 ? 'these files' : 'this file'}`);
+  el('colour-note').textContent = [...new Set(notes)].join('; ');
 }
 
 function updatePlot() {
@@ -444,13 +345,17 @@ state.colourMeans = () => panes.map((p) => {
   }
   return n ? sum / n : null;
 });
-/** For tests: per pane, per mesh, the material drawn: its name, colour (linear RGB), opacity,
- * the size of its texture (null without), whether it shows vertex colours. */
-state.looks = () => panes.map((p) => p.meshes.map((m) => ({
-  name: m.material.name, colour: m.material.color.toArray(), opacity: m.material.opacity,
-  texture: m.material.map?.image ? [m.material.map.image.width, m.material.map.image.height] : null,
-  vertexColors: m.material.vertexColors,
-})));
+/** For tests: per pane, per mesh, the material drawn (an array for an OBJ's mesh of several, one
+ * per group): its name, colour (linear RGB), opacity, the size of its texture (null without),
+ * whether it shows vertex colours. */
+/** For tests: three.js's count of the geometries and textures on the GPU (renderer.info.memory). */
+state.memory = () => ({ ...renderer.info.memory });
+const look = (material) => ({
+  name: material.name, colour: material.color.toArray(), opacity: material.opacity,
+  texture: material.map?.image ? [material.map.image.width, material.map.image.height] : null,
+  vertexColors: material.vertexColors,
+});
+state.looks = () => panes.map((p) => p.meshes.map((m) => (Array.isArray(m.material) ? m.material.map(look) : look(m.material))));
 
 resize();
 updatePlot();

@@ -5,6 +5,7 @@ import * as THREE from 'three';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { PLYLoader } from 'three/addons/loaders/PLYLoader.js';
 import { STLLoader } from 'three/addons/loaders/STLLoader.js';
+import { withUnnamedFirstMaterial } from './obj_materials.js';
 
 export const MESH_EXTENSIONS = ['off', 'obj', 'ply', 'stl'];
 
@@ -82,15 +83,18 @@ function plyScalarFields(buffer) {
 
 /**
  * Loads a result mesh. @returns {{object: THREE.Object3D, meshes: THREE.Mesh[], vertices: number,
- * fields: {name: string, attribute: string}[], fileColours: boolean}}
+ * fields: {name: string, attribute: string}[], fileColours: boolean, materialLibraries: string[],
+ * materialNames: (string | string[])[]}} (the last two: an OBJ's mtllib names and, per mesh, the
+ * usemtl names of its groups; the meshes wear the viewer's material)
  */
 export function loadMeshFile(buffer, name) {
   const ext = extensionOf(name);
-  let object, fields = [];
+  let object, fields = [], materialLibraries = [];
   if (ext === 'off') {
     object = new THREE.Mesh(parseOff(new TextDecoder().decode(buffer), name));
   } else if (ext === 'obj') {
-    object = new OBJLoader().parse(new TextDecoder().decode(buffer));
+    object = new OBJLoader().parse(withUnnamedFirstMaterial(new TextDecoder().decode(buffer)));
+    materialLibraries = object.materialLibraries;
   } else if (ext === 'ply') {
     const loader = new PLYLoader();
     fields = plyScalarFields(buffer).map((f) => ({ name: f, attribute: `field_${f}` }));
@@ -115,11 +119,14 @@ export function loadMeshFile(buffer, name) {
   const meshes = [];
   object.traverse((o) => { if (o.isMesh) meshes.push(o); });
   if (!meshes.length) throw new Error(`${name}: no faces`);
+  // The materials' names of each mesh, kept for the .mtl (obj_materials.js): an OBJ of several has
+  // an array, one per geometry group.
+  const materialNames = meshes.map((m) => (Array.isArray(m.material) ? m.material.map((x) => x.name) : m.material?.name ?? ''));
   for (const m of meshes) {
     if (!m.geometry.getAttribute('normal')) m.geometry.computeVertexNormals();
     m.material = new THREE.MeshStandardMaterial({ color: 0xd8c8b0, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
   }
   const vertices = meshes.reduce((n, m) => n + m.geometry.getAttribute('position').count, 0);
   const fileColours = meshes.every((m) => m.geometry.getAttribute('color'));
-  return { object, meshes, vertices, fields, fileColours };
+  return { object, meshes, vertices, fields, fileColours, materialLibraries, materialNames };
 }
