@@ -1,13 +1,15 @@
 """write_mesh(..., like=INPUT) keeps a textured OBJ whole: every line but v and vn
-as read, the given positions bitwise."""
+as read, the given positions bitwise. (One `vn` per vertex: a line shared by several vertices is
+split when they no longer share a normal, docs/design/attributes.md, "Normals".)"""
 import numpy as np
 import pytest
 
 import shellcontract
 
 OBJ = ("# a tetrahedron with texture coordinates and a material\nmtllib t.mtl\no tet\n"
-       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\nvn 0 0 1\nusemtl red\ns 1\n"
-       "f 1/1/1 3/3/1 2/2/1\nf 1/1/1 2/2/1 4/3/1\nf 1/1/1 4/3/1 3/2/1\nf 2/2/1 3/3/1 4/1/1\n")
+       "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvt 0 0\nvt 1 0\nvt 0 1\n"
+       "vn 0 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\nusemtl red\ns 1\n"
+       "f 1/1/1 3/3/3 2/2/2\nf 1/1/1 2/2/2 4/3/4\nf 1/1/1 4/3/4 3/2/3\nf 2/2/2 3/3/3 4/1/4\n")
 
 
 def test_write_like_keeps_everything_but_positions(tmp_path):

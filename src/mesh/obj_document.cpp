@@ -1,7 +1,9 @@
 // An OBJ file kept as a document (docs/design/attributes.md). The file's bytes are
 // kept; writing replaces only the text of the `v` lines' x y z and of the `vn` lines, so texture
 // coordinates, face corners (v/vt/vn), groups, objects, materials, smoothing groups, comments and
-// polygons come back exactly as read. A file written to another folder also gets its `mtllib`
+// polygons come back exactly as read. The one exception: a `vn` line whose corners no longer share
+// a normal (obj_normals.hpp) becomes several lines, and the corners' normal indices are
+// renumbered to match. A file written to another folder also gets its `mtllib`
 // paths rewritten, so that they name the same .mtl files from there (obj_material_paths.hpp).
 //
 // Vertex i of the simulation is the i-th `v` line: scan_obj, which read_input_mesh uses,
@@ -22,6 +24,7 @@
 
 #include "mesh/line_tokens.hpp"
 #include "mesh/obj_material_paths.hpp"
+#include "mesh/obj_normals.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "mesh/file_safety.hpp"
@@ -62,6 +65,9 @@ class ObjDocument final : public MeshDocument {
   std::vector<Span> v_numbers_;       ///< per `v` line: the span of its "x y z" text
   std::vector<Span> vn_text_;         ///< per `vn` line: the span from "vn" to the line's end
   std::vector<long long> corner_vn_;  ///< per corner: index of its `vn` line; -1 none
+  std::vector<Span> corner_vn_token_;  ///< per corner: the span of its normal index's text
+  std::vector<std::size_t> corner_vn_before_;  ///< per corner: `vn` lines before its face
+  std::string eol_ = "\n";            ///< the file's line end, for lines it gains
   int material_ = -1;                 ///< the material of the faces read next (usemtl); -1 none
 };
 
@@ -102,14 +108,20 @@ void ObjDocument::read_face(std::size_t at, std::size_t end, std::size_t line) {
     corner_vertex_.push_back(
         static_cast<std::size_t>(index(tok.substr(0, s1), v_numbers_.size(), line, "vertex")));
     long long vt = -1, vn = -1;
+    Span vn_token{t.end, t.end};
     if (s1 != std::string::npos) {
       const std::string t_vt =
           tok.substr(s1 + 1, s2 == std::string::npos ? std::string::npos : s2 - s1 - 1);
       if (!t_vt.empty()) vt = index(t_vt, uv_.size(), line, "texture coordinate");
-      if (s2 != std::string::npos) vn = index(tok.substr(s2 + 1), vn_text_.size(), line, "normal");
+      if (s2 != std::string::npos) {
+        vn = index(tok.substr(s2 + 1), vn_text_.size(), line, "normal");
+        vn_token.begin = t.begin + s2 + 1;
+      }
     }
     corner_uv_.push_back(vt);
     corner_vn_.push_back(vn);
+    corner_vn_token_.push_back(vn_token);
+    corner_vn_before_.push_back(vn_text_.size());
     ++corners;
   }
   if (corners == 0) fail(line, "parse error", "a face without corners");
@@ -123,6 +135,9 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
   // Lines end at "\n" ("\r\n" too: the "\r" counts as space); a file with no "\n" at all ends
   // its lines with a lone "\r" (classic Mac), as read_polygon_soup accepts.
   const char eol = bytes_.find('\n') == std::string::npos ? '\r' : '\n';
+  const std::size_t first_eol = bytes_.find(eol);
+  if (eol == '\r') eol_ = "\r";
+  else if (first_eol != std::string::npos && first_eol > 0 && bytes_[first_eol - 1] == '\r') eol_ = "\r\n";
   std::size_t begin = bytes_.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte-order mark
   for (std::size_t line = 1; begin < bytes_.size(); ++line) {
     std::size_t end = bytes_.find(eol, begin);
@@ -195,26 +210,13 @@ std::string ObjDocument::compose(const Positions& x, std::vector<TextEdit> edits
                                 " positions for " + std::to_string(vertex_count_) + " vertices");
   if (!x.allFinite()) throw std::invalid_argument("ObjDocument::text: a position is not finite");
 
-  // Normals: each `vn` gets the area-weighted normal of the polygons whose corners use it. A vn
-  // shared by all corners of one vertex (smooth shading) is that vertex's area-weighted normal;
-  // one shared by a flat polygon's corners (hard edges) is the polygon's normal. Each polygon's
-  // weight is its Newell vector: twice its area along its normal (for a triangle, the cross
-  // product).
-  std::vector<Vec3> normal(vn_text_.size(), Vec3::Zero());
-  for (std::size_t p = 0; p + 1 < polygon_start_.size(); ++p) {
-    Vec3 newell = Vec3::Zero();
-    const std::size_t b = polygon_start_[p], e = polygon_start_[p + 1];
-    for (std::size_t c = b; c < e; ++c) {
-      const std::size_t next = c + 1 < e ? c + 1 : b;
-      const Vec3 pc = x.row(static_cast<Eigen::Index>(corner_vertex_[c])).transpose();
-      const Vec3 pn = x.row(static_cast<Eigen::Index>(corner_vertex_[next])).transpose();
-      newell += pc.cross(pn);
-    }
-    for (std::size_t c = b; c < e; ++c)
-      if (corner_vn_[c] >= 0) normal[static_cast<std::size_t>(corner_vn_[c])] += newell;
-  }
+  // Normals: the corners of one vertex that share a `vn` line get the area-weighted normal of
+  // their polygons at the new positions (obj_normals.hpp).
+  const ObjNormals normals =
+      obj_normals(x, {&polygon_start_, &corner_vertex_, &corner_vn_, vn_text_.size()});
 
-  // The pieces to replace, in file order (v, vn and mtllib spans are on lines of their own).
+  // The pieces to replace, in file order (v, vn and mtllib spans are on lines of their own, the
+  // corners' normal indices inside face lines).
   edits.reserve(edits.size() + v_numbers_.size() + vn_text_.size());
   for (std::size_t i = 0; i < v_numbers_.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
@@ -222,14 +224,33 @@ std::string ObjDocument::compose(const Positions& x, std::vector<TextEdit> edits
                      format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' +
                          format_double(x(r, 2))});
   }
+  // first_written[j]: the 0-based index that the first line written for `vn` line j has.
+  std::vector<std::size_t> first_written(vn_text_.size() + 1, 0);
+  bool split = false;
   for (std::size_t j = 0; j < vn_text_.size(); ++j) {
-    const double len = normal[j].norm();
+    const std::vector<Vec3>& lines = normals.lines[j];
+    first_written[j + 1] = first_written[j] + std::max<std::size_t>(1, lines.size());
+    split |= lines.size() > 1;
     // A normal no polygon uses, or whose polygons have no area now, keeps its line.
-    if (!(len > 0.0) || !std::isfinite(len)) continue;
-    const Vec3 n = normal[j] / len;
-    edits.push_back({vn_text_[j].begin, vn_text_[j].end,
-                     "vn " + format_double(n.x()) + ' ' + format_double(n.y()) + ' ' +
-                         format_double(n.z())});
+    if (lines.empty()) continue;
+    std::string text;
+    for (const Vec3& n : lines)
+      text += (text.empty() ? "vn " : eol_ + "vn ") + format_double(n.x()) + ' ' +
+              format_double(n.y()) + ' ' + format_double(n.z());
+    edits.push_back({vn_text_[j].begin, vn_text_[j].end, std::move(text)});
+  }
+  // Lines were added: every corner names its normal by its new index, a relative one (-k)
+  // relative to the lines written before its face, as it was.
+  for (std::size_t c = 0; split && c < corner_vn_.size(); ++c) {
+    if (corner_vn_[c] < 0) continue;
+    const Span t = corner_vn_token_[c];
+    const std::size_t written = first_written[static_cast<std::size_t>(corner_vn_[c])] + normals.pick[c];
+    const bool relative = bytes_[t.begin] == '-';
+    const std::string text =
+        relative ? std::to_string(static_cast<long long>(written) -
+                                  static_cast<long long>(first_written[corner_vn_before_[c]]))
+                 : std::to_string(written + 1);
+    if (bytes_.compare(t.begin, t.end - t.begin, text) != 0) edits.push_back({t.begin, t.end, text});
   }
   std::sort(edits.begin(), edits.end(),
             [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });

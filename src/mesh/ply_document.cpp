@@ -7,11 +7,13 @@
 // read_ply's own (ply_header.hpp), the body's checks are short, and any surprise is an InputError
 // (the CLI then falls back to the plain writer).
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -106,6 +108,10 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   bool vertices_seen = false, faces_seen = false;
   polygon_start_.push_back(0);
   std::vector<double> u_values, v_values;
+  // MeshLab's wedge texture coordinates: a face list `texcoord` of u v per corner. Used where the
+  // vertices have none, and only when every face has two numbers per corner.
+  std::vector<std::array<double, 2>> wedge_uv;
+  bool wedges_whole = true, wedges_seen = false;
   for (const ply::Element& e : elements_) {
     const bool is_vertex = e.name == "vertex" && !vertices_seen;
     const bool is_face = e.name == "face" && !faces_seen;
@@ -128,6 +134,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
       vertex_count_ = e.count;
     }
     for (std::size_t i = 0; i < e.count; ++i) {
+      const std::size_t corners_before = corner_vertex_.size();
+      std::vector<double> face_uv;
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const ply::Property& p = e.properties[k];
         Slot s;
@@ -136,9 +144,12 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
           if (!(n >= 0) || n > static_cast<double>(bytes_.size()))
             fail("a list count is out of range");
           const bool corners = is_face && (p.name == "vertex_indices" || p.name == "vertex_index");
+          const bool texcoords = is_face && p.name == "texcoord";
+          wedges_seen |= texcoords;
           for (std::size_t j = 0; j < static_cast<std::size_t>(n); ++j) {
-            const double idx = next_value(p.type, s);
-            if (corners) corner_vertex_.push_back(static_cast<std::size_t>(std::max(idx, 0.0)));
+            const double value = next_value(p.type, s);
+            if (corners) corner_vertex_.push_back(static_cast<std::size_t>(std::max(value, 0.0)));
+            if (texcoords) face_uv.push_back(value);
           }
           if (corners) polygon_start_.push_back(corner_vertex_.size());
           continue;
@@ -156,6 +167,12 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
         else if (static_cast<int>(k) == v_prop)
           v_values.push_back(value);
       }
+      if (!is_face || !wedges_seen) continue;
+      // The list may come before or after the corners: matched once the face is read.
+      const std::size_t corners = corner_vertex_.size() - corners_before;
+      if (face_uv.size() != 2 * corners) wedges_whole = false;
+      for (std::size_t c = 0; wedges_whole && c < corners; ++c)
+        wedge_uv.push_back({face_uv[2 * c], face_uv[2 * c + 1]});
     }
   }
   for (const Slot& s : slots_)
@@ -163,6 +180,16 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   if (u_values.size() == vertex_count_ && v_values.size() == vertex_count_ && vertex_count_ > 0) {
     for (std::size_t i = 0; i < vertex_count_; ++i) uv_.push_back({u_values[i], v_values[i]});
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());  // per-vertex coordinates
+  } else if (wedges_seen && wedges_whole && wedge_uv.size() == corner_vertex_.size() &&
+             !wedge_uv.empty()) {
+    // Equal pairs are one texture coordinate, as an OBJ's `vt` line shared by corners: the glTF
+    // splits a vertex only where its corners' coordinates differ (a seam), not at every corner.
+    std::map<std::array<double, 2>, long long> index_of;
+    for (const std::array<double, 2>& uv : wedge_uv) {
+      const auto it = index_of.emplace(uv, static_cast<long long>(uv_.size()));
+      if (it.second) uv_.push_back(uv);
+      corner_uv_.push_back(it.first->second);
+    }
   }
 }
 

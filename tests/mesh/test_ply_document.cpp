@@ -3,6 +3,7 @@
 // their declared type. The layouts are written here by hand, so the bytes to compare are known.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -154,6 +155,64 @@ TEST(PlyDocument, TextureCoordinatesArePerVertex) {
       "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
       "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
   EXPECT_TRUE(none->texcoords(mesh).empty());
+}
+
+TEST(PlyDocument, TextureCoordinatesPerFaceCornerAreRead) {
+  // MeshLab's wedge texture coordinates: a face list `texcoord` of u v per corner, so a vertex
+  // has one pair per face around it (a seam without split vertices). Corner k of face f has
+  // (f / 8 + k / 64, 1 - k / 16) (exact in float); every simulation corner must get its own.
+  auto uv_of = [](std::size_t f, std::size_t k) {
+    return std::array<double, 2>{static_cast<double>(f) / 8 + static_cast<double>(k) / 64,
+                                 1.0 - static_cast<double>(k) / 16};
+  };
+  std::ostringstream o;
+  o << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+       "element face 4\nproperty list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+       "property int flags\nend_header\n";
+  for (int i = 0; i < 4; ++i) o << TET[i][0] << ' ' << TET[i][1] << ' ' << TET[i][2] << '\n';
+  for (std::size_t f = 0; f < 4; ++f) {
+    o << "3 " << TET_FACES[f][0] << ' ' << TET_FACES[f][1] << ' ' << TET_FACES[f][2] << " 6";
+    for (std::size_t k = 0; k < 3; ++k) o << ' ' << uv_of(f, k)[0] << ' ' << uv_of(f, k)[1];
+    o << " 9\n";
+  }
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "shellcontract_ply_document_wedge.ply";
+  std::ofstream(path) << o.str();
+  const Mesh mesh = read_input_mesh(path.string());
+  const auto doc = read_mesh_document(path.string());
+  std::filesystem::remove(path);
+  ASSERT_TRUE(doc && doc->matches(mesh));
+  const CornerTexcoords tc = doc->texcoords(mesh);
+  ASSERT_EQ(tc.face_uv.size(), 4u);
+  for (const FaceIndex f : mesh.faces()) {
+    std::size_t k = 0;
+    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) {
+      std::size_t corner = 0;  // the file's corner of face f at vertex v
+      while (corner < 3 && TET_FACES[f.idx()][corner] != static_cast<int>(v.idx())) ++corner;
+      ASSERT_LT(corner, 3u);
+      const auto& uv = tc.uv.at(tc.face_uv[f.idx()][k++]);
+      EXPECT_EQ(uv[0], uv_of(f.idx(), corner)[0]) << "face " << f.idx() << ", vertex " << v.idx();
+      EXPECT_EQ(uv[1], uv_of(f.idx(), corner)[1]) << "face " << f.idx() << ", vertex " << v.idx();
+    }
+  }
+  // Corners with equal pairs share one coordinate (the glTF splits a vertex only at a seam): each
+  // face giving vertex v the same pair (v / 4, v / 8) makes 4 coordinates, not 12.
+  std::ostringstream same;
+  same << o.str().substr(0, o.str().find("end_header\n") + 11);
+  for (int i = 0; i < 4; ++i) same << TET[i][0] << ' ' << TET[i][1] << ' ' << TET[i][2] << '\n';
+  for (std::size_t f = 0; f < 4; ++f) {
+    same << "3";
+    for (std::size_t k = 0; k < 3; ++k) same << ' ' << TET_FACES[f][k];
+    same << " 6";
+    for (std::size_t k = 0; k < 3; ++k) same << ' ' << TET_FACES[f][k] / 4.0 << ' ' << TET_FACES[f][k] / 8.0;
+    same << " 9\n";
+  }
+  EXPECT_EQ(parse_ply_document("same.ply", same.str())->texcoords(mesh).uv.size(), 4u);
+  // A face whose list does not hold two numbers per corner: no texture coordinates at all.
+  std::string bad = o.str();
+  bad.replace(bad.rfind(" 6 "), 3, " 8 ");
+  bad.replace(bad.rfind(" 9\n"), 3, " 0 0 9\n");
+  const auto wrong_count = parse_ply_document("wrong_count.ply", bad);
+  EXPECT_TRUE(wrong_count->texcoords(mesh).empty());
 }
 
 }  // namespace
