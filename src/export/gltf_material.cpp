@@ -11,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <system_error>
 
 #include "mesh/file_safety.hpp"
 #include "mesh/line_tokens.hpp"
@@ -116,6 +117,10 @@ std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& b
       out.back().name = trimmed(rest);
       out.back().file = name;
       has_d = false;
+      // Kept, so that the lines after it do not change the material before; but a bare usemtl
+      // means no material, so nothing can use this one.
+      if (out.back().name.empty())
+        warn(line, "newmtl without a name: no usemtl can name its material");
       continue;
     }
     if (key != "Kd" && key != "d" && key != "Tr" && key != "map_Kd") continue;
@@ -228,8 +233,14 @@ GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoo
   std::vector<std::optional<MtlMaterial>> found(materials.names.size());
   for (const FaceMaterials::Library& lib : materials.libraries) {
     if (!lib.found) {
+      // The document finds no file by that name; a folder by that name is there to see, so
+      // "not found" would send the user looking for it.
+      std::error_code ec;
+      const std::string why =
+          fs::is_directory(lib.path, ec) ? "is not a regular file (it is a folder)" : "not found";
       warnings.push_back(materials.source + ": line " + std::to_string(lib.line) +
-                         ": material library '" + lib.path + "' not found: the glTF has no material from it");
+                         ": material library '" + lib.path + "' " + why +
+                         ": the glTF has no material from it");
       continue;
     }
     std::string why;

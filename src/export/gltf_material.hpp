@@ -24,8 +24,9 @@ struct MtlMaterial {
 };
 
 /// The materials of a .mtl file's bytes. Other keys are skipped. A line that cannot be read (a
-/// Kd without three numbers, a d outside [0, 1], a key before any newmtl) is a warning
-/// "<name>: line <n>: ..." appended to `warnings`, and the key is left at its default.
+/// Kd without three numbers, a d outside [0, 1], a key before any newmtl, a newmtl without a
+/// name) is a warning "<name>: line <n>: ..." appended to `warnings`, and the key is left at its
+/// default (a nameless material is kept: the lines after it are its own, though none can use it).
 /// @param name the file, for messages; relative map_Kd paths start from its folder
 std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& bytes,
                                    std::vector<std::string>& warnings);

@@ -124,8 +124,14 @@ std::vector<TextEdit> material_library_edits(const std::string& bytes,
   for (const MtllibLine& l : lines)
     for (const MtllibName& n : mtllib_names(bytes, l, in_folder)) {
       if (!n.found) {
-        warn(l, "material library '" + printable(n.name) + "' not found (no file '" +
-                    printable((in_folder / n.name).string()) + "'): written unchanged to " +
+        // A folder by that name is there to see: "not found" would send the user looking for it.
+        const fs::path looked = in_folder / n.name;
+        std::error_code ec;
+        const std::string why =
+            fs::is_directory(looked, ec)
+                ? "is not a regular file ('" + printable(looked.string()) + "' is a folder)"
+                : "not found (no file '" + printable(looked.string()) + "')";
+        warn(l, "material library '" + printable(n.name) + "' " + why + ": written unchanged to " +
                     printable(output_path) + ", where it is looked for from that file's folder");
         continue;
       }

@@ -194,6 +194,36 @@ TEST(MtlReader, EveryUsedMaterialIsKeptAndAnUndefinedOneLeavesItsFacesWithout) {
   EXPECT_TRUE(none.face_material.empty());
 }
 
+// Before: a newmtl line without a name made a material silently, which no usemtl can name (a
+// bare usemtl means no material). Now it warns with the file and line, as other bad lines do;
+// the lines after it still belong to it, not to the material before.
+TEST(MtlReader, ANewmtlWithoutANameWarnsNamingTheFileAndLine) {
+  std::vector<std::string> w;
+  const auto ms = parse_mtl("dir/a.mtl", "newmtl one\nKd 1 0 0\nnewmtl   # no name\nKd 0 1 0\n", w);
+  ASSERT_EQ(ms.size(), 2u);
+  EXPECT_EQ(ms[0].kd, (std::array<double, 3>{1.0, 0.0, 0.0}));
+  EXPECT_TRUE(contains(w, "dir/a.mtl: line 3: newmtl without a name"))
+      << ::testing::PrintToString(w);
+  EXPECT_EQ(w.size(), 1u) << ::testing::PrintToString(w);
+}
+
+// Before: a folder named as the material library (mkdir sphere.mtl) was reported as "not found".
+TEST(MtlReader, AFolderAsTheLibraryIsNamedAsAFolderNotAsMissing) {
+  test::ScratchDir dir("material_folder");
+  fs::create_directory(dir.file("m.mtl"));
+  FaceMaterials fm;
+  fm.names = {"a"};
+  fm.face_material = {0};
+  fm.libraries = {{dir.file("m.mtl"), 3, false}};  // as the document finds it: no file
+  fm.source = "x.obj";
+  std::vector<std::string> w;
+  EXPECT_TRUE(gltf_materials(fm, true, w).materials.empty());
+  EXPECT_TRUE(contains(w, "x.obj: line 3: material library '" + dir.file("m.mtl") +
+                              "' is not a regular file (it is a folder)"))
+      << ::testing::PrintToString(w);
+  EXPECT_FALSE(contains(w, "not found")) << ::testing::PrintToString(w);
+}
+
 TEST(MtlReader, TheDocumentNamesEachFacesMaterialAndItsLibraries) {
   test::ScratchDir dir("material_doc");
   std::string obj = test::write_textured_octahedron(dir.str(), "gem", true);

@@ -2,10 +2,10 @@
 // frame, STEP keyframes), scrubs it and jumps to a frame, plots V/V0 from the run's CSV log or JSON
 // summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL; an OBJ with
 // the .mtl and textures chosen with it). Two files are shown side by side (before and after, one
-// camera); a single .glb can show its first frame beside the current one. Each frame is coloured
-// with its own values where the file has them (the glTF's extras.frame_fields); a field of one
-// frame only (extras 'frame') is shown on that frame and never on the others; a mesh file is
-// coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
+// camera; of more chosen, the status line names those not opened); a single .glb can show its
+// first frame beside the current one. Each frame is coloured with its own values where the file
+// has them (the glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on
+// that frame and never on the others; a mesh file is coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
 // wear its materials (base colour, texture), and a file with materials opens so.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes (with their
@@ -71,15 +71,20 @@ function render() {
 }
 window.addEventListener('resize', resize);
 
-function setStatus(text, isError = false) {
+/** Shows the text in the status line; `error` (a message within it) marks the line as an error. */
+function setStatus(text, error = null) {
   el('status').textContent = text;
-  el('status').classList.toggle('error', isError);
-  if (isError) { state.error = text; console.error(text); }
+  el('status').classList.toggle('error', !!error);
+  if (error) { state.error = error; console.error(error); }
 }
 
 // ---------------------------------------------------------------- loading
-/** Shows the panes made of the files (one, or two side by side) and resets the frame and colours. */
-function showPanes(newPanes) {
+/**
+ * Shows the panes made of the files (one, or two side by side) and resets the frame and colours.
+ * The status line gives each pane's summary after `errors` (the files that failed to open: the
+ * summary must not hide them) and before `notes`.
+ */
+function showPanes(newPanes, errors = [], notes = []) {
   for (const p of panes) if (!newPanes.includes(p)) disposePane(p);
   panes = newPanes;
   const glb = panes.find((p) => p.kind === 'glb');
@@ -124,8 +129,9 @@ function showPanes(newPanes) {
   state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(first);
   setKeyframe(0);
-  setStatus(panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '') +
-                     (p.notes?.length ? ` (${p.notes.join('; ')})` : '')).join('  |  '));
+  const summary = panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '') +
+                                   (p.notes?.length ? ` (${p.notes.join('; ')})` : ''));
+  setStatus([...errors, ...summary, ...notes].join('  |  '), errors.length ? errors.join('; ') : null);
 }
 
 /** A single .glb's first frame beside its current frame (or back to one pane). */
@@ -165,16 +171,23 @@ async function fetchChecked(url) {
 const COMPANION_EXTENSIONS = ['mtl', 'png', 'jpg', 'jpeg', 'gif', 'webp', 'bmp'];
 
 async function openFiles(files) {
-  const models = [];
+  const models = [], errors = [], notOpened = [];
   const companions = files.filter((f) => COMPANION_EXTENSIONS.includes(extensionOf(f.name)));
   for (const f of files) {
     try {
       const ext = extensionOf(f.name);
-      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) models.push(await makePane(await f.arrayBuffer(), f.name, companions));
-      else if (!companions.includes(f)) loadLog(await f.text(), f.name);
-    } catch (e) { setStatus(`${f.name}: ${e.message}`, true); }
+      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) {
+        // Two panes at most: the first two files that open; the others are named, not read, so
+        // a file that fails does not take a pane from the next.
+        if (models.length === 2) notOpened.push(f.name);
+        else models.push(await makePane(await f.arrayBuffer(), f.name, companions));
+      } else if (!companions.includes(f)) loadLog(await f.text(), f.name);
+    } catch (e) { errors.push(e.message.startsWith(f.name) ? e.message : `${f.name}: ${e.message}`); }
   }
-  if (models.length) showPanes(models.slice(0, 2));
+  const notes = notOpened.length
+    ? [`not opened: ${notOpened.join(', ')} (the viewer shows at most two files side by side)`] : [];
+  if (models.length) showPanes(models, errors, notes);
+  else if (errors.length) setStatus(errors.join('  |  '), errors.join('; '));
   state.ready = true;
 }
 
@@ -372,6 +385,6 @@ const params = new URLSearchParams(window.location.search);
     if (models.length) showPanes(models);
     state.ready = true;
   } catch (e) {
-    setStatus(e.message, true);
+    setStatus(e.message, e.message);
   }
 })();

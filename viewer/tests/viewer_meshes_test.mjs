@@ -52,7 +52,7 @@ const meanRed = (plyPath) => {
 /** Whether the page's values are the PLY's float column, exactly. */
 const sameFloats = (page, ply) => page && page.length === ply.length && ply.every((v, i) => Math.fround(v) === page[i]);
 
-const { page, consoleErrors, open, shot, differing, pixels, close } = await startViewer(args.chromium);
+const { page, consoleErrors, open, pick, shot, differing, pixels, close } = await startViewer(args.chromium);
 try {
   // Every mesh format opens, with the file's vertices (OBJ and STL: three corners per face).
   const pictures = {};
@@ -76,6 +76,21 @@ try {
   s = await open(file('out.off'), file('out.ply'));
   const dSame = await differing(await shot('left'), await shot('right'));
   check(dSame < 0.002, `the same mesh in both panes looks the same (${(100 * dSame).toFixed(2)} % differ)`);
+
+  // More than two meshes chosen: two panes, and the status names the files not opened.
+  const status = () => page.$eval('#status', (e) => ({ text: e.textContent, error: e.classList.contains('error') }));
+  s = await pick(file('out.off'), file('out.ply'), file('out.stl'), file('out.obj'));
+  let line = await status();
+  check(s.panes.length === 2 && /out\.stl/.test(line.text) && /out\.obj/.test(line.text) && /not opened/.test(line.text),
+        `of four meshes chosen two open and the status names the other two (${s.panes.map((p) => p.name).join(', ')}; "${line.text}")`);
+  // A file that fails beside one that opens: the error stays in the status line, with the summary.
+  writeFileSync(file('broken.off'), 'OFF\n3 1 0\n0 0 0\n');
+  s = await pick(file('out.off'), file('broken.off'));
+  line = await status();
+  check(s.panes.length === 1 && /broken\.off/.test(s.error ?? '') && line.error && /broken\.off: /.test(line.text) &&
+        /out\.off: \d+ vertices/.test(line.text), `the error of broken.off stays in the status beside out.off's summary ("${line.text}")`);
+  // Its console error is the one expected here, not one for the final check.
+  consoleErrors.splice(0, consoleErrors.length, ...consoleErrors.filter((m) => !m.includes('broken.off')));
 
   // The fields PLYs side by side: each pane wears its own file's colours.
   s = await open(file('fields_start.ply'), file('fields_end.ply'));
