@@ -59,6 +59,18 @@ def mesh_arrays(obj):
     return vertices.reshape(-1, 3), faces.reshape(-1, 3), polygon_of.tolist()
 
 
+def modifier_hint(obj):
+    """For a mesh the library refuses: the run contracts the mesh as stored, before the object's
+    modifiers (they stay, on top of the animation), so a mesh that is closed only with them (half
+    a mesh and a Mirror modifier) is refused as open with faces the user does not see missing. ''
+    when the object has no modifier."""
+    names = [m.name for m in obj.modifiers]
+    if not names:
+        return ""
+    return ("; the run takes {}'s mesh without its modifiers ({}): to contract what they make, "
+            "apply them first (Object > Apply)".format(obj.name, ", ".join(names)))
+
+
 def vertex_group_weights(obj, name):
     group = obj.vertex_groups.get(name)
     if group is None:
@@ -183,6 +195,8 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             return {"CANCELLED"}
         if job.error is not None:
             error = terms(job.error) or type(job.error).__name__
+            if isinstance(job.error, job.module.MeshError):
+                error += modifier_hint(obj)
             s.status = "error: {}".format(error)
             self.report({"ERROR"}, "ShellContract: {}".format(error))
             return {"CANCELLED"}

@@ -37,6 +37,23 @@ def mesh_messages():
           and any({int(edge.group(1)), int(edge.group(2))} <= set(polygons[n].vertices) for n in named),
           "an open mesh is refused naming the mesh's faces that have an open edge ({} around the "
           "hole): {}".format(around, text))
+    check("modifiers" not in text, "an object without modifiers gets no word of them: " + text)
+    # Half a sphere closed by a Mirror modifier: the run takes the mesh as stored (open), so the
+    # refusal says that the modifiers are left out and how to contract what they make.
+    bpy.ops.object.select_all(action="SELECT")
+    bpy.ops.object.delete()
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
+    obj = bpy.context.active_object
+    bm = bmesh.new()
+    bm.from_mesh(obj.data)
+    bmesh.ops.delete(bm, geom=[v for v in bm.verts if v.co.x < -1e-6], context="VERTS")
+    bm.to_mesh(obj.data)
+    bm.free()
+    obj.modifiers.new("Mirror", "MIRROR")
+    text = refusal()
+    check("open boundary" in text and "without its modifiers (Mirror)" in text
+          and "Object > Apply" in text,
+          "a half mesh closed by a Mirror modifier is refused with the modifiers named: " + text)
     # Two cubes that share one corner (the second is the first mirrored through its corner 7): the
     # pinch is a MeshError whose faces are the six quads around vertex 7, each named once.
     corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
