@@ -1,6 +1,7 @@
 // A PLY file kept as a document (docs/design/attributes.md): its header and every
 // element come back byte for byte, but the vertices' x, y, z, which take the new positions in
-// their declared type and the file's format (ascii text, or binary of either byte order). Extra
+// their declared type and the file's format (ascii text, or binary of either byte order), and
+// their nx, ny, nz if the file has them, which take the normals of the new shape. Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other
 // elements are therefore kept. Its callers (the CLI's run, Python's write_mesh(like=...)) read the
 // same file with read_input_mesh first, so the bytes are ones read_ply accepted: the header is
@@ -17,7 +18,10 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <Eigen/Geometry>
 
 #include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
@@ -56,6 +60,10 @@ class PlyDocument final : public MeshDocument {
   std::vector<ply::Element> elements_;
   std::size_t pos_ = 0;
   std::vector<Slot> slots_;  ///< 3 per vertex: x, y, z
+  /// 3 per vertex: nx, ny, nz; empty when a vertex lacks one (the file's normals are then kept)
+  std::vector<Slot> normal_slots_;
+  /// The vertex normals at positions x (see text()); a row of NaN keeps the file's normal.
+  Positions normals(const Positions& x) const;
 };
 
 double PlyDocument::next_value(ply::Type t, Slot& where) {
@@ -131,6 +139,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
       // before anything is reserved for it.
       if (e.count > bytes_.size()) fail("more vertices declared than bytes in the file");
       slots_.resize(3 * e.count);
+      normal_slots_.resize(3 * e.count);
       vertex_count_ = e.count;
     }
     for (std::size_t i = 0; i < e.count; ++i) {
@@ -162,6 +171,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
           slots_[3 * i + 1] = s;
         else if (p.name == "z")
           slots_[3 * i + 2] = s;
+        else if (p.name == "nx" || p.name == "ny" || p.name == "nz")
+          normal_slots_[3 * i + static_cast<std::size_t>(p.name[1] - 'x')] = s;
         else if (static_cast<int>(k) == u_prop)
           u_values.push_back(value);
         else if (static_cast<int>(k) == v_prop)
@@ -177,6 +188,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   }
   for (const Slot& s : slots_)
     if (!s.set) fail("a vertex lacks x, y or z");
+  if (!std::all_of(normal_slots_.begin(), normal_slots_.end(), [](const Slot& s) { return s.set; }))
+    normal_slots_.clear();
   if (u_values.size() == vertex_count_ && v_values.size() == vertex_count_ && vertex_count_ > 0) {
     for (std::size_t i = 0; i < vertex_count_; ++i) uv_.push_back({u_values[i], v_values[i]});
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());  // per-vertex coordinates
@@ -193,22 +206,72 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   }
 }
 
+Positions PlyDocument::normals(const Positions& x) const {
+  // Copies of a seam vertex sit at bitwise the same position (input_positions puts every copy at
+  // its vertex's): they share one normal, so a seam does not show in the shading.
+  std::map<std::array<std::uint64_t, 3>, Eigen::Index> first;
+  std::vector<Eigen::Index> rep(static_cast<std::size_t>(x.rows()));
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    std::array<std::uint64_t, 3> key{};
+    for (int k = 0; k < 3; ++k) {
+      const double c = x(i, k);
+      std::memcpy(&key[static_cast<std::size_t>(k)], &c, sizeof c);
+    }
+    rep[static_cast<std::size_t>(i)] = first.emplace(key, i).first->second;
+  }
+  // Each vertex gets the sum of its polygons' Newell vectors (twice their area along their
+  // normal), as an OBJ's smooth normals do (obj_normals.hpp), in the file's winding.
+  Positions sum = Positions::Zero(x.rows(), 3);
+  for (std::size_t p = 0; p + 1 < polygon_start_.size(); ++p) {
+    const std::size_t b = polygon_start_[p], e = polygon_start_[p + 1];
+    Vec3 newell = Vec3::Zero();
+    for (std::size_t c = b; c < e; ++c) {
+      const std::size_t next = c + 1 < e ? c + 1 : b;
+      if (corner_vertex_[c] >= vertex_count_ || corner_vertex_[next] >= vertex_count_) continue;
+      newell += Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[c])))
+                    .cross(Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[next]))));
+    }
+    for (std::size_t c = b; c < e; ++c)
+      if (corner_vertex_[c] < vertex_count_) sum.row(rep[corner_vertex_[c]]) += newell.transpose();
+  }
+  Positions n(x.rows(), 3);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const Vec3 v = sum.row(rep[static_cast<std::size_t>(i)]);
+    const double len = v.norm();
+    // No area around the vertex (or none at all): its normal stays as the file gave it.
+    const bool ok = len > 0.0 && std::isfinite(len);
+    const Vec3 unit = ok ? Vec3(v / len) : Vec3::Constant(std::nan(""));
+    n.row(i) = unit.transpose();
+  }
+  return n;
+}
+
 std::string PlyDocument::text(const Positions& x) const {
   if (static_cast<std::size_t>(x.rows()) != vertex_count_)
     throw std::invalid_argument("PlyDocument::text: " + std::to_string(x.rows()) +
                                 " positions for " + std::to_string(vertex_count_) + " vertices");
   if (!x.allFinite()) throw std::invalid_argument("PlyDocument::text: a position is not finite");
+  // Every value to write with its place: the positions, then the normals that have one.
+  std::vector<std::pair<const Slot*, double>> values;
+  values.reserve(slots_.size() + normal_slots_.size());
+  for (std::size_t k = 0; k < slots_.size(); ++k)
+    values.emplace_back(&slots_[k],
+                        x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3)));
+  if (!normal_slots_.empty()) {
+    const Positions n = normals(x);
+    for (std::size_t k = 0; k < normal_slots_.size(); ++k) {
+      const double v = n(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
+      if (std::isfinite(v)) values.emplace_back(&normal_slots_[k], v);
+    }
+  }
   std::string out;
-  out.reserve(bytes_.size() + (ascii_ ? 24 * slots_.size() : 0));
+  out.reserve(bytes_.size() + (ascii_ ? 24 * values.size() : 0));
   // In file order (a header may declare z before x).
-  std::vector<std::size_t> order(slots_.size());
-  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return slots_[a].begin < slots_[b].begin; });
+  std::sort(values.begin(), values.end(),
+            [](const auto& a, const auto& b) { return a.first->begin < b.first->begin; });
   std::size_t at = 0;
-  for (const std::size_t k : order) {
-    const Slot& s = slots_[k];
-    const double v = x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
+  for (const auto& [slot, v] : values) {
+    const Slot& s = *slot;
     out.append(bytes_, at, s.begin - at);
     at = s.end;
     const int size = ply::size_of(s.type);

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
 #include "mesh/ply_reader.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -213,6 +215,50 @@ TEST(PlyDocument, TextureCoordinatesPerFaceCornerAreRead) {
   bad.replace(bad.rfind(" 9\n"), 3, " 0 0 9\n");
   const auto wrong_count = parse_ply_document("wrong_count.ply", bad);
   EXPECT_TRUE(wrong_count->texcoords(mesh).empty());
+}
+
+}  // namespace
+}  // namespace shellcontract
+
+namespace shellcontract {
+namespace {
+
+TEST(PlyDocument, NormalsAreThoseOfTheNewShape) {
+  // A tetrahedron whose nx, ny, nz (double, between y and z and after a colour, so that the
+  // slots are not contiguous) all say +z: the output's are each vertex's normalized sum of its
+  // faces' cross products at the moved positions, computed here from the faces; every other
+  // token is kept. Fails with the normals left as read (the document's former behaviour) or
+  // taken at the rest positions.
+  std::ostringstream o;
+  o << "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+       "property double nx\nproperty float z\nproperty uchar red\nproperty double ny\n"
+       "property double nz\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 4; ++i)
+    o << TET[i][0] << ' ' << TET[i][1] << " 0 " << TET[i][2] << ' ' << 10 * i << " 0 1\n";
+  for (const auto& f : TET_FACES) o << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+  const std::string in = o.str();
+  const auto doc = parse_ply_document("tet.ply", in);
+  const Positions y = moved_tet();
+  const std::string out = doc->text(y);
+  const std::string body = out.substr(out.find("end_header\n") + 11);
+  const std::vector<std::string> t = tokens(body);
+  ASSERT_EQ(t.size(), 4u * 7u + 4u * 4u);
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const auto& f : TET_FACES)
+      if (f[0] == i || f[1] == i || f[2] == i) {
+        const Eigen::Vector3d a = y.row(f[0]), b = y.row(f[1]), c = y.row(f[2]);
+        sum += (b - a).cross(c - a);
+      }
+    const Eigen::Vector3d want = sum.normalized();
+    const std::size_t at = 7 * static_cast<std::size_t>(i);
+    const Eigen::Vector3d got(std::stod(t[at + 2]), std::stod(t[at + 5]), std::stod(t[at + 6]));
+    EXPECT_NEAR((got - want).norm(), 0.0, 1e-12) << "vertex " << i;
+    EXPECT_EQ(std::stof(t[at]), static_cast<float>(y(i, 0)));
+    EXPECT_EQ(t[at + 4], std::to_string(10 * i));
+  }
+  EXPECT_EQ(std::vector<std::string>(t.begin() + 28, t.end()),
+            tokens(in.substr(in.rfind("3 0 2 1"))));
 }
 
 }  // namespace
