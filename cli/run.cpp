@@ -46,14 +46,15 @@ namespace {
 
 constexpr const char* RUN_USAGE =
     "usage: shellcontract run INPUT -o OUTPUT [options]\n\n"
-    "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL) like a thin elastic shell under an\n"
-    "outside pressure. The mesh is normalized to a unit bounding-box diagonal for the\n"
-    "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
+    "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL, glTF .glb/.gltf) like a thin elastic\n"
+    "shell under an outside pressure. The mesh is normalized to a unit bounding-box diagonal for\n"
+    "the simulation (lengths and pressure below are in those units) and scaled back on output.\n"
     "Output keeps the input's vertex and face order. An OBJ or PLY output (and frame) of an input\n"
     "of the same format is the input file with new positions (OBJ: and normals): UVs, groups,\n"
     "materials, polygons and extra PLY properties are kept (docs/design/attributes.md). A mesh\n"
     "open only because its vertices are split along UV seams (copies at the same position) is\n"
-    "welded for the simulation; the outputs keep every copy.\n\noutputs and general";
+    "welded for the simulation; the outputs keep every copy. A glTF input is read as the\n"
+    "triangles its default scene draws, at their world positions (node transforms applied).\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
