@@ -1,8 +1,6 @@
 // Reading a glTF 2.0 file into a triangle soup (gltf_reader.hpp).
 #include "mesh/gltf_reader.hpp"
 
-#include <tiny_gltf.h>
-
 #include <Eigen/Geometry>
 
 #include <cstdint>
@@ -13,6 +11,7 @@
 #include <sstream>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/gltf_model.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -75,8 +74,11 @@ bool no_write(std::string* err, const std::string&, const std::vector<unsigned c
   if (err) *err += "writing is not done by the reader";
   return false;
 }
-/// Images are not the reader's business: they are kept as bytes (a glb's buffer views), never decoded.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+/// Images are never decoded. One in a buffer view stays there; one in a data URI (tinygltf
+/// decodes the base64 and drops the URI) keeps its encoded bytes in `image`, so that the glTF
+/// document can write it back (gltf_document.cpp).
+bool skip_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
   return true;
 }
 
@@ -88,12 +90,9 @@ bool changes_geometry(const std::string& ext) {
   return true;
 }
 
-/// An accessor's elements, every one inside its buffer (checked).
-struct ElementView {
-  const unsigned char* first = nullptr;
-  std::size_t stride = 0;
-  std::size_t count = 0;
-};
+}  // namespace
+
+namespace gltf {
 
 ElementView element_view(const std::string& path, const tinygltf::Model& m, int index, const std::string& what,
                          std::size_t element_size) {
@@ -130,11 +129,19 @@ ElementView element_view(const std::string& path, const tinygltf::Model& m, int 
                                               std::to_string(room) + " bytes)");
   }
   ElementView out;
-  out.first = m.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+  out.buffer = static_cast<std::size_t>(v.buffer);
+  out.offset = v.byteOffset + a.byteOffset;
   out.stride = stride;
   out.count = a.count;
   return out;
 }
+
+}  // namespace gltf
+
+namespace {
+
+using gltf::element_view;
+using gltf::ElementView;
 
 /// A node's local transform: its matrix, or translation * rotation * scale (glTF's order).
 Eigen::Matrix4d local_transform(const std::string& path, const tinygltf::Node& n, std::size_t index) {
@@ -206,7 +213,7 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
     corners.resize(idx.count);
     for (std::size_t i = 0; i < idx.count; ++i) {
       std::uint32_t v = 0;
-      const unsigned char* b = idx.first + i * idx.stride;
+      const unsigned char* b = idx.at(m, i);
       for (std::size_t k = size; k-- > 0;) v = (v << 8) | b[k];  // little-endian
       if (v >= xyz.count)
         fail(path, "vertex index out of range", name + " triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(v) +
@@ -224,7 +231,7 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
     if (vertex_of[i] == SIZE_MAX) continue;
     vertex_of[i] = soup.points.size();
     float f[3];
-    std::memcpy(f, xyz.first + i * xyz.stride, sizeof f);
+    std::memcpy(f, xyz.at(m, i), sizeof f);
     const Eigen::Vector4d w = world * Eigen::Vector4d(f[0], f[1], f[2], 1.0);
     soup.points.push_back({w[0], w[1], w[2]});
     soup.sources.push_back({primitive_ordinal, i});
@@ -239,7 +246,9 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
   }
 }
 
-tinygltf::Model load_model(const std::string& path, const std::string& bytes) {
+}  // namespace
+
+tinygltf::Model gltf::load_model(const std::string& path, const std::string& bytes) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) fail(path, "too large", "a glTF file holds at most 4 GiB");
   const bool binary = bytes.compare(0, 4, "glTF") == 0;
   if (binary) check_glb_container(path, bytes);
@@ -269,10 +278,7 @@ tinygltf::Model load_model(const std::string& path, const std::string& bytes) {
   return m;
 }
 
-}  // namespace
-
-GltfSoup read_gltf(const std::string& path, const std::string& bytes) {
-  const tinygltf::Model m = load_model(path, bytes);
+GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m, std::vector<Eigen::Matrix4d>* world_of) {
   for (const std::string& e : m.extensionsRequired)
     if (changes_geometry(e)) fail(path, "unsupported extension", "the file requires " + e + ", which is not read");
   if (m.scenes.empty()) fail(path, "no scene", "the file has no scene, so nothing is drawn");
@@ -309,11 +315,16 @@ GltfSoup read_gltf(const std::string& path, const std::string& bytes) {
       for (std::size_t p = 0; p < m.meshes[mi].primitives.size(); ++p) {
         read_primitive(path, m, mi, p, world, soup.drawn.size(), soup);
         soup.drawn.push_back({k, mi, p});
+        if (world_of) world_of->push_back(world);
       }
     }
     for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) push(*c, world, "node " + std::to_string(k) + "'s children");
   }
   return soup;
+}
+
+GltfSoup read_gltf(const std::string& path, const std::string& bytes) {
+  return gltf::scene_soup(path, gltf::load_model(path, bytes));
 }
 
 }  // namespace shellcontract

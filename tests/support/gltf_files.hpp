@@ -16,6 +16,7 @@ namespace shellcontract::test {
 struct GltfPrimitive {
   std::vector<std::array<float, 3>> positions;
   std::vector<std::array<float, 2>> texcoords;  ///< TEXCOORD_0 when not empty
+  std::vector<std::array<float, 3>> normals;    ///< NORMAL when not empty
   std::vector<std::uint32_t> indices;           ///< none: an unindexed triangle list
   int index_type = 5125;                        ///< 5121 unsigned byte, 5123 short, 5125 int
   int mode = -1;                                ///< -1: no "mode" (triangles)
@@ -25,6 +26,7 @@ struct GltfScene {
   std::vector<GltfPrimitive> primitives;
   std::string node_transform;  ///< JSON members of the node, e.g. "\"translation\":[1,0,0]"
   std::string extra;           ///< JSON members at the top level, e.g. "\"extensionsRequired\":[...]"
+  std::string png;             ///< not empty: material 0, textured with this image (a buffer view), on every primitive
 };
 
 /// The JSON and the binary buffer of the scene (the buffer's byteLength is the BIN's size).
@@ -66,7 +68,13 @@ inline GltfParts gltf_parts(const GltfScene& s) {
       for (const auto& t : p.texcoords) gltf_put(bin, t.data(), 8);
       prim += ",\"TEXCOORD_0\":" + std::to_string(add(at, bin.size() - at, p.texcoords.size(), 5126, "VEC2", ""));
     }
+    if (!p.normals.empty()) {
+      at = bin.size();
+      for (const auto& n : p.normals) gltf_put(bin, n.data(), 12);
+      prim += ",\"NORMAL\":" + std::to_string(add(at, bin.size() - at, p.normals.size(), 5126, "VEC3", ""));
+    }
     prim += "}";
+    if (!s.png.empty()) prim += ",\"material\":0";
     if (!p.indices.empty()) {
       at = bin.size();
       const std::size_t size = p.index_type == 5121 ? 1 : p.index_type == 5123 ? 2 : 4;
@@ -78,12 +86,21 @@ inline GltfParts gltf_parts(const GltfScene& s) {
     if (p.mode >= 0) prim += ",\"mode\":" + std::to_string(p.mode);
     prims += (prims.empty() ? "" : ",") + prim + "}";
   }
+  std::string material;
+  if (!s.png.empty()) {
+    const std::size_t at = bin.size();
+    bin += s.png;
+    views += ",{\"buffer\":0,\"byteOffset\":" + std::to_string(at) + ",\"byteLength\":" + std::to_string(s.png.size()) + "}";
+    material = ",\"materials\":[{\"name\":\"skin\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},\"metallicFactor\":0}}]"
+               ",\"textures\":[{\"source\":0}],\"images\":[{\"bufferView\":" + std::to_string(next) + ",\"mimeType\":\"image/png\"}]";
+    gltf_align4(bin);
+  }
   GltfParts out;
   out.bin = bin;
   out.json = "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0" +
              std::string(s.node_transform.empty() ? "" : "," + s.node_transform) + "}],\"meshes\":[{\"primitives\":[" + prims +
              "]}],\"accessors\":[" + accessors + "],\"bufferViews\":[" + views + "],\"buffers\":[{\"byteLength\":" +
-             std::to_string(bin.size()) + "%URI%}]" + (s.extra.empty() ? "" : "," + s.extra) + "}";
+             std::to_string(bin.size()) + "%URI%}]" + material + (s.extra.empty() ? "" : "," + s.extra) + "}";
   return out;
 }
 
@@ -140,7 +157,8 @@ inline std::string gltf_text(const GltfParts& parts, const std::string& external
   return replace_uri(parts.json, external_bin.empty() ? "data:application/octet-stream;base64," + base64(parts.bin) : external_bin);
 }
 
-/// The octahedron of radius 1 at the origin, outward, indexed; `split_seam`: vertex 0 (+x) has a
+/// The octahedron of radius 1 at the origin, outward, indexed, with (`texcoords`) texture
+/// coordinates and normals; `split_seam`: vertex 0 (+x) has a
 /// second copy (index 6) used by the faces on the -y side, with its own texture coordinate, as
 /// exporters split a vertex on a UV seam.
 inline GltfPrimitive octahedron_primitive(bool split_seam, bool texcoords) {
@@ -148,9 +166,10 @@ inline GltfPrimitive octahedron_primitive(bool split_seam, bool texcoords) {
   p.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   p.indices = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
   if (texcoords) p.texcoords = {{0.0f, 0.5f}, {0.5f, 0.5f}, {0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.0f}, {0.75f, 1.0f}};
+  if (texcoords) p.normals = p.positions;  // unit already: the vertex normals of the octahedron
   if (split_seam) {
     p.positions.push_back({1, 0, 0});
-    if (texcoords) p.texcoords.push_back({1.0f, 0.5f});
+    if (texcoords) p.texcoords.push_back({1.0f, 0.5f}), p.normals.push_back({1, 0, 0});
     p.indices[10] = 6;  // face 3 (3 0 4)
     p.indices[21] = 6;  // face 7 (0 3 5)
   }
