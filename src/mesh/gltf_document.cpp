@@ -65,6 +65,11 @@ class GltfDocument final : public MeshDocument {
         throw InputError(path + ": not writable with new positions: accessor " + std::to_string(pos) + " (mesh " +
                          std::to_string(soup_.drawn[d].mesh) + ") is drawn by node " + std::to_string(it->second) + " and node " +
                          std::to_string(soup_.drawn[d].node) + ", which the shell moves apart");
+      // New positions are brought back into node space through the inverse transform.
+      to_local_.push_back(world_[d].inverse());
+      if (!(world_[d].topLeftCorner<3, 3>().determinant() != 0.0) || !to_local_.back().allFinite())
+        throw InputError(path + ": not writable with new positions: node " + std::to_string(soup_.drawn[d].node) +
+                         "'s world transform has no inverse (a scale of 0?)");
       const std::string name = "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " + std::to_string(soup_.drawn[d].primitive);
       positions_.push_back({gltf::element_view(path, model_, pos, name + " POSITION", 12), pos});
       const std::size_t count = positions_.back().view.count;
@@ -82,11 +87,9 @@ class GltfDocument final : public MeshDocument {
                                   std::to_string(vertex_count_) + " vertices");
     if (!x.allFinite()) throw std::invalid_argument("GltfDocument::text: a coordinate is not finite");
     tinygltf::Model m = model_;
-    std::vector<Eigen::Matrix4d> to_local(world_.size());
-    for (std::size_t d = 0; d < world_.size(); ++d) to_local[d] = world_[d].inverse();
     for (std::size_t v = 0; v < vertex_count_; ++v) {
       const auto& s = soup_.sources[v];
-      const Eigen::Vector4d l = to_local[s.drawn] * Eigen::Vector4d(x(static_cast<Eigen::Index>(v), 0), x(static_cast<Eigen::Index>(v), 1),
+      const Eigen::Vector4d l = to_local_[s.drawn] * Eigen::Vector4d(x(static_cast<Eigen::Index>(v), 0), x(static_cast<Eigen::Index>(v), 1),
                                                                       x(static_cast<Eigen::Index>(v), 2), 1.0);
       put_floats(m, positions_[s.drawn].view, s.element, {l[0], l[1], l[2]});
     }
@@ -203,7 +206,7 @@ class GltfDocument final : public MeshDocument {
   bool binary_;
   tinygltf::Model model_;
   GltfSoup soup_;
-  std::vector<Eigen::Matrix4d> world_;  ///< per drawn primitive
+  std::vector<Eigen::Matrix4d> world_, to_local_;  ///< per drawn primitive: node space to world and back
   std::vector<Written> positions_, normals_, texcoords_;  ///< per drawn primitive
 };
 

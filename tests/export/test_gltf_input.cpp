@@ -15,6 +15,7 @@
 #include "shellcontract/mesh_io.hpp"
 #include "support/cli_runner.hpp"
 #include "support/gltf_files.hpp"
+#include "support/multi_material_sphere.hpp"
 #include "support/textured_octahedron.hpp"
 
 namespace shellcontract {
@@ -120,6 +121,28 @@ TEST(GltfInput, AGltfResultAndTheRunsAnimationKeepTexcoords) {
     EXPECT_FLOAT_EQ(uv(i, 0), src.texcoords[static_cast<std::size_t>(i)][0]) << i;
     EXPECT_FLOAT_EQ(uv(i, 1), src.texcoords[static_cast<std::size_t>(i)][1]) << i;
   }
+}
+
+// The tool's own animated .glb of a multi-material OBJ: four primitives sharing one POSITION
+// accessor (each bringing the vertices it draws), morph targets, colour fields, an animation and
+// an embedded texture. Run again, it keeps every one of them.
+TEST(GltfInput, TheToolsOwnAnimatedGlbRunsAgainAndKeepsItsPrimitives) {
+  ScratchDir dir("gltf_input_own");
+  const std::string obj = test::write_multi_material_sphere(dir.str(), "sphere");
+  auto r = test::run_cli({"run", obj, "-o", dir.file("a.obj"), "-n", "3", "-q", "--gltf", dir.file("a.glb")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  r = test::run_cli({"run", dir.file("a.glb"), "-o", dir.file("b.glb"), "-n", "10", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const tinygltf::Model a = test::load_glb(dir.file("a.glb")), b = test::load_glb(dir.file("b.glb"));
+  ASSERT_EQ(b.meshes.at(0).primitives.size(), a.meshes.at(0).primitives.size());
+  for (std::size_t p = 0; p < a.meshes[0].primitives.size(); ++p) {
+    EXPECT_EQ(b.meshes[0].primitives[p].material, a.meshes[0].primitives[p].material) << p;
+    EXPECT_EQ(b.meshes[0].primitives[p].targets.size(), a.meshes[0].primitives[p].targets.size()) << p;
+  }
+  EXPECT_EQ(attribute(a, "TEXCOORD_0"), attribute(b, "TEXCOORD_0"));
+  EXPECT_EQ(b.animations.size(), a.animations.size());
+  EXPECT_EQ(b.images.size(), a.images.size());
+  EXPECT_GT((attribute(a, "POSITION") - attribute(b, "POSITION")).cwiseAbs().maxCoeff(), 1e-4f);
 }
 
 TEST(GltfInput, WhatCannotBeWrittenAsGltfIsRefusedBeforeTheRun) {
