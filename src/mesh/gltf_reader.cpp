@@ -84,6 +84,9 @@ bool skip_image(tinygltf::Image* image, const int, std::string*, std::string*, i
 
 /// A required extension that the reader would have to apply to get the geometry right: anything
 /// but materials, textures and lights (which change how it looks, not where its vertices are).
+/// Only extensionsRequired is consulted: an extension a file uses without requiring it has a
+/// fallback by the spec (Draco's uncompressed accessors, one instance for GPU instancing), which
+/// is what is read, as by any renderer without the extension.
 bool changes_geometry(const std::string& ext) {
   for (const char* harmless : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "KHR_lights_punctual", "MSFT_texture_dds"})
     if (ext.rfind(harmless, 0) == 0) return false;
@@ -178,8 +181,6 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
     fail(path, "not triangles", name + ": mode " + std::to_string(prim.mode) + " (" +
                                     (prim.mode >= 0 && prim.mode < 7 ? MODES[prim.mode] : "not a glTF mode") +
                                     ") is not triangles (mode 4); export the mesh as triangles");
-  for (const auto& e : prim.extensions)
-    if (changes_geometry(e.first)) fail(path, "unsupported extension", name + " uses " + e.first + ", which is not read (export without compression)");
   const auto pos = prim.attributes.find("POSITION");
   if (pos == prim.attributes.end()) fail(path, "no positions", name + " has no POSITION attribute");
   const std::string pos_name = name + " POSITION";
@@ -280,7 +281,8 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
 
 GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m, std::vector<Eigen::Matrix4d>* world_of) {
   for (const std::string& e : m.extensionsRequired)
-    if (changes_geometry(e)) fail(path, "unsupported extension", "the file requires " + e + ", which is not read");
+    if (changes_geometry(e))
+      fail(path, "unsupported extension", "the file requires " + e + ", which is not read (export without it: no compression, no quantization, no GPU instancing)");
   if (m.scenes.empty()) fail(path, "no scene", "the file has no scene, so nothing is drawn");
   const int scene = m.defaultScene >= 0 ? m.defaultScene : 0;
   if (static_cast<std::size_t>(scene) >= m.scenes.size())
@@ -305,8 +307,6 @@ GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m, std
     const auto [k, world] = stack.back();
     stack.pop_back();
     const tinygltf::Node& node = m.nodes[k];
-    for (const auto& e : node.extensions)
-      if (changes_geometry(e.first)) fail(path, "unsupported extension", "node " + std::to_string(k) + " uses " + e.first + ", which is not read");
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size())
         fail(path, "mesh out of range", "node " + std::to_string(k) + " names mesh " + std::to_string(node.mesh) + ", but the file has " +

@@ -187,6 +187,17 @@ TEST_F(GltfReader, RefusesMalformedFilesNamingTheProblem) {
   expect(glb("not3.glb", shorts), {"bad triangle list", "23 indices"});
 }
 
+TEST_F(GltfReader, AnExtensionUsedButNotRequiredReadsTheFallback) {
+  // Draco with the uncompressed accessors beside it (the spec's fallback): those are read.
+  GltfScene s = octahedron();
+  s.extra = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"]";
+  test::GltfParts parts = test::gltf_parts(s);
+  const std::string attrs = "{\"attributes\":{\"POSITION\":0}";
+  parts.json.replace(parts.json.find(attrs), attrs.size(),
+                     "{\"attributes\":{\"POSITION\":0},\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":0,\"attributes\":{\"POSITION\":0}}}");
+  EXPECT_EQ(read_input_mesh(write("fallback.glb", test::glb_bytes(parts))).number_of_faces(), 8u);
+}
+
 TEST_F(GltfReader, AMaterialOnlyRequiredExtensionIsRead) {
   GltfScene s = octahedron();
   s.extra = "\"extensionsUsed\":[\"KHR_materials_unlit\"],\"extensionsRequired\":[\"KHR_materials_unlit\"]";
