@@ -34,9 +34,9 @@ namespace po = boost::program_options;
 
 constexpr const char* CHECK_USAGE = R"(usage: shellcontract check MESH [--json] [--against INPUT] [--fail-on-self-intersections]
 
-Reads MESH (.off, .obj, .ply, .stl) with the same checks as 'run' and reports: vertices, faces,
-edges, connected components, Euler characteristic and genus, closed, manifold, enclosed volume,
-bounding-box diagonal, zero-area faces and self-intersecting face pairs.
+Reads MESH (.off, .obj, .ply, .stl, .glb, .gltf) with the same checks as 'run' and reports:
+vertices, faces, edges, connected components, Euler characteristic and genus, closed, manifold,
+enclosed volume, bounding-box diagonal, zero-area faces and self-intersecting face pairs.
 Polygons are triangulated and inside-out components flipped, as 'run' would (see the warnings;
 with --against, each warning names its file, MESH or INPUT).
 With --against, MESH is a result of 'run' on INPUT (same vertices and faces, moved): the face

@@ -46,14 +46,16 @@ namespace {
 
 constexpr const char* RUN_USAGE =
     "usage: shellcontract run INPUT -o OUTPUT [options]\n\n"
-    "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL) like a thin elastic shell under an\n"
-    "outside pressure. The mesh is normalized to a unit bounding-box diagonal for the\n"
-    "simulation (lengths and pressure below are in those units) and scaled back on output.\n"
+    "Contracts a closed triangle mesh (OFF, OBJ, PLY, STL, glTF .glb/.gltf) like a thin elastic\n"
+    "shell under an outside pressure. The mesh is normalized to a unit bounding-box diagonal for\n"
+    "the simulation (lengths and pressure below are in those units) and scaled back on output.\n"
     "Output keeps the input's vertex and face order. An OBJ or PLY output (and frame) of an input\n"
     "of the same format is the input file with new positions (OBJ: and normals): UVs, groups,\n"
-    "materials, polygons and extra PLY properties are kept (docs/design/attributes.md). A mesh\n"
-    "open only because its vertices are split along UV seams (copies at the same position) is\n"
-    "welded for the simulation; the outputs keep every copy.\n\noutputs and general";
+    "materials, polygons and extra PLY properties are kept (docs/design/attributes.md); so is a\n"
+    "glTF output of a glTF input (.glb to .glb, .gltf to .gltf: nodes, materials, textures, UVs\n"
+    "kept; new positions and normals). A glTF input is read as the triangles its default scene\n"
+    "draws, at their world positions. A mesh open only because its vertices are split along UV\n"
+    "seams (copies at the same position) is welded for the simulation; the outputs keep every copy.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
@@ -118,7 +120,7 @@ int command_run(int argc, char** argv) {
   po::options_description desc(RUN_USAGE, 100, 50);
   desc.add_options()("help,h", "show this help")(
       "output,o", po::value(&output)->value_name("FILE"),
-      "output mesh (format from the extension: off, obj, ply, stl)")(
+      "output mesh (format from the extension: off, obj, ply, stl; glb or gltf for an input of that format)")(
       "repair", po::bool_switch(&repair),
       "repair the input first if 'check' refuses it (as 'shellcontract repair' does; the output "
       "then has the repaired mesh's vertices and faces)");
@@ -207,11 +209,19 @@ int command_run(int argc, char** argv) {
       std::cerr << "warning: --export-failure has no effect: it is what a failed frame file of "
                    "--export-dir or --gltf does\n";
     const std::string ext = lower_extension(output);
-    if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
+    const bool gltf_output = ext == "glb" || ext == "gltf";
+    if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && !gltf_output)
       throw UsageError("-o " + quoted_path(output) +
                        (ext.empty() ? std::string(": no file extension to name the mesh format")
                                     : ": unknown mesh format '." + printable(ext) + "'") +
-                       " (expected .off, .obj, .ply or .stl)");
+                       " (expected .off, .obj, .ply, .stl, or .glb / .gltf for an input of that format)");
+    // A glTF result is the input glTF with new positions (its document): there is no glTF writer
+    // of a bare mesh, and frames would be one whole file each (--gltf animates the run instead).
+    if (gltf_output && lower_extension(input) != ext)
+      throw UsageError("-o " + quoted_path(output) + ": a ." + ext + " result is written only for a ." + ext +
+                       " input (the input with new positions); for a glTF of the run, use --gltf FILE.glb");
+    if (gltf_output && !exports.dir.empty())
+      throw UsageError("--export-dir: frames are not written as ." + ext + " files; use --gltf FILE.glb for the frames");
     OutputPlan plan;
     std::vector<PlannedOutput>& planned = plan.outputs;
     planned.push_back({"-o", output});
@@ -316,6 +326,11 @@ int command_run(int argc, char** argv) {
         std::cerr << '\n';
         document.reset();
       }
+      // Checked before the run: a result that cannot be written is not worth computing.
+      if (!document && (lower_extension(output) == "glb" || lower_extension(output) == "gltf"))
+        throw InputError(input + ": the ." + lower_extension(output) +
+                         " result would be this file with new positions, and it cannot be written so (see the warning above); "
+                         "choose an .obj, .ply, .off or .stl output");
     }
     ObserverList observers;
     WarningPrinter warnings;

@@ -198,7 +198,7 @@ struct FaceMaterials {
 class MeshDocument {
  public:
   virtual ~MeshDocument() = default;
-  /// "obj" or "ply": the extension of the files this document writes.
+  /// "obj", "ply", "glb" or "gltf": the extension of the files this document writes.
   virtual std::string format() const = 0;
   /// The whole file with the vertex positions x (#V by 3, input units); everything else as read.
   /// A welded mesh's positions are given as input_positions(mesh, x).
@@ -248,8 +248,8 @@ class MeshDocument {
   FaceMaterials materials_;                 ///< names, libraries, source (face_material unused)
 };
 
-/// The document of an OBJ or PLY file (by extension); nullptr for OFF and STL, which hold
-/// nothing besides positions and faces.
+/// The document of an OBJ, PLY, .glb or .gltf file (by extension); nullptr for OFF and STL, which
+/// hold nothing besides positions and faces.
 /// @throws InputError naming the file and line if it cannot be read as a document
 std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path);
 
@@ -268,6 +268,15 @@ std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name, const 
 /// for byte, but the vertices' x, y, z, written in their declared types and the file's format.
 /// @throws InputError "<name>: <problem>: ..." for a file it cannot read
 std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const std::string& bytes);
+
+/// A glTF file's bytes as a document (src/mesh/gltf_document.cpp): the file serialized again by
+/// tinygltf with each vertex's new position, in its primitive's node space (nodes, materials,
+/// textures, texture coordinates kept), and new normals where the primitive has float normals.
+/// Its vertices and triangles are read_input_mesh's (before welding).
+/// @param binary write a .glb (format() "glb"); else a .gltf with its buffers embedded ("gltf")
+/// @throws InputError for a file read_input_mesh refuses, or one whose POSITION accessor is
+///         drawn by two nodes (the file cannot hold both once the shell has moved them apart)
+std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes, bool binary);
 
 /// Writes doc.text_for(path, x, warnings) to `path` atomically (write_text_atomic): an OBJ
 /// written to another folder than its input's names the same material libraries.

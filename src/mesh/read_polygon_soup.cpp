@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/gltf_reader.hpp"
 #include "mesh/obj_scan.hpp"
 #include "mesh/ply_reader.hpp"
 #include "mesh/stl_diagnosis.hpp"
@@ -58,6 +59,13 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
     polygons = std::move(d.faces);
     lines.vertex_line = std::move(d.vertex_line);
     lines.face_line = std::move(d.face_line);
+    return;
+  }
+  if (ext == "glb" || ext == "gltf") {  // .gltf is JSON, .glb binary: the reader tells them by their first bytes
+    GltfSoup g = read_gltf(path, bytes);
+    points.reserve(g.points.size());
+    for (const auto& p : g.points) points.emplace_back(p[0], p[1], p[2]);
+    polygons = std::move(g.faces);
     return;
   }
   if (ext != "stl") normalize_text(bytes);

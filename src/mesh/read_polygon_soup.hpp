@@ -13,13 +13,14 @@ namespace shellcontract {
 /// The whole file's bytes. @throws InputError naming the file if it is missing, a folder or unreadable
 std::string read_file_bytes(const std::string& path);
 
-/// Reads the points and polygons of an OFF, OBJ, PLY or STL file in file order, with the line of
-/// each vertex and face where the format and reader know it (OBJ, ascii OFF and PLY). OFF is read
-/// by scan_off (ascii and binary), OBJ by scan_obj, PLY by read_ply, STL by CGAL (a file it refuses
-/// by diagnose_stl, for the message's line or byte); OFF and OBJ may start with a
-/// UTF-8 byte-order mark and use "\r" line ends. Nothing is allocated from a declared count that the
+/// Reads the points and polygons of an OFF, OBJ, PLY, STL or glTF (.glb, .gltf) file in file
+/// order, with the line of each vertex and face where the format and reader know it (OBJ, ascii
+/// OFF and PLY). OFF is read by scan_off (ascii and binary), OBJ by scan_obj, PLY by read_ply, STL
+/// by CGAL (a file it refuses by diagnose_stl, for the message's line or byte), glTF by read_gltf
+/// (world positions, seam copies left split); OFF and OBJ may start with a UTF-8 byte-order mark
+/// and use "\r" line ends. Nothing is allocated from a declared count that the
 /// file's size does not bound.
-/// @param ext lower-case extension without the dot: "off", "obj", "ply" or "stl"
+/// @param ext lower-case extension without the dot: "off", "obj", "ply", "stl", "glb" or "gltf"
 /// @param warnings  if given, gets what was read past (an OFF's lines after its declared faces)
 /// @throws InputError "<path>: <problem>: <where>" if the file cannot be read as such
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,

@@ -10,12 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "support/gltf_files.hpp"
+
 namespace shellcontract::test {
 
 /// One valid input file: its extension (which picks the reader) and its bytes.
 struct SeedFile {
   std::string name;  ///< unique, for messages
-  std::string ext;   ///< "off", "obj", "ply", "stl"
+  std::string ext;   ///< "off", "obj", "ply", "stl", "glb", "gltf"
   std::string bytes;
 };
 
@@ -127,8 +129,20 @@ inline std::string octa_stl_binary() {
   return s;
 }
 
+/// The octahedron as one indexed glTF primitive (unsigned short indices).
+inline GltfParts octa_gltf_parts() {
+  GltfScene s;
+  GltfPrimitive p;
+  for (const auto& x : OCTA_POINTS) p.positions.push_back({static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2])});
+  for (const auto& f : OCTA_FACES)
+    for (int v : f) p.indices.push_back(static_cast<std::uint32_t>(v));
+  p.index_type = 5123;
+  s.primitives.push_back(p);
+  return gltf_parts(s);
+}
+
 /// Every seed file: OFF (ascii and binary), OBJ, PLY (ascii and both binary byte orders, float, double and integer
-/// coordinates), STL ascii and binary.
+/// coordinates), STL ascii and binary, glTF binary (.glb) and JSON with a data URI (.gltf).
 inline std::vector<SeedFile> seed_files() {
   return {
       {"off", "off", octa_off()},
@@ -142,6 +156,8 @@ inline std::vector<SeedFile> seed_files() {
       {"ply_binary_be_short", "ply", octa_ply_binary(true, "short", 2, "uint8", 1, "int32", 4)},
       {"stl_ascii", "stl", octa_stl_ascii()},
       {"stl_binary", "stl", octa_stl_binary()},
+      {"glb", "glb", glb_bytes(octa_gltf_parts())},
+      {"gltf", "gltf", gltf_text(octa_gltf_parts())},
   };
 }
 

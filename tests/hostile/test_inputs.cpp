@@ -8,6 +8,7 @@
 #include <regex>
 
 #include "hostile/hostile_support.hpp"
+#include "support/gltf_files.hpp"
 
 namespace shellcontract {
 namespace {
@@ -37,6 +38,29 @@ TEST_F(Hostile, AFifoAsTheMeshIsRefusedAtOnce) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("FIFO"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "o.off"));
+}
+
+// A .gltf's external buffer is read like the mesh: a FIFO or a device named by its uri is refused
+// at once. tinygltf's own file callbacks would have opened the FIFO to see whether it exists
+// (waiting for a writer forever) and read /dev/zero until memory ran out. Before the glTF
+// reader: "unknown extension '.gltf'".
+TEST_F(Hostile, AFifoOrADeviceAsAGltfBufferIsRefusedAtOnce) {
+  test::GltfScene s;
+  s.primitives.push_back(test::octahedron_primitive(false, false));
+  const test::GltfParts parts = test::gltf_parts(s);
+  ASSERT_EQ(::mkfifo((dir_ / "fifo.bin").c_str(), 0666), 0);
+  test::spit(dir_ / "fifo.gltf", test::gltf_text(parts, "fifo.bin"));
+  auto r = bounded_cli({"run", (dir_ / "fifo.gltf").string(), "-o", (dir_ / "o.off").string(), "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("fifo.bin"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("FIFO"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "o.off"));
+  std::string why;
+  if (!make_device(dir_ / "zero.bin", 5, why)) GTEST_SKIP() << why;
+  test::spit(dir_ / "zero.gltf", test::gltf_text(parts, "zero.bin"));
+  r = bounded_cli({"check", (dir_ / "zero.gltf").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
 }
 
 // Before: a folder as --regions FILE, and /dev/zero as one, were read with getline.

@@ -1,0 +1,219 @@
+// A glTF input as a document (docs/design/attributes.md, "glTF"): the parsed file, written back
+// with each vertex's new position (and, where the file has them, new normals); everything else
+// (texture coordinates, materials, textures, nodes, names, extras) is serialized as read.
+// Positions are stored in the primitive's node space, so the node transforms stay as they were.
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "mesh/gltf_model.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+
+namespace shellcontract {
+namespace {
+
+std::string base64(const std::vector<unsigned char>& in) {
+  static const char* const A = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    const std::size_t n = std::min<std::size_t>(3, in.size() - i);
+    std::uint32_t v = static_cast<std::uint32_t>(in[i]) << 16;
+    if (n > 1) v |= static_cast<std::uint32_t>(in[i + 1]) << 8;
+    if (n > 2) v |= in[i + 2];
+    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? A[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
+}
+
+/// An accessor whose elements the document rewrites, with the primitive it was read for.
+struct Written {
+  gltf::ElementView view;
+  int accessor = -1;
+};
+
+class GltfDocument final : public MeshDocument {
+ public:
+  GltfDocument(const std::string& path, const std::string& bytes, bool binary) : binary_(binary) {
+    // The parse is read_input_mesh's (the same soup, so simulation vertex i is soup vertex i).
+    model_ = gltf::load_model(path, bytes);
+    soup_ = gltf::scene_soup(path, model_, &world_);
+    vertex_count_ = soup_.points.size();
+    polygon_start_.reserve(soup_.faces.size() + 1);
+    polygon_start_.push_back(0);
+    for (const auto& f : soup_.faces) {
+      corner_vertex_.insert(corner_vertex_.end(), f.begin(), f.end());
+      polygon_start_.push_back(corner_vertex_.size());
+    }
+    // The file is one set of positions: one POSITION accessor drawn under two transforms (a
+    // mesh instanced by two nodes) would need two sets once the shell has moved them apart.
+    std::map<int, std::size_t> node_of_accessor;
+    for (std::size_t d = 0; d < soup_.drawn.size(); ++d) {
+      const tinygltf::Primitive& p = primitive(d);
+      const int pos = p.attributes.at("POSITION");
+      const auto [it, fresh] = node_of_accessor.emplace(pos, soup_.drawn[d].node);
+      if (!fresh && it->second != soup_.drawn[d].node)
+        throw InputError(path + ": not writable with new positions: accessor " + std::to_string(pos) + " (mesh " +
+                         std::to_string(soup_.drawn[d].mesh) + ") is drawn by node " + std::to_string(it->second) + " and node " +
+                         std::to_string(soup_.drawn[d].node) + ", which the shell moves apart");
+      // New positions are brought back into node space through the inverse transform.
+      to_local_.push_back(world_[d].inverse());
+      if (!(world_[d].topLeftCorner<3, 3>().determinant() != 0.0) || !to_local_.back().allFinite())
+        throw InputError(path + ": not writable with new positions: node " + std::to_string(soup_.drawn[d].node) +
+                         "'s world transform has no inverse (a scale of 0?)");
+      const std::string name = "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " + std::to_string(soup_.drawn[d].primitive);
+      positions_.push_back({gltf::element_view(path, model_, pos, name + " POSITION", 12), pos});
+      const std::size_t count = positions_.back().view.count;
+      normals_.push_back(float_attribute(path, p, "NORMAL", TINYGLTF_TYPE_VEC3, 12, name, count));
+      texcoords_.push_back(float_attribute(path, p, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, 8, name, count));
+    }
+    read_texcoords();
+  }
+
+  std::string format() const override { return binary_ ? "glb" : "gltf"; }
+
+  std::string text(const Positions& x) const override {
+    if (static_cast<std::size_t>(x.rows()) != vertex_count_ || x.cols() != 3)
+      throw std::invalid_argument("GltfDocument::text: " + std::to_string(x.rows()) + " positions for " +
+                                  std::to_string(vertex_count_) + " vertices");
+    if (!x.allFinite()) throw std::invalid_argument("GltfDocument::text: a coordinate is not finite");
+    tinygltf::Model m = model_;
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      const auto& s = soup_.sources[v];
+      const Eigen::Vector4d l = to_local_[s.drawn] * Eigen::Vector4d(x(static_cast<Eigen::Index>(v), 0), x(static_cast<Eigen::Index>(v), 1),
+                                                                      x(static_cast<Eigen::Index>(v), 2), 1.0);
+      put_floats(m, positions_[s.drawn].view, s.element, {l[0], l[1], l[2]});
+    }
+    write_normals(m, x);
+    // A data-URI image (the reader kept its encoded bytes) is written as one again: tinygltf
+    // would otherwise write it with neither a uri nor a buffer view.
+    for (tinygltf::Image& i : m.images)
+      if (i.uri.empty() && i.bufferView < 0 && !i.image.empty()) {
+        i.uri = "data:" + (i.mimeType.empty() ? std::string("application/octet-stream") : i.mimeType) + ";base64," + base64(i.image);
+        i.image.clear();
+      }
+    for (const Written& w : positions_) update_bounds(m, w);
+    std::ostringstream out;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToStream(&m, out, !binary_, binary_))
+      throw std::runtime_error("GltfDocument::text: tinygltf could not serialize the model");
+    return out.str();
+  }
+
+ private:
+  const tinygltf::Primitive& primitive(std::size_t d) const {
+    return model_.meshes[soup_.drawn[d].mesh].primitives[soup_.drawn[d].primitive];
+  }
+
+  /// The primitive's float attribute of `type`, checked; none (accessor -1) when it has none or
+  /// one of another kind (a quantized normal or texture coordinate is kept as it is). One whose
+  /// count is not POSITION's (the spec says they are equal) is refused: its elements are read
+  /// and written by POSITION's element numbers.
+  Written float_attribute(const std::string& path, const tinygltf::Primitive& p, const char* name, int type, std::size_t size,
+                          const std::string& prim, std::size_t count) const {
+    const auto it = p.attributes.find(name);
+    if (it == p.attributes.end() || it->second < 0 || static_cast<std::size_t>(it->second) >= model_.accessors.size()) return {};
+    const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(it->second)];
+    if (a.type != type || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.sparse.isSparse) return {};
+    const gltf::ElementView view = gltf::element_view(path, model_, it->second, prim + " " + name, size);
+    if (view.count != count)
+      throw InputError(path + ": attribute count mismatch: " + prim + " " + name + " (accessor " + std::to_string(it->second) + ") has " +
+                       std::to_string(view.count) + " elements, POSITION " + std::to_string(count));
+    return {view, it->second};
+  }
+
+  /// Texture coordinates for the --gltf animation: one per vertex (its primitive's TEXCOORD_0),
+  /// v flipped to the OBJ convention that CornerTexcoords holds (the exporter flips it back).
+  void read_texcoords() {
+    for (const Written& t : texcoords_)
+      if (t.accessor < 0) return;  // a primitive without: none at all (MeshDocument::texcoords)
+    uv_.resize(vertex_count_);
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      const auto& s = soup_.sources[v];
+      float f[2];
+      std::memcpy(f, texcoords_[s.drawn].view.at(model_, s.element), sizeof f);
+      uv_[v] = {f[0], 1.0 - static_cast<double>(f[1])};
+    }
+    corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());
+  }
+
+  static void put_floats(tinygltf::Model& m, const gltf::ElementView& view, std::size_t element, std::array<double, 3> value) {
+    float f[3] = {static_cast<float>(value[0]), static_cast<float>(value[1]), static_cast<float>(value[2])};
+    std::memcpy(m.buffers[view.buffer].data.data() + view.offset + element * view.stride, f, sizeof f);
+  }
+
+  /// Area-weighted normals at the new positions, summed over every triangle at a position (seam
+  /// copies, which the simulation moved together, get one normal: no seam shows), then brought
+  /// into each primitive's node space (the transpose of its world matrix: normals transform by the
+  /// inverse transpose).
+  void write_normals(tinygltf::Model& m, const Positions& x) const {
+    bool any = false;
+    for (const Written& n : normals_) any = any || n.accessor >= 0;
+    if (!any) return;
+    using Key = std::array<std::uint64_t, 3>;
+    const auto key = [&](std::size_t v) {
+      Key k;
+      for (int c = 0; c < 3; ++c) {
+        const double d = x(static_cast<Eigen::Index>(v), c);
+        std::memcpy(&k[static_cast<std::size_t>(c)], &d, 8);
+      }
+      return k;
+    };
+    std::map<Key, Eigen::Vector3d> sum;
+    for (const auto& f : soup_.faces) {
+      const Eigen::Vector3d a = x.row(static_cast<Eigen::Index>(f[0])).transpose();
+      const Eigen::Vector3d n = (x.row(static_cast<Eigen::Index>(f[1])).transpose() - a).cross(x.row(static_cast<Eigen::Index>(f[2])).transpose() - a);
+      for (const std::size_t v : f) {
+        auto [it, fresh] = sum.emplace(key(v), Eigen::Vector3d::Zero());
+        (void)fresh;
+        it->second += n;
+      }
+    }
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      const auto& s = soup_.sources[v];
+      if (normals_[s.drawn].accessor < 0) continue;
+      Eigen::Vector3d n = world_[s.drawn].topLeftCorner<3, 3>().transpose() * sum.at(key(v));
+      // A vertex whose faces have no area keeps the normal it had.
+      if (!(n.norm() > 0.0) || !n.allFinite()) continue;
+      n.normalize();
+      put_floats(m, normals_[s.drawn].view, s.element, {n[0], n[1], n[2]});
+    }
+  }
+
+  /// POSITION's min and max (the spec requires them) over all its elements, used or not.
+  static void update_bounds(tinygltf::Model& m, const Written& w) {
+    tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(w.accessor)];
+    std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
+    for (std::size_t i = 0; i < w.view.count; ++i) {
+      float f[3];
+      std::memcpy(f, w.view.at(m, i), sizeof f);
+      for (std::size_t c = 0; c < 3; ++c) lo[c] = std::min(lo[c], static_cast<double>(f[c])), hi[c] = std::max(hi[c], static_cast<double>(f[c]));
+    }
+    if (w.view.count == 0) return;
+    a.minValues = lo;
+    a.maxValues = hi;
+  }
+
+  bool binary_;
+  tinygltf::Model model_;
+  GltfSoup soup_;
+  std::vector<Eigen::Matrix4d> world_, to_local_;  ///< per drawn primitive: node space to world and back
+  std::vector<Written> positions_, normals_, texcoords_;  ///< per drawn primitive
+};
+
+}  // namespace
+
+std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes, bool binary) {
+  return std::make_unique<GltfDocument>(name, bytes, binary);
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,48 @@
+// Reading a glTF 2.0 file (.glb or .gltf) into a triangle soup (read_polygon_soup's glTF step;
+// docs/design/input-readers.md). tinygltf (compiled once, in src/export/tiny_gltf_implementation.cpp)
+// parses the container and the JSON; every accessor, buffer view and index is checked here before
+// a byte of a buffer is read, because tinygltf leaves most of those bounds to its caller.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace shellcontract {
+
+/// The triangles of a glTF scene, in world coordinates.
+struct GltfSoup {
+  /// One primitive as the scene draws it.
+  struct Drawn {
+    std::size_t node, mesh, primitive;
+  };
+  /// Where a vertex comes from: the drawn primitive (an index into `drawn`) and the element of
+  /// its POSITION accessor.
+  struct Source {
+    std::size_t drawn, element;
+  };
+  /// The primitives in the order they are drawn: the default scene's nodes depth first, each
+  /// node's mesh's primitives in order.
+  std::vector<Drawn> drawn;
+  /// Every vertex that a drawn primitive's triangles use, primitive by primitive, each
+  /// primitive's in accessor order, at its world position: the node's transform and its
+  /// ancestors' applied, in double precision.
+  std::vector<std::array<double, 3>> points;
+  std::vector<Source> sources;  ///< per point
+  /// Triangles on `points`; a node whose transform mirrors (negative determinant) has its
+  /// triangles' winding reversed, as the spec says a renderer does.
+  std::vector<std::vector<std::size_t>> faces;
+};
+
+/// Reads the triangle primitives (mode 4, or no mode) of the meshes the default scene (or scene
+/// 0) draws. Vertices are not merged: a vertex that the file split at a UV or normal seam stays
+/// split, and read_input_mesh welds the copies (seam_weld.hpp).
+/// @param path  the file, for messages and as the folder of external buffers (.gltf)
+/// @param bytes the whole file
+/// @throws InputError "<path>: <problem>: <where>" for a file that is not a glTF 2.0 it can read:
+///         a bad container or JSON, a primitive that is not triangles, a sparse or compressed
+///         accessor, a required extension that changes the geometry, an index or offset out of range
+GltfSoup read_gltf(const std::string& path, const std::string& bytes);
+
+}  // namespace shellcontract

@@ -1,0 +1,208 @@
+// glTF 2.0 inputs (src/mesh/gltf_reader.cpp; docs/design/input-readers.md): a .glb or .gltf is
+// read like an OBJ, its triangle primitives at their world positions, seam copies welded; every
+// malformed file is an InputError that names the file and the element at fault. Before the
+// reader, every file here was refused with "unknown extension '.glb'".
+#include <gtest/gtest.h>
+
+#include <CGAL/boost/graph/helpers.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "support/gltf_files.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+using test::GltfScene;
+
+class GltfReader : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("shellcontract_gltf_reader_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& bytes) const {
+    const std::string path = (dir_ / name).string();
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+  }
+  std::string glb(const std::string& name, const GltfScene& s) const { return write(name, test::glb_bytes(test::gltf_parts(s))); }
+  /// The refusal of the file, or "(no error)".
+  static std::string error_of(const std::string& path) {
+    try {
+      read_input_mesh(path);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  }
+  fs::path dir_;
+};
+
+GltfScene octahedron(bool split = false, bool uv = false) {
+  GltfScene s;
+  s.primitives.push_back(test::octahedron_primitive(split, uv));
+  return s;
+}
+
+TEST_F(GltfReader, ReadsAnIndexedOctahedronWithEveryIndexType) {
+  for (const int type : {5121, 5123, 5125}) {
+    GltfScene s = octahedron();
+    s.primitives[0].index_type = type;
+    InputReport report;
+    const Mesh mesh = read_input_mesh(glb("octa_" + std::to_string(type) + ".glb", s), &report);
+    EXPECT_EQ(mesh.number_of_vertices(), 6u) << type;
+    EXPECT_EQ(mesh.number_of_faces(), 8u) << type;
+    EXPECT_TRUE(CGAL::is_closed(mesh)) << type;
+    EXPECT_NEAR(report.volume, 4.0 / 3.0, 1e-12) << type;
+    EXPECT_FALSE(report.reoriented) << type;
+    EXPECT_EQ(report.welded_vertices, 0u) << type;
+  }
+}
+
+TEST_F(GltfReader, ReadsAGltfWithADataUriAndOneWithAnExternalBuffer) {
+  const test::GltfParts parts = test::gltf_parts(octahedron());
+  const Mesh embedded = read_input_mesh(write("octa.gltf", test::gltf_text(parts)));
+  EXPECT_EQ(embedded.number_of_vertices(), 6u);
+  write("octa.bin", parts.bin);
+  const Mesh external = read_input_mesh(write("octa_ext.gltf", test::gltf_text(parts, "octa.bin")));
+  EXPECT_EQ(external.number_of_faces(), 8u);
+  // The positions as written (file order kept).
+  const Positions x = positions_from_mesh(external);
+  EXPECT_EQ(x.row(2), Eigen::RowVector3d(0, 1, 0));
+}
+
+TEST_F(GltfReader, AppliesTheNodeTransform) {
+  GltfScene s = octahedron();
+  s.node_transform = "\"translation\":[10,0,-1],\"scale\":[2,2,2],\"rotation\":[0,0,0.7071067811865476,0.7071067811865476]";
+  InputReport report;
+  const Positions x = positions_from_mesh(read_input_mesh(glb("moved.glb", s), &report));
+  // 90 degrees about z: (1, 0, 0) -> (0, 1, 0), scaled by 2, then moved.
+  EXPECT_NEAR(x(0, 0), 10.0, 1e-12);
+  EXPECT_NEAR(x(0, 1), 2.0, 1e-12);
+  EXPECT_NEAR(x(0, 2), -1.0, 1e-12);
+  EXPECT_NEAR(x(4, 2), 1.0, 1e-12);  // (0, 0, 1) -> (0, 0, 2) - 1
+  EXPECT_NEAR(report.volume, 8 * 4.0 / 3.0, 1e-9);
+
+  GltfScene m = octahedron();  // a column-major matrix: translation in the last column
+  m.node_transform = "\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 5,6,7,1]";
+  const Positions y = positions_from_mesh(read_input_mesh(glb("matrix.glb", m)));
+  EXPECT_EQ(y.row(0), Eigen::RowVector3d(6, 6, 7));
+}
+
+TEST_F(GltfReader, AMirroringNodeKeepsTheOutsideOut) {
+  GltfScene s = octahedron();
+  s.node_transform = "\"scale\":[-1,1,1]";
+  InputReport report;
+  read_input_mesh(glb("mirror.glb", s), &report);
+  EXPECT_FALSE(report.reoriented);  // the winding was reversed with the mirror, as renderers do
+  EXPECT_NEAR(report.volume, 4.0 / 3.0, 1e-12);
+}
+
+TEST_F(GltfReader, WeldsAVertexSplitAtAUvSeam) {
+  InputReport report;
+  const Mesh mesh = read_input_mesh(glb("seam.glb", octahedron(true, true)), &report);
+  EXPECT_EQ(mesh.number_of_vertices(), 6u);
+  EXPECT_EQ(report.welded_vertices, 1u);
+  EXPECT_EQ(input_vertex_count(mesh), 7u);
+  EXPECT_TRUE(CGAL::is_closed(mesh));
+}
+
+TEST_F(GltfReader, WeldsAnUnindexedTriangleListAndPrimitivesThatShareAnEdge) {
+  const test::GltfPrimitive indexed = test::octahedron_primitive(false, false);
+  test::GltfPrimitive list;
+  list.indices.clear();
+  for (const std::uint32_t i : indexed.indices) list.positions.push_back(indexed.positions[i]);
+  GltfScene s;
+  s.primitives.push_back(list);
+  InputReport report;
+  const Mesh mesh = read_input_mesh(glb("list.glb", s), &report);
+  EXPECT_EQ(mesh.number_of_vertices(), 6u);
+  EXPECT_EQ(report.welded_vertices, 18u);
+
+  // The upper and lower halves as two primitives (two materials, say): welded along the equator.
+  GltfScene halves;
+  for (int h = 0; h < 2; ++h) {
+    test::GltfPrimitive p = indexed;
+    p.indices.assign(indexed.indices.begin() + 12 * h, indexed.indices.begin() + 12 * (h + 1));
+    halves.primitives.push_back(p);
+  }
+  const Mesh two = read_input_mesh(glb("halves.glb", halves), &report);
+  EXPECT_EQ(two.number_of_vertices(), 6u);
+  EXPECT_EQ(two.number_of_faces(), 8u);
+}
+
+TEST_F(GltfReader, RefusesMalformedFilesNamingTheProblem) {
+  const auto expect = [&](const std::string& path, const std::vector<std::string>& parts) {
+    const std::string e = error_of(path);
+    EXPECT_NE(e.find(path + ": "), std::string::npos) << e;
+    for (const std::string& p : parts) EXPECT_NE(e.find(p), std::string::npos) << "'" << p << "' not in: " << e;
+  };
+  GltfScene lines = octahedron();
+  lines.primitives[0].mode = 1;
+  expect(glb("lines.glb", lines), {"mesh 0 primitive 0: mode 1 (lines) is not triangles"});
+
+  GltfScene out = octahedron();
+  out.primitives[0].indices[5] = 9;
+  expect(glb("index.glb", out), {"vertex index out of range", "mesh 0 primitive 0 triangle 1 refers to vertex 9", "POSITION has 6"});
+
+  test::GltfParts parts = test::gltf_parts(octahedron());
+  const std::string good = test::glb_bytes(parts);
+  expect(write("truncated.glb", good.substr(0, good.size() - 7)), {"truncated .glb", "the header says"});
+  expect(write("short.glb", good.substr(0, 9)), {"truncated .glb"});
+  std::string bad_version = good;
+  bad_version[4] = 1;
+  expect(write("v1.glb", bad_version), {"unsupported glTF version", "version 1"});
+  expect(write("json.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ "), {"cannot read .gltf"});
+  expect(write("empty_scene.gltf", "{\"asset\":{\"version\":\"2.0\"}}"), {"no scene"});
+  expect(write("missing_bin.gltf", test::gltf_text(parts, "nowhere.bin")), {"cannot read .gltf", "nowhere.bin"});
+
+  // An accessor longer than its buffer view: count raised in the JSON.
+  test::GltfParts longer = parts;
+  const std::size_t at = longer.json.find("\"count\":6");
+  longer.json.replace(at, 9, "\"count\":600");
+  expect(write("count.glb", test::glb_bytes(longer)), {"accessor out of range", "mesh 0 primitive 0 POSITION (accessor 0)", "600 elements"});
+
+  test::GltfParts sparse = parts;
+  sparse.json.replace(sparse.json.find("\"count\":6"), 9,
+                      "\"count\":6,\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,\"componentType\":5125},\"values\":{\"bufferView\":0}}");
+  expect(write("sparse.glb", test::glb_bytes(sparse)), {"sparse accessor", "accessor 0"});
+
+  GltfScene draco = octahedron();
+  draco.extra = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]";
+  expect(glb("draco.glb", draco), {"unsupported extension", "requires KHR_draco_mesh_compression"});
+
+  GltfScene shorts = octahedron();
+  shorts.primitives[0].indices.pop_back();
+  expect(glb("not3.glb", shorts), {"bad triangle list", "23 indices"});
+}
+
+TEST_F(GltfReader, AnExtensionUsedButNotRequiredReadsTheFallback) {
+  // Draco with the uncompressed accessors beside it (the spec's fallback): those are read.
+  GltfScene s = octahedron();
+  s.extra = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"]";
+  test::GltfParts parts = test::gltf_parts(s);
+  const std::string attrs = "{\"attributes\":{\"POSITION\":0}";
+  parts.json.replace(parts.json.find(attrs), attrs.size(),
+                     "{\"attributes\":{\"POSITION\":0},\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":0,\"attributes\":{\"POSITION\":0}}}");
+  EXPECT_EQ(read_input_mesh(write("fallback.glb", test::glb_bytes(parts))).number_of_faces(), 8u);
+}
+
+TEST_F(GltfReader, AMaterialOnlyRequiredExtensionIsRead) {
+  GltfScene s = octahedron();
+  s.extra = "\"extensionsUsed\":[\"KHR_materials_unlit\"],\"extensionsRequired\":[\"KHR_materials_unlit\"]";
+  EXPECT_EQ(read_input_mesh(glb("unlit.glb", s)).number_of_faces(), 8u);
+}
+
+}  // namespace
+}  // namespace shellcontract
