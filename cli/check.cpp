@@ -32,7 +32,8 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* CHECK_USAGE = R"(usage: shellcontract check MESH [--json] [--against INPUT] [--fail-on-self-intersections]
+constexpr const char* CHECK_USAGE =
+    R"(usage: shellcontract check MESH [--json] [--against INPUT] [--fail-on-self-intersections]
 
 Reads MESH (.off, .obj, .ply, .stl, .glb, .gltf) with the same checks as 'run' and reports:
 vertices, faces, edges, connected components, Euler characteristic and genus, closed, manifold,

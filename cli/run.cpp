@@ -55,7 +55,8 @@ constexpr const char* RUN_USAGE =
     "glTF output of a glTF input (.glb to .glb, .gltf to .gltf: nodes, materials, textures, UVs\n"
     "kept; new positions and normals). A glTF input is read as the triangles its default scene\n"
     "draws, at their world positions. A mesh open only because its vertices are split along UV\n"
-    "seams (copies at the same position) is welded for the simulation; the outputs keep every copy.\n\noutputs and general";
+    "seams (copies at the same position) is welded for the simulation; the outputs keep every "
+    "copy.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
     "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
@@ -120,7 +121,8 @@ int command_run(int argc, char** argv) {
   po::options_description desc(RUN_USAGE, 100, 50);
   desc.add_options()("help,h", "show this help")(
       "output,o", po::value(&output)->value_name("FILE"),
-      "output mesh (format from the extension: off, obj, ply, stl; glb or gltf for an input of that format)")(
+      "output mesh (format from the extension: off, obj, ply, stl; glb or gltf for an input of "
+      "that format)")(
       "repair", po::bool_switch(&repair),
       "repair the input first if 'check' refuses it (as 'shellcontract repair' does; the output "
       "then has the repaired mesh's vertices and faces)");
@@ -211,17 +213,20 @@ int command_run(int argc, char** argv) {
     const std::string ext = lower_extension(output);
     const bool gltf_output = ext == "glb" || ext == "gltf";
     if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && !gltf_output)
-      throw UsageError("-o " + quoted_path(output) +
-                       (ext.empty() ? std::string(": no file extension to name the mesh format")
-                                    : ": unknown mesh format '." + printable(ext) + "'") +
-                       " (expected .off, .obj, .ply, .stl, or .glb / .gltf for an input of that format)");
+      throw UsageError(
+          "-o " + quoted_path(output) +
+          (ext.empty() ? std::string(": no file extension to name the mesh format")
+                       : ": unknown mesh format '." + printable(ext) + "'") +
+          " (expected .off, .obj, .ply, .stl, or .glb / .gltf for an input of that format)");
     // A glTF result is the input glTF with new positions (its document): there is no glTF writer
     // of a bare mesh, and frames would be one whole file each (--gltf animates the run instead).
     if (gltf_output && lower_extension(input) != ext)
-      throw UsageError("-o " + quoted_path(output) + ": a ." + ext + " result is written only for a ." + ext +
-                       " input (the input with new positions); for a glTF of the run, use --gltf FILE.glb");
+      throw UsageError(
+          "-o " + quoted_path(output) + ": a ." + ext + " result is written only for a ." + ext +
+          " input (the input with new positions); for a glTF of the run, use --gltf FILE.glb");
     if (gltf_output && !exports.dir.empty())
-      throw UsageError("--export-dir: frames are not written as ." + ext + " files; use --gltf FILE.glb for the frames");
+      throw UsageError("--export-dir: frames are not written as ." + ext +
+                       " files; use --gltf FILE.glb for the frames");
     OutputPlan plan;
     std::vector<PlannedOutput>& planned = plan.outputs;
     planned.push_back({"-o", output});
@@ -329,7 +334,8 @@ int command_run(int argc, char** argv) {
       // Checked before the run: a result that cannot be written is not worth computing.
       if (!document && (lower_extension(output) == "glb" || lower_extension(output) == "gltf"))
         throw InputError(input + ": the ." + lower_extension(output) +
-                         " result would be this file with new positions, and it cannot be written so (see the warning above); "
+                         " result would be this file with new positions, and it cannot be written "
+                         "so (see the warning above); "
                          "choose an .obj, .ply, .off or .stl output");
     }
     ObserverList observers;

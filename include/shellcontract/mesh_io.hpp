@@ -276,7 +276,8 @@ std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const 
 /// @param binary write a .glb (format() "glb"); else a .gltf with its buffers embedded ("gltf")
 /// @throws InputError for a file read_input_mesh refuses, or one whose POSITION accessor is
 ///         drawn by two nodes (the file cannot hold both once the shell has moved them apart)
-std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes, bool binary);
+std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes,
+                                                  bool binary);
 
 /// Writes doc.text_for(path, x, warnings) to `path` atomically (write_text_atomic): an OBJ
 /// written to another folder than its input's names the same material libraries.

@@ -3,7 +3,6 @@
 // (texture coordinates, materials, textures, nodes, names, extras) is serialized as read.
 // Positions are stored in the primitive's node space, so the node transforms stay as they were.
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -62,19 +61,23 @@ class GltfDocument final : public MeshDocument {
       const int pos = p.attributes.at("POSITION");
       const auto [it, fresh] = node_of_accessor.emplace(pos, soup_.drawn[d].node);
       if (!fresh && it->second != soup_.drawn[d].node)
-        throw InputError(path + ": not writable with new positions: accessor " + std::to_string(pos) + " (mesh " +
-                         std::to_string(soup_.drawn[d].mesh) + ") is drawn by node " + std::to_string(it->second) + " and node " +
+        throw InputError(path + ": not writable with new positions: accessor " +
+                         std::to_string(pos) + " (mesh " + std::to_string(soup_.drawn[d].mesh) +
+                         ") is drawn by node " + std::to_string(it->second) + " and node " +
                          std::to_string(soup_.drawn[d].node) + ", which the shell moves apart");
       // New positions are brought back into node space through the inverse transform.
       to_local_.push_back(world_[d].inverse());
       if (!(world_[d].topLeftCorner<3, 3>().determinant() != 0.0) || !to_local_.back().allFinite())
-        throw InputError(path + ": not writable with new positions: node " + std::to_string(soup_.drawn[d].node) +
+        throw InputError(path + ": not writable with new positions: node " +
+                         std::to_string(soup_.drawn[d].node) +
                          "'s world transform has no inverse (a scale of 0?)");
-      const std::string name = "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " + std::to_string(soup_.drawn[d].primitive);
+      const std::string name = "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " +
+                               std::to_string(soup_.drawn[d].primitive);
       positions_.push_back({gltf::element_view(path, model_, pos, name + " POSITION", 12), pos});
       const std::size_t count = positions_.back().view.count;
       normals_.push_back(float_attribute(path, p, "NORMAL", TINYGLTF_TYPE_VEC3, 12, name, count));
-      texcoords_.push_back(float_attribute(path, p, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, 8, name, count));
+      texcoords_.push_back(
+          float_attribute(path, p, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, 8, name, count));
     }
     read_texcoords();
   }
@@ -83,14 +86,17 @@ class GltfDocument final : public MeshDocument {
 
   std::string text(const Positions& x) const override {
     if (static_cast<std::size_t>(x.rows()) != vertex_count_ || x.cols() != 3)
-      throw std::invalid_argument("GltfDocument::text: " + std::to_string(x.rows()) + " positions for " +
-                                  std::to_string(vertex_count_) + " vertices");
-    if (!x.allFinite()) throw std::invalid_argument("GltfDocument::text: a coordinate is not finite");
+      throw std::invalid_argument("GltfDocument::text: " + std::to_string(x.rows()) +
+                                  " positions for " + std::to_string(vertex_count_) + " vertices");
+    if (!x.allFinite())
+      throw std::invalid_argument("GltfDocument::text: a coordinate is not finite");
     tinygltf::Model m = model_;
     for (std::size_t v = 0; v < vertex_count_; ++v) {
       const auto& s = soup_.sources[v];
-      const Eigen::Vector4d l = to_local_[s.drawn] * Eigen::Vector4d(x(static_cast<Eigen::Index>(v), 0), x(static_cast<Eigen::Index>(v), 1),
-                                                                      x(static_cast<Eigen::Index>(v), 2), 1.0);
+      const Eigen::Vector4d l =
+          to_local_[s.drawn] * Eigen::Vector4d(x(static_cast<Eigen::Index>(v), 0),
+                                               x(static_cast<Eigen::Index>(v), 1),
+                                               x(static_cast<Eigen::Index>(v), 2), 1.0);
       put_floats(m, positions_[s.drawn].view, s.element, {l[0], l[1], l[2]});
     }
     write_normals(m, x);
@@ -98,7 +104,9 @@ class GltfDocument final : public MeshDocument {
     // would otherwise write it with neither a uri nor a buffer view.
     for (tinygltf::Image& i : m.images)
       if (i.uri.empty() && i.bufferView < 0 && !i.image.empty()) {
-        i.uri = "data:" + (i.mimeType.empty() ? std::string("application/octet-stream") : i.mimeType) + ";base64," + base64(i.image);
+        i.uri =
+            "data:" + (i.mimeType.empty() ? std::string("application/octet-stream") : i.mimeType) +
+            ";base64," + base64(i.image);
         i.image.clear();
       }
     for (const Written& w : positions_) update_bounds(m, w);
@@ -118,16 +126,22 @@ class GltfDocument final : public MeshDocument {
   /// one of another kind (a quantized normal or texture coordinate is kept as it is). One whose
   /// count is not POSITION's (the spec says they are equal) is refused: its elements are read
   /// and written by POSITION's element numbers.
-  Written float_attribute(const std::string& path, const tinygltf::Primitive& p, const char* name, int type, std::size_t size,
-                          const std::string& prim, std::size_t count) const {
+  Written float_attribute(const std::string& path, const tinygltf::Primitive& p, const char* name,
+                          int type, std::size_t size, const std::string& prim,
+                          std::size_t count) const {
     const auto it = p.attributes.find(name);
-    if (it == p.attributes.end() || it->second < 0 || static_cast<std::size_t>(it->second) >= model_.accessors.size()) return {};
+    if (it == p.attributes.end() || it->second < 0 ||
+        static_cast<std::size_t>(it->second) >= model_.accessors.size())
+      return {};
     const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(it->second)];
-    if (a.type != type || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.sparse.isSparse) return {};
-    const gltf::ElementView view = gltf::element_view(path, model_, it->second, prim + " " + name, size);
+    if (a.type != type || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.sparse.isSparse)
+      return {};
+    const gltf::ElementView view =
+        gltf::element_view(path, model_, it->second, prim + " " + name, size);
     if (view.count != count)
-      throw InputError(path + ": attribute count mismatch: " + prim + " " + name + " (accessor " + std::to_string(it->second) + ") has " +
-                       std::to_string(view.count) + " elements, POSITION " + std::to_string(count));
+      throw InputError(path + ": attribute count mismatch: " + prim + " " + name + " (accessor " +
+                       std::to_string(it->second) + ") has " + std::to_string(view.count) +
+                       " elements, POSITION " + std::to_string(count));
     return {view, it->second};
   }
 
@@ -146,9 +160,12 @@ class GltfDocument final : public MeshDocument {
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());
   }
 
-  static void put_floats(tinygltf::Model& m, const gltf::ElementView& view, std::size_t element, std::array<double, 3> value) {
-    float f[3] = {static_cast<float>(value[0]), static_cast<float>(value[1]), static_cast<float>(value[2])};
-    std::memcpy(m.buffers[view.buffer].data.data() + view.offset + element * view.stride, f, sizeof f);
+  static void put_floats(tinygltf::Model& m, const gltf::ElementView& view, std::size_t element,
+                         std::array<double, 3> value) {
+    float f[3] = {static_cast<float>(value[0]), static_cast<float>(value[1]),
+                  static_cast<float>(value[2])};
+    std::memcpy(m.buffers[view.buffer].data.data() + view.offset + element * view.stride, f,
+                sizeof f);
   }
 
   /// Area-weighted normals at the new positions, summed over every triangle at a position (seam
@@ -171,7 +188,8 @@ class GltfDocument final : public MeshDocument {
     std::map<Key, Eigen::Vector3d> sum;
     for (const auto& f : soup_.faces) {
       const Eigen::Vector3d a = x.row(static_cast<Eigen::Index>(f[0])).transpose();
-      const Eigen::Vector3d n = (x.row(static_cast<Eigen::Index>(f[1])).transpose() - a).cross(x.row(static_cast<Eigen::Index>(f[2])).transpose() - a);
+      const Eigen::Vector3d n = (x.row(static_cast<Eigen::Index>(f[1])).transpose() - a)
+                                    .cross(x.row(static_cast<Eigen::Index>(f[2])).transpose() - a);
       for (const std::size_t v : f) {
         auto [it, fresh] = sum.emplace(key(v), Eigen::Vector3d::Zero());
         (void)fresh;
@@ -192,11 +210,14 @@ class GltfDocument final : public MeshDocument {
   /// POSITION's min and max (the spec requires them) over all its elements, used or not.
   static void update_bounds(tinygltf::Model& m, const Written& w) {
     tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(w.accessor)];
-    std::vector<double> lo(3, std::numeric_limits<double>::infinity()), hi(3, -std::numeric_limits<double>::infinity());
+    std::vector<double> lo(3, std::numeric_limits<double>::infinity()),
+        hi(3, -std::numeric_limits<double>::infinity());
     for (std::size_t i = 0; i < w.view.count; ++i) {
       float f[3];
       std::memcpy(f, w.view.at(m, i), sizeof f);
-      for (std::size_t c = 0; c < 3; ++c) lo[c] = std::min(lo[c], static_cast<double>(f[c])), hi[c] = std::max(hi[c], static_cast<double>(f[c]));
+      for (std::size_t c = 0; c < 3; ++c)
+        lo[c] = std::min(lo[c], static_cast<double>(f[c])),
+        hi[c] = std::max(hi[c], static_cast<double>(f[c]));
     }
     if (w.view.count == 0) return;
     a.minValues = lo;
@@ -206,13 +227,15 @@ class GltfDocument final : public MeshDocument {
   bool binary_;
   tinygltf::Model model_;
   GltfSoup soup_;
-  std::vector<Eigen::Matrix4d> world_, to_local_;  ///< per drawn primitive: node space to world and back
+  std::vector<Eigen::Matrix4d> world_,
+      to_local_;  ///< per drawn primitive: node space to world and back
   std::vector<Written> positions_, normals_, texcoords_;  ///< per drawn primitive
 };
 
 }  // namespace
 
-std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes, bool binary) {
+std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes,
+                                                  bool binary) {
   return std::make_unique<GltfDocument>(name, bytes, binary);
 }
 

@@ -21,7 +21,8 @@ tinygltf::Model load_model(const std::string& path, const std::string& bytes);
 /// The triangles that the default scene draws (read_gltf's soup), with each drawn primitive's
 /// world transform in `world` (parallel to soup.drawn).
 /// @throws InputError as read_gltf
-GltfSoup scene_soup(const std::string& path, const tinygltf::Model& m, std::vector<Eigen::Matrix4d>* world = nullptr);
+GltfSoup scene_soup(const std::string& path, const tinygltf::Model& m,
+                    std::vector<Eigen::Matrix4d>* world = nullptr);
 
 /// An accessor's elements: element i starts at byte offset + i * stride of buffer `buffer`,
 /// and every element lies inside the buffer (checked).
@@ -39,7 +40,7 @@ struct ElementView {
 /// @param what names the accessor's use in messages ("mesh 0 primitive 1 POSITION")
 /// @throws InputError for an index out of range, a sparse accessor, one without a buffer view,
 ///         a stride below the element size, or an element outside its buffer view or buffer
-ElementView element_view(const std::string& path, const tinygltf::Model& m, int index, const std::string& what,
-                         std::size_t element_size);
+ElementView element_view(const std::string& path, const tinygltf::Model& m, int index,
+                         const std::string& what, std::size_t element_size);
 
 }  // namespace shellcontract::gltf

@@ -2,9 +2,8 @@
 #include "mesh/gltf_reader.hpp"
 
 #include <Eigen/Geometry>
-
-#include <cstdint>
 #include <cstddef>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -17,13 +16,15 @@
 namespace shellcontract {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
+[[noreturn]] void fail(const std::string& path, const std::string& problem,
+                       const std::string& details) {
   throw InputError(path + ": " + problem + ": " + details);
 }
 
 std::uint32_t le32(const std::string& b, std::size_t at) {
   std::uint32_t v = 0;
-  for (int i = 3; i >= 0; --i) v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
+  for (int i = 3; i >= 0; --i)
+    v = (v << 8) | static_cast<unsigned char>(b[at + static_cast<std::size_t>(i)]);
   return v;
 }
 
@@ -31,21 +32,31 @@ std::uint32_t le32(const std::string& b, std::size_t at) {
 /// the file and reads a BIN chunk's 8-byte header past a length that only covers its data, and
 /// its messages say "Invalid glTF binary." without saying what is wrong.
 void check_glb_container(const std::string& path, const std::string& b) {
-  if (b.size() < 12) fail(path, "truncated .glb", "the file has " + std::to_string(b.size()) + " bytes, less than the 12-byte header");
-  if (b.compare(0, 4, "glTF") != 0) fail(path, "not a binary glTF", "the file does not start with the magic 'glTF'");
+  if (b.size() < 12)
+    fail(path, "truncated .glb",
+         "the file has " + std::to_string(b.size()) + " bytes, less than the 12-byte header");
+  if (b.compare(0, 4, "glTF") != 0)
+    fail(path, "not a binary glTF", "the file does not start with the magic 'glTF'");
   const std::uint32_t version = le32(b, 4), length = le32(b, 8);
-  if (version != 2) fail(path, "unsupported glTF version", "the header says version " + std::to_string(version) + " (only 2 is read)");
+  if (version != 2)
+    fail(path, "unsupported glTF version",
+         "the header says version " + std::to_string(version) + " (only 2 is read)");
   if (length != b.size())
     fail(path, length > b.size() ? "truncated .glb" : "bytes after the .glb's end",
-         "the header says " + std::to_string(length) + " bytes, the file has " + std::to_string(b.size()));
+         "the header says " + std::to_string(length) + " bytes, the file has " +
+             std::to_string(b.size()));
   std::size_t at = 12;
   for (int chunk = 0; at < b.size(); ++chunk) {
-    if (b.size() - at < 8) fail(path, "truncated .glb", "chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) + " has no complete 8-byte header");
+    if (b.size() - at < 8)
+      fail(path, "truncated .glb",
+           "chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) +
+               " has no complete 8-byte header");
     const std::uint64_t n = le32(b, at);
     const std::uint32_t type = le32(b, at + 4);
     if (n > b.size() - at - 8)
-      fail(path, "truncated .glb", "chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) + " declares " + std::to_string(n) +
-                                       " bytes, " + std::to_string(b.size() - at - 8) + " remain");
+      fail(path, "truncated .glb",
+           "chunk " + std::to_string(chunk) + " at byte " + std::to_string(at) + " declares " +
+               std::to_string(n) + " bytes, " + std::to_string(b.size() - at - 8) + " remain");
     if (chunk == 0 && type != 0x4E4F534Au) fail(path, "bad .glb", "the first chunk is not JSON");
     at += 8 + n;
   }
@@ -60,7 +71,8 @@ bool file_exists(const std::string& p, void*) {
   return std::filesystem::exists(p, ec);
 }
 std::string same_path(const std::string& p, void*) { return p; }
-bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& p, void*) {
+bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& p,
+                      void*) {
   try {
     const std::string b = read_regular_file(p);
     out->assign(b.begin(), b.end());
@@ -77,7 +89,8 @@ bool no_write(std::string* err, const std::string&, const std::vector<unsigned c
 /// Images are never decoded. One in a buffer view stays there; one in a data URI (tinygltf
 /// decodes the base64 and drops the URI) keeps its encoded bytes in `image`, so that the glTF
 /// document can write it back (gltf_document.cpp).
-bool skip_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void*) {
+bool skip_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                const unsigned char* bytes, int size, void*) {
   if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
   return true;
 }
@@ -88,7 +101,8 @@ bool skip_image(tinygltf::Image* image, const int, std::string*, std::string*, i
 /// fallback by the spec (Draco's uncompressed accessors, one instance for GPU instancing), which
 /// is what is read, as by any renderer without the extension.
 bool changes_geometry(const std::string& ext) {
-  for (const char* harmless : {"KHR_materials_", "KHR_texture_", "EXT_texture_", "KHR_lights_punctual", "MSFT_texture_dds"})
+  for (const char* harmless : {"KHR_materials_", "KHR_texture_", "EXT_texture_",
+                               "KHR_lights_punctual", "MSFT_texture_dds"})
     if (ext.rfind(harmless, 0) == 0) return false;
   return true;
 }
@@ -97,29 +111,36 @@ bool changes_geometry(const std::string& ext) {
 
 namespace gltf {
 
-ElementView element_view(const std::string& path, const tinygltf::Model& m, int index, const std::string& what,
-                         std::size_t element_size) {
+ElementView element_view(const std::string& path, const tinygltf::Model& m, int index,
+                         const std::string& what, std::size_t element_size) {
   const std::string name = what + " (accessor " + std::to_string(index) + ")";
   if (index < 0 || static_cast<std::size_t>(index) >= m.accessors.size())
-    fail(path, "accessor out of range", what + " is accessor " + std::to_string(index) + ", but the file has " +
-                                            std::to_string(m.accessors.size()) + " accessors");
+    fail(path, "accessor out of range",
+         what + " is accessor " + std::to_string(index) + ", but the file has " +
+             std::to_string(m.accessors.size()) + " accessors");
   const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(index)];
   if (a.sparse.isSparse) fail(path, "sparse accessor", name + " is sparse, which is not read");
   if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= m.bufferViews.size())
-    fail(path, "accessor without data", name + " has no buffer view (or buffer view " + std::to_string(a.bufferView) + " does not exist)");
+    fail(path, "accessor without data",
+         name + " has no buffer view (or buffer view " + std::to_string(a.bufferView) +
+             " does not exist)");
   const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
   const std::string view = "buffer view " + std::to_string(a.bufferView);
   if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size())
-    fail(path, "buffer out of range", view + " names buffer " + std::to_string(v.buffer) + ", but the file has " +
-                                          std::to_string(m.buffers.size()));
+    fail(path, "buffer out of range",
+         view + " names buffer " + std::to_string(v.buffer) + ", but the file has " +
+             std::to_string(m.buffers.size()));
   const std::size_t size = m.buffers[static_cast<std::size_t>(v.buffer)].data.size();
   if (v.byteOffset > size || v.byteLength > size - v.byteOffset)
-    fail(path, "buffer view out of range", view + " (bytes " + std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) +
-                                               ") runs past the end of buffer " + std::to_string(v.buffer) + " (" + std::to_string(size) + " bytes)");
+    fail(path, "buffer view out of range",
+         view + " (bytes " + std::to_string(v.byteOffset) + " + " + std::to_string(v.byteLength) +
+             ") runs past the end of buffer " + std::to_string(v.buffer) + " (" +
+             std::to_string(size) + " bytes)");
   const std::size_t stride = v.byteStride == 0 ? element_size : v.byteStride;
   if (stride < element_size)
-    fail(path, "bad byte stride", view + "'s byteStride " + std::to_string(stride) + " is less than the " + std::to_string(element_size) +
-                                      " bytes of an element of " + name);
+    fail(path, "bad byte stride",
+         view + "'s byteStride " + std::to_string(stride) + " is less than the " +
+             std::to_string(element_size) + " bytes of an element of " + name);
   if (a.count > 0) {
     // Last element's end: byteOffset + stride * (count - 1) + element_size, inside the view. Each
     // step is checked against the view's length, so nothing overflows.
@@ -127,9 +148,10 @@ ElementView element_view(const std::string& path, const tinygltf::Model& m, int 
     const bool fits = a.byteOffset <= room && element_size <= room - a.byteOffset &&
                       (a.count - 1) <= (room - a.byteOffset - element_size) / stride;
     if (!fits)
-      fail(path, "accessor out of range", name + ": " + std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) +
-                                              " with a stride of " + std::to_string(stride) + " run past the end of " + view + " (" +
-                                              std::to_string(room) + " bytes)");
+      fail(path, "accessor out of range",
+           name + ": " + std::to_string(a.count) + " elements from byte " +
+               std::to_string(a.byteOffset) + " with a stride of " + std::to_string(stride) +
+               " run past the end of " + view + " (" + std::to_string(room) + " bytes)");
   }
   ElementView out;
   out.buffer = static_cast<std::size_t>(v.buffer);
@@ -147,78 +169,108 @@ using gltf::element_view;
 using gltf::ElementView;
 
 /// A node's local transform: its matrix, or translation * rotation * scale (glTF's order).
-Eigen::Matrix4d local_transform(const std::string& path, const tinygltf::Node& n, std::size_t index) {
+Eigen::Matrix4d local_transform(const std::string& path, const tinygltf::Node& n,
+                                std::size_t index) {
   const std::string name = "node " + std::to_string(index);
   Eigen::Matrix4d t = Eigen::Matrix4d::Identity();
   if (!n.matrix.empty()) {
-    if (n.matrix.size() != 16) fail(path, "bad node transform", name + "'s matrix has " + std::to_string(n.matrix.size()) + " numbers, not 16");
+    if (n.matrix.size() != 16)
+      fail(path, "bad node transform",
+           name + "'s matrix has " + std::to_string(n.matrix.size()) + " numbers, not 16");
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 4; ++r) t(r, c) = n.matrix[static_cast<std::size_t>(4 * c + r)];  // column-major
+      for (int r = 0; r < 4; ++r)
+        t(r, c) = n.matrix[static_cast<std::size_t>(4 * c + r)];  // column-major
     return t;
   }
   const auto size_is = [&](const std::vector<double>& v, std::size_t k, const char* what) {
     if (!v.empty() && v.size() != k)
-      fail(path, "bad node transform", name + "'s " + what + " has " + std::to_string(v.size()) + " numbers, not " + std::to_string(k));
+      fail(path, "bad node transform",
+           name + "'s " + what + " has " + std::to_string(v.size()) + " numbers, not " +
+               std::to_string(k));
     return !v.empty();
   };
-  if (size_is(n.scale, 3, "scale")) t.topLeftCorner<3, 3>() = Eigen::Vector3d(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
+  if (size_is(n.scale, 3, "scale"))
+    t.topLeftCorner<3, 3>() = Eigen::Vector3d(n.scale[0], n.scale[1], n.scale[2]).asDiagonal();
   if (size_is(n.rotation, 4, "rotation")) {
-    Eigen::Quaterniond q(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]);  // glTF: x y z w
-    if (!(q.norm() > 0.0)) fail(path, "bad node transform", name + "'s rotation is not a unit quaternion (its norm is 0 or not a number)");
+    Eigen::Quaterniond q(n.rotation[3], n.rotation[0], n.rotation[1],
+                         n.rotation[2]);  // glTF: x y z w
+    if (!(q.norm() > 0.0))
+      fail(path, "bad node transform",
+           name + "'s rotation is not a unit quaternion (its norm is 0 or not a number)");
     q.normalize();  // exporters write rounded unit quaternions
     t.topLeftCorner<3, 3>() = q.toRotationMatrix() * t.topLeftCorner<3, 3>();
   }
-  if (size_is(n.translation, 3, "translation")) t.topRightCorner<3, 1>() = Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
+  if (size_is(n.translation, 3, "translation"))
+    t.topRightCorner<3, 1>() =
+        Eigen::Vector3d(n.translation[0], n.translation[1], n.translation[2]);
   return t;
 }
 
-void read_primitive(const std::string& path, const tinygltf::Model& m, std::size_t mesh_index, std::size_t p,
-                    const Eigen::Matrix4d& world, std::size_t primitive_ordinal, GltfSoup& soup) {
+void read_primitive(const std::string& path, const tinygltf::Model& m, std::size_t mesh_index,
+                    std::size_t p, const Eigen::Matrix4d& world, std::size_t primitive_ordinal,
+                    GltfSoup& soup) {
   const tinygltf::Primitive& prim = m.meshes[mesh_index].primitives[p];
   const std::string name = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
-  static const char* const MODES[] = {"points", "lines", "line loop", "line strip", "triangles", "triangle strip", "triangle fan"};
+  static const char* const MODES[] = {"points",    "lines",          "line loop",   "line strip",
+                                      "triangles", "triangle strip", "triangle fan"};
   if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)
-    fail(path, "not triangles", name + ": mode " + std::to_string(prim.mode) + " (" +
-                                    (prim.mode >= 0 && prim.mode < 7 ? MODES[prim.mode] : "not a glTF mode") +
-                                    ") is not triangles (mode 4); export the mesh as triangles");
+    fail(path, "not triangles",
+         name + ": mode " + std::to_string(prim.mode) + " (" +
+             (prim.mode >= 0 && prim.mode < 7 ? MODES[prim.mode] : "not a glTF mode") +
+             ") is not triangles (mode 4); export the mesh as triangles");
   const auto pos = prim.attributes.find("POSITION");
   if (pos == prim.attributes.end()) fail(path, "no positions", name + " has no POSITION attribute");
   const std::string pos_name = name + " POSITION";
   if (pos->second >= 0 && static_cast<std::size_t>(pos->second) < m.accessors.size()) {
     const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(pos->second)];
-    if (a.type != TINYGLTF_TYPE_VEC3 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || a.normalized)
-      fail(path, "bad positions", pos_name + " (accessor " + std::to_string(pos->second) + ") is not float VEC3 (quantized positions are not read)");
+    if (a.type != TINYGLTF_TYPE_VEC3 || a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT ||
+        a.normalized)
+      fail(path, "bad positions",
+           pos_name + " (accessor " + std::to_string(pos->second) +
+               ") is not float VEC3 (quantized positions are not read)");
   }
   const ElementView xyz = element_view(path, m, pos->second, pos_name, 12);
   // The primitive's triangles on its POSITION accessor's elements.
   std::vector<std::size_t> corners;
   if (prim.indices < 0) {
-    if (xyz.count % 3 != 0) fail(path, "bad triangle list", name + " has no indices and " + std::to_string(xyz.count) + " positions, not a multiple of 3");
+    if (xyz.count % 3 != 0)
+      fail(path, "bad triangle list",
+           name + " has no indices and " + std::to_string(xyz.count) +
+               " positions, not a multiple of 3");
     corners.resize(xyz.count);
     for (std::size_t i = 0; i < xyz.count; ++i) corners[i] = i;
   } else {
     const std::string idx_name = name + " indices";
     if (static_cast<std::size_t>(prim.indices) >= m.accessors.size())
-      fail(path, "accessor out of range", idx_name + " is accessor " + std::to_string(prim.indices) + ", but the file has " +
-                                              std::to_string(m.accessors.size()) + " accessors");
+      fail(path, "accessor out of range",
+           idx_name + " is accessor " + std::to_string(prim.indices) + ", but the file has " +
+               std::to_string(m.accessors.size()) + " accessors");
     const tinygltf::Accessor& ia = m.accessors[static_cast<std::size_t>(prim.indices)];
     std::size_t size = 0;
-    if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) size = 1;
-    else if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) size = 2;
-    else if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) size = 4;
+    if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+      size = 1;
+    else if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)
+      size = 2;
+    else if (ia.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+      size = 4;
     if (ia.type != TINYGLTF_TYPE_SCALAR || size == 0)
-      fail(path, "bad indices", idx_name + " (accessor " + std::to_string(prim.indices) + ") is not SCALAR unsigned byte, short or int (component type " +
-                                    std::to_string(ia.componentType) + ")");
+      fail(path, "bad indices",
+           idx_name + " (accessor " + std::to_string(prim.indices) +
+               ") is not SCALAR unsigned byte, short or int (component type " +
+               std::to_string(ia.componentType) + ")");
     const ElementView idx = element_view(path, m, prim.indices, idx_name, size);
-    if (idx.count % 3 != 0) fail(path, "bad triangle list", idx_name + " has " + std::to_string(idx.count) + " indices, not a multiple of 3");
+    if (idx.count % 3 != 0)
+      fail(path, "bad triangle list",
+           idx_name + " has " + std::to_string(idx.count) + " indices, not a multiple of 3");
     corners.resize(idx.count);
     for (std::size_t i = 0; i < idx.count; ++i) {
       std::uint32_t v = 0;
       const unsigned char* b = idx.at(m, i);
       for (std::size_t k = size; k-- > 0;) v = (v << 8) | b[k];  // little-endian
       if (v >= xyz.count)
-        fail(path, "vertex index out of range", name + " triangle " + std::to_string(i / 3) + " refers to vertex " + std::to_string(v) +
-                                                     ", but its POSITION has " + std::to_string(xyz.count));
+        fail(path, "vertex index out of range",
+             name + " triangle " + std::to_string(i / 3) + " refers to vertex " +
+                 std::to_string(v) + ", but its POSITION has " + std::to_string(xyz.count));
       corners[i] = v;
     }
   }
@@ -242,20 +294,24 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
   const bool mirrored = world.topLeftCorner<3, 3>().determinant() < 0.0;
   soup.faces.reserve(soup.faces.size() + corners.size() / 3);
   for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
-    const std::size_t a = vertex_of[corners[t]], b = vertex_of[corners[t + 1]], c = vertex_of[corners[t + 2]];
-    soup.faces.push_back(mirrored ? std::vector<std::size_t>{a, c, b} : std::vector<std::size_t>{a, b, c});
+    const std::size_t a = vertex_of[corners[t]], b = vertex_of[corners[t + 1]],
+                      c = vertex_of[corners[t + 2]];
+    soup.faces.push_back(mirrored ? std::vector<std::size_t>{a, c, b}
+                                  : std::vector<std::size_t>{a, b, c});
   }
 }
 
 }  // namespace
 
 tinygltf::Model gltf::load_model(const std::string& path, const std::string& bytes) {
-  if (bytes.size() > std::numeric_limits<unsigned int>::max()) fail(path, "too large", "a glTF file holds at most 4 GiB");
+  if (bytes.size() > std::numeric_limits<unsigned int>::max())
+    fail(path, "too large", "a glTF file holds at most 4 GiB");
   const bool binary = bytes.compare(0, 4, "glTF") == 0;
   if (binary) check_glb_container(path, bytes);
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
-  loader.SetFsCallbacks(tinygltf::FsCallbacks{file_exists, same_path, read_buffer_file, no_write, nullptr});
+  loader.SetFsCallbacks(
+      tinygltf::FsCallbacks{file_exists, same_path, read_buffer_file, no_write, nullptr});
   tinygltf::Model m;
   std::string err, warn;
   const std::string dir = std::filesystem::path(path).parent_path().string();
@@ -274,19 +330,26 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     for (char& c : err)
       if (c == '\n') c = ';';
-    fail(path, binary ? "cannot read .glb" : "cannot read .gltf", err.empty() ? "tinygltf refused it" : "tinygltf: " + err);
+    fail(path, binary ? "cannot read .glb" : "cannot read .gltf",
+         err.empty() ? "tinygltf refused it" : "tinygltf: " + err);
   }
   return m;
 }
 
-GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m, std::vector<Eigen::Matrix4d>* world_of) {
+GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m,
+                          std::vector<Eigen::Matrix4d>* world_of) {
   for (const std::string& e : m.extensionsRequired)
     if (changes_geometry(e))
-      fail(path, "unsupported extension", "the file requires " + e + ", which is not read (export without it: no compression, no quantization, no GPU instancing)");
+      fail(path, "unsupported extension",
+           "the file requires " + e +
+               ", which is not read (export without it: no compression, no quantization, no GPU "
+               "instancing)");
   if (m.scenes.empty()) fail(path, "no scene", "the file has no scene, so nothing is drawn");
   const int scene = m.defaultScene >= 0 ? m.defaultScene : 0;
   if (static_cast<std::size_t>(scene) >= m.scenes.size())
-    fail(path, "scene out of range", "the default scene is " + std::to_string(scene) + ", but the file has " + std::to_string(m.scenes.size()));
+    fail(path, "scene out of range",
+         "the default scene is " + std::to_string(scene) + ", but the file has " +
+             std::to_string(m.scenes.size()));
 
   GltfSoup soup;
   // Depth first, children in order, without recursion (a file decides the depth); a node reached
@@ -295,22 +358,29 @@ GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m, std
   std::vector<std::pair<std::size_t, Eigen::Matrix4d>> stack;
   const auto push = [&](int node, const Eigen::Matrix4d& parent, const std::string& from) {
     if (node < 0 || static_cast<std::size_t>(node) >= m.nodes.size())
-      fail(path, "node out of range", from + " names node " + std::to_string(node) + ", but the file has " + std::to_string(m.nodes.size()));
+      fail(path, "node out of range",
+           from + " names node " + std::to_string(node) + ", but the file has " +
+               std::to_string(m.nodes.size()));
     const auto k = static_cast<std::size_t>(node);
-    if (seen[k]) fail(path, "bad node tree", "node " + std::to_string(node) + " is reached twice (" + from + "): a cycle or two parents");
+    if (seen[k])
+      fail(path, "bad node tree",
+           "node " + std::to_string(node) + " is reached twice (" + from +
+               "): a cycle or two parents");
     seen[k] = 1;
     stack.emplace_back(k, parent * local_transform(path, m.nodes[k], k));
   };
   const std::vector<int>& roots = m.scenes[static_cast<std::size_t>(scene)].nodes;
-  for (auto r = roots.rbegin(); r != roots.rend(); ++r) push(*r, Eigen::Matrix4d::Identity(), "scene " + std::to_string(scene));
+  for (auto r = roots.rbegin(); r != roots.rend(); ++r)
+    push(*r, Eigen::Matrix4d::Identity(), "scene " + std::to_string(scene));
   while (!stack.empty()) {
     const auto [k, world] = stack.back();
     stack.pop_back();
     const tinygltf::Node& node = m.nodes[k];
     if (node.mesh >= 0) {
       if (static_cast<std::size_t>(node.mesh) >= m.meshes.size())
-        fail(path, "mesh out of range", "node " + std::to_string(k) + " names mesh " + std::to_string(node.mesh) + ", but the file has " +
-                                            std::to_string(m.meshes.size()));
+        fail(path, "mesh out of range",
+             "node " + std::to_string(k) + " names mesh " + std::to_string(node.mesh) +
+                 ", but the file has " + std::to_string(m.meshes.size()));
       const auto mi = static_cast<std::size_t>(node.mesh);
       for (std::size_t p = 0; p < m.meshes[mi].primitives.size(); ++p) {
         read_primitive(path, m, mi, p, world, soup.drawn.size(), soup);
@@ -318,7 +388,8 @@ GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m, std
         if (world_of) world_of->push_back(world);
       }
     }
-    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c) push(*c, world, "node " + std::to_string(k) + "'s children");
+    for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
+      push(*c, world, "node " + std::to_string(k) + "'s children");
   }
   return soup;
 }

@@ -1,7 +1,8 @@
 // Reading a glTF 2.0 file (.glb or .gltf) into a triangle soup (read_polygon_soup's glTF step;
-// docs/design/input-readers.md). tinygltf (compiled once, in src/export/tiny_gltf_implementation.cpp)
-// parses the container and the JSON; every accessor, buffer view and index is checked here before
-// a byte of a buffer is read, because tinygltf leaves most of those bounds to its caller.
+// docs/design/input-readers.md). tinygltf (compiled once, in
+// src/export/tiny_gltf_implementation.cpp) parses the container and the JSON; every accessor,
+// buffer view and index is checked here before a byte of a buffer is read, because tinygltf leaves
+// most of those bounds to its caller.
 #pragma once
 
 #include <array>
@@ -42,7 +43,8 @@ struct GltfSoup {
 /// @param bytes the whole file
 /// @throws InputError "<path>: <problem>: <where>" for a file that is not a glTF 2.0 it can read:
 ///         a bad container or JSON, a primitive that is not triangles, a sparse or compressed
-///         accessor, a required extension that changes the geometry, an index or offset out of range
+///         accessor, a required extension that changes the geometry, an index or offset out of
+///         range
 GltfSoup read_gltf(const std::string& path, const std::string& bytes);
 
 }  // namespace shellcontract

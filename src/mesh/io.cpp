@@ -7,18 +7,18 @@
 // PMP::is_polygon_soup_a_polygon_mesh would say only yes or no; our checks let every message
 // name the problem, the face, the vertex and (for OFF and ascii PLY) the line, and they cover
 // every condition it tests (see check_soup). CGAL does what needs no message: the mesh, its
-// connected components, the volume. PMP::merge_duplicate_polygons_in_polygon_soup and orient_polygon_soup would change a
-// file the user must hear about (`repair` uses them, on request). The soup keeps the input
-// vertex and face order, which users rely on (textures, per-vertex data); read_input_mesh
-// verifies that it was kept.
+// connected components, the volume. PMP::merge_duplicate_polygons_in_polygon_soup and
+// orient_polygon_soup would change a file the user must hear about (`repair` uses them, on
+// request). The soup keeps the input vertex and face order, which users rely on (textures,
+// per-vertex data); read_input_mesh verifies that it was kept.
 //
 // The soup comes from CGAL::IO::read_STL, from tinygltf checked by gltf_reader.cpp, or from our
 // own OBJ, PLY and OFF readers (obj_scan.cpp:
 // CGAL 5.5's names no line; ply_reader.cpp: CGAL 5.5's crashes; off_scan.cpp: CGAL's trusts
-// declared counts, misreads binary OFF and parses slowly). Every geometric test (triangulation, orientation, volume, zero area)
-// runs on coordinates normalized to the bounding-box centre and a unit diagonal, so that meshes
-// from 1e-150 to 1e150 get the same answers as at unit scale (no overflow or underflow in
-// products of three coordinates).
+// declared counts, misreads binary OFF and parses slowly). Every geometric test (triangulation,
+// orientation, volume, zero area) runs on coordinates normalized to the bounding-box centre and a
+// unit diagonal, so that meshes from 1e-150 to 1e150 get the same answers as at unit scale (no
+// overflow or underflow in products of three coordinates).
 #include "shellcontract/mesh_io.hpp"
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -258,12 +258,16 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   // The readers bound every declared count by the file's size; these handlers are the last line
   // of defence, so that no file can end the process with an uncaught exception.
   try {
-    if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && ext != "glb" && ext != "gltf") {
+    if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && ext != "glb" &&
+        ext != "gltf") {
       // What the path is (missing, a folder, a device) says more than its extension does.
       regular_file_size(path);
       // The format is told by the extension alone, so a file without one names none.
-      if (ext.empty()) fail(path, "the file name has no extension", "expected .off, .obj, .ply, .stl, .glb or .gltf");
-      fail(path, "unknown extension", "'." + ext + "' (expected .off, .obj, .ply, .stl, .glb or .gltf)");
+      if (ext.empty())
+        fail(path, "the file name has no extension",
+             "expected .off, .obj, .ply, .stl, .glb or .gltf");
+      fail(path, "unknown extension",
+           "'." + ext + "' (expected .off, .obj, .ply, .stl, .glb or .gltf)");
     }
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::string> read_warnings;  // lines after an OFF's declared faces

@@ -102,7 +102,8 @@ std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path) {
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".obj") return parse_obj_document(path, read_file_bytes(path), path);
   if (ext == ".ply") return parse_ply_document(path, read_file_bytes(path));
-  if (ext == ".glb" || ext == ".gltf") return parse_gltf_document(path, read_file_bytes(path), ext == ".glb");
+  if (ext == ".glb" || ext == ".gltf")
+    return parse_gltf_document(path, read_file_bytes(path), ext == ".glb");
   return nullptr;
 }
 

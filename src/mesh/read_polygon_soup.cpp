@@ -61,7 +61,8 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
     lines.face_line = std::move(d.face_line);
     return;
   }
-  if (ext == "glb" || ext == "gltf") {  // .gltf is JSON, .glb binary: the reader tells them by their first bytes
+  if (ext == "glb" ||
+      ext == "gltf") {  // .gltf is JSON, .glb binary: the reader tells them by their first bytes
     GltfSoup g = read_gltf(path, bytes);
     points.reserve(g.points.size());
     for (const auto& p : g.points) points.emplace_back(p[0], p[1], p[2]);

@@ -41,7 +41,8 @@ test::GltfScene octahedron() {
 
 TEST_F(CliGltf, CheckAndRunReadAGlbAndAGltf) {
   const test::GltfParts parts = test::gltf_parts(octahedron());
-  for (const std::string& in : {write("o.glb", test::glb_bytes(parts)), write("o.gltf", test::gltf_text(parts))}) {
+  for (const std::string& in :
+       {write("o.glb", test::glb_bytes(parts)), write("o.gltf", test::gltf_text(parts))}) {
     auto r = test::run_cli({"check", in});
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("vertices: 6"), std::string::npos) << r.output;
@@ -65,9 +66,12 @@ TEST_F(CliGltf, MalformedFilesAreExitTwoNamingTheProblem) {
   std::string sparse = parts.json;
   sparse.replace(sparse.find("\"count\":7"), 9, "\"count\":7,\"sparse\":{\"count\":0}");
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {write("lines.glb", test::glb_bytes(test::gltf_parts(lines))), "mesh 0 primitive 0: mode 1 (lines) is not triangles"},
-      {write("index.glb", test::glb_bytes(test::gltf_parts(index))), "refers to vertex 200, but its POSITION has 7"},
-      {write("draco.glb", test::glb_bytes(test::gltf_parts(draco))), "requires KHR_draco_mesh_compression"},
+      {write("lines.glb", test::glb_bytes(test::gltf_parts(lines))),
+       "mesh 0 primitive 0: mode 1 (lines) is not triangles"},
+      {write("index.glb", test::glb_bytes(test::gltf_parts(index))),
+       "refers to vertex 200, but its POSITION has 7"},
+      {write("draco.glb", test::glb_bytes(test::gltf_parts(draco))),
+       "requires KHR_draco_mesh_compression"},
       {write("truncated.glb", good.substr(0, good.size() / 2)), "truncated .glb"},
       {write("empty_bin.glb", good.substr(0, 12)), "truncated .glb"},
       {write("json.gltf", bad_json), "cannot read .gltf"},
@@ -78,7 +82,8 @@ TEST_F(CliGltf, MalformedFilesAreExitTwoNamingTheProblem) {
     const auto r = test::run_cli({"check", path});
     EXPECT_EQ(r.exit_code, 2) << path << ": " << r.output;
     EXPECT_NE(r.output.find(path + ": "), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find(problem), std::string::npos) << "'" << problem << "' not in: " << r.output;
+    EXPECT_NE(r.output.find(problem), std::string::npos)
+        << "'" << problem << "' not in: " << r.output;
   }
 }
 

@@ -133,7 +133,9 @@ inline std::string octa_stl_binary() {
 inline GltfParts octa_gltf_parts() {
   GltfScene s;
   GltfPrimitive p;
-  for (const auto& x : OCTA_POINTS) p.positions.push_back({static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2])});
+  for (const auto& x : OCTA_POINTS)
+    p.positions.push_back(
+        {static_cast<float>(x[0]), static_cast<float>(x[1]), static_cast<float>(x[2])});
   for (const auto& f : OCTA_FACES)
     for (int v : f) p.indices.push_back(static_cast<std::uint32_t>(v));
   p.index_type = 5123;
@@ -141,8 +143,9 @@ inline GltfParts octa_gltf_parts() {
   return gltf_parts(s);
 }
 
-/// Every seed file: OFF (ascii and binary), OBJ, PLY (ascii and both binary byte orders, float, double and integer
-/// coordinates), STL ascii and binary, glTF binary (.glb) and JSON with a data URI (.gltf).
+/// Every seed file: OFF (ascii and binary), OBJ, PLY (ascii and both binary byte orders, float,
+/// double and integer coordinates), STL ascii and binary, glTF binary (.glb) and JSON with a data
+/// URI (.gltf).
 inline std::vector<SeedFile> seed_files() {
   return {
       {"off", "off", octa_off()},

@@ -6,7 +6,6 @@
 // SHELLCONTRACT_FUZZ_SEED (default 30), SHELLCONTRACT_FUZZ_ONLY=K runs mutant K alone.
 // A mutant that crashes the process is left on disk; the signal handler prints its path.
 #include <gtest/gtest.h>
-
 #include <signal.h>
 #include <unistd.h>
 

@@ -50,7 +50,8 @@ TEST_F(Hostile, AFifoOrADeviceAsAGltfBufferIsRefusedAtOnce) {
   const test::GltfParts parts = test::gltf_parts(s);
   ASSERT_EQ(::mkfifo((dir_ / "fifo.bin").c_str(), 0666), 0);
   test::spit(dir_ / "fifo.gltf", test::gltf_text(parts, "fifo.bin"));
-  auto r = bounded_cli({"run", (dir_ / "fifo.gltf").string(), "-o", (dir_ / "o.off").string(), "-q"});
+  auto r =
+      bounded_cli({"run", (dir_ / "fifo.gltf").string(), "-o", (dir_ / "o.off").string(), "-q"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("fifo.bin"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("FIFO"), std::string::npos) << r.output;

@@ -2,17 +2,15 @@
 // read like an OBJ, its triangle primitives at their world positions, seam copies welded; every
 // malformed file is an InputError that names the file and the element at fault. Before the
 // reader, every file here was refused with "unknown extension '.glb'".
-#include <gtest/gtest.h>
-
 #include <CGAL/boost/graph/helpers.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -36,7 +34,9 @@ class GltfReader : public ::testing::Test {
     std::ofstream(path, std::ios::binary) << bytes;
     return path;
   }
-  std::string glb(const std::string& name, const GltfScene& s) const { return write(name, test::glb_bytes(test::gltf_parts(s))); }
+  std::string glb(const std::string& name, const GltfScene& s) const {
+    return write(name, test::glb_bytes(test::gltf_parts(s)));
+  }
   /// The refusal of the file, or "(no error)".
   static std::string error_of(const std::string& path) {
     try {
@@ -84,7 +84,9 @@ TEST_F(GltfReader, ReadsAGltfWithADataUriAndOneWithAnExternalBuffer) {
 
 TEST_F(GltfReader, AppliesTheNodeTransform) {
   GltfScene s = octahedron();
-  s.node_transform = "\"translation\":[10,0,-1],\"scale\":[2,2,2],\"rotation\":[0,0,0.7071067811865476,0.7071067811865476]";
+  s.node_transform =
+      "\"translation\":[10,0,-1],\"scale\":[2,2,2],\"rotation\":[0,0,0.7071067811865476,0."
+      "7071067811865476]";
   InputReport report;
   const Positions x = positions_from_mesh(read_input_mesh(glb("moved.glb", s), &report));
   // 90 degrees about z: (1, 0, 0) -> (0, 1, 0), scaled by 2, then moved.
@@ -146,7 +148,8 @@ TEST_F(GltfReader, RefusesMalformedFilesNamingTheProblem) {
   const auto expect = [&](const std::string& path, const std::vector<std::string>& parts) {
     const std::string e = error_of(path);
     EXPECT_NE(e.find(path + ": "), std::string::npos) << e;
-    for (const std::string& p : parts) EXPECT_NE(e.find(p), std::string::npos) << "'" << p << "' not in: " << e;
+    for (const std::string& p : parts)
+      EXPECT_NE(e.find(p), std::string::npos) << "'" << p << "' not in: " << e;
   };
   GltfScene lines = octahedron();
   lines.primitives[0].mode = 1;
@@ -154,32 +157,41 @@ TEST_F(GltfReader, RefusesMalformedFilesNamingTheProblem) {
 
   GltfScene out = octahedron();
   out.primitives[0].indices[5] = 9;
-  expect(glb("index.glb", out), {"vertex index out of range", "mesh 0 primitive 0 triangle 1 refers to vertex 9", "POSITION has 6"});
+  expect(glb("index.glb", out),
+         {"vertex index out of range", "mesh 0 primitive 0 triangle 1 refers to vertex 9",
+          "POSITION has 6"});
 
   test::GltfParts parts = test::gltf_parts(octahedron());
   const std::string good = test::glb_bytes(parts);
-  expect(write("truncated.glb", good.substr(0, good.size() - 7)), {"truncated .glb", "the header says"});
+  expect(write("truncated.glb", good.substr(0, good.size() - 7)),
+         {"truncated .glb", "the header says"});
   expect(write("short.glb", good.substr(0, 9)), {"truncated .glb"});
   std::string bad_version = good;
   bad_version[4] = 1;
   expect(write("v1.glb", bad_version), {"unsupported glTF version", "version 1"});
-  expect(write("json.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ "), {"cannot read .gltf"});
+  expect(write("json.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"meshes\": [ "),
+         {"cannot read .gltf"});
   expect(write("empty_scene.gltf", "{\"asset\":{\"version\":\"2.0\"}}"), {"no scene"});
-  expect(write("missing_bin.gltf", test::gltf_text(parts, "nowhere.bin")), {"cannot read .gltf", "nowhere.bin"});
+  expect(write("missing_bin.gltf", test::gltf_text(parts, "nowhere.bin")),
+         {"cannot read .gltf", "nowhere.bin"});
 
   // An accessor longer than its buffer view: count raised in the JSON.
   test::GltfParts longer = parts;
   const std::size_t at = longer.json.find("\"count\":6");
   longer.json.replace(at, 9, "\"count\":600");
-  expect(write("count.glb", test::glb_bytes(longer)), {"accessor out of range", "mesh 0 primitive 0 POSITION (accessor 0)", "600 elements"});
+  expect(write("count.glb", test::glb_bytes(longer)),
+         {"accessor out of range", "mesh 0 primitive 0 POSITION (accessor 0)", "600 elements"});
 
   test::GltfParts sparse = parts;
   sparse.json.replace(sparse.json.find("\"count\":6"), 9,
-                      "\"count\":6,\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,\"componentType\":5125},\"values\":{\"bufferView\":0}}");
+                      "\"count\":6,\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":1,"
+                      "\"componentType\":5125},\"values\":{\"bufferView\":0}}");
   expect(write("sparse.glb", test::glb_bytes(sparse)), {"sparse accessor", "accessor 0"});
 
   GltfScene draco = octahedron();
-  draco.extra = "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]";
+  draco.extra =
+      "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],\"extensionsRequired\":[\"KHR_draco_"
+      "mesh_compression\"]";
   expect(glb("draco.glb", draco), {"unsupported extension", "requires KHR_draco_mesh_compression"});
 
   GltfScene shorts = octahedron();
@@ -194,13 +206,16 @@ TEST_F(GltfReader, AnExtensionUsedButNotRequiredReadsTheFallback) {
   test::GltfParts parts = test::gltf_parts(s);
   const std::string attrs = "{\"attributes\":{\"POSITION\":0}";
   parts.json.replace(parts.json.find(attrs), attrs.size(),
-                     "{\"attributes\":{\"POSITION\":0},\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":0,\"attributes\":{\"POSITION\":0}}}");
+                     "{\"attributes\":{\"POSITION\":0},\"extensions\":{\"KHR_draco_mesh_"
+                     "compression\":{\"bufferView\":0,\"attributes\":{\"POSITION\":0}}}");
   EXPECT_EQ(read_input_mesh(write("fallback.glb", test::glb_bytes(parts))).number_of_faces(), 8u);
 }
 
 TEST_F(GltfReader, AMaterialOnlyRequiredExtensionIsRead) {
   GltfScene s = octahedron();
-  s.extra = "\"extensionsUsed\":[\"KHR_materials_unlit\"],\"extensionsRequired\":[\"KHR_materials_unlit\"]";
+  s.extra =
+      "\"extensionsUsed\":[\"KHR_materials_unlit\"],\"extensionsRequired\":[\"KHR_materials_"
+      "unlit\"]";
   EXPECT_EQ(read_input_mesh(glb("unlit.glb", s)).number_of_faces(), 8u);
 }
 

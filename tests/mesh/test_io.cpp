@@ -473,7 +473,10 @@ TEST(BadInputOtherFormats, AFileWithoutExtensionIsSaidToHaveNone) {
       FAIL() << name << " accepted";
     } catch (const InputError& e) {
       const std::string msg = e.what();
-      EXPECT_NE(msg.find(": the file name has no extension: expected .off, .obj, .ply, .stl, .glb or .gltf"), std::string::npos)
+      EXPECT_NE(
+          msg.find(
+              ": the file name has no extension: expected .off, .obj, .ply, .stl, .glb or .gltf"),
+          std::string::npos)
           << name << ": " << msg;
       EXPECT_EQ(msg.find("'.'"), std::string::npos) << name << ": " << msg;
     }

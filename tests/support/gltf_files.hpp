@@ -25,8 +25,9 @@ struct GltfPrimitive {
 struct GltfScene {
   std::vector<GltfPrimitive> primitives;
   std::string node_transform;  ///< JSON members of the node, e.g. "\"translation\":[1,0,0]"
-  std::string extra;           ///< JSON members at the top level, e.g. "\"extensionsRequired\":[...]"
-  std::string png;             ///< not empty: material 0, textured with this image (a buffer view), on every primitive
+  std::string extra;  ///< JSON members at the top level, e.g. "\"extensionsRequired\":[...]"
+  std::string
+      png;  ///< not empty: material 0, textured with this image (a buffer view), on every primitive
 };
 
 /// The JSON and the binary buffer of the scene (the buffer's byteLength is the BIN's size).
@@ -35,7 +36,9 @@ struct GltfParts {
   std::string bin;
 };
 
-inline void gltf_put(std::string& bin, const void* p, std::size_t n) { bin.append(static_cast<const char*>(p), n); }
+inline void gltf_put(std::string& bin, const void* p, std::size_t n) {
+  bin.append(static_cast<const char*>(p), n);
+}
 inline void gltf_align4(std::string& bin) {
   while (bin.size() % 4) bin += '\0';
 }
@@ -43,12 +46,15 @@ inline void gltf_align4(std::string& bin) {
 inline GltfParts gltf_parts(const GltfScene& s) {
   std::string bin, views, accessors, prims;
   int next = 0;  // accessor and buffer view k go together
-  const auto add = [&](std::size_t offset, std::size_t length, std::size_t count, int component, const char* type, const std::string& minmax) {
-    views += std::string(views.empty() ? "" : ",") + "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
+  const auto add = [&](std::size_t offset, std::size_t length, std::size_t count, int component,
+                       const char* type, const std::string& minmax) {
+    views += std::string(views.empty() ? "" : ",") +
+             "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
              ",\"byteLength\":" + std::to_string(length) + "}";
-    accessors += std::string(accessors.empty() ? "" : ",") + "{\"bufferView\":" + std::to_string(next) +
-                 ",\"componentType\":" + std::to_string(component) + ",\"count\":" + std::to_string(count) +
-                 ",\"type\":\"" + type + "\"" + minmax + "}";
+    accessors +=
+        std::string(accessors.empty() ? "" : ",") + "{\"bufferView\":" + std::to_string(next) +
+        ",\"componentType\":" + std::to_string(component) + ",\"count\":" + std::to_string(count) +
+        ",\"type\":\"" + type + "\"" + minmax + "}";
     return next++;
   };
   for (const GltfPrimitive& p : s.primitives) {
@@ -60,18 +66,20 @@ inline GltfParts gltf_parts(const GltfScene& s) {
     }
     const auto num = [](float f) { return std::to_string(f); };
     const int pos = add(at, bin.size() - at, p.positions.size(), 5126, "VEC3",
-                        ",\"min\":[" + num(lo[0]) + "," + num(lo[1]) + "," + num(lo[2]) + "],\"max\":[" + num(hi[0]) + "," +
-                            num(hi[1]) + "," + num(hi[2]) + "]");
+                        ",\"min\":[" + num(lo[0]) + "," + num(lo[1]) + "," + num(lo[2]) +
+                            "],\"max\":[" + num(hi[0]) + "," + num(hi[1]) + "," + num(hi[2]) + "]");
     std::string prim = "{\"attributes\":{\"POSITION\":" + std::to_string(pos);
     if (!p.texcoords.empty()) {
       at = bin.size();
       for (const auto& t : p.texcoords) gltf_put(bin, t.data(), 8);
-      prim += ",\"TEXCOORD_0\":" + std::to_string(add(at, bin.size() - at, p.texcoords.size(), 5126, "VEC2", ""));
+      prim += ",\"TEXCOORD_0\":" +
+              std::to_string(add(at, bin.size() - at, p.texcoords.size(), 5126, "VEC2", ""));
     }
     if (!p.normals.empty()) {
       at = bin.size();
       for (const auto& n : p.normals) gltf_put(bin, n.data(), 12);
-      prim += ",\"NORMAL\":" + std::to_string(add(at, bin.size() - at, p.normals.size(), 5126, "VEC3", ""));
+      prim += ",\"NORMAL\":" +
+              std::to_string(add(at, bin.size() - at, p.normals.size(), 5126, "VEC3", ""));
     }
     prim += "}";
     if (!s.png.empty()) prim += ",\"material\":0";
@@ -90,17 +98,25 @@ inline GltfParts gltf_parts(const GltfScene& s) {
   if (!s.png.empty()) {
     const std::size_t at = bin.size();
     bin += s.png;
-    views += ",{\"buffer\":0,\"byteOffset\":" + std::to_string(at) + ",\"byteLength\":" + std::to_string(s.png.size()) + "}";
-    material = ",\"materials\":[{\"name\":\"skin\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0},\"metallicFactor\":0}}]"
-               ",\"textures\":[{\"source\":0}],\"images\":[{\"bufferView\":" + std::to_string(next) + ",\"mimeType\":\"image/png\"}]";
+    views += ",{\"buffer\":0,\"byteOffset\":" + std::to_string(at) +
+             ",\"byteLength\":" + std::to_string(s.png.size()) + "}";
+    material =
+        ",\"materials\":[{\"name\":\"skin\",\"pbrMetallicRoughness\":{\"baseColorTexture\":{"
+        "\"index\":0},\"metallicFactor\":0}}]"
+        ",\"textures\":[{\"source\":0}],\"images\":[{\"bufferView\":" +
+        std::to_string(next) + ",\"mimeType\":\"image/png\"}]";
     gltf_align4(bin);
   }
   GltfParts out;
   out.bin = bin;
-  out.json = "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0" +
-             std::string(s.node_transform.empty() ? "" : "," + s.node_transform) + "}],\"meshes\":[{\"primitives\":[" + prims +
-             "]}],\"accessors\":[" + accessors + "],\"bufferViews\":[" + views + "],\"buffers\":[{\"byteLength\":" +
-             std::to_string(bin.size()) + "%URI%}]" + material + (s.extra.empty() ? "" : "," + s.extra) + "}";
+  out.json =
+      "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{"
+      "\"mesh\":0" +
+      std::string(s.node_transform.empty() ? "" : "," + s.node_transform) +
+      "}],\"meshes\":[{\"primitives\":[" + prims + "]}],\"accessors\":[" + accessors +
+      "],\"bufferViews\":[" + views +
+      "],\"buffers\":[{\"byteLength\":" + std::to_string(bin.size()) + "%URI%}]" + material +
+      (s.extra.empty() ? "" : "," + s.extra) + "}";
   return out;
 }
 
@@ -121,7 +137,8 @@ inline std::string glb_bytes(const GltfParts& parts) {
   gltf_align4(bin);
   std::string out = "glTF";
   gltf_put32(out, 2);
-  gltf_put32(out, static_cast<std::uint32_t>(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  gltf_put32(out,
+             static_cast<std::uint32_t>(12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin.size())));
   gltf_put32(out, static_cast<std::uint32_t>(json.size()));
   gltf_put32(out, 0x4E4F534Au);
   out += json;
@@ -138,14 +155,17 @@ inline std::string base64(const std::string& in) {
   std::string out;
   std::size_t i = 0;
   for (; i + 2 < in.size(); i += 3) {
-    const unsigned v = (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8) | static_cast<unsigned char>(in[i + 2]);
+    const unsigned v = (static_cast<unsigned char>(in[i]) << 16) |
+                       (static_cast<unsigned char>(in[i + 1]) << 8) |
+                       static_cast<unsigned char>(in[i + 2]);
     for (int k = 3; k >= 0; --k) out += A[(v >> (6 * k)) & 63];
   }
   if (i + 1 == in.size()) {
     const unsigned v = static_cast<unsigned char>(in[i]) << 16;
     out += A[(v >> 18) & 63], out += A[(v >> 12) & 63], out += "==";
   } else if (i + 2 == in.size()) {
-    const unsigned v = (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8);
+    const unsigned v =
+        (static_cast<unsigned char>(in[i]) << 16) | (static_cast<unsigned char>(in[i + 1]) << 8);
     out += A[(v >> 18) & 63], out += A[(v >> 12) & 63], out += A[(v >> 6) & 63], out += '=';
   }
   return out;
@@ -154,7 +174,9 @@ inline std::string base64(const std::string& in) {
 /// The .gltf of the parts, its buffer a data URI; or (external_bin) named `external_bin`, which
 /// the caller writes beside it.
 inline std::string gltf_text(const GltfParts& parts, const std::string& external_bin = "") {
-  return replace_uri(parts.json, external_bin.empty() ? "data:application/octet-stream;base64," + base64(parts.bin) : external_bin);
+  return replace_uri(parts.json, external_bin.empty()
+                                     ? "data:application/octet-stream;base64," + base64(parts.bin)
+                                     : external_bin);
 }
 
 /// The octahedron of radius 1 at the origin, outward, indexed, with (`texcoords`) texture
@@ -165,7 +187,9 @@ inline GltfPrimitive octahedron_primitive(bool split_seam, bool texcoords) {
   GltfPrimitive p;
   p.positions = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   p.indices = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
-  if (texcoords) p.texcoords = {{0.0f, 0.5f}, {0.5f, 0.5f}, {0.25f, 0.25f}, {0.75f, 0.25f}, {0.25f, 0.0f}, {0.75f, 1.0f}};
+  if (texcoords)
+    p.texcoords = {{0.0f, 0.5f},   {0.5f, 0.5f},  {0.25f, 0.25f},
+                   {0.75f, 0.25f}, {0.25f, 0.0f}, {0.75f, 1.0f}};
   if (texcoords) p.normals = p.positions;  // unit already: the vertex normals of the octahedron
   if (split_seam) {
     p.positions.push_back({1, 0, 0});
