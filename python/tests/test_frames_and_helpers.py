@@ -159,7 +159,8 @@ def test_a_file_without_extension_is_said_to_have_none(tmp_path):
     """Before: "unknown extension: '.'"."""
     plain = tmp_path / "mesh_without_extension"
     plain.write_text("OFF\n")
-    with pytest.raises(ValueError, match=r"has no extension: expected \.off, \.obj, \.ply or \.stl") as e:
+    with pytest.raises(ValueError, match=r"has no extension: expected \.off, \.obj, \.ply, "
+                                         r"\.stl, \.glb or \.gltf") as e:
         shellcontract.read_mesh(plain)
     assert "'.'" not in str(e.value)
     with pytest.raises(ValueError, match="unknown extension: '.xyz'"):

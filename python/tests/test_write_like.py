@@ -76,3 +76,20 @@ def test_write_like_elsewhere_names_the_same_material_library(tmp_path):
     with pytest.warns(UserWarning, match=r"line 2: material library 't.mtl' not found"):
         shellcontract.write_mesh(out, v, f, like=src)
     assert "mtllib t.mtl" in out.read_text().splitlines()
+
+
+def test_write_like_a_glb_writes_its_positions(cli, mesh_dir, tmp_path):
+    """A .glb input (here the CLI's --gltf of a run) is written back through its glTF document:
+    the positions read back are the given ones to float32 rounding (glTF stores floats), and the
+    faces are read_mesh's. Before glTF inputs, read_mesh refused the file (unknown extension)."""
+    import subprocess
+    glb = tmp_path / "run.glb"
+    subprocess.run([cli, "run", str(mesh_dir / "ico2.off"), "-o", str(tmp_path / "run.off"),
+                    "--gltf", str(glb), "-n", "3", "-q"], check=True)
+    v, f = shellcontract.read_mesh(glb)
+    moved = v * 0.75 + np.array([0.5, -0.25, 0.125])
+    out = tmp_path / "out.glb"
+    shellcontract.write_mesh(out, moved, f, like=glb)
+    back, faces = shellcontract.read_mesh(out)
+    assert np.array_equal(faces, f)
+    assert np.abs(back - moved).max() <= 2.0 ** -23 * np.abs(moved).max()
