@@ -100,9 +100,9 @@ struct MirrorStep {
   /// projection's step is clamped. Unclamped, a vertex whose image lies behind another part of
   /// the shell (a limb flattened by the pressure) jumps the whole way there, the collision
   /// response throws it back, it is left alone for one step as held by contact, and jumps again:
-  /// a flicker of up to a tenth of the diagonal every other frame, and thousands of contacts per
-  /// step. Clamped, it comes to rest against the obstacle; an image that can be reached is
-  /// reached a few steps later, since the dimple grows with a ramp of many steps.
+  /// a flicker every other frame, and a crowd of contacts per step (lab/regions/mirror_step.md).
+  /// Clamped, it comes to rest against the obstacle; an image that can be reached is reached a
+  /// few steps later, since the dimple grows with a ramp of many steps.
   bool clamp = false;
 };
 
