@@ -15,9 +15,31 @@
 #include "export/frame_sequence_writer.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/output_check.hpp"
+#include "command_line.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
+
+void check_result_format(const std::string& input, const std::string& output, bool frames_dir) {
+  const std::string ext = lower_extension(output);
+  const bool gltf_output = ext == "glb" || ext == "gltf";
+  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && !gltf_output)
+    throw UsageError(
+        "-o " + quoted_path(output) +
+        (ext.empty() ? std::string(": no file extension to name the mesh format")
+                     : ": unknown mesh format '." + printable(ext) + "'") +
+        " (expected .off, .obj, .ply, .stl, or .glb / .gltf for an input of that format)");
+  // A glTF result is the input glTF with new positions (its document): there is no glTF writer
+  // of a bare mesh, and frames would be one whole file each (--gltf animates the run instead).
+  if (gltf_output && lower_extension(input) != ext)
+    throw UsageError(
+        "-o " + quoted_path(output) + ": a ." + ext + " result is written only for a ." + ext +
+        " input (the input with new positions); for a glTF of the run, use --gltf FILE.glb");
+  if (gltf_output && frames_dir)
+    throw UsageError("--export-dir: frames are not written as ." + ext +
+                     " files; use --gltf FILE.glb for the frames");
+}
+
 namespace {
 
 namespace fs = std::filesystem;

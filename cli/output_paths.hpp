@@ -33,6 +33,11 @@ struct OutputPlan {
   PlannedFrames frames;
 };
 
+/// The result's format, from -o's extension: .off, .obj, .ply or .stl for any input; .glb or
+/// .gltf only for an input of that format, and then without frames (`frames_dir`: --export-dir).
+/// @throws UsageError naming -o (or --export-dir) and what is expected (exit code 1)
+void check_result_format(const std::string& input, const std::string& output, bool frames_dir);
+
 /// check_output_files (the library's, shared with Python) and the export folder's frames: no
 /// frame name may be an input or an output, and the folder (or the nearest existing parent that
 /// will hold it) must take new files. Creates nothing that stays (the export folder is made by

@@ -210,23 +210,7 @@ int command_run(int argc, char** argv) {
     if (given("export-failure") && exports.dir.empty() && exports.gltf.empty())
       std::cerr << "warning: --export-failure has no effect: it is what a failed frame file of "
                    "--export-dir or --gltf does\n";
-    const std::string ext = lower_extension(output);
-    const bool gltf_output = ext == "glb" || ext == "gltf";
-    if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && !gltf_output)
-      throw UsageError(
-          "-o " + quoted_path(output) +
-          (ext.empty() ? std::string(": no file extension to name the mesh format")
-                       : ": unknown mesh format '." + printable(ext) + "'") +
-          " (expected .off, .obj, .ply, .stl, or .glb / .gltf for an input of that format)");
-    // A glTF result is the input glTF with new positions (its document): there is no glTF writer
-    // of a bare mesh, and frames would be one whole file each (--gltf animates the run instead).
-    if (gltf_output && lower_extension(input) != ext)
-      throw UsageError(
-          "-o " + quoted_path(output) + ": a ." + ext + " result is written only for a ." + ext +
-          " input (the input with new positions); for a glTF of the run, use --gltf FILE.glb");
-    if (gltf_output && !exports.dir.empty())
-      throw UsageError("--export-dir: frames are not written as ." + ext +
-                       " files; use --gltf FILE.glb for the frames");
+    check_result_format(input, output, !exports.dir.empty());
     OutputPlan plan;
     std::vector<PlannedOutput>& planned = plan.outputs;
     planned.push_back({"-o", output});
@@ -261,9 +245,9 @@ int command_run(int argc, char** argv) {
     if (!options.region_weight_file.empty()) plan.inputs.push_back({"--region-weights", options.region_weight_file});
     if (!exports.dir.empty()) {
       exports.name = std::filesystem::path(output).stem().string();
-      exports.ext = ext;
+      exports.ext = lower_extension(output);
       // Every frame name, not only frame 0's: a run that stops early writes its last frame.
-      plan.frames = {exports.dir, exports.name, ext, options.sim.frames};
+      plan.frames = {exports.dir, exports.name, exports.ext, options.sim.frames};
     }
     // One decision for every output (output_paths.hpp), then the export folder: created, locked
     // against a second run, refused if another run's frames are there. Nothing before this

@@ -7,23 +7,34 @@ import bpy
 from addon_helpers import check, refusal
 
 
-def mesh_messages():
-    """A mesh the library refuses: the message names the object's mesh (not 'input arrays') and
-    its face numbers are the mesh's faces (polygons), not the loop triangles the run was given."""
-    import re
-    from shellcontract_blender import runner
+def edited_sphere(edit):
+    """The scene's only object: a UV sphere whose mesh edit(bm) has changed (a bmesh)."""
     bpy.ops.object.select_all(action="SELECT")
     bpy.ops.object.delete()
     bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
     obj = bpy.context.active_object
     bm = bmesh.new()
     bm.from_mesh(obj.data)
-    bm.faces.ensure_lookup_table()
-    removed = bm.faces[len(bm.faces) // 2]  # a quad of the middle: triangle n != face n
-    hole = {v.index for v in removed.verts}
-    bm.faces.remove(removed)
+    edit(bm)
     bm.to_mesh(obj.data)
     bm.free()
+    return obj
+
+
+def mesh_messages():
+    """A mesh the library refuses: the message names the object's mesh (not 'input arrays') and
+    its face numbers are the mesh's faces (polygons), not the loop triangles the run was given."""
+    import re
+    from shellcontract_blender import runner
+    hole = set()
+
+    def remove_a_quad(bm):
+        bm.faces.ensure_lookup_table()
+        removed = bm.faces[len(bm.faces) // 2]  # a quad of the middle: triangle n != face n
+        hole.update(v.index for v in removed.verts)
+        bm.faces.remove(removed)
+
+    obj = edited_sphere(remove_a_quad)
     text = refusal()
     # Every face with an open edge, as the mesh's faces: the removed quad's four neighbours.
     faces = re.search(r"the mesh of {}: open boundary: faces? ([\d, ]+) ".format(re.escape(obj.name)), text)
@@ -40,15 +51,8 @@ def mesh_messages():
     check("modifiers" not in text, "an object without modifiers gets no word of them: " + text)
     # Half a sphere closed by a Mirror modifier: the run takes the mesh as stored (open), so the
     # refusal says that the modifiers are left out and how to contract what they make.
-    bpy.ops.object.select_all(action="SELECT")
-    bpy.ops.object.delete()
-    bpy.ops.mesh.primitive_uv_sphere_add(segments=16, ring_count=8)
-    obj = bpy.context.active_object
-    bm = bmesh.new()
-    bm.from_mesh(obj.data)
-    bmesh.ops.delete(bm, geom=[v for v in bm.verts if v.co.x < -1e-6], context="VERTS")
-    bm.to_mesh(obj.data)
-    bm.free()
+    obj = edited_sphere(lambda bm: bmesh.ops.delete(
+        bm, geom=[v for v in bm.verts if v.co.x < -1e-6], context="VERTS"))
     obj.modifiers.new("Mirror", "MIRROR")
     text = refusal()
     check("open boundary" in text and "without its modifiers (Mirror)" in text

@@ -12,25 +12,16 @@
 
 #include "support/cli_runner.hpp"
 #include "support/gltf_files.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
 
-class CliGltf : public ::testing::Test {
+class CliGltf : public test::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("shellcontract_cli_gltf_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
-  fs::path dir_;
+  CliGltf() : ScratchDirTest("shellcontract_cli_gltf_") {}
 };
 
 test::GltfScene octahedron() {

@@ -15,6 +15,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/gltf_files.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace shellcontract {
 namespace {
@@ -22,18 +23,9 @@ namespace {
 namespace fs = std::filesystem;
 using test::GltfScene;
 
-class GltfReader : public ::testing::Test {
+class GltfReader : public test::ScratchDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("shellcontract_gltf_reader_" + std::to_string(::getpid()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    const std::string path = (dir_ / name).string();
-    std::ofstream(path, std::ios::binary) << bytes;
-    return path;
-  }
+  GltfReader() : ScratchDirTest("shellcontract_gltf_reader_") {}
   std::string glb(const std::string& name, const GltfScene& s) const {
     return write(name, test::glb_bytes(test::gltf_parts(s)));
   }
@@ -46,7 +38,6 @@ class GltfReader : public ::testing::Test {
     }
     return "(no error)";
   }
-  fs::path dir_;
 };
 
 GltfScene octahedron(bool split = false, bool uv = false) {

@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -133,14 +135,22 @@ TEST(PlyDocument, BinaryOfEitherByteOrderChangesOnlyThePositionBytes) {
   }
 }
 
+/// The mesh and the document of a PLY file with `text` (written to `name` in the temp folder
+/// and removed again), as a run reads its input.
+std::pair<Mesh, std::unique_ptr<MeshDocument>> read_ply_file(const std::string& name,
+                                                             const std::string& text) {
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  Mesh mesh = read_input_mesh(path.string());
+  auto doc = read_mesh_document(path.string());
+  std::filesystem::remove(path);
+  return {std::move(mesh), std::move(doc)};
+}
+
 TEST(PlyDocument, TextureCoordinatesArePerVertex) {
   // Vertex i has (s, t) = (0.25 i, 1 - 0.125 i) in ascii_tet (exact in float): every corner of
   // every simulation face must get its vertex's.
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "shellcontract_ply_document_uv.ply";
-  std::ofstream(path) << ascii_tet();
-  const Mesh mesh = read_input_mesh(path.string());
-  const auto doc = read_mesh_document(path.string());
-  std::filesystem::remove(path);
+  const auto [mesh, doc] = read_ply_file("shellcontract_ply_document_uv.ply", ascii_tet());
   ASSERT_TRUE(doc && doc->matches(mesh));
   const CornerTexcoords tc = doc->texcoords(mesh);
   ASSERT_EQ(tc.face_uv.size(), 4u);
@@ -177,11 +187,7 @@ TEST(PlyDocument, TextureCoordinatesPerFaceCornerAreRead) {
     for (std::size_t k = 0; k < 3; ++k) o << ' ' << uv_of(f, k)[0] << ' ' << uv_of(f, k)[1];
     o << " 9\n";
   }
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "shellcontract_ply_document_wedge.ply";
-  std::ofstream(path) << o.str();
-  const Mesh mesh = read_input_mesh(path.string());
-  const auto doc = read_mesh_document(path.string());
-  std::filesystem::remove(path);
+  const auto [mesh, doc] = read_ply_file("shellcontract_ply_document_wedge.ply", o.str());
   ASSERT_TRUE(doc && doc->matches(mesh));
   const CornerTexcoords tc = doc->texcoords(mesh);
   ASSERT_EQ(tc.face_uv.size(), 4u);

@@ -137,8 +137,8 @@ export function writeEditedGlb(glbPath, outPath, edit) {
 /** sRGB byte to linear, as three.js's Color.setRGB(..., SRGBColorSpace). */
 export const linear = (b) => { const c = b / 255; return c < 0.04045 ? c * 0.0773993808 : Math.pow(c * 0.9478672986 + 0.0521327014, 2.4); };
 
-/** Starts scripts/view.py with the files; resolves to {server, url}. */
-function serve(...files) {
+/** Starts scripts/view.py with the files (and its options); resolves to {server, url}. */
+export function serve(...files) {
   return new Promise((resolve, reject) => {
     const server = spawn('/usr/bin/python3', [path.join(repo, 'scripts', 'view.py'), ...files, '--port', '0'],
       { stdio: ['ignore', 'pipe', 'inherit'] });

@@ -5,46 +5,17 @@
 // switching the colour field changes the picture.
 // Usage: node viewer/tests/viewer_test.mjs --glb RUN.glb --csv RUN.csv [--json RUN.json]
 //        [--chromium PATH] [--screenshot OUT.png]
-import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
-import { fileURLToPath } from 'node:url';
 import puppeteer from 'puppeteer-core';
+import { check, finish, parseArgs, serve } from './test_support.mjs';
 
-const args = Object.fromEntries(process.argv.slice(2).reduce((acc, a, i, all) => {
-  if (a.startsWith('--')) acc.push([a.slice(2), all[i + 1]]);
-  return acc;
-}, []));
-const repo = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+const args = parseArgs('viewer_test.mjs --glb RUN.glb --csv RUN.csv [--chromium PATH] [--screenshot OUT.png]',
+  ['glb', 'csv']);
 const chromium = args.chromium ?? '/usr/bin/chromium';
-if (!args.glb || !args.csv) {
-  console.error('usage: viewer_test.mjs --glb RUN.glb --csv RUN.csv [--chromium PATH] [--screenshot OUT.png]');
-  process.exit(2);
-}
 
-const failures = [];
-function check(ok, what) {
-  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
-  if (!ok) failures.push(what);
-}
-
-/** Starts scripts/view.py on a free port with the .glb and a log; resolves to {server, url}. */
-function serve(log) {
-  return new Promise((resolve, reject) => {
-    const server = spawn('/usr/bin/python3', [path.join(repo, 'scripts', 'view.py'), args.glb, '--log', log,
-      '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
-    let out = '';
-    server.stdout.on('data', (d) => {
-      out += d;
-      const line = out.split('\n')[0];
-      if (out.includes('\n')) resolve({ server, url: line.trim() });
-    });
-    server.on('exit', (code) => reject(new Error(`view.py exited with ${code}`)));
-  });
-}
-
-const { server, url } = await serve(args.csv);
+const { server, url } = await serve(args.glb, '--log', args.csv);
 let jsonServer = null;
 console.log(`viewer at ${url}`);
 const profile = mkdtempSync(path.join(tmpdir(), 'shellcontract-chromium-'));
@@ -157,7 +128,7 @@ try {
 
   // The JSON summary instead of the CSV: its final and minimum V/V0.
   if (args.json) {
-    const served = await serve(args.json);
+    const served = await serve(args.glb, '--log', args.json);
     jsonServer = served.server;
     await page.goto(served.url, { waitUntil: 'load' });
     await page.waitForFunction(() => window.viewer && (window.viewer.ready || window.viewer.error), { timeout: 60000 });
@@ -174,8 +145,4 @@ try {
   jsonServer?.kill();
   rmSync(profile, { recursive: true, force: true });
 }
-if (failures.length) {
-  console.error(`${failures.length} check(s) failed`);
-  process.exit(1);
-}
-console.log('all viewer checks passed');
+finish('all viewer checks passed');
