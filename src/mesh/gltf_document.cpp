@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "mesh/gltf_model.hpp"
+#include "mesh/seam_weld.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -176,30 +177,18 @@ class GltfDocument final : public MeshDocument {
     bool any = false;
     for (const Written& n : normals_) any = any || n.accessor >= 0;
     if (!any) return;
-    using Key = std::array<std::uint64_t, 3>;
-    const auto key = [&](std::size_t v) {
-      Key k;
-      for (int c = 0; c < 3; ++c) {
-        const double d = x(static_cast<Eigen::Index>(v), c);
-        std::memcpy(&k[static_cast<std::size_t>(c)], &d, 8);
-      }
-      return k;
-    };
-    std::map<Key, Eigen::Vector3d> sum;
+    const std::vector<std::size_t> rep = soup::first_at_same_position(x);
+    std::vector<Eigen::Vector3d> sum(rep.size(), Eigen::Vector3d::Zero());
     for (const auto& f : soup_.faces) {
       const Eigen::Vector3d a = x.row(static_cast<Eigen::Index>(f[0])).transpose();
       const Eigen::Vector3d n = (x.row(static_cast<Eigen::Index>(f[1])).transpose() - a)
                                     .cross(x.row(static_cast<Eigen::Index>(f[2])).transpose() - a);
-      for (const std::size_t v : f) {
-        auto [it, fresh] = sum.emplace(key(v), Eigen::Vector3d::Zero());
-        (void)fresh;
-        it->second += n;
-      }
+      for (const std::size_t v : f) sum[rep[v]] += n;
     }
     for (std::size_t v = 0; v < vertex_count_; ++v) {
       const auto& s = soup_.sources[v];
       if (normals_[s.drawn].accessor < 0) continue;
-      Eigen::Vector3d n = world_[s.drawn].topLeftCorner<3, 3>().transpose() * sum.at(key(v));
+      Eigen::Vector3d n = world_[s.drawn].topLeftCorner<3, 3>().transpose() * sum[rep[v]];
       // A vertex whose faces have no area keeps the normal it had.
       if (!(n.norm() > 0.0) || !n.allFinite()) continue;
       n.normalize();

@@ -1,38 +1,18 @@
 #include "mesh/obj_normals.hpp"
 
-#include <array>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 #include <map>
 #include <utility>
 
+#include "mesh/seam_weld.hpp"
+
 namespace shellcontract {
-namespace {
-
-/// Per vertex, the first vertex at bitwise the same position: the welded vertex of a seam's
-/// copies (input_positions puts every copy at its vertex's position).
-std::vector<std::size_t> position_representatives(const Positions& x) {
-  std::map<std::array<std::uint64_t, 3>, std::size_t> first;
-  std::vector<std::size_t> rep(static_cast<std::size_t>(x.rows()));
-  for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    std::array<std::uint64_t, 3> key{};
-    for (int k = 0; k < 3; ++k) {
-      const double c = x(i, k);
-      std::memcpy(&key[static_cast<std::size_t>(k)], &c, sizeof c);
-    }
-    rep[static_cast<std::size_t>(i)] = first.emplace(key, static_cast<std::size_t>(i)).first->second;
-  }
-  return rep;
-}
-
-}  // namespace
 
 ObjNormals obj_normals(const Positions& x, const ObjCorners& in) {
   const std::vector<std::size_t>& start = *in.polygon_start;
   const std::vector<std::size_t>& vertex = *in.corner_vertex;
   const std::vector<long long>& vn = *in.corner_vn;
-  const std::vector<std::size_t> rep = position_representatives(x);
+  const std::vector<std::size_t> rep = soup::first_at_same_position(x);
 
   // Groups: (vn line, vertex). Each polygon's weight is its Newell vector: twice its area along
   // its normal.

@@ -24,6 +24,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/ply_header.hpp"
+#include "mesh/seam_weld.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "mesh/file_safety.hpp"
@@ -207,18 +208,9 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
 }
 
 Positions PlyDocument::normals(const Positions& x) const {
-  // Copies of a seam vertex sit at bitwise the same position (input_positions puts every copy at
-  // its vertex's): they share one normal, so a seam does not show in the shading.
-  std::map<std::array<std::uint64_t, 3>, Eigen::Index> first;
-  std::vector<Eigen::Index> rep(static_cast<std::size_t>(x.rows()));
-  for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    std::array<std::uint64_t, 3> key{};
-    for (int k = 0; k < 3; ++k) {
-      const double c = x(i, k);
-      std::memcpy(&key[static_cast<std::size_t>(k)], &c, sizeof c);
-    }
-    rep[static_cast<std::size_t>(i)] = first.emplace(key, i).first->second;
-  }
+  // Copies of a seam vertex (input_positions puts each at its vertex's position) share one
+  // normal, so a seam does not show in the shading.
+  const std::vector<std::size_t> rep = soup::first_at_same_position(x);
   // Each vertex gets the sum of its polygons' Newell vectors (twice their area along their
   // normal), as an OBJ's smooth normals do (obj_normals.hpp), in the file's winding.
   Positions sum = Positions::Zero(x.rows(), 3);
@@ -232,11 +224,12 @@ Positions PlyDocument::normals(const Positions& x) const {
                     .cross(Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[next]))));
     }
     for (std::size_t c = b; c < e; ++c)
-      if (corner_vertex_[c] < vertex_count_) sum.row(rep[corner_vertex_[c]]) += newell.transpose();
+      if (corner_vertex_[c] < vertex_count_)
+        sum.row(static_cast<Eigen::Index>(rep[corner_vertex_[c]])) += newell.transpose();
   }
   Positions n(x.rows(), 3);
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    const Vec3 v = sum.row(rep[static_cast<std::size_t>(i)]);
+    const Vec3 v = sum.row(static_cast<Eigen::Index>(rep[static_cast<std::size_t>(i)]));
     const double len = v.norm();
     // No area around the vertex (or none at all): its normal stays as the file gave it.
     const bool ok = len > 0.0 && std::isfinite(len);

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -36,6 +37,16 @@ std::string problem_of(const InputError& e) {
 }
 
 }  // namespace
+
+std::vector<std::size_t> first_at_same_position(const Positions& x) {
+  std::map<Bits, std::size_t> first;
+  std::vector<std::size_t> out(static_cast<std::size_t>(x.rows()));
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const auto v = static_cast<std::size_t>(i);
+    out[v] = first.emplace(bits_of(Point3(x(i, 0), x(i, 1), x(i, 2))), v).first->second;
+  }
+  return out;
+}
 
 SeamWeld weld_identical_positions(const std::vector<Point3>& points, const std::vector<Polygon>& tris) {
   const std::size_t nv = points.size();

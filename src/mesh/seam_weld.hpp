@@ -39,6 +39,10 @@ struct SeamWeld {
 /// Groups the vertices at bitwise-identical positions (all three coordinates the same bits).
 SeamWeld weld_identical_positions(const std::vector<Point3>& points, const std::vector<Polygon>& tris);
 
+/// Per vertex of x, the first vertex at a bitwise-identical position (itself when it has no
+/// copy): how the outputs give a seam's copies, which the simulation moved together, one normal.
+std::vector<std::size_t> first_at_same_position(const Positions& x);
+
 /// Whether some edge of the triangles belongs to one triangle only (an open boundary).
 bool has_boundary_edge(const std::vector<Polygon>& tris, std::size_t nv);
 
