@@ -14,6 +14,7 @@
 #include <stdexcept>
 
 #include "mesh/gltf_model.hpp"
+#include "mesh/normal_groups.hpp"
 #include "mesh/seam_weld.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -81,6 +82,7 @@ class GltfDocument final : public MeshDocument {
           float_attribute(path, p, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, 8, name, count));
     }
     read_texcoords();
+    read_normals();
   }
 
   std::string format() const override { return binary_ ? "glb" : "gltf"; }
@@ -161,6 +163,23 @@ class GltfDocument final : public MeshDocument {
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());
   }
 
+  /// Each vertex's input normal in world space as a unit vector (zero: none), so that copies
+  /// drawn by different nodes compare: a normal maps by the inverse transpose of its node's
+  /// transform.
+  void read_normals() {
+    input_normal_.assign(vertex_count_, Eigen::Vector3d::Zero());
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      const auto& s = soup_.sources[v];
+      if (normals_[s.drawn].accessor < 0) continue;
+      float f[3];
+      std::memcpy(f, normals_[s.drawn].view.at(model_, s.element), sizeof f);
+      const Eigen::Vector3d n =
+          to_local_[s.drawn].topLeftCorner<3, 3>().transpose() * Eigen::Vector3d(f[0], f[1], f[2]);
+      const double len = n.norm();
+      if (len > 0.0 && std::isfinite(len)) input_normal_[v] = n / len;
+    }
+  }
+
   static void put_floats(tinygltf::Model& m, const gltf::ElementView& view, std::size_t element,
                          std::array<double, 3> value) {
     float f[3] = {static_cast<float>(value[0]), static_cast<float>(value[1]),
@@ -169,26 +188,29 @@ class GltfDocument final : public MeshDocument {
                 sizeof f);
   }
 
-  /// Area-weighted normals at the new positions, summed over every triangle at a position (seam
-  /// copies, which the simulation moved together, get one normal: no seam shows), then brought
-  /// into each primitive's node space (the transpose of its world matrix: normals transform by the
-  /// inverse transpose).
+  /// Area-weighted normals at the new positions, one per normal group (normal_groups.hpp): the
+  /// copies at a position whose input normals are the same (seam copies, which the simulation
+  /// moved together: no seam shows) share the sum over their triangles, while copies with their
+  /// own normal (a flat side, a hard edge) get their own triangles' sum, so the edge stays hard.
+  /// Then brought into each primitive's node space (the transpose of its world matrix: normals
+  /// transform by the inverse transpose).
   void write_normals(tinygltf::Model& m, const Positions& x) const {
     bool any = false;
     for (const Written& n : normals_) any = any || n.accessor >= 0;
     if (!any) return;
-    const std::vector<std::size_t> rep = soup::first_at_same_position(x);
-    std::vector<Eigen::Vector3d> sum(rep.size(), Eigen::Vector3d::Zero());
+    const std::vector<std::size_t> group =
+        soup::normal_groups(soup::first_at_same_position(x), input_normal_);
+    std::vector<Eigen::Vector3d> sum(group.size(), Eigen::Vector3d::Zero());
     for (const auto& f : soup_.faces) {
       const Eigen::Vector3d a = x.row(static_cast<Eigen::Index>(f[0])).transpose();
       const Eigen::Vector3d n = (x.row(static_cast<Eigen::Index>(f[1])).transpose() - a)
                                     .cross(x.row(static_cast<Eigen::Index>(f[2])).transpose() - a);
-      for (const std::size_t v : f) sum[rep[v]] += n;
+      for (const std::size_t v : f) sum[group[v]] += n;
     }
     for (std::size_t v = 0; v < vertex_count_; ++v) {
       const auto& s = soup_.sources[v];
       if (normals_[s.drawn].accessor < 0) continue;
-      Eigen::Vector3d n = world_[s.drawn].topLeftCorner<3, 3>().transpose() * sum[rep[v]];
+      Eigen::Vector3d n = world_[s.drawn].topLeftCorner<3, 3>().transpose() * sum[group[v]];
       // A vertex whose faces have no area keeps the normal it had.
       if (!(n.norm() > 0.0) || !n.allFinite()) continue;
       n.normalize();
@@ -219,6 +241,7 @@ class GltfDocument final : public MeshDocument {
   std::vector<Eigen::Matrix4d> world_,
       to_local_;  ///< per drawn primitive: node space to world and back
   std::vector<Written> positions_, normals_, texcoords_;  ///< per drawn primitive
+  std::vector<Eigen::Vector3d> input_normal_;             ///< per vertex: read_normals
 };
 
 }  // namespace

@@ -5,7 +5,9 @@
 // '.glb'" (exit 2) for every input here, and "-o x.glb" was bad usage.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -198,6 +200,164 @@ TEST(GltfInput, WhatCannotBeWrittenAsGltfIsRefusedBeforeTheRun) {
   r = test::run_cli({"run", bad, "-o", dir.file("cut_out.glb"), "-n", "2", "-q"});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("cut.glb: truncated .glb"), std::string::npos) << r.output;
+}
+
+// Normals of a glTF result where the file shades hard edges: glTF has no smoothing groups, so an
+// exporter makes a hard edge by giving each side its own copies of the vertices there, each
+// with its side's normal. Those copies move together (welded), but their new normals stay apart.
+
+/// The outward normal of side `axis` (0 x, 1 y, 2 z), `sign` -1 or 1, of the box [-1, 1]^3.
+std::array<float, 3> axis_normal(int axis, int sign) {
+  std::array<float, 3> n{0, 0, 0};
+  n[static_cast<std::size_t>(axis)] = static_cast<float>(sign);
+  return n;
+}
+
+/// The corner (a, b) of that side, a and b its coordinates along the next two axes.
+std::array<float, 3> side_corner(int axis, int sign, float a, float b) {
+  std::array<float, 3> q{};
+  q[static_cast<std::size_t>(axis)] = static_cast<float>(sign);
+  q[static_cast<std::size_t>((axis + 1) % 3)] = a;
+  q[static_cast<std::size_t>((axis + 2) % 3)] = b;
+  return q;
+}
+
+/// Appends a quad's two triangles (corners first..first + 3 in order around it), wound outwards:
+/// the corners go counterclockwise about the next two axes' cross product, the side's +axis.
+void add_quad(test::GltfPrimitive& p, std::uint32_t first, bool reverse) {
+  const std::uint32_t q[2][3] = {{0, 1, 2}, {0, 2, 3}};
+  for (const auto& t : q)
+    for (int k = 0; k < 3; ++k) p.indices.push_back(first + t[reverse ? (3 - k) % 3 : k]);
+}
+
+/// One flat side: four corners of its own, each with the side's normal (flat shading).
+void add_flat_side(test::GltfPrimitive& p, int axis, int sign) {
+  const auto first = static_cast<std::uint32_t>(p.positions.size());
+  const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+  for (const auto& ab : corners) {
+    p.positions.push_back(side_corner(axis, sign, ab[0], ab[1]));
+    p.normals.push_back(axis_normal(axis, sign));
+  }
+  add_quad(p, first, sign < 0);
+}
+
+/// An affine map: every side stays flat, but its normal turns away from its axis, each side's
+/// its own way, so the normals a result must have are the sides' at the new positions.
+Eigen::Vector3d moved(const std::array<float, 3>& p) {
+  Eigen::Matrix3d a;
+  a << 2.0, 0.5, 0.0, 0.0, 1.0, 0.25, 0.1, 0.0, 1.5;
+  return a * Eigen::Vector3d(p[0], p[1], p[2]) + Eigen::Vector3d(0.3, -0.2, 0.1);
+}
+
+/// The scene's vertices moved (simulation order: primitive by primitive, in accessor order).
+Positions moved_positions(const test::GltfScene& s) {
+  std::vector<Eigen::Vector3d> rows;
+  for (const auto& p : s.primitives)
+    for (const auto& q : p.positions) rows.push_back(moved(q));
+  Positions x(static_cast<Eigen::Index>(rows.size()), 3);
+  for (std::size_t i = 0; i < rows.size(); ++i) x.row(static_cast<Eigen::Index>(i)) = rows[i];
+  return x;
+}
+
+/// Twice the triangle's area along its normal, at the moved positions.
+Eigen::Vector3d area_normal(const test::GltfPrimitive& p, std::size_t t) {
+  const Eigen::Vector3d a = moved(p.positions[p.indices[3 * t]]),
+                        b = moved(p.positions[p.indices[3 * t + 1]]),
+                        c = moved(p.positions[p.indices[3 * t + 2]]);
+  return (b - a).cross(c - a);
+}
+
+/// The document of the scene's .glb written with x, read back.
+tinygltf::Model written(const ScratchDir& dir, const test::GltfScene& s, const Positions& x) {
+  const auto doc = parse_gltf_document("in.glb", test::glb_bytes(test::gltf_parts(s)), true);
+  return test::load_glb(write(dir.file("out.glb"), doc->text(x)));
+}
+
+TEST(GltfInput, AFlatShadedBoxKeepsItsHardEdges) {
+  ScratchDir dir("gltf_input_flat");
+  // The x and y sides in one primitive, the z sides in another: hard edges within a primitive
+  // and across two.
+  test::GltfScene s;
+  s.primitives.resize(2);
+  for (int axis = 0; axis < 3; ++axis)
+    for (const int sign : {-1, 1}) add_flat_side(s.primitives[axis == 2 ? 1 : 0], axis, sign);
+  const tinygltf::Model b = written(dir, s, moved_positions(s));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const test::GltfPrimitive& p = s.primitives[k];
+    const test::Floats n =
+        test::read_floats(b, b.meshes.at(0).primitives.at(k).attributes.at("NORMAL"));
+    ASSERT_EQ(n.rows(), static_cast<Eigen::Index>(p.positions.size()));
+    for (std::size_t side = 0; side < p.positions.size() / 4; ++side) {
+      // The side's normal at the new positions (flat: both of its triangles give it).
+      const Eigen::Vector3d want = area_normal(p, 2 * side).normalized();
+      EXPECT_LT((area_normal(p, 2 * side + 1).normalized() - want).norm(), 1e-12);
+      for (std::size_t c = 4 * side; c < 4 * side + 4; ++c)
+        EXPECT_LT((n.row(static_cast<Eigen::Index>(c)).cast<double>().transpose() - want).norm(),
+                  1e-6)
+            << "primitive " << k << " corner " << c << ": " << n.row(static_cast<Eigen::Index>(c))
+            << ", the side's normal is " << want.transpose();
+    }
+  }
+}
+
+TEST(GltfInput, ASmoothBandBetweenFlatCapsKeepsBothAndItsSeamShowsNot) {
+  ScratchDir dir("gltf_input_band");
+  // The box's four sides smooth-shaded (each corner's normal the horizontal diagonal through
+  // it), split at a UV seam (the last column repeats the first, same normal, u = 1), between
+  // flat top and bottom caps with their own corners: two hard edges and one seam.
+  test::GltfScene s;
+  s.primitives.resize(1);
+  test::GltfPrimitive& p = s.primitives[0];
+  const float around[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
+  for (int k = 0; k < 5; ++k)
+    for (const float z : {-1.0f, 1.0f}) {
+      const float dx = around[k][0], dy = around[k][1];
+      p.positions.push_back({dx, dy, z});
+      p.normals.push_back({dx / std::sqrt(2.0f), dy / std::sqrt(2.0f), 0.0f});
+      p.texcoords.push_back({static_cast<float>(k) / 4.0f, z < 0 ? 1.0f : 0.0f});
+    }
+  for (std::uint32_t k = 0; k < 4; ++k) {  // bottom, bottom next, top next, top
+    const std::uint32_t b0 = 2 * k, t0 = b0 + 1, b1 = b0 + 2, t1 = b0 + 3;
+    for (const std::uint32_t i : {b0, b1, t1, b0, t1, t0}) p.indices.push_back(i);
+  }
+  // One copy's normal a float rounding off (an exporter that normalized it again): the same.
+  p.normals[8][0] = std::nextafter(p.normals[8][0], 0.0f);
+  const std::size_t band_triangles = p.indices.size() / 3;
+  for (const int sign : {-1, 1}) {
+    const std::size_t first = p.positions.size();
+    add_flat_side(p, 2, sign);
+    for (std::size_t c = first; c < p.positions.size(); ++c) p.texcoords.push_back({0.5f, 0.5f});
+  }
+  ASSERT_EQ(p.positions.size(), 18u);
+  const tinygltf::Model b = written(dir, s, moved_positions(s));
+  const test::Floats n =
+      test::read_floats(b, b.meshes.at(0).primitives.at(0).attributes.at("NORMAL"));
+  ASSERT_EQ(n.rows(), 18);
+  const auto normal = [&](std::size_t v) {
+    return Eigen::Vector3d(n.row(static_cast<Eigen::Index>(v)).cast<double>().transpose());
+  };
+  // A band corner: the area-weighted sum over the band's triangles at its position (the seam
+  // copies' too), not the caps'.
+  for (std::size_t v = 0; v < 10; ++v) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (std::size_t t = 0; t < band_triangles; ++t)
+      for (std::size_t k = 0; k < 3; ++k)
+        if (p.positions[p.indices[3 * t + k]] == p.positions[v]) sum += area_normal(p, t);
+    EXPECT_LT((normal(v) - sum.normalized()).norm(), 1e-6)
+        << "band corner " << v << ": " << normal(v).transpose() << ", the band's "
+        << sum.normalized().transpose();
+  }
+  // The seam copies: one normal, bit for bit.
+  EXPECT_EQ(n.row(0), n.row(8));
+  EXPECT_EQ(n.row(1), n.row(9));
+  // A cap corner: the cap's normal.
+  for (std::size_t cap = 0; cap < 2; ++cap) {
+    const Eigen::Vector3d want = area_normal(p, band_triangles + 2 * cap).normalized();
+    for (std::size_t v = 10 + 4 * cap; v < 14 + 4 * cap; ++v)
+      EXPECT_LT((normal(v) - want).norm(), 1e-6)
+          << "cap corner " << v << ": " << normal(v).transpose() << ", the cap's "
+          << want.transpose();
+  }
 }
 
 }  // namespace
