@@ -25,7 +25,7 @@ endif()
 if(SHELLCONTRACT_BUILD_PYTHON)
   # The module is a shared object with the static library inside: its code must be
   # position-independent (a thread-local in CGAL's headers otherwise fails to link).
-  set_target_properties(shellcontract PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  set_target_properties(shellcontract shellcontract_reader PROPERTIES POSITION_INDEPENDENT_CODE ON)
 endif()
 
 # Where `cmake --install` puts the package (the module and the pure-Python files), relative to the
