@@ -102,7 +102,8 @@ class FrameExporter final : public RunObserver {
 
   /// The glTF's node and mesh name (the input's stem).
   void set_gltf_name(std::string name) { gltf_.name = std::move(name); }
-  /// The glTF's materials and each face's (gltf_materials: the OBJ's .mtl); empty: none.
+  /// The glTF's materials and each face's (gltf_materials: the OBJ's .mtl, the PLY's
+  /// TextureFile images); empty: none.
   void set_materials(std::vector<GltfMaterial> materials, std::vector<int> face_material) {
     gltf_.materials = std::move(materials);
     gltf_.face_material = std::move(face_material);

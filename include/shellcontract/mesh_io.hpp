@@ -177,7 +177,7 @@ struct CornerTexcoords {
 };
 
 /// The materials an OBJ's faces use (`usemtl`) and the libraries that define them (`mtllib`),
-/// for the glTF's material.
+/// or the texture files a PLY's header names (`comment TextureFile`), for the glTF's material.
 struct FaceMaterials {
   std::vector<std::string> names;  ///< the material names, in order of first use
   /// Per simulation face (face index order): an index into names; -1 for a face after no usemtl.
@@ -188,7 +188,14 @@ struct FaceMaterials {
     bool found = false;    ///< the file exists
   };
   std::vector<Library> libraries;
-  std::string source;  ///< the OBJ file, for messages
+  /// A material that is nothing but a texture file the mesh file names itself (a PLY's
+  /// `comment TextureFile <path>` line), with no library: parallel to names; empty for an OBJ.
+  struct Texture {
+    std::string path;      ///< the image as found from the PLY's folder; empty: none named
+    std::size_t line = 0;  ///< the header line that names it
+  };
+  std::vector<Texture> textures;
+  std::string source;  ///< the OBJ (or PLY) file, for messages
   bool empty() const { return names.empty(); }
 };
 
@@ -229,8 +236,9 @@ class MeshDocument {
   /// Texture coordinates by simulation face corner; empty when some corner of a polygon has none.
   /// @pre matches(mesh)
   CornerTexcoords texcoords(const Mesh& mesh) const;
-  /// The material of each simulation face and the material libraries (OBJ); empty for a file
-  /// with no usemtl line (and for PLY).
+  /// The material of each simulation face and the material libraries (OBJ), or the texture
+  /// files and each face's (PLY: its `texnumber`, else the first); empty for an OBJ with no
+  /// usemtl line, a PLY with no TextureFile comment (and for glTF).
   /// @pre matches(mesh)
   FaceMaterials face_materials(const Mesh& mesh) const;
 
@@ -266,6 +274,7 @@ std::unique_ptr<MeshDocument> parse_obj_document(const std::string& name, const 
 
 /// A PLY file's bytes as a document (src/mesh/ply_document.cpp): header and every element byte
 /// for byte, but the vertices' x, y, z, written in their declared types and the file's format.
+/// Its `comment TextureFile` lines (relative paths from `name`'s folder) are its face_materials.
 /// @throws InputError "<name>: <problem>: ..." for a file it cannot read
 std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const std::string& bytes);
 

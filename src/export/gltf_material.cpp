@@ -183,39 +183,81 @@ std::string image_mime_type(const std::vector<unsigned char>& b) {
 namespace {
 
 /// The glTF material of `m`, its texture embedded when it can be (else a warning, and none).
-GltfMaterial to_gltf(const MtlMaterial& m, bool has_texcoords, std::vector<std::string>& warnings) {
+/// @param key what the warnings call the line that names the texture ("map_Kd", "TextureFile")
+GltfMaterial to_gltf(const MtlMaterial& m, bool has_texcoords, std::vector<std::string>& warnings,
+                     const std::string& key = "map_Kd") {
   GltfMaterial g;
   g.name = m.name;
   g.base_colour = {m.kd[0], m.kd[1], m.kd[2], m.alpha};
   if (m.texture.empty()) return g;
   const std::string where = m.file + ": line " + std::to_string(m.texture_line) + ": ";
   if (!has_texcoords) {
-    warnings.push_back(where + "map_Kd '" + m.texture +
+    warnings.push_back(where + key + " '" + m.texture +
                        "' not embedded: the mesh has no texture coordinates on every face");
     return g;
   }
   std::error_code ec;
   if (!fs::exists(m.texture, ec)) {
-    warnings.push_back(where + "map_Kd '" + m.texture +
+    warnings.push_back(where + key + " '" + m.texture +
                        "' not found: the glTF's material has no texture");
     return g;
   }
   std::string why;
   const std::optional<std::string> read = read_bytes(m.texture, MAX_TEXTURE_BYTES, why);
   if (!read) {
-    warnings.push_back(where + "map_Kd '" + m.texture + "' cannot be read (" + why +
+    warnings.push_back(where + key + " '" + m.texture + "' cannot be read (" + why +
                        "): the glTF's material has no texture");
     return g;
   }
   std::vector<unsigned char> image(read->begin(), read->end());
   g.image_mime_type = image_mime_type(image);
   if (g.image_mime_type.empty()) {
-    warnings.push_back(where + "map_Kd '" + m.texture +
-                       "' is neither PNG nor JPEG (glTF's image types): the glTF's material has no texture");
+    warnings.push_back(
+        where + key + " '" + m.texture +
+        "' is neither PNG nor JPEG (glTF's image types): the glTF's material has no texture");
     return g;
   }
   g.image = std::move(image);
   return g;
+}
+
+/// The materials of a PLY's texture files (FaceMaterials::textures): each one a face uses, in
+/// header order, white with its image. A face whose texnumber names no texture file has no
+/// material (one warning counts them).
+GltfFaceMaterials texture_file_materials(const FaceMaterials& materials,
+                                         const std::vector<bool>& used, bool has_texcoords,
+                                         std::vector<std::string>& warnings) {
+  GltfFaceMaterials out;
+  std::size_t unnamed = 0;
+  for (const int m : materials.face_material)
+    if (m < 0 || static_cast<std::size_t>(m) >= materials.names.size()) ++unnamed;
+  if (unnamed > 0)
+    warnings.push_back(materials.source + ": " + std::to_string(unnamed) + " of " +
+                       std::to_string(materials.face_material.size()) +
+                       " faces have a texnumber that names none of the " +
+                       std::to_string(materials.textures.size()) +
+                       " TextureFile comments: they have no material in the glTF");
+  std::vector<int> index(materials.names.size(), -1);
+  for (std::size_t i = 0; i < materials.names.size() && i < materials.textures.size(); ++i) {
+    if (!used[i]) continue;
+    const FaceMaterials::Texture& t = materials.textures[i];
+    MtlMaterial m;
+    m.name = materials.names[i];
+    m.texture = t.path;
+    m.texture_line = t.line;
+    m.file = materials.source;
+    if (t.path.empty())
+      warnings.push_back(materials.source + ": line " + std::to_string(t.line) +
+                         ": TextureFile without a file name: the glTF's material has no texture");
+    index[i] = static_cast<int>(out.materials.size());
+    out.materials.push_back(to_gltf(m, has_texcoords, warnings, "TextureFile"));
+  }
+  if (out.materials.empty()) return out;
+  for (const int m : materials.face_material)
+    out.face_material.push_back(m >= 0 && static_cast<std::size_t>(m) < index.size()
+                                    ? index[static_cast<std::size_t>(m)]
+                                    : -1);
+  return out;
 }
 
 }  // namespace
@@ -226,6 +268,8 @@ GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoo
   std::vector<bool> used(materials.names.size(), false);
   for (const int m : materials.face_material)
     if (m >= 0 && static_cast<std::size_t>(m) < used.size()) used[static_cast<std::size_t>(m)] = true;
+  if (!materials.textures.empty())
+    return texture_file_materials(materials, used, has_texcoords, warnings);
   if (std::find(used.begin(), used.end(), true) == used.end()) return out;
 
   // Every library is read (and warns) even when an earlier one defines every material: the

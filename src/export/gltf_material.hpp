@@ -1,6 +1,7 @@
-// The glTF materials of an OBJ input (docs/design/export.md, "Name and material"): the .mtl files its
-// mtllib lines name, read for the keys a base colour needs (newmtl, Kd, d, Tr, map_Kd), and the
-// materials its faces use, with their diffuse textures' files embedded.
+// The glTF materials of an OBJ input (docs/design/export.md, "Name and material"): the .mtl files
+// its mtllib lines name, read for the keys a base colour needs (newmtl, Kd, d, Tr, map_Kd), and the
+// materials its faces use, with their diffuse textures' files embedded; and those of a PLY input,
+// one per texture file its header names (`comment TextureFile`), with that image embedded.
 #pragma once
 
 #include <array>
@@ -44,6 +45,11 @@ struct GltfFaceMaterials {
 /// its first bytes) and `has_texcoords`; otherwise the material is written without it, with a
 /// warning naming the .mtl file and line. A library that is missing or unreadable is a warning
 /// too. Never throws for the files' contents.
+/// For a PLY's texture files (materials.textures not empty: no library is read), one white
+/// material per texture file a face uses, in header order, named by the path as the header
+/// writes it, its image embedded under the same conditions, the warnings naming the PLY and the
+/// TextureFile comment's header line; a face whose texnumber names no texture file has no
+/// material (one warning for them all).
 GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoords,
                                  std::vector<std::string>& warnings);
 

@@ -3,13 +3,15 @@
 // their declared type and the file's format (ascii text, or binary of either byte order), and
 // their nx, ny, nz if the file has them, which take the normals of the new shape. Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other
-// elements are therefore kept. Its callers (the CLI's run, Python's write_mesh(like=...)) read the
-// same file with read_input_mesh first, so the bytes are ones read_ply accepted: the header is
-// read_ply's own (ply_header.hpp), the body's checks are short, and any surprise is an InputError
-// (the CLI then falls back to the plain writer).
+// elements are therefore kept. The header's `comment TextureFile` lines, with the faces'
+// `texnumber`, are its face materials (ply_textures.hpp). Its callers (the CLI's run, Python's
+// write_mesh(like=...)) read the same file with read_input_mesh first, so the bytes are ones
+// read_ply accepted: the header is read_ply's own (ply_header.hpp), the body's checks are short,
+// and any surprise is an InputError (the CLI then falls back to the plain writer).
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -24,6 +26,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/ply_header.hpp"
+#include "mesh/ply_textures.hpp"
 #include "mesh/seam_weld.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -117,6 +120,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   bool vertices_seen = false, faces_seen = false;
   polygon_start_.push_back(0);
   std::vector<double> u_values, v_values;
+  std::vector<int> texnumbers;  ///< per face: its integer `texnumber` property, if it has one
   // MeshLab's wedge texture coordinates: a face list `texcoord` of u v per corner. Used where the
   // vertices have none, and only when every face has two numbers per corner.
   std::vector<std::array<double, 2>> wedge_uv;
@@ -165,6 +169,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
           continue;
         }
         const double value = next_value(p.type, s);
+        if (is_face && p.name == "texnumber" && ply::is_integer(p.type))
+          texnumbers.push_back(static_cast<int>(std::clamp(value, -1.0, double{INT_MAX})));
         if (!is_vertex) continue;
         if (p.name == "x")
           slots_[3 * i] = s;
@@ -186,6 +192,15 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
       for (std::size_t c = 0; wedges_whole && c < corners; ++c)
         wedge_uv.push_back({face_uv[2 * c], face_uv[2 * c + 1]});
     }
+  }
+  // The texture files: a face's texnumber chooses one (gltf_materials warns for one out of
+  // range); without that property every face has the first.
+  materials_ = ply::texture_materials(name_, header.comments);
+  if (!materials_.names.empty()) {
+    if (texnumbers.size() == polygon_count())
+      polygon_material_ = texnumbers;
+    else
+      polygon_material_.assign(polygon_count(), 0);
   }
   for (const Slot& s : slots_)
     if (!s.set) fail("a vertex lacks x, y or z");

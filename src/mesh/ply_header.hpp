@@ -33,11 +33,18 @@ struct Element {
 
 enum class Format { Ascii, BinaryLittleEndian, BinaryBigEndian };
 
+/// A `comment` line of the header (MeshLab names its texture files there: ply_textures.hpp).
+struct Comment {
+  std::size_t line = 0;  ///< header line (1-based)
+  std::string text;      ///< the rest of the line after the keyword, as written
+};
+
 struct Header {
   Format format = Format::Ascii;
   std::vector<Element> elements;
   std::size_t body = 0;       ///< byte offset of the body (after the 'end_header' line)
   std::size_t body_line = 0;  ///< its line (ascii)
+  std::vector<Comment> comments;  ///< in header order
 };
 
 /// The header of a PLY file held in memory, checked as read_ply checks it (a UTF-8 byte-order

@@ -62,7 +62,7 @@ class PlyParser {
   /// The checked header and where the body starts (read_ply_header).
   ply::Header header() {
     parse_header();
-    return ply::Header{format_, elements_, pos_, body_line_};
+    return ply::Header{format_, elements_, pos_, body_line_, comments_};
   }
 
   PlyData parse() {
@@ -144,6 +144,8 @@ class PlyParser {
     while (true) {
       if (!header_line(line)) fail("truncated file", "the header has no 'end_header' line (the file ends at line " + std::to_string(line_) + ")");
       const std::vector<std::string> t = split(line);
+      if (!t.empty() && t[0] == "comment")
+        comments_.push_back({line_, line.substr(line.find("comment") + 7)});
       if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
       if (t[0] == "end_header") break;
       if (t[0] == "format") {
@@ -361,6 +363,7 @@ class PlyParser {
   std::size_t body_line_ = 0;  ///< ascii body: current line
   Format format_ = Format::Ascii;
   std::vector<Element> elements_;
+  std::vector<ply::Comment> comments_;
 };
 
 }  // namespace
