@@ -25,12 +25,13 @@
 
 #include <Eigen/Geometry>
 
+#include "mesh/file_safety.hpp"
+#include "mesh/normal_groups.hpp"
 #include "mesh/ply_header.hpp"
 #include "mesh/ply_textures.hpp"
 #include "mesh/seam_weld.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
-#include "mesh/file_safety.hpp"
 
 namespace shellcontract {
 namespace {
@@ -66,6 +67,9 @@ class PlyDocument final : public MeshDocument {
   std::vector<Slot> slots_;  ///< 3 per vertex: x, y, z
   /// 3 per vertex: nx, ny, nz; empty when a vertex lacks one (the file's normals are then kept)
   std::vector<Slot> normal_slots_;
+  /// Per vertex, the file's normal as a unit vector (zero: none or of no length); for the normal
+  /// groups of normals() (a flat-shaded side's corners keep their side's normal).
+  std::vector<Vec3> input_normals_;
   /// The vertex normals at positions x (see text()); a row of NaN keeps the file's normal.
   Positions normals(const Positions& x) const;
 };
@@ -145,6 +149,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
       if (e.count > bytes_.size()) fail("more vertices declared than bytes in the file");
       slots_.resize(3 * e.count);
       normal_slots_.resize(3 * e.count);
+      input_normals_.assign(e.count, Vec3::Zero());
       vertex_count_ = e.count;
     }
     for (std::size_t i = 0; i < e.count; ++i) {
@@ -178,9 +183,11 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
           slots_[3 * i + 1] = s;
         else if (p.name == "z")
           slots_[3 * i + 2] = s;
-        else if (p.name == "nx" || p.name == "ny" || p.name == "nz")
-          normal_slots_[3 * i + static_cast<std::size_t>(p.name[1] - 'x')] = s;
-        else if (static_cast<int>(k) == u_prop)
+        else if (p.name == "nx" || p.name == "ny" || p.name == "nz") {
+          const auto axis = static_cast<std::size_t>(p.name[1] - 'x');
+          normal_slots_[3 * i + axis] = s;
+          input_normals_[i][static_cast<Eigen::Index>(axis)] = value;
+        } else if (static_cast<int>(k) == u_prop)
           u_values.push_back(value);
         else if (static_cast<int>(k) == v_prop)
           v_values.push_back(value);
@@ -206,6 +213,10 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     if (!s.set) fail("a vertex lacks x, y or z");
   if (!std::all_of(normal_slots_.begin(), normal_slots_.end(), [](const Slot& s) { return s.set; }))
     normal_slots_.clear();
+  for (Vec3& n : input_normals_) {
+    const double len = n.norm();
+    n = len > 0.0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
+  }
   if (u_values.size() == vertex_count_ && v_values.size() == vertex_count_ && vertex_count_ > 0) {
     for (std::size_t i = 0; i < vertex_count_; ++i) uv_.push_back({u_values[i], v_values[i]});
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());  // per-vertex coordinates
@@ -223,9 +234,12 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
 }
 
 Positions PlyDocument::normals(const Positions& x) const {
-  // Copies of a seam vertex (input_positions puts each at its vertex's position) share one
-  // normal, so a seam does not show in the shading.
-  const std::vector<std::size_t> rep = soup::first_at_same_position(x);
+  // Copies of a seam vertex (input_positions puts each at its vertex's position) with one normal
+  // in the file share one new normal, so a seam does not show in the shading; copies with their
+  // own normals (a flat-shaded side's corners, a hard edge) each get their own polygons' sum, so
+  // the edge stays hard (normal_groups.hpp, as the glTF document's normals).
+  const std::vector<std::size_t> group =
+      soup::normal_groups(soup::first_at_same_position(x), input_normals_);
   // Each vertex gets the sum of its polygons' Newell vectors (twice their area along their
   // normal), as an OBJ's smooth normals do (obj_normals.hpp), in the file's winding.
   Positions sum = Positions::Zero(x.rows(), 3);
@@ -240,11 +254,11 @@ Positions PlyDocument::normals(const Positions& x) const {
     }
     for (std::size_t c = b; c < e; ++c)
       if (corner_vertex_[c] < vertex_count_)
-        sum.row(static_cast<Eigen::Index>(rep[corner_vertex_[c]])) += newell.transpose();
+        sum.row(static_cast<Eigen::Index>(group[corner_vertex_[c]])) += newell.transpose();
   }
   Positions n(x.rows(), 3);
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
-    const Vec3 v = sum.row(static_cast<Eigen::Index>(rep[static_cast<std::size_t>(i)]));
+    const Vec3 v = sum.row(static_cast<Eigen::Index>(group[static_cast<std::size_t>(i)]));
     const double len = v.norm();
     // No area around the vertex (or none at all): its normal stays as the file gave it.
     const bool ok = len > 0.0 && std::isfinite(len);

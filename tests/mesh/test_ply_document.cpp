@@ -229,6 +229,104 @@ TEST(PlyDocument, TextureCoordinatesPerFaceCornerAreRead) {
 namespace shellcontract {
 namespace {
 
+/// A unit box of 24 vertices, 4 per side (each side's own copies, as a flat-shaded export writes
+/// them), as an ASCII PLY with nx, ny, nz: `flat` gives each copy its side's normal; otherwise
+/// every copy at a corner has the corner's diagonal (a smooth export's one normal per position).
+/// `corners` gets the 24 rest positions and `quads` the 6 sides, outward.
+std::string box_ply(bool flat, Positions& corners, std::vector<std::array<int, 4>>& quads) {
+  const int axes[6][3] = {{0, 1, 2}, {0, 1, 2}, {1, 2, 0}, {1, 2, 0}, {2, 0, 1}, {2, 0, 1}};
+  corners.resize(24, 3);
+  quads.clear();
+  std::ostringstream o;
+  o << "ply\nformat ascii 1.0\nelement vertex 24\nproperty double x\nproperty double y\n"
+       "property double z\nproperty double nx\nproperty double ny\nproperty double nz\n"
+       "element face 6\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int s = 0; s < 6; ++s) {
+    const int n = axes[s][2], u = axes[s][0], v = axes[s][1];
+    const double side = s % 2 == 0 ? 1.0 : 0.0;  // sides at 1 face +axis, at 0 face -axis
+    const double uv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int k = 0; k < 4; ++k) {
+      Eigen::Vector3d p;
+      p[n] = side;
+      p[u] = uv[k][0];
+      p[v] = uv[k][1];
+      corners.row(4 * s + k) = p.transpose();
+      Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+      normal[n] = side > 0.5 ? 1.0 : -1.0;
+      if (!flat) normal = (2.0 * p - Eigen::Vector3d::Ones()).normalized();
+      o << p[0] << ' ' << p[1] << ' ' << p[2] << ' ' << normal[0] << ' ' << normal[1] << ' '
+        << normal[2] << '\n';
+    }
+    // (u, v, n) is right-handed, so 0 1 2 3 turns about +n: reversed on the sides facing -n.
+    quads.push_back(side > 0.5 ? std::array<int, 4>{4 * s, 4 * s + 1, 4 * s + 2, 4 * s + 3}
+                               : std::array<int, 4>{4 * s, 4 * s + 3, 4 * s + 2, 4 * s + 1});
+  }
+  for (const auto& q : quads)
+    o << "4 " << q[0] << ' ' << q[1] << ' ' << q[2] << ' ' << q[3] << '\n';
+  return o.str();
+}
+
+/// The written nx, ny, nz of the 24 vertices of box_ply's layout.
+Positions written_normals(const std::string& out) {
+  const std::vector<std::string> t = tokens(out.substr(out.find("end_header\n") + 11));
+  Positions n(24, 3);
+  for (int i = 0; i < 24; ++i)
+    for (int k = 0; k < 3; ++k) n(i, k) = std::stod(t.at(static_cast<std::size_t>(6 * i + 3 + k)));
+  return n;
+}
+
+TEST(PlyDocument, AFlatShadedBoxKeepsItsHardEdges) {
+  // Each side's corners carry the side's normal in the file: after an affine map (a plane stays a
+  // plane) each corner's new normal is its own side's normal at the new positions (the side's
+  // Newell vector, computed here), not the mean of the three sides at its position. Fails when
+  // the copies at one position share one normal (the document's former behaviour).
+  Positions rest;
+  std::vector<std::array<int, 4>> quads;
+  const std::string in = box_ply(true, rest, quads);
+  Eigen::Matrix3d a;
+  a << 2.0, 0.3, 0.0, 0.0, 1.0, 0.2, 0.1, 0.0, 0.7;
+  const Positions y = (rest * a.transpose()).rowwise() + Eigen::RowVector3d(0.5, -1.0, 2.0);
+  const Positions got = written_normals(parse_ply_document("box.ply", in)->text(y));
+  for (const auto& q : quads) {
+    Eigen::Vector3d newell = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 4; ++k)
+      newell += Eigen::Vector3d(y.row(q[k])).cross(Eigen::Vector3d(y.row(q[(k + 1) % 4])));
+    for (const int v : q)
+      EXPECT_NEAR((Eigen::Vector3d(got.row(v)) - newell.normalized()).norm(), 0.0, 1e-12)
+          << "vertex " << v;
+  }
+}
+
+TEST(PlyDocument, CopiesWithOneNormalStaySmooth) {
+  // The same box, every copy at a corner with the corner's one normal (a smooth export split at
+  // seams): the three copies at a position get one normal, the normalized sum of the three
+  // sides' Newell vectors there, bit for bit the same.
+  Positions rest;
+  std::vector<std::array<int, 4>> quads;
+  const std::string in = box_ply(false, rest, quads);
+  Eigen::Matrix3d a;
+  a << 2.0, 0.3, 0.0, 0.0, 1.0, 0.2, 0.1, 0.0, 0.7;
+  const Positions y = rest * a.transpose();
+  const Positions got = written_normals(parse_ply_document("box.ply", in)->text(y));
+  for (int v = 0; v < 24; ++v) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const auto& q : quads) {
+      bool here = false;
+      for (const int c : q) here = here || rest.row(c) == rest.row(v);
+      if (!here) continue;
+      for (int k = 0; k < 4; ++k)
+        sum += Eigen::Vector3d(y.row(q[k])).cross(Eigen::Vector3d(y.row(q[(k + 1) % 4])));
+    }
+    EXPECT_NEAR((Eigen::Vector3d(got.row(v)) - sum.normalized()).norm(), 0.0, 1e-12)
+        << "vertex " << v;
+    for (int w = 0; w < 24; ++w) {
+      if (rest.row(w) == rest.row(v)) {
+        EXPECT_EQ(got.row(w), got.row(v)) << v << " and " << w;
+      }
+    }
+  }
+}
+
 TEST(PlyDocument, NormalsAreThoseOfTheNewShape) {
   // A tetrahedron whose nx, ny, nz (double, between y and z and after a colour, so that the
   // slots are not contiguous) all say +z: the output's are each vertex's normalized sum of its
