@@ -52,6 +52,13 @@ class PlyDocument final : public MeshDocument {
   PlyDocument(const std::string& name, std::string bytes);
   std::string format() const override { return "ply"; }
   std::string text(const Positions& x) const override;
+  /// text(x) with the header's TextureFile paths rewritten for a file in another folder, as an
+  /// OBJ's mtllib lines are (ply_textures.hpp, texture_file_edits): the header is written byte
+  /// for byte, so its spans in bytes_ are those of text(x).
+  std::string text_for(const std::string& output_path, const Positions& x,
+                       std::vector<std::string>* warnings) const override {
+    return apply_edits(text(x), ply::texture_file_edits(bytes_, name_, output_path, warnings));
+  }
 
  private:
   [[noreturn]] void fail(const std::string& what) const {

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -132,6 +134,45 @@ TEST_F(PlyTextures, TheGltfMaterialsWarnForATexnumberOutOfRangeAndANamelessTextu
             "comments: they have no material in the glTF");
   EXPECT_EQ(w[1],
             "s.ply: line 3: TextureFile without a file name: the glTF's material has no texture");
+}
+
+TEST_F(PlyTextures, AResultInAnotherFolderNamesTheSameImages) {
+  // in/t.ply names in/maps/a b.png (relative), a missing file and an absolute path; written to
+  // out/sub/r.ply, the first becomes ../../in/maps/a b.png (the same image from there), the others
+  // stay as read (a warning names the missing one's line); the rest of the file is text(x)'s.
+  // Written beside its input, the file is text(x) itself. Before, every path was written as read,
+  // so the result named no image from its own folder.
+  fs::create_directories(dir_ / "in" / "maps");
+  fs::create_directories(dir_ / "out" / "sub");
+  write("in/maps/a b.png", "\x89PNG\r\n\x1a\n image");
+  const std::string extra =
+      "comment TextureFile maps/a b.png\n"  // line 3
+      "comment TextureFile gone.png\n"      // line 4
+      "comment TextureFile /abs/c.png\n";
+  const std::string in = write("in/t.ply", ascii_tet(extra));
+  const auto doc = read_mesh_document(in);
+  ASSERT_TRUE(doc);
+  Positions x(4, 3);
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 3; ++k) x(i, k) = 2.0 * TET[i][k];
+  const std::string out = (dir_ / "out" / "sub" / "r.ply").string();
+  std::vector<std::string> w;
+  write_mesh_document_atomic(out, *doc, x, &w);
+  std::string want = doc->text(x);
+  const std::string from = "comment TextureFile maps/a b.png";
+  want.replace(want.find(from), from.size(), "comment TextureFile ../../in/maps/a b.png");
+  std::ifstream f(out, std::ios::binary);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(f), {}), want);
+  ASSERT_EQ(w.size(), 1u) << ::testing::PrintToString(w);
+  EXPECT_NE(w[0].find("t.ply: line 4: TextureFile 'gone.png'"), std::string::npos) << w[0];
+  // The result's own document finds the image from its folder.
+  const FaceMaterials m = read_mesh_document(out)->face_materials(read_input_mesh(out));
+  ASSERT_EQ(m.textures.size(), 3u);
+  EXPECT_TRUE(fs::equivalent(m.textures[0].path, dir_ / "in" / "maps" / "a b.png"));
+
+  std::vector<std::string> none;
+  EXPECT_EQ(doc->text_for((dir_ / "in" / "same.ply").string(), x, &none), doc->text(x));
+  EXPECT_TRUE(none.empty());
 }
 
 }  // namespace
