@@ -281,10 +281,12 @@ std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name, const 
 /// A glTF file's bytes as a document (src/mesh/gltf_document.cpp): the file serialized again by
 /// tinygltf with each vertex's new position, in its primitive's node space (nodes, materials,
 /// textures, texture coordinates kept), and new normals where the primitive has float normals.
-/// Its vertices and triangles are read_input_mesh's (before welding).
+/// Its vertices and triangles are read_input_mesh's (before welding). A mesh drawn by several
+/// nodes is written once per node: every node after the first gets a copy of the mesh with its
+/// own POSITION (and written NORMAL) accessors (docs/design/attributes.md, "glTF inputs").
 /// @param binary write a .glb (format() "glb"); else a .gltf with its buffers embedded ("gltf")
-/// @throws InputError for a file read_input_mesh refuses, or one whose POSITION accessor is
-///         drawn by two nodes (the file cannot hold both once the shell has moved them apart)
+/// @throws InputError for a file read_input_mesh refuses, one whose NORMAL or TEXCOORD_0 count
+///         is not its POSITION's, or a node transform without an inverse
 std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes,
                                                   bool binary);
 

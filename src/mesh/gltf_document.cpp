@@ -1,7 +1,8 @@
 // A glTF input as a document (docs/design/attributes.md, "glTF"): the parsed file, written back
 // with each vertex's new position (and, where the file has them, new normals); everything else
 // (texture coordinates, materials, textures, nodes, names, extras) is serialized as read.
-// Positions are stored in the primitive's node space, so the node transforms stay as they were.
+// Positions are stored in the primitive's node space, so the node transforms stay as they were;
+// a mesh drawn by several nodes gets one copy of its positions per node (gltf_instances.hpp).
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
@@ -9,10 +10,10 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 
+#include "mesh/gltf_instances.hpp"
 #include "mesh/gltf_model.hpp"
 #include "mesh/normal_groups.hpp"
 #include "mesh/seam_weld.hpp"
@@ -55,18 +56,9 @@ class GltfDocument final : public MeshDocument {
       corner_vertex_.insert(corner_vertex_.end(), f.begin(), f.end());
       polygon_start_.push_back(corner_vertex_.size());
     }
-    // The file is one set of positions: one POSITION accessor drawn under two transforms (a
-    // mesh instanced by two nodes) would need two sets once the shell has moved them apart.
-    std::map<int, std::size_t> node_of_accessor;
     for (std::size_t d = 0; d < soup_.drawn.size(); ++d) {
       const tinygltf::Primitive& p = primitive(d);
       const int pos = p.attributes.at("POSITION");
-      const auto [it, fresh] = node_of_accessor.emplace(pos, soup_.drawn[d].node);
-      if (!fresh && it->second != soup_.drawn[d].node)
-        throw InputError(path + ": not writable with new positions: accessor " +
-                         std::to_string(pos) + " (mesh " + std::to_string(soup_.drawn[d].mesh) +
-                         ") is drawn by node " + std::to_string(it->second) + " and node " +
-                         std::to_string(soup_.drawn[d].node) + ", which the shell moves apart");
       // New positions are brought back into node space through the inverse transform.
       to_local_.push_back(world_[d].inverse());
       if (!(world_[d].topLeftCorner<3, 3>().determinant() != 0.0) || !to_local_.back().allFinite())
@@ -83,6 +75,21 @@ class GltfDocument final : public MeshDocument {
     }
     read_texcoords();
     read_normals();
+    // Each drawing of an instanced mesh holds its own moved copy (gltf_instances.hpp).
+    std::vector<bool> written_normal;
+    for (const Written& n : normals_) written_normal.push_back(n.accessor >= 0);
+    const auto written = gltf::realize_instances(path, model_, soup_, written_normal);
+    for (std::size_t d = 0; d < written.size(); ++d) {
+      const std::string name = "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " +
+                               std::to_string(soup_.drawn[d].primitive);
+      if (written[d].position != positions_[d].accessor)
+        positions_[d] = {
+            gltf::element_view(path, model_, written[d].position, name + " POSITION", 12),
+            written[d].position};
+      if (written[d].normal != normals_[d].accessor)
+        normals_[d] = {gltf::element_view(path, model_, written[d].normal, name + " NORMAL", 12),
+                       written[d].normal};
+    }
   }
 
   std::string format() const override { return binary_ ? "glb" : "gltf"; }

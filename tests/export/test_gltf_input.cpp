@@ -168,19 +168,7 @@ TEST(GltfInput, WhatCannotBeWrittenAsGltfIsRefusedBeforeTheRun) {
   EXPECT_NE(r.output.find("a .glb result is written only for a .glb input"), std::string::npos)
       << r.output;
 
-  // One mesh drawn by two nodes: one file cannot hold two moved copies of its positions.
-  test::GltfParts parts = test::gltf_parts(textured_scene());
-  const std::string one = "\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0,";
-  parts.json.replace(parts.json.find(one), one.size(),
-                     "\"scenes\":[{\"nodes\":[0,1]}],\"nodes\":[{\"mesh\":0,\"translation\":[-9,0,"
-                     "0]},{\"mesh\":0,");
-  const std::string twice = write(dir.file("twice.glb"), test::glb_bytes(parts));
-  r = test::run_cli({"run", twice, "-o", dir.file("out.glb"), "-n", "2", "-q"});
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("is drawn by node 0 and node 1"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(dir.file("out.glb")));
-  r = test::run_cli({"run", twice, "-o", dir.file("out.obj"), "-n", "2", "-q"});  // two octahedra
-  EXPECT_EQ(r.exit_code, 0) << r.output;
+  // (An instanced mesh, refused here before, is written: test_gltf_instances.cpp.)
 
   // NORMAL shorter than POSITION: its elements are written by POSITION's numbers, so it is refused.
   test::GltfParts short_normals = test::gltf_parts(textured_scene());
