@@ -267,6 +267,21 @@ std::string box_ply(bool flat, Positions& corners, std::vector<std::array<int, 4
 }
 
 /// The written nx, ny, nz of the 24 vertices of box_ply's layout.
+/// An affine map with shear, so that no side of the box stays parallel to an axis.
+Eigen::Matrix3d shear() {
+  Eigen::Matrix3d a;
+  a << 2.0, 0.3, 0.0, 0.0, 1.0, 0.2, 0.1, 0.0, 0.7;
+  return a;
+}
+
+/// The Newell vector of quad q at positions y (twice its area along its normal).
+Eigen::Vector3d newell(const Positions& y, const std::array<int, 4>& q) {
+  Eigen::Vector3d n = Eigen::Vector3d::Zero();
+  for (int k = 0; k < 4; ++k)
+    n += Eigen::Vector3d(y.row(q[k])).cross(Eigen::Vector3d(y.row(q[(k + 1) % 4])));
+  return n;
+}
+
 Positions written_normals(const std::string& out) {
   const std::vector<std::string> t = tokens(out.substr(out.find("end_header\n") + 11));
   Positions n(24, 3);
@@ -283,18 +298,12 @@ TEST(PlyDocument, AFlatShadedBoxKeepsItsHardEdges) {
   Positions rest;
   std::vector<std::array<int, 4>> quads;
   const std::string in = box_ply(true, rest, quads);
-  Eigen::Matrix3d a;
-  a << 2.0, 0.3, 0.0, 0.0, 1.0, 0.2, 0.1, 0.0, 0.7;
-  const Positions y = (rest * a.transpose()).rowwise() + Eigen::RowVector3d(0.5, -1.0, 2.0);
+  const Positions y = (rest * shear().transpose()).rowwise() + Eigen::RowVector3d(0.5, -1.0, 2.0);
   const Positions got = written_normals(parse_ply_document("box.ply", in)->text(y));
-  for (const auto& q : quads) {
-    Eigen::Vector3d newell = Eigen::Vector3d::Zero();
-    for (int k = 0; k < 4; ++k)
-      newell += Eigen::Vector3d(y.row(q[k])).cross(Eigen::Vector3d(y.row(q[(k + 1) % 4])));
+  for (const auto& q : quads)
     for (const int v : q)
-      EXPECT_NEAR((Eigen::Vector3d(got.row(v)) - newell.normalized()).norm(), 0.0, 1e-12)
+      EXPECT_NEAR((Eigen::Vector3d(got.row(v)) - newell(y, q).normalized()).norm(), 0.0, 1e-12)
           << "vertex " << v;
-  }
 }
 
 TEST(PlyDocument, CopiesWithOneNormalStaySmooth) {
@@ -304,18 +313,14 @@ TEST(PlyDocument, CopiesWithOneNormalStaySmooth) {
   Positions rest;
   std::vector<std::array<int, 4>> quads;
   const std::string in = box_ply(false, rest, quads);
-  Eigen::Matrix3d a;
-  a << 2.0, 0.3, 0.0, 0.0, 1.0, 0.2, 0.1, 0.0, 0.7;
-  const Positions y = rest * a.transpose();
+  const Positions y = rest * shear().transpose();
   const Positions got = written_normals(parse_ply_document("box.ply", in)->text(y));
   for (int v = 0; v < 24; ++v) {
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
     for (const auto& q : quads) {
       bool here = false;
       for (const int c : q) here = here || rest.row(c) == rest.row(v);
-      if (!here) continue;
-      for (int k = 0; k < 4; ++k)
-        sum += Eigen::Vector3d(y.row(q[k])).cross(Eigen::Vector3d(y.row(q[(k + 1) % 4])));
+      if (here) sum += newell(y, q);
     }
     EXPECT_NEAR((Eigen::Vector3d(got.row(v)) - sum.normalized()).norm(), 0.0, 1e-12)
         << "vertex " << v;
