@@ -16,9 +16,31 @@ export function range(arrays) {
   return { low: percentile(all, 0.02), high: percentile(all, 0.98) };
 }
 
-/** A THREE.BufferAttribute of linear RGB colours for `values` mapped over [low, high]. */
-export function colourAttribute(values, low, high) {
-  const rgb = new Float32Array(3 * values.length);
+/**
+ * Per geometry, its colour attribute for a field's colours, and the values, low and high it holds
+ * the colours of. One per geometry, rewritten in place: three.js uploads each attribute as a
+ * buffer of its own and frees on geometry.dispose() only those of the geometry's current
+ * attributes, so a new attribute per choice or frame would leave each one it replaced on the GPU.
+ */
+const fieldColours = new WeakMap();
+
+/**
+ * The geometry's colour attribute holding linear RGB colours for `values` mapped over [low, high]
+ * (not yet set as its 'color': the caller does). The colours are written only when the values or
+ * the range differ from those it holds (a frame or a choice changed), and uploaded again then.
+ */
+export function fieldColourAttribute(geometry, values, low, high) {
+  let held = fieldColours.get(geometry);
+  // A new attribute for values of another length: not expected (a field has one value per
+  // vertex), but a short buffer would draw garbage.
+  if (!held || held.attribute.count !== values.length) {
+    const attribute = new THREE.BufferAttribute(new Float32Array(3 * values.length), 3);
+    attribute.setUsage(THREE.DynamicDrawUsage);
+    held = { attribute };
+    fieldColours.set(geometry, held);
+  }
+  if (held.values === values && held.low === low && held.high === high) return held.attribute;
+  const rgb = held.attribute.array;
   const c = new THREE.Color();
   for (let i = 0; i < values.length; i++) {
     const t = high > low ? Math.min(1, Math.max(0, (values[i] - low) / (high - low))) : 0.5;
@@ -26,5 +48,10 @@ export function colourAttribute(values, low, high) {
     c.setRGB(r, g, b, THREE.SRGBColorSpace);
     rgb[3 * i] = c.r; rgb[3 * i + 1] = c.g; rgb[3 * i + 2] = c.b;
   }
-  return new THREE.BufferAttribute(rgb, 3);
+  Object.assign(held, { values, low, high });
+  held.attribute.needsUpdate = true;
+  return held.attribute;
 }
+
+/** The geometry's attribute of fieldColourAttribute, if it has one (for disposePane). */
+export const fieldColoursOf = (geometry) => fieldColours.get(geometry)?.attribute;

@@ -13,7 +13,7 @@
 // looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { colourAttribute, range } from './colour_map.js';
+import { fieldColourAttribute, range } from './colour_map.js';
 import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
 import { disposePane, firstFramePane, makePane } from './panes.js';
 import { drawPlot } from './plot.js';
@@ -254,8 +254,7 @@ function applyColours() {
         const perFrame = info && p.frameFields[info.name];
         if (perFrame) {
           // Each frame's own values, on one scale over all frames (so frames compare).
-          perFrame.colours[k] ??= colourAttribute(perFrame.values[k], perFrame.low, perFrame.high);
-          attr = perFrame.colours[k];
+          attr = fieldColourAttribute(m.geometry, perFrame.values[k], perFrame.low, perFrame.high);
           values[pi] = perFrame.values[k];
           if (j === 0) notes.push(`${info.name}: each frame's own values; blue ${perFrame.low.toPrecision(3)}, red ${perFrame.high.toPrecision(3)} (2nd to 98th percentile over all frames)`);
         } else if (info && (info.frame === undefined || info.frame === frame)) {
@@ -274,11 +273,13 @@ function applyColours() {
       } else if (p.kind === 'mesh' && scale) {
         const v = m.geometry.getAttribute(`field_${choice.slice(6)}`);
         if (v) {
-          attr = colourAttribute(v.array, scale.low, scale.high);
+          attr = fieldColourAttribute(m.geometry, v.array, scale.low, scale.high);
           values[pi] = v.array;
           shown = choice.slice(6);
         }
       }
+      // 'color' is the file's own attribute (on the GPU since the file opened) or the geometry's
+      // one attribute of field colours (colour_map.js), rewritten there: a switch makes no buffer.
       if (attr) m.geometry.setAttribute('color', attr);
       // A field's colours when one is shown, else the file's material where it has one.
       const file = attr ? null : p.looks[j].file;

@@ -2,6 +2,7 @@
 // scene; a single .glb's first frame is a second pane on the same data ("before | after").
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { fieldColoursOf } from './colour_map.js';
 import { extensionOf, loadMeshFile, MESH_EXTENSIONS } from './mesh_files.js';
 import { loadObjMaterials } from './obj_materials.js';
 
@@ -47,7 +48,7 @@ async function glbPane(arrayBuffer, name) {
   for (const f of Array.isArray(extras.frame_fields) ? extras.frame_fields : []) {
     if (!Array.isArray(f.accessors) || f.accessors.length !== frameNumbers.length) continue;
     const values = await Promise.all(f.accessors.map((i) => gltf.parser.getDependency('accessor', i)));
-    frameFields[f.name] = { values: values.map((a) => a.array), low: Number(f.low), high: Number(f.high), colours: [] };
+    frameFields[f.name] = { values: values.map((a) => a.array), low: Number(f.low), high: Number(f.high) };
   }
   // Per mesh two materials: the viewer's, for a field's colours (or the plain colour), and the
   // file's own (an OBJ's material: base colour, texture on TEXCOORD_0), drawn when no field is.
@@ -118,7 +119,8 @@ export function firstFramePane(glb) {
   object.traverse((o) => copy.push(o));
   const meshes = glb.meshes.map((m) => copy[original.indexOf(m)]);
   // Object3D.clone shares the geometry, and a choice of colours sets the geometry's 'color':
-  // each pane needs its own geometry, or both would show the colours written last.
+  // each pane needs its own geometry, or both would show the colours written last (and so its
+  // own attribute of field colours, which colour_map.js keeps per geometry).
   for (const m of meshes) m.geometry = paneGeometry(m.geometry);
   const looks = glb.looks.map((l) => ({ field: l.field.clone(), file: l.file ? l.file.clone() : null }));
   const { scene, sun } = makeScene();
@@ -156,19 +158,22 @@ function paneGeometry(g) {
  */
 export function disposePane(p, keep = null) {
   const kept = new Set();
-  for (const m of keep?.meshes ?? []) {
+  for (const [j, m] of (keep?.meshes ?? []).entries()) {
     kept.add(m.geometry).add(m.geometry.index);
-    for (const a of Object.values(m.geometry.attributes)) kept.add(a);
+    for (const a of attributesOf(keep, j)) kept.add(a);
   }
   for (const mat of (keep?.looks ?? []).flatMap(materialsOf)) {
     kept.add(mat);
     for (const t of texturesOf(mat)) kept.add(t);
   }
-  for (const m of p.meshes) {
+  for (const [j, m] of p.meshes.entries()) {
     const g = m.geometry;
     if (kept.has(g)) continue;
-    // dispose() deletes the GPU buffers of the geometry's index and attributes, also those that
-    // another geometry draws: the kept pane's are taken off this one first.
+    // dispose() deletes the GPU buffers of the geometry's index and attributes, and only those:
+    // the colours that a choice took off its 'color' (the file's, or the field colours) are put
+    // back on it under spare names, and the kept pane's, which it may also draw, taken off.
+    const current = new Set(Object.values(g.attributes));
+    attributesOf(p, j).filter((a) => !current.has(a)).forEach((a, n) => g.setAttribute(`spare_colours_${n}`, a));
     if (kept.has(g.index)) g.setIndex(null);
     for (const [k, a] of Object.entries(g.attributes)) if (kept.has(a)) g.deleteAttribute(k);
     g.dispose();
@@ -181,6 +186,15 @@ export function disposePane(p, keep = null) {
   }
 }
 
+/**
+ * The attributes of the pane's mesh j: those of its geometry, and the colours that the colour
+ * choice sets as its 'color' (main.js applyColours), which may be off it now.
+ */
+const attributesOf = (p, j) => {
+  const g = p.meshes[j].geometry;
+  return [...new Set([...Object.values(g.attributes), ...(p.colourAttributes?.[j] ?? []), p.fileColourAttributes?.[j],
+                      fieldColoursOf(g)].filter(Boolean))];
+};
 /** The materials of a mesh's look: the viewer's and the file's (one, or one per group). */
 const materialsOf = (look) => [look.field, look.file].flat().filter(Boolean);
 /** The textures a material uses (map, normalMap, ...). */

@@ -1,4 +1,4 @@
-// What the headless viewer tests that run the CLI share (viewer_meshes_test.mjs,
+// What the headless viewer tests share (viewer_test.mjs, viewer_meshes_test.mjs,
 // viewer_materials_test.mjs): their arguments and checks, the CLI's runs in a temporary folder,
 // small files written here (an ico2 OBJ with materials, a PNG), Debian's Chromium through
 // puppeteer-core, and the page served by scripts/view.py with its pictures.
@@ -177,15 +177,21 @@ export async function startViewer(chromium) {
     page.on('console', (m) => { if (m.type() === 'error') consoleErrors.push(m.text()); });
     page.on('pageerror', (e) => consoleErrors.push(String(e)));
     const viewerState = () => page.evaluate(() => ({ error: window.viewer.error, panes: window.viewer.panes, shown: window.viewer.shown }));
-    /** Serves the files with view.py and opens the page on them; resolves to its state. */
+    let labelsHidden = null;
+    /**
+     * Serves the files with view.py (with its options: '--log', RUN.csv) and opens the page on
+     * them; resolves to its state.
+     */
     const open = async (...files) => {
       const s = await serve(...files);
       servers.push(s.server);
       await page.goto(s.url, { waitUntil: 'load' });
       await page.waitForFunction(() => window.viewer && (window.viewer.ready || window.viewer.error), { timeout: 60000 });
-      await page.addStyleTag({ content: '#pane-labels { display: none; }' });  // pictures of the meshes only
+      labelsHidden = await page.addStyleTag({ content: '#pane-labels { display: none; }' });  // pictures of the meshes only
       return viewerState();
     };
+    /** Shows the panes' labels again, which `open` hides (a picture of the page as a user sees it). */
+    const showLabels = () => labelsHidden?.evaluate((e) => e.remove());
     /** Opens the files through the page's file picker (<input type=file multiple>), as a user would. */
     const pick = async (...files) => {
       await page.evaluate(() => { window.viewer.ready = false; window.viewer.error = null; });
@@ -194,13 +200,14 @@ export async function startViewer(chromium) {
       return viewerState();
     };
     const settle = () => page.evaluate(() => new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r))));
-    /** Screenshot of #view, or of its left or right half. */
-    const shot = async (half) => {
+    /** Screenshot of #view, of its left or right half ('left', 'right'), or of another element ('#plot'). */
+    const shot = async (part = '#view') => {
       await settle();
-      const b = await (await page.$('#view')).boundingBox();
+      const half = part === 'left' || part === 'right';
+      const b = await (await page.$(half ? '#view' : part)).boundingBox();
       const w = Math.floor(b.width / 2);
-      const clip = half === 'left' ? { x: b.x, y: b.y, width: w, height: b.height }
-        : half === 'right' ? { x: b.x + w, y: b.y, width: w, height: b.height } : b;
+      const clip = part === 'left' ? { x: b.x, y: b.y, width: w, height: b.height }
+        : part === 'right' ? { x: b.x + w, y: b.y, width: w, height: b.height } : b;
       return page.screenshot({ clip, encoding: 'base64' });
     };
     /** Fraction of the pixels that differ between two screenshots. */
@@ -243,7 +250,7 @@ export async function startViewer(chromium) {
       const n = p.length / 4;
       return { covered: covered / n, hues: hues.map((x) => x / n) };
     }, a);
-    return { page, consoleErrors, open, pick, settle, shot, differing, pixels, close };
+    return { page, consoleErrors, open, showLabels, pick, settle, shot, differing, pixels, close };
   } catch (e) {
     await close();
     throw e;

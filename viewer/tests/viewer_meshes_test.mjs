@@ -3,7 +3,8 @@
 // frame beside its current one), colours each pane and each frame with its own values (a glTF
 // field of one frame only on that frame), and jumps to a frame; a .glb of several primitives (an
 // OBJ with two materials) plays and colours every one; the two panes of "before | after" wear each
-// its own frame's colours (materials: viewer_materials_test.mjs). The files come from real runs of
+// its own frame's colours (materials: viewer_materials_test.mjs); switching colours and frames
+// makes no new WebGL buffers, and closing a pane frees its own. The files come from real runs of
 // the CLI on a small mesh, made here in a temporary folder.
 // Usage: node viewer/tests/viewer_meshes_test.mjs --cli SHELLCONTRACT --mesh ico2.off [--chromium PATH]
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -52,8 +53,18 @@ const meanRed = (plyPath) => {
 /** Whether the page's values are the PLY's float column, exactly. */
 const sameFloats = (page, ply) => page && page.length === ply.length && ply.every((v, i) => Math.fround(v) === page[i]);
 
-const { page, consoleErrors, open, pick, shot, differing, pixels, close } = await startViewer(args.chromium);
+const { page, consoleErrors, open, pick, settle, shot, differing, pixels, close } = await startViewer(args.chromium);
 try {
+  // The WebGL buffers the page creates and deletes are counted, for the checks of the colour
+  // buffers below.
+  await page.evaluateOnNewDocument(() => {
+    window.buffers = { created: 0, deleted: 0 };
+    for (const C of [WebGLRenderingContext, WebGL2RenderingContext]) {
+      const { createBuffer, deleteBuffer } = C.prototype;
+      C.prototype.createBuffer = function (...a) { window.buffers.created++; return createBuffer.apply(this, a); };
+      C.prototype.deleteBuffer = function (...a) { window.buffers.deleted++; return deleteBuffer.apply(this, a); };
+    }
+  });
   // Every mesh format opens, with the file's vertices (OBJ and STL: three corners per face).
   const pictures = {};
   for (const [ext, count] of [['off', nv], ['obj', 3 * nf], ['ply', nv], ['stl', 3 * nf]]) {
@@ -194,6 +205,62 @@ try {
   await page.keyboard.press('End');
   const dTwo = await differing(twoLast, await shot());
   check(dTwo < 0.002, `the two-primitive file's last frame looks as the one-primitive file's (${(100 * dTwo).toFixed(2)} % differ)`);
+
+  // Colours on the GPU: a choice of colours or a frame writes the colours into the mesh's one
+  // colour buffer, not into a new buffer each time (three.js frees the buffers of a geometry's
+  // current attributes only, so each one swapped out would stay until garbage collection). After
+  // the first picture with a field shown, stepping through the frames and switching the choices
+  // makes no buffer: before | after of the run (a per-frame field, so every frame has new colours).
+  const buffers = () => page.evaluate(() => window.buffers.created);
+  const live = () => page.evaluate(() => window.buffers.created - window.buffers.deleted);
+  const choices = () => page.$$eval('#colour option', (os) => os.map((o) => o.value));
+  /** Steps through every frame under every colour choice, `rounds` times. */
+  const cycle = async (rounds, frameCount) => {
+    for (let r = 0; r < rounds; r++) {
+      for (const c of [...await choices(), ...(await choices()).reverse()]) {
+        await page.select('#colour', c);
+        await page.focus('#scrubber');
+        await page.keyboard.press('Home');
+        for (let k = 1; k < frameCount; k++) await page.keyboard.press('ArrowRight');
+        await settle();
+      }
+    }
+  };
+  s = await open(file('run.glb'));
+  await settle();
+  const glbLive = await live();
+  await page.click('#side-by-side');
+  await settle();
+  const glbBefore = await buffers();
+  await cycle(3, frames.length);
+  const glbMade = (await buffers()) - glbBefore;
+  check(s.shown[0] === 'mean_curvature' && glbMade === 0,
+        `switching colours and frames of the .glb side by side makes no WebGL buffer (${glbMade} made; first shown: ${s.shown[0]})`);
+  // Back to one pane: the first frame's pane frees its own colour buffers, not the shared ones.
+  await page.click('#side-by-side');
+  await settle();
+  const glbAfter = { live: await live(), made: (await buffers()) - glbBefore };
+  check(glbAfter.live === glbLive && glbAfter.made === 0,
+        `before | after off frees the buffers it made and keeps the others (${glbAfter.live} live, ${glbLive} before; ${glbAfter.made} made)`);
+  // A mesh file opens with its own colours (the file's attribute, uploaded with the file): the
+  // first choice of a computed field makes one buffer per mesh, the mesh's colour buffer, which
+  // later choices rewrite; so at most one per mesh shown, however many switches follow.
+  s = await open(file('fields_start.ply'), file('fields_end.ply'));
+  await settle();
+  const meshLive = await live();
+  const meshBefore = await buffers();
+  await cycle(1, 1);
+  const firstRound = (await buffers()) - meshBefore;
+  await cycle(3, 1);
+  const laterRounds = (await buffers()) - meshBefore - firstRound;
+  check(JSON.stringify(s.shown) === '["file colours","file colours"]' && (await choices()).length > 3 && firstRound <= 2 && laterRounds === 0,
+        `switching the colours of two meshes makes at most one WebGL buffer per mesh, once (${firstRound} in the first round of switches, ${laterRounds} in three more)`);
+  // The same files again: the old panes' buffers are freed, also the colour buffers off their
+  // geometries' 'color' (the switches end on the file's colours, then none).
+  await pick(file('fields_start.ply'), file('fields_end.ply'));
+  await settle();
+  const reopened = await live();
+  check(reopened === meshLive, `opening the files again frees the buffers of the panes they replace (${reopened} live, ${meshLive} before)`);
 
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? ': ' + consoleErrors.join(' | ') : ''}`);
 } finally {
