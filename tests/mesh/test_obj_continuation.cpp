@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/obj_material_paths.hpp"
 #include "mesh/obj_scan.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -84,6 +85,32 @@ TEST(ObjContinuation, DocumentWritesNewPositionsIntoAContinuedVertexAndKeepsTheR
     for (std::size_t k = 0; k < 3; ++k)
       EXPECT_EQ(back.points[i][k], y(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(k)));
   EXPECT_EQ(back.faces, scan_obj("joined.obj", JOINED).faces);
+}
+
+TEST(ObjContinuation, AContinuedMtllibIsRewrittenForAnotherFolderInPlace) {
+  const fs::path dir = fs::temp_directory_path() /
+                       ("shellcontract_obj_continued_mtllib_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "in");
+  fs::create_directories(dir / "out");
+  std::ofstream(dir / "in" / "a.mtl") << "newmtl red\nKd 1 0 0\n";
+  const std::string in = (dir / "in" / "t.obj").string(), out = (dir / "out" / "t.obj").string();
+  // Two libraries on a statement of lines 2-4, the missing one on line 4.
+  const std::string bytes = "# t\nmtllib \\\n a.mtl \\\n gone.mtl\n" + JOINED;
+  const std::string want = "# t\nmtllib \\\n ../in/a.mtl \\\n gone.mtl\n" + JOINED;
+  std::vector<std::string> w;
+  EXPECT_EQ(relocate_material_libraries(bytes, in, out, &w), want);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find(in + ": line 2: material library 'gone.mtl' not found"), std::string::npos)
+      << w[0];
+  // The document: the same edit, with the positions.
+  std::ofstream(in, std::ios::binary) << bytes;
+  const auto doc = read_mesh_document(in);
+  Positions y(4, 3);
+  y << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  w.clear();
+  EXPECT_EQ(doc->text_for(out, y, &w), want);
+  EXPECT_EQ(w.size(), 1u);
+  fs::remove_all(dir);
 }
 
 TEST(ObjContinuation, AContinuedLastLineIsRefusedWithItsLine) {
