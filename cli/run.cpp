@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <new>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -392,7 +393,12 @@ int command_run(int argc, char** argv) {
       const auto frames = static_cast<std::size_t>(exporter.frame_stats().frames_written);
       outputs.add("--export-dir", exports.dir, "written (" + counted(frames, "frame", "frames") + ")");
     }
-    for (const std::string& w : exporter.frame_warnings()) std::cerr << "warning: " << w << '\n';
+    // Every file written from the document (frames, result) warns alike of the input: once a run.
+    std::set<std::string> warned;
+    const auto warn_once = [&](const std::string& w) {
+      if (warned.insert(w).second) std::cerr << "warning: " << w << '\n';
+    };
+    for (const std::string& w : exporter.frame_warnings()) warn_once(w);
     if (!fields.error().empty()) outputs.add("--fields", fields_prefix, "failed: " + fields.error());
     else if (!fields_prefix.empty()) outputs.add("--fields", fields_prefix, "written (_start.ply and _end.ply)");
     const auto attempt = [&](const char* option, const std::string& path, const std::function<void()>& write) {
@@ -413,7 +419,7 @@ int command_run(int argc, char** argv) {
       if (document && document->format() == lower_extension(output)) {
         std::vector<std::string> doc_warnings;  // a material library that does not exist
         write_mesh_document_atomic(output, *document, input_positions(mesh, r.positions), &doc_warnings);
-        for (const std::string& w : doc_warnings) std::cerr << "warning: " << w << '\n';
+        for (const std::string& w : doc_warnings) warn_once(w);
       } else {
         write_mesh_atomic(output, mesh, r.positions);
       }

@@ -9,6 +9,7 @@
 #include <regex>
 #include <string_view>
 
+#include "mesh/line_tokens.hpp"
 #include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
 
@@ -64,7 +65,14 @@ std::vector<std::vector<std::string_view>> token_lines(std::string_view text) {
   return lines;
 }
 
-FileExtras obj_extras(std::string_view text) {
+FileExtras obj_extras(const std::string& bytes) {
+  // A statement continued over lines (a backslash at a line's end) is one, as the readers see it.
+  std::string joined;
+  if (bytes.find('\\') != std::string::npos) {
+    joined = bytes;
+    join_continued_lines(joined, bytes.find('\n') == std::string::npos ? '\r' : '\n');
+  }
+  const std::string_view text(joined.empty() ? bytes : joined);
   std::size_t vt = 0, vn = 0, colour_lines = 0, comments = 0, smoothing = 0;
   std::vector<std::string> groups, objects, materials, libraries;
   std::map<std::string, std::size_t> other;

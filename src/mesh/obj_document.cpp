@@ -8,9 +8,13 @@
 //
 // Vertex i of the simulation is the i-th `v` line: scan_obj, which read_input_mesh uses,
 // keeps the `v` lines in order and never merges duplicates, so no map is needed besides the
-// identity (MeshDocument::matches checks it). Quads and larger polygons are split into triangles for
-// the simulation only (by a fan, a quad's diagonal or ear clipping: polygon_split.hpp); their
+// identity (MeshDocument::matches checks it). Quads and larger polygons are split into triangles
+// for the simulation only (by a fan, a quad's diagonal or ear clipping: polygon_split.hpp); their
 // corners keep their vertices here, which move with the simulation.
+//
+// Continued lines (a backslash at a line's end) are read as scan_obj reads them, each statement
+// on the line where it starts. A continued `v` keeps its continuations (each number is replaced
+// on its own); a continued `vn` that is rewritten becomes one line, as an unchanged one is kept.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -40,7 +44,7 @@ class ObjDocument final : public MeshDocument {
   std::string text(const Positions& x) const override { return compose(x, {}); }
   std::string text_for(const std::string& output_path, const Positions& x,
                        std::vector<std::string>* warnings) const override {
-    return compose(x, material_library_edits(bytes_, mtllib_, path_, output_path, warnings));
+    return compose(x, material_library_edits(statements(), mtllib_, path_, output_path, warnings));
   }
 
  private:
@@ -57,10 +61,15 @@ class ObjDocument final : public MeshDocument {
   void use_material(std::size_t at, std::size_t end);
   /// The file with the positions x, the normals of their polygons and `edits` (mtllib lines).
   std::string compose(const Positions& x, std::vector<TextEdit> edits) const;
+  /// The file's text with its continued lines joined: the bytes themselves when it has none.
+  const std::string& statements() const { return joined_.empty() ? bytes_ : joined_; }
 
   std::string name_;
   std::string bytes_;
   std::string path_;                  ///< the file read; empty: unknown
+  /// The bytes with their continued lines joined (join_continued_lines), each statement one line
+  /// at the bytes' own offsets; empty when no line is continued (no copy of most files).
+  std::string joined_;
   std::vector<MtllibLine> mtllib_;    ///< the spans of the mtllib lines' names
   std::vector<Span> v_numbers_;       ///< per `v` line: the span of its "x y z" text
   std::vector<Span> vn_text_;         ///< per `vn` line: the span from "vn" to the line's end
@@ -100,7 +109,8 @@ long long ObjDocument::index(const std::string& token, std::size_t count, std::s
 
 void ObjDocument::read_face(std::size_t at, std::size_t end, std::size_t line) {
   std::size_t corners = 0;
-  for (Span t = next_token(bytes_, at, end); t.begin != t.end; t = next_token(bytes_, at, end)) {
+  const std::string& text = statements();
+  for (Span t = next_token(text, at, end); t.begin != t.end; t = next_token(text, at, end)) {
     const std::string tok = bytes_.substr(t.begin, t.end - t.begin);
     if (tok[0] == '#') break;  // a comment after the corners
     const std::size_t s1 = tok.find('/');
@@ -138,37 +148,51 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
   const std::size_t first_eol = bytes_.find(eol);
   if (eol == '\r') eol_ = "\r";
   else if (first_eol != std::string::npos && first_eol > 0 && bytes_[first_eol - 1] == '\r') eol_ = "\r\n";
-  std::size_t begin = bytes_.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte-order mark
-  for (std::size_t line = 1; begin < bytes_.size(); ++line) {
-    std::size_t end = bytes_.find(eol, begin);
-    if (end == std::string::npos) end = bytes_.size();
+  if (bytes_.find('\\') != std::string::npos) {
+    joined_ = bytes_;
+    const std::size_t dangling = join_continued_lines(joined_, eol);
+    if (dangling != std::string::npos)
+      fail(line_of(bytes_, dangling, eol), "parse error",
+           "a line continuation ('\\') with no line after it");
+    if (joined_ == bytes_) joined_.clear();
+  }
+  const std::string& text = statements();
+  std::size_t begin = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte-order mark
+  // `line`: where the statement starts, as scan_obj counts (obj_scan.hpp).
+  for (std::size_t line = 1; begin < text.size(); ++line) {
+    std::size_t end = text.find(eol, begin);
+    if (end == std::string::npos) end = text.size();
     std::size_t at = begin;
-    const Span key = next_token(bytes_, at, end);
-    const std::string k = bytes_.substr(key.begin, key.end - key.begin);
+    const Span key = next_token(text, at, end);
+    const std::string k = text.substr(key.begin, key.end - key.begin);
     if (k == "v") {
       Span numbers;
       for (const char* c : {"x", "y", "z"}) {
-        const Span t = next_token(bytes_, at, end);
+        const Span t = next_token(text, at, end);
         number(t, line, c);
         if (c[0] == 'x') numbers.begin = t.begin;
         numbers.end = t.end;
       }
       v_numbers_.push_back(numbers);
     } else if (k == "vt") {
-      const double u = number(next_token(bytes_, at, end), line, "u");
-      const Span tv = next_token(bytes_, at, end);
+      const double u = number(next_token(text, at, end), line, "u");
+      const Span tv = next_token(text, at, end);
       uv_.push_back({u, tv.begin == tv.end ? 0.0 : number(tv, line, "v")});
     } else if (k == "vn") {
       std::size_t e = end;
-      while (e > key.begin && is_line_space(bytes_[e - 1])) --e;  // keep a "\r" of "\r\n" outside
+      while (e > key.begin && is_line_space(text[e - 1])) --e;  // keep a "\r" of "\r\n" outside
       vn_text_.push_back({key.begin, e});
     } else if (k == "f") {
       read_face(at, end, line);
     } else if (k == "mtllib") {
-      mtllib_.push_back(mtllib_line(bytes_, at, end, line));
+      mtllib_.push_back(mtllib_line(text, at, end, line));
     } else if (k == "usemtl") {
       use_material(at, end);
     }
+    if (!joined_.empty())  // the line ends this statement's continuations joined
+      line += static_cast<std::size_t>(
+          std::count(bytes_.begin() + static_cast<std::ptrdiff_t>(begin),
+                     bytes_.begin() + static_cast<std::ptrdiff_t>(end), eol));
     begin = end + 1;
   }
   vertex_count_ = v_numbers_.size();
@@ -177,7 +201,7 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
   const std::filesystem::path folder = std::filesystem::path(path_).parent_path();
   if (!path_.empty())
     for (const MtllibLine& l : mtllib_)
-      for (const MtllibName& n : mtllib_names(bytes_, l, folder))
+      for (const MtllibName& n : mtllib_names(text, l, folder))
         materials_.libraries.push_back({(folder / n.name).string(), l.line, n.found});
   materials_.source = name_;
   // A texture coordinate only where every corner of every polygon has one (the glTF's TEXCOORD_0
@@ -191,10 +215,11 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
 
 void ObjDocument::use_material(std::size_t at, std::size_t end) {
   // The name is the rest of the line (names with spaces exist), without a comment at its end.
-  while (at < end && is_line_space(bytes_[at])) ++at;
-  std::size_t e = std::min(end, bytes_.find('#', at));
-  while (e > at && is_line_space(bytes_[e - 1])) --e;
-  const std::string name = bytes_.substr(at, e - at);
+  const std::string& text = statements();
+  while (at < end && is_line_space(text[at])) ++at;
+  std::size_t e = std::min(end, text.find('#', at));
+  while (e > at && is_line_space(text[e - 1])) --e;
+  const std::string name = text.substr(at, e - at);
   if (name.empty()) {
     material_ = -1;
     return;
@@ -215,14 +240,26 @@ std::string ObjDocument::compose(const Positions& x, std::vector<TextEdit> edits
   const ObjNormals normals =
       obj_normals(x, {&polygon_start_, &corner_vertex_, &corner_vn_, vn_text_.size()});
 
-  // The pieces to replace, in file order (v, vn and mtllib spans are on lines of their own, the
-  // corners' normal indices inside face lines).
+  // The pieces to replace, in file order (v, vn and mtllib spans are in statements of their own,
+  // the corners' normal indices inside face statements).
   edits.reserve(edits.size() + v_numbers_.size() + vn_text_.size());
   for (std::size_t i = 0; i < v_numbers_.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
-    edits.push_back({v_numbers_[i].begin, v_numbers_[i].end,
-                     format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' +
-                         format_double(x(r, 2))});
+    const Span n = v_numbers_[i];
+    const std::size_t length = n.end - n.begin;
+    if (joined_.empty() || joined_.compare(n.begin, length, bytes_, n.begin, length) == 0) {
+      edits.push_back(
+          {n.begin, n.end,
+           format_double(x(r, 0)) + ' ' + format_double(x(r, 1)) + ' ' + format_double(x(r, 2))});
+      continue;
+    }
+    // x y z continued over lines: each number replaced on its own, so that the continuations
+    // (and the lines of the file) stay as they were.
+    std::size_t at = n.begin;
+    for (Eigen::Index k = 0; k < 3; ++k) {
+      const Span t = next_token(joined_, at, n.end);
+      edits.push_back({t.begin, t.end, format_double(x(r, k))});
+    }
   }
   // first_written[j]: the 0-based index that the first line written for `vn` line j has.
   std::vector<std::size_t> first_written(vn_text_.size() + 1, 0);

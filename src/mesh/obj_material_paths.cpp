@@ -3,6 +3,7 @@
 // changed: the output refers to the same files where they are.
 #include "mesh/obj_material_paths.hpp"
 
+#include <algorithm>
 #include <system_error>
 
 #include "mesh/file_safety.hpp"
@@ -54,18 +55,22 @@ MtllibLine mtllib_line(const std::string& bytes, std::size_t at, std::size_t end
   return MtllibLine{line, at, end};
 }
 
-std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes) {
+std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes, const std::string& text) {
   std::vector<MtllibLine> lines;
   // As ObjDocument reads lines: "\n" ends them ("\r\n" too), a lone "\r" in a file without "\n".
   const char eol = bytes.find('\n') == std::string::npos ? '\r' : '\n';
-  std::size_t begin = bytes.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
-  for (std::size_t line = 1; begin < bytes.size(); ++line) {
-    std::size_t end = bytes.find(eol, begin);
-    if (end == std::string::npos) end = bytes.size();
+  std::size_t begin = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;
+  for (std::size_t line = 1; begin < text.size(); ++line) {
+    std::size_t end = text.find(eol, begin);
+    if (end == std::string::npos) end = text.size();
     std::size_t at = begin;
-    while (at < end && is_line_space(bytes[at])) ++at;
-    if (bytes.compare(at, 6, "mtllib") == 0 && (at + 6 == end || is_line_space(bytes[at + 6])))
-      lines.push_back(mtllib_line(bytes, at + 6, end, line));
+    while (at < end && is_line_space(text[at])) ++at;
+    if (text.compare(at, 6, "mtllib") == 0 && (at + 6 == end || is_line_space(text[at + 6])))
+      lines.push_back(mtllib_line(text, at + 6, end, line));
+    if (&text != &bytes)  // the line ends this statement's continuations joined
+      line += static_cast<std::size_t>(
+          std::count(bytes.begin() + static_cast<std::ptrdiff_t>(begin),
+                     bytes.begin() + static_cast<std::ptrdiff_t>(end), eol));
     begin = end + 1;
   }
   return lines;
@@ -164,8 +169,17 @@ std::string apply_edits(const std::string& bytes, const std::vector<TextEdit>& e
 std::string relocate_material_libraries(const std::string& bytes, const std::string& input_path,
                                         const std::string& output_path,
                                         std::vector<std::string>* warnings) {
-  const std::vector<TextEdit> edits =
-      material_library_edits(bytes, find_mtllib_lines(bytes), input_path, output_path, warnings);
+  // The statements with their continued lines joined, at the bytes' offsets (line_tokens.hpp):
+  // the edits apply to the bytes. A continuation with no line after it (a file the OBJ readers
+  // refuse) is left as it is.
+  std::string joined;
+  if (bytes.find('\\') != std::string::npos) {
+    joined = bytes;
+    join_continued_lines(joined, bytes.find('\n') == std::string::npos ? '\r' : '\n');
+  }
+  const std::string& text = joined.empty() ? bytes : joined;
+  const std::vector<TextEdit> edits = material_library_edits(text, find_mtllib_lines(bytes, text),
+                                                             input_path, output_path, warnings);
   return edits.empty() ? bytes : apply_edits(bytes, edits);
 }
 

@@ -28,8 +28,10 @@ struct MtllibName {
 /// The span of an mtllib line's names: [at, end) is the line after its keyword.
 MtllibLine mtllib_line(const std::string& bytes, std::size_t at, std::size_t end, std::size_t line);
 
-/// Every mtllib line of an OBJ file's bytes, with the document's line rules (obj_document.cpp).
-std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes);
+/// Every mtllib line of an OBJ file's bytes, with the document's line rules (obj_document.cpp):
+/// `text` is `bytes` with their continued lines joined (join_continued_lines), or `bytes` itself
+/// when none is; a line is the one its statement starts on.
+std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes, const std::string& text);
 
 /// The names of one mtllib line. The OBJ spec separates several names with spaces; a name with
 /// spaces in it (Blender's exporter writes the .mtl's file name as it is, and its importer reads

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/plural.hpp"
+#include "mesh/line_tokens.hpp"
 #include "mesh/off_number.hpp"
 #include "shellcontract/error.hpp"
 
@@ -62,15 +63,32 @@ bool parse_index(std::string_view tok, long long& value) {
 }  // namespace
 
 ObjScan scan_obj(const std::string& path, const std::string& text_in) {
-  const std::string_view text(text_in);
+  // Continued lines joined (line_tokens.hpp): a statement is one line of `text`, and names the
+  // line it starts on. Only a file with a backslash needs the copy.
+  std::string joined;
+  const bool continued = text_in.find('\\') != std::string::npos;
+  if (continued) {
+    joined = text_in;
+    const std::size_t dangling = join_continued_lines(joined, '\n');
+    if (dangling != std::string::npos)
+      fail(path, "parse error",
+           "line " + std::to_string(line_of(text_in, dangling, '\n')) +
+               ": a line continuation ('\\') with no line after it");
+  }
+  const std::string_view text(continued ? joined : text_in);
   ObjScan scan;
   std::vector<std::string_view> t;
-  std::size_t line = 0;
+  std::size_t line = 0, next_line = 1;
   for (std::size_t pos = 0; pos < text.size();) {
-    ++line;
+    line = next_line;
     std::size_t eol = text.find('\n', pos);
     if (eol == std::string_view::npos) eol = text.size();
     const std::string_view s = text.substr(pos, eol - pos);
+    next_line = line + 1;
+    if (continued)  // the line ends it joined
+      next_line += static_cast<std::size_t>(
+          std::count(text_in.begin() + static_cast<std::ptrdiff_t>(pos),
+                     text_in.begin() + static_cast<std::ptrdiff_t>(eol), '\n'));
     pos = eol + 1;
     t.clear();
     for (std::size_t i = 0; i < s.size();) {

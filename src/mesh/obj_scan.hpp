@@ -27,7 +27,9 @@ struct ObjScan {
 /// the vt and vn indices are not read), in file order, as CGAL::IO::read_OBJ reads them: indices
 /// count from 1, a negative one counts back from the last `v` before its line, a positive one may
 /// name a `v` further down. Every other statement CGAL's reader accepts (vt, vn, g, o, s, usemtl,
-/// mtllib, comments, ...) is skipped; one it refuses is refused here too, with its line.
+/// mtllib, comments, ...) is skipped; one it refuses is refused here too, with its line. A line
+/// that ends with a backslash continues on the next (join_continued_lines, which CGAL's reader
+/// does not know); a statement's line, in SourceLines and in messages, is the one it starts on.
 /// @param path  the file's name, for messages only
 /// @throws InputError "<path>: <problem>: <vertex or face and its line>: <details>"
 ObjScan scan_obj(const std::string& path, const std::string& text);

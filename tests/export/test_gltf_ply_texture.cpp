@@ -168,6 +168,35 @@ TEST(GltfPlyTexture, AMissingTextureFileWarnsWithThePlyAndLineAndTheRunGoesOn) {
   EXPECT_TRUE(m.meshes.at(0).primitives.at(0).attributes.count("TEXCOORD_0"));
 }
 
+/// How often `what` occurs in `text`.
+std::size_t occurrences(const std::string& text, const std::string& what) {
+  std::size_t n = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
+  return n;
+}
+
+TEST(GltfPlyTexture, AMissingTextureFileIsWarnedOncePerRun) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  // The frames and the result in other folders than the input: each file written from the PLY
+  // document would have its TextureFile path rewritten, and finds it names no file.
+  test::ScratchDir dir("ply_texture_warned_once");
+  fs::create_directory(dir.file("in"));
+  fs::create_directory(dir.file("out"));
+  const std::string input = dir.file("in/scan.ply");
+  std::ofstream(input) << octahedron_ply({"gone.png"}, false);
+  const auto r =
+      test::run_cli({"run", input, "-o", dir.file("out/out.ply"), "-n", "3", "-q", "--export-dir",
+                     dir.file("frames"), "--export-every", "1", "--gltf", dir.file("out/run.glb")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(dir.file("frames/out_3.ply"))) << r.output;
+  const std::string line =
+      input + ": line " + std::to_string(FIRST_TEXTURE_LINE) + ": TextureFile '";
+  // The PLY outputs' warning (four frames and the result) and the glTF's, once each.
+  EXPECT_EQ(occurrences(r.output, line + "gone.png' is no file from the PLY's folder"), 1u)
+      << r.output;
+  EXPECT_EQ(occurrences(r.output, line + dir.file("in/gone.png") + "' not found"), 1u) << r.output;
+}
+
 TEST(GltfPlyTexture, ATextureWithoutTexcoordsOrNotAnImageIsAWarning) {
   if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
   test::ScratchDir dir("ply_texture_unusable");

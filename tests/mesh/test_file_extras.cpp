@@ -30,6 +30,14 @@ TEST(FileExtras, PlainFilesHoldNothingElse) {
   EXPECT_TRUE(describe_file_extras("stl", "solid\nfacet normal 0 0 1\nouter loop\nendloop\nendfacet\nendsolid\n").items.empty());
 }
 
+TEST(FileExtras, ObjContinuedLinesAreOneStatement) {
+  // A continued v, g and f (line_tokens.hpp): before, each continuation line counted as an
+  // unknown statement ("1 '4' statement") and the backslash as a group's name.
+  const FileExtras e = describe_file_extras(
+      "obj", "v 0 0 0\nv 1 \\\n 0 0\nv 0 1 0\nv 0 0 1\ng a \\\n b\nf 1 3 2\nf 1 2 \\\r\n 4\n");
+  EXPECT_EQ(e.items, (std::vector<std::string>{"2 groups (g a, b)"})) << joined(e);
+}
+
 TEST(FileExtras, OffColoursNormalsAndComments) {
   const FileExtras e = describe_file_extras(
       "off", "# made by hand\nNOFF\n4 4 6\n0 0 0 0 0 1\n1 0 0 0 0 1 0.5 0.5 0.5\n0 1 0 0 0 1\n0 0 1 0 0 1\n"
