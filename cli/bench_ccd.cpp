@@ -17,6 +17,7 @@
 #include "collision/ccd_benchmark.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "core/decimal_text.hpp"
 #include "json_writer.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
@@ -33,14 +34,8 @@ std::vector<double> parse_tolerances(const std::string& list) {
   std::stringstream ss(list);
   std::string item;
   while (std::getline(ss, item, ',')) {
-    std::size_t used = 0;
     double v = 0.0;
-    try {
-      v = std::stod(item, &used);
-    } catch (const std::exception&) {
-      throw UsageError("--sweep: '" + item + "' is not a number");
-    }
-    if (used != item.size() || !(v >= 0.0) || !std::isfinite(v))
+    if (!parse_decimal(item, v) || !(v >= 0.0) || !std::isfinite(v))
       throw UsageError("--sweep: '" + item + "' is not a finite number >= 0");
     out.push_back(v);
   }

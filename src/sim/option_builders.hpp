@@ -3,15 +3,14 @@
 // library (included as "sim/option_builders.hpp").
 #pragma once
 
-#include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
 
@@ -47,11 +46,8 @@ inline Interval between(double lo, double hi, bool lo_open, bool hi_open) {
 
 inline double parse_number(const std::string& name, const std::string& value,
                            const Interval& range) {
-  const char* begin = value.c_str();
-  char* end = nullptr;
-  const double x = std::strtod(begin, &end);
-  if (value.empty() || end != begin + value.size() || !range.contains(x))
-    bad(name, value, range.text);
+  double x = 0.0;
+  if (!parse_decimal(value, x) || !range.contains(x)) bad(name, value, range.text);
   return x;
 }
 
@@ -59,10 +55,7 @@ inline int parse_integer(const std::string& name, const std::string& value, long
   const std::string range =
       "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
   long x = 0;
-  const auto r = std::from_chars(value.data(), value.data() + value.size(), x);
-  if (value.empty() || r.ec != std::errc() || r.ptr != value.data() + value.size() || x < lo ||
-      x > hi)
-    bad(name, value, range);
+  if (!parse_decimal_integer(value, x) || x < lo || x > hi) bad(name, value, range);
   return static_cast<int>(x);
 }
 

@@ -1,13 +1,12 @@
 #include "shellcontract/simulation_options.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <string>
 #include <utility>
 
+#include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
 
@@ -121,16 +120,12 @@ Schedule parse_schedule(const std::string& option, const std::string& text, cons
     const std::string frame_text = trim(key.substr(0, colon));
     const std::string value_text = trim(key.substr(colon + 1));
     long frame = -1;
-    const auto fr = std::from_chars(frame_text.data(), frame_text.data() + frame_text.size(), frame);
-    if (frame_text.empty() || fr.ec != std::errc() ||
-        fr.ptr != frame_text.data() + frame_text.size() || frame < 0 ||
+    if (!parse_decimal_integer(frame_text, frame) || frame < 0 ||
         frame > std::numeric_limits<int>::max())
       bad_key(option, index, key, "the frame '" + frame_text + "' is not an integer in [0, " +
                                       std::to_string(std::numeric_limits<int>::max()) + "]");
-    const char* vb = value_text.c_str();
-    char* ve = nullptr;
-    const double value = std::strtod(vb, &ve);
-    if (value_text.empty() || ve != vb + value_text.size() || !std::isfinite(value))
+    double value = 0.0;
+    if (!parse_decimal(value_text, value) || !std::isfinite(value))
       bad_key(option, index, key, "the value '" + value_text + "' is not a finite number");
     if (!range.contains(value))
       bad_key(option, index, key, "the value " + value_text + " is not " + range.text);

@@ -2,12 +2,16 @@
 // refuses values outside its range with a message naming it, and shows a clean default in --help.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <ios>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
 
@@ -68,6 +72,62 @@ TEST(OptionTable, EveryOptionRefusesValuesOutsideItsRange) {
       }
     }
   }
+}
+
+TEST(DecimalText, OneDecimalNumberAndNothingElse) {
+  double x = -1.0;
+  for (const auto& [text, value] : std::vector<std::pair<std::string, double>>{{"3", 3.0},
+                                                                               {"+3", 3.0},
+                                                                               {"-2.5", -2.5},
+                                                                               {".5", 0.5},
+                                                                               {"5.", 5.0},
+                                                                               {"1e-3", 1e-3},
+                                                                               {"2E+06", 2e6},
+                                                                               {"-0", -0.0},
+                                                                               {"0.1", 0.1}}) {
+    EXPECT_TRUE(parse_decimal(text, x)) << text;
+    EXPECT_EQ(x, value) << text;
+  }
+  for (const char* text :
+       {"",    " 3",  "3 ",  "\t3", "3\n", "0x3", "0x1p-1", "inf", "-inf", "nan",
+        "+-3", "-+3", "++3", "+",   "-",   ".",   "e5",     "1e",  "3,5",  "1e400"})
+    EXPECT_FALSE(parse_decimal(text, x)) << "'" << text << "'";
+  long n = -1;
+  for (const auto& [text, value] :
+       std::vector<std::pair<std::string, long>>{{"3", 3}, {"+3", 3}, {"-3", -3}, {"0", 0}}) {
+    EXPECT_TRUE(parse_decimal_integer(text, n)) << text;
+    EXPECT_EQ(n, value) << text;
+  }
+  for (const char* text : {"", " 3", "3 ", "3.0", "0x3", "+-3", "+", "1e3", "99999999999999999999"})
+    EXPECT_FALSE(parse_decimal_integer(text, n)) << "'" << text << "'";
+}
+
+// strtod had let " 3" and "0x3" through where "3 " and the integer options (std::from_chars) were
+// refused: every option that takes a number reads it the same way now.
+TEST(OptionTable, NumbersAreDecimalTextOnly) {
+  const RunOptions defaults;
+  int numbers = 0;
+  for (const OptionSpec& o : run_option_table()) {
+    const std::string text = o.get(defaults);
+    char* end = nullptr;
+    const double x = std::strtod(text.c_str(), &end);
+    if (text.empty() || end != text.c_str() + text.size()) continue;  // no number by default
+    ++numbers;
+    std::ostringstream hex;
+    hex << std::hexfloat << x;
+    for (const std::string& bad : {" " + text, text + " ", "\t" + text, text + "\n", hex.str()}) {
+      RunOptions r;
+      EXPECT_THROW(o.set(r, bad), UsageError) << "--" << o.name << " accepted '" << bad << "'";
+    }
+    if (x >= 0.0) {
+      RunOptions r;
+      EXPECT_NO_THROW(o.set(r, "+" + text)) << "--" << o.name << " refused '+" << text << "'";
+    }
+  }
+  EXPECT_GE(numbers, 20);
+  RunOptions r;
+  EXPECT_THROW(set_run_option(r, "target-volume", "0:1, 60:0x1p-1"), UsageError);
+  EXPECT_NO_THROW(set_run_option(r, "target-volume", "0:1, 60: 0.5"));
 }
 
 TEST(OptionTable, RangesFromTheIssue) {
