@@ -1,6 +1,7 @@
 // shellcontract repair IN -o OUT [--json] [--max-hole-edges N]: makes a refused mesh usable with
 // CGAL's repair functions (repair_input_mesh) and writes it (write_repair_output: a usable input
-// unchanged), naming what the output does not carry; on failure writes nothing.
+// unchanged; OFF, OBJ, PLY, STL, .glb or .gltf), naming what the output does not carry; on
+// failure writes nothing.
 #include "shellcontract/repair.hpp"
 
 #include <boost/program_options.hpp>
@@ -21,7 +22,8 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* REPAIR_USAGE = R"(usage: shellcontract repair INPUT -o OUTPUT [--json] [--max-hole-edges N]
+constexpr const char* REPAIR_USAGE =
+    R"(usage: shellcontract repair INPUT -o OUTPUT [--json] [--max-hole-edges N]
 
 Makes a mesh that 'check' refuses usable, with CGAL's Polygon Mesh Processing: merges duplicate
 points and faces, removes degenerate faces, orients the faces consistently, stitches borders,
@@ -31,14 +33,21 @@ changed, and what OUTPUT does not carry, on stderr (--json: on stdout).
 
 What OUTPUT keeps:
   a mesh 'check' accepts is not rewritten: an OUTPUT of its format is a byte-for-byte copy (UVs,
-  normals, groups, materials, quads, comments, extra PLY properties, binary STL or PLY); another
-  format gets its vertices and polygons as read, in their order and winding (STL: triangles).
+  normals, groups, materials, quads, comments, extra PLY properties, binary STL or PLY, a glTF's
+  nodes, materials and textures); another format gets its vertices and polygons as read, in
+  their order and winding (STL and glTF: triangles). A .gltf copied into another folder: a
+  warning names each buffer or image file it reads that is not beside the copy.
   A repaired mesh has new vertices and triangles in another order: the input's UVs, normals,
-  groups, materials, colours, extra PLY properties and comments are dropped, each one named in
-  the report ("dropped from OUTPUT ..."); a binary PLY stays binary, a binary STL too in an STL.
+  groups, materials, colours, extra PLY properties, comments, glTF nodes, textures and names are
+  dropped, each one named in the report ("dropped from OUTPUT ..."); a binary PLY stays binary,
+  a binary STL too in an STL.
+  A .glb or .gltf that is not a copy holds one node and one mesh: POSITION (32-bit floats: digits
+  that a float does not hold are named among the dropped), area-weighted vertex normals (NORMAL)
+  and 32-bit indices; a .gltf carries its buffer inside, as a base64 data URI.
 
 exit codes: 0 OUTPUT written and usable, 1 bad usage (also: an STL OUTPUT in which two vertices
-            would be stored at one position, which an STL reader merges), 2 the input cannot be
+            would be stored at one position, which an STL reader merges; a glTF OUTPUT whose
+            positions rounded to 32-bit floats would no longer be usable), 2 the input cannot be
             repaired into a usable mesh (the message says why; nothing is written)
 
 options)";
@@ -93,7 +102,7 @@ int command_repair(int argc, char** argv) {
   po::options_description visible;
   visible.add_options()("help,h", "show this help")(
       "output,o", po::value(&output)->value_name("FILE"),
-      "repaired mesh (format from the extension: off, obj, ply, stl)")(
+      "repaired mesh (format from the extension: off, obj, ply, stl, glb, gltf)")(
       "json", po::bool_switch(&json), "print the report as a JSON object on stdout")(
       "max-hole-edges", po::value(&max_hole_edges)->value_name("N"),
       "leave holes with more than N boundary edges open (their component is then dropped); an "

@@ -230,6 +230,7 @@ FileExtras describe_file_extras(const std::string& ext, const std::string& bytes
   if (ext == "ply") return ply_extras(bytes);
   if (ext == "off") return off_extras(bytes);
   if (ext == "stl") return stl_extras(bytes);
+  if (ext == "glb" || ext == "gltf") return describe_gltf_extras(bytes);
   return {};
 }
 

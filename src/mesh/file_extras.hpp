@@ -18,9 +18,21 @@ struct FileExtras {
   std::vector<std::string> items;
 };
 
-/// The extras of a mesh file's bytes, by the lower-case extension ("off", "obj", "ply", "stl").
-/// Meant for a file that read_polygon_soup has read: a part it cannot make out is not described
-/// rather than refused.
+/// The extras of a mesh file's bytes, by the lower-case extension ("off", "obj", "ply", "stl",
+/// "glb", "gltf"). Meant for a file that read_polygon_soup has read: a part it cannot make out is
+/// not described rather than refused.
 FileExtras describe_file_extras(const std::string& ext, const std::string& bytes);
+
+/// A glTF's (.glb or .gltf, told by the first bytes; gltf_extras.cpp), from its JSON alone: vertex
+/// attributes besides POSITION ("vertex attributes NORMAL, TEXCOORD_0"), morph targets, several
+/// primitives (a bare mesh has one), nodes and their transforms, node and mesh names, other
+/// scenes, materials, textures, images, animations, skins, cameras, extensions, and the objects
+/// that carry application data (extras).
+/// `binary` stays false: a .glb is a container, and any output keeps the positions' floats.
+FileExtras describe_gltf_extras(const std::string& bytes);
+
+/// The uris of a glTF's buffers and images that are not data URIs (files it reads from its
+/// folder, as written), each once; none for JSON it cannot parse.
+std::vector<std::string> gltf_file_uris(const std::string& bytes);
 
 }  // namespace shellcontract

@@ -13,6 +13,8 @@
 
 #include "core/plural.hpp"
 #include "mesh/file_extras.hpp"
+#include "mesh/file_safety.hpp"
+#include "mesh/gltf_mesh_writer.hpp"
 #include "mesh/obj_material_paths.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/soup_writer.hpp"
@@ -82,6 +84,62 @@ void require_distinct_stl_positions(const std::string& output, const std::vector
   }
 }
 
+/// A .gltf copied into another folder names its buffers and images by paths relative to its own:
+/// each one that is beside the input but not beside the copy is a warning (the OBJ's mtllib
+/// paths are rewritten instead; a .gltf's bytes stay the input's).
+void warn_missing_gltf_files(const std::string& input, const std::string& output,
+                             const std::string& bytes, std::vector<std::string>& warnings) {
+  namespace fs = std::filesystem;
+  const fs::path from = fs::path(input).parent_path(), to = fs::path(output).parent_path();
+  std::error_code ec;
+  for (const std::string& uri : gltf_file_uris(bytes)) {
+    const fs::path rel(uri);
+    if (rel.is_absolute() || !fs::exists(from / rel, ec) || fs::exists(to / rel, ec)) continue;
+    warnings.push_back(output + ": names '" + printable(uri) + "', a file beside " + input +
+                       " but not beside the copy: copy it there too");
+  }
+}
+
+bool is_gltf(const std::string& ext) { return ext == "glb" || ext == "gltf"; }
+
+/// The mesh's vertices and triangles as write_mesh_atomic writes them: a welded mesh's as its
+/// input numbered them.
+void mesh_triangles(const Mesh& mesh, std::vector<Point3>& points,
+                    std::vector<Polygon>& triangles) {
+  const Positions x = input_positions(mesh, positions_from_mesh(mesh));
+  for (Eigen::Index i = 0; i < x.rows(); ++i) points.emplace_back(x(i, 0), x(i, 1), x(i, 2));
+  for (const auto& f : input_faces(mesh)) triangles.emplace_back(f.begin(), f.end());
+}
+
+/// Writes a .glb or .gltf of the triangles (gltf_mesh_writer.hpp). glTF stores 32-bit floats:
+/// when that rounds a position, the rounded mesh goes through the usability check first, as
+/// rounding can make a face degenerate or two faces meet, and a file that `check` refuses must
+/// not be written as repair's usable output; the lost digits are named among the dropped.
+/// @throws UsageError naming the check's reason when the rounded mesh is not usable
+void write_gltf_output(const std::string& output, const std::vector<Point3>& points,
+                       const std::vector<Polygon>& triangles, bool binary, RepairOutput& o) {
+  if (const std::size_t rounded = points_changed_by_float_rounding(points)) {
+    o.dropped.push_back("the positions' digits beyond 32-bit floats (" +
+                        counted(rounded, "vertex", "vertices") + " rounded: glTF stores floats)");
+    std::vector<Point3> as_floats;
+    as_floats.reserve(points.size());
+    for (const Point3& p : points)
+      as_floats.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
+                             static_cast<float>(p.z()));
+    try {
+      InputReport ignored;
+      check_input_soup(output, std::move(as_floats), triangles, &ignored);
+    } catch (const InputError& e) {
+      throw UsageError(
+          "cannot write '" + output +
+          "': glTF stores 32-bit floats, and with its positions rounded to them the mesh is not "
+          "usable (" +
+          e.what() + "); write .off, .obj or .ply");
+    }
+  }
+  write_gltf_mesh_atomic(output, points, triangles, binary);
+}
+
 }  // namespace
 
 std::string RepairOutput::kind_name() const {
@@ -107,14 +165,18 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
       o.material_paths_rewritten = moved != bytes;
       write_text_atomic(output, moved);
     } else {
+      if (in_ext == "gltf") warn_missing_gltf_files(input, output, bytes, o.warnings);
       write_text_atomic(output, bytes);
     }
     return o;
   }
   o.dropped = extras.items;
   // A binary PLY holds doubles: any position fits. A binary STL holds floats: only an STL's own.
-  o.binary = extras.binary && (out_ext == "ply" || (out_ext == "stl" && in_ext == "stl"));
-  if (extras.binary && !o.binary)
+  // A .glb is binary whatever the input (its floats are named in write_gltf_output).
+  o.binary = is_gltf(out_ext)
+                 ? out_ext == "glb"
+                 : extras.binary && (out_ext == "ply" || (out_ext == "stl" && in_ext == "stl"));
+  if (extras.binary && !o.binary && !is_gltf(out_ext))
     o.dropped.push_back(std::string("the binary encoding (written as text") +
                         (out_ext == "stl" ? ": a binary STL holds 32-bit floats)" : ")"));
   if (!report.already_usable) {
@@ -122,6 +184,13 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
     if (report.polygons_triangulated > 0)
       o.dropped.push_back(counted(report.polygons_triangulated, "polygon", "polygons") +
                           " with more than 3 corners (triangulated)");
+    if (is_gltf(out_ext)) {
+      std::vector<Point3> points;
+      std::vector<Polygon> triangles;
+      mesh_triangles(mesh, points, triangles);
+      write_gltf_output(output, points, triangles, o.binary, o);
+      return o;
+    }
     const Positions x = positions_from_mesh(mesh);
     if (out_ext == "stl") {
       std::vector<Point3> points;
@@ -136,14 +205,21 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
   std::vector<Polygon> polygons;
   SourceLines lines;
   read_polygon_soup(input, in_ext, points, polygons, lines);
-  if (out_ext == "stl") {
+  if (out_ext == "stl" || is_gltf(out_ext)) {
     const auto split = static_cast<std::size_t>(
         std::count_if(polygons.begin(), polygons.end(), [](const Polygon& p) { return p.size() > 3; }));
     if (split > 0)
-      o.dropped.push_back(counted(split, "polygon", "polygons") + " with more than 3 corners (STL holds triangles: " +
+      o.dropped.push_back(counted(split, "polygon", "polygons") + " with more than 3 corners (" +
+                          (out_ext == "stl" ? "STL" : "glTF") + " holds triangles: " +
                           std::to_string(mesh.number_of_faces() - (polygons.size() - split)) +
                           " triangles written for them)");
-    polygons = file_triangles(mesh, polygons);
+    // file_triangles maps the mesh's faces back onto the polygons; a soup of triangles is
+    // already what it would give (and a glTF's seam copies, welded in the mesh, stay copies).
+    if (out_ext == "stl" || split > 0) polygons = file_triangles(mesh, polygons);
+    if (is_gltf(out_ext)) {
+      write_gltf_output(output, points, polygons, o.binary, o);
+      return o;
+    }
     require_distinct_stl_positions(output, points, o.binary);
   }
   write_polygon_soup_atomic(output, points, polygons, o.binary);

@@ -17,14 +17,16 @@ struct RepairOutput {
     Repaired,   ///< repair changed the mesh: the repaired mesh
   };
   Kind kind = Kind::Copy;
-  bool binary = false;  ///< the output is a binary PLY or STL
+  bool binary = false;  ///< the output is a binary PLY or STL, or a .glb
   /// What of the input the output does not carry, one phrase each ("154 texture coordinates
   /// (vt)", "72 polygons with more than 3 corners (triangulated)"); empty for a copy.
   std::vector<std::string> dropped;
   /// A copy of an OBJ into another folder: its mtllib paths were rewritten to name the same
   /// .mtl files from there (obj_material_paths.hpp); the other bytes are the input's.
   bool material_paths_rewritten = false;
-  /// "<input>: line <n>: ..." for a material library that does not exist (kept as written).
+  /// "<input>: line <n>: ..." for a material library that does not exist (kept as written);
+  /// "<output>: names '<uri>' ..." for a buffer or image file of a .gltf copied into another
+  /// folder that is beside the input but not beside the copy.
   std::vector<std::string> warnings;
   /// "copy", "converted" or "repaired".
   std::string kind_name() const;
@@ -42,10 +44,14 @@ struct RepairOutput {
 ///   per-corner, per-face and per-vertex data are dropped).
 /// A binary input gives a binary output where the positions fit: a PLY (doubles), or an STL from
 /// an STL (floats); otherwise text, and "the binary encoding" is among the dropped.
+/// A .glb or .gltf that is not a copy is a bare glTF of the triangles (gltf_mesh_writer.hpp):
+/// positions rounded to floats (named among the dropped when that changes one), checked as
+/// `check` would before it is written.
 /// Written atomically (write_file_atomic): a failure leaves no file.
 /// @throws InputError naming the input if it cannot be read again
 /// @throws UsageError if the output cannot be written, or is an STL in which two vertices would
-///         be stored at the same position (an STL reader merges them: another mesh)
+///         be stored at the same position (an STL reader merges them: another mesh), or a glTF
+///         whose positions, rounded to floats, make a mesh that the usability check refuses
 RepairOutput write_repair_output(const std::string& input, const std::string& output, const Mesh& mesh,
                                  const RepairReport& report);
 

@@ -5,9 +5,11 @@
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mesh/file_extras.hpp"
+#include "support/gltf_files.hpp"
 
 namespace shellcontract {
 namespace {
@@ -81,6 +83,43 @@ TEST(FileExtras, StlNameHeaderAndAttributeBytes) {
   EXPECT_TRUE(b.binary);
   EXPECT_TRUE(has(b, "the 80-byte header ('exported by a CAD tool')")) << joined(b);
   EXPECT_TRUE(has(b, "attribute bytes, often colours (on 1 facet)")) << joined(b);
+}
+
+TEST(FileExtras, GltfAttributesNodesMaterialsAndExtensions) {
+  test::GltfScene plain;
+  plain.primitives.push_back(test::octahedron_primitive(false, false));
+  EXPECT_TRUE(describe_file_extras("glb", test::glb_bytes(test::gltf_parts(plain))).items.empty());
+
+  test::GltfScene rich = plain;
+  rich.primitives.push_back(test::octahedron_primitive(true, true));
+  rich.node_transform = "\"translation\":[1,0,0],\"name\":\"hull\",\"extras\":{\"id\":7}";
+  rich.png = "not decoded";
+  rich.extra = "\"extensionsUsed\":[\"KHR_materials_unlit\"]";
+  const test::GltfParts parts = test::gltf_parts(rich);
+  for (const auto& [ext, bytes] :
+       {std::pair<std::string, std::string>{"glb", test::glb_bytes(parts)},
+        {"gltf", test::gltf_text(parts)}}) {
+    const FileExtras e = describe_file_extras(ext, bytes);
+    EXPECT_FALSE(e.binary);
+    for (const char* item :
+         {"vertex attributes NORMAL, TEXCOORD_0", "2 primitives (written as one)",
+          "1 node and its transform (applied to the positions)", "node and mesh names (hull)",
+          "1 material (skin)", "1 texture", "1 image", "extensions (KHR_materials_unlit)",
+          "application data (extras) on 1 object"})
+      EXPECT_TRUE(has(e, item)) << ext << ": " << item << " not in " << joined(e);
+  }
+  // JSON it cannot parse is not described rather than refused.
+  EXPECT_TRUE(describe_file_extras("gltf", "{\"asset\":").items.empty());
+}
+
+TEST(FileExtras, GltfFileUrisAreTheBuffersAndImagesNotEmbedded) {
+  test::GltfScene s;
+  s.primitives.push_back(test::octahedron_primitive(false, false));
+  const test::GltfParts parts = test::gltf_parts(s);
+  EXPECT_EQ(gltf_file_uris(test::gltf_text(parts, "mesh.bin")),
+            std::vector<std::string>{"mesh.bin"});
+  EXPECT_TRUE(gltf_file_uris(test::gltf_text(parts)).empty());  // a data URI
+  EXPECT_TRUE(gltf_file_uris(test::glb_bytes(parts)).empty());  // the BIN chunk
 }
 
 }  // namespace
