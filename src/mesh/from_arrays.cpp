@@ -156,6 +156,9 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
     fail(name, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
                                          " at a unit bounding-box diagonal): it is flat or degenerate");
   }
+  // After the whole's volume, which names a single flat shell as before.
+  if (!oriented.flat.empty())
+    fail_faces(name, "component with no volume", oriented.flat, oriented.flat_faces);
   if (report) {
     report->vertices = mesh.number_of_vertices();
     report->faces = mesh.number_of_faces();

@@ -222,6 +222,9 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     fail(path, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
                                          " at a unit bounding-box diagonal): it is flat or degenerate");
   }
+  // After the whole's volume, which names a single flat shell as before.
+  if (!oriented.flat.empty())
+    fail_faces(path, "component with no volume", oriented.flat, oriented.flat_faces);
 
   if (report) {
     report->vertices = mesh.number_of_vertices();

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/Geometry>
+
 #include "mesh/normalization.hpp"
 
 namespace shellcontract::soup {
@@ -66,8 +68,10 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std
   std::vector<double> six_volume(out.components, 0.0);
   std::vector<Vec3> origin_point(out.components);
   std::vector<char> has_origin(out.components, 0);
+  std::vector<Eigen::AlignedBox3d> box(out.components);
   for (std::size_t f = 0; f < nf; ++f) {
     const std::size_t c = component_face[f];
+    for (int k = 0; k < 3; ++k) box[c].extend(to_vec(unit[tris[f][k]]));
     // Measured from a point of the component: the closed-surface sum does not depend on the
     // origin, and a nearby one avoids cancellation for components far from the centre.
     if (!has_origin[c]) {
@@ -79,8 +83,23 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std
     const Vec3 d = to_vec(unit[tris[f][2]]) - origin_point[c];
     six_volume[c] += a.dot(b.cross(d));
   }
+  std::vector<char> flat(out.components, 0);
   for (std::size_t c = 0; c < out.components; ++c) {
-    if (six_volume[c] >= 0.0) continue;
+    const double diagonal = box[c].diagonal().norm();
+    flat[c] =
+        !(std::abs(six_volume[c]) / 6.0 >= FLAT_COMPONENT_VOLUME * diagonal * diagonal * diagonal);
+    if (!flat[c] || !out.flat.empty()) continue;
+    for (std::size_t f = 0; f < nf; ++f)
+      if (component_face[f] == c) out.flat_faces.push_back(f);
+    std::ostringstream w;
+    w << "component " << c << " (" << out.flat_faces.size() << " faces, starting at face "
+      << out.flat_faces[0] << ") encloses no volume ("
+      << six_volume[c] / 6.0 * scale * scale * scale
+      << "): it is flat or collapsed, and the pressure would push its sides through each other";
+    out.flat = w.str();
+  }
+  for (std::size_t c = 0; c < out.components; ++c) {
+    if (six_volume[c] >= 0.0 || flat[c]) continue;
     out.reoriented = true;
     std::size_t first = nf, count = 0;
     for (std::size_t f = 0; f < nf; ++f)

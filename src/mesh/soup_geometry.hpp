@@ -39,16 +39,28 @@ UnitPoints unit_points(const std::vector<Point3>& points);
 /// conversion dropped a face or lost a face's corner order, which the checks exclude.
 Mesh soup_mesh(const std::vector<Point3>& points, const std::vector<Polygon>& tris, const std::string& who);
 
+/// A closed component whose |volume| is below this times the cube of its own bounding-box diagonal
+/// encloses nothing: a flat (or collapsed) shell, whose two sides the outside pressure would push
+/// through each other. Far below any thin part a simulation could hold (a sheet of relative
+/// thickness t has about t), and far above the rounding of the volume's sum.
+constexpr double FLAT_COMPONENT_VOLUME = 1e-9;
+
 struct Orientation {
   std::size_t components = 0;
   bool reoriented = false;  ///< a component was flipped (and `mesh` rebuilt)
+  /// With `reorient`: the first component that encloses no volume (FLAT_COMPONENT_VOLUME), as
+  /// "component C (N faces, starting at face F) ..." for a message, and all its faces; else empty.
+  std::string flat;
+  std::vector<std::size_t> flat_faces;
 };
 
 /// Components (PMP::connected_components, numbered in order of their first face) and their
 /// orientation: with `reorient`, a component with negative signed volume (on `unit`) is inside
 /// out and gets flipped (swapping corners 1 and 2 keeps corner 0 first), named in `warnings`
 /// with its volume in input units (`scale` cubed), and `mesh` is rebuilt from the flipped soup,
-/// so that it is the one a correctly oriented input gives, halfedge for halfedge. Each component
+/// so that it is the one a correctly oriented input gives, halfedge for halfedge. A component
+/// that encloses no volume is not flipped (it has no inside) nor refused here: the first is
+/// returned in `flat`, for the reader to refuse after its own checks. Each component
 /// is taken as its own shell: a nested inner wall of a hollow solid is flipped outward too
 /// (PMP::orient_to_bound_a_volume would orient it inward).
 /// @param mesh  soup_mesh(points, tris)

@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -13,8 +15,11 @@
 #include <utility>
 #include <vector>
 
+#include <unistd.h>
+
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "test_paths.hpp"
 
@@ -97,6 +102,65 @@ TEST(FromArrays, AMeshAtAnyFiniteScaleIsUsable) {
     EXPECT_NO_THROW(from(inside_out, &flipped)) << "2^" << k;
     EXPECT_TRUE(flipped.reoriented) << "2^" << k;
   }
+}
+
+/// ico2 and a second copy of it, its vertices mapped by `map`.
+template <class Map>
+Arrays ico2_and_copy(Map map) {
+  const Arrays ico = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off"));
+  Arrays a = ico;
+  const std::int64_t n = static_cast<std::int64_t>(ico.v.size() / 3);
+  for (std::size_t i = 0; i < ico.v.size(); i += 3) {
+    const std::array<double, 3> p = map(ico.v[i], ico.v[i + 1], ico.v[i + 2]);
+    a.v.insert(a.v.end(), p.begin(), p.end());
+  }
+  for (const std::int64_t v : ico.f) a.f.push_back(v + n);
+  return a;
+}
+
+TEST(FromArrays, AComponentThatEnclosesNoVolumeIsRefused) {
+  // The copy flattened onto the plane x = 3: the whole still encloses ico2's volume, but the flat
+  // part has no inside: the outside pressure turned it inside out, and the run went on.
+  const Arrays flat = ico2_and_copy([](double, double y, double z) {
+    return std::array<double, 3>{3.0, y, z};
+  });
+  const std::size_t faces = flat.f.size() / 6;
+  EXPECT_EQ(problem_of([&] { from(flat); }), "component with no volume");
+  try {
+    from(flat);
+    ADD_FAILURE() << "accepted";
+  } catch (const FaceListError& e) {
+    EXPECT_NE(std::string(e.what()).find("component 1 (" + std::to_string(faces) +
+                                         " faces, starting at face " + std::to_string(faces) + ")"),
+              std::string::npos)
+        << e.what();
+    ASSERT_EQ(e.faces().size(), faces);
+    EXPECT_EQ(e.faces().front(), faces);
+    EXPECT_EQ(e.faces().back(), 2 * faces - 1);
+  }
+  // The file reader refuses it the same way.
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("shellcontract_flat_component_" + std::to_string(::getpid()) + ".off"))
+                               .string();
+  {
+    std::ofstream off(path);
+    off.precision(17);
+    off << "OFF\n" << flat.v.size() / 3 << " " << flat.f.size() / 3 << " 0\n";
+    for (std::size_t i = 0; i < flat.v.size(); i += 3)
+      off << flat.v[i] << " " << flat.v[i + 1] << " " << flat.v[i + 2] << "\n";
+    for (std::size_t f = 0; f < flat.f.size(); f += 3)
+      off << "3 " << flat.f[f] << " " << flat.f[f + 1] << " " << flat.f[f + 2] << "\n";
+  }
+  EXPECT_EQ(problem_of([&] { read_input_mesh(path); }), "component with no volume");
+  std::filesystem::remove(path);
+  // A part a thousand times smaller than the rest is a part, not a flat shell; and a lone flat
+  // shell is still named by the whole's volume.
+  EXPECT_NO_THROW(from(ico2_and_copy([](double x, double y, double z) {
+    return std::array<double, 3>{3.0 + 1e-3 * x, 1e-3 * y, 1e-3 * z};
+  })));
+  Arrays lone = arrays_of(read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off"));
+  for (std::size_t i = 0; i < lone.v.size(); i += 3) lone.v[i] = 0.0;
+  EXPECT_EQ(problem_of([&] { from(lone); }), "no positive volume");
 }
 
 TEST(FromArrays, Int32FacesGiveTheSameMesh) {
