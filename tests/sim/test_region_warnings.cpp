@@ -46,5 +46,21 @@ TEST(RegionWarnings, WeightsThatAreAllZeroAreAWarningNamingTheirSource) {
       << (plan.warnings.empty() ? std::string("no warning") : plan.warnings.front());
 }
 
+TEST(RegionWarnings, RegionsOfStrengthZeroAreAWarningNamingTheFile) {
+  const Mesh mesh = sphere();
+  const std::string path = ::testing::TempDir() + "region_warnings_zero.txt";
+  std::ofstream(path) << "0: 1 2 3\n0.0: 7 8\n";
+  RunOptions o;
+  set_run_option(o, "regions", path);
+  const RunPlan plan = plan_run(mesh, o);
+  EXPECT_EQ(plan.regions, 2u);
+  EXPECT_TRUE(warned(plan, path + ": every region's strength is 0"))
+      << (plan.warnings.empty() ? std::string("no warning") : plan.warnings.front());
+  // One region that sinks is no reason to warn.
+  std::ofstream(path) << "0: 1 2 3\n0.5: 7 8\n";
+  EXPECT_TRUE(plan_run(mesh, o).warnings.empty());
+  std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace shellcontract
