@@ -93,3 +93,47 @@ def test_write_like_a_glb_writes_its_positions(cli, mesh_dir, tmp_path):
     back, faces = shellcontract.read_mesh(out)
     assert np.array_equal(faces, f)
     assert np.abs(back - moved).max() <= 2.0 ** -23 * np.abs(moved).max()
+
+
+def _glb_json(path):
+    import json
+    import struct
+    b = path.read_bytes()
+    (n,) = struct.unpack("<I", b[12:16])
+    return json.loads(b[20:20 + n]), b[20 + n:]
+
+
+def test_write_like_a_glb_keeps_its_json(cli, mesh_dir, tmp_path):
+    """The glTF document's JSON is the input's but for what new positions change (buffers,
+    POSITION's min and max): an empty scene, an empty node and an infinite camera stay as they
+    were. Before: tinygltf's writer made the empty objects null, which read_mesh then refused
+    ("`scenes' does not contain an JSON object"), and gave the camera "zfar": 0."""
+    import json
+    import struct
+    import subprocess
+    run = tmp_path / "run.glb"
+    subprocess.run([cli, "run", str(mesh_dir / "ico2.off"), "-o", str(tmp_path / "run.off"),
+                    "--gltf", str(run), "-n", "3", "-q"], check=True)
+    doc, rest = _glb_json(run)
+    doc["scenes"] = [{}, {"nodes": [0, 2]}]
+    doc["scene"] = 1
+    doc["nodes"] += [{}, {"camera": 0}]
+    doc["cameras"] = [{"type": "perspective", "perspective": {"yfov": 1, "znear": 0.1}}]
+    doc["extras"] = {"empty": {}}
+    text = json.dumps(doc, separators=(",", ":")).encode()
+    text += b" " * (-len(text) % 4)
+    glb = tmp_path / "doc.glb"
+    glb.write_bytes(b"glTF" + struct.pack("<IIII", 2, 20 + len(text) + len(rest), len(text),
+                                          0x4E4F534A) + text + rest)
+    v, f = shellcontract.read_mesh(glb)
+    out = tmp_path / "out.glb"
+    shellcontract.write_mesh(out, v * 0.5, f, like=glb)
+    written, _ = _glb_json(out)
+    for key in doc:
+        if key not in ("buffers", "accessors"):
+            assert written[key] == doc[key], key
+    assert written["scenes"][0] == {} and written["nodes"][1] == {}
+    assert "zfar" not in written["cameras"][0]["perspective"]
+    back, faces = shellcontract.read_mesh(out)
+    assert np.array_equal(faces, f)
+    assert np.abs(back - v * 0.5).max() <= 2.0 ** -23 * np.abs(v).max()

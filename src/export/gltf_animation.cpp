@@ -272,8 +272,9 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   tinygltf::Value::Array frame_numbers;
   for (int f : a.frame_numbers) frame_numbers.emplace_back(f);
   extras["frame_numbers"] = tinygltf::Value(frame_numbers);
-  extras["targetNames"] = string_array(target_names);
-  extras["colour_fields"] = tinygltf::Value(colour_info);
+  // tinygltf writes an empty array as null: a list with nothing in it is left out.
+  if (!target_names.empty()) extras["targetNames"] = string_array(target_names);
+  if (!colour_info.empty()) extras["colour_fields"] = tinygltf::Value(colour_info);
   if (!frame_field_info.empty()) extras["frame_fields"] = tinygltf::Value(frame_field_info);
   extras["seconds_per_frame"] = tinygltf::Value(a.seconds_per_frame);
   mesh.extras = tinygltf::Value(extras);

@@ -1,6 +1,7 @@
 // A glTF input as a document (docs/design/attributes.md, "glTF"): the parsed file, written back
 // with each vertex's new position (and, where the file has them, new normals); everything else
-// (texture coordinates, materials, textures, nodes, names, extras) is serialized as read.
+// (texture coordinates, materials, textures, nodes, names, extras) is the input's JSON as it was
+// (gltf_json.hpp: tinygltf's writer alone does not round-trip it).
 // Positions are stored in the primitive's node space, so the node transforms stay as they were;
 // a mesh drawn by several nodes gets one copy of its positions per node (gltf_instances.hpp).
 #include <Eigen/Geometry>
@@ -14,6 +15,7 @@
 #include <stdexcept>
 
 #include "mesh/gltf_instances.hpp"
+#include "mesh/gltf_json.hpp"
 #include "mesh/gltf_model.hpp"
 #include "mesh/normal_groups.hpp"
 #include "mesh/seam_weld.hpp"
@@ -22,20 +24,6 @@
 
 namespace shellcontract {
 namespace {
-
-std::string base64(const std::vector<unsigned char>& in) {
-  static const char* const A = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((in.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < in.size(); i += 3) {
-    const std::size_t n = std::min<std::size_t>(3, in.size() - i);
-    std::uint32_t v = static_cast<std::uint32_t>(in[i]) << 16;
-    if (n > 1) v |= static_cast<std::uint32_t>(in[i + 1]) << 8;
-    if (n > 2) v |= in[i + 2];
-    for (std::size_t k = 0; k < 4; ++k) out += k <= n ? A[(v >> (18 - 6 * k)) & 63] : '=';
-  }
-  return out;
-}
 
 /// An accessor whose elements the document rewrites, with the primitive it was read for.
 struct Written {
@@ -48,6 +36,7 @@ class GltfDocument final : public MeshDocument {
   GltfDocument(const std::string& path, const std::string& bytes, bool binary) : binary_(binary) {
     // The parse is read_input_mesh's (the same soup, so simulation vertex i is soup vertex i).
     model_ = gltf::load_model(path, bytes);
+    input_json_ = gltf::json_text(bytes);
     soup_ = gltf::scene_soup(path, model_, &world_);
     vertex_count_ = soup_.points.size();
     polygon_start_.reserve(soup_.faces.size() + 1);
@@ -110,21 +99,17 @@ class GltfDocument final : public MeshDocument {
       put_floats(m, positions_[s.drawn].view, s.element, {l[0], l[1], l[2]});
     }
     write_normals(m, x);
-    // A data-URI image (the reader kept its encoded bytes) is written as one again: tinygltf
-    // would otherwise write it with neither a uri nor a buffer view.
-    for (tinygltf::Image& i : m.images)
-      if (i.uri.empty() && i.bufferView < 0 && !i.image.empty()) {
-        i.uri =
-            "data:" + (i.mimeType.empty() ? std::string("application/octet-stream") : i.mimeType) +
-            ";base64," + base64(i.image);
-        i.image.clear();
-      }
+    // The images are written as the input's JSON has them (gltf_json.hpp): tinygltf's JSON of
+    // them is not used, so it is not made (a data-URI image would be encoded again).
+    m.images.clear();
     for (const Written& w : positions_) update_bounds(m, w);
     std::ostringstream out;
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&m, out, !binary_, binary_))
       throw std::runtime_error("GltfDocument::text: tinygltf could not serialize the model");
-    return out.str();
+    std::vector<int> bounded;
+    for (const Written& w : positions_) bounded.push_back(w.accessor);
+    return gltf::restore_input_json(input_json_, out.str(), binary_, bounded);
   }
 
  private:
@@ -243,6 +228,7 @@ class GltfDocument final : public MeshDocument {
   }
 
   bool binary_;
+  std::string input_json_;  ///< what is written back, updated (gltf_json.hpp)
   tinygltf::Model model_;
   GltfSoup soup_;
   std::vector<Eigen::Matrix4d> world_,

@@ -4,9 +4,12 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <iterator>
 #include <string>
 #include <utility>
 #include <vector>
@@ -138,6 +141,15 @@ TEST(GltfAnimation, OneFrameHasNoTargetsAndNoAnimation) {
   const tinygltf::Model m = test::load_glb(dir.file("one.glb"));
   EXPECT_TRUE(m.meshes.at(0).primitives.at(0).targets.empty());
   EXPECT_TRUE(m.animations.empty());
+  // No target names and no colour fields: left out, not written as null (tinygltf's writer
+  // makes an empty list null).
+  std::ifstream in(dir.file("one.glb"), std::ios::binary);
+  const std::string glb(std::istreambuf_iterator<char>(in), {});
+  ASSERT_GT(glb.size(), 20u);
+  std::uint32_t n = 0;
+  std::memcpy(&n, glb.data() + 12, 4);  // little-endian hosts
+  const std::string json = glb.substr(20, n);
+  EXPECT_EQ(json.find("null"), std::string::npos) << json;
 }
 
 TEST(GltfAnimation, ConsumingTheFramesWritesTheSameFile) {
