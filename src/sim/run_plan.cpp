@@ -271,7 +271,8 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
   else if (o.regions == RegionSource::File && !o.measure_regions && [&] {
              // Every line's strength 0 ("0: 12 13 14"): regions that sink not at all.
              const std::vector<double> w = stored_region_weights(marked);
-             return !w.empty() && std::all_of(w.begin(), w.end(), [](double s) { return s == 0.0; });
+             return !w.empty() &&
+                    std::all_of(w.begin(), w.end(), [](double s) { return s == 0.0; });
            }())
     plan.warnings.push_back("`regions` " + o.region_file +
                             ": every region's strength is 0: the local contraction has no effect");
