@@ -187,7 +187,8 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         start = context.scene.frame_start
 
         def terms(message):  # the library's message in the add-on's terms
-            return runner.addon_terms(message, start, obj.name, job.polygon_of)
+            return runner.addon_terms(message, start, obj.name, job.polygon_of, job.faces,
+                                      job.vertices)
 
         if isinstance(job.error, KeyboardInterrupt):  # Ctrl-C under blender -b: it has no text
             s.status = "interrupted (Ctrl-C)"

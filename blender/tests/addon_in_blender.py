@@ -18,7 +18,8 @@ the keyed one end without a warning (the pressure is passed only where it has an
 asked for); the Target volume's refusals and the library's messages speak the panel's terms
 (field names, timeline frames, float32-rounded values); a missing vertex group is refused; the
 threaded run of the UI reports progress and cancels; an open mesh's message names the mesh's
-own face, taken from the MeshError's `faces`; and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0."""
+own face, taken from the MeshError's `faces`; an inside-out cube's warning counts its 6 faces,
+not 12 triangles; and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0."""
 
 import argparse
 import os
