@@ -44,19 +44,111 @@ def _default(settings, prop):
 
 
 def mesh_arrays(obj):
-    """Vertices (local coordinates, the base mesh's) and triangles of the object's mesh: the
+    """Vertices (local coordinates, the base shape's) and triangles of the object's mesh: the
     loop triangles, so quads and n-gons stay as they are in Blender, and the shape keys move the
     mesh's own vertices; and the polygon of each triangle (the library's messages number the
-    triangles, the add-on's the mesh's faces)."""
+    triangles, the add-on's the mesh's faces).
+
+    With shape keys the base is the reference key (the first, the Basis), not mesh.vertices:
+    Blender shows the reference key's positions, the result keys are relative to it, and the two
+    can differ (a key moved to the top of the list becomes the reference without the vertices
+    changing; a script may set vertices.co under existing keys)."""
     mesh = obj.data
     vertices = np.empty(len(mesh.vertices) * 3, dtype=np.float64)
-    mesh.vertices.foreach_get("co", vertices)
+    if mesh.shape_keys is not None and len(mesh.shape_keys.key_blocks) > 0:
+        mesh.shape_keys.reference_key.data.foreach_get("co", vertices)
+    else:
+        mesh.vertices.foreach_get("co", vertices)
     mesh.calc_loop_triangles()
     faces = np.empty(len(mesh.loop_triangles) * 3, dtype=np.int64)
     mesh.loop_triangles.foreach_get("vertices", faces)
     polygon_of = np.empty(len(mesh.loop_triangles), dtype=np.int64)
     mesh.loop_triangles.foreach_get("polygon_index", polygon_of)
     return vertices.reshape(-1, 3), faces.reshape(-1, 3), polygon_of.tolist()
+
+
+def _value_animation(keys, kb):
+    """How the key's value is animated: 'driven' (a driver that plays), 'keyed' (an F-curve
+    that plays and leaves 0 somewhere: a key, or modifiers that may), 'keyed to 0' (played, 0 at
+    every key), or '' (not animated: the slider's value is what plays). The active action and
+    the actions of NLA tracks that play are read: Blender plays them all."""
+    ad = keys.animation_data
+    if ad is None:
+        return ""
+    path = 'key_blocks["{}"].value'.format(bpy.utils.escape_identifier(kb.name))
+    for d in ad.drivers:
+        if d.data_path == path and not d.mute:
+            return "driven"
+    actions = [ad.action] if ad.action is not None else []
+    actions += [strip.action for track in ad.nla_tracks if not track.mute
+                for strip in track.strips if not strip.mute and strip.action is not None]
+    found = ""
+    for action in actions:
+        fc = action.fcurves.find(path)
+        if fc is None or fc.mute:
+            continue
+        if len(fc.modifiers) > 0 or any(kp.co[1] != 0.0 for kp in fc.keyframe_points):
+            return "keyed"
+        found = "keyed to 0"
+    return found
+
+
+def active_shape_keys(obj):
+    """The object's shape keys that change what Blender shows over the Basis (the reference
+    key) during the animation, as "'Name' (value)" or "'Name' (keyed)"/"(driven)". Not counted:
+    the add-on's own keys (KEY_PREFIX: a new run replaces them), muted keys, keys at 0 that are
+    not animated off it, and keys whose positions are those of their Relative To key (a key
+    relative to itself adds nothing at any value)."""
+    keys = obj.data.shape_keys
+    if keys is None:
+        return []
+    blocks = keys.key_blocks
+    out = []
+    for kb in blocks[1:]:
+        if kb.name.startswith(KEY_PREFIX) or kb.mute:
+            continue
+        animated = _value_animation(keys, kb)
+        if animated == "keyed to 0" or (not animated and kb.value == 0.0):
+            continue
+        relative = kb.relative_key
+        if relative == kb:
+            continue
+        co = np.empty(len(kb.data) * 3)
+        kb.data.foreach_get("co", co)
+        base = np.empty(len(relative.data) * 3)
+        relative.data.foreach_get("co", base)
+        if np.array_equal(co, base):
+            continue
+        out.append("'{}' ({})".format(kb.name, animated or runner.float32_text(kb.value)))
+    return out
+
+
+def shape_key_refusal(obj):
+    """Why the run's keys would not show as the run made them, or ''. The run contracts the
+    Basis and writes absolute positions as keys relative to it, so anything else Blender mixes in
+    (another key that is on, absolute keys, the pin that shows one key alone) would make the
+    shown shape, and its volume, differ from the run's and from the V/V0 it reports."""
+    keys = obj.data.shape_keys
+    if obj.show_only_shape_key:
+        shown = obj.active_shape_key.name if obj.active_shape_key else "the Basis"
+        return ("{} shows only the shape key '{}' (Shape Keys panel, the pin 'Shape Key Lock'), "
+                "so the run's keys would not show; unpin it first".format(obj.name, shown))
+    if keys is None:
+        return ""
+    if not keys.use_relative:
+        return ("{}'s shape keys are absolute (Shape Keys panel, 'Relative' off): the run's keys "
+                "are relative to the Basis; turn 'Relative' on first".format(obj.name))
+    active = active_shape_keys(obj)
+    if not active:
+        return ""
+    basis = keys.reference_key.name
+    return ("shape key{} {} {} on: the run contracts the Basis ('{}') and {} would add on top "
+            "of the run's keys, so the shape shown would not be the run's; set {} to 0, mute "
+            "{}, or apply {} to the mesh first (Shape Keys panel > Shape Key Specials > Apply "
+            "All Shape Keys, at the scene's start frame)".format(
+                "s" if len(active) > 1 else "", ", ".join(active),
+                "are" if len(active) > 1 else "is", basis,
+                "they" if len(active) > 1 else "it", *(["them" if len(active) > 1 else "it"] * 3)))
 
 
 def modifier_hint(obj):
@@ -167,6 +259,9 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         obj = context.active_object
         if obj.mode == "EDIT":
             raise runner.AddonError(EDIT_MODE)
+        refused = shape_key_refusal(obj)
+        if refused:
+            raise runner.AddonError(refused)
         prefs = _preferences(context)
         module = runner.import_shellcontract(prefs.module_path if prefs else "")
         vertices, faces, polygon_of = mesh_arrays(obj)
@@ -187,7 +282,8 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         start = context.scene.frame_start
 
         def terms(message):  # the library's message in the add-on's terms
-            return runner.addon_terms(message, start, obj.name, job.polygon_of)
+            return runner.addon_terms(message, start, obj.name, job.polygon_of, job.faces,
+                                      job.vertices)
 
         if isinstance(job.error, KeyboardInterrupt):  # Ctrl-C under blender -b: it has no text
             s.status = "interrupted (Ctrl-C)"

@@ -152,12 +152,14 @@ _KEY_AFTER_END = re.compile(
     r"the schedule's value there, (\S+)$")
 
 
-def addon_terms(message, start, mesh_name="", polygon_of=None):
+def addon_terms(message, start, mesh_name="", polygon_of=None, triangles=None, positions=None):
     """A message of the library (an error or a warning) in the add-on's terms: the panel's
     field names, timeline frames (scene start + simulation frame), rounded values; a mesh
     problem names the object's mesh, not 'input arrays', and its face numbers are the mesh's
     faces (polygons, as the Spreadsheet numbers them), not the loop triangles the run was given
-    (polygon_of[t]: the polygon of triangle t). Vertex numbers are the mesh's own already."""
+    (polygon_of[t]: the polygon of triangle t), and so are its counts of faces where the text
+    is rewritten (`triangles` and `positions`, the run's input, let a component's faces be
+    counted). Vertex numbers are the mesh's own already."""
     text = str(message)
     m = _KEY_AFTER_END.match(text)
     if m and m.group(1) in FIELD_NAMES:
@@ -173,7 +175,7 @@ def addon_terms(message, start, mesh_name="", polygon_of=None):
             text = "the mesh of {}: {}".format(mesh_name, text[len(ARRAY_INPUT) + 2:])
         if polygon_of is not None:
             # Warnings (text only) and errors without a face list: the numbers in the text.
-            text = polygon_numbers(text, polygon_of)
+            text = polygon_numbers(text, polygon_of, triangles, positions)
     # A message that begins with an option's name, and the underscore names anywhere.
     head = re.match(r"^(\w+)(:| has no effect)", text)
     if head and head.group(1) in FIELD_NAMES:
@@ -213,14 +215,72 @@ def face_error_text(text, faces, polygon_of, mesh_name):
     return "{} (the library's words, numbering the triangles the run was given: {})".format(head, details)
 
 
-def polygon_numbers(text, polygon_of):
+def component_triangles(first, triangles, positions=None):
+    """The triangles of the connected part (edge-connected, as the library's components) that
+    holds triangle `first`. Where the triangles as given have an open edge, the vertices at
+    bitwise-identical positions count as one, as the library's seam weld makes them
+    (src/mesh/seam_weld.hpp), so that a part split along UV seams is one part here too."""
+    tris = [tuple(int(i) for i in t) for t in triangles]
+    ids = {}
+
+    def edges(t):
+        return (tuple(sorted((t[0], t[1]))), tuple(sorted((t[1], t[2]))),
+                tuple(sorted((t[2], t[0]))))
+
+    count = {}
+    for t in tris:
+        for e in edges(t):
+            count[e] = count.get(e, 0) + 1
+    if positions is not None and any(n == 1 for n in count.values()):
+        same = {}
+        ids = {v: same.setdefault(struct.pack("3d", *(float(c) for c in positions[v])), v)
+               for t in tris for v in t}
+    by_edge = {}
+    for f, t in enumerate(tris):
+        for e in edges(tuple(ids.get(v, v) for v in t)):
+            by_edge.setdefault(e, []).append(f)
+    part, todo = {first}, [first]
+    while todo:
+        t = tuple(ids.get(v, v) for v in tris[todo.pop()])
+        for e in edges(t):
+            for g in by_edge[e]:
+                if g not in part:
+                    part.add(g)
+                    todo.append(g)
+    return part
+
+
+def polygon_numbers(text, polygon_of, triangles=None, positions=None):
     """The triangle numbers of a mesh message as the mesh's face (polygon) numbers: 'face T',
-    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...' ('1 face has' for
-    one). For the library's warnings, which are text only, and errors without a face list; a
-    MeshError's faces come from its `faces` (face_error_text)."""
+    'N faces (T1, T2, ...)' and 'faces have (nearly) zero area: T1, T2, ...', with their counts
+    of faces in the mesh's faces too: a list given whole is counted ('1 face has' for one); a
+    cut one ('...') keeps the library's count, which is of triangles, and says so; an inside-out
+    'component C (N faces, starting at face T)' counts the faces of T's part, from `triangles`
+    (and `positions`, for a mesh split along seams), or says 'N triangles' without them. For the
+    library's warnings, which are text only, and errors without a face list; a MeshError's faces
+    come from its `faces` (face_error_text)."""
     def poly(t):
         t = int(t)
         return str(polygon_of[t]) if 0 <= t < len(polygon_of) else str(t)
+
+    def component(m):
+        first = int(m.group(3))
+        if triangles is None or not 0 <= first < len(triangles):
+            count = "{} triangle{}".format(m.group(2), "" if m.group(2) == "1" else "s")
+        else:
+            n = len({polygon_of[t] for t in component_triangles(first, triangles, positions)
+                     if 0 <= t < len(polygon_of)})
+            count = "{} face{}".format(n, "" if n == 1 else "s")
+        return "component {} ({}, starting at face {})".format(m.group(1), count, poly(first))
+
+    def zero_area(m):
+        listed_faces = listed(m.group(3), True)
+        if m.group(3).endswith("..."):
+            return "{} triangle{} (nearly) zero area, in faces: {}".format(
+                m.group(1), " has" if m.group(1) == "1" else "s have", listed_faces)
+        n = len(listed_faces.split(", "))
+        return "{} {} (nearly) zero area: {}".format(
+            n, "face has" if n == 1 else "faces have", listed_faces)
 
     def listed(numbers, once=False):  # once: each face once (its triangles are listed apart)
         out = []
@@ -230,11 +290,14 @@ def polygon_numbers(text, polygon_of):
                 out.append(p)
         return ", ".join(out)
 
-    text = re.sub(r"\bface (\d+)\b", lambda m: "face " + poly(m.group(1)), text)
-    text = re.sub(r"\bfaces \(((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)\)",
-                  lambda m: "faces (" + listed(m.group(1)) + ")", text)
-    text = re.sub(r"\b(faces have|face has) \(nearly\) zero area: ((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)",
-                  lambda m: m.group(1) + " (nearly) zero area: " + listed(m.group(2), True), text)
+    numbers = r"((?:\d+|\.\.\.)(?:, (?:\d+|\.\.\.))*)"
+    # The counted forms first: their 'face T' is rewritten with them, not again below.
+    text = re.sub(r"\bcomponent (\d+) \((\d+) faces?, starting at face (\d+)\)", component, text)
+    text = re.sub(r"\b(\d+) (faces have|face has) \(nearly\) zero area: " + numbers, zero_area,
+                  text)
+    text = re.sub(r"(?<!starting at )\bface (\d+)\b", lambda m: "face " + poly(m.group(1)), text)
+    text = re.sub(r"\bfaces \(" + numbers + r"\)", lambda m: "faces (" + listed(m.group(1)) + ")",
+                  text)
     return text
 
 

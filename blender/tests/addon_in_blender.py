@@ -3,7 +3,8 @@
 ARGS: --addon-dir DIR (the folder holding shellcontract_blender), --glb FILE (a CLI --gltf result
 to import). The shellcontract module comes from SHELLCONTRACT_PYTHONPATH (the add-on's own
 lookup). Any failed check raises, and Blender exits with 1. The checks are in the modules
-beside this script (addon_helpers, addon_docs, addon_runs, addon_settings, addon_messages);
+beside this script (addon_helpers, addon_docs, addon_runs, addon_settings, addon_shape_keys,
+addon_messages);
 this one enables the add-on and runs them in order, the later ones on the objects the earlier
 ones left.
 
@@ -18,7 +19,10 @@ the keyed one end without a warning (the pressure is passed only where it has an
 asked for); the Target volume's refusals and the library's messages speak the panel's terms
 (field names, timeline frames, float32-rounded values); a missing vertex group is refused; the
 threaded run of the UI reports progress and cancels; an open mesh's message names the mesh's
-own face, taken from the MeshError's `faces`; and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0."""
+own face, taken from the MeshError's `faces`; an inside-out cube's warning counts its 6 faces,
+not 12 triangles; a shape key of the object's that is on (or keyed on, driven, pinned, absolute)
+refuses the run, and where the run goes ahead over the object's keys the V/V0 the evaluated mesh
+shows is the reported one; and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0."""
 
 import argparse
 import os
@@ -36,6 +40,7 @@ from addon_messages import mesh_messages  # noqa: E402
 from addon_runs import (contract_sphere, edited_during_run, glb_import, keyed_target,  # noqa: E402
                         refused_runs, threaded_run)
 from addon_settings import muted_keys, pressure_combinations, target_volume_messages  # noqa: E402
+from addon_shape_keys import shape_keys  # noqa: E402
 
 
 def args():
@@ -65,6 +70,7 @@ def main():
     threaded_run(shellcontract, runner, rest, faces)
     edited_during_run(shellcontract, runner, rest, faces)
     muted_keys()
+    shape_keys()
     mesh_messages()
     if a.glb:
         glb_import(a.glb)

@@ -93,9 +93,43 @@ def mesh_messages():
     for before, after in (
             ("edge (1, 2) is shared by 3 faces (1, 3, 5), at most 2 allowed",
              "edge (1, 2) is shared by 3 faces (0, 2, 3), at most 2 allowed"),
-            ("2 faces have (nearly) zero area: 3, 4", "2 faces have (nearly) zero area: 2"),
+            # Counts are of the mesh's faces where the list is whole, of triangles (and said
+            # so) where the library cut it.
+            ("2 faces have (nearly) zero area: 3, 4", "1 face has (nearly) zero area: 2"),
             ("1 face has (nearly) zero area: 4", "1 face has (nearly) zero area: 2"),
+            ("3 faces have (nearly) zero area: 0, 1, ...",
+             "3 triangles have (nearly) zero area, in faces: 0, ..."),
+            # Without the triangles a component's faces cannot be counted: its triangles are.
             ("component 0 (6 faces, starting at face 2) was inside-out",
-             "component 0 (6 faces, starting at face 1) was inside-out")):
+             "component 0 (6 triangles, starting at face 1) was inside-out")):
         check(runner.polygon_numbers(before, polygon_of) == after,
               "'{}' reads '{}'".format(before, runner.polygon_numbers(before, polygon_of)))
+    inside_out_counts()
+
+
+def inside_out_counts():
+    """The inside-out warning counts the part's faces as the mesh has them (a cube's 6 quads,
+    not the 12 triangles the run was given), also where the part is split along seams (every
+    edge of the cube split: 24 vertices, which the library welds back for the run)."""
+    import re
+    for split in (False, True):
+        bpy.ops.object.select_all(action="SELECT")
+        bpy.ops.object.delete()
+        bpy.ops.mesh.primitive_cube_add()
+        obj = bpy.context.active_object
+        bpy.ops.object.mode_set(mode="EDIT")
+        bpy.ops.mesh.select_all(action="SELECT")
+        bpy.ops.mesh.flip_normals()
+        if split:
+            bpy.ops.mesh.edge_split(type="EDGE")
+        bpy.ops.object.mode_set(mode="OBJECT")
+        obj.shellcontract.frames = 3
+        check(bpy.ops.object.shellcontract_contract() == {"FINISHED"},
+              "the inside-out cube runs: " + obj.shellcontract.status)
+        named = re.search(r"warning: component 0 \((\d+) faces, starting at face (\d+)\) was "
+                          r"inside-out", obj.shellcontract.status)
+        check(named is not None and int(named.group(1)) == len(obj.data.polygons) == 6
+              and int(named.group(2)) < 6 and len(obj.data.vertices) == (24 if split else 8),
+              "an inside-out cube{} is warned about as its 6 faces: {}".format(
+                  " split along every edge" if split else "", obj.shellcontract.status))
+        bpy.data.objects.remove(obj)
