@@ -54,8 +54,8 @@ threshold is a ratio, so scaling or rotating the mesh does not change the result
 --method tips (opt-in) finds the ends of protrusions instead (the end of an arm or a foot, an
 ear, a fingertip): a disc around each tip, grown until it wraps round the end or meets a
 concave crease (docs/math/tip-finder.md). It reads --max-concave-fraction, --max-compactness,
---min-faces and the area fractions; --fit-tolerance, --min-cap-angle and --contrast do not
-apply, nor does --region-at. Pass its --face-list to 'run --regions FILE'.
+--min-faces and the area fractions; --fit-tolerance, --min-cap-angle, --contrast and
+--region-at do not apply and are refused. Pass its --face-list to 'run --regions FILE'.
 
 --method parts (opt-in) keeps the tip finder's ends and adds the cap finder's regions that tip
 regions cover at most half of (heads, bumps on a body), each grown to the ball of its fitted
@@ -197,6 +197,11 @@ int command_regions(int argc, char** argv) {
     check_region_options(options);
     if (options.method != RegionMethod::Caps && !points.empty())
       throw UsageError("--region-at grows caps; it does not apply with --method " + method);
+    // The cap finder's shape tests: given with the tip finder they would do nothing, unsaid.
+    for (const char* name : {"fit-tolerance", "min-cap-angle", "contrast"})
+      if (options.method == RegionMethod::Tips && vm.count(name) && !vm[name].defaulted())
+        throw UsageError(std::string("--") + name +
+                         " shapes the cap finder's caps; it does not apply with --method tips");
     if (!points.empty()) at = parse_region_points(points);
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});

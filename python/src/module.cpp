@@ -149,6 +149,15 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
                            "max_concave_fraction, min_cap_angle, contrast, max_compactness, min_faces, "
                            "min_area_fraction, max_area_fraction, region_at, method");
   }
+  // The cap finder's shape tests, as the CLI refuses them with the tip finder (they would do
+  // nothing there).
+  for (const char* name : {"fit-tolerance", "min-cap-angle", "contrast"})
+    if (o.method == RegionMethod::Tips && seen.count(name)) {
+      std::string spelt = name;
+      std::replace(spelt.begin(), spelt.end(), '-', '_');
+      throw py::value_error("regions(): " + spelt +
+                            " shapes the cap finder's caps; it does not apply with method='tips'");
+    }
   if (o.method != RegionMethod::Caps && !at.empty())
     throw py::value_error(std::string("regions(): region_at grows caps; it does not apply with method='") +
                           (o.method == RegionMethod::Tips ? "tips" : "parts") + "'");

@@ -117,6 +117,14 @@ def test_regions_region_at_with_method_tips_is_a_value_error(ico2):
         shellcontract.regions(*ico2, method="tips", region_at=[(0.0, 0.0, 1.0)])
 
 
+@pytest.mark.parametrize("option", ["fit_tolerance", "min_cap_angle", "contrast"])
+def test_regions_cap_shape_options_with_method_tips_are_a_value_error(ico2, option):
+    """Before: taken and ignored (the same regions as without them)."""
+    with pytest.raises(ValueError, match=option + " shapes the cap finder's caps"):
+        shellcontract.regions(*ico2, method="tips", **{option: 5})
+    shellcontract.regions(*ico2, **{option: 5})  # the cap finder takes it
+
+
 def test_a_uint64_index_is_reported_as_given(ico2):
     """Before: 2**64 - 1 was converted to int64 first and reported as -1."""
     vertices, faces = ico2

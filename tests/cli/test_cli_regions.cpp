@@ -56,6 +56,20 @@ TEST_F(CliRegions, RunSaysItsRegionsCameFromTheGivenPoints) {
   EXPECT_FALSE(has(r.output, "selected by curvature")) << r.output;
 }
 
+// The cap finder's shape tests do nothing for the tip finder: refused, as --region-at is, where
+// they had passed without a word (the same face list as without them). With caps they are taken.
+TEST_F(CliRegions, CapShapeOptionsAreRefusedWithTheTipFinder) {
+  for (const char* option : {"--fit-tolerance", "--min-cap-angle", "--contrast"}) {
+    const auto r = run_cli({"regions", mesh("ico2.off"), "--method", "tips", option, "5"});
+    EXPECT_EQ(r.exit_code, 1) << option << ": " << r.output;
+    EXPECT_TRUE(
+        has(r.output, std::string(option) +
+                          " shapes the cap finder's caps; it does not apply with --method tips"))
+        << r.output;
+    EXPECT_EQ(run_cli({"regions", mesh("ico2.off"), option, "5"}).exit_code, 0) << option;
+  }
+}
+
 TEST_F(CliRegions, RegionsWithoutOutputPrintsTheTableAndWritesTheFaceList) {
   auto r = run_cli({"regions", mesh("bumpy_sphere.off")});
   EXPECT_EQ(r.exit_code, 0) << r.output;
