@@ -100,6 +100,12 @@ void check_planned_outputs(const OutputPlan& plan) {
   const ExportFolder folder = check_export_folder(f);
   for (const std::vector<FileIdentity>* group : {&outputs, &inputs})
     for (const FileIdentity& id : *group) {
+      if (!id.role.empty() && ((!folder.exists && same_file(id, folder.entry)) ||
+                               (folder.exists && id.folder_known &&
+                                same_inode(id.folder, folder.st) && is_frame_name(id.name, f))))
+        refuse_file("--export-dir", f.dir,
+                    "a frame (or the folder) would be " + quoted_path(id.path) + ", " + id.role +
+                        "; the input needs this file: choose another name or folder");
       if (!folder.exists && same_file(id, folder.entry))
         refuse_file(id.option, id.path, "is also the --export-dir folder " + quoted_path(f.dir));
       if (folder.exists && id.folder_known && same_inode(id.folder, folder.st) && is_frame_name(id.name, f))

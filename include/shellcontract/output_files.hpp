@@ -9,7 +9,9 @@
 namespace shellcontract {
 
 /// A file a command writes or reads, and the option that names it in messages ("-o",
-/// "--summary"; "INPUT" or "--regions" for an input; Python's "checkpoint").
+/// "--summary"; "INPUT" or "--regions" for an input; Python's "checkpoint"). An input named
+/// "INPUT" is a mesh file: the files it reads or names (its .mtl and textures, a glTF's buffers
+/// and images) are inputs too.
 struct NamedFile {
   std::string option;
   std::string path;
@@ -18,7 +20,8 @@ struct NamedFile {
 /// Checks a command's outputs before any work, so that a run does not fail after minutes because
 /// its output folder is missing, nor write over its own input: by file identity (device and
 /// inode; for a file that does not exist yet, its folder's and its name), so that hard links,
-/// symbolic links and bind mounts are seen through, no output may be an input or another output;
+/// symbolic links and bind mounts are seen through, no output may be an input (nor a file the
+/// "INPUT" mesh reads or names, existing or not) or another output;
 /// an existing output must be a writable regular file (a folder, device, FIFO or socket is never
 /// replaced); each output's folder is probed by creating and removing a file with a name of the
 /// output's length (a missing or read-only folder, a parent that is a file, a name too long).

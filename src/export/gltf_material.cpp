@@ -1,6 +1,7 @@
 #include "export/gltf_material.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -169,6 +170,34 @@ std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& b
       m.texture = p.is_absolute() ? file : (folder / p).string();
       m.texture_line = line;
     }
+  }
+  return out;
+}
+
+std::vector<MtlTextureFile> mtl_texture_files(const std::string& path) {
+  std::vector<MtlTextureFile> out;
+  std::string why;
+  const std::optional<std::string> bytes = read_bytes(path, MAX_MTL_BYTES, why);
+  if (!bytes) return out;
+  const fs::path folder = fs::path(path).parent_path();
+  std::istringstream in(*bytes);
+  std::string text;
+  for (std::size_t line = 1; std::getline(in, text); ++line) {
+    const std::size_t hash = text.find('#');  // as parse_mtl reads a line
+    if (hash != std::string::npos) text.resize(hash);
+    std::size_t at = 0;
+    const Span k = next_token(text, at, text.size());
+    std::string key = text.substr(k.begin, k.end - k.begin), lower = key;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    // map_aat is a switch ("on"), not a file.
+    const bool texture = (lower.rfind("map_", 0) == 0 && lower != "map_aat") || lower == "bump" ||
+                         lower == "disp" || lower == "decal" || lower == "refl" || lower == "norm";
+    if (!texture) continue;
+    const std::string file = map_file_name(text.substr(k.end));
+    if (file.empty()) continue;
+    const fs::path p(file);
+    out.push_back({p.is_absolute() ? file : (folder / p).string(), key, line});
   }
   return out;
 }

@@ -32,6 +32,20 @@ struct MtlMaterial {
 std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& bytes,
                                    std::vector<std::string>& warnings);
 
+/// An image file that a .mtl file names.
+struct MtlTextureFile {
+  std::string path;  ///< as parse_mtl resolves map_Kd's: relative paths from the .mtl's folder
+  std::string key;   ///< the key that names it ("map_Kd", "bump")
+  std::size_t line = 0;
+};
+
+/// Every image file that the .mtl file `path` names, under any texture key: map_Kd, which the
+/// glTF uses, and those a renderer of the OBJ reads besides (every map_* but map_aat, bump,
+/// disp, decal, refl, norm), so that no output replaces one (output_check.cpp). File names are
+/// read as map_Kd's (options skipped). Empty when the file cannot be read (read with
+/// gltf_materials' bounds); never throws for its contents.
+std::vector<MtlTextureFile> mtl_texture_files(const std::string& path);
+
 /// The glTF materials of an OBJ's faces and which face has which.
 struct GltfFaceMaterials {
   std::vector<GltfMaterial> materials;  ///< the defined materials the faces use, in order of first use

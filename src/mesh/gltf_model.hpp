@@ -15,8 +15,12 @@
 namespace shellcontract::gltf {
 
 /// Parses a .glb or .gltf (told by its first bytes), with its external buffers.
+/// @param looked_up when given, gets every path where an external buffer was looked for (found
+///        or not, in the file's folder and then in the current one, as tinygltf does), also
+///        when the load then fails
 /// @throws InputError for a file tinygltf cannot read, or a .glb whose container is malformed
-tinygltf::Model load_model(const std::string& path, const std::string& bytes);
+tinygltf::Model load_model(const std::string& path, const std::string& bytes,
+                           std::vector<std::string>* looked_up = nullptr);
 
 /// The triangles that the default scene draws (read_gltf's soup), with each drawn primitive's
 /// world transform in `world` (parallel to soup.drawn).

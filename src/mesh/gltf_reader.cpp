@@ -66,7 +66,9 @@ void check_glb_container(const std::string& path, const std::string& b) {
 // every read checked: read_regular_file), and a path is never expanded by the shell's rules
 // (tinygltf's default ExpandFilePath calls wordexp) nor opened to test that it exists (fopen on a
 // FIFO blocks).
-bool file_exists(const std::string& p, void*) {
+// `looked_up`, when given, collects every path asked about, found or not (input_dependencies).
+bool file_exists(const std::string& p, void* looked_up) {
+  if (looked_up) static_cast<std::vector<std::string>*>(looked_up)->push_back(p);
   std::error_code ec;
   return std::filesystem::exists(p, ec);
 }
@@ -303,7 +305,8 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
 
 }  // namespace
 
-tinygltf::Model gltf::load_model(const std::string& path, const std::string& bytes) {
+tinygltf::Model gltf::load_model(const std::string& path, const std::string& bytes,
+                                 std::vector<std::string>* looked_up) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max())
     fail(path, "too large", "a glTF file holds at most 4 GiB");
   const bool binary = bytes.compare(0, 4, "glTF") == 0;
@@ -311,7 +314,7 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
   loader.SetFsCallbacks(
-      tinygltf::FsCallbacks{file_exists, same_path, read_buffer_file, no_write, nullptr});
+      tinygltf::FsCallbacks{file_exists, same_path, read_buffer_file, no_write, looked_up});
   tinygltf::Model m;
   std::string err, warn;
   const std::string dir = std::filesystem::path(path).parent_path().string();

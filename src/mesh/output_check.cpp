@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/input_dependencies.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -91,17 +92,33 @@ void check_output_identities(const std::vector<NamedFile>& outputs, const std::v
     if (in.path.empty() || in.path.find('\0') != std::string::npos) continue;  // the reader says why
     FileIdentity id = identify_file(in.option, in.path);
     if (id.exists || id.folder_known) input_ids.push_back(std::move(id));
+    if (in.option != "INPUT") continue;
+    // The mesh's own files (a .mtl, a texture, a buffer): an output over one damages the input as
+    // surely as one over the input, and one that creates a missing one changes what it means.
+    for (const InputDependency& d : input_dependencies(in.path)) {
+      if (d.path.empty() || d.path.find('\0') != std::string::npos) continue;
+      FileIdentity dep = identify_file(in.option, d.path);
+      dep.role = d.role;
+      if (dep.exists || dep.folder_known) input_ids.push_back(std::move(dep));
+    }
   }
   for (const NamedFile& o : outputs) {
     require_usable_path(o.path, o.option);
     FileIdentity id = identify_file(o.option, o.path);
     if (id.name.empty() || id.name == "." || id.name == "..")
       refuse_file(o.option, o.path, "names a folder, not a file");
-    for (const FileIdentity& in : input_ids)
-      if (same_file(id, in))
+    for (const FileIdentity& in : input_ids) {
+      if (!same_file(id, in)) continue;
+      if (!in.role.empty())
         refuse_file(o.option, o.path,
-                    (in.option == "INPUT" ? std::string("is the input file") : "is the file of " + in.option) +
-                        (in.path == o.path ? "" : " (" + quoted_path(in.path) + ")") + "; choose another name");
+                    "is " + in.role + (in.path == o.path ? "" : " (" + quoted_path(in.path) + ")") +
+                        "; the input needs this file, so it is never written: choose another name");
+      refuse_file(o.option, o.path,
+                  (in.option == "INPUT" ? std::string("is the input file")
+                                        : "is the file of " + in.option) +
+                      (in.path == o.path ? "" : " (" + quoted_path(in.path) + ")") +
+                      "; choose another name");
+    }
     for (const FileIdentity& other : output_ids)
       if (same_file(id, other))
         refuse_file(o.option, o.path,

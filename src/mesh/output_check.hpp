@@ -22,6 +22,8 @@ struct FileIdentity {
   bool folder_known = false;  ///< the folder exists and is a folder
   struct stat folder {};
   std::string folder_path, name;
+  /// For a file the input needs (input_dependencies.hpp): what it is to the input; else empty.
+  std::string role;
 };
 
 FileIdentity identify_file(const std::string& option, const std::string& path);
@@ -42,7 +44,8 @@ std::optional<std::string> folder_problem(const std::string& folder, std::size_t
 [[noreturn]] void refuse_file(const std::string& option, const std::string& path, const std::string& why);
 
 /// check_output_files, keeping the identities of the outputs and of the inputs that exist (or
-/// whose folder does) for a caller's own checks.
+/// whose folder does) for a caller's own checks. The files an input named "INPUT" needs (its
+/// input_dependencies, with their role) are among the inputs.
 void check_output_identities(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs,
                              std::vector<FileIdentity>& output_ids, std::vector<FileIdentity>& input_ids);
 
