@@ -59,7 +59,7 @@ void print_table(const std::vector<CcdBenchmarkRow>& rows, std::ostream& os) {
        << std::setw(8) << r.queries << std::setw(7) << r.positives << std::setw(6)
        << r.false_positives << std::setw(6) << r.false_negatives << std::setw(11)
        << r.uncertain_hits << std::setw(12) << std::fixed << std::setprecision(3) << r.mean_us
-       << std::setw(12) << std::setprecision(1) << r.max_us << '\n';
+       << std::setw(12) << r.max_us << '\n';
     os.unsetf(std::ios::fixed);
   }
 }
@@ -114,11 +114,13 @@ int command_bench_ccd(int argc, char** argv) {
       "*.index.csv; the type comes from the name, vertex-face.csv or edge-edge.csv; format in\n"
       "../shared/data/ccd-queries/README.md, beside the repository) and prints, per file, the\n"
       "false positives (FP), false negatives (FN), hits that floating point could not confirm\n"
-      "(uncertain), and the mean and maximum wall time per query (single thread). Lengths are in\n"
-      "the files' units.\n\n"
+      "(uncertain), and the mean and maximum wall time per query (single thread): after one\n"
+      "untimed pass, each query is timed alone in --repeat passes and its fastest time kept;\n"
+      "mean_us and max_us are the mean and the largest of these times. Lengths are in the\n"
+      "files' units.\n\n"
       "exit codes: 0 success, 1 bad usage, 2 unreadable or malformed query file\n\noptions");
-  desc.add_options()("help,h", "print this help")(
-      "queries", po::value<std::string>(&dir), "directory of query files (required)")(
+  desc.add_options()("help,h", "print this help")("queries", po::value<std::string>(&dir),
+                                                  "directory of query files (required)")(
       "json", po::value<std::string>(&json_path),
       "also write the results as JSON to this file (written atomically)")(
       "tolerance", po::value<double>(&opt.tolerance)->default_value(DEFAULT_CCD_TOLERANCE),
@@ -130,7 +132,8 @@ int command_bench_ccd(int argc, char** argv) {
       "max-intervals", po::value<int>(&opt.max_intervals)->default_value(DEFAULT_CCD_MAX_INTERVALS),
       "time intervals examined per query before a conservative hit is reported")(
       "repeat", po::value<int>(&repeat)->default_value(DEFAULT_CCD_BENCHMARK_REPETITIONS),
-      "timing repetitions; the fastest is reported (filters out other processes)");
+      "timed passes after the untimed one; each query's fastest time is kept (filters out "
+      "other processes)");
 
   try {
     po::variables_map vm;

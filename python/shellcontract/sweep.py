@@ -22,7 +22,7 @@ import subprocess
 import sys
 import uuid
 
-from . import sweep_file, sweep_job, sweep_output, sweep_progress, sweep_results
+from . import sweep_file, sweep_job, sweep_output, sweep_process, sweep_progress, sweep_results
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
@@ -321,37 +321,22 @@ def _os_error_text(e):
     return "{}{}".format(where + ": " if where else "", e.strerror or e)
 
 
-class _PipeSafeStream:
-    """sys.stderr that a reader going away (`sweep ... 2>&1 | head -1`) does not stop: the
-    sweep goes on without its progress lines. Before, the next line raised BrokenPipeError and the
-    sweep ended with exit 1, documented as "nothing run", its jobs left pending."""
-
-    def __init__(self, stream):
-        self._stream = stream
-        self._gone = False
-
-    def write(self, text):
-        if not self._gone:
-            try:
-                return self._stream.write(text)
-            except BrokenPipeError:
-                self._gone = True
-        return len(text)
-
-    def flush(self):
-        if not self._gone:
-            try:
-                self._stream.flush()
-            except BrokenPipeError:
-                self._gone = True
-
-    def __getattr__(self, name):  # isatty, fileno, encoding: the stream's own
-        return getattr(self._stream, name)
-
-
 def main(argv=None):
-    if not isinstance(sys.stderr, _PipeSafeStream):
-        sys.stderr = _PipeSafeStream(sys.stderr)
+    with sweep_process.sigterm_as_ctrl_c():
+        try:
+            return _main(argv)
+        except KeyboardInterrupt:
+            # Outside the running of the jobs (which says more): while checking the executable,
+            # reading the sweep file or claiming DIR, whose writes are whole or absent. An
+            # uncaught KeyboardInterrupt would end the process by SIGINT, after a traceback.
+            print("shellcontract sweep: interrupted; run the same command again",
+                  file=sys.stderr)
+            return EXIT_INTERRUPTED
+
+
+def _main(argv):
+    if not isinstance(sys.stderr, sweep_process.PipeSafeStream):
+        sys.stderr = sweep_process.PipeSafeStream(sys.stderr)
     args = parser().parse_args(argv)
     cli = find_cli(args.cli)
     if cli is None and args.cli is not None:

@@ -390,22 +390,33 @@ INTERRUPTED = {"meshes": ["meshes/ico3.off"], "options": {"pressure": 2, "frames
                "grid": {"air_balance": [0.9, 0.8]}}
 
 
-def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_dir, tmp_path):
+# SIGTERM (Slurm's scancel, kill) is Ctrl-C's twin: before, it ended the sweep by the signal,
+# leaving its working folders and the tables as they were.
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_dir, tmp_path, sig):
     path = write_sweep(tmp_path, mesh_dir, "long.json", INTERRUPTED, meshes=("ico3.off",))
     out = tmp_path / "out"
     proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
                              "--shard", "0/1", "--checkpoint-every", "5"], env=sweep_env(cli),
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    # The second job is running and has saved a checkpoint.
-    wait_until(lambda: len(done_jobs(out)) == 1 and any((out / ".work" / "checkpoints").glob("*.ckpt")))
-    proc.send_signal(signal.SIGINT)
+    # The second job is running and has saved a checkpoint (so the first one's row is written).
+    def second_saved():
+        done = {p.parent.name for p in done_jobs(out)}
+        saved = {p.stem for p in (out / ".work" / "checkpoints").glob("*.ckpt")}
+        return len(done) == 1 and saved - done
+    wait_until(second_saved)
+    # Removed while no job ends (the second runs 1500 frames): the stop writes the tables anew.
+    (out / "results.csv").unlink()
+    proc.send_signal(sig)
     _, err = proc.communicate(timeout=60)
     assert proc.returncode == 130, err
     assert "run the same command again" in err
-    # Nothing half-done in DIR: one finished job folder, the rest pending, no temporary files.
+    # Nothing half-done in DIR: one finished job folder, the rest pending, no temporary files,
+    # no working folder but the checkpoints.
     assert len(done_jobs(out)) == 1
     assert [r["status"] for r in results(out)].count("pending") == 1
     assert not [p for p in out.iterdir() if p.name.startswith(".results") or ".tmp-" in p.name]
+    assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"]
     again = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert again.returncode == 0, again.stderr
     records = [json.loads(p.read_text()) for p in done_jobs(out)]

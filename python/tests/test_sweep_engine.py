@@ -81,22 +81,31 @@ def test_a_job_saves_and_stops_when_the_process_that_started_it_dies(cli, mesh_d
         kill_left_over(tmp_path)
 
 
-def test_ctrl_c_on_the_embedded_cluster_stops_the_jobs_which_save(cli, mesh_dir, tmp_path):
+# SIGTERM (Slurm's scancel) as Ctrl-C, here through the tool's `sweep` command (which becomes the
+# Python sweep, the same process): before, it ended the sweep by the signal, its jobs' working
+# folders left behind and the tables not written.
+@pytest.mark.parametrize("sig,front", [(signal.SIGINT, "python"), (signal.SIGTERM, "tool")],
+                         ids=["SIGINT", "SIGTERM"])
+def test_ctrl_c_on_the_embedded_cluster_stops_the_jobs_which_save(cli, mesh_dir, tmp_path, sig,
+                                                                  front):
     # Two jobs that end only if told to, one per worker: Ctrl-C certainly finds both running.
     spec = dict(ENDLESS, grid={"pressure": [2, 3]})
     path = write_sweep(tmp_path, mesh_dir, "endless.json", spec, meshes=("ico3.off",))
     out = tmp_path / "out"
     checkpoints = out / ".work" / "checkpoints"
-    proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
-                             "--workers", "2", "--checkpoint-every", "5"], env=sweep_env(cli),
+    command = [sys.executable, "-m", "shellcontract.sweep"] if front == "python" else [cli, "sweep"]
+    proc = subprocess.Popen(command + [str(path), "-o", str(out), "--workers", "2",
+                                       "--checkpoint-every", "5"], env=sweep_env(cli),
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
     try:
         wait_until(lambda: checkpoints.is_dir() and len(list(checkpoints.glob("*.ckpt"))) == 2)
-        proc.send_signal(signal.SIGINT)
+        (out / "results.csv").unlink()  # written when the sweep began; the stop writes it anew
+        proc.send_signal(sig)
         # Without the sweep stopping its workers' jobs itself, closing the cluster would wait
         # for runs that never end.
         _, err = proc.communicate(timeout=60)
         assert proc.returncode == 130, err
+        assert "run the same command again" in err, err
         # Both runs have ended (none goes on behind the sweep's back) and left nothing half-done:
         # no working folder, no job folder, both jobs pending with their checkpoints.
         assert processes_naming(str(tmp_path)) == []

@@ -122,6 +122,18 @@ CcdQueryFile read_ccd_query_file(const std::string& path, const std::string& nam
   return file;
 }
 
+void set_ccd_query_times(CcdBenchmarkRow& row, const std::vector<double>& times_us) {
+  double sum = 0.0, most = 0.0;
+  for (const double t : times_us) {
+    sum += t;
+    most = std::max(most, t);
+  }
+  row.max_us = most;
+  // The rounded sum can exceed n times the largest time (three times 0.1 sum to more than 0.3);
+  // the mean of the same times is never above their maximum.
+  row.mean_us = times_us.empty() ? 0.0 : std::min(sum / static_cast<double>(times_us.size()), most);
+}
+
 CcdBenchmarkRow run_ccd_benchmark(const CcdQueryFile& file, const CcdOptions& options,
                                   int repetitions) {
   using Clock = std::chrono::steady_clock;
@@ -138,38 +150,30 @@ CcdBenchmarkRow run_ccd_benchmark(const CcdQueryFile& file, const CcdOptions& op
       throw std::logic_error("CCD is not deterministic on " + file.name + " query " + std::to_string(i));
   };
 
-  // Whole passes with one clock read around each (mean time without clock overhead).
-  double best_total_us = std::numeric_limits<double>::infinity();
-  for (int rep = 0; rep < reps; ++rep) {
-    const auto t0 = Clock::now();
-    for (std::size_t i = 0; i < n; ++i) {
-      const CcdQuery& q = file.queries[i];
-      const CcdResult r = primitive_ccd(file.kind, q.x0, q.x1, options);
-      if (rep == 0) {
-        hits[i] = r.hit;
-        certain[i] = r.certain;
-      } else {
-        check(i, r);
-      }
-    }
-    const auto t1 = Clock::now();
-    best_total_us = std::min(best_total_us, std::chrono::duration<double, std::micro>(t1 - t0).count());
-  }
-  row.mean_us = n == 0 ? 0.0 : best_total_us / static_cast<double>(n);
-
-  // Each query timed alone, its fastest run kept (for the maximum).
+  // One untimed pass for the answers. It also brings the code and the queries into the caches:
+  // before, the mean came from whole passes, the first of them cold, and the maximum from each
+  // query timed alone afterwards, so that a single repetition reported a mean above the maximum.
   for (std::size_t i = 0; i < n; ++i) {
     const CcdQuery& q = file.queries[i];
-    double best_us = std::numeric_limits<double>::infinity();
-    for (int rep = 0; rep < reps; ++rep) {
+    const CcdResult r = primitive_ccd(file.kind, q.x0, q.x1, options);
+    hits[i] = r.hit;
+    certain[i] = r.certain;
+  }
+  // `reps` passes, each query timed alone, its fastest run kept: the mean and the maximum are of
+  // these same times (both include the clock's own overhead).
+  std::vector<double> fastest_us(n, std::numeric_limits<double>::infinity());
+  for (int rep = 0; rep < reps; ++rep) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const CcdQuery& q = file.queries[i];
       const auto a = Clock::now();
       const CcdResult r = primitive_ccd(file.kind, q.x0, q.x1, options);
       const auto b = Clock::now();
-      best_us = std::min(best_us, std::chrono::duration<double, std::micro>(b - a).count());
+      fastest_us[i] =
+          std::min(fastest_us[i], std::chrono::duration<double, std::micro>(b - a).count());
       check(i, r);
     }
-    row.max_us = std::max(row.max_us, best_us);
   }
+  set_ccd_query_times(row, fastest_us);
 
   for (std::size_t i = 0; i < n; ++i) {
     const bool truth = file.queries[i].truth;

@@ -63,8 +63,8 @@ struct CcdBenchmarkRow {
   std::size_t false_positives = 0;
   std::size_t false_negatives = 0;
   std::size_t uncertain_hits = 0;  ///< hits with CcdResult::certain == false
-  double mean_us = 0.0;          ///< mean wall time per query, microseconds (fastest pass)
-  double max_us = 0.0;           ///< slowest single query, microseconds (its fastest run)
+  double mean_us = 0.0;            ///< mean of the queries' times, microseconds (run_ccd_benchmark)
+  double max_us = 0.0;             ///< largest of the same times, microseconds; >= mean_us
   std::vector<std::size_t> false_negative_ids;  ///< 0-based query numbers of the misses
   std::vector<std::size_t> false_positive_ids;  ///< 0-based query numbers of the false alarms
 };
@@ -72,12 +72,12 @@ struct CcdBenchmarkRow {
 /// Default number of timing repetitions of run_ccd_benchmark.
 static constexpr int DEFAULT_CCD_BENCHMARK_REPETITIONS = 3;
 
-/// Runs the narrow phase on every query of a file, single-threaded. The mean is the wall time of
-/// one pass over all queries divided by their number, the fastest of `repetitions` passes; the
-/// maximum comes from timing each query alone (`repetitions` times, keeping its fastest run) and
-/// includes the clock's own overhead (lab/history.md). Taking the fastest run filters out
-/// interference from other processes on a shared machine. Every pass must give the same answers
-/// (the test is deterministic).
+/// Runs the narrow phase on every query of a file, single-threaded: one untimed pass (the
+/// answers; it also warms the caches), then `repetitions` passes timing each query alone. A
+/// query's time is its fastest run, which filters out interference from other processes on a
+/// shared machine; mean_us and max_us are the mean and the largest of these times, so
+/// max_us >= mean_us, and both include the clock's own overhead (lab/history.md). Every pass
+/// must give the same answers (the test is deterministic).
 /// @param file         queries
 /// @param options      CCD options (tolerance in the file's units)
 /// @param repetitions  timing repetitions, >= 1 (values below 1 count as 1)
@@ -85,6 +85,12 @@ static constexpr int DEFAULT_CCD_BENCHMARK_REPETITIONS = 3;
 /// @throws std::logic_error if two passes disagree
 CcdBenchmarkRow run_ccd_benchmark(const CcdQueryFile& file, const CcdOptions& options,
                                   int repetitions = DEFAULT_CCD_BENCHMARK_REPETITIONS);
+
+/// Sets row.mean_us and row.max_us to the mean and the largest of per-query times (microseconds;
+/// 0 for no query). The mean is never above the largest, which the rounded sum could push it to.
+/// @param row       the row whose times are set
+/// @param times_us  one time per query
+void set_ccd_query_times(CcdBenchmarkRow& row, const std::vector<double>& times_us);
 
 /// Speed-against-error table: run_ccd_benchmark for each file at each tolerance, tolerances in
 /// the outer loop.
