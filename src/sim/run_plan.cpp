@@ -91,7 +91,11 @@ void resolve_default_run(RunOptions& r) {
   // mu and lambda that the shell material gave (an earlier resolve) are not chosen.
   const MaterialParams& m = r.sim.material_params;
   bool from_shell = false;
-  if (r.young && r.thickness) {
+  // Values out of range are refused next, by check_table_ranges, naming the option; here they
+  // only mean that mu and lambda did not come from them.
+  const auto in_range = [](double x) { return x > 0.0 && std::isfinite(x); };
+  if (r.young && r.thickness && in_range(*r.young) && in_range(*r.thickness) && r.poisson > -1.0 &&
+      r.poisson < 1.0) {
     const MaterialParams shell = membrane_lame_from_young(*r.young, r.poisson, *r.thickness);
     from_shell = m.mu == shell.mu && m.lambda == shell.lambda;
   }
@@ -191,6 +195,12 @@ void resolve_run_options(RunOptions& r) {
     r.regions = RegionSource::Auto;
     r.sim.inward_term = InwardTerm::None;
   }
+  // RegionSource::Weights comes with `region_weights` (the CLI's file, Python's array); a caller
+  // that sets it alone would have the run look for a weight file with no name.
+  if (r.regions == RegionSource::Weights && r.region_weight_file.empty() && r.vertex_weights.empty())
+    throw UsageError(
+        "`regions` from weights needs `region_weights`: a file of one weight per vertex, or the "
+        "weights");
   resolve_sim_options(r.sim);  // and the checks of every simulation option
 }
 

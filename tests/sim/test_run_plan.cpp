@@ -181,6 +181,14 @@ TEST(RunPlan, FieldsWrittenOutsideTheTableAreHeldToItsRanges) {
        }},
       {"material", [](RunOptions& o) { o.sim.material = static_cast<MaterialKind>(42); }},
       {"regions", [](RunOptions& o) { o.regions = RegionSource::File; }},  // no file named
+      // The shell material's values had been refused by the function that converts them
+      // ("membrane_lame_from_young: need E > 0 ..."), naming no option; weights as the region
+      // source with none given had the run open a weight file with no name (an InputError).
+      {"young", [](RunOptions& o) { o.young = -1.0; }},
+      {"young", [&](RunOptions& o) { o.young = nan; }},
+      {"thickness", [](RunOptions& o) { o.thickness = 0.0; }},
+      {"poisson", [&](RunOptions& o) { o.poisson = nan; }},
+      {"regions", [](RunOptions& o) { o.regions = RegionSource::Weights; }},
   };
   for (const auto& [field, write] : cases) {
     RunOptions o;
