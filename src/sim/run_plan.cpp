@@ -197,7 +197,8 @@ void resolve_run_options(RunOptions& r) {
   }
   // RegionSource::Weights comes with `region_weights` (the CLI's file, Python's array); a caller
   // that sets it alone would have the run look for a weight file with no name.
-  if (r.regions == RegionSource::Weights && r.region_weight_file.empty() && r.vertex_weights.empty())
+  if (r.regions == RegionSource::Weights && r.region_weight_file.empty() &&
+      r.vertex_weights.empty())
     throw UsageError(
         "`regions` from weights needs `region_weights`: a file of one weight per vertex, or the "
         "weights");
