@@ -3,6 +3,9 @@
 // "f:region" map.
 #include "sim/run_plan.hpp"
 
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/property_map.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -294,6 +297,27 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
                             "has no effect");
   else if (o.regions != RegionSource::None && plan.regions == 0 && !o.measure_regions)
     plan.warnings.push_back("`regions` auto found no region: the local contraction has no effect");
+  // The air, the target and the stop ratio see the enclosed volume of the whole mesh: separate
+  // shells share them, and one may give volume to another (a small ball re-inflating while a
+  // large one takes the target). Said, since each component is otherwise its own shell.
+  std::vector<std::string> whole;
+  if (s.target_volume > 0.0) whole.push_back("the target volume");
+  if (s.stop_volume_ratio > 0.0) whole.push_back("the stop ratio");
+  if (s.air_balance > 0.0 && s.pressure != 0.0) whole.push_back("the enclosed air");
+  if (!whole.empty()) {
+    std::vector<std::size_t> component(mesh.number_of_faces());
+    const std::size_t components = CGAL::Polygon_mesh_processing::connected_components(
+        mesh, CGAL::make_property_map(component));
+    std::string what = whole[0];
+    for (std::size_t i = 1; i < whole.size(); ++i)
+      what += (i + 1 == whole.size() ? " and " : ", ") + whole[i];
+    if (components > 1)
+      plan.warnings.push_back("the mesh has " + std::to_string(components) +
+                              " separate components: " + what +
+                              (whole.size() > 1 ? " act" : " acts") +
+                              " on their total volume, so one may shrink more than asked while "
+                              "another shrinks less; run them one at a time for a V/V0 each");
+  }
   for (std::string& w : ineffective_options(o)) plan.warnings.push_back(std::move(w));
   plan.sim = plan_simulation(std::move(marked), o.sim);  // one copy of a large mesh fewer
   return plan;

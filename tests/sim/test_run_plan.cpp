@@ -212,6 +212,34 @@ TEST(RunPlan, FieldsWrittenOutsideTheTableAreHeldToItsRanges) {
   EXPECT_NO_THROW(run_contraction(sphere(1), fine));
 }
 
+// Separate shells share the air, the target and the stop ratio (the whole's volume): the review's
+// two balls ended at 0.607 and 0.359 of their volumes under a target of 0.6, without a word.
+TEST(RunPlan, SeparateComponentsSharingTheVolumeAreAWarning) {
+  const test::TriMesh ball = test::icosphere(1);
+  test::TriMesh two;
+  two.x.resize(2 * ball.x.rows(), 3);
+  two.x << ball.x, (ball.x * 0.3).rowwise() + Eigen::RowVector3d(3.0, 0.0, 0.0);
+  two.faces.resize(2 * ball.faces.rows(), 3);
+  two.faces << ball.faces, ball.faces.array() + static_cast<int>(ball.x.rows());
+  const auto warned = [](const RunPlan& plan, const std::string& text) {
+    return std::any_of(plan.warnings.begin(), plan.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+  };
+  RunOptions target;
+  set_run_option(target, "target-volume", "0.6");
+  set_run_option(target, "air-balance", "0");
+  EXPECT_TRUE(
+      warned(plan_run(test::to_surface_mesh(two), target),
+             "the mesh has 2 separate components: the target volume acts on their total volume"));
+  RunOptions air;  // the defaults: a pressure against the enclosed air
+  EXPECT_TRUE(warned(plan_run(test::to_surface_mesh(two), air),
+                     "the enclosed air acts on their total volume"));
+  RunOptions neither;  // a pressure with no air: each shell on its own
+  set_run_option(neither, "air-balance", "0");
+  EXPECT_FALSE(warned(plan_run(test::to_surface_mesh(two), neither), "separate components"));
+  EXPECT_FALSE(warned(plan_run(test::to_surface_mesh(ball), target), "separate components"));
+}
+
 TEST(RunPlan, GivenRecordsFieldNamesNotFlags) {
   RunOptions o;
   set_run_option(o, "k-b", "0.02");
