@@ -29,6 +29,7 @@
 #include "mesh/file_extras.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/output_check.hpp"
+#include "mesh/stl_positions.hpp"
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
 #include "run_interrupt.hpp"
@@ -61,14 +62,15 @@ constexpr const char* RUN_USAGE =
     "copy.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
-    "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
-    "            3 simulation failed or out of memory (the last good state written; nothing if\n"
-    "            memory ran out before the first frame or while writing), 4 new self-intersections\n"
-    "            found by --validate, 5 the target volume or stop ratio was not reached (result\n"
-    "            written), 130 interrupted by Ctrl-C or SIGTERM after the step it is in (stderr\n"
-    "            names the frame; no result, log, summary, glTF or fields; the finished\n"
-    "            --export-dir frames stay: remove them to rerun; with --checkpoint the state is\n"
-    "            saved for --resume)\n";
+    "\nexit codes: 0 success, 1 bad usage (also: an .stl output of a mesh with two vertices\n"
+    "            at one position, which an STL reader merges), 2 bad input (mesh, face list,\n"
+    "            weights, checkpoint), 3 simulation failed or out of memory (the last good state\n"
+    "            written; nothing if memory ran out before the first frame or while writing),\n"
+    "            4 new self-intersections found by --validate, 5 the target volume or stop ratio\n"
+    "            was not reached (result written), 130 interrupted by Ctrl-C or SIGTERM after\n"
+    "            the step it is in (stderr names the frame; no result, log, summary, glTF or\n"
+    "            fields; the finished --export-dir frames stay: remove them to rerun; with\n"
+    "            --checkpoint the state is saved for --resume)\n";
 
 /// The table's options as text values for boost, switches as bool_switch, in the task groups of
 /// run --help (help_groups.hpp), each group added to `desc`.
@@ -286,6 +288,11 @@ int command_run(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
     for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
     for (const std::string& n : report.notes) std::cerr << "note: " << n << '\n';
+    // Two vertices at one position read back from an STL as one: refused before the run.
+    if (lower_extension(output) == "stl")
+      require_distinct_stl_positions(
+          "-o " + output + (exports.dir.empty() ? "" : " and its frames"), mesh,
+          positions_from_mesh(mesh), false);
     // A large mesh takes seconds to read and check (bear subdivided three times, 1.77 M faces:
     // about 3 s), before any frame's progress line.
     if (!quiet && read_seconds >= 1.0)

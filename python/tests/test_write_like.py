@@ -137,3 +137,23 @@ def test_write_like_a_glb_keeps_its_json(cli, mesh_dir, tmp_path):
     back, faces = shellcontract.read_mesh(out)
     assert np.array_equal(faces, f)
     assert np.abs(back - v * 0.5).max() <= 2.0 ** -23 * np.abs(v).max()
+
+
+TOUCHING = ("OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 0 0\n-1 0 0\n0 -1 0\n0 0 -1\n"
+            "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 4 5 6\n3 4 7 5\n3 4 6 7\n3 5 7 6\n")
+
+
+def test_write_mesh_refuses_an_stl_that_reads_back_as_another_mesh(tmp_path):
+    # Two closed tetrahedra touching at the origin through two vertices: an STL keeps no vertex
+    # identity, so read back the two would be one, a non-manifold vertex (read_mesh refuses it).
+    # Before, the STL was written against the promise that what is written can be read back.
+    src = tmp_path / "touch.off"
+    src.write_text(TOUCHING)
+    v, f = shellcontract.read_mesh(src)
+    with pytest.raises(ValueError, match=r"an STL keeps no vertex identity, and vertices 0 and 4 would both be "
+                                         r"stored at \(0, 0, 0\)"):
+        shellcontract.write_mesh(tmp_path / "t.stl", v, f)
+    assert not (tmp_path / "t.stl").exists()
+    shellcontract.write_mesh(tmp_path / "t.off", v, f)
+    back, _ = shellcontract.read_mesh(tmp_path / "t.off")
+    assert np.array_equal(back, v)
