@@ -389,5 +389,8 @@ def write_mesh(path, vertices, faces, like=None):
     identity (its readers merge equal positions): a mesh with two vertices at one position is a
     ValueError there (write .off, .obj or .ply).
     like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
-    the new positions (UVs, normals, groups, materials, polygons, extra properties kept)."""
+    the new positions (UVs, normals, groups, materials, polygons, extra properties kept), each
+    written in the file's own type: a position its type cannot hold (beyond a float32's range,
+    a whole mesh below the smallest normal float32, an integer type's range) is a ValueError
+    naming the vertex."""
     _core.write_mesh(path, vertices, faces, like)  # str or os.PathLike (or None)
