@@ -29,8 +29,10 @@
 #include "mesh/file_extras.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/output_check.hpp"
+#include "mesh/stl_positions.hpp"
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
+#include "run_interrupt.hpp"
 #include "run_observers.hpp"
 #include "run_summary.hpp"
 #include "shellcontract/error.hpp"
@@ -60,13 +62,15 @@ constexpr const char* RUN_USAGE =
     "copy.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
-    "\nexit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),\n"
-    "            3 simulation failed or out of memory (the last good state written; nothing if\n"
-    "            memory ran out before the first frame or while writing), 4 new self-intersections\n"
-    "            found by --validate, 5 the target volume or stop ratio was not reached (result\n"
-    "            written), 130 interrupted by Ctrl-C or SIGTERM (no result, log or summary; the\n"
-    "            finished --export-dir frames stay: remove them to rerun; with --checkpoint the\n"
-    "            state is saved for --resume)\n";
+    "\nexit codes: 0 success, 1 bad usage (also: an .stl output of a mesh with two vertices\n"
+    "            at one position, which an STL reader merges), 2 bad input (mesh, face list,\n"
+    "            weights, checkpoint), 3 simulation failed or out of memory (the last good state\n"
+    "            written; nothing if memory ran out before the first frame or while writing),\n"
+    "            4 new self-intersections found by --validate, 5 the target volume or stop ratio\n"
+    "            was not reached (result written), 130 interrupted by Ctrl-C or SIGTERM after\n"
+    "            the step it is in (stderr names the frame; no result, log, summary, glTF or\n"
+    "            fields; the finished --export-dir frames stay: remove them to rerun; with\n"
+    "            --checkpoint the state is saved for --resume)\n";
 
 /// The table's options as text values for boost, switches as bool_switch, in the task groups of
 /// run --help (help_groups.hpp), each group added to `desc`.
@@ -284,6 +288,11 @@ int command_run(int argc, char** argv) {
         std::chrono::duration<double>(std::chrono::steady_clock::now() - read_start).count();
     for (const std::string& w : report.warnings) std::cerr << "warning: " << w << '\n';
     for (const std::string& n : report.notes) std::cerr << "note: " << n << '\n';
+    // Two vertices at one position read back from an STL as one: refused before the run.
+    if (lower_extension(output) == "stl")
+      require_distinct_stl_positions(
+          "-o " + output + (exports.dir.empty() ? "" : " and its frames"), mesh,
+          positions_from_mesh(mesh), false);
     // A large mesh takes seconds to read and check (bear subdivided three times, 1.77 M faces:
     // about 3 s), before any frame's progress line.
     if (!quiet && read_seconds >= 1.0)
@@ -369,17 +378,9 @@ int command_run(int argc, char** argv) {
     // run_contraction ends the run itself when memory runs out during the frames.
     stage = "preparing the run or taking its result";
     const RunResult r = run_contraction(mesh, options, &observers, &checkpointer);
-    if (r.status == RunStatus::Cancelled && checkpointer.interrupted()) {
-      // Nothing else is written: the run is not over, its state is in the checkpoint.
-      if (checkpointer.saved_frame() == r.frames_run)
-        std::cerr << "shellcontract run: interrupted at frame " << r.frames_run << "; the state is "
-                  << "saved in " << checkpoint_path << " (continue with: shellcontract run "
-                  << "--resume " << checkpoint_path << " -o " << output << " ...)\n";
-      else
-        std::cerr << "shellcontract run: interrupted at frame " << r.frames_run
-                  << "; the checkpoint could not be written\n";
-      return static_cast<int>(ExitCode::Cancelled);
-    }
+    // Nothing is written: the run is not over (its state is in the checkpoint, if any).
+    if (r.status == RunStatus::Cancelled && checkpointer.interrupted())
+      return report_interrupted(r, checkpointer, output, exports, exporter.frame_stats());
 
     // A finished result is never thrown away: each output is written on its own, one that
     // fails (a full disk) is reported and the others are still written (output-safety.md).
@@ -399,8 +400,6 @@ int command_run(int argc, char** argv) {
       if (warned.insert(w).second) std::cerr << "warning: " << w << '\n';
     };
     for (const std::string& w : exporter.frame_warnings()) warn_once(w);
-    if (!fields.error().empty()) outputs.add("--fields", fields_prefix, "failed: " + fields.error());
-    else if (!fields_prefix.empty()) outputs.add("--fields", fields_prefix, "written (_start.ply and _end.ply)");
     const auto attempt = [&](const char* option, const std::string& path, const std::function<void()>& write) {
       stage = "writing " + path;
       try {
@@ -424,6 +423,7 @@ int command_run(int argc, char** argv) {
         write_mesh_atomic(output, mesh, r.positions);
       }
     });
+    if (!fields_prefix.empty()) attempt("--fields", fields_prefix + "_*.ply", [&] { fields.write(); });
     if (!log_path.empty()) attempt("--log", log_path, [&] { write_text_atomic(log_path, csv.text()); });
     if (!summary_path.empty()) {
       // The summary is written last: an output that failed before it makes the process exit 1,

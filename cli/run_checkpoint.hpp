@@ -1,6 +1,7 @@
 // `run --checkpoint FILE [--checkpoint-every N]` and `run --resume FILE`: the CLI's side of
-// shellcontract/checkpoint.hpp. The state is saved every N frames and when SIGINT or SIGTERM arrives (the
-// handler only sets a flag; the run saves and stops after the step it is in).
+// shellcontract/checkpoint.hpp. The state is saved every N frames and when SIGINT or SIGTERM
+// arrives (the handler only sets a flag; the run saves and stops after the step it is in). Without
+// --checkpoint a signal stops the run the same way, with nothing saved.
 #pragma once
 
 #include <csignal>
@@ -49,7 +50,7 @@ inline std::string checkpoint_input(const Checkpoint& c, const std::string& path
 
 class CliCheckpointer final : public RunCheckpointer {
  public:
-  /// @param path    where to save ("" : never; then signals keep their default action)
+  /// @param path    where to save ("" : never; a signal still stops the run after its step)
   /// @param every   frames between saves (0: only on a signal)
   /// @param resume  the checkpoint the run continues from, or nullptr
   /// @param inputs  run_inputs of the run (its face list or weights file), for the checkpoint
@@ -64,12 +65,19 @@ class CliCheckpointer final : public RunCheckpointer {
         inputs_(std::move(inputs)),
         options_(options),
         log_(log) {
-    if (path_.empty()) return;
-    struct sigaction sa {};
-    sa.sa_handler = checkpoint_signal::on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, nullptr);
-    sigaction(SIGTERM, &sa, nullptr);
+    // With or without a checkpoint: the run stops after its step and says at which frame, and
+    // what it leaves (run_interrupt.hpp); the default ending (main.cpp) exited 130 without a
+    // word. A signal ignored (a background job of a script) stays ignored.
+    for (const int sig : {SIGINT, SIGTERM}) {
+      struct sigaction current {};
+      if (sigaction(sig, nullptr, &current) != 0 ||
+          (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_IGN))
+        continue;
+      struct sigaction sa {};
+      sa.sa_handler = checkpoint_signal::on_signal;
+      sigemptyset(&sa.sa_mask);
+      sigaction(sig, &sa, nullptr);
+    }
   }
 
   const Checkpoint* resume_from() const override { return resume_; }
@@ -93,7 +101,8 @@ class CliCheckpointer final : public RunCheckpointer {
 
   bool stop() override { return interrupted(); }
 
-  bool interrupted() const { return !path_.empty() && checkpoint_signal::received != 0; }
+  /// A SIGINT or SIGTERM arrived (the run stops, or stopped, after its step).
+  bool interrupted() const { return checkpoint_signal::received != 0; }
   /// The frame of the last checkpoint written (-1: none).
   int saved_frame() const { return saved_frame_; }
   const std::string& path() const { return path_; }

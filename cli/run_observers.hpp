@@ -5,6 +5,7 @@
 #include <chrono>
 #include <iomanip>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -83,27 +84,35 @@ class CsvLog final : public RunObserver {
   std::string text_ = log_csv_header();
 };
 
-/// PREFIX_start.ply at the rest state and PREFIX_end.ply at the end (README "Outputs").
+/// PREFIX_start.ply at the rest state and PREFIX_end.ply at the end (README "Outputs"). Both
+/// are held in memory and written by write() once the run has finished, with its other outputs:
+/// an interrupted run (exit 130) writes no fields, as it writes no result (docs/cli.md); a start
+/// file written as the run began was left behind by every Ctrl-C.
 class FieldsWriter final : public RunObserver {
  public:
   FieldsWriter(std::string prefix, FieldColour colour)
       : prefix_(std::move(prefix)), colour_(colour) {}
-  void started(const FrameView& view) override { write(view, "_start.ply"); }
-  void finished(const FrameView& view, const RunResult&) override { write(view, "_end.ply"); }
-  /// Why a fields file could not be written (the run goes on); empty when both were.
-  const std::string& error() const { return error_; }
+  void started(const FrameView& view) override { start_ = take(view); }
+  void finished(const FrameView& view, const RunResult& r) override {
+    if (r.status != RunStatus::Cancelled) end_ = take(view);
+  }
+  /// Writes PREFIX_start.ply, then PREFIX_end.ply (each atomically); only after a run that
+  /// finished (its end fields taken).
+  /// @throws UsageError naming the file that could not be written
+  void write() const {
+    if (!start_ || !end_) throw UsageError("the run did not finish: no fields to write");
+    write_fields_ply(prefix_ + "_start.ply", *start_);
+    write_fields_ply(prefix_ + "_end.ply", *end_);
+  }
 
  private:
-  void write(const FrameView& view, const std::string& suffix) {
-    try {
-      const Simulator& sim = simulator_of(view);
-      write_fields_ply(prefix_ + suffix, sim, view.positions(), compute_vertex_fields(sim), colour_);
-    } catch (const UsageError& e) {
-      error_ += (error_.empty() ? "" : "; ") + std::string(e.what());
-    }
+  FieldsPly take(const FrameView& view) const {
+    const Simulator& sim = simulator_of(view);
+    return fields_ply(sim, view.positions(), compute_vertex_fields(sim), colour_);
   }
-  std::string prefix_, error_;
+  std::string prefix_;
   FieldColour colour_;
+  std::optional<FieldsPly> start_, end_;
 };
 
 }  // namespace shellcontract::cli

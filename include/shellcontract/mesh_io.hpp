@@ -64,7 +64,10 @@ Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
 /// @param x one row per mesh vertex, or (a welded mesh) one per input vertex
 /// @param binary a binary PLY (little-endian doubles: still bitwise) or STL (32-bit floats: the
 ///        positions rounded to float); OFF and OBJ are text whatever it says
-/// @throws UsageError if the file cannot be written or the extension is unknown
+/// @throws UsageError if the file cannot be written or the extension is unknown, or for an STL
+///         in which two vertices would be stored at one position (an STL keeps no vertex
+///         identity: read back they would be one vertex, another mesh; copies of a welded
+///         vertex may share one)
 /// @throws std::invalid_argument if x has another number of rows, a coordinate that is not
 ///         finite, or the mesh has garbage
 void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary = false);

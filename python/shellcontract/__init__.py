@@ -385,7 +385,12 @@ def read_mesh(path):
 def write_mesh(path, vertices, faces, like=None):
     """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output. The
     mesh must pass the same checks as an input (closed, manifold, no isolated vertex: MeshError
-    or ValueError otherwise), so that what is written can be read back.
+    or ValueError otherwise), so that what is written can be read back. An STL keeps no vertex
+    identity (its readers merge equal positions): a mesh with two vertices at one position is a
+    ValueError there (write .off, .obj or .ply).
     like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
-    the new positions (UVs, normals, groups, materials, polygons, extra properties kept)."""
+    the new positions (UVs, normals, groups, materials, polygons, extra properties kept), each
+    written in the file's own type: a position its type cannot hold (beyond a float32's range,
+    a whole mesh below the smallest normal float32, an integer type's range) is a ValueError
+    naming the vertex."""
     _core.write_mesh(path, vertices, faces, like)  # str or os.PathLike (or None)

@@ -137,3 +137,69 @@ def test_write_like_a_glb_keeps_its_json(cli, mesh_dir, tmp_path):
     back, faces = shellcontract.read_mesh(out)
     assert np.array_equal(faces, f)
     assert np.abs(back - v * 0.5).max() <= 2.0 ** -23 * np.abs(v).max()
+
+
+@pytest.mark.parametrize("binary", [False, True])
+def test_write_like_refuses_positions_its_floats_cannot_hold(tmp_path, binary):
+    # A PLY that stores x, y, z as float32 cannot hold 1e300 (written as inf: a file no reader
+    # takes) nor a mesh of extent 1e-300 (every coordinate zero: one point). Before, both were
+    # written without a word.
+    src = tmp_path / "tet.ply"
+    head = PLY_HEAD + "property float x\nproperty float y\nproperty float z\n"
+    if binary:
+        import struct
+        body = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1)
+        for tri in ((0, 2, 1), (0, 1, 3), (0, 3, 2), (1, 2, 3)):
+            body += struct.pack("<B3i", 3, *tri)
+        src.write_bytes((head.replace("ascii", "binary_little_endian") + PLY_BODY.split("0 0 0")[0]).encode() + body)
+    else:
+        src.write_text(head + PLY_BODY)
+    v, f = shellcontract.read_mesh(src)
+    out = tmp_path / "out.ply"
+    with pytest.raises(ValueError, match=r"vertex 1's x is 1e\+300, beyond the largest 32-bit float"):
+        shellcontract.write_mesh(out, v * 1e300, f, like=src)
+    with pytest.raises(ValueError, match=r"below the smallest normal 32-bit float"):
+        shellcontract.write_mesh(out, v * 1e-300, f, like=src)
+    assert not out.exists()
+    # What floats hold is written: a large mesh, a small one, and a tiny coordinate beside them.
+    for scale in (1e38, 1e-37):
+        shellcontract.write_mesh(out, v * scale, f, like=src)
+        back, _ = shellcontract.read_mesh(out)
+        assert np.allclose(back, v * scale, rtol=1e-6, atol=0)
+    w = v.copy()
+    w[1, 1] = 1e-300
+    shellcontract.write_mesh(out, w, f, like=src)
+
+
+TOUCHING = ("OFF\n8 8 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n0 0 0\n-1 0 0\n0 -1 0\n0 0 -1\n"
+            "3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n3 4 5 6\n3 4 7 5\n3 4 6 7\n3 5 7 6\n")
+
+
+def test_write_mesh_refuses_an_stl_that_reads_back_as_another_mesh(tmp_path):
+    # Two closed tetrahedra touching at the origin through two vertices: an STL keeps no vertex
+    # identity, so read back the two would be one, a non-manifold vertex (read_mesh refuses it).
+    # Before, the STL was written against the promise that what is written can be read back.
+    src = tmp_path / "touch.off"
+    src.write_text(TOUCHING)
+    v, f = shellcontract.read_mesh(src)
+    with pytest.raises(ValueError, match=r"an STL keeps no vertex identity, and vertices 0 and 4 would both be "
+                                         r"stored at \(0, 0, 0\)"):
+        shellcontract.write_mesh(tmp_path / "t.stl", v, f)
+    assert not (tmp_path / "t.stl").exists()
+    shellcontract.write_mesh(tmp_path / "t.off", v, f)
+    back, _ = shellcontract.read_mesh(tmp_path / "t.off")
+    assert np.array_equal(back, v)
+
+
+def test_write_like_refuses_positions_beyond_its_integer_type(tmp_path):
+    # A PLY with int16 coordinates (legal, rare) takes the nearest integer; one beyond the type
+    # was clamped to its end without a word.
+    src = tmp_path / "tet.ply"
+    src.write_text(PLY_HEAD + "property short x\nproperty short y\nproperty short z\n" + PLY_BODY)
+    v, f = shellcontract.read_mesh(src)
+    with pytest.raises(ValueError, match=r"vertex 1's x is 40000, and the file stores it as an integer "
+                                         r"from -32768 to 32767"):
+        shellcontract.write_mesh(tmp_path / "out.ply", v * 40000, f, like=src)
+    shellcontract.write_mesh(tmp_path / "out.ply", v * 30000, f, like=src)
+    back, _ = shellcontract.read_mesh(tmp_path / "out.ply")
+    assert np.array_equal(back, v * 30000)

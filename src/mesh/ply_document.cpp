@@ -16,8 +16,11 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <iomanip>
+#include <limits>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -42,6 +45,54 @@ struct Slot {
   ply::Type type = ply::Type::Float32;
   bool set = false;
 };
+
+/// Refuses positions that the file's types cannot hold, which would otherwise be written wrong
+/// without a word: a float32 coordinate beyond the float range (written as inf, a file no reader
+/// takes) or an integer one beyond its type (clamped). And a mesh whose float32 coordinates are
+/// all below the smallest normal float (1.17549435e-38): stored, they would be zero or subnormal
+/// (a mesh of one point, or of a few bits of precision). A coordinate alone that is that small
+/// beside larger ones loses nothing that matters (at most the float rounding of the mesh's extent)
+/// and is written.
+/// @throws UsageError naming `name` (the document's file), the vertex, its axis and the value
+void require_representable(const std::string& name, const std::vector<Slot>& slots,
+                           const Positions& x) {
+  const auto refuse = [&](std::size_t k, const std::string& why) {
+    char v[64];  // the shortest text that reads back as the value
+    const auto end = std::to_chars(
+        v, v + sizeof v, x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3)));
+    throw UsageError("the positions do not fit " + name + "'s vertex types: vertex " +
+                     std::to_string(k / 3) + "'s " + "xyz"[k % 3] + " is " +
+                     std::string(v, end.ptr) + ", " + why);
+  };
+  double largest = 0.0;
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const double v = x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
+    const ply::Type t = slots[k].type;
+    const int size = ply::size_of(t);
+    if (ply::is_integer(t)) {
+      const bool is_signed = ply::is_signed(t);
+      const double lo = is_signed ? -std::ldexp(1.0, 8 * size - 1) : 0.0;
+      const double hi = std::ldexp(1.0, 8 * size - (is_signed ? 1 : 0)) - 1.0;
+      const double r = std::nearbyint(v);
+      if (r < lo || r > hi) {
+        std::ostringstream range;
+        range << std::fixed << std::setprecision(0) << "and the file stores it as an integer from "
+              << lo << " to " << hi;
+        refuse(k, range.str());
+      }
+    } else if (size == 4) {
+      if (std::isinf(static_cast<float>(v)))
+        refuse(k, "beyond the largest 32-bit float (3.40282347e+38) that the file stores it as");
+      if (std::abs(v) > largest) largest = std::abs(v), at = k;
+    }
+  }
+  if (largest > 0.0 && largest < static_cast<double>(std::numeric_limits<float>::min()))
+    refuse(at,
+           "the largest float32 coordinate, below the smallest normal 32-bit float "
+           "(1.17549435e-38): stored as the file's floats, the positions would be zero or keep a "
+           "few bits");
+}
 
 bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
@@ -280,6 +331,7 @@ std::string PlyDocument::text(const Positions& x) const {
     throw std::invalid_argument("PlyDocument::text: " + std::to_string(x.rows()) +
                                 " positions for " + std::to_string(vertex_count_) + " vertices");
   if (!x.allFinite()) throw std::invalid_argument("PlyDocument::text: a position is not finite");
+  require_representable(name_, slots_, x);
   // Every value to write with its place: the positions, then the normals that have one.
   std::vector<std::pair<const Slot*, double>> values;
   values.reserve(slots_.size() + normal_slots_.size());

@@ -7,9 +7,6 @@
 #include <array>
 #include <cctype>
 #include <filesystem>
-#include <iomanip>
-#include <map>
-#include <sstream>
 
 #include "core/plural.hpp"
 #include "mesh/file_extras.hpp"
@@ -18,6 +15,7 @@
 #include "mesh/obj_material_paths.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/soup_writer.hpp"
+#include "mesh/stl_positions.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -62,26 +60,14 @@ std::vector<Polygon> file_triangles(const Mesh& mesh, const std::vector<Polygon>
   return triangles;
 }
 
-/// An STL stores each facet's corners as coordinates, and its readers (CGAL's, ours) merge equal
-/// ones into one vertex: two vertices at the same stored position (repair splits a pinched vertex
-/// into two such; floats can make two close ones equal) would come back as one, a mesh other than
-/// the one written, and `check` would refuse it.
-/// @throws UsageError naming both vertices and the position
-void require_distinct_stl_positions(const std::string& output, const std::vector<Point3>& points, bool floats) {
-  std::map<std::array<double, 3>, std::size_t> seen;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    std::array<double, 3> key{points[i].x(), points[i].y(), points[i].z()};
-    if (floats)
-      for (double& c : key) c = static_cast<float>(c);
-    const auto [at, fresh] = seen.emplace(key, i);
-    if (fresh) continue;
-    std::ostringstream where;
-    where << std::setprecision(9) << '(' << key[0] << ", " << key[1] << ", " << key[2] << ')';
-    throw UsageError("cannot write '" + output + "': an STL keeps no vertex identity, and vertices " +
-                     std::to_string(at->second) + " and " + std::to_string(i) + " would both be stored at " +
-                     where.str() + (floats ? " (as 32-bit floats)" : "") +
-                     ": read back, they would be one vertex, and the mesh another; write .off, .obj or .ply");
-  }
+/// Two vertices at the same stored position (repair splits a pinched vertex into two such;
+/// floats can make two close ones equal) would come back as one (stl_positions.hpp).
+void require_distinct_stl_points(const std::string& output, const std::vector<Point3>& points,
+                                 bool floats) {
+  std::vector<std::array<double, 3>> p(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    p[i] = {points[i].x(), points[i].y(), points[i].z()};
+  require_distinct_stl_positions("cannot write '" + output + "'", p, {}, floats);
 }
 
 /// A .gltf copied into another folder names its buffers and images by paths relative to its own:
@@ -195,7 +181,7 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
     if (out_ext == "stl") {
       std::vector<Point3> points;
       for (Eigen::Index i = 0; i < x.rows(); ++i) points.emplace_back(x(i, 0), x(i, 1), x(i, 2));
-      require_distinct_stl_positions(output, points, o.binary);
+      require_distinct_stl_points(output, points, o.binary);
     }
     write_mesh_atomic(output, mesh, x, o.binary);
     return o;
@@ -220,7 +206,7 @@ RepairOutput write_repair_output(const std::string& input, const std::string& ou
       write_gltf_output(output, points, polygons, o.binary, o);
       return o;
     }
-    require_distinct_stl_positions(output, points, o.binary);
+    require_distinct_stl_points(output, points, o.binary);
   }
   write_polygon_soup_atomic(output, points, polygons, o.binary);
   return o;

@@ -33,6 +33,7 @@
 #include "mesh/file_safety.hpp"
 #include "mesh/soup_geometry.hpp"
 #include "mesh/soup_writer.hpp"
+#include "mesh/stl_positions.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -138,14 +139,11 @@ void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::stri
   }, binary);
 }
 
-void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary) {
-  const std::string ext = lower_extension(path);
-  if (has_welded_seams(mesh)) {
-    // The input's vertices and faces, each copy at its vertex's position: a mesh of its own.
-    const Mesh out = input_mesh_for_output(mesh, x);
-    write_mesh_atomic(path, out, positions_from_mesh(out), binary);
-    return;
-  }
+namespace {
+
+/// write_mesh_atomic once the STL's positions are checked; `mesh` not welded.
+void write_plain_mesh(const std::string& path, const std::string& ext, const Mesh& mesh,
+                      const Positions& x, bool binary) {
   check_positions(mesh, x, "write_mesh_atomic");
   // A NaN or an infinity would be written as "nan" or "inf": a file that no reader, ours
   // included, takes back.
@@ -170,6 +168,25 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
     else ok = CGAL::IO::write_STL(out, mesh, np);  // binary when the stream's mode says so
     if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
   }, binary && (ext == "stl"));
+}
+
+}  // namespace
+
+void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary) {
+  const std::string ext = lower_extension(path);
+  // Checked on the mesh as given, before a welded mesh's copies are made: copies of one vertex
+  // may share a position (read back, they are that vertex), two vertices may not.
+  if (ext == "stl") {
+    if (!has_welded_seams(mesh)) check_positions(mesh, x, "write_mesh_atomic");
+    require_distinct_stl_positions("cannot write '" + path + "'", mesh, x, binary);
+  }
+  if (has_welded_seams(mesh)) {
+    // The input's vertices and faces, each copy at its vertex's position: a mesh of its own.
+    const Mesh out = input_mesh_for_output(mesh, x);
+    write_plain_mesh(path, ext, out, positions_from_mesh(out), binary);
+    return;
+  }
+  write_plain_mesh(path, ext, mesh, x, binary);
 }
 
 void write_polygon_soup_atomic(const std::string& path, const std::vector<Point3>& points,

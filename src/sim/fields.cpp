@@ -68,8 +68,8 @@ Eigen::Vector3i field_colour(double t) {
   return Eigen::Vector3i(255, w, w);
 }
 
-void write_fields_ply(const std::string& path, const Simulator& sim, const Positions& x,
-                      const VertexFields& fields, FieldColour colour) {
+FieldsPly fields_ply(const Simulator& sim, const Positions& x, const VertexFields& fields,
+                     FieldColour colour) {
   const Eigen::VectorXd& c = colour == FieldColour::MeanCurvature       ? fields.mean_curvature
                              : colour == FieldColour::GaussianCurvature ? fields.gaussian_curvature
                              : colour == FieldColour::Pressure          ? fields.pressure
@@ -101,7 +101,16 @@ void write_fields_ply(const std::string& path, const Simulator& sim, const Posit
   std::ostringstream comment;
   comment << std::setprecision(17) << "shellcontract fields; colour = field mapped from its 2nd to 98th percentile ["
           << lo << ", " << hi << "] onto blue-white-red";
-  write_ply_atomic(path, out, comment.str());
+  return FieldsPly{std::move(out), comment.str()};
+}
+
+void write_fields_ply(const std::string& path, const FieldsPly& ply) {
+  write_ply_atomic(path, ply.mesh, ply.comment);
+}
+
+void write_fields_ply(const std::string& path, const Simulator& sim, const Positions& x,
+                      const VertexFields& fields, FieldColour colour) {
+  write_fields_ply(path, fields_ply(sim, x, fields, colour));
 }
 
 double field_percentile(std::vector<double> v, double q) {

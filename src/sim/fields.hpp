@@ -34,10 +34,23 @@ Eigen::Vector3i field_colour(double t);
 /// 2nd and 98th percentiles that the field colours span.
 double field_percentile(std::vector<double> values, double q);
 
-/// Writes the mesh at positions x (input units) as ASCII PLY with per-vertex colour (from
-/// `colour`) and the float properties mean_curvature, gaussian_curvature, pressure and
-/// energy_density (normalized units), atomically (temporary file + rename). A mesh welded along
-/// its seams is written with its input's vertices, each copy with its vertex's values.
+/// A fields PLY ready to be written: the mesh at positions x (input units) with per-vertex colour
+/// (from `colour`) and the float properties mean_curvature, gaussian_curvature, pressure and
+/// energy_density (normalized units), and its header comment. A mesh welded along its seams has
+/// its input's vertices, each copy with its vertex's values. Kept apart from the writing so that
+/// a run can hold its start fields until it has finished (an interrupted run writes no fields).
+struct FieldsPly {
+  Mesh mesh;
+  std::string comment;
+};
+FieldsPly fields_ply(const Simulator& sim, const Positions& x, const VertexFields& fields,
+                     FieldColour colour);
+
+/// Writes `ply` as ASCII PLY, atomically (temporary file + rename).
+/// @throws UsageError if the file cannot be written
+void write_fields_ply(const std::string& path, const FieldsPly& ply);
+
+/// fields_ply, then write_fields_ply.
 /// @throws UsageError if the file cannot be written
 void write_fields_ply(const std::string& path, const Simulator& sim, const Positions& x,
                       const VertexFields& fields, FieldColour colour);

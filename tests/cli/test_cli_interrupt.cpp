@@ -71,6 +71,27 @@ int finish(pid_t pid, int fd) {
   return status;
 }
 
+/// The rest of the pipe (the run's stderr) and the run's status.
+int finish_reading(pid_t pid, int fd, std::string& text) {
+  char buf[512];
+  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;)
+    text.append(buf, static_cast<std::size_t>(n));
+  ::close(fd);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return status;
+}
+
+/// Waits (at most 60 s) until `dir` holds a file: the run is past its preparation, in its frames.
+bool await_file_in(const fs::path& dir) {
+  for (int i = 0; i < 6000; ++i) {
+    std::error_code ec;
+    if (fs::exists(dir, ec) && !fs::is_empty(dir, ec)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  return false;
+}
+
 std::vector<std::string> temporaries(const fs::path& dir) {
   std::vector<std::string> found;
   std::error_code ec;
@@ -171,6 +192,68 @@ TEST_F(CliInterrupt, InterruptedRunLeavesCompleteFramesAndTheRerunSaysWhy) {
   fs::remove_all(out("frames"));
   const auto rerun = test::run_cli(again);
   EXPECT_EQ(rerun.exit_code, 0) << rerun.output;
+}
+
+// docs/cli.md, exit code 130: an interrupted run writes no result, log, glTF or fields, and says
+// at which frame it stopped and what it left (with -q too: it is why the run ended). Before, the
+// start fields were written as the run began and stayed; with --checkpoint the end fields were
+// written at the interrupted frame; and without --checkpoint the run ended without a word.
+TEST_F(CliInterrupt, InterruptedRunWritesNoFieldsAndSaysWhatItLeft) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    fs::remove_all(out("frames"));
+    std::vector<std::string> args = exporting_run();
+    for (const char* a : {"--fields", "--log"}) args.push_back(a);
+    args.insert(args.end() - 1, out("fl"));
+    args.push_back(out("r.csv"));
+    int fd = -1;
+    const pid_t pid = spawn(args, 0, fd);
+    ASSERT_GT(pid, 0);
+    ASSERT_TRUE(await_file_in(out("frames")));
+    ::kill(pid, sig);
+    std::string text;
+    const int status = finish_reading(pid, fd, text);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+    for (const char* name : {"fl_start.ply", "fl_end.ply", "r.off", "r.glb", "r.csv"})
+      EXPECT_FALSE(fs::exists(out(name)))
+          << name << " written by an interrupted run (signal " << sig << ")";
+    EXPECT_NE(text.find("shellcontract run: interrupted at frame "), std::string::npos) << text;
+    EXPECT_NE(text.find("; nothing was written but the "), std::string::npos) << text;
+    EXPECT_NE(text.find(" in " + out("frames") + " (remove"), std::string::npos) << text;
+  }
+}
+
+TEST_F(CliInterrupt, InterruptedCheckpointedRunWritesNoFields) {
+  std::vector<std::string> args = exporting_run();
+  for (const char* a : {"--fields", "--checkpoint"}) args.push_back(a);
+  args.insert(args.end() - 1, out("fl"));
+  args.push_back(out("r.ck"));
+  int fd = -1;
+  const pid_t pid = spawn(args, 0, fd);
+  ASSERT_GT(pid, 0);
+  ASSERT_TRUE(await_file_in(out("frames")));
+  ::kill(pid, SIGTERM);
+  std::string text;
+  const int status = finish_reading(pid, fd, text);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+  EXPECT_TRUE(fs::exists(out("r.ck")));
+  EXPECT_FALSE(fs::exists(out("fl_start.ply")));
+  EXPECT_FALSE(fs::exists(out("fl_end.ply")))
+      << "the interrupted frame's fields, which --resume cannot replace";
+  EXPECT_NE(text.find("; the state is saved in " + out("r.ck")), std::string::npos) << text;
+}
+
+// A run that is not interrupted still writes both fields files.
+TEST_F(CliInterrupt, FinishedRunWritesBothFieldsFiles) {
+  const auto r = test::run_cli({"run", std::string(test::MESH_DIR) + "/ico2.off", "-o",
+                                out("r.off"), "-n", "3", "-q", "--fields", out("fl")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out("fl_start.ply")));
+  EXPECT_TRUE(fs::exists(out("fl_end.ply")));
+  EXPECT_NE(test::run_command("head -c 1000 " + test::quoted(out("fl_start.ply")))
+                .output.find("mean_curvature"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -1,0 +1,47 @@
+// What `run` says when SIGINT or SIGTERM stopped it (exit 130): the frame it stopped at, what
+// was saved (--checkpoint) and what is left (the finished --export-dir frames); nothing else is
+// written (docs/cli.md). Printed with -q too: -q silences the progress, not why a run ended.
+#pragma once
+
+#include <iostream>
+#include <string>
+
+#include "core/plural.hpp"
+#include "export_observer.hpp"
+#include "run_checkpoint.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/run.hpp"
+
+namespace shellcontract::cli {
+
+/// The message of an interrupted run, one line on stderr; returns the exit code (130).
+inline int report_interrupted(const RunResult& r, const CliCheckpointer& checkpointer,
+                              const std::string& output, const ExportRequest& exports,
+                              const ExportStats& frames) {
+  std::cerr << "shellcontract run: interrupted at frame " << r.frames_run;
+  if (!checkpointer.path().empty() && checkpointer.saved_frame() == r.frames_run)
+    std::cerr << "; the state is saved in " << checkpointer.path()
+              << " (continue with: shellcontract run --resume " << checkpointer.path() << " -o "
+              << output << " ...)";
+  else if (!checkpointer.path().empty())
+    std::cerr << "; the checkpoint could not be written";
+  // The frames stay (each complete) and a rerun into the same folder is refused until they are
+  // removed: the user must learn where they are.
+  const auto n = static_cast<std::size_t>(frames.frames_written);
+  const std::string left =
+      exports.dir.empty() || n == 0
+          ? std::string()
+          : counted(n, "finished frame", "finished frames") + " in " + exports.dir;
+  if (checkpointer.path().empty())
+    std::cerr << "; nothing was written"
+              << (left.empty() ? ""
+                               : " but the " + left + " (remove " + one_or_many(n, "it", "them") +
+                                     " to rerun)");
+  else if (!left.empty())
+    std::cerr << "; the " << left << ' ' << one_or_many(n, "stays", "stay") << " (remove "
+              << one_or_many(n, "it", "them") << " to rerun)";
+  std::cerr << '\n';
+  return static_cast<int>(ExitCode::Cancelled);
+}
+
+}  // namespace shellcontract::cli
