@@ -67,7 +67,7 @@ TEST(Simulator, DihedralModelAtZeroPressureStaysAtRest) {
 
 TEST(Simulator, IsometricModelAtZeroPressureDriftsTowardFlat) {
   // The paper's flat-rest bending is not at rest on a curved shell (math-spec 8.2, 12.3): with
-  // no pressure the sphere still changes. docs/design/defaults.md "Rest drift" quotes the measured size.
+  // no pressure the sphere still changes. lab/pages/defaults.md "Rest drift" has the measured size.
   SimOptions opt;
   opt.bending = BendingModel::Isometric;
   opt.pressure = 0.0;
