@@ -1,9 +1,15 @@
-// --delta auto (sim/contact_distance.hpp).
+// --delta auto and the bound on a given delta (sim/contact_distance.hpp).
 #include "sim/contact_distance.hpp"
 
 #include <algorithm>
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
+
+#include "collision/rest_gap.hpp"
+#include "collision/topology.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
+#include "sim/rest_state.hpp"
 
 namespace shellcontract {
 
@@ -17,11 +23,65 @@ double mean_edge_length(const Mesh& mesh) {
   return count > 0 ? sum / static_cast<double>(count) : 0.0;
 }
 
-double auto_contact_distance(const Mesh& mesh, double cap) {
-  const double share = AUTO_DELTA_PER_MEAN_EDGE * mean_edge_length(mesh);
+namespace {
+
+double edge_based_choice(double mean_edge, double cap) {
+  const double share = AUTO_DELTA_PER_MEAN_EDGE * mean_edge;
   // A mesh without edges, or with edges of length 0 only, gives a share of 0: the cap keeps the
   // contact distance positive (the collision step needs delta > 0).
   return share > 0.0 ? std::min(cap, share) : cap;
+}
+
+std::string held_pairs_warning(const std::string& what, const RestGapSurvey& s, double delta) {
+  return "`delta` " + what + ": " + std::to_string(s.near_pairs()) + " pairs of primitives (" +
+         std::to_string(s.near_vertex_face) + " vertex-face, " + std::to_string(s.near_edge_edge) +
+         " edge-edge) are closer than the contact distance " + shortest_text(delta) +
+         " at rest (smallest gap " + shortest_text(s.smallest) +
+         ", normalized units) without touching: the collision step holds their " +
+         std::to_string(s.near_vertices) +
+         " vertices at their rest positions for the whole run (not merely kept from crossing)";
+}
+
+}  // namespace
+
+double auto_contact_distance(const Mesh& mesh, double cap) {
+  return edge_based_choice(mean_edge_length(mesh), cap);
+}
+
+ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions& options) {
+  ContactDistanceChoice out;
+  const double mean_edge = mean_edge_length(mesh);
+  const double by_edge = edge_based_choice(mean_edge, options.collision.delta);
+  // The default is never refused: a mesh fine enough for it to exceed the share ran with it
+  // before the bound existed, and its pairs held at rest, if any, are named below.
+  const double bound = std::max(MAX_DELTA_PER_MEAN_EDGE * mean_edge, CollisionOptions{}.delta);
+  if (!options.auto_delta && options.collision.delta > bound)
+    throw UsageError(
+        "`delta` " + shortest_text(options.collision.delta) + " is above this mesh's bound " +
+        shortest_text(bound) + " (1/" + shortest_text(1.0 / MAX_DELTA_PER_MEAN_EDGE) +
+        " of its mean edge, normalized units, or the default if larger): pairs that "
+        "are not neighbours would be in contact at rest and pushed into each "
+        "other, and the shell would swell; --delta auto would choose " +
+        shortest_text(by_edge) + " (or less where parts are closer than that at rest)");
+  out.delta = options.auto_delta ? by_edge : options.collision.delta;
+  const CollisionTopology topo =
+      make_collision_topology(faces_array(mesh), static_cast<int>(mesh.number_of_vertices()));
+  const Positions rest = positions_from_mesh(mesh);
+  RestGapSurvey survey = survey_rest_gaps(topo, rest, out.delta, options.collision.method);
+  if (survey.near_pairs() == 0) return out;
+  if (!options.auto_delta) {
+    out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta) +
+                           "; --delta auto or a delta below the smallest gap lets them move");
+    return out;
+  }
+  const double floor = AUTO_DELTA_FLOOR_SHARE * by_edge;
+  out.delta = std::max(floor, AUTO_DELTA_PER_REST_GAP * survey.smallest);
+  if (out.delta > floor) return out;
+  survey = survey_rest_gaps(topo, rest, out.delta, options.collision.method);
+  if (survey.near_pairs() > 0)
+    out.warnings.push_back(held_pairs_warning("auto", survey, out.delta) +
+                           " (auto goes no lower: a smaller gap is a near-degenerate input)");
+  return out;
 }
 
 }  // namespace shellcontract

@@ -1,8 +1,13 @@
 // The contact distance of --delta auto: the paper's delta, or a fixed share of the mesh's mean
-// edge length where that is smaller (lab/pages/pair-growth.md).
+// edge length where that is smaller (lab/pages/pair-growth.md), or half the rest state's smallest
+// gap where that is smaller still; and the bound on a given delta.
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include "shellcontract/mesh.hpp"
+#include "shellcontract/simulation_options.hpp"
 
 namespace shellcontract {
 
@@ -13,6 +18,42 @@ namespace shellcontract {
 /// candidate pairs per face grow with the resolution, while a delta kept at the same share of the
 /// mean edge keeps them near the coarse mesh's count (lab/pages/pair-growth.md).
 inline constexpr double AUTO_DELTA_PER_MEAN_EDGE = 1.0 / 80.0;
+
+/// A given delta over the mean edge length above which the run is refused. A pair of primitives
+/// that are not neighbours (a vertex and a face across its one-ring's edges, two edges across a
+/// triangle) lies about a triangle's height apart at rest, less on a mesh with uneven edges, and
+/// a pair that comes within delta is pushed apart to 2 delta. Once 2 delta nears that spacing,
+/// pairs are in contact at rest (held there: choose_contact_distance) and each push drives its
+/// pair into their other neighbours, which are pushed in turn: the shell swells instead of
+/// contracting while the fail-safe reverts most vertices every step. An eighth of the mean edge
+/// keeps 2 delta a quarter of it; --delta auto (at most 1/80) is never refused, nor is the
+/// default (CollisionOptions::delta) on a mesh fine enough for it to exceed the share.
+inline constexpr double MAX_DELTA_PER_MEAN_EDGE = 1.0 / 8.0;
+
+/// --delta auto's delta over the smallest rest gap (collision/rest_gap.hpp) where that gap is
+/// below the edge-based choice: half the gap leaves every pair that does not touch at rest out of
+/// contact there, so none is held at its rest distance.
+inline constexpr double AUTO_DELTA_PER_REST_GAP = 0.5;
+
+/// The share of the edge-based choice below which --delta auto does not go for a small rest gap:
+/// a gap that much smaller is a near-degenerate input (a fold, a sliver), and a contact distance
+/// at such a scale would let the rest of the mesh pass through itself within rounding.
+inline constexpr double AUTO_DELTA_FLOOR_SHARE = 1e-3;
+
+/// The contact distance of a run and what the user should know about it.
+struct ContactDistanceChoice {
+  double delta = 0.0;
+  std::vector<std::string> warnings;
+};
+
+/// The contact distance for `mesh` (normalized units) with `options` (resolved): with auto_delta,
+/// auto_contact_distance, lowered to AUTO_DELTA_PER_REST_GAP of the smallest rest gap if that is
+/// smaller (not below AUTO_DELTA_FLOOR_SHARE of the edge-based choice); otherwise
+/// options.collision.delta. Warns when pairs that do not touch at rest are closer than the
+/// chosen delta there (the collision step holds them at their rest distance, hence in place).
+/// @throws UsageError if a given delta is above MAX_DELTA_PER_MEAN_EDGE of the mean edge and above
+///         the default
+ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions& options);
 
 /// Mean length of the mesh's edges (each edge once), in the mesh's units; 0 for a mesh without
 /// edges.

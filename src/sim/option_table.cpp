@@ -128,7 +128,8 @@ OptionSpec region_at_option() {
 }
 
 /// --delta: a number, or auto (the paper's delta, or 1/80 of the mean edge length where that is
-/// smaller: sim/contact_distance.hpp).
+/// smaller, or half the smallest rest gap: sim/contact_distance.hpp, which also refuses a number
+/// the mesh does not allow; the range here is the mesh-independent one).
 OptionSpec delta_option() {
   using R = RunOptions;
   Interval range = between(0.0, 0.1, true, false);
@@ -137,7 +138,8 @@ OptionSpec delta_option() {
       "delta", 0, "DELTA|auto",
       "contact distance (normalized units); closer primitives are pushed apart to 2 delta; auto: "
       "the default, or 1/80 of the mean edge length where smaller (fewer collision pairs per "
-      "face on meshes finer than the paper's)",
+      "face on meshes finer than the paper's), and below the smallest gap at rest; a number "
+      "above 1/8 of the mean edge (and the default) is refused",
       range, [](R& r) -> double& { return r.sim.collision.delta; });
   const auto set_number = o.set;
   o.set = [set_number](R& r, const std::string& v) {

@@ -254,8 +254,11 @@ SimPlan plan_simulation(Mesh mesh, SimOptions options) {
     const auto r = x.row(v.idx());
     mesh.point(v) = Point3(r(0), r(1), r(2));
   }
-  if (options.collisions && options.auto_delta)
-    options.collision.delta = auto_contact_distance(mesh, options.collision.delta);
+  if (options.collisions) {
+    ContactDistanceChoice delta = choose_contact_distance(mesh, options);
+    options.collision.delta = delta.delta;
+    plan.warnings = std::move(delta.warnings);
+  }
   plan.mesh = std::move(mesh);
   plan.options = std::move(options);
   return plan;
@@ -320,6 +323,8 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
   }
   for (std::string& w : ineffective_options(o)) plan.warnings.push_back(std::move(w));
   plan.sim = plan_simulation(std::move(marked), o.sim);  // one copy of a large mesh fewer
+  for (std::string& w : plan.sim.warnings) plan.warnings.push_back(std::move(w));
+  plan.sim.warnings.clear();
   return plan;
 }
 

@@ -23,6 +23,9 @@ struct SimPlan {
   Mesh mesh;
   Normalization normalization;  ///< from the input's units to mesh's
   SimOptions options;           ///< resolved and checked; collision.delta is the one used
+  /// What the user should know about the contact distance (choose_contact_distance); plan_run
+  /// moves them to RunPlan::warnings.
+  std::vector<std::string> warnings;
 };
 
 /// Everything a run needs besides an observer: the simulation's plan and what the run reports
@@ -44,8 +47,11 @@ struct RunPlan {
 RunPlan plan_run(const Mesh& mesh, const RunOptions& options);
 
 /// The plan of a Simulator alone: `options` resolved and checked (resolve_sim_options), `mesh`
-/// normalized, delta auto resolved. The regions are the "f:region" map `mesh` carries, if any.
-/// @throws UsageError for invalid options, InputError for an unusable mesh
+/// normalized, the contact distance chosen (choose_contact_distance: delta auto resolved, a
+/// given delta checked against the mesh, warnings for pairs held at rest). The regions are the
+/// "f:region" map `mesh` carries, if any.
+/// @throws UsageError for invalid options (a delta above the mesh's bound included), InputError
+///         for an unusable mesh
 SimPlan plan_simulation(Mesh mesh, SimOptions options);
 
 /// Stores the regions a run would use in the mesh's "f:region" map: auto-selected by curvature

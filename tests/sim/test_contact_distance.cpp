@@ -1,7 +1,8 @@
 // --delta auto (sim/contact_distance.hpp): the paper's delta, or 1/80 of the mean edge length where
-// that is smaller. Checked against a regular tetrahedron's edge (closed form) and, through the
-// Simulator and run_contraction, against the mean edge of an icosphere computed here from its
-// arrays, not with CGAL.
+// that is smaller, or half the smallest rest gap where that is smaller still; the bound on a given
+// delta and the warning for pairs held at rest. Checked against a regular tetrahedron's edge
+// (closed form) and, through the Simulator and run_contraction, against the mean edge of an
+// icosphere computed here from its arrays, not with CGAL.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,8 +10,10 @@
 #include <set>
 #include <utility>
 
+#include "shellcontract/error.hpp"
 #include "shellcontract/run.hpp"
 #include "sim/contact_distance.hpp"
+#include "sim/run_plan.hpp"
 #include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
@@ -66,8 +69,10 @@ TEST(ContactDistance, TheSimulatorResolvesAutoOnTheNormalizedMesh) {
   o.collision.delta = 0.05;
   o.auto_delta = true;
   EXPECT_NEAR(Simulator(to_surface_mesh(sphere), o).options().collision.delta, share, 1e-15);
+  // A given delta is used as given (below an eighth of the mean edge: ADeltaAboveAnEighth...).
   o.auto_delta = false;
-  EXPECT_EQ(Simulator(to_surface_mesh(sphere), o).options().collision.delta, 0.05);
+  o.collision.delta = 5.0 * share;
+  EXPECT_EQ(Simulator(to_surface_mesh(sphere), o).options().collision.delta, 5.0 * share);
   o.auto_delta = true;
   o.collision.delta = 1e-4;
   EXPECT_EQ(Simulator(to_surface_mesh(sphere), o).options().collision.delta, 1e-4);
@@ -87,6 +92,79 @@ TEST(ContactDistance, TheRunReportsTheDeltaItUsed) {
               normalized_mean_edge(sphere) / 80.0, 1e-15);
   r.sim.collisions = false;
   EXPECT_EQ(run_contraction(to_surface_mesh(sphere), r).contact_distance, 0.0);
+}
+
+/// The unit cube with z scaled by `thickness`: its top and bottom faces `thickness` apart.
+test::TriMesh thin_box(double thickness) {
+  test::TriMesh m;
+  m.x.resize(8, 3);
+  m.x << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
+  m.x.col(2) *= thickness;
+  m.faces.resize(12, 3);
+  m.faces << 0, 3, 2, 0, 2, 1, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7,
+      6, 3, 0, 4, 3, 4, 7;
+  return m;
+}
+
+TEST(ContactDistance, ADeltaAboveAnEighthOfTheMeanEdgeIsRefused) {
+  // Before, a given delta was taken whatever the mesh: eight.off at --delta 0.1 swelled to 9.6
+  // times its volume under a compressing pressure. Here ico2 with 0.05, above an eighth of its
+  // mean edge; auto is never refused.
+  const test::TriMesh sphere = test::icosphere(2, 3.0);
+  const double bound = normalized_mean_edge(sphere) * MAX_DELTA_PER_MEAN_EDGE;
+  SimOptions o;
+  o.collision.delta = 0.05;
+  ASSERT_GT(o.collision.delta, bound);
+  try {
+    Simulator(to_surface_mesh(sphere), o);
+    ADD_FAILURE() << "0.05 was taken";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("above this mesh's bound"), std::string::npos) << e.what();
+  }
+  o.collision.delta = 0.99 * bound;
+  EXPECT_EQ(Simulator(to_surface_mesh(sphere), o).options().collision.delta, 0.99 * bound);
+  o.collision.delta = 0.05;
+  o.auto_delta = true;
+  EXPECT_LT(Simulator(to_surface_mesh(sphere), o).options().collision.delta, bound);
+  o.collisions = false;  // no contact distance: nothing to refuse
+  o.auto_delta = false;
+  EXPECT_NO_THROW(Simulator(to_surface_mesh(sphere), o));
+}
+
+TEST(ContactDistance, AutoGoesBelowTheSmallestRestGap) {
+  // A box 1e-4 thick (7.1e-5 of the diagonal): top and bottom were closer than the default delta
+  // at rest, and the collision step held all eight vertices there for the whole run. Auto takes
+  // half the gap; a given delta is kept, with a warning that names the pairs held.
+  const test::TriMesh box = thin_box(1e-4);
+  const double gap = 1e-4 / std::sqrt(2.0 + 1e-8);
+  SimOptions o;
+  o.auto_delta = true;
+  SimPlan plan = plan_simulation(to_surface_mesh(box), o);
+  EXPECT_NEAR(plan.options.collision.delta, 0.5 * gap, 1e-6 * gap);  // normalization rounds
+  EXPECT_TRUE(plan.warnings.empty());
+  o.auto_delta = false;
+  plan = plan_simulation(to_surface_mesh(box), o);
+  EXPECT_EQ(plan.options.collision.delta, 1e-4);
+  ASSERT_EQ(plan.warnings.size(), 1u);
+  EXPECT_NE(plan.warnings[0].find("holds their 8 vertices at their rest positions"),
+            std::string::npos)
+      << plan.warnings[0];
+  // The cube itself has no gap below the default: nothing changes, nothing to say.
+  o.auto_delta = true;
+  plan = plan_simulation(to_surface_mesh(thin_box(1.0)), o);
+  EXPECT_EQ(plan.options.collision.delta, 1e-4);
+  EXPECT_TRUE(plan.warnings.empty());
+}
+
+TEST(ContactDistance, AutoStopsAtItsFloorAndSaysSo) {
+  // A gap a million times below the default is a near-degenerate input: auto stops at
+  // AUTO_DELTA_FLOOR_SHARE of the default and warns that the pairs closer than that are held.
+  SimOptions o;
+  o.auto_delta = true;
+  const SimPlan plan = plan_simulation(to_surface_mesh(thin_box(1e-10)), o);
+  EXPECT_EQ(plan.options.collision.delta, AUTO_DELTA_FLOOR_SHARE * 1e-4);
+  ASSERT_EQ(plan.warnings.size(), 1u);
+  EXPECT_NE(plan.warnings[0].find("auto goes no lower"), std::string::npos) << plan.warnings[0];
 }
 
 }  // namespace

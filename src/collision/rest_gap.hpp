@@ -1,0 +1,32 @@
+// The rest state's gaps between primitives that are not neighbours: what a contact distance can be
+// without putting pairs in contact at rest (docs/design/self-collision.md, "Rest state").
+#pragma once
+
+#include <cstddef>
+#include <limits>
+
+#include "collision/topology.hpp"
+#include "shellcontract/simulation_options.hpp"
+#include "shellcontract/types.hpp"
+
+namespace shellcontract {
+
+/// The VF and EE pairs of a rest state that lie within a reach of each other without touching.
+struct RestGapSurvey {
+  /// Smallest distance between the primitives of a pair that does not touch at rest (the
+  /// collision step's NEAR or NORMAL pairs), among the pairs within `reach`; +infinity if none.
+  double smallest = std::numeric_limits<double>::infinity();
+  std::size_t near_vertex_face = 0;  ///< pairs closer than `reach` at rest, not touching
+  std::size_t near_edge_edge = 0;
+  std::size_t near_vertices = 0;  ///< distinct vertices of those pairs
+  std::size_t near_pairs() const { return near_vertex_face + near_edge_edge; }
+};
+
+/// Surveys the pairs of `rest` within `reach` (> 0) as the collision step classifies them
+/// (SelfCollision: touching pairs are excluded, pairs closer than delta are NEAR): with
+/// reach == delta, near_pairs() is the number of pairs the step holds at their rest distance.
+/// A contact distance below `smallest` leaves no pair near at rest.
+RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& rest, double reach,
+                               BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD);
+
+}  // namespace shellcontract
