@@ -7,6 +7,7 @@
 
 #include "collision/rest_gap.hpp"
 #include "collision/topology.hpp"
+#include "core/plural.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
 #include "sim/rest_state.hpp"
@@ -33,13 +34,14 @@ double edge_based_choice(double mean_edge, double cap) {
 }
 
 std::string held_pairs_warning(const std::string& what, const RestGapSurvey& s, double delta) {
-  return "`delta` " + what + ": " + std::to_string(s.near_pairs()) + " pairs of primitives (" +
+  const std::size_t pairs = s.near_pairs();
+  return "`delta` " + what + ": " + counted(pairs, "pair", "pairs") + " of primitives (" +
          std::to_string(s.near_vertex_face) + " vertex-face, " + std::to_string(s.near_edge_edge) +
-         " edge-edge) are closer than the contact distance " + shortest_text(delta) +
-         " at rest (smallest gap " + shortest_text(s.smallest) +
+         " edge-edge) " + one_or_many(pairs, "is", "are") + " closer than the contact distance " +
+         shortest_text(delta) + " at rest (smallest gap " + shortest_text(s.smallest) +
          ", normalized units) without touching: the collision step holds their " +
-         std::to_string(s.near_vertices) +
-         " vertices at their rest positions for the whole run (not merely kept from crossing)";
+         counted(s.near_vertices, "vertex", "vertices") +
+         " at their rest positions for the whole run (not merely kept from crossing)";
 }
 
 }  // namespace
