@@ -280,14 +280,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   mesh.extras = tinygltf::Value(extras);
   model.meshes.push_back(mesh);
 
-  tinygltf::Node node;
-  node.name = a.name;
-  node.mesh = 0;
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
+  gltf::add_single_node_scene(model, a.name);
 
   if (!prim.targets.empty()) {
     // One keyframe per frame: frame 0 has every weight at 0, frame k has target k - 1 at 1.

@@ -1,6 +1,7 @@
-// The .glb's one buffer as it is filled: views and accessors on arrays appended to it. Shared by
-// the writer of the animation (gltf_animation.cpp) and of its primitives' materials
-// (gltf_primitives.cpp).
+// The .glb's one buffer as it is filled: views and accessors on arrays appended to it, and the
+// one node and scene that draw its mesh. Shared by the writer of the animation
+// (gltf_animation.cpp), of its primitives' materials (gltf_primitives.cpp) and of repair's bare
+// glTF (src/mesh/gltf_mesh_writer.cpp).
 #pragma once
 
 #include <tiny_gltf.h>
@@ -9,6 +10,7 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "shellcontract/types.hpp"
@@ -116,5 +118,17 @@ class BufferBuilder {
   }
   tinygltf::Model& model_;
 };
+
+/// The model's one scene (its default) of one node, named `name`, that draws mesh 0.
+inline void add_single_node_scene(tinygltf::Model& model, const std::string& name) {
+  tinygltf::Node node;
+  node.name = name;
+  node.mesh = 0;
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+}
 
 }  // namespace shellcontract::gltf

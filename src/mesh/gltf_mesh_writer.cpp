@@ -88,13 +88,7 @@ void write_gltf_mesh_atomic(const std::string& path, const std::vector<Point3>& 
   tinygltf::Mesh mesh;
   mesh.primitives.push_back(prim);
   model.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.mesh = 0;
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
+  gltf::add_single_node_scene(model, "");
   model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
 
   write_file_atomic(path, [&](std::ostream& out) {

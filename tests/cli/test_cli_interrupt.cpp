@@ -119,6 +119,21 @@ class CliInterrupt : public ::testing::Test {
     return {"run", std::string(test::MESH_DIR) + "/ico2.off", "-o", out("r.off"), "-n", "20000",
             "--export-dir", out("frames"), "--export-every", "1", "--gltf", out("r.glb"), "-q"};
   }
+  /// Runs `args`, sends `sig` once its first frame is in `frames`, and reads its stderr into
+  /// `text`: the waitpid status, or -1 when it did not start (a failure is recorded then, and
+  /// when no frame came within 60 s).
+  int interrupted_in_its_frames(const std::vector<std::string>& args, int sig,
+                                std::string& text) const {
+    int fd = -1;
+    const pid_t pid = spawn(args, 0, fd);
+    if (pid <= 0) {
+      ADD_FAILURE() << "the run did not start";
+      return -1;
+    }
+    if (!await_file_in(out("frames"))) ADD_FAILURE() << "no frame within 60 s";
+    ::kill(pid, sig);
+    return finish_reading(pid, fd, text);
+  }
   fs::path dir_;
 };
 
@@ -205,13 +220,8 @@ TEST_F(CliInterrupt, InterruptedRunWritesNoFieldsAndSaysWhatItLeft) {
     for (const char* a : {"--fields", "--log"}) args.push_back(a);
     args.insert(args.end() - 1, out("fl"));
     args.push_back(out("r.csv"));
-    int fd = -1;
-    const pid_t pid = spawn(args, 0, fd);
-    ASSERT_GT(pid, 0);
-    ASSERT_TRUE(await_file_in(out("frames")));
-    ::kill(pid, sig);
     std::string text;
-    const int status = finish_reading(pid, fd, text);
+    const int status = interrupted_in_its_frames(args, sig, text);
     ASSERT_TRUE(WIFEXITED(status));
     EXPECT_EQ(WEXITSTATUS(status), 130) << text;
     for (const char* name : {"fl_start.ply", "fl_end.ply", "r.off", "r.glb", "r.csv"})
@@ -228,13 +238,8 @@ TEST_F(CliInterrupt, InterruptedCheckpointedRunWritesNoFields) {
   for (const char* a : {"--fields", "--checkpoint"}) args.push_back(a);
   args.insert(args.end() - 1, out("fl"));
   args.push_back(out("r.ck"));
-  int fd = -1;
-  const pid_t pid = spawn(args, 0, fd);
-  ASSERT_GT(pid, 0);
-  ASSERT_TRUE(await_file_in(out("frames")));
-  ::kill(pid, SIGTERM);
   std::string text;
-  const int status = finish_reading(pid, fd, text);
+  const int status = interrupted_in_its_frames(args, SIGTERM, text);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 130) << text;
   EXPECT_TRUE(fs::exists(out("r.ck")));

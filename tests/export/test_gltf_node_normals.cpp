@@ -27,20 +27,7 @@ namespace {
 /// bottom cap's corners 10-13 and the top cap's 14-17, each cap with its own flat normal.
 test::GltfPrimitive band_and_caps() {
   test::GltfPrimitive p;
-  const float around[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
-  for (int k = 0; k < 5; ++k)
-    for (const float z : {-1.0f, 1.0f}) {
-      const float dx = around[k][0], dy = around[k][1];
-      p.positions.push_back({dx, dy, z});
-      p.normals.push_back({dx / std::sqrt(2.0f), dy / std::sqrt(2.0f), 0.0f});
-      p.texcoords.push_back({static_cast<float>(k) / 4.0f, z < 0 ? 1.0f : 0.0f});
-    }
-  for (std::uint32_t k = 0; k < 4; ++k) {  // bottom, bottom next, top next, top
-    const std::uint32_t b0 = 2 * k, t0 = b0 + 1, b1 = b0 + 2, t1 = b0 + 3;
-    for (const std::uint32_t i : {b0, b1, t1, b0, t1, t0}) p.indices.push_back(i);
-  }
-  // A seam copy's normal a float rounding off (an exporter that normalized it again).
-  p.normals[8][0] = std::nextafter(p.normals[8][0], 0.0f);
+  test::add_smooth_band_with_seam(p);
   for (const float z : {-1.0f, 1.0f}) {
     const auto first = static_cast<std::uint32_t>(p.positions.size());
     const float corners[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};

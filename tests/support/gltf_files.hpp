@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -198,6 +199,26 @@ inline GltfPrimitive octahedron_primitive(bool split_seam, bool texcoords) {
     p.indices[21] = 6;  // face 7 (0 3 5)
   }
   return p;
+}
+
+/// The four sides of the box [-1, 1]^3 as one smooth band, appended to `p`: corners 0-9 (bottom,
+/// top, around the box; 8 and 9 repeat 0 and 1 with u = 1, a UV seam), each corner's normal the
+/// horizontal diagonal through it, 8 triangles. Corner 8's normal is a float rounding off (an
+/// exporter that normalized it again): seam copies must still be taken as one.
+inline void add_smooth_band_with_seam(GltfPrimitive& p) {
+  const float around[5][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}, {-1, -1}};
+  for (int k = 0; k < 5; ++k)
+    for (const float z : {-1.0f, 1.0f}) {
+      const float dx = around[k][0], dy = around[k][1];
+      p.positions.push_back({dx, dy, z});
+      p.normals.push_back({dx / std::sqrt(2.0f), dy / std::sqrt(2.0f), 0.0f});
+      p.texcoords.push_back({static_cast<float>(k) / 4.0f, z < 0 ? 1.0f : 0.0f});
+    }
+  for (std::uint32_t k = 0; k < 4; ++k) {  // bottom, bottom next, top next, top
+    const std::uint32_t b0 = 2 * k, t0 = b0 + 1, b1 = b0 + 2, t1 = b0 + 3;
+    for (const std::uint32_t i : {b0, b1, t1, b0, t1, t0}) p.indices.push_back(i);
+  }
+  p.normals[8][0] = std::nextafter(p.normals[8][0], 0.0f);
 }
 
 }  // namespace shellcontract::test
