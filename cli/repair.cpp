@@ -155,8 +155,14 @@ int command_repair(int argc, char** argv) {
       for (std::size_t i = 0; i < written.dropped.size(); ++i) std::cerr << (i ? "; " : "") << written.dropped[i];
       std::cerr << '\n';
     }
-    std::cerr << "wrote " << output << ": " << r.input_report.vertices << " vertices, " << r.input_report.faces
-              << " faces, usable"
+    // A copy holds the file's vertices, seam copies included; the report counts the welded mesh.
+    const std::size_t written_vertices =
+        r.input_report.vertices + (written.kind == RepairOutput::Kind::Copy ? r.input_report.welded_vertices : 0);
+    std::cerr << "wrote " << output << ": " << written_vertices << " vertices"
+              << (written_vertices != r.input_report.vertices
+                      ? " (" + std::to_string(r.input_report.vertices) + " once its seam copies are welded)"
+                      : std::string())
+              << ", " << r.input_report.faces << " faces, usable"
               << (written.kind != RepairOutput::Kind::Copy ? ""
                   : written.material_paths_rewritten
                       ? " (the input's bytes, but the mtllib paths rewritten to name the same files from its folder)"

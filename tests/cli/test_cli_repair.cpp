@@ -11,6 +11,7 @@
 #include <string>
 
 #include "support/cli_runner.hpp"
+#include "support/seam_split.hpp"
 #include "support/textured_obj.hpp"
 #include "test_paths.hpp"
 
@@ -177,6 +178,20 @@ TEST_F(CliRepair, AUsableTexturedObjIsCopiedByteForByte) {
   EXPECT_NE(r.output.find("nothing changed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("(the input's bytes, unchanged)"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("dropped"), std::string::npos) << r.output;
+}
+
+TEST_F(CliRepair, ACopiedSeamSplitMeshCountsTheVerticesItWrote) {
+  // The copy holds the file's vertices, seam copies included; the count had been the welded mesh's.
+  const shellcontract::test::SeamSplitMesh m = shellcontract::test::seam_split_sphere();
+  ASSERT_GT(static_cast<std::size_t>(m.x.rows()), m.closed_vertices);
+  const std::string in = write("split.ply", m.ply());
+  const RunResult r = run_cli({"repair", in, "-o", out("copy.ply")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(slurp(out("copy.ply")), m.ply());
+  const std::string expected = "wrote " + out("copy.ply") + ": " + std::to_string(m.x.rows()) + " vertices (" +
+                               std::to_string(m.closed_vertices) + " once its seam copies are welded), " +
+                               std::to_string(m.tris.size()) + " faces, usable";
+  EXPECT_NE(r.output.find(expected), std::string::npos) << r.output;
 }
 
 TEST_F(CliRepair, AUsableBinaryStlStaysTheSameBinaryStl) {
