@@ -85,8 +85,9 @@ def contract(vertices, faces, *, callback=None, **options):
     run cleanly and raises KeyboardInterrupt.
     Raises ValueError for a mesh the library refuses or a bad option value (MeshError, a
     ValueError with the faces' indices as ``faces``, where particular faces are to blame),
-    TypeError for an unknown option. The options are the CLI's with '_' for '-'; ``lambda``,
-    a Python keyword, is also ``lambda_``.
+    TypeError for an unknown option. The options are the CLI's with '_' for '-' (the CLI's
+    spelling is taken too, as regions() takes it; one option given both ways is a TypeError);
+    ``lambda``, a Python keyword, is also ``lambda_``.
 
     ``regions`` (None, the default, is "not given") takes, told apart by type:
 

@@ -58,6 +58,16 @@ def _check_value(path, where, name, value):
     if isinstance(value, (dict,)) or value is None:
         _fail(path, "{}: option {!r} has a value {!r}; expected a number, a string, a bool or a "
                     "list of numbers".format(where, name, value))
+    # contract() takes region_weights as an array too; a job is a command line, which takes the
+    # file. A list had passed the check and run as the file name "0.5,0.5,...".
+    if name in PATH_OPTIONS and not isinstance(value, str):
+        _fail(path, "{}: option {!r} has the value {}; in a sweep it is a file name (relative to "
+                    "the sweep file)".format(where, name, _short(value)))
+
+
+def _short(value):
+    text = json.dumps(value)
+    return text if len(text) <= 60 else text[:57] + "..."
 
 
 class _DuplicateKey(Exception):
@@ -72,6 +82,22 @@ def _unique_keys(pairs):
         if key in out:
             raise _DuplicateKey(key)
         out[key] = value
+    return out
+
+
+def _python_names(path, where, table):
+    """The table with its option names spelt as Python spells them: an option written as the
+    CLI writes it ("target-volume") is the same option, and keyed so everywhere after (the
+    paths, the job id, the run's arguments); it had been checked under one name and left off
+    the run's command line under the other. Given both ways it is refused."""
+    known = {row[0] for row in _core.option_table()}
+    out = {}
+    for name, value in table.items():
+        python = name.replace("-", "_")
+        python = python if python in known else name
+        if python in out:
+            _fail(path, "{}: option {!r} is given twice (as '-' and as '_')".format(where, python))
+        out[python] = value
     return out
 
 
@@ -103,9 +129,11 @@ def load(path):
     options = data.get("options", {})
     if not isinstance(options, dict):
         _fail(path, "'options' must be an object: option name -> value")
+    options = _python_names(path, "options", options)
     grid = data.get("grid", {})
     if not isinstance(grid, dict):
         _fail(path, "'grid' must be an object: option name -> list of values")
+    grid = _python_names(path, "grid", grid)
     for name, values in grid.items():
         if not isinstance(values, list) or not values:
             _fail(path, "grid option {!r}: expected a non-empty list of values".format(name))
@@ -119,6 +147,7 @@ def load(path):
     runs = data.get("runs", [{}])
     if not isinstance(runs, list) or not runs or not all(isinstance(r, dict) for r in runs):
         _fail(path, "'runs' must be a non-empty list of objects (option name -> value)")
+    runs = [_python_names(path, "runs[{}]".format(i), r) for i, r in enumerate(runs)]
     for i, run in enumerate(runs):
         for name in run:
             if name in grid:

@@ -185,8 +185,25 @@ bool takes_sequence(const OptionSpec& spec) {
   return spec.value_name.find("KEYS") != std::string::npos || spec.value_name.find(',') != std::string::npos;
 }
 
+/// The options by their Python names: an option is also taken as the CLI spells it ("k-b" for
+/// k_b, as regions() takes them), once. Given both ways, the later spelling had silently won, and
+/// resolve_options left a dashed name out of the sweep's command line while recording its value.
+/// Unknown names are kept as given, for options_from_kwargs's message.
+py::dict canonical_kwargs(const py::kwargs& kwargs) {
+  py::dict out;
+  for (const auto& [key, value] : kwargs) {
+    const std::string given = key.cast<std::string>();
+    const OptionSpec* spec = find_run_option(given);
+    const std::string name = spec ? python_option_name(spec->name) : given;
+    if (out.contains(name))
+      throw py::type_error("contract() got the option '" + name + "' twice (as '-' and as '_')");
+    out[py::str(name)] = value;
+  }
+  return out;
+}
+
 /// also_valid: the caller's own arguments, listed after the table's in the unknown-option error.
-RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also_valid = "") {
+RunOptions options_from_kwargs(const py::dict& kwargs, const std::string& also_valid = "") {
   RunOptions options;
   for (const auto& [key, value] : kwargs) {
     const std::string name = key.cast<std::string>();
@@ -194,6 +211,9 @@ RunOptions options_from_kwargs(const py::kwargs& kwargs, const std::string& also
     if (find_run_option(name) && find_run_option(name)->name == "region-weights" && !is_path(value)) {
       options.vertex_weights = py::cast<std::vector<double>>(
           py::module_::import("numpy").attr("asarray")(value, "float64").attr("ravel")().attr("tolist")());
+      // No weights would read as no option at all: the run went on without regions, silently.
+      if (options.vertex_weights.empty())
+        throw py::value_error(name + ": no weights; one weight in [0, 1] per vertex");
       options.given.insert("region_weights");
       continue;
     }
@@ -400,7 +420,7 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
     throw py::type_error("callback must be callable(frame, vertices, metrics) or None");
   py::kwargs kwargs;
   const CheckpointArguments checkpoint = take_checkpoint_arguments(all_kwargs, kwargs);
-  RunOptions options = options_from_kwargs(kwargs, ", checkpoint, checkpoint_every, resume");
+  RunOptions options = options_from_kwargs(canonical_kwargs(kwargs), ", checkpoint, checkpoint_every, resume");
   const PreparedCheckpoint prepared = prepare_checkpoint(checkpoint, options);  // before the mesh
   InputReport report;
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
@@ -439,7 +459,12 @@ void stop_runs_at_exit() {
   runs_changed.wait_for(lock, EXIT_WAIT, [] { return active_runs == 0; });
 }
 
-py::dict resolve_options(const py::kwargs& kwargs) {
+py::dict resolve_options(const py::kwargs& given) {
+  const py::dict kwargs = canonical_kwargs(given);
+  // The arguments are a command line, whose --region-weights is a file: weights given as an
+  // array would be written as the file name "0.5,0.5,...".
+  if (kwargs.contains("region_weights") && !is_path(kwargs["region_weights"]))
+    throw py::type_error("region_weights: a command line takes the weights' file name, not the weights");
   RunOptions options;
   try {
     options = options_from_kwargs(kwargs);

@@ -131,6 +131,16 @@ def test_unknown_option_raises_and_lists_valid_ones(ico2):
         assert name in str(raised.value).split("valid options: ")[1].split(", ")
 
 
+def test_an_option_spelt_both_ways_is_refused(ico2):
+    # An option is also taken as the CLI spells it, once: given both ways, the later spelling
+    # had won silently (k-b=0.02, k_b=0.03 ran with 0.03; the other order with 0.02).
+    vertices, faces = ico2
+    with pytest.raises(TypeError, match="got the option 'k_b' twice"):
+        shellcontract.contract(vertices, faces, frames=1, **{"k-b": 0.02, "k_b": 0.03})
+    dashed = shellcontract.contract(vertices, faces, frames=2, **{"k-b": 0.02})
+    assert dashed.vertices.tolist() == shellcontract.contract(vertices, faces, frames=2, k_b=0.02).vertices.tolist()
+
+
 def test_bad_option_value_raises_value_error(ico2):
     vertices, faces = ico2
     with pytest.raises(ValueError, match="frames"):

@@ -1,4 +1,5 @@
 """frames(), check(), regions(), read_mesh() and write_mesh(), each against the CLI's answer."""
+import os
 import pathlib
 import re
 import subprocess
@@ -166,6 +167,17 @@ def test_a_file_without_extension_is_said_to_have_none(tmp_path):
     with pytest.raises(ValueError, match="unknown extension: '.xyz'"):
         (tmp_path / "m.xyz").write_text("x")
         shellcontract.read_mesh(pathlib.Path(tmp_path / "m.xyz"))
+
+
+def test_write_mesh_names_what_is_wrong_with_the_name(tmp_path, ico2):
+    """Before: "unknown extension '.'" for a name without one and for a folder."""
+    v, f = ico2
+    with pytest.raises(ValueError, match="the file name has no extension") as e:
+        shellcontract.write_mesh(tmp_path / "noext", v, f)
+    assert "'.'" not in str(e.value)
+    with pytest.raises(ValueError, match="it is a folder"):
+        shellcontract.write_mesh(tmp_path, v, f)
+    assert os.listdir(tmp_path) == []
 
 
 def off_arrays(path):

@@ -191,3 +191,11 @@ def test_an_empty_file_name_is_refused_as_the_cli_refuses_it(bumpy):
     for name in ("checkpoint", "resume"):
         with pytest.raises(ValueError, match="{} must not be empty".format(name)):
             shellcontract.contract(v, f, frames=2, **{name: ""})
+
+
+@pytest.mark.parametrize("empty", [[], np.zeros(0)])
+def test_empty_region_weights_are_refused(bumpy, empty):
+    # Before: no weights read as no option: the run went on without regions, silently.
+    v, f = bumpy
+    with pytest.raises(ValueError, match="region_weights: no weights"):
+        shellcontract.contract(v, f, frames=2, region_weights=empty)

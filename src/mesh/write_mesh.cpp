@@ -142,6 +142,17 @@ void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::stri
 namespace {
 
 /// write_mesh_atomic once the STL's positions are checked; `mesh` not welded.
+/// The writers' formats, named by the path's extension; the message says what is wrong with
+/// the name (none, a folder's, another format's) rather than "unknown extension '.'".
+void require_plain_mesh_extension(const std::string& path, const std::string& ext) {
+  if (ext == "off" || ext == "obj" || ext == "ply" || ext == "stl") return;
+  std::error_code ec;
+  const std::string what = std::filesystem::is_directory(path, ec) ? "it is a folder"
+                           : ext.empty()                         ? "the file name has no extension"
+                                                                 : "unknown extension '." + ext + "'";
+  throw UsageError("cannot write '" + path + "': " + what + " (expected .off, .obj, .ply or .stl)");
+}
+
 void write_plain_mesh(const std::string& path, const std::string& ext, const Mesh& mesh,
                       const Positions& x, bool binary) {
   check_positions(mesh, x, "write_mesh_atomic");
@@ -151,8 +162,7 @@ void write_plain_mesh(const std::string& path, const std::string& ext, const Mes
     if (!x.row(i).allFinite())
       throw std::invalid_argument("write_mesh_atomic: vertex " + std::to_string(i) +
                                   " has a coordinate that is not finite; nothing written to '" + path + "'");
-  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
-    throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
+  require_plain_mesh_extension(path, ext);
   if (ext == "ply") {
     // CGAL 5.5's Surface_mesh PLY writer takes the mesh's own points (no vertex_point_map).
     write_ply_atomic(path, mesh_for_output(mesh, x), "", binary);
@@ -192,8 +202,7 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
 void write_polygon_soup_atomic(const std::string& path, const std::vector<Point3>& points,
                                const std::vector<std::vector<std::size_t>>& polygons, bool binary) {
   const std::string ext = lower_extension(path);
-  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl")
-    throw UsageError("cannot write '" + path + "': unknown extension '." + ext + "' (expected .off, .obj, .ply or .stl)");
+  require_plain_mesh_extension(path, ext);
   for (const auto& p : polygons) {
     if (ext == "stl" && p.size() != 3)
       throw std::invalid_argument("write_polygon_soup_atomic: an STL file holds triangles only");

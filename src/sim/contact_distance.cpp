@@ -63,7 +63,7 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
         shortest_text(bound) + " (1/" + shortest_text(1.0 / MAX_DELTA_PER_MEAN_EDGE) +
         " of its mean edge, normalized units, or the default if larger): pairs that "
         "are not neighbours would be in contact at rest and pushed into each "
-        "other, and the shell would swell; --delta auto would choose " +
+        "other, and the shell would swell; `delta` auto would choose " +
         shortest_text(by_edge) + " (or less where parts are closer than that at rest)");
   out.delta = options.auto_delta ? by_edge : options.collision.delta;
   const CollisionTopology topo =
@@ -73,7 +73,7 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
   if (survey.near_pairs() == 0) return out;
   if (!options.auto_delta) {
     out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta) +
-                           "; --delta auto or a delta below the smallest gap lets them move");
+                           "; `delta` auto or a delta below the smallest gap lets them move");
     return out;
   }
   const double floor = AUTO_DELTA_FLOOR_SHARE * by_edge;
