@@ -82,12 +82,15 @@ def unkeyed_target_volume(value):
 
 def schedule_keys(keys, start, field):
     """(simulation frame, value) of the keyframes (timeline frame, value) of a setting,
-    simulation frame = timeline frame - the scene's start frame, values as float32 shows them.
+    simulation frame = timeline frame - the scene's start frame (a key between frames on the
+    nearest, a half frame on the later), values as float32 shows them.
     A key before the start, or two keys on one frame, is an AddonError in timeline frames."""
     out = []
     previous = None
     for frame, value in sorted(keys):
-        sim_frame = int(round(frame - start))
+        # The nearest frame, a half frame to the later one: Python's round() goes to the even
+        # one, so keys at 10.5 and 11.5 fell on one frame while 11.5 and 12.5 did not.
+        sim_frame = int(math.floor(frame - start + 0.5))
         if sim_frame < 0:
             raise AddonError("{}: the key at frame {} comes before the scene's start frame {}, "
                              "where the run starts; move it to frame {} or later".format(

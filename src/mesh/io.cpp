@@ -238,7 +238,10 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     report->warnings = std::move(warnings);
     report->welded_vertices = weld ? weld->copies() : 0;
     report->notes.clear();
-    if (weld) report->notes.push_back(soup::weld_note(*weld));
+    if (weld) {
+      const std::string ext = lower_extension(path);
+      report->notes.push_back(soup::weld_note(*weld, ext == "glb" || ext == "gltf"));
+    }
   }
   return mesh;
 }

@@ -147,12 +147,17 @@ SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon
   return weld;
 }
 
-std::string weld_note(const SeamWeld& weld) {
+std::string weld_note(const SeamWeld& weld, bool per_primitive) {
+  // A glTF's vertices are read per primitive (gltf_reader.cpp): two primitives drawing one
+  // element of a shared POSITION accessor count it twice, and a glTF result writes the accessor
+  // back, so the count is not a file's and no output's count is claimed.
   return counted(weld.copies(), "seam vertex was", "seam vertices were") + " welded: the input's " +
-         std::to_string(weld.welded_of.size()) + " vertices include copies at the same position " +
-         "(as a UV seam splits them), simulated as one closed mesh of " +
-         std::to_string(weld.points.size()) + " vertices; every output keeps the input's " +
-         std::to_string(weld.welded_of.size()) + " vertices, each copy at its vertex's position";
+         std::to_string(weld.welded_of.size()) + " vertices" +
+         (per_primitive ? " (counted per glTF primitive)" : "") +
+         " include copies at the same position (as a UV seam splits them), simulated as one "
+         "closed mesh of " +
+         std::to_string(weld.points.size()) +
+         " vertices; every output keeps the input's vertices, each copy at its vertex's position";
 }
 
 void store_input_corners(Mesh& mesh, const SeamWeld& weld, const std::vector<Polygon>& input_tris) {

@@ -56,7 +56,7 @@ SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon
                     const InputError& refusal);
 
 /// The note read_input_mesh and mesh_from_arrays report for a welded input (InputReport::notes).
-std::string weld_note(const SeamWeld& weld);
+std::string weld_note(const SeamWeld& weld, bool per_primitive = false);
 
 /// The mesh's f:input_corners map: per face, its corners as the input numbered them, in the
 /// order vertices_around_face lists the face's corners from its halfedge.
