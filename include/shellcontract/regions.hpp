@@ -230,7 +230,8 @@ std::array<unsigned char, 3> region_colour(int id);
 /// faces, as mesh_for_output gives them: each copy at its welded vertex's position and with its
 /// curvature; faces (and so the region ids) in the mesh's face order.
 /// @param x #V by 3 positions, row i = vertex i; or (a welded mesh) one row per input vertex.
-/// @throws UsageError when x does not match the mesh or the file cannot be written.
+/// @throws UsageError when x does not match the mesh or the file cannot be written;
+///         std::invalid_argument (nothing written) for a position that is not finite.
 void write_region_ply(const std::string& path, const Mesh& mesh, const Positions& x);
 
 }  // namespace shellcontract

@@ -101,6 +101,29 @@ def _python_names(path, where, table):
     return out
 
 
+def _require_text(path, data):
+    """Every string of the file is text: JSON's escapes can spell a lone surrogate ("\\ud800"),
+    which no file name or option value is, and which had reached the library as an internal
+    cast error. Walked without recursion (the file's depth is JSON's)."""
+    stack = [data]
+    while stack:
+        item = stack.pop()
+        strings = []
+        if isinstance(item, dict):
+            strings = list(item)
+            stack.extend(item.values())
+        elif isinstance(item, list):
+            stack.extend(item)
+        elif isinstance(item, str):
+            strings = [item]
+        for text in strings:
+            try:
+                text.encode("utf-8")
+            except UnicodeEncodeError:
+                _fail(path, "the string {} is not text (a lone surrogate escape)".format(
+                    ascii(text)[:60]))
+
+
 def load(path):
     """Reads and checks the sweep file's structure; returns its dict."""
     try:
@@ -115,6 +138,10 @@ def load(path):
                          "the two values; give it once)".format(path, e.args[0]))
     except (UnicodeDecodeError, ValueError) as e:
         raise SweepError("{}: not valid JSON ({})".format(path, e))
+    except RecursionError:
+        raise SweepError("{}: the JSON nests too deeply (a sweep file is a few levels deep)".format(
+            path))
+    _require_text(path, data)
     if not isinstance(data, dict):
         _fail(path, "expected a JSON object with 'meshes' and optionally 'options', 'grid', "
                     "'runs'")

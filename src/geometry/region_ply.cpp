@@ -90,6 +90,13 @@ void write_region_ply(const std::string& path, const Mesh& mesh, const Positions
   if (rows != mesh.number_of_vertices() && !(welded && rows == input_vertex_count(mesh)))
     throw UsageError("write_region_ply: " + std::to_string(x.rows()) + " positions for " +
                      std::to_string(mesh.number_of_vertices()) + " vertices");
+  // As write_mesh_atomic refuses them: "nan" in a PLY is a file no reader, ours included, takes
+  // back.
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (!x.row(i).allFinite())
+      throw std::invalid_argument("write_region_ply: vertex " + std::to_string(i) +
+                                  " has a coordinate that is not finite; nothing written to '" +
+                                  path + "'");
   // mesh_for_output's refusal, in its words (vertices and faces are numbered by their indices).
   if (mesh.has_garbage())
     throw std::invalid_argument("mesh_for_output: the mesh has removed elements; call collect_garbage() first");

@@ -134,21 +134,29 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
     const std::size_t start = text.find_first_not_of(" \t");
     if (start == std::string::npos || text[start] == '#') continue;
     std::vector<int> region;
+    double strength = 1.0;
+    // The region's strength: what comes before the line's ':' ("0.5: 12 13", "0.5:12 13",
+    // " 0.5 : 12"), blanks around it allowed; the whole of it must be a number (strtod's end).
+    const std::size_t colon = text.find(':');
+    if (colon != std::string::npos) {
+      // text[start] is not a blank, so the search back from the ':' stops at start at the latest.
+      const std::string number =
+          colon == start ? ""
+                         : text.substr(start, text.find_last_not_of(" \t", colon - 1) + 1 - start);
+      if (number.empty())
+        throw InputError(line_error(printable(path), line, "a ':' with no strength before it"));
+      char* end = nullptr;
+      strength = std::strtod(number.c_str(), &end);
+      if (end != number.c_str() + number.size() || !std::isfinite(strength) || strength < 0.0 ||
+          strength > 1.0)
+        throw InputError(
+            line_error(printable(path), line,
+                       "strength '" + printable(number, 40) + "' is not a number in [0, 1]"));
+      text.erase(0, colon + 1);
+    }
     std::istringstream tokens(text);
     std::string token;
-    double strength = 1.0;
-    bool first = true;
     while (tokens >> token) {
-      if (std::exchange(first, false) && token.size() > 1 && token.back() == ':') {
-        // The region's strength: the whole token but its ':' must be a number (strtod's end).
-        const std::string number = token.substr(0, token.size() - 1);
-        char* end = nullptr;
-        strength = std::strtod(number.c_str(), &end);
-        if (end != number.c_str() + number.size() || !std::isfinite(strength) || strength < 0.0 || strength > 1.0)
-          throw InputError(line_error(printable(path), line, "strength '" + printable(number, 40) +
-                                                                 "' is not a number in [0, 1]"));
-        continue;
-      }
       // Digits only: "-1", "3.5", "1e3", "0x10" and "12abc" are all refused rather than
       // half-parsed by stol. The token is quoted printable (a NUL would cut the message).
       if (!std::all_of(token.begin(), token.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; }))

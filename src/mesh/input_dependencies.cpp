@@ -103,9 +103,14 @@ void gltf_dependencies(const std::string& path, const std::string& bytes,
   for (std::size_t i = 0; i < model->images.size(); ++i) {
     const std::string& uri = model->images[i].uri;
     if (uri.empty() || uri.rfind("data:", 0) == 0) continue;
-    out.push_back(
-        {(folder / percent_decoded(uri)).string(),
-         "an image that " + quoted_path(path) + " names (images[" + std::to_string(i) + "].uri)"});
+    const std::string what =
+        "an image that " + quoted_path(path) + " names (images[" + std::to_string(i) + "].uri)";
+    out.push_back({(folder / percent_decoded(uri)).string(), what});
+    // A URI's path ends at its query or fragment (RFC 3986): a web viewer loads "tex.png" for
+    // "tex.png?v=1" or "tex.png#x", so that file is the image too (it had been left unguarded).
+    const std::size_t end = uri.find_first_of("?#");
+    if (end != std::string::npos && end > 0)
+      out.push_back({(folder / percent_decoded(uri.substr(0, end))).string(), what});
   }
 }
 

@@ -184,6 +184,19 @@ TEST_F(CliInputDependencies, AnOutputOverAGltfImageIsRefused) {
                  "my skin.png", png, {"g.bin", "g.gltf", "my skin.png"});
 }
 
+TEST_F(CliInputDependencies, AnImageUriWithAQueryOrFragmentGuardsItsFile) {
+  // A viewer loads tex.png for "tex.png?v=1" and "tex.png#x"; --log tex.png had replaced it.
+  for (const std::string uri : {"tex.png?v=1", "tex.png#x"}) {
+    write_gltf("g.gltf", "g.bin", "\"images\":[{\"uri\":\"" + uri + "\"}]");
+    write("tex.png", "\x89PNG\r\n\x1a\ntex");
+    const std::string png = read("tex.png");
+    const auto r =
+        run_here({"run", "g.gltf", "-o", "out.off", "-n", "3", "-q", "--log", "tex.png"});
+    expect_refused(r, {"--log 'tex.png'", "an image that 'g.gltf' names (images[0].uri)"},
+                   "tex.png", png, {"g.bin", "g.gltf", "tex.png"});
+  }
+}
+
 TEST_F(CliInputDependencies, AnOutputOverAGlbExternalBufferIsRefused) {
   test::GltfScene s;
   s.primitives.push_back(test::octahedron_primitive(false, false));

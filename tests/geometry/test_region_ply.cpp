@@ -89,5 +89,27 @@ TEST(RegionPly, SameBytesAsCgalsWriterWithAndWithoutCurvature) {
   }
 }
 
+TEST(RegionPly, APositionThatIsNotFiniteIsRefusedAndNothingIsWritten) {
+  // Before: "nan 0 0" was written, a file that `check` then refuses.
+  const test::TriMesh m = test::icosphere(1);
+  Mesh mesh = test::to_surface_mesh(m);
+  store_regions(mesh, std::vector<int>(mesh.number_of_faces(), -1));
+  for (const double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    Positions x = m.x;
+    x(3, 1) = bad;
+    const std::string path = temp_path("not_finite.ply");
+    fs::remove(path);
+    try {
+      write_region_ply(path, mesh, x);
+      ADD_FAILURE() << "written with " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("vertex 3 has a coordinate that is not finite"),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_FALSE(fs::exists(path));
+  }
+}
+
 }  // namespace
 }  // namespace shellcontract

@@ -341,6 +341,15 @@ TEST(RegionFile, ALineMayStartWithItsStrength) {
   EXPECT_EQ(file.regions[3], (std::vector<int>{6}));
   EXPECT_EQ(file.strength, (std::vector<double>{0.25, 1.0, 1.0, 0.0}));
   EXPECT_EQ(read_region_file(path, 8), file.regions);
+  // The ':' need not stand apart (the docs name no blank): "0.5:12 13" had been refused as
+  // "'0.5:12' is not a face index", " 0.5 : 3" as "'0.5' is not a face index".
+  write_file(path, "0.5:4 2\n 0.75 : 3\n\t1:5\n");
+  const RegionFile joined = read_region_file_with_strengths(path, 8);
+  ASSERT_EQ(joined.regions.size(), 3u);
+  EXPECT_EQ(joined.regions[0], (std::vector<int>{4, 2}));
+  EXPECT_EQ(joined.regions[1], (std::vector<int>{3}));
+  EXPECT_EQ(joined.regions[2], (std::vector<int>{5}));
+  EXPECT_EQ(joined.strength, (std::vector<double>{0.5, 0.75, 1.0}));
 }
 
 TEST(RegionFile, BadStrengthsNameTheLine) {
@@ -350,7 +359,11 @@ TEST(RegionFile, BadStrengthsNameTheLine) {
   expect_bad_file("strength_nan.txt", "nan: 3\n", 10, "1", "strength 'nan' is not a number in [0, 1]");
   expect_bad_file("strength_trailing.txt", "0.5x: 3\n", 10, "1", "strength '0.5x' is not a number in [0, 1]");
   expect_bad_file("strength_alone.txt", "0 1\n0.5:\n", 10, "2", "a strength with no face after it");
-  expect_bad_file("strength_second.txt", "3 0.5: 4\n", 10, "1", "'0.5:' is not a face index");
+  expect_bad_file("strength_second.txt", "3 0.5: 4\n", 10, "1",
+                  "strength '3 0.5' is not a number in [0, 1]");
+  expect_bad_file("strength_empty.txt", "0 1\n  : 3\n", 10, "2",
+                  "a ':' with no strength before it");
+  expect_bad_file("strength_twice.txt", "0.5: 0.5: 3\n", 10, "1", "'0.5:' is not a face index");
 }
 
 TEST(RegionFile, MissingFileIsAnInputError) {
