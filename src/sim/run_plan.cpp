@@ -146,11 +146,17 @@ void resolve_sim_options(SimOptions& o) {
   o.collision.speculative = o.speculative_broad_phase == SpeculativeBroadPhase::On ||
                             (o.speculative_broad_phase == SpeculativeBroadPhase::Auto &&
                              o.solver.order == ConstraintOrder::Sequential);
+  // The choice made: the summary, a checkpoint and a sweep's job id record what ran, so that
+  // "auto" and the value it chose are one run (docs/cli.md, --summary: resolved values).
+  o.speculative_broad_phase =
+      o.collision.speculative ? SpeculativeBroadPhase::On : SpeculativeBroadPhase::Off;
   check_sim_options(o);
 }
 
 void resolve_run_options(RunOptions& r) {
   r.sim.solver.order = order_for(r.order);
+  r.order = r.sim.solver.order == ConstraintOrder::Sequential ? OrderChoice::Sequential
+                                                              : OrderChoice::Coloured;
   resolve_default_run(r);
   check_table_ranges(r);
   if (r.young.has_value() != r.thickness.has_value())

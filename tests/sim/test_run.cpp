@@ -368,5 +368,42 @@ TEST(Run, OrderAutoIsColouredAtEverySizeAndSequentialOnRequest) {
   EXPECT_EQ(run_contraction(sphere(2), o).order, ConstraintOrder::Coloured);
 }
 
+TEST(Run, ResolvedOptionsRecordTheChoiceAutoMade) {
+  // The summary, a checkpoint and a sweep's job id write the options' text: "auto" had stayed
+  // "auto", so a sweep ran the default and --order coloured as two jobs of one run, and a resume
+  // with --order coloured was refused ("the checkpoint's: auto").
+  const auto text = [](const std::vector<std::pair<std::string, std::string>>& given) {
+    RunOptions o;
+    for (const auto& [name, value] : given) set_run_option(o, name, value);
+    resolve_run_options(o);
+    std::vector<std::string> all;
+    for (const OptionSpec& spec : run_option_table()) all.push_back(spec.name + "=" + spec.get(o));
+    return all;
+  };
+  const auto value = [](const std::vector<std::string>& all, const std::string& name) {
+    for (const std::string& s : all)
+      if (s.rfind(name + "=", 0) == 0) return s.substr(name.size() + 1);
+    return std::string("(none)");
+  };
+  const std::vector<std::string> defaults = text({});
+  EXPECT_EQ(value(defaults, "order"), "coloured");
+  EXPECT_EQ(value(defaults, "speculative-broad-phase"), "off");
+  EXPECT_EQ(defaults, text({{"order", "coloured"}, {"speculative-broad-phase", "off"}}));
+  EXPECT_EQ(defaults, text({{"order", "auto"}, {"speculative-broad-phase", "auto"}}));
+  const std::vector<std::string> paper = text({{"order", "sequential"}});
+  EXPECT_EQ(value(paper, "speculative-broad-phase"), "on");
+  EXPECT_EQ(paper, text({{"order", "sequential"}, {"speculative-broad-phase", "on"}}));
+  EXPECT_EQ(value(text({{"order", "sequential"}, {"speculative-broad-phase", "off"}}),
+                  "speculative-broad-phase"),
+            "off");
+  // Resolving twice changes nothing (a checkpoint's options are resolved again on resume).
+  RunOptions twice;
+  resolve_run_options(twice);
+  resolve_run_options(twice);
+  EXPECT_EQ(twice.order, OrderChoice::Coloured);
+  EXPECT_EQ(twice.sim.speculative_broad_phase, SpeculativeBroadPhase::Off);
+  EXPECT_FALSE(twice.sim.collision.speculative);
+}
+
 }  // namespace
 }  // namespace shellcontract
