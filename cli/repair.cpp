@@ -68,6 +68,7 @@ JsonObject report_json(const std::string& input, const std::string& output, cons
       .add("failure", r.failure)
       .add("input_vertices", r.input_vertices)
       .add("input_polygons", r.input_polygons)
+      .add("missing_vertex_faces_dropped", r.missing_vertex_faces_dropped)
       .add("duplicate_points_merged", r.duplicate_points_merged)
       .add("soup_polygons_removed", r.soup_polygons_removed)
       .add("points_duplicated_to_orient", r.points_duplicated_to_orient)

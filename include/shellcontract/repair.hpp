@@ -19,6 +19,11 @@ struct RepairReport {
   std::string input_problem;             ///< why read_input_mesh refused the file ("" if usable)
   std::size_t input_vertices = 0;        ///< points and polygons of the file
   std::size_t input_polygons = 0;
+  /// Faces that name a vertex the file lacks (an index out of range), dropped first; `check`
+  /// and `run` refuse such a file, repair reads it and drops them.
+  std::size_t missing_vertex_faces_dropped = 0;
+  /// The first few of them, "face 4, line 15" (the line where the format has lines)
+  std::vector<std::string> missing_vertex_faces;
   std::size_t duplicate_points_merged = 0;    ///< points at the same position as an earlier one
   std::size_t soup_polygons_removed = 0;      ///< duplicate and degenerate polygons of the soup (net)
   std::size_t points_duplicated_to_orient = 0;  ///< orient_polygon_soup's splits of non-manifold points

@@ -191,15 +191,15 @@ def test_write_mesh_refuses_an_stl_that_reads_back_as_another_mesh(tmp_path):
     assert np.array_equal(back, v)
 
 
-def test_write_like_refuses_positions_beyond_its_integer_type(tmp_path):
-    # A PLY with int16 coordinates (legal, rare) takes the nearest integer; one beyond the type
-    # was clamped to its end without a word.
+def test_write_like_writes_integer_coordinates_as_double(tmp_path):
+    # A PLY with int16 coordinates (legal, rare): positions are not integers, so x, y, z become
+    # double in the written file. Before, they were rounded to the nearest integer (a unit-size
+    # mesh flattened), and one beyond the type refused.
     src = tmp_path / "tet.ply"
     src.write_text(PLY_HEAD + "property short x\nproperty short y\nproperty short z\n" + PLY_BODY)
     v, f = shellcontract.read_mesh(src)
-    with pytest.raises(ValueError, match=r"vertex 1's x is 40000, and the file stores it as an integer "
-                                         r"from -32768 to 32767"):
-        shellcontract.write_mesh(tmp_path / "out.ply", v * 40000, f, like=src)
-    shellcontract.write_mesh(tmp_path / "out.ply", v * 30000, f, like=src)
-    back, _ = shellcontract.read_mesh(tmp_path / "out.ply")
-    assert np.array_equal(back, v * 30000)
+    for w in (v * 0.3 + 0.01, v * 40000):
+        shellcontract.write_mesh(tmp_path / "out.ply", w, f, like=src)
+        assert "property double x\nproperty double y\nproperty double z\n" in (tmp_path / "out.ply").read_text()
+        back, _ = shellcontract.read_mesh(tmp_path / "out.ply")
+        assert np.array_equal(back, w)

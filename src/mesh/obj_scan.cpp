@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <climits>
 #include <cmath>
+#include <cstdint>
 #include <string_view>
 
 #include "core/plural.hpp"
@@ -62,7 +63,7 @@ bool parse_index(std::string_view tok, long long& value) {
 
 }  // namespace
 
-ObjScan scan_obj(const std::string& path, const std::string& text_in) {
+ObjScan scan_obj(const std::string& path, const std::string& text_in, MissingVertices missing) {
   // Continued lines joined (line_tokens.hpp): a statement is one line of `text`, and names the
   // line it starts on. Only a file with a backslash needs the copy.
   std::string joined;
@@ -123,6 +124,10 @@ ObjScan scan_obj(const std::string& path, const std::string& text_in) {
         if (!parse_index(v, i))
           fail(path, "parse error", where() + ": corner '" + shorten(t[k]) + "' does not start with a vertex index");
         const long long defined = static_cast<long long>(scan.points.size());
+        if ((i == 0 || defined + i < 0) && missing == MissingVertices::Keep) {
+          face.push_back(SIZE_MAX);
+          continue;
+        }
         if (i == 0)
           fail(path, "vertex index out of range", where() + " has the vertex index 0 (OBJ counts vertices from 1)");
         if (i < 0 && defined + i < 0)
@@ -138,7 +143,7 @@ ObjScan scan_obj(const std::string& path, const std::string& text_in) {
     }
   }
   const std::size_t nv = scan.points.size();
-  for (std::size_t j = 0; j < scan.faces.size(); ++j)
+  for (std::size_t j = 0; j < scan.faces.size() && missing == MissingVertices::Refuse; ++j)
     for (const std::size_t v : scan.faces[j])
       if (v >= nv)
         fail(path, "vertex index out of range",

@@ -31,7 +31,9 @@ struct ObjScan {
 /// that ends with a backslash continues on the next (join_continued_lines, which CGAL's reader
 /// does not know); a statement's line, in SourceLines and in messages, is the one it starts on.
 /// @param path  the file's name, for messages only
+/// @param missing  MissingVertices::Keep: a face index out of range is read, not refused
 /// @throws InputError "<path>: <problem>: <vertex or face and its line>: <details>"
-ObjScan scan_obj(const std::string& path, const std::string& text);
+ObjScan scan_obj(const std::string& path, const std::string& text,
+                 MissingVertices missing = MissingVertices::Refuse);
 
 }  // namespace shellcontract

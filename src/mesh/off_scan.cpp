@@ -45,7 +45,8 @@ struct OffVariant {
 
 class OffScanner {
  public:
-  OffScanner(const std::string& path, const std::string& text) : path_(path), text_(text) {}
+  OffScanner(const std::string& path, const std::string& text, MissingVertices missing)
+      : path_(path), text_(text), missing_(missing) {}
 
   OffScan scan() {
     std::vector<std::string_view> t;
@@ -137,8 +138,8 @@ class OffScanner {
       }
       std::vector<std::size_t> face(n);
       for (std::size_t k = 1; k <= n; ++k) {
-        const std::size_t v = index(t[k], where);
-        if (v >= nv)
+        const std::size_t v = index(t[k], where, true);
+        if (v >= nv && missing_ == MissingVertices::Refuse)
           fail(path_, "vertex index out of range", where() + " refers to vertex " + std::to_string(v) + ", but the file has " + counted(nv, "vertex", "vertices") + " (0.." + std::to_string(nv - 1) + ")");
         face[k - 1] = v;
       }
@@ -195,9 +196,10 @@ class OffScanner {
   }
   /// strtoll reads the token in place (see the vertex loop); `where` names it, for messages only.
   /// Reads what strtoll would accept as the whole token (an optional sign, decimal digits, no
-  /// overflow), without its per-call locale and errno work (millions of face indices).
+  /// overflow), without its per-call locale and errno work (millions of face indices). A
+  /// negative `corner` index is SIZE_MAX under MissingVertices::Keep.
   template <class Where>
-  std::size_t index(std::string_view tok, const Where& where) {
+  std::size_t index(std::string_view tok, const Where& where, bool corner = false) {
     const char* p = tok.data();
     const char* const e = p + tok.size();
     const bool negative = p != e && *p == '-';
@@ -212,7 +214,11 @@ class OffScanner {
       v = v * 10 + d;
     }
     if (!ok) fail(path_, "parse error", where() + ": '" + shorten(tok) + "' is not an integer");
-    if (negative && v != 0) fail(path_, "vertex index out of range", where() + " has the negative index " + std::string(tok));
+    if (negative && v != 0) {
+      if (corner && missing_ == MissingVertices::Keep) return SIZE_MAX;
+      fail(path_, "vertex index out of range",
+           where() + " has the negative index " + std::string(tok));
+    }
     return static_cast<std::size_t>(v);
   }
   /// A count CGAL reads as a 32-bit int: larger ones are refused here, never misread there.
@@ -270,8 +276,8 @@ class OffScanner {
       face.reserve(static_cast<std::size_t>(n));
       for (std::int32_t k = 0; k < n; ++k) {
         const std::int32_t v = int32(where);
-        face.push_back(static_cast<std::size_t>(v));
-        if (v < 0 || v >= nv)
+        face.push_back(v < 0 ? SIZE_MAX : static_cast<std::size_t>(v));
+        if ((v < 0 || v >= nv) && missing_ == MissingVertices::Refuse)
           fail(path_, "vertex index out of range", "binary OFF: " + where + " refers to vertex " + std::to_string(v) + ", but the file has " + counted(static_cast<std::size_t>(nv), "vertex", "vertices"));
       }
       const std::int32_t colours = int32(where + "'s colour count");
@@ -285,6 +291,7 @@ class OffScanner {
 
   const std::string& path_;
   const std::string& text_;
+  const MissingVertices missing_;
   std::size_t pos_ = 0;  ///< start of the next line in text_
   std::size_t line_ = 0;
 };
@@ -307,6 +314,8 @@ bool parse_off_number(std::string_view token, double& value) {
   return end == copy.c_str() + copy.size();
 }
 
-OffScan scan_off(const std::string& path, const std::string& text) { return OffScanner(path, text).scan(); }
+OffScan scan_off(const std::string& path, const std::string& text, MissingVertices missing) {
+  return OffScanner(path, text, missing).scan();
+}
 
 }  // namespace shellcontract

@@ -19,6 +19,15 @@ struct SourceLines {
   std::vector<std::size_t> face_line;    ///< line of face i; empty if unknown
 };
 
+/// What a reader does with a face that names a vertex the file lacks (an index past the last
+/// vertex, a negative one, OBJ's 0).
+enum class MissingVertices {
+  Refuse,  ///< an InputError naming the face and its line: every reader but repair's
+  /// The face is read, with that index (SIZE_MAX for a negative one or OBJ's 0): repair reads so,
+  /// and drops such faces in its soup step (docs/design/repair.md), saying which.
+  Keep
+};
+
 /// What the scan read.
 struct OffScan {
   SourceLines lines;    ///< ascii: the line of every vertex and face
@@ -37,7 +46,9 @@ struct OffScan {
 /// CGAL 5.5's polygon-soup reader does not skip a binary face's colour count and misreads every
 /// face after the first. Counts are checked against the file's size, never reserved as declared.
 /// @param path  the file's name, for messages only
+/// @param missing  MissingVertices::Keep: a face index out of range is read, not refused
 /// @throws InputError "<path>: <problem>: <where>" for a file CGAL must not be given
-OffScan scan_off(const std::string& path, const std::string& text);
+OffScan scan_off(const std::string& path, const std::string& text,
+                 MissingVertices missing = MissingVertices::Refuse);
 
 }  // namespace shellcontract

@@ -1,6 +1,7 @@
 // A PLY file kept as a document (docs/design/attributes.md): its header and every
 // element come back byte for byte, but the vertices' x, y, z, which take the new positions in
-// their declared type and the file's format (ascii text, or binary of either byte order), and
+// their declared floating-point type (an integer type becomes double: a result's positions are
+// not integers) and the file's format (ascii text, or binary of either byte order), and
 // their nx, ny, nz if the file has them, which take the normals of the new shape. Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other
 // elements are therefore kept. The header's `comment TextureFile` lines, with the faces'
@@ -42,14 +43,19 @@ namespace {
 /// Where a vertex coordinate is in the file and how it is stored.
 struct Slot {
   std::size_t begin = 0, end = 0;  ///< ascii: the token's span; binary: [offset, offset + size)
-  ply::Type type = ply::Type::Float32;
+  ply::Type type = ply::Type::Float32;  ///< as the file stores the value
   bool set = false;
+  /// An integer-typed x, y or z: written as double (the header's type too; see the constructor).
+  bool widened = false;
 };
 
-/// Refuses positions that the file's types cannot hold, which would otherwise be written wrong
-/// without a word: a float32 coordinate beyond the float range (written as inf, a file no reader
-/// takes) or an integer one beyond its type (clamped). And a mesh whose float32 coordinates are
-/// all below the smallest normal float (1.17549435e-38): stored, they would be zero or subnormal
+/// The type a slot's new value is written in.
+ply::Type written_type(const Slot& s) { return s.widened ? ply::Type::Float64 : s.type; }
+
+/// Refuses positions that the file's float32 x, y, z cannot hold, which would otherwise be written
+/// wrong without a word: a coordinate beyond the float range (written as inf, a file no reader
+/// takes), and a mesh whose float32 coordinates are all below the smallest normal float
+/// (1.17549435e-38): stored, they would be zero or subnormal
 /// (a mesh of one point, or of a few bits of precision). A coordinate alone that is that small
 /// beside larger ones loses nothing that matters (at most the float rounding of the mesh's extent)
 /// and is written.
@@ -68,20 +74,7 @@ void require_representable(const std::string& name, const std::vector<Slot>& slo
   std::size_t at = 0;
   for (std::size_t k = 0; k < slots.size(); ++k) {
     const double v = x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
-    const ply::Type t = slots[k].type;
-    const int size = ply::size_of(t);
-    if (ply::is_integer(t)) {
-      const bool is_signed = ply::is_signed(t);
-      const double lo = is_signed ? -std::ldexp(1.0, 8 * size - 1) : 0.0;
-      const double hi = std::ldexp(1.0, 8 * size - (is_signed ? 1 : 0)) - 1.0;
-      const double r = std::nearbyint(v);
-      if (r < lo || r > hi) {
-        std::ostringstream range;
-        range << std::fixed << std::setprecision(0) << "and the file stores it as an integer from "
-              << lo << " to " << hi;
-        refuse(k, range.str());
-      }
-    } else if (size == 4) {
+    if (written_type(slots[k]) == ply::Type::Float32) {
       if (std::isinf(static_cast<float>(v)))
         refuse(k, "beyond the largest 32-bit float (3.40282347e+38) that the file stores it as");
       if (std::abs(v) > largest) largest = std::abs(v), at = k;
@@ -102,13 +95,12 @@ class PlyDocument final : public MeshDocument {
  public:
   PlyDocument(const std::string& name, std::string bytes);
   std::string format() const override { return "ply"; }
-  std::string text(const Positions& x) const override;
+  std::string text(const Positions& x) const override { return render(x, {}); }
   /// text(x) with the header's TextureFile paths rewritten for a file in another folder, as an
-  /// OBJ's mtllib lines are (ply_textures.hpp, texture_file_edits): the header is written byte
-  /// for byte, so its spans in bytes_ are those of text(x).
+  /// OBJ's mtllib lines are (ply_textures.hpp, texture_file_edits).
   std::string text_for(const std::string& output_path, const Positions& x,
                        std::vector<std::string>* warnings) const override {
-    return apply_edits(text(x), ply::texture_file_edits(bytes_, name_, output_path, warnings));
+    return render(x, ply::texture_file_edits(bytes_, name_, output_path, warnings));
   }
 
  private:
@@ -117,11 +109,17 @@ class PlyDocument final : public MeshDocument {
   }
   /// The next value of type t in the body at pos_ (and its span).
   double next_value(ply::Type t, Slot& where);
+  /// The file with positions x, the header's type edits (type_edits_) and `header_edits` (spans
+  /// of the header in bytes_) applied.
+  std::string render(const Positions& x, std::vector<TextEdit> header_edits) const;
 
   std::string name_, bytes_;
   bool ascii_ = true, big_endian_ = false;
   std::vector<ply::Element> elements_;
   std::size_t pos_ = 0;
+  std::size_t body_ = 0;  ///< where the body starts in bytes_
+  /// `double` in place of each integer type of the vertices' x, y, z
+  std::vector<TextEdit> type_edits_;
   std::vector<Slot> slots_;  ///< 3 per vertex: x, y, z
   /// 3 per vertex: nx, ny, nz; empty when a vertex lacks one (the file's normals are then kept)
   std::vector<Slot> normal_slots_;
@@ -178,7 +176,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   ascii_ = header.format == ply::Format::Ascii;
   big_endian_ = header.format == ply::Format::BinaryBigEndian;
   elements_ = std::move(header.elements);
-  pos_ = header.body;
+  pos_ = body_ = header.body;
   bool vertices_seen = false, faces_seen = false;
   polygon_start_.push_back(0);
   std::vector<double> u_values, v_values;
@@ -194,7 +192,20 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     faces_seen |= is_face;
     // Texture coordinates under the names that PLY writers use (Blender: s, t; others: u, v).
     int u_prop = -1, v_prop = -1;
+    // The properties that hold x, y, z: the first of each name, as read_ply reads them.
+    int axis_prop[3] = {-1, -1, -1};
     if (is_vertex) {
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const ply::Property& p = e.properties[k];
+        const int axis = p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : -1;
+        if (p.list || axis < 0 || axis_prop[axis] >= 0) continue;
+        axis_prop[axis] = static_cast<int>(k);
+        // A result's positions are not integers: stored in an integer type they would be
+        // rounded (a small mesh flattened to a few lattice points, with exit 0). The header
+        // says double instead, the other properties keep theirs (output-safety.md).
+        if (ply::is_integer(p.type))
+          type_edits_.push_back(TextEdit{p.type_begin, p.type_end, "double"});
+      }
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const std::string& n = e.properties[k].name;
         if (n == "u" || n == "s" || n == "texture_u" || n == "texture_s")
@@ -235,13 +246,11 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
         if (is_face && p.name == "texnumber" && ply::is_integer(p.type))
           texnumbers.push_back(static_cast<int>(std::clamp(value, -1.0, double{INT_MAX})));
         if (!is_vertex) continue;
-        if (p.name == "x")
-          slots_[3 * i] = s;
-        else if (p.name == "y")
-          slots_[3 * i + 1] = s;
-        else if (p.name == "z")
-          slots_[3 * i + 2] = s;
-        else if (p.name == "nx" || p.name == "ny" || p.name == "nz") {
+        const int kk = static_cast<int>(k);
+        if (kk == axis_prop[0] || kk == axis_prop[1] || kk == axis_prop[2]) {
+          s.widened = ply::is_integer(p.type);
+          slots_[3 * i + (kk == axis_prop[0] ? 0 : kk == axis_prop[1] ? 1 : 2)] = s;
+        } else if (p.name == "nx" || p.name == "ny" || p.name == "nz") {
           const auto axis = static_cast<std::size_t>(p.name[1] - 'x');
           normal_slots_[3 * i + axis] = s;
           input_normals_[i][static_cast<Eigen::Index>(axis)] = value;
@@ -326,7 +335,7 @@ Positions PlyDocument::normals(const Positions& x) const {
   return n;
 }
 
-std::string PlyDocument::text(const Positions& x) const {
+std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header_edits) const {
   if (static_cast<std::size_t>(x.rows()) != vertex_count_)
     throw std::invalid_argument("PlyDocument::text: " + std::to_string(x.rows()) +
                                 " positions for " + std::to_string(vertex_count_) + " vertices");
@@ -345,20 +354,24 @@ std::string PlyDocument::text(const Positions& x) const {
       if (std::isfinite(v)) values.emplace_back(&normal_slots_[k], v);
     }
   }
-  std::string out;
-  out.reserve(bytes_.size() + (ascii_ ? 24 * values.size() : 0));
+  header_edits.insert(header_edits.end(), type_edits_.begin(), type_edits_.end());
+  std::sort(header_edits.begin(), header_edits.end(),
+            [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
+  std::string out = apply_edits(bytes_.substr(0, body_), header_edits);
+  out.reserve(bytes_.size() + (ascii_ ? 24 * values.size() : 4 * slots_.size()));
   // In file order (a header may declare z before x).
   std::sort(values.begin(), values.end(),
             [](const auto& a, const auto& b) { return a.first->begin < b.first->begin; });
-  std::size_t at = 0;
+  std::size_t at = body_;
   for (const auto& [slot, v] : values) {
     const Slot& s = *slot;
     out.append(bytes_, at, s.begin - at);
     at = s.end;
-    const int size = ply::size_of(s.type);
-    if (ply::is_integer(s.type)) {
-      // Integer coordinates (legal, rare): the nearest integer the type holds.
-      const bool is_signed = ply::is_signed(s.type);
+    const ply::Type type = written_type(s);
+    const int size = ply::size_of(type);
+    if (ply::is_integer(type)) {
+      // Integer normals (legal, odd): the nearest integer the type holds.
+      const bool is_signed = ply::is_signed(type);
       const double lo = is_signed ? -std::ldexp(1.0, 8 * size - 1) : 0.0;
       const double hi = std::ldexp(1.0, 8 * size - (is_signed ? 1 : 0)) - 1.0;
       const auto r = static_cast<std::int64_t>(std::clamp(std::nearbyint(v), lo, hi));

@@ -22,6 +22,9 @@ struct Property {
   bool list = false;
   Type count_type = Type::UInt8;  ///< lists only
   Type type = Type::Float32;      ///< the value's (or the list items') type
+  /// Byte span of the type's name in the header (scalars only): where the PLY document writes
+  /// `double` in place of an integer type of x, y, z (ply_document.cpp says why).
+  std::size_t type_begin = 0, type_end = 0;
 };
 
 struct Element {

@@ -45,6 +45,13 @@ constexpr TypeName TYPES[] = {
     {"int", Type::Int32},     {"int32", Type::Int32},     {"uint", Type::UInt32},  {"uint32", Type::UInt32},
     {"float", Type::Float32}, {"float32", Type::Float32}, {"double", Type::Float64}, {"float64", Type::Float64}};
 
+/// The type's name as the PLY specification spells it (for messages).
+const char* type_name(Type t) {
+  for (const TypeName& n : TYPES)
+    if (n.type == t) return n.name;
+  return "?";
+}
+
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
 
 /// Printable, short form of a token for messages (the bytes may be anything).
@@ -138,10 +145,12 @@ class PlyParser {
     // A UTF-8 byte-order mark is not part of the format, but harmless to skip.
     if (bytes_.compare(0, 3, "\xEF\xBB\xBF") == 0) pos_ = 3;
     std::string line;
+    std::size_t line_start = pos_;  ///< byte offset of `line` in bytes_
     if (!header_line(line) || split(line) != std::vector<std::string>{"ply"})
       fail("parse error", "line 1: not a PLY file (the first line must be 'ply')");
     bool format_seen = false;
     while (true) {
+      line_start = pos_;
       if (!header_line(line)) fail("truncated file", "the header has no 'end_header' line (the file ends at line " + std::to_string(line_) + ")");
       const std::vector<std::string> t = split(line);
       if (!t.empty() && t[0] == "comment")
@@ -171,6 +180,10 @@ class PlyParser {
         } else if (t.size() == 3 && t[1] != "list") {
           p.type = type_of(t[1]);
           p.name = t[2];
+          // The type is the first token after "property" (split's separators: blanks, tabs).
+          const std::size_t keyword = line.find("property");
+          p.type_begin = line_start + line.find(t[1], keyword + 8);
+          p.type_end = p.type_begin + t[1].size();
         } else {
           fail("parse error", at_line(line_) + ": expected 'property <type> <name>' or 'property list <count type> <type> <name>'");
         }
@@ -219,21 +232,81 @@ class PlyParser {
     }
   }
 
+  /// Skips blanks up to the end of the current ascii line; whether a value follows on it.
+  bool more_on_line() {
+    while (pos_ < bytes_.size() && is_space(bytes_[pos_]) && bytes_[pos_] != '\n' &&
+           bytes_[pos_] != '\r')
+      ++pos_;
+    return pos_ < bytes_.size() && bytes_[pos_] != '\n' && bytes_[pos_] != '\r';
+  }
+
+  /// Values from pos_ to the end of the current ascii line (pos_ does not move).
+  std::size_t values_left_on_line() const {
+    std::size_t n = 0;
+    for (std::size_t i = pos_; i < bytes_.size() && bytes_[i] != '\n' && bytes_[i] != '\r';) {
+      if (is_space(bytes_[i])) {
+        ++i;
+        continue;
+      }
+      ++n;
+      while (i < bytes_.size() && !is_space(bytes_[i])) ++i;
+    }
+    return n;
+  }
+
   /// Next ascii token, a view of bytes_; false at the end of the bytes.
   bool token(std::string_view& tok) {
+    // Inside an element instance, its values must all be on its line (line_check_).
+    if (line_check_.on && line_check_.values > 0 && !more_on_line()) {
+      skip_space();
+      if (pos_ < bytes_.size()) wrong_value_count(line_check_.values);
+      // Nothing follows at all: a truncated file, said by the caller.
+    }
     skip_space();
     if (pos_ >= bytes_.size()) return false;
     const std::size_t b = pos_;
     while (pos_ < bytes_.size() && !is_space(bytes_[pos_])) ++pos_;
     tok = std::string_view(bytes_).substr(b, pos_ - b);
+    ++line_check_.values;
     return true;
+  }
+
+  /// An ascii element instance is one line (the format's own layout; every writer keeps it). A
+  /// value too many or too few was read as a stream of tokens before: the values after it
+  /// shifted into the next properties and elements, and the message named some later face
+  /// ("face 0 (line 51) has 0 vertices" for an extra value on line 10).
+  struct LineCheck {
+    bool on = false;
+    const Element* element = nullptr;
+    std::size_t index = 0, line = 0;
+    std::size_t values = 0;      ///< read so far on the instance's line
+    std::size_t expected = 0;    ///< one per property, plus the items of the lists read so far
+    std::size_t lists_left = 0;  ///< lists whose length is not read yet
+  };
+
+  [[noreturn]] void wrong_value_count(std::size_t found) const {
+    const LineCheck& c = line_check_;
+    std::size_t lists = 0;
+    for (const Property& p : c.element->properties) lists += p.list ? 1 : 0;
+    const std::string expected =
+        lists == 0
+            ? "its header declares " + std::to_string(c.expected) +
+                  (c.expected == 1 ? " property" : " properties")
+            : "its header's properties take " + std::string(c.lists_left > 0 ? "at least " : "") +
+                  std::to_string(c.expected) + " (a list: its length, then its items)";
+    fail("parse error", "'" + shorten(c.element->name) + "' element " + std::to_string(c.index) +
+                            " (" + at_line(c.line) + ") has " + std::to_string(found) +
+                            (found == 1 ? " value" : " values") + ", but " + expected);
   }
 
   /// One scalar as a double (integers of every PLY type are exact in a double). `what()` names
   /// it, built only for a message: a string per value was the same waste as in the OFF scan
-  /// (lab/pages/scale.md).
+  /// (lab/pages/scale.md). An ascii value of an integer type must be an integer that the type
+  /// holds, as a binary file's value is by construction: '0.5' for an `int x` was read as 0.5,
+  /// and the PLY document then wrote the result back as integers (a flattened mesh). `whole`
+  /// checks its own values (its message says what a count or an index must be).
   template <class What>
-  double scalar(Type t, const What& what) {
+  double scalar(Type t, const What& what, bool check_integer = true) {
     if (format_ == Format::Ascii) {
       std::string_view tok;
       if (!token(tok)) fail("truncated file", "the file ends before " + what() + " (" + where() + ")");
@@ -243,6 +316,18 @@ class PlyParser {
       const double v = std::strtod(tok.data(), &end);
       if (end != tok.data() + tok.size())
         fail("parse error", where() + ": '" + shorten(std::string(tok)) + "' is not a number (" + what() + ")");
+      if (check_integer && is_integer(t)) {
+        const int bits = 8 * size_of(t);
+        const double lo = ply::is_signed(t) ? -std::ldexp(1.0, bits - 1) : 0.0;
+        const double hi = std::ldexp(1.0, ply::is_signed(t) ? bits - 1 : bits) - 1.0;
+        if (!(v >= lo && v <= hi) || v != std::floor(v)) {
+          std::ostringstream range;
+          range << std::fixed << std::setprecision(0) << lo << " to " << hi;
+          fail("parse error", where() + ": " + what() + " is '" + shorten(std::string(tok)) +
+                                  "', not an integer from " + range.str() +
+                                  " (the header declares it " + type_name(t) + ")");
+        }
+      }
       return v;
     }
     const int n = size_of(t);
@@ -279,7 +364,7 @@ class PlyParser {
   /// A list count or an index: a non-negative integer below 2^53 (exact in a double).
   template <class What>
   std::size_t whole(Type t, const What& what) {
-    const double v = scalar(t, what);
+    const double v = scalar(t, what, false);
     if (!(v >= 0.0 && v < 9.0e15) || v != std::floor(v)) {
       std::ostringstream s;
       s << std::setprecision(17) << v;
@@ -315,13 +400,17 @@ class PlyParser {
     if (normals) out.normals.reserve(n);
     if (is_face) out.faces.reserve(n);
     const bool ascii = format_ == Format::Ascii;
+    std::size_t lists = 0;
+    for (const Property& p : e.properties) lists += p.list ? 1 : 0;
     for (std::size_t i = 0; i < n; ++i) {
       auto instance = [&] { return "'" + shorten(e.name) + "' element " + std::to_string(i); };
       std::array<double, 6> v{};
       std::vector<std::size_t> face;
-      if (ascii && (is_vertex || is_face)) {
+      if (ascii) {
         skip_space();  // so that the line is the one of the element's first value
-        (is_vertex ? out.vertex_line : out.face_line).push_back(body_line_);
+        if (is_vertex || is_face)
+          (is_vertex ? out.vertex_line : out.face_line).push_back(body_line_);
+        line_check_ = LineCheck{true, &e, i, body_line_, 0, e.properties.size(), lists};
       }
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
@@ -338,6 +427,10 @@ class PlyParser {
           continue;
         }
         const std::size_t count = whole(p.count_type, [&] { return "the list length of " + what(); });
+        if (ascii) {
+          line_check_.expected += count;
+          --line_check_.lists_left;
+        }
         // Bound the list by the bytes left before reserving (ascii: 2 bytes an item at least).
         const std::size_t item_bytes = ascii ? 2 : static_cast<std::size_t>(size_of(p.type));
         if (count > (bytes_.size() - pos_ + 1) / item_bytes)
@@ -350,6 +443,8 @@ class PlyParser {
           else scalar(p.type, what);
         }
       }
+      if (ascii && more_on_line()) wrong_value_count(line_check_.values + values_left_on_line());
+      line_check_.on = false;
       if (is_vertex) out.points.push_back({v[0], v[1], v[2]});
       if (normals) out.normals.push_back({v[3], v[4], v[5]});
       if (is_face) out.faces.push_back(std::move(face));
@@ -364,6 +459,7 @@ class PlyParser {
   Format format_ = Format::Ascii;
   std::vector<Element> elements_;
   std::vector<ply::Comment> comments_;
+  LineCheck line_check_;  ///< ascii: the element instance being read
 };
 
 }  // namespace

@@ -48,7 +48,7 @@ std::string read_file_bytes(const std::string& path) {
 
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
                        std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines,
-                       std::vector<std::string>* warnings) {
+                       std::vector<std::string>* warnings, MissingVertices missing) {
   std::string bytes = read_file_bytes(path);
   if (std::all_of(bytes.begin(), bytes.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); }))
     fail(path, "empty file", "the file holds no data");
@@ -71,7 +71,7 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
   }
   if (ext != "stl") normalize_text(bytes);
   if (ext == "off") {  // read by the scan (off_scan.hpp says why not by CGAL)
-    OffScan scan = scan_off(path, bytes);
+    OffScan scan = scan_off(path, bytes, missing);
     if (warnings && !scan.ignored_tail.empty()) warnings->push_back(scan.ignored_tail);
     points.reserve(scan.points.size());
     for (const auto& p : scan.points) points.emplace_back(p[0], p[1], p[2]);
@@ -80,7 +80,7 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
     return;
   }
   if (ext == "obj") {  // read by the scan (obj_scan.hpp says why not by CGAL)
-    ObjScan scan = scan_obj(path, bytes);
+    ObjScan scan = scan_obj(path, bytes, missing);
     points.reserve(scan.points.size());
     for (const auto& p : scan.points) points.emplace_back(p[0], p[1], p[2]);
     polygons = std::move(scan.faces);

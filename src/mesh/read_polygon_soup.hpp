@@ -22,9 +22,13 @@ std::string read_file_bytes(const std::string& path);
 /// file's size does not bound.
 /// @param ext lower-case extension without the dot: "off", "obj", "ply", "stl", "glb" or "gltf"
 /// @param warnings  if given, gets what was read past (an OFF's lines after its declared faces)
+/// @param missing  MissingVertices::Keep (repair's read): an OFF's or OBJ's face that names a
+///        vertex the file lacks is read with that index, not refused. A PLY's indices are never
+///        checked here (check_input_soup does); a glTF's are always (its accessor is corrupt).
 /// @throws InputError "<path>: <problem>: <where>" if the file cannot be read as such
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
                        std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines,
-                       std::vector<std::string>* warnings = nullptr);
+                       std::vector<std::string>* warnings = nullptr,
+                       MissingVertices missing = MissingVertices::Refuse);
 
 }  // namespace shellcontract

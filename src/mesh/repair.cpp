@@ -54,16 +54,30 @@ std::string lower_extension(const std::string& path) {
   return ext;
 }
 
-/// Polygon soup steps: bad indices, duplicate points and polygons, degenerate polygons
-/// (repair_polygon_soup), then a consistent orientation (orient_polygon_soup).
-void repair_soup(std::vector<Point3>& points, std::vector<Polygon>& polygons, RepairReport& r) {
+/// Faces the report names when it says that faces naming a missing vertex were dropped.
+constexpr std::size_t MISSING_VERTEX_FACES_NAMED = 3;
+
+/// Polygon soup steps: faces naming a missing vertex, duplicate points and polygons, degenerate
+/// polygons (repair_polygon_soup), then a consistent orientation (orient_polygon_soup).
+void repair_soup(std::vector<Point3>& points, std::vector<Polygon>& polygons,
+                 const SourceLines& lines, RepairReport& r) {
+  // CGAL's soup functions index without checking; a face naming a vertex the file lacks (read so
+  // by read_polygon_soup's MissingVertices::Keep) is dropped, and said with its line.
+  std::vector<Polygon> kept;
+  kept.reserve(polygons.size());
+  for (std::size_t j = 0; j < polygons.size(); ++j) {
+    if (std::none_of(polygons[j].begin(), polygons[j].end(),
+                     [&](std::size_t v) { return v >= points.size(); })) {
+      kept.push_back(std::move(polygons[j]));
+      continue;
+    }
+    if (++r.missing_vertex_faces_dropped <= MISSING_VERTEX_FACES_NAMED)
+      r.missing_vertex_faces.push_back(
+          "face " + std::to_string(j) +
+          (j < lines.face_line.size() ? ", line " + std::to_string(lines.face_line[j]) : ""));
+  }
+  polygons = std::move(kept);
   const std::size_t n_polygons = polygons.size();
-  // CGAL's soup functions index without checking; a face naming a vertex the file lacks is dropped.
-  polygons.erase(std::remove_if(polygons.begin(), polygons.end(),
-                                [&](const Polygon& p) {
-                                  return std::any_of(p.begin(), p.end(), [&](std::size_t v) { return v >= points.size(); });
-                                }),
-                 polygons.end());
   r.duplicate_points_merged = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
   PMP::repair_polygon_soup(points, polygons);
   r.soup_polygons_removed = n_polygons > polygons.size() ? n_polygons - polygons.size() : 0;
@@ -173,6 +187,16 @@ std::vector<std::string> RepairReport::summary_lines() const {
   auto line = [&out](std::size_t n, const char* one, const char* many) {
     if (n > 0) out.push_back(counted(n, one, many));
   };
+  if (missing_vertex_faces_dropped > 0) {
+    std::string named;
+    for (const std::string& f : missing_vertex_faces) named += (named.empty() ? "" : "; ") + f;
+    if (missing_vertex_faces_dropped > missing_vertex_faces.size())
+      named += "; " + std::to_string(missing_vertex_faces_dropped - missing_vertex_faces.size()) +
+               " more";
+    out.push_back(counted(missing_vertex_faces_dropped, "face naming a missing vertex dropped",
+                          "faces naming a missing vertex dropped") +
+                  " (" + named + ")");
+  }
   line(duplicate_points_merged, "duplicate point merged", "duplicate points merged");
   line(soup_polygons_removed, "duplicate, degenerate or invalid polygon removed",
        "duplicate, degenerate or invalid polygons removed");
@@ -211,9 +235,11 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
 
   std::vector<Point3> points;
   std::vector<Polygon> polygons;
+  SourceLines lines;
   try {
-    SourceLines lines;
-    read_polygon_soup(path, lower_extension(path), points, polygons, lines);
+    // Faces naming a missing vertex are read, for repair_soup to drop (repair.md, step 4).
+    read_polygon_soup(path, lower_extension(path), points, polygons, lines, nullptr,
+                      MissingVertices::Keep);
   } catch (const InputError& e) {
     r.failure = std::string("the file cannot be read (") + e.what() + ")";
     cannot_repair(path, r.failure);
@@ -261,7 +287,7 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
 
   Mesh mesh;
   try {
-    repair_soup(points, polygons, r);
+    repair_soup(points, polygons, lines, r);
     if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
       r.failure = "the faces do not form a polygon mesh even after orienting the soup";
       cannot_repair(path, r.failure);

@@ -158,6 +158,57 @@ TEST_F(CliRepair, RunRepairRunsAnOpenMesh) {
   EXPECT_EQ(run_cli({"check", out("b.off")}).exit_code, 0);
 }
 
+// A face that names a vertex the file lacks: check and run refuse the file, as before; repair
+// drops the face (repair.md, step 4) and fills the hole it leaves. Before, repair refused the
+// file at its strict read ("cannot repair: the file cannot be read (... vertex index out of
+// range ...)"), so the drop was never reached.
+TEST_F(CliRepair, AFaceNamingAMissingVertexIsDroppedAndItsHoleFilled) {
+  const std::string in = mesh_path("bad/index_out_of_range.off");
+  const RunResult c = run_cli({"check", in});
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  EXPECT_NE(c.output.find("vertex index out of range: face 4 (line 15) refers to vertex 8"),
+            std::string::npos)
+      << c.output;
+  EXPECT_EQ(run_cli({"run", in, "-o", out("never.off"), "--frames", "2", "-q"}).exit_code, 2);
+  EXPECT_FALSE(fs::exists(out("never.off")));
+  const RunResult r = run_cli({"repair", in, "-o", out("cube.off")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 face naming a missing vertex dropped (face 4, line 15)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("1 hole filled"), std::string::npos) << r.output;
+  EXPECT_EQ(run_cli({"check", out("cube.off")}).exit_code, 0);
+  const RunResult j = run_cli({"repair", in, "-o", out("cube.ply"), "--json"});
+  EXPECT_EQ(j.exit_code, 0) << j.output;
+  EXPECT_NE(j.output.find("\"missing_vertex_faces_dropped\": 1"), std::string::npos) << j.output;
+  const RunResult run =
+      run_cli({"run", in, "-o", out("run.off"), "--frames", "2", "-q", "--repair"});
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("  1 face naming a missing vertex dropped (face 4, line 15)"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(run_cli({"check", out("run.off")}).exit_code, 0);
+}
+
+TEST_F(CliRepair, ObjFacesNamingMissingVerticesAreDroppedWithTheirLines) {
+  // The unit cube; of its faces, the two of the side y = 0 name vertex 9 (of 8) and the relative
+  // vertex -9 (lines 13 and 14), one of the side y = 1 names vertex 0 (line 17; OBJ counts from 1).
+  std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
+  obj += "f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 9 6\nf -9 6 5\nf 2 3 7\nf 2 7 6\n";
+  obj += "f 0 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+  const std::string in = write("cube.obj", obj);
+  const RunResult c = run_cli({"check", in});
+  EXPECT_EQ(c.exit_code, 2) << c.output;
+  EXPECT_NE(c.output.find("vertex index out of range"), std::string::npos) << c.output;
+  const RunResult r = run_cli({"repair", in, "-o", out("cube.off")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("3 faces naming a missing vertex dropped (face 4, line 13; face 5, line "
+                          "14; face 8, line 17)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(run_cli({"check", out("cube.off")}).exit_code, 0);
+}
+
 TEST_F(CliRepair, RunRepairLeavesAUsableMeshsRunUnchanged) {
   const std::string in = mesh_path("bumpy_sphere.off");
   ASSERT_EQ(run_cli({"run", in, "-o", out("plain.off"), "--frames", "5", "-q"}).exit_code, 0);
