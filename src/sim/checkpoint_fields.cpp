@@ -118,8 +118,8 @@ void check_checkpoint_fields(const Checkpoint& c, const std::string& path) {
       if (id < 0) check.fail(field, "names a negative element id (" + std::to_string(id) + ")");
     for (const int id : k.v)
       if (id < 0 || id >= n)
-        check.fail(field, "names vertex " + std::to_string(id) + "; its positions are of " +
-                              std::to_string(n));
+        check.fail(field, "names vertex " + std::to_string(id) + "; the checkpoint has " +
+                              std::to_string(n) + " vertices");
     for (int j = 0; j < 4; ++j) check.finite(field + ", weight " + std::to_string(j), k.weights(j));
     for (int j = 0; j < 3; ++j) check.finite(field + ", normal", k.normal(j));
     check.finite(field + ", side", k.side);
