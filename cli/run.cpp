@@ -402,15 +402,21 @@ int command_run(int argc, char** argv) {
     for (const std::string& w : exporter.frame_warnings()) warn_once(w);
     const auto attempt = [&](const char* option, const std::string& path, const std::function<void()>& write) {
       stage = "writing " + path;
+      const auto failed = [&](const std::string& why) {
+        std::error_code ec;  // a file there before the run is left as it was
+        outputs.add(
+            option, path,
+            (std::filesystem::exists(path, ec) ? "failed, the old file kept: " : "failed: ") + why);
+      };
       try {
         write();
         written = written.empty() ? path : written + " and " + path;
         outputs.add(option, path, "written");
       } catch (const UsageError& e) {
-        std::error_code ec;  // a file there before the run is left as it was
-        outputs.add(option, path,
-                    std::string(std::filesystem::exists(path, ec) ? "failed, the old file kept: " : "failed: ") +
-                        e.what());
+        failed(e.what());
+      } catch (const std::invalid_argument& e) {
+        // A state the writer refuses (not finite): this output's failure, not std::terminate.
+        failed(e.what());
       }
     };
     if (!exports.gltf.empty()) attempt("--gltf", exports.gltf, [&] { exporter.write_gltf(); });

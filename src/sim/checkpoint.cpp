@@ -1,6 +1,7 @@
 #include "sim/checkpoint.hpp"
 
 #include <cstring>
+#include <limits>
 #include <memory>
 #include <type_traits>
 
@@ -96,7 +97,10 @@ class Reader {
   }
   Positions matrix() {
     const std::size_t rows = size(), cols = size();
-    if (cols > 3 || rows * cols * sizeof(double) > in_.size()) fail("a matrix past the end");
+    // Positions have 3 columns by their type: another count would be read as 3 (Eigen checks
+    // the count only in debug builds), and the fields after it from the wrong bytes.
+    if (cols != 3) fail("a matrix of " + std::to_string(cols) + " columns");
+    if (rows * cols * sizeof(double) > in_.size()) fail("a matrix past the end");
     Positions m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
     take(m.data(), sizeof(double) * m.size());
     return m;
@@ -129,9 +133,16 @@ class Reader {
     std::memcpy(p, in_.data() + pos_, n);
     pos_ += n;
   }
+  /// An int saved as 64 bits: one outside int's range would wrap to another value when cast.
+  int int_value(const char* what) {
+    const auto v = pod<std::int64_t>();
+    if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+      fail(std::string(what) + " " + std::to_string(v) + " out of range");
+    return static_cast<int>(v);
+  }
   std::size_t position() const { return pos_; }
   [[noreturn]] void fail(const std::string& what) const {
-    throw InputError("checkpoint " + path_ + ": " + what + " (not a whole checkpoint)");
+    throw InputError("checkpoint " + printable(path_) + ": " + what + " (not a whole checkpoint)");
   }
 
  private:
@@ -237,7 +248,8 @@ std::string options_differing(const Checkpoint& c, const OptionValues& now) {
     return file ? std::string("a file") : value.empty() ? std::string("unset") : value;
   };
   const auto theirs = [&](const std::string& name) {
-    return given_as_arrays(name) ? std::string("given as arrays") : describe(c.resolved, name);
+    return given_as_arrays(name) ? std::string("given as arrays")
+                                 : printable(describe(c.resolved, name));
   };
   std::string differ;
   for (const auto& [name, value] : now) {
@@ -289,7 +301,8 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
     // An option given that excludes one of the checkpoint's: the mismatch is the user's news,
     // the exclusion only its form.
     std::string own;
-    for (const auto& [name, value] : c.given) own += (own.empty() ? "--" : ", --") + name + " " + value;
+    for (const auto& [name, value] : c.given)
+      own += (own.empty() ? "--" : ", --") + name + " " + printable(value, 60);
     throw UsageError("the checkpoint was written with other options: the options given do not go with its own (" +
                      own + "): " + e.what());
   }
@@ -391,7 +404,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   }
   Reader r(bytes, path);
   if (bytes.compare(0, sizeof MAGIC - 1, MAGIC) != 0)
-    throw InputError("checkpoint " + path + ": not a shellcontract checkpoint");
+    throw InputError("checkpoint " + printable(path) + ": not a shellcontract checkpoint");
   std::string magic(sizeof MAGIC - 1, '\0');
   r.take(magic.data(), magic.size());
   if (bytes.size() < sizeof(std::uint64_t) + magic.size()) r.fail("truncated");
@@ -418,7 +431,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.given = r.options();
   c.resolved = r.options();
   SimulatorState& s = c.sim;
-  s.frame = static_cast<int>(r.pod<std::int64_t>());
+  s.frame = r.int_value("a frame");
   s.volume_ratio = r.pod<double>();
   s.stop_volume_reached = r.pod<std::uint8_t>() != 0;
   s.x = r.matrix();
@@ -437,10 +450,18 @@ Checkpoint read_checkpoint(const std::string& path) {
   p.new_intersections = static_cast<long>(r.pod<std::int64_t>());
   p.status = static_cast<RunStatus>(r.pod<std::int32_t>());
   p.message = r.text();
-  p.frame_target_reached = static_cast<int>(r.pod<std::int64_t>());
+  p.frame_target_reached = r.int_value("a target frame");
   p.last_pairs = r.pod<std::int64_t>();
   c.log = r.text();
   if (r.position() + sizeof stored != bytes.size()) r.fail("trailing bytes");
+  // Another version's fields follow its own rules (its options, its state): refused as another
+  // version's here, before they are judged by this one's (as "edited or damaged").
+  if (c.version != checkpoint_tool_version())
+    throw InputError("checkpoint " + printable(path) + " written by shellcontract " +
+                     printable(c.version, 60) + ", this is " + checkpoint_tool_version() +
+                     ": resume it with that version");
+  check_checkpoint_fields(c, path);
+  c.path = path;
   return c;
 }
 

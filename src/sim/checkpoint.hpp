@@ -47,6 +47,9 @@ struct Checkpoint {
   SimulatorState sim;
   RunProgress progress;
   std::string log;           ///< the caller's log of the frames so far (the CLI: its CSV text)
+  /// The file read_checkpoint read it from (not saved), for the messages of a refusal that
+  /// needs the mesh (Simulator::restore); empty for one made in memory.
+  std::string path;
 };
 
 /// The given options of `options` (their values as the table prints them), less the threads.
@@ -63,8 +66,18 @@ std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 146959810
 void write_checkpoint(const std::string& path, const Checkpoint& c);
 /// Reads format 2 and format 1 (written before the inputs were recorded).
 /// @throws InputError naming the file for a missing, truncated or corrupted checkpoint, or a
-///         folder, device or FIFO in its place
+///         folder, device or FIFO in its place, or one whose fields no run could have saved
+///         (check_checkpoint_fields)
 Checkpoint read_checkpoint(const std::string& path);
+
+/// What read_checkpoint checks of the fields themselves, without the mesh: each option recorded
+/// is one the table knows with a value it accepts; positions, velocities, volumes and every
+/// other number finite; the per-vertex arrays one per vertex (or empty where a run may leave
+/// them so); contact kinds known and ids not negative; the volume history one value per frame.
+/// The checksum only finds damage: anyone can recompute it after an edit, so what the file holds
+/// is checked as any other input is (Simulator::restore checks the rest against the mesh).
+/// @throws InputError "checkpoint PATH: FIELD ..." naming the first field that is not so
+void check_checkpoint_fields(const Checkpoint& c, const std::string& path);
 
 /// What run_contraction checks of the checkpoint it resumes from: check_checkpoint_input, and
 /// that `options` resolve to the checkpoint's options (as options_for_resume compares them: the

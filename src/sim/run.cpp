@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "mesh/eigen_point_map.hpp"
+#include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulator.hpp"
@@ -168,7 +169,13 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   std::int64_t last_pairs = 0;  // the last step's candidate pairs, for an out-of-memory message
   // A resumed run: the Simulator and this loop continue where the checkpoint's run stopped.
   if (const Checkpoint* c = checkpointer ? checkpointer->resume_from() : nullptr) {
-    sim.restore(c->sim);
+    try {
+      sim.restore(c->sim);
+    } catch (const InputError& e) {
+      // The file, where it came from one: what the mesh refuses is the file's problem too.
+      if (c->path.empty()) throw;
+      throw InputError("checkpoint " + printable(c->path) + ": " + e.what());
+    }
     const RunProgress& p = c->progress;
     history = p.history;
     r.min_volume_ratio = p.min_volume_ratio;
