@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <utility>
 
 namespace shellcontract {
@@ -15,6 +16,46 @@ Vec3 rim_centroid(const Positions& x, const RegionCap& cap) {
 }
 
 }  // namespace
+
+std::vector<std::vector<int>> region_pieces(const Faces& faces,
+                                            const std::vector<int>& region_faces) {
+  std::vector<int> kept;
+  for (int f : region_faces)
+    if (f >= 0 && f < faces.rows()) kept.push_back(f);
+  std::sort(kept.begin(), kept.end());
+  kept.erase(std::unique(kept.begin(), kept.end()), kept.end());
+  // Union-find over the kept faces (indices into `kept`), joined across each shared edge.
+  std::vector<std::size_t> parent(kept.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto root = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  std::vector<std::tuple<int, int, std::size_t>> edges;  // (low vertex, high vertex, face)
+  edges.reserve(3 * kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const int a = faces(kept[i], k), b = faces(kept[i], (k + 1) % 3);
+      edges.emplace_back(std::min(a, b), std::max(a, b), i);
+    }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t e = 1; e < edges.size(); ++e)
+    if (std::get<0>(edges[e]) == std::get<0>(edges[e - 1]) &&
+        std::get<1>(edges[e]) == std::get<1>(edges[e - 1]))
+      parent[root(std::get<2>(edges[e]))] = root(std::get<2>(edges[e - 1]));
+  // kept is sorted, so a piece's first face is its smallest: the pieces come in that order.
+  std::vector<std::vector<int>> pieces;
+  std::vector<std::size_t> piece_of_root(kept.size(), kept.size());
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    const std::size_t r = root(i);
+    if (piece_of_root[r] == kept.size()) {
+      piece_of_root[r] = pieces.size();
+      pieces.emplace_back();
+    }
+    pieces[piece_of_root[r]].push_back(kept[i]);
+  }
+  return pieces;
+}
 
 RegionCap make_region_cap(const Faces& faces, const std::vector<int>& region_faces) {
   RegionCap cap;
@@ -87,19 +128,34 @@ void cap_volume_gradient(const Positions& x, const RegionCap& cap, Positions& g)
   for (int r : cap.rim) g.row(r) += share;
 }
 
+double cap_reach(const Positions& x, const RegionCap& cap) {
+  std::vector<int> points = cap.rim;
+  if (points.empty())
+    for (std::size_t i = 0; i < cap.vertices.size(); ++i) points.push_back(static_cast<int>(i));
+  if (points.empty()) return 0.0;
+  auto at = [&](int r) { return Vec3(x.row(cap.vertices[static_cast<std::size_t>(r)])); };
+  Vec3 c = Vec3::Zero();
+  for (int r : points) c += at(r);
+  c /= static_cast<double>(points.size());
+  double reach = 0.0;
+  for (int r : points) reach = std::max(reach, (at(r) - c).norm());
+  return reach;
+}
+
 int project_cap_volume(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w, double target,
-                       double tolerance, int max_steps) {
-  return project_cap_volume_sharing(x, cap, w, {}, target, tolerance, max_steps);
+                       double tolerance, int max_steps, double max_move) {
+  return project_cap_volume_sharing(x, cap, w, {}, target, tolerance, max_steps, max_move);
 }
 
 int project_cap_volume_sharing(Positions& x, const RegionCap& cap, const Eigen::VectorXd& w,
                                const std::vector<char>& held, double target, double tolerance,
-                               int max_steps) {
+                               int max_steps, double max_move) {
   auto is_held = [&](int v) {
     return static_cast<std::size_t>(v) < held.size() && held[static_cast<std::size_t>(v)];
   };
   Positions g;
   int steps = 0;
+  double budget = max_move;  // what the farthest-moved vertex may still move in this call
   for (; steps < max_steps; ++steps) {
     const double c = cap_volume(x, cap) - target;
     if (std::abs(c) <= tolerance) break;
@@ -112,10 +168,22 @@ int project_cap_volume_sharing(Positions& x, const RegionCap& cap, const Eigen::
     }
     // No movable gradient (every vertex held, or a collapsed region): nothing can move V.
     if (!(movable > 0.0) || !std::isfinite(denominator)) break;
-    const double lambda = c / denominator;
+    double lambda = c / denominator;
+    // The farthest this step moves a vertex: with a vanishing gradient (a cap collapsing onto its
+    // rim's centroid) lambda is unbounded, so the step is cut to the budget (max_move).
+    double largest = 0.0;
+    for (std::size_t i = 0; i < cap.vertices.size(); ++i)
+      if (!is_held(cap.vertices[i]))
+        largest = std::max(largest, std::abs(lambda) * w(cap.vertices[i]) *
+                                        g.row(static_cast<Eigen::Index>(i)).norm());
+    if (!std::isfinite(largest)) break;
+    const bool cut = largest > budget;
+    if (cut) lambda *= budget / largest;
     for (std::size_t i = 0; i < cap.vertices.size(); ++i)
       if (!is_held(cap.vertices[i]))
         x.row(cap.vertices[i]) -= lambda * w(cap.vertices[i]) * g.row(static_cast<Eigen::Index>(i));
+    if (cut) return steps + 1;
+    budget -= largest;
   }
   return steps;
 }

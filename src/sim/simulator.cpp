@@ -146,14 +146,19 @@ Simulator::Simulator(SimPlan plan)
   const std::vector<double> face_weight = stored_region_weights(*mesh_);
   if (options_.inward_term == InwardTerm::Volume && options_.region_shrink > 0.0) {
     for (const std::vector<int>& region : regions) {
-      RegionDimple dimple = make_region_dimple(x_, faces_, region);
-      // A flat region or a dent has no cap to shrink (a dimple would push it out).
-      if (dimple.whole.rest_volume > 0.0) {
+      // A region in several pieces sinks as one dimple per piece: one fan over all their rims
+      // would close a solid through the shell between them (region_pieces).
+      bool capped = false;
+      for (const std::vector<int>& piece : region_pieces(faces_, region)) {
+        RegionDimple dimple = make_region_dimple(x_, faces_, piece);
+        // A flat piece or a dent has no cap to shrink (a dimple would push it out).
+        if (!(dimple.whole.rest_volume > 0.0)) continue;
         region_dimples_.push_back(std::move(dimple));
-        // A dimple is one shape for its whole region: it sinks with the region's mean weight.
-        dimple_weight_.push_back(mean_region_weight(x_, faces_, region, face_weight));
-      } else
-        ++regions_without_cap_;
+        // A dimple is one shape for its whole piece: it sinks with the piece's mean weight.
+        dimple_weight_.push_back(mean_region_weight(x_, faces_, piece, face_weight));
+        capped = true;
+      }
+      if (!capped) ++regions_without_cap_;
     }
   }
   // Under a global pressure the regions with a dimple also take the region load

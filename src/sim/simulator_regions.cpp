@@ -59,8 +59,11 @@ void Simulator::apply_region_contraction(Positions& x) {
                                       MirrorStep{1.0, false, false, true}))
         continue;
     }
+    // No vertex moves farther than the dimple's rest size in one step: the ramp spreads a
+    // cap's sinking over frames, and a dimple whose every vertex is on its rim (a coarse mesh's
+    // region) would otherwise be thrown through the shell (project_cap_volume's max_move).
     project_cap_volume_sharing(x, d.dimple, inv_mass_, held_by_contact_, target,
-                               1e-12 * d.dimple.rest_volume);
+                               1e-12 * d.dimple.rest_volume, 4, cap_reach(rest_x_, d.dimple));
   }
 }
 

@@ -2,6 +2,7 @@
 // closed forms, its gradient against finite differences, and the projection's invariants.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "sim/region_volume.hpp"
@@ -32,6 +33,79 @@ std::vector<int> all_faces(const Faces& f) {
 
 /// A perturbed open cap of the level-2 icosphere: its faces with a corner above z = z0.
 test::CapScene cap_scene(double z0, unsigned seed) { return test::icosphere_cap(2, z0, 0.02, seed); }
+
+/// meshes/cube.off: the unit cube, two triangles a side, counter-clockwise from outside (faces 0
+/// and 1 the bottom, 2 and 3 the top, 4 and 5 the front at y = 0).
+test::TriMesh unit_cube() {
+  test::TriMesh m;
+  m.x.resize(8, 3);
+  m.x << 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 0, 0, 1, 1, 0, 1, 1, 1, 1, 0, 1, 1;
+  m.faces.resize(12, 3);
+  m.faces << 0, 3, 2, 0, 2, 1, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4, 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7,
+      6, 3, 0, 4, 3, 4, 7;
+  return m;
+}
+
+TEST(RegionVolume, PiecesAreJoinedByEdgesOnly) {
+  const test::TriMesh m = unit_cube();
+  using Pieces = std::vector<std::vector<int>>;
+  // A bottom and a top triangle of the cube: one fan over both rims closes a sixth of the cube,
+  // a "cap" whose mirror drives the two triangles through each other (the blow-up at step 1 of
+  // `run cube.off --regions` with the face list "0 3"). Each is a piece of its own, flat.
+  const Pieces opposite = region_pieces(m.faces, {3, 0});
+  EXPECT_EQ(opposite, (Pieces{{0}, {3}}));
+  const RegionCap whole = make_region_cap(m.faces, {0, 3});
+  EXPECT_NEAR(cap_volume(m.x, whole), 1.0 / 6.0, 1e-15);
+  for (const std::vector<int>& piece : opposite)
+    EXPECT_EQ(cap_volume(m.x, make_region_cap(m.faces, piece)), 0.0);
+  EXPECT_EQ(region_pieces(m.faces, {0, 1, 2, 3}), (Pieces{{0, 1}, {2, 3}}));
+  // Faces 4 (0, 1, 5) and 2 (4, 5, 6) share corner 5 only: separate pieces.
+  EXPECT_EQ(region_pieces(m.faces, {0, 1, 2, 3, 4}), (Pieces{{0, 1, 4}, {2, 3}}));
+  // Across the cube's edges: one piece, repeats and ids out of range dropped.
+  EXPECT_EQ(region_pieces(m.faces, {5, 0, 4, 1, 5, -1, 12}), (Pieces{{0, 1, 4, 5}}));
+  EXPECT_EQ(region_pieces(m.faces, {}), Pieces{});
+}
+
+TEST(RegionVolume, ACapWithEveryVertexOnItsRimMovesNoFartherThanMaxMove) {
+  // Bottom, front and top of the cube: one piece, every vertex on its rim, whose cap (the fan
+  // from the cube's centre) is half the cube. Mirroring it (target -V) shrinks it onto the
+  // centre, where the gradient vanishes and the Newton steps throw the faces out of the mesh
+  // (`run cube.off --regions` with "0 1 2 3 4 5" blew up at step 2).
+  const test::TriMesh m = unit_cube();
+  RegionCap cap = make_region_cap(m.faces, {0, 1, 2, 3, 4, 5});
+  ASSERT_EQ(cap.rim.size(), cap.vertices.size());
+  const double v0 = cap_volume(m.x, cap);
+  EXPECT_NEAR(v0, 0.5, 1e-15);
+  const double reach = cap_reach(m.x, cap);
+  EXPECT_NEAR(reach, std::sqrt(3.0) / 2.0, 1e-15);  // the rim is all eight corners
+  const Eigen::VectorXd w = Eigen::VectorXd::Ones(8);
+  auto farthest = [&](const Positions& x) { return (x - m.x).rowwise().norm().maxCoeff(); };
+
+  Positions unbounded = m.x;
+  project_cap_volume(unbounded, cap, w, -v0, 1e-12);
+  EXPECT_GT(farthest(unbounded), std::sqrt(3.0));  // farther than the cube's diagonal
+
+  Positions bounded = m.x;
+  const int steps = project_cap_volume(bounded, cap, w, -v0, 1e-12, 4, reach);
+  EXPECT_GE(steps, 1);
+  EXPECT_LE(farthest(bounded), reach * (1.0 + 1e-12));
+  EXPECT_TRUE(bounded.allFinite());
+  EXPECT_LT(cap_volume(bounded, cap), v0);  // part of the way
+  // Each call moves at most max_move, so later calls go on from there.
+  Positions again = bounded;
+  project_cap_volume(again, cap, w, -v0, 1e-12, 4, reach);
+  EXPECT_LE((again - bounded).rowwise().norm().maxCoeff(), reach * (1.0 + 1e-12));
+
+  // A bound the steps do not reach changes nothing, bit for bit.
+  const test::CapScene s = cap_scene(0.4, 6);
+  RegionCap c2 = make_region_cap(s.m.faces, s.region);
+  const Eigen::VectorXd w2 = Eigen::VectorXd::Ones(s.m.x.rows());
+  Positions a = s.m.x, b = s.m.x;
+  const double t2 = -cap_volume(s.m.x, c2);
+  project_cap_volume(a, c2, w2, t2, 1e-13);
+  project_cap_volume(b, c2, w2, t2, 1e-13, 4, 100.0 * cap_reach(s.m.x, c2));
+  EXPECT_EQ(a, b);
+}
 
 TEST(RegionVolume, PyramidCapIsTheConeOverItsRim) {
   for (double h : {0.7, 0.0, -0.7}) {
