@@ -134,7 +134,7 @@ class Simulator {
   VertexFaces faces_around_;  ///< the faces around each vertex, for the pressure
   Faces inward_faces_;      ///< anisotropic faces that get the local extra pressure
   Positions region_force_;  ///< its forces (buffer)
-  std::vector<RegionDimple> region_dimples_;  ///< InwardTerm::Volume: regions with a cap to sink
+  std::vector<RegionDimple> region_dimples_;  ///< InwardTerm::Volume: the regions' pieces with a cap to sink
   /// [i]: what dimple i's dimpled rest state changed in the solver (set_dimple_rest)
   std::vector<DimpleRestChange> dimple_rest_;
   HingeIndex hinge_index_;  ///< the solver's hinges by edge (set_dimple_rest)
