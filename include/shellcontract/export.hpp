@@ -37,7 +37,7 @@ struct GltfAnimation {
   double seconds_per_frame = 1.0 / 24.0;  ///< playback time between two consecutive run frames
                                           ///< (keyframe k is at (frame_numbers[k] -
                                           ///< frame_numbers[0]) * seconds_per_frame)
-  std::vector<NamedVertexField> colour_fields;  ///< optional; field i becomes attribute COLOR_i
+  std::vector<NamedVertexField> colour_fields;  ///< optional; each a custom SCALAR attribute
   int colour_frame = -1;  ///< the run frame whose values colour_fields hold; -1 unknown
   /// Optional: per frame (parallel to `frames`), the values of a field on that frame (float,
   /// #V each), so that a viewer colours each frame with its own values. Field name -> values.
@@ -66,13 +66,13 @@ struct GltfStats {
 /// whose POSITION and NORMAL (float32, area-weighted vertex normals, unit length) are
 /// frames[0]; for every later frame k a morph target holding the float32 displacements
 /// POSITION(k) - POSITION(0) and NORMAL(k) - NORMAL(0); one animation whose `weights` channel (STEP interpolation) has one keyframe per frame
-/// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Colour field i is a float
-/// VEC3 COLOR_i in linear RGB: its 2nd to 98th percentile mapped onto blue - white - red (the
-/// fields PLY's map), clamped outside; its values themselves are also a float SCALAR custom
-/// attribute named after it ("mean_curvature" -> _MEAN_CURVATURE; three.js: _mean_curvature).
-/// The mesh's `extras` hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields`
-/// (name, attribute, values_attribute, the value range mapped to the colours, and `frame`, the run
-/// frame whose values they are, when colour_frame is set).
+/// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Each colour field's
+/// values are a float SCALAR custom attribute named after it ("mean_curvature" ->
+/// _MEAN_CURVATURE; three.js: _mean_curvature), never a COLOR_n (glTF multiplies COLOR_0 with the
+/// base colour, which would tint a textured mesh). The mesh's `extras` hold `frame_numbers`,
+/// `targetNames` ("frame_<n>") and `colour_fields` (name, values_attribute, low / high: the 2nd
+/// and 98th percentiles of its values, the range a viewer maps onto blue - white - red, and
+/// `frame`, the run frame whose values they are, when colour_frame is set).
 ///
 /// Each of `frame_fields` is one float SCALAR accessor per frame (not a primitive attribute: glTF
 /// morph targets cannot carry it), listed in the mesh's extras `frame_fields` (name, accessors,
