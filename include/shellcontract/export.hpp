@@ -4,11 +4,16 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "shellcontract/types.hpp"
+
+namespace tinygltf {
+class Model;
+}
 
 namespace shellcontract {
 
@@ -26,6 +31,9 @@ struct GltfMaterial {
   /// buffer, and its mimeType ("image/png" or "image/jpeg"). Empty: no texture.
   std::vector<unsigned char> image;
   std::string image_mime_type;
+  /// A glTF input's material (an index into GltfAnimation::material_source's materials),
+  /// written as the input has it; the fields above are then unused. -1: none.
+  int source_material = -1;
 };
 
 /// Everything the .glb holds. Positions are in the input's units and orientation.
@@ -52,6 +60,9 @@ struct GltfAnimation {
   /// Per face (#F, like faces): an index into materials, or -1 for a face without material
   /// (glTF's default material). Empty: every face has materials[0], or none when there is none.
   std::vector<int> face_material;
+  /// A glTF input's materials, textures, samplers and images (gltf_materials), each image's
+  /// bytes in its `image`, copied into the .glb as they are; null for other inputs.
+  std::shared_ptr<const tinygltf::Model> material_source;
 };
 
 /// What write_gltf_animation wrote.

@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "export/gltf_buffer.hpp"
+#include "export/gltf_input_materials.hpp"
 #include "export/gltf_primitives.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -176,7 +177,8 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
          (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
          a.frame_fields.size() * nk * (4 * nv + 3) +                                   // frame fields
          4 * nk + 3 + 4 * nk * (nk - 1) + 3 +                  // keys and weights
-         gltf::material_bytes(a.materials);                  // embedded images
+         gltf::material_bytes(a.materials) +                 // embedded images
+         gltf::source_material_bytes(a.material_source.get());  // a glTF input's images
 }
 
 /// write_gltf_animation; with `consumed` (a.frames itself), each frame after frame 0 is freed
@@ -262,7 +264,16 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
     target_names.push_back("frame_" + std::to_string(a.frame_numbers[k]));
   }
 
-  const std::vector<int> materials = gltf::add_materials(model, bb, a.materials, parts);
+  std::vector<int> materials;
+  if (a.material_source) {
+    // A glTF input's materials, carried whole: their indices stay the input's.
+    gltf::add_source_materials(model, bb, *a.material_source);
+    for (const gltf::PrimitiveFaces& p : parts)
+      materials.push_back(
+          p.material < 0 ? -1 : a.materials[static_cast<std::size_t>(p.material)].source_material);
+  } else {
+    materials = gltf::add_materials(model, bb, a.materials, parts);
+  }
 
   tinygltf::Mesh mesh;
   mesh.name = a.name;

@@ -64,6 +64,7 @@ class GltfDocument final : public MeshDocument {
     }
     read_texcoords();
     read_normals();
+    read_materials(path);
     // Each drawing of an instanced mesh holds its own moved copy (gltf_instances.hpp).
     std::vector<bool> written_normal;
     for (const Written& n : normals_) written_normal.push_back(n.accessor >= 0);
@@ -153,6 +154,20 @@ class GltfDocument final : public MeshDocument {
       uv_[v] = {f[0], 1.0 - static_cast<double>(f[1])};
     }
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());
+  }
+
+  /// The --gltf animation's materials: the model's own, and per polygon its primitive's.
+  void read_materials(const std::string& path) {
+    if (model_.materials.empty()) return;
+    for (const tinygltf::Material& m : model_.materials) materials_.names.push_back(m.name);
+    materials_.gltf = &model_;
+    materials_.source = path;
+    polygon_material_.reserve(soup_.faces.size());
+    for (const auto& f : soup_.faces) {
+      const int m = primitive(soup_.sources[f[0]].drawn).material;
+      polygon_material_.push_back(
+          m >= 0 && static_cast<std::size_t>(m) < model_.materials.size() ? m : -1);
+    }
   }
 
   /// Each vertex's input normal in world space as a unit vector (zero: none), so that copies
