@@ -104,9 +104,11 @@ class FrameExporter final : public RunObserver {
   void set_gltf_name(std::string name) { gltf_.name = std::move(name); }
   /// The glTF's materials and each face's (gltf_materials: the OBJ's .mtl, the PLY's
   /// TextureFile images); empty: none.
-  void set_materials(std::vector<GltfMaterial> materials, std::vector<int> face_material) {
+  void set_materials(std::vector<GltfMaterial> materials, std::vector<int> face_material,
+                     std::shared_ptr<const tinygltf::Model> source) {
     gltf_.materials = std::move(materials);
     gltf_.face_material = std::move(face_material);
+    gltf_.material_source = std::move(source);
   }
 
   /// Writes the .glb of --gltf, after the run: the simulator's memory is free by then (written

@@ -364,11 +364,12 @@ int command_run(int argc, char** argv) {
       if (document) {
         const CornerTexcoords uv = document->texcoords(mesh);
         exporter.set_texcoords(uv);
-        // The OBJ's materials (the .mtl's Kd, d and map_Kd) or the PLY's TextureFile images: a
-        // problem with one is a warning.
+        // The OBJ's materials (the .mtl's Kd, d and map_Kd), the PLY's TextureFile images or
+        // the glTF's own materials: a problem with one is a warning.
         std::vector<std::string> material_warnings;
         GltfFaceMaterials m = gltf_materials(document->face_materials(mesh), !uv.empty(), material_warnings);
-        exporter.set_materials(std::move(m.materials), std::move(m.face_material));
+        exporter.set_materials(std::move(m.materials), std::move(m.face_material),
+                               std::move(m.source));
         for (const std::string& w : material_warnings) std::cerr << "warning: " << w << '\n';
       }
     }

@@ -4,11 +4,16 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "shellcontract/types.hpp"
+
+namespace tinygltf {
+class Model;
+}
 
 namespace shellcontract {
 
@@ -26,6 +31,9 @@ struct GltfMaterial {
   /// buffer, and its mimeType ("image/png" or "image/jpeg"). Empty: no texture.
   std::vector<unsigned char> image;
   std::string image_mime_type;
+  /// A glTF input's material (an index into GltfAnimation::material_source's materials),
+  /// written as the input has it; the fields above are then unused. -1: none.
+  int source_material = -1;
 };
 
 /// Everything the .glb holds. Positions are in the input's units and orientation.
@@ -37,7 +45,7 @@ struct GltfAnimation {
   double seconds_per_frame = 1.0 / 24.0;  ///< playback time between two consecutive run frames
                                           ///< (keyframe k is at (frame_numbers[k] -
                                           ///< frame_numbers[0]) * seconds_per_frame)
-  std::vector<NamedVertexField> colour_fields;  ///< optional; field i becomes attribute COLOR_i
+  std::vector<NamedVertexField> colour_fields;  ///< optional; each a custom SCALAR attribute
   int colour_frame = -1;  ///< the run frame whose values colour_fields hold; -1 unknown
   /// Optional: per frame (parallel to `frames`), the values of a field on that frame (float,
   /// #V each), so that a viewer colours each frame with its own values. Field name -> values.
@@ -52,6 +60,9 @@ struct GltfAnimation {
   /// Per face (#F, like faces): an index into materials, or -1 for a face without material
   /// (glTF's default material). Empty: every face has materials[0], or none when there is none.
   std::vector<int> face_material;
+  /// A glTF input's materials, textures, samplers and images (gltf_materials), each image's
+  /// bytes in its `image`, copied into the .glb as they are; null for other inputs.
+  std::shared_ptr<const tinygltf::Model> material_source;
 };
 
 /// What write_gltf_animation wrote.
@@ -66,13 +77,13 @@ struct GltfStats {
 /// whose POSITION and NORMAL (float32, area-weighted vertex normals, unit length) are
 /// frames[0]; for every later frame k a morph target holding the float32 displacements
 /// POSITION(k) - POSITION(0) and NORMAL(k) - NORMAL(0); one animation whose `weights` channel (STEP interpolation) has one keyframe per frame
-/// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Colour field i is a float
-/// VEC3 COLOR_i in linear RGB: its 2nd to 98th percentile mapped onto blue - white - red (the
-/// fields PLY's map), clamped outside; its values themselves are also a float SCALAR custom
-/// attribute named after it ("mean_curvature" -> _MEAN_CURVATURE; three.js: _mean_curvature).
-/// The mesh's `extras` hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields`
-/// (name, attribute, values_attribute, the value range mapped to the colours, and `frame`, the run
-/// frame whose values they are, when colour_frame is set).
+/// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Each colour field's
+/// values are a float SCALAR custom attribute named after it ("mean_curvature" ->
+/// _MEAN_CURVATURE; three.js: _mean_curvature), never a COLOR_n (glTF multiplies COLOR_0 with the
+/// base colour, which would tint a textured mesh). The mesh's `extras` hold `frame_numbers`,
+/// `targetNames` ("frame_<n>") and `colour_fields` (name, values_attribute, low / high: the 2nd
+/// and 98th percentiles of its values, the range a viewer maps onto blue - white - red, and
+/// `frame`, the run frame whose values they are, when colour_frame is set).
 ///
 /// Each of `frame_fields` is one float SCALAR accessor per frame (not a primitive attribute: glTF
 /// morph targets cannot carry it), listed in the mesh's extras `frame_fields` (name, accessors,

@@ -163,6 +163,10 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name,
 
 }  // namespace shellcontract
 
+namespace tinygltf {
+class Model;
+}
+
 // An input file kept whole, so that a run's result keeps what the simulation does not use (issue
 // 56: texture coordinates, normals, groups, materials, polygons, extra PLY properties). The
 // simulation sees the triangle mesh read_input_mesh builds; the document writes the same file
@@ -198,7 +202,11 @@ struct FaceMaterials {
     std::size_t line = 0;  ///< the header line that names it
   };
   std::vector<Texture> textures;
-  std::string source;  ///< the OBJ (or PLY) file, for messages
+  /// A glTF input's own materials: its parsed model (materials, textures, samplers, images and
+  /// the buffers of embedded images), owned by the document, which must outlive this; names are
+  /// its materials' names, index for index. Null for an OBJ or a PLY.
+  const tinygltf::Model* gltf = nullptr;
+  std::string source;  ///< the OBJ, PLY or glTF file, for messages and its folder
   bool empty() const { return names.empty(); }
 };
 
@@ -240,8 +248,9 @@ class MeshDocument {
   /// @pre matches(mesh)
   CornerTexcoords texcoords(const Mesh& mesh) const;
   /// The material of each simulation face and the material libraries (OBJ), or the texture
-  /// files and each face's (PLY: its `texnumber`, else the first); empty for an OBJ with no
-  /// usemtl line, a PLY with no TextureFile comment (and for glTF).
+  /// files and each face's (PLY: its `texnumber`, else the first), or a glTF's materials and
+  /// each face's primitive's; empty for an OBJ with no usemtl line, a PLY with no TextureFile
+  /// comment, a glTF without materials.
   /// @pre matches(mesh)
   FaceMaterials face_materials(const Mesh& mesh) const;
 

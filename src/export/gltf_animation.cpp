@@ -10,11 +10,12 @@
 #include <stdexcept>
 #include <utility>
 
-#include "export/field_colours.hpp"
 #include "export/gltf_buffer.hpp"
+#include "export/gltf_input_materials.hpp"
 #include "export/gltf_primitives.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "sim/fields.hpp"
 
 namespace shellcontract {
 
@@ -51,6 +52,9 @@ void check_input(const GltfAnimation& a) {
       throw std::invalid_argument("write_gltf_animation: colour field '" + f.name + "' has " +
                                   std::to_string(f.values.size()) + " values for " +
                                   std::to_string(nv) + " vertices");
+    else if (!f.values.allFinite())
+      throw std::invalid_argument("write_gltf_animation: colour field '" + f.name +
+                                  "' has a non-finite value");
   if (a.face_uv.rows() > 0 || a.uv.rows() > 0) {
     if (a.face_uv.rows() != a.faces.rows())
       throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.face_uv.rows()) +
@@ -169,11 +173,12 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
   const std::size_t nk = a.frames.size();
   const std::size_t vec3 = 12 * nv + 3;
   return 4 * static_cast<std::size_t>(a.faces.size()) + 3 * (1 + a.materials.size()) +  // indices
-         (2 + a.colour_fields.size() + 2 * (nk - 1)) * vec3 +  // attributes and targets
+         (2 + 2 * (nk - 1)) * vec3 +                          // attributes and targets
          (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
          a.frame_fields.size() * nk * (4 * nv + 3) +                                   // frame fields
          4 * nk + 3 + 4 * nk * (nk - 1) + 3 +                  // keys and weights
-         gltf::material_bytes(a.materials);                  // embedded images
+         gltf::material_bytes(a.materials) +                 // embedded images
+         gltf::source_material_bytes(a.material_source.get());  // a glTF input's images
 }
 
 /// write_gltf_animation; with `consumed` (a.frames itself), each frame after frame 0 is freed
@@ -205,22 +210,22 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   tinygltf::Value::Object extras;
   tinygltf::Value::Array colour_info;
   for (std::size_t i = 0; i < a.colour_fields.size(); ++i) {
-    const FieldColours c = field_colours(a.colour_fields[i].values);
-    const std::string attribute = "COLOR_" + std::to_string(i);
-    prim.attributes[attribute] = bb.add_vec3(gather(c.rgb, split.source), false);
-    // The values themselves under the field's name (colours say little to a script or a DCC
-    // tool); two names that map to the same attribute get the field's index appended.
+    // Only the values, as a custom attribute: glTF's COLOR_0 multiplies the base colour, so a
+    // field's colours there would tint every textured asset in Blender and three.js. A viewer
+    // maps the values to colours over the range given in the extras.
+    const Eigen::VectorXd& v = a.colour_fields[i].values;
+    const std::vector<double> all(v.data(), v.data() + v.size());
     std::string values = custom_attribute(a.colour_fields[i].name);
+    // Two names that map to the same attribute: the field's index appended.
     if (prim.attributes.count(values)) values += "_" + std::to_string(i);
-    prim.attributes[values] = bb.add_vertex_scalars(
-        gather<Eigen::VectorXf>(a.colour_fields[i].values.cast<float>(), split.source));
+    prim.attributes[values] =
+        bb.add_vertex_scalars(gather<Eigen::VectorXf>(v.cast<float>(), split.source));
     tinygltf::Value::Object info;
     info["name"] = tinygltf::Value(a.colour_fields[i].name);
-    info["attribute"] = tinygltf::Value(attribute);
     info["values_attribute"] = tinygltf::Value(values);
     if (a.colour_frame >= 0) info["frame"] = tinygltf::Value(a.colour_frame);
-    info["low"] = tinygltf::Value(c.low);
-    info["high"] = tinygltf::Value(c.high);
+    info["low"] = tinygltf::Value(field_percentile(all, 0.02));
+    info["high"] = tinygltf::Value(field_percentile(all, 0.98));
     colour_info.emplace_back(info);
   }
 
@@ -235,7 +240,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
       accessors.emplace_back(bb.add_vertex_scalars(gather(v, split.source)));
     }
     std::sort(all.begin(), all.end());
-    // Nearest rank, as field_percentile (the fields PLY and field_colours).
+    // Nearest rank, as field_percentile (the fields PLY and the colour fields above).
     auto at = [&](double q) { return static_cast<double>(all[static_cast<std::size_t>(std::lround(q * static_cast<double>(all.size() - 1)))]); };
     tinygltf::Value::Object info;
     info["name"] = tinygltf::Value(name);
@@ -259,7 +264,16 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
     target_names.push_back("frame_" + std::to_string(a.frame_numbers[k]));
   }
 
-  const std::vector<int> materials = gltf::add_materials(model, bb, a.materials, parts);
+  std::vector<int> materials;
+  if (a.material_source) {
+    // A glTF input's materials, carried whole: their indices stay the input's.
+    gltf::add_source_materials(model, bb, *a.material_source);
+    for (const gltf::PrimitiveFaces& p : parts)
+      materials.push_back(
+          p.material < 0 ? -1 : a.materials[static_cast<std::size_t>(p.material)].source_material);
+  } else {
+    materials = gltf::add_materials(model, bb, a.materials, parts);
+  }
 
   tinygltf::Mesh mesh;
   mesh.name = a.name;

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "export/gltf_input_materials.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/line_tokens.hpp"
 #include "shellcontract/error.hpp"
@@ -293,6 +294,7 @@ GltfFaceMaterials texture_file_materials(const FaceMaterials& materials,
 
 GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoords,
                                  std::vector<std::string>& warnings) {
+  if (materials.gltf) return gltf::gltf_input_materials(materials, has_texcoords, warnings);
   GltfFaceMaterials out;
   std::vector<bool> used(materials.names.size(), false);
   for (const int m : materials.face_material)

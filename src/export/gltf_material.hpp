@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -50,6 +51,7 @@ std::vector<MtlTextureFile> mtl_texture_files(const std::string& path);
 struct GltfFaceMaterials {
   std::vector<GltfMaterial> materials;  ///< the defined materials the faces use, in order of first use
   std::vector<int> face_material;       ///< per face: index into materials; -1 none (empty: no face has one)
+  std::shared_ptr<const tinygltf::Model> source;  ///< GltfAnimation::material_source
 };
 
 /// The materials of the mesh's faces for the glTF (GltfAnimation::materials and face_material):
@@ -64,6 +66,7 @@ struct GltfFaceMaterials {
 /// writes it, its image embedded under the same conditions, the warnings naming the PLY and the
 /// TextureFile comment's header line; a face whose texnumber names no texture file has no
 /// material (one warning for them all).
+/// For a glTF's materials (materials.gltf set), gltf_input_materials (gltf_input_materials.hpp).
 GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoords,
                                  std::vector<std::string>& warnings);
 

@@ -28,6 +28,10 @@ void check_materials(const GltfAnimation& a) {
                                   std::to_string(m) + " is out of range (" +
                                   std::to_string(a.materials.size()) + " materials)");
   for (const GltfMaterial& m : a.materials) {
+    if (m.source_material >= 0 &&
+        (!a.material_source ||
+         static_cast<std::size_t>(m.source_material) >= a.material_source->materials.size()))
+      throw std::invalid_argument("write_gltf_animation: a source material index is out of range");
     if (!m.image.empty()) {
       if (a.face_uv.rows() == 0)
         throw std::invalid_argument("write_gltf_animation: a material image without texture coordinates");

@@ -33,7 +33,8 @@ struct Written {
 
 class GltfDocument final : public MeshDocument {
  public:
-  GltfDocument(const std::string& path, const std::string& bytes, bool binary) : binary_(binary) {
+  GltfDocument(const std::string& path, const std::string& bytes, bool binary)
+      : binary_(binary), path_(path) {
     // The parse is read_input_mesh's (the same soup, so simulation vertex i is soup vertex i).
     model_ = gltf::load_model(path, bytes);
     input_json_ = gltf::json_text(bytes);
@@ -64,6 +65,7 @@ class GltfDocument final : public MeshDocument {
     }
     read_texcoords();
     read_normals();
+    read_materials(path);
     // Each drawing of an instanced mesh holds its own moved copy (gltf_instances.hpp).
     std::vector<bool> written_normal;
     for (const Written& n : normals_) written_normal.push_back(n.accessor >= 0);
@@ -83,7 +85,19 @@ class GltfDocument final : public MeshDocument {
 
   std::string format() const override { return binary_ ? "glb" : "gltf"; }
 
-  std::string text(const Positions& x) const override {
+  std::string text(const Positions& x) const override { return text_with(input_json_, x); }
+
+  /// text(x) with each image's relative URI naming the same file from the output's folder, as
+  /// an OBJ's mtllib paths are rewritten (gltf_json.hpp, relocate_image_uris); frames of
+  /// --export-dir and the result alike.
+  std::string text_for(const std::string& output_path, const Positions& x,
+                       std::vector<std::string>* warnings) const override {
+    return text_with(gltf::relocate_image_uris(input_json_, path_, output_path, warnings), x);
+  }
+
+ private:
+  /// The file with positions x, its JSON `json` (the input's, or one with other image URIs).
+  std::string text_with(const std::string& json, const Positions& x) const {
     if (static_cast<std::size_t>(x.rows()) != vertex_count_ || x.cols() != 3)
       throw std::invalid_argument("GltfDocument::text: " + std::to_string(x.rows()) +
                                   " positions for " + std::to_string(vertex_count_) + " vertices");
@@ -109,10 +123,9 @@ class GltfDocument final : public MeshDocument {
       throw std::runtime_error("GltfDocument::text: tinygltf could not serialize the model");
     std::vector<int> bounded;
     for (const Written& w : positions_) bounded.push_back(w.accessor);
-    return gltf::restore_input_json(input_json_, out.str(), binary_, bounded);
+    return gltf::restore_input_json(json, out.str(), binary_, bounded);
   }
 
- private:
   const tinygltf::Primitive& primitive(std::size_t d) const {
     return model_.meshes[soup_.drawn[d].mesh].primitives[soup_.drawn[d].primitive];
   }
@@ -153,6 +166,20 @@ class GltfDocument final : public MeshDocument {
       uv_[v] = {f[0], 1.0 - static_cast<double>(f[1])};
     }
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());
+  }
+
+  /// The --gltf animation's materials: the model's own, and per polygon its primitive's.
+  void read_materials(const std::string& path) {
+    if (model_.materials.empty()) return;
+    for (const tinygltf::Material& m : model_.materials) materials_.names.push_back(m.name);
+    materials_.gltf = &model_;
+    materials_.source = path;
+    polygon_material_.reserve(soup_.faces.size());
+    for (const auto& f : soup_.faces) {
+      const int m = primitive(soup_.sources[f[0]].drawn).material;
+      polygon_material_.push_back(
+          m >= 0 && static_cast<std::size_t>(m) < model_.materials.size() ? m : -1);
+    }
   }
 
   /// Each vertex's input normal in world space as a unit vector (zero: none), so that copies
@@ -228,6 +255,7 @@ class GltfDocument final : public MeshDocument {
   }
 
   bool binary_;
+  std::string path_;        ///< the input file: relative image URIs start from its folder
   std::string input_json_;  ///< what is written back, updated (gltf_json.hpp)
   tinygltf::Model model_;
   GltfSoup soup_;

@@ -1,11 +1,18 @@
 // The input's JSON, updated by what the glTF document changes (gltf_json.hpp).
 #include "mesh/gltf_json.hpp"
 
+#include <cctype>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
+#include <system_error>
+
+#include "mesh/input_dependencies.hpp"
+#include "mesh/obj_material_paths.hpp"
 
 namespace shellcontract::gltf {
 namespace {
@@ -120,7 +127,72 @@ json merged(const json& in, const json& out, const std::vector<int>& bounded) {
   return doc;
 }
 
+/// `path` as a URI reference's path: '%', spaces, other characters that a URI does not allow
+/// and bytes beyond ASCII as %XX; '/' kept.
+std::string percent_encoded(const std::string& path) {
+  static const char* const HEX = "0123456789ABCDEF";
+  std::string out;
+  for (const char ch : path) {
+    const auto c = static_cast<unsigned char>(ch);
+    if (std::isalnum(c) || std::strchr("-._~/!$&'()*+,;=@", ch) != nullptr) {
+      out += ch;
+    } else {
+      out += '%';
+      out += HEX[c >> 4];
+      out += HEX[c & 15];
+    }
+  }
+  return out;
+}
+
+/// Whether the URI reference starts with a scheme ("data:", "http:", "file:"): RFC 3986's
+/// letter, then letters, digits, '+', '-' or '.', then ':'.
+bool has_scheme(const std::string& uri) {
+  if (uri.empty() || !std::isalpha(static_cast<unsigned char>(uri[0]))) return false;
+  for (std::size_t i = 1; i < uri.size(); ++i) {
+    const auto c = static_cast<unsigned char>(uri[i]);
+    if (c == ':') return true;
+    if (!std::isalnum(c) && c != '+' && c != '-' && c != '.') return false;
+  }
+  return false;
+}
+
 }  // namespace
+
+std::string relocate_image_uris(const std::string& input_json, const std::string& input_path,
+                                const std::string& output_path,
+                                std::vector<std::string>* warnings) {
+  namespace fs = std::filesystem;
+  if (input_path.empty() || same_folder(input_path, output_path)) return input_json;
+  json doc = parse(input_json, "the input's");
+  const auto images = doc.find("images");
+  if (images == doc.end() || !images->is_array()) return input_json;
+  const fs::path in_folder = fs::path(input_path).parent_path();
+  const fs::path out_folder = fs::path(output_path).parent_path();
+  bool changed = false;
+  for (std::size_t i = 0; i < images->size(); ++i) {
+    json& image = (*images)[i];
+    const auto it = image.is_object() ? image.find("uri") : image.end();
+    if (it == image.end() || !it->is_string()) continue;
+    const std::string uri = it->get<std::string>();
+    const fs::path name(percent_decoded(uri));
+    if (uri.empty() || has_scheme(uri) || name.is_absolute()) continue;
+    std::error_code ec;
+    const fs::path file = in_folder / name;
+    if (!fs::is_regular_file(file, ec)) {
+      if (warnings)
+        warnings->push_back(input_path + ": images[" + std::to_string(i) + "].uri '" + uri +
+                            "' is no file from the glTF's folder: written as read, so it names " +
+                            "no file from the output's folder either");
+      continue;
+    }
+    const std::string moved = path_from_folder(file, out_folder);
+    if (moved == name.generic_string()) continue;
+    *it = percent_encoded(moved);
+    changed = true;
+  }
+  return changed ? doc.dump(2) + "\n" : input_json;
+}
 
 std::string json_text(const std::string& bytes) {
   if (bytes.compare(0, 4, "glTF") != 0) return bytes;

@@ -27,4 +27,15 @@ std::string json_text(const std::string& bytes);
 std::string restore_input_json(const std::string& input_json, const std::string& written,
                                bool binary, const std::vector<int>& bounded);
 
+/// `input_json` (the JSON of the glTF file `input_path`) with each image's relative URI naming
+/// the same file from the folder of `output_path` (docs/design/attributes.md, "glTF inputs"), as
+/// an OBJ's mtllib paths are rewritten (obj_material_paths.hpp, path_from_folder): percent-decoded
+/// to find the file, the new path percent-encoded where a URI needs it. Data URIs, URIs with a
+/// scheme and absolute paths stay. A URI that names no file from the input's folder stays as
+/// read, with a warning "<input>: images[<i>].uri '<uri>' ..." appended to `warnings` (when
+/// given). The JSON itself when both files are in the same folder or nothing changes.
+/// @throws std::runtime_error when the JSON does not parse
+std::string relocate_image_uris(const std::string& input_json, const std::string& input_path,
+                                const std::string& output_path, std::vector<std::string>* warnings);
+
 }  // namespace shellcontract::gltf

@@ -65,26 +65,6 @@ void ply_dependencies(const std::string& path, const std::string& bytes,
                                  " names (comment TextureFile, header " + line_text(t.line) + ")"});
 }
 
-/// A URI reference's path with its %XX escapes decoded, as a viewer finds the file.
-std::string percent_decoded(const std::string& uri) {
-  const auto hex = [](char c) -> int {
-    if (c >= '0' && c <= '9') return c - '0';
-    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
-    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
-    return -1;
-  };
-  std::string s;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
-      s += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
-      i += 2;
-    } else {
-      s += uri[i];
-    }
-  }
-  return s;
-}
-
 void gltf_dependencies(const std::string& path, const std::string& bytes,
                        std::vector<InputDependency>& out) {
   std::vector<std::string> looked_up;
@@ -131,6 +111,25 @@ std::vector<InputDependency> input_dependencies(const std::string& path) {
     // The reader reports it, naming the input.
   }
   return out;
+}
+
+std::string percent_decoded(const std::string& uri) {
+  const auto hex = [](char c) -> int {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  std::string s;
+  for (std::size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      s += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      s += uri[i];
+    }
+  }
+  return s;
 }
 
 }  // namespace shellcontract

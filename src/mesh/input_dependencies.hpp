@@ -31,4 +31,8 @@ struct InputDependency {
 /// writing anything).
 std::vector<InputDependency> input_dependencies(const std::string& path);
 
+/// A URI reference's path with its %XX escapes decoded, as a viewer finds the file ("a%20b.png"
+/// is "a b.png"); other characters as they are.
+std::string percent_decoded(const std::string& uri);
+
 }  // namespace shellcontract

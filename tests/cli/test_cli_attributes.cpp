@@ -93,8 +93,12 @@ TEST_F(CliAttributes, ObjKeepsUvsGroupsMaterialsAndQuadsWithTheRunsPositionsAndN
   // The .glb carries the texture coordinates and names its fields (tests/export reads one back
   // in full; here: the CLI hands them over). Its JSON chunk is text.
   const std::string glb = read_text(file("out.glb"));
-  for (const char* s : {"\"TEXCOORD_0\"", "\"_MEAN_CURVATURE\"", "\"values_attribute\"", "\"frame\""})
+  for (const char* s :
+       {"\"TEXCOORD_0\"", "\"_MEAN_CURVATURE\"", "\"_GAUSSIAN_CURVATURE\"", "\"_PRESSURE\"",
+        "\"_ENERGY_DENSITY\"", "\"values_attribute\"", "\"frame\""})
     EXPECT_NE(glb.find(s), std::string::npos) << s << " missing in the .glb";
+  // No COLOR_n: glTF multiplies COLOR_0 with the base colour, which tinted the texture.
+  EXPECT_EQ(glb.find("\"COLOR_"), std::string::npos) << "the fields must not be vertex colours";
   const RunResult off = run_cli(run_args(in, file("out.off")));
   ASSERT_EQ(off.exit_code, obj.exit_code) << off.output;
   const Rows x = off_vertices(file("out.off"));

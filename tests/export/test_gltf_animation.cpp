@@ -126,11 +126,33 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
             a.frame_numbers.back());
   ASSERT_EQ(extras.Get("colour_fields").ArrayLen(), 2u);
   EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("name").Get<std::string>(), "wave");
-  EXPECT_EQ(extras.Get("colour_fields").Get(1).Get("attribute").Get<std::string>(), "COLOR_1");
-  const test::Floats c1 = test::read_floats(m, p.attributes.at("COLOR_1"));
-  EXPECT_GE(c1.minCoeff(), 0.0f);
-  EXPECT_LE(c1.maxCoeff(), 1.0f);
-  EXPECT_GT((c1.col(0) - c1.col(2)).cwiseAbs().maxCoeff(), 0.5f) << "the field spans red and blue";
+  // Each field's values under its own custom attribute, and the range a viewer maps to colours.
+  const tinygltf::Value& wave = extras.Get("colour_fields").Get(1);
+  EXPECT_FALSE(wave.Has("attribute"));
+  ASSERT_EQ(wave.Get("values_attribute").Get<std::string>(), "_WAVE");
+  const test::Floats w = test::read_floats(m, p.attributes.at("_WAVE"));
+  ASSERT_EQ(w.rows(), a.colour_fields[1].values.size());
+  EXPECT_LE((w.cast<double>() - a.colour_fields[1].values).cwiseAbs().maxCoeff(), 1e-6);
+  const double low = wave.Get("low").GetNumberAsDouble(),
+               high = wave.Get("high").GetNumberAsDouble();
+  EXPECT_LT(low, high);
+  EXPECT_GE(low, a.colour_fields[1].values.minCoeff());
+  EXPECT_LE(high, a.colour_fields[1].values.maxCoeff());
+}
+
+// glTF multiplies COLOR_0 with the base colour, so field colours there tinted every textured
+// asset in Blender and three.js (the writer had put field i on COLOR_i).
+TEST(GltfAnimation, ColourFieldsAreNoColorAttributes) {
+  test::ScratchDir dir("nocolor");
+  const GltfAnimation a = sphere_animation(10, 5);
+  write_gltf_animation(dir.file("sphere.glb"), a);
+  const tinygltf::Model m = test::load_glb(dir.file("sphere.glb"));
+  for (const tinygltf::Primitive& p : m.meshes.at(0).primitives) {
+    for (const auto& [name, accessor] : p.attributes)
+      EXPECT_NE(name.rfind("COLOR_", 0), 0u) << name;
+    EXPECT_TRUE(p.attributes.count("_HEIGHT"));
+    EXPECT_TRUE(p.attributes.count("_WAVE"));
+  }
 }
 
 TEST(GltfAnimation, OneFrameHasNoTargetsAndNoAnimation) {

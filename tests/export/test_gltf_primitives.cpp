@@ -119,7 +119,7 @@ TEST(GltfPrimitives, EachMaterialOfAnObjIsAPrimitiveWithExactlyItsFaces) {
   }
   EXPECT_EQ(index_accessors.size(), groups.size());
   EXPECT_TRUE(p0.attributes.count("TEXCOORD_0"));
-  EXPECT_TRUE(p0.attributes.count("COLOR_0"));
+  EXPECT_FALSE(p0.attributes.count("COLOR_0"));  // it would multiply the materials' colours
   EXPECT_EQ(mesh.weights.size(), p0.targets.size());
 
   // Each material as its .mtl says; body and teeth name the same PNG: one image, one texture.

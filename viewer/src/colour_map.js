@@ -1,5 +1,5 @@
-// Per-vertex values to colours: the blue - white - red map of the fields PLY and the glTF
-// (src/export/field_colours.cpp), from the 2nd to the 98th percentile, in linear RGB.
+// Per-vertex values to colours: the blue - white - red map of the fields PLY (sim/fields.hpp),
+// from the 2nd to the 98th percentile, in linear RGB; a run's .glb holds the values and range.
 import * as THREE from 'three';
 
 /** The value at fraction q of the sorted values (nearest rank, as field_percentile). */

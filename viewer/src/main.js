@@ -37,7 +37,7 @@ view.appendChild(renderer.domElement);
 const camera = new THREE.PerspectiveCamera(35, 1, 0.01, 100);
 const controls = new OrbitControls(camera, renderer.domElement);
 controls.addEventListener('change', render);
-/** @type {{name, kind, scene, sun, object, meshes, vertices, frameNumbers?, colourInfo?, colourAttributes?, looks?, fixed?, fields?, fileColours?}[]} */
+/** @type {{name, kind, scene, sun, object, meshes, vertices, frameNumbers?, colourInfo?, fieldValues?, looks?, fixed?, fields?, fileColours?}[]} */
 let panes = [];
 
 function resize() {
@@ -257,10 +257,11 @@ function applyColours() {
           attr = fieldColourAttribute(m.geometry, perFrame.values[k], perFrame.low, perFrame.high);
           values[pi] = perFrame.values[k];
           if (j === 0) notes.push(`${info.name}: each frame's own values; blue ${perFrame.low.toPrecision(3)}, red ${perFrame.high.toPrecision(3)} (2nd to 98th percentile over all frames)`);
-        } else if (info && (info.frame === undefined || info.frame === frame)) {
+        } else if (info && (info.frame === undefined || info.frame === frame) && p.fieldValues[j][i]) {
           // A field of one frame ('frame' in the extras) is shown on that frame only; without
           // 'frame', on any.
-          attr = p.colourAttributes[j][i];
+          attr = fieldColourAttribute(m.geometry, p.fieldValues[j][i], Number(info.low), Number(info.high));
+          values[pi] = p.fieldValues[j][i];
         }
         if (info && !perFrame && j === 0) {
           notes.push(`${info.name}: blue ${Number(info.low).toPrecision(3)}, red ${Number(info.high).toPrecision(3)} (its 2nd to 98th percentile)` +

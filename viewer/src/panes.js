@@ -35,14 +35,13 @@ async function glbPane(arrayBuffer, name) {
   const targets = shell.morphTargetInfluences ? shell.morphTargetInfluences.length : 0;
   const frameNumbers = Array.isArray(extras.frame_numbers) ? extras.frame_numbers : Array.from({ length: targets + 1 }, (_, k) => k);
   const track = gltf.animations[0]?.tracks[0];
-  // Colour fields: COLOR_0 is three's 'color', COLOR_n its 'color_n'; per mesh, kept aside
-  // before a choice replaces its 'color'.
+  // Colour fields: the values of each, a custom attribute the loader names in lower case
+  // ('_MEAN_CURVATURE' is '_mean_curvature'); main.js maps them to colours over the extras' low
+  // and high. (The file has no COLOR_n: glTF multiplies COLOR_0 with the base colour.)
   const colourInfo = Array.isArray(extras.colour_fields) ? extras.colour_fields : [];
   const geometry = shell.geometry;
-  const colourAttributes = meshes.map((m) => colourInfo.map((f, i) => {
-    const a = typeof f.attribute === 'string' ? f.attribute : `COLOR_${i}`;
-    return m.geometry.getAttribute(a === 'COLOR_0' ? 'color' : a.toLowerCase());
-  }));
+  const fieldValues = meshes.map((m) => colourInfo.map((f) => (
+    typeof f.values_attribute === 'string' ? m.geometry.getAttribute(f.values_attribute.toLowerCase())?.array ?? null : null)));
   // Fields with each frame's own values (extras.frame_fields: one accessor per frame), by name.
   const frameFields = {};
   for (const f of Array.isArray(extras.frame_fields) ? extras.frame_fields : []) {
@@ -58,7 +57,7 @@ async function glbPane(arrayBuffer, name) {
     const field = new THREE.MeshStandardMaterial({ color: 0xffffff, roughness: 0.6, metalness: 0.0, side: THREE.DoubleSide });
     if (gltf.parser.associations.get(m.material)?.materials === undefined) return { field, file: null };
     const file = m.material.clone();
-    file.vertexColors = false;  // the loader turns them on for COLOR_0, which here is a field's colours
+    file.vertexColors = false;  // a field's colours are the viewer's, never the file material's
     file.side = THREE.DoubleSide;  // as the viewer's: a folded shell shows its back faces
     return { field, file };
   });
@@ -66,7 +65,7 @@ async function glbPane(arrayBuffer, name) {
   const { scene, sun } = makeScene();
   scene.add(gltf.scene);
   return { name, kind: 'glb', scene, sun, object: gltf.scene, meshes, vertices: geometry.getAttribute('position').count,
-           frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, colourAttributes,
+           frameNumbers, times: track ? Array.from(track.times) : frameNumbers.map((_, k) => k / 24), colourInfo, fieldValues,
            frameFields, looks };
 }
 
@@ -192,7 +191,7 @@ export function disposePane(p, keep = null) {
  */
 const attributesOf = (p, j) => {
   const g = p.meshes[j].geometry;
-  return [...new Set([...Object.values(g.attributes), ...(p.colourAttributes?.[j] ?? []), p.fileColourAttributes?.[j],
+  return [...new Set([...Object.values(g.attributes), p.fileColourAttributes?.[j],
                       fieldColoursOf(g)].filter(Boolean))];
 };
 /** The materials of a mesh's look: the viewer's and the file's (one, or one per group). */

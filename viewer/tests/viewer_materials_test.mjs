@@ -39,6 +39,13 @@ try {
   const json = glbJson(file('three.glb'));
   const prims = json.meshes[0].primitives;
   const defs = prims.map((p) => (p.material === undefined ? null : json.materials[p.material]));
+  // The fields are custom attributes, never COLOR_n: glTF multiplies COLOR_0 with the base
+  // colour, so Blender and three.js would tint the materials with a field's colours.
+  const colorAttributes = prims.flatMap((p) => Object.keys(p.attributes).filter((a) => a.startsWith('COLOR_')));
+  const fieldAttributes = (json.meshes[0].extras?.colour_fields ?? []).map((f) => f.values_attribute);
+  check(colorAttributes.length === 0 && fieldAttributes.length === 4 &&
+        prims.every((p) => fieldAttributes.every((a) => typeof a === 'string' && a.startsWith('_') && p.attributes[a] !== undefined)),
+        `three.glb's fields are custom attributes on every primitive, with no COLOR_n (${fieldAttributes.join(', ')}; COLOR_n: ${colorAttributes.join(', ') || 'none'})`);
   check(!s.error && prims.length === 4 && s.panes[0]?.meshes === 4 && defs.filter((d) => d).length === 3,
         `three.glb opens as four meshes, three with a material (${s.error ?? `${s.panes[0]?.meshes} meshes, ${prims.length} primitives`})`);
   const menu = await page.$eval('#colour', (e) => ({ value: e.value, options: [...e.options].map((o) => o.value) }));

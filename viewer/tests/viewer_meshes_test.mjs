@@ -143,6 +143,8 @@ try {
   await page.select('#colour', '1');
   const lastShown = await page.evaluate(() => window.viewer.shown[0]);
   check(lastShown === 'gaussian_curvature', `the last frame wears its gaussian curvature (shown: ${lastShown})`);
+  check(sameFloats(await pageValues(), plyColumn(file('fields_end.ply'), 'gaussian_curvature')),
+        "its colours are the last frame's gaussian curvature (the --fields end PLY's), from the file's _GAUSSIAN_CURVATURE");
   const lastColoured = await shot();
   await page.select('#colour', '-1');
   check(await differing(lastColoured, await shot()) > 0.01, 'on the last frame the field changes the picture');
