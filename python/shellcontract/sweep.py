@@ -160,6 +160,19 @@ QUIET_WORKERS = {"distributed.worker.profile.enabled": False,
                  "distributed.scheduler.work-stealing-interval": "1s"}
 
 
+# Evaluated on the scheduler (Client.run_on_scheduler(eval, ...)): whether it can serve the
+# dashboard's pages. Its HTTP server runs without bokeh too (its link then answers 404).
+_BOKEH_PROBE = "__import__('importlib.util').util.find_spec('bokeh') is not None"
+
+
+def _scheduler_has_dashboard(client):
+    try:
+        return ("dashboard" in client.scheduler_info().get("services", {})
+                and bool(client.run_on_scheduler(eval, _BOKEH_PROBE)))
+    except Exception:  # an old or odd scheduler: say nothing rather than a dead link
+        return False
+
+
 def _embedded_cluster(workers):
     import dask
     from distributed import LocalCluster
@@ -169,7 +182,10 @@ def _embedded_cluster(workers):
     # start and heartbeats over TCP (lab/sweep/README.md). No memory limit: the workers hold no
     # data (a job's memory is its process's), so nothing to monitor.
     return LocalCluster(n_workers=workers, threads_per_worker=1, processes=False, memory_limit=0,
-                        dashboard_address="127.0.0.1:0" if _has_dashboard() else None,
+                        # Any free port: the scheduler's HTTP server runs with or without a
+                        # dashboard, and on Dask's default port (8787) it warned on every sweep
+                        # while the user's own cluster held that port.
+                        dashboard_address="127.0.0.1:0",
                         silence_logs=40)
 
 
@@ -269,9 +285,12 @@ def _run_dask(todo, args, cli, version, token, progress, on_record, client=None)
         client = Client(cluster)
     futures = {}
     try:
-        if args.scheduler or _has_dashboard():
+        if _scheduler_has_dashboard(client) if args.scheduler else _has_dashboard():
             # The scheduler's own dashboard when it has one (it says where).
             progress.message("Dask dashboard: {}".format(client.dashboard_link))
+        elif args.scheduler:
+            progress.message("Dask dashboard: not available (the scheduler runs without one, or "
+                             "without the Python package bokeh that it needs)")
         else:
             progress.message("Dask dashboard: not available (it needs the Python package bokeh, "
                              "which Debian 12 does not package)")
@@ -284,7 +303,11 @@ def _run_dask(todo, args, cli, version, token, progress, on_record, client=None)
                                out_dir=args.output, cli=cli, timeout=args.job_timeout,
                                checkpoint_every=args.checkpoint_every, sweep=token,
                                own_cli=own_cli, version=version, pure=False,
-                               key=["shellcontract-job-" + job.id for job in todo])
+                               # This sweep's own keys: two sweeps on one cluster with the
+                               # same job (its id is the run's, not the folder's) had shared one
+                               # task, whose files went to the first sweep's folder only.
+                               key=["shellcontract-job-{}-{}".format(job.id, token)
+                                    for job in todo])
         for f, job in zip(submitted, todo):
             futures[f] = job
             f.add_done_callback(finished.put)

@@ -36,13 +36,14 @@ def rows(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
         row = {"job": job.id, "mesh": os.path.relpath(job.mesh, sweep_dir)}
         for name in varying:
             row[name] = job.varying.get(name, job.options.get(name, ""))
+        # A result not there is None: null in results.json, as in the job's job.json (it had
+        # been "", a string in a column of numbers), and an empty cell in results.csv.
         if record is None:
-            row.update({k: "" for k in RESULT_COLUMNS})
+            row.update({k: None for k in RESULT_COLUMNS})
             row["status"] = "pending"
         else:
             for k in RESULT_COLUMNS:
-                v = record.get(k)
-                row[k] = "" if v is None else v
+                row[k] = record.get(k)
         out.append(row)
     return out
 
@@ -86,6 +87,8 @@ def shortest_text(x):
 
 
 def _cell(v):
+    if v is None:
+        return ""
     if isinstance(v, bool):
         return "on" if v else "off"
     if isinstance(v, float):

@@ -70,6 +70,18 @@ def test_an_integer_in_the_file_reads_as_the_same_number_given_as_a_float(cli, m
     assert [row["air_balance"] for row in table] == ["", "0"] * 4
 
 
+def test_a_result_not_there_is_null_in_json_and_empty_in_csv(cli, mesh_dir, tmp_path):
+    # Before: "" in results.json, a string in a column of numbers, where job.json has null.
+    spec = {"meshes": ["meshes/ico1.off"], "grid": {"pressure": [1, 2]}}
+    _, table = written_table(cli, mesh_dir, tmp_path, spec)
+    rows = __import__("json").loads((tmp_path / "out" / "results.json").read_text())
+    for csv_row, json_row in zip(table, rows):
+        assert json_row["status"] == csv_row["status"] == "pending"
+        for k in sweep_results.RESULT_COLUMNS:
+            if k != "status":
+                assert json_row[k] is None and csv_row[k] == "", (k, json_row, csv_row)
+
+
 @pytest.mark.parametrize("value,text", [
     (1e6, "1e+06"), (1e5, "1e+05"), (123456.0, "123456"), (1e-5, "1e-05"), (0.003, "0.003"),
     (-2.5, "-2.5"), (0.1 + 0.2, "0.30000000000000004"), (2.0 ** 70, "1180591620717411303424"),

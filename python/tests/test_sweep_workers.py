@@ -161,3 +161,33 @@ def test_ctrl_c_stops_the_jobs_on_the_workers_which_save(cli, mesh_dir, tmp_path
     r = run_sweep(cli, [str(small), "-o", str(tmp_path / "out2"), "--scheduler", address])
     assert r.returncode == 0, r.stderr
     assert json.loads((tmp_path / "out2" / "results.json").read_text())[0]["status"] == "ok"
+
+
+def test_two_sweeps_with_one_job_on_one_cluster_each_get_their_files(cli, mesh_dir, tmp_path,
+                                                                     cluster):
+    # Before: the task's key was the job's id, which is the run's, not the folder's: the second
+    # sweep joined the first's task, its results.csv said "ok" for files that were only in the
+    # first sweep's folder, and a Ctrl-C of one interrupted the other. The dashboard line named a
+    # link that answered 404 when the scheduler could not serve the dashboard (no bokeh).
+    address, start = cluster
+    start(sweep_env(cli), nthreads=2)
+    spec = {"meshes": ["meshes/ico3.off"], "options": {"frames": 300}}
+    path = write_sweep(tmp_path, mesh_dir, "s.json", spec, meshes=("ico3.off",))
+    procs = [subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o",
+                               str(tmp_path / name), "--scheduler", address],
+                              env=sweep_env(cli), stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                              text=True) for name in ("a", "b")]
+    errs = [p.communicate(timeout=240)[1] for p in procs]
+    for p, err in zip(procs, errs):
+        assert p.returncode == 0, err
+    for name in ("a", "b"):
+        rows = results(tmp_path / name)
+        assert [r["status"] for r in rows] == ["ok"], rows
+        assert (tmp_path / name / rows[0]["output"]).is_file(), rows
+    if not sweep_job_has_bokeh():
+        assert all("Dask dashboard: not available" in err for err in errs), errs
+
+
+def sweep_job_has_bokeh():
+    import importlib.util
+    return importlib.util.find_spec("bokeh") is not None
