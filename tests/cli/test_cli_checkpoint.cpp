@@ -92,7 +92,7 @@ class CliCheckpoint : public ::testing::Test {
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_checkpoint_" +
+           ("shellcontract_cli_checkpoint_" + std::to_string(::getpid()) + "_" +
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);

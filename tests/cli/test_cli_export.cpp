@@ -2,6 +2,7 @@
 // names, the first and last frames, the summary's costs, and a result byte-identical to the run
 // without export (exporting only reads positions).
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <filesystem>
 #include <fstream>
@@ -29,7 +30,7 @@ class CliExport : public ::testing::Test {
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_export_" +
+           ("shellcontract_cli_export_" + std::to_string(::getpid()) + "_" +
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);

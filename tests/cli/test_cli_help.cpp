@@ -2,6 +2,7 @@
 // the table sits in a named group (an option added without one would land under "other" and fail
 // here), and the options whose table default the default solver replaces say so.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <filesystem>
 #include <fstream>
@@ -79,7 +80,8 @@ std::string summary_option(const fs::path& summary, const std::string& key) {
 
 TEST(CliHelp, RunHelpDerivedDefaultsAreWhatARunResolves) {
   if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
-  const fs::path dir = fs::temp_directory_path() / "shellcontract_cli_help_defaults";
+  const fs::path dir =
+      fs::temp_directory_path() / ("shellcontract_cli_help_defaults_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const auto resolved = [&](std::vector<std::string> extra) {

@@ -4,6 +4,7 @@
 // usual. Before, --regions' help said its default became auto only with --aniso, and an --inward
 // given beside --measure-regions alone was dropped without a word.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <filesystem>
 #include <fstream>
@@ -25,8 +26,9 @@ class CliMeasureRegions : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
-    dir_ = fs::temp_directory_path() / ("shellcontract_cli_measure_regions_" +
-                                        std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_cli_measure_regions_" + std::to_string(::getpid()) + "_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -6,6 +6,7 @@
 // must end in one of the documented ways, and the steps must reach both a failure during the
 // frames (the collision step's candidate pairs grow as the shell contracts) and one before them.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <cstdio>
 #include <filesystem>
@@ -52,7 +53,7 @@ class CliOutOfMemory : public ::testing::Test {
     bear_ = std::string(test::PAPER_MESH_DIR) + "/bear.off";
     if (!fs::exists(bear_)) GTEST_SKIP() << bear_ << " absent (scripts/fetch_paper_meshes.sh)";
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_oom_" +
+           ("shellcontract_cli_oom_" + std::to_string(::getpid()) + "_" +
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);

@@ -2,6 +2,7 @@
 // without -o, its --region-at forms and table,
 // and the help texts that describe them; `bench`'s help and `bench ccd`'s times.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <cmath>
 #include <filesystem>
@@ -26,7 +27,8 @@ class CliRegions : public ::testing::Test {
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_regions_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("shellcontract_cli_regions_" + std::to_string(::getpid()) + "_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

@@ -1,6 +1,7 @@
 // `shellcontract run` as a user runs it: exit codes, messages, outputs written atomically and in
 // the input's order (README "Exit codes", "Outputs").
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <filesystem>
 #include <fstream>
@@ -24,7 +25,8 @@ class CliRun : public ::testing::Test {
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_run_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+           ("shellcontract_cli_run_" + std::to_string(::getpid()) + "_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
   }

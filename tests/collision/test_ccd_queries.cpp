@@ -1,6 +1,7 @@
 // The CCD narrow phase on the published benchmark queries with exact ground truth
 // (shared/data/ccd-queries, read in place, never copied), and the query-file reader.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <cmath>
 #include <filesystem>
@@ -111,8 +112,8 @@ class QueryReader : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("shellcontract_ccd_reader_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-            "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+           ("shellcontract_ccd_reader_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "sub");
   }

@@ -3,6 +3,7 @@
 // the simulation's triangles. Compared with what the generator wrote (tests/support/textured_obj.hpp)
 // and with normals computed here from the polygons' vector areas, not with the code under test.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <Eigen/Geometry>
 #include <cmath>
@@ -123,7 +124,9 @@ TEST(ObjDocument, HardEdgeNormalsTurnWithTheirFaces) {
 
 TEST(ObjDocument, TexcoordsFollowTheSimulationTriangles) {
   const test::TexturedObj t = test::textured_uv_sphere();
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "shellcontract_obj_document_uv.obj";
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() /
+      ("shellcontract_obj_document_uv_" + std::to_string(::getpid()) + ".obj");
   std::ofstream(path) << t.text;
   const Mesh mesh = read_input_mesh(path.string());
   const auto doc = read_mesh_document(path.string());
@@ -174,7 +177,9 @@ TEST(ObjDocument, AnIndexOutOfRangeNamesTheLine) {
 
 TEST(ObjDocument, DoesNotMatchAnotherMesh) {
   const test::TexturedObj t = test::textured_uv_sphere(6, 8);
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / "shellcontract_obj_document_other.obj";
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() /
+      ("shellcontract_obj_document_other_" + std::to_string(::getpid()) + ".obj");
   std::ofstream(path) << test::textured_uv_sphere(8, 12).text;
   const Mesh other = read_input_mesh(path.string());
   std::filesystem::remove(path);

@@ -2,6 +2,7 @@
 // properties, comments and other elements come back unchanged; x, y, z are the new positions in
 // their declared type. The layouts are written here by hand, so the bytes to compare are known.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <array>
 #include <cstdint>
@@ -135,11 +136,12 @@ TEST(PlyDocument, BinaryOfEitherByteOrderChangesOnlyThePositionBytes) {
   }
 }
 
-/// The mesh and the document of a PLY file with `text` (written to `name` in the temp folder
-/// and removed again), as a run reads its input.
+/// The mesh and the document of a PLY file with `text` (written to the temp folder as `name`
+/// after this process's id, and removed again), as a run reads its input.
 std::pair<Mesh, std::unique_ptr<MeshDocument>> read_ply_file(const std::string& name,
                                                              const std::string& text) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / name;
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "_" + name);
   std::ofstream(path) << text;
   Mesh mesh = read_input_mesh(path.string());
   auto doc = read_mesh_document(path.string());

@@ -1,6 +1,7 @@
 // Poisson reconstruction from an oriented point set (the kitten's path): a sampled sphere comes
 // back as a closed, outward surface with the sphere's volume.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <algorithm>
 #include <cmath>
@@ -24,10 +25,17 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double PI = 3.14159265358979323846;
 
+/// The temporary file `name`, named after the process too: two suites run at once (two build
+/// trees) would otherwise write and remove each other's files.
+fs::path temp_file(const std::string& name) {
+  return fs::temp_directory_path() /
+         ("shellcontract_rec_" + std::to_string(::getpid()) + "_" + name);
+}
+
 TEST(Reconstruction, SampledSphereBecomesAClosedOutwardSphere) {
   const double r = 2.0;
   const test::TriMesh sphere = test::icosphere(4, r);
-  const fs::path path = fs::temp_directory_path() / "shellcontract_sphere.xyz";
+  const fs::path path = temp_file("sphere.xyz");
   {
     std::ofstream out(path);
     out.precision(17);
@@ -50,7 +58,7 @@ TEST(Reconstruction, SampledSphereBecomesAClosedOutwardSphere) {
 
 TEST(Reconstruction, UnreadableOrTooSmallInputIsAnInputError) {
   EXPECT_THROW(reconstruct_from_oriented_points("/nonexistent/points.xyz"), InputError);
-  const fs::path path = fs::temp_directory_path() / "shellcontract_three_points.xyz";
+  const fs::path path = temp_file("three_points.xyz");
   {
     std::ofstream out(path);
     out << "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n";
@@ -61,7 +69,7 @@ TEST(Reconstruction, UnreadableOrTooSmallInputIsAnInputError) {
 
 /// Writes `text` to a fresh file in the temporary folder and returns its path.
 std::string points_file(const std::string& name, const std::string& text) {
-  const fs::path path = fs::temp_directory_path() / ("shellcontract_rec_" + name + ".xyz");
+  const fs::path path = temp_file(name + ".xyz");
   std::ofstream(path) << text;
   return path.string();
 }
@@ -150,7 +158,7 @@ TEST(Reconstruction, StrayPointsAndExtremeMagnitudesAreInputErrorsNamingTheLine)
              std::to_string(0.07 * (i % 4)) + " 1 0 0\n";
   EXPECT_TRUE(has(error_of(points_file("group", random_sphere_lines(group))), "times their median spacing"));
   // A PLY's points are named by vertex (from 0).
-  const fs::path ply = fs::temp_directory_path() / "shellcontract_rec_stray.ply";
+  const fs::path ply = temp_file("stray.ply");
   std::ofstream(ply) << "ply\nformat ascii 1.0\nelement vertex 201\nproperty double x\nproperty double y\n"
                         "property double z\nproperty double nx\nproperty double ny\nproperty double nz\nend_header\n"
                      << random_sphere_lines("1000 0 0 1 0 0\n");
@@ -169,8 +177,8 @@ std::vector<Point3> sorted_points(const Mesh& mesh) {
 TEST(Reconstruction, RepeatedPositionsCountOnceAndMustAgree) {
   const Mesh once = reconstruct_from_oriented_points(points_file("once", random_sphere_lines()));
   const Mesh eight = reconstruct_from_oriented_points(points_file("eight", random_sphere_lines("", 1.0, 1.0, 8)));
-  fs::remove(fs::temp_directory_path() / "shellcontract_rec_once.xyz");
-  fs::remove(fs::temp_directory_path() / "shellcontract_rec_eight.xyz");
+  fs::remove(temp_file("once.xyz"));
+  fs::remove(temp_file("eight.xyz"));
   // The same surface; its faces may come out in another order (CGAL orders them by address).
   EXPECT_EQ(sorted_points(once), sorted_points(eight));
   EXPECT_EQ(once.number_of_faces(), eight.number_of_faces());

@@ -1,6 +1,7 @@
 // The default run ends each paper mesh at the V/V0 the README states, within 0.02 (the rest of
 // the meshes in tests/long), and the local contraction's strength controls how far regions sink.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <algorithm>
 
@@ -126,9 +127,10 @@ RunResult face_list_contraction(const std::string& name, const RegionOptions& th
   const Mesh mesh = test::load_target_mesh(name);
   const std::vector<int> ids =
       select_spherical_regions(mesh, positions_from_mesh(mesh), thresholds);
-  const std::string file = (std::filesystem::temp_directory_path() /
-                            ("shellcontract_" + name + "_regions.txt"))
-                               .string();
+  const std::string file =
+      (std::filesystem::temp_directory_path() /
+       ("shellcontract_" + std::to_string(::getpid()) + "_" + name + "_regions.txt"))
+          .string();
   write_region_file(file, ids);
   RunOptions o;
   o.sim.pressure = 0.0;

@@ -1,5 +1,6 @@
 // Per-vertex output fields (issue "materials and regions", item 6): known values on a sphere.
 #include <gtest/gtest.h>
+#include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <filesystem>
 
@@ -38,7 +39,9 @@ TEST(Fields, ColourMapEndpointsAndPlyRoundTrip) {
   SimOptions opt;
   opt.collisions = false;
   Simulator sim(test::to_surface_mesh(test::icosphere(2, 2.0)), opt);
-  const std::string path = (std::filesystem::temp_directory_path() / "shellcontract_fields.ply").string();
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("shellcontract_fields_" + std::to_string(::getpid()) + ".ply"))
+                               .string();
   write_fields_ply(path, sim, sim.positions_in_input_units(), compute_vertex_fields(sim), FieldColour::Pressure);
   const Mesh back = read_input_mesh(path);
   std::filesystem::remove(path);
