@@ -59,6 +59,7 @@ same fraction of velocity is removed per unit time. Collision handling is off un
   ms_per_step  median over the steps of the wall time of one step (all its substeps)
 The reference check reruns each reference with half its step (xpbd) or twice its iterations
 (pbd); it is converged when that change is smaller than the smallest hausdorff of the table.
+In --csv a check's row has its reference's ms_per_step (it is plotted there; not timed).
 
 exit codes: 0 success, 1 bad usage (also: an unwritable --csv or --plot, gnuplot missing or
             failing), 2 bad input mesh, 3 a reference run failed (blow-up))";

@@ -26,12 +26,11 @@
 #include "export_observer.hpp"
 #include "help_groups.hpp"
 #include "json_writer.hpp"
-#include "mesh/file_extras.hpp"
-#include "mesh/read_polygon_soup.hpp"
 #include "mesh/output_check.hpp"
 #include "mesh/stl_positions.hpp"
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
+#include "run_document.hpp"
 #include "run_interrupt.hpp"
 #include "run_observers.hpp"
 #include "run_summary.hpp"
@@ -145,14 +144,16 @@ int command_run(int argc, char** argv) {
       "export-dir", po::value(&exports.dir)->value_name("DIR"),
       "write the kept frames as DIR/<output name>_<frame>.<output format> (created if missing), "
       "each written as -o is (an OBJ or PLY input's attributes kept)")(
-      "export-failure", po::value(&export_failure)->default_value(export_failure)->value_name("WHAT"),
+      "export-failure",
+      po::value(&export_failure)->default_value(export_failure)->value_name("WHAT"),
       "when a frame file cannot be written (a full disk): warn (the export stops, the run goes "
       "on) or stop (the run ends there); either way the result, log and summary are written")(
       "gltf", po::value(&exports.gltf)->value_name("FILE.glb"),
-      "write the kept frames as one animated glTF 2.0 binary (morph targets, normals, colour "
-      "fields), named after the input; an OBJ's material (.mtl Kd, d, map_Kd PNG/JPEG embedded; "
-      "the material of the most faces when there are several); open it with scripts/view.py")("log", po::value(&log_path)->value_name("FILE.csv"),
-                                               "per-frame CSV log")(
+      "write the kept frames as one animated glTF 2.0 binary (morph targets, normals, the end "
+      "state's fields as custom attributes), named after the input; the input's materials and "
+      "textures (an OBJ's .mtl, a PLY's TextureFile, a glTF's own; images embedded), one "
+      "primitive per material; open it with scripts/view.py")(
+      "log", po::value(&log_path)->value_name("FILE.csv"), "per-frame CSV log")(
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
       "quiet,q", po::bool_switch(&quiet), "no progress on stderr")(
       "checkpoint", po::value(&checkpoint_path)->value_name("FILE"),
@@ -299,39 +300,9 @@ int command_run(int argc, char** argv) {
       std::cerr << "read " << input << ": " << mesh.number_of_vertices() << " vertices, "
                 << mesh.number_of_faces() << " faces in " << std::setprecision(3) << read_seconds
                 << " s\n";
-    // The input kept whole, so that an OBJ or PLY result keeps what the simulation does not use
-    // (UVs, normals, groups, materials, polygons, extra properties; docs/design/attributes.md).
-    // Held only where it is used (it is the whole file): an output of the input's format, or the
-    // glTF's texture coordinates.
-    std::shared_ptr<const MeshDocument> document;  // shared with the frame writer's thread
-    if (lower_extension(input) == lower_extension(output) || !exports.gltf.empty()) {
-      try {
-        document = read_mesh_document(input);
-      } catch (const InputError& e) {
-        std::cerr << "warning: the result is written without the input's attributes: " << e.what() << '\n';
-      }
-      if (document && !document->matches(mesh)) {
-        std::cerr << "warning: the result is written without the input's attributes: "
-                  << (repair ? "--repair changed the mesh" : "the mesh is not the file's");
-        // Which ones, named as `repair` names them: nothing is dropped without a word.
-        try {
-          const FileExtras extras = describe_file_extras(lower_extension(input), read_file_bytes(input));
-          for (std::size_t i = 0; i < extras.items.size(); ++i)
-            std::cerr << (i ? "; " : " (dropped: ") << extras.items[i];
-          if (!extras.items.empty()) std::cerr << ')';
-        } catch (const InputError&) {
-          // The file went away after it was read: the warning stays without the list.
-        }
-        std::cerr << '\n';
-        document.reset();
-      }
-      // Checked before the run: a result that cannot be written is not worth computing.
-      if (!document && (lower_extension(output) == "glb" || lower_extension(output) == "gltf"))
-        throw InputError(input + ": the ." + lower_extension(output) +
-                         " result would be this file with new positions, and it cannot be written "
-                         "so (see the warning above); "
-                         "choose an .obj, .ply, .off or .stl output");
-    }
+    // Shared with the frame writer's thread (run_document.hpp).
+    const std::shared_ptr<const MeshDocument> document =
+        run_input_document(input, output, !exports.gltf.empty(), mesh, repair);
     ObserverList observers;
     WarningPrinter warnings;
     observers.add(warnings);

@@ -117,6 +117,7 @@ GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& ani
 GltfStats write_gltf_animation(const std::string& path, GltfAnimation&& animation);
 
 /// Area-weighted vertex normals (unit length; (0, 0, 1) for a vertex whose faces have no area).
+/// @throws std::invalid_argument for a face index outside [0, x.rows())
 Positions vertex_normals(const Positions& x, const Faces& faces);
 
 }  // namespace shellcontract

@@ -89,6 +89,11 @@ tinygltf::Value string_array(const std::vector<std::string>& s) {
 }  // namespace
 
 Positions vertex_normals(const Positions& x, const Faces& faces) {
+  // A library caller's faces are checked as write_gltf_animation checks them: an index out of
+  // range had read and written past the arrays (a crash, or silently wrong normals).
+  if (faces.size() > 0 && (faces.minCoeff() < 0 || faces.maxCoeff() >= x.rows()))
+    throw std::invalid_argument("vertex_normals: a face index is out of range (" +
+                                std::to_string(x.rows()) + " vertices)");
   Positions n = Positions::Zero(x.rows(), 3);
   for (Eigen::Index j = 0; j < faces.rows(); ++j) {
     const Vec3 a = x.row(faces(j, 0)), b = x.row(faces(j, 1)), c = x.row(faces(j, 2));

@@ -243,5 +243,18 @@ TEST(VertexNormals, UnitOutwardOnASphere) {
   }
 }
 
+TEST(VertexNormals, AFaceIndexOutOfRangeIsRefused) {
+  // Before: index 3 of 3 vertices read past the array silently; 100000 and -100000 crashed.
+  const Positions x = (Positions(3, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0).finished();
+  for (const int bad : {3, 100000, -1, -100000}) {
+    Faces f(1, 3);
+    f << 0, 1, bad;
+    EXPECT_THROW(vertex_normals(x, f), std::invalid_argument) << bad;
+  }
+  Faces ok(1, 3);
+  ok << 0, 1, 2;
+  EXPECT_NEAR(vertex_normals(x, ok)(2, 2), 1.0, 1e-15);
+}
+
 }  // namespace
 }  // namespace shellcontract

@@ -1,0 +1,26 @@
+// The input kept whole for `run`'s outputs (docs/design/attributes.md): read where a result uses
+// it, dropped with a warning naming what is lost where it does not describe the simulated mesh.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "shellcontract/mesh.hpp"
+#include "shellcontract/mesh_io.hpp"
+
+namespace shellcontract::cli {
+
+/// The input's document, so that an OBJ or PLY result keeps what the simulation does not use
+/// (UVs, normals, groups, materials, polygons, extra properties) and --gltf its texture
+/// coordinates and materials. Held only where it is used (it is the whole file): an output of
+/// the input's format, or a --gltf animation; otherwise null. A document that cannot be read, or
+/// that is not the simulated mesh (`repaired`: --repair changed it), is a warning on stderr naming
+/// what the result drops, and null.
+/// @throws InputError when the result is a .glb or .gltf (the input with new positions) and
+///         there is no document to write it from: found before the run
+std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
+                                                       const std::string& output,
+                                                       bool gltf_animation, const Mesh& mesh,
+                                                       bool repaired);
+
+}  // namespace shellcontract::cli
