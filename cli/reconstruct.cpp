@@ -26,11 +26,15 @@ int command_reconstruct(int argc, char** argv) {
       "vertex index, sorted), so the same points give the same file whatever the allocator does.\n"
       "--radius and --distance are multiples of the average distance from a point to its 6 nearest\n"
       "neighbours; out of their ranges (and an --angle above 30) CGAL's surface mesher may not end.\n\n"
+      "The surface is checked against the points before anything is written: one that misses points\n"
+      "(separate objects: reconstruct them one by one) or that a tenth of the normals point into\n"
+      "(normals not consistently oriented) is refused.\n\n"
       "exit codes: 0 success, 1 bad usage (also a criterion out of its range), 2 an unusable point\n"
-      "            set (the message names the file and line): fewer than 10 points, a stray point\n"
-      "            far from the others, coordinates beyond 1e30, one position with normals 90 degrees\n"
-      "            apart, all in one plane...; or no closed surface came out (also: CGAL's surface\n"
-      "            mesher stopped on one of its own checks)\n\n"
+      "            set (the message names the file and line): fewer than 10 distinct positions, a\n"
+      "            stray point far from the others, coordinates beyond 1e30, one position with normals\n"
+      "            90 degrees apart, all in one plane...; no closed surface came out (also: CGAL's\n"
+      "            surface mesher stopped on one of its own checks); or the surface misses points or\n"
+      "            disagrees with their normals\n\n"
       "options");
   visible.add_options()("help,h", "show this help")("output,o", po::value(&output), "output mesh")(
       "angle", po::value(&options.angle)->default_value(options.angle),

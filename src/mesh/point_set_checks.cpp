@@ -125,7 +125,6 @@ std::vector<std::size_t> distinct_positions(const OrientedPoints& input) {
 /// enclose no volume, and the Delaunay triangulation under the Poisson solve is then flat, on
 /// which CGAL's solve crashed (a segmentation fault on a flat disc of points).
 void check_volume(const std::string& path, const std::vector<Point3>& p) {
-  if (p.size() == 1) throw InputError(path + ": all the points are at one position " + text(p[0]));
   std::size_t j = 2;
   while (j < p.size() && CGAL::collinear(p[0], p[1], p[j])) ++j;
   std::size_t k = j + 1;
@@ -239,20 +238,30 @@ void check_spacing(const OrientedPoints& input, const std::vector<std::size_t>& 
 
 }  // namespace
 
-std::vector<PointWithNormal> checked_points(const OrientedPoints& input, int neighbours) {
-  if (input.points.size() < 10)
-    throw InputError(input.path + ": only " + std::to_string(input.points.size()) +
-                     " points; need an oriented point set");
+std::vector<PointWithNormal> checked_points(const OrientedPoints& input, int neighbours,
+                                            std::vector<std::size_t>* kept) {
+  if (input.points.empty()) throw InputError(input.path + ": no points; at least 10 are needed");
   check_magnitudes(input);
   const std::vector<std::size_t> distinct = distinct_positions(input);
   std::vector<Point3> points;
   points.reserve(distinct.size());
   for (std::size_t i : distinct) points.push_back(input.points[i].first);
+  if (points.size() == 1)
+    throw InputError(input.path + ": all the points are at one position " + text(points[0]));
+  // The positions count, not the lines: a position given again adds nothing to the solve
+  // (distinct_positions). Fewer than 10 sample no closed surface that the solve can find.
+  if (points.size() < 10)
+    throw InputError(input.path + ": " + std::to_string(points.size()) + " distinct points" +
+                     (points.size() < input.points.size()
+                          ? " (on " + std::to_string(input.points.size()) + " lines)"
+                          : std::string()) +
+                     "; at least 10 are needed");
   check_volume(input.path, points);
   check_spacing(input, distinct, points, neighbours);
   std::vector<PointWithNormal> result;
   result.reserve(distinct.size());
   for (std::size_t i : distinct) result.push_back(input.points[i]);
+  if (kept) *kept = distinct;
   return result;
 }
 

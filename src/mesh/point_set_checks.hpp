@@ -25,11 +25,13 @@ struct OrientedPoints {
 };
 
 /// The points to reconstruct from: each position once (its first line's normal), in the file's
-/// order. Throws InputError naming the file (and the line) if there are fewer than 10 points, a
-/// coordinate or normal length beyond what the solve's double arithmetic survives, one position
-/// with normals that contradict each other, no volume (all in one plane), a spacing too fine for
-/// the surface mesher, a point far from all the others, or points spanning far more than their
-/// spacing. `neighbours`: how many nearest neighbours a point's spacing is measured over.
-std::vector<PointWithNormal> checked_points(const OrientedPoints& input, int neighbours);
+/// order. Throws InputError naming the file (and the line) if there are fewer than 10 distinct
+/// positions, a coordinate or normal length beyond what the solve's double arithmetic survives, one
+/// position with normals that contradict each other, no volume (all in one plane), a spacing too
+/// fine for the surface mesher, a point far from all the others, or points spanning far more than
+/// their spacing. `neighbours`: how many nearest neighbours a point's spacing is measured over.
+/// `kept`, if given, receives the index in `input.points` of each point returned.
+std::vector<PointWithNormal> checked_points(const OrientedPoints& input, int neighbours,
+                                            std::vector<std::size_t>* kept = nullptr);
 
 }  // namespace shellcontract

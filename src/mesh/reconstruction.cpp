@@ -32,6 +32,7 @@
 #include "mesh/ply_reader.hpp"
 #include "mesh/point_set_checks.hpp"
 #include "mesh/read_polygon_soup.hpp"
+#include "mesh/reconstruction_checks.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"  // shortest_text
 
@@ -339,21 +340,45 @@ Mesh reconstruct_from_oriented_points(const std::string& path, const Reconstruct
   // Each position once, with its first line's normal: the solve's triangulation keeps one vertex
   // per position anyway (whichever it meets first), and repeated positions made the average
   // spacing, hence the triangles, smaller, down to zero.
-  const std::vector<PointWithNormal> points = checked_points(read_oriented_points(path), options.spacing_neighbours);
+  const OrientedPoints input = read_oriented_points(path);
+  std::vector<std::size_t> kept;
+  const std::vector<PointWithNormal> points =
+      checked_points(input, options.spacing_neighbours, &kept);
   const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(
       points, options.spacing_neighbours,
       CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>()));
+  // A failure on inconsistently oriented normals is blamed on them, not on the criteria or on the
+  // points' layout (random normals on points of one sphere got the cospherical hint).
+  const auto failure_hint = [&] {
+    const std::string normals =
+        inconsistent_normals_hint(input, kept, points, options.spacing_neighbours);
+    return normals.empty() ? cospherical_hint(points) : normals;
+  };
   Mesh mesh;
-  if (!(spacing > 0.0) || !poisson_delaunay(path, points, mesh, spacing, options))
+  bool found = false;
+  try {
+    found = spacing > 0.0 && poisson_delaunay(path, points, mesh, spacing, options);
+  } catch (const InputError& e) {
+    const std::string normals =
+        inconsistent_normals_hint(input, kept, points, options.spacing_neighbours);
+    if (normals.empty()) throw;
+    throw InputError(path + ": Poisson surface reconstruction failed" + normals);
+  }
+  if (!found)
     throw InputError(path + ": Poisson surface reconstruction failed (no surface found)" +
-                     cospherical_hint(points));
+                     failure_hint());
   if (!CGAL::is_closed(mesh) || !CGAL::is_triangle_mesh(mesh))
-    throw InputError(path + ": the reconstructed surface is not a closed triangle mesh" + cospherical_hint(points));
+    throw InputError(path + ": the reconstructed surface is not a closed triangle mesh" +
+                     failure_hint());
   // Outward orientation, as the simulator expects (math-spec 1.1).
   if (!CGAL::Polygon_mesh_processing::is_outward_oriented(mesh))
     CGAL::Polygon_mesh_processing::reverse_face_orientations(mesh);
   mesh.collect_garbage();
-  return with_canonical_face_order(mesh);
+  Mesh result = with_canonical_face_order(mesh);
+  // The mesher meshes the surface around one inner point: a separate object is left out, and
+  // inconsistent normals give a surface of folds and tunnels, both closed and both accepted so far.
+  check_surface_fits_points(input, kept, points, result, spacing, options.distance);
+  return result;
 }
 
 }  // namespace shellcontract

@@ -30,13 +30,15 @@ void check_reconstruction_options(const ReconstructionOptions& options, const st
 
 /// Reads an oriented point set ("x y z nx ny nz" per line, .xyz / .pwn) and reconstructs a closed
 /// surface with CGAL::poisson_surface_reconstruction_delaunay (Kazhdan et al. 2006).
-/// A position given on several lines counts once (its first line's normal).
+/// A position given on several lines counts once (its first line's normal); at least 10 positions.
 /// The faces come in a canonical order, whatever the allocator did: each face starts at its
 /// smallest vertex index (orientation kept) and the faces are sorted by their indices.
 /// @throws UsageError if an option is out of range (check_reconstruction_options), before reading
 /// @throws InputError if the file cannot be read, its points fail checked_points
 ///         (mesh/point_set_checks.hpp: too few, huge coordinates, a stray point, no volume...),
-///         or the reconstruction fails or is not a closed triangle mesh
+///         or the reconstruction fails or is not a closed triangle mesh, or the surface does not fit
+///         the points (check_surface_fits_points: it misses points, as of a separate object, or
+///         many normals point into it)
 Mesh reconstruct_from_oriented_points(const std::string& path, const ReconstructionOptions& options = {});
 
 }  // namespace shellcontract

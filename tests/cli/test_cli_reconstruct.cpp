@@ -113,4 +113,29 @@ TEST_F(CliReconstruct, AFailureOnPointsOfOneSphereSaysSo) {
   EXPECT_FALSE(fs::exists(file("l.off")));
 }
 
+// Before: two separate spheres' points gave a mesh of one sphere, exit 0, no word of the other.
+TEST_F(CliReconstruct, SeparateObjectsAreRefusedAndNothingIsWritten) {
+  std::ifstream in(file("sphere.xyz"));
+  std::ofstream two(file("two.xyz"));
+  two.precision(17);
+  std::ostringstream shifted;
+  shifted.precision(17);
+  for (double v[6]; in >> v[0] >> v[1] >> v[2] >> v[3] >> v[4] >> v[5];) {
+    two << v[0] << ' ' << v[1] << ' ' << v[2] << ' ' << v[3] << ' ' << v[4] << ' ' << v[5] << '\n';
+    shifted << v[0] + 3.0 << ' ' << v[1] << ' ' << v[2] << ' ' << v[3] << ' ' << v[4] << ' ' << v[5]
+            << '\n';
+  }
+  two << shifted.str();
+  two.close();
+  const RunResult r =
+      run_command(cli_command({"reconstruct", file("two.xyz"), "-o", file("two.off")}));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("the reconstructed surface misses 3000 of 6000 points"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("separate objects (reconstruct them one by one)"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(file("two.off")));
+}
+
 }  // namespace
