@@ -48,7 +48,8 @@ are ranked by the angle they span and kept when round (--max-compactness), curve
 --contrast) and of a local size (--min-area-fraction, --max-area-fraction); caps on one part join
 into one region, clipped to a hemisphere of its fitted sphere. --region-at X,Y,Z
 (repeatable, or X,Y,Z;X,Y,Z as for run) instead picks the cap around the surface point nearest
-to each point (its one-ring where no convex sphere fits there). Every
+to each point, the largest within --max-area-fraction (its one-ring where no convex sphere fits
+there, or none within the bound). Every
 threshold is a ratio, so scaling or rotating the mesh does not change the result.
 
 --method tips (opt-in) finds the ends of protrusions instead (the end of an arm or a foot, an

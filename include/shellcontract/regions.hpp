@@ -85,7 +85,8 @@ struct RegionOptions {
   double min_area_fraction = 0.002;
   /// Kept only when at most this fraction of the total area (a region that large is not a
   /// local part; sinking it deflates the shell). Also bounds the growth: a disc that still fits
-  /// at this size has not met the end of a part and is dropped.
+  /// at this size has not met the end of a part and is dropped (select_regions_at keeps the
+  /// largest cap within it instead).
   double max_area_fraction = 0.25;
 };
 
@@ -139,9 +140,12 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 /// The regions around given points (an artist pointing at an ear): for each point, the surface
 /// point nearest to it, then the cap grown from the nearest vertex of that face as in step 2,
 /// without the ranking filters (angle, contrast, compactness) but keeping the growth's
-/// tolerances; a later point does not enter the regions of the earlier ones. A point whose cap
-/// cannot be fitted (a flat or concave spot) gets the seed's one-ring, so every point gives a
-/// region. Ids follow the order of the points.
+/// tolerances: the largest such cap whose region is within max_area_fraction of the total
+/// area; a later point does not enter the regions of the earlier ones. A point whose cap
+/// cannot be fitted (a flat or concave spot, or a bound below the smallest disc the growth
+/// judges) gets the seed's one-ring, even when that is larger than the bound, so every point
+/// gives a region. Ids follow the order of the points. The report's rows describe the faces
+/// returned: the sphere fitted to their vertices, the residual and the angle about it.
 /// @throws UsageError as select_spherical_regions, or when a point is not finite.
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
                                    const RegionOptions& options, RegionReport* report = nullptr);

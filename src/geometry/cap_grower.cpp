@@ -209,6 +209,37 @@ void CapGrower::reset() {
 
 std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
                                    const std::function<bool(const Cap&)>* want_faces) {
+  bool unbounded = false;
+  std::optional<Cap> best = grow_disc(seed, blocked, nullptr, &unbounded);
+  if (!best) return std::nullopt;
+  best->unbounded = unbounded;
+  best->angle = best->sphere.radius > 0.0 ? best->rho / best->sphere.radius : 0.0;
+  if (!want_faces || (*want_faces)(*best))
+    best->faces = disc_faces(g_.slot(seed), best->rho, blocked);
+  return best;
+}
+
+std::optional<Cap> CapGrower::grow_within(
+    int seed, const std::vector<char>* blocked,
+    const std::function<double(const std::vector<int>&)>& region_area) {
+  std::vector<Cap> passes;
+  grow_disc(seed, blocked, &passes, nullptr);
+  const double limit = o_.max_area_fraction;
+  // The largest disc that fits whose region is within the bound. A disc's faces are listed from
+  // the growth's final distances (as grow lists them), which can hold a face that the same
+  // radius left out while the growth went on; so each is measured again here.
+  for (auto it = passes.rbegin(); it != passes.rend(); ++it) {
+    it->faces = disc_faces(g_.slot(seed), it->rho, blocked);
+    if (!it->faces.empty() && region_area(it->faces) / m_.total_area <= limit) {
+      it->angle = it->sphere.radius > 0.0 ? it->rho / it->sphere.radius : 0.0;
+      return std::move(*it);
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<Cap> CapGrower::grow_disc(int seed, const std::vector<char>* blocked,
+                                        std::vector<Cap>* passes, bool* unbounded) {
   reset();
   const double h = GROWTH_STEP * m_.size;
   const int s = g_.slot(seed);
@@ -222,7 +253,7 @@ std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
   double boundary = h, area = 0.0, concave = 0.0, last = 0.0;
   std::size_t popped = 0;
   std::optional<Cap> best;
-  bool stop = false, unbounded = false;
+  bool stop = false, over = false;
   const GrowthVertex& seed_vertex = g_.vertex(s);
   const auto judge = [&]() {
     if (popped < MIN_FIT_POINTS) return;
@@ -234,9 +265,23 @@ std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
       best->seed = seed;
       best->rho = last;
       best->sphere = *f;
+      if (passes) passes->push_back(*best);
     } else if (best || popped >= GIVE_UP_POINTS) {
       stop = true;
     }
+  };
+  // grow_within's end: the faces of the disc so far exceed the bound. A disc face has a corner
+  // popped (its mean corner distance is within the radius), so the faces' area is at most three
+  // times the popped vertices' area: below a third of the bound they are not listed. The faces
+  // listed now are a subset of those listed at any later point for the same or a larger radius
+  // (distances only fall, the reached corners only grow), so every later disc exceeds it too.
+  const double bound = o_.max_area_fraction * m_.total_area;
+  const auto disc_exceeds = [&]() {
+    if (3.0 * area <= bound) return false;
+    double faces_area = 0.0;
+    for (int f : disc_faces(s, last, blocked))
+      faces_area += m_.face_area[static_cast<std::size_t>(f)];
+    return faces_area > bound;
   };
   while (!heap_.empty() && !stop) {
     const Entry e = heap_.pop();
@@ -245,8 +290,13 @@ std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
     if (e.dist > boundary) {
       judge();
       if (stop) break;
-      if (area > o_.max_area_fraction * m_.total_area) {
-        unbounded = true;  // still fitting at the size limit: no part ends here
+      if (passes) {
+        if (disc_exceeds()) {
+          over = true;
+          break;
+        }
+      } else if (area > o_.max_area_fraction * m_.total_area) {
+        *unbounded = true;  // still fitting at the size limit: no part ends here
         break;
       }
       boundary = (std::floor(e.dist / h) + 1.0) * h;
@@ -274,11 +324,7 @@ std::optional<Cap> CapGrower::grow(int seed, const std::vector<char>* blocked,
       heap_.push(Entry{dw, nb->id, nb->slot});
     }
   }
-  if (heap_.empty() && !stop) judge();  // the whole (blocked-off) component is the disc
-  if (!best) return std::nullopt;
-  best->unbounded = unbounded;
-  best->angle = best->sphere.radius > 0.0 ? best->rho / best->sphere.radius : 0.0;
-  if (!want_faces || (*want_faces)(*best)) best->faces = disc_faces(s, best->rho, blocked);
+  if (heap_.empty() && !stop && !over) judge();  // the whole (blocked-off) component is the disc
   return best;
 }
 

@@ -85,6 +85,15 @@ class CapGrower {
   std::optional<Cap> grow(int seed, const std::vector<char>* blocked,
                           const std::function<bool(const Cap&)>* want_faces = nullptr);
 
+  /// For --region-at (select_regions_at): the largest cap around `seed` that passes grow's tests
+  /// and whose region is within max_area_fraction of the total area, its faces listed;
+  /// region_area(faces) is the area of the region the caller makes of a disc's faces. Instead of
+  /// stopping where the popped vertices' area passes the bound (grow's test, which lets the
+  /// last disc's faces overshoot it), the growth stops once the disc's own faces exceed it.
+  /// Nothing when no such cap passed the tests.
+  std::optional<Cap> grow_within(int seed, const std::vector<char>* blocked,
+                                 const std::function<double(const std::vector<int>&)>& region_area);
+
  private:
   struct State {
     double dist;
@@ -112,6 +121,12 @@ class CapGrower {
    private:
     std::vector<Key> h_;
   };
+  /// The growth both share: the last disc that passed (sphere, rho; no faces). grow (passes
+  /// null) stops where the popped vertices' area passes max_area_fraction and sets *unbounded;
+  /// grow_within (passes given) records every disc that passed, in growing order, and stops
+  /// once the disc's faces exceed the bound.
+  std::optional<Cap> grow_disc(int seed, const std::vector<char>* blocked, std::vector<Cap>* passes,
+                               bool* unbounded);
   std::vector<int> disc_faces(int seed_slot, double rho, const std::vector<char>* blocked);
   void reset();
 

@@ -3,6 +3,7 @@
 // way an artist points at an ear.
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <string>
@@ -70,6 +71,40 @@ std::string owner_of(const MeshArrays& m, const std::vector<std::pair<Cap, Regio
   return "an earlier point";
 }
 
+/// A --region-at region as the table reports it (docs/design/regions.md, "Output"): the
+/// area-weighted least-squares sphere of its vertices, their area-weighted RMS distance to it
+/// over its radius, and the widest face centroid from its axis (cap_axis), all measured on
+/// `faces`, the faces written. No sphere (radius 0: the table's '-') when the vertices fit none.
+Cap measured_cap(const MeshArrays& m, const Positions& x, int seed, std::vector<int> faces) {
+  Cap cap;
+  cap.seed = seed;
+  cap.faces = std::move(faces);
+  const std::optional<detail::SphereFit> fit = detail::fit_faces(m, x, cap.faces, seed);
+  if (!fit) return cap;
+  const Vec3 c = fit->centre;
+  const double r = fit->radius;
+  std::vector<int> verts;
+  for (int f : cap.faces)
+    for (int v : m.tri[static_cast<std::size_t>(f)]) verts.push_back(v);
+  std::sort(verts.begin(), verts.end());
+  verts.erase(std::unique(verts.begin(), verts.end()), verts.end());
+  double w = 0.0, sq = 0.0;
+  for (int v : verts) {
+    const double e = (Vec3(x.row(v)) - c).norm() - r,
+                 a = m.vertex_area[static_cast<std::size_t>(v)];
+    w += a, sq += a * e * e;
+  }
+  cap.sphere = *fit;
+  cap.sphere.residual = w > 0.0 ? std::sqrt(sq / w) / r : 0.0;
+  const Vec3 axis = detail::cap_axis(m, x, cap.faces, c);
+  for (int f : cap.faces) {
+    const Vec3 d = detail::face_centroid(m, x, f) - c;
+    if (d.norm() > 0.0)
+      cap.angle = std::max(cap.angle, std::acos(std::clamp(d.normalized().dot(axis), -1.0, 1.0)));
+  }
+  return cap;
+}
+
 }  // namespace
 
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
@@ -119,23 +154,41 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
       throw UsageError("the " + ordinal(i + 1) + " region point lies in the region of " +
                        owner_of(m, kept, seed) + "; give points on different parts");
     ++r.seed_vertices;
-    std::optional<Cap> cap = grower.grow(seed, &blocked);
-    if (!cap || cap->faces.empty()) {
-      // No convex sphere fits here: the seed's one-ring, so the user still gets a region.
+    // The region a disc gives: its faces, and the seed's fan when the disc (grown by vertices)
+    // missed the pointed-at face, as on a coarse mesh it can; the fan is edge-connected to the
+    // disc and in no earlier region, or the seed would be blocked.
+    const auto with_pointed_face = [&](std::vector<int> faces) {
+      if (!std::binary_search(faces.begin(), faces.end(), nearest)) {
+        for (int f : m.vertex_faces[static_cast<std::size_t>(seed)]) faces.push_back(f);
+        std::sort(faces.begin(), faces.end());
+        faces.erase(std::unique(faces.begin(), faces.end()), faces.end());
+      }
+      return faces;
+    };
+    const std::function<double(const std::vector<int>&)> region_area =
+        [&](const std::vector<int>& faces) {
+          double a = 0.0;
+          for (int f : with_pointed_face(faces)) a += m.face_area[static_cast<std::size_t>(f)];
+          return a;
+        };
+    // The largest cap whose region is within max_area_fraction (docs/cli.md: each cap stops
+    // growing at this fraction).
+    std::optional<Cap> cap = grower.grow_within(seed, &blocked, region_area);
+    if (!cap) {
+      // No convex sphere fits here, or none within the bound (a disc is judged from
+      // MIN_FIT_POINTS vertices on, and on a coarse mesh the smallest such disc can exceed a
+      // small bound): the seed's one-ring, so the user still gets a region.
       cap = Cap{};
       cap->seed = seed;
       for (int f : m.vertex_faces[static_cast<std::size_t>(seed)]) cap->faces.push_back(f);
       std::sort(cap->faces.begin(), cap->faces.end());
     } else {
       ++r.candidates;
+      // The row describes the faces written, not the grown disc: the sphere fitted to the
+      // region's vertices, their RMS distance to it and the widest face centroid from its axis.
+      *cap = measured_cap(m, x, seed, with_pointed_face(std::move(cap->faces)));
     }
-    // On a coarse mesh the cap grown by vertices can miss the pointed-at face: the seed's fan joins
-    // (edge-connected; in no earlier region, or the seed would be blocked).
-    if (!std::binary_search(cap->faces.begin(), cap->faces.end(), nearest)) {
-      for (int f : m.vertex_faces[static_cast<std::size_t>(seed)]) cap->faces.push_back(f);
-      std::sort(cap->faces.begin(), cap->faces.end());
-      cap->faces.erase(std::unique(cap->faces.begin(), cap->faces.end()), cap->faces.end());
-    }
+    cap->faces = with_pointed_face(std::move(cap->faces));
     const RegionSummary s = summarise(mesh, x, m, *cap, h_ref);
     block(m, *cap, blocked);
     kept.emplace_back(std::move(*cap), s);
