@@ -165,9 +165,14 @@ def test_options_are_the_table_and_its_defaults(ico2):
     E, nu, h = (float(reported[n]) for n in ("young", "poisson", "thickness"))
     derived = {"mu": E * h / (2 * (1 + nu)), "lambda": E * h * nu / (1 - nu * nu),
                "k_b": E * h ** 3 / (36 * (1 - nu * nu))}
+    # The options left at "auto" report the choice the run made (the default order is the
+    # coloured one, whose speculative broad phase is off).
+    chosen = {"order": ("auto", "coloured"), "speculative_broad_phase": ("auto", "off")}
     for o in table:
         if o.name in derived:
             assert float(reported[o.name]) == pytest.approx(derived[o.name], rel=1e-15), o.name
+        elif o.name in chosen:
+            assert (o.default, reported[o.name]) == chosen[o.name], o.name
         elif o.name != "frames":
             assert reported[o.name] == o.default, o.name
 
