@@ -63,6 +63,14 @@ def check(out_dir, sweep_path):
         raise OutputError("{}: cannot list it ({})".format(out_dir, e.strerror or e))
     if MARKER in entries:
         owner = _read_marker(os.path.join(out_dir, MARKER))
+        if owner != sweep_file and not os.path.exists(owner):
+            # A study folder moved or renamed with its sweep file: "edit that file" named a file
+            # that is not there.
+            raise OutputError(
+                "{} holds the results of another sweep file, {}, which no longer exists (moved or "
+                "renamed?); a folder holds one sweep file's results: to go on with these from {}, "
+                "set \"sweep_file\" in {} to it (its finished jobs are kept), or choose another -o "
+                "folder".format(out_dir, owner, sweep_file, os.path.join(out_dir, MARKER)))
         if owner != sweep_file:
             raise OutputError(
                 "{} holds the results of another sweep file, {}; a folder holds one sweep file's "

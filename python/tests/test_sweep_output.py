@@ -73,6 +73,19 @@ def test_another_sweep_file_is_refused_and_the_same_file_edited_goes_on(cli, mes
     assert r.returncode == 0, r.stderr
     assert "1 in this run, 2 done already" in r.stderr
     assert len(results(out)) == 3
+    # The study moved (its sweep file renamed): the refusal says the recorded file is gone and
+    # how to go on with the results; done so, the finished jobs are kept.
+    moved = tmp_path / "moved.json"
+    first.rename(moved)
+    r = run_sweep(cli, [str(moved), "-o", str(out), "--shard", "0/1"])
+    refused(r, "which no longer exists (moved or renamed?)",
+            '"sweep_file" in ' + str(out / ".shellcontract-sweep.json"))
+    marker = out / ".shellcontract-sweep.json"
+    data = json.loads(marker.read_text())
+    data["sweep_file"] = str(moved)
+    marker.write_text(json.dumps(data))
+    r = run_sweep(cli, [str(moved), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "0 in this run, 3 done already" in r.stderr, r.stderr
 
 
 def test_the_sweeps_own_entries_replaced_by_other_kinds_are_refused(cli, mesh_dir, tmp_path):
