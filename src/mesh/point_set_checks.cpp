@@ -16,6 +16,23 @@
 
 namespace shellcontract {
 
+namespace point_text {
+
+std::string text(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
+std::string text(const Point3& p) {
+  std::ostringstream s;
+  s << '(' << p.x() << ", " << p.y() << ", " << p.z() << ')';
+  return s.str();
+}
+
+}  // namespace point_text
+
 std::string OrientedPoints::where(std::size_t i) const {
   return lines.empty() ? "vertex " + std::to_string(i) : "line " + std::to_string(lines[i]);
 }
@@ -54,18 +71,7 @@ constexpr double MAX_STRAY_OVER_SPACING_AROUND = 100.0;
 // A set that spans more is mostly empty space between groups of points far apart.
 constexpr double MAX_EXTENT_OVER_SPACING = 1e6;
 
-std::string text(double x) {
-  std::ostringstream s;
-  s.precision(3);
-  s << x;
-  return s.str();
-}
-
-std::string text(const Point3& p) {
-  std::ostringstream s;
-  s << '(' << p.x() << ", " << p.y() << ", " << p.z() << ')';
-  return s.str();
-}
+using point_text::text;
 
 /// The length of `n`, without overflow in the squares (scaled by its largest component).
 double length_of(const Vector3& n) {

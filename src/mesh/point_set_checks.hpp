@@ -14,6 +14,12 @@ namespace shellcontract {
 
 using PointWithNormal = std::pair<Point3, Kernel::Vector_3>;
 
+/// The point-set checks' messages: a number to 3 significant digits, a point as "(x, y, z)".
+namespace point_text {
+std::string text(double x);
+std::string text(const Point3& p);
+}  // namespace point_text
+
 /// An oriented point set as read, with where each point came from.
 struct OrientedPoints {
   std::string path;

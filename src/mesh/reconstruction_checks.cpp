@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <boost/iterator/counting_iterator.hpp>
 #include <cmath>
-#include <sstream>
 
 #include "shellcontract/error.hpp"
 
@@ -54,18 +53,7 @@ constexpr double MAX_AGAINST_NEIGHBOURS_SHARE = 0.1;
 
 using Vector3 = Kernel::Vector_3;
 
-std::string text(double x) {
-  std::ostringstream s;
-  s.precision(3);
-  s << x;
-  return s.str();
-}
-
-std::string text(const Point3& p) {
-  std::ostringstream s;
-  s << '(' << p.x() << ", " << p.y() << ", " << p.z() << ')';
-  return s.str();
-}
+using point_text::text;
 
 }  // namespace
 

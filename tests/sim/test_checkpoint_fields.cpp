@@ -22,6 +22,7 @@
 #include "sim/checkpoint.hpp"
 #include "sim/simulator.hpp"
 #include "support/forged_checkpoint.hpp"
+#include "support/memory_checkpointer.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -30,34 +31,7 @@ namespace {
 namespace fs = std::filesystem;
 using test::forge_checkpoint;
 
-/// Saves the state at frame `at` and stops; or resumes from `resume`.
-class Saver final : public RunCheckpointer {
- public:
-  Saver(const Mesh& mesh, const RunOptions& options, int at)
-      : mesh_(&mesh), options_(&options), at_(at) {}
-  explicit Saver(const Checkpoint* resume) : resume_(resume) {}
-  const Checkpoint* resume_from() const override { return resume_; }
-  bool save_due(int frame) override { return at_ > 0 && frame == at_; }
-  void save(const SavedRun& run) override {
-    Checkpoint c;
-    c.version = checkpoint_tool_version();
-    c.input = "test";
-    c.input_hash = mesh_hash(*mesh_);
-    c.given = given_options(*options_);
-    c.resolved = resolved_options(*options_);
-    c.sim = run.sim.state();
-    c.progress = run.progress;
-    saved = c;
-  }
-  bool stop() override { return saved.has_value(); }
-  std::optional<Checkpoint> saved;
-
- private:
-  const Mesh* mesh_ = nullptr;
-  const RunOptions* options_ = nullptr;
-  const Checkpoint* resume_ = nullptr;
-  int at_ = 0;
-};
+using test::MemoryCheckpointer;
 
 class ForgedCheckpoint : public ::testing::Test {
  protected:
@@ -75,7 +49,7 @@ class ForgedCheckpoint : public ::testing::Test {
             const std::vector<std::pair<std::string, std::string>>& given, int at) {
     mesh_ = read_input_mesh(std::string(test::MESH_DIR) + "/" + mesh_name);
     for (const auto& [name, value] : given) set_run_option(options_, name, value);
-    Saver saver(mesh_, options_, at);
+    MemoryCheckpointer saver(mesh_, options_, at, /*stop=*/true);
     run_contraction(mesh_, options_, nullptr, &saver);
     ASSERT_TRUE(saver.saved.has_value());
     write_checkpoint(real(), *saver.saved);
@@ -88,7 +62,7 @@ class ForgedCheckpoint : public ::testing::Test {
   std::string refusal(const std::string& path) {
     try {
       const Checkpoint c = read_checkpoint(path);
-      Saver resumer(&c);
+      MemoryCheckpointer resumer(&c);
       run_contraction(mesh_, options_for_resume(c, RunOptions{}), nullptr, &resumer);
     } catch (const InputError& e) {
       return e.what();
