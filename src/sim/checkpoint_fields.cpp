@@ -3,6 +3,7 @@
 // recompute it. So every field is checked as the input it is before a run trusts it: an index
 // out of range crashed the warm start, a position that is not finite ended in an uncaught
 // exception, a frame past the run's end was reported as frames run.
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -82,7 +83,23 @@ class FieldCheck {
 
 void check_checkpoint_fields(const Checkpoint& c, const std::string& path) {
   const FieldCheck check(path);
-  check.options("the options given", c.given, false);
+  RunOptions given = check.options("the options given", c.given, false);
+  // Options each valid alone may still exclude each other (`young` without `thickness`). A run
+  // never saves such a set, so it is the file's fault (exit 2), not the user's usage (exit 1).
+  // Regions or weights given as arrays (Python) have no text here: options_for_resume asks for
+  // them again, and judges the whole then.
+  const bool all_text = std::none_of(c.inputs.begin(), c.inputs.end(),
+                                     [](const RunInput& in) { return in.arrays; }) &&
+                        std::none_of(c.given.begin(), c.given.end(), [](const auto& o) {
+                          return o.first == "region-weights" && o.second.empty();
+                        });
+  if (all_text) {
+    try {
+      resolve_run_options(given);
+    } catch (const UsageError& e) {
+      check.fail("the options given", std::string("exclude each other: ") + e.what());
+    }
+  }
   const RunOptions resolved = check.options("the options resolved", c.resolved, true);
 
   const SimulatorState& s = c.sim;

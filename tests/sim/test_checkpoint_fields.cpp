@@ -279,6 +279,19 @@ TEST_F(ForgedCheckpoint, OptionTextIsTheCheckpointsNotTheUsers) {
   EXPECT_EQ(spell_options(msg, OptionSpelling::Cli).find("--frames"), std::string::npos) << msg;
 }
 
+// Options each valid alone that exclude each other are the file's fault as well (a run never saves
+// them): exit 2 naming the checkpoint, where resolving them as the user's gave a usage error.
+TEST_F(ForgedCheckpoint, OptionsThatExcludeEachOtherAreTheCheckpoints) {
+  save("ico2.off", {{"frames", "10"}}, 4);
+  expect_refused(
+      "region-at beside regions",
+      [](Checkpoint& c) {
+        c.given.emplace_back("region-at", "0,0,1");
+        c.given.emplace_back("regions", "auto");
+      },
+      "the options given: exclude each other: `region_at` excludes `regions`");
+}
+
 // Another version's checkpoint may hold options this one does not know: it is refused as
 // another version's, not judged by this version's rules as edited.
 TEST_F(ForgedCheckpoint, AnotherVersionIsNamedAsSuch) {
