@@ -234,8 +234,9 @@ std::vector<OptionSpec> build_table() {
                       MAX_ITERATIONS, [](R& r) -> int& { return r.sim.solver.iterations; }));
   t.push_back(choice(
       "solver",
-      "xpbd: compliant, physical stiffness (the shell material of --young and --thickness, so "
-      "the result does not depend on the mesh's resolution); pbd: the paper's "
+      "xpbd: compliant, physical stiffness (the shell material of --young and --thickness, the "
+      "same at any resolution and time step once the sweeps converge: a stiffer material or a "
+      "finer mesh needs more --iterations); pbd: the paper's "
       "energy-as-constraint projection (membrane --mu and --lambda, damping 0.2)",
       Choices<SolverKind>{{"pbd", SolverKind::Pbd}, {"xpbd", SolverKind::Xpbd}},
       [](R& r) -> SolverKind& { return r.sim.solver.kind; }));

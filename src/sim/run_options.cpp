@@ -58,6 +58,17 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   for (const char* name : {"mu", "lambda"})
     check(name, shell_given && s.material != MaterialKind::MooneyRivlin,
           "`young` and `thickness` set mu and lambda (leave both out to give mu and lambda)");
+  // Mooney-Rivlin's membrane reads only c10 and c01: from the shell material it takes at most the
+  // bending k_B (xpbd, dihedral bending, `k_b` not given), never mu and lambda.
+  if (s.material == MaterialKind::MooneyRivlin && shell_given) {
+    const bool sets_k_b = s.solver.kind == SolverKind::Xpbd &&
+                          s.bending == BendingModel::Dihedral && !r.given.count("k_b");
+    const std::string membrane = "the Mooney-Rivlin membrane takes `c10` and `c01`";
+    if (sets_k_b) w.push_back("`young` and `thickness` set only the bending k_B here: " + membrane);
+    for (const char* name : {"young", "thickness", "poisson"})
+      check(name, !sets_k_b,
+            membrane + ", and `k_b` is given or the bending is not xpbd's dihedral");
+  }
   check("density", s.mass == MassModel::Unit, "`mass` unit gives every vertex the mass 1");
   check("poisson", !r.young.has_value(), "the Poisson ratio is used with `young` and `thickness`");
   check("k_b", s.bending == BendingModel::None, "`bending` none");

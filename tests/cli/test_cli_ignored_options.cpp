@@ -53,6 +53,13 @@ TEST_F(CliIgnoredOptions, EachOptionWithoutEffectIsAWarningNamingIt) {
       // Before: silently set by the shell material (summary mu 0.769 for --mu 1).
       {{"--mu", "1", "--young", "1000"}, "--mu has no effect"},
       {{"--lambda", "1", "--thickness", "0.01"}, "--lambda has no effect"},
+      // Before: no word, and E 1000 and E 100000 gave the same bytes (the membrane reads only
+      // c10 and c01; the summary recorded the mu and lambda nothing used).
+      {{"--material", "mooney-rivlin", "--young", "1000", "--thickness", "0.01"},
+       "--young and --thickness set only the bending k_B here: the Mooney-Rivlin membrane takes "
+       "--c10"},
+      {{"--material", "mooney-rivlin", "--young", "1000", "--thickness", "0.01", "--k-b", "0.1"},
+       "--young has no effect: the Mooney-Rivlin membrane takes --c10"},
   };
   for (const auto& c : cases) {
     const RunResult r = run(c.args);
