@@ -37,7 +37,7 @@ struct CandidatePairs {
   /// sorted. (The Grid method emits them in the order of its cells, which depends on the grid a
   /// call keeps from the last one; find_candidates sorts them so that the order, on which the
   /// collision step's result depends, comes from the pairs alone: the same after a checkpoint's
-  /// resume.) From find_candidates_in_vertex_boxes: in the Grid's cell order.
+  /// resume.) From find_candidates_in_vertex_boxes: sorted too, for the same reason.
   NoZeroVector<std::array<int, 2>> vertex_face;
   /// (edge id a, edge id b), a < b, the edges share no vertex; unique; ordered as vertex_face.
   NoZeroVector<std::array<int, 2>> edge_edge;

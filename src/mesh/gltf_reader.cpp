@@ -213,6 +213,7 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
                     GltfSoup& soup) {
   const tinygltf::Primitive& prim = m.meshes[mesh_index].primitives[p];
   const std::string name = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
+  soup.morphed += !prim.targets.empty();
   static const char* const MODES[] = {"points",    "lines",          "line loop",   "line strip",
                                       "triangles", "triangle strip", "triangle fan"};
   if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != -1)

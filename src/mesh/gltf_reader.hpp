@@ -34,6 +34,8 @@ struct GltfSoup {
   /// Triangles on `points`; a node whose transform mirrors (negative determinant) has its
   /// triangles' winding reversed, as the spec says a renderer does.
   std::vector<std::vector<std::size_t>> faces;
+  /// Drawn primitives with morph targets, which are not applied: the points are the base shape.
+  std::size_t morphed = 0;
 };
 
 /// Reads the triangle primitives (mode 4, or no mode) of the meshes the default scene (or scene

@@ -277,7 +277,9 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
     }
     const auto start = std::chrono::steady_clock::now();
     std::vector<std::string> read_warnings;  // lines after an OFF's declared faces
-    read_polygon_soup(path, ext, points, polygons, lines, &read_warnings);
+    std::vector<std::string> read_notes;     // a glTF's morph targets, not applied
+    read_polygon_soup(path, ext, points, polygons, lines, &read_warnings, MissingVertices::Refuse,
+                      &read_notes);
     const auto read = std::chrono::steady_clock::now();
     Mesh mesh = [&] {
       try {
@@ -292,6 +294,7 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
       }
     }();
     if (report) report->warnings.insert(report->warnings.begin(), read_warnings.begin(), read_warnings.end());
+    if (report) report->notes.insert(report->notes.begin(), read_notes.begin(), read_notes.end());
     if (report) {
       report->read_seconds = std::chrono::duration<double>(read - start).count();
       report->check_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - read).count();

@@ -48,7 +48,8 @@ std::string read_file_bytes(const std::string& path) {
 
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
                        std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines,
-                       std::vector<std::string>* warnings, MissingVertices missing) {
+                       std::vector<std::string>* warnings, MissingVertices missing,
+                       std::vector<std::string>* notes) {
   std::string bytes = read_file_bytes(path);
   if (std::all_of(bytes.begin(), bytes.end(), [](char c) { return std::isspace(static_cast<unsigned char>(c)); }))
     fail(path, "empty file", "the file holds no data");
@@ -64,6 +65,14 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
   if (ext == "glb" ||
       ext == "gltf") {  // .gltf is JSON, .glb binary: the reader tells them by their first bytes
     GltfSoup g = read_gltf(path, bytes);
+    // A shellcontract --gltf animation is such a file: its base shape is the run's input, so
+    // `check RUN.glb --against INPUT` would judge the input against itself.
+    if (notes && g.morphed)
+      notes->push_back(
+          "the file's morph targets (an animation, on " + std::to_string(g.morphed) +
+          (g.morphed == 1 ? " primitive" : " primitives") +
+          ") are not applied: the mesh read is its base shape (of a shellcontract --gltf "
+          "animation, the run's input; its last frame is the run's -o result)");
     points.reserve(g.points.size());
     for (const auto& p : g.points) points.emplace_back(p[0], p[1], p[2]);
     polygons = std::move(g.faces);

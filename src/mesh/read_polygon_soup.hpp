@@ -25,10 +25,12 @@ std::string read_file_bytes(const std::string& path);
 /// @param missing  MissingVertices::Keep (repair's read): an OFF's or OBJ's face that names a
 ///        vertex the file lacks is read with that index, not refused. A PLY's indices are never
 ///        checked here (check_input_soup does); a glTF's are always (its accessor is corrupt).
+/// @param notes  if given, gets what the reader read but did not apply (a glTF's morph targets)
 /// @throws InputError "<path>: <problem>: <where>" if the file cannot be read as such
 void read_polygon_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
                        std::vector<std::vector<std::size_t>>& polygons, SourceLines& lines,
                        std::vector<std::string>* warnings = nullptr,
-                       MissingVertices missing = MissingVertices::Refuse);
+                       MissingVertices missing = MissingVertices::Refuse,
+                       std::vector<std::string>* notes = nullptr);
 
 }  // namespace shellcontract

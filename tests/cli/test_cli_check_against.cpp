@@ -210,3 +210,24 @@ TEST_F(CliCheckAgainst, MeshesThatAreNotTheSameAreBadUsage) {
 }
 
 }  // namespace
+
+namespace {
+
+// A run's --gltf animation read as a mesh is its base shape, the run's input: `check RUN.glb
+// --against IN` judged the input against itself and passed without a word. The reader says so,
+// with where the end state is.
+TEST_F(CliCheckAgainst, AnAnimationIsNamedAsItsBaseShape) {
+  const RunResult made = run_cli({"run", mesh_path("ico2.off"), "-o", file("r.off"), "-n", "3",
+                                  "--gltf", file("r.glb"), "-q"});
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  const RunResult checked = run_cli({"check", file("r.glb"), "--against", mesh_path("ico2.off")});
+  EXPECT_EQ(checked.exit_code, 0) << checked.output;
+  EXPECT_NE(checked.output.find("note: " + file("r.glb") +
+                                ": the file's morph targets (an animation, on 1 primitive) are "
+                                "not applied: the mesh read is its base shape"),
+            std::string::npos)
+      << checked.output;
+  // A glTF without morph targets has no such note (CliGltf.CheckAndRunReadAGlbAndAGltf).
+}
+
+}  // namespace

@@ -38,6 +38,7 @@ TEST_F(CliGltf, CheckAndRunReadAGlbAndAGltf) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("vertices: 6"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("closed: yes"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("morph targets"), std::string::npos) << r.output;  // it has none
     r = test::run_cli({"run", in, "-o", (dir_ / "out.off").string(), "-n", "3", "-q"});
     EXPECT_EQ(r.exit_code, 0) << r.output;
   }

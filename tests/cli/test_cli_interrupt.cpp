@@ -83,14 +83,22 @@ int finish_reading(pid_t pid, int fd, std::string& text) {
   return status;
 }
 
-/// Waits (at most 60 s) until `pid` catches SIGINT and SIGTERM (/proc/PID/status, SigCgt): the
-/// program's main has installed its handler. Before that the dynamic loader and the libraries'
-/// initialisers run, a window no program can close, where a signal ends the process by the
-/// default action; a test that signals "20 ms after the start" under load lands there.
+/// Waits (at most 60 s) until `pid` runs the CLI (/proc/PID/exe: before the exec the child is a
+/// copy of this test program, with its handlers) and catches SIGINT and SIGTERM (/proc/PID/status,
+/// SigCgt): the program's main has installed its handler. Before that the dynamic loader and the
+/// libraries' initialisers run, a window no program can close, where a signal ends the process
+/// by the default action; a test that signals "20 ms after the start" under load lands there.
 bool await_handler(pid_t pid) {
   const unsigned long both = (1UL << (SIGINT - 1)) | (1UL << (SIGTERM - 1));
-  for (int i = 0; i < 6000; ++i) {
-    std::ifstream status("/proc/" + std::to_string(pid) + "/status");
+  const fs::path cli = fs::canonical(SHELLCONTRACT_CLI_PATH);
+  const std::string proc = "/proc/" + std::to_string(pid);
+  for (int i = 0; i < 60000; ++i) {
+    std::error_code ec;
+    if (fs::read_symlink(proc + "/exe", ec) != cli) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      continue;
+    }
+    std::ifstream status(proc + "/status");
     for (std::string line; std::getline(status, line);)
       if (line.rfind("SigCgt:", 0) == 0 && (std::stoul(line.substr(7), nullptr, 16) & both) == both)
         return true;

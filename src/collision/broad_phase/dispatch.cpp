@@ -59,8 +59,11 @@ bool find_candidates_in_vertex_boxes(const std::vector<detail::GridVertexBox>& b
     throw UsageError("broad phase: " + std::to_string(boxes.size()) + " vertex boxes for " +
                      std::to_string(topo.num_vertices) + " vertices");
   out.scratch->grid_vertex_boxes = boxes;
+  // Sorted, as find_candidates' pairs: the cell order depends on the grid kept from the last
+  // call, which a resumed run does not have, and the collision step's result depends on the
+  // order (a resume in the sequential order, where this path is on by default, gave other bits).
   if (detail::grid_pairs(topo, std::numeric_limits<double>::infinity(), out,
-                         out.scratch->grid_float_superset) >= 0)
+                         out.scratch->grid_float_superset, /*sorted=*/true) >= 0)
     return true;
   out.scratch->grid_kept = false;
   return false;

@@ -263,8 +263,9 @@ void sort_chunk_keys(const std::vector<GridChunk>& chunks, bool vf, int shift, s
 /// box pairs that overlap after rounding outward to float, adjacent ones included (VF, plus EE
 /// once per unordered pair).
 /// With `sorted`, the pairs are sorted by (first id, second id), each with its flag
-/// (find_candidates); otherwise they come in the order of the chunks, cells and rows
-/// (find_candidates_in_vertex_boxes), which does not depend on the thread count either.
+/// (find_candidates, find_candidates_in_vertex_boxes); otherwise they come in the order of the
+/// chunks, cells and rows, which does not depend on the thread count either but does on the grid
+/// kept from the last call.
 std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, CandidatePairs& out,
                         bool float_superset = false, bool sorted = false);
 

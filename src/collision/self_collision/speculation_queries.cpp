@@ -107,6 +107,8 @@ std::size_t Speculation::query_escaped(const RestPairs& rest, const CandidatePai
         const std::uint32_t first = a < nvs ? nv32 : a < nvs + nf ? 0 : nvs_nf32;
         const std::uint32_t end = a < nvs ? nvs_nf32 : a < nvs + nf ? nv32 : all32;
         query_kept_grid(candidates, topo_, prim_box(a), out.hits, first, end);
+        // The kept grid reports in its cells' order, which a resumed run's grid does not share.
+        std::sort(out.hits.begin(), out.hits.end());
         CcdPrimitive kind;
         std::array<int, 2> pair;
         for (const std::uint32_t b : out.hits)
