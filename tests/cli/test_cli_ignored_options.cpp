@@ -105,6 +105,29 @@ TEST_F(CliIgnoredOptions, ThePressureUnderATargetVolumeIsNoWarningAndShapesTheRe
 
 // Before: an empty value turned the output off (or --resume into a fresh run), exit 0 and
 // nothing said: a script's unset variable went unnoticed.
+// Before: with a keyed --target-volume, --target-ramp was warned as having no effect, yet with
+// regions it times their sink, and two ramps gave other shapes (the guarantees review: bumpy_sphere
+// moved up to 8 % of its diagonal). Keys without regions are still warned about (test_schedule).
+TEST_F(CliIgnoredOptions, TheRampWithKeysTimesTheRegionsSinkAndIsNoWarning) {
+  const std::string mesh_dir = shellcontract::test::MESH_DIR;
+  const auto run_ramp = [&](const std::string& ramp, const std::string& out) {
+    return run_cli({"run", mesh_dir + "/bumpy_sphere.off", "-o", (dir_ / out).string(), "-n", "40",
+                    "-q", "--target-volume", "0:1, 30:0.6", "--regions",
+                    mesh_dir + "/bumpy_sphere.bumps.txt", "--target-ramp", ramp});
+  };
+  const RunResult fast = run_ramp("5", "r5.off");
+  const RunResult slow = run_ramp("30", "r30.off");
+  for (const RunResult* r : {&fast, &slow}) {
+    ASSERT_EQ(r->exit_code, 0) << r->output;
+    EXPECT_EQ(r->output.find("--target-ramp has no effect"), std::string::npos) << r->output;
+  }
+  const auto bytes = [&](const std::string& name) {
+    std::ifstream in(dir_ / name, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_NE(bytes("r5.off"), bytes("r30.off")) << "the ramp no longer times the regions' sink";
+}
+
 TEST_F(CliIgnoredOptions, AnEmptyValueIsRefusedNamingTheOption) {
   for (const char* option : {"--log", "--summary", "--gltf", "--checkpoint", "--export-dir", "--fields", "--resume"}) {
     const RunResult r = run({option, ""});
