@@ -347,6 +347,11 @@ Mesh reconstruct_from_oriented_points(const std::string& path, const Reconstruct
   const double spacing = CGAL::compute_average_spacing<CGAL::Sequential_tag>(
       points, options.spacing_neighbours,
       CGAL::parameters::point_map(CGAL::First_of_pair_property_map<PointWithNormal>()));
+  // Normals at odds with their neighbours' on a large share of the points make no surface: the
+  // solve and the mesher ran for minutes on a dense set before the checks after them refused it.
+  const std::string at_odds = inconsistent_normals_hint(
+      input, kept, points, options.spacing_neighbours, REFUSED_AGAINST_NEIGHBOURS_SHARE);
+  if (!at_odds.empty()) throw InputError(path + ": no surface reconstructed" + at_odds);
   // A failure on inconsistently oriented normals is blamed on them, not on the criteria or on the
   // points' layout (random normals on points of one sphere got the cospherical hint).
   const auto failure_hint = [&] {

@@ -105,7 +105,9 @@ void check_surface_fits_points(const OrientedPoints& input, const std::vector<st
 
 std::string inconsistent_normals_hint(const OrientedPoints& input,
                                       const std::vector<std::size_t>& kept,
-                                      const std::vector<PointWithNormal>& points, int neighbours) {
+                                      const std::vector<PointWithNormal>& points, int neighbours,
+                                      double share) {
+  if (share < 0.0) share = MAX_AGAINST_NEIGHBOURS_SHARE;
   if (points.size() < 2) return "";
   using Map = CGAL::Pointer_property_map<Point3>::const_type;
   using Traits = CGAL::Search_traits_adapter<std::size_t, Map, CGAL::Search_traits_3<Kernel>>;
@@ -132,9 +134,7 @@ std::string inconsistent_normals_hint(const OrientedPoints& input,
     }
     if (2 * opposed > seen && against++ == 0) example = i;
   }
-  if (!(static_cast<double>(against) >
-        MAX_AGAINST_NEIGHBOURS_SHARE * static_cast<double>(p.size())))
-    return "";
+  if (!(static_cast<double>(against) > share * static_cast<double>(p.size()))) return "";
   return ": " + std::to_string(against) + " of " + std::to_string(p.size()) +
          " points have a normal against most of their nearest neighbours' (e.g. " +
          input.where(kept[example]) + "): the normals are not consistently oriented";

@@ -26,9 +26,17 @@ void check_surface_fits_points(const OrientedPoints& input, const std::vector<st
                                double spacing, double distance);
 
 /// For a failed reconstruction: ": N of M points' normals point against most of their nearest
-/// neighbours' ... not consistently oriented" when a substantial share of them do, "" otherwise.
+/// neighbours' ... not consistently oriented" when more than `share` of them do (by default a
+/// substantial share), "" otherwise.
 std::string inconsistent_normals_hint(const OrientedPoints& input,
                                       const std::vector<std::size_t>& kept,
-                                      const std::vector<PointWithNormal>& points, int neighbours);
+                                      const std::vector<PointWithNormal>& points, int neighbours,
+                                      double share = -1.0);
+
+/// The share of points against most of their neighbours above which no reconstruction is tried:
+/// a consistently oriented scan has almost none, normals flipped at random about half, a thin
+/// part whose two sides' points are each other's neighbours some; inconsistent_normals_hint's
+/// default share, below this, only explains a failed or refused reconstruction.
+constexpr double REFUSED_AGAINST_NEIGHBOURS_SHARE = 0.3;
 
 }  // namespace shellcontract
