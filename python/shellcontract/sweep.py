@@ -312,7 +312,7 @@ def _run_dask(todo, args, cli, version, token, progress, on_record, client=None)
             futures[f] = job
             f.add_done_callback(finished.put)
         for _ in range(len(futures)):
-            f = finished.get()
+            f = sweep_progress.next_finished(finished, client, args.scheduler, progress)
             job = futures[f]
             try:
                 record = f.result()

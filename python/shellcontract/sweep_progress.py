@@ -1,6 +1,8 @@
 """The sweep's progress: a bar redrawn in place on a terminal (jobs done, failed, left, ETA),
 one plain line per finished job otherwise (a log file, a batch system's output)."""
 
+import os
+import queue
 import sys
 import time
 
@@ -88,3 +90,19 @@ class Progress:
             self.stream.write("\n")
             self.stream.flush()
             self._drawn = False
+
+
+# How often a sweep on a cluster without workers says so again (its jobs wait for the first).
+WAIT_NOTE_SECONDS = float(os.environ.get("SHELLCONTRACT_TEST_WAIT_NOTE_S", "60"))
+
+
+def next_finished(finished, client, scheduler, progress):
+    """The next finished future; while an existing cluster has no worker, says so every
+    WAIT_NOTE_SECONDS (it had said so once, at the start, and then waited without a word)."""
+    while True:
+        try:
+            return finished.get(timeout=WAIT_NOTE_SECONDS)
+        except queue.Empty:
+            if scheduler and not client.scheduler_info().get("workers"):
+                progress.message("still no worker on {}: {} jobs wait (start one with `dask worker "
+                                 "{}`, or Ctrl-C)".format(scheduler, progress.left, scheduler))

@@ -191,3 +191,29 @@ def test_two_sweeps_with_one_job_on_one_cluster_each_get_their_files(cli, mesh_d
 def sweep_job_has_bokeh():
     import importlib.util
     return importlib.util.find_spec("bokeh") is not None
+
+
+def test_a_cluster_without_workers_is_said_again_while_the_jobs_wait(cli, mesh_dir, tmp_path,
+                                                                      cluster):
+    # Before: "the cluster has no workers yet" once, at the start, then nothing for as long as
+    # none joined. Now again every WAIT_NOTE_SECONDS (shortened here), and the jobs run once a
+    # worker joins.
+    address, start = cluster
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SMALL, meshes=("ico1.off",))
+    env = sweep_env(cli)
+    env["SHELLCONTRACT_TEST_WAIT_NOTE_S"] = "0.5"
+    err_path = tmp_path / "sweep.err"
+    with open(err_path, "w") as err_file:
+        proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o",
+                                 str(tmp_path / "out"), "--scheduler", address],
+                                env=env, stdout=subprocess.DEVNULL, stderr=err_file, text=True)
+        try:
+            note = "still no worker on {}: 2 jobs wait (start one with `dask worker {}`".format(
+                address, address)
+            wait_until(lambda: err_path.read_text().count(note) >= 2, timeout=120)
+            start(sweep_env(cli))
+            assert proc.wait(timeout=120) == 0, err_path.read_text()
+        finally:
+            if proc.poll() is None:
+                proc.kill()
+    assert [r["status"] for r in results(tmp_path / "out")] == ["ok", "ok"]
