@@ -34,7 +34,8 @@ std::string inconsistent_normals_hint(const OrientedPoints& input,
                                       double share = -1.0);
 
 /// The share of points against most of their neighbours above which no reconstruction is tried:
-/// a consistently oriented scan has almost none, normals flipped at random about half, a thin
+/// a consistently oriented scan has almost none, half the normals flipped at random about a
+/// third (a point with as many neighbours each way counts for neither), a thin
 /// part whose two sides' points are each other's neighbours some; inconsistent_normals_hint's
 /// default share, below this, only explains a failed or refused reconstruction.
 constexpr double REFUSED_AGAINST_NEIGHBOURS_SHARE = 0.3;

@@ -84,7 +84,7 @@ class FieldCheck {
 void check_checkpoint_fields(const Checkpoint& c, const std::string& path) {
   const FieldCheck check(path);
   RunOptions given = check.options("the options given", c.given, false);
-  // Options each valid alone may still exclude each other (`young` without `thickness`). A run
+  // Options each valid alone may still exclude each other (`region_at` beside `regions`). A run
   // never saves such a set, so it is the file's fault (exit 2), not the user's usage (exit 1).
   // Regions or weights given as arrays (Python) have no text here: options_for_resume asks for
   // them again, and judges the whole then.
