@@ -11,6 +11,7 @@
 
 #include "collision/ccd_benchmark.hpp"
 #include "shellcontract/error.hpp"
+#include "support/ci_skip.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -18,14 +19,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Skips the calling test if the benchmark data is not there.
+/// Skips the calling test if the benchmark data is not there; fails it under CI=true.
 #define REQUIRE_QUERY_DIR()                                                                        \
-  if (!fs::is_directory(test::CCD_QUERY_DIR))                                                       \
-  GTEST_SKIP() << "CCD benchmark queries not found at " << test::CCD_QUERY_DIR                      \
-               << " (expected: the shared data folder shared/data/ccd-queries next to the "         \
-                  "checkout; it comes from the MIT-licensed Continuous-Collision-Detection/"        \
-                  "Sample-Queries and the Apache-2.0 Sample-Scalable-CCD-Data repositories, see "   \
-                  "its README.md)"
+  if (!fs::is_directory(test::CCD_QUERY_DIR))                                                      \
+  SKIP_OR_FAIL_UNDER_CI("CCD benchmark queries not found at "                                      \
+                        << test::CCD_QUERY_DIR                                                     \
+                        << " (expected: the shared data folder shared/data/ccd-queries next to "   \
+                           "the checkout; it comes from the MIT-licensed Continuous-Collision-"    \
+                           "Detection/Sample-Queries and the Apache-2.0 Sample-Scalable-CCD-Data " \
+                           "repositories, see its README.md)")
 
 std::string relative_name(const std::string& path) {
   return fs::relative(fs::path(path), fs::path(test::CCD_QUERY_DIR)).generic_string();

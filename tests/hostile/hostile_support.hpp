@@ -1,6 +1,7 @@
 // What the hostile-use tests share (docs/design/output-safety.md): a fresh folder per
 // test, the CLI, file bytes, and the root-only tools (mknod, tmpfs, bind mounts) with a skip
-// that says why where the machine cannot do them.
+// that says why where the machine cannot do them, which is a failure under CI=true
+// (support/ci_skip.hpp: CI runs as root).
 #pragma once
 
 #include <gtest/gtest.h>
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "support/ci_skip.hpp"
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 
@@ -55,7 +57,8 @@ inline std::vector<std::string> listing(const fs::path& dir) {
 class Hostile : public ::testing::Test {
  protected:
   void SetUp() override {
-    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH))
+      SKIP_OR_FAIL_UNDER_CI(SHELLCONTRACT_CLI_PATH << " not built");
     dir_ = fs::temp_directory_path() /
            ("shellcontract_hostile_" + std::to_string(::getpid()) + "_" +
             std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));

@@ -25,7 +25,8 @@ bool two_queries(const fs::path& dir, std::string& text) {
 
 TEST_F(Hostile, BenchCcdJsonOverAQueryFileIsRefused) {
   std::string text;
-  if (!two_queries(dir_ / "q", text)) GTEST_SKIP() << "no CCD queries at " << test::CCD_QUERY_DIR;
+  if (!two_queries(dir_ / "q", text))
+    SKIP_OR_FAIL_UNDER_CI("no CCD queries at " << test::CCD_QUERY_DIR);
   const fs::path queries = dir_ / "q" / "vertex-face.csv";
   const auto r = run_cli({"bench", "ccd", "--queries", (dir_ / "q").string(), "--repeat", "1", "--json",
                           queries.string()});
@@ -37,7 +38,8 @@ TEST_F(Hostile, BenchCcdJsonOverAQueryFileIsRefused) {
 
 TEST_F(Hostile, BenchCcdJsonInAMissingFolderIsRefusedBeforeTheBenchmark) {
   std::string text;
-  if (!two_queries(dir_ / "q", text)) GTEST_SKIP() << "no CCD queries at " << test::CCD_QUERY_DIR;
+  if (!two_queries(dir_ / "q", text))
+    SKIP_OR_FAIL_UNDER_CI("no CCD queries at " << test::CCD_QUERY_DIR);
   const auto r = run_cli({"bench", "ccd", "--queries", (dir_ / "q").string(), "--repeat", "1", "--json",
                           (dir_ / "missing" / "r.json").string()});
   EXPECT_EQ(r.exit_code, 1) << r.output;
@@ -47,9 +49,10 @@ TEST_F(Hostile, BenchCcdJsonInAMissingFolderIsRefusedBeforeTheBenchmark) {
 
 TEST_F(Hostile, BenchCcdJsonOnADeviceNeverReplacesIt) {
   std::string text, why;
-  if (!two_queries(dir_ / "q", text)) GTEST_SKIP() << "no CCD queries at " << test::CCD_QUERY_DIR;
+  if (!two_queries(dir_ / "q", text))
+    SKIP_OR_FAIL_UNDER_CI("no CCD queries at " << test::CCD_QUERY_DIR);
   const fs::path dev = dir_ / "null";
-  if (!make_device(dev, 3, why)) GTEST_SKIP() << why;
+  if (!make_device(dev, 3, why)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = run_cli({"bench", "ccd", "--queries", (dir_ / "q").string(), "--repeat", "1", "--json",
                           dev.string()});
   EXPECT_EQ(r.exit_code, 1) << r.output;

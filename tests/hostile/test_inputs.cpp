@@ -24,7 +24,7 @@ test::RunResult bounded_cli(const std::vector<std::string>& args) {
 TEST_F(Hostile, ADeviceAsTheMeshIsRefusedAtOnce) {
   const fs::path zero = dir_ / "zero.off";
   std::string why;
-  if (!make_device(zero, 5, why)) GTEST_SKIP() << why;
+  if (!make_device(zero, 5, why)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = bounded_cli({"check", zero.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("not a regular file"), std::string::npos) << r.output;
@@ -57,7 +57,7 @@ TEST_F(Hostile, AFifoOrADeviceAsAGltfBufferIsRefusedAtOnce) {
   EXPECT_NE(r.output.find("FIFO"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "o.off"));
   std::string why;
-  if (!make_device(dir_ / "zero.bin", 5, why)) GTEST_SKIP() << why;
+  if (!make_device(dir_ / "zero.bin", 5, why)) SKIP_OR_FAIL_UNDER_CI(why);
   test::spit(dir_ / "zero.gltf", test::gltf_text(parts, "zero.bin"));
   r = bounded_cli({"check", (dir_ / "zero.gltf").string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -68,7 +68,7 @@ TEST_F(Hostile, AFifoOrADeviceAsAGltfBufferIsRefusedAtOnce) {
 TEST_F(Hostile, ADeviceAsTheRegionFileIsRefusedAtOnce) {
   const fs::path zero = dir_ / "zero.txt";
   std::string why;
-  if (!make_device(zero, 5, why)) GTEST_SKIP() << why;
+  if (!make_device(zero, 5, why)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = bounded_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "2",
                               "-q", "--regions", zero.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;

@@ -13,7 +13,7 @@ using test::run_cli;
 // -o nor --log nor --summary written.
 TEST_F(Hostile, AFullDiskStopsTheExportNotTheResult) {
   std::string why;
-  if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) GTEST_SKIP() << why;
+  if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "20", "-q",
                           "--export-every", "1", "--export-dir", (dir_ / "small" / "frames").string(), "--log",
                           (dir_ / "log.csv").string(), "--summary", (dir_ / "s.json").string()});
@@ -56,7 +56,7 @@ TEST_F(Hostile, TheSummaryNamesEveryOutputWritten) {
 // written. Without the option the run would go on to frame 200.
 TEST_F(Hostile, AFullDiskEndsTheRunWhenAskedAndKeepsItsResult) {
   std::string why;
-  if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) GTEST_SKIP() << why;
+  if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "200",
                           "-q", "--export-every", "1", "--export-dir", (dir_ / "small" / "frames").string(),
                           "--export-failure", "stop", "--log", (dir_ / "log.csv").string(), "--summary",
@@ -83,7 +83,7 @@ TEST_F(Hostile, AFullDiskEndsTheRunWhenAskedAndKeepsItsResult) {
 // never written.
 TEST_F(Hostile, AFullDiskUnderTheGltfIsNamedAndTheResultWritten) {
   std::string why;
-  if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) GTEST_SKIP() << why;
+  if (!mount_tmpfs(dir_ / "small", 64 * 1024, why)) SKIP_OR_FAIL_UNDER_CI(why);
   test::spit(dir_ / "small" / "a.glb", "an earlier run's");
   const auto r = run_cli({"run", test::mesh("bumpy_sphere.off"), "-o", (dir_ / "o.off").string(), "-n", "20", "-q",
                           "--export-every", "1", "--gltf", (dir_ / "small" / "a.glb").string()});

@@ -18,7 +18,7 @@ using test::run_cli;
 TEST_F(Hostile, ADeviceGivenAsAnOutputIsNeverReplaced) {
   const fs::path dev = dir_ / "null";
   std::string why;
-  if (!make_device(dev, 3, why)) GTEST_SKIP() << why;
+  if (!make_device(dev, 3, why)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n", "2", "-q", "--log",
                           dev.string()});
   EXPECT_EQ(r.exit_code, 1) << r.output;
@@ -51,7 +51,7 @@ TEST_F(Hostile, ANonWritableExistingOutputIsRefusedBeforeTheRun) {
   const fs::path log = dir_ / "log.csv";
   test::spit(dir_ / "src.csv", "old log\n");
   std::string why;
-  if (!bind(dir_ / "src.csv", log, why, /*read_only=*/true)) GTEST_SKIP() << why;
+  if (!bind(dir_ / "src.csv", log, why, /*read_only=*/true)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n", "3", "--log",
                           log.string()});
   EXPECT_EQ(r.exit_code, 1) << r.output;
@@ -62,7 +62,7 @@ TEST_F(Hostile, ANonWritableExistingOutputIsRefusedBeforeTheRun) {
 // A read-only folder is found before the run (the probe cannot create a file there).
 TEST_F(Hostile, AReadOnlyFolderIsRefusedBeforeTheRun) {
   std::string why;
-  if (!mount_tmpfs(dir_ / "ro", 1 << 20, why, /*read_only=*/true)) GTEST_SKIP() << why;
+  if (!mount_tmpfs(dir_ / "ro", 1 << 20, why, /*read_only=*/true)) SKIP_OR_FAIL_UNDER_CI(why);
   const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "ro" / "o.off").string(), "-n", "3"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_EQ(r.output.find("frame 3/3"), std::string::npos) << r.output;

@@ -159,12 +159,9 @@ TEST(LocalContraction, FaceListsOfTheHandAndBearSinkLocally) {
   for (const char* name : {"hand", "bear"})
     if (!std::filesystem::exists(test::target_mesh_path(name)))
       GTEST_SKIP() << name << " is absent";
-  // Open: on the cap finder's regions the rest of the shell moves by far more
-  // than a tenth of the regions' sink. Not a rigid drift and independent of --region-shrink: the
-  // volume-projected dimple is not isometric and the nearly bending-free shell drifts under it
-  // (lab/regions/locality.md, which also measures a mirrored dimple). This is the acceptance test
-  // of the fix; it stays until the model changes.
-  GTEST_SKIP() << "open: the rest moves far more than a tenth of the sink; lab/regions/locality.md";
+  // Fails with: the former default --dimple volume, whose dimple is not isometric, so the
+  // nearly bending-free shell drifts under it (lab/regions/locality.md): the rest then moves far
+  // more than a tenth of the sink on both meshes.
   expect_local("hand", face_list_contraction("hand", RegionOptions{}));
   expect_local("bear", face_list_contraction("bear", RegionOptions{}));
 }

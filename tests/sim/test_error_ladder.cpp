@@ -70,7 +70,6 @@ TEST(ErrorLadder, MoreSweepsBringXpbdCloserAndTheReferenceCheckIsReported) {
   EXPECT_EQ(r.rows.size(), 3u + 6u);
   for (const ErrorLadderRow& row : r.rows) {
     EXPECT_FALSE(row.failed) << row.failure;
-    EXPECT_GT(row.ms_per_step, 0.0);
     EXPECT_TRUE(std::isfinite(row.hausdorff));
     if (row.solver == SolverKind::Pbd) {
       EXPECT_EQ(row.substeps, 1);

@@ -235,8 +235,12 @@ TEST(RegionMirrorFrame, BumpsSinkLocallyAtTheDefaults) {
     EXPECT_EQ(r.new_intersections, 0);
     return r;
   };
-  const Locality still = measure(mesh, run({{"pressure", "0"}}).positions, regs);
+  const RunResult still_run = run({{"pressure", "0"}});
+  const Locality still = measure(mesh, still_run.positions, regs);
   ASSERT_EQ(still.sink.size(), 3u);
+  // The run's own rest-of-the-shell figure (normalized units: the diagonal is 1), which the
+  // other locality tests and --summary's outside_region_displacement read, is this measure's.
+  EXPECT_NEAR(still_run.outside_region_displacement, still.rest / diag, 1e-9 * still.rest / diag);
   const double smallest = *std::min_element(still.sink.begin(), still.sink.end());
   EXPECT_GE(smallest, 0.01 * diag);
   EXPECT_LE(still.rest, 0.1 * smallest) << "rest " << still.rest << ", smallest sink " << smallest;

@@ -48,8 +48,16 @@ TEST(RunPlan, ShellMaterialGivesMuLambdaAndKbInClosedForm) {
   EXPECT_NEAR(s.material_params.mu, E * h / (2.0 * (1.0 + nu)), 1e-14);
   EXPECT_NEAR(s.material_params.lambda, E * h * nu / (1.0 - nu * nu), 1e-14);
   EXPECT_NEAR(s.solver.k_bending, E * h * h * h / (36.0 * (1.0 - nu * nu)), 1e-18);
-  // Derived values the Simulator no longer derives itself.
+  // Derived values the Simulator no longer derives itself: the time step the solver's compliance
+  // reads, and mu_A for k_A, each given at a value other than its default (both defaults agree
+  // with the solver's and the anisotropy's own, so the defaults alone cannot tell).
   EXPECT_EQ(s.solver.dt, s.dt);
+  RunOptions stepped;
+  set_run_option(stepped, "dt", "0.005");
+  set_run_option(stepped, "mu-a", "20");
+  const SimOptions& t = plan_run(sphere(1), stepped).sim.options;
+  EXPECT_EQ(t.solver.dt, 0.005);
+  EXPECT_EQ(t.anisotropy.mu_aniso, 20.0);
   EXPECT_EQ(plan.options.sim.material_params.mu, s.material_params.mu);
   // k_B given is kept: the material derives it only where the caller left it.
   RunOptions given;
