@@ -40,9 +40,11 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   check("inward", measure_only,
         "`measure_regions` without `regions`, `region_weights`, `region_at` or `aniso` only "
         "measures the regions, it does not contract them");
-  check("mu_a", aniso && pbd && s.inward_term != InwardTerm::Projection,
-        "a PBD projection does not depend on the stiffness (mu_A acts with `solver` xpbd, or "
-        "through k_A with `inward` projection)");
+  // With `inward` projection k_A = kappa_A mu_A sqrt(A) scales with mu_A as the energy does, so
+  // the projection is the same (GoldenPaths.InwardProjectionUnderPbdDoesNotDependOnMuA).
+  check("mu_a", aniso && pbd,
+        "a PBD projection does not depend on the stiffness (mu_A acts with `solver` xpbd; with "
+        "`inward` projection k_A scales with it as the energy does)");
   for (const char* name : {"mu_a", "fiber", "inversion_aware"})
     check(name, !aniso, "no `aniso` energy is chosen");
   check("fiber_target", s.solver.aniso != AnisoKind::ActiveFiber,

@@ -60,6 +60,11 @@ TEST_F(CliIgnoredOptions, EachOptionWithoutEffectIsAWarningNamingIt) {
        "--c10"},
       {{"--material", "mooney-rivlin", "--young", "1000", "--thickness", "0.01", "--k-b", "0.1"},
        "--young has no effect: the Mooney-Rivlin membrane takes --c10"},
+      // Before: no word under --inward projection, where k_A scales with mu_A as the energy does
+      // and the positions are the same to the bit
+      // (GoldenPaths.InwardProjectionUnderPbdDoesNotDependOnMuA).
+      {{"--aniso", "arap", "--solver", "pbd", "--inward", "projection", "--mu-a", "4"},
+       "--mu-a has no effect: a PBD projection does not depend on the stiffness"},
   };
   for (const auto& c : cases) {
     const RunResult r = run(c.args);
