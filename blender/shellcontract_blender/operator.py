@@ -3,13 +3,28 @@
 import bpy
 import numpy as np
 
-from . import runner
+from . import curves, placement, runner
 
 KEY_PREFIX = "shellcontract "
 
-# The runs in progress, by object name -> Job: kept here, not on the object, so that a file saved
-# (or a Blender that crashed) during a run does not come back with a run that no longer exists.
+# The runs in progress, by object (run_key) -> Job: kept here, not on the object, so that a file
+# saved (or a Blender that crashed) during a run does not come back with a run that no longer
+# exists.
 RUNNING = {}
+
+
+def run_key(obj):
+    """The key of the object's run in RUNNING: the object's address, not its name, so that a
+    rename during a run neither loses the result nor lets a second run start."""
+    return obj.as_pointer()
+
+
+def object_of(key):
+    """The object of a run_key, or None when it is gone (deleted)."""
+    for obj in bpy.data.objects:
+        if obj.as_pointer() == key:
+            return obj
+    return None
 
 
 # Edit Mode keeps its own copy of the mesh: the module would read the positions from before the
@@ -21,21 +36,6 @@ EDIT_MODE = ("the object is in Edit Mode; switch to Object Mode (Tab) first: sha
 def _preferences(context):
     addon = context.preferences.addons.get(__package__)
     return addon.preferences if addon else None
-
-
-def _keys_of(obj, prop):
-    """The keyframes (frame, value) of obj.shellcontract.<prop>, or None when not animated.
-
-    Only the active action's F-curve is read, and not when it is muted: Blender does not play a
-    muted F-curve, and the run should follow what the timeline shows. NLA strips are not read
-    (docs/blender.md), so a muted one is not either."""
-    ad = obj.animation_data
-    if ad is None or ad.action is None:
-        return None
-    fc = ad.action.fcurves.find("shellcontract." + prop)
-    if fc is None or fc.mute or len(fc.keyframe_points) == 0:
-        return None
-    return [(kp.co[0], kp.co[1]) for kp in fc.keyframe_points]
 
 
 def _default(settings, prop):
@@ -155,12 +155,13 @@ def modifier_hint(obj):
     """For a mesh the library refuses: the run contracts the mesh as stored, before the object's
     modifiers (they stay, on top of the animation), so a mesh that is closed only with them (half
     a mesh and a Mirror modifier) is refused as open with faces the user does not see missing. ''
-    when the object has no modifier."""
+    when the object has no modifier. It goes first in the message: the panel shows the status on
+    one line, cut at the sidebar's width, and the library's text after it lists faces."""
     names = [m.name for m in obj.modifiers]
     if not names:
         return ""
-    return ("; the run takes {}'s mesh without its modifiers ({}): to contract what they make, "
-            "apply them first (Object > Apply)".format(obj.name, ", ".join(names)))
+    return ("the run takes {}'s mesh without its modifiers ({}): to contract what they make, "
+            "apply them first (Object > Apply); ".format(obj.name, ", ".join(names)))
 
 
 def vertex_group_weights(obj, name):
@@ -176,15 +177,19 @@ def vertex_group_weights(obj, name):
     return weights
 
 
-def run_options(context, obj):
-    """The contract() options of the object's settings, with keyframed settings as schedules."""
+def run_options(context, obj, start=None, warnings=None):
+    """The contract() options of the object's settings, with keyframed settings as schedules
+    (start: simulation frame 0, the scene's start frame unless given); the add-on's warnings
+    about them go to `warnings`."""
+    start = context.scene.frame_start if start is None else start
+    warnings = [] if warnings is None else warnings
     s = obj.shellcontract
-    start = context.scene.frame_start
     options = {"frames": s.frames, "thickness": float(runner.float32_text(s.thickness)),
                "collisions": s.collisions}
-    volume_keys = _keys_of(obj, "target_volume")
-    if volume_keys:
-        options["target_volume"] = runner.target_volume_schedule(volume_keys, start)
+    volume_curve = curves.fcurve_of(obj, "target_volume")
+    if volume_curve is not None:
+        options["target_volume"] = curves.target_volume_option(volume_curve, start, s.frames,
+                                                              warnings)
     elif runner.unkeyed_target_volume(s.target_volume) > 0.0:
         options["target_volume"] = runner.unkeyed_target_volume(s.target_volume)
     # With a target volume (a number or keys) the volume constraint decides the volume and the
@@ -192,10 +197,10 @@ def run_options(context, obj):
     # user asked for it: keyed, set off its default, or with the target off, where it decides. The
     # default is the library's own (checked in addon_in_blender.py), so leaving it out at the
     # default runs the same.
-    pressure_keys = _keys_of(obj, "pressure")
+    pressure_curve = curves.fcurve_of(obj, "pressure")
     target_on = "target_volume" in options
-    if pressure_keys:
-        options["pressure"] = runner.pressure_schedule(pressure_keys, start)
+    if pressure_curve is not None:
+        options["pressure"] = curves.pressure_option(pressure_curve, start, s.frames, warnings)
     elif not target_on or s.pressure != _default(s, "pressure"):
         options["pressure"] = float(runner.float32_text(s.pressure))
     if s.region_group:
@@ -204,9 +209,10 @@ def run_options(context, obj):
     return options
 
 
-def write_shape_keys(context, obj, job):
+def write_shape_keys(context, obj, job, start):
     """One shape key per kept frame, keyed so that timeline frame start + n shows simulation
-    frame n (linear blends between neighbouring keys). Earlier results of the add-on are
+    frame n (linear blends between neighbouring keys); start is the scene's start frame when the
+    run was prepared, which its schedules were read from. Earlier results of the add-on are
     replaced; the Basis and the object's other keys stay."""
     if obj.data.shape_keys is None:
         obj.shape_key_add(name="Basis", from_mix=False)
@@ -220,12 +226,12 @@ def write_shape_keys(context, obj, job):
     action = keys.animation_data.action
     for fc in [fc for fc in action.fcurves if KEY_PREFIX in fc.data_path]:
         action.fcurves.remove(fc)
-    start = context.scene.frame_start
     frames = sorted(job.frames)
     times = [start] + [start + n for n in frames]  # start: the rest state, the Basis
     for i, n in enumerate(frames):
         kb = obj.shape_key_add(name="{}{:05d}".format(KEY_PREFIX, n), from_mix=False)
-        kb.data.foreach_set("co", np.ascontiguousarray(job.frames[n], dtype=np.float64).ravel())
+        co = placement.from_run(job.space, job.frames[n])  # back to the mesh's coordinates
+        kb.data.foreach_set("co", np.ascontiguousarray(co, dtype=np.float64).ravel())
         kb.value = 0.0
         points = [(times[i], 0.0), (times[i + 1], 1.0)]
         if i + 2 < len(times):
@@ -253,10 +259,21 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
     @classmethod
     def poll(cls, context):
         obj = context.active_object
-        return obj is not None and obj.type == "MESH" and obj.name not in RUNNING
+        if obj is None or obj.type != "MESH" or run_key(obj) in RUNNING:
+            return False
+        # Linked data cannot keep the run's keys; the reason shows in the button's tooltip and
+        # in a script's error, as for Blender's own shape-key operators.
+        refused = placement.library_refusal(obj)
+        if refused:
+            cls.poll_message_set(refused)
+            return False
+        return True
 
     def _prepare(self, context):
         obj = context.active_object
+        refused = placement.library_refusal(obj)
+        if refused:
+            raise runner.AddonError(refused)
         if obj.mode == "EDIT":
             raise runner.AddonError(EDIT_MODE)
         refused = shape_key_refusal(obj)
@@ -264,22 +281,33 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             raise runner.AddonError(refused)
         prefs = _preferences(context)
         module = runner.import_shellcontract(prefs.module_path if prefs else "")
+        space = placement.run_space(obj)
         vertices, faces, polygon_of = mesh_arrays(obj)
-        options = run_options(context, obj)
+        start = context.scene.frame_start
+        warnings = []
+        options = run_options(context, obj, start, warnings)
         keep = runner.kept_frames(obj.shellcontract.frames, obj.shellcontract.frame_step)
-        return obj, runner.Job(module, vertices, faces, options, keep, polygon_of)
+        job = runner.Job(module, placement.to_run(space, vertices), faces, options, keep,
+                         polygon_of)
+        job.space = space  # the result is mapped back to the mesh's coordinates
+        job.start_frame = start  # the schedules' frame 0; the keys are written from it
+        job.addon_warnings = [w for w in warnings if w]
+        return obj, job
 
     def _refuse(self, context, error):
         """A run refused before it starts: the panel's status says why, as for a failed run, so
-        that it does not keep showing the previous run's result."""
-        context.active_object.shellcontract.status = "error: {}".format(error)
+        that it does not keep showing the previous run's result (not on linked data, which
+        cannot be changed)."""
+        obj = context.active_object
+        if obj.library is None:
+            obj.shellcontract.status = "error: {}".format(error)
         self.report({"ERROR"}, "ShellContract: {}".format(error))
         return {"CANCELLED"}
 
     def _finish(self, context, obj, job):
         s = obj.shellcontract
-        RUNNING.pop(obj.name, None)
-        start = context.scene.frame_start
+        RUNNING.pop(run_key(obj), None)
+        start = job.start_frame if job.start_frame is not None else context.scene.frame_start
 
         def terms(message):  # the library's message in the add-on's terms
             return runner.addon_terms(message, start, obj.name, job.polygon_of, job.faces,
@@ -292,7 +320,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         if job.error is not None:
             error = terms(job.error) or type(job.error).__name__
             if isinstance(job.error, job.module.MeshError):
-                error += modifier_hint(obj)
+                error = modifier_hint(obj) + error
             s.status = "error: {}".format(error)
             self.report({"ERROR"}, "ShellContract: {}".format(error))
             return {"CANCELLED"}
@@ -319,10 +347,10 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         # The last frame is the result's own positions (a run may end early: a stall, a failure).
         job.frames[result.summary["frames_run"]] = result.vertices
         job.frames = {n: v for n, v in job.frames.items() if n <= result.summary["frames_run"]}
-        write_shape_keys(context, obj, job)
+        write_shape_keys(context, obj, job, start)
         # The library's warnings (e.g. a vertex group whose weights are all 0: no region) go with
         # the status, so that an ineffective setting is not reported as a plain success.
-        warnings = [terms(w) for w in result.summary.get("warnings", [])]
+        warnings = job.addon_warnings + [terms(w) for w in result.summary.get("warnings", [])]
         s.status = "{}: {} frames, V/V0 {:.4f}".format(
             result.status, result.summary["frames_run"], result.summary["final_volume_ratio"]) + "".join(
             "; warning: " + w for w in warnings)
@@ -350,9 +378,10 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             obj, job = self._prepare(context)
         except (runner.AddonError, ValueError, TypeError) as e:
             return self._refuse(context, e)
-        self._obj_name = obj.name
+        self._obj_key = run_key(obj)
+        self._obj_name = obj.name  # for the report when it is gone
         self._job = job
-        RUNNING[obj.name] = job
+        RUNNING[self._obj_key] = job
         job.start()
         wm = context.window_manager
         wm.progress_begin(0, obj.shellcontract.frames)
@@ -361,7 +390,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         return {"RUNNING_MODAL"}
 
     def modal(self, context, event):
-        obj = bpy.data.objects.get(self._obj_name)
+        obj = object_of(self._obj_key)
         job = self._job
         if event.type == "ESC" and event.value == "PRESS":
             job.cancel()
@@ -381,7 +410,9 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         wm.event_timer_remove(self._timer)
         wm.progress_end()
         context.workspace.status_text_set(None)
-        if obj is None:  # deleted during the run
-            RUNNING.pop(self._obj_name, None)
+        if obj is None:  # deleted during the run (or an undo put another object in its place)
+            RUNNING.pop(self._obj_key, None)
+            self.report({"WARNING"}, "ShellContract: {} is gone (deleted during the run, or "
+                        "replaced by an undo); the result was not written".format(self._obj_name))
             return {"CANCELLED"}
         return self._finish(context, obj, job)

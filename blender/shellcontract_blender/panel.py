@@ -2,7 +2,7 @@
 
 import bpy
 
-from . import operator
+from . import operator, placement
 
 
 class VIEW3D_PT_shellcontract(bpy.types.Panel):
@@ -33,7 +33,12 @@ class VIEW3D_PT_shellcontract(bpy.types.Panel):
         sub.prop(s, "region_shrink")
         col.prop(s, "frame_step")
         row = layout.row()
-        job = operator.RUNNING.get(obj.name)
+        job = operator.RUNNING.get(operator.run_key(obj))
+        refused = placement.library_refusal(obj)
+        if refused:  # the button would be greyed out: say why, the fix first
+            box = layout.box()
+            box.label(text="Make it local first (Object > Relations > Make Local)", icon="ERROR")
+            box.label(text=refused)
         if job is not None:
             row.label(text="Frame {} of {} (Esc cancels)".format(job.progress, s.frames))
         else:

@@ -120,7 +120,7 @@ def target_volume_schedule(keys, start):
             "Target volume: the key at frame {} (the scene's start frame) is {}; the run starts "
             "at the rest volume, V/V0 = 1, so a key there must be 1 (or key a later frame "
             "only: the run goes there from 1)".format(start, float32_text(pairs[0][1])))
-    return _schedule_text(pairs)
+    return schedule_text(pairs)
 
 
 def pressure_schedule(keys, start):
@@ -131,10 +131,10 @@ def pressure_schedule(keys, start):
             raise AddonError("Pressure: the key at frame {} is {}; a Pressure is between {} and "
                              "{}".format(start + sim_frame, float32_text(v),
                                          float32_text(-MAX_PRESSURE), float32_text(MAX_PRESSURE)))
-    return _schedule_text(pairs)
+    return schedule_text(pairs)
 
 
-def _schedule_text(pairs):
+def schedule_text(pairs):
     return ", ".join("{}:{}".format(f, float32_text(v)) for f, v in pairs)
 
 
@@ -329,6 +329,9 @@ class Job:
         self.frames = {}
         self.result = None
         self.error = None
+        self.space = None  # the 3x3 map of the run's coordinates (placement.run_space), or None
+        self.start_frame = None  # the scene's start frame when the run was prepared
+        self.addon_warnings = []  # the add-on's own, shown with the library's
         self._cancel = threading.Event()
         self._thread = None
 

@@ -4,7 +4,7 @@ ARGS: --addon-dir DIR (the folder holding shellcontract_blender), --glb FILE (a 
 to import). The shellcontract module comes from SHELLCONTRACT_PYTHONPATH (the add-on's own
 lookup). Any failed check raises, and Blender exits with 1. The checks are in the modules
 beside this script (addon_helpers, addon_docs, addon_runs, addon_settings, addon_shape_keys,
-addon_messages);
+addon_messages, addon_review);
 this one enables the add-on and runs them in order, the later ones on the objects the earlier
 ones left.
 
@@ -40,6 +40,7 @@ from addon_messages import mesh_messages  # noqa: E402
 from addon_runs import (contract_sphere, edited_during_run, glb_import, keyed_target,  # noqa: E402
                         refused_runs, threaded_run)
 from addon_settings import muted_keys, pressure_combinations, target_volume_messages  # noqa: E402
+from addon_review import review  # noqa: E402
 from addon_shape_keys import shape_keys  # noqa: E402
 
 
@@ -72,6 +73,7 @@ def main():
     muted_keys()
     shape_keys()
     mesh_messages()
+    review()
     if a.glb:
         glb_import(a.glb)
 

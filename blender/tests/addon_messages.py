@@ -58,6 +58,11 @@ def mesh_messages():
     check("open boundary" in text and "without its modifiers (Mirror)" in text
           and "Object > Apply" in text,
           "a half mesh closed by a Mirror modifier is refused with the modifiers named: " + text)
+    # The hint is what the artist acts on, and the panel's one-line status is cut at the sidebar's
+    # width: it comes first, before the library's list of faces.
+    check(obj.shellcontract.status.startswith("error: the run takes {}'s mesh without its "
+                                              "modifiers (Mirror)".format(obj.name)),
+          "the status begins with the modifiers' hint: " + obj.shellcontract.status[:80])
     # Two cubes that share one corner (the second is the first mirrored through its corner 7): the
     # pinch is a MeshError whose faces are the six quads around vertex 7, each named once.
     corners = [(x, y, z) for x in (0, 1) for y in (0, 1) for z in (0, 1)]
