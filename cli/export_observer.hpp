@@ -100,6 +100,17 @@ class FrameExporter final : public RunObserver {
         gltf_.face_uv(static_cast<Eigen::Index>(f), k) = static_cast<int>(t.face_uv[f][static_cast<std::size_t>(k)]);
   }
 
+  /// The input's normal groups, for the glTF's hard edges; empty: none (smooth normals).
+  void set_normal_groups(const CornerNormalGroups& g) {
+    if (g.empty()) return;
+    gltf_.face_normal.resize(static_cast<Eigen::Index>(g.face_group.size()), 3);
+    for (std::size_t f = 0; f < g.face_group.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        gltf_.face_normal(static_cast<Eigen::Index>(f), k) =
+            static_cast<int>(g.face_group[f][static_cast<std::size_t>(k)]);
+    gltf_.face_polygon.assign(g.face_polygon.begin(), g.face_polygon.end());
+  }
+
   /// The glTF's node and mesh name (the input's stem).
   void set_gltf_name(std::string name) { gltf_.name = std::move(name); }
   /// The glTF's materials and each face's (gltf_materials: the OBJ's .mtl, the PLY's

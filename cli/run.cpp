@@ -335,6 +335,7 @@ int command_run(int argc, char** argv) {
       if (document) {
         const CornerTexcoords uv = document->texcoords(mesh);
         exporter.set_texcoords(uv);
+        exporter.set_normal_groups(document->normal_groups(mesh));  // the input's hard edges
         // The OBJ's materials (the .mtl's Kd, d and map_Kd), the PLY's TextureFile images or
         // the glTF's own materials: a problem with one is a warning.
         std::vector<std::string> material_warnings;

@@ -54,6 +54,14 @@ struct GltfAnimation {
   /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
   Faces face_uv;
+  /// Optional normal groups of the input's shading (#F by 3, like faces; MeshDocument::
+  /// normal_groups): corners of one vertex in different groups meet at a hard edge and get a
+  /// normal each; -1: a corner without one. Empty: every vertex smooth.
+  Faces face_normal;
+  /// Optional, with face_normal: per face (#F), the input polygon it is a triangle of, in
+  /// [0, #F); the triangles of one polygon count as one face for a hard normal (its vector area,
+  /// as an OBJ result's normal). Empty: each face is a polygon of its own.
+  std::vector<int> face_polygon;
   /// Optional materials (an OBJ's usemtl materials, from its .mtl files). A texture needs
   /// texture coordinates (TEXCOORD_0).
   std::vector<GltfMaterial> materials;
@@ -93,6 +101,13 @@ struct GltfStats {
 /// top-left corner, OBJ's and PLY's the bottom-left. A vertex with several texture coordinates (a
 /// seam) is split: glTF vertex i < #V is vertex i with the first coordinates its corners use, the
 /// copies follow; every attribute and every morph target is copied with it.
+///
+/// With normal groups, a vertex whose corners are in more than one group (a hard edge: a
+/// flat-shaded side's corners, an OBJ's per-face `vn`) is split as a seam is, one copy per group
+/// (and texture coordinate), and each copy's NORMAL, in every frame, is the area-weighted normal
+/// of its group's faces alone (of their polygons whole, with face_polygon), so the edge stays
+/// hard as the mesh moves. Every other vertex has
+/// the area-weighted normal of all its faces (vertex_normals), as without normal groups.
 ///
 /// The node and the mesh are called `name`. Primitives: one per material its faces use (a face
 /// of none, face_material -1, in one more without material), in the order of each one's first

@@ -183,6 +183,20 @@ struct CornerTexcoords {
   bool empty() const { return uv.empty(); }
 };
 
+/// Which corners of the simulation mesh's faces share a normal in the file (for the glTF's
+/// NORMAL): a flat-shaded side or a hard edge is a vertex whose corners have different groups.
+struct CornerNormalGroups {
+  /// Per simulation face (face index order), per corner in CornerTexcoords' order: its normal
+  /// group. Corners of one simulation vertex with the same group are smoothed together; -1: the
+  /// file gives the corner no normal. The numbers mean nothing beyond equality at one vertex (an
+  /// OBJ's `vn` line; a PLY's or glTF's copies at one position with the same normal).
+  std::vector<std::array<long long, 3>> face_group;
+  /// Per simulation face, the file's polygon it is (a part of): the triangles of a polygon count
+  /// as one face for its corners' normals (its vector area), as they do in an OBJ's result.
+  std::vector<std::size_t> face_polygon;
+  bool empty() const { return face_group.empty(); }
+};
+
 /// The materials an OBJ's faces use (`usemtl`) and the libraries that define them (`mtllib`),
 /// or the texture files a PLY's header names (`comment TextureFile`), for the glTF's material.
 struct FaceMaterials {
@@ -247,6 +261,10 @@ class MeshDocument {
   /// Texture coordinates by simulation face corner; empty when some corner of a polygon has none.
   /// @pre matches(mesh)
   CornerTexcoords texcoords(const Mesh& mesh) const;
+  /// The file's normal groups by simulation face corner (CornerNormalGroups); empty when the
+  /// file has no normals (then every vertex has one smooth normal, as a mesh without a document).
+  /// @pre matches(mesh)
+  CornerNormalGroups normal_groups(const Mesh& mesh) const;
   /// The material of each simulation face and the material libraries (OBJ), or the texture
   /// files and each face's (PLY: its `texnumber`, else the first), or a glTF's materials and
   /// each face's primitive's; empty for an OBJ with no usemtl line, a PLY with no TextureFile
@@ -258,6 +276,13 @@ class MeshDocument {
   /// The polygon each simulation face comes from: face i < #polygons is polygon i (its first
   /// triangle), further triangles of split polygons follow in polygon order (read_input_mesh).
   std::vector<std::size_t> face_origins() const;
+  /// Per file corner its normal group (CornerNormalGroups; -1: none), for normal_groups; empty:
+  /// the file has no normals. An OBJ: its `vn` line; a PLY's or glTF's per-vertex normals: the
+  /// normal group of the corner's vertex among its welded copies (mesh/normal_groups.hpp).
+  virtual std::vector<long long> corner_normal_groups(const Mesh& mesh) const {
+    (void)mesh;
+    return {};
+  }
 
   std::size_t vertex_count_ = 0;
   std::vector<std::size_t> polygon_start_;  ///< polygon p's corners are [start[p], start[p + 1])

@@ -13,6 +13,7 @@
 #include "export/gltf_buffer.hpp"
 #include "export/gltf_input_materials.hpp"
 #include "export/gltf_primitives.hpp"
+#include "export/gltf_vertices.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "sim/fields.hpp"
@@ -65,6 +66,25 @@ void check_input(const GltfAnimation& a) {
     if (!a.uv.allFinite())
       throw std::invalid_argument("write_gltf_animation: a texture coordinate is not finite");
   }
+  if (a.face_normal.rows() > 0) {
+    if (a.face_normal.rows() != a.faces.rows())
+      throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.face_normal.rows()) +
+                                  " rows of normal groups for " + std::to_string(a.faces.rows()) +
+                                  " faces");
+    if (a.face_normal.minCoeff() < -1)
+      throw std::invalid_argument("write_gltf_animation: a normal group below -1");
+  }
+  if (!a.face_polygon.empty()) {
+    if (a.face_polygon.size() != static_cast<std::size_t>(a.faces.rows()))
+      throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.face_polygon.size()) +
+                                  " face polygons for " + std::to_string(a.faces.rows()) +
+                                  " faces");
+    for (const int p : a.face_polygon)
+      if (p < 0 || p >= a.faces.rows())
+        throw std::invalid_argument("write_gltf_animation: a face's polygon " + std::to_string(p) +
+                                    " is out of range (" + std::to_string(a.faces.rows()) +
+                                    " faces)");
+  }
   for (const auto& [name, values] : a.frame_fields) {
     if (values.size() != a.frames.size())
       throw std::invalid_argument("write_gltf_animation: frame field '" + name + "' has " +
@@ -112,49 +132,6 @@ Positions vertex_normals(const Positions& x, const Faces& faces) {
 
 namespace {
 
-/// The glTF's vertices: the simulation's, plus a copy of a vertex for each further texture
-/// coordinate its corners use (glTF has one set of attributes per vertex).
-struct SeamSplit {
-  std::vector<Eigen::Index> source;  ///< glTF vertex -> simulation vertex; identity for i < #V
-  Faces faces;                       ///< the faces on the glTF's vertices
-  Floats2 texcoords;                 ///< TEXCOORD_0 (u, 1 - v); empty without texture coordinates
-};
-
-SeamSplit split_seams(const GltfAnimation& a) {
-  const Eigen::Index nv = a.frames[0].rows();
-  SeamSplit s;
-  s.faces = a.faces;
-  s.source.resize(static_cast<std::size_t>(nv));
-  for (Eigen::Index i = 0; i < nv; ++i) s.source[static_cast<std::size_t>(i)] = i;
-  if (a.face_uv.rows() == 0) return s;
-  std::vector<int> uv_of(static_cast<std::size_t>(nv), -1);  // the glTF vertex's uv index
-  std::vector<std::vector<std::pair<int, int>>> copies(static_cast<std::size_t>(nv));  // (uv, glTF vertex)
-  for (Eigen::Index f = 0; f < a.faces.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int v = a.faces(f, k), t = a.face_uv(f, k);
-      const auto vs = static_cast<std::size_t>(v);
-      if (uv_of[vs] < 0) uv_of[vs] = t;
-      if (uv_of[vs] == t) continue;
-      int id = -1;
-      for (const auto& [uv, copy] : copies[vs])
-        if (uv == t) id = copy;
-      if (id < 0) {
-        id = static_cast<int>(s.source.size());
-        s.source.push_back(v);
-        uv_of.push_back(t);
-        copies[vs].emplace_back(t, id);
-      }
-      s.faces(f, k) = id;
-    }
-  s.texcoords.resize(static_cast<Eigen::Index>(s.source.size()), 2);
-  for (std::size_t i = 0; i < s.source.size(); ++i) {
-    const Eigen::Index t = uv_of[i] < 0 ? 0 : uv_of[i];  // < 0: a vertex no face uses
-    s.texcoords(static_cast<Eigen::Index>(i), 0) = static_cast<float>(a.uv(t, 0));
-    s.texcoords(static_cast<Eigen::Index>(i), 1) = static_cast<float>(1.0 - a.uv(t, 1));
-  }
-  return s;
-}
-
 /// Rows of `a` for the glTF's vertices (a itself when nothing was split).
 template <class M>
 M gather(M a, const std::vector<Eigen::Index>& source) {
@@ -191,7 +168,7 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
 GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
                      std::vector<Positions>* consumed) {
   check_input(a);
-  const SeamSplit split = split_seams(a);
+  const gltf::VertexSplit split = gltf::split_vertices(a);
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "shellcontract";
@@ -206,11 +183,20 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   const Floats3 x0 = a.frames[0].cast<float>();
   const Positions x0_stored = x0.cast<double>();  // what a reader gets for frame 0
-  // Normals on the simulation's mesh, so that a seam's copies share theirs (no visible seam).
-  const Positions n0 = vertex_normals(a.frames[0], a.faces);
+  // Normals on the simulation's mesh, so that a seam's copies share theirs (no visible seam);
+  // a hard edge's copies each have their own faces' (gltf_vertices.hpp).
+  const Positions n0 = gltf::split_normals(split, a.frames[0], a.faces);
   prim.attributes["POSITION"] = bb.add_vec3(gather(x0, split.source), true);
-  prim.attributes["NORMAL"] = bb.add_vec3(gather<Floats3>(n0.cast<float>(), split.source), false);
-  if (split.texcoords.rows() > 0) prim.attributes["TEXCOORD_0"] = bb.add_vec2(split.texcoords);
+  prim.attributes["NORMAL"] = bb.add_vec3(n0.cast<float>(), false);
+  if (!split.uv.empty()) {
+    Floats2 texcoords(static_cast<Eigen::Index>(split.uv.size()), 2);
+    for (std::size_t i = 0; i < split.uv.size(); ++i) {
+      const Eigen::Index t = split.uv[i] < 0 ? 0 : split.uv[i];  // < 0: a vertex no face uses
+      texcoords(static_cast<Eigen::Index>(i), 0) = static_cast<float>(a.uv(t, 0));
+      texcoords(static_cast<Eigen::Index>(i), 1) = static_cast<float>(1.0 - a.uv(t, 1));
+    }
+    prim.attributes["TEXCOORD_0"] = bb.add_vec2(texcoords);  // (u, 1 - v)
+  }
 
   tinygltf::Value::Object extras;
   tinygltf::Value::Array colour_info;
@@ -260,7 +246,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   std::vector<std::string> target_names;
   for (std::size_t k = 1; k < a.frames.size(); ++k) {
     const Floats3 dx = gather<Floats3>((a.frames[k] - x0_stored).cast<float>(), split.source);
-    const Floats3 dn = gather<Floats3>((vertex_normals(a.frames[k], a.faces) - n0).cast<float>(), split.source);
+    const Floats3 dn = (gltf::split_normals(split, a.frames[k], a.faces) - n0).cast<float>();
     if (consumed) Positions().swap((*consumed)[k]);
     std::map<std::string, int> target;
     target["POSITION"] = bb.add_vec3(dx, true);

@@ -85,6 +85,12 @@ class GltfDocument final : public MeshDocument {
 
   std::string format() const override { return binary_ ? "glb" : "gltf"; }
 
+  /// By the normal groups of write_normals: copies with their own normals (a flat side, a hard
+  /// edge) are groups of their own; a vertex of a primitive without float normals has none.
+  std::vector<long long> corner_normal_groups(const Mesh& mesh) const override {
+    return soup::welded_corner_groups(input_vertex_map(mesh), input_normal_, corner_vertex_);
+  }
+
   std::string text(const Positions& x) const override { return text_with(input_json_, x); }
 
   /// text(x) with each image's relative URI naming the same file from the output's folder, as

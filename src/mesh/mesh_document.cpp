@@ -7,6 +7,8 @@
 #include <cctype>
 #include <charconv>
 #include <filesystem>
+#include <stdexcept>
+#include <string>
 
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
@@ -58,30 +60,65 @@ bool MeshDocument::matches(const Mesh& mesh) const {
   return true;
 }
 
+namespace {
+
+/// Per simulation face, per corner (faces_array's order): the file corner it is, in
+/// `polygon_start`/`corner_vertex` (MeshDocument's); `origin` is face_origins().
+std::vector<std::array<std::size_t, 3>> file_corners(const Mesh& mesh,
+                                                     const std::vector<std::size_t>& origin,
+                                                     const std::vector<std::size_t>& polygon_start,
+                                                     const std::vector<std::size_t>& corner_vertex,
+                                                     const char* caller) {
+  // Corners in the order of faces_array (vertices_around_face from the face's halfedge), by the
+  // input's vertex (a welded mesh's too); a vertex appears once in a polygon (read_input_mesh
+  // refuses repeats), so it names the corner.
+  const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
+  std::vector<std::array<std::size_t, 3>> out(corners.size());
+  for (std::size_t f = 0; f < corners.size(); ++f) {
+    const std::size_t p = origin.at(f);
+    for (std::size_t k = 0; k < 3; ++k) {
+      std::size_t c = polygon_start[p];
+      while (c < polygon_start[p + 1] && corner_vertex[c] != corners[f][k]) ++c;
+      if (c == polygon_start[p + 1])
+        throw std::invalid_argument(std::string(caller) +
+                                    ": the mesh is not this document's (call matches first)");
+      out[f][k] = c;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
 CornerTexcoords MeshDocument::texcoords(const Mesh& mesh) const {
   CornerTexcoords t;
   if (uv_.empty() || corner_uv_.empty() ||
       std::any_of(corner_uv_.begin(), corner_uv_.end(), [](long long i) { return i < 0; }))
     return t;
-  const std::vector<std::size_t> origin = face_origins();
-  // Corners in the order of faces_array (vertices_around_face from the face's halfedge), by the
-  // input's vertex (a welded mesh's too); a vertex appears once in a polygon (read_input_mesh
-  // refuses repeats), so it names the corner.
-  const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
-  t.face_uv.resize(mesh.number_of_faces());
-  for (std::size_t f = 0; f < corners.size(); ++f) {
-    const std::size_t p = origin[f];
-    for (std::size_t k = 0; k < 3; ++k) {
-      std::size_t c = polygon_start_[p];
-      while (c < polygon_start_[p + 1] && corner_vertex_[c] != corners[f][k]) ++c;
-      if (c == polygon_start_[p + 1])
-        throw std::invalid_argument(
-            "MeshDocument::texcoords: the mesh is not this document's (call matches first)");
-      t.face_uv[f][k] = static_cast<std::size_t>(corner_uv_[c]);
-    }
-  }
+  const std::vector<std::array<std::size_t, 3>> corners =
+      file_corners(mesh, face_origins(), polygon_start_, corner_vertex_, "MeshDocument::texcoords");
+  t.face_uv.resize(corners.size());
+  for (std::size_t f = 0; f < corners.size(); ++f)
+    for (std::size_t k = 0; k < 3; ++k)
+      t.face_uv[f][k] = static_cast<std::size_t>(corner_uv_[corners[f][k]]);
   t.uv = uv_;
   return t;
+}
+
+CornerNormalGroups MeshDocument::normal_groups(const Mesh& mesh) const {
+  CornerNormalGroups g;
+  const std::vector<long long> group = corner_normal_groups(mesh);
+  if (group.empty()) return g;
+  if (group.size() != corner_vertex_.size())
+    throw std::logic_error("MeshDocument::normal_groups: " + std::to_string(group.size()) +
+                           " groups for " + std::to_string(corner_vertex_.size()) + " corners");
+  g.face_polygon = face_origins();
+  const std::vector<std::array<std::size_t, 3>> corners = file_corners(
+      mesh, g.face_polygon, polygon_start_, corner_vertex_, "MeshDocument::normal_groups");
+  g.face_group.resize(corners.size());
+  for (std::size_t f = 0; f < corners.size(); ++f)
+    for (std::size_t k = 0; k < 3; ++k) g.face_group[f][k] = group[corners[f][k]];
+  return g;
 }
 
 FaceMaterials MeshDocument::face_materials(const Mesh& mesh) const {

@@ -28,4 +28,15 @@ inline constexpr double kSameNormal = 1e-5;
 std::vector<std::size_t> normal_groups(const std::vector<std::size_t>& rep,
                                        const std::vector<Vec3>& dir);
 
+/// Per file corner, its normal group among the copies welded into its vertex, for
+/// MeshDocument::normal_groups (the glTF animation's hard edges): normal_groups with the copies
+/// of one welded vertex as one position; -1 for a corner whose vertex has no normal.
+/// @param welded        per file vertex, its simulation vertex (input_vertex_map)
+/// @param dir           per file vertex, as normal_groups
+/// @param corner_vertex per file corner, its vertex
+/// @return empty when no vertex has a normal
+std::vector<long long> welded_corner_groups(const std::vector<std::size_t>& welded,
+                                            const std::vector<Vec3>& dir,
+                                            const std::vector<std::size_t>& corner_vertex);
+
 }  // namespace shellcontract::soup

@@ -61,6 +61,13 @@ class ObjDocument final : public MeshDocument {
   void use_material(std::size_t at, std::size_t end);
   /// The file with the positions x, the normals of their polygons and `edits` (mtllib lines).
   std::string compose(const Positions& x, std::vector<TextEdit> edits) const;
+  /// A corner's `vn` line is its normal group: the corners of a vertex that share a line share
+  /// a normal in the result too (obj_normals.hpp). None when no corner has a `vn`.
+  std::vector<long long> corner_normal_groups(const Mesh&) const override {
+    for (const long long n : corner_vn_)
+      if (n >= 0) return corner_vn_;
+    return {};
+  }
   /// The file's text with its continued lines joined: the bytes themselves when it has none.
   const std::string& statements() const { return joined_.empty() ? bytes_ : joined_; }
 

@@ -128,6 +128,12 @@ class PlyDocument final : public MeshDocument {
   std::vector<Vec3> input_normals_;
   /// The vertex normals at positions x (see text()); a row of NaN keeps the file's normal.
   Positions normals(const Positions& x) const;
+  /// By the normal groups of normals(): copies of a welded vertex with their own normals (a
+  /// flat-shaded side's corners) are groups of their own. None when the file's are kept.
+  std::vector<long long> corner_normal_groups(const Mesh& mesh) const override {
+    if (normal_slots_.empty()) return {};
+    return soup::welded_corner_groups(input_vertex_map(mesh), input_normals_, corner_vertex_);
+  }
 };
 
 double PlyDocument::next_value(ply::Type t, Slot& where) {
