@@ -71,6 +71,11 @@ std::vector<RunInput> run_inputs(const RunOptions& options);
 /// @throws InputError
 void check_checkpoint_files(const Checkpoint& c, const std::vector<RunInput>& inputs);
 
+/// The options that do not change a run's result (the library's guarantee: the same bytes at
+/// any thread count), by their table names: a run may resume with other values, and a front end
+/// that keys runs by their options (the Python sweep) leaves them out of the key.
+const std::vector<std::string>& result_neutral_options();
+
 /// What a checkpoint records besides the run's state and options.
 struct CheckpointInfo {
   std::string input;             ///< the input as the saving run names it (its path, ARRAYS_INPUT)

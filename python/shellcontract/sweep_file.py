@@ -20,8 +20,9 @@ TOP_LEVEL_KEYS = ("meshes", "options", "grid", "runs")
 # file, as the meshes are; a job's id covers the file's bytes, not its name.
 PATH_OPTIONS = {"regions": ("auto", "none"), "region_weights": ()}
 # Options that do not change a run's result (the library guarantees the same bytes for any
-# thread count), left out of the job id so that a change of them reruns nothing.
-RESULT_NEUTRAL = ("threads",)
+# thread count), left out of the job id so that a change of them reruns nothing: the library's
+# list, the one a resumed run may change.
+RESULT_NEUTRAL = tuple(_core.result_neutral_options())
 
 
 class SweepError(Exception):

@@ -58,10 +58,11 @@ PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOption
     if (in.option == "regions" && args.regions_from_arrays) in.arrays = true;
   if (p.resume) check_checkpoint_files(*p.resume, p.inputs);
   if (!args.checkpoint.empty()) {
+    // The files the run reads are run_inputs' (one list, which tests/sim holds to the option
+    // table); regions or weights given as arrays are no file of the caller's.
     std::vector<NamedFile> read;
-    if (options.regions == RegionSource::File && !args.regions_from_arrays)
-      read.push_back({"regions", options.region_file});
-    if (!options.region_weight_file.empty()) read.push_back({"region_weights", options.region_weight_file});
+    for (const RunInput& in : p.inputs)
+      if (!in.arrays) read.push_back({in.option, in.file});
     check_output_files({{"checkpoint", args.checkpoint}}, read);
   }
   return p;

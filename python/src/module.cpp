@@ -19,6 +19,7 @@
 #include "arrays.hpp"
 #include "contract.hpp"
 #include "mesh_error.hpp"
+#include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
@@ -244,6 +245,14 @@ PYBIND11_MODULE(_core, m) {
   py::module_::import("atexit").attr("register")(py::cpp_function(&stop_runs_at_exit));
   m.def("contract", &contract, py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("callback") = py::none());
   m.def("option_table", &option_table);
+  // The options a sweep leaves out of a job's id: the checkpoint's own list
+  // (shellcontract/checkpoint.hpp).
+  m.def("result_neutral_options", [] {
+    std::vector<std::string> out;
+    for (const std::string& name : result_neutral_options())
+      out.push_back(python_option_name(name));
+    return out;
+  });
   m.def("resolve_options", &resolve_options);
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));
   m.def("regions", &regions, py::arg("vertices"), py::arg("faces"));

@@ -1,5 +1,6 @@
 #include "sim/checkpoint.hpp"
 
+#include <algorithm>
 #include <cstring>
 #include <limits>
 #include <memory>
@@ -28,9 +29,11 @@ namespace {
 constexpr char MAGIC[] = "SHELLCONTRACT-CHECKPOINT\n";
 constexpr std::uint32_t FORMAT = 2;
 constexpr std::uint32_t FORMAT_WITHOUT_INPUTS = 1;
-// Options that do not change a run's result (the library's guarantee: the same bytes at any
-// thread count): a run may resume with other values.
-constexpr const char* RESULT_NEUTRAL = "threads";
+
+bool result_neutral(const std::string& name) {
+  const std::vector<std::string>& neutral = result_neutral_options();
+  return std::find(neutral.begin(), neutral.end(), name) != neutral.end();
+}
 
 static_assert(std::is_trivially_copyable_v<RunTotals>,
               "RunTotals is saved as its bytes; a member that is not (a vector) needs a field");
@@ -213,10 +216,15 @@ std::uint64_t mesh_hash(const Mesh& mesh) {
   return h;
 }
 
+const std::vector<std::string>& result_neutral_options() {
+  static const std::vector<std::string> names{"threads"};
+  return names;
+}
+
 OptionValues given_options(const RunOptions& options) {
   OptionValues out;
   for (const OptionSpec& o : run_option_table())
-    if (options.given.count(option_field(o.name)) && o.name != RESULT_NEUTRAL)
+    if (options.given.count(option_field(o.name)) && !result_neutral(o.name))
       out.emplace_back(o.name, o.get(options));
   return out;
 }
@@ -225,7 +233,7 @@ OptionValues resolved_options(RunOptions options) {
   resolve_run_options(options);
   OptionValues out;
   for (const OptionSpec& o : run_option_table())
-    if (o.name != RESULT_NEUTRAL) out.emplace_back(o.name, o.get(options));
+    if (!result_neutral(o.name)) out.emplace_back(o.name, o.get(options));
   return out;
 }
 

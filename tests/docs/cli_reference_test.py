@@ -2,7 +2,9 @@
 """docs/cli.md against the tool's own --help: every option a subcommand's --help prints has a row
 in that subcommand's section of docs/cli.md, and every row documents an option its --help prints.
 For a command whose --help groups its options (run: cli/help_groups.hpp), each row sits under the
-heading of its --help group.
+heading of its --help group. Where --help lists an option's values ("stvk | corotated | ..."; the
+material names come from the registry), its row names every one of them in backquotes, so that a
+new material or keyword does not leave the doc's list behind.
 
     cli_reference_test.py --cli build/shellcontract --doc docs/cli.md [--no-sweep]
 
@@ -32,6 +34,9 @@ SHORT = re.compile(r"(?<![\w-])-([A-Za-z0-9])(?![\w-])")
 # A group heading of --help: a line at column 0 ending in ':' ("how much it contracts:",
 # "options:"), followed by option lines.
 GROUP_LINE = re.compile(r"^([a-z][^:]*):$")
+# A list of values in an option's --help text: "stvk | corotated | linear" (and "on|off" in a
+# value name); lower-case words only, so that "auto|none|FILE" lists auto and none.
+CHOICES = re.compile(r"[a-z0-9][a-z0-9-]*(?: ?\| ?[a-z0-9][a-z0-9-]*)+")
 SECTION = re.compile(r"^## `shellcontract ([a-z ]+)`\s*$")
 SUBSECTION = re.compile(r"^### (.+?)\s*$")
 ROW = re.compile(r"^\|\s*(`-[^|]*)\|")
@@ -46,20 +51,27 @@ def option_spellings(text):
 
 
 def help_options(cli, command):
-    """{option: group} of `shellcontract COMMAND --help` (group: the heading above it, or '')."""
+    """{option: group} of `shellcontract COMMAND --help` (group: the heading above it, or ''), and
+    {option: [value, ...]} of the options whose help lists their values."""
     r = subprocess.run([cli] + command.split() + ["--help"], capture_output=True, text=True,
                        timeout=120)
     if r.returncode != 0:
         raise SystemExit("{} {} --help: exit code {}: {}".format(cli, command, r.returncode,
                                                                  r.stderr.strip()))
-    out, group = {}, ""
+    out, group, text = {}, "", {}
+    names = []  # the option line being read (its wrapped description follows, indented)
     for line in r.stdout.splitlines():
         g = GROUP_LINE.match(line)
         if g:
-            group = g.group(1)
+            group, names = g.group(1), []
             continue
         m = OPTION_LINE.match(line)
         if not m:
+            if names and line.startswith("    "):
+                for name in names:
+                    text[name] += " " + line.strip()
+            else:
+                names = []
             continue
         # The head of the line: up to its default "(=...)" where it shows one (the description
         # may follow it after a single space), else up to the description (two spaces or more).
@@ -67,18 +79,24 @@ def help_options(cli, command):
         # ("-o DIR, --output DIR"): only the dashed words are options.
         default = line.find(" (=")
         head = line[:default] if default >= 0 else re.split(r"\s{2,}", line.strip())[0]
-        for name in option_spellings(head):
+        names = option_spellings(head)
+        for name in names:
             out[name] = group
+            text[name] = line.strip()
     if not out:
         raise SystemExit("{} --help printed no option lines; this test's parser is out of step "
                          "with it".format(command))
-    return out
+    choices = {}
+    for name, t in text.items():
+        for found in CHOICES.findall(t):
+            choices.setdefault(name, []).extend(v.strip() for v in found.split("|"))
+    return out, choices
 
 
 def doc_options(path):
-    """{command: {option: subsection}} of the rows of docs/cli.md, and the problems found reading
-    it (an option with two rows in one section)."""
-    sections, problems = {}, []
+    """{command: {option: subsection}} of the rows of docs/cli.md, the problems found reading it
+    (an option with two rows in one section), and {command: {option: its row's text}}."""
+    sections, problems, rows = {}, [], {}
     command, sub = None, ""
     with open(path, encoding="utf-8") as f:
         for number, line in enumerate(f, 1):
@@ -86,6 +104,7 @@ def doc_options(path):
             if s:
                 command, sub = s.group(1).strip(), ""
                 sections.setdefault(command, {})
+                rows.setdefault(command, {})
                 continue
             if line.startswith("## "):
                 command = None  # a section that is not a command's
@@ -101,12 +120,19 @@ def doc_options(path):
                         problems.append("{}:{}: `{} {}` has a second row".format(
                             path, number, command, name))
                     sections[command][name] = sub
-    return sections, problems
+                    rows[command][name] = line
+    return sections, problems, rows
 
 
-def compare(command, printed, documented):
+def compare(command, printed, documented, choices=None, rows=None):
     """The differences of one command, as lines."""
     lines = []
+    for name, values in sorted((choices or {}).items()):
+        row = (rows or {}).get(name)
+        missing = [v for v in values if row is not None and "`{}`".format(v) not in row]
+        if missing:
+            lines.append("`{} {}`: --help lists {} but its row in docs/cli.md does not name {}".format(
+                command, name, " | ".join(values), ", ".join("`{}`".format(v) for v in missing)))
     for name in sorted(set(printed) - set(documented)):
         lines.append("`{} {}` is printed by --help but has no row in docs/cli.md".format(
             command, name))
@@ -128,7 +154,7 @@ def main(argv=None):
     p.add_argument("--no-sweep", action="store_true")
     args = p.parse_args(argv)
     try:
-        documented, problems = doc_options(args.doc)
+        documented, problems, rows = doc_options(args.doc)
     except OSError as e:
         print("cannot read {}: {}".format(args.doc, e.strerror), file=sys.stderr)
         return 1
@@ -140,7 +166,8 @@ def main(argv=None):
         if command not in documented:
             problems.append("docs/cli.md has no section '## `shellcontract {}`'".format(command))
             continue
-        problems += compare(command, help_options(args.cli, command), documented[command])
+        printed, choices = help_options(args.cli, command)
+        problems += compare(command, printed, documented[command], choices, rows[command])
     for command in sorted(set(documented) - set(COMMANDS)):
         problems.append("docs/cli.md has a section for `{}`, which is not a command this test "
                         "knows (add it to COMMANDS)".format(command))

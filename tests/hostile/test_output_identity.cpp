@@ -3,6 +3,7 @@
 // Each test was run against the code before the fix (cli/output_paths.cpp comparing paths, frame
 // 0's name only, `regions` checking nothing) and failed there as its comment says.
 #include "hostile/hostile_support.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract {
 namespace {
@@ -61,6 +62,26 @@ TEST_F(Hostile, AnOutputOverTheWeightsFileIsRefused) {
 }
 
 // Before: paths were compared, so a hard link to the input passed (exit 0).
+// The CLI's list of the files a run reads (cli/run.cpp, plan.inputs) is kept by hand; the option
+// table is walked here, so that a new option whose value is a FILE and that the list leaves out
+// (an output over it would replace the user's file) fails this test.
+TEST_F(Hostile, AnOutputOverTheFileOfAnyFileOptionIsRefused) {
+  int file_options = 0;
+  for (const OptionSpec& o : run_option_table()) {
+    if (o.value_name.find("FILE") == std::string::npos) continue;
+    ++file_options;
+    const fs::path file = dir_ / (o.name + ".txt");
+    test::spit(file, "0 1 2\n");
+    const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n",
+                            "2", "-q", "--" + o.name, file.string(), "--log", file.string()});
+    EXPECT_EQ(r.exit_code, 1) << "--" << o.name << ": " << r.output;
+    EXPECT_NE(r.output.find("is the file of --" + o.name), std::string::npos) << r.output;
+    EXPECT_EQ(test::slurp(file), "0 1 2\n") << "--" << o.name << "'s file was overwritten";
+    EXPECT_FALSE(fs::exists(dir_ / "o.off"));
+  }
+  EXPECT_GE(file_options, 2) << "--regions and --region-weights take a FILE";
+}
+
 TEST_F(Hostile, AHardLinkToTheInputIsTheInput) {
   const fs::path in = dir_ / "in.off", link = dir_ / "out.off";
   fs::copy_file(test::mesh("ico2.off"), in);

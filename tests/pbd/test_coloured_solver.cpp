@@ -11,6 +11,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "material/registry.hpp"
@@ -282,11 +283,13 @@ TEST(ColouredSolver, BatchedSolveEqualsTheScalarKernelsInColourOrder) {
   MaterialParams p;
   p.c10 = 0.4;  // both Mooney-Rivlin terms, 2 (C10 + C01) = 1: the energy floor stays 1e-16
   p.c01 = 0.1;
-  expect_coloured_equals_scalar<Stvk>(s, MaterialKind::Stvk, AnisoKind::None, p, "stvk");
-  expect_coloured_equals_scalar<Corotated>(s, MaterialKind::Corotated, AnisoKind::None, p, "corotated");
-  expect_coloured_equals_scalar<Linear>(s, MaterialKind::Linear, AnisoKind::None, p, "linear");
-  expect_coloured_equals_scalar<MooneyRivlin>(s, MaterialKind::MooneyRivlin, AnisoKind::None, p,
-                                              "mooney-rivlin");
+  // Every registered material, walked from the registry (a new one is held to this unedited).
+  for (const std::string& name : material_names()) {
+    const MaterialKind kind = parse_material_kind(name);
+    with_material(kind, p, [&](const auto& m) {
+      expect_coloured_equals_scalar<std::decay_t<decltype(m)>>(s, kind, AnisoKind::None, p, name);
+    });
+  }
 }
 
 TEST(ColouredSolver, BatchedAnisotropicFacesEqualTheScalarKernelsInColourOrder) {
@@ -300,11 +303,24 @@ TEST(ColouredSolver, BatchedAnisotropicFacesEqualTheScalarKernelsInColourOrder) 
   }
   MaterialParams p;
   p.fiber_target = 0.8;
-  expect_coloured_equals_scalar<Stvk, AnisotropicArap>(s, MaterialKind::Stvk, AnisoKind::Arap, p, "arap");
-  expect_coloured_equals_scalar<Stvk, AnisotropicStvk>(s, MaterialKind::Stvk, AnisoKind::Stvk, p, "stvk-fibre");
-  expect_coloured_equals_scalar<Stvk, AnisotropicSqrt>(s, MaterialKind::Stvk, AnisoKind::Sqrt, p, "sqrt");
-  expect_coloured_equals_scalar<Corotated, ActiveFiber>(s, MaterialKind::Corotated,
-                                                        AnisoKind::ActiveFiber, p, "active-fiber");
+  p.c10 = 0.4;  // as above, for Mooney-Rivlin
+  p.c01 = 0.1;
+  // Every registered fibre energy, each beside the next registered material in turn, so that
+  // the fibre faces are seen with the C-form and the frame membranes.
+  const std::vector<std::string> materials = material_names();
+  std::size_t next = 0;
+  for (const std::string& name : aniso_names()) {
+    const AnisoKind aniso = parse_aniso_kind(name);
+    if (aniso == AnisoKind::None) continue;
+    const std::string& membrane = materials[next++ % materials.size()];
+    const MaterialKind material = parse_material_kind(membrane);
+    with_material(material, p, [&](const auto& m) {
+      with_aniso(aniso, p, [&](const auto& a) {
+        expect_coloured_equals_scalar<std::decay_t<decltype(m)>, std::decay_t<decltype(a)>>(
+            s, material, aniso, p, membrane + " + fibre " + name);
+      });
+    });
+  }
 }
 
 /// A closed bipyramid: `rim` vertices on a circle and two apexes; every face has an apex, so any

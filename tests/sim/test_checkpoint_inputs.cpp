@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -91,6 +92,44 @@ class CheckpointInputs : public ::testing::Test {
   fs::path dir_;
   Mesh mesh_;
 };
+
+TEST_F(CheckpointInputs, EveryOptionOfTheTableThatNamesAFileIsRecordedAsAnInput) {
+  // run_inputs names the files a run reads by hand; the table is walked here, so that an option
+  // whose value is a FILE and that run_inputs leaves out (a resume would go on after that file
+  // changed) fails this test rather than passing unnoticed.
+  int file_options = 0;
+  for (const OptionSpec& o : run_option_table()) {
+    if (o.value_name.find("FILE") == std::string::npos) continue;
+    ++file_options;
+    const std::string path = file(o.name + ".txt");
+    write(path, "0 1 2\n");
+    RunOptions options;
+    set_run_option(options, o.name, path);
+    bool recorded = false;
+    for (const RunInput& in : run_inputs(options))
+      recorded = recorded || (in.option == option_field(o.name) && in.file == path && !in.arrays);
+    EXPECT_TRUE(recorded) << "--" << o.name << " " << o.value_name
+                          << " is not among run_inputs (src/sim/checkpoint_inputs.cpp)";
+  }
+  EXPECT_GE(file_options, 2) << "--regions and --region-weights take a FILE";
+}
+
+TEST(CheckpointOptions, TheResultNeutralOptionsAreTableOptionsAndOnlyTheyAreNotCompared) {
+  // result_neutral_options() is the one list of options a resumed run may change (and a sweep
+  // leaves out of a job's id): each must be a table option by its exact name, and the options a
+  // checkpoint compares must be every other one.
+  const std::vector<std::string>& neutral = result_neutral_options();
+  ASSERT_FALSE(neutral.empty());
+  for (const std::string& name : neutral) {
+    const OptionSpec* o = find_run_option(name);
+    ASSERT_NE(o, nullptr) << "'" << name << "' is no option of the table";
+    EXPECT_EQ(o->name, name);
+  }
+  const OptionValues compared = resolved_options(RunOptions{});
+  EXPECT_EQ(compared.size() + neutral.size(), run_option_table().size());
+  for (const auto& entry : compared)
+    EXPECT_EQ(std::count(neutral.begin(), neutral.end(), entry.first), 0) << entry.first;
+}
 
 TEST_F(CheckpointInputs, AFaceListChangedSinceTheCheckpointIsRefusedByName) {
   write(file("reg.txt"), "0 1 2\n");
