@@ -2,7 +2,8 @@
 // element come back byte for byte, but the vertices' x, y, z, which take the new positions in
 // their declared floating-point type (an integer type becomes double: a result's positions are
 // not integers) and the file's format (ascii text, or binary of either byte order), and
-// their nx, ny, nz if the file has them, which take the normals of the new shape. Extra
+// their nx, ny, nz if the file has them, which take the normals of the new shape (also as double
+// where the file's are integers: a unit normal is not an integer). Extra
 // vertex properties (texture coordinates, colours, weights, ...), face properties and other
 // elements are therefore kept. The header's `comment TextureFile` lines, with the faces'
 // `texnumber`, are its face materials (ply_textures.hpp). Its callers (the CLI's run, Python's
@@ -45,12 +46,17 @@ struct Slot {
   std::size_t begin = 0, end = 0;  ///< ascii: the token's span; binary: [offset, offset + size)
   ply::Type type = ply::Type::Float32;  ///< as the file stores the value
   bool set = false;
-  /// An integer-typed x, y or z: written as double (the header's type too; see the constructor).
-  bool widened = false;
+  /// The value the file holds (for an integer normal that keeps the file's value: its bytes alone
+  /// no longer fit the double the header declares).
+  double original = 0.0;
 };
 
-/// The type a slot's new value is written in.
-ply::Type written_type(const Slot& s) { return s.widened ? ply::Type::Float64 : s.type; }
+/// The type a slot's new value is written in: an integer-typed x, y, z, nx, ny or nz becomes
+/// double, in the header too (see the constructor), since positions and unit normals are not
+/// integers.
+ply::Type written_type(const Slot& s) {
+  return ply::is_integer(s.type) ? ply::Type::Float64 : s.type;
+}
 
 /// Refuses positions that the file's float32 x, y, z cannot hold, which would otherwise be written
 /// wrong without a word: a coordinate beyond the float range (written as inf, a file no reader
@@ -118,7 +124,7 @@ class PlyDocument final : public MeshDocument {
   std::vector<ply::Element> elements_;
   std::size_t pos_ = 0;
   std::size_t body_ = 0;  ///< where the body starts in bytes_
-  /// `double` in place of each integer type of the vertices' x, y, z
+  /// `double` in place of each integer type of the vertices' x, y, z (and nx, ny, nz when written)
   std::vector<TextEdit> type_edits_;
   std::vector<Slot> slots_;  ///< 3 per vertex: x, y, z
   /// 3 per vertex: nx, ny, nz; empty when a vertex lacks one (the file's normals are then kept)
@@ -187,6 +193,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   polygon_start_.push_back(0);
   std::vector<double> u_values, v_values;
   std::vector<int> texnumbers;  ///< per face: its integer `texnumber` property, if it has one
+  std::vector<TextEdit> normal_type_edits;  ///< `double` for integer nx, ny, nz (kept below)
   // MeshLab's wedge texture coordinates: a face list `texcoord` of u v per corner. Used where the
   // vertices have none, and only when every face has two numbers per corner.
   std::vector<std::array<double, 2>> wedge_uv;
@@ -200,6 +207,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     int u_prop = -1, v_prop = -1;
     // The properties that hold x, y, z: the first of each name, as read_ply reads them.
     int axis_prop[3] = {-1, -1, -1};
+    // The properties that hold nx, ny, nz: the first of each name, the only ones written.
+    int normal_prop[3] = {-1, -1, -1};
     if (is_vertex) {
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const ply::Property& p = e.properties[k];
@@ -211,6 +220,16 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
         // says double instead, the other properties keep theirs (output-safety.md).
         if (ply::is_integer(p.type))
           type_edits_.push_back(TextEdit{p.type_begin, p.type_end, "double"});
+      }
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const ply::Property& p = e.properties[k];
+        const int axis = p.name == "nx" ? 0 : p.name == "ny" ? 1 : p.name == "nz" ? 2 : -1;
+        if (p.list || axis < 0 || normal_prop[axis] >= 0) continue;
+        normal_prop[axis] = static_cast<int>(k);
+        // A new unit normal rounded to an integer type is -1, 0 or 1: garbage shading with exit
+        // 0. Widened like x, y, z, once it is known that every vertex has its normal written.
+        if (ply::is_integer(p.type))
+          normal_type_edits.push_back(TextEdit{p.type_begin, p.type_end, "double"});
       }
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const std::string& n = e.properties[k].name;
@@ -254,10 +273,10 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
         if (!is_vertex) continue;
         const int kk = static_cast<int>(k);
         if (kk == axis_prop[0] || kk == axis_prop[1] || kk == axis_prop[2]) {
-          s.widened = ply::is_integer(p.type);
           slots_[3 * i + (kk == axis_prop[0] ? 0 : kk == axis_prop[1] ? 1 : 2)] = s;
-        } else if (p.name == "nx" || p.name == "ny" || p.name == "nz") {
+        } else if (kk == normal_prop[0] || kk == normal_prop[1] || kk == normal_prop[2]) {
           const auto axis = static_cast<std::size_t>(p.name[1] - 'x');
+          s.original = value;
           normal_slots_[3 * i + axis] = s;
           input_normals_[i][static_cast<Eigen::Index>(axis)] = value;
         } else if (static_cast<int>(k) == u_prop)
@@ -286,6 +305,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     if (!s.set) fail("a vertex lacks x, y or z");
   if (!std::all_of(normal_slots_.begin(), normal_slots_.end(), [](const Slot& s) { return s.set; }))
     normal_slots_.clear();
+  else
+    type_edits_.insert(type_edits_.end(), normal_type_edits.begin(), normal_type_edits.end());
   for (Vec3& n : input_normals_) {
     const double len = n.norm();
     n = len > 0.0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
@@ -357,7 +378,11 @@ std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header
     const Positions n = normals(x);
     for (std::size_t k = 0; k < normal_slots_.size(); ++k) {
       const double v = n(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
-      if (std::isfinite(v)) values.emplace_back(&normal_slots_[k], v);
+      // A vertex with no new normal keeps the file's; a widened one rewritten as double.
+      if (std::isfinite(v))
+        values.emplace_back(&normal_slots_[k], v);
+      else if (ply::is_integer(normal_slots_[k].type))
+        values.emplace_back(&normal_slots_[k], normal_slots_[k].original);
     }
   }
   header_edits.insert(header_edits.end(), type_edits_.begin(), type_edits_.end());
@@ -374,24 +399,7 @@ std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header
     out.append(bytes_, at, s.begin - at);
     at = s.end;
     const ply::Type type = written_type(s);
-    const int size = ply::size_of(type);
-    if (ply::is_integer(type)) {
-      // Integer normals (legal, odd): the nearest integer the type holds.
-      const bool is_signed = ply::is_signed(type);
-      const double lo = is_signed ? -std::ldexp(1.0, 8 * size - 1) : 0.0;
-      const double hi = std::ldexp(1.0, 8 * size - (is_signed ? 1 : 0)) - 1.0;
-      const auto r = static_cast<std::int64_t>(std::clamp(std::nearbyint(v), lo, hi));
-      if (ascii_) {
-        out += std::to_string(r);
-      } else {
-        unsigned char b[8];
-        for (int i = 0; i < size; ++i)
-          b[i] = static_cast<unsigned char>((static_cast<std::uint64_t>(r) >> (8 * i)) & 0xff);
-        if (big_endian_) std::reverse(b, b + size);
-        out.append(reinterpret_cast<const char*>(b), static_cast<std::size_t>(size));
-      }
-      continue;
-    }
+    const int size = ply::size_of(type);  // 4 or 8: written_type is never an integer
     if (ascii_) {
       char buf[64];
       // A float property gets the shortest text of the float: what a reader stores anyway.

@@ -2,9 +2,10 @@
 // type that is an integer the type holds. Before, the reader read a stream of tokens (a value too
 // many on a vertex line shifted every later value, and the message named a later face) and read
 // '0.5' for an `int x` as 0.5 (the PLY document then wrote the result back as integers). And
-// the PLY document writes an integer-typed x, y, z back as double.
+// the PLY document writes an integer-typed x, y, z (and nx, ny, nz) back as double.
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -169,6 +170,71 @@ TEST(PlyValues, BinaryIntegerCoordinatesAreWrittenBackAsDouble) {
   const std::size_t body = out.find("end_header\n") + 11;
   EXPECT_EQ(out[body + 24], '\x28');
   EXPECT_EQ(out[body + 3 * 25 + 24], '\x2b');
+}
+
+TEST(PlyValues, BinaryIntegerNormalsAreWrittenBackAsDouble) {
+  // Little-endian char nx ny nz between float x y z and a uchar: a new unit normal rounded to an
+  // integer was -1, 0 or 1 (each vertex's normal a lattice direction, exit 0). Now the header
+  // says double and each vertex's normal is its faces' normalized cross-product sum at the new
+  // positions (computed here). Vertex 4 is in no face: it has no new normal and keeps the file's
+  // value, now as 8 bytes, so that every later byte is still where the header says.
+  std::string in =
+      "ply\nformat binary_little_endian 1.0\nelement vertex 5\nproperty float x\n"
+      "property float y\nproperty float z\nproperty char nx\nproperty char ny\nproperty char nz\n"
+      "property uchar flag\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  const float v[5][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {2, 2, 2}};
+  for (int i = 0; i < 5; ++i) {
+    in.append(reinterpret_cast<const char*>(v[i]), 12);  // little-endian, as the test machines
+    in += std::string{'\0', '\0', '\1'};                 // every normal +z
+    in += static_cast<char>(40 + i);
+  }
+  const int f[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+  for (const auto& t : f) {
+    in += '\3';
+    in.append(reinterpret_cast<const char*>(t), 12);
+  }
+  const auto doc = parse_ply_document("t.ply", in);
+  Positions y(5, 3);
+  y << 0.1, -0.2, 0.3, 1.25, 0.01, -0.125, 0.1 / 3.0, 0.9, 0.02, -0.01, 0.03, 0.7, 2, 2, 2;
+  const std::string out = doc->text(y);
+  EXPECT_NE(out.find("property float z\nproperty double nx\nproperty double ny\n"
+                     "property double nz\nproperty uchar flag\n"),
+            std::string::npos)
+      << out;
+  const PlyData d = read_ply("out.ply", out);
+  ASSERT_EQ(d.normals.size(), 5u);
+  ASSERT_EQ(d.faces.size(), 4u);
+  EXPECT_EQ(d.faces[3], (std::vector<std::size_t>{1, 2, 3}));
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const auto& t : f)
+      if (t[0] == i || t[1] == i || t[2] == i) {
+        const Eigen::Vector3d a = y.row(t[0]), b = y.row(t[1]), c = y.row(t[2]);
+        sum += (b - a).cross(c - a);
+      }
+    const auto& n = d.normals[static_cast<std::size_t>(i)];
+    EXPECT_NEAR((Eigen::Vector3d(n[0], n[1], n[2]) - sum.normalized()).norm(), 0.0, 1e-12)
+        << "vertex " << i;
+  }
+  EXPECT_EQ(d.normals[4], (std::array<double, 3>{0, 0, 1}));
+  // Each record: 12 bytes of x y z, 24 of normals, the flag.
+  const std::size_t body = out.find("end_header\n") + 11;
+  for (int i = 0; i < 5; ++i)
+    EXPECT_EQ(out[body + 37 * static_cast<std::size_t>(i) + 36], static_cast<char>(40 + i));
+}
+
+TEST(PlyValues, IntegerNormalsStayAsTheyAreWhenNotEveryVertexHasOne) {
+  // Only nx and ny (no nz): the document writes no normals, so their integer type and values
+  // are kept (a header widened without its values would misread every later byte).
+  std::string head = replaced(HEAD_FLOAT, "property float z\n",
+                              "property float z\nproperty int nx\nproperty int ny\n");
+  const std::string in = head + "0 0 0 0 1\n1 0 0 0 1\n0 1 0 0 1\n0 0 1 0 1\n" + TET_FACES;
+  const auto doc = parse_ply_document("t.ply", in);
+  Positions y(4, 3);
+  y << 0.1, -0.2, 0.3, 1.25, 0.01, -0.125, 0.1 / 3.0, 0.9, 0.02, -0.01, 0.03, 0.7;
+  const std::string out = doc->text(y);
+  EXPECT_NE(out.find("property int nx\nproperty int ny\n"), std::string::npos) << out;
+  EXPECT_NE(out.find(" 0 1\n3 0 2 1\n"), std::string::npos) << out;
 }
 
 }  // namespace
