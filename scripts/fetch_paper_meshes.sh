@@ -1,5 +1,6 @@
 #!/bin/sh
-# Extracts the paper's models from Debian's libcgal-demo data into data/ at the repository root
+# Extracts the models of the paper's mesh names (the paper names them but gives no source; these are
+# CGAL's, docs/math/spec.md 14.1) from Debian's libcgal-demo data into data/ at the repository root
 # (git-ignored, never committed): data/meshes/{eight,hand,elk,bear}.off and
 # data/points_3/kitten.xyz, and the demo meshes the tests use (dragknob.off, spool.off: the long
 # default-run tests; camel.off, elephant-with-holes.off, mannequin-devil.off, fold.off, horizons.off,

@@ -29,7 +29,8 @@ enum class RegionSource {
 /// every size. At equal time it was never less accurate than the paper's sequential order on
 /// the paper's meshes and two spheres (every rung of `shellcontract bench error`:
 /// lab/speed-error/orders/README.md), it runs the batched kernels on every thread, and its result
-/// does not depend on the thread count. Sequential stays available as the paper's order.
+/// does not depend on the thread count. Sequential (one fixed order, the paper's
+/// scheme's: docs/math/spec.md 14.1) stays available.
 enum class OrderChoice { Auto, Sequential, Coloured };
 
 /// Default of RunOptions::region_max_area: RegionOptions{}.max_area_fraction

@@ -167,7 +167,7 @@ struct SolverSettings {
   /// Inversion-aware orientation s = sign(n . n_ref) for the E_A faces (math-spec 4.2 option);
   /// default s = +1.
   bool inversion_aware = false;
-  /// Sweep order; Sequential keeps the paper's order and results.
+  /// Sweep order; Sequential is one fixed Gauss-Seidel order (the paper names none), one thread.
   ConstraintOrder order = ConstraintOrder::Sequential;
   /// Threads of the Coloured order (0 = TBB's default, the machine's cores); ignored by
   /// Sequential. Must be >= 0.

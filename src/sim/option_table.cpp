@@ -241,7 +241,8 @@ std::vector<OptionSpec> build_table() {
       Choices<SolverKind>{{"pbd", SolverKind::Pbd}, {"xpbd", SolverKind::Xpbd}},
       [](R& r) -> SolverKind& { return r.sim.solver.kind; }));
   t.push_back(choice("order",
-                     "sequential: the paper's Gauss-Seidel order; coloured: parallel by colour, "
+                     "sequential: one fixed Gauss-Seidel order, input order (the paper names "
+                     "no order), one thread; coloured: parallel by colour, "
                      "bit-identical for any thread count, the faster at equal accuracy; auto: "
                      "coloured",
                      Choices<OrderChoice>{{"auto", OrderChoice::Auto},
@@ -312,8 +313,9 @@ std::vector<OptionSpec> build_table() {
              "how the regions are made to sink in: volume (each region sinks as a mirrored "
              "dimple around its apex that takes 2S of its rest cap volume off, S = "
              "--region-shrink, and is held there; under -p > 0 without --target-volume the "
-             "regions also take an extra pressure 2 S P) | force (the paper's "
-             "extra pressure on the regions, P_A = 10 S, without net force or torque) | "
+             "regions also take an extra pressure 2 S P) | force (an extra pressure on the "
+             "regions, P_A = 10 S, without net force or torque: this tool's replacement for "
+             "the paper's k_A) | "
              "projection (the paper's k_A inside the E_A projection; --aniso, pbd) | none",
              Choices<InwardTerm>{{"volume", InwardTerm::Volume},
                                  {"projection", InwardTerm::Projection},

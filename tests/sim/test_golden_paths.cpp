@@ -69,9 +69,9 @@ RunResult bumps_with_inward(const std::string& inward, const std::string& pressu
 
 TEST(GoldenPaths, InwardForceSinksTheRegionsWhereNoneLeavesThemAtRest) {
   // No overall pressure: the anisotropic energy is zero at rest, so without an inward term
-  // nothing moves; --inward force (the paper's extra pressure P_A on the region faces) sinks
-  // them at least 1 % of the diagonal (issue "Local contraction", item 1's depth) and at least
-  // twice as far as the rest of the shell moves (it loads the region faces only).
+  // nothing moves; --inward force (an extra pressure P_A on the region faces, math-spec 9.2 R)
+  // sinks them at least 1 % of the diagonal (issue "Local contraction", item 1's depth) and at
+  // least twice as far as the rest of the shell moves (it loads the region faces only).
   const RunResult none = bumps_with_inward("none", "0");
   ASSERT_EQ(none.status, RunStatus::Completed) << none.message;
   ASSERT_EQ(none.regions, 3u);
