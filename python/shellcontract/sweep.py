@@ -10,8 +10,8 @@ docs/design/sweeps.md says how and why.
 
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
 or a refused sweep file, output folder or cluster (nothing run), or an output folder that cannot
-be written, 3 some job could not get an outcome (crash, kill, timeout), 130 interrupted (run the
-same command again to finish).
+be written, 3 some job could not get an outcome (crash, kill, timeout, an output not written),
+130 interrupted (run the same command again to finish).
 """
 
 import argparse
@@ -28,7 +28,7 @@ EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
 EXIT_INTERRUPTED = 130
 # Jobs whose outcome is not a result the same run would give again.
-RETRIED_STATUSES = ("crashed", "killed", "timeout")
+RETRIED_STATUSES = ("crashed", "killed", "timeout", sweep_job.OUTPUT_NOT_WRITTEN)
 
 
 find_cli = sweep_job.find_cli
@@ -107,7 +107,8 @@ def parser():
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
                "refused sweep file, output folder or cluster (nothing run), 3 some job crashed, "
-               "was killed or timed out, 130 interrupted (run the same command again to finish)")
+               "was killed, timed out or could not write its output, 130 interrupted (run the "
+               "same command again to finish)")
     p.add_argument("sweep", metavar="SWEEP.json")
     p.add_argument("-o", "--output", metavar="DIR", required=True,
                    help="results folder: new, empty, or this sweep file's from an earlier sweep")
@@ -406,8 +407,8 @@ def _main(argv):
     except sweep_output.OutputError as e:
         print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
         return EXIT_USAGE
-    except OSError as e:  # DIR unwritable, full, changed under the sweep
-        print("shellcontract sweep: {}".format(_os_error_text(e)), file=sys.stderr)
+    except OSError as e:  # DIR unwritable, full, changed under the sweep (finished jobs stay)
+        print("shellcontract sweep: {}: {}".format(args.output, _os_error_text(e)), file=sys.stderr)
         return EXIT_USAGE
 
 

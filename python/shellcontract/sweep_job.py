@@ -19,6 +19,8 @@ import threading
 import time
 import uuid
 
+from . import sweep_output
+
 # Statuses of an outcome the same run would give again: the job is done. The others (a crash,
 # a kill, a timeout) are recorded too but run again by the next sweep of the file.
 FINAL_STATUSES = ("ok", "target not reached", "failed", "new self-intersections", "bad input",
@@ -27,6 +29,10 @@ EXIT_STATUS = {0: "ok", 1: "bad usage", 2: "bad input", 3: "failed", 4: "new sel
                5: "target not reached"}
 # The CLI's exit code after a signal when it has written its checkpoint (ExitCode::Cancelled).
 INTERRUPTED = 130
+# A run that ended but could not write an output into the job's folder (exit 1 with a summary
+# whose `outputs` name the failure: a full disk, a quota, an I/O error). The condition is the
+# machine's, not the job's, so the job is not final: the next sweep runs it again.
+OUTPUT_NOT_WRITTEN = "output not written"
 # How long a child asked to stop (SIGTERM: it writes its checkpoint) may take before SIGKILL.
 STOP_GRACE_SECONDS = 10.0
 SUMMARY_FIELDS = ("final_volume_ratio", "frames_run", "new_intersections", "peak_memory_mb")
@@ -212,14 +218,6 @@ def is_done(record):
     return record is not None and record.get("status") in FINAL_STATUSES
 
 
-def _write_json_atomic(path, data):
-    tmp = path + ".tmp-" + uuid.uuid4().hex
-    with open(tmp, "w") as f:
-        json.dump(data, f, indent=1, sort_keys=True)
-        f.write("\n")
-    os.replace(tmp, path)
-
-
 def _last_lines(path, n=3):
     try:
         with open(path, errors="replace") as f:
@@ -244,6 +242,11 @@ def _classify(rc, timed_out, summary, messages):
     status = EXIT_STATUS.get(rc, "crashed")
     if status == "ok":
         return status, ""
+    outputs = (summary or {}).get("outputs") or {}
+    failed = ["{}: {}".format(k, v) for k, v in outputs.items() if not str(v).startswith("written")]
+    if rc == 1 and failed:
+        return OUTPUT_NOT_WRITTEN, "the run ended ({}) but {}".format(
+            summary.get("status", "?"), "; ".join(failed))
     failure = (summary or {}).get("failure") or messages
     return status, failure
 
@@ -440,7 +443,8 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
         return record
     if os.path.isfile(os.path.join(work, mesh_name)):
         record["output"] = os.path.join("jobs", job["id"], mesh_name)
-    _write_json_atomic(os.path.join(work, "job.json"), record)
+    sweep_output.write_atomic(os.path.join(work, "job.json"),
+                              json.dumps(record, indent=1, sort_keys=True) + "\n")
     _publish(work, p["final"], out_dir)
     if status in FINAL_STATUSES:
         try:

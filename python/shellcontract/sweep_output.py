@@ -6,10 +6,27 @@ never share one results table."""
 import json
 import os
 import time
+import uuid
 
 MARKER = ".shellcontract-sweep.json"
 # The entries the sweep writes in DIR (besides the marker and its temporary files).
 OWNED = ("results.csv", "results.json", "jobs", ".work")
+
+
+def write_atomic(path, text):
+    """`text` into `path` through an exclusive temporary beside it, renamed over it: the file is
+    whole or as before, and a failed write (a full disk) leaves no temporary behind."""
+    tmp = "{}.tmp-{}".format(path, uuid.uuid4().hex)
+    try:
+        with open(tmp, "x", newline="") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        try:
+            os.remove(tmp)
+        except OSError:
+            pass
+        raise
 
 
 class OutputError(Exception):

@@ -9,9 +9,8 @@ import json
 import math
 import os
 import time
-import uuid
 
-from . import sweep_file, sweep_job, sweep_progress
+from . import sweep_file, sweep_job, sweep_output, sweep_progress
 
 RESULT_COLUMNS = ("status", "exit_code", "final_volume_ratio", "frames_run", "wall_seconds",
                   "peak_memory_mb", "new_intersections", "output")
@@ -46,13 +45,6 @@ def rows(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
                 row[k] = record.get(k)
         out.append(row)
     return out
-
-
-def _atomic(path, text):
-    tmp = "{}.tmp-{}".format(path, uuid.uuid4().hex)
-    with open(tmp, "w", newline="") as f:
-        f.write(text)
-    os.replace(tmp, path)
 
 
 def shortest_text(x):
@@ -122,8 +114,8 @@ def write(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
         w.writerow([_option_cell(job, n, row[n]) if n in varying else _cell(row[n])
                     for n in names])
     os.makedirs(out_dir, exist_ok=True)
-    _atomic(os.path.join(out_dir, "results.csv"), buf.getvalue())
-    _atomic(os.path.join(out_dir, "results.json"),
+    sweep_output.write_atomic(os.path.join(out_dir, "results.csv"), buf.getvalue())
+    sweep_output.write_atomic(os.path.join(out_dir, "results.json"),
             json.dumps([{n: row[n] for n in names} for row in table], indent=1) + "\n")
     return table
 

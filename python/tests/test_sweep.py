@@ -443,3 +443,28 @@ def test_crashed_and_killed_jobs_are_recorded_and_rerun_later(cli, mesh_dir, tmp
     r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert r.returncode == 0 and "1 done already" in r.stderr, r.stderr
     assert [row["status"] for row in results(out)] == ["ok", "ok", "ok"]
+
+
+def test_a_job_whose_output_could_not_be_written_runs_again(cli, mesh_dir, tmp_path):
+    # A stand-in for a full disk: the job at pressure 3 runs under a file-size limit (RLIMIT_FSIZE,
+    # with SIGXFSZ ignored so that the write fails with EFBIG) that the mesh exceeds and the
+    # summary does not. Its run ends, but -o fails: exit 1. That is the machine's condition, not
+    # the job's, so it must not be a final 'bad usage': the next sweep, with room, runs it again.
+    fake = tmp_path / "fake_cli.sh"
+    fake.write_text("#!/bin/bash\n"
+                    "case \"$*\" in *'--pressure 3'*) trap '' XFSZ; ulimit -f 16;; esac\n"
+                    "exec '{}' \"$@\"\n".format(cli))
+    fake.chmod(0o755)
+    spec = {"meshes": ["meshes/ico3.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3]}}
+    path = write_sweep(tmp_path, mesh_dir, "d.json", spec, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--cli", str(fake)])
+    assert r.returncode == 3, r.stderr  # a job without a final outcome, as a crash
+    assert [row["status"] for row in results(out)] == ["ok", "output not written"], r.stderr
+    record = json.loads((out / "jobs" / results(out)[1]["job"] / "job.json").read_text())
+    assert "-o: failed" in record["message"] and "too large" in record["message"], record
+    assert not [p for p in out.rglob("*") if ".tmp" in p.name]
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "1 done already" in r.stderr, r.stderr
+    assert [row["status"] for row in results(out)] == ["ok", "ok"]
+
