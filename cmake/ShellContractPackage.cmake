@@ -14,6 +14,8 @@ install(TARGETS shellcontract EXPORT ShellContractTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(TARGETS shellcontract_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/shellcontract DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+# What a package must carry with the binaries: the third-party components and their licences.
+install(FILES ${PROJECT_SOURCE_DIR}/NOTICE DESTINATION ${CMAKE_INSTALL_DOCDIR})
 install(EXPORT ShellContractTargets NAMESPACE ShellContract:: DESTINATION ${SHELLCONTRACT_CMAKE_DIR})
 
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/ShellContractConfig.cmake.in

@@ -369,7 +369,7 @@ def _main(argv):
         return EXIT_USAGE
     if cli is None:
         print("shellcontract sweep: cannot find the shellcontract executable (--cli PATH or "
-              "SHELLCONTRACT_CLI)", file=sys.stderr)
+              "SHELLCONTRACT_CLI){}".format(sweep_job.PASSED_OVER), file=sys.stderr)
         return EXIT_USAGE
     try:
         version = cli_version(cli)

@@ -128,23 +128,50 @@ def wait_stopped(timeout, sweep=None):
             n for token, n in _active_calls.items() if sweep is None or token == sweep), timeout)
 
 
+def _layout():
+    """The generated module of a built or installed package (python/CMakeLists.txt): the CLI's
+    path from this folder and the version; None in the source tree."""
+    try:
+        from . import _layout as layout
+    except ImportError:
+        return None
+    return layout
+
+
 def find_cli(given=None):
     """The `shellcontract` executable here: `given` (--cli) alone when given (None when it is
     not an executable file: a path the user named is never replaced by another executable),
-    else $SHELLCONTRACT_CLI, the build tree this package was built in
-    (<build>/python/shellcontract -> <build>/shellcontract), then PATH; None if none is an
-    executable file."""
+    else $SHELLCONTRACT_CLI, the one built or installed with this package (<build>/shellcontract,
+    <prefix>/bin/shellcontract), then PATH, where one of another version than this package's is
+    passed over (a distribution's beside a newer install); None if none is an executable file."""
     if given is not None:
         ok = os.path.isfile(given) and os.access(given, os.X_OK)
         return os.path.abspath(given) if ok else None
     here = os.path.dirname(os.path.abspath(__file__))
+    layout = _layout()
     candidates = [os.environ.get("SHELLCONTRACT_CLI"),
-                  os.path.join(here, os.pardir, os.pardir, "shellcontract"),
-                  shutil.which("shellcontract")]
+                  os.path.join(here, layout.CLI_FROM_PACKAGE) if layout else None]
     for c in candidates:
         if c and os.path.isfile(c) and os.access(c, os.X_OK):
             return os.path.abspath(c)
+    c = shutil.which("shellcontract")
+    if c and (layout is None or _version_of(c) == "shellcontract " + layout.VERSION):
+        return os.path.abspath(c)
+    if c:
+        global PASSED_OVER
+        PASSED_OVER = "; passed over {} on PATH: {}, not this package's {}".format(
+            c, _version_of(c), layout.VERSION)
     return None
+
+
+PASSED_OVER = ""  # find_cli's note on a PATH executable of another version
+
+
+def _version_of(cli):
+    try:
+        return cli_version(cli)
+    except (OSError, subprocess.SubprocessError):
+        return None
 
 
 _VERSIONS = {}  # (path, mtime, size) -> the executable's --version

@@ -19,7 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Skips the calling test if the benchmark data is not there; fails it under CI=true.
+/// Skips the calling test if the benchmark data is not there; fails it under
+/// SHELLCONTRACT_STRICT_TESTS=1 (.ci/run).
 #define REQUIRE_QUERY_DIR()                                                                        \
   if (!fs::is_directory(test::CCD_QUERY_DIR))                                                      \
   SKIP_OR_FAIL_UNDER_CI("CCD benchmark queries not found at "                                      \

@@ -1,7 +1,7 @@
 // What the hostile-use tests share (docs/design/output-safety.md): a fresh folder per
 // test, the CLI, file bytes, and the root-only tools (mknod, tmpfs, bind mounts) with a skip
-// that says why where the machine cannot do them, which is a failure under CI=true
-// (support/ci_skip.hpp: CI runs as root).
+// that says why where the machine cannot do them, which is a failure under
+// SHELLCONTRACT_STRICT_TESTS=1 (.ci/run; support/ci_skip.hpp: CI runs as root).
 #pragma once
 
 #include <gtest/gtest.h>
