@@ -152,14 +152,31 @@ class FrameExporter final : public RunObserver {
     if (writer_) writer_->write(frame, x);
     if (!request_.gltf.empty()) {
       const auto start = std::chrono::steady_clock::now();
-      gltf_.frame_numbers.push_back(frame);
-      gltf_.frames.push_back(x);
       // Each kept frame's own mean curvature (the default colour field, computed as
       // compute_vertex_fields does), so that a viewer colours every frame with its values, not
       // the end's.
       if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({"mean_curvature", {}});
-      gltf_.frame_fields[0].second.push_back(
-          compute_curvature(simulator_of(view).rest_mesh(), view.normalized_positions()).mean.cast<float>());
+      auto mean = compute_curvature(simulator_of(view).rest_mesh(), view.normalized_positions())
+                      .mean.cast<float>()
+                      .eval();
+      // A frame's three entries all or none: memory that runs out here (std::bad_alloc, which
+      // ends the run with its last good state) must leave lists of one length, from which the
+      // glTF is still written after the run.
+      auto& means = gltf_.frame_fields[0].second;
+      gltf_.frame_numbers.push_back(frame);
+      try {
+        gltf_.frames.push_back(x);
+      } catch (...) {
+        gltf_.frame_numbers.pop_back();
+        throw;
+      }
+      try {
+        means.push_back(std::move(mean));
+      } catch (...) {
+        gltf_.frames.pop_back();
+        gltf_.frame_numbers.pop_back();
+        throw;
+      }
       gltf_copy_seconds_ +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }

@@ -1,5 +1,6 @@
 // shellcontract: contract a closed triangle mesh like a thin elastic shell under outside air
 // pressure (Sun et al., J. Software 2020). This file only dispatches to the subcommands.
+#include <csignal>
 #include <cstddef>
 #include <cstring>
 #include <iostream>
@@ -30,7 +31,7 @@ commands:
 exit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),
             3 simulation failed (NaN or blow-up) or out of memory, 4 new self-intersections found
             by validation, 5 target volume or stop ratio not reached, 130 interrupted (Ctrl-C,
-            SIGTERM)
+            SIGTERM, SIGHUP, SIGUSR1)
 )";
 
 constexpr const char* BENCH_USAGE = R"(usage: shellcontract bench <ccd|error> [options]
@@ -96,10 +97,18 @@ int main(int argc, char** argv) {
     return 0;
   }
   map_main_stack();
-  // One ending for Ctrl-C and SIGTERM in every command, with or without --checkpoint: the
-  // temporaries removed, exit code 130 (docs/cli.md). Installed now, not at the first temporary,
-  // so that a signal before any file is written ends the same way. Where the signal is ignored
-  // (a background job of a script), it stays ignored.
+  // A closed pipe (stderr piped to `head`, a log filter that exited) and a file size limit
+  // (`ulimit -f`, which batch systems pass on) would end the process by SIGPIPE or SIGXFSZ: the
+  // run lost, its temporaries left. Ignored, the write fails instead: on stderr the messages stop
+  // (the stream stays failed, the run goes on), on a file it is the "cannot write ...: File too
+  // large" of a full disk (the old file kept, the other outputs written, exit 1). A command that
+  // runs another program (sweep: Python) passes this on; Python ignores both itself anyway.
+  std::signal(SIGPIPE, SIG_IGN);
+  std::signal(SIGXFSZ, SIG_IGN);
+  // One ending for Ctrl-C, SIGTERM, SIGHUP and SIGUSR1 in every command, with or without
+  // --checkpoint: the temporaries removed, exit code 130 (docs/cli.md). Installed now, not at the
+  // first temporary, so that a signal before any file is written ends the same way. Where the
+  // signal is ignored (a background job of a script, `nohup`), it stays ignored.
   shellcontract::set_interrupt_exit_status(130);
   shellcontract::install_interrupt_cleanup();
   try {

@@ -151,4 +151,16 @@ std::unique_ptr<ExportFolderLock> prepare_export_folder(const PlannedFrames& f) 
   return lock;
 }
 
+std::size_t count_frame_files(const PlannedFrames& f) {
+  if (f.dir.empty()) return 0;
+  std::size_t n = 0;
+  try {  // called when memory ran out: what was counted, should it run out again
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(f.dir, ec))
+      n += is_frame_name(e.path().filename().string(), f);
+  } catch (const std::exception&) {
+  }
+  return n;
+}
+
 }  // namespace shellcontract::cli

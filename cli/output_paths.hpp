@@ -70,6 +70,11 @@ class ExportFolderLock {
 /// @throws UsageError (exit code 1)
 std::unique_ptr<ExportFolderLock> prepare_export_folder(const PlannedFrames& frames);
 
+/// The frame files of this name in the export folder (0 without one): after
+/// prepare_export_folder, all of them this run's, for a run that ends before its outputs are
+/// written to say what it leaves (a rerun is refused while they are there).
+std::size_t count_frame_files(const PlannedFrames& frames);
+
 /// What became of each output at the end of a run: "written", or "failed: why" (the final
 /// message and the summary's "outputs" name each one).
 class OutputStatus {

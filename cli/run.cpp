@@ -31,6 +31,7 @@
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
 #include "run_document.hpp"
+#include "run_failure.hpp"
 #include "run_interrupt.hpp"
 #include "run_observers.hpp"
 #include "run_summary.hpp"
@@ -61,15 +62,17 @@ constexpr const char* RUN_USAGE =
     "copy.\n\noutputs and general";
 
 constexpr const char* RUN_EXIT_CODES =
-    "\nexit codes: 0 success, 1 bad usage (also: an .stl output of a mesh with two vertices\n"
-    "            at one position, which an STL reader merges), 2 bad input (mesh, face list,\n"
-    "            weights, checkpoint), 3 simulation failed or out of memory (the last good state\n"
-    "            written; nothing if memory ran out before the first frame or while writing),\n"
-    "            4 new self-intersections found by --validate, 5 the target volume or stop ratio\n"
-    "            was not reached (result written), 130 interrupted by Ctrl-C or SIGTERM after\n"
-    "            the step it is in (stderr names the frame; no result, log, summary, glTF or\n"
-    "            fields; the finished --export-dir frames stay: remove them to rerun; with\n"
-    "            --checkpoint the state is saved for --resume)\n";
+    "\nexit codes: 0 success, 1 bad usage (also: an output that could not be written, the others\n"
+    "            written; an .stl output of a mesh with two vertices at one position, which an\n"
+    "            STL reader merges), 2 bad input (mesh, face list, weights, checkpoint),\n"
+    "            3 simulation failed or out of memory (the last good state written; nothing if\n"
+    "            memory ran out before the first frame or while writing), 4 new\n"
+    "            self-intersections found by --validate, 5 the target volume or stop ratio was\n"
+    "            not reached (result written); 3, 4 or 5 also when an output failed too,\n"
+    "            130 interrupted by Ctrl-C, SIGTERM, SIGHUP or SIGUSR1 after the step it is in\n"
+    "            (stderr names the frame; no result, log, summary, glTF or fields; the finished\n"
+    "            --export-dir frames stay: remove them to rerun; with --checkpoint the state is\n"
+    "            saved for --resume)\n";
 
 /// The table's options as text values for boost, switches as bool_switch, in the task groups of
 /// run --help (help_groups.hpp), each group added to `desc`.
@@ -157,8 +160,9 @@ int command_run(int argc, char** argv) {
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
       "quiet,q", po::bool_switch(&quiet), "no progress on stderr")(
       "checkpoint", po::value(&checkpoint_path)->value_name("FILE"),
-      "save the whole state to FILE (atomically) every --checkpoint-every frames and on SIGINT or "
-      "SIGTERM, which then stop the run (exit code 130, no other output); --resume continues it")(
+      "save the whole state to FILE (atomically) every --checkpoint-every frames and on SIGINT, "
+      "SIGTERM, SIGHUP or SIGUSR1, which then stop the run (exit code 130, no other output); "
+      "--resume continues it")(
       "checkpoint-every", po::value(&checkpoint_every)->value_name("N"),
       "with --checkpoint: frames between saves (default: only on a signal)")(
       "resume", po::value(&resume_path)->value_name("FILE"),
@@ -167,6 +171,7 @@ int command_run(int argc, char** argv) {
       "changed): the same result, to the byte, as the run that was not interrupted");
   FieldColour colour = FieldColour::MeanCurvature;
   std::unique_ptr<ExportFolderLock> export_lock;  // held until the run's files are written
+  PlannedFrames frames_planned;  // the frames of --export-dir, for what a failed run leaves
   try {
     const po::variables_map vm = parse_command_line(argc, argv, desc, input);
     if (vm.count("help")) {
@@ -254,6 +259,7 @@ int command_run(int argc, char** argv) {
       exports.ext = lower_extension(output);
       // Every frame name, not only frame 0's: a run that stops early writes its last frame.
       plan.frames = {exports.dir, exports.name, exports.ext, options.sim.frames};
+      frames_planned = plan.frames;
     }
     // One decision for every output (output_paths.hpp), then the export folder: created, locked
     // against a second run, refused if another run's frames are there. Nothing before this
@@ -405,11 +411,12 @@ int command_run(int argc, char** argv) {
     if (!fields_prefix.empty()) attempt("--fields", fields_prefix + "_*.ply", [&] { fields.write(); });
     if (!log_path.empty()) attempt("--log", log_path, [&] { write_text_atomic(log_path, csv.text()); });
     if (!summary_path.empty()) {
-      // The summary is written last: an output that failed before it makes the process exit 1,
-      // and the summary says so (its own failure is reported on stderr only).
-      JsonObject summary = summary_json(input, output, report, options, r,
-                                        outputs.failed() ? std::optional<int>(static_cast<int>(ExitCode::BadUsage))
-                                                         : std::nullopt);
+      // The summary is written last: an output that failed before it makes the process exit 1
+      // (or the run's own failure code), and the summary says so (its own failure is reported on
+      // stderr only).
+      JsonObject summary = summary_json(
+          input, output, report, options, r,
+          outputs.failed() ? std::optional<int>(output_failure_exit_code(r)) : std::nullopt);
       JsonObject setup;
       setup.add("read_and_check_seconds", read_seconds)
           .add("read_seconds", report.read_seconds)
@@ -433,7 +440,11 @@ int command_run(int argc, char** argv) {
       std::cerr << "shellcontract run: not every output could be written (the run itself ended: "
                 << status_name(r.status) << ", frame " << r.frames_run << ")\n"
                 << outputs.text();
-      return static_cast<int>(ExitCode::BadUsage);
+      // The run's own failure too (out of memory, a blow-up, validation): the list names only
+      // its status, and the exit code is the failure's (output_failure_exit_code).
+      const std::string why = run_failure_text(r);
+      if (!why.empty()) std::cerr << "shellcontract run: " << why << '\n';
+      return output_failure_exit_code(r);
     }
     switch (r.status) {
       case RunStatus::NewIntersections:
@@ -462,15 +473,15 @@ int command_run(int argc, char** argv) {
     std::cerr << "shellcontract run: " << spell_options(e.what(), OptionSpelling::Cli) << '\n';
     return static_cast<int>(ExitCode::BadUsage);
   } catch (const std::bad_alloc&) {
+    // The frame files already written stay (the writer finished them as it was destroyed).
     std::cerr << "shellcontract run: out of memory while " << stage
               << (faces.empty() ? "" : " (" + faces + ")") << "; "
-              << (written.empty() ? "nothing was written" : "wrote " + written + " only")
-              << '\n';
+              << what_was_left(written, count_frame_files(frames_planned), exports.dir) << '\n';
     return static_cast<int>(ExitCode::SimulationFailed);
   } catch (const std::runtime_error& e) {
     // A resource the system refused besides memory (TBB's threads: "pthread_create has failed").
     std::cerr << "shellcontract run: " << e.what() << " (while " << stage << "); "
-              << (written.empty() ? "nothing was written" : "wrote " + written + " only") << '\n';
+              << what_was_left(written, count_frame_files(frames_planned), exports.dir) << '\n';
     return static_cast<int>(ExitCode::SimulationFailed);
   }
 }

@@ -67,8 +67,9 @@ class CliCheckpointer final : public RunCheckpointer {
         log_(log) {
     // With or without a checkpoint: the run stops after its step and says at which frame, and
     // what it leaves (run_interrupt.hpp); the default ending (main.cpp) exited 130 without a
-    // word. A signal ignored (a background job of a script) stays ignored.
-    for (const int sig : {SIGINT, SIGTERM}) {
+    // word. A signal ignored (a background job of a script) stays ignored. SIGHUP and SIGUSR1
+    // (Slurm's warning) too: INTERRUPT_SIGNALS.
+    for (const int sig : INTERRUPT_SIGNALS) {
       struct sigaction current {};
       if (sigaction(sig, nullptr, &current) != 0 ||
           (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_IGN))

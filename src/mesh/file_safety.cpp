@@ -66,13 +66,13 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
   ::raise(sig);
 }
 
-/// Installs the handler for SIGINT and SIGTERM where their action is the default one: a program
+/// Installs the handler for INTERRUPT_SIGNALS where their action is the default one: a program
 /// that handles them itself (Python's KeyboardInterrupt) keeps its handler, and its interrupted
 /// write then ends normally and removes its temporary itself.
 void install_handler_once() {
   static std::once_flag once;
   std::call_once(once, [] {
-    for (const int sig : {SIGINT, SIGTERM}) {
+    for (const int sig : INTERRUPT_SIGNALS) {
       struct sigaction current {};
       if (::sigaction(sig, nullptr, &current) != 0) continue;
       if (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_DFL) {
@@ -223,8 +223,7 @@ RegisteredTemporary create_registered_temporary(const std::string& dir, const st
   install_handler_once();
   sigset_t signals, old;
   sigemptyset(&signals);
-  sigaddset(&signals, SIGINT);
-  sigaddset(&signals, SIGTERM);
+  for (const int sig : INTERRUPT_SIGNALS) sigaddset(&signals, sig);
   ::pthread_sigmask(SIG_BLOCK, &signals, &old);
   creating.fetch_add(1);
   if (ending.load()) {

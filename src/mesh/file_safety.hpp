@@ -3,11 +3,18 @@
 // read completely from regular files; error messages that name a file in printable text.
 #pragma once
 
+#include <csignal>
 #include <cstdint>
 #include <string>
 #include <string_view>
 
 namespace shellcontract {
+
+/// The signals that end a process the way Ctrl-C does, removing its temporaries: SIGINT,
+/// SIGTERM, SIGHUP (the terminal or the ssh session closed) and SIGUSR1 (Slurm's warning before
+/// the time limit, `sbatch --signal`, whose default signal it is). The CLI stops on each the same
+/// way and exits 130 (docs/cli.md); "SIGINT and SIGTERM" below stands for all four.
+inline constexpr int INTERRUPT_SIGNALS[] = {SIGINT, SIGTERM, SIGHUP, SIGUSR1};
 
 /// `s` as printable text for a message: bytes below 0x20 (NUL included) and 0x7f, bytes that are
 /// not part of a well-formed UTF-8 sequence (0xFF, a Latin-1 byte) and the UTF-8 encodings of

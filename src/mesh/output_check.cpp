@@ -31,6 +31,12 @@ void check_existing(const FileIdentity& o) {
     const int e = errno;
     refuse_file(o.option, o.path, "exists and is not writable (" + file_error_text(e) + ")");
   }
+  // A file with no write permission bit at all is write-protected by its owner: refused for
+  // every user, root too, for whom the access check above always succeeds (as `rm -i` and
+  // `cp -i` ask before they replace one).
+  if ((o.file.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0)
+    refuse_file(o.option, o.path,
+                "exists and is not writable (write-protected: no write permission is set)");
 }
 
 }  // namespace

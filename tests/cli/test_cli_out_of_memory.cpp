@@ -6,11 +6,13 @@
 // must end in one of the documented ways, and the steps must reach both a failure during the
 // frames (the collision step's candidate pairs grow as the shell contracts) and one before them.
 #include <gtest/gtest.h>
+#include <stdlib.h>  // setenv: the runs' malloc arenas
 #include <unistd.h>  // getpid: temporary files of this process's own
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -29,12 +31,16 @@ constexpr long FLOOR_KIB = 8 * 1024;            ///< too little to start a proce
 constexpr long CEILING_KIB = 8L * 1024 * 1024;  ///< more than the tests' runs need
 
 /// The least address space (KiB, to within `step`) under which the CLI with `args` succeeds;
-/// -1 if not even CEILING_KIB is enough.
-long least_address_space(const std::vector<std::string>& args, long step) {
+/// -1 if not even CEILING_KIB is enough. `before` runs before each try (removes what the last
+/// one wrote, where a rerun would be refused).
+long least_address_space(
+    const std::vector<std::string>& args, long step, const std::function<void()>& before = [] {}) {
   long lo = FLOOR_KIB, hi = CEILING_KIB;
+  before();
   if (test::run_cli_limited(hi, args).exit_code != 0) return -1;
   while (hi - lo > step) {
     const long mid = lo + (hi - lo) / 2;
+    before();
     (test::run_cli_limited(mid, args).exit_code == 0 ? hi : lo) = mid;
   }
   return hi;
@@ -132,6 +138,69 @@ TEST_F(CliOutOfMemory, RunEndsWithAMessageAndTheLastGoodStateNeverAnAbort) {
               in_frames, before_frames, threads_refused);
   EXPECT_GT(in_frames, 0) << "no limit ran out of memory during the frames";
   EXPECT_GT(before_frames, 0) << "no limit ran out of memory before the first frame";
+}
+
+// The same run with every frame exported (--export-dir, --gltf), one thread, stepped down from
+// the least limit it needs: wherever memory runs out, (a) frame files left behind are named with
+// "remove them to rerun" (a rerun is refused while they are there), never "nothing was written"
+// alone; (b) a run that itself failed says why on stderr ("simulation failed: out of memory ...")
+// and exits 3 even when an output failed too; (c) the glTF is written from consistent frames or
+// fails for memory, never for lists of different lengths. Before: "nothing was written" beside a
+// frame file, exit 1 with the run's failure in no message, and "--gltf: failed: ... frame field
+// 'mean_curvature' has 3 frames, the animation 4" (or "2 frame numbers for 1 frames").
+TEST_F(CliOutOfMemory, ExportingRunSaysWhatItLeftAndWhyItFailed) {
+  const fs::path frames = dir_ / "frames";
+  std::vector<std::string> args = run_args(dir_ / "o.off", 3);
+  args[7] = "1";  // --threads: one, so that where memory runs out depends on the limit only
+  args.insert(args.end(), {"--export-dir", frames.string(), "--export-every", "1", "--gltf",
+                           (dir_ / "o.glb").string()});
+  const auto clean = [&] {
+    fs::remove_all(frames);
+    fs::remove(dir_ / "o.off");
+    fs::remove(dir_ / "o.glb");
+  };
+  // One malloc arena: a thread's own arena (the frame writer's) reserves 64 MiB of address space
+  // when it happens to be made, so without this the need varies from run to run by more than the
+  // steps below, and the steps may miss the band where the frames fail.
+  ::setenv("MALLOC_ARENA_MAX", "1", 1);
+  struct Unset {
+    ~Unset() { ::unsetenv("MALLOC_ARENA_MAX"); }
+  } unset;
+  const long hi = least_address_space(args, 512, clean);
+  if (hi < 0) GTEST_SKIP() << "needs more than 8 GiB of address space here";
+  std::printf("the exporting run needs %ld KiB of address space\n", hi);
+  int failed = 0, frames_left = 0, run_failed = 0;
+  for (long kb = hi - 512; kb > FLOOR_KIB && kb > hi - 24 * 1024; kb -= 1024) {
+    clean();
+    const test::RunResult r = test::run_cli_limited(kb, args);
+    SCOPED_TRACE("ulimit -v " + std::to_string(kb) + ": " + r.output);
+    if (r.exit_code == 0) continue;
+    if (r.exit_code == 2) break;  // the reader's own: the file needs more than there is
+    ++failed;
+    ASSERT_TRUE(r.exit_code == 1 || r.exit_code == 3) << "the documented exit codes, not an abort";
+    std::size_t left = 0;
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(frames, ec)) left += e.path().extension() == ".off";
+    // Ended outside the frames (its outputs not written, or only some): what it left.
+    const bool ended_early = r.output.find("nothing was written") != std::string::npos ||
+                             std::regex_search(r.output, std::regex("; wrote .* only"));
+    if (left > 0 && ended_early) {
+      ++frames_left;
+      EXPECT_NE(r.output.find(" in " + frames.string() + " (remove"), std::string::npos)
+          << left << " frame files left and not named";
+    }
+    EXPECT_EQ(r.output.find("frame field"), std::string::npos);
+    EXPECT_EQ(r.output.find("frame numbers for"), std::string::npos);
+    if (r.output.find("(the run itself ended: failed") != std::string::npos) {
+      ++run_failed;
+      EXPECT_NE(r.output.find("shellcontract run: simulation failed: "), std::string::npos);
+      EXPECT_EQ(r.exit_code, 3);
+    }
+  }
+  std::printf(
+      "%d runs failed, %d left frame files, %d failed in the frames with an output failed\n",
+      failed, frames_left, run_failed);
+  EXPECT_GT(failed, 0);
 }
 
 TEST_F(CliOutOfMemory, OtherCommandsEndWithAMessageNeverAnAbort) {
