@@ -40,12 +40,18 @@ CheckpointLock::~CheckpointLock() {
 }
 
 std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
-                                                const std::string& option) {
+                                                const std::string& option, bool saves) {
   const std::string lock = checkpoint_lock_path(checkpoint);
   // A lock file removed by the run that held it, between this run's open and its flock, is
   // locked in vain: taken again, until the file locked is the one under the name.
   for (int attempt = 0; attempt < 100; ++attempt) {
-    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
+    int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0666);
+    if (fd < 0 && !saves && (errno == EACCES || errno == EPERM || errno == EROFS)) {
+      // A checkpoint only resumed from, in a folder this run cannot write (a read-only copy):
+      // it resumes, as before the lock; a run saving there holds a lock file, readable here.
+      fd = ::open(lock.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+      if (fd < 0 && errno == ENOENT) return nullptr;
+    }
     if (fd < 0) {
       const int e = errno;
       refuse_file(

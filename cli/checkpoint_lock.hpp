@@ -39,10 +39,12 @@ class CheckpointLock {
 /// leaves none. On a file system without locks (flock fails with other than EWOULDBLOCK) the run
 /// goes on unlocked after a warning.
 /// @param option  how messages name the path: "--checkpoint" or "--resume"
+/// @param saves   whether the run saves to it; a checkpoint only resumed from whose folder this
+///                run cannot write is locked only if a lock file is there (else nullptr)
 /// @return nullptr when the file system takes no locks
 /// @throws UsageError (exit code 1) when another run holds the lock, or the lock file cannot be
 ///         made
 std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
-                                                const std::string& option);
+                                                const std::string& option, bool saves);
 
 }  // namespace shellcontract::cli

@@ -77,11 +77,11 @@ inline CheckpointLocks lock_run_checkpoints(const std::string& checkpoint,
                                             const std::string& resume, bool saves_to_resumed) {
   CheckpointLocks locks;
   if (!checkpoint.empty())
-    locks.saved = lock_checkpoint(checkpoint, saves_to_resumed ? "--resume" : "--checkpoint");
+    locks.saved = lock_checkpoint(checkpoint, saves_to_resumed ? "--resume" : "--checkpoint", true);
   std::error_code ec;
   if (!resume.empty() &&
       (checkpoint.empty() || !std::filesystem::equivalent(resume, checkpoint, ec)))
-    locks.resumed = lock_checkpoint(resume, "--resume");
+    locks.resumed = lock_checkpoint(resume, "--resume", false);
   return locks;
 }
 

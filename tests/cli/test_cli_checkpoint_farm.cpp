@@ -230,6 +230,34 @@ TEST_F(CliCheckpointFarm, ASecondRunWithTheSameCheckpointIsRefused) {
             "0\n");
 }
 
+// The lock must not cost what worked before it: a checkpoint in a folder this run cannot write
+// (a read-only copy, another user's) still resumes, saving nothing (a warning says so). Without
+// write permission only a user other than root meets it: run as nobody where the test is root.
+TEST_F(CliCheckpointFarm, ACheckpointInAFolderThisRunCannotWriteStillResumes) {
+  if (::geteuid() != 0 || !fs::exists("/usr/bin/setpriv")) GTEST_SKIP() << "needs root and setpriv";
+  const std::string as_nobody = "/usr/bin/setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  if (test::run_command(as_nobody + "test -x " + test::quoted(SHELLCONTRACT_CLI_PATH)).exit_code !=
+      0)
+    GTEST_SKIP() << "the CLI cannot be run as nobody here";
+  fs::create_directories(dir_ / "ro");
+  fs::create_directories(dir_ / "rw");
+  const auto made = run_cli({"run", mesh("ico2.off"), "-o", out("ro/a.off"), "-n", "12", "-q",
+                             "--checkpoint", out("ro/c.ckpt"), "--checkpoint-every", "5"});
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  fs::permissions(dir_, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+  fs::permissions(dir_ / "ro", fs::perms::owner_all | fs::perms::group_read |
+                                   fs::perms::group_exec | fs::perms::others_read |
+                                   fs::perms::others_exec);
+  fs::permissions(dir_ / "rw", fs::perms::all);
+  const std::vector<std::string> resume{"run", "--resume",      out("ro/c.ckpt"),
+                                        "-o",  out("rw/r.off"), "-q"};
+  const auto r = test::run_command(as_nobody + test::cli_command(resume));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: this run saves no checkpoint"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out("rw/r.off"))) << r.output;
+  EXPECT_EQ(saved_frame(out("ro/c.ckpt")), 10);
+}
+
 /// The sizes that bound a file size limit (bytes): a run's largest output but its checkpoint,
 /// and its checkpoint's last size.
 struct Sizes {
