@@ -83,6 +83,11 @@ class OutputStatus {
     if (state.rfind("written", 0) != 0) failed_ = true;
     rows_.push_back({std::move(option), std::move(path), std::move(state)});
   }
+  /// A row that does not fail the run: a checkpoint that could not be saved (the run goes on
+  /// without it, and its result is whole).
+  void note(std::string option, std::string path, std::string state) {
+    rows_.push_back({std::move(option), std::move(path), std::move(state)});
+  }
   bool failed() const { return failed_; }
   /// One line per output: "  OPTION PATH: STATE".
   std::string text() const {

@@ -123,6 +123,7 @@ int command_run(int argc, char** argv) {
   RunOptions options;
   std::string checkpoint_path, resume_path;
   int checkpoint_every = 0;
+  bool saves_to_resumed = false;  // run --resume FILE without --checkpoint: saves to FILE
   Checkpoint resume;
   std::vector<RunInput> inputs;
   po::options_description desc(RUN_USAGE, 100, 50);
@@ -162,16 +163,20 @@ int command_run(int argc, char** argv) {
       "checkpoint", po::value(&checkpoint_path)->value_name("FILE"),
       "save the whole state to FILE (atomically) every --checkpoint-every frames and on SIGINT, "
       "SIGTERM, SIGHUP or SIGUSR1, which then stop the run (exit code 130, no other output); "
-      "--resume continues it")(
+      "--resume continues it; a second run with FILE is refused while this one runs (default "
+      "with --resume FILE: FILE)")(
       "checkpoint-every", po::value(&checkpoint_every)->value_name("N"),
-      "with --checkpoint: frames between saves (default: only on a signal)")(
+      "with --checkpoint or --resume: frames between saves (default: the resumed run's; else only "
+      "on a signal)")(
       "resume", po::value(&resume_path)->value_name("FILE"),
       "continue the run saved in FILE (its input, unless INPUT is given, and its options; options "
       "given must equal its own, --threads excepted; the face list or weights file must not have "
-      "changed): the same result, to the byte, as the run that was not interrupted");
+      "changed): the same result, to the byte, as the run that was not interrupted; it goes on "
+      "saving to FILE unless --checkpoint names another");
   FieldColour colour = FieldColour::MeanCurvature;
   std::unique_ptr<ExportFolderLock> export_lock;  // held until the run's files are written
-  PlannedFrames frames_planned;  // the frames of --export-dir, for what a failed run leaves
+  PlannedFrames frames_planned;    // the frames of --export-dir, for what a failed run leaves
+  CheckpointLocks checkpoint_locks;  // held until the run ends
   try {
     const po::variables_map vm = parse_command_line(argc, argv, desc, input);
     if (vm.count("help")) {
@@ -199,11 +204,10 @@ int command_run(int argc, char** argv) {
     // run's must be the checkpoint's (InputError: exit 2).
     if (!checkpoint_path.empty() || !resume_path.empty()) inputs = run_inputs(options);
     if (!resume_path.empty()) check_checkpoint_files(resume, inputs);
-    // Only the CSV log reports the energies; a checkpointed run keeps them for the log of the
-    // run that resumes it (they are measured, the state does not depend on them).
-    options.sim.frame_energies = !log_path.empty() || !checkpoint_path.empty();
-    if (vm.count("checkpoint-every") && (checkpoint_every < 1 || checkpoint_path.empty()))
-      throw UsageError("--checkpoint-every: expected an integer >= 1, with --checkpoint");
+    if (vm.count("checkpoint-every") &&
+        (checkpoint_every < 1 || (checkpoint_path.empty() && resume_path.empty())))
+      throw UsageError(
+          "--checkpoint-every: expected an integer >= 1, with --checkpoint or --resume");
     if (!resume_path.empty() && (!fields_prefix.empty() || !exports.dir.empty() ||
                                  !exports.gltf.empty()))
       throw UsageError(
@@ -221,13 +225,22 @@ int command_run(int argc, char** argv) {
     if (given("export-failure") && exports.dir.empty() && exports.gltf.empty())
       std::cerr << "warning: --export-failure has no effect: it is what a failed frame file of "
                    "--export-dir or --gltf does\n";
+    // A resumed run saves as the interrupted one did: into the file it resumed from (unless
+    // --checkpoint names another) and as often (unless --checkpoint-every says otherwise).
+    saves_to_resumed = !resume_path.empty() && checkpoint_path.empty();
+    if (saves_to_resumed) checkpoint_path = resumed_run_checkpoint(resume_path, {{"INPUT", input}});
+    if (!resume_path.empty() && !vm.count("checkpoint-every")) checkpoint_every = resume.save_every;
+    // Only the CSV log reports the energies; a checkpointed run keeps them for the log of the
+    // run that resumes it (they are measured, the state does not depend on them).
+    options.sim.frame_energies = !log_path.empty() || !checkpoint_path.empty();
     check_result_format(input, output, !exports.dir.empty());
     OutputPlan plan;
     std::vector<PlannedOutput>& planned = plan.outputs;
     planned.push_back({"-o", output});
     if (!log_path.empty()) planned.push_back({"--log", log_path});
     if (!summary_path.empty()) planned.push_back({"--summary", summary_path});
-    if (!checkpoint_path.empty()) planned.push_back({"--checkpoint", checkpoint_path});
+    if (!checkpoint_path.empty())
+      planned.push_back({saves_to_resumed ? "--resume" : "--checkpoint", checkpoint_path});
     if (!fields_prefix.empty()) {
       planned.push_back({"--fields", fields_prefix + "_start.ply"});
       planned.push_back({"--fields", fields_prefix + "_end.ply"});
@@ -266,6 +279,9 @@ int command_run(int argc, char** argv) {
     // creates a file or folder.
     check_planned_outputs(plan);
     export_lock = prepare_export_folder(plan.frames);
+    checkpoint_locks = lock_run_checkpoints(checkpoint_path, resume_path, saves_to_resumed);
+    if (saves_to_resumed && !checkpoint_path.empty() && !quiet)
+      std::cerr << "note: " << resumed_saving_note(checkpoint_path, checkpoint_every) << '\n';
   } catch (const po::error& e) {
     return usage_error("run", e.what());
   } catch (const UsageError& e) {
@@ -364,6 +380,10 @@ int command_run(int argc, char** argv) {
     // A finished result is never thrown away: each output is written on its own, one that
     // fails (a full disk) is reported and the others are still written (output-safety.md).
     OutputStatus outputs;
+    // A checkpoint that could not be saved is no failed output (the run went on without it,
+    // its result is whole) but the summary says so: a pipeline relying on it must learn.
+    if (!checkpointer.failure_report().empty())
+      outputs.note("--checkpoint", checkpoint_path, checkpointer.failure_report());
     if (!exporter.export_error().empty()) {
       std::cerr << "warning: the frame export stopped: " << exporter.export_error() << '\n';
       outputs.add("--export-dir", exports.dir,

@@ -1,5 +1,5 @@
 // `run --checkpoint FILE [--checkpoint-every N]` and `run --resume FILE`: the CLI's side of
-// shellcontract/checkpoint.hpp. The state is saved every N frames and when SIGINT or SIGTERM
+// shellcontract/checkpoint.hpp. The state is saved every N frames and when a stop signal
 // arrives (the handler only sets a flag; the run saves and stops after the step it is in). Without
 // --checkpoint a signal stops the run the same way, with nothing saved.
 #pragma once
@@ -8,11 +8,14 @@
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "checkpoint_lock.hpp"
 #include "mesh/file_safety.hpp"
+#include "output_paths.hpp"
 #include "run_observers.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
@@ -46,6 +49,47 @@ inline std::string checkpoint_input(const Checkpoint& c, const std::string& path
                      "interrupted run started in); run from that folder, or give the mesh as INPUT "
                      "(shellcontract run INPUT --resume " + path + " -o OUTPUT)");
   return c.input;
+}
+
+/// Where `run --resume FILE` without --checkpoint saves: into FILE, as the interrupted run did
+/// (a job that is preempted again must not lose what it did since), when FILE can be written
+/// (check_planned_outputs); otherwise "" after a warning, and the run saves nothing, as before.
+inline std::string resumed_run_checkpoint(const std::string& resume_path,
+                                          const std::vector<PlannedOutput>& inputs) {
+  try {
+    check_planned_outputs(OutputPlan{{{"--resume", resume_path}}, inputs, {}});
+    return resume_path;
+  } catch (const UsageError& e) {
+    std::cerr << "warning: this run saves no checkpoint (give --checkpoint FILE): " << e.what()
+              << '\n';
+    return "";
+  }
+}
+
+/// The locks a run holds (checkpoint_lock.hpp): on the checkpoint it saves to and on the one it
+/// resumes from, if another file; a second run with either is refused.
+struct CheckpointLocks {
+  std::unique_ptr<CheckpointLock> saved, resumed;
+};
+
+/// After check_planned_outputs. @throws UsageError (exit code 1) naming the checkpoint held
+inline CheckpointLocks lock_run_checkpoints(const std::string& checkpoint,
+                                            const std::string& resume, bool saves_to_resumed) {
+  CheckpointLocks locks;
+  if (!checkpoint.empty())
+    locks.saved = lock_checkpoint(checkpoint, saves_to_resumed ? "--resume" : "--checkpoint", true);
+  std::error_code ec;
+  if (!resume.empty() &&
+      (checkpoint.empty() || !std::filesystem::equivalent(resume, checkpoint, ec)))
+    locks.resumed = lock_checkpoint(resume, "--resume", false);
+  return locks;
+}
+
+/// What a resumed run that saves to the file it resumed from says of it (the user did not ask).
+inline std::string resumed_saving_note(const std::string& path, int every) {
+  return "saving the state to " + path + ", the checkpoint resumed, " +
+         (every > 0 ? "every " + std::to_string(every) + " frames and " : std::string()) +
+         "on SIGINT, SIGTERM, SIGHUP or SIGUSR1 (--checkpoint FILE saves elsewhere)";
 }
 
 class CliCheckpointer final : public RunCheckpointer {
@@ -91,12 +135,18 @@ class CliCheckpointer final : public RunCheckpointer {
 
   void save(const SavedRun& run) override {
     try {
-      write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, log_.text(), inputs_});
+      write_checkpoint(path_, run, options_,
+                       CheckpointInfo{input_, hash_, log_.text(), inputs_, every_});
       saved_frame_ = frame_;
     } catch (const UsageError& e) {
-      // The run goes on without it (a full disk should not cost the run); said once.
-      if (!warned_) std::cerr << "warning: checkpoint not written: " << e.what() << '\n';
-      warned_ = true;
+      // The run goes on without it (a full disk should not cost the run); said once here, and
+      // at the end in the summary (failure_report) and the message of an interrupted run.
+      if (failures_ == 0) {
+        std::cerr << "warning: checkpoint not written: " << e.what() << '\n';
+        first_failure_ = e.what();
+        first_failed_frame_ = frame_;
+      }
+      ++failures_;
     }
   }
 
@@ -107,6 +157,35 @@ class CliCheckpointer final : public RunCheckpointer {
   /// The frame of the last checkpoint written (-1: none).
   int saved_frame() const { return saved_frame_; }
   const std::string& path() const { return path_; }
+  /// The frame of the checkpoint in path() that this run did not write, and that a failed save
+  /// left in place: the one it resumed from when it saves to that file (-1: none).
+  int resumed_frame() const {
+    std::error_code ec;
+    return resume_ && !path_.empty() && std::filesystem::equivalent(path_, resume_->path, ec)
+               ? resume_->sim.frame
+               : -1;
+  }
+  /// The frame of the checkpoint in path() now: the last one this run saved, else the one it
+  /// resumed from when it saves to that file (-1: none of this run's).
+  int frame_in_place() const { return saved_frame_ >= 0 ? saved_frame_ : resumed_frame(); }
+  /// What is in path() now, after a save that failed: "the one of frame N is still there", or
+  /// that there is none.
+  std::string left_in_place() const {
+    const int frame = frame_in_place();
+    return frame >= 0 ? "the checkpoint of frame " + std::to_string(frame) + " is still in " +
+                            printable(path_)
+                      : "no checkpoint was saved";
+  }
+  /// For the summary's "outputs": "" when every save was written; else how many failed, the
+  /// first one's reason, and what is in the file now.
+  std::string failure_report() const {
+    if (failures_ == 0) return "";
+    return "not written " + std::to_string(failures_) + (failures_ == 1 ? " time" : " times") +
+           " (first at frame " + std::to_string(first_failed_frame_) + ": " + first_failure_ +
+           "); " + left_in_place();
+  }
+  /// The first failed save's reason ("" : none failed).
+  const std::string& first_failure() const { return first_failure_; }
 
  private:
   std::string path_;
@@ -119,7 +198,9 @@ class CliCheckpointer final : public RunCheckpointer {
   const CsvLog& log_;
   int frame_ = 0;  ///< the frame of the last save_due, which save() saves
   int saved_frame_ = -1;
-  bool warned_ = false;
+  int failures_ = 0;  ///< saves that failed
+  int first_failed_frame_ = -1;
+  std::string first_failure_;
 };
 
 }  // namespace shellcontract::cli

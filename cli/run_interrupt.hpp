@@ -19,12 +19,21 @@ inline int report_interrupted(const RunResult& r, const CliCheckpointer& checkpo
                               const std::string& output, const ExportRequest& exports,
                               const ExportStats& frames) {
   std::cerr << "shellcontract run: interrupted at frame " << r.frames_run;
+  // The resumed run goes on saving to the file it resumed from (and as often), so the command
+  // below is all a job that is preempted again needs.
+  const std::string resume_with = " (continue with: shellcontract run --resume " +
+                                  checkpointer.path() + " -o " + output +
+                                  " ..., which goes on saving there)";
   if (!checkpointer.path().empty() && checkpointer.saved_frame() == r.frames_run)
-    std::cerr << "; the state is saved in " << checkpointer.path()
-              << " (continue with: shellcontract run --resume " << checkpointer.path() << " -o "
-              << output << " ...)";
+    std::cerr << "; the state is saved in " << checkpointer.path() << resume_with;
   else if (!checkpointer.path().empty())
-    std::cerr << "; the checkpoint could not be written";
+    // A failed save leaves the file as it was: whether that is an older checkpoint to go on from
+    // is the user's next question.
+    std::cerr << "; the checkpoint could not be written"
+              << (checkpointer.first_failure().empty() ? ""
+                                                       : " (" + checkpointer.first_failure() + ")")
+              << "; " << checkpointer.left_in_place()
+              << (checkpointer.frame_in_place() >= 0 ? resume_with : std::string());
   // The frames stay (each complete) and a rerun into the same folder is refused until they are
   // removed: the user must learn where they are.
   const auto n = static_cast<std::size_t>(frames.frames_written);

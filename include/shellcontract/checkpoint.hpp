@@ -35,6 +35,9 @@ std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path);
 int checkpoint_frame(const Checkpoint& c);
 /// The caller's log of the frames so far, as the saving run gave it (CheckpointInfo::log).
 const std::string& checkpoint_log(const Checkpoint& c);
+/// CheckpointInfo::save_every of the saving run (0: only on a signal, or a checkpoint written
+/// before it was recorded).
+int checkpoint_save_every(const Checkpoint& c);
 
 /// The options a resumed run runs with: the checkpoint's given options, then `command_line`'s
 /// given ones on top (its threads, or the same values again). A face-list or weights file is
@@ -82,6 +85,9 @@ struct CheckpointInfo {
   std::uint64_t input_hash = 0;  ///< mesh_hash of the mesh it runs
   std::string log;               ///< the caller's log of the frames so far (the CLI: its CSV)
   std::vector<RunInput> inputs;  ///< run_inputs of the run, taken before it started
+  /// Frames between the run's periodic saves (0: only when it is stopped): recorded so that a
+  /// run resumed without being told how often to save goes on as the interrupted one did.
+  int save_every = 0;
 };
 
 /// Writes `run` with the options it runs with and `info`, whole or not at all (a temporary file

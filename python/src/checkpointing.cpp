@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "arrays.hpp"
+#include "shellcontract/error.hpp"
 #include "shellcontract/output_files.hpp"
 
 namespace shellcontract::python {
@@ -82,11 +83,34 @@ PythonCheckpointer::PythonCheckpointer(const CheckpointArguments& args, const Pr
 
 bool PythonCheckpointer::save_due(int frame) {
   if (path_.empty()) return false;
+  frame_ = frame;
   return (every_ > 0 && frame % every_ == 0) || cancelled_();
 }
 
 void PythonCheckpointer::save(const SavedRun& run) {
-  write_checkpoint(path_, run, options_, CheckpointInfo{ARRAYS_INPUT, hash_, log_(), inputs_});
+  try {
+    write_checkpoint(path_, run, options_,
+                     CheckpointInfo{ARRAYS_INPUT, hash_, log_(), inputs_, every_});
+    saved_frame_ = frame_;
+  } catch (const UsageError& e) {
+    // Raised, it threw away the whole run at the first full disk (ValueError, no result); the
+    // CLI warns and goes on, and so does this (the GIL is not held here: warned afterwards).
+    if (failures_ == 0) {
+      first_failure_ = e.what();
+      first_failed_frame_ = frame_;
+    }
+    ++failures_;
+  }
+}
+
+std::string PythonCheckpointer::failure_warning() const {
+  if (failures_ == 0) return "";
+  return "checkpoint not written " + std::to_string(failures_) +
+         (failures_ == 1 ? " time" : " times") + " (first at frame " +
+         std::to_string(first_failed_frame_) + ": " + first_failure_ + "); " +
+         (saved_frame_ >= 0
+              ? "the checkpoint of frame " + std::to_string(saved_frame_) + " is still in " + path_
+              : "no checkpoint was saved");
 }
 
 }  // namespace shellcontract::python

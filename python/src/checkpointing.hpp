@@ -56,7 +56,12 @@ class PythonCheckpointer final : public RunCheckpointer {
                      std::function<bool()> cancelled);
   const Checkpoint* resume_from() const override { return resume_.get(); }
   bool save_due(int frame) override;
+  /// A save that fails (a full disk) is recorded, not raised: the run goes on without it, as the
+  /// CLI's does, and contract() warns afterwards (failure_warning).
   void save(const SavedRun& run) override;
+  /// "" when every save was written; else the warning for the caller: how many saves failed,
+  /// the first one's reason, and what the file holds now.
+  std::string failure_warning() const;
 
  private:
   std::string path_;
@@ -67,6 +72,11 @@ class PythonCheckpointer final : public RunCheckpointer {
   RunOptions options_;
   std::function<std::string()> log_;
   std::function<bool()> cancelled_;
+  int frame_ = 0;         ///< the frame of the last save_due, which save() saves
+  int saved_frame_ = -1;  ///< the frame of the last checkpoint written
+  int failures_ = 0;
+  int first_failed_frame_ = -1;
+  std::string first_failure_;
 };
 
 }  // namespace shellcontract::python

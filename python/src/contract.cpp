@@ -449,6 +449,16 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   out["log"] = observer.log();
   out["summary"] = summary(report, options, r);
   out["status"] = out["summary"]["status"];
+  // A checkpoint that could not be saved costs the run nothing (its result is here), but the
+  // caller relying on it must learn: a warning, and in the summary's warnings.
+  const std::string failed_saves = checkpointer.failure_warning();
+  if (!failed_saves.empty()) {
+    py::dict s = out["summary"];
+    if (!s.contains("warnings")) s["warnings"] = py::list();
+    s["warnings"].cast<py::list>().append(failed_saves);
+    py::module_::import("warnings")
+        .attr("warn")(failed_saves, py::module_::import("builtins").attr("UserWarning"), 2);
+  }
   return out;
 }
 

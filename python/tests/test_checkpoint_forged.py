@@ -33,7 +33,7 @@ def field_offsets(data):
         return at + 8 + n
 
     at = skip_text(skip_text(at)) + 8  # version, input, the input's hash
-    if fmt == 2:
+    if fmt >= 2:  # format 2 added the inputs (format 3 the interval between saves, at the end)
         (n,) = struct.unpack_from("<Q", data, at)
         at += 8
         for _ in range(n):

@@ -26,8 +26,10 @@ namespace {
 // Format 2 added the run's inputs (RunInput) after the input's hash. Format 1 is still read:
 // the tool's version did not change with it, so checkpoints of format 1 can be waiting to be
 // resumed (a sweep's); check_checkpoint_files refuses them only where there is a file to check.
+// Format 3 added the saving run's interval between saves after the log (format 2 reads as 0).
 constexpr char MAGIC[] = "SHELLCONTRACT-CHECKPOINT\n";
-constexpr std::uint32_t FORMAT = 2;
+constexpr std::uint32_t FORMAT = 3;
+constexpr std::uint32_t FORMAT_WITHOUT_SAVE_EVERY = 2;
 constexpr std::uint32_t FORMAT_WITHOUT_INPUTS = 1;
 
 bool result_neutral(const std::string& name) {
@@ -343,6 +345,7 @@ std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path) {
 
 int checkpoint_frame(const Checkpoint& c) { return c.sim.frame; }
 const std::string& checkpoint_log(const Checkpoint& c) { return c.log; }
+int checkpoint_save_every(const Checkpoint& c) { return c.save_every; }
 
 void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,
                       const CheckpointInfo& info) {
@@ -356,6 +359,7 @@ void write_checkpoint(const std::string& path, const SavedRun& run, const RunOpt
   c.sim = run.sim.state();
   c.progress = run.progress;
   c.log = info.log;
+  c.save_every = info.save_every;
   write_checkpoint(path, c);
 }
 
@@ -398,6 +402,7 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.pod(static_cast<std::int64_t>(p.frame_target_reached));
   w.pod(p.last_pairs);
   w.text(c.log);
+  w.pod(static_cast<std::int64_t>(c.save_every));
   w.pod(fnv1a(w.bytes().data(), w.bytes().size()));
   write_text_atomic(path, w.bytes());
 }
@@ -421,7 +426,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (fnv1a(bytes.data(), bytes.size() - sizeof stored) != stored)
     r.fail("its checksum does not match (truncated or damaged)");
   const auto format = r.pod<std::uint32_t>();
-  if (format != FORMAT && format != FORMAT_WITHOUT_INPUTS) r.fail("another checkpoint format");
+  if (format != FORMAT && format != FORMAT_WITHOUT_SAVE_EVERY && format != FORMAT_WITHOUT_INPUTS)
+    r.fail("another checkpoint format");
   Checkpoint c;
   c.version = r.text();
   c.input = r.text();
@@ -461,6 +467,10 @@ Checkpoint read_checkpoint(const std::string& path) {
   p.frame_target_reached = r.int_value("a target frame");
   p.last_pairs = r.pod<std::int64_t>();
   c.log = r.text();
+  if (format == FORMAT) {
+    c.save_every = r.int_value("an interval between saves");
+    if (c.save_every < 0) r.fail("a negative interval between saves");
+  }
   if (r.position() + sizeof stored != bytes.size()) r.fail("trailing bytes");
   // Another version's fields follow its own rules (its options, its state): refused as another
   // version's here, before they are judged by this one's (as "edited or damaged").

@@ -47,6 +47,10 @@ struct Checkpoint {
   SimulatorState sim;
   RunProgress progress;
   std::string log;           ///< the caller's log of the frames so far (the CLI: its CSV text)
+  /// Frames between the saving run's periodic saves (0: only on a signal, or not recorded: format
+  /// 1 and 2); a resumed run that is not told otherwise saves as often
+  /// (CheckpointInfo::save_every).
+  int save_every = 0;
   /// The file read_checkpoint read it from (not saved), for the messages of a refusal that
   /// needs the mesh (Simulator::restore); empty for one made in memory.
   std::string path;

@@ -211,8 +211,9 @@ TEST_F(CheckpointInputs, RegionsGivenAsArraysAreKnownByContentsNotByTheTemporary
   EXPECT_NE(other.find("`regions` auto (the checkpoint's: given as arrays)"), std::string::npos) << other;
 }
 
-/// `bytes` (a format 2 checkpoint whose run read no file) rewritten as format 1: no inputs list
-/// after the mesh's hash, and the checksum over the rest.
+/// `bytes` (a checkpoint of the current format whose run read no file) rewritten as format 1: no
+/// inputs list after the mesh's hash, no interval between saves after the log (format 3), and
+/// the checksum over the rest.
 std::string as_format_one(std::string bytes) {
   const std::size_t format_at = std::strlen("SHELLCONTRACT-CHECKPOINT\n");
   std::uint32_t format = 1;
@@ -228,7 +229,7 @@ std::string as_format_one(std::string bytes) {
   std::memcpy(&inputs, &bytes[at], sizeof inputs);
   EXPECT_EQ(inputs, 0u);
   bytes.erase(at, sizeof inputs);
-  bytes.resize(bytes.size() - sizeof(std::uint64_t));
+  bytes.resize(bytes.size() - 2 * sizeof(std::uint64_t));  // the checksum, the interval
   const std::uint64_t sum = fnv1a(bytes.data(), bytes.size());
   bytes.append(reinterpret_cast<const char*>(&sum), sizeof sum);
   return bytes;
@@ -241,6 +242,7 @@ TEST_F(CheckpointInputs, FormatOneCheckpointsResumeWhereThereIsNoFileToCheck) {
   write(file("old.ckpt"), as_format_one(bytes));
   const Checkpoint old = read_checkpoint(file("old.ckpt"));
   EXPECT_FALSE(old.inputs_recorded);
+  EXPECT_EQ(old.save_every, 0);  // not recorded: a resumed run saves only on a signal
   EXPECT_EQ(old.sim.x, c.sim.x);
   EXPECT_NO_THROW(resume(old));
   // With a face list the checkpoint cannot vouch for: refused, saying why.
@@ -252,6 +254,19 @@ TEST_F(CheckpointInputs, FormatOneCheckpointsResumeWhereThereIsNoFileToCheck) {
   const std::string why = refusal([&] { resume(with_file); });
   EXPECT_NE(why.find("written before checkpoints recorded the files"), std::string::npos) << why;
   EXPECT_NE(why.find(file("reg.txt")), std::string::npos) << why;
+}
+
+// Format 3: the saving run's interval between saves, which a run resumed without one takes.
+TEST_F(CheckpointInputs, TheIntervalBetweenSavesIsRecorded) {
+  Checkpoint c = checkpoint_of({});
+  EXPECT_EQ(c.save_every, 0);
+  c.save_every = 7;
+  write_checkpoint(file("every.ckpt"), c);
+  EXPECT_EQ(read_checkpoint(file("every.ckpt")).save_every, 7);
+  c.save_every = -1;
+  write_checkpoint(file("negative.ckpt"), c);
+  const std::string why = refusal([&] { read_checkpoint(file("negative.ckpt")); });
+  EXPECT_NE(why.find("a negative interval between saves"), std::string::npos) << why;
 }
 
 // Before: "basic_filebuf::underflow error reading the file: Is a directory" (std::ios_base::failure,

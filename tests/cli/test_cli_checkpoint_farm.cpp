@@ -1,0 +1,335 @@
+// Checkpoints as a batch farm uses them (a review of the tool under farm conditions, findings 1,
+// 2 and 8): a job preempted twice, two jobs given one checkpoint name, and a checkpoint that the
+// disk cannot take. Before the fixes, the resume the tool itself suggested saved nothing (a second
+// preemption lost every frame since the first); a second run with the same --checkpoint was not
+// refused, and resuming the first silently gave the second's result; and a save that failed was
+// one stderr line, absent from --summary and from the message of an interrupted run.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "sim/checkpoint.hpp"
+#include "support/cli_runner.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_cli;
+
+/// Starts `command` with /bin/bash -c (stdout to /dev/null, stderr to the returned pipe's read
+/// end); the command ends with `exec` of the CLI, so the pid is the CLI's.
+pid_t spawn_bash(const std::string& command, int& stderr_fd) {
+  int fds[2];
+  if (::pipe(fds) != 0) return -1;
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const int null = ::open("/dev/null", O_WRONLY);
+    ::dup2(null, 1);
+    ::dup2(fds[1], 2);
+    ::close(fds[0]);
+    ::signal(SIGINT, SIG_DFL);
+    ::signal(SIGTERM, SIG_DFL);
+    ::execl("/bin/bash", "bash", "-c", command.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  stderr_fd = fds[0];
+  return pid;
+}
+
+/// The command line that runs the CLI with `args`, with exec (no stderr redirection).
+std::string exec_cli(const std::vector<std::string>& args) {
+  std::string cmd = "exec " + test::quoted(SHELLCONTRACT_CLI_PATH);
+  for (const std::string& a : args) cmd += " " + test::quoted(a);
+  return cmd;
+}
+
+/// Reads the pipe into `seen` until it holds `text` (false: the pipe ended first).
+bool read_until(int fd, const std::string& text, std::string& seen) {
+  char buf[512];
+  while (seen.find(text) == std::string::npos) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n <= 0) return false;
+    seen.append(buf, static_cast<std::size_t>(n));
+  }
+  return true;
+}
+
+/// Reads the rest of the pipe into `seen` and waits for `pid`; returns its wait status.
+int finish(pid_t pid, int fd, std::string& seen) {
+  char buf[512];
+  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;)
+    seen.append(buf, static_cast<std::size_t>(n));
+  ::close(fd);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return status;
+}
+
+/// The frame of the checkpoint at `path` (-1: none there, or not whole).
+int saved_frame(const std::string& path) {
+  try {
+    return read_checkpoint(path).sim.frame;
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
+/// Waits (at most `seconds`) until the checkpoint at `path` holds a frame of at least `frame`;
+/// returns the frame it holds then.
+int await_frame(const std::string& path, int frame, int seconds) {
+  const auto start = std::chrono::steady_clock::now();
+  int now = saved_frame(path);
+  while (now < frame && std::chrono::steady_clock::now() - start < std::chrono::seconds(seconds)) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    now = saved_frame(path);
+  }
+  return now;
+}
+
+/// The frame that "interrupted at frame N" names (-1: no such line).
+int interrupted_frame(const std::string& text) {
+  std::smatch m;
+  return std::regex_search(text, m, std::regex("interrupted at frame ([0-9]+)")) ? std::stoi(m[1])
+                                                                                 : -1;
+}
+
+class CliCheckpointFarm : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_cli_farm_" + std::to_string(::getpid()) + "_" +
+            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string out(const std::string& name) const { return (dir_ / name).string(); }
+  static std::string mesh(const std::string& name) {
+    return std::string(test::MESH_DIR) + "/" + name;
+  }
+  /// A run that outlasts the test, saving every 5 frames to c.ckpt.
+  std::vector<std::string> long_run(const std::string& output) const {
+    return {"run", mesh("ico2.off"), "-o",          out(output),          "-n", "20000",
+            "-q",  "--checkpoint",   out("c.ckpt"), "--checkpoint-every", "5"};
+  }
+  fs::path dir_;
+};
+
+// Finding 1: preempted, resumed as the message says (`run --resume FILE -o OUT`), preempted
+// again: the second run goes on saving into FILE, every 5 frames as the first did, and its
+// SIGTERM saves the frame it stopped at. Before, FILE stayed at the first preemption's frame.
+TEST_F(CliCheckpointFarm, AResumedRunGoesOnSavingWhereAndAsOftenAsTheFirst) {
+  int fd = -1;
+  pid_t pid = spawn_bash(exec_cli(long_run("r.off")), fd);
+  ASSERT_GT(pid, 0);
+  ASSERT_GE(await_frame(out("c.ckpt"), 5, 60), 5) << "no checkpoint within 60 s";
+  ::kill(pid, SIGTERM);
+  std::string first;
+  int status = finish(pid, fd, first);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << first;
+  const int first_frame = saved_frame(out("c.ckpt"));
+  ASSERT_EQ(first_frame, interrupted_frame(first)) << first;
+  // The hint names the command, and says that it goes on saving.
+  EXPECT_NE(first.find("continue with: shellcontract run --resume " + out("c.ckpt") + " -o " +
+                       out("r.off")),
+            std::string::npos)
+      << first;
+  EXPECT_NE(first.find("goes on saving there"), std::string::npos) << first;
+
+  pid = spawn_bash(exec_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off")}), fd);
+  ASSERT_GT(pid, 0);
+  // A periodic save of the resumed run: the next multiple of 5 after the first frame.
+  const int next = (first_frame / 5 + 1) * 5;
+  const int reached = await_frame(out("c.ckpt"), next, 60);
+  ::kill(pid, SIGTERM);
+  std::string second;
+  status = finish(pid, fd, second);
+  ASSERT_TRUE(WIFEXITED(status)) << second;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << second;
+  EXPECT_EQ(reached % 5, 0) << "saved at frame " << reached << ", not every 5 frames";
+  EXPECT_GE(reached, next) << "the resumed run saved nothing periodically:\n" << second;
+  // It says where it saves, and its SIGTERM saved the frame it stopped at.
+  EXPECT_NE(second.find("note: saving the state to " + out("c.ckpt") +
+                        ", the checkpoint resumed, every 5 frames"),
+            std::string::npos)
+      << second;
+  EXPECT_EQ(saved_frame(out("c.ckpt")), interrupted_frame(second)) << second;
+  EXPECT_NE(second.find("the state is saved in " + out("c.ckpt")), std::string::npos) << second;
+  // No lock file left behind by either run.
+  EXPECT_FALSE(fs::exists(out(".c.ckpt.lock")));
+  // --checkpoint OTHER saves there instead (every 5 frames, the checkpoint's interval); the
+  // resumed file is left as it is.
+  const int before = saved_frame(out("c.ckpt"));
+  pid = spawn_bash(exec_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), "-q",
+                             "--checkpoint", out("other.ckpt")}),
+                   fd);
+  ASSERT_GT(pid, 0);
+  const int other = await_frame(out("other.ckpt"), (before / 5 + 1) * 5, 60);
+  ::kill(pid, SIGTERM);
+  std::string third;
+  status = finish(pid, fd, third);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << third;
+  EXPECT_GT(other, before) << third;
+  EXPECT_EQ(saved_frame(out("c.ckpt")), before);
+  EXPECT_FALSE(fs::exists(out(".other.ckpt.lock")));
+}
+
+// Finding 2: while a run saves to a checkpoint, a second run naming it (to save, to resume from
+// it, or to resume from it into another file) is refused before any work, exit 1; once the
+// first ends, the same command runs, and no lock file is left.
+TEST_F(CliCheckpointFarm, ASecondRunWithTheSameCheckpointIsRefused) {
+  int fd = -1;
+  const pid_t pid = spawn_bash(exec_cli(long_run("a.off")), fd);
+  ASSERT_GT(pid, 0);
+  ASSERT_GE(await_frame(out("c.ckpt"), 5, 60), 5) << "no checkpoint within 60 s";
+  const std::vector<std::string> second{
+      "run", mesh("ico2.off"), "-o",          out("b.off"),         "-n", "8", "-q", "-p",
+      "8",   "--checkpoint",   out("c.ckpt"), "--checkpoint-every", "2"};
+  const auto b = run_cli(second);
+  const auto resumed = run_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), "-q"});
+  const auto resumed_elsewhere = run_cli(
+      {"run", "--resume", out("c.ckpt"), "-o", out("r2.off"), "-q", "--checkpoint", out("d.ckpt")});
+  ::kill(pid, SIGTERM);
+  std::string first;
+  const int status = finish(pid, fd, first);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << first;
+  for (const auto* r : {&b, &resumed, &resumed_elsewhere}) {
+    EXPECT_EQ(r->exit_code, 1) << r->output;
+    EXPECT_NE(r->output.find(
+                  "another shellcontract run is saving to this checkpoint or resuming from it"),
+              std::string::npos)
+        << r->output;
+  }
+  for (const char* name : {"b.off", "r.off", "r2.off", "d.ckpt"})
+    EXPECT_FALSE(fs::exists(out(name))) << name;
+  // The checkpoint is the first run's: its options (-p 4, the default), not the second's -p 8.
+  bool pressure_8 = false;
+  for (const auto& [name, value] : read_checkpoint(out("c.ckpt")).given)
+    pressure_8 = pressure_8 || (name == "pressure" && value == "8");
+  EXPECT_FALSE(pressure_8) << "the second run saved into the first one's checkpoint";
+  EXPECT_FALSE(fs::exists(out(".c.ckpt.lock")));
+  fs::remove(out("c.ckpt"));
+  const auto alone = run_cli(second);
+  EXPECT_EQ(alone.exit_code, 0) << alone.output;
+  EXPECT_FALSE(fs::exists(out(".c.ckpt.lock")));
+  EXPECT_EQ(test::run_command("ls -A " + test::quoted(dir_.string()) + " | grep -c lock").output,
+            "0\n");
+}
+
+// The lock must not cost what worked before it: a checkpoint in a folder this run cannot write
+// (a read-only copy, another user's) still resumes, saving nothing (a warning says so). Without
+// write permission only a user other than root meets it: run as nobody where the test is root.
+TEST_F(CliCheckpointFarm, ACheckpointInAFolderThisRunCannotWriteStillResumes) {
+  if (::geteuid() != 0 || !fs::exists("/usr/bin/setpriv")) GTEST_SKIP() << "needs root and setpriv";
+  const std::string as_nobody = "/usr/bin/setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  if (test::run_command(as_nobody + "test -x " + test::quoted(SHELLCONTRACT_CLI_PATH)).exit_code !=
+      0)
+    GTEST_SKIP() << "the CLI cannot be run as nobody here";
+  fs::create_directories(dir_ / "ro");
+  fs::create_directories(dir_ / "rw");
+  const auto made = run_cli({"run", mesh("ico2.off"), "-o", out("ro/a.off"), "-n", "12", "-q",
+                             "--checkpoint", out("ro/c.ckpt"), "--checkpoint-every", "5"});
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  fs::permissions(dir_, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+  fs::permissions(dir_ / "ro", fs::perms::owner_all | fs::perms::group_read |
+                                   fs::perms::group_exec | fs::perms::others_read |
+                                   fs::perms::others_exec);
+  fs::permissions(dir_ / "rw", fs::perms::all);
+  const std::vector<std::string> resume{"run", "--resume",      out("ro/c.ckpt"),
+                                        "-o",  out("rw/r.off"), "-q"};
+  const auto r = test::run_command(as_nobody + test::cli_command(resume));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: this run saves no checkpoint"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(out("rw/r.off"))) << r.output;
+  EXPECT_EQ(saved_frame(out("ro/c.ckpt")), 10);
+}
+
+/// The sizes that bound a file size limit (bytes): a run's largest output but its checkpoint,
+/// and its checkpoint's last size.
+struct Sizes {
+  std::uintmax_t others = 0, checkpoint = 0;
+};
+
+// Finding 8: a save that fails (here a file size limit, SIGXFSZ ignored as a batch system's
+// ulimit gives it: EFBIG, as a full disk gives ENOSPC) costs the run nothing, exit 0, and the
+// summary's "outputs" says so with what is left; a SIGTERM whose save fails says that the older
+// checkpoint is still there and resumable. Before, the summary had no --checkpoint entry and the
+// message only "the checkpoint could not be written".
+TEST_F(CliCheckpointFarm, AFailedSaveIsInTheSummaryAndTheInterruptMessage) {
+  // ico1 and 120 frames: the log the checkpoint carries makes it larger than every other output
+  // by the end, while the first saves are small.
+  const std::vector<std::string> run{"run",         mesh("ico1.off"),
+                                     "-o",          out("o.off"),
+                                     "-n",          "120",
+                                     "-q",          "--summary",
+                                     out("s.json"), "--log",
+                                     out("l.csv"),  "--checkpoint",
+                                     out("c.ckpt"), "--checkpoint-every",
+                                     "10"};
+  const auto free_run = run_cli(run);
+  ASSERT_EQ(free_run.exit_code, 0) << free_run.output;
+  Sizes sizes;
+  for (const char* name : {"o.off", "s.json", "l.csv"})
+    sizes.others = std::max(sizes.others, fs::file_size(out(name)));
+  sizes.checkpoint = fs::file_size(out("c.ckpt"));
+  const std::uintmax_t limit_kib = sizes.others / 1024 + 2;
+  ASSERT_GT(sizes.checkpoint, limit_kib * 1024)
+      << "the checkpoint no longer outgrows the other outputs";
+  for (const char* name : {"o.off", "s.json", "l.csv", "c.ckpt"}) fs::remove(out(name));
+  const std::string limit = "trap '' XFSZ; ulimit -f " + std::to_string(limit_kib) + "; ";
+  const auto limited =
+      test::run_command("bash -c " + test::quoted(limit + exec_cli(run)) + " 2>&1");
+  EXPECT_EQ(limited.exit_code, 0) << limited.output;
+  EXPECT_NE(limited.output.find("warning: checkpoint not written"), std::string::npos)
+      << limited.output;
+  ASSERT_TRUE(fs::exists(out("s.json"))) << limited.output;
+  const std::string summary = test::run_command("cat " + test::quoted(out("s.json"))).output;
+  const int kept = saved_frame(out("c.ckpt"));
+  ASSERT_GT(kept, 0) << "no save succeeded: the limit is too small";
+  EXPECT_NE(summary.find("\"--checkpoint\": \"not written "), std::string::npos) << summary;
+  EXPECT_NE(summary.find("the checkpoint of frame " + std::to_string(kept) + " is still in " +
+                         out("c.ckpt")),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(summary.find("\"exit_code\": 0"), std::string::npos) << summary;
+  fs::remove(out("c.ckpt"));
+
+  // Interrupted once the saves fail: the message names the older checkpoint left in place.
+  int fd = -1;
+  const pid_t pid =
+      spawn_bash(limit + exec_cli({"run", mesh("ico1.off"), "-o", out("i.off"), "-n", "20000", "-q",
+                                   "--checkpoint", out("c.ckpt"), "--checkpoint-every", "10"}),
+                 fd);
+  ASSERT_GT(pid, 0);
+  std::string text;
+  ASSERT_TRUE(read_until(fd, "warning: checkpoint not written", text)) << text;
+  ::kill(pid, SIGTERM);
+  const int status = finish(pid, fd, text);
+  ASSERT_TRUE(WIFEXITED(status)) << text;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+  const int left = saved_frame(out("c.ckpt"));
+  ASSERT_GT(left, 0) << text;
+  EXPECT_NE(text.find("the checkpoint could not be written"), std::string::npos) << text;
+  EXPECT_NE(
+      text.find("the checkpoint of frame " + std::to_string(left) + " is still in " +
+                out("c.ckpt") + " (continue with: shellcontract run --resume " + out("c.ckpt")),
+      std::string::npos)
+      << text;
+}
+
+}  // namespace
+}  // namespace shellcontract
