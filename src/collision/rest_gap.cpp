@@ -12,27 +12,31 @@
 namespace shellcontract {
 
 RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& rest, double reach,
-                               BroadPhaseMethod method) {
+                               BroadPhaseMethod method, double inner) {
   using collision_pipeline::gather;
   using collision_pipeline::stencil;
   CandidatePairs pairs;
   find_candidates(rest, rest, topo, reach, pairs, nullptr, method);
   // The same tests as the collision step's rest classification (RestPairs), so that the counts
   // are the pairs it holds: touching is a hit at tolerance 0, near a hit at tolerance reach.
-  CcdOptions touch, near;
+  CcdOptions touch, near, within_inner;
   touch.tolerance = 0.0;
   near.tolerance = reach;
+  within_inner.tolerance = inner;
   RestGapSurvey out;
   std::vector<char> held(static_cast<std::size_t>(topo.num_vertices), 0);
   auto visit = [&](CcdPrimitive kind, const std::array<int, 2>& pair) {
     CcdStencil s0, s1;
     gather(rest, rest, stencil(kind, pair, topo), s0, s1);
     if (primitive_ccd(kind, s0, s1, touch).hit) return;
+    if (inner > 0.0 && primitive_ccd(kind, s0, s1, within_inner).hit) return;
     const bool vf = kind == CcdPrimitive::VertexFace;
     const double d = vf ? point_triangle_distance(s0[0], s0[1], s0[2], s0[3])
                         : segment_segment_distance(s0[0], s0[1], s0[2], s0[3]);
     out.smallest = std::min(out.smallest, d);
-    if (!primitive_ccd(kind, s0, s1, near).hit) return;
+    // Beyond the held pairs, by the distance itself: a pair exactly at `reach` (the response's
+    // target under --delta auto's half gap) is pushed to its rest gap, not beyond it.
+    if (inner > 0.0 ? !(d < reach) : !primitive_ccd(kind, s0, s1, near).hit) return;
     ++(vf ? out.near_vertex_face : out.near_edge_edge);
     for (const int v : stencil(kind, pair, topo)) {
       out.near_vertices += held[static_cast<std::size_t>(v)] == 0 ? 1 : 0;

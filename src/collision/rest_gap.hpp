@@ -26,7 +26,12 @@ struct RestGapSurvey {
 /// (SelfCollision: touching pairs are excluded, pairs closer than delta are NEAR): with
 /// reach == delta, near_pairs() is the number of pairs the step holds at their rest distance.
 /// A contact distance below `smallest` leaves no pair near at rest.
+/// With `inner` > 0, the pairs near at `inner` (the ones a contact distance of `inner` holds) are
+/// left out altogether, and the others count when their distance is below `reach`: with
+/// inner == delta and reach == 2 delta (the response's target), the pairs that a contact pushes
+/// apart beyond their rest gap; `smallest` is then the smallest gap among the pairs not left out.
 RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& rest, double reach,
-                               BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD);
+                               BroadPhaseMethod method = DEFAULT_BROAD_PHASE_METHOD,
+                               double inner = 0.0);
 
 }  // namespace shellcontract

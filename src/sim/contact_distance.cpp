@@ -6,6 +6,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include "collision/rest_gap.hpp"
+#include "collision/self_collision/common.hpp"
 #include "collision/topology.hpp"
 #include "core/plural.hpp"
 #include "shellcontract/error.hpp"
@@ -44,6 +45,22 @@ std::string held_pairs_warning(const std::string& what, const RestGapSurvey& s, 
          " at their rest positions for the whole run (not merely kept from crossing)";
 }
 
+/// The pairs that a contact pushes apart beyond their rest gap: closer than the response's target
+/// (RESPONSE_FACTOR delta) at rest, but not held (not closer than delta). Their first contact
+/// sets them farther apart than they were made, and a thin shell whose two sheets are such pairs
+/// swells under an outside pressure instead of contracting.
+std::string pushed_apart_warning(const std::string& what, const RestGapSurvey& s, double delta,
+                                 const std::string& remedy) {
+  const std::size_t pairs = s.near_pairs();
+  return "`delta` " + what + ": " + counted(pairs, "pair", "pairs") + " of primitives (" +
+         std::to_string(s.near_vertex_face) + " vertex-face, " + std::to_string(s.near_edge_edge) +
+         " edge-edge) " + one_or_many(pairs, "lies", "lie") + " between the contact distance " +
+         shortest_text(delta) + " and twice it at rest (smallest gap " + shortest_text(s.smallest) +
+         ", normalized units): the collision response pushes a pair in contact to " +
+         shortest_text(collision_pipeline::RESPONSE_FACTOR * delta) +
+         ", beyond their rest gap, and a thin shell can swell instead of contracting; " + remedy;
+}
+
 }  // namespace
 
 double auto_contact_distance(const Mesh& mesh, double cap) {
@@ -69,20 +86,38 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
   const CollisionTopology topo =
       make_collision_topology(faces_array(mesh), static_cast<int>(mesh.number_of_vertices()));
   const Positions rest = positions_from_mesh(mesh);
-  RestGapSurvey survey = survey_rest_gaps(topo, rest, out.delta, options.collision.method);
-  if (survey.near_pairs() == 0) return out;
+  const double response = collision_pipeline::RESPONSE_FACTOR;
+  const BroadPhaseMethod method = options.collision.method;
+  // The pairs a contact would push beyond their rest gap (held ones aside), named whatever delta.
+  auto warn_pushed_apart = [&](const std::string& what, const std::string& remedy) {
+    const RestGapSurvey band =
+        survey_rest_gaps(topo, rest, response * out.delta, method, out.delta);
+    if (band.near_pairs() > 0)
+      out.warnings.push_back(pushed_apart_warning(what, band, out.delta, remedy));
+  };
   if (!options.auto_delta) {
-    out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta) +
-                           "; `delta` auto or a delta below the smallest gap lets them move");
+    const RestGapSurvey survey = survey_rest_gaps(topo, rest, out.delta, method);
+    if (survey.near_pairs() > 0)
+      out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta) +
+                             "; `delta` auto or a delta below the smallest gap lets them move");
+    warn_pushed_apart(
+        shortest_text(out.delta),
+        "`delta` auto or a delta below half the smallest gap keeps the contacts within the rest "
+        "gaps");
     return out;
   }
+  // Auto surveys as far as the response pushes: half the smallest gap within that reach leaves
+  // every pair out of contact at rest and lets no contact push a pair beyond its rest gap.
+  RestGapSurvey survey = survey_rest_gaps(topo, rest, response * out.delta, method);
+  if (survey.near_pairs() == 0) return out;
   const double floor = AUTO_DELTA_FLOOR_SHARE * by_edge;
-  out.delta = std::max(floor, AUTO_DELTA_PER_REST_GAP * survey.smallest);
+  out.delta = std::min(out.delta, std::max(floor, AUTO_DELTA_PER_REST_GAP * survey.smallest));
   if (out.delta > floor) return out;
-  survey = survey_rest_gaps(topo, rest, out.delta, options.collision.method);
+  survey = survey_rest_gaps(topo, rest, out.delta, method);
+  const std::string lowest = "auto goes no lower: a smaller gap is a near-degenerate input";
   if (survey.near_pairs() > 0)
-    out.warnings.push_back(held_pairs_warning("auto", survey, out.delta) +
-                           " (auto goes no lower: a smaller gap is a near-degenerate input)");
+    out.warnings.push_back(held_pairs_warning("auto", survey, out.delta) + " (" + lowest + ")");
+  warn_pushed_apart("auto", lowest);
   return out;
 }
 

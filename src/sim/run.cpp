@@ -15,6 +15,7 @@
 #include "shellcontract/error.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulator.hpp"
+#include "sim/volume_warnings.hpp"
 
 namespace shellcontract {
 
@@ -300,6 +301,11 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
     warn(r, obs, "V/V0 ended at " + shortest_text(r.final_volume_ratio) +
                      ": the shell passed through itself and is inside out" +
                      (s.collisions ? std::string() : " (`collisions` off)"));
+  // A shell that grew under an outside pressure, or whose volume swings from frame to frame,
+  // ends with a V/V0 that the load does not explain, and the run would say nothing of it.
+  bool compressed = !has_target;
+  for (int n = 0; compressed && n < r.frames_run; ++n) compressed = sim.pressure_at(n) > 0.0;
+  for (const std::string& w : volume_warnings(history, compressed)) warn(r, obs, w);
   if (has_stop) {
     r.target_reached = sim.stop_volume_reached();
     if (r.target_reached) r.frame_target_reached = sim.frame();

@@ -13,6 +13,7 @@
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/regions.hpp"
+#include "shellcontract/run.hpp"
 #include "shellcontract/validation.hpp"
 #include "sim/local_contraction.hpp"
 #include "sim/mass_scaling.hpp"
@@ -279,11 +280,12 @@ void Simulator::apply_volume_control(Positions& x) {
     project_volume(x, faces_, w, target, tolerance, 4, VOLUME_MAX_MOVE);
   } else if (options_.stop_volume_ratio > 0.0) {
     // The step that would cross epsilon ends on it: the run stops at the crossing frame with
-    // V/V0 = epsilon up to the collision response, instead of one step's change below it.
+    // V/V0 = epsilon up to the collision response, instead of one step's change below it. Whether
+    // it stops is decided after the response (step), which can push the volume back up.
     const double floor = constraint_rest_volume_ * options_.stop_volume_ratio;
     if (signed_volume(x, faces_) <= floor) {
       project_volume(x, faces_, w, floor, tolerance);
-      stop_volume_reached_ = true;
+      stop_volume_crossed_ = true;
     }
   }
 }
@@ -295,6 +297,7 @@ void Simulator::follow_rest(Positions& x) const {
 FrameMetrics Simulator::step() {
   const auto start = std::chrono::steady_clock::now();
   const double dt = options_.dt;
+  stop_volume_crossed_ = false;
   // Step 1 (math-spec 2): symplectic Euler with the explicit pressure force at x^n.
   const double keyed_pressure = pressure_at(frame_);
   double pressure = keyed_pressure;
@@ -392,6 +395,16 @@ FrameMetrics Simulator::step() {
   m.frame = frame_;
   m.time = frame_ * dt;
   m.volume_ratio = volume_ratio_;
+  // The stop ratio is reached by the volume the step ended with, not by its prediction: on a thin
+  // shell the collision response can push the sheets apart again and undo the crossing, and a run
+  // that stopped there would report a V/V0 far above epsilon as reached. A crossing that the
+  // response undid keeps the run going (a stall or the last frame then ends it unreached).
+  if (options_.stop_volume_ratio > 0.0 && options_.target_volume <= 0.0) {
+    const double epsilon = options_.stop_volume_ratio;
+    if (volume_ratio_ <= epsilon ||
+        (stop_volume_crossed_ && volume_ratio_ <= epsilon + target_volume_tolerance(epsilon)))
+      stop_volume_reached_ = true;
+  }
   if (options_.frame_energies) m.energies = solver_->energies(x_);
   m.step_seconds = std::chrono::duration<double>(stop - start).count();
   if (options_.validate == ValidateMode::EveryFrame ||

@@ -53,7 +53,9 @@ class Simulator {
   /// The pressure P of the step from frame n to n + 1: options.pressure, or its schedule's value
   /// at frame n (options.pressure_schedule).
   double pressure_at(int n) const;
-  /// Whether a step reached options.stop_volume_ratio (the run then ends on it).
+  /// Whether a step reached options.stop_volume_ratio (the run then ends on it): its V/V0 after
+  /// the collision response is at most epsilon, or at most epsilon + target_volume_tolerance
+  /// where the step's prediction crossed epsilon and was projected onto it.
   bool stop_volume_reached() const { return stop_volume_reached_; }
 
   int frame() const { return frame_; }
@@ -167,6 +169,7 @@ class Simulator {
   double rest_volume_ = 0.0;
   double constraint_rest_volume_ = 0.0;  ///< V0 as signed_volume computes it (the constraint's)
   bool stop_volume_reached_ = false;
+  bool stop_volume_crossed_ = false;   ///< this step's prediction crossed the stop ratio
   Positions before_collisions_;        ///< volume control: positions before the response
   std::vector<char> held_by_contact_;  ///< volume control: moved by the last step's response
   double volume_ratio_ = 1.0;

@@ -17,6 +17,7 @@
 #include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
+#include "support/thin_card.hpp"
 
 namespace shellcontract {
 namespace {
@@ -165,6 +166,36 @@ TEST(ContactDistance, AutoStopsAtItsFloorAndSaysSo) {
   EXPECT_EQ(plan.options.collision.delta, AUTO_DELTA_FLOOR_SHARE * 1e-4);
   ASSERT_EQ(plan.warnings.size(), 1u);
   EXPECT_NE(plan.warnings[0].find("auto goes no lower"), std::string::npos) << plan.warnings[0];
+}
+
+TEST(ContactDistance, PairsWithinTwiceDeltaAtRestAreNamedAndAutoGoesBelowThem) {
+  // A card 2e-4 thick (1.41e-4 of the diagonal): its sheets lie between delta (1e-4) and 2 delta
+  // apart. They are not held, but a contact pushes them to 2 delta, beyond their rest gap, and
+  // the card swelled to 3.7 times its volume under the default compressing run without a word.
+  // A given delta now names them; auto surveys as far as the response pushes and takes half the
+  // gap, as it does for a gap below delta.
+  const Mesh card = to_surface_mesh(test::thin_card(2e-4));
+  const double gap = 2e-4 / std::sqrt(2.0 + 4e-8);
+  SimOptions o;
+  SimPlan plan = plan_simulation(card, o);
+  EXPECT_EQ(plan.options.collision.delta, 1e-4);
+  ASSERT_EQ(plan.warnings.size(), 1u);
+  EXPECT_NE(plan.warnings[0].find("between the contact distance 1e-04 and twice it at rest"),
+            std::string::npos)
+      << plan.warnings[0];
+  EXPECT_NE(plan.warnings[0].find("beyond their rest gap"), std::string::npos) << plan.warnings[0];
+  EXPECT_EQ(plan.warnings[0].find("holds their"), std::string::npos) << "no pair is held";
+  o.auto_delta = true;
+  plan = plan_simulation(card, o);
+  EXPECT_NEAR(plan.options.collision.delta, 0.5 * gap, 1e-6 * gap);  // normalization rounds
+  EXPECT_TRUE(plan.warnings.empty()) << plan.warnings[0];
+  // A delta at most half the gap: the response pushes no pair beyond it.
+  o.auto_delta = false;
+  o.collision.delta = 0.49 * gap;
+  EXPECT_TRUE(plan_simulation(card, o).warnings.empty());
+  // Twice as thick (2.8e-4 apart, more than 2 delta): nothing to say.
+  o.collision.delta = 1e-4;
+  EXPECT_TRUE(plan_simulation(to_surface_mesh(test::thin_card(4e-4)), o).warnings.empty());
 }
 
 }  // namespace

@@ -1,0 +1,56 @@
+// The end-of-run warnings on the volume (sim/volume_warnings.hpp).
+#include "sim/volume_warnings.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdio>
+
+namespace shellcontract {
+
+namespace {
+
+std::string ratio_text(double r) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", r);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed) {
+  std::vector<std::string> out;
+  if (history.size() < 2) return out;
+  // The second half of the frames: the start of a run may fall fast (a collapse under a large
+  // pressure), but it does not go back up by as much.
+  const std::size_t frames = history.size() - 1;
+  bool rose = false, fell = false;
+  double low = history.back(), high = history.back();
+  for (std::size_t n = frames - frames / 2; n + 1 < history.size(); ++n) {
+    const double a = history[n], b = history[n + 1];
+    low = std::min({low, a, b});
+    high = std::max({high, a, b});
+    if (!(a > 0.0 && b > 0.0)) continue;  // inside out: named by the negative V/V0's own warning
+    rose = rose || b > SWING_FACTOR * a;
+    fell = fell || a > SWING_FACTOR * b;
+  }
+  if (rose && fell) {
+    out.push_back("V/V0 swung between " + ratio_text(low) + " and " + ratio_text(high) +
+                  " from frame to frame in the second half of the run (more than a factor " +
+                  ratio_text(SWING_FACTOR) +
+                  " up and down), so its last value means little: the pressure is an explicit "
+                  "load, and on a very thin shell the air's (`air_balance`) overshoots every step; "
+                  "a smaller `dt` or `air_balance` 0 settles it");
+    return out;
+  }
+  const double last = history.back();
+  if (compressed && last > GROWTH_WARNING_RATIO)
+    out.push_back("V/V0 ended at " + ratio_text(last) +
+                  ", above 1 although the outside pressure compresses the shell: it grew. Likely "
+                  "causes: pairs of primitives that the contacts push apart beyond their rest "
+                  "gap (named at the start, if any: a thin shell whose sheets lie closer than "
+                  "twice `delta`), or a time step too large for a very thin shell (a smaller "
+                  "`dt`)");
+  return out;
+}
+
+}  // namespace shellcontract

@@ -1,0 +1,120 @@
+// Thin closed shells (a 1 x 1 x t card, an icosphere squashed in z) through run_contraction: the
+// stop ratio is reached by the volume a step ends with, and the run warns when the shell grows
+// under an outside pressure or its volume swings from frame to frame (sim/volume_warnings.hpp).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "shellcontract/run.hpp"
+#include "sim/volume_warnings.hpp"
+#include "support/cgal_mesh.hpp"
+#include "support/cgal_volume.hpp"
+#include "support/mesh_fixtures.hpp"
+#include "support/thin_card.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// The stop ratio's tolerance above E for E >= 0.1 (the target volume's, issue "Control"), a
+/// number here so that widening the code's constant does not widen the test.
+constexpr double STOP_TOLERANCE = 0.005;
+
+struct Ratios final : RunObserver {
+  std::vector<double> ratios{1.0};
+  void frame(const FrameView&, const FrameMetrics& m) override { ratios.push_back(m.volume_ratio); }
+};
+
+bool has_warning(const RunResult& r, const std::string& text) {
+  return std::any_of(r.warnings.begin(), r.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
+
+TEST(ThinShell, TheStopRatioIsReachedOnlyByTheVolumeAfterTheResponse) {
+  // A card 1e-3 thick under --stop-volume-ratio 0.2 --air-balance 0: the first step's prediction
+  // crossed 0.2, the collision response pushed the sheets apart again, and the run stopped at
+  // frame 1 with V/V0 0.32 reported as reached (exit 0). Reached now means the V/V0 the step
+  // ended with; otherwise the run goes on and, if it never gets there, says so (exit 5).
+  const test::TriMesh card = test::thin_card(1e-3);
+  RunOptions o;
+  o.sim.frames = 200;
+  o.sim.stop_volume_ratio = 0.2;
+  o.sim.air_balance = 0.0;
+  o.sim.solver.threads = 1;
+  Ratios seen;
+  const RunResult r = run_contraction(test::to_surface_mesh(card), o, &seen);
+  // The result's own volume, computed apart from the run.
+  EXPECT_NEAR(test::cgal_volume_ratio(test::to_surface_mesh(card), r.positions),
+              r.final_volume_ratio, 1e-9);
+  if (r.target_reached) {
+    EXPECT_LE(r.final_volume_ratio, 0.2 + STOP_TOLERANCE) << "frame " << r.frames_run;
+    EXPECT_EQ(r.exit_code(), 0);
+    EXPECT_EQ(r.frame_target_reached, r.frames_run);
+  } else {
+    EXPECT_EQ(r.status, RunStatus::TargetNotReached);
+    EXPECT_EQ(r.exit_code(), 5);
+    EXPECT_NE(r.message.find("stop volume ratio 0.2000 not reached"), std::string::npos)
+        << r.message;
+    EXPECT_GT(r.final_volume_ratio, 0.2 + STOP_TOLERANCE);
+  }
+  // No frame before the last ended at or below the stop ratio: the run stops on the first.
+  for (std::size_t n = 1; n + 1 < seen.ratios.size(); ++n)
+    EXPECT_GT(seen.ratios[n], 0.2) << "frame " << n << " reached it, the run went on";
+}
+
+TEST(ThinShell, AShellThatGrowsUnderAnOutsidePressureIsNamed) {
+  // A card 2e-4 thick under the default run (-p 4, compressing) ended at V/V0 3.66 with exit 0
+  // and no warning. Whatever V/V0 it ends at, the run names a growth above 1 %.
+  const test::TriMesh card = test::thin_card(2e-4);
+  RunOptions o;
+  o.sim.frames = 200;
+  o.sim.solver.threads = 1;
+  ASSERT_GT(o.sim.pressure, 0.0);
+  const RunResult r = run_contraction(test::to_surface_mesh(card), o);
+  EXPECT_EQ(has_warning(r, "although the outside pressure compresses the shell: it grew"),
+            r.final_volume_ratio > 1.01)
+      << "V/V0 " << r.final_volume_ratio;
+  // The scenario the warning is for: if the card no longer grows, the warning is untested here
+  // (volume_warnings is below).
+  EXPECT_GT(r.final_volume_ratio, 1.01);
+}
+
+TEST(ThinShell, ASwingingVolumeIsNamed) {
+  // An icosphere squashed to 1e-4 of its height (--delta auto): the explicit air pressure
+  // overshoots every step and V/V0 went 0.28, 14, 0.28, 12 ... on alternate frames, exit 0 and no
+  // warning. The run names a rise and a fall by more than a factor 2 in its second half.
+  test::TriMesh pillow = test::icosphere(2, 0.5);
+  pillow.x.col(2) *= 1e-4;
+  RunOptions o;
+  o.sim.frames = 20;
+  o.sim.auto_delta = true;
+  o.sim.solver.threads = 1;
+  Ratios seen;
+  const RunResult r = run_contraction(test::to_surface_mesh(pillow), o, &seen);
+  bool rose = false, fell = false;
+  for (std::size_t n = 10; n < seen.ratios.size(); ++n) {
+    rose = rose || seen.ratios[n] > 2.0 * seen.ratios[n - 1];
+    fell = fell || seen.ratios[n - 1] > 2.0 * seen.ratios[n];
+  }
+  EXPECT_EQ(has_warning(r, "from frame to frame in the second half of the run"), rose && fell);
+  EXPECT_TRUE(rose && fell) << "the pillow no longer swings: the warning is untested here";
+}
+
+TEST(ThinShell, VolumeWarningsFromAHistory) {
+  // Growth: only under an outside pressure, only beyond a percent.
+  EXPECT_EQ(volume_warnings({1.0, 0.9, 1.2}, true).size(), 1u);
+  EXPECT_TRUE(volume_warnings({1.0, 0.9, 1.2}, false).empty());
+  EXPECT_TRUE(volume_warnings({1.0, 0.99, 1.005}, true).empty());
+  EXPECT_TRUE(volume_warnings({1.0}, true).empty());
+  // A swing: up and down by more than twice in the second half (frames 2 to 4 here).
+  const std::vector<std::string> w = volume_warnings({1.0, 0.9, 0.3, 0.9, 0.3}, true);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("swung between 0.3 and 0.9"), std::string::npos) << w[0];
+  // A fall alone is a collapse, not a swing; so is a swing that ended in the first half.
+  EXPECT_TRUE(volume_warnings({1.0, 0.9, 0.8, 0.3, 0.1}, true).empty());
+  EXPECT_TRUE(volume_warnings({1.0, 0.3, 0.9, 0.3, 0.5, 0.5, 0.5, 0.5, 0.5}, true).empty());
+}
+
+}  // namespace
+}  // namespace shellcontract
