@@ -159,7 +159,7 @@ class FrameExporter final : public RunObserver {
       // the end's.
       if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({"mean_curvature", {}});
       gltf_.frame_fields[0].second.push_back(
-          compute_curvature(simulator_of(view).rest_mesh(), view.normalized_positions()).mean.cast<float>());
+          input_unit_mean_curvature(simulator_of(view), view.normalized_positions()).cast<float>());
       gltf_copy_seconds_ +=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     }
