@@ -85,8 +85,8 @@ std::vector<int> parse_list(const std::string& list, const char* option) {
   return out;
 }
 
-std::string fmt(double v, int precision = 3) {
-  if (std::isnan(v)) return "failed";
+std::string fmt(double v, int precision = 3, const char* nan_text = "failed") {
+  if (std::isnan(v)) return nan_text;
   std::ostringstream s;
   s << std::setprecision(precision) << v;
   return s.str();
@@ -103,7 +103,7 @@ void print_rows(const std::vector<ErrorLadderRow>& rows, std::ostream& os) {
        << r.iterations << std::setw(5) << r.substeps << std::setw(13) << fmt(r.ms_per_step)
        << std::setw(12) << fmt(r.hausdorff) << std::setw(12) << fmt(r.max_vertex_error)
        << std::setw(9) << fmt(r.volume_ratio, 4) << std::setw(11) << fmt(r.volume_error)
-       << std::setw(11) << fmt(r.energy_error) << '\n';
+       << std::setw(11) << fmt(r.energy_error, 3, r.failed ? "failed" : "n/a") << '\n';
   }
 }
 
@@ -117,34 +117,37 @@ void print_checks(const std::vector<ReferenceCheck>& checks, std::ostream& os) {
       continue;
     }
     os << "hausdorff " << fmt(c.hausdorff) << ", dV " << fmt(c.volume_error) << ", dE_rel "
-       << fmt(c.energy_error) << "; smallest rung hausdorff " << fmt(c.smallest_rung_hausdorff)
-       << ", dV " << fmt(c.smallest_rung_volume_error) << " -> " << (c.converged ? "converged" : "NOT converged") << '\n';
+       << fmt(c.energy_error, 3, "n/a") << "; smallest rung hausdorff "
+       << fmt(c.smallest_rung_hausdorff) << ", dV " << fmt(c.smallest_rung_volume_error) << " -> "
+       << (c.converged ? "converged" : "NOT converged") << '\n';
   }
 }
 
 /// CSV: one row per rung ("rung"), per reference ("reference", errors 0) and per reference
 /// check ("reference_check": the refined run's errors against the reference, at the
-/// reference's ms_per_step). Full precision, so the table can be recomputed. The order and
-/// threads columns come last, so readers of the older 13-column files still find theirs.
+/// reference's ms_per_step). Every number in the shortest form that reads back as the same
+/// double, so the table can be recomputed; a NaN (a failed run's errors, a dE_rel that is not
+/// meaningful) is "nan". The order and threads columns come last, so readers of the older
+/// 13-column files still find theirs.
 std::string to_csv(const ErrorLadderResult& res) {
   std::ostringstream s;
-  s << std::setprecision(10);
+  const auto n = [](double v) { return shortest_text(v); };
   s << "row_type,solver,iterations,substeps,frames,dt,failed,ms_per_step,hausdorff,"
        "max_vertex_error,volume_ratio,volume_error,energy_error,order,threads\n";
   auto row = [&](const char* type, const ErrorLadderRow& r) {
     s << type << ',' << ladder_solver_name(r.solver) << ',' << r.iterations << ',' << r.substeps
-      << ',' << res.frames << ',' << res.dt << ',' << (r.failed ? 1 : 0) << ',' << r.ms_per_step
-      << ',' << r.hausdorff << ',' << r.max_vertex_error << ',' << r.volume_ratio << ','
-      << r.volume_error << ',' << r.energy_error << ',' << ladder_order_name(r.order) << ','
-      << r.threads << '\n';
+      << ',' << res.frames << ',' << n(res.dt) << ',' << (r.failed ? 1 : 0) << ','
+      << n(r.ms_per_step) << ',' << n(r.hausdorff) << ',' << n(r.max_vertex_error) << ','
+      << n(r.volume_ratio) << ',' << n(r.volume_error) << ',' << n(r.energy_error) << ','
+      << ladder_order_name(r.order) << ',' << r.threads << '\n';
   };
   for (const ErrorLadderRow& r : res.rows) row("rung", r);
   for (const ErrorLadderRow& r : res.reference_rows) row("reference", r);
   for (const ReferenceCheck& c : res.references) {
     s << "reference_check," << ladder_solver_name(c.solver) << ',' << c.refined_iterations << ','
-      << c.refined_substeps << ',' << res.frames << ',' << res.dt << ',' << (c.failed ? 1 : 0)
-      << ',' << c.ms_per_step << ',' << c.hausdorff << ",," << ',' << c.volume_error << ','
-      << c.energy_error << ",sequential,1\n";
+      << c.refined_substeps << ',' << res.frames << ',' << n(res.dt) << ',' << (c.failed ? 1 : 0)
+      << ',' << n(c.ms_per_step) << ',' << n(c.hausdorff) << ",," << ',' << n(c.volume_error) << ','
+      << n(c.energy_error) << ",sequential,1\n";
   }
   return s.str();
 }
@@ -349,6 +352,10 @@ int command_bench_error(int argc, char** argv) {
     std::cout << "\nreference check:\n";
     print_checks(res.references, std::cout);
   }
+  for (SolverKind kind : res.energy_error_not_meaningful)
+    std::cout << "\ndE_rel of " << ladder_solver_name(kind)
+              << " n/a (nan in the CSV): its reference's energy is below " << ENERGY_ERROR_FLOOR
+              << " of its rungs' largest, so a ratio to it would not measure the rungs' error\n";
 
   try {
     std::string data_file = csv;

@@ -156,9 +156,8 @@ class FrameExporter final : public RunObserver {
       // compute_vertex_fields does), so that a viewer colours every frame with its values, not
       // the end's.
       if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({"mean_curvature", {}});
-      auto mean = compute_curvature(simulator_of(view).rest_mesh(), view.normalized_positions())
-                      .mean.cast<float>()
-                      .eval();
+      auto mean =
+          input_unit_mean_curvature(simulator_of(view), view.normalized_positions()).cast<float>().eval();
       // A frame's three entries all or none: memory that runs out here (std::bad_alloc, which
       // ends the run with its last good state) must leave lists of one length, from which the
       // glTF is still written after the run.

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "shellcontract/options.hpp"  // shortest_text
+
 namespace shellcontract::cli {
 
 /// Length of the well-formed UTF-8 sequence at s[i] (1 to 4), or 0 if the byte there does not
@@ -56,12 +58,11 @@ inline std::string json_quote(const std::string& s) {
   return o.str();
 }
 
-/// A JSON number; non-finite values become null (JSON has no NaN).
+/// A JSON number in the shortest form that reads back as the same double (shortest_text, as
+/// the sweep's results and `run --help` write it); non-finite values become null (JSON has no NaN).
 inline std::string json_number(double v) {
   if (!std::isfinite(v)) return "null";
-  std::ostringstream o;
-  o << std::setprecision(17) << v;
-  return o.str();
+  return shortest_text(v);
 }
 
 /// Builds one JSON object field by field, in insertion order.

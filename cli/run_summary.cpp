@@ -17,6 +17,7 @@ class JsonSummary final : public SummaryWriter {
  public:
   explicit JsonSummary(JsonObject& o) : o_(o) {}
   void add_bool(const std::string& key, bool v) override { o_.add(key, v); }
+  void add_null(const std::string& key) override { o_.add_raw(key, "null"); }
   void add_integer(const std::string& key, long long v) override {
     o_.add_raw(key, std::to_string(v));
   }

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +46,11 @@ class SummaryWriter {
  public:
   virtual ~SummaryWriter() = default;
   virtual void add_bool(const std::string& key, bool value) = 0;
+  /// A key without a value (JSON null, Python None). The default writes a NaN number, which the
+  /// CLI's JSON writes as null too.
+  virtual void add_null(const std::string& key) {
+    add_number(key, std::numeric_limits<double>::quiet_NaN());
+  }
   virtual void add_integer(const std::string& key, long long value) = 0;
   virtual void add_number(const std::string& key, double value) = 0;
   virtual void add_text(const std::string& key, const std::string& value) = 0;

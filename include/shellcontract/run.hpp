@@ -65,12 +65,16 @@ struct RunResult {
   int frames_run = 0;
   double final_volume_ratio = 1.0;
   double min_volume_ratio = 1.0;
-  /// Whether the target volume or stop ratio was reached (true when neither was asked for).
+  /// Whether the target volume or stop ratio was reached (true when neither was asked for; the
+  /// summary then writes null).
   bool target_reached = true;
   /// The first frame at which V/V0 was within target_volume_tolerance of the target volume and
   /// its ramp had ended (or the stop ratio's crossing frame); -1 if never.
   int frame_target_reached = -1;
-  double wall_seconds = 0.0;     ///< the time loop
+  /// The time loop of this process: a resumed run's own part (from first_frame), not the
+  /// interrupted process's.
+  double wall_seconds = 0.0;
+  int first_frame = 0;           ///< the frame this process's loop started at (a resumed run's)
   double regions_seconds = 0.0;  ///< selecting or reading the regions, before the loop
   double prepare_seconds = 0.0;  ///< building the Simulator: rest state, constraints, collisions
   long new_intersections = -1;   ///< at the last validated frame; -1 when never validated

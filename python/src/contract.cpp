@@ -384,6 +384,7 @@ class DictSummary final : public SummaryWriter {
  public:
   explicit DictSummary(py::dict& d) : d_(d) {}
   void add_bool(const std::string& key, bool v) override { d_[py::str(key)] = py::bool_(v); }
+  void add_null(const std::string& key) override { d_[py::str(key)] = py::none(); }
   void add_integer(const std::string& key, long long v) override { d_[py::str(key)] = py::int_(v); }
   void add_number(const std::string& key, double v) override { d_[py::str(key)] = py::float_(v); }
   void add_text(const std::string& key, const std::string& v) override { d_[py::str(key)] = py::str(v); }

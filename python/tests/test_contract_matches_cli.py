@@ -46,3 +46,31 @@ def test_result_file_equals_cli_output(cli, mesh_dir, tmp_path, mesh, options, c
                    "max_displacement", "contacts", "new_intersections"):
         expected = np.array([float(r[column]) for r in rows])
         np.testing.assert_array_equal(result.log[column], expected, err_msg=column)
+
+
+def test_summary_keys_and_target_reached_match_the_cli(cli, mesh_dir, tmp_path):
+    """summary["target_reached"] is None (JSON null) when nothing was to be reached (it was True,
+    also for a failed run), and every key the CLI's summary has beyond Python's is named in
+    Result's docstring (it named neither "outputs", "export" nor "repair")."""
+    import json
+    source = mesh_dir / "ico2.off"
+    vertices, faces = shellcontract.read_mesh(source)
+    for i, (options, cli_args, expected) in enumerate([
+            (dict(frames=3), ["--frames", "3"], None),
+            (dict(frames=40, target_volume=0.9, target_ramp=10),
+             ["--frames", "40", "--target-volume", "0.9", "--target-ramp", "10"], True)]):
+        run_dir = tmp_path / str(i)
+        run_dir.mkdir()
+        summary = run_dir / "s.json"
+        subprocess.run([cli, "run", str(source), "-o", str(run_dir / "o.off"), "--summary",
+                        str(summary), "--export-dir", str(run_dir), "--export-every", "100",
+                        "--repair", "-q"] + cli_args, check=True)
+        with open(summary) as f:
+            from_cli = json.load(f)
+        result = shellcontract.contract(vertices, faces, **options)
+        assert from_cli["target_reached"] is expected
+        assert result.summary["target_reached"] is expected
+        only_cli = set(from_cli) - set(result.summary)
+        assert {"outputs", "export", "repair"} <= only_cli
+        for key in only_cli:
+            assert '"{}"'.format(key) in shellcontract.Result.__doc__, key

@@ -217,6 +217,17 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
           }
       }
 
+    // dE_rel against a reference with next to no energy is not meaningful (ENERGY_ERROR_FLOOR).
+    double largest = 0.0;
+    for (const ErrorLadderRow& row : result.rows)
+      if (row.solver == kind && !row.failed) largest = std::max(largest, std::abs(row.energy));
+    const bool energy_meaningful = !(std::abs(ref.energy) < ENERGY_ERROR_FLOOR * largest);
+    if (!energy_meaningful) {
+      result.energy_error_not_meaningful.push_back(kind);
+      for (ErrorLadderRow& row : result.rows)
+        if (row.solver == kind) row.energy_error = std::numeric_limits<double>::quiet_NaN();
+    }
+
     if (opt.check_reference) {
       ReferenceCheck c;
       c.solver = kind;
@@ -236,7 +247,8 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
       c.failure = d.failure;
       c.hausdorff = d.hausdorff;
       c.volume_error = d.volume_error;
-      c.energy_error = d.energy_error;
+      c.energy_error =
+          energy_meaningful ? d.energy_error : std::numeric_limits<double>::quiet_NaN();
       c.smallest_rung_hausdorff = smallest;
       c.smallest_rung_volume_error = smallest_dv;
       c.converged = !c.failed && c.hausdorff < smallest;

@@ -34,21 +34,41 @@ void ring_sums(const Faces& F, const Positions& x, const Eigen::VectorXd& per_fa
 
 }  // namespace
 
+Eigen::VectorXd input_unit_mean_curvature(const Simulator& sim, const Positions& x) {
+  // H is 1/length: a length s times the normalized one has s times smaller curvature.
+  return compute_curvature(sim.rest_mesh(), x).mean / sim.normalization().scale;
+}
+
 VertexFields compute_vertex_fields(const Simulator& sim) {
   const Mesh& mesh = sim.rest_mesh();
   const Positions& x = sim.positions();
   const Faces F = faces_array(mesh);
   VertexFields out;
+  // The curvatures in the file's units, as `regions -o` writes them under the same names: the
+  // PLY's positions are the file's.
+  const double scale = sim.normalization().scale;
   const CurvatureField c = compute_curvature(mesh, x);
-  out.mean_curvature = c.mean;
-  out.gaussian_curvature = c.gaussian;
+  out.mean_curvature = c.mean / scale;
+  out.gaussian_curvature = c.gaussian / (scale * scale);
+  // The load that acts on this state (keyed pressure and air), as the next step applies it; its
+  // force on each vertex along the vertex's area-weighted normal, per area share, signed as the
+  // pressure (> 0 pushes inward). Normalized units, as -p is given.
   Positions f;
-  pressure_forces(x, F, sim.options().pressure, sim.options().pressure_model, f);
+  pressure_forces(x, F, sim.net_pressure(), sim.options().pressure_model, f);
+  Positions normal = Positions::Zero(x.rows(), 3);
+  for (Eigen::Index j = 0; j < F.rows(); ++j) {
+    const Vec3 xc = x.row(F(j, 2));
+    const Vec3 N = (Vec3(x.row(F(j, 0))) - xc).cross(Vec3(x.row(F(j, 1))) - xc);
+    for (int k = 0; k < 3; ++k) normal.row(F(j, k)) += N.transpose();
+  }
   Eigen::VectorXd unused, area;
   ring_sums(F, x, Eigen::VectorXd(), unused, area);
   out.pressure = Eigen::VectorXd::Zero(x.rows());
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    if (area(i) > 0.0) out.pressure(i) = f.row(i).norm() / (area(i) / 3.0);  // guard: isolated
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const double len = normal.row(i).norm();
+    if (area(i) > 0.0 && len > 0.0)  // guard: isolated, or normals that cancel (no direction)
+      out.pressure(i) = -f.row(i).dot(normal.row(i)) / len / (area(i) / 3.0);
+  }
   // Energy density: one-ring energy over one-ring REST area (energies are per rest area).
   Eigen::VectorXd ring_energy, rest_area;
   ring_sums(F, sim.rest_positions(), sim.face_energies(), ring_energy, rest_area);

@@ -190,6 +190,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   const FrameView view(sim);
   obs.started(view);
 
+  r.first_frame = sim.frame();
   const auto start = std::chrono::steady_clock::now();
   r.positions.resize(sim.positions().rows(), 3);  // the result's storage, see the end
   while (!sim.finished()) {

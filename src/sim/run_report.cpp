@@ -66,10 +66,16 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   w.add_integer("frames_run", r.frames_run);
   w.add_number("final_volume_ratio", r.final_volume_ratio);
   w.add_number("min_volume_ratio", r.min_volume_ratio);
-  w.add_bool("target_reached", r.target_reached);
+  // null when nothing was to be reached: true would let a failed run pass a filter on it.
+  if (options.sim.target_volume > 0.0 || options.sim.stop_volume_ratio > 0.0)
+    w.add_bool("target_reached", r.target_reached);
+  else
+    w.add_null("target_reached");
   w.add_integer("frame_target_reached", r.frame_target_reached);
   w.add_number("wall_seconds", r.wall_seconds);
-  w.add_number("mean_step_ms", r.frames_run > 0 ? 1e3 * r.wall_seconds / r.frames_run : 0.0);
+  // This process's time over this process's frames: a resumed run timed only its own part.
+  const int timed_frames = r.frames_run - r.first_frame;
+  w.add_number("mean_step_ms", timed_frames > 0 ? 1e3 * r.wall_seconds / timed_frames : 0.0);
   w.add_bool("collisions", options.sim.collisions);
   w.add_text("order_used", r.order == ConstraintOrder::Coloured ? "coloured" : "sequential");
   count("excluded_contact_pairs", r.excluded_contact_pairs);

@@ -251,6 +251,15 @@ double Simulator::pressure_at(int n) const {
   return options_.pressure_schedule.empty() ? options_.pressure : options_.pressure_schedule.at(n);
 }
 
+double Simulator::net_pressure() const {
+  const double keyed = pressure_at(frame_);
+  // The air balances an outside pressure; without one (P <= 0) there is nothing to balance.
+  if (options_.air_balance > 0.0 && keyed > 0.0)
+    return air_net_pressure(keyed, options_.air_balance,
+                            signed_volume(x_, faces_) / constraint_rest_volume_);
+  return keyed;
+}
+
 bool Simulator::finished() const { return frame_ >= options_.frames || stop_volume_reached_; }
 
 double Simulator::volume_target(int n) const {
@@ -300,11 +309,7 @@ FrameMetrics Simulator::step() {
   stop_volume_crossed_ = false;
   // Step 1 (math-spec 2): symplectic Euler with the explicit pressure force at x^n.
   const double keyed_pressure = pressure_at(frame_);
-  double pressure = keyed_pressure;
-  // The air balances an outside pressure; without one (P <= 0) there is nothing to balance.
-  if (options_.air_balance > 0.0 && keyed_pressure > 0.0)
-    pressure = air_net_pressure(keyed_pressure, options_.air_balance,
-                                signed_volume(x_, faces_) / constraint_rest_volume_);
+  const double pressure = net_pressure();
   arena_->arena.execute([&] {
     pressure_forces(x_, faces_, faces_around_, pressure, options_.pressure_model, force_);
   });

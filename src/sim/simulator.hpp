@@ -53,6 +53,10 @@ class Simulator {
   /// The pressure P of the step from frame n to n + 1: options.pressure, or its schedule's value
   /// at frame n (options.pressure_schedule).
   double pressure_at(int n) const;
+  /// The net over-pressure that acts on the current state: pressure_at(frame()) with the
+  /// enclosed air at the current volume (air_net_pressure), the P the next step applies
+  /// (> 0 pushes inward). Without the local contraction's region load.
+  double net_pressure() const;
   /// Whether a step reached options.stop_volume_ratio (the run then ends on it): its V/V0 after
   /// the collision response is at most epsilon, or at most epsilon + target_volume_tolerance
   /// where the step's prediction crossed epsilon and was projected onto it.

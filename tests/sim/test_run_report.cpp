@@ -1,0 +1,93 @@
+// The run's summary (write_run_summary) as a reader takes it: a resumed run's mean_step_ms is its
+// own time over its own frames, and target_reached has no value when nothing was to be reached.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <optional>
+#include <string>
+
+#include "shellcontract/checkpoint.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/report.hpp"
+#include "shellcontract/run.hpp"
+#include "support/memory_checkpointer.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// The top-level keys a summary writes: numbers, booleans, and the keys written as null.
+class Recorder final : public SummaryWriter {
+ public:
+  void add_bool(const std::string& k, bool v) override { bools[k] = v; }
+  void add_null(const std::string& k) override { nulls[k] = true; }
+  void add_integer(const std::string& k, long long v) override {
+    numbers[k] = static_cast<double>(v);
+  }
+  void add_number(const std::string& k, double v) override { numbers[k] = v; }
+  void add_text(const std::string&, const std::string&) override {}
+  void add_texts(const std::string&, const std::vector<std::string>&) override {}
+  void add_object(const std::string&, const std::function<void(SummaryWriter&)>&) override {}
+  std::map<std::string, double> numbers;
+  std::map<std::string, bool> bools, nulls;
+};
+
+Recorder summary_of(const RunOptions& o, const RunResult& r) {
+  Recorder w;
+  write_run_summary(w, InputReport{}, o, r, OptionSpelling::Cli);
+  return w;
+}
+
+RunOptions options_from(const std::vector<std::pair<std::string, std::string>>& given) {
+  RunOptions o;
+  for (const auto& [name, value] : given) set_run_option(o, name, value);
+  return o;
+}
+
+Mesh ico2() { return read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off"); }
+
+TEST(RunReport, AResumedRunsMeanStepIsItsOwnTimeOverItsOwnFrames) {
+  const Mesh mesh = ico2();
+  const RunOptions options = options_from({{"frames", "30"}});
+  test::MemoryCheckpointer saver(mesh, options, 20, /*stop=*/true);
+  ASSERT_EQ(run_contraction(mesh, options, nullptr, &saver).frames_run, 20);
+  ASSERT_TRUE(saver.saved.has_value());
+  test::MemoryCheckpointer resumer(&*saver.saved);
+  const RunResult r =
+      run_contraction(mesh, options_for_resume(*saver.saved, options), nullptr, &resumer);
+  ASSERT_EQ(r.status, RunStatus::Completed);
+  ASSERT_EQ(r.frames_run, 30);
+  EXPECT_EQ(r.first_frame, 20);
+  ASSERT_GT(r.wall_seconds, 0.0);
+  // This process timed frames 21 to 30 only: 10 steps, not 30.
+  EXPECT_DOUBLE_EQ(summary_of(options, r).numbers.at("mean_step_ms"), 1e3 * r.wall_seconds / 10.0);
+  // A run not resumed divides by all its frames.
+  const RunResult whole = run_contraction(mesh, options);
+  EXPECT_EQ(whole.first_frame, 0);
+  EXPECT_DOUBLE_EQ(summary_of(options, whole).numbers.at("mean_step_ms"),
+                   1e3 * whole.wall_seconds / 30.0);
+}
+
+TEST(RunReport, TargetReachedIsNullWhenNothingWasToBeReached) {
+  // A failed run without a target: "target_reached": true let it pass a filter on the key.
+  const RunOptions none = options_from({{"frames", "5"}});
+  RunResult failed;
+  failed.status = RunStatus::SimulationFailed;
+  const Recorder s = summary_of(none, failed);
+  EXPECT_EQ(s.bools.count("target_reached"), 0u);
+  EXPECT_EQ(s.nulls.count("target_reached"), 1u);
+  // With a target or a stop ratio it says whether the run reached it.
+  RunResult reached;
+  reached.target_reached = false;
+  for (const auto& given : {std::pair<std::string, std::string>{"target-volume", "0.8"},
+                            std::pair<std::string, std::string>{"stop-volume-ratio", "0.8"}}) {
+    const Recorder t = summary_of(options_from({given}), reached);
+    ASSERT_EQ(t.bools.count("target_reached"), 1u) << given.first;
+    EXPECT_FALSE(t.bools.at("target_reached")) << given.first;
+    EXPECT_EQ(t.nulls.count("target_reached"), 0u) << given.first;
+  }
+}
+
+}  // namespace
+}  // namespace shellcontract
