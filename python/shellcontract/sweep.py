@@ -22,7 +22,8 @@ import subprocess
 import sys
 import uuid
 
-from . import sweep_file, sweep_job, sweep_output, sweep_process, sweep_progress, sweep_results
+from . import (sweep_cli, sweep_file, sweep_job, sweep_output, sweep_process, sweep_progress,
+               sweep_results)
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
@@ -31,8 +32,8 @@ EXIT_INTERRUPTED = 130
 RETRIED_STATUSES = ("crashed", "killed", "timeout", sweep_job.OUTPUT_NOT_WRITTEN)
 
 
-find_cli = sweep_job.find_cli
-cli_version = sweep_job.cli_version
+find_cli = sweep_cli.find_cli
+cli_version = sweep_cli.cli_version
 
 
 class Interrupted(Exception):
@@ -206,7 +207,7 @@ _IMPORT_PROBE = "__import__('shellcontract.sweep_job').sweep_job.__file__"
 
 def _check_workers(client, cli, version, own_cli, message):
     """Every worker of an existing cluster can import the package and finds an executable of the
-    sweep's version (sweep_job.worker_cli); raises WorkersUnusable naming each one that cannot.
+    sweep's version (sweep_cli.worker_cli); raises WorkersUnusable naming each one that cannot.
     Workers that join later are checked by their first job (which then crashes, saying why)."""
     workers = sorted(client.scheduler_info().get("workers", {}))
     if not workers:
@@ -223,7 +224,7 @@ def _check_workers(client, cli, version, own_cli, message):
         else:
             usable.append(w)
     if usable:
-        described = client.run(sweep_job.describe_worker, cli, version, own_cli, workers=usable,
+        described = client.run(sweep_cli.describe_worker, cli, version, own_cli, workers=usable,
                                on_error="return")
         for w in usable:
             r = described.get(w)
@@ -369,7 +370,7 @@ def _main(argv):
         return EXIT_USAGE
     if cli is None:
         print("shellcontract sweep: cannot find the shellcontract executable (--cli PATH or "
-              "SHELLCONTRACT_CLI){}".format(sweep_job.PASSED_OVER), file=sys.stderr)
+              "SHELLCONTRACT_CLI){}".format(sweep_cli.PASSED_OVER), file=sys.stderr)
         return EXIT_USAGE
     try:
         version = cli_version(cli)

@@ -20,6 +20,7 @@ import time
 import uuid
 
 from . import sweep_output
+from .sweep_cli import WorkerError, cli_version, describe_worker, find_cli, worker_cli  # noqa: F401
 
 # Statuses of an outcome the same run would give again: the job is done. The others (a crash,
 # a kill, a timeout) are recorded too but run again by the next sweep of the file.
@@ -126,102 +127,6 @@ def wait_stopped(timeout, sweep=None):
     with _ACTIVE:
         return _ACTIVE.wait_for(lambda: not any(
             n for token, n in _active_calls.items() if sweep is None or token == sweep), timeout)
-
-
-def _layout():
-    """The generated module of a built or installed package (python/CMakeLists.txt): the CLI's
-    path from this folder and the version; None in the source tree."""
-    try:
-        from . import _layout as layout
-    except ImportError:
-        return None
-    return layout
-
-
-def find_cli(given=None):
-    """The `shellcontract` executable here: `given` (--cli) alone when given (None when it is
-    not an executable file: a path the user named is never replaced by another executable),
-    else $SHELLCONTRACT_CLI, the one built or installed with this package (<build>/shellcontract,
-    <prefix>/bin/shellcontract), then PATH, where one of another version than this package's is
-    passed over (a distribution's beside a newer install); None if none is an executable file."""
-    if given is not None:
-        ok = os.path.isfile(given) and os.access(given, os.X_OK)
-        return os.path.abspath(given) if ok else None
-    here = os.path.dirname(os.path.abspath(__file__))
-    layout = _layout()
-    candidates = [os.environ.get("SHELLCONTRACT_CLI"),
-                  os.path.join(here, layout.CLI_FROM_PACKAGE) if layout else None]
-    for c in candidates:
-        if c and os.path.isfile(c) and os.access(c, os.X_OK):
-            return os.path.abspath(c)
-    c = shutil.which("shellcontract")
-    if c and (layout is None or _version_of(c) == "shellcontract " + layout.VERSION):
-        return os.path.abspath(c)
-    if c:
-        global PASSED_OVER
-        PASSED_OVER = "; passed over {} on PATH: {}, not this package's {}".format(
-            c, _version_of(c), layout.VERSION)
-    return None
-
-
-PASSED_OVER = ""  # find_cli's note on a PATH executable of another version
-
-
-def _version_of(cli):
-    try:
-        return cli_version(cli)
-    except (OSError, subprocess.SubprocessError):
-        return None
-
-
-_VERSIONS = {}  # (path, mtime, size) -> the executable's --version
-
-
-def cli_version(cli):
-    """`cli --version`, asked once per executable file (a replaced file is asked again)."""
-    st = os.stat(cli)
-    key = (cli, st.st_mtime_ns, st.st_size)
-    if key not in _VERSIONS:
-        out = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True,
-                             timeout=60)
-        _VERSIONS[key] = out.stdout.strip()
-    return _VERSIONS[key]
-
-
-class WorkerError(RuntimeError):
-    """A worker that cannot run the sweep's jobs (no executable, another version)."""
-
-
-def worker_cli(client_cli, version, own=True):
-    """The executable a worker of an existing cluster runs. `own`: its own (find_cli: its
-    $SHELLCONTRACT_CLI, the build tree of its package, its PATH), else the client's path where
-    that exists on the worker too; not `own` (the sweep's --cli): the client's path. Its version
-    must be the sweep's (the job ids and checkpoints name it). Raises WorkerError saying what is
-    wrong."""
-    cli = find_cli() if own else None
-    if cli is None and client_cli and os.path.isfile(client_cli) and os.access(client_cli, os.X_OK):
-        cli = client_cli
-    if cli is None:
-        raise WorkerError(
-            "no shellcontract executable on this worker (its SHELLCONTRACT_CLI, its PATH, the "
-            "client's {})".format(client_cli) if own else
-            "no executable {} on this worker (--cli)".format(client_cli))
-    try:
-        found = cli_version(cli)
-    except (OSError, subprocess.SubprocessError) as e:
-        raise WorkerError("{} --version failed ({})".format(cli, e))
-    if version is not None and found != version:
-        raise WorkerError("{} is version {}, the sweep's is {}".format(cli, found, version))
-    return cli
-
-
-def describe_worker(client_cli, version, own=True):
-    """For the sweep's check of an existing cluster's workers before anything runs (Client.run):
-    (the executable this worker runs, None) or (None, what is wrong)."""
-    try:
-        return worker_cli(client_cli, version, own), None
-    except WorkerError as e:
-        return None, str(e)
 
 
 def paths(out_dir, job_id):

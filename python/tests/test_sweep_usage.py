@@ -216,21 +216,21 @@ def test_a_shellcontract_of_another_version_on_path_is_passed_over(tmp_path, mon
     # An installed package whose own CLI is missing, and a `shellcontract` of another version
     # first on PATH (a distribution's beside a newer install): its jobs would run on the other
     # version, recorded as done. The package's layout names its CLI and version (_layout.py).
-    from shellcontract import sweep_job
+    from shellcontract import sweep_cli
 
     class Layout:
         CLI_FROM_PACKAGE = str(tmp_path / "missing" / "shellcontract")
         VERSION = "0.2.0"
 
-    monkeypatch.setattr(sweep_job, "_layout", lambda: Layout)
+    monkeypatch.setattr(sweep_cli, "_layout", lambda: Layout)
     monkeypatch.delenv("SHELLCONTRACT_CLI", raising=False)
     old = _fake_cli(tmp_path / "old", "0.1.9")
     monkeypatch.setenv("PATH", str(old.parent))
-    assert sweep_job.find_cli() is None
-    assert "0.1.9" in sweep_job.PASSED_OVER and "0.2.0" in sweep_job.PASSED_OVER
+    assert sweep_cli.find_cli() is None
+    assert "0.1.9" in sweep_cli.PASSED_OVER and "0.2.0" in sweep_cli.PASSED_OVER
     same = _fake_cli(tmp_path / "same", "0.2.0")
     monkeypatch.setenv("PATH", str(same.parent))
-    assert sweep_job.find_cli() == str(same)
+    assert sweep_cli.find_cli() == str(same)
 
 
 def test_the_built_package_finds_its_own_cli(monkeypatch, cli):
@@ -238,12 +238,12 @@ def test_the_built_package_finds_its_own_cli(monkeypatch, cli):
     # SHELLCONTRACT_CLI (the installed tree's names <prefix>/bin/shellcontract the same way).
     import os
 
-    from shellcontract import sweep_job
+    from shellcontract import sweep_cli
     monkeypatch.delenv("SHELLCONTRACT_CLI", raising=False)
     monkeypatch.setenv("PATH", "/nonexistent")
-    layout = sweep_job._layout()
+    layout = sweep_cli._layout()
     if layout is None:
         pytest.skip("the package runs from the source tree (no _layout.py)")
-    assert sweep_job.find_cli() == os.path.abspath(
-        os.path.join(os.path.dirname(sweep_job.__file__), layout.CLI_FROM_PACKAGE))
-    assert os.path.isfile(sweep_job.find_cli())
+    assert sweep_cli.find_cli() == os.path.abspath(
+        os.path.join(os.path.dirname(sweep_cli.__file__), layout.CLI_FROM_PACKAGE))
+    assert os.path.isfile(sweep_cli.find_cli())

@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from shellcontract import sweep_job
+from shellcontract import sweep_cli, sweep_job
 from test_sweep import free_port, results, run_sweep, sweep_env, wait_until, write_sweep
 from test_sweep_engine import ENDLESS, kill_left_over, processes_naming
 
@@ -122,12 +122,12 @@ def test_a_worker_that_cannot_import_the_package_is_refused_not_waited_for(cli, 
 def test_worker_cli_falls_back_to_the_clients_path_and_checks_the_version(cli, monkeypatch,
                                                                            tmp_path):
     version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
-    monkeypatch.setattr(sweep_job, "find_cli", lambda given=None: None)  # none of its own
-    assert sweep_job.worker_cli(cli, version) == cli
-    with pytest.raises(sweep_job.WorkerError, match="no shellcontract executable"):
-        sweep_job.worker_cli(str(tmp_path / "missing"), version)
-    with pytest.raises(sweep_job.WorkerError, match="the sweep's is other 1.0"):
-        sweep_job.worker_cli(cli, "other 1.0")
+    monkeypatch.setattr(sweep_cli, "find_cli", lambda given=None: None)  # none of its own
+    assert sweep_cli.worker_cli(cli, version) == cli
+    with pytest.raises(sweep_cli.WorkerError, match="no shellcontract executable"):
+        sweep_cli.worker_cli(str(tmp_path / "missing"), version)
+    with pytest.raises(sweep_cli.WorkerError, match="the sweep's is other 1.0"):
+        sweep_cli.worker_cli(cli, "other 1.0")
 
 
 def test_ctrl_c_stops_the_jobs_on_the_workers_which_save(cli, mesh_dir, tmp_path, cluster):
