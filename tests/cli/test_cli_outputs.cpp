@@ -100,8 +100,11 @@ TEST_F(CliOutputs, BenchErrorCsvRecomputesAndPbdEnergyErrorIsNotMeaningful) {
       EXPECT_LT(std::strtod(c[12].c_str(), nullptr), 10.0) << c[12];
   }
   EXPECT_EQ(rungs, 4);
-  for (const auto& c : rows)
-    if (c[0] == "reference_check" && c[1] == "pbd") EXPECT_EQ(c[12], "nan");
+  for (const auto& c : rows) {
+    if (c[0] == "reference_check" && c[1] == "pbd") {
+      EXPECT_EQ(c[12], "nan");
+    }
+  }
 }
 
 }  // namespace

@@ -63,8 +63,9 @@ TEST_F(OutputCheck, AFileWithNoWriteBitIsRefusedForEveryUserRootToo) {
 TEST_F(OutputCheck, AFileWithAWriteBitIsAcceptedByTheModeRule) {
   EXPECT_NO_THROW(check_output_files({{"-o", file_with_mode("a.off", 0644)}}, {}));
   EXPECT_NO_THROW(check_output_files({{"--log", file_with_mode("b.csv", 0600)}}, {}));
-  if (::geteuid() == 0)
+  if (::geteuid() == 0) {
     EXPECT_NO_THROW(check_output_files({{"-o", file_with_mode("c.off", 0464)}}, {}));
+  }
 }
 
 }  // namespace
