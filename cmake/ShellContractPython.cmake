@@ -29,10 +29,17 @@ if(SHELLCONTRACT_BUILD_PYTHON)
 endif()
 
 # Where `cmake --install` puts the package (the module and the pure-Python files), relative to the
-# prefix: Debian's folder for Python 3 packages, on the system interpreter's path for the prefix
-# /usr. `shellcontract sweep` finds it relative to its own executable (cli/sweep.cpp), so an
-# installed tree works wherever it is installed (--prefix P) without PYTHONPATH.
-set(SHELLCONTRACT_PYTHON_INSTALL_DIR "lib/python3/dist-packages" CACHE STRING
+# prefix: lib/python3.X/dist-packages for the interpreter the module is built for, which Debian's
+# python3.X has on its path for both the prefix /usr/local (the default) and /usr (its
+# lib/python3/dist-packages is there for /usr only, so a default install did not import).
+# `shellcontract sweep` finds it relative to its own executable (cli/sweep.cpp), so an installed
+# tree works wherever it is installed (--prefix P) without PYTHONPATH.
+if(Python_VERSION_MAJOR AND Python_VERSION_MINOR)
+  set(_python_install_default "lib/python${Python_VERSION_MAJOR}.${Python_VERSION_MINOR}/dist-packages")
+else()
+  set(_python_install_default "lib/python3/dist-packages")
+endif()
+set(SHELLCONTRACT_PYTHON_INSTALL_DIR "${_python_install_default}" CACHE STRING
     "Folder (relative to the install prefix) the shellcontract Python package is installed into")
 if(IS_ABSOLUTE "${SHELLCONTRACT_PYTHON_INSTALL_DIR}" OR IS_ABSOLUTE "${CMAKE_INSTALL_BINDIR}")
   # Not relocatable: the CLI looks in the absolute folder.

@@ -344,7 +344,7 @@ def test_cli_front_runs_the_sweep_module(cli, mesh_dir, tmp_path):
 
 def test_cli_front_says_where_it_looked_for_a_missing_package(cli, mesh_dir, tmp_path):
     # The executable alone, with no package beside it (neither <dir>/python, as in the build
-    # tree, nor the install's lib/python3/dist-packages) and none on PYTHONPATH.
+    # tree, nor the install's lib/python3.X/dist-packages) and none on PYTHONPATH.
     lone = tmp_path / "bin"
     lone.mkdir()
     shutil.copy(cli, lone / "shellcontract")
