@@ -358,7 +358,10 @@ def test_cli_front_says_where_it_looked_for_a_missing_package(cli, mesh_dir, tmp
     assert r.returncode == 1, r.stderr
     assert "cannot import the Python package shellcontract" in r.stderr, r.stderr
     assert "looked for it in {}".format(lone / "python") in r.stderr, r.stderr
-    assert str(tmp_path / "lib" / "python3" / "dist-packages") in r.stderr, r.stderr
+    # The install folder: lib/python3.X/dist-packages of the interpreter the module is built for,
+    # the one running these tests.
+    site = "python{}.{}".format(*sys.version_info[:2])
+    assert str(tmp_path / "lib" / site / "dist-packages") in r.stderr, r.stderr
     assert "Traceback" not in r.stderr
 
 
