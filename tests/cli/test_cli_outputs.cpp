@@ -15,6 +15,7 @@
 
 #include "shellcontract/options.hpp"
 #include "support/cli_runner.hpp"
+#include "support/scratch_dir.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -23,17 +24,13 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_cli;
 
-class CliOutputs : public ::testing::Test {
+class CliOutputs : public test::ScratchDirTest {
  protected:
+  CliOutputs() : ScratchDirTest("shellcontract_cli_outputs_") {}
   void SetUp() override {
+    ScratchDirTest::SetUp();
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
-    dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_outputs_" + std::to_string(::getpid()) + "_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
   }
-  void TearDown() override { fs::remove_all(dir_); }
   std::string mesh(const std::string& name) { return std::string(test::MESH_DIR) + "/" + name; }
   std::string out(const std::string& name) { return (dir_ / name).string(); }
   static std::string read(const std::string& path) {
@@ -42,7 +39,6 @@ class CliOutputs : public ::testing::Test {
     s << in.rdbuf();
     return s.str();
   }
-  fs::path dir_;
 };
 
 TEST_F(CliOutputs, SummaryNumbersAreShortestAndTargetReachedIsNullWithoutATarget) {
