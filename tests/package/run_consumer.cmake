@@ -69,6 +69,13 @@ if(PYTHON_PACKAGE)
       message(FATAL_ERROR "not installed: ${package}/${f}")
     endif()
   endforeach()
+  # The Blender add-on's zip, installable as it is (docs/blender.md).
+  set(zip ${prefix}/share/shellcontract/shellcontract_blender.zip)
+  execute_process(COMMAND ${PYTHON} -m zipfile -l ${zip} RESULT_VARIABLE rc OUTPUT_VARIABLE out
+                  ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0 OR NOT out MATCHES "shellcontract_blender/__init__.py")
+    message(FATAL_ERROR "not installed, or not the add-on: ${zip} (${rc})\n${out}\n${err}")
+  endif()
   # The installed sweep finds the installed package next to its executable: no PYTHONPATH, no
   # SHELLCONTRACT_CLI, and nothing of the build tree.
   file(WRITE ${WORK_DIR}/sweep.json "{\"meshes\": [\"${MESH}\"], \"grid\": {\"frames\": [3, 4]}}")
