@@ -1,11 +1,12 @@
 """python3 -m shellcontract.sweep SWEEP.json -o DIR: many contraction runs, on Dask distributed.
 
 Every job of the sweep file is validated before any runs; then the jobs run on an embedded local
-cluster (one worker per core, a thread of this process that waits for its job's process), on an
-existing cluster (--scheduler tcp://HOST:PORT), or one slice of them serially (--shard I/N, for
-Slurm or Kubernetes job arrays). Each job is `shellcontract run` in a process of its own; its
-outcome lands whole in DIR/jobs/<id>/ and a row of DIR/results.csv and results.json. Running the
-same file again skips the finished jobs.
+cluster (one worker per core it may use, a thread of this process that waits for its job's
+process; the jobs at once share those cores), on an existing cluster (--scheduler
+tcp://HOST:PORT), or one slice of them serially (--shard I/N, for Slurm or Kubernetes job arrays).
+Each job is `shellcontract run` in a process of its own; its outcome lands whole in
+DIR/jobs/<id>/ and a row of DIR/results.csv and results.json. Running the same file again skips
+the finished jobs.
 docs/design/sweeps.md says how and why.
 
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
@@ -22,8 +23,8 @@ import subprocess
 import sys
 import uuid
 
-from . import (sweep_cli, sweep_file, sweep_job, sweep_output, sweep_process, sweep_progress,
-               sweep_results)
+from . import (sweep_cli, sweep_file, sweep_host, sweep_job, sweep_output, sweep_process,
+               sweep_progress, sweep_results)
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
@@ -121,7 +122,8 @@ def parser():
                        help="run only the I-th of N slices of the jobs, serially in this process "
                             "(job arrays: Slurm, Kubernetes indexed jobs)")
     p.add_argument("--workers", type=positive_int, default=None,
-                   help="jobs at a time on the embedded cluster (default: the cores)")
+                   help="jobs at a time on the embedded cluster (default: the cores this process "
+                        "may use)")
     p.add_argument("--job-timeout", type=job_timeout, default=None, metavar="SECONDS",
                    help="stop a job after this long (recorded as 'timeout'; a later sweep "
                         "resumes it from its checkpoint)")
@@ -279,11 +281,13 @@ def _run_dask(todo, args, cli, version, token, progress, on_record, client=None)
     import dask
     from distributed import Client
     dask.config.set(CLIENT_CONFIG)
-    cluster = None
+    cluster, threads = None, None
     own_cli = None if not args.scheduler else args.cli is None
     if client is None:
-        # The embedded workers run this machine's executable.
-        cluster = _embedded_cluster(args.workers or os.cpu_count() or 1)
+        # The embedded workers run this machine's executable, on the cores this process may use.
+        workers = args.workers or sweep_host.usable_cores()
+        threads = sweep_host.job_threads(workers, len(todo))
+        cluster = _embedded_cluster(workers)
         client = Client(cluster)
     futures = {}
     try:
@@ -304,7 +308,7 @@ def _run_dask(todo, args, cli, version, token, progress, on_record, client=None)
         submitted = client.map(sweep_job.run_job, [job.to_dict() for job in todo],
                                out_dir=args.output, cli=cli, timeout=args.job_timeout,
                                checkpoint_every=args.checkpoint_every, sweep=token,
-                               own_cli=own_cli, version=version, pure=False,
+                               own_cli=own_cli, version=version, threads=threads, pure=False,
                                # This sweep's own keys: two sweeps on one cluster with the
                                # same job (its id is the run's, not the folder's) had shared one
                                # task, whose files went to the first sweep's folder only.
@@ -360,17 +364,11 @@ def main(argv=None):
 
 
 def _main(argv):
-    if not isinstance(sys.stderr, sweep_process.PipeSafeStream):
-        sys.stderr = sweep_process.PipeSafeStream(sys.stderr)
+    sweep_host.guard_stderr()
     args = parser().parse_args(argv)
     cli = find_cli(args.cli)
-    if cli is None and args.cli is not None:
-        print("shellcontract sweep: --cli {}: not an executable file".format(args.cli),
-              file=sys.stderr)
-        return EXIT_USAGE
-    if cli is None:
-        print("shellcontract sweep: cannot find the shellcontract executable (--cli PATH or "
-              "SHELLCONTRACT_CLI){}".format(sweep_cli.PASSED_OVER), file=sys.stderr)
+    if cli is None:  # a path named by --cli or $SHELLCONTRACT_CLI is never replaced by another
+        print("shellcontract sweep: " + sweep_cli.not_found(args.cli), file=sys.stderr)
         return EXIT_USAGE
     try:
         version = cli_version(cli)

@@ -18,22 +18,27 @@ def _layout():
     return layout
 
 
+def _executable(path):
+    return os.path.abspath(path) if os.path.isfile(path) and os.access(path, os.X_OK) else None
+
+
 def find_cli(given=None):
-    """The `shellcontract` executable here: `given` (--cli) alone when given (None when it is
-    not an executable file: a path the user named is never replaced by another executable),
-    else $SHELLCONTRACT_CLI, the one built or installed with this package (<build>/shellcontract,
+    """The `shellcontract` executable here: `given` (--cli) alone when given, else
+    $SHELLCONTRACT_CLI alone when set (not empty): a path the user named is never replaced by
+    another executable, so either is None when it is not an executable file (before, a mistyped
+    $SHELLCONTRACT_CLI was passed over for the build tree's, whose results carry the same version).
+    Else the one built or installed with this package (<build>/shellcontract,
     <prefix>/bin/shellcontract), then PATH, where one of another version than this package's is
     passed over (a distribution's beside a newer install); None if none is an executable file."""
     if given is not None:
-        ok = os.path.isfile(given) and os.access(given, os.X_OK)
-        return os.path.abspath(given) if ok else None
+        return _executable(given)
+    if os.environ.get("SHELLCONTRACT_CLI"):
+        return _executable(os.environ["SHELLCONTRACT_CLI"])
     here = os.path.dirname(os.path.abspath(__file__))
     layout = _layout()
-    candidates = [os.environ.get("SHELLCONTRACT_CLI"),
-                  os.path.join(here, layout.CLI_FROM_PACKAGE) if layout else None]
-    for c in candidates:
-        if c and os.path.isfile(c) and os.access(c, os.X_OK):
-            return os.path.abspath(c)
+    built = _executable(os.path.join(here, layout.CLI_FROM_PACKAGE)) if layout else None
+    if built:
+        return built
     c = shutil.which("shellcontract")
     if c and (layout is None or _version_of(c) == "shellcontract " + layout.VERSION):
         return os.path.abspath(c)
@@ -42,6 +47,17 @@ def find_cli(given=None):
         PASSED_OVER = "; passed over {} on PATH: {}, not this package's {}".format(
             c, _version_of(c), layout.VERSION)
     return None
+
+
+def not_found(given=None):
+    """Why find_cli(given) found nothing, for the sweep's message (bad usage)."""
+    if given is not None:
+        return "--cli {}: not an executable file".format(given)
+    if os.environ.get("SHELLCONTRACT_CLI"):
+        return ("SHELLCONTRACT_CLI={}: not an executable file (no other executable is taken "
+                "instead: correct it, or unset it)".format(os.environ["SHELLCONTRACT_CLI"]))
+    return ("cannot find the shellcontract executable (--cli PATH or SHELLCONTRACT_CLI){}".format(
+        PASSED_OVER))
 
 
 PASSED_OVER = ""  # find_cli's note on a PATH executable of another version
@@ -78,6 +94,9 @@ def worker_cli(client_cli, version, own=True):
     that exists on the worker too; not `own` (the sweep's --cli): the client's path. Its version
     must be the sweep's (the job ids and checkpoints name it). Raises WorkerError saying what is
     wrong."""
+    named = os.environ.get("SHELLCONTRACT_CLI")
+    if own and named and _executable(named) is None:
+        raise WorkerError("its " + not_found())  # not replaced by the client's path either
     cli = find_cli() if own else None
     if cli is None and client_cli and os.path.isfile(client_cli) and os.access(client_cli, os.X_OK):
         cli = client_cli

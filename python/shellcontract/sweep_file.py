@@ -194,13 +194,18 @@ def load(path):
 
 def expand_meshes(path, patterns):
     """The meshes' absolute paths, each pattern's matches sorted, in the file's order; a
-    pattern that matches nothing is an error."""
+    pattern that matches nothing is an error. A pattern is relative to the sweep file's folder,
+    whose name is taken as it is: before, it was globbed with the pattern, so a folder `r[12]`
+    ran its sibling `r1`'s mesh of the same name, and a folder `run [2024]` matched nothing. A
+    pattern that names an existing file (`part[1].off`) is that file; else `*`, `?` and `[...]`
+    make it a glob."""
     base = os.path.dirname(os.path.abspath(path))
     out = []
     for pattern in patterns:
         full = pattern if os.path.isabs(pattern) else os.path.join(base, pattern)
-        if glob.has_magic(full):
-            matches = sorted(m for m in glob.glob(full) if os.path.isfile(m))
+        if glob.has_magic(pattern) and not os.path.isfile(full):
+            where = pattern if os.path.isabs(pattern) else os.path.join(glob.escape(base), pattern)
+            matches = sorted(m for m in glob.glob(where) if os.path.isfile(m))
             if not matches:
                 _fail(path, "mesh pattern {!r} matches no file".format(pattern))
         else:

@@ -184,20 +184,22 @@ def _classify(rc, timed_out, summary, messages):
 
 
 def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, own_cli=None,
-            version=None):
+            version=None, threads=None):
     """Runs one job (a Job.to_dict()) unless DIR/jobs/<id>/ holds its outcome already; returns
     its record. An interrupted job (SIGTERM/SIGINT to the child) leaves its checkpoint and no
     record; the next attempt resumes from the checkpoint.
 
     `sweep` is the sweep's token (stop_running). `own_cli` not None: a worker of an existing
     cluster, which runs worker_cli(cli, version, own_cli) (its own executable if `own_cli`, else
-    the client's `cli`, of the sweep's version); None: `cli` as it is (this machine's)."""
+    the client's `cli`, of the sweep's version); None: `cli` as it is (this machine's).
+    `threads`: the job's --threads unless its options give one (sweep_host.job_threads); None: the
+    tool's default."""
     with _ACTIVE:
         _active_calls[sweep] = _active_calls.get(sweep, 0) + 1
     try:
         if own_cli is not None:
             cli = worker_cli(cli, version, own_cli)
-        return _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep)
+        return _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads)
     finally:
         with _ACTIVE:
             _active_calls[sweep] -= 1
@@ -292,7 +294,7 @@ def clean_stale_attempts(out_dir):
     return removed
 
 
-def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep):
+def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None):
     out_dir = os.path.abspath(out_dir)
     p = paths(out_dir, job["id"])
     old = read_record(out_dir, job["id"])
@@ -304,12 +306,13 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep):
     name, lock_fd = _lock_attempt(p["work"], job["id"])
     try:
         return _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
-                            os.path.join(p["work"], name), lock_fd)
+                            os.path.join(p["work"], name), lock_fd, threads)
     finally:
         _release_attempt(p["work"], name, lock_fd)
 
 
-def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, lock_fd):
+def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, lock_fd,
+                 threads=None):
     os.makedirs(work)
     ext = os.path.splitext(job["mesh"])[1].lower() or ".off"
     mesh_name = os.path.splitext(os.path.basename(job["mesh"]))[0] + ext
@@ -320,6 +323,8 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
     if resumed:
         cmd += ["--resume", p["checkpoint"]]
     cmd += list(job["args"])
+    if threads is not None and "--threads" not in job["args"]:
+        cmd += ["--threads", str(threads)]
     start = time.monotonic()
     timed_out = False
     with open(os.path.join(work, "messages.txt"), "wb") as messages:

@@ -5,6 +5,7 @@ never share one results table."""
 
 import json
 import os
+import stat
 import time
 import uuid
 
@@ -15,10 +16,22 @@ OWNED = ("results.csv", "results.json", "jobs", ".work")
 
 def write_atomic(path, text):
     """`text` into `path` through an exclusive temporary beside it, renamed over it: the file is
-    whole or as before, and a failed write (a full disk) leaves no temporary behind."""
+    whole or as before, and a failed write (a full disk) leaves no temporary behind. A file
+    replaced keeps its permissions, as the CLI's outputs do (a results.csv made private, 0600,
+    stays private; before, it became 0666 less the umask); a new one gets 0666 less the umask.
+    Best effort: a file system without modes (FAT) refuses chmod, and the file is still written."""
     tmp = "{}.tmp-{}".format(path, uuid.uuid4().hex)
     try:
         with open(tmp, "x", newline="") as f:
+            try:
+                before = os.stat(path)
+            except OSError:
+                before = None
+            if before is not None and stat.S_ISREG(before.st_mode):
+                try:
+                    os.fchmod(f.fileno(), stat.S_IMODE(before.st_mode))
+                except OSError:
+                    pass
             f.write(text)
         os.replace(tmp, path)
     except BaseException:

@@ -23,7 +23,11 @@ def _duration(seconds):
 class Progress:
     def __init__(self, total, done=0, failed=0, stream=None, tty=None):
         self.stream = stream or sys.stderr
-        self.tty = self.stream.isatty() if tty is None else tty
+        # TERM=dumb (Emacs' compile and shell buffers) declares a terminal without the erase
+        # sequence the bar is redrawn with: it gets the plain lines, as a file does.
+        if tty is None:
+            tty = self.stream.isatty() and os.environ.get("TERM") != "dumb"
+        self.tty = tty
         self.total = total
         self.done = done
         self.failed = failed
