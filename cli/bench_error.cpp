@@ -207,12 +207,30 @@ std::string gnuplot_script(const std::string& csv, const std::string& out, const
   return g.str();
 }
 
-/// A new temporary file in the system's temporary folder holding text, created exclusively and
+/// The folder for the plot's temporary CSV, chosen before the (long) runs: $TMPDIR, else /tmp,
+/// else /var/tmp, the first that is a folder this process can write, as Python's tempfile and
+/// mkstemp-based tools fall back (a TMPDIR set to a folder that is gone is common in batch jobs).
+/// @throws UsageError when none is
+std::string temporary_folder() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("TMPDIR"); env != nullptr && *env != '\0')
+    candidates.push_back(env);
+  candidates.insert(candidates.end(), {"/tmp", "/var/tmp"});
+  for (const std::string& folder : candidates) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(folder, ec) && ::access(folder.c_str(), W_OK | X_OK) == 0)
+      return folder;
+  }
+  throw UsageError(
+      "--plot without --csv needs a temporary file, and none of $TMPDIR, /tmp, /var/tmp is a "
+      "writable folder: give --csv FILE");
+}
+
+/// A new temporary file in `folder` (temporary_folder) holding text, created exclusively and
 /// registered for removal on SIGINT and SIGTERM (mesh/file_safety.hpp), so that no file already
 /// there is replaced and none is left behind by Ctrl-C; the caller removes it and unregisters.
 /// @throws UsageError when it cannot be made or written
-RegisteredTemporary temporary_csv(const std::string& text) {
-  const std::string folder = std::filesystem::temp_directory_path().string();
+RegisteredTemporary temporary_csv(const std::string& folder, const std::string& text) {
   RegisteredTemporary t = create_registered_temporary(folder, "shellcontract_bench_error.csv");
   if (t.fd < 0) throw UsageError("cannot create a temporary file in '" + folder + "': " + std::strerror(errno));
   std::size_t done = 0;
@@ -238,6 +256,7 @@ bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>
 }  // namespace
 
 int command_bench_error(int argc, char** argv) {
+  std::string temp_folder;  // for the plot's CSV when --csv is not given
   std::string input, csv, plot, solver = "both", iterations = "1,2,5,10,20,50", substeps = "1,2,4";
   std::string collisions = "off", orders = "sequential", threads = "1";
   ErrorLadderOptions opt;
@@ -303,6 +322,7 @@ int command_bench_error(int argc, char** argv) {
       // Checked before the (long) runs, not after.
       if (!gnuplot_available())
         throw UsageError("--plot needs gnuplot, which is not installed (Debian: apt-get install gnuplot-nox)");
+      if (csv.empty()) temp_folder = temporary_folder();
     }
     // Neither output may be the mesh or the other, and both must be writable, checked before
     // the (long) runs: docs/design/output-safety.md.
@@ -365,7 +385,7 @@ int command_bench_error(int argc, char** argv) {
       // gnuplot reads the CSV; without --csv it goes to a temporary file removed afterwards.
       RegisteredTemporary temporary;
       if (data_file.empty()) {
-        temporary = temporary_csv(text);
+        temporary = temporary_csv(temp_folder, text);
         data_file = temporary.path;
       }
       const std::string title = std::filesystem::path(input).filename().string() + ": " +

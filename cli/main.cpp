@@ -1,7 +1,9 @@
 // shellcontract: contract a closed triangle mesh like a thin elastic shell under outside air
 // pressure (Sun et al., J. Software 2020). This file only dispatches to the subcommands.
+#include <cerrno>
 #include <csignal>
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <iostream>
 #include <new>
@@ -80,23 +82,26 @@ int dispatch(const std::string& command, int argc, char** argv) {
   return 1;
 }
 
+/// What a command printed on stdout is its product where it has no file (`check --json >
+/// report.json`, `regions`, `repair --json`, `bench`): a write that failed (a full disk, a file
+/// size limit, stdout closed) would otherwise end with exit 0 and an empty or cut report, which a
+/// CI step takes for a pass. So stdout is flushed here, and a failure is bad usage's exit code 1
+/// ("an output that cannot be written", docs/cli.md), or the command's own failing code.
+int finish_stdout(const std::string& command, int code) {
+  errno = 0;
+  std::cout.flush();
+  const bool written = std::cout.good() && std::fflush(stdout) == 0 && !std::ferror(stdout);
+  if (written) return code;
+  const int error = errno;
+  std::cerr << "shellcontract " << command << ": cannot write to standard output"
+            << (error != 0 ? std::string(": ") + std::strerror(error) : std::string())
+            << " (what it printed is incomplete)\n";
+  return code == 0 ? 1 : code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << USAGE;
-    return 1;
-  }
-  const std::string command = argv[1];
-  if (command == "--help" || command == "-h" || command == "help") {
-    std::cout << USAGE;
-    return 0;
-  }
-  if (command == "--version") {
-    std::cout << "shellcontract " SHELLCONTRACT_VERSION "\n";
-    return 0;
-  }
-  map_main_stack();
   // A closed pipe (stderr piped to `head`, a log filter that exited) and a file size limit
   // (`ulimit -f`, which batch systems pass on) would end the process by SIGPIPE or SIGXFSZ: the
   // run lost, its temporaries left. Ignored, the write fails instead: on stderr the messages stop
@@ -105,6 +110,20 @@ int main(int argc, char** argv) {
   // runs another program (sweep: Python) passes this on; Python ignores both itself anyway.
   std::signal(SIGPIPE, SIG_IGN);
   std::signal(SIGXFSZ, SIG_IGN);
+  if (argc < 2) {
+    std::cerr << USAGE;
+    return 1;
+  }
+  const std::string command = argv[1];
+  if (command == "--help" || command == "-h" || command == "help") {
+    std::cout << USAGE;
+    return finish_stdout(command, 0);
+  }
+  if (command == "--version") {
+    std::cout << "shellcontract " SHELLCONTRACT_VERSION "\n";
+    return finish_stdout(command, 0);
+  }
+  map_main_stack();
   // One ending for Ctrl-C, SIGTERM, SIGHUP and SIGUSR1 in every command, with or without
   // --checkpoint: the temporaries removed, exit code 130 (docs/cli.md). Installed now, not at the
   // first temporary, so that a signal before any file is written ends the same way. Where the
@@ -112,7 +131,7 @@ int main(int argc, char** argv) {
   shellcontract::set_interrupt_exit_status(130);
   shellcontract::install_interrupt_cleanup();
   try {
-    return dispatch(command, argc, argv);
+    return finish_stdout(command, dispatch(command, argc, argv));
   } catch (const std::bad_alloc&) {
     // A large enough mesh exhausts any machine; that must end with a message and an exit code,
     // not an abort. `run` says more itself (which frame, what it wrote).

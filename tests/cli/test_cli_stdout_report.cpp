@@ -1,0 +1,136 @@
+// Commands whose product is what they print (`check --json > report.json`, `regions`, `repair
+// --json`, `--version`): a write to stdout that fails (a file size limit as a batch system sets
+// it, a full disk, stdout closed) must not end with exit 0, or a CI step takes an empty report for
+// a pass (docs/cli.md, "Exit codes": an output that cannot be written is 1). And `bench error
+// --plot` without --csv, with $TMPDIR naming a folder that is gone, falls back to /tmp as
+// mkstemp-based tools do, instead of failing with exit 3 after every run.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/scratch_dir.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+/// Where the child's stdout goes.
+enum class Stdout { File, FileOverLimit, Closed };
+
+struct Ended {
+  int status = 0;
+  std::string err;  ///< its stderr
+};
+
+/// Runs the CLI with `args`, stdout as `how` says (to `out` for the files), stderr to a pipe (a
+/// file would be under the size limit too), `env` set ("NAME=VALUE"); SIGXFSZ at its default
+/// action, as a shell starts a job.
+Ended run_cli(const std::vector<std::string>& args, Stdout how, const std::string& out,
+              const std::vector<std::string>& env = {}) {
+  int fds[2];
+  if (::pipe(fds) != 0) return {};
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::dup2(fds[1], 2);
+    ::close(fds[0]);
+    if (how == Stdout::Closed) {
+      ::close(1);
+    } else {
+      const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      ::dup2(fd, 1);
+    }
+    ::signal(SIGXFSZ, SIG_DFL);
+    if (how == Stdout::FileOverLimit) {
+      const struct rlimit lim { 0, 0 };
+      ::setrlimit(RLIMIT_FSIZE, &lim);
+    }
+    for (const std::string& e : env) ::putenv(const_cast<char*>(e.c_str()));
+    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_CLI_PATH)};
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    ::execv(SHELLCONTRACT_CLI_PATH, argv.data());
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  Ended e;
+  char buf[512];
+  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;)
+    e.err.append(buf, static_cast<std::size_t>(n));
+  ::close(fds[0]);
+  ::waitpid(pid, &e.status, 0);
+  return e;
+}
+
+std::string ending(int status) {
+  return WIFEXITED(status)
+             ? "exit " + std::to_string(WEXITSTATUS(status))
+             : "ended by signal " + std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+class CliStdoutReport : public test::ScratchDirTest {
+ protected:
+  CliStdoutReport() : ScratchDirTest("shellcontract_stdout_report_") {}
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  const std::string mesh_ = std::string(test::MESH_DIR) + "/ico1.off";
+};
+
+// The control: the report written, exit 0 (so the failures below are the write's, not the
+// command's).
+TEST_F(CliStdoutReport, ReportWrittenWholeExitsZero) {
+  const Ended e = run_cli({"check", mesh_, "--json"}, Stdout::File, path("r.json"));
+  EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << ending(e.status) << '\n'
+                                                                 << e.err;
+  const std::string report = read_file(path("r.json"));
+  EXPECT_EQ(report.rfind("}\n"), report.size() - 2) << report;
+}
+
+TEST_F(CliStdoutReport, CommandsWhoseReportCannotBeWrittenExitOne) {
+  const std::vector<std::vector<std::string>> commands{
+      {"check", mesh_, "--json"}, {"check", mesh_}, {"regions", mesh_}, {"--version"}, {"--help"}};
+  for (const Stdout how : {Stdout::FileOverLimit, Stdout::Closed}) {
+    for (const auto& args : commands) {
+      const Ended e = run_cli(args, how, path("r.out"));
+      const std::string what =
+          args[0] + (how == Stdout::Closed ? " with stdout closed" : " over the file size limit");
+      EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 1)
+          << what << ": " << ending(e.status) << '\n'
+          << e.err;
+      EXPECT_NE(e.err.find("cannot write to standard output"), std::string::npos)
+          << what << ": " << e.err;
+    }
+  }
+}
+
+TEST_F(CliStdoutReport, BenchPlotFallsBackFromAMissingTmpdir) {
+  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
+    if (std::getenv("SHELLCONTRACT_STRICT_TESTS") != nullptr) FAIL() << "gnuplot is not installed";
+    GTEST_SKIP() << "gnuplot is not installed";
+  }
+  const std::string plot = path("plot.png");
+  const Ended e = run_cli({"bench", "error", mesh_, "--frames", "2", "--iterations", "1",
+                           "--substeps", "1", "--solver", "pbd", "--plot", plot, "-q"},
+                          Stdout::File, path("table.txt"), {"TMPDIR=" + path("gone")});
+  EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << ending(e.status) << '\n'
+                                                                 << e.err;
+  EXPECT_TRUE(std::filesystem::is_regular_file(plot)) << e.err;
+}
+
+}  // namespace
+}  // namespace shellcontract
