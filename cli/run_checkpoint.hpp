@@ -13,11 +13,11 @@
 #include <utility>
 #include <vector>
 
-#include "checkpoint_lock.hpp"
 #include "mesh/file_safety.hpp"
 #include "output_paths.hpp"
 #include "run_observers.hpp"
 #include "shellcontract/checkpoint.hpp"
+#include "shellcontract/checkpoint_lock.hpp"
 #include "shellcontract/error.hpp"
 #include "sim/checkpoint.hpp"
 
@@ -66,22 +66,13 @@ inline std::string resumed_run_checkpoint(const std::string& resume_path,
   }
 }
 
-/// The locks a run holds (checkpoint_lock.hpp): on the checkpoint it saves to and on the one it
-/// resumes from, if another file; a second run with either is refused.
-struct CheckpointLocks {
-  std::unique_ptr<CheckpointLock> saved, resumed;
-};
-
+/// The locks of a run (shellcontract/checkpoint_lock.hpp), its warnings printed.
 /// After check_planned_outputs. @throws UsageError (exit code 1) naming the checkpoint held
 inline CheckpointLocks lock_run_checkpoints(const std::string& checkpoint,
                                             const std::string& resume, bool saves_to_resumed) {
-  CheckpointLocks locks;
-  if (!checkpoint.empty())
-    locks.saved = lock_checkpoint(checkpoint, saves_to_resumed ? "--resume" : "--checkpoint", true);
-  std::error_code ec;
-  if (!resume.empty() &&
-      (checkpoint.empty() || !std::filesystem::equivalent(resume, checkpoint, ec)))
-    locks.resumed = lock_checkpoint(resume, "--resume", false);
+  CheckpointLocks locks = shellcontract::lock_run_checkpoints(checkpoint, resume, saves_to_resumed,
+                                                              OptionSpelling::Cli);
+  for (const std::string& w : locks.warnings) std::cerr << "warning: " << w << '\n';
   return locks;
 }
 

@@ -121,6 +121,16 @@ def contract(vertices, faces, *, callback=None, **options):
     whose face-list or weights file has changed since, saying which. Regions or weights given as
     arrays are not in the checkpoint: give the same ones again to resume (compared by their
     values: the regions as face sets with their strengths, the weights bit for bit).
+
+    As ``shellcontract run --resume FILE``, resume=FILE without checkpoint= goes on saving to
+    FILE, every checkpoint_every=N frames (by default as often as the checkpoint's run did) and
+    when the run is cancelled; a FILE that cannot be written is a UserWarning, and the run saves
+    nothing. checkpoint=OTHER saves there instead. While it runs, contract() holds the lock
+    ``.FILE.lock`` beside each checkpoint it saves to or resumes from, as the CLI does: a second
+    run naming one (another contract(), in this process or another, or a CLI run) is refused
+    before any work, ValueError ("another shellcontract run is saving to this checkpoint or
+    resuming from it"). The lock file is removed when contract() returns or raises, and by
+    SIGTERM, SIGHUP or SIGUSR1 left at their default action (docs/design/output-safety.md).
     """
     options = dict(options)
     if "lambda_" in options:  # `lambda` is a Python keyword: lambda_=0.5 works where lambda=0.5 cannot

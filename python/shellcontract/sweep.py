@@ -351,7 +351,7 @@ def _os_error_text(e):
 
 
 def main(argv=None):
-    with sweep_process.sigterm_as_ctrl_c():
+    with sweep_process.stop_signals_as_ctrl_c():
         try:
             return _main(argv)
         except KeyboardInterrupt:

@@ -1,5 +1,5 @@
 """The sweep's process, as a command: its stderr, which a reader going away does not stop, and
-SIGTERM, which ends it as Ctrl-C does (sweep.main)."""
+SIGTERM, SIGHUP and SIGUSR1, which end it as Ctrl-C does (sweep.main)."""
 
 import contextlib
 import signal
@@ -38,23 +38,35 @@ def raise_interrupt(signum, frame):
     raise KeyboardInterrupt
 
 
+# The signals that stop the sweep as Ctrl-C does, besides SIGINT: those the CLI stops on alike
+# (INTERRUPT_SIGNALS, src/mesh/file_safety.hpp; docs/cli.md, exit code 130). SIGHUP: the terminal
+# or ssh session closed; SIGUSR1: Slurm's warning before the time limit (`sbatch --signal`).
+# Before, only SIGTERM was taken: SIGHUP or SIGUSR1 ended the sweep by the signal, its tables
+# not written and its jobs' working folders left behind.
+STOP_SIGNALS = (signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1)
+
+
 @contextlib.contextmanager
-def sigterm_as_ctrl_c():
-    """SIGTERM (kill, Slurm's scancel, a container's stop) takes Ctrl-C's path: the jobs save
-    their checkpoints, the tables are written, and the sweep exits 130, as docs/cli.md says of
-    every command. Python's default ends the process by the signal, leaving the jobs' working
-    folders and tables as they were. Dask, in this process, installs no handler of its own; the
-    jobs' processes get the default back at exec. An ignored SIGTERM stays ignored, as Python
-    leaves an ignored SIGINT; the earlier handler is put back after (main called in a program)."""
-    if threading.current_thread() is not threading.main_thread():  # only there can it be set
+def stop_signals_as_ctrl_c():
+    """SIGTERM (kill, Slurm's scancel, a container's stop), SIGHUP and SIGUSR1 take Ctrl-C's
+    path: the jobs save their checkpoints, the tables are written, and the sweep exits 130, as
+    docs/cli.md says of every command. Python's default ends the process by the signal, leaving
+    the jobs' working folders and tables as they were. Dask, in this process, installs no handler
+    of its own; the jobs' processes get the default back at exec. An ignored signal stays
+    ignored, as Python leaves an ignored SIGINT; the earlier handlers are put back after (main
+    called in a program)."""
+    if threading.current_thread() is not threading.main_thread():  # only there can they be set
         yield
         return
-    old = signal.getsignal(signal.SIGTERM)
-    if old == signal.SIG_IGN:
-        yield
-        return
-    signal.signal(signal.SIGTERM, raise_interrupt)
+    old = {}
     try:
+        for sig in STOP_SIGNALS:
+            before = signal.getsignal(sig)
+            if before == signal.SIG_IGN:
+                continue
+            signal.signal(sig, raise_interrupt)
+            old[sig] = before
         yield
     finally:
-        signal.signal(signal.SIGTERM, old if old is not None else signal.SIG_DFL)
+        for sig, before in old.items():
+            signal.signal(sig, before if before is not None else signal.SIG_DFL)

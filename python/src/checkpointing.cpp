@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "arrays.hpp"
+#include "shellcontract/checkpoint_lock.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/output_files.hpp"
 
@@ -15,7 +16,8 @@ namespace {
 /// pybind11's cast said only "Unable to cast Python instance to C++ type", took True for 1 and
 /// 2**40 failed the same way.
 int every_argument(const py::handle& value) {
-  const char* expected = "checkpoint_every: expected an integer >= 1, with checkpoint=FILE";
+  const char* expected =
+      "checkpoint_every: expected an integer >= 1, with checkpoint=FILE or resume=FILE";
   if (value.is_none()) return 0;
   if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) throw py::type_error(expected);
   const long long n = PyLong_AsLongLong(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())).ptr());
@@ -25,6 +27,12 @@ int every_argument(const py::handle& value) {
   }
   if (n < 1 || n > std::numeric_limits<int>::max()) throw py::value_error(expected);
   return static_cast<int>(n);
+}
+
+void warn(const std::string& text) {
+  // stacklevel 2: the caller of shellcontract.contract (this function has no Python frame).
+  py::module_::import("warnings")
+      .attr("warn")(text, py::module_::import("builtins").attr("UserWarning"), 2);
 }
 
 }  // namespace
@@ -40,8 +48,9 @@ CheckpointArguments take_checkpoint_arguments(const py::kwargs& kwargs, py::kwar
     else if (name == "_regions_from_arrays") a.regions_from_arrays = PyObject_IsTrue(value.ptr()) == 1;
     else options[key] = value;
   }
-  if (a.every < 0 || (a.every > 0 && a.checkpoint.empty()))
-    throw py::value_error("checkpoint_every: expected an integer >= 1, with checkpoint=FILE");
+  if (a.every < 0 || (a.every > 0 && a.checkpoint.empty() && a.resume.empty()))
+    throw py::value_error(
+        "checkpoint_every: expected an integer >= 1, with checkpoint=FILE or resume=FILE");
   return a;
 }
 
@@ -58,22 +67,39 @@ PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOption
   for (RunInput& in : p.inputs)
     if (in.option == "regions" && args.regions_from_arrays) in.arrays = true;
   if (p.resume) check_checkpoint_files(*p.resume, p.inputs);
-  if (!args.checkpoint.empty()) {
-    // The files the run reads are run_inputs' (one list, which tests/sim holds to the option
-    // table); regions or weights given as arrays are no file of the caller's.
-    std::vector<NamedFile> read;
-    for (const RunInput& in : p.inputs)
-      if (!in.arrays) read.push_back({in.option, in.file});
+  // The files the run reads are run_inputs' (one list, which tests/sim holds to the option
+  // table); regions or weights given as arrays are no file of the caller's.
+  std::vector<NamedFile> read;
+  for (const RunInput& in : p.inputs)
+    if (!in.arrays) read.push_back({in.option, in.file});
+  // A resumed run saves as the interrupted one did (the CLI's `run --resume`): into the file it
+  // resumed from unless checkpoint= names another, and as often unless checkpoint_every= is
+  // given. Before, it saved nothing: a run interrupted again lost every frame since the resume.
+  const bool saves_to_resumed = args.checkpoint.empty() && p.resume;
+  p.save_path = args.checkpoint;
+  p.save_every = args.every > 0 || !p.resume ? args.every : checkpoint_save_every(*p.resume);
+  if (saves_to_resumed) {
+    try {
+      check_output_files({{"resume", args.resume}}, read);
+      p.save_path = args.resume;
+    } catch (const UsageError& e) {
+      // A read-only copy resumes, as before, saving nothing; the caller learns why.
+      warn(std::string("this run saves no checkpoint (give checkpoint=FILE): ") + e.what());
+    }
+  } else if (!args.checkpoint.empty()) {
     check_output_files({{"checkpoint", args.checkpoint}}, read);
   }
+  p.locks = lock_run_checkpoints(p.save_path, args.resume, saves_to_resumed && !p.save_path.empty(),
+                                 OptionSpelling::Python);
+  for (const std::string& w : p.locks.warnings) warn(w);
   return p;
 }
 
-PythonCheckpointer::PythonCheckpointer(const CheckpointArguments& args, const PreparedCheckpoint& prepared,
-                                       std::uint64_t mesh_hash, const RunOptions& options,
-                                       std::function<std::string()> log, std::function<bool()> cancelled)
-    : path_(args.checkpoint),
-      every_(args.every),
+PythonCheckpointer::PythonCheckpointer(const PreparedCheckpoint& prepared, std::uint64_t mesh_hash,
+                                       const RunOptions& options, std::function<std::string()> log,
+                                       std::function<bool()> cancelled)
+    : path_(prepared.save_path),
+      every_(prepared.save_every),
       resume_(prepared.resume),
       hash_(mesh_hash),
       inputs_(prepared.inputs),

@@ -1,7 +1,10 @@
 // contract(checkpoint=FILE, checkpoint_every=N, resume=FILE): the Python module's side of
-// shellcontract/checkpoint.hpp, as cli/run_checkpoint.hpp is the CLI's. The state is saved every
-// N frames and when the run is cancelled by a signal (Ctrl-C: KeyboardInterrupt); the log
-// travels as the CLI's CSV text, so that either front resumes the other's checkpoints.
+// shellcontract/checkpoint.hpp, as cli/run_checkpoint.hpp is the CLI's, and behaving as it does:
+// the state is saved every N frames and when the run is cancelled by a signal (Ctrl-C:
+// KeyboardInterrupt); resume= without checkpoint= goes on saving to the file it resumed from, as
+// often as the interrupted run did; a run holds the checkpoints' lock (checkpoint_lock.hpp), so
+// that a second run with one of them, Python's or the CLI's, is refused. The log travels as the
+// CLI's CSV text, so that either front resumes the other's checkpoints.
 #pragma once
 
 #include <pybind11/pybind11.h>
@@ -13,6 +16,7 @@
 #include <vector>
 
 #include "shellcontract/checkpoint.hpp"
+#include "shellcontract/checkpoint_lock.hpp"
 #include "shellcontract/options.hpp"
 
 namespace shellcontract::python {
@@ -23,7 +27,7 @@ namespace py = pybind11;
 struct CheckpointArguments {
   std::string checkpoint;  ///< "" : none
   std::string resume;      ///< "" : none
-  int every = 0;
+  int every = 0;           ///< 0: not given
   /// The package's flag (__init__.py): its `regions` face-list file is the arrays it was given,
   /// written to a temporary file.
   bool regions_from_arrays = false;
@@ -38,21 +42,29 @@ CheckpointArguments take_checkpoint_arguments(const py::kwargs& kwargs, py::kwar
 struct PreparedCheckpoint {
   std::shared_ptr<const Checkpoint> resume;  ///< nullptr without resume=
   std::vector<RunInput> inputs;               ///< the face list or weights, as the run starts
+  /// Where the run saves: checkpoint=, else resume= where it can be written, else "" (nowhere).
+  std::string save_path;
+  /// checkpoint_every=, else the resumed run's interval (0: only when cancelled).
+  int save_every = 0;
+  /// Held until the run ends; released (the lock files removed) when this is destroyed.
+  CheckpointLocks locks;
 };
 
 /// With resume=: reads the checkpoint, sets `options` to the resumed run's (options_for_resume)
-/// and refuses a face list or weights other than its run's (check_checkpoint_files). With
-/// checkpoint=: checks now, as the CLI checks its outputs, that the file can be written, so that
-/// a missing folder is not found at the first save, after the frames before it.
-/// @throws InputError, UsageError (ValueError in Python)
+/// and refuses a face list or weights other than its run's (check_checkpoint_files). Checks now,
+/// as the CLI checks its outputs, that the file saved to can be written, so that a missing
+/// folder is not found at the first save, after the frames before it (resume= without
+/// checkpoint= that cannot be written: a warning, and the run saves nothing, as the CLI's). Then
+/// locks the checkpoints, before the mesh is read: that is before any work.
+/// @throws InputError, UsageError (ValueError in Python; another run holding a lock among them)
 PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOptions& options);
 
 class PythonCheckpointer final : public RunCheckpointer {
  public:
   /// @param log        the log so far as the CLI's CSV text
   /// @param cancelled  whether the run is being cancelled (then it saves first)
-  PythonCheckpointer(const CheckpointArguments& args, const PreparedCheckpoint& prepared,
-                     std::uint64_t mesh_hash, const RunOptions& options, std::function<std::string()> log,
+  PythonCheckpointer(const PreparedCheckpoint& prepared, std::uint64_t mesh_hash,
+                     const RunOptions& options, std::function<std::string()> log,
                      std::function<bool()> cancelled);
   const Checkpoint* resume_from() const override { return resume_.get(); }
   bool save_due(int frame) override;

@@ -430,9 +430,9 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
     check_checkpoint_input(*prepared.resume, "the vertices and faces given", mesh);
     observer.restore_csv(checkpoint_log(*prepared.resume));
   }
-  PythonCheckpointer checkpointer(checkpoint, prepared, mesh_hash(mesh), options,
-                                  [&observer] { return observer.csv_text(); },
-                                  [&observer] { return observer.cancelled(); });
+  PythonCheckpointer checkpointer(
+      prepared, mesh_hash(mesh), options, [&observer] { return observer.csv_text(); },
+      [&observer] { return observer.cancelled(); });
   RunResult r;
   {
     const ActiveRun active;  // destroyed after the GIL is taken back

@@ -394,8 +394,10 @@ INTERRUPTED = {"meshes": ["meshes/ico3.off"], "options": {"pressure": 2, "frames
 
 
 # SIGTERM (Slurm's scancel, kill) is Ctrl-C's twin: before, it ended the sweep by the signal,
-# leaving its working folders and the tables as they were.
-@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM], ids=["SIGINT", "SIGTERM"])
+# leaving its working folders and the tables as they were. So are SIGHUP (the terminal closed)
+# and SIGUSR1 (Slurm's warning, `sbatch --signal`), as for the CLI: before, each still did.
+@pytest.mark.parametrize("sig", [signal.SIGINT, signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1],
+                         ids=["SIGINT", "SIGTERM", "SIGHUP", "SIGUSR1"])
 def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_dir, tmp_path, sig):
     path = write_sweep(tmp_path, mesh_dir, "long.json", INTERRUPTED, meshes=("ico3.off",))
     out = tmp_path / "out"

@@ -83,9 +83,11 @@ def test_a_job_saves_and_stops_when_the_process_that_started_it_dies(cli, mesh_d
 
 # SIGTERM (Slurm's scancel) as Ctrl-C, here through the tool's `sweep` command (which becomes the
 # Python sweep, the same process): before, it ended the sweep by the signal, its jobs' working
-# folders left behind and the tables not written.
-@pytest.mark.parametrize("sig,front", [(signal.SIGINT, "python"), (signal.SIGTERM, "tool")],
-                         ids=["SIGINT", "SIGTERM"])
+# folders left behind and the tables not written. Slurm's SIGUSR1 (`sbatch --signal`) alike, as
+# the CLI's `run` takes it: before, it still did.
+@pytest.mark.parametrize("sig,front", [(signal.SIGINT, "python"), (signal.SIGTERM, "tool"),
+                                       (signal.SIGUSR1, "tool")],
+                         ids=["SIGINT", "SIGTERM", "SIGUSR1"])
 def test_ctrl_c_on_the_embedded_cluster_stops_the_jobs_which_save(cli, mesh_dir, tmp_path, sig,
                                                                   front):
     # Two jobs that end only if told to, one per worker: Ctrl-C certainly finds both running.

@@ -176,30 +176,34 @@ def test_ctrl_c_while_connecting_to_a_scheduler_ends_with_130_and_no_folder(cli,
     assert not (tmp_path / "out").exists()
 
 
-def test_sigterm_is_ctrl_c_only_while_the_sweep_runs(cli, mesh_dir, tmp_path, monkeypatch, capsys):
-    """main() called in a program: SIGTERM raises KeyboardInterrupt during the sweep (the jobs
-    save, exit 130), and the program's own handler, or an ignored SIGTERM, is as it was after.
-    An interrupt before the jobs run (here while asking the executable its version) is 130 with
-    a message, not a traceback and an end by SIGINT."""
+@pytest.mark.parametrize("name", ["SIGTERM", "SIGHUP", "SIGUSR1"])
+def test_a_stop_signal_is_ctrl_c_only_while_the_sweep_runs(cli, mesh_dir, tmp_path, monkeypatch,
+                                                           capsys, name):
+    """main() called in a program: SIGTERM, SIGHUP and SIGUSR1 (the CLI's stop signals) raise
+    KeyboardInterrupt during the sweep (the jobs save, exit 130), and the program's own handler,
+    or an ignored signal, is as it was after. An interrupt before the jobs run (here while asking
+    the executable its version) is 130 with a message, not a traceback and an end by SIGINT.
+    Before, SIGHUP and SIGUSR1 kept their default, which ends the sweep by the signal."""
     import signal
     from shellcontract import sweep, sweep_process
+    sig = getattr(signal, name)
     path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
     seen = []
 
     def version(cli):
-        seen.append(signal.getsignal(signal.SIGTERM))
+        seen.append(signal.getsignal(sig))
         raise KeyboardInterrupt
 
     monkeypatch.setattr(sweep, "cli_version", version)
     own = lambda signum, frame: None  # noqa: E731
     for before in (own, signal.SIG_IGN, signal.SIG_DFL):
-        signal.signal(signal.SIGTERM, before)
+        signal.signal(sig, before)
         try:
             assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli]) == 130
-            assert signal.getsignal(signal.SIGTERM) == before
+            assert signal.getsignal(sig) == before
             assert "shellcontract sweep: interrupted" in capsys.readouterr().err
         finally:
-            signal.signal(signal.SIGTERM, signal.SIG_DFL)
+            signal.signal(sig, signal.SIG_DFL)
     assert seen == [sweep_process.raise_interrupt, signal.SIG_IGN, sweep_process.raise_interrupt]
     assert not (tmp_path / "out").exists()
 

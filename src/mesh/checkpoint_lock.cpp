@@ -1,4 +1,4 @@
-#include "checkpoint_lock.hpp"
+#include "shellcontract/checkpoint_lock.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -8,13 +8,12 @@
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
-#include <iostream>
 
 #include "mesh/file_safety.hpp"
 #include "mesh/output_check.hpp"
 #include "sim/checkpoint.hpp"
 
-namespace shellcontract::cli {
+namespace shellcontract {
 
 namespace fs = std::filesystem;
 
@@ -40,7 +39,8 @@ CheckpointLock::~CheckpointLock() {
 }
 
 std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
-                                                const std::string& option, bool saves) {
+                                                const std::string& option, bool saves,
+                                                std::vector<std::string>& warnings) {
   const std::string lock = checkpoint_lock_path(checkpoint);
   // A lock file removed by the run that held it, between this run's open and its flock, is
   // locked in vain: taken again, until the file locked is the one under the name.
@@ -69,10 +69,12 @@ std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
                 quoted_path(lock) +
                 "); two runs with one checkpoint would resume into each other's state: wait "
                 "for it to end" +
-                (option == "--checkpoint" ? ", or choose another --checkpoint" : ""));
-      std::cerr << "warning: " << option << ' ' << quoted_path(checkpoint)
-                << ": the file system takes no lock (" << file_error_text(e)
-                << "): a second run with this checkpoint would not be refused\n";
+                (saves && option.find("resume") == std::string::npos
+                     ? ", or choose another " + option
+                     : std::string()));
+      warnings.push_back(option + ' ' + quoted_path(checkpoint) +
+                         ": the file system takes no lock (" + file_error_text(e) +
+                         "): a second run with this checkpoint would not be refused");
       ::unlink(lock.c_str());
       return nullptr;
     }
@@ -86,4 +88,19 @@ std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
               "cannot take its lock file " + quoted_path(lock) + " (it keeps being replaced)");
 }
 
-}  // namespace shellcontract::cli
+CheckpointLocks lock_run_checkpoints(const std::string& checkpoint, const std::string& resume,
+                                     bool saves_to_resumed, OptionSpelling spelling) {
+  const bool cli = spelling == OptionSpelling::Cli;
+  const std::string checkpoint_option = cli ? "--checkpoint" : "checkpoint";
+  const std::string resume_option = cli ? "--resume" : "resume";
+  CheckpointLocks locks;
+  if (!checkpoint.empty())
+    locks.saved = lock_checkpoint(checkpoint, saves_to_resumed ? resume_option : checkpoint_option,
+                                  true, locks.warnings);
+  std::error_code ec;
+  if (!resume.empty() && (checkpoint.empty() || !fs::equivalent(resume, checkpoint, ec)))
+    locks.resumed = lock_checkpoint(resume, resume_option, false, locks.warnings);
+  return locks;
+}
+
+}  // namespace shellcontract

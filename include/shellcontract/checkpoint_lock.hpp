@@ -1,0 +1,75 @@
+// Two runs and one checkpoint (docs/design/output-safety.md): a run that saves to a checkpoint,
+// or resumes from one, holds a lock for that path, so that a second run naming it is refused
+// before any work. Without it two runs saved their states into one file in turn, and resuming
+// one of them silently continued the other (its options, its result). One lock for both front
+// ends: the CLI's `run --checkpoint/--resume` and Python's contract(checkpoint=, resume=) meet
+// it alike, in one process or in two.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shellcontract/options.hpp"
+
+namespace shellcontract {
+
+/// The file a lock for `checkpoint` is taken on: ".<its name>.lock" in its folder. The
+/// checkpoint itself is replaced by a rename at every save, so a lock on it would stay with the
+/// old file; the lock file is stable, and a lock on it is seen by every run that reaches that
+/// folder, whatever path it is spelled with (a symbolic link to the folder, a bind mount, another
+/// node's NFS mount where the file system passes flock on).
+std::string checkpoint_lock_path(const std::string& checkpoint);
+
+/// Held while a run saves to or resumes from a checkpoint; on release the lock file is removed
+/// (still locked, so that no second run takes it in between). A process ended by SIGKILL leaves
+/// the lock file, unlocked: the next run takes it.
+class CheckpointLock {
+ public:
+  CheckpointLock(int fd, std::string path, int slot)
+      : fd_(fd), path_(std::move(path)), slot_(slot) {}
+  ~CheckpointLock();
+  CheckpointLock(const CheckpointLock&) = delete;
+  CheckpointLock& operator=(const CheckpointLock&) = delete;
+
+ private:
+  int fd_;
+  std::string path_;
+  int slot_;
+};
+
+/// Locks `checkpoint` (after its outputs are checked: its folder exists and takes new files).
+/// The lock file is a registered temporary (mesh/file_safety.hpp): the interrupt handler removes
+/// it too, so a signal that ends the process at once (the CLI's second Ctrl-C; in a Python
+/// process, a SIGTERM, SIGHUP or SIGUSR1 left at its default action) leaves none. On a file
+/// system without locks (flock fails with other than EWOULDBLOCK) the run goes on unlocked, and
+/// `warnings` says so.
+/// @param option  how messages name the path: "--checkpoint" or "--resume" (Python:
+///                "checkpoint", "resume")
+/// @param saves   whether the run saves to it; a checkpoint only resumed from whose folder this
+///                run cannot write is locked only if a lock file is there (else nullptr)
+/// @return nullptr when the file system takes no locks
+/// @throws UsageError (exit code 1, Python's ValueError) when another run holds the lock, or the
+///         lock file cannot be made
+std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
+                                                const std::string& option, bool saves,
+                                                std::vector<std::string>& warnings);
+
+/// The locks a run holds: on the checkpoint it saves to and on the one it resumes from, if
+/// another file; a second run with either is refused.
+struct CheckpointLocks {
+  std::unique_ptr<CheckpointLock> saved, resumed;
+  std::vector<std::string> warnings;  ///< a file system that takes no locks
+};
+
+/// Takes both locks of a run, by the front end's option names (spelling).
+/// @param checkpoint        where the run saves ("" : nowhere)
+/// @param resume            the checkpoint it resumes from ("" : none)
+/// @param saves_to_resumed  `checkpoint` is `resume`, not given by its own option (a resumed run
+///                          that goes on saving where it resumed from): named as the latter
+/// @throws UsageError naming the checkpoint held
+CheckpointLocks lock_run_checkpoints(const std::string& checkpoint, const std::string& resume,
+                                     bool saves_to_resumed, OptionSpelling spelling);
+
+}  // namespace shellcontract
