@@ -12,6 +12,8 @@
 
 #include "commands.hpp"
 #include "mesh/file_safety.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/version.hpp"
 
 namespace {
 
@@ -119,9 +121,17 @@ int main(int argc, char** argv) {
     std::cout << USAGE;
     return finish_stdout(command, 0);
   }
-  if (command == "--version") {
-    std::cout << "shellcontract " SHELLCONTRACT_VERSION "\n";
-    return finish_stdout(command, 0);
+  try {
+    // A mistyped SHELLCONTRACT_KERNELS is refused before anything runs, not taken as "auto".
+    if (command == "--version") {
+      const std::string identity = shellcontract::tool_identity();
+      std::cout << "shellcontract " << identity << '\n';
+      return finish_stdout(command, 0);
+    }
+    shellcontract::kernel_class();
+  } catch (const shellcontract::UsageError& e) {
+    std::cerr << "shellcontract: " << e.what() << '\n';
+    return 1;
   }
   map_main_stack();
   // One ending for Ctrl-C, SIGTERM, SIGHUP and SIGUSR1 in every command, with or without

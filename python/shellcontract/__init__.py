@@ -32,7 +32,10 @@ __all__ = ["Option", "Result", "MeshError", "contract", "frames", "options", "ch
 # A ValueError for a mesh refused because of some of its faces, with their indices as `faces`
 # (a list of int); `except ValueError` catches it as before.
 MeshError = _core.MeshError
-__version__ = _core.__version__  # what `shellcontract --version` prints and checkpoints name
+# The build, "0.2.0+g0123456789ab", and the kernels of this machine, "avx2" or "scalar": what
+# `shellcontract --version` prints and checkpoints name (docs/python.md).
+__version__ = _core.__version__
+kernels = _core.kernels
 
 Option = collections.namedtuple("Option", "name default help cli_name")
 Option.__doc__ = "One run option: Python name, default as text ('' when unset), help, CLI name."

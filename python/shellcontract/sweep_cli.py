@@ -40,7 +40,7 @@ def find_cli(given=None):
     if built:
         return built
     c = shutil.which("shellcontract")
-    if c and (layout is None or _version_of(c) == "shellcontract " + layout.VERSION):
+    if c and (layout is None or _release_of(_version_of(c)) == layout.VERSION):
         return os.path.abspath(c)
     if c:
         global PASSED_OVER
@@ -61,6 +61,13 @@ def not_found(given=None):
 
 
 PASSED_OVER = ""  # find_cli's note on a PATH executable of another version
+
+
+def _release_of(version):
+    """The release in `--version`'s text: "0.2.0" of "shellcontract 0.2.0+g0123456789ab (avx2
+    kernels)" (the build and kernels after it are the job ids' to tell apart); None if not so."""
+    words = (version or "").split()
+    return words[1].split("+")[0] if len(words) >= 2 and words[0] == "shellcontract" else None
 
 
 def _version_of(cli):

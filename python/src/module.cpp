@@ -25,6 +25,7 @@
 #include "shellcontract/options.hpp"
 #include "shellcontract/regions.hpp"
 #include "shellcontract/validation.hpp"
+#include "shellcontract/version.hpp"
 
 namespace shellcontract::python {
 namespace {
@@ -216,7 +217,10 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
 }  // namespace shellcontract::python
 
 PYBIND11_MODULE(_core, m) {
-  m.attr("__version__") = SHELLCONTRACT_VERSION;
+  // The build and this machine's kernels (shellcontract/version.hpp); a mistyped
+  // SHELLCONTRACT_KERNELS fails the import with its message.
+  m.attr("__version__") = shellcontract::build_version();
+  m.attr("kernels") = shellcontract::kernel_class();
   namespace py = pybind11;
   using namespace shellcontract;
   using namespace shellcontract::python;

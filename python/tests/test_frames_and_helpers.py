@@ -262,7 +262,10 @@ def test_the_result_repr_names_only_what_can_be_read(ico2):
 def test_the_version_is_the_cli_s(cli):
     # Before: no __version__, though checkpoints are refused for "another version".
     out = subprocess.run([cli, "--version"], capture_output=True, text=True, check=True).stdout.split()
-    assert shellcontract.__version__ == out[-1]
+    # "shellcontract BUILD (KERNELS kernels)": the build and the kernels are the module's too.
+    assert out[0] == "shellcontract"
+    assert shellcontract.__version__ == out[1]
+    assert out[2:] == ["(" + shellcontract.kernels, "kernels)"]
 
 
 def test_regions_refuses_an_option_given_by_both_spellings(mesh_dir):

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/kernels.hpp"
+
 // The AVX2 path needs GCC's vector operators on __m256d, its target pragma and x86-64 (as
 // pbd/constraint_batches.cpp); other compilers get the scalar functions.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
@@ -210,7 +212,7 @@ void cull_avx2(CcdPrimitive kind, const double* x0, const double* x1, const std:
 
 bool cull_batch_avx2_available() {
 #if SHELLCONTRACT_CULL_AVX2
-  static const bool available = __builtin_cpu_supports("avx2");
+  static const bool available = detail::vector_kernels_allowed() && __builtin_cpu_supports("avx2");
   return available;
 #else
   return false;

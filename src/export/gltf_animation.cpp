@@ -1,5 +1,3 @@
-#include "shellcontract/export.hpp"
-
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -15,7 +13,9 @@
 #include "export/gltf_primitives.hpp"
 #include "export/gltf_vertices.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/export.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/version.hpp"
 #include "sim/fields.hpp"
 
 namespace shellcontract {
@@ -171,7 +171,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   const gltf::VertexSplit split = gltf::split_vertices(a);
   tinygltf::Model model;
   model.asset.version = "2.0";
-  model.asset.generator = "shellcontract";
+  model.asset.generator = std::string("shellcontract ") + build_version();  // which build wrote it
   BufferBuilder bb(model, buffer_capacity(a, split.source.size()));
 
   // The primitives' indices first (a single primitive's file is laid out as before materials

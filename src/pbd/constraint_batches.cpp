@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/kernels.hpp"
 #include "pbd/batch_lanes.hpp"
 
 namespace shellcontract {
@@ -266,7 +267,8 @@ ColouredBatches<IsometricBatch> make_isometric_batches(
 bool batch_avx2_available() {
 #if SHELLCONTRACT_BATCH_AVX2
   // Checked once: libgcc's cpuid test, which also requires the OS to save the YMM registers.
-  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  static const bool available = detail::vector_kernels_allowed() &&
+                                __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
   return available;
 #else
   return false;

@@ -10,11 +10,8 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
+#include "shellcontract/version.hpp"
 #include "sim/simulator.hpp"
-
-#ifndef SHELLCONTRACT_VERSION
-#define SHELLCONTRACT_VERSION "unknown"
-#endif
 
 namespace shellcontract {
 namespace {
@@ -184,7 +181,12 @@ std::string describe(const OptionValues& o, const std::string& name) {
 
 }  // namespace
 
-const char* checkpoint_tool_version() { return SHELLCONTRACT_VERSION; }
+// The build and the kernels (shellcontract/version.hpp): a checkpoint resumed by another build,
+// or on a CPU whose kernels round otherwise, would continue into a result that is neither run's.
+const char* checkpoint_tool_version() {
+  static const std::string identity = tool_identity();
+  return identity.c_str();
+}
 
 std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
   const auto* p = static_cast<const unsigned char*>(data);
@@ -325,7 +327,7 @@ RunOptions options_for_resume(const Checkpoint& c, const RunOptions& command_lin
 void check_checkpoint_input(const Checkpoint& c, const std::string& path, const Mesh& mesh) {
   if (c.version != checkpoint_tool_version())
     throw InputError("checkpoint written by shellcontract " + c.version + ", this is " +
-                     checkpoint_tool_version() + ": resume it with that version");
+                     checkpoint_tool_version() + ": resume it with that build and kernels");
   if (mesh_hash(mesh) != c.input_hash)
     throw InputError("the checkpoint is of another input: " + path + " is not the mesh " +
                      c.input + " it was written for (or that file has changed)");
@@ -477,7 +479,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (c.version != checkpoint_tool_version())
     throw InputError("checkpoint " + printable(path) + " written by shellcontract " +
                      printable(c.version, 60) + ", this is " + checkpoint_tool_version() +
-                     ": resume it with that version");
+                     ": resume it with that build and kernels");
   check_checkpoint_fields(c, path);
   c.path = path;
   return c;

@@ -1,11 +1,12 @@
 // The summary and the log row of a run, for every front end (run_report.hpp).
-#include "shellcontract/report.hpp"
-
 #include <iomanip>
 #include <sstream>
 
+#include "core/kernels.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/report.hpp"
 #include "shellcontract/run.hpp"
+#include "shellcontract/version.hpp"
 
 namespace shellcontract {
 
@@ -52,6 +53,9 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
     w.add_text("input", files->input);
     w.add_text("output", files->output);
   }
+  // Which build and kernels made the result (shellcontract/version.hpp): enough to rerun it.
+  w.add_text("version", build_version());
+  w.add_text("kernels", detail::kernels_in_use());
   count("vertices", report.vertices);
   count("faces", report.faces);
   count("components", report.components);

@@ -7,6 +7,7 @@
 // cuts it to the exact pairs with confirm_keys, as on AVX-512. The portable loop it replaces tests
 // 4 SSE2 lanes, writes a mask per item, scans it, and gathers each hit's exact boxes again.
 #include "collision/broad_phase/grid.hpp"
+#include "core/kernels.hpp"
 
 #if SHELLCONTRACT_GRID_AVX512
 #include <immintrin.h>
@@ -233,7 +234,8 @@ void grid_chunk_avx2(const GridPrimitives& prim, const std::uint32_t* start,
 
 bool grid_avx2_available() {
 #if SHELLCONTRACT_GRID_AVX512
-  static const bool available = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
+  static const bool available = detail::vector_kernels_allowed() &&
+                                __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
   return available;
 #else
   return false;

@@ -1,6 +1,7 @@
 // The Grid method's AVX-512 cell loop (GCC on x86-64; chosen at run time, see
 // grid_avx512_available), and the check of the CPU.
 #include "collision/broad_phase/grid.hpp"
+#include "core/kernels.hpp"
 
 #if SHELLCONTRACT_GRID_AVX512
 #include <immintrin.h>
@@ -368,8 +369,9 @@ template void grid_chunk_avx512<false>(const GridPrimitives&, const std::uint32_
 
 bool grid_avx512_available() {
 #if SHELLCONTRACT_GRID_AVX512
-  static const bool available =
-      __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl");
+  static const bool available = detail::vector_kernels_allowed() &&
+                                __builtin_cpu_supports("avx512f") &&
+                                __builtin_cpu_supports("avx512vl");
   return available;
 #else
   return false;
