@@ -172,8 +172,11 @@ int command_run(int argc, char** argv) {
     planned.push_back({"-o", output});
     if (!log_path.empty()) planned.push_back({"--log", log_path});
     if (!summary_path.empty()) planned.push_back({"--summary", summary_path});
-    if (!checkpoint_path.empty())
-      planned.push_back({saves_to_resumed ? "--resume" : "--checkpoint", checkpoint_path});
+    if (!checkpoint_path.empty()) {
+      const std::string option = saves_to_resumed ? "--resume" : "--checkpoint";
+      planned.push_back({option, checkpoint_path});
+      planned.push_back({option + "'s log", checkpoint_log_path(checkpoint_path)});
+    }
     if (!fields_prefix.empty()) {
       planned.push_back({"--fields", fields_prefix + "_start.ply"});
       planned.push_back({"--fields", fields_prefix + "_end.ply"});

@@ -57,7 +57,10 @@ inline std::string checkpoint_input(const Checkpoint& c, const std::string& path
 inline std::string resumed_run_checkpoint(const std::string& resume_path,
                                           const std::vector<PlannedOutput>& inputs) {
   try {
-    check_planned_outputs(OutputPlan{{{"--resume", resume_path}}, inputs, {}});
+    check_planned_outputs(OutputPlan{
+        {{"--resume", resume_path}, {"--resume's log", checkpoint_log_path(resume_path)}},
+        inputs,
+        {}});
     return resume_path;
   } catch (const UsageError& e) {
     std::cerr << "warning: this run saves no checkpoint (give --checkpoint FILE): " << e.what()
@@ -89,6 +92,7 @@ class CliCheckpointer final : public RunCheckpointer {
   /// @param every   frames between saves (0: only on a signal)
   /// @param resume  the checkpoint the run continues from, or nullptr
   /// @param inputs  run_inputs of the run (its face list or weights file), for the checkpoint
+  /// @param log     the CSV log, whose text each save appends to beside the checkpoint
   CliCheckpointer(std::string path, int every, const Checkpoint* resume, std::string input,
                   std::uint64_t input_hash, std::vector<RunInput> inputs, const RunOptions& options,
                   const CsvLog& log)
@@ -99,7 +103,7 @@ class CliCheckpointer final : public RunCheckpointer {
         hash_(input_hash),
         inputs_(std::move(inputs)),
         options_(options),
-        log_(log) {
+        log_file_(path_, log.text(), resume) {
     // With or without a checkpoint: the run stops after its step and says at which frame, and
     // what it leaves (run_interrupt.hpp); the default ending (main.cpp) exited 130 without a
     // word. A signal ignored (a background job of a script) stays ignored. SIGHUP and SIGUSR1
@@ -126,8 +130,9 @@ class CliCheckpointer final : public RunCheckpointer {
 
   void save(const SavedRun& run) override {
     try {
-      write_checkpoint(path_, run, options_,
-                       CheckpointInfo{input_, hash_, log_.text(), inputs_, every_});
+      // The log beside the checkpoint, appended to: each save writes the lines since the last.
+      write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, {}, inputs_, every_},
+                       log_file_);
       saved_frame_ = frame_;
     } catch (const UsageError& e) {
       // The run goes on without it (a full disk should not cost the run); said once here, and
@@ -186,7 +191,7 @@ class CliCheckpointer final : public RunCheckpointer {
   std::uint64_t hash_;
   std::vector<RunInput> inputs_;
   RunOptions options_;
-  const CsvLog& log_;
+  CheckpointLogFile log_file_;  ///< CsvLog's text, kept beside the checkpoint
   int frame_ = 0;  ///< the frame of the last save_due, which save() saves
   int saved_frame_ = -1;
   int failures_ = 0;  ///< saves that failed

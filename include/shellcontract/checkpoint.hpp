@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shellcontract/mesh.hpp"
@@ -28,7 +29,9 @@ inline constexpr const char* ARRAYS_INPUT = "<arrays>";
 std::uint64_t mesh_hash(const Mesh& mesh);
 
 /// Reads a checkpoint file.
-/// @throws InputError naming the file for a missing, truncated or corrupted checkpoint
+/// @throws InputError naming the file for a missing, truncated or corrupted checkpoint, or one
+///         whose log beside it (format 4, CheckpointLogFile) is missing, shorter than recorded
+///         or not the one it was saved with
 std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path);
 
 /// The frame the checkpoint was saved at (the resumed run goes on with the next one).
@@ -95,6 +98,57 @@ struct CheckpointInfo {
 /// @throws UsageError if the file cannot be written
 void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,
                       const CheckpointInfo& info);
+
+/// The file beside a checkpoint that holds its caller's log when the caller keeps it there
+/// (CheckpointLogFile): "PATH.log". A checkpoint saved so is resumed only with that file.
+std::string checkpoint_log_path(const std::string& checkpoint);
+
+/// A caller's log kept beside the checkpoint (checkpoint_log_path), not in it: each save appends
+/// the lines added since the last one there, and the checkpoint records the length of the log it
+/// goes with and a hash of it (format 4). A log held in every checkpoint made each save as large
+/// as the run so far, and a long run's saves cost the square of its frames.
+/// The pair is consistent at every moment: the file beside is only appended to (after cutting
+/// it back to the length the checkpoint in place records), before the checkpoint is renamed into
+/// place, so a process ending between the two leaves a log longer than recorded, which the
+/// reader cuts. A file beside that this run has not written (another run's, or one the
+/// checkpoint in place may still need) is never changed: the first save then holds the log
+/// itself (as formats 1 to 3 did), and only the next one starts the file beside anew.
+class CheckpointLogFile {
+ public:
+  /// @param checkpoint  where the run saves
+  /// @param log         the caller's whole log, which only grows while the run lasts (lines
+  ///                    appended); read at each save
+  /// @param resumed     the checkpoint the run continues from (nullptr: none); when it is the
+  ///                    file `checkpoint` with its log beside, the first save appends to that log
+  CheckpointLogFile(const std::string& checkpoint, const std::string& log,
+                    const Checkpoint* resumed);
+
+  // For write_checkpoint: whether this save puts the log beside; append() makes the file beside
+  // hold the whole log (returns its length and FNV-1a); committed() after the checkpoint was
+  // renamed into place.
+  bool beside() const { return state_ != State::Unknown; }
+  const std::string& log() const { return log_; }
+  std::pair<std::uint64_t, std::uint64_t> append();
+  void committed();
+
+ private:
+  enum class State {
+    Unknown,  ///< the checkpoint in place may need the file beside as it is: not touched
+    Free,     ///< the checkpoint in place holds its log: the file beside is started anew
+    Ours      ///< the checkpoint in place needs the first `synced_` bytes of the file beside
+  };
+  std::string path_;  ///< checkpoint_log_path
+  const std::string& log_;
+  State state_ = State::Unknown;
+  std::uint64_t synced_ = 0, hash_ = 0;  ///< length and FNV-1a of the log in the checkpoint
+  std::uint64_t pending_ = 0, pending_hash_ = 0;  ///< those of the save under way
+};
+
+/// write_checkpoint with the caller's log in `log` (its CheckpointInfo::log is not read).
+/// @throws UsageError if the checkpoint or the file beside it cannot be written (the checkpoint
+///         in place and its log are then still a consistent pair)
+void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,
+                      const CheckpointInfo& info, CheckpointLogFile& log);
 
 /// Checkpointing a run (run_contraction's last argument).
 class RunCheckpointer {

@@ -384,10 +384,12 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
                               json.dumps(record, indent=1, sort_keys=True) + "\n")
     _publish(work, p["final"], out_dir)
     if status in FINAL_STATUSES:
-        try:
-            os.remove(p["checkpoint"])
-        except OSError:
-            pass
+        # The checkpoint and the log the CLI keeps beside it (`checkpoint_log_path`: FILE.log).
+        for path in (p["checkpoint"], p["checkpoint"] + ".log"):
+            try:
+                os.remove(path)
+            except OSError:
+                pass
     return record
 
 

@@ -183,6 +183,8 @@ def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_pa
     if left:
         assert "that a killed sweep left" in again.stderr, again.stderr
     assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"], left
+    # Every job finished: its checkpoint is removed, and the log the CLI kept beside it.
+    assert [p.name for p in (out / ".work" / "checkpoints").iterdir()] == []
 
 
 def runs_reading(folder):

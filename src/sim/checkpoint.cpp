@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
-#include <memory>
 #include <type_traits>
 
 #include "mesh/file_safety.hpp"
@@ -11,7 +10,6 @@
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/version.hpp"
-#include "sim/simulator.hpp"
 
 namespace shellcontract {
 namespace {
@@ -24,7 +22,10 @@ namespace {
 // the tool's version did not change with it, so checkpoints of format 1 can be waiting to be
 // resumed (a sweep's); check_checkpoint_files refuses them only where there is a file to check.
 // Format 3 added the saving run's interval between saves after the log (format 2 reads as 0).
+// Format 4 is format 3 with the log's length and FNV-1a in place of the log, which is in the
+// file beside (CheckpointLogFile); a checkpoint with its log in it is still written as format 3.
 constexpr char MAGIC[] = "SHELLCONTRACT-CHECKPOINT\n";
+constexpr std::uint32_t FORMAT_LOG_BESIDE = 4;
 constexpr std::uint32_t FORMAT = 3;
 constexpr std::uint32_t FORMAT_WITHOUT_SAVE_EVERY = 2;
 constexpr std::uint32_t FORMAT_WITHOUT_INPUTS = 1;
@@ -341,34 +342,10 @@ void check_checkpoint_fits(const Checkpoint& c, const Mesh& mesh, const RunOptio
                      differ);
 }
 
-std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path) {
-  return std::make_shared<const Checkpoint>(read_checkpoint(path));
-}
-
-int checkpoint_frame(const Checkpoint& c) { return c.sim.frame; }
-const std::string& checkpoint_log(const Checkpoint& c) { return c.log; }
-int checkpoint_save_every(const Checkpoint& c) { return c.save_every; }
-
-void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,
-                      const CheckpointInfo& info) {
-  Checkpoint c;
-  c.version = checkpoint_tool_version();
-  c.input = info.input;
-  c.input_hash = info.input_hash;
-  c.inputs = info.inputs;
-  c.given = given_options(options);
-  c.resolved = resolved_options(options);
-  c.sim = run.sim.state();
-  c.progress = run.progress;
-  c.log = info.log;
-  c.save_every = info.save_every;
-  write_checkpoint(path, c);
-}
-
-void write_checkpoint(const std::string& path, const Checkpoint& c) {
+void write_checkpoint(const std::string& path, const Checkpoint& c, const LogBeside* beside) {
   Writer w;
   w.bytes().append(MAGIC, sizeof MAGIC - 1);
-  w.pod(FORMAT);
+  w.pod(beside ? FORMAT_LOG_BESIDE : FORMAT);
   w.text(c.version);
   w.text(c.input);
   w.pod(c.input_hash);
@@ -403,7 +380,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c) {
   w.text(p.message);
   w.pod(static_cast<std::int64_t>(p.frame_target_reached));
   w.pod(p.last_pairs);
-  w.text(c.log);
+  if (beside) {
+    w.pod(beside->size);
+    w.pod(beside->hash);
+  } else {
+    w.text(c.log);
+  }
   w.pod(static_cast<std::int64_t>(c.save_every));
   w.pod(fnv1a(w.bytes().data(), w.bytes().size()));
   write_text_atomic(path, w.bytes());
@@ -428,7 +410,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (fnv1a(bytes.data(), bytes.size() - sizeof stored) != stored)
     r.fail("its checksum does not match (truncated or damaged)");
   const auto format = r.pod<std::uint32_t>();
-  if (format != FORMAT && format != FORMAT_WITHOUT_SAVE_EVERY && format != FORMAT_WITHOUT_INPUTS)
+  if (format != FORMAT_LOG_BESIDE && format != FORMAT && format != FORMAT_WITHOUT_SAVE_EVERY &&
+      format != FORMAT_WITHOUT_INPUTS)
     r.fail("another checkpoint format");
   Checkpoint c;
   c.version = r.text();
@@ -468,8 +451,15 @@ Checkpoint read_checkpoint(const std::string& path) {
   p.message = r.text();
   p.frame_target_reached = r.int_value("a target frame");
   p.last_pairs = r.pod<std::int64_t>();
-  c.log = r.text();
-  if (format == FORMAT) {
+  LogBeside beside;
+  c.log_beside = format == FORMAT_LOG_BESIDE;
+  if (c.log_beside) {
+    beside.size = r.pod<std::uint64_t>();
+    beside.hash = r.pod<std::uint64_t>();
+  } else {
+    c.log = r.text();
+  }
+  if (format >= FORMAT) {
     c.save_every = r.int_value("an interval between saves");
     if (c.save_every < 0) r.fail("a negative interval between saves");
   }
@@ -481,6 +471,7 @@ Checkpoint read_checkpoint(const std::string& path) {
                      printable(c.version, 60) + ", this is " + checkpoint_tool_version() +
                      ": resume it with that build and kernels");
   check_checkpoint_fields(c, path);
+  if (c.log_beside) c.log = read_log_beside(path, beside);
   c.path = path;
   return c;
 }

@@ -1,0 +1,201 @@
+// The caller's log beside the checkpoint (CheckpointLogFile, shellcontract/checkpoint.hpp): the
+// first save of a run holds its log (the file beside may be what the checkpoint in place needs),
+// each later one appends only the lines since the last to FILE.log, so the checkpoint's size does
+// not grow with the log; a save whose append fails (a full disk, a file size limit) leaves the
+// checkpoint in place and its log a pair that still reads, and the saves after it recover.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
+#include "sim/checkpoint.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+/// The format number a checkpoint file was written with (after the magic line).
+std::uint32_t format_of(const std::string& path) {
+  const std::string bytes = read(path);
+  const std::size_t at = std::strlen("SHELLCONTRACT-CHECKPOINT\n");
+  std::uint32_t format = 0;
+  if (bytes.size() >= at + sizeof format) std::memcpy(&format, bytes.data() + at, sizeof format);
+  return format;
+}
+
+/// What one save left.
+struct Save {
+  int frame = 0;
+  std::uintmax_t checkpoint_bytes = 0;
+  double varying = 0;  ///< the bytes of the checkpoint's fields whose size varies (varying_bytes)
+  std::size_t history = 0;
+  std::string log;        ///< the caller's log at the save
+  std::string saved_log;  ///< the checkpoint's, read back after the save
+  std::string error;      ///< the save's UsageError, if it failed
+};
+
+/// The bytes of the fields of `c` whose size changes from frame to frame as they are saved: the
+/// volume history (8 a frame), the contacts (4 + 8 + 16 + 32 + 24 + 8 bytes each), the contact
+/// correction and skin, the held vertices, the dimples and the run's message. Not the log.
+double varying_bytes(const Checkpoint& c) {
+  const SimulatorState& s = c.sim;
+  return 8.0 * c.progress.history.size() + 92.0 * s.collision.contact_cache.size() +
+         24.0 * s.collision.correction.rows() + 8.0 * s.collision.skin.size() +
+         static_cast<double>(s.held_by_contact.size()) + 4.0 * s.dimple_sizes.size() +
+         static_cast<double>(c.progress.message.size());
+}
+
+/// Saves every frame to `path` with a log of one 300-byte line a frame kept beside it; calls
+/// `before(frame)` ahead of each save.
+class LoggingCheckpointer final : public RunCheckpointer {
+ public:
+  LoggingCheckpointer(std::string path, const Mesh& mesh, const RunOptions& options,
+                      std::function<void(int)> before = {})
+      : path_(std::move(path)),
+        hash_(mesh_hash(mesh)),
+        options_(options),
+        file_(path_, log_, nullptr),
+        before_(std::move(before)) {}
+  bool save_due(int frame) override {
+    log_ += std::to_string(frame) + "," + std::string(300, 'x') + "\n";
+    frame_ = frame;
+    return true;
+  }
+  void save(const SavedRun& run) override {
+    if (before_) before_(frame_);
+    Save s;
+    s.frame = frame_;
+    s.log = log_;
+    try {
+      write_checkpoint(path_, run, options_, CheckpointInfo{"mesh.off", hash_, {}, {}, 1}, file_);
+    } catch (const UsageError& e) {
+      s.error = e.what();
+    }
+    const Checkpoint c = read_checkpoint(path_);  // after every save, failed or not: whole
+    s.checkpoint_bytes = fs::file_size(path_);
+    s.history = c.progress.history.size();
+    s.varying = varying_bytes(c);
+    s.saved_log = c.log;
+    if (s.error.empty()) {
+      EXPECT_EQ(c.log, log_) << "frame " << frame_;
+    }
+    saves.push_back(s);
+  }
+  std::vector<Save> saves;
+
+ private:
+  std::string path_;
+  std::uint64_t hash_;
+  RunOptions options_;
+  std::string log_ = "frame,line\n";
+  CheckpointLogFile file_;
+  std::function<void(int)> before_;
+  int frame_ = 0;
+};
+
+class CheckpointLog : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_checkpoint_log_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    mesh_ = read_input_mesh(std::string(test::MESH_DIR) + "/ico1.off");
+    set_run_option(options_, "frames", "40");
+    resolve_run_options(options_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string file(const std::string& name) const { return (dir_ / name).string(); }
+  fs::path dir_;
+  Mesh mesh_;
+  RunOptions options_;
+};
+
+TEST_F(CheckpointLog, ASaveWritesTheNewLinesBesideAndTheCheckpointDoesNotGrowWithTheLog) {
+  const std::string path = file("c.ckpt");
+  LoggingCheckpointer saver(path, mesh_, options_, [&](int frame) {
+    // The first save holds the log: the file beside is left as it was (another run's), and
+    // removed once no checkpoint goes with it.
+    if (frame == 1) std::ofstream(checkpoint_log_path(path)) << "another run's\n";
+    if (frame == 2) {
+      EXPECT_FALSE(fs::exists(checkpoint_log_path(path)));
+    }
+  });
+  run_contraction(mesh_, options_, nullptr, &saver);
+  ASSERT_EQ(saver.saves.size(), 39u);
+  EXPECT_EQ(format_of(path), 4u);
+  for (const Save& s : saver.saves) {
+    EXPECT_EQ(s.error, "") << "frame " << s.frame;
+  }
+  // From the second save on, the checkpoint changes size only with its varying fields: the
+  // frame's 300-byte line is not in it.
+  for (std::size_t k = 2; k < saver.saves.size(); ++k) {
+    const Save &a = saver.saves[k - 1], &b = saver.saves[k];
+    const double grown = static_cast<double>(b.checkpoint_bytes) - a.checkpoint_bytes;
+    EXPECT_EQ(grown, b.varying - a.varying) << "frame " << b.frame;
+  }
+  EXPECT_EQ(read(checkpoint_log_path(path)), saver.saves.back().log);
+}
+
+// A file size limit (ulimit -f, as a full disk) cuts the append of frame 20's line short: that
+// save fails, the checkpoint of frame 19 and the longer log beside it still read as frame 19's;
+// the next save holds its log (format 3), and the one after puts it beside again.
+TEST_F(CheckpointLog, AFailedAppendLeavesAPairThatReadsAndTheNextSavesRecover) {
+  const std::string path = file("c.ckpt");
+  std::signal(SIGXFSZ, SIG_IGN);
+  rlimit before{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &before), 0);
+  std::vector<std::uint32_t> formats;
+  LoggingCheckpointer saver(path, mesh_, options_, [&](int frame) {
+    if (frame > 1) formats.push_back(format_of(path));
+    rlimit limit = before;
+    if (frame == 20) limit.rlim_cur = fs::file_size(checkpoint_log_path(path)) + 10;
+    ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &limit), 0);
+  });
+  run_contraction(mesh_, options_, nullptr, &saver);
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &before), 0);
+  std::signal(SIGXFSZ, SIG_DFL);
+  ASSERT_EQ(saver.saves.size(), 39u);
+  const Save& failed = saver.saves[19];
+  ASSERT_EQ(failed.frame, 20);
+  EXPECT_NE(failed.error.find(checkpoint_log_path(path)), std::string::npos) << failed.error;
+  // Read back after the failure (in save()): the checkpoint of frame 19, with its log.
+  EXPECT_EQ(failed.history, saver.saves[18].history);
+  EXPECT_EQ(failed.saved_log, saver.saves[18].log);
+  EXPECT_GT(fs::file_size(checkpoint_log_path(path)), 0u);
+  for (std::size_t k = 0; k < saver.saves.size(); ++k)
+    if (k != 19) {
+      EXPECT_EQ(saver.saves[k].error, "") << "frame " << saver.saves[k].frame;
+    }
+  // formats[k]: the format in place after the save of frame k + 1.
+  ASSERT_EQ(formats.size(), 38u);
+  EXPECT_EQ(formats[0], 3u);   // frame 1's save: its log inside
+  EXPECT_EQ(formats[1], 4u);   // frame 2's: beside
+  EXPECT_EQ(formats[19], 4u);  // frame 20's failed: frame 19's left in place
+  EXPECT_EQ(formats[20], 3u);  // frame 21's: its log inside again
+  EXPECT_EQ(formats[21], 4u);  // frame 22's: beside
+  EXPECT_EQ(format_of(path), 4u);
+  EXPECT_EQ(read_checkpoint(path).log, saver.saves.back().log);
+}
+
+}  // namespace
+}  // namespace shellcontract
