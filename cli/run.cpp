@@ -311,7 +311,8 @@ int command_run(int argc, char** argv) {
     const RunResult r = run_contraction(mesh, options, &observers, &checkpointer);
     // Nothing is written: the run is not over (its state is in the checkpoint, if any).
     if (r.status == RunStatus::Cancelled && checkpointer.interrupted())
-      return report_interrupted(r, checkpointer, output, exports, exporter.frame_stats());
+      return report_interrupted(r, checkpointer, output, exports, exporter.frame_stats(),
+                                !fields_prefix.empty());
 
     // A finished result is never thrown away: each output is written on its own, one that
     // fails (a full disk) is reported and the others are still written (output-safety.md).

@@ -5,6 +5,7 @@
 
 #include <iostream>
 #include <string>
+#include <utility>
 
 #include "core/plural.hpp"
 #include "export_observer.hpp"
@@ -14,10 +15,22 @@
 
 namespace shellcontract::cli {
 
+/// The outputs asked for that a resumed run cannot write (they need the frames before the
+/// checkpoint, which it does not hold: `--resume` refuses them), "" when none.
+inline std::string lost_on_resume(const ExportRequest& exports, bool fields) {
+  std::string lost;
+  for (const auto& [asked, name] : {std::pair<bool, const char*>{!exports.gltf.empty(), "--gltf"},
+                                    {fields, "--fields"},
+                                    {!exports.dir.empty(), "--export-dir"}})
+    if (asked) lost += (lost.empty() ? "" : ", ") + std::string(name);
+  return lost;
+}
+
 /// The message of an interrupted run, one line on stderr; returns the exit code (130).
+/// @param fields  whether --fields was given
 inline int report_interrupted(const RunResult& r, const CliCheckpointer& checkpointer,
                               const std::string& output, const ExportRequest& exports,
-                              const ExportStats& frames) {
+                              const ExportStats& frames, bool fields) {
   std::cerr << "shellcontract run: interrupted at frame " << r.frames_run;
   // The resumed run goes on saving to the file it resumed from (and as often), so the command
   // below is all a job that is preempted again needs.
@@ -26,6 +39,12 @@ inline int report_interrupted(const RunResult& r, const CliCheckpointer& checkpo
                                   " ..., which goes on saving there)";
   if (!checkpointer.path().empty() && checkpointer.saved_frame() == r.frames_run)
     std::cerr << "; the state is saved in " << checkpointer.path() << resume_with;
+  // The command above gives the mesh only: say so, rather than let a studio find the animation
+  // missing after the resume.
+  if (const std::string lost = lost_on_resume(exports, fields);
+      !checkpointer.path().empty() && !lost.empty())
+    std::cerr << "; a resumed run writes the mesh only, not " << lost
+              << " (they need the frames before the checkpoint: rerun from the start for them)";
   else if (!checkpointer.path().empty())
     // A failed save leaves the file as it was: whether that is an older checkpoint to go on from
     // is the user's next question.
