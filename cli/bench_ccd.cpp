@@ -17,6 +17,7 @@
 #include "collision/ccd_benchmark.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "core/classic_locale.hpp"
 #include "core/decimal_text.hpp"
 #include "json_writer.hpp"
 #include "output_paths.hpp"
@@ -53,7 +54,7 @@ void print_table(const std::vector<CcdBenchmarkRow>& rows, std::ostream& os) {
      << "FN" << std::setw(11) << "uncertain" << std::setw(12) << "mean_us" << std::setw(12)
      << "max_us" << '\n';
   for (const CcdBenchmarkRow& r : rows) {
-    std::ostringstream tol;
+    ClassicOStringStream tol;
     tol << std::setprecision(3) << r.tolerance;
     os << std::left << std::setw(12) << tol.str() << std::setw(34) << r.file << std::right
        << std::setw(8) << r.queries << std::setw(7) << r.positives << std::setw(6)

@@ -23,6 +23,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "core/classic_locale.hpp"
 #include "mesh/file_safety.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
@@ -87,7 +88,7 @@ std::vector<int> parse_list(const std::string& list, const char* option) {
 
 std::string fmt(double v, int precision = 3, const char* nan_text = "failed") {
   if (std::isnan(v)) return nan_text;
-  std::ostringstream s;
+  ClassicOStringStream s;
   s << std::setprecision(precision) << v;
   return s.str();
 }
@@ -130,7 +131,7 @@ void print_checks(const std::vector<ReferenceCheck>& checks, std::ostream& os) {
 /// meaningful) is "nan". The order and threads columns come last, so readers of the older
 /// 13-column files still find theirs.
 std::string to_csv(const ErrorLadderResult& res) {
-  std::ostringstream s;
+  ClassicOStringStream s;
   const auto n = [](double v) { return shortest_text(v); };
   s << "row_type,solver,iterations,substeps,frames,dt,failed,ms_per_step,hausdorff,"
        "max_vertex_error,volume_ratio,volume_error,energy_error,order,threads\n";
@@ -158,7 +159,7 @@ std::string to_csv(const ErrorLadderResult& res) {
 std::string gnuplot_script(const std::string& csv, const std::string& out, const std::string& title,
                            const ErrorLadderResult& res) {
   const bool svg = std::filesystem::path(out).extension() == ".svg";
-  std::ostringstream g;
+  ClassicOStringStream g;
   g << (svg ? "set terminal svg size 900,640 dynamic font 'sans,12'\n"
             : "set terminal pngcairo size 900,640 font 'sans,11'\n");
   g << "set output '" << out << "'\n"

@@ -20,6 +20,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "core/classic_locale.hpp"
 #include "json_writer.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/read_polygon_soup.hpp"
@@ -223,7 +224,7 @@ int command_check(int argc, char** argv) {
       if (!against.empty() || fail_on_intersections) o.add("passes", !fails).add("failure", verdict);
       std::cout << o.str() << '\n';
     } else {
-      std::ostringstream out;
+      ClassicOStringStream out;
       out << std::setprecision(std::numeric_limits<double>::max_digits10);
       out << "file: " << input << '\n'
           << "vertices: " << report.vertices << '\n'

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/classic_locale.hpp"
 #include "shellcontract/options.hpp"  // shortest_text
 
 namespace shellcontract::cli {
@@ -33,7 +34,7 @@ inline std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
 /// result is always valid UTF-8: a byte that is not part of a well-formed UTF-8 sequence (a file
 /// name in Latin-1, say) becomes the escape of the code point of the same value (U+0000 to U+00FF).
 inline std::string json_quote(const std::string& s) {
-  std::ostringstream o;
+  ClassicOStringStream o;
   o << '"';
   for (std::size_t i = 0; i < s.size();) {
     const auto c = static_cast<unsigned char>(s[i]);

@@ -6,6 +6,7 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "core/classic_locale.hpp"
 #include "output_paths.hpp"
 
 #include <algorithm>
@@ -96,19 +97,19 @@ RegionMethod parse_method(const std::string& text) {
 
 /// The regions as an aligned table: one row per region (id order).
 std::string region_table(const RegionReport& report) {
-  std::ostringstream t;
+  ClassicOStringStream t;
   t << std::fixed;
   t << "  id  centre (x, y, z)                      radius      area %   faces  compact.  residual  angle\n";
   for (std::size_t r = 0; r < report.regions.size(); ++r) {
     const RegionSummary& s = report.regions[r];
     // A region without a sphere (a --region-at one-ring) has no centre, radius, fit or angle.
-    std::ostringstream centre;
+    ClassicOStringStream centre;
     if (s.fitted)
       centre << std::setprecision(4) << std::showpos << s.centre.x() << ", " << s.centre.y() << ", " << s.centre.z();
     else
       centre << '-';
     // Fixed-point for the usual sizes; a mesh at 1e150 or 1e-150 gets exponents, not 150 digits.
-    std::ostringstream radius, residual, angle;
+    ClassicOStringStream radius, residual, angle;
     if (!s.fitted)
       radius << '-';
     else if (std::abs(s.radius) >= 1e-4 && std::abs(s.radius) < 1e6)
@@ -134,7 +135,7 @@ std::string region_table(const RegionReport& report) {
 // A default as the user would type it ("0.3"), not Boost's full round-trip digits
 // ("0.29999999999999999").
 std::string shown(double value) {
-  std::ostringstream text;
+  ClassicOStringStream text;
   text << value;
   return text.str();
 }
@@ -231,7 +232,7 @@ int command_regions(int argc, char** argv) {
     if (!output.empty()) write_region_ply(output, mesh, x);
     if (!face_list.empty()) write_region_file(face_list, stored_regions(mesh));
 
-    std::ostringstream out;
+    ClassicOStringStream out;
     out << "file: " << input << '\n'
         << "faces: " << mesh.number_of_faces() << '\n'
         << "reference_mean_curvature: " << std::setprecision(4) << report.reference_mean_curvature

@@ -60,7 +60,12 @@ Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
 /// extension (OFF, OBJ, STL; PLY through write_ply_atomic) at 17 significant digits, so
 /// that the doubles read back bitwise. Written to a temporary file in the same folder, then
 /// renamed, so a failure never leaves a partial file. A welded mesh is written with its input's
-/// vertices and faces (mesh_for_output).
+/// vertices and faces (mesh_for_output). The library's first write (this, write_ply_atomic,
+/// write_text_atomic, write_file_atomic, check_output_files) installs a handler for SIGINT,
+/// SIGTERM, SIGHUP and SIGUSR1, each only where its action is still the default, that removes
+/// the process's own temporaries and then ends the process by the same signal; a host that
+/// handles them installs its handlers first (docs/design/output-safety.md, "Temporaries").
+/// Numbers are written in the classic "C" form whatever the global C++ locale.
 /// @param x one row per mesh vertex, or (a welded mesh) one per input vertex
 /// @param binary a binary PLY (little-endian doubles: still bitwise) or STL (32-bit floats: the
 ///        positions rounded to float); OFF and OBJ are text whatever it says

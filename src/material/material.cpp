@@ -4,6 +4,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "core/classic_locale.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -20,7 +21,7 @@ void check_young_poisson_thickness(const char* who, double young, double poisson
   // Written as negated "valid" tests so that NaN is rejected too.
   if (!(young > 0.0) || !std::isfinite(young) || !(thickness > 0.0) || !std::isfinite(thickness) ||
       !(poisson > -1.0 && poisson < 1.0)) {
-    std::ostringstream msg;
+    ClassicOStringStream msg;
     msg << who << ": need E > 0, h > 0 and -1 < nu < 1 (finite), got E = " << young
         << ", nu = " << poisson << ", h = " << thickness;
     throw UsageError(msg.str());

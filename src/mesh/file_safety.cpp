@@ -30,12 +30,18 @@ namespace {
 // ------------------------------------------------------------------- temporaries and signals
 
 /// Live temporaries, in fixed storage: the signal handler may only read memory and call
-/// async-signal-safe functions (unlink, sigaction, raise). A slot's path is written before its
-/// flag is set (release), and the handler reads the path only of a set flag (acquire).
+/// async-signal-safe functions (unlink, sigaction, raise, getpid). A slot's path and owner are
+/// written before its flag is set (release), and the handler reads them only of a set flag
+/// (acquire).
 constexpr int SLOTS = 64;
 constexpr std::size_t PATH_BYTES = 4096;
 std::array<std::atomic<bool>, SLOTS> slot_live{};
 std::array<std::array<char, PATH_BYTES>, SLOTS> slot_path{};
+/// The process that registered the slot. A child forked by the host (a worker pool) inherits the
+/// table and the handler; ended by SIGTERM, it removed its parent's temporaries in progress,
+/// whose rename then failed ("the folder does not exist"). The handler removes only its own
+/// process's.
+std::array<pid_t, SLOTS> slot_owner{};
 std::mutex slot_mutex;  // claiming a slot (not used by the handler)
 
 /// Temporaries being created (create_registered_temporary), and whether the handler has begun.
@@ -54,8 +60,10 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
     struct timespec pause_ts {0, 100000};
     ::nanosleep(&pause_ts, nullptr);
   }
+  const pid_t self = ::getpid();
   for (int i = 0; i < SLOTS; ++i)
-    if (slot_live[i].load(std::memory_order_acquire)) ::unlink(slot_path[i].data());
+    if (slot_live[i].load(std::memory_order_acquire) && slot_owner[i] == self)
+      ::unlink(slot_path[i].data());
   const int status = exit_status.load();
   if (status >= 0) ::_exit(status);
   // The default action (end the process, exit status 128 + signal) as if we were not here.
@@ -66,12 +74,23 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
   ::raise(sig);
 }
 
+/// In a child of fork: no temporary of the table is its own, and no creation is in flight in it
+/// (the threads that were creating stayed in the parent). A child forked while another thread
+/// was inside create_registered_temporary inherited `creating` above 0, and its handler then
+/// waited for ever. Writes to atomics only (the child of a threaded parent may do no more).
+extern "C" void forget_temporaries_in_child() {
+  for (auto& live : slot_live) live.store(false, std::memory_order_relaxed);
+  creating.store(0);
+  ending.store(false);
+}
+
 /// Installs the handler for INTERRUPT_SIGNALS where their action is the default one: a program
 /// that handles them itself (Python's KeyboardInterrupt) keeps its handler, and its interrupted
 /// write then ends normally and removes its temporary itself.
 void install_handler_once() {
   static std::once_flag once;
   std::call_once(once, [] {
+    ::pthread_atfork(nullptr, nullptr, forget_temporaries_in_child);
     for (const int sig : INTERRUPT_SIGNALS) {
       struct sigaction current {};
       if (::sigaction(sig, nullptr, &current) != 0) continue;
@@ -195,6 +214,7 @@ int register_temporary(const std::string& path) {
   for (int i = 0; i < SLOTS; ++i) {
     if (slot_live[i].load(std::memory_order_relaxed)) continue;
     std::memcpy(slot_path[i].data(), path.c_str(), path.size() + 1);
+    slot_owner[i] = ::getpid();
     slot_live[i].store(true, std::memory_order_release);
     return i;
   }

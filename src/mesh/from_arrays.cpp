@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/classic_locale.hpp"
 #include "core/plural.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/normalization.hpp"
@@ -92,7 +93,7 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   for (std::size_t i = 0; i < nv; ++i) {
     const double* p = soup.vertices + 3 * i;
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2])) {
-      std::ostringstream c;
+      ClassicOStringStream c;
       c << p[0] << ' ' << p[1] << ' ' << p[2];
       fail(name, "non-finite coordinate", vertex_name(i) + " is (" + c.str() + ")");
     }
@@ -151,7 +152,7 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   const double unit_volume =
       CGAL::Polygon_mesh_processing::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(unit_x)));
   if (reorient && !(unit_volume > 0.0)) {
-    std::ostringstream v;
+    ClassicOStringStream v;
     v << unit_volume;
     fail(name, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
                                          " at a unit bounding-box diagonal): it is flat or degenerate");

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/classic_locale.hpp"
 #include "mesh/gltf_instances.hpp"
 #include "mesh/gltf_json.hpp"
 #include "mesh/gltf_model.hpp"
@@ -123,7 +124,7 @@ class GltfDocument final : public MeshDocument {
     // them is not used, so it is not made (a data-URI image would be encoded again).
     m.images.clear();
     for (const Written& w : positions_) update_bounds(m, w);
-    std::ostringstream out;
+    ClassicOStringStream out;
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&m, out, !binary_, binary_))
       throw std::runtime_error("GltfDocument::text: tinygltf could not serialize the model");

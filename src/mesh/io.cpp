@@ -33,6 +33,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/classic_locale.hpp"
 #include "core/plural.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
@@ -110,7 +111,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   for (std::size_t i = 0; i < nv; ++i) {
     const Point3& p = points[i];
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z())) {
-      std::ostringstream c;
+      ClassicOStringStream c;
       c << p.x() << ' ' << p.y() << ' ' << p.z();
       fail(path, "non-finite coordinate", name.vertex(i) + " is (" + c.str() + ")");
     }
@@ -217,7 +218,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   const Positions unit_x = normalize(x, compute_normalization(x));
   const double unit_volume = PMP::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(unit_x)));
   if (!(unit_volume > 0.0)) {
-    std::ostringstream v;
+    ClassicOStringStream v;
     v << unit_volume;
     fail(path, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
                                          " at a unit bounding-box diagonal): it is flat or degenerate");

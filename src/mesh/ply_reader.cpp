@@ -16,6 +16,7 @@
 #include <cstring>
 #include <iomanip>
 #include <limits>
+#include <locale>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -322,6 +323,7 @@ class PlyParser {
         const double hi = std::ldexp(1.0, ply::is_signed(t) ? bits - 1 : bits) - 1.0;
         if (!(v >= lo && v <= hi) || v != std::floor(v)) {
           std::ostringstream range;
+          range.imbue(std::locale::classic());  // core/classic_locale.hpp
           range << std::fixed << std::setprecision(0) << lo << " to " << hi;
           fail("parse error", where() + ": " + what() + " is '" + shorten(std::string(tok)) +
                                   "', not an integer from " + range.str() +
@@ -367,6 +369,7 @@ class PlyParser {
     const double v = scalar(t, what, false);
     if (!(v >= 0.0 && v < 9.0e15) || v != std::floor(v)) {
       std::ostringstream s;
+      s.imbue(std::locale::classic());  // core/classic_locale.hpp
       s << std::setprecision(17) << v;
       fail("parse error", where() + ": " + what() + " is " + s.str() + ", not a non-negative integer");
     }

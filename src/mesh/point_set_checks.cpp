@@ -12,6 +12,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "core/classic_locale.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -19,14 +20,14 @@ namespace shellcontract {
 namespace point_text {
 
 std::string text(double x) {
-  std::ostringstream s;
+  ClassicOStringStream s;
   s.precision(3);
   s << x;
   return s.str();
 }
 
 std::string text(const Point3& p) {
-  std::ostringstream s;
+  ClassicOStringStream s;
   s << '(' << p.x() << ", " << p.y() << ", " << p.z() << ')';
   return s.str();
 }

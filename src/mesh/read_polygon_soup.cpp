@@ -13,6 +13,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/classic_locale.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/gltf_reader.hpp"
 #include "mesh/obj_scan.hpp"
@@ -96,7 +97,7 @@ void read_polygon_soup(const std::string& path, const std::string& ext, std::vec
     lines = std::move(scan.lines);
     return;
   }
-  std::istringstream in(bytes);
+  ClassicIStringStream in(bytes);
   // An exception inside a stream operation (std::bad_alloc while CGAL's reader reads a line)
   // would otherwise only set badbit, and the reader would return the part read so far.
   in.exceptions(std::ios::badbit);

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/classic_locale.hpp"
 #include "mesh/off_scan.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/face_error.hpp"
@@ -57,7 +58,7 @@ struct Namer {
   std::vector<std::pair<std::size_t, std::size_t>> first_use;  ///< STL: (facet, corner) where point i first appears
 
   std::string point(std::size_t v) const {
-    std::ostringstream s;
+    ClassicOStringStream s;
     s << std::setprecision(9) << '(' << (*points)[v].x() << ", " << (*points)[v].y() << ", " << (*points)[v].z() << ')';
     return s.str();
   }

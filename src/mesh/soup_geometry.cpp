@@ -11,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include "core/classic_locale.hpp"
 #include "mesh/normalization.hpp"
 
 namespace shellcontract::soup {
@@ -91,7 +92,7 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std
     if (!flat[c] || !out.flat.empty()) continue;
     for (std::size_t f = 0; f < nf; ++f)
       if (component_face[f] == c) out.flat_faces.push_back(f);
-    std::ostringstream w;
+    ClassicOStringStream w;
     w << "component " << c << " (" << out.flat_faces.size() << " faces, starting at face "
       << out.flat_faces[0] << ") encloses no volume ("
       << six_volume[c] / 6.0 * scale * scale * scale
@@ -108,7 +109,7 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std
         first = std::min(first, f);
         ++count;
       }
-    std::ostringstream w;
+    ClassicOStringStream w;
     w << "component " << c << " (" << count << " faces, starting at face " << first
       << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
       << "); its faces were flipped";

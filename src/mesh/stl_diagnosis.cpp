@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <locale>
 #include <sstream>
 #include <string_view>
 
@@ -139,6 +140,7 @@ class AsciiScan {
     while (end < text_.size() && !blank(text_[end])) ++end;
     const std::string token = text_.substr(pos_, end - pos_);
     std::istringstream in(token);
+    in.imbue(std::locale::classic());  // as read_polygon_soup reads it (core/classic_locale.hpp)
     double x = 0.0;
     if (in >> x) {
       const std::streamoff p = in.tellg();
@@ -236,6 +238,7 @@ StlDiagnosis binary_non_finite(const std::string& bytes, std::uint32_t count) {
         std::memcpy(&x, bytes.data() + 84 + 50 * f + 12 * (c + 1) + 4 * k, sizeof x);
         if (!std::isfinite(x)) {
           std::ostringstream v;
+          v.imbue(std::locale::classic());  // core/classic_locale.hpp
           v << x;
           return {"non-finite coordinate", "facet " + std::to_string(f) + " (bytes " + std::to_string(84 + 50 * f) + " to " +
                                                std::to_string(84 + 50 * f + 49) + ") has corner " + std::to_string(c) +

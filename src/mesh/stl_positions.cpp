@@ -7,6 +7,7 @@
 #include <numeric>
 #include <sstream>
 
+#include "core/classic_locale.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -35,7 +36,7 @@ void require_distinct_stl_positions(const std::string& what,
     for (std::size_t j = k + 1; j < end; ++j) {
       if (vertex(order[j]) == vertex(order[k])) continue;  // two copies of one welded vertex
       const std::array<double, 3>& at = key[order[k]];
-      std::ostringstream where;
+      ClassicOStringStream where;
       where << std::setprecision(9) << '(' << at[0] << ", " << at[1] << ", " << at[2] << ')';
       throw UsageError(
           what + ": an STL keeps no vertex identity, and vertices " + std::to_string(order[k]) +

@@ -74,8 +74,11 @@ class ToCharsDoublePut : public std::num_put<char> {
 /// call each (one write per file instead). A throwing `fill` leaves no file behind. `binary` sets
 /// the stream's CGAL mode, which CGAL's PLY and STL writers follow.
 void write_atomic(const std::string& path, const std::function<void(std::ostream&)>& fill, bool binary = false) {
+  // The classic locale, whatever the host's global one (core/classic_locale.hpp): CGAL's writers
+  // print counts and indices with operator<< too, and a host's numpunct grouped them ("13.826").
+  // The locale owns the facet.
   std::ostringstream text;
-  text.imbue(std::locale(text.getloc(), new ToCharsDoublePut));  // the locale owns the facet
+  text.imbue(std::locale(std::locale::classic(), new ToCharsDoublePut));
   CGAL::IO::set_mode(text, binary ? CGAL::IO::BINARY : CGAL::IO::ASCII);
   fill(text);
   const std::string bytes = std::move(text).str();
@@ -329,6 +332,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   {
     FdBuf buf(tmp.fd);
     std::ostream out(&buf);
+    out.imbue(std::locale::classic());  // numbers as in every file, whatever the host's locale
     try {
       write(out);
       out.flush();

@@ -31,7 +31,10 @@ inline void check_colour_offsets(const std::vector<std::size_t>& offsets, std::s
 }
 
 /// Fills batches colour by colour; fill(batch, lane, record) copies one record's rest data.
-/// Padding lanes get lane 0's vertex ids and keep the zero rest data of the value-initialized batch.
+/// Padding lanes are copies of lane 0 (its vertex ids and rest data), so that every lane computes
+/// what a real constraint does: zero rest data made a padding lane divide 0 by 0 (its result
+/// discarded), which a host that traps FE_INVALID took as SIGFPE and any other host found as a
+/// sticky FE_INVALID flag. Padding lanes' positions are never written.
 template <class Batch, class Record, class Fill>
 ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
                                     const std::vector<std::size_t>& colour_offsets, Fill fill) {
@@ -54,7 +57,7 @@ ColouredBatches<Batch> make_batches(const std::vector<Record>& records,
       for (int k = 0; k < BATCH_LANES; ++k) {
         const Record& r = records[first + (k < b.count ? k : 0)];
         for (int j = 0; j < N; ++j) b.v[j][k] = r.v[j];
-        if (k < b.count) fill(b, k, r);
+        fill(b, k, r);
       }
       out.batches.push_back(b);
     }

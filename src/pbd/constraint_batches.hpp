@@ -58,8 +58,9 @@ void unpack_padded(const PaddedVertex* xw, const int* row_vertex, std::size_t be
                    std::size_t end, double* x);
 
 /// Four membrane constraints of one colour (PackedMembrane fields, lane k = k-th constraint).
-/// Lanes at or past `count` are padding: lane 0's vertex ids (so every read stays in bounds and
-/// on this thread's vertices) and zero rest data (E = 0: skipped); they are never written.
+/// Lanes at or past `count` are padding: copies of lane 0 (its vertex ids, so every read stays in
+/// bounds and on this thread's vertices, and its rest data, so every lane's arithmetic is finite);
+/// their positions are never written (an XPBD multiplier of their own may be).
 struct alignas(32) MembraneBatch {
   double dm00[BATCH_LANES], dm01[BATCH_LANES], dm11[BATCH_LANES];  ///< Dm^-1 (math-spec 4.1)
   double rest_area[BATCH_LANES];                                   ///< Abar
@@ -71,7 +72,7 @@ struct alignas(32) MembraneBatch {
 };
 
 /// Four isometric hinges of one colour (IsometricHingeConstraint fields, stencil order of
-/// bending/hinge.hpp). Padding lanes as in MembraneBatch (K = 0: skipped).
+/// bending/hinge.hpp). Padding lanes as in MembraneBatch.
 struct alignas(32) IsometricBatch {
   double K[4][BATCH_LANES];            ///< K[j][k]: rest cotangent weight j of lane k (math-spec 8.1)
   double three_over_area[BATCH_LANES]; ///< 3 / (A0 + A1)
@@ -81,10 +82,10 @@ struct alignas(32) IsometricBatch {
 };
 
 /// Four dihedral hinges of one colour (DihedralHingeConstraint fields, stencil order of
-/// bending/hinge.hpp). Padding lanes as in MembraneBatch (kappa = 0: skipped).
+/// bending/hinge.hpp). Padding lanes as in MembraneBatch.
 struct alignas(32) DihedralBatch {
   double rest_angle[BATCH_LANES];  ///< theta_bar (math-spec 8.3)
-  double kappa[BATCH_LANES];       ///< kappa_bar; 0 for an inactive hinge or a padding lane
+  double kappa[BATCH_LANES];       ///< kappa_bar; 0 for an inactive hinge
   double max_step[BATCH_LANES];    ///< clamp (math-spec 9.1d)
   int v[4][BATCH_LANES];
   int count;
@@ -94,7 +95,7 @@ struct alignas(32) DihedralBatch {
 
 /// Four anisotropic (E_A) faces of one colour (math-spec 7, 9.3): MembraneBatch's rest data, the
 /// fibre and k_A, and the orientation s and unit normal n the solver freezes for each solve.
-/// Padding lanes as in MembraneBatch (zero rest data: E = 0, skipped).
+/// Padding lanes as in MembraneBatch.
 struct alignas(32) AnisoBatch {
   double dm00[BATCH_LANES], dm01[BATCH_LANES], dm11[BATCH_LANES];  ///< Dm^-1 (math-spec 4.1)
   double rest_area[BATCH_LANES];                                   ///< Abar

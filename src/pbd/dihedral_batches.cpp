@@ -79,7 +79,9 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
   using T = typename Batches::T;
   constexpr double PI = 3.14159265358979323846;
   const T zero = lanes_splat<T>(0.0), one = lanes_splat<T>(1.0), two = lanes_splat<T>(2.0);
-  // Inactive hinges (kappa = 0) and padding lanes: no change.
+  // Inactive hinges (kappa = 0): no change. A lane that is not `ok` (below) or not `active`
+  // divides by 1 wherever it could divide by 0 (FE_INVALID or FE_DIVBYZERO, SIGFPE where a host
+  // traps them), its result discarded.
   const T kappa = c.load(&DihedralBatch::kappa);
   const T live = cmp_gt(kappa, zero);
   if (lane_bits(live) == 0) return;
@@ -102,14 +104,14 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
   T inv_L, inv_a, inv_b;
   const T in_range = vand(cmp_ge(product, lanes_splat<T>(1e-290)), cmp_le(product, lanes_splat<T>(1e290)));
   if (lane_bits(vandnot(in_range, ok)) == 0) {
-    const T inv = one / product;
+    const T inv = one / blend(one, product, ok);
     inv_L = ab * inv;
     inv_a = (L * b_sq) * inv;
     inv_b = (L * a_sq) * inv;
   } else {
-    inv_L = one / L;
-    inv_a = one / a_sq;
-    inv_b = one / b_sq;
+    inv_L = one / blend(one, L, ok);
+    inv_a = one / blend(one, a_sq, ok);
+    inv_b = one / blend(one, b_sq, ok);
   }
   const L3<T> e_hat = e * inv_L;
   // theta = atan2((NA x NB) . e_hat, NA . NB).
@@ -143,12 +145,12 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
     }
     const T clamp = cmp_gt(longest_sq, max_step * max_step);
     if (lane_bits(vand(clamp, active)) == 0) return one;
-    return blend(one, max_step / vsqrt(longest_sq), clamp);
+    return blend(one, max_step / vsqrt(blend(one, longest_sq, clamp)), clamp);  // > 0 there
   };
   const T kb = lanes_splat<T>(k_bending);
   if (lam == nullptr) {
     // PBD: dx_j = -k_B d / (2 wg) w_j g_j, clamped (kernel_parts::apply_step).
-    T scale = kb * d / (two * wg);
+    T scale = kb * d / (two * blend(one, wg, active));
     scale = scale * clamp_factor(scale);
     for (int j = 0; j < 4; ++j) c.store(xw, j, select(active, xs[j] - g[j] * (scale * ws[j]), xs[j]), ws[j]);
     return;
@@ -158,7 +160,7 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
   const T l = c.load_lambda(lam);
   const T root = vsqrt(two * kb * kappa);
   const T C = root * d;
-  T dlam = (neg(C) - at * l) / (root * root * wg + at);
+  T dlam = (neg(C) - at * l) / blend(one, root * root * wg + at, active);
   dlam = dlam * clamp_factor(root * dlam);
   c.store_lambda(lam, blend(l, l + dlam, active));
   for (int j = 0; j < 4; ++j)

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/classic_locale.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/run.hpp"
 #include "shellcontract/validation.hpp"
@@ -169,7 +170,7 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
     row.energy_error = relative(run.energy, ref.energy);
   };
   auto describe = [](const RunSettings& r) {
-    std::ostringstream s;
+    ClassicOStringStream s;
     s << ladder_solver_name(r.kind) << " iterations " << r.iterations << " substeps " << r.substeps;
     if (r.order != ConstraintOrder::Sequential)
       s << ' ' << ladder_order_name(r.order) << " threads " << r.threads;

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/classic_locale.hpp"
 #include "geometry/curvature.hpp"
 #include "mesh/properties.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -118,7 +119,7 @@ FieldsPly fields_ply(const Simulator& sim, const Positions& x, const VertexField
     rgb[v] = CGAL::IO::Color(static_cast<unsigned char>(c8(0)), static_cast<unsigned char>(c8(1)),
                              static_cast<unsigned char>(c8(2)));
   }
-  std::ostringstream comment;
+  ClassicOStringStream comment;
   comment << std::setprecision(17) << "shellcontract fields; colour = field mapped from its 2nd to 98th percentile ["
           << lo << ", " << hi << "] onto blue-white-red";
   return FieldsPly{std::move(out), comment.str()};

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/classic_locale.hpp"
 #include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
@@ -38,7 +39,7 @@ struct Interval {
 inline Interval positive() { return {0.0, INF, true, false, "a finite number > 0"}; }
 inline Interval non_negative() { return {0.0, INF, false, false, "a finite number >= 0"}; }
 inline Interval between(double lo, double hi, bool lo_open, bool hi_open) {
-  std::ostringstream t;
+  ClassicOStringStream t;
   t << "a number in " << (lo_open ? '(' : '[') << shortest_text(lo) << ", " << shortest_text(hi)
     << (hi_open ? ')' : ']');
   return {lo, hi, lo_open, hi_open, t.str()};

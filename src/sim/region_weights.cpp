@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
+#include <locale>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -73,6 +74,7 @@ void check_vertex_weights(const std::vector<double>& weights, std::size_t num_ve
   for (std::size_t i = 0; i < weights.size(); ++i)
     if (!valid_weight(weights[i])) {
       std::ostringstream w;
+      w.imbue(std::locale::classic());  // core/classic_locale.hpp
       w << weights[i];
       throw UsageError(what + "[" + std::to_string(i) + "] = " + w.str() + " is outside [0, 1]");
     }

@@ -36,6 +36,7 @@ std::string log_csv_header() {
 
 std::string log_csv_line(const LogRow& row) {
   std::ostringstream o;
+  o.imbue(std::locale::classic());  // a point, not a host program's decimal comma
   o << std::setprecision(17);
   for (std::size_t c = 0; c < row.size(); ++c) o << row[c] << (c + 1 < row.size() ? ',' : '\n');
   return o.str();

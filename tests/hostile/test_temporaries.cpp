@@ -1,4 +1,4 @@
-// Temporaries are unguessable and exclusive, and SIGINT/SIGTERM remove them;
+// Temporaries are unguessable and exclusive, and SIGINT/SIGTERM remove them (their own process's);
 // a path with a NUL names no file. Each failed against the code before the fix as its comment says.
 #include <sys/wait.h>
 
@@ -107,6 +107,34 @@ TEST_F(Hostile, SigtermAndSigintDuringAWriteRemoveTheTemporary) {
     EXPECT_EQ(WTERMSIG(status), sig);
     EXPECT_TRUE(test::listing(dir_).empty()) << "left behind: " << test::listing(dir_).front();
   }
+}
+
+// Before: a child that the host forked (a worker pool) while the library wrote a file inherited
+// the handler and the table of temporaries; ended by SIGTERM, it removed its parent's temporary,
+// and the parent's rename then failed ("the folder does not exist"). The handler now removes only
+// its own process's temporaries.
+TEST_F(Hostile, AForkedChildEndedBySigtermKeepsItsParentsTemporary) {
+  const fs::path target = dir_ / "o.off";
+  write_file_atomic(target.string(), [&](std::ostream& out) {
+    out << "data";
+    struct sigaction term {};
+    ASSERT_EQ(::sigaction(SIGTERM, nullptr, &term), 0);
+    ASSERT_NE(term.sa_handler, SIG_DFL)
+        << "the library's handler must be installed, or this cannot fail";
+    const std::vector<std::string> before = test::listing(dir_);
+    ASSERT_EQ(before.size(), 1u) << "the temporary";
+    const pid_t child = ::fork();
+    if (child == 0) {
+      for (;;) ::pause();  // a worker, until the host ends it
+    }
+    ::kill(child, SIGTERM);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGTERM) << "wait status " << status;
+    EXPECT_EQ(test::listing(dir_), before) << "the child removed its parent's temporary";
+  });
+  EXPECT_EQ(test::slurp(target), "data");
+  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"o.off"});
 }
 
 // Before: with --checkpoint, the CLI's handler gave a second SIGINT its default action, so a

@@ -179,10 +179,12 @@ TEST(DihedralBatches, LayoutPadsEachColoursLastBatchWithLaneZero) {
   EXPECT_EQ(b.batches[0].count, 4);
   EXPECT_EQ(b.batches[1].count, 2);
   const DihedralBatch& last = b.batches[1];  // hinges 4 and 5, then two padding lanes
+  // Padding lanes are copies of lane 0, rest data included (test_fp_exceptions.cpp).
   for (int k = 0; k < BATCH_LANES; ++k) {
     const DihedralHingeConstraint& r = s.records[k < 2 ? 4 + k : 4];
     for (int j = 0; j < 4; ++j) EXPECT_EQ(last.v[j][k], r.v[j]) << "lane " << k;
-    EXPECT_EQ(last.kappa[k], k < 2 ? r.rest.kappa : 0.0) << "lane " << k;
+    EXPECT_EQ(last.kappa[k], r.rest.kappa) << "lane " << k;
+    EXPECT_EQ(last.rest_angle[k], r.rest.rest_angle) << "lane " << k;
   }
   EXPECT_GT(last.kappa[1], 0.0);
   EXPECT_EQ(last.rest_angle[1], s.records[5].rest.rest_angle);
