@@ -3,6 +3,7 @@
 
 #include <sys/resource.h>
 
+#include <charconv>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -77,8 +78,13 @@ double peak_memory_mb() {
   std::ifstream status("/proc/self/status");
   for (std::string line; std::getline(status, line);)
     if (line.rfind("VmHWM:", 0) == 0) {
-      const double kb = std::strtod(line.c_str() + 6, nullptr);
-      if (kb > 0.0) return kb / 1024.0;
+      // "VmHWM:\t  1234 kB": an integer after blanks (from_chars, as every number the tool reads).
+      const std::size_t digits = line.find_first_not_of(" \t", 6);
+      long long kb = 0;
+      if (digits != std::string::npos &&
+          std::from_chars(line.data() + digits, line.data() + line.size(), kb).ec == std::errc() &&
+          kb > 0)
+        return static_cast<double>(kb) / 1024.0;
     }
   rusage u{};
   getrusage(RUSAGE_SELF, &u);

@@ -41,6 +41,13 @@ std::string log_csv_header();
 /// back as the same double; a whole number prints without a decimal point.
 std::string log_csv_line(const LogRow& row);
 
+/// The rows of a log written by log_csv_header and log_csv_line (a checkpoint's log), read back
+/// to the same doubles whatever locale a host program has set: every line after the header
+/// must hold exactly LOG_COLUMN_COUNT numbers.
+/// @param name  how a message names the text ("the checkpoint's log")
+/// @throws InputError naming the line and the field that is not a number
+std::vector<LogRow> log_csv_rows(const std::string& text, const std::string& name);
+
 /// The container a front end gives write_run_summary: a JSON object, a Python dict.
 class SummaryWriter {
  public:

@@ -108,13 +108,32 @@ Positions positions_from_numpy(const py::handle& vertices) {
   return x;
 }
 
+std::string file_name_bytes(const py::handle& text) {
+  return std::string(py::module_::import("os").attr("fsencode")(text).cast<py::bytes>());
+}
+
+py::str file_name_text(const std::string& bytes) {
+  PyObject* s =
+      PyUnicode_DecodeFSDefaultAndSize(bytes.data(), static_cast<Py_ssize_t>(bytes.size()));
+  if (s == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(s);
+}
+
+py::str message_text(const std::string& message) {
+  PyObject* s = PyUnicode_DecodeUTF8(message.data(), static_cast<Py_ssize_t>(message.size()),
+                                     "backslashreplace");
+  if (s == nullptr) throw py::error_already_set();
+  return py::reinterpret_steal<py::str>(s);
+}
+
 std::string path_argument(const py::handle& path, const std::string& what) {
   if (!py::isinstance<py::str>(path) && !py::isinstance<py::bytes>(path) &&
       !PyObject_HasAttrString(path.ptr(), "__fspath__"))
     throw py::type_error(what + " must be a str or an os.PathLike, got " +
                          std::string(py::str(path.get_type().attr("__name__"))));
-  const py::object p = py::module_::import("os").attr("fspath")(path);
-  const std::string s = py::isinstance<py::bytes>(p) ? std::string(p.cast<py::bytes>()) : p.cast<std::string>();
+  // Not a cast of os.fspath's str to std::string: that encodes strict UTF-8, and a surrogate
+  // escape (a non-UTF-8 byte of the name) failed with pybind11's "Unable to cast".
+  const std::string s = file_name_bytes(path);
   if (s.find('\0') != std::string::npos) throw py::value_error(what + " must not hold a NUL byte");
   // As the CLI: an empty name is not "none" (None is), so that an unset variable is not silent.
   if (s.empty()) throw py::value_error(what + " must not be empty");

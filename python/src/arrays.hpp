@@ -38,7 +38,20 @@ Positions positions_from_numpy(const py::handle& vertices);
 
 /// A file path from Python: str or os.PathLike (bytes too), as os.fspath takes it; TypeError for
 /// anything else (None must not become a file named "None"), ValueError for a NUL byte. `what`
-/// names the argument in the messages ("path", "checkpoint").
+/// names the argument in the messages ("path", "checkpoint"). The bytes are os.fsencode's, as
+/// Python's open() uses them: a name that is not UTF-8 (os.listdir gives it as a str with
+/// surrogate escapes) names the same file.
 std::string path_argument(const py::handle& path, const std::string& what = "path");
+
+/// A str as the bytes of a file name (os.fsencode): an option's text that may name a file.
+std::string file_name_bytes(const py::handle& text);
+
+/// The inverse (os.fsdecode): bytes that are not UTF-8 as surrogate escapes.
+py::str file_name_text(const std::string& bytes);
+
+/// A message for a Python exception: UTF-8, a byte that is not (a file name's) as \xNN.
+/// PyErr_SetString and py::str decode strictly: the whole message was lost to a
+/// UnicodeDecodeError, or became an empty ValueError.
+py::str message_text(const std::string& message);
 
 }  // namespace shellcontract::python

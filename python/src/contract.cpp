@@ -92,7 +92,8 @@ std::string valid_names() {
 /// its path, a sequence -> "a,b,c" (--fiber X,Y,Z).
 std::string option_text(const std::string& name, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
-  if (py::isinstance<py::str>(value)) return value.cast<std::string>();
+  // A str may name a file (regions, region_weights): its bytes are the file name's, as for a path.
+  if (py::isinstance<py::str>(value)) return file_name_bytes(value);
   if (py::hasattr(value, "__fspath__")) return path_argument(value, "option " + name);  // a file name
   // A numpy array or scalar goes by its Python value (an array also passes PyIndex_Check).
   if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
@@ -305,21 +306,11 @@ class PythonObserver final : public RunObserver {
     return text;
   }
 
-  /// A resumed run's rows so far, from its checkpoint's CSV text.
+  /// A resumed run's rows so far, from its checkpoint's CSV text (whatever locale the host
+  /// program set: std::strtod read "0.99" as 0 under a decimal comma).
   void restore_csv(const std::string& text) {
-    std::istringstream in(text);
-    std::string line;
-    std::getline(in, line);  // the header
-    while (std::getline(in, line)) {
-      LogRow row{};
-      const char* p = line.c_str();
-      for (double& v : row) {
-        char* end = nullptr;
-        v = std::strtod(p, &end);
-        p = *end == ',' ? end + 1 : end;
-      }
-      rows_.push_back(row);
-    }
+    const std::vector<LogRow> rows = log_csv_rows(text, "the checkpoint's log");
+    rows_.insert(rows_.end(), rows.begin(), rows.end());
   }
 
   bool cancelled() override {
@@ -387,9 +378,15 @@ class DictSummary final : public SummaryWriter {
   void add_null(const std::string& key) override { d_[py::str(key)] = py::none(); }
   void add_integer(const std::string& key, long long v) override { d_[py::str(key)] = py::int_(v); }
   void add_number(const std::string& key, double v) override { d_[py::str(key)] = py::float_(v); }
-  void add_text(const std::string& key, const std::string& v) override { d_[py::str(key)] = py::str(v); }
+  // os.fsdecode's str: an option's file name that is not UTF-8 (given as surrogate escapes)
+  // comes back as the str the caller gave; other texts are UTF-8 and decode as py::str would.
+  void add_text(const std::string& key, const std::string& v) override {
+    d_[py::str(key)] = file_name_text(v);
+  }
   void add_texts(const std::string& key, const std::vector<std::string>& v) override {
-    d_[py::str(key)] = py::cast(v);
+    py::list l;
+    for (const std::string& t : v) l.append(file_name_text(t));
+    d_[py::str(key)] = l;
   }
   void add_numbers(const std::string& key, const std::vector<double>& v) override {
     d_[py::str(key)] = py::cast(v);

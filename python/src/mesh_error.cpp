@@ -5,6 +5,8 @@
 
 #include <Python.h>
 
+#include "arrays.hpp"
+
 namespace shellcontract::python {
 namespace {
 
@@ -31,7 +33,7 @@ void register_mesh_error(py::module_& m) {
 void set_mesh_error(const FaceListError& e, const std::string& message) {
   py::list faces;
   for (const std::size_t f : e.faces()) faces.append(py::int_(f));
-  py::object error = py::reinterpret_borrow<py::object>(mesh_error_type)(message);
+  py::object error = py::reinterpret_borrow<py::object>(mesh_error_type)(message_text(message));
   error.attr("faces") = faces;
   PyErr_SetObject(mesh_error_type, error.ptr());
 }

@@ -237,12 +237,14 @@ PYBIND11_MODULE(_core, m) {
       set_mesh_error(e, spell_options(e.what(), OptionSpelling::Python));
     } catch (const InputError& e) {
       // An input's option by Python's name too (a changed face-list file of `regions`).
-      PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());
+      PyErr_SetObject(PyExc_ValueError,
+                      message_text(spell_options(e.what(), OptionSpelling::Python)).ptr());
     } catch (const UsageError& e) {
       // Options by Python's names (the library names them by field, option_table.hpp).
-      PyErr_SetString(PyExc_ValueError, spell_options(e.what(), OptionSpelling::Python).c_str());
+      PyErr_SetObject(PyExc_ValueError,
+                      message_text(spell_options(e.what(), OptionSpelling::Python)).ptr());
     } catch (const SimulationError& e) {
-      PyErr_SetString(PyExc_RuntimeError, e.what());
+      PyErr_SetObject(PyExc_RuntimeError, message_text(e.what()).ptr());
     }
   });
   // At the interpreter's exit, before it finalizes: cancel and wait for runs in other threads.

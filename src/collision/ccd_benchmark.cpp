@@ -10,6 +10,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -25,17 +26,16 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   throw InputError(path + ":" + std::to_string(line) + ": " + what);
 }
 
-/// Parses one integer-valued field with strtod; the whole field (after trimming blanks) must be
-/// consumed.
+/// Parses one integer-valued field as strtod in the "C" locale (parse_c_number); the whole field
+/// (after trimming blanks) must be consumed.
 double parse_field(const std::string& s, std::size_t begin, std::size_t end, const std::string& path,
                    std::size_t line, int column) {
   while (begin < end && (s[begin] == ' ' || s[begin] == '\t')) ++begin;
   while (end > begin && (s[end - 1] == ' ' || s[end - 1] == '\t' || s[end - 1] == '\r')) --end;
   const std::string field = s.substr(begin, end - begin);
   if (field.empty()) fail(path, line, "empty field " + std::to_string(column));
-  char* stop = nullptr;
-  const double v = std::strtod(field.c_str(), &stop);
-  if (stop != field.c_str() + field.size())
+  double v = 0.0;
+  if (!parse_c_number(field, v))
     fail(path, line, "field " + std::to_string(column) + " is not a number: '" + field + "'");
   if (!std::isfinite(v)) fail(path, line, "field " + std::to_string(column) + " is not finite");
   return v;

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "core/decimal_text.hpp"
 #include "export/gltf_input_materials.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/line_tokens.hpp"
@@ -47,10 +48,8 @@ std::string trimmed(const std::string& s) {
 
 /// The whole token as a finite double, or nothing.
 std::optional<double> number(const std::string& t) {
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(t.c_str(), &end);
-  if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v)) return std::nullopt;
+  double v = 0.0;
+  if (!parse_c_number(t, v) || !std::isfinite(v)) return std::nullopt;
   return v;
 }
 

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "geometry/cap_grower.hpp"
+#include "core/decimal_text.hpp"
 #include "core/power_of_two.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/cotan_laplacian.hpp"
@@ -47,8 +48,9 @@ class StageTimer {
     const auto wall = std::chrono::steady_clock::now();
     const std::clock_t cpu = std::clock();
     if (on_)
-      std::fprintf(stderr, "region timing: %-14s wall %.3f s  cpu %.3f s\n", stage,
-                   std::chrono::duration<double>(wall - wall_).count(), static_cast<double>(cpu - cpu_) / CLOCKS_PER_SEC);
+      std::fprintf(stderr, "region timing: %-14s wall %s s  cpu %s s\n", stage,
+                   fixed_text(std::chrono::duration<double>(wall - wall_).count(), 3).c_str(),
+                   fixed_text(static_cast<double>(cpu - cpu_) / CLOCKS_PER_SEC, 3).c_str());
     wall_ = wall;
     cpu_ = cpu;
   }

@@ -17,6 +17,7 @@
 #include <string>
 #include <utility>
 
+#include "core/decimal_text.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/curvature.hpp"
 #include "mesh/file_safety.hpp"
@@ -136,7 +137,8 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
     std::vector<int> region;
     double strength = 1.0;
     // The region's strength: what comes before the line's ':' ("0.5: 12 13", "0.5:12 13",
-    // " 0.5 : 12"), blanks around it allowed; the whole of it must be a number (strtod's end).
+    // " 0.5 : 12"), blanks around it allowed; the whole of it must be a number (as strtod reads
+    // one in the "C" locale, whatever locale a host program set).
     const std::size_t colon = text.find(':');
     if (colon != std::string::npos) {
       // text[start] is not a blank, so the search back from the ':' stops at start at the latest.
@@ -145,9 +147,7 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
                          : text.substr(start, text.find_last_not_of(" \t", colon - 1) + 1 - start);
       if (number.empty())
         throw InputError(line_error(printable(path), line, "a ':' with no strength before it"));
-      char* end = nullptr;
-      strength = std::strtod(number.c_str(), &end);
-      if (end != number.c_str() + number.size() || !std::isfinite(strength) || strength < 0.0 ||
+      if (!parse_c_number(number, strength) || !std::isfinite(strength) || strength < 0.0 ||
           strength > 1.0)
         throw InputError(
             line_error(printable(path), line,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/decimal_text.hpp"
 #include "material/polar2.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/material.hpp"
@@ -29,7 +30,7 @@ class ActiveFiber final : public MembraneMaterial {
   explicit ActiveFiber(const MaterialParams& p) : mu_(p.mu_aniso), gamma_(p.fiber_target) {
     if (!(gamma_ > 0.0 && gamma_ <= 1.0)) {  // also rejects NaN
       throw UsageError("active-fiber: fiber target stretch must be in (0, 1], got " +
-                       std::to_string(gamma_));
+                       fixed_text(gamma_, 6));  // std::to_string's "%f", in the "C" locale
     }
   }
 

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "mesh/line_tokens.hpp"
+#include "core/decimal_text.hpp"
 #include "mesh/obj_material_paths.hpp"
 #include "mesh/obj_normals.hpp"
 #include "shellcontract/error.hpp"
@@ -90,10 +91,8 @@ class ObjDocument final : public MeshDocument {
 double ObjDocument::number(const Span& t, std::size_t line, const char* what) const {
   if (t.begin == t.end) fail(line, "parse error", std::string("missing ") + what);
   const std::string s = bytes_.substr(t.begin, t.end - t.begin);
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(s.c_str(), &end);
-  if (end != s.c_str() + s.size())
+  double v = 0.0;
+  if (!parse_c_number(s, v))
     fail(line, "parse error", std::string(what) + " '" + s + "' is not a number");
   return v;
 }

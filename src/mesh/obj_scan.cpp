@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <string_view>
 
+#include "core/decimal_text.hpp"
 #include "core/plural.hpp"
 #include "mesh/line_tokens.hpp"
-#include "mesh/off_number.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -106,8 +106,10 @@ ObjScan scan_obj(const std::string& path, const std::string& text_in, MissingVer
         fail(path, "parse error", where() + " has " + std::to_string(t.size() - 1) + " numbers, expected 3 (x y z)");
       std::array<double, 3> p{};
       for (std::size_t k = 0; k < 3; ++k) {
-        // Hexadecimal floats are strtod's alone: CGAL's reader (a stream) refuses them, so do we.
-        if (!parse_off_number(t[k + 1], p[k]) || t[k + 1].find_first_of("xX") != std::string_view::npos)
+        // Hexadecimal floats are strtod's (parse_c_number reads them): CGAL's reader (a stream)
+        // refuses them, so do we.
+        if (!parse_c_number(t[k + 1], p[k]) ||
+            t[k + 1].find_first_of("xX") != std::string_view::npos)
           fail(path, "parse error", where() + ": '" + shorten(t[k + 1]) + "' is not a number");
         if (!std::isfinite(p[k]))
           fail(path, "non-finite coordinate", where() + " has coordinate " + "xyz"[k] + " = " + shorten(t[k + 1]));

@@ -6,10 +6,8 @@
 // vertex and face for later messages, and keeps what it parsed (CGAL's reader, which the scan
 // once only checked files for, parsed them a second time).
 #include "mesh/off_scan.hpp"
-#include "mesh/off_number.hpp"
 
 #include <cctype>
-#include <charconv>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -19,6 +17,7 @@
 #include <regex>
 #include <string_view>
 
+#include "core/decimal_text.hpp"
 #include "core/plural.hpp"
 #include "shellcontract/error.hpp"
 
@@ -112,8 +111,9 @@ class OffScanner {
       double c4[4] = {0.0, 0.0, 0.0, 1.0};
       for (std::size_t k = 0; k < variant.vertex_numbers; ++k) {
         double c = 0.0;
-        // Hexadecimal floats are strtod's alone: CGAL's reader (a stream) refuses them, so do we.
-        if (!parse_off_number(t[k], c) || t[k].find_first_of("xX") != std::string_view::npos)
+        // Hexadecimal floats are strtod's (parse_c_number reads them): CGAL's reader (a stream)
+        // refuses them, so do we.
+        if (!parse_c_number(t[k], c) || t[k].find_first_of("xX") != std::string_view::npos)
           fail(path_, "parse error", where() + ": '" + shorten(t[k]) + "' is not a number");
         if (k < 3 && !std::isfinite(c))
           fail(path_, "non-finite coordinate", where() + " has coordinate " + "xyz"[k] + " = " + std::string(t[k]));
@@ -297,22 +297,6 @@ class OffScanner {
 };
 
 }  // namespace
-
-bool parse_off_number(std::string_view token, double& value) {
-  const char* const first = token.data();
-  const char* const last = first + token.size();
-  double fast = 0.0;
-  const auto r = std::from_chars(first, last, fast, std::chars_format::general);
-  if (r.ec == std::errc() && r.ptr == last && std::isfinite(fast)) {
-    value = fast;
-    return true;
-  }
-  // A copy ends the token with a NUL, so strtod cannot read past it.
-  const std::string copy(token);
-  char* end = nullptr;
-  value = std::strtod(copy.c_str(), &end);
-  return end == copy.c_str() + copy.size();
-}
 
 OffScan scan_off(const std::string& path, const std::string& text, MissingVertices missing) {
   return OffScanner(path, text, missing).scan();

@@ -31,6 +31,7 @@
 #include <Eigen/Geometry>
 
 #include "mesh/file_safety.hpp"
+#include "core/decimal_text.hpp"
 #include "mesh/normal_groups.hpp"
 #include "mesh/ply_header.hpp"
 #include "mesh/ply_textures.hpp"
@@ -152,9 +153,8 @@ double PlyDocument::next_value(ply::Type t, Slot& where) {
     where.end = pos_;
     if (where.begin == where.end) fail("the body ends early");
     const std::string tok = bytes_.substr(where.begin, where.end - where.begin);
-    char* end = nullptr;
-    const double v = std::strtod(tok.c_str(), &end);
-    if (end != tok.c_str() + tok.size()) fail("'" + printable(tok) + "' is not a number");
+    double v = 0.0;
+    if (!parse_c_number(tok, v)) fail("'" + printable(tok) + "' is not a number");
     return v;
   }
   const auto size = static_cast<std::size_t>(ply::size_of(t));

@@ -22,6 +22,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/decimal_text.hpp"
 #include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
 
@@ -311,11 +312,9 @@ class PlyParser {
     if (format_ == Format::Ascii) {
       std::string_view tok;
       if (!token(tok)) fail("truncated file", "the file ends before " + what() + " (" + where() + ")");
-      // strtod reads the token in place: it ends at a separator or at the end of bytes_ (a
-      // std::string, so a '\0' follows), where any number ends; a shorter parse is refused.
-      char* end = nullptr;
-      const double v = std::strtod(tok.data(), &end);
-      if (end != tok.data() + tok.size())
+      // strtod's forms in the "C" locale (core/decimal_text.hpp), whatever locale a host set.
+      double v = 0.0;
+      if (!parse_c_number(tok, v))
         fail("parse error", where() + ": '" + shorten(std::string(tok)) + "' is not a number (" + what() + ")");
       if (check_integer && is_integer(t)) {
         const int bits = 8 * size_of(t);

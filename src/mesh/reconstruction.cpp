@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/decimal_text.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/ply_reader.hpp"
 #include "mesh/point_set_checks.hpp"
@@ -54,9 +55,8 @@ void read_point_lines(const std::string& path, OrientedPoints& points) {
     std::istringstream fields(line);
     std::vector<double> v;
     for (std::string token; fields >> token;) {
-      char* end = nullptr;
-      const double x = std::strtod(token.c_str(), &end);
-      if (end == token.c_str() || *end != '\0' || !std::isfinite(x))
+      double x = 0.0;
+      if (!parse_c_number(token, x) || !std::isfinite(x))
         throw InputError(path + ": line " + std::to_string(number) + ": '" + printable(token) + "' is not a finite number");
       v.push_back(x);
     }

@@ -16,6 +16,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "core/decimal_text.hpp"
+
 namespace shellcontract {
 namespace {
 
@@ -149,12 +151,12 @@ class AsciiScan {
     }
     // A token that strtod reads in full to a non-finite value ("nan", "inf", "1e999"): the stream
     // refuses it as a number, the message says why.
-    char* stop = nullptr;
-    const double v = std::strtod(token.c_str(), &stop);
+    double v = 0.0;
+    const bool whole = parse_c_number(token, v);
     // The vertex's line; the number's too where CGAL read on to a later line for it.
     const std::size_t line = line_at(pos_);
     const std::string also = line == vertex_line ? "" : " (then line " + std::to_string(line) + ": " + quote(token) + ")";
-    if (stop == token.c_str() + token.size() && !std::isfinite(v))
+    if (whole && !std::isfinite(v))
       return {"non-finite coordinate", where(vertex_line) + ": the vertex of " + facet_begun + " has coordinate " + "xyz"[k] +
                                            " = " + shorten(token) + also};
     return {"parse error", where(vertex_line) + ": expected 'vertex X Y Z' with three numbers, got " + quote(line_text(vertex_at)) + also};

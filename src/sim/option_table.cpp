@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <charconv>
-#include <sstream>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -23,6 +23,23 @@ std::string shortest_text(double x) {
 namespace {
 
 using namespace option_builders;
+
+/// A point or direction "X,Y,Z": three decimal numbers (parse_decimal, whatever locale a host
+/// program set), blanks allowed around each, as the stream that read them took them.
+bool parse_xyz(const std::string& text, Vec3& p) {
+  std::size_t begin = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t end = k < 2 ? text.find(',', begin) : text.size();
+    if (end == std::string::npos) return false;
+    std::string_view field(text.data() + begin, end - begin);
+    const auto blank = [](char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
+    while (!field.empty() && blank(field.front())) field.remove_prefix(1);
+    while (!field.empty() && blank(field.back())) field.remove_suffix(1);
+    if (!parse_decimal(field, p[k])) return false;
+    begin = end + 1;
+  }
+  return true;
+}
 
 /// The bounds beyond which a run would take days rather than fail: they refuse a typo
 /// (--frames 1000000000), not a long run.
@@ -105,10 +122,7 @@ OptionSpec region_at_option() {
       const std::size_t end = std::min(v.find(';', begin), v.size());
       const std::string text = v.substr(begin, end - begin);
       Vec3 p;
-      char c1 = 0, c2 = 0;
-      std::istringstream in(text);
-      if (!(in >> p.x() >> c1 >> p.y() >> c2 >> p.z()) || c1 != ',' || c2 != ',' || !(in >> std::ws).eof() ||
-          !p.allFinite())
+      if (!parse_xyz(text, p) || !p.allFinite())
         bad("region-at", text,
             "a point X,Y,Z of three finite numbers" +
                 std::string(text.size() < v.size() ? " (in '" + v + "', points are separated by ';')" : ""));
@@ -173,10 +187,7 @@ OptionSpec fiber_option() {
       return;
     }
     Vec3 d;
-    char c1 = 0, c2 = 0;
-    std::istringstream in(v);
-    if (!(in >> d.x() >> c1 >> d.y() >> c2 >> d.z()) || c1 != ',' || c2 != ',' ||
-        !(in >> std::ws).eof() || !d.allFinite() || d.cwiseAbs().maxCoeff() == 0.0)
+    if (!parse_xyz(v, d) || !d.allFinite() || d.cwiseAbs().maxCoeff() == 0.0)
       bad("fiber", v, "'centre' or a nonzero finite direction X,Y,Z");
     a.fiber_mode = FiberMode::User;
     a.user_direction = d;

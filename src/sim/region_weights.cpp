@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
@@ -43,10 +44,8 @@ std::vector<double> read_vertex_weights(const std::string& path, std::size_t num
     if (tokens >> extra)
       line_error(path, line, "'" + printable(extra) + "' after the weight: one weight per line (vertex " +
                                  std::to_string(weights.size()) + ")");
-    const char* b = token.c_str();
-    char* e = nullptr;
-    const double w = std::strtod(b, &e);
-    if (e != b + token.size() || !std::isfinite(w))
+    double w = 0.0;
+    if (!parse_c_number(token, w) || !std::isfinite(w))
       line_error(path, line, "'" + printable(token) + "' is not a weight (a number in [0, 1])");
     if (!valid_weight(w))
       line_error(path, line, "weight " + token + " of vertex " + std::to_string(weights.size()) +

@@ -4,12 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "core/decimal_text.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
@@ -72,27 +72,25 @@ void ObserverList::finished(const FrameView& view, const RunResult& r) {
 namespace {
 
 std::string ratio_text(double r) {
-  char buf[32];
   // Four decimals hide a small ratio (a collapse to 1e-7 read as 0.0000): those get digits.
-  std::snprintf(buf, sizeof buf, r == 0.0 || std::abs(r) >= 0.01 ? "%.4f" : "%.3g", r);
-  return buf;
+  // "%.4f" or "%.3g" as the "C" locale writes them, whatever locale a host program set.
+  return r == 0.0 || std::abs(r) >= 0.01 ? fixed_text(r, 4) : general_text(r, 3);
 }
 
 /// How far the run ended from its goal, for the message of a target not reached: a factor where
 /// V/V0 is off by more than 2 either way (a collapse far below a small target), otherwise the
 /// difference and its share of the goal; for a target volume, also the tolerance it missed.
 std::string miss_text(double ratio, double goal, bool target) {
-  char buf[96];
+  std::string text;
   if (goal > 0.0 && ratio > 0.0 && (ratio < 0.5 * goal || ratio > 2.0 * goal)) {
     const bool below = ratio < goal;
-    std::snprintf(buf, sizeof buf, "%.3g times %s than the %s", below ? goal / ratio : ratio / goal,
-                  below ? "smaller" : "larger", target ? "target" : "stop ratio");
+    text = general_text(below ? goal / ratio : ratio / goal, 3) + " times " +
+           (below ? "smaller" : "larger") + " than the " + (target ? "target" : "stop ratio");
   } else {
     const double off = ratio - goal;
-    std::snprintf(buf, sizeof buf, "%s %s it (%.3g %% of it)", ratio_text(std::abs(off)).c_str(),
-                  off < 0.0 ? "below" : "above", 100.0 * std::abs(off) / goal);
+    text = ratio_text(std::abs(off)) + " " + (off < 0.0 ? "below" : "above") + " it (" +
+           general_text(100.0 * std::abs(off) / goal, 3) + " % of it)";
   }
-  std::string text = buf;
   if (target) text += "; it counts as reached within " + ratio_text(target_volume_tolerance(goal));
   return text;
 }

@@ -1,8 +1,13 @@
 // The summary and the log row of a run, for every front end (run_report.hpp).
 #include <iomanip>
+#include <locale>
 #include <sstream>
+#include <string_view>
 
+#include "core/decimal_text.hpp"
 #include "core/kernels.hpp"
+#include "mesh/file_safety.hpp"
+#include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/report.hpp"
 #include "shellcontract/run.hpp"
@@ -40,6 +45,38 @@ std::string log_csv_line(const LogRow& row) {
   o << std::setprecision(17);
   for (std::size_t c = 0; c < row.size(); ++c) o << row[c] << (c + 1 < row.size() ? ',' : '\n');
   return o.str();
+}
+
+std::vector<LogRow> log_csv_rows(const std::string& text, const std::string& name) {
+  std::vector<LogRow> rows;
+  std::size_t line = 1, at = text.find('\n');  // the header
+  while (at != std::string::npos && at + 1 < text.size()) {
+    ++line;
+    const std::size_t begin = at + 1;
+    at = text.find('\n', begin);
+    const std::string_view row_text(text.data() + begin,
+                                    (at == std::string::npos ? text.size() : at) - begin);
+    LogRow row{};
+    std::size_t from = 0;
+    for (std::size_t c = 0; c < LOG_COLUMN_COUNT; ++c) {
+      const std::size_t to = c + 1 < LOG_COLUMN_COUNT ? row_text.find(',', from) : row_text.size();
+      const std::string_view field =
+          row_text.substr(from, to == std::string_view::npos ? to : to - from);
+      // A missing comma, or a field that is not all one number (parse_c_number: strtod's
+      // reading in the "C" locale; the last field takes in any further commas, so more columns
+      // are refused too): the text was changed after it was written.
+      if (to == std::string_view::npos || !parse_c_number(field, row[c]))
+        throw InputError(
+            name + ": line " + std::to_string(line) + ": " +
+            (to == std::string_view::npos
+                 ? "fewer than the " + std::to_string(LOG_COLUMN_COUNT) + " columns"
+                 : "'" + printable(field, 40) + "' (" + LOG_COLUMNS[c] + ") is not a number") +
+            " (the file was edited or is damaged; a run never saves this)");
+      from = to + 1;
+    }
+    rows.push_back(row);
+  }
+  return rows;
 }
 
 void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOptions& options,

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/arena_threads.hpp"
+#include "core/decimal_text.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/regions.hpp"
@@ -239,7 +240,7 @@ Simulator::Simulator(SimPlan plan)
       (!region_dimples_.empty() || inward_faces_.rows() > 0) && !outside_vertices_.empty();
   rest_volume_ = enclosed_volume(*mesh_, x_);
   if (!(rest_volume_ > 0.0))
-    throw InputError("the mesh encloses no positive volume (V0 = " + std::to_string(rest_volume_) +
+    throw InputError("the mesh encloses no positive volume (V0 = " + fixed_text(rest_volume_, 6) +
                      ")");
   constraint_rest_volume_ = signed_volume(x_, faces_);
 }

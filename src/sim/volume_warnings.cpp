@@ -3,17 +3,15 @@
 
 #include <algorithm>
 #include <cstddef>
-#include <cstdio>
+
+#include "core/decimal_text.hpp"
 
 namespace shellcontract {
 
 namespace {
 
-std::string ratio_text(double r) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", r);
-  return buf;
-}
+/// "%.3g" as the "C" locale writes it, whatever locale a host program set.
+std::string ratio_text(double r) { return general_text(r, 3); }
 
 }  // namespace
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -19,7 +20,7 @@ void check_inputs(const Positions& x0, const Positions& x1, const CollisionTopol
                      std::to_string(topo.num_vertices) + " vertices");
   if (!(inflation >= 0.0) || !std::isfinite(inflation))
     throw UsageError("broad phase: inflation must be finite and >= 0, got " +
-                     std::to_string(inflation));
+                     fixed_text(inflation, 6));  // std::to_string's "%f", in the "C" locale
 }
 
 void build_boxes(const Positions& x0, const Positions& x1, const CollisionTopology& topo,
