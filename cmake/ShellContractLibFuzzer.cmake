@@ -14,6 +14,8 @@ add_executable(reader_fuzzer ${PROJECT_SOURCE_DIR}/tests/fuzz/libfuzzer/reader_f
 target_include_directories(reader_fuzzer PRIVATE ${PROJECT_SOURCE_DIR}/include ${PROJECT_SOURCE_DIR}/src)
 target_include_directories(reader_fuzzer SYSTEM PRIVATE ${TINYGLTF_INCLUDE_DIR} ${NLOHMANN_JSON_INCLUDE_DIR})
 target_link_libraries(reader_fuzzer PRIVATE Eigen3::Eigen CGAL::CGAL)
+# Eigen's allocator as in the library (CMakeLists.txt): the public headers require it.
+target_compile_definitions(reader_fuzzer PRIVATE ${SHELLCONTRACT_EIGEN_DEFINITIONS})
 # -O1 -g after the build type's flags (the last -O wins): quick to build, readable reports.
 target_compile_options(reader_fuzzer PRIVATE ${_fuzz_sanitizers} -fno-sanitize-recover=undefined
                                              -fno-omit-frame-pointer -O1 -g)

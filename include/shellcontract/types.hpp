@@ -5,6 +5,17 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>  // cross products
 
+// The library and its users must allocate and free Eigen's dynamic matrices alike: the API hands
+// them across (Positions, export.hpp). The ShellContract::shellcontract target (and every in-tree
+// target) compiles with EIGEN_MAX_ALIGN_BYTES=64, which gives one allocator whatever the vector
+// ISA (-mavx2, -march=native), EIGEN_DONT_VECTORIZE or AddressSanitizer (CMakeLists.txt,
+// docs/architecture.md). A translation unit that would get another allocator (it lacks the
+// definition and is not compiled for AVX-512, which gives the same) stops here: it would free or
+// resize the library's matrices with the wrong one.
+#if EIGEN_DEFAULT_ALIGN_BYTES != 64 || EIGEN_MALLOC_ALREADY_ALIGNED
+#error "ShellContract: define EIGEN_MAX_ALIGN_BYTES=64 (ShellContract::shellcontract does)"
+#endif
+
 namespace shellcontract {
 
 using Scalar = double;
