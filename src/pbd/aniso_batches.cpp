@@ -98,9 +98,7 @@ struct SqrtFiberLanes {
   SC_AVX2_INLINE V operator()(V c00, V c01, V c11, LaneP& S) const {
     const V len = _mm256_sqrt_pd(_mm256_max_pd(i5_of(c00, c01, c11, a), _mm256_setzero_pd()));
     const V defined = _mm256_cmp_pd(len, splat(FIBER_MIN_STRETCH), _CMP_GE_OQ);  // !(len < min)
-    // An undefined lane (len may be 0) divides by 1: 1 / 0 would raise FE_DIVBYZERO.
-    const V len_or_one = _mm256_blendv_pd(splat(1.0), len, defined);
-    outer(_mm256_and_pd(mu * (splat(1.0) - splat(1.0) / len_or_one), defined), a, S);
+    outer(_mm256_and_pd(mu * (splat(1.0) - splat(1.0) / len), defined), a, S);
     const V t = len - splat(1.0);
     return splat(0.5) * mu * t * t;
   }
@@ -128,7 +126,7 @@ struct SignedFiberLanes {
     const V target = unit_gamma ? sign : gamma * sign;
     const V len = _mm256_sqrt_pd(i5);
     const V defined = _mm256_cmp_pd(len, splat(FIBER_MIN_STRETCH), _CMP_GE_OQ);
-    const V k = _mm256_and_pd(mu * (one - target / _mm256_blendv_pd(one, len, defined)), defined);
+    const V k = _mm256_and_pd(mu * (one - target / len), defined);
     const V kf0 = k * fa0, kf1 = k * fa1;
     P.p00 = kf0 * a.a0;
     P.p01 = kf0 * a.a1;
@@ -234,6 +232,7 @@ void project_aniso_batches(const A& material, const AnisoBatch* batches, std::si
                            bool paper, BatchIsa isa) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (isa == BatchIsa::Auto && batch_avx2_available()) {
+    const HeldFpExceptions held;
     run_avx2(material, batches, count, xw, ctx, paper ? nullptr : lambda, paper);
     return;
   }

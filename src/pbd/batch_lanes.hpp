@@ -88,6 +88,29 @@ inline void project_lane(PaddedVertex* xw, const int (&v)[N][BATCH_LANES], int k
 }
 
 #if SHELLCONTRACT_BATCH_AVX2
+/// While alive, every SSE/AVX floating-point exception is masked and its flags are clear; when it
+/// ends, the caller's MXCSR (exception masks, flags, rounding mode) is back as it was. The AVX2
+/// kernels compute every lane of a batch and discard the skipped ones (padding lanes, hinges and
+/// faces at rest, pinned or unclamped lanes), whose divisions may be 0 / 0 or 1 / 0: a host that
+/// traps FE_INVALID or FE_DIVBYZERO (feenableexcept) would take SIGFPE there, and any host would
+/// find a flag it did not raise. Holding the exceptions once per call costs nothing measurable;
+/// guarding every such division by its lane's mask put the mask's compares in front of each
+/// division and slowed the kernels (lab/kernels/fp_hold.md). The dispatchers hold it around a
+/// call into the AVX2 code, which is compiled for another target and so never inlined across the
+/// two MXCSR writes. The kernels use no x87 instruction, so MXCSR is the whole environment.
+class HeldFpExceptions {
+ public:
+  HeldFpExceptions() : saved_(_mm_getcsr()) { _mm_setcsr((saved_ | MASK_ALL) & ~FLAGS); }
+  ~HeldFpExceptions() { _mm_setcsr(saved_); }
+  HeldFpExceptions(const HeldFpExceptions&) = delete;
+  HeldFpExceptions& operator=(const HeldFpExceptions&) = delete;
+
+ private:
+  static constexpr unsigned MASK_ALL = 0x1F80u;  // MXCSR bits 7-12: the six exception masks
+  static constexpr unsigned FLAGS = 0x3Fu;       // bits 0-5: the six sticky exception flags
+  unsigned saved_;
+};
+
 // Everything from here to pop_options is compiled for AVX2 + FMA and only called after
 // batch_avx2_available(). Arithmetic is written with GCC's vector operators on __m256d (what
 // the _mm256_add_pd family expands to), so the compiler contracts a * b + c into FMAs. A file

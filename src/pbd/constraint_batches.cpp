@@ -133,16 +133,13 @@ SC_AVX2_INLINE void membrane_lanes(const MembranePair& c, PaddedVertex* xw, cons
   const L3<W> g0 = f0 * a0 + f1 * b0, g1 = f0 * a1 + f1 * b1, h = f0 * (a0 + a1) + f1 * (b0 + b1);
   const W n0 = dot(g0, g0), n1 = dot(g1, g1), n2 = dot(h, h);
   const W G = w0 * n0 + w1 * n1 + w2 * n2;
-  // The skips of math-spec 9.1(d), per lane.
+  // The skips of math-spec 9.1(d), per lane (skipped lanes divide freely: HeldFpExceptions).
   const W active = vand(cmp_gt(E, k.floor * area), cmp_gt(G, k.tiny));
   const int bits = lane_bits(active);
   if (bits == 0) return;
-  // Every division is by 1 on a skipped lane, which may have G = 0 (at rest, or its vertices
-  // pinned): 0 / 0 raised FE_INVALID there (SIGFPE where a host traps it), though the lane's
-  // result is discarded. The active lanes divide by what they did.
   W sigma;  // dx_i = -sigma w_i g_i
   if (!Xpbd) {
-    sigma = E / blend(k.one, G, active);
+    sigma = E / G;
     // The clamp: the longest step sigma^2 max(w_i^2 n_i) against max_step^2; a clamped lane's
     // step is then max_step / sqrt(m) (the clamp is rare). Compared through sigma, which is
     // scale-free under PBD: E^2 m against (max_step G)^2 overflows to inf = inf, and so skips
@@ -150,13 +147,12 @@ SC_AVX2_INLINE void membrane_lanes(const MembranePair& c, PaddedVertex* xw, cons
     const W m = vmax(vmax(w0 * w0 * n0, w1 * w1 * n1), w2 * w2 * n2);
     const W max_step = c.load(&MembraneBatch::max_step);
     const W clamp = cmp_gt(sigma * sigma * m, max_step * max_step);
-    if (lane_bits(vand(clamp, active)) != 0)
-      sigma = blend(sigma, max_step / vsqrt(blend(k.one, m, clamp)), clamp);  // m > 0 where clamped
+    if (lane_bits(vand(clamp, active)) != 0) sigma = blend(sigma, max_step / vsqrt(m), clamp);
   } else {
     // Division-free form of math-spec 9.2 with C = sqrt(2E) (E > 0 on active lanes).
     const W l = c.load_lambda(lam);
     const W C = vsqrt(vmax(k.two * E, lanes_splat<W>(0.0)));
-    sigma = C * (C + k.at * l) / blend(k.one, G + k.at * C * C, active);
+    sigma = C * (C + k.at * l) / (G + k.at * C * C);
     c.store_lambda(lam, blend(l, l - C * sigma, active));
   }
   const W s0 = sigma * w0, s1 = sigma * w1, s2 = vxor(sigma * w2, lanes_splat<W>(-0.0));
@@ -203,13 +199,12 @@ void isometric_batches_avx2(const IsometricBatch* batches, std::size_t count, do
     }
     const V3 h = xs[0] * K[0] + xs[1] * K[1] + xs[2] * K[2] + xs[3] * K[3];
     const V wK2 = ws[0] * K[0] * K[0] + ws[1] * K[1] * K[1] + ws[2] * K[2] * K[2] + ws[3] * K[3] * K[3];
-    // Every stencil vertex pinned or K = 0 (an inactive hinge): no change. Such a lane divides
-    // by 1 instead (0 / 0 raised FE_INVALID; its result is discarded).
+    // Every stencil vertex pinned or K = 0 (an inactive hinge): no change.
     const V active = greater(wK2, tiny);
     if (_mm256_movemask_pd(active) == 0) continue;
     if (lambda == nullptr) {
       // PBD closed form: dx_i = -k_B w_i K_i h / (2 sum w K^2), clamped (math-spec 9.1d).
-      const V3 base = h * (kb / (two * _mm256_blendv_pd(one, wK2, active)));
+      const V3 base = h * (kb / (two * wK2));
       V longest = _mm256_andnot_pd(sign, ws[0] * K[0]);
       for (int j = 1; j < 4; ++j) longest = _mm256_max_pd(longest, _mm256_andnot_pd(sign, ws[j] * K[j]));
       // longest |dx_i| = longest * |base|; compared squared so that the common, unclamped case
@@ -220,8 +215,7 @@ void isometric_batches_avx2(const IsometricBatch* batches, std::size_t count, do
       V shrink = one;
       if (_mm256_movemask_pd(_mm256_and_pd(clamp, active)) != 0) {
         longest = longest * _mm256_sqrt_pd(base_sq);
-        const V over = greater(longest, max_step);  // longest > 0 there
-        shrink = _mm256_blendv_pd(one, max_step / _mm256_blendv_pd(one, longest, over), over);
+        shrink = _mm256_blendv_pd(one, max_step / longest, greater(longest, max_step));
       }
       for (int j = 0; j < 4; ++j)
         scatter(xw, c.v[j], c.count, xs[j] - masked(base * (shrink * ws[j] * K[j]), active), ws[j]);
@@ -232,7 +226,7 @@ void isometric_batches_avx2(const IsometricBatch* batches, std::size_t count, do
     const V3 l = gather3(lam, LANE_IDS);
     const V beta = kb * _mm256_load_pd(c.three_over_area);
     const V sqrt_beta = _mm256_sqrt_pd(_mm256_max_pd(beta, _mm256_setzero_pd()));
-    const V denom = _mm256_blendv_pd(one, beta * wK2 + at, active);
+    const V denom = beta * wK2 + at;
     const V3 dlam{(-sqrt_beta * h.x - at * l.x) / denom, (-sqrt_beta * h.y - at * l.y) / denom,
                   (-sqrt_beta * h.z - at * l.z) / denom};
     scatter3(lam, LANE_IDS, l + masked(dlam, active));
@@ -316,6 +310,7 @@ void project_stvk_membrane_batches(const Stvk& material, const MembraneBatch* ba
                                    const ProjectionContext& ctx, double* lambda, BatchIsa isa) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (isa == BatchIsa::Auto && batch_avx2_available()) {
+    const HeldFpExceptions held;
     if (lambda)
       membrane_batches_avx2<true>(material.mu(), material.lambda(), batches, count, xw, ctx, lambda);
     else
@@ -332,6 +327,7 @@ void project_isometric_hinge_batches(const IsometricBatch* batches, std::size_t 
                                      const ProjectionContext& ctx, double* lambda, BatchIsa isa) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (isa == BatchIsa::Auto && batch_avx2_available()) {
+    const HeldFpExceptions held;
     isometric_batches_avx2(batches, count, k_bending, xw, ctx, lambda);
     return;
   }

@@ -79,9 +79,8 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
   using T = typename Batches::T;
   constexpr double PI = 3.14159265358979323846;
   const T zero = lanes_splat<T>(0.0), one = lanes_splat<T>(1.0), two = lanes_splat<T>(2.0);
-  // Inactive hinges (kappa = 0): no change. A lane that is not `ok` (below) or not `active`
-  // divides by 1 wherever it could divide by 0 (FE_INVALID or FE_DIVBYZERO, SIGFPE where a host
-  // traps them), its result discarded.
+  // Inactive hinges (kappa = 0): no change. Lanes that are not `ok` or not `active` divide
+  // freely, their results discarded (HeldFpExceptions).
   const T kappa = c.load(&DihedralBatch::kappa);
   const T live = cmp_gt(kappa, zero);
   if (lane_bits(live) == 0) return;
@@ -104,14 +103,14 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
   T inv_L, inv_a, inv_b;
   const T in_range = vand(cmp_ge(product, lanes_splat<T>(1e-290)), cmp_le(product, lanes_splat<T>(1e290)));
   if (lane_bits(vandnot(in_range, ok)) == 0) {
-    const T inv = one / blend(one, product, ok);
+    const T inv = one / product;
     inv_L = ab * inv;
     inv_a = (L * b_sq) * inv;
     inv_b = (L * a_sq) * inv;
   } else {
-    inv_L = one / blend(one, L, ok);
-    inv_a = one / blend(one, a_sq, ok);
-    inv_b = one / blend(one, b_sq, ok);
+    inv_L = one / L;
+    inv_a = one / a_sq;
+    inv_b = one / b_sq;
   }
   const L3<T> e_hat = e * inv_L;
   // theta = atan2((NA x NB) . e_hat, NA . NB).
@@ -145,12 +144,12 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
     }
     const T clamp = cmp_gt(longest_sq, max_step * max_step);
     if (lane_bits(vand(clamp, active)) == 0) return one;
-    return blend(one, max_step / vsqrt(blend(one, longest_sq, clamp)), clamp);  // > 0 there
+    return blend(one, max_step / vsqrt(longest_sq), clamp);
   };
   const T kb = lanes_splat<T>(k_bending);
   if (lam == nullptr) {
     // PBD: dx_j = -k_B d / (2 wg) w_j g_j, clamped (kernel_parts::apply_step).
-    T scale = kb * d / (two * blend(one, wg, active));
+    T scale = kb * d / (two * wg);
     scale = scale * clamp_factor(scale);
     for (int j = 0; j < 4; ++j) c.store(xw, j, select(active, xs[j] - g[j] * (scale * ws[j]), xs[j]), ws[j]);
     return;
@@ -160,7 +159,7 @@ SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_
   const T l = c.load_lambda(lam);
   const T root = vsqrt(two * kb * kappa);
   const T C = root * d;
-  T dlam = (neg(C) - at * l) / blend(one, root * root * wg + at, active);
+  T dlam = (neg(C) - at * l) / (root * root * wg + at);
   dlam = dlam * clamp_factor(root * dlam);
   c.store_lambda(lam, blend(l, l + dlam, active));
   for (int j = 0; j < 4; ++j)
@@ -224,6 +223,7 @@ void atan2_avx2(const double* y, const double* x, double* theta, std::size_t n) 
 bool batch_atan2(const double* y, const double* x, double* theta, std::size_t n) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (!batch_avx2_available()) return false;
+  const HeldFpExceptions held;
   atan2_avx2(y, x, theta, n);
   return true;
 #else
@@ -237,6 +237,7 @@ void project_dihedral_hinge_batches(const DihedralBatch* batches, std::size_t co
                                     const ProjectionContext& ctx, double* lambda, BatchIsa isa) {
 #if SHELLCONTRACT_BATCH_AVX2
   if (isa == BatchIsa::Auto && batch_avx2_available()) {
+    const HeldFpExceptions held;
     dihedral_batches_avx2(batches, count, k_bending, xw, ctx, lambda);
     return;
   }

@@ -73,7 +73,7 @@ struct CorotatedLanes {
     const V norm_f = _mm256_sqrt_pd(F.f00 * F.f00 + F.f01 * F.f01 + F.f11 * F.f11);
     // polar2's guard: rho <= 1e-12 |F| gives R = I.
     const V degenerate = _mm256_cmp_pd(rho, splat(POLAR_DEGENERACY_RATIO) * norm_f, _CMP_LE_OQ);
-    const V inv = one / _mm256_blendv_pd(rho, one, degenerate);  // rho may be 0 there
+    const V inv = one / rho;
     const V r00 = _mm256_blendv_pd(c * inv, one, degenerate);  // R = [[c, -d], [d, c]] / rho
     const V r10 = _mm256_blendv_pd(d * inv, zero, degenerate);
     const V a00 = F.f00 - r00, a01 = F.f01 + r10, a10 = zero - r10, a11 = F.f11 - r00;  // F - R
@@ -100,10 +100,8 @@ struct MooneyRivlinLanes {
     const V barrier_side = _mm256_cmp_pd(abs_j, splat(J0), _CMP_GE_OQ);
     // g = J^-2 and dg = -2 J^-3 for |J| >= J0, else the linear continuation (sign(0) = +1),
     // computed only when a lane needs it (a nearly collapsed triangle).
-    // J = 0 (a collapsed triangle) divides by 1 instead: 1 / 0 would raise FE_DIVBYZERO.
-    const V Jb = _mm256_blendv_pd(splat(1.0), J, barrier_side);
-    V g = splat(1.0) / (Jb * Jb);
-    V dg = splat(-2.0) / (Jb * Jb * Jb);
+    V g = splat(1.0) / (J * J);
+    V dg = splat(-2.0) / (J * J * J);
     if (_mm256_movemask_pd(barrier_side) != 0xF) {
       const V g_lin = splat(3.0 / (J0 * J0)) - two * abs_j / splat(J0 * J0 * J0);
       const V dg_lin = _mm256_blendv_pd(splat(-2.0 / (J0 * J0 * J0)), splat(2.0 / (J0 * J0 * J0)),
@@ -170,8 +168,11 @@ void mooney_rivlin_avx2(const MooneyRivlin& m, const MembraneBatch* batches, std
 
 #pragma GCC diagnostic pop
 #pragma GCC pop_options
-#define SC_AVX2_KERNEL(kernel) \
-  if (isa == BatchIsa::Auto && batch_avx2_available()) return kernel(material, batches, count, xw, ctx, lambda)
+#define SC_AVX2_KERNEL(kernel)                                \
+  if (isa == BatchIsa::Auto && batch_avx2_available()) {      \
+    const HeldFpExceptions held;                              \
+    return kernel(material, batches, count, xw, ctx, lambda); \
+  }
 #else
 #define SC_AVX2_KERNEL(kernel) (void)isa
 #endif  // SHELLCONTRACT_BATCH_AVX2

@@ -58,11 +58,9 @@ SC_AVX2_INLINE LaneGradient frame_gradient(const Lanes& mat, const V3& x1, const
   out.valid = _mm256_and_pd(
       _mm256_cmp_pd(half * twice_area, splat(FRAME_AREA_RATIO) * r.area, _CMP_GE_OQ),
       greater(len1, zero));
-  // A lane that is not regular (a collapsed triangle) divides by 1: its 0 / 0 would raise
-  // FE_INVALID, and it is skipped anyway.
-  const V inv_len1 = one / _mm256_blendv_pd(one, len1, out.valid);
+  const V inv_len1 = one / len1;
   const V3 t1 = e1 * inv_len1;
-  const V3 t2 = cross(N, t1) * (s / _mm256_blendv_pd(one, twice_area, out.valid));  // (s n) x t1
+  const V3 t2 = cross(N, t1) * (s / twice_area);  // (s n) x t1
   const V p01 = dot(e2, t1), p11 = s * twice_area * inv_len1;  // pDs = [[len1, p01], [0, p11]]
   const UpperF F{len1 * r.dm00, len1 * r.dm01 + p01 * r.dm11, p11 * r.dm11};
   LaneP P;
@@ -115,23 +113,18 @@ SC_AVX2_INLINE void membrane_step(PaddedVertex* xw, const int (&v)[3][BATCH_LANE
   const V active = _mm256_and_pd(
       g.valid, _mm256_and_pd(greater(g.E, floor * area), greater(G, splat(1e-300))));
   if (_mm256_movemask_pd(active) == 0) return;
-  // A skipped lane (G = 0 at rest or with its vertices pinned) divides by 1: 0 / 0 raised
-  // FE_INVALID (SIGFPE where a host traps it), though its result is discarded.
-  const V one = splat(1.0);
   V sigma;  // dx_i = -sigma w_i gp_i
   if (lam == nullptr) {
-    sigma = g.E / _mm256_blendv_pd(one, G, active);
+    sigma = g.E / G;
     const V a0 = sigma * w0, a1 = sigma * w1, a2 = sigma * w2;
     const V longest_sq = _mm256_max_pd(_mm256_max_pd(a0 * a0 * n0, a1 * a1 * n1), a2 * a2 * n2);
     const V clamp = greater(longest_sq, max_step * max_step);
     if (_mm256_movemask_pd(_mm256_and_pd(clamp, active)) != 0)  // the clamp is rare
-      sigma = _mm256_blendv_pd(
-          sigma, sigma * (max_step / _mm256_sqrt_pd(_mm256_blendv_pd(one, longest_sq, clamp))),
-          clamp);
+      sigma = _mm256_blendv_pd(sigma, sigma * (max_step / _mm256_sqrt_pd(longest_sq)), clamp);
   } else {
     const V l = _mm256_loadu_pd(lam);
     const V C = _mm256_sqrt_pd(_mm256_max_pd(splat(2.0) * g.E, _mm256_setzero_pd()));
-    sigma = C * (C + alpha_tilde * l) / _mm256_blendv_pd(one, G + alpha_tilde * C * C, active);
+    sigma = C * (C + alpha_tilde * l) / (G + alpha_tilde * C * C);
     _mm256_storeu_pd(lam, _mm256_blendv_pd(l, l - C * sigma, active));
   }
   scatter(xw, v[0], count, r1.x - masked(gp[0] * (sigma * w0), active), w0);
