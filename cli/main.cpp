@@ -1,5 +1,8 @@
 // shellcontract: contract a closed triangle mesh like a thin elastic shell under outside air
 // pressure (Sun et al., J. Software 2020). This file only dispatches to the subcommands.
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+
 #include <cerrno>
 #include <csignal>
 #include <cstddef>
@@ -11,6 +14,7 @@
 #include <string>
 
 #include "commands.hpp"
+#include "core/usable_cpus.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/version.hpp"
@@ -134,6 +138,17 @@ int main(int argc, char** argv) {
     return 1;
   }
   map_main_stack();
+  // TBB's own thread count is the CPU affinity's, blind to a cgroup CPU quota: the work that runs
+  // outside a run's arena (the planning's broad phase) took a thread per core of a 64-core host
+  // in a container given 2 CPUs. Held to the CPUs this process may use, as the runs' arenas are
+  // (core/arena_threads.hpp).
+  if (shellcontract::usable_cpus() < tbb::info::default_concurrency()) {
+    // Never destroyed: at its destruction TBB lifts the limit and starts a worker, at exit.
+    static const auto* const limit =
+        new tbb::global_control(tbb::global_control::max_allowed_parallelism,
+                                static_cast<std::size_t>(shellcontract::usable_cpus()));
+    static_cast<void>(limit);
+  }
   // One ending for Ctrl-C, SIGTERM, SIGHUP and SIGUSR1 in every command, with or without
   // --checkpoint: the temporaries removed, exit code 130 (docs/cli.md). Installed now, not at the
   // first temporary, so that a signal before any file is written ends the same way. Where the

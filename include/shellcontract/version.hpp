@@ -16,7 +16,9 @@ const char* release_version();
 /// The build: the release, then the commit it was built from and a hash of the uncommitted
 /// changes to tracked files, as a PEP 440 local version: "0.2.0+g0123456789ab" or
 /// "0.2.0+g0123456789ab.dirty.1a2b3c4d"; the release alone when built outside a git checkout.
-/// Python's `shellcontract.__version__`.
+/// A -march=native build (SHELLCONTRACT_NATIVE) adds its target, "native." and a hash of the
+/// instruction set picked for its machine: "0.2.0+g0123456789ab.native.1a2b3c4d" ("0.2.0+native.
+/// 1a2b3c4d" outside git), since it may round differently. Python's `shellcontract.__version__`.
 const char* build_version();
 
 /// The constraint kernels this process runs: "avx2" (the batched AVX2 + FMA kernels, on every

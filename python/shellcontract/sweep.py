@@ -283,6 +283,9 @@ def _run_dask(todo, args, cli, version, token, progress, on_record, client=None)
     dask.config.set(CLIENT_CONFIG)
     cluster, threads = None, None
     own_cli = None if not args.scheduler else args.cli is None
+    # An existing cluster's jobs take their machine's share, which each job's worker works out.
+    share = (None if client is None else
+             sweep_host.cluster_share(client.scheduler_info().get("workers", {}), len(todo)))
     if client is None:
         # The embedded workers run this machine's executable, on the cores this process may use.
         workers = args.workers or sweep_host.usable_cores()
@@ -308,7 +311,8 @@ def _run_dask(todo, args, cli, version, token, progress, on_record, client=None)
         submitted = client.map(sweep_job.run_job, [job.to_dict() for job in todo],
                                out_dir=args.output, cli=cli, timeout=args.job_timeout,
                                checkpoint_every=args.checkpoint_every, sweep=token,
-                               own_cli=own_cli, version=version, threads=threads, pure=False,
+                               own_cli=own_cli, version=version, threads=threads,
+                               share=share, pure=False,
                                # This sweep's own keys: two sweeps on one cluster with the
                                # same job (its id is the run's, not the folder's) had shared one
                                # task, whose files went to the first sweep's folder only.

@@ -19,7 +19,7 @@ import threading
 import time
 import uuid
 
-from . import sweep_output
+from . import sweep_host, sweep_output
 from .sweep_cli import WorkerError, cli_version, describe_worker, find_cli, worker_cli  # noqa: F401
 
 # Statuses of an outcome the same run would give again: the job is done. The others (a crash,
@@ -184,7 +184,7 @@ def _classify(rc, timed_out, summary, messages):
 
 
 def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, own_cli=None,
-            version=None, threads=None):
+            version=None, threads=None, share=None):
     """Runs one job (a Job.to_dict()) unless DIR/jobs/<id>/ holds its outcome already; returns
     its record. An interrupted job (SIGTERM/SIGINT to the child) leaves its checkpoint and no
     record; the next attempt resumes from the checkpoint.
@@ -193,12 +193,15 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, ow
     cluster, which runs worker_cli(cli, version, own_cli) (its own executable if `own_cli`, else
     the client's `cli`, of the sweep's version); None: `cli` as it is (this machine's).
     `threads`: the job's --threads unless its options give one (sweep_host.job_threads); None: the
-    tool's default."""
+    tool's default. `share` (an existing cluster's, sweep_host.cluster_share): `threads` is this
+    worker's machine's share instead (sweep_host.worker_job_threads)."""
     with _ACTIVE:
         _active_calls[sweep] = _active_calls.get(sweep, 0) + 1
     try:
         if own_cli is not None:
             cli = worker_cli(cli, version, own_cli)
+        if threads is None and share is not None:
+            threads = sweep_host.worker_job_threads(share)
         return _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads)
     finally:
         with _ACTIVE:

@@ -94,6 +94,85 @@ def test_the_default_workers_are_the_cores_this_process_may_use(cli, mesh_dir, t
     assert asked == [1]
 
 
+# A CPU quota (docker --cpus=2, a Kubernetes CPU limit) leaves the affinity whole: the cores
+# this process may use are held to it. Before, the affinity alone: a sweep in a container given 2
+# CPUs of a 64-core host started 64 jobs at once. The same reading as the tool's default thread
+# count (tests/core/test_usable_cpus.cpp).
+def _cgroup_tree(tmp_path, monkeypatch, proc_self_cgroup, files):
+    root = tmp_path / "cgroup"
+    for relative, text in files.items():
+        (root / relative).parent.mkdir(parents=True, exist_ok=True)
+        (root / relative).write_text(text)
+    root.mkdir(exist_ok=True)
+    (tmp_path / "proc_self_cgroup").write_text(proc_self_cgroup)
+    monkeypatch.setattr(sweep_host, "CGROUP_ROOT", str(root))
+    monkeypatch.setattr(sweep_host, "PROC_SELF_CGROUP", str(tmp_path / "proc_self_cgroup"))
+    return root
+
+
+def test_a_cpu_quota_holds_the_usable_cores(tmp_path, monkeypatch):
+    root = _cgroup_tree(tmp_path, monkeypatch, "0::/job\n", {"job/cpu.max": "200000 100000\n"})
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(64)), raising=False)
+    assert sweep_host.cgroup_cpu_limit() == 2
+    assert sweep_host.usable_cores() == 2
+    for text, limit in (("150000 100000", 2), ("50000 100000", 1), ("max 100000", 0),
+                        ("", 0), ("abc", 0), ("-5 100000", 0), ("200000 0", 0), ("1_0 1", 0),
+                        ("200000 100000 7", 0), ("0x30000 100000", 0), ("200000\t100000", 0)):
+        (root / "job" / "cpu.max").write_text(text + "\n")
+        assert sweep_host.cgroup_cpu_limit() == limit, text
+        assert sweep_host.usable_cores() == (limit or 64), text
+    (root / "job" / "cpu.max").write_bytes(b"\xff\xfe\x00")
+    assert sweep_host.usable_cores() == 64
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {5}, raising=False)
+    (root / "job" / "cpu.max").write_text("800000 100000\n")
+    assert sweep_host.usable_cores() == 1  # the affinity is the smaller
+
+
+def test_the_tightest_quota_of_the_cgroup_and_its_ancestors(tmp_path, monkeypatch):
+    root = _cgroup_tree(tmp_path, monkeypatch, "", {
+        "user.slice/cpu.max": "300000 100000", "user.slice/session/cpu.max": "max 100000",
+        "user.slice/session/job/cpu.max": "800000 100000"})
+    assert sweep_host.cgroup_cpu_limit(str(root), "0::/user.slice/session/job\n") == 3
+    # A container whose own cgroup is mounted as the root: its full path is not there.
+    (root / "cpu.max").write_text("400000 100000")
+    assert sweep_host.cgroup_cpu_limit(str(root), "0::/system.slice/docker-0123.scope\n") == 4
+    # v1: the cpu controller's hierarchy, root/cpu or root/cpu,cpuacct; -1 is no quota.
+    (root / "cpu,cpuacct" / "docker").mkdir(parents=True)
+    (root / "cpu,cpuacct" / "docker" / "cpu.cfs_quota_us").write_text("250000\n")
+    (root / "cpu,cpuacct" / "docker" / "cpu.cfs_period_us").write_text("100000\n")
+    v1 = "4:cpu,cpuacct:/docker\n5:cpuacct:/docker\n"
+    assert sweep_host.cgroup_cpu_limit(str(root), v1) == 3
+    assert sweep_host.cgroup_cpu_limit(str(root), v1 + "0::/\n") == 3  # v2's 4 is the larger
+    (root / "cpu,cpuacct" / "docker" / "cpu.cfs_quota_us").write_text("-1\n")
+    assert sweep_host.cgroup_cpu_limit(str(root), v1) == 0
+    assert sweep_host.cgroup_cpu_limit(str(root), "5:cpuacct:/docker\n") == 0
+    # Garbage: no quota, no error; nothing outside the tree is read.
+    for text in ("", "junk", "0::relative", ":::", "0:", "0::/../..", "2:cpu/../..:/", "\n\n"):
+        assert sweep_host.cgroup_cpu_limit(str(root), text) == 0, text
+    assert sweep_host.cgroup_cpu_limit(str(tmp_path / "absent"), "0::/job\n") == 0
+    (tmp_path / "proc_self_cgroup").unlink()  # unreadable: no quota
+    assert sweep_host.cgroup_cpu_limit() == 0
+
+
+def test_the_default_workers_are_held_to_the_cpu_quota(cli, mesh_dir, tmp_path, monkeypatch):
+    pytest.importorskip("distributed")
+    from shellcontract import sweep
+    _cgroup_tree(tmp_path, monkeypatch, "0::/\n", {"cpu.max": "200000 100000\n"})
+    path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"],
+                                                      "options": {"frames": 2}},
+                       meshes=("ico1.off",))
+    asked = []
+
+    def cluster(workers):
+        asked.append(workers)
+        raise KeyboardInterrupt  # nothing to run: the number is the test
+
+    monkeypatch.setattr(sweep, "_embedded_cluster", cluster)
+    monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(64)), raising=False)
+    assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli]) == 130
+    assert asked == [2]
+
+
 def test_the_jobs_at_once_share_the_cores():
     assert sweep_host.job_threads(1, 10, cores=8) is None  # one at a time: the tool's default
     assert sweep_host.job_threads(8, 1, cores=8) is None

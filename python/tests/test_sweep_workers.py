@@ -11,7 +11,7 @@ import sys
 
 import pytest
 
-from shellcontract import sweep_cli, sweep_job
+from shellcontract import sweep_cli, sweep_host, sweep_job
 from test_sweep import free_port, results, run_sweep, sweep_env, wait_until, write_sweep
 from test_sweep_engine import ENDLESS, kill_left_over, processes_naming
 
@@ -85,6 +85,37 @@ def test_each_worker_runs_its_own_executable(cli, mesh_dir, tmp_path, cluster):
     assert [row["status"] for row in results(out)] == ["ok", "ok"]
     calls = (tmp_path / "calls.txt").read_text().splitlines()
     assert sum(c.startswith("run ") for c in calls) == 2, calls
+
+
+# The jobs that run at once on one machine share its cores: the usual cluster, as many
+# single-threaded workers as cores, counted by host (a worker's own nthreads, 1, says nothing of
+# its neighbours). Before, no --threads: each job started a thread per core, N jobs N x N threads.
+def test_jobs_on_one_machines_workers_share_its_cores(cli, mesh_dir, tmp_path, cluster):
+    address, start = cluster
+    env = sweep_env(cli)
+    env["SHELLCONTRACT_CLI"] = str(fake_cli(tmp_path, cli))
+    start(env)
+    start(env)  # two single-threaded workers on 127.0.0.1
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SMALL, meshes=("ico1.off",))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--scheduler", address])
+    assert r.returncode == 0, r.stderr
+    runs = [c.split() for c in (tmp_path / "calls.txt").read_text().splitlines()
+            if c.startswith("run ")]
+    assert len(runs) == 2, runs
+    share = str(max(1, sweep_host.usable_cores() // 2))
+    for args in runs:
+        assert args.count("--threads") == 1 and args[args.index("--threads") + 1] == share, args
+
+
+def test_the_share_counts_the_workers_of_each_host():
+    workers = {"tcp://10.0.0.1:1": {"host": "10.0.0.1", "nthreads": 1},
+               "tcp://10.0.0.1:2": {"host": "10.0.0.1", "nthreads": 1},
+               "tcp://10.0.0.2:1": {"host": "10.0.0.2", "nthreads": 4}}
+    assert sweep_host.cluster_share(workers, 10) == (
+        {"tcp://10.0.0.1:1": 2, "tcp://10.0.0.1:2": 2, "tcp://10.0.0.2:1": 4}, 10)
+    slots, jobs = sweep_host.cluster_share(workers, 3)  # no more at once than the sweep's jobs
+    assert slots["tcp://10.0.0.2:1"] == 3 and slots["tcp://10.0.0.1:1"] == 2
+    assert sweep_host.worker_job_threads((slots, jobs)) is None  # not in a worker's task
 
 
 def test_a_worker_of_another_version_is_refused_before_anything_runs(cli, mesh_dir, tmp_path,

@@ -262,8 +262,9 @@ std::vector<OptionSpec> build_table() {
                      [](R& r) -> OrderChoice& { return r.order; }));
   t.push_back(
       integer("threads", 0, "N",
-              "threads of the coloured order and of the collision handling (0 = all cores); "
-              "results do not depend on it",
+              "threads of the coloured order and of the collision handling (0 = the CPUs this "
+              "process may use: its affinity, held to its cgroup's CPU quota); results do not "
+              "depend on it",
               0, 4096, [](R& r) -> int& { return r.sim.solver.threads; }));
   t.push_back(
       number("damping", 0, "D",
