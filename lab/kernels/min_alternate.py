@@ -8,10 +8,16 @@ Under load the minimum and the lower quartile are the least disturbed figures; m
 alternating runs (measure.py) need a quiet machine.
 
   python3 lab/kernels/min_alternate.py FILTER ROUNDS NAME=BINARY [NAME=BINARY ...]
+
+The binaries load bear from their own build's source tree unless MESH is set in the environment
+(passed as --mesh=MESH to every binary, so that copies of binaries from removed trees still run).
 """
 import json
+import os
 import subprocess
 import sys
+
+MESH = [f"--mesh={os.environ['MESH']}"] if os.environ.get("MESH") else []
 
 
 def main():
@@ -20,7 +26,7 @@ def main():
     res = {}
     for _ in range(rounds):
         for tag, binary in bins.items():
-            out = subprocess.run([binary, "--benchmark_repetitions=7", "--benchmark_format=json",
+            out = subprocess.run([binary, "--benchmark_repetitions=7", "--benchmark_format=json", *MESH,
                                   f"--benchmark_filter={flt}", "--benchmark_min_time=0.1"],
                                  capture_output=True, text=True, check=True).stdout
             for b in json.loads(out)["benchmarks"]:
