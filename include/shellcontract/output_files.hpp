@@ -26,7 +26,9 @@ struct NamedFile {
 /// replaced); each output's folder is probed by creating and removing a file with a name of the
 /// output's length (a missing or read-only folder, a parent that is a file, a name too long).
 /// Creates nothing that stays.
-/// @throws UsageError naming the option, the path and the reason
+/// @throws UsageError naming the option, the path and the reason; an OutputFileError
+///         (shellcontract/file_error.hpp) with the errno where the file system refused (a
+///         missing or read-only folder: ENOENT, EACCES; a folder in the output's place: EISDIR)
 void check_output_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs);
 
 }  // namespace shellcontract

@@ -12,6 +12,13 @@ to blame (an open boundary, a non-manifold edge or vertex, a duplicate or degene
 the message is about, all of them even where the message shortens its list with "...": for an
 open boundary, an inconsistent orientation or a non-manifold edge every face with such an edge;
 for a duplicate face the pair found first, for a degenerate face the first one.
+
+A file that cannot be read or written (missing, a folder, not permitted, its folder missing or
+read-only, the disk full) raises what Python's open() would: FileNotFoundError,
+PermissionError, IsADirectoryError, NotADirectoryError, FileExistsError or another OSError,
+with ``errno`` and ``filename`` set; ``str()`` (and ``strerror``) is the library's message, the
+CLI's. Each is a ``FileError``, which is an OSError and a ValueError as well, so that code
+catching ValueError, what these errors were before, still catches them.
 """
 
 import atexit
@@ -26,12 +33,17 @@ import numpy as np
 
 from . import _core
 
-__all__ = ["Option", "Result", "MeshError", "contract", "frames", "options", "check", "regions",
-           "read_mesh", "write_mesh"]
+__all__ = ["Option", "Result", "MeshError", "FileError", "contract", "frames", "options", "check",
+           "regions", "read_mesh", "write_mesh"]
 
 # A ValueError for a mesh refused because of some of its faces, with their indices as `faces`
 # (a list of int); `except ValueError` catches it as before.
 MeshError = _core.MeshError
+# A file the file system refused: an OSError (raised as the subclass for its errno, which is
+# FileError and the builtin of the same name, e.g. shellcontract._core.FileNotFoundError) and a
+# ValueError, as these errors were before. The subclasses stay in _core: bound here, their names
+# would hide the builtins from this module's own code.
+FileError = _core.FileError
 # The build, "0.2.0+g0123456789ab", and the kernels of this machine, "avx2" or "scalar": what
 # `shellcontract --version` prints and checkpoints name (docs/python.md).
 __version__ = _core.__version__
@@ -112,11 +124,15 @@ def contract(vertices, faces, *, callback=None, **options):
     'X,Y,Z' ('X,Y,Z;X,Y,Z' for several); None is a TypeError, no point or a coordinate that is
     not finite a ValueError (naming region_at[i]).
 
-    File names (regions, region_weights, checkpoint, resume) are a str or an os.PathLike.
+    File names (regions, region_weights, checkpoint, resume) are a str or an os.PathLike; one
+    that cannot be opened raises its OSError (FileNotFoundError, ...: a FileError, a ValueError
+    too).
 
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
     cancels the run; FILE is checked before the run as the CLI checks its outputs (ValueError
-    for a missing folder, a folder in its place, an input's file). resume=FILE continues such a
+    for an input's file; FileNotFoundError for a missing folder, IsADirectoryError for a folder
+    in its place, PermissionError for a read-only folder: each a FileError, a ValueError too;
+    resume= of a missing file is a FileNotFoundError). resume=FILE continues such a
     run (the same vertices and faces; options, if given, must equal the checkpoint's, threads
     excepted) to the result the uninterrupted run gives, bit for bit, its log included
     (``shellcontract run --checkpoint/--resume``, whose checkpoints this reads and the other way
@@ -395,7 +411,11 @@ def regions(vertices, faces, **region_options):
 def read_mesh(path):
     """Reads OFF/OBJ/PLY/STL with the CLI's checks; returns (vertices, faces): the triangles as
     the run takes them, polygons split and a component that is inside out turned outward (so a
-    file's face order or corner order may differ; write_mesh's `like` keeps the file's own)."""
+    file's face order or corner order may differ; write_mesh's `like` keeps the file's own).
+    A file that cannot be opened raises its OSError (FileNotFoundError, IsADirectoryError,
+    PermissionError, ...: a FileError, a ValueError too); one whose content is refused raises
+    ValueError (MeshError, with ``faces``, where particular faces are to blame). Other Python
+    threads run while the file is read and checked."""
     return _core.read_mesh(path)  # str or os.PathLike; TypeError otherwise
 
 
@@ -409,5 +429,9 @@ def write_mesh(path, vertices, faces, like=None):
     the new positions (UVs, normals, groups, materials, polygons, extra properties kept), each
     written in the file's own type: a position its type cannot hold (beyond a float32's range,
     a whole mesh below the smallest normal float32, an integer type's range) is a ValueError
-    naming the vertex."""
+    naming the vertex.
+    A file that cannot be written raises its OSError (FileNotFoundError for a missing folder,
+    PermissionError for a read-only one, IsADirectoryError for a folder in its place, another
+    OSError for a full disk: a FileError, a ValueError too). Other Python threads run while the
+    file is written."""
     _core.write_mesh(path, vertices, faces, like)  # str or os.PathLike (or None)

@@ -18,6 +18,7 @@
 
 #include "arrays.hpp"
 #include "contract.hpp"
+#include "file_error.hpp"
 #include "mesh_error.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
@@ -181,10 +182,19 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
   return out;
 }
 
-py::tuple read_mesh(const py::handle& path) {
-  const Mesh mesh = read_input_mesh(path_argument(path));
-  // The file's vertices, a mesh welded along its seams included: contract() welds them again.
-  return py::make_tuple(positions_to_numpy(input_positions(mesh, positions_from_mesh(mesh))), faces_to_numpy(mesh));
+py::tuple read_mesh(const py::handle& path_arg) {
+  const std::string path = path_argument(path_arg);
+  Mesh mesh;
+  Positions x;
+  {
+    // Reading and checking touch no Python object: other Python threads go on meanwhile (a
+    // program reading several files in threads, a user interface).
+    py::gil_scoped_release free;
+    mesh = read_input_mesh(path);
+    // The file's vertices, a mesh welded along its seams included: contract() welds them again.
+    x = input_positions(mesh, positions_from_mesh(mesh));
+  }
+  return py::make_tuple(positions_to_numpy(x), faces_to_numpy(mesh));
 }
 
 void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py::handle& faces,
@@ -193,24 +203,35 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
   const std::string like = like_arg.is_none() ? std::string() : path_argument(like_arg, "like");
   // The faces are written as given (no reorientation): this writes a result back.
   const Mesh mesh = mesh_from_numpy(vertices, faces, nullptr, /*reorient=*/false);
+  const Positions x = positions_from_numpy(vertices);
   if (!like.empty()) {
     // The file `like` kept whole with these positions (docs/design/attributes.md): only for the
     // mesh read_mesh(like) gives, written in like's format. Read and checked first, so that a bad
     // file gets the reader's message and the document parses only bytes the reader accepted.
-    const Mesh read = read_input_mesh(like);
-    const std::unique_ptr<MeshDocument> doc = read_mesh_document(like);
+    Mesh read;
+    std::unique_ptr<MeshDocument> doc;
+    {
+      py::gil_scoped_release free;  // the arrays are compared below, with the GIL
+      read = read_input_mesh(like);
+      doc = read_mesh_document(like);
+    }
     if (!doc || !path_has_extension(path, doc->format()))
       throw UsageError("write_mesh: like=" + like + ": only an OBJ or PLY file, written to a file of its format");
     const auto f = faces_to_numpy(read), g = py::array_t<std::int64_t>::ensure(faces);
     if (!g || g.size() != f.size() || !std::equal(f.data(), f.data() + f.size(), g.data()) || !doc->matches(read))
       throw UsageError("write_mesh: like=" + like + ": the faces are not those read_mesh gives for it");
     std::vector<std::string> warnings;  // a material library of like's that does not exist
-    write_mesh_document_atomic(path, *doc, positions_from_numpy(vertices), &warnings);
+    {
+      py::gil_scoped_release free;
+      write_mesh_document_atomic(path, *doc, x, &warnings);
+    }
     for (const std::string& w : warnings)
       py::module_::import("warnings").attr("warn")(w, py::module_::import("builtins").attr("UserWarning"), 2);
     return;
   }
-  write_mesh_atomic(path, mesh, positions_from_numpy(vertices));
+  // Only C++ objects from here: other Python threads go on while the file is written.
+  py::gil_scoped_release free;
+  write_mesh_atomic(path, mesh, x);
 }
 
 }  // namespace
@@ -230,11 +251,18 @@ PYBIND11_MODULE(_core, m) {
   // A mesh refused for particular faces is a MeshError, a ValueError with their indices as
   // `faces` (mesh_error.hpp).
   register_mesh_error(m);
+  // A file that cannot be read or written is a FileError: the OSError subclass of its errno
+  // (FileNotFoundError, PermissionError, ...) and a ValueError as before (file_error.hpp).
+  register_file_errors(m);
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const FaceListError& e) {
       set_mesh_error(e, spell_options(e.what(), OptionSpelling::Python));
+    } catch (const InputFileError& e) {
+      set_file_error(e, spell_options(e.what(), OptionSpelling::Python));
+    } catch (const OutputFileError& e) {
+      set_file_error(e, spell_options(e.what(), OptionSpelling::Python));
     } catch (const InputError& e) {
       // An input's option by Python's name too (a changed face-list file of `regions`).
       PyErr_SetObject(PyExc_ValueError,

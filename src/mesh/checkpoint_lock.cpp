@@ -56,7 +56,7 @@ std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
       const int e = errno;
       refuse_file(
           option, checkpoint,
-          "cannot make its lock file " + quoted_path(lock) + " (" + file_error_text(e) + ")");
+          "cannot make its lock file " + quoted_path(lock) + " (" + file_error_text(e) + ")", e);
     }
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int e = errno;

@@ -19,12 +19,19 @@
 #include <mutex>
 
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 
 namespace shellcontract {
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
   throw InputError(printable(path) + ": " + problem + ": " + details);
+}
+
+/// The same message, for a failure of the file system whose errno a front end may want.
+[[noreturn]] void fail_os(const std::string& path, int error_number, const std::string& problem,
+                          const std::string& details) {
+  throw InputFileError(printable(path) + ": " + problem + ": " + details, error_number, path);
 }
 
 // ------------------------------------------------------------------- temporaries and signals
@@ -286,10 +293,10 @@ int open_regular(const std::string& path, struct stat& st) {
     fail(path, "cannot open file", "a file name cannot hold a NUL byte");
   if (::stat(path.c_str(), &st) != 0) {
     const int e = errno;
-    fail(path, "cannot open file", e == ENOENT ? "no such file" : file_error_text(e));
+    fail_os(path, e, "cannot open file", e == ENOENT ? "no such file" : file_error_text(e));
   }
   const auto refuse_kind = [&](const struct stat& s) {
-    if (S_ISDIR(s.st_mode)) fail(path, "cannot open file", "it is a folder");
+    if (S_ISDIR(s.st_mode)) fail_os(path, EISDIR, "cannot open file", "it is a folder");
     if (S_ISCHR(s.st_mode) || S_ISBLK(s.st_mode))
       fail(path, "not a regular file", "it is a device; inputs must be regular files");
     if (S_ISFIFO(s.st_mode))
@@ -303,7 +310,7 @@ int open_regular(const std::string& path, struct stat& st) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
     const int e = errno;
-    fail(path, "cannot open file", file_error_text(e));
+    fail_os(path, e, "cannot open file", file_error_text(e));
   }
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     ::close(fd);
@@ -341,7 +348,8 @@ std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) 
     if (n < 0) {
       if (errno == EINTR) continue;
       const int e = errno;
-      fail(path, "cannot read file", file_error_text(e) + " after " + std::to_string(done) + " bytes");
+      fail_os(path, e, "cannot read file",
+              file_error_text(e) + " after " + std::to_string(done) + " bytes");
     }
     if (n == 0) break;
     if (full) bytes.append(more, static_cast<std::size_t>(n));

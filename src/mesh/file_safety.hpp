@@ -93,12 +93,12 @@ void end_on_next_signal(int sig);
 /// anything is read (a FIFO is not even opened for long: O_NONBLOCK), so /dev/zero or a pipe
 /// that never ends cannot fill the memory. Every read is checked: a read error or a file larger
 /// than `max_bytes` is refused, never returned in part.
-/// @throws InputError "<path>: <problem>: <details>"; std::bad_alloc passes (the caller names it)
+/// @throws InputError "<path>: <problem>: <details>" (InputFileError: with errno); bad_alloc passes
 std::string read_regular_file(const std::string& path,
                               std::uint64_t max_bytes = UINT64_MAX);
 
 /// The size of a regular file (the same refusals as read_regular_file, nothing read).
-/// @throws InputError
+/// @throws InputError, InputFileError
 std::uint64_t regular_file_size(const std::string& path);
 
 }  // namespace shellcontract

@@ -10,6 +10,7 @@
 #include "mesh/file_safety.hpp"
 #include "mesh/input_dependencies.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 
 namespace shellcontract {
 namespace {
@@ -23,20 +24,20 @@ constexpr std::size_t TEMPORARY_NAME_LENGTH = 60;
 /// An existing output that may be replaced: a writable regular file (or a dangling link).
 void check_existing(const FileIdentity& o) {
   if (!o.exists) return;
-  if (S_ISDIR(o.file.st_mode)) refuse_file(o.option, o.path, "is a folder, not a file");
+  if (S_ISDIR(o.file.st_mode)) refuse_file(o.option, o.path, "is a folder, not a file", EISDIR);
   if (!S_ISREG(o.file.st_mode))
     refuse_file(o.option, o.path,
                 "exists and is not a regular file (a device, FIFO or socket); it is never replaced");
   if (::faccessat(AT_FDCWD, o.path.c_str(), W_OK, AT_EACCESS) != 0) {
     const int e = errno;
-    refuse_file(o.option, o.path, "exists and is not writable (" + file_error_text(e) + ")");
+    refuse_file(o.option, o.path, "exists and is not writable (" + file_error_text(e) + ")", e);
   }
   // A file with no write permission bit at all is write-protected by its owner: refused for
   // every user, root too, for whom the access check above always succeeds (as `rm -i` and
   // `cp -i` ask before they replace one).
   if ((o.file.st_mode & (S_IWUSR | S_IWGRP | S_IWOTH)) == 0)
     refuse_file(o.option, o.path,
-                "exists and is not writable (write-protected: no write permission is set)");
+                "exists and is not writable (write-protected: no write permission is set)", EACCES);
 }
 
 }  // namespace
@@ -64,19 +65,25 @@ FileIdentity identify_file(const std::string& option, const std::string& path) {
   return id;
 }
 
-std::optional<std::string> folder_problem(const std::string& folder, std::size_t name_length) {
+std::optional<std::string> folder_problem(const std::string& folder, std::size_t name_length,
+                                          int* error_number) {
+  int unused = 0;
+  int& error = error_number ? *error_number : unused;
   struct stat st {};
   if (::stat(folder.c_str(), &st) != 0) {
-    const int e = errno;
+    const int e = error = errno;
     if (e == ENOENT) return "the folder " + quoted_path(folder) + " does not exist";
     if (e == ENOTDIR) return "the folder " + quoted_path(folder) + " cannot exist: a part of its path is a file";
     return "the folder " + quoted_path(folder) + " cannot be used (" + file_error_text(e) + ")";
   }
-  if (!S_ISDIR(st.st_mode)) return quoted_path(folder) + " is a file, not a folder";
+  if (!S_ISDIR(st.st_mode)) {
+    error = ENOTDIR;
+    return quoted_path(folder) + " is a file, not a folder";
+  }
   const RegisteredTemporary probe =  // removed on SIGINT/SIGTERM too
       create_registered_temporary(folder, "shellcontract-probe", std::max(name_length, TEMPORARY_NAME_LENGTH));
   if (probe.fd < 0) {
-    const int e = errno;
+    const int e = error = errno;
     if (e == ENAMETOOLONG)
       return "the file name is too long (" + std::to_string(name_length) + " characters) for the folder " +
              quoted_path(folder);
@@ -88,8 +95,11 @@ std::optional<std::string> folder_problem(const std::string& folder, std::size_t
   return std::nullopt;
 }
 
-void refuse_file(const std::string& option, const std::string& path, const std::string& why) {
-  throw UsageError(option + " " + quoted_path(path) + ": " + why);
+void refuse_file(const std::string& option, const std::string& path, const std::string& why,
+                 int error_number) {
+  const std::string message = option + " " + quoted_path(path) + ": " + why;
+  if (error_number != 0) throw OutputFileError(message, error_number, path);
+  throw UsageError(message);
 }
 
 void check_output_identities(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs,
@@ -131,7 +141,9 @@ void check_output_identities(const std::vector<NamedFile>& outputs, const std::v
                     "is also the file of " + other.option + " (" + quoted_path(other.path) +
                         "); each output needs its own file");
     check_existing(id);
-    if (const auto why = folder_problem(id.folder_path, id.name.size())) refuse_file(o.option, o.path, *why);
+    int error = 0;
+    if (const auto why = folder_problem(id.folder_path, id.name.size(), &error))
+      refuse_file(o.option, o.path, *why, error);
     output_ids.push_back(std::move(id));
   }
 }

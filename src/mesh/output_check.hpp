@@ -37,11 +37,15 @@ bool same_file(const FileIdentity& a, const FileIdentity& b);
 std::string quoted_path(const std::string& s);
 
 /// Why `folder` cannot hold new files, or nothing. Probes by creating (exclusively) and removing
-/// a file whose name has `name_length` characters (at least a temporary's).
-std::optional<std::string> folder_problem(const std::string& folder, std::size_t name_length);
+/// a file whose name has `name_length` characters (at least a temporary's). `error_number`, when
+/// given, gets the errno of the call that failed (ENOTDIR for a file in the folder's place).
+std::optional<std::string> folder_problem(const std::string& folder, std::size_t name_length,
+                                          int* error_number = nullptr);
 
-/// @throws UsageError "OPTION 'PATH': WHY"
-[[noreturn]] void refuse_file(const std::string& option, const std::string& path, const std::string& why);
+/// @throws UsageError "OPTION 'PATH': WHY"; an OutputFileError about `path` with a nonzero
+///         `error_number` (the errno of the file system's refusal)
+[[noreturn]] void refuse_file(const std::string& option, const std::string& path,
+                              const std::string& why, int error_number = 0);
 
 /// check_output_files, keeping the identities of the outputs and of the inputs that exist (or
 /// whose folder does) for a caller's own checks. The files an input named "INPUT" needs (its

@@ -35,6 +35,7 @@
 #include "mesh/soup_writer.hpp"
 #include "mesh/stl_positions.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
@@ -150,10 +151,14 @@ namespace {
 void require_plain_mesh_extension(const std::string& path, const std::string& ext) {
   if (ext == "off" || ext == "obj" || ext == "ply" || ext == "stl") return;
   std::error_code ec;
-  const std::string what = std::filesystem::is_directory(path, ec) ? "it is a folder"
-                           : ext.empty()                         ? "the file name has no extension"
-                                                                 : "unknown extension '." + ext + "'";
-  throw UsageError("cannot write '" + path + "': " + what + " (expected .off, .obj, .ply or .stl)");
+  const bool folder = std::filesystem::is_directory(path, ec);
+  const std::string what = folder        ? "it is a folder"
+                           : ext.empty() ? "the file name has no extension"
+                                         : "unknown extension '." + ext + "'";
+  const std::string message =
+      "cannot write '" + path + "': " + what + " (expected .off, .obj, .ply or .stl)";
+  if (folder) throw OutputFileError(message, EISDIR, path);
+  throw UsageError(message);
 }
 
 void write_plain_mesh(const std::string& path, const std::string& ext, const Mesh& mesh,
@@ -288,18 +293,20 @@ class FdBuf final : public std::streambuf {
   std::vector<char> buffer_;
 };
 
-/// "cannot write 'PATH': WHY".
-[[noreturn]] void cannot_write(const std::string& path, const std::string& why) {
-  throw UsageError("cannot write '" + printable(path) + "': " + why);
+/// "cannot write 'PATH': WHY", with the errno of the call that failed.
+[[noreturn]] void cannot_write(const std::string& path, int error_number, const std::string& why) {
+  throw OutputFileError("cannot write '" + printable(path) + "': " + why, error_number, path);
 }
 
 /// An existing target that is not a regular file (a device, a FIFO, a socket, a folder) is
 /// never replaced: as root, --log /dev/null would otherwise turn /dev/null into a file.
 void refuse_special_target(const std::string& path) {
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
-    cannot_write(path, S_ISDIR(st.st_mode) ? "it is a folder"
-                                           : "it exists and is not a regular file (a device, FIFO or socket is never replaced)");
+  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
+  if (S_ISDIR(st.st_mode)) cannot_write(path, EISDIR, "it is a folder");
+  throw UsageError(
+      "cannot write '" + printable(path) +
+      "': it exists and is not a regular file (a device, FIFO or socket is never replaced)");
 }
 
 }  // namespace
@@ -315,7 +322,9 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   const RegisteredTemporary tmp = create_registered_temporary(dir, target.filename().string() + ".tmp");
   if (tmp.fd < 0) {
     const int e = errno;
-    cannot_write(path, "cannot create a file in the folder '" + printable(dir) + "' (" + file_error_text(e) + ")");
+    cannot_write(
+        path, e,
+        "cannot create a file in the folder '" + printable(dir) + "' (" + file_error_text(e) + ")");
   }
   const int slot = tmp.slot;
   const auto discard = [&] {
@@ -341,7 +350,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
       discard();
       // A writer that gave up because the disk did (tinygltf: "serializing failed") is
       // reported by the disk's reason.
-      if (buf.error()) cannot_write(path, file_error_text(buf.error()));
+      if (buf.error()) cannot_write(path, buf.error(), file_error_text(buf.error()));
       throw;
     }
     error = buf.error();
@@ -350,12 +359,12 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   if (::close(tmp.fd) != 0 && !error) error = errno;  // NFS reports some write errors here
   if (error) {
     discard();
-    cannot_write(path, file_error_text(error));
+    cannot_write(path, error, file_error_text(error));
   }
   if (std::rename(tmp.path.c_str(), path.c_str()) != 0) {
     const int e = errno;
     discard();
-    cannot_write(path, file_error_text(e));
+    cannot_write(path, e, file_error_text(e));
   }
   unregister_temporary(slot);
 }

@@ -7,6 +7,7 @@
 
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/version.hpp"
@@ -397,7 +398,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     // A regular file only: a folder is "it is a folder", not a stream's read error.
     bytes = read_regular_file(path);
   } catch (const InputError& e) {
-    throw InputError("checkpoint " + std::string(e.what()));
+    rethrow_input_error_as(e, "checkpoint " + std::string(e.what()));  // errno and path kept
   }
   Reader r(bytes, path);
   if (bytes.compare(0, sizeof MAGIC - 1, MAGIC) != 0)

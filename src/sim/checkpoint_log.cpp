@@ -11,6 +11,7 @@
 
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulator.hpp"
 
@@ -81,7 +82,7 @@ std::string read_log_beside(const std::string& path, const LogBeside& beside) {
   try {
     bytes = read_regular_file(file);
   } catch (const InputError& e) {
-    throw InputError(start + e.what() + why);
+    rethrow_input_error_as(e, start + e.what() + why);  // errno and path kept
   }
   if (bytes.size() < beside.size)
     throw InputError(start + printable(file) + " holds " + std::to_string(bytes.size()) +

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -13,6 +14,7 @@
 
 #include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
 #include "mesh/file_safety.hpp"
@@ -30,8 +32,15 @@ bool valid_weight(double w) { return std::isfinite(w) && w >= 0.0 && w <= 1.0; }
 }  // namespace
 
 std::vector<double> read_vertex_weights(const std::string& path, std::size_t num_vertices) {
+  errno = 0;
   std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the weight file");
+  if (!in) {
+    // The open's errno where it left one (glibc does), for a front end that reports it
+    // (Python's FileNotFoundError).
+    const int e = errno;
+    if (e != 0) throw InputFileError(path + ": cannot open the weight file", e, path);
+    throw InputError(path + ": cannot open the weight file");
+  }
   std::vector<double> weights;
   weights.reserve(num_vertices);
   std::string text;
