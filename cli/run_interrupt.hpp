@@ -31,6 +31,16 @@ inline std::string lost_on_resume(const ExportRequest& exports, bool fields) {
 inline int report_interrupted(const RunResult& r, const CliCheckpointer& checkpointer,
                               const std::string& output, const ExportRequest& exports,
                               const ExportStats& frames, bool fields) {
+  // Stopped while its regions were selected or its Simulator built (run_contraction asks the
+  // checkpointer between those stages): no step ran, so nothing was saved or exported.
+  if (r.frames_run == r.first_frame) {
+    std::cerr << "shellcontract run: interrupted before the first step, while preparing the run; "
+                 "nothing was written";
+    if (const Checkpoint* c = checkpointer.resume_from())
+      std::cerr << " (the checkpoint it resumed from, " << c->path << ", is as it was)";
+    std::cerr << '\n';
+    return static_cast<int>(ExitCode::Cancelled);
+  }
   std::cerr << "shellcontract run: interrupted at frame " << r.frames_run;
   // The resumed run goes on saving to the file it resumed from (and as often), so the command
   // below is all a job that is preempted again needs.

@@ -64,7 +64,7 @@ Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
 /// write_text_atomic, write_file_atomic, check_output_files) installs a handler for SIGINT,
 /// SIGTERM, SIGHUP and SIGUSR1, each only where its action is still the default, that removes
 /// the process's own temporaries and then ends the process by the same signal; a host that
-/// handles them installs its handlers first (docs/design/output-safety.md, "Temporaries").
+/// handles them installs its handlers first, or opts out (shellcontract/signals.hpp).
 /// Numbers are written in the classic "C" form whatever the global C++ locale.
 /// @param x one row per mesh vertex, or (a welded mesh) one per input vertex
 /// @param binary a binary PLY (little-endian doubles: still bitwise) or STL (32-bit floats: the

@@ -175,7 +175,7 @@ class RunObserver {
   virtual void started(const FrameView& /*view*/) {}
   /// After each step, with its measurements.
   virtual void frame(const FrameView& /*view*/, const FrameMetrics& /*metrics*/) {}
-  /// Polled after every step: true ends the run with RunStatus::Cancelled.
+  /// Polled after every step and in the run's preparation (run.hpp): true ends it, Cancelled.
   virtual bool cancelled() { return false; }
   /// After the last step, before run_contraction returns.
   virtual void finished(const FrameView& /*view*/, const RunResult& /*result*/) {}

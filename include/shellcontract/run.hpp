@@ -26,7 +26,7 @@ enum class RunStatus {
   SimulationFailed,  ///< non-finite positions, a blow-up or out of memory; the state is the
                      ///< last good step
   NewIntersections,  ///< validation found self-intersections the input did not have
-  Cancelled,         ///< the observer asked to stop (a KeyboardInterrupt in Python)
+  Cancelled,         ///< the observer or the checkpointer asked to stop (Ctrl-C in Python, the CLI)
 };
 
 /// The status as the summary writes it: "ok", "target not reached", "failed",
@@ -103,8 +103,8 @@ struct RunResult {
 
 class RunCheckpointer;  // shellcontract/checkpoint.hpp
 
-/// Runs the contraction of `mesh` (a checked, closed, outward-oriented triangle mesh from
-/// read_input_mesh, any units) to its end.
+/// Runs the contraction of `mesh` (checked, closed, outward: read_input_mesh) to its end. A cancel
+/// is heard in the preparation too, and skips `validate` end (docs/architecture.md, "Cancelling").
 /// @throws UsageError for invalid options, InputError for an unusable mesh or region file
 ///         (before the first step), std::bad_alloc if preparing the run runs out of memory. A
 ///         failing step is not thrown: it ends the run with RunStatus::SimulationFailed and the

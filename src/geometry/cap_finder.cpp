@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "geometry/cap_grower.hpp"
+#include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
 #include "core/power_of_two.hpp"
 #include "geometry/cap_internal.hpp"
@@ -204,15 +205,18 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   if (options.method == RegionMethod::Tips) return detail::select_tip_regions(mesh, x, options, report, curvature);
   if (options.method == RegionMethod::Parts) return detail::select_part_regions(mesh, x, options, report, curvature);
   StageTimer timer;
+  cancellation_point();
   detail::FinderStart start = detail::start_finder(mesh, x);
   timer.lap("curvature");
   if (start.empty()) return detail::no_regions(start, report, curvature);
+  cancellation_point();
   CurvatureField& c = start.curvature;
   const MeshArrays& m = start.arrays;
   RegionReport r;
   r.total_area = m.total_area;
   const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c, {SEED_SCALES.begin(), SEED_SCALES.end()});
   timer.lap("smoothing");
+  cancellation_point();
   const double h_ref = reference_curvature(m, x, u.back());
   r.reference_mean_curvature = h_ref;
 
@@ -250,12 +254,17 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
             [&](std::size_t a, std::size_t b) { return graph.slot(seeds[a]) < graph.slot(seeds[b]); });
   std::vector<std::optional<Cap>> grown(seeds.size());
   tbb::enumerable_thread_specific<std::unique_ptr<CapGrower>> growers;
-  tbb::parallel_for(std::size_t{0}, seeds.size(), [&](std::size_t k) {
-    std::unique_ptr<CapGrower>& g = growers.local();
-    if (!g) g = std::make_unique<CapGrower>(m, graph, c, options);
-    const std::size_t i = by_slot[k];
-    grown[i] = g->grow(seeds[i], nullptr, &candidate);
-  });
+  // In blocks, with a cancel check between them (a large mesh has tens of thousands of seeds).
+  constexpr std::size_t SEED_BLOCK = 1024;
+  for (std::size_t lo = 0; lo < seeds.size(); lo += SEED_BLOCK) {
+    cancellation_point();
+    tbb::parallel_for(lo, std::min(seeds.size(), lo + SEED_BLOCK), [&](std::size_t k) {
+      std::unique_ptr<CapGrower>& g = growers.local();
+      if (!g) g = std::make_unique<CapGrower>(m, graph, c, options);
+      const std::size_t i = by_slot[k];
+      grown[i] = g->grow(seeds[i], nullptr, &candidate);
+    });
+  }
   timer.lap("free growth");
   std::vector<Cap> candidates;
   for (std::optional<Cap>& cap : grown)
@@ -282,6 +291,7 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   std::vector<std::vector<const Cap*>> members;
   std::vector<std::pair<Cap, RegionSummary>> kept;
   for (const Cap& first : candidates) {
+    cancellation_point();
     const auto join = [&](int part) {
       if (part >= 0) members[static_cast<std::size_t>(part)].push_back(&first);
     };
@@ -372,6 +382,7 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
     for (int f : caps[id].faces) owner_face[static_cast<std::size_t>(f)] = static_cast<int>(id);
   kept.clear();
   for (std::size_t id = 0; id < caps.size(); ++id) {
+    cancellation_point();
     Cap& cap = caps[id];
     const bool shaped = detail::shape_cap(m, x, cap, owner_face, static_cast<int>(id));
     const RegionSummary s = shaped ? summarise(mesh, x, m, cap, h_ref) : RegionSummary{};

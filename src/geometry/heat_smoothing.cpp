@@ -17,6 +17,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract::detail {
@@ -189,6 +190,8 @@ class TwoLevelBatch {
       s->Ap.resize(b.size());
     }
     for (int it = 0; it < MAX_ITERATIONS && !active.empty(); ++it) {
+      // The longest stage of a large mesh's region selection: a run's cancel is heard here.
+      cancellation_point();
       for (System* s : active) s->Ap.setZero();
       run(active, [&](System* const* s, auto k) { multiply_add<decltype(k)::value>(a_, s, &System::Ap, &System::p, 1.0); });
       std::vector<System*> next;
@@ -343,7 +346,10 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
       --hi;
       batches.push_back(lo < hi ? std::vector<std::size_t>{lo, hi} : std::vector<std::size_t>{lo});
     }
+    // The batches may run on worker threads: they stop too once the run's thread saw a cancel.
+    const CancellationScope* const run = CancellationScope::current();
     tbb::parallel_for(std::size_t{0}, batches.size(), [&](std::size_t b) {
+      const CancellationScope::Join join(run);
       std::vector<System*> members;
       for (std::size_t k : batches[b]) {
         System& s = systems[k];

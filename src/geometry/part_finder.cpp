@@ -31,6 +31,7 @@
 
 #include <tbb/parallel_invoke.h>
 
+#include "core/cancellation.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/tip_finder.hpp"
 
@@ -83,8 +84,18 @@ std::vector<int> select_part_regions(const Mesh& mesh, const Positions& x, const
   tips.method = RegionMethod::Tips;
   RegionReport cap_report, tip_report;
   std::vector<int> cap_ids, tip_ids;
-  tbb::parallel_invoke([&] { cap_ids = select_spherical_regions(mesh, x, caps, &cap_report, curvature); },
-                       [&] { tip_ids = select_tip_regions(mesh, x, tips, &tip_report, nullptr); });
+  // Either may run on a worker thread: it stops too once the run's thread has seen a cancel.
+  const CancellationScope* const run = CancellationScope::current();
+  tbb::parallel_invoke(
+      [&] {
+        const CancellationScope::Join join(run);
+        cap_ids = select_spherical_regions(mesh, x, caps, &cap_report, curvature);
+      },
+      [&] {
+        const CancellationScope::Join join(run);
+        tip_ids = select_tip_regions(mesh, x, tips, &tip_report, nullptr);
+      });
+  cancellation_point();
   const MeshArrays m = mesh_arrays(mesh, x);
   RegionReport r;
   r.total_area = m.total_area;
@@ -137,6 +148,7 @@ std::vector<int> select_part_regions(const Mesh& mesh, const Positions& x, const
   // Steps 5 and 6, in the cap finder's id order (decreasing area): a ball takes no face of a
   // kept tip region, of another cap region or of a ball grown before it.
   for (std::size_t c = 0; c < nc; ++c) {
+    cancellation_point();
     if (!keep_cap[c]) continue;
     const RegionSummary& sc = cap_report.regions[c];
     const double reach = (1.0 + sc.residual) * sc.radius;

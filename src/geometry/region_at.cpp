@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "core/power_of_two.hpp"
 #include "geometry/cap_grower.hpp"
 #include "geometry/cap_internal.hpp"
@@ -119,9 +120,11 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     detail::unscale_finder_results(k, report, nullptr);
     return ids;
   }
+  cancellation_point();
   const CurvatureField c = compute_curvature(mesh, x);
   const MeshArrays m = mesh_arrays(mesh, x);
   if (m.nf == 0) throw UsageError("select_regions_at: the mesh has no face");
+  cancellation_point();
   const std::vector<Eigen::VectorXd> u = smoothed_curvature(m, x, c, {SEED_SCALES.begin(), SEED_SCALES.end()});
   const double h_ref = reference_curvature(m, x, u.back());
   RegionReport r;
@@ -132,6 +135,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   std::vector<char> blocked(m.nv, 0);
   std::vector<std::pair<Cap, RegionSummary>> kept;
   for (std::size_t i = 0; i < near.size(); ++i) {
+    cancellation_point();
     const Vec3& p = near[i];
     if (!p.allFinite()) throw UsageError("the " + ordinal(i + 1) + " region point is not finite");
     // Nearest surface point (brute force: a handful of points), then its nearest corner. The

@@ -21,6 +21,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/curvature.hpp"
 #include "geometry/edge_dijkstra.hpp"
@@ -217,8 +218,10 @@ int top_centre(const MeshArrays& m, const Positions& x, const std::vector<double
 
 std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                     RegionReport* report, CurvatureField* curvature) {
+  cancellation_point();
   FinderStart start = start_finder(mesh, x);
   if (start.empty()) return no_regions(start, report, curvature);
+  cancellation_point();
   CurvatureField& c = start.curvature;
   const MeshArrays& m = start.arrays;
   RegionReport r;
@@ -235,10 +238,12 @@ std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x, const 
   }
 
   // Steps 1 and 2.
+  cancellation_point();
   EdgeDijkstra dijkstra(m);
   const std::vector<double> p = protrusion(m, x, dijkstra);
   std::vector<int> tips;
   for (std::size_t v = 0; v < m.nv; ++v) {
+    if (v % 4096 == 0) cancellation_point();
     bool peak = true;
     for (int k = m.nbr_start[v]; k < m.nbr_start[v + 1] && peak; ++k)
       peak = p[v] > p[static_cast<std::size_t>(m.nbr_to[static_cast<std::size_t>(k)])];
@@ -258,6 +263,7 @@ std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x, const 
   std::vector<char> covered(m.nv, 0);
   std::vector<std::pair<int, Disc>> ends;  // (tip, disc)
   for (int tip : tips) {
+    cancellation_point();
     if (covered[static_cast<std::size_t>(tip)]) continue;  // joins the end whose disc holds it
     std::optional<Disc> d = grower.grow(tip);
     if (!d) {
@@ -271,6 +277,7 @@ std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x, const 
   // Step 5 (a disc that no longer stops within max_area_fraction from the new centre keeps
   // the one from its tip).
   for (auto& [tip, d] : ends) {
+    cancellation_point();
     const int centre = top_centre(m, x, p, d, tip);
     if (centre == tip) continue;
     if (std::optional<Disc> again = grower.grow(centre)) d = std::move(*again);
@@ -310,6 +317,7 @@ std::vector<int> select_tip_regions(const Mesh& mesh, const Positions& x, const 
   }
   std::vector<std::pair<Cap, RegionSummary>> kept;
   for (std::size_t e = 0; e < ends.size(); ++e) {
+    cancellation_point();
     std::vector<char> flag(m.nf, 0);
     for (std::size_t f = 0; f < m.nf; ++f) flag[f] = owner[f] == static_cast<int>(e) ? 1 : 0;
     std::vector<int> faces = largest_piece(m, flag);

@@ -20,6 +20,7 @@
 
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
+#include "shellcontract/signals.hpp"
 
 namespace shellcontract {
 namespace {
@@ -57,7 +58,18 @@ std::mutex slot_mutex;  // claiming a slot (not used by the handler)
 /// or the handler sees the creation and waits for its registration.
 std::atomic<int> creating{0};
 std::atomic<bool> ending{false};
+/// remove_temporaries has run: the host ends the process at its own pace, so a creation fails
+/// (ECANCELED) rather than wait for the end. The same protocol with `creating` as `ending`.
+std::atomic<bool> closed{false};
 std::atomic<int> exit_status{-1};
+
+/// Removes this process's live temporaries. Async-signal-safe (getpid, unlink).
+void unlink_own_temporaries() {
+  const pid_t self = ::getpid();
+  for (int i = 0; i < SLOTS; ++i)
+    if (slot_live[i].load(std::memory_order_acquire) && slot_owner[i] == self)
+      ::unlink(slot_path[i].data());
+}
 
 extern "C" void remove_temporaries_and_reraise(int sig) {
   ending.store(true);
@@ -67,10 +79,7 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
     struct timespec pause_ts {0, 100000};
     ::nanosleep(&pause_ts, nullptr);
   }
-  const pid_t self = ::getpid();
-  for (int i = 0; i < SLOTS; ++i)
-    if (slot_live[i].load(std::memory_order_acquire) && slot_owner[i] == self)
-      ::unlink(slot_path[i].data());
+  unlink_own_temporaries();
   const int status = exit_status.load();
   if (status >= 0) ::_exit(status);
   // The default action (end the process, exit status 128 + signal) as if we were not here.
@@ -89,26 +98,36 @@ extern "C" void forget_temporaries_in_child() {
   for (auto& live : slot_live) live.store(false, std::memory_order_relaxed);
   creating.store(0);
   ending.store(false);
+  closed.store(false);
 }
+
+/// Whether the library may install its handler (set_signal_cleanup), and whether it has: both
+/// under handler_mutex, so that an opt-out on one thread and a first write on another end with
+/// the handler either never installed or taken back.
+std::mutex handler_mutex;
+bool cleanup_enabled = true;
+bool handler_installed = false;
 
 /// Installs the handler for INTERRUPT_SIGNALS where their action is the default one: a program
 /// that handles them itself (Python's KeyboardInterrupt) keeps its handler, and its interrupted
-/// write then ends normally and removes its temporary itself.
+/// write then ends normally and removes its temporary itself. Nothing once the host opted out.
 void install_handler_once() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    ::pthread_atfork(nullptr, nullptr, forget_temporaries_in_child);
-    for (const int sig : INTERRUPT_SIGNALS) {
-      struct sigaction current {};
-      if (::sigaction(sig, nullptr, &current) != 0) continue;
-      if (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_DFL) {
-        struct sigaction ours {};
-        ours.sa_handler = remove_temporaries_and_reraise;
-        sigemptyset(&ours.sa_mask);
-        ::sigaction(sig, &ours, nullptr);
-      }
+  static std::once_flag atfork_once;
+  std::call_once(atfork_once,
+                 [] { ::pthread_atfork(nullptr, nullptr, forget_temporaries_in_child); });
+  std::lock_guard<std::mutex> lock(handler_mutex);
+  if (!cleanup_enabled || handler_installed) return;
+  handler_installed = true;
+  for (const int sig : INTERRUPT_SIGNALS) {
+    struct sigaction current {};
+    if (::sigaction(sig, nullptr, &current) != 0) continue;
+    if (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_DFL) {
+      struct sigaction ours {};
+      ours.sa_handler = remove_temporaries_and_reraise;
+      sigemptyset(&ours.sa_mask);
+      ::sigaction(sig, &ours, nullptr);
     }
-  });
+  }
 }
 
 /// Random name characters from the kernel (getrandom); a weaker source only if it fails.
@@ -245,6 +264,35 @@ void install_interrupt_cleanup() { install_handler_once(); }
 
 void set_interrupt_exit_status(int status) { exit_status.store(status); }
 
+void set_signal_cleanup(bool enabled) {
+  std::lock_guard<std::mutex> lock(handler_mutex);
+  cleanup_enabled = enabled;
+  if (enabled || !handler_installed) return;
+  // Taken back where it is still ours: a handler the host set since stays.
+  for (const int sig : INTERRUPT_SIGNALS) {
+    struct sigaction current {};
+    if (::sigaction(sig, nullptr, &current) != 0 || (current.sa_flags & SA_SIGINFO) ||
+        current.sa_handler != remove_temporaries_and_reraise)
+      continue;
+    struct sigaction dfl {};
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    ::sigaction(sig, &dfl, nullptr);
+  }
+  handler_installed = false;
+}
+
+void remove_temporaries() noexcept {
+  closed.store(true);
+  // As the handler, but bounded: called from a handler of a signal that the library does not
+  // block while it creates a temporary, on that very thread, it would wait for itself for ever.
+  for (int waited = 0; creating.load() != 0 && waited < 10000; ++waited) {
+    const struct timespec pause_ts = {0, 100000};
+    ::nanosleep(&pause_ts, nullptr);
+  }
+  unlink_own_temporaries();
+}
+
 RegisteredTemporary create_registered_temporary(const std::string& dir, const std::string& hint,
                                                 std::size_t name_length) {
   install_handler_once();
@@ -258,6 +306,12 @@ RegisteredTemporary create_registered_temporary(const std::string& dir, const st
     // could only leave it behind.
     creating.fetch_sub(1);
     for (;;) ::pause();
+  }
+  if (closed.load()) {
+    creating.fetch_sub(1);
+    ::pthread_sigmask(SIG_SETMASK, &old, nullptr);
+    errno = ECANCELED;
+    return RegisteredTemporary{};
   }
   RegisteredTemporary t;
   const ExclusiveFile f = create_exclusive_file(dir, hint, name_length);

@@ -64,7 +64,8 @@ RegisteredTemporary create_registered_temporary(const std::string& dir, const st
                                                 std::size_t name_length = 0);
 
 /// Adds `path` to the temporaries that SIGINT and SIGTERM remove before the process ends
-/// (the handler is installed on first use, only where the signal has its default action).
+/// (the handler is installed on first use, only where the signal has its default action, unless
+/// the host opted out: shellcontract/signals.hpp).
 /// Prefer create_registered_temporary: a file created before this call is not covered meanwhile.
 /// @return a slot for unregister_temporary; -1 when all slots are in use (not removed then)
 int register_temporary(const std::string& path);

@@ -4,11 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <new>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
 
+#include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
@@ -114,6 +117,35 @@ void fail_out_of_memory(RunResult& r, const std::string& when, const Mesh& mesh,
   r.message = text;
 }
 
+/// What the message of a run cancelled with `validate` end adds.
+constexpr const char* SKIPPED_VALIDATION =
+    "; not checked for self-intersections (the check at the end is skipped for a cancelled run)";
+
+/// `r` as the result of a run cancelled before its first step (while its regions were selected or
+/// its Simulator built): nothing ran, its positions are the input's (the caller's to set), and
+/// neither started() nor finished() is called (there is no frame to show). `interrupted`: by the
+/// checkpointer's stop() (the CLI's signal), else by the observer's cancelled().
+void cancelled_before_first_step(RunResult& r, bool interrupted,
+                                 const RunCheckpointer* checkpointer) {
+  r.status = RunStatus::Cancelled;
+  r.message = std::string(interrupted ? "interrupted" : "cancelled") +
+              " before the first step, while preparing the run (regions, rest state, contacts)";
+  if (const Checkpoint* c = checkpointer ? checkpointer->resume_from() : nullptr) {
+    r.first_frame = r.frames_run = checkpoint_frame(*c);
+    r.message += "; the checkpoint it resumed from is as it was";
+  }
+}
+
+/// What the preparation's cancellation points ask (cancellation.hpp): the observer, and the
+/// checkpointer's stop() as the frame loop does; `interrupted` says which answered.
+std::function<bool()> preparation_cancelled(RunObserver& obs, RunCheckpointer* checkpointer,
+                                            bool& interrupted) {
+  return [&obs, checkpointer, &interrupted] {
+    interrupted = checkpointer && checkpointer->stop();
+    return interrupted || obs.cancelled();
+  };
+}
+
 /// Tells the observer and keeps the warning for the summary.
 void warn(RunResult& r, RunObserver& o, const std::string& text) {
   r.warnings.push_back(text);
@@ -128,7 +160,20 @@ RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserv
   // many vertices, or of other options, would be continued silently into neither run's result.
   if (const Checkpoint* c = checkpointer ? checkpointer->resume_from() : nullptr)
     check_checkpoint_fits(*c, mesh, options);
-  return run_contraction(plan_run(mesh, options), observer, checkpointer);
+  RunObserver none;
+  bool interrupted = false;
+  std::optional<RunPlan> plan;
+  try {
+    const CancellationScope scope(
+        preparation_cancelled(observer ? *observer : none, checkpointer, interrupted));
+    plan.emplace(plan_run(mesh, options));
+  } catch (const PreparationCancelled&) {
+    RunResult r;
+    cancelled_before_first_step(r, interrupted, checkpointer);
+    r.positions = positions_from_mesh(mesh);
+    return r;
+  }
+  return run_contraction(std::move(*plan), observer, checkpointer);
 }
 
 RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* checkpointer) {
@@ -141,7 +186,20 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   for (const std::string& w : plan.warnings) warn(r, obs, w);
   using Clock = std::chrono::steady_clock;
   const auto prepare_start = Clock::now();
-  Simulator sim(std::move(plan.sim));  // one copy of a large mesh fewer (bear x16: 26 MB)
+  // The result's storage, taken before the first step (see the end), holds the input's positions
+  // meanwhile: a run cancelled now returns them (the plan's mesh goes into the Simulator).
+  denormalize_into(positions_from_mesh(plan.sim.mesh), plan.sim.normalization, r.positions);
+  std::optional<Simulator> prepared;
+  bool interrupted = false;
+  try {
+    const CancellationScope scope(preparation_cancelled(obs, checkpointer, interrupted));
+    cancellation_point();
+    prepared.emplace(std::move(plan.sim));  // one copy of a large mesh fewer (bear x16: 26 MB)
+  } catch (const PreparationCancelled&) {
+    cancelled_before_first_step(r, interrupted, checkpointer);
+    return r;
+  }
+  Simulator& sim = *prepared;
   r.prepare_seconds = std::chrono::duration<double>(Clock::now() - prepare_start).count();
   const SimOptions& s = sim.options();
   const Mesh& mesh = sim.rest_mesh();  // for the size in an out-of-memory message
@@ -187,6 +245,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   }
   const FrameView view(sim);
   obs.started(view);
+  bool cancelled = false;  // by the observer or the checkpointer
 
   r.first_frame = sim.frame();
   const auto start = std::chrono::steady_clock::now();
@@ -265,6 +324,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
       if (checkpointer->stop()) {
         r.status = RunStatus::Cancelled;
         r.message = "interrupted at frame " + std::to_string(m.frame);
+        cancelled = true;
         break;
       }
     }
@@ -273,12 +333,17 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
         r.status = RunStatus::Cancelled;
         r.message = "cancelled at frame " + std::to_string(m.frame);
       }
+      cancelled = true;
       break;
     }
   }
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  // A run that ended early (stall, cancel) skipped the step's end-of-run validation.
-  if (s.validate == ValidateMode::End && r.new_intersections < 0) {
+  // A run that stalled skipped the step's end-of-run validation: it runs here. A cancelled one
+  // skips it too (on a large mesh it is the slowest part of the end, and whoever cancelled wants
+  // the run to end now): its new_intersections stays -1, not validated, and its message says so.
+  if (s.validate == ValidateMode::End && r.new_intersections < 0 && cancelled) {
+    if (r.status == RunStatus::Cancelled) r.message += SKIPPED_VALIDATION;
+  } else if (s.validate == ValidateMode::End && r.new_intersections < 0) {
     try {
       r.new_intersections = static_cast<long>(sim.count_new_intersections());
     } catch (const std::bad_alloc&) {

@@ -12,6 +12,7 @@
 #include <string>
 #include <utility>
 
+#include "core/cancellation.hpp"
 #include "geometry/curvature.hpp"
 #include "material/registry.hpp"
 #include "mesh/eigen_point_map.hpp"
@@ -264,6 +265,7 @@ SimPlan plan_simulation(Mesh mesh, SimOptions options) {
     ContactDistanceChoice delta = choose_contact_distance(mesh, options);
     options.collision.delta = delta.delta;
     plan.warnings = std::move(delta.warnings);
+    cancellation_point();
   }
   plan.mesh = std::move(mesh);
   plan.options = std::move(options);
@@ -275,11 +277,15 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
   plan.options = options;
   RunOptions& o = plan.options;
   resolve_run_options(o);
+  // Options refused before a cancel is heard; the regions, the longest part on a large mesh,
+  // check it between their stages.
+  cancellation_point();
   const auto regions_start = std::chrono::steady_clock::now();
   // The run's regions travel as the f:region map of its copy of the mesh (one owner: the run
   // options say where they come from).
   Mesh marked = mesh;
   plan.regions = mark_run_regions(marked, o);
+  cancellation_point();
   plan.regions_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - regions_start).count();
   const SimOptions& s = o.sim;

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/arena_threads.hpp"
+#include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
@@ -123,6 +124,8 @@ Simulator::Simulator(SimPlan plan)
   const std::vector<std::vector<int>> regions = regions_from_face_ids(stored_regions(*mesh_));
   region_count_ = regions.size();
   rest_report_ = build_rest_state(*mesh_, options_.mass, options_.density);
+  // A run's cancel request, between the stages of a large mesh's preparation (cancellation.hpp).
+  cancellation_point();
   faces_ = faces_array(*mesh_);
   faces_around_ = vertex_faces(faces_, x_.rows());
   arena_ = std::make_unique<StepArena>(options_.solver.threads);
@@ -132,6 +135,7 @@ Simulator::Simulator(SimPlan plan)
       scale_masses_for_pressure(x_, faces_, peak_pressure_magnitude(options_), options_.dt,
                                 inv_mass_);
   ConstraintSet constraints = pack_constraints(*mesh_, options_.bending);
+  cancellation_point();
   if (options_.solver.aniso != AnisoKind::None) {
     AnisotropyOptions a = options_.anisotropy;
     if (options_.inward_term == InwardTerm::None) a.kappa_a = 0.0;
@@ -186,10 +190,13 @@ Simulator::Simulator(SimPlan plan)
             face_weight[static_cast<std::size_t>(region_faces[i])];
     }
   }
+  cancellation_point();
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
+  cancellation_point();
   if (options_.collisions) {
     collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
+    cancellation_point();
   }
   if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
   v_ = Positions::Zero(x_.rows(), 3);

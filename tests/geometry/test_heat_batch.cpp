@@ -12,6 +12,7 @@
 
 #include <Eigen/SparseCore>
 
+#include "core/cancellation.hpp"
 #include "geometry/heat_smoothing.hpp"
 #include "support/heat_problem.hpp"
 
@@ -59,6 +60,21 @@ TEST(HeatBatch, PartnersDoNotMatter) {
   const std::vector<Eigen::VectorXd> plain = detail::heat_solves(h.L, h.mass, h.rhs, h.times, true);
   const std::vector<Eigen::VectorXd> moved = detail::heat_solves(h.L, h.mass, h.rhs, rotated, true);
   for (std::size_t k = 0; k < n; ++k) EXPECT_TRUE(same_bits(plain[(k + 1) % n], moved[k])) << "time " << k;
+}
+
+// A run's cancel is heard inside the iterative solves, the longest stage of a large mesh's region
+// selection (src/core/cancellation.hpp). Before, they ran to their end. One system: its batch
+// runs on the calling thread, which is the one that asks.
+TEST(HeatBatch, TheIterativeSolvesAskARunsCancelAtEachIteration) {
+  HeatProblem h = bumpy_problem();
+  h.times = {1e-2};
+  std::vector<int> iterations;
+  detail::heat_solves(h.L, h.mass, h.rhs, h.times, true, &iterations);
+  ASSERT_GT(iterations.at(0), 3) << "too few iterations to stop in the middle";
+  int asked = 0;
+  const CancellationScope scope([&] { return ++asked >= 3; });
+  EXPECT_THROW(detail::heat_solves(h.L, h.mass, h.rhs, h.times, true), PreparationCancelled);
+  EXPECT_EQ(asked, 3);
 }
 
 }  // namespace

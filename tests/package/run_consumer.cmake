@@ -32,7 +32,7 @@ endforeach()
 # headers and no folder, each including only the others and system headers, so that nothing
 # private leaks.
 set(facade checkpoint checkpoint_lock error export face_error file_error material mesh mesh_io observer options
-    output_files regions repair report run simulation_options types validation version)
+    output_files regions repair report run signals simulation_options types validation version)
 file(GLOB_RECURSE headers LIST_DIRECTORIES true RELATIVE ${prefix}/include ${prefix}/include/shellcontract/*)
 set(expected "")
 foreach(h ${facade})
