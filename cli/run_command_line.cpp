@@ -37,7 +37,8 @@ const char* const RUN_EXIT_CODES =
     "            130 interrupted by Ctrl-C, SIGTERM, SIGHUP or SIGUSR1 after the step it is in\n"
     "            (stderr names the frame; no result, log, summary, glTF or fields; the finished\n"
     "            --export-dir frames stay: remove them to rerun; with --checkpoint the state is\n"
-    "            saved for --resume)\n";
+    "            saved for --resume), or while the run is prepared (regions, contacts), before\n"
+    "            the first step (nothing written, no checkpoint)\n";
 
 void add_table_options(po::options_description& desc, std::map<std::string, std::string>& values,
                        std::map<std::string, bool>& switches,
