@@ -377,6 +377,11 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   // Step 5: each region clipped to a hemisphere of its sphere, in one piece, its holes filled;
   // the size, shape and fit filters again on the final faces (the flood over the sphere can
   // make a region larger than the cap that found it).
+  // The concave creases (the smallest smoothing below zero, as the growth counts them): the
+  // outline smoothing does not fill a notch on one (cap_shape.cpp).
+  std::vector<char> crease(m.nv, 0);
+  for (std::size_t v = 0; v < m.nv; ++v)
+    crease[v] = u.front()(static_cast<Eigen::Index>(v)) < 0.0 ? 1 : 0;
   std::vector<int> owner_face(m.nf, -1);
   for (std::size_t id = 0; id < caps.size(); ++id)
     for (int f : caps[id].faces) owner_face[static_cast<std::size_t>(f)] = static_cast<int>(id);
@@ -384,7 +389,7 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   for (std::size_t id = 0; id < caps.size(); ++id) {
     cancellation_point();
     Cap& cap = caps[id];
-    const bool shaped = detail::shape_cap(m, x, cap, owner_face, static_cast<int>(id));
+    const bool shaped = detail::shape_cap(m, x, cap, owner_face, static_cast<int>(id), crease);
     const RegionSummary s = shaped ? summarise(mesh, x, m, cap, h_ref) : RegionSummary{};
     // The final region must still fit its sphere as the growth asked (a cap on a sphere).
     const bool keep = shaped && s.area_fraction >= options.min_area_fraction &&

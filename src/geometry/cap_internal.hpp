@@ -79,11 +79,14 @@ Vec3 cap_axis(const MeshArrays& m, const Positions& x, const std::vector<int>& f
 /// -1 for none): with the sphere fitted to the part and its axis (cap_axis about that centre),
 /// the faces within MAX_CAP_ANGLE of the axis, flooded over the faces near the sphere (corners
 /// within twice the fit's residual of the radius, 0.02 to 0.1) within that angle that no other
-/// region owns; the largest edge-connected piece; its holes filled where they lie within the
-/// angle and hold no face of another region. Updates cap.faces, cap.sphere (residual: RMS
-/// distance of the region's vertices to the sphere / radius), cap.angle and owner_face. False
-/// when nothing is left or the part has no axis (faces all around its centre).
-bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<int>& owner_face, int id);
+/// region owns; the outline smoothed, without adding a face with a corner on a concave crease
+/// (crease[v] != 0: the groove between two parts side by side); the largest edge-connected
+/// piece; its holes filled where they lie within the angle and hold no face of another region.
+/// Updates cap.faces, cap.sphere (residual: RMS distance of the region's vertices to the sphere /
+/// radius), cap.angle and owner_face. False when nothing is left or the part has no axis (faces all
+/// around its centre).
+bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<int>& owner_face,
+               int id, const std::vector<char>& crease);
 
 /// The finders run on x * 2^-k, k = finder_exponent(x) (curvature.hpp), where nothing over- or
 /// underflows; a power of two changes no bit of a dimensionless quantity, so the regions are

@@ -120,7 +120,8 @@ Vec3 cap_axis(const MeshArrays& m, const Positions& x, const std::vector<int>& f
 }
 
 
-bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<int>& owner_face, int id) {
+bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<int>& owner_face,
+               int id, const std::vector<char>& crease) {
   const double cos_max = std::cos(MAX_CAP_ANGLE);
   if (cap.faces.empty()) return false;
   // The sphere and axis of the part as found (the union of its seeds' caps, so it depends on the
@@ -161,6 +162,15 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
   // face inside with at most one neighbour inside) cut, in synchronous passes (so the result
   // does not depend on the face order). A clip through a triangulation leaves a staircase whose
   // teeth would add perimeter at every resolution.
+  // A notch on a concave crease is not a tooth: it is the groove between two parts side by side
+  // (two finger ends whose caps the part's union holds), one or two faces wide, and filling it
+  // joins them into one region across the crease. So no face with a concave corner is added;
+  // creases inside a part are filled below, as holes.
+  const auto on_crease = [&](std::size_t f) {
+    for (int v : m.tri[f])
+      if (crease[static_cast<std::size_t>(v)]) return true;
+    return false;
+  };
   // A face can change only when it or a neighbour is in the region (the first pass) or changed
   // in the pass before: only those faces are examined, each once (add and cut are disjoint, so
   // their order cannot matter), instead of every face of the mesh in every pass.
@@ -178,7 +188,9 @@ bool shape_cap(const MeshArrays& m, const Positions& x, Cap& cap, std::vector<in
     for (std::size_t f : look) {
       int inside = 0;
       for (int g : m.face_nbr[f]) inside += (g >= 0 && flag[static_cast<std::size_t>(g)]) ? 1 : 0;
-      if (!flag[f] && inside >= 2 && within(f) && !(owner_face[f] >= 0 && owner_face[f] != id)) add.push_back(f);
+      if (!flag[f] && inside >= 2 && within(f) && !(owner_face[f] >= 0 && owner_face[f] != id) &&
+          !on_crease(f))
+        add.push_back(f);
       if (flag[f] && inside <= 1) cut.push_back(f);
     }
     if (add.empty() && cut.empty()) break;

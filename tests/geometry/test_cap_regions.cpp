@@ -95,6 +95,35 @@ TEST(CapRegions, PaperMeshRegionsAreCompactCapsAndTheReportAgrees) {
   if (found == 0) GTEST_SKIP() << "no paper meshes in " << test::PAPER_MESH_DIR << "; run scripts/fetch_paper_meshes.sh";
 }
 
+// The hand is a fist standing on z whose finger ends are the tops of four bands of equal width
+// in x (as lab/regions/labels.py labels them). The ends of the second and third fingers are two
+// parts a person circles, with a concave groove between them: no region may hold the faces
+// around both ends' highest vertices. The outline smoothing used to fill the groove's notch and
+// make one region of the two.
+TEST(CapRegions, TwoFingerEndsAreNotJoinedAcrossTheGrooveBetweenThem) {
+  if (!fs::exists(paper_mesh("hand")))
+    GTEST_SKIP() << "hand.off is absent; run scripts/fetch_paper_meshes.sh";
+  const test::TriMesh m = to_tri_mesh(read_input_mesh(paper_mesh("hand")));
+  const std::vector<int> ids = select(m);
+  const double lo = m.x.col(0).minCoeff(), hi = m.x.col(0).maxCoeff();
+  // The regions of the faces around the highest vertex of band k (0-based) of four.
+  const auto end_regions = [&](int k) {
+    const double a = lo + (hi - lo) * k / 4.0, b = lo + (hi - lo) * (k + 1) / 4.0;
+    Eigen::Index top = -1;
+    for (Eigen::Index v = 0; v < m.x.rows(); ++v)
+      if (m.x(v, 0) >= a && m.x(v, 0) <= b && (top < 0 || m.x(v, 2) > m.x(top, 2))) top = v;
+    std::set<int> out;
+    for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+      for (int c = 0; c < 3; ++c)
+        if (m.faces(f, c) == top && ids[static_cast<std::size_t>(f)] >= 0)
+          out.insert(ids[static_cast<std::size_t>(f)]);
+    return out;
+  };
+  const std::set<int> second = end_regions(1), third = end_regions(2);
+  for (int r : second)
+    EXPECT_EQ(third.count(r), 0u) << "region " << r << " holds the ends of fingers 2 and 3";
+}
+
 class BearInvariance : public ::testing::Test {
  protected:
   void SetUp() override {
