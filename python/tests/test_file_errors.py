@@ -169,3 +169,13 @@ def test_contract_of_a_missing_regions_or_weights_file_is_file_not_found(tmp_pat
     with pytest.raises(FileNotFoundError) as info:
         sc.contract(*ico2, frames=1, **{option: path})
     check_like_open(info.value, path, "rb")
+
+
+@pytest.mark.parametrize("option", ["regions", "region_weights"])
+def test_contract_of_a_folder_as_regions_or_weights_file_is_a_directory_error(tmp_path, ico2, option):
+    # The weight file was read by a stream that opened the folder and failed later ("read error
+    # after line 0", a plain ValueError); both are now refused by name before anything is read.
+    with pytest.raises(IsADirectoryError) as info:
+        sc.contract(*ico2, frames=1, **{option: tmp_path})
+    assert info.value.errno == errno.EISDIR and info.value.filename == str(tmp_path)
+    assert "it is a folder" in str(info.value)

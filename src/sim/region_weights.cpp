@@ -2,22 +2,18 @@
 
 #include <algorithm>
 #include <array>
-
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <locale>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/decimal_text.hpp"
+#include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
-#include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
-#include "mesh/file_safety.hpp"
 
 namespace shellcontract {
 
@@ -32,15 +28,11 @@ bool valid_weight(double w) { return std::isfinite(w) && w >= 0.0 && w <= 1.0; }
 }  // namespace
 
 std::vector<double> read_vertex_weights(const std::string& path, std::size_t num_vertices) {
-  errno = 0;
-  std::ifstream in(path);
-  if (!in) {
-    // The open's errno where it left one (glibc does), for a front end that reports it
-    // (Python's FileNotFoundError).
-    const int e = errno;
-    if (e != 0) throw InputFileError(path + ": cannot open the weight file", e, path);
-    throw InputError(path + ": cannot open the weight file");
-  }
+  // Read whole by read_regular_file, as every other input: a folder, a device or a FIFO is
+  // refused by name before anything is read (a stream opened a FIFO and waited for a writer for
+  // ever, and read /dev/zero until memory ran out); a file-system failure carries its errno
+  // (InputFileError: Python's FileNotFoundError and the like).
+  std::istringstream in(read_regular_file(path));
   std::vector<double> weights;
   weights.reserve(num_vertices);
   std::string text;
@@ -65,7 +57,6 @@ std::vector<double> read_vertex_weights(const std::string& path, std::size_t num
     weights.push_back(w);
     last_line = line;
   }
-  if (in.bad()) throw InputError(path + ": read error after line " + std::to_string(line));
   if (weights.size() != num_vertices)
     throw InputError(path + ": " + std::to_string(weights.size()) + " weights for " +
                      std::to_string(num_vertices) + " vertices (the last weight is on line " +

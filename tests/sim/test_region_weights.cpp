@@ -57,6 +57,23 @@ TEST(RegionWeights, BadFilesAreRefusedNamingTheLine) {
   EXPECT_THROW(check_vertex_weights({0.0}, 2, "w"), UsageError);
 }
 
+// Refused by name before anything is read, as the other inputs are (read_regular_file). Before,
+// a folder gave "read error after line 0", /dev/null "0 weights for 3 vertices", /dev/zero was
+// read until memory ran out and a FIFO waited for a writer for ever.
+TEST(RegionWeights, AFileThatIsNotARegularFileIsRefusedByName) {
+  const auto error = [](const std::string& path) -> std::string {
+    try {
+      read_vertex_weights(path, 3);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(accepted)";
+  };
+  EXPECT_NE(error(::testing::TempDir()).find("it is a folder"), std::string::npos)
+      << error(::testing::TempDir());
+  EXPECT_NE(error("/dev/null").find("it is a device"), std::string::npos) << error("/dev/null");
+}
+
 TEST(RegionWeights, WeightedFacesMakeOneRegionPerComponent) {
   Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off");
   const Positions x = positions_from_mesh(mesh);
