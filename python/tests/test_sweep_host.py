@@ -72,12 +72,8 @@ def test_a_sweep_in_a_folder_named_with_brackets_runs_its_own_mesh(cli, mesh_dir
 
 # The embedded cluster's workers: one per core this process may use (its affinity), not per core
 # of the machine. Before, os.cpu_count(): a sweep given 1 core of 64 started 64 jobs at once.
-def test_the_default_workers_are_the_cores_this_process_may_use(cli, mesh_dir, tmp_path,
-                                                                 monkeypatch):
-    pytest.importorskip("distributed")
-    from shellcontract import sweep
-    if not hasattr(os, "sched_getaffinity"):
-        pytest.skip("no CPU affinity on this system")
+def _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch):
+    """The worker counts a sweep of one tiny job asks its embedded cluster for (nothing runs)."""
     path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"],
                                                       "options": {"frames": 2}},
                        meshes=("ico1.off",))
@@ -88,10 +84,19 @@ def test_the_default_workers_are_the_cores_this_process_may_use(cli, mesh_dir, t
         raise KeyboardInterrupt  # nothing to run: the number is the test
 
     monkeypatch.setattr(sweep, "_embedded_cluster", cluster)
+    assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli]) == 130
+    return asked
+
+
+def test_the_default_workers_are_the_cores_this_process_may_use(cli, mesh_dir, tmp_path,
+                                                                 monkeypatch):
+    pytest.importorskip("distributed")
+    from shellcontract import sweep
+    if not hasattr(os, "sched_getaffinity"):
+        pytest.skip("no CPU affinity on this system")
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {3})
     monkeypatch.setattr(os, "cpu_count", lambda: 64)
-    assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli]) == 130
-    assert asked == [1]
+    assert _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch) == [1]
 
 
 # A CPU quota (docker --cpus=2, a Kubernetes CPU limit) leaves the affinity whole: the cores
@@ -158,19 +163,8 @@ def test_the_default_workers_are_held_to_the_cpu_quota(cli, mesh_dir, tmp_path, 
     pytest.importorskip("distributed")
     from shellcontract import sweep
     _cgroup_tree(tmp_path, monkeypatch, "0::/\n", {"cpu.max": "200000 100000\n"})
-    path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"],
-                                                      "options": {"frames": 2}},
-                       meshes=("ico1.off",))
-    asked = []
-
-    def cluster(workers):
-        asked.append(workers)
-        raise KeyboardInterrupt  # nothing to run: the number is the test
-
-    monkeypatch.setattr(sweep, "_embedded_cluster", cluster)
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: set(range(64)), raising=False)
-    assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli]) == 130
-    assert asked == [2]
+    assert _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch) == [2]
 
 
 def test_the_jobs_at_once_share_the_cores():

@@ -27,38 +27,32 @@ class FileErrors : public test::ScratchDirTest {
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
 };
 
-/// The InputFileError `read` throws, checked to be about `file` with `error_number`.
-template <typename Read>
-std::string input_file_error(Read read, const std::string& file, int error_number) {
+/// The Error (InputFileError or OutputFileError) `act` throws, checked to be about `file` with
+/// `error_number`; its message.
+template <typename Error, typename Act>
+std::string file_error(Act act, const char* kind, const std::string& file, int error_number) {
   try {
-    read();
-  } catch (const InputFileError& e) {
+    act();
+  } catch (const Error& e) {
     EXPECT_EQ(e.error_number(), error_number) << e.what();
     EXPECT_EQ(e.path(), file);
     return e.what();
   } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an InputFileError: " << e.what();
+    ADD_FAILURE() << "not an " << kind << ": " << e.what();
     return "";
   }
   ADD_FAILURE() << "nothing thrown";
   return "";
 }
 
-/// The same for an OutputFileError.
+template <typename Read>
+std::string input_file_error(Read read, const std::string& file, int error_number) {
+  return file_error<InputFileError>(read, "InputFileError", file, error_number);
+}
+
 template <typename Write>
 std::string output_file_error(Write write, const std::string& file, int error_number) {
-  try {
-    write();
-  } catch (const OutputFileError& e) {
-    EXPECT_EQ(e.error_number(), error_number) << e.what();
-    EXPECT_EQ(e.path(), file);
-    return e.what();
-  } catch (const std::exception& e) {
-    ADD_FAILURE() << "not an OutputFileError: " << e.what();
-    return "";
-  }
-  ADD_FAILURE() << "nothing thrown";
-  return "";
+  return file_error<OutputFileError>(write, "OutputFileError", file, error_number);
 }
 
 TEST_F(FileErrors, AMissingInputIsENOENTWithTheSameMessage) {
