@@ -15,6 +15,7 @@ PACKAGES=(
   blender
   pybind11-dev python3-pybind11 python3-numpy python3-pytest python3-matplotlib python3-dev
   python3-distributed
+  pkgconf man-db  # the package test's pkg-config consumer; the man page test renders with man
 )
 # The viewer's tests and scripts/view.py's page need node and npm; an existing install (any
 # source) is kept.

@@ -1,6 +1,8 @@
 # cmake -P script for the package_consumer test (tests/package/CMakeLists.txt): install into a
-# fresh prefix, check what was installed, build the consumer against it and run it; with the Python
-# module (PYTHON_PACKAGE), run the installed `shellcontract sweep` and import the installed package.
+# fresh prefix, check what was installed, build the consumer against it and run it, then the same
+# program with pkg-config (pkg_config_consumer.cmake); with the Python module (PYTHON_PACKAGE), run
+# the installed `shellcontract sweep`, import the installed package and check its metadata
+# (check_dist_info.py).
 function(run)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
@@ -15,7 +17,8 @@ run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
 
 foreach(f lib/libshellcontract.a bin/shellcontract include/shellcontract/run.hpp
           lib/cmake/ShellContract/ShellContractConfig.cmake
-          lib/cmake/ShellContract/ShellContractConfigVersion.cmake)
+          lib/cmake/ShellContract/ShellContractConfigVersion.cmake
+          ${LIBDIR}/pkgconfig/shellcontract.pc ${MANDIR}/man1/shellcontract.1)
   if(NOT EXISTS ${prefix}/${f})
     message(FATAL_ERROR "not installed: ${f}")
   endif()
@@ -94,16 +97,39 @@ if(PYTHON_PACKAGE)
   if(NOT rc EQUAL 0 OR NOT at EQUAL 0)
     message(FATAL_ERROR "the installed package is not the one imported (${rc}):\n${out}\n${err}")
   endif()
+  # Its metadata (the dist-info beside it): importlib.metadata and pip see the installed package.
+  execute_process(
+    COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${prefix}/${PYTHON_INSTALL_DIR}
+            ${PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_dist_info.py ${prefix}/${PYTHON_INSTALL_DIR} ${VERSION}
+    WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "the installed package's metadata (${rc}):\n${out}\n${err}")
+  endif()
+  message("${out}")
 endif()
 
 set(launcher "")
 if(COMPILER_LAUNCHER)
   set(launcher -DCMAKE_CXX_COMPILER_LAUNCHER=${COMPILER_LAUNCHER})
 endif()
+# Each link command of the consumer is recorded (link-<output>.txt, one argument a line), and its
+# compile commands are exported, for the comparison with pkg-config's flags (pkg_config_consumer.cmake).
+file(WRITE ${WORK_DIR}/record_link.sh [=[#!/bin/sh
+out=link prev=
+for a in "$@"; do
+  if [ "$prev" = "-o" ]; then out=$a; fi
+  prev=$a
+done
+printf '%s\n' "$@" > "$(dirname "$0")/link-$(basename "$out").txt"
+exec "$@"
+]=])
+file(CHMOD ${WORK_DIR}/record_link.sh PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
 run(${CMAKE_COMMAND} -S ${CONSUMER_DIR} -B ${WORK_DIR}/build -DCMAKE_BUILD_TYPE=Release
-    -DCMAKE_CXX_COMPILER=${CXX_COMPILER} ${launcher} -DCMAKE_PREFIX_PATH=${prefix})
+    -DCMAKE_CXX_COMPILER=${CXX_COMPILER} ${launcher} -DCMAKE_PREFIX_PATH=${prefix}
+    -DCMAKE_EXPORT_COMPILE_COMMANDS=ON -DCMAKE_CXX_LINKER_LAUNCHER=${WORK_DIR}/record_link.sh)
 run(${CMAKE_COMMAND} --build ${WORK_DIR}/build)
 run(${WORK_DIR}/build/app ${MESH} 10)
+include(${CMAKE_CURRENT_LIST_DIR}/pkg_config_consumer.cmake)
 # The consumer compiled with -mavx2 -mfma (consumer/CMakeLists.txt) runs only on a CPU that has
 # both; elsewhere it was built, and the test says that it did not run.
 if(EXISTS ${WORK_DIR}/build/app_avx2)

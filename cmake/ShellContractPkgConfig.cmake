@@ -1,0 +1,202 @@
+# shellcontract.pc in <libdir>/pkgconfig, for a build that uses pkg-config instead of CMake:
+#   c++ app.cpp $(pkg-config --cflags --libs shellcontract)
+# Its flags are read off the library target's usage requirements and those of the imported targets
+# it links (Eigen3::Eigen, CGAL::CGAL, CGAL::Eigen3_support, TBB::tbb and theirs: gmpxx, mpfr,
+# gmp, Boost's headers), so that they are what find_package(ShellContract) gives a CMake consumer,
+# not a second list kept by hand: tests/package/run_consumer.cmake compiles a program with them and
+# compares their definitions and libraries with the CMake consumer's.
+# The library's cxx_std_17 is a minimum, which a flag cannot say (-std=c++17 would lower a C++20
+# consumer's standard): the compilers this project builds with default to C++17 or later.
+# The file is relocatable (prefix from ${pcfiledir}), as the CMake package is: `cmake --install
+# --prefix P` puts it under any prefix.
+
+# One entry of a usage-requirement property, with the generator expressions these targets use
+# evaluated as they are for a consumer of the installed library: the library's own
+# $<INSTALL_INTERFACE:...> (an imported dependency's $<BUILD_INTERFACE:...>, which is its
+# installed one), C++, and the configuration the library was built in. Another expression is
+# left out with a warning, so that it is noticed rather than guessed.
+function(_shellcontract_pc_evaluate item own out)
+  set(value "${item}")
+  while(value MATCHES "^\\$<(.*)>$")
+    set(inner "${CMAKE_MATCH_1}")
+    if(inner MATCHES "^LINK_ONLY:(.*)$")
+      set(value "${CMAKE_MATCH_1}")
+    elseif(inner MATCHES "^BUILD_INTERFACE:(.*)$")
+      if(own)
+        set(value "")
+      else()
+        set(value "${CMAKE_MATCH_1}")
+      endif()
+    elseif(inner MATCHES "^INSTALL_INTERFACE:(.*)$")
+      if(own)
+        set(value "${CMAKE_MATCH_1}")
+      else()
+        set(value "")
+      endif()
+    elseif(inner MATCHES "^\\$<COMPILE_LANGUAGE:([^>]*)>:(.*)$")
+      set(body "${CMAKE_MATCH_2}")
+      string(REPLACE "," ";" languages "${CMAKE_MATCH_1}")
+      if("CXX" IN_LIST languages)
+        set(value "${body}")
+      else()
+        set(value "")
+      endif()
+    elseif(inner MATCHES "^\\$<CONFIG:([^>]*)>:(.*)$")
+      set(body "${CMAKE_MATCH_2}")
+      string(TOUPPER "${CMAKE_MATCH_1}" configs)
+      string(REPLACE "," ";" configs "${configs}")
+      string(TOUPPER "${CMAKE_BUILD_TYPE}" built)
+      if(built IN_LIST configs)
+        set(value "${body}")
+      else()
+        set(value "")
+      endif()
+    else()
+      break()
+    endif()
+  endwhile()
+  if(value MATCHES "\\$<")
+    message(WARNING "shellcontract.pc: left out '${item}', a generator expression it cannot evaluate")
+    set(value "")
+  endif()
+  set(${out} "${value}" PARENT_SCOPE)
+endfunction()
+
+# A library file as a -l flag where the linker finds that same file by its name in a folder it
+# searches anyway, else the path as it is.
+function(_shellcontract_pc_library path out)
+  get_filename_component(dir "${path}" DIRECTORY)
+  get_filename_component(file "${path}" NAME)
+  set(flag "${path}")
+  if(dir IN_LIST CMAKE_CXX_IMPLICIT_LINK_DIRECTORIES AND file MATCHES "^lib(.+)\\.so(\\.[0-9.]+)?$")
+    set(name "${CMAKE_MATCH_1}")
+    if(EXISTS "${dir}/lib${name}.so")
+      file(REAL_PATH "${dir}/lib${name}.so" by_name)
+      file(REAL_PATH "${path}" as_given)
+      if(by_name STREQUAL as_given)
+        set(flag "-l${name}")
+      endif()
+    endif()
+  endif()
+  set(${out} "${flag}" PARENT_SCOPE)
+endfunction()
+
+# Collects a target's compile flags and link items (in global properties), then those of every
+# target it links, depth first: the order a static link needs, a library before its dependencies.
+function(_shellcontract_pc_walk target own)
+  get_property(seen GLOBAL PROPERTY _SHELLCONTRACT_PC_SEEN)
+  if(target IN_LIST seen)
+    return()
+  endif()
+  set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_SEEN ${target})
+  get_target_property(type ${target} TYPE)
+  get_target_property(imported ${target} IMPORTED)
+  if(imported AND NOT type STREQUAL "INTERFACE_LIBRARY")
+    string(TOUPPER "${CMAKE_BUILD_TYPE}" config)
+    get_target_property(configs ${target} IMPORTED_CONFIGURATIONS)
+    if(NOT configs)
+      set(configs "")
+    endif()
+    set(location "")
+    foreach(c ${config} ${configs})
+      string(TOUPPER "${c}" c)
+      get_target_property(location ${target} IMPORTED_LOCATION_${c})
+      if(location)
+        break()
+      endif()
+    endforeach()
+    if(NOT location)
+      get_target_property(location ${target} IMPORTED_LOCATION)
+    endif()
+    if(location)
+      _shellcontract_pc_library("${location}" flag)
+      set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_LIBS "${flag}")
+    endif()
+  endif()
+  foreach(property INCLUDE_DIRECTORIES COMPILE_DEFINITIONS COMPILE_OPTIONS LINK_DIRECTORIES LINK_OPTIONS
+                   LINK_LIBRARIES)
+    get_target_property(items ${target} INTERFACE_${property})
+    if(NOT items)
+      continue()
+    endif()
+    foreach(item ${items})
+      _shellcontract_pc_evaluate("${item}" ${own} value)
+      if(value STREQUAL "")
+        continue()
+      endif()
+      if(property STREQUAL "INCLUDE_DIRECTORIES")
+        if(NOT IS_ABSOLUTE "${value}")
+          set(value "\${prefix}/${value}")
+        endif()
+        if(value STREQUAL "\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}")
+          set(value "\${includedir}")
+        endif()
+        # A compiler's own folders stay out, as CMake leaves them out: -I would move them ahead
+        # of the compiler's other system folders (#include_next).
+        if(NOT value IN_LIST CMAKE_CXX_IMPLICIT_INCLUDE_DIRECTORIES)
+          set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_CFLAGS "-I${value}")
+        endif()
+      elseif(property STREQUAL "COMPILE_DEFINITIONS")
+        set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_CFLAGS "-D${value}")
+      elseif(property STREQUAL "COMPILE_OPTIONS")
+        set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_CFLAGS "${value}")
+      elseif(property STREQUAL "LINK_DIRECTORIES")
+        set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_LIBS "-L${value}")
+      elseif(property STREQUAL "LINK_OPTIONS")
+        set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_LIBS "${value}")
+      elseif(TARGET "${value}")
+        _shellcontract_pc_walk("${value}" FALSE)
+      elseif(IS_ABSOLUTE "${value}")
+        _shellcontract_pc_library("${value}" flag)
+        set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_LIBS "${flag}")
+      elseif(value MATCHES "^-")
+        set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_LIBS "${value}")
+      else()
+        set_property(GLOBAL APPEND PROPERTY _SHELLCONTRACT_PC_LIBS "-l${value}")
+      endif()
+    endforeach()
+  endforeach()
+endfunction()
+
+set_property(GLOBAL PROPERTY _SHELLCONTRACT_PC_SEEN "")
+set_property(GLOBAL PROPERTY _SHELLCONTRACT_PC_CFLAGS "")
+set_property(GLOBAL PROPERTY _SHELLCONTRACT_PC_LIBS "-L\${libdir}" "-lshellcontract")
+_shellcontract_pc_walk(shellcontract TRUE)
+get_property(_pc_cflags GLOBAL PROPERTY _SHELLCONTRACT_PC_CFLAGS)
+get_property(_pc_libs GLOBAL PROPERTY _SHELLCONTRACT_PC_LIBS)
+list(REMOVE_DUPLICATES _pc_cflags)
+# A library reached twice is kept where it was reached last, after everything that needs it.
+list(REVERSE _pc_libs)
+list(REMOVE_DUPLICATES _pc_libs)
+list(REVERSE _pc_libs)
+list(JOIN _pc_cflags " " SHELLCONTRACT_PC_CFLAGS)
+list(JOIN _pc_libs " " SHELLCONTRACT_PC_LIBS)
+
+set(SHELLCONTRACT_PC_DIR "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+  set(SHELLCONTRACT_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+  set(SHELLCONTRACT_PC_LIBDIR "${CMAKE_INSTALL_LIBDIR}")
+else()
+  file(RELATIVE_PATH _pc_up "/prefix/${SHELLCONTRACT_PC_DIR}" "/prefix")
+  string(REGEX REPLACE "/$" "" _pc_up "${_pc_up}")
+  set(SHELLCONTRACT_PC_PREFIX "\${pcfiledir}/${_pc_up}")
+  set(SHELLCONTRACT_PC_LIBDIR "\${prefix}/${CMAKE_INSTALL_LIBDIR}")
+endif()
+if(IS_ABSOLUTE "${CMAKE_INSTALL_INCLUDEDIR}")
+  set(SHELLCONTRACT_PC_INCLUDEDIR "${CMAKE_INSTALL_INCLUDEDIR}")
+else()
+  set(SHELLCONTRACT_PC_INCLUDEDIR "\${prefix}/${CMAKE_INSTALL_INCLUDEDIR}")
+endif()
+file(WRITE ${PROJECT_BINARY_DIR}/shellcontract.pc
+"# Generated by cmake/ShellContractPkgConfig.cmake from the library's usage requirements.
+prefix=${SHELLCONTRACT_PC_PREFIX}
+libdir=${SHELLCONTRACT_PC_LIBDIR}
+includedir=${SHELLCONTRACT_PC_INCLUDEDIR}
+
+Name: ShellContract
+Description: ${PROJECT_DESCRIPTION}
+Version: ${PROJECT_VERSION}
+Cflags: ${SHELLCONTRACT_PC_CFLAGS}
+Libs: ${SHELLCONTRACT_PC_LIBS}
+")
+install(FILES ${PROJECT_BINARY_DIR}/shellcontract.pc DESTINATION ${SHELLCONTRACT_PC_DIR})
