@@ -29,6 +29,7 @@
 #include "core/power_of_two.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/cotan_laplacian.hpp"
+#include "geometry/crease_path.hpp"
 #include "geometry/curvature.hpp"
 #include "geometry/heat_smoothing.hpp"
 #include "geometry/part_finder.hpp"
@@ -283,6 +284,13 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
     return a.faces.size() > b.faces.size();
   });
 
+  // The concave creases (the smallest smoothing below zero, as the growth counts them): a seed
+  // across one from a part is not that part's (step 3), and the outline smoothing does not fill
+  // a notch on one (step 5).
+  std::vector<char> crease(m.nv, 0);
+  for (std::size_t v = 0; v < m.nv; ++v)
+    crease[v] = u.front()(static_cast<Eigen::Index>(v)) < 0.0 ? 1 : 0;
+  detail::CreasePaths paths(m, x, crease);
   // Step 3: in rank order, grown again around the regions already kept.
   std::vector<char> blocked(m.nv, 0);
   // The part (index in kept) each blocked vertex belongs to, and the candidates each part took
@@ -300,12 +308,17 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
       continue;
     }
     // A seed near a kept part's sphere (the back of a head whose face was taken, the side of a
-    // foot) is that part's, whatever its own cap: one part, one region.
+    // foot) is that part's, whatever its own cap: one part, one region. Not when a concave
+    // crease lies between the seed and the part (crease_path.hpp).
     const Vec3 sp(x.row(first.seed));
     int same = -1;
-    for (std::size_t k = 0; k < kept.size() && same < 0; ++k)
-      if ((sp - kept[k].first.sphere.centre).norm() <= SAME_PART_SEED * kept[k].first.sphere.radius)
+    for (std::size_t k = 0; k < kept.size() && same < 0; ++k) {
+      const Vec3& c = kept[k].first.sphere.centre;
+      const double ball = SAME_PART_SEED * kept[k].first.sphere.radius;
+      if ((sp - c).norm() <= ball &&
+          !paths.across(first.seed, c, ball, static_cast<int>(k), vertex_part))
         same = static_cast<int>(k);
+    }
     if (same >= 0) {
       join(same);
       continue;
@@ -377,11 +390,7 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   // Step 5: each region clipped to a hemisphere of its sphere, in one piece, its holes filled;
   // the size, shape and fit filters again on the final faces (the flood over the sphere can
   // make a region larger than the cap that found it).
-  // The concave creases (the smallest smoothing below zero, as the growth counts them): the
-  // outline smoothing does not fill a notch on one (cap_shape.cpp).
-  std::vector<char> crease(m.nv, 0);
-  for (std::size_t v = 0; v < m.nv; ++v)
-    crease[v] = u.front()(static_cast<Eigen::Index>(v)) < 0.0 ? 1 : 0;
+  // The outline smoothing does not fill a notch on a concave crease (cap_shape.cpp).
   std::vector<int> owner_face(m.nf, -1);
   for (std::size_t id = 0; id < caps.size(); ++id)
     for (int f : caps[id].faces) owner_face[static_cast<std::size_t>(f)] = static_cast<int>(id);
@@ -416,12 +425,25 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
     if (a.second.area != b.second.area) return a.second.area > b.second.area;
     return a.first.faces.front() < b.first.faces.front();
   });
+  // Not when its seed lies across a concave crease from the larger region's vertices (within the
+  // larger part's same-part ball): two knuckles side by side have centres that close.
   std::vector<std::pair<Cap, RegionSummary>> parts;
+  std::vector<int> region_vertex(m.nv, -1);  // the part (index in parts) each vertex belongs to
   for (auto& k : kept) {
-    const bool piece = std::any_of(parts.begin(), parts.end(), [&](const auto& p) {
-      return (p.second.centre - k.second.centre).norm() <= SAME_PART * p.second.radius;
-    });
-    if (!piece) parts.push_back(std::move(k));
+    bool piece = false;
+    for (std::size_t j = 0; j < parts.size() && !piece; ++j) {
+      const auto& p = parts[j];
+      if (!((p.second.centre - k.second.centre).norm() <= SAME_PART * p.second.radius)) continue;
+      piece = !paths.across(k.first.seed, p.second.centre, SAME_PART_SEED * p.second.radius,
+                            static_cast<int>(j), region_vertex);
+    }
+    if (!piece) {
+      for (int f : k.first.faces)
+        for (int v : m.tri[static_cast<std::size_t>(f)])
+          if (region_vertex[static_cast<std::size_t>(v)] < 0)
+            region_vertex[static_cast<std::size_t>(v)] = static_cast<int>(parts.size());
+      parts.push_back(std::move(k));
+    }
   }
   kept = std::move(parts);
   timer.lap("shape");

@@ -124,6 +124,34 @@ TEST(CapRegions, TwoFingerEndsAreNotJoinedAcrossTheGrooveBetweenThem) {
     EXPECT_EQ(third.count(r), 0u) << "region " << r << " holds the ends of fingers 2 and 3";
 }
 
+// The end of the second finger (the highest vertex of band 1 of four in x) is a part a person
+// circles. Its seed lies within 2.2 radii of the third finger's part, across the concave groove
+// between the two knuckles: it used to join that part by the distance alone and, once the
+// outline smoothing no longer bridged the groove, belonged to no region at all.
+TEST(CapRegions, AFingerEndAcrossTheGrooveFromItsNeighbourIsARegionOfItsOwn) {
+  if (!fs::exists(paper_mesh("hand")))
+    GTEST_SKIP() << "hand.off is absent; run scripts/fetch_paper_meshes.sh";
+  const test::TriMesh m = to_tri_mesh(read_input_mesh(paper_mesh("hand")));
+  const std::vector<int> ids = select(m);
+  const double lo = m.x.col(0).minCoeff(), hi = m.x.col(0).maxCoeff();
+  const auto top_faces = [&](int k) {
+    const double a = lo + (hi - lo) * k / 4.0, b = lo + (hi - lo) * (k + 1) / 4.0;
+    Eigen::Index top = -1;
+    for (Eigen::Index v = 0; v < m.x.rows(); ++v)
+      if (m.x(v, 0) >= a && m.x(v, 0) <= b && (top < 0 || m.x(v, 2) > m.x(top, 2))) top = v;
+    std::set<int> out;
+    for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+      for (int c = 0; c < 3; ++c)
+        if (m.faces(f, c) == top) out.insert(ids[static_cast<std::size_t>(f)]);
+    return out;
+  };
+  const std::set<int> second = top_faces(1), third = top_faces(2);
+  ASSERT_EQ(second.size(), 1u) << "the faces around the second finger's end lie in one region";
+  const int r = *second.begin();
+  EXPECT_GE(r, 0) << "the second finger's end lies in no region";
+  EXPECT_EQ(third.count(r), 0u) << "region " << r << " also holds the third finger's end";
+}
+
 class BearInvariance : public ::testing::Test {
  protected:
   void SetUp() override {
