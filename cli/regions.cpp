@@ -7,6 +7,7 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "core/classic_locale.hpp"
+#include "core/decimal_text.hpp"
 #include "output_paths.hpp"
 
 #include <algorithm>
@@ -146,6 +147,7 @@ int command_regions(int argc, char** argv) {
   std::string input, output, face_list, method = "caps";
   std::vector<std::string> points;
   std::vector<Vec3> at;
+  bool stage_times = false;
   RegionOptions options;
   po::options_description visible;
   visible.add_options()
@@ -158,6 +160,9 @@ int command_regions(int argc, char** argv) {
       ("method", po::value(&method)->default_value(method), "caps (spherical caps from curvature seeds), tips "
                                                            "(opt-in: the ends of protrusions) or parts (opt-in: "
                                                            "tips with the caps' heads and bumps)")
+      ("stage-times", po::bool_switch(&stage_times), "also print the wall and processor seconds of the "
+                                                     "finder's stages on stderr (the cap finder's; none "
+                                                     "for tips or --region-at)")
       ("region-at", po::value(&points)->composing(), "X,Y,Z: the cap around the surface point nearest to "
                                                       "this point (repeatable, or X,Y,Z;X,Y,Z; replaces the "
                                                       "automatic search)")
@@ -245,6 +250,13 @@ int command_regions(int argc, char** argv) {
     if (!output.empty()) out << "wrote: " << output << '\n';
     if (!face_list.empty()) out << "wrote: " << face_list << '\n';
     std::cout << out.str();
+    if (stage_times) {
+      ClassicOStringStream times;
+      for (const RegionStageTime& t : report.stage_times)
+        times << "stage " << t.stage << ": wall " << fixed_text(t.wall_s, 3) << " s, cpu "
+              << fixed_text(t.cpu_s, 3) << " s\n";
+      std::cerr << times.str();
+    }
     return static_cast<int>(ExitCode::Success);
   } catch (const InputError& e) {
     std::cerr << "shellcontract regions: " << e.what() << '\n';

@@ -111,6 +111,13 @@ struct RegionSummary {
   double contrast = 0.0;         ///< mean_curvature / reference_mean_curvature
 };
 
+/// Time one stage of the cap finder took (RegionReport::stage_times).
+struct RegionStageTime {
+  std::string stage;  ///< curvature, smoothing, free growth, ranked growth, parts, shape
+  double wall_s = 0;  ///< wall-clock seconds
+  double cpu_s = 0;   ///< processor seconds of the whole process (all its threads)
+};
+
 /// What select_spherical_regions measured and kept (for the CLI summary and for tuning).
 struct RegionReport {
   double total_area = 0.0;                ///< length^2
@@ -122,6 +129,9 @@ struct RegionReport {
   std::size_t dropped_flat = 0;           ///< dropped by min_cap_angle_deg or the contrast
   std::size_t dropped_shape = 0;          ///< dropped by max_compactness
   std::vector<RegionSummary> regions;     ///< one per region id, in id order
+  /// The cap finder's stages in order (`regions --stage-times`); the parts method gives its cap
+  /// finder's, the tip finder and select_regions_at none.
+  std::vector<RegionStageTime> stage_times;
 };
 
 /// Finds the local spherical regions of a closed triangle mesh (steps in the file comment).

@@ -6,7 +6,8 @@ the mesh and writing the PLY) on bear and on bear split in sixteen (two 1-to-4 m
 subdivisions, written to a temporary OFF), with the load average before and after. Given several
 --build folders, their runs alternate (A B A B ...), so a before/after comparison on a shared
 machine sees the same load. --stages prints the finder's stage times of one more run
-(SC_REGION_TIMING=1: wall and processor seconds per stage).
+(`regions --stage-times`, builds from 2026-12-06 on; older builds read SC_REGION_TIMING=1: wall
+and processor seconds per stage).
 
 --regions-args ARGS (repeatable) adds arguments to `shellcontract regions` ("--method tips"; ""
 for none): every build runs with every one, alternating as above.
@@ -91,10 +92,10 @@ def main():
                 print(f"{label}: {n} faces, {shown}: median {statistics.median(t):.2f} s, best {t[0]:.2f} s "
                       f"of {a.repeat} (load average {load0:.1f} -> {load1:.1f})")
                 if a.stages:
-                    env = dict(os.environ, SC_REGION_TIMING="1")
                     print("".join("    " + line + "\n"
-                                  for line in one_run(exe, mesh, tmp, env, shlex.split(args))[1].splitlines()
-                                  if line.startswith("region timing")), end="")
+                                  for line in one_run(exe, mesh, tmp, None,
+                                                      shlex.split(args) + ["--stage-times"])[1].splitlines()
+                                  if line.startswith("stage ")), end="")
 
 
 if __name__ == "__main__":

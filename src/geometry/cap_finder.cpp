@@ -10,8 +10,6 @@
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <ctime>
 #include <functional>
 #include <limits>
@@ -25,7 +23,6 @@
 
 #include "geometry/cap_grower.hpp"
 #include "core/cancellation.hpp"
-#include "core/decimal_text.hpp"
 #include "core/power_of_two.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/cotan_laplacian.hpp"
@@ -42,23 +39,22 @@
 namespace shellcontract {
 namespace {
 
-/// Wall and processor time of the finder's stages on stderr when SC_REGION_TIMING is set (for
-/// lab/regions/bench_selection.py; nothing is printed otherwise).
+/// Wall and processor time of the finder's stages, for the report's stage_times: a library
+/// prints nothing, the CLI shows them (`regions --stage-times`).
 class StageTimer {
  public:
   void lap(const char* stage) {
     const auto wall = std::chrono::steady_clock::now();
     const std::clock_t cpu = std::clock();
-    if (on_)
-      std::fprintf(stderr, "region timing: %-14s wall %s s  cpu %s s\n", stage,
-                   fixed_text(std::chrono::duration<double>(wall - wall_).count(), 3).c_str(),
-                   fixed_text(static_cast<double>(cpu - cpu_) / CLOCKS_PER_SEC, 3).c_str());
+    laps_.push_back({stage, std::chrono::duration<double>(wall - wall_).count(),
+                     static_cast<double>(cpu - cpu_) / CLOCKS_PER_SEC});
     wall_ = wall;
     cpu_ = cpu;
   }
+  std::vector<RegionStageTime> take() { return std::move(laps_); }
 
  private:
-  bool on_ = std::getenv("SC_REGION_TIMING") != nullptr;
+  std::vector<RegionStageTime> laps_;
   std::chrono::steady_clock::time_point wall_ = std::chrono::steady_clock::now();
   std::clock_t cpu_ = std::clock();
 };
@@ -209,7 +205,11 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   cancellation_point();
   detail::FinderStart start = detail::start_finder(mesh, x);
   timer.lap("curvature");
-  if (start.empty()) return detail::no_regions(start, report, curvature);
+  if (start.empty()) {
+    std::vector<int> none = detail::no_regions(start, report, curvature);
+    if (report) report->stage_times = timer.take();
+    return none;
+  }
   cancellation_point();
   CurvatureField& c = start.curvature;
   const MeshArrays& m = start.arrays;
@@ -448,6 +448,7 @@ std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positi
   kept = std::move(parts);
   timer.lap("shape");
   std::vector<int> region = number_regions(kept, m.nf, r, false);
+  r.stage_times = timer.take();
   if (report) *report = std::move(r);
   if (curvature) *curvature = std::move(c);
   return region;

@@ -106,6 +106,7 @@ std::vector<int> select_part_regions(const Mesh& mesh, const Positions& x, const
   r.dropped_large = cap_report.dropped_large + tip_report.dropped_large;
   r.dropped_flat = cap_report.dropped_flat + tip_report.dropped_flat;
   r.dropped_shape = cap_report.dropped_shape + tip_report.dropped_shape;
+  r.stage_times = std::move(cap_report.stage_times);
   const std::size_t nc = cap_report.regions.size(), nt = tip_report.regions.size();
   const std::vector<double> cap_area = areas_of(m, cap_ids, nc), tip_area = areas_of(m, tip_ids, nt);
   // overlap[c * nt + t] = area of cap region c in tip region t.

@@ -132,6 +132,21 @@ TEST_F(CliRegions, RegionsWithoutOutputPrintsTheTableAndWritesTheFaceList) {
   EXPECT_FALSE(fs::exists(path("r.off")));
 }
 
+TEST_F(CliRegions, StageTimesArePrintedOnlyWhenAskedFor) {
+  auto r = run_cli({"regions", mesh("bumpy_sphere.off"), "--stage-times"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<std::string> stages;
+  std::istringstream lines(r.output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("stage ", 0) == 0) stages.push_back(line.substr(6, line.find(':') - 6));
+  EXPECT_EQ(stages, (std::vector<std::string>{"curvature", "smoothing", "free growth",
+                                              "ranked growth", "parts", "shape"}))
+      << r.output;
+  r = run_cli({"regions", mesh("bumpy_sphere.off")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(has(r.output, "stage ")) << r.output;
+}
+
 TEST_F(CliRegions, RegionsTakesTheRegionAtFormsOfRun) {
   auto r = run_cli({"regions", mesh("cube.off"), "--region-at=2,2,2;-1,-1,-1"});
   EXPECT_EQ(r.exit_code, 0) << r.output;

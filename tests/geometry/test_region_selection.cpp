@@ -2,9 +2,11 @@
 // by scripts/make_meshes.py from the construction, not by this code), the plain-sphere decision,
 // scale invariance, and the region face-list file format.
 #include <gtest/gtest.h>
+#include <stdlib.h>  // setenv, unsetenv
 #include <unistd.h>  // getpid: one temporary folder per test process
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -72,6 +74,42 @@ TEST_F(BumpySphere, SidecarHasTheFaceCountsOfTheReadme) {
   EXPECT_EQ(bumps_[0].size(), 88u);
   EXPECT_EQ(bumps_[1].size(), 45u);
   EXPECT_EQ(bumps_[2].size(), 19u);
+}
+
+// The finder's stage times go to the caller's report, in stage order, and the library prints
+// nothing (it used to print them on stderr when an environment variable was set: a host program
+// embedding the library must not have its stderr written by a variable it did not set).
+TEST_F(BumpySphere, StageTimesGoToTheReportAndNothingIsPrinted) {
+  ASSERT_EQ(::setenv("SC_REGION_TIMING", "1", 1), 0);
+  RegionReport report;
+  ::testing::internal::CaptureStderr();
+  const auto t0 = std::chrono::steady_clock::now();
+  select_spherical_regions(mesh_, x_, RegionOptions{}, &report);
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const std::string printed = ::testing::internal::GetCapturedStderr();
+  ::unsetenv("SC_REGION_TIMING");
+  EXPECT_EQ(printed, "");
+  std::vector<std::string> stages;
+  double wall = 0.0;
+  for (const RegionStageTime& t : report.stage_times) {
+    stages.push_back(t.stage);
+    EXPECT_TRUE(t.wall_s >= 0.0 && t.cpu_s >= 0.0) << t.stage;
+    wall += t.wall_s;
+  }
+  EXPECT_EQ(stages, (std::vector<std::string>{"curvature", "smoothing", "free growth",
+                                              "ranked growth", "parts", "shape"}));
+  // The laps partition one stretch of the call: together no longer than the call.
+  EXPECT_LE(wall, elapsed);
+  // The parts method reports its cap finder's stages, the tip finder none.
+  RegionOptions parts;
+  parts.method = RegionMethod::Parts;
+  select_spherical_regions(mesh_, x_, parts, &report);
+  EXPECT_EQ(report.stage_times.size(), 6u);
+  RegionOptions tips;
+  tips.method = RegionMethod::Tips;
+  select_spherical_regions(mesh_, x_, tips, &report);
+  EXPECT_TRUE(report.stage_times.empty());
 }
 
 TEST_F(BumpySphere, EachBumpIsRecoveredAndNothingElse) {
