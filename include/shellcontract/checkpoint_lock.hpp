@@ -50,8 +50,9 @@ class CheckpointLock {
 /// @param saves   whether the run saves to it; a checkpoint only resumed from whose folder this
 ///                run cannot write is locked only if a lock file is there (else nullptr)
 /// @return nullptr when the file system takes no locks
-/// @throws UsageError (exit code 1, Python's ValueError) when another run holds the lock, or the
-///         lock file cannot be made
+/// @throws OutputFileError (exit code 1, as any UsageError) with errno EWOULDBLOCK when another
+///         run holds the lock (Python's BlockingIOError), with the errno of open() when the lock
+///         file cannot be made
 std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
                                                 const std::string& option, bool saves,
                                                 std::vector<std::string>& warnings);

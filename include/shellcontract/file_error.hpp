@@ -4,8 +4,8 @@
 // prints what() and exits with the code of the error each one is, as before. Thrown by the
 // readers (read_input_mesh, read_mesh_document, load_checkpoint, read_region_file: an
 // InputFileError) and the writers and checks of outputs (write_mesh_atomic, write_file_atomic,
-// check_output_files: an OutputFileError); any of them may throw a plain InputError or
-// UsageError for a file that can be opened but not used.
+// check_output_files, lock_checkpoint: an OutputFileError); any of them may throw a plain
+// InputError or UsageError for a file that can be opened but not used.
 #pragma once
 
 #include <string>
@@ -17,9 +17,14 @@ namespace shellcontract {
 
 /// What a file error carries besides its message: the errno of the call that failed (EISDIR
 /// for a folder where a file is needed, as open() says) and the path it was about, as the caller
-/// gave it.
+/// gave it. Where no call failed, the errno the OS would give for the same refusal: EFBIG for an
+/// input over its size limit, EWOULDBLOCK for a checkpoint whose lock another run holds; and
+/// NO_ERRNO for a path refused for what it is (a device, a FIFO or a socket: open() would take
+/// it, so no errno says why; Python's shutil refuses a FIFO with an OSError without one too).
 class FileSystemFailure {
  public:
+  static constexpr int NO_ERRNO = 0;
+
   FileSystemFailure(int error_number, std::string path)
       : error_number_(error_number), path_(std::move(path)) {}
 
@@ -31,16 +36,18 @@ class FileSystemFailure {
   std::string path_;
 };
 
-/// An input that cannot be read: missing, a folder, not permitted, a read error (exit code 2, as
-/// any InputError; a file that can be read but is malformed is a plain InputError).
+/// An input that cannot be read: missing, a folder, a device, FIFO or socket, not permitted, too
+/// large, a read error (exit code 2, as any InputError; a file that can be read but is malformed
+/// is a plain InputError).
 class InputFileError : public InputError, public FileSystemFailure {
  public:
   InputFileError(const std::string& message, int error_number, std::string path)
       : InputError(message), FileSystemFailure(error_number, std::move(path)) {}
 };
 
-/// An output that cannot be written: its folder missing or not writable, a folder in its place,
-/// the disk full (exit code 1, as any UsageError).
+/// An output that cannot be written: its folder missing or not writable, a folder, device, FIFO
+/// or socket in its place, the disk full, a checkpoint locked by another run (exit code 1, as any
+/// UsageError).
 class OutputFileError : public UsageError, public FileSystemFailure {
  public:
   OutputFileError(const std::string& message, int error_number, std::string path)

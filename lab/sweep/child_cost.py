@@ -34,7 +34,7 @@ def main():
     p.add_argument("--out", default="/tmp/sweep_child_cost")
     a = p.parse_args()
     sys.path.insert(0, os.path.join(a.build, "python"))
-    from shellcontract import sweep, sweep_file, sweep_job
+    from shellcontract import sweep, sweep_dask, sweep_file, sweep_job
     cli = os.path.abspath(os.path.join(a.build, "shellcontract"))
     shutil.rmtree(a.out, ignore_errors=True)
     os.makedirs(a.out)
@@ -48,7 +48,7 @@ def main():
     cluster = client = None
     if a.with_cluster:
         from distributed import Client
-        cluster = sweep._embedded_cluster(1)
+        cluster = sweep_dask.embedded_cluster(1)
         client = Client(cluster)
 
     def children_cpu():

@@ -8,7 +8,7 @@ Configurations, all with one single-threaded worker:
 
   threads-default  processes=False with Dask's default configuration
   threads-quiet    processes=False with the sweep's QUIET_WORKERS and no memory limit, as
-                   shellcontract.sweep starts it (sweep._embedded_cluster)
+                   shellcontract.sweep starts it (sweep_dask.embedded_cluster)
   processes-quiet  processes=True (a nanny and a worker process) with the same configuration,
                    as the sweep started it before: the worker process counted too (psutil)
 
@@ -26,7 +26,7 @@ PROBE = r"""
 import json, os, resource, sys, time
 import dask
 mode, seconds = sys.argv[1], float(sys.argv[2])
-from shellcontract import sweep
+from shellcontract import sweep_dask
 from distributed import Client, LocalCluster
 
 def nap(s):
@@ -37,9 +37,9 @@ if mode == "threads-default":
     cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
                            dashboard_address=None, silence_logs=40)
 elif mode == "threads-quiet":
-    cluster = sweep._embedded_cluster(1)
+    cluster = sweep_dask.embedded_cluster(1)
 else:
-    dask.config.set(sweep.QUIET_WORKERS)
+    dask.config.set(sweep_dask.QUIET_WORKERS)
     cluster = LocalCluster(n_workers=1, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=40)
 client = Client(cluster)

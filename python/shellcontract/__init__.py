@@ -18,7 +18,11 @@ read-only, the disk full) raises what Python's open() would: FileNotFoundError,
 PermissionError, IsADirectoryError, NotADirectoryError, FileExistsError or another OSError,
 with ``errno`` and ``filename`` set; ``str()`` (and ``strerror``) is the library's message, the
 CLI's. Each is a ``FileError``, which is an OSError and a ValueError as well, so that code
-catching ValueError, what these errors were before, still catches them.
+catching ValueError, what these errors were before, still catches them. So are: a device, a
+FIFO or a socket given as an input or found in an output's place (a FileError with errno None:
+open() would take it, so no errno says why); an input over its size limit (errno EFBIG); a
+glTF's external buffer that cannot be read (its own error, ``filename`` the buffer's path); a
+checkpoint whose lock another run holds (BlockingIOError, errno EWOULDBLOCK).
 """
 
 import atexit
@@ -131,8 +135,9 @@ def contract(vertices, faces, *, callback=None, **options):
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
     cancels the run; FILE is checked before the run as the CLI checks its outputs (ValueError
     for an input's file; FileNotFoundError for a missing folder, IsADirectoryError for a folder
-    in its place, PermissionError for a read-only folder: each a FileError, a ValueError too;
-    resume= of a missing file is a FileNotFoundError). resume=FILE continues such a
+    in its place, PermissionError for a read-only folder, a FileError with errno None for a
+    device or FIFO: each a FileError, a ValueError too; resume= of a missing file is a
+    FileNotFoundError). resume=FILE continues such a
     run (the same vertices and faces; options, if given, must equal the checkpoint's, threads
     excepted) to the result the uninterrupted run gives, bit for bit, its log included
     (``shellcontract run --checkpoint/--resume``, whose checkpoints this reads and the other way
@@ -147,8 +152,9 @@ def contract(vertices, faces, *, callback=None, **options):
     nothing. checkpoint=OTHER saves there instead. While it runs, contract() holds the lock
     ``.FILE.lock`` beside each checkpoint it saves to or resumes from, as the CLI does: a second
     run naming one (another contract(), in this process or another, or a CLI run) is refused
-    before any work, ValueError ("another shellcontract run is saving to this checkpoint or
-    resuming from it"). The lock file is removed when contract() returns or raises, and by
+    before any work, BlockingIOError ("another shellcontract run is saving to this checkpoint or
+    resuming from it": a FileError, a ValueError too, as Python's own flock() refuses a lock
+    held). The lock file is removed when contract() returns or raises, and by
     SIGTERM, SIGHUP or SIGUSR1 left at their default action (docs/design/output-safety.md).
     """
     options = dict(options)
@@ -413,7 +419,9 @@ def read_mesh(path):
     the run takes them, polygons split and a component that is inside out turned outward (so a
     file's face order or corner order may differ; write_mesh's `like` keeps the file's own).
     A file that cannot be opened raises its OSError (FileNotFoundError, IsADirectoryError,
-    PermissionError, ...: a FileError, a ValueError too); one whose content is refused raises
+    PermissionError, ...: a FileError, a ValueError too; for a glTF's missing or unreadable
+    external buffer, about the buffer; a device or FIFO: a FileError with errno None); one whose
+    content is refused raises
     ValueError (MeshError, with ``faces``, where particular faces are to blame). Other Python
     threads run while the file is read and checked."""
     return _core.read_mesh(path)  # str or os.PathLike; TypeError otherwise
@@ -431,7 +439,8 @@ def write_mesh(path, vertices, faces, like=None):
     a whole mesh below the smallest normal float32, an integer type's range) is a ValueError
     naming the vertex.
     A file that cannot be written raises its OSError (FileNotFoundError for a missing folder,
-    PermissionError for a read-only one, IsADirectoryError for a folder in its place, another
-    OSError for a full disk: a FileError, a ValueError too). Other Python threads run while the
-    file is written."""
+    PermissionError for a read-only one, IsADirectoryError for a folder in its place, a
+    FileError with errno None for a device, FIFO or socket in its place, another OSError for a
+    full disk: a FileError, a ValueError too). Other Python threads run while the file is
+    written."""
     _core.write_mesh(path, vertices, faces, like)  # str or os.PathLike (or None)

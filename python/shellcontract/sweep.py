@@ -17,14 +17,13 @@ be written, 3 some job could not get an outcome (crash, kill, timeout, an output
 
 import argparse
 import os
-import queue
 import shlex
 import subprocess
 import sys
 import uuid
 
-from . import (sweep_cli, sweep_file, sweep_host, sweep_job, sweep_output, sweep_process,
-               sweep_progress, sweep_results)
+from . import (sweep_cli, sweep_dask, sweep_file, sweep_host, sweep_job, sweep_output,
+               sweep_process, sweep_progress, sweep_results)
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
@@ -35,19 +34,6 @@ RETRIED_STATUSES = ("crashed", "killed", "timeout", sweep_job.OUTPUT_NOT_WRITTEN
 
 find_cli = sweep_cli.find_cli
 cli_version = sweep_cli.cli_version
-
-
-class Interrupted(Exception):
-    """Ctrl-C: the sweep stopped its jobs; `still_running` jobs (None: unknown) had not ended
-    when it gave up waiting."""
-
-    def __init__(self, still_running=0):
-        super().__init__(still_running)
-        self.still_running = still_running
-
-
-class WorkersUnusable(Exception):
-    """An existing cluster's workers that cannot run the jobs (the message says which, why)."""
 
 
 def parse_shard(text):
@@ -139,216 +125,6 @@ def parser():
     return p
 
 
-def _has_dashboard():
-    """Dask's dashboard needs bokeh (pip's bokeh; Debian 12 does not package it)."""
-    try:
-        import bokeh  # noqa: F401
-        return True
-    except ImportError:
-        return False
-
-
-# Dask's background work, which shares the cores with the jobs: each worker's statistical
-# profiler samples its threads every 10 ms, every event loop checks its own latency every 20 ms,
-# the memory monitors run every 100 ms, the system monitors (the dashboard's CPU and memory plots)
-# and the cluster's widget every 500 ms, the client asks for the scheduler's state every 2 s and
-# the scheduler looks for work to steal every 100 ms, for tasks that only wait for their child
-# processes. Off, or slowed, in the embedded cluster (lab/sweep/README.md); work stealing stays
-# on, for the last jobs of a sweep with fewer jobs than twice the workers.
-QUIET_WORKERS = {"distributed.worker.profile.enabled": False,
-                 "distributed.admin.tick.interval": "1s",
-                 "distributed.worker.memory.monitor-interval": "1s",
-                 "distributed.admin.system-monitor.interval": "1s",
-                 "distributed.deploy.cluster-repr-interval": "1h",
-                 "distributed.client.scheduler-info-interval": "10s",
-                 "distributed.scheduler.work-stealing-interval": "1s"}
-
-
-# Evaluated on the scheduler (Client.run_on_scheduler(eval, ...)): whether it can serve the
-# dashboard's pages. Its HTTP server runs without bokeh too (its link then answers 404).
-_BOKEH_PROBE = "__import__('importlib.util').util.find_spec('bokeh') is not None"
-
-
-def _scheduler_has_dashboard(client):
-    try:
-        return ("dashboard" in client.scheduler_info().get("services", {})
-                and bool(client.run_on_scheduler(eval, _BOKEH_PROBE)))
-    except Exception:  # an old or odd scheduler: say nothing rather than a dead link
-        return False
-
-
-def _embedded_cluster(workers):
-    import dask
-    from distributed import LocalCluster
-    dask.config.set(QUIET_WORKERS)
-    # The workers are threads of this process, one per job at a time: a job is a process of its
-    # own (sweep_job), so a worker process would add no isolation, only a Python interpreter to
-    # start and heartbeats over TCP (lab/sweep/README.md). No memory limit: the workers hold no
-    # data (a job's memory is its process's), so nothing to monitor.
-    return LocalCluster(n_workers=workers, threads_per_worker=1, processes=False, memory_limit=0,
-                        # Any free port: the scheduler's HTTP server runs with or without a
-                        # dashboard, and on Dask's default port (8787) it warned on every sweep
-                        # while the user's own cluster held that port.
-                        dashboard_address="127.0.0.1:0",
-                        silence_logs=40)
-
-
-# The client looks for the source code of the call that submits a computation (walking the
-# stack, finding every frame's module: a fair part of a second, before the first job can start),
-# to show it on the dashboard; the sweep's tasks have no code worth showing, so every module is
-# skipped.
-CLIENT_CONFIG = {"distributed.diagnostics.computations.ignore-modules": [".*"]}
-
-
-# Evaluated on each worker of an existing cluster (Client.run(eval, ...), eval being importable
-# everywhere): whether it can import the package, without the package on the client's side of
-# the call. A worker that cannot import it would otherwise fail every task it takes up in a way
-# Dask does not report to the client (the sweep would wait for ever).
-_IMPORT_PROBE = "__import__('shellcontract.sweep_job').sweep_job.__file__"
-
-
-def _check_workers(client, cli, version, own_cli, message):
-    """Every worker of an existing cluster can import the package and finds an executable of the
-    sweep's version (sweep_cli.worker_cli); raises WorkersUnusable naming each one that cannot.
-    Workers that join later are checked by their first job (which then crashes, saying why)."""
-    workers = sorted(client.scheduler_info().get("workers", {}))
-    if not workers:
-        message("the cluster has no workers yet: the jobs wait for the first to join")
-        return
-    problems = []
-    imported = client.run(eval, _IMPORT_PROBE, workers=workers, on_error="return")
-    usable = []
-    for w in workers:
-        r = imported.get(w)
-        if isinstance(r, BaseException):
-            problems.append("{}: cannot import the shellcontract package ({}: {}); every worker "
-                            "needs it importable (PYTHONPATH)".format(w, type(r).__name__, r))
-        else:
-            usable.append(w)
-    if usable:
-        described = client.run(sweep_cli.describe_worker, cli, version, own_cli, workers=usable,
-                               on_error="return")
-        for w in usable:
-            r = described.get(w)
-            if isinstance(r, BaseException):
-                problems.append("{}: {}: {}".format(w, type(r).__name__, r))
-            elif r[1] is not None:
-                problems.append("{}: {}".format(w, r[1]))
-    if problems:
-        raise WorkersUnusable("; ".join(problems))
-
-
-def _stop_on_workers(client, token):
-    """Ctrl-C on an existing cluster: every worker stops this sweep's jobs (SIGTERM: each saves
-    its checkpoint; none starts after), and the sweep waits for them; returns how many still
-    ran when it gave up (None: a worker did not answer)."""
-    import time
-    deadline = time.monotonic() + sweep_job.STOP_GRACE_SECONDS + 5
-    try:
-        client.run(sweep_job.stop_running, token, on_error="return")
-        while True:
-            counts = client.run(sweep_job.active_calls, token, on_error="return")
-            if any(isinstance(n, BaseException) for n in counts.values()):
-                return None
-            still = sum(counts.values())
-            if still == 0 or time.monotonic() > deadline:
-                return still
-            time.sleep(0.2)
-    except Exception:  # the scheduler or the connection is gone
-        return None
-
-
-def _connect(args, cli, version):
-    """A client of the existing cluster (--scheduler) whose workers have passed _check_workers;
-    made before DIR is claimed, so that a refused cluster leaves no folder behind. Raises
-    WorkersUnusable, or OSError when the scheduler does not answer."""
-    import dask
-    from distributed import Client
-    dask.config.set(CLIENT_CONFIG)
-    client = Client(args.scheduler, timeout="30s")
-    try:
-        # Each worker runs its own executable (unless --cli names one), of the sweep's version.
-        _check_workers(client, cli, version, args.cli is None,
-                       lambda text: print("shellcontract sweep: " + text, file=sys.stderr))
-    except BaseException:
-        client.close()
-        raise
-    return client
-
-
-def _run_dask(todo, args, cli, version, token, progress, on_record, client=None):
-    """The jobs on the existing cluster of `client` (from _connect), or on an embedded one."""
-    import dask
-    from distributed import Client
-    dask.config.set(CLIENT_CONFIG)
-    cluster, threads = None, None
-    own_cli = None if not args.scheduler else args.cli is None
-    # An existing cluster's jobs take their machine's share, which each job's worker works out.
-    share = (None if client is None else
-             sweep_host.cluster_share(client.scheduler_info().get("workers", {}), len(todo)))
-    if client is None:
-        # The embedded workers run this machine's executable, on the cores this process may use.
-        workers = args.workers or sweep_host.usable_cores()
-        threads = sweep_host.job_threads(workers, len(todo))
-        cluster = _embedded_cluster(workers)
-        client = Client(cluster)
-    futures = {}
-    try:
-        if _scheduler_has_dashboard(client) if args.scheduler else _has_dashboard():
-            # The scheduler's own dashboard when it has one (it says where).
-            progress.message("Dask dashboard: {}".format(client.dashboard_link))
-        elif args.scheduler:
-            progress.message("Dask dashboard: not available (the scheduler runs without one, or "
-                             "without the Python package bokeh that it needs)")
-        else:
-            progress.message("Dask dashboard: not available (it needs the Python package bokeh, "
-                             "which Debian 12 does not package)")
-        progress.restart_clock()  # the ETA counts from the cluster's start, not its set-up
-        # Finished futures are handed over through a queue that this thread blocks on:
-        # distributed's as_completed looks for them every 100 ms.
-        finished = queue.SimpleQueue()
-        # One call for all the jobs: one graph for the scheduler, not one per job.
-        submitted = client.map(sweep_job.run_job, [job.to_dict() for job in todo],
-                               out_dir=args.output, cli=cli, timeout=args.job_timeout,
-                               checkpoint_every=args.checkpoint_every, sweep=token,
-                               own_cli=own_cli, version=version, threads=threads,
-                               share=share, pure=False,
-                               # This sweep's own keys: two sweeps on one cluster with the
-                               # same job (its id is the run's, not the folder's) had shared one
-                               # task, whose files went to the first sweep's folder only.
-                               key=["shellcontract-job-{}-{}".format(job.id, token)
-                                    for job in todo])
-        for f, job in zip(submitted, todo):
-            futures[f] = job
-            f.add_done_callback(finished.put)
-        for _ in range(len(futures)):
-            f = sweep_progress.next_finished(finished, client, args.scheduler, progress)
-            job = futures[f]
-            try:
-                record = f.result()
-            except Exception as e:  # the task itself failed (e.g. a worker lost too often)
-                record = {"job": job.id, "status": "crashed", "exit_code": None,
-                          "message": "{}: {}".format(type(e).__name__, e)}
-            on_record(job, record)
-    except KeyboardInterrupt:
-        client.cancel(list(futures))
-        if args.scheduler:
-            # A cancelled task that runs goes on in its worker's thread: the workers are asked
-            # to stop this sweep's jobs (SIGTERM: each saves its checkpoint).
-            still = _stop_on_workers(client, token)
-        else:
-            # The embedded workers are this process's threads: their jobs are told to stop here
-            # and waited for.
-            sweep_job.stop_running(token)
-            still = (0 if sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS, token)
-                     else sweep_job.active_calls(token))
-        raise Interrupted(still)
-    finally:
-        if cluster is not None:  # an existing cluster's client is its caller's to close
-            client.close()
-            cluster.close()
-
-
 def _os_error_text(e):
     where = e.filename if e.filename is not None else ""
     return "{}{}".format(where + ": " if where else "", e.strerror or e)
@@ -429,8 +205,8 @@ def _run(args, cli, version, data, jobs):
     client = None
     if args.scheduler:
         try:
-            client = _connect(args, cli, version)
-        except WorkersUnusable as e:
+            client = sweep_dask.connect(args, cli, version)
+        except sweep_dask.WorkersUnusable as e:
             print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
             return EXIT_USAGE
         except KeyboardInterrupt:  # while connecting (up to 30 s) or checking the workers
@@ -474,11 +250,11 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
                 on_record(job, sweep_job.run_job(job.to_dict(), args.output, cli, args.job_timeout,
                                                  args.checkpoint_every, sweep=token))
         elif todo:  # nothing left to run: no cluster to start
-            _run_dask(todo, args, cli, version, token, progress, on_record, client)
-    except (KeyboardInterrupt, Interrupted) as e:
+            sweep_dask.run_jobs(todo, args, cli, version, token, progress, on_record, client)
+    except (KeyboardInterrupt, sweep_dask.Interrupted) as e:
         tables.flush()
         progress.close()
-        still = e.still_running if isinstance(e, Interrupted) else 0
+        still = e.still_running if isinstance(e, sweep_dask.Interrupted) else 0
         if still == 0:
             how = ("finished jobs are kept, the running ones saved their checkpoints and resume "
                    "from them")

@@ -15,11 +15,15 @@ namespace {
 
 constexpr const char* FILE_ERROR_DOC =
     "A file could not be read or written (an OSError and a ValueError).\n\n"
-    "errno: the errno of the call that failed (EISDIR for a folder where a file is needed);\n"
-    "filename: the file; strerror and str(): the library's message, the CLI's. Raised as the\n"
-    "subclass for its errno where there is one (FileNotFoundError, PermissionError,\n"
-    "IsADirectoryError, NotADirectoryError, FileExistsError: each also the builtin class of\n"
-    "that name). A file that can be read but whose content is refused is a plain ValueError.";
+    "errno: the errno of the call that failed (EISDIR for a folder where a file is needed;\n"
+    "EFBIG for an input over its size limit; EWOULDBLOCK for a checkpoint another run holds\n"
+    "locked); None for a device, FIFO or socket given as an input or in an output's place,\n"
+    "refused for what it is rather than by a failed call.\n"
+    "filename: the file (for a glTF's missing external buffer, the buffer); strerror and\n"
+    "str(): the library's message, the CLI's. Raised as the subclass for its errno where there\n"
+    "is one (FileNotFoundError, PermissionError, IsADirectoryError, NotADirectoryError,\n"
+    "FileExistsError, BlockingIOError: each also the builtin class of that name). A file that\n"
+    "can be read but whose content is refused is a plain ValueError.";
 
 /// A subclass: the builtin it derives from, by name, and the errno values it stands for
 /// (Python's own mapping, Objects/exceptions.c). The class objects live as long as the
@@ -37,6 +41,7 @@ Subclass subclasses[] = {
     {"IsADirectoryError", EISDIR, EISDIR, nullptr},
     {"NotADirectoryError", ENOTDIR, ENOTDIR, nullptr},
     {"FileExistsError", EEXIST, EEXIST, nullptr},
+    {"BlockingIOError", EAGAIN, EWOULDBLOCK, nullptr},  // a lock another run holds
 };
 
 /// `qualified_name`: where pickle finds the class again ("module.name").
@@ -78,8 +83,13 @@ void set_file_error(const FileSystemFailure& e, const std::string& message) {
   PyObject* type = file_error_type;
   for (const Subclass& s : subclasses)
     if (e.error_number() == s.errno_a || e.error_number() == s.errno_b) type = s.type;
+  // No errno (a device, FIFO or socket refused for what it is): None, as OSError's own
+  // errno when no call failed.
+  const py::object error_number = e.error_number() == FileSystemFailure::NO_ERRNO
+                                      ? py::object(py::none())
+                                      : py::object(py::int_(e.error_number()));
   const py::object error = py::reinterpret_borrow<py::object>(type)(
-      e.error_number(), message_text(message), file_name_text(e.path()));
+      error_number, message_text(message), file_name_text(e.path()));
   PyErr_SetObject(type, error.ptr());
 }
 

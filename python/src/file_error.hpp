@@ -15,13 +15,14 @@ namespace py = pybind11;
 
 /// Creates the classes and adds them to `m` (_core): FileError (OSError and ValueError; the
 /// package re-exports it), and FileNotFoundError, PermissionError, IsADirectoryError,
-/// NotADirectoryError and FileExistsError, each a FileError and the builtin class of its name.
+/// NotADirectoryError, FileExistsError and BlockingIOError, each a FileError and the builtin
+/// class of its name.
 /// Once, at the module's import.
 void register_file_errors(py::module_& m);
 
 /// Sets the pending Python error to the class of e.error_number() (FileError for an errno none
-/// of the subclasses stands for) with errno, strerror = `message` and filename = e.path() (the
-/// exception translator's part; the GIL is held there).
+/// of the subclasses stands for) with errno (None for NO_ERRNO), strerror = `message` and
+/// filename = e.path() (the exception translator's part; the GIL is held there).
 void set_file_error(const FileSystemFailure& e, const std::string& message);
 
 }  // namespace shellcontract::python

@@ -20,6 +20,7 @@
 #include "contract.hpp"
 #include "file_error.hpp"
 #include "mesh_error.hpp"
+#include "option_values.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"

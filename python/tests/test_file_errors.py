@@ -26,8 +26,9 @@ def open_error(path, mode):
     return None
 
 
-def check_like_open(error, path, mode):
-    """`error` is what open(path, mode) raises, as a shellcontract.FileError."""
+def check_like_open(error, path, mode, named=True):
+    """`error` is what open(path, mode) raises, as a shellcontract.FileError; `named`: its
+    message names the path."""
     expected = open_error(path, mode)
     assert expected is not None
     assert type(expected) in type(error).__mro__, (type(error), type(expected))
@@ -36,7 +37,8 @@ def check_like_open(error, path, mode):
     assert error.filename == os.fspath(path)
     # The library's message, as the CLI prints it, is str() and strerror.
     assert str(error) == error.strerror
-    assert os.fspath(path) in str(error)
+    if named:
+        assert os.fspath(path) in str(error)
 
 
 def test_read_mesh_of_a_missing_file_is_file_not_found(tmp_path):
@@ -179,3 +181,201 @@ def test_contract_of_a_folder_as_regions_or_weights_file_is_a_directory_error(tm
         sc.contract(*ico2, frames=1, **{option: tmp_path})
     assert info.value.errno == errno.EISDIR and info.value.filename == str(tmp_path)
     assert "it is a folder" in str(info.value)
+
+
+# A device, a FIFO or a socket is refused for what it is: open() would take it (and block on a
+# FIFO), so no errno says why. It is a FileError (OSError and ValueError) with errno None and
+# the path as filename, as Python's shutil.copyfile refuses a FIFO (SpecialFileError, an OSError
+# without an errno). Before, each was a plain ValueError.
+
+def special_files(tmp_path):
+    """A device, a FIFO and a socket, each with a mesh's extension where it can be made."""
+    import socket
+    fifo = tmp_path / "fifo.off"
+    os.mkfifo(fifo)
+    sock = tmp_path / "socket.off"
+    server = socket.socket(socket.AF_UNIX)
+    server.bind(str(sock))
+    return server, {"device": "/dev/null", "FIFO": fifo, "socket": sock}
+
+
+def check_special(error, path, kind):
+    assert type(error) is sc.FileError, type(error)
+    assert isinstance(error, OSError) and isinstance(error, ValueError)
+    assert error.errno is None
+    assert error.filename == os.fspath(path)
+    assert str(error) == error.strerror
+    assert "not a regular file" in str(error) and kind in str(error)
+
+
+@pytest.fixture
+def specials(tmp_path):
+    server, paths = special_files(tmp_path)
+    yield paths
+    server.close()
+
+
+def test_read_mesh_of_a_device_fifo_or_socket_is_a_file_error_without_errno(specials):
+    for kind, path in specials.items():
+        with pytest.raises(sc.FileError) as info:
+            sc.read_mesh(path)
+        check_special(info.value, path, kind)
+        what = {"device": "a device", "FIFO": "a FIFO (named pipe)", "socket": "a socket"}[kind]
+        # The message is the CLI's, unchanged.
+        assert str(info.value) == "{}: not a regular file: it is {}; inputs must be regular " \
+            "files".format(path, what)
+
+
+@pytest.mark.parametrize("option", ["regions", "region_weights"])
+def test_contract_of_a_device_or_fifo_as_regions_or_weights_is_a_file_error(specials, ico2, option):
+    for kind in ("device", "FIFO"):
+        path = specials[kind]
+        with pytest.raises(sc.FileError) as info:
+            sc.contract(*ico2, frames=1, **{option: path})
+        check_special(info.value, path, kind)
+
+
+def test_contract_resume_from_a_fifo_is_a_file_error(specials, ico2):
+    with pytest.raises(sc.FileError) as info:
+        sc.contract(*ico2, frames=1, resume=specials["FIFO"])
+    check_special(info.value, specials["FIFO"], "FIFO")
+    assert str(info.value).startswith("checkpoint {}:".format(specials["FIFO"]))
+
+
+def test_write_mesh_onto_a_fifo_or_socket_is_a_file_error_without_errno(specials, ico2):
+    for kind in ("FIFO", "socket"):
+        path = specials[kind]
+        with pytest.raises(sc.FileError) as info:
+            sc.write_mesh(path, *ico2)
+        assert type(info.value) is sc.FileError and info.value.errno is None
+        assert info.value.filename == str(path)
+        assert str(info.value) == ("cannot write '{}': it exists and is not a regular file (a "
+                                   "device, FIFO or socket is never replaced)".format(path))
+    import stat
+    assert stat.S_ISFIFO(os.stat(specials["FIFO"]).st_mode)  # never replaced
+
+
+def test_contract_checkpoint_onto_a_fifo_is_a_file_error_without_errno(specials, ico2):
+    path = specials["FIFO"]
+    with pytest.raises(sc.FileError) as info:
+        sc.contract(*ico2, frames=1, checkpoint=path)
+    assert type(info.value) is sc.FileError and info.value.errno is None
+    assert info.value.filename == str(path)
+    assert "exists and is not a regular file" in str(info.value)
+
+
+def test_a_regions_file_over_its_size_limit_is_a_file_error_efbig(tmp_path, ico2):
+    """A face-list file larger than any list of this mesh's faces is refused before it is read
+    ("file too large"): EFBIG, the errno the OS gives for a file over a size limit."""
+    path = tmp_path / "huge.txt"
+    with open(path, "wb") as f:
+        f.truncate(64 << 20)  # sparse: no disk used
+    with pytest.raises(sc.FileError) as info:
+        sc.contract(*ico2, frames=1, regions=path)
+    assert type(info.value) is sc.FileError
+    assert info.value.errno == errno.EFBIG and info.value.filename == str(path)
+    assert str(info.value).startswith("{}: file too large: {} bytes".format(path, 64 << 20))
+
+
+def test_a_checkpoint_locked_by_another_run_is_a_blocking_io_error(tmp_path, ico2):
+    """The lock another run holds is what Python's own flock() refuses with BlockingIOError."""
+    import fcntl
+    path = tmp_path / "run.ckpt"
+    lock = tmp_path / ".run.ckpt.lock"  # the documented lock file
+    held = os.open(lock, os.O_RDWR | os.O_CREAT, 0o666)
+    other = os.open(lock, os.O_RDWR)
+    try:
+        fcntl.flock(held, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(BlockingIOError) as expected:  # the oracle: Python's own flock
+            fcntl.flock(other, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        with pytest.raises(BlockingIOError) as info:
+            sc.contract(*ico2, frames=1, checkpoint=path)
+    finally:
+        os.close(other)
+        os.close(held)
+    error = info.value
+    assert isinstance(error, sc.FileError) and isinstance(error, ValueError)
+    assert error.errno == expected.value.errno
+    assert error.filename == str(path)
+    assert "another shellcontract run is saving to this checkpoint" in str(error)
+    assert str(error) == error.strerror
+    copy = pickle.loads(pickle.dumps(error))
+    assert type(copy) is type(error) and copy.errno == error.errno
+
+
+# A glTF whose external buffer cannot be had: the error is about the buffer (its path as
+# filename, the errno open() gives for it), where before it was a plain ValueError naming only
+# the .gltf. The message stays the CLI's, naming the .gltf and the buffer's URI.
+
+BUFFER = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype="<f4").tobytes() + \
+    np.array([0, 1, 2], dtype="<u4").tobytes()
+
+
+def gltf_with_buffer(path, uri):
+    import json
+    document = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"uri": uri, "byteLength": len(BUFFER)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                        {"buffer": 0, "byteOffset": 36, "byteLength": 12}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5125, "count": 3, "type": "SCALAR"}]}
+    path.write_text(json.dumps(document))
+    return path
+
+
+@pytest.mark.parametrize("uri, name", [("nowhere.bin", "nowhere.bin"),
+                                       ("no%20where.bin", "no where.bin")])
+def test_gltf_with_a_missing_buffer_is_file_not_found_naming_the_buffer(tmp_path, uri, name):
+    gltf = gltf_with_buffer(tmp_path / "mesh.gltf", uri)
+    with pytest.raises(FileNotFoundError) as info:
+        sc.read_mesh(gltf)
+    # The message is the CLI's, unchanged: the .gltf and the buffer's URI.
+    check_like_open(info.value, tmp_path / name, "rb", named=False)
+    assert str(info.value) == "{}: cannot read .gltf: tinygltf: File not found : {}".format(gltf, name)
+
+
+def test_gltf_with_a_buffer_under_a_file_is_not_a_directory_error(tmp_path):
+    (tmp_path / "file").write_text("x")
+    gltf = gltf_with_buffer(tmp_path / "mesh.gltf", "file/mesh.bin")
+    with pytest.raises(NotADirectoryError) as info:
+        sc.read_mesh(gltf)
+    check_like_open(info.value, tmp_path / "file" / "mesh.bin", "rb", named=False)
+
+
+def test_gltf_with_a_folder_as_buffer_is_a_directory_error(tmp_path):
+    (tmp_path / "mesh.bin").mkdir()
+    gltf = gltf_with_buffer(tmp_path / "mesh.gltf", "mesh.bin")
+    with pytest.raises(IsADirectoryError) as info:
+        sc.read_mesh(gltf)
+    check_like_open(info.value, tmp_path / "mesh.bin", "rb")
+
+
+@pytest.mark.skipif(os.geteuid() == 0, reason="root reads a file whatever its mode")
+def test_gltf_with_an_unreadable_buffer_is_a_permission_error(tmp_path):
+    (tmp_path / "mesh.bin").write_bytes(BUFFER)
+    (tmp_path / "mesh.bin").chmod(0)
+    gltf = gltf_with_buffer(tmp_path / "mesh.gltf", "mesh.bin")
+    with pytest.raises(PermissionError) as info:
+        sc.read_mesh(gltf)
+    check_like_open(info.value, tmp_path / "mesh.bin", "rb")
+
+
+def test_gltf_with_a_fifo_as_buffer_is_a_file_error_naming_the_buffer(tmp_path):
+    os.mkfifo(tmp_path / "mesh.bin")
+    gltf = gltf_with_buffer(tmp_path / "mesh.gltf", "mesh.bin")
+    with pytest.raises(sc.FileError) as info:
+        sc.read_mesh(gltf)
+    assert type(info.value) is sc.FileError and info.value.errno is None
+    assert info.value.filename == str(tmp_path / "mesh.bin")
+
+
+def test_gltf_with_a_buffer_of_the_wrong_size_stays_a_value_error(tmp_path):
+    """A buffer that is read but holds too few bytes is refused for its content: no OSError."""
+    (tmp_path / "mesh.bin").write_bytes(BUFFER[:-4])
+    gltf = gltf_with_buffer(tmp_path / "mesh.gltf", "mesh.bin")
+    with pytest.raises(ValueError) as info:
+        sc.read_mesh(gltf)
+    assert not isinstance(info.value, OSError), type(info.value)

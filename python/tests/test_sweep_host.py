@@ -13,7 +13,7 @@ import sys
 
 import pytest
 
-from shellcontract import sweep_cli, sweep_file, sweep_host, sweep_output
+from shellcontract import sweep_cli, sweep_dask, sweep_file, sweep_host, sweep_output
 from shellcontract.sweep_progress import Progress
 from test_sweep import run_sweep, sweep_env, write_sweep
 
@@ -83,7 +83,7 @@ def _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch):
         asked.append(workers)
         raise KeyboardInterrupt  # nothing to run: the number is the test
 
-    monkeypatch.setattr(sweep, "_embedded_cluster", cluster)
+    monkeypatch.setattr(sweep_dask, "embedded_cluster", cluster)
     assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli]) == 130
     return asked
 

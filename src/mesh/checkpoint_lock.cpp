@@ -71,7 +71,8 @@ std::unique_ptr<CheckpointLock> lock_checkpoint(const std::string& checkpoint,
                 "for it to end" +
                 (saves && option.find("resume") == std::string::npos
                      ? ", or choose another " + option
-                     : std::string()));
+                     : std::string()),
+            EWOULDBLOCK);  // what flock said: the lock would block (Python's BlockingIOError)
       warnings.push_back(option + ' ' + quoted_path(checkpoint) +
                          ": the file system takes no lock (" + file_error_text(e) +
                          "): a second run with this checkpoint would not be refused");

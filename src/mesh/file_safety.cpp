@@ -351,12 +351,15 @@ int open_regular(const std::string& path, struct stat& st) {
   }
   const auto refuse_kind = [&](const struct stat& s) {
     if (S_ISDIR(s.st_mode)) fail_os(path, EISDIR, "cannot open file", "it is a folder");
+    // A kind of file, not a failed call: no errno (FileSystemFailure::NO_ERRNO).
+    const auto refuse = [&](const std::string& details) {
+      fail_os(path, FileSystemFailure::NO_ERRNO, "not a regular file", details);
+    };
     if (S_ISCHR(s.st_mode) || S_ISBLK(s.st_mode))
-      fail(path, "not a regular file", "it is a device; inputs must be regular files");
-    if (S_ISFIFO(s.st_mode))
-      fail(path, "not a regular file", "it is a FIFO (named pipe); inputs must be regular files");
-    if (S_ISSOCK(s.st_mode)) fail(path, "not a regular file", "it is a socket; inputs must be regular files");
-    if (!S_ISREG(s.st_mode)) fail(path, "not a regular file", "inputs must be regular files");
+      refuse("it is a device; inputs must be regular files");
+    if (S_ISFIFO(s.st_mode)) refuse("it is a FIFO (named pipe); inputs must be regular files");
+    if (S_ISSOCK(s.st_mode)) refuse("it is a socket; inputs must be regular files");
+    if (!S_ISREG(s.st_mode)) refuse("inputs must be regular files");
   };
   refuse_kind(st);
   // O_NONBLOCK: should the file be swapped for a FIFO after the stat, open does not wait for a
@@ -391,8 +394,9 @@ std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) 
   } closer{fd};
   const auto declared = static_cast<std::uint64_t>(st.st_size);
   if (declared > max_bytes)
-    fail(path, "file too large", std::to_string(declared) + " bytes, more than the " +
-                                     std::to_string(max_bytes) + " this file can need");
+    fail_os(path, EFBIG, "file too large",
+            std::to_string(declared) + " bytes, more than the " + std::to_string(max_bytes) +
+                " this file can need");
   std::string bytes(static_cast<std::size_t>(declared), '\0');  // std::bad_alloc passes to the caller
   std::size_t done = 0;
   char more[512];  // past the stat's size: a file that grew, read on within the bound
@@ -409,7 +413,8 @@ std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) 
     if (full) bytes.append(more, static_cast<std::size_t>(n));
     done += static_cast<std::size_t>(n);
     if (done > max_bytes)
-      fail(path, "file too large", "it grew beyond " + std::to_string(max_bytes) + " bytes while being read");
+      fail_os(path, EFBIG, "file too large",
+              "it grew beyond " + std::to_string(max_bytes) + " bytes while being read");
   }
   bytes.resize(done);
   return bytes;

@@ -94,7 +94,9 @@ void end_on_next_signal(int sig);
 /// anything is read (a FIFO is not even opened for long: O_NONBLOCK), so /dev/zero or a pipe
 /// that never ends cannot fill the memory. Every read is checked: a read error or a file larger
 /// than `max_bytes` is refused, never returned in part.
-/// @throws InputError "<path>: <problem>: <details>" (InputFileError: with errno); bad_alloc passes
+/// @throws InputError "<path>: <problem>: <details>", an InputFileError where the file system
+///         refuses (its errno; EFBIG for a file over `max_bytes`, NO_ERRNO for a device, FIFO or
+///         socket); bad_alloc passes
 std::string read_regular_file(const std::string& path,
                               std::uint64_t max_bytes = UINT64_MAX);
 

@@ -18,7 +18,9 @@ namespace shellcontract::gltf {
 /// @param looked_up when given, gets every path where an external buffer was looked for (found
 ///        or not, in the file's folder and then in the current one, as tinygltf does), also
 ///        when the load then fails
-/// @throws InputError for a file tinygltf cannot read, or a .glb whose container is malformed
+/// @throws InputError for a file tinygltf cannot read, or a .glb whose container is malformed;
+///         an InputFileError about the buffer's path, with its errno, for an external buffer
+///         that is missing or cannot be read (the message names the glTF, as before)
 tinygltf::Model load_model(const std::string& path, const std::string& bytes,
                            std::vector<std::string>* looked_up = nullptr);
 

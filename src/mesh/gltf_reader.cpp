@@ -1,7 +1,10 @@
 // Reading a glTF 2.0 file into a triangle soup (gltf_reader.hpp).
 #include "mesh/gltf_reader.hpp"
 
+#include <sys/stat.h>
+
 #include <Eigen/Geometry>
+#include <cerrno>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -12,6 +15,7 @@
 #include "mesh/file_safety.hpp"
 #include "mesh/gltf_model.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 
 namespace shellcontract {
 namespace {
@@ -66,23 +70,61 @@ void check_glb_container(const std::string& path, const std::string& b) {
 // every read checked: read_regular_file), and a path is never expanded by the shell's rules
 // (tinygltf's default ExpandFilePath calls wordexp) nor opened to test that it exists (fopen on a
 // FIFO blocks).
-// `looked_up`, when given, collects every path asked about, found or not (input_dependencies).
-bool file_exists(const std::string& p, void* looked_up) {
-  if (looked_up) static_cast<std::vector<std::string>*>(looked_up)->push_back(p);
-  std::error_code ec;
-  return std::filesystem::exists(p, ec);
+/// The callbacks' user data: the paths asked about and why the file system refused them, so
+/// that a glTF whose buffer cannot be had is a file error about the buffer (Python's
+/// FileNotFoundError naming the .bin), not about the .gltf.
+struct ExternalFiles {
+  /// When given, every path asked about, found or not (input_dependencies).
+  std::vector<std::string>* looked_up = nullptr;
+  /// Each path not found or not read, with its errno, in the order asked.
+  std::vector<FileSystemFailure> refused;
+};
+bool file_exists(const std::string& p, void* files) {
+  auto& f = *static_cast<ExternalFiles*>(files);
+  if (f.looked_up) f.looked_up->push_back(p);
+  struct stat st {};
+  if (::stat(p.c_str(), &st) == 0) return true;
+  const int error_number = errno;
+  f.refused.emplace_back(error_number, p);
+  return false;
 }
 std::string same_path(const std::string& p, void*) { return p; }
 bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& p,
-                      void*) {
+                      void* files) {
   try {
     const std::string b = read_regular_file(p);
     out->assign(b.begin(), b.end());
     return true;
   } catch (const std::exception& e) {
+    if (const auto* failure = dynamic_cast<const FileSystemFailure*>(&e))
+      static_cast<ExternalFiles*>(files)->refused.push_back(*failure);
     if (err) *err += e.what();
     return false;
   }
+}
+
+/// The refusal that ended a load whose error ends with `last_line`: a buffer tinygltf did not
+/// find ("File not found : URI", looked for first in `dir`, the name the glTF gives it) or
+/// could not read ("File read error : PATH : ..."). A buffer ends the load at once, so its
+/// line is the last; an image missing earlier only warns, and is never the one returned.
+const FileSystemFailure* buffer_refusal(const ExternalFiles& files, const std::string& dir,
+                                        const std::string& last_line) {
+  static const std::string NOT_FOUND = "File not found : ", READ_ERROR = "File read error : ";
+  std::string path;
+  if (last_line.rfind(NOT_FOUND, 0) == 0) {
+    const std::string uri = last_line.substr(NOT_FOUND.size());
+    // tinygltf's JoinPath: the folder, a '/' unless it ends with one, the URI.
+    path = dir.empty() ? uri : dir + (dir.back() == '/' ? "" : "/") + uri;
+  } else if (last_line.rfind(READ_ERROR, 0) == 0) {
+    const std::size_t end = last_line.find(" : ", READ_ERROR.size());
+    if (end == std::string::npos) return nullptr;
+    path = last_line.substr(READ_ERROR.size(), end - READ_ERROR.size());
+  } else {
+    return nullptr;
+  }
+  for (auto it = files.refused.rbegin(); it != files.refused.rend(); ++it)
+    if (it->path() == path) return &*it;
+  return nullptr;
 }
 bool no_write(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
   if (err) *err += "writing is not done by the reader";
@@ -314,8 +356,9 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
   if (binary) check_glb_container(path, bytes);
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
+  ExternalFiles files{looked_up, {}};
   loader.SetFsCallbacks(
-      tinygltf::FsCallbacks{file_exists, same_path, read_buffer_file, no_write, looked_up});
+      tinygltf::FsCallbacks{file_exists, same_path, read_buffer_file, no_write, &files});
   tinygltf::Model m;
   std::string err, warn;
   const std::string dir = std::filesystem::path(path).parent_path().string();
@@ -332,10 +375,15 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
   }
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    const std::size_t last_line = err.rfind('\n');
+    const FileSystemFailure* buffer =
+        buffer_refusal(files, dir, err.substr(last_line == std::string::npos ? 0 : last_line + 1));
     for (char& c : err)
       if (c == '\n') c = ';';
-    fail(path, binary ? "cannot read .glb" : "cannot read .gltf",
-         err.empty() ? "tinygltf refused it" : "tinygltf: " + err);
+    const std::string message = path + ": " + (binary ? "cannot read .glb" : "cannot read .gltf") +
+                                ": " + (err.empty() ? "tinygltf refused it" : "tinygltf: " + err);
+    if (buffer) throw InputFileError(message, buffer->error_number(), buffer->path());
+    throw InputError(message);
   }
   return m;
 }

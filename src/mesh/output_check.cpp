@@ -21,13 +21,22 @@ namespace fs = std::filesystem;
 /// the name + ".tmp." + 12 random ones, rounded up): the probe is at least this long.
 constexpr std::size_t TEMPORARY_NAME_LENGTH = 60;
 
+/// refuse_file's message.
+std::string refusal(const std::string& option, const std::string& path, const std::string& why) {
+  return option + " " + quoted_path(path) + ": " + why;
+}
+
 /// An existing output that may be replaced: a writable regular file (or a dangling link).
 void check_existing(const FileIdentity& o) {
   if (!o.exists) return;
   if (S_ISDIR(o.file.st_mode)) refuse_file(o.option, o.path, "is a folder, not a file", EISDIR);
+  // Refused for what it is, not by a failed call: a file error without an errno.
   if (!S_ISREG(o.file.st_mode))
-    refuse_file(o.option, o.path,
-                "exists and is not a regular file (a device, FIFO or socket); it is never replaced");
+    throw OutputFileError(
+        refusal(
+            o.option, o.path,
+            "exists and is not a regular file (a device, FIFO or socket); it is never replaced"),
+        FileSystemFailure::NO_ERRNO, o.path);
   if (::faccessat(AT_FDCWD, o.path.c_str(), W_OK, AT_EACCESS) != 0) {
     const int e = errno;
     refuse_file(o.option, o.path, "exists and is not writable (" + file_error_text(e) + ")", e);
@@ -97,7 +106,7 @@ std::optional<std::string> folder_problem(const std::string& folder, std::size_t
 
 void refuse_file(const std::string& option, const std::string& path, const std::string& why,
                  int error_number) {
-  const std::string message = option + " " + quoted_path(path) + ": " + why;
+  const std::string message = refusal(option, path, why);
   if (error_number != 0) throw OutputFileError(message, error_number, path);
   throw UsageError(message);
 }

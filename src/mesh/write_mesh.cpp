@@ -304,9 +304,9 @@ void refuse_special_target(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
   if (S_ISDIR(st.st_mode)) cannot_write(path, EISDIR, "it is a folder");
-  throw UsageError(
-      "cannot write '" + printable(path) +
-      "': it exists and is not a regular file (a device, FIFO or socket is never replaced)");
+  // Refused for what it is, not by a failed call: a file error without an errno.
+  cannot_write(path, FileSystemFailure::NO_ERRNO,
+               "it exists and is not a regular file (a device, FIFO or socket is never replaced)");
 }
 
 }  // namespace

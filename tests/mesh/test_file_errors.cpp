@@ -4,17 +4,25 @@
 // plain InputError or UsageError, with the reason only in the message's words. The message and
 // the error's base class (the CLI's exit code) are unchanged, and a file read but refused for
 // its content carries no errno.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <filesystem>
 #include <string>
+#include <vector>
 
+#include "mesh/file_safety.hpp"
 #include "shellcontract/checkpoint.hpp"
+#include "shellcontract/checkpoint_lock.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/output_files.hpp"
+#include "support/gltf_files.hpp"
 #include "support/scratch_dir.hpp"
 #include "test_paths.hpp"
 
@@ -25,6 +33,12 @@ class FileErrors : public test::ScratchDirTest {
  protected:
   FileErrors() : ScratchDirTest("file_errors_") {}
   std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  /// A .gltf of one triangle whose buffer is the external file `uri`.
+  std::string gltf_with_buffer(const std::string& uri) const {
+    test::GltfScene scene;
+    scene.primitives.push_back({{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {}, {}, {0, 1, 2}});
+    return write("mesh.gltf", test::gltf_text(test::gltf_parts(scene), uri));
+  }
 };
 
 /// The Error (InputFileError or OutputFileError) `act` throws, checked to be about `file` with
@@ -127,6 +141,86 @@ TEST_F(FileErrors, AnOutputCheckOfAMissingFolderIsENOENT) {
         check_output_files({{"--checkpoint", dir_.string()}}, {});
       },
       dir_.string(), EISDIR);
+}
+
+// A device, a FIFO or a socket is refused for what it is, not by a failed call: a file error
+// without an errno (NO_ERRNO), about the path. Before, a plain InputError or UsageError.
+TEST_F(FileErrors, ADeviceOrFifoAsInputIsAFileErrorWithoutErrno) {
+  const std::string fifo = path("fifo.off");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  EXPECT_EQ(input_file_error([&] { read_input_mesh(fifo); }, fifo, FileSystemFailure::NO_ERRNO),
+            fifo + ": not a regular file: it is a FIFO (named pipe); inputs must be regular files");
+  EXPECT_EQ(input_file_error([&] { read_regular_file("/dev/null"); }, "/dev/null",
+                             FileSystemFailure::NO_ERRNO),
+            "/dev/null: not a regular file: it is a device; inputs must be regular files");
+}
+
+TEST_F(FileErrors, AnInputOverItsSizeLimitIsEFBIG) {
+  const std::string p = write("big.txt", std::string(100, 'x'));
+  EXPECT_EQ(input_file_error([&] { read_regular_file(p, 10); }, p, EFBIG),
+            p + ": file too large: 100 bytes, more than the 10 this file can need");
+}
+
+TEST_F(FileErrors, AFifoInAnOutputsPlaceIsAFileErrorWithoutErrno) {
+  const Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico1.off");
+  const std::string fifo = path("fifo.off");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  EXPECT_EQ(output_file_error([&] { write_mesh_atomic(fifo, mesh, positions_from_mesh(mesh)); },
+                              fifo, FileSystemFailure::NO_ERRNO),
+            "cannot write '" + fifo +
+                "': it exists and is not a regular file (a device, FIFO or socket is never "
+                "replaced)");
+  EXPECT_EQ(output_file_error(
+                [&] {
+                  check_output_files({{"--checkpoint", fifo}}, {});
+                },
+                fifo, FileSystemFailure::NO_ERRNO),
+            "--checkpoint '" + fifo +
+                "': exists and is not a regular file (a device, FIFO or socket); it is never "
+                "replaced");
+}
+
+// What flock says of a lock another run holds: EWOULDBLOCK, about the checkpoint (the lock
+// file is named in the message). Before, a plain UsageError.
+TEST_F(FileErrors, ACheckpointLockedByAnotherRunIsEWOULDBLOCK) {
+  const std::string checkpoint = path("run.ckpt");
+  const int held = ::open(checkpoint_lock_path(checkpoint).c_str(), O_RDWR | O_CREAT, 0666);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+  std::vector<std::string> warnings;
+  const std::string what =
+      output_file_error([&] { lock_checkpoint(checkpoint, "--checkpoint", true, warnings); },
+                        checkpoint, EWOULDBLOCK);
+  ::close(held);
+  EXPECT_EQ(what.rfind("--checkpoint '" + checkpoint +
+                           "': another shellcontract run is saving to this checkpoint",
+                       0),
+            0u)
+      << what;
+}
+
+// A glTF whose external buffer cannot be had: the error is about the buffer, with the errno
+// the file system gave for it; the message names the .gltf, as before. Before, a plain
+// InputError.
+TEST_F(FileErrors, AGltfBufferThatCannotBeHadIsAFileErrorAboutTheBuffer) {
+  const std::string missing = gltf_with_buffer("nowhere.bin");
+  EXPECT_EQ(input_file_error([&] { read_input_mesh(missing); }, path("nowhere.bin"), ENOENT),
+            missing + ": cannot read .gltf: tinygltf: File not found : nowhere.bin");
+  write("file", "x");
+  const std::string under_a_file = gltf_with_buffer("file/mesh.bin");
+  input_file_error([&] { read_input_mesh(under_a_file); }, path("file") + "/mesh.bin", ENOTDIR);
+  std::filesystem::create_directory(path("folder.bin"));
+  const std::string folder = gltf_with_buffer("folder.bin");
+  input_file_error([&] { read_input_mesh(folder); }, path("folder.bin"), EISDIR);
+  // A buffer that is read but is too short is refused for its content: no errno.
+  write("short.bin", "abcd");
+  const std::string short_buffer = gltf_with_buffer("short.bin");
+  try {
+    read_input_mesh(short_buffer);
+    ADD_FAILURE() << "a buffer shorter than its byteLength was read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(dynamic_cast<const FileSystemFailure*>(&e), nullptr) << e.what();
+  }
 }
 
 }  // namespace

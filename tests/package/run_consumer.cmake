@@ -67,7 +67,7 @@ if(PYTHON_PACKAGE)
     message(FATAL_ERROR "not installed: the Python module ${package}/_core*.so")
   endif()
   foreach(f __init__.py sweep.py sweep_file.py sweep_job.py sweep_output.py sweep_process.py
-            sweep_progress.py sweep_results.py)
+            sweep_progress.py sweep_results.py sweep_dask.py)
     if(NOT EXISTS ${package}/${f})
       message(FATAL_ERROR "not installed: ${package}/${f}")
     endif()
