@@ -105,7 +105,7 @@ class CliCheckpointer final : public RunCheckpointer {
         options_(options),
         log_file_(path_, log.text(), resume) {
     // With or without a checkpoint: the run stops after its step and says at which frame, and
-    // what it leaves (run_interrupt.hpp); the default ending (main.cpp) exited 130 without a
+    // what it leaves (run_interrupt.hpp); the default ending (entry.cpp) exited 130 without a
     // word. A signal ignored (a background job of a script) stays ignored. SIGHUP and SIGUSR1
     // (Slurm's warning) too: INTERRUPT_SIGNALS.
     for (const int sig : INTERRUPT_SIGNALS) {
