@@ -4,6 +4,10 @@
 
 namespace shellcontract::cli {
 
+/// The whole tool (`shellcontract COMMAND ...`): what main does, with main's arguments; returns
+/// the process exit code. Sets the process's signal dispositions and thread limit.
+int cli_main(int argc, char** argv);
+
 int command_run(int argc, char** argv);        ///< shellcontract run IN -o OUT [options]
 int command_check(int argc, char** argv);      ///< shellcontract check IN
 int command_bench_ccd(int argc, char** argv);  ///< shellcontract bench ccd --queries DIR

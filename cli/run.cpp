@@ -176,6 +176,7 @@ int command_run(int argc, char** argv) {
       const std::string option = saves_to_resumed ? "--resume" : "--checkpoint";
       planned.push_back({option, checkpoint_path});
       planned.push_back({option + "'s log", checkpoint_log_path(checkpoint_path)});
+      planned.push_back({option + "'s volume history", checkpoint_history_path(checkpoint_path)});
     }
     if (!fields_prefix.empty()) {
       planned.push_back({"--fields", fields_prefix + "_start.ply"});

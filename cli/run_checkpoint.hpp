@@ -57,10 +57,12 @@ inline std::string checkpoint_input(const Checkpoint& c, const std::string& path
 inline std::string resumed_run_checkpoint(const std::string& resume_path,
                                           const std::vector<PlannedOutput>& inputs) {
   try {
-    check_planned_outputs(OutputPlan{
-        {{"--resume", resume_path}, {"--resume's log", checkpoint_log_path(resume_path)}},
-        inputs,
-        {}});
+    check_planned_outputs(
+        OutputPlan{{{"--resume", resume_path},
+                    {"--resume's log", checkpoint_log_path(resume_path)},
+                    {"--resume's volume history", checkpoint_history_path(resume_path)}},
+                   inputs,
+                   {}});
     return resume_path;
   } catch (const UsageError& e) {
     std::cerr << "warning: this run saves no checkpoint (give --checkpoint FILE): " << e.what()
@@ -105,7 +107,7 @@ class CliCheckpointer final : public RunCheckpointer {
         options_(options),
         log_file_(path_, log.text(), resume) {
     // With or without a checkpoint: the run stops after its step and says at which frame, and
-    // what it leaves (run_interrupt.hpp); the default ending (main.cpp) exited 130 without a
+    // what it leaves (run_interrupt.hpp); the default ending (entry.cpp) exited 130 without a
     // word. A signal ignored (a background job of a script) stays ignored. SIGHUP and SIGUSR1
     // (Slurm's warning) too: INTERRUPT_SIGNALS.
     for (const int sig : INTERRUPT_SIGNALS) {
@@ -130,7 +132,7 @@ class CliCheckpointer final : public RunCheckpointer {
 
   void save(const SavedRun& run) override {
     try {
-      // The log beside the checkpoint, appended to: each save writes the lines since the last.
+      // The log and history beside the checkpoint, appended to: each save writes what is new.
       write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, {}, inputs_, every_},
                        log_file_);
       saved_frame_ = frame_;
@@ -191,8 +193,8 @@ class CliCheckpointer final : public RunCheckpointer {
   std::uint64_t hash_;
   std::vector<RunInput> inputs_;
   RunOptions options_;
-  CheckpointLogFile log_file_;  ///< CsvLog's text, kept beside the checkpoint
-  int frame_ = 0;  ///< the frame of the last save_due, which save() saves
+  CheckpointLogFile log_file_;  ///< CsvLog's text and the V/V0 history, beside the checkpoint
+  int frame_ = 0;               ///< the frame of the last save_due, which save() saves
   int saved_frame_ = -1;
   int failures_ = 0;  ///< saves that failed
   int first_failed_frame_ = -1;

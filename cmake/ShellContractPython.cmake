@@ -52,5 +52,5 @@ else()
   file(RELATIVE_PATH SHELLCONTRACT_PYTHON_DIR_FROM_BIN "/prefix/${CMAKE_INSTALL_BINDIR}"
        "/prefix/${SHELLCONTRACT_PYTHON_INSTALL_DIR}")
 endif()
-target_compile_definitions(shellcontract_cli PRIVATE
+target_compile_definitions(shellcontract_cli_code PRIVATE
   SHELLCONTRACT_PYTHON_DIR_FROM_BIN="${SHELLCONTRACT_PYTHON_DIR_FROM_BIN}")

@@ -30,8 +30,8 @@ std::uint64_t mesh_hash(const Mesh& mesh);
 
 /// Reads a checkpoint file.
 /// @throws InputError naming the file for a missing, truncated or corrupted checkpoint, or one
-///         whose log beside it (format 4, CheckpointLogFile) is missing, shorter than recorded
-///         or not the one it was saved with
+///         whose log or volume history beside it (formats 4 and 5, CheckpointLogFile) is
+///         missing, shorter than recorded or not the one it was saved with
 std::shared_ptr<const Checkpoint> load_checkpoint(const std::string& path);
 
 /// The frame the checkpoint was saved at (the resumed run goes on with the next one).
@@ -102,51 +102,67 @@ void write_checkpoint(const std::string& path, const SavedRun& run, const RunOpt
 /// The file beside a checkpoint that holds its caller's log when the caller keeps it there
 /// (CheckpointLogFile): "PATH.log". A checkpoint saved so is resumed only with that file.
 std::string checkpoint_log_path(const std::string& checkpoint);
+/// The file beside a checkpoint that holds the run's volume history (V/V0 after each frame so
+/// far, a double each) when the caller keeps its log beside (CheckpointLogFile): "PATH.history".
+/// A checkpoint saved so is resumed only with that file and the log's.
+std::string checkpoint_history_path(const std::string& checkpoint);
 
-/// A caller's log kept beside the checkpoint (checkpoint_log_path), not in it: each save appends
-/// the lines added since the last one there, and the checkpoint records the length of the log it
-/// goes with and a hash of it (format 4). A log held in every checkpoint made each save as large
-/// as the run so far, and a long run's saves cost the square of its frames.
-/// The pair is consistent at every moment: the file beside is only appended to (after cutting
-/// it back to the length the checkpoint in place records), before the checkpoint is renamed into
-/// place, so a process ending between the two leaves a log longer than recorded, which the
-/// reader cuts. A file beside that this run has not written (another run's, or one the
-/// checkpoint in place may still need) is never changed: the first save then holds the log
-/// itself (as formats 1 to 3 did), and only the next one starts the file beside anew.
+/// A caller's log and the run's volume history kept beside the checkpoint (checkpoint_log_path,
+/// checkpoint_history_path), not in it: each save appends what was added since the last one to
+/// those files, and the checkpoint records the length of each that it goes with and a hash of
+/// it (format 5). Both held in every checkpoint made each save as large as the run so far (a
+/// log line and 8 bytes a frame), and a long run's saves cost the square of its frames.
+/// The three files are consistent at every moment: a file beside is only appended to (after
+/// cutting it back to the length the checkpoint in place records), before the checkpoint is
+/// renamed into place, so a process ending between the two leaves a file longer than recorded,
+/// which the reader cuts. A file beside that this run has not written (another run's, or one the
+/// checkpoint in place may still need) is never changed: the first save then holds the log and
+/// history itself (as formats 1 to 3 did), and only the next one starts the files beside anew.
 class CheckpointLogFile {
  public:
   /// @param checkpoint  where the run saves
   /// @param log         the caller's whole log, which only grows while the run lasts (lines
   ///                    appended); read at each save
   /// @param resumed     the checkpoint the run continues from (nullptr: none); when it is the
-  ///                    file `checkpoint` with its log beside, the first save appends to that log
+  ///                    file `checkpoint` with its log beside, the first save appends to that
+  ///                    log (and to its history, when that is beside too)
   CheckpointLogFile(const std::string& checkpoint, const std::string& log,
                     const Checkpoint* resumed);
 
-  // For write_checkpoint: whether this save puts the log beside; append() makes the file beside
-  // hold the whole log (returns its length and FNV-1a); committed() after the checkpoint was
-  // renamed into place.
-  bool beside() const { return state_ != State::Unknown; }
+  // For write_checkpoint: whether this save puts the log and history beside; append() makes the
+  // file beside hold the whole log, append_history(h) the other one the whole history h (each
+  // returns the length, bytes or values, and the FNV-1a of the bytes); committed() after the
+  // checkpoint was renamed into place.
+  bool beside() const {
+    return log_file_.state != State::Unknown && history_file_.state != State::Unknown;
+  }
   const std::string& log() const { return log_; }
   std::pair<std::uint64_t, std::uint64_t> append();
+  std::pair<std::uint64_t, std::uint64_t> append_history(const std::vector<double>& history);
   void committed();
 
  private:
   enum class State {
     Unknown,  ///< the checkpoint in place may need the file beside as it is: not touched
-    Free,     ///< the checkpoint in place holds its log: the file beside is started anew
-    Ours      ///< the checkpoint in place needs the first `synced_` bytes of the file beside
+    Free,     ///< the checkpoint in place does not need the file beside: it is started anew
+    Ours      ///< the checkpoint in place needs the first `synced` bytes of the file beside
   };
-  std::string path_;  ///< checkpoint_log_path
+  /// One file beside, appended to.
+  struct Stream {
+    std::string path;
+    State state = State::Unknown;
+    std::uint64_t synced = 0, hash = 0;  ///< length and FNV-1a of the bytes the checkpoint needs
+    std::uint64_t pending = 0, pending_hash = 0;  ///< those of the save under way
+  };
+  /// Makes `s`'s file hold `bytes` (`size` of them): cut back to s.synced, the rest appended.
+  static void append(Stream& s, const char* bytes, std::uint64_t size);
   const std::string& log_;
-  State state_ = State::Unknown;
-  std::uint64_t synced_ = 0, hash_ = 0;  ///< length and FNV-1a of the log in the checkpoint
-  std::uint64_t pending_ = 0, pending_hash_ = 0;  ///< those of the save under way
+  Stream log_file_, history_file_;
 };
 
 /// write_checkpoint with the caller's log in `log` (its CheckpointInfo::log is not read).
-/// @throws UsageError if the checkpoint or the file beside it cannot be written (the checkpoint
-///         in place and its log are then still a consistent pair)
+/// @throws UsageError if the checkpoint or a file beside it cannot be written (the checkpoint
+///         in place and its files beside are then still consistent)
 void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,
                       const CheckpointInfo& info, CheckpointLogFile& log);
 

@@ -133,7 +133,9 @@ def contract(vertices, faces, *, callback=None, **options):
     too).
 
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
-    cancels the run; FILE is checked before the run as the CLI checks its outputs (ValueError
+    cancels the run, the log and V/V0 of the frames so far in FILE.log and FILE.history beside
+    it, to which each save appends what is new, as the CLI's (move or copy the three together);
+    FILE is checked before the run as the CLI checks its outputs (ValueError
     for an input's file; FileNotFoundError for a missing folder, IsADirectoryError for a folder
     in its place, PermissionError for a read-only folder, a FileError with errno None for a
     device or FIFO: each a FileError, a ValueError too; resume= of a missing file is a

@@ -387,8 +387,9 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
                               json.dumps(record, indent=1, sort_keys=True) + "\n")
     _publish(work, p["final"], out_dir)
     if status in FINAL_STATUSES:
-        # The checkpoint and the log the CLI keeps beside it (`checkpoint_log_path`: FILE.log).
-        for path in (p["checkpoint"], p["checkpoint"] + ".log"):
+        # The checkpoint and the log and volume history the CLI keeps beside it
+        # (`checkpoint_log_path`, `checkpoint_history_path`: FILE.log, FILE.history).
+        for path in (p["checkpoint"], p["checkpoint"] + ".log", p["checkpoint"] + ".history"):
             try:
                 os.remove(path)
             except OSError:

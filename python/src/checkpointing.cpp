@@ -29,6 +29,14 @@ int every_argument(const py::handle& value) {
   return static_cast<int>(n);
 }
 
+/// The files a save to `path` writes, named after `option`: the checkpoint, and its log and
+/// volume history beside it (CheckpointLogFile), as the CLI checks them.
+std::vector<NamedFile> saved_files(const std::string& option, const std::string& path) {
+  return {{option, path},
+          {option + "'s log", checkpoint_log_path(path)},
+          {option + "'s volume history", checkpoint_history_path(path)}};
+}
+
 void warn(const std::string& text) {
   // stacklevel 2: the caller of shellcontract.contract (this function has no Python frame).
   py::module_::import("warnings")
@@ -80,14 +88,14 @@ PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOption
   p.save_every = args.every > 0 || !p.resume ? args.every : checkpoint_save_every(*p.resume);
   if (saves_to_resumed) {
     try {
-      check_output_files({{"resume", args.resume}}, read);
+      check_output_files(saved_files("resume", args.resume), read);
       p.save_path = args.resume;
     } catch (const UsageError& e) {
       // A read-only copy resumes, as before, saving nothing; the caller learns why.
       warn(std::string("this run saves no checkpoint (give checkpoint=FILE): ") + e.what());
     }
   } else if (!args.checkpoint.empty()) {
-    check_output_files({{"checkpoint", args.checkpoint}}, read);
+    check_output_files(saved_files("checkpoint", args.checkpoint), read);
   }
   p.locks = lock_run_checkpoints(p.save_path, args.resume, saves_to_resumed && !p.save_path.empty(),
                                  OptionSpelling::Python);
@@ -96,7 +104,7 @@ PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOption
 }
 
 PythonCheckpointer::PythonCheckpointer(const PreparedCheckpoint& prepared, std::uint64_t mesh_hash,
-                                       const RunOptions& options, std::function<std::string()> log,
+                                       const RunOptions& options, const std::string& log,
                                        std::function<bool()> cancelled)
     : path_(prepared.save_path),
       every_(prepared.save_every),
@@ -104,7 +112,7 @@ PythonCheckpointer::PythonCheckpointer(const PreparedCheckpoint& prepared, std::
       hash_(mesh_hash),
       inputs_(prepared.inputs),
       options_(options),
-      log_(std::move(log)),
+      log_file_(prepared.save_path, log, prepared.resume.get()),
       cancelled_(std::move(cancelled)) {}
 
 bool PythonCheckpointer::save_due(int frame) {
@@ -115,8 +123,9 @@ bool PythonCheckpointer::save_due(int frame) {
 
 void PythonCheckpointer::save(const SavedRun& run) {
   try {
-    write_checkpoint(path_, run, options_,
-                     CheckpointInfo{ARRAYS_INPUT, hash_, log_(), inputs_, every_});
+    // The log and history beside the checkpoint, appended to: each save writes what is new.
+    write_checkpoint(path_, run, options_, CheckpointInfo{ARRAYS_INPUT, hash_, {}, inputs_, every_},
+                     log_file_);
     saved_frame_ = frame_;
   } catch (const UsageError& e) {
     // Raised, it threw away the whole run at the first full disk (ValueError, no result); the

@@ -61,10 +61,12 @@ PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOption
 
 class PythonCheckpointer final : public RunCheckpointer {
  public:
-  /// @param log        the log so far as the CLI's CSV text
+  /// @param log        the log so far as the CLI's CSV text, which grows as the run goes on; it
+  ///                   is kept beside the checkpoint with the volume history (CheckpointLogFile),
+  ///                   each save appending what is new, as the CLI's saves do
   /// @param cancelled  whether the run is being cancelled (then it saves first)
   PythonCheckpointer(const PreparedCheckpoint& prepared, std::uint64_t mesh_hash,
-                     const RunOptions& options, std::function<std::string()> log,
+                     const RunOptions& options, const std::string& log,
                      std::function<bool()> cancelled);
   const Checkpoint* resume_from() const override { return resume_.get(); }
   bool save_due(int frame) override;
@@ -82,7 +84,7 @@ class PythonCheckpointer final : public RunCheckpointer {
   std::uint64_t hash_;
   std::vector<RunInput> inputs_;
   RunOptions options_;
-  std::function<std::string()> log_;
+  CheckpointLogFile log_file_;
   std::function<bool()> cancelled_;
   int frame_ = 0;         ///< the frame of the last save_due, which save() saves
   int saved_frame_ = -1;  ///< the frame of the last checkpoint written

@@ -98,6 +98,7 @@ class PythonObserver final : public RunObserver {
 
   void frame(const FrameView& view, const FrameMetrics& m) override {
     rows_.push_back(log_row(m));
+    csv_ += log_csv_line(rows_.back());
     if (!has_callback_ || stop_) return;
     if (interpreter_exiting()) {  // no GIL for a callback while the interpreter exits
       stop_ = true;
@@ -123,18 +124,16 @@ class PythonObserver final : public RunObserver {
   }
 
   /// The rows so far as the CLI's --log CSV text (a checkpoint's log: the CLI and Python resume
-  /// each other's checkpoints).
-  std::string csv_text() const {
-    std::string text = log_csv_header();
-    for (const LogRow& row : rows_) text += log_csv_line(row);
-    return text;
-  }
+  /// each other's checkpoints), kept as the rows come, so that a save reads it without
+  /// formatting every row so far again.
+  const std::string& csv_text() const { return csv_; }
 
   /// A resumed run's rows so far, from its checkpoint's CSV text (whatever locale the host
   /// program set: std::strtod read "0.99" as 0 under a decimal comma).
   void restore_csv(const std::string& text) {
     const std::vector<LogRow> rows = log_csv_rows(text, "the checkpoint's log");
     rows_.insert(rows_.end(), rows.begin(), rows.end());
+    for (const LogRow& row : rows) csv_ += log_csv_line(row);
   }
 
   bool cancelled() override {
@@ -192,6 +191,7 @@ class PythonObserver final : public RunObserver {
   PyObject* error_value_ = nullptr;
   PyObject* error_trace_ = nullptr;
   std::vector<LogRow> rows_;  // doubles hold the integer columns exactly (< 2^53)
+  std::string csv_ = log_csv_header();  ///< rows_ as CSV text (csv_text)
 };
 
 /// The library's summary (write_run_summary) into a dict.
@@ -251,9 +251,8 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
     check_checkpoint_input(*prepared.resume, "the vertices and faces given", mesh);
     observer.restore_csv(checkpoint_log(*prepared.resume));
   }
-  PythonCheckpointer checkpointer(
-      prepared, mesh_hash(mesh), options, [&observer] { return observer.csv_text(); },
-      [&observer] { return observer.cancelled(); });
+  PythonCheckpointer checkpointer(prepared, mesh_hash(mesh), options, observer.csv_text(),
+                                  [&observer] { return observer.cancelled(); });
   RunResult r;
   {
     const ActiveRun active;  // destroyed after the GIL is taken back

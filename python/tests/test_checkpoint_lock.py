@@ -141,7 +141,11 @@ def test_resume_goes_on_saving_to_the_checkpoint_it_resumed_from(tmp_path, ico2,
 
     def copy_at_10(frame, vertices, metrics):
         if frame == 10:
-            shutil.copyfile(path, copy)  # what the file held at frame 10: the last periodic save
+            # What the file held at frame 10: the last periodic save, with the log and volume
+            # history it keeps beside it (copied with it, as a checkpoint is).
+            for suffix in ("", ".log", ".history"):
+                if os.path.exists(str(path) + suffix):
+                    shutil.copyfile(str(path) + suffix, str(copy) + suffix)
             return False
         return None
 

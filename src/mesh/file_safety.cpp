@@ -13,7 +13,6 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
-#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <mutex>
@@ -62,6 +61,7 @@ std::atomic<bool> ending{false};
 /// (ECANCELED) rather than wait for the end. The same protocol with `creating` as `ending`.
 std::atomic<bool> closed{false};
 std::atomic<int> exit_status{-1};
+std::atomic<TemporaryCreatedHook> temporary_created_hook{nullptr};
 
 /// Removes this process's live temporaries. Async-signal-safe (getpid, unlink).
 void unlink_own_temporaries() {
@@ -293,6 +293,10 @@ void remove_temporaries() noexcept {
   unlink_own_temporaries();
 }
 
+void set_temporary_created_hook(TemporaryCreatedHook hook) noexcept {
+  temporary_created_hook.store(hook);
+}
+
 RegisteredTemporary create_registered_temporary(const std::string& dir, const std::string& hint,
                                                 std::size_t name_length) {
   install_handler_once();
@@ -319,16 +323,9 @@ RegisteredTemporary create_registered_temporary(const std::string& dir, const st
   t.fd = f.fd;
   t.path = f.path;
   if (t.fd >= 0) {
-    // Tests only: hold here, the file created and not yet registered, the window a signal used
-    // to find (tests/cli/test_cli_interrupt.cpp waits for the line, then signals).
-    static const char* const hold = std::getenv("SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS");
-    if (hold && *hold) {
-      static constexpr char line[] = "shellcontract test: temporary created\n";
-      (void)!::write(2, line, sizeof line - 1);
-      const long ms = std::atol(hold);
-      struct timespec ts {ms / 1000, (ms % 1000) * 1000000L};
-      ::nanosleep(&ts, nullptr);
-    }
+    // Tests only (set_temporary_created_hook): the window between the creation and the
+    // registration, which a signal used to find.
+    if (const TemporaryCreatedHook hook = temporary_created_hook.load()) hook();
     t.slot = register_temporary(t.path);
   }
   creating.fetch_sub(1);

@@ -63,6 +63,14 @@ struct RegisteredTemporary {
 RegisteredTemporary create_registered_temporary(const std::string& dir, const std::string& hint,
                                                 std::size_t name_length = 0);
 
+/// Tests only: a function that create_registered_temporary calls right after it creates a file,
+/// before registering it (signals blocked on that thread), or nullptr (the default) for none. A
+/// test program (tests/tools/held_cli.cpp) sets one that holds there, so that a test can signal
+/// the process in the window a signal used to find. Internal, not in the installed headers: the
+/// shipped library and CLI never set it, and no environment variable changes what they do.
+using TemporaryCreatedHook = void (*)();
+void set_temporary_created_hook(TemporaryCreatedHook hook) noexcept;
+
 /// Adds `path` to the temporaries that SIGINT and SIGTERM remove before the process ends
 /// (the handler is installed on first use, only where the signal has its default action, unless
 /// the host opted out: shellcontract/signals.hpp).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <limits>
+#include <stdexcept>
 #include <type_traits>
 
 #include "mesh/file_safety.hpp"
@@ -24,8 +25,12 @@ namespace {
 // resumed (a sweep's); check_checkpoint_files refuses them only where there is a file to check.
 // Format 3 added the saving run's interval between saves after the log (format 2 reads as 0).
 // Format 4 is format 3 with the log's length and FNV-1a in place of the log, which is in the
-// file beside (CheckpointLogFile); a checkpoint with its log in it is still written as format 3.
+// file beside (CheckpointLogFile). Format 5 is format 4 with the V/V0 history's length and
+// FNV-1a in place of the history (one double a frame so far), which is in a file beside too: a
+// checkpoint then does not grow with the frames run. A checkpoint that holds them (a run's first
+// save) is still written as format 3.
 constexpr char MAGIC[] = "SHELLCONTRACT-CHECKPOINT\n";
+constexpr std::uint32_t FORMAT_HISTORY_BESIDE = 5;
 constexpr std::uint32_t FORMAT_LOG_BESIDE = 4;
 constexpr std::uint32_t FORMAT = 3;
 constexpr std::uint32_t FORMAT_WITHOUT_SAVE_EVERY = 2;
@@ -343,10 +348,13 @@ void check_checkpoint_fits(const Checkpoint& c, const Mesh& mesh, const RunOptio
                      differ);
 }
 
-void write_checkpoint(const std::string& path, const Checkpoint& c, const LogBeside* beside) {
+void write_checkpoint(const std::string& path, const Checkpoint& c, const LogBeside* beside,
+                      const LogBeside* history) {
+  if (history && !beside)
+    throw std::logic_error("write_checkpoint: a history beside goes with a log beside");
   Writer w;
   w.bytes().append(MAGIC, sizeof MAGIC - 1);
-  w.pod(beside ? FORMAT_LOG_BESIDE : FORMAT);
+  w.pod(history ? FORMAT_HISTORY_BESIDE : beside ? FORMAT_LOG_BESIDE : FORMAT);
   w.text(c.version);
   w.text(c.input);
   w.pod(c.input_hash);
@@ -373,7 +381,12 @@ void write_checkpoint(const std::string& path, const Checkpoint& c, const LogBes
   w.matrix(s.collision.correction);
   w.vector(s.collision.skin);
   const RunProgress& p = c.progress;
-  w.list(p.history);
+  if (history) {
+    w.pod(history->size);
+    w.pod(history->hash);
+  } else {
+    w.list(p.history);
+  }
   w.pod(p.min_volume_ratio);
   w.pod(p.totals);
   w.pod(static_cast<std::int64_t>(p.new_intersections));
@@ -411,8 +424,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   if (fnv1a(bytes.data(), bytes.size() - sizeof stored) != stored)
     r.fail("its checksum does not match (truncated or damaged)");
   const auto format = r.pod<std::uint32_t>();
-  if (format != FORMAT_LOG_BESIDE && format != FORMAT && format != FORMAT_WITHOUT_SAVE_EVERY &&
-      format != FORMAT_WITHOUT_INPUTS)
+  if (format != FORMAT_HISTORY_BESIDE && format != FORMAT_LOG_BESIDE && format != FORMAT &&
+      format != FORMAT_WITHOUT_SAVE_EVERY && format != FORMAT_WITHOUT_INPUTS)
     r.fail("another checkpoint format");
   Checkpoint c;
   c.version = r.text();
@@ -444,7 +457,17 @@ Checkpoint read_checkpoint(const std::string& path) {
   s.collision.correction = r.matrix();
   s.collision.skin = r.vector();
   RunProgress& p = c.progress;
-  p.history = r.list<double>();
+  LogBeside history;
+  c.history_beside = format == FORMAT_HISTORY_BESIDE;
+  if (c.history_beside) {
+    history.size = r.pod<std::uint64_t>();
+    history.hash = r.pod<std::uint64_t>();
+    // One value a frame: a frame's int, not a count whose bytes would overflow.
+    if (history.size > static_cast<std::uint64_t>(std::numeric_limits<int>::max()) + 1)
+      r.fail("a volume history of " + std::to_string(history.size) + " values");
+  } else {
+    p.history = r.list<double>();
+  }
   p.min_volume_ratio = r.pod<double>();
   p.totals = r.pod<RunTotals>();
   p.new_intersections = static_cast<long>(r.pod<std::int64_t>());
@@ -453,7 +476,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   p.frame_target_reached = r.int_value("a target frame");
   p.last_pairs = r.pod<std::int64_t>();
   LogBeside beside;
-  c.log_beside = format == FORMAT_LOG_BESIDE;
+  c.log_beside = format == FORMAT_LOG_BESIDE || format == FORMAT_HISTORY_BESIDE;
   if (c.log_beside) {
     beside.size = r.pod<std::uint64_t>();
     beside.hash = r.pod<std::uint64_t>();
@@ -471,6 +494,7 @@ Checkpoint read_checkpoint(const std::string& path) {
     throw InputError("checkpoint " + printable(path) + " written by shellcontract " +
                      printable(c.version, 60) + ", this is " + checkpoint_tool_version() +
                      ": resume it with that build and kernels");
+  if (c.history_beside) p.history = read_history_beside(path, history);
   check_checkpoint_fields(c, path);
   if (c.log_beside) c.log = read_log_beside(path, beside);
   c.path = path;

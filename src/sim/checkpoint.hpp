@@ -47,8 +47,12 @@ struct Checkpoint {
   SimulatorState sim;
   RunProgress progress;
   std::string log;           ///< the caller's log of the frames so far (the CLI: its CSV text)
-  /// Read from the file beside the checkpoint (format 4, CheckpointLogFile), not from the file.
+  /// Read from the file beside the checkpoint (formats 4 and 5, CheckpointLogFile), not from
+  /// the file.
   bool log_beside = false;
+  /// progress.history read from its own file beside the checkpoint (format 5,
+  /// checkpoint_history_path), not from the file.
+  bool history_beside = false;
   /// Frames between the saving run's periodic saves (0: only on a signal, or not recorded: format
   /// 1 and 2); a resumed run that is not told otherwise saves as often
   /// (CheckpointInfo::save_every).
@@ -67,30 +71,38 @@ OptionValues resolved_options(RunOptions options);
 /// FNV-1a over `n` bytes, continuing from `h`: the checkpoint's checksum and its inputs' hashes.
 std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ull);
 
-/// Where a checkpoint of format 4 has its log: the first `size` bytes of the file beside it
-/// (checkpoint_log_path), whose FNV-1a is `hash`.
+/// Where a checkpoint of format 4 or 5 has its log: the first `size` bytes of the file beside it
+/// (checkpoint_log_path), whose FNV-1a is `hash`; and where one of format 5 has its volume
+/// history: the first `size` values (8 bytes each, the machine's doubles) of its own file beside
+/// it (checkpoint_history_path), whose bytes' FNV-1a is `hash`.
 struct LogBeside {
   std::uint64_t size = 0;
   std::uint64_t hash = 0;
 };
 
-/// Writes `c` to `path` whole or not at all (a temporary file renamed): its log in the file
-/// (format 3), or, with `beside`, only where to find it (format 4; c.log is not written).
+/// Writes `c` to `path` whole or not at all (a temporary file renamed): its log and volume
+/// history in the file (format 3); with `log` only, the log's place beside instead of the log
+/// (format 4); with both, the history's place too instead of the history (format 5; c.log and
+/// c.progress.history are not written).
 /// @throws UsageError if the file cannot be written
-void write_checkpoint(const std::string& path, const Checkpoint& c,
-                      const LogBeside* beside = nullptr);
-/// Reads formats 4 to 1 (format 2: written before the interval between saves was recorded,
-/// format 1: before the inputs were).
+void write_checkpoint(const std::string& path, const Checkpoint& c, const LogBeside* log = nullptr,
+                      const LogBeside* history = nullptr);
+/// Reads formats 5 to 1 (format 3: the log and history in the file; format 2: written before the
+/// interval between saves was recorded, format 1: before the inputs were).
 /// @throws InputError naming the file for a missing, truncated or corrupted checkpoint, or a
 ///         folder, device or FIFO in its place, or one whose fields no run could have saved
-///         (check_checkpoint_fields); for format 4, naming the file beside it too
-///         (read_log_beside)
+///         (check_checkpoint_fields); for formats 4 and 5, naming the file beside it too
+///         (read_log_beside, read_history_beside)
 Checkpoint read_checkpoint(const std::string& path);
-/// The log of the checkpoint `path` of format 4: the first beside.size bytes of the file beside
-/// it (more are left by a save that ended between the append and the rename).
+/// The log of the checkpoint `path` of format 4 or 5: the first beside.size bytes of the file
+/// beside it (more are left by a save that ended between the append and the rename).
 /// @throws InputError naming both files when that file is missing, shorter, or its bytes do
 ///         not hash to beside.hash (damaged, or another run's)
 std::string read_log_beside(const std::string& path, const LogBeside& beside);
+/// The volume history of the checkpoint `path` of format 5, from checkpoint_history_path: as
+/// read_log_beside, beside.size values.
+/// @throws InputError as read_log_beside
+std::vector<double> read_history_beside(const std::string& path, const LogBeside& beside);
 
 /// What read_checkpoint checks of the fields themselves, without the mesh: each option recorded
 /// is one the table knows with a value it accepts; positions, velocities, volumes and every

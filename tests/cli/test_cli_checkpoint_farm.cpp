@@ -287,7 +287,8 @@ TEST_F(CliCheckpointFarm, AFailedSaveIsInTheSummaryAndTheInterruptMessage) {
   const std::uintmax_t limit_kib = sizes.others / 1024 + 4;
   ASSERT_GT(sizes.checkpoint, limit_kib * 1024)
       << "the checkpoint's log no longer outgrows the other outputs";
-  for (const char* name : {"o.off", "s.json", "c.ckpt", "c.ckpt.log"}) fs::remove(out(name));
+  for (const char* name : {"o.off", "s.json", "c.ckpt", "c.ckpt.log", "c.ckpt.history"})
+    fs::remove(out(name));
   const std::string limit = "trap '' XFSZ; ulimit -f " + std::to_string(limit_kib) + "; ";
   const auto limited =
       test::run_command("bash -c " + test::quoted(limit + exec_cli(run)) + " 2>&1");
@@ -304,8 +305,7 @@ TEST_F(CliCheckpointFarm, AFailedSaveIsInTheSummaryAndTheInterruptMessage) {
             std::string::npos)
       << summary;
   EXPECT_NE(summary.find("\"exit_code\": 0"), std::string::npos) << summary;
-  fs::remove(out("c.ckpt"));
-  fs::remove(out("c.ckpt.log"));
+  for (const char* name : {"c.ckpt", "c.ckpt.log", "c.ckpt.history"}) fs::remove(out(name));
 
   // Interrupted once the saves fail: the message names the older checkpoint left in place.
   int fd = -1;

@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -51,18 +52,17 @@ std::string without_times(const std::string& csv) {
 }
 
 /// The bytes of the fields of `c` whose size changes from frame to frame as they are saved: the
-/// volume history (8 a frame), the contacts (4 + 8 + 16 + 32 + 24 + 8 bytes each), the contact
-/// correction and skin, the held vertices, the dimples, the run's message and the options' text
-/// (`--frames 41` or `401`). Not the log.
+/// contacts (4 + 8 + 16 + 32 + 24 + 8 bytes each), the contact correction and skin, the held
+/// vertices, the dimples, the run's message and the options' text (`--frames 41` or `401`). Not
+/// the log, nor the volume history (8 bytes a frame so far): they are beside it.
 double varying_bytes(const Checkpoint& c) {
   const SimulatorState& s = c.sim;
   double options = 0;
   for (const OptionValues* o : {&c.given, &c.resolved})
     for (const auto& [name, value] : *o) options += static_cast<double>(name.size() + value.size());
-  return 8.0 * c.progress.history.size() + 92.0 * s.collision.contact_cache.size() +
-         24.0 * s.collision.correction.rows() + 8.0 * s.collision.skin.size() +
-         static_cast<double>(s.held_by_contact.size()) + 4.0 * s.dimple_sizes.size() +
-         static_cast<double>(c.progress.message.size()) + options;
+  return 92.0 * s.collision.contact_cache.size() + 24.0 * s.collision.correction.rows() +
+         8.0 * s.collision.skin.size() + static_cast<double>(s.held_by_contact.size()) +
+         4.0 * s.dimple_sizes.size() + static_cast<double>(c.progress.message.size()) + options;
 }
 
 /// The first `n` lines of `text`.
@@ -115,9 +115,10 @@ class CliCheckpointLog : public ::testing::Test {
   fs::path dir_;
 };
 
-// A checkpoint's size does not grow with the run's length beyond the volume history it keeps (8
-// bytes a frame) and the contacts of the frame it is at; the log's lines are in FILE.log, once.
-TEST_F(CliCheckpointLog, ACheckpointDoesNotGrowWithTheLogOfTheFramesSoFar) {
+// A checkpoint's size does not grow with the run's length beyond the contacts of the frame it is
+// at: the log's lines are in FILE.log and the volume history (V/V0 after each frame, 8 bytes a
+// frame, which every save used to hold whole) in FILE.history, once.
+TEST_F(CliCheckpointLog, ACheckpointDoesNotGrowWithTheFramesSoFar) {
   run("short", 41, 10);
   run("long", 401, 10);
   const Checkpoint a = read_checkpoint(out("short.ckpt")), b = read_checkpoint(out("long.ckpt"));
@@ -126,7 +127,13 @@ TEST_F(CliCheckpointLog, ACheckpointDoesNotGrowWithTheLogOfTheFramesSoFar) {
   const double grown = static_cast<double>(fs::file_size(out("long.ckpt"))) -
                        static_cast<double>(fs::file_size(out("short.ckpt")));
   EXPECT_EQ(grown, varying_bytes(b) - varying_bytes(a))
-      << "the log of 360 more frames is " << b.log.size() - a.log.size() << " bytes";
+      << "the log of 360 more frames is " << b.log.size() - a.log.size() << " bytes, their V/V0 "
+      << 8 * (b.progress.history.size() - a.progress.history.size());
+  // The history beside it: V/V0 after each frame up to the checkpoint's, 401 values.
+  ASSERT_EQ(b.progress.history.size(), 401u);
+  const std::string history = read(checkpoint_history_path(out("long.ckpt")));
+  ASSERT_EQ(history.size(), 8u * 401);
+  EXPECT_EQ(std::memcmp(history.data(), b.progress.history.data(), history.size()), 0);
   // The log beside it is the run's log up to the checkpoint's frame: the header and 400 rows.
   const std::string beside = read(checkpoint_log_path(out("long.ckpt")));
   EXPECT_EQ(b.log, beside);
@@ -186,6 +193,40 @@ TEST_F(CliCheckpointLog, AMissingCutOrDamagedLogIsRefusedNamingIt) {
   write(log_path, log);
   const auto r = resume("run");
   EXPECT_EQ(r.exit_code, 0) << r.output;
+}
+
+// As the log: without its volume history, or with one cut short or changed, a checkpoint is
+// refused as bad input (exit 2), naming the checkpoint and the file, and nothing is written.
+TEST_F(CliCheckpointLog, AMissingCutOrDamagedHistoryIsRefusedNamingIt) {
+  run("run", 30, 10);
+  const std::string path = checkpoint_history_path(out("run.ckpt"));
+  const std::string history = read(path);
+  const auto refused = [&](const std::string& what, const std::string& why) {
+    SCOPED_TRACE(what);
+    const auto r = resume("run");
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find("checkpoint " + out("run.ckpt") + ": its volume history " + path),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(why), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out("run-resumed.off")));
+    EXPECT_FALSE(fs::exists(out("run-resumed.csv")));
+  };
+  fs::remove(path);
+  refused("missing", "no such file");
+  write(path, history.substr(0, history.size() - 1));
+  refused("cut", "fewer than the");
+  std::string damaged = history;
+  damaged[damaged.size() / 2] ^= 1;
+  write(path, damaged);
+  refused("damaged", "is not the one the checkpoint was saved with");
+  // Another output in its place is refused before any work, as for the log.
+  const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("a.off"), "-q", "--frames", "5",
+                          "--checkpoint", out("c.ckpt"), "--log", out("c.ckpt.history")});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("c.ckpt.history"), std::string::npos) << r.output;
+  write(path, history);
+  EXPECT_EQ(resume("run").exit_code, 0);
 }
 
 // A run's first save cannot know whose FILE.log is there (another run's, which the checkpoint in

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "support/cli_runner.hpp"
@@ -22,8 +23,10 @@ namespace {
 namespace fs = std::filesystem;
 
 /// Starts the CLI with `args`; stdout to /dev/null, stderr to the returned pipe's read end.
-/// `hold_ms` > 0 sets SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS (file_safety.cpp's test hook).
-pid_t spawn(const std::vector<std::string>& args, int hold_ms, int& stderr_fd) {
+/// `hold_ms` > 0 runs the CLI's code through held_cli (tests/tools/held_cli.cpp), which holds each
+/// temporary that long right after its creation; `env` is set in the child's environment.
+pid_t spawn(const std::vector<std::string>& args, int hold_ms, int& stderr_fd,
+            const std::vector<std::pair<std::string, std::string>>& env = {}) {
   int fds[2];
   if (::pipe(fds) != 0) return -1;
   const pid_t pid = ::fork();
@@ -35,11 +38,14 @@ pid_t spawn(const std::vector<std::string>& args, int hold_ms, int& stderr_fd) {
     // A signal ignored by whoever started the tests would stay ignored in the run.
     ::signal(SIGINT, SIG_DFL);
     ::signal(SIGTERM, SIG_DFL);
-    if (hold_ms > 0) ::setenv("SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS", std::to_string(hold_ms).c_str(), 1);
-    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_CLI_PATH)};
+    for (const auto& [name, value] : env) ::setenv(name.c_str(), value.c_str(), 1);
+    const char* program = hold_ms > 0 ? SHELLCONTRACT_HELD_CLI : SHELLCONTRACT_CLI_PATH;
+    const std::string hold = std::to_string(hold_ms);
+    std::vector<char*> argv{const_cast<char*>(program)};
+    if (hold_ms > 0) argv.push_back(const_cast<char*>(hold.c_str()));
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    ::execv(SHELLCONTRACT_CLI_PATH, argv.data());
+    ::execv(program, argv.data());
     ::_exit(127);
   }
   ::close(fds[1]);
@@ -162,9 +168,9 @@ class CliInterrupt : public ::testing::Test {
   fs::path dir_;
 };
 
-// Deterministic: the test hook holds each temporary right after its creation; the signal lands
-// there (the n-th temporary: the output checks' probes first, then frames on the writer's thread).
-// Before the fix the file was registered for removal only after that point and survived.
+// Deterministic: the test hook (held_cli) holds each temporary right after its creation; the signal
+// lands there (the n-th temporary: the output checks' probes first, then frames on the writer's
+// thread). Before the fix the file was registered for removal only after that point and survived.
 TEST_F(CliInterrupt, SignalRightAfterATemporaryIsCreatedLeavesNone) {
   for (const int sig : {SIGINT, SIGTERM}) {
     for (const int nth : {1, 4, 9}) {
@@ -182,6 +188,23 @@ TEST_F(CliInterrupt, SignalRightAfterATemporaryIsCreatedLeavesNone) {
       EXPECT_FALSE(fs::exists(out("r.off")));
     }
   }
+}
+
+// The shipped tool has no test hook: the environment variable that used to make every temporary
+// wait (SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS, read by the library itself, so that any process
+// with it set, by accident or inherited, slept at each write) changes nothing now.
+TEST_F(CliInterrupt, TheToolHoldsNoTemporaryWhateverTheEnvironment) {
+  std::vector<std::string> args = exporting_run();
+  args[5] = "3";  // -n: a short run
+  int fd = -1;
+  const pid_t pid = spawn(args, 0, fd, {{"SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS", "300"}});
+  ASSERT_GT(pid, 0);
+  std::string text;
+  const int status = finish_reading(pid, fd, text);
+  ASSERT_TRUE(WIFEXITED(status)) << text;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << text;
+  EXPECT_EQ(text.find("temporary created"), std::string::npos) << text;
+  EXPECT_TRUE(fs::exists(out("r.off")));
 }
 
 // As a user meets it: Ctrl-C or SIGTERM at varied moments of an exporting run, without

@@ -27,7 +27,7 @@ namespace fs = std::filesystem;
 
 /// How the child is started.
 struct Spawn {
-  int hold_ms = 0;             ///< > 0: SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS (file_safety.cpp)
+  int hold_ms = 0;             ///< > 0: run through held_cli, each temporary held so long
   long file_size_limit = 0;    ///< > 0: RLIMIT_FSIZE in bytes, as `ulimit -f` sets it
   bool closed_stderr = false;  ///< stderr a pipe whose reading end is already closed
   bool ignore_xfsz = false;    ///< SIGXFSZ ignored (`trap '' XFSZ`), as the CLI now does itself
@@ -60,12 +60,15 @@ pid_t spawn(const std::vector<std::string>& args, const Spawn& how, int& stderr_
       };
       ::setrlimit(RLIMIT_FSIZE, &lim);
     }
-    if (how.hold_ms > 0)
-      ::setenv("SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS", std::to_string(how.hold_ms).c_str(), 1);
-    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_CLI_PATH)};
+    // held_cli (tests/tools/held_cli.cpp): the CLI's code with the test hook that holds each
+    // temporary right after its creation.
+    const char* program = how.hold_ms > 0 ? SHELLCONTRACT_HELD_CLI : SHELLCONTRACT_CLI_PATH;
+    const std::string hold = std::to_string(how.hold_ms);
+    std::vector<char*> argv{const_cast<char*>(program)};
+    if (how.hold_ms > 0) argv.push_back(const_cast<char*>(hold.c_str()));
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    ::execv(SHELLCONTRACT_CLI_PATH, argv.data());
+    ::execv(program, argv.data());
     ::_exit(127);
   }
   ::close(fds[1]);

@@ -1,8 +1,9 @@
-// The caller's log beside the checkpoint (CheckpointLogFile, shellcontract/checkpoint.hpp): the
-// first save of a run holds its log (the file beside may be what the checkpoint in place needs),
-// each later one appends only the lines since the last to FILE.log, so the checkpoint's size does
-// not grow with the log; a save whose append fails (a full disk, a file size limit) leaves the
-// checkpoint in place and its log a pair that still reads, and the saves after it recover.
+// The caller's log and the run's volume history beside the checkpoint (CheckpointLogFile,
+// shellcontract/checkpoint.hpp): the first save of a run holds them (the files beside may be what
+// the checkpoint in place needs), each later one appends only what is new to FILE.log and
+// FILE.history, so the checkpoint's size grows neither with the log nor with the frames run; a
+// save whose append fails (a full disk, a file size limit) leaves the checkpoint in place and its
+// files beside consistent, and the saves after it recover.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <unistd.h>
@@ -47,20 +48,21 @@ struct Save {
   std::uintmax_t checkpoint_bytes = 0;
   double varying = 0;  ///< the bytes of the checkpoint's fields whose size varies (varying_bytes)
   std::size_t history = 0;
+  std::vector<double> saved_history;  ///< the checkpoint's, read back after the save
   std::string log;        ///< the caller's log at the save
   std::string saved_log;  ///< the checkpoint's, read back after the save
   std::string error;      ///< the save's UsageError, if it failed
 };
 
 /// The bytes of the fields of `c` whose size changes from frame to frame as they are saved: the
-/// volume history (8 a frame), the contacts (4 + 8 + 16 + 32 + 24 + 8 bytes each), the contact
-/// correction and skin, the held vertices, the dimples and the run's message. Not the log.
+/// contacts (4 + 8 + 16 + 32 + 24 + 8 bytes each), the contact correction and skin, the held
+/// vertices, the dimples and the run's message. Not the log, nor the volume history (8 bytes a
+/// frame so far), which are beside it.
 double varying_bytes(const Checkpoint& c) {
   const SimulatorState& s = c.sim;
-  return 8.0 * c.progress.history.size() + 92.0 * s.collision.contact_cache.size() +
-         24.0 * s.collision.correction.rows() + 8.0 * s.collision.skin.size() +
-         static_cast<double>(s.held_by_contact.size()) + 4.0 * s.dimple_sizes.size() +
-         static_cast<double>(c.progress.message.size());
+  return 92.0 * s.collision.contact_cache.size() + 24.0 * s.collision.correction.rows() +
+         8.0 * s.collision.skin.size() + static_cast<double>(s.held_by_contact.size()) +
+         4.0 * s.dimple_sizes.size() + static_cast<double>(c.progress.message.size());
 }
 
 /// Saves every frame to `path` with a log of one 300-byte line a frame kept beside it; calls
@@ -92,6 +94,7 @@ class LoggingCheckpointer final : public RunCheckpointer {
     const Checkpoint c = read_checkpoint(path_);  // after every save, failed or not: whole
     s.checkpoint_bytes = fs::file_size(path_);
     s.history = c.progress.history.size();
+    s.saved_history = c.progress.history;
     s.varying = varying_bytes(c);
     s.saved_log = c.log;
     if (s.error.empty()) {
@@ -130,7 +133,7 @@ class CheckpointLog : public ::testing::Test {
   RunOptions options_;
 };
 
-TEST_F(CheckpointLog, ASaveWritesTheNewLinesBesideAndTheCheckpointDoesNotGrowWithTheLog) {
+TEST_F(CheckpointLog, ASaveWritesTheNewLinesBesideAndTheCheckpointDoesNotGrowWithTheRun) {
   const std::string path = file("c.ckpt");
   LoggingCheckpointer saver(path, mesh_, options_, [&](int frame) {
     // The first save holds the log: the file beside is left as it was (another run's), and
@@ -142,18 +145,82 @@ TEST_F(CheckpointLog, ASaveWritesTheNewLinesBesideAndTheCheckpointDoesNotGrowWit
   });
   run_contraction(mesh_, options_, nullptr, &saver);
   ASSERT_EQ(saver.saves.size(), 39u);
-  EXPECT_EQ(format_of(path), 4u);
+  EXPECT_EQ(format_of(path), 5u);
   for (const Save& s : saver.saves) {
     EXPECT_EQ(s.error, "") << "frame " << s.frame;
   }
   // From the second save on, the checkpoint changes size only with its varying fields: the
-  // frame's 300-byte line is not in it.
+  // frame's 300-byte line and its V/V0 are not in it.
   for (std::size_t k = 2; k < saver.saves.size(); ++k) {
     const Save &a = saver.saves[k - 1], &b = saver.saves[k];
     const double grown = static_cast<double>(b.checkpoint_bytes) - a.checkpoint_bytes;
     EXPECT_EQ(grown, b.varying - a.varying) << "frame " << b.frame;
   }
   EXPECT_EQ(read(checkpoint_log_path(path)), saver.saves.back().log);
+}
+
+// The volume history (V/V0 after each frame so far), which every save used to hold whole (8 bytes
+// a frame, so a save's cost grew with the run): from the second save on it is in FILE.history,
+// each save appending the frames since the last, and it reads back whole, frame 0 on.
+TEST_F(CheckpointLog, TheVolumeHistoryIsAppendedBesideAndReadsBackWhole) {
+  const std::string path = file("c.ckpt");
+  const std::string history_path = checkpoint_history_path(path);
+  std::vector<std::uintmax_t> beside_sizes;
+  LoggingCheckpointer saver(path, mesh_, options_, [&](int frame) {
+    // The first save holds the history: another run's file is left as it was, then removed.
+    if (frame == 1) std::ofstream(history_path) << "another run's\n";
+    if (frame == 2) {
+      EXPECT_FALSE(fs::exists(history_path));
+    }
+    if (frame > 2) beside_sizes.push_back(fs::file_size(history_path));
+  });
+  run_contraction(mesh_, options_, nullptr, &saver);
+  ASSERT_EQ(saver.saves.size(), 39u);
+  EXPECT_EQ(format_of(path), 5u);
+  // After the save of frame f (from the second one on), the file holds f + 1 values.
+  for (std::size_t k = 0; k < beside_sizes.size(); ++k)
+    EXPECT_EQ(beside_sizes[k], 8u * (k + 3)) << "after the save of frame " << k + 2;
+  for (const Save& s : saver.saves) {
+    EXPECT_EQ(s.saved_history.size(), static_cast<std::size_t>(s.frame) + 1) << "frame " << s.frame;
+    EXPECT_EQ(s.saved_history.front(), 1.0);
+  }
+  // Each save's history goes on from the one before, bit for bit (only appended to).
+  for (std::size_t k = 1; k < saver.saves.size(); ++k) {
+    const std::vector<double>& a = saver.saves[k - 1].saved_history;
+    const std::vector<double>& b = saver.saves[k].saved_history;
+    ASSERT_GT(b.size(), a.size());
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), 8 * a.size()), 0) << "frame " << saver.saves[k].frame;
+  }
+  const std::vector<double>& last = saver.saves.back().saved_history;
+  ASSERT_EQ(last.size(), 40u);
+  const std::string bytes = read(history_path);
+  ASSERT_EQ(bytes.size(), 8u * last.size());
+  EXPECT_EQ(std::memcmp(bytes.data(), last.data(), bytes.size()), 0);
+}
+
+// The formats written before the history went beside still read: 3 (log and history inside)
+// and 4 (the log beside, the history inside), with the same log and history as format 5's.
+TEST_F(CheckpointLog, CheckpointsOfFormats3And4StillRead) {
+  const std::string path = file("c.ckpt");
+  LoggingCheckpointer saver(path, mesh_, options_);
+  run_contraction(mesh_, options_, nullptr, &saver);
+  const Checkpoint c = read_checkpoint(path);
+  ASSERT_TRUE(c.history_beside);
+  const std::string three = file("three.ckpt"), four = file("four.ckpt");
+  write_checkpoint(three, c);
+  const LogBeside log{c.log.size(), fnv1a(c.log.data(), c.log.size())};
+  write_checkpoint(four, c, &log);
+  std::ofstream(checkpoint_log_path(four), std::ios::binary) << c.log;
+  EXPECT_EQ(format_of(three), 3u);
+  EXPECT_EQ(format_of(four), 4u);
+  for (const std::string& p : {three, four}) {
+    const Checkpoint r = read_checkpoint(p);
+    EXPECT_FALSE(r.history_beside) << p;
+    EXPECT_EQ(r.log_beside, p == four) << p;
+    EXPECT_EQ(r.log, c.log) << p;
+    EXPECT_EQ(r.progress.history, c.progress.history) << p;
+    EXPECT_EQ(r.sim.frame, c.sim.frame) << p;
+  }
 }
 
 // A file size limit (ulimit -f, as a full disk) cuts the append of frame 20's line short: that
@@ -189,11 +256,11 @@ TEST_F(CheckpointLog, AFailedAppendLeavesAPairThatReadsAndTheNextSavesRecover) {
   // formats[k]: the format in place after the save of frame k + 1.
   ASSERT_EQ(formats.size(), 38u);
   EXPECT_EQ(formats[0], 3u);   // frame 1's save: its log inside
-  EXPECT_EQ(formats[1], 4u);   // frame 2's: beside
-  EXPECT_EQ(formats[19], 4u);  // frame 20's failed: frame 19's left in place
+  EXPECT_EQ(formats[1], 5u);   // frame 2's: beside
+  EXPECT_EQ(formats[19], 5u);  // frame 20's failed: frame 19's left in place
   EXPECT_EQ(formats[20], 3u);  // frame 21's: its log inside again
-  EXPECT_EQ(formats[21], 4u);  // frame 22's: beside
-  EXPECT_EQ(format_of(path), 4u);
+  EXPECT_EQ(formats[21], 5u);  // frame 22's: beside
+  EXPECT_EQ(format_of(path), 5u);
   EXPECT_EQ(read_checkpoint(path).log, saver.saves.back().log);
 }
 
