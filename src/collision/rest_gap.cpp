@@ -8,6 +8,7 @@
 #include "collision/ccd.hpp"
 #include "collision/distance.hpp"
 #include "collision/self_collision/common.hpp"
+#include "core/cancellation.hpp"
 
 namespace shellcontract {
 
@@ -16,7 +17,11 @@ RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& r
   using collision_pipeline::gather;
   using collision_pipeline::stencil;
   CandidatePairs pairs;
+  // A run's cancel (core/cancellation.hpp): before and after the broad phase, and per chunk of
+  // pairs below; `delta` auto surveys a large mesh's rest state while the run is prepared.
+  cancellation_point();
   find_candidates(rest, rest, topo, reach, pairs, nullptr, method);
+  cancellation_point();
   // The same tests as the collision step's rest classification (RestPairs), so that the counts
   // are the pairs it holds: touching is a hit at tolerance 0, near a hit at tolerance reach.
   CcdOptions touch, near, within_inner;
@@ -25,7 +30,9 @@ RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& r
   within_inner.tolerance = inner;
   RestGapSurvey out;
   std::vector<char> held(static_cast<std::size_t>(topo.num_vertices), 0);
+  std::size_t visited = 0;
   auto visit = [&](CcdPrimitive kind, const std::array<int, 2>& pair) {
+    if (++visited % CANCELLATION_CHUNK == 0) cancellation_point();
     CcdStencil s0, s1;
     gather(rest, rest, stencil(kind, pair, topo), s0, s1);
     if (primitive_ccd(kind, s0, s1, touch).hit) return;

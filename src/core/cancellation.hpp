@@ -6,6 +6,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <cstddef>
 #include <functional>
 #include <thread>
 
@@ -53,5 +55,23 @@ class CancellationScope {
 /// without one (a finder or a Simulator used on its own, a worker thread). Called between stages;
 /// inside a parallel loop's body only under a Join (the exception then leaves the loop).
 void cancellation_point();
+
+/// Elements (faces, vertices, pairs) of a long serial loop of the preparation between two
+/// cancellation points: a large mesh's single calls (curvature, the finder's arrays, the rest
+/// gaps) hear a cancel within a small share of their time, and the question costs nothing beside
+/// that much work.
+inline constexpr std::size_t CANCELLATION_CHUNK = std::size_t{1} << 14;
+
+/// How often a thread that waits for another's part of the preparation asks its scope.
+inline constexpr std::chrono::milliseconds CANCELLATION_WAIT_POLL{20};
+
+/// Runs `here` on this thread and `beside` on a TBB worker at the same time (on this thread
+/// after `here` when no worker took it), `beside` under a Join of this thread's scope, and
+/// returns once both have ended. While this thread waits for `beside` it keeps asking its scope
+/// (every CANCELLATION_WAIT_POLL): the worker's cancellation points only see a cancel that the
+/// run's thread has seen, and with tbb::parallel_invoke a run's thread that had finished its half
+/// asked nothing until the other half ended (the part finder's two finders).
+/// Rethrows `here`'s exception (or the cancel heard while waiting) before `beside`'s.
+void run_side_by_side(const std::function<void()>& here, const std::function<void()>& beside);
 
 }  // namespace shellcontract

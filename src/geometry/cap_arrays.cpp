@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancellation.hpp"
 #include "geometry/cap_internal.hpp"
 
 namespace shellcontract::detail {
@@ -12,6 +13,7 @@ namespace shellcontract::detail {
 FinderStart start_finder(const Mesh& mesh, const Positions& x) {
   FinderStart start;
   start.curvature = compute_curvature(mesh, x);  // first: it checks the mesh
+  cancellation_point();
   start.arrays = mesh_arrays(mesh, x);
   return start;
 }
@@ -35,6 +37,8 @@ MeshArrays mesh_arrays(const Mesh& mesh, const Positions& x) {
   m.face_nbr.assign(m.nf, {-1, -1, -1});
   m.vertex_faces.resize(m.nv);
   for (FaceIndex f : mesh.faces()) {
+    // A run's cancel (cancellation.hpp), per chunk of a large mesh's faces.
+    if (f.idx() % CANCELLATION_CHUNK == 0) cancellation_point();
     HalfedgeIndex h = mesh.halfedge(f);
     for (int k = 0; k < 3; ++k, h = mesh.next(h)) {
       m.tri[f.idx()][static_cast<std::size_t>(k)] = static_cast<int>(mesh.source(h).idx());
@@ -51,6 +55,7 @@ MeshArrays mesh_arrays(const Mesh& mesh, const Positions& x) {
       m.vertex_faces[static_cast<std::size_t>(v)].push_back(static_cast<int>(f.idx()));
     }
   }
+  cancellation_point();
   // Each vertex lists its neighbours in the order of the mesh's edges.
   m.nbr_start.assign(m.nv + 1, 0);
   for (EdgeIndex e : mesh.edges())

@@ -3,6 +3,8 @@
 // right (first value, then value + next) and transposes: so column c, row r holds the triplets
 // (r, c, .) summed in list order. Here column v walks v's faces in increasing index, and each
 // face's half-edges and their four triplets in list order, which is that same order.
+// A run's cancel (core/cancellation.hpp) is heard between the passes and in each parallel block:
+// on a large mesh the assembly is one of the single long calls of the region selection.
 #include "geometry/cotan_laplacian.hpp"
 
 #include <tbb/parallel_for.h>
@@ -10,6 +12,8 @@
 #include <algorithm>
 #include <cstddef>
 #include <utility>
+
+#include "core/cancellation.hpp"
 
 namespace shellcontract::detail {
 
@@ -32,12 +36,17 @@ Eigen::SparseMatrix<double> cotan_laplacian(const std::vector<std::array<int, 3>
   // Each half-edge's weight once (two columns read it); ok = 0 marks a degenerate corner.
   std::vector<double> w(3 * nf, 0.0);
   std::vector<char> ok(3 * nf, 0);
+  const CancellationScope* const run = CancellationScope::current();
+  cancellation_point();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nf, 4096), [&](const tbb::blocked_range<std::size_t>& r) {
+    const CancellationScope::Join join(run);
+    cancellation_point();
     for (std::size_t f = r.begin(); f != r.end(); ++f)
       for (std::size_t k = 0; k < 3; ++k)
         ok[3 * f + k] = cotan_half_weight(x, tri[f][k], tri[f][(k + 1) % 3], tri[f][(k + 2) % 3], w[3 * f + k]);
   });
   // Each vertex's faces in increasing index, once each (a face repeating a corner is listed once).
+  cancellation_point();
   std::vector<int> vf_start(nv + 1, 0);
   const auto distinct = [](const std::array<int, 3>& t, std::size_t k) {
     return (k < 1 || t[k] != t[0]) && (k < 2 || t[k] != t[1]);
@@ -60,7 +69,10 @@ Eigen::SparseMatrix<double> cotan_laplacian(const std::vector<std::array<int, 3>
   std::vector<int> rows(slot[nv]);
   std::vector<double> vals(slot[nv]);
   std::vector<int> count(nv, 0);
+  cancellation_point();
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, nv, 1024), [&](const tbb::blocked_range<std::size_t>& r) {
+    const CancellationScope::Join join(run);
+    cancellation_point();
     for (std::size_t v = r.begin(); v != r.end(); ++v) {
       int* row = rows.data() + slot[v];
       double* val = vals.data() + slot[v];
@@ -97,6 +109,7 @@ Eigen::SparseMatrix<double> cotan_laplacian(const std::vector<std::array<int, 3>
       count[v] = n;
     }
   });
+  cancellation_point();
   const auto n = static_cast<Eigen::Index>(nv);
   Eigen::SparseMatrix<double> L(n, n);
   std::vector<std::size_t> start(nv + 1, 0);

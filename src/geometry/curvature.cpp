@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "core/cancellation.hpp"
 #include "core/power_of_two.hpp"
 #include "mesh/properties.hpp"
 #include "shellcontract/error.hpp"
@@ -106,6 +107,8 @@ CurvatureField compute_curvature(const Mesh& mesh, const Positions& x) {
   c.normal = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>::Zero(nv, 3);
 
   for (FaceIndex f : mesh.faces()) {
+    // A run's cancel (cancellation.hpp): on a large mesh this loop is a long single call.
+    if (f.idx() % CANCELLATION_CHUNK == 0) cancellation_point();
     std::array<Eigen::Index, 3> id{};
     int k = 0;
     for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {

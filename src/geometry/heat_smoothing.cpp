@@ -290,8 +290,11 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
   int count = 0;
   std::vector<int> agg;
   SpMat Mc, Lc;
+  // A run's cancel between the set-up's passes, each a single long call on a large mesh.
+  cancellation_point();
   if (iterative) {
     agg = aggregate(L, count);
+    cancellation_point();
     SpMat P(n, count);
     entries.clear();
     for (Eigen::Index i = 0; i < n; ++i) entries.emplace_back(i, agg[static_cast<std::size_t>(i)], 1.0);
@@ -299,6 +302,7 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
     const SpMat Pt = P.transpose();
     Mc = Pt * M * P;
     Lc = Pt * L * P;
+    cancellation_point();
   }
   std::vector<Eigen::VectorXd> out(times.size());
   std::vector<char> failed(times.size(), 0);
@@ -309,6 +313,7 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
     A[k] = M + times[k] * L;
     A[k].makeCompressed();
   });
+  cancellation_point();
   Pattern pattern;
   bool shared = iterative && !A.empty();
   if (shared) {

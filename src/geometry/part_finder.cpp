@@ -29,8 +29,6 @@
 #include <utility>
 #include <vector>
 
-#include <tbb/parallel_invoke.h>
-
 #include "core/cancellation.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/tip_finder.hpp"
@@ -84,17 +82,12 @@ std::vector<int> select_part_regions(const Mesh& mesh, const Positions& x, const
   tips.method = RegionMethod::Tips;
   RegionReport cap_report, tip_report;
   std::vector<int> cap_ids, tip_ids;
-  // Either may run on a worker thread: it stops too once the run's thread has seen a cancel.
-  const CancellationScope* const run = CancellationScope::current();
-  tbb::parallel_invoke(
-      [&] {
-        const CancellationScope::Join join(run);
-        cap_ids = select_spherical_regions(mesh, x, caps, &cap_report, curvature);
-      },
-      [&] {
-        const CancellationScope::Join join(run);
-        tip_ids = select_tip_regions(mesh, x, tips, &tip_report, nullptr);
-      });
+  // The cap finder, whose smoothing and growth are parallel, on this thread; the tip finder,
+  // mostly serial (its Dijkstra passes), beside it. Its worker stops once the run's thread has seen
+  // a cancel, and the run's thread keeps asking while it waits for the worker (run_side_by_side).
+  run_side_by_side(
+      [&] { cap_ids = select_spherical_regions(mesh, x, caps, &cap_report, curvature); },
+      [&] { tip_ids = select_tip_regions(mesh, x, tips, &tip_report, nullptr); });
   cancellation_point();
   const MeshArrays m = mesh_arrays(mesh, x);
   RegionReport r;

@@ -8,6 +8,7 @@
 #include "collision/rest_gap.hpp"
 #include "collision/self_collision/common.hpp"
 #include "collision/topology.hpp"
+#include "core/cancellation.hpp"
 #include "core/plural.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
@@ -83,8 +84,13 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
         "other, and the shell would swell; `delta` auto would choose " +
         shortest_text(by_edge) + " (or less where parts are closer than that at rest)");
   out.delta = options.auto_delta ? by_edge : options.collision.delta;
+  // A run's cancel (core/cancellation.hpp) between the passes, each long on a large mesh; the
+  // surveys also ask between chunks of their pairs (their broad phase is one call, heard at its
+  // end).
+  cancellation_point();
   const CollisionTopology topo =
       make_collision_topology(faces_array(mesh), static_cast<int>(mesh.number_of_vertices()));
+  cancellation_point();
   const Positions rest = positions_from_mesh(mesh);
   const double response = collision_pipeline::RESPONSE_FACTOR;
   const BroadPhaseMethod method = options.collision.method;

@@ -1,15 +1,20 @@
 // Self-intersection queries: PMP::self_intersections / does_self_intersect with the position
-// array as vertex point map (no mesh copy).
+// array as vertex point map (no mesh copy). During a run's preparation (the Simulator's baseline
+// of the input's own intersections) the faces are checked slab by slab, so that a run's cancel
+// is heard between the slabs (core/cancellation.hpp): one CGAL call on a large mesh cannot be
+// interrupted and takes seconds.
 #include "shellcontract/validation.hpp"
 
 #include <CGAL/Polygon_mesh_processing/shape_predicates.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <stdexcept>
 #include <string>
 
+#include "core/cancellation.hpp"
 #include "mesh/eigen_point_map.hpp"
 
 namespace shellcontract {
@@ -44,13 +49,51 @@ std::vector<FaceIndex> triangle_faces(const Mesh& mesh, const Positions& x) {
   return faces;
 }
 
+/// `faces` in slabs of about CANCELLATION_CHUNK faces across the axis where `x` spans most: a
+/// face goes into every slab its extent along the axis meets. Two intersecting faces share a
+/// point, whose coordinate lies in both extents and so in one slab (a slab's index is a
+/// monotone function of the coordinate, rounding included), which holds both: the slabs' pairs
+/// together are the whole call's.
+std::vector<std::vector<FaceIndex>> slabs(const Mesh& mesh, const Positions& x,
+                                          const std::vector<FaceIndex>& faces) {
+  const std::size_t count = (faces.size() + CANCELLATION_CHUNK - 1) / CANCELLATION_CHUNK;
+  Eigen::Index axis = 0;
+  (x.colwise().maxCoeff() - x.colwise().minCoeff()).maxCoeff(&axis);
+  const double low = x.col(axis).minCoeff();
+  const double width = (x.col(axis).maxCoeff() - low) / static_cast<double>(count);
+  const auto slab = [&](double c) {
+    const double at = width > 0.0 ? std::floor((c - low) / width) : 0.0;
+    return static_cast<std::size_t>(std::clamp(at, 0.0, static_cast<double>(count - 1)));
+  };
+  std::vector<std::vector<FaceIndex>> out(count);
+  for (const FaceIndex f : faces) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) {
+      lo = std::min(lo, x(static_cast<Eigen::Index>(v.idx()), axis));
+      hi = std::max(hi, x(static_cast<Eigen::Index>(v.idx()), axis));
+    }
+    for (std::size_t k = slab(lo), last = slab(hi); k <= last; ++k) out[k].push_back(f);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<FacePair> self_intersecting_pairs(const Mesh& mesh, const Positions& x) {
   check_preconditions(mesh, x, "self_intersecting_pairs");
   std::vector<FacePair> pairs;
-  PMP::self_intersections(triangle_faces(mesh, x), mesh, std::back_inserter(pairs),
-                          CGAL::parameters::vertex_point_map(EigenPointMap(x)));
+  const std::vector<FaceIndex> faces = triangle_faces(mesh, x);
+  const auto points = CGAL::parameters::vertex_point_map(EigenPointMap(x));
+  if (!CancellationScope::current() || faces.size() <= CANCELLATION_CHUNK) {
+    PMP::self_intersections(faces, mesh, std::back_inserter(pairs), points);
+  } else {
+    for (const std::vector<FaceIndex>& slab : slabs(mesh, x, faces)) {
+      cancellation_point();
+      PMP::self_intersections(slab, mesh, std::back_inserter(pairs), points);
+    }
+  }
+  // One slab's call (or a small mesh's only one) cannot be interrupted: heard at its end.
+  cancellation_point();
   for (FacePair& p : pairs) p = ordered(p.first, p.second);
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

@@ -3,8 +3,12 @@
 
 #include <algorithm>
 
+#include "core/cancellation.hpp"
+
 namespace shellcontract::collision_pipeline {
 
+// A run's cancel (core/cancellation.hpp) is heard around the broad phase and per chunk of pairs:
+// the Simulator classifies a large mesh's rest pairs while the run is prepared.
 RestPairs::RestPairs(const Positions& rest, const CollisionTopology& topo,
                      const CollisionOptions& options, CandidatePairs& scratch) {
   // Pairs that touch (distance 0) in the rest state cannot be separated by a response that
@@ -12,11 +16,15 @@ RestPairs::RestPairs(const Positions& rest, const CollisionTopology& topo,
   // delta (but not touching) are the input's own thin features: the response leaves them at
   // their rest distance (a shell at rest stays at rest), but the fail-safe still keeps them
   // from crossing.
+  cancellation_point();
   find_candidates(rest, rest, topo, options.delta, scratch, nullptr, options.method);
+  cancellation_point();
   CcdOptions touch, near;
   touch.tolerance = 0.0;
   near.tolerance = options.delta;
+  std::size_t classified = 0;
   auto classify = [&](CcdPrimitive kind, const std::array<int, 2>& pair) {
+    if (++classified % CANCELLATION_CHUNK == 0) cancellation_point();
     CcdStencil s0, s1;
     gather(rest, rest, stencil(kind, pair, topo), s0, s1);
     const bool vf = kind == CcdPrimitive::VertexFace;
