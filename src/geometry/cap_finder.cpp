@@ -31,6 +31,7 @@
 #include "geometry/heat_smoothing.hpp"
 #include "geometry/part_finder.hpp"
 #include "geometry/region_metrics.hpp"
+#include "geometry/region_stage_hook.hpp"
 #include "geometry/sphere_moments.hpp"
 #include "geometry/tip_finder.hpp"
 #include "shellcontract/error.hpp"
@@ -50,6 +51,7 @@ class StageTimer {
                      static_cast<double>(cpu - cpu_) / CLOCKS_PER_SEC});
     wall_ = wall;
     cpu_ = cpu;
+    if (const detail::RegionStageHook hook = detail::region_stage_hook()) hook(stage);
   }
   std::vector<RegionStageTime> take() { return std::move(laps_); }
 

@@ -1,8 +1,8 @@
 // Ctrl-C while the regions are selected (docs/cli.md, exit code 130): `run --regions auto` stops
 // in its preparation, before the first step, and says so; `regions` ends at once. Neither writes
-// anything. The signal is sent once the finder's first stage has ended (SC_REGION_TIMING's
-// "region timing: curvature" line on stderr), so that it lands in the smoothing and growth of a
-// large mesh: no sleep decides when.
+// anything. The commands run through tests/tools/staged_cli (the CLI's code with the cap finder's
+// stage hook printing a line per stage); the signal is sent once the finder's first stage has
+// ended, so that it lands in the smoothing and growth of a large mesh: no sleep decides when.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
@@ -22,10 +22,12 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// The line after which the finder smooths the curvature (cap_finder.cpp's StageTimer).
-constexpr const char* AFTER_CURVATURE = "region timing: curvature";
+/// The line after which the finder smooths the curvature (cap_finder.cpp's StageTimer), and the
+/// next stage's.
+constexpr const char* AFTER_CURVATURE = "shellcontract test: region stage curvature";
+constexpr const char* AFTER_SMOOTHING = "shellcontract test: region stage smoothing";
 
-/// Starts the CLI with `args` and SC_REGION_TIMING set; stdout to /dev/null, stderr to the
+/// Starts staged_cli with `args`; stdout to /dev/null, stderr to the
 /// returned pipe's read end.
 pid_t spawn(const std::vector<std::string>& args, int& stderr_fd) {
   int fds[2];
@@ -37,11 +39,10 @@ pid_t spawn(const std::vector<std::string>& args, int& stderr_fd) {
     ::dup2(fds[1], 2);
     ::close(fds[0]);
     ::signal(SIGINT, SIG_DFL);  // a signal ignored by whoever started the tests stays ignored
-    ::setenv("SC_REGION_TIMING", "1", 1);
-    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_CLI_PATH)};
+    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_STAGED_CLI)};
     for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
     argv.push_back(nullptr);
-    ::execv(SHELLCONTRACT_CLI_PATH, argv.data());
+    ::execv(SHELLCONTRACT_STAGED_CLI, argv.data());
     ::_exit(127);
   }
   ::close(fds[1]);
@@ -84,7 +85,8 @@ class CliInterruptSelection : public ::testing::Test {
   }
   static void TearDownTestSuite() { fs::remove_all(dir_); }
   void SetUp() override {
-    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    if (!fs::exists(SHELLCONTRACT_STAGED_CLI))
+      GTEST_SKIP() << SHELLCONTRACT_STAGED_CLI << " not built";
   }
   static std::string path(const std::string& name) { return (dir_ / name).string(); }
 
@@ -120,7 +122,7 @@ TEST_F(CliInterruptSelection, RunStopsBeforeItsFirstStepAndWritesNothing) {
       std::string::npos)
       << text;
   // The selection stopped: its later stages printed no line.
-  EXPECT_EQ(text.find("region timing: smoothing"), std::string::npos) << text;
+  EXPECT_EQ(text.find(AFTER_SMOOTHING), std::string::npos) << text;
   for (const char* name : {"run.off", "run.csv", "run.json"})
     EXPECT_FALSE(fs::exists(path(name))) << name << " written by an interrupted run";
 }
@@ -134,7 +136,7 @@ TEST_F(CliInterruptSelection, RegionsEndsAtOnceAndWritesNothing) {
   ASSERT_TRUE(WIFEXITED(status)) << "ended by signal "
                                  << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
   EXPECT_EQ(WEXITSTATUS(status), 130) << text;
-  EXPECT_EQ(text.find("region timing: smoothing"), std::string::npos) << text;
+  EXPECT_EQ(text.find(AFTER_SMOOTHING), std::string::npos) << text;
   for (const char* name : {"regions.ply", "regions.txt"})
     EXPECT_FALSE(fs::exists(path(name))) << name << " written by an interrupted command";
   for (const auto& e : fs::directory_iterator(dir_))
