@@ -235,6 +235,8 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
     progress.message("{} jobs ({} in this run, {} done already) -> {}".format(
         len(jobs), len(todo), done, args.output))
     stale = sweep_job.clean_stale_attempts(args.output)
+    for job_id in {j.id for j in selected} - running:
+        sweep_job.remove_checkpoint(args.output, job_id)
     if stale:
         progress.message("removed the working folders of {} attempt{} that a killed sweep left in "
                          "{}".format(stale, "s" * (stale > 1), os.path.join(args.output, ".work")))

@@ -302,6 +302,7 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None):
     p = paths(out_dir, job["id"])
     old = read_record(out_dir, job["id"])
     if is_done(old):
+        remove_checkpoint(out_dir, job["id"])
         old["skipped"] = True
         return old
     os.makedirs(os.path.dirname(p["checkpoint"]), exist_ok=True)
@@ -387,14 +388,20 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
                               json.dumps(record, indent=1, sort_keys=True) + "\n")
     _publish(work, p["final"], out_dir)
     if status in FINAL_STATUSES:
-        # The checkpoint and the log and volume history the CLI keeps beside it
-        # (`checkpoint_log_path`, `checkpoint_history_path`: FILE.log, FILE.history).
-        for path in (p["checkpoint"], p["checkpoint"] + ".log", p["checkpoint"] + ".history"):
-            try:
-                os.remove(path)
-            except OSError:
-                pass
+        remove_checkpoint(out_dir, job["id"])
     return record
+
+
+def remove_checkpoint(out_dir, job_id):
+    """A finished job's checkpoint and the log and volume history the CLI keeps beside it
+    (`checkpoint_log_path`, `checkpoint_history_path`: FILE.log, FILE.history). Also called for
+    the jobs a sweep finds done: one killed between publishing a job and this removal left them."""
+    checkpoint = paths(os.path.abspath(out_dir), job_id)["checkpoint"]
+    for path in (checkpoint, checkpoint + ".log", checkpoint + ".history"):
+        try:
+            os.remove(path)
+        except OSError:
+            pass
 
 
 def _wait(proc, timeout):

@@ -187,6 +187,24 @@ def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_pa
     assert [p.name for p in (out / ".work" / "checkpoints").iterdir()] == []
 
 
+def test_a_finished_jobs_leftover_checkpoint_is_removed_by_the_next_sweep(cli, mesh_dir, tmp_path):
+    # A sweep killed after publishing a job and before removing its checkpoint (the window
+    # test_sweep_killed_and_run_again_redoes_no_finished_job can hit) leaves FILE, FILE.log and
+    # FILE.history in .work/checkpoints/: the next sweep finds the job done and removes them.
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3]}}
+    path = write_sweep(tmp_path, mesh_dir, "c.json", spec, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0, r.stderr
+    jobs = [row["job"] for row in results(out)]
+    left = [out / ".work" / "checkpoints" / (jobs[0] + ".ckpt" + tail) for tail in ("", ".log", ".history")]
+    for p in left:
+        p.write_bytes(b"left by a killed sweep")
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "2 done already" in r.stderr, r.stderr
+    assert [p.name for p in (out / ".work" / "checkpoints").iterdir()] == []
+
+
 def runs_reading(folder):
     """Pids of the processes whose command line names `folder` (the jobs' runs of a test)."""
     pids = []
