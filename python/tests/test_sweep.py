@@ -224,6 +224,25 @@ def free_port():
         return s.getsockname()[1]
 
 
+def start_scheduler(dask, tmp_path, env, logs):
+    """A `dask scheduler` on ports the system picks (0), and its address from the file it
+    writes: a port taken from free_port() can be taken again before the scheduler binds it (the
+    dashboard's, or another process's), which failed a test with "Address already in use"."""
+    info = tmp_path / "scheduler.json"
+    proc = subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", "0",
+                             "--dashboard-address", "127.0.0.1:0", "--scheduler-file", str(info)],
+                            env=env, stdout=logs, stderr=logs)
+
+    def address():
+        assert proc.poll() is None, "the scheduler ended: " + (tmp_path / "dask.log").read_text()
+        try:
+            return json.loads(info.read_text()).get("address")
+        except (OSError, ValueError):
+            return None  # not written yet, or written half
+    wait_until(address, timeout=60)
+    return proc, address()
+
+
 def test_real_scheduler_with_a_worker_killed_mid_sweep(cli, mesh_dir, tmp_path):
     dask = shutil.which("dask")
     if dask is None:
@@ -233,13 +252,10 @@ def test_real_scheduler_with_a_worker_killed_mid_sweep(cli, mesh_dir, tmp_path):
     # below timed out after the sweep had ended.
     path = write_sweep(tmp_path, mesh_dir, "long.json", KILLED, meshes=("ico3.off",))
     out = tmp_path / "out"
-    port = free_port()
-    address = "tcp://127.0.0.1:{}".format(port)
     env = sweep_env(cli)
     logs = open(tmp_path / "dask.log", "w")
-    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--dashboard-address", "127.0.0.1:{}".format(free_port())],
-                              env=env, stdout=logs, stderr=logs)]
+    scheduler, address = start_scheduler(dask, tmp_path, env, logs)
+    procs = [scheduler]
     try:
         for _ in range(2):
             procs.append(subprocess.Popen(

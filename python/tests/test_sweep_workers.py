@@ -12,7 +12,7 @@ import sys
 import pytest
 
 from shellcontract import sweep_cli, sweep_host, sweep_job
-from test_sweep import free_port, results, run_sweep, sweep_env, wait_until, write_sweep
+from test_sweep import results, run_sweep, start_scheduler, sweep_env, wait_until, write_sweep
 from test_sweep_engine import ENDLESS, kill_left_over, processes_naming
 
 pytest.importorskip("distributed")
@@ -26,12 +26,9 @@ def cluster(tmp_path):
     dask = shutil.which("dask")
     if dask is None:
         pytest.skip("the dask command (python3-distributed) is not installed")
-    port = free_port()
-    address = "tcp://127.0.0.1:{}".format(port)
     logs = open(tmp_path / "dask.log", "w")
-    procs = [subprocess.Popen([dask, "scheduler", "--host", "127.0.0.1", "--port", str(port),
-                               "--dashboard-address", "127.0.0.1:{}".format(free_port())],
-                              stdout=logs, stderr=logs)]
+    scheduler, address = start_scheduler(dask, tmp_path, None, logs)
+    procs = [scheduler]
 
     def start(env, nthreads=1):
         procs.append(subprocess.Popen(
