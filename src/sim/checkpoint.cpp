@@ -12,9 +12,13 @@
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/version.hpp"
+#include "sim/checkpoint_stream.hpp"
 
 namespace shellcontract {
 namespace {
+
+using detail::Reader;
+using detail::Writer;
 
 // The file: MAGIC, FORMAT, the fields in the order of Writer calls below, then an FNV-1a hash of
 // everything before it (a truncated or damaged file is refused, not resumed into another run).
@@ -43,122 +47,6 @@ bool result_neutral(const std::string& name) {
 
 static_assert(std::is_trivially_copyable_v<RunTotals>,
               "RunTotals is saved as its bytes; a member that is not (a vector) needs a field");
-
-class Writer {
- public:
-  template <class T>
-  void pod(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    out_.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  void size(std::size_t n) { pod(static_cast<std::uint64_t>(n)); }
-  void text(const std::string& s) {
-    size(s.size());
-    out_ += s;
-  }
-  void matrix(const Positions& m) {
-    size(static_cast<std::size_t>(m.rows()));
-    size(static_cast<std::size_t>(m.cols()));
-    out_.append(reinterpret_cast<const char*>(m.data()), sizeof(double) * m.size());
-  }
-  void vector(const Eigen::VectorXd& v) {
-    size(static_cast<std::size_t>(v.size()));
-    out_.append(reinterpret_cast<const char*>(v.data()), sizeof(double) * v.size());
-  }
-  template <class T>
-  void list(const std::vector<T>& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    size(v.size());
-    out_.append(reinterpret_cast<const char*>(v.data()), sizeof(T) * v.size());
-  }
-  void options(const OptionValues& o) {
-    size(o.size());
-    for (const auto& [name, value] : o) {
-      text(name);
-      text(value);
-    }
-  }
-  std::string& bytes() { return out_; }
-
- private:
-  std::string out_;
-};
-
-class Reader {
- public:
-  Reader(const std::string& bytes, std::string path) : in_(bytes), path_(std::move(path)) {}
-  template <class T>
-  T pod() {
-    T v;
-    take(&v, sizeof v);
-    return v;
-  }
-  std::size_t size() {
-    const auto n = pod<std::uint64_t>();
-    if (n > in_.size()) fail("a length past the end of the file");
-    return static_cast<std::size_t>(n);
-  }
-  std::string text() {
-    const std::size_t n = size();
-    std::string s(n, '\0');
-    take(s.data(), n);
-    return s;
-  }
-  Positions matrix() {
-    const std::size_t rows = size(), cols = size();
-    // Positions have 3 columns by their type: another count would be read as 3 (Eigen checks
-    // the count only in debug builds), and the fields after it from the wrong bytes.
-    if (cols != 3) fail("a matrix of " + std::to_string(cols) + " columns");
-    if (rows * cols * sizeof(double) > in_.size()) fail("a matrix past the end");
-    Positions m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
-    take(m.data(), sizeof(double) * m.size());
-    return m;
-  }
-  Eigen::VectorXd vector() {
-    const std::size_t n = size();
-    if (n * sizeof(double) > in_.size()) fail("a vector past the end");
-    Eigen::VectorXd v(static_cast<Eigen::Index>(n));
-    take(v.data(), sizeof(double) * n);
-    return v;
-  }
-  template <class T>
-  std::vector<T> list() {
-    const std::size_t n = size();
-    if (n * sizeof(T) > in_.size()) fail("a list past the end");
-    std::vector<T> v(n);
-    take(v.data(), sizeof(T) * n);
-    return v;
-  }
-  OptionValues options() {
-    OptionValues o(size());
-    for (auto& [name, value] : o) {
-      name = text();
-      value = text();
-    }
-    return o;
-  }
-  void take(void* p, std::size_t n) {
-    if (in_.size() - pos_ < n) fail("truncated");
-    std::memcpy(p, in_.data() + pos_, n);
-    pos_ += n;
-  }
-  /// An int saved as 64 bits: one outside int's range would wrap to another value when cast.
-  int int_value(const char* what) {
-    const auto v = pod<std::int64_t>();
-    if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
-      fail(std::string(what) + " " + std::to_string(v) + " out of range");
-    return static_cast<int>(v);
-  }
-  std::size_t position() const { return pos_; }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError("checkpoint " + printable(path_) + ": " + what + " (not a whole checkpoint)");
-  }
-
- private:
-  const std::string& in_;
-  std::string path_;
-  std::size_t pos_ = 0;
-};
 
 void write_contact(Writer& w, const Contact& c) {
   w.pod(static_cast<std::int32_t>(c.kind));
