@@ -47,14 +47,9 @@ inline int report_interrupted(const RunResult& r, const CliCheckpointer& checkpo
   const std::string resume_with = " (continue with: shellcontract run --resume " +
                                   checkpointer.path() + " -o " + output +
                                   " ..., which goes on saving there)";
-  if (!checkpointer.path().empty() && checkpointer.saved_frame() == r.frames_run)
+  const bool saved = !checkpointer.path().empty() && checkpointer.saved_frame() == r.frames_run;
+  if (saved)
     std::cerr << "; the state is saved in " << checkpointer.path() << resume_with;
-  // The command above gives the mesh only: say so, rather than let a studio find the animation
-  // missing after the resume.
-  if (const std::string lost = lost_on_resume(exports, fields);
-      !checkpointer.path().empty() && !lost.empty())
-    std::cerr << "; a resumed run writes the mesh only, not " << lost
-              << " (they need the frames before the checkpoint: rerun from the start for them)";
   else if (!checkpointer.path().empty())
     // A failed save leaves the file as it was: whether that is an older checkpoint to go on from
     // is the user's next question.
@@ -63,6 +58,12 @@ inline int report_interrupted(const RunResult& r, const CliCheckpointer& checkpo
                                                        : " (" + checkpointer.first_failure() + ")")
               << "; " << checkpointer.left_in_place()
               << (checkpointer.frame_in_place() >= 0 ? resume_with : std::string());
+  // The command above gives the mesh only: say so, rather than let a studio find the animation
+  // missing after the resume.
+  if (const std::string lost = lost_on_resume(exports, fields);
+      !checkpointer.path().empty() && !lost.empty())
+    std::cerr << "; a resumed run writes the mesh only, not " << lost
+              << " (they need the frames before the checkpoint: rerun from the start for them)";
   // The frames stay (each complete) and a rerun into the same folder is refused until they are
   // removed: the user must learn where they are.
   const auto n = static_cast<std::size_t>(frames.frames_written);

@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "core/arena_threads.hpp"
 #include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
 #include "mesh/eigen_point_map.hpp"
@@ -164,9 +165,16 @@ RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserv
   bool interrupted = false;
   std::optional<RunPlan> plan;
   try {
-    const CancellationScope scope(
-        preparation_cancelled(observer ? *observer : none, checkpointer, interrupted));
-    plan.emplace(plan_run(mesh, options));
+    // In the run's arena, as its steps: outside it the planning's parallel work (the regions,
+    // the contact distance's broad phase) took TBB's default, a thread per core of the affinity,
+    // whatever `threads` or a CPU quota said (core/arena_threads.hpp). The cancellation scope is
+    // made inside the functor: it is thread-local, and the functor may run on another thread of
+    // the arena when another run holds its every slot.
+    shared_arena(options.sim.solver.threads).execute([&] {
+      const CancellationScope scope(
+          preparation_cancelled(observer ? *observer : none, checkpointer, interrupted));
+      plan.emplace(plan_run(mesh, options));
+    });
   } catch (const PreparationCancelled&) {
     RunResult r;
     cancelled_before_first_step(r, interrupted, checkpointer);
@@ -192,9 +200,12 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   std::optional<Simulator> prepared;
   bool interrupted = false;
   try {
-    const CancellationScope scope(preparation_cancelled(obs, checkpointer, interrupted));
-    cancellation_point();
-    prepared.emplace(std::move(plan.sim));  // one copy of a large mesh fewer (bear x16: 26 MB)
+    // In the run's arena (see above): the construction's broad phase and rest pairs.
+    shared_arena(plan.sim.options.solver.threads).execute([&] {
+      const CancellationScope scope(preparation_cancelled(obs, checkpointer, interrupted));
+      cancellation_point();
+      prepared.emplace(std::move(plan.sim));  // one copy of a large mesh fewer (bear x16: 26 MB)
+    });
   } catch (const PreparationCancelled&) {
     cancelled_before_first_step(r, interrupted, checkpointer);
     return r;

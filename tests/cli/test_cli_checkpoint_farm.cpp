@@ -169,6 +169,7 @@ TEST_F(CliCheckpointFarm, AResumedRunGoesOnSavingWhereAndAsOftenAsTheFirst) {
       << second;
   EXPECT_EQ(saved_frame(out("c.ckpt")), interrupted_frame(second)) << second;
   EXPECT_NE(second.find("the state is saved in " + out("c.ckpt")), std::string::npos) << second;
+  EXPECT_EQ(second.find("could not be written"), std::string::npos) << second;
   // No lock file left behind by either run.
   EXPECT_FALSE(fs::exists(out(".c.ckpt.lock")));
   // --checkpoint OTHER saves there instead (every 5 frames, the checkpoint's interval); the

@@ -299,6 +299,8 @@ TEST_F(CliInterrupt, InterruptedCheckpointedRunWritesNoFields) {
   EXPECT_FALSE(fs::exists(out("fl_end.ply")))
       << "the interrupted frame's fields, which --resume cannot replace";
   EXPECT_NE(text.find("; the state is saved in " + out("r.ck")), std::string::npos) << text;
+  // A good save is not also reported as failed.
+  EXPECT_EQ(text.find("could not be written"), std::string::npos) << text;
   // The command it prints cannot make the animation and the fields: it says so.
   EXPECT_NE(text.find("a resumed run writes the mesh only, not --gltf, --fields, --export-dir"),
             std::string::npos)
