@@ -23,8 +23,8 @@ inline int arena_threads(int requested) {
 }
 
 /// The process's arena of arena_threads(requested) threads, made at its first use and kept: a run
-/// (its solver, its collision step, its step's own work) works in it instead of arenas of its
-/// own. TBB (oneTBB 2021.8) keeps some kilobytes of every arena that ran parallel work after the
+/// (its planning and the Simulator's construction, its solver, its collision step, its step's own
+/// work) works in it instead of arenas of its own. TBB (oneTBB 2021.8) keeps some kilobytes of every arena that ran parallel work after the
 /// arena is destroyed, so a program that calls the library thousands of times (a Python loop)
 /// grew without bound (tests/sim/test_shared_arena.cpp). Runs on several threads at once may share
 /// one: an arena takes work from several threads, and neither the results nor the colour
