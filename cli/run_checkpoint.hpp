@@ -25,11 +25,24 @@ namespace shellcontract::cli {
 
 namespace checkpoint_signal {
 inline volatile std::sig_atomic_t received = 0;
-extern "C" inline void on_signal(int sig) {
-  received = sig;
-  // A second Ctrl-C ends the process at once, removing the temporary of a checkpoint it cuts
-  // short (the save after the first one is the likely place for it).
+/// The process that sent the first signal (kill(2)), or 0 (the terminal's Ctrl-C, the kernel).
+inline volatile std::sig_atomic_t first_sender = 0;
+extern "C" inline void on_signal(int sig, siginfo_t* info, void*) {
+  const pid_t sender = info != nullptr && info->si_code == SI_USER ? info->si_pid : 0;
+  if (received == 0) {
+    received = sig;
+    first_sender = sender;
+    return;
+  }
+  // The same signal again from the same process is the first one repeated, not a second request:
+  // GNU timeout (without --foreground) sends its signal to the run and then to its whole process
+  // group, and ending at once there lost the save and the message about every other time.
+  if (sig == received && sender != 0 && sender == first_sender) return;
+  // A second Ctrl-C (or a signal from elsewhere) ends the process at once, removing the
+  // temporary of a checkpoint it cuts short (the save after the first one is the likely place
+  // for it): the library's ending, raised again now that it is this signal's handler.
   end_on_next_signal(sig);
+  ::raise(sig);
 }
 }  // namespace checkpoint_signal
 
@@ -116,7 +129,8 @@ class CliCheckpointer final : public RunCheckpointer {
           (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_IGN))
         continue;
       struct sigaction sa {};
-      sa.sa_handler = checkpoint_signal::on_signal;
+      sa.sa_sigaction = checkpoint_signal::on_signal;
+      sa.sa_flags = SA_SIGINFO;
       sigemptyset(&sa.sa_mask);
       sigaction(sig, &sa, nullptr);
     }

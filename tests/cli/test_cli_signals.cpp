@@ -207,6 +207,39 @@ TEST_F(CliSignals, Sigusr1SavesTheCheckpointAndExits130) {
   EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
 }
 
+// GNU timeout (without --foreground) sends its signal to the run and then to the run's process
+// group: the same signal twice from one process. Before: the second ended the run at once, so
+// about every other `timeout -s TERM` lost the save of the frame it stopped at and the message.
+// Deterministic: the second signal lands while held_cli holds the temporary of that save.
+TEST_F(CliSignals, TheSameSignalAgainFromTheSameSenderIsNotASecondRequest) {
+  const std::vector<std::string> args = {
+      "run",    mesh("ico2.off"), "-o",          out("r.off"),         "-n",
+      "100000", "--checkpoint",   out("r.ckpt"), "--checkpoint-every", "100000"};
+  int fd = -1;
+  Spawn how;
+  how.hold_ms = 1000;
+  const pid_t pid = spawn(args, how, fd);
+  ASSERT_GT(pid, 0);
+  std::string text;
+  // In its frames (the progress line), then the first SIGTERM: the run saves after its step.
+  if (!await_lines(fd, "frame ", 1, text)) ADD_FAILURE() << "no progress line: " << text;
+  const std::string created = "shellcontract test: temporary created";
+  std::size_t before = 0;
+  for (std::size_t at = text.find(created); at != std::string::npos;
+       at = text.find(created, at + 1))
+    ++before;
+  ::kill(pid, SIGTERM);
+  // The save's temporary, held: the same signal again, from this same process.
+  if (!await_lines(fd, created, static_cast<int>(before) + 1, text))
+    ADD_FAILURE() << "no save after the signal: " << text;
+  ::kill(pid, SIGTERM);
+  const int status = finish(pid, fd, text);
+  ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+  EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
+  EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+}
+
 // A file size limit (RLIMIT_FSIZE, which batch systems pass on to a job) smaller than the result:
 // the write fails with EFBIG as on a full disk, the old file is kept, the other outputs are
 // written, exit 1. Before: SIGXFSZ ended the run (153) with a partial temporary left and no log.

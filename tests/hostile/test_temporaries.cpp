@@ -145,7 +145,8 @@ TEST_F(Hostile, ASecondCtrlCDuringACheckpointSaveRemovesItsTemporary) {
   const pid_t child = ::fork();
   if (child == 0) {
     struct sigaction sa {};
-    sa.sa_handler = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
+    sa.sa_sigaction = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
+    sa.sa_flags = SA_SIGINFO;
     sigemptyset(&sa.sa_mask);
     ::sigaction(SIGINT, &sa, nullptr);
     try {
