@@ -437,6 +437,9 @@ INTERRUPTED = {"meshes": ["meshes/ico3.off"], "options": {"pressure": 2, "frames
 def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_dir, tmp_path, sig):
     path = write_sweep(tmp_path, mesh_dir, "long.json", INTERRUPTED, meshes=("ico3.off",))
     out = tmp_path / "out"
+    # A job's id holds the tool's version: a tool rebuilt meanwhile (a build in this tree while the
+    # tests run) makes the rerun's jobs new ones, none resumed (lab/sweep/resume_flake.md).
+    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout
     proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
                              "--shard", "0/1", "--checkpoint-every", "5"], env=sweep_env(cli),
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -460,6 +463,9 @@ def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_
     assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"]
     again = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert again.returncode == 0, again.stderr
+    assert subprocess.run([cli, "--version"], capture_output=True, text=True).stdout == version, \
+        "the tool was rebuilt during the test: its jobs are new ones"
+    assert "1 done already" in again.stderr, again.stderr
     records = [json.loads(p.read_text()) for p in done_jobs(out)]
     assert sum(r["resumed"] for r in records) == 1  # the interrupted one, from its checkpoint
     assert_equals_serial(out, serial_reference(cli, path, tmp_path))
