@@ -307,16 +307,37 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None):
         return old
     os.makedirs(os.path.dirname(p["checkpoint"]), exist_ok=True)
     os.makedirs(os.path.join(out_dir, "jobs"), exist_ok=True)
-    name, lock_fd = _lock_attempt(p["work"], job["id"])
+    record, note = None, None
+    while record is None:
+        name, lock_fd = _lock_attempt(p["work"], job["id"])
+        try:
+            record = _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
+                                  os.path.join(p["work"], name), lock_fd, threads, note)
+        finally:
+            _release_attempt(p["work"], name, lock_fd)
+        if isinstance(record, str):  # its checkpoint refused and removed: once more from frame 0
+            record, note = None, record
+    return record
+
+
+def _refused_checkpoint(work, checkpoint):
+    """The tool's message when it refused to resume from `checkpoint` (exit 2 naming it), or
+    None."""
     try:
-        return _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
-                            os.path.join(p["work"], name), lock_fd, threads)
-    finally:
-        _release_attempt(p["work"], name, lock_fd)
+        with open(os.path.join(work, "messages.txt"), errors="replace") as f:
+            text = f.read()
+    except OSError:
+        return None
+    for line in text.splitlines():
+        if "checkpoint " + checkpoint in line:
+            return line.strip()
+    return None
 
 
 def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, lock_fd,
-                 threads=None):
+                 threads=None, note=None):
+    """The job's record, or (a string) the tool's refusal of the job's checkpoint, which is then
+    removed: the caller runs the job again without it. `note` heads the attempt's messages."""
     os.makedirs(work)
     ext = os.path.splitext(job["mesh"])[1].lower() or ".off"
     mesh_name = os.path.splitext(os.path.basename(job["mesh"]))[0] + ext
@@ -332,6 +353,10 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
     start = time.monotonic()
     timed_out = False
     with open(os.path.join(work, "messages.txt"), "wb") as messages:
+        if note is not None:
+            messages.write(("shellcontract sweep: the job's checkpoint was refused ({}); it was "
+                            "removed and the job ran from its first frame\n".format(note)).encode())
+            messages.flush()
         # A session of its own: a Ctrl-C at the terminal reaches the sweep, which stops the
         # children itself (SIGTERM: they write their checkpoints).
         prefix = _death_signal_prefix()
@@ -364,6 +389,15 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
             with _RUNNING_LOCK:
                 _RUNNING.pop(proc, None)
     wall = time.monotonic() - start
+    # The checkpoint is the sweep's own (.work/checkpoints), not the job's input: one the tool
+    # will not resume from (damaged, or written by another run) made the job a final "bad input"
+    # that every later sweep skipped.
+    refused = _refused_checkpoint(work, p["checkpoint"]) if resumed and rc == 2 else None
+    if refused is not None:
+        remove_checkpoint(out_dir, job["id"])
+        if not os.path.exists(p["checkpoint"]):
+            shutil.rmtree(work, ignore_errors=True)
+            return refused
     summary = None
     try:
         with open(os.path.join(work, "summary.json")) as f:

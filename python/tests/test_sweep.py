@@ -205,6 +205,27 @@ def test_a_finished_jobs_leftover_checkpoint_is_removed_by_the_next_sweep(cli, m
     assert [p.name for p in (out / ".work" / "checkpoints").iterdir()] == []
 
 
+def test_a_checkpoint_the_tool_refuses_is_removed_and_the_job_runs_from_its_first_frame(cli, mesh_dir, tmp_path):
+    # Before: the job became a final "bad input" (exit 2), its checkpoint removed, and every later
+    # sweep skipped it ("done already") though nothing was wrong with its mesh or options.
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3]}}
+    path = write_sweep(tmp_path, mesh_dir, "c.json", spec, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    assert run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"]).returncode == 0
+    ids = [row["job"] for row in results(out)]
+    # The first job again, from a checkpoint the tool refuses.
+    shutil.rmtree(out / "jobs" / ids[0])
+    checkpoints = out / ".work" / "checkpoints"
+    (checkpoints / (ids[0] + ".ckpt")).write_bytes(b"not a checkpoint")
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0, r.stderr
+    assert [row["status"] for row in results(out)] == ["ok", "ok"]
+    record = json.loads((out / "jobs" / ids[0] / "job.json").read_text())
+    assert record["resumed"] is False
+    assert "checkpoint was refused (shellcontract run: checkpoint" in (out / "jobs" / ids[0] / "messages.txt").read_text()
+    assert list(checkpoints.iterdir()) == []
+
+
 def runs_reading(folder):
     """Pids of the processes whose command line names `folder` (the jobs' runs of a test)."""
     pids = []
