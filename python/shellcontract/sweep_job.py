@@ -328,8 +328,8 @@ def _refused_checkpoint(work, checkpoint):
             text = f.read()
     except OSError:
         return None
-    for line in text.splitlines():
-        if "checkpoint " + checkpoint in line:
+    for line in text.splitlines():  # the tool's error line, not a note that names the file
+        if line.startswith("shellcontract run: ") and "checkpoint " + checkpoint in line:
             return line.strip()
     return None
 
