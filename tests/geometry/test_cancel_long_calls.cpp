@@ -12,6 +12,7 @@
 #include "geometry/cotan_laplacian.hpp"
 #include "geometry/curvature.hpp"
 #include "mesh/eigen_point_map.hpp"
+#include "support/cancel_probe.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {
@@ -23,37 +24,12 @@ const Mesh& sphere() {
   return mesh;
 }
 
-/// How many times `call` asks a scope that never says cancelled.
-int questions_of_a_whole_call(const std::function<void()>& call) {
-  int asked = 0;
-  const CancellationScope scope([&] {
-    ++asked;
-    return false;
-  });
-  call();
-  return asked;
-}
+using test::expect_heard_inside;
+using test::questions_of_a_whole_call;
 
-/// Runs `call` under a scope that says cancelled from its `at`-th question on; true when the
-/// call threw PreparationCancelled at that question.
-bool stops_at(int at, const std::function<void()>& call) {
-  int asked = 0;
-  const CancellationScope scope([&] { return ++asked >= at; });
-  try {
-    call();
-  } catch (const PreparationCancelled&) {
-    return asked == at;
-  }
-  return false;
-}
-
-/// The cancel at the first and the second question ends `call`, which asks more than twice
-/// in all: it is heard at the call's start and inside it.
+/// Heard at its start and at its second question.
 void expect_heard_inside(const char* what, const std::function<void()>& call) {
-  const int whole = questions_of_a_whole_call(call);
-  EXPECT_GT(whole, 2) << what << " asks " << whole << " times";
-  EXPECT_TRUE(stops_at(1, call)) << what << ": a cancel at its start";
-  EXPECT_TRUE(stops_at(2, call)) << what << ": a cancel inside it";
+  expect_heard_inside(what, call, 2);
 }
 
 TEST(CancelLongCalls, TheCurvatureHearsACancelPerChunkOfFaces) {

@@ -95,6 +95,21 @@ TEST(CapRegions, PaperMeshRegionsAreCompactCapsAndTheReportAgrees) {
   if (found == 0) GTEST_SKIP() << "no paper meshes in " << test::PAPER_MESH_DIR << "; run scripts/fetch_paper_meshes.sh";
 }
 
+/// The region ids (-1: none) of the faces around the hand's highest vertex in band k (0-based)
+/// of four of equal width in x: the end of finger k + 1 of the fist (lab/regions/labels.py).
+std::set<int> finger_end_regions(const test::TriMesh& m, const std::vector<int>& ids, int k) {
+  const double lo = m.x.col(0).minCoeff(), hi = m.x.col(0).maxCoeff();
+  const double a = lo + (hi - lo) * k / 4.0, b = lo + (hi - lo) * (k + 1) / 4.0;
+  Eigen::Index top = -1;
+  for (Eigen::Index v = 0; v < m.x.rows(); ++v)
+    if (m.x(v, 0) >= a && m.x(v, 0) <= b && (top < 0 || m.x(v, 2) > m.x(top, 2))) top = v;
+  std::set<int> out;
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c)
+      if (m.faces(f, c) == top) out.insert(ids[static_cast<std::size_t>(f)]);
+  return out;
+}
+
 // The hand is a fist standing on z whose finger ends are the tops of four bands of equal width
 // in x (as lab/regions/labels.py labels them). The ends of the second and third fingers are two
 // parts a person circles, with a concave groove between them: no region may hold the faces
@@ -105,21 +120,8 @@ TEST(CapRegions, TwoFingerEndsAreNotJoinedAcrossTheGrooveBetweenThem) {
     GTEST_SKIP() << "hand.off is absent; run scripts/fetch_paper_meshes.sh";
   const test::TriMesh m = to_tri_mesh(read_input_mesh(paper_mesh("hand")));
   const std::vector<int> ids = select(m);
-  const double lo = m.x.col(0).minCoeff(), hi = m.x.col(0).maxCoeff();
-  // The regions of the faces around the highest vertex of band k (0-based) of four.
-  const auto end_regions = [&](int k) {
-    const double a = lo + (hi - lo) * k / 4.0, b = lo + (hi - lo) * (k + 1) / 4.0;
-    Eigen::Index top = -1;
-    for (Eigen::Index v = 0; v < m.x.rows(); ++v)
-      if (m.x(v, 0) >= a && m.x(v, 0) <= b && (top < 0 || m.x(v, 2) > m.x(top, 2))) top = v;
-    std::set<int> out;
-    for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
-      for (int c = 0; c < 3; ++c)
-        if (m.faces(f, c) == top && ids[static_cast<std::size_t>(f)] >= 0)
-          out.insert(ids[static_cast<std::size_t>(f)]);
-    return out;
-  };
-  const std::set<int> second = end_regions(1), third = end_regions(2);
+  std::set<int> second = finger_end_regions(m, ids, 1), third = finger_end_regions(m, ids, 2);
+  second.erase(-1);
   for (int r : second)
     EXPECT_EQ(third.count(r), 0u) << "region " << r << " holds the ends of fingers 2 and 3";
 }
@@ -133,19 +135,7 @@ TEST(CapRegions, AFingerEndAcrossTheGrooveFromItsNeighbourIsARegionOfItsOwn) {
     GTEST_SKIP() << "hand.off is absent; run scripts/fetch_paper_meshes.sh";
   const test::TriMesh m = to_tri_mesh(read_input_mesh(paper_mesh("hand")));
   const std::vector<int> ids = select(m);
-  const double lo = m.x.col(0).minCoeff(), hi = m.x.col(0).maxCoeff();
-  const auto top_faces = [&](int k) {
-    const double a = lo + (hi - lo) * k / 4.0, b = lo + (hi - lo) * (k + 1) / 4.0;
-    Eigen::Index top = -1;
-    for (Eigen::Index v = 0; v < m.x.rows(); ++v)
-      if (m.x(v, 0) >= a && m.x(v, 0) <= b && (top < 0 || m.x(v, 2) > m.x(top, 2))) top = v;
-    std::set<int> out;
-    for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
-      for (int c = 0; c < 3; ++c)
-        if (m.faces(f, c) == top) out.insert(ids[static_cast<std::size_t>(f)]);
-    return out;
-  };
-  const std::set<int> second = top_faces(1), third = top_faces(2);
+  const std::set<int> second = finger_end_regions(m, ids, 1), third = finger_end_regions(m, ids, 2);
   ASSERT_EQ(second.size(), 1u) << "the faces around the second finger's end lie in one region";
   const int r = *second.begin();
   EXPECT_GE(r, 0) << "the second finger's end lies in no region";

@@ -14,6 +14,7 @@
 #include "sim/contact_distance.hpp"
 #include "sim/rest_state.hpp"
 #include "sim/run_plan.hpp"
+#include "support/cancel_probe.hpp"
 #include "support/cgal_mesh.hpp"
 
 namespace shellcontract {
@@ -35,36 +36,11 @@ const Mesh& normalized_sphere() {
   return mesh;
 }
 
-/// How many times `call` asks a scope that never says cancelled.
-int questions_of_a_whole_call(const std::function<void()>& call) {
-  int asked = 0;
-  const CancellationScope scope([&] {
-    ++asked;
-    return false;
-  });
-  call();
-  return asked;
-}
+using test::stops_at;
 
-/// True when `call` throws PreparationCancelled at the `at`-th question of a scope that says
-/// cancelled from then on.
-bool stops_at(int at, const std::function<void()>& call) {
-  int asked = 0;
-  const CancellationScope scope([&] { return ++asked >= at; });
-  try {
-    call();
-  } catch (const PreparationCancelled&) {
-    return asked == at;
-  }
-  return false;
-}
-
-/// A call that asks more than three times stops at its first and at its third question.
+/// Heard at its start and at its third question.
 void expect_heard_inside(const char* what, const std::function<void()>& call) {
-  const int whole = questions_of_a_whole_call(call);
-  EXPECT_GT(whole, 3) << what << " asks " << whole << " times";
-  EXPECT_TRUE(stops_at(1, call)) << what << ": a cancel at its start";
-  EXPECT_TRUE(stops_at(3, call)) << what << ": a cancel inside it";
+  test::expect_heard_inside(what, call, 3);
 }
 
 TEST(RunCancelCalls, TheContactDistanceHearsACancel) {
