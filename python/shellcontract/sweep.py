@@ -11,8 +11,9 @@ docs/design/sweeps.md says how and why.
 
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
 or a refused sweep file, output folder or cluster (nothing run), or an output folder that cannot
-be written, 3 some job could not get an outcome (crash, kill, timeout, an output not written),
-130 interrupted (run the same command again to finish).
+be written, 3 some job could not get an outcome (crash, kill, timeout, an output not written, its
+checkpoint not read) or runs in another sweep, 130 interrupted (run the same command again to
+finish).
 """
 
 import argparse
@@ -22,14 +23,15 @@ import subprocess
 import sys
 import uuid
 
-from . import (sweep_cli, sweep_dask, sweep_file, sweep_host, sweep_job, sweep_output,
-               sweep_process, sweep_progress, sweep_results)
+from . import (sweep_checkpoint, sweep_cli, sweep_dask, sweep_file, sweep_host, sweep_job,
+               sweep_output, sweep_process, sweep_progress, sweep_results)
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
 EXIT_INTERRUPTED = 130
 # Jobs whose outcome is not a result the same run would give again.
-RETRIED_STATUSES = ("crashed", "killed", "timeout", sweep_job.OUTPUT_NOT_WRITTEN)
+RETRIED_STATUSES = ("crashed", "killed", "timeout", sweep_job.OUTPUT_NOT_WRITTEN,
+                    sweep_job.CHECKPOINT_NOT_READ)
 
 
 find_cli = sweep_cli.find_cli
@@ -95,8 +97,8 @@ def parser():
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
                "refused sweep file, output folder or cluster (nothing run), 3 some job crashed, "
-               "was killed, timed out or could not write its output, 130 interrupted (run the "
-               "same command again to finish)")
+               "was killed, timed out, could not write its output or read its checkpoint, or "
+               "runs in another sweep, 130 interrupted (run the same command again to finish)")
     p.add_argument("sweep", metavar="SWEEP.json")
     p.add_argument("-o", "--output", metavar="DIR", required=True,
                    help="results folder: new, empty, or this sweep file's from an earlier sweep")
@@ -235,8 +237,7 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
     progress.message("{} jobs ({} in this run, {} done already) -> {}".format(
         len(jobs), len(todo), done, args.output))
     stale = sweep_job.clean_stale_attempts(args.output)
-    for job_id in {j.id for j in selected} - running:
-        sweep_job.remove_checkpoint(args.output, job_id)
+    sweep_checkpoint.remove_done(args.output, [j.id for j in selected if j.id not in running])
     if stale:
         progress.message("removed the working folders of {} attempt{} that a killed sweep left in "
                          "{}".format(stale, "s" * (stale > 1), os.path.join(args.output, ".work")))
@@ -271,8 +272,20 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
     progress.close()
     ids = {j.id for j in selected}
     incomplete = [r for r in table if r["job"] in ids and
-                  (r["status"] in RETRIED_STATUSES + ("pending", "interrupted"))]
+                  (r["status"] in RETRIED_STATUSES + ("pending", "interrupted",
+                                                      sweep_job.RUNNING_ELSEWHERE))]
     done, failed, left = sweep_results.counts([r for r in table if r["job"] in ids])
+    # Left to another attempt and not finished by it (the table may show an earlier outcome that
+    # is not final, a crash, rather than this sweep's attempt).
+    elsewhere = sum(1 for r in table if r["job"] in ids
+                    and (tables.latest.get(r["job"]) or {}).get("status")
+                    == sweep_job.RUNNING_ELSEWHERE
+                    and r["status"] not in sweep_job.FINAL_STATUSES)
+    if elsewhere:
+        print("shellcontract sweep: {} job{} left running in another sweep or worker (its "
+              "outcome is kept when it ends); run the same command again then to see {}".format(
+                  elsewhere, "s" * (elsewhere > 1), "them" if elsewhere > 1 else "it"),
+              file=sys.stderr)
     print("shellcontract sweep: {} done, {} failed, {} left; results in {}".format(
         done, failed, left, os.path.join(args.output, "results.csv")), file=sys.stderr)
     return EXIT_INCOMPLETE if incomplete else 0

@@ -7,19 +7,16 @@ nothing of the compiled core, so that a worker needs only the CLI and this packa
 """
 
 import ctypes
-import fcntl
 import json
 import os
-import re
 import select
 import shutil
 import signal
 import subprocess
 import threading
 import time
-import uuid
 
-from . import sweep_host, sweep_output
+from . import sweep_checkpoint, sweep_host, sweep_lock, sweep_output
 from .sweep_cli import WorkerError, cli_version, describe_worker, find_cli, worker_cli  # noqa: F401
 
 # Statuses of an outcome the same run would give again: the job is done. The others (a crash,
@@ -34,8 +31,19 @@ INTERRUPTED = 130
 # whose `outputs` name the failure: a full disk, a quota, an I/O error). The condition is the
 # machine's, not the job's, so the job is not final: the next sweep runs it again.
 OUTPUT_NOT_WRITTEN = "output not written"
+# The job's checkpoint could not be read (exit 2, the tool naming it with a read error such as
+# EIO or EMFILE, not its contents): the machine's condition too. The checkpoint is kept and the
+# next sweep resumes from it.
+CHECKPOINT_NOT_READ = "checkpoint not read"
+# Another attempt of the job holds its lock (sweep_lock) and runs it: this one neither ran it nor
+# recorded anything. Not an outcome: the job is left, and the attempt that runs it records it.
+RUNNING_ELSEWHERE = "running elsewhere"
 # How long a child asked to stop (SIGTERM: it writes its checkpoint) may take before SIGKILL.
 STOP_GRACE_SECONDS = 10.0
+# How long an attempt waits for the job's lock: an attempt that was stopped (a lost worker's, whose
+# run got the parent-death signal) saves and ends within STOP_GRACE_SECONDS, and Dask's
+# reschedule of it then resumes from its checkpoint. A lock held longer is a run that goes on.
+JOB_LOCK_WAIT_SECONDS = STOP_GRACE_SECONDS + 5
 SUMMARY_FIELDS = ("final_volume_ratio", "frames_run", "new_intersections", "peak_memory_mb")
 
 
@@ -129,12 +137,8 @@ def wait_stopped(timeout, sweep=None):
             n for token, n in _active_calls.items() if sweep is None or token == sweep), timeout)
 
 
-def paths(out_dir, job_id):
-    return {
-        "final": os.path.join(out_dir, "jobs", job_id),
-        "work": os.path.join(out_dir, ".work"),
-        "checkpoint": os.path.join(out_dir, ".work", "checkpoints", job_id + ".ckpt"),
-    }
+paths = sweep_checkpoint.paths
+clean_stale_attempts = sweep_lock.clean_stale_attempts
 
 
 def read_record(out_dir, job_id):
@@ -211,90 +215,14 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, ow
             _ACTIVE.notify_all()
 
 
-# An attempt's working folder DIR/.work/<id>.<random>/ (and <id>.<random>.old, an earlier outcome
-# being replaced) is in use while DIR/.work/<id>.<random>.lock is locked (flock): by run_job and by
-# the job's process, which inherits the lock. A sweep killed with SIGKILL leaves its attempts'
-# folders behind with their locks released; the next sweep removes them (clean_stale_attempts).
-_ATTEMPT = re.compile(r"^([0-9a-f]{16}\.[0-9a-f]{8})(\.old|\.lock)?$")
+def _job_lock_wait():
+    """JOB_LOCK_WAIT_SECONDS; the tests shorten it (SHELLCONTRACT_TEST_JOB_LOCK_WAIT_S)."""
+    return float(os.environ.get("SHELLCONTRACT_TEST_JOB_LOCK_WAIT_S", JOB_LOCK_WAIT_SECONDS))
 
 
-def _same_file(fd, path):
-    try:
-        a, b = os.fstat(fd), os.stat(path)
-    except OSError:
-        return False
-    return (a.st_dev, a.st_ino) == (b.st_dev, b.st_ino)
-
-
-def _lock_attempt(work_root, job_id):
-    """A new attempt's name and its lock file's descriptor, locked (or unlocked where the file
-    system has no locks: then no sweep ever takes its folder for stale)."""
-    while True:
-        name = "{}.{}".format(job_id, uuid.uuid4().hex[:8])
-        path = os.path.join(work_root, name + ".lock")
-        try:
-            fd = os.open(path, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o644)
-        except FileExistsError:
-            continue
-        try:
-            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-        except BlockingIOError:
-            pass  # a cleaner holds it for a moment, and removes it: another name
-        except OSError:
-            return name, fd  # no locks here
-        else:
-            # A cleaner may have locked and removed the new file before this lock: the lock
-            # counts only if it is on the file at the path.
-            if _same_file(fd, path):
-                return name, fd
-        os.close(fd)
-
-
-def _release_attempt(work_root, name, fd):
-    try:
-        os.remove(os.path.join(work_root, name + ".lock"))
-    except OSError:
-        pass
-    os.close(fd)
-
-
-def clean_stale_attempts(out_dir):
-    """Removes the working folders in DIR/.work of attempts that no process holds any more (a
-    sweep or worker killed with SIGKILL); returns how many attempts were removed. An attempt
-    whose lock cannot be taken is running (or the file system has no locks) and is left."""
-    work_root = os.path.join(out_dir, ".work")
-    try:
-        names = os.listdir(work_root)
-    except OSError:
-        return 0
-    attempts = {}
-    for n in names:
-        m = _ATTEMPT.match(n)
-        if m:
-            attempts.setdefault(m.group(1), set()).add(m.group(2) or "")
-    removed = 0
-    for name, kinds in sorted(attempts.items()):
-        lock = os.path.join(work_root, name + ".lock")
-        fd = None
-        if ".lock" in kinds:
-            try:
-                fd = os.open(lock, os.O_RDWR)
-                fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except OSError:  # held (running), gone meanwhile, or no locks here
-                if fd is not None:
-                    os.close(fd)
-                continue
-            if not _same_file(fd, lock):  # another cleaner removed it meanwhile
-                os.close(fd)
-                continue
-        # Without a lock file the attempt is over: a running one holds its lock file until its
-        # folder is gone (_lock_attempt makes the lock before the folder).
-        for suffix in ("", ".old"):
-            shutil.rmtree(os.path.join(work_root, name + suffix), ignore_errors=True)
-        if fd is not None:
-            _release_attempt(work_root, name, fd)
-        removed += 1
-    return removed
+def _not_run(job, status, message):
+    return {"job": job["id"], "mesh": job["mesh"], "options": job["options"], "status": status,
+            "exit_code": None, "message": message, "resumed": False, "output": ""}
 
 
 def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None):
@@ -307,37 +235,68 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None):
         return old
     os.makedirs(os.path.dirname(p["checkpoint"]), exist_ok=True)
     os.makedirs(os.path.join(out_dir, "jobs"), exist_ok=True)
-    record, note = None, None
-    while record is None:
-        name, lock_fd = _lock_attempt(p["work"], job["id"])
+    # Another attempt of the job may be running it (the same sweep twice at once, a rerun while
+    # an earlier cluster's jobs run, a lost worker's run still saving): its lock says so, and
+    # this attempt then neither runs the tool (which would refuse the checkpoint's lock, exit 1)
+    # nor records an outcome nor removes the job's files.
+    deadline = time.monotonic() + _job_lock_wait()
+    note = None
+    while True:
+        job_fd = sweep_lock.lock_job(out_dir, job["id"], deadline, lambda: _is_stopped(sweep))
+        if job_fd is None:
+            if _is_stopped(sweep):
+                return _not_run(job, "interrupted", "not started")
+            return _not_run(job, RUNNING_ELSEWHERE, (
+                "another attempt of this job runs it, holding {}; its outcome is kept when it "
+                "ends").format(sweep_lock.job_lock_path(out_dir, job["id"])))
         try:
-            record = _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
-                                  os.path.join(p["work"], name), lock_fd, threads, note)
+            record, note = _run_locked(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
+                                       job_fd, threads)
         finally:
-            _release_attempt(p["work"], name, lock_fd)
-        if isinstance(record, str):  # its checkpoint refused and removed: once more from frame 0
-            record, note = None, record
-    return record
+            sweep_lock.release_job(out_dir, job["id"], job_fd)
+        if record is not None:
+            return record
+        # The tool's own lock was held: a run of the job that outlived its attempt's lock (where
+        # the file system passes one lock and not the other). Its end is waited for as above.
+        if _is_stopped(sweep):
+            return _not_run(job, "interrupted", "not started")
+        if time.monotonic() >= deadline:
+            return _not_run(job, RUNNING_ELSEWHERE, "another run of this job holds its "
+                                                    "checkpoint; its outcome is kept when it "
+                                                    "ends ({})".format(note))
+        time.sleep(0.5)
 
 
-def _refused_checkpoint(work, checkpoint):
-    """The tool's message when it refused to resume from `checkpoint` (exit 2 naming it), or
-    None."""
-    try:
-        with open(os.path.join(work, "messages.txt"), errors="replace") as f:
-            text = f.read()
-    except OSError:
-        return None
-    for line in text.splitlines():  # the tool's error line, not a note that names the file
-        if line.startswith("shellcontract run: ") and "checkpoint " + checkpoint in line:
-            return line.strip()
-    return None
+def _run_locked(job, out_dir, cli, timeout, checkpoint_every, sweep, p, job_fd, threads):
+    """The job's attempts while this one holds its lock: (record, None), or (None, the tool's
+    message) when the tool found its own lock of the checkpoint held."""
+    old = read_record(out_dir, job["id"])
+    if is_done(old):  # the attempt that held the lock finished the job
+        sweep_checkpoint.remove_files(out_dir, job["id"])
+        old["skipped"] = True
+        return old, None
+    note = None
+    while True:
+        name, lock_fd = sweep_lock.lock_attempt(p["work"], job["id"])
+        try:
+            result = _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p,
+                                  os.path.join(p["work"], name), (lock_fd, job_fd), threads, note)
+        finally:
+            sweep_lock.release_attempt(p["work"], name, lock_fd)
+        if isinstance(result, dict):
+            return result, None
+        kind, note = result
+        if kind == "held":
+            return None, note
+        # "refused": the checkpoint was removed; once more from the first frame
 
 
-def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, lock_fd,
+def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, lock_fds,
                  threads=None, note=None):
-    """The job's record, or (a string) the tool's refusal of the job's checkpoint, which is then
-    removed: the caller runs the job again without it. `note` heads the attempt's messages."""
+    """The job's record; or ("refused", the tool's message) when the tool refused the job's
+    checkpoint, which is then removed: the caller runs the job again without it; or ("held", the
+    tool's message) when another run held the checkpoint's lock. `note` heads the attempt's
+    messages. `lock_fds`: the attempt's and the job's locks, which the job's process inherits."""
     os.makedirs(work)
     ext = os.path.splitext(job["mesh"])[1].lower() or ".off"
     mesh_name = os.path.splitext(os.path.basename(job["mesh"]))[0] + ext
@@ -361,19 +320,18 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
         # children itself (SIGTERM: they write their checkpoints).
         prefix = _death_signal_prefix()
         with _RUNNING_LOCK:
-            # The job's process inherits the attempt's lock (pass_fds), so that its folder is
-            # in use as long as the process runs, even after this one is gone.
+            # The job's process inherits the attempt's and the job's locks (pass_fds), so that
+            # its folder is in use, and the job running, as long as the process runs, even after
+            # this one is gone (a worker killed).
             proc = None if _is_stopped(sweep) else subprocess.Popen(
                 prefix + cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
                 start_new_session=True, preexec_fn=None if prefix else _die_with_parent,
-                pass_fds=(lock_fd,))
+                pass_fds=lock_fds)
             if proc is not None:
                 _RUNNING[proc] = sweep
         if proc is None:  # the sweep is stopping: the job is left for the next one
             shutil.rmtree(work, ignore_errors=True)
-            return {"job": job["id"], "mesh": job["mesh"], "options": job["options"],
-                    "status": "interrupted", "exit_code": None, "message": "not started",
-                    "resumed": resumed, "output": ""}
+            return _not_run(job, "interrupted", "not started")
         try:
             cpu = None
             try:
@@ -389,15 +347,23 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
             with _RUNNING_LOCK:
                 _RUNNING.pop(proc, None)
     wall = time.monotonic() - start
+    if rc == 1:  # another run holds the checkpoint's lock: not this job's outcome
+        held = sweep_checkpoint.held_by_another_run(work, p["checkpoint"])
+        if held is not None:
+            shutil.rmtree(work, ignore_errors=True)
+            return "held", held
     # The checkpoint is the sweep's own (.work/checkpoints), not the job's input: one the tool
     # will not resume from (damaged, or written by another run) made the job a final "bad input"
-    # that every later sweep skipped.
-    refused = _refused_checkpoint(work, p["checkpoint"]) if resumed and rc == 2 else None
-    if refused is not None:
-        remove_checkpoint(out_dir, job["id"])
+    # that every later sweep skipped. One it could not read is kept for the next sweep.
+    error = (sweep_checkpoint.checkpoint_error(work, p["checkpoint"])
+             if resumed and rc == 2 else None)
+    if error is not None and error[0] == "refused":
+        if not sweep_checkpoint.remove_files(out_dir, job["id"]):
+            shutil.rmtree(work, ignore_errors=True)
+            return "held", error[1]
         if not os.path.exists(p["checkpoint"]):
             shutil.rmtree(work, ignore_errors=True)
-            return refused
+            return "refused", error[1]
     summary = None
     try:
         with open(os.path.join(work, "summary.json")) as f:
@@ -406,6 +372,10 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
         pass
     status, message = _classify(rc, timed_out, summary,
                                 _last_lines(os.path.join(work, "messages.txt")))
+    if error is not None and error[0] == "not read":
+        status, message = CHECKPOINT_NOT_READ, (
+            "the job's checkpoint could not be read; it is kept, and the next sweep resumes "
+            "from it ({})".format(error[1]))
     record = {"job": job["id"], "mesh": job["mesh"], "options": job["options"],
               "status": status, "exit_code": rc, "message": message,
               "wall_seconds": round(wall, 3),
@@ -422,20 +392,14 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
                               json.dumps(record, indent=1, sort_keys=True) + "\n")
     _publish(work, p["final"], out_dir)
     if status in FINAL_STATUSES:
-        remove_checkpoint(out_dir, job["id"])
+        sweep_checkpoint.remove_files(out_dir, job["id"])
     return record
 
 
 def remove_checkpoint(out_dir, job_id):
-    """A finished job's checkpoint and the log and volume history the CLI keeps beside it
-    (`checkpoint_log_path`, `checkpoint_history_path`: FILE.log, FILE.history). Also called for
-    the jobs a sweep finds done: one killed between publishing a job and this removal left them."""
-    checkpoint = paths(os.path.abspath(out_dir), job_id)["checkpoint"]
-    for path in (checkpoint, checkpoint + ".log", checkpoint + ".history"):
-        try:
-            os.remove(path)
-        except OSError:
-            pass
+    """The files a finished job kept in DIR/.work/checkpoints (sweep_checkpoint.remove_files),
+    unless another attempt of the job holds its lock."""
+    sweep_checkpoint.remove_done(out_dir, [job_id])
 
 
 def _wait(proc, timeout):

@@ -9,6 +9,9 @@ import time
 BAR_WIDTH = 30
 # Outcomes that are a result (counted as done); every other one counts as failed.
 RESULT_STATUSES = ("ok", "target not reached")
+# Not an outcome: a job not run yet, or one another attempt runs (sweep_job.RUNNING_ELSEWHERE),
+# counted as left.
+NOT_OUTCOMES = ("pending", "running elsewhere")
 
 
 def _duration(seconds):
@@ -73,11 +76,12 @@ class Progress:
         self._drawn = True
 
     def job_finished(self, record, label):
-        self.finished_here += 1
         if record["status"] in RESULT_STATUSES:
             self.done += 1
-        else:
+        elif record["status"] not in NOT_OUTCOMES:
             self.failed += 1
+        if record["status"] not in NOT_OUTCOMES:
+            self.finished_here += 1
         text = "{}: {}".format(label, record["status"])
         if record.get("message") and record["status"] not in ("ok",):
             text += " ({})".format(record["message"])

@@ -122,9 +122,10 @@ def write(jobs, varying, out_dir, sweep_dir, latest=None, records=None):
 
 def counts(table):
     """(done, failed, left): done = an outcome the same run would give again that is a result
-    (ok or target not reached); failed = any other recorded outcome; left = pending."""
+    (ok or target not reached); failed = any other recorded outcome; left = pending, or running
+    in another sweep."""
     done = sum(1 for r in table if r["status"] in sweep_progress.RESULT_STATUSES)
-    left = sum(1 for r in table if r["status"] == "pending")
+    left = sum(1 for r in table if r["status"] in sweep_progress.NOT_OUTCOMES)
     return done, len(table) - done - left, left
 
 
