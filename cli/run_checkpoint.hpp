@@ -4,8 +4,10 @@
 // --checkpoint a signal stops the run the same way, with nothing saved.
 #pragma once
 
+#include <atomic>
 #include <csignal>
 #include <cstdint>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <memory>
@@ -13,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/signal_repeat.hpp"
 #include "mesh/file_safety.hpp"
 #include "output_paths.hpp"
 #include "run_observers.hpp"
@@ -25,19 +28,25 @@ namespace shellcontract::cli {
 
 namespace checkpoint_signal {
 inline volatile std::sig_atomic_t received = 0;
-/// The process that sent the first signal (kill(2)), or 0 (the terminal's Ctrl-C, the kernel).
-inline volatile std::sig_atomic_t first_sender = 0;
-extern "C" inline void on_signal(int sig, siginfo_t* info, void*) {
-  const pid_t sender = info != nullptr && info->si_code == SI_USER ? info->si_pid : 0;
+/// When the first signal arrived (CLOCK_MONOTONIC, ns): written by the handler only, with the
+/// stop signals masked while it runs, so never twice at once.
+inline std::atomic<std::int64_t> first_ns{0};
+static_assert(std::atomic<std::int64_t>::is_always_lock_free,
+              "first_ns is written in a signal handler");
+inline std::int64_t monotonic_ns() {
+  timespec t{};
+  ::clock_gettime(CLOCK_MONOTONIC, &t);  // async-signal-safe (POSIX.1-2008)
+  return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + t.tv_nsec;
+}
+extern "C" inline void on_signal(int sig) {
+  const std::int64_t now = monotonic_ns();
   if (received == 0) {
+    first_ns.store(now, std::memory_order_relaxed);
     received = sig;
-    first_sender = sender;
     return;
   }
-  // The same signal again from the same process is the first one repeated, not a second request:
-  // GNU timeout (without --foreground) sends its signal to the run and then to its whole process
-  // group, and ending at once there lost the save and the message about every other time.
-  if (sig == received && sender != 0 && sender == first_sender) return;
+  // The same request again (a wrapper's forward, timeout's second send): core/signal_repeat.hpp.
+  if (repeats_first_signal(sig, received, first_ns.load(std::memory_order_relaxed), now)) return;
   // A second Ctrl-C (or a signal from elsewhere) ends the process at once, removing the
   // temporary of a checkpoint it cuts short (the save after the first one is the likely place
   // for it): the library's ending, raised again now that it is this signal's handler.
@@ -129,9 +138,9 @@ class CliCheckpointer final : public RunCheckpointer {
           (!(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_IGN))
         continue;
       struct sigaction sa {};
-      sa.sa_sigaction = checkpoint_signal::on_signal;
-      sa.sa_flags = SA_SIGINFO;
+      sa.sa_handler = checkpoint_signal::on_signal;
       sigemptyset(&sa.sa_mask);
+      for (const int other : INTERRUPT_SIGNALS) sigaddset(&sa.sa_mask, other);
       sigaction(sig, &sa, nullptr);
     }
   }

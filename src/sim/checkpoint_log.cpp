@@ -210,6 +210,13 @@ void CheckpointLogFile::append(Stream& s, const char* bytes, std::uint64_t size)
   if (error) {
     // The checkpoint in place still has its bytes; the next save holds its log itself.
     s.state = State::Unknown;
+    // Opened without O_CREAT (appending to the file of this run's earlier saves): ENOENT says the
+    // file went, not its folder, which file_error_text would name.
+    std::error_code ec;
+    if (error == ENOENT && !(flags & O_CREAT) &&
+        std::filesystem::is_directory(std::filesystem::path(s.path).parent_path(), ec))
+      throw UsageError("cannot write '" + printable(s.path) +
+                       "': it was removed since the last save (the next save holds it itself)");
     cannot_write(s.path, error);
   }
   s.pending = size;

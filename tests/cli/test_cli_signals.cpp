@@ -13,6 +13,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -207,33 +208,63 @@ TEST_F(CliSignals, Sigusr1SavesTheCheckpointAndExits130) {
   EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
 }
 
-// GNU timeout (without --foreground) sends its signal to the run and then to the run's process
-// group: the same signal twice from one process. Before: the second ended the run at once, so
-// about every other `timeout -s TERM` lost the save of the frame it stopped at and the message.
-// Deterministic: the second signal lands while held_cli holds the temporary of that save.
-TEST_F(CliSignals, TheSameSignalAgainFromTheSameSenderIsNotASecondRequest) {
-  const std::vector<std::string> args = {
-      "run",    mesh("ico2.off"), "-o",          out("r.off"),         "-n",
-      "100000", "--checkpoint",   out("r.ckpt"), "--checkpoint-every", "100000"};
-  int fd = -1;
-  Spawn how;
-  how.hold_ms = 1000;
-  const pid_t pid = spawn(args, how, fd);
-  ASSERT_GT(pid, 0);
+// One request to stop can come as the same signal twice within moments: GNU timeout (without
+// --foreground) sends its signal to the run and then to the run's process group, and a terminal's
+// Ctrl-C reaches the run and a wrapper such as timeout, which forwards it. Before: the echo ended
+// the run at once, so about every other such run lost the save of the frame it stopped at and the
+// message. Deterministic: the echo lands while held_cli holds the temporary of that save, well
+// within the half second after the first signal (core/signal_repeat.hpp; a later one, a second
+// request, is checked there: when it ends the run cannot be chosen from here).
+class CliSignalEcho : public CliSignals {
+ protected:
+  /// Runs ico2 through held_cli with a checkpoint; once it is in its frames, `first` stops it;
+  /// once the save's temporary is created (and held 1 s), `second`. Returns the waitpid status;
+  /// `text` gets stderr.
+  int stopped_twice(const std::function<void(pid_t)>& first,
+                    const std::function<void(pid_t)>& second, std::string& text) {
+    const std::vector<std::string> args = {
+        "run",    mesh("ico2.off"), "-o",          out("r.off"),         "-n",
+        "100000", "--checkpoint",   out("r.ckpt"), "--checkpoint-every", "100000"};
+    int fd = -1;
+    Spawn how;
+    how.hold_ms = 1000;
+    const pid_t pid = spawn(args, how, fd);
+    if (pid <= 0) {
+      ADD_FAILURE() << "the run did not start";
+      return -1;
+    }
+    if (!await_lines(fd, "frame ", 1, text)) ADD_FAILURE() << "no progress line: " << text;
+    const std::string created = "shellcontract test: temporary created";
+    std::size_t before = 0;
+    for (std::size_t at = text.find(created); at != std::string::npos;
+         at = text.find(created, at + 1))
+      ++before;
+    first(pid);
+    if (!await_lines(fd, created, static_cast<int>(before) + 1, text))
+      ADD_FAILURE() << "no save after the signal: " << text;
+    second(pid);
+    return finish(pid, fd, text);
+  }
+};
+
+TEST_F(CliSignalEcho, TheSameSignalAgainFromTheSameSenderIsTheFirstRepeated) {
   std::string text;
-  // In its frames (the progress line), then the first SIGTERM: the run saves after its step.
-  if (!await_lines(fd, "frame ", 1, text)) ADD_FAILURE() << "no progress line: " << text;
-  const std::string created = "shellcontract test: temporary created";
-  std::size_t before = 0;
-  for (std::size_t at = text.find(created); at != std::string::npos;
-       at = text.find(created, at + 1))
-    ++before;
-  ::kill(pid, SIGTERM);
-  // The save's temporary, held: the same signal again, from this same process.
-  if (!await_lines(fd, created, static_cast<int>(before) + 1, text))
-    ADD_FAILURE() << "no save after the signal: " << text;
-  ::kill(pid, SIGTERM);
-  const int status = finish(pid, fd, text);
+  const auto term = [](pid_t pid) { ::kill(pid, SIGTERM); };
+  const int status = stopped_twice(term, term, text);
+  ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+  EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
+  EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+}
+
+// The terminal's signal (sent by the kernel: no sending process; sigqueue's SI_QUEUE stands in for
+// it here, as the old handler also took it for no sender) and then the wrapper's forward of it.
+// Before (the echo recognised only from one sending process): ended at once, nothing saved.
+TEST_F(CliSignalEcho, ASignalEchoedByAnotherSenderIsTheFirstRepeated) {
+  std::string text;
+  const auto queued = [](pid_t pid) { ::sigqueue(pid, SIGINT, sigval{}); };
+  const auto sent = [](pid_t pid) { ::kill(pid, SIGINT); };
+  const int status = stopped_twice(queued, sent, text);
   ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
   EXPECT_EQ(WEXITSTATUS(status), 130) << text;
   EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;

@@ -52,6 +52,7 @@ struct Save {
   std::string log;        ///< the caller's log at the save
   std::string saved_log;  ///< the checkpoint's, read back after the save
   std::string error;      ///< the save's UsageError, if it failed
+  std::string read_error;  ///< why the checkpoint in place could not be read back, if not
 };
 
 /// The bytes of the fields of `c` whose size changes from frame to frame as they are saved: the
@@ -91,7 +92,14 @@ class LoggingCheckpointer final : public RunCheckpointer {
     } catch (const UsageError& e) {
       s.error = e.what();
     }
-    const Checkpoint c = read_checkpoint(path_);  // after every save, failed or not: whole
+    Checkpoint c;
+    try {
+      c = read_checkpoint(path_);        // after every save, failed or not: whole
+    } catch (const std::exception& e) {  // only where a test took a file beside away
+      s.read_error = e.what();
+      saves.push_back(s);
+      return;
+    }
     s.checkpoint_bytes = fs::file_size(path_);
     s.history = c.progress.history.size();
     s.saved_history = c.progress.history;
@@ -261,6 +269,32 @@ TEST_F(CheckpointLog, AFailedAppendLeavesAPairThatReadsAndTheNextSavesRecover) {
   EXPECT_EQ(formats[20], 3u);  // frame 21's: its log inside again
   EXPECT_EQ(formats[21], 5u);  // frame 22's: beside
   EXPECT_EQ(format_of(path), 5u);
+  EXPECT_EQ(read_checkpoint(path).log, saver.saves.back().log);
+}
+
+// The log beside removed while the run saves to it (by hand, or by a tool cleaning the folder):
+// the save says the file was removed, not that its folder is missing (before: "cannot write
+// 'c.ckpt.log': the folder does not exist"), and the next saves recover as after any failure.
+TEST_F(CheckpointLog, ALogRemovedBetweenSavesIsNamedAsRemovedAndTheNextSavesRecover) {
+  const std::string path = file("c.ckpt");
+  LoggingCheckpointer saver(path, mesh_, options_, [&](int frame) {
+    if (frame == 20) fs::remove(checkpoint_log_path(path));
+  });
+  run_contraction(mesh_, options_, nullptr, &saver);
+  ASSERT_EQ(saver.saves.size(), 39u);
+  const Save& failed = saver.saves[19];
+  ASSERT_EQ(failed.frame, 20);
+  EXPECT_NE(failed.error.find(checkpoint_log_path(path) + "': it was removed since the last save"),
+            std::string::npos)
+      << failed.error;
+  EXPECT_EQ(failed.error.find("folder"), std::string::npos) << failed.error;
+  // The checkpoint in place (frame 19's) needed that log: it cannot be read until a save holds
+  // the log again, which the next one does.
+  EXPECT_NE(failed.read_error, "");
+  for (std::size_t k = 20; k < saver.saves.size(); ++k) {
+    EXPECT_EQ(saver.saves[k].error, "") << "frame " << saver.saves[k].frame;
+    EXPECT_EQ(saver.saves[k].read_error, "") << "frame " << saver.saves[k].frame;
+  }
   EXPECT_EQ(read_checkpoint(path).log, saver.saves.back().log);
 }
 
