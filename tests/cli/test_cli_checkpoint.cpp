@@ -10,7 +10,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fcntl.h>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -20,6 +19,7 @@
 #include <vector>
 
 #include "sim/checkpoint.hpp"
+#include "support/child_process.hpp"
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 
@@ -29,27 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_cli;
 
-/// Starts the CLI with `args` (output to /dev/null); returns its pid.
-pid_t spawn_cli(const std::vector<std::string>& args) {
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(null, 2);
-    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_CLI_PATH)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(SHELLCONTRACT_CLI_PATH, argv.data());
-    ::_exit(127);
-  }
-  return pid;
-}
-
-/// Waits for `pid`; returns its wait status.
-int wait_for(pid_t pid) {
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return status;
+/// Starts the CLI with `args` (output to /dev/null).
+test::Child spawn_cli(const std::vector<std::string>& args) {
+  test::ChildSpec spec = test::cli_child(args);
+  spec.err = test::ChildErr::DevNull;
+  return test::Child(spec);
 }
 
 std::string read(const fs::path& path) {
@@ -133,7 +117,7 @@ TEST_F(CliCheckpoint, KilledAtARandomFrameAndResumedEqualsTheWholeRun) {
   for (const std::string& o : options()) args.push_back(o);
   std::random_device seed;
   std::mt19937 random(seed());
-  const pid_t pid = spawn_cli(args);
+  test::Child run = spawn_cli(args);
   // The first checkpoint marks the first frame; then a random share of the run's time.
   const auto start = std::chrono::steady_clock::now();
   while (!fs::exists(out("c.ckpt")) && std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
@@ -141,8 +125,8 @@ TEST_F(CliCheckpoint, KilledAtARandomFrameAndResumedEqualsTheWholeRun) {
   const int max_wait_ms = static_cast<int>(std::min<long long>(600, whole_ms / 3));
   std::this_thread::sleep_for(
       std::chrono::milliseconds(std::uniform_int_distribution<int>(0, max_wait_ms)(random)));
-  ::kill(pid, SIGKILL);
-  const int status = wait_for(pid);
+  run.signal(SIGKILL);
+  const int status = run.finish();
   ASSERT_TRUE(WIFSIGNALED(status)) << "the run ended before the kill; make it longer";
   EXPECT_FALSE(fs::exists(out("killed.off")));
   const int frame = read_checkpoint(out("c.ckpt")).sim.frame;
@@ -192,14 +176,14 @@ TEST_F(CliCheckpoint, SigtermSavesStopsWith130AndWritesNothingElse) {
                                 "--summary", out("t.json"), "-q", "--checkpoint", out("t.ckpt"),
                                 "--checkpoint-every", "1"};
   for (const std::string& o : options()) args.push_back(o);
-  const pid_t pid = spawn_cli(args);
+  test::Child run = spawn_cli(args);
   // The first checkpoint (after frame 1) shows the time loop is running; the signal then lands
   // inside it, however fast the machine.
   const auto start = std::chrono::steady_clock::now();
   while (!fs::exists(out("t.ckpt")) && std::chrono::steady_clock::now() - start < std::chrono::seconds(60))
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  ::kill(pid, SIGTERM);
-  const int status = wait_for(pid);
+  run.signal(SIGTERM);
+  const int status = run.finish();
   ASSERT_TRUE(WIFEXITED(status));
   ASSERT_EQ(WEXITSTATUS(status), 130) << "finished before the signal? make the run longer";
   EXPECT_FALSE(fs::exists(out("t.off")));

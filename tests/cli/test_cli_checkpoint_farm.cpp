@@ -4,7 +4,6 @@
 // preemption lost every frame since the first); a second run with the same --checkpoint was not
 // refused, and resuming the first silently gave the second's result; and a save that failed was
 // one stderr line, absent from --summary and from the message of an interrupted run.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -19,6 +18,7 @@
 #include <vector>
 
 #include "sim/checkpoint.hpp"
+#include "support/child_process.hpp"
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 
@@ -28,54 +28,10 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_cli;
 
-/// Starts `command` with /bin/bash -c (stdout to /dev/null, stderr to the returned pipe's read
-/// end); the command ends with `exec` of the CLI, so the pid is the CLI's.
-pid_t spawn_bash(const std::string& command, int& stderr_fd) {
-  int fds[2];
-  if (::pipe(fds) != 0) return -1;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(fds[1], 2);
-    ::close(fds[0]);
-    ::signal(SIGINT, SIG_DFL);
-    ::signal(SIGTERM, SIG_DFL);
-    ::execl("/bin/bash", "bash", "-c", command.c_str(), static_cast<char*>(nullptr));
-    ::_exit(127);
-  }
-  ::close(fds[1]);
-  stderr_fd = fds[0];
-  return pid;
-}
-
-/// The command line that runs the CLI with `args`, with exec (no stderr redirection).
+/// The command line that runs the CLI with `args`, with exec (no stderr redirection), for
+/// test::bash_child: the child's pid is then the CLI's.
 std::string exec_cli(const std::vector<std::string>& args) {
-  std::string cmd = "exec " + test::quoted(SHELLCONTRACT_CLI_PATH);
-  for (const std::string& a : args) cmd += " " + test::quoted(a);
-  return cmd;
-}
-
-/// Reads the pipe into `seen` until it holds `text` (false: the pipe ended first).
-bool read_until(int fd, const std::string& text, std::string& seen) {
-  char buf[512];
-  while (seen.find(text) == std::string::npos) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n <= 0) return false;
-    seen.append(buf, static_cast<std::size_t>(n));
-  }
-  return true;
-}
-
-/// Reads the rest of the pipe into `seen` and waits for `pid`; returns its wait status.
-int finish(pid_t pid, int fd, std::string& seen) {
-  char buf[512];
-  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;)
-    seen.append(buf, static_cast<std::size_t>(n));
-  ::close(fd);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return status;
+  return "exec " + test::cli_line(args);
 }
 
 /// The frame of the checkpoint at `path` (-1: none there, or not whole).
@@ -133,13 +89,12 @@ class CliCheckpointFarm : public ::testing::Test {
 // again: the second run goes on saving into FILE, every 5 frames as the first did, and its
 // SIGTERM saves the frame it stopped at. Before, FILE stayed at the first preemption's frame.
 TEST_F(CliCheckpointFarm, AResumedRunGoesOnSavingWhereAndAsOftenAsTheFirst) {
-  int fd = -1;
-  pid_t pid = spawn_bash(exec_cli(long_run("r.off")), fd);
-  ASSERT_GT(pid, 0);
+  test::Child run(test::bash_child(exec_cli(long_run("r.off"))));
+  ASSERT_GT(run.pid(), 0);
   ASSERT_GE(await_frame(out("c.ckpt"), 5, 60), 5) << "no checkpoint within 60 s";
-  ::kill(pid, SIGTERM);
-  std::string first;
-  int status = finish(pid, fd, first);
+  run.signal(SIGTERM);
+  int status = run.finish();
+  const std::string first = run.output();
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << first;
   const int first_frame = saved_frame(out("c.ckpt"));
   ASSERT_EQ(first_frame, interrupted_frame(first)) << first;
@@ -150,14 +105,15 @@ TEST_F(CliCheckpointFarm, AResumedRunGoesOnSavingWhereAndAsOftenAsTheFirst) {
       << first;
   EXPECT_NE(first.find("goes on saving there"), std::string::npos) << first;
 
-  pid = spawn_bash(exec_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off")}), fd);
-  ASSERT_GT(pid, 0);
+  run = test::Child(
+      test::bash_child(exec_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off")})));
+  ASSERT_GT(run.pid(), 0);
   // A periodic save of the resumed run: the next multiple of 5 after the first frame.
   const int next = (first_frame / 5 + 1) * 5;
   const int reached = await_frame(out("c.ckpt"), next, 60);
-  ::kill(pid, SIGTERM);
-  std::string second;
-  status = finish(pid, fd, second);
+  run.signal(SIGTERM);
+  status = run.finish();
+  const std::string second = run.output();
   ASSERT_TRUE(WIFEXITED(status)) << second;
   EXPECT_EQ(WEXITSTATUS(status), 130) << second;
   EXPECT_EQ(reached % 5, 0) << "saved at frame " << reached << ", not every 5 frames";
@@ -175,14 +131,13 @@ TEST_F(CliCheckpointFarm, AResumedRunGoesOnSavingWhereAndAsOftenAsTheFirst) {
   // --checkpoint OTHER saves there instead (every 5 frames, the checkpoint's interval); the
   // resumed file is left as it is.
   const int before = saved_frame(out("c.ckpt"));
-  pid = spawn_bash(exec_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), "-q",
-                             "--checkpoint", out("other.ckpt")}),
-                   fd);
-  ASSERT_GT(pid, 0);
+  run = test::Child(test::bash_child(exec_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"),
+                                               "-q", "--checkpoint", out("other.ckpt")})));
+  ASSERT_GT(run.pid(), 0);
   const int other = await_frame(out("other.ckpt"), (before / 5 + 1) * 5, 60);
-  ::kill(pid, SIGTERM);
-  std::string third;
-  status = finish(pid, fd, third);
+  run.signal(SIGTERM);
+  status = run.finish();
+  const std::string third = run.output();
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << third;
   EXPECT_GT(other, before) << third;
   EXPECT_EQ(saved_frame(out("c.ckpt")), before);
@@ -193,9 +148,8 @@ TEST_F(CliCheckpointFarm, AResumedRunGoesOnSavingWhereAndAsOftenAsTheFirst) {
 // it, or to resume from it into another file) is refused before any work, exit 1; once the
 // first ends, the same command runs, and no lock file is left.
 TEST_F(CliCheckpointFarm, ASecondRunWithTheSameCheckpointIsRefused) {
-  int fd = -1;
-  const pid_t pid = spawn_bash(exec_cli(long_run("a.off")), fd);
-  ASSERT_GT(pid, 0);
+  test::Child run(test::bash_child(exec_cli(long_run("a.off"))));
+  ASSERT_GT(run.pid(), 0);
   ASSERT_GE(await_frame(out("c.ckpt"), 5, 60), 5) << "no checkpoint within 60 s";
   const std::vector<std::string> second{
       "run", mesh("ico2.off"), "-o",          out("b.off"),         "-n", "8", "-q", "-p",
@@ -204,9 +158,9 @@ TEST_F(CliCheckpointFarm, ASecondRunWithTheSameCheckpointIsRefused) {
   const auto resumed = run_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), "-q"});
   const auto resumed_elsewhere = run_cli(
       {"run", "--resume", out("c.ckpt"), "-o", out("r2.off"), "-q", "--checkpoint", out("d.ckpt")});
-  ::kill(pid, SIGTERM);
-  std::string first;
-  const int status = finish(pid, fd, first);
+  run.signal(SIGTERM);
+  const int status = run.finish();
+  const std::string& first = run.output();
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 130) << first;
   for (const auto* r : {&b, &resumed, &resumed_elsewhere}) {
     EXPECT_EQ(r->exit_code, 1) << r->output;
@@ -309,16 +263,14 @@ TEST_F(CliCheckpointFarm, AFailedSaveIsInTheSummaryAndTheInterruptMessage) {
   for (const char* name : {"c.ckpt", "c.ckpt.log", "c.ckpt.history"}) fs::remove(out(name));
 
   // Interrupted once the saves fail: the message names the older checkpoint left in place.
-  int fd = -1;
-  const pid_t pid =
-      spawn_bash(limit + exec_cli({"run", mesh("ico1.off"), "-o", out("i.off"), "-n", "20000", "-q",
-                                   "--checkpoint", out("c.ckpt"), "--checkpoint-every", "10"}),
-                 fd);
-  ASSERT_GT(pid, 0);
-  std::string text;
-  ASSERT_TRUE(read_until(fd, "warning: checkpoint not written", text)) << text;
-  ::kill(pid, SIGTERM);
-  const int status = finish(pid, fd, text);
+  test::Child interrupted(test::bash_child(
+      limit + exec_cli({"run", mesh("ico1.off"), "-o", out("i.off"), "-n", "20000", "-q",
+                        "--checkpoint", out("c.ckpt"), "--checkpoint-every", "10"})));
+  ASSERT_GT(interrupted.pid(), 0);
+  const std::string& text = interrupted.output();
+  ASSERT_TRUE(interrupted.await("warning: checkpoint not written")) << text;
+  interrupted.signal(SIGTERM);
+  const int status = interrupted.finish();
   ASSERT_TRUE(WIFEXITED(status)) << text;
   EXPECT_EQ(WEXITSTATUS(status), 130) << text;
   const int left = saved_frame(out("c.ckpt"));

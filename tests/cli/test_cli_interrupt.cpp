@@ -1,6 +1,5 @@
 // Ctrl-C and SIGTERM during a run (docs/design/output-safety.md, docs/cli.md): no temporary is
 // left behind at any moment, and the run ends with exit code 130 with or without --checkpoint.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -11,83 +10,17 @@
 #include <fstream>
 #include <string>
 #include <thread>
-#include <utility>
 #include <vector>
 
+#include "support/child_process.hpp"
 #include "support/cli_runner.hpp"
+#include "support/interrupted_run.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Starts the CLI with `args`; stdout to /dev/null, stderr to the returned pipe's read end.
-/// `hold_ms` > 0 runs the CLI's code through held_cli (tests/tools/held_cli.cpp), which holds each
-/// temporary that long right after its creation; `env` is set in the child's environment.
-pid_t spawn(const std::vector<std::string>& args, int hold_ms, int& stderr_fd,
-            const std::vector<std::pair<std::string, std::string>>& env = {}) {
-  int fds[2];
-  if (::pipe(fds) != 0) return -1;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(fds[1], 2);
-    ::close(fds[0]);
-    // A signal ignored by whoever started the tests would stay ignored in the run.
-    ::signal(SIGINT, SIG_DFL);
-    ::signal(SIGTERM, SIG_DFL);
-    for (const auto& [name, value] : env) ::setenv(name.c_str(), value.c_str(), 1);
-    const char* program = hold_ms > 0 ? SHELLCONTRACT_HELD_CLI : SHELLCONTRACT_CLI_PATH;
-    const std::string hold = std::to_string(hold_ms);
-    std::vector<char*> argv{const_cast<char*>(program)};
-    if (hold_ms > 0) argv.push_back(const_cast<char*>(hold.c_str()));
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(program, argv.data());
-    ::_exit(127);
-  }
-  ::close(fds[1]);
-  stderr_fd = fds[0];
-  return pid;
-}
-
-/// Reads the pipe until `text` has appeared `count` times (false: the pipe ended first).
-bool await_lines(int fd, const std::string& text, int count) {
-  std::string seen;
-  char buf[512];
-  for (;;) {
-    std::size_t found = 0;
-    for (std::size_t at = seen.find(text); at != std::string::npos; at = seen.find(text, at + 1)) ++found;
-    if (static_cast<int>(found) >= count) return true;
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n <= 0) return false;
-    seen.append(buf, static_cast<std::size_t>(n));
-  }
-}
-
-/// Waits for `pid` (the pipe drained so that it never blocks on stderr); returns its status.
-int finish(pid_t pid, int fd) {
-  char buf[512];
-  while (::read(fd, buf, sizeof buf) > 0) {
-  }
-  ::close(fd);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return status;
-}
-
-/// The rest of the pipe (the run's stderr) and the run's status.
-int finish_reading(pid_t pid, int fd, std::string& text) {
-  char buf[512];
-  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;)
-    text.append(buf, static_cast<std::size_t>(n));
-  ::close(fd);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return status;
-}
 
 /// Waits (at most 60 s) until `pid` runs the CLI (/proc/PID/exe: before the exec the child is a
 /// copy of this test program, with its handlers) and catches SIGINT and SIGTERM (/proc/PID/status,
@@ -113,26 +46,6 @@ bool await_handler(pid_t pid) {
   return false;
 }
 
-/// Waits (at most 60 s) until `dir` holds a file: the run is past its preparation, in its frames.
-bool await_file_in(const fs::path& dir) {
-  for (int i = 0; i < 6000; ++i) {
-    std::error_code ec;
-    if (fs::exists(dir, ec) && !fs::is_empty(dir, ec)) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return false;
-}
-
-std::vector<std::string> temporaries(const fs::path& dir) {
-  std::vector<std::string> found;
-  std::error_code ec;
-  for (const auto& e : fs::recursive_directory_iterator(dir, ec))
-    if (e.path().filename().string().find(".tmp.") != std::string::npos ||
-        e.path().filename().string().find("shellcontract-probe") != std::string::npos)
-      found.push_back(e.path().string());
-  return found;
-}
-
 class CliInterrupt : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -155,15 +68,16 @@ class CliInterrupt : public ::testing::Test {
   /// when no frame came within 60 s).
   int interrupted_in_its_frames(const std::vector<std::string>& args, int sig,
                                 std::string& text) const {
-    int fd = -1;
-    const pid_t pid = spawn(args, 0, fd);
-    if (pid <= 0) {
+    test::Child run(test::cli_child(args));
+    if (run.pid() <= 0) {
       ADD_FAILURE() << "the run did not start";
       return -1;
     }
-    if (!await_file_in(out("frames"))) ADD_FAILURE() << "no frame within 60 s";
-    ::kill(pid, sig);
-    return finish_reading(pid, fd, text);
+    if (!test::await_file_in(out("frames"))) ADD_FAILURE() << "no frame within 60 s";
+    run.signal(sig);
+    const int status = run.finish();
+    text += run.output();
+    return status;
   }
   fs::path dir_;
 };
@@ -175,16 +89,16 @@ TEST_F(CliInterrupt, SignalRightAfterATemporaryIsCreatedLeavesNone) {
   for (const int sig : {SIGINT, SIGTERM}) {
     for (const int nth : {1, 4, 9}) {
       fs::remove_all(out("frames"));
-      int fd = -1;
-      const pid_t pid = spawn(exporting_run(), 150, fd);
-      ASSERT_GT(pid, 0);
-      ASSERT_TRUE(await_lines(fd, "shellcontract test: temporary created", nth));
-      ::kill(pid, sig);
-      const int status = finish(pid, fd);
+      test::Child run(test::held_cli_child(exporting_run(), 150));
+      ASSERT_GT(run.pid(), 0);
+      ASSERT_TRUE(run.await("shellcontract test: temporary created", nth));
+      run.signal(sig);
+      const int status = run.finish();
       ASSERT_TRUE(WIFEXITED(status)) << "signal " << sig << ", temporary " << nth << ": ended by signal "
                                      << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
       EXPECT_EQ(WEXITSTATUS(status), 130);
-      EXPECT_EQ(temporaries(dir_), std::vector<std::string>{}) << "signal " << sig << ", temporary " << nth;
+      EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{})
+          << "signal " << sig << ", temporary " << nth;
       EXPECT_FALSE(fs::exists(out("r.off")));
     }
   }
@@ -196,11 +110,12 @@ TEST_F(CliInterrupt, SignalRightAfterATemporaryIsCreatedLeavesNone) {
 TEST_F(CliInterrupt, TheToolHoldsNoTemporaryWhateverTheEnvironment) {
   std::vector<std::string> args = exporting_run();
   args[5] = "3";  // -n: a short run
-  int fd = -1;
-  const pid_t pid = spawn(args, 0, fd, {{"SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS", "300"}});
-  ASSERT_GT(pid, 0);
-  std::string text;
-  const int status = finish_reading(pid, fd, text);
+  test::ChildSpec spec = test::cli_child(args);
+  spec.env = {{"SHELLCONTRACT_TEST_HOLD_TEMPORARY_MS", "300"}};
+  test::Child run(spec);
+  ASSERT_GT(run.pid(), 0);
+  const int status = run.finish();
+  const std::string& text = run.output();
   ASSERT_TRUE(WIFEXITED(status)) << text;
   EXPECT_EQ(WEXITSTATUS(status), 0) << text;
   EXPECT_EQ(text.find("temporary created"), std::string::npos) << text;
@@ -214,17 +129,17 @@ TEST_F(CliInterrupt, TheToolHoldsNoTemporaryWhateverTheEnvironment) {
 TEST_F(CliInterrupt, SignalsAtVariedMomentsLeaveNoTemporaryAndExit130) {
   for (int i = 0; i < 24; ++i) {
     fs::remove_all(out("frames"));
-    int fd = -1;
-    const pid_t pid = spawn(exporting_run(), 0, fd);
-    ASSERT_GT(pid, 0);
-    ASSERT_TRUE(await_handler(pid)) << "run " << i << " installed no handler within 60 s";
+    test::Child run(test::cli_child(exporting_run()));
+    ASSERT_GT(run.pid(), 0);
+    ASSERT_TRUE(await_handler(run.pid())) << "run " << i << " installed no handler within 60 s";
     std::this_thread::sleep_for(std::chrono::milliseconds(37 * i % 400));
     const int sig = i % 2 ? SIGTERM : SIGINT;
-    ::kill(pid, sig);
-    const int status = finish(pid, fd);
+    run.signal(sig);
+    const int status = run.finish();
     ASSERT_TRUE(WIFEXITED(status)) << "run " << i << " ended by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
     EXPECT_EQ(WEXITSTATUS(status), 130) << "run " << i;
-    EXPECT_EQ(temporaries(dir_), std::vector<std::string>{}) << "run " << i << ", signal " << sig;
+    EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{})
+        << "run " << i << ", signal " << sig;
   }
 }
 
@@ -232,13 +147,12 @@ TEST_F(CliInterrupt, SignalsAtVariedMomentsLeaveNoTemporaryAndExit130) {
 // and nothing else; the same command is refused while they are there, with the reason, and
 // accepted once they are removed.
 TEST_F(CliInterrupt, InterruptedRunLeavesCompleteFramesAndTheRerunSaysWhy) {
-  int fd = -1;
-  const pid_t pid = spawn(exporting_run(), 0, fd);
-  ASSERT_GT(pid, 0);
-  ASSERT_TRUE(await_handler(pid));
+  test::Child run(test::cli_child(exporting_run()));
+  ASSERT_GT(run.pid(), 0);
+  ASSERT_TRUE(await_handler(run.pid()));
   std::this_thread::sleep_for(std::chrono::milliseconds(400));
-  ::kill(pid, SIGINT);
-  const int status = finish(pid, fd);
+  run.signal(SIGINT);
+  const int status = run.finish();
   ASSERT_TRUE(WIFEXITED(status));
   ASSERT_EQ(WEXITSTATUS(status), 130);
   EXPECT_FALSE(fs::exists(out("r.off")));

@@ -3,7 +3,6 @@
 // anything. The commands run through tests/tools/staged_cli (the CLI's code with the cap finder's
 // stage hook printing a line per stage); the signal is sent once the finder's first stage has
 // ended, so that it lands in the smoothing and growth of a large mesh: no sleep decides when.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -16,6 +15,7 @@
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/cgal_mesh.hpp"
+#include "support/child_process.hpp"
 
 namespace shellcontract {
 namespace {
@@ -26,51 +26,6 @@ namespace fs = std::filesystem;
 /// next stage's.
 constexpr const char* AFTER_CURVATURE = "shellcontract test: region stage curvature";
 constexpr const char* AFTER_SMOOTHING = "shellcontract test: region stage smoothing";
-
-/// Starts staged_cli with `args`; stdout to /dev/null, stderr to the
-/// returned pipe's read end.
-pid_t spawn(const std::vector<std::string>& args, int& stderr_fd) {
-  int fds[2];
-  if (::pipe(fds) != 0) return -1;
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(fds[1], 2);
-    ::close(fds[0]);
-    ::signal(SIGINT, SIG_DFL);  // a signal ignored by whoever started the tests stays ignored
-    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_STAGED_CLI)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(SHELLCONTRACT_STAGED_CLI, argv.data());
-    ::_exit(127);
-  }
-  ::close(fds[1]);
-  stderr_fd = fds[0];
-  return pid;
-}
-
-/// Reads the pipe into `seen` until it holds `text` (false: the pipe ended first).
-bool await_text(int fd, const std::string& text, std::string& seen) {
-  char buf[512];
-  while (seen.find(text) == std::string::npos) {
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n <= 0) return false;
-    seen.append(buf, static_cast<std::size_t>(n));
-  }
-  return true;
-}
-
-/// The rest of the pipe into `text`, then the process's status.
-int finish(pid_t pid, int fd, std::string& text) {
-  char buf[512];
-  for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;)
-    text.append(buf, static_cast<std::size_t>(n));
-  ::close(fd);
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return status;
-}
 
 class CliInterruptSelection : public ::testing::Test {
  protected:
@@ -90,18 +45,23 @@ class CliInterruptSelection : public ::testing::Test {
   }
   static std::string path(const std::string& name) { return (dir_ / name).string(); }
 
-  /// Runs `args`, sends SIGINT after the curvature line; the status, stderr in `text`.
+  /// Runs `args` through staged_cli (stdout to /dev/null), sends SIGINT after the curvature
+  /// line; the status, stderr in `text`.
   static int interrupted_after_curvature(const std::vector<std::string>& args, std::string& text) {
-    int fd = -1;
-    const pid_t pid = spawn(args, fd);
-    if (pid <= 0) {
+    test::ChildSpec spec;
+    spec.program = SHELLCONTRACT_STAGED_CLI;
+    spec.args = args;
+    test::Child run(spec);
+    if (run.pid() <= 0) {
       ADD_FAILURE() << "the command did not start";
       return -1;
     }
-    const bool seen = await_text(fd, AFTER_CURVATURE, text);
-    if (!seen) ADD_FAILURE() << "no curvature line: " << text;
-    ::kill(pid, SIGINT);
-    return finish(pid, fd, text);
+    const bool seen = run.await(AFTER_CURVATURE);
+    if (!seen) ADD_FAILURE() << "no curvature line: " << run.output();
+    run.signal(SIGINT);
+    const int status = run.finish();
+    text += run.output();
+    return status;
   }
   static fs::path dir_;
 };

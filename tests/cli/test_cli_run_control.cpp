@@ -1,5 +1,6 @@
 // `shellcontract run`'s control of the volume and its checks before work, as a user meets them:
 // exit code 5 with the result written, outputs refused before the simulation, option ranges.
+#include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -8,16 +9,15 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <CGAL/Polygon_mesh_processing/self_intersections.h>
-
 #include "support/cgal_volume.hpp"
+#include "support/child_process.hpp"
 #include "support/cli_runner.hpp"
 #include "test_paths.hpp"
 
@@ -110,23 +110,17 @@ TEST_F(CliRunControl, PeakMemoryIsTheToolsOwnNotItsParents) {
   // A caller holding 400 MB (a script, this test) forks and starts the tool on a small mesh, as
   // Python's subprocess does. The summary's peak must be the tool's: getrusage's maximum
   // resident size carries the forked copy's peak across exec and read 400 MB or more here.
-  // (run_cli's popen spawns without copying the caller's memory, so the test forks itself.)
+  // (run_cli's popen spawns without copying the caller's memory; test::Child forks.)
   const std::size_t held = std::size_t{400} << 20;
   std::vector<char> ballast(held, 1);
-  std::vector<std::string> args = {SHELLCONTRACT_CLI_PATH, "run", mesh("ico2.off"), "-o",
-                                   out("o.off"), "--frames", "1", "--summary", out("s.json"),
-                                   "-q"};
-  std::vector<char*> argv;
-  for (std::string& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    ::execv(argv[0], argv.data());
-    ::_exit(127);
-  }
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+  test::ChildSpec spec = test::cli_child({"run", mesh("ico2.off"), "-o", out("o.off"), "--frames",
+                                          "1", "--summary", out("s.json"), "-q"});
+  spec.out = test::ChildOut::Inherit;
+  spec.err = test::ChildErr::Inherit;
+  test::Child run(spec);
+  ASSERT_GE(run.pid(), 0);
+  const int status = run.finish();
+  ASSERT_TRUE(run.reaped());
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
   const std::string s = read(out("s.json"));
   const std::size_t at = s.find("\"peak_memory_mb\": ");

@@ -3,134 +3,26 @@
 // SIGPIPE (stderr to a closed pipe) and SIGXFSZ (a file size limit, `ulimit -f`), are ignored so
 // that the write fails as on a full disk. Before, each of them ended the process by the signal
 // (exit 129, 138, 141, 153): the run lost, its temporaries left, no checkpoint saved.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "support/child_process.hpp"
+#include "support/interrupted_run.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// How the child is started.
-struct Spawn {
-  int hold_ms = 0;             ///< > 0: run through held_cli, each temporary held so long
-  long file_size_limit = 0;    ///< > 0: RLIMIT_FSIZE in bytes, as `ulimit -f` sets it
-  bool closed_stderr = false;  ///< stderr a pipe whose reading end is already closed
-  bool ignore_xfsz = false;    ///< SIGXFSZ ignored (`trap '' XFSZ`), as the CLI now does itself
-};
-
-/// Starts the CLI with `args`, every signal of these tests at its default action (as a shell
-/// starts a job; whoever started the tests may ignore some). stdout to /dev/null; stderr to the
-/// returned pipe's read end (-1 with closed_stderr).
-pid_t spawn(const std::vector<std::string>& args, const Spawn& how, int& stderr_fd) {
-  int fds[2];
-  if (::pipe(fds) != 0) return -1;
-  if (how.closed_stderr) {
-    // Closed before the fork: no process holds the reading end, so every write to stderr fails
-    // (EPIPE, and SIGPIPE unless ignored) from the first one on.
-    ::close(fds[0]);
-    fds[0] = -1;
-  }
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    const int null = ::open("/dev/null", O_WRONLY);
-    ::dup2(null, 1);
-    ::dup2(fds[1], 2);
-    if (fds[0] >= 0) ::close(fds[0]);
-    for (const int sig : {SIGINT, SIGTERM, SIGHUP, SIGUSR1, SIGPIPE, SIGXFSZ})
-      ::signal(sig, SIG_DFL);
-    if (how.ignore_xfsz) ::signal(SIGXFSZ, SIG_IGN);
-    if (how.file_size_limit > 0) {
-      const struct rlimit lim {
-        static_cast<rlim_t>(how.file_size_limit), static_cast<rlim_t>(how.file_size_limit)
-      };
-      ::setrlimit(RLIMIT_FSIZE, &lim);
-    }
-    // held_cli (tests/tools/held_cli.cpp): the CLI's code with the test hook that holds each
-    // temporary right after its creation.
-    const char* program = how.hold_ms > 0 ? SHELLCONTRACT_HELD_CLI : SHELLCONTRACT_CLI_PATH;
-    const std::string hold = std::to_string(how.hold_ms);
-    std::vector<char*> argv{const_cast<char*>(program)};
-    if (how.hold_ms > 0) argv.push_back(const_cast<char*>(hold.c_str()));
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(program, argv.data());
-    ::_exit(127);
-  }
-  ::close(fds[1]);
-  stderr_fd = fds[0];
-  return pid;
-}
-
-/// Reads the pipe until `text` has appeared `count` times (false: the pipe ended first); what
-/// was read is appended to `seen`.
-bool await_lines(int fd, const std::string& text, int count, std::string& seen) {
-  char buf[512];
-  for (;;) {
-    std::size_t found = 0;
-    for (std::size_t at = seen.find(text); at != std::string::npos; at = seen.find(text, at + 1))
-      ++found;
-    if (static_cast<int>(found) >= count) return true;
-    const ssize_t n = ::read(fd, buf, sizeof buf);
-    if (n <= 0) return false;
-    seen.append(buf, static_cast<std::size_t>(n));
-  }
-}
-
-/// Waits for `pid`, the rest of its stderr (if a pipe) appended to `text`; returns its status.
-int finish(pid_t pid, int fd, std::string& text) {
-  if (fd >= 0) {
-    char buf[512];
-    for (ssize_t n; (n = ::read(fd, buf, sizeof buf)) > 0;)
-      text.append(buf, static_cast<std::size_t>(n));
-    ::close(fd);
-  }
-  int status = 0;
-  ::waitpid(pid, &status, 0);
-  return status;
-}
-
-/// "exit N" or "signal N", for messages.
-std::string ending(int status) {
-  return WIFEXITED(status)
-             ? "exit " + std::to_string(WEXITSTATUS(status))
-             : "ended by signal " + std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-}
-
-/// Waits (at most 60 s) until `dir` holds a file: the run is past its preparation, in its frames.
-bool await_file_in(const fs::path& dir) {
-  for (int i = 0; i < 6000; ++i) {
-    std::error_code ec;
-    if (fs::exists(dir, ec) && !fs::is_empty(dir, ec)) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(10));
-  }
-  return false;
-}
-
-std::vector<std::string> temporaries(const fs::path& dir) {
-  std::vector<std::string> found;
-  std::error_code ec;
-  for (const auto& e : fs::recursive_directory_iterator(dir, ec))
-    if (e.path().filename().string().find(".tmp.") != std::string::npos ||
-        e.path().filename().string().find("shellcontract-probe") != std::string::npos)
-      found.push_back(e.path().string());
-  return found;
-}
 
 std::string file_text(const fs::path& p) {
   std::ostringstream s;
@@ -168,18 +60,15 @@ TEST_F(CliSignals, SighupAndSigusr1EndLikeSigtermWithNoTemporaryLeft) {
     for (const int nth : {1, 4}) {
       SCOPED_TRACE("signal " + std::to_string(sig) + ", temporary " + std::to_string(nth));
       fs::remove_all(out("frames"));
-      Spawn how;
-      how.hold_ms = 150;
-      int fd = -1;
-      const pid_t pid = spawn(exporting_run(), how, fd);
-      ASSERT_GT(pid, 0);
-      std::string text;
-      ASSERT_TRUE(await_lines(fd, "shellcontract test: temporary created", nth, text)) << text;
-      ::kill(pid, sig);
-      const int status = finish(pid, fd, text);
-      ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+      test::Child run(test::held_cli_child(exporting_run(), 150));
+      ASSERT_GT(run.pid(), 0);
+      const std::string& text = run.output();
+      ASSERT_TRUE(run.await("shellcontract test: temporary created", nth)) << text;
+      run.signal(sig);
+      const int status = run.finish();
+      ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
       EXPECT_EQ(WEXITSTATUS(status), 130) << text;
-      EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+      EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
       EXPECT_FALSE(fs::exists(out("r.off")));
     }
   }
@@ -191,21 +80,20 @@ TEST_F(CliSignals, SighupAndSigusr1EndLikeSigtermWithNoTemporaryLeft) {
 TEST_F(CliSignals, Sigusr1SavesTheCheckpointAndExits130) {
   std::vector<std::string> args = exporting_run();
   args.insert(args.end(), {"--checkpoint", out("r.ckpt")});
-  int fd = -1;
-  const pid_t pid = spawn(args, Spawn{}, fd);
-  ASSERT_GT(pid, 0);
-  if (!await_file_in(out("frames"))) ADD_FAILURE() << "no frame within 60 s";
-  ::kill(pid, SIGUSR1);
-  std::string text;
-  const int status = finish(pid, fd, text);
-  ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+  test::Child run(test::cli_child(args));
+  ASSERT_GT(run.pid(), 0);
+  if (!test::await_file_in(out("frames"))) ADD_FAILURE() << "no frame within 60 s";
+  run.signal(SIGUSR1);
+  const int status = run.finish();
+  const std::string& text = run.output();
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
   EXPECT_EQ(WEXITSTATUS(status), 130) << text;
   EXPECT_TRUE(fs::exists(out("r.ckpt")));
   EXPECT_NE(text.find("shellcontract run: interrupted at frame "), std::string::npos) << text;
   EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
   // A good save is not also reported as failed.
   EXPECT_EQ(text.find("could not be written"), std::string::npos) << text;
-  EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
 }
 
 // One request to stop can come as the same signal twice within moments: GNU timeout (without
@@ -225,25 +113,25 @@ class CliSignalEcho : public CliSignals {
     const std::vector<std::string> args = {
         "run",    mesh("ico2.off"), "-o",          out("r.off"),         "-n",
         "100000", "--checkpoint",   out("r.ckpt"), "--checkpoint-every", "100000"};
-    int fd = -1;
-    Spawn how;
-    how.hold_ms = 1000;
-    const pid_t pid = spawn(args, how, fd);
-    if (pid <= 0) {
+    test::Child run(test::held_cli_child(args, 1000));
+    if (run.pid() <= 0) {
       ADD_FAILURE() << "the run did not start";
       return -1;
     }
-    if (!await_lines(fd, "frame ", 1, text)) ADD_FAILURE() << "no progress line: " << text;
+    const std::string& seen = run.output();
+    if (!run.await("frame ")) ADD_FAILURE() << "no progress line: " << seen;
     const std::string created = "shellcontract test: temporary created";
     std::size_t before = 0;
-    for (std::size_t at = text.find(created); at != std::string::npos;
-         at = text.find(created, at + 1))
+    for (std::size_t at = seen.find(created); at != std::string::npos;
+         at = seen.find(created, at + 1))
       ++before;
-    first(pid);
-    if (!await_lines(fd, created, static_cast<int>(before) + 1, text))
-      ADD_FAILURE() << "no save after the signal: " << text;
-    second(pid);
-    return finish(pid, fd, text);
+    first(run.pid());
+    if (!run.await(created, static_cast<int>(before) + 1))
+      ADD_FAILURE() << "no save after the signal: " << seen;
+    second(run.pid());
+    const int status = run.finish();
+    text = run.output();
+    return status;
   }
 };
 
@@ -251,10 +139,10 @@ TEST_F(CliSignalEcho, TheSameSignalAgainFromTheSameSenderIsTheFirstRepeated) {
   std::string text;
   const auto term = [](pid_t pid) { ::kill(pid, SIGTERM); };
   const int status = stopped_twice(term, term, text);
-  ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
   EXPECT_EQ(WEXITSTATUS(status), 130) << text;
   EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
-  EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
 }
 
 // The terminal's signal (sent by the kernel: no sending process; sigqueue's SI_QUEUE stands in for
@@ -265,10 +153,10 @@ TEST_F(CliSignalEcho, ASignalEchoedByAnotherSenderIsTheFirstRepeated) {
   const auto queued = [](pid_t pid) { ::sigqueue(pid, SIGINT, sigval{}); };
   const auto sent = [](pid_t pid) { ::kill(pid, SIGINT); };
   const int status = stopped_twice(queued, sent, text);
-  ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
   EXPECT_EQ(WEXITSTATUS(status), 130) << text;
   EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
-  EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
 }
 
 // A file size limit (RLIMIT_FSIZE, which batch systems pass on to a job) smaller than the result:
@@ -276,21 +164,19 @@ TEST_F(CliSignalEcho, ASignalEchoedByAnotherSenderIsTheFirstRepeated) {
 // written, exit 1. Before: SIGXFSZ ended the run (153) with a partial temporary left and no log.
 TEST_F(CliSignals, AFileSizeLimitFailsTheWriteKeepsTheOldFileAndExits1) {
   std::ofstream(out("r.off")) << "old\n";
-  Spawn how;
-  how.file_size_limit = 8192;  // ico2's result is about 14 KB; its log and summary less
-  int fd = -1;
-  const pid_t pid =
-      spawn({"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "2", "-q", "--log", out("r.csv")},
-            how, fd);
-  ASSERT_GT(pid, 0);
-  std::string text;
-  const int status = finish(pid, fd, text);
-  ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+  test::ChildSpec spec = test::cli_child(
+      {"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "2", "-q", "--log", out("r.csv")});
+  spec.file_size_limit = 8192;  // ico2's result is about 14 KB; its log and summary less
+  test::Child run(spec);
+  ASSERT_GT(run.pid(), 0);
+  const int status = run.finish();
+  const std::string& text = run.output();
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
   EXPECT_EQ(WEXITSTATUS(status), 1) << text;
   EXPECT_NE(text.find("File too large"), std::string::npos) << text;
   EXPECT_EQ(file_text(out("r.off")), "old\n");
   EXPECT_TRUE(fs::exists(out("r.csv"))) << "the other outputs are written";
-  EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
 }
 
 // An output that cannot be written (here: over the file size limit) after a run that itself
@@ -299,17 +185,16 @@ TEST_F(CliSignals, AFileSizeLimitFailsTheWriteKeepsTheOldFileAndExits1) {
 // exit 1 and only the list of outputs, the run's own failure in no message. SIGXFSZ ignored
 // here so that the code before the fix reached that path too.
 TEST_F(CliSignals, AFailedOutputOfAFailedRunExitsWithTheRunsCodeAndSaysWhy) {
-  Spawn how;
-  how.file_size_limit = 8192;
-  how.ignore_xfsz = true;
-  int fd = -1;
-  const pid_t pid = spawn({"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "2", "-q",
-                           "--target-volume", "0.3", "--summary", out("r.json")},
-                          how, fd);
-  ASSERT_GT(pid, 0);
-  std::string text;
-  const int status = finish(pid, fd, text);
-  ASSERT_TRUE(WIFEXITED(status)) << ending(status) << "\n" << text;
+  test::ChildSpec spec =
+      test::cli_child({"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "2", "-q",
+                       "--target-volume", "0.3", "--summary", out("r.json")});
+  spec.file_size_limit = 8192;
+  spec.ignore_xfsz = true;
+  test::Child run(spec);
+  ASSERT_GT(run.pid(), 0);
+  const int status = run.finish();
+  const std::string& text = run.output();
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
   EXPECT_EQ(WEXITSTATUS(status), 5) << text;
   EXPECT_NE(text.find("not every output could be written"), std::string::npos) << text;
   EXPECT_NE(text.find("-o " + out("r.off") + ": failed"), std::string::npos) << text;
@@ -323,21 +208,18 @@ TEST_F(CliSignals, AFailedOutputOfAFailedRunExitsWithTheRunsCodeAndSaysWhy) {
 // progress lines are lost, the run is not. Before: SIGPIPE at the first progress line (exit 141),
 // no result, log or summary.
 TEST_F(CliSignals, AClosedStderrPipeDoesNotEndTheRun) {
-  Spawn how;
-  how.closed_stderr = true;
-  int fd = -1;
-  const pid_t pid = spawn({"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "5", "--log",
-                           out("r.csv"), "--summary", out("r.json")},
-                          how, fd);
-  ASSERT_GT(pid, 0);
-  std::string text;
-  const int status = finish(pid, fd, text);
-  ASSERT_TRUE(WIFEXITED(status)) << ending(status);
+  test::ChildSpec spec = test::cli_child({"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "5",
+                                          "--log", out("r.csv"), "--summary", out("r.json")});
+  spec.err = test::ChildErr::ClosedPipe;
+  test::Child run(spec);
+  ASSERT_GT(run.pid(), 0);
+  const int status = run.finish();
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status);
   EXPECT_EQ(WEXITSTATUS(status), 0);
   for (const char* name : {"r.off", "r.csv", "r.json"}) EXPECT_TRUE(fs::exists(out(name))) << name;
   EXPECT_NE(file_text(out("r.json")).find("\"status\": \"ok\""), std::string::npos)
       << file_text(out("r.json"));
-  EXPECT_EQ(temporaries(dir_), std::vector<std::string>{});
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
 }
 
 }  // namespace

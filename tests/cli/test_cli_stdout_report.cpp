@@ -4,20 +4,17 @@
 // a pass (docs/cli.md, "Exit codes": an output that cannot be written is 1). And `bench error
 // --plot` without --csv, with $TMPDIR naming a folder that is gone, falls back to /tmp as
 // mkstemp-based tools do, instead of failing with exit 3 after every run.
-#include <fcntl.h>
 #include <gtest/gtest.h>
-#include <signal.h>
-#include <sys/resource.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
-#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "support/child_process.hpp"
 #include "support/scratch_dir.hpp"
 #include "test_paths.hpp"
 
@@ -33,48 +30,20 @@ struct Ended {
 };
 
 /// Runs the CLI with `args`, stdout as `how` says (to `out` for the files), stderr to a pipe (a
-/// file would be under the size limit too), `env` set ("NAME=VALUE"); SIGXFSZ at its default
-/// action, as a shell starts a job.
+/// file would be under the size limit too), `env` set; SIGXFSZ at its default action, as a shell
+/// starts a job (test::Child).
 Ended run_cli(const std::vector<std::string>& args, Stdout how, const std::string& out,
-              const std::vector<std::string>& env = {}) {
-  int fds[2];
-  if (::pipe(fds) != 0) return {};
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    ::dup2(fds[1], 2);
-    ::close(fds[0]);
-    if (how == Stdout::Closed) {
-      ::close(1);
-    } else {
-      const int fd = ::open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      ::dup2(fd, 1);
-    }
-    ::signal(SIGXFSZ, SIG_DFL);
-    if (how == Stdout::FileOverLimit) {
-      const struct rlimit lim { 0, 0 };
-      ::setrlimit(RLIMIT_FSIZE, &lim);
-    }
-    for (const std::string& e : env) ::putenv(const_cast<char*>(e.c_str()));
-    std::vector<char*> argv{const_cast<char*>(SHELLCONTRACT_CLI_PATH)};
-    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-    argv.push_back(nullptr);
-    ::execv(SHELLCONTRACT_CLI_PATH, argv.data());
-    ::_exit(127);
-  }
-  ::close(fds[1]);
+              const std::vector<std::pair<std::string, std::string>>& env = {}) {
+  test::ChildSpec spec = test::cli_child(args);
+  spec.out = how == Stdout::Closed ? test::ChildOut::Closed : test::ChildOut::File;
+  spec.out_file = out;
+  if (how == Stdout::FileOverLimit) spec.file_size_limit = 0;
+  spec.env = env;
+  test::Child child(spec);
   Ended e;
-  char buf[512];
-  for (ssize_t n; (n = ::read(fds[0], buf, sizeof buf)) > 0;)
-    e.err.append(buf, static_cast<std::size_t>(n));
-  ::close(fds[0]);
-  ::waitpid(pid, &e.status, 0);
+  e.status = child.finish();
+  e.err = child.output();
   return e;
-}
-
-std::string ending(int status) {
-  return WIFEXITED(status)
-             ? "exit " + std::to_string(WEXITSTATUS(status))
-             : "ended by signal " + std::to_string(WIFSIGNALED(status) ? WTERMSIG(status) : 0);
 }
 
 std::string read_file(const std::string& path) {
@@ -95,7 +64,7 @@ class CliStdoutReport : public test::ScratchDirTest {
 // command's).
 TEST_F(CliStdoutReport, ReportWrittenWholeExitsZero) {
   const Ended e = run_cli({"check", mesh_, "--json"}, Stdout::File, path("r.json"));
-  EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << ending(e.status) << '\n'
+  EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << test::ending(e.status) << '\n'
                                                                  << e.err;
   const std::string report = read_file(path("r.json"));
   EXPECT_EQ(report.rfind("}\n"), report.size() - 2) << report;
@@ -110,7 +79,7 @@ TEST_F(CliStdoutReport, CommandsWhoseReportCannotBeWrittenExitOne) {
       const std::string what =
           args[0] + (how == Stdout::Closed ? " with stdout closed" : " over the file size limit");
       EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 1)
-          << what << ": " << ending(e.status) << '\n'
+          << what << ": " << test::ending(e.status) << '\n'
           << e.err;
       EXPECT_NE(e.err.find("cannot write to standard output"), std::string::npos)
           << what << ": " << e.err;
@@ -126,8 +95,8 @@ TEST_F(CliStdoutReport, BenchPlotFallsBackFromAMissingTmpdir) {
   const std::string plot = path("plot.png");
   const Ended e = run_cli({"bench", "error", mesh_, "--frames", "2", "--iterations", "1",
                            "--substeps", "1", "--solver", "pbd", "--plot", plot, "-q"},
-                          Stdout::File, path("table.txt"), {"TMPDIR=" + path("gone")});
-  EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << ending(e.status) << '\n'
+                          Stdout::File, path("table.txt"), {{"TMPDIR", path("gone")}});
+  EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << test::ending(e.status) << '\n'
                                                                  << e.err;
   EXPECT_TRUE(std::filesystem::is_regular_file(plot)) << e.err;
 }

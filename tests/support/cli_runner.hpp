@@ -36,11 +36,16 @@ inline RunResult run_command(const std::string& cmd) {
   return r;
 }
 
-/// The command line that runs the CLI with the given arguments, stderr into stdout.
-inline std::string cli_command(const std::vector<std::string>& args) {
+/// The command line that runs the CLI with the given arguments, quoted for /bin/sh.
+inline std::string cli_line(const std::vector<std::string>& args) {
   std::string cmd = quoted(SHELLCONTRACT_CLI_PATH);
   for (const std::string& a : args) cmd += " " + quoted(a);
-  return cmd + " 2>&1";
+  return cmd;
+}
+
+/// The command line that runs the CLI with the given arguments, stderr into stdout.
+inline std::string cli_command(const std::vector<std::string>& args) {
+  return cli_line(args) + " 2>&1";
 }
 
 /// Runs the CLI with the given arguments.
