@@ -374,8 +374,9 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
                                 _last_lines(os.path.join(work, "messages.txt")))
     if error is not None and error[0] == "not read":
         status, message = CHECKPOINT_NOT_READ, (
-            "the job's checkpoint could not be read; it is kept, and the next sweep resumes "
-            "from it ({})".format(error[1]))
+            "the job's checkpoint could not be read; it is kept, and the next sweep tries to "
+            "resume from it again (remove {} to run the job from its first frame instead) "
+            "({})".format(p["checkpoint"], error[1]))
     record = {"job": job["id"], "mesh": job["mesh"], "options": job["options"],
               "status": status, "exit_code": rc, "message": message,
               "wall_seconds": round(wall, 3),

@@ -153,7 +153,7 @@ TEST_F(Hostile, ASecondCtrlCDuringACheckpointSaveRemovesItsTemporary) {
     try {
       write_text_atomic(target.string(), "an earlier save");  // --checkpoint-every
       ::raise(SIGINT);  // the first Ctrl-C: the run saves after its step, then stops
-      // A person's second Ctrl-C, not an echo of the first (core/signal_repeat.hpp).
+      // A person's second Ctrl-C, not part of the first request (core/signal_repeat.hpp).
       std::this_thread::sleep_for(std::chrono::nanoseconds(SIGNAL_REPEAT_WINDOW_NS) +
                                   std::chrono::milliseconds(100));
       write_file_atomic(target.string(), [&](std::ostream& out) {
@@ -172,6 +172,40 @@ TEST_F(Hostile, ASecondCtrlCDuringACheckpointSaveRemovesItsTemporary) {
   EXPECT_EQ(WTERMSIG(status), SIGINT);
   EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"c.ckpt"}) << "a temporary was left behind";
   EXPECT_EQ(test::slurp(target), "an earlier save");
+}
+
+// One request to stop that arrives as two different signals within moments (a batch system's
+// SIGUSR1 to the run and to the sweep above it, which then stops the run with SIGTERM; a service
+// manager's SIGTERM then SIGHUP) is one request: the save after the first goes on and is
+// written. Before (only the same signal counted as a repeat): the second ended the process in
+// that save, nothing saved.
+TEST_F(Hostile, AnotherStopSignalRightAfterTheFirstIsTheSameRequest) {
+  const fs::path target = dir_ / "c.ckpt";
+  const pid_t child = ::fork();
+  if (child == 0) {
+    struct sigaction sa {};
+    sa.sa_handler = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
+    sigemptyset(&sa.sa_mask);
+    for (const int sig : {SIGUSR1, SIGTERM}) ::sigaction(sig, &sa, nullptr);
+    try {
+      ::raise(SIGUSR1);  // the batch system's warning: the run saves after its step
+      write_file_atomic(target.string(), [&](std::ostream& out) {
+        out << "the save";
+        out.flush();
+        ::raise(SIGTERM);  // the sweep's stop of its runs, moments later, during that save
+      });
+    } catch (...) {
+      ::_exit(2);
+    }
+    ::_exit(cli::checkpoint_signal::received == SIGUSR1 ? 0 : 3);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal "
+                                 << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(test::slurp(target), "the save");
+  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"c.ckpt"});
 }
 
 // Before: write_mesh_atomic("a.off\0/../b.off") wrote a.off (the C path ends at the NUL).
