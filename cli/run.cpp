@@ -110,13 +110,18 @@ int command_run(int argc, char** argv) {
   std::unique_ptr<ExportFolderLock> export_lock;  // held until the run's files are written
   PlannedFrames frames_planned;    // the frames of --export-dir, for what a failed run leaves
   CheckpointLocks checkpoint_locks;  // held until the run ends
+  CheckpointLocks resumed_lock;      // --resume's, taken before it is read: into checkpoint_locks
   try {
     const po::variables_map vm = parse_command_line(argc, argv, desc, input);
     if (vm.count("help")) {
       std::cout << desc << RUN_EXIT_CODES;
       return 0;
     }
-    if (!resume_path.empty()) resume = read_checkpoint(resume_path);  // InputError: exit 2
+    if (!resume_path.empty()) {
+      // Read under its lock: a run that holds it may be saving there (UsageError: exit 1).
+      resumed_lock = lock_resumed_checkpoint(resume_path, checkpoint_path, OptionSpelling::Cli);
+      resume = read_checkpoint(resume_path);  // InputError: exit 2
+    }
     if (input.empty() && !resume_path.empty()) input = checkpoint_input(resume, resume_path);
     if (input.empty()) throw UsageError("missing INPUT mesh");
     if (output.empty()) throw UsageError("missing -o OUTPUT");
@@ -216,7 +221,8 @@ int command_run(int argc, char** argv) {
     // creates a file or folder.
     check_planned_outputs(plan);
     export_lock = prepare_export_folder(plan.frames);
-    checkpoint_locks = lock_run_checkpoints(checkpoint_path, resume_path, saves_to_resumed);
+    checkpoint_locks = lock_run_checkpoints(checkpoint_path, resume_path, saves_to_resumed,
+                                            std::move(resumed_lock));
     if (saves_to_resumed && !checkpoint_path.empty() && !quiet)
       std::cerr << "note: " << resumed_saving_note(checkpoint_path, checkpoint_every) << '\n';
   } catch (const po::error& e) {

@@ -95,11 +95,13 @@ inline std::string resumed_run_checkpoint(const std::string& resume_path,
 }
 
 /// The locks of a run (shellcontract/checkpoint_lock.hpp), its warnings printed.
-/// After check_planned_outputs. @throws UsageError (exit code 1) naming the checkpoint held
+/// After check_planned_outputs. @param held  lock_resumed_checkpoint's, taken before the read
+/// @throws UsageError (exit code 1) naming the checkpoint held
 inline CheckpointLocks lock_run_checkpoints(const std::string& checkpoint,
-                                            const std::string& resume, bool saves_to_resumed) {
+                                            const std::string& resume, bool saves_to_resumed,
+                                            CheckpointLocks held) {
   CheckpointLocks locks = shellcontract::lock_run_checkpoints(checkpoint, resume, saves_to_resumed,
-                                                              OptionSpelling::Cli);
+                                                              OptionSpelling::Cli, std::move(held));
   for (const std::string& w : locks.warnings) std::cerr << "warning: " << w << '\n';
   return locks;
 }

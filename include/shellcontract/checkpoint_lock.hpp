@@ -32,6 +32,10 @@ class CheckpointLock {
   ~CheckpointLock();
   CheckpointLock(const CheckpointLock&) = delete;
   CheckpointLock& operator=(const CheckpointLock&) = delete;
+  /// Whether this is the lock of `checkpoint`: its lock file is the one held.
+  bool locks(const std::string& checkpoint) const;
+  /// Whether the lock file was opened for writing (not a read-only folder's, taken to resume).
+  bool writable() const;
 
  private:
   int fd_;
@@ -64,13 +68,34 @@ struct CheckpointLocks {
   std::vector<std::string> warnings;  ///< a file system that takes no locks
 };
 
+/// The lock of the checkpoint a run resumes from, taken before the run reads it, so that it is
+/// read under the lock: a run that holds it may be saving there, and a save that holds its log
+/// itself (format 3) removes the files beside; read first, a resume could meet them missing and
+/// say so as bad input (exit code 2) instead of "another run holds this checkpoint" (exit code 1).
+/// Named as lock_run_checkpoints names it: by the option that saves to it when that is
+/// `checkpoint` (the same lock file), else by the resume option; taken as a lock only resumed
+/// from (lock_checkpoint's `saves` false: in a folder this run cannot write, the lock file there
+/// read-only). Only a run holding the lock is refused here; any other failure to take it (no
+/// such file, a lock file that cannot be made) is left to the read and to lock_run_checkpoints,
+/// which refuse as they did before.
+/// @param checkpoint  where the run saves, as given ("" : not given)
+/// @return `resumed` holding the lock, or nullptr (not taken; `warnings`: a file system that
+///         takes no locks), for lock_run_checkpoints
+/// @throws OutputFileError (a UsageError) with errno EWOULDBLOCK when another run holds it
+CheckpointLocks lock_resumed_checkpoint(const std::string& resume, const std::string& checkpoint,
+                                        OptionSpelling spelling);
+
 /// Takes both locks of a run, by the front end's option names (spelling).
 /// @param checkpoint        where the run saves ("" : nowhere)
 /// @param resume            the checkpoint it resumes from ("" : none)
 /// @param saves_to_resumed  `checkpoint` is `resume`, not given by its own option (a resumed run
 ///                          that goes on saving where it resumed from): named as the latter
+/// @param held              lock_resumed_checkpoint's answer for `resume`: its lock is kept (as
+///                          the lock of `checkpoint` when that is its lock file, unless locked
+///                          read-only: then taken again to save), not taken again
 /// @throws UsageError naming the checkpoint held
 CheckpointLocks lock_run_checkpoints(const std::string& checkpoint, const std::string& resume,
-                                     bool saves_to_resumed, OptionSpelling spelling);
+                                     bool saves_to_resumed, OptionSpelling spelling,
+                                     CheckpointLocks held = {});
 
 }  // namespace shellcontract

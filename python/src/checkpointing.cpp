@@ -64,6 +64,10 @@ CheckpointArguments take_checkpoint_arguments(const py::kwargs& kwargs, py::kwar
 
 PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOptions& options) {
   PreparedCheckpoint p;
+  // The checkpoint resumed is read under its lock: a run that holds it may be saving there, and
+  // it is refused as held (BlockingIOError), not as a checkpoint whose files beside are missing.
+  CheckpointLocks resumed_lock =
+      lock_resumed_checkpoint(args.resume, args.checkpoint, OptionSpelling::Python);
   if (!args.resume.empty()) {
     p.resume = load_checkpoint(args.resume);
     options = options_for_resume(*p.resume, options);
@@ -98,7 +102,7 @@ PreparedCheckpoint prepare_checkpoint(const CheckpointArguments& args, RunOption
     check_output_files(saved_files("checkpoint", args.checkpoint), read);
   }
   p.locks = lock_run_checkpoints(p.save_path, args.resume, saves_to_resumed && !p.save_path.empty(),
-                                 OptionSpelling::Python);
+                                 OptionSpelling::Python, std::move(resumed_lock));
   for (const std::string& w : p.locks.warnings) warn(w);
   return p;
 }

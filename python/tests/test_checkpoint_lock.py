@@ -157,3 +157,34 @@ def test_resume_goes_on_saving_to_the_checkpoint_it_resumed_from(tmp_path, ico2,
     assert first_frame_after(v, f, path) == 11
     assert not lock_file(path).exists()
 
+
+
+def test_a_resume_of_a_checkpoint_held_is_refused_as_held_before_it_is_read(tmp_path, ico2):
+    """resume= reads the checkpoint under its lock: the run holding it may be saving there, and
+    its save that holds the log itself removes the files beside. Here they are gone while the
+    lock is held: each resume is refused as held, naming the checkpoint as before. Before, the
+    checkpoint was read first, and a missing file beside was the error (a FileNotFoundError,
+    "its volume history ...: cannot open file"), the lock never reached."""
+    v, f = ico2
+    path = tmp_path / "c.ckpt"
+    checkpointed(v, f, path, every=2)  # saves at frames 2 and 4: the log beside (format 5)
+    assert os.path.exists(str(path) + ".log")
+    fd = os.open(lock_file(path), os.O_RDWR | os.O_CREAT, 0o666)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        os.remove(str(path) + ".log")
+        os.remove(str(path) + ".history")
+        for arguments, option in ((dict(resume=path), "resume"),
+                                  (dict(resume=path, checkpoint=path), "checkpoint"),
+                                  (dict(resume=path, checkpoint=tmp_path / "d.ckpt"), "resume")):
+            with pytest.raises(BlockingIOError, match=HELD) as refused:
+                shellcontract.contract(v, f, **arguments)
+            assert str(refused.value).startswith("%s '%s'" % (option, path)), refused.value
+        assert not (tmp_path / "d.ckpt").exists()
+    finally:
+        os.close(fd)
+    os.remove(lock_file(path))
+    # Released: the checkpoint is read, and refused for a missing file beside.
+    with pytest.raises(FileNotFoundError, match="its (volume history|log)"):
+        shellcontract.contract(v, f, resume=path)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["c.ckpt"]

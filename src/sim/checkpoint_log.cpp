@@ -128,14 +128,21 @@ CheckpointLogFile::CheckpointLogFile(const std::string& checkpoint, const std::s
     : log_(log) {
   log_file_.path = checkpoint_log_path(checkpoint);
   history_file_.path = checkpoint_history_path(checkpoint);
-  std::error_code ec;
   // Resumed from this very file with its log beside: the log goes on there, after the length
   // the checkpoint records, and so does the history when it is beside too (format 5); a
   // history that format 4 held itself starts its file anew. Otherwise the files beside may be
   // what the checkpoint in place needs (another run's, the one resumed from when that is
-  // elsewhere): left alone.
-  if (resumed && resumed->log_beside && !resumed->path.empty() &&
-      std::filesystem::equivalent(resumed->path, checkpoint, ec) &&
+  // elsewhere): left alone. "This very file" takes its files beside too: a hard link (or a
+  // symbolic link) to the checkpoint under another name is the same file, but its files beside
+  // are another run's, which an append would have taken for the resumed log.
+  const auto same = [](const std::string& a, const std::string& b) {
+    std::error_code ec;
+    return std::filesystem::equivalent(a, b, ec);
+  };
+  if (resumed && resumed->log_beside && !resumed->path.empty() && same(resumed->path, checkpoint) &&
+      same(checkpoint_log_path(resumed->path), log_file_.path) &&
+      (!resumed->history_beside ||
+       same(checkpoint_history_path(resumed->path), history_file_.path)) &&
       log_.compare(0, resumed->log.size(), resumed->log) == 0) {
     log_file_.state = State::Ours;
     log_file_.synced = resumed->log.size();

@@ -4,8 +4,10 @@
 // preemption lost every frame since the first); a second run with the same --checkpoint was not
 // refused, and resuming the first silently gave the second's result; and a save that failed was
 // one stderr line, absent from --summary and from the message of an interrupted run.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -181,6 +183,62 @@ TEST_F(CliCheckpointFarm, ASecondRunWithTheSameCheckpointIsRefused) {
   const auto alone = run_cli(second);
   EXPECT_EQ(alone.exit_code, 0) << alone.output;
   EXPECT_FALSE(fs::exists(out(".c.ckpt.lock")));
+  EXPECT_EQ(test::run_command("ls -A " + test::quoted(dir_.string()) + " | grep -c lock").output,
+            "0\n");
+}
+
+// A resumed run reads its checkpoint under the lock: a run that holds it may be saving there,
+// and its save that holds the log itself (format 3) removes the files beside the checkpoint in
+// place. Here the test holds the lock and the files beside are gone, as a resume racing that
+// save could find them. Each form of resume says that the lock is held (exit 1), naming the
+// checkpoint as before; before, the checkpoint was read first and the run ended with exit 2,
+// "its volume history ...: cannot open file: no such file", which a sweep took for a checkpoint
+// refused. Released, the same resume reads the checkpoint and refuses it for a missing file
+// beside (exit 2), and no lock file is left.
+TEST_F(CliCheckpointFarm, AResumeOfACheckpointHeldIsRefusedAsHeldBeforeItIsRead) {
+  const auto made = run_cli({"run", mesh("ico2.off"), "-o", out("a.off"), "-n", "12", "-q",
+                             "--checkpoint", out("c.ckpt"), "--checkpoint-every", "5"});
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  ASSERT_EQ(saved_frame(out("c.ckpt")), 10);
+  ASSERT_TRUE(fs::exists(out("c.ckpt.log")));  // format 5: its log and history beside it
+  const int held = ::open(out(".c.ckpt.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  ASSERT_GE(held, 0);
+  ASSERT_EQ(::flock(held, LOCK_EX | LOCK_NB), 0);
+  fs::remove(out("c.ckpt.log"));
+  fs::remove(out("c.ckpt.history"));
+  const std::string checkpoint = "'" + out("c.ckpt") + "': ";
+  const std::string refused =
+      "another shellcontract run is saving to this checkpoint or resuming from it";
+  struct Case {
+    std::vector<std::string> args;
+    std::string named;  // the option the refusal names, and how it ends
+  };
+  const std::vector<Case> cases{{{"--resume", out("c.ckpt")}, "--resume " + checkpoint + refused},
+                                {{"--resume", out("c.ckpt"), "--checkpoint", out("c.ckpt")},
+                                 "--checkpoint " + checkpoint + refused},
+                                {{"--resume", out("c.ckpt"), "--checkpoint", out("d.ckpt")},
+                                 "--resume " + checkpoint + refused}};
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"run", "-o", out("r.off"), "-q"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find(c.named), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("no such file"), std::string::npos) << r.output;
+  }
+  EXPECT_NE(
+      run_cli({"run", "-o", out("r.off"), "--resume", out("c.ckpt"), "--checkpoint", out("c.ckpt")})
+          .output.find("wait for it to end, or choose another --checkpoint"),
+      std::string::npos);
+  for (const char* name : {"r.off", "d.ckpt", ".d.ckpt.lock"})
+    EXPECT_FALSE(fs::exists(out(name))) << name;
+  ::close(held);
+  fs::remove(out(".c.ckpt.lock"));
+  const auto released = run_cli({"run", "--resume", out("c.ckpt"), "-o", out("r.off"), "-q"});
+  EXPECT_EQ(released.exit_code, 2) << released.output;
+  EXPECT_NE(released.output.find("checkpoint " + out("c.ckpt") + ": its "), std::string::npos)
+      << released.output;
+  EXPECT_NE(released.output.find("no such file"), std::string::npos) << released.output;
   EXPECT_EQ(test::run_command("ls -A " + test::quoted(dir_.string()) + " | grep -c lock").output,
             "0\n");
 }

@@ -67,16 +67,23 @@ double varying_bytes(const Checkpoint& c) {
 }
 
 /// Saves every frame to `path` with a log of one 300-byte line a frame kept beside it; calls
-/// `before(frame)` ahead of each save.
+/// `before(frame)` ahead of each save. With `resumed`, continues that checkpoint's run and log;
+/// with `last` > 0, stops after the save of that frame.
 class LoggingCheckpointer final : public RunCheckpointer {
  public:
   LoggingCheckpointer(std::string path, const Mesh& mesh, const RunOptions& options,
-                      std::function<void(int)> before = {})
+                      std::function<void(int)> before = {}, const Checkpoint* resumed = nullptr,
+                      int last = 0)
       : path_(std::move(path)),
         hash_(mesh_hash(mesh)),
         options_(options),
-        file_(path_, log_, nullptr),
-        before_(std::move(before)) {}
+        log_(resumed ? resumed->log : "frame,line\n"),
+        file_(path_, log_, resumed),
+        before_(std::move(before)),
+        resumed_(resumed),
+        last_(last) {}
+  const Checkpoint* resume_from() const override { return resumed_; }
+  bool stop() override { return last_ > 0 && frame_ >= last_; }
   bool save_due(int frame) override {
     log_ += std::to_string(frame) + "," + std::string(300, 'x') + "\n";
     frame_ = frame;
@@ -116,9 +123,11 @@ class LoggingCheckpointer final : public RunCheckpointer {
   std::string path_;
   std::uint64_t hash_;
   RunOptions options_;
-  std::string log_ = "frame,line\n";
+  std::string log_;
   CheckpointLogFile file_;
   std::function<void(int)> before_;
+  const Checkpoint* resumed_;
+  int last_;
   int frame_ = 0;
 };
 
@@ -296,6 +305,53 @@ TEST_F(CheckpointLog, ALogRemovedBetweenSavesIsNamedAsRemovedAndTheNextSavesReco
     EXPECT_EQ(saver.saves[k].read_error, "") << "frame " << saver.saves[k].frame;
   }
   EXPECT_EQ(read_checkpoint(path).log, saver.saves.back().log);
+}
+
+// A hard link to a checkpoint under another name is the same file, but its files beside are
+// not: `--resume A --checkpoint B` with B a hard link of A, and B.log and B.history another
+// run's. The first save into B holds its log and history itself (format 3), as for any other
+// file; before, it took B's files beside for A's and appended to them, and the checkpoint it
+// wrote was refused ("its log ... is not the one the checkpoint was saved with"). Resuming A
+// into A itself still appends to A's files beside (format 5 from the first save).
+TEST_F(CheckpointLog, AHardLinkOfTheResumedCheckpointIsAnotherFileWithItsOwnFilesBeside) {
+  const std::string a = file("a.ckpt"), b = file("b.ckpt");
+  LoggingCheckpointer first(a, mesh_, options_, {}, nullptr, 10);
+  run_contraction(mesh_, options_, nullptr, &first);
+  LoggingCheckpointer other(b, mesh_, options_, {}, nullptr, 5);
+  run_contraction(mesh_, options_, nullptr, &other);
+  ASSERT_EQ(format_of(a), 5u);
+  ASSERT_EQ(format_of(b), 5u);
+  fs::remove(b);
+  fs::create_hard_link(a, b);
+  const Checkpoint resumed = read_checkpoint(a);
+  ASSERT_EQ(resumed.sim.frame, 10);
+  ASSERT_TRUE(resumed.log_beside && resumed.history_beside);
+
+  LoggingCheckpointer into_link(b, mesh_, options_, {}, &resumed, 12);
+  run_contraction(mesh_, options_, nullptr, &into_link);
+  ASSERT_EQ(into_link.saves.size(), 2u);
+  EXPECT_EQ(into_link.saves[0].frame, 11);
+  for (const Save& s : into_link.saves) {
+    EXPECT_EQ(s.error, "") << "frame " << s.frame;
+    EXPECT_EQ(s.read_error, "") << "frame " << s.frame;
+    EXPECT_EQ(s.saved_log, s.log) << "frame " << s.frame;
+    EXPECT_EQ(s.history, static_cast<std::size_t>(s.frame) + 1) << "frame " << s.frame;
+  }
+  const Checkpoint saved = read_checkpoint(b);
+  EXPECT_EQ(saved.sim.frame, 12);
+  EXPECT_EQ(saved.log, into_link.saves.back().log);
+  // A, the file resumed from, is left as it was, with its own files beside.
+  const Checkpoint again = read_checkpoint(a);
+  EXPECT_EQ(again.sim.frame, 10);
+  EXPECT_EQ(again.log, resumed.log);
+
+  LoggingCheckpointer into_itself(a, mesh_, options_, {}, &resumed, 11);
+  run_contraction(mesh_, options_, nullptr, &into_itself);
+  ASSERT_EQ(into_itself.saves.size(), 1u);
+  EXPECT_EQ(into_itself.saves[0].error, "");
+  EXPECT_EQ(into_itself.saves[0].read_error, "");
+  EXPECT_EQ(format_of(a), 5u);
+  EXPECT_EQ(read_checkpoint(a).log, into_itself.saves[0].log);
 }
 
 }  // namespace
