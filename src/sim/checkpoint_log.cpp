@@ -220,8 +220,9 @@ void CheckpointLogFile::append(Stream& s, const char* bytes, std::uint64_t size)
     // Opened without O_CREAT (appending to the file of this run's earlier saves): ENOENT says the
     // file went, not its folder, which file_error_text would name.
     std::error_code ec;
+    const std::filesystem::path folder = std::filesystem::path(s.path).parent_path();
     if (error == ENOENT && !(flags & O_CREAT) &&
-        std::filesystem::is_directory(std::filesystem::path(s.path).parent_path(), ec))
+        std::filesystem::is_directory(folder.empty() ? "." : folder, ec))
       throw UsageError("cannot write '" + printable(s.path) +
                        "': it was removed since the last save (the next save holds it itself)");
     cannot_write(s.path, error);
