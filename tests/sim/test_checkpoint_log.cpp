@@ -354,5 +354,21 @@ TEST_F(CheckpointLog, AHardLinkOfTheResumedCheckpointIsAnotherFileWithItsOwnFile
   EXPECT_EQ(read_checkpoint(a).log, into_itself.saves[0].log);
 }
 
+// The same with the checkpoint named without a folder (in the current one): its path has no
+// folder part, which the check of the folder must take as "." (before: the folder message).
+TEST_F(CheckpointLog, ALogRemovedBetweenSavesIsNamedAsRemovedInTheCurrentFolderToo) {
+  const fs::path before = fs::current_path();
+  fs::current_path(dir_);
+  LoggingCheckpointer saver("c.ckpt", mesh_, options_, [&](int frame) {
+    if (frame == 20) fs::remove(checkpoint_log_path("c.ckpt"));
+  });
+  run_contraction(mesh_, options_, nullptr, &saver);
+  fs::current_path(before);
+  ASSERT_EQ(saver.saves.size(), 39u);
+  EXPECT_NE(saver.saves[19].error.find("'c.ckpt.log': it was removed since the last save"),
+            std::string::npos)
+      << saver.saves[19].error;
+}
+
 }  // namespace
 }  // namespace shellcontract
