@@ -33,7 +33,7 @@ INTERRUPTED = 130
 OUTPUT_NOT_WRITTEN = "output not written"
 # The job's checkpoint could not be read (exit 2, the tool naming it with a read error such as
 # EIO or EMFILE, not its contents): the machine's condition too. The checkpoint is kept and the
-# next sweep resumes from it.
+# next sweep tries to resume from it again.
 CHECKPOINT_NOT_READ = "checkpoint not read"
 # Another attempt of the job holds its lock (sweep_lock) and runs it: this one neither ran it nor
 # recorded anything. Not an outcome: the job is left, and the attempt that runs it records it.

@@ -34,8 +34,25 @@ class PipeSafeStream:
         return getattr(self._stream, name)
 
 
-def raise_interrupt(signum, frame):
-    raise KeyboardInterrupt
+class StopRequest:
+    """The sweep's handler of SIGINT and the stop signals: the first raises KeyboardInterrupt in
+    the main thread, which takes Ctrl-C's path (its tasks cancelled, its jobs told to stop, each
+    saving its checkpoint, then the tables and exit 130). A later one is that stop under way, not
+    a new request: one request often comes as several signals (a service manager's SIGTERM then
+    SIGHUP, a batch system's SIGUSR1 to the sweep and then SIGTERM, a second Ctrl-C), and raised
+    again inside the stop sequence it cut it short: the sweep hung on jobs it had not yet told to
+    stop, which later ended without their checkpoints. The stop ends within the jobs' grace
+    (sweep_job.STOP_GRACE_SECONDS); SIGKILL ends the sweep at once (its jobs still save: the
+    parent-death signal)."""
+
+    def __init__(self):
+        self.stopping = False
+
+    def __call__(self, signum, frame):
+        if self.stopping:
+            return
+        self.stopping = True
+        raise KeyboardInterrupt
 
 
 # The signals that stop the sweep as Ctrl-C does, besides SIGINT: those the CLI stops on alike
@@ -50,7 +67,8 @@ STOP_SIGNALS = (signal.SIGTERM, signal.SIGHUP, signal.SIGUSR1)
 def stop_signals_as_ctrl_c():
     """SIGTERM (kill, Slurm's scancel, a container's stop), SIGHUP and SIGUSR1 take Ctrl-C's
     path: the jobs save their checkpoints, the tables are written, and the sweep exits 130, as
-    docs/cli.md says of every command. Python's default ends the process by the signal, leaving
+    docs/cli.md says of every command; any of them (SIGINT too) after the first is part of that
+    stop (StopRequest). Python's default ends the process by the signal, leaving
     the jobs' working folders and tables as they were. Dask, in this process, installs no handler
     of its own; the jobs' processes get the default back at exec. An ignored signal stays
     ignored, as Python leaves an ignored SIGINT; the earlier handlers are put back after (main
@@ -59,12 +77,13 @@ def stop_signals_as_ctrl_c():
         yield
         return
     old = {}
+    handler = StopRequest()
     try:
-        for sig in STOP_SIGNALS:
+        for sig in (signal.SIGINT,) + STOP_SIGNALS:
             before = signal.getsignal(sig)
             if before == signal.SIG_IGN:
                 continue
-            signal.signal(sig, raise_interrupt)
+            signal.signal(sig, handler)
             old[sig] = before
         yield
     finally:
