@@ -46,11 +46,11 @@ extern "C" inline void on_signal(int sig) {
     return;
   }
   // The same request again (a wrapper's forward, timeout's second send, a sweep's SIGTERM after
-  // the batch system's SIGUSR1): core/signal_repeat.hpp.
-  if (repeats_first_signal(first_ns.load(std::memory_order_relaxed), now)) return;
-  // A second Ctrl-C (or a signal from elsewhere) ends the process at once, removing the
-  // temporary of a checkpoint it cuts short (the save after the first one is the likely place
-  // for it): the library's ending, raised again now that it is this signal's handler.
+  // the batch system's SIGUSR1, however late): core/signal_repeat.hpp.
+  if (!ends_at_once(sig, first_ns.load(std::memory_order_relaxed), now)) return;
+  // A person's second Ctrl-C ends the process at once, removing the temporary of a checkpoint it
+  // cuts short (the save after the first one is the likely place for it): the library's ending,
+  // raised again now that it is this signal's handler.
   end_on_next_signal(sig);
   ::raise(sig);
 }

@@ -208,6 +208,42 @@ TEST_F(Hostile, AnotherStopSignalRightAfterTheFirstIsTheSameRequest) {
   EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"c.ckpt"});
 }
 
+// A program's stop that comes as signals seconds apart (a batch system's SIGUSR1 and then its
+// SIGTERM; a sweep on a cluster stopping its runs through its workers after the run's own signal)
+// is one request: only a person's second Ctrl-C ends the process at once. Before: a SIGTERM more
+// than half a second after the first signal ended the process in the save, nothing saved.
+TEST_F(Hostile, AProgramsLaterStopSignalIsStillTheSameRequest) {
+  const fs::path target = dir_ / "c.ckpt";
+  const pid_t child = ::fork();
+  if (child == 0) {
+    struct sigaction sa {};
+    sa.sa_handler = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
+    sigemptyset(&sa.sa_mask);
+    for (const int sig : {SIGUSR1, SIGTERM, SIGHUP}) ::sigaction(sig, &sa, nullptr);
+    try {
+      ::raise(SIGUSR1);  // the batch system's warning: the run saves after its step
+      std::this_thread::sleep_for(std::chrono::nanoseconds(SIGNAL_REPEAT_WINDOW_NS) +
+                                  std::chrono::milliseconds(100));
+      write_file_atomic(target.string(), [&](std::ostream& out) {
+        out << "the save";
+        out.flush();
+        ::raise(SIGTERM);  // the stop itself, later, during that save
+        ::raise(SIGHUP);
+      });
+    } catch (...) {
+      ::_exit(2);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal "
+                                 << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(test::slurp(target), "the save");
+  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"c.ckpt"});
+}
+
 // Before: write_mesh_atomic("a.off\0/../b.off") wrote a.off (the C path ends at the NUL).
 TEST_F(Hostile, APathWithANulNamesNoFile) {
   const fs::path a = dir_ / "a.off";
