@@ -134,16 +134,20 @@ class CliSignalEcho : public CliSignals {
     text = run.output();
     return status;
   }
+  /// The run stopped once: exit 130, its state saved (the message says so), no temporary left.
+  void expect_stopped_and_saved(int status, const std::string& text) const {
+    ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
+    EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+    EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
+    EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
+  }
 };
 
 TEST_F(CliSignalEcho, TheSameSignalAgainFromTheSameSenderIsTheFirstRepeated) {
   std::string text;
   const auto term = [](pid_t pid) { ::kill(pid, SIGTERM); };
   const int status = stopped_twice(term, term, text);
-  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
-  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
-  EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
-  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
+  expect_stopped_and_saved(status, text);
 }
 
 // The terminal's signal (sent by the kernel: no sending process; sigqueue's SI_QUEUE stands in for
@@ -154,10 +158,7 @@ TEST_F(CliSignalEcho, ASignalEchoedByAnotherSenderIsTheFirstRepeated) {
   const auto queued = [](pid_t pid) { ::sigqueue(pid, SIGINT, sigval{}); };
   const auto sent = [](pid_t pid) { ::kill(pid, SIGINT); };
   const int status = stopped_twice(queued, sent, text);
-  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
-  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
-  EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
-  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
+  expect_stopped_and_saved(status, text);
 }
 
 // A batch system's warning (Slurm's --signal=USR1) reaches the run and the sweep above it, which
@@ -168,10 +169,7 @@ TEST_F(CliSignalEcho, AnotherStopSignalRightAfterTheFirstIsTheSameRequest) {
   const auto usr1 = [](pid_t pid) { ::kill(pid, SIGUSR1); };
   const auto term = [](pid_t pid) { ::kill(pid, SIGTERM); };
   const int status = stopped_twice(usr1, term, text);
-  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
-  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
-  EXPECT_NE(text.find("; the state is saved in " + out("r.ckpt")), std::string::npos) << text;
-  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
+  expect_stopped_and_saved(status, text);
 }
 
 // A file size limit (RLIMIT_FSIZE, which batch systems pass on to a job) smaller than the result:

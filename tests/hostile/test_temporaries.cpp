@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <initializer_list>
 #include <thread>
 
 #include "../../cli/run_checkpoint.hpp"  // the CLI's own handler of a checkpointed run's signals
@@ -139,6 +140,27 @@ TEST_F(Hostile, AForkedChildEndedBySigtermKeepsItsParentsTemporary) {
   EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"o.off"});
 }
 
+/// In a forked child: the CLI's handler of a checkpointed run's stop signals on `sigs`, as
+/// CliCheckpointer installs it.
+void install_stop_handler(std::initializer_list<int> sigs) {
+  struct sigaction sa {};
+  sa.sa_handler = cli::checkpoint_signal::on_signal;
+  sigemptyset(&sa.sa_mask);
+  for (const int sig : sigs) ::sigaction(sig, &sa, nullptr);
+}
+
+/// The child ended by itself, with status 0, leaving `target` holding "the save" and nothing else
+/// in its folder: the save the signals came during was written, no temporary left.
+void expect_saved(pid_t child, const fs::path& target) {
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal "
+                                 << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(test::slurp(target), "the save");
+  EXPECT_EQ(test::listing(target.parent_path()), std::vector<std::string>{"c.ckpt"});
+}
+
 // Before: with --checkpoint, the CLI's handler gave a second SIGINT its default action, so a
 // checkpoint being saved after the first Ctrl-C left its hidden temporary (".c.ckpt.tmp.XXXX")
 // in the user's folder when a second Ctrl-C came during the save.
@@ -146,10 +168,7 @@ TEST_F(Hostile, ASecondCtrlCDuringACheckpointSaveRemovesItsTemporary) {
   const fs::path target = dir_ / "c.ckpt";
   const pid_t child = ::fork();
   if (child == 0) {
-    struct sigaction sa {};
-    sa.sa_handler = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
-    sigemptyset(&sa.sa_mask);
-    ::sigaction(SIGINT, &sa, nullptr);
+    install_stop_handler({SIGINT});
     try {
       write_text_atomic(target.string(), "an earlier save");  // --checkpoint-every
       ::raise(SIGINT);  // the first Ctrl-C: the run saves after its step, then stops
@@ -183,10 +202,7 @@ TEST_F(Hostile, AnotherStopSignalRightAfterTheFirstIsTheSameRequest) {
   const fs::path target = dir_ / "c.ckpt";
   const pid_t child = ::fork();
   if (child == 0) {
-    struct sigaction sa {};
-    sa.sa_handler = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
-    sigemptyset(&sa.sa_mask);
-    for (const int sig : {SIGUSR1, SIGTERM}) ::sigaction(sig, &sa, nullptr);
+    install_stop_handler({SIGUSR1, SIGTERM});
     try {
       ::raise(SIGUSR1);  // the batch system's warning: the run saves after its step
       write_file_atomic(target.string(), [&](std::ostream& out) {
@@ -199,13 +215,7 @@ TEST_F(Hostile, AnotherStopSignalRightAfterTheFirstIsTheSameRequest) {
     }
     ::_exit(cli::checkpoint_signal::received == SIGUSR1 ? 0 : 3);
   }
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal "
-                                 << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  EXPECT_EQ(WEXITSTATUS(status), 0);
-  EXPECT_EQ(test::slurp(target), "the save");
-  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"c.ckpt"});
+  expect_saved(child, target);
 }
 
 // A program's stop that comes as signals seconds apart (a batch system's SIGUSR1 and then its
@@ -216,10 +226,7 @@ TEST_F(Hostile, AProgramsLaterStopSignalIsStillTheSameRequest) {
   const fs::path target = dir_ / "c.ckpt";
   const pid_t child = ::fork();
   if (child == 0) {
-    struct sigaction sa {};
-    sa.sa_handler = cli::checkpoint_signal::on_signal;  // as CliCheckpointer installs it
-    sigemptyset(&sa.sa_mask);
-    for (const int sig : {SIGUSR1, SIGTERM, SIGHUP}) ::sigaction(sig, &sa, nullptr);
+    install_stop_handler({SIGUSR1, SIGTERM, SIGHUP});
     try {
       ::raise(SIGUSR1);  // the batch system's warning: the run saves after its step
       std::this_thread::sleep_for(std::chrono::nanoseconds(SIGNAL_REPEAT_WINDOW_NS) +
@@ -235,13 +242,7 @@ TEST_F(Hostile, AProgramsLaterStopSignalIsStillTheSameRequest) {
     }
     ::_exit(0);
   }
-  int status = 0;
-  ::waitpid(child, &status, 0);
-  ASSERT_TRUE(WIFEXITED(status)) << "ended by signal "
-                                 << (WIFSIGNALED(status) ? WTERMSIG(status) : 0);
-  EXPECT_EQ(WEXITSTATUS(status), 0);
-  EXPECT_EQ(test::slurp(target), "the save");
-  EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"c.ckpt"});
+  expect_saved(child, target);
 }
 
 // Before: write_mesh_atomic("a.off\0/../b.off") wrote a.off (the C path ends at the NUL).
