@@ -6,12 +6,14 @@ are checked by the library itself (``_core.resolve_options``), so the sweep hold
 of the names or the ranges.
 """
 
+import errno
 import glob
 import hashlib
 import itertools
 import json
 import os
 import re
+import stat
 
 from . import _core
 
@@ -125,13 +127,62 @@ def _require_text(path, data):
                     ascii(text)[:60]))
 
 
+# A sweep file lists meshes, options and runs: a few kilobytes. The bound only keeps a wrong file
+# (a disk image, a log) from being read whole into memory before it is refused.
+MAX_SWEEP_FILE_BYTES = 64 << 20
+
+
+def _kind_refusal(mode):
+    """Why a file of this mode cannot be a sweep file (as the tool's own inputs say it), or None."""
+    if stat.S_ISDIR(mode):
+        return "it is a folder"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "not a regular file: it is a device; inputs must be regular files"
+    if stat.S_ISFIFO(mode):
+        return "not a regular file: it is a FIFO (named pipe); inputs must be regular files"
+    if stat.S_ISSOCK(mode):
+        return "not a regular file: it is a socket; inputs must be regular files"
+    if not stat.S_ISREG(mode):
+        return "not a regular file; inputs must be regular files"
+    return None
+
+
+def _read_sweep_file(path):
+    """The sweep file's bytes: a regular file of at most MAX_SWEEP_FILE_BYTES, else SweepError.
+    Opened without blocking (a FIFO put in its place after a check would otherwise wait for a
+    writer) and checked on the open file, so what is read is what was checked."""
+    try:
+        fd = os.open(path, os.O_RDONLY | os.O_CLOEXEC | os.O_NONBLOCK)
+    except OSError as e:
+        if e.errno == errno.EISDIR:
+            raise SweepError("{}: cannot read the sweep file (it is a folder)".format(path))
+        raise SweepError("{}: cannot read the sweep file ({})".format(path, e.strerror))
+    try:
+        st = os.fstat(fd)
+    except OSError as e:
+        os.close(fd)
+        raise SweepError("{}: cannot read the sweep file ({})".format(path, e.strerror))
+    why = _kind_refusal(st.st_mode)
+    if why:
+        os.close(fd)
+        raise SweepError("{}: cannot read the sweep file ({})".format(path, why))
+    with os.fdopen(fd, "rb") as f:
+        if st.st_size > MAX_SWEEP_FILE_BYTES:
+            raise SweepError("{}: file too large for a sweep file: {} bytes, more than {}".format(
+                path, st.st_size, MAX_SWEEP_FILE_BYTES))
+        try:
+            text = f.read(MAX_SWEEP_FILE_BYTES + 1)
+        except OSError as e:
+            raise SweepError("{}: cannot read the sweep file ({})".format(path, e.strerror))
+    if len(text) > MAX_SWEEP_FILE_BYTES:  # grew after the check
+        raise SweepError("{}: file too large for a sweep file: more than {} bytes".format(
+            path, MAX_SWEEP_FILE_BYTES))
+    return text
+
+
 def load(path):
     """Reads and checks the sweep file's structure; returns its dict."""
-    try:
-        with open(path, "rb") as f:
-            text = f.read()
-    except OSError as e:
-        raise SweepError("{}: cannot read the sweep file ({})".format(path, e.strerror))
+    text = _read_sweep_file(path)
     try:
         data = json.loads(text.decode("utf-8"), object_pairs_hook=_unique_keys)
     except _DuplicateKey as e:

@@ -1,5 +1,6 @@
 """The sweep file as text: option names in either spelling, and JSON that no sweep can mean,
 refused by name before anything runs."""
+import os
 import re
 
 import pytest
@@ -52,3 +53,24 @@ def test_json_that_no_sweep_can_mean_is_refused_by_name(tmp_path, text, message)
     path.write_text(text)
     with pytest.raises(sweep_file.SweepError, match=r"s\.json: .*" + re.escape(message)):
         sweep_file.load(str(path))
+
+
+def test_a_sweep_file_that_is_not_a_regular_file_is_refused_without_reading(tmp_path):
+    # Before: the sweep file was read with f.read(): /dev/zero grew until a MemoryError traceback
+    # (or the kernel's OOM killer), and a FIFO waited for a writer for ever.
+    fifo = tmp_path / "fifo.json"
+    os.mkfifo(fifo)
+    for path, why in ((str(fifo), "FIFO"), ("/dev/zero", "device"), (str(tmp_path), "folder")):
+        with pytest.raises(sweep_file.SweepError) as e:
+            sweep_file.load(path)
+        assert str(e.value).startswith(path + ": cannot read the sweep file"), str(e.value)
+        assert why in str(e.value), str(e.value)
+
+
+def test_a_sweep_file_too_large_to_be_one_is_refused_by_its_size(tmp_path):
+    # A sparse file: its size is known without reading it (before: read whole, 20 GB in memory).
+    big = tmp_path / "big.json"
+    with open(big, "wb") as f:
+        f.truncate(sweep_file.MAX_SWEEP_FILE_BYTES + 1)
+    with pytest.raises(sweep_file.SweepError, match="file too large for a sweep file"):
+        sweep_file.load(str(big))
