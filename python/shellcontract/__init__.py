@@ -170,6 +170,8 @@ def contract(vertices, faces, *, callback=None, **options):
             del options[name]  # None: not given, the default
     weights_array = "region_weights" in options and not isinstance(options["region_weights"],
                                                                      (str, bytes, os.PathLike))
+    if weights_array:
+        options["region_weights"] = _weights(options["region_weights"])
     regions = options.get("regions")
     if regions is None or isinstance(regions, (str, os.PathLike)):
         if strengths is not None:
@@ -221,6 +223,29 @@ def _given_arrays(result, regions=None, strengths=None, weights=False):
     return result
 
 
+def _weights(weights):
+    """One float per vertex as a 1-D float64 array; the range is the library's to check (it names
+    the vertex). A 2-D array, strings, bools or complex numbers are not weights, whatever their
+    count (numpy would flatten or convert them)."""
+    if isinstance(weights, (str, bytes)):
+        raise TypeError("region_weights: expected a file name or one number per vertex")
+    a = np.asarray(weights)
+    if a.ndim != 1:
+        raise TypeError("region_weights: expected one number per vertex (a list or a 1-D array), "
+                        "got an array of shape {}".format(a.shape))
+    if a.dtype.kind == "O":  # Python numbers numpy cannot hold as one type (an int past 2^64)
+        for i, w in enumerate(a):
+            if isinstance(w, (bool, np.bool_)) or not isinstance(w, numbers.Real):
+                raise TypeError("region_weights[{}] = {!r} is not a number".format(i, w))
+            try:
+                float(w)
+            except OverflowError:
+                raise ValueError("region_weights[{}] = {} is not a weight in [0, 1]".format(i, w))
+    elif a.dtype.kind not in "iuf":
+        raise TypeError("region_weights: expected numbers, got an array of {}".format(a.dtype))
+    return a.astype(np.float64)
+
+
 def _strengths(strengths, num_regions):
     """One float in [0, 1] per region (the share of region_shrink each region sinks with)."""
     if isinstance(strengths, (str, bytes)) or np.ndim(strengths) != 1:
@@ -228,6 +253,9 @@ def _strengths(strengths, num_regions):
                         "got {!r}".format(strengths))
     if any(isinstance(s, (bool, np.bool_)) for s in strengths):
         raise TypeError("region_strengths: expected numbers in [0, 1], not bools")
+    for i, s in enumerate(strengths):
+        if not isinstance(s, numbers.Real):  # "0.5" would pass float(); a str is not a strength
+            raise TypeError("region_strengths[{}] = {!r} is not a number".format(i, s))
     values = [float(s) for s in strengths]
     if len(values) != num_regions:
         raise ValueError("region_strengths: {} values for {} regions".format(len(values), num_regions))

@@ -199,3 +199,27 @@ def test_empty_region_weights_are_refused(bumpy, empty):
     v, f = bumpy
     with pytest.raises(ValueError, match="region_weights: no weights"):
         shellcontract.contract(v, f, frames=2, region_weights=empty)
+
+
+@pytest.mark.parametrize("weights, error, fragment", [
+    # Before: a 2-D array of the right total size was flattened, complex weights lost their
+    # imaginary part with only numpy's ComplexWarning, strings were parsed, and an int too large
+    # for a float was an OverflowError instead of the documented ValueError.
+    (lambda n: np.full((n // 2, 2), 0.5), TypeError, "shape"),
+    (lambda n: np.full(n, 0.5 + 0.5j), TypeError, "complex"),
+    (lambda n: np.array(["0.5"] * n), TypeError, "expected numbers"),
+    (lambda n: np.ones(n, bool), TypeError, "expected numbers"),
+    (lambda n: [10 ** 400] + [0.5] * (n - 1), ValueError, "region_weights[0]"),
+])
+def test_region_weights_that_are_not_one_number_per_vertex_are_refused(bumpy, weights, error, fragment):
+    n = len(bumpy[0])
+    assert n % 2 == 0
+    with pytest.raises(error) as e:
+        run(bumpy, region_weights=weights(n))
+    assert fragment in str(e.value), str(e.value)
+
+
+def test_region_strengths_given_as_text_are_refused(bumpy):
+    # Before: ["0.5"] passed float() and was taken as 0.5.
+    with pytest.raises(TypeError, match=r"region_strengths\[0\] = '0.5' is not a number"):
+        run(bumpy, regions=[[3]], region_strengths=["0.5"])
