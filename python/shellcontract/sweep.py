@@ -48,9 +48,9 @@ def parse_shard(text):
     return i, n
 
 
-# The longest --job-timeout: far beyond any job (about 31 years), and within what the waits can
-# take (select's timeout overflows near 9.2e9 s).
-MAX_JOB_TIMEOUT = 1e9
+# The longest --job-timeout (sweep_job.MAX_SECONDS: far beyond any job, within what the waits
+# can take).
+MAX_JOB_TIMEOUT = sweep_job.MAX_SECONDS
 # --checkpoint-every goes to `shellcontract run`, which takes an int.
 MAX_CHECKPOINT_EVERY = 2**31 - 1
 
@@ -132,10 +132,20 @@ def _os_error_text(e):
     return "{}{}".format(where + ": " if where else "", e.strerror or e)
 
 
-def main(argv=None):
+def main(argv=None, *, lock_wait=sweep_job.JOB_LOCK_WAIT_SECONDS,
+         note_every=sweep_progress.WAIT_NOTE_SECONDS):
+    """The sweep of the command line `argv` (None: sys.argv[1:]); returns its exit code.
+
+    Two timings that the command line does not take (docs/design/sweeps.md, "Jobs" and "Where
+    the jobs run"), each a number of seconds, a ValueError naming it otherwise: `lock_wait`
+    (>= 0), how long an attempt of a job waits for another attempt that holds the job's lock
+    before it leaves the job `running elsewhere`; it goes with each job to its worker.
+    `note_every` (> 0), how often a sweep on a cluster without workers says so again."""
+    lock_wait = sweep_job.seconds("lock_wait", lock_wait)
+    note_every = sweep_job.seconds("note_every", note_every, zero=False)
     with sweep_process.stop_signals_as_ctrl_c():
         try:
-            return _main(argv)
+            return _main(argv, lock_wait, note_every)
         except KeyboardInterrupt:
             # Outside the running of the jobs (which says more): while checking the executable,
             # reading the sweep file or claiming DIR, whose writes are whole or absent. An
@@ -145,9 +155,11 @@ def main(argv=None):
             return EXIT_INTERRUPTED
 
 
-def _main(argv):
+def _main(argv, lock_wait, note_every):
     sweep_host.guard_stderr()
     args = parser().parse_args(argv)
+    # With the per-sweep settings of the command line, which reach each job the same way.
+    args.lock_wait, args.note_every = lock_wait, note_every
     cli = find_cli(args.cli)
     if cli is None:  # a path named by --cli or $SHELLCONTRACT_CLI is never replaced by another
         print("shellcontract sweep: " + sweep_cli.not_found(args.cli), file=sys.stderr)
@@ -251,7 +263,8 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
         if args.shard is not None:
             for job in todo:
                 on_record(job, sweep_job.run_job(job.to_dict(), args.output, cli, args.job_timeout,
-                                                 args.checkpoint_every, sweep=token))
+                                                 args.checkpoint_every, sweep=token,
+                                                 lock_wait=args.lock_wait))
         elif todo:  # nothing left to run: no cluster to start
             sweep_dask.run_jobs(todo, args, cli, version, token, progress, on_record, client)
     except (KeyboardInterrupt, sweep_dask.Interrupted) as e:

@@ -194,7 +194,7 @@ def run_jobs(todo, args, cli, version, token, progress, on_record, client=None):
                                out_dir=args.output, cli=cli, timeout=args.job_timeout,
                                checkpoint_every=args.checkpoint_every, sweep=token,
                                own_cli=own_cli, version=version, threads=threads,
-                               share=share, pure=False,
+                               share=share, lock_wait=args.lock_wait, pure=False,
                                # This sweep's own keys: two sweeps on one cluster with the
                                # same job (its id is the run's, not the folder's) had shared one
                                # task, whose files went to the first sweep's folder only.
@@ -204,7 +204,8 @@ def run_jobs(todo, args, cli, version, token, progress, on_record, client=None):
             futures[f] = job
             f.add_done_callback(finished.put)
         for _ in range(len(futures)):
-            f = sweep_progress.next_finished(finished, client, args.scheduler, progress)
+            f = sweep_progress.next_finished(finished, client, args.scheduler, progress,
+                                             args.note_every)
             job = futures[f]
             try:
                 record = f.result()

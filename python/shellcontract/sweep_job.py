@@ -8,6 +8,7 @@ nothing of the compiled core, so that a worker needs only the CLI and this packa
 
 import ctypes
 import json
+import numbers
 import os
 import select
 import shutil
@@ -44,6 +45,9 @@ STOP_GRACE_SECONDS = 10.0
 # run got the parent-death signal) saves and ends within STOP_GRACE_SECONDS, and Dask's
 # reschedule of it then resumes from its checkpoint. A lock held longer is a run that goes on.
 JOB_LOCK_WAIT_SECONDS = STOP_GRACE_SECONDS + 5
+# The longest wait or timeout a sweep takes (about 31 years): far beyond any job, and within what
+# the waits can take (select's and a queue's timeouts overflow near 9.2e9 s).
+MAX_SECONDS = 1e9
 SUMMARY_FIELDS = ("final_volume_ratio", "frames_run", "new_intersections", "peak_memory_mb")
 
 
@@ -187,8 +191,19 @@ def _classify(rc, timed_out, summary, messages):
     return status, failure
 
 
+def seconds(name, value, zero=True):
+    """`value` as a float number of seconds in [0, MAX_SECONDS] ((0, MAX_SECONDS] unless `zero`);
+    a ValueError naming the parameter `name` otherwise (NaN, inf, a negative, not a number)."""
+    ok = isinstance(value, numbers.Real) and not isinstance(value, bool)
+    v = float(value) if ok else None
+    if v is None or not (0 <= v if zero else 0 < v) or not v <= MAX_SECONDS:
+        raise ValueError("{}: expected a number of seconds {} 0 and <= {:g}, got {!r}".format(
+            name, ">=" if zero else ">", MAX_SECONDS, value))
+    return v
+
+
 def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, own_cli=None,
-            version=None, threads=None, share=None):
+            version=None, threads=None, share=None, lock_wait=JOB_LOCK_WAIT_SECONDS):
     """Runs one job (a Job.to_dict()) unless DIR/jobs/<id>/ holds its outcome already; returns
     its record. An interrupted job (SIGTERM/SIGINT to the child) leaves its checkpoint and no
     record; the next attempt resumes from the checkpoint.
@@ -198,7 +213,9 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, ow
     the client's `cli`, of the sweep's version); None: `cli` as it is (this machine's).
     `threads`: the job's --threads unless its options give one (sweep_host.job_threads); None: the
     tool's default. `share` (an existing cluster's, sweep_host.cluster_share): `threads` is this
-    worker's machine's share instead (sweep_host.worker_job_threads)."""
+    worker's machine's share instead (sweep_host.worker_job_threads). `lock_wait`: how long
+    this attempt waits for another attempt of the job that holds its lock (seconds, >= 0)."""
+    lock_wait = seconds("lock_wait", lock_wait)
     with _ACTIVE:
         _active_calls[sweep] = _active_calls.get(sweep, 0) + 1
     try:
@@ -206,7 +223,7 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, ow
             cli = worker_cli(cli, version, own_cli)
         if threads is None and share is not None:
             threads = sweep_host.worker_job_threads(share)
-        return _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads)
+        return _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads, lock_wait)
     finally:
         with _ACTIVE:
             _active_calls[sweep] -= 1
@@ -215,17 +232,13 @@ def run_job(job, out_dir, cli, timeout=None, checkpoint_every=20, sweep=None, ow
             _ACTIVE.notify_all()
 
 
-def _job_lock_wait():
-    """JOB_LOCK_WAIT_SECONDS; the tests shorten it (SHELLCONTRACT_TEST_JOB_LOCK_WAIT_S)."""
-    return float(os.environ.get("SHELLCONTRACT_TEST_JOB_LOCK_WAIT_S", JOB_LOCK_WAIT_SECONDS))
-
-
 def _not_run(job, status, message):
     return {"job": job["id"], "mesh": job["mesh"], "options": job["options"], "status": status,
             "exit_code": None, "message": message, "resumed": False, "output": ""}
 
 
-def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None):
+def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None,
+             lock_wait=JOB_LOCK_WAIT_SECONDS):
     out_dir = os.path.abspath(out_dir)
     p = paths(out_dir, job["id"])
     old = read_record(out_dir, job["id"])
@@ -239,7 +252,7 @@ def _run_job(job, out_dir, cli, timeout, checkpoint_every, sweep, threads=None):
     # an earlier cluster's jobs run, a lost worker's run still saving): its lock says so, and
     # this attempt then neither runs the tool (which would refuse the checkpoint's lock, exit 1)
     # nor records an outcome nor removes the job's files.
-    deadline = time.monotonic() + _job_lock_wait()
+    deadline = time.monotonic() + lock_wait
     note = None
     while True:
         job_fd = sweep_lock.lock_job(out_dir, job["id"], deadline, lambda: _is_stopped(sweep))

@@ -101,15 +101,15 @@ class Progress:
 
 
 # How often a sweep on a cluster without workers says so again (its jobs wait for the first).
-WAIT_NOTE_SECONDS = float(os.environ.get("SHELLCONTRACT_TEST_WAIT_NOTE_S", "60"))
+WAIT_NOTE_SECONDS = 60.0
 
 
-def next_finished(finished, client, scheduler, progress):
+def next_finished(finished, client, scheduler, progress, note_every=WAIT_NOTE_SECONDS):
     """The next finished future; while an existing cluster has no worker, says so every
-    WAIT_NOTE_SECONDS (it had said so once, at the start, and then waited without a word)."""
+    `note_every` seconds (it had said so once, at the start, and then waited without a word)."""
     while True:
         try:
-            return finished.get(timeout=WAIT_NOTE_SECONDS)
+            return finished.get(timeout=note_every)
         except queue.Empty:
             if scheduler and not client.scheduler_info().get("workers"):
                 progress.message("still no worker on {}: {} jobs wait (start one with `dask worker "

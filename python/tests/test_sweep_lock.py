@@ -21,11 +21,18 @@ SHORT = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pres
 LONG = {"meshes": ["meshes/ico3.off"], "options": {"frames": 6000, "threads": 1}}
 
 
-def sweep_with(cli, args, **env):
-    """run_sweep with these variables added to its environment."""
-    return subprocess.run([sys.executable, "-m", "shellcontract.sweep"] + args,
-                          env=dict(sweep_env(cli), **env), capture_output=True, text=True,
-                          timeout=240)
+def sweep_command(**params):
+    """A sweep's command, to which its arguments are added: sweep.main called with `params`, the
+    timings the command line does not take (lock_wait, note_every), as keyword arguments."""
+    return [sys.executable, "-c", "import sys; from shellcontract import sweep; "
+            "sys.exit(sweep.main(sys.argv[1:], **{!r}))".format(params)]
+
+
+def sweep_with(cli, args, env=None, **params):
+    """run_sweep with the variables `env` added to its environment, and sweep.main's keyword
+    arguments `params`."""
+    return subprocess.run(sweep_command(**params) + args, env=dict(sweep_env(cli), **(env or {})),
+                          capture_output=True, text=True, timeout=240)
 
 
 def runs_saving_to(folder):
@@ -63,7 +70,7 @@ def test_a_second_sweep_leaves_a_running_job_to_the_first(cli, mesh_dir, tmp_pat
             os.kill(pid, signal.SIGSTOP)
         before = sorted(p.name for p in checkpoints.iterdir())
         second = sweep_with(cli, [str(path), "-o", str(out), "--shard", "0/1"],
-                            SHELLCONTRACT_TEST_JOB_LOCK_WAIT_S="0.5")
+                            lock_wait=0.5)
         assert second.returncode == 3, second.stderr  # the job has no outcome yet
         assert "running elsewhere" in second.stderr and "bad usage" not in second.stderr, \
             second.stderr
@@ -105,7 +112,7 @@ def test_a_run_holding_the_tools_lock_is_waited_for_and_else_left_running(cli, m
     fd = hold_tool_lock(str(checkpoint))
     try:
         r = sweep_with(cli, [str(path), "-o", str(out), "--shard", "0/1"],
-                       SHELLCONTRACT_TEST_JOB_LOCK_WAIT_S="1")
+                       lock_wait=1)
         assert r.returncode == 3, r.stderr
         assert [row["status"] for row in results(out)] == ["running elsewhere", "ok"], r.stderr
         assert "another shellcontract run is saving to this checkpoint" in r.stderr, r.stderr
@@ -113,7 +120,7 @@ def test_a_run_holding_the_tools_lock_is_waited_for_and_else_left_running(cli, m
         # Released within the wait (a stopped run that saved and ended): the job runs.
         threading.Timer(1.0, os.close, [fd]).start()
         r = sweep_with(cli, [str(path), "-o", str(out), "--shard", "0/1"],
-                       SHELLCONTRACT_TEST_JOB_LOCK_WAIT_S="60")
+                       lock_wait=60)
         fd = None
     finally:
         if fd is not None:
@@ -230,7 +237,7 @@ def test_a_checkpoint_that_could_not_be_read_is_kept(cli, mesh_dir, tmp_path, ta
     checkpoint = out / ".work" / "checkpoints" / (ids[0] + ".ckpt")
     checkpoint.write_bytes(b"a checkpoint")
     r = sweep_with(cli, [str(path), "-o", str(out), "--shard", "0/1", "--cli", str(fake)],
-                   CKPT=str(checkpoint), TAIL=tail.format(ckpt=checkpoint))
+                   env={"CKPT": str(checkpoint), "TAIL": tail.format(ckpt=checkpoint)})
     assert [row["status"] for row in results(out)] == [status, "ok"], r.stderr
     if status == "ok":  # refused: removed, and the job ran from its first frame
         assert r.returncode == 0 and not checkpoint.exists(), r.stderr

@@ -13,6 +13,8 @@ import pytest
 
 from shellcontract import sweep_cli, sweep_host, sweep_job
 from test_sweep import results, run_sweep, start_scheduler, sweep_env, wait_until, write_sweep
+from test_sweep_lock import hold_tool_lock, sweep_command
+from test_sweep_timings import logging_cli, one_job_to_run_again, runs_of
 from test_sweep_engine import ENDLESS, kill_left_over, processes_naming
 
 pytest.importorskip("distributed")
@@ -224,17 +226,16 @@ def sweep_job_has_bokeh():
 def test_a_cluster_without_workers_is_said_again_while_the_jobs_wait(cli, mesh_dir, tmp_path,
                                                                       cluster):
     # Before: "the cluster has no workers yet" once, at the start, then nothing for as long as
-    # none joined. Now again every WAIT_NOTE_SECONDS (shortened here), and the jobs run once a
+    # none joined. Now again every `note_every` seconds (shortened here), and the jobs run once a
     # worker joins.
     address, start = cluster
     path = write_sweep(tmp_path, mesh_dir, "s.json", SMALL, meshes=("ico1.off",))
-    env = sweep_env(cli)
-    env["SHELLCONTRACT_TEST_WAIT_NOTE_S"] = "0.5"
     err_path = tmp_path / "sweep.err"
     with open(err_path, "w") as err_file:
-        proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o",
-                                 str(tmp_path / "out"), "--scheduler", address],
-                                env=env, stdout=subprocess.DEVNULL, stderr=err_file, text=True)
+        proc = subprocess.Popen(sweep_command(note_every=0.5)
+                                + [str(path), "-o", str(tmp_path / "out"), "--scheduler", address],
+                                env=sweep_env(cli), stdout=subprocess.DEVNULL, stderr=err_file,
+                                text=True)
         try:
             note = "still no worker on {}: 2 jobs wait (start one with `dask worker {}`".format(
                 address, address)
@@ -245,3 +246,23 @@ def test_a_cluster_without_workers_is_said_again_while_the_jobs_wait(cli, mesh_d
             if proc.poll() is None:
                 proc.kill()
     assert [r["status"] for r in results(tmp_path / "out")] == ["ok", "ok"]
+
+
+def test_the_lock_wait_goes_with_each_job_to_its_worker(cli, mesh_dir, tmp_path, cluster):
+    # A worker of its own process and environment: the client's lock_wait reaches it only with
+    # the job. 0: its attempt leaves the job at the first refusal, one run (with the default it
+    # would try again every half second for 15 s).
+    address, start = cluster
+    path, out, job, checkpoint = one_job_to_run_again(cli, mesh_dir, tmp_path)
+    start(sweep_env(cli))
+    fake = logging_cli(tmp_path, cli)
+    fd = hold_tool_lock(str(checkpoint))
+    try:
+        r = subprocess.run(sweep_command(lock_wait=0)
+                           + [str(path), "-o", str(out), "--scheduler", address, "--cli", str(fake)],
+                           env=sweep_env(cli), capture_output=True, text=True, timeout=240)
+    finally:
+        os.close(fd)
+    assert r.returncode == 3, r.stderr
+    assert [row["status"] for row in results(out)] == ["running elsewhere", "ok"], r.stderr
+    assert [line.endswith("-> 1") for line in runs_of(tmp_path, job)] == [True]
