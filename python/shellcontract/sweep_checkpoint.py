@@ -196,7 +196,9 @@ def remove_done(out_dir, job_ids):
         by_job.setdefault(name.lstrip(".")[:16], []).append(name)
     for job_id in job_ids:
         mine = [n for n in by_job.get(job_id, ()) if _is_job_file(job_id, n)]
-        if not mine:
+        # A sweep killed after removing a done job's files and before releasing its lock left the
+        # lock file alone: taken and released below, it goes too.
+        if not mine and job_id + ".lock" not in by_job.get(job_id, ()):
             continue
         try:
             fd = sweep_lock.try_lock_job(out_dir, job_id)

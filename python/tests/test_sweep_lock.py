@@ -21,6 +21,15 @@ SHORT = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pres
 LONG = {"meshes": ["meshes/ico3.off"], "options": {"frames": 6000, "threads": 1}}
 
 
+def stopped_state(pid):
+    """Whether /proc says the process is stopped (or gone: nothing more of it can happen)."""
+    try:
+        with open("/proc/{}/stat".format(pid)) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] in ("T", "t", "Z", "X")
+    except (OSError, IndexError):
+        return True
+
+
 def sweep_command(**params):
     """A sweep's command, to which its arguments are added: sweep.main called with `params`, the
     timings the command line does not take (lock_wait, note_every), as keyword arguments."""
@@ -68,6 +77,9 @@ def test_a_second_sweep_leaves_a_running_job_to_the_first(cli, mesh_dir, tmp_pat
         stopped = runs_saving_to(checkpoints)
         for pid in stopped:
             os.kill(pid, signal.SIGSTOP)
+        # A file creation under way when the signal came completes before the run stops: list
+        # the folder once every run is seen stopped (state T), not when kill() returns.
+        wait_until(lambda: all(stopped_state(pid) for pid in stopped))
         before = sorted(p.name for p in checkpoints.iterdir())
         second = sweep_with(cli, [str(path), "-o", str(out), "--shard", "0/1"],
                             lock_wait=0.5)
@@ -256,3 +268,18 @@ def test_progress_counts_a_job_running_elsewhere_as_left():
     p.job_finished({"status": "running elsewhere", "message": "another attempt"}, "job 0")
     p.job_finished({"status": "ok"}, "job 1")
     assert (p.done, p.failed, p.left) == (1, 0, 2)
+
+
+def test_a_lone_job_lock_of_a_done_job_is_removed_by_the_next_sweep(cli, mesh_dir, tmp_path):
+    # A sweep killed after removing a done job's checkpoint files and before releasing its lock
+    # leaves DIR/.work/checkpoints/<id>.lock alone. Before: no later sweep removed it (it was not
+    # counted as one of the job's files).
+    spec = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3]}}
+    path = write_sweep(tmp_path, mesh_dir, "c.json", spec, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    assert run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"]).returncode == 0
+    job = results(out)[0]["job"]
+    (out / ".work" / "checkpoints" / (job + ".lock")).write_bytes(b"")
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "2 done already" in r.stderr, r.stderr
+    assert [p.name for p in (out / ".work" / "checkpoints").iterdir()] == []
