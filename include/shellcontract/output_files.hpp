@@ -1,6 +1,6 @@
 // The check of a command's output files before any work (docs/design/output-safety.md), shared
 // by the CLI (cli/output_paths.hpp adds its export folder) and the Python module (contract()'s
-// checkpoint=).
+// checkpoint=, write_mesh's target).
 #pragma once
 
 #include <string>
@@ -30,5 +30,14 @@ struct NamedFile {
 ///         (shellcontract/file_error.hpp) with the errno where the file system refused (a
 ///         missing or read-only folder: ENOENT, EACCES; a folder in the output's place: EISDIR)
 void check_output_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs);
+
+/// Refuses an existing `path` that no writer of the library replaces: a folder (EISDIR), a
+/// device, FIFO or socket (FileSystemFailure::NO_ERRNO): "cannot write 'PATH': it is a folder",
+/// "cannot write 'PATH': it exists and is not a regular file (...)". Every writer checks it
+/// (write_mesh_atomic before the extension: /dev/null has none, and is refused for what it is);
+/// a caller that checks the name in its own way first (the Python module's write_mesh with
+/// like=) calls it before that. Only stat: nothing is opened.
+/// @throws OutputFileError (shellcontract/file_error.hpp)
+void refuse_special_output(const std::string& path);
 
 }  // namespace shellcontract

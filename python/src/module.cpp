@@ -25,6 +25,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
+#include "shellcontract/output_files.hpp"
 #include "shellcontract/regions.hpp"
 #include "shellcontract/validation.hpp"
 #include "shellcontract/version.hpp"
@@ -201,6 +202,10 @@ py::tuple read_mesh(const py::handle& path_arg) {
 void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py::handle& faces,
                 const py::handle& like_arg) {
   const std::string path = path_argument(path_arg);
+  // A device, FIFO or folder in the output's place is refused for what it is, as the CLI's
+  // check of its outputs does, before its name is checked (/dev/null has no extension, and with
+  // like= the name must have like's).
+  refuse_special_output(path);
   const std::string like = like_arg.is_none() ? std::string() : path_argument(like_arg, "like");
   // The faces are written as given (no reorientation): this writes a result back.
   const Mesh mesh = mesh_from_numpy(vertices, faces, nullptr, /*reorient=*/false);

@@ -255,6 +255,59 @@ def test_write_mesh_onto_a_fifo_or_socket_is_a_file_error_without_errno(specials
     assert stat.S_ISFIFO(os.stat(specials["FIFO"]).st_mode)  # never replaced
 
 
+SPECIAL_OUTPUT = ("cannot write '{}': it exists and is not a regular file (a device, FIFO or "
+                  "socket is never replaced)")
+
+
+def test_write_mesh_onto_a_device_fifo_or_folder_without_extension_is_refused_for_what_it_is(
+        tmp_path, ico2):
+    """Before: /dev/null, a FIFO or a folder named without a mesh's extension was refused for its
+    name ("the file name has no extension", a plain ValueError; for the folder, "it is a folder
+    (expected .off, ...)"), not for what it is, as the CLI's check of its outputs refuses it.
+    Nothing here opens /dev/null: it is only stat'ed, and with no extension the writer would
+    refuse it for the name even without that check."""
+    fifo = tmp_path / "fifo"
+    os.mkfifo(fifo)
+    folder = tmp_path / "folder"
+    folder.mkdir()
+    for path in ("/dev/null", fifo):
+        with pytest.raises(sc.FileError) as info:
+            sc.write_mesh(path, *ico2)
+        assert type(info.value) is sc.FileError and info.value.errno is None
+        assert info.value.filename == str(path)
+        assert str(info.value) == SPECIAL_OUTPUT.format(path)
+    with pytest.raises(IsADirectoryError) as info:
+        sc.write_mesh(folder, *ico2)
+    assert info.value.errno == errno.EISDIR and info.value.filename == str(folder)
+    assert str(info.value) == "cannot write '{}': it is a folder".format(folder)
+    import stat
+    assert stat.S_ISFIFO(os.stat(fifo).st_mode) and os.listdir(folder) == []  # never replaced
+    assert sorted(os.listdir(tmp_path)) == ["fifo", "folder"]  # no temporary left
+
+
+def test_write_mesh_like_onto_a_device_fifo_or_folder_is_refused_for_what_it_is(tmp_path, ico2):
+    """Before: with like=, a target without the like file's extension was refused for its name
+    first ("only an OBJ or PLY file, written to a file of its format", a plain ValueError),
+    whatever it was."""
+    like = tmp_path / "like.obj"
+    sc.write_mesh(like, *ico2)
+    v, f = sc.read_mesh(like)
+    fifo = tmp_path / "fifo.off"  # another format's extension
+    os.mkfifo(fifo)
+    folder = tmp_path / "folder"
+    folder.mkdir()
+    for path in ("/dev/null", fifo):
+        with pytest.raises(sc.FileError) as info:
+            sc.write_mesh(path, v, f, like=like)
+        assert type(info.value) is sc.FileError and info.value.errno is None
+        assert info.value.filename == str(path)
+        assert str(info.value) == SPECIAL_OUTPUT.format(path)
+    with pytest.raises(IsADirectoryError) as info:
+        sc.write_mesh(folder, v, f, like=like)
+    assert str(info.value) == "cannot write '{}': it is a folder".format(folder)
+    assert sorted(os.listdir(tmp_path)) == ["fifo.off", "folder", "like.obj"]
+
+
 def test_contract_checkpoint_onto_a_fifo_is_a_file_error_without_errno(specials, ico2):
     path = specials["FIFO"]
     with pytest.raises(sc.FileError) as info:

@@ -37,6 +37,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/output_files.hpp"
 
 namespace shellcontract {
 namespace {
@@ -49,6 +50,29 @@ std::string lower_extension(const std::string& path) {
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
+
+/// "cannot write 'PATH': WHY", with the errno of the call that failed.
+[[noreturn]] void cannot_write(const std::string& path, int error_number, const std::string& why) {
+  throw OutputFileError("cannot write '" + printable(path) + "': " + why, error_number, path);
+}
+
+}  // namespace
+
+// An existing target that is not a regular file is never replaced: as root, --log /dev/null
+// would otherwise turn /dev/null into a file.
+void refuse_special_output(const std::string& path) {
+  // A NUL byte would make stat look at another path; the writer's require_usable_path says why.
+  if (path.find('\0') != std::string::npos) return;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
+  if (S_ISDIR(st.st_mode)) cannot_write(path, EISDIR, "it is a folder");
+  // Refused for what it is, not by a failed call: a file error without an errno.
+  cannot_write(path, FileSystemFailure::NO_ERRNO,
+               "it exists and is not a regular file (a device, FIFO or socket is never replaced)");
+}
+
+namespace {
+
 // ------------------------------------------------------------------------------------ writing
 
 /// The stream's double formatting for the writers. CGAL's writers print every coordinate with
@@ -145,22 +169,18 @@ void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::stri
 
 namespace {
 
-/// write_mesh_atomic once the STL's positions are checked; `mesh` not welded.
 /// The writers' formats, named by the path's extension; the message says what is wrong with
-/// the name (none, a folder's, another format's) rather than "unknown extension '.'".
+/// the name (none, another format's) rather than "unknown extension '.'". A folder, device or
+/// FIFO in the output's place was refused before (refuse_special_output), for what it is.
 void require_plain_mesh_extension(const std::string& path, const std::string& ext) {
   if (ext == "off" || ext == "obj" || ext == "ply" || ext == "stl") return;
-  std::error_code ec;
-  const bool folder = std::filesystem::is_directory(path, ec);
-  const std::string what = folder        ? "it is a folder"
-                           : ext.empty() ? "the file name has no extension"
-                                         : "unknown extension '." + ext + "'";
-  const std::string message =
-      "cannot write '" + path + "': " + what + " (expected .off, .obj, .ply or .stl)";
-  if (folder) throw OutputFileError(message, EISDIR, path);
-  throw UsageError(message);
+  throw UsageError(
+      "cannot write '" + path + "': " +
+      (ext.empty() ? "the file name has no extension" : "unknown extension '." + ext + "'") +
+      " (expected .off, .obj, .ply or .stl)");
 }
 
+/// write_mesh_atomic once the STL's positions are checked; `mesh` not welded.
 void write_plain_mesh(const std::string& path, const std::string& ext, const Mesh& mesh,
                       const Positions& x, bool binary) {
   check_positions(mesh, x, "write_mesh_atomic");
@@ -191,6 +211,9 @@ void write_plain_mesh(const std::string& path, const std::string& ext, const Mes
 }  // namespace
 
 void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Positions& x, bool binary) {
+  // What the path is (a device, a FIFO, a folder) says more than its name does: /dev/null, which
+  // has no extension, is refused as a device, not for its name.
+  refuse_special_output(path);
   const std::string ext = lower_extension(path);
   // Checked on the mesh as given, before a welded mesh's copies are made: copies of one vertex
   // may share a position (read back, they are that vertex), two vertices may not.
@@ -209,6 +232,7 @@ void write_mesh_atomic(const std::string& path, const Mesh& mesh, const Position
 
 void write_polygon_soup_atomic(const std::string& path, const std::vector<Point3>& points,
                                const std::vector<std::vector<std::size_t>>& polygons, bool binary) {
+  refuse_special_output(path);  // before the extension, as write_mesh_atomic
   const std::string ext = lower_extension(path);
   require_plain_mesh_extension(path, ext);
   for (const auto& p : polygons) {
@@ -293,27 +317,11 @@ class FdBuf final : public std::streambuf {
   std::vector<char> buffer_;
 };
 
-/// "cannot write 'PATH': WHY", with the errno of the call that failed.
-[[noreturn]] void cannot_write(const std::string& path, int error_number, const std::string& why) {
-  throw OutputFileError("cannot write '" + printable(path) + "': " + why, error_number, path);
-}
-
-/// An existing target that is not a regular file (a device, a FIFO, a socket, a folder) is
-/// never replaced: as root, --log /dev/null would otherwise turn /dev/null into a file.
-void refuse_special_target(const std::string& path) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
-  if (S_ISDIR(st.st_mode)) cannot_write(path, EISDIR, "it is a folder");
-  // Refused for what it is, not by a failed call: a file error without an errno.
-  cannot_write(path, FileSystemFailure::NO_ERRNO,
-               "it exists and is not a regular file (a device, FIFO or socket is never replaced)");
-}
-
 }  // namespace
 
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
   require_usable_path(path, "output");
-  refuse_special_target(path);
+  refuse_special_output(path);
   const fs::path target(path);
   const std::string dir = target.has_parent_path() ? target.parent_path().string() : std::string(".");
   // Same folder, so that rename is atomic (same file system). The name is random and created

@@ -10,12 +10,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/soup_writer.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/checkpoint_lock.hpp"
 #include "shellcontract/error.hpp"
@@ -178,6 +181,40 @@ TEST_F(FileErrors, AFifoInAnOutputsPlaceIsAFileErrorWithoutErrno) {
             "--checkpoint '" + fifo +
                 "': exists and is not a regular file (a device, FIFO or socket); it is never "
                 "replaced");
+}
+
+// Before: a device or FIFO named without a mesh's extension was refused for its name first ("the
+// file name has no extension", a plain UsageError), not for what it is; a folder's message named
+// the extensions too. /dev/null is only stat'ed here, never opened: refused for its name even
+// without that check. The repaired mesh's writer, write_polygon_soup_atomic, checks the same way.
+TEST_F(FileErrors, ADeviceFifoOrFolderWithoutAMeshExtensionIsRefusedForWhatItIs) {
+  const Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico1.off");
+  const std::vector<Point3> points{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  const std::vector<std::vector<std::size_t>> polygons{{0, 1, 2}};
+  const std::string fifo = path("fifo");
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  for (const std::string& p : {fifo, std::string("/dev/null")}) {
+    const std::string expected = "cannot write '" + p +
+                                 "': it exists and is not a regular file (a device, FIFO or socket "
+                                 "is never replaced)";
+    EXPECT_EQ(output_file_error([&] { write_mesh_atomic(p, mesh, positions_from_mesh(mesh)); }, p,
+                                FileSystemFailure::NO_ERRNO),
+              expected);
+    EXPECT_EQ(output_file_error([&] { write_polygon_soup_atomic(p, points, polygons); }, p,
+                                FileSystemFailure::NO_ERRNO),
+              expected);
+  }
+  const std::string d = path("folder");
+  std::filesystem::create_directory(d);
+  for (const auto& write : std::vector<std::function<void()>>{
+           [&] { write_mesh_atomic(d, mesh, positions_from_mesh(mesh)); },
+           [&] { write_polygon_soup_atomic(d, points, polygons); }})
+    EXPECT_EQ(output_file_error(write, d, EISDIR), "cannot write '" + d + "': it is a folder");
+  std::vector<std::string> left;  // no temporary
+  for (const auto& e : std::filesystem::directory_iterator(dir_))
+    left.push_back(e.path().filename().string());
+  std::sort(left.begin(), left.end());
+  EXPECT_EQ(left, (std::vector<std::string>{"fifo", "folder"}));
 }
 
 // What flock says of a lock another run holds: EWOULDBLOCK, about the checkpoint (the lock
