@@ -9,20 +9,27 @@
 
 #include "core/plural.hpp"
 #include "mesh/file_extras.hpp"
+#include "mesh/gltf_json_checks.hpp"
 
 namespace shellcontract {
 namespace {
 
 using Json = nlohmann::json;
 
-/// The JSON text of a .glb (its first chunk) or of a .gltf (the whole file).
+/// The JSON text of a .glb (its first chunk) or of a .gltf (the whole file); none where it nests
+/// deeper than the reader takes (gltf::MAX_JSON_DEPTH: objects_with_extras recurses), which the
+/// reader has refused unless the file changed since.
 std::string json_text(const std::string& bytes) {
-  if (bytes.compare(0, 4, "glTF") != 0) return bytes;
-  if (bytes.size() < 20) return {};
-  std::uint32_t length = 0;
-  for (int i = 0; i < 4; ++i)
-    length |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[12 + i])) << (8 * i);
-  return bytes.substr(20, std::min<std::size_t>(length, bytes.size() - 20));
+  std::string text = bytes;
+  if (bytes.compare(0, 4, "glTF") == 0) {
+    if (bytes.size() < 20) return {};
+    std::uint32_t length = 0;
+    for (int i = 0; i < 4; ++i)
+      length |= static_cast<std::uint32_t>(static_cast<unsigned char>(bytes[12 + i])) << (8 * i);
+    text = bytes.substr(20, std::min<std::size_t>(length, bytes.size() - 20));
+  }
+  if (gltf::too_deep_at(text.data(), text.size()) != std::string::npos) return {};
+  return text;
 }
 
 /// A name from the file for a message: at most 24 characters, non-printable bytes as '?'.

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/gltf_json_checks.hpp"
 #include "mesh/gltf_model.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
@@ -78,6 +79,10 @@ struct ExternalFiles {
   std::vector<std::string>* looked_up = nullptr;
   /// Each path not found or not read, with its errno, in the order asked.
   std::vector<FileSystemFailure> refused;
+  /// The buffers the JSON declares (check_top_level), to bound an external buffer's read.
+  std::vector<gltf::DeclaredBuffer> declared;
+  /// The refusal of a buffer file larger than its buffer, made before reading it.
+  std::string too_large;
 };
 bool file_exists(const std::string& p, void* files) {
   auto& f = *static_cast<ExternalFiles*>(files);
@@ -92,7 +97,16 @@ std::string same_path(const std::string& p, void*) { return p; }
 bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const std::string& p,
                       void* files) {
   try {
-    const std::string b = read_regular_file(p);
+    auto& f = *static_cast<ExternalFiles*>(files);
+    const auto [bound, why] = gltf::buffer_file_bound(f.declared, p);
+    const std::uint64_t size = regular_file_size(p);  // a folder, device or FIFO refused as before
+    if (size > bound) {
+      f.too_large = "buffer file too large: '" + printable(p) + "' has " + std::to_string(size) +
+                    " bytes, more than " + why + "; it was not read";
+      if (err) *err += f.too_large;
+      return false;
+    }
+    const std::string b = read_regular_file(p, bound);
     out->assign(b.begin(), b.end());
     return true;
   } catch (const std::exception& e) {
@@ -354,9 +368,13 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
     fail(path, "too large", "a glTF file holds at most 4 GiB");
   const bool binary = bytes.compare(0, 4, "glTF") == 0;
   if (binary) check_glb_container(path, bytes);
+  // Before any recursive parser sees it: the JSON's depth, then what tinygltf reads leniently.
+  const std::size_t json_at = binary ? 20 : 0;
+  const std::size_t json_size = binary ? le32(bytes, 12) : bytes.size();
+  ExternalFiles files{looked_up, {}, {}, {}};
+  files.declared = gltf::check_top_level(path, bytes.data() + json_at, json_size, json_at);
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
-  ExternalFiles files{looked_up, {}};
   loader.SetFsCallbacks(
       tinygltf::FsCallbacks{file_exists, same_path, read_buffer_file, no_write, &files});
   tinygltf::Model m;
@@ -373,6 +391,7 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
   } catch (const std::exception& e) {  // nlohmann-json's, for a document it cannot parse
     err += e.what();
   }
+  if (!ok && !files.too_large.empty()) throw InputError(path + ": " + files.too_large);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     const std::size_t last_line = err.rfind('\n');

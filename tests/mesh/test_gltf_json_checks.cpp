@@ -1,0 +1,132 @@
+// A glTF's JSON checked before tinygltf parses it (src/mesh/gltf_json_checks.cpp): a JSON nested
+// deeper than MAX_JSON_DEPTH (512) levels, an asset version other than 2, a default scene that is
+// not a scene index, and an external buffer file larger than its byteLength are each an
+// InputError naming the file. Before: 20,000 nested arrays crashed the reader (stack overflow in
+// tinygltf's recursive parse; tests/cli/test_cli_gltf_hostile.cpp), 513 levels were read,
+// "3.0" was read as 2.0, "scene": -2 as scene 0, and a buffer file was read whole before its size
+// was compared (the message then tinygltf's "File size mismatch").
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
+#include "support/gltf_files.hpp"
+#include "support/scratch_dir.hpp"
+
+namespace shellcontract {
+namespace {
+
+using test::GltfScene;
+
+class GltfJsonChecks : public test::ScratchDirTest {
+ protected:
+  GltfJsonChecks() : ScratchDirTest("shellcontract_gltf_json_checks_") {}
+  /// The refusal of the file, or "(no error)".
+  static std::string error_of(const std::string& path) {
+    try {
+      read_input_mesh(path);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    return "(no error)";
+  }
+  static GltfScene octahedron(const std::string& extra = "") {
+    GltfScene s;
+    s.primitives.push_back(test::octahedron_primitive(false, false));
+    s.extra = extra;
+    return s;
+  }
+  /// The octahedron's .glb with `json` edited: `from` replaced by `to`.
+  std::string edited(const std::string& name, const std::string& from, const std::string& to) {
+    test::GltfParts parts = test::gltf_parts(octahedron());
+    const std::size_t at = parts.json.find(from);
+    EXPECT_NE(at, std::string::npos) << from;
+    parts.json.replace(at, from.size(), to);
+    return write(name, test::glb_bytes(parts));
+  }
+};
+
+/// A top-level "extras" of `arrays` nested arrays: the JSON then nests arrays + 1 levels.
+std::string nested_extras(std::size_t arrays) {
+  return "\"extras\":" + std::string(arrays, '[') + std::string(arrays, ']');
+}
+
+TEST_F(GltfJsonChecks, AJsonNestedDeeperThan512LevelsIsRefusedAndOneOf512IsRead) {
+  const GltfScene deepest = octahedron(nested_extras(511));  // 512 levels with the root object
+  EXPECT_EQ(read_input_mesh(write("d512.glb", test::glb_bytes(test::gltf_parts(deepest))))
+                .number_of_faces(),
+            8u);
+  const GltfScene deeper = octahedron(nested_extras(512));
+  const test::GltfParts parts = test::gltf_parts(deeper);
+  for (const std::string& path :
+       {write("d513.glb", test::glb_bytes(parts)), write("d513.gltf", test::gltf_text(parts))}) {
+    const std::string e = error_of(path);
+    EXPECT_EQ(e.rfind(path + ": JSON nested too deeply: the JSON nests deeper than 512 levels", 0),
+              0u)
+        << e;
+    // The 513th '[' opens level 513: its byte in the file (the .glb's JSON starts at byte 20).
+    const std::size_t json_at = path.back() == 'b' ? 20 : 0;
+    const std::string json =
+        path.back() == 'b' ? test::replace_uri(parts.json, "") : test::gltf_text(parts);
+    const std::size_t opens = json.find('[', json.find("\"extras\"")) + 511;
+    EXPECT_NE(e.find("(byte " + std::to_string(json_at + opens) + " opens level 513)"),
+              std::string::npos)
+        << e;
+  }
+}
+
+TEST_F(GltfJsonChecks, BracketsInsideStringsAndEscapedQuotesDoNotCount) {
+  // 600 '[' and '{' inside a string (after an escaped quote and an escaped backslash): depth 2.
+  const std::string s = "\\\"\\\\" + std::string(300, '[') + std::string(300, '{');
+  const GltfScene scene = octahedron("\"extras\":{\"text\":\"" + s + "\"}");
+  EXPECT_EQ(read_input_mesh(write("strings.glb", test::glb_bytes(test::gltf_parts(scene))))
+                .number_of_faces(),
+            8u);
+}
+
+TEST_F(GltfJsonChecks, AnAssetVersionOtherThanTwoIsRefused) {
+  const std::string v3 = edited("v3.glb", "\"version\":\"2.0\"", "\"version\":\"3.0\"");
+  EXPECT_EQ(error_of(v3), v3 + ": unsupported glTF version: asset.version is \"3.0\" (only glTF "
+                               "2.x is read)");
+  const std::string v1 = edited("v1.glb", "\"version\":\"2.0\"", "\"version\":\"1.0\"");
+  EXPECT_NE(error_of(v1).find("asset.version is \"1.0\""), std::string::npos) << error_of(v1);
+  const std::string min =
+      edited("min.glb", "\"version\":\"2.0\"", "\"version\":\"2.1\",\"minVersion\":\"2.1\"");
+  EXPECT_NE(error_of(min).find("asset.minVersion is \"2.1\""), std::string::npos) << error_of(min);
+  // A later minor version without minVersion is meant to be read by a 2.0 reader (the spec).
+  const std::string minor =
+      edited("minor.glb", "\"version\":\"2.0\"", "\"version\":\"2.1\",\"minVersion\":\"2.0\"");
+  EXPECT_EQ(read_input_mesh(minor).number_of_faces(), 8u);
+}
+
+TEST_F(GltfJsonChecks, ADefaultSceneThatIsNoSceneIndexIsRefused) {
+  for (const std::string value : {"-2", "-1", "0.5"}) {
+    const std::string path = edited("scene.glb", "\"scene\":0", "\"scene\":" + value);
+    EXPECT_EQ(error_of(path),
+              path + ": bad default scene: \"scene\" is " + value + ", not a scene index");
+  }
+  const std::string big = edited("big.glb", "\"scene\":0", "\"scene\":4294967296");
+  EXPECT_NE(error_of(big).find("scene out of range"), std::string::npos) << error_of(big);
+}
+
+TEST_F(GltfJsonChecks, ABufferFileLargerThanItsByteLengthIsRefusedUnread) {
+  const test::GltfParts parts = test::gltf_parts(octahedron());
+  write("octa.bin", parts.bin + std::string(4, '\0'));
+  const std::string gltf = write("octa.gltf", test::gltf_text(parts, "octa.bin"));
+  const std::string e = error_of(gltf);
+  const std::string bin = (dir_ / "octa.bin").string();
+  EXPECT_EQ(e, gltf + ": buffer file too large: '" + bin + "' has " +
+                   std::to_string(parts.bin.size() + 4) + " bytes, more than buffer 0's " +
+                   "byteLength of " + std::to_string(parts.bin.size()) +
+                   " ('octa.bin'); it was not read");
+  // A file of the right size is read, also through a percent-encoded URI.
+  write("oc ta.bin", parts.bin);
+  EXPECT_EQ(
+      read_input_mesh(write("ok.gltf", test::gltf_text(parts, "oc%20ta.bin"))).number_of_faces(),
+      8u);
+}
+
+}  // namespace
+}  // namespace shellcontract
