@@ -45,6 +45,23 @@
 namespace po = boost::program_options;
 
 namespace shellcontract::cli {
+namespace {
+
+/// --regions FILE and --region-weights FILE number the input's faces and vertices; a repair that
+/// changed the mesh renumbered them (CGAL, design/repair.md), so the ids would fall on other
+/// faces without a word. Refused (bad usage) once the repair says it changed the mesh.
+void refuse_ids_of_the_input(const RunOptions& options, const std::string& input) {
+  const auto refuse = [&](const std::string& option, const std::string& file, const char* ids) {
+    throw UsageError(option + " " + file + " numbers the " + ids + " of " + input +
+                     " as read, and --repair renumbered them (it changed the mesh): run "
+                     "`shellcontract repair` first and make the file for the repaired mesh");
+  };
+  if (options.regions == RegionSource::File) refuse("--regions", options.region_file, "faces");
+  if (!options.region_weight_file.empty())
+    refuse("--region-weights", options.region_weight_file, "vertices");
+}
+
+}  // namespace
 
 int command_run(int argc, char** argv) {
   std::string input, output, log_path, summary_path, fields_prefix, fields_colour = "mean";
@@ -248,6 +265,7 @@ int command_run(int argc, char** argv) {
       if (!repair_report.already_usable) {
         std::cerr << "repaired " << input << " (refused as read: " << repair_report.input_problem << ")\n";
         for (const std::string& line : repair_report.summary_lines()) std::cerr << "  " << line << '\n';
+        refuse_ids_of_the_input(options, input);
       }
     }
     const double read_seconds =

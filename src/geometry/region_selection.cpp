@@ -15,9 +15,11 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "core/decimal_text.hpp"
+#include "core/text_lines.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/curvature.hpp"
 #include "mesh/file_safety.hpp"
@@ -121,17 +123,15 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
   RegionFile file;
   std::vector<std::size_t> first_line(num_faces, 0);  // line where a face was listed, 0 = not yet
   std::size_t line = 0;
-  for (std::size_t begin = 0; begin < bytes.size();) {
-    std::size_t end = bytes.find('\n', begin);
-    if (end == std::string::npos) end = bytes.size();
+  for (std::size_t begin = skip_utf8_bom(bytes); begin < bytes.size();) {
+    const std::string_view whole = next_line(bytes, begin);  // "\n", "\r\n" or "\r" ends it
     ++line;
-    if (end - begin > max_line)
-      throw InputError(line_error(printable(path), line, "the line has " + std::to_string(end - begin) +
-                                                             " characters, more than a region of this mesh can need (" +
-                                                             std::to_string(max_line) + ")"));
-    std::string text = bytes.substr(begin, end - begin);
-    begin = end + 1;
-    if (!text.empty() && text.back() == '\r') text.pop_back();  // files written on Windows
+    if (whole.size() > max_line)
+      throw InputError(line_error(printable(path), line,
+                                  "the line has " + std::to_string(whole.size()) +
+                                      " characters, more than a region of this mesh can need (" +
+                                      std::to_string(max_line) + ")"));
+    std::string text(whole);
     const std::size_t start = text.find_first_not_of(" \t");
     if (start == std::string::npos || text[start] == '#') continue;
     std::vector<int> region;
@@ -162,10 +162,14 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
       if (!std::all_of(token.begin(), token.end(), [](unsigned char ch) { return std::isdigit(ch) != 0; }))
         throw InputError(line_error(printable(path), line, "'" + printable(token, 40) +
                                                                "' is not a face index (a non-negative integer)"));
-      if (token.size() > 18 || std::stoull(token) >= num_faces)
+      // Leading zeros ("0001", as a spreadsheet pads) are no part of the value: counted in the
+      // length that keeps stoull within range, they made a small id "out of range".
+      const std::size_t nonzero = token.find_first_not_of('0');
+      const std::string digits = nonzero == std::string::npos ? "0" : token.substr(nonzero);
+      if (digits.size() > 18 || std::stoull(digits) >= num_faces)
         throw InputError(line_error(printable(path), line, "face " + printable(token, 40) + " is out of range (the mesh has " +
                                                     std::to_string(num_faces) + " faces)"));
-      const auto f = static_cast<std::size_t>(std::stoull(token));
+      const auto f = static_cast<std::size_t>(std::stoull(digits));
       if (first_line[f] != 0)
         throw InputError(line_error(printable(path), line, "face " + token + " is already listed on line " +
                                                     std::to_string(first_line[f])));

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
 #include <cerrno>
@@ -17,6 +18,7 @@
 #include <ctime>
 #include <mutex>
 
+#include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
 #include "shellcontract/signals.hpp"
@@ -373,6 +375,11 @@ int open_regular(const std::string& path, struct stat& st) {
   return fd;
 }
 
+struct Closer {
+  int fd;
+  ~Closer() { ::close(fd); }
+};
+
 }  // namespace
 
 std::uint64_t regular_file_size(const std::string& path) {
@@ -385,10 +392,7 @@ std::uint64_t regular_file_size(const std::string& path) {
 std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) {
   struct stat st {};
   const int fd = open_regular(path, st);
-  struct Closer {
-    int fd;
-    ~Closer() { ::close(fd); }
-  } closer{fd};
+  const Closer closer{fd};
   const auto declared = static_cast<std::uint64_t>(st.st_size);
   if (declared > max_bytes)
     fail_os(path, EFBIG, "file too large",
@@ -412,6 +416,28 @@ std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) 
     if (done > max_bytes)
       fail_os(path, EFBIG, "file too large",
               "it grew beyond " + std::to_string(max_bytes) + " bytes while being read");
+  }
+  bytes.resize(done);
+  return bytes;
+}
+
+std::string read_regular_file_start(const std::string& path, std::uint64_t max_bytes) {
+  struct stat st {};
+  const int fd = open_regular(path, st);
+  const Closer closer{fd};
+  const auto wanted = std::min(static_cast<std::uint64_t>(st.st_size), max_bytes);
+  std::string bytes(static_cast<std::size_t>(wanted), '\0');  // std::bad_alloc passes
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      fail_os(path, e, "cannot read file",
+              file_error_text(e) + " after " + std::to_string(done) + " bytes");
+    }
+    if (n == 0) break;  // the file shrank since the stat: what it holds
+    done += static_cast<std::size_t>(n);
   }
   bytes.resize(done);
   return bytes;

@@ -1,12 +1,17 @@
 #include "sim/checkpoint.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cstring>
 #include <limits>
+#include <new>
 #include <stdexcept>
 #include <type_traits>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -57,6 +62,11 @@ void write_contact(Writer& w, const Contact& c) {
   w.pod(c.side);
 }
 
+/// A contact's bytes in the file (write_contact): its kind, pair, 4 vertices, 4 weights, normal
+/// and side.
+constexpr std::size_t CONTACT_BYTES = sizeof(std::int32_t) + sizeof(std::array<int, 2>) +
+                                      sizeof(std::array<int, 4>) + 8 * sizeof(double);
+
 Contact read_contact(Reader& r) {
   Contact c;
   c.kind = static_cast<CcdPrimitive>(r.pod<std::int32_t>());
@@ -72,6 +82,47 @@ std::string describe(const OptionValues& o, const std::string& name) {
   for (const auto& [n, v] : o)
     if (n == name) return v.empty() ? "unset" : v;
   return "unset";
+}
+
+/// The most bytes a checkpoint is read with: the machine's memory. A checkpoint is a run's state,
+/// which a run resuming it holds in memory (and more besides), so one larger than the memory
+/// cannot be resumed here; reading it anyway ended in "out of memory", naming no file. (The
+/// mesh, which would bound it better, is read after the checkpoint, which names it.)
+std::uint64_t checkpoint_byte_cap() {
+  const long pages = ::sysconf(_SC_PHYS_PAGES), page = ::sysconf(_SC_PAGE_SIZE);
+  if (pages <= 0 || page <= 0) return std::numeric_limits<std::uint64_t>::max();
+  return static_cast<std::uint64_t>(pages) * static_cast<std::uint64_t>(page);
+}
+
+/// The bytes of the checkpoint `path`, or InputError naming it. Its magic is read first: a file
+/// that is no checkpoint (a mesh, a log, a huge sparse file given by mistake) is refused after
+/// its first bytes, whatever its size; one larger than checkpoint_byte_cap before it is read.
+std::string checkpoint_bytes(const std::string& path) {
+  std::string start;
+  std::uint64_t size = 0;
+  try {
+    // A regular file only: a folder is "it is a folder", not a stream's read error.
+    start = read_regular_file_start(path, sizeof MAGIC - 1);
+    size = regular_file_size(path);
+  } catch (const InputError& e) {
+    rethrow_input_error_as(e, "checkpoint " + std::string(e.what()));  // errno and path kept
+  }
+  if (start != MAGIC)
+    throw InputError("checkpoint " + printable(path) + ": not a shellcontract checkpoint");
+  const std::uint64_t cap = checkpoint_byte_cap();
+  if (size > cap)
+    throw InputFileError("checkpoint " + printable(path) + ": file too large: " +
+                             std::to_string(size) + " bytes, more than this machine's memory (" +
+                             std::to_string(cap) + " bytes), which a run resuming it would need",
+                         EFBIG, path);
+  try {
+    return read_regular_file(path, cap);
+  } catch (const InputError& e) {
+    rethrow_input_error_as(e, "checkpoint " + std::string(e.what()));
+  } catch (const std::bad_alloc&) {
+    throw InputError("checkpoint " + printable(path) + ": out of memory while reading its " +
+                     std::to_string(size) + " bytes");
+  }
 }
 
 }  // namespace
@@ -294,15 +345,9 @@ void write_checkpoint(const std::string& path, const Checkpoint& c, const LogBes
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
-  std::string bytes;
-  try {
-    // A regular file only: a folder is "it is a folder", not a stream's read error.
-    bytes = read_regular_file(path);
-  } catch (const InputError& e) {
-    rethrow_input_error_as(e, "checkpoint " + std::string(e.what()));  // errno and path kept
-  }
+  const std::string bytes = checkpoint_bytes(path);
   Reader r(bytes, path);
-  if (bytes.compare(0, sizeof MAGIC - 1, MAGIC) != 0)
+  if (bytes.compare(0, sizeof MAGIC - 1, MAGIC) != 0)  // replaced since its magic was read
     throw InputError("checkpoint " + printable(path) + ": not a shellcontract checkpoint");
   std::string magic(sizeof MAGIC - 1, '\0');
   r.take(magic.data(), magic.size());
@@ -321,7 +366,8 @@ Checkpoint read_checkpoint(const std::string& path) {
   c.input_hash = r.pod<std::uint64_t>();
   c.inputs_recorded = format != FORMAT_WITHOUT_INPUTS;
   if (c.inputs_recorded) {
-    c.inputs.resize(r.size());
+    // Two texts' lengths, a flag and a hash each.
+    c.inputs.resize(r.count(2 * sizeof(std::uint64_t) + 1 + sizeof(std::uint64_t), "inputs"));
     for (RunInput& in : c.inputs) {
       in.option = r.text();
       in.file = r.text();
@@ -340,7 +386,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   s.held_by_contact = r.list<char>();
   s.dimple_sizes = r.list<int>();
   s.has_collision = r.pod<std::uint8_t>() != 0;
-  s.collision.contact_cache.resize(r.size());
+  s.collision.contact_cache.resize(r.count(CONTACT_BYTES, "contacts"));
   for (Contact& k : s.collision.contact_cache) k = read_contact(r);
   s.collision.correction = r.matrix();
   s.collision.skin = r.vector();

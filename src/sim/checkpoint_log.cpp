@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
 #include "sim/checkpoint.hpp"
@@ -90,7 +91,9 @@ std::string read_beside(const std::string& path, const std::string& file, const 
                           "beside together)";
   std::string bytes;
   try {
-    bytes = read_regular_file(file);
+    // Only the recorded length: bytes past it are not this checkpoint's (below), and a file made
+    // larger (a wrong file copied over it, a huge sparse one) was read whole for nothing.
+    bytes = read_regular_file_start(file, size);
   } catch (const InputError& e) {
     rethrow_input_error_as(e, start + e.what() + why);  // errno and path kept
   }
@@ -100,8 +103,7 @@ std::string read_beside(const std::string& path, const std::string& file, const 
                      " the checkpoint was saved with (truncated, or another run's " + what + ")" +
                      why);
   // Bytes past the recorded length are a later save's that ended before its checkpoint was
-  // renamed into place: not this checkpoint's.
-  bytes.resize(static_cast<std::size_t>(size));
+  // renamed into place: not this checkpoint's (not read).
   if (fnv1a(bytes.data(), bytes.size()) != hash)
     throw InputError(start + printable(file) +
                      " is not the one the checkpoint was saved with (damaged, or another run's " +

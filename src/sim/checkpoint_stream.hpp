@@ -69,9 +69,21 @@ class Reader {
   }
   std::size_t size() {
     const auto n = pod<std::uint64_t>();
-    if (n > in_.size()) fail("a length past the end of the file");
+    if (n > remaining()) fail("a length past the end of the file");
     return static_cast<std::size_t>(n);
   }
+  /// A count of entries that take at least `min_bytes` each in the file: a count the bytes left
+  /// cannot hold is refused before anything is allocated for it. (Checked against the file's
+  /// size alone, a forged count made the reader allocate an entry's memory, tens of bytes, for
+  /// each byte of the file before the entries ran past its end.)
+  std::size_t count(std::size_t min_bytes, const char* what) {
+    const auto n = pod<std::uint64_t>();
+    if (n > remaining() / min_bytes)
+      fail(std::to_string(n) + " " + what + " of at least " + std::to_string(min_bytes) +
+           " bytes each in the " + std::to_string(remaining()) + " bytes left");
+    return static_cast<std::size_t>(n);
+  }
+  std::size_t remaining() const { return in_.size() - pos_; }
   std::string text() {
     const std::size_t n = size();
     std::string s(n, '\0');
@@ -83,14 +95,14 @@ class Reader {
     // Positions have 3 columns by their type: another count would be read as 3 (Eigen checks
     // the count only in debug builds), and the fields after it from the wrong bytes.
     if (cols != 3) fail("a matrix of " + std::to_string(cols) + " columns");
-    if (rows * cols * sizeof(double) > in_.size()) fail("a matrix past the end");
+    if (rows > remaining() / (cols * sizeof(double))) fail("a matrix past the end");
     Positions m(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
     take(m.data(), sizeof(double) * m.size());
     return m;
   }
   Eigen::VectorXd vector() {
     const std::size_t n = size();
-    if (n * sizeof(double) > in_.size()) fail("a vector past the end");
+    if (n > remaining() / sizeof(double)) fail("a vector past the end");
     Eigen::VectorXd v(static_cast<Eigen::Index>(n));
     take(v.data(), sizeof(double) * n);
     return v;
@@ -98,13 +110,13 @@ class Reader {
   template <class T>
   std::vector<T> list() {
     const std::size_t n = size();
-    if (n * sizeof(T) > in_.size()) fail("a list past the end");
+    if (n > remaining() / sizeof(T)) fail("a list past the end");
     std::vector<T> v(n);
     take(v.data(), sizeof(T) * n);
     return v;
   }
   OptionValues options() {
-    OptionValues o(size());
+    OptionValues o(count(2 * sizeof(std::uint64_t), "options"));  // two texts' lengths each
     for (auto& [name, value] : o) {
       name = text();
       value = text();

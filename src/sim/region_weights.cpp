@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <locale>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "core/decimal_text.hpp"
+#include "core/text_lines.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -23,6 +25,9 @@ namespace {
   throw InputError(path + ":" + std::to_string(line) + ": " + what);
 }
 
+/// What a weights file may hold beyond its weights: comment lines, blank lines, wide spacing.
+constexpr std::uint64_t WEIGHTS_FILE_SLACK_BYTES = 1 << 20;
+
 bool valid_weight(double w) { return std::isfinite(w) && w >= 0.0 && w <= 1.0; }
 
 }  // namespace
@@ -31,15 +36,20 @@ std::vector<double> read_vertex_weights(const std::string& path, std::size_t num
   // Read whole by read_regular_file, as every other input: a folder, a device or a FIFO is
   // refused by name before anything is read (a stream opened a FIFO and waited for a writer for
   // ever, and read /dev/zero until memory ran out); a file-system failure carries its errno
-  // (InputFileError: Python's FileNotFoundError and the like).
-  std::istringstream in(read_regular_file(path));
+  // (InputFileError: Python's FileNotFoundError and the like). A weight is a number in [0, 1] on
+  // its own line: the shortest text that reads back as any double has at most 24 characters, so
+  // 64 bytes a vertex leave room for blanks and a "\r\n", and the slack for comment lines. A
+  // larger file (a wrong one, a huge sparse one) is refused by its size before it is read, as the
+  // face list is: it was read whole, and copied, until memory ran out.
+  const std::uint64_t max_bytes =
+      WEIGHTS_FILE_SLACK_BYTES + 64 * static_cast<std::uint64_t>(num_vertices);
+  const std::string bytes = read_regular_file(path, max_bytes);
   std::vector<double> weights;
   weights.reserve(num_vertices);
-  std::string text;
   std::size_t line = 0, last_line = 0;
-  while (std::getline(in, text)) {
+  for (std::size_t begin = skip_utf8_bom(bytes); begin < bytes.size();) {
+    std::istringstream tokens(std::string(next_line(bytes, begin)));  // "\n", "\r\n" or "\r"
     ++line;
-    std::istringstream tokens(text);
     std::string token, extra;
     if (!(tokens >> token) || token[0] == '#') continue;
     if (tokens >> extra)

@@ -195,6 +195,22 @@ TEST_F(CliCheckpointLog, AMissingCutOrDamagedLogIsRefusedNamingIt) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
 }
 
+// Review 7 (F6): only the part of FILE.log and FILE.history that the checkpoint records is read.
+// Both were read whole, then cut to that part: a log made 1 GB larger cost 1 GB, and these
+// (8 GB, sparse: no disk) ended in "out of memory", exit 3, under the memory limit here.
+TEST_F(CliCheckpointLog, OnlyTheRecordedPartOfTheFilesBesideIsRead) {
+  run("run", 30, 10);
+  const std::string log_path = checkpoint_log_path(out("run.ckpt"));
+  const std::string history_path = checkpoint_history_path(out("run.ckpt"));
+  fs::resize_file(log_path, std::uintmax_t{8} << 30);
+  fs::resize_file(history_path, std::uintmax_t{8} << 30);
+  const auto r = test::run_cli_limited(
+      3000000, {"run", "--resume", out("run.ckpt"), "-o", out("run-resumed.off"), "-q",
+                "--checkpoint", out("other.ckpt")});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out("run-resumed.off")));
+}
+
 // As the log: without its volume history, or with one cut short or changed, a checkpoint is
 // refused as bad input (exit 2), naming the checkpoint and the file, and nothing is written.
 TEST_F(CliCheckpointLog, AMissingCutOrDamagedHistoryIsRefusedNamingIt) {

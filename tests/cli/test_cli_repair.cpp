@@ -9,6 +9,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "support/cli_runner.hpp"
 #include "support/seam_split.hpp"
@@ -217,6 +218,34 @@ TEST_F(CliRepair, RunRepairLeavesAUsableMeshsRunUnchanged) {
 }
 
 // --------------------------------------------- what the output keeps (a usable input is not rewritten)
+
+// Review 7 (F4): --regions FILE and --region-weights FILE number the faces and vertices of the
+// input as read; a repair that changed the mesh renumbered them, and the ids fell on other faces
+// without a word. Refused as bad usage (exit 1) naming the file, nothing written. A usable mesh,
+// which --repair leaves as read, keeps its face list.
+TEST_F(CliRepair, RunRepairThatChangedTheMeshRefusesIdsOfTheInput) {
+  const std::string in = write("open.off", OPEN_CUBE);
+  const std::string faces = write("faces.txt", "0 1\n");
+  const std::string weights = write("weights.txt", "1\n1\n1\n1\n0\n0\n0\n0\n");
+  for (const auto& [option, file, ids] :
+       {std::tuple<std::string, std::string, std::string>{"--regions", faces, "faces"},
+        {"--region-weights", weights, "vertices"}}) {
+    SCOPED_TRACE(option);
+    const RunResult r =
+        run_cli({"run", in, "-o", out("a.off"), "--frames", "2", "-q", "--repair", option, file});
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find(option + " " + file + " numbers the " + ids + " of " + in +
+                            " as read, and --repair renumbered them"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("run `shellcontract repair` first"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out("a.off")));
+  }
+  const std::string ico = write("ico.txt", "0 1 2\n");
+  const RunResult usable = run_cli({"run", mesh_path("ico1.off"), "-o", out("b.off"), "--frames",
+                                    "2", "-q", "--repair", "--regions", ico});
+  EXPECT_EQ(usable.exit_code, 0) << usable.output;
+}
 
 TEST_F(CliRepair, AUsableTexturedObjIsCopiedByteForByte) {
   const std::string text = shellcontract::test::textured_uv_sphere().text;

@@ -3,11 +3,14 @@
 // until memory ran out, or waited for a FIFO's writer forever) fails these tests instead of
 // hanging them.
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <array>
+#include <cstdint>
 #include <regex>
 
 #include "hostile/hostile_support.hpp"
+#include "support/forged_checkpoint.hpp"
 #include "support/gltf_files.hpp"
 
 namespace shellcontract {
@@ -85,6 +88,71 @@ TEST_F(Hostile, ARegionFileFarLargerThanTheMeshIsRefused) {
                               "-q", "--regions", big.string()});
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("too large"), std::string::npos) << r.output;
+}
+
+// Review 7 (F6): the weights file, as the face list: a 1 GB sparse file was read whole and copied
+// (4.2 GB) before its first line was refused; under this test's memory limit that ended in "out
+// of memory", exit 3, naming no file. Now its size is refused before a byte is read.
+TEST_F(Hostile, AWeightsFileFarLargerThanTheMeshIsRefused) {
+  const fs::path big = dir_ / "big.txt";
+  test::spit(big, "");
+  fs::resize_file(big, std::uintmax_t{1} << 30);
+  const auto r = bounded_cli({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n",
+                              "2", "-q", "--region-weights", big.string()});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(big.string() + ": file too large"), std::string::npos) << r.output;
+}
+
+// Review 7 (F6): --resume of a file that is no checkpoint is refused after its first bytes,
+// whatever its size, and a checkpoint larger than the machine's memory before it is read. Both
+// were read whole: "out of memory", exit 3, naming no file (here, sparse files: no disk).
+TEST_F(Hostile, AHugeFileAsTheCheckpointIsRefusedUnread) {
+  const fs::path zeros = dir_ / "zeros.ckpt", big = dir_ / "big.ckpt";
+  const std::string out = (dir_ / "o.off").string();
+  test::spit(zeros, "");
+  fs::resize_file(zeros, std::uintmax_t{50} << 30);
+  auto r = bounded_cli({"run", "--resume", zeros.string(), "-o", out, "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("checkpoint " + zeros.string() + ": not a shellcontract checkpoint"),
+            std::string::npos)
+      << r.output;
+  test::spit(big, "SHELLCONTRACT-CHECKPOINT\n");
+  const std::uintmax_t memory = static_cast<std::uintmax_t>(::sysconf(_SC_PHYS_PAGES)) *
+                                static_cast<std::uintmax_t>(::sysconf(_SC_PAGE_SIZE));
+  fs::resize_file(big, memory + 1);
+  r = bounded_cli({"run", "--resume", big.string(), "-o", out, "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("checkpoint " + big.string() + ": file too large: " +
+                          std::to_string(memory + 1) + " bytes, more than this machine's memory"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// Review 7 (F7): a checkpoint resealed by hand (its checksum is FNV-1a, no key) whose count of
+// inputs is as large as the file. The reader allocated the entries (some 80 bytes each) before it
+// found them past the end: 3.8 GB for this 48 MB file, "out of memory" (exit 3) under this test's
+// limit. Now the count is refused against the bytes left (exit 2).
+TEST_F(Hostile, AForgedCheckpointCountIsRefusedBeforeItIsAllocated) {
+  std::string b = "SHELLCONTRACT-CHECKPOINT\n";
+  const auto put = [&b](auto v) { b.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  put(std::uint32_t{3});  // format, version "v", input "i", the input's hash
+  put(std::uint64_t{1});
+  b += 'v';
+  put(std::uint64_t{1});
+  b += 'i';
+  put(std::uint64_t{0});
+  const std::uint64_t size = std::uint64_t{48} << 20;
+  put(size);  // the count of inputs
+  b.resize(size, '\0');
+  const fs::path forged = dir_ / "forged.ckpt";
+  test::spit(forged, test::resealed(b));
+  const auto r =
+      bounded_cli({"run", "--resume", forged.string(), "-o", (dir_ / "o.off").string(), "-q"});
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find(std::to_string(size) + " inputs of at least 25 bytes each"),
+            std::string::npos)
+      << r.output;
 }
 
 // Before: the message quoted the token up to its first NUL ("'" and nothing after).

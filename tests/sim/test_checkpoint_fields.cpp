@@ -9,7 +9,9 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <optional>
@@ -314,6 +316,55 @@ TEST_F(ForgedCheckpoint, ADimpleLargerThanItsRegionIsRefused) {
       "region 0's dimple has 1000000 faces");
   expect_refused(
       "negative", [](Checkpoint& c) { c.sim.dimple_sizes[0] = -2; }, "the dimple sizes: region 0");
+}
+
+/// A format-3 checkpoint as its layout (sim/checkpoint.cpp) is written out here, not by the code
+/// under test: magic, format, version "v", input "i" and its hash, then `fields`, zeros up to
+/// `size` bytes, resealed.
+std::string forged_layout(const std::string& fields, std::size_t size) {
+  std::string b = "SHELLCONTRACT-CHECKPOINT\n";
+  const auto put = [&b](auto v) { b.append(reinterpret_cast<const char*>(&v), sizeof v); };
+  put(std::uint32_t{3});
+  put(std::uint64_t{1});
+  b += 'v';
+  put(std::uint64_t{1});
+  b += 'i';
+  put(std::uint64_t{0});
+  b += fields;
+  b.resize(size, '\0');
+  return test::resealed(b);
+}
+
+template <class T>
+std::string bytes_of(T v) {
+  return std::string(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+// Review 7 (F7): a count the bytes left cannot hold is refused before anything is allocated for
+// it. Checked against the file's size alone, a count as large as the file made the reader
+// allocate each entry (some 80 bytes) for each byte of the file, then fail as "truncated": a
+// forged 200 MB file asked for 16 GB. The counts here are as large as their files.
+TEST_F(ForgedCheckpoint, ACountPastTheBytesLeftIsRefusedBeforeItIsAllocated) {
+  const std::uint64_t n = 4000;
+  const auto expect_count_refused = [&](const std::string& what, const std::string& fields) {
+    SCOPED_TRACE(what);
+    std::ofstream(forged(), std::ios::binary | std::ios::trunc) << forged_layout(fields, n);
+    const std::string msg = refusal(forged());
+    EXPECT_NE(msg.find("checkpoint " + forged() + ": 4000 " + what + " of at least "),
+              std::string::npos)
+        << msg;
+  };
+  const std::string none = bytes_of(std::uint64_t{0}), count = bytes_of(n);
+  expect_count_refused("inputs", count);
+  expect_count_refused("options", none + count);         // the options given
+  expect_count_refused("options", none + none + count);  // the options resolved
+  // The state up to the contacts: frame 0, V/V0 0, no stop, one vertex of positions and of
+  // velocities, no held vertices, no dimples, collisions on.
+  const std::string vertex =
+      bytes_of(std::uint64_t{1}) + bytes_of(std::uint64_t{3}) + std::string(24, '\0');
+  const std::string state = bytes_of(std::int64_t{0}) + bytes_of(0.0) + std::string(1, '\0') +
+                            vertex + vertex + none + none + std::string(1, '\1');
+  expect_count_refused("contacts", none + none + none + state + count);
 }
 
 }  // namespace

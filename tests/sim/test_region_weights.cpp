@@ -3,7 +3,9 @@
 // unweighted one scaled face by face.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -25,14 +27,17 @@ std::string write_file(const std::string& name, const std::string& text) {
   return path;
 }
 
-std::string read_error(const std::string& text, std::size_t vertices) {
-  const std::string path = write_file("weights.txt", text);
+std::string read_error_at(const std::string& path, std::size_t vertices) {
   try {
     read_vertex_weights(path, vertices);
   } catch (const InputError& e) {
     return e.what();
   }
   return "(accepted)";
+}
+
+std::string read_error(const std::string& text, std::size_t vertices) {
+  return read_error_at(write_file("weights.txt", text), vertices);
 }
 
 TEST(RegionWeights, ReadsOneWeightPerLineSkippingCommentsAndBlanks) {
@@ -72,6 +77,35 @@ TEST(RegionWeights, AFileThatIsNotARegularFileIsRefusedByName) {
   EXPECT_NE(error(::testing::TempDir()).find("it is a folder"), std::string::npos)
       << error(::testing::TempDir());
   EXPECT_NE(error("/dev/null").find("it is a device"), std::string::npos) << error("/dev/null");
+}
+
+// Review 7 (F9): "\r" line ends, alone or before "\n", end a line, as in the face list and the
+// OBJ and PLY readers, and a UTF-8 byte order mark at the start is skipped. A file of lone "\r"s
+// was refused as "'0.25' after the weight", the mark as "'\xEF\xBB\xBF0.5' is not a weight".
+TEST(RegionWeights, CarriageReturnLineEndsAndAByteOrderMarkAreRead) {
+  const std::vector<double> expected{0.0, 0.25, 1.0};
+  EXPECT_EQ(read_vertex_weights(write_file("cr.txt", "0\r0.25\r1\r"), 3), expected);
+  EXPECT_EQ(read_vertex_weights(write_file("mixed.txt", "# w\r0\r\n0.25\n\r1"), 3), expected);
+  EXPECT_EQ(read_vertex_weights(write_file("bom.txt",
+                                           "\xEF\xBB\xBF"
+                                           "0\r\n0.25\r\n1\r\n"),
+                                3),
+            expected);
+  EXPECT_NE(read_error("0\r0.5\rx\r", 3).find(":3: 'x' is not a weight"), std::string::npos);
+}
+
+// Review 7 (F6): a file larger than a weights file of the mesh can need (a wrong file, a huge
+// sparse one) is refused by its size, naming it, before it is read. It was read whole and copied:
+// 1 GB cost 4 GB before its first line was refused, and a larger one ended in "out of memory",
+// naming no file. (The file here is sparse: it takes no disk.)
+TEST(RegionWeights, AFileLargerThanTheMeshCanNeedIsRefusedUnread) {
+  const std::string path = write_file("huge.txt", "0.5\n");
+  std::filesystem::resize_file(path, std::uint64_t{1} << 40);
+  const std::string why = read_error_at(path, 3);
+  std::filesystem::remove(path);
+  EXPECT_NE(why.find(path + ": file too large: 1099511627776 bytes, more than the"),
+            std::string::npos)
+      << why;
 }
 
 TEST(RegionWeights, WeightedFacesMakeOneRegionPerComponent) {
