@@ -11,11 +11,13 @@
 #include <iterator>
 #include <map>
 #include <optional>
+#include <set>
 #include <sstream>
 #include <system_error>
 
 #include "core/decimal_text.hpp"
 #include "export/gltf_input_materials.hpp"
+#include "mesh/file_key.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/line_tokens.hpp"
 #include "shellcontract/error.hpp"
@@ -211,10 +213,44 @@ std::string image_mime_type(const std::vector<unsigned char>& b) {
 
 namespace {
 
+/// A texture file as read for a material: its bytes and type, or why it has none. The materials
+/// that name one file share it (by file_key: any spelling of the file), so that it is read and
+/// held once however many name it.
+struct TextureRead {
+  enum class Outcome { missing, unreadable, not_an_image, image } outcome = Outcome::missing;
+  std::string why;  ///< read_regular_file's refusal (unreadable)
+  ImageBytes image;
+  std::string mime_type;
+};
+using TextureReads = std::map<std::string, TextureRead>;
+
+const TextureRead& read_texture(const std::string& path, TextureReads& reads) {
+  const auto [at, added] = reads.try_emplace(file_key(path));
+  TextureRead& t = at->second;
+  if (!added) return t;
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return t;
+  const std::optional<std::string> read = read_bytes(path, MAX_TEXTURE_BYTES, t.why);
+  if (!read) {
+    t.outcome = TextureRead::Outcome::unreadable;
+    return t;
+  }
+  std::vector<unsigned char> bytes(read->begin(), read->end());
+  t.mime_type = image_mime_type(bytes);
+  if (t.mime_type.empty()) {
+    t.outcome = TextureRead::Outcome::not_an_image;
+    return t;
+  }
+  t.outcome = TextureRead::Outcome::image;
+  t.image = std::move(bytes);
+  return t;
+}
+
 /// The glTF material of `m`, its texture embedded when it can be (else a warning, and none).
+/// @param reads the texture files read so far, which the materials share
 /// @param key what the warnings call the line that names the texture ("map_Kd", "TextureFile")
-GltfMaterial to_gltf(const MtlMaterial& m, bool has_texcoords, std::vector<std::string>& warnings,
-                     const std::string& key = "map_Kd") {
+GltfMaterial to_gltf(const MtlMaterial& m, bool has_texcoords, TextureReads& reads,
+                     std::vector<std::string>& warnings, const std::string& key = "map_Kd") {
   GltfMaterial g;
   g.name = m.name;
   g.base_colour = {m.kd[0], m.kd[1], m.kd[2], m.alpha};
@@ -225,28 +261,26 @@ GltfMaterial to_gltf(const MtlMaterial& m, bool has_texcoords, std::vector<std::
                        "' not embedded: the mesh has no texture coordinates on every face");
     return g;
   }
-  std::error_code ec;
-  if (!fs::exists(m.texture, ec)) {
-    warnings.push_back(where + key + " '" + m.texture +
-                       "' not found: the glTF's material has no texture");
-    return g;
+  const TextureRead& t = read_texture(m.texture, reads);
+  switch (t.outcome) {
+    case TextureRead::Outcome::missing:
+      warnings.push_back(where + key + " '" + m.texture +
+                         "' not found: the glTF's material has no texture");
+      break;
+    case TextureRead::Outcome::unreadable:
+      warnings.push_back(where + key + " '" + m.texture + "' cannot be read (" + t.why +
+                         "): the glTF's material has no texture");
+      break;
+    case TextureRead::Outcome::not_an_image:
+      warnings.push_back(
+          where + key + " '" + m.texture +
+          "' is neither PNG nor JPEG (glTF's image types): the glTF's material has no texture");
+      break;
+    case TextureRead::Outcome::image:
+      g.image = t.image;
+      g.image_mime_type = t.mime_type;
+      break;
   }
-  std::string why;
-  const std::optional<std::string> read = read_bytes(m.texture, MAX_TEXTURE_BYTES, why);
-  if (!read) {
-    warnings.push_back(where + key + " '" + m.texture + "' cannot be read (" + why +
-                       "): the glTF's material has no texture");
-    return g;
-  }
-  std::vector<unsigned char> image(read->begin(), read->end());
-  g.image_mime_type = image_mime_type(image);
-  if (g.image_mime_type.empty()) {
-    warnings.push_back(
-        where + key + " '" + m.texture +
-        "' is neither PNG nor JPEG (glTF's image types): the glTF's material has no texture");
-    return g;
-  }
-  g.image = std::move(image);
   return g;
 }
 
@@ -257,6 +291,7 @@ GltfFaceMaterials texture_file_materials(const FaceMaterials& materials,
                                          const std::vector<bool>& used, bool has_texcoords,
                                          std::vector<std::string>& warnings) {
   GltfFaceMaterials out;
+  TextureReads reads;
   std::size_t unnamed = 0;
   for (const int m : materials.face_material)
     if (m < 0 || static_cast<std::size_t>(m) >= materials.names.size()) ++unnamed;
@@ -279,7 +314,7 @@ GltfFaceMaterials texture_file_materials(const FaceMaterials& materials,
       warnings.push_back(materials.source + ": line " + std::to_string(t.line) +
                          ": TextureFile without a file name: the glTF's material has no texture");
     index[i] = static_cast<int>(out.materials.size());
-    out.materials.push_back(to_gltf(m, has_texcoords, warnings, "TextureFile"));
+    out.materials.push_back(to_gltf(m, has_texcoords, reads, warnings, "TextureFile"));
   }
   if (out.materials.empty()) return out;
   for (const int m : materials.face_material)
@@ -303,9 +338,13 @@ GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoo
   if (std::find(used.begin(), used.end(), true) == used.end()) return out;
 
   // Every library is read (and warns) even when an earlier one defines every material: the
-  // first definition wins, in the order the OBJ names them.
+  // first definition wins, in the order the OBJ names them. A library named again (by any
+  // spelling of the file) is read once, where it is first named: read again it could only
+  // repeat its warnings and define nothing new.
   std::vector<std::optional<MtlMaterial>> found(materials.names.size());
+  std::set<std::string> read_libraries;
   for (const FaceMaterials::Library& lib : materials.libraries) {
+    if (!read_libraries.insert(file_key(lib.path)).second) continue;
     if (!lib.found) {
       // The document finds no file by that name; a folder by that name is there to see, so
       // "not found" would send the user looking for it.
@@ -330,6 +369,7 @@ GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoo
   }
 
   // glTF materials in the order of first use; a face of an undefined one gets none.
+  TextureReads reads;
   std::vector<int> index(materials.names.size(), -1);
   for (std::size_t i = 0; i < materials.names.size(); ++i) {
     if (!used[i]) continue;
@@ -340,7 +380,7 @@ GltfFaceMaterials gltf_materials(const FaceMaterials& materials, bool has_texcoo
       continue;
     }
     index[i] = static_cast<int>(out.materials.size());
-    out.materials.push_back(to_gltf(*found[i], has_texcoords, warnings));
+    out.materials.push_back(to_gltf(*found[i], has_texcoords, reads, warnings));
   }
   if (out.materials.empty()) return out;
   out.face_material.reserve(materials.face_material.size());

@@ -61,6 +61,9 @@ struct GltfFaceMaterials {
 /// its first bytes) and `has_texcoords`; otherwise the material is written without it, with a
 /// warning naming the .mtl file and line. A library that is missing or unreadable is a warning
 /// too. Never throws for the files' contents.
+/// Each file is read once (by file_key: any spelling of it): a library that several mtllib
+/// names give is read at its first one, and the materials whose textures are one file share its
+/// bytes (GltfMaterial::image), each with its own warnings.
 /// For a PLY's texture files (materials.textures not empty: no library is read), one white
 /// material per texture file a face uses, in header order, named by the path as the header
 /// writes it, its image embedded under the same conditions, the warnings naming the PLY and the

@@ -1,9 +1,11 @@
 #include "export/gltf_primitives.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace shellcontract::gltf {
 
@@ -121,8 +123,17 @@ std::vector<int> add_materials(tinygltf::Model& model, BufferBuilder& bb,
 }
 
 std::size_t material_bytes(const std::vector<GltfMaterial>& materials) {
+  // Each image once, as add_materials embeds it: the materials that share one count it once.
   std::size_t n = 0;
-  for (const GltfMaterial& m : materials) n += m.image.empty() ? 0 : m.image.size() + 3;
+  std::vector<const ImageBytes*> counted;
+  for (const GltfMaterial& m : materials) {
+    if (m.image.empty()) continue;
+    if (std::any_of(counted.begin(), counted.end(),
+                    [&](const ImageBytes* c) { return *c == m.image; }))
+      continue;
+    counted.push_back(&m.image);
+    n += m.image.size() + 3;
+  }
   return n;
 }
 

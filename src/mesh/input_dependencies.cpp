@@ -5,8 +5,10 @@
 #include <filesystem>
 #include <new>
 #include <optional>
+#include <set>
 
 #include "export/gltf_material.hpp"
+#include "mesh/file_key.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/gltf_model.hpp"
 #include "mesh/line_tokens.hpp"
@@ -43,9 +45,14 @@ void obj_dependencies(const std::string& path, const std::string& bytes,
   }
   const std::string& text = joined.empty() ? bytes : joined;
   const fs::path folder = fs::path(path).parent_path();
+  // Each library once, where it is first named: its images are the same whichever line names
+  // it, and a file that names one large library a thousand times must not read it a thousand
+  // times. Any other spelling of it is the same file to the output check (output_check.cpp).
+  std::set<std::string> seen;
   for (const MtllibLine& l : find_mtllib_lines(bytes, text))
     for (const MtllibName& n : mtllib_names(text, l, folder)) {
       const std::string library = (folder / n.name).string();
+      if (!seen.insert(file_key(library)).second) continue;
       out.push_back({library, "the material library that " + quoted_path(path) +
                                   " reads (mtllib, " + line_text(l.line) + ")"});
       for (const MtlTextureFile& t : mtl_texture_files(library))

@@ -21,7 +21,9 @@ struct InputDependency {
 /// The files that the mesh file `path` reads or names, by its extension, resolved as its readers
 /// resolve them (obj_material_paths.hpp, ply_textures.hpp, gltf::load_model, mtl_texture_files):
 /// - .obj: each mtllib name (one that names no file too), and the images of each library that
-///   can be read (every texture key, not only the map_Kd that the glTF export uses);
+///   can be read (every texture key, not only the map_Kd that the glTF export uses); a library
+///   named again (by any spelling of the same file: file_key.hpp) is listed and read once, at
+///   its first mtllib line;
 /// - .ply: each `comment TextureFile` path;
 /// - .gltf, .glb: every path where an external buffer was looked for (the file's folder, then the
 ///   current one) and each external image URI, percent-decoded, from the file's folder.

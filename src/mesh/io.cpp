@@ -137,6 +137,15 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     const Polygon& p = polygons[i];
     if (p.size() < 3)
       fail_faces(path, "degenerate face", name.polygon(i) + " has " + counted(p.size(), "vertex", "vertices"), {i});
+    // Before the corner checks below, whose time grows with the square of the corners too.
+    if (p.size() > soup::MAX_SPLIT_CORNERS)
+      fail_faces(
+          path, "polygon too large",
+          name.polygon(i) + " has " + std::to_string(p.size()) + " vertices, more than the " +
+              std::to_string(soup::MAX_SPLIT_CORNERS) +
+              " of the largest polygon this reader splits into triangles; triangulate it in your"
+              " modelling tool (Blender: Face > Triangulate Faces) before using the file",
+          {i});
     for (std::size_t k = 0; k < p.size(); ++k) {
       if (p[k] >= nv)
         fail_faces(path, "vertex index out of range", name.polygon(i) + " refers to vertex " + std::to_string(p[k]) + ", but the file has " + counted(nv, "vertex", "vertices") + " (0.." + std::to_string(nv - 1) + ")", {i});

@@ -33,13 +33,17 @@ bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c
 
 /// The statements CGAL::IO::read_OBJ skips (CGAL/IO/OBJ.h): reading more or fewer files than it
 /// did would change which inputs are usable. Comments (a first token starting with '#') too.
+/// One more than CGAL: `l`, a polyline, which CGAL refuses; Blender's OBJ exporters write one for a
+/// loose edge left in a closed mesh, and like a `p` point it holds no face, so the surface is the
+/// same without it (the file was refused as a parse error, and `repair` could not read it either).
 bool skipped_statement(std::string_view k) {
   static constexpr std::string_view skipped[] = {
       "vt", "vn", "vp", "bevel", "lod", "ctech", "c_interp", "usemap", "usemtl", "stech", "d_interp",
       "mtllib", "shadow_obj", "trace_obj", "o", "g", "s", "p", "cstype", "deg", "step", "bmat", "con",
       "curv", "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end", "surf_1", "q0_1", "q1_1",
       "curv2d_1", "surf_2", "q0_2", "q1_2", "curv2d_2", "bsp", "bzp", "cdc", "cdp", "res"};
-  return k.front() == '#' || std::find(std::begin(skipped), std::end(skipped), k) != std::end(skipped);
+  return k.front() == '#' || k == "l" ||
+         std::find(std::begin(skipped), std::end(skipped), k) != std::end(skipped);
 }
 
 /// A corner's vertex index as written ("3", "-1", "+2"): false unless the whole of `tok` is one

@@ -24,6 +24,17 @@ Vec3 area_vector(const Polygon& t, const std::vector<Point3>& pts) {
   return (to_vec(pts[t[1]]) - a).cross(to_vec(pts[t[2]]) - a);
 }
 
+/// Twice the vector area of triangle j (1 <= j < n - 1) of polygon `p`'s fan from corner k: that
+/// of area_vector({p[k], p[k + j], p[k + j + 1]}) (indices mod n), without making the triangle,
+/// so that trying a fan costs no allocation and stops at its first bad triangle (a polygon of
+/// n corners tries up to n fans: making each whole had cost n^2 allocations).
+Vec3 fan_area_vector(const Polygon& p, const std::vector<Point3>& pts, std::size_t k,
+                     std::size_t j) {
+  const std::size_t n = p.size();
+  const Vec3 a = to_vec(pts[p[k]]);
+  return (to_vec(pts[p[(k + j) % n]]) - a).cross(to_vec(pts[p[(k + j + 1) % n]]) - a);
+}
+
 /// Polygon `p`'s fan from corner k.
 std::vector<Polygon> fan(const Polygon& p, std::size_t k) {
   const std::size_t n = p.size();
@@ -109,20 +120,21 @@ std::vector<Polygon> best_fan(const Polygon& p, const std::vector<Point3>& pts, 
   const double zero = zero_area_threshold(p, pts);
   const Vec3 w = normal.normalized();
   double best = -std::numeric_limits<double>::infinity();
-  std::vector<Polygon> chosen;
+  std::size_t chosen = p.size();  // none
   for (std::size_t k = 0; k < p.size(); ++k) {
-    std::vector<Polygon> t = fan(p, k);
+    // `worst` only falls (a zero-area triangle makes it -infinity for good): once it is no
+    // better than the best fan's, this fan cannot be chosen.
     double worst = 1.0;
-    for (const Polygon& tri : t) {
-      const Vec3 a = area_vector(tri, pts);
+    for (std::size_t j = 1; j + 1 < p.size() && worst > best; ++j) {
+      const Vec3 a = fan_area_vector(p, pts, k, j);
       worst = a.norm() < zero ? -std::numeric_limits<double>::infinity() : std::min(worst, a.normalized().dot(w));
     }
     if (worst > best) {
       best = worst;
-      chosen = std::move(t);
+      chosen = k;
     }
   }
-  return chosen;
+  return chosen < p.size() ? fan(p, chosen) : std::vector<Polygon>{};
 }
 
 }  // namespace
@@ -137,10 +149,10 @@ std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& 
   // which are then reported like any other zero-area face.
   if (normal.squaredNorm() == 0.0) return by(SplitRule::flat, fan(p, 0));
   for (std::size_t k = 0; k < p.size(); ++k) {
-    std::vector<Polygon> tris = fan(p, k);
     bool ok = true;
-    for (const Polygon& t : tris) ok = ok && area_vector(t, pts).dot(normal) > 0.0;
-    if (ok) return by(SplitRule::fan, std::move(tris));
+    for (std::size_t j = 1; j + 1 < p.size() && ok; ++j)
+      ok = fan_area_vector(p, pts, k, j).dot(normal) > 0.0;
+    if (ok) return by(SplitRule::fan, fan(p, k));
   }
   if (p.size() == 4) return by(SplitRule::diagonal, least_folded_diagonal(p, pts));
   std::vector<Polygon> tris = ear_clip(p, pts, normal);

@@ -12,6 +12,13 @@
 
 namespace shellcontract::soup {
 
+/// The most corners of a polygon that read_input_mesh splits; a larger one is refused (exit 2,
+/// naming its face and line). The rules below try a fan from each corner and clip ears testing
+/// every corner left, time that grows with the square of the corners (or faster), so a single
+/// face of a small file could hold the reader for minutes before any message; below this
+/// bound a polygon is split within seconds. A modelling tool splits a larger one in an instant.
+constexpr std::size_t MAX_SPLIT_CORNERS = 10000;
+
 /// The rules of split_polygon below, numbered as there; `flat` is rule 1's zero-normal case.
 enum class SplitRule { fan, flat, diagonal, ear_clip, best_fan };
 constexpr std::size_t SPLIT_RULES = 5;  ///< SplitRule's values, for counting by rule

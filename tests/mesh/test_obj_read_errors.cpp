@@ -12,6 +12,7 @@
 
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/repair.hpp"
 
 namespace shellcontract {
 namespace {
@@ -76,6 +77,24 @@ INSTANTIATE_TEST_SUITE_P(
         ObjCase{"duplicate_face", HEAD + FACES + "f 2 3 4\n", {"duplicate face", "face 4 (line 11)", "(line 10)"}},
         ObjCase{"no_faces", HEAD, {"empty mesh", "0 faces"}}),
     [](const ::testing::TestParamInfo<ObjCase>& info) { return info.param.name; });
+
+// Blender's OBJ exporters write a loose edge of a closed mesh as a polyline `l`; it was a parse
+// error for `run` and for `repair`, which is there to make a refused file usable. It is skipped
+// now, as a point `p` is: the surface is the file's faces, read as without the line.
+TEST(ObjLooseEdge, APolylineIsSkippedByTheReaderAndByRepair) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("shellcontract_obj_l_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / "loose_edge.obj").string();
+  std::ofstream(path, std::ios::binary) << HEAD + FACES + "l 1 4\n";
+  const Mesh m = read_input_mesh(path);
+  EXPECT_EQ(m.number_of_vertices(), 4u);
+  EXPECT_EQ(m.number_of_faces(), 4u);
+  RepairReport report;
+  const Mesh r = repair_input_mesh(path, &report);
+  EXPECT_EQ(r.number_of_faces(), 4u);
+  fs::remove_all(dir);
+}
 
 }  // namespace
 }  // namespace shellcontract
