@@ -100,6 +100,21 @@ class FrameExporter final : public RunObserver {
         gltf_.face_uv(static_cast<Eigen::Index>(f), k) = static_cast<int>(t.face_uv[f][static_cast<std::size_t>(k)]);
   }
 
+  /// The input's vertex colours, for the glTF's COLOR_0; empty: none.
+  void set_colours(const CornerColours& c) {
+    if (c.empty()) return;
+    gltf_.colour.resize(static_cast<Eigen::Index>(c.rgba.size()), 4);
+    for (std::size_t i = 0; i < c.rgba.size(); ++i)
+      for (int k = 0; k < 4; ++k)
+        gltf_.colour(static_cast<Eigen::Index>(i), k) = c.rgba[i][static_cast<std::size_t>(k)];
+    gltf_.colour_channels = c.channels;
+    gltf_.face_colour.resize(static_cast<Eigen::Index>(c.face_colour.size()), 3);
+    for (std::size_t f = 0; f < c.face_colour.size(); ++f)
+      for (int k = 0; k < 3; ++k)
+        gltf_.face_colour(static_cast<Eigen::Index>(f), k) =
+            static_cast<int>(c.face_colour[f][static_cast<std::size_t>(k)]);
+  }
+
   /// The input's normal groups, for the glTF's hard edges; empty: none (smooth normals).
   void set_normal_groups(const CornerNormalGroups& g) {
     if (g.empty()) return;

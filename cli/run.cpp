@@ -21,10 +21,12 @@
 
 #include "command_line.hpp"
 #include "commands.hpp"
+#include "core/decimal_text.hpp"
 #include "core/plural.hpp"
 #include "export/gltf_material.hpp"
 #include "export_observer.hpp"
 #include "json_writer.hpp"
+#include "mesh/file_safety.hpp"
 #include "mesh/output_check.hpp"
 #include "mesh/stl_positions.hpp"
 #include "output_paths.hpp"
@@ -65,7 +67,7 @@ void refuse_ids_of_the_input(const RunOptions& options, const std::string& input
 
 int command_run(int argc, char** argv) {
   std::string input, output, log_path, summary_path, fields_prefix, fields_colour = "mean";
-  std::string export_failure = "warn";
+  std::string export_failure = "warn", gltf_fps;
   ExportRequest exports;
   bool quiet = false, repair = false;
   std::map<std::string, std::string> values;
@@ -107,6 +109,9 @@ int command_run(int argc, char** argv) {
       "state's fields as custom attributes), named after the input; the input's materials and "
       "textures (an OBJ's .mtl, a PLY's TextureFile, a glTF's own; images embedded), one "
       "primitive per material; open it with scripts/view.py")(
+      "gltf-fps", po::value(&gltf_fps)->value_name("F"),
+      "with --gltf: the animation's frame rate, run frame k keyed at k / F seconds (default 24, "
+      "at most 1000)")(
       "log", po::value(&log_path)->value_name("FILE.csv"), "per-frame CSV log")(
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
       "quiet,q", po::bool_switch(&quiet), "no progress on stderr")(
@@ -214,6 +219,15 @@ int command_run(int argc, char** argv) {
                        std::to_string(exports.every));
     if (vm.count("export-every") && exports.dir.empty() && exports.gltf.empty())
       throw UsageError("--export-every has no effect without --export-dir or --gltf");
+    if (vm.count("gltf-fps")) {
+      // Bounded so that every key time (up to INT_MAX frames) is a finite float32.
+      double fps = 0.0;
+      if (!parse_c_number(gltf_fps, fps) || !(fps >= 0.001 && fps <= 1000.0))
+        throw UsageError("--gltf-fps: expected a frame rate from 0.001 to 1000, got '" +
+                         printable(gltf_fps) + "'");
+      if (exports.gltf.empty()) throw UsageError("--gltf-fps has no effect without --gltf");
+      exports.seconds_per_frame = 1.0 / fps;
+    }
     plan.inputs.push_back({"INPUT", input});
     // The checkpoint a run resumes is one of its inputs: only --checkpoint may name it (a resumed
     // run that goes on saving to the same file); a log or summary over it would destroy the only
@@ -319,6 +333,7 @@ int command_run(int argc, char** argv) {
         const CornerTexcoords uv = document->texcoords(mesh);
         exporter.set_texcoords(uv);
         exporter.set_normal_groups(document->normal_groups(mesh));  // the input's hard edges
+        exporter.set_colours(document->colours(mesh));
         // The OBJ's materials (the .mtl's Kd, d and map_Kd), the PLY's TextureFile images or
         // the glTF's own materials: a problem with one is a warning.
         std::vector<std::string> material_warnings;

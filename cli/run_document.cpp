@@ -45,6 +45,11 @@ std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
                      " result would be this file with new positions, and it cannot be written "
                      "so (see the warning above); "
                      "choose an .obj, .ply, .off or .stl output");
+  // What a glTF holds as float32 (texture coordinates, colours), checked before the run too:
+  // found after it, the animation failed with no file or element named (exit 2 here instead).
+  if (document &&
+      (gltf_animation || lower_extension(output) == "glb" || lower_extension(output) == "gltf"))
+    document->require_gltf_values();
   return document;
 }
 

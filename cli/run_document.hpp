@@ -12,12 +12,14 @@ namespace shellcontract::cli {
 
 /// The input's document, so that an OBJ or PLY result keeps what the simulation does not use
 /// (UVs, normals, groups, materials, polygons, extra properties) and --gltf its texture
-/// coordinates and materials. Held only where it is used (it is the whole file): an output of
-/// the input's format, or a --gltf animation; otherwise null. A document that cannot be read, or
+/// coordinates, colours and materials. Held only where it is used (it is the whole file): an output
+/// of the input's format, or a --gltf animation; otherwise null. A document that cannot be read, or
 /// that is not the simulated mesh (`repaired`: --repair changed it), is a warning on stderr naming
 /// what the result drops, and null.
 /// @throws InputError when the result is a .glb or .gltf (the input with new positions) and
-///         there is no document to write it from: found before the run
+///         there is no document to write it from, or when a glTF (that result or the --gltf
+///         animation) cannot hold the document's texture coordinates or colours
+///         (MeshDocument::require_gltf_values): found before the run
 std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
                                                        const std::string& output,
                                                        bool gltf_animation, const Mesh& mesh,

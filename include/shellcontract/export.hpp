@@ -79,6 +79,12 @@ struct GltfAnimation {
   /// 3, like faces) the index into uv of each face corner. Empty: no TEXCOORD_0.
   Eigen::Matrix<double, Eigen::Dynamic, 2, Eigen::RowMajor> uv;
   Faces face_uv;
+  /// Optional vertex colours (the input's, for COLOR_0): colour holds RGBA rows on glTF's scale
+  /// (0 to 1), face_colour (#F by 3, like faces) the row of each face corner's colour. Empty: no
+  /// COLOR_0. colour_channels: 3 writes RGB (the input has no alpha), 4 RGBA.
+  Eigen::Matrix<double, Eigen::Dynamic, 4, Eigen::RowMajor> colour;
+  Faces face_colour;
+  int colour_channels = 4;
   /// Optional normal groups of the input's shading (#F by 3, like faces; MeshDocument::
   /// normal_groups): corners of one vertex in different groups meet at a hard edge and get a
   /// normal each; -1: a corner without one. Empty: every vertex smooth.
@@ -127,6 +133,11 @@ struct GltfStats {
 /// seam) is split: glTF vertex i < #V is vertex i with the first coordinates its corners use, the
 /// copies follow; every attribute and every morph target is copied with it.
 ///
+/// With vertex colours, COLOR_0 (float VEC3 or VEC4) holds each glTF vertex's colour (that of
+/// its corners: a vertex whose corners have different colours, a welded seam's copies, is split
+/// as at a texture seam); unlike the fields', these are the input's own, which its materials
+/// may rely on.
+///
 /// With normal groups, a vertex whose corners are in more than one group (a hard edge: a
 /// flat-shaded side's corners, an OBJ's per-face `vn`) is split as a seam is, one copy per group
 /// (and texture coordinate), and each copy's NORMAL, in every frame, is the area-weighted normal
@@ -145,8 +156,10 @@ struct GltfStats {
 /// dark), alphaMode BLEND when the alpha is below 1; an image, when given, is one bufferView of
 /// the .glb's buffer (the file stays self-contained) read by a texture with a linear, repeating
 /// sampler on TEXCOORD_0; materials whose images are the same bytes share one image and texture.
-/// @throws std::invalid_argument for inconsistent sizes (texture coordinates and face_material
-///         too), no frames, non-increasing frame numbers, a non-finite coordinate, a material
+/// @throws std::invalid_argument for inconsistent sizes (texture coordinates, colours and
+///         face_material too), no frames, non-increasing frame numbers, a non-finite coordinate,
+///         a texture coordinate or colour that float32 cannot hold (not finite, or beyond its
+///         range), a material
 ///         index out of range, or a material image without texture coordinates or mime type
 /// @throws UsageError if the file cannot be written
 GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& animation);

@@ -188,6 +188,20 @@ struct CornerTexcoords {
   bool empty() const { return uv.empty(); }
 };
 
+/// The file's vertex colours as the simulation mesh's faces use them (for the glTF's COLOR_0):
+/// an OBJ's `v x y z r g b`, a PLY's red, green, blue (and alpha), a glTF's COLOR_0.
+struct CornerColours {
+  /// Per file vertex: red, green, blue, alpha on glTF's scale, 0 to 1 (a PLY's integer colours
+  /// divided by their type's largest value, floats and an OBJ's numbers as written; alpha 1
+  /// where the file has none).
+  std::vector<std::array<double, 4>> rgba;
+  int channels = 0;  ///< 3 (the file has no alpha) or 4
+  /// Per simulation face (face index order), per corner in CornerTexcoords' order: an index into
+  /// rgba (the corner's file vertex).
+  std::vector<std::array<std::size_t, 3>> face_colour;
+  bool empty() const { return rgba.empty(); }
+};
+
 /// Which corners of the simulation mesh's faces share a normal in the file (for the glTF's
 /// NORMAL): a flat-shaded side or a hard edge is a vertex whose corners have different groups.
 struct CornerNormalGroups {
@@ -266,6 +280,17 @@ class MeshDocument {
   /// Texture coordinates by simulation face corner; empty when some corner of a polygon has none.
   /// @pre matches(mesh)
   CornerTexcoords texcoords(const Mesh& mesh) const;
+  /// Vertex colours by simulation face corner; empty when the file has none (or not every vertex
+  /// has one).
+  /// @pre matches(mesh)
+  CornerColours colours(const Mesh& mesh) const;
+  /// Refuses what a glTF cannot hold of the texture coordinates its corners use (texcoords) and
+  /// of its vertex colours (colours): a value that is not finite, or that float32 cannot hold
+  /// (beyond 3.40282347e+38). A glTF output checks this before the run.
+  /// @throws InputError "<file>: ... not writable as a glTF: <element> ..." naming the element
+  ///         as the file has it (an OBJ's line, a PLY's vertex or face, a glTF's primitive and
+  ///         element)
+  void require_gltf_values() const;
   /// The file's normal groups by simulation face corner (CornerNormalGroups); empty when the
   /// file has no normals (then every vertex has one smooth normal, as a mesh without a document).
   /// @pre matches(mesh)
@@ -289,7 +314,18 @@ class MeshDocument {
     return {};
   }
 
+  /// Where texture coordinate `uv` (an index into uv_) and vertex `v` are in the file, for
+  /// require_gltf_values' messages ("line 12", "vertex 3").
+  virtual std::string uv_place(std::size_t uv) const {
+    return "texture coordinate " + std::to_string(uv);
+  }
+  virtual std::string vertex_place(std::size_t v) const { return "vertex " + std::to_string(v); }
+
+  std::string file_name_;  ///< the file, for messages
   std::size_t vertex_count_ = 0;
+  /// Per file vertex its colour (CornerColours::rgba); empty: none.
+  std::vector<std::array<double, 4>> colour_;
+  int colour_channels_ = 0;                 ///< 3 or 4 with colour_
   std::vector<std::size_t> polygon_start_;  ///< polygon p's corners are [start[p], start[p + 1])
   std::vector<std::size_t> corner_vertex_;  ///< 0-based vertex index of each corner
   std::vector<long long> corner_uv_;        ///< index into uv_ of each corner; -1 none

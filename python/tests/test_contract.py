@@ -166,8 +166,10 @@ def test_options_are_the_table_and_its_defaults(ico2):
     derived = {"mu": E * h / (2 * (1 + nu)), "lambda": E * h * nu / (1 - nu * nu),
                "k_b": E * h ** 3 / (36 * (1 - nu * nu))}
     # The options left at "auto" report the choice the run made (the default order is the
-    # coloured one, whose speculative broad phase is off).
-    chosen = {"order": ("auto", "coloured"), "speculative_broad_phase": ("auto", "off")}
+    # coloured one, whose speculative broad phase is off); the ramp, the one the run used: at most
+    # half its frames, at least 1 (docs/cli.md, the summary's options).
+    chosen = {"order": ("auto", "coloured"), "speculative_broad_phase": ("auto", "off"),
+              "target_ramp": ("100", "1")}
     for o in table:
         if o.name in derived:
             assert float(reported[o.name]) == pytest.approx(derived[o.name], rel=1e-15), o.name

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <utility>
@@ -25,6 +26,15 @@ namespace {
 using gltf::BufferBuilder;
 using gltf::Floats2;
 using gltf::Floats3;
+
+/// Whether every value is one a float32 accessor holds (glTF allows no inf or NaN there): a
+/// finite double beyond float's range would be written as inf.
+template <class M>
+bool fits_float(const M& m) {
+  return m.allFinite() &&
+         (m.size() == 0 ||
+          m.cwiseAbs().maxCoeff() <= static_cast<double>(std::numeric_limits<float>::max()));
+}
 
 void check_input(const GltfAnimation& a) {
   if (a.frames.empty()) throw std::invalid_argument("write_gltf_animation: no frames");
@@ -63,8 +73,23 @@ void check_input(const GltfAnimation& a) {
                                   std::to_string(a.faces.rows()) + " faces");
     if (a.uv.rows() == 0 || a.face_uv.minCoeff() < 0 || a.face_uv.maxCoeff() >= a.uv.rows())
       throw std::invalid_argument("write_gltf_animation: a texture coordinate index is out of range");
-    if (!a.uv.allFinite())
-      throw std::invalid_argument("write_gltf_animation: a texture coordinate is not finite");
+    if (!fits_float(a.uv))
+      throw std::invalid_argument(
+          "write_gltf_animation: a texture coordinate is not finite or beyond float32's range");
+  }
+  if (a.face_colour.rows() > 0 || a.colour.rows() > 0) {
+    if (a.face_colour.rows() != a.faces.rows())
+      throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.face_colour.rows()) +
+                                  " rows of colour indices for " + std::to_string(a.faces.rows()) +
+                                  " faces");
+    if (a.colour.rows() == 0 || a.face_colour.minCoeff() < 0 ||
+        a.face_colour.maxCoeff() >= a.colour.rows())
+      throw std::invalid_argument("write_gltf_animation: a colour index is out of range");
+    if (!fits_float(a.colour))
+      throw std::invalid_argument(
+          "write_gltf_animation: a colour is not finite or beyond float32's range");
+    if (a.colour_channels != 3 && a.colour_channels != 4)
+      throw std::invalid_argument("write_gltf_animation: colour_channels is not 3 or 4");
   }
   if (a.face_normal.rows() > 0) {
     if (a.face_normal.rows() != a.faces.rows())
@@ -155,11 +180,12 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
   const std::size_t nk = a.frames.size();
   const std::size_t vec3 = 12 * nv + 3;
   return 4 * static_cast<std::size_t>(a.faces.size()) + 3 * (1 + a.materials.size()) +  // indices
-         (2 + 2 * (nk - 1)) * vec3 +                          // attributes and targets
+         (2 + 2 * (nk - 1)) * vec3 +  // attributes and targets
          (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
-         a.frame_fields.size() * nk * (4 * nv + 3) +                                   // frame fields
-         4 * nk + 3 + 4 * nk * (nk - 1) + 3 +                  // keys and weights
-         gltf::material_bytes(a.materials) +                 // embedded images
+         (a.colour.rows() > 0 ? 16 * nv + 3 : 0) +                                   // COLOR_0
+         a.frame_fields.size() * nk * (4 * nv + 3) +                                 // frame fields
+         4 * nk + 3 + 4 * nk * (nk - 1) + 3 +                   // keys and weights
+         gltf::material_bytes(a.materials) +                    // embedded images
          gltf::source_material_bytes(a.material_source.get());  // a glTF input's images
 }
 
@@ -196,6 +222,20 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
       texcoords(static_cast<Eigen::Index>(i), 1) = static_cast<float>(1.0 - a.uv(t, 1));
     }
     prim.attributes["TEXCOORD_0"] = bb.add_vec2(texcoords);  // (u, 1 - v)
+  }
+  if (!split.colour.empty()) {
+    // The input's colours, as they are: unlike the fields' (below), its materials may rely on
+    // them (glTF multiplies the base colour by COLOR_0).
+    const auto n = static_cast<Eigen::Index>(split.colour.size());
+    Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rgba(n,
+                                                                               a.colour_channels);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const int c = split.colour[static_cast<std::size_t>(i)];
+      for (int k = 0; k < a.colour_channels; ++k)
+        rgba(i, k) =
+            c < 0 ? 1.0f : static_cast<float>(a.colour(c, k));  // < 0: a vertex no face uses
+    }
+    prim.attributes["COLOR_0"] = bb.add_colours(rgba);
   }
 
   tinygltf::Value::Object extras;

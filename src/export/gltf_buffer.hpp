@@ -72,6 +72,17 @@ class BufferBuilder {
     return push(acc);
   }
 
+  /// A float VEC3 or VEC4 vertex attribute (colours: 3 or 4 columns).
+  int add_colours(const Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>& a) {
+    tinygltf::Accessor acc;
+    acc.bufferView = add_view(a.data(), sizeof(float) * static_cast<std::size_t>(a.size()),
+                              TINYGLTF_TARGET_ARRAY_BUFFER);
+    acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+    acc.count = static_cast<std::size_t>(a.rows());
+    acc.type = a.cols() == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4;
+    return push(acc);
+  }
+
   /// A float SCALAR vertex attribute (a field's values).
   int add_vertex_scalars(const Eigen::VectorXf& a) {
     tinygltf::Accessor acc;

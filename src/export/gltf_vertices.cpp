@@ -2,7 +2,9 @@
 #include "export/gltf_vertices.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <utility>
 
 namespace shellcontract::gltf {
@@ -11,12 +13,25 @@ VertexSplit split_vertices(const GltfAnimation& a) {
   const Eigen::Index nv = a.frames[0].rows();
   const auto n = static_cast<std::size_t>(nv);
   const bool with_uv = a.face_uv.rows() > 0, with_groups = a.face_normal.rows() > 0;
+  const bool with_colour = a.face_colour.rows() > 0;
   const bool with_polygons = !a.face_polygon.empty();
   VertexSplit s;
   s.faces = a.faces;
   s.source.resize(n);
   for (Eigen::Index i = 0; i < nv; ++i) s.source[static_cast<std::size_t>(i)] = i;
-  if (!with_uv && !with_groups) return s;
+  if (!with_uv && !with_groups && !with_colour) return s;
+
+  // Colours by value: copies of a vertex whose colours are equal (most seam copies) are not
+  // split for their colour, only those that differ. Per colour row, the first row of its value.
+  std::vector<int> colour_class(static_cast<std::size_t>(a.colour.rows()));
+  {
+    std::map<std::array<double, 4>, int> first;
+    for (Eigen::Index c = 0; c < a.colour.rows(); ++c) {
+      const std::array<double, 4> v{a.colour(c, 0), a.colour(c, 1), a.colour(c, 2), a.colour(c, 3)};
+      colour_class[static_cast<std::size_t>(c)] =
+          first.emplace(v, static_cast<int>(c)).first->second;
+    }
+  }
 
   // A vertex has a hard edge where its corners are in more than one normal group (a corner
   // without a normal, -1, counts as one): only there does the group split it. A smooth vertex's
@@ -37,10 +52,10 @@ VertexSplit split_vertices(const GltfAnimation& a) {
         }
       }
 
-  // Per glTF vertex its key (texture coordinate, normal group at a hard vertex; -1: none), and
-  // per simulation vertex the copies made so far.
-  using Key = std::pair<int, int>;
-  std::vector<Key> key(n, Key(-1, -1));
+  // Per glTF vertex its key (texture coordinate, normal group at a hard vertex, colour; -1:
+  // none), and per simulation vertex the copies made so far.
+  using Key = std::array<int, 3>;
+  std::vector<Key> key(n, Key{-1, -1, -1});
   std::vector<char> keyed(n, 0);
   std::vector<std::vector<std::pair<Key, int>>> copies(n);
   std::vector<std::vector<std::pair<int, int>>> slots(n);  // per vertex: (group, hard slot)
@@ -50,7 +65,9 @@ VertexSplit split_vertices(const GltfAnimation& a) {
       const int v = a.faces(f, k);
       const auto vs = static_cast<std::size_t>(v);
       const int group = hard[vs] ? a.face_normal(f, k) : -1;
-      const Key want(with_uv ? a.face_uv(f, k) : -1, group);
+      const Key want{
+          with_uv ? a.face_uv(f, k) : -1, group,
+          with_colour ? colour_class[static_cast<std::size_t>(a.face_colour(f, k))] : -1};
       // The hard group's slot, and this face's polygon in its list, once (a polygon's triangles
       // that share the vertex come one after the other, but not always: look at all).
       int slot = -1;
@@ -87,7 +104,11 @@ VertexSplit split_vertices(const GltfAnimation& a) {
     }
   if (with_uv) {
     s.uv.resize(s.source.size());
-    for (std::size_t i = 0; i < s.source.size(); ++i) s.uv[i] = key[i].first;
+    for (std::size_t i = 0; i < s.source.size(); ++i) s.uv[i] = key[i][0];
+  }
+  if (with_colour) {
+    s.colour.resize(s.source.size());
+    for (std::size_t i = 0; i < s.source.size(); ++i) s.colour[i] = key[i][2];
   }
   if (s.hard.empty())
     s.normal.clear();  // every vertex smooth

@@ -18,6 +18,9 @@ struct VertexSplit {
   /// Per glTF vertex, its texture coordinate's index into the animation's uv (-1: a vertex no
   /// face uses); empty without texture coordinates.
   std::vector<int> uv;
+  /// Per glTF vertex, its colour's row in the animation's colour (-1: a vertex no face uses);
+  /// empty without colours.
+  std::vector<int> colour;
   /// Per glTF vertex, its normal: -1 the simulation vertex's smooth normal (vertex_normals),
   /// else an index into `hard`: the group of its corners at a vertex with a hard edge.
   std::vector<int> normal;
@@ -27,11 +30,11 @@ struct VertexSplit {
   std::vector<int> polygon;  ///< per face, its polygon; empty: each face its own
 };
 
-/// The split of `a`'s vertices by the texture coordinate (face_uv) and the normal group
-/// (face_normal) of their corners. Glb vertex i < #V is simulation vertex i with its first
-/// corner's, the copies follow in the order of their first corners. Corners of a vertex whose
-/// corners all have one normal group (or none) share the smooth normal: a mesh without normal
-/// groups is split at its UV seams only, as before they were read.
+/// The split of `a`'s vertices by the texture coordinate (face_uv), the normal group
+/// (face_normal) and the colour (face_colour) of their corners. Glb vertex i < #V is simulation
+/// vertex i with its first corner's, the copies follow in the order of their first corners. Corners
+/// of a vertex whose corners all have one normal group (or none) share the smooth normal: a mesh
+/// without normal groups is split at its UV seams only, as before they were read.
 /// @pre a is checked (write_gltf_animation's checks)
 VertexSplit split_vertices(const GltfAnimation& a);
 

@@ -40,6 +40,7 @@ class GltfDocument final : public MeshDocument {
  public:
   GltfDocument(const std::string& path, const std::string& bytes, bool binary)
       : binary_(binary), path_(path) {
+    file_name_ = path;
     // The parse is read_input_mesh's (the same soup, so simulation vertex i is soup vertex i).
     model_ = gltf::load_model(path, bytes);
     input_json_ = gltf::json_text(bytes);
@@ -70,6 +71,7 @@ class GltfDocument final : public MeshDocument {
     }
     check_written_bytes_alone(path);
     read_texcoords();
+    read_colours(path);
     read_normals();
     read_materials(path);
     // Each drawing of an instanced mesh holds its own moved copy (gltf_instances.hpp).
@@ -290,6 +292,73 @@ class GltfDocument final : public MeshDocument {
       uv_[v] = {f[0], 1.0 - static_cast<double>(f[1])};
     }
     corner_uv_.assign(corner_vertex_.begin(), corner_vertex_.end());
+  }
+
+  std::string vertex_place(std::size_t v) const override {
+    const auto& s = soup_.sources.at(v);
+    return "mesh " + std::to_string(soup_.drawn[s.drawn].mesh) + " primitive " +
+           std::to_string(soup_.drawn[s.drawn].primitive) + " vertex " + std::to_string(s.element);
+  }
+  std::string uv_place(std::size_t uv) const override {
+    return vertex_place(uv);
+  }  // one per vertex
+
+  /// Vertex colours for the --gltf animation: each vertex's primitive's COLOR_0 (float, or
+  /// normalized unsigned byte or short; RGB or RGBA), white where a primitive has none (glTF's
+  /// meaning of no COLOR_0). None when no primitive has one.
+  void read_colours(const std::string& path) {
+    std::vector<gltf::ElementView> views(soup_.drawn.size());
+    std::vector<int> type(soup_.drawn.size(), -1), columns(soup_.drawn.size(), 0);
+    bool any = false;
+    for (std::size_t d = 0; d < soup_.drawn.size(); ++d) {
+      const tinygltf::Primitive& p = primitive(d);
+      const auto it = p.attributes.find("COLOR_0");
+      if (it == p.attributes.end() || it->second < 0 ||
+          static_cast<std::size_t>(it->second) >= model_.accessors.size())
+        continue;
+      const tinygltf::Accessor& a = model_.accessors[static_cast<std::size_t>(it->second)];
+      const int n = a.type == TINYGLTF_TYPE_VEC3 ? 3 : a.type == TINYGLTF_TYPE_VEC4 ? 4 : 0;
+      const std::size_t size = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT            ? 4
+                               : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2
+                               : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE  ? 1
+                                                                                           : 0;
+      if (n == 0 || size == 0 || a.sparse.isSparse) continue;  // not a colour glTF allows
+      const std::string name = "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " +
+                               std::to_string(soup_.drawn[d].primitive) + " COLOR_0";
+      views[d] =
+          gltf::element_view(path, model_, it->second, name, size * static_cast<std::size_t>(n));
+      if (views[d].count != positions_[d].view.count)
+        throw InputError(path + ": attribute count mismatch: " + name + " (accessor " +
+                         std::to_string(it->second) + ") has " + std::to_string(views[d].count) +
+                         " elements, POSITION " + std::to_string(positions_[d].view.count));
+      type[d] = a.componentType;
+      columns[d] = n;
+      any = true;
+      if (n == 4) colour_channels_ = 4;
+    }
+    if (!any) return;
+    if (colour_channels_ == 0) colour_channels_ = 3;
+    colour_.assign(vertex_count_, {1.0, 1.0, 1.0, 1.0});
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      const auto& s = soup_.sources[v];
+      if (type[s.drawn] < 0) continue;
+      const unsigned char* b = views[s.drawn].at(model_, s.element);
+      for (int c = 0; c < columns[s.drawn]; ++c) {
+        double value = 0.0;
+        if (type[s.drawn] == TINYGLTF_COMPONENT_TYPE_FLOAT) {
+          float f;
+          std::memcpy(&f, b + 4 * c, 4);
+          value = f;
+        } else if (type[s.drawn] == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+          std::uint16_t u;
+          std::memcpy(&u, b + 2 * c, 2);
+          value = u / 65535.0;
+        } else {
+          value = b[c] / 255.0;
+        }
+        colour_[v][static_cast<std::size_t>(c)] = value;
+      }
+    }
   }
 
   /// The --gltf animation's materials: the model's own, and per polygon its primitive's.

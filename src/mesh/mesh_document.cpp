@@ -1,17 +1,18 @@
 // What the OBJ and PLY documents share (docs/design/attributes.md): the map from the simulation's
 // triangles back to the file's polygons, the check that a document stands for a mesh, and the
 // texture coordinates per triangle corner for the glTF.
-#include "shellcontract/mesh_io.hpp"
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 
@@ -103,6 +104,51 @@ CornerTexcoords MeshDocument::texcoords(const Mesh& mesh) const {
       t.face_uv[f][k] = static_cast<std::size_t>(corner_uv_[corners[f][k]]);
   t.uv = uv_;
   return t;
+}
+
+CornerColours MeshDocument::colours(const Mesh& mesh) const {
+  CornerColours c;
+  if (colour_.size() != vertex_count_ || vertex_count_ == 0) return c;
+  // A corner's colour is its file vertex's: input_faces names the file's vertices, a welded
+  // mesh's copies too (their colours may differ, as their texture coordinates do).
+  c.face_colour = input_faces(mesh);
+  c.rgba = colour_;
+  c.channels = colour_channels_;
+  return c;
+}
+
+void MeshDocument::require_gltf_values() const {
+  // A glTF stores these as float32: a double beyond its range would be written as inf, and
+  // glTF (and its validator) allows no inf or NaN in an accessor.
+  const auto fits = [](double v) {
+    return std::isfinite(v) &&
+           std::abs(v) <= static_cast<double>(std::numeric_limits<float>::max());
+  };
+  const auto refuse = [&](const std::string& where, const std::string& what, double v) {
+    throw InputError(file_name_ + ": not writable as a glTF: " + where + ": " + what + " " +
+                     format_double(v) +
+                     (std::isfinite(v) ? " is beyond the largest 32-bit float (3.40282347e+38)"
+                                       : " is not a finite number"));
+  };
+  const bool every_corner_has_uv =
+      !uv_.empty() && !corner_uv_.empty() &&
+      std::none_of(corner_uv_.begin(), corner_uv_.end(), [](long long i) { return i < 0; });
+  if (every_corner_has_uv) {  // texcoords' condition: only then is TEXCOORD_0 written
+    std::vector<char> checked(uv_.size(), 0);
+    for (const long long t : corner_uv_) {
+      const auto i = static_cast<std::size_t>(t);
+      if (checked[i]) continue;
+      checked[i] = 1;
+      for (std::size_t k = 0; k < 2; ++k)
+        if (!fits(uv_[i][k]))
+          refuse(uv_place(i), std::string("texture coordinate ") + "uv"[k], uv_[i][k]);
+    }
+  }
+  if (colour_.size() == vertex_count_)
+    for (std::size_t v = 0; v < colour_.size(); ++v)
+      for (std::size_t k = 0; k < 4; ++k)
+        if (!fits(colour_[v][k]))
+          refuse(vertex_place(v), std::string("colour component ") + "rgba"[k], colour_[v][k]);
 }
 
 CornerNormalGroups MeshDocument::normal_groups(const Mesh& mesh) const {

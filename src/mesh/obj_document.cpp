@@ -16,6 +16,7 @@
 // on the line where it starts. A continued `v` keeps its continuations (each number is replaced
 // on its own); a continued `vn` that is rewritten becomes one line, as an unchanged one is kept.
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -26,13 +27,13 @@
 #include <utility>
 #include <vector>
 
-#include "mesh/line_tokens.hpp"
 #include "core/decimal_text.hpp"
+#include "mesh/file_safety.hpp"
+#include "mesh/line_tokens.hpp"
 #include "mesh/obj_material_paths.hpp"
 #include "mesh/obj_normals.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
-#include "mesh/file_safety.hpp"
 
 namespace shellcontract {
 namespace {
@@ -69,6 +70,12 @@ class ObjDocument final : public MeshDocument {
       if (n >= 0) return corner_vn_;
     return {};
   }
+  std::string uv_place(std::size_t uv) const override {
+    return "line " + std::to_string(vt_line_.at(uv)) + " (vt " + std::to_string(uv + 1) + ")";
+  }
+  std::string vertex_place(std::size_t v) const override {
+    return "line " + std::to_string(v_line_.at(v)) + " (v " + std::to_string(v + 1) + ")";
+  }
   /// The file's text with its continued lines joined: the bytes themselves when it has none.
   const std::string& statements() const { return joined_.empty() ? bytes_ : joined_; }
 
@@ -80,6 +87,7 @@ class ObjDocument final : public MeshDocument {
   std::string joined_;
   std::vector<MtllibLine> mtllib_;    ///< the spans of the mtllib lines' names
   std::vector<Span> v_numbers_;       ///< per `v` line: the span of its "x y z" text
+  std::vector<std::size_t> v_line_, vt_line_;  ///< per `v` / `vt` line: its line number
   std::vector<Span> vn_text_;         ///< per `vn` line: the span from "vn" to the line's end
   std::vector<long long> corner_vn_;  ///< per corner: index of its `vn` line; -1 none
   std::vector<Span> corner_vn_token_;  ///< per corner: the span of its normal index's text
@@ -162,6 +170,8 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
            "a line continuation ('\\') with no line after it");
     if (joined_ == bytes_) joined_.clear();
   }
+  file_name_ = name_;
+  bool vertex_without_colour = false;
   const std::string& text = statements();
   std::size_t begin = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // a UTF-8 byte-order mark
   // `line`: where the statement starts, as scan_obj counts (obj_scan.hpp).
@@ -180,7 +190,28 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
         numbers.end = t.end;
       }
       v_numbers_.push_back(numbers);
+      v_line_.push_back(line);
+      // Vertex colours as MeshLab and Blender write them: `v x y z r g b`, three numbers after
+      // x y z (one alone is a weight w). Not numbers: no colour, as for any other reader.
+      std::array<double, 4> rgba{0.0, 0.0, 0.0, 1.0};
+      std::size_t n = 0;
+      bool numbers_only = true;
+      for (Span t = next_token(text, at, end); t.begin != t.end; t = next_token(text, at, end)) {
+        if (text[t.begin] == '#') break;
+        double value = 0.0;
+        if (n >= 3 || !parse_c_number(text.substr(t.begin, t.end - t.begin), value)) {
+          numbers_only = false;
+          break;
+        }
+        rgba[n++] = value;
+      }
+      if (numbers_only && n == 3) {
+        if (colour_.size() + 1 == v_numbers_.size()) colour_.push_back(rgba);
+      } else {
+        vertex_without_colour = true;
+      }
     } else if (k == "vt") {
+      vt_line_.push_back(line);
       const double u = number(next_token(text, at, end), line, "u");
       const Span tv = next_token(text, at, end);
       uv_.push_back({u, tv.begin == tv.end ? 0.0 : number(tv, line, "v")});
@@ -202,6 +233,9 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
     begin = end + 1;
   }
   vertex_count_ = v_numbers_.size();
+  // Colours only when every vertex has one (glTF's COLOR_0 has one per vertex).
+  if (vertex_without_colour) colour_.clear();
+  colour_channels_ = 3;
   // The libraries, by the names mtllib_names finds (a name with spaces in it too); without the
   // file's path their folder is unknown, and so are they.
   const std::filesystem::path folder = std::filesystem::path(path_).parent_path();

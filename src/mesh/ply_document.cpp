@@ -94,6 +94,27 @@ void require_representable(const std::string& name, const std::vector<Slot>& slo
            "few bits");
 }
 
+/// A colour component on glTF's scale, 0 to 1: an integer type's value divided by the type's
+/// largest (uchar 255: 1), a float as the file has it.
+double colour_value(ply::Type t, double value) {
+  switch (t) {
+    case ply::Type::UInt8:
+      return value / 255.0;
+    case ply::Type::Int8:
+      return value / 127.0;
+    case ply::Type::UInt16:
+      return value / 65535.0;
+    case ply::Type::Int16:
+      return value / 32767.0;
+    case ply::Type::UInt32:
+      return value / 4294967295.0;
+    case ply::Type::Int32:
+      return value / 2147483647.0;
+    default:
+      return value;
+  }
+}
+
 bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
 }
@@ -135,6 +156,13 @@ class PlyDocument final : public MeshDocument {
   std::vector<Vec3> input_normals_;
   /// The vertex normals at positions x (see text()); a row of NaN keeps the file's normal.
   Positions normals(const Positions& x) const;
+  std::string uv_place(std::size_t uv) const override {
+    if (uv_face_.empty()) return "vertex " + std::to_string(uv);  // per-vertex coordinates
+    return "face " + std::to_string(uv_face_.at(uv)) + "'s texcoord";
+  }
+  /// Per texture coordinate of a face's `texcoord` list, the first face that has it; empty
+  /// for per-vertex coordinates.
+  std::vector<std::size_t> uv_face_;
   /// By the normal groups of normals(): copies of a welded vertex with their own normals (a
   /// flat-shaded side's corners) are groups of their own. None when the file's are kept.
   std::vector<long long> corner_normal_groups(const Mesh& mesh) const override {
@@ -183,6 +211,7 @@ double PlyDocument::next_value(ply::Type t, Slot& where) {
 
 PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     : name_(name), bytes_(std::move(bytes)) {
+  file_name_ = name_;
   // read_ply's own header parse: the document runs after read_ply accepted these bytes.
   ply::Header header = ply::read_ply_header(name_, bytes_);
   ascii_ = header.format == ply::Format::Ascii;
@@ -197,6 +226,12 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   // MeshLab's wedge texture coordinates: a face list `texcoord` of u v per corner. Used where the
   // vertices have none, and only when every face has two numbers per corner.
   std::vector<std::array<double, 2>> wedge_uv;
+  std::vector<std::size_t> wedge_face;  ///< per entry of wedge_uv: its face
+  // Vertex colours: red, green, blue and alpha (each optional but the first three), on glTF's
+  // scale (integer types divided by their largest value).
+  std::vector<std::array<double, 4>> colours;
+  bool has_alpha = false;
+  std::size_t face_number = 0;
   bool wedges_whole = true, wedges_seen = false;
   for (const ply::Element& e : elements_) {
     const bool is_vertex = e.name == "vertex" && !vertices_seen;
@@ -209,7 +244,22 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     int axis_prop[3] = {-1, -1, -1};
     // The properties that hold nx, ny, nz: the first of each name, the only ones written.
     int normal_prop[3] = {-1, -1, -1};
+    // The properties that hold red, green, blue, alpha (the first of each name).
+    int colour_prop[4] = {-1, -1, -1, -1};
     if (is_vertex) {
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const ply::Property& p = e.properties[k];
+        const std::string& n = p.name;
+        const int c = n == "red" || n == "diffuse_red"       ? 0
+                      : n == "green" || n == "diffuse_green" ? 1
+                      : n == "blue" || n == "diffuse_blue"   ? 2
+                      : n == "alpha" || n == "diffuse_alpha" ? 3
+                                                             : -1;
+        if (!p.list && c >= 0 && colour_prop[c] < 0) colour_prop[c] = static_cast<int>(k);
+      }
+      if (colour_prop[0] < 0 || colour_prop[1] < 0 || colour_prop[2] < 0)
+        colour_prop[0] = colour_prop[1] = colour_prop[2] = colour_prop[3] = -1;
+      has_alpha = colour_prop[0] >= 0 && colour_prop[3] >= 0;
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const ply::Property& p = e.properties[k];
         const int axis = p.name == "x" ? 0 : p.name == "y" ? 1 : p.name == "z" ? 2 : -1;
@@ -244,6 +294,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
       slots_.resize(3 * e.count);
       normal_slots_.resize(3 * e.count);
       input_normals_.assign(e.count, Vec3::Zero());
+      if (colour_prop[0] >= 0) colours.assign(e.count, {0.0, 0.0, 0.0, 1.0});
       vertex_count_ = e.count;
     }
     for (std::size_t i = 0; i < e.count; ++i) {
@@ -272,6 +323,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
           texnumbers.push_back(static_cast<int>(std::clamp(value, -1.0, double{INT_MAX})));
         if (!is_vertex) continue;
         const int kk = static_cast<int>(k);
+        for (std::size_t c = 0; c < 4; ++c)
+          if (kk == colour_prop[c]) colours[i][c] = colour_value(p.type, value);
         if (kk == axis_prop[0] || kk == axis_prop[1] || kk == axis_prop[2]) {
           slots_[3 * i + (kk == axis_prop[0] ? 0 : kk == axis_prop[1] ? 1 : 2)] = s;
         } else if (kk == normal_prop[0] || kk == normal_prop[1] || kk == normal_prop[2]) {
@@ -284,12 +337,15 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
         else if (static_cast<int>(k) == v_prop)
           v_values.push_back(value);
       }
+      if (is_face) ++face_number;
       if (!is_face || !wedges_seen) continue;
       // The list may come before or after the corners: matched once the face is read.
       const std::size_t corners = corner_vertex_.size() - corners_before;
       if (face_uv.size() != 2 * corners) wedges_whole = false;
-      for (std::size_t c = 0; wedges_whole && c < corners; ++c)
+      for (std::size_t c = 0; wedges_whole && c < corners; ++c) {
         wedge_uv.push_back({face_uv[2 * c], face_uv[2 * c + 1]});
+        wedge_face.push_back(face_number - 1);
+      }
     }
   }
   // The texture files: a face's texnumber chooses one (gltf_materials warns for one out of
@@ -319,12 +375,18 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
     // Equal pairs are one texture coordinate, as an OBJ's `vt` line shared by corners: the glTF
     // splits a vertex only where its corners' coordinates differ (a seam), not at every corner.
     std::map<std::array<double, 2>, long long> index_of;
-    for (const std::array<double, 2>& uv : wedge_uv) {
+    for (std::size_t c = 0; c < wedge_uv.size(); ++c) {
+      const std::array<double, 2>& uv = wedge_uv[c];
       const auto it = index_of.emplace(uv, static_cast<long long>(uv_.size()));
-      if (it.second) uv_.push_back(uv);
+      if (it.second) {
+        uv_.push_back(uv);
+        uv_face_.push_back(wedge_face[c]);
+      }
       corner_uv_.push_back(it.first->second);
     }
   }
+  colour_ = std::move(colours);
+  colour_channels_ = has_alpha ? 4 : 3;
 }
 
 Positions PlyDocument::normals(const Positions& x) const {

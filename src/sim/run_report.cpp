@@ -12,6 +12,7 @@
 #include "shellcontract/report.hpp"
 #include "shellcontract/run.hpp"
 #include "shellcontract/version.hpp"
+#include "sim/target_ramp.hpp"
 
 namespace shellcontract {
 
@@ -79,6 +80,24 @@ std::vector<LogRow> log_csv_rows(const std::string& text, const std::string& nam
   return rows;
 }
 
+namespace {
+
+/// An option's value as the summary records it: the value the run used, which the option takes
+/// back, so that the recorded options rerun the run. The table's resolved value but for two:
+/// the ramp a run of fewer than twice its frames shortens (target_ramp_used); and `regions`,
+/// which --region-at and --region-weights set themselves (Auto, Weights) and which a run given
+/// beside them refuses: recorded as not given, their own entries holding the points and the
+/// weights' file.
+std::string summary_value(const OptionSpec& spec, const RunOptions& options) {
+  if (spec.name == "target-ramp") return std::to_string(target_ramp_used(options.sim));
+  if (spec.name == "regions" &&
+      (!options.region_points.empty() || options.regions == RegionSource::Weights))
+    return {};
+  return spec.get(options);
+}
+
+}  // namespace
+
 void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOptions& options,
                        const RunResult& r, OptionSpelling spelling, const SummaryFiles* files) {
   const auto count = [&w](const char* key, std::size_t v) {
@@ -103,7 +122,7 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   w.add_number("normalization_scale", r.normalization_scale);
   w.add_object("options", [&](SummaryWriter& o) {
     for (const OptionSpec& spec : run_option_table())
-      o.add_text(option_name(spec, spelling), spec.get(options));
+      o.add_text(option_name(spec, spelling), summary_value(spec, options));
   });
   w.add_integer("frames_run", r.frames_run);
   w.add_number("final_volume_ratio", r.final_volume_ratio);

@@ -21,6 +21,7 @@
 #include "sim/mass_scaling.hpp"
 #include "sim/region_weights.hpp"
 #include "sim/rest_frame.hpp"
+#include "sim/target_ramp.hpp"
 #include "sim/volume_constraint.hpp"
 
 namespace shellcontract {
@@ -274,7 +275,7 @@ double Simulator::volume_target(int n) const {
   if (!options_.target_volume_schedule.empty()) return options_.target_volume_schedule.at(n);
   if (options_.target_volume <= 0.0) return 0.0;
   // A run shorter than twice the ramp still reaches the target at half its frames.
-  const int ramp = std::min(options_.target_ramp_frames, std::max(1, options_.frames / 2));
+  const int ramp = target_ramp_used(options_);
   return target_volume_at(n, ramp, 1.0, options_.target_volume);
 }
 

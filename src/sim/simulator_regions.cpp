@@ -11,6 +11,7 @@
 #include "sim/region_dimple.hpp"
 #include "sim/region_mirror.hpp"
 #include "sim/region_volume.hpp"
+#include "sim/target_ramp.hpp"
 #include "sim/volume_constraint.hpp"
 
 namespace shellcontract {
@@ -18,7 +19,7 @@ namespace shellcontract {
 void Simulator::apply_region_contraction(Positions& x) {
   if (region_dimples_.empty()) return;
   // The same ramp as a target volume's: the regions start and stop sinking gently.
-  const int ramp = std::min(options_.target_ramp_frames, std::max(1, options_.frames / 2));
+  const int ramp = target_ramp_used(options_);
   const double t = std::clamp(static_cast<double>(frame_ + 1) / ramp, 0.0, 1.0);
   const double s = t * t * (3.0 - 2.0 * t);
   // The shell's own contraction rho is measured with the caps cut off at their rims: a sinking
