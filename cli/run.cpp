@@ -298,8 +298,8 @@ int command_run(int argc, char** argv) {
                 << mesh.number_of_faces() << " faces in " << std::setprecision(3) << read_seconds
                 << " s\n";
     // Shared with the frame writer's thread (run_document.hpp).
-    const std::shared_ptr<const MeshDocument> document =
-        run_input_document(input, output, !exports.gltf.empty(), mesh, repair);
+    const std::shared_ptr<const MeshDocument> document = run_input_document(
+        input, output, !exports.gltf.empty(), mesh, repair, report.triangulated_faces);
     ObserverList observers;
     WarningPrinter warnings;
     observers.add(warnings);

@@ -3,6 +3,8 @@
 
 #include <cstddef>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "command_line.hpp"
 #include "mesh/file_extras.hpp"
@@ -10,13 +12,50 @@
 #include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
+namespace {
+
+/// Warns that the result is written by a plain writer, for `why`, naming what of the input it
+/// drops as `repair` names it (repair.md, "What is written"): nothing is dropped without a word.
+/// `triangulated`: the input's polygons of more than 3 corners, which the plain writers write as
+/// their triangles. No warning when nothing is dropped (`always`: the warning without a list).
+void warn_dropped(const std::string& input, const std::string& why, std::size_t triangulated,
+                  bool always) {
+  std::vector<std::string> dropped;
+  try {
+    dropped = describe_file_extras(lower_extension(input), read_file_bytes(input)).items;
+  } catch (const InputError&) {
+    // The file went away after it was read: the warning stays without the list.
+  }
+  if (triangulated > 0)
+    dropped.push_back(std::to_string(triangulated) +
+                      (triangulated == 1 ? " polygon" : " polygons") +
+                      " with more than 3 corners (written as triangles)");
+  if (dropped.empty() && !always) return;
+  std::cerr << "warning: the result is written without the input's attributes: " << why;
+  for (std::size_t i = 0; i < dropped.size(); ++i)
+    std::cerr << (i ? "; " : " (dropped: ") << dropped[i];
+  if (!dropped.empty()) std::cerr << ')';
+  std::cerr << '\n';
+}
+
+bool is_gltf(const std::string& ext) { return ext == "glb" || ext == "gltf"; }
+
+}  // namespace
 
 std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
                                                        const std::string& output,
                                                        bool gltf_animation, const Mesh& mesh,
-                                                       bool repaired) {
+                                                       bool repaired,
+                                                       std::size_t triangulated_polygons) {
   std::shared_ptr<const MeshDocument> document;
-  if (lower_extension(input) != lower_extension(output) && !gltf_animation) return document;
+  const std::string in_ext = lower_extension(input), out_ext = lower_extension(output);
+  // Another format than the input's is written by its plain writer (positions and triangles):
+  // the result and its frames drop what the input has besides (a .glb or .gltf result of
+  // another input is refused before, output_paths.cpp).
+  if (in_ext != out_ext && !is_gltf(out_ext))
+    warn_dropped(input, "it is a ." + out_ext + " file, the input a ." + in_ext + " file",
+                 triangulated_polygons, false);
+  if (in_ext != out_ext && !gltf_animation) return document;
   try {
     document = read_mesh_document(input);
   } catch (const InputError& e) {
@@ -24,24 +63,13 @@ std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
               << '\n';
   }
   if (document && !document->matches(mesh)) {
-    std::cerr << "warning: the result is written without the input's attributes: "
-              << (repaired ? "--repair changed the mesh" : "the mesh is not the file's");
-    // Which ones, named as `repair` names them: nothing is dropped without a word.
-    try {
-      const FileExtras extras =
-          describe_file_extras(lower_extension(input), read_file_bytes(input));
-      for (std::size_t i = 0; i < extras.items.size(); ++i)
-        std::cerr << (i ? "; " : " (dropped: ") << extras.items[i];
-      if (!extras.items.empty()) std::cerr << ')';
-    } catch (const InputError&) {
-      // The file went away after it was read: the warning stays without the list.
-    }
-    std::cerr << '\n';
+    warn_dropped(input, repaired ? "--repair changed the mesh" : "the mesh is not the file's", 0,
+                 true);
     document.reset();
   }
   // Checked before the run: a result that cannot be written is not worth computing.
-  if (!document && (lower_extension(output) == "glb" || lower_extension(output) == "gltf"))
-    throw InputError(input + ": the ." + lower_extension(output) +
+  if (!document && is_gltf(out_ext))
+    throw InputError(input + ": the ." + out_ext +
                      " result would be this file with new positions, and it cannot be written "
                      "so (see the warning above); "
                      "choose an .obj, .ply, .off or .stl output");

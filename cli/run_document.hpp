@@ -2,6 +2,7 @@
 // it, dropped with a warning naming what is lost where it does not describe the simulated mesh.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <string>
 
@@ -15,7 +16,9 @@ namespace shellcontract::cli {
 /// coordinates, colours and materials. Held only where it is used (it is the whole file): an output
 /// of the input's format, or a --gltf animation; otherwise null. A document that cannot be read, or
 /// that is not the simulated mesh (`repaired`: --repair changed it), is a warning on stderr naming
-/// what the result drops, and null.
+/// what the result drops, and null. An output of another format than the input's is a warning
+/// naming what it drops, where it drops something (`triangulated_polygons`: the input's polygons
+/// of more than 3 corners, InputReport::triangulated_faces).
 /// @throws InputError when the result is a .glb or .gltf (the input with new positions) and
 ///         there is no document to write it from, or when a glTF (that result or the --gltf
 ///         animation) cannot hold the document's texture coordinates or colours
@@ -23,6 +26,7 @@ namespace shellcontract::cli {
 std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
                                                        const std::string& output,
                                                        bool gltf_animation, const Mesh& mesh,
-                                                       bool repaired);
+                                                       bool repaired,
+                                                       std::size_t triangulated_polygons);
 
 }  // namespace shellcontract::cli

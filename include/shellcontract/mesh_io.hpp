@@ -208,7 +208,8 @@ struct CornerNormalGroups {
   /// Per simulation face (face index order), per corner in CornerTexcoords' order: its normal
   /// group. Corners of one simulation vertex with the same group are smoothed together; -1: the
   /// file gives the corner no normal. The numbers mean nothing beyond equality at one vertex (an
-  /// OBJ's `vn` line; a PLY's or glTF's copies at one position with the same normal).
+  /// OBJ's corners with the same `vn` value; a PLY's or glTF's copies at one position with the
+  /// same normal).
   std::vector<std::array<long long, 3>> face_group;
   /// Per simulation face, the file's polygon it is (a part of): the triangles of a polygon count
   /// as one face for its corners' normals (its vector area), as they do in an OBJ's result.
@@ -307,8 +308,9 @@ class MeshDocument {
   /// triangle), further triangles of split polygons follow in polygon order (read_input_mesh).
   std::vector<std::size_t> face_origins() const;
   /// Per file corner its normal group (CornerNormalGroups; -1: none), for normal_groups; empty:
-  /// the file has no normals. An OBJ: its `vn` line; a PLY's or glTF's per-vertex normals: the
-  /// normal group of the corner's vertex among its welded copies (mesh/normal_groups.hpp).
+  /// the file has no normals. An OBJ: its `vn` value's group among the corners of its welded
+  /// vertex (mesh/obj_normals.hpp); a PLY's or glTF's per-vertex normals: the normal group of
+  /// the corner's vertex among its welded copies (mesh/normal_groups.hpp).
   virtual std::vector<long long> corner_normal_groups(const Mesh& mesh) const {
     (void)mesh;
     return {};

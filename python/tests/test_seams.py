@@ -75,3 +75,21 @@ def test_a_split_mesh_that_welding_does_not_close_is_refused_with_a_hint(ico2):
     sv, sf, _ = seam_split(v, f)
     with pytest.raises(ValueError, match="open boundary.*after welding, open boundary"):
         shellcontract.contract(sv, sf[1:], frames=1)
+
+
+def test_a_hole_left_after_welding_is_named_by_the_faces_around_it(ico2):
+    # The seam-split mesh with one face away from the seam removed: as given it is open along
+    # the seam and at the hole, welded at the hole only. MeshError.faces (what the Blender
+    # add-on names) are the hole's neighbours, found here on ico2 itself, not the seam's faces.
+    v, f = ico2
+    sv, sf, shared = seam_split(v, f)
+    hole = next(i for i, t in enumerate(f) if not np.isin(t, shared).any())
+    edges = {frozenset(e) for e in ((f[hole][0], f[hole][1]), (f[hole][1], f[hole][2]),
+                                     (f[hole][2], f[hole][0]))}
+    rest = np.delete(np.arange(len(f)), hole)
+    around = [k for k, i in enumerate(rest)
+              if any(frozenset((f[i][j], f[i][(j + 1) % 3])) in edges for j in range(3))]
+    assert len(around) == 3
+    with pytest.raises(shellcontract.MeshError, match="after welding, open boundary: ") as e:
+        shellcontract.contract(sv, np.delete(sf, hole, axis=0), frames=1)
+    assert e.value.faces == around

@@ -118,7 +118,8 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
     soup::check_edges(name, tris, nv, by_index);
     soup::check_vertex_fans(name, tris, nv, by_index);
   } catch (const InputError& refusal) {
-    weld = soup::weld_seams(points, polygons, refusal);  // or throws the refusal, with a hint
+    // Or throws the refusal, with what is left after welding.
+    weld = soup::weld_seams(name, points, polygons, refusal, by_index);
   }
   std::vector<soup::Polygon> input_polygons;
   if (weld) {

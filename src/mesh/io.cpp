@@ -186,7 +186,8 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
     check_no_isolated_vertex(path, tris, nv, name);
     check_vertex_fans(path, tris, nv, name);
   } catch (const InputError& refusal) {
-    weld = soup::weld_seams(points, tris, refusal);  // or throws the refusal, with a hint
+    // Or throws the refusal, with what is left after welding.
+    weld = soup::weld_seams(path, points, tris, refusal, name);
   }
   std::vector<Polygon> input_tris;
   if (weld) {

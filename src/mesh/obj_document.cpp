@@ -24,6 +24,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -37,6 +38,25 @@
 
 namespace shellcontract {
 namespace {
+
+/// A `vn` line's value after its keyword ([at, end) of `text`) as a unit vector, for the normal
+/// groups (obj_normals.hpp); zero when it is not three finite numbers or has no length. The reader
+/// skips `vn` lines (obj_scan.cpp), so such a line is no error: its corners are grouped as corners
+/// without a value.
+Vec3 normal_value(const std::string& text, std::size_t at, std::size_t end) {
+  Vec3 n = Vec3::Zero();
+  for (Eigen::Index k = 0; k < 3; ++k) {
+    const Span t = next_token(text, at, end);
+    double v = 0.0;
+    if (t.begin == t.end ||
+        !parse_c_number(std::string_view(text).substr(t.begin, t.end - t.begin), v) ||
+        !std::isfinite(v))
+      return Vec3::Zero();
+    n[k] = v;
+  }
+  const double len = n.norm();
+  return len > 0.0 && std::isfinite(len) ? Vec3(n / len) : Vec3::Zero();
+}
 
 class ObjDocument final : public MeshDocument {
  public:
@@ -63,11 +83,12 @@ class ObjDocument final : public MeshDocument {
   void use_material(std::size_t at, std::size_t end);
   /// The file with the positions x, the normals of their polygons and `edits` (mtllib lines).
   std::string compose(const Positions& x, std::vector<TextEdit> edits) const;
-  /// A corner's `vn` line is its normal group: the corners of a vertex that share a line share
-  /// a normal in the result too (obj_normals.hpp). None when no corner has a `vn`.
-  std::vector<long long> corner_normal_groups(const Mesh&) const override {
+  /// The corners of a welded vertex with the same `vn` value, whatever lines hold it, are one
+  /// normal group, as they share a normal in the OBJ result (obj_normals.hpp). None when no
+  /// corner has a `vn`.
+  std::vector<long long> corner_normal_groups(const Mesh& mesh) const override {
     for (const long long n : corner_vn_)
-      if (n >= 0) return corner_vn_;
+      if (n >= 0) return obj_corner_groups(input_vertex_map(mesh), corners());
     return {};
   }
   std::string uv_place(std::size_t uv) const override {
@@ -76,6 +97,7 @@ class ObjDocument final : public MeshDocument {
   std::string vertex_place(std::size_t v) const override {
     return "line " + std::to_string(v_line_.at(v)) + " (v " + std::to_string(v + 1) + ")";
   }
+  ObjCorners corners() const { return {&polygon_start_, &corner_vertex_, &corner_vn_, &vn_dir_}; }
   /// The file's text with its continued lines joined: the bytes themselves when it has none.
   const std::string& statements() const { return joined_.empty() ? bytes_ : joined_; }
 
@@ -89,6 +111,7 @@ class ObjDocument final : public MeshDocument {
   std::vector<Span> v_numbers_;       ///< per `v` line: the span of its "x y z" text
   std::vector<std::size_t> v_line_, vt_line_;  ///< per `v` / `vt` line: its line number
   std::vector<Span> vn_text_;         ///< per `vn` line: the span from "vn" to the line's end
+  std::vector<Vec3> vn_dir_;          ///< per `vn` line: its unit value; zero: none (normal_value)
   std::vector<long long> corner_vn_;  ///< per corner: index of its `vn` line; -1 none
   std::vector<Span> corner_vn_token_;  ///< per corner: the span of its normal index's text
   std::vector<std::size_t> corner_vn_before_;  ///< per corner: `vn` lines before its face
@@ -219,6 +242,7 @@ ObjDocument::ObjDocument(const std::string& name, std::string bytes, std::string
       std::size_t e = end;
       while (e > key.begin && is_line_space(text[e - 1])) --e;  // keep a "\r" of "\r\n" outside
       vn_text_.push_back({key.begin, e});
+      vn_dir_.push_back(normal_value(text, at, end));
     } else if (k == "f") {
       read_face(at, end, line);
     } else if (k == "mtllib") {
@@ -275,10 +299,9 @@ std::string ObjDocument::compose(const Positions& x, std::vector<TextEdit> edits
                                 " positions for " + std::to_string(vertex_count_) + " vertices");
   if (!x.allFinite()) throw std::invalid_argument("ObjDocument::text: a position is not finite");
 
-  // Normals: the corners of one vertex that share a `vn` line get the area-weighted normal of
+  // Normals: the corners of one vertex that share a `vn` value get the area-weighted normal of
   // their polygons at the new positions (obj_normals.hpp).
-  const ObjNormals normals =
-      obj_normals(x, {&polygon_start_, &corner_vertex_, &corner_vn_, vn_text_.size()});
+  const ObjNormals normals = obj_normals(x, corners());
 
   // The pieces to replace, in file order (v, vn and mtllib spans are in statements of their own,
   // the corners' normal indices inside face statements).

@@ -1,25 +1,51 @@
 #include "mesh/obj_normals.hpp"
 
 #include <cmath>
-#include <map>
-#include <utility>
+#include <cstdint>
+#include <stdexcept>
 
+#include "mesh/normal_groups.hpp"
 #include "mesh/seam_weld.hpp"
 
 namespace shellcontract {
+
+std::vector<long long> obj_corner_groups(const std::vector<std::size_t>& position_of,
+                                         const ObjCorners& in) {
+  const std::vector<std::size_t>& vertex = *in.corner_vertex;
+  const std::vector<long long>& vn = *in.corner_vn;
+  const std::vector<Vec3>& dir = *in.vn_dir;
+  // The corners with a `vn` are soup::normal_groups' items: each stands at its vertex's first
+  // corner, so that corners at one vertex with the same value are one group.
+  std::vector<std::size_t> first_corner(position_of.size(), SIZE_MAX);
+  std::vector<std::size_t> item_rep, item_corner;
+  std::vector<Vec3> item_dir;
+  for (std::size_t c = 0; c < vertex.size(); ++c) {
+    if (vn[c] < 0) continue;
+    if (vertex[c] >= position_of.size() || position_of[vertex[c]] >= position_of.size() ||
+        static_cast<std::size_t>(vn[c]) >= dir.size())
+      throw std::invalid_argument("obj_corner_groups: a corner's vertex or normal out of range");
+    std::size_t& first = first_corner[position_of[vertex[c]]];
+    if (first == SIZE_MAX) first = item_corner.size();
+    item_rep.push_back(first);
+    item_corner.push_back(c);
+    item_dir.push_back(dir[static_cast<std::size_t>(vn[c])]);
+  }
+  const std::vector<std::size_t> group = soup::normal_groups(item_rep, item_dir);
+  std::vector<long long> out(vertex.size(), -1);
+  for (std::size_t i = 0; i < item_corner.size(); ++i)
+    out[item_corner[i]] = static_cast<long long>(group[i]);
+  return out;
+}
 
 ObjNormals obj_normals(const Positions& x, const ObjCorners& in) {
   const std::vector<std::size_t>& start = *in.polygon_start;
   const std::vector<std::size_t>& vertex = *in.corner_vertex;
   const std::vector<long long>& vn = *in.corner_vn;
-  const std::vector<std::size_t> rep = soup::first_at_same_position(x);
+  const std::vector<long long> corner_group =
+      obj_corner_groups(soup::first_at_same_position(x), in);
 
-  // Groups: (vn line, vertex). Each polygon's weight is its Newell vector: twice its area along
-  // its normal.
-  std::map<std::pair<long long, std::size_t>, std::size_t> group_of;
+  // Each group's sum of its polygons' Newell vectors (twice the area along the normal).
   std::vector<Vec3> sum;
-  std::vector<std::size_t> line_of_group;
-  std::vector<std::size_t> corner_group(vertex.size(), SIZE_MAX);
   for (std::size_t p = 0; p + 1 < start.size(); ++p) {
     Vec3 newell = Vec3::Zero();
     const std::size_t b = start[p], e = start[p + 1];
@@ -30,39 +56,32 @@ ObjNormals obj_normals(const Positions& x, const ObjCorners& in) {
       newell += pc.cross(pn);
     }
     for (std::size_t c = b; c < e; ++c) {
-      if (vn[c] < 0) continue;
-      const auto g = group_of.emplace(std::make_pair(vn[c], rep[vertex[c]]), sum.size());
-      if (g.second) {
-        sum.push_back(Vec3::Zero());
-        line_of_group.push_back(static_cast<std::size_t>(vn[c]));
-      }
-      sum[g.first->second] += newell;
-      corner_group[c] = g.first->second;
+      if (corner_group[c] < 0) continue;
+      const auto g = static_cast<std::size_t>(corner_group[c]);
+      if (g >= sum.size()) sum.resize(g + 1, Vec3::Zero());
+      sum[g] += newell;
     }
   }
 
-  // Each group's normal, in order of first use; equal normals (one per line before) are one.
+  // Each line's normals, in order of their first corner: the distinct normals of the groups its
+  // corners are in (a group may span lines: each of them gets its normal).
   ObjNormals out;
-  out.lines.resize(in.vn_count);
+  out.lines.resize(in.vn_dir->size());
   out.pick.assign(vertex.size(), 0);
-  std::vector<std::size_t> pick_of_group(sum.size(), SIZE_MAX);
   for (std::size_t c = 0; c < vertex.size(); ++c) {
-    const std::size_t g = corner_group[c];
-    if (g == SIZE_MAX || pick_of_group[g] != SIZE_MAX) continue;
-    const double len = sum[g].norm();
-    if (!(len > 0.0) || !std::isfinite(len)) continue;  // no area now: picks another (below)
-    const Vec3 n = sum[g] / len;
-    std::vector<Vec3>& normals = out.lines[line_of_group[g]];
+    if (corner_group[c] < 0) continue;
+    const Vec3& s = sum[static_cast<std::size_t>(corner_group[c])];
+    const double len = s.norm();
+    // A corner whose polygons have no area any more takes its line's first normal (the line as
+    // read, when none of its corners' groups has an area).
+    if (!(len > 0.0) || !std::isfinite(len)) continue;
+    const Vec3 n = s / len;
+    std::vector<Vec3>& normals = out.lines[static_cast<std::size_t>(vn[c])];
     std::size_t k = 0;
     while (k < normals.size() && normals[k] != n) ++k;
     if (k == normals.size()) normals.push_back(n);
-    pick_of_group[g] = k;
+    out.pick[c] = k;
   }
-  // A corner whose polygons have no area any more takes its line's first normal (the line as
-  // read, when none of its groups has an area).
-  for (std::size_t c = 0; c < vertex.size(); ++c)
-    if (corner_group[c] != SIZE_MAX && pick_of_group[corner_group[c]] != SIZE_MAX)
-      out.pick[c] = pick_of_group[corner_group[c]];
   return out;
 }
 

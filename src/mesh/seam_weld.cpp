@@ -29,11 +29,11 @@ Bits bits_of(const Point3& p) {
   return b;
 }
 
-/// "open boundary" of an InputError thrown with an empty file name (": open boundary: ...").
-std::string problem_of(const InputError& e) {
-  std::string s = e.what();
-  if (s.rfind(": ", 0) == 0) s.erase(0, 2);
-  return s.substr(0, s.find(": "));
+/// A refusal's "problem: details", without the file's name before them ("<path>: ").
+std::string without_path(const InputError& e, const std::string& path) {
+  const std::string s = e.what();
+  const std::string prefix = path + ": ";
+  return s.compare(0, prefix.size(), prefix) == 0 ? s.substr(prefix.size()) : s;
 }
 
 }  // namespace
@@ -95,45 +95,47 @@ bool has_boundary_edge(const std::vector<Polygon>& tris, std::size_t nv) {
   return false;
 }
 
-SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon>& tris,
-                    const InputError& refusal) {
+SeamWeld weld_seams(const std::string& path, const std::vector<Point3>& points,
+                    const std::vector<Polygon>& tris, const InputError& refusal,
+                    const Namer& name) {
   if (!has_boundary_edge(tris, points.size())) rethrow_input_error(refusal);
   SeamWeld weld = weld_identical_positions(points, tris);
   if (weld.copies() == 0) rethrow_input_error(refusal);
-  // The refusal with a hint; a refusal of particular faces keeps them, with the welded soup's
-  // face the hint names (the same index: welding renumbers vertices, not faces).
-  const auto no_weld = [&](const std::string& why, std::vector<std::size_t> hint_faces = {}) {
-    const std::string message = std::string(refusal.what()) + "; " + counted(weld.copies(), "vertex is", "vertices are") +
-                                " at the position of another vertex (a mesh split along its UV "
-                                "seams?), but welding them does not make it a closed manifold mesh: " + why;
-    const auto* about_faces = dynamic_cast<const FaceListError*>(&refusal);
-    if (!about_faces && hint_faces.empty()) throw InputError(message);
-    std::vector<std::size_t> faces = about_faces ? about_faces->faces() : std::vector<std::size_t>{};
-    faces.insert(faces.end(), hint_faces.begin(), hint_faces.end());
-    throw FaceListError(message, std::move(faces));
+  // Welding does not close the mesh: the refusal names the problem as given, then what is left
+  // after welding, with the faces left (the same indices: welding renumbers vertices, not faces)
+  // and not the refusal's, most of which are the seams' own, closed by the weld (an artist
+  // looking for a hole would be sent along every seam).
+  const std::string given = without_path(refusal, path);
+  const std::string prefix = path + ": " + given.substr(0, given.find(": ")) + ": " +
+                             counted(weld.copies(), "vertex is", "vertices are") +
+                             " at the position of another vertex (a mesh split along its UV "
+                             "seams?), but welding them does not make it a closed manifold mesh: ";
+  const auto no_weld = [&](const std::string& why, std::vector<std::size_t> faces = {}) {
+    if (faces.empty()) throw InputError(prefix + why);
+    throw FaceListError(prefix + why, std::move(faces));
   };
+  // The welded soup's vertices are named by their first copies, with the file's lines.
+  std::vector<std::size_t> first_copy(weld.points.size(), SIZE_MAX);
+  for (std::size_t v = 0; v < points.size(); ++v)
+    if (first_copy[weld.welded_of[v]] == SIZE_MAX) first_copy[weld.welded_of[v]] = v;
+  Namer welded = name;
+  welded.vertex_number = &first_copy;
   for (std::size_t f = 0; f < weld.tris.size(); ++f) {
     const Polygon& t = weld.tris[f];
     if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0])
-      no_weld("after welding, face " + std::to_string(f) + " has two corners at one position", {f});
+      no_weld("after welding, " + name.face(f) + " has two corners at one position", {f});
   }
-  // The reader's own checks on the welded soup; only the problem's name goes into the hint
-  // (the welded numbering is not the file's).
+  // The reader's own checks on the welded soup.
   const std::size_t nv = weld.points.size();
-  const SourceLines no_lines;
-  std::vector<std::size_t> identity(weld.tris.size());
-  std::iota(identity.begin(), identity.end(), std::size_t{0});
-  Namer by_index;
-  by_index.lines = &no_lines;
-  by_index.points = &weld.points;
-  by_index.origin = &identity;
   try {
-    check_no_duplicate_face("", weld.tris, by_index);
-    check_edges("", weld.tris, nv, by_index);
-    check_no_isolated_vertex("", weld.tris, nv, by_index);
-    check_vertex_fans("", weld.tris, nv, by_index);
+    check_no_duplicate_face(path, weld.tris, welded);
+    check_edges(path, weld.tris, nv, welded);
+    check_no_isolated_vertex(path, weld.tris, nv, welded);
+    check_vertex_fans(path, weld.tris, nv, welded);
   } catch (const InputError& e) {
-    no_weld("after welding, " + problem_of(e));
+    const auto* about_faces = dynamic_cast<const FaceListError*>(&e);
+    no_weld("after welding, " + without_path(e, path),
+            about_faces ? about_faces->faces() : std::vector<std::size_t>{});
   }
   // The outputs give the input's vertices back (input_faces): every one must be a face's corner,
   // and the soup as given an open surface that a Surface_mesh can hold.
@@ -141,7 +143,7 @@ SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon
   for (const Polygon& t : tris)
     for (std::size_t v : t) used[v] = 1;
   for (std::size_t v = 0; v < points.size(); ++v)
-    if (!used[v]) no_weld("vertex " + std::to_string(v) + " is not used by any face");
+    if (!used[v]) no_weld(name.vertex(v) + " is not used by any face");
   if (!CGAL::Polygon_mesh_processing::is_polygon_soup_a_polygon_mesh(tris))
     no_weld("as given, its faces are not a polygon mesh with boundary (separate fans meet at a vertex)");
   return weld;

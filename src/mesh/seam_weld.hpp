@@ -46,14 +46,17 @@ std::vector<std::size_t> first_at_same_position(const Positions& x);
 /// Whether some edge of the triangles belongs to one triangle only (an open boundary).
 bool has_boundary_edge(const std::vector<Polygon>& tris, std::size_t nv);
 
-/// The soup (triangles on `points`, indices in range, no repeated corner) failed a connectivity
-/// check with `refusal`. Returns the weld when the soup as given is open, some of its vertices
-/// share their position, and the welded soup passes every connectivity check (no duplicate face,
-/// closed, manifold, oriented, no isolated vertex, one fan per vertex) while the soup as given is
-/// a polygon mesh with boundary (CGAL's test; the outputs rebuild it). Otherwise throws
-/// `refusal`, with a hint when vertices share positions but welding them does not close the mesh.
-SeamWeld weld_seams(const std::vector<Point3>& points, const std::vector<Polygon>& tris,
-                    const InputError& refusal);
+/// The soup (triangles on `points`, indices in range, no repeated corner) of the file `path`
+/// failed a connectivity check with `refusal`. Returns the weld when the soup as given is open,
+/// some of its vertices share their position, and the welded soup passes every connectivity check
+/// (no duplicate face, closed, manifold, oriented, no isolated vertex, one fan per vertex) while
+/// the soup as given is a polygon mesh with boundary (CGAL's test; the outputs rebuild it).
+/// Otherwise throws: `refusal` when no vertices share a position; else an error that names the
+/// refusal's problem and then what is left after welding, named as `name` names the soup's
+/// faces and vertices (a welded vertex by its first copy), with the faces left after welding
+/// (a FaceListError) and not the refusal's.
+SeamWeld weld_seams(const std::string& path, const std::vector<Point3>& points,
+                    const std::vector<Polygon>& tris, const InputError& refusal, const Namer& name);
 
 /// The note read_input_mesh and mesh_from_arrays report for a welded input (InputReport::notes).
 std::string weld_note(const SeamWeld& weld, bool per_primitive = false);

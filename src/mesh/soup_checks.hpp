@@ -56,20 +56,29 @@ struct Namer {
   const std::vector<std::size_t>* origin = nullptr;  ///< input polygon of each output face
   bool stl = false;
   std::vector<std::pair<std::size_t, std::size_t>> first_use;  ///< STL: (facet, corner) where point i first appears
+  /// Per vertex of the checked soup, its number in the file (and in `points`, `lines`,
+  /// `first_use`); none: the same. A soup welded at its seams is checked on its welded vertices
+  /// and names each by its first copy (seam_weld.cpp), so that its refusal is in the file's terms.
+  const std::vector<std::size_t>* vertex_number = nullptr;
 
+  std::size_t number(std::size_t v) const { return vertex_number ? (*vertex_number)[v] : v; }
   std::string point(std::size_t v) const {
+    const Point3& p = (*points)[number(v)];
     ClassicOStringStream s;
-    s << std::setprecision(9) << '(' << (*points)[v].x() << ", " << (*points)[v].y() << ", " << (*points)[v].z() << ')';
+    s << std::setprecision(9) << '(' << p.x() << ", " << p.y() << ", " << p.z() << ')';
     return s.str();
   }
   std::string vertex(std::size_t v) const {
+    const std::size_t n = number(v);
     if (stl) {
       std::string s = "the point " + point(v);
-      if (v < first_use.size()) s += " (corner " + std::to_string(first_use[v].second) + " of facet " + std::to_string(first_use[v].first) + ")";
+      if (n < first_use.size())
+        s += " (corner " + std::to_string(first_use[n].second) + " of facet " +
+             std::to_string(first_use[n].first) + ")";
       return s;
     }
-    std::string s = "vertex " + std::to_string(v);
-    if (v < lines->vertex_line.size()) s += " (line " + std::to_string(lines->vertex_line[v]) + ")";
+    std::string s = "vertex " + std::to_string(n);
+    if (n < lines->vertex_line.size()) s += " (line " + std::to_string(lines->vertex_line[n]) + ")";
     return s;
   }
   /// Polygon i of the input (before triangulation).
@@ -88,7 +97,7 @@ struct Namer {
   }
   std::string edge(std::size_t a, std::size_t b) const {
     if (stl) return "the edge from " + point(a) + " to " + point(b);
-    return "edge (" + std::to_string(a) + ", " + std::to_string(b) + ")";
+    return "edge (" + std::to_string(number(a)) + ", " + std::to_string(number(b)) + ")";
   }
 };
 
@@ -183,7 +192,14 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
       if (count == 1) {
         std::vector<std::size_t> open = faces_on_runs([](std::size_t i, std::size_t j) { return j - i == 1; });
         const std::string all = more(open.size());
-        fail_faces(path, "open boundary", edge + " of " + name.face(f) + " has no neighbouring face (boundary edge between " + (name.stl ? name.vertex(a) + " and " + name.vertex(b) : "vertex " + std::to_string(a) + " and vertex " + std::to_string(b)) + "); the mesh must be closed" + all, std::move(open));
+        fail_faces(path, "open boundary",
+                   edge + " of " + name.face(f) +
+                       " has no neighbouring face (boundary edge between " +
+                       (name.stl ? name.vertex(a) + " and " + name.vertex(b)
+                                 : "vertex " + std::to_string(name.number(a)) + " and vertex " +
+                                       std::to_string(name.number(b))) +
+                       "); the mesh must be closed" + all,
+                   std::move(open));
       }
       if (count > 2) {
         std::vector<std::size_t> sharing(count);

@@ -229,4 +229,35 @@ TEST_F(CliAttributes, AMeshThatRepairChangedIsWrittenPlainWithAWarning) {
   EXPECT_EQ(read_text(file("spare_out.obj")).find("vt "), std::string::npos);  // the plain writer's
 }
 
+TEST_F(CliAttributes, AnotherFormatThanTheInputsIsWrittenPlainWithAWarningNamingWhatIsDropped) {
+  // A square pyramid with texture coordinates, normals, a material and a quad base: a .ply result
+  // is written by the plain writer (positions and triangles), which drops them all.
+  const std::string in = file("pyramid.obj");
+  std::ofstream(in) << "mtllib pyramid.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\n"
+                       "vt 0 0\nvt 1 0\nvn 0 0 1\nusemtl stone\n"
+                       "f 1/1/1 4/2/1 3/1/1 2/2/1\nf 1/1/1 2/2/1 5/1/1\nf 2/1/1 3/2/1 5/1/1\n"
+                       "f 3/1/1 4/2/1 5/1/1\nf 4/1/1 1/2/1 5/1/1\n";
+  const RunResult r = run_cli({"run", in, "-o", file("pyramid.ply"), "--frames", "2", "-q"});
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(
+      r.output.find("warning: the result is written without the input's attributes: it is a "
+                    ".ply file, the input a .obj file (dropped: 2 texture coordinates (vt); "
+                    "1 normal (vn); 1 material (usemtl stone); the material library (mtllib "
+                    "pyramid.mtl); 1 polygon with more than 3 corners (written as triangles))"),
+      std::string::npos)
+      << r.output;
+  const std::string out = read_text(file("pyramid.ply"));
+  EXPECT_EQ(out.find("property float s"), std::string::npos);  // the plain writer's
+  EXPECT_EQ(out.find("nx"), std::string::npos);
+
+  // A plain OFF has nothing but positions and polygons: another format drops nothing, no warning.
+  const std::string off = file("pyramid.off");
+  std::ofstream(off) << "OFF\n5 6 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n0.5 0.5 1\n"
+                        "3 0 3 2\n3 0 2 1\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n";
+  const RunResult plain = run_cli({"run", off, "-o", file("plain.ply"), "--frames", "2", "-q"});
+  EXPECT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_EQ(plain.output.find("without the input's attributes"), std::string::npos) << plain.output;
+  EXPECT_TRUE(fs::exists(file("plain.ply")));
+}
+
 }  // namespace

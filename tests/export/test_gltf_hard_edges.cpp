@@ -50,34 +50,48 @@ std::string cube_positions_obj() {
   return s;
 }
 
-/// Flat-shaded: one `vn` per side, each side's corners use it (Blender's export of a cube).
-std::string flat_cube_obj() {
+/// Flat-shaded: one `vn` per side, each side's corners use it (Blender's export of a cube), or
+/// (`per_corner`) one line per face corner, each with its side's value.
+std::string flat_cube_obj(bool per_corner = false) {
   std::string s = cube_positions_obj();
   for (const Side& f : kSide)
-    s += "vn " + std::to_string(f.normal[0]) + " " + std::to_string(f.normal[1]) + " " +
-         std::to_string(f.normal[2]) + "\n";
+    for (int k = 0; k < (per_corner ? 4 : 1); ++k)
+      s += "vn " + std::to_string(f.normal[0]) + " " + std::to_string(f.normal[1]) + " " +
+           std::to_string(f.normal[2]) + "\n";
   for (std::size_t i = 0; i < kSide.size(); ++i) {
     s += "f";
-    for (const int c : kSide[i].corner)
-      s += " " + std::to_string(c + 1) + "//" + std::to_string(i + 1);
+    for (std::size_t k = 0; k < 4; ++k)
+      s += " " + std::to_string(kSide[i].corner[k] + 1) + "//" +
+           std::to_string(per_corner ? 4 * i + k + 1 : i + 1);
     s += "\n";
   }
   return s;
 }
 
-/// Smooth: one `vn` per position (from the centre), `with_normals` false: no `vn` at all.
-std::string smooth_cube_obj(bool with_normals) {
+/// The smooth normal of a cube's corner: from the centre.
+std::string smooth_vn(const std::array<float, 3>& c) {
+  const double r = std::sqrt(3.0) / 2.0;
+  return "vn " + std::to_string((c[0] - 0.5) / r) + " " + std::to_string((c[1] - 0.5) / r) + " " +
+         std::to_string((c[2] - 0.5) / r) + "\n";
+}
+
+/// Smooth: one `vn` per position (from the centre), `with_normals` false: no `vn` at all;
+/// `per_corner`: the same values, one line per face corner (as some exporters write them).
+std::string smooth_cube_obj(bool with_normals, bool per_corner = false) {
   std::string s = cube_positions_obj();
-  if (with_normals)
-    for (const auto& c : kCorner) {
-      const double r = std::sqrt(3.0) / 2.0;
-      s += "vn " + std::to_string((c[0] - 0.5) / r) + " " + std::to_string((c[1] - 0.5) / r) + " " +
-           std::to_string((c[2] - 0.5) / r) + "\n";
-    }
-  for (const Side& f : kSide) {
+  if (with_normals && !per_corner)
+    for (const auto& c : kCorner) s += smooth_vn(c);
+  if (per_corner)
+    for (const Side& f : kSide)
+      for (const int c : f.corner) s += smooth_vn(kCorner[static_cast<std::size_t>(c)]);
+  for (std::size_t i = 0; i < kSide.size(); ++i) {
     s += "f";
-    for (const int c : f.corner)
-      s += " " + std::to_string(c + 1) + (with_normals ? "//" + std::to_string(c + 1) : "");
+    for (std::size_t k = 0; k < 4; ++k) {
+      const int c = kSide[i].corner[k];
+      s += " " + std::to_string(c + 1);
+      if (with_normals || per_corner)
+        s += "//" + std::to_string(per_corner ? 4 * i + k + 1 : static_cast<std::size_t>(c) + 1);
+    }
     s += "\n";
   }
   return s;
@@ -214,18 +228,12 @@ void expect_flat_sides(const Keyframes& kf, bool quads) {
   EXPECT_GT((kf.x.back() - kf.x[0]).cwiseAbs().maxCoeff(), 1e-3) << "the cube did not move";
 }
 
-TEST(GltfHardEdges, AnObjCubeWithPerFaceNormalsKeepsItsFlatSidesInEveryFrame) {
-  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
-  test::ScratchDir dir("hard_obj");
-  std::ofstream(dir.file("cube.obj")) << flat_cube_obj();
-  const Keyframes kf = run_to_glb(dir, dir.file("cube.obj"), "out.obj");
-  expect_flat_sides(kf, true);
-
-  // The OBJ result's normals are the last frame's: each side's `vn` line is the normal the .glb
-  // gives that side's corners (the writers agree).
-  std::ifstream in(dir.file("out.obj"));
+/// Per face of an OBJ result (quads), its corners (0-based) and the normals their `vn` name.
+std::vector<std::pair<std::array<int, 4>, std::array<Eigen::Vector3d, 4>>> obj_quads(
+    const std::string& path) {
+  std::ifstream in(path);
   std::vector<Eigen::Vector3d> vn;
-  std::vector<std::pair<std::array<int, 4>, int>> faces;  // corners (0-based), normal line
+  std::vector<std::pair<std::array<int, 4>, std::array<Eigen::Vector3d, 4>>> faces;
   for (std::string line; std::getline(in, line);) {
     std::istringstream ls(line);
     std::string key;
@@ -235,30 +243,48 @@ TEST(GltfHardEdges, AnObjCubeWithPerFaceNormalsKeepsItsFlatSidesInEveryFrame) {
       ls >> n[0] >> n[1] >> n[2];
       vn.push_back(n);
     } else if (key == "f") {
-      std::array<int, 4> v{};
-      int normal = -1;
-      for (int& c : v) {
+      faces.emplace_back();
+      for (std::size_t k = 0; k < 4; ++k) {
         std::string corner;
         ls >> corner;
-        c = std::stoi(corner) - 1;
-        normal = std::stoi(corner.substr(corner.rfind('/') + 1)) - 1;
+        faces.back().first[k] = std::stoi(corner) - 1;
+        const int normal = std::stoi(corner.substr(corner.rfind('/') + 1)) - 1;
+        EXPECT_TRUE(normal >= 0 && static_cast<std::size_t>(normal) < vn.size()) << line;
+        if (normal >= 0 && static_cast<std::size_t>(normal) < vn.size())
+          faces.back().second[k] = vn[static_cast<std::size_t>(normal)];
       }
-      faces.emplace_back(v, normal);
     }
   }
+  return faces;
+}
+
+/// A flat-shaded OBJ cube run to a .glb keeps its flat sides, and the OBJ result's normals are
+/// the last frame's: each side's corners name the normal the .glb gives that side's corners
+/// (the writers agree).
+void expect_obj_flat_cube(const std::string& obj, const char* name) {
+  test::ScratchDir dir(name);
+  std::ofstream(dir.file("cube.obj")) << obj;
+  const Keyframes kf = run_to_glb(dir, dir.file("cube.obj"), "out.obj");
+  expect_flat_sides(kf, true);
+  const auto faces = obj_quads(dir.file("out.obj"));
   ASSERT_EQ(faces.size(), 6u);
   const auto last = side_normals(kf, kf.x.size() - 1);
-  for (const auto& [v, normal] : faces) {
-    ASSERT_GE(normal, 0);
-    ASSERT_LT(static_cast<std::size_t>(normal), vn.size());
+  for (const auto& [v, normals] : faces) {
     // The side: the axis on which the polygon's corners share their rest coordinate.
     int axis = -1;
     for (int a = 0; a < 3; ++a)
       if (kCorner[v[0]][a] == kCorner[v[1]][a] && kCorner[v[1]][a] == kCorner[v[2]][a]) axis = a;
     ASSERT_GE(axis, 0);
-    EXPECT_LT((vn[static_cast<std::size_t>(normal)] - last.at({axis, kCorner[v[0]][axis]})).norm(),
-              1e-5);
+    for (const Eigen::Vector3d& n : normals)
+      EXPECT_LT((n - last.at({axis, kCorner[v[0]][axis]})).norm(), 1e-5);
   }
+}
+
+TEST(GltfHardEdges, AnObjCubeWithPerFaceNormalsKeepsItsFlatSidesInEveryFrame) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  expect_obj_flat_cube(flat_cube_obj(), "hard_obj");
+  // The same values, one `vn` line per corner: the three sides at a corner still differ.
+  expect_obj_flat_cube(flat_cube_obj(true), "hard_obj_corner");
 }
 
 TEST(GltfHardEdges, APlyAndAGlbCubeSplitPerSideKeepTheirFlatSides) {
@@ -282,6 +308,30 @@ TEST(GltfHardEdges, SmoothNormalsOrNoneAreNotSplit) {
   run_to_glb(plain, plain.file("cube.obj"), "out.obj");
   EXPECT_EQ(kf.x[0].rows(), 8);
   EXPECT_EQ(test::read_bytes(smooth.file("cube.glb")), test::read_bytes(plain.file("cube.glb")));
+}
+
+TEST(GltfHardEdges, SmoothNormalsInOneLinePerCornerAreSmooth) {
+  if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+  // What shades corners together is the value, not the line: one `vn` per face corner, each
+  // with its position's smooth value, gives the .glb and the normals of one line per position.
+  test::ScratchDir per_vertex("smooth_vertex"), per_corner("smooth_corner");
+  std::ofstream(per_vertex.file("cube.obj")) << smooth_cube_obj(true);
+  std::ofstream(per_corner.file("cube.obj")) << smooth_cube_obj(true, true);
+  run_to_glb(per_vertex, per_vertex.file("cube.obj"), "out.obj");
+  const Keyframes kf = run_to_glb(per_corner, per_corner.file("cube.obj"), "out.obj");
+  EXPECT_EQ(kf.x[0].rows(), 8);  // not split
+  EXPECT_EQ(test::read_bytes(per_corner.file("cube.glb")),
+            test::read_bytes(per_vertex.file("cube.glb")));
+  // In the OBJ result every corner at one position has that position's one normal.
+  const auto want = obj_quads(per_vertex.file("out.obj"));
+  const auto got = obj_quads(per_corner.file("out.obj"));
+  ASSERT_EQ(got.size(), want.size());
+  for (std::size_t f = 0; f < got.size(); ++f)
+    for (std::size_t k = 0; k < 4; ++k) {
+      ASSERT_EQ(got[f].first[k], want[f].first[k]);
+      EXPECT_LT((got[f].second[k] - want[f].second[k]).norm(), 1e-12)
+          << "face " << f << ", vertex " << got[f].first[k];
+    }
 }
 
 /// The flat cube's animation for write_gltf_animation: 8 vertices, 12 triangles (two per

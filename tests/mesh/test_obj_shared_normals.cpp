@@ -2,8 +2,10 @@
 // once, so on a smooth-shaded subdivided cube every vertex inside one side uses the same `vn`
 // line, and on a flat-shaded one every polygon of a side does. After a run those vertices and
 // polygons no longer face one way; each vertex's corners must get the normal of their own
-// polygons, which means more `vn` lines than were read. The expected normals are computed
-// here from the polygons' vector areas, and the written file is read back corner by corner.
+// polygons, which means more `vn` lines than were read. Other exporters repeat a value in many
+// lines (one per face corner, one per vertex copy at a seam): what shades corners together is
+// the value, not the line. The expected normals are computed here from the polygons' vector
+// areas, and the written file is read back corner by corner.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -20,22 +22,38 @@
 namespace shellcontract {
 namespace {
 
-/// A cube of n x n quads per side, normals written once per distinct value (as Blender does):
-/// smooth, each vertex's normal is the sign of its coordinates on the cube's faces (26 values);
-/// flat (`s 0`), one per side (6). Relative: corners as negative indices.
+/// How a cube's file lays its normal values out in `vn` lines.
+enum class Lines {
+  kPerValue,   ///< each distinct value once (Blender's exporter)
+  kPerCorner,  ///< one line per face corner, in face order
+  kPerVertex,  ///< one line per `v` line, corners `f a//a` (exporters of split vertex buffers)
+};
+
+struct CubeLayout {
+  bool flat = false;      ///< one value per side (hard edges); else one per position (smooth)
+  bool relative = false;  ///< corners as negative indices
+  Lines lines = Lines::kPerValue;
+  bool split_sides = false;  ///< each side its own copies of its edge vertices (a seam per edge)
+};
+
+/// A cube of n x n quads per side: smooth, each vertex's normal is the sign of its coordinates on
+/// the cube's faces (26 values); flat (`s 0`), one per side (6).
 struct SharedNormalCube {
   std::string text;
   Positions x;
+  std::vector<std::size_t> position;               ///< per vertex: its grid point (copies share it)
   std::vector<std::vector<std::size_t>> polygons;  ///< vertex indices, outward
 };
 
-SharedNormalCube shared_normal_cube(int n, bool flat, bool relative) {
+SharedNormalCube shared_normal_cube(int n, const CubeLayout& layout) {
   SharedNormalCube c;
-  std::map<std::array<int, 3>, std::size_t> vertex_of;  // grid point (2i - n per axis) -> index
-  std::vector<std::array<int, 3>> points;
-  std::map<std::array<int, 3>, std::size_t> normal_of;  // sign triple -> vn index
+  std::map<std::array<int, 4>, std::size_t>
+      vertex_of;  // (grid point (2i - n per axis), side) -> index
+  std::map<std::array<int, 3>, std::size_t> point_of;   // grid point -> position
+  std::vector<std::array<int, 3>> points;               // per vertex
+  std::map<std::array<int, 3>, std::size_t> normal_of;  // sign triple -> vn index (kPerValue)
   std::vector<std::array<int, 3>> normals;
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> faces;  // (v, vn) corners
+  std::vector<std::vector<std::pair<std::size_t, std::array<int, 3>>>> faces;  // (v, value) corners
   for (int a = 0; a < 3; ++a)
     for (const int s : {-1, 1}) {
       const int b = (a + 1) % 3, cc = (a + 2) % 3;
@@ -43,27 +61,51 @@ SharedNormalCube shared_normal_cube(int n, bool flat, bool relative) {
         for (int j = 0; j < n; ++j) {
           std::vector<std::array<int, 2>> uv = {{i, j}, {i + 1, j}, {i + 1, j + 1}, {i, j + 1}};
           if (s < 0) std::swap(uv[1], uv[3]);  // e_b x e_c = e_a: reversed on the - side
-          std::vector<std::pair<std::size_t, std::size_t>> face;
+          std::vector<std::pair<std::size_t, std::array<int, 3>>> face;
           for (const auto& q : uv) {
             std::array<int, 3> p{};
             p[static_cast<std::size_t>(a)] = s * n;
             p[static_cast<std::size_t>(b)] = 2 * q[0] - n;
             p[static_cast<std::size_t>(cc)] = 2 * q[1] - n;
-            const auto v = vertex_of.emplace(p, points.size());
-            if (v.second) points.push_back(p);
+            const int side = layout.split_sides ? 2 * a + (s > 0) : 0;
+            const auto v =
+                vertex_of.emplace(std::array<int, 4>{p[0], p[1], p[2], side}, points.size());
+            if (v.second) {
+              points.push_back(p);
+              c.position.push_back(point_of.emplace(p, point_of.size()).first->second);
+            }
             std::array<int, 3> sign{};
-            if (flat) {
+            if (layout.flat) {
               sign[static_cast<std::size_t>(a)] = s;
             } else {
               for (std::size_t k = 0; k < 3; ++k) sign[k] = p[k] == n ? 1 : p[k] == -n ? -1 : 0;
             }
-            const auto vn = normal_of.emplace(sign, normals.size());
-            if (vn.second) normals.push_back(sign);
-            face.emplace_back(v.first->second, vn.first->second);
+            face.emplace_back(v.first->second, sign);
           }
           faces.push_back(face);
         }
     }
+  // The `vn` index of each corner, by the layout.
+  std::vector<std::vector<std::size_t>> corner_vn;
+  std::vector<std::array<int, 3>> vertex_value(points.size());
+  for (const auto& f : faces)
+    for (const auto& [v, sign] : f) vertex_value[v] = sign;
+  for (const auto& f : faces) {
+    corner_vn.emplace_back();
+    for (const auto& [v, sign] : f) {
+      std::size_t vn = v;
+      if (layout.lines == Lines::kPerValue) {
+        vn = normal_of.emplace(sign, normals.size()).first->second;
+        if (vn == normals.size()) normals.push_back(sign);
+      } else if (layout.lines == Lines::kPerCorner) {
+        vn = normals.size();
+        normals.push_back(sign);
+      }
+      corner_vn.back().push_back(vn);
+    }
+  }
+  if (layout.lines == Lines::kPerVertex)
+    normals = vertex_value;  // one value per copy: no hard edge
   std::ostringstream o;
   o << "o Cube\n";
   c.x.resize(static_cast<Eigen::Index>(points.size()), 3);
@@ -75,18 +117,19 @@ SharedNormalCube shared_normal_cube(int n, bool flat, bool relative) {
     const Vec3 m = Vec3(s[0], s[1], s[2]).normalized();
     o << "vn " << m.x() << ' ' << m.y() << ' ' << m.z() << '\n';
   }
-  o << (flat ? "s 0\n" : "s 1\n");
+  o << (layout.flat ? "s 0\n" : "s 1\n");
   const long long nv = static_cast<long long>(points.size()), nn = static_cast<long long>(normals.size());
-  for (const auto& f : faces) {
+  for (std::size_t f = 0; f < faces.size(); ++f) {
     o << 'f';
     std::vector<std::size_t> poly;
-    for (const auto& [v, vn] : f) {
-      const long long vi = static_cast<long long>(v), ni = static_cast<long long>(vn);
-      if (relative)
+    for (std::size_t k = 0; k < faces[f].size(); ++k) {
+      const long long vi = static_cast<long long>(faces[f][k].first);
+      const long long ni = static_cast<long long>(corner_vn[f][k]);
+      if (layout.relative)
         o << ' ' << vi - nv << "//" << ni - nn;
       else
         o << ' ' << vi + 1 << "//" << ni + 1;
-      poly.push_back(v);
+      poly.push_back(faces[f][k].first);
     }
     o << '\n';
     c.polygons.push_back(poly);
@@ -95,13 +138,19 @@ SharedNormalCube shared_normal_cube(int n, bool flat, bool relative) {
   return c;
 }
 
-/// The positions moved by a random-looking field: no two polygons of a side face one way.
-Positions wrinkled(const Positions& x) {
-  Positions y = x;
+/// The positions moved by a random-looking field: no two polygons of a side face one way. The
+/// copies of a vertex (split_sides) move together, as the simulation moves them.
+Positions wrinkled(const SharedNormalCube& c) {
+  Positions y = c.x;
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> d(-0.3, 0.3);
-  for (Eigen::Index i = 0; i < y.rows(); ++i)
-    for (int k = 0; k < 3; ++k) y(i, k) += d(rng);
+  std::map<std::size_t, Vec3> moved;
+  for (Eigen::Index i = 0; i < y.rows(); ++i) {
+    const auto m = moved.emplace(c.position[static_cast<std::size_t>(i)], Vec3::Zero());
+    if (m.second)
+      for (int k = 0; k < 3; ++k) m.first->second[k] = d(rng);
+    y.row(i) += m.first->second.transpose();
+  }
   return y;
 }
 
@@ -149,37 +198,25 @@ std::vector<std::vector<std::pair<std::size_t, Vec3>>> corner_normals(const std:
   return out;
 }
 
-void expect_smooth_normals(bool relative) {
-  const SharedNormalCube c = shared_normal_cube(3, false, relative);
-  const Positions y = wrinkled(c.x);
-  std::vector<Vec3> expect(static_cast<std::size_t>(y.rows()), Vec3::Zero());
-  for (const auto& p : c.polygons)
-    for (const std::size_t v : p) expect[v] += vector_area(y, p);
-  const std::string out = parse_obj_document("cube.obj", c.text)->text(y);
-  // The tool reads back what it wrote (every normal index defined before its face).
-  EXPECT_NO_THROW(parse_obj_document("out.obj", out));
-  const auto corners = corner_normals(out);
-  ASSERT_EQ(corners.size(), c.polygons.size());
-  for (std::size_t p = 0; p < corners.size(); ++p)
-    for (const auto& [v, n] : corners[p])
-      EXPECT_NEAR((n - expect[v].normalized()).norm(), 0.0, 1e-13) << "polygon " << p << ", vertex " << v;
+/// The file's `f` lines, in order.
+std::vector<std::string> face_lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("f ", 0) == 0) out.push_back(line);
+  return out;
 }
 
-TEST(ObjSharedNormals, ASmoothNormalSharedByManyVerticesBecomesEachVertexsNormal) {
-  expect_smooth_normals(false);
-}
-
-TEST(ObjSharedNormals, RelativeIndicesStillNameEachCornersNormal) { expect_smooth_normals(true); }
-
-TEST(ObjSharedNormals, AFlatSidesNormalBecomesOneNormalPerVertexOfTheSide) {
-  // One `vn` per side: at a vertex, the polygons of one side share it, so they are smoothed
-  // together there (the file's coplanar polygons do not say they were meant to be faceted), and
-  // the polygons of the other sides at that vertex are not (the box's hard edges stay).
+/// The cube written at wrinkled positions: every corner has the normalized sum of the vector
+/// areas of the polygons around its position (all of them when smooth; those of its own side when
+/// flat, so the box's hard edges stay), whatever lines held the values.
+void expect_normals(const CubeLayout& layout) {
   const int n = 3;
-  const SharedNormalCube c = shared_normal_cube(n, true, false);
-  const Positions y = wrinkled(c.x);
+  const SharedNormalCube c = shared_normal_cube(n, layout);
+  const Positions y = wrinkled(c);
   const std::size_t per_side = static_cast<std::size_t>(n * n);  // polygons are side by side
   const std::string out = parse_obj_document("cube.obj", c.text)->text(y);
+  // The tool reads back what it wrote (every normal index defined before its face).
   EXPECT_NO_THROW(parse_obj_document("out.obj", out));
   const auto corners = corner_normals(out);
   ASSERT_EQ(corners.size(), c.polygons.size());
@@ -187,10 +224,63 @@ TEST(ObjSharedNormals, AFlatSidesNormalBecomesOneNormalPerVertexOfTheSide) {
     for (const auto& [v, n_out] : corners[p]) {
       Vec3 expect = Vec3::Zero();
       for (std::size_t q = 0; q < c.polygons.size(); ++q)
-        if (q / per_side == p / per_side)
-          for (const std::size_t w : c.polygons[q]) expect += w == v ? vector_area(y, c.polygons[q]) : Vec3::Zero();
-      EXPECT_NEAR((n_out - expect.normalized()).norm(), 0.0, 1e-13) << "polygon " << p << ", vertex " << v;
+        if (!layout.flat || q / per_side == p / per_side)
+          for (const std::size_t w : c.polygons[q])
+            if (c.position[w] == c.position[v]) expect += vector_area(y, c.polygons[q]);
+      EXPECT_NEAR((n_out - expect.normalized()).norm(), 0.0, 1e-13)
+          << "polygon " << p << ", vertex " << v;
     }
+  // Lines that each served one group of corners stay one normal each: the face lines are kept.
+  if (layout.lines != Lines::kPerValue) {
+    EXPECT_EQ(face_lines(out), face_lines(c.text));
+  }
+}
+
+TEST(ObjSharedNormals, ASmoothNormalSharedByManyVerticesBecomesEachVertexsNormal) {
+  expect_normals({});
+}
+
+TEST(ObjSharedNormals, RelativeIndicesStillNameEachCornersNormal) {
+  CubeLayout relative;
+  relative.relative = true;
+  expect_normals(relative);
+}
+
+TEST(ObjSharedNormals, AFlatSidesNormalBecomesOneNormalPerVertexOfTheSide) {
+  // One `vn` per side: at a vertex, the polygons of one side share it, so they are smoothed
+  // together there (the file's coplanar polygons do not say they were meant to be faceted), and
+  // the polygons of the other sides at that vertex are not (the box's hard edges stay).
+  CubeLayout flat;
+  flat.flat = true;
+  expect_normals(flat);
+}
+
+// Exporters that write one `vn` line per face corner, or one per vertex copy of a mesh split at
+// its UV seams, repeat a value in many lines: the corners at one position with the same value
+// are one smooth vertex (not faceted, no crease along the seams), and corners with different
+// values (the flat cube's three sides at each corner) stay apart.
+TEST(ObjSharedNormals, OneLinePerCornerWithOneValuePerPositionIsSmooth) {
+  CubeLayout per_corner;
+  per_corner.lines = Lines::kPerCorner;
+  expect_normals(per_corner);
+  per_corner.relative = true;
+  expect_normals(per_corner);
+}
+
+TEST(ObjSharedNormals, OneLinePerCornerKeepsTheHardEdgesOfDifferentValues) {
+  CubeLayout flat;
+  flat.flat = true;
+  flat.lines = Lines::kPerCorner;
+  expect_normals(flat);
+}
+
+TEST(ObjSharedNormals, OneLinePerSeamCopyWithOneValueShowsNoSeam) {
+  CubeLayout split;
+  split.lines = Lines::kPerVertex;
+  split.split_sides = true;
+  expect_normals(split);
+  split.flat = true;  // each side's copies with the side's value: the edges stay hard
+  expect_normals(split);
 }
 
 }  // namespace

@@ -3,10 +3,11 @@
 // outputs, and keeps its texture coordinates; a mesh closed as given is never welded, and one
 // that welding does not close keeps its error. The split sphere (tests/support/seam_split.hpp)
 // knows which closed-sphere vertex each of its vertices copies: the expectations come from it.
-#include <gtest/gtest.h>
-
 #include <CGAL/boost/graph/helpers.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -17,10 +18,9 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/seam_split.hpp"
 
@@ -161,6 +161,68 @@ TEST_F(Seams, AMeshThatWeldingDoesNotCloseKeepsItsErrorWithAHint) {
   });
   EXPECT_NE(plain.find(": open boundary: "), std::string::npos) << plain;
   EXPECT_EQ(plain.find("welding"), std::string::npos) << plain;
+}
+
+/// The refusal of f (a FaceListError): its message and faces.
+std::pair<std::string, std::vector<std::size_t>> face_error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const FaceListError& e) {
+    return {e.what(), e.faces()};
+  } catch (const InputError& e) {
+    return {std::string("(not a FaceListError) ") + e.what(), {}};
+  }
+  return {"(no error)", {}};
+}
+
+TEST_F(Seams, AHoleLeftAfterWeldingIsNamedByTheFacesAroundIt) {
+  // A face away from the seams removed: the mesh as given is open along every seam and at the
+  // hole, the welded one at the hole only. The refusal must lead to the hole: its faces are the
+  // hole's neighbours (the faces that share an edge of the closed sphere with the removed one,
+  // numbered as in the file without it), and its edge is named by the file's vertices.
+  SeamSplitMesh m = seam_split_sphere();
+  std::vector<std::size_t> copies(m.closed_vertices, 0);
+  for (const std::size_t c : m.closed_vertex) ++copies[c];
+  std::size_t hole = m.tris.size() / 2;
+  const auto has_copy = [&](const Tri& t) {
+    return std::any_of(t.begin(), t.end(),
+                       [&](std::size_t v) { return copies[m.closed_vertex[v]] > 1; });
+  };
+  while (hole < m.tris.size() && has_copy(m.tris[hole])) ++hole;
+  ASSERT_LT(hole, m.tris.size());
+  const Tri removed = m.tris[hole];
+  m.tris.erase(m.tris.begin() + static_cast<std::ptrdiff_t>(hole));
+  const auto closed_edge = [&](std::size_t a, std::size_t b) {
+    return std::minmax(m.closed_vertex[a], m.closed_vertex[b]);
+  };
+  std::set<std::pair<std::size_t, std::size_t>> hole_edges;
+  for (std::size_t k = 0; k < 3; ++k)
+    hole_edges.insert(closed_edge(removed[k], removed[(k + 1) % 3]));
+  std::vector<std::size_t> around;
+  for (std::size_t f = 0; f < m.tris.size(); ++f)
+    for (std::size_t k = 0; k < 3; ++k)
+      if (hole_edges.count(closed_edge(m.tris[f][k], m.tris[f][(k + 1) % 3]))) {
+        around.push_back(f);
+        break;
+      }
+  ASSERT_EQ(around.size(), 3u);
+
+  const std::string path = write("holed.ply", m.ply());
+  for (const auto& [what, faces] :
+       {face_error_of([&] { read_input_mesh(path); }), face_error_of([&] { from_arrays(m); })}) {
+    EXPECT_EQ(faces, around) << what;
+    EXPECT_NE(what.find(": open boundary: "), std::string::npos) << what;
+    EXPECT_NE(what.find("after welding, open boundary: "), std::string::npos) << what;
+    // The first face left open, and an edge of the hole in the file's vertex numbers.
+    EXPECT_NE(what.find(" of face " + std::to_string(around[0]) + " "), std::string::npos) << what;
+    bool edge_named = false;
+    for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t j = 0; j < 3; ++j)
+        edge_named = edge_named || what.find("edge (" + std::to_string(removed[k]) + ", " +
+                                             std::to_string(removed[j]) + ")") != std::string::npos;
+    EXPECT_TRUE(edge_named) << what;
+    EXPECT_NE(what.find("(3 faces in all have such edges)"), std::string::npos) << what;
+  }
 }
 
 TEST_F(Seams, OnlyBitwiseIdenticalPositionsAreWelded) {
