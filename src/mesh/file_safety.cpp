@@ -17,6 +17,7 @@
 #include <cstring>
 #include <ctime>
 #include <mutex>
+#include <vector>
 
 #include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
@@ -441,6 +442,27 @@ std::string read_regular_file_start(const std::string& path, std::uint64_t max_b
   }
   bytes.resize(done);
   return bytes;
+}
+
+void read_regular_file_pieces(const std::string& path,
+                              const std::function<void(const char*, std::size_t)>& take) {
+  struct stat st {};
+  const int fd = open_regular(path, st);
+  const Closer closer{fd};
+  std::vector<char> piece(std::size_t{1} << 16);
+  std::uint64_t done = 0;
+  for (;;) {
+    const ssize_t n = ::read(fd, piece.data(), piece.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      fail_os(path, e, "cannot read file",
+              file_error_text(e) + " after " + std::to_string(done) + " bytes");
+    }
+    if (n == 0) return;
+    take(piece.data(), static_cast<std::size_t>(n));
+    done += static_cast<std::uint64_t>(n);
+  }
 }
 
 }  // namespace shellcontract

@@ -47,6 +47,110 @@ std::string decoded(const std::string& uri) {
   return s;
 }
 
+/// `text` cut at each `at`.
+std::vector<std::string> split(const std::string& text, char at) {
+  std::vector<std::string> out(1);
+  for (const char c : text)
+    if (c == at)
+      out.emplace_back();
+    else
+      out.back() += c;
+  return out;
+}
+
+/// The members that hold an index into one of the file's arrays (the spec's glTFid, and a
+/// texture's texCoord, the n of its TEXCOORD_n), as paths: "*" an element of an array, "?" any
+/// member. tinygltf keeps each as an int, cutting a larger JSON integer to its low 32 bits (node
+/// "mesh": 4294967296 draws mesh 0); a member of "extras" or of an extension is not read as one.
+/// The default "scene" is checked with the top level.
+const std::vector<std::vector<std::string>>& index_members() {
+  static const std::vector<std::vector<std::string>> paths = [] {
+    const char* const list =
+        "scenes/*/nodes/* nodes/*/camera nodes/*/children/* nodes/*/skin nodes/*/mesh "
+        "meshes/*/primitives/*/attributes/? meshes/*/primitives/*/indices "
+        "meshes/*/primitives/*/material meshes/*/primitives/*/targets/*/? "
+        "accessors/*/bufferView accessors/*/sparse/indices/bufferView "
+        "accessors/*/sparse/values/bufferView bufferViews/*/buffer images/*/bufferView "
+        "textures/*/sampler textures/*/source skins/*/inverseBindMatrices skins/*/skeleton "
+        "skins/*/joints/* animations/*/channels/*/sampler animations/*/channels/*/target/node "
+        "animations/*/samplers/*/input animations/*/samplers/*/output";
+    std::vector<std::vector<std::string>> out;
+    for (const std::string& p : split(list, ' ')) out.push_back(split(p, '/'));
+    for (const char* texture :
+         {"normalTexture", "occlusionTexture", "emissiveTexture",
+          "pbrMetallicRoughness/baseColorTexture", "pbrMetallicRoughness/metallicRoughnessTexture"})
+      for (const char* member : {"index", "texCoord"})
+        out.push_back(split(std::string("materials/*/") + texture + "/" + member, '/'));
+    return out;
+  }();
+  return paths;
+}
+
+/// Where the parser is, one level per open array or object, to name the member a value is in:
+/// its callback tells each event's level, but not always the end of an array or object (never
+/// that of one being dropped), so a level's state is set when its array or object starts.
+class JsonPlace {
+ public:
+  /// The parser's callback, for every event in order: follows the levels and refuses an integer
+  /// in an index member that is negative or more than the largest int.
+  void on_event(int depth, json::parse_event_t event, const json& parsed, const std::string& path) {
+    const auto d = static_cast<std::size_t>(depth);
+    if (event == json::parse_event_t::key) {
+      if (d < levels_.size()) levels_[d].key = parsed.get<std::string>();
+      return;
+    }
+    const bool starts =
+        event == json::parse_event_t::object_start || event == json::parse_event_t::array_start;
+    if (!starts && event != json::parse_event_t::value) return;
+    if (d < levels_.size() && levels_[d].array) levels_[d].key = std::to_string(levels_[d].next++);
+    if (starts) {
+      levels_.resize(d + 2);
+      levels_[d + 1] = Level{event == json::parse_event_t::array_start, 0, {}};
+      return;
+    }
+    if (!parsed.is_number_integer()) return;  // unsigned or signed
+    const bool negative = !parsed.is_number_unsigned() && parsed.get<std::int64_t>() < 0;
+    if (!negative &&
+        parsed.get<std::uint64_t>() <= static_cast<std::uint64_t>(std::numeric_limits<int>::max()))
+      return;
+    if (!is_index(d)) return;
+    fail(path, "bad index",
+         name(d) + " is " + parsed.dump() +
+             (negative ? ", not an index (an index is 0 or more)"
+                       : ", more than the largest index that is read (" +
+                             std::to_string(std::numeric_limits<int>::max()) + ")"));
+  }
+
+ private:
+  struct Level {
+    bool array = false;
+    std::size_t next = 0;  ///< an array's next element
+    std::string key;       ///< the member (or the element's number) being read
+  };
+  /// Whether the value being read at level `d` (levels 1 to d) is in an index member.
+  bool is_index(std::size_t d) const {
+    for (const std::vector<std::string>& p : index_members()) {
+      if (p.size() != d) continue;
+      bool same = true;
+      for (std::size_t i = 0; i < d && same; ++i) {
+        const Level& l = levels_[i + 1];
+        same = p[i] == "?" ? !l.array : p[i] == "*" ? l.array : !l.array && p[i] == l.key;
+      }
+      if (same) return true;
+    }
+    return false;
+  }
+  /// The member as a path: "meshes[0].primitives[1].attributes.POSITION".
+  std::string name(std::size_t d) const {
+    std::string s;
+    for (std::size_t i = 1; i <= d; ++i)
+      s += levels_[i].array ? "[" + levels_[i].key + "]"
+                            : (i > 1 ? "." : "") + printable(levels_[i].key, 40);
+    return s;
+  }
+  std::vector<Level> levels_{Level{}};  ///< level 0: outside the top-level value
+};
+
 }  // namespace
 
 std::size_t too_deep_at(const char* text, std::size_t size) {
@@ -78,10 +182,13 @@ std::vector<DeclaredBuffer> check_top_level(const std::string& path, const char*
          "the JSON nests deeper than " + std::to_string(MAX_JSON_DEPTH) + " levels (byte " +
              std::to_string(first_byte + deep) + " opens level " +
              std::to_string(MAX_JSON_DEPTH + 1) + ")");
-  // Only the members checked here are kept: the rest (a .gltf's data URIs) is parsed and dropped.
+  // Only the members checked here are kept: the rest (a .gltf's data URIs) is parsed and dropped,
+  // its index members checked on the way (one pass).
+  JsonPlace place;
   const json top = json::parse(
       text, text + size,
-      [](int depth, json::parse_event_t event, json& parsed) {
+      [&](int depth, json::parse_event_t event, json& parsed) {
+        place.on_event(depth, event, parsed, path);
         return depth != 1 || event != json::parse_event_t::key || parsed == "asset" ||
                parsed == "scene" || parsed == "buffers";
       },

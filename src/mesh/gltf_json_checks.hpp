@@ -1,9 +1,9 @@
 // Checks of a glTF's JSON text made before tinygltf parses it (gltf_reader.cpp, load_model):
 // its nesting depth, which every recursive JSON reader of the program (tinygltf's extras and
 // extensions, nlohmann's copies and dumps in gltf_json.cpp) must be able to take without running
-// out of stack, and the top-level members tinygltf reads leniently (asset's version, the default
-// scene) or that the buffer callbacks need before tinygltf reads a buffer (each buffer's URI and
-// byteLength). Private to src/mesh.
+// out of stack, and the members tinygltf reads leniently (asset's version, the default scene,
+// every index, which it keeps as an int) or that the buffer callbacks need before tinygltf reads
+// a buffer (each buffer's URI and byteLength). Private to src/mesh.
 #pragma once
 
 #include <cstddef>
@@ -33,8 +33,10 @@ struct DeclaredBuffer {
 };
 
 /// Refuses a JSON that nests deeper than MAX_JSON_DEPTH, an `asset.version` whose major version
-/// is not 2 (or an `asset.minVersion` above 2.0), and a `scene` that is not a scene index; then
-/// returns the buffers. JSON that does not parse is left to tinygltf (no buffers returned).
+/// is not 2 (or an `asset.minVersion` above 2.0), a `scene` that is not a scene index, and an
+/// integer above INT_MAX or below 0 in a member that holds an index ("bad index:
+/// nodes[0].mesh is 4294967296, ..."; outside extras and extensions); then returns the buffers.
+/// JSON that does not parse is left to tinygltf (no buffers returned).
 /// @param text the .gltf, or the .glb's JSON chunk, which starts at byte `first_byte` of the file
 /// @throws InputError "<path>: <problem>: <details>"
 std::vector<DeclaredBuffer> check_top_level(const std::string& path, const char* text,

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cerrno>
 #include <cstddef>
 #include <cstdint>
@@ -336,25 +337,31 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
   // Only the elements the triangles use become vertices, in accessor order: primitives that
   // share one POSITION accessor, each drawing part of it (one per material), would otherwise
   // bring each other's vertices in as unused ones, which the checks refuse. Each primitive's
-  // vertices are its own copies; those at one position are welded like seam copies.
-  std::vector<std::size_t> vertex_of(xyz.count, SIZE_MAX);
-  for (const std::size_t c : corners) vertex_of[c] = 0;
-  for (std::size_t i = 0; i < xyz.count; ++i) {
-    if (vertex_of[i] == SIZE_MAX) continue;
-    vertex_of[i] = soup.points.size();
+  // vertices are its own copies; those at one position are welded like seam copies. The elements
+  // used are found by sorting the primitive's own corners, not by walking the whole accessor, so
+  // that many primitives on one large accessor cost their corners, not primitives x elements.
+  std::vector<std::size_t> used(corners);
+  std::sort(used.begin(), used.end());
+  used.erase(std::unique(used.begin(), used.end()), used.end());
+  const std::size_t first = soup.points.size();
+  for (const std::size_t i : used) {
     float f[3];
     std::memcpy(f, xyz.at(m, i), sizeof f);
     const Eigen::Vector4d w = world * Eigen::Vector4d(f[0], f[1], f[2], 1.0);
     soup.points.push_back({w[0], w[1], w[2]});
     soup.sources.push_back({primitive_ordinal, i});
   }
+  const auto vertex_of = [&](std::size_t corner) {
+    return first + static_cast<std::size_t>(std::lower_bound(used.begin(), used.end(), corner) -
+                                            used.begin());
+  };
   // A mirroring transform turns the triangles inside out; glTF renderers reverse them (the spec,
   // "Transformations"), so the mesh keeps its outside.
   const bool mirrored = world.topLeftCorner<3, 3>().determinant() < 0.0;
   soup.faces.reserve(soup.faces.size() + corners.size() / 3);
   for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
-    const std::size_t a = vertex_of[corners[t]], b = vertex_of[corners[t + 1]],
-                      c = vertex_of[corners[t + 2]];
+    const std::size_t a = vertex_of(corners[t]), b = vertex_of(corners[t + 1]),
+                      c = vertex_of(corners[t + 2]);
     soup.faces.push_back(mirrored ? std::vector<std::size_t>{a, c, b}
                                   : std::vector<std::size_t>{a, b, c});
   }

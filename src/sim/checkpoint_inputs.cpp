@@ -2,10 +2,13 @@
 // their contents' hashes, recorded when the run starts and compared when it resumes, so that a
 // face list or weights file edited in between is refused instead of resumed into a run that
 // matches neither.
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "mesh/file_safety.hpp"
+#include "mesh/file_start.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/error.hpp"
 #include "sim/checkpoint.hpp"
@@ -22,9 +25,14 @@ std::string named(const RunInput& in) {
 
 std::vector<RunInput> run_inputs(const RunOptions& options) {
   std::vector<RunInput> out;
+  // Hashed a piece at a time, not read whole: this runs before the mesh, and so before the
+  // reader that bounds the file by what the mesh can need; a file of any size costs a piece.
   const auto file = [&](const std::string& field, const std::string& path) {
-    const std::string bytes = read_regular_file(path);  // InputError naming the file
-    out.push_back({field, path, false, fnv1a(bytes.data(), bytes.size())});
+    std::uint64_t h = fnv1a(nullptr, 0);
+    read_regular_file_pieces(path, [&](const char* bytes, std::size_t n) {  // InputError naming it
+      h = fnv1a(bytes, n, h);
+    });
+    out.push_back({field, path, false, h});
   };
   if (options.regions == RegionSource::File) file("regions", options.region_file);
   if (!options.region_weight_file.empty()) {

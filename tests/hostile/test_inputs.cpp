@@ -103,6 +103,26 @@ TEST_F(Hostile, AWeightsFileFarLargerThanTheMeshIsRefused) {
   EXPECT_NE(r.output.find(big.string() + ": file too large"), std::string::npos) << r.output;
 }
 
+// The same with --checkpoint, which hashes the weights file (and a face list) before the mesh, and
+// so before the reader that bounds it: the file was read whole to be hashed, and a 256 MiB one
+// ended in "out of memory" (exit 3) under a 200 MB limit (the run itself fits in it). Now it is
+// hashed a piece at a time and the reader refuses it as without a checkpoint.
+TEST_F(Hostile, AWeightsFileOrFaceListFarLargerThanTheMeshIsRefusedWithACheckpointToo) {
+  const fs::path big = dir_ / "big.txt";
+  test::spit(big, "");
+  fs::resize_file(big, std::uintmax_t{256} << 20);
+  for (const char* option : {"--region-weights", "--regions"}) {
+    const auto r = test::run_command(
+        "ulimit -v 200000 && exec timeout 60 " +
+        test::cli_command({"run", test::mesh("ico2.off"), "-o", (dir_ / "o.off").string(), "-n",
+                           "2", "-q", "--checkpoint", (dir_ / "c.ckpt").string(), option,
+                           big.string()}));
+    EXPECT_EQ(r.exit_code, 2) << option << ": " << r.output;
+    EXPECT_NE(r.output.find(big.string() + ": file too large"), std::string::npos)
+        << option << ": " << r.output;
+  }
+}
+
 // Review 7 (F6): --resume of a file that is no checkpoint is refused after its first bytes,
 // whatever its size, and a checkpoint larger than the machine's memory before it is read. Both
 // were read whole: "out of memory", exit 3, naming no file (here, sparse files: no disk).

@@ -4,7 +4,8 @@
 // InputError naming the file. Before: 20,000 nested arrays crashed the reader (stack overflow in
 // tinygltf's recursive parse; tests/cli/test_cli_gltf_hostile.cpp), 513 levels were read,
 // "3.0" was read as 2.0, "scene": -2 as scene 0, and a buffer file was read whole before its size
-// was compared (the message then tinygltf's "File size mismatch").
+// was compared (the message then tinygltf's "File size mismatch"). An index member (nodes[0].mesh)
+// with an integer of 2^31 or more, or below 0, is refused naming it: tinygltf cut it to an int.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -109,6 +110,54 @@ TEST_F(GltfJsonChecks, ADefaultSceneThatIsNoSceneIndexIsRefused) {
   }
   const std::string big = edited("big.glb", "\"scene\":0", "\"scene\":4294967296");
   EXPECT_NE(error_of(big).find("scene out of range"), std::string::npos) << error_of(big);
+}
+
+TEST_F(GltfJsonChecks, AnIndexOfTwoToThe31OrMoreOrBelowZeroIsRefusedAsWritten) {
+  // Before: tinygltf cut each to its low 32 bits, so mesh 2^32 drew mesh 0 (read, 8 faces).
+  const std::string too_large = ", more than the largest index that is read (2147483647)";
+  const std::string negative = ", not an index (an index is 0 or more)";
+  struct Case {
+    const char* from;
+    const char* to;
+    const char* member;
+    std::string says;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"\"mesh\":0", "\"mesh\":4294967296", "nodes[0].mesh is 4294967296", too_large},
+           {"\"mesh\":0", "\"mesh\":-4294967296", "nodes[0].mesh is -4294967296", negative},
+           {"\"mesh\":0", "\"mesh\":-1", "nodes[0].mesh is -1", negative},
+           {"\"mesh\":0", "\"mesh\":0,\"children\":[1099511627776]",
+            "nodes[0].children[0] is 1099511627776", too_large},
+           {"\"nodes\":[0]", "\"nodes\":[4294967296]", "scenes[0].nodes[0] is 4294967296",
+            too_large},
+           {"\"POSITION\":0", "\"POSITION\":4294967296",
+            "meshes[0].primitives[0].attributes.POSITION is 4294967296", too_large},
+           {"\"indices\":1", "\"indices\":4294967297",
+            "meshes[0].primitives[0].indices is 4294967297", too_large},
+           {"\"bufferView\":1", "\"bufferView\":2147483648",
+            "accessors[1].bufferView is 2147483648", too_large},
+           {"\"buffer\":0", "\"buffer\":18446744073709551615",
+            "bufferViews[0].buffer is 18446744073709551615", too_large},
+       }) {
+    const std::string path = edited("index.glb", c.from, c.to);
+    EXPECT_EQ(error_of(path), path + ": bad index: " + c.member + c.says);
+  }
+  // The largest int is no index of this file either, but tinygltf keeps it as written: the
+  // reader's own range check names it.
+  const std::string max = edited("max.glb", "\"mesh\":0", "\"mesh\":2147483647");
+  EXPECT_NE(error_of(max).find("mesh out of range: node 0 names mesh 2147483647"),
+            std::string::npos)
+      << error_of(max);
+  // The same numbers outside index members (extras, an extension, a count) are not indices.
+  const std::string extras = edited("extras.glb", "\"mesh\":0",
+                                    "\"mesh\":0,\"extras\":{\"mesh\":4294967296,\"nodes\":[-5]},"
+                                    "\"extensions\":{\"X_y\":{\"mesh\":-4294967296}}");
+  EXPECT_EQ(read_input_mesh(extras).number_of_faces(), 8u);
+  // A .gltf is scanned as a .glb is.
+  test::GltfParts parts = test::gltf_parts(octahedron());
+  parts.json.replace(parts.json.find("\"mesh\":0"), 8, "\"mesh\":4294967296");
+  const std::string gltf = write("index.gltf", test::gltf_text(parts));
+  EXPECT_EQ(error_of(gltf), gltf + ": bad index: nodes[0].mesh is 4294967296" + too_large);
 }
 
 TEST_F(GltfJsonChecks, ABufferFileLargerThanItsByteLengthIsRefusedUnread) {

@@ -6,12 +6,16 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <array>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "mesh/gltf_reader.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/gltf_files.hpp"
@@ -133,6 +137,45 @@ TEST_F(GltfReader, WeldsAnUnindexedTriangleListAndPrimitivesThatShareAnEdge) {
   const Mesh two = read_input_mesh(glb("halves.glb", halves), &report);
   EXPECT_EQ(two.number_of_vertices(), 6u);
   EXPECT_EQ(two.number_of_faces(), 8u);
+}
+
+TEST_F(GltfReader, PrimitivesSharingOnePositionAccessorTakeTheirOwnElementsInAccessorOrder) {
+  // One POSITION accessor of 8 elements (element i at (i, 10 i, 100 i)); primitive 0 draws
+  // elements 5 2 7, 7 2 0 and primitive 1 elements 3 6 1: each brings the elements its corners
+  // use, once, in accessor order, whatever order its indices name them in. The reader finds them
+  // by sorting the primitive's corners (review7 F8: it walked the whole accessor per primitive);
+  // this is the order it had before.
+  std::string bin;
+  for (int i = 0; i < 8; ++i) {
+    const float x[3] = {float(i), 10.0f * i, 100.0f * i};
+    test::gltf_put(bin, x, 12);
+  }
+  for (const std::uint32_t i : {5u, 2u, 7u, 7u, 2u, 0u, 3u, 6u, 1u}) test::gltf_put(bin, &i, 4);
+  const std::string json =
+      "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],"
+      "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":["
+      "{\"attributes\":{\"POSITION\":0},\"indices\":1},"
+      "{\"attributes\":{\"POSITION\":0},\"indices\":2}]}],\"accessors\":["
+      "{\"bufferView\":0,\"componentType\":5126,\"count\":8,\"type\":\"VEC3\"},"
+      "{\"bufferView\":1,\"componentType\":5125,\"count\":6,\"type\":\"SCALAR\"},"
+      "{\"bufferView\":2,\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"}],"
+      "\"bufferViews\":[{\"buffer\":0,\"byteOffset\":0,\"byteLength\":96},"
+      "{\"buffer\":0,\"byteOffset\":96,\"byteLength\":24},"
+      "{\"buffer\":0,\"byteOffset\":120,\"byteLength\":12}],"
+      "\"buffers\":[{\"byteLength\":132%URI%}]}";
+  const std::string bytes = test::glb_bytes(test::GltfParts{json, bin});
+  const GltfSoup s = read_gltf(write("shared.glb", bytes), bytes);
+  const std::vector<std::pair<std::size_t, std::size_t>> from = {{0, 0}, {0, 2}, {0, 5}, {0, 7},
+                                                                 {1, 1}, {1, 3}, {1, 6}};
+  ASSERT_EQ(s.points.size(), from.size());
+  for (std::size_t v = 0; v < from.size(); ++v) {
+    EXPECT_EQ(s.sources[v].drawn, from[v].first) << v;
+    EXPECT_EQ(s.sources[v].element, from[v].second) << v;
+    const double e = static_cast<double>(from[v].second);
+    EXPECT_EQ(s.points[v], (std::array<double, 3>{e, 10 * e, 100 * e})) << v;
+  }
+  const std::vector<std::vector<std::size_t>> faces = {{2, 1, 3}, {3, 1, 0}, {5, 6, 4}};
+  EXPECT_EQ(s.faces, faces);
 }
 
 TEST_F(GltfReader, RefusesMalformedFilesNamingTheProblem) {
