@@ -25,7 +25,7 @@ struct NamedVertexField {
 };
 
 /// An image file's bytes, held once however many materials carry them: copies of an ImageBytes
-/// share one buffer (eighty materials naming one 10 MB texture had held 800 MB).
+/// share one buffer, so a texture that many materials name is held once, not once per material.
 class ImageBytes {
  public:
   ImageBytes() = default;
