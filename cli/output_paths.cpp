@@ -21,6 +21,15 @@
 namespace shellcontract::cli {
 
 void check_result_format(const std::string& input, const std::string& output, bool frames_dir) {
+  // An existing -o that is no regular file (/dev/null, a FIFO, a folder) is refused for what it
+  // is, with check_planned_outputs' words, before its name is read: /dev/null has no extension,
+  // and "no file extension" would send the user looking in the wrong place.
+  struct stat st {};
+  if (output.find('\0') == std::string::npos && ::stat(output.c_str(), &st) == 0 &&
+      !S_ISREG(st.st_mode)) {
+    std::vector<FileIdentity> output_ids, input_ids;
+    check_output_identities({{"-o", output}}, {}, output_ids, input_ids);
+  }
   const std::string ext = lower_extension(output);
   const bool gltf_output = ext == "glb" || ext == "gltf";
   if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && !gltf_output)

@@ -49,7 +49,8 @@ MeshError = _core.MeshError
 # would hide the builtins from this module's own code.
 FileError = _core.FileError
 # The build, "0.2.0+g0123456789ab", and the kernels of this machine, "avx2" or "scalar": what
-# `shellcontract --version` prints and checkpoints name (docs/python.md).
+# `shellcontract --version` prints and checkpoints name (docs/architecture.md, "Checkpoints and
+# the build").
 __version__ = _core.__version__
 kernels = _core.kernels
 

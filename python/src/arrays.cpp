@@ -63,10 +63,13 @@ static void check_uint64_indices(const py::handle& faces, std::size_t num_vertic
   const std::uint64_t* p = u.data();
   for (py::ssize_t i = 0; i < u.size(); ++i)
     if (p[i] >= num_vertices)
-      throw FaceListError(std::string(ARRAY_INPUT_NAME) + ": vertex index out of range: face " + std::to_string(i / 3) +
-                              " refers to vertex " + std::to_string(p[i]) + ", but the mesh has " +
-                              std::to_string(num_vertices) + " vertices",
-                          {static_cast<std::size_t>(i / 3)});
+      throw FaceListError(
+          std::string(ARRAY_INPUT_NAME) + ": vertex index out of range: face " +
+              std::to_string(i / 3) + " refers to vertex " + std::to_string(p[i]) +
+              ", but the mesh has " + std::to_string(num_vertices) +
+              (num_vertices == 1 ? " vertex" : " vertices") +
+              (num_vertices > 0 ? " (0.." + std::to_string(num_vertices - 1) + ")" : ""),
+          {static_cast<std::size_t>(i / 3)});
 }
 
 Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputReport* report, bool reorient) {

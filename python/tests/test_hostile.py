@@ -132,6 +132,9 @@ def test_a_uint64_index_is_reported_as_given(ico2):
     bad[5, 1] = np.uint64(2**64 - 1)
     with pytest.raises(ValueError, match="18446744073709551615"):
         shellcontract.check(vertices, bad)
+    # With the valid range, as the library says it for any other index type (before: without).
+    with pytest.raises(ValueError, match=r"has 162 vertices \(0\.\.161\)"):
+        shellcontract.check(vertices, bad)
 
 
 @pytest.mark.parametrize("every", [1.5, "2", None, True])

@@ -66,5 +66,9 @@ def test_refuses_other_options_and_another_mesh(tmp_path, mesh_dir):
     with pytest.raises(ValueError, match=r"other options: pressure 3 \(the checkpoint's: 4\)"):
         shellcontract.contract(v, f, resume=str(path), pressure=3)
     v1, f1 = shellcontract.read_mesh(mesh_dir / "ico1.off")
-    with pytest.raises(ValueError, match="another input"):
+    # Before: "the vertices and faces given is not the mesh <arrays> it was written for (or that
+    # file has changed)": a placeholder for a name, and a file where there was none.
+    with pytest.raises(ValueError, match="another input") as refused:
         shellcontract.contract(v1, f1, resume=str(path))
+    assert "<arrays>" not in str(refused.value) and "file" not in str(refused.value)
+    assert "the vertices and faces given are not" in str(refused.value)

@@ -274,9 +274,16 @@ void check_checkpoint_input(const Checkpoint& c, const std::string& path, const 
   if (c.version != checkpoint_tool_version())
     throw InputError("checkpoint written by shellcontract " + c.version + ", this is " +
                      checkpoint_tool_version() + ": resume it with that build and kernels");
-  if (mesh_hash(mesh) != c.input_hash)
-    throw InputError("the checkpoint is of another input: " + path + " is not the mesh " +
-                     c.input + " it was written for (or that file has changed)");
+  if (mesh_hash(mesh) == c.input_hash) return;
+  // A run of arrays (Python) has no file to name or to have changed; `path` may name arrays too.
+  const bool plural = path.rfind("the vertices and faces", 0) == 0;
+  const std::string given = path + (plural ? " are" : " is");
+  if (c.input == ARRAYS_INPUT)
+    throw InputError("the checkpoint is of another input: " + given +
+                     " not the mesh it was written for (it was run on vertices and faces given as "
+                     "arrays: give the same arrays)");
+  throw InputError("the checkpoint is of another input: " + given + " not the mesh " + c.input +
+                   " it was written for (or that file has changed)");
 }
 
 void check_checkpoint_fits(const Checkpoint& c, const Mesh& mesh, const RunOptions& options) {

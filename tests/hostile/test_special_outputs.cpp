@@ -44,6 +44,24 @@ TEST_F(Hostile, AFifoGivenAsAnOutputIsNeverReplaced) {
   EXPECT_TRUE(S_ISFIFO(st.st_mode));
 }
 
+// Before: `run -o FIFO` (or /dev/null, a folder) was refused for its missing extension, where
+// `repair -o` refused it for what it is.
+TEST_F(Hostile, ASpecialResultIsRefusedForWhatItIsBeforeItsName) {
+  const fs::path fifo = dir_ / "result";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0666), 0);
+  fs::create_directories(dir_ / "folder");
+  for (const fs::path& out : {fifo, dir_ / "folder"}) {
+    const auto r = run_cli({"run", test::mesh("ico2.off"), "-o", out.string(), "-n", "2", "-q"});
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_EQ(r.output.find("extension"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(out == fifo ? "not a regular file" : "is a folder"), std::string::npos)
+        << r.output;
+  }
+  struct stat st {};
+  ASSERT_EQ(::lstat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+}
+
 // Before: a read-only existing output was found only when its rename failed, after the run
 // (the last frame's progress line, then exit 1). A read-only bind mount of the file makes it
 // non-writable even for root.
