@@ -170,8 +170,12 @@ def test_options_are_the_table_and_its_defaults(ico2):
     # half its frames, at least 1 (docs/cli.md, the summary's options).
     chosen = {"order": ("auto", "coloured"), "speculative_broad_phase": ("auto", "off"),
               "target_ramp": ("100", "1")}
+    # The Mooney-Rivlin parameters, which the StVK membrane does not read, are reported empty.
+    unused = {"c10", "c01"}
     for o in table:
-        if o.name in derived:
+        if o.name in unused:
+            assert reported[o.name] == "", o.name
+        elif o.name in derived:
             assert float(reported[o.name]) == pytest.approx(derived[o.name], rel=1e-15), o.name
         elif o.name in chosen:
             assert (o.default, reported[o.name]) == chosen[o.name], o.name

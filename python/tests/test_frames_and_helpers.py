@@ -320,3 +320,27 @@ def test_a_refused_float_is_quoted_as_the_tool_writes_it(ico2):
         shellcontract.contract(v, f, pressure=2e6)
     # A whole float for an integer option is that integer (a JSON sweep file's 10.0).
     assert shellcontract.contract(v, f, frames=2.0, collisions=False).summary["options"]["frames"] == "2"
+
+
+def test_lambda_takes_back_a_negative_poisson_ratios_value(ico2):
+    # Before: poisson=-0.5 recorded lambda -1.33, which lambda_ refused ("a finite number >= 0")
+    # (review9 D5). The membrane needs mu + lambda > 0 (a Poisson ratio above -1), no more.
+    v, f = ico2
+    a = shellcontract.contract(v, f, frames=2, poisson=-0.5)
+    recorded = {k: float(a.summary["options"][k]) for k in ("young", "thickness", "poisson", "mu", "lambda")}
+    assert recorded["lambda"] < 0
+    b = shellcontract.contract(v, f, frames=2, **recorded)
+    assert a.vertices.tolist() == b.vertices.tolist()
+    c = shellcontract.contract(v, f, frames=2, solver="pbd", mu=2, lambda_=-1.9)
+    assert c.status == "ok" and float(c.summary["options"]["lambda"]) == -1.9
+    with pytest.raises(ValueError, match="lambda must be greater than -mu"):
+        shellcontract.contract(v, f, frames=2, solver="pbd", mu=2, lambda_=-2)
+
+
+def test_the_fallback_bending_is_a_warning(ico2):
+    # Before: mu and lambda given under xpbd dropped the shell material and k_B became 0.01
+    # without a word (review9 D3).
+    v, f = ico2
+    assert not any("k_B" in w for w in shellcontract.contract(v, f, frames=1).summary["warnings"])
+    r = shellcontract.contract(v, f, frames=1, mu=0.7, lambda_=0.6)
+    assert any(w.startswith("the bending k_B is 0.01") and "k_b" in w for w in r.summary["warnings"]), r.summary["warnings"]

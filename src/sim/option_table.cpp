@@ -278,7 +278,13 @@ std::vector<OptionSpec> build_table() {
                      "Lame mu (energy per normalized area); in pbd mode only lambda/mu matters; "
                      "under xpbd, unless given, --young and --thickness set it",
                      positive(), [](R& r) -> double& { return r.sim.material_params.mu; }));
-  t.push_back(number("lambda", 0, "LAMBDA", "plane-stress Lame lambda (as --mu)", non_negative(),
+  // Negative down to -mu, as a negative --poisson gives it (lambda = E h nu / (1 - nu^2)): the
+  // membrane energy mu tr E^2 + lambda/2 tr^2 E is positive definite for mu > 0 and mu + lambda
+  // > 0, which check_sim_options holds (the range of one option cannot name the other's value).
+  t.push_back(number("lambda", 0, "LAMBDA",
+                     "plane-stress Lame lambda (as --mu); negative for a negative Poisson ratio, "
+                     "down to (not at) -mu",
+                     {-INF, INF, false, false, "a finite number (> -mu)"},
                      [](R& r) -> double& { return r.sim.material_params.lambda; }));
   t.push_back(number("c10", 0, "C10", "Mooney-Rivlin C10", positive(),
                      [](R& r) -> double& { return r.sim.material_params.c10; }));

@@ -1,5 +1,6 @@
 #include "shellcontract/options.hpp"
 
+#include <cmath>
 #include <utility>
 
 #include "material/registry.hpp"
@@ -11,6 +12,86 @@ namespace shellcontract {
 ConstraintOrder order_for(OrderChoice choice) {
   return choice == OrderChoice::Sequential ? ConstraintOrder::Sequential : ConstraintOrder::Coloured;
 }
+
+namespace {
+
+/// Under pbd a stiffness changes only the solver's skip floor, 1e-16 x the largest of mu, lambda,
+/// 2 (C10 + C01) and mu_A (src/pbd/solver.cpp), so "no effect" is said of the step: an option
+/// that scales the energies may still move which faces near rest are skipped, by rounding-sized
+/// amounts (review9 D6: --mu-a 100 against 1 moved a vertex by 2.7e-6).
+const char* const PBD_STEP_ONLY =
+    "has no effect on the PBD projection's step (only on which faces "
+    "near rest it skips): ";
+
+/// The options that scale the membrane's energy without changing its form: under pbd (math-spec
+/// 9.1(a)) the step E/|grad E|^2 grad E does not depend on them. --mu-a is checked with the other
+/// anisotropy options. One line each, for the options given.
+void pbd_scale_warnings(const RunOptions& r, std::vector<std::string>& w) {
+  const SimOptions& s = r.sim;
+  if (s.solver.kind != SolverKind::Pbd) return;
+  const std::string scale = "a PBD projection does not depend on the stiffness's scale";
+  const auto given = [&r](const char* field) { return r.given.count(field) > 0; };
+  const MaterialParams& m = s.material_params;
+  if (s.material == MaterialKind::MooneyRivlin) {
+    // `young`, `thickness` under Mooney-Rivlin are warned about below (its membrane does not
+    // read them). With C01 0 the energy is C10 times a fixed form; with both, only C01/C10 acts.
+    if (given("c10") && m.c01 == 0.0)
+      w.push_back(std::string("`c10` ") + PBD_STEP_ONLY + scale +
+                  ", and with `c01` 0 C10 only scales the Mooney-Rivlin energy");
+    else if (given("c10") && given("c01"))
+      w.push_back("`c10` and `c01` act under `solver` pbd by their ratio C01/C10 alone (here " +
+                  shortest_text(m.c01 / m.c10) + "): their common scale " + PBD_STEP_ONLY + scale);
+    return;
+  }
+  const bool shell_given = given("young") || given("thickness");
+  for (const char* field : {"young", "thickness"})
+    if (given(field))
+      w.push_back(std::string("`") + field + "` " + PBD_STEP_ONLY +
+                  "the membrane acts by lambda/mu alone, which `poisson` sets (`young` and "
+                  "`thickness` set the bending k_B only under `solver` xpbd)");
+  // `mu` and `lambda` beside `young` or `thickness` are warned about as set by those.
+  if (given("mu") && given("lambda") && !shell_given)
+    w.push_back("`mu` and `lambda` act under `solver` pbd by their ratio lambda/mu alone (here " +
+                shortest_text(m.lambda / m.mu) + "): their common scale " + PBD_STEP_ONLY + scale);
+}
+
+/// Under xpbd with the dihedral bending k_B is a stiffness that the shell material sets (young,
+/// thickness). Without one (`mu` or `lambda` given, or Mooney-Rivlin) it falls back to 0.01, the
+/// PBD-era multiplier: over 40,000 times the default shell's, so the same membrane keeps much
+/// more of its volume (review9 D3). Said, with the k_B that this membrane would have as a shell
+/// of the default thickness, so that `k_b` can give it.
+void fallback_k_b_warning(const RunOptions& r, std::vector<std::string>& w) {
+  const SimOptions& s = r.sim;
+  if (s.solver.kind != SolverKind::Xpbd || s.bending != BendingModel::Dihedral ||
+      r.given.count("k_b") || r.young.has_value())
+    return;
+  const MaterialParams& m = s.material_params;
+  const bool mooney = s.material == MaterialKind::MooneyRivlin;
+  // The small-strain shell of this membrane: plane stress gives mu = E h / (2 (1 + nu)) and
+  // lambda = E h nu / (1 - nu^2), so nu = lambda / (lambda + 2 mu) and E h = 2 mu (1 + nu);
+  // Mooney-Rivlin's membrane is incompressible (nu 1/2) with mu = 2 (C10 + C01).
+  const double mu = mooney ? 2.0 * (m.c10 + m.c01) : m.mu;
+  const double nu = mooney ? 0.5 : m.lambda / (m.lambda + 2.0 * m.mu);
+  const double h = DEFAULT_SHELL_THICKNESS;
+  const double young = 2.0 * mu * (1.0 + nu) / h;
+  // mu > 0 and mu + lambda > 0 (check_sim_options) hold nu in (-1, 1); a caller's fields that
+  // do not are refused by the checks after this.
+  if (!(young > 0.0 && std::isfinite(young) && nu > -1.0 && nu < 1.0)) return;
+  const double shell_k_b = dihedral_k_bending_from_young(young, nu, h);
+  const double default_k_b =
+      dihedral_k_bending_from_young(DEFAULT_SHELL_YOUNG, RunOptions{}.poisson, h);
+  std::string why = mooney ? "`material` mooney-rivlin has no shell material"
+                           : "`mu` or `lambda` given replaces the default shell material";
+  w.push_back("the bending k_B is " + shortest_text(s.solver.k_bending) +
+              " (`k_b`'s fallback: " + why + "; the default shell's k_B is " +
+              shortest_text(default_k_b) + "); this membrane as a shell of `thickness` " +
+              shortest_text(h) + " has k_B " + shortest_text(shell_k_b) + ": give `k_b` for it" +
+              (mooney ? ", or `young` and `thickness` (which set only k_B here)"
+                      : ", or the membrane by `young`, `thickness` and `poisson` instead of "
+                        "`mu` and `lambda`"));
+}
+
+}  // namespace
 
 std::vector<std::string> ineffective_options(const RunOptions& r) {
   const SimOptions& s = r.sim;
@@ -42,9 +123,11 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
         "measures the regions, it does not contract them");
   // With `inward` projection k_A = kappa_A mu_A sqrt(A) scales with mu_A as the energy does, so
   // the projection is the same (GoldenPaths.InwardProjectionUnderPbdDoesNotDependOnMuA).
-  check("mu_a", aniso && pbd,
-        "a PBD projection does not depend on the stiffness (mu_A acts with `solver` xpbd; with "
-        "`inward` projection k_A scales with it as the energy does)");
+  if (aniso && pbd && r.given.count("mu_a"))
+    w.push_back(std::string("`mu_a` ") + PBD_STEP_ONLY +
+                "a PBD projection does not depend on the stiffness (mu_A acts with `solver` xpbd; "
+                "with `inward` projection k_A scales with it as the energy does)");
+  pbd_scale_warnings(r, w);
   for (const char* name : {"mu_a", "fiber", "inversion_aware"})
     check(name, !aniso, "no `aniso` energy is chosen");
   check("fiber_target", s.solver.aniso != AnisoKind::ActiveFiber,
@@ -60,6 +143,7 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   for (const char* name : {"mu", "lambda"})
     check(name, shell_given && s.material != MaterialKind::MooneyRivlin,
           "`young` and `thickness` set mu and lambda (leave both out to give mu and lambda)");
+  fallback_k_b_warning(r, w);
   // Mooney-Rivlin's membrane reads only c10 and c01: from the shell material it takes at most the
   // bending k_B (xpbd, dihedral bending, `k_b` not given), never mu and lambda.
   if (s.material == MaterialKind::MooneyRivlin && shell_given) {

@@ -44,7 +44,18 @@ void check_sim_options_impl(const SimOptions& o) {
                                     {"c10", m.c10}, {"c01", m.c01}, {"mu_a", m.mu_aniso},
                                     {"k_b", o.solver.k_bending}, {"k_a", o.anisotropy.kappa_a}})
     if (std::abs(value) > MAX_STIFFNESS)
-      fail(std::string("`") + name + "` must be at most " + shortest_text(MAX_STIFFNESS));
+      fail(std::string("`") + name + "` must be at most " + shortest_text(MAX_STIFFNESS) +
+           (value < 0.0 ? " in size" : ""));
+  // The membrane energy mu tr E^2 + lambda/2 tr^2 E (and the corotated and linear ones, the same
+  // form in their strain) is positive definite for mu > 0 and mu + lambda > 0: lambda / mu in
+  // (-1, inf), which holds the plane-stress lambda / mu = 2 nu / (1 - nu) of every Poisson ratio
+  // in (-1, 1/2]. At or below -mu a uniform stretch lowers the energy and the constraint
+  // C = sqrt(2 E) has no real value.
+  if (!(m.mu + m.lambda > 0.0))
+    fail(
+        "`lambda` must be greater than -mu (mu + lambda > 0, as a Poisson ratio above -1 gives); "
+        "got mu " +
+        shortest_text(m.mu) + ", lambda " + shortest_text(m.lambda));
   if (!(o.dt >= MIN_DT) || !std::isfinite(o.dt))
     fail("`dt` must be finite and at least " + shortest_text(MIN_DT));
   if (o.frames < 0) fail("`frames` must be >= 0");

@@ -87,9 +87,15 @@ namespace {
 /// the ramp a run of fewer than twice its frames shortens (target_ramp_used); and `regions`,
 /// which --region-at and --region-weights set themselves (Auto, Weights) and which a run given
 /// beside them refuses: recorded as not given, their own entries holding the points and the
-/// weights' file.
+/// weights' file. The membrane's parameters that the material does not read are recorded empty
+/// (as `young` and `thickness` are where no shell material ran): mu and lambda under
+/// Mooney-Rivlin, c10 and c01 under the others.
 std::string summary_value(const OptionSpec& spec, const RunOptions& options) {
   if (spec.name == "target-ramp") return std::to_string(target_ramp_used(options.sim));
+  const bool mooney = options.sim.material == MaterialKind::MooneyRivlin;
+  if ((mooney && (spec.name == "mu" || spec.name == "lambda")) ||
+      (!mooney && (spec.name == "c10" || spec.name == "c01")))
+    return {};
   if (spec.name == "regions" &&
       (!options.region_points.empty() || options.regions == RegionSource::Weights))
     return {};

@@ -63,13 +63,56 @@ TEST_F(CliIgnoredOptions, EachOptionWithoutEffectIsAWarningNamingIt) {
       // Before: no word under --inward projection, where k_A scales with mu_A as the energy does
       // and the positions are the same to the bit
       // (GoldenPaths.InwardProjectionUnderPbdDoesNotDependOnMuA).
+      // The step alone: mu_A still enters the solver's skip floor (review9 D6: --mu-a 100
+      // against 1 moved a vertex by 2.7e-6), which "no effect" denied.
       {{"--aniso", "arap", "--solver", "pbd", "--inward", "projection", "--mu-a", "4"},
-       "--mu-a has no effect: a PBD projection does not depend on the stiffness"},
+       "--mu-a has no effect on the PBD projection's step (only on which faces near rest it "
+       "skips): a PBD projection does not depend on the stiffness"},
   };
   for (const auto& c : cases) {
     const RunResult r = run(c.args);
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_NE(r.output.find("warning: " + c.warning), std::string::npos) << c.args[0] << ": " << r.output;
+  }
+}
+
+// Before: under --solver pbd, --young 1e6 against 1000, --thickness, Mooney-Rivlin's --c10 with
+// --c01 0, and --mu 100 --lambda 100 against 1 1 gave the same result to rounding, with no word
+// (review9 D6), while --mu-a was warned about. Each is one line, only when given.
+TEST_F(CliIgnoredOptions, AStiffnessScaleUnderPbdIsOneWarningEach) {
+  const std::string step = " has no effect on the PBD projection's step";
+  const struct {
+    std::vector<std::string> args;
+    std::string warning;
+  } cases[] = {
+      {{"--young", "1e6"}, "--young" + step},
+      {{"--thickness", "0.05"}, "--thickness" + step},
+      {{"--material", "mooney-rivlin", "--c10", "50"}, "--c10" + step},
+      {{"--mu", "100", "--lambda", "100"},
+       "--mu and --lambda act under --solver pbd by their ratio"},
+      {{"--material", "mooney-rivlin", "--c10", "5", "--c01", "1"},
+       "--c10 and --c01 act under --solver pbd by their ratio"},
+  };
+  for (const auto& c : cases) {
+    std::vector<std::string> args{"--solver", "pbd"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    const std::size_t at = r.output.find("warning: " + c.warning);
+    EXPECT_NE(at, std::string::npos) << c.args[0] << ": " << r.output;
+    EXPECT_EQ(r.output.find(c.warning, at + c.warning.size()), std::string::npos)
+        << "twice: " << r.output;
+  }
+  // Where they act: under xpbd, and options that change lambda/mu or C01/C10 under pbd.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--young", "1e6", "--thickness", "0.05"},
+        std::vector<std::string>{"--solver", "pbd", "--mu", "2"},
+        std::vector<std::string>{"--solver", "pbd", "--lambda", "0.5"},
+        std::vector<std::string>{"--solver", "pbd", "--material", "mooney-rivlin", "--c01", "1"}}) {
+    const RunResult r = run(args);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("PBD projection"), std::string::npos) << args[1] << ": " << r.output;
+    EXPECT_EQ(r.output.find("under --solver pbd by their ratio"), std::string::npos) << r.output;
   }
 }
 

@@ -168,6 +168,8 @@ TEST(RunPlan, FieldsWrittenOutsideTheTableAreHeldToItsRanges) {
       {"mu", [](RunOptions& o) { o.sim.material_params.mu = -1.0; }},
       {"mu", [&](RunOptions& o) { o.sim.material_params.mu = nan; }},
       {"lambda", [&](RunOptions& o) { o.sim.material_params.lambda = nan; }},
+      // Negative down to -mu is a material (a Poisson ratio above -1); at -mu it is not.
+      {"lambda", [](RunOptions& o) { o.sim.material_params.lambda = -1.0; }},
       {"c10", [](RunOptions& o) { o.sim.material_params.c10 = -1.0; }},
       {"c01", [&](RunOptions& o) { o.sim.material_params.c01 = nan; }},
       {"density", [](RunOptions& o) { o.sim.density = INFINITY; }},

@@ -1,0 +1,174 @@
+// The membrane's options that changed the model without a word (review9 D3, D5): under xpbd,
+// --mu/--lambda or Mooney-Rivlin turn the default shell material off and the bending k_B fell
+// back to 0.01, over 40,000 times the shell's, silently; a negative --poisson recorded in the
+// summary a lambda that --lambda refused; and a Mooney-Rivlin run recorded a mu and lambda it did
+// not use.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "support/cli_runner.hpp"
+#include "test_paths.hpp"
+
+namespace shellcontract {
+namespace {
+
+namespace fs = std::filesystem;
+using test::run_cli;
+using test::RunResult;
+
+std::string file_text(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+/// The value of "key": "..." in the summary's "options" object.
+std::string summary_option(const fs::path& summary, const std::string& key) {
+  const std::string text = file_text(summary);
+  const std::size_t options = text.find("\"options\"");
+  const std::size_t at = text.find("\"" + key + "\": \"", options);
+  if (options == std::string::npos || at == std::string::npos) return "(missing)";
+  const std::size_t begin = at + key.size() + 5;
+  return text.substr(begin, text.find('"', begin) - begin);
+}
+
+const char* const FALLBACK = "the bending k_B is 0.01";
+
+class MaterialFallback : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
+    dir_ = fs::temp_directory_path() /
+           ("shellcontract_material_fallback_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+  /// Runs ico2 for 3 frames with `extra`, writing `name`.off and `name`.json.
+  RunResult run(const std::string& name, const std::vector<std::string>& extra) {
+    std::vector<std::string> args{"run",
+                                  std::string(test::MESH_DIR) + "/ico2.off",
+                                  "-o",
+                                  (dir_ / (name + ".off")).string(),
+                                  "-n",
+                                  "3",
+                                  "-q",
+                                  "--summary",
+                                  (dir_ / (name + ".json")).string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args);
+  }
+  std::string bytes(const std::string& name) { return file_text(dir_ / (name + ".off")); }
+  fs::path dir_;
+};
+
+TEST_F(MaterialFallback, TheFallbackBendingIsAWarningThatGivesTheShellsKb) {
+  const RunResult shell = run("shell", {});
+  ASSERT_EQ(shell.exit_code, 0) << shell.output;
+  EXPECT_EQ(shell.output.find("k_B"), std::string::npos) << "the default run: " << shell.output;
+  const std::string mu = summary_option(dir_ / "shell.json", "mu");
+  const std::string lambda = summary_option(dir_ / "shell.json", "lambda");
+  const std::string k_b = summary_option(dir_ / "shell.json", "k-b");
+
+  // The default shell's membrane given as mu and lambda: on stderr and in the summary.
+  const RunResult lame = run("lame", {"--mu", mu, "--lambda", lambda});
+  ASSERT_EQ(lame.exit_code, 0) << lame.output;
+  const std::size_t at = lame.output.find(std::string("warning: ") + FALLBACK);
+  ASSERT_NE(at, std::string::npos) << lame.output;
+  EXPECT_NE(file_text(dir_ / "lame.json").find(FALLBACK), std::string::npos);
+  // The k_B it names for this membrane as a shell is the default shell's: given, it is the
+  // default run again.
+  const std::string named = "has k_B ";
+  const std::size_t value = lame.output.find(named, at);
+  ASSERT_NE(value, std::string::npos) << lame.output;
+  const std::string advised =
+      lame.output.substr(value + named.size(), lame.output.find(':', value) - value - named.size());
+  EXPECT_NEAR(std::strtod(advised.c_str(), nullptr), std::strtod(k_b.c_str(), nullptr),
+              1e-12 * std::strtod(k_b.c_str(), nullptr))
+      << lame.output;
+  const RunResult again = run("again", {"--mu", mu, "--lambda", lambda, "--k-b", advised});
+  ASSERT_EQ(again.exit_code, 0) << again.output;
+  EXPECT_EQ(again.output.find("k_B"), std::string::npos) << again.output;
+  EXPECT_EQ(bytes("again"), bytes("shell"));
+
+  const RunResult mooney = run("mooney", {"--material", "mooney-rivlin"});
+  ASSERT_EQ(mooney.exit_code, 0) << mooney.output;
+  EXPECT_NE(mooney.output.find(std::string("warning: ") + FALLBACK), std::string::npos)
+      << mooney.output;
+  // No fallback: k_B given, the shell's k_B (Mooney-Rivlin with --young and --thickness), pbd
+  // (k_B a multiplier there), or no dihedral bending.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--mu", "2", "--k-b", "1e-6"},
+        std::vector<std::string>{"--material", "mooney-rivlin", "--young", "1000", "--thickness",
+                                 "0.002"},
+        std::vector<std::string>{"--solver", "pbd", "--mu", "2"},
+        std::vector<std::string>{"--mu", "2", "--bending", "none"}}) {
+    const RunResult r = run("none", args);
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find(FALLBACK), std::string::npos) << args[0] << ": " << r.output;
+  }
+}
+
+TEST_F(MaterialFallback, ANegativePoissonRatiosLambdaIsTakenBack) {
+  const RunResult a = run("a", {"--poisson", "-0.5"});
+  ASSERT_EQ(a.exit_code, 0) << a.output;
+  std::vector<std::string> recorded;
+  for (const char* key : {"young", "thickness", "poisson", "mu", "lambda"}) {
+    recorded.push_back(std::string("--") + key);
+    recorded.push_back(summary_option(dir_ / "a.json", key));
+  }
+  ASSERT_LT(std::strtod(recorded.back().c_str(), nullptr), 0.0) << "lambda " << recorded.back();
+  // The recorded options rerun the run (mu and lambda are the shell's: a warning says so).
+  const RunResult b = run("b", recorded);
+  ASSERT_EQ(b.exit_code, 0) << b.output;
+  EXPECT_EQ(bytes("b"), bytes("a"));
+  EXPECT_EQ(summary_option(dir_ / "b.json", "lambda"), recorded.back());
+  // And on their own, a membrane of its own.
+  const RunResult c = run("c", {"--solver", "pbd", "--mu", recorded[7], "--lambda", recorded[9]});
+  EXPECT_EQ(c.exit_code, 0) << c.output;
+}
+
+TEST_F(MaterialFallback, ALambdaAtOrBelowMinusMuIsRefused) {
+  // mu + lambda > 0 is the membrane's positive definiteness (Poisson ratio above -1).
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"--mu", "2", "--lambda", "-2"},
+        std::vector<std::string>{"--lambda", "-1"},  // mu 1 unless given
+        std::vector<std::string>{"--solver", "pbd", "--mu", "0.5", "--lambda", "-3"}}) {
+    const RunResult r = run("bad", args);
+    EXPECT_EQ(r.exit_code, 1) << r.output;
+    EXPECT_NE(r.output.find("--lambda must be greater than -mu"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.off"));
+  }
+  const RunResult text = run("bad", {"--lambda", "nan"});
+  EXPECT_EQ(text.exit_code, 1) << text.output;
+  EXPECT_NE(text.output.find("--lambda: 'nan' is not a finite number"), std::string::npos)
+      << text.output;
+  const RunResult inside = run("inside", {"--solver", "pbd", "--mu", "2", "--lambda", "-1.9"});
+  EXPECT_EQ(inside.exit_code, 0) << inside.output;
+}
+
+TEST_F(MaterialFallback, TheSummaryRecordsOnlyTheMembraneParametersThatRan) {
+  const RunResult mooney = run("mooney", {"--material", "mooney-rivlin", "--c10", "0.4"});
+  ASSERT_EQ(mooney.exit_code, 0) << mooney.output;
+  EXPECT_EQ(summary_option(dir_ / "mooney.json", "mu"), "");
+  EXPECT_EQ(summary_option(dir_ / "mooney.json", "lambda"), "");
+  EXPECT_EQ(summary_option(dir_ / "mooney.json", "c10"), "0.4");
+  const RunResult stvk = run("stvk", {"--solver", "pbd"});
+  ASSERT_EQ(stvk.exit_code, 0) << stvk.output;
+  EXPECT_EQ(summary_option(dir_ / "stvk.json", "mu"), "1");
+  EXPECT_EQ(summary_option(dir_ / "stvk.json", "c10"), "");
+  EXPECT_EQ(summary_option(dir_ / "stvk.json", "c01"), "");
+}
+
+}  // namespace
+}  // namespace shellcontract
