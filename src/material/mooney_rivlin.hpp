@@ -29,6 +29,18 @@ inline constexpr double MOONEY_RIVLIN_MIN_ABS_J = 1e-6;
 /// |J| = J0, and P keeps pushing |J| up instead of blowing up or vanishing. At J = 0 exactly
 /// sign(J) = +1 is used (psi has a kink there; the subgradient choice is arbitrary).
 ///
+/// The code evaluates the same psi and P without cancellation (outside the clamp). The form
+/// above adds and subtracts terms of order C10 that cancel at rest, which leaves rounding noise
+/// of ~1e-16 C10 in psi where the energy of a rigid motion is ~1e-32 C10: enough to pass the PBD
+/// solver's energy floor and move an unloaded shell. With u = |J|, eta = sign(J) and
+///   Delta = I_C - 2 u = (F11 - eta F22)^2 + (F12 + eta F21)^2 = |F - eta cof F|^2 / 2,
+/// (and u^2 + 2/u - 3 = (u - 1)^2 (u + 2) / u, 2 u - 3 + 1/u^2 = (u - 1)^2 (2 u + 1) / u^2)
+///   psi = C10 (Delta + (u - 1)^2 (2 u + 1) / u^2) + C01 (Delta / u^2 + (u - 1)^2 (u + 2) / u),
+///   P   = 2 (C10 + C01 / u^2) (F - eta cof F)
+///         + 2 eta / u^3 (C10 (u^3 - 1) + C01 ((u^3 - 1) u - Delta)) cof F
+/// (math-spec 6.4, "Evaluation"): psi is a sum of non-negative terms, each vanishing at rest, so
+/// a rigid motion gives ~1e-32 C10 (as StVK's Green strain does) and F = I exactly gives 0.
+///
 /// No C-form psi_second_pk() (the frame-free hook Stvk offers the PBD kernel): under the clamp
 /// dpsi/d(det C) ~ 1/(J0^3 |J|) diverges as det C -> 0 while P = F S stays finite, so S is
 /// unusable exactly where the C-path would be needed (collapsed triangles). The F-form is exact
@@ -45,22 +57,46 @@ class MooneyRivlin final : public MembraneMaterial {
 
   double psi(const Mat2& F, const ElementMaterialData&) const override {
     const double J = F.determinant();
-    const double IC = F.squaredNorm();
-    const double g = barrier(J);
-    return c10_ * (IC + g - 3.0) + c01_ * (J * J + IC * g - 3.0);
+    if (std::abs(J) < MOONEY_RIVLIN_MIN_ABS_J) {  // the clamp: far from rest, no cancellation
+      const double IC = F.squaredNorm();
+      const double g = barrier(J);
+      return c10_ * (IC + g - 3.0) + c01_ * (J * J + IC * g - 3.0);
+    }
+    const Split v = split(F, J);
+    const double m2 = (v.u - 1.0) * (v.u - 1.0);
+    return c10_ * (v.delta + m2 * (2.0 * v.u + 1.0) / (v.u * v.u)) +
+           c01_ * (v.delta / (v.u * v.u) + m2 * (v.u + 2.0) / v.u);
   }
 
   Mat2 pk1(const Mat2& F, const ElementMaterialData&) const override {
     const double J = F.determinant();
-    const double IC = F.squaredNorm();
-    const double g = barrier(J);
-    const double dg = barrier_derivative(J);
     Mat2 cof;
     cof << F(1, 1), -F(1, 0), -F(0, 1), F(0, 0);
-    return 2.0 * (c10_ + c01_ * g) * F + (c10_ * dg + 2.0 * c01_ * J + c01_ * IC * dg) * cof;
+    if (std::abs(J) < MOONEY_RIVLIN_MIN_ABS_J) {
+      const double IC = F.squaredNorm();
+      const double g = barrier(J);
+      const double dg = barrier_derivative(J);
+      return 2.0 * (c10_ + c01_ * g) * F + (c10_ * dg + 2.0 * c01_ * J + c01_ * IC * dg) * cof;
+    }
+    const Split v = split(F, J);
+    const double u2 = v.u * v.u;
+    const double q = (v.u - 1.0) * (u2 + v.u + 1.0);  // u^3 - 1
+    const double a = 2.0 * (c10_ + c01_ / u2);
+    const double b = 2.0 * v.eta / (u2 * v.u) * (c10_ * q + c01_ * (q * v.u - v.delta));
+    return a * (F - v.eta * cof) + b * cof;
   }
 
  private:
+  /// What the cancellation-free form needs (|J| >= J0): u = |J|, eta = sign(J) and
+  /// Delta = I_C - 2 u as a sum of squares.
+  struct Split {
+    double u, eta, delta;
+  };
+  static Split split(const Mat2& F, double J) {
+    const double eta = J < 0.0 ? -1.0 : 1.0;
+    const double d0 = F(0, 0) - eta * F(1, 1), d1 = F(0, 1) + eta * F(1, 0);
+    return {std::abs(J), eta, d0 * d0 + d1 * d1};
+  }
   /// g(J) = J^-2, continued linearly in |J| below J0 (see class comment).
   static double barrier(double J) {
     constexpr double J0 = MOONEY_RIVLIN_MIN_ABS_J;

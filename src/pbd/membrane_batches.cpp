@@ -87,36 +87,52 @@ struct CorotatedLanes {
   }
 };
 
-/// MooneyRivlin::psi and pk1 (math-spec 6.4, its |J| clamp) with F(1, 0) = 0.
+/// MooneyRivlin::psi and pk1 (math-spec 6.4, its |J| clamp) with F(1, 0) = 0: the
+/// cancellation-free form of mooney_rivlin.hpp, and the written form for the lanes in the clamp.
 struct MooneyRivlinLanes {
   V c10, c01;
   static constexpr bool frame_dependent = false;
   SC_AVX2_INLINE V operator()(const UpperF& F, LaneP& P) const {
-    const V two = splat(2.0), three = splat(3.0), zero = _mm256_setzero_pd();
+    const V one = splat(1.0), two = splat(2.0), zero = _mm256_setzero_pd();
     constexpr double J0 = MOONEY_RIVLIN_MIN_ABS_J;
     const V J = F.f00 * F.f11;
-    const V IC = F.f00 * F.f00 + F.f01 * F.f01 + F.f11 * F.f11;
-    const V abs_j = _mm256_andnot_pd(splat(-0.0), J);
-    const V barrier_side = _mm256_cmp_pd(abs_j, splat(J0), _CMP_GE_OQ);
-    // g = J^-2 and dg = -2 J^-3 for |J| >= J0, else the linear continuation (sign(0) = +1),
-    // computed only when a lane needs it (a nearly collapsed triangle).
-    V g = splat(1.0) / (J * J);
-    V dg = splat(-2.0) / (J * J * J);
-    if (_mm256_movemask_pd(barrier_side) != 0xF) {
-      const V g_lin = splat(3.0 / (J0 * J0)) - two * abs_j / splat(J0 * J0 * J0);
-      const V dg_lin = _mm256_blendv_pd(splat(-2.0 / (J0 * J0 * J0)), splat(2.0 / (J0 * J0 * J0)),
-                                        _mm256_cmp_pd(J, zero, _CMP_LT_OQ));
-      g = _mm256_blendv_pd(g_lin, g, barrier_side);
-      dg = _mm256_blendv_pd(dg_lin, dg, barrier_side);
-    }
-    const V a = two * (c10 + c01 * g);
-    const V b = c10 * dg + two * c01 * J + c01 * IC * dg;
-    // P = a F + b cof F, cof F = [[F11, -F10], [-F01, F00]].
-    P.p00 = a * F.f00 + b * F.f11;
+    const V u = _mm256_andnot_pd(splat(-0.0), J);
+    const V eta = _mm256_blendv_pd(one, splat(-1.0), _mm256_cmp_pd(J, zero, _CMP_LT_OQ));
+    // Delta = I_C - 2 u = t^2 + F01^2; F - eta cof F = [[t, F01], [eta F01, -eta t]] and
+    // cof F = [[F11, 0], [-F01, F00]].
+    const V t = F.f00 - eta * F.f11;
+    const V delta = t * t + F.f01 * F.f01;
+    const V inv_u = one / u;
+    const V inv_u2 = inv_u * inv_u;
+    const V m = u - one;
+    const V q = m * (u * u + u + one);  // u^3 - 1
+    V a = two * (c10 + c01 * inv_u2);
+    V b = (two * eta * inv_u2 * inv_u) * (c10 * q + c01 * (q * u - delta));
+    P.p00 = a * t + b * F.f11;
     P.p01 = a * F.f01;
-    P.p10 = zero - b * F.f01;
-    P.p11 = a * F.f11 + b * F.f00;
-    return c10 * (IC + g - three) + c01 * (J * J + IC * g - three);
+    P.p10 = (a * eta - b) * F.f01;
+    P.p11 = b * F.f00 - a * eta * t;
+    V psi = c10 * (delta + m * m * (two * u + one) * inv_u2) +
+            c01 * (delta * inv_u2 + m * m * (u + two) * inv_u);
+    const V barrier_side = _mm256_cmp_pd(u, splat(J0), _CMP_GE_OQ);
+    if (_mm256_movemask_pd(barrier_side) != 0xF) {
+      // A lane in the clamp (a nearly collapsed triangle): the written form with the linear
+      // continuation g of J^-2 (sign(0) = +1), as MooneyRivlin does there.
+      const V IC = F.f00 * F.f00 + F.f01 * F.f01 + F.f11 * F.f11;
+      const V g = splat(3.0 / (J0 * J0)) - two * u / splat(J0 * J0 * J0);
+      const V dg = _mm256_blendv_pd(splat(-2.0 / (J0 * J0 * J0)), splat(2.0 / (J0 * J0 * J0)),
+                                    _mm256_cmp_pd(J, zero, _CMP_LT_OQ));
+      a = two * (c10 + c01 * g);
+      b = c10 * dg + two * c01 * J + c01 * IC * dg;
+      // P = a F + b cof F.
+      P.p00 = _mm256_blendv_pd(a * F.f00 + b * F.f11, P.p00, barrier_side);
+      P.p01 = _mm256_blendv_pd(a * F.f01, P.p01, barrier_side);
+      P.p10 = _mm256_blendv_pd(zero - b * F.f01, P.p10, barrier_side);
+      P.p11 = _mm256_blendv_pd(a * F.f11 + b * F.f00, P.p11, barrier_side);
+      psi = _mm256_blendv_pd(c10 * (IC + g - splat(3.0)) + c01 * (J * J + IC * g - splat(3.0)), psi,
+                             barrier_side);
+    }
+    return psi;
   }
 };
 

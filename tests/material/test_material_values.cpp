@@ -4,11 +4,15 @@
 // polar rho -> 0, active-fibre gamma range).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <random>
+#include <string>
 #include <vector>
 
+#include "fem/triangle_element.hpp"
 #include "material/active_fiber.hpp"
 #include "material/anisotropic_arap.hpp"
 #include "material/anisotropic_sqrt.hpp"
@@ -236,6 +240,101 @@ TEST(SmallStrain, MooneyRivlinIsLinearElasticityWithMu2C10C01AndLambdaTwoMu) {
   const auto [g3, s3] = small_strain_gap(MooneyRivlin(PARAMS), Linear(wrong), 1e-3);
   const auto [g4, s4] = small_strain_gap(MooneyRivlin(PARAMS), Linear(wrong), 1e-4);
   EXPECT_GT(g4 / g3, 0.05) << "gaps " << g3 << ", " << g4;
+}
+
+// ------------------------------------------------------------ Mooney-Rivlin at rest and near it
+
+TEST(MooneyRivlinRest, RigidMotionsOfATriangleHaveNoEnergyBeyondRoundingSquared) {
+  // A triangle moved rigidly has Fbar = I up to the rounding of its frame (math-spec 4.3). Its
+  // energy must be ~eps^2 C10, as StVK's Green strain gives, not the ~eps C10 of the written
+  // form's O(1) terms cancelling: PBD skips a constraint only below 1e-16 of the stiffness, and
+  // its scale-free step moves a triangle with more energy than that. psi is even in J, so the
+  // mirrored triangle (orientation s = -1) is at rest too.
+  const MooneyRivlin mr(PARAMS);
+  const Stvk stvk(PARAMS);  // the control: C-based, no cancellation
+  const ElementMaterialData d;
+  EXPECT_EQ(mr.psi(Mat2::Identity(), d), 0.0);
+  EXPECT_EQ(mr.pk1(Mat2::Identity(), d), Mat2::Zero());
+  std::mt19937 rng(61);
+  std::uniform_real_distribution<double> uni(-1.0, 1.0);
+  auto point = [&] { return Vec3(uni(rng), uni(rng), uni(rng)); };
+  // psi of Fbar = I + e (e the frame's rounding) is second order in e: at small strain
+  // psi = mu |eps|^2 + mu tr(eps)^2 with mu = 2 (C10 + C01), at most 16 (C10 + C01) max|e|^2.
+  const double c = PARAMS.c10 + PARAMS.c01;
+  auto check = [&](const Vec3& x1, const Vec3& x2, const Vec3& x3, const Mat3& Q, const Vec3& t,
+                   double absolute) {
+    const TriangleRest rest = triangle_rest(x1, x2, x3);
+    ASSERT_FALSE(rest.degenerate);
+    for (double s : {1.0, -1.0}) {
+      TriangleFrame fr;
+      ASSERT_TRUE(
+          triangle_frame(Q * x1 + t, Q * x2 + t, Q * x3 + t, rest.Dm_inv, rest.area, s, fr));
+      SCOPED_TRACE("Fbar = " + matrix_string(fr.F));
+      const double e = (fr.F - Vec2(1.0, s).asDiagonal().toDenseMatrix()).cwiseAbs().maxCoeff();
+      const double psi = mr.psi(fr.F, d);
+      EXPECT_GE(psi, 0.0);
+      EXPECT_LE(psi, 32.0 * c * e * e);
+      EXPECT_LE(psi, absolute);
+      EXPECT_LE(mr.pk1(fr.F, d).norm(), 1e-13 * PARAMS.c10);
+      EXPECT_LE(std::abs(stvk.psi(fr.F, d)), 32.0 * (PARAMS.mu + PARAMS.lambda) * e * e);
+    }
+  };
+  // A unit equilateral triangle turned about the origin: Fbar within a few ulps of I, psi below
+  // 1e-29 C10 (the written form gives ~1e-16 C10).
+  const Vec3 e1(1.0, 0.0, 0.0), e2(0.5, std::sqrt(0.75), 0.0), o = Vec3::Zero();
+  for (int k = 0; k < 50; ++k) {
+    const Mat3 Q = Eigen::AngleAxisd(3.0 * uni(rng), point().normalized()).toRotationMatrix();
+    check(e1, e2, o, Q, o, 1e-29 * PARAMS.c10);
+  }
+  // Random triangles, turned and moved: their frames round more (long edges, coordinates ~10).
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 x1 = point(), x2 = point(), x3 = point();
+    if (triangle_rest(x1, x2, x3).area < 0.05) continue;
+    const Mat3 Q = Eigen::AngleAxisd(3.0 * uni(rng), point().normalized()).toRotationMatrix();
+    check(x1, x2, x3, Q, 10.0 * point(), 1e-27 * PARAMS.c10);
+  }
+}
+
+TEST(MooneyRivlinRest, EnergyEqualsClosedFormsToRoundingFromTinyToLargeStrains) {
+  // Strains whose energy has a closed form with no cancellation in it (F and det F exact): the
+  // energy must hold to rounding relative to its own size however small the strain (the written
+  // form of math-spec 6.4 loses everything below ~1e-8), and unchanged at large strains.
+  const MooneyRivlin mr(PARAMS);
+  const ElementMaterialData d;
+  const double c = PARAMS.c10 + PARAMS.c01;
+  auto expect_rel = [](double got, double expected, const std::string& what) {
+    EXPECT_LE(std::abs(got - expected), 1e-14 * expected)
+        << what << ": " << got << " vs " << expected;
+  };
+  // Simple shear [[1, g], [0, 1]] (and its transpose): J = 1, I_C = 2 + g^2, psi = (C10 + C01) g^2.
+  for (double g : {1e-9, -3e-7, 1e-4, 0.02, -0.5, 3.0}) {
+    Mat2 F = Mat2::Identity();
+    F(0, 1) = g;
+    expect_rel(mr.psi(F, d), c * g * g, "shear " + std::to_string(g));
+    expect_rel(mr.psi(Mat2(F.transpose()), d), c * g * g, "shear^T " + std::to_string(g));
+  }
+  // Uniaxial diag(1 + h, 1), either axis, either sign of J (math-spec 13):
+  // psi = (C10 + C01) (l - 1/l)^2 = (C10 + C01) (h (2 + h) / l)^2 with l = |1 + h|.
+  for (double h :
+       {std::ldexp(1.0, -30), -std::ldexp(1.0, -30), std::ldexp(1.0, -15), 0.125, -0.5, 1.5}) {
+    const double l = 1.0 + h;
+    const double expected = c * (h * (2.0 + h) / l) * (h * (2.0 + h) / l);
+    for (double sgn : {1.0, -1.0}) {
+      expect_rel(mr.psi(Mat2(Vec2(sgn * l, 1.0).asDiagonal()), d), expected,
+                 "uniaxial " + std::to_string(h));
+      expect_rel(mr.psi(Mat2(Vec2(1.0, sgn * l).asDiagonal()), d), expected,
+                 "uniaxial " + std::to_string(h));
+    }
+  }
+  // Equibiaxial l I, with u = l^2 exact for these h:
+  //   psi = C10 (2 u + u^-2 - 3) + C01 (u^2 + 2 / u - 3)
+  //       = C10 (u - 1)^2 (2 u + 1) / u^2 + C01 (u - 1)^2 (u + 2) / u, u - 1 = h (2 + h).
+  for (double h : {std::ldexp(1.0, -26), -std::ldexp(1.0, -20), 0.25, -0.25, 1.0}) {
+    const double l = 1.0 + h, u = l * l, m = h * (2.0 + h);
+    const double expected =
+        PARAMS.c10 * m * m * (2.0 * u + 1.0) / (u * u) + PARAMS.c01 * m * m * (u + 2.0) / u;
+    expect_rel(mr.psi(Mat2(l * Mat2::Identity()), d), expected, "equibiaxial " + std::to_string(h));
+  }
 }
 
 // ------------------------------------------------------------ Mooney-Rivlin clamp (math-spec 11)
