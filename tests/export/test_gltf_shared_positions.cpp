@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "export/gltf_reader.hpp"
@@ -45,8 +46,9 @@ tinygltf::Model load(const std::string& path, bool binary) {
 /// The icosphere as `normal_of.size()` primitives on one POSITION accessor
 /// (shared_position_parts), written as .glb or .gltf.
 std::string split_sphere(const ScratchDir& dir, const std::string& name,
-                         const std::vector<int>& normal_of, bool binary) {
-  const test::GltfParts parts = test::shared_position_parts(test::icosphere(2), normal_of);
+                         const std::vector<int>& normal_of, bool binary, bool materials = false) {
+  const test::GltfParts parts =
+      test::shared_position_parts(test::icosphere(2), normal_of, materials);
   return write(dir.file(name + (binary ? ".glb" : ".gltf")),
                binary ? test::glb_bytes(parts) : test::gltf_text(parts));
 }
@@ -126,6 +128,24 @@ TEST(GltfSharedPositions, PrimitivesWithTheirOwnNormalsAreEachWritten) {
           << "primitive " << p << " element " << e;
     }
   }
+}
+
+TEST(GltfSharedPositions, EachFaceKeepsItsPrimitivesMaterialInTheAnimation) {
+  // Three primitives, one material each, on one POSITION accessor: a vertex that two of them
+  // draw names the first as its source, but every face is its own primitive's, and the --gltf
+  // animation has one primitive per material with that material's faces (107, 107, 106).
+  ScratchDir dir("gltf_shared_materials");
+  const std::string in = split_sphere(dir, "materials", {-1, -1, -1}, true, true);
+  const auto r = test::run_cli(
+      {"run", in, "-o", dir.file("out.off"), "--gltf", dir.file("anim.glb"), "-n", "8", "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const tinygltf::Model b = load(dir.file("anim.glb"), true);
+  std::vector<std::pair<int, std::size_t>> drawn;
+  for (const tinygltf::Mesh& m : b.meshes)
+    for (const tinygltf::Primitive& p : m.primitives)
+      drawn.emplace_back(p.material, b.accessors.at(static_cast<std::size_t>(p.indices)).count / 3);
+  const std::vector<std::pair<int, std::size_t>> want = {{0, 107}, {1, 107}, {2, 106}};
+  EXPECT_EQ(drawn, want);
 }
 
 }  // namespace

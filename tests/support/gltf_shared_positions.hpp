@@ -18,8 +18,9 @@ namespace shellcontract::test {
 /// draws the p-th of that many consecutive face slices (the first ones one face longer where the
 /// faces do not divide evenly). normal_of[p] >= 0: primitive p's NORMAL is accessor
 /// 1 + normal_of[p], one per distinct value, each holding every vertex's unit position (the
-/// sphere's normal); -1: no NORMAL.
-inline GltfParts shared_position_parts(const TriMesh& mesh, const std::vector<int>& normal_of) {
+/// sphere's normal); -1: no NORMAL. `materials`: primitive p has material p, named "m<p>".
+inline GltfParts shared_position_parts(const TriMesh& mesh, const std::vector<int>& normal_of,
+                                       bool materials = false) {
   std::string bin, views, accessors, prims;
   int next = 0;
   const auto add = [&](std::size_t offset, std::size_t count, int component, const char* type,
@@ -54,6 +55,7 @@ inline GltfParts shared_position_parts(const TriMesh& mesh, const std::vector<in
     }
     add(at, nv, 5126, "VEC3");
   }
+  std::string material_list;
   const std::size_t k = normal_of.size(), nf = static_cast<std::size_t>(mesh.faces.rows());
   for (std::size_t p = 0, face = 0; p < k; ++p) {
     const std::size_t count = nf / k + (p < nf % k ? 1 : 0), at = bin.size();
@@ -66,7 +68,10 @@ inline GltfParts shared_position_parts(const TriMesh& mesh, const std::vector<in
     const int idx = add(at, 3 * count, 5125, "SCALAR");
     prims += std::string(prims.empty() ? "" : ",") + "{\"attributes\":{\"POSITION\":0" +
              (normal_of[p] >= 0 ? ",\"NORMAL\":" + std::to_string(1 + normal_of[p]) : "") +
-             "},\"indices\":" + std::to_string(idx) + "}";
+             "},\"indices\":" + std::to_string(idx) +
+             (materials ? ",\"material\":" + std::to_string(p) : "") + "}";
+    material_list +=
+        std::string(material_list.empty() ? "" : ",") + "{\"name\":\"m" + std::to_string(p) + "\"}";
   }
   GltfParts out;
   out.bin = bin;
@@ -74,7 +79,8 @@ inline GltfParts shared_position_parts(const TriMesh& mesh, const std::vector<in
       "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{"
       "\"mesh\":0}],\"meshes\":[{\"primitives\":[" +
       prims + "]}],\"accessors\":[" + accessors + "],\"bufferViews\":[" + views +
-      "],\"buffers\":[{\"byteLength\":" + std::to_string(bin.size()) + "%URI%}]}";
+      "],\"buffers\":[{\"byteLength\":" + std::to_string(bin.size()) + "%URI%}]" +
+      (materials ? ",\"materials\":[" + material_list + "]" : "") + "}";
   return out;
 }
 
