@@ -368,8 +368,8 @@ class GltfDocument final : public MeshDocument {
     materials_.gltf = &model_;
     materials_.source = path;
     polygon_material_.reserve(soup_.faces.size());
-    for (const auto& f : soup_.faces) {
-      const int m = primitive(soup_.sources[f[0]].drawn).material;
+    for (const std::size_t d : soup_.face_drawn) {
+      const int m = primitive(d).material;
       polygon_material_.push_back(
           m >= 0 && static_cast<std::size_t>(m) < model_.materials.size() ? m : -1);
     }

@@ -11,7 +11,10 @@
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include "mesh/file_safety.hpp"
 #include "mesh/gltf_json_checks.hpp"
@@ -265,9 +268,14 @@ Eigen::Matrix4d local_transform(const std::string& path, const tinygltf::Node& n
   return t;
 }
 
-void read_primitive(const std::string& path, const tinygltf::Model& m, std::size_t mesh_index,
-                    std::size_t p, const Eigen::Matrix4d& world, std::size_t primitive_ordinal,
-                    GltfSoup& soup) {
+/// A primitive's triangles, checked: each corner is an element of its POSITION accessor.
+struct PrimitiveCorners {
+  ElementView xyz;
+  std::vector<std::size_t> corners;
+};
+
+PrimitiveCorners read_corners(const std::string& path, const tinygltf::Model& m,
+                              std::size_t mesh_index, std::size_t p, GltfSoup& soup) {
   const tinygltf::Primitive& prim = m.meshes[mesh_index].primitives[p];
   const std::string name = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(p);
   soup.morphed += !prim.targets.empty();
@@ -289,9 +297,11 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
            pos_name + " (accessor " + std::to_string(pos->second) +
                ") is not float VEC3 (quantized positions are not read)");
   }
-  const ElementView xyz = element_view(path, m, pos->second, pos_name, 12);
+  PrimitiveCorners out;
+  out.xyz = element_view(path, m, pos->second, pos_name, 12);
+  const ElementView& xyz = out.xyz;
   // The primitive's triangles on its POSITION accessor's elements.
-  std::vector<std::size_t> corners;
+  std::vector<std::size_t>& corners = out.corners;
   if (prim.indices < 0) {
     if (xyz.count % 3 != 0)
       fail(path, "bad triangle list",
@@ -334,36 +344,92 @@ void read_primitive(const std::string& path, const tinygltf::Model& m, std::size
       corners[i] = v;
     }
   }
-  // Only the elements the triangles use become vertices, in accessor order: primitives that
-  // share one POSITION accessor, each drawing part of it (one per material), would otherwise
-  // bring each other's vertices in as unused ones, which the checks refuse. Each primitive's
-  // vertices are its own copies; those at one position are welded like seam copies. The elements
-  // used are found by sorting the primitive's own corners, not by walking the whole accessor, so
-  // that many primitives on one large accessor cost their corners, not primitives x elements.
-  std::vector<std::size_t> used(corners);
-  std::sort(used.begin(), used.end());
-  used.erase(std::unique(used.begin(), used.end()), used.end());
-  const std::size_t first = soup.points.size();
-  for (const std::size_t i : used) {
-    float f[3];
-    std::memcpy(f, xyz.at(m, i), sizeof f);
-    const Eigen::Vector4d w = world * Eigen::Vector4d(f[0], f[1], f[2], 1.0);
-    soup.points.push_back({w[0], w[1], w[2]});
-    soup.sources.push_back({primitive_ordinal, i});
+  return out;
+}
+
+/// What makes two primitives of one node draw the same vertices: their POSITION accessor, and
+/// every other attribute and morph target naming the same accessors, so that an element's
+/// normal, texture coordinates and colour are one whichever primitive draws it.
+using VertexSet = std::tuple<std::map<std::string, int>, std::vector<std::map<std::string, int>>>;
+
+/// The triangles of node `node`'s mesh, each primitive drawn in order (soup.drawn). An element of
+/// a POSITION accessor that several primitives draw (a mesh split into one primitive per
+/// material over one vertex buffer, as exporters write it) is one vertex, not a copy per
+/// primitive; only primitives whose other attributes name other accessors for it (their own
+/// NORMAL, say) get copies of their own, welded as seam copies are. Only the elements the
+/// triangles use become vertices (unused ones would be refused), in accessor order per set of
+/// primitives sharing them, the sets in the order of their first primitive; each is found by
+/// sorting the corners, not by walking the whole accessor, so that many primitives on one large
+/// accessor cost their corners, not primitives x elements.
+void read_node(const std::string& path, const tinygltf::Model& m, std::size_t node,
+               std::size_t mesh_index, const Eigen::Matrix4d& world, GltfSoup& soup) {
+  const std::vector<tinygltf::Primitive>& prims = m.meshes[mesh_index].primitives;
+  const std::size_t first_drawn = soup.drawn.size();
+  std::vector<PrimitiveCorners> read;
+  read.reserve(prims.size());
+  for (std::size_t p = 0; p < prims.size(); ++p) {
+    read.push_back(read_corners(path, m, mesh_index, p, soup));
+    soup.drawn.push_back({node, mesh_index, p});
   }
-  const auto vertex_of = [&](std::size_t corner) {
-    return first + static_cast<std::size_t>(std::lower_bound(used.begin(), used.end(), corner) -
-                                            used.begin());
+  // Per set of primitives sharing vertices: its elements used, sorted, each with the first
+  // primitive drawing it, and the index of its first vertex.
+  struct Shared {
+    std::vector<std::pair<std::size_t, std::size_t>> used;  // element, drawn ordinal
+    std::size_t first = 0;
   };
+  std::vector<Shared> sets;
+  std::vector<std::size_t> set_of(prims.size());
+  std::map<VertexSet, std::size_t> set_by_key;
+  for (std::size_t p = 0; p < prims.size(); ++p) {
+    VertexSet key{prims[p].attributes, prims[p].targets};
+    const auto [it, fresh] = set_by_key.emplace(std::move(key), sets.size());
+    if (fresh) sets.emplace_back();
+    set_of[p] = it->second;
+    for (const std::size_t e : read[p].corners)
+      sets[it->second].used.emplace_back(e, first_drawn + p);
+  }
+  for (Shared& s : sets) {
+    // By element, then drawn ordinal: the first pair of an element names its first primitive.
+    std::sort(s.used.begin(), s.used.end());
+    s.used.erase(std::unique(s.used.begin(), s.used.end(),
+                             [](const auto& a, const auto& b) { return a.first == b.first; }),
+                 s.used.end());
+  }
+  // The vertices, set by set in the order of each set's first primitive (set indices are in that
+  // order), each read through the view of a primitive of its set (they share the accessor).
+  std::vector<const ElementView*> view_of(sets.size(), nullptr);
+  for (std::size_t p = 0; p < prims.size(); ++p)
+    if (!view_of[set_of[p]]) view_of[set_of[p]] = &read[p].xyz;
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    sets[k].first = soup.points.size();
+    for (const auto& [i, drawn] : sets[k].used) {
+      float f[3];
+      std::memcpy(f, view_of[k]->at(m, i), sizeof f);
+      const Eigen::Vector4d w = world * Eigen::Vector4d(f[0], f[1], f[2], 1.0);
+      soup.points.push_back({w[0], w[1], w[2]});
+      soup.sources.push_back({drawn, i});
+    }
+  }
   // A mirroring transform turns the triangles inside out; glTF renderers reverse them (the spec,
   // "Transformations"), so the mesh keeps its outside.
   const bool mirrored = world.topLeftCorner<3, 3>().determinant() < 0.0;
-  soup.faces.reserve(soup.faces.size() + corners.size() / 3);
-  for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
-    const std::size_t a = vertex_of(corners[t]), b = vertex_of(corners[t + 1]),
-                      c = vertex_of(corners[t + 2]);
-    soup.faces.push_back(mirrored ? std::vector<std::size_t>{a, c, b}
-                                  : std::vector<std::size_t>{a, b, c});
+  for (std::size_t p = 0; p < prims.size(); ++p) {
+    const Shared& s = sets[set_of[p]];
+    const auto vertex_of = [&](std::size_t corner) {
+      const auto it = std::lower_bound(
+          s.used.begin(), s.used.end(), corner,
+          [](const std::pair<std::size_t, std::size_t>& u, std::size_t e) { return u.first < e; });
+      return s.first + static_cast<std::size_t>(it - s.used.begin());
+    };
+    const std::vector<std::size_t>& corners = read[p].corners;
+    soup.faces.reserve(soup.faces.size() + corners.size() / 3);
+    for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
+      const std::size_t a = vertex_of(corners[t]), b = vertex_of(corners[t + 1]),
+                        c = vertex_of(corners[t + 2]);
+      soup.faces.push_back(mirrored ? std::vector<std::size_t>{a, c, b}
+                                    : std::vector<std::size_t>{a, b, c});
+      soup.face_drawn.push_back(first_drawn + p);
+    }
   }
 }
 
@@ -460,11 +526,8 @@ GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m,
              "node " + std::to_string(k) + " names mesh " + std::to_string(node.mesh) +
                  ", but the file has " + std::to_string(m.meshes.size()));
       const auto mi = static_cast<std::size_t>(node.mesh);
-      for (std::size_t p = 0; p < m.meshes[mi].primitives.size(); ++p) {
-        read_primitive(path, m, mi, p, world, soup.drawn.size(), soup);
-        soup.drawn.push_back({k, mi, p});
-        if (world_of) world_of->push_back(world);
-      }
+      read_node(path, m, k, mi, world, soup);
+      if (world_of) world_of->resize(soup.drawn.size(), world);
     }
     for (auto c = node.children.rbegin(); c != node.children.rend(); ++c)
       push(*c, world, "node " + std::to_string(k) + "'s children");

@@ -149,13 +149,14 @@ SeamWeld weld_seams(const std::string& path, const std::vector<Point3>& points,
   return weld;
 }
 
-std::string weld_note(const SeamWeld& weld, bool per_primitive) {
-  // A glTF's vertices are read per primitive (gltf_reader.cpp): two primitives drawing one
-  // element of a shared POSITION accessor count it twice, and a glTF result writes the accessor
-  // back, so the count is not a file's and no output's count is claimed.
+std::string weld_note(const SeamWeld& weld, bool gltf) {
+  // A glTF's vertices are read per node that draws them (gltf_reader.cpp): a mesh instanced by
+  // two nodes, or two primitives of one node drawing an element of a shared POSITION accessor
+  // with different normals or texture coordinates, count it twice, and a glTF result writes the
+  // accessor back, so the count is not a file's and no output's count is claimed.
   return counted(weld.copies(), "seam vertex was", "seam vertices were") + " welded: the input's " +
          std::to_string(weld.welded_of.size()) + " vertices" +
-         (per_primitive ? " (counted per glTF primitive)" : "") +
+         (gltf ? " (counted per glTF node drawing them)" : "") +
          " include copies at the same position (as a UV seam splits them), simulated as one "
          "closed mesh of " +
          std::to_string(weld.points.size()) +

@@ -59,7 +59,8 @@ SeamWeld weld_seams(const std::string& path, const std::vector<Point3>& points,
                     const std::vector<Polygon>& tris, const InputError& refusal, const Namer& name);
 
 /// The note read_input_mesh and mesh_from_arrays report for a welded input (InputReport::notes).
-std::string weld_note(const SeamWeld& weld, bool per_primitive = false);
+/// @param gltf the input is a glTF, whose vertices are counted as gltf_reader.hpp reads them
+std::string weld_note(const SeamWeld& weld, bool gltf = false);
 
 /// The mesh's f:input_corners map: per face, its corners as the input numbered them, in the
 /// order vertices_around_face lists the face's corners from its halfedge.

@@ -59,9 +59,11 @@ TEST(GltfInput, AGlbResultKeepsTexcoordsNodeAndMaterialWithNewPositions) {
   const auto r = test::run_cli({"run", in, "-o", dir.file("out.glb"), "-n", "8", "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("seam vertex was welded"), std::string::npos) << r.output;
-  // A glTF's vertices are the reader's, per primitive: the note does not pass them off as the
-  // file's (two primitives sharing an accessor count its shared elements twice).
-  EXPECT_NE(r.output.find("vertices (counted per glTF primitive) include copies"), std::string::npos) << r.output;
+  // A glTF's vertices are the reader's, per node: the note does not pass them off as the
+  // file's (a mesh drawn by two nodes counts its elements twice).
+  EXPECT_NE(r.output.find("vertices (counted per glTF node drawing them) include copies"),
+            std::string::npos)
+      << r.output;
   const tinygltf::Model a = test::load_glb(in), b = test::load_glb(dir.file("out.glb"));
 
   EXPECT_EQ(attribute(a, "TEXCOORD_0"), attribute(b, "TEXCOORD_0"));  // per vertex, bit for bit

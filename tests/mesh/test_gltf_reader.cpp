@@ -19,6 +19,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/gltf_files.hpp"
+#include "support/gltf_shared_positions.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace shellcontract {
@@ -139,12 +140,13 @@ TEST_F(GltfReader, WeldsAnUnindexedTriangleListAndPrimitivesThatShareAnEdge) {
   EXPECT_EQ(two.number_of_faces(), 8u);
 }
 
-TEST_F(GltfReader, PrimitivesSharingOnePositionAccessorTakeTheirOwnElementsInAccessorOrder) {
+TEST_F(GltfReader, PrimitivesSharingOnePositionAccessorDrawItsElementsAsOneSetOfVertices) {
   // One POSITION accessor of 8 elements (element i at (i, 10 i, 100 i)); primitive 0 draws
-  // elements 5 2 7, 7 2 0 and primitive 1 elements 3 6 1: each brings the elements its corners
-  // use, once, in accessor order, whatever order its indices name them in. The reader finds them
-  // by sorting the primitive's corners (review7 F8: it walked the whole accessor per primitive);
-  // this is the order it had before.
+  // elements 5 2 7, 7 2 0 and primitive 1 elements 3 6 1: the elements their corners use are
+  // vertices once, in accessor order, whatever order the indices name them in, each with the
+  // first primitive that draws it (found by sorting the corners, review7 F8: not by a walk of the
+  // whole accessor per primitive). Before, each primitive had copies of its own, so that an
+  // element that two primitives drew was two vertices, welded or refused as a seam.
   std::string bin;
   for (int i = 0; i < 8; ++i) {
     const float x[3] = {float(i), 10.0f * i, 100.0f * i};
@@ -165,8 +167,8 @@ TEST_F(GltfReader, PrimitivesSharingOnePositionAccessorTakeTheirOwnElementsInAcc
       "\"buffers\":[{\"byteLength\":132%URI%}]}";
   const std::string bytes = test::glb_bytes(test::GltfParts{json, bin});
   const GltfSoup s = read_gltf(write("shared.glb", bytes), bytes);
-  const std::vector<std::pair<std::size_t, std::size_t>> from = {{0, 0}, {0, 2}, {0, 5}, {0, 7},
-                                                                 {1, 1}, {1, 3}, {1, 6}};
+  const std::vector<std::pair<std::size_t, std::size_t>> from = {{0, 0}, {1, 1}, {0, 2}, {1, 3},
+                                                                 {0, 5}, {1, 6}, {0, 7}};
   ASSERT_EQ(s.points.size(), from.size());
   for (std::size_t v = 0; v < from.size(); ++v) {
     EXPECT_EQ(s.sources[v].drawn, from[v].first) << v;
@@ -174,8 +176,68 @@ TEST_F(GltfReader, PrimitivesSharingOnePositionAccessorTakeTheirOwnElementsInAcc
     const double e = static_cast<double>(from[v].second);
     EXPECT_EQ(s.points[v], (std::array<double, 3>{e, 10 * e, 100 * e})) << v;
   }
-  const std::vector<std::vector<std::size_t>> faces = {{2, 1, 3}, {3, 1, 0}, {5, 6, 4}};
+  const std::vector<std::vector<std::size_t>> faces = {{4, 2, 6}, {6, 2, 0}, {3, 5, 1}};
   EXPECT_EQ(s.faces, faces);
+  EXPECT_EQ(s.face_drawn, (std::vector<std::size_t>{0, 0, 1}));
+}
+
+TEST_F(GltfReader, AClosedMeshSplitIntoPrimitivesOverOnePositionAccessorReadsClosed) {
+  // An icosphere (162 vertices, 320 faces) as one POSITION accessor drawn by K primitives, each
+  // over a slice of the faces, as exporters split a mesh per material: one vertex per element,
+  // the closed mesh it is, nothing welded. Before, each primitive had its own copies, welded
+  // like seam copies for K = 2 and refused for K = 3 and 7 ("open boundary: ... as given, its
+  // faces are not a polygon mesh with boundary").
+  const test::TriMesh sphere = test::icosphere(2);
+  for (const std::size_t k : {1u, 3u, 7u})
+    for (const bool binary : {true, false}) {
+      const test::GltfParts parts = test::shared_position_parts(sphere, std::vector<int>(k, -1));
+      const std::string path = write("split" + std::to_string(k) + (binary ? ".glb" : ".gltf"),
+                                     binary ? test::glb_bytes(parts) : test::gltf_text(parts));
+      SCOPED_TRACE(path);
+      InputReport report;
+      const Mesh mesh = read_input_mesh(path, &report);
+      EXPECT_EQ(mesh.number_of_vertices(), 162u);
+      EXPECT_EQ(mesh.number_of_faces(), 320u);
+      EXPECT_TRUE(CGAL::is_closed(mesh));
+      EXPECT_EQ(report.welded_vertices, 0u);
+      EXPECT_TRUE(report.notes.empty()) << report.notes.front();
+      EXPECT_EQ(input_vertex_count(mesh), 162u);
+    }
+}
+
+TEST_F(GltfReader, PrimitivesWithTheirOwnNormalsOnASharedPositionHaveCopiesOfTheirOwn) {
+  // Four primitives on one POSITION accessor: 0 and 1 share NORMAL accessor 1, 2 and 3 NORMAL
+  // accessor 2 (the same values). An element that 1 and 2 draw has two normals, so two vertices,
+  // welded as seam copies are (a note); 0 and 1 (2 and 3) share theirs. Before, every primitive
+  // had copies of its own, and the file was refused as open.
+  const test::TriMesh sphere = test::icosphere(2);
+  const test::GltfParts parts = test::shared_position_parts(sphere, {0, 0, 1, 1});
+  const std::string bytes = test::glb_bytes(parts);
+  const std::string path = write("normals.glb", bytes);
+  const GltfSoup s = read_gltf(path, bytes);
+  ASSERT_EQ(s.faces.size(), 320u);
+  ASSERT_EQ(s.face_drawn.size(), 320u);
+  std::vector<std::vector<std::size_t>> copies(162);  // per element, its vertices
+  for (std::size_t v = 0; v < s.points.size(); ++v) copies.at(s.sources[v].element).push_back(v);
+  std::size_t twice = 0;
+  for (const auto& c : copies) {
+    ASSERT_FALSE(c.empty());
+    ASSERT_LE(c.size(), 2u);
+    if (c.size() == 2) {
+      ++twice;
+      // One copy of primitives 0 and 1 (which come first), one of primitives 2 and 3.
+      EXPECT_LT(s.sources[c[0]].drawn, 2u);
+      EXPECT_GE(s.sources[c[1]].drawn, 2u);
+      EXPECT_EQ(s.points[c[0]], s.points[c[1]]);
+    }
+  }
+  EXPECT_GT(twice, 0u);
+  EXPECT_EQ(s.points.size(), 162u + twice);
+  InputReport report;
+  const Mesh mesh = read_input_mesh(path, &report);
+  EXPECT_EQ(mesh.number_of_vertices(), 162u);
+  EXPECT_TRUE(CGAL::is_closed(mesh));
+  EXPECT_EQ(report.welded_vertices, twice);
 }
 
 TEST_F(GltfReader, RefusesMalformedFilesNamingTheProblem) {
