@@ -51,8 +51,11 @@ Coloured rungs (--orders coloured or both) use the parallel colour order (anothe
 Gauss-Seidel order, compared with the same sequential references) on each of --threads; their
 errors do not depend on the thread count (bit-identical), only their time does.
 A substep divides the step by k and runs k times as many steps; the damping is rescaled so the
-same fraction of velocity is removed per unit time. Collision handling is off unless
---collisions on. Errors are in normalized units (bounding-box diagonal 1):
+same fraction of velocity is removed per unit time. Every run, the references too, has the
+masses of a run at --dt: the pressure's minimum vertex mass grows with the step, and at its
+own smaller step a run would be another model (docs/design/defaults.md, "Mass scaling").
+Collision handling is off unless --collisions on. Errors are in normalized units (bounding-box
+diagonal 1):
   hausdorff    symmetric Hausdorff distance to the reference surface (CGAL, bounded error)
   max_vertex   max_i |x_i - x_i_ref|
   dV           |V/V0 - (V/V0)_ref|
@@ -365,7 +368,12 @@ int command_bench_error(int argc, char** argv) {
 
   std::cout << input << ": " << mesh.number_of_faces() << " faces, " << res.frames
             << " steps of dt " << res.dt << " (simulated time " << res.simulated_time
-            << "), collisions " << collisions << "\n\n";
+            << "), collisions " << collisions << '\n';
+  if (res.mass_scaled_vertices > 0)
+    std::cout << "masses: " << res.mass_scaled_vertices << " of " << mesh.number_of_vertices()
+              << " vertices raised for the pressure at dt " << res.dt << " (up to "
+              << fmt(res.largest_mass_factor) << " times), the same in every run\n";
+  std::cout << '\n';
   print_rows(res.rows, std::cout);
   std::cout << "\nreferences (errors 0 by definition):\n";
   print_rows(res.reference_rows, std::cout);

@@ -86,6 +86,10 @@ struct RunResult {
   std::vector<double> region_sinks;
   double outside_region_displacement = 0.0;  ///< Simulator::outside_region_displacement at the end
   std::size_t degenerate_faces = 0;
+  /// Vertices whose mass the pressure's minimum mass for the time step raised, and the largest
+  /// factor by which one was raised (1: none); docs/design/defaults.md, "Mass scaling".
+  std::size_t mass_scaled_vertices = 0;
+  double max_mass_scale = 1.0;
   std::size_t excluded_contact_pairs = 0;
   /// The contact distance delta the run used (normalized units; --delta auto resolved for the
   /// mesh); 0 with collisions off.

@@ -32,6 +32,7 @@ struct LadderRun {
   Positions x;
   double volume_ratio = 1.0;
   double energy = 0.0;
+  MassScaling masses;
 };
 
 double total_energy(const ConstraintEnergies& e) { return e.membrane + e.bending + e.anisotropic; }
@@ -62,11 +63,13 @@ class LadderObserver final : public RunObserver {
     x = view.normalized_positions();
     volume_ratio = view.volume_ratio();
     energy = total_energy(sim.energies());
+    masses = sim.mass_scaling();
   }
   std::vector<double> frame_ms;
   Positions x;
   double volume_ratio = 1.0;
   double energy = 0.0;
+  MassScaling masses;
 
  private:
   int substeps_;
@@ -92,6 +95,10 @@ LadderRun run_one(const Mesh& mesh, const SimOptions& base, const RunSettings& r
   o.stop_volume_ratio = 0.0;
   RunPlan plan;
   plan.sim = plan_simulation(mesh, o);
+  // The pressure's mass floor depends on the step (sim/mass_scaling.hpp): at its own dt a
+  // substepped run would have other masses than the base run, another model, and its error
+  // against the reference would not be the solver's alone. Every run takes the base step's.
+  plan.sim.mass_scaling_dt = base.dt;
   LadderObserver observer(substeps);
   const RunResult result = run_contraction(std::move(plan), &observer);
   LadderRun r;
@@ -109,6 +116,7 @@ LadderRun run_one(const Mesh& mesh, const SimOptions& base, const RunSettings& r
   r.x = std::move(observer.x);
   r.volume_ratio = observer.volume_ratio;
   r.energy = observer.energy;
+  r.masses = observer.masses;
   return r;
 }
 
@@ -157,6 +165,8 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
     row.ms_per_step = run.ms_per_step;
     row.volume_ratio = run.volume_ratio;
     row.energy = run.energy;
+    row.mass_scaled_vertices = run.masses.raised;
+    row.largest_mass_factor = run.masses.largest_factor;
     if (run.failed) {
       row.failed = true;
       row.failure = run.failure;
@@ -191,6 +201,8 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
     ref_row.substeps = ref_sub;
     compare(ref, ref, ref_row);
     result.reference_rows.push_back(ref_row);
+    result.mass_scaled_vertices = ref.masses.raised;  // every run's (run_one)
+    result.largest_mass_factor = ref.masses.largest_factor;
 
     double smallest = std::numeric_limits<double>::infinity();
     double smallest_dv = std::numeric_limits<double>::infinity();

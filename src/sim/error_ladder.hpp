@@ -14,10 +14,16 @@
 // - Sweep order and threads are rungs too: the Coloured order (math-spec 9.4) is another valid
 //   Gauss-Seidel order of the same model, so its rungs are compared with the same reference
 //   (Sequential order, one thread); its threads change the time, never the result (bit-identical).
+// - The masses: under a pressure the explicit load needs a minimum mass per vertex that grows
+//   with the step (sim/mass_scaling.hpp), so a run at base.dt / k would have lighter vertices
+//   than the run at base.dt: another model. Every run, references included, has the masses of
+//   the base step (those of `shellcontract run` at that --dt), and the ladder measures the
+//   solver's error alone.
 // - Collision handling is off by default: it is not part of the constraint solver being
 //   measured and it makes small differences between runs jump (discrete contact decisions).
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
@@ -77,6 +83,10 @@ struct ErrorLadderRow {
   /// PBD and XPBD drive and what the run log reports.)
   double energy_error = 0.0;
   double energy = 0.0;          ///< total constraint energy at the end (normalized units)
+  /// The run's masses raised for the pressure and the largest factor (MassScaling): the base
+  /// step's in every run (file comment).
+  std::size_t mass_scaled_vertices = 0;
+  double largest_mass_factor = 1.0;
 };
 
 /// Convergence of one reference: the reference run again with a halved step (XPBD: 2x substeps)
@@ -112,6 +122,10 @@ struct ErrorLadderResult {
   /// meaningful: the reference's energy is below ENERGY_ERROR_FLOOR of the largest energy of its
   /// rungs (ENERGY_ERROR_FLOOR's comment).
   std::vector<SolverKind> energy_error_not_meaningful;
+  /// The masses every run used (file comment): vertices raised for the pressure at the base step
+  /// and the largest factor (1: none raised).
+  std::size_t mass_scaled_vertices = 0;
+  double largest_mass_factor = 1.0;
 };
 
 /// A solver's dE_rel = |E - E_ref| / |E_ref| is NaN for all its rows (not its reference's own

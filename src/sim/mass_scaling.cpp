@@ -2,13 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace shellcontract {
 
-std::size_t scale_masses_for_pressure(const Positions& x, const Faces& faces, double pressure,
+MassScaling scale_masses_for_pressure(const Positions& x, const Faces& faces, double pressure,
                                       double dt, Eigen::VectorXd& inv_mass) {
+  MassScaling result;
+  result.largest_unscaled_dt = std::numeric_limits<double>::infinity();
   const double P = std::abs(pressure);
-  if (!(P > 0.0) || !(dt > 0.0)) return 0;
+  if (!(P > 0.0) || !(dt > 0.0)) return result;
   // Perimeter of each vertex's one-ring: the edge opposite the vertex in each of its faces.
   // d f_i / d x_k = P / 6 [skew(...)] sums, over the ring, to at most P / 3 times it.
   Eigen::VectorXd ring = Eigen::VectorXd::Zero(x.rows());
@@ -26,19 +29,26 @@ std::size_t scale_masses_for_pressure(const Positions& x, const Faces& faces, do
       mean_mass += 1.0 / inv_mass(i);
       ++massive;
     }
-  if (massive == 0) return 0;
+  if (massive == 0) return result;
   mean_mass /= static_cast<double>(massive);
   const double s = dt / MAX_PRESSURE_OMEGA_DT;
   const double factor = s * s * P / 3.0;
-  std::size_t raised = 0;
   for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    if (!(inv_mass(i) > 0.0)) continue;
+    const double mass = 1.0 / inv_mass(i);
+    // The mean caps the floor: a vertex at or above it is never raised, at any step. Below it the
+    // floor grows with dt^2 and passes the mass at dt * sqrt(mass / floor).
+    if (mass < mean_mass && ring(i) > 0.0)
+      result.largest_unscaled_dt =
+          std::min(result.largest_unscaled_dt, dt * std::sqrt(mass / (factor * ring(i))));
     const double min_mass = std::min(factor * ring(i), mean_mass);
-    if (inv_mass(i) > 0.0 && inv_mass(i) * min_mass > 1.0) {
+    if (inv_mass(i) * min_mass > 1.0) {
+      result.largest_factor = std::max(result.largest_factor, inv_mass(i) * min_mass);
       inv_mass(i) = 1.0 / min_mass;
-      ++raised;
+      ++result.raised;
     }
   }
-  return raised;
+  return result;
 }
 
 }  // namespace shellcontract

@@ -147,6 +147,28 @@ std::function<bool()> preparation_cancelled(RunObserver& obs, RunCheckpointer* c
   };
 }
 
+/// What a run says of its mass scaling (sim/mass_scaling.hpp) when it raised more than
+/// MASS_SCALING_NOTE_SHARE of the `vertices`: the masses are then not the lumped ones the docs
+/// describe, and they, and so the motion, change with the step. Empty below that share.
+std::string mass_scaling_warning(const MassScaling& m, std::size_t vertices, double dt) {
+  if (vertices == 0 ||
+      !(static_cast<double>(m.raised) > MASS_SCALING_NOTE_SHARE * static_cast<double>(vertices)))
+    return {};
+  std::string text = std::to_string(m.raised) + " of " + std::to_string(vertices) + " vertices (" +
+                     general_text(100.0 * static_cast<double>(m.raised) / vertices, 2) +
+                     " %) are too light for the explicit pressure at `dt` " + general_text(dt, 6) +
+                     ": their masses were raised, up to " + general_text(m.largest_factor, 3) +
+                     " times (docs/design/defaults.md, \"Mass scaling\"), so the motion depends on "
+                     "`dt`.";
+  // Two significant digits, rounded down: at the value shown no vertex is raised.
+  if (std::isfinite(m.largest_unscaled_dt) && m.largest_unscaled_dt > 0.0) {
+    const double unit = std::pow(10.0, std::floor(std::log10(m.largest_unscaled_dt)) - 1.0);
+    text += " At `dt` " + general_text(std::floor(m.largest_unscaled_dt / unit) * unit, 2) +
+            " or less none is raised (with more `frames` for the same time);";
+  }
+  return text + " `pressure` 0 with `target_volume` contracts without the explicit load";
+}
+
 /// Tells the observer and keeps the warning for the summary.
 void warn(RunResult& r, RunObserver& o, const std::string& text) {
   r.warnings.push_back(text);
@@ -224,6 +246,10 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
     warn(r, obs,
          std::to_string(rest.degenerate_faces) + " degenerate faces carry no membrane energy; " +
              std::to_string(rest.inactive_hinges) + " hinges touching them are inactive");
+  if (const std::string note =
+          mass_scaling_warning(sim.mass_scaling(), mesh.number_of_vertices(), s.dt);
+      !note.empty())
+    warn(r, obs, note);
   // The cotangent weights belong to the isometric bending; the dihedral model does not use them.
   if (rest.clamped_cotangents > 0 && s.bending == BendingModel::Isometric)
     warn(r, obs,
@@ -408,6 +434,8 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   r.region_sinks = sim.region_sinks();
   r.outside_region_displacement = sim.outside_region_displacement();
   r.degenerate_faces = rest.degenerate_faces;
+  r.mass_scaled_vertices = sim.mass_scaling().raised;
+  r.max_mass_scale = sim.mass_scaling().largest_factor;
   r.excluded_contact_pairs = sim.excluded_contact_pairs();
   r.contact_distance = sim.options().collisions ? sim.options().collision.delta : 0.0;
   r.normalization_scale = sim.normalization().scale;

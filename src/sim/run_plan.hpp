@@ -23,6 +23,10 @@ struct SimPlan {
   Mesh mesh;
   Normalization normalization;  ///< from the input's units to mesh's
   SimOptions options;           ///< resolved and checked; collision.delta is the one used
+  /// The time step the explicit pressure's mass floor is set for (sim/mass_scaling.hpp); 0: the
+  /// run's options.dt. `bench error` sets its base step for every run of its ladder, so that the
+  /// runs at a fraction of the step have the same masses, the same model, as the run at the step.
+  double mass_scaling_dt = 0.0;
   /// What the user should know about the contact distance (choose_contact_distance); plan_run
   /// moves them to RunPlan::warnings.
   std::vector<std::string> warnings;

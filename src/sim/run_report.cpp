@@ -147,6 +147,8 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   w.add_text("order_used", r.order == ConstraintOrder::Coloured ? "coloured" : "sequential");
   count("excluded_contact_pairs", r.excluded_contact_pairs);
   w.add_number("contact_distance", r.contact_distance);
+  count("mass_scaled_vertices", r.mass_scaled_vertices);
+  w.add_number("max_mass_scale", r.max_mass_scale);
   w.add_integer("new_intersections", r.new_intersections);
   count("regions", r.regions);
   count("anisotropic_faces", r.anisotropic_faces);

@@ -119,6 +119,7 @@ Simulator::Simulator(SimPlan plan)
     : options_(std::move(plan.options)),
       mesh_(std::make_unique<Mesh>(std::move(plan.mesh))),
       normalization_(plan.normalization) {
+  const double mass_dt = plan.mass_scaling_dt > 0.0 ? plan.mass_scaling_dt : options_.dt;
   // The plan's mesh is normalized: its points are the rest positions, bit for bit.
   x_ = positions_from_mesh(*mesh_);
   // The plan resolved the regions into the f:region map; everything below reads the map.
@@ -132,9 +133,8 @@ Simulator::Simulator(SimPlan plan)
   arena_ = std::make_unique<StepArena>(options_.solver.threads);
   inv_mass_ = inverse_masses(*mesh_);
   // The explicit pressure needs a minimum mass per vertex at this dt (sim/mass_scaling.hpp).
-  mass_scaled_vertices_ =
-      scale_masses_for_pressure(x_, faces_, peak_pressure_magnitude(options_), options_.dt,
-                                inv_mass_);
+  mass_scaling_ =
+      scale_masses_for_pressure(x_, faces_, peak_pressure_magnitude(options_), mass_dt, inv_mass_);
   ConstraintSet constraints = pack_constraints(*mesh_, options_.bending);
   cancellation_point();
   if (options_.solver.aniso != AnisoKind::None) {

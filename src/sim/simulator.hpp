@@ -17,6 +17,7 @@
 #include "shellcontract/types.hpp"
 #include "sim/anisotropy.hpp"
 #include "sim/dimple_rest.hpp"
+#include "sim/mass_scaling.hpp"
 #include "sim/pressure.hpp"
 #include "sim/region_dimple.hpp"
 #include "sim/rest_state.hpp"
@@ -73,7 +74,10 @@ class Simulator {
   const Normalization& normalization() const { return normalization_; }
   const RestStateReport& rest_report() const { return rest_report_; }
   /// Vertices whose mass scale_masses_for_pressure raised (sim/mass_scaling.hpp).
-  std::size_t mass_scaled_vertices() const { return mass_scaled_vertices_; }
+  std::size_t mass_scaled_vertices() const { return mass_scaling_.raised; }
+  /// What the explicit pressure's mass floor did: how many masses, by how much, and the step
+  /// below which it would raise none (sim/mass_scaling.hpp).
+  const MassScaling& mass_scaling() const { return mass_scaling_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
   /// Number of regions in the rest mesh's "f:region" map, whether or not anything acts on them.
   std::size_t region_count() const { return region_count_; }
@@ -155,7 +159,7 @@ class Simulator {
   /// bumpy_sphere was nearly all of the rest's displacement (docs/math/local-contraction.md).
   bool follow_rest_ = false;
   Eigen::VectorXd inv_mass_;
-  std::size_t mass_scaled_vertices_ = 0;
+  MassScaling mass_scaling_;
   std::unique_ptr<ConstraintSolver> solver_;
   std::unique_ptr<SelfCollision> collision_;
   /// Input's intersecting face pairs, computed on first use (validation only).

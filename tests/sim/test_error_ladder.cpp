@@ -1,13 +1,16 @@
 // run_error_ladder on a small icosphere under the default pressure: the reference compared with
 // itself is exactly 0 (runs are deterministic), XPBD with 50 sweeps is closer to its reference
 // than with 1, the reference check runs the refined reference (half step for XPBD, twice the
-// sweeps for PBD) and reports its change, and bad ladders are refused.
+// sweeps for PBD) and reports its change, every run has the masses of the base step, and bad
+// ladders are refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "shellcontract/error.hpp"
 #include "sim/error_ladder.hpp"
+#include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 
@@ -136,6 +139,41 @@ TEST(ErrorLadder, ColouredRungsAreComparedWithTheSequentialReferenceAndThreadsCh
   EXPECT_GT(row(ConstraintOrder::Coloured, 1, 50).hausdorff, 0.0);
   EXPECT_LT(row(ConstraintOrder::Coloured, 1, 50).hausdorff,
             row(ConstraintOrder::Coloured, 1, 1).hausdorff);
+}
+
+TEST(ErrorLadder, EveryRunHasTheMassesOfTheBaseStep) {
+  // Three light vertices that the pressure's mass floor raises at the base step and not at half
+  // of it (sim/mass_scaling.hpp). Every run, at whatever fraction of the step, has the masses of
+  // the base step, so the rungs and the reference are one model; before, the runs at dt / 2 and
+  // the reference at dt / 4 had the lumped masses and the substeps-1 rungs the raised ones.
+  const Mesh mesh = test::to_surface_mesh(test::icosphere_with_small_faces(2, 3));
+  SimOptions base = ladder_physics();
+  base.pressure = 4.0;
+  base.collisions = false;
+  const MassScaling at_base = Simulator(mesh, base).mass_scaling();
+  ASSERT_GT(at_base.raised, 0u);
+  SimOptions half = base;
+  half.dt /= 2.0;
+  ASSERT_EQ(Simulator(mesh, half).mass_scaled_vertices(), 0u);
+
+  ErrorLadderOptions o = small_ladder();
+  o.solvers = {SolverKind::Xpbd};
+  o.iterations = {5};
+  o.substeps = {1, 2, 4};
+  o.xpbd_reference_substeps = 4;
+  o.frames = 5;
+  const ErrorLadderResult r = run_error_ladder(mesh, base, o);
+  EXPECT_EQ(r.mass_scaled_vertices, at_base.raised);
+  EXPECT_EQ(r.largest_mass_factor, at_base.largest_factor);
+  ASSERT_EQ(r.rows.size(), 3u);
+  ASSERT_EQ(r.reference_rows.size(), 1u);
+  std::vector<ErrorLadderRow> runs = r.rows;
+  runs.push_back(r.reference_rows[0]);
+  for (const ErrorLadderRow& row : runs) {
+    EXPECT_FALSE(row.failed) << row.failure;
+    EXPECT_EQ(row.mass_scaled_vertices, at_base.raised) << "substeps " << row.substeps;
+    EXPECT_EQ(row.largest_mass_factor, at_base.largest_factor) << "substeps " << row.substeps;
+  }
 }
 
 TEST(ErrorLadder, RefusesEmptyOrNonPositiveLists) {

@@ -1,5 +1,6 @@
 // The run's summary (write_run_summary) as a reader takes it: a resumed run's mean_step_ms is its
-// own time over its own frames, and target_reached has no value when nothing was to be reached.
+// own time over its own frames, target_reached has no value when nothing was to be reached, and
+// the masses raised for the pressure are counted (and many are a warning).
 #include <gtest/gtest.h>
 
 #include <map>
@@ -11,7 +12,11 @@
 #include "shellcontract/options.hpp"
 #include "shellcontract/report.hpp"
 #include "shellcontract/run.hpp"
+#include "sim/mass_scaling.hpp"
+#include "sim/simulator.hpp"
+#include "support/cgal_mesh.hpp"
 #include "support/memory_checkpointer.hpp"
+#include "support/mesh_fixtures.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -67,6 +72,44 @@ TEST(RunReport, AResumedRunsMeanStepIsItsOwnTimeOverItsOwnFrames) {
   EXPECT_EQ(whole.first_frame, 0);
   EXPECT_DOUBLE_EQ(summary_of(options, whole).numbers.at("mean_step_ms"),
                    1e3 * whole.wall_seconds / 30.0);
+}
+
+TEST(RunReport, TheMassesRaisedForThePressureAreCountedAndManyAreAWarning) {
+  // An even icosphere of 642 vertices: at -p 4 no mass is raised; at -p 20 the minimum mass for
+  // the explicit pressure is above the mean, and every vertex lighter than the mean is raised
+  // (sim/mass_scaling.hpp). The docs promised "the few vertices too light", and the run said
+  // nothing of how many.
+  const Mesh mesh = test::to_surface_mesh(test::icosphere(3));
+  RunOptions o = options_from({{"frames", "1"}, {"collisions", "off"}});
+  const RunResult calm = run_contraction(mesh, o);
+  EXPECT_EQ(summary_of(o, calm).numbers.at("mass_scaled_vertices"), 0.0);
+  EXPECT_EQ(summary_of(o, calm).numbers.at("max_mass_scale"), 1.0);
+  EXPECT_TRUE(calm.warnings.empty()) << calm.warnings.front();
+
+  o.sim.pressure = 20.0;
+  const MassScaling expected = Simulator(mesh, o.sim).mass_scaling();
+  ASSERT_GT(expected.raised, MASS_SCALING_NOTE_SHARE * 642);
+  const RunResult r = run_contraction(mesh, o);
+  const Recorder s = summary_of(o, r);
+  EXPECT_EQ(s.numbers.at("mass_scaled_vertices"), static_cast<double>(expected.raised));
+  EXPECT_EQ(s.numbers.at("max_mass_scale"), expected.largest_factor);
+  EXPECT_GT(expected.largest_factor, 1.0);
+  std::optional<std::string> note;
+  for (const std::string& w : r.warnings)
+    if (w.find("too light for the explicit pressure") != std::string::npos) note = w;
+  ASSERT_TRUE(note.has_value());
+  EXPECT_NE(note->find(std::to_string(expected.raised) + " of 642 vertices"), std::string::npos)
+      << *note;
+  // The step it names raises none.
+  const std::string at = "At `dt` ";
+  const std::size_t from = note->find(at);
+  ASSERT_NE(from, std::string::npos) << *note;
+  SimOptions smaller = o.sim;
+  smaller.dt = std::stod(note->substr(from + at.size()));
+  EXPECT_LT(smaller.dt, o.sim.dt);
+  EXPECT_EQ(Simulator(mesh, smaller).mass_scaled_vertices(), 0u);
+  smaller.dt *= 1.2;  // rounded down to two digits, it is close to where the first is raised
+  EXPECT_GT(Simulator(mesh, smaller).mass_scaled_vertices(), 0u);
 }
 
 TEST(RunReport, TargetReachedIsNullWhenNothingWasToBeReached) {

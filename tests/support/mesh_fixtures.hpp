@@ -54,6 +54,27 @@ inline TriMesh icosphere(int levels, double r = 1.0) {
   return m;
 }
 
+/// icosphere(levels) with face 0 split in three at its centroid, and then `splits` - 1 times
+/// more the last of the three new faces (around the newest vertex): a fan of ever smaller faces
+/// whose new vertices have small one-rings and masses, the light vertices that the explicit
+/// pressure's mass floor raises (sim/mass_scaling.hpp).
+inline TriMesh icosphere_with_small_faces(int levels, int splits) {
+  TriMesh m = icosphere(levels);
+  Eigen::Index face = 0;
+  for (int s = 0; s < splits; ++s) {
+    const Eigen::Index n = m.x.rows(), nf = m.faces.rows();
+    const int a = m.faces(face, 0), b = m.faces(face, 1), c = m.faces(face, 2);
+    m.x.conservativeResize(n + 1, 3);
+    m.x.row(n) = (m.x.row(a) + m.x.row(b) + m.x.row(c)) / 3.0;
+    m.faces.row(face) << a, b, static_cast<int>(n);
+    m.faces.conservativeResize(nf + 2, 3);
+    m.faces.row(nf) << b, c, static_cast<int>(n);
+    m.faces.row(nf + 1) << c, a, static_cast<int>(n);
+    face = nf + 1;
+  }
+  return m;
+}
+
 /// Signed enclosed volume V = 1/6 sum x1 . (x2 x x3) (math-spec 1.1), for closed-form checks.
 inline double signed_volume(const Positions& x, const Faces& faces) {
   double V = 0.0;
