@@ -17,8 +17,8 @@ namespace {
 
 /// Under pbd a stiffness changes only the solver's skip floor, 1e-16 x the largest of mu, lambda,
 /// 2 (C10 + C01) and mu_A (src/pbd/solver.cpp), so "no effect" is said of the step: an option
-/// that scales the energies may still move which faces near rest are skipped, by rounding-sized
-/// amounts (review9 D6: --mu-a 100 against 1 moved a vertex by 2.7e-6).
+/// that scales the energies may still move which faces near rest are skipped, and so the result
+/// by small amounts.
 const char* const PBD_STEP_ONLY =
     "has no effect on the PBD projection's step (only on which faces "
     "near rest it skips): ";
@@ -58,7 +58,7 @@ void pbd_scale_warnings(const RunOptions& r, std::vector<std::string>& w) {
 /// Under xpbd with the dihedral bending k_B is a stiffness that the shell material sets (young,
 /// thickness). Without one (`mu` or `lambda` given, or Mooney-Rivlin) it falls back to 0.01, the
 /// PBD-era multiplier: over 40,000 times the default shell's, so the same membrane keeps much
-/// more of its volume (review9 D3). Said, with the k_B that this membrane would have as a shell
+/// more of its volume. Said, with the k_B that this membrane would have as a shell
 /// of the default thickness, so that `k_b` can give it.
 void fallback_k_b_warning(const RunOptions& r, std::vector<std::string>& w) {
   const SimOptions& s = r.sim;
