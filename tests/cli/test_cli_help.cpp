@@ -13,6 +13,7 @@
 
 #include "shellcontract/options.hpp"
 #include "support/cli_runner.hpp"
+#include "support/summary_text.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -66,17 +67,7 @@ TEST(CliHelp, RunHelpMarksTheDerivedDefaults) {
   EXPECT_EQ(r.output.find("--mu MU (=1)"), std::string::npos);
 }
 
-/// The value of "key": "..." in the summary's "options" object (the summary writes each option's
-/// resolved text as a string).
-std::string summary_option(const fs::path& summary, const std::string& key) {
-  std::ifstream in(summary);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::size_t options = text.find("\"options\"");
-  const std::size_t at = text.find("\"" + key + "\": \"", options);
-  if (options == std::string::npos || at == std::string::npos) return "(missing)";
-  const std::size_t begin = at + key.size() + 5;
-  return text.substr(begin, text.find('"', begin) - begin);
-}
+using test::summary_option;
 
 TEST(CliHelp, RunHelpDerivedDefaultsAreWhatARunResolves) {
   if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/summary_text.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -21,20 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_cli;
 
-std::string file_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-/// The value of "key": "..." in the summary's "options" object.
-std::string summary_option(const fs::path& summary, const std::string& key) {
-  const std::string text = file_text(summary);
-  const std::size_t options = text.find("\"options\"");
-  const std::size_t at = text.find("\"" + key + "\": \"", options);
-  if (options == std::string::npos || at == std::string::npos) return "(missing)";
-  const std::size_t begin = at + key.size() + 5;
-  return text.substr(begin, text.find('"', begin) - begin);
-}
+using test::file_text;
+using test::summary_option;
 
 class SummaryOptions : public ::testing::Test {
  protected:
