@@ -381,6 +381,20 @@ struct Closer {
   ~Closer() { ::close(fd); }
 };
 
+/// One read(2) of at most `n` bytes into `buf`, retried when a signal interrupts it: the bytes
+/// read (0 at the end of the file). A failure names the file and the `done` bytes before it.
+std::size_t read_some(int fd, const std::string& path, char* buf, std::size_t n,
+                      std::uint64_t done) {
+  for (;;) {
+    const ssize_t got = ::read(fd, buf, n);
+    if (got >= 0) return static_cast<std::size_t>(got);
+    if (errno == EINTR) continue;
+    const int e = errno;
+    fail_os(path, e, "cannot read file",
+            file_error_text(e) + " after " + std::to_string(done) + " bytes");
+  }
+}
+
 }  // namespace
 
 std::uint64_t regular_file_size(const std::string& path) {
@@ -404,16 +418,12 @@ std::string read_regular_file(const std::string& path, std::uint64_t max_bytes) 
   char more[512];  // past the stat's size: a file that grew, read on within the bound
   for (;;) {
     const bool full = done == bytes.size();
-    const ssize_t n = full ? ::read(fd, more, sizeof more) : ::read(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int e = errno;
-      fail_os(path, e, "cannot read file",
-              file_error_text(e) + " after " + std::to_string(done) + " bytes");
-    }
+    const std::size_t n = full
+                              ? read_some(fd, path, more, sizeof more, done)
+                              : read_some(fd, path, bytes.data() + done, bytes.size() - done, done);
     if (n == 0) break;
-    if (full) bytes.append(more, static_cast<std::size_t>(n));
-    done += static_cast<std::size_t>(n);
+    if (full) bytes.append(more, n);
+    done += n;
     if (done > max_bytes)
       fail_os(path, EFBIG, "file too large",
               "it grew beyond " + std::to_string(max_bytes) + " bytes while being read");
@@ -430,15 +440,9 @@ std::string read_regular_file_start(const std::string& path, std::uint64_t max_b
   std::string bytes(static_cast<std::size_t>(wanted), '\0');  // std::bad_alloc passes
   std::size_t done = 0;
   while (done < bytes.size()) {
-    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int e = errno;
-      fail_os(path, e, "cannot read file",
-              file_error_text(e) + " after " + std::to_string(done) + " bytes");
-    }
+    const std::size_t n = read_some(fd, path, bytes.data() + done, bytes.size() - done, done);
     if (n == 0) break;  // the file shrank since the stat: what it holds
-    done += static_cast<std::size_t>(n);
+    done += n;
   }
   bytes.resize(done);
   return bytes;
@@ -452,16 +456,10 @@ void read_regular_file_pieces(const std::string& path,
   std::vector<char> piece(std::size_t{1} << 16);
   std::uint64_t done = 0;
   for (;;) {
-    const ssize_t n = ::read(fd, piece.data(), piece.size());
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      const int e = errno;
-      fail_os(path, e, "cannot read file",
-              file_error_text(e) + " after " + std::to_string(done) + " bytes");
-    }
+    const std::size_t n = read_some(fd, path, piece.data(), piece.size(), done);
     if (n == 0) return;
-    take(piece.data(), static_cast<std::size_t>(n));
-    done += static_cast<std::uint64_t>(n);
+    take(piece.data(), n);
+    done += n;
   }
 }
 
