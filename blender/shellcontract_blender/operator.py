@@ -1,11 +1,23 @@
 """bpy.ops.object.shellcontract_contract: the run of the active mesh, written as shape keys."""
 
+import re
+
 import bpy
 import numpy as np
 
-from . import curves, placement, runner
+from . import curves, interrupt, placement, runner
 
 KEY_PREFIX = "shellcontract "
+# The names the add-on gives its keys, "shellcontract 00042" (the simulation frame, 5 digits or
+# more), and their F-curves' paths: only these are the add-on's to replace. A key of the user's
+# whose name merely begins the same way (a result kept as "shellcontract final (keep)") is theirs.
+_RESULT_KEY = re.compile(re.escape(KEY_PREFIX) + r"\d{5,}")
+_RESULT_FCURVE = re.compile(r'key_blocks\["' + _RESULT_KEY.pattern + r'"\]\..+')
+
+
+def is_result_key(name):
+    """Whether a shape key's name is one the add-on gives its result keys."""
+    return _RESULT_KEY.fullmatch(name) is not None
 
 # The runs in progress, by object (run_key) -> Job: kept here, not on the object, so that a file
 # saved (or a Blender that crashed) during a run does not come back with a run that no longer
@@ -26,6 +38,9 @@ def object_of(key):
             return obj
     return None
 
+
+# Under blender -b a run prints its progress every this many seconds (a short run prints nothing).
+PROGRESS_SECONDS = 10.0
 
 # Edit Mode keeps its own copy of the mesh: the module would read the positions from before the
 # edits, and shape keys written now are replaced by the edit copy's (without them) when it ends.
@@ -96,7 +111,7 @@ def _value_animation(keys, kb):
 def active_shape_keys(obj):
     """The object's shape keys that change what Blender shows over the Basis (the reference
     key) during the animation, as "'Name' (value)" or "'Name' (keyed)"/"(driven)". Not counted:
-    the add-on's own keys (KEY_PREFIX: a new run replaces them), muted keys, keys at 0 that are
+    the add-on's own keys (is_result_key: a new run replaces them), muted keys, keys at 0 that are
     not animated off it, and keys whose positions are those of their Relative To key (a key
     relative to itself adds nothing at any value)."""
     keys = obj.data.shape_keys
@@ -105,7 +120,7 @@ def active_shape_keys(obj):
     blocks = keys.key_blocks
     out = []
     for kb in blocks[1:]:
-        if kb.name.startswith(KEY_PREFIX) or kb.mute:
+        if is_result_key(kb.name) or kb.mute:
             continue
         animated = _value_animation(keys, kb)
         if animated == "keyed to 0" or (not animated and kb.value == 0.0):
@@ -149,6 +164,24 @@ def shape_key_refusal(obj):
                 "s" if len(active) > 1 else "", ", ".join(active),
                 "are" if len(active) > 1 else "is", basis,
                 "they" if len(active) > 1 else "it", *(["them" if len(active) > 1 else "it"] * 3)))
+
+
+def ngon_warning(obj):
+    """The warning for a mesh with n-gons (faces of 5 or more corners), or ''. The run is given
+    Blender's triangles of the mesh at rest, but Blender triangulates every n-gon again on every
+    frame, from the shape the keys give it, and an n-gon's fan of long, thin triangles often
+    comes out with other diagonals: the shape shown, and its volume, then differ from the run's
+    far more than a quad's other diagonal makes them (a cylinder's caps)."""
+    sizes = np.empty(len(obj.data.polygons), dtype=np.int64)
+    obj.data.polygons.foreach_get("loop_total", sizes)
+    ngons = int(np.count_nonzero(sizes >= 5))
+    if ngons == 0:
+        return ""
+    return ("{} has {} n-gon{} (faces of 5 or more corners): Blender re-triangulates them on "
+            "every frame, so the shape shown, and its volume, will differ from the run's and from "
+            "the V/V0 reported; for a faithful result triangulate them first (Edit Mode, select "
+            "all, Face > Triangulate Faces, Ctrl+T) and run again".format(
+                obj.name, ngons, "" if ngons == 1 else "s"))
 
 
 def modifier_hint(obj):
@@ -213,18 +246,27 @@ def write_shape_keys(context, obj, job, start):
     """One shape key per kept frame, keyed so that timeline frame start + n shows simulation
     frame n (linear blends between neighbouring keys); start is the scene's start frame when the
     run was prepared, which its schedules were read from. Earlier results of the add-on are
-    replaced; the Basis and the object's other keys stay."""
+    replaced; the Basis and the object's other keys stay.
+
+    An action that has other users (another object's Key: a mesh copied by a script, `c.data =
+    a.data.copy()`, or Shift+D without Preferences > Editing > Duplicate Data > Action; an NLA
+    strip; a fake user) is not edited: its F-curves play for them too, so this Key gets a copy of
+    it first, and their animation stays as it was."""
     if obj.data.shape_keys is None:
         obj.shape_key_add(name="Basis", from_mix=False)
     keys = obj.data.shape_keys
-    for kb in [kb for kb in keys.key_blocks if kb.name.startswith(KEY_PREFIX)]:
-        obj.shape_key_remove(kb)
     if keys.animation_data is None:
         keys.animation_data_create()
-    if keys.animation_data.action is None:
-        keys.animation_data.action = bpy.data.actions.new(obj.name + "ShellContract")
-    action = keys.animation_data.action
-    for fc in [fc for fc in action.fcurves if KEY_PREFIX in fc.data_path]:
+    ad = keys.animation_data
+    if ad.action is None:
+        ad.action = bpy.data.actions.new(obj.name + "ShellContract")
+    elif ad.action.users > 1:
+        ad.action = ad.action.copy()
+    action = ad.action
+    for kb in [kb for kb in keys.key_blocks if is_result_key(kb.name)]:
+        obj.shape_key_remove(kb)
+    # Removing a key leaves its F-curves behind.
+    for fc in [fc for fc in action.fcurves if _RESULT_FCURVE.fullmatch(fc.data_path)]:
         action.fcurves.remove(fc)
     frames = sorted(job.frames)
     times = [start] + [start + n for n in frames]  # start: the rest state, the Basis
@@ -259,7 +301,17 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
     @classmethod
     def poll(cls, context):
         obj = context.active_object
-        if obj is None or obj.type != "MESH" or run_key(obj) in RUNNING:
+        # Said, not Blender's bare "context is incorrect" (a script's RuntimeError, the tooltip).
+        if obj is None:
+            cls.poll_message_set("no active object: select a mesh object")
+            return False
+        if obj.type != "MESH":
+            kind = obj.bl_rna.properties["type"].enum_items[obj.type].name  # "Empty", "Camera"
+            cls.poll_message_set("{} is not a mesh ({}): select a mesh object".format(
+                obj.name, kind))
+            return False
+        if run_key(obj) in RUNNING:
+            cls.poll_message_set("{} is being contracted (Esc cancels the run)".format(obj.name))
             return False
         # Linked data cannot keep the run's keys; the reason shows in the button's tooltip and
         # in a script's error, as for Blender's own shape-key operators.
@@ -291,7 +343,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
                          polygon_of)
         job.space = space  # the result is mapped back to the mesh's coordinates
         job.start_frame = start  # the schedules' frame 0; the keys are written from it
-        job.addon_warnings = [w for w in warnings if w]
+        job.addon_warnings = [w for w in [ngon_warning(obj)] + warnings if w]
         return obj, job
 
     def _refuse(self, context, error):
@@ -313,9 +365,11 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             return runner.addon_terms(message, start, obj.name, job.polygon_of, job.faces,
                                       job.vertices)
 
-        if isinstance(job.error, KeyboardInterrupt):  # Ctrl-C under blender -b: it has no text
-            s.status = "interrupted (Ctrl-C)"
-            self.report({"WARNING"}, "ShellContract: interrupted (Ctrl-C); the object is unchanged")
+        # Ctrl-C under blender -b (interrupt.CtrlC), or a KeyboardInterrupt from a handler of
+        # Python's own (it has no text).
+        if job.interrupted or isinstance(job.error, KeyboardInterrupt):
+            s.status = "interrupted (Ctrl-C) at frame {}".format(start + job.progress)
+            self.report({"WARNING"}, "ShellContract: {}; the object is unchanged".format(s.status))
             return {"CANCELLED"}
         if job.error is not None:
             error = terms(job.error) or type(job.error).__name__
@@ -326,7 +380,7 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             return {"CANCELLED"}
         result = job.result
         if result.status == "cancelled":
-            s.status = "cancelled at frame {}".format(job.progress)
+            s.status = "cancelled at frame {}".format(start + job.progress)  # timeline frame
             self.report({"WARNING"}, "ShellContract: cancelled; the object is unchanged")
             return {"CANCELLED"}
         if result.summary["frames_run"] < 1:  # failed at its first step: nothing to key
@@ -351,9 +405,10 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
         # The library's warnings (e.g. a vertex group whose weights are all 0: no region) go with
         # the status, so that an ineffective setting is not reported as a plain success.
         warnings = job.addon_warnings + [terms(w) for w in result.summary.get("warnings", [])]
-        s.status = "{}: {} frames, V/V0 {:.4f}".format(
-            result.status, result.summary["frames_run"], result.summary["final_volume_ratio"]) + "".join(
-            "; warning: " + w for w in warnings)
+        run = result.summary["frames_run"]
+        s.status = "{}: {} frame{}, V/V0 {:.4f}".format(
+            result.status, run, "" if run == 1 else "s",
+            result.summary["final_volume_ratio"]) + "".join("; warning: " + w for w in warnings)
         obj["shellcontract_final_volume_ratio"] = result.summary["final_volume_ratio"]
         obj["shellcontract_regions"] = result.summary["regions"]
         level = {"INFO"} if result.status == "ok" and not warnings else {"WARNING"}
@@ -368,7 +423,16 @@ class OBJECT_OT_shellcontract_contract(bpy.types.Operator):
             obj, job = self._prepare(context)
         except (runner.AddonError, ValueError, TypeError) as e:
             return self._refuse(context, e)
-        job.run()
+        if not bpy.app.background:
+            job.run()
+            return self._finish(context, obj, job)
+        # No window, no Esc, no status bar: Ctrl-C cancels (Blender's own handler would swallow
+        # it) and a long run says how far it is on stdout.
+        with interrupt.CtrlC(job.cancel) as ctrl_c:
+            job.progress_lines(obj.name, PROGRESS_SECONDS,
+                               note="Ctrl-C stops the run" if ctrl_c.active else "")
+            job.run()
+        job.interrupted = ctrl_c.interrupted
         return self._finish(context, obj, job)
 
     def invoke(self, context, event):

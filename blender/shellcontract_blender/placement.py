@@ -50,13 +50,16 @@ def run_space(obj):
     lin = np.array(obj.matrix_world, dtype=np.float64)[:3, :3]
     gram = lin.T @ lin
     mean = np.trace(gram) / 3.0
-    if mean <= 0.0 or np.max(np.abs(gram - mean * np.eye(3))) <= 1e-6 * mean:
+    flat = runner.AddonError(
+        "{} is scaled to 0 along an axis (Object properties > Transform > Scale): its shape "
+        "is flat; give it a scale first".format(obj.name))
+    if not mean > 0.0:  # scaled to 0 along every axis: nothing is shown
+        raise flat
+    if np.max(np.abs(gram - mean * np.eye(3))) <= 1e-6 * mean:
         return None
     det = np.linalg.det(lin)
     if abs(det) <= 1e-9 * mean ** 1.5:
-        raise runner.AddonError(
-            "{} is scaled to 0 along an axis (Object properties > Transform > Scale): its shape "
-            "is flat; give it a scale first".format(obj.name))
+        raise flat
     if det < 0.0:
         lin = np.diag([-1.0, 1.0, 1.0]) @ lin
     return lin

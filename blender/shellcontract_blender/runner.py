@@ -8,6 +8,7 @@ import re
 import struct
 import sys
 import threading
+import time
 
 
 class AddonError(Exception):
@@ -150,6 +151,14 @@ FIELD_NAMES = {
     "region_shrink": "Region shrink",
 }
 
+# The library's warning that the explicit pressure raised vertex masses (docs/design/defaults.md,
+# "Mass scaling"), which speaks of its time step `dt` and of `frames` for the same time: the
+# panel has no dt, and its frames are steps of a fixed length. Read loosely, so that a change of
+# the library's wording leaves its text as it is rather than losing the numbers.
+_MASS_SCALING = re.compile(
+    r"^(\d+) of (\d+) vertices \(([^)]*)\) are too light for the explicit pressure\b.*?"
+    r"masses were raised, up to (\S+) times\b", re.S)
+
 _KEY_AFTER_END = re.compile(
     r"^(\w+): the key at frame (\d+) comes after the last frame \((\d+)\); the run ends on "
     r"the schedule's value there, (\S+)$")
@@ -164,6 +173,14 @@ def addon_terms(message, start, mesh_name="", polygon_of=None, triangles=None, p
     is rewritten (`triangles` and `positions`, the run's input, let a component's faces be
     counted). Vertex numbers are the mesh's own already."""
     text = str(message)
+    m = _MASS_SCALING.match(text)
+    if m:
+        # What the artist can do first: the panel's fields, not the library's dt.
+        return ("Pressure: set it to 0, with a Target volume, to contract without the pressure's "
+                "explicit load: under it {} of {} vertices ({}) were too light, and their masses "
+                "were raised, up to {} times, which changes how they move "
+                "(docs/design/defaults.md, \"Mass scaling\"); more Frames do not change that (a "
+                "frame is one time step of a fixed length)".format(*m.groups()))
     m = _KEY_AFTER_END.match(text)
     if m and m.group(1) in FIELD_NAMES:
         return ("{}: the key at frame {} comes after the run's last frame {}; the "
@@ -332,13 +349,31 @@ class Job:
         self.space = None  # the 3x3 map of the run's coordinates (placement.run_space), or None
         self.start_frame = None  # the scene's start frame when the run was prepared
         self.addon_warnings = []  # the add-on's own, shown with the library's
+        self.interrupted = False  # stopped by Ctrl-C (interrupt.CtrlC), not by cancel()
+        self.frame_count = options.get("frames")
         self._cancel = threading.Event()
         self._thread = None
+        self._lines = None  # (name, seconds, stream, note) of progress_lines
+        self._next_line = 0.0
+
+    def progress_lines(self, name, seconds, stream=None, note=""):
+        """Print 'ShellContract: NAME: frame N of M (NOTE)' every `seconds` during the run (to
+        stdout, or `stream`): blender -b has no status bar, and a long bake was silent to its
+        end."""
+        self._lines = (name, seconds, stream, " ({})".format(note) if note else "")
+        self._next_line = time.monotonic() + seconds
 
     def _on_frame(self, frame, vertices, metrics):
         self.progress = frame
         if frame in self.keep:
             self.frames[frame] = vertices.copy()
+        if self._lines is not None and time.monotonic() >= self._next_line:
+            name, seconds, stream, note = self._lines
+            stream = stream or sys.stdout
+            stream.write("ShellContract: {}: frame {} of {}{}\n".format(
+                name, frame, self.frame_count, note))
+            stream.flush()
+            self._next_line = time.monotonic() + seconds
         return not self._cancel.is_set()
 
     def run(self):

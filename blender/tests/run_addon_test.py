@@ -3,19 +3,67 @@
 
     run_addon_test.py --cli BUILD/shellcontract --pythonpath BUILD/python
 
+Three Blenders: addon_in_blender.py (the checks), the zip's install, and addon_ctrl_c.py (Ctrl-C
+during a background run, which makes that Blender exit with 1).
+
 Without a `blender` executable the test is skipped (exit code 77, ctest's SKIP_RETURN_CODE) with
 a message, except under SHELLCONTRACT_STRICT_TESTS=1 (.ci/run), where a missing Blender is a
 failure: the CI image installs it (scripts/install_deps.sh)."""
 
 import argparse
 import os
+import queue
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import threading
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SKIP = 77
+
+
+def ctrl_c(blender, env, cwd):
+    """A background run stopped by Ctrl-C (addon_ctrl_c.py): SIGINT when its first progress
+    line shows. Returns its output, or '' after a failure, which it prints."""
+    cmd = [blender, "-b", "--factory-startup", "--python", os.path.join(HERE, "addon_ctrl_c.py"),
+           "--", "--addon-dir", os.path.dirname(HERE)]
+    proc = subprocess.Popen(cmd, env=env, cwd=cwd, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True)
+    lines = queue.Queue()
+    reader = threading.Thread(target=lambda: [lines.put(line) for line in proc.stdout],
+                              daemon=True)
+    reader.start()
+    out, deadline, sent = [], time.monotonic() + 60, False
+    while reader.is_alive() or not lines.empty():  # to the end of its output
+        try:
+            line = lines.get(timeout=0.1)
+        except queue.Empty:
+            if time.monotonic() > deadline:
+                proc.kill()
+                proc.wait()
+                print("".join(out))
+                print("FAIL: the Ctrl-C run did not end in time (SIGINT sent: {})".format(sent))
+                return ""
+            continue
+        out.append(line)
+        if not sent and line.startswith("ShellContract: Icosphere: frame "):
+            proc.send_signal(signal.SIGINT)
+            sent = True
+    proc.wait()
+    text = "".join(out)
+    print(text)
+    wanted = ["interrupted (Ctrl-C) at frame", "the object is unchanged", "KEYS UNCHANGED True",
+              "BLENDER'S HANDLER BACK True", "THE SCRIPT WENT ON",
+              "Sent an internal break event"]  # passed on to Blender's handler
+    missing = [w for w in wanted if w not in text]
+    if not sent or missing or proc.returncode != 1:
+        print("FAIL: Ctrl-C under blender -b (SIGINT sent: {}, exit code {}, expected 1; "
+              "missing: {})".format(sent, proc.returncode, missing))
+        return ""
+    return text
 
 
 def main():
@@ -64,6 +112,8 @@ def main():
         print(zipped.stdout)
         if zipped.returncode != 0 or "ZIP INSTALLED" not in zipped.stdout:
             print("FAIL: the zip did not install and enable")
+            return 1
+        if not ctrl_c(a.blender, env, tmp):
             return 1
         # The script's last line is printed only when every check passed: a script that stopped
         # early without a non-zero exit (Blender's handling of some errors) still fails.
