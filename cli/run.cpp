@@ -320,6 +320,7 @@ int command_run(int argc, char** argv) {
       check_checkpoint_input(resume, input, mesh);  // InputError: exit 2
       csv.restore(resume.log);
     }
+    second_signal::describe(checkpoint_path, output, exports.dir);  // before its handler
     CliCheckpointer checkpointer(checkpoint_path, checkpoint_every,
                                  resume_path.empty() ? nullptr : &resume, input, mesh_hash(mesh),
                                  inputs, options, csv);
@@ -353,6 +354,7 @@ int command_run(int argc, char** argv) {
     if (r.status == RunStatus::Cancelled && checkpointer.interrupted())
       return report_interrupted(r, checkpointer, output, exports, exporter.frame_stats(),
                                 !fields_prefix.empty());
+    second_signal::phase.store(second_signal::Outputs);
 
     // A finished result is never thrown away: each output is written on its own, one that
     // fails (a full disk) is reported and the others are still written (output-safety.md).

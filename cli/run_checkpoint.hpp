@@ -19,6 +19,7 @@
 #include "mesh/file_safety.hpp"
 #include "output_paths.hpp"
 #include "run_observers.hpp"
+#include "run_second_signal.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/checkpoint_lock.hpp"
 #include "shellcontract/error.hpp"
@@ -50,7 +51,14 @@ extern "C" inline void on_signal(int sig) {
   if (!ends_at_once(sig, first_ns.load(std::memory_order_relaxed), now)) return;
   // A person's second Ctrl-C ends the process at once, removing the temporary of a checkpoint it
   // cuts short (the save after the first one is the likely place for it): the library's ending,
-  // raised again now that it is this signal's handler.
+  // raised again now that it is this signal's handler. First one line of what that leaves
+  // (run_second_signal.hpp), which holds once the end is on the run's own thread: there the save
+  // in progress goes no further.
+  second_signal::say();
+  if (second_signal::on_another_thread()) {
+    second_signal::forward_to_run_thread(sig);
+    return;
+  }
   end_on_next_signal(sig);
   ::raise(sig);
 }
@@ -131,6 +139,9 @@ class CliCheckpointer final : public RunCheckpointer {
         inputs_(std::move(inputs)),
         options_(options),
         log_file_(path_, log.text(), resume) {
+    // What the handler's line of a second Ctrl-C says is in the file now (second_signal::describe
+    // gave it the paths): the checkpoint resumed from, when this run saves over it.
+    second_signal::checkpoint_in_place(resumed_frame(), false);
     // With or without a checkpoint: the run stops after its step and says at which frame, and
     // what it leaves (run_interrupt.hpp); the default ending (entry.cpp) exited 130 without a
     // word. A signal ignored (a background job of a script) stays ignored. SIGHUP and SIGUSR1
@@ -162,6 +173,7 @@ class CliCheckpointer final : public RunCheckpointer {
       write_checkpoint(path_, run, options_, CheckpointInfo{input_, hash_, {}, inputs_, every_},
                        log_file_);
       saved_frame_ = frame_;
+      second_signal::checkpoint_in_place(frame_, interrupted());
     } catch (const UsageError& e) {
       // The run goes on without it (a full disk should not cost the run); said once here, and
       // at the end in the summary (failure_report) and the message of an interrupted run.

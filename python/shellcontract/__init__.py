@@ -105,7 +105,9 @@ def contract(vertices, faces, *, callback=None, **options):
     stops the run (status "cancelled"): False, numpy's False_ (``v[:, 2].max() > 10``), 0.
     Returning None (or nothing) goes on, as does any true value; a value without a truth value
     (an array of several elements) raises its error, as ``if value:`` would. Ctrl-C stops the
-    run cleanly and raises KeyboardInterrupt.
+    run cleanly and raises KeyboardInterrupt, after the step it is in and, with checkpoint=, the
+    save of the state; more Ctrl-Cs meanwhile are the same request (one KeyboardInterrupt), not
+    an end at once as the CLI's second Ctrl-C (SIGTERM, SIGKILL end the process at once).
     Raises ValueError for a mesh the library refuses or a bad option value (MeshError, a
     ValueError with the faces' indices as ``faces``, where particular faces are to blame),
     TypeError for an unknown option. The options are the CLI's with '_' for '-' (the CLI's
@@ -134,8 +136,11 @@ def contract(vertices, faces, *, callback=None, **options):
     too).
 
     checkpoint=FILE saves the whole state every checkpoint_every=N frames and when Ctrl-C
-    cancels the run, the log and V/V0 of the frames so far in FILE.log and FILE.history beside
-    it, to which each save appends what is new, as the CLI's (move or copy the three together);
+    cancels the run, as the CLI's: the run's first save holds the log and V/V0 of the frames so
+    far in FILE itself (a run cancelled before any other save leaves FILE alone), later saves
+    keep them in FILE.log and FILE.history beside it and append what is new (move or copy FILE
+    with FILE.log and FILE.history when they are there: a checkpoint that needs them is refused
+    without them);
     FILE is checked before the run as the CLI checks its outputs (ValueError
     for an input's file; FileNotFoundError for a missing folder, IsADirectoryError for a folder
     in its place, PermissionError for a read-only folder, a FileError with errno None for a

@@ -8,13 +8,16 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "core/signal_repeat.hpp"
 #include "support/child_process.hpp"
 #include "support/interrupted_run.hpp"
 #include "test_paths.hpp"
@@ -110,11 +113,12 @@ class CliSignalEcho : public CliSignals {
   /// once the save's temporary is created (and held 1 s), `second`. Returns the waitpid status;
   /// `text` gets stderr.
   int stopped_twice(const std::function<void(pid_t)>& first,
-                    const std::function<void(pid_t)>& second, std::string& text) {
+                    const std::function<void(pid_t)>& second, std::string& text,
+                    int hold_ms = 1000) {
     const std::vector<std::string> args = {
         "run",    mesh("ico2.off"), "-o",          out("r.off"),         "-n",
         "100000", "--checkpoint",   out("r.ckpt"), "--checkpoint-every", "100000"};
-    test::Child run(test::held_cli_child(args, 1000));
+    test::Child run(test::held_cli_child(args, hold_ms));
     if (run.pid() <= 0) {
       ADD_FAILURE() << "the run did not start";
       return -1;
@@ -170,6 +174,58 @@ TEST_F(CliSignalEcho, AnotherStopSignalRightAfterTheFirstIsTheSameRequest) {
   const auto term = [](pid_t pid) { ::kill(pid, SIGTERM); };
   const int status = stopped_twice(usr1, term, text);
   expect_stopped_and_saved(status, text);
+}
+
+// A person's second Ctrl-C, more than half a second after the first, ends the run at once, here
+// in the save at the stop (held 3 s): stderr says that the state was not saved, naming the
+// file, and claims no save. Before: the process ended without a word, and the user learned
+// neither that --resume had nothing to go on from nor why.
+TEST_F(CliSignalEcho, ASecondCtrlCLaterSaysTheStateWasNotSaved) {
+  std::string text;
+  const auto ctrl_c = [](pid_t pid) { ::kill(pid, SIGINT); };
+  const auto later = [](pid_t pid) {
+    std::this_thread::sleep_for(std::chrono::nanoseconds(SIGNAL_REPEAT_WINDOW_NS) +
+                                std::chrono::milliseconds(200));
+    ::kill(pid, SIGINT);
+  };
+  const int status = stopped_twice(ctrl_c, later, text, 3000);
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+  EXPECT_NE(text.find("shellcontract run: stopped at once by a second Ctrl-C; the state was not "
+                      "saved (" +
+                      out("r.ckpt")),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("the state is saved"), std::string::npos) << text;
+  EXPECT_EQ(text.find("interrupted at frame"), std::string::npos) << text;  // it ended at once
+  EXPECT_FALSE(fs::exists(out("r.ckpt")));
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
+}
+
+// The same without --checkpoint, with -q: the first Ctrl-C lands while a frame of --export-dir is
+// written (held 3 s; the run waits for its writer before it stops), the second ends the run
+// there. stderr says that no result was written and names the folder whose finished frames
+// stay, which a rerun refuses.
+TEST_F(CliSignals, ASecondCtrlCLaterNamesTheFramesLeft) {
+  test::Child run(test::held_cli_child(exporting_run(), 3000));
+  ASSERT_GT(run.pid(), 0);
+  const std::string& text = run.output();
+  ASSERT_TRUE(run.await("shellcontract test: temporary created", 4)) << text;  // a frame's
+  run.signal(SIGINT);
+  std::this_thread::sleep_for(std::chrono::nanoseconds(SIGNAL_REPEAT_WINDOW_NS) +
+                              std::chrono::milliseconds(200));
+  run.signal(SIGINT);
+  const int status = run.finish();
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
+  EXPECT_EQ(WEXITSTATUS(status), 130) << text;
+  EXPECT_NE(text.find("shellcontract run: stopped at once by a second Ctrl-C; no result was "
+                      "written; any frames it had finished in " +
+                      out("frames") + " stay (remove them to rerun)"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("interrupted at frame"), std::string::npos) << text;
+  EXPECT_FALSE(fs::exists(out("r.off")));
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
 }
 
 // A file size limit (RLIMIT_FSIZE, which batch systems pass on to a job) smaller than the result:
