@@ -355,6 +355,9 @@ int command_run(int argc, char** argv) {
       return report_interrupted(r, checkpointer, output, exports, exporter.frame_stats(),
                                 !fields_prefix.empty());
     second_signal::phase.store(second_signal::Outputs);
+    // A signal during the last step came too late to stop it (the handler says so itself for
+    // one from now on).
+    if (checkpoint_signal::received != 0) second_signal::acknowledge_late_stop();
 
     // A finished result is never thrown away: each output is written on its own, one that
     // fails (a full disk) is reported and the others are still written (output-safety.md).

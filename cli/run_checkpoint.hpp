@@ -44,6 +44,8 @@ extern "C" inline void on_signal(int sig) {
   if (received == 0) {
     first_ns.store(now, std::memory_order_relaxed);
     received = sig;
+    if (second_signal::phase.load() == second_signal::Outputs)
+      second_signal::acknowledge_late_stop();
     return;
   }
   // The same request again (a wrapper's forward, timeout's second send, a sweep's SIGTERM after

@@ -154,6 +154,28 @@ inline bool on_another_thread() {
 /// printed its message before the end. Async-signal-safe (pthread_kill).
 inline void forward_to_run_thread(int sig) { ::pthread_kill(run_thread, sig); }
 
+/// A first signal after the last step is no stop: the run is over and a finished result is
+/// always written (output-safety.md). Said once, from the handler (a signal while the outputs are
+/// written) or from the run's thread (one that came during the last step), so that the user
+/// who pressed Ctrl-C learns why the run goes on and how to end it at once. Async-signal-safe.
+inline std::atomic<bool> acknowledged{false};
+inline void acknowledge_late_stop() {
+  if (acknowledged.exchange(true)) return;
+  static const char text[] =
+      "shellcontract run: the run was over when the stop signal came: its outputs are being "
+      "written (a finished result is always written); Ctrl-C again stops at once, without those "
+      "not yet complete\n";
+  const int saved_errno = errno;
+  for (std::size_t done = 0, n = sizeof text - 1; done < n;) {
+    const ssize_t w = ::write(2, text + done, n - done);
+    if (w > 0)
+      done += static_cast<std::size_t>(w);
+    else if (!(w < 0 && errno == EINTR))
+      break;
+  }
+  errno = saved_errno;
+}
+
 /// Writes the line to stderr, once. For the handler that then ends the process.
 inline void say() {
   if (said.exchange(true)) return;

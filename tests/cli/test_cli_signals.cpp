@@ -228,6 +228,28 @@ TEST_F(CliSignals, ASecondCtrlCLaterNamesTheFramesLeft) {
   EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
 }
 
+// A Ctrl-C after the last step, while the result is written (its temporary, the run's second
+// after the output check's probe, held 1.5 s), stops nothing: a finished result is always
+// written, exit 0. stderr says why the run goes on and how to end it at once. Before: not a
+// word, and the user who pressed Ctrl-C again ended it without the outputs.
+TEST_F(CliSignals, ACtrlCAfterTheLastStepSaysTheOutputsAreBeingWritten) {
+  test::Child run(
+      test::held_cli_child({"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "2", "-q"}, 1500));
+  ASSERT_GT(run.pid(), 0);
+  const std::string& text = run.output();
+  ASSERT_TRUE(run.await("shellcontract test: temporary created", 2)) << text;  // the result's
+  run.signal(SIGINT);
+  const int status = run.finish();
+  ASSERT_TRUE(WIFEXITED(status)) << test::ending(status) << "\n" << text;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << text;
+  EXPECT_TRUE(fs::exists(out("r.off")));
+  EXPECT_NE(text.find("shellcontract run: the run was over when the stop signal came: its outputs "
+                      "are being written"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(test::temporaries(dir_), std::vector<std::string>{});
+}
+
 // A file size limit (RLIMIT_FSIZE, which batch systems pass on to a job) smaller than the result:
 // the write fails with EFBIG as on a full disk, the old file is kept, the other outputs are
 // written, exit 1. Before: SIGXFSZ ended the run (153) with a partial temporary left and no log.
