@@ -328,9 +328,9 @@ std::vector<OptionSpec> build_table() {
                      non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
   t.push_back(
       choice("inward",
-             "how the regions are made to sink in: volume (each region sinks as a mirrored "
-             "dimple around its apex that takes 2S of its rest cap volume off, S = "
-             "--region-shrink, and is held there; under -p > 0 without --target-volume the "
+             "how the regions are made to sink in: volume (each region sinks a dimple around "
+             "its apex holding S of its rest cap volume, S = --region-shrink, towards the "
+             "dimple's mirror image and holds it there; under -p > 0 without --target-volume the "
              "regions also take an extra pressure 2 S P) | force (an extra pressure on the "
              "regions, P_A = 10 S, without net force or torque: this tool's replacement for "
              "the paper's k_A) | "
@@ -357,8 +357,10 @@ std::vector<OptionSpec> build_table() {
                      [](R& r) -> double& { return r.region_max_area; }));
   t.push_back(number("region-shrink", 0, "S",
                      "how much the regions of --regions shrink (the local contraction's "
-                     "strength): 0 not at all, 0.5 takes a bump's whole volume off, 1 turns "
-                     "it inside out",
+                     "strength): the share of each region's rest cap volume, around its apex, "
+                     "that sinks as a dimple to its mirror image, 0 not at all, 1 the whole "
+                     "region; the image takes 2S of the cap volume off (0.5 all of it) only "
+                     "where the dimple's rim is flat: a region of few faces mostly loses less",
                      between(0.0, 1.0, false, false),
                      [](R& r) -> double& { return r.sim.region_shrink; }));
   t.push_back(number("mu-a", 0, "MUA", "anisotropic fibre stiffness mu_A", non_negative(),
