@@ -98,6 +98,12 @@ struct RunOptions {
 /// front end). The run plan reports them as warnings.
 std::vector<std::string> ineffective_options(const RunOptions& options);
 
+/// The options, by field, that have no effect in this configuration whatever their value, given
+/// or not: the rules of ineffective_options (a given one of them is its "has no effect" warning).
+/// Not those whose given value another option replaces (mu and lambda beside young or
+/// thickness): the run used a value for them. The run summary records these empty.
+std::set<std::string> options_without_effect(const RunOptions& options);
+
 /// Applies the defaults that depend on other options, derives the values that follow from
 /// others (mu and lambda from young; the solver's time step and threads, the collision threads
 /// and the speculative broad phase) and checks every option and the rules between them. The

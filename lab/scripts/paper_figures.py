@@ -71,7 +71,9 @@ def main():
     opts = defaults_run["summary"]["options"]
     keys = ["pressure", "damping", "k-b", "material", "solver", "bending", "iterations", "dt",
             "collisions", "inward", "region-shrink", "air-balance"]
-    defaults = ", ".join(f"`--{k} {opts[k]}`" for k in keys if k in opts)
+    # An option without effect in that run (the local contraction's, with no regions) is recorded
+    # empty: not a default to name.
+    defaults = ", ".join(f"`--{k} {opts[k]}`" for k in keys if opts.get(k))
     elapsed = time.time() - start
     default_tool = os.path.join(ROOT, "build", "shellcontract")
     tool_arg = "" if os.path.abspath(a.tool) == default_tool else f" --tool {a.tool}"

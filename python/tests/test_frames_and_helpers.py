@@ -344,3 +344,34 @@ def test_the_fallback_bending_is_a_warning(ico2):
     assert not any("k_B" in w for w in shellcontract.contract(v, f, frames=1).summary["warnings"])
     r = shellcontract.contract(v, f, frames=1, mu=0.7, lambda_=0.6)
     assert any(w.startswith("the bending k_B is 0.01") and "k_b" in w for w in r.summary["warnings"]), r.summary["warnings"]
+
+
+def test_the_isometric_bendings_k_b_is_a_warning(ico2):
+    # Before: bending="isometric" under xpbd ran with k_B 0.01 whatever the shell material, with no
+    # word; the warning names the shell's k_B, the dihedral bending's of the same shell.
+    v, f = ico2
+    shell_k_b = shellcontract.contract(v, f, frames=1).summary["options"]["k_b"]
+    r = shellcontract.contract(v, f, frames=1, bending="isometric")
+    assert any(w.startswith("the bending k_B is 0.01") and "has k_B " + shell_k_b + ": give k_b" in w
+               for w in r.summary["warnings"]), r.summary["warnings"]
+    given = shellcontract.contract(v, f, frames=1, bending="isometric", k_b=float(shell_k_b))
+    assert not any(w.startswith("the bending k_B") for w in given.summary["warnings"])
+
+
+def test_the_summary_s_options_without_the_empty_ones_rerun_the_run(ico2):
+    # Before: the options a run ignored were recorded with their table values (mu_a, k_a, the
+    # dimple, delta with collisions off, ...). Now empty: left out, the others rerun the run.
+    v, f = ico2
+    # mu given: no shell material, whose recorded mu and lambda a rerun beside young and
+    # thickness would be warned of (set by those; the same run).
+    a = shellcontract.contract(v, f, frames=3, mu=2, mu_a=3, k_a=0.3, dimple="volume",
+                               inward="force", mass="unit", density=2, collisions=False,
+                               delta=0.01, target_ramp=2)
+    options = a.summary["options"]
+    for name in ("mu_a", "k_a", "dimple", "inward", "density", "delta", "target_ramp", "fiber",
+                 "poisson", "young"):
+        assert options[name] == "", name
+    assert options["mass"] == "unit" and options["collisions"] == "off"
+    b = shellcontract.contract(v, f, **{k: value for k, value in options.items() if value != ""})
+    assert a.vertices.tolist() == b.vertices.tolist()
+    assert not any("has no effect" in w for w in b.summary["warnings"]), b.summary["warnings"]

@@ -1,6 +1,7 @@
 #include "shellcontract/options.hpp"
 
 #include <cmath>
+#include <set>
 #include <utility>
 
 #include "material/registry.hpp"
@@ -55,16 +56,36 @@ void pbd_scale_warnings(const RunOptions& r, std::vector<std::string>& w) {
                 shortest_text(m.lambda / m.mu) + "): their common scale " + PBD_STEP_ONLY + scale);
 }
 
-/// Under xpbd with the dihedral bending k_B is a stiffness that the shell material sets (young,
-/// thickness). Without one (`mu` or `lambda` given, or Mooney-Rivlin) it falls back to 0.01, the
-/// PBD-era multiplier: over 40,000 times the default shell's, so the same membrane keeps much
-/// more of its volume. Said, with the k_B that this membrane would have as a shell
-/// of the default thickness, so that `k_b` can give it.
+/// Under xpbd k_B is a stiffness, which the shell material (young, thickness) sets for the
+/// dihedral bending only (resolve_run_options). Elsewhere, unless given, it is `k_b`'s 0.01, the
+/// PBD-era multiplier: over 40,000 times the default shell's, so the same shell keeps much more of
+/// its volume. Said, with the k_B the shell would have, so that `k_b` can give it: for the
+/// dihedral bending without a shell material (`mu` or `lambda` given, or Mooney-Rivlin), and for
+/// the isometric bending always (its energy about a flat rest is the dihedral's to second order,
+/// spec.md 8.3, so the plate's k_B is the same; docs/math/bending-from-material.md).
 void fallback_k_b_warning(const RunOptions& r, std::vector<std::string>& w) {
   const SimOptions& s = r.sim;
-  if (s.solver.kind != SolverKind::Xpbd || s.bending != BendingModel::Dihedral ||
-      r.given.count("k_b") || r.young.has_value())
+  const bool isometric = s.bending == BendingModel::Isometric;
+  if (s.solver.kind != SolverKind::Xpbd || s.bending == BendingModel::None ||
+      r.given.count("k_b") || (!isometric && r.young.has_value()))
     return;
+  const std::string used = "the bending k_B is " + shortest_text(s.solver.k_bending);
+  const std::string give = ": give `k_b` for it";
+  const auto valid = [](double young, double nu, double h) {
+    return young > 0.0 && std::isfinite(young) && h > 0.0 && std::isfinite(h) && nu > -1.0 &&
+           nu < 1.0;
+  };
+  if (r.young && r.thickness) {  // the isometric bending beside a shell material
+    if (!valid(*r.young, r.poisson, *r.thickness)) return;  // refused by the checks after this
+    w.push_back(used +
+                " (`k_b`'s default: the shell material sets k_B for the dihedral bending "
+                "only); this shell of `young` " +
+                shortest_text(*r.young) + ", `thickness` " + shortest_text(*r.thickness) +
+                " and `poisson` " + shortest_text(r.poisson) + " has k_B " +
+                shortest_text(dihedral_k_bending_from_young(*r.young, r.poisson, *r.thickness)) +
+                give);
+    return;
+  }
   const MaterialParams& m = s.material_params;
   const bool mooney = s.material == MaterialKind::MooneyRivlin;
   // The small-strain shell of this membrane: plane stress gives mu = E h / (2 (1 + nu)) and
@@ -76,30 +97,47 @@ void fallback_k_b_warning(const RunOptions& r, std::vector<std::string>& w) {
   const double young = 2.0 * mu * (1.0 + nu) / h;
   // mu > 0 and mu + lambda > 0 (check_sim_options) hold nu in (-1, 1); a caller's fields that
   // do not are refused by the checks after this.
-  if (!(young > 0.0 && std::isfinite(young) && nu > -1.0 && nu < 1.0)) return;
+  if (!valid(young, nu, h)) return;
   const double shell_k_b = dihedral_k_bending_from_young(young, nu, h);
   const double default_k_b =
       dihedral_k_bending_from_young(DEFAULT_SHELL_YOUNG, RunOptions{}.poisson, h);
   std::string why = mooney ? "`material` mooney-rivlin has no shell material"
                            : "`mu` or `lambda` given replaces the default shell material";
-  w.push_back("the bending k_B is " + shortest_text(s.solver.k_bending) +
-              " (`k_b`'s fallback: " + why + "; the default shell's k_B is " +
-              shortest_text(default_k_b) + "); this membrane as a shell of `thickness` " +
-              shortest_text(h) + " has k_B " + shortest_text(shell_k_b) + ": give `k_b` for it" +
-              (mooney ? ", or `young` and `thickness` (which set only k_B here)"
-                      : ", or the membrane by `young`, `thickness` and `poisson` instead of "
-                        "`mu` and `lambda`"));
+  if (isometric) why = "the shell material sets k_B for the dihedral bending only, and " + why;
+  // The isometric bending takes k_B from no shell material, so only `k_b` gives it.
+  const std::string other =
+      isometric ? ""
+      : mooney  ? ", or `young` and `thickness` (which set only k_B here)"
+                : ", or the membrane by `young`, `thickness` and `poisson` instead of `mu` and "
+                  "`lambda`";
+  w.push_back(used + " (`k_b`'s " + (isometric ? "default: " : "fallback: ") + why +
+              "; the default shell's k_B is " + shortest_text(default_k_b) +
+              "); this membrane as a shell of `thickness` " + shortest_text(h) + " has k_B " +
+              shortest_text(shell_k_b) + give + other);
 }
 
-}  // namespace
+/// The rules of the options that have no effect with the others, for ineffective_options (the
+/// warnings, for the options given) and options_without_effect (every option without effect,
+/// given or not, which the summary records empty): one set of rules for both.
+struct OptionReview {
+  std::vector<std::string> warnings;
+  std::set<std::string> unused;
+};
 
-std::vector<std::string> ineffective_options(const RunOptions& r) {
+OptionReview review_options(const RunOptions& r) {
   const SimOptions& s = r.sim;
-  std::vector<std::string> w;
-  // Options by field; a front end spells `field` its own way (spell_options).
-  auto check = [&](const char* field, bool no_effect, const std::string& why) {
+  OptionReview review;
+  std::vector<std::string>& w = review.warnings;
+  // Options by field; a front end spells `field` its own way (spell_options). `check`: the option
+  // has no effect here whatever its value; `replaced`: a value given for it is replaced by
+  // another option's, and the run used the value that replaced it.
+  auto replaced = [&](const char* field, bool no_effect, const std::string& why) {
     if (no_effect && r.given.count(field))
       w.push_back(std::string("`") + field + "` has no effect: " + why);
+  };
+  auto check = [&](const char* field, bool no_effect, const std::string& why) {
+    if (no_effect) review.unused.insert(field);
+    replaced(field, no_effect, why);
   };
   const bool aniso = s.solver.aniso != AnisoKind::None;
   const bool regions = r.regions != RegionSource::None;
@@ -118,9 +156,9 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   // (resolve_run_options sets inward none): an inward term given there is overridden.
   const bool measure_only = r.measure_regions && r.regions == RegionSource::Auto && !aniso &&
                             !r.given.count("regions") && r.region_points.empty();
-  check("inward", measure_only,
-        "`measure_regions` without `regions`, `region_weights`, `region_at` or `aniso` only "
-        "measures the regions, it does not contract them");
+  replaced("inward", measure_only,
+           "`measure_regions` without `regions`, `region_weights`, `region_at` or `aniso` only "
+           "measures the regions, it does not contract them");
   // With `inward` projection k_A = kappa_A mu_A sqrt(A) scales with mu_A as the energy does, so
   // the projection is the same (GoldenPaths.InwardProjectionUnderPbdDoesNotDependOnMuA).
   if (aniso && pbd && r.given.count("mu_a"))
@@ -141,8 +179,8 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
   // over values given for them.
   const bool shell_given = r.given.count("young") || r.given.count("thickness");
   for (const char* name : {"mu", "lambda"})
-    check(name, shell_given && s.material != MaterialKind::MooneyRivlin,
-          "`young` and `thickness` set mu and lambda (leave both out to give mu and lambda)");
+    replaced(name, shell_given && s.material != MaterialKind::MooneyRivlin,
+             "`young` and `thickness` set mu and lambda (leave both out to give mu and lambda)");
   fallback_k_b_warning(r, w);
   // Mooney-Rivlin's membrane reads only c10 and c01: from the shell material it takes at most the
   // bending k_B (xpbd, dihedral bending, `k_b` not given), never mu and lambda.
@@ -188,13 +226,24 @@ std::vector<std::string> ineffective_options(const RunOptions& r) {
                 ": the air inside stops the shell above it, so the run may stall first (lower "
                 "`air_balance`, 0 = no air)");
   // The paper's isometric bending is flat at rest. Its PBD projection is a correction that the
-  // membrane outweighs, but under the XPBD shell it carries the material's bending stiffness, so
-  // a closed curved mesh is driven flat and loses volume with no pressure at all.
+  // membrane outweighs, but under xpbd k_B is an energy scale (0.01 unless given, far stiffer
+  // than the shell's: fallback_k_b_warning), so a closed curved mesh is driven flat and loses
+  // volume with no pressure at all.
   if (s.bending == BendingModel::Isometric && !pbd && r.given.count("bending"))
     w.push_back("`bending` isometric has a flat rest state: under `solver` xpbd it drives a curved "
                 "shell flat, so the mesh contracts even at `pressure` 0 (it is the paper's bending "
                 "for `solver` pbd; the default dihedral bending is at rest on the input)");
-  return w;
+  return review;
+}
+
+}  // namespace
+
+std::vector<std::string> ineffective_options(const RunOptions& r) {
+  return review_options(r).warnings;
+}
+
+std::set<std::string> options_without_effect(const RunOptions& r) {
+  return review_options(r).unused;
 }
 
 }  // namespace shellcontract

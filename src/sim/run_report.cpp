@@ -1,6 +1,7 @@
 // The summary and the log row of a run, for every front end (run_report.hpp).
 #include <iomanip>
 #include <locale>
+#include <set>
 #include <sstream>
 #include <string_view>
 
@@ -83,19 +84,18 @@ std::vector<LogRow> log_csv_rows(const std::string& text, const std::string& nam
 namespace {
 
 /// An option's value as the summary records it: the value the run used, which the option takes
-/// back, so that the recorded options rerun the run. The table's resolved value but for two:
-/// the ramp a run of fewer than twice its frames shortens (target_ramp_used); and `regions`,
-/// which --region-at and --region-weights set themselves (Auto, Weights) and which a run given
-/// beside them refuses: recorded as not given, their own entries holding the points and the
-/// weights' file. The membrane's parameters that the material does not read are recorded empty
-/// (as `young` and `thickness` are where no shell material ran): mu and lambda under
-/// Mooney-Rivlin, c10 and c01 under the others.
-std::string summary_value(const OptionSpec& spec, const RunOptions& options) {
+/// back, so that the recorded options rerun the run. The table's resolved value but for three:
+/// the ramp a run of fewer than twice its frames shortens (target_ramp_used); `regions`, which
+/// --region-at and --region-weights set themselves (Auto, Weights) and which a run given beside
+/// them refuses: recorded as not given, their own entries holding the points and the weights'
+/// file; and the options without effect in this run (options_without_effect, the rules of the
+/// "has no effect" warnings: mu_a without an anisotropic energy, c10 under StVK, ...), recorded
+/// empty as `young` and `thickness` are where no shell material ran, so that a reader sees which
+/// values shaped the run. A rerun that leaves them out is the same run.
+std::string summary_value(const OptionSpec& spec, const RunOptions& options,
+                          const std::set<std::string>& unused) {
+  if (unused.count(option_field(spec.name))) return {};
   if (spec.name == "target-ramp") return std::to_string(target_ramp_used(options.sim));
-  const bool mooney = options.sim.material == MaterialKind::MooneyRivlin;
-  if ((mooney && (spec.name == "mu" || spec.name == "lambda")) ||
-      (!mooney && (spec.name == "c10" || spec.name == "c01")))
-    return {};
   if (spec.name == "regions" &&
       (!options.region_points.empty() || options.regions == RegionSource::Weights))
     return {};
@@ -127,8 +127,9 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   count("degenerate_faces", r.degenerate_faces);
   w.add_number("normalization_scale", r.normalization_scale);
   w.add_object("options", [&](SummaryWriter& o) {
+    const std::set<std::string> unused = options_without_effect(options);
     for (const OptionSpec& spec : run_option_table())
-      o.add_text(option_name(spec, spelling), summary_value(spec, options));
+      o.add_text(option_name(spec, spelling), summary_value(spec, options, unused));
   });
   w.add_integer("frames_run", r.frames_run);
   w.add_number("final_volume_ratio", r.final_volume_ratio);

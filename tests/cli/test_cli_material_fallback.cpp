@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -106,6 +107,89 @@ TEST_F(MaterialFallback, TheFallbackBendingIsAWarningThatGivesTheShellsKb) {
     ASSERT_EQ(r.exit_code, 0) << r.output;
     EXPECT_EQ(r.output.find(FALLBACK), std::string::npos) << args[0] << ": " << r.output;
   }
+}
+
+// Before: `--bending isometric` under xpbd ran with k_B 0.01 whatever the shell material, over
+// 40,000 times the default shell's, and said nothing of it (only the dihedral bending's fallback
+// was a warning). The k_B it names is the one the same shell gives the dihedral bending, whose
+// energy the isometric one's is about a flat rest.
+TEST_F(MaterialFallback, TheIsometricBendingsKbIsAWarningThatGivesTheShellsKb) {
+  // The value after "has k_B " in the k_B warning ("" without one).
+  const auto advised = [](const std::string& output) -> std::string {
+    const std::size_t at = output.find(std::string("warning: ") + FALLBACK);
+    const std::string named = "has k_B ";
+    const std::size_t value = at == std::string::npos ? at : output.find(named, at);
+    if (value == std::string::npos) return "";
+    const std::size_t begin = value + named.size();
+    return output.substr(begin, output.find(':', begin) - begin);
+  };
+  const auto near = [](const std::string& a, const std::string& b) {
+    const double x = std::strtod(a.c_str(), nullptr), y = std::strtod(b.c_str(), nullptr);
+    return x > 0.0 && std::abs(x - y) <= 1e-12 * y;
+  };
+  const std::vector<std::string> isometric{"--bending", "isometric"};
+  const auto with = [](std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  // The default shell, a shell given, and a membrane without one (mu and lambda).
+  for (const std::vector<std::string>& material :
+       {std::vector<std::string>{},
+        std::vector<std::string>{"--young", "1e5", "--thickness", "0.01", "--poisson", "0.4"},
+        std::vector<std::string>{"--mu", "2", "--lambda", "1"}}) {
+    const std::string label = material.empty() ? "default" : material[0];
+    const RunResult iso = run("iso", with(isometric, material));
+    ASSERT_EQ(iso.exit_code, 0) << iso.output;
+    EXPECT_EQ(summary_option(dir_ / "iso.json", "k-b"), "0.01") << label;
+    const std::string value = advised(iso.output);
+    ASSERT_NE(value, "") << label << ": " << iso.output;
+    EXPECT_NE(file_text(dir_ / "iso.json").find(FALLBACK), std::string::npos) << label;
+    // The dihedral bending of the same material: its k_B (from the shell), or the one its own
+    // fallback warning names (mu and lambda).
+    const RunResult dihedral = run("dihedral", material);
+    ASSERT_EQ(dihedral.exit_code, 0) << dihedral.output;
+    const std::string shell_k_b = material.empty() || material[0] == "--young"
+                                      ? summary_option(dir_ / "dihedral.json", "k-b")
+                                      : advised(dihedral.output);
+    EXPECT_TRUE(near(value, shell_k_b)) << label << ": " << value << " against " << shell_k_b;
+    // Given, it is no warning.
+    const RunResult given = run("given", with(with(isometric, material), {"--k-b", value}));
+    ASSERT_EQ(given.exit_code, 0) << given.output;
+    EXPECT_EQ(given.output.find(FALLBACK), std::string::npos) << label << ": " << given.output;
+  }
+  // What it warns of: with no pressure the flat rest drives the sphere in at 0.01 (20 frames),
+  // and hardly at the shell's k_B.
+  const auto unpressed = [&](const std::string& name, const std::string& k_b) {
+    std::vector<std::string> args{"run",
+                                  std::string(test::MESH_DIR) + "/ico2.off",
+                                  "-o",
+                                  (dir_ / (name + ".off")).string(),
+                                  "-n",
+                                  "20",
+                                  "-q",
+                                  "-p",
+                                  "0",
+                                  "--bending",
+                                  "isometric",
+                                  "--summary",
+                                  (dir_ / (name + ".json")).string()};
+    if (!k_b.empty()) args.insert(args.end(), {"--k-b", k_b});
+    return run_cli(args);
+  };
+  const RunResult stiff = unpressed("stiff", "");
+  ASSERT_EQ(stiff.exit_code, 0) << stiff.output;
+  ASSERT_EQ(unpressed("shell", advised(stiff.output)).exit_code, 0);
+  const auto final_ratio = [&](const std::string& name) {
+    const std::string text = file_text(dir_ / (name + ".json")), key = "\"final_volume_ratio\": ";
+    const std::size_t at = text.find(key);
+    return at == std::string::npos ? -1.0 : std::strtod(text.c_str() + at + key.size(), nullptr);
+  };
+  EXPECT_LT(final_ratio("stiff"), 0.9);
+  EXPECT_GT(final_ratio("shell"), 0.99);
+  // Not under pbd (k_B a multiplier there).
+  const RunResult pbd = run("pbd", with(isometric, {"--solver", "pbd"}));
+  ASSERT_EQ(pbd.exit_code, 0) << pbd.output;
+  EXPECT_EQ(pbd.output.find(FALLBACK), std::string::npos) << pbd.output;
 }
 
 TEST_F(MaterialFallback, ANegativePoissonRatiosLambdaIsTakenBack) {
