@@ -217,6 +217,10 @@ OptionReview review_options(const RunOptions& r) {
   // No check of `pressure` or `air_balance` under `target_volume`: the constraint decides the
   // volume, but both still push between its projections and change the path and the shape
   // (docs/math/volume-control.md, section 1).
+  // At pressure 0 with no keys both models give no force (pressure_forces scales by P), and the
+  // regions' extra load is 2 S P or the model-free P_A: nothing left to model.
+  check("pressure_model", s.pressure == 0.0 && s.pressure_schedule.empty(),
+        "there is no pressure to model (`pressure` 0, no keys)");
   check("air_balance", !(s.pressure > 0.0) && !(s.target_volume > 0.0),
         "the air balances a compressing pressure, and `pressure` is not > 0");
   if (s.stop_volume_ratio > 0.0 && s.target_volume <= 0.0 && s.air_balance > 0.0 &&
