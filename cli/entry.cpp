@@ -18,6 +18,7 @@
 #include "core/usable_cpus.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/memory_error.hpp"
 #include "shellcontract/version.hpp"
 
 namespace {
@@ -158,6 +159,12 @@ int shellcontract::cli::cli_main(int argc, char** argv) {
   shellcontract::install_interrupt_cleanup();
   try {
     return finish_stdout(command, dispatch(command, argc, argv));
+  } catch (const shellcontract::OutOfMemoryError& e) {
+    // An input larger than the memory there is (its reader's message names it): the same exit
+    // code as memory running out anywhere else, not a bad input's 2.
+    std::cerr << "shellcontract " << command << ": " << e.what()
+              << " (outputs are written whole or not at all)\n";
+    return 3;
   } catch (const std::bad_alloc&) {
     // A large enough mesh exhausts any machine; that must end with a message and an exit code,
     // not an abort. `run` says more itself (which frame, what it wrote).

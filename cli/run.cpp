@@ -38,6 +38,7 @@
 #include "run_observers.hpp"
 #include "run_summary.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/memory_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/repair.hpp"
@@ -474,6 +475,11 @@ int command_run(int argc, char** argv) {
   } catch (const UsageError& e) {
     std::cerr << "shellcontract run: " << spell_options(e.what(), OptionSpelling::Cli) << '\n';
     return static_cast<int>(ExitCode::BadUsage);
+  } catch (const OutOfMemoryError& e) {
+    // An input larger than the memory there is: its reader's message names it.
+    std::cerr << "shellcontract run: " << e.what() << "; "
+              << what_was_left(written, count_frame_files(frames_planned), exports.dir) << '\n';
+    return static_cast<int>(ExitCode::SimulationFailed);
   } catch (const std::bad_alloc&) {
     // The frame files already written stay (the writer finished them as it was destroyed).
     std::cerr << "shellcontract run: out of memory while " << stage

@@ -73,7 +73,10 @@ class Result:
               "failed" (non-finite positions, a blow-up, or memory running out during the
               frames) keeps the last good state in vertices; summary["failure"] says which.
               Memory running out before the first frame raises MemoryError (where glibc
-              cannot give a new thread its thread-local storage, it ends the process itself).
+              cannot give a new thread its thread-local storage, it ends the process itself);
+              a thread the system refuses then (under an address-space limit) RuntimeError
+              "pthread_create has failed: Resource temporarily unavailable" (the CLI's exit
+              code 3 for both). The process is left usable: a later run can succeed.
     """
 
     def __init__(self, raw):
@@ -110,7 +113,9 @@ def contract(vertices, faces, *, callback=None, **options):
     an end at once as the CLI's second Ctrl-C (SIGTERM, SIGKILL end the process at once).
     Raises ValueError for a mesh the library refuses or a bad option value (MeshError, a
     ValueError with the faces' indices as ``faces``, where particular faces are to blame),
-    TypeError for an unknown option. The options are the CLI's with '_' for '-' (the CLI's
+    TypeError for an unknown option; MemoryError, or RuntimeError for a thread the system
+    refuses, when memory runs out before the first frame (Result.status: after it, "failed").
+    The options are the CLI's with '_' for '-' (the CLI's
     spelling is taken too, as regions() takes it; one option given both ways is a TypeError);
     ``lambda``, a Python keyword, is also ``lambda_``.
 
@@ -458,8 +463,10 @@ def read_mesh(path):
     PermissionError, ...: a FileError, a ValueError too; for a glTF's missing or unreadable
     external buffer, about the buffer; a device or FIFO: a FileError with errno None); one whose
     content is refused raises
-    ValueError (MeshError, with ``faces``, where particular faces are to blame). Other Python
-    threads run while the file is read and checked."""
+    ValueError (MeshError, with ``faces``, where particular faces are to blame); one too large
+    for the memory there is raises MemoryError ("FILE: out of memory: reading it needs more
+    memory than there is (...)", the CLI's exit code 3). Other Python threads run while the file
+    is read and checked."""
     return _core.read_mesh(path)  # str or os.PathLike; TypeError otherwise
 
 

@@ -346,7 +346,7 @@ def expand(path, data, version, check_mesh=None):
     for m in meshes:
         try:
             check_mesh(m)
-        except (ValueError, OSError, RuntimeError) as e:
+        except (ValueError, OSError, RuntimeError, MemoryError) as e:
             text = str(e)  # the reader's messages start with the file's name
             _fail(path, text if text.startswith(m) else "mesh {}: {}".format(m, text))
     grid = data["grid"]

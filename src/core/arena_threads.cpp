@@ -2,6 +2,7 @@
 #include "core/arena_threads.hpp"
 
 #include <map>
+#include <memory>
 #include <mutex>
 
 namespace shellcontract {
@@ -14,7 +15,16 @@ tbb::task_arena& shared_arena(int requested) {
   const int threads = arena_threads(requested);
   std::lock_guard<std::mutex> guard(lock);
   tbb::task_arena*& arena = (*arenas)[threads];
-  if (arena == nullptr) arena = new tbb::task_arena(threads);
+  if (arena == nullptr) {
+    // Initialized here, and kept only once that succeeded. Left to its first execute, an arena
+    // whose initialization threw (std::bad_alloc when memory runs out) stays "pending" in TBB's
+    // once-state for ever, and every later run of that thread count in the process (a Python
+    // session's retry after its MemoryError) spun waiting for it. One that failed is dropped
+    // (never initialized, its destructor releases nothing of TBB's), so the next run tries again.
+    auto made = std::make_unique<tbb::task_arena>(threads);
+    made->initialize();
+    arena = made.release();
+  }
   return *arena;
 }
 

@@ -22,13 +22,15 @@ inline int arena_threads(int requested) {
   return requested <= 0 ? usable_cpus() : std::min(requested, usable_cpus());
 }
 
-/// The process's arena of arena_threads(requested) threads, made at its first use and kept: a run
+/// The process's arena of arena_threads(requested) threads, made at its first use and kept once
+/// TBB has initialized it (std::bad_alloc passes, and the next call tries again): a run
 /// (its planning and the Simulator's construction, its solver, its collision step, its step's own
-/// work) works in it instead of arenas of its own. TBB (oneTBB 2021.8) keeps some kilobytes of every arena that ran parallel work after the
-/// arena is destroyed, so a program that calls the library thousands of times (a Python loop)
-/// grew without bound (tests/sim/test_shared_arena.cpp). Runs on several threads at once may share
-/// one: an arena takes work from several threads, and neither the results nor the colour
-/// schedule's progress depend on which thread runs which task (colour_schedule.hpp).
+/// work) works in it instead of arenas of its own. TBB (oneTBB 2021.8) keeps some kilobytes of
+/// every arena that ran parallel work after the arena is destroyed, so a program that calls the
+/// library thousands of times (a Python loop) grew without bound (tests/sim/test_shared_arena.cpp).
+/// Runs on several threads at once may share one: an arena takes work from several threads, and
+/// neither the results nor the colour schedule's progress depend on which thread runs which task
+/// (colour_schedule.hpp).
 tbb::task_arena& shared_arena(int requested);
 
 }  // namespace shellcontract

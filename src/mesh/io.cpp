@@ -19,8 +19,6 @@
 // orientation, volume, zero area) runs on coordinates normalized to the bounding-box centre and a
 // unit diagonal, so that meshes from 1e-150 to 1e150 get the same answers as at unit scale (no
 // overflow or underflow in products of three coordinates).
-#include "shellcontract/mesh_io.hpp"
-
 #include <CGAL/Polygon_mesh_processing/measure.h>
 
 #include <algorithm>
@@ -40,12 +38,13 @@
 #include "mesh/normalization.hpp"
 #include "mesh/polygon_split.hpp"
 #include "mesh/read_polygon_soup.hpp"
-#include "shellcontract/error.hpp"
-#include "shellcontract/face_error.hpp"
-
 #include "mesh/seam_weld.hpp"
 #include "mesh/soup_checks.hpp"
 #include "mesh/soup_geometry.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
+#include "shellcontract/memory_error.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
 namespace {
@@ -314,8 +313,10 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   } catch (const InputError&) {
     throw;
   } catch (const std::bad_alloc&) {
-    fail(path, "out of memory", "reading it needs more memory than there is (" + std::to_string(points.size()) +
-                                    " vertices and " + std::to_string(polygons.size()) + " faces read)");
+    // Memory, not the file, is short: exit code 3 (README "Exit codes"), not a bad input's 2.
+    throw OutOfMemoryError(path + ": out of memory: reading it needs more memory than there is (" +
+                           std::to_string(points.size()) + " vertices and " +
+                           std::to_string(polygons.size()) + " faces read)");
   } catch (const std::length_error& e) {
     fail(path, "too large", std::string("a count in the file is beyond what can be stored (") + e.what() + ")");
   } catch (const std::ios_base::failure& e) {

@@ -8,12 +8,12 @@
 #include <CGAL/Surface_mesh_cell_base_3.h>
 #include <CGAL/Surface_mesh_vertex_base_3.h>
 #include <CGAL/Triangulation_data_structure_3.h>
+#include <CGAL/assertions.h>
 #include <CGAL/compute_average_spacing.h>
 #include <CGAL/poisson_surface_reconstruction.h>
-#include <CGAL/assertions.h>
 #include <CGAL/property_map.h>
-#include <Eigen/Dense>
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -35,6 +35,7 @@
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/reconstruction_checks.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/memory_error.hpp"
 #include "shellcontract/options.hpp"  // shortest_text
 
 namespace shellcontract {
@@ -92,8 +93,9 @@ OrientedPoints read_oriented_points(const std::string& path) {
     try {
       read_point_lines(path, points);
     } catch (const std::bad_alloc&) {
-      throw InputError(path + ": out of memory: reading its " + std::to_string(points.points.size()) +
-                       " points needs more memory than there is");
+      throw OutOfMemoryError(path + ": out of memory: reading its " +
+                             std::to_string(points.points.size()) +
+                             " points needs more memory than there is");
     }
   }
   // Poisson reconstruction needs finite points and normals: a NaN would poison the solve.

@@ -14,6 +14,7 @@
 #include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
+#include "shellcontract/memory_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/version.hpp"
@@ -120,8 +121,8 @@ std::string checkpoint_bytes(const std::string& path) {
   } catch (const InputError& e) {
     rethrow_input_error_as(e, "checkpoint " + std::string(e.what()));
   } catch (const std::bad_alloc&) {
-    throw InputError("checkpoint " + printable(path) + ": out of memory while reading its " +
-                     std::to_string(size) + " bytes");
+    throw OutOfMemoryError("checkpoint " + printable(path) + ": out of memory while reading its " +
+                           std::to_string(size) + " bytes");
   }
 }
 

@@ -5,6 +5,9 @@
 // needs depends on the machine, so the test finds it first and then steps below it: every run
 // must end in one of the documented ways, and the steps must reach both a failure during the
 // frames (the collision step's candidate pairs grow as the shell contracts) and one before them.
+// Memory running out while the input is read is exit code 3 as well, with the reader's message
+// naming the file: memory is short, not the file unusable (exit code 2 told a script to fix a
+// file that was fine).
 #include <gtest/gtest.h>
 #include <stdlib.h>  // setenv: the runs' malloc arenas
 #include <unistd.h>  // getpid: temporary files of this process's own
@@ -29,6 +32,12 @@ namespace fs = std::filesystem;
 
 constexpr long FLOOR_KIB = 8 * 1024;            ///< too little to start a process
 constexpr long CEILING_KIB = 8L * 1024 * 1024;  ///< more than the tests' runs need
+
+/// Whether `output` is the reader's own out-of-memory message about `file`.
+bool reading_ran_out(const std::string& output, const std::string& file) {
+  return output.find(file + ": out of memory: reading it needs more memory than there is (") !=
+         std::string::npos;
+}
 
 /// The least address space (KiB, to within `step`) under which the CLI with `args` succeeds;
 /// -1 if not even CEILING_KIB is enough. `before` runs before each try (removes what the last
@@ -99,7 +108,9 @@ TEST_F(CliOutOfMemory, RunEndsWithAMessageAndTheLastGoodStateNeverAnAbort) {
     if (r.exit_code == 0) continue;  // the need is not strictly monotone in the limit
     ASSERT_TRUE(std::regex_search(r.output, refused));
     threads_refused += r.output.find("pthread_create") != std::string::npos;
-    if (r.exit_code == 2) {  // the reader's own: the file needs more than there is
+    if (reading_ran_out(r.output, bear_)) {  // the file needs more than there is
+      EXPECT_EQ(r.exit_code, 3) << "memory ran out, not a bad input's 2";
+      EXPECT_NE(r.output.find("nothing was written"), std::string::npos);
       EXPECT_FALSE(fs::exists(out));
       reading_failed = true;
       continue;
@@ -175,7 +186,10 @@ TEST_F(CliOutOfMemory, ExportingRunSaysWhatItLeftAndWhyItFailed) {
     const test::RunResult r = test::run_cli_limited(kb, args);
     SCOPED_TRACE("ulimit -v " + std::to_string(kb) + ": " + r.output);
     if (r.exit_code == 0) continue;
-    if (r.exit_code == 2) break;  // the reader's own: the file needs more than there is
+    if (reading_ran_out(r.output, bear_)) {  // the file needs more than there is
+      EXPECT_EQ(r.exit_code, 3);
+      break;
+    }
     ++failed;
     ASSERT_TRUE(r.exit_code == 1 || r.exit_code == 3) << "the documented exit codes, not an abort";
     std::size_t left = 0;
@@ -204,8 +218,8 @@ TEST_F(CliOutOfMemory, ExportingRunSaysWhatItLeftAndWhyItFailed) {
 }
 
 TEST_F(CliOutOfMemory, OtherCommandsEndWithAMessageNeverAnAbort) {
-  // `check` and `regions`: an input the reader cannot hold is exit code 2 (its "out of memory"
-  // message names the file), anything later 3; an output is written whole or not at all.
+  // `check` and `regions`: an input the reader cannot hold is exit code 3 as anything later (its
+  // "out of memory" message names the file); an output is written whole or not at all.
   const fs::path out = dir_ / "r.ply";
   for (const std::vector<std::string>& args :
        {std::vector<std::string>{"check", bear_},
@@ -224,9 +238,14 @@ TEST_F(CliOutOfMemory, OtherCommandsEndWithAMessageNeverAnAbort) {
       SCOPED_TRACE("ulimit -v " + std::to_string(kb) + ": " + r.output);
       if (r.exit_code == 0) continue;
       ++failed;
-      ASSERT_TRUE(r.exit_code == 2 || r.exit_code == 3) << r.exit_code;
+      ASSERT_EQ(r.exit_code, 3) << "memory ran out (reading the input too), never a bad input's 2";
       EXPECT_TRUE(std::regex_search(r.output, refused));
-      after_reading += r.exit_code == 3;
+      if (reading_ran_out(r.output, bear_)) {
+        EXPECT_NE(r.output.find("shellcontract " + args[0] + ": " + bear_ + ": out of memory"),
+                  std::string::npos);
+      } else {
+        ++after_reading;
+      }
       if (fs::exists(out)) {
         InputReport report;
         EXPECT_EQ(read_input_mesh(out.string(), &report).number_of_faces(), 27648u);
@@ -237,6 +256,26 @@ TEST_F(CliOutOfMemory, OtherCommandsEndWithAMessageNeverAnAbort) {
       EXPECT_GT(after_reading, 0) << "no run failed after reading";
     }
   }
+}
+
+// Reading the input is where a command first needs memory in proportion to the mesh: stepped
+// down from the least limit `check` needs until the reader runs out. Before: exit code 2, a bad
+// input's, for a file that was fine.
+TEST_F(CliOutOfMemory, ReadingTheInputRunsOutOfMemoryWithExitCode3) {
+  const std::vector<std::string> args{"check", bear_};
+  const long hi = least_address_space(args, 512);
+  if (hi < 0) GTEST_SKIP() << "needs more than 8 GiB of address space here";
+  bool reading_failed = false;
+  for (long kb = hi - 1024; kb > FLOOR_KIB && !reading_failed; kb -= 1024) {
+    const test::RunResult r = test::run_cli_limited(kb, args);
+    SCOPED_TRACE("ulimit -v " + std::to_string(kb) + ": " + r.output);
+    if (!reading_ran_out(r.output, bear_)) continue;
+    reading_failed = true;
+    EXPECT_EQ(r.exit_code, 3);
+    EXPECT_NE(r.output.find("shellcontract check: " + bear_ + ": out of memory: "),
+              std::string::npos);
+  }
+  EXPECT_TRUE(reading_failed) << "no limit ran out while the file was read";
 }
 
 }  // namespace

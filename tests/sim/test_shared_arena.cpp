@@ -5,6 +5,7 @@
 #include <malloc.h>
 #include <tbb/info.h>
 
+#include <chrono>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -14,7 +15,9 @@
 #include "shellcontract/options.hpp"
 #include "shellcontract/run.hpp"
 #include "support/cgal_mesh.hpp"
+#include "support/child_process.hpp"
 #include "support/mesh_fixtures.hpp"
+#include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
@@ -91,6 +94,40 @@ TEST(SharedArena, RunsAtOnceGiveTheResultsOfRunsAlone) {
       EXPECT_TRUE(together[k] == alone[k]) << "run " << k << ", round " << round;
     }
   }
+}
+
+// An arena that memory ran out while it was made is not kept: the next run of that thread count
+// in the process completes (tests/tools/arena_retry_run.cpp, a process of its own for each
+// limit). Before: TBB's lazy initialization, left "pending" by the std::bad_alloc, made every
+// later run of that count spin for ever (a Python session retrying after its MemoryError). Where
+// the arena's making fails depends on the allocator (from how little address space TBB's own
+// allocator is loaded at all), so the limits are stepped up from none until the arena is made.
+TEST(SharedArena, ARunAfterTheArenaRanOutOfMemoryCompletes) {
+#ifdef __SANITIZE_ADDRESS__
+  GTEST_SKIP() << "AddressSanitizer's allocator reserves its address space its own way";
+#endif
+  constexpr long STEP_KIB = 256, MOST_KIB = 64 * 1024;
+  int refused = 0;
+  bool made_after_refusal = false;
+  for (long kib = 0; kib <= MOST_KIB && !made_after_refusal; kib += STEP_KIB) {
+    test::ChildSpec spec;
+    spec.program = SHELLCONTRACT_ARENA_RETRY_RUN;
+    spec.args = {std::string(test::MESH_DIR) + "/ico2.off", std::to_string(kib)};
+    test::Child child(spec);
+    // Far beyond the milliseconds the run takes; one waiting for a failed arena never ends.
+    const int status = child.finish(std::chrono::seconds(60));
+    SCOPED_TRACE(std::to_string(kib) + " KiB of headroom: " + test::ending(status) + ": " +
+                 child.output());
+    ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    ASSERT_NE(child.output().find("run: ok"), std::string::npos);
+    if (child.output().find("arena: refused") != std::string::npos)
+      ++refused;
+    else if (refused > 0)
+      made_after_refusal = true;
+  }
+  std::printf("%d limits refused the arena\n", refused);
+  EXPECT_GT(refused, 0) << "no limit up to " << MOST_KIB << " KiB made the arena fail";
+  EXPECT_TRUE(made_after_refusal) << "the arena was not made under any limit above the failures";
 }
 
 }  // namespace
