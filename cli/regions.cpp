@@ -36,7 +36,8 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* REGIONS_USAGE = R"(usage: shellcontract regions INPUT [-o OUT.ply] [--face-list FILE] [--method caps|tips|parts] [thresholds]
+constexpr const char* REGIONS_USAGE =
+    R"(usage: shellcontract regions INPUT [-o OUT.ply] [--face-list FILE] [--method caps|tips|parts] [thresholds]
 
 Finds the local spherical regions (bumps, heads, fingertips) of a closed mesh by curvature, the
 ones 'run --regions auto' uses, and prints them with their face count and area fraction ('-'
@@ -51,8 +52,11 @@ are ranked by the angle they span and kept when round (--max-compactness), curve
 into one region, clipped to a hemisphere of its fitted sphere. --region-at X,Y,Z
 (repeatable, or X,Y,Z;X,Y,Z as for run) instead picks the cap around the surface point nearest
 to each point, the largest within --max-area-fraction (its one-ring where no convex sphere fits
-there, or none within the bound). Every
-threshold is a ratio, so scaling or rotating the mesh does not change the result.
+there, or none within the bound), with a line 'at X, Y, Z (D from the point given)' under its
+row: the surface point it grew from. A point farther from the surface than 1.5 % of the bounding
+box's diagonal (a sphere's centre from this table, a point in Blender's Z-up world for a Y-up
+file) is a warning. Every threshold is a ratio, so scaling or rotating the mesh does not change
+the result.
 
 --method tips (opt-in) finds the ends of protrusions instead (the end of an arm or a foot, an
 ear, a fingertip): a disc around each tip, grown until it wraps round the end or meets a
@@ -96,7 +100,9 @@ RegionMethod parse_method(const std::string& text) {
   throw UsageError("--method '" + text + "': expected caps, tips or parts");
 }
 
-/// The regions as an aligned table: one row per region (id order).
+/// The regions as an aligned table: one row per region (id order); under a --region-at region's
+/// row, a line starting with "at" (no id: parsers that take rows by their id skip it) with the
+/// surface point it grew from and that point's distance from the point given.
 std::string region_table(const RegionReport& report) {
   ClassicOStringStream t;
   t << std::fixed;
@@ -129,6 +135,14 @@ std::string region_table(const RegionReport& report) {
       << std::setw(10) << radius.str() << std::setprecision(2) << std::setw(10) << 100.0 * s.area_fraction
       << std::setw(8) << s.faces << std::setw(10) << s.compactness << std::setw(10) << residual.str()
       << std::setw(6) << angle.str() << '\n';
+    if (r < report.points.size()) {  // as the centre is written
+      const RegionPoint& p = report.points[r];
+      ClassicOStringStream at;
+      at << std::setprecision(4) << std::showpos << p.surface_point.x() << ", "
+         << p.surface_point.y() << ", " << p.surface_point.z() << std::noshowpos << " ("
+         << p.distance;
+      t << "      at " << at.str() << " from the point given)\n";
+    }
   }
   return t.str();
 }
@@ -233,6 +247,8 @@ int command_regions(int argc, char** argv) {
     } else {
       store_regions(mesh, select_regions_at(mesh, x, at, options, &report));
       store_curvature(mesh, compute_curvature(mesh, x));
+      for (const std::string& w : report.warnings)  // points far from the surface
+        std::cerr << "warning: " << spell_options(w, OptionSpelling::Cli) << '\n';
     }
     if (!output.empty()) write_region_ply(output, mesh, x);
     if (!face_list.empty()) write_region_file(face_list, stored_regions(mesh));

@@ -118,6 +118,21 @@ struct RegionStageTime {
   double cpu_s = 0;   ///< processor seconds of the whole process (all its threads)
 };
 
+/// A select_regions_at point farther from the surface than this fraction of the mesh's
+/// bounding-box diagonal is a warning (RegionReport::warnings): a point picked on the surface
+/// (Blender's 3D cursor, a vertex) lies within rounding of it and one read off a render within
+/// about a percent, while a fitted sphere's centre (the `regions` table's centre column) or a
+/// point in Blender's Z-up world for a Y-up file usually lies farther (docs/design/regions.md,
+/// "Points far from the surface", has the paper meshes' distances).
+constexpr double REGION_POINT_NEAR = 0.015;
+
+/// A select_regions_at point and where its region grows from.
+struct RegionPoint {
+  Vec3 point = Vec3::Zero();          ///< as given
+  Vec3 surface_point = Vec3::Zero();  ///< the surface point nearest to it
+  double distance = 0.0;              ///< from the point to surface_point (length)
+};
+
 /// What select_spherical_regions measured and kept (for the CLI summary and for tuning).
 struct RegionReport {
   double total_area = 0.0;                ///< length^2
@@ -132,6 +147,12 @@ struct RegionReport {
   /// The cap finder's stages in order (`regions --stage-times`); the parts method gives its cap
   /// finder's, the tip finder and select_regions_at none.
   std::vector<RegionStageTime> stage_times;
+  /// select_regions_at: one per point, in order (point i's region is id i); the finders none.
+  std::vector<RegionPoint> points;
+  /// select_regions_at: one per point farther from the surface than REGION_POINT_NEAR diagonals,
+  /// naming it, its distance, the bound and the surface point taken; options named as `field`
+  /// (spell_options spells them for a front end).
+  std::vector<std::string> warnings;
 };
 
 /// Finds the local spherical regions of a closed triangle mesh (steps in the file comment).
@@ -155,7 +176,9 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 /// cannot be fitted (a flat or concave spot, or a bound below the smallest disc the growth
 /// judges) gets the seed's one-ring, even when that is larger than the bound, so every point
 /// gives a region. Ids follow the order of the points. The report's rows describe the faces
-/// returned: the sphere fitted to their vertices, the residual and the angle about it.
+/// returned: the sphere fitted to their vertices, the residual and the angle about it; its
+/// points the surface point each region grew from, and its warnings the points farther from the
+/// surface than REGION_POINT_NEAR bounding-box diagonals.
 /// @throws UsageError as select_spherical_regions, or when a point is not finite.
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
                                    const RegionOptions& options, RegionReport* report = nullptr);

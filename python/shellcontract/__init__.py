@@ -451,7 +451,9 @@ def regions(vertices, faces, **region_options):
     region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
     ``max_area_fraction``, ... with '_' or '-'; ``min_faces`` from 1 to 2**31 - 1); ``region_at``
     picks the caps around points instead, in the forms and with the errors of contract()'s
-    region_at (one point, a list or array of points, or 'X,Y,Z' text)."""
+    region_at (one point, a list or array of points, or 'X,Y,Z' text). A region_at point farther
+    from the surface than 1.5 % of the bounding box's diagonal is a UserWarning naming the surface
+    point taken (contract(region_at=...): a warning in its summary)."""
     return _core.regions(vertices, faces, **region_options)
 
 

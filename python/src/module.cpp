@@ -168,13 +168,20 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
                           (o.method == RegionMethod::Tips ? "tips" : "parts") + "'");
   const Mesh mesh = mesh_from_numpy(vertices, faces);
   std::vector<int> ids;
+  RegionReport report;
   {
     // The search reads only the mesh made above: other Python threads (Blender's interface) go
     // on meanwhile, as during contract().
     py::gil_scoped_release free;
     ids = at.empty() ? select_spherical_regions(mesh, positions_from_mesh(mesh), o)
-                     : select_regions_at(mesh, positions_from_mesh(mesh), at, o);
+                     : select_regions_at(mesh, positions_from_mesh(mesh), at, o, &report);
   }
+  // A region_at point far from the surface: a UserWarning at the caller's line, as the CLI's
+  // "warning:" (the list holds only face ids).
+  for (const std::string& w : report.warnings)
+    py::module_::import("warnings")
+        .attr("warn")(spell_options(w, OptionSpelling::Python),
+                      py::module_::import("builtins").attr("UserWarning"), 2);
   py::list out;
   for (const std::vector<int>& r : regions_from_face_ids(ids)) {
     py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.size()));

@@ -1,5 +1,7 @@
 """region_at in regions() and contract(): one parser (the forms and errors are the same in both,
-by Python's indices)."""
+by Python's indices), and one warning for a point far from the surface."""
+import warnings
+
 import numpy as np
 import pytest
 
@@ -86,3 +88,21 @@ def test_the_sweeps_results_write_several_points_as_the_cli_text():
     assert _cell(points) == "0.5,1,-2;3,0,1"
     assert _cell(points) == _core.resolve_options(region_at=points)["resolved"]["region_at"]
     assert _cell([0.0, 0.0, 1.0]) == "0,0,1"  # one point (or a fibre direction): one list
+
+
+def test_a_region_at_point_far_from_the_surface_is_a_warning(bumpy):
+    """Before: a point far from the surface (a fitted sphere's centre, a point in Blender's Z-up
+    world, (0, 0, 3)) was taken at its nearest surface point with no word."""
+    vertices, faces = bumpy
+    with pytest.warns(UserWarning, match=r"the 1st region_at point \(0, 0, 3\) is [0-9.]+ from the surface"):
+        shellcontract.regions(vertices, faces, region_at=(0, 0, 3))
+    summary = shellcontract.contract(vertices, faces, region_at=(0, 0, 3), frames=1).summary
+    assert any(w.startswith("the 1st region_at point (0, 0, 3) is ") for w in summary["warnings"])
+    # A vertex, and a point a percent of the bounding box's diagonal from it: no warning.
+    diagonal = np.linalg.norm(vertices.max(axis=0) - vertices.min(axis=0))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        for point in (vertices[7], vertices[7] + 0.01 * diagonal * np.array([0.6, 0.0, 0.8])):
+            assert len(shellcontract.regions(vertices, faces, region_at=point)) == 1
+            summary = shellcontract.contract(vertices, faces, region_at=point, frames=1).summary
+            assert not any("region_at point" in w for w in summary.get("warnings", []))

@@ -33,6 +33,10 @@ void unscale_finder_results(int k, RegionReport* report, CurvatureField* curvatu
       r.radius = std::ldexp(r.radius, k);
       r.mean_curvature = std::ldexp(r.mean_curvature, -k);
     }
+    for (RegionPoint& p : report->points) {
+      p.surface_point = times_power_of_two(p.surface_point, k);
+      p.distance = std::ldexp(p.distance, k);
+    }
   }
   if (curvature) unscale_curvature(k, *curvature);
 }

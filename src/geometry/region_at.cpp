@@ -1,6 +1,7 @@
 // select_regions_at (shellcontract/regions.hpp): the cap around the surface point nearest to each
 // given point, grown with the cap finder's growth (cap_grower.hpp) but without its ranking, the
-// way an artist points at an ear.
+// way an artist points at an ear; a point far from the surface, whose nearest surface point may
+// lie on another part than meant, is a warning (REGION_POINT_NEAR).
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -11,11 +12,13 @@
 #include <vector>
 
 #include "core/cancellation.hpp"
+#include "core/decimal_text.hpp"
 #include "core/power_of_two.hpp"
 #include "geometry/cap_grower.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/curvature.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
 #include "shellcontract/regions.hpp"
 
 namespace shellcontract {
@@ -106,20 +109,10 @@ Cap measured_cap(const MeshArrays& m, const Positions& x, int seed, std::vector<
   return cap;
 }
 
-}  // namespace
-
-std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
-                                   const RegionOptions& options, RegionReport* report) {
-  check_region_options(options);
-  // Far points are pulled in before any scaling: scaled by 2^-k, a point far from a tiny mesh
-  // would overflow.
-  const std::vector<Vec3> near = detail::pulled_in(points, x);
-  if (const int k = detail::finder_exponent(x); k != 0) {
-    const std::vector<int> ids = select_regions_at(mesh, times_power_of_two(x, -k),
-                                                   detail::scaled_by_power_of_two(near, k), options, report);
-    detail::unscale_finder_results(k, report, nullptr);
-    return ids;
-  }
+/// select_regions_at on positions near a unit size (the caller scales them), `near` the points
+/// pulled in: the regions, and the report with each point's nearest surface point.
+std::vector<int> regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& near,
+                            const RegionOptions& options, RegionReport& report) {
   cancellation_point();
   const CurvatureField c = compute_curvature(mesh, x);
   const MeshArrays m = mesh_arrays(mesh, x);
@@ -142,12 +135,14 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     // first face always sets a seed, whatever its distance.
     double best = std::numeric_limits<double>::infinity();
     int seed = -1, nearest = -1;
+    Vec3 surface = Vec3::Zero();
     for (std::size_t f = 0; f < m.nf; ++f) {
       const auto& t = m.tri[f];
       const Vec3 q = closest_on_triangle(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])));
       const double d = (q - p).squaredNorm();  // finite: p is pulled in, x near a unit size
       if (seed < 0 || d < best) {
         best = d;
+        surface = q;
         seed = t[0];
         nearest = static_cast<int>(f);
         for (int v : t)
@@ -157,6 +152,7 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     if (blocked[static_cast<std::size_t>(seed)])
       throw UsageError("the " + ordinal(i + 1) + " region point lies in the region of " +
                        owner_of(m, kept, seed) + "; give points on different parts");
+    r.points.push_back({p, surface, std::sqrt(best)});
     ++r.seed_vertices;
     // The region a disc gives: its faces, and the seed's fan when the disc (grown by vertices)
     // missed the pointed-at face, as on a coarse mesh it can; the fan is edge-connected to the
@@ -198,8 +194,61 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
     kept.emplace_back(std::move(*cap), s);
   }
   std::vector<int> region = number_regions(kept, m.nf, r, true);
-  if (report) *report = std::move(r);
+  report = std::move(r);
   return region;
+}
+
+/// "(x, y, z)" with each coordinate as shortest_text writes it: the point as the user typed it.
+std::string point_text(const Vec3& p) {
+  return "(" + shortest_text(p.x()) + ", " + shortest_text(p.y()) + ", " + shortest_text(p.z()) +
+         ")";
+}
+
+/// The warning for the i-th point when it lies farther than `bound` from the surface: a point
+/// that far picks the part nearest to it, which is often not the one meant (REGION_POINT_NEAR).
+std::string far_point_warning(std::size_t i, const RegionPoint& p, double bound) {
+  const Vec3& s = p.surface_point;
+  return "the " + ordinal(i + 1) + " `region_at` point " + point_text(p.point) + " is " +
+         general_text(p.distance, 4) + " from the surface, farther than " +
+         general_text(100.0 * REGION_POINT_NEAR, 3) + " % of the bounding box's diagonal (" +
+         general_text(bound, 4) + "): its region grows from the surface point nearest to it, (" +
+         general_text(s.x(), 4) + ", " + general_text(s.y(), 4) + ", " + general_text(s.z(), 4) +
+         "), which may be on another part than meant. Give a point on the surface (an ear's tip, "
+         "not a sphere's centre from the regions table) in the input's coordinates: glTF, and OBJ "
+         "by default, is Y-up, so a point (X, Y, Z) read in Blender's Z-up world after the import "
+         "is (X, Z, -Y) in the file";
+}
+
+}  // namespace
+
+std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x,
+                                   const std::vector<Vec3>& points, const RegionOptions& options,
+                                   RegionReport* report) {
+  check_region_options(options);
+  RegionReport r;
+  // Far points are pulled in before any scaling: scaled by 2^-k, a point far from a tiny mesh
+  // would overflow.
+  const std::vector<Vec3> near = detail::pulled_in(points, x);
+  std::vector<int> ids;
+  if (const int k = detail::finder_exponent(x); k != 0) {
+    ids = regions_at(mesh, times_power_of_two(x, -k), detail::scaled_by_power_of_two(near, k),
+                     options, r);
+    detail::unscale_finder_results(k, &r, nullptr);
+  } else {
+    ids = regions_at(mesh, x, near, options, r);
+  }
+  // Each point as given, and its distance from the point as given (a far point was pulled in),
+  // to the bound in the mesh's units.
+  const double bound =
+      REGION_POINT_NEAR * (x.colwise().maxCoeff() - x.colwise().minCoeff()).stableNorm();
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    RegionPoint& p = r.points[i];
+    p.point = points[i];
+    p.distance = (p.point - p.surface_point).stableNorm();
+    if (p.distance > bound) r.warnings.push_back(far_point_warning(i, p, bound));
+  }
+  if (report) *report = std::move(r);
+  return ids;
 }
 
 }  // namespace shellcontract

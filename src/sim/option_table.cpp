@@ -112,9 +112,10 @@ OptionSpec region_at_option() {
   o.value_name = "X,Y,Z";
   o.repeatable = true;
   o.help =
-      "a region around the surface point nearest to X,Y,Z (repeatable, or X,Y,Z;X,Y,Z): the spherical cap there, "
-      "as `regions --region-at` picks it, in the input's coordinates; excludes --regions and "
-      "--region-weights";
+      "a region around the surface point nearest to X,Y,Z (repeatable, or X,Y,Z;X,Y,Z): the "
+      "spherical cap there, as `regions --region-at` picks it, in the input's coordinates; "
+      "excludes --regions and --region-weights. A point farther from the surface than 1.5 % of "
+      "the bounding box's diagonal is a warning";
   o.set = [](RunOptions& r, const std::string& v) {
     std::vector<Vec3> points;
     std::size_t begin = 0;

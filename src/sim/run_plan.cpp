@@ -226,7 +226,8 @@ void resolve_run_options(RunOptions& r) {
   resolve_sim_options(r.sim);  // and the checks of every simulation option
 }
 
-std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
+std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options,
+                             std::vector<std::string>* warnings) {
   switch (options.regions) {
     case RegionSource::File: {
       const RegionFile file = read_region_file_with_strengths(options.region_file, mesh.number_of_faces());
@@ -239,9 +240,12 @@ std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options) {
       o.max_area_fraction = options.region_max_area;
       if (!options.region_points.empty()) {
         const Positions x = positions_from_mesh(mesh);
-        const std::vector<int> ids = select_regions_at(mesh, x, options.region_points, o);
+        RegionReport report;
+        const std::vector<int> ids = select_regions_at(mesh, x, options.region_points, o, &report);
         store_curvature(mesh, compute_curvature(mesh, x));  // as mark_spherical_regions does
         store_regions(mesh, ids);
+        if (warnings)  // points far from the surface
+          for (std::string& w : report.warnings) warnings->push_back(std::move(w));
         return options.region_points.size();
       }
       return mark_spherical_regions(mesh, positions_from_mesh(mesh), o);
@@ -295,7 +299,7 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
   // The run's regions travel as the f:region map of its copy of the mesh (one owner: the run
   // options say where they come from).
   Mesh marked = mesh;
-  plan.regions = mark_run_regions(marked, o);
+  plan.regions = mark_run_regions(marked, o, &plan.warnings);
   cancellation_point();
   plan.regions_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - regions_start).count();

@@ -63,9 +63,12 @@ SimPlan plan_simulation(Mesh mesh, SimOptions options);
 /// weights, or none (every face -1). plan_run calls it on its copy of the mesh after
 /// resolve_run_options, which selects Auto only when something acts on the regions or they are
 /// measured.
+/// `warnings`, when given, gets the selection's warnings (a --region-at point far from the
+/// surface: RegionReport::warnings).
 /// @return the number of regions
 /// @throws InputError for an unreadable or out-of-range region file
-std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options);
+std::size_t mark_run_regions(Mesh& mesh, const RunOptions& options,
+                             std::vector<std::string>* warnings = nullptr);
 
 /// Runs a plan (plan_run(mesh, options), or a plan a caller put together from plan_simulation):
 /// run_contraction(mesh, options) is run_contraction(plan_run(mesh, options)). The plan's

@@ -166,6 +166,41 @@ TEST_F(CliRegions, AFallbackRegionShowsNoSphere) {
   EXPECT_EQ(r.output.substr(row + 7, 1), "-") << r.output;
 }
 
+TEST_F(CliRegions, ARegionAtPointFarFromTheSurfaceWarnsAndTheTableShowsTheSurfacePointTaken) {
+  // bumpy_sphere: radius 0.5 with bumps. (0, 0, 3) is far above it; before, no word.
+  auto r = run_cli({"regions", mesh("bumpy_sphere.off"), "--region-at=0,0,3"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(r.output, "warning: the 1st --region-at point (0, 0, 3) is ")) << r.output;
+  // Under the region's row: "at X, Y, Z (D from the point given)", the surface point nearest to
+  // (0, 0, 3) and its distance from it, to the 4 digits shown.
+  const std::size_t at = r.output.find("\n      at ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  std::istringstream line(r.output.substr(at + 10));
+  double px = 0, py = 0, pz = 0, d = 0;
+  char comma = 0, paren = 0;
+  line >> px >> comma >> py >> comma >> pz >> paren >> d;
+  ASSERT_TRUE(line) << r.output;
+  const double radius = std::sqrt(px * px + py * py + pz * pz);
+  EXPECT_GE(radius, 0.5 - 1e-3) << r.output;  // on the sphere or a bump, not inside
+  EXPECT_NEAR(d, std::sqrt(px * px + py * py + (3 - pz) * (3 - pz)), 2e-3) << r.output;
+  EXPECT_NEAR(d, 3 - radius, 0.15) << r.output;  // the nearest point lies near the top
+  // A point on the surface: a row with its surface point, no warning.
+  r = run_cli(
+      {"regions", mesh("bumpy_sphere.off"), "--region-at=-0.2628655560595668,0.42532540417602,0"});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(has(r.output, "warning")) << r.output;
+  EXPECT_TRUE(has(r.output, "\n      at -0.2629, +0.4253, +0 (0 from the point given)\n"))
+      << r.output;
+  // run names it too, on stderr and in the summary's warnings.
+  r = run_cli({"run", mesh("bumpy_sphere.off"), "--region-at=0,0,3", "-n", "1", "-q", "-o",
+               path("o.off"), "--summary", path("s.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has(r.output, "warning: the 1st --region-at point (0, 0, 3) is ")) << r.output;
+  std::ifstream in(path("s.json"));
+  const std::string summary((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_TRUE(has(summary, "the 1st --region-at point (0, 0, 3) is ")) << summary;
+}
+
 TEST_F(CliRegions, MaxCompactnessBelowOneIsAThreshold) {
   // A cap on a sphere is below 1 (a hemisphere 0.5), so a bound below 1 must be accepted.
   auto r = run_cli({"regions", mesh("bumpy_sphere.off"), "--max-compactness", "0.5"});
