@@ -441,7 +441,9 @@ def regions(vertices, faces, **region_options):
     region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
     ``max_area_fraction``, ... with '_' or '-'; ``min_faces`` from 1 to 2**31 - 1); ``region_at``
     picks the caps around points instead, in the forms and with the errors of contract()'s
-    region_at (one point, a list or array of points, or 'X,Y,Z' text)."""
+    region_at (one point, a list or array of points, or 'X,Y,Z' text). Other Python threads run
+    during the search; Ctrl-C stops it within a fraction of a second (as during contract()'s own
+    region search) and raises KeyboardInterrupt."""
     return _core.regions(vertices, faces, **region_options)
 
 

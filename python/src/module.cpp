@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <set>
@@ -168,13 +169,13 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
                           (o.method == RegionMethod::Tips ? "tips" : "parts") + "'");
   const Mesh mesh = mesh_from_numpy(vertices, faces);
   std::vector<int> ids;
-  {
-    // The search reads only the mesh made above: other Python threads (Blender's interface) go
-    // on meanwhile, as during contract().
-    py::gil_scoped_release free;
+  // The search reads only the mesh made above: other Python threads (Blender's interface) go on
+  // meanwhile, as during contract(); it asks for Ctrl-C as a run does (KeyboardInterrupt).
+  run_released([&](const std::function<bool()>& cancelled) {
+    o.cancelled = cancelled;
     ids = at.empty() ? select_spherical_regions(mesh, positions_from_mesh(mesh), o)
                      : select_regions_at(mesh, positions_from_mesh(mesh), at, o);
-  }
+  });
   py::list out;
   for (const std::vector<int>& r : regions_from_face_ids(ids)) {
     py::array_t<std::int64_t> a(static_cast<py::ssize_t>(r.size()));

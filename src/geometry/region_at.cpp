@@ -106,17 +106,16 @@ Cap measured_cap(const MeshArrays& m, const Positions& x, int seed, std::vector<
   return cap;
 }
 
-}  // namespace
-
-std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
-                                   const RegionOptions& options, RegionReport* report) {
+/// select_regions_at without its cancel hook (asked by the caller's scope).
+std::vector<int> regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
+                            const RegionOptions& options, RegionReport* report) {
   check_region_options(options);
   // Far points are pulled in before any scaling: scaled by 2^-k, a point far from a tiny mesh
   // would overflow.
   const std::vector<Vec3> near = detail::pulled_in(points, x);
   if (const int k = detail::finder_exponent(x); k != 0) {
-    const std::vector<int> ids = select_regions_at(mesh, times_power_of_two(x, -k),
-                                                   detail::scaled_by_power_of_two(near, k), options, report);
+    const std::vector<int> ids = regions_at(
+        mesh, times_power_of_two(x, -k), detail::scaled_by_power_of_two(near, k), options, report);
     detail::unscale_finder_results(k, report, nullptr);
     return ids;
   }
@@ -200,6 +199,15 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
   std::vector<int> region = number_regions(kept, m.nf, r, true);
   if (report) *report = std::move(r);
   return region;
+}
+
+}  // namespace
+
+std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x,
+                                   const std::vector<Vec3>& points, const RegionOptions& options,
+                                   RegionReport* report) {
+  return detail::with_cancel_hook(options, "select_regions_at",
+                                  [&] { return regions_at(mesh, x, points, options, report); });
 }
 
 }  // namespace shellcontract
