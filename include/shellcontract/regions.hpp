@@ -30,6 +30,8 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -88,6 +90,22 @@ struct RegionOptions {
   /// at this size has not met the end of a part and is dropped (select_regions_at keeps the
   /// largest cap within it instead).
   double max_area_fraction = 0.25;
+  /// The caller's cancel request, not a threshold: asked on the calling thread between the
+  /// search's stages and within its long loops (a large mesh's search hears it within a small
+  /// share of its time); true stops the search with RegionSearchCancelled.
+  /// Empty (the default): never asked. Python's regions() asks its signal handlers here
+  /// (Ctrl-C); a run does not read it (its observer's cancelled() stops the run's region
+  /// search, shellcontract/observer.hpp).
+  std::function<bool()> cancelled;
+};
+
+/// The search stopped because RegionOptions::cancelled said so (Ctrl-C in Python's regions());
+/// nothing is returned, and mark_spherical_regions leaves the mesh's maps as they were. A run's
+/// own region search does not throw it: the run returns RunStatus::Cancelled
+/// (shellcontract/run.hpp).
+class RegionSearchCancelled : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
 };
 
 /// One selected region, as reported by select_spherical_regions.
@@ -164,7 +182,8 @@ struct RegionReport {
 /// @pre  x.rows() == number_of_vertices; options in range (check_region_options).
 /// @return one entry per face (index = face index = input face order): the region id, or -1.
 ///         Ids are 0..n-1 ordered by decreasing area, ties by smallest face index.
-/// @throws UsageError on a precondition failure, or a position that is not finite.
+/// @throws UsageError on a precondition failure, or a position that is not finite;
+///         RegionSearchCancelled when options.cancelled said stop.
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report = nullptr);
 
@@ -179,7 +198,8 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 /// returned: the sphere fitted to their vertices, the residual and the angle about it; its
 /// points the surface point each region grew from, and its warnings the points farther from the
 /// surface than REGION_POINT_NEAR bounding-box diagonals.
-/// @throws UsageError as select_spherical_regions, or when a point is not finite.
+/// @throws UsageError as select_spherical_regions, or when a point is not finite;
+///         RegionSearchCancelled when options.cancelled said stop.
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
                                    const RegionOptions& options, RegionReport* report = nullptr);
 
@@ -187,14 +207,14 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const s
 /// [0, 1], min <= max, max_compactness > 0, min_faces >= 1).
 void check_region_options(const RegionOptions& options);
 
-
 /// The same selection on the mesh's own property maps (design.md, data flow: curvature ->
 /// spherical regions -> f:region): stores the curvature at x in "v:mean_curvature" and
 /// "v:gaussian_curvature" (store_curvature), selects the regions from those maps, and stores the
 /// ids in "f:region" (store_regions). Maps already attached are overwritten.
 /// @param mesh, x, options, report as select_spherical_regions (same @pre)
 /// @return the number of regions (ids 0..n-1 in f:region)
-/// @throws UsageError as select_spherical_regions
+/// @throws UsageError as select_spherical_regions; RegionSearchCancelled (the mesh's maps
+///         unchanged) when options.cancelled said stop
 std::size_t mark_spherical_regions(Mesh& mesh, const Positions& x, const RegionOptions& options,
                                    RegionReport* report = nullptr);
 

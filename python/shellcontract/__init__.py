@@ -453,7 +453,9 @@ def regions(vertices, faces, **region_options):
     picks the caps around points instead, in the forms and with the errors of contract()'s
     region_at (one point, a list or array of points, or 'X,Y,Z' text). A region_at point farther
     from the surface than 1.5 % of the bounding box's diagonal is a UserWarning naming the surface
-    point taken (contract(region_at=...): a warning in its summary)."""
+    point taken (contract(region_at=...): a warning in its summary). Other Python threads run
+    during the search; Ctrl-C stops it within a fraction of a second (as during contract()'s own
+    region search) and raises KeyboardInterrupt."""
     return _core.regions(vertices, faces, **region_options)
 
 

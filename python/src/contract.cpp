@@ -4,16 +4,16 @@
 // Python callback and polls for Ctrl-C.
 #include "contract.hpp"
 
+#include <Python.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
-
-#include <Python.h>
 
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <string>
@@ -64,13 +64,21 @@ struct ActiveRun {
     std::lock_guard<std::mutex> lock(runs_mutex);
     ++active_runs;
   }
-  ~ActiveRun() {
+  ~ActiveRun() { leave(); }
+  ActiveRun(const ActiveRun&) = delete;
+  ActiveRun& operator=(const ActiveRun&) = delete;
+
+  /// Counted no more from now on (once only).
+  void leave() {
+    if (left_) return;
+    left_ = true;
     std::lock_guard<std::mutex> lock(runs_mutex);
     --active_runs;
     runs_changed.notify_all();
   }
-  ActiveRun(const ActiveRun&) = delete;
-  ActiveRun& operator=(const ActiveRun&) = delete;
+
+ private:
+  bool left_ = false;
 };
 
 py::object column_value(std::size_t c, double v) {
@@ -194,6 +202,59 @@ class PythonObserver final : public RunObserver {
   std::string csv_ = log_csv_header();  ///< rows_ as CSV text (csv_text)
 };
 
+/// run_released's cancel hook: Python's signal handlers asked from the thread that released the
+/// GIL, as PythonObserver::cancelled asks them for a run.
+class SignalPoll {
+ public:
+  SignalPoll() = default;
+  SignalPoll(const SignalPoll&) = delete;
+  SignalPoll& operator=(const SignalPoll&) = delete;
+  ~SignalPoll() {
+    // Only dropped when the caller throws before taking it.
+    if (error_type_) {
+      Py_XDECREF(error_type_);
+      Py_XDECREF(error_value_);
+      Py_XDECREF(error_trace_);
+    }
+  }
+
+  /// Called without the GIL, on the thread that released it.
+  bool cancelled() {
+    if (stop_) return true;
+    if (interpreter_exiting()) return stop_ = true;  // checked without the GIL
+    // As PythonObserver::cancelled: a few times a second, the GIL can take a switch interval.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_poll_ < POLL_INTERVAL) return false;
+    last_poll_ = now;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {  // Ctrl-C: the default handler raised KeyboardInterrupt
+      PyErr_Fetch(&error_type_, &error_value_, &error_trace_);
+      stop_ = true;
+    }
+    return stop_;
+  }
+
+  /// Raises the error a signal handler raised, if any (GIL held).
+  void raise_if_error() {
+    if (!error_type_) return;
+    PyErr_Restore(error_type_, error_value_, error_trace_);
+    error_type_ = error_value_ = error_trace_ = nullptr;
+    throw py::error_already_set();
+  }
+
+  /// Whether it said stop for the interpreter's exit, no signal handler having raised.
+  bool stopped_by_exit() const { return stop_ && !error_type_; }
+
+ private:
+  static constexpr std::chrono::milliseconds POLL_INTERVAL{100};
+
+  std::chrono::steady_clock::time_point last_poll_{};
+  bool stop_ = false;
+  PyObject* error_type_ = nullptr;
+  PyObject* error_value_ = nullptr;
+  PyObject* error_trace_ = nullptr;
+};
+
 /// The library's summary (write_run_summary) into a dict.
 class DictSummary final : public SummaryWriter {
  public:
@@ -281,6 +342,30 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
         .attr("warn")(failed_saves, py::module_::import("builtins").attr("UserWarning"), 2);
   }
   return out;
+}
+
+void run_released(const std::function<void(const std::function<bool()>& cancelled)>& work) {
+  SignalPoll poll;
+  std::exception_ptr error;
+  {
+    ActiveRun active;  // destroyed after the GIL is taken back
+    py::gil_scoped_release release;
+    try {
+      work([&poll] { return poll.cancelled(); });
+    } catch (...) {  // rethrown with the GIL: taking it back may never return (below)
+      error = std::current_exception();
+    }
+    // As contract(): past the exit's wait this thread never takes the GIL again. Nor does work
+    // the exit stopped (a daemon thread's: the others were joined before the exit's hooks): it
+    // has no result to return, and raising there printed "Exception in thread" as the
+    // interpreter went away. It leaves the exit's count and sleeps until the process ends.
+    if (interpreter_finalizing() || (error && poll.stopped_by_exit())) {
+      active.leave();
+      for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+    }
+  }
+  poll.raise_if_error();  // Ctrl-C's KeyboardInterrupt, not the RegionSearchCancelled it caused
+  if (error) std::rethrow_exception(error);
 }
 
 void stop_runs_at_exit() {

@@ -5,6 +5,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <functional>
 #include <string>
 
 namespace shellcontract::python {
@@ -20,9 +21,18 @@ namespace py = pybind11;
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
                   const py::kwargs& options);
 
+/// Runs `work` with the GIL released, as contract() runs its run: counted for the interpreter's
+/// exit (stop_runs_at_exit), and handed a cancel hook for the library (RegionOptions::cancelled)
+/// that asks Python's signal handlers a few times a second and says stop once one has raised
+/// (Ctrl-C: KeyboardInterrupt) or the interpreter exits. With the GIL back, the handler's
+/// exception is raised if there was one (rather than the RegionSearchCancelled it caused), else
+/// work's own, if any.
+void run_released(const std::function<void(const std::function<bool()>& cancelled)>& work);
+
 /// Registered with Python's atexit when the module loads: cancels every run still going (in a
-/// daemon thread, say) and waits for it to leave the library, so that no thread takes the GIL
-/// while the interpreter finalizes (it would be ended inside C++ frames: an abort).
+/// daemon thread, say; run_released's work too) and waits for it to leave the library, so that
+/// no thread takes the GIL while the interpreter finalizes (it would be ended inside C++ frames:
+/// an abort).
 void stop_runs_at_exit();
 
 /// The option table: one (python_name, default, help, cli_name) tuple per option, in --help order

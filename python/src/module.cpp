@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <set>
@@ -169,13 +170,13 @@ py::list regions(const py::handle& vertices, const py::handle& faces, const py::
   const Mesh mesh = mesh_from_numpy(vertices, faces);
   std::vector<int> ids;
   RegionReport report;
-  {
-    // The search reads only the mesh made above: other Python threads (Blender's interface) go
-    // on meanwhile, as during contract().
-    py::gil_scoped_release free;
+  // The search reads only the mesh made above: other Python threads (Blender's interface) go on
+  // meanwhile, as during contract(); it asks for Ctrl-C as a run does (KeyboardInterrupt).
+  run_released([&](const std::function<bool()>& cancelled) {
+    o.cancelled = cancelled;
     ids = at.empty() ? select_spherical_regions(mesh, positions_from_mesh(mesh), o)
                      : select_regions_at(mesh, positions_from_mesh(mesh), at, o, &report);
-  }
+  });
   // A region_at point far from the surface: a UserWarning at the caller's line, as the CLI's
   // "warning:" (the list holds only face ids).
   for (const std::string& w : report.warnings)

@@ -34,6 +34,29 @@ def test_exit_while_contract_runs_in_a_daemon_thread(mesh_dir, attempt):
     assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
 
 
+def test_exit_while_regions_runs_in_a_daemon_thread(mesh_dir):
+    """The exit stops a region search as it stops a run (regions() asks for Ctrl-C and the exit
+    at its cancellation points): the process ends at once, silently. A search the exit stopped
+    that took the GIL back to raise printed "Exception in thread" as the interpreter went away."""
+    r = _exit_while_running(mesh_dir, """
+        import numpy as np
+        for _ in range(4):  # ico2 split in four, four times: 81,920 faces
+            e = np.sort(np.concatenate([f[:, [0, 1]], f[:, [1, 2]], f[:, [2, 0]]]), axis=1)
+            u, inverse = np.unique(e, axis=0, return_inverse=True)
+            mid = len(v) + np.arange(len(u))
+            v = np.vstack([v, (v[u[:, 0]] + v[u[:, 1]]) / 2])
+            ab, bc, ca = mid[inverse.reshape(3, -1)]
+            a, b, c = f.T
+            f = np.vstack([np.stack(t, axis=1)
+                           for t in ((a, ab, ca), (ab, b, bc), (ca, bc, c), (ab, bc, ca))])
+        t = threading.Thread(target=shellcontract.regions, args=(v, f), daemon=True)
+        t.start()
+        time.sleep(0.3)
+    """)
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
+    assert r.stderr == "", r.stderr[-2000:]
+
+
 @pytest.mark.parametrize("attempt", range(4))
 def test_exit_with_a_suspended_frames_generator(mesh_dir, attempt):
     """Before: the generator's worker, blocked in its callback, woke during finalization: abort."""

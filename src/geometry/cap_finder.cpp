@@ -185,7 +185,9 @@ void check_region_options(const RegionOptions& o) {
 
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report) {
-  return detail::select_spherical_regions(mesh, x, options, report, nullptr);
+  return detail::with_cancel_hook(options, "select_spherical_regions", [&] {
+    return detail::select_spherical_regions(mesh, x, options, report, nullptr);
+  });
 }
 
 std::vector<int> detail::select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,

@@ -3,12 +3,12 @@
 // flat arrays, a grown cap and its final shape.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
+#include <functional>
 #include <optional>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "geometry/curvature.hpp"
 #include "geometry/sphere_moments.hpp"
@@ -21,6 +21,12 @@ struct CurvatureField;
 }
 
 namespace shellcontract::detail {
+
+/// Runs a public function's `search` under a scope that asks options.cancelled, when it is set,
+/// and turns its stop into RegionSearchCancelled("`who`: cancelled"): PreparationCancelled must
+/// not leave the library. Without a hook `search` runs as is (under a run's scope, if any).
+std::vector<int> with_cancel_hook(const RegionOptions& options, const char* who,
+                                  const std::function<std::vector<int>()>& search);
 
 /// Mesh arrays the finder works on (vertex and face indices = idx()).
 struct MeshArrays {

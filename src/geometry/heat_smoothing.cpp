@@ -366,12 +366,18 @@ std::vector<Eigen::VectorXd> heat_solves(const SpMat& L, const Eigen::VectorXd& 
       TwoLevelBatch(pattern, agg, members).solve(rhs);
     });
   }
+  // Each factorization is one call that cannot be interrupted, and below
+  // HEAT_DIRECT_MAX_VERTICES the four of them are nearly all of the selection's time: a cancel
+  // is heard before each (on a worker once the caller's thread has seen it), not only after all.
+  const CancellationScope* const caller = CancellationScope::current();
   tbb::parallel_for(std::size_t{0}, times.size(), [&](std::size_t k) {
     if (systems[k].solved) {
       used[k] = systems[k].iterations;
       out[k] = std::move(systems[k].u);
       return;
     }
+    const CancellationScope::Join join(caller);
+    cancellation_point();
     failed[k] = direct_solve(A[k], rhs, out[k]) ? 0 : 1;
   });
   if (std::any_of(failed.begin(), failed.end(), [](char f) { return f != 0; }))

@@ -219,9 +219,8 @@ std::string far_point_warning(std::size_t i, const RegionPoint& p, double bound)
          "is (X, Z, -Y) in the file";
 }
 
-}  // namespace
-
-std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x,
+/// select_regions_at without its cancel hook (asked by the caller's scope).
+std::vector<int> regions_at_points(const Mesh& mesh, const Positions& x,
                                    const std::vector<Vec3>& points, const RegionOptions& options,
                                    RegionReport* report) {
   check_region_options(options);
@@ -249,6 +248,16 @@ std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x,
   }
   if (report) *report = std::move(r);
   return ids;
+}
+
+}  // namespace
+
+std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x,
+                                   const std::vector<Vec3>& points, const RegionOptions& options,
+                                   RegionReport* report) {
+  return detail::with_cancel_hook(options, "select_regions_at", [&] {
+    return regions_at_points(mesh, x, points, options, report);
+  });
 }
 
 }  // namespace shellcontract

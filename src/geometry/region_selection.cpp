@@ -1,7 +1,5 @@
 // The region face-list file format and the f:region map; the coloured PLY is in region_ply.cpp,
 // the selection itself in cap_finder.cpp (header has the algorithm and the meaning of every threshold).
-#include "shellcontract/regions.hpp"
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -18,6 +16,7 @@
 #include <string_view>
 #include <utility>
 
+#include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
 #include "core/text_lines.hpp"
 #include "geometry/cap_internal.hpp"
@@ -26,6 +25,7 @@
 #include "mesh/properties.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/regions.hpp"
 
 namespace shellcontract {
 namespace {
@@ -39,10 +39,23 @@ std::string line_error(const std::string& path, std::size_t line, const std::str
 
 }  // namespace
 
+std::vector<int> detail::with_cancel_hook(const RegionOptions& options, const char* who,
+                                          const std::function<std::vector<int>()>& search) {
+  if (!options.cancelled) return search();
+  try {
+    const CancellationScope scope(options.cancelled);
+    return search();
+  } catch (const PreparationCancelled&) {
+    throw RegionSearchCancelled(std::string(who) + ": cancelled");
+  }
+}
+
 std::size_t mark_spherical_regions(Mesh& mesh, const Positions& x, const RegionOptions& options,
                                    RegionReport* report) {
   CurvatureField curvature;  // the finder's own, for the PLY's per-vertex columns
-  const std::vector<int> region = detail::select_spherical_regions(mesh, x, options, report, &curvature);
+  const std::vector<int> region = detail::with_cancel_hook(options, "mark_spherical_regions", [&] {
+    return detail::select_spherical_regions(mesh, x, options, report, &curvature);
+  });
   store_curvature(mesh, curvature);
   store_regions(mesh, region);
   return regions_from_face_ids(region).size();

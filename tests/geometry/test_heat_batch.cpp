@@ -11,9 +11,11 @@
 #include <vector>
 
 #include <Eigen/SparseCore>
+#include <tbb/task_arena.h>
 
 #include "core/cancellation.hpp"
 #include "geometry/heat_smoothing.hpp"
+#include "support/cancel_probe.hpp"
 #include "support/heat_problem.hpp"
 
 namespace shellcontract {
@@ -75,6 +77,23 @@ TEST(HeatBatch, TheIterativeSolvesAskARunsCancelAtEachIteration) {
   const CancellationScope scope([&] { return ++asked >= 3; });
   EXPECT_THROW(detail::heat_solves(h.L, h.mass, h.rhs, h.times, true), PreparationCancelled);
   EXPECT_EQ(asked, 3);
+}
+
+// Below HEAT_DIRECT_MAX_VERTICES each time is one factorization, a call that cannot be
+// interrupted, and together they are nearly all of a mesh's region selection. Before, the direct
+// solves asked nothing between them: bear split in four (55,298 vertices) heard Ctrl-C only after
+// all four. On one thread each factorization is preceded by its own question.
+TEST(HeatBatch, TheDirectSolvesAskARunsCancelBeforeEachFactorization) {
+  const HeatProblem h = bumpy_problem();
+  ASSERT_EQ(h.times.size(), 5u);
+  tbb::task_arena one(1);
+  one.execute([&] {
+    const auto call = [&] { detail::heat_solves(h.L, h.mass, h.rhs, h.times, false); };
+    // The set-up's questions and one per factorization.
+    EXPECT_GE(test::questions_of_a_whole_call(call), 5 + 2);
+    // Stopped before the last factorization: its question, not the end, throws.
+    test::expect_heard_inside("the direct heat solves", call, 6);
+  });
 }
 
 }  // namespace
