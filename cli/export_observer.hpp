@@ -44,6 +44,23 @@ class FrameExporter final : public RunObserver {
     max_frame_ = frames;
   }
 
+  /// The frames a run of `frames` frames keeps with every `every`-th: frame 0, every N-th and
+  /// the last (fewer when the run stops early).
+  static int kept_frames(int frames, int every) {
+    return frames / every + 1 + (frames % every != 0 ? 1 : 0);
+  }
+  /// What the .glb holds before the run (gltf::glb_size_bound's layout): frame 0's rows, the
+  /// faces, the input's attributes and materials, and the fields by name.
+  GltfAnimation gltf_layout() const {
+    GltfAnimation layout = gltf_;
+    layout.faces = faces_array(mesh_);
+    layout.frames = {Positions::Zero(static_cast<Eigen::Index>(mesh_.number_of_vertices()), 3)};
+    layout.frame_fields = {{FRAME_FIELD, {}}};
+    layout.colour_fields.clear();
+    for (const char* name : COLOUR_FIELDS) layout.colour_fields.push_back({name, {}});
+    return layout;
+  }
+
   void started(const FrameView& view) override {
     // The frames are written as -o is: through the input's document when it is of their format.
     if (!request_.dir.empty())
@@ -74,10 +91,10 @@ class FrameExporter final : public RunObserver {
     if (!request_.gltf.empty()) {
       const auto start = std::chrono::steady_clock::now();
       const VertexFields f = compute_vertex_fields(simulator_of(view));
-      gltf_.colour_fields = {{"mean_curvature", f.mean_curvature},
-                             {"gaussian_curvature", f.gaussian_curvature},
-                             {"pressure", f.pressure},
-                             {"energy_density", f.energy_density}};
+      gltf_.colour_fields = {{COLOUR_FIELDS[0], f.mean_curvature},
+                             {COLOUR_FIELDS[1], f.gaussian_curvature},
+                             {COLOUR_FIELDS[2], f.pressure},
+                             {COLOUR_FIELDS[3], f.energy_density}};
       gltf_.colour_frame = view.frame();  // the fields are this frame's, not every frame's
       gltf_.seconds_per_frame = request_.seconds_per_frame;
       gltf_seconds_ =
@@ -160,6 +177,11 @@ class FrameExporter final : public RunObserver {
   std::vector<std::string> frame_warnings() const { return writer_ ? writer_->warnings() : std::vector<std::string>{}; }
 
  private:
+  // The .glb's fields: the end's four, and each kept frame's mean curvature.
+  static constexpr const char* COLOUR_FIELDS[4] = {"mean_curvature", "gaussian_curvature",
+                                                   "pressure", "energy_density"};
+  static constexpr const char* FRAME_FIELD = "mean_curvature";
+
   void take(int frame, const FrameView& view) {
     last_ = frame;
     if (!writer_ && request_.gltf.empty()) return;
@@ -170,7 +192,7 @@ class FrameExporter final : public RunObserver {
       // Each kept frame's own mean curvature (the default colour field, computed as
       // compute_vertex_fields does), so that a viewer colours every frame with its values, not
       // the end's.
-      if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({"mean_curvature", {}});
+      if (gltf_.frame_fields.empty()) gltf_.frame_fields.push_back({FRAME_FIELD, {}});
       auto mean =
           input_unit_mean_curvature(simulator_of(view), view.normalized_positions()).cast<float>().eval();
       // A frame's three entries all or none: memory that runs out here (std::bad_alloc, which

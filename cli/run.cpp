@@ -30,6 +30,7 @@
 #include "mesh/output_check.hpp"
 #include "mesh/stl_positions.hpp"
 #include "output_paths.hpp"
+#include "output_sizes.hpp"
 #include "run_checkpoint.hpp"
 #include "run_command_line.hpp"
 #include "run_document.hpp"
@@ -346,6 +347,10 @@ int command_run(int argc, char** argv) {
       }
     }
     exporter.set_document(document);
+    // The large outputs' sizes, known before the run (output_sizes.hpp): a .glb over the 4 GiB
+    // it can hold is refused now, not corrupted after hours; very large outputs are warned of.
+    check_run_output_sizes(exporter, exports, mesh, document.get(), input, fields_prefix,
+                           options.sim.frames, std::cerr);
 
     faces = std::to_string(mesh.number_of_faces()) + " faces";
     // run_contraction ends the run itself when memory runs out during the frames.

@@ -115,14 +115,14 @@ struct GltfStats {
 /// Layout: one scene, one node, one mesh with triangle primitives (one per material, below)
 /// whose POSITION and NORMAL (float32, area-weighted vertex normals, unit length) are
 /// frames[0]; for every later frame k a morph target holding the float32 displacements
-/// POSITION(k) - POSITION(0) and NORMAL(k) - NORMAL(0); one animation whose `weights` channel (STEP interpolation) has one keyframe per frame
-/// with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Each colour field's
-/// values are a float SCALAR custom attribute named after it ("mean_curvature" ->
-/// _MEAN_CURVATURE; three.js: _mean_curvature), never a COLOR_n (glTF multiplies COLOR_0 with the
-/// base colour, which would tint a textured mesh). The mesh's `extras` hold `frame_numbers`,
-/// `targetNames` ("frame_<n>") and `colour_fields` (name, values_attribute, low / high: the 2nd
-/// and 98th percentiles of its values, the range a viewer maps onto blue - white - red, and
-/// `frame`, the run frame whose values they are, when colour_frame is set).
+/// POSITION(k) - POSITION(0) and NORMAL(k) - NORMAL(0); one animation whose `weights` channel (STEP
+/// interpolation) has one keyframe per frame with target k - 1 at weight 1 and the others at 0 (all
+/// 0 at frame 0). Each colour field's values are a float SCALAR custom attribute named after it
+/// ("mean_curvature" -> _MEAN_CURVATURE; three.js: _mean_curvature), never a COLOR_n (glTF
+/// multiplies COLOR_0 with the base colour, which would tint a textured mesh). The mesh's `extras`
+/// hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields` (name, values_attribute,
+/// low / high: the 2nd and 98th percentiles of its values, the range a viewer maps onto blue -
+/// white - red, and `frame`, the run frame whose values they are, when colour_frame is set).
 ///
 /// Each of `frame_fields` is one float SCALAR accessor per frame (not a primitive attribute: glTF
 /// morph targets cannot carry it), listed in the mesh's extras `frame_fields` (name, accessors,
@@ -161,7 +161,9 @@ struct GltfStats {
 ///         a texture coordinate or colour that float32 cannot hold (not finite, or beyond its
 ///         range), a material
 ///         index out of range, or a material image without texture coordinates or mime type
-/// @throws UsageError if the file cannot be written
+/// @throws UsageError if the file cannot be written, or would exceed the 4 GiB - 1 bytes a .glb
+///         can hold (its lengths are 32-bit numbers): its true size is checked before its first
+///         byte, and nothing is written then
 GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& animation);
 
 /// The same file, freeing each frame of `animation` once it is in the file's buffer, so that the

@@ -12,6 +12,7 @@
 #include "export/gltf_buffer.hpp"
 #include "export/gltf_input_materials.hpp"
 #include "export/gltf_primitives.hpp"
+#include "export/gltf_size.hpp"
 #include "export/gltf_vertices.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/export.hpp"
@@ -175,20 +176,6 @@ std::string custom_attribute(const std::string& name) {
   return s;
 }
 
-/// The bytes write_gltf_animation's buffer holds, with each view's alignment padding.
-std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv) {
-  const std::size_t nk = a.frames.size();
-  const std::size_t vec3 = 12 * nv + 3;
-  return 4 * static_cast<std::size_t>(a.faces.size()) + 3 * (1 + a.materials.size()) +  // indices
-         (2 + 2 * (nk - 1)) * vec3 +  // attributes and targets
-         (8 + 4 * a.colour_fields.size()) * nv + 3 * (1 + a.colour_fields.size()) +  // uv, values
-         (a.colour.rows() > 0 ? 16 * nv + 3 : 0) +                                   // COLOR_0
-         a.frame_fields.size() * nk * (4 * nv + 3) +                                 // frame fields
-         4 * nk + 3 + 4 * nk * (nk - 1) + 3 +                   // keys and weights
-         gltf::material_bytes(a.materials) +                    // embedded images
-         gltf::source_material_bytes(a.material_source.get());  // a glTF input's images
-}
-
 /// write_gltf_animation; with `consumed` (a.frames itself), each frame after frame 0 is freed
 /// once its morph target is in the buffer.
 GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
@@ -198,7 +185,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = std::string("shellcontract ") + build_version();  // which build wrote it
-  BufferBuilder bb(model, buffer_capacity(a, split.source.size()));
+  BufferBuilder bb(model, gltf::buffer_capacity(a, split.source.size(), a.frames.size()));
 
   // The primitives' indices first (a single primitive's file is laid out as before materials
   // made several); everything else is one set, shared by every primitive.
@@ -356,12 +343,10 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   stats.buffer_bytes = model.buffers[0].data.size();
   // Straight into the file: through a string first, a large mesh's .glb was held three more
   // times in memory (lab/history.md).
-  write_file_atomic(path, [&](std::ostream& out) {
-    tinygltf::TinyGLTF writer;
-    if (!writer.WriteGltfSceneToStream(&model, out, false, true) || !out)
-      throw UsageError("cannot write '" + path + "': serializing the glTF failed");
-    stats.bytes = static_cast<std::size_t>(out.tellp());
-  });
+  // Its true size checked first (write_glb): a .glb over 4 GiB is refused, never written with
+  // wrapped lengths.
+  write_file_atomic(path,
+                    [&](std::ostream& out) { stats.bytes = gltf::write_glb(path, model, out); });
   return stats;
 }
 

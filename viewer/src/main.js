@@ -8,12 +8,14 @@
 // that frame and never on the others; a mesh file is coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
 // wear its materials (base colour, texture), and a file with materials opens so.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
-// For tests, window.viewer exposes the state: {ready, keyframe, frameNumbers, panes (with their
+// While a file loads, the status line says so: its name and the bytes read (state.loading).
+// For tests, window.viewer exposes the state: {ready, loading, keyframe, frameNumbers, panes (with their
 // meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show),
 // looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
 import { fieldColourAttribute, range } from './colour_map.js';
+import { loadingText, mb, nextPaint, readFile, readResponse } from './loading.js';
 import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
 import { disposePane, firstFramePane, makePane } from './panes.js';
 import { drawPlot } from './plot.js';
@@ -22,7 +24,7 @@ import { parseCsvLog, parseJsonSummary, ratioAt } from './run_log.js';
 const el = (id) => document.getElementById(id);
 const view = el('view');
 const state = {
-  ready: false, error: null, keyframe: 0, frameNumbers: [], times: [], log: null, summary: null,
+  ready: false, error: null, loading: null, keyframe: 0, frameNumbers: [], times: [], log: null, summary: null,
   colourFields: [], colour: '-1', playing: false, sideBySide: false,
   panes: [],   // per pane: {name, kind: 'glb' | 'mesh', vertices, frame (glb: shown run frame)}
   shown: [],   // per pane: the colours it shows ('none', a field's name, 'file colours' or 'file materials')
@@ -73,12 +75,44 @@ window.addEventListener('resize', resize);
 
 /** Shows the text in the status line; `error` (a message within it) marks the line as an error. */
 function setStatus(text, error = null) {
+  state.loading = null;  // the panes' summary or an error ends the loading line
   el('status').textContent = text;
   el('status').classList.toggle('error', !!error);
   if (error) { state.error = error; console.error(error); }
 }
 
 // ---------------------------------------------------------------- loading
+/**
+ * The status line while `name` loads (state.loading: {name, loaded, total, building}): the bytes
+ * read so far, then, with `building`, that its meshes are being made (a large .glb's frames take
+ * seconds more). Updated at most every 100 ms: a large file arrives in thousands of pieces.
+ */
+let loadingShownAt = 0, loadingTimer = null;
+function showLoading(name, loaded, total, building = false) {
+  state.loading = { name, loaded, total, building };
+  const wait = 100 - (performance.now() - loadingShownAt);
+  if (!building && loaded > 0 && loaded < total && wait > 0) {
+    // The latest state is shown when the interval is over (a stalled transfer shows where it is).
+    loadingTimer ??= setTimeout(() => { loadingTimer = null; drawLoading(); }, wait);
+    return;
+  }
+  drawLoading();
+}
+function drawLoading() {
+  const l = state.loading;
+  if (!l) return;  // the load ended (setStatus) before this update's turn
+  loadingShownAt = performance.now();
+  el('status').classList.remove('error');
+  el('status').textContent = l.building ? `Opening ${l.name} (${mb(l.loaded)}): making its meshes…` : loadingText(l.name, l.loaded, l.total);
+}
+
+/** A pane of the bytes of `name` (read by `read`, given the progress callback), the status line showing the load. */
+async function loadPane(name, read, companions) {
+  const bytes = await read((loaded, total) => showLoading(name, loaded, total));
+  showLoading(name, bytes.byteLength, bytes.byteLength, true);
+  await nextPaint();
+  return makePane(bytes, name, companions);
+}
 /**
  * Shows the panes made of the files (one, or two side by side) and resets the frame and colours.
  * The status line gives each pane's summary after `errors` (the files that failed to open: the
@@ -180,7 +214,7 @@ async function openFiles(files) {
         // Two panes at most: the first two files that open; the others are named, not read, so
         // a file that fails does not take a pane from the next.
         if (models.length === 2) notOpened.push(f.name);
-        else models.push(await makePane(await f.arrayBuffer(), f.name, companions));
+        else models.push(await loadPane(f.name, (progress) => readFile(f, progress), companions));
       } else if (!companions.includes(f)) loadLog(await f.text(), f.name);
     } catch (e) { errors.push(e.message.startsWith(f.name) ? e.message : `${f.name}: ${e.message}`); }
   }
@@ -382,7 +416,10 @@ const params = new URLSearchParams(window.location.search);
     const models = [];
     for (const key of ['file', 'compare']) {
       const url = params.get(key);
-      if (url) models.push(await makePane(await (await fetchChecked(url)).arrayBuffer(), url.split('/').pop()));
+      if (!url) continue;
+      const name = url.split('/').pop();
+      showLoading(name, 0, 0);  // before the first byte: the request itself may wait
+      models.push(await loadPane(name, async (progress) => readResponse(await fetchChecked(url), progress)));
     }
     if (models.length) showPanes(models);
     state.ready = true;
