@@ -173,9 +173,9 @@ class RunObserver {
   /// The run enters a stage that can take seconds on a large mesh, in the order they run: the
   /// preparation's ("selecting the regions (curvature)", "building the rest state", "finding the
   /// contact pairs at rest", ...) before started(), and "checking the result for
-  /// self-intersections" after the last step (`validate` end). A few words for a person; the set
-  /// of stages may change. A stage lasts until the next one, started() or finished(); not called
-  /// between steps. On the thread that runs the preparation (the caller's, unless another run
+  /// self-intersections" in the last step (`validate` end), before its frame(). A few words for
+  /// a person; the set of stages may change. A stage lasts until the next one, started(),
+  /// frame() or finished(); not called otherwise between steps. On the thread that runs the preparation (the caller's, unless another run
   /// holds every slot of the shared arena: arena_threads.hpp), as cancelled() there.
   virtual void stage(const std::string& /*what*/) {}
   /// The run is prepared, before its first step: frame 0, the rest state (a resumed run: the
