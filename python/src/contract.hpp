@@ -16,9 +16,12 @@ namespace py = pybind11;
 /// The GIL is released during the run; `callback(frame, vertices, metrics)` runs after each step
 /// with the GIL held, and returning a false value (False, numpy's False_, 0; not None) cancels
 /// the run. A KeyboardInterrupt cancels the run and is raised when it has returned.
+/// `stage(what)` (None: not called) runs with the GIL held as the run enters a stage of its
+/// preparation, or the last step's check (RunObserver::stage); an error it raises cancels the run
+/// and is raised when it has returned.
 /// @return dict with vertices, faces, log (column -> array), summary (dict), status
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
-                  const py::kwargs& options);
+                  const py::object& stage, const py::kwargs& options);
 
 /// Registered with Python's atexit when the module loads: cancels every run still going (in a
 /// daemon thread, say) and waits for it to leave the library, so that no thread takes the GIL
