@@ -15,10 +15,10 @@
 #include <string>
 
 #include "commands.hpp"
+#include "core/memory_error.hpp"
 #include "core/usable_cpus.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
-#include "shellcontract/memory_error.hpp"
 #include "shellcontract/version.hpp"
 
 namespace {

@@ -13,10 +13,10 @@
 
 namespace shellcontract::cli {
 
-/// The warning threshold of the outputs' estimated total: 1 GiB. Every default-length run of the
-/// paper's meshes stays far below it (bear's default --gltf: about 40 MB); above it a viewer or
-/// Blender holds the whole .glb in memory and takes tens of seconds to load it, and a run's
-/// frames fill disks: a size the user should know before the run, not after.
+/// The warning threshold of the outputs' estimated total: 1 GiB, far above a default-length run of
+/// the paper's meshes (docs/design/export.md, "Size"); above it a viewer or Blender holds the whole
+/// .glb in memory and takes tens of seconds to load it, and a run's frames fill disks: a size the
+/// user should know before the run, not after.
 inline constexpr std::uint64_t BIG_OUTPUT_BYTES = std::uint64_t{1} << 30;
 
 /// What a run will write that grows with the mesh and the kept frames.

@@ -22,8 +22,8 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "core/decimal_text.hpp"
+#include "core/memory_error.hpp"
 #include "core/plural.hpp"
-#include "export/gltf_material.hpp"
 #include "export_observer.hpp"
 #include "json_writer.hpp"
 #include "mesh/file_safety.hpp"
@@ -39,7 +39,6 @@
 #include "run_observers.hpp"
 #include "run_summary.hpp"
 #include "shellcontract/error.hpp"
-#include "shellcontract/memory_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/repair.hpp"
@@ -340,22 +339,7 @@ int command_run(int argc, char** argv) {
     if (!fields_prefix.empty()) observers.add(fields);
     FrameExporter exporter(exports, mesh, options.sim.frames);
     if (!exports.dir.empty() || !exports.gltf.empty()) observers.add(exporter);
-    if (!exports.gltf.empty()) {
-      exporter.set_gltf_name(std::filesystem::path(input).stem().string());
-      if (document) {
-        const CornerTexcoords uv = document->texcoords(mesh);
-        exporter.set_texcoords(uv);
-        exporter.set_normal_groups(document->normal_groups(mesh));  // the input's hard edges
-        exporter.set_colours(document->colours(mesh));
-        // The OBJ's materials (the .mtl's Kd, d and map_Kd), the PLY's TextureFile images or
-        // the glTF's own materials: a problem with one is a warning.
-        std::vector<std::string> material_warnings;
-        GltfFaceMaterials m = gltf_materials(document->face_materials(mesh), !uv.empty(), material_warnings);
-        exporter.set_materials(std::move(m.materials), std::move(m.face_material),
-                               std::move(m.source));
-        for (const std::string& w : material_warnings) std::cerr << "warning: " << w << '\n';
-      }
-    }
+    if (!exports.gltf.empty()) prepare_gltf_animation(exporter, input, document.get(), mesh);
     exporter.set_document(document);
     // The large outputs' sizes, known before the run (output_sizes.hpp): a .glb over the 4 GiB
     // it can hold is refused now, not corrupted after hours; very large outputs are warned of.

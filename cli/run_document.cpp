@@ -2,11 +2,14 @@
 #include "run_document.hpp"
 
 #include <cstddef>
+#include <filesystem>
 #include <iostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "command_line.hpp"
+#include "export/gltf_material.hpp"
 #include "mesh/file_extras.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
@@ -79,6 +82,21 @@ std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
       (gltf_animation || lower_extension(output) == "glb" || lower_extension(output) == "gltf"))
     document->require_gltf_values();
   return document;
+}
+
+void prepare_gltf_animation(FrameExporter& exporter, const std::string& input,
+                            const MeshDocument* document, const Mesh& mesh) {
+  exporter.set_gltf_name(std::filesystem::path(input).stem().string());
+  if (!document) return;
+  const CornerTexcoords uv = document->texcoords(mesh);
+  exporter.set_texcoords(uv);
+  exporter.set_normal_groups(document->normal_groups(mesh));  // the input's hard edges
+  exporter.set_colours(document->colours(mesh));
+  std::vector<std::string> material_warnings;
+  GltfFaceMaterials m =
+      gltf_materials(document->face_materials(mesh), !uv.empty(), material_warnings);
+  exporter.set_materials(std::move(m.materials), std::move(m.face_material), std::move(m.source));
+  for (const std::string& w : material_warnings) std::cerr << "warning: " << w << '\n';
 }
 
 }  // namespace shellcontract::cli

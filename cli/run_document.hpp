@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "export_observer.hpp"
 #include "shellcontract/mesh.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -28,5 +29,11 @@ std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
                                                        bool gltf_animation, const Mesh& mesh,
                                                        bool repaired,
                                                        std::size_t triangulated_polygons);
+
+/// What the --gltf animation takes from the input: its name, and from its document (null: none)
+/// the texture coordinates, hard edges, colours and materials (the OBJ's .mtl, the PLY's
+/// TextureFile images, the glTF's own); a problem with a material is a warning on stderr.
+void prepare_gltf_animation(FrameExporter& exporter, const std::string& input,
+                            const MeshDocument* document, const Mesh& mesh);
 
 }  // namespace shellcontract::cli

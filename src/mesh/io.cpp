@@ -32,6 +32,7 @@
 #include <stdexcept>
 
 #include "core/classic_locale.hpp"
+#include "core/memory_error.hpp"
 #include "core/plural.hpp"
 #include "core/progress_stage.hpp"
 #include "mesh/eigen_point_map.hpp"
@@ -44,7 +45,6 @@
 #include "mesh/soup_geometry.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/face_error.hpp"
-#include "shellcontract/memory_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {

@@ -29,13 +29,13 @@
 #include <vector>
 
 #include "core/decimal_text.hpp"
+#include "core/memory_error.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/ply_reader.hpp"
 #include "mesh/point_set_checks.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/reconstruction_checks.hpp"
 #include "shellcontract/error.hpp"
-#include "shellcontract/memory_error.hpp"
 #include "shellcontract/options.hpp"  // shortest_text
 
 namespace shellcontract {

@@ -10,11 +10,11 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "core/memory_error.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
-#include "shellcontract/memory_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/version.hpp"

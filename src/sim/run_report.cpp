@@ -5,6 +5,7 @@
 #include <sstream>
 #include <string_view>
 
+#include "core/arena_threads.hpp"
 #include "core/decimal_text.hpp"
 #include "core/kernels.hpp"
 #include "mesh/file_safety.hpp"
@@ -146,6 +147,9 @@ void write_run_summary(SummaryWriter& w, const InputReport& report, const RunOpt
   w.add_number("mean_step_ms", timed_frames > 0 ? 1e3 * r.wall_seconds / timed_frames : 0.0);
   w.add_bool("collisions", options.sim.collisions);
   w.add_text("order_used", r.order == ConstraintOrder::Coloured ? "coloured" : "sequential");
+  // options.threads records the option (0: every usable core), which reruns the run on another
+  // machine; this is the count the run had here (results do not depend on it).
+  w.add_integer("threads_used", arena_threads(options.sim.solver.threads));
   count("excluded_contact_pairs", r.excluded_contact_pairs);
   w.add_number("contact_distance", r.contact_distance);
   count("mass_scaled_vertices", r.mass_scaled_vertices);

@@ -66,7 +66,8 @@ std::string summary_without_times(const std::string& json) {
     if (line.find("seconds") == std::string::npos && line.find("_ms") == std::string::npos &&
         line.find("_s\"") == std::string::npos && line.find("memory") == std::string::npos &&
         line.find("\"output\"") == std::string::npos &&
-        line.find("\"input\"") == std::string::npos && line.find("\"threads\"") == std::string::npos)
+        line.find("\"input\"") == std::string::npos &&
+        line.find("\"threads") == std::string::npos)  // the option and the count the run had
       out += line + "\n";
   return out;
 }

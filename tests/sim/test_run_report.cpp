@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "core/usable_cpus.hpp"
 #include "shellcontract/checkpoint.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
@@ -72,6 +73,19 @@ TEST(RunReport, AResumedRunsMeanStepIsItsOwnTimeOverItsOwnFrames) {
   EXPECT_EQ(whole.first_frame, 0);
   EXPECT_DOUBLE_EQ(summary_of(options, whole).numbers.at("mean_step_ms"),
                    1e3 * whole.wall_seconds / 30.0);
+}
+
+// The summary's options record `threads` as given (0: every usable core), so a reader could not
+// tell how many threads the run had (review12); threads_used is that count: the option held to
+// the CPUs this process may use.
+TEST(RunReport, TheThreadsUsedAreTheOptionHeldToTheUsableCpus) {
+  const RunResult r;
+  for (const auto& [given, expected] :
+       {std::pair<std::string, int>{"1", 1}, {"0", usable_cpus()}, {"4096", usable_cpus()}}) {
+    SCOPED_TRACE("threads " + given);
+    EXPECT_EQ(summary_of(options_from({{"threads", given}}), r).numbers.at("threads_used"),
+              expected);
+  }
 }
 
 TEST(RunReport, TheMassesRaisedForThePressureAreCountedAndManyAreAWarning) {
