@@ -28,6 +28,7 @@
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/regions.hpp"
+#include "stage_notice.hpp"
 
 namespace shellcontract::cli {
 
@@ -236,12 +237,19 @@ int command_regions(int argc, char** argv) {
   }
 
   try {
+    // Names a stage silent for a second (cli/stage_notice.hpp): a large mesh's search takes
+    // seconds. The library's stages (reading, checking, the finder's) begin stages there.
+    StageNotice notice(std::cerr, true);
+    const ProgressStageScope stages = notice.scope();
     InputReport input_report;
     Mesh mesh = read_input_mesh(input, &input_report);
+    notice.end();
     for (const std::string& w : input_report.warnings) std::cerr << "warning: " << w << '\n';
     for (const std::string& n : input_report.notes) std::cerr << "note: " << n << '\n';
     const Positions x = positions_from_mesh(mesh);
     RegionReport report;
+    notice.begin(at.empty() ? "selecting the regions"
+                            : "growing the regions at the --region-at points");
     if (at.empty()) {
       mark_spherical_regions(mesh, x, options, &report);  // f:region and the curvature maps
     } else {
@@ -250,8 +258,15 @@ int command_regions(int argc, char** argv) {
       for (const std::string& w : report.warnings)  // points far from the surface
         std::cerr << "warning: " << spell_options(w, OptionSpelling::Cli) << '\n';
     }
-    if (!output.empty()) write_region_ply(output, mesh, x);
-    if (!face_list.empty()) write_region_file(face_list, stored_regions(mesh));
+    if (!output.empty()) {
+      notice.begin("writing " + output);
+      write_region_ply(output, mesh, x);
+    }
+    if (!face_list.empty()) {
+      notice.begin("writing " + face_list);
+      write_region_file(face_list, stored_regions(mesh));
+    }
+    notice.end();
 
     ClassicOStringStream out;
     out << "file: " << input << '\n'

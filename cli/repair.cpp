@@ -16,6 +16,7 @@
 #include "mesh/repair_output.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
+#include "stage_notice.hpp"
 
 namespace shellcontract::cli {
 namespace {
@@ -132,7 +133,12 @@ int command_repair(int argc, char** argv) {
   RepairReport r;
   RepairOutput written;
   try {
+    // Names a stage silent for a second (cli/stage_notice.hpp): a large mesh's repair takes tens
+    // of seconds. Destroyed (its thread stopped) before anything else is printed.
+    StageNotice notice(std::cerr, true);
+    const ProgressStageScope stages = notice.scope();
     const Mesh mesh = repair_input_mesh(input, &r, static_cast<std::size_t>(max_hole_edges));
+    notice.begin("writing " + output);
     written = write_repair_output(input, output, mesh, r);
   } catch (const InputError& e) {
     std::cerr << "shellcontract repair: " << e.what() << '\n';

@@ -44,6 +44,7 @@
 #include "shellcontract/repair.hpp"
 #include "shellcontract/report.hpp"
 #include "sim/checkpoint.hpp"
+#include "stage_notice.hpp"
 
 namespace po = boost::program_options;
 
@@ -271,10 +272,17 @@ int command_run(int argc, char** argv) {
   std::string stage = (repair ? "reading and repairing " : "reading ") + input;
   std::string faces, written;
   try {
+    // Names a stage silent for a second (cli/stage_notice.hpp): reading, the run's preparation,
+    // the check at the end, the writing. Made first: destroyed (its thread stopped) last.
+    StageNotice notice(std::cerr, !quiet);
     InputReport report;
     const auto read_start = std::chrono::steady_clock::now();
     RepairReport repair_report;
-    const Mesh mesh = repair ? repair_input_mesh(input, &repair_report) : read_input_mesh(input, &report);
+    const Mesh mesh = [&] {
+      const ProgressStageScope stages = notice.scope();
+      return repair ? repair_input_mesh(input, &repair_report) : read_input_mesh(input, &report);
+    }();
+    notice.end();
     if (repair) {
       report = repair_report.input_report;
       if (!repair_report.already_usable) {
@@ -302,7 +310,7 @@ int command_run(int argc, char** argv) {
     const std::shared_ptr<const MeshDocument> document = run_input_document(
         input, output, !exports.gltf.empty(), mesh, repair, report.triangulated_faces);
     ObserverList observers;
-    WarningPrinter warnings;
+    WarningPrinter warnings(notice);
     observers.add(warnings);
     // Regions are auto-selected when asked for, or implied by an anisotropic energy.
     const bool auto_regions =
@@ -311,9 +319,11 @@ int command_run(int argc, char** argv) {
          (options.sim.solver.aniso != AnisoKind::None || options.measure_regions));
     // --region-at makes the regions Auto too (resolve_run_options): its caps are at the points.
     ProgressPrinter progress(options.sim.frames,
-                             !auto_regions                   ? std::string()
-                             : options.region_points.empty() ? "spherical regions selected by curvature"
-                                                             : "regions grown at the --region-at points");
+                             !auto_regions ? std::string()
+                             : options.region_points.empty()
+                                 ? "spherical regions selected by curvature"
+                                 : "regions grown at the --region-at points",
+                             notice);
     if (!quiet) observers.add(progress);
     CsvLog csv;
     if (!log_path.empty() || !checkpoint_path.empty()) observers.add(csv);
@@ -340,6 +350,7 @@ int command_run(int argc, char** argv) {
     // run_contraction ends the run itself when memory runs out during the frames.
     stage = "preparing the run or taking its result";
     const RunResult r = run_contraction(mesh, options, &observers, &checkpointer);
+    notice.end();  // a run cancelled in its preparation ends no stage itself
     // Nothing is written: the run is not over (its state is in the checkpoint, if any).
     if (r.status == RunStatus::Cancelled && checkpointer.interrupted())
       return report_interrupted(r, checkpointer, output, exports, exporter.frame_stats(),
@@ -373,6 +384,7 @@ int command_run(int argc, char** argv) {
     for (const std::string& w : exporter.frame_warnings()) warn_once(w);
     const auto attempt = [&](const char* option, const std::string& path, const std::function<void()>& write) {
       stage = "writing " + path;
+      notice.begin(stage);
       const auto failed = [&](const std::string& why) {
         std::error_code ec;  // a file there before the run is left as it was
         outputs.add(
@@ -389,6 +401,7 @@ int command_run(int argc, char** argv) {
         // A state the writer refuses (not finite): this output's failure, not std::terminate.
         failed(e.what());
       }
+      notice.end();
     };
     if (!exports.gltf.empty()) attempt("--gltf", exports.gltf, [&] { exporter.write_gltf(); });
     attempt("-o", output, [&] {

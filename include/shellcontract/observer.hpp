@@ -170,6 +170,14 @@ class RunObserver {
   virtual ~RunObserver() = default;
   /// Something the user should know (degenerate faces, no regions found, ...), as it is found.
   virtual void warning(const std::string& /*text*/) {}
+  /// The run enters a stage that can take seconds on a large mesh, in the order they run: the
+  /// preparation's ("selecting the regions (curvature)", "building the rest state", "finding the
+  /// contact pairs at rest", ...) before started(), and "checking the result for
+  /// self-intersections" in the last step (`validate` end), before its frame(). A few words for
+  /// a person; the set of stages may change. A stage lasts until the next one, started(),
+  /// frame() or finished(); not called otherwise between steps. On the thread that runs the preparation (the caller's, unless another run
+  /// holds every slot of the shared arena: arena_threads.hpp), as cancelled() there.
+  virtual void stage(const std::string& /*what*/) {}
   /// The run is prepared, before its first step: frame 0, the rest state (a resumed run: the
   /// checkpoint's frame).
   virtual void started(const FrameView& /*view*/) {}
@@ -186,6 +194,7 @@ class ObserverList final : public RunObserver {
  public:
   void add(RunObserver& o) { observers_.push_back(&o); }
   void warning(const std::string& text) override;
+  void stage(const std::string& what) override;
   void started(const FrameView& view) override;
   void frame(const FrameView& view, const FrameMetrics& m) override;
   bool cancelled() override;

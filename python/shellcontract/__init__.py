@@ -100,7 +100,7 @@ def options():
     return [Option(*row) for row in _core.option_table()]
 
 
-def contract(vertices, faces, *, callback=None, **options):
+def contract(vertices, faces, *, callback=None, stage=None, **options):
     """Contracts a closed triangle mesh and returns a Result.
 
     callback(frame, vertices, metrics) is called after every step (frame = 1, 2, ...) with the
@@ -111,6 +111,11 @@ def contract(vertices, faces, *, callback=None, **options):
     run cleanly and raises KeyboardInterrupt, after the step it is in and, with checkpoint=, the
     save of the state; more Ctrl-Cs meanwhile are the same request (one KeyboardInterrupt), not
     an end at once as the CLI's second Ctrl-C (SIGTERM, SIGKILL end the process at once).
+    stage(what) is called as the run enters a stage that can take seconds on a large mesh, with
+    a few words for a person ("selecting the regions (curvature)", "building the rest state",
+    ...; the set may change): the preparation's stages before frame 1, and "checking the result
+    for self-intersections" in the last step (validate="end"), before its callback. An error it
+    raises stops the run and is raised.
     Raises ValueError for a mesh the library refuses or a bad option value (MeshError, a
     ValueError with the faces' indices as ``faces``, where particular faces are to blame),
     TypeError for an unknown option; MemoryError, or RuntimeError for a thread the system
@@ -188,7 +193,7 @@ def contract(vertices, faces, *, callback=None, **options):
         if strengths is not None:
             raise ValueError("region_strengths needs regions given as face lists or labels "
                              "(a face-list file takes them as its 'S:' column)")
-        return _given_arrays(Result(_core.contract(vertices, faces, callback=callback, **options)),
+        return _given_arrays(Result(_core.contract(vertices, faces, callback=callback, stage=stage, **options)),
                              weights=weights_array)
     # Face lists (what regions() returns) or one label per face (-1 = none): handed to the
     # library as a temporary face-list file, the format `run --regions FILE` reads, with each
@@ -199,7 +204,7 @@ def contract(vertices, faces, *, callback=None, **options):
         # (an empty temporary file would be named in the warning instead).
         if strengths is not None:
             _strengths(strengths, 0)
-        result = Result(_core.contract(vertices, faces, callback=callback, **dict(options, regions="none")))
+        result = Result(_core.contract(vertices, faces, callback=callback, stage=stage, **dict(options, regions="none")))
         warnings = result.summary.setdefault("warnings", [])
         # As the library warns of an empty face-list file: not when the regions are only measured,
         # and once (an aniso option's warning already says no region was given).
@@ -213,7 +218,7 @@ def contract(vertices, faces, *, callback=None, **options):
         # the order they were listed in, and a checkpoint knows them by the file's hash.
         with open(path, "w") as f:
             f.write("".join(p + " ".join(str(int(i)) for i in np.sort(r)) + "\n" for p, r in zip(prefixes, lists)))
-        result = Result(_core.contract(vertices, faces, callback=callback,
+        result = Result(_core.contract(vertices, faces, callback=callback, stage=stage,
                                        **dict(options, regions=path, _regions_from_arrays=True)))
     return _given_arrays(result, regions=len(lists),
                          strengths=None if strengths is None else _strengths(strengths, len(lists)),

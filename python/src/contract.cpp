@@ -92,8 +92,12 @@ class PythonObserver final : public RunObserver {
  public:
   /// @param mesh the run's input mesh: the callback gets the input's vertices (a mesh welded
   ///             along its seams gives every copy its vertex's position)
-  PythonObserver(py::object callback, const Mesh& mesh)
-      : callback_(std::move(callback)), has_callback_(!callback_.is_none()), mesh_(mesh) {}
+  PythonObserver(py::object callback, py::object stage, const Mesh& mesh)
+      : callback_(std::move(callback)),
+        has_callback_(!callback_.is_none()),
+        stage_(std::move(stage)),
+        has_stage_(!stage_.is_none()),
+        mesh_(mesh) {}
 
   ~PythonObserver() override {
     // A pending error is only dropped when contract() itself throws before taking it.
@@ -101,6 +105,22 @@ class PythonObserver final : public RunObserver {
       Py_XDECREF(error_type_);
       Py_XDECREF(error_value_);
       Py_XDECREF(error_trace_);
+    }
+  }
+
+  /// On the preparation's thread, the GIL released: taken for the call, as in frame().
+  void stage(const std::string& what) override {
+    if (!has_stage_ || stop_) return;
+    if (interpreter_exiting()) {
+      stop_ = true;
+      return;
+    }
+    py::gil_scoped_acquire gil;
+    try {
+      stage_(py::str(what));
+    } catch (py::error_already_set& e) {
+      e.restore();
+      keep_error();  // stop_: the preparation's next cancellation point ends the run
     }
   }
 
@@ -192,6 +212,8 @@ class PythonObserver final : public RunObserver {
 
   py::object callback_;
   bool has_callback_;
+  py::object stage_;
+  bool has_stage_;
   const Mesh& mesh_;
   std::chrono::steady_clock::time_point last_poll_{};
   bool stop_ = false;
@@ -298,16 +320,18 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
 }  // namespace
 
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
-                  const py::kwargs& all_kwargs) {
+                  const py::object& stage, const py::kwargs& all_kwargs) {
   if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
     throw py::type_error("callback must be callable(frame, vertices, metrics) or None");
+  if (!stage.is_none() && !PyCallable_Check(stage.ptr()))
+    throw py::type_error("stage must be callable(what) or None");
   py::kwargs kwargs;
   const CheckpointArguments checkpoint = take_checkpoint_arguments(all_kwargs, kwargs);
   RunOptions options = options_from_kwargs(canonical_kwargs(kwargs), ", checkpoint, checkpoint_every, resume");
   const PreparedCheckpoint prepared = prepare_checkpoint(checkpoint, options);  // before the mesh
   InputReport report;
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
-  PythonObserver observer(callback, mesh);
+  PythonObserver observer(callback, stage, mesh);
   if (prepared.resume) {
     check_checkpoint_input(*prepared.resume, "the vertices and faces given", mesh);
     observer.restore_csv(checkpoint_log(*prepared.resume));

@@ -17,9 +17,12 @@ namespace py = pybind11;
 /// The GIL is released during the run; `callback(frame, vertices, metrics)` runs after each step
 /// with the GIL held, and returning a false value (False, numpy's False_, 0; not None) cancels
 /// the run. A KeyboardInterrupt cancels the run and is raised when it has returned.
+/// `stage(what)` (None: not called) runs with the GIL held as the run enters a stage of its
+/// preparation, or the last step's check (RunObserver::stage); an error it raises cancels the run
+/// and is raised when it has returned.
 /// @return dict with vertices, faces, log (column -> array), summary (dict), status
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
-                  const py::kwargs& options);
+                  const py::object& stage, const py::kwargs& options);
 
 /// Runs `work` with the GIL released, as contract() runs its run: counted for the interpreter's
 /// exit (stop_runs_at_exit), and handed a cancel hook for the library (RegionOptions::cancelled)

@@ -291,7 +291,8 @@ PYBIND11_MODULE(_core, m) {
   });
   // At the interpreter's exit, before it finalizes: cancel and wait for runs in other threads.
   py::module_::import("atexit").attr("register")(py::cpp_function(&stop_runs_at_exit));
-  m.def("contract", &contract, py::arg("vertices"), py::arg("faces"), py::kw_only(), py::arg("callback") = py::none());
+  m.def("contract", &contract, py::arg("vertices"), py::arg("faces"), py::kw_only(),
+        py::arg("callback") = py::none(), py::arg("stage") = py::none());
   m.def("option_table", &option_table);
   // The options a sweep leaves out of a job's id: the checkpoint's own list
   // (shellcontract/checkpoint.hpp).

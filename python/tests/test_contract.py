@@ -24,6 +24,37 @@ def test_callback_sees_every_frame(ico2):
     np.testing.assert_array_equal(seen[-1][2], result.vertices)  # the last frame is the result
 
 
+def test_stage_callback_hears_the_preparation_then_the_end_check(ico2):
+    vertices, faces = ico2
+    calls = []
+    result = shellcontract.contract(
+        vertices, faces, frames=3, regions="auto", validate="end",
+        stage=lambda what: calls.append(("stage", what)),
+        callback=lambda frame, v, m: calls.append(("frame", frame)))
+    assert result.summary["frames_run"] == 3
+    stages = [what for kind, what in calls if kind == "stage"]
+    first_frame = calls.index(("frame", 1))
+    # The preparation's stages, in order, all before the first frame.
+    assert [c for c in calls[:first_frame] if c[0] != "stage"] == []
+    for earlier, later in [("selecting the regions (curvature)", "building the rest state"),
+                           ("building the rest state", "finding the contact pairs at rest")]:
+        assert stages.index(earlier) < stages.index(later), stages
+    # The last step's check, before that frame's callback.
+    assert calls[-2:] == [("stage", "checking the result for self-intersections"), ("frame", 3)]
+
+
+def test_stage_callback_error_stops_the_run_and_is_raised(ico2):
+    vertices, faces = ico2
+
+    def stage(what):
+        raise ValueError("stop at " + what)
+
+    with pytest.raises(ValueError, match="stop at"):
+        shellcontract.contract(vertices, faces, frames=3, stage=stage)
+    with pytest.raises(TypeError, match="stage must be callable"):
+        shellcontract.contract(vertices, faces, frames=3, stage=3)
+
+
 def test_returning_false_cancels_the_run(ico2):
     vertices, faces = ico2
     result = shellcontract.contract(vertices, faces, frames=50,

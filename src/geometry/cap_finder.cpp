@@ -10,8 +10,10 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <ctime>
 #include <functional>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <memory>
@@ -24,6 +26,7 @@
 #include "geometry/cap_grower.hpp"
 #include "core/cancellation.hpp"
 #include "core/power_of_two.hpp"
+#include "core/progress_stage.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/cotan_laplacian.hpp"
 #include "geometry/crease_path.hpp"
@@ -41,10 +44,15 @@ namespace shellcontract {
 namespace {
 
 /// Wall and processor time of the finder's stages, for the report's stage_times: a library
-/// prints nothing, the CLI shows them (`regions --stage-times`).
+/// prints nothing, the CLI shows them (`regions --stage-times`). Each lap also names the stage
+/// that follows it to a progress scope (core/progress_stage.hpp): the search takes seconds on a
+/// large mesh, and a waiting user is told which part it is in.
 class StageTimer {
  public:
+  StageTimer() { progress_stage(announced(STAGES[0])); }
   void lap(const char* stage) {
+    for (std::size_t i = 0; i + 1 < std::size(STAGES); ++i)
+      if (std::strcmp(stage, STAGES[i]) == 0) progress_stage(announced(STAGES[i + 1]));
     const auto wall = std::chrono::steady_clock::now();
     const std::clock_t cpu = std::clock();
     laps_.push_back({stage, std::chrono::duration<double>(wall - wall_).count(),
@@ -56,6 +64,12 @@ class StageTimer {
   std::vector<RegionStageTime> take() { return std::move(laps_); }
 
  private:
+  /// The stages in the order the finder laps them (RegionStageTime::stage).
+  static constexpr const char* STAGES[] = {"curvature",     "smoothing", "free growth",
+                                           "ranked growth", "parts",     "shape"};
+  static std::string announced(const char* stage) {
+    return std::string("selecting the regions (") + stage + ")";
+  }
   std::vector<RegionStageTime> laps_;
   std::chrono::steady_clock::time_point wall_ = std::chrono::steady_clock::now();
   std::clock_t cpu_ = std::clock();

@@ -34,6 +34,7 @@
 #include "core/classic_locale.hpp"
 #include "core/memory_error.hpp"
 #include "core/plural.hpp"
+#include "core/progress_stage.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/normalization.hpp"
@@ -286,11 +287,13 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
            "'." + ext + "' (expected .off, .obj, .ply, .stl, .glb or .gltf)");
     }
     const auto start = std::chrono::steady_clock::now();
+    progress_stage("reading " + path);
     std::vector<std::string> read_warnings;  // lines after an OFF's declared faces
     std::vector<std::string> read_notes;     // a glTF's morph targets, not applied
     read_polygon_soup(path, ext, points, polygons, lines, &read_warnings, MissingVertices::Refuse,
                       &read_notes);
     const auto read = std::chrono::steady_clock::now();
+    progress_stage("checking " + path);
     Mesh mesh = [&] {
       try {
         return check_soup(path, ext, points, polygons, lines, report);

@@ -28,6 +28,7 @@
 #include <tuple>
 
 #include "core/plural.hpp"
+#include "core/progress_stage.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 
@@ -116,6 +117,7 @@ std::size_t border_length(const Mesh& mesh, HalfedgeIndex h) {
 void fill_holes(Mesh& mesh, std::size_t max_edges, RepairReport& r) {
   std::vector<HalfedgeIndex> borders;
   PMP::extract_boundary_cycles(mesh, std::back_inserter(borders));
+  progress_stage("filling " + counted(borders.size(), "hole", "holes"));
   std::set<FaceIndex> filled;
   for (const HalfedgeIndex h : borders) {
     if (!mesh.is_border(h)) continue;  // an earlier fill closed it (cannot happen; be safe)
@@ -142,6 +144,7 @@ void fill_holes(Mesh& mesh, std::size_t max_edges, RepairReport& r) {
   // A fill can cut through the surface (a faired cap bulging into a nearby part): counted so the
   // user knows; the usability check does not refuse self-intersections, and neither does this.
   if (filled.empty()) return;
+  progress_stage("checking the fills for self-intersections");
   std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
   PMP::self_intersections(mesh, std::back_inserter(pairs));
   for (const auto& [a, b] : pairs)
@@ -237,6 +240,7 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
   std::vector<Polygon> polygons;
   SourceLines lines;
   try {
+    progress_stage("reading " + path + " as polygons to repair");
     // Faces naming a missing vertex are read, for repair_soup to drop (repair.md, step 4).
     read_polygon_soup(path, lower_extension(path), points, polygons, lines, nullptr,
                       MissingVertices::Keep);
@@ -287,14 +291,17 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
 
   Mesh mesh;
   try {
+    progress_stage("repairing the polygons (duplicates, degenerate faces, orientation)");
     repair_soup(points, polygons, lines, r);
     if (!PMP::is_polygon_soup_a_polygon_mesh(polygons)) {
       r.failure = "the faces do not form a polygon mesh even after orienting the soup";
       cannot_repair(path, r.failure);
     }
     PMP::polygon_soup_to_polygon_mesh(points, polygons, mesh);
+    progress_stage("stitching the borders");
     clean_mesh(mesh, r);
     fill_holes(mesh, max_hole_edges, r);
+    progress_stage("dropping open components, orienting");
     keep_closed_components(mesh, r);
   } catch (const InputError&) {
     throw;
@@ -310,6 +317,7 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
 
   // Back to a soup in input units (the input's own coordinates where the vertex is the input's),
   // then the one usability check.
+  progress_stage("checking the repaired mesh");
   std::vector<Point3> out_points;
   std::map<VertexIndex, std::size_t> index;
   for (const VertexIndex v : mesh.vertices()) {

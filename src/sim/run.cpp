@@ -14,6 +14,7 @@
 #include "core/arena_threads.hpp"
 #include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
+#include "core/progress_stage.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
@@ -57,6 +58,9 @@ int RunResult::exit_code() const {
 
 void ObserverList::warning(const std::string& text) {
   for (RunObserver* o : observers_) o->warning(text);
+}
+void ObserverList::stage(const std::string& what) {
+  for (RunObserver* o : observers_) o->stage(what);
 }
 void ObserverList::started(const FrameView& view) {
   for (RunObserver* o : observers_) o->started(view);
@@ -169,6 +173,11 @@ std::string mass_scaling_warning(const MassScaling& m, std::size_t vertices, dou
   return text + " `pressure` 0 with `target_volume` contracts without the explicit load";
 }
 
+/// The stages the preparation names (core/progress_stage.hpp), told to the observer.
+ProgressStageScope observer_stages(RunObserver& obs) {
+  return ProgressStageScope([&obs](const std::string& what) { obs.stage(what); });
+}
+
 /// Tells the observer and keeps the warning for the summary.
 void warn(RunResult& r, RunObserver& o, const std::string& text) {
   r.warnings.push_back(text);
@@ -195,6 +204,7 @@ RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserv
     shared_arena(options.sim.solver.threads).execute([&] {
       const CancellationScope scope(
           preparation_cancelled(observer ? *observer : none, checkpointer, interrupted));
+      const ProgressStageScope stages = observer_stages(observer ? *observer : none);
       plan.emplace(plan_run(mesh, options));
     });
   } catch (const PreparationCancelled&) {
@@ -225,6 +235,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
     // In the run's arena (see above): the construction's broad phase and rest pairs.
     shared_arena(plan.sim.options.solver.threads).execute([&] {
       const CancellationScope scope(preparation_cancelled(obs, checkpointer, interrupted));
+      const ProgressStageScope stages = observer_stages(obs);
       cancellation_point();
       prepared.emplace(std::move(plan.sim));  // one copy of a large mesh fewer (bear x16: 26 MB)
     });
@@ -287,6 +298,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   r.first_frame = sim.frame();
   const auto start = std::chrono::steady_clock::now();
   r.positions.resize(sim.positions().rows(), 3);  // the result's storage, see the end
+  const ProgressStageScope stages = observer_stages(obs);  // the last step's check (`validate` end)
   while (!sim.finished()) {
     FrameMetrics m;
     const int before = sim.frame();
@@ -381,6 +393,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   if (s.validate == ValidateMode::End && r.new_intersections < 0 && cancelled) {
     if (r.status == RunStatus::Cancelled) r.message += SKIPPED_VALIDATION;
   } else if (s.validate == ValidateMode::End && r.new_intersections < 0) {
+    obs.stage("checking the result for self-intersections");
     try {
       r.new_intersections = static_cast<long>(sim.count_new_intersections());
     } catch (const std::bad_alloc&) {

@@ -13,6 +13,7 @@
 #include <utility>
 
 #include "core/cancellation.hpp"
+#include "core/progress_stage.hpp"
 #include "geometry/curvature.hpp"
 #include "material/registry.hpp"
 #include "mesh/eigen_point_map.hpp"
@@ -277,6 +278,7 @@ SimPlan plan_simulation(Mesh mesh, SimOptions options) {
     mesh.point(v) = Point3(r(0), r(1), r(2));
   }
   if (options.collisions) {
+    progress_stage("choosing the contact distance");
     ContactDistanceChoice delta = choose_contact_distance(mesh, options);
     options.collision.delta = delta.delta;
     plan.warnings = std::move(delta.warnings);
@@ -299,6 +301,20 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
   // The run's regions travel as the f:region map of its copy of the mesh (one owner: the run
   // options say where they come from).
   Mesh marked = mesh;
+  switch (o.regions) {  // the longest stage of the preparation on a large mesh
+    case RegionSource::Auto:
+      progress_stage(o.region_points.empty() ? "selecting the regions"
+                                             : "growing the regions at the given points");
+      break;
+    case RegionSource::File:
+      progress_stage("reading the regions file");
+      break;
+    case RegionSource::Weights:
+      progress_stage("reading the region weights");
+      break;
+    case RegionSource::None:
+      break;
+  }
   plan.regions = mark_run_regions(marked, o, &plan.warnings);
   cancellation_point();
   plan.regions_seconds =

@@ -12,6 +12,7 @@
 #include "core/arena_threads.hpp"
 #include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
+#include "core/progress_stage.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/regions.hpp"
@@ -125,6 +126,7 @@ Simulator::Simulator(SimPlan plan)
   // The plan resolved the regions into the f:region map; everything below reads the map.
   const std::vector<std::vector<int>> regions = regions_from_face_ids(stored_regions(*mesh_));
   region_count_ = regions.size();
+  progress_stage("building the rest state");
   rest_report_ = build_rest_state(*mesh_, options_.mass, options_.density);
   // A run's cancel request, between the stages of a large mesh's preparation (cancellation.hpp).
   cancellation_point();
@@ -135,6 +137,7 @@ Simulator::Simulator(SimPlan plan)
   // The explicit pressure needs a minimum mass per vertex at this dt (sim/mass_scaling.hpp).
   mass_scaling_ =
       scale_masses_for_pressure(x_, faces_, peak_pressure_magnitude(options_), mass_dt, inv_mass_);
+  progress_stage("building the constraints");
   ConstraintSet constraints = pack_constraints(*mesh_, options_.bending);
   cancellation_point();
   if (options_.solver.aniso != AnisoKind::None) {
@@ -192,14 +195,19 @@ Simulator::Simulator(SimPlan plan)
     }
   }
   cancellation_point();
+  progress_stage("setting up the constraint solver (colouring)");
   solver_ = make_constraint_solver(options_.material, options_.material_params,
                                    std::move(constraints), options_.solver, faces_);
   cancellation_point();
   if (options_.collisions) {
+    progress_stage("finding the contact pairs at rest");
     collision_ = std::make_unique<SelfCollision>(faces_, x_, options_.collision);
     cancellation_point();
   }
-  if (options_.validate != ValidateMode::Off) input_intersections();  // baseline at the rest state
+  if (options_.validate != ValidateMode::Off) {
+    progress_stage("counting the input's self-intersections");
+    input_intersections();  // baseline at the rest state
+  }
   v_ = Positions::Zero(x_.rows(), 3);
   rest_x_ = x_;
   // Region vertices and their rest normals, for region_inward_displacement().
@@ -421,8 +429,10 @@ FrameMetrics Simulator::step() {
   }
   if (options_.frame_energies) m.energies = solver_->energies(x_);
   m.step_seconds = std::chrono::duration<double>(stop - start).count();
-  if (options_.validate == ValidateMode::EveryFrame ||
-      (options_.validate == ValidateMode::End && finished()))
+  const bool last_check = options_.validate == ValidateMode::End && finished();
+  // On a large mesh the slowest part of the run's end (core/progress_stage.hpp).
+  if (last_check) progress_stage("checking the result for self-intersections");
+  if (options_.validate == ValidateMode::EveryFrame || last_check)
     m.new_intersections = static_cast<long>(count_new_intersections());
   return m;
 }

@@ -1,7 +1,5 @@
 // repair_input_mesh (docs/design/repair.md): each defect CGAL's repair steps address, on the unit
 // cube (volume 1, 8 vertices, 12 faces) made defective in one known way.
-#include "shellcontract/repair.hpp"
-
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -14,8 +12,10 @@
 #include <string>
 #include <vector>
 
+#include "core/progress_stage.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/repair.hpp"
 #include "shellcontract/validation.hpp"
 
 namespace shellcontract {
@@ -62,6 +62,26 @@ void expect_outward(const Mesh& mesh) {
     const Vec3 n = (p[1] - p[0]).cross(p[2] - p[0]);
     EXPECT_GT(n.dot((p[0] + p[1] + p[2]) / 3.0 - centre), 0.0) << "face " << f.idx() << " points inward";
   }
+}
+
+TEST_F(Repair, ARepairNamesItsStagesInOrder) {
+  // `shellcontract repair` names the stage it is in when one lasts (core/progress_stage.hpp).
+  const std::vector<std::array<int, 3>> faces(CUBE_FACES.begin() + 2, CUBE_FACES.end());
+  const std::string path = write_off("open_cube.off", CUBE_POINTS, faces);
+  std::vector<std::string> stages;
+  const ProgressStageScope scope([&](const std::string& s) { stages.push_back(s); });
+  repair_input_mesh(path);
+  const std::vector<std::string> expected = {
+      "reading " + path,
+      "checking " + path,
+      "reading " + path + " as polygons to repair",
+      "repairing the polygons (duplicates, degenerate faces, orientation)",
+      "stitching the borders",
+      "filling 1 hole",
+      "checking the fills for self-intersections",
+      "dropping open components, orienting",
+      "checking the repaired mesh"};
+  EXPECT_EQ(stages, expected);
 }
 
 TEST_F(Repair, UsableMeshIsReturnedUnchanged) {
