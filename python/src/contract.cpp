@@ -81,6 +81,28 @@ struct ActiveRun {
   bool left_ = false;
 };
 
+/// Runs work with the GIL released, counted for the interpreter's exit, and returns what it
+/// threw, for the caller to raise with the GIL (after a pending Python error of its own, if it
+/// has one). Past the exit's wait the interpreter is going away, and taking the GIL back would
+/// end this thread inside C++ frames (an abort): the thread leaves the exit's count and sleeps
+/// until the process ends around it. So does work that threw when park_on_error says so.
+std::exception_ptr released(const std::function<void()>& work,
+                            const std::function<bool()>& park_on_error = {}) {
+  std::exception_ptr error;
+  ActiveRun active;  // destroyed after the GIL is taken back
+  py::gil_scoped_release release;
+  try {
+    work();
+  } catch (...) {  // rethrown by the caller with the GIL: taking it back may never return (below)
+    error = std::current_exception();
+  }
+  if (interpreter_finalizing() || (error && park_on_error && park_on_error())) {
+    active.leave();
+    for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
+  }
+  return error;
+}
+
 py::object column_value(std::size_t c, double v) {
   if (LOG_INTEGER[c]) return py::int_(static_cast<std::int64_t>(v));
   return py::float_(v);
@@ -339,15 +361,9 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   PythonCheckpointer checkpointer(prepared, mesh_hash(mesh), options, observer.csv_text(),
                                   [&observer] { return observer.cancelled(); });
   RunResult r;
-  {
-    const ActiveRun active;  // destroyed after the GIL is taken back
-    py::gil_scoped_release release;
-    r = run_contraction(mesh, options, &observer, &checkpointer);
-    // Past the exit's wait, the interpreter is going away: this thread never takes the GIL
-    // again and sleeps until the process ends around it.
-    if (interpreter_finalizing())
-      for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
-  }
+  const std::exception_ptr error =
+      released([&] { r = run_contraction(mesh, options, &observer, &checkpointer); });
+  if (error) std::rethrow_exception(error);
   observer.raise_if_error();
   py::dict out;
   out["vertices"] = positions_to_numpy(input_positions(mesh, r.positions));  // the input's, copies too
@@ -370,24 +386,11 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
 
 void run_released(const std::function<void(const std::function<bool()>& cancelled)>& work) {
   SignalPoll poll;
-  std::exception_ptr error;
-  {
-    ActiveRun active;  // destroyed after the GIL is taken back
-    py::gil_scoped_release release;
-    try {
-      work([&poll] { return poll.cancelled(); });
-    } catch (...) {  // rethrown with the GIL: taking it back may never return (below)
-      error = std::current_exception();
-    }
-    // As contract(): past the exit's wait this thread never takes the GIL again. Nor does work
-    // the exit stopped (a daemon thread's: the others were joined before the exit's hooks): it
-    // has no result to return, and raising there printed "Exception in thread" as the
-    // interpreter went away. It leaves the exit's count and sleeps until the process ends.
-    if (interpreter_finalizing() || (error && poll.stopped_by_exit())) {
-      active.leave();
-      for (;;) std::this_thread::sleep_for(std::chrono::hours(1));
-    }
-  }
+  // Work the exit stopped (a daemon thread's: the others were joined before the exit's hooks)
+  // has no result to return, and raising there printed "Exception in thread" as the interpreter
+  // went away: it stays off the GIL too.
+  const std::exception_ptr error = released([&] { work([&poll] { return poll.cancelled(); }); },
+                                            [&poll] { return poll.stopped_by_exit(); });
   poll.raise_if_error();  // Ctrl-C's KeyboardInterrupt, not the RegionSearchCancelled it caused
   if (error) std::rethrow_exception(error);
 }

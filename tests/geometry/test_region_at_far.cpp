@@ -16,44 +16,13 @@
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/regions.hpp"
+#include "support/surface_distance.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// Distance from p to triangle abc: the smallest of the distances to the plane's foot (when it
-/// falls inside) and to the three edges.
-double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto to_segment = [&](const Vec3& u, const Vec3& v) {
-    const double len2 = (v - u).squaredNorm();
-    const double s = len2 > 0.0 ? std::clamp((p - u).dot(v - u) / len2, 0.0, 1.0) : 0.0;
-    return (p - (u + s * (v - u))).norm();
-  };
-  double d = std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
-  const Vec3 n = (b - a).cross(c - a);
-  if (n.norm() > 0.0) {
-    const Vec3 nn = n.normalized();
-    const Vec3 foot = p - nn * (p - a).dot(nn);
-    const bool inside = (b - a).cross(foot - a).dot(n) >= 0.0 &&
-                        (c - b).cross(foot - b).dot(n) >= 0.0 &&
-                        (a - c).cross(foot - c).dot(n) >= 0.0;
-    if (inside) d = std::min(d, (p - foot).norm());
-  }
-  return d;
-}
-
-double distance_to_mesh(const Mesh& mesh, const Positions& x, const Vec3& p) {
-  double best = std::numeric_limits<double>::infinity();
-  for (FaceIndex f : mesh.faces()) {
-    std::vector<Vec3> c;
-    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
-      c.emplace_back(x.row(v.idx()));
-    best = std::min(best, distance_to_triangle(p, c[0], c[1], c[2]));
-  }
-  return best;
-}
 
 double diagonal(const Positions& x) {
   return (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
@@ -74,10 +43,10 @@ TEST(RegionAtFar, EachPointReportsItsNearestSurfacePointAndAFarOneWarns) {
     ASSERT_EQ(r.points.size(), 1u);
     const RegionPoint& got = r.points[0];
     EXPECT_EQ(got.point, p);
-    const double want = distance_to_mesh(mesh, x, p);
+    const double want = test::nearest_face(mesh, x, p).distance;
     EXPECT_NEAR(got.distance, want, 1e-12) << p.transpose();
     EXPECT_NEAR((got.surface_point - p).norm(), got.distance, 1e-12) << p.transpose();
-    EXPECT_LE(distance_to_mesh(mesh, x, got.surface_point), 1e-12)
+    EXPECT_LE(test::nearest_face(mesh, x, got.surface_point).distance, 1e-12)
         << "not on the surface: " << p.transpose();
     const bool far = want > bound;
     warned += far;

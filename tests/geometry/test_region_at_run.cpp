@@ -21,6 +21,7 @@
 #include "shellcontract/regions.hpp"
 #include "sim/run_plan.hpp"
 #include "support/cli_runner.hpp"
+#include "support/surface_distance.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -29,38 +30,6 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string bumpy() { return std::string(test::MESH_DIR) + "/bumpy_sphere.off"; }
-
-/// Distance from p to triangle abc: the smallest of the distances to the plane's foot (when it
-/// falls inside) and to the three edges.
-double distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const auto to_segment = [&](const Vec3& u, const Vec3& v) {
-    const double len2 = (v - u).squaredNorm();
-    const double s = len2 > 0.0 ? std::clamp((p - u).dot(v - u) / len2, 0.0, 1.0) : 0.0;
-    return (p - (u + s * (v - u))).norm();
-  };
-  double d = std::min({to_segment(a, b), to_segment(b, c), to_segment(c, a)});
-  const Vec3 n = (b - a).cross(c - a);
-  if (n.norm() > 0.0) {
-    const Vec3 nn = n.normalized();
-    const Vec3 foot = p - nn * (p - a).dot(nn);
-    const bool inside = (b - a).cross(foot - a).dot(n) >= 0.0 && (c - b).cross(foot - b).dot(n) >= 0.0 &&
-                        (a - c).cross(foot - c).dot(n) >= 0.0;
-    if (inside) d = std::min(d, (p - foot).norm());
-  }
-  return d;
-}
-
-std::size_t nearest_face(const Mesh& mesh, const Positions& x, const Vec3& p) {
-  double best = std::numeric_limits<double>::infinity();
-  std::size_t arg = 0;
-  for (FaceIndex f : mesh.faces()) {
-    std::vector<Vec3> c;
-    for (VertexIndex v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) c.emplace_back(x.row(v.idx()));
-    const double d = distance_to_triangle(p, c[0], c[1], c[2]);
-    if (d < best) best = d, arg = f.idx();
-  }
-  return arg;
-}
 
 /// The labelled bumps (one line of face ids each).
 std::vector<std::set<std::size_t>> bumps() {
@@ -110,7 +79,7 @@ TEST(RegionAtRun, EachPointGetsTheCapAroundItsNearestSurfacePoint) {
   std::size_t count = 0;
   const std::vector<int> ids = run_regions(mesh, point_text(near) + ";" + point_text(far), &count);
   EXPECT_EQ(count, 2u);
-  const std::size_t fn = nearest_face(mesh, x, near), ff = nearest_face(mesh, x, far);
+  const std::size_t fn = test::nearest_face(mesh, x, near).face, ff = test::nearest_face(mesh, x, far).face;
   EXPECT_EQ(ids[fn], 0) << "the first region does not hold the surface point nearest to the first point";
   EXPECT_EQ(ids[ff], 1) << "the second region does not hold the surface point nearest to the far point";
   // And each region is the labelled bump under its point: most of it, no face of another bump.
@@ -136,7 +105,7 @@ TEST(RegionAtRun, TheRegionHoldsThePointedAtFaceOnACoarseMesh) {
   std::size_t count = 0;
   const std::vector<int> ids = run_regions(mesh, point_text(p), &count);
   ASSERT_EQ(count, 1u);
-  EXPECT_EQ(ids[nearest_face(mesh, x, p)], 0);
+  EXPECT_EQ(ids[test::nearest_face(mesh, x, p).face], 0);
 }
 
 /// Whether the faces with id `id` form one piece across shared edges.
@@ -167,7 +136,7 @@ TEST(RegionAtRun, TheAddedPointedAtFaceKeepsTheRegionInOnePiece) {
   const std::vector<int> ids =
       run_regions(mesh, "-0.023345402668506817,0.28624826916607343,-0.4258135234879707;" + point_text(p), &count);
   ASSERT_EQ(count, 2u);
-  EXPECT_EQ(ids[nearest_face(mesh, x, p)], 1);
+  EXPECT_EQ(ids[test::nearest_face(mesh, x, p).face], 1);
   EXPECT_TRUE(edge_connected(mesh, ids, 0));
   EXPECT_TRUE(edge_connected(mesh, ids, 1));
 }
