@@ -3,6 +3,7 @@ are checked first, and the running of the jobs on it (shellcontract.sweep; docs/
 """
 
 import errno
+import fcntl
 import os
 import queue
 import sys
@@ -39,6 +40,11 @@ def _errno_of(e):
     return None
 
 
+SCRATCH_PREFIX = "shellcontract-sweep-dask-"
+# In each scratch folder, locked (flock) by its sweep for as long as it runs.
+SCRATCH_LOCK = "sweep.lock"
+
+
 class _Scratch:
     """A folder of the sweep's own for its workers' scratch folders (Dask's
     dask-worker-space/worker-*), in Dask's temporary folder (its temporary-directory setting,
@@ -46,23 +52,63 @@ class _Scratch:
     workers' folders itself, but not when the process is out of descriptors (`ulimit -n`: "Failed
     to remove ...", or a worker that failed to start and took no lock), and in the shared
     dask-worker-space such a folder stayed for good. A cluster that failed to start may still
-    hold every descriptor: one is kept in reserve for the removal."""
+    hold every descriptor: the descriptor of the folder's lock is the one kept for the removal.
+    The folder of a sweep killed with SIGKILL is removed by the next sweep's (purge_stale)."""
 
     def __init__(self):
         import dask
-        self._reserve = os.open(os.devnull, os.O_RDONLY)
+        self._reserve = None
+        self.path = tempfile.mkdtemp(prefix=SCRATCH_PREFIX,
+                                     dir=dask.config.get("temporary-directory", None) or None)
         try:
-            self.path = tempfile.mkdtemp(prefix="shellcontract-sweep-dask-",
-                                         dir=dask.config.get("temporary-directory", None) or None)
+            # Locked before it has its name, so that no other sweep's purge_stale can take the
+            # lock of a folder being made.
+            making = os.path.join(self.path, SCRATCH_LOCK + ".new")
+            self._reserve = os.open(making, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o600)
+            try:
+                fcntl.flock(self._reserve, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                os.rename(making, os.path.join(self.path, SCRATCH_LOCK))
+            except OSError:  # no locks on this file system: nothing purged, nothing mistaken
+                pass
         except BaseException:
-            os.close(self._reserve)
+            self.remove()
             raise
+        purge_stale(os.path.dirname(self.path), self.path)
 
     def remove(self):
         if self._reserve is not None:
             os.close(self._reserve)
             self._reserve = None
         _remove_tree(self.path)
+
+
+def purge_stale(base, own=None):
+    """Removes the scratch folders in `base` of sweeps that ended without removing theirs (killed
+    with SIGKILL): this user's, whose lock no process holds. A folder without its lock (being
+    made, or made where there are no locks) is left."""
+    try:
+        names = os.listdir(base)
+    except OSError:
+        return
+    for name in names:
+        path = os.path.join(base, name)
+        if not name.startswith(SCRATCH_PREFIX) or path == own:
+            continue
+        try:
+            if os.lstat(path).st_uid != os.geteuid():
+                continue
+            fd = os.open(os.path.join(path, SCRATCH_LOCK), os.O_RDWR | os.O_NOFOLLOW)
+        except OSError:
+            continue
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:  # its sweep runs
+            os.close(fd)
+            continue
+        try:
+            _remove_tree(path)
+        finally:
+            os.close(fd)
 
 
 def _remove_tree(path):

@@ -129,6 +129,36 @@ def test_no_dask_worker_folder_outlives_a_sweep_short_of_descriptors(cli, mesh_d
         assert left == [], (limit, r.stderr)
 
 
+def test_the_scratch_folder_of_a_killed_sweep_is_removed_by_the_next(cli, mesh_dir, tmp_path):
+    """A sweep killed with SIGKILL cannot remove its workers' scratch folder: the next sweep
+    removes it (its lock is free); one whose sweep runs (its lock held), and one without a lock,
+    stay. Fails before: nothing removed such folders (Dask's own in dask-worker-space were)."""
+    import fcntl
+    from shellcontract import sweep_dask
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
+    tmp = tmp_path / "tmp"
+    for name in ("killed", "running", "unlocked"):
+        worker = tmp / (sweep_dask.SCRATCH_PREFIX + name) / "dask-worker-space" / "worker-x"
+        worker.mkdir(parents=True)
+        (worker / "f").write_text("x")
+        if name != "unlocked":
+            (worker.parents[1] / sweep_dask.SCRATCH_LOCK).write_text("")
+    held = os.open(tmp / (sweep_dask.SCRATCH_PREFIX + "running") / sweep_dask.SCRATCH_LOCK,
+                   os.O_RDWR)
+    try:
+        fcntl.flock(held, fcntl.LOCK_EX)
+        env = sweep_env(cli)
+        env["TMPDIR"] = str(tmp)
+        r = subprocess.run([sys.executable, "-m", "shellcontract.sweep", str(path), "-o",
+                            str(tmp_path / "out"), "--workers", "1"], env=env,
+                           capture_output=True, text=True, timeout=240)
+        assert r.returncode == 0, r.stderr
+    finally:
+        os.close(held)
+    assert sorted(os.listdir(tmp)) == [sweep_dask.SCRATCH_PREFIX + "running",
+                                       sweep_dask.SCRATCH_PREFIX + "unlocked"]
+
+
 @pytest.mark.parametrize("interpreter", ["/bin/false", "/bin/true"])
 def test_an_interpreter_that_is_not_python_is_said(cli, mesh_dir, tmp_path, interpreter):
     """Before: /bin/false ended the sweep with exit 1 and no word, /bin/true with exit 0 and
