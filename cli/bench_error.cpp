@@ -211,48 +211,83 @@ std::string gnuplot_script(const std::string& csv, const std::string& out, const
   return g.str();
 }
 
-/// The folder for the plot's temporary CSV, chosen before the (long) runs: $TMPDIR, else /tmp,
-/// else /var/tmp, the first that is a folder this process can write, as Python's tempfile and
-/// mkstemp-based tools fall back (a TMPDIR set to a folder that is gone is common in batch jobs).
-/// @throws UsageError when none is
-std::string temporary_folder() {
-  std::vector<std::string> candidates;
+/// The folders for the plot's temporary CSV, chosen before the (long) runs: of $TMPDIR, /tmp and
+/// /var/tmp, those in which a temporary file can be created and written (one byte, removed at
+/// once), in that order, as Python's tempfile and mkstemp-based tools fall back (a TMPDIR set to
+/// a folder that is gone is common in batch jobs). A real file, not access(): as root access()
+/// passes for any folder of a writable mount (TMPDIR=/proc), and a full disk passes it too; the
+/// file then failed after every run of the benchmark.
+/// @throws UsageError when none takes one
+std::vector<std::string> temporary_folders() {
+  std::vector<std::string> candidates, usable;
   if (const char* env = std::getenv("TMPDIR"); env != nullptr && *env != '\0')
     candidates.push_back(env);
   candidates.insert(candidates.end(), {"/tmp", "/var/tmp"});
+  std::string why;
   for (const std::string& folder : candidates) {
     std::error_code ec;
-    if (std::filesystem::is_directory(folder, ec) && ::access(folder.c_str(), W_OK | X_OK) == 0)
-      return folder;
+    if (!std::filesystem::is_directory(folder, ec)) {
+      why += "; " + folder + ": not a folder";
+      continue;
+    }
+    RegisteredTemporary t = create_registered_temporary(folder, "shellcontract_bench_error.csv");
+    if (t.fd < 0) {
+      why += "; " + folder + ": " + std::strerror(errno);
+      continue;
+    }
+    ssize_t n = -1;
+    do n = ::write(t.fd, "x", 1);
+    while (n < 0 && errno == EINTR);
+    const int e = n == 1 ? 0 : n < 0 ? errno : EIO;
+    ::close(t.fd);
+    ::unlink(t.path.c_str());
+    unregister_temporary(t.slot);
+    if (e == 0)
+      usable.push_back(folder);
+    else
+      why += "; " + folder + ": " + std::strerror(e);
   }
-  throw UsageError(
-      "--plot without --csv needs a temporary file, and none of $TMPDIR, /tmp, /var/tmp is a "
-      "writable folder: give --csv FILE");
+  if (usable.empty())
+    throw UsageError(
+        "--plot without --csv needs a temporary file, and none of $TMPDIR, /tmp, "
+        "/var/tmp takes one (" +
+        why.substr(2) + "): give --csv FILE");
+  return usable;
 }
 
-/// A new temporary file in `folder` (temporary_folder) holding text, created exclusively and
-/// registered for removal on SIGINT and SIGTERM (mesh/file_safety.hpp), so that no file already
-/// there is replaced and none is left behind by Ctrl-C; the caller removes it and unregisters.
-/// @throws UsageError when it cannot be made or written
-RegisteredTemporary temporary_csv(const std::string& folder, const std::string& text) {
-  RegisteredTemporary t = create_registered_temporary(folder, "shellcontract_bench_error.csv");
-  if (t.fd < 0) throw UsageError("cannot create a temporary file in '" + folder + "': " + std::strerror(errno));
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(t.fd, text.data() + done, text.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) {
-      const int e = n < 0 ? errno : EIO;
-      ::close(t.fd);
-      ::unlink(t.path.c_str());
-      unregister_temporary(t.slot);
-      throw UsageError("cannot write the temporary file '" + t.path + "': " + std::strerror(e));
+/// A new temporary file holding text, in the first of `folders` (temporary_folders) where it can
+/// be written whole (a folder that filled up during the runs passes to the next), created
+/// exclusively and registered for removal on SIGINT and SIGTERM (mesh/file_safety.hpp), so that
+/// no file already there is replaced and none is left behind by Ctrl-C; the caller removes it and
+/// unregisters. An empty path (fd -1) and `error` set when no folder takes it.
+RegisteredTemporary temporary_csv(const std::vector<std::string>& folders, const std::string& text,
+                                  std::string& error) {
+  for (const std::string& folder : folders) {
+    RegisteredTemporary t = create_registered_temporary(folder, "shellcontract_bench_error.csv");
+    if (t.fd < 0) {
+      error += std::string(error.empty() ? "" : "; ") + "cannot create a temporary file in '" +
+               folder + "': " + std::strerror(errno);
+      continue;
     }
-    done += static_cast<std::size_t>(n);
+    std::size_t done = 0;
+    int e = 0;
+    while (done < text.size() && e == 0) {
+      const ssize_t n = ::write(t.fd, text.data() + done, text.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0)
+        e = n < 0 ? errno : EIO;
+      else
+        done += static_cast<std::size_t>(n);
+    }
+    ::close(t.fd);
+    t.fd = -1;
+    if (e == 0) return t;
+    ::unlink(t.path.c_str());
+    unregister_temporary(t.slot);
+    error += std::string(error.empty() ? "" : "; ") + "cannot write the temporary file '" + t.path +
+             "': " + std::strerror(e);
   }
-  ::close(t.fd);
-  t.fd = -1;
-  return t;
+  return {};
 }
 
 bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }
@@ -260,7 +295,7 @@ bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>
 }  // namespace
 
 int command_bench_error(int argc, char** argv) {
-  std::string temp_folder;  // for the plot's CSV when --csv is not given
+  std::vector<std::string> temp_folders;  // for the plot's CSV when --csv is not given
   std::string input, csv, plot, solver = "both", iterations = "1,2,5,10,20,50", substeps = "1,2,4";
   std::string collisions = "off", orders = "sequential", threads = "1";
   ErrorLadderOptions opt;
@@ -326,7 +361,7 @@ int command_bench_error(int argc, char** argv) {
       // Checked before the (long) runs, not after.
       if (!gnuplot_available())
         throw UsageError("--plot needs gnuplot, which is not installed (Debian: apt-get install gnuplot-nox)");
-      if (csv.empty()) temp_folder = temporary_folder();
+      if (csv.empty()) temp_folders = temporary_folders();
     }
     // Neither output may be the mesh or the other, and both must be writable, checked before
     // the (long) runs: docs/design/output-safety.md.
@@ -394,7 +429,14 @@ int command_bench_error(int argc, char** argv) {
       // gnuplot reads the CSV; without --csv it goes to a temporary file removed afterwards.
       RegisteredTemporary temporary;
       if (data_file.empty()) {
-        temporary = temporary_csv(temp_folder, text);
+        std::string error;
+        temporary = temporary_csv(temp_folders, text, error);
+        if (temporary.path.empty()) {
+          // Not bad usage (no hint to --help): the folders took a file before the runs.
+          std::cerr << "shellcontract bench error: --plot: " << error << "; no plot drawn (--csv "
+                    << "FILE keeps the data; the table is on stdout)\n";
+          return static_cast<int>(ExitCode::BadUsage);
+        }
         data_file = temporary.path;
       }
       const std::string title = std::filesystem::path(input).filename().string() + ": " +

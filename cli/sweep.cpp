@@ -2,6 +2,7 @@
 // sweep.py), which runs the jobs of a sweep file on Dask distributed, each as `shellcontract run`.
 // The engine is in Python because Dask is; this only finds the interpreter and the package and
 // replaces the process with it, so signals (Ctrl-C) and the exit code are the sweep's own.
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -67,6 +68,59 @@ except ImportError as e:
 sys.exit(sweep.main())
 )";
 
+/// Whether `python` runs Python: it is asked to print a word and must print exactly that, exit 0.
+/// Only an interpreter the user named ($SHELLCONTRACT_PYTHON) is asked: once the process is
+/// replaced by it nothing here can speak, and one that is not Python ended the sweep unexplained
+/// (/bin/false: exit 1, /bin/true: exit 0 with nothing run). `why` says what it did instead.
+bool runs_python(const std::string& python, std::string& why) {
+  int fds[2];
+  if (::pipe(fds) != 0) return true;  // cannot ask: the exec below says what it can
+  const std::string word = "shellcontract-sweep-python";
+  const std::string code = "import sys; sys.stdout.write('" + word + "')";
+  std::vector<std::string> args{python, "-c", code};
+  std::vector<char*> cargs;
+  for (std::string& a : args) cargs.push_back(a.data());
+  cargs.push_back(nullptr);
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    return true;
+  }
+  if (pid == 0) {
+    ::dup2(fds[1], 1);
+    ::close(fds[0]);
+    ::close(fds[1]);
+    ::execvp(python.c_str(), cargs.data());
+    ::_exit(127);
+  }
+  ::close(fds[1]);
+  std::string out;
+  char buf[256];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0 || out.size() > 4096) break;
+    out.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && out == word) return true;
+  // Not started (the child's exec failed): the exec below fails too, and says why.
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127 && out.empty()) return true;
+  if (WIFEXITED(status))
+    why = "asked to run a line of Python, it exited " + std::to_string(WEXITSTATUS(status)) +
+          (out == word   ? std::string()
+           : out.empty() ? " without printing it"
+                         : " printing something else");
+  else
+    why = "asked to run a line of Python, it was killed by signal " +
+          std::to_string(WTERMSIG(status));
+  return false;
+}
+
 }  // namespace
 
 int command_sweep(int argc, char** argv) {
@@ -94,6 +148,17 @@ int command_sweep(int argc, char** argv) {
             "holding shellcontract/; the module must be built for this interpreter "
             "(SHELLCONTRACT_PYTHON chooses another)";
   const std::string python = python_interpreter();
+  if (const char* named = std::getenv("SHELLCONTRACT_PYTHON"); named && *named) {
+    std::string why;
+    if (!runs_python(python, why)) {
+      std::cerr << "shellcontract sweep: SHELLCONTRACT_PYTHON=" << python
+                << " is not a Python interpreter (" << why
+                << "); nothing run: the sweep is `python3 -m shellcontract.sweep`, set "
+                << "SHELLCONTRACT_PYTHON to a python3 with the shellcontract package and Dask's "
+                << "distributed, or unset it\n";
+      return 1;
+    }
+  }
   std::vector<std::string> args{python, "-c", BOOTSTRAP, looked};
   for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
   std::vector<char*> cargs;

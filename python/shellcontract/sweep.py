@@ -17,6 +17,7 @@ finish).
 """
 
 import argparse
+import errno
 import os
 import shlex
 import subprocess
@@ -89,6 +90,69 @@ class _Parser(argparse.ArgumentParser):
         self.print_usage(sys.stderr)
         self.exit(EXIT_USAGE, "{}: error: {}\n".format(self.prog, message))
 
+    def print_help(self, file=None):
+        # --help is stdout's product, checked as every command's is (write_stdout); argparse's
+        # own dropped it silently when stdout was closed (exit 0) and left a full one to the
+        # interpreter's exit, a traceback.
+        if file is None:
+            write_stdout(self.format_help())
+        else:
+            super().print_help(file)
+
+
+class StdoutUnwritable(Exception):
+    """What the sweep prints on stdout (--help, --dry-run's list) could not be written; the
+    message says why."""
+
+
+def write_stdout(text):
+    """`text` on stdout, flushed; raises StdoutUnwritable when stdout is closed or the write
+    fails (a full disk, a reader gone). Then stdout's descriptor is /dev/null, so that the
+    interpreter's flush at exit does not fail again (a traceback, exit 120)."""
+    if sys.stdout is None:  # Python's stdout when fd 1 was closed
+        raise StdoutUnwritable("it is closed")
+    try:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+    except (OSError, ValueError) as e:
+        try:
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            try:
+                os.dup2(devnull, sys.stdout.fileno())
+            finally:
+                os.close(devnull)
+        except (OSError, ValueError, AttributeError):
+            pass
+        raise StdoutUnwritable(getattr(e, "strerror", None) or str(e))
+
+
+# The options that take a value: `-o -dir` gives that value as the C++ commands take `-o -x.off`
+# (argparse reads a word that starts with '-' as an option and refused it: "expected one
+# argument").
+VALUE_OPTIONS = ("-o", "--output", "--scheduler", "--shard", "--workers", "--job-timeout",
+                 "--checkpoint-every", "--cli")
+OPTION_WORDS = VALUE_OPTIONS + ("-h", "--help", "--dry-run")
+
+
+def joined_values(argv):
+    """`argv` with each value option followed by a word that starts with one '-' (and is no
+    option of the sweep's) joined to it as `--option=VALUE`, up to a `--`."""
+    out, i = [], 0
+    while i < len(argv):
+        word = argv[i]
+        if word == "--":
+            return out + argv[i:]
+        nxt = argv[i + 1] if i + 1 < len(argv) else None
+        if (word in VALUE_OPTIONS and nxt is not None and nxt.startswith("-") and nxt != "-"
+                and not nxt.startswith("--") and nxt not in OPTION_WORDS):
+            long = "--output" if word == "-o" else word
+            out.append("{}={}".format(long, nxt))
+            i += 2
+            continue
+        out.append(word)
+        i += 1
+    return out
+
 
 def parser():
     p = _Parser(
@@ -146,6 +210,10 @@ def main(argv=None, *, lock_wait=sweep_job.JOB_LOCK_WAIT_SECONDS,
     with sweep_process.stop_signals_as_ctrl_c():
         try:
             return _main(argv, lock_wait, note_every)
+        except StdoutUnwritable as e:
+            print("shellcontract sweep: cannot write to standard output: {} (what it printed is "
+                  "incomplete)".format(e), file=sys.stderr)
+            return EXIT_USAGE
         except KeyboardInterrupt:
             # Outside the running of the jobs (which says more): while checking the executable,
             # reading the sweep file or claiming DIR, whose writes are whole or absent. An
@@ -157,7 +225,7 @@ def main(argv=None, *, lock_wait=sweep_job.JOB_LOCK_WAIT_SECONDS,
 
 def _main(argv, lock_wait, note_every):
     sweep_host.guard_stderr()
-    args = parser().parse_args(argv)
+    args = parser().parse_args(joined_values(sys.argv[1:] if argv is None else list(argv)))
     # With the per-sweep settings of the command line, which reach each job the same way.
     args.lock_wait, args.note_every = lock_wait, note_every
     cli = find_cli(args.cli)
@@ -200,8 +268,16 @@ def _main(argv, lock_wait, note_every):
     except sweep_output.OutputError as e:
         print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
         return EXIT_USAGE
+    except sweep_dask.ClusterFailed as e:
+        print("shellcontract sweep: nothing run: {}".format(e), file=sys.stderr)
+        return EXIT_USAGE
     except OSError as e:  # DIR unwritable, full, changed under the sweep (finished jobs stay)
-        print("shellcontract sweep: {}: {}".format(args.output, _os_error_text(e)), file=sys.stderr)
+        hint = ""
+        if e.errno in (errno.EMFILE, errno.ENFILE):
+            hint = (" (the sweep and its cluster need more open files than this process may "
+                    "have: raise `ulimit -n`, or run with --shard 0/1)")
+        print("shellcontract sweep: {}: {}{}".format(args.output, _os_error_text(e), hint),
+              file=sys.stderr)
         return EXIT_USAGE
 
 
@@ -212,9 +288,10 @@ def _run(args, cli, version, data, jobs):
     if args.dry_run:
         # The mesh and `run`'s arguments quoted for a shell ('0:1, 60:0.5' is one argument);
         # with --shard, that shard's jobs only.
-        for job in selected:
-            print("{}  {}  {}".format(job.id, shlex.quote(os.path.relpath(job.mesh, sweep_dir)),
-                                      " ".join(shlex.quote(a) for a in job.args)))
+        write_stdout("".join(
+            "{}  {}  {}\n".format(job.id, shlex.quote(os.path.relpath(job.mesh, sweep_dir)),
+                                  " ".join(shlex.quote(a) for a in job.args))
+            for job in selected))
         return 0
     client = None
     if args.scheduler:

@@ -2,8 +2,12 @@
 are checked first, and the running of the jobs on it (shellcontract.sweep; docs/design/sweeps.md).
 """
 
+import errno
+import fcntl
+import os
 import queue
 import sys
+import tempfile
 
 from . import sweep_cli, sweep_host, sweep_job, sweep_progress
 
@@ -19,6 +23,141 @@ class Interrupted(Exception):
 
 class WorkersUnusable(Exception):
     """An existing cluster's workers that cannot run the jobs (the message says which, why)."""
+
+
+class ClusterFailed(Exception):
+    """The embedded cluster did not start (no job ran); the message says why."""
+
+
+def _errno_of(e):
+    """The errno of an OSError `e` or of one that caused it (Dask wraps its start's errors)."""
+    seen = 0
+    while e is not None and seen < 10:
+        if isinstance(e, OSError) and e.errno is not None:
+            return e.errno
+        e = e.__cause__ or e.__context__
+        seen += 1
+    return None
+
+
+SCRATCH_PREFIX = "shellcontract-sweep-dask-"
+# In each scratch folder, locked (flock) by its sweep for as long as it runs.
+SCRATCH_LOCK = "sweep.lock"
+
+
+class _Scratch:
+    """A folder of the sweep's own for its workers' scratch folders (Dask's
+    dask-worker-space/worker-*), in Dask's temporary folder (its temporary-directory setting,
+    else the system's, as Dask's own), removed whole at the end (remove). Dask removes its
+    workers' folders itself, but not when the process is out of descriptors (`ulimit -n`: "Failed
+    to remove ...", or a worker that failed to start and took no lock), and in the shared
+    dask-worker-space such a folder stayed for good. A cluster that failed to start may still
+    hold every descriptor: the descriptor of the folder's lock is the one kept for the removal.
+    The folder of a sweep killed with SIGKILL is removed by the next sweep's (purge_stale)."""
+
+    def __init__(self):
+        import dask
+        self._reserve = None
+        self.path = tempfile.mkdtemp(prefix=SCRATCH_PREFIX,
+                                     dir=dask.config.get("temporary-directory", None) or None)
+        try:
+            # Locked before it has its name, so that no other sweep's purge_stale can take the
+            # lock of a folder being made.
+            making = os.path.join(self.path, SCRATCH_LOCK + ".new")
+            self._reserve = os.open(making, os.O_RDWR | os.O_CREAT | os.O_EXCL, 0o600)
+            try:
+                fcntl.flock(self._reserve, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                os.rename(making, os.path.join(self.path, SCRATCH_LOCK))
+            except OSError:  # no locks on this file system: nothing purged, nothing mistaken
+                pass
+        except BaseException:
+            self.remove()
+            raise
+        purge_stale(os.path.dirname(self.path), self.path)
+
+    def remove(self):
+        if self._reserve is not None:
+            os.close(self._reserve)
+            self._reserve = None
+        _remove_tree(self.path)
+
+
+def purge_stale(base, own=None):
+    """Removes the scratch folders in `base` of sweeps that ended without removing theirs (killed
+    with SIGKILL): this user's, whose lock no process holds. A folder without its lock (being
+    made, or made where there are no locks) is left."""
+    try:
+        names = os.listdir(base)
+    except OSError:
+        return
+    for name in names:
+        path = os.path.join(base, name)
+        if not name.startswith(SCRATCH_PREFIX) or path == own:
+            continue
+        try:
+            if os.lstat(path).st_uid != os.geteuid():
+                continue
+            fd = os.open(os.path.join(path, SCRATCH_LOCK), os.O_RDWR | os.O_NOFOLLOW)
+        except OSError:
+            continue
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError:  # its sweep runs
+            os.close(fd)
+            continue
+        try:
+            _remove_tree(path)
+        finally:
+            os.close(fd)
+
+
+def _remove_tree(path):
+    """Removes the folder `path` and what it holds, as far as it can, by paths: one descriptor at
+    a time (shutil.rmtree holds one per level)."""
+    try:
+        names = os.listdir(path)
+    except OSError:
+        names = []
+    for name in names:
+        p = os.path.join(path, name)
+        if os.path.isdir(p) and not os.path.islink(p):
+            _remove_tree(p)
+        else:
+            try:
+                os.remove(p)
+            except OSError:
+                pass
+    try:
+        os.rmdir(path)
+    except OSError:
+        pass
+
+
+def _start_embedded(workers, client_class):
+    """The embedded cluster, its client and its scratch folder (_Scratch); raises
+    ClusterFailed when the cluster or the client does not start (no job ran; the scratch folder
+    removed). Before, a failed start was a traceback, or an error named as the output folder's."""
+    cluster, scratch = None, None
+    try:
+        scratch = _Scratch()
+        cluster = embedded_cluster(workers, scratch.path)
+        return cluster, client_class(cluster), scratch
+    except BaseException as e:  # Ctrl-C during the start too: nothing left behind
+        if cluster is not None:
+            try:
+                cluster.close()
+            except Exception:
+                pass
+        if scratch is not None:
+            scratch.remove()
+        if not isinstance(e, Exception):
+            raise
+        hint = ""
+        if _errno_of(e) in (errno.EMFILE, errno.ENFILE):
+            hint = ("; it needs more open files than this process may have: raise `ulimit -n`, "
+                    "or run with --shard 0/1")
+        raise ClusterFailed("the embedded Dask cluster did not start ({}: {}){}".format(
+            type(e).__name__, e, hint))
 
 
 def _has_dashboard():
@@ -59,7 +198,7 @@ def _scheduler_has_dashboard(client):
         return False
 
 
-def embedded_cluster(workers):
+def embedded_cluster(workers, local_directory=None):
     import dask
     from distributed import LocalCluster
     dask.config.set(QUIET_WORKERS)
@@ -72,7 +211,7 @@ def embedded_cluster(workers):
                         # dashboard, and on Dask's default port (8787) it warned on every sweep
                         # while the user's own cluster held that port.
                         dashboard_address="127.0.0.1:0",
-                        silence_logs=40)
+                        local_directory=local_directory, silence_logs=40)
 
 
 # The client looks for the source code of the call that submits a computation (walking the
@@ -163,7 +302,7 @@ def run_jobs(todo, args, cli, version, token, progress, on_record, client=None):
     import dask
     from distributed import Client
     dask.config.set(CLIENT_CONFIG)
-    cluster, threads = None, None
+    cluster, threads, scratch = None, None, None
     own_cli = None if not args.scheduler else args.cli is None
     # An existing cluster's jobs take their machine's share, which each job's worker works out.
     share = (None if client is None else
@@ -172,8 +311,7 @@ def run_jobs(todo, args, cli, version, token, progress, on_record, client=None):
         # The embedded workers run this machine's executable, on the cores this process may use.
         workers = args.workers or sweep_host.usable_cores()
         threads = sweep_host.job_threads(workers, len(todo))
-        cluster = embedded_cluster(workers)
-        client = Client(cluster)
+        cluster, client, scratch = _start_embedded(workers, Client)
     futures = {}
     try:
         if _scheduler_has_dashboard(client) if args.scheduler else _has_dashboard():
@@ -228,5 +366,8 @@ def run_jobs(todo, args, cli, version, token, progress, on_record, client=None):
         raise Interrupted(still)
     finally:
         if cluster is not None:  # an existing cluster's client is its caller's to close
-            client.close()
-            cluster.close()
+            try:
+                client.close()
+                cluster.close()
+            finally:
+                scratch.remove()  # after the close, which gives the descriptors back

@@ -2,14 +2,18 @@
 SIGTERM, SIGHUP and SIGUSR1, which end it as Ctrl-C does (sweep.main)."""
 
 import contextlib
+import os
 import signal
 import threading
 
 
 class PipeSafeStream:
-    """sys.stderr that a reader going away (`sweep ... 2>&1 | head -1`) does not stop: the
-    sweep goes on without its progress lines. Before, the next line raised BrokenPipeError and the
-    sweep ended with exit 1, documented as "nothing run", its jobs left pending."""
+    """sys.stderr whose failing writes do not stop the sweep: a reader going away (`sweep ... 2>&1
+    | head -1`), a full disk or quota under a log (`2>>sweep.log`, `2>/dev/full`: ENOSPC, EDQUOT,
+    EFBIG, EIO). The sweep goes on without its progress lines, and its exit code is its jobs'
+    (lost messages are no job's failure). Before, the next line raised, and the sweep ended with
+    exit 1, documented as "nothing run", its jobs left pending; a full disk under stderr was also
+    named as the results folder's error."""
 
     def __init__(self, stream):
         self._stream = stream
@@ -19,16 +23,32 @@ class PipeSafeStream:
         if not self._gone:
             try:
                 return self._stream.write(text)
-            except BrokenPipeError:
-                self._gone = True
+            except (OSError, ValueError):  # ValueError: the stream closed under it
+                self._lost()
         return len(text)
 
     def flush(self):
         if not self._gone:
             try:
                 self._stream.flush()
-            except BrokenPipeError:
-                self._gone = True
+            except (OSError, ValueError):
+                self._lost()
+
+    def _lost(self):
+        """Nothing more is written: the stream's buffer, which holds what failed, is emptied
+        where it can be (else its flush at exit fails again), and later writes are dropped."""
+        self._gone = True
+        try:
+            # A TextIOWrapper's buffered writer keeps what it could not write; writing to a
+            # detached descriptor-less buffer is not possible, so the stream is pointed at
+            # /dev/null for Python's own flush at exit.
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            try:
+                os.dup2(devnull, self._stream.fileno())
+            finally:
+                os.close(devnull)
+        except (OSError, ValueError, AttributeError):
+            pass
 
     def __getattr__(self, name):  # isatty, fileno, encoding: the stream's own
         return getattr(self._stream, name)

@@ -66,12 +66,36 @@ class Progress:
             self.draw()
         self.stream.flush()
 
+    def columns(self):
+        """The terminal's width: $COLUMNS when set (a number), else the size of the terminal the
+        stream is (asked at each redraw: a window resized), else 80."""
+        try:
+            return max(1, int(os.environ["COLUMNS"]))
+        except (KeyError, ValueError):
+            pass
+        try:
+            return max(1, os.get_terminal_size(self.stream.fileno()).columns)
+        except (AttributeError, OSError, ValueError):
+            return 80
+
+    def bar_line(self, columns):
+        """The bar and its counts in fewer than `columns` characters: a line as wide as the
+        terminal or wider wraps, and the redraw's erase (a carriage return, then the rest of the
+        row) clears only its last row, leaving a row behind at every redraw. The bar narrows first,
+        down to none, then the text is cut."""
+        text = self.line()
+        room = columns - 1
+        width = min(BAR_WIDTH, room - len(text) - 3)  # "[", "] "
+        if width >= 5:
+            filled = (int(width * (self.done + self.failed) / self.total) if self.total
+                      else width)
+            return "[{}] {}".format("#" * filled + "." * (width - filled), text)
+        return text[:max(0, room)]
+
     def draw(self):
         if not self.tty:
             return
-        filled = int(BAR_WIDTH * (self.done + self.failed) / self.total) if self.total else BAR_WIDTH
-        bar = "#" * filled + "." * (BAR_WIDTH - filled)
-        self.stream.write("\r\033[K[{}] {}".format(bar, self.line()))
+        self.stream.write("\r\033[K" + self.bar_line(self.columns()))
         self.stream.flush()
         self._drawn = True
 

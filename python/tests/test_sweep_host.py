@@ -79,7 +79,7 @@ def _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch):
                        meshes=("ico1.off",))
     asked = []
 
-    def cluster(workers):
+    def cluster(workers, local_directory=None):
         asked.append(workers)
         raise KeyboardInterrupt  # nothing to run: the number is the test
 

@@ -3,6 +3,8 @@
 // bench ccd checked nothing (--json over a query file replaced it, exit 0; as root --json
 // /dev/null turned the device into a file; a missing folder was found after the whole
 // benchmark, naming the temporary), and bench error's --csv over the input mesh replaced it.
+// bench error --plot without --csv took $TMPDIR on access() alone: a TMPDIR where no file can be
+// made (root passes access() on /proc and /sys) failed after the whole benchmark, no plot.
 #include "hostile/hostile_support.hpp"
 
 namespace shellcontract {
@@ -71,6 +73,26 @@ TEST_F(Hostile, BenchErrorCsvOverTheInputIsRefused) {
   EXPECT_NE(r.output.find("is the input file"), std::string::npos) << r.output;
   EXPECT_EQ(test::slurp(in), before) << "the input mesh was overwritten";
   EXPECT_EQ(test::listing(dir_), std::vector<std::string>{"in.off"});
+}
+
+TEST_F(Hostile, BenchErrorPlotPassesOverATmpdirThatTakesNoFile) {
+  if (test::run_command("command -v gnuplot >/dev/null").exit_code != 0)
+    GTEST_SKIP() << "gnuplot is not installed";
+  // Folders in which nobody, root included, can create a file, though access(W_OK) passes for
+  // root (/proc, /sys), and a path under a regular file.
+  test::spit(dir_ / "file", "x");
+  for (const std::string& tmpdir :
+       {std::string("/proc"), std::string("/sys"), (dir_ / "file" / "sub").string()}) {
+    const fs::path plot = dir_ / "p.svg";
+    fs::remove(plot);
+    const auto r = test::run_command(
+        "TMPDIR=" + test::quoted(tmpdir) + " " +
+        test::cli_command({"bench", "error", test::mesh("ico1.off"), "--frames", "2",
+                           "--iterations", "1", "--substeps", "1", "--solver", "xpbd", "-q",
+                           "--no-check", "--plot", plot.string()}));
+    EXPECT_EQ(r.exit_code, 0) << tmpdir << ": " << r.output;
+    EXPECT_TRUE(fs::is_regular_file(plot)) << tmpdir << ": no plot: " << r.output;
+  }
 }
 
 }  // namespace
