@@ -98,12 +98,19 @@ Mesh mesh_for_output(const Mesh& mesh, const Positions& x);
 void write_ply_atomic(const std::string& path, const Mesh& mesh, const std::string& comments = "",
                       bool binary = false);
 
-/// Writes text to path atomically (temporary file + rename). @throws UsageError on failure
+/// Writes text to path atomically (temporary file + rename; links and descriptors as
+/// write_file_atomic). @throws UsageError on failure
 void write_text_atomic(const std::string& path, const std::string& text);
 
 /// Writes a file atomically through `write`, which writes straight into a temporary file next to
 /// `path` (no copy in memory: for large binary files written in a few large pieces, the .glb);
 /// then renames it over `path`. If `write` throws, no file is left and the exception passes.
+/// A symbolic link is followed: its target is replaced (the temporary beside the target) and the
+/// link kept. A path naming a descriptor of this process (/dev/stdout, /dev/stderr, /dev/fd/N,
+/// /proc/self/fd/N, or a link to one) is written straight into that descriptor, never replaced;
+/// what `write` writes is then held in memory and written once it returns
+/// (docs/design/output-safety.md, "Symbolic links and streams"). A replaced file keeps its
+/// mode, and its owner and group where the caller may set them (root).
 /// @throws UsageError if the file cannot be created or written
 void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write);
 

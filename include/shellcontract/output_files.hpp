@@ -23,8 +23,13 @@ struct NamedFile {
 /// symbolic links and bind mounts are seen through, no output may be an input (nor a file the
 /// "INPUT" mesh reads or names, existing or not) or another output;
 /// an existing output must be a writable regular file (a folder, device, FIFO or socket is never
-/// replaced); each output's folder is probed by creating and removing a file with a name of the
-/// output's length (a missing or read-only folder, a parent that is a file, a name too long).
+/// replaced), and not one of another user in a sticky folder that the caller could not replace
+/// (EPERM); each output's folder is probed by creating and removing a file with a name of the
+/// output's temporary's length (a missing or read-only folder, a parent that is a file, a name
+/// or a path too long). A symbolic link is checked as its target (which the write replaces,
+/// keeping the link), except one of another user in a sticky folder, which is refused (EACCES);
+/// a descriptor path (/dev/stderr, /dev/fd/N) must be open for writing and is never a checkpoint
+/// (docs/design/output-safety.md, "Symbolic links and streams").
 /// Creates nothing that stays.
 /// @throws UsageError naming the option, the path and the reason; an OutputFileError
 ///         (shellcontract/file_error.hpp) with the errno where the file system refused (a

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <filesystem>
 
 #include "mesh/file_safety.hpp"
@@ -17,9 +18,50 @@ namespace {
 
 namespace fs = std::filesystem;
 
-/// Longest name write_file_atomic gives a temporary (file_safety.cpp: "." + 40 characters of
-/// the name + ".tmp." + 12 random ones, rounded up): the probe is at least this long.
-constexpr std::size_t TEMPORARY_NAME_LENGTH = 60;
+/// The length of the name write_file_atomic gives the temporary of a file whose name has
+/// `name_length` characters (create_exclusive_file: "." + the first 40 characters of
+/// "<name>.tmp" + "." + 12 random ones). The probe has exactly the longer of the two, so that a
+/// folder whose path is near PATH_MAX is refused only where the write would fail (a probe
+/// padded to 60 refused folders that took the file, naming the file's name as too long).
+std::size_t temporary_name_length(std::size_t name_length) {
+  return 1 + std::min<std::size_t>(name_length + 4, 40) + 1 + 12;
+}
+
+/// The probe's hint, "shellcontract-probe", cut so that its name has `length` characters when
+/// that is less than the whole hint's.
+constexpr char PROBE_HINT[] = "shellcontract-probe";
+
+/// Why a name of `name_length` characters, whose temporary's has `probe_length`, does not fit in
+/// `folder` (ENAMETOOLONG): the name beyond the file system's NAME_MAX, or the path beyond
+/// PATH_MAX.
+std::string name_too_long(const std::string& folder, std::size_t name_length,
+                          std::size_t probe_length) {
+  const long name_max = ::pathconf(folder.c_str(), _PC_NAME_MAX);
+  if (name_max > 0 && name_length > static_cast<std::size_t>(name_max))
+    return "the file name is too long (" + std::to_string(name_length) +
+           " bytes; the folder's file system allows " + std::to_string(name_max) + ")";
+  const std::size_t needed = folder.size() + 1 + probe_length;
+  if (needed >= PATH_MAX)
+    return "the path is too long: the folder's path has " + std::to_string(folder.size()) +
+           " bytes, and the file's temporary beside the file (" + std::to_string(probe_length) +
+           " bytes of name) needs a path of " + std::to_string(needed) +
+           ", over the system's limit (" + std::to_string(PATH_MAX - 1) +
+           " bytes, PATH_MAX); give a shorter path, such as a relative "
+           "one from a folder nearer the file";
+  return "the name is too long for the folder " + quoted_path(folder) + " (" +
+         file_error_text(ENAMETOOLONG) + ")";
+}
+
+/// "--checkpoint", "--resume", Python's "checkpoint", "resume", and their files' ("--checkpoint's
+/// log").
+bool is_checkpoint_option(const std::string& option) {
+  std::string o = option;
+  o.erase(0, o.find_first_not_of('-'));
+  for (const std::string name : {"checkpoint", "resume"})
+    if (o.compare(0, name.size(), name) == 0 && (o.size() == name.size() || o[name.size()] == '\''))
+      return true;
+  return false;
+}
 
 /// refuse_file's message.
 std::string refusal(const std::string& option, const std::string& path, const std::string& why) {
@@ -40,6 +82,12 @@ void check_existing(const FileIdentity& o) {
   if (::faccessat(AT_FDCWD, o.path.c_str(), W_OK, AT_EACCESS) != 0) {
     const int e = errno;
     refuse_file(o.option, o.path, "exists and is not writable (" + file_error_text(e) + ")", e);
+  }
+  // The rename that replaces it is refused in a sticky folder for a file that is neither the
+  // caller's nor the folder owner's, writable or not: found here, not after the run.
+  if (o.folder_known) {
+    const std::string why = sticky_problem(o.file, o.folder);
+    if (!why.empty()) refuse_file(o.option, o.path, why, EPERM);
   }
   // A file with no write permission bit at all is write-protected by its owner: refused for
   // every user, root too, for whom the access check above always succeeds (as `rm -i` and
@@ -66,11 +114,13 @@ FileIdentity identify_file(const std::string& option, const std::string& path) {
   FileIdentity id;
   id.option = option;
   id.path = path;
-  const fs::path p(path);
+  id.target = resolve_output(path);
+  const fs::path p(id.target.path);
   id.name = p.filename().string();
   id.folder_path = p.has_parent_path() ? p.parent_path().string() : std::string(".");
   id.exists = ::stat(path.c_str(), &id.file) == 0;
-  id.folder_known = ::stat(id.folder_path.c_str(), &id.folder) == 0 && S_ISDIR(id.folder.st_mode);
+  id.folder_known = id.target.kind == OutputTarget::Kind::FILE &&
+                    ::stat(id.folder_path.c_str(), &id.folder) == 0 && S_ISDIR(id.folder.st_mode);
   return id;
 }
 
@@ -89,13 +139,14 @@ std::optional<std::string> folder_problem(const std::string& folder, std::size_t
     error = ENOTDIR;
     return quoted_path(folder) + " is a file, not a folder";
   }
-  const RegisteredTemporary probe =  // removed on SIGINT/SIGTERM too
-      create_registered_temporary(folder, "shellcontract-probe", std::max(name_length, TEMPORARY_NAME_LENGTH));
+  const std::size_t length = std::max(name_length, temporary_name_length(name_length));
+  const std::size_t whole = 1 + (sizeof PROBE_HINT - 1) + 1 + 12;
+  const std::string hint(PROBE_HINT, length < whole ? length - 14 : sizeof PROBE_HINT - 1);
+  const RegisteredTemporary probe =
+      create_registered_temporary(folder, hint, length);  // removed on SIGINT/SIGTERM too
   if (probe.fd < 0) {
     const int e = error = errno;
-    if (e == ENAMETOOLONG)
-      return "the file name is too long (" + std::to_string(name_length) + " characters) for the folder " +
-             quoted_path(folder);
+    if (e == ENAMETOOLONG) return name_too_long(folder, name_length, length);
     return "cannot create a file in the folder " + quoted_path(folder) + " (" + file_error_text(e) + ")";
   }
   ::close(probe.fd);
@@ -130,8 +181,21 @@ void check_output_identities(const std::vector<NamedFile>& outputs, const std::v
   for (const NamedFile& o : outputs) {
     require_usable_path(o.path, o.option);
     FileIdentity id = identify_file(o.option, o.path);
-    if (id.name.empty() || id.name == "." || id.name == "..")
+    const std::string given_name = fs::path(o.path).filename().string();
+    if (given_name.empty() || given_name == "." || given_name == ".." ||
+        (id.target.kind == OutputTarget::Kind::FILE &&
+         (id.name.empty() || id.name == "." || id.name == "..")))
       refuse_file(o.option, o.path, "names a folder, not a file");
+    if (!id.target.problem.empty())
+      refuse_file(o.option, o.path, id.target.problem, id.target.error);
+    const bool stream = id.target.kind == OutputTarget::Kind::STREAM;
+    // A checkpoint is read back (--resume) and has files beside it (FILE.log, .FILE.lock), which
+    // beside /dev/stdout would be made in /dev.
+    if (stream && is_checkpoint_option(o.option))
+      refuse_file(
+          o.option, o.path,
+          "names a descriptor (standard output or error, /dev/fd/N); a checkpoint must be a "
+          "file that a run can resume from");
     for (const FileIdentity& in : input_ids) {
       if (!same_file(id, in)) continue;
       if (!in.role.empty())
@@ -149,6 +213,14 @@ void check_output_identities(const std::vector<NamedFile>& outputs, const std::v
         refuse_file(o.option, o.path,
                     "is also the file of " + other.option + " (" + quoted_path(other.path) +
                         "); each output needs its own file");
+    if (stream) {
+      // Written into, never replaced: nothing is created, so no folder to probe.
+      int error = 0;
+      const std::string why = stream_problem(id.target.fd, error);
+      if (!why.empty()) refuse_file(o.option, o.path, why, error);
+      output_ids.push_back(std::move(id));
+      continue;
+    }
     check_existing(id);
     int error = 0;
     if (const auto why = folder_problem(id.folder_path, id.name.size(), &error))

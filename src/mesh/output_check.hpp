@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "mesh/output_target.hpp"
 #include "shellcontract/output_files.hpp"
 
 namespace shellcontract {
@@ -24,6 +25,9 @@ struct FileIdentity {
   std::string folder_path, name;
   /// For a file the input needs (input_dependencies.hpp): what it is to the input; else empty.
   std::string role;
+  /// Where a write would land (output_target.hpp): `folder_path` and `name` are those of the
+  /// link's target for a symbolic link; a descriptor (/dev/stderr) has no folder to compare.
+  OutputTarget target;
 };
 
 FileIdentity identify_file(const std::string& option, const std::string& path);

@@ -31,6 +31,7 @@
 
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/output_target.hpp"
 #include "mesh/soup_geometry.hpp"
 #include "mesh/soup_writer.hpp"
 #include "mesh/stl_positions.hpp"
@@ -63,6 +64,8 @@ std::string lower_extension(const std::string& path) {
 void refuse_special_output(const std::string& path) {
   // A NUL byte would make stat look at another path; the writer's require_usable_path says why.
   if (path.find('\0') != std::string::npos) return;
+  // A descriptor (/dev/stdout, /dev/fd/N) is written into, never replaced, whatever it is.
+  if (resolve_output(path).kind == OutputTarget::Kind::STREAM) return;
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode)) return;
   if (S_ISDIR(st.st_mode)) cannot_write(path, EISDIR, "it is a folder");
@@ -319,8 +322,39 @@ class FdBuf final : public std::streambuf {
 
 }  // namespace
 
-void write_file_atomic(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  require_usable_path(path, "output");
+namespace {
+
+/// A descriptor named by the output path (/dev/stderr with stderr redirected to a file): written
+/// straight into at its own offset, as `echo >&2` would, never replaced. The whole text is made
+/// first, so a writer that throws writes nothing there.
+void write_stream(const std::string& path, int fd,
+                  const std::function<void(std::ostream&)>& write) {
+  int error = 0;
+  const std::string why = stream_problem(fd, error);
+  if (!why.empty()) cannot_write(path, error, why);
+  std::ostringstream text;
+  text.imbue(std::locale::classic());
+  write(text);
+  const std::string bytes = std::move(text).str();
+  FdBuf buf(fd);
+  std::ostream out(&buf);
+  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  out.flush();
+  if (buf.error()) cannot_write(path, buf.error(), file_error_text(buf.error()));
+}
+
+}  // namespace
+
+void write_file_atomic(const std::string& given, const std::function<void(std::ostream&)>& write) {
+  require_usable_path(given, "output");
+  // A symbolic link is followed: its target is replaced and the link kept; a descriptor is
+  // written into (docs/design/output-safety.md, "Symbolic links and streams"). Before, the link
+  // itself was replaced: as root, --log /dev/stderr with stderr redirected to a file turned the
+  // system's /dev/stderr into a plain file.
+  const OutputTarget resolved = resolve_output(given);
+  if (!resolved.problem.empty()) cannot_write(given, resolved.error, resolved.problem);
+  if (resolved.kind == OutputTarget::Kind::STREAM) return write_stream(given, resolved.fd, write);
+  const std::string& path = resolved.path;
   refuse_special_output(path);
   const fs::path target(path);
   const std::string dir = target.has_parent_path() ? target.parent_path().string() : std::string(".");
@@ -331,7 +365,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   if (tmp.fd < 0) {
     const int e = errno;
     cannot_write(
-        path, e,
+        given, e,
         "cannot create a file in the folder '" + printable(dir) + "' (" + file_error_text(e) + ")");
   }
   const int slot = tmp.slot;
@@ -343,9 +377,15 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   // A file replaced keeps its permissions (a private 0600 result stays private); a new one gets
   // the temporary's, 0666 less the umask. Best effort: a file system without modes (FAT) refuses
   // fchmod, and the result is still written.
+  // Its owner and group are kept too where the caller may set them (root replacing a user's
+  // result, which the user could no longer read as root's 0640 file; a user's file of one of
+  // their groups): chown before chmod, which chown's clearing of set-user-ID bits would undo.
   struct stat before {};
-  if (::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode))
+  if (::stat(path.c_str(), &before) == 0 && S_ISREG(before.st_mode)) {
+    if (::fchown(tmp.fd, before.st_uid, before.st_gid) != 0)
+      (void)::fchown(tmp.fd, static_cast<uid_t>(-1), before.st_gid);
     (void)::fchmod(tmp.fd, before.st_mode & 07777);
+  }
   {
     FdBuf buf(tmp.fd);
     std::ostream out(&buf);
@@ -358,7 +398,7 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
       discard();
       // A writer that gave up because the disk did (tinygltf: "serializing failed") is
       // reported by the disk's reason.
-      if (buf.error()) cannot_write(path, buf.error(), file_error_text(buf.error()));
+      if (buf.error()) cannot_write(given, buf.error(), file_error_text(buf.error()));
       throw;
     }
     error = buf.error();
@@ -367,12 +407,12 @@ void write_file_atomic(const std::string& path, const std::function<void(std::os
   if (::close(tmp.fd) != 0 && !error) error = errno;  // NFS reports some write errors here
   if (error) {
     discard();
-    cannot_write(path, error, file_error_text(error));
+    cannot_write(given, error, file_error_text(error));
   }
   if (std::rename(tmp.path.c_str(), path.c_str()) != 0) {
     const int e = errno;
     discard();
-    cannot_write(path, e, file_error_text(e));
+    cannot_write(given, e, file_error_text(e));
   }
   unregister_temporary(slot);
 }

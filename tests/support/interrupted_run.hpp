@@ -21,13 +21,14 @@ inline bool await_file_in(const std::filesystem::path& dir) {
   return false;
 }
 
-/// The temporaries under `dir` (the writers' "*.tmp.*" files and the output checks' probes).
+/// The temporaries under `dir` (the writers' "*.tmp.*" files and the output checks' probes,
+/// ".shellcontract-probe" cut to the length of the name they stand for).
 inline std::vector<std::string> temporaries(const std::filesystem::path& dir) {
   std::vector<std::string> found;
   std::error_code ec;
   for (const auto& e : std::filesystem::recursive_directory_iterator(dir, ec))
     if (e.path().filename().string().find(".tmp.") != std::string::npos ||
-        e.path().filename().string().find("shellcontract-probe") != std::string::npos)
+        e.path().filename().string().rfind(".shell", 0) == 0)
       found.push_back(e.path().string());
   return found;
 }
