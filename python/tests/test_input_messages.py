@@ -145,6 +145,18 @@ def test_a_far_open_boundary_names_no_near_duplicate(cli, bumpy, tmp_path):
     assert "near-duplicate" not in r.stderr
 
 
+def test_exact_seam_copies_of_a_mesh_open_elsewhere_are_no_near_duplicates(cli, bumpy, tmp_path):
+    v, f = bumpy
+    v2, f2 = near_duplicate_seam(v, f)
+    v2[-1] = v2[0]  # an exact copy: a UV seam's, welded by the reader
+    # The hole at the copied vertex: its open edges end at a vertex that has an exact copy.
+    at_copy = [k for k in range(len(f2)) if (f2[k] == 0).any()][0]
+    write_off(tmp_path / "seam_hole.off", v2, np.delete(f2, at_copy, axis=0))
+    r = sc(cli, "check", tmp_path / "seam_hole.off")
+    assert r.returncode == 2 and "open boundary" in r.stderr, r.stderr
+    assert "near-duplicate" not in r.stderr, r.stderr
+
+
 def test_repair_merges_near_duplicates_instead_of_filling_the_crack(cli, bumpy, tmp_path):
     v, f = bumpy
     write_off(tmp_path / "seam.off", *near_duplicate_seam(v, f))

@@ -109,8 +109,9 @@ constexpr double NEAR_DUPLICATE_RELATIVE = 1e-10;
 
 /// For an open-boundary refusal of the edge (a, b): "; vertex A has a near-duplicate, vertex C, D
 /// away ...; 'shellcontract repair' merges them", when a point of the file other than a or b lies
-/// within NEAR_DUPLICATE_RELATIVE of the diagonal of a or b (the crack such copies leave is what
-/// the refusal met); else empty. Linear in the points: only on the refusal's path.
+/// within NEAR_DUPLICATE_RELATIVE of the diagonal of a or b, and not at the same position (the
+/// crack such copies leave is what the refusal met); else empty. Linear in the points: only on the
+/// refusal's path.
 inline std::string near_duplicate_hint(const Namer& name, std::size_t a, std::size_t b) {
   if (!name.points || name.points->empty()) return "";
   const std::vector<Point3>& p = *name.points;
@@ -130,7 +131,8 @@ inline std::string near_duplicate_hint(const Namer& name, std::size_t a, std::si
       if (j == na || j == nb) continue;
       const double d =
           std::hypot(std::hypot(p[j].x() - p[v].x(), p[j].y() - p[v].y()), p[j].z() - p[v].z());
-      if (!(d <= NEAR_DUPLICATE_RELATIVE * diagonal)) continue;
+      // An exact copy is a seam's, which the reader welds (seam_weld.hpp): not the crack.
+      if (!(d > 0.0 && d <= NEAR_DUPLICATE_RELATIVE * diagonal)) continue;
       ClassicOStringStream s;
       s << std::setprecision(3) << "; "
         << (name.stl ? "the point " + name.point(v == na ? a : b) : "vertex " + std::to_string(v))
