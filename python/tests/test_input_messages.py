@@ -231,3 +231,26 @@ def test_a_frame_count_that_is_not_an_integer_gets_the_range(cli, mesh_dir, tmp_
     r = sc(cli, "run", mesh_dir / "ico2.off", "-o", tmp_path / "o.off", "-n", 2, option, "2,5", *extra)
     assert r.returncode == 1
     assert option + ": '2,5' is not an integer in [1, " in r.stderr, r.stderr
+
+
+# ------------------------------------------------------------------ the Python API likewise
+
+def test_arrays_with_a_stray_vertex_name_it(bumpy):
+    import shellcontract
+    v, f = bumpy
+    v = v + np.array([500000.0, 5000000.0, 100.0])
+    v[7] = 0.0
+    with pytest.raises(ValueError, match=r"vertex 7 at \(0, 0, 0\) lies"):
+        shellcontract.check(v, f)
+
+
+def test_python_no_file_descriptor_for_the_input_is_an_oserror_of_its_errno(mesh_dir):
+    import sys
+    code = ("import errno, resource, shellcontract\n"
+            "resource.setrlimit(resource.RLIMIT_NOFILE, (3, 3))\n"
+            "try:\n"
+            "    shellcontract.read_mesh(%r)\n"
+            "except OSError as e:\n"
+            "    print(type(e).__name__, e.errno == errno.EMFILE)\n" % str(mesh_dir / "ico2.off"))
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert r.stdout.split() == ["FileError", "True"], r.stdout + r.stderr
