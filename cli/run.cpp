@@ -77,6 +77,7 @@ int command_run(int argc, char** argv) {
   RunOptions options;
   std::string checkpoint_path, resume_path;
   int checkpoint_every = 0;
+  std::string checkpoint_every_text, export_every_text;  // frame_count reads them
   bool saves_to_resumed = false;  // run --resume FILE without --checkpoint: saves to FILE
   Checkpoint resume;
   std::vector<RunInput> inputs;
@@ -96,7 +97,7 @@ int command_run(int argc, char** argv) {
       "pressure load and elastic energy density, coloured by --fields-colour")(
       "fields-colour", po::value(&fields_colour)->default_value(fields_colour)->value_name("NAME"),
       "mean | gaussian | pressure | energy: blue-white-red over the 2nd-98th percentile")(
-      "export-every", po::value(&exports.every)->value_name("N"),
+      "export-every", po::value(&export_every_text)->value_name("N"),
       "with --export-dir or --gltf: keep every N-th frame (and the first and last); default: "
       "about 100 frames of the run (N = --frames / 100, rounded up)")(
       "export-dir", po::value(&exports.dir)->value_name("DIR"),
@@ -113,8 +114,7 @@ int command_run(int argc, char** argv) {
       "primitive per material; open it with scripts/view.py")(
       "gltf-fps", po::value(&gltf_fps)->value_name("F"),
       "with --gltf: the animation's frame rate, run frame k keyed at k / F seconds (default 24, "
-      "at most 1000)")(
-      "log", po::value(&log_path)->value_name("FILE.csv"), "per-frame CSV log")(
+      "at most 1000)")("log", po::value(&log_path)->value_name("FILE.csv"), "per-frame CSV log")(
       "summary", po::value(&summary_path)->value_name("FILE.json"), "JSON summary of the run")(
       "quiet,q", po::bool_switch(&quiet), "no progress on stderr")(
       "checkpoint", po::value(&checkpoint_path)->value_name("FILE"),
@@ -122,7 +122,7 @@ int command_run(int argc, char** argv) {
       "SIGTERM, SIGHUP or SIGUSR1, which then stop the run (exit code 130, no other output); "
       "--resume continues it; a second run with FILE is refused while this one runs (default "
       "with --resume FILE: FILE)")(
-      "checkpoint-every", po::value(&checkpoint_every)->value_name("N"),
+      "checkpoint-every", po::value(&checkpoint_every_text)->value_name("N"),
       "with --checkpoint or --resume: frames between saves (default: the resumed run's; else only "
       "on a signal)")(
       "resume", po::value(&resume_path)->value_name("FILE"),
@@ -166,8 +166,10 @@ int command_run(int argc, char** argv) {
     // run's must be the checkpoint's (InputError: exit 2).
     if (!checkpoint_path.empty() || !resume_path.empty()) inputs = run_inputs(options);
     if (!resume_path.empty()) check_checkpoint_files(resume, inputs);
-    if (vm.count("checkpoint-every") &&
-        (checkpoint_every < 1 || (checkpoint_path.empty() && resume_path.empty())))
+    if (vm.count("checkpoint-every"))
+      checkpoint_every = frame_count("--checkpoint-every", checkpoint_every_text);
+    if (vm.count("export-every")) exports.every = frame_count("--export-every", export_every_text);
+    if (vm.count("checkpoint-every") && (checkpoint_path.empty() && resume_path.empty()))
       throw UsageError(
           "--checkpoint-every: expected an integer >= 1, with --checkpoint or --resume");
     if (!resume_path.empty() && (!fields_prefix.empty() || !exports.dir.empty() ||
@@ -216,9 +218,6 @@ int command_run(int argc, char** argv) {
         throw UsageError("--gltf " + exports.gltf + ": expected a .glb file");
       planned.push_back({"--gltf", exports.gltf});
     }
-    if (vm.count("export-every") && exports.every < 1)
-      throw UsageError("--export-every: expected an integer >= 1, got " +
-                       std::to_string(exports.every));
     if (vm.count("export-every") && exports.dir.empty() && exports.gltf.empty())
       throw UsageError("--export-every has no effect without --export-dir or --gltf");
     if (vm.count("gltf-fps")) {

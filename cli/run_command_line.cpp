@@ -4,8 +4,11 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 
+#include "core/decimal_text.hpp"
 #include "help_groups.hpp"
+#include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
 
 namespace shellcontract::cli {
@@ -73,6 +76,15 @@ void add_table_options(po::options_description& desc, std::map<std::string, std:
   }
   for (const po::options_description& section : sections)
     if (!section.options().empty()) desc.add(section);
+}
+
+int frame_count(const std::string& option, const std::string& text) {
+  constexpr long most = std::numeric_limits<int>::max();
+  long n = 0;
+  if (!parse_decimal_integer(text, n) || n < 1 || n > most)
+    throw UsageError(option + ": '" + text + "' is not an integer in [1, " + std::to_string(most) +
+                     "]");
+  return static_cast<int>(n);
 }
 
 }  // namespace shellcontract::cli

@@ -20,4 +20,9 @@ void add_table_options(boost::program_options::options_description& desc,
                        std::map<std::string, bool>& switches,
                        std::map<std::string, std::vector<std::string>>& lists);
 
+/// The value of a frame-count option (--checkpoint-every, --export-every), read as text so that
+/// '2,5' is refused with the range, as every other numeric option is, and not with the parser's
+/// "the argument ... is invalid": UsageError "OPTION: 'TEXT' is not an integer in [1, INT_MAX]".
+int frame_count(const std::string& option, const std::string& text);
+
 }  // namespace shellcontract::cli

@@ -277,6 +277,7 @@ PYBIND11_MODULE(_core, m) {
       set_file_error(e, spell_options(e.what(), OptionSpelling::Python));
     } catch (const OutputFileError& e) {
       set_file_error(e, spell_options(e.what(), OptionSpelling::Python));
+
     } catch (const InputError& e) {
       // An input's option by Python's name too (a changed face-list file of `regions`).
       PyErr_SetObject(PyExc_ValueError,
@@ -287,6 +288,12 @@ PYBIND11_MODULE(_core, m) {
                       message_text(spell_options(e.what(), OptionSpelling::Python)).ptr());
     } catch (const SimulationError& e) {
       PyErr_SetObject(PyExc_RuntimeError, message_text(e.what()).ptr());
+    } catch (const std::runtime_error& e) {
+      // An input the system had no resource to open (the limit of open files): the OSError of
+      // its errno, as any file the system would not open; any other error to pybind11's own.
+      const auto* file = dynamic_cast<const FileSystemFailure*>(&e);
+      if (!file) throw;
+      set_file_error(*file, e.what());
     }
   });
   // At the interpreter's exit, before it finalizes: cancel and wait for runs in other threads.

@@ -19,6 +19,7 @@
 #include <mutex>
 #include <vector>
 
+#include "core/resource_file_error.hpp"
 #include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
@@ -367,6 +368,11 @@ int open_regular(const std::string& path, struct stat& st) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) {
     const int e = errno;
+    if (e == EMFILE || e == ENFILE || e == ENOMEM)
+      throw ResourceFileError(
+          printable(path) + ": cannot open file: " + file_error_text(e) +
+              (e == ENOMEM ? std::string() : " (the limit of open files: see 'ulimit -n')"),
+          e, path);
     fail_os(path, e, "cannot open file", file_error_text(e));
   }
   if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {

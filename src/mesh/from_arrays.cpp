@@ -136,8 +136,16 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
                                                              : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
   Mesh mesh = soup::soup_mesh(points, polygons, "mesh_from_arrays");
   std::vector<std::string> warnings;
-  const soup::Orientation oriented = soup::orient_components(mesh, points, polygons, normalized.unit, normalized.scale,
-                                                             reorient, "mesh_from_arrays", warnings);
+  // A welded vertex is named by its first copy, as the connectivity refusals name it.
+  std::vector<std::size_t> first_copy;
+  if (weld) {
+    first_copy.resize(weld->points.size());
+    for (std::size_t i = weld->welded_of.size(); i-- > 0;) first_copy[weld->welded_of[i]] = i;
+  }
+  const std::vector<std::size_t>* number = weld ? &first_copy : nullptr;
+  const soup::Orientation oriented =
+      soup::orient_components(mesh, points, polygons, normalized.unit, normalized.scale, reorient,
+                              "mesh_from_arrays", warnings, number);
   if (weld) soup::store_input_corners(mesh, *weld, input_polygons);
   std::vector<std::size_t> zero_area = soup::zero_area_faces(polygons, normalized.unit);
   if (!zero_area.empty())
@@ -155,8 +163,12 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   if (reorient && !(unit_volume > 0.0)) {
     ClassicOStringStream v;
     v << unit_volume;
-    fail(name, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
-                                         " at a unit bounding-box diagonal): it is flat or degenerate");
+    std::vector<std::size_t> all(points.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    fail(name, "no positive volume",
+         "the mesh encloses no positive volume (" + v.str() +
+             " at a unit bounding-box diagonal): it is flat or degenerate" +
+             soup::stray_vertices_note(points, std::move(all), number));
   }
   // After the whole's volume, which names a single flat shell as before.
   if (!oriented.flat.empty())

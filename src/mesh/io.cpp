@@ -209,8 +209,15 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
                                                              : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
   Mesh mesh = soup::soup_mesh(points, tris, "read_input_mesh");
   std::vector<std::string> warnings;
-  const soup::Orientation oriented =
-      soup::orient_components(mesh, points, tris, unit, normalized.scale, true, "read_input_mesh", warnings);
+  // A welded vertex is named by its first copy, as the connectivity refusals name it.
+  std::vector<std::size_t> first_copy;
+  if (weld) {
+    first_copy.resize(weld->points.size());
+    for (std::size_t i = weld->welded_of.size(); i-- > 0;) first_copy[weld->welded_of[i]] = i;
+  }
+  const std::vector<std::size_t>* number = weld ? &first_copy : nullptr;
+  const soup::Orientation oriented = soup::orient_components(
+      mesh, points, tris, unit, normalized.scale, true, "read_input_mesh", warnings, number);
   if (weld) soup::store_input_corners(mesh, *weld, input_tris);
   if (split > 0)
     warnings.push_back(split_warning(split, split + extra.size(), by_rule, polygons.size()));
@@ -230,8 +237,12 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   if (!(unit_volume > 0.0)) {
     ClassicOStringStream v;
     v << unit_volume;
-    fail(path, "no positive volume", "the mesh encloses no positive volume (" + v.str() +
-                                         " at a unit bounding-box diagonal): it is flat or degenerate");
+    std::vector<std::size_t> all(points.size());
+    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+    fail(path, "no positive volume",
+         "the mesh encloses no positive volume (" + v.str() +
+             " at a unit bounding-box diagonal): it is flat or degenerate" +
+             soup::stray_vertices_note(points, std::move(all), number));
   }
   // After the whole's volume, which names a single flat shell as before.
   if (!oriented.flat.empty())

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iterator>
 #include <map>
@@ -30,6 +31,8 @@
 #include "core/plural.hpp"
 #include "core/progress_stage.hpp"
 #include "mesh/read_polygon_soup.hpp"
+#include "mesh/soup_checks.hpp"
+#include "mesh/soup_geometry.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -58,6 +61,36 @@ std::string lower_extension(const std::string& path) {
 /// Faces the report names when it says that faces naming a missing vertex were dropped.
 constexpr std::size_t MISSING_VERTEX_FACES_NAMED = 3;
 
+/// Moves each point within soup::NEAR_DUPLICATE_RELATIVE (of a unit diagonal: the points are
+/// normalized) of an earlier kept point onto that point, so that CGAL's exact merge below merges
+/// it: float noise between two copies of one vertex (1e-12 apart) otherwise leaves a crack that
+/// hole filling closes with zero-area faces. Earlier points keep their coordinates, so every kept
+/// vertex is still an input vertex. Cells of the tolerance's size: a neighbour is in one of 27.
+void snap_near_duplicates(std::vector<Point3>& points) {
+  constexpr double tol = soup::NEAR_DUPLICATE_RELATIVE;
+  std::map<std::array<std::int64_t, 3>, std::vector<std::size_t>> cells;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    std::array<std::int64_t, 3> c;
+    for (int k = 0; k < 3; ++k) c[k] = static_cast<std::int64_t>(std::floor(points[i][k] / tol));
+    std::size_t found = points.size();
+    for (int dx = -1; dx <= 1 && found == points.size(); ++dx)
+      for (int dy = -1; dy <= 1 && found == points.size(); ++dy)
+        for (int dz = -1; dz <= 1 && found == points.size(); ++dz) {
+          const auto cell = cells.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (cell == cells.end()) continue;
+          for (const std::size_t j : cell->second)
+            if (CGAL::squared_distance(points[i], points[j]) <= tol * tol) {
+              found = j;
+              break;
+            }
+        }
+    if (found < points.size())
+      points[i] = points[found];
+    else
+      cells[c].push_back(i);
+  }
+}
+
 /// Polygon soup steps: faces naming a missing vertex, duplicate points and polygons, degenerate
 /// polygons (repair_polygon_soup), then a consistent orientation (orient_polygon_soup).
 void repair_soup(std::vector<Point3>& points, std::vector<Polygon>& polygons,
@@ -79,6 +112,7 @@ void repair_soup(std::vector<Point3>& points, std::vector<Polygon>& polygons,
   }
   polygons = std::move(kept);
   const std::size_t n_polygons = polygons.size();
+  snap_near_duplicates(points);
   r.duplicate_points_merged = PMP::merge_duplicate_points_in_polygon_soup(points, polygons);
   PMP::repair_polygon_soup(points, polygons);
   r.soup_polygons_removed = n_polygons > polygons.size() ? n_polygons - polygons.size() : 0;
@@ -249,6 +283,11 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
     cannot_repair(path, r.failure);
   }
   r.input_vertices = points.size();
+  // A few stray vertices far from the rest (an exporter's vertex at the origin) make a full shape
+  // flat, and repair cannot help; said with the refusal below, in the file's numbering.
+  std::vector<std::size_t> all_points(points.size());
+  for (std::size_t i = 0; i < all_points.size(); ++i) all_points[i] = i;
+  const std::string strays = soup::stray_vertices_note(points, std::move(all_points));
   r.input_polygons = polygons.size();
   if (polygons.empty()) {
     r.failure = "the file has no faces (" + std::to_string(points.size()) +
@@ -311,7 +350,8 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
   }
   if (mesh.number_of_faces() == 0) {
     r.failure = "no component encloses a volume after repair (" +
-                counted(r.components_dropped, "component", "components") + " dropped: still open, or flat)";
+                counted(r.components_dropped, "component", "components") +
+                " dropped: still open, or flat)" + strays;
     cannot_repair(path, r.failure);
   }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <iomanip>
@@ -100,6 +101,52 @@ struct Namer {
     return "edge (" + std::to_string(number(a)) + ", " + std::to_string(number(b)) + ")";
   }
 };
+
+/// Points closer than this fraction of the bounding-box diagonal are near-duplicates: one vertex
+/// written twice with float noise (CAD and STL exporters), far below any edge a simulation could
+/// resolve. The open-boundary refusal names them and `repair` merges them (docs/design/repair.md).
+constexpr double NEAR_DUPLICATE_RELATIVE = 1e-10;
+
+/// For an open-boundary refusal of the edge (a, b): "; vertex A has a near-duplicate, vertex C, D
+/// away ...; 'shellcontract repair' merges them", when a point of the file other than a or b lies
+/// within NEAR_DUPLICATE_RELATIVE of the diagonal of a or b, and not at the same position (the
+/// crack such copies leave is what the refusal met); else empty. Linear in the points: only on the
+/// refusal's path.
+inline std::string near_duplicate_hint(const Namer& name, std::size_t a, std::size_t b) {
+  if (!name.points || name.points->empty()) return "";
+  const std::vector<Point3>& p = *name.points;
+  double lo[3], hi[3];
+  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = p[0][k];
+  for (const Point3& q : p)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], q[k]);
+      hi[k] = std::max(hi[k], q[k]);
+    }
+  const double diagonal = std::hypot(std::hypot(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+  if (!(diagonal > 0.0) || !std::isfinite(diagonal)) return "";
+  const std::size_t na = name.number(a), nb = name.number(b);
+  for (const std::size_t v : {na, nb}) {
+    if (v >= p.size()) continue;
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      if (j == na || j == nb) continue;
+      const double d =
+          std::hypot(std::hypot(p[j].x() - p[v].x(), p[j].y() - p[v].y()), p[j].z() - p[v].z());
+      // An exact copy is a seam's, which the reader welds (seam_weld.hpp): not the crack.
+      if (!(d > 0.0 && d <= NEAR_DUPLICATE_RELATIVE * diagonal)) continue;
+      ClassicOStringStream s;
+      s << std::setprecision(3) << "; "
+        << (name.stl ? "the point " + name.point(v == na ? a : b) : "vertex " + std::to_string(v))
+        << " has a near-duplicate"
+        << (name.stl ? std::string() : ", vertex " + std::to_string(j) + ",") << " " << d
+        << " away (" << d / diagonal
+        << " of the bounding-box diagonal): the crack between such copies is the opening; "
+           "'shellcontract repair' merges points closer than "
+        << NEAR_DUPLICATE_RELATIVE << " of the diagonal";
+      return s.str();
+    }
+  }
+  return "";
+}
 
 /// Duplicate faces (same three vertices in any order) would make a zero-volume double sheet.
 void check_no_duplicate_face(const std::string& path, const std::vector<Polygon>& tris, const Namer& name);
@@ -198,7 +245,7 @@ void check_edges(const std::string& path, const Tris& tris, std::size_t nv, cons
                        (name.stl ? name.vertex(a) + " and " + name.vertex(b)
                                  : "vertex " + std::to_string(name.number(a)) + " and vertex " +
                                        std::to_string(name.number(b))) +
-                       "); the mesh must be closed" + all,
+                       "); the mesh must be closed" + all + near_duplicate_hint(name, a, b),
                    std::move(open));
       }
       if (count > 2) {

@@ -5,11 +5,12 @@
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/property_map.h>
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
-
-#include <Eigen/Geometry>
 
 #include "core/classic_locale.hpp"
 #include "mesh/normalization.hpp"
@@ -58,9 +59,11 @@ Mesh soup_mesh(const std::vector<Point3>& points, const std::vector<Polygon>& tr
   return mesh;
 }
 
-Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std::vector<Polygon>& tris,
-                              const std::vector<Point3>& unit, double scale, bool reorient,
-                              const std::string& who, std::vector<std::string>& warnings) {
+Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points,
+                              std::vector<Polygon>& tris, const std::vector<Point3>& unit,
+                              double scale, bool reorient, const std::string& who,
+                              std::vector<std::string>& warnings,
+                              const std::vector<std::size_t>* number) {
   const std::size_t nf = tris.size();
   std::vector<std::size_t> component_face(nf);
   Orientation out;
@@ -97,7 +100,15 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std
       << out.flat_faces[0] << ") encloses no volume ("
       << six_volume[c] / 6.0 * scale * scale * scale
       << "): it is flat or collapsed, and the pressure would push its sides through each other";
-    out.flat = w.str();
+    std::vector<char> in_component(points.size(), 0);
+    std::vector<std::size_t> ids;
+    for (const std::size_t f : out.flat_faces)
+      for (int k = 0; k < 3; ++k)
+        if (!in_component[tris[f][k]]) {
+          in_component[tris[f][k]] = 1;
+          ids.push_back(tris[f][k]);
+        }
+    out.flat = w.str() + stray_vertices_note(points, std::move(ids), number);
   }
   for (std::size_t c = 0; c < out.components; ++c) {
     if (six_volume[c] >= 0.0 || flat[c]) continue;
@@ -118,6 +129,57 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std
   // Rebuilt from the flipped soup (rare: only inside-out input pays for a second build).
   if (out.reoriented) mesh = soup_mesh(points, tris, who);
   return out;
+}
+
+namespace {
+
+Eigen::AlignedBox3d box_of(const std::vector<Point3>& points, const std::vector<std::size_t>& ids,
+                           std::size_t n) {
+  Eigen::AlignedBox3d box;
+  for (std::size_t i = 0; i < n; ++i) box.extend(to_vec(points[ids[i]]));
+  return box;
+}
+
+}  // namespace
+
+std::string stray_vertices_note(const std::vector<Point3>& points, std::vector<std::size_t> ids,
+                                const std::vector<std::size_t>* number) {
+  // The others are the vertices nearest the per-axis median (which strays do not move), so that
+  // two strays at one place are found together, where taking one out at a time would not shrink
+  // the box.
+  if (ids.size() < STRAY_VERTICES_MAX + 4) return "";
+  Vec3 median;
+  for (int a = 0; a < 3; ++a) {
+    std::vector<double> c(ids.size());
+    for (std::size_t i = 0; i < ids.size(); ++i) c[i] = to_vec(points[ids[i]])[a];
+    std::nth_element(c.begin(), c.begin() + static_cast<std::ptrdiff_t>(c.size() / 2), c.end());
+    median[a] = c[c.size() / 2];
+  }
+  std::stable_sort(ids.begin(), ids.end(), [&](std::size_t a, std::size_t b) {
+    return (to_vec(points[a]) - median).squaredNorm() < (to_vec(points[b]) - median).squaredNorm();
+  });
+  const double whole = box_of(points, ids, ids.size()).diagonal().norm();
+  if (!(whole > 0.0) || !std::isfinite(whole)) return "";
+  for (std::size_t k = 1; k <= STRAY_VERTICES_MAX; ++k) {
+    const Eigen::AlignedBox3d rest = box_of(points, ids, ids.size() - k);
+    const double extent = rest.diagonal().norm();
+    if (!(extent < STRAY_VERTICES_EXTENT * whole)) continue;
+    ClassicOStringStream s;
+    s << std::setprecision(9) << "; " << (k == 1 ? "vertex " : "vertices ");
+    for (std::size_t i = ids.size() - k; i < ids.size(); ++i) {
+      const Vec3 p = to_vec(points[ids[i]]);
+      s << (i + k == ids.size() ? "" : ", ") << (number ? (*number)[ids[i]] : ids[i]) << " at ("
+        << p.x() << ", " << p.y() << ", " << p.z() << ")";
+    }
+    const Vec3 far = to_vec(points[ids.back()]);
+    s << std::setprecision(3) << (k == 1 ? " lies " : " lie up to ") << rest.exteriorDistance(far)
+      << " from the other vertices, whose bounding box has a diagonal of " << extent
+      << ": the test is relative to the whole diagonal, which "
+      << (k == 1 ? "this vertex holds" : "these hold") << "; remove " << (k == 1 ? "it" : "them")
+      << " (a stray point) from the input";
+    return s.str();
+  }
+  return "";
 }
 
 std::vector<std::size_t> zero_area_faces(const std::vector<Polygon>& tris, const std::vector<Point3>& unit) {

@@ -63,10 +63,27 @@ struct Orientation {
 /// returned in `flat`, for the reader to refuse after its own checks. Each component
 /// is taken as its own shell: a nested inner wall of a hollow solid is flipped outward too
 /// (PMP::orient_to_bound_a_volume would orient it inward).
+/// A flat component's text ends with stray_vertices_note on its vertices.
 /// @param mesh  soup_mesh(points, tris)
-Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points, std::vector<Polygon>& tris,
-                              const std::vector<Point3>& unit, double scale, bool reorient,
-                              const std::string& who, std::vector<std::string>& warnings);
+/// @param number  as stray_vertices_note's
+Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points,
+                              std::vector<Polygon>& tris, const std::vector<Point3>& unit,
+                              double scale, bool reorient, const std::string& who,
+                              std::vector<std::string>& warnings,
+                              const std::vector<std::size_t>* number = nullptr);
+
+/// Vertices (at most STRAY_VERTICES_MAX of `ids`) lying so far from the others that those others'
+/// bounding box has under STRAY_VERTICES_EXTENT of the whole's diagonal: a scan outlier, or an
+/// exporter's vertex left at the origin of a georeferenced mesh. The no-volume tests are relative
+/// to the diagonal, which such vertices hold, so a full sphere is refused as flat; the refusal
+/// names them with this text ("; vertex 5 at (0, 0, 0) lies 5.0e+06 from the other vertices, whose
+/// bounding box has a diagonal of 1.9: ..."), else it is empty.
+constexpr std::size_t STRAY_VERTICES_MAX = 3;
+constexpr double STRAY_VERTICES_EXTENT = 0.5;
+/// @param number  per vertex of `points`, its number in the input (a welded soup's first copy);
+/// none: the same
+std::string stray_vertices_note(const std::vector<Point3>& points, std::vector<std::size_t> ids,
+                                const std::vector<std::size_t>* number = nullptr);
 
 /// Faces with (nearly) zero area on `unit`, ascending: 2A below ZERO_AREA_RELATIVE times the
 /// squared mean edge length. Reported, not refused (the rest state gives them no membrane

@@ -35,15 +35,27 @@ double edge_based_choice(double mean_edge, double cap) {
   return share > 0.0 ? std::min(cap, share) : cap;
 }
 
-std::string held_pairs_warning(const std::string& what, const RestGapSurvey& s, double delta) {
+/// At least this share of the vertices held at rest: nothing, or next to nothing, can move, and
+/// the result would be the input with status ok; the warning says so first.
+constexpr double MOSTLY_HELD_SHARE = 0.9;
+
+std::string held_pairs_warning(const std::string& what, const RestGapSurvey& s, double delta,
+                               std::size_t vertices) {
   const std::size_t pairs = s.near_pairs();
-  return "`delta` " + what + ": " + counted(pairs, "pair", "pairs") + " of primitives (" +
+  const bool mostly =
+      static_cast<double>(s.near_vertices) >= MOSTLY_HELD_SHARE * static_cast<double>(vertices);
+  return (mostly ? "nothing can move (" + std::to_string(s.near_vertices) + " of the mesh's " +
+                       counted(vertices, "vertex", "vertices") +
+                       " are held: a flat or very thin shell), so the result would be the input: "
+                 : std::string()) +
+         "`delta` " + what + ": " + counted(pairs, "pair", "pairs") + " of primitives (" +
          std::to_string(s.near_vertex_face) + " vertex-face, " + std::to_string(s.near_edge_edge) +
          " edge-edge) " + one_or_many(pairs, "is", "are") + " closer than the contact distance " +
          shortest_text(delta) + " at rest (smallest gap " + shortest_text(s.smallest) +
          ", normalized units) without touching: the collision step holds their " +
          counted(s.near_vertices, "vertex", "vertices") +
-         " at their rest positions for the whole run (not merely kept from crossing)";
+         " at their rest positions while it finds such a pair in contact, step by step (not merely "
+         "kept from crossing; motion around them may open a pair and free its vertices later)";
 }
 
 /// The pairs that a contact pushes apart beyond their rest gap: closer than the response's target
@@ -104,7 +116,8 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
   if (!options.auto_delta) {
     const RestGapSurvey survey = survey_rest_gaps(topo, rest, out.delta, method);
     if (survey.near_pairs() > 0)
-      out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta) +
+      out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta,
+                                                mesh.number_of_vertices()) +
                              "; `delta` auto or a delta below the smallest gap lets them move");
     warn_pushed_apart(
         shortest_text(out.delta),
@@ -122,7 +135,9 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
   survey = survey_rest_gaps(topo, rest, out.delta, method);
   const std::string lowest = "auto goes no lower: a smaller gap is a near-degenerate input";
   if (survey.near_pairs() > 0)
-    out.warnings.push_back(held_pairs_warning("auto", survey, out.delta) + " (" + lowest + ")");
+    out.warnings.push_back(
+        held_pairs_warning("auto", survey, out.delta, mesh.number_of_vertices()) + " (" + lowest +
+        ")");
   warn_pushed_apart("auto", lowest);
   return out;
 }
