@@ -101,21 +101,63 @@ RegionMethod parse_method(const std::string& text) {
   throw UsageError("--method '" + text + "': expected caps, tips or parts");
 }
 
+/// A coordinate with its sign, to `decimals` decimals without trailing zeros ("+0", "-0.26287",
+/// "+512345.07123"); in %g with `digits` significant digits where fixed-point would be long (a
+/// mesh at 1e20 or 1e-20).
+std::string coordinate(double v, int decimals, int digits) {
+  std::string s;
+  if (decimals >= 0 && decimals <= 20 && std::abs(v) < 1e15) {
+    s = fixed_text(v, decimals);
+    if (s.find('.') != std::string::npos) {
+      s.erase(s.find_last_not_of('0') + 1);
+      if (s.back() == '.') s.pop_back();
+    }
+    if (s == "-0") s = "0";
+  } else {
+    s = general_text(v, digits);
+  }
+  return s[0] == '-' ? s : "+" + s;
+}
+
+/// "+x, +y, +z" to a hundred-thousandth of the mesh's bounding-box diagonal: an `at` point fed
+/// back as --region-at lands where it was. Four significant digits, as before, placed a 1.9-unit
+/// statue's point at northing 5412345 to a thousand units, hundreds of diagonals off.
+std::string point_coordinates(const Vec3& p, double diagonal, double largest) {
+  int decimals = 17, digits = 17;
+  if (diagonal > 0.0 && std::isfinite(diagonal) && std::isfinite(largest)) {
+    decimals = std::max(0, static_cast<int>(std::ceil(-std::log10(diagonal))) + 5);
+    digits = std::clamp(
+        static_cast<int>(std::ceil(std::log10(std::max(largest, diagonal) / diagonal))) + 6, 6, 17);
+  }
+  return coordinate(p.x(), decimals, digits) + ", " + coordinate(p.y(), decimals, digits) + ", " +
+         coordinate(p.z(), decimals, digits);
+}
+
 /// The regions as an aligned table: one row per region (id order); under a --region-at region's
 /// row, a line starting with "at" (no id: parsers that take rows by their id skip it) with the
-/// surface point it grew from and that point's distance from the point given.
-std::string region_table(const RegionReport& report) {
+/// surface point it grew from and that point's distance from the point given. Points are
+/// written to the precision of the mesh `x` (point_coordinates).
+std::string region_table(const RegionReport& report, const Positions& x) {
+  double diagonal = 0.0, largest = 0.0;
+  if (x.rows() > 0) {
+    diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+    largest = x.cwiseAbs().maxCoeff();
+  }
+  // The centres first: the column is as wide as the widest (a mesh far from the origin needs
+  // more than the 36 characters of one near it).
+  std::vector<std::string> centres;
+  std::size_t width = 36;
+  for (const RegionSummary& s : report.regions) {
+    // A region without a sphere (a --region-at one-ring) has no centre, radius, fit or angle.
+    centres.push_back(s.fitted ? point_coordinates(s.centre, diagonal, largest) : "-");
+    width = std::max(width, centres.back().size() + 1);
+  }
   ClassicOStringStream t;
   t << std::fixed;
-  t << "  id  centre (x, y, z)                      radius      area %   faces  compact.  residual  angle\n";
+  t << "  id  " << std::left << std::setw(static_cast<int>(width)) << "centre (x, y, z)"
+    << std::right << "  radius      area %   faces  compact.  residual  angle\n";
   for (std::size_t r = 0; r < report.regions.size(); ++r) {
     const RegionSummary& s = report.regions[r];
-    // A region without a sphere (a --region-at one-ring) has no centre, radius, fit or angle.
-    ClassicOStringStream centre;
-    if (s.fitted)
-      centre << std::setprecision(4) << std::showpos << s.centre.x() << ", " << s.centre.y() << ", " << s.centre.z();
-    else
-      centre << '-';
     // Fixed-point for the usual sizes; a mesh at 1e150 or 1e-150 gets exponents, not 150 digits.
     ClassicOStringStream radius, residual, angle;
     if (!s.fitted)
@@ -132,17 +174,16 @@ std::string region_table(const RegionReport& report) {
       angle << std::fixed << std::setprecision(0) << s.cap_angle_deg;
     else
       angle << '-';
-    t << std::setw(4) << r << "  " << std::left << std::setw(36) << centre.str() << std::right
-      << std::setw(10) << radius.str() << std::setprecision(2) << std::setw(10) << 100.0 * s.area_fraction
-      << std::setw(8) << s.faces << std::setw(10) << s.compactness << std::setw(10) << residual.str()
-      << std::setw(6) << angle.str() << '\n';
+    t << std::setw(4) << r << "  " << std::left << std::setw(static_cast<int>(width)) << centres[r]
+      << std::right << std::setw(10) << radius.str() << std::setprecision(2) << std::setw(10)
+      << 100.0 * s.area_fraction << std::setw(8) << s.faces << std::setw(10) << s.compactness
+      << std::setw(10) << residual.str() << std::setw(6) << angle.str() << '\n';
     if (r < report.points.size()) {  // as the centre is written
       const RegionPoint& p = report.points[r];
-      ClassicOStringStream at;
-      at << std::setprecision(4) << std::showpos << p.surface_point.x() << ", "
-         << p.surface_point.y() << ", " << p.surface_point.z() << std::noshowpos << " ("
-         << p.distance;
-      t << "      at " << at.str() << " from the point given)\n";
+      ClassicOStringStream distance;
+      distance << std::defaultfloat << std::setprecision(4) << p.distance;
+      t << "      at " << point_coordinates(p.surface_point, diagonal, largest) << " ("
+        << distance.str() << " from the point given)\n";
     }
   }
   return t.str();
@@ -277,7 +318,7 @@ int command_regions(int argc, char** argv) {
         << "dropped: " << report.dropped_flat << " flat, " << report.dropped_small << " small, "
         << report.dropped_large << " large, " << report.dropped_shape << " not compact\n"
         << "regions: " << report.regions.size() << '\n';
-    out << region_table(report);
+    out << region_table(report, x);
     if (!output.empty()) out << "wrote: " << output << '\n';
     if (!face_list.empty()) out << "wrote: " << face_list << '\n';
     std::cout << out.str();

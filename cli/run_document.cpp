@@ -1,9 +1,11 @@
 // run_input_document: the input kept whole for `run`'s outputs (run_document.hpp).
 #include "run_document.hpp"
 
+#include <cmath>
 #include <cstddef>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -13,6 +15,8 @@
 #include "mesh/file_extras.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/export.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract::cli {
 namespace {
@@ -86,6 +90,23 @@ std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
 
 void prepare_gltf_animation(FrameExporter& exporter, const std::string& input,
                             const MeshDocument* document, const Mesh& mesh) {
+  // The positions a glTF holds as float32, relative to the mesh's centre (the node's
+  // translation: write_gltf_animation), checked before the run as the colours are: found after
+  // it, hours were spent on a file that cannot be written.
+  {
+    const Positions x = positions_from_mesh(mesh);
+    const Vec3 centre = gltf_centre(x);
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      for (int k = 0; k < 3; ++k)
+        if (!(std::abs(x(i, k) - centre(k)) <=
+              static_cast<double>(std::numeric_limits<float>::max())))
+          throw InputError(input + ": --gltf cannot hold this mesh: a glTF stores positions as " +
+                           "32-bit floats, relative to the mesh's centre, and vertex " +
+                           std::to_string(i) + "'s " + "xyz"[k] + " is " +
+                           shortest_text(x(i, k) - centre(k)) +
+                           " from it, beyond the largest 32-bit float (3.40282347e+38); scale "
+                           "the input down, or leave out --gltf");
+  }
   exporter.set_gltf_name(std::filesystem::path(input).stem().string());
   if (!document) return;
   const CornerTexcoords uv = document->texcoords(mesh);

@@ -115,9 +115,11 @@ struct GltfStats {
 /// Layout: one scene, one node, one mesh with triangle primitives (one per material, below)
 /// whose POSITION and NORMAL (float32, area-weighted vertex normals, unit length) are
 /// frames[0]; for every later frame k a morph target holding the float32 displacements
-/// POSITION(k) - POSITION(0) and NORMAL(k) - NORMAL(0); one animation whose `weights` channel (STEP
-/// interpolation) has one keyframe per frame with target k - 1 at weight 1 and the others at 0 (all
-/// 0 at frame 0). Each colour field's values are a float SCALAR custom attribute named after it
+/// POSITION(k) - POSITION(0) and NORMAL(k) - NORMAL(0), positions relative to the node's
+/// `translation`, gltf_centre(frames[0]) (JSON doubles; none when zero: a mesh far from the origin
+/// keeps its shape); one animation whose `weights` channel (STEP interpolation) has one keyframe
+/// per frame with target k - 1 at weight 1 and the others at 0 (all 0 at frame 0). Each colour
+/// field's values are a float SCALAR custom attribute named after it
 /// ("mean_curvature" -> _MEAN_CURVATURE; three.js: _mean_curvature), never a COLOR_n (glTF
 /// multiplies COLOR_0 with the base colour, which would tint a textured mesh). The mesh's `extras`
 /// hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields` (name, values_attribute,
@@ -158,8 +160,9 @@ struct GltfStats {
 /// sampler on TEXCOORD_0; materials whose images are the same bytes share one image and texture.
 /// @throws std::invalid_argument for inconsistent sizes (texture coordinates, colours and
 ///         face_material too), no frames, non-increasing frame numbers, a non-finite coordinate,
-///         a texture coordinate or colour that float32 cannot hold (not finite, or beyond its
-///         range), a material
+///         a position (relative to the centre), displacement, field value, texture coordinate or
+///         colour that float32 cannot hold (not finite, or beyond its range; positions all below
+///         the smallest normal float, a mesh stored as a point), a material
 ///         index out of range, or a material image without texture coordinates or mime type
 /// @throws UsageError if the file cannot be written, or would exceed the 4 GiB - 1 bytes a .glb
 ///         can hold (its lengths are 32-bit numbers): its true size is checked before its first
@@ -170,6 +173,10 @@ GltfStats write_gltf_animation(const std::string& path, const GltfAnimation& ani
 /// frames and the buffer are not both held whole (a large mesh's .glb is hundreds of MB); the
 /// frames are left empty.
 GltfStats write_gltf_animation(const std::string& path, GltfAnimation&& animation);
+
+/// The translation of write_gltf_animation's node for a mesh whose first frame is `rest`: its
+/// bounding box's centre, in double (zero for no rows).
+Vec3 gltf_centre(const Positions& rest);
 
 /// Area-weighted vertex normals (unit length; (0, 0, 1) for a vertex whose faces have no area).
 /// @throws std::invalid_argument for a face index outside [0, x.rows())

@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "export/gltf_buffer.hpp"
@@ -37,6 +39,49 @@ bool fits_float(const M& m) {
           m.cwiseAbs().maxCoeff() <= static_cast<double>(std::numeric_limits<float>::max()));
 }
 
+/// The shortest text that reads back as `v`.
+std::string shortest(double v) {
+  char buf[64];
+  const auto end = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, end.ptr);
+}
+
+constexpr const char* FLOAT_MAX_TEXT = "the largest 32-bit float (3.40282347e+38)";
+
+/// Refuses positions, relative to the node's translation `centre`, that float32 cannot hold:
+/// one beyond its range would be written as inf (a file no reader takes), and a mesh whose
+/// relative coordinates are all below the smallest normal float would be stored as a point.
+/// `frame`: the run frame named in the message.
+void require_float_positions(const Positions& x, const Vec3& centre, int frame) {
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (int k = 0; k < 3; ++k) {
+      const double r = x(i, k) - centre(k);
+      if (!(std::abs(r) <= static_cast<double>(std::numeric_limits<float>::max())))
+        throw std::invalid_argument(
+            "a glTF stores positions as 32-bit floats, relative to the mesh's centre: vertex " +
+            std::to_string(i) + "'s " + "xyz"[k] + " at frame " + std::to_string(frame) + " is " +
+            shortest(r) + " from it, beyond " + FLOAT_MAX_TEXT);
+      largest = std::max(largest, std::abs(r));
+    }
+  if (largest > 0.0 && largest < static_cast<double>(std::numeric_limits<float>::min()))
+    throw std::invalid_argument(
+        "a glTF stores positions as 32-bit floats, relative to the mesh's centre: the farthest "
+        "coordinate at frame " +
+        std::to_string(frame) + " is " + shortest(largest) +
+        " from it, below the smallest normal 32-bit float (1.17549435e-38): stored, the mesh "
+        "would be a point or keep a few bits; scale the input up");
+}
+
+/// Why a field's values (in the input's units: a curvature of a mesh scaled by s scales by 1/s
+/// or 1/s^2) do not fit float32: for a message that tells the user what to do.
+std::string field_beyond_float(const std::string& name, const std::string& where) {
+  return "a glTF stores fields as 32-bit floats: field '" + name + "' " + where + ", beyond " +
+         FLOAT_MAX_TEXT +
+         " (curvatures are in the input's units: a very small mesh has very "
+         "large ones); scale the input, or leave out --gltf";
+}
+
 void check_input(const GltfAnimation& a) {
   if (a.frames.empty()) throw std::invalid_argument("write_gltf_animation: no frames");
   if (a.frame_numbers.size() != a.frames.size())
@@ -56,6 +101,9 @@ void check_input(const GltfAnimation& a) {
     if (k > 0 && a.frame_numbers[k] <= a.frame_numbers[k - 1])
       throw std::invalid_argument("write_gltf_animation: frame numbers must increase");
   }
+  const Vec3 centre = gltf_centre(a.frames[0]);
+  for (std::size_t k = 0; k < a.frames.size(); ++k)
+    require_float_positions(a.frames[k], centre, a.frame_numbers[k]);
   if (a.faces.rows() == 0) throw std::invalid_argument("write_gltf_animation: no faces");
   if (a.faces.minCoeff() < 0 || a.faces.maxCoeff() >= nv)
     throw std::invalid_argument("write_gltf_animation: a face index is out of range");
@@ -67,6 +115,12 @@ void check_input(const GltfAnimation& a) {
     else if (!f.values.allFinite())
       throw std::invalid_argument("write_gltf_animation: colour field '" + f.name +
                                   "' has a non-finite value");
+    else if (!fits_float(f.values)) {
+      Eigen::Index i = 0;
+      const double v = f.values.cwiseAbs().maxCoeff(&i);
+      throw std::invalid_argument(
+          field_beyond_float(f.name, "reaches " + shortest(v) + " at vertex " + std::to_string(i)));
+    }
   if (a.face_uv.rows() > 0 || a.uv.rows() > 0) {
     if (a.face_uv.rows() != a.faces.rows())
       throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.face_uv.rows()) +
@@ -116,10 +170,22 @@ void check_input(const GltfAnimation& a) {
       throw std::invalid_argument("write_gltf_animation: frame field '" + name + "' has " +
                                   std::to_string(values.size()) + " frames, the animation " +
                                   std::to_string(a.frames.size()));
-    for (const Eigen::VectorXf& v : values)
-      if (v.size() != nv || !v.allFinite())
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      const Eigen::VectorXf& v = values[k];
+      if (v.size() != nv)
         throw std::invalid_argument("write_gltf_animation: frame field '" + name +
-                                    "' has a frame of the wrong size or a non-finite value");
+                                    "' has a frame of the wrong size");
+      // A float field's inf is a double value that float32 could not hold (a NaN is the
+      // caller's), as the CLI's curvature of a very small mesh.
+      for (Eigen::Index i = 0; i < v.size(); ++i)
+        if (std::isinf(v(i)))
+          throw std::invalid_argument(
+              field_beyond_float(name, "is beyond it at vertex " + std::to_string(i) +
+                                           " of frame " + std::to_string(a.frame_numbers[k])));
+      if (!v.allFinite())
+        throw std::invalid_argument("write_gltf_animation: frame field '" + name +
+                                    "' has a NaN at frame " + std::to_string(a.frame_numbers[k]));
+    }
   }
   if (!(a.seconds_per_frame > 0.0))
     throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
@@ -133,6 +199,12 @@ tinygltf::Value string_array(const std::vector<std::string>& s) {
 }
 
 }  // namespace
+
+Vec3 gltf_centre(const Positions& rest) {
+  if (rest.rows() == 0) return Vec3::Zero();
+  // Halves summed: the sum of two coordinates near the double range's end would overflow.
+  return (0.5 * rest.colwise().minCoeff() + 0.5 * rest.colwise().maxCoeff()).transpose();
+}
 
 Positions vertex_normals(const Positions& x, const Faces& faces) {
   // A library caller's faces are checked as write_gltf_animation checks them: an index out of
@@ -194,7 +266,12 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   for (const gltf::PrimitiveFaces& p : parts) indices.push_back(bb.add_indices(p.faces));
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  const Floats3 x0 = a.frames[0].cast<float>();
+  // Positions relative to the rest bounding box's centre, which is the node's translation (JSON
+  // doubles): float32 keeps about 7 digits of a coordinate, so a mesh far from the origin (a
+  // statue in UTM metres, northing 5e6: float spacing 0.5) stored absolute lost its shape;
+  // relative, it keeps float precision relative to its own size.
+  const Vec3 centre = gltf_centre(a.frames[0]);
+  const Floats3 x0 = (a.frames[0].rowwise() - centre.transpose()).cast<float>();
   const Positions x0_stored = x0.cast<double>();  // what a reader gets for frame 0
   // Normals on the simulation's mesh, so that a seam's copies share theirs (no visible seam);
   // a hard edge's copies each have their own faces' (gltf_vertices.hpp).
@@ -272,7 +349,13 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   // displacement rounds once (float) away from each frame.
   std::vector<std::string> target_names;
   for (std::size_t k = 1; k < a.frames.size(); ++k) {
-    const Floats3 dx = gather<Floats3>((a.frames[k] - x0_stored).cast<float>(), split.source);
+    const Positions d = (a.frames[k].rowwise() - centre.transpose()) - x0_stored;
+    if (!fits_float(d))  // relative positions fit (checked); their difference may not
+      throw std::invalid_argument(
+          "a glTF stores positions as 32-bit floats: frame " + std::to_string(a.frame_numbers[k]) +
+          "'s displacement from frame " + std::to_string(a.frame_numbers[0]) + " is beyond " +
+          FLOAT_MAX_TEXT);
+    const Floats3 dx = gather<Floats3>(d.cast<float>(), split.source);
     const Floats3 dn = (gltf::split_normals(split, a.frames[k], a.faces) - n0).cast<float>();
     if (consumed) Positions().swap((*consumed)[k]);
     std::map<std::string, int> target;
@@ -312,7 +395,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   mesh.extras = tinygltf::Value(extras);
   model.meshes.push_back(mesh);
 
-  gltf::add_single_node_scene(model, a.name);
+  gltf::add_single_node_scene(model, a.name, centre);
 
   if (!prim.targets.empty()) {
     // One keyframe per frame: frame 0 has every weight at 0, frame k has target k - 1 at 1.

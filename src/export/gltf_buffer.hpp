@@ -130,11 +130,15 @@ class BufferBuilder {
   tinygltf::Model& model_;
 };
 
-/// The model's one scene (its default) of one node, named `name`, that draws mesh 0.
-inline void add_single_node_scene(tinygltf::Model& model, const std::string& name) {
+/// The model's one scene (its default) of one node, named `name`, that draws mesh 0, moved by
+/// `translation` (none written when it is zero, glTF's default).
+inline void add_single_node_scene(tinygltf::Model& model, const std::string& name,
+                                  const Vec3& translation = Vec3::Zero()) {
   tinygltf::Node node;
   node.name = name;
   node.mesh = 0;
+  if (translation != Vec3::Zero())
+    node.translation = {translation.x(), translation.y(), translation.z()};
   model.nodes.push_back(node);
   tinygltf::Scene scene;
   scene.nodes.push_back(0);

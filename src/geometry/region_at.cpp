@@ -211,9 +211,9 @@ std::string far_point_warning(std::size_t i, const RegionPoint& p, double bound)
   return "the " + ordinal(i + 1) + " `region_at` point " + point_text(p.point) + " is " +
          general_text(p.distance, 4) + " from the surface, farther than " +
          general_text(100.0 * REGION_POINT_NEAR, 3) + " % of the bounding box's diagonal (" +
-         general_text(bound, 4) + "): its region grows from the surface point nearest to it, (" +
-         general_text(s.x(), 4) + ", " + general_text(s.y(), 4) + ", " + general_text(s.z(), 4) +
-         "), which may be on another part than meant. Give a point on the surface (an ear's tip, "
+         general_text(bound, 4) + "): its region grows from the surface point nearest to it, " +
+         point_text(s) +
+         ", which may be on another part than meant. Give a point on the surface (an ear's tip, "
          "not a sphere's centre from the regions table) in the input's coordinates: glTF, and OBJ "
          "by default, is Y-up, so a point (X, Y, Z) read in Blender's Z-up world after the import "
          "is (X, Z, -Y) in the file";

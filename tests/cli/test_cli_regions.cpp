@@ -189,7 +189,8 @@ TEST_F(CliRegions, ARegionAtPointFarFromTheSurfaceWarnsAndTheTableShowsTheSurfac
       {"regions", mesh("bumpy_sphere.off"), "--region-at=-0.2628655560595668,0.42532540417602,0"});
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_FALSE(has(r.output, "warning")) << r.output;
-  EXPECT_TRUE(has(r.output, "\n      at -0.2629, +0.4253, +0 (0 from the point given)\n"))
+  // To 1e-5 of the diagonal (about 1.9), trailing zeros dropped.
+  EXPECT_TRUE(has(r.output, "\n      at -0.26287, +0.42533, +0 (0 from the point given)\n"))
       << r.output;
   // run names it too, on stderr and in the summary's warnings.
   r = run_cli({"run", mesh("bumpy_sphere.off"), "--region-at=0,0,3", "-n", "1", "-q", "-o",
@@ -298,6 +299,78 @@ TEST_F(CliRegions, BenchCcdShowsNoMeanTimeAboveTheMaximum) {
     ASSERT_GE(number("mean_us"), 0.0) << text;
     EXPECT_GE(number("max_us"), number("mean_us")) << "--repeat " << repeat << ": " << text;
   }
+}
+
+/// The three numbers of "X, Y, Z" at `text`'s start, as written ("+512345.07123").
+std::vector<std::string> printed_point(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t at = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t end = text.find_first_of(", (", at);
+    out.push_back(text.substr(at, end - at));
+    at = text.find_first_not_of(", ", end);
+  }
+  return out;
+}
+
+// A mesh far from the origin (bumpy_sphere, diagonal 1.9, moved to (512345, 5412345, 250)): the
+// `at` point under a --region-at row, given back as --region-at, is on the surface and grows the
+// same region; the regions' centres differ in print as they do. Before, both were written to 4
+// significant digits ("+5.123e+05, +5.412e+06, +250.7"): given back, that point lay 347 units from
+// the mesh, and the regions' centres were all one.
+TEST_F(CliRegions, APrintedPointGivenBackGrowsTheSameRegionFarFromTheOrigin) {
+  {
+    std::ifstream in(mesh("bumpy_sphere.off"));
+    std::ofstream out(path("far.off"));
+    std::string line;
+    std::getline(in, line);
+    out << line << '\n';  // OFF
+    int nv = -1;
+    while (nv < 0 && std::getline(in, line))
+      if (!line.empty() && line[0] != '#') {
+        out << line << '\n';
+        nv = std::stoi(line);
+      }
+    out.precision(17);
+    for (int i = 0; i < nv; ++i) {
+      double x = 0, y = 0, z = 0;
+      in >> x >> y >> z;
+      out << x + 512345.0 << ' ' << y + 5412345.0 << ' ' << z + 250.0 << '\n';
+    }
+    out << in.rdbuf();  // the faces
+  }
+  auto r = run_cli({"regions", path("far.off"), "--region-at=512345.0,5412345.0,250.6",
+                    "--face-list", path("given.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::size_t at = r.output.find("\n      at ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::vector<std::string> p = printed_point(r.output.substr(at + 10));
+  const std::string back = p[0] + "," + p[1] + "," + p[2];
+  r = run_cli({"regions", path("far.off"), "--region-at=" + back, "--face-list", path("back.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_FALSE(has(r.output, "warning")) << back << '\n' << r.output;
+  at = r.output.find("\n      at ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  // On the surface to the precision printed: 1e-5 of the diagonal.
+  const std::size_t paren = r.output.find('(', at);
+  EXPECT_LT(std::stod(r.output.substr(paren + 1)), 1e-4) << r.output;
+  auto read = [](const std::string& f) {
+    std::ifstream in(f);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(read(path("back.txt")), read(path("given.txt"))) << back;
+
+  // The automatic regions (three bumps and more): no two centres print alike.
+  r = run_cli({"regions", path("far.off")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::vector<std::string> centres;
+  for (std::size_t row = r.output.find("\n   0  "); row != std::string::npos;
+       row = r.output.find("\n   " + std::to_string(centres.size()) + "  ", row + 1))
+    centres.push_back(r.output.substr(row + 7, r.output.find("  ", row + 8) - row - 7));
+  ASSERT_GE(centres.size(), 3u) << r.output;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+    for (std::size_t j = i + 1; j < centres.size(); ++j)
+      EXPECT_NE(centres[i], centres[j]) << r.output;
 }
 
 }  // namespace

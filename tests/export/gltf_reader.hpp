@@ -31,6 +31,25 @@ inline Floats read_floats(const tinygltf::Model& m, int index) {
   return out;
 }
 
+/// Node `node`'s translation (zero without one): write_gltf_animation stores positions relative
+/// to the rest mesh's bounding-box centre and moves its node there.
+inline Eigen::RowVector3d node_translation(const tinygltf::Model& m, std::size_t node = 0) {
+  const std::vector<double>& t = m.nodes.at(node).translation;
+  if (t.empty()) return Eigen::RowVector3d::Zero();
+  EXPECT_EQ(t.size(), 3u);
+  return Eigen::RowVector3d(t.at(0), t.at(1), t.at(2));
+}
+
+/// POSITION accessor `index` where node 0 places it (its translation added, in float as a
+/// renderer does): the input's coordinates to float precision.
+inline Floats read_positions(const tinygltf::Model& m, int index) {
+  Floats x = read_floats(m, index);
+  const Eigen::RowVector3f t = node_translation(m).cast<float>();
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (int k = 0; k < 3 && k < x.cols(); ++k) x(i, k) += t(k);
+  return x;
+}
+
 /// The indices of accessor `index` (unsigned 32-bit, the writer's type).
 inline std::vector<std::uint32_t> read_indices(const tinygltf::Model& m, int index) {
   const tinygltf::Accessor& acc = m.accessors.at(static_cast<std::size_t>(index));

@@ -39,7 +39,7 @@ TEST(CliRunExport, TheGlbOfARunEqualsItsFrameSequence) {
   const tinygltf::Value& numbers = m.meshes[0].extras.Get("frame_numbers");
   ASSERT_EQ(numbers.ArrayLen(), want_frames.size());
 
-  const test::Floats base = test::read_floats(m, p.attributes.at("POSITION"));
+  const test::Floats base = test::read_positions(m, p.attributes.at("POSITION"));
   const Positions first = test::cgal_read_positions(frames + "/run_00.off");
   const double extent = first.cwiseAbs().maxCoeff();
   // One float rounding of the base, of the displacement and of their sum.

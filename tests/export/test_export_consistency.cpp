@@ -34,7 +34,7 @@ TEST(ExportConsistency, GltfFramesEqualTheFrameSequenceToFloatPrecision) {
   const tinygltf::Model m = test::load_glb(dir.file("b.glb"));
   const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
   ASSERT_EQ(p.targets.size() + 1, a.frames.size());
-  const test::Floats base = test::read_floats(m, p.attributes.at("POSITION"));
+  const test::Floats base = test::read_positions(m, p.attributes.at("POSITION"));
   const double tol = 4.0 * x.cwiseAbs().maxCoeff() * std::numeric_limits<float>::epsilon();
   for (std::size_t k = 0; k < a.frames.size(); ++k) {
     test::Floats xk = base;

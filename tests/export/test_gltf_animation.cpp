@@ -67,7 +67,7 @@ TEST(GltfAnimation, EveryFrameReadsBackToFloatPrecision) {
           << "index " << i;
   }
 
-  const test::Floats x0 = test::read_floats(m, p.attributes.at("POSITION"));
+  const test::Floats x0 = test::read_positions(m, p.attributes.at("POSITION"));
   const test::Floats n0 = test::read_floats(m, p.attributes.at("NORMAL"));
   const double size = (a.frames[0].colwise().maxCoeff() - a.frames[0].colwise().minCoeff()).norm();
   const double extent = a.frames[0].cwiseAbs().maxCoeff();

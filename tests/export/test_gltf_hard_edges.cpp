@@ -141,7 +141,7 @@ Keyframes keyframes(const std::string& glb) {
   EXPECT_EQ(m.meshes.at(0).primitives.size(), 1u);
   const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
   k.indices = test::read_indices(m, p.indices);
-  k.x.push_back(test::read_floats(m, p.attributes.at("POSITION")));
+  k.x.push_back(test::read_positions(m, p.attributes.at("POSITION")));
   k.n.push_back(test::read_floats(m, p.attributes.at("NORMAL")));
   for (const auto& t : p.targets) {
     k.x.push_back(k.x[0] + test::read_floats(m, t.at("POSITION")));

@@ -115,7 +115,7 @@ TEST(GltfInputColours, ASeamsCopiesOfOtherColoursAreSplit) {
   const tinygltf::Model m = test::load_glb(dir.file("run.glb"));
   const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
   ASSERT_TRUE(p.attributes.count("COLOR_0"));
-  const test::Floats x = test::read_floats(m, p.attributes.at("POSITION"));
+  const test::Floats x = test::read_positions(m, p.attributes.at("POSITION"));
   const test::Floats c = test::read_floats(m, p.attributes.at("COLOR_0"));
   EXPECT_EQ(c.rows(), 7) << "the welded vertex 0 is one glTF vertex per colour";
   const std::vector<std::uint32_t> idx = test::read_indices(m, p.indices);

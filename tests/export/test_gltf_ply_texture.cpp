@@ -136,7 +136,7 @@ TEST(GltfPlyTexture, TexnumberSplitsTheFacesBetweenTwoTextures) {
     ASSERT_TRUE(p.material == 0 || p.material == 1) << p.material;
     seen[static_cast<std::size_t>(p.material)] = true;
     // Its faces: the four above z = 0 for the first texture, the four below for the second.
-    const test::Floats x = test::read_floats(m, p.attributes.at("POSITION"));
+    const test::Floats x = test::read_positions(m, p.attributes.at("POSITION"));
     const std::vector<std::uint32_t> idx = test::read_indices(m, p.indices);
     ASSERT_EQ(idx.size(), 12u) << "material " << p.material;
     for (std::size_t f = 0; f < 4; ++f) {

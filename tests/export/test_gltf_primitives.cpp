@@ -148,7 +148,7 @@ TEST(GltfPrimitives, EachMaterialOfAnObjIsAPrimitiveWithExactlyItsFaces) {
   // The morph targets: every keyframe is the frame file of the same frame (test_cli_run_export).
   const std::vector<int> want_frames = {0, 2, 4, 6};
   ASSERT_EQ(p0.targets.size() + 1, want_frames.size());
-  const test::Floats base = test::read_floats(m, p0.attributes.at("POSITION"));
+  const test::Floats base = test::read_positions(m, p0.attributes.at("POSITION"));
   const Positions first = test::cgal_read_positions(frames + "/run_0.off");
   const double tol = 4.0 * first.cwiseAbs().maxCoeff() * std::numeric_limits<float>::epsilon();
   double motion = 0.0;

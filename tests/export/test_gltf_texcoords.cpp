@@ -62,7 +62,7 @@ TEST(GltfTexcoords, SeamsAreSplitAndEveryCornerHasItsFileCoordinates) {
   const tinygltf::Model m = test::load_glb(glb);
   const tinygltf::Primitive& p = m.meshes.at(0).primitives.at(0);
   ASSERT_TRUE(p.attributes.count("TEXCOORD_0"));
-  const test::Floats pos = test::read_floats(m, p.attributes.at("POSITION"));
+  const test::Floats pos = test::read_positions(m, p.attributes.at("POSITION"));
   const test::Floats uv = test::read_floats(m, p.attributes.at("TEXCOORD_0"));
   // The seam: each of the nlat - 1 rings' vertex at longitude 0 has u = 0 and u = 1; each pole
   // has nlon coordinates. So many copies, no more.

@@ -15,9 +15,30 @@ export function extensionOf(name) {
 }
 
 /**
+ * Positions (x, y, z after one another, numbers in double) as float32 relative to their bounding
+ * box's centre, subtracted in double: float32 keeps about 7 digits of a coordinate, so a mesh far
+ * from the origin (a statue in UTM metres, northing 5e6: float spacing 0.5) stored absolute lost
+ * its shape. The mesh's object is placed at the centre (three.js composes its matrices in double).
+ * @returns {{position: Float32Array, centre: number[]}}
+ */
+export function recentred(values) {
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  for (let i = 0; i < values.length; i++) {
+    lo[i % 3] = Math.min(lo[i % 3], values[i]);
+    hi[i % 3] = Math.max(hi[i % 3], values[i]);
+  }
+  // Halves summed, as the CLI's glTF centre (gltf_centre): no overflow near the double range's end.
+  const centre = values.length ? lo.map((l, k) => l / 2 + hi[k] / 2) : [0, 0, 0];
+  const position = new Float32Array(values.length);
+  for (let i = 0; i < values.length; i++) position[i] = values[i] - centre[i % 3];
+  return { position, centre };
+}
+
+/**
  * Parses an OFF file (ascii; the "OFF" keyword optional; comments after '#'); polygons are
  * fan-triangulated for display. Throws an Error naming the line for anything else.
- * @returns {THREE.BufferGeometry} indexed, with normals
+ * @returns {THREE.BufferGeometry} indexed, with normals; its positions relative to its bounding
+ *   box's centre, which is userData.centre (recentred: place the mesh there)
  */
 export function parseOff(text, name) {
   const tokens = [];  // [value, line]
@@ -42,8 +63,8 @@ export function parseOff(text, name) {
   }
   const nv = number('the vertex count', true), nf = number('the face count', true);
   number('the edge count', true);
-  const position = new Float32Array(3 * nv);
-  for (let i = 0; i < 3 * nv; i++) position[i] = number(`coordinate ${i % 3} of vertex ${Math.floor(i / 3)}`);
+  const coordinates = new Float64Array(3 * nv);
+  for (let i = 0; i < 3 * nv; i++) coordinates[i] = number(`coordinate ${i % 3} of vertex ${Math.floor(i / 3)}`);
   const index = [];
   for (let f = 0; f < nf; f++) {
     const n = number(`the corner count of face ${f}`, true);
@@ -59,7 +80,9 @@ export function parseOff(text, name) {
     while (at < tokens.length && tokens[at][1] === line) at++;
   }
   const g = new THREE.BufferGeometry();
+  const { position, centre } = recentred(coordinates);
   g.setAttribute('position', new THREE.BufferAttribute(position, 3));
+  g.userData.centre = centre;
   g.setIndex(index);
   g.computeVertexNormals();
   return g;
@@ -91,7 +114,9 @@ export function loadMeshFile(buffer, name) {
   const ext = extensionOf(name);
   let object, fields = [], materialLibraries = [];
   if (ext === 'off') {
-    object = new THREE.Mesh(parseOff(new TextDecoder().decode(buffer), name));
+    const g = parseOff(new TextDecoder().decode(buffer), name);
+    object = new THREE.Mesh(g);
+    object.position.fromArray(g.userData.centre);
   } else if (ext === 'obj') {
     object = new OBJLoader().parse(withUnnamedFirstMaterial(new TextDecoder().decode(buffer)));
     materialLibraries = object.materialLibraries;
@@ -102,13 +127,18 @@ export function loadMeshFile(buffer, name) {
     const g = loader.parse(buffer);
     // PLYLoader keeps a double property as a Float64Array, which WebGL cannot draw (the CLI
     // writes doubles: 17 digits): floats for the GPU. Custom fields stay as read.
+    // Double positions recentred before they become floats, as an OFF's (recentred).
+    let centre = [0, 0, 0];
     for (const [key, a] of Object.entries(g.attributes)) {
       if (a.array instanceof Float64Array && !key.startsWith('field_')) {
-        g.setAttribute(key, new THREE.Float32BufferAttribute(Float32Array.from(a.array), a.itemSize, a.normalized));
+        let floats = Float32Array.from(a.array);
+        if (key === 'position') ({ position: floats, centre } = recentred(a.array));
+        g.setAttribute(key, new THREE.Float32BufferAttribute(floats, a.itemSize, a.normalized));
       }
     }
     if (!g.getAttribute('normal')) g.computeVertexNormals();
     object = new THREE.Mesh(g);
+    object.position.fromArray(centre);
   } else if (ext === 'stl') {
     const g = new STLLoader().parse(buffer);
     g.computeVertexNormals();

@@ -1,0 +1,91 @@
+// The viewer's own mesh loaders keep a mesh far from the origin (review14 D1): an OFF and a PLY of
+// doubles are recentred in double before they become float32 (mesh_files.js, recentred), and the
+// mesh is placed at its centre, so its positions plus the object's position give the file's to
+// float precision relative to the mesh's size. Before, a 2-unit sphere at northing 5e6 (float
+// spacing 0.5) became a cloud of a few hundred points. Node only, no browser.
+// Usage: node viewer/tests/viewer_far_mesh_test.mjs
+import { loadMeshFile, parseOff } from '../src/mesh_files.js';
+
+const failures = [];
+const check = (ok, what) => {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures.push(what);
+};
+
+// An icosahedron subdivided twice, on the unit sphere, at UTM-like coordinates.
+const FAR = [500000, 5000000, 100];
+function sphere() {
+  const t = (1 + Math.sqrt(5)) / 2;
+  let v = [[-1, t, 0], [1, t, 0], [-1, -t, 0], [1, -t, 0], [0, -1, t], [0, 1, t], [0, -1, -t], [0, 1, -t],
+           [t, 0, -1], [t, 0, 1], [-t, 0, -1], [-t, 0, 1]];
+  let f = [[0, 11, 5], [0, 5, 1], [0, 1, 7], [0, 7, 10], [0, 10, 11], [1, 5, 9], [5, 11, 4], [11, 10, 2],
+           [10, 7, 6], [7, 1, 8], [3, 9, 4], [3, 4, 2], [3, 2, 6], [3, 6, 8], [3, 8, 9], [4, 9, 5],
+           [2, 4, 11], [6, 2, 10], [8, 6, 7], [9, 8, 1]];
+  const unit = (p) => { const n = Math.hypot(...p); return p.map((c) => c / n); };
+  v = v.map(unit);
+  for (let level = 0; level < 2; level++) {
+    const mid = new Map(), next = [];
+    const m = (a, b) => {
+      const key = a < b ? `${a},${b}` : `${b},${a}`;
+      if (!mid.has(key)) { v.push(unit(v[a].map((c, k) => (c + v[b][k]) / 2))); mid.set(key, v.length - 1); }
+      return mid.get(key);
+    };
+    for (const [a, b, c] of f) {
+      const ab = m(a, b), bc = m(b, c), ca = m(c, a);
+      next.push([a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]);
+    }
+    f = next;
+  }
+  return { v: v.map((p) => p.map((c, k) => c + FAR[k])), f };
+}
+
+const { v, f } = sphere();
+const size = 2 * Math.sqrt(3);  // at most the bounding box's diagonal
+const tol = 8 * size * 2 ** -23;
+
+/** The largest difference between the object's placed positions and the file's, and the count of
+ * distinct stored positions. */
+function compare(object, geometry) {
+  const p = geometry.getAttribute('position').array;
+  let err = 0;
+  const distinct = new Set();
+  for (let i = 0; i < v.length; i++) {
+    for (let k = 0; k < 3; k++) err = Math.max(err, Math.abs(p[3 * i + k] + object.position.getComponent(k) - v[i][k]));
+    distinct.add(`${p[3 * i]},${p[3 * i + 1]},${p[3 * i + 2]}`);
+  }
+  return { err, distinct: distinct.size };
+}
+
+const off = `OFF\n${v.length} ${f.length} 0\n` + v.map((p) => p.join(' ')).join('\n') + '\n' +
+            f.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n';
+{
+  const g = parseOff(off, 'far.off');
+  const centre = g.userData.centre ?? [0, 0, 0];
+  check(centre.every((c, k) => Math.abs(c - FAR[k]) < 1e-9), `OFF: the centre is kept, ${centre}`);
+  const { object, meshes } = loadMeshFile(new TextEncoder().encode(off).buffer, 'far.off');
+  const { err, distinct } = compare(object, meshes[0].geometry);
+  check(distinct === v.length, `OFF: ${distinct} distinct positions of ${v.length}`);
+  check(err <= tol, `OFF: placed positions within ${err} of the file's (tolerance ${tol})`);
+}
+{
+  const ply = `ply\nformat ascii 1.0\nelement vertex ${v.length}\nproperty double x\nproperty double y\nproperty double z\n` +
+              `element face ${f.length}\nproperty list uchar int vertex_indices\nend_header\n` +
+              v.map((p) => p.join(' ')).join('\n') + '\n' + f.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n';
+  const { object, meshes } = loadMeshFile(new TextEncoder().encode(ply).buffer, 'far.ply');
+  const { err, distinct } = compare(object, meshes[0].geometry);
+  check(meshes[0].geometry.getAttribute('position').array instanceof Float32Array, 'PLY: float32 positions for the GPU');
+  check(distinct === v.length, `PLY: ${distinct} distinct positions of ${v.length}`);
+  check(err <= tol, `PLY: placed positions within ${err} of the file's (tolerance ${tol})`);
+}
+{
+  // A mesh at the origin stays there: nothing moves for the usual files.
+  const near = `OFF\n3 1 0\n-1 0 0\n1 0 0\n0 1 0\n3 0 1 2\n`;
+  const { object } = loadMeshFile(new TextEncoder().encode(near).buffer, 'near.off');
+  check(object.position.x === 0 && object.position.y === 0.5 && object.position.z === 0,
+        `a mesh near the origin is placed at its own centre, (${object.position.toArray()})`);
+}
+if (failures.length) {
+  console.error(`${failures.length} check(s) failed`);
+  process.exit(1);
+}
+console.log('viewer_far_mesh: ok');
