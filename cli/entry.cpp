@@ -1,13 +1,17 @@
 // The `shellcontract` tool's entry point (cli_main, called by cli/main.cpp's main): the process's
 // signal and thread set-up, then the subcommand. It is a function, not main itself, so that a test
 // program (tests/tools/held_cli.cpp) runs the very same code with a test hook set.
+#include <fcntl.h>
+#include <sys/resource.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <csignal>
 #include <cstddef>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <new>
@@ -59,9 +63,39 @@ constexpr const char* BENCH_USAGE = R"(usage: shellcontract bench <ccd|error> [o
 /// of the region finder's heat steps puts three vectors of the mesh's size there), so on a main
 /// thread whose stack had never been that deep the first factorization could be the crash.
 /// Pages once mapped stay mapped, so later frames within this depth need no new room.
+constexpr std::size_t MAIN_STACK_BYTES = std::size_t{1} << 20;
+
 [[gnu::noinline]] void map_main_stack() {
-  volatile char frame[1 << 20];
+  volatile char frame[MAIN_STACK_BYTES];
   for (std::size_t i = 0; i < sizeof(frame); i += 4096) frame[i] = 0;
+}
+
+/// Why map_main_stack would find no room, or empty: mapping it under a limit that leaves less
+/// than its MiB (an address-space limit nearly filled by the program and its libraries, or a
+/// stack limit below it) is itself the SIGSEGV it is there to prevent. The margin covers the
+/// frames below it and the stack already in use.
+std::string main_stack_problem() {
+  constexpr std::size_t MARGIN = std::size_t{256} << 10;
+  rlimit stack{};
+  if (::getrlimit(RLIMIT_STACK, &stack) == 0 && stack.rlim_cur != RLIM_INFINITY &&
+      stack.rlim_cur < MAIN_STACK_BYTES + MARGIN)
+    return "the stack limit (ulimit -s) is " + std::to_string(stack.rlim_cur >> 10) +
+           " KiB; it needs at least " + std::to_string((MAIN_STACK_BYTES + MARGIN) >> 10) + " KiB";
+  rlimit space{};
+  if (::getrlimit(RLIMIT_AS, &space) != 0 || space.rlim_cur == RLIM_INFINITY) return {};
+  // /proc/self/statm's first field: the pages the process has mapped, which the limit counts.
+  const int fd = ::open("/proc/self/statm", O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return {};
+  char text[128] = {};
+  const ssize_t n = ::read(fd, text, sizeof(text) - 1);
+  ::close(fd);
+  if (n <= 0) return {};
+  const unsigned long long mapped =
+      std::strtoull(text, nullptr, 10) * static_cast<unsigned long long>(::sysconf(_SC_PAGESIZE));
+  if (mapped + MAIN_STACK_BYTES + MARGIN <= space.rlim_cur) return {};
+  return "the address-space limit (ulimit -v) of " + std::to_string(space.rlim_cur >> 10) +
+         " KiB leaves no room for the stack beside the program itself (" +
+         std::to_string(mapped >> 10) + " KiB)";
 }
 
 /// The subcommand's exit code; 1 for an unknown one.
@@ -138,6 +172,11 @@ int shellcontract::cli::cli_main(int argc, char** argv) {
   } catch (const shellcontract::UsageError& e) {
     std::cerr << "shellcontract: " << e.what() << '\n';
     return 1;
+  }
+  if (const std::string problem = main_stack_problem(); !problem.empty()) {
+    std::cerr << "shellcontract " << command << ": out of memory at start: " << problem
+              << " (nothing was read or written)\n";
+    return 3;
   }
   map_main_stack();
   // TBB's own thread count is the CPU affinity's, blind to a cgroup CPU quota: the work that runs

@@ -252,5 +252,18 @@ TEST_F(Hostile, OutOfMemoryWhileReadingIsNeverAHalfMesh) {
   std::printf("refused %d times, read whole %d times\n", refused, whole);
 }
 
+// The tool maps its first MiB of stack at start (cli/entry.cpp). Under a stack limit below it,
+// or an address-space limit the program's own mappings nearly fill, that mapping was a SIGSEGV
+// (the exit code a crash: -1 here) instead of memory's exit 3 and a message.
+TEST_F(Hostile, AStackLimitBelowTheToolsStackIsOutOfMemoryNotACrash) {
+  const auto r =
+      test::run_command("ulimit -s 256 && exec " +
+                        test::cli_command({"check", test::MESH_DIR + std::string("/ico1.off")}));
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("out of memory at start: the stack limit (ulimit -s) is 256 KiB"),
+            std::string::npos)
+      << r.output;
+}
+
 }  // namespace
 }  // namespace shellcontract
