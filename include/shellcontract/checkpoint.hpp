@@ -100,7 +100,8 @@ void write_checkpoint(const std::string& path, const SavedRun& run, const RunOpt
                       const CheckpointInfo& info);
 
 /// The file beside a checkpoint that holds its caller's log when the caller keeps it there
-/// (CheckpointLogFile): "PATH.log". A checkpoint saved so is resumed only with that file.
+/// (CheckpointLogFile): "PATH.log" (PATH a symbolic link's target). A checkpoint saved so is
+/// resumed only with that file.
 std::string checkpoint_log_path(const std::string& checkpoint);
 /// The file beside a checkpoint that holds the run's volume history (V/V0 after each frame so
 /// far, a double each) when the caller keeps its log beside (CheckpointLogFile): "PATH.history".

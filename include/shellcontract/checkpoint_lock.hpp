@@ -15,7 +15,8 @@
 
 namespace shellcontract {
 
-/// The file a lock for `checkpoint` is taken on: ".<its name>.lock" in its folder. The
+/// The file a lock for `checkpoint` is taken on: ".<its name>.lock" in its folder (a symbolic
+/// link's target's name and folder: the file a save replaces). The
 /// checkpoint itself is replaced by a rename at every save, so a lock on it would stay with the
 /// old file; the lock file is stable, and a lock on it is seen by every run that reaches that
 /// folder, whatever path it is spelled with (a symbolic link to the folder, a bind mount, another

@@ -12,6 +12,7 @@
 
 #include "mesh/file_safety.hpp"
 #include "mesh/output_check.hpp"
+#include "mesh/output_target.hpp"
 #include "shellcontract/file_error.hpp"
 #include "sim/checkpoint.hpp"
 
@@ -20,7 +21,9 @@ namespace shellcontract {
 namespace fs = std::filesystem;
 
 std::string checkpoint_lock_path(const std::string& checkpoint) {
-  const fs::path p(checkpoint);
+  // Beside the file a save replaces (a link's target): two runs naming one checkpoint, one of
+  // them through a link, take one lock.
+  const fs::path p(replaced_file(checkpoint));
   const std::string name = p.filename().string();
   std::string lock = "." + name + ".lock";
   // A name near the file system's limit of 255 bytes: cut, and told apart from other names

@@ -107,6 +107,11 @@ OutputTarget resolve_output(const std::string& path) {
   return t;
 }
 
+std::string replaced_file(const std::string& path) {
+  const OutputTarget t = resolve_output(path);
+  return t.kind == OutputTarget::Kind::FILE && t.problem.empty() && !t.path.empty() ? t.path : path;
+}
+
 std::string stream_problem(int fd, int& error_number) {
   const int flags = ::fcntl(fd, F_GETFL);
   if (flags < 0) {

@@ -31,6 +31,11 @@ struct OutputTarget {
 /// owned neither by the caller nor by the folder's owner) is not followed here either: problem.
 OutputTarget resolve_output(const std::string& path);
 
+/// The file a write to `path` replaces: resolve_output's FILE path (a link's target), else `path`
+/// itself (a stream, a refused link: the writer says why). Files named after an output (a
+/// checkpoint's lock, log and history) are named after this one.
+std::string replaced_file(const std::string& path);
+
 /// Why a STREAM's descriptor cannot take a write (not open, open for reading only), or empty.
 std::string stream_problem(int fd, int& error_number);
 

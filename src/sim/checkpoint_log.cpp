@@ -13,6 +13,7 @@
 
 #include "mesh/file_safety.hpp"
 #include "mesh/file_start.hpp"
+#include "mesh/output_target.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/file_error.hpp"
 #include "sim/checkpoint.hpp"
@@ -52,9 +53,13 @@ int checkpoint_frame(const Checkpoint& c) { return c.sim.frame; }
 const std::string& checkpoint_log(const Checkpoint& c) { return c.log; }
 int checkpoint_save_every(const Checkpoint& c) { return c.save_every; }
 
-std::string checkpoint_log_path(const std::string& checkpoint) { return checkpoint + ".log"; }
+// Named after the file a save replaces (a link's target), as the lock is: a run resumed through
+// a link finds the rows a run naming the file itself wrote.
+std::string checkpoint_log_path(const std::string& checkpoint) {
+  return replaced_file(checkpoint) + ".log";
+}
 std::string checkpoint_history_path(const std::string& checkpoint) {
-  return checkpoint + ".history";
+  return replaced_file(checkpoint) + ".history";
 }
 
 void write_checkpoint(const std::string& path, const SavedRun& run, const RunOptions& options,

@@ -236,6 +236,22 @@ TEST_F(FileErrors, ACheckpointLockedByAnotherRunIsEWOULDBLOCK) {
       << what;
 }
 
+// A checkpoint named through a symbolic link is the link's target (a save replaces the target):
+// its lock, log and history are the target's, so a second run naming the target itself is
+// refused. Before, the link's name gave another lock file: both runs saved to one file.
+TEST_F(FileErrors, ACheckpointThroughALinkTakesItsTargetsLock) {
+  const std::string target = path("run.ckpt"), link = path("link.ckpt");
+  std::filesystem::create_symlink("run.ckpt", link);
+  EXPECT_EQ(checkpoint_lock_path(link), checkpoint_lock_path(target));
+  EXPECT_EQ(checkpoint_log_path(link), target + ".log");
+  EXPECT_EQ(checkpoint_history_path(link), target + ".history");
+  std::vector<std::string> warnings;
+  const auto held = lock_checkpoint(link, "--checkpoint", true, warnings);
+  ASSERT_NE(held, nullptr);
+  output_file_error([&] { lock_checkpoint(target, "--checkpoint", true, warnings); }, target,
+                    EWOULDBLOCK);
+}
+
 // A glTF whose external buffer cannot be had: the error is about the buffer, with the errno
 // the file system gave for it; the message names the .gltf, as before. Before, a plain
 // InputError.
