@@ -56,6 +56,8 @@ constexpr const char* BENCH_USAGE = R"(usage: shellcontract bench <ccd|error> [o
   shellcontract bench ccd --help, shellcontract bench error --help: options of one benchmark
 )";
 
+constexpr std::size_t MAIN_STACK_BYTES = std::size_t{1} << 20;
+
 /// Maps the main thread's first MiB of stack while there is room. That stack grows on demand, and
 /// under an address-space limit (`ulimit -v`, how the out-of-memory tests run) a growth that
 /// finds no room is a SIGSEGV, not a std::bad_alloc the commands report with exit code 3. Eigen
@@ -63,8 +65,6 @@ constexpr const char* BENCH_USAGE = R"(usage: shellcontract bench <ccd|error> [o
 /// of the region finder's heat steps puts three vectors of the mesh's size there), so on a main
 /// thread whose stack had never been that deep the first factorization could be the crash.
 /// Pages once mapped stay mapped, so later frames within this depth need no new room.
-constexpr std::size_t MAIN_STACK_BYTES = std::size_t{1} << 20;
-
 [[gnu::noinline]] void map_main_stack() {
   volatile char frame[MAIN_STACK_BYTES];
   for (std::size_t i = 0; i < sizeof(frame); i += 4096) frame[i] = 0;
