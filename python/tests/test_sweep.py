@@ -16,6 +16,8 @@ import pytest
 
 from shellcontract import sweep_file
 
+from proc_holders import lock_holders
+
 pytest.importorskip("distributed")
 
 TIMING_COLUMNS = {"step_ms", "solve_ms", "ccd_ms"}
@@ -173,6 +175,7 @@ def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_pa
     # The killed sweep's runs got SIGTERM (the parent-death signal): they save and end.
     wait_until(lambda: not runs_reading(tmp_path / "meshes"), timeout=60)
     left = [p.name for p in (out / ".work").iterdir() if p.name != "checkpoints"]
+    held = lock_holders(out / ".work")  # said if an attempt is left: who held its lock
     again = run_sweep(cli, [str(path), "-o", str(out), "--workers", "2"])
     assert again.returncode == 0, again.stderr
     for job, (inode, text) in finished.items():
@@ -182,7 +185,7 @@ def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_pa
     # The killed sweep's working folders are gone (the rerun removed them: nobody held them).
     if left:
         assert "that a killed sweep left" in again.stderr, again.stderr
-    assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"], left
+    assert [p.name for p in (out / ".work").iterdir()] == ["checkpoints"], (left, held)
     # Every job finished: its checkpoint is removed, and the log the CLI kept beside it.
     assert [p.name for p in (out / ".work" / "checkpoints").iterdir()] == []
 
