@@ -49,6 +49,31 @@ def first_hit(origins, direction, tri, skip):
     return out
 
 
+def incident_faces(faces):
+    """Per vertex, the faces at it."""
+    incident = [[] for _ in range(faces.max() + 1)]
+    for fi, f in enumerate(faces):
+        for v in f:
+            incident[v].append(fi)
+    return incident
+
+
+def region_room(rest, faces, region, normals, diag, tri, incident):
+    """The region's mean sink along the rest normals, / diag, of its whole mirror image and of the
+    image stopped at the rest shell (the module's docstring): (whole, kept)."""
+    order, limit, _, _ = dimple_order(rest, faces, region)
+    dimple, _, interior, d, pn = dimple_image(rest, faces, region, order, limit, 0.7)
+    up = d > 0
+    verts, dv = interior[up], d[up]
+    skip = [sorted({fi for w in faces[incident[v]].ravel() for fi in incident[w]}) for v in verts]
+    t = first_hit(rest[verts], -pn, tri, skip)
+    along = normals[verts] @ pn
+    nreg = len(np.unique(faces[region].ravel()))
+    whole = float((2 * dv * along).sum()) / nreg / diag
+    kept = float((np.minimum(2 * dv, t) * along).sum()) / nreg / diag
+    return whole, kept
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--build", default=os.path.join(common.ROOT, "build"))
@@ -61,22 +86,9 @@ def main():
         for name, path, rest, faces, diag in common.each_mesh(a.meshes.split(",")):
             regions, _, _ = common.auto_regions(exe, path, tmp)
             normals = common.rest_normals(rest, faces)
-            tri = rest[faces]
-            incident = [[] for _ in range(len(rest))]
-            for fi, f in enumerate(faces):
-                for v in f:
-                    incident[v].append(fi)
+            tri, incident = rest[faces], incident_faces(faces)
             for ri, region in enumerate(regions):
-                order, limit, _, _ = dimple_order(rest, faces, region)
-                dimple, _, interior, d, pn = dimple_image(rest, faces, region, order, limit, 0.7)
-                up = d > 0
-                verts, dv = interior[up], d[up]
-                skip = [sorted({fi for w in faces[incident[v]].ravel() for fi in incident[w]}) for v in verts]
-                t = first_hit(rest[verts], -pn, tri, skip)
-                along = normals[verts] @ pn
-                nreg = len(np.unique(faces[region].ravel()))
-                whole = float((2 * dv * along).sum()) / nreg / diag
-                kept = float((np.minimum(2 * dv, t) * along).sum()) / nreg / diag
+                whole, kept = region_room(rest, faces, region, normals, diag, tri, incident)
                 print(f"| {name} | {ri} | {whole:.4f} | {kept:.4f} | {kept / whole if whole > 0 else 0:.2f} |",
                       flush=True)
 

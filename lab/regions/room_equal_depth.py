@@ -11,8 +11,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 import common, sink_why
-from sink_why import dimple_image, dimple_order
-from room import first_hit
+from room import incident_faces, region_room
 KEEP = float(os.environ.get("KEEP", "0.7")); P = float(os.environ.get("P", "0.5"))
 meshes = sys.argv[1].split(",") if len(sys.argv) > 1 else ["bear","hand","elk","kitten","bumpy_sphere"]
 exe = os.path.join(common.ROOT, "build", "shellcontract")
@@ -21,20 +20,10 @@ fls = []
 for name, path, rest, faces, diag in common.each_mesh(meshes):
     regions, _, _ = common.auto_regions(exe, path, keep)
     normals = common.rest_normals(rest, faces)
-    tri = rest[faces]
-    incident = [[] for _ in range(len(rest))]
-    for fi, f in enumerate(faces):
-        for v in f: incident[v].append(fi)
+    tri, incident = rest[faces], incident_faces(faces)
     kept_regions, m = [], []
     for ri, region in enumerate(regions):
-        order, limit, _, _ = dimple_order(rest, faces, region)
-        dimple, _, interior, d, pn = dimple_image(rest, faces, region, order, limit, 0.7)
-        up = d > 0
-        verts, dv = interior[up], d[up]
-        skip = [sorted({fi for w in faces[incident[v]].ravel() for fi in incident[w]}) for v in verts]
-        t = first_hit(rest[verts], -pn, tri, skip)
-        along = normals[verts] @ pn
-        whole = float((2 * dv * along).sum()); kept = float((np.minimum(2 * dv, t) * along).sum())
+        whole, kept = region_room(rest, faces, region, normals, diag, tri, incident)
         share = kept / whole if whole > 0 else 0
         mi = sink_why.geometry(rest, faces, region, normals, diag, 0.7)["mirror"]
         print(f"{name} region {ri}: share {share:.2f} mirror {mi:.4f}", flush=True)

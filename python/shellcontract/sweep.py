@@ -115,14 +115,7 @@ def write_stdout(text):
         sys.stdout.write(text)
         sys.stdout.flush()
     except (OSError, ValueError) as e:
-        try:
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            try:
-                os.dup2(devnull, sys.stdout.fileno())
-            finally:
-                os.close(devnull)
-        except (OSError, ValueError, AttributeError):
-            pass
+        sweep_process.point_at_devnull(sys.stdout)
         raise StdoutUnwritable(getattr(e, "strerror", None) or str(e))
 
 

@@ -7,6 +7,19 @@ import signal
 import threading
 
 
+
+def point_at_devnull(stream):
+    """Points `stream`'s descriptor at /dev/null, where it can (a stream whose writes failed:
+    Python's own flush at exit would fail again, a traceback and exit 120)."""
+    try:
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        try:
+            os.dup2(devnull, stream.fileno())
+        finally:
+            os.close(devnull)
+    except (OSError, ValueError, AttributeError):
+        pass
+
 class PipeSafeStream:
     """sys.stderr whose failing writes do not stop the sweep: a reader going away (`sweep ... 2>&1
     | head -1`), a full disk or quota under a log (`2>>sweep.log`, `2>/dev/full`: ENOSPC, EDQUOT,
@@ -38,17 +51,10 @@ class PipeSafeStream:
         """Nothing more is written: the stream's buffer, which holds what failed, is emptied
         where it can be (else its flush at exit fails again), and later writes are dropped."""
         self._gone = True
-        try:
-            # A TextIOWrapper's buffered writer keeps what it could not write; writing to a
-            # detached descriptor-less buffer is not possible, so the stream is pointed at
-            # /dev/null for Python's own flush at exit.
-            devnull = os.open(os.devnull, os.O_WRONLY)
-            try:
-                os.dup2(devnull, self._stream.fileno())
-            finally:
-                os.close(devnull)
-        except (OSError, ValueError, AttributeError):
-            pass
+        # A TextIOWrapper's buffered writer keeps what it could not write; writing to a
+        # detached descriptor-less buffer is not possible, so the stream is pointed at
+        # /dev/null for Python's own flush at exit.
+        point_at_devnull(self._stream)
 
     def __getattr__(self, name):  # isatty, fileno, encoding: the stream's own
         return getattr(self._stream, name)

@@ -163,12 +163,10 @@ Mesh mesh_from_arrays(const TriangleSoupView& soup, const std::string& name, Inp
   if (reorient && !(unit_volume > 0.0)) {
     ClassicOStringStream v;
     v << unit_volume;
-    std::vector<std::size_t> all(points.size());
-    for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
     fail(name, "no positive volume",
          "the mesh encloses no positive volume (" + v.str() +
              " at a unit bounding-box diagonal): it is flat or degenerate" +
-             soup::stray_vertices_note(points, std::move(all), number));
+             soup::stray_vertices_note(points, number));
   }
   // After the whole's volume, which names a single flat shell as before.
   if (!oriented.flat.empty())

@@ -285,9 +285,7 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
   r.input_vertices = points.size();
   // A few stray vertices far from the rest (an exporter's vertex at the origin) make a full shape
   // flat, and repair cannot help; said with the refusal below, in the file's numbering.
-  std::vector<std::size_t> all_points(points.size());
-  for (std::size_t i = 0; i < all_points.size(); ++i) all_points[i] = i;
-  const std::string strays = soup::stray_vertices_note(points, std::move(all_points));
+  const std::string strays = soup::stray_vertices_note(points);
   r.input_polygons = polygons.size();
   if (polygons.empty()) {
     r.failure = "the file has no faces (" + std::to_string(points.size()) +

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/classic_locale.hpp"
+#include "mesh/normalization.hpp"
 #include "mesh/off_scan.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/face_error.hpp"
@@ -115,14 +116,12 @@ constexpr double NEAR_DUPLICATE_RELATIVE = 1e-10;
 inline std::string near_duplicate_hint(const Namer& name, std::size_t a, std::size_t b) {
   if (!name.points || name.points->empty()) return "";
   const std::vector<Point3>& p = *name.points;
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = p[0][k];
-  for (const Point3& q : p)
-    for (int k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], q[k]);
-      hi[k] = std::max(hi[k], q[k]);
-    }
-  const double diagonal = std::hypot(std::hypot(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+  Vec3 lo(p[0].x(), p[0].y(), p[0].z()), hi = lo;
+  for (const Point3& q : p) {
+    lo = lo.cwiseMin(Vec3(q.x(), q.y(), q.z()));
+    hi = hi.cwiseMax(Vec3(q.x(), q.y(), q.z()));
+  }
+  const double diagonal = bounding_diagonal(lo, hi);  // compute_normalization's
   if (!(diagonal > 0.0) || !std::isfinite(diagonal)) return "";
   const std::size_t na = name.number(a), nb = name.number(b);
   for (const std::size_t v : {na, nb}) {

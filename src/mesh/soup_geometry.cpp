@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 
@@ -141,6 +142,13 @@ Eigen::AlignedBox3d box_of(const std::vector<Point3>& points, const std::vector<
 }
 
 }  // namespace
+
+std::string stray_vertices_note(const std::vector<Point3>& points,
+                                const std::vector<std::size_t>* number) {
+  std::vector<std::size_t> all(points.size());
+  std::iota(all.begin(), all.end(), std::size_t{0});
+  return stray_vertices_note(points, std::move(all), number);
+}
 
 std::string stray_vertices_note(const std::vector<Point3>& points, std::vector<std::size_t> ids,
                                 const std::vector<std::size_t>* number) {

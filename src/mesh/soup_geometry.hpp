@@ -84,6 +84,9 @@ constexpr double STRAY_VERTICES_EXTENT = 0.5;
 /// none: the same
 std::string stray_vertices_note(const std::vector<Point3>& points, std::vector<std::size_t> ids,
                                 const std::vector<std::size_t>* number = nullptr);
+/// The same over every point of `points` (the whole mesh's no-volume refusals).
+std::string stray_vertices_note(const std::vector<Point3>& points,
+                                const std::vector<std::size_t>* number = nullptr);
 
 /// Faces with (nearly) zero area on `unit`, ascending: 2A below ZERO_AREA_RELATIVE times the
 /// squared mean edge length. Reported, not refused (the rest state gives them no membrane
