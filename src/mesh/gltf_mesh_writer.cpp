@@ -8,6 +8,7 @@
 #include <climits>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 
 #include "export/gltf_buffer.hpp"
@@ -35,15 +36,52 @@ Positions shared_position_normals(const Positions& x, const Faces& faces) {
   return out;
 }
 
+/// The points as rows (they are checked finite by the callers that need it).
+Positions as_rows(const std::vector<Point3>& points) {
+  Positions x(static_cast<Eigen::Index>(points.size()), 3);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    x.row(static_cast<Eigen::Index>(i)) << points[i].x(), points[i].y(), points[i].z();
+  return x;
+}
+
+/// Positions relative to `centre` as glTF stores them. The run's .glb does the same
+/// (gltf_animation.cpp): float32 keeps about 7 digits of a coordinate, so a mesh far from the
+/// origin stored absolute loses its shape, while relative to its own centre it keeps float
+/// precision relative to its size.
+gltf::Floats3 relative_floats(const Positions& x, const Vec3& centre) {
+  return (x.rowwise() - centre.transpose()).cast<float>();
+}
+
+/// The largest coordinate change that storing `x` relative to `origin` makes (infinite where a
+/// coordinate is beyond float32's range).
+double storage_error(const Positions& x, const Vec3& origin) {
+  const Positions placed = relative_floats(x, origin).cast<double>().rowwise() + origin.transpose();
+  if (!placed.allFinite()) return std::numeric_limits<double>::infinity();
+  return (placed - x).cwiseAbs().maxCoeff();
+}
+
+/// The node's translation: the bounding-box centre (gltf_centre), unless positions stored as they
+/// are lose no more. Float32 input (a .glb, an STL) then comes back bit for bit, where digits taken
+/// relative to a centre would round; a mesh far from the origin keeps its shape.
+Vec3 storage_origin(const Positions& x) {
+  const Vec3 centre = gltf_centre(x);
+  if (x.rows() == 0 || centre == Vec3::Zero()) return centre;
+  const double absolute = storage_error(x, Vec3::Zero());
+  // Both infinite: the centre, and write_gltf_mesh_atomic refuses the mesh.
+  return std::isfinite(absolute) && absolute <= storage_error(x, centre) ? Vec3::Zero() : centre;
+}
+
 }  // namespace
 
-std::size_t points_changed_by_float_rounding(const std::vector<Point3>& points) {
-  std::size_t changed = 0;
-  for (const Point3& p : points)
-    changed += static_cast<double>(static_cast<float>(p.x())) != p.x() ||
-               static_cast<double>(static_cast<float>(p.y())) != p.y() ||
-               static_cast<double>(static_cast<float>(p.z())) != p.z();
-  return changed;
+std::vector<Point3> points_as_stored_in_gltf(const std::vector<Point3>& points) {
+  const Positions x = as_rows(points);
+  const Vec3 centre = storage_origin(x);
+  const Positions placed = relative_floats(x, centre).cast<double>().rowwise() + centre.transpose();
+  std::vector<Point3> out;
+  out.reserve(points.size());
+  for (Eigen::Index i = 0; i < placed.rows(); ++i)
+    out.emplace_back(placed(i, 0), placed(i, 1), placed(i, 2));
+  return out;
 }
 
 void write_gltf_mesh_atomic(const std::string& path, const std::vector<Point3>& points,
@@ -54,14 +92,17 @@ void write_gltf_mesh_atomic(const std::string& path, const std::vector<Point3>& 
   if (points.size() > static_cast<std::size_t>(INT_MAX))
     throw UsageError("cannot write '" + path + "': " + std::to_string(points.size()) +
                      " vertices are more than a glTF's 32-bit indices reach here");
-  Positions x(static_cast<Eigen::Index>(points.size()), 3);
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const auto r = static_cast<Eigen::Index>(i);
-    x.row(r) << points[i].x(), points[i].y(), points[i].z();
-    if (!x.row(r).allFinite())
+  const Positions x = as_rows(points);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    if (!x.row(i).allFinite())
       throw std::invalid_argument("write_gltf_mesh_atomic: vertex " + std::to_string(i) +
                                   " has a coordinate that is not finite");
-  }
+  const Vec3 centre = storage_origin(x);
+  const gltf::Floats3 stored = relative_floats(x, centre);
+  if (!stored.allFinite())
+    throw UsageError("cannot write '" + path +
+                     "': the positions span more than glTF's 32-bit floats hold; write .off, "
+                     ".obj or .ply");
   Faces faces(static_cast<Eigen::Index>(triangles.size()), 3);
   for (std::size_t t = 0; t < triangles.size(); ++t) {
     if (triangles[t].size() != 3)
@@ -82,13 +123,13 @@ void write_gltf_mesh_atomic(const std::string& path, const std::vector<Point3>& 
   gltf::BufferBuilder bb(model, 24 * points.size() + 12 * triangles.size() + 8);
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_TRIANGLES;
-  prim.attributes["POSITION"] = bb.add_vec3(x.cast<float>(), true);
+  prim.attributes["POSITION"] = bb.add_vec3(stored, true);
   prim.attributes["NORMAL"] = bb.add_vec3(shared_position_normals(x, faces).cast<float>(), false);
   prim.indices = bb.add_indices(faces);
   tinygltf::Mesh mesh;
   mesh.primitives.push_back(prim);
   model.meshes.push_back(mesh);
-  gltf::add_single_node_scene(model, "");
+  gltf::add_single_node_scene(model, "", centre);
   model.buffers[0].data.resize((model.buffers[0].data.size() + 3) / 4 * 4, 0);
 
   write_file_atomic(path, [&](std::ostream& out) {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 
 #include "core/plural.hpp"
@@ -97,24 +98,28 @@ void mesh_triangles(const Mesh& mesh, std::vector<Point3>& points,
   for (const auto& f : input_faces(mesh)) triangles.emplace_back(f.begin(), f.end());
 }
 
-/// Writes a .glb or .gltf of the triangles (gltf_mesh_writer.hpp). glTF stores 32-bit floats:
-/// when that rounds a position, the rounded mesh goes through the usability check first, as
-/// rounding can make a face degenerate or two faces meet, and a file that `check` refuses must
-/// not be written as repair's usable output; the lost digits are named among the dropped.
+/// Writes a .glb or .gltf of the triangles (gltf_mesh_writer.hpp). glTF stores 32-bit floats
+/// (relative to the bounding-box centre, the node's translation): when that rounds a position, the
+/// rounded mesh goes through the usability check first, as rounding can make a face degenerate or
+/// two faces meet, and a file that `check` refuses must not be written as repair's usable output;
+/// the lost digits are named among the dropped.
 /// @throws UsageError naming the check's reason when the rounded mesh is not usable
 void write_gltf_output(const std::string& output, const std::vector<Point3>& points,
                        const std::vector<Polygon>& triangles, bool binary, RepairOutput& o) {
-  if (const std::size_t rounded = points_changed_by_float_rounding(points)) {
+  const std::vector<Point3> stored = points_as_stored_in_gltf(points);
+  for (const Point3& p : stored)
+    if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
+      throw UsageError("cannot write '" + output +
+                       "': the positions span more than glTF's 32-bit floats hold (about 3.4e38 "
+                       "from the bounding box's centre); write .off, .obj or .ply");
+  std::size_t rounded = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) rounded += stored[i] != points[i];
+  if (rounded > 0) {
     o.dropped.push_back("the positions' digits beyond 32-bit floats (" +
                         counted(rounded, "vertex", "vertices") + " rounded: glTF stores floats)");
-    std::vector<Point3> as_floats;
-    as_floats.reserve(points.size());
-    for (const Point3& p : points)
-      as_floats.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()),
-                             static_cast<float>(p.z()));
     try {
       InputReport ignored;
-      check_input_soup(output, std::move(as_floats), triangles, &ignored);
+      check_input_soup(output, stored, triangles, &ignored);
     } catch (const InputError& e) {
       throw UsageError(
           "cannot write '" + output +

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -110,9 +111,16 @@ GltfSoup expect_bare_gltf(const std::string& path, std::size_t faces) {
   EXPECT_EQ(s.faces.size(), faces);
   EXPECT_GT(signed_volume6(s), 0.0) << path << ": the faces are wound inward";
   const Json& position = j["accessors"][prim["attributes"]["POSITION"].get<std::size_t>()];
+  // The node moves the stored positions by its translation only (none: glTF's default).
+  const Json& node = j["nodes"][0];
+  EXPECT_FALSE(node.contains("matrix") || node.contains("rotation") || node.contains("scale"));
+  std::array<double, 3> moved{0.0, 0.0, 0.0};
+  if (node.contains("translation"))
+    for (std::size_t c = 0; c < 3; ++c) moved[c] = node["translation"][c].get<double>();
   for (std::size_t c = 0; c < 3; ++c) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (const auto& p : s.points) lo = std::min(lo, p[c]), hi = std::max(hi, p[c]);
+    for (const auto& p : s.points)
+      lo = std::min(lo, p[c] - moved[c]), hi = std::max(hi, p[c] - moved[c]);
     EXPECT_EQ(position["min"][c].get<double>(), lo) << path << " coordinate " << c;
     EXPECT_EQ(position["max"][c].get<double>(), hi) << path << " coordinate " << c;
   }
@@ -197,21 +205,77 @@ TEST_F(CliRepairGltf, AnOffIntoGlbNamesItsQuadsAndItsRoundedDigits) {
   expect_bare_gltf(out("open.glb"), 4);
 }
 
-TEST_F(CliRepairGltf, AMeshThatFloatsWouldCollapseIsNotWritten) {
-  // Usable in doubles (check works at a unit diagonal); as floats every vertex is (1, 1, 1).
+TEST_F(CliRepairGltf, ATinyMeshAwayFromTheOriginIsWrittenWithItsShape) {
+  // Usable in doubles (check works at a unit diagonal). Stored absolute as float32 every vertex
+  // became (1, 1, 1) and the file was refused; relative to its centre it keeps its shape.
   const std::string in = write("tiny.off",
                                "OFF\n4 4 0\n1 1 1\n1.000000000001 1 1\n1 1.000000000001 1\n"
                                "1 1 1.000000000001\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n");
   ASSERT_EQ(test::run_cli({"check", in}).exit_code, 0);
   const test::RunResult r = test::run_cli({"repair", in, "-o", out("tiny.glb")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const GltfSoup s = expect_bare_gltf(out("tiny.glb"), 4);
+  ASSERT_EQ(s.points.size(), 4u);
+  const double size = 1e-12, tol = 8.0 * size * std::numeric_limits<float>::epsilon();
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      EXPECT_NEAR(s.points[i][c], 1.0 + (i == c + 1 ? 1e-12 : 0.0), tol) << i << ", " << c;
+}
+
+TEST_F(CliRepairGltf, PositionsBeyondFloatRangeAreNotWritten) {
+  // 1e39 from the centre: no float32 holds it, relative or not.
+  const std::string in = write(
+      "big.off", "OFF\n4 3 0\n0 0 0\n1e39 0 0\n0 1e39 0\n0 0 1e39\n3 0 2 1\n3 0 1 3\n3 0 3 2\n");
+  const test::RunResult r = test::run_cli({"repair", in, "-o", out("big.glb")});
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_NE(r.output.find("glTF stores 32-bit floats"), std::string::npos) << r.output;
-  EXPECT_NE(r.output.find("zero bounding-box diagonal"), std::string::npos) << r.output;
-  EXPECT_FALSE(std::filesystem::exists(out("tiny.glb")));
+  EXPECT_NE(r.output.find("span more than glTF's 32-bit floats hold"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out("big.glb")));
   // Nothing else either: no temporary left beside the input.
   EXPECT_EQ(std::distance(std::filesystem::directory_iterator(dir_),
                           std::filesystem::directory_iterator()),
             1);
+}
+
+TEST_F(CliRepairGltf, AMeshFarFromTheOriginKeepsItsShape) {
+  // An open tetrahedron of unit size at UTM-like coordinates (float spacing 0.5 at northing 5e6).
+  // Stored absolute as float32, its corners moved by up to a quarter of its size; relative to
+  // its centre (the node's translation), by a few float roundings of its size.
+  const std::array<std::array<double, 3>, 4> corners{{{500000.3, 5000000.3, 100.3},
+                                                      {500001.3, 5000000.3, 100.3},
+                                                      {500000.3, 5000001.3, 100.3},
+                                                      {500000.3, 5000000.3, 101.3}}};
+  std::ostringstream off;
+  off.precision(17);
+  off << "OFF\n4 3 0\n";
+  for (const auto& p : corners) off << p[0] << ' ' << p[1] << ' ' << p[2] << '\n';
+  off << "3 0 2 1\n3 0 1 3\n3 0 3 2\n";
+  const std::string in = write("far.off", off.str());
+  const test::RunResult r = test::run_cli({"repair", in, "-o", out("far.glb")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const GltfSoup s = expect_bare_gltf(out("far.glb"), 4);
+  ASSERT_EQ(s.points.size(), 4u);
+  const double tol = 8.0 * std::sqrt(3.0) * std::numeric_limits<float>::epsilon();
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t c = 0; c < 3; ++c)
+      EXPECT_NEAR(s.points[i][c], corners[i][c], tol) << "vertex " << i << " coordinate " << c;
+}
+
+TEST_F(CliRepairGltf, FloatPositionsComeBackBitForBit) {
+  // Coordinates that float32 holds (a .glb's or an STL's) are stored as they are: relative to a
+  // centre they would round, and the conversion would report lost digits it need not lose.
+  const std::string in = write("floats.off",
+                               "OFF\n4 3 0\n0.1875 0 0\n1.25 0 0\n0 1.5 0\n0 0 3.0625\n"
+                               "3 0 2 1\n3 0 1 3\n3 0 3 2\n");
+  const test::RunResult r = test::run_cli({"repair", in, "-o", out("floats.glb")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(r.output.find("beyond 32-bit floats"), std::string::npos) << r.output;
+  const GltfSoup s = expect_bare_gltf(out("floats.glb"), 4);
+  const std::array<std::array<double, 3>, 4> corners{
+      {{0.1875, 0, 0}, {1.25, 0, 0}, {0, 1.5, 0}, {0, 0, 3.0625}}};
+  ASSERT_EQ(s.points.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(s.points[i][c], corners[i][c]);
 }
 
 TEST_F(CliRepairGltf, AGltfCopiedIntoAnotherFolderNamesTheBufferItLeavesBehind) {
