@@ -35,6 +35,32 @@ export function recentred(values) {
 }
 
 /**
+ * An OBJ's text with its vertices ('v x y z ...') relative to their bounding box's centre,
+ * subtracted in double before OBJLoader reads them into float32 (recentred's reason). JavaScript's
+ * shortest round-trip form writes each difference, so OBJLoader reads the same double back. A
+ * 'v' line this does not read as three finite numbers leaves the text as it was (centre 0), for
+ * OBJLoader to judge.
+ * @returns {{text: string, centre: number[]}}
+ */
+export function recentredObj(text) {
+  const lines = text.split(/\r\n|\n|\r/);
+  const vertex = /^(\s*v\s+)(\S+)\s+(\S+)\s+(\S+)(.*)$/;
+  const rows = [];
+  for (let i = 0; i < lines.length; i++) {
+    if (!/^\s*v\s/.test(lines[i])) continue;
+    const m = vertex.exec(lines[i]);
+    const xyz = m ? [m[2], m[3], m[4]].map(Number) : [];
+    if (!m || !xyz.every(Number.isFinite)) return { text, centre: [0, 0, 0] };
+    rows.push([i, m[1], xyz, m[5]]);
+  }
+  const values = rows.flatMap((r) => r[2]);
+  if (!values.length) return { text, centre: [0, 0, 0] };
+  const { centre } = recentred(values);
+  for (const [i, head, xyz, rest] of rows) lines[i] = head + xyz.map((c, k) => String(c - centre[k])).join(' ') + rest;
+  return { text: lines.join('\n'), centre };
+}
+
+/**
  * Parses an OFF file (ascii; the "OFF" keyword optional; comments after '#'); polygons are
  * fan-triangulated for display. Throws an Error naming the line for anything else.
  * @returns {THREE.BufferGeometry} indexed, with normals; its positions relative to its bounding
@@ -118,8 +144,10 @@ export function loadMeshFile(buffer, name) {
     object = new THREE.Mesh(g);
     object.position.fromArray(g.userData.centre);
   } else if (ext === 'obj') {
-    object = new OBJLoader().parse(withUnnamedFirstMaterial(new TextDecoder().decode(buffer)));
+    const { text, centre } = recentredObj(new TextDecoder().decode(buffer));
+    object = new OBJLoader().parse(withUnnamedFirstMaterial(text));
     materialLibraries = object.materialLibraries;
+    object.position.fromArray(centre);
   } else if (ext === 'ply') {
     const loader = new PLYLoader();
     fields = plyScalarFields(buffer).map((f) => ({ name: f, attribute: `field_${f}` }));
@@ -141,8 +169,14 @@ export function loadMeshFile(buffer, name) {
     object.position.fromArray(centre);
   } else if (ext === 'stl') {
     const g = new STLLoader().parse(buffer);
+    // STLLoader reads straight into float32 (a binary STL holds no more); recentred all the same,
+    // so that the GPU's float arithmetic works on coordinates the size of the mesh, as for the
+    // other formats.
+    const { position, centre } = recentred(Float64Array.from(g.getAttribute('position').array));
+    g.setAttribute('position', new THREE.Float32BufferAttribute(position, 3));
     g.computeVertexNormals();
     object = new THREE.Mesh(g);
+    object.position.fromArray(centre);
   } else {
     throw new Error(`${name}: unknown mesh format '.${ext}' (expected .off, .obj, .ply, .stl or .glb)`);
   }

@@ -1,5 +1,5 @@
-// The viewer's own mesh loaders keep a mesh far from the origin (review14 D1): an OFF and a PLY of
-// doubles are recentred in double before they become float32 (mesh_files.js, recentred), and the
+// The viewer's own mesh loaders keep a mesh far from the origin (review14 D1): an OFF, a PLY and an
+// OBJ of doubles are recentred in double before they become float32 (mesh_files.js, recentred), and the
 // mesh is placed at its centre, so its positions plus the object's position give the file's to
 // float precision relative to the mesh's size. Before, a 2-unit sphere at northing 5e6 (float
 // spacing 0.5) became a cloud of a few hundred points. Node only, no browser.
@@ -76,6 +76,39 @@ const off = `OFF\n${v.length} ${f.length} 0\n` + v.map((p) => p.join(' ')).join(
   check(meshes[0].geometry.getAttribute('position').array instanceof Float32Array, 'PLY: float32 positions for the GPU');
   check(distinct === v.length, `PLY: ${distinct} distinct positions of ${v.length}`);
   check(err <= tol, `PLY: placed positions within ${err} of the file's (tolerance ${tol})`);
+}
+{
+  // An OBJ: OBJLoader reads its text into float32 directly, so its vertices are recentred in the
+  // text first (recentredObj); OBJLoader splits indexed faces into triangle corners.
+  const obj = v.map((p) => `v ${p.join(' ')}`).join('\n') + '\n' + f.map((t) => `f ${t.map((i) => i + 1).join(' ')}`).join('\n') + '\n';
+  const { object, meshes } = loadMeshFile(new TextEncoder().encode(obj).buffer, 'far.obj');
+  const p = meshes[0].geometry.getAttribute('position').array;
+  let err = 0;
+  f.forEach((t, j) => t.forEach((i, c) => {
+    for (let k = 0; k < 3; k++) err = Math.max(err, Math.abs(p[9 * j + 3 * c + k] + object.position.getComponent(k) - v[i][k]));
+  }));
+  check(err <= tol, `OBJ: placed positions within ${err} of the file's (tolerance ${tol})`);
+}
+{
+  // A binary STL holds float32 already: recentred, the placed positions are the file's floats.
+  const data = new DataView(new ArrayBuffer(84 + 50 * f.length));
+  data.setUint32(80, f.length, true);
+  const stored = [];
+  f.forEach((t, j) => t.forEach((i, c) => {
+    for (let k = 0; k < 3; k++) {
+      data.setFloat32(84 + 50 * j + 12 + 12 * c + 4 * k, v[i][k], true);
+      stored.push(data.getFloat32(84 + 50 * j + 12 + 12 * c + 4 * k, true));
+    }
+  }));
+  const { object, meshes } = loadMeshFile(data.buffer, 'far.stl');
+  const p = meshes[0].geometry.getAttribute('position').array;
+  let err = 0, span = 0;
+  for (let i = 0; i < stored.length; i++) {
+    err = Math.max(err, Math.abs(p[i] + object.position.getComponent(i % 3) - stored[i]));
+    span = Math.max(span, Math.abs(p[i]));
+  }
+  check(err <= tol, `STL: placed positions within ${err} of the file's floats (tolerance ${tol})`);
+  check(span <= size, `STL: stored positions relative to the mesh's centre (largest ${span})`);
 }
 {
   // A mesh at the origin stays there: nothing moves for the usual files.
