@@ -35,7 +35,7 @@ import threading
 
 import numpy as np
 
-from . import _core
+from . import _core, number_text
 
 __all__ = ["Option", "Result", "MeshError", "FileError", "contract", "frames", "options", "check",
            "regions", "read_mesh", "write_mesh"]
@@ -123,6 +123,15 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
     The options are the CLI's with '_' for '-' (the CLI's
     spelling is taken too, as regions() takes it; one option given both ways is a TypeError);
     ``lambda``, a Python keyword, is also ``lambda_``.
+
+    Values (regions() takes its numbers alike): a number is an int or a float (numpy's too) or
+    the CLI's text ("0.5"; no blanks, no hexadecimal); an integer option (frames, threads, ...)
+    takes a whole float (3.0; 3.5 is a ValueError). A bool (numpy's bool_ too) is for the on/off
+    options alone (collisions=False, or "on"/"off"); for a number, a TypeError, as is a list for
+    an option of one value. ``pressure`` and ``target_volume`` take one number or keyframes
+    (docs/design/keyframes.md): a list of (frame, value) pairs, ``[(0, 1), (60, 0.5)]``, an
+    N by 2 array of them, or the CLI's text ``"0:1, 60:0.5"``; a list of numbers
+    (``pressure=[4]``, a 1-D array) is a TypeError.
 
     ``regions`` (None, the default, is "not given") takes, told apart by type:
 
@@ -454,14 +463,16 @@ def check(vertices, faces):
 def regions(vertices, faces, **region_options):
     """The spherical regions ``--regions auto`` would choose: a list of face-index arrays, largest
     region first. Options: those of ``shellcontract regions`` (``fit_tolerance``, ``contrast``,
-    ``max_area_fraction``, ... with '_' or '-'; ``min_faces`` from 1 to 2**31 - 1); ``region_at``
+    ``max_area_fraction``, ... with '_' or '-'; ``min_faces`` from 1 to 2**31 - 1), their numbers
+    given as contract()'s are (an int or a float, numpy's too, a whole float such as 3.0 for
+    min_faces, or a str of the CLI's text, "0.5"; a bool is a TypeError); ``region_at``
     picks the caps around points instead, in the forms and with the errors of contract()'s
     region_at (one point, a list or array of points, or 'X,Y,Z' text). A region_at point farther
     from the surface than 1.5 % of the bounding box's diagonal is a UserWarning naming the surface
     point taken (contract(region_at=...): a warning in its summary). Other Python threads run
     during the search; Ctrl-C stops it within a fraction of a second (as during contract()'s own
     region search) and raises KeyboardInterrupt."""
-    return _core.regions(vertices, faces, **region_options)
+    return _core.regions(vertices, faces, **number_text.region_numbers(region_options))
 
 
 def read_mesh(path):

@@ -24,8 +24,8 @@ import subprocess
 import sys
 import uuid
 
-from . import (sweep_checkpoint, sweep_cli, sweep_dask, sweep_file, sweep_host, sweep_job,
-               sweep_output, sweep_process, sweep_progress, sweep_results)
+from . import (number_text, sweep_checkpoint, sweep_cli, sweep_dask, sweep_file, sweep_host,
+               sweep_job, sweep_output, sweep_process, sweep_progress, sweep_results)
 
 EXIT_USAGE = 1
 EXIT_INCOMPLETE = 3
@@ -40,9 +40,8 @@ cli_version = sweep_cli.cli_version
 
 
 def parse_shard(text):
-    try:
-        i, n = (int(x) for x in text.split("/"))
-    except ValueError:
+    i, n = (number_text.integer(x) for x in text.split("/", 1)) if "/" in text else (None, None)
+    if i is None or n is None:
         raise argparse.ArgumentTypeError("expected I/N, e.g. 0/4, got {!r}".format(text))
     if n < 1 or not 0 <= i < n:
         raise argparse.ArgumentTypeError("expected 0 <= I < N, got {!r}".format(text))
@@ -54,24 +53,21 @@ def parse_shard(text):
 MAX_JOB_TIMEOUT = sweep_job.MAX_SECONDS
 # --checkpoint-every goes to `shellcontract run`, which takes an int.
 MAX_CHECKPOINT_EVERY = 2**31 - 1
+# The most workers of the embedded cluster (sweep_host.MAX_WORKERS).
+MAX_WORKERS = sweep_host.MAX_WORKERS
 
 
+# The numbers are read in the tool's grammar (number_text), not by Python's int() and float().
 def job_timeout(text):
-    try:
-        v = float(text)
-    except ValueError:
-        v = None
-    if v is None or not 0 < v <= MAX_JOB_TIMEOUT:  # (also NaN and inf)
+    v = number_text.decimal(text)
+    if v is None or not 0 < v <= MAX_JOB_TIMEOUT:
         raise argparse.ArgumentTypeError(
             "expected a number of seconds > 0 and <= {:g}, got {!r}".format(MAX_JOB_TIMEOUT, text))
     return v
 
 
 def positive_int(text, most=None):
-    try:
-        v = int(text)
-    except ValueError:
-        v = None
+    v = number_text.integer(text)
     if v is None or v < 1 or (most is not None and v > most):
         raise argparse.ArgumentTypeError("expected an integer >= 1{}, got {!r}".format(
             "" if most is None else " and <= {}".format(most), text))
@@ -80,6 +76,27 @@ def positive_int(text, most=None):
 
 def checkpoint_every(text):
     return positive_int(text, MAX_CHECKPOINT_EVERY)
+
+
+def workers(text):
+    return positive_int(text, MAX_WORKERS)
+
+
+class _Once(argparse.Action):
+    """An option given once, as the C++ commands take each (argparse's own keeps the last of
+    `--workers 2 --workers 3`); a switch with nargs=0."""
+
+    def __init__(self, option_strings, dest, nargs=None, **kwargs):
+        self._switch = nargs == 0
+        super().__init__(option_strings, dest, nargs=nargs, **kwargs)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = namespace.__dict__.setdefault("_given", set())
+        if self.dest in given:
+            parser.error("option '{}' cannot be given more than once".format(
+                max(self.option_strings, key=len)))
+        given.add(self.dest)
+        setattr(namespace, self.dest, True if self._switch else values)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -157,31 +174,50 @@ def parser():
                "was killed, timed out, could not write its output or read its checkpoint, or "
                "runs in another sweep, 130 interrupted (run the same command again to finish)")
     p.add_argument("sweep", metavar="SWEEP.json")
-    p.add_argument("-o", "--output", metavar="DIR", required=True,
+    p.add_argument("-o", "--output", metavar="DIR", required=True, action=_Once,
                    help="results folder: new, empty, or this sweep file's from an earlier sweep")
     where = p.add_mutually_exclusive_group()
-    where.add_argument("--scheduler", metavar="tcp://HOST:PORT",
+    where.add_argument("--scheduler", metavar="tcp://HOST:PORT", action=_Once,
                        help="an existing Dask cluster (dask scheduler / dask worker); DIR and the "
                             "meshes must be at the same paths on every worker")
-    where.add_argument("--shard", metavar="I/N", type=parse_shard,
+    where.add_argument("--shard", metavar="I/N", type=parse_shard, action=_Once,
                        help="run only the I-th of N slices of the jobs, serially in this process "
                             "(job arrays: Slurm, Kubernetes indexed jobs)")
-    p.add_argument("--workers", type=positive_int, default=None,
-                   help="jobs at a time on the embedded cluster (default: the cores this process "
-                        "may use)")
-    p.add_argument("--job-timeout", type=job_timeout, default=None, metavar="SECONDS",
+    p.add_argument("--workers", type=workers, default=None, action=_Once,
+                   help="jobs at a time on the embedded cluster, at most {} (default: the cores "
+                        "this process may use, at most {}); no more workers start than there are "
+                        "jobs to run".format(MAX_WORKERS, MAX_WORKERS))
+    p.add_argument("--job-timeout", type=job_timeout, default=None, metavar="SECONDS", action=_Once,
                    help="stop a job after this long (recorded as 'timeout'; a later sweep "
                         "resumes it from its checkpoint)")
     p.add_argument("--checkpoint-every", type=checkpoint_every, default=20, metavar="N",
+                   action=_Once,
                    help="each job saves its state every N frames (a lost worker's job resumes "
                         "from there); default 20")
-    p.add_argument("--cli", metavar="PATH",
+    p.add_argument("--cli", metavar="PATH", action=_Once,
                    help="the shellcontract executable (default: $SHELLCONTRACT_CLI, the build "
                         "tree, PATH; with --scheduler each worker finds its own unless this is "
                         "given)")
-    p.add_argument("--dry-run", action="store_true",
+    p.add_argument("--dry-run", action=_Once, nargs=0, default=False,
                    help="validate the sweep file and list the jobs; run nothing")
     return p
+
+
+def scheduler_address_problem(address):
+    """Why `address` is no scheduler's address (Dask's parse, then what it lets through: a port
+    out of [1, 65535], or written otherwise than the tool's integers, " 8786" or "8_786"; a blank
+    anywhere), or None."""
+    from distributed.comm.addressing import parse_address, parse_host_port
+    try:
+        parse_host_port(parse_address(address)[1])
+    except ValueError as e:
+        return str(e)
+    if any(c.isspace() for c in address):
+        return "it has a blank"
+    port = address.rsplit(":", 1)[1]
+    if not ("0" <= port[:1] <= "9" and 1 <= (number_text.integer(port) or 0) <= 65535):
+        return "the port must be an integer in [1, 65535], got {!r}".format(port)
+    return None
 
 
 def _os_error_text(e):
@@ -241,12 +277,10 @@ def _main(argv, lock_wait, note_every):
         return EXIT_USAGE
     if args.scheduler is not None:
         # Checked before DIR is claimed (a traceback from the client before: 'bogus').
-        from distributed.comm.addressing import parse_address, parse_host_port
-        try:
-            parse_host_port(parse_address(args.scheduler)[1])
-        except ValueError as e:
+        why = scheduler_address_problem(args.scheduler)
+        if why:
             print("shellcontract sweep: refused, nothing run: --scheduler {!r} is not an address "
-                  "tcp://HOST:PORT ({})".format(args.scheduler, e), file=sys.stderr)
+                  "tcp://HOST:PORT ({})".format(args.scheduler, why), file=sys.stderr)
             return EXIT_USAGE
     args.output = os.path.abspath(args.output)
     try:

@@ -309,7 +309,7 @@ def run_jobs(todo, args, cli, version, token, progress, on_record, client=None):
              sweep_host.cluster_share(client.scheduler_info().get("workers", {}), len(todo)))
     if client is None:
         # The embedded workers run this machine's executable, on the cores this process may use.
-        workers = args.workers or sweep_host.usable_cores()
+        workers = sweep_host.embedded_workers(args.workers, len(todo))
         threads = sweep_host.job_threads(workers, len(todo))
         cluster, client, scratch = _start_embedded(workers, Client)
     futures = {}

@@ -118,6 +118,22 @@ def usable_cores():
     return min(cores, quota) if quota > 0 else cores
 
 
+# The most workers of the embedded cluster (--workers, and the default on a machine of more
+# cores). Its workers are threads of the sweep's process, each with its connection and heartbeat
+# to the scheduler on one event loop: on a small machine a thousand of them did not finish
+# starting (handshakes timed out, the one job stayed pending, tens of thousands of lines of
+# Dask's tracebacks). Nothing is lost on a machine of more cores: the jobs at once share them
+# (job_threads), each with several threads.
+MAX_WORKERS = 256
+
+
+def embedded_workers(asked, jobs):
+    """The workers of the embedded cluster for `jobs` jobs to run: `asked` (--workers; None: the
+    usable cores, held to MAX_WORKERS), but no more than the jobs, since a worker without a job
+    would only take its share of the start and the heartbeats."""
+    return max(1, min(asked or min(usable_cores(), MAX_WORKERS), jobs))
+
+
 def job_threads(workers, jobs, cores=None):
     """The --threads of each job when `workers` jobs at a time run `jobs` jobs on the embedded
     cluster: the usable cores shared out among the jobs that run at once, at least 1; None (the

@@ -75,10 +75,11 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   return d;
 }
 
-/// A non-negative real option of regions(): TypeError for anything but a real number (a bool
-/// or a string too), ValueError for NaN, infinity or a negative value.
+/// A non-negative real option of regions(): TypeError for anything but a real number (a bool,
+/// numpy's too, or a string: the package's regions() reads a str as the CLI's text first),
+/// ValueError for NaN, infinity or a negative value.
 double real_option(const std::string& name, const py::handle& value) {
-  const bool real = !py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) &&
+  const bool real = !is_bool(value) && !py::isinstance<py::str>(value) &&
                     (PyFloat_Check(value.ptr()) || PyIndex_Check(value.ptr()) ||
                      PyObject_HasAttrString(value.ptr(), "__float__"));
   if (!real)
@@ -94,20 +95,32 @@ double real_option(const std::string& name, const py::handle& value) {
   return v;
 }
 
-/// A positive integer option of regions() (TypeError for a float or a bool): min_faces, whose
-/// range is the library's (check_region_options: >= 1) and the CLI's (--min-faces reads an int).
+/// A positive integer option of regions(): min_faces, whose range is the library's
+/// (check_region_options: >= 1) and the CLI's (--min-faces reads an int). As contract()'s
+/// integers: an int (numpy's too) or a float whose value is whole (3.0; 3.5 is a ValueError);
+/// TypeError for a bool (numpy's too) or anything else.
 int int_option(const std::string& name, const py::handle& value) {
-  if (py::isinstance<py::bool_>(value) || !PyIndex_Check(value.ptr()))
+  constexpr long long most = std::numeric_limits<int>::max();
+  const auto out_of_range = [&] {
+    return py::value_error("regions() option " + name + ": expected an integer from 1 to " +
+                           std::to_string(most) + ", got " + std::string(py::repr(value)));
+  };
+  if (!is_bool(value) && !PyIndex_Check(value.ptr()) && !py::isinstance<py::str>(value) &&
+      PyObject_HasAttrString(value.ptr(), "__float__")) {
+    const double d = PyFloat_AsDouble(value.ptr());
+    if (d == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+    if (!(std::floor(d) == d && d >= 1.0 && d <= static_cast<double>(most)))
+      throw out_of_range();  // NaN too
+    return static_cast<int>(d);
+  }
+  if (is_bool(value) || !PyIndex_Check(value.ptr()))
     throw py::type_error("regions() option " + name + ": expected an integer, got " +
                          std::string(py::str(value.get_type().attr("__name__"))));
   const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
   if (!i) throw py::error_already_set();
   int overflow = 0;
   const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
-  constexpr long long most = std::numeric_limits<int>::max();
-  if (overflow != 0 || v < 1 || v > most)
-    throw py::value_error("regions() option " + name + ": expected an integer from 1 to " + std::to_string(most) +
-                          ", got " + std::string(py::repr(value)));
+  if (overflow != 0 || v < 1 || v > most) throw out_of_range();
   return static_cast<int>(v);
 }
 

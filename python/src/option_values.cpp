@@ -46,10 +46,19 @@ std::string option_text(const std::string& name, const py::handle& value) {
   if ((py::isinstance<py::tuple>(value) || py::isinstance<py::list>(value)) && py::len(value) > 0 &&
       (py::isinstance<py::tuple>(value[py::int_(0)]) || py::isinstance<py::list>(value[py::int_(0)]))) {
     std::string s;
+    int keys = 0;
     for (const py::handle& key : value) {
       if (!(py::isinstance<py::tuple>(key) || py::isinstance<py::list>(key)) || py::len(key) != 2)
         throw py::value_error("option " + name + ": keyframes are (frame, value) pairs, got " +
                               std::string(py::str(py::repr(key))));
+      // True would reach the table as the frame 'on'.
+      for (int i = 0; i < 2; ++i)
+        if (is_bool(key[py::int_(i)]))
+          throw py::type_error("option " + name + ": key " + std::to_string(keys + 1) + " = " +
+                               std::string(py::str(py::repr(key))) + ": its " +
+                               (i == 0 ? "frame" : "value") +
+                               " is a bool; keyframes are (frame, value) pairs of numbers");
+      ++keys;
       // A whole float frame (a float array's 15.0) is the integer frame it stands for.
       py::object frame = key[py::int_(0)];
       if (py::isinstance<py::float_>(frame) && std::floor(frame.cast<double>()) == frame.cast<double>() &&
@@ -74,14 +83,36 @@ bool is_sequence(const py::handle& value) {
   return py::hasattr(value, "tolist") && py::hasattr(value, "ndim") && value.attr("ndim").cast<int>() > 0;
 }
 
-/// The options whose text may be a list, by the table's own value names: keyframes (pressure,
-/// target_volume: "P|KEYS") and a direction (fiber: "centre|X,Y,Z"); region_at and
-/// region_weights are read before the table.
+/// The keyframe options, by the table's own value names (pressure, target_volume: "P|KEYS").
+bool takes_keyframes(const OptionSpec& spec) {
+  return spec.value_name.find("KEYS") != std::string::npos;
+}
+
+/// The options whose text may be a list: keyframes and a direction (fiber: "centre|X,Y,Z");
+/// region_at and region_weights are read before the table.
 bool takes_sequence(const OptionSpec& spec) {
-  return spec.value_name.find("KEYS") != std::string::npos || spec.value_name.find(',') != std::string::npos;
+  return takes_keyframes(spec) || spec.value_name.find(',') != std::string::npos;
+}
+
+/// A list of keyframes: a sequence (an array by its tolist) of at least one item, every item a
+/// list or a tuple; option_text checks each for a pair.
+bool is_keyframe_list(const py::handle& value) {
+  const py::object items = py::hasattr(value, "tolist") ? value.attr("tolist")()
+                                                        : py::reinterpret_borrow<py::object>(value);
+  if (py::len(items) == 0) return false;
+  for (const py::handle& item : items)
+    if (!(py::isinstance<py::tuple>(item) || py::isinstance<py::list>(item))) return false;
+  return true;
 }
 
 }  // namespace
+
+bool is_bool(const py::handle& value) {
+  if (py::isinstance<py::bool_>(value)) return true;
+  if (!py::hasattr(value, "dtype") || !py::hasattr(value, "ndim")) return false;
+  return value.attr("ndim").cast<int>() == 0 &&
+         value.attr("dtype").attr("kind").cast<std::string>() == "b";
+}
 
 bool is_path(const py::handle& value) {
   return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
@@ -169,12 +200,19 @@ RunOptions options_from_kwargs(const py::dict& kwargs, const std::string& also_v
     if (is_sequence(value) && !takes_sequence(*spec))
       throw py::type_error(name + ": got " + std::string(py::str(py::repr(value))) +
                            "; it takes one value, not a list");
+    // A list of numbers for a keyframe option had its one item taken as the value (pressure=[1]
+    // ran as 1, a sweep file's "pressure": [0.5] as 0.5) and two refused as the number '1,2'.
+    if (is_sequence(value) && takes_keyframes(*spec) && !is_keyframe_list(value))
+      throw py::type_error(
+          name + ": got " + std::string(py::str(py::repr(value))) +
+          "; it takes one value, or keyframes: a list of (frame, value) pairs, an N by 2 "
+          "array or the text \"F:V, F:V\", not a list of values");
     try {
       spec->set(options, option_text(name, value));  // UsageError (ValueError) for a bad value
     } catch (const UsageError& e) {
       // A bool reaches the table as on/off, which only the on/off options take: a number's
       // refusal would otherwise read "frames: 'on' is not an integer".
-      if (py::isinstance<py::bool_>(value))
+      if (is_bool(value))
         throw py::type_error(name + ": got the bool " + std::string(value.cast<bool>() ? "True" : "False") +
                              ", which only on/off options take (" +
                              spell_options(e.what(), OptionSpelling::Python) + ")");

@@ -17,6 +17,10 @@ namespace py = pybind11;
 /// A file name as Python takes one: a str or an os.PathLike (not bytes: a value of an option).
 bool is_path(const py::handle& value);
 
+/// A bool as Python code passes one: a bool, numpy's bool_, or a 0-dimensional array of bools.
+/// Only the on/off options take one; for a number it is a TypeError, whichever kind it is.
+bool is_bool(const py::handle& value);
+
 /// The options by their Python names: an option is also taken as the CLI spells it ("k-b" for
 /// k_b, as regions() takes them), once (TypeError for one given both ways). Unknown names are
 /// kept as given, for options_from_kwargs's message.

@@ -72,10 +72,11 @@ def test_a_sweep_in_a_folder_named_with_brackets_runs_its_own_mesh(cli, mesh_dir
 
 # The embedded cluster's workers: one per core this process may use (its affinity), not per core
 # of the machine. Before, os.cpu_count(): a sweep given 1 core of 64 started 64 jobs at once.
-def _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch):
-    """The worker counts a sweep of one tiny job asks its embedded cluster for (nothing runs)."""
+def _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch, extra=(), jobs=4):
+    """The worker counts a sweep of `jobs` tiny jobs asks its embedded cluster for (nothing
+    runs); more jobs than workers by default, so that the workers asked are the test."""
     path = write_sweep(tmp_path, mesh_dir, "s.json", {"meshes": ["meshes/ico1.off"],
-                                                      "options": {"frames": 2}},
+                                                      "grid": {"frames": list(range(1, jobs + 1))}},
                        meshes=("ico1.off",))
     asked = []
 
@@ -84,7 +85,7 @@ def _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch):
         raise KeyboardInterrupt  # nothing to run: the number is the test
 
     monkeypatch.setattr(sweep_dask, "embedded_cluster", cluster)
-    assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli]) == 130
+    assert sweep.main([str(path), "-o", str(tmp_path / "out"), "--cli", cli] + list(extra)) == 130
     return asked
 
 
@@ -97,6 +98,28 @@ def test_the_default_workers_are_the_cores_this_process_may_use(cli, mesh_dir, t
     monkeypatch.setattr(os, "sched_getaffinity", lambda pid: {3})
     monkeypatch.setattr(os, "cpu_count", lambda: 64)
     assert _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch) == [1]
+
+
+def test_no_more_workers_start_than_jobs_to_run(cli, mesh_dir, tmp_path, monkeypatch):
+    """Before: --workers 1000 on a sweep of one job started 1000 workers, which on a small machine
+    did not finish starting (the job stayed pending among Dask's tracebacks)."""
+    pytest.importorskip("distributed")
+    from shellcontract import sweep
+    for name, workers, jobs, started in [("a", 3, 2, 2), ("b", 2, 3, 2)]:
+        (tmp_path / name).mkdir()
+        assert _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path / name, monkeypatch,
+                                       extra=["--workers", str(workers)], jobs=jobs) == [started]
+
+
+def test_the_default_workers_are_at_most_the_bound(cli, mesh_dir, tmp_path, monkeypatch):
+    """A machine of more cores than sweep_host.MAX_WORKERS starts that many workers, the bound
+    --workers takes; the jobs at once share the cores."""
+    pytest.importorskip("distributed")
+    from shellcontract import sweep
+    monkeypatch.setattr(sweep_host, "usable_cores", lambda: 1000)
+    assert sweep_host.MAX_WORKERS == 256
+    assert _embedded_workers_asked(sweep, cli, mesh_dir, tmp_path, monkeypatch, jobs=300) == [256]
+    assert sweep_host.job_threads(256, 300, cores=1000) == 3
 
 
 # A CPU quota (docker --cpus=2, a Kubernetes CPU limit) leaves the affinity whole: the cores

@@ -22,6 +22,19 @@ SPEC = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}}
     (["--job-timeout", "soon"], "got 'soon'"),
     (["--checkpoint-every", "0"], "expected an integer >= 1 and <= 2147483647"),
     (["--checkpoint-every", "99999999999"], "got '99999999999'"),
+    # The tool's number grammar, not Python's int() and float() (before: all of these ran), and
+    # each option once, as the C++ commands take them (before: the last one won).
+    (["--workers", "257"], "expected an integer >= 1 and <= 256, got '257'"),
+    (["--workers", "99999999999999999999"], "got '99999999999999999999'"),
+    (["--workers", " 3"], "got ' 3'"),
+    (["--job-timeout", "1_000"], "got '1_000'"),
+    (["--job-timeout", "3 "], "got '3 '"),
+    (["--checkpoint-every", "1_0"], "got '1_0'"),
+    (["--checkpoint-every", "\u0663"], "got '\u0663'"),
+    (["--shard", " 0/2"], "expected I/N, e.g. 0/4, got ' 0/2'"),
+    (["--workers", "2", "--workers", "3"], "option '--workers' cannot be given more than once"),
+    (["--dry-run"], "option '--dry-run' cannot be given more than once"),
+    (["-o", "elsewhere"], "option '--output' cannot be given more than once"),
 ], ids=lambda v: " ".join(v) if isinstance(v, list) else None)
 def test_bad_usage_exits_1_with_a_message(cli, mesh_dir, tmp_path, args, expected):
     path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
@@ -31,6 +44,51 @@ def test_bad_usage_exits_1_with_a_message(cli, mesh_dir, tmp_path, args, expecte
     assert "shellcontract sweep: error: " in r.stderr and expected in r.stderr, r.stderr
     assert "Traceback" not in r.stderr
     assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("address,expected", [
+    ("tcp://127.0.0.1:99999", "the port must be an integer in [1, 65535], got '99999'"),
+    ("tcp://127.0.0.1:0", "the port must be an integer in [1, 65535], got '0'"),
+    ("tcp://127.0.0.1:8_786", "the port must be an integer in [1, 65535], got '8_786'"),
+    ("tcp://127.0.0.1: 8786", "it has a blank"),
+])
+def test_a_scheduler_address_that_dask_lets_through_is_refused(cli, mesh_dir, tmp_path, address,
+                                                               expected):
+    """Before: each passed --dry-run (Dask's parse_host_port reads the port with int())."""
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run", "--scheduler",
+                        address])
+    assert r.returncode == 1, (r.returncode, r.stderr)
+    assert "is not an address tcp://HOST:PORT ({}".format(expected) in r.stderr, r.stderr
+    assert not (tmp_path / "out").exists()
+
+
+def test_the_tools_number_forms_are_still_taken(cli, mesh_dir, tmp_path):
+    path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run", "--workers", "+3",
+                        "--job-timeout", "1e3", "--checkpoint-every", "010", "--shard", "0/1"])
+    assert r.returncode == 0, r.stderr
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run",
+                        "--scheduler", "tcp://[::1]:65535"])
+    assert r.returncode == 0, r.stderr
+
+
+@pytest.mark.parametrize("text", ["3", "+3", "-0", "010", "3.0", ".5", "5.", "+.5", "1e3", "1E+3",
+                                  "1e-320", "1e-400", "1e400", " 3", "3 ", "1_000", "0x10", "inf",
+                                  "nan", "Infinity", "\u0663", "+-3", "", "e5", "1e", ".", "3,5"])
+def test_the_sweeps_numbers_are_read_as_the_library_reads_them(text):
+    """number_text (the sweep's options, regions()'s numbers given as text) takes a text exactly
+    when the library's option parser does (c01: a finite number >= 0; frames: an integer)."""
+    from shellcontract import _core, number_text
+
+    def library_takes(**option):
+        try:
+            _core.resolve_options(**option)
+            return True
+        except ValueError:
+            return False
+    assert (number_text.decimal(text) is not None) == library_takes(c01=text)
+    assert (number_text.integer(text) is not None) == library_takes(frames=text)
 
 
 def test_the_largest_job_timeout_is_taken(cli, mesh_dir, tmp_path):
