@@ -66,7 +66,8 @@ if(PYTHON_PACKAGE)
   if(NOT core)
     message(FATAL_ERROR "not installed: the Python module ${package}/_core*.so")
   endif()
-  foreach(f __init__.py sweep.py sweep_file.py sweep_job.py sweep_lock.py sweep_checkpoint.py
+  foreach(f __init__.py _region_arguments.py number_text.py sweep.py sweep_file.py sweep_job.py
+            sweep_lock.py sweep_checkpoint.py
             sweep_output.py sweep_process.py
             sweep_progress.py sweep_results.py sweep_dask.py)
     if(NOT EXISTS ${package}/${f})
