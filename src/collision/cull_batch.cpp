@@ -221,7 +221,7 @@ bool cull_batch_avx2_available() {
 
 void cull_batch(CcdPrimitive kind, const double* x0, const double* x1,
                 const std::array<int, 4>* v, int count, double tolerance, std::uint8_t* culled,
-                CullIsa isa, std::uint8_t* axes) {
+                [[maybe_unused]] CullIsa isa, std::uint8_t* axes) {
   count = std::clamp(count, 0, CULL_LANES);
   if (count == 0) return;
 #if SHELLCONTRACT_CULL_AVX2

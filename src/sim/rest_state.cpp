@@ -112,11 +112,19 @@ ConstraintSet pack_constraints(const Mesh& mesh, BendingModel bending) {
     };
     const double shortest = std::min({len(s[0], s[1]), len(s[1], s[2]), len(s[2], s[0]),
                                       len(s[0], s[3]), len(s[3], s[1])});
-    if (bending == BendingModel::Isometric) {
-      const IsometricBendingRest& r = iso[e];
-      set.isometric_hinges.push_back({s, r.K, 3.0 / r.area_sum, STEP_CLAMP_FACTOR * shortest});
-    } else {
-      set.dihedral_hinges.push_back({s, dih[e], STEP_CLAMP_FACTOR * shortest});
+    // Every model named, no default: a model added to BendingModel without its hinges here is a
+    // compiler warning (-Wswitch), not a run that silently bends as another model.
+    switch (bending) {
+      case BendingModel::Isometric: {
+        const IsometricBendingRest& r = iso[e];
+        set.isometric_hinges.push_back({s, r.K, 3.0 / r.area_sum, STEP_CLAMP_FACTOR * shortest});
+        break;
+      }
+      case BendingModel::Dihedral:
+        set.dihedral_hinges.push_back({s, dih[e], STEP_CLAMP_FACTOR * shortest});
+        break;
+      case BendingModel::None:
+        break;  // returned above
     }
   }
   return set;

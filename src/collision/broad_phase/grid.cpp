@@ -64,7 +64,7 @@ void unpack_keys(const std::vector<std::uint64_t>& keys, int shift, std::size_t 
 /// of the double loop's, emitted by the same cells, rows and lanes in the same order (the two
 /// loops differ only in the box test), so the kept keys are the double loop's, in its order.
 /// p is a vertex and q a face (vf), or p and q are edges.
-void confirm_keys(const GridPrimitives& prim, bool vf, int shift, double far_gap,
+[[maybe_unused]] void confirm_keys(const GridPrimitives& prim, bool vf, int shift, double far_gap,
                   std::vector<std::uint64_t>& keys) {
   const std::uint64_t mask = (std::uint64_t{1} << shift) - 1;
   const CollisionTopology& topo = prim.topo;
@@ -197,7 +197,7 @@ std::int64_t grid_pairs(const CollisionTopology& topo, double far_gap, Candidate
   const bool avx2 = !avx512 && s.grid_isa != detail::GridIsa::Portable && s.grid_float_confirm &&
                     !float_superset && detail::grid_avx2_available();
   const bool float_cells = (avx512 && (float_superset || s.grid_float_confirm)) || avx2;
-  const bool confirm = float_cells && !float_superset;
+  [[maybe_unused]] const bool confirm = float_cells && !float_superset;
   s.grid_vertex_floats.resize(avx512 && !float_cells ? 0 : nv);
   if (float_cells) {
     // The superset loop needs only a monotone map from the doubles to the floats (it keeps
