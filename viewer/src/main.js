@@ -7,6 +7,8 @@
 // has them (the glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on
 // that frame and never on the others; a mesh file is coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
 // wear its materials (base colour, texture), and a file with materials opens so.
+// Two runs' .glb side by side step by run frame. A field is drawn on a diverging map about 0 or a
+// sequential one (colour_map.js), with a colour bar (legend.js). An error names its file, briefly.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // While a file loads, the status line says so: its name and the bytes read (state.loading).
 // For tests, window.viewer exposes the state: {ready, loading, keyframe, frameNumbers, panes (with their
@@ -14,7 +16,8 @@
 // looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { colourScale, cssGradient, fieldColourAttribute, range } from './colour_map.js';
+import { colourScale, fieldColourAttribute, range } from './colour_map.js';
+import { drawLegend, legendNote } from './legend.js';
 import { loadingText, mb, nextPaint, readFile, readResponse } from './loading.js';
 import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
 import { disposePane, firstFramePane, makePane } from './panes.js';
@@ -221,7 +224,9 @@ function setSideBySide(on) {
 function loadLog(text, name) {
   if (name.toLowerCase().endsWith('.json')) {
     state.summary = parseJsonSummary(text);
-    el('plot-note').textContent = `${name}: final V/V0 ${state.summary.finalVolumeRatio}, minimum ${state.summary.minVolumeRatio}`;
+    const { finalVolumeRatio: last, minVolumeRatio: min } = state.summary;
+    if (!Number.isFinite(last)) throw new Error('not a run summary (no final_volume_ratio)');
+    el('plot-note').textContent = `${name}: final V/V0 ${last.toFixed(4)}` + (Number.isFinite(min) ? `, minimum ${min.toFixed(4)}` : '');
   } else {
     state.log = parseCsvLog(text);
     el('plot-note').textContent = `${name}: ${state.log.frame.length} rows`;
@@ -289,9 +294,11 @@ function setKeyframe(k) {
   }
   el('scrubber').value = String(k);
   const frame = state.frameNumbers[k];
+  // The box shows the frame shown, not a number typed before the scrubber moved.
+  if (document.activeElement !== el('goto') && !el('goto').disabled) el('goto').value = String(frame);
   const ratio = ratioAt(state.log, frame);
-  el('frame-label').textContent = `frame ${frame} (${k + 1}/${state.frameNumbers.length})` +
-    (ratio !== undefined ? `  V/V0 ${ratio.toFixed(4)}` : '');
+  el('frame-label').textContent = !panes.some((p) => p.kind === 'glb') ? 'no frames: meshes only'
+    : `frame ${frame} (${k + 1}/${state.frameNumbers.length})` + (ratio !== undefined ? `  V/V0 ${ratio.toFixed(4)}` : '');
   applyColours();
   updatePlot();
   render();
@@ -397,38 +404,14 @@ function applyColours() {
     return shown === 'none' && fileMaterials ? 'file materials' : shown;
   });
   state.colourValues = values;
-  drawLegend(legends[0] ?? null);
+  drawLegend(el('colour-bar'), legends[0] ?? null);
   state.legend = legends[0] ? { name: legends[0].name, ...legends[0].scale } : null;
-  for (const l of legends) {
-    notes.push(`${l.name}: ${l.scale.low.toPrecision(3)} to ${l.scale.high.toPrecision(3)}${UNITS[l.name] ? ` ${UNITS[l.name]}` : ''}; ` +
-               `${l.scale.diverging ? 'blue below 0, white 0, red above' : 'dark purple low, yellow high'} ` +
-               `(${l.of}${l.scale.diverging ? ', made symmetric about 0' : ''})`);
-  }
+  notes.push(...legends.map(legendNote));
   // The note says what is shown: a file with materials and no colour fields is not plain.
   const withMaterials = panes.filter((p, i) => state.shown[i] === 'file materials').map((p) => p.name);
   if (withMaterials.length) notes.push(`the materials of ${[...new Set(withMaterials)].join(' and ')} are shown`);
   if (el('colour').options.length === 1) notes.unshift(`no colour fields in ${panes.length > 1 ? 'these files' : 'this file'}`);
   el('colour-note').textContent = [...new Set(notes)].join('; ');
-}
-
-/** The units of the CLI's fields (docs/cli.md, --fields). */
-const UNITS = {
-  mean_curvature: '(1/length of the input)', gaussian_curvature: '(1/length² of the input)',
-  pressure: '(normalized units, > 0 pushes inward)', energy_density: '(normalized units)',
-};
-
-/** The colour bar under the menu: the map from low to high, with its ends, 0 and the units. */
-function drawLegend(legend) {
-  const bar = el('colour-bar');
-  bar.hidden = !legend;
-  if (!legend) return;
-  const { scale, name } = legend;
-  bar.querySelector('.ramp').style.background = cssGradient(scale.diverging);
-  const f = (v) => Number(v.toPrecision(3)).toString();
-  bar.querySelector('.low').textContent = f(scale.low);
-  bar.querySelector('.mid').textContent = scale.diverging ? '0' : f((scale.low + scale.high) / 2);
-  bar.querySelector('.high').textContent = f(scale.high);
-  bar.querySelector('.units').textContent = `${name}${UNITS[name] ? ` ${UNITS[name]}` : ''}`;
 }
 
 function updatePlot() {

@@ -7,6 +7,8 @@
 // Usage: node viewer/tests/viewer_mesh_files_test.mjs
 import { colourScale, mapColour } from '../src/colour_map.js';
 import { loadMeshFile } from '../src/mesh_files.js';
+import { niceTicks } from '../src/plot.js';
+import { ratioAt } from '../src/run_log.js';
 
 const failures = [];
 const check = (ok, what) => {
@@ -65,6 +67,16 @@ const H = [1.9999999999999762, -1.278591327758803, 0.1, 4.0169274194971436];
   const lum = (c) => 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
   const steps = [0, 0.25, 0.5, 0.75, 1].map((t) => lum(mapColour(t, false)));
   check(steps.every((l, i) => i === 0 || l > steps[i - 1]), `the sequential map grows lighter end to end (${steps.map(Math.round)})`);
+}
+{
+  // The plot's ticks are round numbers within the range; frame 0, which the log has no row of, is at V/V0 1.
+  for (const [lo, hi] of [[1, 20], [1, 200], [0.687, 1.014], [0.5011, 1.0]]) {
+    const t = niceTicks(lo, hi);
+    const round = t.every((x) => Number(x.toPrecision(2)) === x);
+    check(t.length >= 2 && t.length <= 6 && round && t[0] >= lo && t.at(-1) <= hi, `ticks of [${lo}, ${hi}] are round (${t})`);
+  }
+  const log = { frame: [1, 2, 3], volumeRatio: [0.99, 0.98, 0.97] };
+  check(ratioAt(log, 0) === 1 && ratioAt(log, 2) === 0.98 && ratioAt(log, 7) === undefined, `V/V0 at frame 0 is 1 (${ratioAt(log, 0)})`);
 }
 if (failures.length) {
   console.error(`${failures.length} check(s) failed`);

@@ -3,9 +3,10 @@
 // colours: it broke the page) is drawn in its regions' colours, opened through view.py and through
 // the picker; a result PLY a few radii from the origin is drawn (its stale bounding sphere culled
 // it); a file that fails is named with a short error, and a --log that is not a log leaves the mesh
-// drawn; two runs' .glb side by side step by run frame, the shorter holding its last frame.
+// drawn; two runs' .glb side by side step by run frame, the shorter holding its last frame; file
+// names are shown as written (not percent-encoded), two of one name with their folders.
 // Usage: node viewer/tests/viewer_results_test.mjs --cli SHELLCONTRACT --mesh bumpy_sphere.off [--chromium PATH]
-import { readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { check, finish, parseArgs, runCli, startViewer, workFolder } from './test_support.mjs';
 
 const args = parseArgs('viewer_results_test.mjs --cli SHELLCONTRACT --mesh MESH.off [--chromium PATH]', ['cli', 'mesh']);
@@ -30,9 +31,15 @@ cli('regions', args.mesh, '-o', file('regions.ply'));
 }
 cli('run', file('moved.off'), '-o', file('moved_out.ply'), '-n', '5', '-q');
 // Two runs of different lengths and kept frames: frames 0 to 20 (every one), and 0 to 40 (every 5th).
-cli('run', args.mesh, '-o', file('short.off'), '-n', '20', '-q', '--gltf', file('short.glb'));
+cli('run', args.mesh, '-o', file('short.off'), '-n', '20', '-q', '--gltf', file('short.glb'), '--summary', file('short.json'));
 cli('run', args.mesh, '-o', file('long.off'), '-n', '40', '-q', '--gltf', file('long.glb'), '--export-every', '5');
 writeFileSync(file('notalog.csv'), 'a,b\n1,2\n');
+writeFileSync(file('other.json'), '{"name": "not a summary"}');
+writeFileSync(file('my run #2 (50%) é.off'), readFileSync(args.mesh));
+for (const d of ['before', 'after']) {
+  mkdirSync(file(d));
+  writeFileSync(file(`${d}/out.off`), readFileSync(d === 'before' ? args.mesh : file('short.off')));
+}
 writeFileSync(file('cut.glb'), readFileSync(file('short.glb')).subarray(0, 4000));
 
 const { page, consoleErrors, open, pick, shot, pixels, close } = await startViewer(args.chromium);
@@ -74,7 +81,24 @@ try {
   c = (await pixels(await shot())).covered;
   check(s.panes.length === 1 && /notalog\.csv: /.test(line.text) && /moved\.off: \d+ vertices/.test(line.text) && c > 0.02,
         `a bad --log is named and the mesh still drawn ("${line.text}", ${(100 * c).toFixed(1)} % drawn)`);
-  consoleErrors.splice(0, consoleErrors.length, ...consoleErrors.filter((m) => !/cut\.glb|notalog\.csv/.test(m)));
+  // A JSON that is not a run's summary is named, not read as "final V/V0 undefined".
+  s = await open(file('moved.off'), '--log', file('other.json'));
+  line = await status();
+  check(/other\.json: not a run summary/.test(line.text), `a JSON that is not a summary is named ("${line.text}")`);
+  consoleErrors.splice(0, consoleErrors.length, ...consoleErrors.filter((m) => !/cut\.glb|notalog\.csv|other\.json/.test(m)));
+  // A summary's values are shown to four decimals.
+  s = await open(file('short.glb'), '--log', file('short.json'));
+  const plotNote = await page.$eval('#plot-note', (e) => e.textContent);
+  check(/^short\.json: final V\/V0 \d\.\d{4}(, minimum \d\.\d{4})?$/.test(plotNote), `the summary's values, to four decimals ("${plotNote}")`);
+  // A file name as the user wrote it, not percent-encoded.
+  s = await open(file('my run #2 (50%) é.off'));
+  line = await status();
+  check(!s.error && line.text.startsWith('my run #2 (50%) é.off: ') && s.panes[0]?.name === 'my run #2 (50%) é.off',
+        `a file name with spaces, '#', '%' and 'é' is shown as written ("${line.text}")`);
+  // Two files of one name: each named with its folder, as the user knows them.
+  s = await open(file('before/out.off'), file('after/out.off'));
+  check(JSON.stringify(s.panes.map((p) => p.name)) === '["before/out.off","after/out.off"]',
+        `two out.off are named by their folders (${s.panes.map((p) => p.name).join(', ')})`);
 
   // Two runs side by side: stepped by run frame; each pane at its last kept frame at or before it.
   for (const order of [['short', 'long'], ['long', 'short']]) {
