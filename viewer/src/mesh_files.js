@@ -236,6 +236,8 @@ export function loadMeshFile(buffer, name) {
     let first = [0, 0, 0], bytes = buffer;
     if (isAsciiStl(buffer)) {
       const r = recentredAsciiStl(new TextDecoder().decode(buffer));
+      // STLLoader reads past the end of a text shorter than a binary header (an empty solid).
+      if (!/^\s*vertex\s/m.test(r.text)) throw new Error(`${name}: no faces`);
       first = r.centre;
       bytes = new TextEncoder().encode(r.text).buffer;
     }

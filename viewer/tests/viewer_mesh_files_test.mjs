@@ -52,6 +52,9 @@ const H = [1.9999999999999762, -1.278591327758803, 0.1, 4.0169274194971436];
   let message = '';
   try { loadMeshFile(bytes('OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n'), 'nofaces.off'); } catch (e) { message = e.message; }
   check(/^nofaces\.off: /.test(message), `an OFF of no faces is refused, naming the file ("${message}")`);
+  message = '';
+  try { loadMeshFile(bytes('solid x\nendsolid x\n'), 'empty.stl'); } catch (e) { message = e.message; }
+  check(message === 'empty.stl: no faces', `an empty ASCII STL is refused as having no faces ("${message}")`);
 }
 {
   // Colours: a signed range is symmetric about 0 on the diverging map, white at 0.
