@@ -3,7 +3,8 @@
 
 Usage: scripts/view.py FILE [FILE2] [--log RUN.csv|RUN.json] [--port N] [--open]
 
-FILE is a run's .glb or a mesh (.off, .obj, .ply, .stl: a result, a frame, a --fields PLY);
+FILE is a run's .glb or a mesh (.off, .obj, .ply, .stl: a result, a frame, a --fields PLY, a
+regions -o PLY, shown in its regions' face colours);
 with FILE2 the two are shown side by side (e.g. before and after).
 The page is viewer/index.html with ?file=/run/FILE&compare=/run/FILE2&log=/run/RUN.csv; only
 those files and the viewer folder are served, on 127.0.0.1. three.js is served from viewer/node_modules, which
@@ -80,7 +81,13 @@ def checked_file(path, extensions, what):
 
 
 def main():
-    ap = argparse.ArgumentParser(description="Serve the ShellContract viewer with a run's .glb or meshes")
+    ap = argparse.ArgumentParser(
+        description="Serve the ShellContract viewer with a run's .glb or meshes",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog="Only the files named here and the viewer are served, on 127.0.0.1; an OBJ's .mtl and\n"
+               "textures are not (open the .obj, its .mtl and textures together with the page's Open\n"
+               "button to see its materials). In the page: space plays or pauses, the left and right\n"
+               "arrows step a frame. The server runs until stopped with Ctrl-C.")
     ap.add_argument("glb", metavar="FILE",
                     help="the run's animated glTF (shellcontract run ... --gltf RUN.glb) or a mesh (.off, .obj, .ply, .stl)")
     ap.add_argument("compare", metavar="FILE2", nargs="?", help="a second .glb or mesh, shown beside the first")
@@ -93,18 +100,24 @@ def main():
     if not os.path.isdir(os.path.join(VIEWER, "node_modules", "three")):
         sys.exit("view.py: viewer/node_modules is missing; run scripts/install_deps.sh (or npm ci in viewer/)")
     run_files, query = {}, {}
-    for key, path in (("file", args.glb), ("compare", args.compare), ("log", args.log)):
-        if path is None:
-            continue
+    given = [(k, p) for k, p in (("file", args.glb), ("compare", args.compare), ("log", args.log)) if p is not None]
+    for key, path in given:
         if key == "log":
             checked_file(path, LOG_EXTENSIONS, "a --log CSV or a --summary JSON")
         else:
             checked_file(path, MESH_EXTENSIONS, "a .glb or a mesh")
-        name = os.path.basename(path)
-        if name in run_files and run_files[name] != os.path.abspath(path):
-            name = f"{key}_{name}"  # two files of the same name (before/out.off, after/out.off)
-        run_files[name] = os.path.abspath(path)
-        query[key] = "/run/" + urllib.parse.quote(name)
+    # The page names each file by its name here; two files of one name (before/out.off,
+    # after/out.off) are named with their folders, which the user knows them by.
+    paths = [os.path.abspath(p) for _, p in given]
+    for key, path in given:
+        full = os.path.abspath(path)
+        name = os.path.basename(full)
+        if any(os.path.basename(p) == name and p != full for p in paths):
+            name = os.path.join(os.path.basename(os.path.dirname(full)), name)
+        if name in run_files and run_files[name] != full:
+            name = f"{key}_{name}"  # the same folder name too: told apart by the key
+        run_files[name] = full
+        query[key] = "/run/" + urllib.parse.quote(name, safe="")
 
     handler = functools.partial(Handler, run_files=run_files)
     try:
@@ -114,8 +127,9 @@ def main():
                  + (" (another viewer? use --port 0 for any free port)" if e.errno == errno.EADDRINUSE else ""))
     url = f"http://127.0.0.1:{server.server_address[1]}/index.html?" + urllib.parse.urlencode(query, safe="/")
     print(url, flush=True)
-    if args.open:
-        webbrowser.open(url)
+    print("view.py: serving the viewer at the URL above; Ctrl-C stops it", file=sys.stderr, flush=True)
+    if args.open and not webbrowser.open(url):
+        print("view.py: no browser could be opened; open the URL above in one", file=sys.stderr, flush=True)
     try:
         server.serve_forever()
     except KeyboardInterrupt:

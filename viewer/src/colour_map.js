@@ -1,6 +1,39 @@
-// Per-vertex values to colours: the blue - white - red map of the fields PLY (sim/fields.hpp),
-// from the 2nd to the 98th percentile, in linear RGB; a run's .glb holds the values and range.
+// Per-vertex values to colours over a field's 2nd to 98th percentile (a run's .glb holds the
+// values and that range), in linear RGB. A range across zero (a signed field: curvature, pressure)
+// is made symmetric about 0 and drawn on a diverging map whose white is 0, so blue is negative and
+// red positive, whatever the percentiles: with white at the range's middle the rest bear's convex
+// vertices (H > 0) were mostly blue. A range on one side of zero (energy density) is drawn on a
+// sequential map. Both maps are colour-blind safe (ColorBrewer's RdBu; viridis), and the ends of
+// each stay apart in lightness as well as hue.
 import * as THREE from 'three';
+
+/** Stops (sRGB bytes), evenly spaced from the low end to the high end. */
+const DIVERGING = [[33, 102, 172], [103, 169, 207], [247, 247, 247], [239, 138, 98], [178, 24, 43]];
+const SEQUENTIAL = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+
+/**
+ * The scale a field's colours are drawn on, from its percentile range: {low, high, diverging}.
+ * Across zero, symmetric about it (white is 0); else the range as given, on the sequential map.
+ */
+export function colourScale(low, high) {
+  if (low < 0 && high > 0) {
+    const m = Math.max(-low, high);
+    return { low: -m, high: m, diverging: true };
+  }
+  return { low, high, diverging: false };
+}
+
+/** The sRGB colour (bytes) at t in [0, 1] of the map. */
+export function mapColour(t, diverging) {
+  const stops = diverging ? DIVERGING : SEQUENTIAL;
+  const x = Math.min(1, Math.max(0, t)) * (stops.length - 1);
+  const i = Math.min(stops.length - 2, Math.floor(x)), f = x - i;
+  return stops[i].map((c, k) => c + f * (stops[i + 1][k] - c));
+}
+
+/** A CSS linear-gradient of the map, low to high (the colour bar). */
+export const cssGradient = (diverging) =>
+  `linear-gradient(to right, ${(diverging ? DIVERGING : SEQUENTIAL).map((c) => `rgb(${c.join(',')})`).join(', ')})`;
 
 /** The value at fraction q of the sorted values (nearest rank, as field_percentile). */
 export function percentile(sorted, q) {
@@ -25,11 +58,13 @@ export function range(arrays) {
 const fieldColours = new WeakMap();
 
 /**
- * The geometry's colour attribute holding linear RGB colours for `values` mapped over [low, high]
- * (not yet set as its 'color': the caller does). The colours are written only when the values or
- * the range differ from those it holds (a frame or a choice changed), and uploaded again then.
+ * The geometry's colour attribute holding linear RGB colours for `values` mapped over the scale
+ * (colourScale: its low, high and map; not yet set as its 'color': the caller does). The colours
+ * are written only when the values or the scale differ from those it holds (a frame or a choice
+ * changed), and uploaded again then.
  */
-export function fieldColourAttribute(geometry, values, low, high) {
+export function fieldColourAttribute(geometry, values, scale) {
+  const { low, high, diverging } = scale;
   let held = fieldColours.get(geometry);
   // A new attribute for values of another length: not expected (a field has one value per
   // vertex), but a short buffer would draw garbage.
@@ -39,16 +74,16 @@ export function fieldColourAttribute(geometry, values, low, high) {
     held = { attribute };
     fieldColours.set(geometry, held);
   }
-  if (held.values === values && held.low === low && held.high === high) return held.attribute;
+  if (held.values === values && held.low === low && held.high === high && held.diverging === diverging) return held.attribute;
   const rgb = held.attribute.array;
   const c = new THREE.Color();
   for (let i = 0; i < values.length; i++) {
     const t = high > low ? Math.min(1, Math.max(0, (values[i] - low) / (high - low))) : 0.5;
-    const r = t < 0.5 ? 2 * t : 1, g = t < 0.5 ? 2 * t : 2 * (1 - t), b = t < 0.5 ? 1 : 2 * (1 - t);
-    c.setRGB(r, g, b, THREE.SRGBColorSpace);
+    const [r, g, b] = mapColour(t, diverging);
+    c.setRGB(r / 255, g / 255, b / 255, THREE.SRGBColorSpace);
     rgb[3 * i] = c.r; rgb[3 * i + 1] = c.g; rgb[3 * i + 2] = c.b;
   }
-  Object.assign(held, { values, low, high });
+  Object.assign(held, { values, low, high, diverging });
   held.attribute.needsUpdate = true;
   return held.attribute;
 }

@@ -7,6 +7,8 @@
 // has them (the glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on
 // that frame and never on the others; a mesh file is coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
 // wear its materials (base colour, texture), and a file with materials opens so.
+// Two runs' .glb side by side step by run frame. A field is drawn on a diverging map about 0 or a
+// sequential one (colour_map.js), with a colour bar (legend.js). An error names its file, briefly.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // While a file loads, the status line says so: its name and the bytes read (state.loading).
 // For tests, window.viewer exposes the state: {ready, loading, keyframe, frameNumbers, panes (with their
@@ -14,7 +16,8 @@
 // looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { fieldColourAttribute, range } from './colour_map.js';
+import { colourScale, fieldColourAttribute, range } from './colour_map.js';
+import { drawLegend, legendNote } from './legend.js';
 import { loadingText, mb, nextPaint, readFile, readResponse } from './loading.js';
 import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
 import { disposePane, firstFramePane, makePane } from './panes.js';
@@ -73,6 +76,16 @@ function render() {
 }
 window.addEventListener('resize', resize);
 
+/**
+ * An error's message for the status line: naming the file, and short. A three.js message may hold
+ * a whole array's values (megabytes, which pushed the page's controls off the window).
+ */
+function errorText(name, e) {
+  let m = String(e?.message ?? e);
+  if (!m.startsWith(name)) m = `${name}: ${m}`;
+  return m.length > 240 ? `${m.slice(0, 240)}…` : m;
+}
+
 /** Shows the text in the status line; `error` (a message within it) marks the line as an error. */
 function setStatus(text, error = null) {
   state.loading = null;  // the panes' summary or an error ends the loading line
@@ -122,8 +135,16 @@ function showPanes(newPanes, errors = [], notes = []) {
   for (const p of panes) if (!newPanes.includes(p)) disposePane(p);
   panes = newPanes;
   const glb = panes.find((p) => p.kind === 'glb');
-  state.frameNumbers = glb ? glb.frameNumbers : [0];
-  state.times = glb ? glb.times : [0];
+  const glbs = panes.filter((p) => p.kind === 'glb');
+  if (glbs.length === 2) {
+    // Two runs side by side step by run frame: every frame either kept, each pane at its last
+    // kept frame at or before it (so the shorter run holds its last frame), one keyframe a tick.
+    state.frameNumbers = [...new Set(glbs.flatMap((p) => p.frameNumbers))].sort((a, b) => a - b);
+    state.times = state.frameNumbers.map((_, k) => k / 24);
+  } else {
+    state.frameNumbers = glb ? glb.frameNumbers : [0];
+    state.times = glb ? glb.times : [0];
+  }
   state.sideBySide = false;
   el('side-by-side').checked = false;
   el('side-by-side').disabled = !(panes.length === 1 && glb && glb.frameNumbers.length > 1);
@@ -133,16 +154,28 @@ function showPanes(newPanes, errors = [], notes = []) {
   const materials = panes.some((p) => p.looks?.some((l) => l.file));
   const select = el('colour');
   select.replaceChildren(new Option(materials ? 'none (file materials)' : 'none', '-1'));
-  state.colourFields = glb ? glb.colourInfo : [];
+  // The glTF fields by name (two runs may hold different ones), by index in this list.
+  state.colourFields = [...new Map(glbs.flatMap((p) => p.colourInfo).map((f) => [f.name, f])).values()];
   state.colourFields.forEach((f, i) => select.add(new Option(f.name, String(i))));
   if (panes.some((p) => p.kind === 'mesh' && p.fileColours)) select.add(new Option('file colours', 'file'));
   const names = [...new Set(panes.flatMap((p) => (p.kind === 'mesh' ? p.fields.map((f) => f.name) : [])))];
   names.forEach((n) => select.add(new Option(n, `field:${n}`)));
   // First choice: the files' materials where they have some (how the file says it looks; the
-  // fields stay in the menu), else the glTF's first field, else the files' own colours, else their
-  // first field.
+  // fields stay in the menu), else the glTF's first field, else the face colours of a file that
+  // has them (a regions file: one colour a region), else the files' first field (one range over
+  // the panes, so a --fields start and end pair compare: each file's baked colours are on its own
+  // range), else the files' own colours.
   const values = [...select.options].map((o) => o.value);
-  const first = materials ? '-1' : values.includes('0') ? '0' : values.includes('file') ? 'file' : (values[1] ?? '-1');
+  const faceColours = panes.some((p) => p.kind === 'mesh' && p.faceColours);
+  const firstField = values.find((v) => v.startsWith('field:'));
+  const first = materials ? '-1' : values.includes('0') ? '0' : faceColours && values.includes('file') ? 'file'
+    : firstField ?? (values.includes('file') ? 'file' : '-1');
+
+  // The colours before anything is drawn (moving the camera below draws): a file's own colours
+  // drawn once and at once replaced by a field's would hold GPU memory until the pane closes.
+  state.keyframe = 0;
+  state.colour = first;
+  applyColours();
 
   // Camera on the first frame's bounding box of every pane.
   const box = new THREE.Box3();
@@ -163,8 +196,12 @@ function showPanes(newPanes, errors = [], notes = []) {
   state.panes = panes.map((p) => ({ name: p.name, kind: p.kind, vertices: p.vertices, meshes: p.meshes.length }));
   setColour(first);
   setKeyframe(0);
-  const summary = panes.map((p) => `${p.name}: ${p.vertices} vertices` + (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '') +
-                                   (p.notes?.length ? ` (${p.notes.join('; ')})` : ''));
+  const summary = panes.map((p) => `${p.name}: ${p.vertices} vertices` +
+    (p.kind === 'glb' ? `, ${p.frameNumbers.length} frames` : '') +
+    (p.notes?.length ? ` (${p.notes.join('; ')})` : ''));
+  if (glbs.length === 2 && glbs[0].frameNumbers.join() !== glbs[1].frameNumbers.join()) {
+    notes = [...notes, 'the two runs kept different frames: each pane shows its last kept frame at or before the frame shown'];
+  }
   setStatus([...errors, ...summary, ...notes].join('  |  '), errors.length ? errors.join('; ') : null);
 }
 
@@ -187,7 +224,9 @@ function setSideBySide(on) {
 function loadLog(text, name) {
   if (name.toLowerCase().endsWith('.json')) {
     state.summary = parseJsonSummary(text);
-    el('plot-note').textContent = `${name}: final V/V0 ${state.summary.finalVolumeRatio}, minimum ${state.summary.minVolumeRatio}`;
+    const { finalVolumeRatio: last, minVolumeRatio: min } = state.summary;
+    if (!Number.isFinite(last)) throw new Error('not a run summary (no final_volume_ratio)');
+    el('plot-note').textContent = `${name}: final V/V0 ${last.toFixed(4)}` + (Number.isFinite(min) ? `, minimum ${min.toFixed(4)}` : '');
   } else {
     state.log = parseCsvLog(text);
     el('plot-note').textContent = `${name}: ${state.log.frame.length} rows`;
@@ -197,7 +236,8 @@ function loadLog(text, name) {
 
 async function fetchChecked(url) {
   const r = await fetch(url);
-  if (!r.ok) throw new Error(`${url}: HTTP ${r.status}`);
+  if (r.status === 404) throw new Error('not served (HTTP 404): view.py serves only the files it was started with, while it runs');
+  if (!r.ok) throw new Error(`HTTP ${r.status}`);
   return r;
 }
 
@@ -216,12 +256,25 @@ async function openFiles(files) {
         if (models.length === 2) notOpened.push(f.name);
         else models.push(await loadPane(f.name, (progress) => readFile(f, progress), companions));
       } else if (!companions.includes(f)) loadLog(await f.text(), f.name);
-    } catch (e) { errors.push(e.message.startsWith(f.name) ? e.message : `${f.name}: ${e.message}`); }
+    } catch (e) { errors.push(errorText(f.name, e)); }
   }
   const notes = notOpened.length
     ? [`not opened: ${notOpened.join(', ')} (the viewer shows at most two files side by side)`] : [];
-  if (models.length) showPanes(models, errors, notes);
-  else if (errors.length) setStatus(errors.join('  |  '), errors.join('; '));
+  finishOpening(models, errors, notes);
+}
+
+/**
+ * Shows the panes that opened with the errors of those that did not; a pane that cannot be drawn
+ * (its first draw throws) is named in the status line, never left on "making its meshes".
+ */
+function finishOpening(models, errors, notes = []) {
+  try {
+    if (models.length) showPanes(models, errors, notes);
+    else if (errors.length) setStatus(errors.join('  |  '), errors.join('; '));
+  } catch (e) {
+    const text = errorText(models.map((p) => p.name).join(', '), e);
+    setStatus([...errors, text].join('  |  '), text);
+  }
   state.ready = true;
 }
 
@@ -232,21 +285,35 @@ function setKeyframe(k) {
   state.keyframe = k;
   for (const p of panes) {
     if (p.kind !== 'glb') continue;
-    const kp = p.fixed ?? k;
+    const kp = paneKeyframe(p);
     for (const m of p.meshes) {
       const influences = m.morphTargetInfluences ?? [];
       influences.fill(0);
-      if (kp > 0) influences[kp - 1] = 1;  // the glTF's STEP keyframe kp
+      if (kp > 0 && kp <= influences.length) influences[kp - 1] = 1;  // the glTF's STEP keyframe kp
     }
   }
   el('scrubber').value = String(k);
   const frame = state.frameNumbers[k];
+  // The box shows the frame shown, not a number typed before the scrubber moved.
+  if (document.activeElement !== el('goto') && !el('goto').disabled) el('goto').value = String(frame);
   const ratio = ratioAt(state.log, frame);
-  el('frame-label').textContent = `frame ${frame} (${k + 1}/${state.frameNumbers.length})` +
-    (ratio !== undefined ? `  V/V0 ${ratio.toFixed(4)}` : '');
+  el('frame-label').textContent = !panes.some((p) => p.kind === 'glb') ? 'no frames: meshes only'
+    : `frame ${frame} (${k + 1}/${state.frameNumbers.length})` + (ratio !== undefined ? `  V/V0 ${ratio.toFixed(4)}` : '');
   applyColours();
   updatePlot();
   render();
+}
+
+/**
+ * The keyframe a .glb pane shows: its fixed one ("before | after"), else its last kept frame at
+ * or before the run frame shown (the same index when the page steps through this file's frames).
+ */
+function paneKeyframe(p) {
+  if (p.fixed !== undefined) return p.fixed;
+  const frame = state.frameNumbers[state.keyframe];
+  let kp = 0;
+  p.frameNumbers.forEach((n, i) => { if (n <= frame) kp = i; });
+  return kp;
 }
 
 /** Jumps to run frame f: its keyframe, or the last one before it when f was not exported. */
@@ -269,13 +336,14 @@ function applyColours() {
   const choice = state.colour;
   const notes = [];
   // A scalar field of mesh files: one range over every pane that has it, so colours compare.
+  const legends = [];  // {name, scale, of}: the colour bar's
   let scale = null;
   if (choice.startsWith('field:')) {
     const name = choice.slice(6);
-    const arrays = panes.flatMap((p) => (p.kind === 'mesh' && p.fields.some((f) => f.name === name)
-      ? p.meshes.map((m) => m.geometry.getAttribute(`field_${name}`).array) : []));
-    scale = range(arrays);
-    notes.push(`${name}: blue ${scale.low.toPrecision(3)}, red ${scale.high.toPrecision(3)} (2nd to 98th percentile of the files shown)`);
+    const arrays = panes.flatMap((p) => (p.kind === 'mesh' ? p.meshes.map((m) => m.geometry.userData.fields?.[name]).filter(Boolean) : []));
+    const r = range(arrays);
+    scale = colourScale(r.low, r.high);
+    legends.push({ name, scale, of: `2nd to 98th percentile of ${panes.length > 1 ? 'both files: one range' : 'the file'}` });
   }
   const values = panes.map(() => null);  // per pane: the values its colours show, if any
   state.shown = panes.map((p, pi) => {
@@ -283,33 +351,41 @@ function applyColours() {
     p.meshes.forEach((m, j) => {
       let attr = null;
       if (p.kind === 'glb' && /^\d+$/.test(choice)) {
-        const i = Number(choice), info = p.colourInfo[i];
-        const k = p.fixed ?? state.keyframe, frame = p.frameNumbers[k];
+        const wanted = state.colourFields[Number(choice)];
+        const i = p.colourInfo.findIndex((f) => f.name === wanted?.name), info = p.colourInfo[i];
+        const k = paneKeyframe(p), frame = p.frameNumbers[k];
         const perFrame = info && p.frameFields[info.name];
         if (perFrame) {
           // Each frame's own values, on one scale over all frames (so frames compare).
-          attr = fieldColourAttribute(m.geometry, perFrame.values[k], perFrame.low, perFrame.high);
+          const scale = colourScale(perFrame.low, perFrame.high);
+          attr = fieldColourAttribute(m.geometry, perFrame.values[k], scale);
           values[pi] = perFrame.values[k];
-          if (j === 0) notes.push(`${info.name}: each frame's own values; blue ${perFrame.low.toPrecision(3)}, red ${perFrame.high.toPrecision(3)} (2nd to 98th percentile over all frames)`);
+          if (j === 0) legends.push({ name: info.name, scale, of: "each frame's own values; 2nd to 98th percentile over all frames" });
         } else if (info && (info.frame === undefined || info.frame === frame) && p.fieldValues[j][i]) {
           // A field of one frame ('frame' in the extras) is shown on that frame only; without
           // 'frame', on any.
-          attr = fieldColourAttribute(m.geometry, p.fieldValues[j][i], Number(info.low), Number(info.high));
+          attr = fieldColourAttribute(m.geometry, p.fieldValues[j][i], colourScale(Number(info.low), Number(info.high)));
           values[pi] = p.fieldValues[j][i];
         }
         if (info && !perFrame && j === 0) {
-          notes.push(`${info.name}: blue ${Number(info.low).toPrecision(3)}, red ${Number(info.high).toPrecision(3)} (its 2nd to 98th percentile)` +
-                     (info.frame !== undefined ? `; values of frame ${info.frame}, shown on that frame only` : ''));
+          legends.push({ name: info.name, scale: colourScale(Number(info.low), Number(info.high)),
+                         of: 'its 2nd to 98th percentile' + (info.frame !== undefined ? `; values of frame ${info.frame}, shown on that frame only` : '') });
         }
         if (attr) shown = info.name;
       } else if (p.kind === 'mesh' && choice === 'file' && p.fileColourAttributes[j]) {
         attr = p.fileColourAttributes[j];
         shown = 'file colours';
+        // What the file's colours are: its header's comments say it where the CLI wrote them.
+        if (j === 0) {
+          notes.push(`${p.name}: its own ${p.faceColours ? 'face ' : ''}colours` +
+                     (p.comments?.length ? ` (${p.comments.join('; ')})` : '') +
+                     (p.fields.length && !p.faceColours ? `, on its own scale; a field from the menu puts ${panes.length > 1 ? 'both files' : 'it'} on one` : ''));
+        }
       } else if (p.kind === 'mesh' && scale) {
-        const v = m.geometry.getAttribute(`field_${choice.slice(6)}`);
+        const v = m.geometry.userData.fields?.[choice.slice(6)];
         if (v) {
-          attr = fieldColourAttribute(m.geometry, v.array, scale.low, scale.high);
-          values[pi] = v.array;
+          attr = fieldColourAttribute(m.geometry, v, scale);
+          values[pi] = v;
           shown = choice.slice(6);
         }
       }
@@ -328,6 +404,9 @@ function applyColours() {
     return shown === 'none' && fileMaterials ? 'file materials' : shown;
   });
   state.colourValues = values;
+  drawLegend(el('colour-bar'), legends[0] ?? null);
+  state.legend = legends[0] ? { name: legends[0].name, ...legends[0].scale } : null;
+  notes.push(...legends.map(legendNote));
   // The note says what is shown: a file with materials and no colour fields is not plain.
   const withMaterials = panes.filter((p, i) => state.shown[i] === 'file materials').map((p) => p.name);
   if (withMaterials.length) notes.push(`the materials of ${[...new Set(withMaterials)].join(' and ')} are shown`);
@@ -409,21 +488,27 @@ state.looks = () => panes.map((p) => p.meshes.map((m) => (Array.isArray(m.materi
 resize();
 updatePlot();
 const params = new URLSearchParams(window.location.search);
+/** The file name of a served URL, as the user wrote it (view.py's URLs are percent-encoded). */
+const fileName = (url) => {
+  const last = url.split('/').pop();
+  try { return decodeURIComponent(last); } catch { return last; }
+};
 (async () => {
-  try {
-    const log = params.get('log');
-    if (log) loadLog(await (await fetchChecked(log)).text(), log);
-    const models = [];
-    for (const key of ['file', 'compare']) {
-      const url = params.get(key);
-      if (!url) continue;
-      const name = url.split('/').pop();
+  // Each file on its own: one that fails (a log that is not one, a mesh that cannot be drawn) is
+  // named with its error, and the others still open.
+  const models = [], errors = [];
+  const log = params.get('log');
+  if (log) {
+    try { loadLog(await (await fetchChecked(log)).text(), fileName(log)); } catch (e) { errors.push(errorText(fileName(log), e)); }
+  }
+  for (const key of ['file', 'compare']) {
+    const url = params.get(key);
+    if (!url) continue;
+    const name = fileName(url);
+    try {
       showLoading(name, 0, 0);  // before the first byte: the request itself may wait
       models.push(await loadPane(name, async (progress) => readResponse(await fetchChecked(url), progress)));
-    }
-    if (models.length) showPanes(models);
-    state.ready = true;
-  } catch (e) {
-    setStatus(e.message, e.message);
+    } catch (e) { errors.push(errorText(name, e)); }
   }
+  finishOpening(models, errors);
 })();

@@ -98,15 +98,22 @@ async function meshPane(arrayBuffer, name, companions) {
     }
   }
   return { name, kind: 'mesh', scene, sun, object: m.object, meshes: m.meshes, vertices: m.vertices, fields: m.fields,
-           fileColours: m.fileColours, fileColourAttributes, looks, notes };
+           fileColours: m.fileColours, faceColours: m.faceColours, comments: m.comments, fileColourAttributes, looks, notes };
 }
 
 /** A pane of the file: a .glb or a result mesh (`companions`: the other files opened with it). */
 export async function makePane(arrayBuffer, name, companions = []) {
   const ext = extensionOf(name);
-  if (ext === 'glb') return glbPane(arrayBuffer, name);
-  if (MESH_EXTENSIONS.includes(ext)) return meshPane(arrayBuffer, name, companions);
-  throw new Error(`${name}: not a .glb or a mesh (.off, .obj, .ply, .stl)`);
+  if (!(ext === 'glb' || MESH_EXTENSIONS.includes(ext))) throw new Error(`${name}: not a .glb or a mesh (.off, .obj, .ply, .stl)`);
+  const pane = ext === 'glb' ? await glbPane(arrayBuffer, name) : await meshPane(arrayBuffer, name, companions);
+  // WebGL takes no doubles: a Float64Array attribute would throw on the first draw, with every
+  // value in three.js's message. Named here, while the file is still the one being opened.
+  for (const m of pane.meshes) {
+    for (const [k, a] of Object.entries(m.geometry.attributes)) {
+      if (a.array instanceof Float64Array) throw new Error(`${name}: its '${k}' values are doubles, which WebGL cannot draw`);
+    }
+  }
+  return pane;
 }
 
 /** The .glb pane `glb` at its first frame: a second pane on the same data, for "before | after". */

@@ -8,6 +8,17 @@ function niceRange(lo, hi) {
   return [lo - pad, hi + pad];
 }
 
+/** About four round tick values (1, 2 or 5 times a power of ten apart) within [lo, hi]. */
+export function niceTicks(lo, hi) {
+  const raw = (hi - lo) / 4;
+  if (!(raw > 0)) return [lo];
+  const p = 10 ** Math.floor(Math.log10(raw));
+  const step = [1, 2, 5, 10].map((m) => m * p).find((s) => s >= raw);
+  const ticks = [];
+  for (let v = Math.ceil(lo / step) * step; v <= hi + 1e-9 * step; v += step) ticks.push(Number(v.toPrecision(12)));
+  return ticks;
+}
+
 /**
  * Draws the series (log: {frame[], volumeRatio[]}) or, for a summary, its final and minimum
  * V/V0 as lines; `current` is the frame number shown (or undefined).
@@ -23,6 +34,9 @@ export function drawPlot(canvas, log, summary, current) {
   if (log && log.frame.length > 0) {
     frames = log.frame;
     ratios = log.volumeRatio;
+    // The log's rows follow each step: frame 0, V/V0 1 by definition, starts the curve (and the
+    // axis, so that frame 0's marker is on the plot).
+    if (!frames.includes(0) && Math.min(...frames) > 0) { frames = [0, ...frames]; ratios = [1, ...ratios]; }
   } else if (summary && Number.isFinite(summary.finalVolumeRatio)) {
     const last = Number.isFinite(summary.framesRun) ? summary.framesRun : 1;
     frames = [0, last];
@@ -46,22 +60,23 @@ export function drawPlot(canvas, log, summary, current) {
   ctx.lineTo(PAD.left, h - PAD.bottom);
   ctx.lineTo(w - PAD.right, h - PAD.bottom);
   ctx.stroke();
-  for (let i = 0; i <= 4; i++) {
-    const v = vMin + (vMax - vMin) * i / 4;
-    ctx.fillText(v.toFixed(3), 4, py(v) + 4);
-    const f = Math.round(fMin + (fMax - fMin) * i / 4);
-    ctx.fillText(String(f), px(f) - 8, h - PAD.bottom + 14);
-  }
+  for (const v of niceTicks(vMin, vMax)) ctx.fillText(String(v), 4, py(v) + 4);
+  for (const f of niceTicks(fMin, fMax).filter(Number.isInteger)) ctx.fillText(String(f), px(f) - 8, h - PAD.bottom + 14);
   ctx.fillText('frame', w - PAD.right - 30, h - 4);
 
-  // The series (dashed for a summary's two points).
+  // The series; a summary's two points (rest and end) as points: a line between them would read
+  // as a linear decline the summary does not record.
   ctx.strokeStyle = '#2060c0';
   ctx.lineWidth = 2;
-  ctx.setLineDash(log ? [] : [5, 4]);
-  ctx.beginPath();
-  frames.forEach((f, i) => (i === 0 ? ctx.moveTo(px(f), py(ratios[i])) : ctx.lineTo(px(f), py(ratios[i]))));
-  ctx.stroke();
-  ctx.setLineDash([]);
+  if (log && log.frame.length > 0) {
+    ctx.beginPath();
+    frames.forEach((f, i) => (i === 0 ? ctx.moveTo(px(f), py(ratios[i])) : ctx.lineTo(px(f), py(ratios[i]))));
+    ctx.stroke();
+  } else {
+    ctx.fillStyle = '#2060c0';
+    frames.forEach((f, i) => { ctx.beginPath(); ctx.arc(px(f), py(ratios[i]), 4, 0, 2 * Math.PI); ctx.fill(); });
+    ctx.fillStyle = '#444';
+  }
   if (extra.length) {
     ctx.strokeStyle = '#c08020';
     ctx.lineWidth = 1;
@@ -80,11 +95,11 @@ export function drawPlot(canvas, log, summary, current) {
     ctx.moveTo(px(current), PAD.top);
     ctx.lineTo(px(current), h - PAD.bottom);
     ctx.stroke();
-    const i = log ? log.frame.indexOf(current) : -1;
+    const i = log ? frames.indexOf(current) : -1;
     if (i >= 0) {
       ctx.fillStyle = '#c03030';
       ctx.beginPath();
-      ctx.arc(px(current), py(log.volumeRatio[i]), 4, 0, 2 * Math.PI);
+      ctx.arc(px(current), py(ratios[i]), 4, 0, 2 * Math.PI);
       ctx.fill();
     }
   }

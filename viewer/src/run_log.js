@@ -32,9 +32,13 @@ export function parseJsonSummary(text) {
   };
 }
 
-/** V/V0 of the log's row for `frame`, or undefined when the log has no such row. */
+/**
+ * V/V0 of the log's row for `frame`, or undefined when the log has no such row; at frame 0, which
+ * the CLI's log has no row of (its rows follow each step), 1: the rest volume's by definition.
+ */
 export function ratioAt(log, frame) {
   if (!log) return undefined;
   const i = log.frame.indexOf(frame);
+  if (i < 0 && frame === 0) return 1;
   return i < 0 ? undefined : log.volumeRatio[i];
 }

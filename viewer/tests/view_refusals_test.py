@@ -64,6 +64,13 @@ def test_the_help_names_the_default_port():
     assert r.returncode == 0 and "default: 8765" in r.stdout, r.stdout
 
 
+def test_the_help_says_what_is_served_and_how_to_stop():
+    # Before: --help gave only the description; "Stop with Ctrl-C" was in the docstring alone.
+    r = subprocess.run([sys.executable, VIEW, "--help"], capture_output=True, text=True, timeout=20)
+    text = " ".join(r.stdout.split())
+    assert r.returncode == 0 and "Ctrl-C" in text and "Only the files named here" in text and ".mtl" in text, r.stdout
+
+
 def test_folders_are_not_listed():
     # Before: /tests/ (any folder of viewer/) was served as a directory listing.
     import urllib.error

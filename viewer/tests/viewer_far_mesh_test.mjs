@@ -2,7 +2,11 @@
 // OBJ of doubles are recentred in double before they become float32 (mesh_files.js, recentred), and the
 // mesh is placed at its centre, so its positions plus the object's position give the file's to
 // float precision relative to the mesh's size. Before, a 2-unit sphere at northing 5e6 (float
-// spacing 0.5) became a cloud of a few hundred points. Node only, no browser.
+// spacing 0.5) became a cloud of a few hundred points. Each loader's bounding sphere and box are
+// those of the positions as drawn (review18 H2: PLYLoader's, computed before the recentring, sat
+// at twice the centre, and three.js culled the mesh: a PLY a few radii from the origin was blank),
+// and an ASCII STL, which the CLI writes with 17 digits, is recentred in double too (review18 M1:
+// it was read into float32 first, slabs 0.5 apart). Node only, no browser.
 // Usage: node viewer/tests/viewer_far_mesh_test.mjs
 import { loadMeshFile, parseOff } from '../src/mesh_files.js';
 
@@ -43,6 +47,26 @@ const { v, f } = sphere();
 const size = 2 * Math.sqrt(3);  // at most the bounding box's diagonal
 const tol = 8 * size * 2 ** -23;
 
+/**
+ * Whether the mesh's bounding sphere and box, placed with the object, hold every position the
+ * file has and sit on the mesh (three.js culls against the sphere): the check of what is drawn.
+ */
+function boundsHold(what, object, geometry) {
+  // Those three.js uses: the geometry's, or, where it has none yet, computed from the positions
+  // as they are now (as three.js computes them on the first draw).
+  if (!geometry.boundingSphere) geometry.computeBoundingSphere();
+  if (!geometry.boundingBox) geometry.computeBoundingBox();
+  const s = geometry.boundingSphere, b = geometry.boundingBox;
+  const o = object.position.toArray();
+  const centre = s.center.toArray().map((c, k) => c + o[k]);
+  let far = 0;
+  for (const p of v) far = Math.max(far, Math.hypot(...p.map((c, k) => c - centre[k])));
+  check(far <= s.radius * (1 + 1e-6) + tol && s.radius <= size, `${what}: the bounding sphere (centre ${centre}, radius ${s.radius}) holds the mesh (farthest vertex ${far})`);
+  const lo = b.min.toArray().map((c, k) => c + o[k]), hi = b.max.toArray().map((c, k) => c + o[k]);
+  check(lo.every((c, k) => Math.abs(c - (FAR[k] - 1)) < 1e-3) && hi.every((c, k) => Math.abs(c - (FAR[k] + 1)) < 1e-3),
+        `${what}: the bounding box is the mesh's (${lo} to ${hi})`);
+}
+
 /** The largest difference between the object's placed positions and the file's, and the count of
  * distinct stored positions. */
 function compare(object, geometry) {
@@ -66,6 +90,7 @@ const off = `OFF\n${v.length} ${f.length} 0\n` + v.map((p) => p.join(' ')).join(
   const { err, distinct } = compare(object, meshes[0].geometry);
   check(distinct === v.length, `OFF: ${distinct} distinct positions of ${v.length}`);
   check(err <= tol, `OFF: placed positions within ${err} of the file's (tolerance ${tol})`);
+  boundsHold('OFF', object, meshes[0].geometry);
 }
 {
   const ply = `ply\nformat ascii 1.0\nelement vertex ${v.length}\nproperty double x\nproperty double y\nproperty double z\n` +
@@ -76,6 +101,7 @@ const off = `OFF\n${v.length} ${f.length} 0\n` + v.map((p) => p.join(' ')).join(
   check(meshes[0].geometry.getAttribute('position').array instanceof Float32Array, 'PLY: float32 positions for the GPU');
   check(distinct === v.length, `PLY: ${distinct} distinct positions of ${v.length}`);
   check(err <= tol, `PLY: placed positions within ${err} of the file's (tolerance ${tol})`);
+  boundsHold('PLY', object, meshes[0].geometry);
 }
 {
   // An OBJ: OBJLoader reads its text into float32 directly, so its vertices are recentred in the
@@ -88,6 +114,25 @@ const off = `OFF\n${v.length} ${f.length} 0\n` + v.map((p) => p.join(' ')).join(
     for (let k = 0; k < 3; k++) err = Math.max(err, Math.abs(p[9 * j + 3 * c + k] + object.position.getComponent(k) - v[i][k]));
   }));
   check(err <= tol, `OBJ: placed positions within ${err} of the file's (tolerance ${tol})`);
+  boundsHold('OBJ', object, meshes[0].geometry);
+}
+{
+  // An ASCII STL as the CLI writes it (17 digits): recentred in double before float32, so the
+  // sphere keeps its vertices apart.
+  const stl = 'solid far\n' + f.map((t) => 'facet normal 0 0 0\nouter loop\n' +
+    t.map((i) => `vertex ${v[i].map((c) => c.toPrecision(17)).join(' ')}\n`).join('') + 'endloop\nendfacet\n').join('') + 'endsolid far\n';
+  const { object, meshes, vertices } = loadMeshFile(new TextEncoder().encode(stl).buffer, 'far_ascii.stl');
+  const p = meshes[0].geometry.getAttribute('position').array;
+  let err = 0;
+  const distinct = new Set();
+  f.forEach((t, j) => t.forEach((i, c) => {
+    for (let k = 0; k < 3; k++) err = Math.max(err, Math.abs(p[9 * j + 3 * c + k] + object.position.getComponent(k) - v[i][k]));
+    distinct.add(`${p[9 * j + 3 * c]},${p[9 * j + 3 * c + 1]},${p[9 * j + 3 * c + 2]}`);
+  }));
+  check(distinct.size === v.length, `ASCII STL: ${distinct.size} distinct positions of ${v.length}`);
+  check(err <= tol, `ASCII STL: placed positions within ${err} of the file's (tolerance ${tol})`);
+  check(vertices === v.length, `ASCII STL: the file's ${v.length} vertices counted, not its corners (${vertices})`);
+  boundsHold('ASCII STL', object, meshes[0].geometry);
 }
 {
   // A binary STL holds float32 already: recentred, the placed positions are the file's floats.
@@ -109,6 +154,7 @@ const off = `OFF\n${v.length} ${f.length} 0\n` + v.map((p) => p.join(' ')).join(
   }
   check(err <= tol, `STL: placed positions within ${err} of the file's floats (tolerance ${tol})`);
   check(span <= size, `STL: stored positions relative to the mesh's centre (largest ${span})`);
+  boundsHold('binary STL', object, meshes[0].geometry);
 }
 {
   // A mesh at the origin stays there: nothing moves for the usual files.

@@ -65,9 +65,10 @@ try {
       C.prototype.deleteBuffer = function (...a) { window.buffers.deleted++; return deleteBuffer.apply(this, a); };
     }
   });
-  // Every mesh format opens, with the file's vertices (OBJ and STL: three corners per face).
+  // Every mesh format opens, with the file's vertices (OBJ and STL too, whose loaders make three
+  // corners per face: the count is the file's, not the corners').
   const pictures = {};
-  for (const [ext, count] of [['off', nv], ['obj', 3 * nf], ['ply', nv], ['stl', 3 * nf]]) {
+  for (const [ext, count] of [['off', nv], ['obj', nv], ['ply', nv], ['stl', nv]]) {
     const s = await open(file(`out.${ext}`));
     check(!s.error && s.panes.length === 1 && s.panes[0].vertices === count,
           `out.${ext} opens (${s.error ?? `${s.panes[0]?.vertices} vertices, expected ${count}`})`);
@@ -103,9 +104,18 @@ try {
   // Its console error is the one expected here, not one for the final check.
   consoleErrors.splice(0, consoleErrors.length, ...consoleErrors.filter((m) => !m.includes('broken.off')));
 
-  // The fields PLYs side by side: each pane wears its own file's colours.
+  // The fields PLYs side by side open on their first field, on one range over both (each file's
+  // baked colours are on its own range, so the same colour would mean two values), with a colour
+  // bar; "file colours" shows each pane its own file's colours, and the note says so.
   s = await open(file('fields_start.ply'), file('fields_end.ply'));
-  check(JSON.stringify(s.shown) === '["file colours","file colours"]', `both panes show their file's colours (${JSON.stringify(s.shown)})`);
+  const legend = await page.evaluate(() => ({ legend: window.viewer.legend, bar: !document.getElementById('colour-bar').hidden }));
+  check(JSON.stringify(s.shown) === '["mean_curvature","mean_curvature"]' && legend.bar && legend.legend?.name === 'mean_curvature',
+        `the pair opens on mean curvature, one range, with a colour bar (${JSON.stringify(s.shown)}, ${JSON.stringify(legend)})`);
+  await page.select('#colour', 'file');
+  s.shown = await page.evaluate(() => window.viewer.shown);
+  const fileNote = await page.$eval('#colour-note', (e) => e.textContent);
+  check(JSON.stringify(s.shown) === '["file colours","file colours"]' && /fields_start\.ply: its own colours/.test(fileNote),
+        `both panes show their file's colours, and the note says whose ("${fileNote}")`);
   const means = await page.evaluate(() => window.viewer.colourMeans());
   const expected = [meanRed(file('fields_start.ply')), meanRed(file('fields_end.ply'))];
   check(means && means[0] !== null && means[1] !== null && Math.abs(means[0] - expected[0]) < 1e-4 && Math.abs(means[1] - expected[1]) < 1e-4,
@@ -244,9 +254,9 @@ try {
   const glbAfter = { live: await live(), made: (await buffers()) - glbBefore };
   check(glbAfter.live === glbLive && glbAfter.made === 0,
         `before | after off frees the buffers it made and keeps the others (${glbAfter.live} live, ${glbLive} before; ${glbAfter.made} made)`);
-  // A mesh file opens with its own colours (the file's attribute, uploaded with the file): the
-  // first choice of a computed field makes one buffer per mesh, the mesh's colour buffer, which
-  // later choices rewrite; so at most one per mesh shown, however many switches follow.
+  // A mesh file opens on its first field (the mesh's one buffer of field colours, which later
+  // choices rewrite); the first choice of the file's own colours uploads them, once: so at most
+  // one buffer per mesh shown, however many switches follow.
   s = await open(file('fields_start.ply'), file('fields_end.ply'));
   await settle();
   const meshLive = await live();
@@ -255,7 +265,7 @@ try {
   const firstRound = (await buffers()) - meshBefore;
   await cycle(3, 1);
   const laterRounds = (await buffers()) - meshBefore - firstRound;
-  check(JSON.stringify(s.shown) === '["file colours","file colours"]' && (await choices()).length > 3 && firstRound <= 2 && laterRounds === 0,
+  check(JSON.stringify(s.shown) === '["mean_curvature","mean_curvature"]' && (await choices()).length > 3 && firstRound <= 2 && laterRounds === 0,
         `switching the colours of two meshes makes at most one WebGL buffer per mesh, once (${firstRound} in the first round of switches, ${laterRounds} in three more)`);
   // The same files again: the old panes' buffers are freed, also the colour buffers off their
   // geometries' 'color' (the switches end on the file's colours, then none).
