@@ -164,7 +164,7 @@ OptionSpec on_off_option(std::string name, std::string help, Field field) {
   o.help = std::move(help);
   o.set = [name, field](RunOptions& r, const std::string& v) { field(r) = parse_on_off(name, v); };
   o.get = [field](const RunOptions& r) { return on_off(field(const_cast<RunOptions&>(r))); };
-  o.bad_examples = {"", "maybe"};
+  o.bad_examples = {"", "maybe", "1", "0", "true", "false", "ON"};
   return o;
 }
 
@@ -174,7 +174,7 @@ OptionSpec flag(std::string name, std::string help, Field field) {
   OptionSpec o = on_off_option(std::move(name), std::move(help), field);
   o.value_name.clear();
   o.is_switch = true;
-  o.bad_examples = {"maybe"};
+  o.bad_examples = {"maybe", "1", "true"};
   return o;
 }
 
