@@ -5,6 +5,7 @@
 // Exit codes: 0 success, 1 bad usage (unknown option, missing or non-directory --queries, bad
 // tolerance list, unwritable --json), 2 unreadable or malformed query file (the message names the
 // file and line).
+#include <algorithm>
 #include <boost/program_options.hpp>
 #include <cmath>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include "commands.hpp"
 #include "core/classic_locale.hpp"
 #include "core/decimal_text.hpp"
+#include "core/list_text.hpp"
 #include "json_writer.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
@@ -29,18 +31,21 @@ namespace po = boost::program_options;
 namespace shellcontract::cli {
 namespace {
 
-/// Parses "1e-6,1e-9,0" into numbers >= 0.
+/// Parses "1e-6,1e-9,0" into numbers >= 0: a list as every list option takes one
+/// (core/list_text.hpp), each tolerance once.
 std::vector<double> parse_tolerances(const std::string& list) {
+  std::vector<std::string> items;
+  std::string why;
+  if (!split_list(list, items, why)) throw UsageError("--sweep: '" + list + "': " + why);
   std::vector<double> out;
-  std::stringstream ss(list);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
+  for (const std::string& item : items) {
     double v = 0.0;
     if (!parse_decimal(item, v) || !(v >= 0.0) || !std::isfinite(v))
       throw UsageError("--sweep: '" + item + "' is not a finite number >= 0");
+    if (std::find(out.begin(), out.end(), v) != out.end())
+      throw UsageError("--sweep: the tolerance " + item + " is given twice");
     out.push_back(v);
   }
-  if (out.empty()) throw UsageError("--sweep: empty list");
   return out;
 }
 
@@ -137,14 +142,13 @@ int command_bench_ccd(int argc, char** argv) {
       "other processes)");
 
   try {
-    po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(desc).run(), vm);
+    // Parsed as every command is (command_line.hpp): a stray argument (a second tolerance after
+    // --tolerance, a forgotten --sweep) is refused, not dropped.
+    const po::variables_map vm = parse_options_only(argc, argv, desc);
     if (vm.count("help")) {
       std::cout << desc << '\n';
       return static_cast<int>(ExitCode::Success);
     }
-    refuse_empty_values(vm);
-    po::notify(vm);
     if (dir.empty()) throw UsageError("--queries DIR is required");
     if (!(opt.tolerance >= 0.0) || !std::isfinite(opt.tolerance))
       throw UsageError("--tolerance must be a finite number >= 0");

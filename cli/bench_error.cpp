@@ -5,11 +5,13 @@
 //
 // Exit codes: 0 success, 1 bad usage (unknown option, bad list, unwritable output, gnuplot
 // missing or failing), 2 bad input mesh, 3 a reference run failed (blow-up).
+#include <unistd.h>
+
 #include <algorithm>
 #include <boost/program_options.hpp>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -18,12 +20,13 @@
 #include <sstream>
 #include <string>
 #include <tuple>
-#include <unistd.h>
 #include <vector>
 
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "core/classic_locale.hpp"
+#include "core/decimal_text.hpp"
+#include "core/list_text.hpp"
 #include "mesh/file_safety.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
@@ -68,25 +71,61 @@ In --csv a check's row has its reference's ms_per_step (it is plotted there; not
 exit codes: 0 success, 1 bad usage (also: an unwritable --csv or --plot, gnuplot missing or
             failing), 2 bad input mesh, 3 a reference run failed (blow-up))";
 
-/// Parses "1,2,5" into integers >= 1.
-std::vector<int> parse_list(const std::string& list, const char* option) {
+/// run's bound on --frames (its option table's), for bench error's --frames.
+constexpr long MAX_BENCH_FRAMES = 1000000;
+
+/// Parses "1,2,5" into integers in [1, most]: a list as every list option takes one
+/// (core/list_text.hpp), each item as an integer option's (parse_decimal_integer), each once.
+std::vector<int> parse_list(const std::string& list, const char* option, long most) {
+  std::vector<std::string> items;
+  std::string why;
+  if (!split_list(list, items, why))
+    throw UsageError(std::string(option) + ": '" + list + "': " + why);
   std::vector<int> out;
-  std::stringstream ss(list);
-  std::string item;
-  while (std::getline(ss, item, ',')) {
-    std::size_t used = 0;
-    int v = 0;
-    try {
-      v = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      throw UsageError(std::string(option) + ": '" + item + "' is not an integer");
-    }
-    if (used != item.size() || v < 1)
-      throw UsageError(std::string(option) + ": '" + item + "' is not an integer >= 1");
-    out.push_back(v);
+  for (const std::string& item : items) {
+    long v = 0;
+    if (!parse_decimal_integer(item, v) || v < 1 || v > most)
+      throw UsageError(std::string(option) + ": '" + item + "' is not an integer in [1, " +
+                       std::to_string(most) + "]");
+    if (std::find(out.begin(), out.end(), v) != out.end())
+      throw UsageError(std::string(option) + ": " + item + " is given twice");
+    out.push_back(static_cast<int>(v));
   }
-  if (out.empty()) throw UsageError(std::string(option) + ": empty list");
   return out;
+}
+
+/// --orders: sequential, coloured or both (the two), each order once.
+std::vector<ConstraintOrder> parse_orders(const std::string& list) {
+  std::vector<std::string> items;
+  std::string why;
+  if (!split_list(list, items, why)) throw UsageError("--orders: '" + list + "': " + why);
+  std::vector<ConstraintOrder> out;
+  for (const std::string& item : items) {
+    std::vector<ConstraintOrder> named;
+    if (item == "sequential")
+      named = {ConstraintOrder::Sequential};
+    else if (item == "coloured")
+      named = {ConstraintOrder::Coloured};
+    else if (item == "both")
+      named = {ConstraintOrder::Sequential, ConstraintOrder::Coloured};
+    else
+      throw UsageError("--orders: expected sequential, coloured or both, got '" + item + "'");
+    for (ConstraintOrder o : named) {
+      if (std::find(out.begin(), out.end(), o) != out.end())
+        throw UsageError("--orders: '" + list + "' names " + ladder_order_name(o) + " twice");
+      out.push_back(o);
+    }
+  }
+  return out;
+}
+
+/// The value of run's option `name` (its table entry: run's grammar, range and message, which
+/// the caller spells with spell_options) for one of bench error's own, in a scratch RunOptions.
+RunOptions run_value(const std::string& name, const std::string& text) {
+  RunOptions scratch;
+  for (const OptionSpec& o : run_option_table())
+    if (o.name == name) o.set(scratch, text);
+  return scratch;
 }
 
 std::string fmt(double v, int precision = 3, const char* nan_text = "failed") {
@@ -300,27 +339,44 @@ int command_bench_error(int argc, char** argv) {
   std::string collisions = "off", orders = "sequential", threads = "1";
   ErrorLadderOptions opt;
   SimOptions base;
+  // Read as text by run's own table (run_value), so that a value run refuses is refused here
+  // before the runs, with run's message, not found out as a failed reference (exit 3).
+  std::string frames_text = std::to_string(opt.frames), dt_text = shortest_text(base.dt),
+              pressure_text = shortest_text(base.pressure);
   bool no_check = false, quiet = false;
   po::options_description visible("options");
-  visible.add_options()
-      ("help,h", "show this help")
-      ("frames,n", po::value<int>(&opt.frames)->default_value(opt.frames), "base steps simulated (time = frames x dt)")
-      ("dt", po::value<double>(&base.dt)->default_value(base.dt), "base time step (normalized units)")
-      ("pressure,p", po::value<double>(&base.pressure)->default_value(base.pressure), "outside over-pressure P")
-      ("solver", po::value<std::string>(&solver)->default_value(solver), "pbd|xpbd|both")
-      ("iterations", po::value<std::string>(&iterations)->default_value(iterations), "Gauss-Seidel sweeps of the rungs (list)")
-      ("substeps", po::value<std::string>(&substeps)->default_value(substeps), "substeps of the rungs (list)")
-      ("pbd-substeps", po::bool_switch(&opt.pbd_substeps), "also run PBD rungs with substeps > 1")
-      ("orders", po::value<std::string>(&orders)->default_value(orders), "sweep orders of the rungs: sequential, coloured or both (list)")
-      ("threads", po::value<std::string>(&threads)->default_value(threads), "threads of the coloured rungs (list; results do not depend on it)")
-      ("ref-iterations", po::value<int>(&opt.xpbd_reference_iterations)->default_value(opt.xpbd_reference_iterations), "XPBD reference sweeps per substep")
-      ("ref-substeps", po::value<int>(&opt.xpbd_reference_substeps)->default_value(opt.xpbd_reference_substeps), "XPBD reference substeps")
-      ("pbd-ref-iterations", po::value<int>(&opt.pbd_reference_iterations)->default_value(opt.pbd_reference_iterations), "PBD reference sweeps")
-      ("collisions", po::value<std::string>(&collisions)->default_value(collisions), "on|off: collision handling in every run")
-      ("no-check", po::bool_switch(&no_check), "skip the reference convergence check")
-      ("csv", po::value<std::string>(&csv), "write the table as CSV")
-      ("plot", po::value<std::string>(&plot), "draw error against time with gnuplot (.png or .svg)")
-      ("quiet,q", po::bool_switch(&quiet), "no progress on stderr");
+  visible.add_options()("help,h", "show this help")(
+      "frames,n", po::value<std::string>(&frames_text)->default_value(frames_text),
+      "base steps simulated (time = frames x dt); an integer in [1, 1000000]")(
+      "dt", po::value<std::string>(&dt_text)->default_value(dt_text),
+      "base time step (normalized units); as run's --dt, a number in [1e-100, 1]")(
+      "pressure,p", po::value<std::string>(&pressure_text)->default_value(pressure_text),
+      "outside over-pressure P; as run's, a number in [-1e+06, 1e+06] (no keyframes)")(
+      "solver", po::value<std::string>(&solver)->default_value(solver), "pbd|xpbd|both")(
+      "iterations", po::value<std::string>(&iterations)->default_value(iterations),
+      "Gauss-Seidel sweeps of the rungs (list)")(
+      "substeps", po::value<std::string>(&substeps)->default_value(substeps),
+      "substeps of the rungs (list)")("pbd-substeps", po::bool_switch(&opt.pbd_substeps),
+                                      "also run PBD rungs with substeps > 1")(
+      "orders", po::value<std::string>(&orders)->default_value(orders),
+      "sweep orders of the rungs: sequential, coloured or both (list)")(
+      "threads", po::value<std::string>(&threads)->default_value(threads),
+      "threads of the coloured rungs (list; results do not depend on it)")(
+      "ref-iterations",
+      po::value<int>(&opt.xpbd_reference_iterations)->default_value(opt.xpbd_reference_iterations),
+      "XPBD reference sweeps per substep")(
+      "ref-substeps",
+      po::value<int>(&opt.xpbd_reference_substeps)->default_value(opt.xpbd_reference_substeps),
+      "XPBD reference substeps")(
+      "pbd-ref-iterations",
+      po::value<int>(&opt.pbd_reference_iterations)->default_value(opt.pbd_reference_iterations),
+      "PBD reference sweeps")("collisions",
+                              po::value<std::string>(&collisions)->default_value(collisions),
+                              "on|off: collision handling in every run")(
+      "no-check", po::bool_switch(&no_check), "skip the reference convergence check")(
+      "csv", po::value<std::string>(&csv), "write the table as CSV")(
+      "plot", po::value<std::string>(&plot), "draw error against time with gnuplot (.png or .svg)")(
+      "quiet,q", po::bool_switch(&quiet), "no progress on stderr");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
@@ -335,26 +391,26 @@ int command_bench_error(int argc, char** argv) {
     if (collisions != "on" && collisions != "off")
       throw UsageError("--collisions: expected on or off, got '" + collisions + "'");
     opt.collisions = collisions == "on";
-    opt.iterations = parse_list(iterations, "--iterations");
-    opt.substeps = parse_list(substeps, "--substeps");
-    opt.threads = parse_list(threads, "--threads");
-    opt.orders.clear();
-    {
-      std::istringstream list(orders);
-      std::string item;
-      while (std::getline(list, item, ',')) {
-        if (item == "sequential") opt.orders.push_back(ConstraintOrder::Sequential);
-        else if (item == "coloured") opt.orders.push_back(ConstraintOrder::Coloured);
-        else if (item == "both") opt.orders.insert(opt.orders.end(), {ConstraintOrder::Sequential, ConstraintOrder::Coloured});
-        else throw UsageError("--orders: expected sequential, coloured or both, got '" + item + "'");
-      }
-      if (opt.orders.empty()) throw UsageError("--orders: empty list");
-    }
+    // run's bounds of --iterations and --threads; substeps as iterations (both multiply the work
+    // of a step). Without one, --threads 9999 started that many threads.
+    opt.iterations = parse_list(iterations, "--iterations", 100000);
+    opt.substeps = parse_list(substeps, "--substeps", 100000);
+    opt.threads = parse_list(threads, "--threads", 4096);
+    opt.orders = parse_orders(orders);
     opt.check_reference = !no_check;
-    if (opt.frames < 1) throw UsageError("--frames must be >= 1");
+    // run's grammar and upper bound for --frames; 0 frames would compare nothing.
+    long frames = 0;
+    if (!parse_decimal_integer(frames_text, frames) || frames < 1 || frames > MAX_BENCH_FRAMES)
+      throw UsageError("--frames: '" + frames_text + "' is not an integer in [1, " +
+                       std::to_string(MAX_BENCH_FRAMES) + "]");
+    opt.frames = static_cast<int>(frames);
+    base.dt = run_value("dt", dt_text).sim.dt;
+    if (pressure_text.find(':') != std::string::npos)
+      throw UsageError("--pressure: '" + pressure_text +
+                       "': bench error takes one pressure, not keyframes");
+    base.pressure = run_value("pressure", pressure_text).sim.pressure;
     if (opt.xpbd_reference_iterations < 1 || opt.xpbd_reference_substeps < 1 || opt.pbd_reference_iterations < 1)
       throw UsageError("reference iterations and substeps must be >= 1");
-    if (!(base.dt > 0.0) || !std::isfinite(base.dt)) throw UsageError("--dt must be a finite number > 0");
     if (!plot.empty()) {
       const auto ext = std::filesystem::path(plot).extension();
       if (ext != ".png" && ext != ".svg") throw UsageError("--plot: expected a .png or .svg file, got '" + plot + "'");
@@ -373,7 +429,7 @@ int command_bench_error(int argc, char** argv) {
   } catch (const po::error& e) {
     return usage_error("bench error", e.what());
   } catch (const UsageError& e) {
-    return usage_error("bench error", e.what());
+    return usage_error("bench error", spell_options(e.what(), OptionSpelling::Cli));
   }
 
   Mesh mesh;

@@ -47,26 +47,25 @@ inline void refuse_empty_values(const boost::program_options::variables_map& vm)
 }
 
 /// Parses the arguments of a subcommand that takes the options of `visible` and one positional
-/// INPUT (stored into `input` unless help was asked for).
+/// INPUT (stored into `input` unless help was asked for). Every command parses the same way
+/// (command_line.cpp): an option's name in full (no prefix of it taken for it; an unknown name is
+/// refused with the nearest names), no second positional argument (the message names it), no
+/// `-o=FILE` taken as the file "=FILE".
 /// @throws boost::program_options::error for an unknown option or a bad value; UsageError for
-///         an empty value (refuse_empty_values)
+///         an empty value (refuse_empty_values), a stray argument or `-X=VALUE`
 /// @return the parsed values; `vm.count("help")` tells whether --help was given
-inline boost::program_options::variables_map parse_command_line(
+boost::program_options::variables_map parse_command_line(
     int argc, char** argv, const boost::program_options::options_description& visible,
-    std::string& input) {
-  namespace po = boost::program_options;
-  po::options_description hidden;
-  hidden.add_options()("input", po::value(&input), "input mesh");
-  po::options_description all;
-  all.add(visible).add(hidden);
-  po::positional_options_description positional;
-  positional.add("input", 1);
-  po::variables_map vm;
-  po::store(po::command_line_parser(argc, argv).options(all).positional(positional).run(), vm);
-  if (vm.count("help")) return vm;
-  refuse_empty_values(vm);
-  po::notify(vm);
-  return vm;
-}
+    std::string& input);
+
+/// parse_command_line for a command without a positional argument (bench ccd): any is refused.
+boost::program_options::variables_map parse_options_only(
+    int argc, char** argv, const boost::program_options::options_description& visible);
+
+/// " (did you mean --frames?)" for an unknown option name ("--frame"): the options of `visible`
+/// that it begins (a prefix, which some parsers take for the option), or else the nearest by
+/// edit distance (at most 2, and less than half the name); empty when none is near.
+std::string option_suggestion(const std::string& unknown,
+                              const boost::program_options::options_description& visible);
 
 }  // namespace shellcontract::cli

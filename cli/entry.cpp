@@ -17,6 +17,7 @@
 #include <new>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "core/memory_error.hpp"
@@ -156,10 +157,38 @@ int shellcontract::cli::cli_main(int argc, char** argv) {
     std::cerr << USAGE;
     return 1;
   }
-  const std::string command = argv[1];
+  std::string command = argv[1];
+  // `shellcontract help run` (or --help run) is `shellcontract run --help`, `help bench ccd` is
+  // `bench ccd --help`: the words after help name one command, and anything else is refused
+  // rather than ignored.
+  static char help_flag[] = "--help";
+  std::vector<char*> help_argv;
   if (command == "--help" || command == "-h" || command == "help") {
-    std::cout << USAGE;
-    return finish_stdout(command, 0);
+    if (argc == 2) {
+      std::cout << USAGE;
+      return finish_stdout(command, 0);
+    }
+    const bool bench_pair = argc == 4 && std::strcmp(argv[2], "bench") == 0;
+    if (argc > 3 && !bench_pair) {
+      std::cerr << "shellcontract " << command << ": expected one command after it, got '"
+                << argv[2] << "' and '" << argv[3] << "'\n(see 'shellcontract --help')\n";
+      return 1;
+    }
+    help_argv.assign(argv, argv + argc);
+    help_argv.erase(help_argv.begin() + 1);
+    help_argv.push_back(help_flag);
+    help_argv.push_back(nullptr);
+    argc = static_cast<int>(help_argv.size()) - 1;
+    argv = help_argv.data();
+    command = argv[1];
+    if (command == "--help" || command == "-h" || command == "help") {  // `help help`
+      std::cout << USAGE;
+      return finish_stdout(command, 0);
+    }
+  }
+  if (command == "--version" && argc > 2) {
+    std::cerr << "shellcontract --version: takes no argument, got '" << argv[2] << "'\n";
+    return 1;
   }
   try {
     // A mistyped SHELLCONTRACT_KERNELS is refused before anything runs, not taken as "auto".

@@ -223,7 +223,7 @@ int command_run(int argc, char** argv) {
     if (vm.count("gltf-fps")) {
       // Bounded so that every key time (up to INT_MAX frames) is a finite float32.
       double fps = 0.0;
-      if (!parse_c_number(gltf_fps, fps) || !(fps >= 0.001 && fps <= 1000.0))
+      if (!parse_decimal(gltf_fps, fps) || !(fps >= 0.001 && fps <= 1000.0))
         throw UsageError("--gltf-fps: expected a frame rate from 0.001 to 1000, got '" +
                          printable(gltf_fps) + "'");
       if (exports.gltf.empty()) throw UsageError("--gltf-fps has no effect without --gltf");

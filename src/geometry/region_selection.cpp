@@ -150,8 +150,9 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
     std::vector<int> region;
     double strength = 1.0;
     // The region's strength: what comes before the line's ':' ("0.5: 12 13", "0.5:12 13",
-    // " 0.5 : 12"), blanks around it allowed; the whole of it must be a number (as strtod reads
-    // one in the "C" locale, whatever locale a host program set).
+    // " 0.5 : 12"), blanks around it allowed; the whole of it must be a number in the grammar of
+    // every option's (parse_decimal: decimal, whatever locale a host program set; no hexadecimal,
+    // which strtod's reading took as 0x0.8 = 0.5, no inf or nan).
     const std::size_t colon = text.find(':');
     if (colon != std::string::npos) {
       // text[start] is not a blank, so the search back from the ':' stops at start at the latest.
@@ -160,7 +161,7 @@ RegionFile read_region_file_with_strengths(const std::string& path, std::size_t 
                          : text.substr(start, text.find_last_not_of(" \t", colon - 1) + 1 - start);
       if (number.empty())
         throw InputError(line_error(printable(path), line, "a ':' with no strength before it"));
-      if (!parse_c_number(number, strength) || !std::isfinite(strength) || strength < 0.0 ||
+      if (!parse_decimal(number, strength) || !std::isfinite(strength) || strength < 0.0 ||
           strength > 1.0)
         throw InputError(
             line_error(printable(path), line,

@@ -60,9 +60,11 @@ inline int parse_integer(const std::string& name, const std::string& value, long
   return static_cast<int>(x);
 }
 
+/// on or off, the words the docs and --help give, and nothing else: 1/0 and true/false were
+/// taken too, in run alone (bench error refused them), and yes/ON were not.
 inline bool parse_on_off(const std::string& name, const std::string& value) {
-  if (value == "on" || value == "true" || value == "1") return true;
-  if (value == "off" || value == "false" || value == "0") return false;
+  if (value == "on") return true;
+  if (value == "off") return false;
   bad(name, value, "on or off");
 }
 
@@ -162,7 +164,7 @@ OptionSpec on_off_option(std::string name, std::string help, Field field) {
   o.help = std::move(help);
   o.set = [name, field](RunOptions& r, const std::string& v) { field(r) = parse_on_off(name, v); };
   o.get = [field](const RunOptions& r) { return on_off(field(const_cast<RunOptions&>(r))); };
-  o.bad_examples = {"", "maybe"};
+  o.bad_examples = {"", "maybe", "1", "0", "true", "false", "ON"};
   return o;
 }
 
@@ -172,7 +174,7 @@ OptionSpec flag(std::string name, std::string help, Field field) {
   OptionSpec o = on_off_option(std::move(name), std::move(help), field);
   o.value_name.clear();
   o.is_switch = true;
-  o.bad_examples = {"maybe"};
+  o.bad_examples = {"maybe", "1", "true"};
   return o;
 }
 

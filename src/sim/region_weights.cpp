@@ -55,8 +55,9 @@ std::vector<double> read_vertex_weights(const std::string& path, std::size_t num
     if (tokens >> extra)
       line_error(path, line, "'" + printable(extra) + "' after the weight: one weight per line (vertex " +
                                  std::to_string(weights.size()) + ")");
+    // A weight is written as an option's number is (parse_decimal): no hexadecimal, inf or nan.
     double w = 0.0;
-    if (!parse_c_number(token, w) || !std::isfinite(w))
+    if (!parse_decimal(token, w) || !std::isfinite(w))
       line_error(path, line, "'" + printable(token) + "' is not a weight (a number in [0, 1])");
     if (!valid_weight(w))
       line_error(path, line, "weight " + token + " of vertex " + std::to_string(weights.size()) +
