@@ -167,6 +167,9 @@ def joined_values(argv):
 def parser():
     p = _Parser(
         prog="shellcontract sweep",
+        # Options are named in full, as the tool's other commands take theirs (docs/cli.md): a
+        # prefix a script relies on would break when an option is added.
+        allow_abbrev=False,
         description="Run every job of a sweep file (meshes x options grid x runs) on Dask "
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "

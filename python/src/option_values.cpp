@@ -248,7 +248,7 @@ py::dict resolve_options(const py::kwargs& given) {
     const std::string text = o.name == "region-at" ? region_at_text(kwargs[py::str(name)])
                                                    : option_text(name, kwargs[py::str(name)]);
     RunOptions probe;
-    o.set(probe, text);  // the option's own parse (a switch's on/off/true/false/1/0)
+    o.set(probe, text);  // the option's own parse (a switch's on or off)
     if (o.is_switch) {
       if (o.get(probe) == o.get(RunOptions{})) continue;  // off: the flag is left out
       args.append("--" + o.name);

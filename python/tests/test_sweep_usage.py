@@ -35,6 +35,9 @@ SPEC = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}}
     (["--workers", "2", "--workers", "3"], "option '--workers' cannot be given more than once"),
     (["--dry-run"], "option '--dry-run' cannot be given more than once"),
     (["-o", "elsewhere"], "option '--output' cannot be given more than once"),
+    # An option is named in full, as the C++ commands read theirs (before: --work 2 was --workers 2).
+    (["--work", "2"], "unrecognized arguments: --work 2"),
+    (["--job", "3"], "unrecognized arguments: --job 3"),
 ], ids=lambda v: " ".join(v) if isinstance(v, list) else None)
 def test_bad_usage_exits_1_with_a_message(cli, mesh_dir, tmp_path, args, expected):
     path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
