@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -181,12 +182,41 @@ std::string region_table(const RegionReport& report, const Positions& x) {
     if (r < report.points.size()) {  // as the centre is written
       const RegionPoint& p = report.points[r];
       ClassicOStringStream distance;
-      distance << std::defaultfloat << std::setprecision(4) << p.distance;
+      // A point near the largest doubles is farther than a double holds: said so, not "inf".
+      if (std::isfinite(p.distance))
+        distance << std::defaultfloat << std::setprecision(4) << p.distance;
+      else
+        distance << "more than " << std::setprecision(2) << std::numeric_limits<double>::max();
       t << "      at " << point_coordinates(p.surface_point, diagonal, largest) << " ("
         << distance.str() << " from the point given)\n";
     }
   }
   return t.str();
+}
+
+/// Refuses an option given an empty value ("--fit-tolerance ''", "--min-faces="), as `run`
+/// words it: Boost's conversion of "" to a number says only "the argument for option ... is
+/// invalid", and refuse_empty_values sees text options alone.
+/// @throws UsageError naming the option
+void refuse_empty_numbers(int argc, char** argv, const po::options_description& options) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--") return;
+    if (arg.size() < 3 || arg.compare(0, 2, "--") != 0) continue;
+    const std::size_t eq = arg.find('=');
+    const std::string name = arg.substr(2, eq == std::string::npos ? std::string::npos : eq - 2);
+    const po::option_description* o = nullptr;
+    try {
+      o = options.find_nothrow(name, true);
+    } catch (const po::error&) {  // an ambiguous abbreviation: the parser's message
+    }
+    if (!o || o->semantic()->max_tokens() == 0) continue;
+    const bool empty =
+        eq != std::string::npos ? eq + 1 == arg.size() : i + 1 < argc && argv[i + 1][0] == '\0';
+    if (empty)
+      throw UsageError("--" + o->long_name() + ": empty; give a value or leave the option out");
+    if (eq == std::string::npos) ++i;  // its value, which may start with "--"
+  }
 }
 
 // A default as the user would type it ("0.3"), not Boost's full round-trip digits
@@ -239,24 +269,17 @@ int command_regions(int argc, char** argv) {
       ("max-area-fraction", po::value(&options.max_area_fraction)->default_value(options.max_area_fraction, shown(options.max_area_fraction)),
        "drop regions larger than this fraction of the total area (not local)");
   try {
+    refuse_empty_numbers(argc, argv, visible);
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
       std::cout << REGIONS_USAGE << '\n' << visible << '\n';
       return static_cast<int>(ExitCode::Success);
     }
     if (input.empty()) throw UsageError("missing INPUT mesh");
-    if (!output.empty() && lower_extension(output) != "ply") throw UsageError("the output must be a .ply file (got '" + output + "')");
-    for (const auto& [name, t] : {std::pair<const char*, double>{"--fit-tolerance", options.fit_tolerance},
-                                  {"--max-concave-fraction", options.max_concave_fraction},
-                                  {"--min-cap-angle", options.min_cap_angle_deg},
-                                  {"--contrast", options.min_curvature_contrast},
-                                  {"--min-area-fraction", options.min_area_fraction},
-                                  {"--max-area-fraction", options.max_area_fraction}})
-      if (!std::isfinite(t) || t < 0.0)
-        throw UsageError(std::string(name) + " must be a finite number >= 0 (got " + shortest_text(t) + ")");
-    if (!std::isfinite(options.max_compactness) || !(options.max_compactness > 0.0))
-      throw UsageError("--max-compactness must be a finite number > 0 (got " + shortest_text(options.max_compactness) + ")");
+    if (!output.empty() && lower_extension(output) != "ply")
+      throw UsageError("the output must be a .ply file (got '" + output + "')");
     options.method = parse_method(method);
+    // Each option with its value and range, the area fractions with both values (spelled below).
     check_region_options(options);
     if (options.method != RegionMethod::Caps && !points.empty())
       throw UsageError("--region-at grows caps; it does not apply with --method " + method);

@@ -46,7 +46,8 @@ What OUTPUT keeps:
   that a float does not hold are named among the dropped), area-weighted vertex normals (NORMAL)
   and 32-bit indices; a .gltf carries its buffer inside, as a base64 data URI.
 
-exit codes: 0 OUTPUT written and usable, 1 bad usage (also: an STL OUTPUT in which two vertices
+exit codes: 0 OUTPUT written and usable, 1 bad usage (also: an OUTPUT whose extension is none
+            of -o's formats, refused before INPUT is read; an STL OUTPUT in which two vertices
             would be stored at one position, which an STL reader merges; a glTF OUTPUT whose
             positions rounded to 32-bit floats would no longer be usable), 2 the input cannot be
             repaired into a usable mesh (the message says why; nothing is written)
@@ -123,7 +124,8 @@ int command_repair(int argc, char** argv) {
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});
     plan.outputs.push_back({"-o", output});
-    check_planned_outputs(plan);
+    check_planned_outputs(plan);  // a folder or device at -o is refused for what it is first
+    check_repair_output_name("-o", output);
   } catch (const po::error& e) {
     return usage_error("repair", e.what());
   } catch (const UsageError& e) {

@@ -174,8 +174,9 @@ std::string option_field(const std::string& name);
 std::string option_name(const OptionSpec& option, OptionSpelling spelling);
 
 /// A library message with every backquoted option field (`target_volume`) spelled for the front
-/// end: "--target-volume" (Cli) or "target_volume" (Python). Backquotes around anything but a
-/// table option's field are left as they are.
+/// end: "--target-volume" (Cli) or "target_volume" (Python); the region finders' options too
+/// (REGION_OPTION_FIELDS: "--max-area-fraction", "max_area_fraction"). Backquotes around anything
+/// else are left as they are.
 std::string spell_options(const std::string& message, OptionSpelling spelling);
 
 /// The shortest decimal text that reads back as exactly `x` (0.3, 1e-4, 2).

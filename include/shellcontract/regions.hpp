@@ -203,8 +203,25 @@ std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, 
 std::vector<int> select_regions_at(const Mesh& mesh, const Positions& x, const std::vector<Vec3>& points,
                                    const RegionOptions& options, RegionReport* report = nullptr);
 
-/// Throws UsageError naming the first option out of range (tolerances >= 0, fractions in
-/// [0, 1], min <= max, max_compactness > 0, min_faces >= 1).
+/// The options of `shellcontract regions` and Python's regions() as the library's messages name
+/// them, in backquotes (`max_area_fraction`; RegionOptions' fields but min_cap_angle and
+/// contrast): spell_options spells them for a front end ("--max-area-fraction" for the CLI).
+inline constexpr std::array<const char*, 9> REGION_OPTION_FIELDS = {
+    "method",          "fit_tolerance", "max_concave_fraction", "min_cap_angle",    "contrast",
+    "max_compactness", "min_faces",     "min_area_fraction",    "max_area_fraction"};
+
+/// The range of a real threshold, named as in REGION_OPTION_FIELDS, in words: "a finite number
+/// >= 0" (fit_tolerance, contrast), "a finite number > 0" (max_compactness), "a number in
+/// [0, 1]" (max_concave_fraction, the area fractions), "a number of degrees in [0, 180]"
+/// (min_cap_angle); empty for another name.
+std::string region_option_range(const std::string& field);
+
+/// Whether `value` is in region_option_range(field) (false for NaN, an infinity or another name).
+bool in_region_option_range(const std::string& field, double value);
+
+/// Throws UsageError naming the first option out of range with its value and range ("`contrast`
+/// nan: must be a finite number >= 0"; min_faces >= 1), or the area fractions with both values
+/// when max_area_fraction is below min_area_fraction; options named as in REGION_OPTION_FIELDS.
 void check_region_options(const RegionOptions& options);
 
 /// The same selection on the mesh's own property maps (design.md, data flow: curvature ->

@@ -348,6 +348,12 @@ inline constexpr int DEFAULT_TARGET_RAMP_FRAMES = 100;
 /// --dt 1e-155 turned every position into NaN at its first step).
 inline constexpr double MIN_DT = 1e-100;
 
+/// Smallest areal density: a vertex's mass is the density times a share of the normalized
+/// surface, and its inverse must be a finite number (a density of 1e-310 gave masses of 0 and
+/// infinite inverse masses: NaN positions at the first step, with no word of why). The bound
+/// leaves some 200 orders of magnitude for the finest mesh's share before that happens.
+inline constexpr double MIN_DENSITY = 1e-100;
+
 /// Largest V/V0 a key of a keyframed target volume may ask: re-inflation to the rest volume and
 /// beyond it up to twice the volume; a larger ratio is taken for a typo (50 for 0.5).
 inline constexpr double MAX_KEYED_VOLUME_RATIO = 2.0;

@@ -75,9 +75,9 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   return d;
 }
 
-/// A non-negative real option of regions(): TypeError for anything but a real number (a bool,
-/// numpy's too, or a string: the package's regions() reads a str as the CLI's text first),
-/// ValueError for NaN, infinity or a negative value.
+/// A real option of regions(): TypeError for anything but a real number (a bool, numpy's too, or
+/// a string: the package's regions() reads a str as the CLI's text first), ValueError naming the
+/// option's range for a value outside it (NaN and infinities too).
 double real_option(const std::string& name, const py::handle& value) {
   const bool real = !is_bool(value) && !py::isinstance<py::str>(value) &&
                     (PyFloat_Check(value.ptr()) || PyIndex_Check(value.ptr()) ||
@@ -87,11 +87,13 @@ double real_option(const std::string& name, const py::handle& value) {
                          std::string(py::str(value.get_type().attr("__name__"))));
   const double v = PyFloat_AsDouble(value.ptr());
   if (v == -1.0 && PyErr_Occurred()) throw py::error_already_set();
-  // max_compactness bounds a ratio that is positive for any region (a cap on a sphere is below 1).
-  const bool positive = name == "max_compactness" || name == "max-compactness";
-  if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0))
-    throw py::value_error("regions() option " + name + ": expected a finite number " +
-                          (positive ? "> 0" : ">= 0") + ", got " + std::string(py::repr(value)));
+  // The library's range of the option, in its words (check_region_options): a fraction's
+  // [0, 1] also for NaN, which is out of every range.
+  std::string field = name;
+  std::replace(field.begin(), field.end(), '-', '_');
+  if (!in_region_option_range(field, v))
+    throw py::value_error("regions() option " + name + ": expected " + region_option_range(field) +
+                          ", got " + std::string(py::repr(value)));
   return v;
 }
 

@@ -183,20 +183,6 @@ double reference_curvature(const MeshArrays& m, const Positions& x, const Eigen:
 
 }  // namespace detail
 
-void check_region_options(const RegionOptions& o) {
-  const auto bad = [](const std::string& what) { throw UsageError("region options: " + what); };
-  if (!(o.fit_tolerance >= 0.0)) bad("fit tolerance must be >= 0");
-  if (!(o.max_concave_fraction >= 0.0 && o.max_concave_fraction <= 1.0)) bad("max concave fraction must be in [0, 1]");
-  if (!(o.min_cap_angle_deg >= 0.0 && o.min_cap_angle_deg <= 180.0)) bad("min cap angle must be in [0, 180] degrees");
-  if (!(o.min_curvature_contrast >= 0.0)) bad("contrast must be >= 0");
-  if (!(o.max_compactness > 0.0)) bad("max compactness must be > 0");  // a cap on a sphere is below 1
-  if (o.min_faces < 1) bad("min faces must be >= 1");
-  if (o.method != RegionMethod::Caps && o.method != RegionMethod::Tips && o.method != RegionMethod::Parts)
-    bad("unknown method");
-  if (!(o.min_area_fraction >= 0.0 && o.max_area_fraction <= 1.0 && o.min_area_fraction <= o.max_area_fraction))
-    bad("area fractions must satisfy 0 <= min <= max <= 1");
-}
-
 std::vector<int> select_spherical_regions(const Mesh& mesh, const Positions& x, const RegionOptions& options,
                                           RegionReport* report) {
   return detail::with_cancel_hook(options, "select_spherical_regions", [&] {

@@ -208,11 +208,15 @@ std::string point_text(const Vec3& p) {
 /// that far picks the part nearest to it, which is often not the one meant (REGION_POINT_NEAR).
 std::string far_point_warning(std::size_t i, const RegionPoint& p, double bound) {
   const Vec3& s = p.surface_point;
-  return "the " + ordinal(i + 1) + " `region_at` point " + point_text(p.point) + " is " +
-         general_text(p.distance, 4) + " from the surface, farther than " +
-         general_text(100.0 * REGION_POINT_NEAR, 3) + " % of the bounding box's diagonal (" +
-         general_text(bound, 4) + "): its region grows from the surface point nearest to it, " +
-         point_text(s) +
+  // A point near the largest doubles is farther than a double holds: said so, not "inf".
+  const std::string distance =
+      std::isfinite(p.distance)
+          ? general_text(p.distance, 4)
+          : "more than " + general_text(std::numeric_limits<double>::max(), 2);
+  return "the " + ordinal(i + 1) + " `region_at` point " + point_text(p.point) + " is " + distance +
+         " from the surface, farther than " + general_text(100.0 * REGION_POINT_NEAR, 3) +
+         " % of the bounding box's diagonal (" + general_text(bound, 4) +
+         "): its region grows from the surface point nearest to it, " + point_text(s) +
          ", which may be on another part than meant. Give a point on the surface (an ear's tip, "
          "not a sphere's centre from the regions table) in the input's coordinates: glTF, and OBJ "
          "by default, is Y-up, so a point (X, Y, Z) read in Blender's Z-up world after the import "

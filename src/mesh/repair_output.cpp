@@ -14,6 +14,7 @@
 #include "mesh/file_safety.hpp"
 #include "mesh/gltf_mesh_writer.hpp"
 #include "mesh/obj_material_paths.hpp"
+#include "mesh/output_check.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/soup_writer.hpp"
 #include "mesh/stl_positions.hpp"
@@ -142,8 +143,18 @@ std::string RepairOutput::kind_name() const {
   return "";
 }
 
+void check_repair_output_name(const std::string& option, const std::string& output) {
+  const std::string ext = lower_extension(output);
+  if (ext == "off" || ext == "obj" || ext == "ply" || ext == "stl" || is_gltf(ext)) return;
+  throw UsageError(option + " " + quoted_path(output) +
+                   (ext.empty() ? std::string(": no file extension to name the mesh format")
+                                : ": unknown mesh format '." + printable(ext) + "'") +
+                   " (expected .off, .obj, .ply, .stl, .glb or .gltf)");
+}
+
 RepairOutput write_repair_output(const std::string& input, const std::string& output, const Mesh& mesh,
                                  const RepairReport& report) {
+  check_repair_output_name("-o", output);
   const std::string in_ext = lower_extension(input), out_ext = lower_extension(output);
   const std::string bytes = read_file_bytes(input);
   const FileExtras extras = describe_file_extras(in_ext, bytes);

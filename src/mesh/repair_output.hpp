@@ -32,6 +32,13 @@ struct RepairOutput {
   std::string kind_name() const;
 };
 
+/// Refuses an output name whose extension (in any case) is none of the formats `repair` writes:
+/// .off, .obj, .ply, .stl, .glb and .gltf. The CLI asks before the repair, so that a name it
+/// cannot write is bad usage whatever the input, as `run` checks -o before reading; and
+/// write_repair_output asks again first.
+/// @throws UsageError naming `option` (the CLI's "-o"), the output and every format written
+void check_repair_output_name(const std::string& option, const std::string& output);
+
 /// Writes `repair`'s output: `mesh` and `report` are what repair_input_mesh returned for `input`.
 /// - A usable input (report.already_usable) to the same format (extension, in any case): the
 ///   input's bytes, unchanged (UVs, groups, materials, polygons, comments, a binary encoding...),
@@ -49,7 +56,8 @@ struct RepairOutput {
 /// `check` would before it is written.
 /// Written atomically (write_file_atomic): a failure leaves no file.
 /// @throws InputError naming the input if it cannot be read again
-/// @throws UsageError if the output cannot be written, or is an STL in which two vertices would
+/// @throws UsageError if the output's name is none of the formats (check_repair_output_name), if
+///         it cannot be written, or is an STL in which two vertices would
 ///         be stored at the same position (an STL reader merges them: another mesh), or a glTF
 ///         whose positions, rounded to floats, make a mesh that the usability check refuses
 RepairOutput write_repair_output(const std::string& input, const std::string& output, const Mesh& mesh,

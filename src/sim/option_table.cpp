@@ -1,5 +1,3 @@
-#include "shellcontract/options.hpp"
-
 #include <algorithm>
 #include <charconv>
 #include <string>
@@ -9,6 +7,8 @@
 
 #include "material/registry.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
+#include "shellcontract/regions.hpp"
 #include "sim/keyed_options.hpp"
 #include "sim/option_builders.hpp"
 
@@ -316,7 +316,8 @@ std::vector<OptionSpec> build_table() {
   t.push_back(choice("mass", "area: lumped by rest area; unit: m = 1",
                      Choices<MassModel>{{"area", MassModel::AreaLumped}, {"unit", MassModel::Unit}},
                      [](R& r) -> MassModel& { return r.sim.mass; }));
-  t.push_back(number("density", 0, "RHO", "areal density rho_A", between(0.0, 1e12, true, false),
+  t.push_back(number("density", 0, "RHO", "areal density rho_A",
+                     between(MIN_DENSITY, 1e12, false, false),
                      [](R& r) -> double& { return r.sim.density; }));
   // ---- local contraction
   t.push_back(choice("aniso", "anisotropic energy on the regions", aniso_choices(),
@@ -470,9 +471,18 @@ std::string spell_options(const std::string& message, OptionSpelling spelling) {
     if (close == std::string::npos) break;
     const std::string field = message.substr(open + 1, close - open - 1);
     const OptionSpec* o = field.find('-') == std::string::npos ? find_run_option(field) : nullptr;
+    // The region finders' options (`regions` and regions()), which no run option shares.
+    const bool region = !o && std::find(REGION_OPTION_FIELDS.begin(), REGION_OPTION_FIELDS.end(),
+                                        field) != REGION_OPTION_FIELDS.end();
     out += message.substr(i, open - i);
     if (o)
       out += spelling == OptionSpelling::Cli ? "--" + o->name : option_field(o->name);
+    else if (region && spelling == OptionSpelling::Cli) {
+      std::string flag = field;
+      std::replace(flag.begin(), flag.end(), '_', '-');
+      out += "--" + flag;
+    } else if (region)
+      out += field;
     else
       out += message.substr(open, close - open + 1);
     i = close + 1;

@@ -8,6 +8,8 @@
 #include "bending/isometric_bending.hpp"
 #include "fem/triangle_element.hpp"
 #include "mesh/properties.hpp"
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
 
 namespace shellcontract {
 namespace {
@@ -52,6 +54,12 @@ RestStateReport build_rest_state(Mesh& mesh, MassModel mass, double density) {
   double mean_mass = 0.0;
   for (double m : vertex_mass) mean_mass += m;
   mean_mass /= std::max<std::size_t>(1, vertex_mass.size());
+  // The lightest mass is the floor below: its inverse must be a number, or the first step's
+  // positions are NaN with nothing to say why (a density far below MIN_DENSITY's reach).
+  if (mass == MassModel::AreaLumped && !std::isfinite(1.0 / (MIN_MASS_FRACTION * mean_mass)))
+    throw UsageError("`density` " + shortest_text(density) + " gives a mean vertex mass of " +
+                     shortest_text(mean_mass) +
+                     ", too small for its inverse to be a number: give a larger `density`");
   for (VertexIndex v : mesh.vertices()) {
     double m = mass == MassModel::Unit ? 1.0 : vertex_mass[v.idx()];
     if (!(m > 1e-12 * mean_mass)) m = mean_mass;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -92,7 +93,11 @@ std::string miss_text(double ratio, double goal, bool target) {
   std::string text;
   if (goal > 0.0 && ratio > 0.0 && (ratio < 0.5 * goal || ratio > 2.0 * goal)) {
     const bool below = ratio < goal;
-    text = general_text(below ? goal / ratio : ratio / goal, 3) + " times " +
+    const double factor = below ? goal / ratio : ratio / goal;
+    // A denormal goal (or V/V0) makes the factor overflow: "inf times" reads as a broken number.
+    text = (std::isfinite(factor)
+                ? general_text(factor, 3) + " times "
+                : "more than " + general_text(std::numeric_limits<double>::max(), 2) + " times ") +
            (below ? "smaller" : "larger") + " than the " + (target ? "target" : "stop ratio");
   } else {
     const double off = ratio - goal;

@@ -23,6 +23,7 @@
 #include "shellcontract/regions.hpp"
 #include "sim/contact_distance.hpp"
 #include "sim/region_weights.hpp"
+#include "sim/volume_warnings.hpp"
 
 namespace shellcontract {
 namespace {
@@ -66,7 +67,8 @@ void check_sim_options_impl(const SimOptions& o) {
   if (!(o.solver.k_bending >= 0.0) || !std::isfinite(o.solver.k_bending)) fail("`k_b` must be >= 0");
   if (o.solver.kind == SolverKind::Pbd && o.solver.k_bending > 1.0)
     fail("`k_b`: in pbd mode k_B is a correction multiplier and must be in [0, 1]");
-  if (!(o.density > 0.0)) fail("`density` must be positive");
+  if (!(o.density >= MIN_DENSITY) || !std::isfinite(o.density))
+    fail("`density` must be finite and at least " + shortest_text(MIN_DENSITY));
   if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("`damping` must be in [0, 1)");
   if (!(o.region_shrink >= 0.0 && o.region_shrink <= 1.0)) fail("`region_shrink` must be in [0, 1]");
   if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta))
@@ -217,6 +219,14 @@ void resolve_run_options(RunOptions& r) {
     r.regions = RegionSource::Auto;
     r.sim.inward_term = InwardTerm::None;
   }
+  // The finder drops regions below its smallest share of the surface: a bound under it keeps
+  // none (check_region_options' words would name the `regions` command's options instead).
+  const double smallest = RegionOptions{}.min_area_fraction;
+  if (r.regions == RegionSource::Auto && r.region_max_area < smallest)
+    throw UsageError("`region_max_area` " + shortest_text(r.region_max_area) +
+                     " is below the smallest region `regions` auto keeps, " +
+                     shortest_text(smallest) +
+                     " of the surface (smaller ones are noise): no region could be kept");
   // RegionSource::Weights comes with `region_weights` (the CLI's file, Python's array); a caller
   // that sets it alone would have the run look for a weight file with no name.
   if (r.regions == RegionSource::Weights && r.region_weight_file.empty() &&
@@ -364,6 +374,12 @@ RunPlan plan_run(const Mesh& mesh, const RunOptions& options) {
                               " on their total volume, so one may shrink more than asked while "
                               "another shrinks less; run them one at a time for a V/V0 each");
   }
+  // Said before the run, not after every frame ran: a run that nothing drives, or a stop ratio
+  // that an inflating shell never reaches. Regions contract when an inward term or an
+  // anisotropic energy acts on them.
+  const bool regions_act =
+      plan.regions > 0 && (s.inward_term != InwardTerm::None || s.solver.aniso != AnisoKind::None);
+  for (std::string& w : drive_warnings(s, regions_act)) plan.warnings.push_back(std::move(w));
   for (std::string& w : ineffective_options(o)) plan.warnings.push_back(std::move(w));
   plan.sim = plan_simulation(std::move(marked), o.sim);  // one copy of a large mesh fewer
   for (std::string& w : plan.sim.warnings) plan.warnings.push_back(std::move(w));

@@ -15,6 +15,35 @@ std::string ratio_text(double r) { return general_text(r, 3); }
 
 }  // namespace
 
+std::vector<std::string> drive_warnings(const SimOptions& s, bool regions_act) {
+  std::vector<std::string> out;
+  const Schedule& keys = s.pressure_schedule;
+  // With keys, `pressure` is the largest key; the smallest says whether any frame inflates.
+  const double most = keys.empty() ? s.pressure : keys.max_value();
+  const double least = keys.empty() ? s.pressure : keys.min_value();
+  const bool target = s.target_volume > 0.0 || !s.target_volume_schedule.empty();
+  const bool other = target || regions_act || s.bending == BendingModel::Isometric;
+  if (other || most > 0.0) return out;
+  const std::string stop = s.stop_volume_ratio > 0.0
+                               ? "`stop_volume_ratio` " + general_text(s.stop_volume_ratio, 6)
+                               : std::string();
+  if (least == 0.0) {
+    out.push_back(
+        "nothing drives this run: `pressure` is 0, there is no `target_volume`, and neither "
+        "regions (`regions`, `region_at`, `region_weights`) nor `aniso` contract the shell, so "
+        "the mesh stays at rest and the result is the input" +
+        (stop.empty() ? std::string() : "; " + stop + " cannot be reached") +
+        ". Give `pressure` > 0 to compress the shell (< 0 inflates it) or a `target_volume`");
+  } else if (!stop.empty()) {
+    out.push_back(stop + " cannot be reached: `pressure` " +
+                  (keys.empty() ? general_text(s.pressure, 6) : "(its keys)") +
+                  " is not > 0, so it inflates the shell (V/V0 grows) and nothing contracts it; "
+                  "the run uses every frame and ends with the ratio not reached. Give `pressure` "
+                  "> 0 to compress the shell");
+  }
+  return out;
+}
+
 std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed) {
   std::vector<std::string> out;
   if (history.size() < 2) return out;

@@ -1,9 +1,12 @@
-// Warnings at the end of a run on how its volume went: a shell that grew under an outside
-// pressure, and a volume that swings from frame to frame (run_contraction).
+// Warnings on the volume: before a run, one that nothing drives or whose stop ratio its
+// direction cannot reach (plan_run); at its end, a shell that grew under an outside pressure, and
+// a volume that swings from frame to frame (run_contraction).
 #pragma once
 
 #include <string>
 #include <vector>
+
+#include "shellcontract/simulation_options.hpp"
 
 namespace shellcontract {
 
@@ -16,6 +19,16 @@ inline constexpr double GROWTH_WARNING_RATIO = 1.01;
 /// more than it, both in the second half of the run. A shell that contracts or settles does not
 /// halve and double its volume from one frame to the next once the run is under way.
 inline constexpr double SWING_FACTOR = 2.0;
+
+/// The warnings before a run with options `s` (options named as `field`, spell_options) when
+/// - nothing drives it: no pressure (`pressure` 0, every key 0), no target volume, no region
+///   that contracts (`regions_act`: regions were found and an inward term or `aniso` acts on
+///   them) and no isometric bending (whose flat rest state moves a curved shell): the result is
+///   the input, and a stop ratio is never reached;
+/// - a stop ratio is asked of a shell that only inflates (`pressure` <= 0 with a key below 0,
+///   and nothing else acting): V/V0 grows, so the run uses every frame.
+/// Runs that something else might contract are left alone: only these sure cases are said.
+std::vector<std::string> drive_warnings(const SimOptions& s, bool regions_act);
 
 /// The warnings for a run whose V/V0 after each frame is `history` (frame 0, the rest state,
 /// first). `compressed`: every step had an outside pressure above 0 and no target volume drove the

@@ -208,11 +208,13 @@ TEST_F(CliRegions, MaxCompactnessBelowOneIsAThreshold) {
   EXPECT_EQ(r.exit_code, 0) << r.output;
   r = run_cli({"regions", mesh("bumpy_sphere.off"), "--max-compactness", "0"});
   EXPECT_EQ(r.exit_code, 1) << r.output;
-  EXPECT_TRUE(has(r.output, "--max-compactness must be a finite number > 0")) << r.output;
-  for (const char* bad : {"-1", "nan", "inf"}) {  // one message for every bad value
+  EXPECT_TRUE(has(r.output, "--max-compactness 0: must be a finite number > 0")) << r.output;
+  for (const char* bad : {"-1", "nan", "inf"}) {  // one message for every bad value, with the value
     r = run_cli({"regions", mesh("bumpy_sphere.off"), "--max-compactness", bad});
     EXPECT_EQ(r.exit_code, 1) << r.output;
-    EXPECT_TRUE(has(r.output, "--max-compactness must be a finite number > 0")) << bad << ": " << r.output;
+    EXPECT_TRUE(
+        has(r.output, std::string("--max-compactness ") + bad + ": must be a finite number > 0"))
+        << bad << ": " << r.output;
   }
   r = run_cli({"regions", "--help"});
   EXPECT_TRUE(has(squeezed(r.output), "1 = a flat disc, 0.5 = a hemisphere")) << r.output;

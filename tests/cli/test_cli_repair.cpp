@@ -150,6 +150,28 @@ TEST_F(CliRepair, ANegativeMaxHoleEdgesIsBadUsageAndNothingIsWritten) {
   EXPECT_NE(zero.output.find("1 hole filled"), std::string::npos) << zero.output;
 }
 
+// An output name of no format repair writes was refused only when written: after the repair, so
+// an input that cannot be repaired gave exit 2 "cannot repair" for what is bad usage, and the
+// message listed .off, .obj, .ply and .stl but not the .glb and .gltf that repair also writes.
+// Now it is refused before the input is read, as `run` refuses -o, naming every format.
+TEST_F(CliRepair, AnOutputOfNoFormatIsBadUsageBeforeTheRepairNamingEveryFormat) {
+  const std::string usable = mesh_path("cube.off");
+  const std::string unrepairable = write("flat.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  for (const std::string& in : {usable, unrepairable})
+    for (const char* name : {"r.txt", "r", "r.off.bak"}) {
+      const RunResult r = run_cli({"repair", in, "-o", out(name)});
+      EXPECT_EQ(r.exit_code, 1) << in << " -o " << name << ": " << r.output;
+      EXPECT_NE(r.output.find("-o '" + out(name) + "'"), std::string::npos) << r.output;
+      for (const char* ext : {".off", ".obj", ".ply", ".stl", ".glb", ".gltf"})
+        EXPECT_NE(r.output.find(ext), std::string::npos) << ext << " not named: " << r.output;
+      EXPECT_EQ(r.output.find("cannot repair"), std::string::npos) << r.output;
+      EXPECT_FALSE(fs::exists(out(name)));
+    }
+  // Every format named is written, in any case of the extension.
+  for (const char* name : {"r.GLB", "r.gltf", "r.Stl"})
+    EXPECT_EQ(run_cli({"repair", usable, "-o", out(name)}).exit_code, 0) << name;
+}
+
 TEST_F(CliRepair, RunRepairRunsAnOpenMesh) {
   const std::string in = write("open_cube.off", OPEN_CUBE);
   EXPECT_EQ(run_cli({"run", in, "-o", out("a.off"), "--frames", "3", "-q"}).exit_code, 2);
