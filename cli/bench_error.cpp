@@ -1,5 +1,5 @@
-// shellcontract bench error: speed against error of the constraint solver (design.md "Speed
-// against error"). Runs a ladder of solver settings on one mesh, compares each run with a
+// shellcontract bench error: speed against error of the constraint solver (docs/cli.md,
+// "shellcontract bench error"). Runs a ladder of solver settings on one mesh, compares each run with a
 // reference run of the same model (sim/error_ladder.hpp says which), prints a table, writes a
 // CSV and draws the plot with gnuplot.
 //

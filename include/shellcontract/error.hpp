@@ -6,7 +6,7 @@
 
 namespace shellcontract {
 
-/// Process exit codes of the `shellcontract` tool (design.md, Exit codes).
+/// Process exit codes of the `shellcontract` tool (docs/cli.md, "Exit codes").
 enum class ExitCode : int {
   Success = 0,
   BadUsage = 1,           ///< unknown option, missing argument, unwritable output path

@@ -1,4 +1,4 @@
-// The one Mesh typedef: a CGAL Surface_mesh (style.md section 3); nothing else in the project
+// The one Mesh typedef: a CGAL Surface_mesh (house-style.md section 3); nothing else in the project
 // names a CGAL kernel. Include this only in translation units that need CGAL: the physics kernels
 // use Eigen only (shellcontract/types.hpp).
 #pragma once

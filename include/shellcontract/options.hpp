@@ -128,7 +128,7 @@ void check_sim_options(const SimOptions& options);
 
 // The one table of run options: name, help, default and accepted range of every option of
 // `shellcontract run`. The CLI builds its parser and --help from it, the Python module its keyword
-// arguments, and a test walks it; no second list exists to fall out of step (design.md).
+// arguments, and a test walks it; lists kept by hand are held to it by tests (architecture.md).
 namespace shellcontract {
 
 /// One option. Values travel as text so that the CLI and Python parse them the same way (the same

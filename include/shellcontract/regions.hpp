@@ -224,7 +224,7 @@ bool in_region_option_range(const std::string& field, double value);
 /// when max_area_fraction is below min_area_fraction; options named as in REGION_OPTION_FIELDS.
 void check_region_options(const RegionOptions& options);
 
-/// The same selection on the mesh's own property maps (design.md, data flow: curvature ->
+/// The same selection on the mesh's own property maps (architecture.md, data flow: curvature ->
 /// spherical regions -> f:region): stores the curvature at x in "v:mean_curvature" and
 /// "v:gaussian_curvature" (store_curvature), selects the regions from those maps, and stores the
 /// ids in "f:region" (store_regions). Maps already attached are overwritten.

@@ -141,7 +141,7 @@ struct MaterialParams {
 namespace shellcontract {
 
 /// pbd: the paper's energy-as-constraint projection (C = E); xpbd: C = sqrt(2E) with compliance,
-/// so stiffness has physical meaning (math-spec 9.1, 9.2; design.md "Two solver modes").
+/// so stiffness has physical meaning (math-spec 9.1, 9.2).
 enum class SolverKind { Pbd, Xpbd };
 
 /// Order of the Gauss-Seidel sweep inside each kind of constraint (math-spec 9.4).
@@ -427,7 +427,7 @@ struct SimOptions {
   double region_shrink = DEFAULT_REGION_SHRINK;
   DimpleShape dimple_shape = DimpleShape::Mirror;  ///< InwardTerm::Volume's dimple (--dimple)
   /// Continuous collision detection and response (paper section 4). On by default: users expect
-  /// a result that never passes through itself (design.md).
+  /// a result that never passes through itself (design/self-collision.md).
   bool collisions = true;
   CollisionOptions collision;                    ///< delta, rounds, broad-phase method
   /// --delta auto: the plan (plan_simulation) sets collision.delta to auto_contact_distance of

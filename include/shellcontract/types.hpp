@@ -1,5 +1,5 @@
 // Scalar and small fixed-size matrix types used by every physics kernel.
-// Scalars are double everywhere (style.md section 4); nothing here sees CGAL.
+// Scalars are double everywhere (house-style.md section 4); nothing here sees CGAL.
 #pragma once
 
 #include <Eigen/Core>

@@ -43,7 +43,7 @@ std::size_t new_self_intersections(const Mesh& mesh, const Positions& x, const s
 }  // namespace shellcontract
 
 // Enclosed volume of a closed triangle mesh at given positions (CGAL PMP::volume through an
-// EigenPointMap, so that no mesh copy is made; style.md section 3).
+// EigenPointMap, so that no mesh copy is made; house-style.md section 3).
 namespace shellcontract {
 
 /// Signed volume enclosed by the mesh when its vertices are at x.
@@ -68,7 +68,7 @@ double enclosed_volume_unchecked(const Mesh& mesh, const Positions& x);
 }  // namespace shellcontract
 
 // Distance between two states of one mesh (same connectivity, two position arrays): the error
-// measure of the speed-against-error bench (design.md "Speed against error").
+// measure of the speed-against-error bench (docs/cli.md, "bench error").
 namespace shellcontract {
 
 /// Default absolute error bound of symmetric_hausdorff_distance (units of the positions). The

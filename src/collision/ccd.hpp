@@ -1,7 +1,7 @@
 // Continuous collision detection, narrow phase (math-spec 10.3-10.6 and 11): vertex-face (VF) and
 // edge-edge (EE) tests over one linear step t in [0, 1], conservative in floating point.
 //
-// Eigen only (style.md section 1); interval or exact arithmetic, if any, stays in src/collision.
+// Eigen only (house-style.md section 1); interval or exact arithmetic, if any, stays in src/collision.
 //
 // Stencil order (the same as the benchmark files, shared/data/ccd-queries/README.md):
 //   VF: x[0] = the vertex p, x[1..3] = the triangle f0, f1, f2.

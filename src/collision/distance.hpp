@@ -1,5 +1,5 @@
 // Closest points and distances between the CCD primitives (math-spec 10.6): point-triangle and
-// segment-segment. Eigen only (style.md section 1, dependency rule).
+// segment-segment. Eigen only (house-style.md section 1, dependency rule).
 //
 // Both functions accept degenerate primitives (a triangle collapsed to a segment or a point, a
 // segment collapsed to a point) and never divide by a quantity that can be zero.

@@ -1,4 +1,4 @@
-// Discrete per-vertex curvature of a triangle mesh on a given position array (style.md section 3:
+// Discrete per-vertex curvature of a triangle mesh on a given position array (house-style.md section 3:
 // CGAL 5.5 has no interpolated_corrected_curvatures, so we compute it ourselves).
 //
 // Conventions (libigl's gaussian_curvature / cotmatrix / massmatrix(MIXED) give the same numbers

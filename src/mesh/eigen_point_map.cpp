@@ -6,7 +6,7 @@
 namespace shellcontract {
 
 Positions positions_from_mesh(const Mesh& mesh) {
-  // Row i is vertex i only when the index range has no holes (style.md section 3).
+  // Row i is vertex i only when the index range has no holes (house-style.md section 3).
   if (mesh.has_garbage())
     throw std::invalid_argument("positions_from_mesh: the mesh has removed elements; call collect_garbage() first");
   Positions x(static_cast<Eigen::Index>(mesh.number_of_vertices()), 3);

@@ -1,4 +1,4 @@
-// Reading and checking meshes (design.md, data flow: read -> check input); writing is in
+// Reading and checking meshes (architecture.md, data flow: read -> check input); writing is in
 // write_mesh.cpp.
 //
 // Reading goes through a polygon soup, which we check ourselves before

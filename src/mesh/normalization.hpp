@@ -1,4 +1,4 @@
-// Unit-diagonal normalization (design.md "Units and scale", math-spec 1.2). Eigen only.
+// Unit-diagonal normalization (math-spec 1.2). Eigen only.
 #pragma once
 
 #include "shellcontract/types.hpp"

@@ -1,5 +1,5 @@
 // Every property-map name of the project, with CGAL's prefix convention (v:, e:, h:, f:), and
-// the one helper that attaches a map (style.md section 3).
+// the one helper that attaches a map (house-style.md section 3).
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-// Writing meshes and text atomically (design.md, data flow: ... -> write) with CGAL's writers at
+// Writing meshes and text atomically (architecture.md, data flow: ... -> write) with CGAL's writers at
 // 17 significant digits, so that a written double reads back bitwise (full precision).
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-// Rest state (design.md data flow): property maps built once on the normalized input mesh,
+// Rest state (architecture.md data flow): property maps built once on the normalized input mesh,
 // then packed into the solver's flat constraint arrays.
 #pragma once
 

@@ -1,4 +1,4 @@
-// The library's one entry point for a contraction run (design.md data flow): normalized rest
+// The library's one entry point for a contraction run (architecture.md data flow): normalized rest
 // state, then the time loop of math-spec 2 (paper Steps 1-7).
 #pragma once
 

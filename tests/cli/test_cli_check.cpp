@@ -1,4 +1,4 @@
-// `shellcontract check` as a user runs it: exit codes and messages (design.md, Exit codes).
+// `shellcontract check` as a user runs it: exit codes and messages (docs/cli.md, "Exit codes").
 // Runs the built executable (SHELLCONTRACT_CLI_PATH); skipped when it has not been built.
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
 // The broad phase's test oracle (tests/collision/test_broad_phase*.cpp): brute force over every
 // VF and EE pair with the same closed box test, and the comparison of every method against it
-// (ipc-toolkit's brute_force_comparison habit, style.md section 3).
+// (ipc-toolkit's brute_force_comparison habit, house-style.md section 5).
 #pragma once
 
 #include <gtest/gtest.h>

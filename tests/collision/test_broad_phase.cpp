@@ -1,6 +1,6 @@
 // CCD broad phase (math-spec 10.1-10.2) against brute force: every method must return exactly
 // the pairs that the box test over all VF and EE pairs returns (ipc-toolkit's
-// brute_force_comparison habit, style.md section 3). The oracle is broad_phase_oracle.hpp; the
+// brute_force_comparison habit, house-style.md section 5). The oracle is broad_phase_oracle.hpp; the
 // grid's own contract (order, reuse, the float and AVX-512 loops) is test_broad_phase_grid.cpp.
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>

@@ -1,4 +1,4 @@
-// Tests over every registered membrane material and anisotropic energy (style.md 5, HOBAK's loop
+// Tests over every registered membrane material and anisotropic energy (house-style.md 5, HOBAK's loop
 // over all materials): the suite walks the registry (material_names(), aniso_names()) and checks
 // each model's concrete type, so a newly registered model is checked without editing this file:
 // PK1 against central differences of psi with an eps sweep, zero energy and stress at the model's

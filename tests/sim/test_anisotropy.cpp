@@ -1,4 +1,4 @@
-// The regions and fibre directions travel as face maps (design.md data flow): the regions are the
+// The regions and fibre directions travel as face maps (architecture.md data flow): the regions are the
 // "f:region" map of the mesh the Simulator is given (the run plan resolves a run's region source
 // into it), and the anisotropy setup stores "f:fiber_dir" and builds its constraints from it.
 #include <gtest/gtest.h>

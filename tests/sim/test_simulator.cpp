@@ -109,7 +109,7 @@ TEST(Simulator, IsometricModelAtZeroPressureDriftsTowardFlat) {
 
 TEST(Simulator, ScaleInvariance) {
   // The same run on a mesh scaled by 1e-4 and by 1e4 (and moved) gives the same normalized
-  // result (design.md "Units and scale").
+  // result (math-spec 1.2).
   test::TriMesh small = test::icosphere(3, 1e-4), large = test::icosphere(3, 1e4);
   small.x.rowwise() += Eigen::RowVector3d(3e-4, -1e-4, 2e-4);
   large.x.rowwise() += Eigen::RowVector3d(-5e4, 2e4, 1e4);

@@ -81,7 +81,7 @@ TEST(SelfIntersection, ElkHasSevenPreExistingPairs) {
   const Mesh mesh = read_input_mesh(path);
   const Positions x = positions_from_mesh(mesh);
   const std::vector<FacePair> pairs = self_intersecting_pairs(mesh, x);
-  EXPECT_EQ(pairs.size(), 7u);  // design.md, Test meshes
+  EXPECT_EQ(pairs.size(), 7u);  // meshes/README.md
   EXPECT_TRUE(does_self_intersect(mesh, x));
   EXPECT_EQ(new_self_intersections(mesh, x, pairs), 0u);
 }
