@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/scratch_dir.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
@@ -18,17 +19,13 @@ namespace {
 namespace fs = std::filesystem;
 using test::run_cli;
 
-class CliParsing : public ::testing::Test {
+class CliParsing : public test::ScratchDirTest {
  protected:
+  CliParsing() : ScratchDirTest("shellcontract_cli_parsing_") {}
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
-    dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_parsing_" + std::to_string(::getpid()) + "_" +
-            std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchDirTest::SetUp();
   }
-  void TearDown() override { fs::remove_all(dir_); }
   static std::string mesh(const std::string& name) {
     return std::string(test::MESH_DIR) + "/" + name;
   }
@@ -49,7 +46,6 @@ class CliParsing : public ::testing::Test {
     args.insert(args.end(), extra.begin(), extra.end());
     return run_cli(args);
   }
-  fs::path dir_;
 };
 
 // boost took any unique prefix for the whole name: `run --frame 3` ran as --frames. A name is

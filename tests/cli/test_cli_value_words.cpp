@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "support/cli_runner.hpp"
+#include "support/scratch_dir.hpp"
 #include "test_paths.hpp"
 
 namespace {
@@ -21,17 +22,13 @@ namespace fs = std::filesystem;
 using shellcontract::test::run_cli;
 using shellcontract::test::RunResult;
 
-class CliValueWords : public ::testing::Test {
+class CliValueWords : public shellcontract::test::ScratchDirTest {
  protected:
+  CliValueWords() : ScratchDirTest("shellcontract_cli_value_words_") {}
   void SetUp() override {
     if (!fs::exists(SHELLCONTRACT_CLI_PATH)) GTEST_SKIP() << SHELLCONTRACT_CLI_PATH << " not built";
-    dir_ = fs::temp_directory_path() /
-           ("shellcontract_cli_value_words_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ScratchDirTest::SetUp();
   }
-  void TearDown() override { fs::remove_all(dir_); }
   static std::string mesh(const std::string& name) {
     return std::string(shellcontract::test::MESH_DIR) + "/" + name;
   }
@@ -50,7 +47,6 @@ class CliValueWords : public ::testing::Test {
   static bool has(const std::string& text, const std::string& part) {
     return text.find(part) != std::string::npos;
   }
-  fs::path dir_;
 };
 
 // Before: "region options: area fractions must satisfy 0 <= min <= max <= 1" and "max concave
