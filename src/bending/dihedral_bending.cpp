@@ -2,9 +2,10 @@
 
 #include <cmath>
 
+#include "core/constants.hpp"
+
 namespace shellcontract {
 namespace {
-constexpr double PI = 3.14159265358979323846;
 
 /// The hinge's edge and unnormalized face normals, shared by the angle and its gradient.
 struct Hinge {

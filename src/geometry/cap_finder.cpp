@@ -1,11 +1,10 @@
 // The spherical-cap region finder (algorithm in shellcontract/regions.hpp, docs/design/regions.md
 // and docs/math/cap-finder.md): diffusion-smoothed mean curvature -> seeds -> geodesic discs
 // grown while a sphere fits -> ranked parts, one per sphere -> each a hemisphere at most.
-#include <Eigen/SparseCore>
-
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -23,10 +22,11 @@
 #include <utility>
 #include <vector>
 
-#include "geometry/cap_grower.hpp"
 #include "core/cancellation.hpp"
+#include "core/constants.hpp"
 #include "core/power_of_two.hpp"
 #include "core/progress_stage.hpp"
+#include "geometry/cap_grower.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/cotan_laplacian.hpp"
 #include "geometry/crease_path.hpp"
@@ -86,7 +86,6 @@ using detail::SEED_SCALES;
 using detail::smoothed_curvature;
 using detail::summarise;
 
-constexpr double PI = 3.14159265358979323846;
 /// A candidate whose freely grown cap has more than this share of its faces on better caps is a
 /// fragment of a part already taken (non-maximum suppression).
 constexpr double MAX_COVERED = 0.5;

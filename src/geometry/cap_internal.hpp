@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/constants.hpp"
 #include "geometry/curvature.hpp"
 #include "geometry/sphere_moments.hpp"
 #include "shellcontract/mesh.hpp"
@@ -63,7 +64,7 @@ std::vector<int> no_regions(FinderStart& start, RegionReport* report, CurvatureF
 /// its sphere's centre: a hemisphere. A cap wider than a hemisphere is most of a limb or of a
 /// body (a paw's cap of 140 degrees reaches down the arm), and a dimple mirrored through the rim
 /// of such a cap turns the limb inside out (docs/math/cap-finder.md).
-constexpr double MAX_CAP_ANGLE = 0.5 * 3.14159265358979323846;
+constexpr double MAX_CAP_ANGLE = 0.5 * PI;
 
 /// A grown cap, or a region: its seed, the disc's radius, its fitted sphere and its faces.
 struct Cap {

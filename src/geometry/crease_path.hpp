@@ -45,6 +45,6 @@ class CreasePaths {
 /// this factor about as far from each (docs/math/cap-finder.md section 4,
 /// lab/regions/same_part.md): a ratio of two edge-path lengths over the same vertices, it does
 /// not change with scale or rotation.
-constexpr double CREASE_DETOUR = 3.14159265358979323846;
+constexpr double CREASE_DETOUR = PI;
 
 }  // namespace shellcontract::detail

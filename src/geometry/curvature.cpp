@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/cancellation.hpp"
+#include "core/constants.hpp"
 #include "core/power_of_two.hpp"
 #include "mesh/properties.hpp"
 #include "shellcontract/error.hpp"
@@ -19,8 +20,6 @@ namespace {
 /// detail::finder_exponent): squares and cubes of lengths are far from the double's range there,
 /// and every mesh of a usual scale keeps its bits.
 constexpr int FREE_SCALE_EXPONENT = 64;
-
-constexpr double PI = 3.14159265358979323846;
 
 /// A triangle counts as degenerate when |e1 x e2| is below this fraction of the squared
 /// longest edge (sin of the largest corner angle ~ 1e-14). Its cotangents would be ~1e14 or

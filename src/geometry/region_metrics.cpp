@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "core/constants.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -28,7 +29,6 @@ RegionShape region_shape(const Mesh& mesh, const Positions& x, const std::vector
     const bool ib = b != Mesh::null_face() && in_region[b.idx()];
     if (ia != ib) s.perimeter += (point(mesh.vertex(e, 0)) - point(mesh.vertex(e, 1))).norm();
   }
-  constexpr double PI = 3.14159265358979323846;
   s.compactness = s.area > 0.0 ? s.perimeter * s.perimeter / (4.0 * PI * s.area)
                                : std::numeric_limits<double>::infinity();
   return s;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/cancellation.hpp"
+#include "core/constants.hpp"
 #include "geometry/cap_internal.hpp"
 #include "geometry/curvature.hpp"
 #include "geometry/edge_dijkstra.hpp"
@@ -29,7 +30,6 @@
 namespace shellcontract::detail {
 namespace {
 
-constexpr double PI = 3.14159265358979323846;
 /// Sources of the protrusion field: enough that p is smooth on the paper's meshes, few enough
 /// that 24 Dijkstra passes stay cheap (lab/regions/tips.md).
 constexpr int PROTRUSION_SOURCES = 24;

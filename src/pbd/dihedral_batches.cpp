@@ -1,12 +1,12 @@
 // The dihedral hinge (the default bending, math-spec 8.3) projected four hinges of one colour at
 // a time, on the padded rows of the coloured order (constraint_batches.hpp).
-#include "pbd/constraint_batches.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 
+#include "core/constants.hpp"
 #include "pbd/batch_lanes.hpp"
+#include "pbd/constraint_batches.hpp"
 
 namespace shellcontract {
 namespace {
@@ -77,7 +77,6 @@ template <class Batches>
 SC_AVX2_INLINE void dihedral_lanes(const Batches& c, PaddedVertex* xw, double k_bending,
                                    double alpha_tilde, double* lam) {
   using T = typename Batches::T;
-  constexpr double PI = 3.14159265358979323846;
   const T zero = lanes_splat<T>(0.0), one = lanes_splat<T>(1.0), two = lanes_splat<T>(2.0);
   // Inactive hinges (kappa = 0): no change. Lanes that are not `ok` or not `active` divide
   // freely, their results discarded (HeldFpExceptions).

@@ -7,6 +7,8 @@
 #include <numeric>
 #include <utility>
 
+#include "core/constants.hpp"
+
 namespace shellcontract {
 
 namespace {
@@ -154,7 +156,6 @@ RegionDimple make_region_dimple(const Positions& rest, const Faces& faces,
   const Vec3 w = n0.cross(u);
   const std::vector<int> across = faces_across(faces, d.order);
   double best = -std::numeric_limits<double>::infinity(), cut = 0.0;
-  constexpr double PI = 3.14159265358979323846;
   for (int tilt = 0; tilt <= 6; ++tilt)
     for (int az = 0; az < (tilt == 0 ? 1 : 12); ++az) {
       const double t = tilt * 10.0 * PI / 180.0, a = az * 2.0 * PI / 12.0;
