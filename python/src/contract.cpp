@@ -18,6 +18,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -132,6 +133,7 @@ class PythonObserver final : public RunObserver {
 
   /// On the preparation's thread, the GIL released: taken for the call, as in frame().
   void stage(const std::string& what) override {
+    doing_ = what;
     if (!has_stage_ || stop_) return;
     if (interpreter_exiting()) {
       stop_ = true;
@@ -200,6 +202,10 @@ class PythonObserver final : public RunObserver {
     return stop_;
   }
 
+  /// The run's last stage (for a message on memory running out before the first frame; after
+  /// it, the run ends "failed" with its last good state instead).
+  const std::string& doing() const { return doing_; }
+
   /// Raises the error the callback or a signal handler raised, if any (GIL held).
   void raise_if_error() {
     if (!error_type_) return;
@@ -232,6 +238,7 @@ class PythonObserver final : public RunObserver {
 
   static constexpr std::chrono::milliseconds SIGNAL_POLL_INTERVAL{100};
 
+  std::string doing_ = "setting up the run";
   py::object callback_;
   bool has_callback_;
   py::object stage_;
@@ -339,6 +346,24 @@ py::dict summary(const InputReport& report, const RunOptions& options, const Run
   return s;
 }
 
+/// Rethrows the run's error; memory running out (before the first frame) becomes a MemoryError that
+/// says what the run was doing and on how large a mesh (pybind11's own said only "std::bad_alloc"),
+/// as the CLI's exit 3 does. A reader's out-of-memory error already names its file and passes
+/// unchanged.
+[[noreturn]] void raise_with_stage(const std::exception_ptr& error, const std::string& doing,
+                                   const Mesh& mesh) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const std::bad_alloc& e) {
+    if (typeid(e) != typeid(std::bad_alloc)) throw;  // a message of its own (OutOfMemoryError)
+    const std::string message = "out of memory while " + doing + " (" +
+                                std::to_string(mesh.number_of_vertices()) + " vertices, " +
+                                std::to_string(mesh.number_of_faces()) + " faces)";
+    PyErr_SetString(PyExc_MemoryError, message.c_str());
+    throw py::error_already_set();
+  }
+}
+
 }  // namespace
 
 py::dict contract(const py::handle& vertices, const py::handle& faces, const py::object& callback,
@@ -352,7 +377,16 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   RunOptions options = options_from_kwargs(canonical_kwargs(kwargs), ", checkpoint, checkpoint_every, resume");
   const PreparedCheckpoint prepared = prepare_checkpoint(checkpoint, options);  // before the mesh
   InputReport report;
-  const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
+  const Mesh mesh = [&] {
+    try {
+      return mesh_from_numpy(vertices, faces, &report);
+    } catch (const std::bad_alloc& e) {
+      if (typeid(e) != typeid(std::bad_alloc)) throw;
+      PyErr_SetString(PyExc_MemoryError,
+                      "out of memory while building the mesh from the vertices and faces given");
+      throw py::error_already_set();
+    }
+  }();
   PythonObserver observer(callback, stage, mesh);
   if (prepared.resume) {
     check_checkpoint_input(*prepared.resume, "the vertices and faces given", mesh);
@@ -363,7 +397,7 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
   RunResult r;
   const std::exception_ptr error =
       released([&] { r = run_contraction(mesh, options, &observer, &checkpointer); });
-  if (error) std::rethrow_exception(error);
+  if (error) raise_with_stage(error, observer.doing(), mesh);
   observer.raise_if_error();
   py::dict out;
   out["vertices"] = positions_to_numpy(input_positions(mesh, r.positions));  // the input's, copies too

@@ -12,7 +12,7 @@ import pytest
 
 import shellcontract
 
-CHILD = r"""
+ADDRESS_SPACE = r"""
 import resource, sys
 import shellcontract
 
@@ -22,7 +22,9 @@ def address_space():
             if line.startswith("VmSize:"):
                 return int(line.split()[1]) * 1024
     return -1
+"""
 
+CHILD = ADDRESS_SPACE + r"""
 path, headroom = sys.argv[1], int(sys.argv[2]) * 1024
 soft, hard = resource.getrlimit(resource.RLIMIT_AS)
 resource.setrlimit(resource.RLIMIT_AS, (address_space() + headroom, hard))
@@ -75,3 +77,43 @@ def test_reading_a_mesh_without_the_memory_raises_memory_error(mesh_dir, tmp_pat
     else:
         pytest.fail("not read with 256 MiB of headroom")
     assert reader_said, "no limit ran out while the file was read"
+
+
+CONTRACT_CHILD = ADDRESS_SPACE + r"""
+import numpy as np
+
+v, f = shellcontract.read_mesh(sys.argv[1])
+v, f = np.asarray(v), np.asarray(f)
+headroom = int(sys.argv[2]) * 1024
+soft, hard = resource.getrlimit(resource.RLIMIT_AS)
+resource.setrlimit(resource.RLIMIT_AS, (address_space() + headroom, hard))
+try:
+    shellcontract.contract(v, f, frames=2, threads=1)
+    outcome = None
+except BaseException as e:
+    outcome = e
+resource.setrlimit(resource.RLIMIT_AS, (soft, hard))
+print("ran" if outcome is None else "{}: {}".format(type(outcome).__name__, outcome))
+"""
+
+
+def test_contract_without_the_memory_says_what_it_was_doing(mesh_dir, tmp_path):
+    """contract() on a mesh it cannot hold: a MemoryError saying what the run was doing and on
+    how many vertices and faces, never pybind11's bare "std::bad_alloc" (a caller told only that
+    cannot know whether its mesh or its own program is too large)."""
+    if not os.path.exists("/proc/self/status"):
+        pytest.skip("no /proc/self/status")
+    v, f = shellcontract.read_mesh(str(mesh_dir / "ico3.off"))
+    path = str(tmp_path / "ico5.off")
+    subdivided_sphere(path, np.asarray(v, dtype=float), np.asarray(f), 2)
+    said = []
+    for mib in range(0, 512, 2):
+        out = subprocess.run([sys.executable, "-c", CONTRACT_CHILD, path, str(mib * 1024)],
+                             capture_output=True, text=True, timeout=120, env=os.environ).stdout.strip()
+        if out == "ran":
+            break
+        assert out.startswith("MemoryError: out of memory while "), (mib, out)
+        said.append(out)
+    else:
+        pytest.fail("contract() did not run with 512 MiB of headroom")
+    assert any("(10242 vertices, 20480 faces)" in s for s in said), said
