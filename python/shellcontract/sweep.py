@@ -300,7 +300,9 @@ def _main(argv, lock_wait, note_every):
     try:
         data = sweep_file.load(args.sweep)
         jobs = sweep_file.expand(args.sweep, data, version)
-        sweep_output.check(args.output, args.sweep)
+        # Before anything is written or run: what the sweep writes in DIR, against what it reads.
+        args.inputs = sweep_file.inputs(args.sweep, jobs)
+        sweep_output.check(args.output, args.sweep, args.inputs, [j.id for j in jobs])
     except (sweep_file.SweepError, sweep_output.OutputError) as e:
         print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
         return EXIT_USAGE
@@ -352,7 +354,7 @@ def _run(args, cli, version, data, jobs):
 
 
 def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, client):
-    sweep_output.claim(args.output, args.sweep)
+    sweep_output.claim(args.output, args.sweep, args.inputs, [j.id for j in jobs])
     tables = sweep_results.Writer(jobs, varying, args.output, sweep_dir)
     todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
     sweep_results.write(jobs, varying, args.output, sweep_dir, records=tables.records)
