@@ -189,7 +189,8 @@ def parser():
     p.add_argument("--workers", type=workers, default=None, action=_Once,
                    help="jobs at a time on the embedded cluster, at most {} (default: the cores "
                         "this process may use, at most {}); no more workers start than there are "
-                        "jobs to run".format(MAX_WORKERS, MAX_WORKERS))
+                        "jobs to run; not with --scheduler or --shard, which start no embedded "
+                        "cluster".format(MAX_WORKERS, MAX_WORKERS))
     p.add_argument("--job-timeout", type=job_timeout, default=None, metavar="SECONDS", action=_Once,
                    help="stop a job after this long (recorded as 'timeout'; a later sweep "
                         "resumes it from its checkpoint)")
@@ -257,7 +258,17 @@ def main(argv=None, *, lock_wait=sweep_job.JOB_LOCK_WAIT_SECONDS,
 
 def _main(argv, lock_wait, note_every):
     sweep_host.guard_stderr()
-    args = parser().parse_args(joined_values(sys.argv[1:] if argv is None else list(argv)))
+    command_line = parser()
+    args = command_line.parse_args(joined_values(sys.argv[1:] if argv is None else list(argv)))
+    # --workers is the embedded cluster's: with either of these no embedded cluster starts, and
+    # it had been dropped without a word (a user who gave it believed it limited something).
+    if args.workers is not None and args.scheduler is not None:
+        command_line.error("argument --workers: not with --scheduler (the cluster's own workers "
+                           "run the jobs, as many at once as their threads: start as many as you "
+                           "want with `dask worker --nworkers N --nthreads 1`)")
+    if args.workers is not None and args.shard is not None:
+        command_line.error("argument --workers: not with --shard (a shard runs its jobs one at a "
+                           "time in this process: run more shards at once for more jobs at once)")
     # With the per-sweep settings of the command line, which reach each job the same way.
     args.lock_wait, args.note_every = lock_wait, note_every
     cli = find_cli(args.cli)
@@ -289,7 +300,9 @@ def _main(argv, lock_wait, note_every):
     try:
         data = sweep_file.load(args.sweep)
         jobs = sweep_file.expand(args.sweep, data, version)
-        sweep_output.check(args.output, args.sweep)
+        # Before anything is written or run: what the sweep writes in DIR, against what it reads.
+        args.inputs = sweep_file.inputs(args.sweep, jobs)
+        sweep_output.check(args.output, args.sweep, args.inputs, [j.id for j in jobs])
     except (sweep_file.SweepError, sweep_output.OutputError) as e:
         print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
         return EXIT_USAGE
@@ -341,7 +354,7 @@ def _run(args, cli, version, data, jobs):
 
 
 def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, client):
-    sweep_output.claim(args.output, args.sweep)
+    sweep_output.claim(args.output, args.sweep, args.inputs, [j.id for j in jobs])
     tables = sweep_results.Writer(jobs, varying, args.output, sweep_dir)
     todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
     sweep_results.write(jobs, varying, args.output, sweep_dir, records=tables.records)

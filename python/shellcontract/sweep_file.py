@@ -316,6 +316,19 @@ def input_files(options):
     return out
 
 
+def inputs(path, jobs):
+    """(what, path) of every file the sweep of the file `path` and its `jobs` reads: the sweep
+    file, each mesh, each regions or weights file; each once."""
+    out, seen = [("the sweep file", os.path.abspath(path))], set()
+    for job in jobs:
+        for what, p in [("mesh", job.mesh)] + sorted(
+                input_files(_with_paths(path, job.options)).items()):
+            if p not in seen:
+                seen.add(p)
+                out.append((what, p))
+    return out
+
+
 def job_id(mesh_sha, resolved, version, file_shas=None):
     """A stable id: the mesh's bytes, every resolved option (less the result-neutral ones), the
     bytes of every other file the job reads (`file_shas`: option name -> SHA-256, standing for

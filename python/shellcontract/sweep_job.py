@@ -7,6 +7,7 @@ nothing of the compiled core, so that a worker needs only the CLI and this packa
 """
 
 import ctypes
+import functools
 import json
 import numbers
 import os
@@ -58,21 +59,39 @@ except (OSError, AttributeError):
 PR_SET_PDEATHSIG = 1
 
 
-def _die_with_parent():
+# How a job's process ends when its starter was gone before the parent-death signal was set
+# (128 + SIGTERM, as that signal would have ended it; nobody waits for it).
+ORPHAN_EXIT = 128 + int(signal.SIGTERM)
+
+
+def _die_with_parent(parent):
     """In the child before exec: SIGTERM when the thread that started it ends (a worker killed
-    mid-job), so that the run writes its checkpoint and stops instead of running on orphaned."""
+    mid-job), so that the run writes its checkpoint and stops instead of running on orphaned.
+    `parent`: the starter's pid. A starter that died before the signal was set (killed while it
+    started the job) never sends it: the child then ends here instead of running the job."""
     if _PRCTL is not None:
         _PRCTL(PR_SET_PDEATHSIG, int(signal.SIGTERM))
+    if os.getppid() != parent:
+        os._exit(ORPHAN_EXIT)
 
+
+# The same check after setpriv has set the signal, in the shell that then execs the run ($1: the
+# starter's pid; dash and bash read $PPID once, at their start, which is after the prctl).
+_PARENT_CHECK = 'test "$PPID" = "$1" || exit {}; shift; exec "$@"'.format(ORPHAN_EXIT)
 
 _SETPRIV = None  # [] when setpriv cannot set the parent-death signal
 
 
 def _death_signal_prefix():
-    """The same parent-death signal set by util-linux's setpriv, which then execs the run.
-    Preferred to Popen's preexec_fn: a preexec_fn makes Python fork the whole calling process
-    (its page tables copied, Python code run in the copy) instead of vfork-and-exec, which costs
-    a job more than all the rest of the engine (lab/sweep/README.md)."""
+    """The same parent-death signal set by util-linux's setpriv, which then execs a shell that
+    runs the job only if its starter (this process) is still its parent: a starter killed between
+    the start of the child and setpriv's prctl (a sweep killed as it starts a job: the moment a
+    test that kills a sweep after its first jobs finish hits) sends no signal, and the job ran to
+    its end orphaned, holding its attempt's lock while the next sweep started. [] where setpriv
+    cannot set it. Preferred to Popen's preexec_fn: a preexec_fn makes Python fork the whole
+    calling process (its page tables copied, Python code run in the copy) instead of
+    vfork-and-exec, which costs a job more than all the rest of the engine; an exec more, as
+    setpriv's own, costs far less (lab/sweep/README.md)."""
     global _SETPRIV
     if _SETPRIV is None:
         exe = shutil.which("setpriv")
@@ -86,7 +105,9 @@ def _death_signal_prefix():
             except (OSError, subprocess.SubprocessError):
                 usable = False
         _SETPRIV = prefix if usable else []
-    return _SETPRIV
+    if not _SETPRIV:
+        return []
+    return _SETPRIV + ["/bin/sh", "-c", _PARENT_CHECK, "shellcontract-job", str(os.getpid())]
 
 
 # The jobs this Python process runs now, by sweep (a token per sweep command): their processes,
@@ -338,7 +359,8 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
             # this one is gone (a worker killed).
             proc = None if _is_stopped(sweep) else subprocess.Popen(
                 prefix + cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
-                start_new_session=True, preexec_fn=None if prefix else _die_with_parent,
+                start_new_session=True,
+                preexec_fn=None if prefix else functools.partial(_die_with_parent, os.getpid()),
                 pass_fds=lock_fds)
             if proc is not None:
                 _RUNNING[proc] = sweep

@@ -9,6 +9,8 @@ import stat
 import time
 import uuid
 
+from . import sweep_written
+
 MARKER = ".shellcontract-sweep.json"
 # The entries the sweep writes in DIR (besides the marker and its temporary files).
 OWNED = ("results.csv", "results.json", "jobs", ".work")
@@ -42,8 +44,8 @@ def write_atomic(path, text):
         raise
 
 
-class OutputError(Exception):
-    """DIR cannot be the sweep's (the message names the path and why)."""
+OutputError = sweep_written.OutputError
+check_written = sweep_written.check_written
 
 
 def _read_marker(path):
@@ -67,9 +69,11 @@ def _read_marker(path):
         time.sleep(0.05)
 
 
-def check(out_dir, sweep_path):
+def check(out_dir, sweep_path, inputs=(), job_ids=()):
     """Whether DIR can hold this sweep file's results, without writing anything: it does not
-    exist, or it is empty, or its marker names this sweep file. Raises OutputError otherwise."""
+    exist, or it is empty, or its marker names this sweep file and what the sweep would write or
+    remove there passes check_written (`inputs`: (what, path) of every file the sweep reads,
+    `job_ids`: its jobs'). Raises OutputError otherwise."""
     sweep_file = os.path.realpath(sweep_path)
     if not os.path.exists(out_dir):
         if os.path.islink(out_dir):
@@ -114,6 +118,7 @@ def check(out_dir, sweep_path):
                     p, "folder" if want_dir else "file",
                     "a link" if os.path.islink(p) else "a folder" if os.path.isdir(p) else
                     "a file"))
+        check_written(out_dir, inputs, job_ids)
         return
     if entries:
         shown = ", ".join(entries[:5]) + (", ..." if len(entries) > 5 else "")
@@ -122,10 +127,10 @@ def check(out_dir, sweep_path):
             "jobs/ and .work/ there: choose a new or empty -o folder".format(out_dir, shown))
 
 
-def claim(out_dir, sweep_path):
+def claim(out_dir, sweep_path, inputs=(), job_ids=()):
     """check(), then DIR made the sweep file's: created with its marker, jobs/ and .work/.
     Shards of one sweep may claim the same new folder at once."""
-    check(out_dir, sweep_path)
+    check(out_dir, sweep_path, inputs, job_ids)
     sweep_file = os.path.realpath(sweep_path)
     marker = os.path.join(out_dir, MARKER)
     try:

@@ -172,8 +172,13 @@ def test_sweep_killed_and_run_again_redoes_no_finished_job(cli, mesh_dir, tmp_pa
     proc.wait()
     finished = {p.parent.name: (os.stat(p).st_ino, p.read_text()) for p in done_jobs(out)}
     assert 2 <= len(finished) < 4, "make the jobs longer: the sweep ended before the kill"
-    # The killed sweep's runs got SIGTERM (the parent-death signal): they save and end.
-    wait_until(lambda: not runs_reading(tmp_path / "meshes"), timeout=60)
+    # The killed sweep's runs got SIGTERM (the parent-death signal): they save and end. A job
+    # that the kill caught as it started ends before running (sweep_job._death_signal_prefix;
+    # before, it ran to its end orphaned and the rerun found its attempt locked). What the rerun
+    # depends on is waited for, the locks: a job's process not yet exec'd shows the sweep's
+    # command line, and an ending one loses its command line before its descriptors.
+    wait_until(lambda: not runs_reading(tmp_path / "meshes") and not lock_holders(out / ".work")
+               and not lock_holders(out / ".work" / "checkpoints"), timeout=60)
     left = [p.name for p in (out / ".work").iterdir() if p.name != "checkpoints"]
     held = lock_holders(out / ".work")  # said if an attempt is left: who held its lock
     again = run_sweep(cli, [str(path), "-o", str(out), "--workers", "2"])

@@ -81,6 +81,58 @@ def test_a_job_saves_and_stops_when_the_process_that_started_it_dies(cli, mesh_d
         kill_left_over(tmp_path)
 
 
+# The starter held up between the start of the job's process and the setting of its death signal
+# (`$1`: a file it creates then), so that it can be killed there: the moment a sweep killed as it
+# starts a job is in. A shell in front of setpriv, or a delay in front of the preexec_fn.
+HELD_STARTER = """import os, sys, time
+from shellcontract import sweep_job
+flag = sys.argv[5]
+if sys.argv[1] == "preexec":
+    sweep_job._SETPRIV = []
+    set_signal = sweep_job._die_with_parent
+
+    def held(*args):
+        open(flag, "w").close()
+        time.sleep(3)
+        set_signal(*args)
+    sweep_job._die_with_parent = held
+else:
+    prefix = sweep_job._death_signal_prefix
+    sweep_job._death_signal_prefix = lambda: (
+        ["/bin/sh", "-c", 'touch "$0"; sleep 3; exec "$@"', flag] + prefix())
+sweep_job.run_job(__import__("json").loads(sys.argv[2]), sys.argv[3], sys.argv[4], None, 20)
+"""
+
+
+@pytest.mark.parametrize("launch", ["setpriv", "preexec"])
+def test_a_job_whose_starter_died_before_its_death_signal_was_set_does_not_run(
+        cli, mesh_dir, tmp_path, launch):
+    # Before: the signal, set after its parent had gone, never came, and the run went on to its
+    # end orphaned, holding its attempt's lock (test_sweep_killed_and_run_again_redoes_no_
+    # finished_job then found its folder left after the rerun).
+    if launch == "setpriv" and not sweep_job._death_signal_prefix():
+        pytest.skip("no setpriv with --pdeathsig here")
+    path = write_sweep(tmp_path, mesh_dir, "endless.json", ENDLESS, meshes=("ico3.off",))
+    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
+    job = sweep_file.expand(str(path), sweep_file.load(str(path)), version)[0]
+    out = tmp_path / "out"
+    flag = tmp_path / "started"
+    starter = subprocess.Popen([sys.executable, "-c", HELD_STARTER, launch,
+                                json.dumps(job.to_dict()), str(out), cli, str(flag)],
+                               env=sweep_env(cli))
+    try:
+        wait_until(flag.exists)
+        starter.kill()  # SIGKILL, before the child has set its parent-death signal
+        starter.wait()
+        # The child ends without running the job (it would run a million frames).
+        wait_until(lambda: not processes_naming(str(tmp_path)), timeout=20)
+        assert not (out / ".work" / "checkpoints" / (job.id + ".ckpt")).exists()
+    finally:
+        if starter.poll() is None:
+            starter.kill()
+        kill_left_over(tmp_path)
+
+
 # SIGTERM (Slurm's scancel) as Ctrl-C, here through the tool's `sweep` command (which becomes the
 # Python sweep, the same process): before, it ended the sweep by the signal, its jobs' working
 # folders left behind and the tables not written. Slurm's SIGUSR1 (`sbatch --signal`) alike, as

@@ -37,6 +37,12 @@ SPEC = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}}
     (["-o", "elsewhere"], "option '--output' cannot be given more than once"),
     # An option is named in full, as the C++ commands read theirs (before: --work 2 was --workers 2).
     (["--work", "2"], "unrecognized arguments: --work 2"),
+    # --workers sizes the embedded cluster, which these two do not start (before: ignored without
+    # a word).
+    (["--workers", "2", "--shard", "0/2"], "argument --workers: not with --shard"),
+    (["--shard", "1/2", "--workers", "1"], "argument --workers: not with --shard"),
+    (["--workers", "2", "--scheduler", "tcp://127.0.0.1:8786"],
+     "argument --workers: not with --scheduler"),
     (["--job", "3"], "unrecognized arguments: --job 3"),
 ], ids=lambda v: " ".join(v) if isinstance(v, list) else None)
 def test_bad_usage_exits_1_with_a_message(cli, mesh_dir, tmp_path, args, expected):
@@ -69,7 +75,9 @@ def test_a_scheduler_address_that_dask_lets_through_is_refused(cli, mesh_dir, tm
 def test_the_tools_number_forms_are_still_taken(cli, mesh_dir, tmp_path):
     path = write_sweep(tmp_path, mesh_dir, "s.json", SPEC, meshes=("ico1.off",))
     r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run", "--workers", "+3",
-                        "--job-timeout", "1e3", "--checkpoint-every", "010", "--shard", "0/1"])
+                        "--job-timeout", "1e3", "--checkpoint-every", "010"])
+    assert r.returncode == 0, r.stderr
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run", "--shard", "0/1"])
     assert r.returncode == 0, r.stderr
     r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run",
                         "--scheduler", "tcp://[::1]:65535"])
