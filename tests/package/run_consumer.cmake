@@ -69,7 +69,7 @@ if(PYTHON_PACKAGE)
   foreach(f __init__.py _region_arguments.py number_text.py sweep.py sweep_file.py sweep_job.py
             sweep_lock.py sweep_checkpoint.py
             sweep_output.py sweep_process.py
-            sweep_progress.py sweep_results.py sweep_dask.py)
+            sweep_progress.py sweep_results.py sweep_dask.py sweep_written.py)
     if(NOT EXISTS ${package}/${f})
       message(FATAL_ERROR "not installed: ${package}/${f}")
     endif()
