@@ -10,8 +10,8 @@
 // file with materials opens so. Two runs' .glb side by side step by run frame. An error names its
 // file, briefly.
 // This file holds the page: its state, the scene and camera, the opening of files and the
-// controls. The rest is in modules of one job each: panes.js (a file's pane), mesh_files.js
-// (reading a mesh file), colours.js (the colour menu and a choice applied;
+// controls. The rest is in modules of one job each: panes.js (a file's pane), mesh_files.js and
+// file_checks.js (reading a mesh file), colours.js (the colour menu and a choice applied;
 // colour_map.js, legend.js), frames.js (frames, jumps, playback), status_line.js, loading.js,
 // plot.js, run_log.js, test_hooks.js.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.

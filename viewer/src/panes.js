@@ -3,6 +3,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { fieldColoursOf } from './colour_map.js';
+import { checkGlb } from './file_checks.js';
 import { extensionOf, loadMeshFile, MESH_EXTENSIONS } from './mesh_files.js';
 import { loadObjMaterials } from './obj_materials.js';
 
@@ -17,6 +18,8 @@ export function makeScene() {
 }
 
 async function glbPane(arrayBuffer, name) {
+  // A .glb cut short failed in GLTFLoader with a bare RangeError ("Invalid typed array length").
+  checkGlb(arrayBuffer, name);
   const gltf = await new GLTFLoader().parseAsync(arrayBuffer, '');
   // three makes one mesh per glTF primitive: an OBJ with several materials has one primitive per
   // material, all on the same vertices and morph targets, so every one is moved and coloured
