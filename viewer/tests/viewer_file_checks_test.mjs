@@ -44,8 +44,10 @@ function binaryPly(little) {
   out.set(new Uint8Array(body.buffer), head.length);
   return out;
 }
-function binaryStl() {
+/** A binary STL; `header`: the text its 80-byte header begins with (STLLoader's test of ASCII: 'solid' first). */
+function binaryStl(header = '') {
   const d = new DataView(new ArrayBuffer(84 + 50 * F.length));
+  new Uint8Array(d.buffer).set(text(header));
   d.setUint32(80, F.length, true);
   F.forEach((t, j) => t.forEach((i, c) => V[i].forEach((x, k) => d.setFloat32(84 + 50 * j + 12 + 12 * c + 4 * k, x, true))));
   return new Uint8Array(d.buffer);
@@ -89,6 +91,10 @@ const files = {
   'octa.stl': text('solid octa\n' + F.map((t) => 'facet normal 0 0 0\n outer loop\n' + t.map((i) => `  vertex ${V[i].join(' ')}\n`).join('') +
                                      ' endloop\nendfacet\n').join('') + 'endsolid octa\n'),
   'octa_binary.stl': binaryStl(),
+  // A binary STL whose header begins with 'solid', as some writers' do: cut short, it is no
+  // longer the size of its count, so STLLoader's test takes it for ASCII.
+  'octa_binary_solid.stl': binaryStl('solid octa, binary'),
+  'octa_crlf.ply': text((plyHead('ascii') + V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n').replace(/\n/g, '\r\n')),
   'octa.glb': glb(),
 };
 /** Opens the bytes as the viewer does (makePane: a .glb or a mesh file): null, or the error's message. */
