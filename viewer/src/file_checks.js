@@ -29,10 +29,12 @@ const lineAt = (text, at) => text.slice(0, at).split(/\r\n|\n|\r/).length;
  * the viewer cannot read.
  */
 function plyHeader(buffer, name) {
-  const head = bytesText(buffer, 0, 65536);
+  // The header is searched in the first 64 KiB, and in the whole file only when it is longer.
+  const endOf = (text) => /(\r\n|\n|\r)end_header(\r\n|\n|\r)/.exec(text);
+  let head = bytesText(buffer, 0, 65536), end = endOf(head);
   if (!/^ply(\r\n|\n|\r)/.test(head)) throw new Error(`${name}: not a PLY file (it does not begin with 'ply')`);
-  const end = /(\r\n|\n|\r)end_header(\r\n|\n|\r)/.exec(head);
-  if (!end) throw new Error(`${name}: the header has no 'end_header' line: the file is cut short (or its header is over 64 KiB)`);
+  if (!end && buffer.byteLength > 65536) end = endOf(head = bytesText(buffer));
+  if (!end) throw new Error(`${name}: the header has no 'end_header' line: the file is cut short in its header`);
   const out = { format: '', elements: [], dataStart: end.index + end[0].length };
   head.slice(0, end.index).split(/\r\n|\n|\r/).forEach((line, i) => {
     const t = line.trim().split(/\s+/), where = `${name}: line ${i + 1}`;
