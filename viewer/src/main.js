@@ -5,10 +5,15 @@
 // camera; of more chosen, the status line names those not opened); a single .glb can show its
 // first frame beside the current one. Each frame is coloured with its own values where the file
 // has them (the glTF's extras.frame_fields); a field of one frame only (extras 'frame') is shown on
-// that frame and never on the others; a mesh file is coloured with its own values. With no field shown, a file's primitives (or an OBJ's groups)
-// wear its materials (base colour, texture), and a file with materials opens so.
-// Two runs' .glb side by side step by run frame. A field is drawn on a diverging map about 0 or a
-// sequential one (colour_map.js), with a colour bar (legend.js). An error names its file, briefly.
+// that frame and never on the others; a mesh file is coloured with its own values. With no field
+// shown, a file's primitives (or an OBJ's groups) wear its materials (base colour, texture), and a
+// file with materials opens so. Two runs' .glb side by side step by run frame. An error names its
+// file, briefly.
+// This file holds the page: its state, the scene and camera, the opening of files and the
+// controls. The rest is in modules of one job each: panes.js (a file's pane), mesh_files.js and
+// file_checks.js (reading a mesh file), colours.js (the colour menu and a choice applied;
+// colour_map.js, legend.js), frames.js (frames, jumps, playback), status_line.js, loading.js,
+// plot.js, run_log.js, test_hooks.js.
 // URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
 // While a file loads, the status line says so: its name and the bytes read (state.loading).
 // For tests, window.viewer exposes the state: {ready, loading, keyframe, frameNumbers, panes (with their
@@ -16,13 +21,16 @@
 // looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
 import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { colourScale, fieldColourAttribute, range } from './colour_map.js';
-import { drawLegend, legendNote } from './legend.js';
-import { loadingText, mb, nextPaint, readFile, readResponse } from './loading.js';
+import { applyColours as colourPanes, colourChoices } from './colours.js';
+import { frameSteps, lastAtOrBefore, player, showFrame } from './frames.js';
+import { drawLegend } from './legend.js';
+import { nextPaint, readFile, readResponse } from './loading.js';
 import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
 import { disposePane, firstFramePane, makePane } from './panes.js';
 import { drawPlot } from './plot.js';
 import { parseCsvLog, parseJsonSummary, ratioAt } from './run_log.js';
+import { errorText, statusLine } from './status_line.js';
+import { exposeForTests } from './test_hooks.js';
 
 const el = (id) => document.getElementById(id);
 const view = el('view');
@@ -76,49 +84,10 @@ function render() {
 }
 window.addEventListener('resize', resize);
 
-/**
- * An error's message for the status line: naming the file, and short. A three.js message may hold
- * a whole array's values (megabytes, which pushed the page's controls off the window).
- */
-function errorText(name, e) {
-  let m = String(e?.message ?? e);
-  if (!m.startsWith(name)) m = `${name}: ${m}`;
-  return m.length > 240 ? `${m.slice(0, 240)}…` : m;
-}
-
-/** Shows the text in the status line; `error` (a message within it) marks the line as an error. */
-function setStatus(text, error = null) {
-  state.loading = null;  // the panes' summary or an error ends the loading line
-  el('status').textContent = text;
-  el('status').classList.toggle('error', !!error);
-  if (error) { state.error = error; console.error(error); }
-}
+const status = statusLine(el('status'), state);
+const setStatus = status.set, showLoading = status.loading;
 
 // ---------------------------------------------------------------- loading
-/**
- * The status line while `name` loads (state.loading: {name, loaded, total, building}): the bytes
- * read so far, then, with `building`, that its meshes are being made (a large .glb's frames take
- * seconds more). Updated at most every 100 ms: a large file arrives in thousands of pieces.
- */
-let loadingShownAt = 0, loadingTimer = null;
-function showLoading(name, loaded, total, building = false) {
-  state.loading = { name, loaded, total, building };
-  const wait = 100 - (performance.now() - loadingShownAt);
-  if (!building && loaded > 0 && loaded < total && wait > 0) {
-    // The latest state is shown when the interval is over (a stalled transfer shows where it is).
-    loadingTimer ??= setTimeout(() => { loadingTimer = null; drawLoading(); }, wait);
-    return;
-  }
-  drawLoading();
-}
-function drawLoading() {
-  const l = state.loading;
-  if (!l) return;  // the load ended (setStatus) before this update's turn
-  loadingShownAt = performance.now();
-  el('status').classList.remove('error');
-  el('status').textContent = l.building ? `Opening ${l.name} (${mb(l.loaded)}): making its meshes…` : loadingText(l.name, l.loaded, l.total);
-}
-
 /** A pane of the bytes of `name` (read by `read`, given the progress callback), the status line showing the load. */
 async function loadPane(name, read, companions) {
   const bytes = await read((loaded, total) => showLoading(name, loaded, total));
@@ -136,40 +105,18 @@ function showPanes(newPanes, errors = [], notes = []) {
   panes = newPanes;
   const glb = panes.find((p) => p.kind === 'glb');
   const glbs = panes.filter((p) => p.kind === 'glb');
-  if (glbs.length === 2) {
-    // Two runs side by side step by run frame: every frame either kept, each pane at its last
-    // kept frame at or before it (so the shorter run holds its last frame), one keyframe a tick.
-    state.frameNumbers = [...new Set(glbs.flatMap((p) => p.frameNumbers))].sort((a, b) => a - b);
-    state.times = state.frameNumbers.map((_, k) => k / 24);
-  } else {
-    state.frameNumbers = glb ? glb.frameNumbers : [0];
-    state.times = glb ? glb.times : [0];
-  }
+  // Two runs side by side step by run frame, each pane at its last kept frame at or before it
+  // (so the shorter run holds its last frame).
+  ({ frameNumbers: state.frameNumbers, times: state.times } = frameSteps(glbs));
   state.sideBySide = false;
   el('side-by-side').checked = false;
   el('side-by-side').disabled = !(panes.length === 1 && glb && glb.frameNumbers.length > 1);
 
   // Colour choices: the glTF's fields by index; a mesh file's own colours and scalar fields.
-  // With none chosen, a file with materials wears them.
-  const materials = panes.some((p) => p.looks?.some((l) => l.file));
-  const select = el('colour');
-  select.replaceChildren(new Option(materials ? 'none (file materials)' : 'none', '-1'));
-  // The glTF fields by name (two runs may hold different ones), by index in this list.
-  state.colourFields = [...new Map(glbs.flatMap((p) => p.colourInfo).map((f) => [f.name, f])).values()];
-  state.colourFields.forEach((f, i) => select.add(new Option(f.name, String(i))));
-  if (panes.some((p) => p.kind === 'mesh' && p.fileColours)) select.add(new Option('file colours', 'file'));
-  const names = [...new Set(panes.flatMap((p) => (p.kind === 'mesh' ? p.fields.map((f) => f.name) : [])))];
-  names.forEach((n) => select.add(new Option(n, `field:${n}`)));
-  // First choice: the files' materials where they have some (how the file says it looks; the
-  // fields stay in the menu), else the glTF's first field, else the face colours of a file that
-  // has them (a regions file: one colour a region), else the files' first field (one range over
-  // the panes, so a --fields start and end pair compare: each file's baked colours are on its own
-  // range), else the files' own colours.
-  const values = [...select.options].map((o) => o.value);
-  const faceColours = panes.some((p) => p.kind === 'mesh' && p.faceColours);
-  const firstField = values.find((v) => v.startsWith('field:'));
-  const first = materials ? '-1' : values.includes('0') ? '0' : faceColours && values.includes('file') ? 'file'
-    : firstField ?? (values.includes('file') ? 'file' : '-1');
+  const choices = colourChoices(panes);
+  el('colour').replaceChildren(...choices.options.map(([label, value]) => new Option(label, value)));
+  state.colourFields = choices.colourFields;
+  const first = choices.first;
 
   // The colours before anything is drawn (moving the camera below draws): a file's own colours
   // drawn once and at once replaced by a field's would hold GPU memory until the pane closes.
@@ -283,17 +230,9 @@ function setKeyframe(k) {
   if (!panes.length) return;
   k = Math.max(0, Math.min(state.frameNumbers.length - 1, k));
   state.keyframe = k;
-  for (const p of panes) {
-    if (p.kind !== 'glb') continue;
-    const kp = paneKeyframe(p);
-    for (const m of p.meshes) {
-      const influences = m.morphTargetInfluences ?? [];
-      influences.fill(0);
-      if (kp > 0 && kp <= influences.length) influences[kp - 1] = 1;  // the glTF's STEP keyframe kp
-    }
-  }
-  el('scrubber').value = String(k);
   const frame = state.frameNumbers[k];
+  showFrame(panes, frame);
+  el('scrubber').value = String(k);
   // The box shows the frame shown, not a number typed before the scrubber moved.
   if (document.activeElement !== el('goto') && !el('goto').disabled) el('goto').value = String(frame);
   const ratio = ratioAt(state.log, frame);
@@ -304,24 +243,10 @@ function setKeyframe(k) {
   render();
 }
 
-/**
- * The keyframe a .glb pane shows: its fixed one ("before | after"), else its last kept frame at
- * or before the run frame shown (the same index when the page steps through this file's frames).
- */
-function paneKeyframe(p) {
-  if (p.fixed !== undefined) return p.fixed;
-  const frame = state.frameNumbers[state.keyframe];
-  let kp = 0;
-  p.frameNumbers.forEach((n, i) => { if (n <= frame) kp = i; });
-  return kp;
-}
-
 /** Jumps to run frame f: its keyframe, or the last one before it when f was not exported. */
 function jumpToFrame(f) {
-  let k = 0;
-  state.frameNumbers.forEach((n, i) => { if (n <= f) k = i; });
   setPlaying(false);
-  setKeyframe(k);
+  setKeyframe(lastAtOrBefore(state.frameNumbers, f));
 }
 
 function setColour(choice) {
@@ -331,87 +256,15 @@ function setColour(choice) {
   render();
 }
 
-/** Colours every pane by the choice, each with its own values, or leaves it plain. */
+/** Colours every pane by the choice (colours.js), with the colour bar and the note of what is shown. */
 function applyColours() {
-  const choice = state.colour;
-  const notes = [];
-  // A scalar field of mesh files: one range over every pane that has it, so colours compare.
-  const legends = [];  // {name, scale, of}: the colour bar's
-  let scale = null;
-  if (choice.startsWith('field:')) {
-    const name = choice.slice(6);
-    const arrays = panes.flatMap((p) => (p.kind === 'mesh' ? p.meshes.map((m) => m.geometry.userData.fields?.[name]).filter(Boolean) : []));
-    const r = range(arrays);
-    scale = colourScale(r.low, r.high);
-    legends.push({ name, scale, of: `2nd to 98th percentile of ${panes.length > 1 ? 'both files: one range' : 'the file'}` });
-  }
-  const values = panes.map(() => null);  // per pane: the values its colours show, if any
-  state.shown = panes.map((p, pi) => {
-    let shown = 'none', fileMaterials = false;
-    p.meshes.forEach((m, j) => {
-      let attr = null;
-      if (p.kind === 'glb' && /^\d+$/.test(choice)) {
-        const wanted = state.colourFields[Number(choice)];
-        const i = p.colourInfo.findIndex((f) => f.name === wanted?.name), info = p.colourInfo[i];
-        const k = paneKeyframe(p), frame = p.frameNumbers[k];
-        const perFrame = info && p.frameFields[info.name];
-        if (perFrame) {
-          // Each frame's own values, on one scale over all frames (so frames compare).
-          const scale = colourScale(perFrame.low, perFrame.high);
-          attr = fieldColourAttribute(m.geometry, perFrame.values[k], scale);
-          values[pi] = perFrame.values[k];
-          if (j === 0) legends.push({ name: info.name, scale, of: "each frame's own values; 2nd to 98th percentile over all frames" });
-        } else if (info && (info.frame === undefined || info.frame === frame) && p.fieldValues[j][i]) {
-          // A field of one frame ('frame' in the extras) is shown on that frame only; without
-          // 'frame', on any.
-          attr = fieldColourAttribute(m.geometry, p.fieldValues[j][i], colourScale(Number(info.low), Number(info.high)));
-          values[pi] = p.fieldValues[j][i];
-        }
-        if (info && !perFrame && j === 0) {
-          legends.push({ name: info.name, scale: colourScale(Number(info.low), Number(info.high)),
-                         of: 'its 2nd to 98th percentile' + (info.frame !== undefined ? `; values of frame ${info.frame}, shown on that frame only` : '') });
-        }
-        if (attr) shown = info.name;
-      } else if (p.kind === 'mesh' && choice === 'file' && p.fileColourAttributes[j]) {
-        attr = p.fileColourAttributes[j];
-        shown = 'file colours';
-        // What the file's colours are: its header's comments say it where the CLI wrote them.
-        if (j === 0) {
-          notes.push(`${p.name}: its own ${p.faceColours ? 'face ' : ''}colours` +
-                     (p.comments?.length ? ` (${p.comments.join('; ')})` : '') +
-                     (p.fields.length && !p.faceColours ? `, on its own scale; a field from the menu puts ${panes.length > 1 ? 'both files' : 'it'} on one` : ''));
-        }
-      } else if (p.kind === 'mesh' && scale) {
-        const v = m.geometry.userData.fields?.[choice.slice(6)];
-        if (v) {
-          attr = fieldColourAttribute(m.geometry, v, scale);
-          values[pi] = v;
-          shown = choice.slice(6);
-        }
-      }
-      // 'color' is the file's own attribute (on the GPU since the file opened) or the geometry's
-      // one attribute of field colours (colour_map.js), rewritten there: a switch makes no buffer.
-      if (attr) m.geometry.setAttribute('color', attr);
-      // A field's colours when one is shown, else the file's material where it has one.
-      const file = attr ? null : p.looks[j].file;
-      m.material = file ?? p.looks[j].field;
-      if (file) { fileMaterials = true; return; }
-      const mat = m.material;
-      mat.vertexColors = !!attr;
-      mat.color.set(attr ? 0xffffff : 0xd8c8b0);
-      mat.needsUpdate = true;
-    });
-    return shown === 'none' && fileMaterials ? 'file materials' : shown;
-  });
-  state.colourValues = values;
-  drawLegend(el('colour-bar'), legends[0] ?? null);
-  state.legend = legends[0] ? { name: legends[0].name, ...legends[0].scale } : null;
-  notes.push(...legends.map(legendNote));
-  // The note says what is shown: a file with materials and no colour fields is not plain.
-  const withMaterials = panes.filter((p, i) => state.shown[i] === 'file materials').map((p) => p.name);
-  if (withMaterials.length) notes.push(`the materials of ${[...new Set(withMaterials)].join(' and ')} are shown`);
-  if (el('colour').options.length === 1) notes.unshift(`no colour fields in ${panes.length > 1 ? 'these files' : 'this file'}`);
-  el('colour-note').textContent = [...new Set(notes)].join('; ');
+  const r = colourPanes(panes, { choice: state.colour, colourFields: state.colourFields,
+                                 frame: state.frameNumbers[state.keyframe], noFields: el('colour').options.length === 1 });
+  state.shown = r.shown;
+  state.colourValues = r.values;
+  drawLegend(el('colour-bar'), r.legend);
+  state.legend = r.legend ? { name: r.legend.name, ...r.legend.scale } : null;
+  el('colour-note').textContent = r.notes.join('; ');
 }
 
 function updatePlot() {
@@ -419,25 +272,7 @@ function updatePlot() {
 }
 
 // Playback follows the glTF's key times; it wraps at the end.
-let playStart = 0, playFrom = 0;
-function tick(now) {
-  if (!state.playing) return;
-  const t = state.times[playFrom] + (now - playStart) / 1000;
-  let k = playFrom;
-  while (k + 1 < state.times.length && state.times[k + 1] <= t) k++;
-  if (k !== state.keyframe) setKeyframe(k);
-  if (k === state.times.length - 1) { playFrom = 0; playStart = now + 500; }
-  requestAnimationFrame(tick);
-}
-function setPlaying(on) {
-  state.playing = on;
-  el('play').textContent = on ? 'Pause' : 'Play';
-  if (on) {
-    playFrom = state.keyframe === state.frameNumbers.length - 1 ? 0 : state.keyframe;
-    playStart = performance.now();
-    requestAnimationFrame(tick);
-  }
-}
+const setPlaying = player(state, setKeyframe, el('play'));
 
 // ---------------------------------------------------------------- UI
 el('scrubber').addEventListener('input', (e) => { setPlaying(false); setKeyframe(Number(e.target.value)); });
@@ -460,30 +295,7 @@ window.addEventListener('keydown', (e) => {
   if (e.key === 'ArrowLeft') setKeyframe(state.keyframe - 1);
 });
 state.jumpToFrame = jumpToFrame;
-/** For tests: per pane, per mesh (a glTF primitive each), its morph target influences. */
-state.influences = () => panes.map((p) => p.meshes.map((m) => Array.from(m.morphTargetInfluences ?? [])));
-/** For tests: per pane, the mean red (linear) of the colours it shows; null for a plain pane. */
-state.colourMeans = () => panes.map((p) => {
-  let sum = 0, n = 0;
-  for (const m of p.meshes) {
-    const c = m.material.vertexColors ? m.geometry.getAttribute('color') : null;
-    if (!c) return null;
-    for (let i = 0; i < c.count; i++) sum += c.getX(i);
-    n += c.count;
-  }
-  return n ? sum / n : null;
-});
-/** For tests: per pane, per mesh, the material drawn (an array for an OBJ's mesh of several, one
- * per group): its name, colour (linear RGB), opacity, the size of its texture (null without),
- * whether it shows vertex colours. */
-/** For tests: three.js's count of the geometries and textures on the GPU (renderer.info.memory). */
-state.memory = () => ({ ...renderer.info.memory });
-const look = (material) => ({
-  name: material.name, colour: material.color.toArray(), opacity: material.opacity,
-  texture: material.map?.image ? [material.map.image.width, material.map.image.height] : null,
-  vertexColors: material.vertexColors,
-});
-state.looks = () => panes.map((p) => p.meshes.map((m) => (Array.isArray(m.material) ? m.material.map(look) : look(m.material))));
+exposeForTests(state, () => panes, renderer);
 
 resize();
 updatePlot();

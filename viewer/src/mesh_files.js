@@ -1,10 +1,12 @@
 // Result meshes (issue 56): OFF (parsed here: three.js has no OFF loader), OBJ, PLY and STL
 // (three.js's loaders from node_modules) as one THREE.Object3D each, with the per-vertex scalar
-// fields a PLY carries (e.g. the --fields files' mean_curvature) and its own colours.
+// fields a PLY carries (e.g. the --fields files' mean_curvature) and its own colours. A file cut
+// short or malformed is refused with what is wrong (file_checks.js), never opened as the part read.
 import * as THREE from 'three';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
 import { PLYLoader } from 'three/addons/loaders/PLYLoader.js';
 import { STLLoader } from 'three/addons/loaders/STLLoader.js';
+import { checkAsciiStl, checkBinaryStl, checkObj, checkPly } from './file_checks.js';
 import { withUnnamedFirstMaterial } from './obj_materials.js';
 
 export const MESH_EXTENSIONS = ['off', 'obj', 'ply', 'stl'];
@@ -162,10 +164,15 @@ export function recentredAsciiStl(text) {
   return { text: lines.join('\n'), centre };
 }
 
-/** Whether an STL is ASCII, by STLLoader's own test: not the size a binary one of its count has, and 'solid' first. */
+/**
+ * Whether an STL is ASCII, by STLLoader's own test: not the size a binary one of its count has, and
+ * 'solid' first. A binary STL's 80-byte header may begin with 'solid' too: one cut short (not its
+ * size) with neither 'facet' nor 'endsolid' near its start is binary, to be named as cut short.
+ */
 function isAsciiStl(buffer) {
   if (buffer.byteLength >= 84 && 84 + 50 * new DataView(buffer).getUint32(80, true) === buffer.byteLength) return false;
-  return /^\s*solid/.test(new TextDecoder().decode(new Uint8Array(buffer, 0, Math.min(buffer.byteLength, 512))));
+  const head = new TextDecoder().decode(new Uint8Array(buffer, 0, Math.min(buffer.byteLength, 1024)));
+  return /^\s*solid/.test(head) && (buffer.byteLength < 84 || /\b(facet|endsolid)\b/.test(head));
 }
 
 /** The count of distinct positions of a de-indexed geometry (an STL's triangle corners). */
@@ -192,13 +199,16 @@ export function loadMeshFile(buffer, name) {
     object = new THREE.Mesh(g);
     object.position.fromArray(g.userData.centre);
   } else if (ext === 'obj') {
-    const { text, centre } = recentredObj(new TextDecoder().decode(buffer));
+    const original = new TextDecoder().decode(buffer);
+    checkObj(original, name);
+    const { text, centre } = recentredObj(original);
     object = new OBJLoader().parse(withUnnamedFirstMaterial(text));
     materialLibraries = object.materialLibraries;
     object.position.fromArray(centre);
     // OBJLoader makes three corners per face: the file's vertices are its 'v' lines.
     vertices = (text.match(/^\s*v\s/gm) ?? []).length;
   } else if (ext === 'ply') {
+    checkPly(buffer, name);
     const loader = new PLYLoader();
     const header = plyHeader(buffer);
     ({ comments, faceColours } = header);
@@ -235,11 +245,15 @@ export function loadMeshFile(buffer, name) {
     // arithmetic works on coordinates the size of the mesh, as for the other formats.
     let first = [0, 0, 0], bytes = buffer;
     if (isAsciiStl(buffer)) {
-      const r = recentredAsciiStl(new TextDecoder().decode(buffer));
+      const original = new TextDecoder().decode(buffer);
+      checkAsciiStl(original, name);
+      const r = recentredAsciiStl(original);
       // STLLoader reads past the end of a text shorter than a binary header (an empty solid).
       if (!/^\s*vertex\s/m.test(r.text)) throw new Error(`${name}: no faces`);
       first = r.centre;
       bytes = new TextEncoder().encode(r.text).buffer;
+    } else {
+      checkBinaryStl(buffer, name);
     }
     const g = new STLLoader().parse(bytes);
     const { position, centre } = recentred(Float64Array.from(g.getAttribute('position').array));

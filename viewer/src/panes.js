@@ -3,6 +3,7 @@
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { fieldColoursOf } from './colour_map.js';
+import { checkGlb } from './file_checks.js';
 import { extensionOf, loadMeshFile, MESH_EXTENSIONS } from './mesh_files.js';
 import { loadObjMaterials } from './obj_materials.js';
 
@@ -17,6 +18,8 @@ export function makeScene() {
 }
 
 async function glbPane(arrayBuffer, name) {
+  // A .glb cut short failed in GLTFLoader with a bare RangeError ("Invalid typed array length").
+  checkGlb(arrayBuffer, name);
   const gltf = await new GLTFLoader().parseAsync(arrayBuffer, '');
   // three makes one mesh per glTF primitive: an OBJ with several materials has one primitive per
   // material, all on the same vertices and morph targets, so every one is moved and coloured
@@ -36,7 +39,7 @@ async function glbPane(arrayBuffer, name) {
   const frameNumbers = Array.isArray(extras.frame_numbers) ? extras.frame_numbers : Array.from({ length: targets + 1 }, (_, k) => k);
   const track = gltf.animations[0]?.tracks[0];
   // Colour fields: the values of each, a custom attribute the loader names in lower case
-  // ('_MEAN_CURVATURE' is '_mean_curvature'); main.js maps them to colours over the extras' low
+  // ('_MEAN_CURVATURE' is '_mean_curvature'); colours.js maps them to colours over the extras' low
   // and high. (The file has no COLOR_n: glTF multiplies COLOR_0 with the base colour.)
   const colourInfo = Array.isArray(extras.colour_fields) ? extras.colour_fields : [];
   const geometry = shell.geometry;
@@ -194,7 +197,7 @@ export function disposePane(p, keep = null) {
 
 /**
  * The attributes of the pane's mesh j: those of its geometry, and the colours that the colour
- * choice sets as its 'color' (main.js applyColours), which may be off it now.
+ * choice sets as its 'color' (colours.js applyColours), which may be off it now.
  */
 const attributesOf = (p, j) => {
   const g = p.meshes[j].geometry;

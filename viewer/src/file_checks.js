@@ -1,0 +1,262 @@
+// Whether a file is whole and well formed, checked before three.js's loaders read it: they read
+// what is there and say nothing of the rest (a PLY cut short opened as the part read; an OBJ's
+// face of two corners, or of a vertex it does not have, drew with NaN positions), or fail with a
+// bare RangeError ("Offset is outside the bounds of the DataView" for a binary PLY or STL cut short,
+// "Invalid typed array length: 11" for a .glb). Each check throws an Error naming the file and what
+// is wrong, as parseOff (mesh_files.js) does for an OFF. A format that holds its counts (PLY, binary
+// STL, .glb) is checked against them; an ASCII STL for its closing keywords; an OBJ, which holds no
+// counts, for its lines: a file cut at the end of a line is a smaller OBJ, which no check can tell.
+
+/** The sizes of a PLY's property types, and the DataView getter of each. */
+const PLY_TYPES = {
+  char: [1, 'getInt8'], int8: [1, 'getInt8'], uchar: [1, 'getUint8'], uint8: [1, 'getUint8'],
+  short: [2, 'getInt16'], int16: [2, 'getInt16'], ushort: [2, 'getUint16'], uint16: [2, 'getUint16'],
+  int: [4, 'getInt32'], int32: [4, 'getInt32'], uint: [4, 'getUint32'], uint32: [4, 'getUint32'],
+  float: [4, 'getFloat32'], float32: [4, 'getFloat32'], double: [8, 'getFloat64'], float64: [8, 'getFloat64'],
+};
+const INTEGER_TYPES = new Set(['char', 'int8', 'uchar', 'uint8', 'short', 'int16', 'ushort', 'uint16', 'int', 'int32', 'uint', 'uint32']);
+
+/** The text of the bytes, one character per byte (so an index in it is a byte offset). */
+const bytesText = (buffer, start = 0, end = buffer.byteLength) =>
+  new TextDecoder('latin1').decode(new Uint8Array(buffer, start, Math.max(0, Math.min(end, buffer.byteLength) - start)));
+
+/** The 1-based line of the text at index `at`. */
+const lineAt = (text, at) => text.slice(0, at).split(/\r\n|\n|\r/).length;
+
+/**
+ * A PLY's header: its format, elements ({name, count, properties: {name, type} or {name, list:
+ * [countType, itemType]}}) and the byte offset of its data. Throws for a header cut short or one
+ * the viewer cannot read.
+ */
+function plyHeader(buffer, name) {
+  // The header is searched in the first 64 KiB, and in the whole file only when it is longer.
+  const endOf = (text) => /(\r\n|\n|\r)end_header(\r\n|\n|\r)/.exec(text);
+  let head = bytesText(buffer, 0, 65536), end = endOf(head);
+  if (!/^ply(\r\n|\n|\r)/.test(head)) throw new Error(`${name}: not a PLY file (it does not begin with 'ply')`);
+  if (!end && buffer.byteLength > 65536) end = endOf(head = bytesText(buffer));
+  if (!end) throw new Error(`${name}: the header has no 'end_header' line: the file is cut short in its header`);
+  const out = { format: '', elements: [], dataStart: end.index + end[0].length };
+  head.slice(0, end.index).split(/\r\n|\n|\r/).forEach((line, i) => {
+    const t = line.trim().split(/\s+/), where = `${name}: line ${i + 1}`;
+    if (t[0] === 'format') {
+      out.format = t[1];
+      if (!['ascii', 'binary_little_endian', 'binary_big_endian'].includes(t[1])) throw new Error(`${where}: unknown format '${t[1]}'`);
+    } else if (t[0] === 'element') {
+      const count = Number(t[2]);
+      if (!Number.isInteger(count) || count < 0) throw new Error(`${where}: element '${t[1]}' has no count ('${t[2] ?? ''}')`);
+      out.elements.push({ name: t[1], count, properties: [] });
+    } else if (t[0] === 'property') {
+      const element = out.elements.at(-1);
+      if (!element) throw new Error(`${where}: a property before any element`);
+      const list = t[1] === 'list';
+      const types = list ? [t[2], t[3]] : [t[1]];
+      const bad = types.find((x) => !PLY_TYPES[x]);
+      if (bad !== undefined) throw new Error(`${where}: unknown property type '${bad}'`);
+      if (list && !INTEGER_TYPES.has(t[2])) throw new Error(`${where}: a list's count of type '${t[2]}', not an integer type`);
+      element.properties.push(list ? { name: t[4], list: types } : { name: t[2], type: t[1] });
+    }
+  });
+  if (!out.format) throw new Error(`${name}: the header has no 'format' line`);
+  return out;
+}
+
+/**
+ * Checks that a PLY holds every element its header counts (ASCII: numbers, integers where the type
+ * is; binary: the bytes) and that its faces refer to vertices it has.
+ */
+export function checkPly(buffer, name) {
+  const header = plyHeader(buffer, name);
+  const vertices = header.elements.find((e) => e.name === 'vertex')?.count ?? 0;
+  const isIndex = (e, p) => e.name === 'face' && p.list && ['vertex_indices', 'vertex_index'].includes(p.name);
+  const badIndex = (f, v) => new Error(`${name}: face ${f} refers to vertex ${v}, but the file has ${vertices}`);
+  const cut = (e, i) => new Error(`${name}: the file ends after ${i} of the ${e.count} '${e.name}' elements its header gives: it is cut short`);
+  if (header.format === 'ascii') {
+    const text = bytesText(buffer, header.dataStart);
+    const token = /\S+/g;
+    const next = (e, i) => {
+      const m = token.exec(text);
+      if (!m) throw cut(e, i);
+      return m;
+    };
+    const number = (e, i, type) => {
+      const m = next(e, i), v = Number(m[0]);
+      const ok = INTEGER_TYPES.has(type) ? Number.isInteger(v) : !Number.isNaN(v) || /^[-+]?(nan|inf(inity)?)$/i.test(m[0]);
+      if (!ok) {
+        throw new Error(`${name}: line ${lineAt(text, m.index) + lineAt(bytesText(buffer, 0, header.dataStart), header.dataStart) - 1}: ` +
+                        `${e.name} ${i}: '${m[0]}' is not ${INTEGER_TYPES.has(type) ? 'an integer' : 'a number'}`);
+      }
+      return v;
+    };
+    for (const e of header.elements) {
+      for (let i = 0; i < e.count; i++) {
+        for (const p of e.properties) {
+          if (!p.list) { number(e, i, p.type); continue; }
+          const n = number(e, i, p.list[0]);
+          for (let k = 0; k < n; k++) {
+            const v = number(e, i, p.list[1]);
+            if (isIndex(e, p) && (v < 0 || v >= vertices)) throw badIndex(i, v);
+          }
+        }
+      }
+    }
+    return;
+  }
+  const data = new DataView(buffer, Math.min(header.dataStart, buffer.byteLength));
+  const little = header.format === 'binary_little_endian';
+  let at = 0;
+  const read = (e, i, type) => {
+    const [size, get] = PLY_TYPES[type];
+    if (at + size > data.byteLength) throw cut(e, i);
+    const v = data[get](at, little);
+    at += size;
+    return v;
+  };
+  for (const e of header.elements) {
+    // Elements of fixed size (every property a scalar) are checked by their total alone.
+    if (e.properties.every((p) => !p.list)) {
+      const size = e.properties.reduce((s, p) => s + PLY_TYPES[p.type][0], 0);
+      if (at + size * e.count > data.byteLength) throw cut(e, Math.floor((data.byteLength - at) / size));
+      at += size * e.count;
+      continue;
+    }
+    for (let i = 0; i < e.count; i++) {
+      for (const p of e.properties) {
+        if (!p.list) { read(e, i, p.type); continue; }
+        const n = read(e, i, p.list[0]);
+        if (!isIndex(e, p)) {
+          if (at + n * PLY_TYPES[p.list[1]][0] > data.byteLength) throw cut(e, i);
+          at += n * PLY_TYPES[p.list[1]][0];
+          continue;
+        }
+        for (let k = 0; k < n; k++) {
+          const v = read(e, i, p.list[1]);
+          if (v < 0 || v >= vertices) throw badIndex(i, v);
+        }
+      }
+    }
+  }
+}
+
+/** Checks that a binary STL holds the triangles its header counts. */
+export function checkBinaryStl(buffer, name) {
+  if (buffer.byteLength < 84) throw new Error(`${name}: the file ends in a binary STL's 84-byte header: it is cut short (or an ASCII STL that does not begin with 'solid')`);
+  const n = new DataView(buffer).getUint32(80, true), size = 84 + 50 * n;
+  if (buffer.byteLength < size) {
+    throw new Error(`${name}: the file ends after ${Math.floor((buffer.byteLength - 84) / 50)} of the ${n} triangles its header gives ` +
+                    `(${buffer.byteLength} of ${size} bytes): it is cut short`);
+  }
+}
+
+/**
+ * Checks an ASCII STL's keywords: each facet of three vertices of three numbers, closed by
+ * 'endfacet', and the solid closed by 'endsolid' (STLLoader reads only what lies between 'solid'
+ * and 'endsolid': a file cut short had no faces).
+ */
+export function checkAsciiStl(text, name) {
+  const token = /\S+/g;
+  let m, facets = 0, inFacet = false, corners = 0, closed = false;
+  const where = (at) => `${name}: line ${lineAt(text, at)}`;
+  while ((m = token.exec(text))) {
+    const word = m[0];
+    if (word === 'facet') {
+      if (inFacet) throw new Error(`${where(m.index)}: facet ${facets} has no 'endfacet'`);
+      inFacet = true;
+      corners = 0;
+      closed = false;
+    } else if (word === 'vertex') {
+      if (!inFacet) throw new Error(`${where(m.index)}: a vertex outside a facet`);
+      for (let k = 0; k < 3; k++) {
+        const c = token.exec(text);
+        if (!c) throw new Error(`${name}: the file ends after ${facets} facets, within the next: it is cut short`);
+        if (!Number.isFinite(Number(c[0]))) throw new Error(`${where(c.index)}: coordinate ${k} of a vertex of facet ${facets}, '${c[0]}', is not a number`);
+      }
+      corners++;
+    } else if (word === 'endfacet') {
+      if (!inFacet) throw new Error(`${where(m.index)}: 'endfacet' without its facet`);
+      if (corners !== 3) throw new Error(`${where(m.index)}: facet ${facets} has ${corners} vertices, not 3`);
+      inFacet = false;
+      facets++;
+    } else if (word === 'endsolid') {
+      if (inFacet) throw new Error(`${where(m.index)}: facet ${facets} has no 'endfacet'`);
+      closed = true;
+    }
+  }
+  if (inFacet) throw new Error(`${name}: the file ends after ${facets} facets, within the next: it is cut short`);
+  if (!closed) throw new Error(`${name}: the file ends before 'endsolid' (after ${facets} facets): it is cut short`);
+}
+
+/**
+ * Checks an OBJ's lines that three.js's OBJLoader reads into positions: a vertex ('v') of three
+ * numbers at least, a texture coordinate ('vt') of one, a normal ('vn') of three, and each face
+ * ('f') of three corners or more, each referring to a vertex (and texture coordinate and normal)
+ * defined before it (OBJLoader looks them up as it reads the face).
+ */
+export function checkObj(text, name) {
+  // Lines ending in '\' go on in the next, as OBJLoader joins them; each keeps its first line's number.
+  const raw = text.split(/\r\n|\n|\r/), lines = [], numbers = [];
+  for (let i = 0, start = 0, joined = ''; i < raw.length; i++) {
+    if (raw[i].endsWith('\\') && i + 1 < raw.length) { joined += raw[i].slice(0, -1); continue; }
+    lines.push(joined + raw[i]);
+    numbers.push(start + 1);
+    joined = '';
+    start = i + 1;
+  }
+  const last = lines.findLastIndex((l) => l.trim() !== '');
+  if (last >= 0 && lines[last].trimEnd().endsWith('\\')) {
+    throw new Error(`${name}: line ${numbers[last]}: a line continuation ('\\') with no line after it: the file may be cut short`);
+  }
+  const counts = { v: 0, vt: 0, vn: 0 };
+  const need = { v: 3, vt: 1, vn: 3 }, short = { v: 'is not three numbers', vt: 'has no number', vn: 'is not three numbers' };
+  const what = { v: 'vertex', vt: 'texture coordinate', vn: 'normal' };
+  lines.forEach((line, i) => {
+    const t = line.split('#')[0].trim().split(/\s+/);
+    const fail = (problem) => {
+      const end = i === last ? ': the file may be cut short' : '';
+      return new Error(`${name}: line ${numbers[i]}: ${problem}${end}`);
+    };
+    if (t[0] in need) {
+      const values = t.slice(1, 1 + need[t[0]]);
+      if (values.length < need[t[0]] || !values.every((x) => Number.isFinite(Number(x)))) {
+        throw fail(`a ${what[t[0]]} '${t.join(' ')}' ${short[t[0]]}`);
+      }
+      counts[t[0]]++;
+    } else if (t[0] === 'f') {
+      const corners = t.slice(1);
+      if (corners.length < 3) throw fail(`a face of ${corners.length} corner${corners.length === 1 ? '' : 's'} ('${t.join(' ')}')`);
+      for (const c of corners) {
+        c.split('/').forEach((x, k) => {
+          const kind = ['v', 'vt', 'vn'][k];
+          if (x === '' && k > 0) return;  // 'v//vn': no texture coordinate
+          const n = Number(x);
+          if (!kind || !Number.isInteger(n) || n === 0) throw fail(`a face's corner '${c}' is not of the form v, v/vt, v//vn or v/vt/vn`);
+          const index = n > 0 ? n : counts[kind] + n + 1;
+          if (index < 1 || index > counts[kind]) {
+            throw fail(`a face refers to ${what[kind]} ${n}, but the file has ${counts[kind]} before it`);
+          }
+        });
+      }
+    }
+  });
+}
+
+/**
+ * Checks a .glb's header and chunks against its length: the 12-byte header ('glTF', version,
+ * length), then chunks of an 8-byte header and their data, within the length the header gives.
+ */
+export function checkGlb(buffer, name) {
+  const data = new DataView(buffer);
+  if (buffer.byteLength < 4 || bytesText(buffer, 0, 4) !== 'glTF') throw new Error(`${name}: not a binary glTF (it does not begin with 'glTF')`);
+  if (buffer.byteLength < 12) throw new Error(`${name}: the file ends in its 12-byte header: it is cut short`);
+  const length = data.getUint32(8, true);
+  if (buffer.byteLength < length) {
+    throw new Error(`${name}: the file ends at byte ${buffer.byteLength} of the ${length} its header gives: it is cut short`);
+  }
+  for (let at = 12, k = 0; at < length; k++) {
+    if (at + 8 > length) throw new Error(`${name}: chunk ${k}'s header runs past the file's length (${length} bytes)`);
+    const size = data.getUint32(at, true);
+    if (at + 8 + size > length) {
+      throw new Error(`${name}: chunk ${k} ('${bytesText(buffer, at + 4, at + 8)}', ${size} bytes) runs past the file's length (${length} bytes)`);
+    }
+    at += 8 + size;
+  }
+}

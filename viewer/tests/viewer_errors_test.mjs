@@ -1,0 +1,92 @@
+// Headless check (Debian's Chromium, puppeteer-core) of the viewer's error paths that no good file
+// reaches: a PLY cut short is refused in the status line, naming the file and that it is cut
+// short, through view.py and through the picker, and no pane of its part is shown (it opened as
+// a partial mesh); a pane whose first draw throws (a failure injected into three.js's
+// Object3D.onBeforeRender) is named with the error in the status line, the page ready and not left
+// on "making its meshes", and the next file opens; an attribute of doubles (injected into
+// OBJLoader's result: the loaders convert every file's) is named before the draw, not reported
+// with three.js's message.
+// Usage: node viewer/tests/viewer_errors_test.mjs --mesh ico2.off [--chromium PATH]
+import { writeFileSync } from 'node:fs';
+import { check, finish, parseArgs, readOff, startViewer, workFolder } from './test_support.mjs';
+
+const args = parseArgs('viewer_errors_test.mjs --mesh MESH.off [--chromium PATH]', ['mesh']);
+const work = workFolder('shellcontract-viewer-errors-');
+const file = work.file;
+
+const { vertices, faces } = readOff(args.mesh);
+const ply = 'ply\nformat ascii 1.0\n' + `element vertex ${vertices.length}\nproperty float x\nproperty float y\nproperty float z\n` +
+  `element face ${faces.length}\nproperty list uchar int vertex_indices\nend_header\n` +
+  vertices.map((v) => v.join(' ')).join('\n') + '\n' + faces.map((f) => `3 ${f.join(' ')}`).join('\n') + '\n';
+writeFileSync(file('whole.ply'), ply);
+// Cut within the faces: the part read has every vertex and most faces (it opened as a mesh with a hole).
+writeFileSync(file('cut.ply'), ply.slice(0, Math.floor(ply.length * 0.8)));
+writeFileSync(file('tri.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');
+writeFileSync(file('doubles.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');  // another name: the picker fires no change for the same file
+
+const { page, consoleErrors, open, pick, close } = await startViewer(args.chromium);
+const status = () => page.$eval('#status', (e) => ({ text: e.textContent, error: e.classList.contains('error') }));
+const viewer = () => page.evaluate(() => ({ ready: window.viewer.ready, error: window.viewer.error, loading: window.viewer.loading,
+                                            panes: window.viewer.panes.map((p) => p.name) }));
+try {
+  // A PLY cut short: refused, named, no pane.
+  let s = await open(file('cut.ply'));
+  let line = await status();
+  check(line.error && /^cut\.ply: the file ends after \d+ of the \d+ 'face' elements its header gives: it is cut short$/.test(line.text),
+        `through view.py, a PLY cut short is refused in the status line, named ("${line.text}")`);
+  check(s.panes.length === 0, `through view.py, no pane of its part is shown (${JSON.stringify(s.panes)})`);
+  s = await open(file('whole.ply'));
+  check(!s.error && s.panes.length === 1, `the whole PLY opens (${s.error ?? s.panes[0]?.name})`);
+  s = await pick(file('cut.ply'));
+  line = await status();
+  check(line.error && /^cut\.ply: the file ends after .*: it is cut short$/.test(line.text),
+        `through the picker, the PLY cut short is refused in the status line, named ("${line.text}")`);
+
+  // A first draw that throws: injected into three.js (the page's own module, through its import map).
+  await page.evaluate(async () => {
+    const THREE = await import('three');
+    const before = THREE.Object3D.prototype.onBeforeRender;
+    THREE.Object3D.prototype.onBeforeRender = function (...a) {
+      if (window.failDraws && this.isMesh) throw new Error('injected draw failure');
+      return before.apply(this, a);
+    };
+    window.failDraws = true;
+  });
+  // A page left unready (the error not caught) fails the wait: named here, not as puppeteer's timeout.
+  s = await pick(file('whole.ply')).catch((e) => ({ error: `never ready: ${e.message}` }));
+  line = await status();
+  const v = await viewer();
+  check(line.error && line.text === 'whole.ply: injected draw failure' && v.error === line.text,
+        `a pane whose first draw throws is named with the error in the status line ("${line.text}")`);
+  check(v.ready && v.loading === null && !/making its meshes/.test(line.text), `the page is ready, not left loading (${JSON.stringify(v)})`);
+  await page.evaluate(() => { window.failDraws = false; });
+  s = await pick(file('tri.obj'));
+  line = await status();
+  check(!s.error && !line.error && /^tri\.obj: 3 vertices/.test(line.text), `after it, the next file opens ("${line.text}")`);
+
+  // An attribute of doubles: injected into OBJLoader's result (the page's module); named before the draw.
+  await page.evaluate(async () => {
+    const THREE = await import('three');
+    const { OBJLoader } = await import('three/addons/loaders/OBJLoader.js');
+    const parse = OBJLoader.prototype.parse;
+    OBJLoader.prototype.parse = function (...a) {
+      const object = parse.apply(this, a);
+      object.traverse((o) => {
+        if (o.isMesh) o.geometry.setAttribute('uv', new THREE.BufferAttribute(new Float64Array(2 * o.geometry.getAttribute('position').count), 2));
+      });
+      return object;
+    };
+  });
+  s = await pick(file('doubles.obj'));
+  line = await status();
+  check(line.error && line.text === "doubles.obj: its 'uv' values are doubles, which WebGL cannot draw",
+        `an attribute of doubles is named in the status line ("${line.text}")`);
+
+  const expected = /cut\.ply|injected draw failure|doubles/;
+  const others = consoleErrors.filter((m) => !expected.test(m));
+  check(others.length === 0, `no other console errors${others.length ? ': ' + others.slice(0, 3).join(' | ') : ''}`);
+} finally {
+  await close();
+  work.remove();
+}
+finish('all viewer error checks passed');

@@ -1,0 +1,184 @@
+// The viewer refuses a file cut short or malformed, naming the file and the problem, instead of
+// showing the part three.js's loader read (review: a PLY cut short opened as a partial mesh, with
+// no error; an OBJ's face of a vertex it lacks drew with NaN positions; a binary STL, a binary PLY
+// or a .glb cut short failed with a bare RangeError). Each format is written whole here (a whole
+// file opens) and cut at every tenth of its length, and at one byte short; a file that holds its
+// counts (PLY, binary STL, .glb) must then be refused as cut short, an ASCII STL too (it ends
+// before 'endsolid'). An OBJ holds no counts: one cut at the end of a line is a smaller OBJ, so
+// its check is of the lines, and an OBJ cut within a vertex or face line is refused. WebGL takes
+// no doubles: a loader that left a Float64Array attribute (none of the files does: injected here
+// into OBJLoader) is named by makePane before the first draw would throw with the array's values.
+// Node only, no browser.
+// Usage: node viewer/tests/viewer_file_checks_test.mjs
+import * as THREE from 'three';
+import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
+import { loadMeshFile } from '../src/mesh_files.js';
+import { makePane } from '../src/panes.js';
+
+const failures = [];
+const check = (ok, what) => {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
+  if (!ok) failures.push(what);
+};
+const text = (s) => new TextEncoder().encode(s);
+const ab = (u8) => u8.buffer.slice(u8.byteOffset, u8.byteOffset + u8.byteLength);
+
+// An octahedron: every format below holds it.
+const V = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]];
+const F = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
+
+const plyHead = (format, index = 'int') => `ply\nformat ${format} 1.0\ncomment an octahedron\nelement vertex ${V.length}\n` +
+  'property double x\nproperty double y\nproperty double z\nproperty float mean_curvature\n' +
+  `element face ${F.length}\nproperty list uchar ${index} vertex_indices\nend_header\n`;
+function binaryPly(little) {
+  const head = text(plyHead(little ? 'binary_little_endian' : 'binary_big_endian'));
+  const body = new DataView(new ArrayBuffer(V.length * 28 + F.length * 13));
+  V.forEach((p, i) => { p.forEach((c, k) => body.setFloat64(28 * i + 8 * k, c, little)); body.setFloat32(28 * i + 24, 1, little); });
+  F.forEach((t, j) => {
+    const at = 28 * V.length + 13 * j;
+    body.setUint8(at, 3);
+    t.forEach((x, k) => body.setInt32(at + 1 + 4 * k, x, little));
+  });
+  const out = new Uint8Array(head.length + body.byteLength);
+  out.set(head);
+  out.set(new Uint8Array(body.buffer), head.length);
+  return out;
+}
+/** A binary STL; `header`: the text its 80-byte header begins with (STLLoader's test of ASCII: 'solid' first). */
+function binaryStl(header = '') {
+  const d = new DataView(new ArrayBuffer(84 + 50 * F.length));
+  new Uint8Array(d.buffer).set(text(header));
+  d.setUint32(80, F.length, true);
+  F.forEach((t, j) => t.forEach((i, c) => V[i].forEach((x, k) => d.setFloat32(84 + 50 * j + 12 + 12 * c + 4 * k, x, true))));
+  return new Uint8Array(d.buffer);
+}
+/** A .glb of the octahedron (POSITION and indices), as small as glTF allows. */
+function glb() {
+  const bin = new Uint8Array(V.length * 12 + F.length * 6 + 4);
+  const d = new DataView(bin.buffer);
+  V.forEach((p, i) => p.forEach((c, k) => d.setFloat32(12 * i + 4 * k, c, true)));
+  F.flat().forEach((x, k) => d.setUint16(12 * V.length + 2 * k, x, true));
+  const json = {
+    asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }],
+    buffers: [{ byteLength: bin.length }],
+    bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 12 * V.length }, { buffer: 0, byteOffset: 12 * V.length, byteLength: 6 * F.length }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: V.length, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
+                { bufferView: 1, componentType: 5123, count: 3 * F.length, type: 'SCALAR' }],
+  };
+  let js = JSON.stringify(json);
+  js += ' '.repeat((4 - (js.length % 4)) % 4);
+  const jsonBytes = text(js);
+  const out = new Uint8Array(12 + 8 + jsonBytes.length + 8 + bin.length);
+  const o = new DataView(out.buffer);
+  out.set(text('glTF'), 0);
+  o.setUint32(4, 2, true);
+  o.setUint32(8, out.length, true);
+  o.setUint32(12, jsonBytes.length, true);
+  out.set(text('JSON'), 16);
+  out.set(jsonBytes, 20);
+  o.setUint32(20 + jsonBytes.length, bin.length, true);
+  out.set(text('BIN\0'), 24 + jsonBytes.length);
+  out.set(bin, 28 + jsonBytes.length);
+  return out;
+}
+
+const files = {
+  'octa.off': text(`OFF\n${V.length} ${F.length} 0\n${V.map((p) => p.join(' ')).join('\n')}\n${F.map((t) => `3 ${t.join(' ')}`).join('\n')}\n`),
+  'octa.ply': text(plyHead('ascii') + V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n'),
+  'octa_le.ply': binaryPly(true),
+  'octa_be.ply': binaryPly(false),
+  'octa.stl': text('solid octa\n' + F.map((t) => 'facet normal 0 0 0\n outer loop\n' + t.map((i) => `  vertex ${V[i].join(' ')}\n`).join('') +
+                                     ' endloop\nendfacet\n').join('') + 'endsolid octa\n'),
+  'octa_binary.stl': binaryStl(),
+  // A binary STL whose header begins with 'solid', as some writers' do: cut short, it is no
+  // longer the size of its count, so STLLoader's test takes it for ASCII.
+  'octa_binary_solid.stl': binaryStl('solid octa, binary'),
+  'octa_crlf.ply': text((plyHead('ascii') + V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n').replace(/\n/g, '\r\n')),
+  'octa.glb': glb(),
+};
+/** Opens the bytes as the viewer does (makePane: a .glb or a mesh file): null, or the error's message. */
+async function refusal(bytes, name) {
+  try {
+    await makePane(ab(bytes), name);
+    return null;
+  } catch (e) {
+    return String(e.message ?? e);
+  }
+}
+
+for (const [name, whole] of Object.entries(files)) {
+  const opened = await refusal(whole, name);
+  check(opened === null, `${name}: the whole file opens (${opened ?? 'opened'})`);
+  // Cuts: every tenth of the length, and one byte short (OFF: its own parser, the reference).
+  const cuts = [...new Set([...Array.from({ length: 9 }, (_, k) => Math.floor(((k + 1) * whole.length) / 10)), whole.length - 1])];
+  const silent = [], unnamed = [];
+  for (const n of cuts) {
+    // A text file cut after its last line's end (its final newline) is whole: not a cut.
+    if (n === whole.length - 1 && whole[n] === 10 && !/_le|_be|_binary|\.glb$/.test(name)) continue;
+    const cutName = name.replace('.', '_cut.');
+    const m = await refusal(whole.subarray(0, n), cutName);
+    if (m === null) silent.push(n);
+    else if (!m.startsWith(`${cutName}: `) || !(/cut short|ends before/.test(m))) unnamed.push(`${n}: ${m}`);
+  }
+  check(silent.length === 0, `${name}: cut at ${cuts.join(', ')} of ${whole.length} bytes, never opened (opened: ${silent.join(', ') || 'none'})`);
+  check(unnamed.length === 0, `${name}: each cut's error names the file and that it ends early (${unnamed.slice(0, 2).join(' | ') || 'all do'})`);
+}
+
+// Cut within an OBJ's vertex or face line: refused, the line named; at a line's end it is a smaller OBJ.
+{
+  const obj = V.map((p) => `v ${p.join(' ')}`).join('\n') + '\n' + F.map((t) => `f ${t.map((i) => i + 1).join(' ')}`).join('\n') + '\n';
+  check(await refusal(text(obj), 'octa.obj') === null, 'octa.obj: the whole file opens');
+  for (const [cut, what] of [[obj.indexOf('v 0 0 1') + 5, 'a vertex line'], [obj.lastIndexOf('f ') + 5, 'a face line']]) {
+    const m = await refusal(text(obj.slice(0, cut)), 'octa_cut.obj');
+    check(m !== null && /^octa_cut\.obj: line \d+: .*the file may be cut short$/.test(m), `an OBJ cut within ${what} is refused, naming the line ("${m}")`);
+  }
+}
+
+// Malformed, not cut: each refused with the problem, naming the file.
+const malformed = [
+  ['faces.ply', text(plyHead('ascii') + V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t, j) => `3 ${j === 5 ? '0 1 6' : t.join(' ')}`).join('\n') + '\n'),
+   /^faces\.ply: face 5 refers to vertex 6, but the file has 6$/],
+  ['words.ply', text(plyHead('ascii') + V.map((p, i) => `${i === 2 ? 'x' : p[0]} ${p[1]} ${p[2]} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n'),
+   /^words\.ply: line 14: vertex 2: 'x' is not a number$/],
+  ['ahead.obj', text('v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n'), /^ahead\.obj: line 3: a face refers to vertex 3, but the file has 2 before it$/],
+  ['two.obj', text('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n'), /^two\.obj: line 4: a face of 2 corners/],
+  ['nan.obj', text('v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n'), /^nan\.obj: line 2: a vertex 'v 1 nan 0' is not three numbers$/],
+  ['two.stl', text('solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid t\n'),
+   /^two\.stl: line 7: facet 0 has 2 vertices, not 3$/],
+  ['notglb.glb', text('{"asset": {"version": "2.0"}}'), /^notglb\.glb: not a binary glTF/],
+];
+for (const [name, bytes, expected] of malformed) {
+  const m = await refusal(bytes, name);
+  check(m !== null && expected.test(m), `${name} is refused with its problem ("${m}")`);
+}
+
+// The guard against doubles (panes.js makePane): no file gives a Float64Array attribute (the
+// loaders' doubles become floats), so one is injected into OBJLoader's result; the pane is refused
+// with the attribute named, before the first draw would throw.
+{
+  const parse = OBJLoader.prototype.parse;
+  OBJLoader.prototype.parse = function (...a) {
+    const object = parse.apply(this, a);
+    object.traverse((o) => {
+      if (o.isMesh) o.geometry.setAttribute('uv', new THREE.BufferAttribute(new Float64Array(2 * o.geometry.getAttribute('position').count), 2));
+    });
+    return object;
+  };
+  try {
+    const m = await refusal(text('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'), 'doubles.obj');
+    check(m === "doubles.obj: its 'uv' values are doubles, which WebGL cannot draw", `an attribute of doubles is refused, named ("${m}")`);
+  } finally {
+    OBJLoader.prototype.parse = parse;
+  }
+  const plain = await refusal(text('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n'), 'plain.obj');
+  check(plain === null, `without the injection the same OBJ opens (${plain ?? 'opened'})`);
+}
+// A PLY's double positions and fields still open (its doubles are the loader's to convert).
+check(loadMeshFile(ab(files['octa_le.ply']), 'octa_le.ply').fields.length === 1, 'a binary PLY of doubles keeps its field');
+
+if (failures.length) {
+  console.error(`${failures.length} check(s) failed`);
+  process.exit(1);
+}
+console.log('viewer_file_checks: ok');
