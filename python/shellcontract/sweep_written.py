@@ -71,6 +71,12 @@ def _replaced_file(path, name, inputs):
                               path, name, _kind(st.st_mode)))
     same = inputs.get((st.st_dev, st.st_ino))
     if same is not None:
+        if os.path.realpath(path) != os.path.realpath(same[1]):
+            # Another name of the input's file (a hard link): that name is what is in the way.
+            raise OutputError("{}: is another name (a hard link) of the sweep's input {} {}; the "
+                              "sweep rewrites its {} there, so it is never written: remove or "
+                              "rename {} (the input keeps its own name), or choose another -o "
+                              "folder".format(path, same[0], same[1], name, path))
         raise OutputError("{}: is the sweep's input {} {} (the same file); the sweep rewrites its "
                           "{} there, so it is never written: move that input out of the results "
                           "folder, or choose another -o folder".format(path, same[0], same[1],

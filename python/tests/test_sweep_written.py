@@ -99,13 +99,15 @@ def test_a_table_that_is_an_input_is_refused(cli, mesh_dir, tmp_path, how):
                                           sweep_file=str(path))))
         table, kept, expected = path, path, "is the sweep's input the sweep file"
     elif how == "a hard link of the sweep file":
-        table, kept, expected = out / "results.csv", path, "is the sweep's input the sweep file"
+        # The message names the link as what is in the way, not the input (which is elsewhere).
+        table, kept = out / "results.csv", path
+        expected = "is another name (a hard link) of the sweep's input the sweep file"
         table.unlink()
         os.link(path, table)
     else:
         kept = tmp_path / "meshes" / "ico1.off"
         text = kept.read_text()
-        table, expected = out / "results.json", "is the sweep's input mesh"
+        table, expected = out / "results.json", "is another name (a hard link) of the sweep's input mesh"
         table.unlink()
         os.link(kept, table)
     assert_refused_before_any_job(cli, path, out, job, str(table), expected)

@@ -156,6 +156,12 @@ export function checkAsciiStl(text, name) {
   const token = /\S+/g;
   let m, facets = 0, inFacet = false, corners = 0, closed = false;
   const where = (at) => `${name}: line ${lineAt(text, at)}`;
+  // The rest of a 'solid' or 'endsolid' line is the solid's name, free text ('solid vertex'):
+  // not keywords.
+  const skipLine = () => {
+    const end = text.slice(token.lastIndex).search(/\r|\n/);
+    token.lastIndex = end < 0 ? text.length : token.lastIndex + end;
+  };
   while ((m = token.exec(text))) {
     const word = m[0];
     if (word === 'facet') {
@@ -179,6 +185,10 @@ export function checkAsciiStl(text, name) {
     } else if (word === 'endsolid') {
       if (inFacet) throw new Error(`${where(m.index)}: facet ${facets} has no 'endfacet'`);
       closed = true;
+      skipLine();
+    } else if (word === 'solid' && !inFacet) {
+      closed = false;  // a file of several solids: each closed by its own 'endsolid'
+      skipLine();
     }
   }
   if (inFacet) throw new Error(`${name}: the file ends after ${facets} facets, within the next: it is cut short`);

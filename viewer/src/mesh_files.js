@@ -171,8 +171,11 @@ export function recentredAsciiStl(text) {
  */
 function isAsciiStl(buffer) {
   if (buffer.byteLength >= 84 && 84 + 50 * new DataView(buffer).getUint32(80, true) === buffer.byteLength) return false;
-  const head = new TextDecoder().decode(new Uint8Array(buffer, 0, Math.min(buffer.byteLength, 1024)));
-  return /^\s*solid/.test(head) && (buffer.byteLength < 84 || /\b(facet|endsolid)\b/.test(head));
+  // A binary STL whose header begins with 'solid' (some writers' do) is told by a zero byte: its
+  // triangle count's last byte at offset 83 is one below 2^24 triangles, and text has none. (A
+  // test for 'facet' near the start took an ASCII STL whose solid has a long name for binary.)
+  const head = new Uint8Array(buffer, 0, Math.min(buffer.byteLength, 1024));
+  return /^\s*solid/.test(new TextDecoder().decode(head)) && (buffer.byteLength < 84 || !head.includes(0));
 }
 
 /** The count of distinct positions of a de-indexed geometry (an STL's triangle corners). */
@@ -201,7 +204,10 @@ export function loadMeshFile(buffer, name) {
   } else if (ext === 'obj') {
     const original = new TextDecoder().decode(buffer);
     checkObj(original, name);
-    const { text, centre } = recentredObj(original);
+    // A comment after an element ('f 1 2 3 # note'), which checkObj allows as the CLI does:
+    // OBJLoader would read its words as corners (NaN positions).
+    const uncommented = original.replace(/^(\s*(?:v|vt|vn|f|l|p)\s[^#\r\n]*)#.*$/gm, '$1');
+    const { text, centre } = recentredObj(uncommented);
     object = new OBJLoader().parse(withUnnamedFirstMaterial(text));
     materialLibraries = object.materialLibraries;
     object.position.fromArray(centre);
@@ -254,6 +260,9 @@ export function loadMeshFile(buffer, name) {
       bytes = new TextEncoder().encode(r.text).buffer;
     } else {
       checkBinaryStl(buffer, name);
+      // Its triangles only: STLLoader's own test takes a binary STL whose header begins with
+      // 'solid' for ASCII unless its length is exactly that of its count.
+      bytes = buffer.slice(0, 84 + 50 * new DataView(buffer).getUint32(80, true));
     }
     const g = new STLLoader().parse(bytes);
     const { position, centre } = recentred(Float64Array.from(g.getAttribute('position').array));

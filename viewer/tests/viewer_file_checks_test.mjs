@@ -44,6 +44,9 @@ function binaryPly(little) {
   out.set(new Uint8Array(body.buffer), head.length);
   return out;
 }
+/** An ASCII STL of the octahedron, its solid called `solid`. */
+const asciiStl = (solid) => text(`solid ${solid}\n` + F.map((t) => 'facet normal 0 0 0\n outer loop\n' +
+  t.map((i) => `  vertex ${V[i].join(' ')}\n`).join('') + ' endloop\nendfacet\n').join('') + `endsolid ${solid}\n`);
 /** A binary STL; `header`: the text its 80-byte header begins with (STLLoader's test of ASCII: 'solid' first). */
 function binaryStl(header = '') {
   const d = new DataView(new ArrayBuffer(84 + 50 * F.length));
@@ -88,8 +91,10 @@ const files = {
   'octa.ply': text(plyHead('ascii') + V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n'),
   'octa_le.ply': binaryPly(true),
   'octa_be.ply': binaryPly(false),
-  'octa.stl': text('solid octa\n' + F.map((t) => 'facet normal 0 0 0\n outer loop\n' + t.map((i) => `  vertex ${V[i].join(' ')}\n`).join('') +
-                                     ' endloop\nendfacet\n').join('') + 'endsolid octa\n'),
+  'octa.stl': asciiStl('octa'),
+  // A solid's name is free text: longer than the first KiB, or of the format's keywords.
+  'octa_long_name.stl': asciiStl('n'.repeat(1100)),
+  'octa_keywords.stl': asciiStl('vertex facet endfacet'),
   'octa_binary.stl': binaryStl(),
   // A binary STL whose header begins with 'solid', as some writers' do: cut short, it is no
   // longer the size of its count, so STLLoader's test takes it for ASCII.
@@ -116,6 +121,8 @@ for (const [name, whole] of Object.entries(files)) {
   for (const n of cuts) {
     // A text file cut after its last line's end (its final newline) is whole: not a cut.
     if (n === whole.length - 1 && whole[n] === 10 && !/_le|_be|_binary|\.glb$/.test(name)) continue;
+    // Nor an ASCII STL cut after its 'endsolid': what follows is the solid's name, free text.
+    if (/\.stl$/.test(name) && !/_binary/.test(name) && /\bendsolid\b/.test(new TextDecoder().decode(whole.subarray(0, n)))) continue;
     const cutName = name.replace('.', '_cut.');
     const m = await refusal(whole.subarray(0, n), cutName);
     if (m === null) silent.push(n);
@@ -132,6 +139,28 @@ for (const [name, whole] of Object.entries(files)) {
   for (const [cut, what] of [[obj.indexOf('v 0 0 1') + 5, 'a vertex line'], [obj.lastIndexOf('f ') + 5, 'a face line']]) {
     const m = await refusal(text(obj.slice(0, cut)), 'octa_cut.obj');
     check(m !== null && /^octa_cut\.obj: line \d+: .*the file may be cut short$/.test(m), `an OBJ cut within ${what} is refused, naming the line ("${m}")`);
+  }
+}
+
+// Whole files that three.js's loaders misread, opened with the octahedron's eight faces: a
+// binary STL with a header beginning 'solid' and bytes after its triangles (STLLoader took it for
+// ASCII: 'no faces'), and an OBJ with comments after its elements (OBJLoader read '#' and 'note'
+// as corners: NaN positions).
+{
+  const padded = new Uint8Array(binaryStl('solid octa, binary').length + 2);
+  padded.set(binaryStl('solid octa, binary'));
+  const obj = V.map((p) => `v ${p.join(' ')} # a vertex`).join('\n') + '\n' +
+              F.map((t) => `f ${t.map((i) => i + 1).join(' ')} # note`).join('\n') + '\n';
+  for (const [name, bytes] of [['padded.stl', padded], ['commented.obj', text(obj)]]) {
+    let r = null, m = null;
+    try {
+      r = loadMeshFile(ab(bytes), name);
+    } catch (e) {
+      m = e.message;
+    }
+    const positions = r ? r.meshes.flatMap((mesh) => Array.from(mesh.geometry.getAttribute('position').array)) : [];
+    check(r !== null && positions.length === 9 * F.length && positions.every(Number.isFinite),
+          `${name} opens with ${F.length} faces of finite positions (${m ?? positions.length / 9 + ' faces'})`);
   }
 }
 
