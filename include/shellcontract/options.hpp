@@ -136,7 +136,18 @@ namespace shellcontract {
 struct OptionSpec {
   std::string name;        ///< CLI spelling without dashes, e.g. "k-b"; Python uses k_b
   char short_name = 0;     ///< one-letter alias, 0 for none
-  std::string value_name;  ///< what the value is, e.g. "P" or "N"; empty for a switch
+  /// What the value is, e.g. "P" or "N"; empty for a switch. Alternatives are separated by '|'
+  /// ("auto|none|FILE"). Three marks in it are conventions that code relies on, not only words
+  /// for --help:
+  /// - FILE: the value may name a file the run reads (--regions, --region-weights). Lists kept
+  ///   by hand must name every such option (docs/architecture.md, "A new option": the CLI's
+  ///   inputs, over which no output may be written, the inputs a checkpoint records, the sweep's
+  ///   paths); tests find the options by this word.
+  /// - KEYS: the value may be keyframes "FRAME:VALUE, ..." (with_keyframes: --pressure,
+  ///   --target-volume); Python takes a list of (frame, value) pairs for it
+  ///   (python/src/option_values.cpp finds the options by this word).
+  /// - a ',' (X,Y,Z): a point or a direction; Python takes a sequence for it.
+  std::string value_name;
   std::string help;        ///< one sentence or two, ending with the accepted range
   bool is_switch = false;  ///< a flag without a value ("on" when given)
   /// May be given several times on the command line: the values, joined by ';', are set at once.

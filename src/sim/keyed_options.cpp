@@ -5,21 +5,23 @@
 
 #include "shellcontract/error.hpp"
 #include "shellcontract/simulation_options.hpp"
+#include "sim/option_ranges.hpp"
 
 namespace shellcontract {
 
 OptionSpec with_keyframes(OptionSpec o, KeyedValue which) {
   const bool volume = which == KeyedValue::TargetVolume;
-  KeyRange range;
+  // The key values' ranges are option_ranges.hpp's, which check_sim_options holds too.
+  const option_ranges::Interval keys =
+      volume ? option_ranges::keyed_target_volume() : option_ranges::pressure();
+  KeyRange range{keys.lo, keys.hi, keys.lo_open, keys.hi_open, keys.text};
   if (volume) {
-    range = {0.0, MAX_KEYED_VOLUME_RATIO, true, false,
-             "a ratio V/V0 in (0, " + shortest_text(MAX_KEYED_VOLUME_RATIO) + "]"};
     o.help +=
         "; or keyframes FRAME:R, ... (\"0:1, 60:0.5, 120:0.85\": deflate, then re-inflate), "
         "smooth between keys and held after the last, R in (0, " +
         shortest_text(MAX_KEYED_VOLUME_RATIO) + "] (frame 0 is the rest volume, 1)";
   } else {
-    range = {-1e6, 1e6, false, false, "a pressure in [-1e+06, 1e+06]"};
+    range.text = "a pressure" + keys.text.substr(std::string("a number").size());  // "in [...]"
     o.help += "; or keyframes FRAME:P, ... (\"0:4, 100:0\"), smooth between keys, constant outside";
   }
   o.value_name += "|KEYS";

@@ -14,35 +14,22 @@
 #include "core/decimal_text.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
+#include "sim/option_ranges.hpp"
 
 namespace shellcontract::option_builders {
 
-inline constexpr double INF = std::numeric_limits<double>::infinity();
+using option_ranges::between;
+using option_ranges::INF;
+using option_ranges::IntegerRange;
+using option_ranges::Interval;
+using option_ranges::non_negative;
+using option_ranges::positive;
 
 /// The error names the option by its field (`k_b`), which each front end spells its own way
 /// (spell_options).
 [[noreturn]] inline void bad(const std::string& name, const std::string& value,
                              const std::string& range) {
   throw UsageError("`" + option_field(name) + "`: '" + value + "' is not " + range);
-}
-
-/// A number and its accepted interval; open ends are exclusive.
-struct Interval {
-  double lo = -INF, hi = INF;
-  bool lo_open = false, hi_open = false;
-  std::string text;  ///< how --help and the error say it, e.g. "a number in (0, 1]"
-  bool contains(double x) const {
-    return std::isfinite(x) && (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
-  }
-};
-
-inline Interval positive() { return {0.0, INF, true, false, "a finite number > 0"}; }
-inline Interval non_negative() { return {0.0, INF, false, false, "a finite number >= 0"}; }
-inline Interval between(double lo, double hi, bool lo_open, bool hi_open) {
-  ClassicOStringStream t;
-  t << "a number in " << (lo_open ? '(' : '[') << shortest_text(lo) << ", " << shortest_text(hi)
-    << (hi_open ? ')' : ']');
-  return {lo, hi, lo_open, hi_open, t.str()};
 }
 
 inline double parse_number(const std::string& name, const std::string& value,
@@ -52,11 +39,10 @@ inline double parse_number(const std::string& name, const std::string& value,
   return x;
 }
 
-inline int parse_integer(const std::string& name, const std::string& value, long lo, long hi) {
-  const std::string range =
-      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+inline int parse_integer(const std::string& name, const std::string& value, IntegerRange range) {
   long x = 0;
-  if (!parse_decimal_integer(value, x) || x < lo || x > hi) bad(name, value, range);
+  if (!parse_decimal_integer(value, x) || x < range.lo || x > range.hi)
+    bad(name, value, range.text());
   return static_cast<int>(x);
 }
 
@@ -123,20 +109,19 @@ OptionSpec number(std::string name, char short_name, std::string value_name, std
 
 template <class Field>
 OptionSpec integer(std::string name, char short_name, std::string value_name, std::string help,
-                   long lo, long hi, Field field) {
+                   IntegerRange range, Field field) {
   OptionSpec o;
   o.name = name;
   o.short_name = short_name;
   o.value_name = std::move(value_name);
-  o.help =
-      std::move(help) + "; an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
-  o.set = [name, lo, hi, field](RunOptions& r, const std::string& v) {
-    field(r) = parse_integer(name, v, lo, hi);
+  o.help = std::move(help) + "; " + range.text();
+  o.set = [name, range, field](RunOptions& r, const std::string& v) {
+    field(r) = parse_integer(name, v, range);
   };
   o.get = [field](const RunOptions& r) {
     return std::to_string(field(const_cast<RunOptions&>(r)));
   };
-  o.bad_examples = {std::to_string(lo - 1), std::to_string(hi + 1), "1.5", "x", ""};
+  o.bad_examples = {std::to_string(range.lo - 1), std::to_string(range.hi + 1), "1.5", "x", ""};
   return o;
 }
 
@@ -153,6 +138,30 @@ OptionSpec choice(std::string name, std::string help, Choices<T> choices, Field 
     return choice_name(field(const_cast<RunOptions&>(r)), choices);
   };
   o.bad_examples = {"", "nonsense"};
+  return o;
+}
+
+/// A choice and what each of its names means, in one list that the parser and --help are both
+/// made from: "isometric (the paper's, flat rest) | dihedral (rest-aware) | none".
+template <class T>
+struct DescribedChoice {
+  std::string name;
+  T value;
+  std::string description;  ///< "" for a name that needs none
+};
+
+template <class T, class Field>
+OptionSpec described_choice(std::string name, std::string help,
+                            const std::vector<DescribedChoice<T>>& choices, Field field) {
+  Choices<T> plain;
+  std::string list;
+  for (const DescribedChoice<T>& c : choices) {
+    plain.emplace_back(c.name, c.value);
+    list += (list.empty() ? "" : " | ") + c.name;
+    if (!c.description.empty()) list += " (" + c.description + ")";
+  }
+  OptionSpec o = choice(std::move(name), std::string(), std::move(plain), field);
+  o.help = std::move(help) + ": " + list;
   return o;
 }
 

@@ -9,6 +9,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
 #include "shellcontract/regions.hpp"
+#include "sim/bending_models.hpp"
 #include "sim/keyed_options.hpp"
 #include "sim/option_builders.hpp"
 
@@ -23,6 +24,7 @@ std::string shortest_text(double x) {
 namespace {
 
 using namespace option_builders;
+namespace ranges = option_ranges;
 
 /// A point or direction "X,Y,Z": three decimal numbers (parse_decimal, whatever locale a host
 /// program set), blanks allowed around each, as the stream that read them took them.
@@ -40,11 +42,6 @@ bool parse_xyz(const std::string& text, Vec3& p) {
   }
   return true;
 }
-
-/// The bounds beyond which a run would take days rather than fail: they refuse a typo
-/// (--frames 1000000000), not a long run.
-constexpr int MAX_FRAMES = 1000000;
-constexpr int MAX_ITERATIONS = 100000;
 
 Choices<MaterialKind> material_choices() {
   Choices<MaterialKind> c;
@@ -147,8 +144,7 @@ OptionSpec region_at_option() {
 /// the mesh does not allow; the range here is the mesh-independent one).
 OptionSpec delta_option() {
   using R = RunOptions;
-  Interval range = between(0.0, 0.1, true, false);
-  range.text += " or auto";
+  const Interval range = ranges::delta();
   OptionSpec o = number(
       "delta", 0, "DELTA|auto",
       "contact distance (normalized units); closer primitives are pushed apart to 2 delta; auto: "
@@ -207,32 +203,32 @@ std::vector<OptionSpec> build_table() {
   using R = RunOptions;
   std::vector<OptionSpec> t;
   // ---- how much it contracts
-  t.push_back(with_keyframes(number("pressure", 'p', "P",
-                     "net outside over-pressure at the rest volume (normalized units; > 0 "
-                     "compresses, < 0 inflates)",
-                     between(-1e6, 1e6, false, false),
-                     [](R& r) -> double& { return r.sim.pressure; }), KeyedValue::Pressure));
+  t.push_back(
+      with_keyframes(number("pressure", 'p', "P",
+                            "net outside over-pressure at the rest volume (normalized units; > 0 "
+                            "compresses, < 0 inflates)",
+                            ranges::pressure(), [](R& r) -> double& { return r.sim.pressure; }),
+                     KeyedValue::Pressure));
   t.push_back(number("air-balance", 0, "R",
                      "air inside the shell (isothermal): the V/V0 at which its pressure balances "
                      "the outside pressure, so the shell slows down and stops near R; 0 = no air "
                      "(constant pressure, the paper's)",
-                     between(0.0, 1.0, false, true),
-                     [](R& r) -> double& { return r.sim.air_balance; }));
-  t.push_back(with_keyframes(number("target-volume", 0, "R",
-                     "drive V/V0 to R and hold it there (a global volume constraint); 0 = off, the "
-                     "pressure alone decides. Reached when the end's V/V0 is within min(0.005, 5 % "
-                     "of R) of R, else exit 5",
-                     between(0.0, 1.0, false, true),
-                     [](R& r) -> double& { return r.sim.target_volume; }), KeyedValue::TargetVolume));
+                     ranges::air_balance(), [](R& r) -> double& { return r.sim.air_balance; }));
+  t.push_back(with_keyframes(
+      number("target-volume", 0, "R",
+             "drive V/V0 to R and hold it there (a global volume constraint); 0 = off, the "
+             "pressure alone decides. Reached when the end's V/V0 is within min(0.005, 5 % "
+             "of R) of R, else exit 5",
+             ranges::target_volume(), [](R& r) -> double& { return r.sim.target_volume; }),
+      KeyedValue::TargetVolume));
   t.push_back(integer("target-ramp", 0, "N",
                       "frames over which the target volume (and the regions' shrink, --inward "
                       "volume) is approached, at most half of --frames",
-                      1,
-                      MAX_FRAMES, [](R& r) -> int& { return r.sim.target_ramp_frames; }));
+                      ranges::TARGET_RAMP, [](R& r) -> int& { return r.sim.target_ramp_frames; }));
   t.push_back(number(
       "stop-volume-ratio", 0, "E", "stop at the frame where V/V0 reaches E (0 = run all frames)",
-      between(0.0, 1.0, false, true), [](R& r) -> double& { return r.sim.stop_volume_ratio; }));
-  t.push_back(integer("frames", 'n', "N", "number of time steps", 0, MAX_FRAMES,
+      ranges::stop_volume_ratio(), [](R& r) -> double& { return r.sim.stop_volume_ratio; }));
+  t.push_back(integer("frames", 'n', "N", "number of time steps", ranges::FRAMES,
                       [](R& r) -> int& { return r.sim.frames; }));
   t.push_back(choice("pressure-model",
                      "energy: f = -P dV/dx (no net force); paper: P * area * unit vertex normal",
@@ -240,10 +236,10 @@ std::vector<OptionSpec> build_table() {
                                             {"paper", PressureModel::Paper}},
                      [](R& r) -> PressureModel& { return r.sim.pressure_model; }));
   // ---- solver
-  t.push_back(number("dt", 0, "DT", "time step (normalized units)", between(MIN_DT, 1.0, false, false),
+  t.push_back(number("dt", 0, "DT", "time step (normalized units)", ranges::dt(),
                      [](R& r) -> double& { return r.sim.dt; }));
-  t.push_back(integer("iterations", 0, "N", "Gauss-Seidel sweeps per step (paper: 5)", 0,
-                      MAX_ITERATIONS, [](R& r) -> int& { return r.sim.solver.iterations; }));
+  t.push_back(integer("iterations", 0, "N", "Gauss-Seidel sweeps per step (paper: 5)",
+                      ranges::ITERATIONS, [](R& r) -> int& { return r.sim.solver.iterations; }));
   t.push_back(choice(
       "solver",
       "xpbd: compliant, physical stiffness (the shell material of --young and --thickness, the "
@@ -266,30 +262,29 @@ std::vector<OptionSpec> build_table() {
               "threads of the coloured order and of the collision handling (0 = the CPUs this "
               "process may use: its affinity, held to its cgroup's CPU quota); results do not "
               "depend on it",
-              0, 4096, [](R& r) -> int& { return r.sim.solver.threads; }));
-  t.push_back(
-      number("damping", 0, "D",
-             "fraction of the velocity removed per step (the paper has none); 0.2 under "
-             "--solver pbd unless given",
-             between(0.0, 1.0, false, true), [](R& r) -> double& { return r.sim.damping; }));
+              ranges::THREADS, [](R& r) -> int& { return r.sim.solver.threads; }));
+  t.push_back(number("damping", 0, "D",
+                     "fraction of the velocity removed per step (the paper has none); 0.2 under "
+                     "--solver pbd unless given",
+                     ranges::damping(), [](R& r) -> double& { return r.sim.damping; }));
   // ---- material
   t.push_back(choice("material", "membrane material", material_choices(),
                      [](R& r) -> MaterialKind& { return r.sim.material; }));
   t.push_back(number("mu", 0, "MU",
                      "Lame mu (energy per normalized area); in pbd mode only lambda/mu matters; "
                      "under xpbd, unless given, --young and --thickness set it",
-                     positive(), [](R& r) -> double& { return r.sim.material_params.mu; }));
+                     ranges::mu(), [](R& r) -> double& { return r.sim.material_params.mu; }));
   // Negative down to -mu, as a negative --poisson gives it (lambda = E h nu / (1 - nu^2)): the
   // membrane energy mu tr E^2 + lambda/2 tr^2 E is positive definite for mu > 0 and mu + lambda
   // > 0, which check_sim_options holds (the range of one option cannot name the other's value).
   t.push_back(number("lambda", 0, "LAMBDA",
                      "plane-stress Lame lambda (as --mu); negative for a negative Poisson ratio, "
                      "down to (not at) -mu",
-                     {-INF, INF, false, false, "a finite number (> -mu)"},
+                     ranges::lambda(),
                      [](R& r) -> double& { return r.sim.material_params.lambda; }));
-  t.push_back(number("c10", 0, "C10", "Mooney-Rivlin C10", positive(),
+  t.push_back(number("c10", 0, "C10", "Mooney-Rivlin C10", ranges::c10(),
                      [](R& r) -> double& { return r.sim.material_params.c10; }));
-  t.push_back(number("c01", 0, "C01", "Mooney-Rivlin C01", non_negative(),
+  t.push_back(number("c01", 0, "C01", "Mooney-Rivlin C01", ranges::c01(),
                      [](R& r) -> double& { return r.sim.material_params.c01; }));
   t.push_back(optional_number("young", "E",
                               "Young's modulus (with --thickness): sets mu and lambda, and with "
@@ -304,20 +299,16 @@ std::vector<OptionSpec> build_table() {
   t.push_back(optional_number("thickness", "H", "shell thickness (with --young; normalized units)",
                               positive(),
                               [](R& r) -> std::optional<double>& { return r.thickness; }));
-  t.push_back(choice("bending", "isometric (the paper's, flat rest) | dihedral (rest-aware) | none",
-                     Choices<BendingModel>{{"isometric", BendingModel::Isometric},
-                                           {"dihedral", BendingModel::Dihedral},
-                                           {"none", BendingModel::None}},
-                     [](R& r) -> BendingModel& { return r.sim.bending; }));
+  t.push_back(described_choice("bending", "the bending energy", bending_models(),
+                               [](R& r) -> BendingModel& { return r.sim.bending; }));
   t.push_back(number("k-b", 0, "KB",
                      "bending k_B: pbd correction multiplier (at most 1); xpbd energy scale "
                      "(unless given, from --young and --thickness)",
-                     non_negative(), [](R& r) -> double& { return r.sim.solver.k_bending; }));
+                     ranges::k_b(), [](R& r) -> double& { return r.sim.solver.k_bending; }));
   t.push_back(choice("mass", "area: lumped by rest area; unit: m = 1",
                      Choices<MassModel>{{"area", MassModel::AreaLumped}, {"unit", MassModel::Unit}},
                      [](R& r) -> MassModel& { return r.sim.mass; }));
-  t.push_back(number("density", 0, "RHO", "areal density rho_A",
-                     between(MIN_DENSITY, 1e12, false, false),
+  t.push_back(number("density", 0, "RHO", "areal density rho_A", ranges::density(),
                      [](R& r) -> double& { return r.sim.density; }));
   // ---- local contraction
   t.push_back(choice("aniso", "anisotropic energy on the regions", aniso_choices(),
@@ -327,7 +318,7 @@ std::vector<OptionSpec> build_table() {
   t.push_back(region_at_option());
   t.push_back(number("k-a", 0, "KAPPA",
                      "kappa_A: the inward term is k_A = kappa_A mu_A sqrt(face rest area)",
-                     non_negative(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
+                     ranges::k_a(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
   t.push_back(
       choice("inward",
              "how the regions are made to sink in: volume (each region sinks a dimple around "
@@ -363,12 +354,11 @@ std::vector<OptionSpec> build_table() {
                      "that sinks as a dimple to its mirror image, 0 not at all, 1 the whole "
                      "region; the image takes 2S of the cap volume off (0.5 all of it) only "
                      "where the dimple's rim is flat: a region of few faces mostly loses less",
-                     between(0.0, 1.0, false, false),
-                     [](R& r) -> double& { return r.sim.region_shrink; }));
-  t.push_back(number("mu-a", 0, "MUA", "anisotropic fibre stiffness mu_A", non_negative(),
+                     ranges::region_shrink(), [](R& r) -> double& { return r.sim.region_shrink; }));
+  t.push_back(number("mu-a", 0, "MUA", "anisotropic fibre stiffness mu_A", ranges::mu_a(),
                      [](R& r) -> double& { return r.sim.material_params.mu_aniso; }));
   t.push_back(number("fiber-target", 0, "GAMMA", "active-fibre target stretch gamma",
-                     between(0.0, 1.0, true, false),
+                     ranges::fiber_target(),
                      [](R& r) -> double& { return r.sim.material_params.fiber_target; }));
   t.push_back(fiber_option());
   t.push_back(
@@ -386,9 +376,9 @@ std::vector<OptionSpec> build_table() {
                     "through itself; off: faster",
                     [](R& r) -> bool& { return r.sim.collisions; }));
   t.push_back(delta_option());
-  t.push_back(integer("collision-rounds", 0, "N",
-                      "detection/response rounds per step before the fail-safe", 0, 1000,
-                      [](R& r) -> int& { return r.sim.collision.rounds; }));
+  t.push_back(
+      integer("collision-rounds", 0, "N", "detection/response rounds per step before the fail-safe",
+              ranges::COLLISION_ROUNDS, [](R& r) -> int& { return r.sim.collision.rounds; }));
   t.push_back(on_off_option(
       "warm-start",
       "on: push along the previous step's contacts before detection (resting contact); "

@@ -22,6 +22,7 @@
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/regions.hpp"
 #include "sim/contact_distance.hpp"
+#include "sim/option_ranges.hpp"
 #include "sim/region_weights.hpp"
 #include "sim/volume_warnings.hpp"
 
@@ -36,10 +37,28 @@ namespace {
 /// kappa_A x mu_A x sqrt(face area), and an unbounded kappa_A times mu_A overflowed to inf.
 constexpr double MAX_STIFFNESS = 1e100;
 
+/// A field's value in the option table's range (option_ranges.hpp), refused as the table
+/// refuses the same value given as text: the same range, the same message.
+void require(const char* field, double value, const option_ranges::Interval& range) {
+  if (!range.contains(value))
+    throw UsageError(std::string("`") + field + "`: '" + shortest_text(value) + "' is not " +
+                     range.text);
+}
+
+void require(const char* field, long value, const option_ranges::IntegerRange& range) {
+  if (value < range.lo || value > range.hi)
+    throw UsageError(std::string("`") + field + "`: '" + std::to_string(value) + "' is not " +
+                     range.text());
+}
+
 /// Every range and every rule between the simulation options, in one list (the option table
 /// refuses a bad value of one option as it is parsed; this also holds a caller that writes the
-/// fields).
+/// fields). The ranges are the table's own (option_ranges.hpp), checked first so that a value is
+/// refused as its text would be, but for two bounds that refuse a user's typo, not a value the
+/// run cannot take: the frames' upper bound (bench error's substeps multiply the frames of a run
+/// that the table bounded) and the pressure's (any finite one).
 void check_sim_options_impl(const SimOptions& o) {
+  namespace ranges = option_ranges;
   auto fail = [](const std::string& what) { throw UsageError(what); };
   const MaterialParams& m = o.material_params;
   for (const auto& [name, value] : {std::pair<const char*, double>{"mu", m.mu}, {"lambda", m.lambda},
@@ -48,6 +67,44 @@ void check_sim_options_impl(const SimOptions& o) {
     if (std::abs(value) > MAX_STIFFNESS)
       fail(std::string("`") + name + "` must be at most " + shortest_text(MAX_STIFFNESS) +
            (value < 0.0 ? " in size" : ""));
+  // In the option table's order.
+  require("pressure", o.pressure, ranges::any_finite());
+  require("air_balance", o.air_balance, ranges::air_balance());
+  if (o.target_volume_schedule.empty()) {
+    require("target_volume", o.target_volume, ranges::target_volume());
+  } else {
+    for (const double key :
+         {o.target_volume_schedule.min_value(), o.target_volume_schedule.max_value()})
+      require("target_volume", key, ranges::keyed_target_volume());
+  }
+  if (!o.pressure_schedule.empty())
+    for (const double key : {o.pressure_schedule.min_value(), o.pressure_schedule.max_value()})
+      require("pressure", key, ranges::any_finite());
+  require("target_ramp", o.target_ramp_frames, ranges::TARGET_RAMP);
+  require("stop_volume_ratio", o.stop_volume_ratio, ranges::stop_volume_ratio());
+  if (o.frames < ranges::FRAMES.lo)  // its lower bound alone (above)
+    fail("`frames`: '" + std::to_string(o.frames) +
+         "' is not an integer >= " + std::to_string(ranges::FRAMES.lo));
+  require("dt", o.dt, ranges::dt());
+  require("iterations", o.solver.iterations, ranges::ITERATIONS);
+  require("threads", o.solver.threads, ranges::THREADS);
+  require("damping", o.damping, ranges::damping());
+  require("mu", m.mu, ranges::mu());
+  require("lambda", m.lambda, ranges::lambda());
+  require("c10", m.c10, ranges::c10());
+  require("c01", m.c01, ranges::c01());
+  require("k_b", o.solver.k_bending, ranges::k_b());
+  require("density", o.density, ranges::density());
+  require("k_a", o.anisotropy.kappa_a, ranges::k_a());
+  require("region_shrink", o.region_shrink, ranges::region_shrink());
+  require("mu_a", m.mu_aniso, ranges::mu_a());
+  require("fiber_target", m.fiber_target, ranges::fiber_target());
+  require("delta", o.collision.delta, ranges::delta());
+  require("collision_rounds", o.collision.rounds, ranges::COLLISION_ROUNDS);
+  // Not an option of the table: a caller's own margin.
+  if (!(o.collision.region_margin >= 0.0) || !std::isfinite(o.collision.region_margin))
+    fail("collision.region_margin must be >= 0");
+  // The rules between options.
   // The membrane energy mu tr E^2 + lambda/2 tr^2 E (and the corotated and linear ones, the same
   // form in their strain) is positive definite for mu > 0 and mu + lambda > 0: lambda / mu in
   // (-1, inf), which holds the plane-stress lambda / mu = 2 nu / (1 - nu) of every Poisson ratio
@@ -58,42 +115,16 @@ void check_sim_options_impl(const SimOptions& o) {
         "`lambda` must be greater than -mu (mu + lambda > 0, as a Poisson ratio above -1 gives); "
         "got mu " +
         shortest_text(m.mu) + ", lambda " + shortest_text(m.lambda));
-  if (!(o.dt >= MIN_DT) || !std::isfinite(o.dt))
-    fail("`dt` must be finite and at least " + shortest_text(MIN_DT));
-  if (o.frames < 0) fail("`frames` must be >= 0");
-  if (o.solver.iterations < 0) fail("`iterations` must be >= 0");
-  if (o.solver.threads < 0) fail("`threads` must be >= 0");
-  if (!std::isfinite(o.pressure)) fail("`pressure` must be finite");
-  if (!(o.solver.k_bending >= 0.0) || !std::isfinite(o.solver.k_bending)) fail("`k_b` must be >= 0");
   if (o.solver.kind == SolverKind::Pbd && o.solver.k_bending > 1.0)
     fail("`k_b`: in pbd mode k_B is a correction multiplier and must be in [0, 1]");
-  if (!(o.density >= MIN_DENSITY) || !std::isfinite(o.density))
-    fail("`density` must be finite and at least " + shortest_text(MIN_DENSITY));
-  if (!(o.damping >= 0.0 && o.damping < 1.0)) fail("`damping` must be in [0, 1)");
-  if (!(o.region_shrink >= 0.0 && o.region_shrink <= 1.0)) fail("`region_shrink` must be in [0, 1]");
-  if (!(o.collision.delta > 0.0) || !std::isfinite(o.collision.delta))
-    fail("`delta` must be positive");
-  if (o.collision.rounds < 0) fail("`collision_rounds` must be >= 0");
-  if (!(o.collision.region_margin >= 0.0) || !std::isfinite(o.collision.region_margin))
-    fail("collision.region_margin must be >= 0");
-  if (!(o.stop_volume_ratio >= 0.0 && o.stop_volume_ratio < 1.0))
-    fail("`stop_volume_ratio` must be in [0, 1)");
-  if (o.target_volume_schedule.empty()) {
-    if (!(o.target_volume >= 0.0 && o.target_volume < 1.0)) fail("`target_volume` must be in [0, 1)");
-  } else if (!(o.target_volume_schedule.min_value() > 0.0 &&
-               o.target_volume_schedule.max_value() <= MAX_KEYED_VOLUME_RATIO)) {
-    fail("keyframed `target_volume` values must be in (0, " + std::to_string(MAX_KEYED_VOLUME_RATIO) + "]");
-  } else if (o.target_volume != o.target_volume_schedule.last_value()) {
+  if (!o.target_volume_schedule.empty() && o.target_volume != o.target_volume_schedule.last_value())
     fail("`target_volume` must be the last key's value of its schedule");
-  }
   if (!o.pressure_schedule.empty() && o.pressure != o.pressure_schedule.max_value())
     fail("`pressure` must be the largest key value of its schedule");
   if (o.target_volume > 0.0 && o.stop_volume_ratio > 0.0)
     fail(
         "`target_volume` and `stop_volume_ratio` exclude each other (the target holds the "
         "volume, the stop ends the run when it is reached)");
-  if (!(o.air_balance >= 0.0 && o.air_balance < 1.0)) fail("`air_balance` must be in [0, 1)");
-  if (o.target_ramp_frames < 1) fail("`target_ramp` must be at least 1 frame");
 }
 
 /// The paper's settings where the caller left the default run's (RunOptions): under pbd the

@@ -35,8 +35,11 @@ SHORT = re.compile(r"(?<![\w-])-([A-Za-z0-9])(?![\w-])")
 # "options:"), followed by option lines.
 GROUP_LINE = re.compile(r"^([a-z][^:]*):$")
 # A list of values in an option's --help text: "stvk | corotated | linear" (and "on|off" in a
-# value name); lower-case words only, so that "auto|none|FILE" lists auto and none.
-CHOICES = re.compile(r"[a-z0-9][a-z0-9-]*(?: ?\| ?[a-z0-9][a-z0-9-]*)+")
+# value name); lower-case words only, so that "auto|none|FILE" lists auto and none. A value may be
+# followed by what it means in parentheses: "isometric (the paper's, flat rest) | dihedral
+# (rest-aware) | none" lists isometric, dihedral and none.
+CHOICES = re.compile(r"[a-z0-9][a-z0-9-]*(?: \([^()]*\))?(?: ?\| ?[a-z0-9][a-z0-9-]*(?: \([^()]*\))?)+")
+DESCRIPTION = re.compile(r" \([^()]*\)")
 SECTION = re.compile(r"^## `shellcontract ([a-z ]+)`\s*$")
 SUBSECTION = re.compile(r"^### (.+?)\s*$")
 ROW = re.compile(r"^\|\s*(`-[^|]*)\|")
@@ -89,7 +92,8 @@ def help_options(cli, command):
     choices = {}
     for name, t in text.items():
         for found in CHOICES.findall(t):
-            choices.setdefault(name, []).extend(v.strip() for v in found.split("|"))
+            values = DESCRIPTION.sub("", found).split("|")
+            choices.setdefault(name, []).extend(v.strip() for v in values)
     return out, choices
 
 

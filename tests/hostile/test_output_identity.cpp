@@ -62,9 +62,9 @@ TEST_F(Hostile, AnOutputOverTheWeightsFileIsRefused) {
 }
 
 // Before: paths were compared, so a hard link to the input passed (exit 0).
-// The CLI's list of the files a run reads (cli/run.cpp, plan.inputs) is kept by hand; the option
-// table is walked here, so that a new option whose value is a FILE and that the list leaves out
-// (an output over it would replace the user's file) fails this test.
+// The CLI's list of the files a run reads (cli/run_prepare.cpp, plan.inputs) is kept by hand; the
+// option table is walked here, so that a new option whose value is a FILE and that the list leaves
+// out (an output over it would replace the user's file) fails this test.
 TEST_F(Hostile, AnOutputOverTheFileOfAnyFileOptionIsRefused) {
   int file_options = 0;
   for (const OptionSpec& o : run_option_table()) {
