@@ -2,10 +2,9 @@
 // checks a mesh the way `run` does, and prints what it found. Exit 0 if the mesh can be used, 2
 // (with the reason on stderr) if not, 1 on bad usage, 4 when it fails --against or
 // --fail-on-self-intersections (a result can be refused, not only an input).
-#include <boost/program_options.hpp>
-
 #include <algorithm>
 #include <array>
+#include <boost/program_options.hpp>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -23,6 +22,7 @@
 #include "core/classic_locale.hpp"
 #include "json_writer.hpp"
 #include "mesh/eigen_point_map.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -33,10 +33,13 @@ namespace {
 
 namespace po = boost::program_options;
 
-constexpr const char* CHECK_USAGE =
-    R"(usage: shellcontract check MESH [--json] [--against INPUT] [--fail-on-self-intersections]
+/// The help's text before the options; the formats read are the table's (mesh/formats.hpp).
+std::string check_usage() {
+  return R"(usage: shellcontract check MESH [--json] [--against INPUT] [--fail-on-self-intersections]
 
-Reads MESH (.off, .obj, .ply, .stl, .glb, .gltf) with the same checks as 'run' and reports:
+Reads MESH ()" +
+         extension_list(any_format, ".", ", ") +
+         R"() with the same checks as 'run' and reports:
 vertices, faces, edges, connected components, Euler characteristic and genus, closed, manifold,
 enclosed volume, bounding-box diagonal, zero-area faces and self-intersecting face pairs.
 Polygons are triangulated and inside-out components flipped, as 'run' would (see the warnings;
@@ -52,6 +55,7 @@ exit codes: 0 the mesh can be used (self-intersections already in the input are 
             (--fail-on-self-intersections)
 
 options)";
+}
 
 /// A file's polygons (as its reader gives them) and, per face of the mesh read_input_mesh makes
 /// of it, the polygon that face comes from: face i < #polygons is polygon i's first triangle,
@@ -146,7 +150,7 @@ int command_check(int argc, char** argv) {
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
-      std::cout << CHECK_USAGE << '\n' << visible << '\n';
+      std::cout << check_usage() << '\n' << visible << '\n';
       return static_cast<int>(ExitCode::Success);
     }
     if (input.empty()) throw UsageError("missing INPUT mesh");

@@ -9,6 +9,7 @@
 #include <iostream>
 #include <string>
 
+#include "mesh/formats.hpp"  // lower_extension, for the subcommands
 #include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
@@ -20,16 +21,6 @@ inline int usage_error(const std::string& command, const std::string& what) {
   std::cerr << "shellcontract " << command << ": " << what << "\n(see 'shellcontract " << command
             << " --help')\n";
   return static_cast<int>(ExitCode::BadUsage);
-}
-
-/// A path's extension in lower case without its dot ("OBJ" -> "obj"; "" when it has none): the
-/// name by which the readers and writers pick a format.
-inline std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
 }
 
 /// Refuses an option given with an empty value (`--log ""`): a script whose variable is unset

@@ -12,10 +12,11 @@
 #include <filesystem>
 #include <system_error>
 
+#include "command_line.hpp"
 #include "export/frame_sequence_writer.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/output_check.hpp"
-#include "command_line.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract::cli {
@@ -31,13 +32,14 @@ void check_result_format(const std::string& input, const std::string& output, bo
     check_output_identities({{"-o", output}}, {}, output_ids, input_ids);
   }
   const std::string ext = lower_extension(output);
-  const bool gltf_output = ext == "glb" || ext == "gltf";
-  if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && !gltf_output)
-    throw UsageError(
-        "-o " + quoted_path(output) +
-        (ext.empty() ? std::string(": no file extension to name the mesh format")
-                     : ": unknown mesh format '." + printable(ext) + "'") +
-        " (expected .off, .obj, .ply, .stl, or .glb / .gltf for an input of that format)");
+  const bool gltf_output = is_mesh_format(ext, &MeshFormat::gltf);
+  if (!is_mesh_format(ext, &MeshFormat::plain_writer) && !gltf_output)
+    throw UsageError("-o " + quoted_path(output) +
+                     (ext.empty() ? std::string(": no file extension to name the mesh format")
+                                  : ": unknown mesh format '." + printable(ext) + "'") +
+                     " (expected " + extension_list(&MeshFormat::plain_writer, ".", ", ") +
+                     ", or " + extension_list(&MeshFormat::gltf, ".", " / ") +
+                     " for an input of that format)");
   // A glTF result is the input glTF with new positions (its document): there is no glTF writer
   // of a bare mesh, and frames would be one whole file each (--gltf animates the run instead).
   if (gltf_output && lower_extension(input) != ext)

@@ -12,6 +12,7 @@
 #include "command_line.hpp"
 #include "export/gltf_size.hpp"
 #include "export_observer.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/output_check.hpp"
 #include "shellcontract/error.hpp"
 
@@ -50,7 +51,9 @@ std::uint64_t frame_file_estimate(const std::string& ext, std::uint64_t vertices
   // A coordinate of 17 significant digits takes at most 24 characters ("-1.2345678901234567e-100");
   // a face's index at most the digits of the vertex count.
   const std::uint64_t index = digits(vertices) + 2;
-  if (ext == "stl")  // a facet: its normal, three vertices and five keyword lines
+  const MeshFormat* format = find_mesh_format(ext);
+  // STL (no vertex numbers): a facet's normal, three vertices and five keyword lines.
+  if (format && !format->indexed_vertices)
     return 128 + faces * (3 * 24 + 4 * (3 * 24 + 16) + 64) + document_bytes;
   return 256 + vertices * (3 * 25 + 4) + faces * (4 + 3 * index) + document_bytes;
 }

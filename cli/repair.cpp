@@ -5,7 +5,6 @@
 #include "shellcontract/repair.hpp"
 
 #include <boost/program_options.hpp>
-
 #include <iostream>
 #include <string>
 #include <vector>
@@ -13,6 +12,7 @@
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "json_writer.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/repair_output.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
@@ -103,9 +103,11 @@ int command_repair(int argc, char** argv) {
   // type as its wrapped value, which filled every hole silently.
   long long max_hole_edges = 0;
   po::options_description visible;
+  // Every format of the table (mesh/formats.hpp) is written by repair; Boost copies the text.
+  const std::string output_help =
+      "repaired mesh (format from the extension: " + extension_list(any_format, "", ", ") + ")";
   visible.add_options()("help,h", "show this help")(
-      "output,o", po::value(&output)->value_name("FILE"),
-      "repaired mesh (format from the extension: off, obj, ply, stl, glb, gltf)")(
+      "output,o", po::value(&output)->value_name("FILE"), output_help.c_str())(
       "json", po::bool_switch(&json), "print the report as a JSON object on stdout")(
       "max-hole-edges", po::value(&max_hole_edges)->value_name("N"),
       "leave holes with more than N boundary edges open (their component is then dropped); an "

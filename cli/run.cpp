@@ -13,6 +13,7 @@
 
 #include "commands.hpp"
 #include "core/memory_error.hpp"
+#include "mesh/formats.hpp"
 #include "output_paths.hpp"
 #include "run_checkpoint.hpp"
 #include "run_command_line.hpp"
@@ -29,10 +30,13 @@ namespace po = boost::program_options;
 namespace shellcontract::cli {
 
 void describe_run_options(po::options_description& desc, RunRequest& q) {
+  // The formats from the table (mesh/formats.hpp); Boost copies the description.
+  const std::string output_help = "output mesh (format from the extension: " +
+                                  extension_list(&MeshFormat::plain_writer, "", ", ") + "; " +
+                                  extension_list(&MeshFormat::gltf, "", " or ") +
+                                  " for an input of that format)";
   desc.add_options()("help,h", "show this help")(
-      "output,o", po::value(&q.output)->value_name("FILE"),
-      "output mesh (format from the extension: off, obj, ply, stl; glb or gltf for an input of "
-      "that format)")(
+      "output,o", po::value(&q.output)->value_name("FILE"), output_help.c_str())(
       "repair", po::bool_switch(&q.repair),
       "repair the input first if 'check' refuses it (as 'shellcontract repair' does; the output "
       "then has the repaired mesh's vertices and faces)");

@@ -13,6 +13,7 @@
 #include "command_line.hpp"
 #include "export/gltf_material.hpp"
 #include "mesh/file_extras.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/export.hpp"
@@ -45,7 +46,7 @@ void warn_dropped(const std::string& input, const std::string& why, std::size_t 
   std::cerr << '\n';
 }
 
-bool is_gltf(const std::string& ext) { return ext == "glb" || ext == "gltf"; }
+bool is_gltf(const std::string& ext) { return is_mesh_format(ext, &MeshFormat::gltf); }
 
 }  // namespace
 
@@ -78,13 +79,11 @@ std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
   if (!document && is_gltf(out_ext))
     throw InputError(input + ": the ." + out_ext +
                      " result would be this file with new positions, and it cannot be written "
-                     "so (see the warning above); "
-                     "choose an .obj, .ply, .off or .stl output");
+                     "so (see the warning above); choose an " +
+                     extension_list(&MeshFormat::plain_writer) + " output");
   // What a glTF holds as float32 (texture coordinates, colours), checked before the run too:
   // found after it, the animation failed with no file or element named (exit 2 here instead).
-  if (document &&
-      (gltf_animation || lower_extension(output) == "glb" || lower_extension(output) == "gltf"))
-    document->require_gltf_values();
+  if (document && (gltf_animation || is_gltf(out_ext))) document->require_gltf_values();
   return document;
 }
 

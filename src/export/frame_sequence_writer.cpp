@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "mesh/formats.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -56,9 +57,9 @@ FrameSequenceWriter::FrameSequenceWriter(std::string dir, std::string name, std:
   std::transform(ext_.begin(), ext_.end(), ext_.begin(),
                  [](unsigned char c) { return std::tolower(c); });
   if (!ext_.empty() && ext_.front() == '.') ext_.erase(0, 1);
-  if (ext_ != "off" && ext_ != "obj" && ext_ != "ply" && ext_ != "stl")
-    throw UsageError("frame sequence: unknown format '" + ext_ +
-                     "' (expected off, obj, ply or stl)");
+  if (!is_mesh_format(ext_, &MeshFormat::plain_writer))
+    throw UsageError("frame sequence: unknown format '" + ext_ + "' (expected " +
+                     extension_list(&MeshFormat::plain_writer, "") + ")");
   if (max_frame_ < 0) throw std::invalid_argument("FrameSequenceWriter: max_frame < 0");
   if (mesh_.has_garbage())
     throw std::invalid_argument(

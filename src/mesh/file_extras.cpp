@@ -9,6 +9,8 @@
 #include <regex>
 #include <string_view>
 
+#include "core/token_text.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/line_tokens.hpp"
 #include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
@@ -19,12 +21,7 @@ namespace {
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f' || c == '\n'; }
 
 /// A name from the file for a message: at most 24 characters, non-printable bytes as '?'.
-std::string printable_name(std::string_view s) {
-  std::string r = s.size() > 24 ? std::string(s.substr(0, 24)) + "..." : std::string(s);
-  for (char& c : r)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-  return r;
-}
+std::string printable_name(std::string_view s) { return shorten(s, 24); }
 
 /// "a, b, c, ..." of the first three names.
 std::string name_list(const std::vector<std::string>& names) {
@@ -226,11 +223,21 @@ FileExtras stl_extras(const std::string& bytes) {
 }  // namespace
 
 FileExtras describe_file_extras(const std::string& ext, const std::string& bytes) {
-  if (ext == "obj") return obj_extras(bytes);
-  if (ext == "ply") return ply_extras(bytes);
-  if (ext == "off") return off_extras(bytes);
-  if (ext == "stl") return stl_extras(bytes);
-  if (ext == "glb" || ext == "gltf") return describe_gltf_extras(bytes);
+  const MeshFormat* format = find_mesh_format(ext);
+  if (!format) return {};
+  switch (format->id) {
+    case FormatId::Obj:
+      return obj_extras(bytes);
+    case FormatId::Ply:
+      return ply_extras(bytes);
+    case FormatId::Off:
+      return off_extras(bytes);
+    case FormatId::Stl:
+      return stl_extras(bytes);
+    case FormatId::Glb:
+    case FormatId::Gltf:
+      return describe_gltf_extras(bytes);
+  }
   return {};
 }
 

@@ -18,9 +18,9 @@ struct FileExtras {
   std::vector<std::string> items;
 };
 
-/// The extras of a mesh file's bytes, by the lower-case extension ("off", "obj", "ply", "stl",
-/// "glb", "gltf"). Meant for a file that read_polygon_soup has read: a part it cannot make out is
-/// not described rather than refused.
+/// The extras of a mesh file's bytes, by the lower-case extension (a row of MESH_FORMATS,
+/// formats.hpp; none for another). Meant for a file that read_polygon_soup has read: a part it
+/// cannot make out is not described rather than refused.
 FileExtras describe_file_extras(const std::string& ext, const std::string& bytes);
 
 /// A glTF's (.glb or .gltf, told by the first bytes; gltf_extras.cpp), from its JSON alone: vertex

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/plural.hpp"
+#include "core/token_text.hpp"
 #include "mesh/file_extras.hpp"
 #include "mesh/gltf_json_checks.hpp"
 
@@ -33,12 +34,7 @@ std::string json_text(const std::string& bytes) {
 }
 
 /// A name from the file for a message: at most 24 characters, non-printable bytes as '?'.
-std::string printable_name(const std::string& s) {
-  std::string r = s.size() > 24 ? s.substr(0, 24) + "..." : s;
-  for (char& c : r)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-  return r;
-}
+std::string printable_name(std::string_view s) { return shorten(s, 24); }
 
 /// " (a, b, c, ...)" of the first three names; empty without names.
 std::string name_list(const std::vector<std::string>& names) {

@@ -10,6 +10,7 @@
 #include "export/gltf_material.hpp"
 #include "mesh/file_key.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/gltf_model.hpp"
 #include "mesh/line_tokens.hpp"
 #include "mesh/obj_material_paths.hpp"
@@ -23,15 +24,6 @@ namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
-
-/// The extension in lower case, without its dot (the readers choose the format by it).
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 std::string line_text(std::size_t line) { return "line " + std::to_string(line); }
 
@@ -104,14 +96,26 @@ void gltf_dependencies(const std::string& path, const std::string& bytes,
 }  // namespace
 
 std::vector<InputDependency> input_dependencies(const std::string& path) {
-  const std::string ext = lower_extension(path);
-  if (ext != "obj" && ext != "ply" && ext != "gltf" && ext != "glb") return {};
+  const MeshFormat* format = mesh_format_of(path);
+  if (!format || !format->names_files) return {};
   std::vector<InputDependency> out;
   try {
     const std::string bytes = read_regular_file(path);
-    if (ext == "obj") obj_dependencies(path, bytes, out);
-    if (ext == "ply") ply_dependencies(path, bytes, out);
-    if (ext == "gltf" || ext == "glb") gltf_dependencies(path, bytes, out);
+    switch (format->id) {
+      case FormatId::Obj:
+        obj_dependencies(path, bytes, out);
+        break;
+      case FormatId::Ply:
+        ply_dependencies(path, bytes, out);
+        break;
+      case FormatId::Glb:
+      case FormatId::Gltf:
+        gltf_dependencies(path, bytes, out);
+        break;
+      case FormatId::Off:
+      case FormatId::Stl:
+        break;  // names no file (names_files is false)
+    }
   } catch (const InputError&) {
     // Missing, not a regular file, a bad PLY header: the reader says why, before any output.
   } catch (const std::bad_alloc&) {

@@ -19,15 +19,11 @@
 // orientation, volume, zero area) runs on coordinates normalized to the bounding-box centre and a
 // unit diagonal, so that meshes from 1e-150 to 1e150 get the same answers as at unit scale (no
 // overflow or underflow in products of three coordinates).
-#include <CGAL/Polygon_mesh_processing/measure.h>
-
 #include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <numeric>
-#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -35,12 +31,9 @@
 #include "core/memory_error.hpp"
 #include "core/plural.hpp"
 #include "core/progress_stage.hpp"
-#include "mesh/eigen_point_map.hpp"
-#include "mesh/file_safety.hpp"
-#include "mesh/normalization.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/polygon_split.hpp"
 #include "mesh/read_polygon_soup.hpp"
-#include "mesh/seam_weld.hpp"
 #include "mesh/soup_checks.hpp"
 #include "mesh/soup_geometry.hpp"
 #include "shellcontract/error.hpp"
@@ -50,25 +43,10 @@
 namespace shellcontract {
 namespace {
 
-namespace fs = std::filesystem;
-namespace PMP = CGAL::Polygon_mesh_processing;
-using soup::check_edges;
-using soup::check_no_duplicate_face;
-using soup::check_no_isolated_vertex;
-using soup::check_vertex_fans;
 using soup::fail;
 using soup::fail_faces;
-using soup::list_indices;
 using soup::Namer;
 using soup::Polygon;
-using soup::to_vec;
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 // ------------------------------------------- triangulation (polygons: polygon_split.hpp;
 // connectivity: soup_checks.hpp; the mesh, orientation and zero areas: soup_geometry.hpp)
@@ -99,7 +77,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   Namer name;
   name.lines = &lines;
   name.points = &points;
-  if (ext == "stl") {
+  if (is_mesh_format(ext, [](const MeshFormat& f) { return !f.indexed_vertices; })) {
     name.stl = true;
     name.first_use.assign(points.size(), {0, 0});
     for (std::size_t f = polygons.size(); f-- > 0;)
@@ -177,93 +155,13 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   origin.insert(origin.end(), extra_origin.begin(), extra_origin.end());
   name.origin = &origin;
 
-  // Connectivity, in the order of the problems' importance (each names what it finds). A soup
-  // that is open only along split seams is simulated welded (seam_weld.hpp).
-  std::optional<soup::SeamWeld> weld;
-  try {
-    check_no_duplicate_face(path, tris, name);
-    check_edges(path, tris, nv, name);
-    check_no_isolated_vertex(path, tris, nv, name);
-    check_vertex_fans(path, tris, nv, name);
-  } catch (const InputError& refusal) {
-    // Or throws the refusal, with what is left after welding.
-    weld = soup::weld_seams(path, points, tris, refusal, name);
-  }
-  std::vector<Polygon> input_tris;
-  if (weld) {
-    input_tris = std::move(tris);
-    tris = weld->tris;
-    points = weld->points;
-    normalized = soup::unit_points(points);  // the same box: the copies are at its points
-  }
-
-  // The soup is now what polygon_soup_to_polygon_mesh requires (in release builds it only
-  // asserts that): each condition of PMP::is_polygon_soup_a_polygon_mesh is one of the checks
-  // above (tests/mesh/test_soup_checks_vs_cgal.cpp compares them on mutated soups). CGAL's test
-  // itself is not run again: its std::set of directed edges is a large share of reading a large
-  // mesh (lab/pages/scale.md, lab/history.md). A gap in our checks cannot become undefined
-  // behaviour: Euler::add_face returns a null face for a face it cannot add, and soup_mesh
-  // refuses a mesh that lost a face or a face's corner order.
-  if (!normalized.usable())
-    fail(path, "degenerate mesh", normalized.diagonal == 0.0 ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
-                                                             : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
-  Mesh mesh = soup::soup_mesh(points, tris, "read_input_mesh");
-  std::vector<std::string> warnings;
-  // A welded vertex is named by its first copy, as the connectivity refusals name it.
-  std::vector<std::size_t> first_copy;
-  if (weld) {
-    first_copy.resize(weld->points.size());
-    for (std::size_t i = weld->welded_of.size(); i-- > 0;) first_copy[weld->welded_of[i]] = i;
-  }
-  const std::vector<std::size_t>* number = weld ? &first_copy : nullptr;
-  const soup::Orientation oriented = soup::orient_components(
-      mesh, points, tris, unit, normalized.scale, true, "read_input_mesh", warnings, number);
-  if (weld) soup::store_input_corners(mesh, *weld, input_tris);
+  soup::AcceptOptions options;
+  options.who = "read_input_mesh";
+  options.gltf = is_mesh_format(ext, &MeshFormat::gltf);
+  options.triangulated = split;
   if (split > 0)
-    warnings.push_back(split_warning(split, split + extra.size(), by_rule, polygons.size()));
-
-  std::vector<std::size_t> zero_area = soup::zero_area_faces(tris, unit);
-  if (!zero_area.empty())
-    warnings.push_back(counted(zero_area.size(), "face", "faces") + one_or_many(zero_area.size(), " has", " have") +
-                       " (nearly) zero area: " + list_indices(zero_area));
-
-  // What the simulator needs beyond a closed manifold (one decision for `check` and `run`): a
-  // bounding box to normalize by (checked above, before building the mesh), and a positive
-  // volume, measured exactly as the simulator does: validation's enclosed_volume is this same
-  // PMP::volume call, made here directly so that mesh/ does not depend on validation/.
-  const Positions x = positions_from_mesh(mesh);
-  const Positions unit_x = normalize(x, compute_normalization(x));
-  const double unit_volume = PMP::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(unit_x)));
-  if (!(unit_volume > 0.0)) {
-    ClassicOStringStream v;
-    v << unit_volume;
-    fail(path, "no positive volume",
-         "the mesh encloses no positive volume (" + v.str() +
-             " at a unit bounding-box diagonal): it is flat or degenerate" +
-             soup::stray_vertices_note(points, number));
-  }
-  // After the whole's volume, which names a single flat shell as before.
-  if (!oriented.flat.empty())
-    fail_faces(path, "component with no volume", oriented.flat, oriented.flat_faces);
-
-  if (report) {
-    report->vertices = mesh.number_of_vertices();
-    report->faces = mesh.number_of_faces();
-    report->triangulated_faces = split;
-    report->zero_area_faces = std::move(zero_area);
-    report->reoriented = oriented.reoriented;
-    report->components = oriented.components;
-    // In input units; beyond about 1e102 per coordinate the cube of the scale overflows to inf.
-    report->volume = unit_volume * normalized.scale * normalized.scale * normalized.scale;
-    report->warnings = std::move(warnings);
-    report->welded_vertices = weld ? weld->copies() : 0;
-    report->notes.clear();
-    if (weld) {
-      const std::string ext = lower_extension(path);
-      report->notes.push_back(soup::weld_note(*weld, ext == "glb" || ext == "gltf"));
-    }
-  }
-  return mesh;
+    options.split_warning = split_warning(split, split + extra.size(), by_rule, polygons.size());
+  return soup::accept_triangles(path, points, tris, normalized, name, options, report);
 }
 
 }  // namespace
@@ -284,17 +182,7 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   // The readers bound every declared count by the file's size; these handlers are the last line
   // of defence, so that no file can end the process with an uncaught exception.
   try {
-    if (ext != "off" && ext != "obj" && ext != "ply" && ext != "stl" && ext != "glb" &&
-        ext != "gltf") {
-      // What the path is (missing, a folder, a device) says more than its extension does.
-      regular_file_size(path);
-      // The format is told by the extension alone, so a file without one names none.
-      if (ext.empty())
-        fail(path, "the file name has no extension",
-             "expected .off, .obj, .ply, .stl, .glb or .gltf");
-      fail(path, "unknown extension",
-           "'." + ext + "' (expected .off, .obj, .ply, .stl, .glb or .gltf)");
-    }
+    require_mesh_extension(path, ext);  // before "reading PATH"
     const auto start = std::chrono::steady_clock::now();
     progress_stage("reading " + path);
     std::vector<std::string> read_warnings;  // lines after an OFF's declared faces

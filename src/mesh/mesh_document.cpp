@@ -2,14 +2,13 @@
 // triangles back to the file's polygons, the check that a document stands for a mesh, and the
 // texture coordinates per triangle corner for the glTF.
 #include <algorithm>
-#include <cctype>
 #include <charconv>
 #include <cmath>
-#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
+#include "mesh/formats.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -180,13 +179,21 @@ FaceMaterials MeshDocument::face_materials(const Mesh& mesh) const {
 }
 
 std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  if (ext == ".obj") return parse_obj_document(path, read_file_bytes(path), path);
-  if (ext == ".ply") return parse_ply_document(path, read_file_bytes(path));
-  if (ext == ".glb" || ext == ".gltf")
-    return parse_gltf_document(path, read_file_bytes(path), ext == ".glb");
+  const MeshFormat* format = mesh_format_of(path);
+  if (!format || !format->document) return nullptr;
+  switch (format->id) {
+    case FormatId::Obj:
+      return parse_obj_document(path, read_file_bytes(path), path);
+    case FormatId::Ply:
+      return parse_ply_document(path, read_file_bytes(path));
+    case FormatId::Glb:
+      return parse_gltf_document(path, read_file_bytes(path), true);
+    case FormatId::Gltf:
+      return parse_gltf_document(path, read_file_bytes(path), false);
+    case FormatId::Off:
+    case FormatId::Stl:
+      break;  // no document (document is false)
+  }
   return nullptr;
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/decimal_text.hpp"
 #include "core/plural.hpp"
+#include "core/token_text.hpp"
 #include "mesh/line_tokens.hpp"
 #include "shellcontract/error.hpp"
 
@@ -18,14 +19,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
   throw InputError(path + ": " + problem + ": " + details);
-}
-
-/// A token for a message: at most 20 characters, non-printable bytes as '?'.
-std::string shorten(std::string_view s) {
-  std::string r = s.size() > 20 ? std::string(s.substr(0, 20)) + "..." : std::string(s);
-  for (char& c : r)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-  return r;
 }
 
 /// isspace of the "C" locale, whatever locale a host program (Python) has set.

@@ -19,6 +19,7 @@
 
 #include "core/decimal_text.hpp"
 #include "core/plural.hpp"
+#include "core/token_text.hpp"
 #include "shellcontract/error.hpp"
 
 namespace shellcontract {
@@ -26,13 +27,6 @@ namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
   throw InputError(path + ": " + problem + ": " + details);
-}
-
-std::string shorten(std::string_view s) {
-  std::string r = s.size() > 20 ? std::string(s.substr(0, 20)) + "..." : std::string(s);
-  for (char& c : r)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-  return r;
 }
 
 /// What an OFF keyword (ST)?C?N?4?n?OFF says about each vertex line.

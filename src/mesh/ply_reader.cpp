@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/decimal_text.hpp"
+#include "core/token_text.hpp"
 #include "mesh/ply_header.hpp"
 #include "shellcontract/error.hpp"
 
@@ -55,14 +56,6 @@ const char* type_name(Type t) {
 }
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
-
-/// Printable, short form of a token for messages (the bytes may be anything).
-std::string shorten(const std::string& s) {
-  std::string r = s.size() > 20 ? s.substr(0, 20) + "..." : s;
-  for (char& c : r)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-  return r;
-}
 
 class PlyParser {
  public:

@@ -30,6 +30,7 @@
 
 #include "core/plural.hpp"
 #include "core/progress_stage.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/read_polygon_soup.hpp"
 #include "mesh/soup_checks.hpp"
 #include "mesh/soup_geometry.hpp"
@@ -48,14 +49,6 @@ constexpr double MIN_COMPONENT_VOLUME = 1e-9;
 
 [[noreturn]] void cannot_repair(const std::string& path, const std::string& why) {
   throw InputError(path + ": cannot repair: " + why);
-}
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
 }
 
 /// Faces the report names when it says that faces naming a missing vertex were dropped.

@@ -12,6 +12,7 @@
 #include "core/plural.hpp"
 #include "mesh/file_extras.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/gltf_mesh_writer.hpp"
 #include "mesh/obj_material_paths.hpp"
 #include "mesh/output_check.hpp"
@@ -25,14 +26,6 @@ namespace shellcontract {
 namespace {
 
 using Polygon = std::vector<std::size_t>;
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 /// The triangles of `mesh`, the mesh read_input_mesh made of `polygons`, each in the winding of
 /// the polygon it comes from: read_input_mesh turns inside-out components outward, and a usable
@@ -88,7 +81,14 @@ void warn_missing_gltf_files(const std::string& input, const std::string& output
   }
 }
 
-bool is_gltf(const std::string& ext) { return ext == "glb" || ext == "gltf"; }
+bool is_gltf(const std::string& ext) { return is_mesh_format(ext, &MeshFormat::gltf); }
+
+/// What repair writes: a plain writer's format, or a glTF by write_gltf_output.
+bool repair_writes(const MeshFormat& f) { return f.plain_writer || f.gltf; }
+
+/// The formats that keep every position as given, for a message whose positions do not fit the
+/// chosen one: ".off, .obj or .ply".
+std::string exact_formats() { return extension_list(&MeshFormat::exact_positions); }
 
 /// The mesh's vertices and triangles as write_mesh_atomic writes them: a welded mesh's as its
 /// input numbered them.
@@ -112,7 +112,8 @@ void write_gltf_output(const std::string& output, const std::vector<Point3>& poi
     if (!std::isfinite(p.x()) || !std::isfinite(p.y()) || !std::isfinite(p.z()))
       throw UsageError("cannot write '" + output +
                        "': the positions span more than glTF's 32-bit floats hold (about 3.4e38 "
-                       "from the bounding box's centre); write .off, .obj or .ply");
+                       "from the bounding box's centre); write " +
+                       exact_formats());
   std::size_t rounded = 0;
   for (std::size_t i = 0; i < points.size(); ++i) rounded += stored[i] != points[i];
   if (rounded > 0) {
@@ -126,7 +127,7 @@ void write_gltf_output(const std::string& output, const std::vector<Point3>& poi
           "cannot write '" + output +
           "': glTF stores 32-bit floats, and with its positions rounded to them the mesh is not "
           "usable (" +
-          e.what() + "); write .off, .obj or .ply");
+          e.what() + "); write " + exact_formats());
     }
   }
   write_gltf_mesh_atomic(output, points, triangles, binary);
@@ -145,11 +146,11 @@ std::string RepairOutput::kind_name() const {
 
 void check_repair_output_name(const std::string& option, const std::string& output) {
   const std::string ext = lower_extension(output);
-  if (ext == "off" || ext == "obj" || ext == "ply" || ext == "stl" || is_gltf(ext)) return;
+  if (is_mesh_format(ext, repair_writes)) return;
   throw UsageError(option + " " + quoted_path(output) +
                    (ext.empty() ? std::string(": no file extension to name the mesh format")
                                 : ": unknown mesh format '." + printable(ext) + "'") +
-                   " (expected .off, .obj, .ply, .stl, .glb or .gltf)");
+                   " (expected " + extension_list(repair_writes) + ")");
 }
 
 RepairOutput write_repair_output(const std::string& input, const std::string& output, const Mesh& mesh,

@@ -32,10 +32,10 @@ struct RepairOutput {
   std::string kind_name() const;
 };
 
-/// Refuses an output name whose extension (in any case) is none of the formats `repair` writes:
-/// .off, .obj, .ply, .stl, .glb and .gltf. The CLI asks before the repair, so that a name it
-/// cannot write is bad usage whatever the input, as `run` checks -o before reading; and
-/// write_repair_output asks again first.
+/// Refuses an output name whose extension (in any case) is none of the formats `repair` writes
+/// (formats.hpp: a plain writer's or a glTF; today every format read). The CLI asks before the
+/// repair, so that a name it cannot write is bad usage whatever the input, as `run` checks -o
+/// before reading; and write_repair_output asks again first.
 /// @throws UsageError naming `option` (the CLI's "-o"), the output and every format written
 void check_repair_output_name(const std::string& option, const std::string& output);
 

@@ -2,7 +2,8 @@
 // is not a closed, manifold, consistently oriented triangle mesh with an InputError that names the
 // problem and where the file shows it (Namer). read_input_mesh runs them before CGAL builds the
 // mesh (io.cpp's header comment says why ours and not PMP::is_polygon_soup_a_polygon_mesh alone),
-// and mesh_from_arrays runs the edge and fan checks with a Namer that has no file lines.
+// and mesh_from_arrays runs the same checks (soup::accept_triangles) with a Namer that has no
+// file lines.
 #pragma once
 
 #include <algorithm>
@@ -154,8 +155,8 @@ void check_no_duplicate_face(const std::string& path, const std::vector<Polygon>
 void check_no_isolated_vertex(const std::string& path, const std::vector<Polygon>& tris, std::size_t nv,
                               const Namer& name);
 
-// The two checks below are templates over the triangle list (a vector of Polygon here, of
-// std::array<std::size_t, 3> in mesh_from_arrays), so that both entry points run the same checks.
+// The two checks below are templates over the triangle list (a vector of Polygon or of
+// std::array<std::size_t, 3>).
 
 /// Edges: each undirected edge must have exactly two faces that traverse it in opposite
 /// directions (closed, manifold, consistently oriented).

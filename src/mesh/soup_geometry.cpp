@@ -2,6 +2,7 @@
 #include "mesh/soup_geometry.hpp"
 
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
+#include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/property_map.h>
 
@@ -10,11 +11,16 @@
 #include <cmath>
 #include <iomanip>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "core/classic_locale.hpp"
+#include "core/plural.hpp"
+#include "mesh/eigen_point_map.hpp"
 #include "mesh/normalization.hpp"
+#include "mesh/seam_weld.hpp"
+#include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract::soup {
 
@@ -205,6 +211,99 @@ std::vector<std::size_t> zero_area_faces(const std::vector<Polygon>& tris, const
     if (twice_area < threshold) zero_area.push_back(f);
   }
   return zero_area;
+}
+
+Mesh accept_triangles(const std::string& path, std::vector<Point3>& points,
+                      std::vector<Polygon>& tris, UnitPoints& normalized, const Namer& name,
+                      const AcceptOptions& options, InputReport* report) {
+  // Connectivity, in the order of the problems' importance (each names what it finds). A soup
+  // that is open only along split seams is simulated welded (seam_weld.hpp).
+  const std::size_t nv = points.size();
+  std::optional<SeamWeld> weld;
+  try {
+    check_no_duplicate_face(path, tris, name);
+    check_edges(path, tris, nv, name);
+    check_no_isolated_vertex(path, tris, nv, name);
+    check_vertex_fans(path, tris, nv, name);
+  } catch (const InputError& refusal) {
+    // Or throws the refusal, with what is left after welding.
+    weld = weld_seams(path, points, tris, refusal, name);
+  }
+  std::vector<Polygon> input_tris;
+  if (weld) {
+    input_tris = std::move(tris);
+    tris = weld->tris;
+    points = weld->points;
+    normalized = unit_points(points);  // the same box: the copies are at its points
+  }
+
+  // The soup is now what polygon_soup_to_polygon_mesh requires (in release builds it only
+  // asserts that): each condition of PMP::is_polygon_soup_a_polygon_mesh is one of the checks
+  // above (tests/mesh/test_soup_checks_vs_cgal.cpp compares them on mutated soups). CGAL's test
+  // itself is not run again: its std::set of directed edges is a large share of reading a large
+  // mesh (lab/pages/scale.md, lab/history.md). A gap in our checks cannot become undefined
+  // behaviour: Euler::add_face returns a null face for a face it cannot add, and soup_mesh
+  // refuses a mesh that lost a face or a face's corner order.
+  if (!normalized.usable())
+    fail(path, "degenerate mesh",
+         normalized.diagonal == 0.0
+             ? "zero bounding-box diagonal: every vertex is at " + name.point(0)
+             : "non-finite bounding-box diagonal: the coordinates span more than a double holds");
+  Mesh mesh = soup_mesh(points, tris, options.who);
+  std::vector<std::string> warnings;
+  // A welded vertex is named by its first copy, as the connectivity refusals name it.
+  std::vector<std::size_t> first_copy;
+  if (weld) {
+    first_copy.resize(weld->points.size());
+    for (std::size_t i = weld->welded_of.size(); i-- > 0;) first_copy[weld->welded_of[i]] = i;
+  }
+  const std::vector<std::size_t>* number = weld ? &first_copy : nullptr;
+  const Orientation oriented =
+      orient_components(mesh, points, tris, normalized.unit, normalized.scale, options.reorient,
+                        options.who, warnings, number);
+  if (weld) store_input_corners(mesh, *weld, input_tris);
+  if (!options.split_warning.empty()) warnings.push_back(options.split_warning);
+  std::vector<std::size_t> zero_area = zero_area_faces(tris, normalized.unit);
+  if (!zero_area.empty())
+    warnings.push_back(counted(zero_area.size(), "face", "faces") +
+                       one_or_many(zero_area.size(), " has", " have") +
+                       " (nearly) zero area: " + list_indices(zero_area));
+
+  // What the simulator needs beyond a closed manifold (one decision for `check`, `run` and the
+  // arrays): a bounding box to normalize by (checked above, before building the mesh), and a
+  // positive volume, measured exactly as the simulator does: validation's enclosed_volume is this
+  // same PMP::volume call, made here directly so that mesh/ does not depend on validation/.
+  const Positions x = positions_from_mesh(mesh);
+  const Positions unit_x = normalize(x, compute_normalization(x));
+  const double unit_volume =
+      PMP::volume(mesh, CGAL::parameters::vertex_point_map(EigenPointMap(unit_x)));
+  if (options.reorient && !(unit_volume > 0.0)) {
+    ClassicOStringStream v;
+    v << unit_volume;
+    fail(path, "no positive volume",
+         "the mesh encloses no positive volume (" + v.str() +
+             " at a unit bounding-box diagonal): it is flat or degenerate" +
+             stray_vertices_note(points, number));
+  }
+  // After the whole's volume, which names a single flat shell as before.
+  if (!oriented.flat.empty())
+    fail_faces(path, "component with no volume", oriented.flat, oriented.flat_faces);
+
+  if (report) {
+    report->vertices = mesh.number_of_vertices();
+    report->faces = mesh.number_of_faces();
+    report->triangulated_faces = options.triangulated;
+    report->zero_area_faces = std::move(zero_area);
+    report->reoriented = oriented.reoriented;
+    report->components = oriented.components;
+    // In input units; beyond about 1e102 per coordinate the cube of the scale overflows to inf.
+    report->volume = unit_volume * normalized.scale * normalized.scale * normalized.scale;
+    report->warnings = std::move(warnings);
+    report->welded_vertices = weld ? weld->copies() : 0;
+    report->notes.clear();
+    if (weld) report->notes.push_back(weld_note(*weld, options.gltf));
+  }
+  return mesh;
 }
 
 }  // namespace shellcontract::soup

@@ -1,8 +1,9 @@
-// The geometric steps that read_input_mesh (io.cpp) and mesh_from_arrays (from_arrays.cpp) take
-// on a soup whose connectivity soup_checks.hpp has passed (private to src/mesh): its points at a
-// unit bounding-box diagonal, the CGAL mesh with each face's corners as the soup lists them, the
-// orientation of its components, and its zero-area faces. One implementation, so that a file and
-// the same arrays from Python give the same mesh, warnings and report.
+// The steps that read_input_mesh (io.cpp) and mesh_from_arrays (from_arrays.cpp) take on a
+// triangle soup whose faces have passed their own checks (private to src/mesh): the connectivity
+// checks (soup_checks.hpp), its points at a unit bounding-box diagonal, the CGAL mesh with each
+// face's corners as the soup lists them, the orientation of its components, its zero-area faces
+// and its volume (accept_triangles runs them all). One implementation, so that a file and the
+// same arrays from Python are accepted or refused alike, with the same mesh, warnings and report.
 #pragma once
 
 #include <cstddef>
@@ -11,6 +12,10 @@
 
 #include "mesh/soup_checks.hpp"
 #include "shellcontract/mesh.hpp"
+
+namespace shellcontract {
+struct InputReport;  // shellcontract/mesh_io.hpp
+}  // namespace shellcontract
 
 namespace shellcontract::soup {
 
@@ -92,5 +97,33 @@ std::string stray_vertices_note(const std::vector<Point3>& points,
 /// squared mean edge length. Reported, not refused (the rest state gives them no membrane
 /// energy).
 std::vector<std::size_t> zero_area_faces(const std::vector<Polygon>& tris, const std::vector<Point3>& unit);
+
+/// What accept_triangles takes from its caller besides the soup.
+struct AcceptOptions {
+  std::string who;  ///< the caller, named by the logic errors of soup_mesh and orient_components
+  /// mesh_from_arrays' `reorient`: false keeps every component's winding and refuses no volume.
+  bool reorient = true;
+  bool gltf = false;  ///< the input is a glTF (weld_note)
+  /// The reader's warning for the polygons it split into triangles (empty: none split), after
+  /// the orientation's warnings; InputReport::triangulated_faces.
+  std::string split_warning;
+  std::size_t triangulated = 0;
+};
+
+/// The acceptance rule after each face's own checks (its corners in range and distinct), one
+/// implementation for read_input_mesh and mesh_from_arrays, so that a file and the same arrays
+/// are accepted or refused alike: the connectivity checks in the order of the problems'
+/// importance (duplicate faces, edges, isolated vertices, vertex fans), a soup open only along
+/// split seams welded instead (seam_weld.hpp); a usable bounding box; the mesh, its orientation
+/// and zero-area faces; a positive volume and no flat component. Fills `report` (not its reading
+/// times).
+/// @param points  the soup's points, replaced by the welded ones when it is welded
+/// @param tris  its triangles, replaced by the welded ones (and reoriented)
+/// @param normalized  unit_points(points), replaced after a weld
+/// @param name  names faces and vertices in the refusals; its `points` is `points`
+/// @throws InputError (FaceListError for problems of faces) naming `path` and the problem
+Mesh accept_triangles(const std::string& path, std::vector<Point3>& points,
+                      std::vector<Polygon>& tris, UnitPoints& normalized, const Namer& name,
+                      const AcceptOptions& options, InputReport* report);
 
 }  // namespace shellcontract::soup

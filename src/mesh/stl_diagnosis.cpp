@@ -17,6 +17,7 @@
 #include <string_view>
 
 #include "core/decimal_text.hpp"
+#include "core/token_text.hpp"
 
 namespace shellcontract {
 namespace {
@@ -24,15 +25,11 @@ namespace {
 /// Blanks as the "C" locale's isspace, which CGAL's `is >> word` splits at.
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
 
-/// Text for a message: at most `max` characters, bytes that do not print as '?'.
-std::string shorten(std::string_view s, std::size_t max = 40) {
-  std::string r = s.size() > max ? std::string(s.substr(0, max)) + "..." : std::string(s);
-  for (char& c : r)
-    if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e) c = '?';
-  return r;
-}
+/// An STL's texts are quoted longer than the other readers' tokens: a line ("vertex 1 2 3"), a
+/// solid's name.
+constexpr std::size_t QUOTED_CHARS = 40;
 
-std::string quote(std::string_view s) { return "'" + shorten(s) + "'"; }
+std::string quote(std::string_view s) { return "'" + shorten(s, QUOTED_CHARS) + "'"; }
 
 /// Text: no control byte but blanks and line ends (a name in UTF-8 is text too).
 bool is_text(const std::string& bytes) {
@@ -157,8 +154,9 @@ class AsciiScan {
     const std::size_t line = line_at(pos_);
     const std::string also = line == vertex_line ? "" : " (then line " + std::to_string(line) + ": " + quote(token) + ")";
     if (whole && !std::isfinite(v))
-      return {"non-finite coordinate", where(vertex_line) + ": the vertex of " + facet_begun + " has coordinate " + "xyz"[k] +
-                                           " = " + shorten(token) + also};
+      return {"non-finite coordinate", where(vertex_line) + ": the vertex of " + facet_begun +
+                                           " has coordinate " + "xyz"[k] + " = " +
+                                           shorten(token, QUOTED_CHARS) + also};
     return {"parse error", where(vertex_line) + ": expected 'vertex X Y Z' with three numbers, got " + quote(line_text(vertex_at)) + also};
   }
 

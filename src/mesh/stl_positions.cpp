@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/classic_locale.hpp"
+#include "mesh/formats.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -38,11 +39,12 @@ void require_distinct_stl_positions(const std::string& what,
       const std::array<double, 3>& at = key[order[k]];
       ClassicOStringStream where;
       where << std::setprecision(9) << '(' << at[0] << ", " << at[1] << ", " << at[2] << ')';
-      throw UsageError(
-          what + ": an STL keeps no vertex identity, and vertices " + std::to_string(order[k]) +
-          " and " + std::to_string(order[j]) + " would both be stored at " + where.str() +
-          (floats ? " (as 32-bit floats)" : "") +
-          ": read back, they would be one vertex, and the mesh another; write .off, .obj or .ply");
+      throw UsageError(what + ": an STL keeps no vertex identity, and vertices " +
+                       std::to_string(order[k]) + " and " + std::to_string(order[j]) +
+                       " would both be stored at " + where.str() +
+                       (floats ? " (as 32-bit floats)" : "") +
+                       ": read back, they would be one vertex, and the mesh another; write " +
+                       extension_list(&MeshFormat::exact_positions));
     }
     k = end;
   }

@@ -1,36 +1,36 @@
 // Writing meshes and text atomically (architecture.md, data flow: ... -> write) with CGAL's writers at
 // 17 significant digits, so that a written double reads back bitwise (full precision).
+#include <CGAL/IO/OBJ.h>
+#include <CGAL/IO/OFF.h>
+#include <CGAL/IO/PLY.h>
+#include <CGAL/IO/STL.h>
+#include <CGAL/Surface_mesh/IO/PLY.h>
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <atomic>
+#include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <cstdint>
-#include <streambuf>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <locale>
 #include <sstream>
 #include <stdexcept>
+#include <streambuf>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <CGAL/IO/OBJ.h>
-#include <CGAL/IO/OFF.h>
-#include <CGAL/IO/PLY.h>
-#include <CGAL/IO/STL.h>
-#include <CGAL/Surface_mesh/IO/PLY.h>
-
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/formats.hpp"
 #include "mesh/output_target.hpp"
 #include "mesh/soup_geometry.hpp"
 #include "mesh/soup_writer.hpp"
@@ -44,13 +44,6 @@ namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lower_extension(const std::string& path) {
-  std::string ext = fs::path(path).extension().string();
-  if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 /// "cannot write 'PATH': WHY", with the errno of the call that failed.
 [[noreturn]] void cannot_write(const std::string& path, int error_number, const std::string& why) {
@@ -175,12 +168,13 @@ namespace {
 /// The writers' formats, named by the path's extension; the message says what is wrong with
 /// the name (none, another format's) rather than "unknown extension '.'". A folder, device or
 /// FIFO in the output's place was refused before (refuse_special_output), for what it is.
-void require_plain_mesh_extension(const std::string& path, const std::string& ext) {
-  if (ext == "off" || ext == "obj" || ext == "ply" || ext == "stl") return;
+FormatId require_plain_mesh_extension(const std::string& path, const std::string& ext) {
+  const MeshFormat* format = find_mesh_format(ext);
+  if (format && format->plain_writer) return format->id;
   throw UsageError(
       "cannot write '" + path + "': " +
       (ext.empty() ? "the file name has no extension" : "unknown extension '." + ext + "'") +
-      " (expected .off, .obj, .ply or .stl)");
+      " (expected " + extension_list(&MeshFormat::plain_writer) + ")");
 }
 
 /// write_mesh_atomic once the STL's positions are checked; `mesh` not welded.
@@ -193,8 +187,8 @@ void write_plain_mesh(const std::string& path, const std::string& ext, const Mes
     if (!x.row(i).allFinite())
       throw std::invalid_argument("write_mesh_atomic: vertex " + std::to_string(i) +
                                   " has a coordinate that is not finite; nothing written to '" + path + "'");
-  require_plain_mesh_extension(path, ext);
-  if (ext == "ply") {
+  const FormatId format = require_plain_mesh_extension(path, ext);
+  if (format == FormatId::Ply) {
     // CGAL 5.5's Surface_mesh PLY writer takes the mesh's own points (no vertex_point_map).
     write_ply_atomic(path, mesh_for_output(mesh, x), "", binary);
     return;
@@ -202,13 +196,29 @@ void write_plain_mesh(const std::string& path, const std::string& ext, const Mes
   // The other writers read the positions through the point map: no mesh copy. They write
   // vertices and faces in index order, each face from its halfedge's target, as read back.
   const auto np = CGAL::parameters::vertex_point_map(EigenPointMap(x)).stream_precision(FULL_PRECISION);
-  write_atomic(path, [&](std::ostream& out) {
-    bool ok = false;
-    if (ext == "off") ok = CGAL::IO::write_OFF(out, mesh, np);
-    else if (ext == "obj") ok = CGAL::IO::write_OBJ(out, mesh, np);
-    else ok = CGAL::IO::write_STL(out, mesh, np);  // binary when the stream's mode says so
-    if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
-  }, binary && (ext == "stl"));
+  write_atomic(
+      path,
+      [&](std::ostream& out) {
+        bool ok = false;
+        switch (format) {
+          case FormatId::Off:
+            ok = CGAL::IO::write_OFF(out, mesh, np);
+            break;
+          case FormatId::Obj:
+            ok = CGAL::IO::write_OBJ(out, mesh, np);
+            break;
+          case FormatId::Ply:
+            break;             // written above
+          case FormatId::Stl:  // binary when the stream's mode says so
+            ok = CGAL::IO::write_STL(out, mesh, np);
+            break;
+          case FormatId::Glb:
+          case FormatId::Gltf:
+            break;  // no plain writer: refused above
+        }
+        if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
+      },
+      binary && find_mesh_format(ext)->binary_writer);
 }
 
 }  // namespace
@@ -237,22 +247,38 @@ void write_polygon_soup_atomic(const std::string& path, const std::vector<Point3
                                const std::vector<std::vector<std::size_t>>& polygons, bool binary) {
   refuse_special_output(path);  // before the extension, as write_mesh_atomic
   const std::string ext = lower_extension(path);
-  require_plain_mesh_extension(path, ext);
+  const FormatId format = require_plain_mesh_extension(path, ext);
   for (const auto& p : polygons) {
-    if (ext == "stl" && p.size() != 3)
+    if (format == FormatId::Stl && p.size() != 3)
       throw std::invalid_argument("write_polygon_soup_atomic: an STL file holds triangles only");
     for (const std::size_t v : p)
       if (v >= points.size()) throw std::invalid_argument("write_polygon_soup_atomic: a polygon names a missing point");
   }
   const auto np = CGAL::parameters::stream_precision(FULL_PRECISION);
-  write_atomic(path, [&](std::ostream& out) {
-    bool ok = false;
-    if (ext == "off") ok = CGAL::IO::write_OFF(out, points, polygons, np);
-    else if (ext == "obj") ok = CGAL::IO::write_OBJ(out, points, polygons, np);
-    else if (ext == "ply") ok = CGAL::IO::write_PLY(out, points, polygons, np);
-    else ok = CGAL::IO::write_STL(out, points, polygons, np);
-    if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
-  }, binary && (ext == "ply" || ext == "stl"));
+  write_atomic(
+      path,
+      [&](std::ostream& out) {
+        bool ok = false;
+        switch (format) {
+          case FormatId::Off:
+            ok = CGAL::IO::write_OFF(out, points, polygons, np);
+            break;
+          case FormatId::Obj:
+            ok = CGAL::IO::write_OBJ(out, points, polygons, np);
+            break;
+          case FormatId::Ply:
+            ok = CGAL::IO::write_PLY(out, points, polygons, np);
+            break;
+          case FormatId::Stl:
+            ok = CGAL::IO::write_STL(out, points, polygons, np);
+            break;
+          case FormatId::Glb:
+          case FormatId::Gltf:
+            break;  // no plain writer: refused above
+        }
+        if (!ok) throw UsageError("cannot write '" + path + "': CGAL's ." + ext + " writer failed");
+      },
+      binary && find_mesh_format(ext)->binary_writer);
 }
 
 void write_text_atomic(const std::string& path, const std::string& text) {

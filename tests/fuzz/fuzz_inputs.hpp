@@ -17,7 +17,7 @@ namespace shellcontract::test {
 /// One valid input file: its extension (which picks the reader) and its bytes.
 struct SeedFile {
   std::string name;  ///< unique, for messages
-  std::string ext;   ///< "off", "obj", "ply", "stl", "glb", "gltf"
+  std::string ext;   ///< a row of MESH_FORMATS (src/mesh/formats.hpp): every row has seeds
   std::string bytes;
 };
 

@@ -16,10 +16,12 @@
 #include <fstream>
 #include <memory>
 #include <new>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "fuzz/fuzz_inputs.hpp"
+#include "mesh/formats.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/cli_runner.hpp"
@@ -108,6 +110,15 @@ Mutant make_mutant(const std::vector<test::SeedFile>& seeds, std::uint64_t seed,
 /// Largest single allocation allowed while reading a file of `size` bytes: a fixed slack plus a
 /// multiple of the size (the mesh, the soup and the checks are each linear in it).
 std::size_t allocation_bound(std::size_t size) { return (std::size_t(16) << 20) + 64 * size; }
+
+// The mutants are made of the seeds: a format of the table without one would not be fuzzed, and
+// a seed of no format would be refused for its extension alone.
+TEST(ReaderFuzz, TheSeedsAreOfEveryFormatOfTheTable) {
+  std::set<std::string> seeded, table;
+  for (const test::SeedFile& s : test::seed_files()) seeded.insert(s.ext);
+  for (const MeshFormat& f : MESH_FORMATS) table.insert(f.ext);
+  EXPECT_EQ(seeded, table);
+}
 
 TEST(ReaderFuzz, EverySeedFileIsReadAsTheOctahedron) {
   const fs::path dir = fuzz_dir();

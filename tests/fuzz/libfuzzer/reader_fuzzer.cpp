@@ -5,11 +5,11 @@
 // (uncaught: abort), a message without the path (abort), a crash, a sanitizer report, a hang
 // (-timeout) or an allocation over libFuzzer's -malloc_limit_mb.
 //
-// The reader picks the format by extension, so each input is read as .off, .obj, .ply, .stl, .glb
-// and .gltf: the corpus is plain mesh files. Built with clang (-DSHELLCONTRACT_LIBFUZZER=ON,
-// cmake/ShellContractLibFuzzer.cmake; docs/design/testing.md says how to run it), and in the
-// default build without libFuzzer, beside replay_main.cpp, which runs it on the seeds and the
-// regression files.
+// The reader picks the format by extension, so each input is read as every format of the table
+// (.off, .obj, .ply, .stl, .glb and .gltf; src/mesh/formats.hpp): the corpus is plain mesh files.
+// Built with clang (-DSHELLCONTRACT_LIBFUZZER=ON, cmake/ShellContractLibFuzzer.cmake;
+// docs/design/testing.md says how to run it), and in the default build without libFuzzer, beside
+// replay_main.cpp, which runs it on the seeds and the regression files.
 #include <unistd.h>
 
 #include <cstdint>
@@ -19,6 +19,7 @@
 #include <fstream>
 #include <string>
 
+#include "mesh/formats.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
@@ -45,7 +46,8 @@ const fs::path& work_dir() {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  for (const char* ext : {"off", "obj", "ply", "stl", "glb", "gltf"}) {
+  for (const shellcontract::MeshFormat& format : shellcontract::MESH_FORMATS) {
+    const char* ext = format.ext;
     const fs::path path = work_dir() / (std::string("input.") + ext);
     {
       std::ofstream out(path, std::ios::binary | std::ios::trunc);

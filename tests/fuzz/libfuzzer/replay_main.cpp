@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fuzz/fuzz_inputs.hpp"
+#include "mesh/formats.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size);
 
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
       ++n;
     }
   }
-  std::printf(
-      "reader_fuzzer_replay: %zu inputs, each read as .off, .obj, .ply, .stl, .glb and .gltf\n", n);
+  std::printf("reader_fuzzer_replay: %zu inputs, each read as %s\n", n,
+              shellcontract::extension_list(shellcontract::any_format, ".", " and ").c_str());
   return 0;
 }
