@@ -54,9 +54,10 @@ void require(const char* field, long value, const option_ranges::IntegerRange& r
 /// Every range and every rule between the simulation options, in one list (the option table
 /// refuses a bad value of one option as it is parsed; this also holds a caller that writes the
 /// fields). The ranges are the table's own (option_ranges.hpp), checked first so that a value is
-/// refused as its text would be, but for two bounds that refuse a user's typo, not a value the
+/// refused as its text would be, but for three bounds that refuse a user's typo, not a value the
 /// run cannot take: the frames' upper bound (bench error's substeps multiply the frames of a run
-/// that the table bounded) and the pressure's (any finite one).
+/// that the table bounded), the iterations' (bench error's reference runs take more, and its pbd
+/// reference check twice --pbd-ref-iterations) and the pressure's (any finite one).
 void check_sim_options_impl(const SimOptions& o) {
   namespace ranges = option_ranges;
   auto fail = [](const std::string& what) { throw UsageError(what); };
@@ -86,7 +87,9 @@ void check_sim_options_impl(const SimOptions& o) {
     fail("`frames`: '" + std::to_string(o.frames) +
          "' is not an integer >= " + std::to_string(ranges::FRAMES.lo));
   require("dt", o.dt, ranges::dt());
-  require("iterations", o.solver.iterations, ranges::ITERATIONS);
+  if (o.solver.iterations < ranges::ITERATIONS.lo)  // its lower bound alone (above)
+    fail("`iterations`: '" + std::to_string(o.solver.iterations) +
+         "' is not an integer >= " + std::to_string(ranges::ITERATIONS.lo));
   require("threads", o.solver.threads, ranges::THREADS);
   require("damping", o.damping, ranges::damping());
   require("mu", m.mu, ranges::mu());

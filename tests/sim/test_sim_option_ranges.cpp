@@ -121,20 +121,23 @@ TEST(SimOptionRanges, CheckSimOptionsRefusesWhatTheTableRefusesWithItsMessage) {
       // Where the two differ on purpose: the stiffnesses' common bound (1e100, beyond the table's
       // open ranges), lambda's rule with mu (mu + lambda > 0), and the two bounds of the table
       // that refuse a typo, not a value a run cannot take: frames beyond a million (bench
-      // error's substeps multiply them) and a finite pressure beyond 1e6.
+      // error's substeps multiply them), iterations beyond the table's (bench error's reference
+      // runs) and a finite pressure beyond 1e6.
       if (std::abs(x) > 1e100 && by_check.find("must be at most") != std::string::npos) continue;
       if (name == "lambda" && std::isfinite(x) && !(s.material_params.mu + x > 0.0)) {
         EXPECT_NE(by_check.find("`lambda` must be greater than -mu"), std::string::npos) << x;
         continue;
       }
-      if ((name == "frames" && x > 1e6) ||
+      if ((name == "frames" && x > 1e6) || (name == "iterations" && x > 1e5) ||
           (name == "pressure" && std::isfinite(x) && std::abs(x) > 1e6)) {
         EXPECT_EQ(by_check, "") << "--" << name << " " << text;
         continue;
       }
-      if (name == "frames" && x < 0) {  // the table's message names its upper bound too
-        EXPECT_EQ(by_check, "`frames`: '" + text + "' is not an integer >= 0");
-        EXPECT_EQ(by_table.rfind("`frames`: '" + text + "' is not an integer in [0, ", 0), 0u);
+      if ((name == "frames" || name == "iterations") &&
+          x < 0) {  // the table's names its upper bound too
+        EXPECT_EQ(by_check, "`" + name + "`: '" + text + "' is not an integer >= 0");
+        EXPECT_EQ(by_table.rfind("`" + name + "`: '" + text + "' is not an integer in [0, ", 0),
+                  0u);
         continue;
       }
       if (name == "pressure" && !std::isfinite(x)) {
