@@ -29,16 +29,20 @@ std::string fmt(double v, int precision, const char* nan_text) {
 
 void print_rows(const std::vector<ErrorLadderRow>& rows, std::ostream& os) {
   os << std::left << std::setw(7) << "solver" << std::setw(11) << "order" << std::right
-     << std::setw(4) << "thr" << std::setw(6) << "iter" << std::setw(5) << "sub" << std::setw(13)
+     << std::setw(5) << "thr" << std::setw(8) << "iter" << std::setw(7) << "sub" << std::setw(13)
      << "ms_per_step" << std::setw(12) << "hausdorff" << std::setw(12) << "max_vertex"
      << std::setw(9) << "V/V0" << std::setw(11) << "dV" << std::setw(11) << "dE_rel" << '\n';
   for (const ErrorLadderRow& r : rows) {
     os << std::left << std::setw(7) << ladder_solver_name(r.solver) << std::setw(11)
-       << ladder_order_name(r.order) << std::right << std::setw(4) << r.threads << std::setw(6)
-       << r.iterations << std::setw(5) << r.substeps << std::setw(13) << fmt(r.ms_per_step)
-       << std::setw(12) << fmt(r.hausdorff) << std::setw(12) << fmt(r.max_vertex_error)
-       << std::setw(9) << fmt(r.volume_ratio, 4) << std::setw(11) << fmt(r.volume_error)
-       << std::setw(11) << fmt(r.energy_error, 3, r.failed ? "failed" : "n/a") << '\n';
+       << ladder_order_name(r.order)
+       << std::right
+       // A space before each count: a reference's iterations (--ref-iterations, any int) would
+       // otherwise run into the threads' column.
+       << ' ' << std::setw(4) << r.threads << ' ' << std::setw(7) << r.iterations << ' '
+       << std::setw(6) << r.substeps << std::setw(13) << fmt(r.ms_per_step) << std::setw(12)
+       << fmt(r.hausdorff) << std::setw(12) << fmt(r.max_vertex_error) << std::setw(9)
+       << fmt(r.volume_ratio, 4) << std::setw(11) << fmt(r.volume_error) << std::setw(11)
+       << fmt(r.energy_error, 3, r.failed ? "failed" : "n/a") << '\n';
   }
 }
 

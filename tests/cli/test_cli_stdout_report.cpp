@@ -3,7 +3,8 @@
 // it, a full disk, stdout closed) must not end with exit 0, or a CI step takes an empty report for
 // a pass (docs/cli.md, "Exit codes": an output that cannot be written is 1). And `bench error
 // --plot` without --csv, with $TMPDIR naming a folder that is gone, falls back to /tmp as
-// mkstemp-based tools do, instead of failing with exit 3 after every run.
+// mkstemp-based tools do, instead of failing with exit 3 after every run. Its table keeps its
+// columns apart.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -99,6 +100,38 @@ TEST_F(CliStdoutReport, BenchPlotFallsBackFromAMissingTmpdir) {
   EXPECT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << test::ending(e.status) << '\n'
                                                                  << e.err;
   EXPECT_TRUE(std::filesystem::is_regular_file(plot)) << e.err;
+}
+
+// bench error's table is read by eye and by `awk`: each row has as many blank-separated fields
+// as its header, also for a reference of six-digit iterations (whose count ran into the threads'
+// column: "1100001").
+TEST_F(CliStdoutReport, BenchErrorRowsHaveTheirHeadersFields) {
+  const std::string cube = std::string(test::MESH_DIR) + "/cube.off";
+  const Ended e = run_cli(
+      {"bench", "error", cube, "--solver", "xpbd", "--frames", "1", "--iterations", "1",
+       "--substeps", "1", "--ref-iterations", "100001", "--ref-substeps", "1", "--no-check", "-q"},
+      Stdout::File, path("table.txt"));
+  ASSERT_TRUE(WIFEXITED(e.status) && WEXITSTATUS(e.status) == 0) << test::ending(e.status) << '\n'
+                                                                 << e.err;
+  std::istringstream table(read_file(path("table.txt")));
+  auto fields = [](const std::string& line) {
+    std::istringstream words(line);
+    std::size_t n = 0;
+    for (std::string w; words >> w;) ++n;
+    return n;
+  };
+  std::size_t header = 0, rows = 0;
+  for (std::string line; std::getline(table, line);) {
+    if (line.rfind("solver ", 0) == 0) {
+      header = fields(line);
+    } else if (line.empty()) {
+      header = 0;
+    } else if (header > 0) {
+      EXPECT_EQ(fields(line), header) << line;
+      ++rows;
+    }
+  }
+  EXPECT_EQ(rows, 2u) << "a rung and its reference";
 }
 
 }  // namespace
