@@ -319,30 +319,32 @@ std::vector<OptionSpec> build_table() {
   t.push_back(number("k-a", 0, "KAPPA",
                      "kappa_A: the inward term is k_A = kappa_A mu_A sqrt(face rest area)",
                      ranges::k_a(), [](R& r) -> double& { return r.sim.anisotropy.kappa_a; }));
-  t.push_back(
-      choice("inward",
-             "how the regions are made to sink in: volume (each region sinks a dimple around "
-             "its apex holding S of its rest cap volume, S = --region-shrink, towards the "
-             "dimple's mirror image and holds it there; under -p > 0 without --target-volume the "
-             "regions also take an extra pressure 2 S P) | force (an extra pressure on the "
-             "regions, P_A = 10 S, without net force or torque: this tool's replacement for "
-             "the paper's k_A) | "
-             "projection (the paper's k_A inside the E_A projection; --aniso, pbd) | none",
-             Choices<InwardTerm>{{"volume", InwardTerm::Volume},
-                                 {"projection", InwardTerm::Projection},
-                                 {"force", InwardTerm::Force},
-                                 {"none", InwardTerm::None}},
-             [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
-  t.push_back(choice("dimple",
-                     "the shape --inward volume sinks a region to: mirror (default: the cap "
-                     "mirrored through its rim's plane, an isometry, carried by the shell away "
-                     "from the regions, the ring at the rim left to the solver; a region whose "
-                     "rim lies far off any plane sinks only its part above a plane cut; volume where a "
-                     "region has no mirror: a collinear rim or no interior vertex) | volume (the "
-                     "dimple's cap volume is projected, its shape free)",
-                     Choices<DimpleShape>{{"volume", DimpleShape::Volume},
-                                          {"mirror", DimpleShape::Mirror}},
-                     [](R& r) -> DimpleShape& { return r.sim.dimple_shape; }));
+  // Described choices: the values and their descriptions in one list (a plain choice's help
+  // listed the values again after the text that described them).
+  t.push_back(described_choice(
+      "inward", "how the regions are made to sink in",
+      std::vector<option_builders::DescribedChoice<InwardTerm>>{
+          {"volume", InwardTerm::Volume,
+           "each region sinks a dimple around its apex holding S of its rest cap volume, S = "
+           "--region-shrink, towards the dimple's mirror image and holds it there; under -p > 0 "
+           "without --target-volume the regions also take an extra pressure 2 S P"},
+          {"force", InwardTerm::Force,
+           "an extra pressure on the regions, P_A = 10 S, without net force or torque: this "
+           "tool's replacement for the paper's k_A"},
+          {"projection", InwardTerm::Projection,
+           "the paper's k_A inside the E_A projection; --aniso, pbd"},
+          {"none", InwardTerm::None, ""}},
+      [](R& r) -> InwardTerm& { return r.sim.inward_term; }));
+  t.push_back(described_choice(
+      "dimple", "the shape --inward volume sinks a region to",
+      std::vector<option_builders::DescribedChoice<DimpleShape>>{
+          {"mirror", DimpleShape::Mirror,
+           "default: the cap mirrored through its rim's plane, an isometry, carried by the shell "
+           "away from the regions, the ring at the rim left to the solver; a region whose rim "
+           "lies far off any plane sinks only its part above a plane cut; volume where a region "
+           "has no mirror: a collinear rim or no interior vertex"},
+          {"volume", DimpleShape::Volume, "the dimple's cap volume is projected, its shape free"}},
+      [](R& r) -> DimpleShape& { return r.sim.dimple_shape; }));
   t.push_back(number("region-max-area", 0, "F",
                      "--regions auto: drop regions larger than this fraction of the surface "
                      "(0.05 keeps bear's head out, which deflates the whole shell)",

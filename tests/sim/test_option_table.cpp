@@ -281,5 +281,23 @@ TEST(OptionTable, TheDefaultRunIsTheShellMaterialUnderXpbd) {
   }
 }
 
+// A help that describes its values ("volume (each region sinks ...) | force (...)") must not
+// list them again as a plain choice's does ("...; volume | projection | force | none"): --inward,
+// --dimple and --bending had both.
+TEST(OptionTable, NoHelpListsItsValuesTwice) {
+  const std::regex plain_list("; ([a-z0-9-]+(?: \\| [a-z0-9-]+)+)$");
+  for (const OptionSpec& o : run_option_table()) {
+    std::smatch m;
+    if (!std::regex_search(o.help, m, plain_list)) continue;
+    const std::string before = o.help.substr(0, static_cast<std::size_t>(m.position(0)));
+    std::istringstream values(m[1].str());
+    for (std::string v; values >> v;) {
+      if (v == "|") continue;
+      EXPECT_EQ(before.find(v + " ("), std::string::npos)
+          << "--" << o.name << " describes '" << v << "' and lists it again: " << o.help;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace shellcontract
