@@ -254,6 +254,14 @@ Mesh repair_input_mesh(const std::string& path, RepairReport* report, std::size_
   RepairReport local;
   RepairReport& r = report ? *report : local;
   r = RepairReport{};
+  // A file of no format of the table is refused as check refuses it: repair cannot read it
+  // either (its message had named the file twice: "F: cannot repair: ... (F: unknown extension").
+  try {
+    require_mesh_extension(path, lower_extension(path));
+  } catch (const InputError& e) {
+    r.input_problem = r.failure = e.what();
+    throw;
+  }
   try {
     Mesh mesh = read_input_mesh(path, &r.input_report);
     r.already_usable = r.usable = true;

@@ -120,6 +120,10 @@ TEST_F(CliFormats, RepairRefusesAnInputOfNoKnownExtension) {
   EXPECT_NE(r.output.find("unknown extension: '.dat'"), std::string::npos) << r.output;
   EXPECT_EQ(listed(r.output, "expected "), rows(any_format));
   EXPECT_FALSE(fs::exists(out("r.off")));
+  // As check says it, the file named once (it read "F: cannot repair: the file cannot be read
+  // (F: unknown extension ...)").
+  const std::string name = out("cube.dat");
+  EXPECT_EQ(r.output.find(name), r.output.rfind(name)) << r.output;
 }
 
 }  // namespace
