@@ -199,7 +199,9 @@ export function checkAsciiStl(text, name) {
  * Checks an OBJ's lines that three.js's OBJLoader reads into positions: a vertex ('v') of three
  * numbers at least, a texture coordinate ('vt') of one, a normal ('vn') of three, and each face
  * ('f') of three corners or more, each referring to a vertex (and texture coordinate and normal)
- * defined before it (OBJLoader looks them up as it reads the face).
+ * the file defines: a positive index anywhere in the file, as the CLI reads it (OBJLoader looks
+ * them up as it reads the face: loadMeshFile moves the definitions first, verticesFirst), a
+ * negative one among those before the face.
  */
 export function checkObj(text, name) {
   // Lines ending in '\' go on in the next, as OBJLoader joins them; each keeps its first line's number.
@@ -216,6 +218,11 @@ export function checkObj(text, name) {
     throw new Error(`${name}: line ${numbers[last]}: a line continuation ('\\') with no line after it: the file may be cut short`);
   }
   const counts = { v: 0, vt: 0, vn: 0 };
+  const totals = { v: 0, vt: 0, vn: 0 };
+  for (const line of lines) {
+    const key = line.trimStart().split(/\s/, 1)[0];
+    if (key in totals) totals[key]++;
+  }
   const need = { v: 3, vt: 1, vn: 3 }, short = { v: 'is not three numbers', vt: 'has no number', vn: 'is not three numbers' };
   const what = { v: 'vertex', vt: 'texture coordinate', vn: 'normal' };
   lines.forEach((line, i) => {
@@ -239,8 +246,8 @@ export function checkObj(text, name) {
           if (x === '' && k > 0) return;  // 'v//vn': no texture coordinate
           const n = Number(x);
           if (!kind || !Number.isInteger(n) || n === 0) throw fail(`a face's corner '${c}' is not of the form v, v/vt, v//vn or v/vt/vn`);
-          const index = n > 0 ? n : counts[kind] + n + 1;
-          if (index < 1 || index > counts[kind]) {
+          if (n > 0 && n > totals[kind]) throw fail(`a face refers to ${what[kind]} ${n}, but the file has ${totals[kind]}`);
+          if (n < 0 && counts[kind] + n + 1 < 1) {
             throw fail(`a face refers to ${what[kind]} ${n}, but the file has ${counts[kind]} before it`);
           }
         });

@@ -37,6 +37,45 @@ export function recentred(values) {
 }
 
 /**
+ * The OBJ with its vertex, texture coordinate and normal lines before every other line, its
+ * faces' negative (relative) indices made absolute: the same mesh, for OBJLoader, which looks a
+ * face's vertices up as it reads the face (a vertex defined after it gave NaN positions; the CLI
+ * reads such a file). A file whose definitions all come first is returned as it is.
+ */
+export function verticesFirst(text) {
+  const raw = text.split(/\r\n|\n|\r/), lines = [];
+  for (let i = 0, joined = ''; i < raw.length; i++) {  // '\' continues a line (as checkObj reads it)
+    if (raw[i].endsWith('\\') && i + 1 < raw.length) { joined += raw[i].slice(0, -1); continue; }
+    lines.push(joined + raw[i]);
+    joined = '';
+  }
+  const key = (line) => line.trimStart().split(/\s/, 1)[0];
+  const defines = (line) => ['v', 'vt', 'vn'].includes(key(line));
+  const firstOther = lines.findIndex((l) => !defines(l) && ['f', 'l', 'p'].includes(key(l)));
+  if (firstOther < 0 || !lines.slice(firstOther).some(defines)) return text;
+  const counts = { v: 0, vt: 0, vn: 0 }, head = [], body = [];
+  for (const line of lines) {
+    const k = key(line);
+    if (k in counts) {
+      counts[k]++;
+      head.push(line);
+    } else if (['f', 'l', 'p'].includes(k)) {
+      const kinds = ['v', 'vt', 'vn'];
+      body.push(line.replace(/(\s)(-?\d+)((?:\/-?\d*){0,2})/g, (m, space, v, rest) => {
+        const parts = [v, ...rest.split('/').slice(1)].map((x, j) => {
+          const n = Number(x);
+          return x === '' || !(n < 0) ? x : String(counts[kinds[j]] + n + 1);
+        });
+        return space + parts.join('/');
+      }));
+    } else {
+      body.push(line);
+    }
+  }
+  return head.concat(body).join('\n');
+}
+
+/**
  * An OBJ's text with its vertices ('v x y z ...') relative to their bounding box's centre,
  * subtracted in double before OBJLoader reads them into float32 (recentred's reason). JavaScript's
  * shortest round-trip form writes each difference, so OBJLoader reads the same double back. A
@@ -207,7 +246,7 @@ export function loadMeshFile(buffer, name) {
     // A comment after an element ('f 1 2 3 # note'), which checkObj allows as the CLI does:
     // OBJLoader would read its words as corners (NaN positions).
     const uncommented = original.replace(/^(\s*(?:v|vt|vn|f|l|p)\s[^#\r\n]*)#.*$/gm, '$1');
-    const { text, centre } = recentredObj(uncommented);
+    const { text, centre } = recentredObj(verticesFirst(uncommented));
     object = new OBJLoader().parse(withUnnamedFirstMaterial(text));
     materialLibraries = object.materialLibraries;
     object.position.fromArray(centre);

@@ -164,13 +164,33 @@ for (const [name, whole] of Object.entries(files)) {
   }
 }
 
+// A face before the vertices it names (the CLI reads such an OBJ, and writes its result in the
+// input's order): drawn with those vertices, a relative index counted from its own line.
+{
+  const obj = 'v 0 0 0\nv 1 0 0\nf 1 3 2\nf 1 4 3\nv 0 1 0\nv 0 0 1\nf 1 -3 -1\nf 2 3 4\n';
+  const P = [[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]];
+  const faces = [[1, 3, 2], [1, 4, 3], [1, 2, 4], [2, 3, 4]];
+  let got = null, m = null;
+  try {
+    const r = loadMeshFile(ab(text(obj)), 'ahead.obj');
+    const at = r.object.position.toArray();
+    got = r.meshes.flatMap((mesh) => Array.from(mesh.geometry.getAttribute('position').array)).map((x, i) => x + at[i % 3]);
+  } catch (e) {
+    m = e.message;
+  }
+  const expected = faces.flat().flatMap((v) => P[v - 1]);
+  check(got !== null && got.length === expected.length && got.every((x, i) => Math.abs(x - expected[i]) < 1e-6),
+        `ahead.obj opens with each face's own vertices (${m ?? got.length / 9 + ' faces'})`);
+}
+
 // Malformed, not cut: each refused with the problem, naming the file.
 const malformed = [
   ['faces.ply', text(plyHead('ascii') + V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t, j) => `3 ${j === 5 ? '0 1 6' : t.join(' ')}`).join('\n') + '\n'),
    /^faces\.ply: face 5 refers to vertex 6, but the file has 6$/],
   ['words.ply', text(plyHead('ascii') + V.map((p, i) => `${i === 2 ? 'x' : p[0]} ${p[1]} ${p[2]} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n'),
    /^words\.ply: line 14: vertex 2: 'x' is not a number$/],
-  ['ahead.obj', text('v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n'), /^ahead\.obj: line 3: a face refers to vertex 3, but the file has 2 before it$/],
+  ['beyond.obj', text('v 0 0 0\nv 1 0 0\nf 1 2 3\ng end\n'), /^beyond\.obj: line 3: a face refers to vertex 3, but the file has 2$/],
+  ['before.obj', text('v 0 0 0\nv 1 0 0\nf 1 2 -3\nv 0 1 0\n'), /^before\.obj: line 3: a face refers to vertex -3, but the file has 2 before it$/],
   ['two.obj', text('v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\nf 1 2 3\n'), /^two\.obj: line 4: a face of 2 corners/],
   ['nan.obj', text('v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n'), /^nan\.obj: line 2: a vertex 'v 1 nan 0' is not three numbers$/],
   ['two.stl', text('solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nendloop\nendfacet\nendsolid t\n'),
