@@ -56,26 +56,39 @@ def subdivided_sphere(path, v, f, levels):
         out.writelines("3 {} {} {}\n".format(*t) for t in f.tolist())
 
 
-def test_reading_a_mesh_without_the_memory_raises_memory_error(mesh_dir, tmp_path):
+def big_sphere(mesh_dir, tmp_path):
+    """ico3 split twice (20,480 faces), written as OFF: reading or running it needs more than the
+    memory the interpreter and the module leave free after their import (bumpy_sphere's 1,280
+    faces were read with no headroom at all once the module's start-up grew, and the test saw no
+    limit run out). Skips where there is no /proc/self/status to measure the headroom from."""
     if not os.path.exists("/proc/self/status"):
         pytest.skip("no /proc/self/status")
-    # A mesh of 20,480 faces: reading it needs more than the memory the interpreter and the module
-    # leave free after their import (bumpy_sphere's 1,280 faces were read with no headroom at all
-    # once the module's start-up grew, and the test saw no limit run out).
     v, f = shellcontract.read_mesh(str(mesh_dir / "ico3.off"))
     path = str(tmp_path / "ico5.off")
     subdivided_sphere(path, np.asarray(v, dtype=float), np.asarray(f), 2)
-    reader_said = []
-    for kib in range(0, 256 * 1024, 256):
-        out = subprocess.run([sys.executable, "-c", CHILD, path, str(kib)], capture_output=True,
+    return path
+
+
+def reports_until(child, path, done, headrooms_kib):
+    """What `child` (run on `path` with each headroom in KiB, a process each) printed before it
+    printed `done`, as (headroom, report) pairs; fails the test if it never did."""
+    said = []
+    for kib in headrooms_kib:
+        out = subprocess.run([sys.executable, "-c", child, path, str(kib)], capture_output=True,
                              text=True, timeout=120, env=os.environ).stdout.strip()
-        if out == "read":
-            break
+        if out == done:
+            return said
+        said.append((kib, out))
+    pytest.fail("'{}' not printed with {} KiB of headroom".format(done, headrooms_kib[-1]))
+
+
+def test_reading_a_mesh_without_the_memory_raises_memory_error(mesh_dir, tmp_path):
+    path = big_sphere(mesh_dir, tmp_path)
+    said = reports_until(CHILD, path, "read", range(0, 256 * 1024, 256))
+    for kib, out in said:
         assert not out.startswith("ValueError"), (kib, out)
-        if out.startswith("MemoryError: " + path + ": out of memory: reading it needs more memory"):
-            reader_said.append(out)
-    else:
-        pytest.fail("not read with 256 MiB of headroom")
+    reader_said = [out for _, out in said if out.startswith(
+        "MemoryError: " + path + ": out of memory: reading it needs more memory")]
     assert reader_said, "no limit ran out while the file was read"
 
 
@@ -101,19 +114,8 @@ def test_contract_without_the_memory_says_what_it_was_doing(mesh_dir, tmp_path):
     """contract() on a mesh it cannot hold: a MemoryError saying what the run was doing and on
     how many vertices and faces, never pybind11's bare "std::bad_alloc" (a caller told only that
     cannot know whether its mesh or its own program is too large)."""
-    if not os.path.exists("/proc/self/status"):
-        pytest.skip("no /proc/self/status")
-    v, f = shellcontract.read_mesh(str(mesh_dir / "ico3.off"))
-    path = str(tmp_path / "ico5.off")
-    subdivided_sphere(path, np.asarray(v, dtype=float), np.asarray(f), 2)
-    said = []
-    for mib in range(0, 512, 2):
-        out = subprocess.run([sys.executable, "-c", CONTRACT_CHILD, path, str(mib * 1024)],
-                             capture_output=True, text=True, timeout=120, env=os.environ).stdout.strip()
-        if out == "ran":
-            break
-        assert out.startswith("MemoryError: out of memory while "), (mib, out)
-        said.append(out)
-    else:
-        pytest.fail("contract() did not run with 512 MiB of headroom")
-    assert any("(10242 vertices, 20480 faces)" in s for s in said), said
+    path = big_sphere(mesh_dir, tmp_path)
+    said = reports_until(CONTRACT_CHILD, path, "ran", range(0, 512 * 1024, 2 * 1024))
+    for kib, out in said:
+        assert out.startswith("MemoryError: out of memory while "), (kib, out)
+    assert any("(10242 vertices, 20480 faces)" in out for _, out in said), said

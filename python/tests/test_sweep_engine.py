@@ -52,14 +52,20 @@ sweep_job.run_job(__import__("json").loads(sys.argv[2]), sys.argv[3], sys.argv[4
 """
 
 
-@pytest.mark.parametrize("launch", ["setpriv", "preexec"])
-def test_a_job_saves_and_stops_when_the_process_that_started_it_dies(cli, mesh_dir, tmp_path,
-                                                                     launch):
+def endless_job(cli, mesh_dir, tmp_path, launch):
+    """The job of a one-job sweep that runs a million frames on ico3, for a starter that sets its
+    death signal by `launch` ("setpriv" skips where setpriv cannot set it)."""
     if launch == "setpriv" and not sweep_job._death_signal_prefix():
         pytest.skip("no setpriv with --pdeathsig here")
     path = write_sweep(tmp_path, mesh_dir, "endless.json", ENDLESS, meshes=("ico3.off",))
     version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
-    job = sweep_file.expand(str(path), sweep_file.load(str(path)), version)[0]
+    return sweep_file.expand(str(path), sweep_file.load(str(path)), version)[0]
+
+
+@pytest.mark.parametrize("launch", ["setpriv", "preexec"])
+def test_a_job_saves_and_stops_when_the_process_that_started_it_dies(cli, mesh_dir, tmp_path,
+                                                                     launch):
+    job = endless_job(cli, mesh_dir, tmp_path, launch)
     out = tmp_path / "out"
     starter = subprocess.Popen([sys.executable, "-c", STARTER, launch, json.dumps(job.to_dict()),
                                 str(out), cli], env=sweep_env(cli))
@@ -110,11 +116,7 @@ def test_a_job_whose_starter_died_before_its_death_signal_was_set_does_not_run(
     # Before: the signal, set after its parent had gone, never came, and the run went on to its
     # end orphaned, holding its attempt's lock (test_sweep_killed_and_run_again_redoes_no_
     # finished_job then found its folder left after the rerun).
-    if launch == "setpriv" and not sweep_job._death_signal_prefix():
-        pytest.skip("no setpriv with --pdeathsig here")
-    path = write_sweep(tmp_path, mesh_dir, "endless.json", ENDLESS, meshes=("ico3.off",))
-    version = subprocess.run([cli, "--version"], capture_output=True, text=True).stdout.strip()
-    job = sweep_file.expand(str(path), sweep_file.load(str(path)), version)[0]
+    job = endless_job(cli, mesh_dir, tmp_path, launch)
     out = tmp_path / "out"
     flag = tmp_path / "started"
     starter = subprocess.Popen([sys.executable, "-c", HELD_STARTER, launch,

@@ -4,13 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <functional>
-#include <regex>
 #include <set>
 #include <string>
 
 #include "mesh/formats.hpp"
 #include "support/cli_runner.hpp"
+#include "support/format_lists.hpp"
 #include "support/gltf_files.hpp"
 #include "support/scratch_dir.hpp"
 #include "test_paths.hpp"
@@ -19,36 +18,13 @@ namespace shellcontract {
 namespace {
 
 namespace fs = std::filesystem;
-using Extensions = std::set<std::string>;
+using test::Extensions;
+using test::listed;
+using test::rows;
 using test::run_cli;
 using test::RunResult;
 
-template <class Keep>
-Extensions rows(Keep keep) {
-  Extensions out;
-  for (const MeshFormat& f : MESH_FORMATS)
-    if (std::invoke(keep, f)) out.insert(f.ext);
-  return out;
-}
-
 bool plain_or_gltf(const MeshFormat& f) { return f.plain_writer || f.gltf; }
-
-/// The extensions a text lists after the last `after`, up to `stop` (a help text's own words,
-/// its line breaks and the dots left out).
-Extensions listed(const std::string& text, const std::string& after,
-                  const std::string& stop = ")") {
-  const std::size_t at = text.rfind(after);
-  if (at == std::string::npos) return {"<no '" + after + "' in: " + text + ">"};
-  std::string list = text.substr(at + after.size());
-  list = list.substr(0, list.find(stop));
-  static const Extensions GLUE = {"or", "and", "for", "an", "input", "of", "that", "format"};
-  Extensions out;
-  const std::regex word("[A-Za-z0-9]+");
-  for (auto it = std::sregex_iterator(list.begin(), list.end(), word); it != std::sregex_iterator();
-       ++it)
-    if (!GLUE.count(it->str())) out.insert(it->str());
-  return out;
-}
 
 std::string mesh_path(const std::string& name) { return std::string(test::MESH_DIR) + "/" + name; }
 

@@ -10,25 +10,15 @@
 
 #include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "support/soup_arrays.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
-struct Arrays {
-  std::vector<double> v;
-  std::vector<std::int64_t> f;
-};
+using Arrays = test::SoupArrays;
 
-Arrays ico(const char* name = "ico2.off") {
-  const Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/" + name);
-  Arrays a;
-  const Positions x = positions_from_mesh(mesh);
-  a.v.assign(x.data(), x.data() + x.size());
-  for (const FaceIndex f : mesh.faces())
-    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) a.f.push_back(v.idx());
-  return a;
-}
+Arrays ico(const char* name = "ico2.off") { return test::arrays_of_test_mesh(name); }
 
 /// The FaceListError mesh_from_arrays throws for `a` (fails the test if it throws anything else).
 FaceListError refusal(const Arrays& a) {

@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
-#include <regex>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,38 +17,16 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/repair.hpp"
+#include "support/format_lists.hpp"
 #include "support/scratch_dir.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
-using Extensions = std::set<std::string>;
-
-/// The table's rows that `keep` selects.
-template <class Keep>
-Extensions rows(Keep keep) {
-  Extensions out;
-  for (const MeshFormat& f : MESH_FORMATS)
-    if (std::invoke(keep, f)) out.insert(f.ext);
-  return out;
-}
-
-/// The extensions a message lists after the last `after` ("expected "): its words up to the
-/// closing parenthesis, with or without their dots, less the list's own words.
-Extensions listed(const std::string& message, const std::string& after = "expected ") {
-  const std::size_t at = message.rfind(after);
-  if (at == std::string::npos) return {"<no '" + after + "' in: " + message + ">"};
-  std::string list = message.substr(at + after.size());
-  list = list.substr(0, list.find(')'));
-  static const Extensions GLUE = {"or", "and", "for", "an", "input", "of", "that", "format"};
-  Extensions out;
-  const std::regex word("[A-Za-z0-9]+");
-  for (auto it = std::sregex_iterator(list.begin(), list.end(), word); it != std::sregex_iterator();
-       ++it)
-    if (!GLUE.count(it->str())) out.insert(it->str());
-  return out;
-}
+using test::Extensions;
+using test::listed;
+using test::rows;
 
 template <class F>
 std::string message_of(F&& f) {

@@ -1,13 +1,13 @@
 // mesh_from_arrays against read_input_mesh: the same soup from a file and from arrays gives the
 // same mesh (corner order included) and the same report, and a bad soup the same problem name.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -15,31 +15,19 @@
 #include <utility>
 #include <vector>
 
-#include <unistd.h>
-
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "support/soup_arrays.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
 /// A mesh's arrays as the soup that produced it (positions and corner order as written).
-struct Arrays {
-  std::vector<double> v;
-  std::vector<std::int64_t> f;
-};
-
-Arrays arrays_of(const Mesh& mesh) {
-  Arrays a;
-  const Positions x = positions_from_mesh(mesh);
-  a.v.assign(x.data(), x.data() + x.size());
-  for (const FaceIndex f : mesh.faces())
-    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) a.f.push_back(v.idx());
-  return a;
-}
+using Arrays = test::SoupArrays;
+using test::arrays_of;
 
 Mesh from(const Arrays& a, InputReport* report = nullptr, bool reorient = true) {
   TriangleSoupView s;
@@ -142,15 +130,7 @@ TEST(FromArrays, AComponentThatEnclosesNoVolumeIsRefused) {
   const std::string path = (std::filesystem::temp_directory_path() /
                             ("shellcontract_flat_component_" + std::to_string(::getpid()) + ".off"))
                                .string();
-  {
-    std::ofstream off(path);
-    off.precision(17);
-    off << "OFF\n" << flat.v.size() / 3 << " " << flat.f.size() / 3 << " 0\n";
-    for (std::size_t i = 0; i < flat.v.size(); i += 3)
-      off << flat.v[i] << " " << flat.v[i + 1] << " " << flat.v[i + 2] << "\n";
-    for (std::size_t f = 0; f < flat.f.size(); f += 3)
-      off << "3 " << flat.f[f] << " " << flat.f[f + 1] << " " << flat.f[f + 2] << "\n";
-  }
+  test::write_soup_off(path, flat);
   EXPECT_EQ(problem_of([&] { read_input_mesh(path); }), "component with no volume");
   std::filesystem::remove(path);
   // A part a thousand times smaller than the rest is a part, not a flat shell; and a lone flat

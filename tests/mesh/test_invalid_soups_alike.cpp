@@ -6,7 +6,6 @@
 
 #include <array>
 #include <cstdint>
-#include <fstream>
 #include <functional>
 #include <limits>
 #include <regex>
@@ -17,25 +16,15 @@
 #include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/scratch_dir.hpp"
+#include "support/soup_arrays.hpp"
 #include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
 
-struct Arrays {
-  std::vector<double> v;
-  std::vector<std::int64_t> f;
-};
+using Arrays = test::SoupArrays;
 
-Arrays ico1() {
-  const Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico1.off");
-  Arrays a;
-  const Positions x = positions_from_mesh(mesh);
-  a.v.assign(x.data(), x.data() + x.size());
-  for (const FaceIndex f : mesh.faces())
-    for (const VertexIndex v : vertices_around_face(mesh.halfedge(f), mesh)) a.f.push_back(v.idx());
-  return a;
-}
+Arrays ico1() { return test::arrays_of_test_mesh("ico1.off"); }
 
 /// A refusal: "<problem>", the rest of the message with the name and file lines left out, and
 /// the faces a FaceListError names.
@@ -77,15 +66,7 @@ class InvalidSoups : public test::ScratchDirTest {
 
   Refusal from_file(const Arrays& a) const {
     const std::string path = (dir_ / "soup.off").string();
-    {
-      std::ofstream off(path);
-      off.precision(17);
-      off << "OFF\n" << a.v.size() / 3 << " " << a.f.size() / 3 << " 0\n";
-      for (std::size_t i = 0; i < a.v.size(); i += 3)
-        off << a.v[i] << " " << a.v[i + 1] << " " << a.v[i + 2] << "\n";
-      for (std::size_t f = 0; f < a.f.size(); f += 3)
-        off << "3 " << a.f[f] << " " << a.f[f + 1] << " " << a.f[f + 2] << "\n";
-    }
+    test::write_soup_off(path, a);
     return refusal_of([&] { read_input_mesh(path); }, path);
   }
 };
