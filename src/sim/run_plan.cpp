@@ -62,12 +62,6 @@ void check_sim_options_impl(const SimOptions& o) {
   namespace ranges = option_ranges;
   auto fail = [](const std::string& what) { throw UsageError(what); };
   const MaterialParams& m = o.material_params;
-  for (const auto& [name, value] : {std::pair<const char*, double>{"mu", m.mu}, {"lambda", m.lambda},
-                                    {"c10", m.c10}, {"c01", m.c01}, {"mu_a", m.mu_aniso},
-                                    {"k_b", o.solver.k_bending}, {"k_a", o.anisotropy.kappa_a}})
-    if (std::abs(value) > MAX_STIFFNESS)
-      fail(std::string("`") + name + "` must be at most " + shortest_text(MAX_STIFFNESS) +
-           (value < 0.0 ? " in size" : ""));
   // In the option table's order.
   require("pressure", o.pressure, ranges::any_finite());
   require("air_balance", o.air_balance, ranges::air_balance());
@@ -104,6 +98,18 @@ void check_sim_options_impl(const SimOptions& o) {
   require("fiber_target", m.fiber_target, ranges::fiber_target());
   require("delta", o.collision.delta, ranges::delta());
   require("collision_rounds", o.collision.rounds, ranges::COLLISION_ROUNDS);
+  // After the table's ranges, so that a value the table refuses (mu = -1e101: not > 0) gets the
+  // table's message, as the same value given as text does; the bound holds what they allow.
+  for (const auto& [name, value] : {std::pair<const char*, double>{"mu", m.mu},
+                                    {"lambda", m.lambda},
+                                    {"c10", m.c10},
+                                    {"c01", m.c01},
+                                    {"mu_a", m.mu_aniso},
+                                    {"k_b", o.solver.k_bending},
+                                    {"k_a", o.anisotropy.kappa_a}})
+    if (std::abs(value) > MAX_STIFFNESS)
+      fail(std::string("`") + name + "` must be at most " + shortest_text(MAX_STIFFNESS) +
+           (value < 0.0 ? " in size" : ""));
   // Not an option of the table: a caller's own margin.
   if (!(o.collision.region_margin >= 0.0) || !std::isfinite(o.collision.region_margin))
     fail("collision.region_margin must be >= 0");
