@@ -21,6 +21,7 @@
 #include "core/plural.hpp"
 #include "core/token_text.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 
 namespace shellcontract {
 namespace {
@@ -28,6 +29,16 @@ namespace {
 [[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
   throw InputError(path + ": " + problem + ": " + details);
 }
+
+/// A problem of one face: a FaceListError with its index (a polygon's is its first triangle's,
+/// face_error.hpp), so that a caller gets the face as data from a file as from arrays.
+[[noreturn]] void fail_face(const std::string& path, const std::string& problem,
+                            const std::string& details, std::size_t face) {
+  throw FaceListError(path + ": " + problem + ": " + details, {face});
+}
+
+/// index()'s `corner_of` for a token that is no face's corner.
+constexpr std::size_t NOT_A_CORNER = SIZE_MAX;
 
 /// What an OFF keyword (ST)?C?N?4?n?OFF says about each vertex line.
 struct OffVariant {
@@ -132,9 +143,12 @@ class OffScanner {
       }
       std::vector<std::size_t> face(n);
       for (std::size_t k = 1; k <= n; ++k) {
-        const std::size_t v = index(t[k], where, true);
+        const std::size_t v = index(t[k], where, j);
         if (v >= nv && missing_ == MissingVertices::Refuse)
-          fail(path_, "vertex index out of range", where() + " refers to vertex " + std::to_string(v) + ", but the file has " + counted(nv, "vertex", "vertices") + " (0.." + std::to_string(nv - 1) + ")");
+          fail_face(path_, "vertex index out of range",
+                    where() + " refers to vertex " + std::to_string(v) + ", but the file has " +
+                        counted(nv, "vertex", "vertices") + " (0.." + std::to_string(nv - 1) + ")",
+                    j);
         face[k - 1] = v;
       }
       scan.faces.push_back(std::move(face));
@@ -191,9 +205,10 @@ class OffScanner {
   /// strtoll reads the token in place (see the vertex loop); `where` names it, for messages only.
   /// Reads what strtoll would accept as the whole token (an optional sign, decimal digits, no
   /// overflow), without its per-call locale and errno work (millions of face indices). A
-  /// negative `corner` index is SIZE_MAX under MissingVertices::Keep.
+  /// negative corner index (of face `corner_of`) is SIZE_MAX under MissingVertices::Keep.
   template <class Where>
-  std::size_t index(std::string_view tok, const Where& where, bool corner = false) {
+  std::size_t index(std::string_view tok, const Where& where,
+                    std::size_t corner_of = NOT_A_CORNER) {
     const char* p = tok.data();
     const char* const e = p + tok.size();
     const bool negative = p != e && *p == '-';
@@ -209,9 +224,12 @@ class OffScanner {
     }
     if (!ok) fail(path_, "parse error", where() + ": '" + shorten(tok) + "' is not an integer");
     if (negative && v != 0) {
-      if (corner && missing_ == MissingVertices::Keep) return SIZE_MAX;
-      fail(path_, "vertex index out of range",
-           where() + " has the negative index " + std::string(tok));
+      if (corner_of == NOT_A_CORNER)
+        fail(path_, "vertex index out of range",
+             where() + " has the negative index " + std::string(tok));
+      if (missing_ == MissingVertices::Keep) return SIZE_MAX;
+      fail_face(path_, "vertex index out of range",
+                where() + " has the negative index " + std::string(tok), corner_of);
     }
     return static_cast<std::size_t>(v);
   }
@@ -272,7 +290,11 @@ class OffScanner {
         const std::int32_t v = int32(where);
         face.push_back(v < 0 ? SIZE_MAX : static_cast<std::size_t>(v));
         if ((v < 0 || v >= nv) && missing_ == MissingVertices::Refuse)
-          fail(path_, "vertex index out of range", "binary OFF: " + where + " refers to vertex " + std::to_string(v) + ", but the file has " + counted(static_cast<std::size_t>(nv), "vertex", "vertices"));
+          fail_face(path_, "vertex index out of range",
+                    "binary OFF: " + where + " refers to vertex " + std::to_string(v) +
+                        ", but the file has " +
+                        counted(static_cast<std::size_t>(nv), "vertex", "vertices"),
+                    static_cast<std::size_t>(f));
       }
       const std::int32_t colours = int32(where + "'s colour count");
       if (colours < 0 || colours > 4 || text_.size() - pos < 4 * static_cast<std::size_t>(colours))

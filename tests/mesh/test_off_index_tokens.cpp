@@ -5,11 +5,14 @@
 // vertical tab as a blank is left out.
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <vector>
 
 #include "mesh/off_scan.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 
 namespace shellcontract {
 namespace {
@@ -59,6 +62,54 @@ TEST(OffIndexTokens, BlanksAreTheCLocaleSpaces) {
   // the file does not end inside the face).
   const std::string nbsp = refusal("3 1 2\xa0" "3\n# end");
   EXPECT_NE(nbsp.find("parse error: face 3 (line 10) announces 3 vertices but lists 2"), std::string::npos) << nbsp;
+}
+
+/// The faces of the FaceListError the scan throws for `text`; {} (and a failure) for anything else.
+std::vector<std::size_t> refused_faces(const std::string& text) {
+  try {
+    scan_off("t.off", text);
+    ADD_FAILURE() << "accepted";
+  } catch (const FaceListError& e) {
+    return e.faces();
+  } catch (const InputError& e) {
+    ADD_FAILURE() << "refused without its faces: " << e.what();
+  }
+  return {};
+}
+
+/// A binary OFF tetrahedron (big-endian int32 and float32, as CGAL writes it) whose last face
+/// names `last`.
+std::string binary_tetrahedron(std::int32_t last) {
+  std::string s = "OFF BINARY\n";
+  auto put = [&s](std::uint32_t u) {
+    for (int shift = 24; shift >= 0; shift -= 8) s += static_cast<char>((u >> shift) & 0xffu);
+  };
+  auto put_int = [&put](std::int32_t i) { put(static_cast<std::uint32_t>(i)); };
+  for (std::int32_t n : {4, 4, 0}) put_int(n);
+  for (float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f}) {
+    std::uint32_t u = 0;
+    std::memcpy(&u, &c, 4);
+    put(u);
+  }
+  for (const auto& f :
+       std::vector<std::vector<std::int32_t>>{{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, last}}) {
+    put_int(3);
+    for (std::int32_t v : f) put_int(v);
+    put_int(0);
+  }
+  return s;
+}
+
+// Before, an index past the vertices was a plain InputError from a file, where the same mesh as
+// arrays named its face as data (Python's MeshError.faces, the Blender add-on's selection).
+TEST(OffIndexTokens, AnIndexOutOfRangeNamesItsFaceAsData) {
+  EXPECT_EQ(refused_faces(tetrahedron("3 1 2 4")), (std::vector<std::size_t>{3}));
+  EXPECT_EQ(refused_faces(tetrahedron("3 1 2 -3")), (std::vector<std::size_t>{3}));
+  EXPECT_EQ(refused_faces(binary_tetrahedron(4)), (std::vector<std::size_t>{3}));
+  EXPECT_EQ(refused_faces(binary_tetrahedron(-1)), (std::vector<std::size_t>{3}));
+  // The binary tetrahedron itself is read: the refusals above are of the index alone.
+  EXPECT_EQ(scan_off("t.off", binary_tetrahedron(3)).faces.back(),
+            (std::vector<std::size_t>{1, 2, 3}));
 }
 
 }  // namespace
