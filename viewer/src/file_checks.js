@@ -24,20 +24,60 @@ const bytesText = (buffer, start = 0, end = buffer.byteLength) =>
 const lineAt = (text, at) => text.slice(0, at).split(/\r\n|\n|\r/).length;
 
 /**
- * A PLY's header: its format, elements ({name, count, properties: {name, type} or {name, list:
- * [countType, itemType]}}) and the byte offset of its data. Throws for a header cut short or one
- * the viewer cannot read.
+ * The most bytes a PLY's header is read in. The CLI reads a header of any length and writes its
+ * input's header back with the result (comments included); past this the file is refused as no
+ * PLY the viewer reads, rather than decoded whole in search of an 'end_header' it may not have (a
+ * binary file of hundreds of MB).
+ */
+export const PLY_HEADER_LIMIT = 16 * 1024 * 1024;
+
+/**
+ * The header's lines in the bytes [from, to): each line's tokens (split at blanks and tabs, as
+ * the CLI splits them), its byte offset and that of the next line; `end`: the 'end_header' line's
+ * index, or -1 when none ends within them. A line ends at "\n", "\r\n" or a lone "\r", or at the
+ * file's end; one cut by `to` short of the file's end is not read (it may go on).
+ */
+function headerLines(buffer, from, to) {
+  const text = bytesText(buffer, from, to), whole = to >= buffer.byteLength;
+  const line = /([^\r\n]*)(\r\n|\n|\r|$)/y, lines = [];
+  for (let m; line.lastIndex < text.length && (m = line.exec(text));) {
+    if (!whole && (m[2] === '' || line.lastIndex >= text.length)) break;
+    const tokens = m[1].split(/[ \t]+/).filter((t) => t !== '');
+    lines.push({ tokens, at: from + m.index, next: from + line.lastIndex });
+    if (tokens[0] === 'end_header') return { lines, end: lines.length - 1 };
+  }
+  return { lines, end: -1 };
+}
+
+/**
+ * A PLY's header, read up to its 'end_header' line as the CLI reads it (a UTF-8 byte-order mark
+ * skipped): its format, elements ({name, count, properties: {name, type} or {name, list:
+ * [countType, itemType]}}), comments ({at, next}: the line's bytes), the lines three.js's
+ * PLYLoader needs (`lines`: format, element and property, as tokens), the byte offset of its data
+ * and the data's first line. Throws for a header cut short, one longer than PLY_HEADER_LIMIT, or
+ * one the viewer cannot read.
  */
 function plyHeader(buffer, name) {
-  // The header is searched in the first 64 KiB, and in the whole file only when it is longer.
-  const endOf = (text) => /(\r\n|\n|\r)end_header(\r\n|\n|\r)/.exec(text);
-  let head = bytesText(buffer, 0, 65536), end = endOf(head);
-  if (!/^ply(\r\n|\n|\r)/.test(head)) throw new Error(`${name}: not a PLY file (it does not begin with 'ply')`);
-  if (!end && buffer.byteLength > 65536) end = endOf(head = bytesText(buffer));
-  if (!end) throw new Error(`${name}: the header has no 'end_header' line: the file is cut short in its header`);
-  const out = { format: '', elements: [], dataStart: end.index + end[0].length };
-  head.slice(0, end.index).split(/\r\n|\n|\r/).forEach((line, i) => {
-    const t = line.trim().split(/\s+/), where = `${name}: line ${i + 1}`;
+  const u8 = new Uint8Array(buffer);
+  const bom = u8[0] === 0xef && u8[1] === 0xbb && u8[2] === 0xbf ? 3 : 0;
+  // Most headers end in the first 64 KiB: a longer one (comments) is read again, up to the limit.
+  let read;
+  for (const size of [65536, PLY_HEADER_LIMIT]) {
+    read = headerLines(buffer, bom, Math.min(buffer.byteLength, bom + size));
+    if (read.end >= 0 || buffer.byteLength <= bom + size || (read.lines.length && read.lines[0].tokens.join(' ') !== 'ply')) break;
+  }
+  const { lines, end } = read;
+  if (lines[0]?.tokens.join(' ') !== 'ply') throw new Error(`${name}: not a PLY file (it does not begin with 'ply')`);
+  if (end < 0 && buffer.byteLength > bom + PLY_HEADER_LIMIT) {
+    throw new Error(`${name}: no 'end_header' line in the file's first ${PLY_HEADER_LIMIT / 1048576} MiB: ` +
+                    `the viewer reads a PLY header of up to ${PLY_HEADER_LIMIT / 1048576} MiB`);
+  }
+  if (end < 0) throw new Error(`${name}: the header has no 'end_header' line: the file is cut short in its header`);
+  const out = { format: '', elements: [], comments: [], lines: [], dataStart: lines[end].next, dataLine: end + 2 };
+  lines.slice(1, end).forEach(({ tokens: t, at, next }, k) => {
+    const where = `${name}: line ${k + 2}`;
+    if (t[0] === 'comment') out.comments.push({ at, next });
+    if (['format', 'element', 'property'].includes(t[0])) out.lines.push(t);
     if (t[0] === 'format') {
       out.format = t[1];
       if (!['ascii', 'binary_little_endian', 'binary_big_endian'].includes(t[1])) throw new Error(`${where}: unknown format '${t[1]}'`);
@@ -62,7 +102,7 @@ function plyHeader(buffer, name) {
 
 /**
  * Checks that a PLY holds every element its header counts (ASCII: numbers, integers where the type
- * is; binary: the bytes) and that its faces refer to vertices it has.
+ * is; binary: the bytes) and that its faces refer to vertices it has. @returns its header (plyHeader)
  */
 export function checkPly(buffer, name) {
   const header = plyHeader(buffer, name);
@@ -82,7 +122,7 @@ export function checkPly(buffer, name) {
       const m = next(e, i), v = Number(m[0]);
       const ok = INTEGER_TYPES.has(type) ? Number.isInteger(v) : !Number.isNaN(v) || /^[-+]?(nan|inf(inity)?)$/i.test(m[0]);
       if (!ok) {
-        throw new Error(`${name}: line ${lineAt(text, m.index) + lineAt(bytesText(buffer, 0, header.dataStart), header.dataStart) - 1}: ` +
+        throw new Error(`${name}: line ${lineAt(text, m.index) + header.dataLine - 1}: ` +
                         `${e.name} ${i}: '${m[0]}' is not ${INTEGER_TYPES.has(type) ? 'an integer' : 'a number'}`);
       }
       return v;
@@ -99,7 +139,7 @@ export function checkPly(buffer, name) {
         }
       }
     }
-    return;
+    return header;
   }
   const data = new DataView(buffer, Math.min(header.dataStart, buffer.byteLength));
   const little = header.format === 'binary_little_endian';
@@ -135,6 +175,7 @@ export function checkPly(buffer, name) {
       }
     }
   }
+  return header;
 }
 
 /** Checks that a binary STL holds the triangles its header counts. */
@@ -147,15 +188,29 @@ export function checkBinaryStl(buffer, name) {
   }
 }
 
+/** The keywords an ASCII STL's reading rests on, which the CLI (CGAL) reads in lower case only. */
+const STL_KEYWORDS = ['solid', 'facet', 'vertex', 'endfacet', 'endsolid'];
+
 /**
  * Checks an ASCII STL's keywords: each facet of three vertices of three numbers, closed by
  * 'endfacet', and the solid closed by 'endsolid' (STLLoader reads only what lies between 'solid'
- * and 'endsolid': a file cut short had no faces).
+ * and 'endsolid': a file cut short had no faces). A keyword in upper or mixed case ('SOLID',
+ * 'Facet', as some CAD exporters write) is refused, named: the CLI does not read it as one (a
+ * file beginning 'SOLID' is neither ASCII nor binary to it, a 'VERTEX' leaves its facet without
+ * vertices, a 'FACET' is skipped with its vertices), and so neither do three.js's loaders.
+ * ('normal', 'outer loop' and 'endloop' are skipped by both in any case.)
  */
 export function checkAsciiStl(text, name) {
   const token = /\S+/g;
   let m, facets = 0, inFacet = false, corners = 0, closed = false;
   const where = (at) => `${name}: line ${lineAt(text, at)}`;
+  const caseOf = (word, at) => {
+    if (word.length < 5 || word.length > 8) return;  // not a keyword's length (most words: numbers)
+    const lower = word.toLowerCase();
+    if (word === lower || !STL_KEYWORDS.includes(lower)) return;
+    throw new Error(`${where(at)}: the keyword '${word}' is not in lower case: an ASCII STL's keywords ` +
+                    `(${STL_KEYWORDS.map((k) => `'${k}'`).join(', ')}) are read in lower case only, as the CLI reads them`);
+  };
   // The rest of a 'solid' or 'endsolid' line is the solid's name, free text ('solid vertex'):
   // not keywords.
   const skipLine = () => {
@@ -164,6 +219,7 @@ export function checkAsciiStl(text, name) {
   };
   while ((m = token.exec(text))) {
     const word = m[0];
+    caseOf(word, m.index);
     if (word === 'facet') {
       if (inFacet) throw new Error(`${where(m.index)}: facet ${facets} has no 'endfacet'`);
       inFacet = true;

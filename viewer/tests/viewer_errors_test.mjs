@@ -5,7 +5,8 @@
 // Object3D.onBeforeRender) is named with the error in the status line, the page ready and not left
 // on "making its meshes", and the next file opens; an attribute of doubles (injected into
 // OBJLoader's result: the loaders convert every file's) is named before the draw, not reported
-// with three.js's message.
+// with three.js's message. An STL of upper-case keywords is refused with the keyword named, and a PLY
+// whose header runs past 64 KiB offers its field.
 // Usage: node viewer/tests/viewer_errors_test.mjs --mesh ico2.off [--chromium PATH]
 import { writeFileSync } from 'node:fs';
 import { check, finish, parseArgs, readOff, startViewer, workFolder } from './test_support.mjs';
@@ -21,6 +22,15 @@ const ply = 'ply\nformat ascii 1.0\n' + `element vertex ${vertices.length}\nprop
 writeFileSync(file('whole.ply'), ply);
 // Cut within the faces: the part read has every vertex and most faces (it opened as a mesh with a hole).
 writeFileSync(file('cut.ply'), ply.slice(0, Math.floor(ply.length * 0.8)));
+// An ASCII STL of upper-case keywords, as some CAD exporters write it (the CLI refuses it): it was
+// named as a binary STL cut short. A PLY whose header, of comments, runs past 64 KiB (the CLI
+// reads it): it opened without its field.
+writeFileSync(file('upper.stl'), `SOLID S\n${faces.map((f) => 'FACET NORMAL 0 0 0\nOUTER LOOP\n' +
+  f.map((i) => `VERTEX ${vertices[i].join(' ')}\n`).join('') + 'ENDLOOP\nENDFACET\n').join('')}ENDSOLID S\n`);
+writeFileSync(file('long_header.ply'), 'ply\nformat ascii 1.0\n' + `comment ${'c'.repeat(90)}\n`.repeat(800) +
+  `element vertex ${vertices.length}\nproperty float x\nproperty float y\nproperty float z\nproperty float height\n` +
+  `element face ${faces.length}\nproperty list uchar int vertex_indices\nend_header\n` +
+  vertices.map((v) => `${v.join(' ')} ${v[2]}`).join('\n') + '\n' + faces.map((f) => `3 ${f.join(' ')}`).join('\n') + '\n');
 writeFileSync(file('tri.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');
 writeFileSync(file('doubles.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');  // another name: the picker fires no change for the same file
 
@@ -41,6 +51,14 @@ try {
   line = await status();
   check(line.error && /^cut\.ply: the file ends after .*: it is cut short$/.test(line.text),
         `through the picker, the PLY cut short is refused in the status line, named ("${line.text}")`);
+
+  s = await open(file('upper.stl'));
+  line = await status();
+  check(line.error && /^upper\.stl: line 1: the keyword 'SOLID' is not in lower case/.test(line.text) && s.panes.length === 0,
+        `an STL of upper-case keywords is refused in the status line, the keyword named ("${line.text}")`);
+  s = await open(file('long_header.ply'));
+  const menu = await page.$eval('#colour', (e) => [...e.options].map((o) => o.textContent));
+  check(!s.error && menu.some((o) => /height/.test(o)), `a PLY of a header past 64 KiB opens with its field in the menu (${s.error ?? JSON.stringify(menu)})`);
 
   // A first draw that throws: injected into three.js (the page's own module, through its import map).
   await page.evaluate(async () => {
@@ -82,7 +100,7 @@ try {
   check(line.error && line.text === "doubles.obj: its 'uv' values are doubles, which WebGL cannot draw",
         `an attribute of doubles is named in the status line ("${line.text}")`);
 
-  const expected = /cut\.ply|injected draw failure|doubles/;
+  const expected = /cut\.ply|upper\.stl|injected draw failure|doubles/;
   const others = consoleErrors.filter((m) => !expected.test(m));
   check(others.length === 0, `no other console errors${others.length ? ': ' + others.slice(0, 3).join(' | ') : ''}`);
 } finally {

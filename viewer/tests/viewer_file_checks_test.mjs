@@ -8,10 +8,14 @@
 // its check is of the lines, and an OBJ cut within a vertex or face line is refused. WebGL takes
 // no doubles: a loader that left a Float64Array attribute (none of the files does: injected here
 // into OBJLoader) is named by makePane before the first draw would throw with the array's values.
+// Headers and keywords as the CLI reads them: a PLY's header however long (up to the viewer's
+// limit, which is named) and however its 'end_header' is written; an STL's keywords in upper case
+// refused, named, as the CLI refuses them.
 // Node only, no browser.
 // Usage: node viewer/tests/viewer_file_checks_test.mjs
 import * as THREE from 'three';
 import { OBJLoader } from 'three/addons/loaders/OBJLoader.js';
+import { PLY_HEADER_LIMIT } from '../src/file_checks.js';
 import { loadMeshFile } from '../src/mesh_files.js';
 import { makePane } from '../src/panes.js';
 
@@ -27,11 +31,11 @@ const ab = (u8) => u8.buffer.slice(u8.byteOffset, u8.byteOffset + u8.byteLength)
 const V = [[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]];
 const F = [[0, 2, 4], [2, 1, 4], [1, 3, 4], [3, 0, 4], [2, 0, 5], [1, 2, 5], [3, 1, 5], [0, 3, 5]];
 
-const plyHead = (format, index = 'int') => `ply\nformat ${format} 1.0\ncomment an octahedron\nelement vertex ${V.length}\n` +
+const plyHead = (format, index = 'int', comments = '') => `ply\nformat ${format} 1.0\ncomment an octahedron\n${comments}element vertex ${V.length}\n` +
   'property double x\nproperty double y\nproperty double z\nproperty float mean_curvature\n' +
   `element face ${F.length}\nproperty list uchar ${index} vertex_indices\nend_header\n`;
-function binaryPly(little) {
-  const head = text(plyHead(little ? 'binary_little_endian' : 'binary_big_endian'));
+function binaryPly(little, comments = '') {
+  const head = text(plyHead(little ? 'binary_little_endian' : 'binary_big_endian', 'int', comments));
   const body = new DataView(new ArrayBuffer(V.length * 28 + F.length * 13));
   V.forEach((p, i) => { p.forEach((c, k) => body.setFloat64(28 * i + 8 * k, c, little)); body.setFloat32(28 * i + 24, 1, little); });
   F.forEach((t, j) => {
@@ -181,6 +185,98 @@ for (const [name, whole] of Object.entries(files)) {
   const expected = faces.flat().flatMap((v) => P[v - 1]);
   check(got !== null && got.length === expected.length && got.every((x, i) => Math.abs(x - expected[i]) < 1e-6),
         `ahead.obj opens with each face's own vertices (${m ?? got.length / 9 + ' faces'})`);
+}
+
+// PLY headers the CLI reads (its result keeps its input's header, comments and all): one longer
+// than 64 KiB (the viewer read its fields, comments and colours from the first 64 KiB only: none),
+// an 'end_header' with a blank after it, a comment holding the word 'end_header', a UTF-8
+// byte-order mark (three.js's PLYLoader read no vertices, or NaN positions, from the last three).
+// Each opens with the octahedron: every drawn vertex at the position of the vertex whose field
+// value it carries (the field is the vertex's index), and its field, comments and colours kept.
+{
+  const long = Array.from({ length: 1200 }, (_, i) => `comment provenance ${i}: ${'p'.repeat(60)}\n`).join('');
+  const regions = 'comment shellcontract regions: face colour = region, grey = none\n';
+  const coloured = (comments) => text(`ply\nformat ascii 1.0\n${comments}element vertex ${V.length}\nproperty double x\nproperty double y\n` +
+    `property double z\nproperty float mean_curvature\nelement face ${F.length}\nproperty list uchar int vertex_indices\n` +
+    'property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n' + V.map((p, i) => `${p.join(' ')} ${i}`).join('\n') + '\n' +
+    F.map((t) => `3 ${t.join(' ')} 230 25 75`).join('\n') + '\n');
+  const ascii = (head) => text(head + V.map((p, i) => `${p.join(' ')} ${i}`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n');
+  // binaryPly's field is 1 for every vertex: here its index, as the others have it.
+  const indexed = (bytes) => {
+    const at = bytes.length - (V.length * 28 + F.length * 13);
+    V.forEach((_, i) => new DataView(bytes.buffer).setFloat32(at + 28 * i + 24, i, true));
+    return bytes;
+  };
+  const bom = new Uint8Array([0xef, 0xbb, 0xbf, ...ascii(plyHead('ascii'))]);
+  const le = indexed(binaryPly(true)), end = plyHead('binary_little_endian').length - 1;  // the 'end_header' line's '\n'
+  const blankAfterEnd = new Uint8Array([...le.subarray(0, end), 0x09, ...le.subarray(end)]);
+  const cases = [
+    ['long_header.ply', coloured(long + regions), { faceColours: true, comment: /regions: face colour/ }],
+    ['long_header_le.ply', indexed(binaryPly(true, long)), {}],
+    ['blank_after_end.ply', ascii(plyHead('ascii').replace('end_header\n', 'end_header \n')), {}],
+    ['blank_after_end_le.ply', blankAfterEnd, {}],
+    ['comment_end_header.ply', ascii(plyHead('ascii', 'int', 'comment the data follows end_header and this\n')), { comment: /follows end_header/ }],
+    ['bom.ply', bom, {}],
+  ];
+  for (const [name, bytes, expect] of cases) {
+    let r = null, m = null;
+    try {
+      r = loadMeshFile(ab(bytes), name);
+    } catch (e) {
+      m = e.message;
+    }
+    const bad = [];
+    if (r) {
+      const g = r.meshes[0].geometry, position = g.getAttribute('position'), field = g.userData.fields?.mean_curvature;
+      const o = r.object.position.toArray(), triangles = (g.index ? g.index.count : position.count) / 3;
+      if (triangles !== F.length) bad.push(`${triangles} faces`);
+      if (!field || field.length !== position.count) bad.push(`field of ${field?.length} values`);
+      for (let k = 0; field && k < position.count && bad.length < 3; k++) {
+        const p = V[field[k]];
+        if (!p || p.some((c, j) => Math.abs(position.array[3 * k + j] + o[j] - c) > 1e-6)) bad.push(`vertex ${k} not at its value's position`);
+      }
+      if (r.vertices !== V.length) bad.push(`${r.vertices} vertices counted`);
+      if (expect.faceColours && !r.faceColours) bad.push('no face colours');
+      if (expect.comment && !r.comments.some((c) => expect.comment.test(c))) bad.push(`comments ${JSON.stringify(r.comments.slice(-2))}`);
+    }
+    check(r !== null && bad.length === 0, `${name} opens as the octahedron with its field (${m ?? (bad.join('; ') || 'it does')})`);
+  }
+  // A header of no 'end_header' in PLY_HEADER_LIMIT (of comments, or a binary file that is no PLY
+  // past its first line) is refused, named as that, not read on through the whole file.
+  const absurd = 'ply\nformat ascii 1.0\n' + `comment ${'c'.repeat(90)}\n`.repeat(Math.ceil(PLY_HEADER_LIMIT / 99) + 10);
+  for (const [name, bytes] of [['absurd.ply', text(absurd)], ['absurd_late_end.ply', ascii(absurd + plyHead('ascii').slice(4))]]) {
+    const m = await refusal(bytes, name);
+    check(m !== null && m.startsWith(`${name}: no 'end_header' line in the file's first ${PLY_HEADER_LIMIT / 1048576} MiB`),
+          `${name}, a header past ${PLY_HEADER_LIMIT} bytes, is refused with the limit named ("${m}")`);
+  }
+}
+
+// An ASCII STL's keywords in upper or mixed case (some CAD exporters' 'SOLID', 'FACET NORMAL',
+// 'VERTEX'): the CLI reads them in lower case only (a file beginning 'SOLID' is neither ASCII nor
+// binary to it; it skips a 'FACET' with its vertices), so each is refused with the keyword and its
+// line named (the viewer took 'SOLID ...' for a binary STL cut short: "the file ends after 17 of
+// the 807416096 triangles its header gives"). The words the CLI skips in any case ('normal',
+// 'outer', 'loop', 'endloop') open in upper case.
+{
+  const stl = (kw) => `${kw('solid')} octa\n` + F.map((t) => ` ${kw('facet')} ${kw('normal')} 0 0 0\n  ${kw('outer')} ${kw('loop')}\n` +
+    t.map((i) => `   ${kw('vertex')} ${V[i].join(' ')}\n`).join('') + `  ${kw('endloop')}\n ${kw('endfacet')}\n`).join('') + `${kw('endsolid')} octa\n`;
+  const upper = (...words) => (w) => (words.includes(w) ? w.toUpperCase() : w);
+  const cases = [
+    ['upper.stl', (w) => w.toUpperCase(), 'SOLID'],
+    ['capitalised.stl', (w) => w[0].toUpperCase() + w.slice(1), 'Solid'],
+    ['upper_facets.stl', (w) => (['solid', 'endsolid'].includes(w) ? w : w.toUpperCase()), 'FACET'],
+    ['upper_vertex.stl', upper('vertex'), 'VERTEX'],
+    ['upper_endfacet.stl', upper('endfacet'), 'ENDFACET'],
+    ['upper_endsolid.stl', upper('endsolid'), 'ENDSOLID'],
+  ];
+  for (const [name, kw, word] of cases) {
+    const body = stl(kw), line = body.split('\n').findIndex((l) => l.split(/\s+/).includes(word)) + 1;
+    const m = await refusal(text(body), name);
+    check(m !== null && m.startsWith(`${name}: line ${line}: the keyword '${word}' is not in lower case`),
+          `${name} is refused, its keyword '${word}' named on line ${line} ("${m}")`);
+  }
+  const r = loadMeshFile(ab(text(stl(upper('normal', 'outer', 'loop', 'endloop')))), 'upper_loops.stl');
+  check(r.meshes[0].geometry.getAttribute('position').count === 3 * F.length, "an STL of upper-case 'NORMAL', 'OUTER LOOP', 'ENDLOOP' opens");
 }
 
 // Malformed, not cut: each refused with the problem, naming the file.
