@@ -75,6 +75,7 @@ def check(out_dir, sweep_path, inputs=(), job_ids=()):
     remove there passes check_written (`inputs`: (what, path) of every file the sweep reads,
     `job_ids`: its jobs'). Raises OutputError otherwise."""
     sweep_file = os.path.realpath(sweep_path)
+    inputs = list(inputs)
     if not os.path.exists(out_dir):
         if os.path.islink(out_dir):
             raise OutputError("{}: a link to nothing, not a folder".format(out_dir))
@@ -87,6 +88,7 @@ def check(out_dir, sweep_path, inputs=(), job_ids=()):
             raise OutputError("{}: {} is a file, not a folder".format(out_dir, parent))
         if not os.access(parent, os.W_OK | os.X_OK):
             raise OutputError("{}: the folder {} cannot take new entries".format(out_dir, parent))
+        sweep_written.check_needed(out_dir, sweep_written.needed_files(inputs))
         return
     if not os.path.isdir(out_dir):
         raise OutputError("{}: not a folder (-o names the folder the results go to)".format(
@@ -125,6 +127,7 @@ def check(out_dir, sweep_path, inputs=(), job_ids=()):
         raise OutputError(
             "{} holds files that no sweep wrote ({}); the sweep writes results.csv, results.json, "
             "jobs/ and .work/ there: choose a new or empty -o folder".format(out_dir, shown))
+    sweep_written.check_needed(out_dir, sweep_written.needed_files(inputs))
 
 
 def claim(out_dir, sweep_path, inputs=(), job_ids=()):
