@@ -355,6 +355,8 @@ def _run(args, cli, version, data, jobs):
 
 def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, client):
     sweep_output.claim(args.output, args.sweep, args.inputs, [j.id for j in jobs])
+    # Before this sweep writes its own: those of a sweep killed (SIGKILL) while writing a table.
+    stale_tables = sweep_output.remove_stale_temporaries(args.output)
     tables = sweep_results.Writer(jobs, varying, args.output, sweep_dir)
     todo = [j for j in selected if not sweep_job.is_done(tables.records[j.id])]
     sweep_results.write(jobs, varying, args.output, sweep_dir, records=tables.records)
@@ -373,6 +375,9 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
     if stale:
         progress.message("removed the working folders of {} attempt{} that a killed sweep left in "
                          "{}".format(stale, "s" * (stale > 1), os.path.join(args.output, ".work")))
+    if stale_tables:
+        progress.message("removed {} temporary file{} of the results tables that a killed sweep "
+                         "left in {}".format(stale_tables, "s" * (stale_tables > 1), args.output))
 
     def on_record(job, record):
         tables.record(job, record)

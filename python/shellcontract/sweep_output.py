@@ -3,28 +3,46 @@ marked as such by DIR/.shellcontract-sweep.json, so that the sweep never writes 
 not write (a results.csv of the user's, the folder of the sweep file itself) and two sweep files
 never share one results table."""
 
+import fcntl
 import json
 import os
+import re
 import stat
 import time
 import uuid
 
 from . import sweep_written
+from .sweep_written import TABLES
 
 MARKER = ".shellcontract-sweep.json"
 # The entries the sweep writes in DIR (besides the marker and its temporary files).
 OWNED = ("results.csv", "results.json", "jobs", ".work")
 
 
+# The temporaries of write_atomic: "<name>.tmp-" and 32 hexadecimal digits.
+_TEMPORARY = re.compile(r"\A(.+)\.tmp-[0-9a-f]{32}\Z")
+# How old a temporary must be before a later sweep removes it, besides unlocked: its writer locks
+# it right after creating it, and a writer of an earlier version of the sweep did not lock it at
+# all but was done with it within moments.
+STALE_TEMPORARY_SECONDS = 60.0
+
+
 def write_atomic(path, text):
     """`text` into `path` through an exclusive temporary beside it, renamed over it: the file is
-    whole or as before, and a failed write (a full disk) leaves no temporary behind. A file
-    replaced keeps its permissions, as the CLI's outputs do (a results.csv made private, 0600,
-    stays private; before, it became 0666 less the umask); a new one gets 0666 less the umask.
-    Best effort: a file system without modes (FAT) refuses chmod, and the file is still written."""
+    whole or as before, and a failed write (a full disk, Ctrl-C, SIGTERM: KeyboardInterrupt)
+    leaves no temporary behind. The temporary is locked (flock) until it is renamed or removed,
+    so that one left by a sweep killed with SIGKILL is told from one being written by another
+    shard (remove_stale_temporaries). A file replaced keeps its permissions, as the CLI's outputs
+    do (a results.csv made private, 0600, stays private; before, it became 0666 less the umask);
+    a new one gets 0666 less the umask. Best effort: a file system without modes (FAT) refuses
+    chmod, and the file is still written."""
     tmp = "{}.tmp-{}".format(path, uuid.uuid4().hex)
     try:
         with open(tmp, "x", newline="") as f:
+            try:
+                fcntl.flock(f.fileno(), fcntl.LOCK_EX | fcntl.LOCK_NB)
+            except OSError:
+                pass  # a file system without locks: only its age tells it is stale
             try:
                 before = os.stat(path)
             except OSError:
@@ -35,13 +53,62 @@ def write_atomic(path, text):
                 except OSError:
                     pass
             f.write(text)
-        os.replace(tmp, path)
+            f.flush()
+            os.replace(tmp, path)  # while it is locked
     except BaseException:
         try:
             os.remove(tmp)
         except OSError:
             pass
         raise
+
+
+def _remove_unlocked(path, st):
+    """Removes the file `path` (`st`: its lstat) when no process holds a lock on it, holding the
+    lock while it does so; whether it did. Nothing where the file system has no locks."""
+    try:
+        fd = os.open(path, os.O_RDWR | os.O_NOFOLLOW | os.O_NONBLOCK)
+    except OSError:
+        return False
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        now = os.fstat(fd)
+        if (now.st_dev, now.st_ino) != (st.st_dev, st.st_ino):
+            return False
+        os.remove(path)
+        return True
+    except OSError:  # BlockingIOError: a writer holds it; another error: no locks here
+        return False
+    finally:
+        os.close(fd)
+
+
+def remove_stale_temporaries(out_dir, names=TABLES):
+    """Removes the temporaries of DIR's tables (`names`) that a sweep killed while writing one
+    (SIGKILL, a power cut) left; the number removed. Only a file that is provably the sweep's
+    own and abandoned: named as write_atomic names them, a regular file of this user's with no
+    other name (a hard link of it would be a user's file), unchanged for
+    STALE_TEMPORARY_SECONDS and locked by no process (a shard writing its table holds the lock).
+    Where the file system has no locks, none is removed."""
+    try:
+        entries = os.listdir(out_dir)
+    except OSError:
+        return 0
+    removed = 0
+    for name in entries:
+        m = _TEMPORARY.match(name)
+        if not m or m.group(1) not in names:
+            continue
+        p = os.path.join(out_dir, name)
+        try:
+            st = os.lstat(p)
+        except OSError:
+            continue
+        if (stat.S_ISREG(st.st_mode) and st.st_uid == os.geteuid() and st.st_nlink == 1
+                and time.time() - st.st_mtime >= STALE_TEMPORARY_SECONDS
+                and _remove_unlocked(p, st)):
+            removed += 1
+    return removed
 
 
 OutputError = sweep_written.OutputError
@@ -75,6 +142,7 @@ def check(out_dir, sweep_path, inputs=(), job_ids=()):
     remove there passes check_written (`inputs`: (what, path) of every file the sweep reads,
     `job_ids`: its jobs'). Raises OutputError otherwise."""
     sweep_file = os.path.realpath(sweep_path)
+    inputs = list(inputs)
     if not os.path.exists(out_dir):
         if os.path.islink(out_dir):
             raise OutputError("{}: a link to nothing, not a folder".format(out_dir))
@@ -87,6 +155,7 @@ def check(out_dir, sweep_path, inputs=(), job_ids=()):
             raise OutputError("{}: {} is a file, not a folder".format(out_dir, parent))
         if not os.access(parent, os.W_OK | os.X_OK):
             raise OutputError("{}: the folder {} cannot take new entries".format(out_dir, parent))
+        sweep_written.check_needed(out_dir, sweep_written.needed_files(inputs))
         return
     if not os.path.isdir(out_dir):
         raise OutputError("{}: not a folder (-o names the folder the results go to)".format(
@@ -125,6 +194,7 @@ def check(out_dir, sweep_path, inputs=(), job_ids=()):
         raise OutputError(
             "{} holds files that no sweep wrote ({}); the sweep writes results.csv, results.json, "
             "jobs/ and .work/ there: choose a new or empty -o folder".format(out_dir, shown))
+    sweep_written.check_needed(out_dir, sweep_written.needed_files(inputs))
 
 
 def claim(out_dir, sweep_path, inputs=(), job_ids=()):

@@ -8,6 +8,7 @@ import json
 import os
 import shutil
 import stat
+import tempfile
 
 import pytest
 
@@ -173,3 +174,79 @@ def test_a_jobs_checkpoint_or_folder_that_is_not_the_sweeps_is_refused(cli, mesh
             p.rmdir()
         else:
             p.unlink()
+
+
+def as_user(uid, fn):
+    """fn() in a child process running as `uid` (root only): what it returned or raised, as text."""
+    r, w = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # pragma: no cover (the child)
+        os.close(r)
+        try:
+            os.setgroups([])
+            os.setresgid(uid, uid, uid)
+            os.setresuid(uid, uid, uid)
+            text = "returned {!r}".format(fn())
+        except BaseException as e:  # noqa: B902 (reported to the parent)
+            text = "{}: {}".format(type(e).__name__, e)
+        os.write(w, text.encode())
+        os._exit(0)
+    os.close(w)
+    with os.fdopen(r) as f:
+        text = f.read()
+    os.waitpid(pid, 0)
+    return text
+
+
+@pytest.mark.skipif(os.geteuid() != 0, reason="needs root: a file of another user in a sticky "
+                    "folder, checked by a process of a third user")
+@pytest.mark.parametrize("what", ["a table", "a job's folder"])
+def test_another_users_file_in_a_sticky_folder_is_refused_before_any_job(tmp_path, what):
+    """The kernel lets only the file's owner, the folder's owner or root rename over a file in a
+    sticky folder (like /tmp): the library refuses such an output before work
+    (output_target.cpp, sticky_problem), and so does the sweep, for a table it would replace and
+    a job's folder it would move away; the owner of the folder may."""
+    from shellcontract import sweep_output
+    nobody, other = 65534, 1
+    sweep = tmp_path / "s.json"
+    sweep.write_text("{}")
+    tmp_path.chmod(0o755)
+    out = tempfile.mkdtemp(dir="/tmp")  # pytest's own folders are the caller's only (0700)
+    try:
+        os.chmod(out, 0o1777)
+        job = "0123456789abcdef"
+        with open(os.path.join(out, sweep_output.MARKER), "w") as f:
+            json.dump({"sweep_file": str(sweep)}, f)
+        for name in ("jobs", ".work"):
+            os.mkdir(os.path.join(out, name), 0o1777)
+            os.chmod(os.path.join(out, name), 0o1777)
+        if what == "a table":
+            theirs = os.path.join(out, "results.csv")
+            with open(theirs, "w") as f:
+                f.write("job,status\n")
+            os.chmod(theirs, 0o666)  # writable by all: refused for its owner, not its mode
+            os.chown(theirs, other, other)
+        else:
+            theirs = os.path.join(out, "jobs", job)
+            os.mkdir(theirs)
+            with open(os.path.join(theirs, "job.json"), "w") as f:
+                json.dump({"status": "crashed"}, f)  # not final: the job runs again
+            os.chmod(theirs, 0o777)
+            os.chown(theirs, other, other)
+        check = lambda: sweep_output.check(out, str(sweep), [("the sweep file", str(sweep))],
+                                           [job])
+        # The kernel's rule, which the check foresees: the sweep's rename is refused.
+        spare = os.path.join(out, "spare")
+        rename = ((lambda: (open(spare, "w").close(), os.replace(spare, theirs))) if what ==
+                  "a table" else lambda: os.rename(theirs, theirs + ".old"))
+        assert as_user(nobody, rename).startswith("PermissionError"), "no sticky rule here?"
+        got = as_user(nobody, check)
+        assert got.startswith("OutputError: {}: exists and cannot be replaced: it belongs to "
+                              "another user (uid {}) and its folder is sticky".format(theirs,
+                                                                                      other)), got
+        # Root may (CAP_FOWNER), and so may the folder's owner.
+        assert check() is None
+        os.chown(os.path.dirname(theirs), nobody, nobody)
+        assert as_user(nobody, check) == "returned None"
+    finally:
+        shutil.rmtree(out)
