@@ -17,6 +17,30 @@ struct NamedFile {
   std::string path;
 };
 
+/// One file a mesh file needs besides itself, whether or not it exists.
+struct InputDependency {
+  std::string path;  ///< as the process finds it: the reader's resolution of the name
+  /// What it is to the input, for messages: "the material library that 'c.obj' reads (mtllib,
+  /// line 1)".
+  std::string role;
+};
+
+/// The files that the mesh file `path` reads or names (docs/design/output-safety.md, "Files the
+/// input needs"), by its extension, resolved as its readers resolve them, which
+/// check_output_files refuses as outputs of an "INPUT" mesh; for a program that writes files of
+/// its own beside a mesh (the sweep's tables):
+/// - .obj: each mtllib name (one that names no file too), and the images of each library that
+///   can be read (every texture key, not only the map_Kd that the glTF export uses); a library
+///   named again (by any spelling of the same file) is listed and read once, at its first
+///   mtllib line;
+/// - .ply: each `comment TextureFile` path;
+/// - .gltf, .glb: every path where an external buffer was looked for (the file's folder, then the
+///   current one) and each external image URI, percent-decoded, from the file's folder.
+/// A file named but missing is listed: an output that created it would change what the input
+/// means. Nothing for other formats. Never throws for the files' contents: a file the reader will
+/// refuse gives what could be made out before the problem.
+std::vector<InputDependency> input_dependencies(const std::string& path);
+
 /// Checks a command's outputs before any work, so that a run does not fail after minutes because
 /// its output folder is missing, nor write over its own input: by file identity (device and
 /// inode; for a file that does not exist yet, its folder's and its name), so that hard links,

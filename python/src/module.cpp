@@ -328,5 +328,15 @@ PYBIND11_MODULE(_core, m) {
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));
   m.def("regions", &regions, py::arg("vertices"), py::arg("faces"));
   m.def("read_mesh", &read_mesh, py::arg("path"));
+  // The library's list of the files a mesh file needs besides itself, for the sweep's output
+  // check (sweep_needs.py), so that the sweep holds the rule the commands hold, not a copy of it.
+  m.def(
+      "input_dependencies",
+      [](const std::string& path) {
+        std::vector<std::pair<std::string, std::string>> out;
+        for (const InputDependency& d : input_dependencies(path)) out.emplace_back(d.path, d.role);
+        return out;
+      },
+      py::arg("path"));
   m.def("write_mesh", &write_mesh, py::arg("path"), py::arg("vertices"), py::arg("faces"), py::arg("like") = py::none());
 }

@@ -66,10 +66,12 @@ if(PYTHON_PACKAGE)
   if(NOT core)
     message(FATAL_ERROR "not installed: the Python module ${package}/_core*.so")
   endif()
-  foreach(f __init__.py _region_arguments.py number_text.py sweep.py sweep_file.py sweep_job.py
-            sweep_lock.py sweep_checkpoint.py
-            sweep_output.py sweep_process.py
-            sweep_progress.py sweep_results.py sweep_dask.py sweep_written.py)
+  # Every module of the source package (a list kept by hand missed the new ones).
+  file(GLOB sources RELATIVE ${PYTHON_SOURCE_DIR} ${PYTHON_SOURCE_DIR}/*.py)
+  if(NOT sources)
+    message(FATAL_ERROR "no Python modules in ${PYTHON_SOURCE_DIR}")
+  endif()
+  foreach(f ${sources})
     if(NOT EXISTS ${package}/${f})
       message(FATAL_ERROR "not installed: ${package}/${f}")
     endif()
