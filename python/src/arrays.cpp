@@ -84,6 +84,11 @@ Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputR
     soup.faces32 = static_cast<const std::int32_t*>(f.data());
   else
     soup.faces64 = static_cast<const std::int64_t*>(f.data());
+  // The library's check of the soup takes seconds on a mesh of a million faces: other Python
+  // threads (a user interface's, Blender's) go on meanwhile, as during read_mesh. `v` and `f`
+  // keep the arrays alive; the GIL is taken again (`released` ends first) before they are let
+  // go, and before an exception of the check reaches pybind11.
+  py::gil_scoped_release released;
   return mesh_from_arrays(soup, ARRAY_INPUT_NAME, report, reorient);
 }
 

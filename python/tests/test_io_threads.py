@@ -1,6 +1,8 @@
 """read_mesh and write_mesh let other Python threads run while they read, check and write (they
 release the GIL around the library's work, as contract() and regions() do). Before, they held
 it: a program reading meshes in a worker thread froze its user interface for the whole read.
+Every call that takes arrays (contract, check, regions, write_mesh) lets them run while the
+library builds and checks the mesh from them too: before, it held the GIL for that part.
 
 The test counts the turns of another Python thread while the call runs, not durations: with the
 interpreter's switch interval made longer than any call here, a thread holding the GIL is never
@@ -93,3 +95,24 @@ def test_write_mesh_lets_other_threads_run(big_mesh, tmp_path):
     assert turns_of_another_thread_during(lambda: sc.write_mesh(out, vertices, faces)) > 0
     v, f = sc.read_mesh(out)
     np.testing.assert_array_equal(v, vertices)
+
+
+def test_the_check_of_arrays_lets_other_threads_run(big_mesh):
+    """The arrays' check alone: a duplicate of the first face, appended last, is refused after
+    the whole check has run, so that the call does nothing else (before, no turn at all)."""
+    _, vertices, faces = big_mesh
+    doubled = np.vstack([faces, faces[:1]])
+    errors = []
+
+    def call(function):
+        def run():
+            try:
+                function(vertices, doubled)
+            except sc.MeshError as e:
+                errors.append(e)
+        return run
+
+    for function in (sc.check, sc.regions, lambda v, f: sc.contract(v, f, frames=1)):
+        errors.clear()
+        assert turns_of_another_thread_during(call(function)) > 0
+        assert errors and len(faces) in errors[-1].faces, errors
