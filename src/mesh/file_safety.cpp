@@ -12,11 +12,13 @@
 #include <array>
 #include <atomic>
 #include <cerrno>
+#include <climits>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
 #include <mutex>
+#include <new>
 #include <vector>
 
 #include "core/resource_file_error.hpp"
@@ -40,20 +42,28 @@ namespace {
 
 // ------------------------------------------------------------------- temporaries and signals
 
-/// Live temporaries, in fixed storage: the signal handler may only read memory and call
-/// async-signal-safe functions (unlink, sigaction, raise, getpid). A slot's path and owner are
-/// written before its flag is set (release), and the handler reads them only of a set flag
-/// (acquire).
-constexpr int SLOTS = 64;
+/// Live temporaries, in blocks of fixed storage: the signal handler may only read memory and
+/// call async-signal-safe functions (unlink, sigaction, raise, getpid). A slot's path and owner
+/// are written before its flag is set (release), and the handler reads them only of a set flag
+/// (acquire). One block is static; when all the chain's slots are live (64 checkpointed runs in
+/// the threads of one process hold a lock file each for the whole run), a new block is allocated
+/// by register_temporary, never by the handler, and published by a release store of the last
+/// block's `next`, which the handler reads with acquire. Blocks are never freed: the chain is as
+/// long as the most temporaries the process ever had at once needed.
+constexpr int BLOCK_SLOTS = 64;
 constexpr std::size_t PATH_BYTES = 4096;
-std::array<std::atomic<bool>, SLOTS> slot_live{};
-std::array<std::array<char, PATH_BYTES>, SLOTS> slot_path{};
-/// The process that registered the slot. A child forked by the host (a worker pool) inherits the
-/// table and the handler; ended by SIGTERM, it removed its parent's temporaries in progress,
-/// whose rename then failed ("the folder does not exist"). The handler removes only its own
-/// process's.
-std::array<pid_t, SLOTS> slot_owner{};
-std::mutex slot_mutex;  // claiming a slot (not used by the handler)
+struct SlotBlock {
+  std::array<std::atomic<bool>, BLOCK_SLOTS> live{};
+  std::array<std::array<char, PATH_BYTES>, BLOCK_SLOTS> path{};
+  /// The process that registered the slot. A child forked by the host (a worker pool) inherits
+  /// the table and the handler; ended by SIGTERM, it removed its parent's temporaries in
+  /// progress, whose rename then failed ("the folder does not exist"). The handler removes only
+  /// its own process's.
+  std::array<pid_t, BLOCK_SLOTS> owner{};
+  std::atomic<SlotBlock*> next{nullptr};
+};
+SlotBlock first_block;
+std::mutex slot_mutex;  // claiming a slot, adding a block (not used by the handler)
 
 /// Temporaries being created (create_registered_temporary), and whether the handler has begun.
 /// Both sequentially consistent: a creator increments `creating` then reads `ending`, the handler
@@ -70,9 +80,10 @@ std::atomic<TemporaryCreatedHook> temporary_created_hook{nullptr};
 /// Removes this process's live temporaries. Async-signal-safe (getpid, unlink).
 void unlink_own_temporaries() {
   const pid_t self = ::getpid();
-  for (int i = 0; i < SLOTS; ++i)
-    if (slot_live[i].load(std::memory_order_acquire) && slot_owner[i] == self)
-      ::unlink(slot_path[i].data());
+  for (SlotBlock* b = &first_block; b != nullptr; b = b->next.load(std::memory_order_acquire))
+    for (int i = 0; i < BLOCK_SLOTS; ++i)
+      if (b->live[i].load(std::memory_order_acquire) && b->owner[i] == self)
+        ::unlink(b->path[i].data());
 }
 
 extern "C" void remove_temporaries_and_reraise(int sig) {
@@ -99,7 +110,8 @@ extern "C" void remove_temporaries_and_reraise(int sig) {
 /// was inside create_registered_temporary inherited `creating` above 0, and its handler then
 /// waited for ever. Writes to atomics only (the child of a threaded parent may do no more).
 extern "C" void forget_temporaries_in_child() {
-  for (auto& live : slot_live) live.store(false, std::memory_order_relaxed);
+  for (SlotBlock* b = &first_block; b != nullptr; b = b->next.load(std::memory_order_relaxed))
+    for (auto& live : b->live) live.store(false, std::memory_order_relaxed);
   creating.store(0);
   ending.store(false);
   closed.store(false);
@@ -241,20 +253,32 @@ int register_temporary(const std::string& path) {
   install_handler_once();
   if (path.size() >= PATH_BYTES) return -1;
   std::lock_guard<std::mutex> lock(slot_mutex);
-  for (int i = 0; i < SLOTS; ++i) {
-    if (slot_live[i].load(std::memory_order_relaxed)) continue;
-    std::memcpy(slot_path[i].data(), path.c_str(), path.size() + 1);
-    slot_owner[i] = ::getpid();
-    slot_live[i].store(true, std::memory_order_release);
-    return i;
+  int base = 0;
+  for (SlotBlock* b = &first_block;; b = b->next.load(std::memory_order_relaxed)) {
+    for (int i = 0; i < BLOCK_SLOTS; ++i) {
+      if (b->live[i].load(std::memory_order_relaxed)) continue;
+      std::memcpy(b->path[i].data(), path.c_str(), path.size() + 1);
+      b->owner[i] = ::getpid();
+      b->live[i].store(true, std::memory_order_release);
+      return base + i;
+    }
+    base += BLOCK_SLOTS;
+    if (b->next.load(std::memory_order_relaxed) == nullptr) {
+      if (base > INT_MAX - BLOCK_SLOTS) return -1;
+      auto* added = new (std::nothrow) SlotBlock();
+      if (added == nullptr) return -1;  // the write goes on, unguarded, as it did
+      b->next.store(added, std::memory_order_release);
+    }
   }
-  return -1;
 }
 
 void unregister_temporary(int slot) {
-  if (slot < 0 || slot >= SLOTS) return;
+  if (slot < 0) return;
   std::lock_guard<std::mutex> lock(slot_mutex);
-  slot_live[slot].store(false, std::memory_order_release);
+  SlotBlock* b = &first_block;
+  for (int base = BLOCK_SLOTS; b != nullptr && slot >= base; base += BLOCK_SLOTS)
+    b = b->next.load(std::memory_order_relaxed);
+  if (b != nullptr) b->live[slot % BLOCK_SLOTS].store(false, std::memory_order_release);
 }
 
 void end_on_next_signal(int sig) {

@@ -112,6 +112,40 @@ TEST_F(Hostile, SigtermAndSigintDuringAWriteRemoveTheTemporary) {
   }
 }
 
+// Before: the table of temporaries had 64 slots; a 65th was not registered, so with 64
+// checkpointed runs in the threads of one process (a lock file each) SIGTERM left the others'
+// temporaries behind. A child registers 200 and is ended by SIGTERM: none is left.
+TEST_F(Hostile, SigtermRemovesEveryTemporaryHoweverMany) {
+  constexpr int COUNT = 200;
+  const pid_t child = ::fork();
+  if (child == 0) {
+    std::vector<int> slots;
+    for (int i = 0; i < COUNT; ++i) {
+      const RegisteredTemporary t = create_registered_temporary(dir_.string(), "t");
+      if (t.fd < 0 || t.slot < 0) ::_exit(2);  // not created, or not registered
+      ::close(t.fd);
+      slots.push_back(t.slot);
+    }
+    // One given back in the middle is not removed (it was renamed to a user's file); its slot is
+    // taken by the next.
+    const RegisteredTemporary kept = create_registered_temporary(dir_.string(), "kept");
+    if (kept.fd < 0) ::_exit(2);
+    ::close(kept.fd);
+    unregister_temporary(kept.slot);
+    ::kill(::getpid(), SIGTERM);
+    ::_exit(3);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status))
+      << "exit status " << (WIFEXITED(status) ? WEXITSTATUS(status) : -1)
+      << " (2: a temporary was not created or not registered)";
+  EXPECT_EQ(WTERMSIG(status), SIGTERM);
+  const std::vector<std::string> left = test::listing(dir_);
+  ASSERT_EQ(left.size(), 1u) << "left behind: " << left.size() << ", first " << left.front();
+  EXPECT_NE(left[0].find("kept"), std::string::npos) << left[0];
+}
+
 // Before: a child that the host forked (a worker pool) while the library wrote a file inherited
 // the handler and the table of temporaries; ended by SIGTERM, it removed its parent's temporary,
 // and the parent's rename then failed ("the folder does not exist"). The handler now removes only
