@@ -55,10 +55,12 @@ try {
   check(all.length === ids.length + 1 && closest > 0.1,
         `${ids.length} regions and none in ${all.length} colours, each pair apart (closest channel difference ${closest.toFixed(3)})`);
 
-  // The legend: a swatch per id and one for none, each in its id's colour; the ramp hidden.
+  // The legend: a swatch per id and one for none, each in its id's colour; the ramp and its
+  // ticks (a field's ends) not drawn.
   const bar = await page.evaluate(() => {
     const b = document.querySelector('#colour-bar');
-    return { hidden: b.hidden, ramp: b.querySelector('.ramp').hidden,
+    const shown = (e) => getComputedStyle(e).display !== 'none';
+    return { hidden: b.hidden, ramp: !shown(b.querySelector('.ramp')) && !shown(b.querySelector('.ticks')),
              swatches: [...b.querySelectorAll('.swatch')].map((e) => [e.textContent, getComputedStyle(e).backgroundColor]),
              note: document.querySelector('#colour-note').textContent };
   });
@@ -71,9 +73,11 @@ try {
 
   // Back to a field: its ramp again, the swatches gone.
   await page.select('#colour', '0');
-  const back = await page.evaluate(() => ({ ramp: document.querySelector('#colour-bar .ramp').hidden,
-                                            swatches: document.querySelector('#colour-bar .swatches')?.hidden }));
-  check(back.ramp === false && back.swatches === true, `a field's ramp comes back (${JSON.stringify(back)})`);
+  const back = await page.evaluate(() => {
+    const shown = (s) => getComputedStyle(document.querySelector(`#colour-bar ${s}`)).display !== 'none';
+    return { ramp: shown('.ramp'), ticks: shown('.ticks'), swatches: shown('.swatches') };
+  });
+  check(back.ramp && back.ticks && !back.swatches, `a field's ramp and ticks come back, the swatches go (${JSON.stringify(back)})`);
 
   // A run without regions offers none.
   s = await open(file('plain.glb'));
