@@ -13,6 +13,7 @@
 #include "geometry/curvature.hpp"
 #include "shellcontract/export.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/regions.hpp"
 #include "shellcontract/run.hpp"
 #include "sim/fields.hpp"
 #include "sim/frame_access.hpp"
@@ -58,6 +59,10 @@ class FrameExporter final : public RunObserver {
     layout.frame_fields = {{FRAME_FIELD, {}}};
     layout.colour_fields.clear();
     for (const char* name : COLOUR_FIELDS) layout.colour_fields.push_back({name, {}});
+    // The regions are selected after this (--regions auto): their attribute and entry are
+    // counted, the copies of their rims' vertices cannot be (the writer's own check of the
+    // file's true size covers them).
+    if (regions_expected_) layout.face_region.assign(mesh_.number_of_faces(), 0);
     return layout;
   }
 
@@ -67,7 +72,12 @@ class FrameExporter final : public RunObserver {
       writer_.emplace(request_.dir, request_.name, request_.ext, mesh_, max_frame_,
                       FrameSequenceWriter::DEFAULT_QUEUE_CAPACITY,
                       document_ && document_->format() == request_.ext ? document_ : nullptr);
-    if (!request_.gltf.empty()) gltf_.faces = faces_array(mesh_);
+    if (!request_.gltf.empty()) {
+      gltf_.faces = faces_array(mesh_);
+      // Each face's region (the run's f:region map, on the run's faces in the input's order),
+      // so that the .glb shows which faces were contracted; none without regions.
+      if (view.regions() > 0) gltf_.face_region = stored_regions(simulator_of(view).rest_mesh());
+    }
     take(0, view);
   }
   void frame(const FrameView& view, const FrameMetrics& m) override {
@@ -142,6 +152,10 @@ class FrameExporter final : public RunObserver {
             static_cast<int>(g.face_group[f][static_cast<std::size_t>(k)]);
     gltf_.face_polygon.assign(g.face_polygon.begin(), g.face_polygon.end());
   }
+
+  /// Whether the run has regions (a region source given, or --regions auto implied): the
+  /// .glb's size bound (gltf_layout) then counts their attribute.
+  void expect_regions(bool expected) { regions_expected_ = expected; }
 
   /// The glTF's node and mesh name (the input's stem).
   void set_gltf_name(std::string name) { gltf_.name = std::move(name); }
@@ -223,6 +237,7 @@ class FrameExporter final : public RunObserver {
   std::shared_ptr<const MeshDocument> document_;
   int max_frame_ = 0;
   int last_ = -1;
+  bool regions_expected_ = false;
   std::optional<FrameSequenceWriter> writer_;
   GltfAnimation gltf_;
   std::size_t gltf_bytes_ = 0;

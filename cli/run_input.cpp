@@ -112,6 +112,10 @@ RunObservers::RunObservers(const RunRequest& request, const Mesh& mesh,
   if (!exports.dir.empty() || !exports.gltf.empty()) list.add(exporter);
   if (!exports.gltf.empty()) prepare_gltf_animation(exporter, request.input, document.get(), mesh);
   exporter.set_document(document);
+  const RunOptions& o = request.options;
+  exporter.expect_regions(!auto_regions_text(o).empty() || o.regions == RegionSource::File ||
+                          o.regions == RegionSource::Weights || !o.region_weight_file.empty() ||
+                          !o.region_points.empty());
   // The large outputs' sizes, known before the run (output_sizes.hpp): a .glb over the 4 GiB
   // it can hold is refused now, not corrupted after hours; very large outputs are warned of.
   check_run_output_sizes(exporter, exports, mesh, document.get(), request.input,

@@ -35,6 +35,9 @@ if "bpy" in locals():  # a reload from Blender's F3 "Reload Scripts"
 import bpy  # noqa: E402
 
 from . import operator, panel, properties  # noqa: E402
+# Blender's glTF importer calls the hooks of an enabled add-on's glTF2ImportUserExtension: a CLI
+# .glb's region ids become a face attribute and vertex groups (gltf_regions.py).
+from .gltf_regions import glTF2ImportUserExtension  # noqa: E402,F401
 
 _classes = (
     properties.ShellContractPreferences,

@@ -40,8 +40,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from addon_docs import doc_defaults, doc_example_runs  # noqa: E402
 from addon_helpers import check  # noqa: E402
 from addon_messages import mesh_messages  # noqa: E402
-from addon_runs import (contract_sphere, edited_during_run, glb_import, keyed_target,  # noqa: E402
-                        refused_runs, threaded_run)
+from addon_runs import (contract_sphere, edited_during_run, glb_import, glb_regions,  # noqa: E402
+                        keyed_target, refused_runs, threaded_run)
 from addon_settings import muted_keys, pressure_combinations, target_volume_messages  # noqa: E402
 from addon_review import review  # noqa: E402
 from addon_second_review import second_review  # noqa: E402
@@ -53,6 +53,8 @@ def args():
     p = argparse.ArgumentParser()
     p.add_argument("--addon-dir", required=True)
     p.add_argument("--glb", default="")
+    p.add_argument("--regions-glb", default="", help="a CLI .glb of a run with --regions FILE")
+    p.add_argument("--regions-file", default="", help="that run's --regions file")
     return p.parse_args(argv)
 
 
@@ -81,6 +83,8 @@ def main():
     second_review()
     if a.glb:
         glb_import(a.glb)
+    if a.regions_glb:
+        glb_regions(a.regions_glb, a.regions_file)
 
 
 main()

@@ -168,6 +168,38 @@ def glb_import(path):
     ad = imported[0].data.shape_keys.animation_data
     first = min(kp.co[0] for fc in ad.action.fcurves for kp in fc.keyframe_points)
     check(first == 0.0, "the .glb's keys start at frame 0 ({:g})".format(first))
+    check(imported[0].data.attributes.get("region") is None and not imported[0].vertex_groups,
+          "a .glb without regions imports without a region attribute or groups")
+
+
+def glb_regions(path, regions_file):
+    """A regions run's .glb imports with each face's region (gltf_regions.py, the importer's
+    hook): the face attribute `region` holds, on each polygon, the line of the --regions file
+    that lists that face (polygon i is the mesh's face i: one primitive), -1 on the others, and
+    a vertex group `region N` holds the vertices of region N's faces."""
+    expected = {}
+    with open(regions_file) as f:
+        lines = [line.split(":")[-1].split() for line in f]
+    for r, ids in enumerate(line for line in lines if line):
+        for face in ids:
+            expected[int(face)] = r
+    bpy.ops.object.select_all(action="DESELECT")
+    bpy.ops.import_scene.gltf(filepath=path)
+    obj = [o for o in bpy.context.selected_objects if o.type == "MESH"][0]
+    attribute = obj.data.attributes.get("region")
+    check(attribute is not None and attribute.domain == "FACE" and attribute.data_type == "INT",
+          "a regions run's .glb imports with the face attribute 'region'")
+    got = [item.value for item in attribute.data]
+    want = [expected.get(face, -1) for face in range(len(obj.data.polygons))]
+    check(got == want, "each polygon's region is its face's line in the --regions file ({} of {} "
+          "differ)".format(sum(g != w for g, w in zip(got, want)), len(want)))
+    for r in sorted(set(expected.values())):
+        group = obj.vertex_groups.get("region {}".format(r))
+        members = {v.index for v in obj.data.vertices
+                   if group is not None and any(g.group == group.index for g in v.groups)}
+        faces_vertices = {v for p in obj.data.polygons if want[p.index] == r for v in p.vertices}
+        check(group is not None and members == faces_vertices,
+              "vertex group 'region {}' holds the vertices of its faces".format(r))
 
 
 def edited_during_run(shellcontract, runner, rest, faces):

@@ -85,10 +85,18 @@ def main():
         mesh = os.path.join(os.path.dirname(os.path.dirname(HERE)), "meshes", "ico2.off")
         subprocess.run([a.cli, "run", mesh, "-o", os.path.join(tmp, "ico.off"), "-n", "10",
                         "--gltf", glb, "-q"], check=True)
+        # And one of a run with regions, for the import of its region ids.
+        regions_glb = os.path.join(tmp, "regions.glb")
+        meshes = os.path.join(os.path.dirname(os.path.dirname(HERE)), "meshes")
+        regions_file = os.path.join(meshes, "bumpy_sphere.bumps.txt")
+        subprocess.run([a.cli, "run", os.path.join(meshes, "bumpy_sphere.off"), "-o",
+                        os.path.join(tmp, "regions.off"), "-n", "4", "--regions", regions_file,
+                        "--gltf", regions_glb, "-q"], check=True)
         env = dict(os.environ, SHELLCONTRACT_PYTHONPATH=os.path.abspath(a.pythonpath))
         cmd = [a.blender, "-b", "--factory-startup", "--python-exit-code", "1",
                "--python", os.path.join(HERE, "addon_in_blender.py"), "--",
-               "--addon-dir", os.path.dirname(HERE), "--glb", glb]
+               "--addon-dir", os.path.dirname(HERE), "--glb", glb,
+               "--regions-glb", regions_glb, "--regions-file", regions_file]
         done = subprocess.run(cmd, env=env, cwd=tmp, stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, text=True)
         print(done.stdout)

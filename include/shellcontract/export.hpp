@@ -102,6 +102,10 @@ struct GltfAnimation {
   /// A glTF input's materials, textures, samplers and images (gltf_materials), each image's
   /// bytes in its `image`, copied into the .glb as they are; null for other inputs.
   std::shared_ptr<const tinygltf::Model> material_source;
+  /// Optional: per face (#F, like faces), its region of the local contraction (0, 1, ..., in the
+  /// regions' order: a --regions file's lines) or -1 for a face in none; written as the
+  /// categorical attribute _REGION. Empty: no regions, no attribute.
+  std::vector<int> face_region;
 };
 
 /// What write_gltf_animation wrote.
@@ -125,6 +129,14 @@ struct GltfStats {
 /// hold `frame_numbers`, `targetNames` ("frame_<n>") and `colour_fields` (name, values_attribute,
 /// low / high: the 2nd and 98th percentiles of its values, the range a viewer maps onto blue -
 /// white - red, and `frame`, the run frame whose values they are, when colour_frame is set).
+///
+/// With face_region, the float SCALAR custom attribute _REGION holds each glTF vertex's region
+/// id (whole numbers, -1 for none), and the mesh's extras `categorical_fields` list it (name
+/// "region", values_attribute "_REGION", none -1 and `ids`, the ids its faces use, increasing):
+/// categories, which a viewer colours one apart from another, with no low / high. A vertex
+/// whose faces are in different regions (a region's rim, where its faces meet those of no
+/// region or of another region) is split as at a texture seam, one copy per region, so that
+/// each face's three corners hold its own region's id.
 ///
 /// Each of `frame_fields` is one float SCALAR accessor per frame (not a primitive attribute: glTF
 /// morph targets cannot carry it), listed in the mesh's extras `frame_fields` (name, accessors,
@@ -163,7 +175,8 @@ struct GltfStats {
 ///         a position (relative to the centre), displacement, field value, texture coordinate or
 ///         colour that float32 cannot hold (not finite, or beyond its range; positions all below
 ///         the smallest normal float, a mesh stored as a point), a material
-///         index out of range, or a material image without texture coordinates or mime type
+///         index out of range, a material image without texture coordinates or mime type, or a
+///         region id below -1 or from 2^24 on (float32 holds whole numbers exactly below it)
 /// @throws UsageError if the file cannot be written, or would exceed the 4 GiB - 1 bytes a .glb
 ///         can hold (its lengths are 32-bit numbers): its true size is checked before its first
 ///         byte, and nothing is written then

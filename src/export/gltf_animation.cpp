@@ -46,6 +46,10 @@ std::string shortest(double v) {
   return std::string(buf, end.ptr);
 }
 
+/// Region ids are written as float32 (glTF allows no 32-bit integer custom attribute, and a
+/// 16-bit one would hold too few ids): whole numbers are exact below 2^24.
+constexpr int REGION_ID_LIMIT = 1 << 24;
+
 constexpr const char* FLOAT_MAX_TEXT = "the largest 32-bit float (3.40282347e+38)";
 
 /// Refuses positions, relative to the node's translation `centre`, that float32 cannot hold:
@@ -187,6 +191,17 @@ void check_input(const GltfAnimation& a) {
                                     "' has a NaN at frame " + std::to_string(a.frame_numbers[k]));
     }
   }
+  if (!a.face_region.empty()) {
+    if (a.face_region.size() != static_cast<std::size_t>(a.faces.rows()))
+      throw std::invalid_argument("write_gltf_animation: " + std::to_string(a.face_region.size()) +
+                                  " face regions for " + std::to_string(a.faces.rows()) + " faces");
+    for (std::size_t f = 0; f < a.face_region.size(); ++f)
+      if (a.face_region[f] < -1 || a.face_region[f] >= REGION_ID_LIMIT)
+        throw std::invalid_argument(
+            "write_gltf_animation: face " + std::to_string(f) + " has region id " +
+            std::to_string(a.face_region[f]) + " (ids are -1 for none, or 0 to " +
+            std::to_string(REGION_ID_LIMIT - 1) + ", which a 32-bit float holds exactly)");
+  }
   if (!(a.seconds_per_frame > 0.0))
     throw std::invalid_argument("write_gltf_animation: seconds_per_frame <= 0");
   gltf::check_materials(a);
@@ -303,6 +318,28 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   }
 
   tinygltf::Value::Object extras;
+  // The regions first, so that a colour field called "region" is the one renamed (below).
+  tinygltf::Value::Array categorical_info;
+  if (!split.region.empty()) {
+    Eigen::VectorXf ids(static_cast<Eigen::Index>(split.region.size()));
+    for (std::size_t i = 0; i < split.region.size(); ++i)
+      ids(static_cast<Eigen::Index>(i)) = static_cast<float>(split.region[i]);
+    prim.attributes["_REGION"] = bb.add_vertex_scalars(ids);
+    std::vector<int> used;
+    for (const int r : a.face_region)
+      if (r >= 0) used.push_back(r);
+    std::sort(used.begin(), used.end());
+    used.erase(std::unique(used.begin(), used.end()), used.end());
+    tinygltf::Value::Array id_list;
+    for (const int r : used) id_list.emplace_back(r);
+    tinygltf::Value::Object info;
+    info["name"] = tinygltf::Value(std::string("region"));
+    info["values_attribute"] = tinygltf::Value(std::string("_REGION"));
+    info["none"] = tinygltf::Value(-1);
+    // tinygltf writes an empty array as null: a run whose regions have no face lists none.
+    if (!id_list.empty()) info["ids"] = tinygltf::Value(id_list);
+    categorical_info.emplace_back(info);
+  }
   tinygltf::Value::Array colour_info;
   for (std::size_t i = 0; i < a.colour_fields.size(); ++i) {
     // Only the values, as a custom attribute: glTF's COLOR_0 multiplies the base colour, so a
@@ -390,6 +427,7 @@ GltfStats write_gltf(const std::string& path, const GltfAnimation& a,
   // tinygltf writes an empty array as null: a list with nothing in it is left out.
   if (!target_names.empty()) extras["targetNames"] = string_array(target_names);
   if (!colour_info.empty()) extras["colour_fields"] = tinygltf::Value(colour_info);
+  if (!categorical_info.empty()) extras["categorical_fields"] = tinygltf::Value(categorical_info);
   if (!frame_field_info.empty()) extras["frame_fields"] = tinygltf::Value(frame_field_info);
   extras["seconds_per_frame"] = tinygltf::Value(a.seconds_per_frame);
   mesh.extras = tinygltf::Value(extras);

@@ -4,6 +4,7 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <limits>
@@ -21,6 +22,14 @@ namespace {
 constexpr std::uint64_t GLB_LIMIT = std::numeric_limits<std::uint32_t>::max();
 std::atomic<std::uint64_t> test_limit{0};
 
+/// The ids the extras list for `face_region`: at most its largest id + 1, and at most one per
+/// face.
+std::uint64_t region_ids_bound(const std::vector<int>& face_region) {
+  const int largest =
+      face_region.empty() ? -1 : *std::max_element(face_region.begin(), face_region.end());
+  return std::min<std::uint64_t>(face_region.size(), static_cast<std::uint64_t>(largest + 1));
+}
+
 /// A name's bytes in the JSON at most: a control character is escaped as \u00XX.
 std::uint64_t escaped(const std::string& s) { return 6 * static_cast<std::uint64_t>(s.size()) + 2; }
 
@@ -30,8 +39,9 @@ std::uint64_t escaped(const std::string& s) { return 6 * static_cast<std::uint64
 /// extras and weights. The names are counted escaped.
 std::uint64_t json_bound(const GltfAnimation& a, std::uint64_t nk) {
   const std::uint64_t primitives = a.materials.size() + 1, targets = nk > 0 ? nk - 1 : 0;
-  const std::uint64_t accessors =
-      primitives + 4 + a.colour_fields.size() + a.frame_fields.size() * nk + 2 * targets + 2;
+  const std::uint64_t accessors = primitives + 4 + a.colour_fields.size() +
+                                  a.frame_fields.size() * nk + 2 * targets + 2 +
+                                  (a.face_region.empty() ? 0 : 1);
   std::uint64_t n = 4096;                   // asset, scene, node, animation, buffer
   n += accessors * 384;                     // accessor and bufferView
   n += primitives * (1024 + targets * 64);  // attributes, and each target's entry
@@ -40,6 +50,8 @@ std::uint64_t json_bound(const GltfAnimation& a, std::uint64_t nk) {
   n += 2 * escaped(a.name);                 // the node's and the mesh's
   for (const NamedVertexField& f : a.colour_fields) n += 512 + 2 * escaped(f.name);
   for (const auto& f : a.frame_fields) n += 512 + escaped(f.first);
+  // The regions' entry, and each id in its `ids` (at most one per face; 8 digits and a comma).
+  if (!a.face_region.empty()) n += 512 + 10 * region_ids_bound(a.face_region);
   for (const GltfMaterial& m : a.materials)
     n += 2048 + escaped(m.name) + escaped(m.image_mime_type);  // material, texture, image, sampler
   if (a.material_source) {
@@ -121,6 +133,7 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv, std::size_t 
          (a.face_uv.rows() > 0 ? 8 * nv + 3 : 0) +                       // TEXCOORD_0
          4 * a.colour_fields.size() * nv + 3 * a.colour_fields.size() +  // values
          (a.colour.rows() > 0 ? 16 * nv + 3 : 0) +                       // COLOR_0
+         (a.face_region.empty() ? 0 : 4 * nv + 3) +                      // _REGION
          a.frame_fields.size() * nk * (4 * nv + 3) +                     // frame fields
          4 * nk + 3 + 4 * nk * targets + 3 +                             // keys and weights
          material_bytes(a.materials) +                                   // embedded images
@@ -129,8 +142,9 @@ std::size_t buffer_capacity(const GltfAnimation& a, std::size_t nv, std::size_t 
 
 std::size_t glb_vertices(const GltfAnimation& layout) {
   if (layout.frames.empty()) return 0;
-  // Split only where something splits them (a seam, a hard edge, a colour).
-  if (layout.face_uv.rows() > 0 || layout.face_normal.rows() > 0 || layout.face_colour.rows() > 0)
+  // Split only where something splits them (a seam, a hard edge, a colour, a region's rim).
+  if (layout.face_uv.rows() > 0 || layout.face_normal.rows() > 0 || layout.face_colour.rows() > 0 ||
+      !layout.face_region.empty())
     return split_vertices(layout).source.size();
   return static_cast<std::size_t>(layout.frames[0].rows());
 }

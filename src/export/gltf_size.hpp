@@ -21,8 +21,8 @@ namespace shellcontract::gltf {
 std::size_t buffer_capacity(const GltfAnimation& a, std::size_t vertices, std::size_t frames);
 
 /// The glTF vertices of `layout`: its frame 0's rows, and the copies of the vertices that a
-/// seam, a hard edge or a colour splits (split_vertices). `layout` holds frame 0 (later frames
-/// are not read), the faces and the input's attributes.
+/// seam, a hard edge, a colour or a region's rim splits (split_vertices). `layout` holds frame 0
+/// (later frames are not read), the faces and the input's attributes.
 std::size_t glb_vertices(const GltfAnimation& layout);
 
 /// An upper bound of the size of the .glb of `layout` with `frames` frames on `vertices` glTF

@@ -13,13 +13,13 @@ VertexSplit split_vertices(const GltfAnimation& a) {
   const Eigen::Index nv = a.frames[0].rows();
   const auto n = static_cast<std::size_t>(nv);
   const bool with_uv = a.face_uv.rows() > 0, with_groups = a.face_normal.rows() > 0;
-  const bool with_colour = a.face_colour.rows() > 0;
+  const bool with_colour = a.face_colour.rows() > 0, with_region = !a.face_region.empty();
   const bool with_polygons = !a.face_polygon.empty();
   VertexSplit s;
   s.faces = a.faces;
   s.source.resize(n);
   for (Eigen::Index i = 0; i < nv; ++i) s.source[static_cast<std::size_t>(i)] = i;
-  if (!with_uv && !with_groups && !with_colour) return s;
+  if (!with_uv && !with_groups && !with_colour && !with_region) return s;
 
   // Colours by value: copies of a vertex whose colours are equal (most seam copies) are not
   // split for their colour, only those that differ. Per colour row, the first row of its value.
@@ -52,10 +52,12 @@ VertexSplit split_vertices(const GltfAnimation& a) {
         }
       }
 
-  // Per glTF vertex its key (texture coordinate, normal group at a hard vertex, colour; -1:
-  // none), and per simulation vertex the copies made so far.
-  using Key = std::array<int, 3>;
-  std::vector<Key> key(n, Key{-1, -1, -1});
+  // Per glTF vertex its key (texture coordinate, normal group at a hard vertex, colour, region;
+  // -1: none), and per simulation vertex the copies made so far. The region is in the key so
+  // that a face's corners all carry its region's id: a vertex on a region's rim, shared with
+  // faces of no region, would otherwise blend two categories across those faces.
+  using Key = std::array<int, 4>;
+  std::vector<Key> key(n, Key{-1, -1, -1, -1});
   std::vector<char> keyed(n, 0);
   std::vector<std::vector<std::pair<Key, int>>> copies(n);
   std::vector<std::vector<std::pair<int, int>>> slots(n);  // per vertex: (group, hard slot)
@@ -65,9 +67,9 @@ VertexSplit split_vertices(const GltfAnimation& a) {
       const int v = a.faces(f, k);
       const auto vs = static_cast<std::size_t>(v);
       const int group = hard[vs] ? a.face_normal(f, k) : -1;
-      const Key want{
-          with_uv ? a.face_uv(f, k) : -1, group,
-          with_colour ? colour_class[static_cast<std::size_t>(a.face_colour(f, k))] : -1};
+      const Key want{with_uv ? a.face_uv(f, k) : -1, group,
+                     with_colour ? colour_class[static_cast<std::size_t>(a.face_colour(f, k))] : -1,
+                     with_region ? a.face_region[static_cast<std::size_t>(f)] : -1};
       // The hard group's slot, and this face's polygon in its list, once (a polygon's triangles
       // that share the vertex come one after the other, but not always: look at all).
       int slot = -1;
@@ -109,6 +111,10 @@ VertexSplit split_vertices(const GltfAnimation& a) {
   if (with_colour) {
     s.colour.resize(s.source.size());
     for (std::size_t i = 0; i < s.source.size(); ++i) s.colour[i] = key[i][2];
+  }
+  if (with_region) {
+    s.region.resize(s.source.size());
+    for (std::size_t i = 0; i < s.source.size(); ++i) s.region[i] = key[i][3];
   }
   if (s.hard.empty())
     s.normal.clear();  // every vertex smooth

@@ -1,6 +1,7 @@
 // The .glb's vertices (docs/design/export.md, "Texture coordinates" and "Hard edges"): glTF has
 // one set of attributes per vertex, so a simulation vertex whose corners differ in texture
-// coordinates (a UV seam) or in normal group (a hard edge of the input) is split into copies.
+// coordinates (a UV seam), in normal group (a hard edge of the input) or in region (a local
+// contraction region's rim) is split into copies.
 // The simulation's welded mesh is not changed: the copies move with their vertex.
 #pragma once
 
@@ -21,6 +22,9 @@ struct VertexSplit {
   /// Per glTF vertex, its colour's row in the animation's colour (-1: a vertex no face uses);
   /// empty without colours.
   std::vector<int> colour;
+  /// Per glTF vertex, the region of its faces (GltfAnimation::face_region; -1: none, or a vertex
+  /// no face uses); empty without regions.
+  std::vector<int> region;
   /// Per glTF vertex, its normal: -1 the simulation vertex's smooth normal (vertex_normals),
   /// else an index into `hard`: the group of its corners at a vertex with a hard edge.
   std::vector<int> normal;
@@ -31,10 +35,11 @@ struct VertexSplit {
 };
 
 /// The split of `a`'s vertices by the texture coordinate (face_uv), the normal group
-/// (face_normal) and the colour (face_colour) of their corners. Glb vertex i < #V is simulation
-/// vertex i with its first corner's, the copies follow in the order of their first corners. Corners
-/// of a vertex whose corners all have one normal group (or none) share the smooth normal: a mesh
-/// without normal groups is split at its UV seams only, as before they were read.
+/// (face_normal), the colour (face_colour) and the region (face_region) of their corners. Glb
+/// vertex i < #V is simulation vertex i with its first corner's, the copies follow in the order of
+/// their first corners. Corners of a vertex whose corners all have one normal group (or none) share
+/// the smooth normal: a mesh without normal groups is split at its UV seams only, as before they
+/// were read.
 /// @pre a is checked (write_gltf_animation's checks)
 VertexSplit split_vertices(const GltfAnimation& a);
 

@@ -31,6 +31,21 @@ export function mapColour(t, diverging) {
   return stops[i].map((c, k) => c + f * (stops[i + 1][k] - c));
 }
 
+/**
+ * The sRGB colour (bytes) of category `id` (a run's region id): grey for none (< 0), else the hue
+ * id x the golden ratio (mod 1), as `shellcontract regions -o` colours a region's faces
+ * (region_colour), so that a region has one colour in both files and ids next to each other are
+ * far apart in hue.
+ */
+export function categoryColour(id) {
+  if (!(id >= 0)) return [160, 160, 160];
+  const hue = ((id * 0.6180339887498949) % 1) * 6;
+  const v = 0.95, s = 0.85, sector = Math.floor(hue) % 6, frac = hue - Math.floor(hue);
+  const p = v * (1 - s), q = v * (1 - s * frac), t = v * (1 - s * (1 - frac));
+  const rgb = [[v, t, p], [q, v, p], [p, v, t], [p, q, v], [t, p, v], [v, p, q]][sector];
+  return rgb.map((c) => Math.round(Math.min(1, Math.max(0, c)) * 255));
+}
+
 /** A CSS linear-gradient of the map, low to high (the colour bar). */
 export const cssGradient = (diverging) =>
   `linear-gradient(to right, ${(diverging ? DIVERGING : SEQUENTIAL).map((c) => `rgb(${c.join(',')})`).join(', ')})`;
@@ -59,12 +74,13 @@ const fieldColours = new WeakMap();
 
 /**
  * The geometry's colour attribute holding linear RGB colours for `values` mapped over the scale
- * (colourScale: its low, high and map; not yet set as its 'color': the caller does). The colours
+ * (colourScale: its low, high and map; not yet set as its 'color': the caller does), or, for a
+ * scale {categorical: true}, each value's categoryColour (ids, no range). The colours
  * are written only when the values or the scale differ from those it holds (a frame or a choice
  * changed), and uploaded again then.
  */
 export function fieldColourAttribute(geometry, values, scale) {
-  const { low, high, diverging } = scale;
+  const { low, high, diverging } = scale, categorical = !!scale.categorical;
   let held = fieldColours.get(geometry);
   // A new attribute for values of another length: not expected (a field has one value per
   // vertex), but a short buffer would draw garbage.
@@ -74,16 +90,17 @@ export function fieldColourAttribute(geometry, values, scale) {
     held = { attribute };
     fieldColours.set(geometry, held);
   }
-  if (held.values === values && held.low === low && held.high === high && held.diverging === diverging) return held.attribute;
+  if (held.values === values && held.low === low && held.high === high && held.diverging === diverging &&
+      held.categorical === categorical) return held.attribute;
   const rgb = held.attribute.array;
   const c = new THREE.Color();
   for (let i = 0; i < values.length; i++) {
     const t = high > low ? Math.min(1, Math.max(0, (values[i] - low) / (high - low))) : 0.5;
-    const [r, g, b] = mapColour(t, diverging);
+    const [r, g, b] = categorical ? categoryColour(Math.round(values[i])) : mapColour(t, diverging);
     c.setRGB(r / 255, g / 255, b / 255, THREE.SRGBColorSpace);
     rgb[3 * i] = c.r; rgb[3 * i + 1] = c.g; rgb[3 * i + 2] = c.b;
   }
-  Object.assign(held, { values, low, high, diverging });
+  Object.assign(held, { values, low, high, diverging, categorical });
   held.attribute.needsUpdate = true;
   return held.attribute;
 }

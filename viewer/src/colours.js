@@ -1,7 +1,8 @@
 // The colours the panes show: the colour menu's choices for the files open (a .glb's fields, a
 // mesh file's own colours and scalar fields) with the first one, and a choice applied to every
 // pane, each with its own values (main.js puts the result on the page: the colour bar, the note).
-// A field is drawn on a diverging map about 0 or a sequential one (colour_map.js).
+// A field is drawn on a diverging map about 0 or a sequential one (colour_map.js); a categorical
+// one (a run's region ids) in a colour per id, with the ids as its legend.
 import { colourScale, fieldColourAttribute, range } from './colour_map.js';
 import { legendNote } from './legend.js';
 import { paneKeyframe } from './frames.js';
@@ -65,7 +66,16 @@ export function applyColours(panes, { choice, colourFields, frame, noFields }) {
         const i = p.colourInfo.findIndex((f) => f.name === wanted?.name), info = p.colourInfo[i];
         const k = paneKeyframe(p, frame), paneFrame = p.frameNumbers[k];
         const perFrame = info && p.frameFields[info.name];
-        if (perFrame) {
+        if (info?.categorical) {
+          // Ids, not amounts: a colour each (grey for none), whatever the frame (a face's
+          // region does not change as the shell moves).
+          const scale = { categorical: true, ids: info.ids, none: Number(info.none ?? -1) };
+          if (p.fieldValues[j][i]) {
+            attr = fieldColourAttribute(m.geometry, p.fieldValues[j][i], scale);
+            values[pi] = p.fieldValues[j][i];
+          }
+          if (j === 0) legends.push({ name: info.name, scale, of: 'a colour per id, as regions -o colours them' });
+        } else if (perFrame) {
           // Each frame's own values, on one scale over all frames (so frames compare).
           const scale = colourScale(perFrame.low, perFrame.high);
           attr = fieldColourAttribute(m.geometry, perFrame.values[k], scale);
@@ -77,7 +87,7 @@ export function applyColours(panes, { choice, colourFields, frame, noFields }) {
           attr = fieldColourAttribute(m.geometry, p.fieldValues[j][i], colourScale(Number(info.low), Number(info.high)));
           values[pi] = p.fieldValues[j][i];
         }
-        if (info && !perFrame && j === 0) {
+        if (info && !info.categorical && !perFrame && j === 0) {
           legends.push({ name: info.name, scale: colourScale(Number(info.low), Number(info.high)),
                          of: 'its 2nd to 98th percentile' + (info.frame !== undefined ? `; values of frame ${info.frame}, shown on that frame only` : '') });
         }

@@ -41,7 +41,14 @@ async function glbPane(arrayBuffer, name) {
   // Colour fields: the values of each, a custom attribute the loader names in lower case
   // ('_MEAN_CURVATURE' is '_mean_curvature'); colours.js maps them to colours over the extras' low
   // and high. (The file has no COLOR_n: glTF multiplies COLOR_0 with the base colour.)
-  const colourInfo = Array.isArray(extras.colour_fields) ? extras.colour_fields : [];
+  // Categorical fields (the run's region ids: extras.categorical_fields) follow them in the
+  // menu, marked `categorical`: their values are ids, coloured one apart from another
+  // (colours.js), not over a range.
+  const colourInfo = Array.isArray(extras.colour_fields) ? [...extras.colour_fields] : [];
+  for (const f of Array.isArray(extras.categorical_fields) ? extras.categorical_fields : []) {
+    if (typeof f?.name !== 'string' || colourInfo.some((c) => c.name === f.name)) continue;
+    colourInfo.push({ ...f, categorical: true, ids: Array.isArray(f.ids) ? f.ids.map(Number) : [] });
+  }
   const geometry = shell.geometry;
   const fieldValues = meshes.map((m) => colourInfo.map((f) => (
     typeof f.values_attribute === 'string' ? m.geometry.getAttribute(f.values_attribute.toLowerCase())?.array ?? null : null)));

@@ -16,6 +16,14 @@ export function exposeForTests(state, panes, renderer) {
     }
     return n ? sum / n : null;
   });
+  /**
+   * Per pane, per mesh, the vertices of its corners (its index) and the colour it shows at each
+   * vertex (linear RGB, three numbers a vertex); null for a mesh without colours shown.
+   */
+  state.vertexColours = () => panes().map((p) => p.meshes.map((m) => {
+    const c = m.material.vertexColors ? m.geometry.getAttribute('color') : null;
+    return c ? { index: Array.from(m.geometry.index?.array ?? []), rgb: Array.from(c.array) } : null;
+  }));
   /** three.js's count of the geometries and textures on the GPU (renderer.info.memory). */
   state.memory = () => ({ ...renderer.info.memory });
   /**
