@@ -8,6 +8,17 @@ import { legendNote } from './legend.js';
 import { paneKeyframe } from './frames.js';
 
 /**
+ * A file's header comments as a note: the first few, each cut to about a line, and how many more
+ * (a result keeps its input's comments, so a PLY may hold thousands).
+ * @param {string[]} comments
+ */
+function commentsNote(comments) {
+  const cut = (c) => (c.length > 120 ? `${c.slice(0, 119)}\u2026` : c);
+  const first = comments.slice(0, 3).map(cut).join('; ');
+  return comments.length > 3 ? `${first}; and ${comments.length - 3} more comments` : first;
+}
+
+/**
  * The colour menu for the panes: `options` ([label, value]: 'none' is '-1', a glTF field its
  * index in `colourFields`, 'file' a mesh file's own colours, 'field:NAME' a mesh file's scalar
  * field), `colourFields` (the glTF fields by name: two runs may hold different ones) and `first`,
@@ -98,7 +109,7 @@ export function applyColours(panes, { choice, colourFields, frame, noFields }) {
         // What the file's colours are: its header's comments say it where the CLI wrote them.
         if (j === 0) {
           notes.push(`${p.name}: its own ${p.faceColours ? 'face ' : ''}colours` +
-                     (p.comments?.length ? ` (${p.comments.join('; ')})` : '') +
+                     (p.comments?.length ? ` (${commentsNote(p.comments)})` : '') +
                      (p.fields.length && !p.faceColours ? `, on its own scale; a field from the menu puts ${panes.length > 1 ? 'both files' : 'it'} on one` : ''));
         }
       } else if (p.kind === 'mesh' && scale) {

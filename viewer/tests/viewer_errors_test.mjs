@@ -6,7 +6,8 @@
 // on "making its meshes", and the next file opens; an attribute of doubles (injected into
 // OBJLoader's result: the loaders convert every file's) is named before the draw, not reported
 // with three.js's message. An STL of upper-case keywords is refused with the keyword named, and a PLY
-// whose header runs past 64 KiB offers its field.
+// whose header runs past 64 KiB offers its field; one of a thousand comments names a few of them in
+// its colour note.
 // Usage: node viewer/tests/viewer_errors_test.mjs --mesh ico2.off [--chromium PATH]
 import { writeFileSync } from 'node:fs';
 import { check, finish, parseArgs, readOff, startViewer, workFolder } from './test_support.mjs';
@@ -31,6 +32,14 @@ writeFileSync(file('long_header.ply'), 'ply\nformat ascii 1.0\n' + `comment ${'c
   `element vertex ${vertices.length}\nproperty float x\nproperty float y\nproperty float z\nproperty float height\n` +
   `element face ${faces.length}\nproperty list uchar int vertex_indices\nend_header\n` +
   vertices.map((v) => `${v.join(' ')} ${v[2]}`).join('\n') + '\n' + faces.map((f) => `3 ${f.join(' ')}`).join('\n') + '\n');
+// A coloured PLY that keeps a thousand comments (a result keeps its input's): its colour note
+// listed every one of them.
+writeFileSync(file('many_comments.ply'), 'ply\nformat ascii 1.0\n' +
+  Array.from({ length: 1000 }, (_, i) => `comment note ${i} ${'x'.repeat(200)}\n`).join('') +
+  `element vertex ${vertices.length}\nproperty float x\nproperty float y\nproperty float z\n` +
+  'property uchar red\nproperty uchar green\nproperty uchar blue\n' +
+  `element face ${faces.length}\nproperty list uchar int vertex_indices\nend_header\n` +
+  vertices.map((v) => `${v.join(' ')} 200 30 30`).join('\n') + '\n' + faces.map((f) => `3 ${f.join(' ')}`).join('\n') + '\n');
 writeFileSync(file('tri.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');
 writeFileSync(file('doubles.obj'), 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n');  // another name: the picker fires no change for the same file
 
@@ -59,6 +68,11 @@ try {
   s = await open(file('long_header.ply'));
   const menu = await page.$eval('#colour', (e) => [...e.options].map((o) => o.textContent));
   check(!s.error && menu.some((o) => /height/.test(o)), `a PLY of a header past 64 KiB opens with its field in the menu (${s.error ?? JSON.stringify(menu)})`);
+
+  s = await open(file('many_comments.ply'));
+  const note = await page.$eval('#colour-note', (e) => e.textContent);
+  check(!s.error && /note 0 x+\u2026; note 1 .*; note 2 .*; and 997 more comments/.test(note) && note.length < 600,
+        `a PLY of a thousand comments names three, cut, and counts the rest (${note.length} characters: "${note.slice(0, 80)}...")`);
 
   // A first draw that throws: injected into three.js (the page's own module, through its import map).
   await page.evaluate(async () => {
