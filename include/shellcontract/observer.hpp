@@ -164,7 +164,10 @@ class FrameView {
   friend const Simulator& simulator_of(const FrameView& view);  // the library's exporters
 };
 
-/// Sees a run. Every callback runs on the caller's thread, between steps.
+/// Sees a run. Every callback runs on the thread that called run_contraction, also while other
+/// threads of the process run the library at once (each run works in a task arena of its own),
+/// and never inside the run's parallel work: between steps, or in the preparation between its
+/// stages (stage(), and cancelled() there). A callback may start a run of its own.
 class RunObserver {
  public:
   virtual ~RunObserver() = default;
@@ -175,8 +178,7 @@ class RunObserver {
   /// contact pairs at rest", ...) before started(), and "checking the result for
   /// self-intersections" in the last step (`validate` end), before its frame(). A few words for
   /// a person; the set of stages may change. A stage lasts until the next one, started(),
-  /// frame() or finished(); not called otherwise between steps. On the thread that runs the preparation (the caller's, unless another run
-  /// holds every slot of the shared arena: arena_threads.hpp), as cancelled() there.
+  /// frame() or finished(); not called otherwise between steps.
   virtual void stage(const std::string& /*what*/) {}
   /// The run is prepared, before its first step: frame 0, the rest state (a resumed run: the
   /// checkpoint's frame).

@@ -118,6 +118,11 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
     ...; the set may change): the preparation's stages before frame 1, and "checking the result
     for self-intersections" in the last step (validate="end"), before its callback. An error it
     raises stops the run and is raised.
+    Both are called on the thread that called contract(), the GIL held, also while other
+    threads run contract() at once (each run works on threads of its own), so that an object
+    tied to its thread (a sqlite3 connection) may be used there; either may call contract()
+    again. Ctrl-C, which Python hands to the main thread, stops the main thread's contract()
+    alone: contract() in other threads runs on.
     Raises ValueError for a mesh the library refuses or a bad option value (MeshError, a
     ValueError with the faces' indices as ``faces``, where particular faces are to blame),
     TypeError for an unknown option; MemoryError, or RuntimeError for a thread the system

@@ -131,7 +131,8 @@ class PythonObserver final : public RunObserver {
     }
   }
 
-  /// On the preparation's thread, the GIL released: taken for the call, as in frame().
+  /// On the caller's thread (each run has an arena of its own: core/arena_threads.hpp), the GIL
+  /// released: taken for the call, as in frame().
   void stage(const std::string& what) override {
     doing_ = what;
     if (!has_stage_ || stop_) return;

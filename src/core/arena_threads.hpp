@@ -4,6 +4,8 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <cstddef>
+#include <memory>
 
 #include "core/usable_cpus.hpp"
 
@@ -22,15 +24,61 @@ inline int arena_threads(int requested) {
   return requested <= 0 ? usable_cpus() : std::min(requested, usable_cpus());
 }
 
-/// The process's arena of arena_threads(requested) threads, made at its first use and kept once
-/// TBB has initialized it (std::bad_alloc passes, and the next call tries again): a run
-/// (its planning and the Simulator's construction, its solver, its collision step, its step's own
-/// work) works in it instead of arenas of its own. TBB (oneTBB 2021.8) keeps some kilobytes of
-/// every arena that ran parallel work after the arena is destroyed, so a program that calls the
-/// library thousands of times (a Python loop) grew without bound (tests/sim/test_shared_arena.cpp).
-/// Runs on several threads at once may share one: an arena takes work from several threads, and
-/// neither the results nor the colour schedule's progress depend on which thread runs which task
-/// (colour_schedule.hpp).
-tbb::task_arena& shared_arena(int requested);
+/// A run's task arena of arena_threads(requested) threads, leased from the process's pool for
+/// the run alone (its planning and the Simulator's construction, its solver, its collision step,
+/// its step's own work): copies share the one lease, and the arena goes back to the pool when the
+/// last copy is destroyed. A lease takes a free arena of its count, and makes one only when every
+/// arena of that count is leased, so the pool holds as many arenas of a count as runs of that
+/// count ever ran at once. The arenas are kept, not destroyed: TBB (oneTBB 2021.8) keeps some
+/// kilobytes of every arena that ran parallel work after the arena is destroyed, so a program that
+/// calls the library thousands of times (a Python loop) grew without bound
+/// (tests/sim/test_shared_arena.cpp).
+///
+/// One run per arena is what keeps a run's observer callbacks on its caller's thread. An arena
+/// reserves one slot for external threads (task_arena's default reserved_for_masters = 1; TBB's
+/// workers take only the others), and execute() runs the functor on the calling thread when it
+/// takes a free slot; only when every slot is taken does TBB hand the functor to a thread already
+/// in the arena and wait. Runs that shared an arena of their count did: while one run held the
+/// reserved slot, another run's preparation (its `stage` and `cancelled` callbacks, Python's
+/// Ctrl-C check) ran on a TBB worker or on the first run's thread, and waited for that run's work.
+/// The only thread that enters a leased arena from outside is its run's caller, one call at a
+/// time, so it always finds the reserved slot free (tests/sim/test_run_threads_at_once.cpp).
+class ArenaLease {
+ public:
+  /// Takes a free arena of arena_threads(requested) threads from the pool, or makes one
+  /// (initialized here: an arena whose initialization threw std::bad_alloc is not kept, and the
+  /// next lease tries again).
+  explicit ArenaLease(int requested);
+  tbb::task_arena& arena() const { return *arena_; }
+  /// arena_threads(requested): the arena's max_concurrency.
+  int threads() const { return threads_; }
+
+ private:
+  int threads_;
+  std::shared_ptr<tbb::task_arena> arena_;
+};
+
+/// For a part of a run (the Simulator, the solver, the collision Workers): the lease of the run
+/// being built on this thread (a RunArenaScope's) if it has this thread count, else a lease of
+/// its own (a part made alone, as tests do).
+ArenaLease run_arena(int requested);
+
+/// While it lives, run_arena on this thread shares `lease`: the run's parts, made in its
+/// preparation, work in the run's arena. Scopes nest (a callback that starts a run of its own
+/// gets its own lease and scope; the outer one is back when it ends).
+class RunArenaScope {
+ public:
+  explicit RunArenaScope(const ArenaLease& lease);
+  ~RunArenaScope();
+  RunArenaScope(const RunArenaScope&) = delete;
+  RunArenaScope& operator=(const RunArenaScope&) = delete;
+
+ private:
+  const ArenaLease* outer_;
+};
+
+/// How many arenas of arena_threads(requested) threads the pool has made so far (leased or free):
+/// the most runs of that count at once, for tests of the bound.
+std::size_t arenas_made(int requested);
 
 }  // namespace shellcontract

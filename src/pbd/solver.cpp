@@ -1,29 +1,29 @@
 #include "pbd/solver.hpp"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include "bending/isometric_bending.hpp"
 #include "core/arena_threads.hpp"
 #include "material/stvk.hpp"
+#include "pbd/aniso_frames.hpp"
 #include "pbd/colour_schedule.hpp"
 #include "pbd/colouring.hpp"
 #include "pbd/constraint_batches.hpp"
 #include "pbd/constraint_kernels.hpp"
-
-#include "pbd/aniso_frames.hpp"
 #include "pbd/membrane_energy.hpp"
-#include "pbd/rest_slots.hpp"
 #include "pbd/regional_order.hpp"
+#include "pbd/rest_slots.hpp"
 #include "pbd/sweep_phases.hpp"
 
 namespace shellcontract {
@@ -110,7 +110,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
         membrane_colours_ = regional_in_place(set_.membranes, membrane_colours_, part);
         isometric_colours_ = regional_in_place(set_.isometric_hinges, isometric_colours_, part);
       }
-      arena_ = &shared_arena(settings_.threads);
+      arena_ = run_arena(settings_.threads);
     } else {
       membrane_colours_ = {0, set_.membranes.size()};
       isometric_colours_ = {0, set_.isometric_hinges.size()};
@@ -169,7 +169,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
 
   void solve(Positions& x, const Eigen::VectorXd& inv_mass) override {
     if (coloured_)
-      arena_->execute([&] { solve_impl(x, inv_mass); });
+      arena_->arena().execute([&] { solve_impl(x, inv_mass); });
     else
       solve_impl(x, inv_mass);
   }
@@ -378,7 +378,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
       const std::size_t n = static_cast<std::size_t>(x.rows());
       if (!schedule_built_ || n != padded_.size()) {  // first call (or a new vertex count)
         const std::vector<ColourPhase> phases = sweep_phases(n);
-        schedule_ = ColourSchedule(phases, settings_.iterations, arena_->max_concurrency());
+        schedule_ = ColourSchedule(phases, settings_.iterations, arena_->arena().max_concurrency());
         padded_.resize(n);
         // Vertices past the constraints' largest id keep their own row.
         for (std::size_t v = row_vertex_.size(); v < n; ++v)
@@ -461,7 +461,7 @@ class GaussSeidelSolver final : public ConstraintSolver {
   std::vector<PackedMembrane> packed_membranes_;
   std::vector<PackedMembrane> packed_aniso_;      ///< set_.anisotropic, packed, same order
   std::vector<ElementMaterialData> aniso_data_;   ///< fibre of each anisotropic face
-  tbb::task_arena* arena_ = nullptr;  ///< Coloured order only: shared_arena(settings.threads)
+  std::optional<ArenaLease> arena_;  ///< Coloured order only: run_arena(settings.threads)
   ColourSchedule schedule_;          ///< Coloured order only: the phases of a solve (first solve)
   bool schedule_built_ = false;
   bool first_padded_ = false;        ///< a sweep starts on padded_ (pack before the first)

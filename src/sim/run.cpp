@@ -189,6 +189,10 @@ void warn(RunResult& r, RunObserver& o, const std::string& text) {
   o.warning(text);
 }
 
+/// run_contraction of a plan, in the run's leased arena.
+RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* checkpointer,
+                      const ArenaLease& lease);
+
 }  // namespace
 
 RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserver* observer,
@@ -200,13 +204,16 @@ RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserv
   RunObserver none;
   bool interrupted = false;
   std::optional<RunPlan> plan;
+  // The run's own arena for its planning, its Simulator and its steps (core/arena_threads.hpp):
+  // leased by this run alone, so execute() runs the functor, and with it the observer's stage()
+  // and cancelled(), on this thread, the caller's.
+  const ArenaLease lease(options.sim.solver.threads);
   try {
     // In the run's arena, as its steps: outside it the planning's parallel work (the regions,
     // the contact distance's broad phase) took TBB's default, a thread per core of the affinity,
-    // whatever `threads` or a CPU quota said (core/arena_threads.hpp). The cancellation scope is
-    // made inside the functor: it is thread-local, and the functor may run on another thread of
-    // the arena when another run holds its every slot.
-    shared_arena(options.sim.solver.threads).execute([&] {
+    // whatever `threads` or a CPU quota said (core/arena_threads.hpp).
+    lease.arena().execute([&] {
+      const RunArenaScope in_run(lease);
       const CancellationScope scope(
           preparation_cancelled(observer ? *observer : none, checkpointer, interrupted));
       const ProgressStageScope stages = observer_stages(observer ? *observer : none);
@@ -218,10 +225,18 @@ RunResult run_contraction(const Mesh& mesh, const RunOptions& options, RunObserv
     r.positions = positions_from_mesh(mesh);
     return r;
   }
-  return run_contraction(std::move(*plan), observer, checkpointer);
+  return run_planned(std::move(*plan), observer, checkpointer, lease);
 }
 
 RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* checkpointer) {
+  const ArenaLease lease(plan.sim.options.solver.threads);
+  return run_planned(std::move(plan), observer, checkpointer, lease);
+}
+
+namespace {
+
+RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* checkpointer,
+                      const ArenaLease& lease) {
   RunObserver none;
   RunObserver& obs = observer ? *observer : none;
   RunResult r;
@@ -237,8 +252,10 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   std::optional<Simulator> prepared;
   bool interrupted = false;
   try {
-    // In the run's arena (see above): the construction's broad phase and rest pairs.
-    shared_arena(plan.sim.options.solver.threads).execute([&] {
+    // In the run's arena (see above): the construction's broad phase and rest pairs. The
+    // Simulator made in its scope shares the lease with its solver and collision Workers.
+    lease.arena().execute([&] {
+      const RunArenaScope in_run(lease);
       const CancellationScope scope(preparation_cancelled(obs, checkpointer, interrupted));
       const ProgressStageScope stages = observer_stages(obs);
       cancellation_point();
@@ -467,5 +484,7 @@ RunResult run_contraction(RunPlan plan, RunObserver* observer, RunCheckpointer* 
   }
   return r;
 }
+
+}  // namespace
 
 }  // namespace shellcontract

@@ -68,8 +68,9 @@ double peak_pressure_magnitude(const SimOptions& o) {
 /// threads on a 16-core machine (a step timer build, not kept; lab/pages/scale.md,
 /// "Sixteen cores").
 struct Simulator::StepArena {
-  tbb::task_arena& arena;  ///< the process's arena of the run's thread count (shared_arena)
-  explicit StepArena(int threads) : arena(shared_arena(threads)) {}
+  ArenaLease lease;        ///< the run's arena (run_arena): the caller's run's, or one of its own
+  tbb::task_arena& arena;  ///< lease.arena()
+  explicit StepArena(int threads) : lease(run_arena(threads)), arena(lease.arena()) {}
 };
 
 namespace {
@@ -120,6 +121,10 @@ Simulator::Simulator(SimPlan plan)
     : options_(std::move(plan.options)),
       mesh_(std::make_unique<Mesh>(std::move(plan.mesh))),
       normalization_(plan.normalization) {
+  // The run's arena, shared by the parts made below (the solver, the collision Workers): one
+  // arena per run (core/arena_threads.hpp).
+  arena_ = std::make_unique<StepArena>(options_.solver.threads);
+  const RunArenaScope in_run(arena_->lease);
   const double mass_dt = plan.mass_scaling_dt > 0.0 ? plan.mass_scaling_dt : options_.dt;
   // The plan's mesh is normalized: its points are the rest positions, bit for bit.
   x_ = positions_from_mesh(*mesh_);
@@ -132,7 +137,6 @@ Simulator::Simulator(SimPlan plan)
   cancellation_point();
   faces_ = faces_array(*mesh_);
   faces_around_ = vertex_faces(faces_, x_.rows());
-  arena_ = std::make_unique<StepArena>(options_.solver.threads);
   inv_mass_ = inverse_masses(*mesh_);
   // The explicit pressure needs a minimum mass per vertex at this dt (sim/mass_scaling.hpp).
   mass_scaling_ =

@@ -131,7 +131,7 @@ TEST(UsableCpus, TheDefaultArenaIsThisProcesssUsableCpus) {
   const int quota = cgroup_cpu_limit("/sys/fs/cgroup", text);
   EXPECT_EQ(usable_cpus(), quota > 0 ? std::min(affinity, quota) : affinity);
   EXPECT_EQ(arena_threads(0), usable_cpus());
-  EXPECT_EQ(shared_arena(0).max_concurrency(), usable_cpus());
+  EXPECT_EQ(ArenaLease(0).arena().max_concurrency(), usable_cpus());
   // A count given is held to them too.
   EXPECT_EQ(arena_threads(usable_cpus() + 3), usable_cpus());
   EXPECT_EQ(arena_threads(1), 1);

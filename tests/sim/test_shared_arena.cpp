@@ -1,6 +1,7 @@
-// The runs' task arenas (core/arena_threads.hpp): one per thread count for the whole process, so
-// that a program calling the library many times does not grow (oneTBB 2021.8 keeps some kilobytes
-// of every arena that ran parallel work after the arena is destroyed).
+// The runs' task arenas (core/arena_threads.hpp): a pool per thread count for the whole process,
+// each arena leased by one run at a time, so that a program calling the library many times does
+// not grow (oneTBB 2021.8 keeps some kilobytes of every arena that ran parallel work after the
+// arena is destroyed).
 #include <gtest/gtest.h>
 #include <malloc.h>
 #include <tbb/info.h>
@@ -22,13 +23,45 @@
 namespace shellcontract {
 namespace {
 
-TEST(SharedArena, OneArenaPerThreadCount) {
-  EXPECT_EQ(&shared_arena(1), &shared_arena(1));
-  EXPECT_EQ(&shared_arena(0), &shared_arena(-3));  // both TBB's automatic count
+TEST(SharedArena, ALeaseHasItsArenaToItselfAndGivesItBack) {
   const int machine = tbb::info::default_concurrency();
-  // A count above the machine's is the machine's (arena_threads).
-  EXPECT_EQ(&shared_arena(machine + 5), &shared_arena(machine));
-  EXPECT_EQ(shared_arena(1).max_concurrency(), 1);
+  EXPECT_EQ(ArenaLease(1).arena().max_concurrency(), 1);
+  // A count above the machine's is the machine's (arena_threads); 0 and below are TBB's
+  // automatic count.
+  EXPECT_EQ(ArenaLease(machine + 5).threads(), ArenaLease(machine).threads());
+  EXPECT_EQ(ArenaLease(-3).threads(), ArenaLease(0).threads());
+  {
+    const ArenaLease a(1), b(1);
+    EXPECT_NE(&a.arena(), &b.arena());  // two runs at once: an arena each
+    const ArenaLease copy = a;
+    EXPECT_EQ(&copy.arena(), &a.arena());  // a copy shares the lease
+  }
+  // Both given back: leases one at a time make no more arenas.
+  const std::size_t made = arenas_made(1);
+  EXPECT_GE(made, 2u);
+  for (int i = 0; i < 20; ++i) {
+    const ArenaLease a(1);
+    const ArenaLease b(1);
+  }
+  EXPECT_EQ(arenas_made(1), made);
+}
+
+TEST(SharedArena, ARunsPartsShareItsLease) {
+  const ArenaLease run(2);
+  {
+    const RunArenaScope in_run(run);
+    EXPECT_EQ(&run_arena(2).arena(), &run.arena());
+    if (arena_threads(1) != arena_threads(2))  // another count: a lease of its own
+      EXPECT_NE(&run_arena(1).arena(), &run.arena());
+    {
+      const ArenaLease nested(2);  // a run started inside this one (a callback's)
+      EXPECT_NE(&nested.arena(), &run.arena());
+      const RunArenaScope in_nested(nested);
+      EXPECT_EQ(&run_arena(2).arena(), &nested.arena());
+    }
+    EXPECT_EQ(&run_arena(2).arena(), &run.arena());  // the outer scope is back
+  }
+  EXPECT_NE(&run_arena(2).arena(), &run.arena());  // outside a run: a lease of its own
 }
 
 /// The process's resident memory in KiB (Linux), after giving freed heap pages back.
@@ -62,14 +95,17 @@ TEST(SharedArena, ManyThreadedRunsDoNotGrowTheProcess) {
   resolve_run_options(o);
   for (int i = 0; i < 50; ++i) ASSERT_EQ(run_contraction(mesh, o).status, RunStatus::Completed);  // warm up
   const long before = resident_kib();
+  const std::size_t arenas = arenas_made(2);
   for (int i = 0; i < 500; ++i) ASSERT_EQ(run_contraction(mesh, o).status, RunStatus::Completed);
   const long grown = resident_kib() - before;
   EXPECT_LT(grown, 2048) << "KiB grown over 500 runs";
+  EXPECT_EQ(arenas_made(2), arenas) << "runs one after another reuse their arenas";
 }
 
-// Runs on several threads at once share the arena of their thread count; each must still give
-// the bytes it gives alone (the coloured order's results do not depend on which thread runs
-// which chunk, and the collision step's background task is waited for by its own run).
+// Runs on several threads at once each lease an arena of their thread count; each must still
+// give the bytes it gives alone, and the pool holds no more arenas than runs ran at once (the
+// coloured order's results do not depend on which thread runs which chunk, and the collision step's
+// background task is waited for by its own run).
 TEST(SharedArena, RunsAtOnceGiveTheResultsOfRunsAlone) {
   const Mesh small = test::to_surface_mesh(test::icosphere(2)), large = test::to_surface_mesh(test::icosphere(3));
   std::vector<RunOptions> options(4);
@@ -83,6 +119,7 @@ TEST(SharedArena, RunsAtOnceGiveTheResultsOfRunsAlone) {
   auto mesh_of = [&](std::size_t k) -> const Mesh& { return k % 2 ? large : small; };
   std::vector<Positions> alone;
   for (std::size_t k = 0; k < options.size(); ++k) alone.push_back(run_contraction(mesh_of(k), options[k]).positions);
+  const std::size_t arenas = arenas_made(2);
   for (int round = 0; round < 3; ++round) {
     std::vector<Positions> together(options.size());
     std::vector<std::thread> threads;
@@ -94,6 +131,7 @@ TEST(SharedArena, RunsAtOnceGiveTheResultsOfRunsAlone) {
       EXPECT_TRUE(together[k] == alone[k]) << "run " << k << ", round " << round;
     }
   }
+  EXPECT_LE(arenas_made(2), arenas + options.size());
 }
 
 // An arena that memory ran out while it was made is not kept: the next run of that thread count

@@ -1,8 +1,8 @@
 // A run after the run's task arena could not be made for want of memory, in a process of its own
 // (tests/sim/test_shared_arena.cpp): the address space (RLIMIT_AS) held to what the process has
-// plus HEADROOM_KIB while shared_arena(2) is made and entered, then the limit lifted and a run on
-// two threads, as a Python session retries after a MemoryError. A process of its own because
-// the arena must be the process's first (a test binary has made its arenas before).
+// plus HEADROOM_KIB while an arena of two threads (ArenaLease) is made and entered, then the limit
+// lifted and a run on two threads, as a Python session retries after a MemoryError. A process of
+// its own because the arena must be the process's first (a test binary has made its arenas before).
 // Usage: arena_retry_run MESH HEADROOM_KIB
 // Prints to stderr "arena: made" or "arena: refused (WHAT)", then "run: STATUS"; exit 1 on an
 // error outside the arena.
@@ -62,7 +62,7 @@ int main(int argc, char** argv) {
     }
     std::exception_ptr refused;  // kept as it is: a message made under the limit could fail too
     try {
-      shared_arena(2).execute([] {});
+      ArenaLease(2).arena().execute([] {});
     } catch (...) {
       refused = std::current_exception();
     }

@@ -62,9 +62,10 @@ struct LiveUnit {
 
 /// The thread arena of every stage and the speculative broad phase's task group.
 struct Workers {
-  tbb::task_arena& arena;      ///< the process's arena of the run's thread count (shared_arena)
+  ArenaLease lease;        ///< the run's arena (run_arena): the caller's run's, or one of its own
+  tbb::task_arena& arena;  ///< lease.arena()
   tbb::task_group background;  ///< the speculative broad phase (SelfCollision::predict)
-  explicit Workers(int threads) : arena(shared_arena(threads)) {}
+  explicit Workers(int threads) : lease(run_arena(threads)), arena(lease.arena()) {}
 };
 
 /// Runs body(block, begin, end) for the fixed blocks [begin, end) of VERTEX_BLOCK vertices of n,
