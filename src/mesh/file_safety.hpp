@@ -54,8 +54,8 @@ ExclusiveFile create_exclusive_file(const std::string& dir, const std::string& h
 /// Without this, a signal between the open and the registration (or a frame writer's thread
 /// creating one while another thread runs the handler) left the temporary behind.
 /// @return fd = -1 and errno set when the file cannot be created (nothing registered); else
-///         the file and its slot for unregister_temporary (-1: no memory for another block of
-///         slots: not removed)
+///         the file and its slot for unregister_temporary (-1: a path of 4096 bytes or more,
+///         or no memory for another block of slots: not removed)
 struct RegisteredTemporary {
   int fd = -1;
   std::string path;
@@ -76,8 +76,9 @@ void set_temporary_created_hook(TemporaryCreatedHook hook) noexcept;
 /// (the handler is installed on first use, only where the signal has its default action, unless
 /// the host opted out: shellcontract/signals.hpp).
 /// Prefer create_registered_temporary: a file created before this call is not covered meanwhile.
-/// @return a slot for unregister_temporary; -1 when no memory is left for another block of slots
-/// (not removed then); there is no other limit
+/// @return a slot for unregister_temporary; -1 for a path of 4096 bytes or more, or when no
+///         memory is left for another block of slots (not removed then): the number of slots
+///         has no other limit
 int register_temporary(const std::string& path);
 /// Forgets a slot of register_temporary (after the file was renamed or removed).
 void unregister_temporary(int slot);

@@ -13,12 +13,20 @@
 #include "core/token_text.hpp"
 #include "mesh/line_tokens.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/face_error.hpp"
 
 namespace shellcontract {
 namespace {
 
 [[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
   throw InputError(path + ": " + problem + ": " + details);
+}
+
+/// A problem of one face: a FaceListError with its index (a polygon's is its first triangle's,
+/// face_error.hpp), as the OFF and PLY readers and the arrays' checks name theirs.
+[[noreturn]] void fail_face(const std::string& path, const std::string& problem,
+                            const std::string& details, std::size_t face) {
+  throw FaceListError(path + ": " + problem + ": " + details, {face});
 }
 
 /// isspace of the "C" locale, whatever locale a host program (Python) has set.
@@ -128,10 +136,15 @@ ObjScan scan_obj(const std::string& path, const std::string& text_in, MissingVer
           continue;
         }
         if (i == 0)
-          fail(path, "vertex index out of range", where() + " has the vertex index 0 (OBJ counts vertices from 1)");
+          fail_face(path, "vertex index out of range",
+                    where() + " has the vertex index 0 (OBJ counts vertices from 1)", j);
         if (i < 0 && defined + i < 0)
-          fail(path, "vertex index out of range", where() + " has the relative vertex index " + std::to_string(i) +
-                                                      ", but only " + counted(static_cast<std::size_t>(defined), "vertex is", "vertices are") + " defined before it");
+          fail_face(path, "vertex index out of range",
+                    where() + " has the relative vertex index " + std::to_string(i) +
+                        ", but only " +
+                        counted(static_cast<std::size_t>(defined), "vertex is", "vertices are") +
+                        " defined before it",
+                    j);
         // Positive indices may name a vertex further down the file: checked after the last line.
         face.push_back(static_cast<std::size_t>(i > 0 ? i - 1 : defined + i));
       }
@@ -145,11 +158,14 @@ ObjScan scan_obj(const std::string& path, const std::string& text_in, MissingVer
   for (std::size_t j = 0; j < scan.faces.size() && missing == MissingVertices::Refuse; ++j)
     for (const std::size_t v : scan.faces[j])
       if (v >= nv)
-        fail(path, "vertex index out of range",
-             "face " + std::to_string(j) + " (line " + std::to_string(scan.lines.face_line[j]) + ") refers to vertex " +
-                 std::to_string(v + 1) + ", but the file has " +
-                 (nv == 0 ? std::string("no vertices")
-                          : counted(nv, "vertex", "vertices") + " (OBJ counts from 1: 1.." + std::to_string(nv) + ")"));
+        fail_face(path, "vertex index out of range",
+                  "face " + std::to_string(j) + " (line " +
+                      std::to_string(scan.lines.face_line[j]) + ") refers to vertex " +
+                      std::to_string(v + 1) + ", but the file has " +
+                      (nv == 0 ? std::string("no vertices")
+                               : counted(nv, "vertex", "vertices") + " (OBJ counts from 1: 1.." +
+                                     std::to_string(nv) + ")"),
+                  j);
   return scan;
 }
 

@@ -102,6 +102,10 @@ void read_stl_soup(const std::string& path, const std::string& bytes, std::vecto
   const bool ok = CGAL::IO::read_STL(in, points, polygons);
   if (in.bad()) fail(path, "cannot read file", "the reader's stream failed");
   if (ok) {
+    // Text that CGAL read as binary facets of its bytes (an upper-case 'Solid'): refused here,
+    // for what it is, not later for the garbage it made.
+    const StlDiagnosis text = text_read_as_binary(bytes);
+    if (!text.problem.empty()) fail(path, text.problem, text.details);
     // A NaN in a binary file: CGAL gives no error and puts another point in its place.
     const StlDiagnosis d = non_finite_in_binary_stl(bytes);
     if (!d.problem.empty()) fail(path, d.problem, d.details);

@@ -8,6 +8,7 @@
 // facet's first vertex), and the scan names the line where the closing word was expected.
 #include "mesh/stl_diagnosis.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -259,6 +260,26 @@ FirstTry cgal_first_try(const std::string& bytes) {
   return bytes.compare(i, 5, "solid") == 0 && (c == '\n' || c == '\r' || c == ' ') ? FirstTry::ascii : FirstTry::binary;
 }
 
+/// The first STL keyword in other case than CGAL's ("Solid", "FACET": some CAD exporters), with
+/// its line; an empty problem if there is none.
+StlDiagnosis keyword_not_in_lower_case(const std::string& bytes) {
+  std::size_t i = 0, line = 1;
+  for (;;) {
+    while (i < bytes.size() && blank(bytes[i])) line += bytes[i++] == '\n';
+    if (i == bytes.size()) return {};
+    std::size_t e = i;
+    while (e < bytes.size() && !blank(bytes[e])) ++e;
+    const std::string word(bytes, i, e - i);
+    std::string lower = word;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (lower != word && (lower == "solid" || lower == "facet" || lower == "vertex" ||
+                          lower == "endfacet" || lower == "endsolid"))
+      return {"parse error", "line " + std::to_string(line) + ": the keyword " + quote(word) +
+                                 " is not in lower case (an ASCII STL's keywords are)"};
+    i = e;
+  }
+}
+
 }  // namespace
 
 StlDiagnosis non_finite_in_binary_stl(const std::string& bytes) {
@@ -270,6 +291,22 @@ StlDiagnosis non_finite_in_binary_stl(const std::string& bytes) {
   // A file that begins with "solid" was read as binary only if CGAL's ASCII reading failed.
   if (first == FirstTry::ascii && AsciiScan(bytes).run().problem.empty()) return {};
   return binary_non_finite(bytes, count);
+}
+
+StlDiagnosis text_read_as_binary(const std::string& bytes) {
+  // Text is no binary STL: its count's four bytes are 0x20 or more, over 538 million facets,
+  // which only a file of 27 GB could hold.
+  const FirstTry first = cgal_first_try(bytes);
+  if (first == FirstTry::nothing || !is_text(bytes)) return {};
+  const StlDiagnosis scan = AsciiScan(bytes).run();
+  if (first == FirstTry::ascii && scan.problem.empty()) return {};  // CGAL's ASCII reading
+  // Read as binary facets of the text: why it is no ASCII STL to CGAL.
+  const StlDiagnosis keyword = keyword_not_in_lower_case(bytes);
+  if (!keyword.problem.empty()) return keyword;
+  if (!scan.problem.empty()) return scan;
+  return {"parse error",
+          "line 1: an ASCII STL begins with 'solid' and a space or a line end (other text, such "
+          "as 'solid' and a tab, is read as binary facets of its bytes)"};
 }
 
 StlDiagnosis diagnose_stl(const std::string& bytes) {

@@ -33,4 +33,15 @@ StlDiagnosis diagnose_stl(const std::string& bytes);
 /// @return an empty problem if the file was read as ASCII or every coordinate is finite
 StlDiagnosis non_finite_in_binary_stl(const std::string& bytes);
 
+/// A file that CGAL::IO::read_STL accepted: whether it is text that CGAL read as a binary STL
+/// (CGAL tries binary first unless the text begins with 'solid' and a space or a line end, and
+/// after a failed ASCII reading; it reads any 84 bytes or more as binary): an ASCII STL whose
+/// keywords are not all lower case ("Solid", "FACET") was read as facets of the text's bytes,
+/// and refused later for what those made (an open boundary at 1e+31, a duplicate of a facet the
+/// file does not have). The text is scanned as CGAL's ASCII reading goes; text that it reads is
+/// CGAL's ASCII reading and is kept.
+/// @return the scan's problem, with the keyword's case named; empty if the file is not text, or
+///         CGAL read it as ASCII
+StlDiagnosis text_read_as_binary(const std::string& bytes);
+
 }  // namespace shellcontract

@@ -134,76 +134,138 @@ INSTANTIATE_TEST_SUITE_P(
     Files, StlReadErrors,
     ::testing::Values(
         // The review's case: a word where the first coordinate of facet 1's first vertex is.
-        StlCase{"bad_number", ascii_with(11, "      vertex abc 0 1"),
-                {": parse error: line 11: expected 'vertex X Y Z' with three numbers, got 'vertex abc 0 1'"}},
-        StlCase{"two_numbers", ascii_with(12, "      vertex 1 0"),
-                {": parse error: line 12: expected 'vertex X Y Z' with three numbers, got 'vertex 1 0' (then line 13: 'vertex')"}},
-        StlCase{"four_vertices", ascii_inserted(14, "      vertex 1 1 1"),
-                {": parse error: line 14: a 4th vertex in the facet begun on line 9, got 'vertex 1 1 1'; STL facets are triangles (3 vertices)"},
+        StlCase{"bad_number",
+                ascii_with(11, "      vertex abc 0 1"),
+                {": parse error: line 11: expected 'vertex X Y Z' with three numbers, got 'vertex "
+                 "abc 0 1'"}},
+        StlCase{"two_numbers",
+                ascii_with(12, "      vertex 1 0"),
+                {": parse error: line 12: expected 'vertex X Y Z' with three numbers, got 'vertex "
+                 "1 0' (then line 13: 'vertex')"}},
+        StlCase{"four_vertices",
+                ascii_inserted(14, "      vertex 1 1 1"),
+                {": parse error: line 14: a 4th vertex in the facet begun on line 9, got 'vertex 1 "
+                 "1 1'; STL facets are triangles (3 vertices)"},
                 true},
-        StlCase{"two_vertices", ascii_without(13),
-                {": parse error: line 14: the facet begun on line 9 ends with 2 vertices", "triangles"}},
-        StlCase{"no_endsolid", ascii_first(29),
-                {": truncated file: the solid begun on line 1 has no 'endsolid': the file ends at line 29 ('endfacet')"}},
-        StlCase{"cut_in_a_facet", ascii_first(12),
-                {": truncated file: the file ends at line 12 ('vertex 1 0 0') inside the facet begun on line 9 (expected vertex 3 of 3)"},
+        StlCase{"two_vertices",
+                ascii_without(13),
+                {": parse error: line 14: the facet begun on line 9 ends with 2 vertices",
+                 "triangles"}},
+        StlCase{"no_endsolid",
+                ascii_first(29),
+                {": truncated file: the solid begun on line 1 has no 'endsolid': the file ends at "
+                 "line 29 ('endfacet')"}},
+        StlCase{"cut_in_a_facet",
+                ascii_first(12),
+                {": truncated file: the file ends at line 12 ('vertex 1 0 0') inside the facet "
+                 "begun on line 9 (expected vertex 3 of 3)"},
                 true},
         // A facet's closing line missing: CGAL reads on into the next facet and stops at its first
         // vertex, as a 4th; the message names the line where the closing word was expected (it
         // said "a 4th vertex in the facet begun on line 9").
-        StlCase{"no_endfacet", ascii_without(15),
-                {": parse error: line 15: expected 'endfacet' after the 3 vertices of the facet begun on line 9, got 'facet normal 0 0 0'"},
+        StlCase{"no_endfacet",
+                ascii_without(15),
+                {": parse error: line 15: expected 'endfacet' after the 3 vertices of the facet "
+                 "begun on line 9, got 'facet normal 0 0 0'"},
                 true},
-        StlCase{"no_endloop_nor_endfacet", [] {
+        StlCase{"no_endloop_nor_endfacet",
+                [] {
                   auto l = ascii_lines();
                   l.erase(l.begin() + 13, l.begin() + 15);  // lines 14 and 15
                   return join(l);
                 }(),
-                {": parse error: line 14: expected 'endloop' after the 3 vertices of the facet begun on line 9, got 'facet normal 0 0 0'"},
+                {": parse error: line 14: expected 'endloop' after the 3 vertices of the facet "
+                 "begun on line 9, got 'facet normal 0 0 0'"},
                 true},
         // The last facet's: CGAL reads 'endsolid' as a word inside the facet and reaches the end.
-        StlCase{"last_facet_no_endfacet", ascii_without(29),
-                {": parse error: line 29: expected 'endfacet' after the 3 vertices of the facet begun on line 23, got 'endsolid t'"},
+        StlCase{"last_facet_no_endfacet",
+                ascii_without(29),
+                {": parse error: line 29: expected 'endfacet' after the 3 vertices of the facet "
+                 "begun on line 23, got 'endsolid t'"},
                 true},
-        StlCase{"cut_after_the_vertices", ascii_first(13),
-                {": truncated file: the file ends at line 13 ('vertex 0 0 1') inside the facet begun on line 9 (expected 'endloop' after its 3 vertices)"},
+        StlCase{"cut_after_the_vertices",
+                ascii_first(13),
+                {": truncated file: the file ends at line 13 ('vertex 0 0 1') inside the facet "
+                 "begun on line 9 (expected 'endloop' after its 3 vertices)"},
                 true},
-        StlCase{"cut_after_endloop", ascii_first(14),
-                {": truncated file: the file ends at line 14 ('endloop') inside the facet begun on line 9 (expected 'endfacet' after its 3 vertices)"},
+        StlCase{"cut_after_endloop",
+                ascii_first(14),
+                {": truncated file: the file ends at line 14 ('endloop') inside the facet begun on "
+                 "line 9 (expected 'endfacet' after its 3 vertices)"},
                 true},
-        StlCase{"cut_in_a_vertex", join(ascii_lines()).substr(0, ascii_first(11).size() + 14),
+        StlCase{"cut_in_a_vertex",
+                join(ascii_lines()).substr(0, ascii_first(11).size() + 14),
                 {": truncated file: the file ends at line 12", "in the vertex of line 12"}},
-        StlCase{"nan", ascii_with(11, "      vertex 0 nan 0"), {": non-finite coordinate: line 11:", "coordinate y = nan"}},
-        StlCase{"overflow", ascii_with(25, "      vertex 0 0 1e999"), {": non-finite coordinate: line 25:", "begun on line 23", "z = 1e999"}},
-        StlCase{"crlf_bad_number", [] {
+        StlCase{"nan",
+                ascii_with(11, "      vertex 0 nan 0"),
+                {": non-finite coordinate: line 11:", "coordinate y = nan"}},
+        StlCase{"overflow",
+                ascii_with(25, "      vertex 0 0 1e999"),
+                {": non-finite coordinate: line 25:", "begun on line 23", "z = 1e999"}},
+        StlCase{"crlf_bad_number",
+                [] {
                   std::string s;
                   auto l = ascii_lines();
                   l[10] = "vertex 0 0 x";
                   for (const auto& t : l) s += t + "\r\n";
                   return s;
                 }(),
-                {": parse error: line 11: expected 'vertex X Y Z' with three numbers, got 'vertex 0 0 x'"}},
-        StlCase{"no_solid", [] {
+                {": parse error: line 11: expected 'vertex X Y Z' with three numbers, got 'vertex "
+                 "0 0 x'"}},
+        StlCase{"no_solid",
+                [] {
                   std::string s;
-                  for (int i = 0; i < 10; ++i) s += "hello world\n";  // past 84 bytes: not read as an empty binary file
+                  for (int i = 0; i < 10; ++i)
+                    s += "hello world\n";  // past 84 bytes: not read as an empty binary file
                   return s;
-                }(), {": parse error: no 'solid NAME'"}},
-        StlCase{"binary_cut", binary("exported").substr(0, 200),
-                {": truncated file: the header says 4 facets (284 bytes), the file has 200 bytes; facet 2 is cut after 16 of its 50 bytes"}},
-        StlCase{"binary_cut_between_facets", binary("exported").substr(0, 184),
-                {": truncated file: the header says 4 facets (284 bytes), the file has 184 bytes; it ends after 2 whole facets"}},
+                }(),
+                {": parse error: no 'solid NAME'"}},
+        StlCase{"binary_cut",
+                binary("exported").substr(0, 200),
+                {": truncated file: the header says 4 facets (284 bytes), the file has 200 bytes; "
+                 "facet 2 is cut after 16 of its 50 bytes"}},
+        StlCase{"binary_cut_between_facets",
+                binary("exported").substr(0, 184),
+                {": truncated file: the header says 4 facets (284 bytes), the file has 184 bytes; "
+                 "it ends after 2 whole facets"}},
         // Binary files may begin with "solid": diagnosed as binary all the same.
-        StlCase{"binary_solid_cut", binary("solid exported by a CAD tool").substr(0, 200),
+        StlCase{"binary_solid_cut",
+                binary("solid exported by a CAD tool").substr(0, 200),
                 {": truncated file: the header says 4 facets (284 bytes), the file has 200 bytes"}},
         // CGAL reads these without an error, and puts another point in place of a NaN one: the
         // file was a usable tetrahedron.
-        StlCase{"binary_nan", binary_with("exported", 3, 1, 1, std::numeric_limits<float>::quiet_NaN()),
-                {": non-finite coordinate: facet 3 (bytes 234 to 283) has corner 1 with coordinate y = "}},
-        StlCase{"binary_solid_nan", binary_with("solid exported by a CAD tool", 0, 2, 0, std::numeric_limits<float>::quiet_NaN()),
-                {": non-finite coordinate: facet 0 (bytes 84 to 133) has corner 2 with coordinate x = "}},
-        StlCase{"binary_inf", binary_with("exported", 1, 0, 2, -std::numeric_limits<float>::infinity()),
-                {": non-finite coordinate: facet 1 (bytes 134 to 183) has corner 0 with coordinate z = -inf"}},
-        StlCase{"binary_short", binary("exported").substr(0, 82), {": truncated file: the file has 82 bytes", "at least 84"}}),
+        StlCase{"binary_nan",
+                binary_with("exported", 3, 1, 1, std::numeric_limits<float>::quiet_NaN()),
+                {": non-finite coordinate: facet 3 (bytes 234 to 283) has corner 1 with coordinate "
+                 "y = "}},
+        StlCase{"binary_solid_nan",
+                binary_with("solid exported by a CAD tool", 0, 2, 0,
+                            std::numeric_limits<float>::quiet_NaN()),
+                {": non-finite coordinate: facet 0 (bytes 84 to 133) has corner 2 with coordinate "
+                 "x = "}},
+        StlCase{"binary_inf",
+                binary_with("exported", 1, 0, 2, -std::numeric_limits<float>::infinity()),
+                {": non-finite coordinate: facet 1 (bytes 134 to 183) has corner 0 with coordinate "
+                 "z = -inf"}},
+        StlCase{"binary_short",
+                binary("exported").substr(0, 82),
+                {": truncated file: the file has 82 bytes", "at least 84"}},
+        // Text that CGAL read as binary facets of its bytes (its first word not 'solid'): before,
+        // "open boundary: the edge from (1.17e-19, 2.7e+23, 7.3e+31) ..." or a duplicate of a
+        // facet the file does not have.
+        StlCase{"upper_solid",
+                ascii_with(1, "Solid t"),
+                {": parse error: line 1: the keyword 'Solid' is not in lower case"}},
+        // CGAL reads the upper-case keyword in a solid as ASCII (a word it skips): its facet is
+        // missing, as the message says.
+        StlCase{"upper_facet", ascii_with(9, "  FACET normal 0 0 0"), {": open boundary: "}},
+        StlCase{
+            "solid_and_a_tab",
+            "solid\t" + join(ascii_lines()).substr(6),
+            {": parse error: line 1: an ASCII STL begins with 'solid' and a space or a line end"}},
+        StlCase{"text_of_no_solid",
+                std::string(4, '\n') + std::string(100, 'w') + "\n",
+                {": parse error: no 'solid NAME'", "not a binary STL either"}}),
     [](const ::testing::TestParamInfo<StlCase>& i) { return i.param.name; });
 
 // Success path: what CGAL reads is read as before, and the diagnosis finds nothing in it.
@@ -217,6 +279,16 @@ TEST(StlReadSuccess, AsciiAndBinaryTetrahedraAreRead) {
     EXPECT_EQ(m.number_of_faces(), 4u) << name;
     EXPECT_TRUE(diagnose_stl(bytes).problem.empty()) << name << ": " << diagnose_stl(bytes).details;
   }
+}
+
+// Upper-case 'NORMAL' (CGAL skips the words of a facet line after 'facet'): read as ASCII, as
+// before; text_read_as_binary keeps it.
+TEST(StlReadSuccess, AnUpperCaseNormalIsRead) {
+  const TempDir dir;
+  const std::string bytes = ascii_with(2, "  facet NORMAL 0 0 0");
+  EXPECT_TRUE(text_read_as_binary(bytes).problem.empty()) << text_read_as_binary(bytes).details;
+  const Mesh m = read_input_mesh(dir.write("normal", bytes));
+  EXPECT_EQ(m.number_of_faces(), 4u);
 }
 
 // CGAL skips the words 'outer loop' and 'endloop' inside a facet: a facet without its 'endloop'
