@@ -1,8 +1,8 @@
 """The regions of a CLI run's .glb in Blender: a hook of Blender's glTF importer.
 
 A run with regions writes each face's region as the custom attribute ``_REGION`` (every corner of
-a face holds its id, -1 for none; docs/design/export.md, "Regions"), which Blender's importer
-(3.4) does not read. The importer calls the hooks of an enabled add-on's
+a face holds its id, -1 for none; docs/design/export.md, "Regions"), which Blender's glTF importer
+does not read (it imports no custom attribute). The importer calls the hooks of an enabled add-on's
 ``glTF2ImportUserExtension``: after the mesh is made, this one puts the ids on it as the integer
 face attribute ``region``, and after its object is made, a vertex group ``region N`` per region
 (weight 1 on the vertices of its faces), which the add-on's Region group can take.

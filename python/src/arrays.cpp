@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 
+#include "contract.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/face_error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -84,12 +85,13 @@ Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputR
     soup.faces32 = static_cast<const std::int32_t*>(f.data());
   else
     soup.faces64 = static_cast<const std::int64_t*>(f.data());
-  // The library's check of the soup takes seconds on a mesh of a million faces: other Python
+  // The library's check of the soup is long on a large mesh: other Python
   // threads (a user interface's, Blender's) go on meanwhile, as during read_mesh. `v` and `f`
-  // keep the arrays alive; the GIL is taken again (`released` ends first) before they are let
-  // go, and before an exception of the check reaches pybind11.
-  py::gil_scoped_release released;
-  return mesh_from_arrays(soup, ARRAY_INPUT_NAME, report, reorient);
+  // keep the arrays alive; the GIL is taken again before they are let go, and before an
+  // exception of the check reaches pybind11; the interpreter's exit waits for the check.
+  Mesh mesh;
+  without_gil([&] { mesh = mesh_from_arrays(soup, ARRAY_INPUT_NAME, report, reorient); });
+  return mesh;
 }
 
 py::array_t<double> positions_to_numpy(const Positions& x) {

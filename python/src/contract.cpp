@@ -430,6 +430,11 @@ void run_released(const std::function<void(const std::function<bool()>& cancelle
   if (error) std::rethrow_exception(error);
 }
 
+void without_gil(const std::function<void()>& work) {
+  const std::exception_ptr error = released(work);
+  if (error) std::rethrow_exception(error);
+}
+
 void stop_runs_at_exit() {
   exiting.store(true, std::memory_order_release);
   py::gil_scoped_release release;  // the runs take the GIL to finish

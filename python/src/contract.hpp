@@ -32,6 +32,13 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
 /// work's own, if any.
 void run_released(const std::function<void(const std::function<bool()>& cancelled)>& work);
 
+/// Runs `work` with the GIL released, counted for the interpreter's exit as a run is, and
+/// rethrows what it threw with the GIL back: for the module's other work without Python objects
+/// (reading, writing, checking a mesh). A daemon thread's check of a large mesh that took the
+/// GIL back while the interpreter finalized aborted the process ("terminate called without an
+/// active exception"); the exit now waits for it as for a run.
+void without_gil(const std::function<void()>& work);
+
 /// Registered with Python's atexit when the module loads: cancels every run still going (in a
 /// daemon thread, say; run_released's work too) and waits for it to leave the library, so that
 /// no thread takes the GIL while the interpreter finalizes (it would be ended inside C++ frames:

@@ -46,10 +46,7 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   const Mesh mesh = mesh_from_numpy(vertices, faces, &report);
   const Positions x = positions_from_mesh(mesh);
   std::vector<FacePair> pairs;
-  {
-    py::gil_scoped_release release;
-    pairs = self_intersecting_pairs(mesh, x);
-  }
+  without_gil([&] { pairs = self_intersecting_pairs(mesh, x); });
   const auto chi = static_cast<long long>(mesh.number_of_vertices()) - static_cast<long long>(mesh.number_of_edges()) +
                    static_cast<long long>(mesh.number_of_faces());
   py::array_t<std::int64_t> pair_array({static_cast<py::ssize_t>(pairs.size()), py::ssize_t{2}});
@@ -211,14 +208,13 @@ py::tuple read_mesh(const py::handle& path_arg) {
   const std::string path = path_argument(path_arg);
   Mesh mesh;
   Positions x;
-  {
-    // Reading and checking touch no Python object: other Python threads go on meanwhile (a
-    // program reading several files in threads, a user interface).
-    py::gil_scoped_release free;
+  // Reading and checking touch no Python object: other Python threads go on meanwhile (a
+  // program reading several files in threads, a user interface).
+  without_gil([&] {
     mesh = read_input_mesh(path);
     // The file's vertices, a mesh welded along its seams included: contract() welds them again.
     x = input_positions(mesh, positions_from_mesh(mesh));
-  }
+  });
   return py::make_tuple(positions_to_numpy(x), faces_to_numpy(mesh));
 }
 
@@ -239,28 +235,23 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
     // file gets the reader's message and the document parses only bytes the reader accepted.
     Mesh read;
     std::unique_ptr<MeshDocument> doc;
-    {
-      py::gil_scoped_release free;  // the arrays are compared below, with the GIL
+    without_gil([&] {  // the arrays are compared below, with the GIL
       read = read_input_mesh(like);
       doc = read_mesh_document(like);
-    }
+    });
     if (!doc || !path_has_extension(path, doc->format()))
       throw UsageError("write_mesh: like=" + like + ": only an OBJ or PLY file, written to a file of its format");
     const auto f = faces_to_numpy(read), g = py::array_t<std::int64_t>::ensure(faces);
     if (!g || g.size() != f.size() || !std::equal(f.data(), f.data() + f.size(), g.data()) || !doc->matches(read))
       throw UsageError("write_mesh: like=" + like + ": the faces are not those read_mesh gives for it");
     std::vector<std::string> warnings;  // a material library of like's that does not exist
-    {
-      py::gil_scoped_release free;
-      write_mesh_document_atomic(path, *doc, x, &warnings);
-    }
+    without_gil([&] { write_mesh_document_atomic(path, *doc, x, &warnings); });
     for (const std::string& w : warnings)
       py::module_::import("warnings").attr("warn")(w, py::module_::import("builtins").attr("UserWarning"), 2);
     return;
   }
   // Only C++ objects from here: other Python threads go on while the file is written.
-  py::gil_scoped_release free;
-  write_mesh_atomic(path, mesh, x);
+  without_gil([&] { write_mesh_atomic(path, mesh, x); });
 }
 
 }  // namespace

@@ -19,8 +19,8 @@ RUN = dict(frames=2, regions="auto")
 
 
 def test_every_callback_runs_on_its_callers_thread(mesh_dir):
-    # On the old shared arenas this test failed in 20 of 20 tries (on a 2-core machine): stage
-    # callbacks on another run's thread or on a TBB worker.
+    # On the old shared arenas (one per thread count, for every run) stage callbacks ran on
+    # another run's thread or on a TBB worker.
     V, F = sc.read_mesh(mesh_dir / "bumpy_sphere.off")
     foreign = []  # (thread, what, the caller's ident, the callback's ident)
     counts = {}

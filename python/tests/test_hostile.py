@@ -80,6 +80,50 @@ def test_exit_while_a_callback_run_is_going(mesh_dir):
     assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
 
 
+@pytest.mark.parametrize("call", ["check", "regions", "contract", "write_mesh"])
+def test_exit_while_arrays_are_checked_in_a_daemon_thread(mesh_dir, call):
+    """The check of a mesh given as arrays runs without the GIL: a daemon thread still in it when
+    the interpreter finalized took the GIL back then, and the process aborted ("terminate called
+    without an active exception", exit 134). The exit now waits for it as for a run. An object
+    whose __del__ sleeps (GIL free) during finalization keeps the window open."""
+    r = _exit_while_running(mesh_dir, """
+        import os, tempfile
+        import numpy as np
+        folder = tempfile.TemporaryDirectory()  # removed at exit
+        import types
+        class SlowToGo:
+            def __del__(self, _sleep=time.sleep):
+                _sleep(1.0)
+        slow = types.ModuleType("slow_to_go")  # a module's objects go during finalization
+        slow.keep = SlowToGo()
+        sys.modules["slow_to_go"] = slow
+        n = 500  # a torus of 500,000 faces, and a duplicate of its first face last: refused
+        u = np.arange(n) * 2 * np.pi / n  # after the whole check
+        uu, vv = np.meshgrid(u, u, indexing="ij")
+        ring = 1 + 0.4 * np.cos(vv)
+        V = np.stack([ring * np.cos(uu), ring * np.sin(uu), 0.4 * np.sin(vv)], -1).reshape(-1, 3)
+        i, j = np.meshgrid(np.arange(n), np.arange(n), indexing="ij")
+        a, b = i * n + j, (i + 1) %% n * n + j
+        c, d = (i + 1) %% n * n + (j + 1) %% n, i * n + (j + 1) %% n
+        F = np.concatenate([np.stack([a, b, c], -1).reshape(-1, 3),
+                            np.stack([a, c, d], -1).reshape(-1, 3)])
+        F = np.vstack([F, F[:1]])
+        calls = {"check": lambda: shellcontract.check(V, F),
+                 "regions": lambda: shellcontract.regions(V, F),
+                 "contract": lambda: shellcontract.contract(V, F, frames=1),
+                 "write_mesh": lambda: shellcontract.write_mesh(
+                     os.path.join(folder.name, "never.off"), V, F)}
+        def work():
+            try:
+                calls["%s"]()
+            except shellcontract.MeshError:
+                pass
+        threading.Thread(target=work, daemon=True).start()
+        time.sleep(0.05)
+    """ % call)
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
+
+
 def test_a_path_with_nul_is_a_value_error(tmp_path, ico2):
     """Before: write_mesh('a.off\\x00/../b.off') reported success and overwrote a.off."""
     a = tmp_path / "a.off"

@@ -126,8 +126,8 @@ TEST_F(Hostile, SigtermRemovesEveryTemporaryHoweverMany) {
       ::close(t.fd);
       slots.push_back(t.slot);
     }
-    // One given back in the middle is not removed (it was renamed to a user's file); its slot is
-    // taken by the next.
+    // One more, given back before the signal (as a temporary renamed to its target is), is not
+    // removed: the handler removes only the slots still held.
     const RegisteredTemporary kept = create_registered_temporary(dir_.string(), "kept");
     if (kept.fd < 0) ::_exit(2);
     ::close(kept.fd);
@@ -142,7 +142,8 @@ TEST_F(Hostile, SigtermRemovesEveryTemporaryHoweverMany) {
       << " (2: a temporary was not created or not registered)";
   EXPECT_EQ(WTERMSIG(status), SIGTERM);
   const std::vector<std::string> left = test::listing(dir_);
-  ASSERT_EQ(left.size(), 1u) << "left behind: " << left.size() << ", first " << left.front();
+  ASSERT_EQ(left.size(), 1u) << "left: " << left.size() << " files ("
+                             << (left.empty() ? std::string("none") : left.front()) << ", ...)";
   EXPECT_NE(left[0].find("kept"), std::string::npos) << left[0];
 }
 

@@ -56,8 +56,8 @@ class ThreadChecker : public RunObserver {
 };
 
 // Each thread runs short runs back to back, so that their preparations overlap: several runs
-// of the same thread count (and of another) at once. On the old shared arenas this test failed
-// in 20 of 20 tries on a 2-core machine, with callbacks on another thread in about half the runs.
+// of the same thread count (and of another) at once. On the old shared arenas (one per thread
+// count, for every run) some callbacks ran on another run's thread or on a TBB worker.
 TEST(RunThreadsAtOnce, EveryCallbackRunsOnItsCallersThread) {
   const Mesh mesh = test::to_surface_mesh(test::icosphere(3));
   const std::vector<RunOptions> options = {options_of("2", "coloured"),
