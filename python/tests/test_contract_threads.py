@@ -104,3 +104,35 @@ def test_a_callback_may_run_contract_again_on_its_thread(mesh_dir):
         for g in got:
             assert np.array_equal(g.vertices, alone.vertices)
         assert idents == {me}
+
+
+def _run_in_child(path):
+    v, f = sc.read_mesh(path)
+    return sc.contract(v, f, **RUN).vertices
+
+
+def test_a_process_forked_while_another_thread_runs_can_run(mesh_dir):
+    """A worker pool forked (multiprocessing's default start method on Linux) while another
+    thread of the parent is inside contract(): the child's own contract() ran in the arena the
+    parent's run held, whose threads the child does not have, and hung for ever.
+    With an arena per run the child's run takes one of its own."""
+    import multiprocessing
+    path = mesh_dir / "bumpy_sphere.off"
+    v, f = sc.read_mesh(path)
+    expected = sc.contract(v, f, **RUN).vertices
+    stop = threading.Event()
+
+    def busy():
+        while not stop.is_set():
+            sc.contract(v, f, **RUN)
+
+    worker = threading.Thread(target=busy)
+    worker.start()
+    try:
+        for _ in range(4):
+            with multiprocessing.get_context("fork").Pool(1) as pool:
+                got = pool.apply_async(_run_in_child, (path,)).get(timeout=120)
+            np.testing.assert_array_equal(got, expected)
+    finally:
+        stop.set()
+        worker.join()
