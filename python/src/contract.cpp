@@ -90,6 +90,17 @@ struct ActiveRun {
 std::exception_ptr released(const std::function<void()>& work,
                             const std::function<bool()>& park_on_error = {}) {
   std::exception_ptr error;
+  // Called while the interpreter finalizes (a __del__ run then): this thread holds the GIL, so it
+  // is the one finalizing (no other may take the GIL any more). It keeps the GIL for the work:
+  // parked below, it would hang the exit for ever.
+  if (interpreter_finalizing()) {
+    try {
+      work();
+    } catch (...) {
+      error = std::current_exception();
+    }
+    return error;
+  }
   ActiveRun active;  // destroyed after the GIL is taken back
   py::gil_scoped_release release;
   try {

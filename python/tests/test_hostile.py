@@ -124,6 +124,24 @@ def test_exit_while_arrays_are_checked_in_a_daemon_thread(mesh_dir, call):
     assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
 
 
+def test_a_call_while_the_interpreter_finalizes_returns(mesh_dir):
+    """A __del__ run as the interpreter finalizes may call the module: the finalizing thread
+    holds the GIL and keeps it for the work. Before, the exit's guard parked that thread too
+    (meant for other threads, which may not take the GIL back then): the process hung."""
+    r = _exit_while_running(mesh_dir, """
+        import types
+        class Report:
+            def __del__(self):
+                print("genus", shellcontract.check(v, f)["genus"],
+                      "frames", len(shellcontract.contract(v, f, frames=2).log["frame"]), flush=True)
+        late = types.ModuleType("late_report")  # a module's objects go during finalization
+        late.keep = Report()
+        sys.modules["late_report"] = late
+    """)
+    assert r.returncode == 0, (r.returncode, r.stderr[-2000:])
+    assert "genus 0 frames" in r.stdout, (r.stdout, r.stderr[-2000:])
+
+
 def test_a_path_with_nul_is_a_value_error(tmp_path, ico2):
     """Before: write_mesh('a.off\\x00/../b.off') reported success and overwrote a.off."""
     a = tmp_path / "a.off"
