@@ -280,6 +280,25 @@ StlDiagnosis keyword_not_in_lower_case(const std::string& bytes) {
   }
 }
 
+/// A UTF-8 byte-order mark before the text: invisible in an editor, it makes the first word
+/// something other than 'solid' to CGAL.
+StlDiagnosis byte_order_mark(const std::string& bytes) {
+  if (bytes.compare(0, 3, "\xEF\xBB\xBF") != 0) return {};
+  return {"parse error",
+          "line 1: the text begins with a UTF-8 byte-order mark (3 bytes before 'solid', unseen in "
+          "an editor), which an ASCII STL may not have: save the file without it"};
+}
+
+/// Why text is no ASCII STL to CGAL, most telling first: a byte-order mark, a keyword not in
+/// lower case, then the scan's own finding.
+StlDiagnosis text_problem(const std::string& bytes, const StlDiagnosis& scan) {
+  const StlDiagnosis mark = byte_order_mark(bytes);
+  if (!mark.problem.empty()) return mark;
+  const StlDiagnosis keyword = keyword_not_in_lower_case(bytes);
+  if (!keyword.problem.empty()) return keyword;
+  return scan;
+}
+
 }  // namespace
 
 StlDiagnosis non_finite_in_binary_stl(const std::string& bytes) {
@@ -301,16 +320,18 @@ StlDiagnosis text_read_as_binary(const std::string& bytes) {
   const StlDiagnosis scan = AsciiScan(bytes).run();
   if (first == FirstTry::ascii && scan.problem.empty()) return {};  // CGAL's ASCII reading
   // Read as binary facets of the text: why it is no ASCII STL to CGAL.
-  const StlDiagnosis keyword = keyword_not_in_lower_case(bytes);
-  if (!keyword.problem.empty()) return keyword;
-  if (!scan.problem.empty()) return scan;
+  const StlDiagnosis why = text_problem(bytes, scan);
+  if (!why.problem.empty()) return why;
   return {"parse error",
           "line 1: an ASCII STL begins with 'solid' and a space or a line end (other text, such "
           "as 'solid' and a tab, is read as binary facets of its bytes)"};
 }
 
 StlDiagnosis diagnose_stl(const std::string& bytes) {
-  if (is_text(bytes)) return AsciiScan(bytes).run();
+  if (is_text(bytes)) {
+    const StlDiagnosis scan = AsciiScan(bytes).run();
+    return scan.problem.empty() ? scan : text_problem(bytes, scan);
+  }
   return diagnose_binary(bytes);
 }
 

@@ -130,6 +130,17 @@ std::string ascii_first(int n) {
   return join(l);
 }
 
+/// `text` with its keywords solid, facet, vertex, endfacet and endsolid in upper case.
+std::string upper_keywords(std::string text) {
+  for (const std::string w : {"endsolid", "endfacet", "solid", "facet", "vertex"}) {
+    std::string up = w;
+    for (char& c : up) c = static_cast<char>(c - 'a' + 'A');
+    for (std::size_t at = text.find(w); at != std::string::npos; at = text.find(w, at + w.size()))
+      text.replace(at, w.size(), up);
+  }
+  return text;
+}
+
 INSTANTIATE_TEST_SUITE_P(
     Files, StlReadErrors,
     ::testing::Values(
@@ -259,6 +270,15 @@ INSTANTIATE_TEST_SUITE_P(
         // CGAL reads the upper-case keyword in a solid as ASCII (a word it skips): its facet is
         // missing, as the message says.
         StlCase{"upper_facet", ascii_with(9, "  FACET normal 0 0 0"), {": open boundary: "}},
+        // Before: "an ASCII STL begins with 'solid' and a space", which the file visibly does.
+        StlCase{"byte_order_mark",
+                "\xEF\xBB\xBF" + join(ascii_lines()),
+                {": parse error: line 1: the text begins with a UTF-8 byte-order mark"}},
+        // Every keyword in upper case (CGAL refuses it as ASCII and as binary): before, "no
+        // 'solid NAME' ... 'endsolid' in the file".
+        StlCase{"all_upper_case",
+                upper_keywords(join(ascii_lines())),
+                {": parse error: line 1: the keyword 'SOLID' is not in lower case"}},
         StlCase{
             "solid_and_a_tab",
             "solid\t" + join(ascii_lines()).substr(6),
