@@ -98,10 +98,12 @@ void expect_categorical_entry(const tinygltf::Model& m, const std::vector<int>& 
   int k = 0;
   for (const int r : used) EXPECT_EQ(ids.Get(k++).GetNumberAsInt(), r);
   // Not among the colour fields, whose entries have a range.
-  if (extras.Has("colour_fields"))
-    for (std::size_t i = 0; i < extras.Get("colour_fields").ArrayLen(); ++i)
+  if (extras.Has("colour_fields")) {
+    for (std::size_t i = 0; i < extras.Get("colour_fields").ArrayLen(); ++i) {
       EXPECT_NE(extras.Get("colour_fields").Get(static_cast<int>(i)).Get("name").Get<std::string>(),
                 "region");
+    }
+  }
 }
 
 /// Regions of bumpy_sphere by where each face's centroid is, for the library's tests: a cap at

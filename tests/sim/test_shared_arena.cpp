@@ -51,8 +51,9 @@ TEST(SharedArena, ARunsPartsShareItsLease) {
   {
     const RunArenaScope in_run(run);
     EXPECT_EQ(&run_arena(2).arena(), &run.arena());
-    if (arena_threads(1) != arena_threads(2))  // another count: a lease of its own
+    if (arena_threads(1) != arena_threads(2)) {  // another count: a lease of its own
       EXPECT_NE(&run_arena(1).arena(), &run.arena());
+    }
     {
       const ArenaLease nested(2);  // a run started inside this one (a callback's)
       EXPECT_NE(&nested.arena(), &run.arena());
