@@ -1,6 +1,9 @@
 // The process's pool of task arenas, leased one run at a time (arena_threads.hpp).
 #include "core/arena_threads.hpp"
 
+#include <pthread.h>
+
+#include <atomic>
 #include <map>
 #include <mutex>
 #include <vector>
@@ -17,8 +20,20 @@ struct Pool {
 
 // Never destroyed: an arena destroyed at exit would outlive TBB's own teardown in a module
 // unloaded late (Python), and the pool is bounded by the most runs at once.
+Pool* the_pool = nullptr;
+
+std::atomic<ArenaMadeHook> arena_made_hook{nullptr};
+
 Pool& pool() {
-  static auto* p = new Pool();
+  static Pool* p = [] {
+    the_pool = new Pool();
+    // A fork while another thread holds the mutex (making an arena) left it held in the child,
+    // where no thread would release it: the child's first lease waited for ever. The fork waits
+    // for the mutex instead, and parent and child release it.
+    pthread_atfork([] { the_pool->lock.lock(); }, [] { the_pool->lock.unlock(); },
+                   [] { the_pool->lock.unlock(); });
+    return the_pool;
+  }();
   return *p;
 }
 
@@ -57,6 +72,7 @@ ArenaLease::ArenaLease(int requested) : threads_(arena_threads(requested)) {
       made->initialize();
       arena = made.release();
       ++p.made[threads];
+      if (const ArenaMadeHook hook = arena_made_hook.load()) hook();
     }
   }
   // shared_ptr gives the arena back through the deleter if its own allocation throws.
@@ -75,6 +91,8 @@ RunArenaScope::RunArenaScope(const ArenaLease& lease) : outer_(current_run) {
 }
 
 RunArenaScope::~RunArenaScope() { current_run = outer_; }
+
+void set_arena_made_hook(ArenaMadeHook hook) { arena_made_hook.store(hook); }
 
 std::size_t arenas_made(int requested) {
   Pool& p = pool();

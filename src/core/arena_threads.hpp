@@ -77,6 +77,11 @@ class RunArenaScope {
   const ArenaLease* outer_;
 };
 
+/// Tests only: a function that a lease calls right after it made a new arena, with the pool's
+/// mutex held (nullptr: none).
+using ArenaMadeHook = void (*)();
+void set_arena_made_hook(ArenaMadeHook hook);
+
 /// How many arenas of arena_threads(requested) threads the pool has made so far (leased or free):
 /// the most runs of that count at once, for tests of the bound.
 std::size_t arenas_made(int requested);

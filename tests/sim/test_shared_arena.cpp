@@ -4,9 +4,13 @@
 // arena is destroyed).
 #include <gtest/gtest.h>
 #include <malloc.h>
+#include <sys/wait.h>
 #include <tbb/info.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <chrono>
+#include <csignal>
 #include <fstream>
 #include <string>
 #include <thread>
@@ -22,6 +26,37 @@
 
 namespace shellcontract {
 namespace {
+
+std::atomic<bool> making_arena{false};
+
+// A process forked while another thread made an arena (holding the pool's mutex) inherited the
+// mutex held, and its first lease waited for ever. A thread makes an arena and sleeps in the
+// pool's hook, mutex held, while this thread forks: the child's lease must return.
+TEST(SharedArena, AForkWhileAnArenaIsMadeLeavesTheChildAbleToLease) {
+  // Every arena of one thread leased here, so that the thread's lease makes a new one.
+  std::vector<ArenaLease> held;
+  while (held.size() < arenas_made(1)) held.emplace_back(1);
+  set_arena_made_hook([] {
+    making_arena = true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  });
+  std::thread maker([] { const ArenaLease made(1); });
+  while (!making_arena) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  const pid_t child = ::fork();
+  if (child == 0) {
+    ::alarm(20);  // a child that waits for ever is ended, and the test fails
+    const ArenaLease lease(1);
+    ::_exit(lease.threads() == 1 ? 0 : 3);
+  }
+  maker.join();
+  set_arena_made_hook(nullptr);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+      << "the child's lease "
+      << (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM ? "waited for ever" : "failed")
+      << " (wait status " << status << ")";
+}
 
 TEST(SharedArena, ALeaseHasItsArenaToItselfAndGivesItBack) {
   const int machine = tbb::info::default_concurrency();
