@@ -85,10 +85,10 @@ Mesh mesh_from_numpy(const py::handle& vertices, const py::handle& faces, InputR
     soup.faces32 = static_cast<const std::int32_t*>(f.data());
   else
     soup.faces64 = static_cast<const std::int64_t*>(f.data());
-  // The library's check of the soup is long on a large mesh: other Python
-  // threads (a user interface's, Blender's) go on meanwhile, as during read_mesh. `v` and `f`
-  // keep the arrays alive; the GIL is taken again before they are let go, and before an
-  // exception of the check reaches pybind11; the interpreter's exit waits for the check.
+  // The library's check of the soup is long on a large mesh: other Python threads (a user
+  // interface's, Blender's) go on meanwhile, as during read_mesh. `v` and `f` keep the arrays
+  // alive; the GIL is taken again before they are let go, and before an exception of the check
+  // reaches pybind11; the interpreter's exit waits for the check.
   Mesh mesh;
   without_gil([&] { mesh = mesh_from_arrays(soup, ARRAY_INPUT_NAME, report, reorient); });
   return mesh;

@@ -313,8 +313,8 @@ StlDiagnosis non_finite_in_binary_stl(const std::string& bytes) {
 }
 
 StlDiagnosis text_read_as_binary(const std::string& bytes) {
-  // Text is no binary STL: its count's four bytes are 0x20 or more, over 538 million facets,
-  // which only a file of 27 GB could hold.
+  // Text is never a binary STL: each byte of its facet count (bytes 80-83) is 0x20 or more, so
+  // the count is at least 0x20202020, more facets (50 bytes each) than the text's size holds.
   const FirstTry first = cgal_first_try(bytes);
   if (first == FirstTry::nothing || !is_text(bytes)) return {};
   const StlDiagnosis scan = AsciiScan(bytes).run();
