@@ -179,19 +179,44 @@ function plyExtras(buffer, header) {
 }
 
 /**
- * The PLY as three.js's PLYLoader reads it right: its header's format, element and property
- * lines alone, one blank between words and '\n' after each, then the file's data. Of headers the
- * CLI reads, PLYLoader read no vertices where the 'end_header' line has a blank after it (it
- * ends the header only at a line that is 'end_header' exactly) or the file begins with a UTF-8
- * byte-order mark, and NaN positions where a comment holds the word 'end_header' (it reads an
- * ASCII body from the text's first 'end_header').
+ * The PLY as three.js's PLYLoader reads it right. Of headers the CLI reads, PLYLoader read no
+ * vertices where the 'end_header' line has a blank after it (it ends the header only at a line
+ * that is 'end_header' exactly) or the file begins with a UTF-8 byte-order mark, and NaN positions
+ * where a comment holds the word 'end_header' (it reads an ASCII body from the text's first
+ * 'end_header'); line ends other than '\n' throughout, and blanks it does not split alike, are
+ * other ways to mislead it. Such a header is rewritten: its format, element and property lines
+ * alone, one blank between words and '\n' after each, then the file's data, in a copy of the
+ * file. A header PLYLoader reads as it is (the CLI writes such) is not copied: the file is passed
+ * as it came, so a large mesh is not held twice.
  */
-function plyForLoader(buffer, header) {
-  const head = new TextEncoder().encode(['ply', ...header.lines.map((t) => t.join(' ')), 'end_header', ''].join('\n'));
+export function plyForLoader(buffer, header) {
+  const canonical = header.lines.map((t) => t.join(' '));
+  if (loaderReadsAsIs(buffer, header, canonical)) return buffer;
+  const head = new TextEncoder().encode(['ply', ...canonical, 'end_header', ''].join('\n'));
   const out = new Uint8Array(head.length + buffer.byteLength - header.dataStart);
   out.set(head);
   out.set(new Uint8Array(buffer, header.dataStart), head.length);
   return out.buffer;
+}
+
+/**
+ * Whether the header is what plyForLoader would write but for comment lines: 'ply', each line
+ * ended by '\n' alone, its format, element and property lines single-blanked in their order,
+ * comments that do not hold 'end_header', and 'end_header' last, exactly.
+ */
+function loaderReadsAsIs(buffer, header, canonical) {
+  const text = new TextDecoder('latin1').decode(new Uint8Array(buffer, 0, header.dataStart));
+  const lines = text.split('\n');
+  if (lines[0] !== 'ply' || text.includes('\r') || lines.pop() !== '' || lines.pop() !== 'end_header') return false;
+  const rest = [];
+  for (const line of lines.slice(1)) {
+    if (/^comment(\s|$)/.test(line)) {
+      if (line.includes('end_header')) return false;
+    } else {
+      rest.push(line);
+    }
+  }
+  return rest.length === canonical.length && rest.every((line, i) => line === canonical[i]);
 }
 
 /**
