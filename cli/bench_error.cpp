@@ -132,7 +132,6 @@ RunOptions run_value(const std::string& name, const std::string& text) {
 }  // namespace
 
 int command_bench_error(int argc, char** argv) {
-  std::vector<std::string> temp_folders;  // for the plot's CSV when --csv is not given
   std::string input, csv, plot, solver = "both", iterations = "1,2,5,10,20,50", substeps = "1,2,4";
   std::string collisions = "off", orders = "sequential", threads = "1";
   ErrorLadderOptions opt;
@@ -214,8 +213,8 @@ int command_bench_error(int argc, char** argv) {
       if (ext != ".png" && ext != ".svg") throw UsageError("--plot: expected a .png or .svg file, got '" + plot + "'");
       // Checked before the (long) runs, not after.
       if (!bench::gnuplot_available())
-        throw UsageError("--plot needs gnuplot, which is not installed (Debian: apt-get install gnuplot-nox)");
-      if (csv.empty()) temp_folders = bench::temporary_folders();
+        throw UsageError(
+            "--plot needs gnuplot, which is not installed (Debian: apt-get install gnuplot-nox)");
     }
     // Neither output may be the mesh or the other, and both must be writable, checked before
     // the (long) runs: docs/design/output-safety.md.
@@ -276,37 +275,20 @@ int command_bench_error(int argc, char** argv) {
               << " of its rungs' largest, so a ratio to it would not measure the rungs' error\n";
 
   try {
-    std::string data_file = csv;
     const std::string text = bench::to_csv(res);
     if (!csv.empty()) write_text_atomic(csv, text);
     if (!plot.empty()) {
-      // gnuplot reads the CSV; without --csv it goes to a temporary file removed afterwards.
-      RegisteredTemporary temporary;
-      if (data_file.empty()) {
-        std::string error;
-        temporary = bench::temporary_csv(temp_folders, text, error);
-        if (temporary.path.empty()) {
-          // Not bad usage (no hint to --help): the folders took a file before the runs.
-          std::cerr << "shellcontract bench error: --plot: " << error << "; no plot drawn (--csv "
-                    << "FILE keeps the data; the table is on stdout)\n";
-          return static_cast<int>(ExitCode::BadUsage);
-        }
-        data_file = temporary.path;
-      }
       const std::string title = std::filesystem::path(input).filename().string() + ": " +
                                 std::to_string(res.frames) + " steps, dt " + bench::fmt(res.dt);
-      const std::string script = bench::gnuplot_script(data_file, plot, title, res);
-      FILE* pipe = ::popen("gnuplot", "w");
-      int status = -1;
-      if (pipe) {
-        std::fwrite(script.data(), 1, script.size(), pipe);
-        status = ::pclose(pipe);
+      const bool svg = std::filesystem::path(plot).extension() == ".svg";
+      const std::string script = bench::gnuplot_script(text, svg, title, res);
+      // Through a temporary beside the plot, renamed over it once gnuplot has drawn it whole:
+      // a gnuplot that fails (or Ctrl-C) leaves the previous plot as it was.
+      try {
+        write_file_atomic(plot, [&](std::ostream& out) { bench::draw_with_gnuplot(script, out); });
+      } catch (const UsageError& e) {
+        throw UsageError("--plot '" + printable(plot) + "' not drawn: " + e.what());
       }
-      if (csv.empty()) {
-        ::unlink(data_file.c_str());
-        unregister_temporary(temporary.slot);
-      }
-      if (status != 0) throw UsageError("gnuplot failed to draw '" + plot + "'");
       if (!quiet) std::cerr << "plot written to " << plot << '\n';
     }
   } catch (const UsageError& e) {

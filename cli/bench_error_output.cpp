@@ -1,20 +1,26 @@
 // bench error's outputs (bench_error_output.hpp): the tables, the CSV, the gnuplot script and
-// the plot's temporary CSV.
+// gnuplot's run.
 #include "bench_error_output.hpp"
 
+#include <fcntl.h>
+#include <poll.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
+#include <csignal>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
 #include "core/classic_locale.hpp"
 #include "core/decimal_text.hpp"
+#include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
 
@@ -91,23 +97,27 @@ std::string to_csv(const ErrorLadderResult& res) {
   return s.str();
 }
 
-/// gnuplot commands drawing hausdorff (log) against ms_per_step (log) from the CSV: one line per
-/// solver, substep count, order and thread count (points labelled by iterations), and each
-/// reference's own error (its check) as a star. The same plot as lab/scripts/plot_speed_error.sh.
-std::string gnuplot_script(const std::string& csv, const std::string& out, const std::string& title,
+/// gnuplot commands drawing hausdorff (log) against ms_per_step (log) from the CSV text `csv`
+/// (to_csv) on gnuplot's stdout: one line per solver, substep count, order and thread count
+/// (points labelled by iterations), and each reference's own error (its check) as a star. The same
+/// plot as lab/scripts/plot_speed_error.sh.
+std::string gnuplot_script(const std::string& csv, bool svg, const std::string& title,
                            const ErrorLadderResult& res) {
-  const bool svg = std::filesystem::path(out).extension() == ".svg";
   ClassicOStringStream g;
   g << (svg ? "set terminal svg size 900,640 dynamic font 'sans,12'\n"
             : "set terminal pngcairo size 900,640 font 'sans,11'\n");
-  g << "set output '" << out << "'\n"
+  // The data in the script (a datablock: no CSV line is "EOD"), the plot on stdout: gnuplot is
+  // handed no file name, which it could read as a command ('|...', '<...') or end at a quote.
+  g << "set output\n"
+    << "$data << EOD\n"
+    << csv << "EOD\n"
     << "set datafile separator ','\n"
     << "set logscale xy\n"
     << "set grid\n"
     << "set key below\n"
     << "set xlabel 'wall time per step (ms, median)'\n"
     << "set ylabel 'Hausdorff distance to the reference (normalized units)'\n"
-    << "set title '" << title << "' noenhanced\n";
+    << "set title " << gnuplot_quoted(title) << " noenhanced\n";
   // Series: (solver, substeps, order, threads) present among the rungs, in run order.
   std::vector<std::tuple<SolverKind, int, ConstraintOrder, int>> series;
   for (const ErrorLadderRow& r : res.rows) {
@@ -136,98 +146,120 @@ std::string gnuplot_script(const std::string& csv, const std::string& out, const
     if (order != ConstraintOrder::Sequential)
       title += ", " + order_name + " " + std::to_string(threads) +
                (threads == 1 ? " thread" : " threads");
-    g << "'" << csv << "' skip 1 using 8:" << sel << " with linespoints lt " << style << " dt "
-      << dash << " pt " << point << " title '" << title << "', \\\n     '" << csv
-      << "' skip 1 using 8:" << sel << ":3 with labels offset char 0.8,0.6 font ',8' tc lt "
-      << style << " notitle, \\\n     ";
+    g << "$data skip 1 using 8:" << sel << " with linespoints lt " << style << " dt " << dash
+      << " pt " << point << " title '" << title << "', \\\n     $data skip 1 using 8:" << sel
+      << ":3 with labels offset char 0.8,0.6 font ',8' tc lt " << style << " notitle, \\\n     ";
   }
-  g << "'" << csv << "' skip 1 using 8:(strcol(1) eq 'reference_check' && $9 > 0 ? $9 : 1/0)"
+  g << "$data skip 1 using 8:(strcol(1) eq 'reference_check' && $9 > 0 ? $9 : 1/0)"
     << " with points pt 3 ps 2 lc rgb 'black' title 'each reference vs its refinement (its own "
-       "error)', \\\n     '"
-    << csv
-    << "' skip 1 using 8:(strcol(1) eq 'reference_check' && $9 > 0 ? $9 : 1/0):(strcol(2).' "
+       "error)', \\\n     $data skip 1 using 8:(strcol(1) eq 'reference_check' && $9 > 0 ? $9 : "
+       "1/0):(strcol(2).' "
        "reference')"
     << " with labels offset char 0,-1 font ',8' notitle\n";
   return g.str();
 }
 
-/// The folders for the plot's temporary CSV, chosen before the (long) runs: of $TMPDIR, /tmp and
-/// /var/tmp, those in which a temporary file can be created and written (one byte, removed at
-/// once), in that order, as Python's tempfile and mkstemp-based tools fall back (a TMPDIR set to
-/// a folder that is gone is common in batch jobs). A real file, not access(): as root access()
-/// passes for any folder of a writable mount (TMPDIR=/proc), and a full disk passes it too; the
-/// file then failed after every run of the benchmark.
-/// @throws UsageError when none takes one
-std::vector<std::string> temporary_folders() {
-  std::vector<std::string> candidates, usable;
-  if (const char* env = std::getenv("TMPDIR"); env != nullptr && *env != '\0')
-    candidates.push_back(env);
-  candidates.insert(candidates.end(), {"/tmp", "/var/tmp"});
-  std::string why;
-  for (const std::string& folder : candidates) {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(folder, ec)) {
-      why += "; " + folder + ": not a folder";
-      continue;
-    }
-    RegisteredTemporary t = create_registered_temporary(folder, "shellcontract_bench_error.csv");
-    if (t.fd < 0) {
-      why += "; " + folder + ": " + std::strerror(errno);
-      continue;
-    }
-    ssize_t n = -1;
-    do n = ::write(t.fd, "x", 1);
-    while (n < 0 && errno == EINTR);
-    const int e = n == 1 ? 0 : n < 0 ? errno : EIO;
-    ::close(t.fd);
-    ::unlink(t.path.c_str());
-    unregister_temporary(t.slot);
-    if (e == 0)
-      usable.push_back(folder);
-    else
-      why += "; " + folder + ": " + std::strerror(e);
+namespace {
+
+/// Writes the whole of `text` to the non-blocking descriptor `fd` from `done` on, as far as it
+/// takes it now. False when gnuplot stopped reading (EPIPE: it exited; SIGPIPE is ignored by
+/// the CLI, cli/entry.cpp), so that the rest is dropped and its exit status tells.
+bool feed(int fd, const std::string& text, std::size_t& done) {
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK)) return true;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
   }
-  if (usable.empty())
-    throw UsageError(
-        "--plot without --csv needs a temporary file, and none of $TMPDIR, /tmp, "
-        "/var/tmp takes one (" +
-        why.substr(2) + "): give --csv FILE");
-  return usable;
+  return true;
 }
 
-/// A new temporary file holding text, in the first of `folders` (temporary_folders) where it can
-/// be written whole (a folder that filled up during the runs passes to the next), created
-/// exclusively and registered for removal on SIGINT and SIGTERM (mesh/file_safety.hpp), so that
-/// no file already there is replaced and none is left behind by Ctrl-C; the caller removes it and
-/// unregisters. An empty path (fd -1) and `error` set when no folder takes it.
-RegisteredTemporary temporary_csv(const std::vector<std::string>& folders, const std::string& text,
-                                  std::string& error) {
-  for (const std::string& folder : folders) {
-    RegisteredTemporary t = create_registered_temporary(folder, "shellcontract_bench_error.csv");
-    if (t.fd < 0) {
-      error += std::string(error.empty() ? "" : "; ") + "cannot create a temporary file in '" +
-               folder + "': " + std::strerror(errno);
-      continue;
-    }
-    std::size_t done = 0;
-    int e = 0;
-    while (done < text.size() && e == 0) {
-      const ssize_t n = ::write(t.fd, text.data() + done, text.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0)
-        e = n < 0 ? errno : EIO;
-      else
-        done += static_cast<std::size_t>(n);
-    }
-    ::close(t.fd);
-    t.fd = -1;
-    if (e == 0) return t;
-    ::unlink(t.path.c_str());
-    unregister_temporary(t.slot);
-    error += std::string(error.empty() ? "" : "; ") + "cannot write the temporary file '" + t.path +
-             "': " + std::strerror(e);
+void close_fd(int& fd) {
+  if (fd >= 0) ::close(fd);
+  fd = -1;
+}
+
+}  // namespace
+
+std::string gnuplot_quoted(const std::string& text) {
+  // printable: no newline or other control byte, which would end gnuplot's command; in a
+  // single-quoted string gnuplot expands neither backquotes nor @macros, and '' is a quote.
+  std::string q = "'";
+  for (const char c : printable(text)) q += c == '\'' ? std::string("''") : std::string(1, c);
+  return q + "'";
+}
+
+void draw_with_gnuplot(const std::string& script, std::ostream& out) {
+  // gnuplot gets the script on its stdin and draws on its stdout (`set output` without a name),
+  // so it is handed no file name at all: a name starting with '|' or '<' is a command to it.
+  int in[2] = {-1, -1}, from[2] = {-1, -1};
+  if (::pipe2(in, O_CLOEXEC) != 0 || ::pipe2(from, O_CLOEXEC) != 0) {
+    const int e = errno;
+    close_fd(in[0]);
+    close_fd(in[1]);
+    throw UsageError(std::string("cannot start gnuplot: ") + std::strerror(e));
   }
-  return {};
+  posix_spawn_file_actions_t actions;
+  posix_spawnattr_t attr;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, in[0], 0);
+  posix_spawn_file_actions_adddup2(&actions, from[1], 1);
+  posix_spawnattr_init(&attr);
+  // No signal blocked in gnuplot (the caller's thread may block some): Ctrl-C ends it too.
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attr, &none);
+  posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK);
+  char name[] = "gnuplot";
+  char* args[] = {name, nullptr};
+  pid_t pid = -1;
+  const int spawned = ::posix_spawnp(&pid, name, &actions, &attr, args, environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attr);
+  close_fd(in[0]);
+  close_fd(from[1]);
+  if (spawned != 0) {
+    close_fd(in[1]);
+    close_fd(from[0]);
+    throw UsageError(std::string("cannot start gnuplot: ") + std::strerror(spawned));
+  }
+  // The script is written while the plot is read, so that neither pipe can fill and stall both.
+  ::fcntl(in[1], F_SETFL, ::fcntl(in[1], F_GETFL) | O_NONBLOCK);
+  std::size_t done = 0;
+  std::uint64_t drawn = 0;
+  int read_error = 0;
+  char buf[65536];
+  for (;;) {
+    if (in[1] >= 0 && (!feed(in[1], script, done) || done == script.size())) close_fd(in[1]);
+    pollfd fds[2] = {{from[0], POLLIN, 0}, {in[1], POLLOUT, 0}};
+    if (::poll(fds, in[1] >= 0 ? 2 : 1, -1) < 0) {
+      if (errno == EINTR) continue;
+      read_error = errno;
+      break;
+    }
+    if (fds[0].revents == 0) continue;
+    const ssize_t n = ::read(from[0], buf, sizeof buf);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) read_error = errno;
+    if (n <= 0) break;
+    out.write(buf, n);
+    drawn += static_cast<std::uint64_t>(n);
+  }
+  close_fd(in[1]);
+  close_fd(from[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (read_error != 0)
+    throw UsageError(std::string("cannot read gnuplot's plot: ") + std::strerror(read_error));
+  if (WIFSIGNALED(status))
+    throw UsageError("gnuplot was killed by signal " + std::to_string(WTERMSIG(status)));
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw UsageError(WEXITSTATUS(status) == 127
+                         ? std::string("gnuplot could not be run")
+                         : "gnuplot failed (exit " + std::to_string(WEXITSTATUS(status)) + ")");
+  if (drawn == 0) throw UsageError("gnuplot drew nothing");
 }
 
 bool gnuplot_available() { return std::system("command -v gnuplot > /dev/null 2>&1") == 0; }

@@ -1,12 +1,11 @@
-// bench error's table, CSV, plot script and the plot's temporary file (cli/bench_error.cpp
-// runs the ladder; this writes what it found).
+// bench error's table, CSV, plot script and gnuplot's run (cli/bench_error.cpp runs the ladder;
+// this writes what it found).
 #pragma once
 
 #include <ostream>
 #include <string>
 #include <vector>
 
-#include "mesh/file_safety.hpp"
 #include "sim/error_ladder.hpp"
 
 namespace shellcontract::cli::bench {
@@ -19,16 +18,17 @@ void print_rows(const std::vector<ErrorLadderRow>& rows, std::ostream& os);
 void print_checks(const std::vector<ReferenceCheck>& checks, std::ostream& os);
 /// The whole result as CSV (bench_error_output.cpp says which rows and columns).
 std::string to_csv(const ErrorLadderResult& res);
-/// gnuplot commands drawing the CSV `csv` into `out` (.svg or .png) under `title`.
-std::string gnuplot_script(const std::string& csv, const std::string& out, const std::string& title,
+/// gnuplot commands drawing the CSV text `csv` (to_csv, held in the script) under `title` as
+/// SVG (else PNG) on gnuplot's stdout; the script names no file.
+std::string gnuplot_script(const std::string& csv, bool svg, const std::string& title,
                            const ErrorLadderResult& res);
-/// The folders where the plot's temporary CSV can be written, in order.
-/// @throws UsageError when none takes one
-std::vector<std::string> temporary_folders();
-/// A new temporary file holding `text` in the first of `folders` that takes it whole; fd -1 and
-/// `error` set when none does.
-RegisteredTemporary temporary_csv(const std::vector<std::string>& folders, const std::string& text,
-                                  std::string& error);
+/// `text` as a gnuplot single-quoted string: control bytes as printable() writes them, each '
+/// doubled, so gnuplot reads it as that one string whatever it holds.
+std::string gnuplot_quoted(const std::string& text);
+/// Runs gnuplot (found on PATH) on `script` and writes what it draws on its stdout into `out`.
+/// @throws UsageError when gnuplot cannot be started, fails (exits other than 0, is killed) or
+///         draws nothing; `out` may then hold part of a plot, for the caller to discard
+void draw_with_gnuplot(const std::string& script, std::ostream& out);
 /// Whether gnuplot is on PATH.
 bool gnuplot_available();
 
