@@ -124,7 +124,8 @@ int command_bench_ccd(int argc, char** argv) {
       "untimed pass, each query is timed alone in --repeat passes and its fastest time kept;\n"
       "mean_us and max_us are the mean and the largest of these times. Lengths are in the\n"
       "files' units.\n\n"
-      "exit codes: 0 success, 1 bad usage, 2 unreadable or malformed query file\n\noptions");
+      "exit codes: 0 success, 1 bad usage, 2 unreadable or malformed query file, 3 memory ran\n"
+      "            out or the system refused a resource, 130 interrupted\n\noptions");
   desc.add_options()("help,h", "print this help")("queries", po::value<std::string>(&dir),
                                                   "directory of query files (required)")(
       "json", po::value<std::string>(&json_path),

@@ -52,7 +52,8 @@ exit codes: 0 the mesh can be used (self-intersections already in the input are 
             refused), 1 bad usage (also: MESH and INPUT do not have the same vertices and faces),
             2 the mesh (or INPUT) cannot be used (the message says what and where), 4 MESH has
             self-intersecting pairs that INPUT lacks (--against), or has any
-            (--fail-on-self-intersections)
+            (--fail-on-self-intersections), 3 memory ran out or the system refused a resource
+            (a thread, an open file), 130 interrupted (Ctrl-C, SIGTERM)
 
 options)";
 }

@@ -75,7 +75,9 @@ A face-list line is one region: its 0-based face ids, separated by spaces. 'run 
 also reads a strength in front of a line, 'S: ids' with S in [0, 1] (the share of
 --region-shrink that region sinks with; 1 without one); this command writes none.
 
-exit codes: 0 success, 1 bad usage or unwritable output, 2 bad input (the mesh cannot be used)
+exit codes: 0 success, 1 bad usage or unwritable output, 2 bad input (the mesh cannot be used),
+            3 memory ran out or the system refused a resource (a thread, an open file),
+            130 interrupted (Ctrl-C, SIGTERM)
 
 options)";
 
@@ -328,7 +330,13 @@ int command_regions(int argc, char** argv) {
     }
     if (!face_list.empty()) {
       notice.begin("writing " + face_list);
-      write_region_file(face_list, stored_regions(mesh));
+      try {
+        write_region_file(face_list, stored_regions(mesh));
+      } catch (const UsageError&) {  // -o is written by now: say so, as `run` lists its outputs
+        notice.end();
+        if (!output.empty()) notice.line("wrote: " + output);
+        throw;
+      }
     }
     notice.end();
 

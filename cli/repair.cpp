@@ -50,7 +50,8 @@ exit codes: 0 OUTPUT written and usable, 1 bad usage (also: an OUTPUT whose exte
             of -o's formats, refused before INPUT is read; an STL OUTPUT in which two vertices
             would be stored at one position, which an STL reader merges; a glTF OUTPUT whose
             positions rounded to 32-bit floats would no longer be usable), 2 the input cannot be
-            repaired into a usable mesh (the message says why; nothing is written)
+            repaired into a usable mesh (the message says why; nothing is written), 3 memory ran
+            out or the system refused a resource (a thread, an open file), 130 interrupted
 
 options)";
 
@@ -148,8 +149,11 @@ int command_repair(int argc, char** argv) {
     std::cerr << "shellcontract repair: " << e.what() << '\n';
     if (json) std::cout << report_json(input, output, r, nullptr).str() << '\n';
     return static_cast<int>(ExitCode::BadInput);
-  } catch (const UsageError& e) {
+  } catch (const UsageError& e) {  // the output could not be written (a full disk, an STL...)
     std::cerr << "shellcontract repair: " << e.what() << '\n';
+    // --json promises the report on stdout: what the repair did is as true as when the input
+    // was refused, only nothing was written.
+    if (json) std::cout << report_json(input, output, r, nullptr).str() << '\n';
     return static_cast<int>(ExitCode::BadUsage);
   }
   for (const std::string& w : written.warnings) std::cerr << "warning: " << w << '\n';

@@ -5,6 +5,7 @@
 // run's own.
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
 #include "shellcontract/error.hpp"
@@ -55,9 +56,15 @@ int main(int argc, char** argv) {
   } catch (const sc::InputError& e) {  // the message says what and where (file, line, face)
     std::fprintf(stderr, "contract: %s\n", e.what());
     return 2;
-  } catch (const std::exception& e) {  // a write that failed after the check, memory
+  } catch (const sc::UsageError& e) {  // a write that failed after the check
     std::fprintf(stderr, "contract: %s\n",
                  sc::spell_options(e.what(), sc::OptionSpelling::Cli).c_str());
     return 1;
+  } catch (const std::bad_alloc&) {  // memory ran out (an input larger than memory too)
+    std::fprintf(stderr, "contract: out of memory\n");
+    return 3;
+  } catch (const std::exception& e) {  // a resource the system refused: a thread, an open file
+    std::fprintf(stderr, "contract: %s\n", e.what());
+    return 3;
   }
 }

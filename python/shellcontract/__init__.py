@@ -1,7 +1,11 @@
 """ShellContract: contract closed triangle meshes like thin elastic shells under pressure.
 
 Meshes are numpy arrays: vertices (N by 3, float64) and faces (M by 3, int32 or int64, 0-based,
-outward or inward oriented, closed and manifold). The options of ``contract`` are those of
+outward or inward oriented, closed and manifold). Other real dtypes (float32, any integer type
+for faces, uint64 checked for range), any memory layout and lists of lists are converted by
+numpy; bool or complex values are a TypeError, and a masked array with a masked element a
+ValueError (numpy would pass on the values under the mask). Memory running out in a conversion
+raises numpy's MemoryError. The options of ``contract`` are those of
 ``shellcontract run`` with underscores (``k_b`` for ``--k-b``), with the same defaults and
 ranges; ``options()`` lists them. The same input and options give the same result as the CLI,
 to the last bit.
@@ -36,7 +40,7 @@ import threading
 import numpy as np
 
 from . import _core, number_text
-from ._region_arguments import _region_lists, _strengths, _weights
+from ._region_arguments import _region_lists, _strengths, _weights, refuse_masked
 
 __all__ = ["Option", "Result", "MeshError", "FileError", "contract", "frames", "options", "check",
            "regions", "read_mesh", "write_mesh"]
@@ -192,6 +196,17 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
     SIGTERM, SIGHUP or SIGUSR1 left at their default action (docs/design/output-safety.md).
     """
     options = dict(options)
+    # The CLI's spelling of the options checked here, before the library sees them, is taken as
+    # their Python name (the library's option table takes either for the others).
+    for dashed in ("region-weights", "region-strengths", "checkpoint-every"):
+        if dashed in options:
+            name = dashed.replace("-", "_")
+            if name in options:
+                raise TypeError("contract() got {} and {}, the same option".format(name, dashed))
+            options[name] = options.pop(dashed)
+    if faces is None or not hasattr(faces, "__len__"):
+        raise TypeError("faces must be an array-like of integers, got {}".format(type(faces).__name__))
+    refuse_masked(options.get("region_at"), "region_at")
     if "lambda_" in options:  # `lambda` is a Python keyword: lambda_=0.5 works where lambda=0.5 cannot
         if "lambda" in options:
             raise TypeError("contract() got lambda and lambda_, the same option")
@@ -343,6 +358,7 @@ def regions(vertices, faces, **region_options):
     point taken (contract(region_at=...): a warning in its summary). Other Python threads run
     during the search; Ctrl-C stops it within a fraction of a second (as during contract()'s own
     region search) and raises KeyboardInterrupt."""
+    refuse_masked(region_options.get("region_at"), "region_at")
     return _core.regions(vertices, faces, **number_text.region_numbers(region_options))
 
 

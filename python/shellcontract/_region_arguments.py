@@ -6,10 +6,25 @@ import numbers
 import numpy as np
 
 
+def refuse_masked(value, name):
+    """A numpy masked array with a masked element is refused: numpy hands on its data, masked
+    entries included, so a masked vertex, label or weight would be used as whatever value hides
+    under the mask (a label moved faces between regions). One without a masked element is its
+    data. Nested lists and sequences are walked one level (regions as a list of arrays)."""
+    if np.ma.isMaskedArray(value) and np.ma.is_masked(value):
+        raise ValueError("{}: a masked array with masked elements; numpy would pass on the values "
+                         "under the mask: fill them (a.filled(...)) or leave them out first".format(name))
+    if isinstance(value, (list, tuple)):
+        for i, item in enumerate(value):
+            if np.ma.isMaskedArray(item) and np.ma.is_masked(item):
+                refuse_masked(item, "{}[{}]".format(name, i))
+
+
 def _weights(weights):
     """One float per vertex as a 1-D float64 array; the range is the library's to check (it names
     the vertex). A 2-D array, strings, bools or complex numbers are not weights, whatever their
     count (numpy would flatten or convert them)."""
+    refuse_masked(weights, "region_weights")
     if isinstance(weights, (str, bytes)):
         raise TypeError("region_weights: expected a file name or one number per vertex")
     a = np.asarray(weights)
@@ -31,7 +46,12 @@ def _weights(weights):
 
 def _strengths(strengths, num_regions):
     """One float in [0, 1] per region (the share of region_shrink each region sinks with)."""
-    if isinstance(strengths, (str, bytes)) or np.ndim(strengths) != 1:
+    refuse_masked(strengths, "region_strengths")
+    try:
+        ndim = np.ndim(strengths)
+    except ValueError:  # ragged: numpy cannot make it one array
+        ndim = None
+    if isinstance(strengths, (str, bytes)) or ndim != 1:
         raise TypeError("region_strengths: expected one number per region (a list or a 1-D array), "
                         "got {!r}".format(strengths))
     if any(isinstance(s, (bool, np.bool_)) for s in strengths):
@@ -62,6 +82,7 @@ def _region_lists(regions, num_faces):
     """Face lists (one int64 array per region) from the forms contract() documents: a per-face
     label array, or a list of face-index sequences. Checked here, by Python's indices, so that no
     error names the temporary face-list file the library then reads."""
+    refuse_masked(regions, "regions")
     if isinstance(regions, np.ndarray):
         if regions.ndim == 1 and np.issubdtype(regions.dtype, np.integer):
             return _labels_to_lists(regions, num_faces)

@@ -3,6 +3,7 @@
 // converted first, by numpy.
 #include "arrays.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -25,30 +26,61 @@ void require_n_by_3(const py::array& a, const char* what) {
     throw py::value_error(std::string(what) + " must be an N by 3 array, got shape " + shape_text(a));
 }
 
-/// float64, C-contiguous: the caller's own buffer when it already is one.
+/// Whether `value` is a numpy masked array with a masked element: its `mask` (numpy.ma.nomask,
+/// False, when none is) has a true entry. Read from the object, not through numpy.ma, which
+/// cannot be imported while the interpreter finalizes (a call from a __del__ then).
+bool has_masked_element(const py::handle& value) {
+  if (!py::hasattr(value, "mask") || !py::hasattr(value, "filled") ||
+      !py::isinstance<py::array>(value))
+    return false;
+  const auto mask = py::array_t<bool, py::array::forcecast>::ensure(value.attr("mask"));
+  if (!mask) return false;
+  const auto flat = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(mask);
+  return flat && std::any_of(flat.data(), flat.data() + flat.size(), [](bool b) { return b; });
+}
+
+/// `value` as a numpy array, by numpy's conversion, whose own error reaches the caller when it is
+/// memory (MemoryError) and is named in a TypeError otherwise (an object whose __array__ raises:
+/// its reason, not only "an array-like"). py::array::ensure cleared the error and returned null,
+/// which a conversion out of memory then dereferenced. A masked array with a masked element is
+/// refused: numpy hands on the values under its mask.
+py::array numpy_array(const py::handle& value, const char* what, const char* expected) {
+  if (has_masked_element(value))
+    throw py::value_error(
+        std::string(what) +
+        ": a masked array with masked elements; numpy would pass on the "
+        "values under the mask: fill them (a.filled(...)) or leave them out first");
+  try {
+    return py::array(py::reinterpret_borrow<py::object>(value));
+  } catch (py::error_already_set& e) {
+    if (e.matches(PyExc_MemoryError)) throw;
+    throw py::type_error(std::string(what) + " must be " + expected + " (numpy: " + e.what() + ")");
+  }
+}
+
+/// float64, C-contiguous: the caller's own buffer when it already is one. A conversion numpy
+/// cannot allocate raises its MemoryError (the converting constructor throws it; ensure() gave
+/// null).
 py::array_t<double, py::array::c_style> vertex_array(const py::handle& vertices) {
-  const py::array any = py::array::ensure(vertices);
-  if (!any) throw py::type_error("vertices must be an array-like of numbers");
+  const py::array any = numpy_array(vertices, "vertices", "an array-like of numbers");
   const char kind = any.dtype().kind();
   if (kind != 'f' && kind != 'i' && kind != 'u')
     throw py::type_error("vertices must hold real numbers, got dtype " + std::string(py::str(any.dtype())));
-  auto v = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(any);
-  require_n_by_3(v, "vertices");
-  return v;
+  require_n_by_3(any, "vertices");
+  return py::array_t<double, py::array::c_style | py::array::forcecast>(any);
 }
 
 /// int32 or int64 kept as they are when C-contiguous; any other integer type becomes int64.
 py::array face_array(const py::handle& faces) {
-  py::array any = py::array::ensure(faces);
-  if (!any) throw py::type_error("faces must be an array-like of integers");
+  py::array any = numpy_array(faces, "faces", "an array-like of integers");
   const char kind = any.dtype().kind();
   if (kind != 'i' && kind != 'u')  // a float index array is a mistake, not something to round
     throw py::type_error("faces must hold integers, got dtype " + std::string(py::str(any.dtype())));
+  require_n_by_3(any, "faces");
   const bool c_contiguous = (any.flags() & py::array::c_style) != 0;
   if (!(c_contiguous && (any.dtype().is(py::dtype::of<std::int32_t>()) ||
                          any.dtype().is(py::dtype::of<std::int64_t>()))))
-    any = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(any);
-  require_n_by_3(any, "faces");
+    any = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>(any);
   return any;
 }
 
@@ -57,10 +89,10 @@ py::array face_array(const py::handle& faces) {
 /// uint64 indices beyond int64 would wrap to negative ones when converted: such an index is
 /// reported as given, with the message the library gives any index out of range.
 static void check_uint64_indices(const py::handle& faces, std::size_t num_vertices) {
-  const py::array any = py::array::ensure(faces);
-  if (!any || any.dtype().kind() != 'u' || any.itemsize() < 8) return;
-  const auto u = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>::ensure(any);
-  if (!u) return;
+  const py::array any = numpy_array(faces, "faces", "an array-like of integers");
+  if (any.dtype().kind() != 'u' || any.itemsize() < 8) return;
+  require_n_by_3(any, "faces");  // the shape first: an index is named by its face
+  const auto u = py::array_t<std::uint64_t, py::array::c_style | py::array::forcecast>(any);
   const std::uint64_t* p = u.data();
   for (py::ssize_t i = 0; i < u.size(); ++i)
     if (p[i] >= num_vertices)

@@ -386,7 +386,9 @@ py::dict contract(const py::handle& vertices, const py::handle& faces, const py:
     throw py::type_error("stage must be callable(what) or None");
   py::kwargs kwargs;
   const CheckpointArguments checkpoint = take_checkpoint_arguments(all_kwargs, kwargs);
-  RunOptions options = options_from_kwargs(canonical_kwargs(kwargs), ", checkpoint, checkpoint_every, resume");
+  RunOptions options = options_from_kwargs(
+      canonical_kwargs(kwargs),
+      ", checkpoint, checkpoint_every, resume, region_strengths, callback, stage, lambda_");
   const PreparedCheckpoint prepared = prepare_checkpoint(checkpoint, options);  // before the mesh
   InputReport report;
   const Mesh mesh = [&] {

@@ -241,7 +241,11 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
     });
     if (!doc || !path_has_extension(path, doc->format()))
       throw UsageError("write_mesh: like=" + like + ": only an OBJ or PLY file, written to a file of its format");
-    const auto f = faces_to_numpy(read), g = py::array_t<std::int64_t>::ensure(faces);
+    // C order, so that faces equal to read_mesh's in another layout compare equal element by
+    // element (a Fortran or strided array was compared in memory order, and refused).
+    const auto f = faces_to_numpy(read);
+    const auto g =
+        py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(faces);
     if (!g || g.size() != f.size() || !std::equal(f.data(), f.data() + f.size(), g.data()) || !doc->matches(read))
       throw UsageError("write_mesh: like=" + like + ": the faces are not those read_mesh gives for it");
     std::vector<std::string> warnings;  // a material library of like's that does not exist

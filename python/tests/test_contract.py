@@ -95,17 +95,23 @@ def test_callback_exception_stops_and_propagates(ico2):
 
 
 def test_keyboard_interrupt_stops_the_run(ico2):
-    """SIGINT during the run (GIL released, no callback) is seen by the observer's poll."""
+    """SIGINT during the run (GIL released, no callback) is seen by the observer's poll: the run
+    ends long before its frames are done. Durations are compared with each other only (a run of
+    a 250th of the frames, timed here, on the same machine and load), not with a fixed bound."""
     vertices, faces = ico2
+    frames = 100000
+    start = time.monotonic()
+    shellcontract.contract(vertices, faces, frames=frames // 250)
+    whole = 250 * (time.monotonic() - start)  # about what the uninterrupted run would take
     timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
     start = time.monotonic()
     timer.start()
     try:
         with pytest.raises(KeyboardInterrupt):
-            shellcontract.contract(vertices, faces, frames=100000)  # about 45 s if not stopped
+            shellcontract.contract(vertices, faces, frames=frames)
     finally:
         timer.cancel()
-    assert time.monotonic() - start < 10
+    assert time.monotonic() - start < whole / 4
 
 
 @pytest.mark.parametrize("face_dtype", [np.int32, np.int64, np.uint16])

@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "collision/distance.hpp"
 #include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
 #include "core/power_of_two.hpp"
@@ -34,28 +35,6 @@ using detail::reference_curvature;
 using detail::SEED_SCALES;
 using detail::smoothed_curvature;
 using detail::summarise;
-
-/// Closest point to p on triangle (a, b, c) (Ericson, Real-Time Collision Detection 5.1.5).
-Vec3 closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0.0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + (d1 / (d1 - d3)) * ab;
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0.0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + (d2 / (d2 - d6)) * ac;
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0) return b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
-  const double denom = va + vb + vc;
-  if (!(std::abs(denom) > 0.0)) return a;  // degenerate triangle
-  return a + ab * (vb / denom) + ac * (vc / denom);
-}
 
 /// "1st", "2nd", "3rd", "11th": messages name the points by ordinal, which reads the same whether
 /// the caller counts from 0 (Python's region_at[i]) or from 1 (the CLI's list).
@@ -132,14 +111,20 @@ std::vector<int> regions_at(const Mesh& mesh, const Positions& x, const std::vec
     const Vec3& p = near[i];
     if (!p.allFinite()) throw UsageError("the " + ordinal(i + 1) + " region point is not finite");
     // Nearest surface point (brute force: a handful of points), then its nearest corner. The
-    // first face always sets a seed, whatever its distance.
+    // first face always sets a seed, whatever its distance. The collision step's closest point
+    // (collision/distance.hpp) is the one whose divisions are guarded: a face with two corners at
+    // one position (which the readers accept) made Ericson's unguarded form divide 0 by 0, and a
+    // NaN distance as the first face's held the seed there for every later face.
     double best = std::numeric_limits<double>::infinity();
     int seed = -1, nearest = -1;
     Vec3 surface = Vec3::Zero();
     for (std::size_t f = 0; f < m.nf; ++f) {
       const auto& t = m.tri[f];
-      const Vec3 q = closest_on_triangle(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])));
+      const Vec3 q =
+          point_triangle_closest(p, Vec3(x.row(t[0])), Vec3(x.row(t[1])), Vec3(x.row(t[2])))
+              .closest;
       const double d = (q - p).squaredNorm();  // finite: p is pulled in, x near a unit size
+      if (!std::isfinite(d)) continue;
       if (seed < 0 || d < best) {
         best = d;
         surface = q;
@@ -149,6 +134,8 @@ std::vector<int> regions_at(const Mesh& mesh, const Positions& x, const std::vec
           if ((Vec3(x.row(v)) - q).squaredNorm() < (Vec3(x.row(seed)) - q).squaredNorm()) seed = v;
       }
     }
+    if (seed < 0)  // not reached: the positions are checked finite and the point is pulled in
+      throw UsageError("the " + ordinal(i + 1) + " region point has no face at a finite distance");
     if (blocked[static_cast<std::size_t>(seed)])
       throw UsageError("the " + ordinal(i + 1) + " region point lies in the region of " +
                        owner_of(m, kept, seed) + "; give points on different parts");

@@ -44,16 +44,22 @@ ObjNormals obj_normals(const Positions& x, const ObjCorners& in) {
   const std::vector<long long> corner_group =
       obj_corner_groups(soup::first_at_same_position(x), in);
 
-  // Each group's sum of its polygons' Newell vectors (twice the area along the normal).
+  // Each group's sum of its polygons' Newell vectors (twice the area along the normal). The
+  // corners are taken relative to the polygon's first: in the file's units a mesh far from the
+  // origin (UTM metres) has terms of size |x|^2 that cancel down to the area, and the sum of
+  // absolute cross products kept nothing of the normal but rounding (as the glTF writers, which
+  // take edge vectors).
   std::vector<Vec3> sum;
   for (std::size_t p = 0; p + 1 < start.size(); ++p) {
     Vec3 newell = Vec3::Zero();
     const std::size_t b = start[p], e = start[p + 1];
+    const Vec3 p0 =
+        b < e ? Vec3(x.row(static_cast<Eigen::Index>(vertex[b])).transpose()) : Vec3::Zero();
     for (std::size_t c = b; c < e; ++c) {
       const std::size_t next = c + 1 < e ? c + 1 : b;
       const Vec3 pc = x.row(static_cast<Eigen::Index>(vertex[c])).transpose();
       const Vec3 pn = x.row(static_cast<Eigen::Index>(vertex[next])).transpose();
-      newell += pc.cross(pn);
+      newell += (pc - p0).cross(pn - p0);
     }
     for (std::size_t c = b; c < e; ++c) {
       if (corner_group[c] < 0) continue;

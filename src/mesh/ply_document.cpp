@@ -397,16 +397,23 @@ Positions PlyDocument::normals(const Positions& x) const {
   const std::vector<std::size_t> group =
       soup::normal_groups(soup::first_at_same_position(x), input_normals_);
   // Each vertex gets the sum of its polygons' Newell vectors (twice their area along their
-  // normal), as an OBJ's smooth normals do (obj_normals.hpp), in the file's winding.
+  // normal), as an OBJ's smooth normals do (obj_normals.hpp), in the file's winding, with the
+  // corners relative to the polygon's first (obj_normals.cpp says why: a mesh far from the origin).
   Positions sum = Positions::Zero(x.rows(), 3);
   for (std::size_t p = 0; p + 1 < polygon_start_.size(); ++p) {
     const std::size_t b = polygon_start_[p], e = polygon_start_[p + 1];
     Vec3 newell = Vec3::Zero();
+    Vec3 p0 = Vec3::Zero();
+    for (std::size_t c = b; c < e; ++c)
+      if (corner_vertex_[c] < vertex_count_) {
+        p0 = Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[c])));
+        break;
+      }
     for (std::size_t c = b; c < e; ++c) {
       const std::size_t next = c + 1 < e ? c + 1 : b;
       if (corner_vertex_[c] >= vertex_count_ || corner_vertex_[next] >= vertex_count_) continue;
-      newell += Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[c])))
-                    .cross(Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[next]))));
+      newell += (Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[c]))) - p0)
+                    .cross(Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[next]))) - p0);
     }
     for (std::size_t c = b; c < e; ++c)
       if (corner_vertex_[c] < vertex_count_)

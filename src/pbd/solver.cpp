@@ -484,8 +484,11 @@ std::unique_ptr<ConstraintSolver> make_constraint_solver(MaterialKind material,
                                                          const SolverSettings& settings,
                                                          const Faces& faces) {
   if (settings.threads < 0) throw std::invalid_argument("solver threads must be >= 0");
-  const double energy_scale =
-      std::max({params.mu, params.lambda, 2.0 * (params.c10 + params.c01), params.mu_aniso});
+  // The skip floor's scale from the energies in use alone: a parameter the run warns has no
+  // effect (--c10 under StVK, --mu-a without --aniso) must not move the floor, and so the result.
+  double energy_scale = material == MaterialKind::MooneyRivlin ? 2.0 * (params.c10 + params.c01)
+                                                               : std::max(params.mu, params.lambda);
+  if (settings.aniso != AnisoKind::None) energy_scale = std::max(energy_scale, params.mu_aniso);
   if (settings.aniso == AnisoKind::None) constraints.anisotropic.clear();
   return with_material(material, params, [&](const auto& m) -> std::unique_ptr<ConstraintSolver> {
     return with_aniso(settings.aniso, params, [&](const auto& a) -> std::unique_ptr<ConstraintSolver> {

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <sstream>
+#include <string>
 #include <utility>
 
 #include "core/classic_locale.hpp"
@@ -12,6 +14,7 @@
 #include "shellcontract/run.hpp"
 #include "shellcontract/validation.hpp"
 #include "sim/frame_access.hpp"
+#include "sim/option_ranges.hpp"
 #include "sim/simulator.hpp"
 
 namespace shellcontract {
@@ -145,6 +148,23 @@ ErrorLadderResult run_error_ladder(const Mesh& mesh, const SimOptions& base,
                     opt.pbd_reference_iterations},
                    "reference iterations and substeps");
   if (!(opt.hausdorff_error_bound > 0.0)) throw UsageError("error ladder: Hausdorff bound must be > 0");
+  // A run of k substeps per step takes frames * k steps (run_one): counted in 64 bits and held to
+  // a run's frame bound before anything runs, so that no product wraps (a wrapped count ran a
+  // reference of a few steps, and every rung was measured against nearly the rest state).
+  const bool any_xpbd =
+      std::find(opt.solvers.begin(), opt.solvers.end(), SolverKind::Xpbd) != opt.solvers.end();
+  std::int64_t most_substeps = 1;
+  if (any_xpbd || opt.pbd_substeps)
+    most_substeps = *std::max_element(opt.substeps.begin(), opt.substeps.end());
+  if (any_xpbd)
+    most_substeps = std::max<std::int64_t>(
+        most_substeps, std::int64_t{opt.xpbd_reference_substeps} * (opt.check_reference ? 2 : 1));
+  if (most_substeps * opt.frames > option_ranges::MAX_FRAMES)
+    throw UsageError("error ladder: " + std::to_string(opt.frames) + " frames of " +
+                     std::to_string(most_substeps) + " substeps are " +
+                     std::to_string(most_substeps * opt.frames) + " steps, more than a run's " +
+                     std::to_string(option_ranges::MAX_FRAMES) +
+                     ": fewer frames (-n) or substeps (--substeps, --ref-substeps)");
 
   auto say = [&](const std::string& s) {
     if (opt.progress) opt.progress(s);

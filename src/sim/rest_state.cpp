@@ -6,6 +6,7 @@
 
 #include "bending/dihedral_bending.hpp"
 #include "bending/isometric_bending.hpp"
+#include "core/constants.hpp"
 #include "fem/triangle_element.hpp"
 #include "mesh/properties.hpp"
 #include "shellcontract/error.hpp"
@@ -24,6 +25,15 @@ std::array<VertexIndex, 3> face_vertices(const Mesh& mesh, FaceIndex f) {
   const HalfedgeIndex h = mesh.halfedge(f);
   return {mesh.target(h), mesh.target(mesh.next(h)), mesh.target(mesh.next(mesh.next(h)))};
 }
+/// The triangle's smallest angle, from atan2 of each corner's |u x v| and u . v (exact near 0
+/// and 180 degrees, where acos of a cosine is not).
+double smallest_angle(const Vec3& a, const Vec3& b, const Vec3& c) {
+  const auto at = [](const Vec3& o, const Vec3& p, const Vec3& q) {
+    const Vec3 u = p - o, v = q - o;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+  };
+  return std::min({at(a, b, c), at(b, c, a), at(c, a, b)});
+}
 }  // namespace
 
 RestStateReport build_rest_state(Mesh& mesh, MassModel mass, double density) {
@@ -41,7 +51,10 @@ RestStateReport build_rest_state(Mesh& mesh, MassModel mass, double density) {
     const auto [a, b, c] = face_vertices(mesh, f);
     const TriangleRest r = triangle_rest(point(mesh, a), point(mesh, b), point(mesh, c));
     rest[f] = r;
-    if (r.degenerate) ++report.degenerate_faces;
+    if (r.degenerate)
+      ++report.degenerate_faces;
+    else if (smallest_angle(point(mesh, a), point(mesh, b), point(mesh, c)) < PI / 180.0)
+      ++report.sliver_faces;
     for (VertexIndex v : {a, b, c}) vertex_mass[v.idx()] += density * r.area / 3.0;
   }
 

@@ -17,6 +17,9 @@ struct RestStateReport {
   std::size_t degenerate_faces = 0;    ///< faces with no membrane constraint
   std::size_t inactive_hinges = 0;     ///< hinges touching a degenerate face
   std::size_t clamped_cotangents = 0;  ///< rest cotangents clamped to +-cot(1 degree)
+  /// Faces, not degenerate, with a rest angle below 1 degree (math-spec 11: slivers, whose
+  /// membrane is stiff under XPBD), whatever the bending model.
+  std::size_t sliver_faces = 0;
 };
 
 /// Attaches f:triangle_rest, e:hinge, e:isometric_bending, e:dihedral_bending and v:inv_mass

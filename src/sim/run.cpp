@@ -283,6 +283,11 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
           mass_scaling_warning(sim.mass_scaling(), mesh.number_of_vertices(), s.dt);
       !note.empty())
     warn(r, obs, note);
+  if (rest.sliver_faces > 0)
+    warn(r, obs,
+         std::to_string(rest.sliver_faces) +
+             " faces have a rest angle below 1 degree (slivers): under the xpbd solver their "
+             "membrane acts stiffer than its material; remeshing them away avoids it");
   // The cotangent weights belong to the isometric bending; the dihedral model does not use them.
   if (rest.clamped_cotangents > 0 && s.bending == BendingModel::Isometric)
     warn(r, obs,

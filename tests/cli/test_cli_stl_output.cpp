@@ -70,4 +70,15 @@ TEST_F(CliStlOutput, OtherFormatsKeepTheTouchingVertices) {
   }
 }
 
+// repair --json prints its report on stdout also when the output is refused after the repair
+// (here the STL whose vertices would merge, exit 1): it printed nothing, and a consumer parsing
+// stdout read an empty document (review exitcodes F13).
+TEST_F(CliStlOutput, RepairJsonReportsAlsoWhenTheOutputIsRefused) {
+  const RunResult r = run_cli({"repair", out("touch.off"), "-o", out("t.stl"), "--json"});
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("an STL keeps no vertex identity"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("\"usable\": true"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out("t.stl")));
+}
+
 }  // namespace

@@ -80,7 +80,9 @@ TEST(CollisionParts, ContactCacheKeepsTheLastDetectionOfEachPairThenThePressedOn
   // Step 1: vertex 0 lies on its face (pressed: the warm start pushes it), vertex 4 is far above.
   Positions x = two_stacks(0.0, 1.0);
   cache.warm_start(x, w);
-  EXPECT_DOUBLE_EQ(x(0, 2), RESPONSE_FACTOR * delta);  // pushed to 2 delta
+  // The literal 2 (math-spec: contacts are pushed to 2 delta), not the code's RESPONSE_FACTOR:
+  // a changed factor must fail here, not pass with it.
+  EXPECT_DOUBLE_EQ(x(0, 2), 2.0 * delta);  // pushed to 2 delta
   EXPECT_DOUBLE_EQ(x(4, 2), 1.0);
   cache.clear_detections();
   EXPECT_TRUE(cache.contacts().empty());
@@ -98,8 +100,8 @@ TEST(CollisionParts, ContactCacheKeepsTheLastDetectionOfEachPairThenThePressedOn
   // Step 2: both vertices on their faces, so a and b are pressed; a is detected again, b is not.
   x = two_stacks(0.0, 0.0);
   cache.warm_start(x, w);
-  EXPECT_DOUBLE_EQ(x(0, 2), RESPONSE_FACTOR * delta);
-  EXPECT_DOUBLE_EQ(x(4, 2), RESPONSE_FACTOR * delta);
+  EXPECT_DOUBLE_EQ(x(0, 2), 2.0 * delta);
+  EXPECT_DOUBLE_EQ(x(4, 2), 2.0 * delta);
   cache.clear_detections();
   const Contact a1 = vf_contact(0, 0, {1, 2, 3}, 3e-4);
   cache.add_detections({a1});

@@ -179,8 +179,11 @@ TEST(SelfCollision, WarmStartKeepsAPressedContactFromStepToStep) {
       EXPECT_GT(stats.contacts, 0);
     else
       EXPECT_EQ(stats.contacts, 0);
-    // Held at the response distance 2 delta (the warm start's target), not pushed farther.
-    EXPECT_GT(x1(3, 2), 0.0);  // the vertex over the lower triangle stays above it
+    // The vertex over the lower triangle stays at least the response distance 2 delta above it
+    // (math-spec: contacts are pushed to 2 delta; the literal 2, not the code's RESPONSE_FACTOR).
+    // It is not held there: the upper triangle's other two corners are beyond the lower
+    // triangle's far edge and fall freely, so the triangle tips over that edge and lifts it.
+    EXPECT_GE(x1(3, 2), 2.0 * delta);
     t.x0 = x1;
   }
 }

@@ -3,6 +3,7 @@
 // triangle, and a point farther from it than REGION_POINT_NEAR bounding-box diagonals is a
 // warning. Before, a fitted sphere's centre, a point in Blender's Z-up world or (5, 5, 5) gave a
 // region somewhere else with no word.
+#include <CGAL/boost/graph/iterator.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -61,6 +62,44 @@ TEST(RegionAtFar, EachPointReportsItsNearestSurfacePointAndAFarOneWarns) {
     }
   }
   EXPECT_EQ(warned, 3u) << "(5, 5, 5), the point inside and the one at 1.5 times a vertex are far";
+}
+
+TEST(RegionAtFar, AFaceWithTwoCornersAtOnePositionDoesNotCaptureThePoint) {
+  // Face 0 with two of its corners at one position (a zero-length edge, which the readers accept):
+  // the closest point on it divided 0 by 0 where the two were its first and second corner, and
+  // its NaN distance, as the first face's, held the seed at face 0 for every later face: the
+  // region grew somewhere else and the report said NaN (review numguards M2). Each pair of face
+  // 0's corners is tried, and the point is the vertex farthest from face 0: it is on the surface.
+  const Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/ico2.off");
+  const Positions rest = positions_from_mesh(mesh);
+  const Mesh::Face_index f0(0);
+  std::vector<Mesh::Vertex_index> corner;
+  for (const Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f0), mesh))
+    corner.push_back(v);
+  ASSERT_EQ(corner.size(), 3u);
+  for (int k = 0; k < 3; ++k) {
+    Positions x = rest;
+    const auto a = static_cast<Eigen::Index>(corner[k].idx()),
+               b = static_cast<Eigen::Index>(corner[(k + 1) % 3].idx());
+    x.row(b) = x.row(a);
+    Eigen::Index far = 0;
+    (x.rowwise() - x.row(a)).rowwise().squaredNorm().maxCoeff(&far);
+    const Vec3 p(x.row(far));
+    RegionReport r;
+    const std::vector<int> ids = select_regions_at(mesh, x, {p}, RegionOptions{}, &r);
+    ASSERT_EQ(r.points.size(), 1u);
+    EXPECT_LE(r.points[0].distance, 1e-12) << "corners " << k << ", " << (k + 1) % 3;
+    EXPECT_LE((r.points[0].surface_point - p).norm(), 1e-12)
+        << "corners " << k << ", " << (k + 1) % 3;
+    bool holds_far = false;
+    for (const Mesh::Face_index f : mesh.faces()) {
+      if (ids[f.idx()] < 0) continue;
+      for (const Mesh::Vertex_index v : CGAL::vertices_around_face(mesh.halfedge(f), mesh))
+        holds_far = holds_far || static_cast<Eigen::Index>(v.idx()) == far;
+    }
+    EXPECT_TRUE(holds_far) << "the region is not around the point (corners " << k << ", "
+                           << (k + 1) % 3 << ")";
+  }
 }
 
 TEST(RegionAtFar, TheSurfacePointsScaleWithTheMesh) {

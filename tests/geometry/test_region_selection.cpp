@@ -94,7 +94,6 @@ TEST_F(BumpySphere, StageTimesGoToTheReportAndNothingIsPrinted) {
   double wall = 0.0;
   for (const RegionStageTime& t : report.stage_times) {
     stages.push_back(t.stage);
-    EXPECT_TRUE(t.wall_s >= 0.0 && t.cpu_s >= 0.0) << t.stage;
     wall += t.wall_s;
   }
   EXPECT_EQ(stages, (std::vector<std::string>{"curvature", "smoothing", "free growth",
@@ -152,8 +151,9 @@ TEST_F(BumpySphere, EachBumpIsRecoveredAndNothingElse) {
               static_cast<std::size_t>(std::count(region.begin(), region.end(), static_cast<int>(r))));
   // The base sphere has radius 0.5: H_ref is its curvature 2 (more than half of the area),
   // smoothed at the largest diffusion length, which lowers it near the bump rims; the median
-  // stays within 10 % (H of the base sphere itself is 2 to 2 %).
-  EXPECT_NEAR(report.reference_mean_curvature, 2.0, 0.2);
+  // stays within 10 % and below the base sphere's own H (2 to 2 %): the smoothing acted.
+  EXPECT_GT(report.reference_mean_curvature, 1.8);
+  EXPECT_LT(report.reference_mean_curvature, 1.96);
 }
 
 TEST_F(BumpySphere, ResultDoesNotDependOnScale) {

@@ -210,10 +210,11 @@ std::vector<std::string> face_lines(const std::string& text) {
 /// The cube written at wrinkled positions: every corner has the normalized sum of the vector
 /// areas of the polygons around its position (all of them when smooth; those of its own side when
 /// flat, so the box's hard edges stay), whatever lines held the values.
-void expect_normals(const CubeLayout& layout) {
+/// `offset` moves the result far from the origin (UTM metres): the normals must not depend on it.
+void expect_normals(const CubeLayout& layout, const Vec3& offset = Vec3::Zero()) {
   const int n = 3;
   const SharedNormalCube c = shared_normal_cube(n, layout);
-  const Positions y = wrinkled(c);
+  const Positions y = wrinkled(c).rowwise() + offset.transpose();
   const std::size_t per_side = static_cast<std::size_t>(n * n);  // polygons are side by side
   const std::string out = parse_obj_document("cube.obj", c.text)->text(y);
   // The tool reads back what it wrote (every normal index defined before its face).
@@ -281,6 +282,16 @@ TEST(ObjSharedNormals, OneLinePerSeamCopyWithOneValueShowsNoSeam) {
   expect_normals(split);
   split.flat = true;  // each side's copies with the side's value: the edges stay hard
   expect_normals(split);
+}
+
+TEST(ObjSharedNormals, NormalsOfAResultFarFromTheOriginAreThoseOfItsShape) {
+  // At northing 5e6 a polygon's corners are of size 5e6 and its area of order 0.1: a Newell sum of
+  // the corners' absolute cross products (terms of 1e13) kept nothing of the normal but rounding
+  // (review numguards M1). The expected normals are taken from edge vectors, as near the origin.
+  expect_normals({}, Vec3(500000.0, 5000000.0, 100.0));
+  CubeLayout flat;
+  flat.flat = true;
+  expect_normals(flat, Vec3(500000.0, 5000000.0, 100.0));
 }
 
 }  // namespace

@@ -372,5 +372,33 @@ TEST(PlyDocument, NormalsAreThoseOfTheNewShape) {
             tokens(in.substr(in.rfind("3 0 2 1"))));
 }
 
+TEST(PlyDocument, NormalsOfAResultFarFromTheOriginAreThoseOfItsShape) {
+  // The tetrahedron moved to UTM-like metres (500000, 5000000, 100): its new normals are its
+  // faces' edge-vector cross products, as at the origin. A Newell sum of absolute cross products
+  // (terms of size 1e13 cancelling to areas of order 1) returned rounding noise instead (review
+  // numguards M1).
+  std::ostringstream o;
+  o << "ply\nformat ascii 1.0\nelement vertex 4\nproperty double x\nproperty double y\n"
+       "property double z\nproperty double nx\nproperty double ny\nproperty double nz\n"
+       "element face 4\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < 4; ++i) o << TET[i][0] << ' ' << TET[i][1] << ' ' << TET[i][2] << " 0 0 1\n";
+  for (const auto& f : TET_FACES) o << "3 " << f[0] << ' ' << f[1] << ' ' << f[2] << '\n';
+  const Positions y = moved_tet().rowwise() + Eigen::RowVector3d(500000.0, 5000000.0, 100.0);
+  const std::vector<std::string> t = tokens(
+      parse_ply_document("far.ply", o.str())->text(y).substr(o.str().find("end_header\n") + 11));
+  ASSERT_EQ(t.size(), 4u * 6u + 4u * 4u);
+  for (int i = 0; i < 4; ++i) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (const auto& f : TET_FACES)
+      if (f[0] == i || f[1] == i || f[2] == i) {
+        const Eigen::Vector3d a = y.row(f[0]), b = y.row(f[1]), c = y.row(f[2]);
+        sum += (b - a).cross(c - a);
+      }
+    const std::size_t at = 6 * static_cast<std::size_t>(i);
+    const Eigen::Vector3d got(std::stod(t[at + 3]), std::stod(t[at + 4]), std::stod(t[at + 5]));
+    EXPECT_NEAR((got - sum.normalized()).norm(), 0.0, 1e-12) << "vertex " << i;
+  }
+}
+
 }  // namespace
 }  // namespace shellcontract

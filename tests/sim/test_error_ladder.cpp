@@ -6,10 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "shellcontract/error.hpp"
 #include "sim/error_ladder.hpp"
+#include "sim/option_ranges.hpp"
 #include "sim/simulator.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
@@ -191,6 +194,39 @@ TEST(ErrorLadder, RefusesEmptyOrNonPositiveLists) {
   EXPECT_THROW(run_error_ladder(sphere(), ladder_physics(), o), UsageError);
   o = small_ladder();
   o.orders.clear();
+  EXPECT_THROW(run_error_ladder(sphere(), ladder_physics(), o), UsageError);
+}
+
+TEST(ErrorLadder, RefusesMoreStepsThanARunTakesBeforeRunningAny) {
+  // A rung or reference of k substeps runs frames * k steps: 3 frames of 1431655766 reference
+  // substeps are 2^32 + 2 steps, which an int product wrapped to 2 (a reference of two steps, and
+  // every rung measured against nearly the rest state; review numguards L1); 2 frames of INT_MAX
+  // wrapped to a negative count. Each is refused, naming the frames and substeps, before a run.
+  for (const auto& [frames, ref_substeps, check] :
+       {std::tuple{3, 1431655766, false}, std::tuple{2, 2147483647, false},
+        std::tuple{1, option_ranges::MAX_FRAMES / 2 + 1, true},
+        std::tuple{option_ranges::MAX_FRAMES / 8 + 1, 8, false}}) {
+    ErrorLadderOptions o = small_ladder();
+    o.solvers = {SolverKind::Xpbd};
+    o.frames = frames;
+    o.xpbd_reference_substeps = ref_substeps;
+    o.check_reference = check;
+    bool ran = false;
+    o.progress = [&](const std::string&) { ran = true; };
+    try {
+      run_error_ladder(sphere(), ladder_physics(), o);
+      ADD_FAILURE() << frames << " frames of " << ref_substeps << " reference substeps ran";
+    } catch (const UsageError& e) {
+      EXPECT_NE(std::string(e.what()).find("(-n)"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(ran) << frames << " frames of " << ref_substeps << " reference substeps";
+  }
+  // PBD's rungs take one substep unless asked otherwise: their steps are the frames.
+  ErrorLadderOptions o = small_ladder();
+  o.solvers = {SolverKind::Pbd};
+  o.frames = option_ranges::MAX_FRAMES / 2 + 1;
+  o.substeps = {2};
+  o.pbd_substeps = true;
   EXPECT_THROW(run_error_ladder(sphere(), ladder_physics(), o), UsageError);
 }
 

@@ -71,7 +71,8 @@ inline RunResult default_run(const Mesh& mesh) {
 }
 
 /// Checks issue "Control" item 5 on one mesh: the default run (200 frames, every default) ends
-/// within 0.02 of the V/V0 the README states for it (`readme`, written in the calling test), with
+/// within 0.006 of the V/V0 the README states for it (`readme`, written in the calling test: two
+/// decimals, so 0.005 of rounding, and 0.001 for the kernels of another CPU), with
 /// no new self-intersection. The README's numbers are the documented behaviour: the air balance
 /// (0.5) sets them, the shell's stiffness and the pressure the few hundredths above it, so
 /// DEFAULT_AIR_BALANCE moved from 0.5 to 0.7 fails this (checked as --air-balance 0.7 on the
@@ -83,7 +84,7 @@ inline void check_default_run_ratio(const std::string& name, double readme) {
   const RunResult r = default_run(load_target_mesh(name));
   ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
   EXPECT_EQ(r.frames_run, 200) << name;
-  EXPECT_NEAR(r.final_volume_ratio, readme, 0.02) << name;
+  EXPECT_NEAR(r.final_volume_ratio, readme, 0.006) << name;
   EXPECT_EQ(r.new_intersections, 0) << name;
   std::cout << "default run " << name << ": V/V0 " << r.final_volume_ratio << " (README " << readme << ")\n";
 }

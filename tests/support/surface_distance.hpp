@@ -1,5 +1,6 @@
 // Brute-force distances from a point to a mesh's surface, computed otherwise than the product's
-// closest point (region_at.cpp walks a triangle's Voronoi regions; here the plane's foot and the
+// closest point (region_at.cpp uses the collision step's point_triangle_closest, which walks a
+// triangle's Voronoi regions; here the plane's foot and the
 // three edges), so that the region-at tests check select_regions_at against an independent answer.
 #pragma once
 
