@@ -12,8 +12,8 @@ docs/design/sweeps.md says how and why.
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
 or a refused sweep file, output folder or cluster (nothing run), or an output folder that cannot
 be written, 3 some job could not get an outcome (crash, kill, timeout, an output not written, its
-checkpoint not read) or runs in another sweep, 130 interrupted (run the same command again to
-finish).
+checkpoint not read, a resource the system refused) or runs in another sweep, 130 interrupted (run
+the same command again to finish).
 """
 
 import argparse
@@ -32,7 +32,7 @@ EXIT_INCOMPLETE = 3
 EXIT_INTERRUPTED = 130
 # Jobs whose outcome is not a result the same run would give again.
 RETRIED_STATUSES = ("crashed", "killed", "timeout", sweep_job.OUTPUT_NOT_WRITTEN,
-                    sweep_job.CHECKPOINT_NOT_READ)
+                    sweep_job.OUT_OF_RESOURCES, sweep_job.CHECKPOINT_NOT_READ)
 
 
 find_cli = sweep_cli.find_cli
@@ -174,8 +174,9 @@ def parser():
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
                "refused sweep file, output folder or cluster (nothing run), 3 some job crashed, "
-               "was killed, timed out, could not write its output or read its checkpoint, or "
-               "runs in another sweep, 130 interrupted (run the same command again to finish)")
+               "was killed, timed out, could not write its output, read its checkpoint or have "
+               "a resource the system refused, or runs in another sweep, 130 interrupted (run "
+               "the same command again to finish)")
     p.add_argument("sweep", metavar="SWEEP.json")
     p.add_argument("-o", "--output", metavar="DIR", required=True, action=_Once,
                    help="results folder: new, empty, or this sweep file's from an earlier sweep")

@@ -1,11 +1,14 @@
-"""A sweep keeps a job's checkpoint that the tool had no descriptor to open: `run --resume` exits
-2, "checkpoint FILE: cannot open file: Too many open files", a checkpoint not read, and the sweep
-records "checkpoint not read" and resumes from it later. The limits are real (setrlimit) on the
-real tool; docs/design/sweeps.md, "Jobs"."""
+"""A sweep never loses a job's checkpoint to the machine's condition: a checkpoint the tool had no
+descriptor to open (exit 2, "checkpoint not read"), a run the system refused a resource before it
+had a result (exit 3 without a summary: "out of resources"), an output not written after a run
+that failed (exit 3, 4 or 5: "output not written") are not final. The limits are real
+(setrlimit, `ulimit`) on the real tool; docs/design/sweeps.md, "Jobs"."""
 import json
 import resource
 import subprocess
 import sys
+
+import pytest
 
 from test_sweep import results, run_sweep, sweep_env, write_sweep
 
@@ -100,3 +103,74 @@ def test_a_sweep_keeps_a_checkpoint_the_tool_had_no_descriptor_for(cli, mesh_dir
     # runs from its first frame).
     r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
     assert r.returncode == 0 and [row["status"] for row in results(out)] == ["ok", "ok"], r.stderr
+
+
+def test_a_run_the_system_refused_a_resource_is_not_final(cli, mesh_dir, tmp_path):
+    # A stack limit below what the tool maps at its start: exit 3, "out of memory at start", no
+    # summary. Before: the job's final "failed", its checkpoint removed, exit 0.
+    path, out, job, checkpoint = resumed_job(cli, mesh_dir, tmp_path)
+    fake = tmp_path / "small_stack.sh"
+    fake.write_text("#!/bin/bash\ncase \"$*\" in *--resume*) ulimit -s 512;; esac\n"
+                    "exec '{}' \"$@\"\n".format(cli))
+    fake.chmod(0o755)
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--cli", str(fake)])
+    assert [row["status"] for row in results(out)] == ["out of resources", "ok"], r.stderr
+    assert r.returncode == 3, r.stderr
+    assert checkpoint.read_bytes() == b"a checkpoint"
+    record = json.loads((out / "jobs" / job / "job.json").read_text())
+    assert record["exit_code"] == 3 and "the stack limit" in record["message"], record
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and [row["status"] for row in results(out)] == ["ok", "ok"], r.stderr
+
+
+def test_an_output_not_written_after_a_failed_run_runs_again(cli, mesh_dir, tmp_path):
+    # A target not reached (exit 5) whose -o exceeds a file size limit (the summary does not):
+    # `run` exits with the run's 5, not 1. Before: the job's final "target not reached", without
+    # its mesh.
+    fake = tmp_path / "fake_cli.sh"
+    fake.write_text("#!/bin/bash\n"
+                    "case \"$*\" in *'--pressure 3'*) trap '' XFSZ; ulimit -f 16;; esac\n"
+                    "exec '{}' \"$@\"\n".format(cli))
+    fake.chmod(0o755)
+    spec = {"meshes": ["meshes/ico3.off"], "options": {"frames": 4, "stop_volume_ratio": 0.1},
+            "grid": {"pressure": [2, 3]}}
+    path = write_sweep(tmp_path, mesh_dir, "d.json", spec, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1", "--cli", str(fake)])
+    assert [row["status"] for row in results(out)] == ["target not reached",
+                                                       "output not written"], r.stderr
+    assert r.returncode == 3, r.stderr
+    record = json.loads((out / "jobs" / results(out)[1]["job"] / "job.json").read_text())
+    assert record["exit_code"] == 5 and "-o: failed" in record["message"], record
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "1 done already" in r.stderr, r.stderr
+    assert [row["status"] for row in results(out)] == ["target not reached"] * 2
+
+
+@pytest.mark.parametrize("rc,summary,lines,status", [
+    # A save that failed is a note of the summary, not an output: the run's result is whole.
+    (5, {"status": "target not reached", "failure": "V/V0 0.9",
+         "outputs": {"--checkpoint": "2 of 3 saves failed", "-o": "written"}}, [],
+     "target not reached"),
+    (4, {"status": "new self-intersections", "outputs": {"-o": "failed: disk full"}}, [],
+     "output not written"),
+    # Neither the summary nor an output written: the tool says so.
+    (1, None, ["shellcontract run: not every output could be written (the run itself ended: ok, "
+               "frame 4)"], "output not written"),
+    # A file the tool could not make for want of a descriptor (its checkpoint's lock).
+    (1, None, ["shellcontract run: --checkpoint 'c.ckpt': cannot make its lock file "
+               "'.c.ckpt.lock' (Too many open files)"], "out of resources"),
+    (3, None, ["shellcontract run: pthread_create has failed: Resource temporarily unavailable "
+               "(while preparing the run or taking its result); nothing was written"],
+     "out of resources"),
+    # Memory that ran out during the frames: the run ends itself, with its summary; final.
+    (3, {"status": "failed", "failure": "out of memory at step 3", "outputs": {"-o": "written"}},
+     ["shellcontract run: simulation failed: out of memory at step 3"], "failed"),
+    (3, None, ["shellcontract run: simulation failed: NaN"], "failed"),
+    (2, None, ["shellcontract run: m.off: cannot read file: Too many open files"], "bad input"),
+])
+def test_the_outcome_of_a_run(rc, summary, lines, status):
+    from shellcontract import sweep_outcome
+    assert sweep_outcome.classify(rc, False, summary, "last lines", lines)[0] == status
+    assert (status in sweep_outcome.FINAL_STATUSES) == (
+        status not in ("output not written", "out of resources"))
