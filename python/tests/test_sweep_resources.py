@@ -1,7 +1,8 @@
 """A sweep never loses a job's checkpoint to the machine's condition: a checkpoint the tool had no
 descriptor to open (exit 2, "checkpoint not read"), a run the system refused a resource before it
 had a result (exit 3 without a summary: "out of resources"), an output not written after a run
-that failed (exit 3, 4 or 5: "output not written") are not final. The limits are real
+that failed (exit 3, 4 or 5: "output not written") are not final, and a sweep that an error stops
+after its jobs started exits 3 with its jobs stopped, not 1 ("nothing run"). The limits are real
 (setrlimit, `ulimit`) on the real tool; docs/design/sweeps.md, "Jobs"."""
 import json
 import resource
@@ -10,7 +11,9 @@ import sys
 
 import pytest
 
-from test_sweep import results, run_sweep, sweep_env, write_sweep
+from test_sweep import results, run_sweep, sweep_env, wait_until, write_sweep
+from test_sweep_engine import ENDLESS, processes_naming
+from test_sweep_workers import cluster  # noqa: F401 (a fixture)
 
 SHORT = {"meshes": ["meshes/ico1.off"], "options": {"frames": 4}, "grid": {"pressure": [2, 3]}}
 
@@ -174,3 +177,44 @@ def test_the_outcome_of_a_run(rc, summary, lines, status):
     assert sweep_outcome.classify(rc, False, summary, "last lines", lines)[0] == status
     assert (status in sweep_outcome.FINAL_STATUSES) == (
         status not in ("output not written", "out of resources"))
+
+
+# A sweep whose results tables cannot be written once a job has finished (a full disk).
+FAILING_TABLES = """import errno, sys
+from shellcontract import sweep, sweep_results
+def failing(self, job, record):
+    raise OSError(errno.ENOSPC, "No space left on device", self.out_dir + "/results.csv")
+sweep_results.Writer.record = failing
+sys.exit(sweep.main(sys.argv[1:]))
+"""
+
+
+def test_tables_not_written_after_a_job_ran_is_not_nothing_run(cli, mesh_dir, tmp_path):
+    # Before: exit 1, "bad usage or a refused sweep file, output folder or cluster (nothing run)".
+    path = write_sweep(tmp_path, mesh_dir, "c.json", SHORT, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-c", FAILING_TABLES, str(path), "-o", str(out),
+                        "--shard", "0/1"], env=sweep_env(cli), capture_output=True, text=True,
+                       timeout=240)
+    assert r.returncode == 3, r.stderr
+    assert "No space left on device" in r.stderr and "run the same command again" in r.stderr
+    assert len(list((out / "jobs").glob("*/job.json"))) == 1
+    r = run_sweep(cli, [str(path), "-o", str(out), "--shard", "0/1"])
+    assert r.returncode == 0 and "1 done already" in r.stderr, r.stderr
+
+
+def test_an_error_on_an_existing_cluster_stops_its_jobs(cli, mesh_dir, tmp_path,
+                                                      cluster):  # noqa: F811
+    # Before: the sweep exited 1 and left the endless job running on the worker.
+    address, start = cluster
+    start(sweep_env(cli), nthreads=2)
+    spec = {"meshes": ["meshes/ico3.off"], "runs": [{"frames": 2}, ENDLESS["options"]]}
+    path = write_sweep(tmp_path, mesh_dir, "e.json", spec, meshes=("ico3.off",))
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-c", FAILING_TABLES, str(path), "-o", str(out),
+                        "--scheduler", address], env=sweep_env(cli), capture_output=True,
+                       text=True, timeout=240)
+    # No run goes on behind the sweep's back on the worker.
+    wait_until(lambda: not processes_naming(str(tmp_path / "meshes")), timeout=10)
+    assert r.returncode == 3, r.stderr
+    assert "stopped after its jobs started" in r.stderr, r.stderr
