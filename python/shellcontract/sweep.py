@@ -11,9 +11,10 @@ docs/design/sweeps.md says how and why.
 
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
 or a refused sweep file, output folder or cluster (nothing run), or an output folder that cannot
-be written, 3 some job could not get an outcome (crash, kill, timeout, an output not written, its
-checkpoint not read) or runs in another sweep, 130 interrupted (run the same command again to
-finish).
+be written before any job started, 3 some job could not get an outcome (crash, kill, timeout, an
+output not written, its checkpoint not read, a resource the system refused) or runs in another
+sweep, or an error stopped the sweep after its jobs started (the tables or DIR not writable: the
+jobs' outcomes are kept), 130 interrupted (run the same command again to finish).
 """
 
 import argparse
@@ -32,7 +33,7 @@ EXIT_INCOMPLETE = 3
 EXIT_INTERRUPTED = 130
 # Jobs whose outcome is not a result the same run would give again.
 RETRIED_STATUSES = ("crashed", "killed", "timeout", sweep_job.OUTPUT_NOT_WRITTEN,
-                    sweep_job.CHECKPOINT_NOT_READ)
+                    sweep_job.OUT_OF_RESOURCES, sweep_job.CHECKPOINT_NOT_READ)
 
 
 find_cli = sweep_cli.find_cli
@@ -174,8 +175,11 @@ def parser():
                     "distributed; results in DIR/results.csv and DIR/jobs/<id>/.",
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
                "refused sweep file, output folder or cluster (nothing run), 3 some job crashed, "
-               "was killed, timed out, could not write its output or read its checkpoint, or "
-               "runs in another sweep, 130 interrupted (run the same command again to finish)")
+               "was killed, timed out, could not write its output, read its checkpoint or have "
+               "a resource the system refused, or runs in another sweep, or an error (the "
+               "results tables or DIR not writable) stopped the sweep after its jobs started: "
+               "the finished jobs' outcomes are kept, 130 interrupted (run the same command "
+               "again to finish)")
     p.add_argument("sweep", metavar="SWEEP.json")
     p.add_argument("-o", "--output", metavar="DIR", required=True, action=_Once,
                    help="results folder: new, empty, or this sweep file's from an earlier sweep")
@@ -353,6 +357,34 @@ def _run(args, cli, version, data, jobs):
             client.close()
 
 
+def _stopped_by_error(args, e):
+    """The exit code and message of a sweep ended by an error once its jobs had started (the
+    results tables not writable, DIR full, the scheduler gone): the finished jobs' outcomes are
+    in DIR/jobs, the running jobs were stopped (each saved its checkpoint), and the same command
+    finishes the sweep and rewrites the tables. Not the 1 of a sweep refused before it ran."""
+    still = 0
+    if isinstance(e, sweep_dask.JobsStopped):
+        still = e.still_running
+        if not isinstance(e.error, OSError):  # not the machine's: a traceback, as before
+            raise e.error
+        e = e.error
+    hint = ""
+    if e.errno in (errno.EMFILE, errno.ENFILE):
+        hint = (" (the sweep and its cluster need more open files than this process may have: "
+                "raise `ulimit -n`, or run with --shard 0/1)")
+    if still == 0:
+        how = "any job still running was stopped and saved its checkpoint"
+    else:
+        which = "some jobs" if still is None else "{} job{}".format(still, "s" * (still > 1))
+        how = "{} did not stop in time and may still run: their outcomes are kept".format(which)
+    print("shellcontract sweep: stopped after its jobs started: {}{}; the finished jobs' "
+          "outcomes are kept in {}, {}; run the same command again to finish (it rewrites "
+          "results.csv and results.json)".format(_os_error_text(e), hint,
+                                                 os.path.join(args.output, "jobs"), how),
+          file=sys.stderr)
+    return EXIT_INCOMPLETE
+
+
 def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, client):
     sweep_output.claim(args.output, args.sweep, args.inputs, [j.id for j in jobs])
     # Before this sweep writes its own: those of a sweep killed (SIGKILL) while writing a table.
@@ -392,8 +424,13 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
                                                  lock_wait=args.lock_wait))
         elif todo:  # nothing left to run: no cluster to start
             sweep_dask.run_jobs(todo, args, cli, version, token, progress, on_record, client)
+        table = tables.flush()
     except (KeyboardInterrupt, sweep_dask.Interrupted) as e:
-        tables.flush()
+        try:
+            tables.flush()
+        except OSError as error:  # the tables are rewritten by the next sweep
+            print("shellcontract sweep: {}: the results tables could not be rewritten: {}".format(
+                args.output, _os_error_text(error)), file=sys.stderr)
         progress.close()
         still = e.still_running if isinstance(e, sweep_dask.Interrupted) else 0
         if still == 0:
@@ -406,7 +443,9 @@ def _claim_and_run(args, cli, version, jobs, selected, varying, sweep_dir, clien
         print("shellcontract sweep: interrupted; run the same command again to finish the rest "
               "({})".format(how), file=sys.stderr)
         return EXIT_INTERRUPTED
-    table = tables.flush()
+    except (OSError, sweep_dask.JobsStopped) as e:
+        progress.close()
+        return _stopped_by_error(args, e)
     progress.close()
     ids = {j.id for j in selected}
     incomplete = [r for r in table if r["job"] in ids and

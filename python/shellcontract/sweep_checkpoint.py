@@ -87,7 +87,7 @@ def _temporary_pattern(checkpoint):
     return re.compile(r"\A\." + re.escape(hint) + r"\.[A-Za-z0-9]{12}\Z")
 
 
-def _tool_lines(work):
+def tool_lines(work):
     """The tool's error lines in the attempt's messages.txt, as bytes (not a note that names the
     file)."""
     try:
@@ -109,7 +109,7 @@ def checkpoint_error(work, checkpoint):
     its contents (damaged, another run's, its files beside missing or not its own), ("not read",
     line) when the file could not be read, else None (the error is another input's)."""
     named = b"checkpoint " + printable(checkpoint)
-    for line in _tool_lines(work):
+    for line in tool_lines(work):
         at = line.find(named)
         if at < 0 or line[at + len(named):at + len(named) + 1] not in (b":", b" "):
             continue
@@ -123,7 +123,7 @@ def held_by_another_run(work, checkpoint):
     .cpp: "... another shellcontract run is saving to this checkpoint or resuming from it (it holds
     'LOCK')"), or None."""
     held = b"(it holds '" + printable(tool_lock_path(checkpoint), 1000) + b"')"
-    for line in _tool_lines(work):
+    for line in tool_lines(work):
         if b"another shellcontract run is saving to this checkpoint" in line and held in line:
             return line.decode("utf-8", "replace")
     return None

@@ -21,6 +21,17 @@ class Interrupted(Exception):
         self.still_running = still_running
 
 
+class JobsStopped(Exception):
+    """An error other than Ctrl-C ended the running of the jobs (`error`: the results tables
+    could not be written, the scheduler went away); the sweep stopped its jobs first, as for
+    Ctrl-C, and `still_running` (None: unknown) had not ended when it gave up waiting."""
+
+    def __init__(self, error, still_running=0):
+        super().__init__(error, still_running)
+        self.error = error
+        self.still_running = still_running
+
+
 class WorkersUnusable(Exception):
     """An existing cluster's workers that cannot run the jobs (the message says which, why)."""
 
@@ -259,10 +270,28 @@ def _check_workers(client, cli, version, own_cli, message):
         raise WorkersUnusable("; ".join(problems))
 
 
+def _stop_jobs(client, futures, scheduler, token):
+    """Cancels the sweep's tasks and stops its running jobs (SIGTERM: each saves its checkpoint);
+    returns how many still ran when the sweep gave up waiting (None: unknown)."""
+    try:
+        client.cancel(futures)
+    except Exception:  # the scheduler or the connection is gone: the jobs are stopped below
+        pass
+    if scheduler:
+        # A cancelled task that runs goes on in its worker's thread: the workers are asked to
+        # stop this sweep's jobs.
+        return _stop_on_workers(client, token)
+    # The embedded workers are this process's threads: their jobs are told to stop here and
+    # waited for.
+    sweep_job.stop_running(token)
+    return (0 if sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS, token)
+            else sweep_job.active_calls(token))
+
+
 def _stop_on_workers(client, token):
-    """Ctrl-C on an existing cluster: every worker stops this sweep's jobs (SIGTERM: each saves
-    its checkpoint; none starts after), and the sweep waits for them; returns how many still
-    ran when it gave up (None: a worker did not answer)."""
+    """An existing cluster's workers stop this sweep's jobs (SIGTERM: each saves its checkpoint;
+    none starts after), and the sweep waits for them; returns how many still ran when it gave up
+    (None: a worker did not answer)."""
     import time
     deadline = time.monotonic() + sweep_job.STOP_GRACE_SECONDS + 5
     try:
@@ -351,19 +380,15 @@ def run_jobs(todo, args, cli, version, token, progress, on_record, client=None):
                 record = {"job": job.id, "status": "crashed", "exit_code": None,
                           "message": "{}: {}".format(type(e).__name__, e)}
             on_record(job, record)
-    except KeyboardInterrupt:
-        client.cancel(list(futures))
-        if args.scheduler:
-            # A cancelled task that runs goes on in its worker's thread: the workers are asked
-            # to stop this sweep's jobs (SIGTERM: each saves its checkpoint).
-            still = _stop_on_workers(client, token)
-        else:
-            # The embedded workers are this process's threads: their jobs are told to stop here
-            # and waited for.
-            sweep_job.stop_running(token)
-            still = (0 if sweep_job.wait_stopped(sweep_job.STOP_GRACE_SECONDS, token)
-                     else sweep_job.active_calls(token))
-        raise Interrupted(still)
+    except BaseException as e:
+        # Ctrl-C, or any error that ends the sweep here (the results tables unwritable, the
+        # scheduler gone): the jobs are stopped, not left running behind a sweep that has ended.
+        still = _stop_jobs(client, list(futures), args.scheduler, token)
+        if isinstance(e, KeyboardInterrupt):
+            raise Interrupted(still)
+        if not isinstance(e, Exception):
+            raise
+        raise JobsStopped(e, still) from e
     finally:
         if cluster is not None:  # an existing cluster's client is its caller's to close
             try:

@@ -20,23 +20,10 @@ import time
 
 from . import sweep_checkpoint, sweep_host, sweep_lock, sweep_output
 from .sweep_cli import WorkerError, cli_version, describe_worker, find_cli, worker_cli  # noqa: F401
+from .sweep_outcome import (CHECKPOINT_NOT_READ, EXIT_STATUS, FINAL_STATUSES,  # noqa: F401
+                            INTERRUPTED, OUT_OF_RESOURCES, OUTPUT_NOT_WRITTEN, classify,
+                            last_lines)
 
-# Statuses of an outcome the same run would give again: the job is done. The others (a crash,
-# a kill, a timeout) are recorded too but run again by the next sweep of the file.
-FINAL_STATUSES = ("ok", "target not reached", "failed", "new self-intersections", "bad input",
-                  "bad usage")
-EXIT_STATUS = {0: "ok", 1: "bad usage", 2: "bad input", 3: "failed", 4: "new self-intersections",
-               5: "target not reached"}
-# The CLI's exit code after a signal when it has written its checkpoint (ExitCode::Cancelled).
-INTERRUPTED = 130
-# A run that ended but could not write an output into the job's folder (exit 1 with a summary
-# whose `outputs` name the failure: a full disk, a quota, an I/O error). The condition is the
-# machine's, not the job's, so the job is not final: the next sweep runs it again.
-OUTPUT_NOT_WRITTEN = "output not written"
-# The job's checkpoint could not be read (exit 2, the tool naming it with a read error such as
-# EIO or EMFILE, not its contents): the machine's condition too. The checkpoint is kept and the
-# next sweep tries to resume from it again.
-CHECKPOINT_NOT_READ = "checkpoint not read"
 # Another attempt of the job holds its lock (sweep_lock) and runs it: this one neither ran it nor
 # recorded anything. Not an outcome: the job is left, and the attempt that runs it records it.
 RUNNING_ELSEWHERE = "running elsewhere"
@@ -177,39 +164,6 @@ def read_record(out_dir, job_id):
 
 def is_done(record):
     return record is not None and record.get("status") in FINAL_STATUSES
-
-
-def _last_lines(path, n=3):
-    try:
-        with open(path, errors="replace") as f:
-            lines = [line.rstrip() for line in f if line.strip()]
-    except OSError:
-        return ""
-    return " | ".join(lines[-n:])
-
-
-def _classify(rc, timed_out, summary, messages):
-    if timed_out:
-        return "timeout", "stopped after --job-timeout"
-    if rc is not None and rc < 0:
-        sig = -rc
-        if sig == signal.SIGKILL:
-            return "killed", ("killed by SIGKILL (out of memory, or the system's OOM killer); "
-                              + messages).rstrip("; ")
-        name = signal.Signals(sig).name if sig in signal.Signals._value2member_map_ else str(sig)
-        return "crashed", ("crashed ({}); {}".format(name, messages)).rstrip("; ")
-    if rc == INTERRUPTED:
-        return "interrupted", "interrupted (checkpoint written)"
-    status = EXIT_STATUS.get(rc, "crashed")
-    if status == "ok":
-        return status, ""
-    outputs = (summary or {}).get("outputs") or {}
-    failed = ["{}: {}".format(k, v) for k, v in outputs.items() if not str(v).startswith("written")]
-    if rc == 1 and failed:
-        return OUTPUT_NOT_WRITTEN, "the run ended ({}) but {}".format(
-            summary.get("status", "?"), "; ".join(failed))
-    failure = (summary or {}).get("failure") or messages
-    return status, failure
 
 
 def seconds(name, value, zero=True):
@@ -405,8 +359,10 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
             summary = json.load(f)
     except (OSError, ValueError):
         pass
-    status, message = _classify(rc, timed_out, summary,
-                                _last_lines(os.path.join(work, "messages.txt")))
+    tool_lines = [line.decode("utf-8", "replace")
+                  for line in sweep_checkpoint.tool_lines(work)]
+    status, message = classify(rc, timed_out, summary,
+                               last_lines(os.path.join(work, "messages.txt")), tool_lines)
     if error is not None and error[0] == "not read":
         status, message = CHECKPOINT_NOT_READ, (
             "the job's checkpoint could not be read; it is kept, and the next sweep tries to "

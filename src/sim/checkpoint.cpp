@@ -11,6 +11,7 @@
 #include <type_traits>
 
 #include "core/memory_error.hpp"
+#include "core/resource_file_error.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/file_start.hpp"
 #include "shellcontract/error.hpp"
@@ -107,6 +108,12 @@ std::string checkpoint_bytes(const std::string& path) {
     size = regular_file_size(path);
   } catch (const InputError& e) {
     rethrow_input_error_as(e, "checkpoint " + std::string(e.what()));  // errno and path kept
+  } catch (const ResourceFileError& e) {
+    // No descriptor (or kernel memory) to open it: a checkpoint not read, exit code 2 as for a
+    // failing disk, not the 3 of an input mesh. A sweep keeps a checkpoint it could not read and
+    // resumes from it later; it tells such a read from a refusal of the contents by the exit
+    // code 2 and the "cannot open file" of the message (docs/design/sweeps.md, "Jobs").
+    throw InputFileError("checkpoint " + std::string(e.what()), e.error_number(), e.path());
   }
   if (start != MAGIC)
     throw InputError("checkpoint " + printable(path) + ": not a shellcontract checkpoint");
@@ -120,6 +127,8 @@ std::string checkpoint_bytes(const std::string& path) {
     return read_regular_file(path, cap);
   } catch (const InputError& e) {
     rethrow_input_error_as(e, "checkpoint " + std::string(e.what()));
+  } catch (const ResourceFileError& e) {  // as above
+    throw InputFileError("checkpoint " + std::string(e.what()), e.error_number(), e.path());
   } catch (const std::bad_alloc&) {
     throw OutOfMemoryError("checkpoint " + printable(path) + ": out of memory while reading its " +
                            std::to_string(size) + " bytes");

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "core/resource_file_error.hpp"
 #include "mesh/file_safety.hpp"
 #include "mesh/file_start.hpp"
 #include "mesh/output_target.hpp"
@@ -101,6 +102,10 @@ std::string read_beside(const std::string& path, const std::string& file, const 
     bytes = read_regular_file_start(file, size);
   } catch (const InputError& e) {
     rethrow_input_error_as(e, start + e.what() + why);  // errno and path kept
+  } catch (const ResourceFileError& e) {
+    // Not read for want of a descriptor: exit code 2, as the checkpoint itself (checkpoint.cpp's
+    // checkpoint_bytes says why).
+    throw InputFileError(start + e.what() + why, e.error_number(), e.path());
   }
   if (bytes.size() < size)
     throw InputError(start + printable(file) + " holds " + std::to_string(bytes.size()) +

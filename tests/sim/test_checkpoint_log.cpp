@@ -4,10 +4,12 @@
 // FILE.history, so the checkpoint's size grows neither with the log nor with the frames run; a
 // save whose append fails (a full disk, a file size limit) leaves the checkpoint in place and its
 // files beside consistent, and the saves after it recover.
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +20,7 @@
 #include <vector>
 
 #include "shellcontract/error.hpp"
+#include "shellcontract/file_error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "sim/checkpoint.hpp"
@@ -368,6 +371,61 @@ TEST_F(CheckpointLog, ALogRemovedBetweenSavesIsNamedAsRemovedInTheCurrentFolderT
   EXPECT_NE(saver.saves[19].error.find("'c.ckpt.log': it was removed since the last save"),
             std::string::npos)
       << saver.saves[19].error;
+}
+
+/// What `read` threw with no descriptor left to open a file (the soft limit of open files
+/// lowered to the lowest free descriptor, then restored): "InputFileError EMFILE: what()", or
+/// the kind of anything else it threw or returned.
+template <class Read>
+std::string without_descriptors(Read read) {
+  rlimit old{};
+  if (::getrlimit(RLIMIT_NOFILE, &old) != 0) return "getrlimit failed";
+  const int lowest = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
+  if (lowest < 0) return "no descriptor to start with";
+  ::close(lowest);
+  rlimit low = old;
+  low.rlim_cur = static_cast<rlim_t>(lowest);
+  if (::setrlimit(RLIMIT_NOFILE, &low) != 0) return "setrlimit failed";
+  std::string what = "nothing thrown";
+  try {
+    read();
+  } catch (const InputFileError& e) {
+    what = std::string("InputFileError ") + (e.error_number() == EMFILE ? "EMFILE" : "other") +
+           ": " + e.what();
+  } catch (const std::exception& e) {
+    what = std::string("another exception: ") + e.what();
+  }
+  ::setrlimit(RLIMIT_NOFILE, &old);
+  return what;
+}
+
+// A checkpoint, or its log or history beside, that the process has no descriptor to open is a
+// checkpoint not read: an InputFileError (exit code 2, "cannot open file"), which a sweep keeps
+// for the job's next attempt. Before: the reader's ResourceFileError, exit code 3, which a sweep
+// took for the job's final failure, and it removed the checkpoint.
+TEST_F(CheckpointLog, ACheckpointOrAFileBesideWithoutADescriptorToOpenItIsNotRead) {
+  const std::string path = file("c.ckpt");
+  std::ofstream(path) << "SHELLCONTRACT-CHECKPOINT\n";
+  std::ofstream(checkpoint_log_path(path)) << "frame\n";
+  std::ofstream(checkpoint_history_path(path)) << "01234567";
+  const std::string limit = ": cannot open file: Too many open files";
+  const std::string checkpoint = without_descriptors([&] { read_checkpoint(path); });
+  EXPECT_EQ(checkpoint.rfind("InputFileError EMFILE: checkpoint " + path + limit, 0), 0u)
+      << checkpoint;
+  const std::string log = without_descriptors([&] { read_log_beside(path, LogBeside{6, 0}); });
+  EXPECT_EQ(log.rfind("InputFileError EMFILE: checkpoint " + path + ": its log " +
+                          checkpoint_log_path(path) + limit,
+                      0),
+            0u)
+      << log;
+  const std::string history = without_descriptors([&] {
+    read_history_beside(path, LogBeside{1, 0});
+  });
+  EXPECT_EQ(history.rfind("InputFileError EMFILE: checkpoint " + path + ": its volume history " +
+                              checkpoint_history_path(path) + limit,
+                          0),
+            0u)
+      << history;
 }
 
 }  // namespace
