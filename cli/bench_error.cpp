@@ -70,7 +70,8 @@ The reference check reruns each reference with half its step (xpbd) or twice its
 In --csv a check's row has its reference's ms_per_step (it is plotted there; not timed).
 
 exit codes: 0 success, 1 bad usage (also: an unwritable --csv or --plot, gnuplot missing or
-            failing), 2 bad input mesh, 3 a reference run failed (blow-up))";
+            failing), 2 bad input mesh, 3 a reference run failed (blow-up), memory ran out or
+            the system refused a resource, 130 interrupted)";
 
 /// run's bound on --frames (its option table's), for bench error's --frames.
 constexpr long MAX_BENCH_FRAMES = 1000000;

@@ -44,7 +44,8 @@ commands:
   shellcontract --version
 
 exit codes: 0 success, 1 bad usage, 2 bad input (mesh, face list, weights, checkpoint),
-            3 simulation failed (NaN or blow-up) or out of memory, 4 new self-intersections found
+            3 simulation failed (NaN or blow-up), out of memory or a resource the system refused
+            (a thread, an open file), 4 new self-intersections found
             by validation, 5 target volume or stop ratio not reached, 130 interrupted (Ctrl-C,
             SIGTERM, SIGHUP, SIGUSR1)
 )";

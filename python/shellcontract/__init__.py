@@ -206,7 +206,8 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
             options[name] = options.pop(dashed)
     if faces is None or not hasattr(faces, "__len__"):
         raise TypeError("faces must be an array-like of integers, got {}".format(type(faces).__name__))
-    refuse_masked(options.get("region_at"), "region_at")
+    for name in ("region_at", "region-at"):
+        refuse_masked(options.get(name), "region_at")
     if "lambda_" in options:  # `lambda` is a Python keyword: lambda_=0.5 works where lambda=0.5 cannot
         if "lambda" in options:
             raise TypeError("contract() got lambda and lambda_, the same option")
@@ -358,7 +359,8 @@ def regions(vertices, faces, **region_options):
     point taken (contract(region_at=...): a warning in its summary). Other Python threads run
     during the search; Ctrl-C stops it within a fraction of a second (as during contract()'s own
     region search) and raises KeyboardInterrupt."""
-    refuse_masked(region_options.get("region_at"), "region_at")
+    for name in ("region_at", "region-at"):
+        refuse_masked(region_options.get(name), "region_at")
     return _core.regions(vertices, faces, **number_text.region_numbers(region_options))
 
 

@@ -53,8 +53,11 @@ py::array numpy_array(const py::handle& value, const char* what, const char* exp
   try {
     return py::array(py::reinterpret_borrow<py::object>(value));
   } catch (py::error_already_set& e) {
-    if (e.matches(PyExc_MemoryError)) throw;
-    throw py::type_error(std::string(what) + " must be " + expected + " (numpy: " + e.what() + ")");
+    // Memory, and what is no Exception (KeyboardInterrupt, SystemExit), go on as raised.
+    if (e.matches(PyExc_MemoryError) || !e.matches(PyExc_Exception)) throw;
+    throw py::type_error(std::string(what) + " must be " + expected + " (" +
+                         std::string(py::str(e.type().attr("__name__"))) + ": " +
+                         std::string(py::str(e.value())) + ")");
   }
 }
 

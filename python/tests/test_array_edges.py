@@ -39,6 +39,12 @@ def test_masked_arrays_with_a_masked_element_are_refused(ico2, tmp_path):
     weights.mask[3] = True
     with pytest.raises(ValueError, match="region_weights: a masked array with masked elements"):
         shellcontract.contract(vertices, faces, frames=1, region_weights=weights)
+    points = np.ma.masked_array([[0.0, 0.0, 1.0], [9.0, 9.0, 9.0]], mask=[[False] * 3, [True] * 3])
+    for key in ("region_at", "region-at"):
+        with pytest.raises(ValueError, match="region_at: a masked array with masked elements"):
+            shellcontract.contract(vertices, faces, frames=1, **{key: points})
+        with pytest.raises(ValueError, match="region_at: a masked array with masked elements"):
+            shellcontract.regions(vertices, faces, **{key: points})
     # Without a masked element a masked array is its data.
     plain = np.ma.masked_array(vertices)
     assert shellcontract.check(plain, faces)["volume"] == shellcontract.check(vertices, faces)["volume"]

@@ -15,6 +15,7 @@
 #include "core/arena_threads.hpp"
 #include "core/cancellation.hpp"
 #include "core/decimal_text.hpp"
+#include "core/plural.hpp"
 #include "core/progress_stage.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
@@ -283,11 +284,12 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
           mass_scaling_warning(sim.mass_scaling(), mesh.number_of_vertices(), s.dt);
       !note.empty())
     warn(r, obs, note);
-  if (rest.sliver_faces > 0)
+  // math-spec 11: harmless under pbd, whose step does not see the stiffness.
+  if (rest.sliver_faces > 0 && s.solver.kind == SolverKind::Xpbd)
     warn(r, obs,
-         std::to_string(rest.sliver_faces) +
-             " faces have a rest angle below 1 degree (slivers): under the xpbd solver their "
-             "membrane acts stiffer than its material; remeshing them away avoids it");
+         counted(rest.sliver_faces, "face has", "faces have") +
+             " a rest angle below 1 degree (slivers): under the xpbd solver their membrane acts "
+             "stiffer than its material; remeshing them away avoids it");
   // The cotangent weights belong to the isometric bending; the dihedral model does not use them.
   if (rest.clamped_cotangents > 0 && s.bending == BendingModel::Isometric)
     warn(r, obs,

@@ -16,12 +16,16 @@ ConstraintOrder order_for(OrderChoice choice) {
 
 namespace {
 
-/// Under pbd a stiffness changes only the solver's skip floor, 1e-16 x the largest of mu, lambda,
-/// 2 (C10 + C01) and mu_A (src/pbd/solver.cpp), so "no effect" is said of the step: an option
-/// that scales the energies may still move which faces near rest are skipped, and so the result
-/// by small amounts.
+/// Under pbd a stiffness can change only the solver's skip floor, 1e-16 x the stiffness of the
+/// energies in use (src/pbd/solver.cpp: the membrane's, and mu_A's with an aniso energy). mu_A
+/// moves it beside the membrane's, so its "no effect" is said of the step: it may still move
+/// which faces near rest are skipped, and so the result by small amounts. The membrane's own
+/// scale moves the floor with the energy, so nothing, unless an aniso energy's mu_A sets it.
 const char* const PBD_STEP_ONLY =
     "has no effect on the PBD projection's step (only on which faces "
+    "near rest it skips): ";
+const char* const PBD_SCALE =
+    "has no effect on the PBD projection's step (nor, without an `aniso` energy, on which faces "
     "near rest it skips): ";
 
 /// The options that scale the membrane's energy without changing its form: under pbd (math-spec
@@ -37,23 +41,23 @@ void pbd_scale_warnings(const RunOptions& r, std::vector<std::string>& w) {
     // `young`, `thickness` under Mooney-Rivlin are warned about below (its membrane does not
     // read them). With C01 0 the energy is C10 times a fixed form; with both, only C01/C10 acts.
     if (given("c10") && m.c01 == 0.0)
-      w.push_back(std::string("`c10` ") + PBD_STEP_ONLY + scale +
+      w.push_back(std::string("`c10` ") + PBD_SCALE + scale +
                   ", and with `c01` 0 C10 only scales the Mooney-Rivlin energy");
     else if (given("c10") && given("c01"))
       w.push_back("`c10` and `c01` act under `solver` pbd by their ratio C01/C10 alone (here " +
-                  shortest_text(m.c01 / m.c10) + "): their common scale " + PBD_STEP_ONLY + scale);
+                  shortest_text(m.c01 / m.c10) + "): their common scale " + PBD_SCALE + scale);
     return;
   }
   const bool shell_given = given("young") || given("thickness");
   for (const char* field : {"young", "thickness"})
     if (given(field))
-      w.push_back(std::string("`") + field + "` " + PBD_STEP_ONLY +
+      w.push_back(std::string("`") + field + "` " + PBD_SCALE +
                   "the membrane acts by lambda/mu alone, which `poisson` sets (`young` and "
                   "`thickness` set the bending k_B only under `solver` xpbd)");
   // `mu` and `lambda` beside `young` or `thickness` are warned about as set by those.
   if (given("mu") && given("lambda") && !shell_given)
     w.push_back("`mu` and `lambda` act under `solver` pbd by their ratio lambda/mu alone (here " +
-                shortest_text(m.lambda / m.mu) + "): their common scale " + PBD_STEP_ONLY + scale);
+                shortest_text(m.lambda / m.mu) + "): their common scale " + PBD_SCALE + scale);
 }
 
 /// Under xpbd k_B is a stiffness, which the shell material (young, thickness) sets for the

@@ -39,7 +39,7 @@ double largest_distance(const Positions& a, const Positions& b) {
 
 TEST(EnergyFloor, APbdRunIsFreeOfTheMembranesScale) {
   // PBD's step depends on mu and lambda by their ratio only: 1e-12 of each moves as 1 of each, to
-  // rounding (the run moves the vertices by about 1e-3; skipped membranes moved them by 1.5e-3).
+  // rounding (a bound far below the run's motion; a skipped membrane moves them by more than it).
   const Positions unit = result({{"solver", "pbd"}, {"mu", "1"}, {"lambda", "1"}});
   const Positions soft = result({{"solver", "pbd"}, {"mu", "1e-12"}, {"lambda", "1e-12"}});
   EXPECT_LT(largest_distance(unit, soft), 1e-12);
