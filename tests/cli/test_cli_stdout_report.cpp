@@ -88,6 +88,8 @@ TEST_F(CliStdoutReport, CommandsWhoseReportCannotBeWrittenExitOne) {
   }
 }
 
+// A plot is drawn whatever TMPDIR names (a missing folder here). It once fell back from such a
+// TMPDIR to /tmp for its data file; the data is now inside gnuplot's script (no file at all).
 TEST_F(CliStdoutReport, BenchPlotFallsBackFromAMissingTmpdir) {
   if (std::system("command -v gnuplot > /dev/null 2>&1") != 0) {
     if (std::getenv("SHELLCONTRACT_STRICT_TESTS") != nullptr) FAIL() << "gnuplot is not installed";
