@@ -60,8 +60,8 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "contract: %s\n",
                  sc::spell_options(e.what(), sc::OptionSpelling::Cli).c_str());
     return 1;
-  } catch (const std::bad_alloc&) {  // memory ran out (an input larger than memory too)
-    std::fprintf(stderr, "contract: out of memory\n");
+  } catch (const std::bad_alloc& e) {  // memory ran out (an input larger than memory too)
+    std::fprintf(stderr, "contract: out of memory (%s)\n", e.what());
     return 3;
   } catch (const std::exception& e) {  // a resource the system refused: a thread, an open file
     std::fprintf(stderr, "contract: %s\n", e.what());

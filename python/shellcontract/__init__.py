@@ -204,8 +204,8 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
             if name in options:
                 raise TypeError("contract() got {} and {}, the same option".format(name, dashed))
             options[name] = options.pop(dashed)
-    if faces is None or not hasattr(faces, "__len__"):
-        raise TypeError("faces must be an array-like of integers, got {}".format(type(faces).__name__))
+    if faces is None:
+        raise TypeError("faces must be an array-like of integers, got None")
     for name in ("region_at", "region-at"):
         refuse_masked(options.get(name), "region_at")
     if "lambda_" in options:  # `lambda` is a Python keyword: lambda_=0.5 works where lambda=0.5 cannot
@@ -230,7 +230,7 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
     # Face lists (what regions() returns) or one label per face (-1 = none): handed to the
     # library as a temporary face-list file, the format `run --regions FILE` reads, with each
     # region's strength as its "S:" column.
-    lists = _region_lists(regions, len(faces))
+    lists = _region_lists(regions, len(faces) if hasattr(faces, "__len__") else len(np.asarray(faces)))
     if not lists:
         # No region: run as "none", warned as a file that lists none is, but naming the argument
         # (an empty temporary file would be named in the warning instead).
