@@ -402,21 +402,20 @@ Positions PlyDocument::normals(const Positions& x) const {
   Positions sum = Positions::Zero(x.rows(), 3);
   for (std::size_t p = 0; p + 1 < polygon_start_.size(); ++p) {
     const std::size_t b = polygon_start_[p], e = polygon_start_[p + 1];
+    const auto valid = [&](std::size_t c) { return corner_vertex_[c] < vertex_count_; };
+    const auto at = [&](std::size_t c) {
+      return Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[c])));
+    };
+    std::size_t first = b;
+    while (first < e && !valid(first)) ++first;
+    const Vec3 p0 = first < e ? at(first) : Vec3::Zero();
     Vec3 newell = Vec3::Zero();
-    Vec3 p0 = Vec3::Zero();
-    for (std::size_t c = b; c < e; ++c)
-      if (corner_vertex_[c] < vertex_count_) {
-        p0 = Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[c])));
-        break;
-      }
     for (std::size_t c = b; c < e; ++c) {
       const std::size_t next = c + 1 < e ? c + 1 : b;
-      if (corner_vertex_[c] >= vertex_count_ || corner_vertex_[next] >= vertex_count_) continue;
-      newell += (Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[c]))) - p0)
-                    .cross(Vec3(x.row(static_cast<Eigen::Index>(corner_vertex_[next]))) - p0);
+      if (valid(c) && valid(next)) newell += (at(c) - p0).cross(at(next) - p0);
     }
     for (std::size_t c = b; c < e; ++c)
-      if (corner_vertex_[c] < vertex_count_)
+      if (valid(c))
         sum.row(static_cast<Eigen::Index>(group[corner_vertex_[c]])) += newell.transpose();
   }
   Positions n(x.rows(), 3);

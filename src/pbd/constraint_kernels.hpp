@@ -18,9 +18,19 @@ struct ProjectionContext {
   double* x = nullptr;         ///< positions, 3 doubles per vertex (row-major #V by 3)
   const double* w = nullptr;   ///< inverse masses, one per vertex (0 = pinned)
   double alpha_tilde = 0.0;    ///< XPBD compliance / dt^2 (alpha = 1, math-spec 9.2)
-  double energy_floor = 0.0;   ///< skip when E <= energy_floor * Abar (1e-16 mu, math-spec 9.1d)
+  double energy_floor = 0.0;   ///< skip when E <= energy_floor * Abar (skip_energy_floor)
   double orientation = 1.0;    ///< s of math-spec 4.2 (+1 default)
 };
+
+/// The skip floor of math-spec 9.1(d), 1e-16 times the stiffness of the energies in use alone:
+/// a parameter the run warns has no effect (--c10 under StVK, --mu-a without --aniso) must not
+/// move the floor, and so the result.
+inline double skip_energy_floor(MaterialKind material, AnisoKind aniso, const MaterialParams& p) {
+  double scale =
+      material == MaterialKind::MooneyRivlin ? 2.0 * (p.c10 + p.c01) : std::max(p.mu, p.lambda);
+  if (aniso != AnisoKind::None) scale = std::max(scale, p.mu_aniso);
+  return 1e-16 * scale;
+}
 
 /// Building blocks of the inline projection kernels below (vertex access, scaled updates, the
 /// energy gradient of any material): in this header because the kernels are inline for speed.

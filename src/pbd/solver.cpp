@@ -43,9 +43,6 @@ using solver_energies::add_face_energies;
 using solver_energies::membrane_energy;
 using namespace sweep;  // NOLINT(google-build-using-namespace): the sweep's phase kinds
 
-/// Skip threshold of math-spec 9.1(d): E <= 1e-16 mu Abar.
-constexpr double ENERGY_FLOOR_RELATIVE = 1e-16;
-
 using aniso_frames::row;
 
 /// The solver for one concrete membrane material M and anisotropic energy A: the template makes
@@ -53,14 +50,14 @@ using aniso_frames::row;
 template <class M, class A>
 class GaussSeidelSolver final : public ConstraintSolver {
  public:
-  GaussSeidelSolver(M material, A aniso, double energy_scale, ConstraintSet set,
+  GaussSeidelSolver(M material, A aniso, double energy_floor, ConstraintSet set,
                     const SolverSettings& settings, Faces faces)
       : material_(std::move(material)),
         aniso_(std::move(aniso)),
         set_(std::move(set)),
         settings_(settings),
         faces_(std::move(faces)),
-        energy_floor_(ENERGY_FLOOR_RELATIVE * energy_scale) {
+        energy_floor_(energy_floor) {
     set_.anisotropic_k_a.resize(set_.anisotropic.size(), 0.0);
     coloured_ = settings_.order == ConstraintOrder::Coloured;
     if (coloured_) {
@@ -484,17 +481,13 @@ std::unique_ptr<ConstraintSolver> make_constraint_solver(MaterialKind material,
                                                          const SolverSettings& settings,
                                                          const Faces& faces) {
   if (settings.threads < 0) throw std::invalid_argument("solver threads must be >= 0");
-  // The skip floor's scale from the energies in use alone: a parameter the run warns has no
-  // effect (--c10 under StVK, --mu-a without --aniso) must not move the floor, and so the result.
-  double energy_scale = material == MaterialKind::MooneyRivlin ? 2.0 * (params.c10 + params.c01)
-                                                               : std::max(params.mu, params.lambda);
-  if (settings.aniso != AnisoKind::None) energy_scale = std::max(energy_scale, params.mu_aniso);
+  const double energy_floor = skip_energy_floor(material, settings.aniso, params);
   if (settings.aniso == AnisoKind::None) constraints.anisotropic.clear();
   return with_material(material, params, [&](const auto& m) -> std::unique_ptr<ConstraintSolver> {
     return with_aniso(settings.aniso, params, [&](const auto& a) -> std::unique_ptr<ConstraintSolver> {
       using M = std::decay_t<decltype(m)>;
       using A = std::decay_t<decltype(a)>;
-      return std::make_unique<GaussSeidelSolver<M, A>>(m, a, energy_scale, std::move(constraints),
+      return std::make_unique<GaussSeidelSolver<M, A>>(m, a, energy_floor, std::move(constraints),
                                                        settings, faces);
     });
   });

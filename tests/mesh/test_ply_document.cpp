@@ -334,6 +334,17 @@ TEST(PlyDocument, CopiesWithOneNormalStaySmooth) {
   }
 }
 
+/// Vertex i's normal at positions y: the normalized sum of its faces' edge-vector cross products.
+Eigen::Vector3d tet_vertex_normal(const Positions& y, int i) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  for (const auto& f : TET_FACES)
+    if (f[0] == i || f[1] == i || f[2] == i) {
+      const Eigen::Vector3d a = y.row(f[0]), b = y.row(f[1]), c = y.row(f[2]);
+      sum += (b - a).cross(c - a);
+    }
+  return sum.normalized();
+}
+
 TEST(PlyDocument, NormalsAreThoseOfTheNewShape) {
   // A tetrahedron whose nx, ny, nz (double, between y and z and after a colour, so that the
   // slots are not contiguous) all say +z: the output's are each vertex's normalized sum of its
@@ -355,13 +366,7 @@ TEST(PlyDocument, NormalsAreThoseOfTheNewShape) {
   const std::vector<std::string> t = tokens(body);
   ASSERT_EQ(t.size(), 4u * 7u + 4u * 4u);
   for (int i = 0; i < 4; ++i) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const auto& f : TET_FACES)
-      if (f[0] == i || f[1] == i || f[2] == i) {
-        const Eigen::Vector3d a = y.row(f[0]), b = y.row(f[1]), c = y.row(f[2]);
-        sum += (b - a).cross(c - a);
-      }
-    const Eigen::Vector3d want = sum.normalized();
+    const Eigen::Vector3d want = tet_vertex_normal(y, i);
     const std::size_t at = 7 * static_cast<std::size_t>(i);
     const Eigen::Vector3d got(std::stod(t[at + 2]), std::stod(t[at + 5]), std::stod(t[at + 6]));
     EXPECT_NEAR((got - want).norm(), 0.0, 1e-12) << "vertex " << i;
@@ -388,15 +393,9 @@ TEST(PlyDocument, NormalsOfAResultFarFromTheOriginAreThoseOfItsShape) {
       parse_ply_document("far.ply", o.str())->text(y).substr(o.str().find("end_header\n") + 11));
   ASSERT_EQ(t.size(), 4u * 6u + 4u * 4u);
   for (int i = 0; i < 4; ++i) {
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    for (const auto& f : TET_FACES)
-      if (f[0] == i || f[1] == i || f[2] == i) {
-        const Eigen::Vector3d a = y.row(f[0]), b = y.row(f[1]), c = y.row(f[2]);
-        sum += (b - a).cross(c - a);
-      }
     const std::size_t at = 6 * static_cast<std::size_t>(i);
     const Eigen::Vector3d got(std::stod(t[at + 3]), std::stod(t[at + 4]), std::stod(t[at + 5]));
-    EXPECT_NEAR((got - sum.normalized()).norm(), 0.0, 1e-12) << "vertex " << i;
+    EXPECT_NEAR((got - tet_vertex_normal(y, i)).norm(), 0.0, 1e-12) << "vertex " << i;
   }
 }
 
