@@ -1,0 +1,66 @@
+"""A review's finding (keyframes F3): the reason a run ended short of its target names
+timeline frames and the panel's field, not the library's simulation frames and steps."""
+
+import types
+
+import bpy
+
+from addon_helpers import check
+
+
+def _ico(name, subdivisions=2):
+    bpy.ops.mesh.primitive_ico_sphere_add(subdivisions=subdivisions, radius=1.0)
+    obj = bpy.context.active_object
+    obj.name = name
+    return obj
+
+
+def failure_frames():
+    """A run that ends short of its target: the report's reason in timeline frames."""
+    from shellcontract_blender import operator as op
+    from shellcontract_blender import runner
+    scene = bpy.context.scene
+    old_start = scene.frame_start
+    scene.frame_start = 10
+    obj = _ico("Short")
+    s = obj.shellcontract
+    s.frames, s.target_volume = 5, 0.3  # the ramp to 0.3 does not end within 5 frames
+    reports = []
+    stub = types.SimpleNamespace(report=lambda level, text: reports.append(text))
+    obj_, job = op.OBJECT_OT_shellcontract_contract._prepare(stub, bpy.context)
+    job.run()
+    outcome = op.OBJECT_OT_shellcontract_contract._finish(stub, bpy.context, obj_, job)
+    scene.frame_start = old_start
+    failure = job.result.summary["failure"]
+    report = reports[-1] if reports else ""
+    check(outcome == {"FINISHED"} and "(frame 5)" in failure
+          and "Target volume 0.3000 not reached: the frames ran out" in report
+          and "(frame 15)" in report and "(frame 5)" not in report,
+          "a run short of its target reports the timeline frame: {!r} (the library's: {!r})".format(
+              report, failure))
+    bpy.data.objects.remove(obj)
+    # The library's other texts of a run that ended early (src/sim/run.cpp, simulator.cpp):
+    # a frame is start + n, a step n the frame it makes.
+    for library, addon in (
+            ("target volume 0.0010 not reached: the volume stalled at V/V0 0.0168 (less than "
+             "0.0001 change over 30 frames) at frame 149; V/V0 ended 0.0158 above it",
+             "Target volume 0.0010 not reached: the volume stalled at V/V0 0.0168 (less than "
+             "0.0001 change over 30 frames) at frame 159; V/V0 ended 0.0158 above it"),
+            ("3 new self-intersecting face pairs at frame 7",
+             "3 new self-intersecting face pairs at frame 17"),
+            ("3 new self-intersecting face pairs at the end",
+             "3 new self-intersecting face pairs at the end"),
+            ("blow-up at step 9: a vertex moved more than the whole mesh (bounding-box diagonal) "
+             "in one step", "blow-up at the step to frame 19: a vertex moved more than the whole "
+             "mesh (bounding-box diagonal) in one step"),
+            ("non-finite positions at step 1", "non-finite positions at the step to frame 11"),
+            ("out of memory checking step 3 (1280 faces): a coarser mesh",
+             "out of memory checking the step to frame 13 (1280 faces): a coarser mesh"),
+            ("out of memory after step 4 (in an observer) (1280 faces)",
+             "out of memory after the step to frame 14 (in an observer) (1280 faces)")):
+        got = runner.addon_terms(library, 10)
+        check(got == addon, "the library's {!r} in the panel's terms: {!r}".format(library, got))
+
+
+def third_review(shellcontract):
+    failure_frames()
