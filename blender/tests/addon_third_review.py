@@ -1,5 +1,8 @@
-"""A review's finding (keyframes F3): the reason a run ended short of its target names
-timeline frames and the panel's field, not the library's simulation frames and steps."""
+"""Reviews' findings (keyframes F3 and F5): the reason a run ended short of its target names
+timeline frames and the panel's field, not the library's simulation frames and steps; Target
+volume keys that all come after the run's last frame are passed as keys (the run ends part way
+along the library's curve from 1, as the CLI's with the same keys), not pulled onto the last
+frame."""
 
 import types
 
@@ -62,5 +65,52 @@ def failure_frames():
         check(got == addon, "the library's {!r} in the panel's terms: {!r}".format(library, got))
 
 
+def _key_target(obj, points, interpolation=None):
+    """Target volume keys (timeline frame, value); returns the F-curve."""
+    obj.animation_data_clear()
+    for frame, value in points:
+        obj.shellcontract.target_volume = value
+        obj.keyframe_insert("shellcontract.target_volume", frame=frame)
+    fc = obj.animation_data.action.fcurves.find("shellcontract.target_volume")
+    if interpolation:
+        for kp in fc.keyframe_points:
+            kp.interpolation = interpolation
+    return fc
+
+
+def late_keys(shellcontract):
+    """Target volume keys all after the last frame: passed as keys, the run ends part way along
+    the library's curve from 1 (half way to a key at twice the frames: the smoothstep's 0.8 for
+    0.6), with the same V/V0 as the module given the same keys, and the warning says so."""
+    from shellcontract_blender import operator as op
+    start = bpy.context.scene.frame_start
+    obj = _ico("Late", 1)
+    s = obj.shellcontract
+    s.frames, s.frame_step = 20, 10
+    _key_target(obj, [(start + 40, 0.6)])
+    option = op.run_options(bpy.context, obj)["target_volume"]
+    check(option == "40:0.6", "one key after the last frame is passed as a key: " + option)
+    check(bpy.ops.object.shellcontract_contract() == {"FINISHED"}, "it runs: " + s.status)
+    vertices, faces, _ = op.mesh_arrays(obj)
+    module = shellcontract.contract(vertices, faces, frames=20, target_volume="40:0.6",
+                                    thickness=float(op.runner.float32_text(s.thickness)))
+    ratio = obj["shellcontract_final_volume_ratio"]
+    check(abs(ratio - 0.8) <= 0.005
+          and abs(ratio - module.summary["final_volume_ratio"]) <= 1e-9
+          and "the key at frame {} comes after the run's last frame {}; the run ends on the way "
+              "to it, at 0.8".format(start + 40, start + 20) in s.status,
+          "the run ends on the way to the key, as the module's with the keys ({:.4f}): {}".format(
+              module.summary["final_volume_ratio"], s.status))
+    # Two late keys, Bezier or linear (the curve between them is after the run either way).
+    for interpolation in (None, "LINEAR"):
+        _key_target(obj, [(start + 30, 0.8), (start + 40, 0.6)], interpolation)
+        option = op.run_options(bpy.context, obj)["target_volume"]
+        check(option == "30:0.8, 40:0.6",
+              "two keys after the last frame ({}) are passed as keys: {}".format(
+                  interpolation or "BEZIER", option))
+    bpy.data.objects.remove(obj)
+
+
 def third_review(shellcontract):
     failure_frames()
+    late_keys(shellcontract)
