@@ -25,9 +25,10 @@ refuses the run, and where the run goes ahead over the object's keys the V/V0 th
 shows is the reported one; a second review's cases (addon_second_review.py: a shared shape-key
 action, n-gons, a user's key named like the add-on's, the mass-scaling warning, a scale of 0,
 the messages' details, progress lines); a third (addon_third_review.py: a run short of its
-target reports timeline frames, Target volume keys all after the last frame are passed as keys);
-and the CLI's .glb imports (the numpy.bool shim) with its keys from frame 0. Ctrl-C under
-blender -b is run_addon_test.py's, in a Blender of its own."""
+target reports timeline frames, Target volume keys all after the last frame are passed as keys,
+a rotated object with a non-uniform scale runs as with its scale applied); and the CLI's .glb
+imports (the numpy.bool shim) with its keys from frame 0. Ctrl-C under blender -b is
+run_addon_test.py's, in a Blender of its own."""
 
 import argparse
 import os

@@ -1,14 +1,17 @@
-"""Reviews' findings (keyframes F3 and F5): the reason a run ended short of its target names
-timeline frames and the panel's field, not the library's simulation frames and steps; Target
-volume keys that all come after the run's last frame are passed as keys (the run ends part way
-along the library's curve from 1, as the CLI's with the same keys), not pulled onto the last
-frame."""
+"""Three reviews' findings (keyframes F3 and F5, drift F1): the reason a run ended short of its
+target names timeline frames and the panel's field, not the library's simulation frames and
+steps; Target volume keys that all come after the run's last frame are passed as keys (the run
+ends part way along the library's curve from 1, as the CLI's with the same keys), not pulled onto
+the last frame; and a rotated object with a non-uniform scale is run on its scale alone (the
+polar decomposition's stretch), so that its result is that of the mesh with its scale applied."""
 
+import math
 import types
 
 import bpy
+import numpy as np
 
-from addon_helpers import check
+from addon_helpers import check, key_positions
 
 
 def _ico(name, subdivisions=2):
@@ -111,6 +114,78 @@ def late_keys(shellcontract):
     bpy.data.objects.remove(obj)
 
 
+def _box(name):
+    """A cube of side 2, 7 cuts per edge, triangulated (its triangles do not depend on a scale
+    applied later)."""
+    bpy.ops.mesh.primitive_cube_add(size=2.0)
+    obj = bpy.context.active_object
+    obj.name = name
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="SELECT")
+    bpy.ops.mesh.subdivide(number_cuts=7)
+    bpy.ops.mesh.quads_convert_to_tris()
+    bpy.ops.object.mode_set(mode="OBJECT")
+    return obj
+
+
+def rotated_scale():
+    """A box scaled (3, 1, 1) and turned 45 degrees about z, unapplied, deflates as the same box
+    with its scale applied (and the rotation kept): the world positions of the last key agree to
+    float32's rounding. Run in world orientation, the box's diagonal is 24 % longer and they
+    differ by a fraction of a percent of it."""
+    shown = []
+    for apply in (False, True):
+        obj = _box("Turned" + str(apply))
+        obj.scale = (3.0, 1.0, 1.0)
+        obj.rotation_euler = (0.0, 0.0, math.radians(45.0))
+        bpy.context.view_layer.update()
+        if apply:
+            bpy.ops.object.transform_apply(location=False, rotation=False, scale=True)
+        obj.shellcontract.frames, obj.shellcontract.target_volume = 10, 0.6
+        check(bpy.ops.object.shellcontract_contract() == {"FINISHED"},
+              "the turned box runs (scale applied: {}): {}".format(
+                  apply, obj.shellcontract.status))
+        last = key_positions(obj.data.shape_keys.key_blocks[-1])
+        shown.append(last @ np.array(obj.matrix_world)[:3, :3].T)
+        bpy.data.objects.remove(obj)
+    diagonal = np.linalg.norm(shown[1].max(axis=0) - shown[1].min(axis=0))
+    apart = np.abs(shown[0] - shown[1]).max()
+    check(apart <= 1e-5 * diagonal,
+          "a turned box with an unapplied scale runs as with the scale applied: {:.3g} apart "
+          "(diagonal {:.3f})".format(apart, diagonal))
+
+
+def stretch_of_a_transform():
+    """The run's space is P = sqrt(L^T L): symmetric, positive definite (a mirror too), the
+    object's scale alone under its rotation, and L P^-1 a rotation or mirror (P times the mesh is
+    the shape shown, turned), a parent's shear included."""
+    from shellcontract_blender import placement
+    obj = _ico("Stretched", 1)
+    obj.scale = (3.0, 1.0, -2.0)
+    obj.rotation_euler = (math.radians(30.0), 0.0, math.radians(45.0))
+    bpy.context.view_layer.update()
+    space = placement.run_space(obj)
+    check(np.allclose(space, np.diag([3.0, 1.0, 2.0]), atol=1e-6),
+          "a rotated, mirrored scale (3, 1, -2) runs on its sizes: {}".format(space.tolist()))
+    bpy.ops.object.empty_add()
+    parent = bpy.context.active_object
+    parent.scale = (1.0, 2.5, 1.0)
+    parent.rotation_euler = (0.0, math.radians(20.0), 0.0)
+    obj.parent = parent
+    bpy.context.view_layer.update()
+    lin = np.array(obj.matrix_world)[:3, :3]
+    space = placement.run_space(obj)
+    turn = lin @ np.linalg.inv(space)
+    check(np.allclose(space, space.T, atol=1e-9) and np.all(np.linalg.eigvalsh(space) > 0.0)
+          and np.allclose(turn.T @ turn, np.eye(3), atol=1e-5),
+          "under a parent's shear the run's space is symmetric positive definite, the shape "
+          "shown turned: {}".format(space.tolist()))
+    bpy.data.objects.remove(obj)
+    bpy.data.objects.remove(parent)
+
+
 def third_review(shellcontract):
     failure_frames()
     late_keys(shellcontract)
+    rotated_scale()
+    stretch_of_a_transform()
