@@ -87,9 +87,14 @@ def target_volume_option(fc, start, frames, warnings):
     through them (another interpolation, moved handles, easing, modifiers), the run is given the
     F-curve's value at every simulation frame from the first key on (before it, the run goes
     there from the rest volume, as with keys), checked as the curve; a key after the last frame
-    then adds its warning to `warnings`."""
+    then adds its warning to `warnings`. Where every key comes after the last frame, the whole
+    run is before the first key, on the way there from the rest volume: the run is given the
+    keys, as the CLI would be, and the library's curve from 1 ends part way, with its warning
+    (sampled, the curve is the first key's value held before it: the run went all the way)."""
     text = runner.target_volume_schedule(keys_of(fc), start)
     pairs = runner.schedule_keys(keys_of(fc), start, "Target volume")
+    if pairs[0][0] > frames:
+        return text
     samples = sampled(fc, start, min(pairs[0][0], frames), frames)
     if _follows(fc, ([(0, 1.0)] if pairs[0][0] > 0 else []) + pairs, samples):
         return text

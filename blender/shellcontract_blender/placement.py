@@ -42,11 +42,15 @@ def run_space(obj):
     mesh's own. The object's transform (with its parents') applies a linear map L to the mesh;
     where L is not a rotation times a uniform scale, the shape shown is the mesh stretched, and
     a run in mesh coordinates deflates the unstretched shape (a sphere scaled (1, 1, 3) would sink
-    3 times as far along z as the sphere with its scale applied). So the run is made on L times
-    the mesh, its result mapped back with L's inverse: the shape shown is then that of the run
-    with the scale applied. A mirroring L (negative determinant) gets a mirror after it, so that
-    the run's mesh keeps its faces' orientation. A rotation times a uniform scale changes nothing
-    (the run is the same, rotated and scaled), so the mesh's coordinates are kept as they were."""
+    3 times as far along z as the sphere with its scale applied). So the run is made on the
+    stretch of L's polar decomposition, L = U P with U a rotation (or a mirror) and
+    P = sqrt(L^T L) symmetric positive definite: P times the mesh is the shape shown up to U, in
+    the object's own axes, and for an object's rotation R and scale S (L = R S) it is S, Blender's
+    Apply Scale. Not L itself: the library normalizes by the axis-aligned bounding box, so a
+    rotated copy of a mesh (L's rotation) has another diagonal and another result. The result is
+    mapped back with P's inverse. P keeps the faces' orientation (its determinant is positive),
+    a mirroring L included. A rotation times a uniform scale changes nothing (the run is the
+    same, scaled), so the mesh's coordinates are kept as they were."""
     lin = np.array(obj.matrix_world, dtype=np.float64)[:3, :3]
     gram = lin.T @ lin
     mean = np.trace(gram) / 3.0
@@ -57,12 +61,10 @@ def run_space(obj):
         raise flat
     if np.max(np.abs(gram - mean * np.eye(3))) <= 1e-6 * mean:
         return None
-    det = np.linalg.det(lin)
-    if abs(det) <= 1e-9 * mean ** 1.5:
+    if abs(np.linalg.det(lin)) <= 1e-9 * mean ** 1.5:
         raise flat
-    if det < 0.0:
-        lin = np.diag([-1.0, 1.0, 1.0]) @ lin
-    return lin
+    squares, axes = np.linalg.eigh(gram)  # gram = axes diag(squares) axes^T, squares > 0 here
+    return (axes * np.sqrt(np.maximum(squares, 0.0))) @ axes.T
 
 
 def to_run(space, vertices):

@@ -164,9 +164,27 @@ _KEY_AFTER_END = re.compile(
     r"the schedule's value there, (\S+)$")
 
 
+# The library's messages of a run that failed or fell short name simulation frames, and steps
+# (step n makes frame n from frame n - 1): "the volume stalled ... at frame 149", "the frames ran
+# out at V/V0 0.9 (frame 5)", "new self-intersecting face pairs at frame 7", "blow-up at step 9",
+# "out of memory checking step 3". The panel's frames are timeline frames, start + n.
+_RUN_FRAME = re.compile(r"(\bat frame|\(frame) (\d+)\b")
+_RUN_STEP = re.compile(r"\b(at|checking|after) step (\d+)\b")
+# A target the run fell short of: "target volume 0.3000 not reached: ...", the field's name.
+_TARGET_NOT_REACHED = re.compile(r"^target volume (?=\S+ not reached\b)")
+
+
+def run_frames(text, start):
+    """A library message's simulation frames and steps as timeline frames (start + n)."""
+    text = _RUN_FRAME.sub(lambda m: "{} {}".format(m.group(1), start + int(m.group(2))), text)
+    return _RUN_STEP.sub(
+        lambda m: "{} the step to frame {}".format(m.group(1), start + int(m.group(2))), text)
+
+
 def addon_terms(message, start, mesh_name="", polygon_of=None, triangles=None, positions=None):
-    """A message of the library (an error or a warning) in the add-on's terms: the panel's
-    field names, timeline frames (scene start + simulation frame), rounded values; a mesh
+    """A message of the library (an error, a warning, or the failure of a run that ended early
+    or short of its target) in the add-on's terms: the panel's field names, timeline frames
+    (scene start + simulation frame, and a step as the frame it makes), rounded values; a mesh
     problem names the object's mesh, not 'input arrays', and its face numbers are the mesh's
     faces (polygons, as the Spreadsheet numbers them), not the loop triangles the run was given
     (polygon_of[t]: the polygon of triangle t), and so are its counts of faces where the text
@@ -196,6 +214,7 @@ def addon_terms(message, start, mesh_name="", polygon_of=None, triangles=None, p
         if polygon_of is not None:
             # Warnings (text only) and errors without a face list: the numbers in the text.
             text = polygon_numbers(text, polygon_of, triangles, positions)
+    text = _TARGET_NOT_REACHED.sub("Target volume ", run_frames(text, start))
     # A message that begins with an option's name, and the underscore names anywhere.
     head = re.match(r"^(\w+)(:| has no effect)", text)
     if head and head.group(1) in FIELD_NAMES:

@@ -4,7 +4,7 @@ ARGS: --addon-dir DIR (the folder holding shellcontract_blender), --glb FILE (a 
 to import). The shellcontract module comes from SHELLCONTRACT_PYTHONPATH (the add-on's own
 lookup). Any failed check raises, and Blender exits with 1. The checks are in the modules
 beside this script (addon_helpers, addon_docs, addon_runs, addon_settings, addon_shape_keys,
-addon_messages, addon_review, addon_second_review);
+addon_messages, addon_review, addon_second_review, addon_third_review);
 this one enables the add-on and runs them in order, the later ones on the objects the earlier
 ones left.
 
@@ -24,8 +24,11 @@ not 12 triangles; a shape key of the object's that is on (or keyed on, driven, p
 refuses the run, and where the run goes ahead over the object's keys the V/V0 the evaluated mesh
 shows is the reported one; a second review's cases (addon_second_review.py: a shared shape-key
 action, n-gons, a user's key named like the add-on's, the mass-scaling warning, a scale of 0,
-the messages' details, progress lines); and the CLI's .glb imports (the numpy.bool shim) with its
-keys from frame 0. Ctrl-C under blender -b is run_addon_test.py's, in a Blender of its own."""
+the messages' details, progress lines); a third (addon_third_review.py: a run short of its
+target reports timeline frames, Target volume keys all after the last frame are passed as keys,
+a rotated object with a non-uniform scale runs as with its scale applied); and the CLI's .glb
+imports (the numpy.bool shim) with its keys from frame 0. Ctrl-C under blender -b is
+run_addon_test.py's, in a Blender of its own."""
 
 import argparse
 import os
@@ -45,6 +48,7 @@ from addon_runs import (contract_sphere, edited_during_run, glb_import, glb_regi
 from addon_settings import muted_keys, pressure_combinations, target_volume_messages  # noqa: E402
 from addon_review import review  # noqa: E402
 from addon_second_review import second_review  # noqa: E402
+from addon_third_review import third_review  # noqa: E402
 from addon_shape_keys import shape_keys  # noqa: E402
 
 
@@ -81,6 +85,7 @@ def main():
     mesh_messages()
     review()
     second_review()
+    third_review(shellcontract)
     if a.glb:
         glb_import(a.glb)
     if a.regions_glb:
