@@ -29,6 +29,7 @@
 #include "core/decimal_text.hpp"
 #include "core/list_text.hpp"
 #include "mesh/file_safety.hpp"
+#include "mesh/formats.hpp"
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
@@ -210,8 +211,10 @@ int command_bench_error(int argc, char** argv) {
     if (opt.xpbd_reference_iterations < 1 || opt.xpbd_reference_substeps < 1 || opt.pbd_reference_iterations < 1)
       throw UsageError("reference iterations and substeps must be >= 1");
     if (!plot.empty()) {
-      const auto ext = std::filesystem::path(plot).extension();
-      if (ext != ".png" && ext != ".svg") throw UsageError("--plot: expected a .png or .svg file, got '" + plot + "'");
+      // Any case, as the mesh formats' extensions: gnuplot's terminal comes from it, not the name.
+      const std::string ext = lower_extension(plot);
+      if (ext != "png" && ext != "svg")
+        throw UsageError("--plot: expected a .png or .svg file, got '" + plot + "'");
       // Checked before the (long) runs, not after.
       if (!bench::gnuplot_available())
         throw UsageError(
@@ -281,7 +284,7 @@ int command_bench_error(int argc, char** argv) {
     if (!plot.empty()) {
       const std::string title = std::filesystem::path(input).filename().string() + ": " +
                                 std::to_string(res.frames) + " steps, dt " + bench::fmt(res.dt);
-      const bool svg = std::filesystem::path(plot).extension() == ".svg";
+      const bool svg = lower_extension(plot) == "svg";
       const std::string script = bench::gnuplot_script(text, svg, title, res);
       // Through a temporary beside the plot, renamed over it once gnuplot has drawn it whole:
       // a gnuplot that fails (or Ctrl-C) leaves the previous plot as it was.

@@ -175,7 +175,9 @@ int command_check(int argc, char** argv) {
     };
     print_warnings(input, report);
     const Positions x = positions_from_mesh(mesh);
-    const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
+    // stableNorm: the squares of extents near 1e+-160 and beyond leave double's range, and
+    // check reports on any mesh it can read, however far its scale is from the engine's.
+    const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).stableNorm();
     const std::vector<FacePair> pairs = self_intersecting_pairs(mesh, x);
     const long long chi = static_cast<long long>(mesh.number_of_vertices()) -
                           static_cast<long long>(mesh.number_of_edges()) +

@@ -21,7 +21,8 @@
 
 namespace shellcontract::cli {
 
-void check_result_format(const std::string& input, const std::string& output, bool frames_dir) {
+void check_result_format(const std::string& input, const std::string& output, bool frames_dir,
+                         bool gltf_option) {
   // An existing -o that is no regular file (/dev/null, a FIFO, a folder) is refused for what it
   // is, with check_planned_outputs' words, before its name is read: /dev/null has no extension,
   // and "no file extension" would send the user looking in the wrong place.
@@ -43,9 +44,10 @@ void check_result_format(const std::string& input, const std::string& output, bo
   // A glTF result is the input glTF with new positions (its document): there is no glTF writer
   // of a bare mesh, and frames would be one whole file each (--gltf animates the run instead).
   if (gltf_output && lower_extension(input) != ext)
-    throw UsageError(
-        "-o " + quoted_path(output) + ": a ." + ext + " result is written only for a ." + ext +
-        " input (the input with new positions); for a glTF of the run, use --gltf FILE.glb");
+    throw UsageError("-o " + quoted_path(output) + ": a ." + ext +
+                     " result is written only for a ." + ext +
+                     " input (the input with new positions)" +
+                     (gltf_option ? "; for a glTF of the run, use --gltf FILE.glb" : ""));
   if (gltf_output && frames_dir)
     throw UsageError("--export-dir: frames are not written as ." + ext +
                      " files; use --gltf FILE.glb for the frames");

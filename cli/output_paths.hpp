@@ -35,8 +35,10 @@ struct OutputPlan {
 
 /// The result's format, from -o's extension: .off, .obj, .ply or .stl for any input; .glb or
 /// .gltf only for an input of that format, and then without frames (`frames_dir`: --export-dir).
+/// `gltf_option`: the command has --gltf (run), which the refusal of a glTF -o then suggests.
 /// @throws UsageError naming -o (or --export-dir) and what is expected (exit code 1)
-void check_result_format(const std::string& input, const std::string& output, bool frames_dir);
+void check_result_format(const std::string& input, const std::string& output, bool frames_dir,
+                         bool gltf_option);
 
 /// check_output_files (the library's, shared with Python) and the export folder's frames: no
 /// frame name may be an input or an output, and the folder (or the nearest existing parent that

@@ -67,7 +67,7 @@ int command_reconstruct(int argc, char** argv) {
     check_reconstruction_options(options, "--");
     // -o's format from its name, as run, repair and regions check theirs: before the points are
     // read and reconstructed (minutes on a large cloud), not after.
-    check_result_format(input, output, false);
+    check_result_format(input, output, false, false);
     OutputPlan plan;
     plan.inputs.push_back({"INPUT", input});
     plan.outputs.push_back({"-o", output});

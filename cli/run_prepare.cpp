@@ -107,7 +107,7 @@ void plan_checkpoints(const po::variables_map& vm, RunRequest& q) {
 
 /// Every file the run writes (its frame files aside), after -o's format is checked.
 void list_outputs(const RunRequest& q, OutputPlan& plan) {
-  check_result_format(q.input, q.output, !q.exports.dir.empty());
+  check_result_format(q.input, q.output, !q.exports.dir.empty(), true);
   std::vector<PlannedOutput>& planned = plan.outputs;
   planned.push_back({"-o", q.output});
   if (!q.log_path.empty()) planned.push_back({"--log", q.log_path});

@@ -12,8 +12,8 @@ docs/design/sweeps.md says how and why.
 Exit codes: 0 every job ran (whatever its outcome: see the results' status column), 1 bad usage,
 or a refused sweep file, output folder or cluster (nothing run), or an output folder that cannot
 be written before any job started, 3 some job could not get an outcome (crash, kill, timeout, an
-output not written, its checkpoint not read, a resource the system refused) or runs in another
-sweep, or an error stopped the sweep after its jobs started (the tables or DIR not writable: the
+output not written, its checkpoint not read, a resource the system refused; also memory or open
+files short while the meshes are checked: nothing run) or runs in another sweep, or an error stopped the sweep after its jobs started (the tables or DIR not writable: the
 jobs' outcomes are kept), 130 interrupted (run the same command again to finish).
 """
 
@@ -176,7 +176,8 @@ def parser():
         epilog="exit codes: 0 every job has an outcome (see the status column), 1 bad usage or a "
                "refused sweep file, output folder or cluster (nothing run), 3 some job crashed, "
                "was killed, timed out, could not write its output, read its checkpoint or have "
-               "a resource the system refused, or runs in another sweep, or an error (the "
+               "a resource the system refused (also while the meshes were checked: nothing "
+               "run), or runs in another sweep, or an error (the "
                "results tables or DIR not writable) stopped the sweep after its jobs started: "
                "the finished jobs' outcomes are kept, 130 interrupted (run the same command "
                "again to finish)")
@@ -310,6 +311,10 @@ def _main(argv, lock_wait, note_every):
     except (sweep_file.SweepError, sweep_output.OutputError) as e:
         print("shellcontract sweep: refused, nothing run: {}".format(e), file=sys.stderr)
         return EXIT_USAGE
+    except sweep_file.ResourceShort as e:
+        print("shellcontract sweep: nothing run, the system refused a resource while a mesh was "
+              "checked (the sweep file is not at fault): {}".format(e), file=sys.stderr)
+        return EXIT_INCOMPLETE
     try:
         return _run(args, cli, version, data, jobs)
     except sweep_output.OutputError as e:

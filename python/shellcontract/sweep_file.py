@@ -16,6 +16,7 @@ import re
 import stat
 
 from . import _core
+from . import sweep_needs
 
 TOP_LEVEL_KEYS = ("meshes", "options", "grid", "runs")
 # Options whose value is a file name (the keywords they take instead): relative to the sweep
@@ -29,6 +30,15 @@ RESULT_NEUTRAL = tuple(_core.result_neutral_options())
 
 class SweepError(Exception):
     """A sweep file that cannot be run; the message names the file and the job or entry."""
+
+
+class ResourceShort(Exception):
+    """The machine, not the sweep file: memory or open files ran short while a mesh was checked
+    (the CLI's exit code 3 for the same mesh, not a refused file's 1)."""
+
+
+# An OSError of these errnos is the system's refusal of a resource (the readers' ResourceFileError).
+_RESOURCE_ERRNOS = (errno.EMFILE, errno.ENFILE, errno.ENOMEM)
 
 
 class Job:
@@ -329,6 +339,19 @@ def inputs(path, jobs):
     return out
 
 
+def mesh_needs_shas(mesh, needs, cache):
+    """{"mesh needs NAME": SHA-256} of each file the mesh reads or names besides itself that is
+    there (a glTF's external buffers, which hold its geometry; an OBJ's material libraries and
+    textures, which its result names and a glTF result embeds), NAME as the mesh names it
+    (relative to its folder, so that a moved folder keeps its ids). `needs`: mesh -> the list,
+    found once per expansion. A named file that is missing is the reader's to refuse (a buffer)
+    or to warn about (a texture), not a byte of the job."""
+    if mesh not in needs:
+        needs[mesh] = [p for p, _ in sweep_needs.needed_files(mesh) if os.path.isfile(p)]
+    folder = os.path.dirname(os.path.abspath(mesh))
+    return {"mesh needs " + os.path.relpath(p, folder): file_sha256(p, cache) for p in needs[mesh]}
+
+
 def job_id(mesh_sha, resolved, version, file_shas=None):
     """A stable id: the mesh's bytes, every resolved option (less the result-neutral ones), the
     bytes of every other file the job reads (`file_shas`: option name -> SHA-256, standing for
@@ -361,7 +384,10 @@ def expand(path, data, version, check_mesh=None):
             check_mesh(m)
         except (ValueError, OSError, RuntimeError, MemoryError) as e:
             text = str(e)  # the reader's messages start with the file's name
-            _fail(path, text if text.startswith(m) else "mesh {}: {}".format(m, text))
+            text = text if text.startswith(m) else "mesh {}: {}".format(m, text or type(e).__name__)
+            if isinstance(e, MemoryError) or (isinstance(e, OSError) and e.errno in _RESOURCE_ERRNOS):
+                raise ResourceShort("{}: {}".format(path, text)) from e
+            _fail(path, text)
     grid = data["grid"]
     names = list(grid)
     # Counted before the grid is made: its product is built whole, and a grid of a hundred
@@ -374,6 +400,7 @@ def expand(path, data, version, check_mesh=None):
                     "it, or shard it over several files)".format(count, MAX_JOBS))
     points = [dict(zip(names, values)) for values in itertools.product(*grid.values())] or [{}]
     jobs, seen, index = [], {}, -1  # seen: job id -> the job kept for it
+    needs = {}  # mesh -> the files it needs (mesh_needs_shas)
     for mesh in meshes:
         for point in points:
             for run in data["runs"]:
@@ -401,6 +428,7 @@ def expand(path, data, version, check_mesh=None):
                     except OSError as e:
                         _fail(path, "{}: {} file {} is not readable ({})".format(
                             where, name, file, e.strerror or e))
+                file_shas.update(mesh_needs_shas(mesh, needs, cache))
                 jid = job_id(file_sha256(mesh, cache), checked["resolved"], version, file_shas)
                 kept = seen.get(jid)
                 if kept is not None:

@@ -72,26 +72,39 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   return d;
 }
 
-/// A real option of regions(): TypeError for anything but a real number (a bool, numpy's too, or
-/// a string: the package's regions() reads a str as the CLI's text first), ValueError naming the
-/// option's range for a value outside it (NaN and infinities too).
+/// An option's value as contract()'s option_text reads it: a numpy scalar or 0-d array by its
+/// Python value (tolist), so that an array of one element is a list, not the number, and numpy's
+/// complex a complex; anything else as it is.
+py::object python_value(const py::handle& value) {
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
+    return value.attr("tolist")();
+  return py::reinterpret_borrow<py::object>(value);
+}
+
+std::string type_name(const py::handle& value) {
+  return std::string(py::str(value.get_type().attr("__name__")));
+}
+
+/// A real option of regions(): an int or a float (numpy's too), as contract() takes its numbers;
+/// TypeError for anything else (a bool, numpy's too; a string: the package's regions() reads a
+/// str as the CLI's text first; an array, a complex), ValueError naming the option's range for a
+/// value outside it (NaN and infinities too).
 double real_option(const std::string& name, const py::handle& value) {
-  const bool real = !is_bool(value) && !py::isinstance<py::str>(value) &&
-                    (PyFloat_Check(value.ptr()) || PyIndex_Check(value.ptr()) ||
-                     PyObject_HasAttrString(value.ptr(), "__float__"));
-  if (!real)
+  const py::object v = python_value(value);
+  if (is_bool(value) || py::isinstance<py::bool_>(v) ||
+      !(PyFloat_Check(v.ptr()) || PyIndex_Check(v.ptr())))
     throw py::type_error("regions() option " + name + ": expected a real number, got " +
-                         std::string(py::str(value.get_type().attr("__name__"))));
-  const double v = PyFloat_AsDouble(value.ptr());
-  if (v == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+                         type_name(value));
+  const double d = PyFloat_AsDouble(v.ptr());
+  if (d == -1.0 && PyErr_Occurred()) throw py::error_already_set();
   // The library's range of the option, in its words (check_region_options): a fraction's
   // [0, 1] also for NaN, which is out of every range.
   std::string field = name;
   std::replace(field.begin(), field.end(), '-', '_');
-  if (!in_region_option_range(field, v))
+  if (!in_region_option_range(field, d))
     throw py::value_error("regions() option " + name + ": expected " + region_option_range(field) +
                           ", got " + std::string(py::repr(value)));
-  return v;
+  return d;
 }
 
 /// A positive integer option of regions(): min_faces, whose range is the library's
@@ -104,31 +117,32 @@ int int_option(const std::string& name, const py::handle& value) {
     return py::value_error("regions() option " + name + ": expected an integer from 1 to " +
                            std::to_string(most) + ", got " + std::string(py::repr(value)));
   };
-  if (!is_bool(value) && !PyIndex_Check(value.ptr()) && !py::isinstance<py::str>(value) &&
-      PyObject_HasAttrString(value.ptr(), "__float__")) {
-    const double d = PyFloat_AsDouble(value.ptr());
-    if (d == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+  const py::object v = python_value(value);
+  if (is_bool(value) || py::isinstance<py::bool_>(v) ||
+      !(PyFloat_Check(v.ptr()) || PyIndex_Check(v.ptr())))
+    throw py::type_error("regions() option " + name + ": expected an integer, got " +
+                         type_name(value));
+  if (PyFloat_Check(v.ptr())) {
+    const double d = PyFloat_AsDouble(v.ptr());
     if (!(std::floor(d) == d && d >= 1.0 && d <= static_cast<double>(most)))
       throw out_of_range();  // NaN too
     return static_cast<int>(d);
   }
-  if (is_bool(value) || !PyIndex_Check(value.ptr()))
-    throw py::type_error("regions() option " + name + ": expected an integer, got " +
-                         std::string(py::str(value.get_type().attr("__name__"))));
-  const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(value.ptr()));
+  const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
   if (!i) throw py::error_already_set();
   int overflow = 0;
-  const long long v = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
-  if (overflow != 0 || v < 1 || v > most) throw out_of_range();
-  return static_cast<int>(v);
+  const long long n = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  if (overflow != 0 || n < 1 || n > most) throw out_of_range();
+  return static_cast<int>(n);
 }
 
 /// The method option of regions(): "caps", "tips" or "parts" (TypeError for a non-str,
 /// ValueError naming the allowed values otherwise), as the CLI's --method.
 RegionMethod method_option(const py::handle& value) {
   if (!py::isinstance<py::str>(value))
-    throw py::type_error("regions() option method: expected a str ('caps', 'tips' or 'parts'), got " +
-                         std::string(py::str(value.get_type().attr("__name__"))));
+    throw py::type_error(
+        "regions() option method: expected a str ('caps', 'tips' or 'parts'), got " +
+        type_name(value));
   const std::string text = value.cast<std::string>();
   if (text == "caps") return RegionMethod::Caps;
   if (text == "tips") return RegionMethod::Tips;

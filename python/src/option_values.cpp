@@ -118,6 +118,32 @@ bool is_path(const py::handle& value) {
   return py::isinstance<py::str>(value) || py::hasattr(value, "__fspath__");
 }
 
+namespace {
+
+/// region_at's coordinates are real numbers, as contract()'s numbers are: numpy's conversion
+/// would read True as 1 and the strings "1e3" or " 1_0 " (its grammar, not the CLI's) as numbers.
+/// `depth`: 0 for region_at itself, 1 for a point of a list, 2 for a coordinate.
+void refuse_unreal_items(const py::handle& value, const std::string& forms, int depth) {
+  if (py::hasattr(value, "dtype") && py::hasattr(value, "ndim")) {  // an array or a numpy scalar
+    const std::string kind = value.attr("dtype").attr("kind").cast<std::string>();
+    if (kind != "i" && kind != "u" && kind != "f")
+      throw py::type_error("region_at: coordinates are real numbers, got " +
+                           std::string(py::str(py::repr(value))) + " of dtype " +
+                           std::string(py::str(value.attr("dtype"))));
+    return;
+  }
+  if (is_bool(value) || py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value) ||
+      PyComplex_Check(value.ptr()))
+    throw py::type_error("region_at: coordinates are real numbers, got " +
+                         std::string(py::str(py::repr(value))));
+  // Nested deeper than a list of points: not a form of region_at, whatever numpy makes of it.
+  if (depth < 2 && PySequence_Check(value.ptr()) && !py::isinstance<py::dict>(value))
+    for (const py::handle& item : py::reinterpret_borrow<py::sequence>(value))
+      refuse_unreal_items(item, forms, depth + 1);
+}
+
+}  // namespace
+
 std::string region_at_text(const py::handle& value) {
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();  // the CLI's text, parsed by the table
   const auto type_name = [&] { return std::string(py::str(value.get_type().attr("__name__"))); };
@@ -126,6 +152,7 @@ std::string region_at_text(const py::handle& value) {
   if (value.is_none() || py::isinstance<py::bytes>(value) || py::isinstance<py::dict>(value) ||
       !(PySequence_Check(value.ptr()) || py::hasattr(value, "__array__")))
     throw py::type_error(forms + ", got " + type_name());
+  refuse_unreal_items(value, forms, 0);
   py::array_t<double, py::array::c_style> points;
   try {
     points = py::module_::import("numpy").attr("ascontiguousarray")(value, "float64")

@@ -1,7 +1,8 @@
 """Arrays a numpy user really passes, at the edges (review pyedges): masked arrays (numpy hands on
 the values under the mask), a conversion numpy cannot allocate (it crashed the process), Fortran
 faces for write_mesh(like=), the CLI's spelling of the options checked in Python, a uint64 face
-array of the wrong shape, and an object whose __array__ raises."""
+array of the wrong shape, an object whose __array__ raises, and regions()'s numbers and region_at's
+coordinates taken only as contract() takes numbers."""
 import os
 import subprocess
 import sys
@@ -133,3 +134,46 @@ def test_an_object_whose_array_conversion_raises_is_named_with_its_reason(ico2):
         shellcontract.check(OnAnotherDevice(), faces)
     with pytest.raises(TypeError, match="faces must be an array-like of integers.*cuda:0"):
         shellcontract.check(vertices, OnAnotherDevice())
+
+
+@pytest.mark.parametrize("option,value", [
+    ("contrast", np.array([2.0])), ("max_area_fraction", np.array([[0.1]])),
+    ("contrast", np.complex128(2.0)), ("contrast", 2 + 0j), ("min_faces", np.array([3])),
+    ("min_faces", np.complex64(3)), ("fit_tolerance", np.float64(0.1) * np.ones(1)),
+])
+def test_regions_numbers_are_numbers_not_arrays_or_complex(ico2, option, value):
+    """Before: a one-element array (its __float__) or a complex (numpy's, imaginary part dropped)
+    was taken as the number; contract() refuses both in its own numbers."""
+    with pytest.raises(TypeError, match="regions\\(\\) option " + option):
+        shellcontract.regions(*ico2, **{option: value})
+
+
+def test_regions_numbers_as_numpy_scalars_and_zero_d_arrays_still_count(ico2):
+    base = shellcontract.regions(*ico2, contrast=2.0, min_faces=3)
+    for contrast, min_faces in ((np.float32(2.0), np.int64(3)), (np.array(2.0), np.array(3)),
+                                (2, 3.0)):
+        got = shellcontract.regions(*ico2, contrast=contrast, min_faces=min_faces)
+        assert [list(r) for r in got] == [list(r) for r in base]
+
+
+@pytest.mark.parametrize("points", [
+    (True, 0.0, 1.0), [(0.0, 0.0, 1.0), (0.0, False, 1.0)], np.array([True, False, True]),
+    ("0", "0", "1"), np.array(["1e0", "0", " 1 "]), [(0.0, 0.0, 1 + 0j)], np.zeros(3, complex),
+    [[(0.0, 0.0, 1.0)]],
+])
+def test_region_at_coordinates_are_real_numbers(ico2, points):
+    """Before: numpy's conversion read True as 1 and its own string grammar (" 1 ", "1_0") as
+    numbers, so region_at=(True, 0, 1) picked the cap near (1, 0, 1)."""
+    with pytest.raises((TypeError, ValueError), match="region_at"):
+        shellcontract.regions(*ico2, region_at=points)
+    with pytest.raises((TypeError, ValueError), match="region_at"):
+        shellcontract.contract(*ico2, frames=1, region_at=points)
+
+
+def test_region_at_of_ints_floats_and_numpy_numbers_is_taken(ico2):
+    vertices, _ = ico2
+    top = tuple(float(c) for c in vertices[np.argmax(vertices[:, 2])])
+    base = shellcontract.regions(*ico2, region_at=[top])
+    for points in (np.array([top]), [tuple(np.float32(c) for c in top)], np.array(top)):
+        got = shellcontract.regions(*ico2, region_at=points)
+        assert [list(r) for r in got] == [list(r) for r in base]

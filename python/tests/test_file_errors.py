@@ -8,7 +8,11 @@ The expected class and errno are those of Python's open() on the same path, an o
 independent of the library."""
 import errno
 import os
+import pathlib
 import pickle
+import shutil
+import tempfile
+import traceback
 
 import numpy as np
 import pytest
@@ -71,14 +75,62 @@ def test_read_mesh_under_a_file_is_not_a_directory_error(tmp_path):
     check_like_open(info.value, path, "rb")
 
 
-@pytest.mark.skipif(os.geteuid() == 0, reason="root reads a file whatever its mode")
+def as_a_user(check):
+    """Runs `check()` where file modes apply: in this process for a user; for root, whom modes do
+    not stop (a plain skip would drop the test from the CI, which runs as root), in a forked child
+    that becomes the user nobody first. The library is loaded already, so nobody need read only
+    the files the check opens. A failure in the child fails the test with its traceback."""
+    if os.geteuid() != 0:
+        check()
+        return
+    read_end, write_end = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        status = 1
+        try:
+            os.close(read_end)
+            os.setgroups([])
+            os.setresgid(65534, 65534, 65534)
+            os.setresuid(65534, 65534, 65534)
+            check()
+            status = 0
+        except BaseException:
+            os.write(write_end, traceback.format_exc().encode())
+        finally:
+            os._exit(status)
+    os.close(write_end)
+    with os.fdopen(read_end, "rb") as pipe:
+        report = pipe.read().decode()
+    _, status = os.waitpid(pid, 0)
+    assert os.waitstatus_to_exitcode(status) == 0, report
+
+
+def folder_a_user_reaches(tmp_path):
+    """A folder every user may enter: pytest's tmp_path lies under a folder of mode 0700 (as root,
+    nobody's open() would be refused there for the path, not for the file's mode)."""
+    folder = pathlib.Path(tempfile.mkdtemp(prefix="shellcontract-modes-"))
+    folder.chmod(0o755)
+    return folder
+
+
 def test_read_mesh_of_an_unreadable_file_is_a_permission_error(tmp_path, mesh_dir):
-    path = tmp_path / "locked.off"
-    path.write_bytes((mesh_dir / "ico1.off").read_bytes())
-    path.chmod(0)
-    with pytest.raises(PermissionError) as info:
-        sc.read_mesh(path)
-    check_like_open(info.value, path, "rb")
+    folder = folder_a_user_reaches(tmp_path)
+    try:
+        path = folder / "locked.off"
+        path.write_bytes((mesh_dir / "ico1.off").read_bytes())
+        path.chmod(0)
+        (folder / "open.off").write_bytes(path.read_bytes())
+        (folder / "open.off").chmod(0o644)
+
+        def check():
+            sc.read_mesh(folder / "open.off")  # the folder is reached: the mode refuses the file
+            with pytest.raises(PermissionError) as info:
+                sc.read_mesh(path)
+            check_like_open(info.value, path, "rb")
+
+        as_a_user(check)
+    finally:
+        shutil.rmtree(folder)
 
 
 def test_only_file_system_failures_are_oserrors(tmp_path):
@@ -406,14 +458,22 @@ def test_gltf_with_a_folder_as_buffer_is_a_directory_error(tmp_path):
     check_like_open(info.value, tmp_path / "mesh.bin", "rb")
 
 
-@pytest.mark.skipif(os.geteuid() == 0, reason="root reads a file whatever its mode")
 def test_gltf_with_an_unreadable_buffer_is_a_permission_error(tmp_path):
-    (tmp_path / "mesh.bin").write_bytes(BUFFER)
-    (tmp_path / "mesh.bin").chmod(0)
-    gltf = gltf_with_buffer(tmp_path / "mesh.gltf", "mesh.bin")
-    with pytest.raises(PermissionError) as info:
-        sc.read_mesh(gltf)
-    check_like_open(info.value, tmp_path / "mesh.bin", "rb")
+    folder = folder_a_user_reaches(tmp_path)
+    try:
+        (folder / "mesh.bin").write_bytes(BUFFER)
+        (folder / "mesh.bin").chmod(0)
+        gltf = gltf_with_buffer(folder / "mesh.gltf", "mesh.bin")
+        gltf.chmod(0o644)
+
+        def check():
+            with pytest.raises(PermissionError) as info:
+                sc.read_mesh(gltf)
+            check_like_open(info.value, folder / "mesh.bin", "rb")
+
+        as_a_user(check)
+    finally:
+        shutil.rmtree(folder)
 
 
 def test_gltf_with_a_fifo_as_buffer_is_a_file_error_naming_the_buffer(tmp_path):

@@ -67,6 +67,54 @@ def test_the_job_id_covers_the_bytes_of_every_input_file(cli, mesh_dir, tmp_path
     assert jobs_of(cli, path)[0].id == before
 
 
+def write_gltf_with_buffer(folder, vertices, faces):
+    """ball.gltf whose positions and indices are in the external buffer ball.bin."""
+    import numpy as np
+    pos = np.asarray(vertices, dtype="<f4").tobytes()
+    idx = np.asarray(faces, dtype="<u4").tobytes()
+    (folder / "ball.bin").write_bytes(pos + idx)
+    lo, hi = np.asarray(vertices).min(axis=0).tolist(), np.asarray(vertices).max(axis=0).tolist()
+    document = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"uri": "ball.bin", "byteLength": len(pos) + len(idx)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": len(pos)},
+                        {"buffer": 0, "byteOffset": len(pos), "byteLength": len(idx)}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": len(vertices),
+                       "type": "VEC3", "min": lo, "max": hi},
+                      {"bufferView": 1, "componentType": 5125, "count": 3 * len(faces),
+                       "type": "SCALAR"}]}
+    (folder / "ball.gltf").write_text(json.dumps(document))
+
+
+def test_the_job_id_covers_a_gltfs_external_buffer(cli, mesh_dir, tmp_path):
+    # Before: only the .gltf's bytes were hashed, so a sweep skipped the job of a mesh whose
+    # geometry (in ball.bin) was edited and kept the old result (review determinism F1).
+    from shellcontract import read_mesh
+    vertices, faces = read_mesh(mesh_dir / "ico2.off")
+    folder = tmp_path / "assets"
+    folder.mkdir()
+    write_gltf_with_buffer(folder, vertices, faces)
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps({"meshes": ["assets/ball.gltf"], "options": {"frames": 4}}))
+    before = jobs_of(cli, path)[0].id
+    gltf_bytes = (folder / "ball.gltf").read_bytes()
+    # Vertices off the bounding box moved inward: the accessor's min and max, hence the .gltf's
+    # bytes, stay; only ball.bin changes.
+    inner = ((vertices > vertices.min(axis=0)) & (vertices < vertices.max(axis=0))).all(axis=1)
+    assert inner.sum() > 100
+    moved = vertices.copy()
+    moved[inner] *= 0.95
+    write_gltf_with_buffer(folder, moved, faces)
+    assert (folder / "ball.gltf").read_bytes() == gltf_bytes
+    edited = jobs_of(cli, path)[0].id
+    assert edited != before
+    # The folder moved with both files: the same job.
+    os.rename(folder, tmp_path / "moved")
+    path.write_text(json.dumps({"meshes": ["moved/ball.gltf"], "options": {"frames": 4}}))
+    assert jobs_of(cli, path)[0].id == edited
+
+
 def test_an_edited_regions_file_reruns_its_job_and_not_from_the_old_checkpoint(cli, mesh_dir,
                                                                                 tmp_path):
     regions = tmp_path / "regions.txt"

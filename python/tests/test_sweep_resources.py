@@ -220,3 +220,33 @@ def test_an_error_on_an_existing_cluster_stops_its_jobs(cli, mesh_dir, tmp_path,
     wait_until(lambda: not processes_naming(str(tmp_path / "meshes")), timeout=10)
     assert r.returncode == 3, r.stderr
     assert "stopped after its jobs started" in r.stderr, r.stderr
+
+
+SHORT_WHILE_CHECKED = """
+import errno, sys
+from shellcontract import sweep, sweep_file
+def short(path):
+    raise {error}
+sweep_file._core.read_mesh = short
+sys.exit(sweep.main(sys.argv[1:]))
+"""
+
+
+@pytest.mark.parametrize("error,code,words", [
+    ("MemoryError('out of memory')", 3, "the system refused a resource while a mesh was checked"),
+    ("OSError(errno.EMFILE, 'Too many open files')", 3, "the system refused a resource"),
+    ("OSError(errno.ENOMEM, 'Cannot allocate memory')", 3, "the system refused a resource"),
+    ("OSError(errno.EACCES, 'Permission denied')", 1, "refused, nothing run"),
+])
+def test_a_mesh_the_machine_could_not_read_is_not_a_refused_sweep_file(cli, mesh_dir, tmp_path,
+                                                                      error, code, words):
+    # Before: memory or descriptors running short while the meshes were checked was exit 1,
+    # "refused, nothing run", sending the user to edit a correct file (`run` of the mesh: 3).
+    path = write_sweep(tmp_path, mesh_dir, "m.json", SHORT, meshes=("ico1.off",))
+    out = tmp_path / "out"
+    r = subprocess.run([sys.executable, "-c", SHORT_WHILE_CHECKED.format(error=error), str(path),
+                        "-o", str(out)], env=sweep_env(cli), capture_output=True, text=True,
+                       timeout=240)
+    assert r.returncode == code, r.stderr
+    assert words in r.stderr and "ico1.off" in r.stderr, r.stderr
+    assert "Traceback" not in r.stderr and not out.exists()

@@ -47,6 +47,34 @@ TEST_F(CliCheck, UnitCubeIsUsableWithKnownCounts) {
   EXPECT_NEAR(number_after(r.output, "\nbounding_box_diagonal: "), std::sqrt(3.0), 1e-14) << r.output;
 }
 
+TEST_F(CliCheck, DiagonalOfACubeFarFromUnitScaleIsItsOwn) {
+  // A cube of side 1e-200 or 1e200: the diagonal's squares under- or overflow a double, and the
+  // report printed 0 and inf for diagonals sqrt(3) * side.
+  for (const double side : {1e-200, 1e200}) {
+    const std::string path = ::testing::TempDir() + "/check_scaled_cube.off";
+    {
+      std::ofstream out(path);
+      out.precision(17);
+      out << "OFF\n8 12 0\n";
+      for (const std::array<int, 3>& c : std::vector<std::array<int, 3>>{{0, 0, 0},
+                                                                         {1, 0, 0},
+                                                                         {1, 1, 0},
+                                                                         {0, 1, 0},
+                                                                         {0, 0, 1},
+                                                                         {1, 0, 1},
+                                                                         {1, 1, 1},
+                                                                         {0, 1, 1}})
+        out << c[0] * side << ' ' << c[1] * side << ' ' << c[2] * side << '\n';
+      out << "3 0 3 2\n3 0 2 1\n3 4 5 6\n3 4 6 7\n3 0 1 5\n3 0 5 4\n"
+             "3 1 2 6\n3 1 6 5\n3 2 3 7\n3 2 7 6\n3 3 0 4\n3 3 4 7\n";
+    }
+    const RunResult r = run_cli({"check", path});
+    const double diagonal = number_after(r.output, "\nbounding_box_diagonal: ");
+    EXPECT_NEAR(diagonal / (std::sqrt(3.0) * side), 1.0, 1e-14) << side << ":\n" << r.output;
+    std::remove(path.c_str());
+  }
+}
+
 TEST_F(CliCheck, TorusHasGenusOne) {
   const RunResult r = run_cli({"check", mesh_path("torus.off")});
   EXPECT_EQ(r.exit_code, 0) << r.output;

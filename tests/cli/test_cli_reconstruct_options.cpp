@@ -84,6 +84,18 @@ TEST_F(CliReconstructOptions, AnOutputOfNoMeshFormatIsRefusedBeforeThePointsAreR
   }
 }
 
+TEST_F(CliReconstructOptions, AGltfOutputIsRefusedWithoutSuggestingAnOptionReconstructLacks) {
+  // The refusal of a .glb -o is run's too, where it suggests run's --gltf; reconstruct has no
+  // --gltf, so the suggestion would send the user to an option it then refuses.
+  const RunResult r =
+      run_command(cli_command({"reconstruct", points(), "-o", (dir_ / "k.glb").string()}));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("a .glb result is written only for a .glb input"), std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("--gltf"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "k.glb"));
+}
+
 TEST_F(CliReconstructOptions, TheMessageSaysTheSizesAreMultiplesOfThePointSpacing) {
   for (const char* option : {"--radius", "--distance"}) {
     const RunResult r = reconstruct(option, "0");

@@ -172,6 +172,7 @@ TEST(GltfInput, WhatCannotBeWrittenAsGltfIsRefusedBeforeTheRun) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("a .glb result is written only for a .glb input"), std::string::npos)
       << r.output;
+  EXPECT_NE(r.output.find("use --gltf FILE.glb"), std::string::npos) << r.output;
 
   // (An instanced mesh, refused here before, is written: test_gltf_instances.cpp.)
 

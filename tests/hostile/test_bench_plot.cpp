@@ -61,6 +61,18 @@ TEST_F(Hostile, BenchErrorPlotNamesGnuplotWouldMisreadWriteThatFileAndNoOther) {
   }
 }
 
+TEST_F(Hostile, BenchErrorPlotExtensionInAnyCaseDrawsThatFormat) {
+  // The mesh formats' extensions are read in any case; --plot's were not (P.SVG was refused).
+  if (!has_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
+  fs::copy_file(test::mesh("ico1.off"), dir_ / "in.off");
+  for (const std::string plot : {"P.SVG", "q.Png"}) {
+    const auto r = bench_in(dir_, "in.off", {"--plot", plot});
+    EXPECT_EQ(r.exit_code, 0) << plot << ": " << r.output;
+    const std::string bytes = test::slurp(dir_ / plot);
+    EXPECT_TRUE(plot == "P.SVG" ? is_svg(bytes) : is_png(bytes)) << plot << ": not that format";
+  }
+}
+
 TEST_F(Hostile, BenchErrorPlotTitleFromAnyInputNameIsOneString) {
   if (!has_gnuplot()) GTEST_SKIP() << "gnuplot is not installed";
   // A quote, a backquote (a command to gnuplot outside single quotes), a macro and a newline.
