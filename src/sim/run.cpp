@@ -274,6 +274,8 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   // that a later key still changes it.
   const Schedule& keys = s.target_volume_schedule;
   const int settled = schedule_settles_at(keys, s.frames);
+  // A stop ratio's goal is fixed, but keys of the pressure that drives toward it change the load.
+  const int stall_from = has_target ? settled : schedule_settles_at(s.pressure_schedule, s.frames);
   std::vector<double> history{1.0};  // V/V0 after each frame, frame 0 = the rest state
   std::string stalled;
   std::int64_t last_pairs = 0;  // the last step's candidate pairs, for an out-of-memory message
@@ -356,9 +358,9 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
       break;
     }
     // Stall: the volume no longer moves while it is still off the target (or above the stop
-    // ratio); more frames would not get there. A schedule that a later key still changes is not
-    // stopped for (the end warns of the key not reached).
-    if ((has_target || has_stop) && !sim.finished() && m.frame >= settled &&
+    // ratio); more frames would not get there. Not while a later key still changes the goal or
+    // the pressure (the end warns of a target key not reached).
+    if ((has_target || has_stop) && !sim.finished() && m.frame >= stall_from &&
         volume_stalled(history, history.size() - 1,
                        has_target ? sim.volume_target(m.frame) : s.stop_volume_ratio)) {
       stalled = stall_text(m.volume_ratio, m.frame);

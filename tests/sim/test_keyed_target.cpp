@@ -119,6 +119,26 @@ TEST(KeyedTarget, AStallEndsTheRunOnceTheGoalHoldsToTheEnd) {
   EXPECT_EQ(r.frame_target_reached, -1);
 }
 
+TEST(KeyedTarget, AStopRatioRunIsNotEndedByAStallWhileThePressureKeysChange) {
+  // Under -p 0.3 the air of ico2 holds it near V/V0 0.96, where the volume stalls (frame 59); the
+  // keys after frame 100 raise the pressure to 20, which takes the shell to the stop ratio.
+  RunOptions o;
+  set_run_option(o, "pressure", "0:0.3, 100:0.3, 150:20");
+  set_run_option(o, "stop-volume-ratio", "0.7");
+  set_run_option(o, "frames", "200");
+  const RunResult r = run_contraction(read("ico2.off"), o);
+  EXPECT_EQ(r.status, RunStatus::Completed) << r.message;
+  EXPECT_TRUE(r.target_reached);
+  EXPECT_GT(r.frames_run, 100);
+  EXPECT_LE(r.final_volume_ratio, 0.7 + target_volume_tolerance(0.7));
+  // The pressure held at 0.3 to the end: the stall ends the run as with a single -p.
+  set_run_option(o, "pressure", "0:0.3, 100:0.3");
+  const RunResult held = run_contraction(read("ico2.off"), o);
+  EXPECT_LT(held.frames_run, 100);
+  EXPECT_EQ(held.status, RunStatus::TargetNotReached);
+  EXPECT_NE(held.message.find("stalled"), std::string::npos) << held.message;
+}
+
 TEST(KeyedTarget, AResumedRunWarnsOfTheStallBeforeItsCheckpoint) {
   // The warning comes from the volume history, which the checkpoint carries: a run stopped after
   // the stall and resumed says it as the run never stopped does, and ends the same.
