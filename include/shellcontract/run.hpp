@@ -68,8 +68,8 @@ struct RunResult {
   /// Whether the target volume or stop ratio was reached (true when neither was asked for; the
   /// summary then writes null).
   bool target_reached = true;
-  /// The first frame at which V/V0 was within target_volume_tolerance of the target volume and
-  /// its ramp had ended (or the stop ratio's crossing frame); -1 if never.
+  /// The first frame within target_volume_tolerance of the target once its ramp ended or its keys
+  /// hold the last frame's value to the end (or the stop ratio's crossing frame); -1 if never.
   int frame_target_reached = -1;
   /// The time loop of this process: a resumed run's own part (from first_frame), not the
   /// interrupted process's.

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
-#include <limits>
 #include <new>
 #include <optional>
 #include <stdexcept>
@@ -22,6 +21,7 @@
 #include "shellcontract/error.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulator.hpp"
+#include "sim/target_goal.hpp"
 #include "sim/volume_warnings.hpp"
 
 namespace shellcontract {
@@ -80,34 +80,6 @@ void ObserverList::finished(const FrameView& view, const RunResult& r) {
 }
 
 namespace {
-
-std::string ratio_text(double r) {
-  // Four decimals hide a small ratio (a collapse to 1e-7 read as 0.0000): those get digits.
-  // "%.4f" or "%.3g" as the "C" locale writes them, whatever locale a host program set.
-  return r == 0.0 || std::abs(r) >= 0.01 ? fixed_text(r, 4) : general_text(r, 3);
-}
-
-/// How far the run ended from its goal, for the message of a target not reached: a factor where
-/// V/V0 is off by more than 2 either way (a collapse far below a small target), otherwise the
-/// difference and its share of the goal; for a target volume, also the tolerance it missed.
-std::string miss_text(double ratio, double goal, bool target) {
-  std::string text;
-  if (goal > 0.0 && ratio > 0.0 && (ratio < 0.5 * goal || ratio > 2.0 * goal)) {
-    const bool below = ratio < goal;
-    const double factor = below ? goal / ratio : ratio / goal;
-    // A denormal goal (or V/V0) makes the factor overflow: "inf times" reads as a broken number.
-    text = (std::isfinite(factor)
-                ? general_text(factor, 3) + " times "
-                : "more than " + general_text(std::numeric_limits<double>::max(), 2) + " times ") +
-           (below ? "smaller" : "larger") + " than the " + (target ? "target" : "stop ratio");
-  } else {
-    const double off = ratio - goal;
-    text = ratio_text(std::abs(off)) + " " + (off < 0.0 ? "below" : "above") + " it (" +
-           general_text(100.0 * std::abs(off) / goal, 3) + " % of it)";
-  }
-  if (target) text += "; it counts as reached within " + ratio_text(target_volume_tolerance(goal));
-  return text;
-}
 
 /// Ends the run on std::bad_alloc (`when`: where it ran out), keeping the state as it is: the
 /// message says how large the mesh is and, from the last step, how many candidate pairs the
@@ -298,6 +270,12 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
              "to +-cot(1 degree)");
   const bool has_target = s.target_volume > 0.0;
   const bool has_stop = s.stop_volume_ratio > 0.0;
+  // A schedule's goal is its value at the last frame, from the frame it settles there on: before
+  // that a later key still changes it.
+  const Schedule& keys = s.target_volume_schedule;
+  const int settled = schedule_settles_at(keys, s.frames);
+  // A stop ratio's goal is fixed, but keys of the pressure that drives toward it change the load.
+  const int stall_from = has_target ? settled : schedule_settles_at(s.pressure_schedule, s.frames);
   std::vector<double> history{1.0};  // V/V0 after each frame, frame 0 = the rest state
   std::string stalled;
   std::int64_t last_pairs = 0;  // the last step's candidate pairs, for an out-of-memory message
@@ -365,8 +343,10 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
     }
     history.push_back(m.volume_ratio);
     if (has_target && r.frame_target_reached < 0 &&
-        std::abs(sim.volume_target(m.frame) - s.target_volume) < 1e-12 &&
-        target_volume_reached(m.volume_ratio, s.target_volume))
+        (keys.empty() ? std::abs(sim.volume_target(m.frame) - s.target_volume) < 1e-12 &&
+                            target_volume_reached(m.volume_ratio, s.target_volume)
+                      : m.frame >= settled &&
+                            target_volume_reached(m.volume_ratio, sim.volume_target(m.frame))))
       r.frame_target_reached = m.frame;
     try {
       obs.frame(view, m);
@@ -378,17 +358,13 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
       break;
     }
     // Stall: the volume no longer moves while it is still off the target (or above the stop
-    // ratio); more frames would not get there.
-    if ((has_target || has_stop) && !sim.finished() &&
-        static_cast<int>(history.size()) > STALL_FRAMES) {
-      const double change = std::abs(m.volume_ratio - history[history.size() - 1 - STALL_FRAMES]);
-      const double goal = has_target ? sim.volume_target(m.frame) : s.stop_volume_ratio;
-      if (change < STALL_CHANGE && !target_volume_reached(m.volume_ratio, goal)) {
-        stalled = "the volume stalled at V/V0 " + ratio_text(m.volume_ratio) + " (less than " +
-                  ratio_text(STALL_CHANGE) + " change over " + std::to_string(STALL_FRAMES) +
-                  " frames) at frame " + std::to_string(m.frame);
-        break;
-      }
+    // ratio); more frames would not get there. Not while a later key still changes the goal or
+    // the pressure (the end warns of a target key not reached).
+    if ((has_target || has_stop) && !sim.finished() && m.frame >= stall_from &&
+        volume_stalled(history, history.size() - 1,
+                       has_target ? sim.volume_target(m.frame) : s.stop_volume_ratio)) {
+      stalled = stall_text(m.volume_ratio, m.frame);
+      break;
     }
     // Before the observers' cancel: a caller that cancels on a signal (Python's Ctrl-C) saves
     // the state first.
@@ -449,6 +425,12 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   bool compressed = !has_target;
   for (int n = 0; compressed && n < r.frames_run; ++n) compressed = sim.pressure_at(n) > 0.0;
   for (const std::string& w : volume_warnings(history, compressed)) warn(r, obs, w);
+  // From the history, which a checkpoint carries: a resumed run says it too.
+  if (const int n = first_stall_before(history, keys, settled); n >= 0)
+    warn(r, obs,
+         "the target volume's keys were not followed: " + stall_text(history[n], n) +
+             ", where the keys ask for " + volume_ratio_text(keys.at(n)) +
+             "; the run went on, as a later key changes the target");
   if (has_stop) {
     r.target_reached = sim.stop_volume_reached();
     if (r.target_reached) r.frame_target_reached = sim.frame();
@@ -457,6 +439,9 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
     const double goal =
         s.target_volume_schedule.empty() ? s.target_volume : sim.volume_target(sim.frame());
     r.target_reached = target_volume_reached(r.final_volume_ratio, goal);
+    // A run that ended before its schedule settled (cancelled, failed) arrived at its last frame.
+    if (r.target_reached && r.frame_target_reached < 0 && !keys.empty())
+      r.frame_target_reached = sim.frame();
   }
   if (!r.target_reached && r.status == RunStatus::Completed) {
     r.status = RunStatus::TargetNotReached;
@@ -465,8 +450,8 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
                         : s.target_volume_schedule.empty() ? s.target_volume
                                                            : sim.volume_target(sim.frame());
     r.message =
-        what + ratio_text(goal) + " not reached: " +
-        (stalled.empty() ? "the frames ran out at V/V0 " + ratio_text(r.final_volume_ratio) +
+        what + volume_ratio_text(goal) + " not reached: " +
+        (stalled.empty() ? "the frames ran out at V/V0 " + volume_ratio_text(r.final_volume_ratio) +
                                " (frame " + std::to_string(r.frames_run) + ")"
                          : stalled) +
         "; V/V0 ended " + miss_text(r.final_volume_ratio, goal, has_target);
