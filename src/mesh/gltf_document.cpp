@@ -44,7 +44,7 @@ class GltfDocument final : public MeshDocument {
     // The parse is read_input_mesh's (the same soup, so simulation vertex i is soup vertex i).
     model_ = gltf::load_model(path, bytes);
     input_json_ = gltf::json_text(bytes);
-    soup_ = gltf::scene_soup(path, model_, &world_);
+    soup_ = gltf::scene_soup(path, model_, bytes.size(), &world_);
     vertex_count_ = soup_.points.size();
     polygon_start_.reserve(soup_.faces.size() + 1);
     polygon_start_.push_back(0);

@@ -1,6 +1,7 @@
 // The input's JSON, updated by what the glTF document changes (gltf_json.hpp).
 #include "mesh/gltf_json.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstddef>
 #include <cstdint>
@@ -101,20 +102,31 @@ json merged(const json& in, const json& out, const std::vector<int>& bounded) {
   const json &meshes_in = array_of(in, "meshes"), &meshes_out = array_of(out, "meshes");
   for (std::size_t i = 0; i < meshes_in.size() && i < meshes_out.size(); ++i)
     take_attributes(elements("meshes")[i], meshes_out[i]);
-  // Elements the document appended: a mesh is a copy of the mesh its node drew in the input.
+  // Elements the document appended: a mesh is a copy of the mesh its node drew in the input, the
+  // first node (in order) that draws it now and drew an input mesh. Found in one pass over the
+  // nodes, not one per appended mesh: a scene of many instances appends a mesh per instance.
+  // tinygltf writes a node's mesh as an integer, which the JSON holds as unsigned.
+  const std::size_t NONE = static_cast<std::size_t>(-1);
+  std::vector<std::size_t> node_of(
+      meshes_out.size() - std::min(meshes_in.size(), meshes_out.size()), NONE);
+  for (std::size_t i = 0; i < nodes_in.size() && i < nodes_out.size(); ++i) {
+    const auto now = nodes_out[i].find("mesh"), was = nodes_in[i].find("mesh");
+    if (now == nodes_out[i].end() || was == nodes_in[i].end() || !now->is_number_unsigned() ||
+        !was->is_number_unsigned() || was->get<std::size_t>() >= meshes_in.size())
+      continue;
+    const auto j = now->get<std::size_t>();
+    if (j >= meshes_in.size() && j < meshes_out.size() && node_of[j - meshes_in.size()] == NONE)
+      node_of[j - meshes_in.size()] = i;
+  }
   for (std::size_t j = meshes_in.size(); j < meshes_out.size(); ++j) {
     json mesh = meshes_out[j];
     nulls_to_objects(mesh);
-    for (std::size_t i = 0; i < nodes_in.size() && i < nodes_out.size(); ++i) {
-      const auto now = nodes_out[i].find("mesh"), was = nodes_in[i].find("mesh");
-      if (now == nodes_out[i].end() || was == nodes_in[i].end() || *now != j ||
-          !was->is_number_unsigned() || was->get<std::size_t>() >= meshes_in.size())
-        continue;
-      json copy = meshes_in[was->get<std::size_t>()];
+    const std::size_t i = node_of[j - meshes_in.size()];
+    if (i != NONE) {
+      json copy = meshes_in[nodes_in[i].at("mesh").get<std::size_t>()];
       take(copy, meshes_out[j], "name");
       take_attributes(copy, meshes_out[j]);
       mesh = std::move(copy);
-      break;
     }
     elements("meshes").push_back(std::move(mesh));
   }

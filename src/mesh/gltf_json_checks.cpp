@@ -236,6 +236,20 @@ std::vector<DeclaredBuffer> check_top_level(const std::string& path, const char*
   return buffers;
 }
 
+std::vector<std::size_t> buffers_naming(const std::vector<DeclaredBuffer>& declared,
+                                        const std::string& file) {
+  const auto names = [&](const std::string& uri) {
+    return !uri.empty() && uri.size() <= file.size() &&
+           file.compare(file.size() - uri.size(), uri.size(), uri) == 0;
+  };
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < declared.size(); ++i) {
+    const DeclaredBuffer& b = declared[i];
+    if (b.uri.rfind("data:", 0) != 0 && (names(b.uri) || names(b.file))) out.push_back(i);
+  }
+  return out;
+}
+
 /// The bytes: the byteLength of the buffer whose URI names the file (tinygltf refuses a file of
 /// another size once it has read it: a larger one is refused before), or where no URI is seen to
 /// name it (tinygltf decodes a URI by rules of its own), the largest byteLength declared; never
@@ -243,18 +257,12 @@ std::vector<DeclaredBuffer> check_top_level(const std::string& path, const char*
 /// file of any size costs no more than that.
 std::pair<std::uint64_t, std::string> buffer_file_bound(const std::vector<DeclaredBuffer>& declared,
                                                         const std::string& file) {
-  const auto names = [&](const std::string& uri) {
-    return !uri.empty() && uri.size() <= file.size() &&
-           file.compare(file.size() - uri.size(), uri.size(), uri) == 0;
-  };
   std::uint64_t largest = 0, named = 0;
+  for (const DeclaredBuffer& b : declared) largest = std::max(largest, b.byte_length);
   std::size_t which = declared.size();
-  for (std::size_t i = 0; i < declared.size(); ++i) {
-    const DeclaredBuffer& b = declared[i];
-    largest = std::max(largest, b.byte_length);
-    if (b.uri.rfind("data:", 0) == 0 || !(names(b.uri) || names(b.file))) continue;
-    if (which == declared.size() || b.byte_length > named) which = i, named = b.byte_length;
-  }
+  for (const std::size_t i : buffers_naming(declared, file))
+    if (which == declared.size() || declared[i].byte_length > named)
+      which = i, named = declared[i].byte_length;
   const std::uint64_t LIMIT = std::numeric_limits<std::uint32_t>::max();
   if (which == declared.size())
     return {std::min(largest, LIMIT),

@@ -42,6 +42,11 @@ struct DeclaredBuffer {
 std::vector<DeclaredBuffer> check_top_level(const std::string& path, const char* text,
                                             std::size_t size, std::size_t first_byte);
 
+/// The buffers whose URI (as written, or decoded) is seen to name the external buffer file `file`
+/// (a path as tinygltf asks for it: the URI ends it), in order; data URIs never.
+std::vector<std::size_t> buffers_naming(const std::vector<DeclaredBuffer>& declared,
+                                        const std::string& file);
+
 /// The most bytes that the external buffer file `file` (a path as tinygltf asks for it) may
 /// have, and for a message what says so: "buffer 0's byteLength of 1464 ('mesh.bin')".
 std::pair<std::uint64_t, std::string> buffer_file_bound(const std::vector<DeclaredBuffer>& declared,

@@ -9,7 +9,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <limits>
+#include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "mesh/file_safety.hpp"
@@ -81,9 +83,21 @@ struct ExternalFiles {
   std::vector<FileSystemFailure> refused;
   /// The buffers the JSON declares (check_top_level), to bound an external buffer's read.
   std::vector<gltf::DeclaredBuffer> declared;
-  /// The refusal of a buffer file larger than its buffer, made before reading it.
+  /// The files read, by device and inode (a path, a link to it, "./" before it: one file).
+  std::set<std::pair<dev_t, ino_t>> read;
+  /// The refusal of a buffer file larger than its buffer, or read already, made before reading it.
   std::string too_large;
 };
+
+/// Buffer indices for a message: "0, 1, 2, ..., 999 (1000 buffers)".
+std::string listed(const std::vector<std::size_t>& buffers) {
+  std::string out;
+  for (std::size_t k = 0; k < buffers.size() && k < 3; ++k)
+    out += (k ? ", " : "") + std::to_string(buffers[k]);
+  if (buffers.size() > 3) out += ", ..., " + std::to_string(buffers.back());
+  return out + " (" + std::to_string(buffers.size()) + " buffers)";
+}
+
 bool file_exists(const std::string& p, void* files) {
   auto& f = *static_cast<ExternalFiles*>(files);
   if (f.looked_up) f.looked_up->push_back(p);
@@ -105,6 +119,21 @@ bool read_buffer_file(std::vector<unsigned char>* out, std::string* err, const s
                     " bytes, more than " + why + "; it was not read";
       if (err) *err += f.too_large;
       return false;
+    }
+    // Each buffer holds a copy of its file: a small JSON naming one large file in many buffers
+    // would cost the file's size as many times. A file is read once per load, so that what a
+    // load reads is bounded by the sizes of the files it names.
+    struct stat st {};
+    if (::stat(p.c_str(), &st) == 0) {
+      const std::pair<dev_t, ino_t> id{st.st_dev, st.st_ino};
+      if (!f.read.insert(id).second) {
+        f.too_large = "buffer file read twice: '" + printable(p) + "' (" + std::to_string(size) +
+                      " bytes) is named by buffers " + listed(gltf::buffers_naming(f.declared, p)) +
+                      ", and a file is read once (each buffer would hold a copy of its own); let "
+                      "one buffer hold it and buffer views share that buffer";
+        if (err) *err += f.too_large;
+        return false;
+      }
     }
     const std::string b = read_regular_file(p, bound);
     out->assign(b.begin(), b.end());
@@ -164,7 +193,7 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
   // Before any recursive parser sees it: the JSON's depth, then what tinygltf reads leniently.
   const std::size_t json_at = binary ? 20 : 0;
   const std::size_t json_size = binary ? le32(bytes, 12) : bytes.size();
-  ExternalFiles files{looked_up, {}, {}, {}};
+  ExternalFiles files{looked_up, {}, {}, {}, {}};
   files.declared = gltf::check_top_level(path, bytes.data() + json_at, json_size, json_at);
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);

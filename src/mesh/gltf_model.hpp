@@ -26,8 +26,10 @@ tinygltf::Model load_model(const std::string& path, const std::string& bytes,
 
 /// The triangles that the default scene draws (read_gltf's soup), with each drawn primitive's
 /// world transform in `world` (parallel to soup.drawn).
+/// @param file_bytes the size of the glTF file, which with its buffers' bounds the triangles
+///        the scene may draw (64 a byte; "scene too large for its file")
 /// @throws InputError as read_gltf
-GltfSoup scene_soup(const std::string& path, const tinygltf::Model& m,
+GltfSoup scene_soup(const std::string& path, const tinygltf::Model& m, std::size_t file_bytes,
                     std::vector<Eigen::Matrix4d>* world = nullptr);
 
 /// An accessor's elements: element i starts at byte offset + i * stride of buffer `buffer`,

@@ -294,8 +294,8 @@ void read_node(const std::string& path, const tinygltf::Model& m, std::size_t no
           [](const std::pair<std::size_t, std::size_t>& u, std::size_t e) { return u.first < e; });
       return s.first + static_cast<std::size_t>(it - s.used.begin());
     };
+    // No reserve here: an exact one per primitive would move every face read so far each time.
     const std::vector<std::size_t>& corners = read[p].corners;
-    soup.faces.reserve(soup.faces.size() + corners.size() / 3);
     for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
       const std::size_t a = vertex_of(corners[t]), b = vertex_of(corners[t + 1]),
                         c = vertex_of(corners[t + 2]);
@@ -306,9 +306,66 @@ void read_node(const std::string& path, const tinygltf::Model& m, std::size_t no
   }
 }
 
+/// The most triangles a scene may draw for each byte of its file and buffers (scene_soup).
+constexpr std::uint64_t TRIANGLES_PER_BYTE = 64;
+
+/// Refuses a scene that draws more than TRIANGLES_PER_BYTE triangles for each byte of the file and
+/// its buffers, counted from the accessors' counts before any of their data is read: a mesh whose
+/// primitives all draw one index accessor, drawn by many nodes, makes primitives x nodes copies of
+/// the accessor's triangles from a few bytes of JSON each. What is malformed counts nothing here
+/// (the read refuses it as before): an element out of range, a node reached twice.
+void check_scene_size(const std::string& path, const tinygltf::Model& m, int scene,
+                      std::size_t file_bytes) {
+  constexpr std::uint64_t MAX = std::numeric_limits<std::uint64_t>::max();
+  const auto add = [](std::uint64_t a, std::uint64_t b) { return a > MAX - b ? MAX : a + b; };
+  const auto mul = [](std::uint64_t a, std::uint64_t b) {
+    return b != 0 && a > MAX / b ? MAX : a * b;
+  };
+  const auto count_of = [&](int accessor) -> std::uint64_t {
+    return accessor >= 0 && static_cast<std::size_t>(accessor) < m.accessors.size()
+               ? m.accessors[static_cast<std::size_t>(accessor)].count / 3
+               : 0;
+  };
+  std::vector<std::uint64_t> per_draw(m.meshes.size(), 0), draws(m.meshes.size(), 0);
+  for (std::size_t k = 0; k < m.meshes.size(); ++k)
+    for (const tinygltf::Primitive& p : m.meshes[k].primitives) {
+      const auto pos = p.attributes.find("POSITION");
+      const int counted = p.indices >= 0 ? p.indices : pos != p.attributes.end() ? pos->second : -1;
+      per_draw[k] = add(per_draw[k], count_of(counted));
+    }
+  std::vector<char> seen(m.nodes.size(), 0);
+  std::vector<int> stack(m.scenes[static_cast<std::size_t>(scene)].nodes);
+  while (!stack.empty()) {
+    const int n = stack.back();
+    stack.pop_back();
+    if (n < 0 || static_cast<std::size_t>(n) >= m.nodes.size() || seen[static_cast<std::size_t>(n)])
+      continue;
+    seen[static_cast<std::size_t>(n)] = 1;
+    const tinygltf::Node& node = m.nodes[static_cast<std::size_t>(n)];
+    if (node.mesh >= 0 && static_cast<std::size_t>(node.mesh) < m.meshes.size())
+      ++draws[static_cast<std::size_t>(node.mesh)];
+    stack.insert(stack.end(), node.children.begin(), node.children.end());
+  }
+  std::uint64_t bytes = file_bytes, total = 0;
+  for (const tinygltf::Buffer& b : m.buffers) bytes = add(bytes, b.data.size());
+  std::size_t worst = 0;
+  for (std::size_t k = 0; k < m.meshes.size(); ++k) {
+    total = add(total, mul(draws[k], per_draw[k]));
+    if (mul(draws[k], per_draw[k]) > mul(draws[worst], per_draw[worst])) worst = k;
+  }
+  if (total <= mul(bytes, TRIANGLES_PER_BYTE)) return;
+  fail(path, "scene too large for its file",
+       "the default scene draws " + std::to_string(total) + " triangles, more than " +
+           std::to_string(TRIANGLES_PER_BYTE) + " for each of the " + std::to_string(bytes) +
+           " bytes of the file and its buffers: mesh " + std::to_string(worst) + " (" +
+           std::to_string(m.meshes[worst].primitives.size()) + " primitives, " +
+           std::to_string(per_draw[worst]) + " triangles) is drawn by " +
+           std::to_string(draws[worst]) + " nodes; it was not read");
+}
+
 }  // namespace
 
-GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m,
+GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m, std::size_t file_bytes,
                           std::vector<Eigen::Matrix4d>* world_of) {
   for (const std::string& e : m.extensionsRequired)
     if (changes_geometry(e))
@@ -322,6 +379,7 @@ GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m,
     fail(path, "scene out of range",
          "the default scene is " + std::to_string(scene) + ", but the file has " +
              std::to_string(m.scenes.size()));
+  check_scene_size(path, m, scene, file_bytes);
 
   GltfSoup soup;
   // Depth first, children in order, without recursion (a file decides the depth); a node reached
@@ -364,7 +422,7 @@ GltfSoup gltf::scene_soup(const std::string& path, const tinygltf::Model& m,
 }
 
 GltfSoup read_gltf(const std::string& path, const std::string& bytes) {
-  return gltf::scene_soup(path, gltf::load_model(path, bytes));
+  return gltf::scene_soup(path, gltf::load_model(path, bytes), bytes.size());
 }
 
 }  // namespace shellcontract

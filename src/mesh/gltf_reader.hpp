@@ -54,7 +54,8 @@ struct GltfSoup {
 /// @throws InputError "<path>: <problem>: <where>" for a file that is not a glTF 2.0 it can read:
 ///         a bad container or JSON, a primitive that is not triangles, a sparse or compressed
 ///         accessor, a required extension that changes the geometry, an index or offset out of
-///         range
+///         range, a buffer file that another buffer read already, a scene that draws more than 64
+///         triangles for each byte of the file and its buffers (counted before any is read)
 GltfSoup read_gltf(const std::string& path, const std::string& bytes);
 
 }  // namespace shellcontract
