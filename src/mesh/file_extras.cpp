@@ -8,6 +8,7 @@
 #include <map>
 #include <regex>
 #include <string_view>
+#include <unordered_set>
 
 #include "core/token_text.hpp"
 #include "mesh/formats.hpp"
@@ -30,9 +31,16 @@ std::string name_list(const std::vector<std::string>& names) {
   return names.size() > 3 ? s + ", ..." : s;
 }
 
-void add_once(std::vector<std::string>& names, std::string_view name) {
-  const std::string n = printable_name(name);
-  if (std::find(names.begin(), names.end(), n) == names.end()) names.push_back(n);
+/// Distinct names in order of first use; a set beside the list, as a search of the list made a
+/// file of many distinct names cost their square.
+struct Names {
+  std::vector<std::string> list;
+  std::unordered_set<std::string> seen;
+};
+
+void add_once(Names& names, std::string_view name) {
+  std::string n = printable_name(name);
+  if (names.seen.insert(n).second) names.list.push_back(std::move(n));
 }
 
 /// "1 comment line", "3 comment lines".
@@ -71,7 +79,7 @@ FileExtras obj_extras(const std::string& bytes) {
   }
   const std::string_view text(joined.empty() ? bytes : joined);
   std::size_t vt = 0, vn = 0, colour_lines = 0, comments = 0, smoothing = 0;
-  std::vector<std::string> groups, objects, materials, libraries;
+  Names groups, objects, materials, libraries;
   std::map<std::string, std::size_t> other;
   for (const auto& t : token_lines(text)) {
     if (t.empty()) continue;
@@ -90,11 +98,17 @@ FileExtras obj_extras(const std::string& bytes) {
   FileExtras e;
   if (vt) e.items.push_back(counted(vt, "texture coordinate (vt)", "texture coordinates (vt)"));
   if (vn) e.items.push_back(counted(vn, "normal (vn)", "normals (vn)"));
-  if (!groups.empty()) e.items.push_back(counted(groups.size(), "group", "groups") + " (g " + name_list(groups) + ")");
-  if (!objects.empty()) e.items.push_back(counted(objects.size(), "object", "objects") + " (o " + name_list(objects) + ")");
-  if (!materials.empty())
-    e.items.push_back(counted(materials.size(), "material", "materials") + " (usemtl " + name_list(materials) + ")");
-  if (!libraries.empty()) e.items.push_back("the material library (mtllib " + name_list(libraries) + ")");
+  if (!groups.list.empty())
+    e.items.push_back(counted(groups.list.size(), "group", "groups") + " (g " +
+                      name_list(groups.list) + ")");
+  if (!objects.list.empty())
+    e.items.push_back(counted(objects.list.size(), "object", "objects") + " (o " +
+                      name_list(objects.list) + ")");
+  if (!materials.list.empty())
+    e.items.push_back(counted(materials.list.size(), "material", "materials") + " (usemtl " +
+                      name_list(materials.list) + ")");
+  if (!libraries.list.empty())
+    e.items.push_back("the material library (mtllib " + name_list(libraries.list) + ")");
   if (smoothing) e.items.push_back("smoothing groups (s)");
   if (colour_lines) e.items.push_back("vertex colours (numbers after x y z on " + counted(colour_lines, "v line)", "v lines)"));
   if (comments) e.items.push_back(counted(comments, "comment line", "comment lines"));
@@ -209,13 +223,13 @@ FileExtras stl_extras(const std::string& bytes) {
     return e;
   }
   std::size_t solids = 0;
-  std::vector<std::string> names;
+  Names names;
   for (const auto& t : token_lines(bytes))
     if (!t.empty() && t[0] == "solid") {
       ++solids;
       if (t.size() > 1) add_once(names, t[1]);
     }
-  if (!names.empty()) e.items.push_back("the solid's name (" + name_list(names) + ")");
+  if (!names.list.empty()) e.items.push_back("the solid's name (" + name_list(names.list) + ")");
   if (solids > 1) e.items.push_back(std::to_string(solids) + " solids (written as one)");
   return e;
 }

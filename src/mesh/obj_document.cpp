@@ -25,6 +25,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -117,6 +118,7 @@ class ObjDocument final : public MeshDocument {
   std::vector<std::size_t> corner_vn_before_;  ///< per corner: `vn` lines before its face
   std::string eol_ = "\n";            ///< the file's line end, for lines it gains
   int material_ = -1;                 ///< the material of the faces read next (usemtl); -1 none
+  std::unordered_map<std::string, int> material_index_;  ///< per name: its index in materials_
 };
 
 double ObjDocument::number(const Span& t, std::size_t line, const char* what) const {
@@ -281,16 +283,21 @@ void ObjDocument::use_material(std::size_t at, std::size_t end) {
   // The name is the rest of the line (names with spaces exist), without a comment at its end.
   const std::string& text = statements();
   while (at < end && is_line_space(text[at])) ++at;
-  std::size_t e = std::min(end, text.find('#', at));
+  // The '#' looked for in this line only: up to the file's end, each usemtl of a file without
+  // a later comment read the rest of the file.
+  const std::size_t hash = std::string_view(text).substr(at, end - at).find('#');
+  std::size_t e = hash == std::string_view::npos ? end : at + hash;
   while (e > at && is_line_space(text[e - 1])) --e;
   const std::string name = text.substr(at, e - at);
   if (name.empty()) {
     material_ = -1;
     return;
   }
-  const auto found = std::find(materials_.names.begin(), materials_.names.end(), name);
-  material_ = static_cast<int>(found - materials_.names.begin());
-  if (found == materials_.names.end()) materials_.names.push_back(name);
+  // By a map, not a search of the names: a file of many distinct names cost their square.
+  const auto [found, added] =
+      material_index_.emplace(name, static_cast<int>(materials_.names.size()));
+  if (added) materials_.names.push_back(name);
+  material_ = found->second;
 }
 
 std::string ObjDocument::compose(const Positions& x, std::vector<TextEdit> edits) const {

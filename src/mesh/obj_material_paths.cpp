@@ -77,19 +77,27 @@ std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes, const std::s
 }
 
 std::vector<MtllibName> mtllib_names(const std::string& bytes, const MtllibLine& line,
-                                     const fs::path& obj_folder) {
+                                     const fs::path& obj_folder,
+                                     const std::function<bool(const fs::path&)>& probe) {
   std::vector<std::pair<std::size_t, std::size_t>> tokens;
   std::size_t at = line.begin;
   for (Span t = next_token(bytes, at, line.end); t.begin != t.end; t = next_token(bytes, at, line.end))
     tokens.emplace_back(t.begin, t.end);
   std::vector<MtllibName> names;
   for (std::size_t i = 0; i < tokens.size();) {
+    // Every start tried with every end made a line of many names cost the square of its names
+    // in file lookups, on paths as long as the line: the runs are bounded in tokens and bytes.
     std::size_t j = i;
-    for (; j < tokens.size(); ++j) {
-      const std::string text = bytes.substr(tokens[i].first, tokens[j].second - tokens[i].first);
-      if (is_file(obj_folder / text)) break;  // an absolute name replaces the folder
+    bool found = false;
+    for (; j < tokens.size() && j - i < kMaxMtllibNameTokens; ++j) {
+      const std::size_t length = tokens[j].second - tokens[i].first;
+      if (length >= kMaxMtllibNameBytes) break;  // nor does any longer run name a file
+      const fs::path path = obj_folder / bytes.substr(tokens[i].first, length);
+      if (probe ? probe(path) : is_file(path)) {  // an absolute name replaces the folder
+        found = true;
+        break;
+      }
     }
-    const bool found = j < tokens.size();
     if (!found) j = i;
     MtllibName n;
     n.begin = tokens[i].first;

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,13 +34,24 @@ MtllibLine mtllib_line(const std::string& bytes, std::size_t at, std::size_t end
 /// when none is; a line is the one its statement starts on.
 std::vector<MtllibLine> find_mtllib_lines(const std::string& bytes, const std::string& text);
 
+/// The most tokens one mtllib name is joined from (a file name with that many spaces).
+inline constexpr std::size_t kMaxMtllibNameTokens = 64;
+/// A run of tokens this long or longer names no file: Linux's PATH_MAX (the path with its
+/// terminating zero), which no longer run can be under either.
+inline constexpr std::size_t kMaxMtllibNameBytes = 4096;
+
 /// The names of one mtllib line. The OBJ spec separates several names with spaces; a name with
 /// spaces in it (Blender's exporter writes the .mtl's file name as it is, and its importer reads
 /// the rest of the line as one name) is taken whole when the text with its spaces names an
-/// existing file from `obj_folder`: from each token, the shortest run of tokens that names an
-/// existing file is one name; a token that starts no such run is a name of its own (not found).
-std::vector<MtllibName> mtllib_names(const std::string& bytes, const MtllibLine& line,
-                                     const std::filesystem::path& obj_folder);
+/// existing file from `obj_folder`: from each token, the shortest run of tokens (at most
+/// kMaxMtllibNameTokens, shorter than kMaxMtllibNameBytes) that names an existing file is one
+/// name; a token that starts no such run is a name of its own (not found). So a line of n names
+/// costs at most n * kMaxMtllibNameTokens file lookups.
+/// @param probe whether a path is an existing file that is not a folder; empty: the file
+///              system's answer (a test counts the lookups)
+std::vector<MtllibName> mtllib_names(
+    const std::string& bytes, const MtllibLine& line, const std::filesystem::path& obj_folder,
+    const std::function<bool(const std::filesystem::path&)>& probe = {});
 
 /// A replacement of the bytes [begin, end).
 struct TextEdit {

@@ -1,13 +1,45 @@
 #include "mesh/obj_normals.hpp"
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <stdexcept>
+#include <unordered_map>
 
 #include "mesh/normal_groups.hpp"
 #include "mesh/seam_weld.hpp"
 
 namespace shellcontract {
+namespace {
+
+/// A `vn` line and the bits of one of its new normals, -0.0 taken as 0.0 (they compare equal):
+/// the key of that normal's place among the line's.
+struct LineNormal {
+  std::size_t line = 0;
+  std::array<std::uint64_t, 3> bits{};
+  bool operator==(const LineNormal& o) const { return line == o.line && bits == o.bits; }
+};
+
+struct LineNormalHash {
+  std::size_t operator()(const LineNormal& k) const {
+    std::uint64_t h = k.line;
+    for (const std::uint64_t b : k.bits) h = (h ^ b) * 0x9E3779B97F4A7C15ull + (h >> 29);
+    return static_cast<std::size_t>(h ^ (h >> 32));
+  }
+};
+
+LineNormal line_normal(std::size_t line, const Vec3& n) {
+  LineNormal k;
+  k.line = line;
+  for (Eigen::Index i = 0; i < 3; ++i) {
+    const double v = n[i] + 0.0;  // -0.0 becomes 0.0
+    std::memcpy(&k.bits[static_cast<std::size_t>(i)], &v, sizeof v);
+  }
+  return k;
+}
+
+}  // namespace
 
 std::vector<long long> obj_corner_groups(const std::vector<std::size_t>& position_of,
                                          const ObjCorners& in) {
@@ -74,19 +106,32 @@ ObjNormals obj_normals(const Positions& x, const ObjCorners& in) {
   ObjNormals out;
   out.lines.resize(in.vn_dir->size());
   out.pick.assign(vertex.size(), 0);
+  // Each normal's place in its line by its bits (the normals are finite, so equal values are
+  // equal bits but for the sign of zero): a search of the line's normals for every corner made a
+  // line that many vertices share (one `vn` for the whole file) cost their square.
+  // A group has one normal: its place in the line its last corner named is kept for the next.
+  std::unordered_map<LineNormal, std::size_t, LineNormalHash> place;
+  std::vector<std::size_t> group_line(sum.size(), SIZE_MAX), group_place(sum.size(), 0);
   for (std::size_t c = 0; c < vertex.size(); ++c) {
     if (corner_group[c] < 0) continue;
-    const Vec3& s = sum[static_cast<std::size_t>(corner_group[c])];
+    const auto g = static_cast<std::size_t>(corner_group[c]);
+    const auto line = static_cast<std::size_t>(vn[c]);
+    if (group_line[g] == line) {
+      out.pick[c] = group_place[g];
+      continue;
+    }
+    const Vec3& s = sum[g];
     const double len = s.norm();
     // A corner whose polygons have no area any more takes its line's first normal (the line as
     // read, when none of its corners' groups has an area).
     if (!(len > 0.0) || !std::isfinite(len)) continue;
     const Vec3 n = s / len;
-    std::vector<Vec3>& normals = out.lines[static_cast<std::size_t>(vn[c])];
-    std::size_t k = 0;
-    while (k < normals.size() && normals[k] != n) ++k;
-    if (k == normals.size()) normals.push_back(n);
-    out.pick[c] = k;
+    std::vector<Vec3>& normals = out.lines[line];
+    const auto [at, added] = place.try_emplace(line_normal(line, n), normals.size());
+    if (added) normals.push_back(n);
+    out.pick[c] = at->second;
+    group_line[g] = line;
+    group_place[g] = at->second;
   }
   return out;
 }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,6 +34,61 @@ std::string joined(const std::vector<std::string>& ws) {
   std::string s;
   for (const std::string& w : ws) s += w + "\n";
   return s;
+}
+
+/// The names mtllib_names finds on the line "mtllib <names>" when `probe` says which paths are
+/// files, with the number of paths it asked about.
+std::vector<MtllibName> names_of(const std::string& names,
+                                 const std::function<bool(const fs::path&)>& is_file,
+                                 std::size_t& probes) {
+  const std::string bytes = "mtllib " + names + "\n";
+  const MtllibLine line = mtllib_line(bytes, 6, bytes.size() - 1, 1);
+  probes = 0;
+  return mtllib_names(bytes, line, "in", [&](const fs::path& p) {
+    ++probes;
+    return is_file(p);
+  });
+}
+
+// Before: every token was joined with every later one, (n^2)/2 lookups on paths as long as the
+// line, so a small file of one long mtllib line held `run` (its output check) for minutes.
+TEST(ObjMaterialPaths, ALineOfManyNamesCostsABoundedNumberOfLookupsPerName) {
+  std::string line = "x";
+  for (int i = 1; i < 4000; ++i) line += " x";
+  std::size_t probes = 0;
+  const auto names = names_of(
+      line, [](const fs::path&) { return false; }, probes);
+  ASSERT_EQ(names.size(), 4000u);
+  for (const MtllibName& n : names) EXPECT_TRUE(n.name == "x" && !n.found);
+  EXPECT_LE(probes, 4000u * kMaxMtllibNameTokens);  // was 4000 * 4001 / 2
+
+  // Names as long as a path can be: no run beyond one is looked up.
+  const std::string longest(kMaxMtllibNameBytes - 1, 'y');
+  const auto two = names_of(
+      longest + " " + longest, [](const fs::path&) { return false; }, probes);
+  ASSERT_EQ(two.size(), 2u);
+  EXPECT_EQ(probes, 2u);
+}
+
+// A name with spaces is still found whole, up to kMaxMtllibNameTokens tokens.
+TEST(ObjMaterialPaths, ANameOfManySpacesIsFoundUpToTheBound) {
+  for (const std::size_t tokens :
+       {std::size_t{2}, kMaxMtllibNameTokens, kMaxMtllibNameTokens + 1}) {
+    std::string name = "a";
+    for (std::size_t i = 1; i < tokens; ++i) name += " a";
+    const fs::path file = fs::path("in") / (name + ".mtl");
+    std::size_t probes = 0;
+    const auto names = names_of(
+        "b.mtl " + name + ".mtl c.mtl", [&](const fs::path& p) { return p == file; }, probes);
+    if (tokens <= kMaxMtllibNameTokens) {
+      ASSERT_EQ(names.size(), 3u) << tokens;
+      EXPECT_EQ(names[1].name, name + ".mtl");
+      EXPECT_TRUE(names[1].found && !names[0].found && !names[2].found);
+    } else {
+      EXPECT_EQ(names.size(), tokens + 2) << tokens;  // each token a name of its own, not found
+      for (const MtllibName& n : names) EXPECT_FALSE(n.found);
+    }
+  }
 }
 
 // Before: a folder named as the library (mkdir sphere.mtl) was reported as "not found".
