@@ -136,8 +136,8 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
     ``lambda``, a Python keyword, is also ``lambda_``.
 
     Values (regions() takes its numbers alike): a number is an int or a float (numpy's too) or
-    the CLI's text ("0.5"; no blanks, no hexadecimal); an integer option (frames, threads, ...)
-    takes a whole float (3.0; 3.5 is a ValueError). A bool (numpy's bool_ too) is for the on/off
+    the CLI's text ("0.5"; no blanks, no hexadecimal); an integer option (frames, threads, ...,
+    and checkpoint_every) takes a whole float of any size (3.0, 1e5; 3.5 is a ValueError). A bool (numpy's bool_ too) is for the on/off
     options alone (collisions=False, or "on"/"off"); for a number, a TypeError, as is a list for
     an option of one value. ``pressure`` and ``target_volume`` take one number or keyframes
     (docs/design/keyframes.md): a list of (frame, value) pairs, ``[(0, 1), (60, 0.5)]``, an
@@ -204,6 +204,13 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
             if name in options:
                 raise TypeError("contract() got {} and {}, the same option".format(name, dashed))
             options[name] = options.pop(dashed)
+    every = options.get("checkpoint_every")
+    if isinstance(every, str):
+        # The CLI's --checkpoint-every text, as frames="2" is the CLI's --frames text.
+        if number_text.integer(every) is None:
+            raise ValueError("checkpoint_every: expected an integer >= 1, with checkpoint=FILE or "
+                             "resume=FILE, got {!r}".format(every))
+        options["checkpoint_every"] = number_text.integer(every)
     if faces is None:
         raise TypeError("faces must be an array-like of integers, got None")
     for name in ("region_at", "region-at"):
