@@ -261,16 +261,23 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
                                        **dict(options, regions=path, _regions_from_arrays=True)))
     return _given_arrays(result, regions=len(lists),
                          strengths=None if strengths is None else _strengths(strengths, len(lists)),
-                         weights=weights_array)
+                         weights=weights_array, regions_file=path)
 
 
-def _given_arrays(result, regions=None, strengths=None, weights=False):
-    """The summary's options say that regions or weights were arrays, not the temporary file the
-    regions went through (deleted by now) or an empty weights file name."""
+def _given_arrays(result, regions=None, strengths=None, weights=False, regions_file=None):
+    """The summary's options and warnings say that regions or weights were arrays, not the
+    temporary file the regions went through (deleted by now) or an empty weights file name."""
+    given = "<{} regions given as arrays>".format(regions)
+    warnings = result.summary.get("warnings")
+    if regions_file is not None and isinstance(warnings, list):
+        # The library names the face-list file it read ("regions FILE: every region's strength
+        # is 0: ..."); the argument is named as for regions that hold no region.
+        result.summary["warnings"] = [w.replace("regions " + regions_file + ":", "regions:")
+                                      .replace(regions_file, given) for w in warnings]
     options = result.summary.get("options")
     if isinstance(options, dict):
         if regions is not None:
-            options["regions"] = "<{} regions given as arrays>".format(regions)
+            options["regions"] = given
         if strengths is not None:
             options["region_strengths"] = list(strengths)
         if weights:
