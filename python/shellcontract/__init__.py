@@ -394,16 +394,18 @@ def read_mesh(path):
 
 
 def write_mesh(path, vertices, faces, like=None):
-    """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output. The
+    """Writes OFF/OBJ/PLY/STL (by extension; with ``like``, also .glb or .gltf) atomically, as
+    the CLI writes its -o output. The
     mesh must pass the same checks as an input (closed, manifold, no isolated vertex: MeshError
     or ValueError otherwise), so that what is written can be read back. An STL keeps no vertex
     identity (its readers merge equal positions): a mesh with two vertices at one position is a
     ValueError there (write .off, .obj or .ply).
-    like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
-    the new positions (UVs, normals, groups, materials, polygons, extra properties kept), each
-    written in the file's own type: a position its type cannot hold (beyond a float32's range,
-    a whole mesh below the smallest normal float32, an integer type's range) is a ValueError
-    naming the vertex.
+    like: the OBJ, PLY, .glb or .gltf file that read_mesh read `faces` from; the output, a file
+    of like's format, is then that file with the new positions (UVs, normals, groups,
+    materials, polygons, extra properties, a glTF's scene kept), each written in the file's own
+    type: a position its type cannot hold (beyond a float32's range, a whole mesh below the
+    smallest normal float32, an integer type's range) is a ValueError naming the vertex. An
+    OFF or STL like, or an output of another format, is a ValueError.
     A file that cannot be written raises its OSError (FileNotFoundError for a missing folder,
     PermissionError for a read-only one, IsADirectoryError for a folder in its place, a
     FileError with errno None for a device, FIFO or socket in its place, another OSError for a

@@ -239,8 +239,14 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
       read = read_input_mesh(like);
       doc = read_mesh_document(like);
     });
-    if (!doc || !path_has_extension(path, doc->format()))
-      throw UsageError("write_mesh: like=" + like + ": only an OBJ or PLY file, written to a file of its format");
+    // The formats with a document are the format table's (read_mesh_document): OBJ, PLY and glTF.
+    if (!doc)
+      throw UsageError("write_mesh: like=" + like +
+                       ": only an OBJ, PLY, .glb or .gltf file (OFF and STL keep nothing besides "
+                       "the mesh: write without like=), written to a file of its format");
+    if (!path_has_extension(path, doc->format()))
+      throw UsageError("write_mesh: like=" + like + ": written to a file of its format (." +
+                       doc->format() + "), not " + path);
     // C order, so that faces equal to read_mesh's in another layout compare equal element by
     // element (a Fortran or strided array was compared in memory order, and refused).
     const auto f = faces_to_numpy(read);
