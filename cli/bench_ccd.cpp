@@ -25,6 +25,7 @@
 #include "output_paths.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "shellcontract/options.hpp"
 
 namespace po = boost::program_options;
 
@@ -113,6 +114,7 @@ std::string rows_json(const std::string& dir, const CcdOptions& opt, int repeat,
 int command_bench_ccd(int argc, char** argv) {
   std::string dir, json_path, sweep;
   CcdOptions opt;
+  std::string tolerance = shortest_text(opt.tolerance);
   int repeat = DEFAULT_CCD_BENCHMARK_REPETITIONS;
   po::options_description desc(
       "usage: shellcontract bench ccd --queries DIR [options]\n\n"
@@ -130,7 +132,7 @@ int command_bench_ccd(int argc, char** argv) {
                                                   "directory of query files (required)")(
       "json", po::value<std::string>(&json_path),
       "also write the results as JSON to this file (written atomically)")(
-      "tolerance", po::value<double>(&opt.tolerance)->default_value(DEFAULT_CCD_TOLERANCE),
+      "tolerance", po::value<std::string>(&tolerance)->default_value(tolerance),
       "minimum separation tau: a pair closer than tau at some t counts as a collision")(
       "sweep", po::value<std::string>(&sweep),
       "comma-separated list of tolerances, e.g. 0,1e-9,1e-6 (overrides --tolerance)")(
@@ -151,8 +153,10 @@ int command_bench_ccd(int argc, char** argv) {
       return static_cast<int>(ExitCode::Success);
     }
     if (dir.empty()) throw UsageError("--queries DIR is required");
-    if (!(opt.tolerance >= 0.0) || !std::isfinite(opt.tolerance))
-      throw UsageError("--tolerance must be a finite number >= 0");
+    // Read as --sweep's items are (Boost's double took "1e-400" as 0 and "inf" as a number).
+    if (!parse_decimal(tolerance, opt.tolerance) || !(opt.tolerance >= 0.0) ||
+        !std::isfinite(opt.tolerance))
+      throw UsageError("--tolerance: '" + tolerance + "' is not a finite number >= 0");
     if (opt.max_depth < 1 || opt.max_depth > 60) throw UsageError("--max-depth must be in 1..60");
     if (opt.max_intervals < 1) throw UsageError("--max-intervals must be >= 1");
     if (repeat < 1) throw UsageError("--repeat must be >= 1");

@@ -35,6 +35,7 @@
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "sim/error_ladder.hpp"
+#include "sim/option_ranges.hpp"
 
 namespace po = boost::program_options;
 
@@ -74,8 +75,14 @@ exit codes: 0 success, 1 bad usage (also: an unwritable --csv or --plot, gnuplot
             failing), 2 bad input mesh, 3 a reference run failed (blow-up), memory ran out or
             the system refused a resource, 130 interrupted)";
 
-/// run's bound on --frames (its option table's), for bench error's --frames.
-constexpr long MAX_BENCH_FRAMES = 1000000;
+/// One count, as an integer option of run's (parse_decimal_integer), in [1, most].
+int parse_count(const std::string& text, const char* option, long most) {
+  long v = 0;
+  if (!parse_decimal_integer(text, v) || v < 1 || v > most)
+    throw UsageError(std::string(option) + ": '" + text + "' is not an integer in [1, " +
+                     std::to_string(most) + "]");
+  return static_cast<int>(v);
+}
 
 /// Parses "1,2,5" into integers in [1, most]: a list as every list option takes one
 /// (core/list_text.hpp), each item as an integer option's (parse_decimal_integer), each once.
@@ -86,13 +93,10 @@ std::vector<int> parse_list(const std::string& list, const char* option, long mo
     throw UsageError(std::string(option) + ": '" + list + "': " + why);
   std::vector<int> out;
   for (const std::string& item : items) {
-    long v = 0;
-    if (!parse_decimal_integer(item, v) || v < 1 || v > most)
-      throw UsageError(std::string(option) + ": '" + item + "' is not an integer in [1, " +
-                       std::to_string(most) + "]");
+    const int v = parse_count(item, option, most);
     if (std::find(out.begin(), out.end(), v) != out.end())
       throw UsageError(std::string(option) + ": " + item + " is given twice");
-    out.push_back(static_cast<int>(v));
+    out.push_back(v);
   }
   return out;
 }
@@ -137,6 +141,11 @@ int command_bench_error(int argc, char** argv) {
   std::string input, csv, plot, solver = "both", iterations = "1,2,5,10,20,50", substeps = "1,2,4";
   std::string collisions = "off", orders = "sequential", threads = "1";
   ErrorLadderOptions opt;
+  // Read as text by parse_count, as run's integer options are (Boost's int had a grammar and
+  // words of its own).
+  std::string ref_iterations = std::to_string(opt.xpbd_reference_iterations);
+  std::string ref_substeps = std::to_string(opt.xpbd_reference_substeps);
+  std::string pbd_ref_iterations = std::to_string(opt.pbd_reference_iterations);
   SimOptions base;
   // Read as text by run's own table (run_value), so that a value run refuses is refused here
   // before the runs, with run's message, not found out as a failed reference (exit 3).
@@ -161,14 +170,12 @@ int command_bench_error(int argc, char** argv) {
       "sweep orders of the rungs: sequential, coloured or both (list)")(
       "threads", po::value<std::string>(&threads)->default_value(threads),
       "threads of the coloured rungs (list; results do not depend on it)")(
-      "ref-iterations",
-      po::value<int>(&opt.xpbd_reference_iterations)->default_value(opt.xpbd_reference_iterations),
+      "ref-iterations", po::value<std::string>(&ref_iterations)->default_value(ref_iterations),
       "XPBD reference sweeps per substep")(
-      "ref-substeps",
-      po::value<int>(&opt.xpbd_reference_substeps)->default_value(opt.xpbd_reference_substeps),
+      "ref-substeps", po::value<std::string>(&ref_substeps)->default_value(ref_substeps),
       "XPBD reference substeps")(
       "pbd-ref-iterations",
-      po::value<int>(&opt.pbd_reference_iterations)->default_value(opt.pbd_reference_iterations),
+      po::value<std::string>(&pbd_ref_iterations)->default_value(pbd_ref_iterations),
       "PBD reference sweeps")("collisions",
                               po::value<std::string>(&collisions)->default_value(collisions),
                               "on|off: collision handling in every run")(
@@ -192,24 +199,27 @@ int command_bench_error(int argc, char** argv) {
     opt.collisions = collisions == "on";
     // run's bounds of --iterations and --threads; substeps as iterations (both multiply the work
     // of a step). Without one, --threads 9999 started that many threads.
-    opt.iterations = parse_list(iterations, "--iterations", 100000);
-    opt.substeps = parse_list(substeps, "--substeps", 100000);
-    opt.threads = parse_list(threads, "--threads", 4096);
+    namespace ranges = option_ranges;
+    opt.iterations = parse_list(iterations, "--iterations", ranges::MAX_ITERATIONS);
+    opt.substeps = parse_list(substeps, "--substeps", ranges::MAX_ITERATIONS);
+    opt.threads = parse_list(threads, "--threads", ranges::THREADS.hi);
+    // The references' counts as the rungs' (the pbd reference check runs twice
+    // --pbd-ref-iterations, which an int holds): 2000000000 ran as a typo would, for hours.
+    opt.xpbd_reference_iterations =
+        parse_count(ref_iterations, "--ref-iterations", ranges::MAX_ITERATIONS);
+    opt.xpbd_reference_substeps =
+        parse_count(ref_substeps, "--ref-substeps", ranges::MAX_ITERATIONS);
+    opt.pbd_reference_iterations =
+        parse_count(pbd_ref_iterations, "--pbd-ref-iterations", ranges::MAX_ITERATIONS);
     opt.orders = parse_orders(orders);
     opt.check_reference = !no_check;
     // run's grammar and upper bound for --frames; 0 frames would compare nothing.
-    long frames = 0;
-    if (!parse_decimal_integer(frames_text, frames) || frames < 1 || frames > MAX_BENCH_FRAMES)
-      throw UsageError("--frames: '" + frames_text + "' is not an integer in [1, " +
-                       std::to_string(MAX_BENCH_FRAMES) + "]");
-    opt.frames = static_cast<int>(frames);
+    opt.frames = parse_count(frames_text, "--frames", ranges::MAX_FRAMES);
     base.dt = run_value("dt", dt_text).sim.dt;
     if (pressure_text.find(':') != std::string::npos)
       throw UsageError("--pressure: '" + pressure_text +
                        "': bench error takes one pressure, not keyframes");
     base.pressure = run_value("pressure", pressure_text).sim.pressure;
-    if (opt.xpbd_reference_iterations < 1 || opt.xpbd_reference_substeps < 1 || opt.pbd_reference_iterations < 1)
-      throw UsageError("reference iterations and substeps must be >= 1");
     if (!plot.empty()) {
       // Any case, as the mesh formats' extensions: gnuplot's terminal comes from it, not the name.
       const std::string ext = lower_extension(plot);

@@ -42,7 +42,7 @@ void print_rows(const std::vector<ErrorLadderRow>& rows, std::ostream& os) {
     os << std::left << std::setw(7) << ladder_solver_name(r.solver) << std::setw(11)
        << ladder_order_name(r.order)
        << std::right
-       // A space before each count: a reference's iterations (--ref-iterations, any int) would
+       // A space before each count: a reference's iterations (--ref-iterations, up to 100000) would
        // otherwise run into the threads' column.
        << ' ' << std::setw(4) << r.threads << ' ' << std::setw(7) << r.iterations << ' '
        << std::setw(6) << r.substeps << std::setw(13) << fmt(r.ms_per_step) << std::setw(12)

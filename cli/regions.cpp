@@ -2,33 +2,33 @@
 // the local spherical regions that `run --regions auto` would choose (or, opt-in, the tip or part
 // finder's).
 // Exit 0 ok, 1 bad usage (also an unwritable output), 2 bad input mesh.
-#include <boost/program_options.hpp>
-
-#include "command_line.hpp"
-#include "commands.hpp"
-#include "core/classic_locale.hpp"
-#include "core/decimal_text.hpp"
-#include "output_paths.hpp"
+#include "shellcontract/regions.hpp"
 
 #include <algorithm>
+#include <boost/program_options.hpp>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "command_line.hpp"
+#include "commands.hpp"
+#include "core/classic_locale.hpp"
+#include "core/decimal_text.hpp"
 #include "geometry/curvature.hpp"
 #include "mesh/eigen_point_map.hpp"
+#include "output_paths.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
-#include "shellcontract/regions.hpp"
 #include "stage_notice.hpp"
 
 namespace shellcontract::cli {
@@ -229,6 +229,37 @@ std::string shown(double value) {
   return text.str();
 }
 
+/// The numeric options from their text (`number_text`, by option name), each as run reads its
+/// own: a number by parse_decimal, --min-faces by parse_decimal_integer (no blanks, no inf or
+/// nan, nothing out of a double's range); their ranges are check_region_options'.
+/// @throws UsageError naming the option
+void read_region_numbers(const std::map<std::string, std::string>& number_text,
+                         RegionOptions& options) {
+  const std::vector<std::pair<const char*, double*>> reals{
+      {"fit-tolerance", &options.fit_tolerance},
+      {"max-concave-fraction", &options.max_concave_fraction},
+      {"min-cap-angle", &options.min_cap_angle_deg},
+      {"contrast", &options.min_curvature_contrast},
+      {"max-compactness", &options.max_compactness},
+      {"min-area-fraction", &options.min_area_fraction},
+      {"max-area-fraction", &options.max_area_fraction}};
+  for (const auto& [name, field] : reals) {
+    const std::string& text = number_text.at(name);
+    if (!parse_decimal(text, *field))
+      throw UsageError(std::string("--") + name + ": '" + text + "' is not a number");
+  }
+  const std::string& faces = number_text.at("min-faces");
+  long n = 0;
+  if (!parse_decimal_integer(faces, n))
+    throw UsageError("--min-faces: '" + faces + "' is not an integer");
+  // Beyond an int: refused before the narrowing (check_region_options refuses the rest below 1).
+  constexpr long most = std::numeric_limits<int>::max();
+  if (n < 0 || n > most)
+    throw UsageError("--min-faces: '" + faces + "' is not an integer in [1, " +
+                     std::to_string(most) + "]");
+  options.min_faces = static_cast<int>(n);
+}
+
 }  // namespace
 
 int command_regions(int argc, char** argv) {
@@ -237,7 +268,11 @@ int command_regions(int argc, char** argv) {
   std::vector<Vec3> at;
   bool stage_times = false;
   RegionOptions options;
+  // The numbers as text, read after parsing by the grammar every command reads numbers with
+  // (read_region_numbers): Boost's conversions took "1e-400" as 0 and had words of their own.
+  std::map<std::string, std::string> number_text;
   po::options_description visible;
+  // clang-format off
   visible.add_options()
       ("help,h", "show this help")
       ("output,o", po::value(&output), "write the mesh as a .ply (face colours, region ids, curvature); "
@@ -254,22 +289,23 @@ int command_regions(int argc, char** argv) {
       ("region-at", po::value(&points)->composing(), "X,Y,Z: the cap around the surface point nearest to "
                                                       "this point (repeatable, or X,Y,Z;X,Y,Z; replaces the "
                                                       "automatic search)")
-      ("fit-tolerance", po::value(&options.fit_tolerance)->default_value(options.fit_tolerance, shown(options.fit_tolerance)),
+      ("fit-tolerance", po::value(&number_text["fit-tolerance"])->default_value(shown(options.fit_tolerance)),
        "growth: RMS distance to the fitted sphere at most this fraction of its radius")
-      ("max-concave-fraction", po::value(&options.max_concave_fraction)->default_value(options.max_concave_fraction, shown(options.max_concave_fraction)),
+      ("max-concave-fraction", po::value(&number_text["max-concave-fraction"])->default_value(shown(options.max_concave_fraction)),
        "growth: at most this share of a disc may be concave")
-      ("min-cap-angle", po::value(&options.min_cap_angle_deg)->default_value(options.min_cap_angle_deg, shown(options.min_cap_angle_deg)),
+      ("min-cap-angle", po::value(&number_text["min-cap-angle"])->default_value(shown(options.min_cap_angle_deg)),
        "keep caps spanning at least this angle, degrees (geodesic radius / sphere radius; a hemisphere is 90)")
-      ("contrast", po::value(&options.min_curvature_contrast)->default_value(options.min_curvature_contrast, shown(options.min_curvature_contrast)),
+      ("contrast", po::value(&number_text["contrast"])->default_value(shown(options.min_curvature_contrast)),
        "keep caps whose curvature 1/radius is at least this multiple of the area-weighted median |H|")
-      ("max-compactness", po::value(&options.max_compactness)->default_value(options.max_compactness, shown(options.max_compactness)),
+      ("max-compactness", po::value(&number_text["max-compactness"])->default_value(shown(options.max_compactness)),
        "keep caps with perimeter^2 / (4 pi area) at most this (> 0; 1 = a flat disc, 0.5 = a "
        "hemisphere, larger = longer or more ragged)")
-      ("min-faces", po::value(&options.min_faces)->default_value(options.min_faces), "keep caps with at least this many faces")
-      ("min-area-fraction", po::value(&options.min_area_fraction)->default_value(options.min_area_fraction, shown(options.min_area_fraction)),
+      ("min-faces", po::value(&number_text["min-faces"])->default_value(std::to_string(options.min_faces)), "keep caps with at least this many faces")
+      ("min-area-fraction", po::value(&number_text["min-area-fraction"])->default_value(shown(options.min_area_fraction)),
        "drop regions smaller than this fraction of the total area")
-      ("max-area-fraction", po::value(&options.max_area_fraction)->default_value(options.max_area_fraction, shown(options.max_area_fraction)),
+      ("max-area-fraction", po::value(&number_text["max-area-fraction"])->default_value(shown(options.max_area_fraction)),
        "drop regions larger than this fraction of the total area (not local)");
+  // clang-format on
   try {
     refuse_empty_numbers(argc, argv, visible);
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
@@ -281,6 +317,7 @@ int command_regions(int argc, char** argv) {
     if (!output.empty() && lower_extension(output) != "ply")
       throw UsageError("the output must be a .ply file (got '" + output + "')");
     options.method = parse_method(method);
+    read_region_numbers(number_text, options);
     // Each option with its value and range, the area fractions with both values (spelled below).
     check_region_options(options);
     if (options.method != RegionMethod::Caps && !points.empty())

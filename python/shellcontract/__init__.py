@@ -136,8 +136,8 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
     ``lambda``, a Python keyword, is also ``lambda_``.
 
     Values (regions() takes its numbers alike): a number is an int or a float (numpy's too) or
-    the CLI's text ("0.5"; no blanks, no hexadecimal); an integer option (frames, threads, ...)
-    takes a whole float (3.0; 3.5 is a ValueError). A bool (numpy's bool_ too) is for the on/off
+    the CLI's text ("0.5"; no blanks, no hexadecimal); an integer option (frames, threads, ...,
+    and checkpoint_every) takes a whole float of any size (3.0, 1e5; 3.5 is a ValueError). A bool (numpy's bool_ too) is for the on/off
     options alone (collisions=False, or "on"/"off"); for a number, a TypeError, as is a list for
     an option of one value. ``pressure`` and ``target_volume`` take one number or keyframes
     (docs/design/keyframes.md): a list of (frame, value) pairs, ``[(0, 1), (60, 0.5)]``, an
@@ -204,6 +204,13 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
             if name in options:
                 raise TypeError("contract() got {} and {}, the same option".format(name, dashed))
             options[name] = options.pop(dashed)
+    every = options.get("checkpoint_every")
+    if isinstance(every, str):
+        # The CLI's --checkpoint-every text, as frames="2" is the CLI's --frames text.
+        if number_text.integer(every) is None:
+            raise ValueError("checkpoint_every: expected an integer >= 1, with checkpoint=FILE or "
+                             "resume=FILE, got {!r}".format(every))
+        options["checkpoint_every"] = number_text.integer(every)
     if faces is None:
         raise TypeError("faces must be an array-like of integers, got None")
     for name in ("region_at", "region-at"):
@@ -254,16 +261,23 @@ def contract(vertices, faces, *, callback=None, stage=None, **options):
                                        **dict(options, regions=path, _regions_from_arrays=True)))
     return _given_arrays(result, regions=len(lists),
                          strengths=None if strengths is None else _strengths(strengths, len(lists)),
-                         weights=weights_array)
+                         weights=weights_array, regions_file=path)
 
 
-def _given_arrays(result, regions=None, strengths=None, weights=False):
-    """The summary's options say that regions or weights were arrays, not the temporary file the
-    regions went through (deleted by now) or an empty weights file name."""
+def _given_arrays(result, regions=None, strengths=None, weights=False, regions_file=None):
+    """The summary's options and warnings say that regions or weights were arrays, not the
+    temporary file the regions went through (deleted by now) or an empty weights file name."""
+    given = "<{} regions given as arrays>".format(regions)
+    warnings = result.summary.get("warnings")
+    if regions_file is not None and isinstance(warnings, list):
+        # The library names the face-list file it read ("regions FILE: every region's strength
+        # is 0: ..."); the argument is named as for regions that hold no region.
+        result.summary["warnings"] = [w.replace("regions " + regions_file + ":", "regions:")
+                                      .replace(regions_file, given) for w in warnings]
     options = result.summary.get("options")
     if isinstance(options, dict):
         if regions is not None:
-            options["regions"] = "<{} regions given as arrays>".format(regions)
+            options["regions"] = given
         if strengths is not None:
             options["region_strengths"] = list(strengths)
         if weights:
@@ -380,16 +394,18 @@ def read_mesh(path):
 
 
 def write_mesh(path, vertices, faces, like=None):
-    """Writes OFF/OBJ/PLY/STL (by extension) atomically, as the CLI writes its -o output. The
+    """Writes OFF/OBJ/PLY/STL (by extension; with ``like``, also .glb or .gltf) atomically, as
+    the CLI writes its -o output. The
     mesh must pass the same checks as an input (closed, manifold, no isolated vertex: MeshError
     or ValueError otherwise), so that what is written can be read back. An STL keeps no vertex
     identity (its readers merge equal positions): a mesh with two vertices at one position is a
     ValueError there (write .off, .obj or .ply).
-    like: the OBJ or PLY file that read_mesh read `faces` from; the output is then that file with
-    the new positions (UVs, normals, groups, materials, polygons, extra properties kept), each
-    written in the file's own type: a position its type cannot hold (beyond a float32's range,
-    a whole mesh below the smallest normal float32, an integer type's range) is a ValueError
-    naming the vertex.
+    like: the OBJ, PLY, .glb or .gltf file that read_mesh read `faces` from; the output, a file
+    of like's format, is then that file with the new positions (UVs, normals, groups,
+    materials, polygons, extra properties, a glTF's scene kept), each written in the file's own
+    type: a position its type cannot hold (beyond a float32's range, a whole mesh below the
+    smallest normal float32, an integer type's range) is a ValueError naming the vertex. An
+    OFF or STL like, or an output of another format, is a ValueError.
     A file that cannot be written raises its OSError (FileNotFoundError for a missing folder,
     PermissionError for a read-only one, IsADirectoryError for a folder in its place, a
     FileError with errno None for a device, FIFO or socket in its place, another OSError for a

@@ -1,9 +1,12 @@
 #include "checkpointing.hpp"
 
 #include <limits>
+#include <optional>
+#include <string>
 #include <utility>
 
 #include "arrays.hpp"
+#include "option_values.hpp"
 #include "shellcontract/checkpoint_lock.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/output_files.hpp"
@@ -12,20 +15,26 @@ namespace shellcontract::python {
 
 namespace {
 
-/// checkpoint_every as an int >= 1 (None: not given), refused with the option's words otherwise:
-/// pybind11's cast said only "Unable to cast Python instance to C++ type", took True for 1 and
-/// 2**40 failed the same way.
+/// checkpoint_every as an int >= 1 (None: not given), read as contract()'s integer options are
+/// (whole_number: 2, numpy's int, a whole float 2.0; the package reads a str, "2", as the CLI's
+/// --checkpoint-every text first), refused with the option's words otherwise: pybind11's cast
+/// said only "Unable to cast Python instance to C++ type", took True for 1 and 2**40 failed the
+/// same way.
 int every_argument(const py::handle& value) {
-  const char* expected =
-      "checkpoint_every: expected an integer >= 1, with checkpoint=FILE or resume=FILE";
   if (value.is_none()) return 0;
-  if (PyBool_Check(value.ptr()) || !PyIndex_Check(value.ptr())) throw py::type_error(expected);
-  const long long n = PyLong_AsLongLong(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())).ptr());
-  if (PyErr_Occurred()) {
-    PyErr_Clear();
+  const std::string expected =
+      "checkpoint_every: expected an integer >= 1, with checkpoint=FILE or resume=FILE, got " +
+      std::string(py::str(py::repr(value)));
+  const py::object v = python_value(value);
+  if (is_bool(value) || py::isinstance<py::bool_>(v) ||
+      !(PyFloat_Check(v.ptr()) || PyIndex_Check(v.ptr())))
+    throw py::type_error(expected);
+  const std::optional<py::int_> whole = whole_number(value);
+  if (!whole) throw py::value_error(expected);  // 2.5, NaN
+  int overflow = 0;
+  const long long n = PyLong_AsLongLongAndOverflow(whole->ptr(), &overflow);
+  if (overflow != 0 || n < 1 || n > std::numeric_limits<int>::max())
     throw py::value_error(expected);
-  }
-  if (n < 1 || n > std::numeric_limits<int>::max()) throw py::value_error(expected);
   return static_cast<int>(n);
 }
 

@@ -13,6 +13,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -72,15 +73,6 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   return d;
 }
 
-/// An option's value as contract()'s option_text reads it: a numpy scalar or 0-d array by its
-/// Python value (tolist), so that an array of one element is a list, not the number, and numpy's
-/// complex a complex; anything else as it is.
-py::object python_value(const py::handle& value) {
-  if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
-    return value.attr("tolist")();
-  return py::reinterpret_borrow<py::object>(value);
-}
-
 std::string type_name(const py::handle& value) {
   return std::string(py::str(value.get_type().attr("__name__")));
 }
@@ -109,8 +101,8 @@ double real_option(const std::string& name, const py::handle& value) {
 
 /// A positive integer option of regions(): min_faces, whose range is the library's
 /// (check_region_options: >= 1) and the CLI's (--min-faces reads an int). As contract()'s
-/// integers: an int (numpy's too) or a float whose value is whole (3.0; 3.5 is a ValueError);
-/// TypeError for a bool (numpy's too) or anything else.
+/// integers (whole_number): an int (numpy's too) or a float whose value is whole (3.0; 3.5 is a
+/// ValueError); TypeError for a bool (numpy's too) or anything else.
 int int_option(const std::string& name, const py::handle& value) {
   constexpr long long most = std::numeric_limits<int>::max();
   const auto out_of_range = [&] {
@@ -122,16 +114,10 @@ int int_option(const std::string& name, const py::handle& value) {
       !(PyFloat_Check(v.ptr()) || PyIndex_Check(v.ptr())))
     throw py::type_error("regions() option " + name + ": expected an integer, got " +
                          type_name(value));
-  if (PyFloat_Check(v.ptr())) {
-    const double d = PyFloat_AsDouble(v.ptr());
-    if (!(std::floor(d) == d && d >= 1.0 && d <= static_cast<double>(most)))
-      throw out_of_range();  // NaN too
-    return static_cast<int>(d);
-  }
-  const py::int_ i = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
-  if (!i) throw py::error_already_set();
+  const std::optional<py::int_> whole = whole_number(value);
+  if (!whole) throw out_of_range();  // 3.5, NaN
   int overflow = 0;
-  const long long n = PyLong_AsLongLongAndOverflow(i.ptr(), &overflow);
+  const long long n = PyLong_AsLongLongAndOverflow(whole->ptr(), &overflow);
   if (overflow != 0 || n < 1 || n > most) throw out_of_range();
   return static_cast<int>(n);
 }
@@ -253,8 +239,14 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
       read = read_input_mesh(like);
       doc = read_mesh_document(like);
     });
-    if (!doc || !path_has_extension(path, doc->format()))
-      throw UsageError("write_mesh: like=" + like + ": only an OBJ or PLY file, written to a file of its format");
+    // The formats with a document are the format table's (read_mesh_document): OBJ, PLY and glTF.
+    if (!doc)
+      throw UsageError("write_mesh: like=" + like +
+                       ": only an OBJ, PLY, .glb or .gltf file (OFF and STL keep nothing besides "
+                       "the mesh: write without like=), written to a file of its format");
+    if (!path_has_extension(path, doc->format()))
+      throw UsageError("write_mesh: like=" + like + ": written to a file of its format (." +
+                       doc->format() + "), not " + path);
     // C order, so that faces equal to read_mesh's in another layout compare equal element by
     // element (a Fortran or strided array was compared in memory order, and refused).
     const auto f = faces_to_numpy(read);

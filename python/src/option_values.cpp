@@ -3,12 +3,12 @@
 // keyword arguments, region_at's points, and the sweep's check of its jobs (resolve_options).
 #include "option_values.hpp"
 
+#include <Python.h>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <Python.h>
-
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,8 +27,9 @@ std::string valid_names() {
 }
 
 /// The text the CLI would receive for a Python value: bool -> on/off, float -> shortest_text (the
-/// shortest text that reads back as the same double), int and str as they are, an os.PathLike as
-/// its path, a sequence -> "a,b,c" (--fiber X,Y,Z).
+/// shortest text that reads back as the same double; a whole float for an integer option, N in
+/// the table, the integer's digits), int and str as they are, an os.PathLike as its path, a
+/// sequence -> "a,b,c" (--fiber X,Y,Z).
 std::string option_text(const std::string& name, const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "on" : "off";
   // A str may name a file (regions, region_weights): its bytes are the file name's, as for a path.
@@ -37,9 +38,17 @@ std::string option_text(const std::string& name, const py::handle& value) {
   // A numpy array or scalar goes by its Python value (an array also passes PyIndex_Check).
   if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
     return option_text(name, value.attr("tolist")());
-  // The tool's own text (shortest_text: 2e+06, not Python's 2000000.0), so that a refusal quotes
-  // the value as the CLI and the summary write it.
-  if (py::isinstance<py::float_>(value)) return shortest_text(value.cast<double>());
+  if (py::isinstance<py::float_>(value)) {
+    // A whole float for an integer option (a JSON file's 1e5, a float array's item) is that
+    // integer: shortest_text writes 100000.0 as 1e+05, which the integer parser refuses.
+    const OptionSpec* spec = find_run_option(name);
+    if (spec && spec->value_name == "N")
+      if (const std::optional<py::int_> whole = whole_number(value))
+        return std::string(py::str(py::handle(*whole)));
+    // Else the tool's own text (shortest_text: 2e+06, not Python's 2000000.0), so that a refusal
+    // quotes the value as the CLI and the summary write it.
+    return shortest_text(value.cast<double>());
+  }
   if (PyIndex_Check(value.ptr())) return py::str(py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr())));
   // Keyframes as (frame, value) pairs (target_volume=[(0, 1), (60, 0.5)]): the CLI's
   // "0:1, 60:0.5".
@@ -61,9 +70,8 @@ std::string option_text(const std::string& name, const py::handle& value) {
       ++keys;
       // A whole float frame (a float array's 15.0) is the integer frame it stands for.
       py::object frame = key[py::int_(0)];
-      if (py::isinstance<py::float_>(frame) && std::floor(frame.cast<double>()) == frame.cast<double>() &&
-          std::abs(frame.cast<double>()) < 1e15)
-        frame = py::int_(static_cast<long long>(frame.cast<double>()));
+      if (py::isinstance<py::float_>(frame))
+        if (const std::optional<py::int_> whole = whole_number(frame)) frame = *whole;
       s += (s.empty() ? "" : ", ") + option_text(name, frame) + ":" + option_text(name, key[py::int_(1)]);
     }
     return s;
@@ -106,6 +114,26 @@ bool is_keyframe_list(const py::handle& value) {
 }
 
 }  // namespace
+
+py::object python_value(const py::handle& value) {
+  if (py::hasattr(value, "tolist") && !py::isinstance<py::float_>(value))
+    return value.attr("tolist")();
+  return py::reinterpret_borrow<py::object>(value);
+}
+
+std::optional<py::int_> whole_number(const py::handle& value) {
+  const py::object v = python_value(value);
+  if (is_bool(value) || py::isinstance<py::bool_>(v)) return std::nullopt;
+  if (PyFloat_Check(v.ptr())) {
+    const double d = PyFloat_AsDouble(v.ptr());
+    if (!std::isfinite(d) || std::floor(d) != d) return std::nullopt;
+    return py::reinterpret_steal<py::int_>(PyLong_FromDouble(d));  // exact, whatever its size
+  }
+  if (!PyIndex_Check(v.ptr())) return std::nullopt;
+  const py::int_ n = py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
+  if (!n) throw py::error_already_set();
+  return n;
+}
 
 bool is_bool(const py::handle& value) {
   if (py::isinstance<py::bool_>(value)) return true;

@@ -4,6 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,18 @@ bool is_path(const py::handle& value);
 /// A bool as Python code passes one: a bool, numpy's bool_, or a 0-dimensional array of bools.
 /// Only the on/off options take one; for a number it is a TypeError, whichever kind it is.
 bool is_bool(const py::handle& value);
+
+/// An option's value as option_text reads it: a numpy scalar or 0-d array by its Python value
+/// (tolist), so that an array of one element is a list, not the number, and numpy's complex a
+/// complex; anything else as it is.
+py::object python_value(const py::handle& value);
+
+/// The one rule by which the module reads an integer argument (contract()'s and the sweep's
+/// integer options, regions()'s min_faces, checkpoint_every): an int (numpy's too) or a float
+/// whose value is whole (3.0; a JSON file's 1e5; numpy's too) is that integer, exactly; anything
+/// else (3.5, NaN, inf, a bool or numpy's bool, a str, None) is std::nullopt, for the caller's
+/// message. A str is the CLI's text, which each caller reads with the CLI's parser.
+std::optional<py::int_> whole_number(const py::handle& value);
 
 /// The options by their Python names: an option is also taken as the CLI spells it ("k-b" for
 /// k_b, as regions() takes them), once (TypeError for one given both ways). Unknown names are

@@ -176,7 +176,7 @@ def test_region_strengths_of_another_shape_are_type_errors_saying_what_they_take
         shellcontract.contract(v, f, frames=2, regions=shellcontract.regions(v, f), region_strengths=strengths)
 
 
-@pytest.mark.parametrize("every, error", [(1.5, TypeError), ("2", TypeError), (True, TypeError),
+@pytest.mark.parametrize("every, error", [(1.5, ValueError), ("x", ValueError), (True, TypeError),
                                           (0, ValueError), (2**40, ValueError)])
 def test_checkpoint_every_of_another_kind_says_what_it_takes(bumpy, tmp_path, every, error):
     # Before: pybind11's "Unable to cast Python instance to C++ type"; True was taken as 1 and 0
@@ -223,3 +223,18 @@ def test_region_strengths_given_as_text_are_refused(bumpy):
     # Before: ["0.5"] passed float() and was taken as 0.5.
     with pytest.raises(TypeError, match=r"region_strengths\[0\] = '0.5' is not a number"):
         run(bumpy, regions=[[3]], region_strengths=["0.5"])
+
+
+@pytest.mark.parametrize("regions", [[[0, 1, 2], [10, 11]], "labels"])
+def test_all_zero_strengths_warn_naming_the_argument_not_a_deleted_file(bumpy, regions):
+    """Before: "regions /tmp/tmpXXXX/regions.txt: every region's strength is 0: ...", naming the
+    temporary file the arrays went through, deleted by the time the warning is read (regions that
+    hold no region were already named as the argument)."""
+    v, f = bumpy
+    if regions == "labels":
+        regions = np.full(len(f), -1)
+        regions[[0, 1, 2]], regions[[10, 11]] = 0, 1
+    r = shellcontract.contract(v, f, frames=1, regions=regions, region_strengths=[0, 0.0])
+    assert r.summary["warnings"] == [
+        "regions: every region's strength is 0: the local contraction has no effect"]
+    assert r.summary["options"]["regions"] == "<2 regions given as arrays>"

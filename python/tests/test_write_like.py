@@ -34,8 +34,25 @@ def test_write_like_refuses_other_faces(tmp_path):
     v, f = shellcontract.read_mesh(src)
     with pytest.raises(ValueError, match="not those read_mesh gives"):
         shellcontract.write_mesh(tmp_path / "out.obj", v, f[:, [0, 2, 1]], like=src)
-    with pytest.raises(ValueError, match="only an OBJ or PLY file"):
+    with pytest.raises(ValueError, match="written to a file of its format \\(.obj\\), not "):
         shellcontract.write_mesh(tmp_path / "out.off", v, f, like=src)
+
+
+@pytest.mark.parametrize("name", ["ico1.off", "ico1.stl"])
+def test_write_like_of_a_format_without_a_document_names_the_formats_that_have_one(tmp_path, mesh_dir, name):
+    """Before: "only an OBJ or PLY file", where a .glb or .gltf like is written too."""
+    like = tmp_path / name
+    shellcontract.write_mesh(like, *shellcontract.read_mesh(mesh_dir / "ico1.off"))
+    v, f = shellcontract.read_mesh(like)
+    with pytest.raises(ValueError, match="only an OBJ, PLY, .glb or .gltf file") as e:
+        shellcontract.write_mesh(tmp_path / ("out" + like.suffix), v, f, like=like)
+    assert "OBJ or PLY file" not in str(e.value)
+    assert not (tmp_path / ("out" + like.suffix)).exists()
+
+
+def test_the_docstring_names_the_formats_like_takes():
+    doc = shellcontract.write_mesh.__doc__
+    assert "like: the OBJ, PLY, .glb or .gltf file" in " ".join(doc.split())
 
 
 PLY_HEAD = "ply\nformat ascii 1.0\nelement vertex 4\n"

@@ -177,6 +177,8 @@ std::uint64_t mesh_hash(const Mesh& mesh) {
 }
 
 const std::vector<std::string>& result_neutral_options() {
+  // Not speculative-broad-phase: its queried pairs come after the grid's, so on and off order
+  // the same pairs otherwise, and a run with contacts ends elsewhere (docs/design/self-collision.md).
   static const std::vector<std::string> names{"threads"};
   return names;
 }

@@ -56,8 +56,8 @@ void require(const char* field, long value, const option_ranges::IntegerRange& r
 /// fields). The ranges are the table's own (option_ranges.hpp), checked first so that a value is
 /// refused as its text would be, but for three bounds that refuse a user's typo, not a value the
 /// run cannot take: the frames' upper bound (bench error's substeps multiply the frames of a run
-/// that the table bounded), the iterations' (bench error's reference runs take more, and its pbd
-/// reference check twice --pbd-ref-iterations) and the pressure's (any finite one).
+/// that the table bounded), the iterations' (bench error's pbd reference check runs twice
+/// --pbd-ref-iterations, which is held to the table's bound) and the pressure's (any finite one).
 void check_sim_options_impl(const SimOptions& o) {
   namespace ranges = option_ranges;
   auto fail = [](const std::string& what) { throw UsageError(what); };

@@ -225,6 +225,52 @@ TEST_F(CliParsing, BenchErrorRefusesWhatRunRefuses) {
   }
 }
 
+// regions' numbers and bench error's reference counts were Boost's conversions: --fit-tolerance
+// 1e-400 ran as 0, " 12" was refused in Boost's words, --pbd-ref-iterations took any int
+// (2000000000 ran for hours; twice it, the reference check's, overflowed). Run's grammar and the
+// rungs' bound now (review drift F4, complexity F11).
+TEST_F(CliParsing, RegionsAndBenchErrorReadNumbersAsRunDoes) {
+  const std::string bumpy = mesh("bumpy_sphere.off");
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"--fit-tolerance", "1e-400", "is not a number"},
+        {"--contrast", "0x1", "is not a number"},
+        {"--max-area-fraction", "nan", "is not a number"},
+        {"--min-faces", " 12", "is not an integer"},
+        {"--min-faces", "12.0", "is not an integer"},
+        {"--min-faces", "3000000000", "is not an integer in [1, 2147483647]"}}) {
+    const auto r = run_cli({"regions", bumpy, bad[0], bad[1]});
+    EXPECT_EQ(r.exit_code, 1) << bad[0] << " " << bad[1] << ": " << r.output;
+    EXPECT_TRUE(has(r.output, bad[0] + ": '" + bad[1] + "' " + bad[2])) << r.output;
+  }
+  // The same digits in another spelling are the same number: the same table.
+  const auto plain = run_cli({"regions", bumpy, "--fit-tolerance", "0.3", "--min-faces", "10"});
+  const auto spelt = run_cli({"regions", bumpy, "--fit-tolerance", "+3e-1", "--min-faces", "+10"});
+  ASSERT_EQ(plain.exit_code, 0) << plain.output;
+  EXPECT_EQ(spelt.exit_code, 0) << spelt.output;
+  EXPECT_EQ(spelt.output, plain.output);
+  const auto ccd =
+      run_cli({"bench", "ccd", "--queries", query_dir(), "--repeat", "1", "--tolerance", "1e-400"});
+  EXPECT_EQ(ccd.exit_code, 1) << ccd.output;
+  EXPECT_TRUE(has(ccd.output, "--tolerance: '1e-400' is not a finite number >= 0")) << ccd.output;
+
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{"--pbd-ref-iterations", "100001"},
+        {"--ref-iterations", "100001"},
+        {"--ref-substeps", "100001"},
+        {"--ref-iterations", "1e3"},
+        {"--pbd-ref-iterations", " 5"},
+        {"--ref-substeps", "0"}}) {
+    std::vector<std::string> args = {
+        "bench", "error",      mesh("ico1.off"), "-q", "-n",         "1", "--solver",
+        "pbd",   "--no-check", "--iterations",   "1",  "--substeps", "1"};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 1) << bad[0] << " " << bad[1] << ": " << r.output;
+    EXPECT_TRUE(has(r.output, bad[0] + ": '" + bad[1] + "' is not an integer in [1, 100000]"))
+        << r.output;
+  }
+}
+
 // `shellcontract help run` printed the commands' list; `--version extra` ignored `extra`.
 TEST_F(CliParsing, HelpNamesACommandAndVersionTakesNoArgument) {
   const auto run_help = run_cli({"help", "run"});

@@ -62,7 +62,7 @@ TEST_F(CliValueWords, RegionsNamesTheOptionTheValueAndTheRange) {
       {{"--max-area-fraction", "0.001"},
        {"--max-area-fraction 0.001 is below --min-area-fraction 0.002"}},
       {{"--max-concave-fraction", "1.5"}, {"--max-concave-fraction 1.5", "[0, 1]"}},
-      {{"--max-area-fraction", "nan"}, {"--max-area-fraction nan", "[0, 1]"}},
+      {{"--max-area-fraction", "nan"}, {"--max-area-fraction: 'nan' is not a number"}},
       {{"--min-area-fraction", "2"}, {"--min-area-fraction 2", "[0, 1]"}},
       {{"--min-cap-angle", "200"}, {"--min-cap-angle 200", "[0, 180]"}},
       {{"--contrast", "-1"}, {"--contrast -1", ">= 0"}},
