@@ -111,6 +111,33 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   std::size_t split = 0;
   std::array<std::size_t, soup::SPLIT_RULES> by_rule{};  // polygons split by each soup::SplitRule, for the warning
 
+  // Polygons above MAX_SPLIT_CORNERS are left to the loop's own message.
+  std::size_t split_work = 0;
+  std::vector<std::size_t> large;  // polygons of more than SMALL_SPLIT_CORNERS corners
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    const std::size_t n = polygons[i].size();
+    if (n <= soup::SMALL_SPLIT_CORNERS || n > soup::MAX_SPLIT_CORNERS) continue;
+    split_work += n * n;
+    large.push_back(i);
+  }
+  if (split_work > soup::MAX_SPLIT_WORK) {
+    const std::size_t top = *std::max_element(
+        large.begin(), large.end(),
+        [&](std::size_t a, std::size_t b) { return polygons[a].size() < polygons[b].size(); });
+    fail_faces(path, "polygons too large in all",
+               std::to_string(large.size()) + " polygons have more than " +
+                   std::to_string(soup::SMALL_SPLIT_CORNERS) + " vertices (the largest: " +
+                   name.polygon(top) + ", " + std::to_string(polygons[top].size()) +
+                   " vertices); splitting one takes time of the square of its vertices, and theirs "
+                   "add up to " +
+                   std::to_string(split_work) + ", more than the " +
+                   std::to_string(soup::MAX_SPLIT_WORK) + " (ten polygons of " +
+                   std::to_string(soup::MAX_SPLIT_CORNERS) +
+                   " vertices) that this reader splits into triangles; triangulate them in your "
+                   "modelling tool"
+                   " (Blender: Face > Triangulate Faces) before using the file",
+               large);
+  }
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const Polygon& p = polygons[i];
     if (p.size() < 3)

@@ -143,7 +143,6 @@ class PlyDocument final : public MeshDocument {
 
   std::string name_, bytes_;
   bool ascii_ = true, big_endian_ = false;
-  std::vector<ply::Element> elements_;
   std::size_t pos_ = 0;
   std::size_t body_ = 0;  ///< where the body starts in bytes_
   /// `double` in place of each integer type of the vertices' x, y, z (and nx, ny, nz when written)
@@ -216,7 +215,6 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   ply::Header header = ply::read_ply_header(name_, bytes_);
   ascii_ = header.format == ply::Format::Ascii;
   big_endian_ = header.format == ply::Format::BinaryBigEndian;
-  elements_ = std::move(header.elements);
   pos_ = body_ = header.body;
   bool vertices_seen = false, faces_seen = false;
   polygon_start_.push_back(0);
@@ -233,11 +231,13 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
   bool has_alpha = false;
   std::size_t face_number = 0;
   bool wedges_whole = true, wedges_seen = false;
-  for (const ply::Element& e : elements_) {
+  for (const ply::Element& e : header.elements) {
     const bool is_vertex = e.name == "vertex" && !vertices_seen;
     const bool is_face = e.name == "face" && !faces_seen;
     vertices_seen |= is_vertex;
     faces_seen |= is_face;
+    // Nothing to read in an element without properties, whatever its count (read_ply skips it).
+    if (e.properties.empty()) continue;
     // Texture coordinates under the names that PLY writers use (Blender: s, t; others: u, v).
     int u_prop = -1, v_prop = -1;
     // The properties that hold x, y, z: the first of each name, as read_ply reads them.

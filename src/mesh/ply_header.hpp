@@ -51,7 +51,8 @@ struct Header {
 };
 
 /// The header of a PLY file held in memory, checked as read_ply checks it (a UTF-8 byte-order
-/// mark is skipped). The declared counts are not checked against the body.
+/// mark is skipped). The declared counts are not checked against the body, but an element without
+/// properties that declares more instances than the file has bytes is refused.
 /// @throws InputError "<path>: <problem>: <where>" for a header that is not valid PLY
 Header read_ply_header(const std::string& path, const std::string& bytes);
 

@@ -64,6 +64,7 @@ class PlyParser {
   /// The checked header and where the body starts (read_ply_header).
   ply::Header header() {
     parse_header();
+    check_empty_counts();
     return ply::Header{format_, elements_, pos_, body_line_, comments_};
   }
 
@@ -79,6 +80,7 @@ class PlyParser {
       faces_seen |= is_face;
       read_element(e, is_vertex, is_face, out);
     }
+    check_empty_counts();
     return out;
   }
 
@@ -189,6 +191,19 @@ class PlyParser {
     }
     if (!format_seen) fail("parse error", "the header has no 'format' line");
     body_line_ = line_ + 1;
+  }
+
+  /// An element without properties takes no bytes, so check_counts_fit cannot bound its count,
+  /// and a loop over its instances (the PLY document's) would run for as long as the count says.
+  /// No file declares more instances than it has bytes: refused by read_ply (after the elements
+  /// it refuses for lacking properties, with their own message) and read_ply_header alike.
+  void check_empty_counts() const {
+    for (const Element& e : elements_)
+      if (e.properties.empty() && e.count > bytes_.size())
+        fail("implausible count",
+             "element '" + shorten(e.name) + "' (" + at_line(e.line) +
+                 ") has no properties but declares " + std::to_string(e.count) +
+                 " instances, more than the file's " + std::to_string(bytes_.size()) + " bytes");
   }
 
   /// Every element instance needs some bytes (binary: its scalars and list counts; ascii: one

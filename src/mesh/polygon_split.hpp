@@ -19,6 +19,15 @@ namespace shellcontract::soup {
 /// bound a polygon is split within seconds. A modelling tool splits a larger one in an instant.
 constexpr std::size_t MAX_SPLIT_CORNERS = 10000;
 
+/// The bound above is per polygon; a file may hold any number of such polygons, each checked and
+/// split in time of the square of its corners, before the checks that refuse them (a file of the
+/// same large polygon many times is duplicate faces). So the squares of the corners of a file's
+/// polygons of more than SMALL_SPLIT_CORNERS corners (a smaller one costs at most that many steps
+/// per corner, time in proportion to the file) may add up to MAX_SPLIT_WORK, ten polygons of
+/// MAX_SPLIT_CORNERS; a file past it is refused before any is split (exit 2, naming the largest).
+constexpr std::size_t SMALL_SPLIT_CORNERS = 100;
+constexpr std::size_t MAX_SPLIT_WORK = 10 * MAX_SPLIT_CORNERS * MAX_SPLIT_CORNERS;
+
 /// The rules of split_polygon below, numbered as there; `flat` is rule 1's zero-normal case.
 enum class SplitRule { fan, flat, diagonal, ear_clip, best_fan };
 constexpr std::size_t SPLIT_RULES = 5;  ///< SplitRule's values, for counting by rule

@@ -117,20 +117,36 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points,
         }
     out.flat = w.str() + stray_vertices_note(points, std::move(ids), number);
   }
-  for (std::size_t c = 0; c < out.components; ++c) {
+  // One pass over the faces for every inside-out component (a pass per component was quadratic
+  // in a file of many small inverted parts), and one warning line for more than MAX_LISTED.
+  std::vector<std::size_t> first(out.components, nf), count(out.components, 0), flipped;
+  for (std::size_t c = 0; c < out.components; ++c)
+    if (six_volume[c] < 0.0 && !flat[c]) flipped.push_back(c);
+  for (std::size_t f = 0; f < nf && !flipped.empty(); ++f) {
+    const std::size_t c = component_face[f];
     if (six_volume[c] >= 0.0 || flat[c]) continue;
-    out.reoriented = true;
-    std::size_t first = nf, count = 0;
-    for (std::size_t f = 0; f < nf; ++f)
-      if (component_face[f] == c) {
-        std::swap(tris[f][1], tris[f][2]);
-        first = std::min(first, f);
-        ++count;
-      }
+    std::swap(tris[f][1], tris[f][2]);
+    first[c] = std::min(first[c], f);
+    ++count[c];
+  }
+  out.reoriented = !flipped.empty();
+  const auto volume = [&](std::size_t c) { return six_volume[c] / 6.0 * scale * scale * scale; };
+  if (flipped.size() <= MAX_LISTED) {
+    for (const std::size_t c : flipped) {
+      ClassicOStringStream w;
+      w << "component " << c << " (" << count[c] << " faces, starting at face " << first[c]
+        << ") was inside-out (signed volume " << volume(c) << "); its faces were flipped";
+      warnings.push_back(w.str());
+    }
+  } else {
     ClassicOStringStream w;
-    w << "component " << c << " (" << count << " faces, starting at face " << first
-      << ") was inside-out (signed volume " << six_volume[c] / 6.0 * scale * scale * scale
-      << "); its faces were flipped";
+    w << flipped.size() << " components were inside-out; their faces were flipped: ";
+    for (std::size_t i = 0; i < MAX_LISTED; ++i) {
+      const std::size_t c = flipped[i];
+      w << "component " << c << " (" << count[c] << " faces, starting at face " << first[c]
+        << ", signed volume " << volume(c) << "), ";
+    }
+    w << "and " << flipped.size() - MAX_LISTED << " more";
     warnings.push_back(w.str());
   }
   // Rebuilt from the flipped soup (rare: only inside-out input pays for a second build).

@@ -1,17 +1,17 @@
 // Every input that crashed or misled the reader, kept as a named file under
 // tests/data/fuzz/regressions, and the scale range 1e-150 .. 1e150.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include <unistd.h>
 
 #include "mesh/eigen_point_map.hpp"
 #include "shellcontract/error.hpp"
@@ -89,6 +89,26 @@ TEST(ReaderRegression, PlyHugeDeclaredCountIsBoundedByTheFileSize) {
   expect_refused(regression("ply_huge_vertex_count.ply"), {"truncated file", "1000000000"});
   // 58 bytes: 10^9 vertices without properties kept CGAL busy for seconds and gigabytes.
   expect_refused(regression("ply_vertex_count_without_properties.ply"), {"parse error", "line 3", "1000000000 declared", "x, y, z"});
+}
+
+// An element without properties takes no bytes, so no body can bound its count: the PLY document
+// then walked 2^53 - 1 empty instances (months) after read_ply had accepted the file. A count
+// beyond the file's bytes is refused by the reader and by the header the document reads.
+TEST(ReaderRegression, PlyElementWithoutPropertiesCountsAtMostTheFileSize) {
+  const std::string path = regression("ply_element_without_properties_huge_count.ply");
+  expect_refused(path, {"implausible count", "element 'junk' (line 9)",
+                        "9007199254740991 instances", "240 bytes"});
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(bytes.size(), 240u);
+  try {
+    (void)parse_ply_document(path, bytes);
+    ADD_FAILURE() << "the PLY document took the file";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ": implausible count: element 'junk'"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 // std::bad_alloc from a reserve of the declared count (ours; CGAL's OFF reader resizes to it).

@@ -4,20 +4,20 @@
 #include <gtest/gtest.h>
 #include <unistd.h>  // getpid: temporary files of this process's own
 
+#include <Eigen/Geometry>
 #include <array>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Geometry>
-
 #include "mesh/ply_reader.hpp"
+#include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 
 namespace shellcontract {
@@ -78,6 +78,29 @@ TEST(PlyDocument, AsciiKeepsEveryOtherValueAndWritesTheFloatPositions) {
     for (int k = 0; k < 3; ++k)
       EXPECT_EQ(static_cast<float>(d.points[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)]), static_cast<float>(y(i, k)));
   EXPECT_EQ(d.faces.size(), 4u);
+}
+
+// An element without properties has nothing to read: within the file's size its count changes
+// nothing but its header line; beyond it the file is refused, naming the element (the document
+// walked every declared instance: 10^15 of them would take days, so the old code times out here).
+TEST(PlyDocument, AnElementWithoutPropertiesIsSkippedOrRefused) {
+  const std::string in = ascii_tet();
+  const std::size_t at = in.find("end_header\n");
+  const std::string line = "element marker 100\n";
+  const std::string with = in.substr(0, at) + line + in.substr(at);
+  const Positions y = moved_tet();
+  const std::string out = parse_ply_document("marked.ply", with)->text(y);
+  const std::string plain = parse_ply_document("tet.ply", in)->text(y);
+  EXPECT_EQ(out, plain.substr(0, at) + line + plain.substr(at));
+  const std::string huge = in.substr(0, at) + "element marker 1000000000000000\n" + in.substr(at);
+  try {
+    (void)parse_ply_document("huge.ply", huge);
+    ADD_FAILURE() << "a count of 10^15 instances in " << huge.size() << " bytes was taken";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("huge.ply: implausible count: element 'marker' (line 18)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 /// The same tetrahedron in binary: double x y z, float u v, uchar alpha; faces with a float

@@ -84,7 +84,7 @@ function plyHeader(buffer, name) {
     } else if (t[0] === 'element') {
       const count = Number(t[2]);
       if (!Number.isInteger(count) || count < 0) throw new Error(`${where}: element '${t[1]}' has no count ('${t[2] ?? ''}')`);
-      out.elements.push({ name: t[1], count, properties: [] });
+      out.elements.push({name: t[1], count, properties: [], line: k + 2});
     } else if (t[0] === 'property') {
       const element = out.elements.at(-1);
       if (!element) throw new Error(`${where}: a property before any element`);
@@ -97,6 +97,17 @@ function plyHeader(buffer, name) {
     }
   });
   if (!out.format) throw new Error(`${name}: the header has no 'format' line`);
+  // An element without properties takes no bytes, so no body bounds its count, and every loop over
+  // its instances (checkPly's, PLYLoader's) runs for as long as it says. No file declares more
+  // instances than it has bytes: refused, as the CLI refuses it.
+  for (const e of out.elements) {
+    if (e.properties.length === 0 && e.count > buffer.byteLength) {
+      throw new Error(
+          `${name}: line ${e.line}: element '${e.name}' has no properties but declares ${
+              e.count} instances, ` +
+          `more than the file's ${buffer.byteLength} bytes`);
+    }
+  }
   return out;
 }
 
@@ -128,6 +139,8 @@ export function checkPly(buffer, name) {
       return v;
     };
     for (const e of header.elements) {
+      // An element without properties has nothing to read (plyHeader bounded its count).
+      if (e.properties.length === 0) continue;
       for (let i = 0; i < e.count; i++) {
         for (const p of e.properties) {
           if (!p.list) { number(e, i, p.type); continue; }

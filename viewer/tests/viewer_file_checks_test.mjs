@@ -309,6 +309,20 @@ for (const [name, bytes, expected] of malformed) {
   check(m !== null && expected.test(m), `${name} is refused with its problem ("${m}")`);
 }
 
+// An element without properties holds no bytes: one of 100 instances changes nothing (the
+// octahedron opens), one of 2^53 - 1 in a file of a few hundred bytes is refused, naming the
+// element and its line, as the CLI refuses it (checkPly and PLYLoader walked every instance: months).
+{
+  const marked = (count) => text(plyHead('ascii').replace('element vertex', `element marker ${count}\nelement vertex`) +
+    V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n');
+  const small = await refusal(marked(100), 'marker.ply');
+  check(small === null, `a PLY with an element of no properties and 100 instances opens (${small ?? 'opened'})`);
+  const huge = marked(Number.MAX_SAFE_INTEGER);
+  const m = await refusal(huge, 'marker_huge.ply');
+  check(m === `marker_huge.ply: line 4: element 'marker' has no properties but declares ${Number.MAX_SAFE_INTEGER} instances, ` +
+              `more than the file's ${huge.length} bytes`, `an element of no properties and 2^53 - 1 instances is refused, named ("${m}")`);
+}
+
 // The guard against doubles (panes.js makePane): no file gives a Float64Array attribute (the
 // loaders' doubles become floats), so one is injected into OBJLoader's result; the pane is refused
 // with the attribute named, before the first draw would throw.
