@@ -11,6 +11,7 @@
 #include <iomanip>
 #include <iostream>
 #include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <string>
@@ -77,13 +78,21 @@ Polygons read_polygons(const std::string& path) {
   return p;
 }
 
-/// The pairs of `pairs` (faces of `mesh`, read from `path`) whose polygons do not intersect in
-/// `input` (faces of `input_mesh`, read from input_path, with pairs input_pairs). A face of the
-/// result belongs to the input polygon that holds its three vertices.
+/// Which face pairs of `mesh` (read from `path`) are new: those whose polygons do not intersect
+/// in `input` (faces of `input_mesh`, read from input_path, with pairs input_pairs). A face of
+/// the result belongs to the input polygon that holds its three vertices.
+struct NewPairs {
+  std::vector<std::size_t> polygon;  // per result face
+  std::set<std::pair<std::size_t, std::size_t>> before;
+  bool operator()(const FacePair& q) const {
+    const std::size_t a = polygon[q.first.idx()], b = polygon[q.second.idx()];
+    return !before.count({std::min(a, b), std::max(a, b)});
+  }
+};
+
 /// @throws UsageError if the two files do not have the same vertices and polygons
-std::vector<FacePair> new_pairs(const std::string& path, const Mesh& mesh, const std::vector<FacePair>& pairs,
-                                const std::string& input_path, const Mesh& input_mesh,
-                                const std::vector<FacePair>& input_pairs) {
+NewPairs new_pairs(const std::string& path, const Mesh& mesh, const std::string& input_path,
+                   const Mesh& input_mesh, const std::vector<FacePair>& input_pairs) {
   const std::string not_same = path + " is not a result of " + input_path + ": ";
   // Vertices as the files number them (a mesh welded along its seams too: mesh_io.hpp).
   const std::size_t nv = input_vertex_count(mesh), input_nv = input_vertex_count(input_mesh);
@@ -98,7 +107,8 @@ std::vector<FacePair> new_pairs(const std::string& path, const Mesh& mesh, const
     for (const std::size_t v : in.polygons[p]) polygons_of[v].push_back(p);
   // The input polygon of each result face: the one polygon around its first vertex that holds
   // all three of its vertices.
-  std::vector<std::size_t> polygon(mesh.number_of_faces());
+  NewPairs out;
+  out.polygon.resize(mesh.number_of_faces());
   const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
   for (const FaceIndex f : mesh.faces()) {
     const std::array<std::size_t, 3>& fv = corners[f.idx()];
@@ -106,7 +116,7 @@ std::vector<FacePair> new_pairs(const std::string& path, const Mesh& mesh, const
     for (const std::size_t p : polygons_of[fv[0]]) {
       const auto& poly = in.polygons[p];
       if (std::find(poly.begin(), poly.end(), fv[1]) != poly.end() && std::find(poly.begin(), poly.end(), fv[2]) != poly.end()) {
-        polygon[f.idx()] = p;
+        out.polygon[f.idx()] = p;
         found = true;
         break;
       }
@@ -115,17 +125,30 @@ std::vector<FacePair> new_pairs(const std::string& path, const Mesh& mesh, const
       throw UsageError(not_same + "its face " + std::to_string(f.idx()) + " (vertices " + std::to_string(fv[0]) + " " +
                        std::to_string(fv[1]) + " " + std::to_string(fv[2]) + ") is in no face of the input");
   }
-  std::set<std::pair<std::size_t, std::size_t>> before;
   for (const FacePair& q : input_pairs) {
     const std::size_t a = in.face_origin[q.first.idx()], b = in.face_origin[q.second.idx()];
-    before.insert({std::min(a, b), std::max(a, b)});
+    out.before.insert({std::min(a, b), std::max(a, b)});
   }
-  std::vector<FacePair> fresh;
-  for (const FacePair& q : pairs) {
-    const std::size_t a = polygon[q.first.idx()], b = polygon[q.second.idx()];
-    if (!before.count({std::min(a, b), std::max(a, b)})) fresh.push_back(q);
-  }
-  return fresh;
+  return out;
+}
+
+/// Pairs as a JSON array text.
+std::string json_pairs(const std::vector<FacePair>& pairs) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    s += (i ? ", [" : "[") + std::to_string(pairs[i].first.idx()) + ", " +
+         std::to_string(pairs[i].second.idx()) + "]";
+  return s + "]";
+}
+
+/// " (a-b c-d ...)": the first 20 pairs for the text report, nothing when there are none.
+std::string text_pairs(const std::vector<FacePair>& pairs, std::size_t count) {
+  if (count == 0) return "";
+  std::string s = " (";
+  for (std::size_t i = 0; i < pairs.size() && i < 20; ++i)
+    s += (i ? " " : "") + std::to_string(pairs[i].first.idx()) + '-' +
+         std::to_string(pairs[i].second.idx());
+  return s + (count > 20 ? " ...)" : ")");
 }
 
 /// Indices as a JSON array text.
@@ -178,7 +201,6 @@ int command_check(int argc, char** argv) {
     // stableNorm: the squares of extents near 1e+-160 and beyond leave double's range, and
     // check reports on any mesh it can read, however far its scale is from the engine's.
     const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).stableNorm();
-    const std::vector<FacePair> pairs = self_intersecting_pairs(mesh, x);
     const long long chi = static_cast<long long>(mesh.number_of_vertices()) -
                           static_cast<long long>(mesh.number_of_edges()) +
                           static_cast<long long>(mesh.number_of_faces());
@@ -187,46 +209,71 @@ int command_check(int argc, char** argv) {
     const long long genus = (2 * static_cast<long long>(report.components) - chi) / 2;
 
     // A result judged against its input, or on its own (exit 4 when it fails).
-    std::vector<FacePair> fresh;
     std::size_t input_pair_count = 0;
     InputReport against_report;
+    std::optional<NewPairs> is_new;
     if (!against.empty()) {
       stage = against;
       const Mesh input_mesh = read_input_mesh(against, &against_report);
       print_warnings(against, against_report);
-      const std::vector<FacePair> input_pairs = self_intersecting_pairs(input_mesh, positions_from_mesh(input_mesh));
-      input_pair_count = input_pairs.size();
-      fresh = new_pairs(input, mesh, pairs, against, input_mesh, input_pairs);
+      // INPUT's pairs are all kept, to tell MESH's new ones from them: bounded as run
+      // --validate bounds its own (validation.hpp, baseline_pair_limit).
+      const std::size_t limit = baseline_pair_limit(input_mesh.number_of_faces());
+      const SelfIntersectionCount own =
+          count_self_intersections(input_mesh, positions_from_mesh(input_mesh), limit, limit);
+      if (!own.complete)
+        throw InputError(too_many_own_pairs(against, limit) + "; check " + input +
+                         " without --against");
+      input_pair_count = own.count;
+      is_new = new_pairs(input, mesh, against, input_mesh, own.first);
     }
-    const bool fails = !fresh.empty() || (fail_on_intersections && !pairs.empty());
+    // MESH's pairs can number the square of its faces (parts that pass through each other):
+    // they are counted, and the first CHECK_LISTED_PAIRS in face order listed (docs/cli.md,
+    // "check").
+    FacePairSample all(CHECK_LISTED_PAIRS), fresh(CHECK_LISTED_PAIRS);
+    for_each_self_intersection(mesh, x, [&](const FacePair& p) {
+      all.add(p);
+      if (is_new && (*is_new)(p)) fresh.add(p);
+      return true;
+    });
+    const std::vector<FacePair> pairs = all.pairs(), fresh_pairs = fresh.pairs();
+    const bool fails = fresh.count() > 0 || (fail_on_intersections && all.count() > 0);
     std::string verdict;
-    if (!fresh.empty())
-      verdict = std::to_string(fresh.size()) + " self-intersecting face pairs that " + against + " does not have";
+    if (fresh.count() > 0)
+      verdict = std::to_string(fresh.count()) + " self-intersecting face pairs that " + against +
+                " does not have";
     else if (fails)
-      verdict = std::to_string(pairs.size()) + " self-intersecting face pairs (--fail-on-self-intersections)";
+      verdict = std::to_string(all.count()) +
+                " self-intersecting face pairs (--fail-on-self-intersections)";
 
     if (json) {
-      std::string pairs_json = "[";
-      for (std::size_t i = 0; i < pairs.size(); ++i)
-        pairs_json += (i ? ", " : "") + json_array({pairs[i].first.idx(), pairs[i].second.idx()});
-      pairs_json += "]";
       JsonObject o;
-      o.add("file", input).add("usable", true).add("vertices", report.vertices).add("faces", report.faces)
-          .add("edges", static_cast<std::size_t>(mesh.number_of_edges())).add("components", report.components)
-          .add_raw("euler_characteristic", std::to_string(chi)).add_raw("genus", std::to_string(genus))
-          .add("closed", true).add("manifold", true).add("volume", report.volume)
-          .add("bounding_box_diagonal", diagonal).add("reoriented", report.reoriented)
+      o.add("file", input)
+          .add("usable", true)
+          .add("vertices", report.vertices)
+          .add("faces", report.faces)
+          .add("edges", static_cast<std::size_t>(mesh.number_of_edges()))
+          .add("components", report.components)
+          .add_raw("euler_characteristic", std::to_string(chi))
+          .add_raw("genus", std::to_string(genus))
+          .add("closed", true)
+          .add("manifold", true)
+          .add("volume", report.volume)
+          .add("bounding_box_diagonal", diagonal)
+          .add("reoriented", report.reoriented)
           .add("triangulated_faces", report.triangulated_faces)
           .add_raw("zero_area_faces", json_array(report.zero_area_faces))
-          .add("self_intersecting_pairs", pairs.size()).add_raw("self_intersections", pairs_json)
+          .add("self_intersecting_pairs", all.count())
+          .add_raw("self_intersections", json_pairs(pairs))
+          .add("self_intersections_truncated", all.truncated())
           .add("warnings", report.warnings);
       if (!against.empty()) {
-        std::string fresh_json = "[";
-        for (std::size_t i = 0; i < fresh.size(); ++i)
-          fresh_json += (i ? ", " : "") + json_array({fresh[i].first.idx(), fresh[i].second.idx()});
-        o.add("against", against).add("against_warnings", against_report.warnings)
+        o.add("against", against)
+            .add("against_warnings", against_report.warnings)
             .add("input_self_intersecting_pairs", input_pair_count)
-            .add("new_self_intersecting_pairs", fresh.size()).add_raw("new_self_intersections", fresh_json + "]");
+            .add("new_self_intersecting_pairs", fresh.count())
+            .add_raw("new_self_intersections", json_pairs(fresh_pairs))
+            .add("new_self_intersections_truncated", fresh.truncated());
       }
       if (!against.empty() || fail_on_intersections) o.add("passes", !fails).add("failure", verdict);
       std::cout << o.str() << '\n';
@@ -253,24 +300,12 @@ int command_check(int argc, char** argv) {
           out << (i ? " " : "") << report.zero_area_faces[i];
         out << (report.zero_area_faces.size() > 20 ? " ...)" : ")");
       }
-      out << "\nself_intersecting_pairs: " << pairs.size();
-      if (!pairs.empty()) {
-        out << " (";
-        for (std::size_t i = 0; i < pairs.size() && i < 20; ++i)
-          out << (i ? " " : "") << pairs[i].first.idx() << '-' << pairs[i].second.idx();
-        out << (pairs.size() > 20 ? " ...)" : ")");
-      }
+      out << "\nself_intersecting_pairs: " << all.count() << text_pairs(pairs, all.count());
       out << "\nusable: yes\n";
       if (!against.empty()) {
         out << "against: " << against << "\ninput_self_intersecting_pairs: " << input_pair_count
-            << "\nnew_self_intersecting_pairs: " << fresh.size();
-        if (!fresh.empty()) {
-          out << " (";
-          for (std::size_t i = 0; i < fresh.size() && i < 20; ++i)
-            out << (i ? " " : "") << fresh[i].first.idx() << '-' << fresh[i].second.idx();
-          out << (fresh.size() > 20 ? " ...)" : ")");
-        }
-        out << '\n';
+            << "\nnew_self_intersecting_pairs: " << fresh.count()
+            << text_pairs(fresh_pairs, fresh.count()) << '\n';
       }
       if (!against.empty() || fail_on_intersections) out << "passes: " << (fails ? "no (" + verdict + ")" : "yes") << '\n';
       std::cout << out.str();

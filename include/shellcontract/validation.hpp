@@ -4,6 +4,9 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -25,6 +28,64 @@ using FacePair = std::pair<FaceIndex, FaceIndex>;
 /// @return the pairs, each ordered (smaller index first), sorted; empty if none
 /// @throws std::invalid_argument if a precondition fails
 std::vector<FacePair> self_intersecting_pairs(const Mesh& mesh, const Positions& x);
+
+/// Calls visit(p) once for each pair p of faces that intersect at x (as self_intersecting_pairs
+/// defines them), each ordered (smaller index first), in no particular order; a visit that
+/// returns false ends the search there. Holds no pair itself: the way to count the pairs of a
+/// mesh whose parts pass through each other, whose pairs can number the square of its faces
+/// (a 125 KB file of crossing parts has millions).
+/// @pre as for self_intersecting_pairs
+void for_each_self_intersection(const Mesh& mesh, const Positions& x,
+                                const std::function<bool(const FacePair&)>& visit);
+
+/// The `keep` smallest (face order) of the pairs given to add(), and how many were given, in
+/// memory bounded by `keep` whatever their number.
+class FacePairSample {
+ public:
+  explicit FacePairSample(std::size_t keep);
+  void add(const FacePair& p);
+  std::size_t count() const { return count_; }
+  /// The smallest min(keep, count()) pairs given, sorted.
+  std::vector<FacePair> pairs() const;
+  /// Whether pairs() leaves some out.
+  bool truncated() const { return heap_.size() < count_; }
+
+ private:
+  std::size_t keep_;
+  std::size_t count_ = 0;
+  std::vector<FacePair> heap_;
+};
+
+/// How many face pairs intersect at some positions, and the first few of them.
+struct SelfIntersectionCount {
+  std::size_t count = 0;        ///< all the pairs; limit + 1 when the search stopped there
+  bool complete = true;         ///< false: more than `limit` pairs, the search stopped at limit + 1
+  std::vector<FacePair> first;  ///< the `keep` smallest pairs in face order, sorted (all of them
+                                ///< when count <= keep and complete)
+};
+
+/// Counts the pairs of self_intersecting_pairs, keeping only the `keep` smallest (face order),
+/// and stops at limit + 1 pairs (complete false) when there are more than `limit`.
+/// @pre as for self_intersecting_pairs
+SelfIntersectionCount count_self_intersections(
+    const Mesh& mesh, const Positions& x, std::size_t keep,
+    std::size_t limit = std::numeric_limits<std::size_t>::max());
+
+/// The most self-intersecting pairs `check --json` and Python's check() list: the first in face
+/// order; their counts are of all the pairs.
+inline constexpr std::size_t CHECK_LISTED_PAIRS = 1000;
+
+/// The most pairs a baseline of an input's own intersections may hold (run --validate, check
+/// --against, which must remember them all to tell new pairs from them): 1,000,000, or 8 a
+/// face on a mesh of more than 125,000 faces. An input with more, parts that pass through each
+/// other, is refused for these two rather than held in memory that grows with the square of
+/// its faces (docs/cli.md, "--validate").
+inline constexpr std::size_t BASELINE_PAIRS = 1000000;
+inline constexpr std::size_t BASELINE_PAIRS_PER_FACE = 8;
+std::size_t baseline_pair_limit(std::size_t faces);
+/// "WHO has more than LIMIT self-intersecting face pairs of its own (...)": the start of the
+/// refusal of a baseline past baseline_pair_limit, the same for every command.
+std::string too_many_own_pairs(const std::string& who, std::size_t limit);
 
 /// Whether any two faces intersect at positions x; stops at the first pair found (cheaper than
 /// self_intersecting_pairs when the answer is usually "no"); a face with collinear corners does

@@ -355,7 +355,10 @@ def frames(vertices, faces, every=1, **options):
 
 
 def check(vertices, faces):
-    """What ``shellcontract check`` reports (counts, genus, volume, self-intersecting face pairs);
+    """What ``shellcontract check`` reports (counts, genus, volume, self-intersecting face pairs:
+    ``self_intersecting_pairs`` counts them all, ``self_intersections`` holds the first 1000 in
+    face order, and ``self_intersections_truncated`` says whether it leaves some out, as ``check
+    --json``; a mesh whose parts pass through each other has pairs in the square of its faces);
     raises ValueError with the reason when the mesh cannot be used (MeshError, with ``faces``,
     where particular faces are to blame)."""
     return _core.check(vertices, faces)

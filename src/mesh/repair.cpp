@@ -19,6 +19,7 @@
 
 #include <algorithm>
 #include <array>
+#include <boost/iterator/function_output_iterator.hpp>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -172,10 +173,12 @@ void fill_holes(Mesh& mesh, std::size_t max_edges, RepairReport& r) {
   // user knows; the usability check does not refuse self-intersections, and neither does this.
   if (filled.empty()) return;
   progress_stage("checking the fills for self-intersections");
-  std::vector<std::pair<FaceIndex, FaceIndex>> pairs;
-  PMP::self_intersections(mesh, std::back_inserter(pairs));
-  for (const auto& [a, b] : pairs)
-    if (filled.count(a) || filled.count(b)) ++r.hole_self_intersections;
+  // Counted as found, not held: a mesh whose parts pass through each other has pairs in the
+  // square of its faces (validation.hpp, for_each_self_intersection).
+  const auto count = [&](const std::pair<FaceIndex, FaceIndex>& p) {
+    if (filled.count(p.first) || filled.count(p.second)) ++r.hole_self_intersections;
+  };
+  PMP::self_intersections(mesh, boost::make_function_output_iterator(count));
 }
 
 /// Removes the components that are still open or enclose (almost) no volume (the component

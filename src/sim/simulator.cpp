@@ -472,8 +472,17 @@ double Simulator::outside_region_displacement() const {
 
 std::size_t Simulator::input_intersections() const {
   // The rest mesh's own points are the input positions (normalized), whatever x_ is now.
-  if (!baseline_intersections_)
-    baseline_intersections_ = self_intersecting_pairs(*mesh_, positions_from_mesh(*mesh_));
+  if (!baseline_intersections_) {
+    // Every pair is kept, to tell the run's new pairs from them; an input whose parts pass
+    // through each other has pairs in the square of its faces, so past a bound the run is
+    // refused (the search stops there) rather than validated in that much memory.
+    const std::size_t limit = baseline_pair_limit(mesh_->number_of_faces());
+    SelfIntersectionCount own =
+        count_self_intersections(*mesh_, positions_from_mesh(*mesh_), limit, limit);
+    if (!own.complete)
+      throw InputError(too_many_own_pairs("the input", limit) + "; run without `validate`");
+    baseline_intersections_ = std::move(own.first);
+  }
   return baseline_intersections_->size();
 }
 

@@ -43,6 +43,11 @@ TEST(SelfIntersectionCancel, SlabsUnderARunsScopeFindTheSamePairs) {
   });
   EXPECT_EQ(self_intersecting_pairs(mesh, x), alone);
   EXPECT_GE(asked, 3) << "not checked in slabs";
+  // A pair whose faces are both in two slabs is visited in the first only (the pairs are no
+  // longer held, sorted and made unique: self_intersecting_pairs above keeps all it visits).
+  const SelfIntersectionCount counted = count_self_intersections(mesh, x, 10);
+  EXPECT_EQ(counted.count, alone.size());
+  EXPECT_EQ(counted.first, std::vector<FacePair>(alone.begin(), alone.begin() + 10));
 }
 
 TEST(SelfIntersectionCancel, ACancelIsHeardBetweenTheSlabs) {
