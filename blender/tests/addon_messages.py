@@ -106,7 +106,12 @@ def mesh_messages():
              "3 triangles have (nearly) zero area, in faces: 0, ..."),
             # Without the triangles a component's faces cannot be counted: its triangles are.
             ("component 0 (6 faces, starting at face 2) was inside-out",
-             "component 0 (6 triangles, starting at face 1) was inside-out")):
+             "component 0 (6 triangles, starting at face 1) was inside-out"),
+            # Beyond ten components the library lists them on one line, each in the same words.
+            ("11 components were inside-out; their faces were flipped: component 0 (6 faces, "
+             "starting at face 2) of signed volume -1, and 10 more",
+             "11 components were inside-out; their faces were flipped: component 0 (6 "
+             "triangles, starting at face 1) of signed volume -1, and 10 more")):
         check(runner.polygon_numbers(before, polygon_of) == after,
               "'{}' reads '{}'".format(before, runner.polygon_numbers(before, polygon_of)))
     inside_out_counts()

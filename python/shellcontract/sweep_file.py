@@ -349,7 +349,19 @@ def mesh_needs_shas(mesh, needs, cache):
     if mesh not in needs:
         needs[mesh] = [p for p, _ in sweep_needs.needed_files(mesh) if os.path.isfile(p)]
     folder = os.path.dirname(os.path.abspath(mesh))
-    return {"mesh needs " + os.path.relpath(p, folder): file_sha256(p, cache) for p in needs[mesh]}
+    out = {}
+    for p in needs[mesh]:
+        try:
+            out["mesh needs " + os.path.relpath(p, folder)] = file_sha256(p, cache)
+        except MemoryError as e:
+            raise ResourceShort("{}: {}".format(p, e or "out of memory")) from e
+        except OSError as e:
+            if e.errno in _RESOURCE_ERRNOS:
+                raise ResourceShort("{}: {}".format(p, e.strerror or e)) from e
+            # A file the mesh names that this user cannot read (a texture, a material library:
+            # a buffer the reader would have refused above) is the run's to warn about, as
+            # `run` does, not a byte of the job.
+    return out
 
 
 def job_id(mesh_sha, resolved, version, file_shas=None):

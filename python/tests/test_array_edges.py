@@ -148,11 +148,17 @@ def test_regions_numbers_are_numbers_not_arrays_or_complex(ico2, option, value):
         shellcontract.regions(*ico2, **{option: value})
 
 
-def test_regions_numbers_as_numpy_scalars_and_zero_d_arrays_still_count(ico2):
-    base = shellcontract.regions(*ico2, contrast=2.0, min_faces=3)
+def test_regions_numbers_as_numpy_scalars_and_zero_d_arrays_still_count(mesh_dir):
+    # On bumpy_sphere these values choose regions that other values would not (contrast 3 or
+    # min_faces 40 drop one), so a number misread is seen.
+    vertices, faces = shellcontract.read_mesh(mesh_dir / "bumpy_sphere.off")
+    base = shellcontract.regions(vertices, faces, contrast=2.0, min_faces=3)
+    assert len(base) == 2
+    assert len(shellcontract.regions(vertices, faces, contrast=3.0, min_faces=3)) != len(base)
+    assert len(shellcontract.regions(vertices, faces, contrast=2.0, min_faces=40)) != len(base)
     for contrast, min_faces in ((np.float32(2.0), np.int64(3)), (np.array(2.0), np.array(3)),
                                 (2, 3.0)):
-        got = shellcontract.regions(*ico2, contrast=contrast, min_faces=min_faces)
+        got = shellcontract.regions(vertices, faces, contrast=contrast, min_faces=min_faces)
         assert [list(r) for r in got] == [list(r) for r in base]
 
 

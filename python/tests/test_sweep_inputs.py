@@ -115,6 +115,33 @@ def test_the_job_id_covers_a_gltfs_external_buffer(cli, mesh_dir, tmp_path):
     assert jobs_of(cli, path)[0].id == edited
 
 
+def test_a_file_the_mesh_names_that_this_user_cannot_read_is_no_byte_of_the_job(cli, mesh_dir,
+                                                                               tmp_path):
+    # Before: hashing the files a mesh needs raised PermissionError out of the expansion for an
+    # OBJ's unreadable material library (a traceback, exit 1), where `run` of the mesh warns and
+    # runs (review diffreview6). As a user, for whom the file's mode applies.
+    import shutil
+    from shellcontract import read_mesh, write_mesh
+    from test_file_errors import as_a_user, folder_a_user_reaches
+    folder = folder_a_user_reaches(tmp_path)
+    try:
+        write_mesh(folder / "m.obj", *read_mesh(mesh_dir / "ico2.off"))
+        (folder / "m.obj").write_text("mtllib m.mtl\n" + (folder / "m.obj").read_text())
+        (folder / "m.mtl").write_text("newmtl a\nKd 1 0 0\n")
+        (folder / "m.mtl").chmod(0)
+        path = folder / "s.json"
+        path.write_text(json.dumps({"meshes": ["m.obj"], "options": {"frames": 4}}))
+        tool = version(cli)
+
+        def check():
+            jobs = sweep_file.expand(str(path), sweep_file.load(str(path)), tool)
+            assert len(jobs) == 1
+
+        as_a_user(check)
+    finally:
+        shutil.rmtree(folder)
+
+
 def test_an_edited_regions_file_reruns_its_job_and_not_from_the_old_checkpoint(cli, mesh_dir,
                                                                                 tmp_path):
     regions = tmp_path / "regions.txt"

@@ -143,8 +143,10 @@ Orientation orient_components(Mesh& mesh, const std::vector<Point3>& points,
     w << flipped.size() << " components were inside-out; their faces were flipped: ";
     for (std::size_t i = 0; i < MAX_LISTED; ++i) {
       const std::size_t c = flipped[i];
+      // The face numbers in the one-component form's words, "(N faces, starting at face F)",
+      // which front ends rewrite in their own terms (the Blender add-on's polygons).
       w << "component " << c << " (" << count[c] << " faces, starting at face " << first[c]
-        << ", signed volume " << volume(c) << "), ";
+        << ") of signed volume " << volume(c) << ", ";
     }
     w << "and " << flipped.size() - MAX_LISTED << " more";
     warnings.push_back(w.str());

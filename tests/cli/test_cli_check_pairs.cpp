@@ -1,6 +1,6 @@
 // `check` and `run --validate` on a mesh whose parts all pass through each other (review
-// complexity F7): its self-intersecting pairs number the square of its faces (a 125 KB file had
-// millions), and `check --json` printed every one (220 MB) while run --validate held them all.
+// complexity F7): its self-intersecting pairs number the square of its faces, and `check --json`
+// printed every one while run --validate held them all.
 // Now check counts them all and lists the first CHECK_LISTED_PAIRS in face order, saying the
 // list is truncated; an INPUT with more pairs of its own than baseline_pair_limit is refused by
 // run --validate and check --against (exit 2), which would have to hold them.

@@ -1,8 +1,7 @@
 // Inside-out components (complexity F4: orient_components rescanned every face for each inverted
-// component, O(components x faces), and wrote one warning line each: 32000 inverted tetrahedra
-// took 9.75 s and 32000 lines). Each is flipped in one pass over the faces; up to MAX_LISTED they
-// are named one line each, as before; more are one line with their count and the first
-// MAX_LISTED.
+// component, O(components x faces), and wrote one warning line each). Each is flipped in one pass
+// over the faces; up to MAX_LISTED they are named one line each, as before; more are one line with
+// their count and the first MAX_LISTED.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -56,7 +55,7 @@ TEST(InsideOutComponents, MoreAreOneLineWithTheirCount) {
   std::string listed;
   for (std::size_t c = 0; c < soup::MAX_LISTED; ++c)
     listed += "component " + std::to_string(c) + " (4 faces, starting at face " +
-              std::to_string(4 * c) + ", signed volume -0.166667), ";
+              std::to_string(4 * c) + ") of signed volume -0.166667, ";
   ASSERT_EQ(report.warnings.size(), 1u);
   EXPECT_EQ(report.warnings[0], "2000 components were inside-out; their faces were flipped: " +
                                     listed + "and 1990 more");

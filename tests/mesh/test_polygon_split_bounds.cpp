@@ -248,8 +248,8 @@ TEST(SplitPolygonBounds, APolygonAboveTheBoundIsRefusedNamingItsLine) {
   std::filesystem::remove(at);
 }
 
-// The bound is per polygon, and a file may hold many (complexity F5: 50 copies of a star polygon
-// of 10000 corners, 1.1 MB, took 17 s to split before they were refused as duplicate faces): the
+// The bound is per polygon, and a file may hold many (complexity F5: copies of a star polygon of
+// 10000 corners were each split before they were refused as duplicate faces): the
 // squares of the corners of the polygons above SMALL_SPLIT_CORNERS add up to at most
 // MAX_SPLIT_WORK. One polygon more is refused before any is split, naming the count and the
 // largest; the old code split all eleven and refused a duplicate face. At the bound the polygons
