@@ -288,8 +288,12 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
     os.makedirs(work)
     ext = os.path.splitext(job["mesh"])[1].lower() or ".off"
     mesh_name = os.path.splitext(os.path.basename(job["mesh"]))[0] + ext
-    cmd = [cli, "run", job["mesh"], "-o", os.path.join(work, mesh_name),
-           "--log", os.path.join(work, "log.csv"), "--summary", os.path.join(work, "summary.json"),
+    # The outputs by their names in the attempt folder, the process's working folder: the
+    # summary records them as given, and the folder is renamed to jobs/<id>/ once the job has an
+    # outcome, so a path through it would name a folder that is gone (and differ between two
+    # sweeps of the same job). `--output=NAME`: a name beginning with '-' is not an option.
+    cmd = [cli, "run", job["mesh"], "--output=" + mesh_name, "--log=log.csv",
+           "--summary=summary.json",
            "-q", "--checkpoint", p["checkpoint"], "--checkpoint-every", str(checkpoint_every)]
     resumed = os.path.isfile(p["checkpoint"])
     if resumed:
@@ -313,7 +317,7 @@ def _run_attempt(job, out_dir, cli, timeout, checkpoint_every, sweep, p, work, l
             # this one is gone (a worker killed).
             proc = None if _is_stopped(sweep) else subprocess.Popen(
                 prefix + cmd, stdin=subprocess.DEVNULL, stdout=messages, stderr=messages,
-                start_new_session=True,
+                cwd=work, start_new_session=True,
                 preexec_fn=None if prefix else functools.partial(_die_with_parent, os.getpid()),
                 pass_fds=lock_fds)
             if proc is not None:
