@@ -56,8 +56,10 @@ std::optional<double> number(const std::string& t) {
 }
 
 /// The file name of a map_Kd line's arguments: its options (-o u v w, -clamp on, ...) skipped;
-/// the rest of the line, spaces included (names with spaces exist).
-std::string map_file_name(const std::string& args) {
+/// the rest of the line, spaces included (names with spaces exist). `placement`: the options
+/// that place the texture otherwise than the glTF does (scale 1, offset 0, repeating), as given
+/// ("-s 2 2 1, -clamp on"), which the .glb does not carry; empty when there are none.
+std::string map_file_name(const std::string& args, std::string& placement) {
   // The options and how many arguments each takes; -o, -s and -t take one to three numbers.
   static const std::map<std::string, int> fixed = {
       {"-blendu", 1}, {"-blendv", 1}, {"-bm", 1}, {"-boost", 1}, {"-cc", 1}, {"-clamp", 1},
@@ -69,13 +71,27 @@ std::string map_file_name(const std::string& args) {
     if (consume) at = after;
     return args.substr(t.begin, t.end - t.begin);
   };
+  const auto note = [&](const std::string& given) {
+    placement += (placement.empty() ? "" : ", ") + given;
+  };
   for (std::string t = next(false); !t.empty() && t[0] == '-'; t = next(false)) {
     next(true);
     const auto f = fixed.find(t);
     if (f != fixed.end()) {
-      for (int k = 0; k < f->second; ++k) next(true);
+      std::string values;
+      for (int k = 0; k < f->second; ++k) values += " " + next(true);
+      if (t == "-clamp" && values == " on") note(t + values);
     } else if (t == "-o" || t == "-s" || t == "-t") {
-      for (int k = 0; k < 3 && number(next(false)); ++k) next(true);
+      // Each number against the option's default (scale 1, offset and turbulence 0).
+      const double identity = t == "-s" ? 1.0 : 0.0;
+      std::string values;
+      bool moves = false;
+      for (int k = 0; k < 3 && number(next(false)); ++k) {
+        const std::string v = next(true);
+        values += " " + v;
+        moves = moves || *number(v) != identity;
+      }
+      if (moves) note(t + values);
     }
     // An unknown option: only the option itself is skipped.
   }
@@ -163,11 +179,17 @@ std::vector<MtlMaterial> parse_mtl(const std::string& name, const std::string& b
         m.alpha = 1.0 - *v;
       }
     } else {  // map_Kd
-      const std::string file = map_file_name(rest);
+      std::string placement;
+      const std::string file = map_file_name(rest, placement);
       if (file.empty()) {
         warn(line, "map_Kd without a file name: ignored");
         continue;
       }
+      // The OBJ keeps its .mtl as it is; only the .glb places the texture otherwise.
+      if (!placement.empty())
+        warn(line, "map_Kd " + placement +
+                       ": not carried into the glTF, whose texture is placed at scale 1, offset "
+                       "0, repeating");
       const fs::path p(file);
       m.texture = p.is_absolute() ? file : (folder / p).string();
       m.texture_line = line;
@@ -196,7 +218,8 @@ std::vector<MtlTextureFile> mtl_texture_files(const std::string& path) {
     const bool texture = (lower.rfind("map_", 0) == 0 && lower != "map_aat") || lower == "bump" ||
                          lower == "disp" || lower == "decal" || lower == "refl" || lower == "norm";
     if (!texture) continue;
-    const std::string file = map_file_name(text.substr(k.end));
+    std::string placement;  // the texture's file only, here
+    const std::string file = map_file_name(text.substr(k.end), placement);
     if (file.empty()) continue;
     const fs::path p(file);
     out.push_back({p.is_absolute() ? file : (folder / p).string(), key, line});

@@ -156,6 +156,26 @@ TEST(MtlReader, ReadsKdAlphaAndMapKdSkippingOptionsAndWarnsOnBadLines) {
   EXPECT_EQ(w.size(), 2u) << ::testing::PrintToString(w);
 }
 
+// Before: map_Kd's -s, -o, -t and -clamp on were skipped without a word, so the .glb placed the
+// texture at scale 1, offset 0, repeating while the OBJ (and Blender's importer) tiled it as the
+// options say (review keyframes F4). Options at their defaults change nothing and say nothing.
+TEST(MtlReader, TexturePlacementTheGltfDoesNotCarryIsWarnedAbout) {
+  std::vector<std::string> w;
+  const auto ms = parse_mtl("a.mtl",
+                            "newmtl one\n"
+                            "map_Kd -s 2 2 1 -o 0.5 -bm 0.3 -clamp on t.png\n"  // 2
+                            "newmtl two\n"
+                            "map_Kd -s 1 1 1 -o 0 0 0 -t 0 -clamp off u.png\n",  // 4
+                            w);
+  ASSERT_EQ(ms.size(), 2u);
+  EXPECT_EQ(ms[0].texture, "t.png");
+  EXPECT_EQ(ms[1].texture, "u.png");
+  ASSERT_EQ(w.size(), 1u) << ::testing::PrintToString(w);
+  EXPECT_EQ(w[0],
+            "a.mtl: line 2: map_Kd -s 2 2 1, -o 0.5, -clamp on: not carried into the glTF, "
+            "whose texture is placed at scale 1, offset 0, repeating");
+}
+
 // Before: the material of the most faces was kept for all of them and the others dropped. Now
 // every defined material a face uses is kept (in order of first use), and a face of an undefined
 // one has none.
