@@ -82,6 +82,7 @@ def _death_signal_prefix():
     global _SETPRIV
     if _SETPRIV is None:
         exe = shutil.which("setpriv")
+        exe = exe and os.path.abspath(exe)  # a job runs in its own folder, not this one's
         prefix = [exe, "--pdeathsig", "TERM", "--"] if exe else []
         usable = False
         if exe:  # tried once: an old setpriv without the option, or one refused it, exits 1
