@@ -140,14 +140,14 @@ FileExtras describe_gltf_extras(const std::string& bytes) {
 
 std::vector<std::string> gltf_file_uris(const std::string& bytes) {
   std::vector<std::string> out;
+  std::set<std::string> seen;  // a file named by many images or buffers: once, in linear time
   const Json j = Json::parse(json_text(bytes), nullptr, false);
   if (!j.is_object()) return out;
   for (const char* key : {"buffers", "images"})
     for (const Json& item : array_of(j, key))
       if (item.is_object() && item.contains("uri") && item["uri"].is_string()) {
         const std::string uri = item["uri"].get<std::string>();
-        if (uri.rfind("data:", 0) != 0 && std::find(out.begin(), out.end(), uri) == out.end())
-          out.push_back(uri);
+        if (uri.rfind("data:", 0) != 0 && seen.insert(uri).second) out.push_back(uri);
       }
   return out;
 }

@@ -122,5 +122,14 @@ TEST(FileExtras, GltfFileUrisAreTheBuffersAndImagesNotEmbedded) {
   EXPECT_TRUE(gltf_file_uris(test::glb_bytes(parts)).empty());  // the BIN chunk
 }
 
+TEST(FileExtras, GltfFileUrisNameEachFileOnceInTheOrderFirstNamed) {
+  const std::string text =
+      R"({"asset": {"version": "2.0"}, "buffers": [{"uri": "b.bin", "byteLength": 1},
+          {"uri": "a.bin", "byteLength": 1}, {"uri": "b.bin", "byteLength": 1}],
+          "images": [{"uri": "t.png"}, {"uri": "a.bin"}, {"uri": "data:image/png;base64,AA=="},
+          {"uri": "t.png"}, {"uri": "u.png"}]})";
+  EXPECT_EQ(gltf_file_uris(text), (std::vector<std::string>{"b.bin", "a.bin", "t.png", "u.png"}));
+}
+
 }  // namespace
 }  // namespace shellcontract
