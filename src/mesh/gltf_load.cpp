@@ -195,6 +195,15 @@ tinygltf::Model gltf::load_model(const std::string& path, const std::string& byt
   const std::size_t json_size = binary ? le32(bytes, 12) : bytes.size();
   ExternalFiles files{looked_up, {}, {}, {}, {}};
   files.declared = gltf::check_top_level(path, bytes.data() + json_at, json_size, json_at);
+  // In a .glb only buffer 0 may leave out its uri, and is then the BIN chunk (glTF 2.0,
+  // "GLB-stored Buffer"); tinygltf made every other such buffer a copy of the chunk, so a
+  // thousand of them in a small file's JSON took a thousand times its data.
+  if (binary)
+    for (std::size_t i = 1; i < files.declared.size(); ++i)
+      if (files.declared[i].uri.empty())
+        fail(path, "buffer without uri",
+             "buffer " + std::to_string(i) +
+                 " names no file; in a .glb only buffer 0 may, and is then the BIN chunk");
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(skip_image, nullptr);
   loader.SetFsCallbacks(

@@ -101,6 +101,24 @@ TEST_F(GltfCosts, AFileNamedByManyBuffersIsReadOnce) {
   EXPECT_EQ(error_of(write("copy.gltf", with("," + one + R"("uri":"copy.bin"})"))), "(no error)");
 }
 
+// In a .glb only buffer 0 may leave out its uri (the BIN chunk). Before, each other buffer
+// without one was read as a copy of the chunk: a thousand of them cost a thousand copies.
+TEST_F(GltfCosts, AGlbBufferOtherThanTheFirstWithoutAUriIsRefused) {
+  test::GltfScene s;
+  s.primitives.push_back(test::octahedron_primitive(false, false));
+  test::GltfParts parts = test::gltf_parts(s);
+  std::string more;
+  for (int k = 1; k < 1000; ++k)
+    more += R"(,{"byteLength":)" + std::to_string(parts.bin.size()) + "}";
+  const std::string one = write("one.glb", test::glb_bytes(parts));
+  EXPECT_EQ(error_of(one), "(no error)");
+  replace_once(parts.json, "%URI%}", "%URI%}" + more);
+  const std::string path = write("many.glb", test::glb_bytes(parts));
+  EXPECT_EQ(error_of(path), path +
+                                ": buffer without uri: buffer 1 names no file; in a .glb only "
+                                "buffer 0 may, and is then the BIN chunk");
+}
+
 /// A .glb whose mesh 0 has `primitives` primitives, each drawing `triangles` triangles (uint8
 /// indices on a tetrahedron's 4 positions: the first `triangles` of its faces, cycled), and whose
 /// scene has `nodes` nodes drawing mesh 0, translated apart.
