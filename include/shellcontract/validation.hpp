@@ -32,8 +32,7 @@ std::vector<FacePair> self_intersecting_pairs(const Mesh& mesh, const Positions&
 /// Calls visit(p) once for each pair p of faces that intersect at x (as self_intersecting_pairs
 /// defines them), each ordered (smaller index first), in no particular order; a visit that
 /// returns false ends the search there. Holds no pair itself: the way to count the pairs of a
-/// mesh whose parts pass through each other, whose pairs can number the square of its faces
-/// (a 125 KB file of crossing parts has millions).
+/// mesh whose parts pass through each other, whose pairs can number the square of its faces.
 /// @pre as for self_intersecting_pairs
 void for_each_self_intersection(const Mesh& mesh, const Positions& x,
                                 const std::function<bool(const FacePair&)>& visit);

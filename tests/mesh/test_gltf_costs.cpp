@@ -16,6 +16,7 @@
 #include "shellcontract/mesh_io.hpp"
 #include "support/gltf_document_parts.hpp"
 #include "support/gltf_files.hpp"
+#include "support/input_refusal.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace shellcontract {
@@ -28,14 +29,7 @@ class GltfCosts : public test::ScratchDirTest {
  protected:
   GltfCosts() : ScratchDirTest("shellcontract_gltf_costs_") {}
   /// The refusal of the file, or "(no error)".
-  static std::string error_of(const std::string& path) {
-    try {
-      read_input_mesh(path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(no error)";
-  }
+  static std::string error_of(const std::string& path) { return test::input_refusal(path); }
 };
 
 // A document that appends a mesh per instance (realize_instances: M nodes drawing one mesh become

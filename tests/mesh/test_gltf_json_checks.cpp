@@ -14,6 +14,7 @@
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "support/gltf_files.hpp"
+#include "support/input_refusal.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace shellcontract {
@@ -25,14 +26,7 @@ class GltfJsonChecks : public test::ScratchDirTest {
  protected:
   GltfJsonChecks() : ScratchDirTest("shellcontract_gltf_json_checks_") {}
   /// The refusal of the file, or "(no error)".
-  static std::string error_of(const std::string& path) {
-    try {
-      read_input_mesh(path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    return "(no error)";
-  }
+  static std::string error_of(const std::string& path) { return test::input_refusal(path); }
   static GltfScene octahedron(const std::string& extra = "") {
     GltfScene s;
     s.primitives.push_back(test::octahedron_primitive(false, false));
