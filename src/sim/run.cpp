@@ -449,11 +449,21 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
     const double goal = !has_target                          ? s.stop_volume_ratio
                         : s.target_volume_schedule.empty() ? s.target_volume
                                                            : sim.volume_target(sim.frame());
+    // A target met and then lost: the shell's momentum carried it on (the volume constraint
+    // moves the vertices that contacts leave free a limited distance per step,
+    // volume_constraint.hpp), not a run too short to get there.
+    const int met = has_target ? frame_goal_met(history, goal, settled) : -1;
+    const std::string end = "V/V0 " + volume_ratio_text(r.final_volume_ratio) + " (frame " +
+                            std::to_string(r.frames_run) + ")";
     r.message =
         what + volume_ratio_text(goal) + " not reached: " +
-        (stalled.empty() ? "the frames ran out at V/V0 " + volume_ratio_text(r.final_volume_ratio) +
-                               " (frame " + std::to_string(r.frames_run) + ")"
-                         : stalled) +
+        (!stalled.empty() ? stalled
+         : met >= 0       ? "V/V0 came to it at frame " + std::to_string(met) +
+                          " but did not stay there: " + end +
+                          "; the volume constraint moves the vertices that contacts leave free "
+                          "a limited distance per step, too little to hold the shell (more "
+                          "frames or a slower ramp let it)"
+                    : "the frames ran out at " + end) +
         "; V/V0 ended " + miss_text(r.final_volume_ratio, goal, has_target);
   }
   r.anisotropic_faces = sim.anisotropy_report().faces;

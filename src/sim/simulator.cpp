@@ -300,21 +300,31 @@ void Simulator::apply_volume_control(Positions& x) {
   // push them back every step and undo part of the volume change, so that a shell in wide contact
   // stalls above its target (eight stalled at V/V0 0.3065 for R = 0.3 that way).
   const Eigen::VectorXd w = free_inverse_masses(inv_mass_, held_by_contact_);
+  // At most a hundredth of the mesh (the normalized bounding-box diagonal) per step: a ramp
+  // spread over the free vertices asks far less, and a volume that the contacts will not let the
+  // shell reach then ends short of it ("not reached", exit 5) instead of sending the few free
+  // vertices beyond the mesh (project_volume's max_move).
+  constexpr double VOLUME_MAX_MOVE = 0.01;
+  // With no vertex held, as far as a smooth shell needs, within a factor for the spread of a
+  // mesh's vertex areas (project_volume's smooth_moves): a short ramp's free shell is held at
+  // its target instead of carried past it.
+  constexpr double SMOOTH_SHELL_MOVES = 4.0;
+  const bool none_held =
+      std::find(held_by_contact_.begin(), held_by_contact_.end(), 1) == held_by_contact_.end();
+  const double smooth_moves = none_held ? SMOOTH_SHELL_MOVES : 0.0;
   if (options_.target_volume > 0.0) {
     const double target = constraint_rest_volume_ * volume_target(frame_ + 1);
-    // At most a hundredth of the mesh (the normalized bounding-box diagonal) per step: a ramp
-    // spread over the free vertices asks far less, and a target that the contacts will not let
-    // the shell reach then ends short of it ("target not reached", exit 5) instead of sending the
-    // few free vertices beyond the mesh (project_volume's max_move).
-    constexpr double VOLUME_MAX_MOVE = 0.01;
-    project_volume(x, faces_, w, target, tolerance, 4, VOLUME_MAX_MOVE);
+    project_volume(x, faces_, w, target, tolerance, 4, VOLUME_MAX_MOVE, smooth_moves);
   } else if (options_.stop_volume_ratio > 0.0) {
     // The step that would cross epsilon ends on it: the run stops at the crossing frame with
     // V/V0 = epsilon up to the collision response, instead of one step's change below it. Whether
-    // it stops is decided after the response (step), which can push the volume back up.
+    // it stops is decided after the response (step), which can push the volume back up. Capped
+    // as a target is: on a shell in wide contact the lift would fling the few free vertices (a
+    // blow-up), and lifted in full every crossing step went back above epsilon after the
+    // response, so that the run never stopped; capped, it ends at or below epsilon there.
     const double floor = constraint_rest_volume_ * options_.stop_volume_ratio;
     if (signed_volume(x, faces_) <= floor) {
-      project_volume(x, faces_, w, floor, tolerance);
+      project_volume(x, faces_, w, floor, tolerance, 4, VOLUME_MAX_MOVE, smooth_moves);
       stop_volume_crossed_ = true;
     }
   }

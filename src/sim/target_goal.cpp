@@ -39,6 +39,14 @@ int first_stall_before(const std::vector<double>& history, const Schedule& keys,
   return -1;
 }
 
+int frame_goal_met(const std::vector<double>& history, double goal, int from) {
+  for (std::size_t n = static_cast<std::size_t>(std::max(from, 1)); n < history.size(); ++n)
+    if (target_volume_reached(history[n], goal) ||
+        (history[n - 1] - goal) * (history[n] - goal) < 0.0)
+      return static_cast<int>(n);
+  return -1;
+}
+
 std::string volume_ratio_text(double r) {
   // Four decimals hide a small ratio (a collapse to 1e-7 read as 0.0000): those get digits.
   // "%.4f" or "%.3g" as the "C" locale writes them, whatever locale a host program set.

@@ -26,6 +26,12 @@ bool volume_stalled(const std::vector<double>& history, std::size_t n, double go
 /// stop for because a later key changes the goal. -1 when there is none.
 int first_stall_before(const std::vector<double>& history, const Schedule& keys, int settled);
 
+/// The first frame n >= max(from, 1) of `history` at which V/V0 came to `goal`: within its
+/// tolerance (target_volume_reached), or on the other side of it than at frame n - 1. A run that
+/// misses its goal after that went past it (its momentum, which the volume constraint did not
+/// undo in the frames left) rather than falling short of it. -1 when there is none.
+int frame_goal_met(const std::vector<double>& history, double goal, int from);
+
 /// A V/V0 in the messages: four decimals, or three digits below 0.01 (four decimals would hide a
 /// collapse to 1e-7 as 0.0000).
 std::string volume_ratio_text(double r);

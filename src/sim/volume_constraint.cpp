@@ -25,8 +25,17 @@ double signed_volume(const Positions& x, const Faces& faces) {
   return v / 6.0;
 }
 
+double surface_area(const Positions& x, const Faces& faces) {
+  double a = 0.0;
+  for (Eigen::Index j = 0; j < faces.rows(); ++j) {
+    const Vec3 xa = x.row(faces(j, 0)), xb = x.row(faces(j, 1)), xc = x.row(faces(j, 2));
+    a += 0.5 * (xb - xa).cross(xc - xa).norm();
+  }
+  return a;
+}
+
 int project_volume(Positions& x, const Faces& faces, const Eigen::VectorXd& w, double target,
-                   double tolerance, int max_steps, double max_move) {
+                   double tolerance, int max_steps, double max_move, double smooth_moves) {
   Positions g;
   int steps = 0;
   for (; steps < max_steps; ++steps) {
@@ -39,9 +48,14 @@ int project_volume(Positions& x, const Faces& faces, const Eigen::VectorXd& w, d
     if (!(denominator > 0.0) || !std::isfinite(denominator)) break;
     const double lambda = c / denominator;
     const double largest = std::abs(lambda) * (g.rowwise().norm().array() * w.array()).maxCoeff();
-    if (largest > max_move) {
+    double cap = max_move;
+    if (largest > cap && smooth_moves > 0.0) {
+      const double area = surface_area(x, faces);
+      if (area > 0.0 && std::isfinite(area)) cap = std::max(cap, smooth_moves * std::abs(c) / area);
+    }
+    if (largest > cap) {
       // Part of the way, the rest left to the next steps (max_move's comment in the header).
-      x -= (lambda * max_move / largest) * (g.array().colwise() * w.array()).matrix();
+      x -= (lambda * cap / largest) * (g.array().colwise() * w.array()).matrix();
       ++steps;
       break;
     }

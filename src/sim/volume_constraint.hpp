@@ -26,10 +26,21 @@ void volume_gradient(const Positions& x, const Faces& faces, Positions& g);
 ///                  contacts hold most vertices, the few free ones take the whole correction, and
 ///                  a target the shell cannot reach without passing through itself sent them
 ///                  beyond the mesh in one step (a blow-up); capped, the run ends short of it.
+/// @param smooth_moves  if > 0, the cap is at least this many times |V - target| / A (A the
+///                  surface area): the move that a smooth shell of that area needs for that
+///                  volume. The caller gives it when no contact holds a vertex: the cap is for the
+///                  few free vertices of a held shell, and it held a free shell asked to change
+///                  fast (a short ramp) short of pulling back the momentum that carried it past
+///                  its target. A crumpled shell, whose gradient is far weaker than a smooth
+///                  one's, stays capped by the smaller bound.
 /// @return the steps taken; x is unchanged when the constraint has no gradient (all w = 0)
 int project_volume(Positions& x, const Faces& faces, const Eigen::VectorXd& w, double target,
                    double tolerance, int max_steps = 4,
-                   double max_move = std::numeric_limits<double>::infinity());
+                   double max_move = std::numeric_limits<double>::infinity(),
+                   double smooth_moves = 0.0);
+
+/// Surface area of a triangle mesh: the sum of its faces' areas.
+double surface_area(const Positions& x, const Faces& faces);
 
 /// The target volume of frame n of a ramp from V0 to R V0 over `ramp` frames, with the smoothstep
 /// s(t) = 3t^2 - 2t^3 (zero rate at both ends, so the shell starts and stops gently):

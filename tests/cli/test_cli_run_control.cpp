@@ -190,11 +190,11 @@ TEST_F(CliRunControl, AStalledTargetExitsWith5AndWritesTheResult) {
 }
 
 TEST_F(CliRunControl, ASmallTargetIsHeldToAShareOfItselfNotTo0005) {
-  // ico1 driven to V/V0 0.001 in 10 frames collapses to far less. Within 0.005 of the target,
+  // ico1 driven to V/V0 0.001 in 6 frames collapses to far less. Within 0.005 of the target,
   // the absolute tolerance alone reported it reached with exit 0; the acceptance is
   // min(0.005, 5 % of R) (docs/math/volume-control.md), so it is exit 5, and says by how much.
   const auto r = run_cli({"run", mesh("ico1.off"), "-o", out("o.off"), "--target-volume", "0.001",
-                          "-n", "10", "--summary", out("s.json")});
+                          "-n", "6", "--summary", out("s.json")});
   EXPECT_EQ(r.exit_code, 5) << r.output;
   EXPECT_NE(r.output.find("target volume 0.001 not reached"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("times smaller than the target"), std::string::npos) << r.output;

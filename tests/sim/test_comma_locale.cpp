@@ -59,12 +59,16 @@ TEST_F(CommaLocaleSimTest, LogRowsReadBackToTheSameDoubles) {
 }
 
 TEST_F(CommaLocaleSimTest, ATargetNotReachedIsWordedAsInTheCLocale) {
+  // Five frames of a pressure of 1 do not take ico1 to the stop ratio 0.5.
   RunOptions o;
-  o.sim.frames = 2;
-  o.sim.target_volume = 0.5;
+  o.sim.frames = 5;
+  o.sim.pressure = 1.0;
+  o.sim.stop_volume_ratio = 0.5;
   const Mesh mesh = test::to_surface_mesh(test::icosphere(1));
   const RunResult in_c = run_contraction(mesh, o);
-  ASSERT_NE(in_c.message.find("target volume 0.5000 not reached"), std::string::npos)
+  ASSERT_NE(
+      in_c.message.find("stop volume ratio 0.5000 not reached: the frames ran out at V/V0 0."),
+      std::string::npos)
       << in_c.message;
   SET_COMMA_LOCALE_OR_SKIP();
   EXPECT_EQ(run_contraction(mesh, o).message, in_c.message);

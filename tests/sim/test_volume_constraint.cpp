@@ -94,6 +94,47 @@ TEST(VolumeConstraint, MaxMoveCapsEachVertexAndStopsShortOfTheTarget) {
   EXPECT_EQ(a, b);
 }
 
+// smooth_moves: the cap rises to k |V - target| / A, the move a smooth shell of area A needs. A
+// free sphere's projection moves about that much, so with k = 4 it is not capped at all, where
+// the plain cap stops it short; the few free vertices of the test above move no farther than
+// the raised cap.
+TEST(VolumeConstraint, SmoothMovesRaiseTheCapToWhatASmoothShellNeeds) {
+  const test::TriMesh m = test::icosphere(2);  // unit radius
+  const double v0 = signed_volume(m.x, m.faces);
+  const Eigen::VectorXd ones = Eigen::VectorXd::Ones(m.x.rows());
+  const double cap = 0.01;
+  Positions free_run = m.x, capped = m.x, lifted = m.x;
+  project_volume(free_run, m.faces, ones, 0.3 * v0, 1e-12 * v0);
+  project_volume(capped, m.faces, ones, 0.3 * v0, 1e-12 * v0, 4, cap);
+  project_volume(lifted, m.faces, ones, 0.3 * v0, 1e-12 * v0, 4, cap, 4.0);
+  EXPECT_GT(signed_volume(capped, m.faces), 0.9 * v0) << "the plain cap stops far short";
+  EXPECT_EQ(lifted, free_run);
+  // Four Newton steps of the cubic V from V0 to 0.3 V0 (the call's max_steps): close, not exact.
+  EXPECT_NEAR(signed_volume(lifted, m.faces), 0.3 * v0, 1e-6 * v0);
+  // Three free vertices: the raised cap bounds them.
+  Eigen::VectorXd w = Eigen::VectorXd::Zero(m.x.rows());
+  for (Eigen::Index i : {0, 1, 2}) w(i) = 1.0;
+  Positions few = m.x;
+  const double c = v0 - 0.9 * v0;
+  const double raised = 4.0 * c / surface_area(m.x, m.faces);
+  ASSERT_GT(raised, cap);
+  project_volume(few, m.faces, w, 0.9 * v0, 1e-12 * v0, 4, cap, 4.0);
+  const double moved = (few - m.x).rowwise().norm().maxCoeff();
+  EXPECT_LE(moved, raised * (1.0 + 1e-12));
+  EXPECT_GT(moved, 0.5 * raised);
+}
+
+TEST(VolumeConstraint, SurfaceAreaOfATetrahedronAndOfTheSphere) {
+  Positions x(4, 3);
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  Faces f(4, 3);
+  f << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  // Three right triangles of area 1/2 and an equilateral one of side sqrt(2).
+  EXPECT_NEAR(surface_area(x, f), 1.5 + std::sqrt(3.0) / 2.0, 1e-15);
+  const test::TriMesh fine = test::icosphere(4);
+  EXPECT_NEAR(surface_area(fine.x, fine.faces) / (4.0 * M_PI), 1.0, 0.01);
+}
+
 TEST(VolumeConstraint, RampStartsAtV0EndsAtTheTargetAndIsMonotone) {
   EXPECT_DOUBLE_EQ(target_volume_at(0, 100, 2.0, 0.5), 2.0);
   EXPECT_DOUBLE_EQ(target_volume_at(100, 100, 2.0, 0.5), 1.0);
