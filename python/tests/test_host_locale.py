@@ -68,7 +68,8 @@ def cases(tag):
         return log_of(sc.contract(v, f, frames=6, resume=ck), *columns)
     out["resumed"] = attempt(resumed)
     out["uninterrupted"] = attempt(lambda: log_of(sc.contract(v, f, frames=6), *columns))
-    out["failure"] = attempt(lambda: sc.contract(v, f, frames=2, target_volume=0.5).summary["failure"])
+    out["failure"] = attempt(
+        lambda: sc.contract(v, f, frames=2, stop_volume_ratio=0.5).summary["failure"])
     # "1,0" is no number in the "C" locale (the CLI's): refused in both.
     out["comma_off"] = attempt(lambda: sc.read_mesh(os.path.join(work, "comma.off"))[0].tolist())
     return out
@@ -139,7 +140,7 @@ def test_files_and_messages_are_the_same_under_a_decimal_comma_locale(comma_locp
     # The C locale's answers are the right ones (the CLI's): the files read, the log resumed.
     assert np.array_equal(np.array(c_locale["ply"]), v)
     assert c_locale["resumed"] == c_locale["uninterrupted"]
-    assert "target volume 0.5000 not reached" in c_locale["failure"]
+    assert "stop volume ratio 0.5000 not reached" in c_locale["failure"]
     assert c_locale["comma_off"]["error"].startswith("ValueError: ")
     assert "'1,0' is not a number" in c_locale["comma_off"]["error"]
     assert [case for case in c_locale if "error" in c_locale[case]] == ["comma_off"], c_locale

@@ -271,14 +271,14 @@ TEST_F(CliSignals, AFileSizeLimitFailsTheWriteKeepsTheOldFileAndExits1) {
 }
 
 // An output that cannot be written (here: over the file size limit) after a run that itself
-// failed (the target volume not reached in 2 frames): stderr says both, and the exit code is the
+// failed (the stop ratio not reached in 2 frames): stderr says both, and the exit code is the
 // run's (5), not 1, which would hide it (docs/cli.md); the summary records the same code. Before:
 // exit 1 and only the list of outputs, the run's own failure in no message. SIGXFSZ ignored
 // here so that the code before the fix reached that path too.
 TEST_F(CliSignals, AFailedOutputOfAFailedRunExitsWithTheRunsCodeAndSaysWhy) {
   test::ChildSpec spec =
       test::cli_child({"run", mesh("ico2.off"), "-o", out("r.off"), "-n", "2", "-q",
-                       "--target-volume", "0.3", "--summary", out("r.json")});
+                       "--stop-volume-ratio", "0.3", "--summary", out("r.json")});
   spec.file_size_limit = 8192;
   spec.ignore_xfsz = true;
   test::Child run(spec);
@@ -289,7 +289,7 @@ TEST_F(CliSignals, AFailedOutputOfAFailedRunExitsWithTheRunsCodeAndSaysWhy) {
   EXPECT_EQ(WEXITSTATUS(status), 5) << text;
   EXPECT_NE(text.find("not every output could be written"), std::string::npos) << text;
   EXPECT_NE(text.find("-o " + out("r.off") + ": failed"), std::string::npos) << text;
-  EXPECT_NE(text.find("target volume 0.3000 not reached"), std::string::npos) << text;
+  EXPECT_NE(text.find("stop volume ratio 0.3000 not reached"), std::string::npos) << text;
   EXPECT_NE(file_text(out("r.json")).find("\"exit_code\": 5"), std::string::npos)
       << file_text(out("r.json"));
   EXPECT_FALSE(fs::exists(out("r.off")));
