@@ -334,6 +334,16 @@ PYBIND11_MODULE(_core, m) {
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));
   m.def("regions", &regions, py::arg("vertices"), py::arg("faces"));
   m.def("read_mesh", &read_mesh, py::arg("path"));
+  // What `run` checks of an input before its run, for a result in the input's format: the
+  // sweep's check of each mesh before any job runs, so that a job is not refused after the
+  // sweep started for what run refuses of its mesh (a glTF's value float32 cannot hold).
+  m.def(
+      "check_run_input",
+      [](const py::handle& path_arg) {
+        const std::string path = path_argument(path_arg);
+        without_gil([&] { check_run_input(path); });
+      },
+      py::arg("path"));
   // The library's list of the files a mesh file needs besides itself, for the sweep's output
   // check (sweep_needs.py), so that the sweep holds the rule the commands hold, not a copy of it.
   m.def(
