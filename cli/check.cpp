@@ -201,12 +201,8 @@ int command_check(int argc, char** argv) {
     // stableNorm: the squares of extents near 1e+-160 and beyond leave double's range, and
     // check reports on any mesh it can read, however far its scale is from the engine's.
     const double diagonal = (x.colwise().maxCoeff() - x.colwise().minCoeff()).stableNorm();
-    const long long chi = static_cast<long long>(mesh.number_of_vertices()) -
-                          static_cast<long long>(mesh.number_of_edges()) +
-                          static_cast<long long>(mesh.number_of_faces());
-    // read_input_mesh refuses open, non-manifold and non-orientable input, so every component
-    // is a closed orientable surface: chi = sum (2 - 2 g_i).
-    const long long genus = (2 * static_cast<long long>(report.components) - chi) / 2;
+    const SurfaceTopology topology = surface_topology(mesh, report.components);
+    const long long chi = topology.euler_characteristic, genus = topology.genus;
 
     // A result judged against its input, or on its own (exit 4 when it fails).
     std::size_t input_pair_count = 0;

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -96,12 +97,10 @@ std::vector<Vec3> parse_region_points(const std::vector<std::string>& values) {
   throw std::logic_error("the run option table has no region-at");
 }
 
-/// --method's value; UsageError naming the allowed values otherwise.
+/// --method's value (the library's names); UsageError naming the allowed values otherwise.
 RegionMethod parse_method(const std::string& text) {
-  if (text == "caps") return RegionMethod::Caps;
-  if (text == "tips") return RegionMethod::Tips;
-  if (text == "parts") return RegionMethod::Parts;
-  throw UsageError("--method '" + text + "': expected caps, tips or parts");
+  if (const std::optional<RegionMethod> m = region_method_named(text)) return *m;
+  throw UsageError("--method '" + text + "': expected " + region_method_names());
 }
 
 /// A coordinate with its sign, to `decimals` decimals without trailing zeros ("+0", "-0.26287",

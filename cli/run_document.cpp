@@ -75,15 +75,8 @@ std::shared_ptr<const MeshDocument> run_input_document(const std::string& input,
                  true);
     document.reset();
   }
-  // Checked before the run: a result that cannot be written is not worth computing.
-  if (!document && is_gltf(out_ext))
-    throw InputError(input + ": the ." + out_ext +
-                     " result would be this file with new positions, and it cannot be written "
-                     "so (see the warning above); choose an " +
-                     extension_list(&MeshFormat::plain_writer) + " output");
-  // What a glTF holds as float32 (texture coordinates, colours), checked before the run too:
-  // found after it, the animation failed with no file or element named (exit 2 here instead).
-  if (document && (gltf_animation || is_gltf(out_ext))) document->require_gltf_values();
+  // The library's rule, shared with the sweep's check of its meshes (check_run_input).
+  require_run_document(input, document.get(), "see the warning above", out_ext, gltf_animation);
   return document;
 }
 

@@ -3,8 +3,10 @@
 
 Usage: scripts/view.py FILE [FILE2] [--log RUN.csv|RUN.json] [--port N] [--open]
 
-FILE is a run's .glb or a mesh (.off, .obj, .ply, .stl: a result, a frame, a --fields PLY, a
-regions -o PLY, shown in its regions' face colours);
+FILE is a run's .glb or a mesh (.off, .obj, .ply, .stl, .glb or .gltf: a result, a frame, a
+--fields PLY, a regions -o PLY, shown in its regions' face colours); a .gltf is shown with its
+buffers embedded (as run and repair write it), and its image files are not served (its materials
+show without their textures);
 with FILE2 the two are shown side by side (e.g. before and after).
 The page is viewer/index.html with ?file=/run/FILE&compare=/run/FILE2&log=/run/RUN.csv; only
 those files and the viewer folder are served, on 127.0.0.1. three.js is served from viewer/node_modules, which
@@ -14,6 +16,7 @@ import argparse
 import errno
 import functools
 import http.server
+import json
 import os
 import sys
 import urllib.parse
@@ -24,7 +27,7 @@ VIEWER = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "viewer"
 
 class Handler(http.server.SimpleHTTPRequestHandler):
     extensions_map = {**http.server.SimpleHTTPRequestHandler.extensions_map,
-                      ".glb": "model/gltf-binary", ".js": "text/javascript", ".mjs": "text/javascript",
+                      ".glb": "model/gltf-binary", ".gltf": "model/gltf+json", ".js": "text/javascript", ".mjs": "text/javascript",
                       ".csv": "text/csv", ".json": "application/json", ".off": "text/plain",
                       ".obj": "text/plain", ".ply": "application/octet-stream", ".stl": "application/octet-stream"}
 
@@ -48,7 +51,8 @@ class Handler(http.server.SimpleHTTPRequestHandler):
             super().log_message(fmt, *args)
 
 
-MESH_EXTENSIONS = (".glb", ".off", ".obj", ".ply", ".stl")  # what viewer/src/mesh_files.js reads
+# What viewer/src/mesh_files.js shows (GLTF_EXTENSIONS and MESH_EXTENSIONS there).
+MESH_EXTENSIONS = (".glb", ".gltf", ".off", ".obj", ".ply", ".stl")
 LOG_EXTENSIONS = (".csv", ".json")
 
 
@@ -77,7 +81,29 @@ def checked_file(path, extensions, what):
         with open(path, "rb") as f:
             if f.read(4) != b"glTF":
                 sys.exit(f"view.py: {path}: not a binary glTF (it does not start with 'glTF')")
+    if path.lower().endswith(".gltf"):
+        refuse_gltf_buffer_files(path)
     return path
+
+
+def refuse_gltf_buffer_files(path):
+    """Exits naming a .gltf's buffer that is not embedded (a data: URI) or a file that is not a
+    glTF's JSON: the page reads the .gltf alone (viewer/src/file_checks.js checkGltf), and only
+    the files named here are served."""
+    try:
+        with open(path, "rb") as f:
+            doc = json.loads(f.read().decode("utf-8"))
+    except (ValueError, UnicodeDecodeError) as e:
+        sys.exit(f"view.py: {path}: not a glTF's JSON text ({e})")
+    if not isinstance(doc, dict):
+        sys.exit(f"view.py: {path}: not a glTF (its JSON is not an object)")
+    buffers = doc.get("buffers")
+    for k, b in enumerate(buffers if isinstance(buffers, list) else []):
+        uri = b.get("uri") if isinstance(b, dict) else None
+        if not (isinstance(uri, str) and uri.startswith("data:")):
+            what = f"the file '{uri}'" if isinstance(uri, str) else "not embedded"
+            sys.exit(f"view.py: {path}: buffer {k} is {what}, which the viewer does not read (it "
+                     "shows a .gltf whose buffers are in it, as run and repair write them, or a .glb)")
 
 
 def main():
@@ -89,8 +115,8 @@ def main():
                "button to see its materials). In the page: space plays or pauses, the left and right\n"
                "arrows step a frame. The server runs until stopped with Ctrl-C.")
     ap.add_argument("glb", metavar="FILE",
-                    help="the run's animated glTF (shellcontract run ... --gltf RUN.glb) or a mesh (.off, .obj, .ply, .stl)")
-    ap.add_argument("compare", metavar="FILE2", nargs="?", help="a second .glb or mesh, shown beside the first")
+                    help="the run's animated glTF (shellcontract run ... --gltf RUN.glb) or a mesh (.off, .obj, .ply, .stl, .glb, .gltf)")
+    ap.add_argument("compare", metavar="FILE2", nargs="?", help="a second .glb, .gltf or mesh, shown beside the first")
     ap.add_argument("--log", help="the run's --log CSV or --summary JSON, for the V/V0 plot")
     ap.add_argument("--port", type=port_number, default=8765,
                     help="port on 127.0.0.1 (default: %(default)s; 0: any free port)")
@@ -105,7 +131,7 @@ def main():
         if key == "log":
             checked_file(path, LOG_EXTENSIONS, "a --log CSV or a --summary JSON")
         else:
-            checked_file(path, MESH_EXTENSIONS, "a .glb or a mesh")
+            checked_file(path, MESH_EXTENSIONS, "a .glb, a .gltf or a mesh")
     # The page names each file by its name here; two files of one name (before/out.off,
     # after/out.off) are named with their folders, which the user knows them by.
     paths = [os.path.abspath(p) for _, p in given]

@@ -348,6 +348,22 @@ class MeshDocument {
 /// @throws InputError naming the file and line if it cannot be read as a document
 std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path);
 
+/// `run`'s rule for its input's document (read_mesh_document; null: none, unreadable, or not the
+/// mesh simulated) where a result needs one: a .glb or .gltf result (`output_ext`, lower case, no
+/// dot) is the input with new positions, so it needs the document; that result and a --gltf
+/// animation (`gltf_animation`) hold its texture coordinates and colours as float32
+/// (MeshDocument::require_gltf_values). `why_none`: why `document` is null, for the message.
+/// @throws InputError naming `input`, before the run (exit 2 in `run`)
+void require_run_document(const std::string& input, const MeshDocument* document,
+                          const std::string& why_none, const std::string& output_ext,
+                          bool gltf_animation);
+
+/// What `run INPUT` checks of INPUT before its run, for a result written in INPUT's own format
+/// (as each job of a sweep writes it): read_input_mesh's checks, then require_run_document's for
+/// its document. The sweep checks each mesh with it before any job runs.
+/// @throws what read_input_mesh throws, and InputError as require_run_document
+void check_run_input(const std::string& path);
+
 /// An OBJ file's bytes as a document (src/mesh/obj_document.cpp): every line but `v` and `vn`
 /// is written back verbatim; `v` lines get the new positions (anything after x y z, such as
 /// vertex colours, kept); `vn` lines get the normals of the new positions; the names of `mtllib`

@@ -31,8 +31,10 @@
 #include <array>
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "shellcontract/mesh.hpp"
@@ -218,6 +220,14 @@ std::string region_option_range(const std::string& field);
 
 /// Whether `value` is in region_option_range(field) (false for NaN, an infinity or another name).
 bool in_region_option_range(const std::string& field, double value);
+
+/// The finder a method's name selects, as `regions --method` and Python's regions(method=) take
+/// it ("caps", "tips", "parts"); nullopt for any other text.
+std::optional<RegionMethod> region_method_named(std::string_view name);
+
+/// The methods' names for a refusal of another: "caps, tips or parts", each between `quote`s
+/// ("'caps', 'tips' or 'parts'" for "'").
+std::string region_method_names(const std::string& quote = "");
 
 /// Throws UsageError naming the first option out of range with its value and range ("`contrast`
 /// nan: must be a finite number >= 0"; min_faces >= 1), or the area fractions with both values

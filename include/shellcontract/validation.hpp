@@ -106,6 +106,17 @@ std::size_t new_self_intersections(const Mesh& mesh, const Positions& x, const s
 // EigenPointMap, so that no mesh copy is made; house-style.md section 3).
 namespace shellcontract {
 
+/// The Euler characteristic and genus `shellcontract check` and Python's check() report.
+struct SurfaceTopology {
+  long long euler_characteristic = 0;  ///< V - E + F
+  long long genus = 0;                 ///< the sum of the components' genera
+};
+
+/// V - E + F of `mesh`, and its genus as a mesh that read_input_mesh accepted: closed, manifold
+/// and oriented, so that every one of its `components` is a closed orientable surface and
+/// chi = sum (2 - 2 g_i).
+SurfaceTopology surface_topology(const Mesh& mesh, std::size_t components);
+
 /// Signed volume enclosed by the mesh when its vertices are at x.
 /// PMP::volume only asserts closedness (and the assertion vanishes in release builds), so this
 /// wrapper checks the preconditions itself.

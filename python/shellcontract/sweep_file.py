@@ -385,10 +385,11 @@ def expand(path, data, version, check_mesh=None):
     """The jobs of a loaded sweep file, validated; raises SweepError naming the first bad job
     (nothing is run before every job has passed).
 
-    check_mesh(path) raises ValueError/OSError for an unusable mesh (default: the library's
-    reader with the CLI's checks).
+    check_mesh(path) raises ValueError/OSError for an unusable mesh (default: what `run` checks
+    of its input before the run, for a result in the input's format, as each job writes it: the
+    reader's checks, and for a glTF that its result can be written).
     """
-    check_mesh = check_mesh or (lambda m: _core.read_mesh(m))
+    check_mesh = check_mesh or _core.check_run_input
     cache = {}  # path -> SHA-256, for this expansion only (a later one reads the files again)
     meshes = expand_meshes(path, data["meshes"])
     for m in meshes:

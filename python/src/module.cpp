@@ -51,8 +51,7 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   SelfIntersectionCount counted;
   without_gil([&] { counted = count_self_intersections(mesh, x, CHECK_LISTED_PAIRS); });
   const std::vector<FacePair>& pairs = counted.first;
-  const auto chi = static_cast<long long>(mesh.number_of_vertices()) - static_cast<long long>(mesh.number_of_edges()) +
-                   static_cast<long long>(mesh.number_of_faces());
+  const SurfaceTopology topology = surface_topology(mesh, report.components);  // as `check`
   py::array_t<std::int64_t> pair_array({static_cast<py::ssize_t>(pairs.size()), py::ssize_t{2}});
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     pair_array.mutable_at(i, 0) = static_cast<std::int64_t>(pairs[i].first.idx());
@@ -63,9 +62,8 @@ py::dict check(const py::handle& vertices, const py::handle& faces) {
   d["faces"] = report.faces;
   d["edges"] = static_cast<std::size_t>(mesh.number_of_edges());
   d["components"] = report.components;
-  d["euler_characteristic"] = chi;
-  // The checks refuse open, non-manifold and non-orientable input: chi = sum (2 - 2 g_i).
-  d["genus"] = (2 * static_cast<long long>(report.components) - chi) / 2;
+  d["euler_characteristic"] = topology.euler_characteristic;
+  d["genus"] = topology.genus;
   d["volume"] = report.volume;
   d["bounding_box_diagonal"] = (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
   d["reoriented"] = report.reoriented;
@@ -127,18 +125,17 @@ int int_option(const std::string& name, const py::handle& value) {
   return static_cast<int>(n);
 }
 
-/// The method option of regions(): "caps", "tips" or "parts" (TypeError for a non-str,
-/// ValueError naming the allowed values otherwise), as the CLI's --method.
+/// The method option of regions(): one of the library's names, "caps", "tips" or "parts"
+/// (TypeError for a non-str, ValueError naming the allowed values otherwise), as the CLI's
+/// --method.
 RegionMethod method_option(const py::handle& value) {
   if (!py::isinstance<py::str>(value))
-    throw py::type_error(
-        "regions() option method: expected a str ('caps', 'tips' or 'parts'), got " +
-        type_name(value));
-  const std::string text = value.cast<std::string>();
-  if (text == "caps") return RegionMethod::Caps;
-  if (text == "tips") return RegionMethod::Tips;
-  if (text == "parts") return RegionMethod::Parts;
-  throw py::value_error("regions() option method: expected 'caps', 'tips' or 'parts', got " + std::string(py::repr(value)));
+    throw py::type_error("regions() option method: expected a str (" + region_method_names("'") +
+                         "), got " + type_name(value));
+  if (const std::optional<RegionMethod> m = region_method_named(value.cast<std::string>()))
+    return *m;
+  throw py::value_error("regions() option method: expected " + region_method_names("'") + ", got " +
+                        std::string(py::repr(value)));
 }
 
 /// The regions `run --regions auto` would choose: one ascending face-index array per region.
@@ -334,6 +331,16 @@ PYBIND11_MODULE(_core, m) {
   m.def("check", &check, py::arg("vertices"), py::arg("faces"));
   m.def("regions", &regions, py::arg("vertices"), py::arg("faces"));
   m.def("read_mesh", &read_mesh, py::arg("path"));
+  // What `run` checks of an input before its run, for a result in the input's format: the
+  // sweep's check of each mesh before any job runs, so that a job is not refused after the
+  // sweep started for what run refuses of its mesh (a glTF's value float32 cannot hold).
+  m.def(
+      "check_run_input",
+      [](const py::handle& path_arg) {
+        const std::string path = path_argument(path_arg);
+        without_gil([&] { check_run_input(path); });
+      },
+      py::arg("path"));
   // The library's list of the files a mesh file needs besides itself, for the sweep's output
   // check (sweep_needs.py), so that the sweep holds the rule the commands hold, not a copy of it.
   m.def(

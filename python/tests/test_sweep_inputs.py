@@ -1,12 +1,16 @@
 """The files a sweep's jobs read besides their meshes (a regions face list, region weights):
 usable in a sweep file, relative to it, and part of each job's id by their bytes, so that an
-edited file reruns its jobs (from scratch, not from a checkpoint of the old file)."""
+edited file reruns its jobs (from scratch, not from a checkpoint of the old file). Each mesh is
+checked before the sweep as `run` checks its input."""
+import base64
 import json
 import os
+import struct
 import subprocess
 
 import pytest
 
+import shellcontract
 from shellcontract import sweep, sweep_file
 from test_sweep import results, run_sweep, write_sweep
 
@@ -191,3 +195,49 @@ def test_region_weights_as_a_list_is_refused(cli, mesh_dir, tmp_path):
     path = write_sweep(tmp_path, mesh_dir, "l.json", spec, meshes=("ico2.off",))
     with pytest.raises(sweep_file.SweepError, match="in a sweep it is a file name"):
         jobs_of(cli, path)
+
+
+def octahedron_gltf_with_a_nan_uv(path):
+    """A .gltf of the closed octahedron whose TEXCOORD_0 has one u that is NaN: read_mesh reads
+    it, but its result (a glTF, the input with new positions) cannot hold that value."""
+    positions = [(1, 0, 0), (-1, 0, 0), (0, 1, 0), (0, -1, 0), (0, 0, 1), (0, 0, -1)]
+    indices = [0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5]
+    uv = [(float("nan") if i == 0 else 0.5, 0.5) for i in range(6)]
+    data = (b"".join(struct.pack("<3f", *p) for p in positions) + struct.pack("<24I", *indices)
+            + b"".join(struct.pack("<2f", *t) for t in uv))
+    doc = {
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 2},
+                                    "indices": 1}]}],
+        "buffers": [{"uri": "data:application/octet-stream;base64,"
+                            + base64.b64encode(data).decode(), "byteLength": len(data)}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 72},
+                        {"buffer": 0, "byteOffset": 72, "byteLength": 96},
+                        {"buffer": 0, "byteOffset": 168, "byteLength": 48}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 6, "type": "VEC3",
+                       "min": [-1, -1, -1], "max": [1, 1, 1]},
+                      {"bufferView": 1, "componentType": 5125, "count": 24, "type": "SCALAR"},
+                      {"bufferView": 2, "componentType": 5126, "count": 6, "type": "VEC2"}]}
+    path.write_text(json.dumps(doc))
+    return path
+
+
+def test_a_mesh_run_refuses_before_its_run_is_refused_before_the_sweep(cli, tmp_path):
+    """The sweep checks each mesh as `run` checks its input before the run (the library's
+    check_run_input), not with the reader alone: a .gltf whose result cannot be written (a NaN
+    texture coordinate) is refused by --dry-run naming the mesh and the reason, exit 1, instead
+    of every job of it ending `bad input` after the sweep started."""
+    mesh = octahedron_gltf_with_a_nan_uv(tmp_path / "nan_uv.gltf")
+    reason = ("not writable as a glTF: mesh 0 primitive 0 vertex 0: texture coordinate u nan is "
+              "not a finite number")
+    shellcontract.read_mesh(str(mesh))  # the reader alone accepts it
+    r = subprocess.run([cli, "run", str(mesh), "-o", str(tmp_path / "r.gltf"), "-n", "1"],
+                       capture_output=True, text=True)
+    assert r.returncode == 2 and "{}: {}".format(mesh, reason) in r.stderr, r.stderr
+    spec = {"meshes": ["nan_uv.gltf"], "options": {"frames": 1}}
+    path = tmp_path / "s.json"
+    path.write_text(json.dumps(spec))
+    r = run_sweep(cli, [str(path), "-o", str(tmp_path / "out"), "--dry-run"])
+    assert r.returncode == 1, r.stdout + r.stderr
+    assert "{}: {}".format(mesh, reason) in r.stderr, r.stderr
+    assert not (tmp_path / "out").exists()

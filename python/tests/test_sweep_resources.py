@@ -227,7 +227,7 @@ import errno, sys
 from shellcontract import sweep, sweep_file
 def short(path):
     raise {error}
-sweep_file._core.read_mesh = short
+sweep_file._core.check_run_input = short
 sys.exit(sweep.main(sys.argv[1:]))
 """
 

@@ -8,6 +8,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace shellcontract {
@@ -19,6 +20,20 @@ inline std::string_view trim_blanks(std::string_view text) {
   return text.substr(b, text.find_last_not_of(" \t\r\n") - b + 1);
 }
 
+/// Every item of a comma-separated list, each without the blanks around it, the empty ones
+/// included ("" gives one empty item): for a reader that names an item's problems in the list's
+/// order (run's keyframes: an empty key is refused where it comes, after the keys before it).
+inline std::vector<std::string> list_items(std::string_view text) {
+  std::vector<std::string> items;
+  for (std::size_t begin = 0;;) {
+    const std::size_t comma = text.find(',', begin);
+    items.emplace_back(
+        trim_blanks(text.substr(begin, comma == std::string_view::npos ? comma : comma - begin)));
+    if (comma == std::string_view::npos) return items;
+    begin = comma + 1;
+  }
+}
+
 /// The items of a comma-separated list, each without the blanks around it. False, with `why`
 /// ("an empty list", "item 3 is empty (two commas, or one at an end)"), when an item is empty.
 inline bool split_list(std::string_view text, std::vector<std::string>& items, std::string& why) {
@@ -27,18 +42,14 @@ inline bool split_list(std::string_view text, std::vector<std::string>& items, s
     why = "an empty list";
     return false;
   }
-  for (std::size_t begin = 0;;) {
-    const std::size_t comma = text.find(',', begin);
-    const std::string_view item =
-        trim_blanks(text.substr(begin, comma == std::string_view::npos ? comma : comma - begin));
+  for (std::string& item : list_items(text)) {
     if (item.empty()) {
       why = "item " + std::to_string(items.size() + 1) + " is empty (two commas, or one at an end)";
       return false;
     }
-    items.emplace_back(item);
-    if (comma == std::string_view::npos) return true;
-    begin = comma + 1;
+    items.push_back(std::move(item));
   }
+  return true;
 }
 
 }  // namespace shellcontract

@@ -1,9 +1,13 @@
 // The ranges of the region finders' thresholds (check_region_options, regions.hpp): one table,
 // which the library's check, the `regions` command and Python's regions() all say in the same
-// words, each option named with its value.
+// words, each option named with its value; and the one list of the finders' names.
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "shellcontract/error.hpp"
@@ -34,6 +38,10 @@ constexpr RegionRange RANGES[] = {
     {"max_area_fraction", 0.0, 1.0, false, "a number in [0, 1]"},
 };
 
+/// The one list of the finders' names (regions --method, Python's method=), in the enum's order.
+constexpr std::pair<const char*, RegionMethod> METHODS[] = {
+    {"caps", RegionMethod::Caps}, {"tips", RegionMethod::Tips}, {"parts", RegionMethod::Parts}};
+
 const RegionRange* find_range(const std::string& field) {
   for (const RegionRange& r : RANGES)
     if (field == r.field) return &r;
@@ -41,6 +49,20 @@ const RegionRange* find_range(const std::string& field) {
 }
 
 }  // namespace
+
+std::optional<RegionMethod> region_method_named(std::string_view name) {
+  for (const auto& [text, method] : METHODS)
+    if (name == text) return method;
+  return std::nullopt;
+}
+
+std::string region_method_names(const std::string& quote) {
+  std::string out;
+  const std::size_t n = std::size(METHODS);
+  for (std::size_t i = 0; i < n; ++i)
+    out += (i == 0 ? "" : i + 1 == n ? " or " : ", ") + quote + METHODS[i].first + quote;
+  return out;
+}
 
 std::string region_option_range(const std::string& field) {
   const RegionRange* r = find_range(field);
@@ -65,10 +87,10 @@ void check_region_options(const RegionOptions& o) {
                        region_option_range(field));
   if (o.min_faces < 1)
     throw UsageError("`min_faces` " + std::to_string(o.min_faces) + ": must be an integer >= 1");
-  if (o.method != RegionMethod::Caps && o.method != RegionMethod::Tips &&
-      o.method != RegionMethod::Parts)
-    throw UsageError("`method` " + std::to_string(static_cast<int>(o.method)) +
-                     ": must be caps, tips or parts");
+  if (std::none_of(std::begin(METHODS), std::end(METHODS),
+                   [&](const auto& m) { return m.second == o.method; }))
+    throw UsageError("`method` " + std::to_string(static_cast<int>(o.method)) + ": must be " +
+                     region_method_names());
   if (o.max_area_fraction < o.min_area_fraction)
     throw UsageError("`max_area_fraction` " + shortest_text(o.max_area_fraction) +
                      " is below `min_area_fraction` " + shortest_text(o.min_area_fraction) +

@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
@@ -195,6 +196,53 @@ std::unique_ptr<MeshDocument> read_mesh_document(const std::string& path) {
       break;  // no document (document is false)
   }
   return nullptr;
+}
+
+namespace {
+
+/// Whether run's document rule asks anything of a run with this output and animation: only a
+/// glTF (the result or the --gltf animation) needs the document, or its values as float32; an
+/// OBJ or PLY result without one is written by the plain writer, with run's warning.
+bool document_rule_applies(const std::string& output_ext, bool gltf_animation) {
+  return gltf_animation || is_mesh_format(output_ext, &MeshFormat::gltf);
+}
+
+}  // namespace
+
+void require_run_document(const std::string& input, const MeshDocument* document,
+                          const std::string& why_none, const std::string& output_ext,
+                          bool gltf_animation) {
+  if (!document_rule_applies(output_ext, gltf_animation)) return;
+  // Checked before the run: a result that cannot be written is not worth computing.
+  if (!document && is_mesh_format(output_ext, &MeshFormat::gltf))
+    throw InputError(input + ": the ." + output_ext +
+                     " result would be this file with new positions, and it cannot be written "
+                     "so (" +
+                     why_none + "); choose an " + extension_list(&MeshFormat::plain_writer) +
+                     " output");
+  // What a glTF holds as float32 (texture coordinates, colours), checked before the run too:
+  // found after it, the animation failed with no file or element named.
+  if (document) document->require_gltf_values();
+}
+
+void check_run_input(const std::string& path) {
+  const Mesh mesh = read_input_mesh(path);
+  // The result is in the input's format. An STL input has no two vertices at one position (its
+  // reader merged them), so run's STL check of the result's positions cannot refuse it.
+  const std::string ext = lower_extension(path);
+  if (!document_rule_applies(ext, false)) return;  // the document would not be read for it
+  std::unique_ptr<MeshDocument> document;
+  std::string why_none;
+  try {
+    document = read_mesh_document(path);
+  } catch (const InputError& e) {
+    why_none = e.what();
+  }
+  if (document && !document->matches(mesh)) {
+    document.reset();
+    why_none = "the mesh is not the file's";
+  }
+  require_run_document(path, document.get(), why_none, ext, false);
 }
 
 void write_mesh_document_atomic(const std::string& path, const MeshDocument& doc,

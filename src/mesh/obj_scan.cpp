@@ -12,22 +12,15 @@
 #include "core/plural.hpp"
 #include "core/token_text.hpp"
 #include "mesh/line_tokens.hpp"
+#include "mesh/scan_errors.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/face_error.hpp"
 
 namespace shellcontract {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
-  throw InputError(path + ": " + problem + ": " + details);
-}
-
-/// A problem of one face: a FaceListError with its index (a polygon's is its first triangle's,
-/// face_error.hpp), as the OFF and PLY readers and the arrays' checks name theirs.
-[[noreturn]] void fail_face(const std::string& path, const std::string& problem,
-                            const std::string& details, std::size_t face) {
-  throw FaceListError(path + ": " + problem + ": " + details, {face});
-}
+using scan_errors::fail;
+using scan_errors::fail_face;
 
 /// isspace of the "C" locale, whatever locale a host program (Python) has set.
 bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }

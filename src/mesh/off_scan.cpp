@@ -20,22 +20,15 @@
 #include "core/decimal_text.hpp"
 #include "core/plural.hpp"
 #include "core/token_text.hpp"
+#include "mesh/scan_errors.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/face_error.hpp"
 
 namespace shellcontract {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& problem, const std::string& details) {
-  throw InputError(path + ": " + problem + ": " + details);
-}
-
-/// A problem of one face: a FaceListError with its index (a polygon's is its first triangle's,
-/// face_error.hpp), so that a caller gets the face as data from a file as from arrays.
-[[noreturn]] void fail_face(const std::string& path, const std::string& problem,
-                            const std::string& details, std::size_t face) {
-  throw FaceListError(path + ": " + problem + ": " + details, {face});
-}
+using scan_errors::fail;
+using scan_errors::fail_face;
 
 /// index()'s `corner_of` for a token that is no face's corner.
 constexpr std::size_t NOT_A_CORNER = SIZE_MAX;

@@ -1,25 +1,19 @@
-#include "shellcontract/simulation_options.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
+#include <string_view>
 #include <utility>
 
 #include "core/decimal_text.hpp"
+#include "core/list_text.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
+#include "shellcontract/simulation_options.hpp"
 
 namespace shellcontract {
 
 namespace {
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\n");
-  if (b == std::string::npos) return std::string();
-  const auto e = s.find_last_not_of(" \t\r\n");
-  return s.substr(b, e - b + 1);
-}
 
 /// The PCHIP slopes (Fritsch and Carlson 1980; Fritsch and Butland's weighted harmonic mean):
 /// zero at the ends and where the secants change sign or one is flat, otherwise
@@ -109,16 +103,16 @@ bool is_schedule_text(const std::string& text) { return text.find(':') != std::s
 
 Schedule parse_schedule(const std::string& option, const std::string& text, const KeyRange& range) {
   std::vector<Keyframe> keys;
-  std::size_t begin = 0;
-  for (std::size_t index = 0;; ++index) {
-    const std::size_t comma = text.find(',', begin);
-    const std::string key =
-        trim(text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin));
+  // The keys in order, empty ones too: each key's problem is named where it comes (list_text.hpp's
+  // rule of items and blanks, as the other list options read theirs).
+  const std::vector<std::string> items = list_items(text);
+  for (std::size_t index = 0; index < items.size(); ++index) {
+    const std::string& key = items[index];
     if (key.empty()) bad_key(option, index, key, "empty key; expected FRAME:VALUE");
     const std::size_t colon = key.find(':');
     if (colon == std::string::npos) bad_key(option, index, key, "expected FRAME:VALUE");
-    const std::string frame_text = trim(key.substr(0, colon));
-    const std::string value_text = trim(key.substr(colon + 1));
+    const std::string frame_text(trim_blanks(std::string_view(key).substr(0, colon)));
+    const std::string value_text(trim_blanks(std::string_view(key).substr(colon + 1)));
     long frame = -1;
     if (!parse_decimal_integer(frame_text, frame) || frame < 0 ||
         frame > std::numeric_limits<int>::max())
@@ -134,8 +128,6 @@ Schedule parse_schedule(const std::string& option, const std::string& text, cons
               "frame " + std::to_string(frame) + " does not come after the previous key's frame " +
                   std::to_string(keys.back().frame) + " (frames must increase)");
     keys.push_back({static_cast<int>(frame), value});
-    if (comma == std::string::npos) break;
-    begin = comma + 1;
   }
   return Schedule(std::move(keys));
 }

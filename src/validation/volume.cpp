@@ -1,4 +1,4 @@
-// enclosed_volume: PMP::volume with the position array as vertex point map.
+// enclosed_volume: PMP::volume with the position array as vertex point map; surface_topology.
 #include "shellcontract/validation.hpp"
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -47,6 +47,15 @@ double enclosed_volume(const Mesh& mesh, const Positions& x) {
 double enclosed_volume_unchecked(const Mesh& mesh, const Positions& x) {
   check_positions(mesh, x);
   return pmp_volume(mesh, x);
+}
+
+SurfaceTopology surface_topology(const Mesh& mesh, std::size_t components) {
+  SurfaceTopology t;
+  t.euler_characteristic = static_cast<long long>(mesh.number_of_vertices()) -
+                           static_cast<long long>(mesh.number_of_edges()) +
+                           static_cast<long long>(mesh.number_of_faces());
+  t.genus = (2 * static_cast<long long>(components) - t.euler_characteristic) / 2;
+  return t;
 }
 
 }  // namespace shellcontract

@@ -346,3 +346,29 @@ export function checkGlb(buffer, name) {
     at += 8 + size;
   }
 }
+
+/**
+ * Checks a .gltf (JSON, the format `run` writes for a .gltf input and `repair -o x.gltf` writes):
+ * its text must be a JSON object (a file cut short is not), and every buffer must be embedded in
+ * it (a data: URI, as those commands write them): the viewer reads the file alone, from the Open
+ * button or from view.py, which serves only the files named to it. Its images, when they are
+ * files, are not read: its materials show without their textures.
+ */
+export function checkGltf(buffer, name) {
+  let json;
+  try {
+    json = JSON.parse(new TextDecoder().decode(buffer));
+  } catch (e) {
+    throw new Error(`${name}: not a glTF's JSON text (${e.message}): the file may be cut short`);
+  }
+  if (json === null || typeof json !== 'object' || Array.isArray(json))
+    throw new Error(`${name}: not a glTF (its JSON is not an object)`);
+  const buffers = Array.isArray(json.buffers) ? json.buffers : [];
+  for (const [k, b] of buffers.entries()) {
+    if (typeof b?.uri === 'string' && b.uri.startsWith('data:')) continue;
+    throw new Error(
+        `${name}: buffer ${k} is ${
+            typeof b?.uri === 'string' ? `the file '${b.uri}'` : 'not embedded'}, which the ` +
+        'viewer does not read (it reads a .gltf whose buffers are in it, as run and repair write them, or a .glb)');
+  }
+}

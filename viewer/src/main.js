@@ -1,6 +1,7 @@
 // ShellContract viewer: plays the morph-target animation of a run's .glb (one target per exported
 // frame, STEP keyframes), scrubs it and jumps to a frame, plots V/V0 from the run's CSV log or JSON
-// summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL; an OBJ with
+// summary, switches the colour fields, and opens result meshes (OFF, OBJ, PLY, STL, a .glb or .gltf
+// mesh, such as run's result of a glTF input; an OBJ with
 // the .mtl and textures chosen with it). Two files are shown side by side (before and after, one
 // camera; of more chosen, the status line names those not opened); a single .glb can show its
 // first frame beside the current one. Each frame is coloured with its own values where the file
@@ -14,23 +15,24 @@
 // file_checks.js (reading a mesh file), colours.js (the colour menu and a choice applied;
 // colour_map.js, legend.js), frames.js (frames, jumps, playback), status_line.js, loading.js,
 // plot.js, run_log.js, test_hooks.js.
-// URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb or meshes.
-// While a file loads, the status line says so: its name and the bytes read (state.loading).
-// For tests, window.viewer exposes the state: {ready, loading, keyframe, frameNumbers, panes (with their
-// meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show),
+// URL parameters: ?file=A&compare=B&log=RUN.csv (or a .json summary); A and B: .glb, .gltf or
+// meshes. While a file loads, the status line says so: its name and the bytes read (state.loading).
+// For tests, window.viewer exposes the state: {ready, loading, keyframe, frameNumbers, panes (with
+// their meshes: a .glb's primitives), shown, colourValues (per pane, the values its colours show),
 // looks() (per pane and mesh, the material drawn), ...}.
 import * as THREE from 'three';
-import { OrbitControls } from 'three/addons/controls/OrbitControls.js';
-import { applyColours as colourPanes, colourChoices } from './colours.js';
-import { frameSteps, lastAtOrBefore, player, showFrame } from './frames.js';
-import { drawLegend } from './legend.js';
-import { nextPaint, readFile, readResponse } from './loading.js';
-import { extensionOf, MESH_EXTENSIONS } from './mesh_files.js';
-import { disposePane, firstFramePane, makePane } from './panes.js';
-import { drawPlot } from './plot.js';
-import { parseCsvLog, parseJsonSummary, ratioAt } from './run_log.js';
-import { errorText, statusLine } from './status_line.js';
-import { exposeForTests } from './test_hooks.js';
+import {OrbitControls} from 'three/addons/controls/OrbitControls.js';
+
+import {applyColours as colourPanes, colourChoices} from './colours.js';
+import {frameSteps, lastAtOrBefore, player, showFrame} from './frames.js';
+import {drawLegend} from './legend.js';
+import {nextPaint, readFile, readResponse} from './loading.js';
+import {extensionOf, isViewerFile} from './mesh_files.js';
+import {disposePane, firstFramePane, makePane} from './panes.js';
+import {drawPlot} from './plot.js';
+import {parseCsvLog, parseJsonSummary, ratioAt} from './run_log.js';
+import {errorText, statusLine} from './status_line.js';
+import {exposeForTests} from './test_hooks.js';
 
 const el = (id) => document.getElementById(id);
 const view = el('view');
@@ -196,13 +198,13 @@ async function openFiles(files) {
   const companions = files.filter((f) => COMPANION_EXTENSIONS.includes(extensionOf(f.name)));
   for (const f of files) {
     try {
-      const ext = extensionOf(f.name);
-      if (ext === 'glb' || MESH_EXTENSIONS.includes(ext)) {
+      if (isViewerFile(f.name)) {
         // Two panes at most: the first two files that open; the others are named, not read, so
         // a file that fails does not take a pane from the next.
         if (models.length === 2) notOpened.push(f.name);
         else models.push(await loadPane(f.name, (progress) => readFile(f, progress), companions));
-      } else if (!companions.includes(f)) loadLog(await f.text(), f.name);
+      } else if (!companions.includes(f))
+        loadLog(await f.text(), f.name);
     } catch (e) { errors.push(errorText(f.name, e)); }
   }
   const notes = notOpened.length

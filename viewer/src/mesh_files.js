@@ -10,10 +10,18 @@ import { checkAsciiStl, checkBinaryStl, checkObj, checkPly } from './file_checks
 import { withUnnamedFirstMaterial } from './obj_materials.js';
 
 export const MESH_EXTENSIONS = ['off', 'obj', 'ply', 'stl'];
+/** The glTF files the viewer shows (panes.js): a run's animated .glb, a .glb or .gltf mesh. */
+export const GLTF_EXTENSIONS = ['glb', 'gltf'];
 
 export function extensionOf(name) {
   const m = /\.([^./\\]+)$/.exec(name);
   return m ? m[1].toLowerCase() : '';
+}
+
+/** Whether the viewer shows the file named so, as a pane: a glTF or a mesh. */
+export function isViewerFile(name) {
+  const ext = extensionOf(name);
+  return GLTF_EXTENSIONS.includes(ext) || MESH_EXTENSIONS.includes(ext);
 }
 
 /**
@@ -353,7 +361,8 @@ export function loadMeshFile(buffer, name) {
     // STLLoader makes three corners per face: the file's vertices are its distinct positions.
     vertices = distinctPositions(g.getAttribute('position').array);
   } else {
-    throw new Error(`${name}: unknown mesh format '.${ext}' (expected .off, .obj, .ply, .stl or .glb)`);
+    throw new Error(
+        `${name}: unknown mesh format '.${ext}' (expected .off, .obj, .ply, .stl, .glb or .gltf)`);
   }
   const meshes = [];
   object.traverse((o) => { if (o.isMesh) meshes.push(o); });

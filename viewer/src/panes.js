@@ -1,11 +1,12 @@
 // The panes of the view: one per file shown (a run's .glb or a result mesh), each with its own
 // scene; a single .glb's first frame is a second pane on the same data ("before | after").
 import * as THREE from 'three';
-import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
-import { fieldColoursOf } from './colour_map.js';
-import { checkGlb } from './file_checks.js';
-import { extensionOf, loadMeshFile, MESH_EXTENSIONS } from './mesh_files.js';
-import { loadObjMaterials } from './obj_materials.js';
+import {GLTFLoader} from 'three/addons/loaders/GLTFLoader.js';
+
+import {fieldColoursOf} from './colour_map.js';
+import {checkGlb, checkGltf} from './file_checks.js';
+import {extensionOf, GLTF_EXTENSIONS, isViewerFile, loadMeshFile} from './mesh_files.js';
+import {loadObjMaterials} from './obj_materials.js';
 
 /** A scene with the viewer's background and lights; `sun` follows the camera (main.js render). */
 export function makeScene() {
@@ -17,9 +18,14 @@ export function makeScene() {
   return { scene, sun };
 }
 
+/** A glTF's pane: a run's animated .glb, or a .glb or .gltf mesh (run's result of a glTF input). */
 async function glbPane(arrayBuffer, name) {
-  // A .glb cut short failed in GLTFLoader with a bare RangeError ("Invalid typed array length").
-  checkGlb(arrayBuffer, name);
+  // A .glb cut short failed in GLTFLoader with a bare RangeError ("Invalid typed array length");
+  // a .gltf cut short with JSON's error, naming no file.
+  if (extensionOf(name) === 'gltf')
+    checkGltf(arrayBuffer, name);
+  else
+    checkGlb(arrayBuffer, name);
   const gltf = await new GLTFLoader().parseAsync(arrayBuffer, '');
   // three makes one mesh per glTF primitive: an OBJ with several materials has one primitive per
   // material, all on the same vertices and morph targets, so every one is moved and coloured
@@ -111,11 +117,16 @@ async function meshPane(arrayBuffer, name, companions) {
            fileColours: m.fileColours, faceColours: m.faceColours, comments: m.comments, fileColourAttributes, looks, notes };
 }
 
-/** A pane of the file: a .glb or a result mesh (`companions`: the other files opened with it). */
+/**
+ * A pane of the file: a .glb or .gltf, or a result mesh (`companions`: the other files opened
+ * with it).
+ */
 export async function makePane(arrayBuffer, name, companions = []) {
   const ext = extensionOf(name);
-  if (!(ext === 'glb' || MESH_EXTENSIONS.includes(ext))) throw new Error(`${name}: not a .glb or a mesh (.off, .obj, .ply, .stl)`);
-  const pane = ext === 'glb' ? await glbPane(arrayBuffer, name) : await meshPane(arrayBuffer, name, companions);
+  if (!isViewerFile(name))
+    throw new Error(`${name}: not a .glb, a .gltf or a mesh (.off, .obj, .ply, .stl)`);
+  const pane = GLTF_EXTENSIONS.includes(ext) ? await glbPane(arrayBuffer, name) :
+                                               await meshPane(arrayBuffer, name, companions);
   // WebGL takes no doubles: a Float64Array attribute would throw on the first draw, with every
   // value in three.js's message. Named here, while the file is still the one being opened.
   for (const m of pane.meshes) {

@@ -19,6 +19,15 @@ import { PLY_HEADER_LIMIT, checkPly } from '../src/file_checks.js';
 import { loadMeshFile, plyForLoader } from '../src/mesh_files.js';
 import { makePane } from '../src/panes.js';
 
+// three's FileLoader reports its progress with the browser's ProgressEvent, which node lacks:
+// a .gltf's embedded buffer (a data: URI) is fetched through it.
+globalThis.ProgressEvent ??= class extends Event {
+  constructor(type, init = {}) {
+    super(type);
+    Object.assign(this, init);
+  }
+};
+
 const failures = [];
 const check = (ok, what) => {
   console.log(`${ok ? 'ok  ' : 'FAIL'} ${what}`);
@@ -89,6 +98,22 @@ function glb() {
   out.set(bin, 28 + jsonBytes.length);
   return out;
 }
+/** A .gltf of the octahedron, its buffer embedded as run and repair write it (`uri`: another). */
+function gltf(uri) {
+  const bin = new Uint8Array(V.length * 12 + F.length * 6 + 4);
+  const d = new DataView(bin.buffer);
+  V.forEach((p, i) => p.forEach((c, k) => d.setFloat32(12 * i + 4 * k, c, true)));
+  F.flat().forEach((x, k) => d.setUint16(12 * V.length + 2 * k, x, true));
+  const json = {
+    asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0 }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }],
+    buffers: [{ byteLength: bin.length, uri: uri ?? `data:application/octet-stream;base64,${Buffer.from(bin).toString('base64')}` }],
+    bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 12 * V.length }, { buffer: 0, byteOffset: 12 * V.length, byteLength: 6 * F.length }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: V.length, type: 'VEC3', min: [-1, -1, -1], max: [1, 1, 1] },
+                { bufferView: 1, componentType: 5123, count: 3 * F.length, type: 'SCALAR' }],
+  };
+  return text(JSON.stringify(json));
+}
 
 const files = {
   'octa.off': text(`OFF\n${V.length} ${F.length} 0\n${V.map((p) => p.join(' ')).join('\n')}\n${F.map((t) => `3 ${t.join(' ')}`).join('\n')}\n`),
@@ -105,6 +130,7 @@ const files = {
   'octa_binary_solid.stl': binaryStl('solid octa, binary'),
   'octa_crlf.ply': text((plyHead('ascii') + V.map((p) => `${p.join(' ')} 1`).join('\n') + '\n' + F.map((t) => `3 ${t.join(' ')}`).join('\n') + '\n').replace(/\n/g, '\r\n')),
   'octa.glb': glb(),
+  'octa.gltf': gltf(),
 };
 /** Opens the bytes as the viewer does (makePane: a .glb or a mesh file): null, or the error's message. */
 async function refusal(bytes, name) {
@@ -144,6 +170,18 @@ for (const [name, whole] of Object.entries(files)) {
     const m = await refusal(text(obj.slice(0, cut)), 'octa_cut.obj');
     check(m !== null && /^octa_cut\.obj: line \d+: .*the file may be cut short$/.test(m), `an OBJ cut within ${what} is refused, naming the line ("${m}")`);
   }
+}
+
+// A .gltf (run's result of a .gltf input, repair -o x.gltf) opens as a glTF pane with the
+// octahedron's vertices; one whose buffer is a separate file is refused, naming it (the viewer
+// reads the file alone, and view.py serves only the files named to it).
+{
+  const pane = await makePane(ab(gltf()), 'octa.gltf');
+  check(pane.kind === 'glb' && pane.vertices === V.length, `octa.gltf opens as a glTF pane of ${V.length} vertices (${pane.kind}, ${pane.vertices})`);
+  const m = await refusal(gltf('octa.bin'), 'octa_bin.gltf');
+  check(m !== null && m.startsWith("octa_bin.gltf: buffer 0 is the file 'octa.bin'"), `a .gltf with a buffer file is refused, naming it ("${m}")`);
+  const other = await refusal(text('{}'), 'notes.txt');
+  check(other === 'notes.txt: not a .glb, a .gltf or a mesh (.off, .obj, .ply, .stl)', `another file is refused, naming what opens ("${other}")`);
 }
 
 // Whole files that three.js's loaders misread, opened with the octahedron's eight faces: a

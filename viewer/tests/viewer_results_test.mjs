@@ -4,7 +4,8 @@
 // the picker; a result PLY a few radii from the origin is drawn (its stale bounding sphere culled
 // it); a file that fails is named with a short error, and a --log that is not a log leaves the mesh
 // drawn; two runs' .glb side by side step by run frame, the shorter holding its last frame; file
-// names are shown as written (not percent-encoded), two of one name with their folders.
+// names are shown as written (not percent-encoded), two of one name with their folders; a .gltf
+// (repair's, run's of a .gltf input) opens and is drawn.
 // Usage: node viewer/tests/viewer_results_test.mjs --cli SHELLCONTRACT --mesh bumpy_sphere.off [--chromium PATH]
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { check, finish, parseArgs, runCli, startViewer, workFolder } from './test_support.mjs';
@@ -41,6 +42,8 @@ for (const d of ['before', 'after']) {
   writeFileSync(file(`${d}/out.off`), readFileSync(d === 'before' ? args.mesh : file('short.off')));
 }
 writeFileSync(file('cut.glb'), readFileSync(file('short.glb')).subarray(0, 4000));
+// A .gltf, as repair writes it on request (and run for a .gltf input): its buffers embedded.
+cli('repair', args.mesh, '-o', file('repaired.gltf'));
 
 const { page, consoleErrors, open, pick, shot, pixels, close } = await startViewer(args.chromium);
 const status = () => page.$eval('#status', (e) => ({ text: e.textContent, error: e.classList.contains('error'), height: e.getBoundingClientRect().height }));
@@ -69,6 +72,15 @@ try {
   s = await open(file('moved.off'), file('moved_out.ply'));
   c = (await pixels(await shot('right'))).covered;
   check(!s.error && c > 0.02, `beside moved.off, moved_out.ply is drawn (${(100 * c).toFixed(1)} % of the right half)`);
+
+  // The .gltf opens and is drawn, through view.py and the picker (both had refused it).
+  for (const how of ['view.py', 'the picker']) {
+    s = how === 'view.py' ? await open(file('repaired.gltf')) : await pick(file('repaired.gltf'));
+    const line = await status();
+    c = (await pixels(await shot())).covered;
+    check(!s.error && s.panes.length === 1 && !line.error && /^repaired\.gltf: \d+ vertices/.test(line.text) && c > 0.02,
+          `through ${how}, repaired.gltf opens and is drawn (${s.error ?? line.text}; ${(100 * c).toFixed(1)} % of the pixels)`);
+  }
 
   // A .glb cut short: the error names the file and is short; the status line stays one or two lines.
   s = await open(file('cut.glb'));
