@@ -425,6 +425,11 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   bool compressed = !has_target;
   for (int n = 0; compressed && n < r.frames_run; ++n) compressed = sim.pressure_at(n) > 0.0;
   for (const std::string& w : volume_warnings(history, compressed)) warn(r, obs, w);
+  for (const auto& [name, total] : r.totals.per_step(r.frames_run))
+    if (name == "failsafe_vertices_total")
+      if (const std::string w = frozen_warning(total, mesh.number_of_vertices(), r.frames_run);
+          !w.empty())
+        warn(r, obs, w);
   // From the history, which a checkpoint carries: a resumed run says it too.
   if (const int n = first_stall_before(history, keys, settled); n >= 0)
     warn(r, obs,

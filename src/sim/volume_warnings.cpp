@@ -80,4 +80,13 @@ std::vector<std::string> volume_warnings(const std::vector<double>& history, boo
   return out;
 }
 
+std::string frozen_warning(double reverted, std::size_t vertices, int steps) {
+  const double moves = static_cast<double>(vertices) * static_cast<double>(steps);
+  if (!(steps > 0 && vertices > 0 && reverted >= FROZEN_SHARE * moves)) return {};
+  return "the collision step's fail-safe reverted " + general_text(100.0 * reverted / moves, 3) +
+         " % of the vertex moves (every vertex in nearly every step): the shell barely moved and "
+         "the result is about the input; more `collision_rounds` (the response's rounds before "
+         "the fail-safe) or a smaller `dt` let it move";
+}
+
 }  // namespace shellcontract

@@ -1,6 +1,7 @@
 // Warnings on the volume: before a run, one that nothing drives or whose stop ratio its
-// direction cannot reach (plan_run); at its end, a shell that grew under an outside pressure, and
-// a volume that swings from frame to frame (run_contraction).
+// direction cannot reach (plan_run); at its end, a shell that grew under an outside pressure, a
+// volume that swings from frame to frame, and a shell the collision fail-safe froze
+// (run_contraction).
 #pragma once
 
 #include <string>
@@ -34,5 +35,15 @@ std::vector<std::string> drive_warnings(const SimOptions& s, bool regions_act);
 /// first). `compressed`: every step had an outside pressure above 0 and no target volume drove the
 /// volume. A swing is named rather than a growth where both apply: its last V/V0 is either side.
 std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed);
+
+/// The share of all vertex moves (vertices x steps) the collision fail-safe may revert before a
+/// run counts as frozen: nearly every vertex in nearly every step, so that the result is about
+/// the input, which the run would otherwise report as a plain "ok".
+inline constexpr double FROZEN_SHARE = 0.9;
+
+/// The warning for a run whose fail-safe reverted `reverted` vertex moves over `steps` steps of
+/// a mesh of `vertices` vertices, when that is at least FROZEN_SHARE of them (options named as
+/// `field`, spell_options); empty otherwise.
+std::string frozen_warning(double reverted, std::size_t vertices, int steps);
 
 }  // namespace shellcontract

@@ -1,15 +1,18 @@
-// The stop ratio on a shell in wide contact (review "promises" F4): its projection onto E is
+// Shells in wide contact (review "promises" F4, F6). The stop ratio: its projection onto E is
 // capped as a target's is (volume_constraint.hpp), so the few vertices that the contacts leave
 // free are not flung out (a blow-up), and a crossing step is not lifted back above E by it, so
-// that the run stops where the same run without the option goes below E.
+// that the run stops where the same run without the option goes below E. A run whose collision
+// fail-safe reverts nearly every vertex in nearly every step is named (sim/volume_warnings.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <array>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "shellcontract/run.hpp"
+#include "sim/volume_warnings.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 
@@ -90,6 +93,32 @@ TEST(StopRatioInContact, APancakeStopsAtTheRatioInsteadOfBlowingUp) {
   // Flung vertices show as a V/V0 several times the rest volume (7 in the second step, before);
   // the contacts' response swells the slab a few per cent before it compresses.
   EXPECT_LE(largest.ratio, 1.2) << "nothing flung out";
+}
+
+TEST(FrozenRun, NamedWhenTheFailSafeRevertsNearlyEveryVertexInNearlyEveryStep) {
+  EXPECT_EQ(frozen_warning(0.0, 100, 10), "");
+  EXPECT_EQ(frozen_warning(899.0, 100, 10), "");  // below 90 % of the 1000 moves
+  EXPECT_NE(frozen_warning(900.0, 100, 10).find("reverted 90 % of the vertex moves"),
+            std::string::npos);
+  EXPECT_EQ(frozen_warning(0.0, 100, 0), "");  // no step, nothing to say
+  // The slab at -p 50 with no response round: every vertex of every step goes back to its start,
+  // and the result is the input, which the run reported as a plain "ok" (review promises F6).
+  RunOptions o = pancake_run(0.0);
+  o.sim.frames = 8;
+  o.sim.collision.rounds = 0;
+  const test::TriMesh slab16 = slab(16, 0.002);
+  const RunResult r = run_contraction(test::to_surface_mesh(slab16), o);
+  ASSERT_EQ(r.status, RunStatus::Completed) << r.message;
+  ASSERT_LT((r.positions - slab16.x).cwiseAbs().maxCoeff(), 1e-12) << "the premise: frozen";
+  int named = 0;
+  for (const std::string& w : r.warnings)
+    named += w.find("the collision step's fail-safe reverted 100 % of the vertex moves") !=
+             std::string::npos;
+  EXPECT_EQ(named, 1);
+  // With the default rounds it moves, and nothing is said.
+  const RunResult moving = run_contraction(test::to_surface_mesh(slab16), pancake_run(0.0));
+  for (const std::string& w : moving.warnings)
+    EXPECT_EQ(w.find("fail-safe reverted"), std::string::npos) << w;
 }
 
 }  // namespace
