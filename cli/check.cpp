@@ -47,7 +47,9 @@ Polygons are triangulated and inside-out components flipped, as 'run' would (see
 with --against, each warning names its file, MESH or INPUT).
 With --against, MESH is a result of 'run' on INPUT (same vertices and faces, moved): the face
 pairs that intersect in MESH but not in INPUT are counted (compared polygon by polygon, so a quad
-split along its other diagonal is the same quad).
+split along its other diagonal is the same quad). A pair that intersects or touches in INPUT is
+not new however far it crosses in MESH: parts touching in INPUT may pass through each other
+unseen ('run' warns of them).
 
 exit codes: 0 the mesh can be used (self-intersections already in the input are reported, not
             refused), 1 bad usage (also: MESH and INPUT do not have the same vertices and faces),

@@ -365,3 +365,25 @@ def test_file_names_may_be_path_objects(tmp_path, ico2):
     resumed = shellcontract.contract(v, f, resume=ckpt)
     whole = shellcontract.contract(v, f, regions=reg, frames=10, pressure=0)
     np.testing.assert_array_equal(resumed.vertices, whole.vertices)
+
+
+def test_parts_that_touch_at_rest_are_warned_about(mesh_dir):
+    """Two unit cubes, one on the other with vertices of their own: the pairs that touch at rest
+    are left out of the collision handling for the whole run, and pressed together the cubes
+    passed through each other. Before, contract() said nothing (the summary's
+    excluded_contact_pairs only); now summary["warnings"] counts them, as the CLI's warning."""
+    v, f = shellcontract.read_mesh(mesh_dir / "cube.off")
+
+    def stacked(gap):
+        return np.vstack([v, v + [0.0, 0.0, 1.0 + gap]]), np.vstack([f, f + len(v)])
+
+    summary = shellcontract.contract(*stacked(0.0), frames=0).summary
+    excluded = summary["excluded_contact_pairs"]
+    assert excluded > 0
+    touching = [w for w in summary["warnings"] if "touch at rest" in w]
+    assert len(touching) == 1, summary["warnings"]
+    assert touching[0].startswith(f"{excluded} pairs of primitives ("), touching[0]
+    assert "(4, 5, 6, 7, ...)" in touching[0] and "pass through each other" in touching[0]
+    summary = shellcontract.contract(*stacked(0.02), frames=0).summary
+    assert summary["excluded_contact_pairs"] == 0
+    assert not any("touch at rest" in w for w in summary["warnings"]), summary["warnings"]

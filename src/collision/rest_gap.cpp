@@ -30,14 +30,23 @@ RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& r
   within_inner.tolerance = inner;
   RestGapSurvey out;
   std::vector<char> held(static_cast<std::size_t>(topo.num_vertices), 0);
+  std::vector<char> touching(held.size(), 0), touching_ee(held.size(), 0);
   std::size_t visited = 0;
   auto visit = [&](CcdPrimitive kind, const std::array<int, 2>& pair) {
     if (++visited % CANCELLATION_CHUNK == 0) cancellation_point();
     CcdStencil s0, s1;
     gather(rest, rest, stencil(kind, pair, topo), s0, s1);
-    if (primitive_ccd(kind, s0, s1, touch).hit) return;
-    if (inner > 0.0 && primitive_ccd(kind, s0, s1, within_inner).hit) return;
     const bool vf = kind == CcdPrimitive::VertexFace;
+    if (primitive_ccd(kind, s0, s1, touch).hit) {
+      ++(vf ? out.touching_vertex_face : out.touching_edge_edge);
+      // A VF pair touches at its vertex; an EE pair somewhere on its edges, named by their ends
+      // only where no VF pair names a vertex (edges that cross, not meeting at a vertex).
+      const auto v = stencil(kind, pair, topo);
+      for (std::size_t k = 0; k < (vf ? 1u : v.size()); ++k)
+        (vf ? touching : touching_ee)[static_cast<std::size_t>(v[k])] = 1;
+      return;
+    }
+    if (inner > 0.0 && primitive_ccd(kind, s0, s1, within_inner).hit) return;
     const double d = vf ? point_triangle_distance(s0[0], s0[1], s0[2], s0[3])
                         : segment_segment_distance(s0[0], s0[1], s0[2], s0[3]);
     out.smallest = std::min(out.smallest, d);
@@ -52,6 +61,14 @@ RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& r
   };
   for (const auto& p : pairs.vertex_face) visit(CcdPrimitive::VertexFace, p);
   for (const auto& p : pairs.edge_edge) visit(CcdPrimitive::EdgeEdge, p);
+  // The smallest indices, not the first found: the same names whatever the candidates' order.
+  if (out.touching_vertex_face == 0) touching.swap(touching_ee);
+  for (std::size_t v = 0; v < touching.size(); ++v) {
+    if (touching[v] == 0) continue;
+    ++out.touching_vertices;
+    if (out.touching_sample.size() < TOUCHING_SAMPLE)
+      out.touching_sample.push_back(static_cast<int>(v));
+  }
   return out;
 }
 

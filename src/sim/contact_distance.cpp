@@ -1,9 +1,9 @@
 // --delta auto and the bound on a given delta (sim/contact_distance.hpp).
 #include "sim/contact_distance.hpp"
 
-#include <algorithm>
-
 #include <CGAL/Polygon_mesh_processing/measure.h>
+
+#include <algorithm>
 
 #include "collision/rest_gap.hpp"
 #include "collision/self_collision/common.hpp"
@@ -11,6 +11,7 @@
 #include "core/cancellation.hpp"
 #include "core/plural.hpp"
 #include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
 #include "sim/rest_state.hpp"
 
@@ -74,6 +75,38 @@ std::string pushed_apart_warning(const std::string& what, const RestGapSurvey& s
          ", beyond their rest gap, and a thin shell can swell instead of contracting; " + remedy;
 }
 
+/// The pairs that touch at rest: the collision step excludes them for the whole run (RestPairs:
+/// no response can keep a pair of distance 0 on a side it does not have), so parts pressed
+/// together there pass through each other, and `check --against` and `--validate` count no
+/// crossing of faces that already touched in the input. The vertices are named as the input
+/// numbers them (a welded vertex by its first copy).
+std::string touching_pairs_warning(const Mesh& mesh, const RestGapSurvey& s, double delta) {
+  const std::size_t pairs = s.touching_pairs();
+  std::vector<std::size_t> names(s.touching_sample.begin(), s.touching_sample.end());
+  if (has_welded_seams(mesh)) {
+    const std::vector<std::size_t> map = input_vertex_map(mesh);
+    for (std::size_t& v : names)
+      v = static_cast<std::size_t>(std::find(map.begin(), map.end(), v) - map.begin());
+  }
+  std::string listed;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    listed += (i ? ", " : "") + std::to_string(names[i]);
+  if (s.touching_vertices > names.size()) listed += ", ...";
+  return counted(pairs, "pair", "pairs") + " of primitives (" +
+         std::to_string(s.touching_vertex_face) + " vertex-face, " +
+         std::to_string(s.touching_edge_edge) + " edge-edge) " +
+         one_or_many(pairs, "touches", "touch") + " at rest, at or next to " +
+         counted(s.touching_vertices, "vertex", "vertices") + " (" + listed +
+         "): parts in contact, a surface that touches itself, or a zero-area face. The collision "
+         "step cannot keep a touching pair on its sides and leaves it out for the whole run, so "
+         "the parts can pass through each other there (`check --against` and `--validate` do not "
+         "count it: those faces already touch in the input). Separate the parts by at least the "
+         "contact distance " +
+         shortest_text(delta) +
+         " (normalized units: a share of the bounding-box diagonal), or join them into one "
+         "surface if they are one part";
+}
+
 }  // namespace
 
 double auto_contact_distance(const Mesh& mesh, double cap) {
@@ -113,8 +146,15 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
     if (band.near_pairs() > 0)
       out.warnings.push_back(pushed_apart_warning(what, band, out.delta, remedy));
   };
+  // Every survey counts the touching pairs (distance 0 is within any reach); named first, with
+  // the delta chosen, as the most serious thing said here.
+  auto warn_touching = [&](const RestGapSurvey& survey) {
+    if (survey.touching_pairs() > 0)
+      out.warnings.insert(out.warnings.begin(), touching_pairs_warning(mesh, survey, out.delta));
+  };
   if (!options.auto_delta) {
     const RestGapSurvey survey = survey_rest_gaps(topo, rest, out.delta, method);
+    warn_touching(survey);
     if (survey.near_pairs() > 0)
       out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta,
                                                 mesh.number_of_vertices()) +
@@ -128,10 +168,17 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
   // Auto surveys as far as the response pushes: half the smallest gap within that reach leaves
   // every pair out of contact at rest and lets no contact push a pair beyond its rest gap.
   RestGapSurvey survey = survey_rest_gaps(topo, rest, response * out.delta, method);
-  if (survey.near_pairs() == 0) return out;
+  const RestGapSurvey first = survey;
+  if (survey.near_pairs() == 0) {
+    warn_touching(first);
+    return out;
+  }
   const double floor = AUTO_DELTA_FLOOR_SHARE * by_edge;
   out.delta = std::min(out.delta, std::max(floor, AUTO_DELTA_PER_REST_GAP * survey.smallest));
-  if (out.delta > floor) return out;
+  if (out.delta > floor) {
+    warn_touching(first);
+    return out;
+  }
   survey = survey_rest_gaps(topo, rest, out.delta, method);
   const std::string lowest = "auto goes no lower: a smaller gap is a near-degenerate input";
   if (survey.near_pairs() > 0)
@@ -139,6 +186,7 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
         held_pairs_warning("auto", survey, out.delta, mesh.number_of_vertices()) + " (" + lowest +
         ")");
   warn_pushed_apart("auto", lowest);
+  warn_touching(first);
   return out;
 }
 

@@ -164,8 +164,11 @@ TEST(ContactDistance, AutoStopsAtItsFloorAndSaysSo) {
   o.auto_delta = true;
   const SimPlan plan = plan_simulation(to_surface_mesh(thin_box(1e-10)), o);
   EXPECT_EQ(plan.options.collision.delta, AUTO_DELTA_FLOOR_SHARE * 1e-4);
-  ASSERT_EQ(plan.warnings.size(), 1u);
-  EXPECT_NE(plan.warnings[0].find("auto goes no lower"), std::string::npos) << plan.warnings[0];
+  // First the pairs the collision step's test at tolerance 0 takes for touching on a box this
+  // thin (excluded, as named by PartsThatTouchAtRestAreNamedInAWarning), then the held ones.
+  ASSERT_EQ(plan.warnings.size(), 2u);
+  EXPECT_NE(plan.warnings[0].find("touch at rest"), std::string::npos) << plan.warnings[0];
+  EXPECT_NE(plan.warnings[1].find("auto goes no lower"), std::string::npos) << plan.warnings[1];
 }
 
 TEST(ContactDistance, PairsWithinTwiceDeltaAtRestAreNamedAndAutoGoesBelowThem) {
@@ -196,6 +199,50 @@ TEST(ContactDistance, PairsWithinTwiceDeltaAtRestAreNamedAndAutoGoesBelowThem) {
   // Twice as thick (2.8e-4 apart, more than 2 delta): nothing to say.
   o.collision.delta = 1e-4;
   EXPECT_TRUE(plan_simulation(to_surface_mesh(test::thin_card(4e-4)), o).warnings.empty());
+}
+
+/// Two unit cubes (thin_box(1)), the second on top of the first with vertices of its own: the
+/// lower cube's top face (vertices 4 to 7) and the upper one's bottom face (8 to 11) at z = 1,
+/// `gap` apart.
+test::TriMesh stacked_cubes(double gap) {
+  const test::TriMesh cube = thin_box(1.0);
+  test::TriMesh m;
+  m.x.resize(16, 3);
+  m.x << cube.x, cube.x;
+  m.x.bottomRows(8).col(2).array() += 1.0 + gap;
+  m.faces.resize(24, 3);
+  m.faces << cube.faces, cube.faces.array() + 8;
+  return m;
+}
+
+TEST(ContactDistance, PartsThatTouchAtRestAreNamedInAWarning) {
+  // The collision step excludes the pairs that touch at rest for the whole run, so such parts
+  // pressed together passed through each other (two balls pole to pole, stacked cubes under
+  // inflation), and `check --against` saw nothing, without a word. The warning counts the pairs
+  // the Simulator excludes and names the touching vertices (the lower cube's top corners).
+  const Mesh touching = to_surface_mesh(stacked_cubes(0.0));
+  SimOptions o;
+  for (const bool automatic : {false, true}) {
+    o.auto_delta = automatic;
+    const SimPlan plan = plan_simulation(touching, o);
+    ASSERT_EQ(plan.warnings.size(), 1u) << automatic;
+    const std::string& w = plan.warnings[0];
+    const std::size_t excluded = Simulator(touching, o).excluded_contact_pairs();
+    ASSERT_GT(excluded, 0u);
+    EXPECT_EQ(w.rfind(std::to_string(excluded) + " pairs of primitives (", 0), 0u) << w;
+    EXPECT_NE(w.find("touch at rest, at or next to 8 vertices (4, 5, 6, 7, ...)"),
+              std::string::npos)
+        << w;
+    EXPECT_NE(w.find("can pass through each other"), std::string::npos) << w;
+    EXPECT_NE(w.find("Separate the parts by at least the contact distance 1e-04"),
+              std::string::npos)
+        << w;
+  }
+  // A gap of a hundredth of the diagonal: nothing touches, nothing is excluded, nothing to say.
+  o.auto_delta = false;
+  const Mesh apart = to_surface_mesh(stacked_cubes(0.02));
+  EXPECT_TRUE(plan_simulation(apart, o).warnings.empty());
+  EXPECT_EQ(Simulator(apart, o).excluded_contact_pairs(), 0u);
 }
 
 }  // namespace
