@@ -20,6 +20,7 @@
 #include "run_document.hpp"
 #include "run_failure.hpp"
 #include "run_interrupt.hpp"
+#include "run_precision.hpp"
 #include "run_steps.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/options.hpp"
@@ -104,13 +105,14 @@ int command_run(int argc, char** argv) {
     const std::shared_ptr<const MeshDocument> document =
         run_input_document(request.input, request.output, !exports.gltf.empty(), mesh,
                            request.repair, input.report.triangulated_faces);
+    warn_float32_gltf(request.output, document.get(), mesh, request.options, notice);
     RunObservers observers(request, mesh, document, notice);
 
     trace.faces = std::to_string(mesh.number_of_faces()) + " faces";
     // run_contraction ends the run itself when memory runs out during the frames.
     trace.stage = "preparing the run or taking its result";
     CliCheckpointer& checkpointer = *observers.checkpointer;
-    const RunResult r = run_contraction(mesh, request.options, &observers.list, &checkpointer);
+    RunResult r = run_contraction(mesh, request.options, &observers.list, &checkpointer);
     notice.end();  // a run cancelled in its preparation ends no stage itself
     // Nothing is written: the run is not over (its state is in the checkpoint, if any).
     if (r.status == RunStatus::Cancelled && checkpointer.interrupted())
@@ -121,6 +123,9 @@ int command_run(int argc, char** argv) {
     // one from now on).
     if (checkpoint_signal::received != 0) second_signal::acknowledge_late_stop();
 
+    // Before the summary is made: `validate` judges the result as the -o file will hold it.
+    trace.stage = "checking the result as " + request.output + " stores it";
+    validate_as_written(request.output, document.get(), mesh, request.options, r, notice);
     OutputWriter writer(notice, trace);
     write_run_outputs(writer, request, input, document, r, observers);
     return report_run_end(request, r, writer.outputs);

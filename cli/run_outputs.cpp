@@ -13,7 +13,9 @@
 #include "command_line.hpp"
 #include "core/plural.hpp"
 #include "json_writer.hpp"
+#include "mesh/float32_positions.hpp"
 #include "run_failure.hpp"
+#include "run_precision.hpp"
 #include "run_steps.hpp"
 #include "run_summary.hpp"
 #include "shellcontract/error.hpp"
@@ -108,8 +110,11 @@ void write_run_outputs(OutputWriter& writer, const RunRequest& request, const Ru
   writer.attempt("-o", output, [&] {
     if (document && document->format() == lower_extension(output)) {
       std::vector<std::string> doc_warnings;  // a material library that does not exist
-      write_mesh_document_atomic(output, *document, input_positions(mesh, r.positions),
-                                 &doc_warnings);
+      // A float32 PLY too coarse for the contacts is written with double x, y, z (a warning).
+      const double gap = contact_gap(r.contact_distance, r.normalization_scale);
+      write_text_atomic(output,
+                        text_keeping_gap(*document, output, input_positions(mesh, r.positions), gap,
+                                         &doc_warnings));
       for (const std::string& w : doc_warnings) writer.warn_once(w);
     } else {
       write_mesh_atomic(output, mesh, r.positions);

@@ -5,6 +5,7 @@
 // Positions are stored in the primitive's node space, so the node transforms stay as they were;
 // a mesh drawn by several nodes gets one copy of its positions per node (gltf_instances.hpp).
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -19,6 +21,7 @@
 #include <utility>
 
 #include "core/classic_locale.hpp"
+#include "mesh/float32_positions.hpp"
 #include "mesh/gltf_instances.hpp"
 #include "mesh/gltf_json.hpp"
 #include "mesh/gltf_model.hpp"
@@ -109,6 +112,34 @@ class GltfDocument final : public MeshDocument {
     return text_with(gltf::relocate_image_uris(input_json_, path_, output_path, warnings), x);
   }
 
+  /// The float32 spacing at each drawn primitive's largest node-space coordinate of x, mapped to
+  /// world units by the node's transform (its largest singular value), the largest of them.
+  double float32_spacing(const Positions& x) const {
+    std::vector<double> largest(soup_.drawn.size(), 0.0);
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      const std::size_t d = soup_.sources[v].drawn;
+      largest[d] = std::max(largest[d], local(x, v).cwiseAbs().maxCoeff());
+    }
+    double spacing = 0.0;
+    for (std::size_t d = 0; d < largest.size(); ++d) {
+      const Eigen::Matrix3d a = world_[d].topLeftCorner<3, 3>();
+      const double stretch = Eigen::JacobiSVD<Eigen::Matrix3d>(a).singularValues()(0);
+      spacing = std::max(spacing, shellcontract::float32_spacing(largest[d]) * stretch);
+    }
+    return spacing;
+  }
+  /// x as the file holds them read back: in node space, rounded to float32, to world as the
+  /// reader maps them (gltf_reader.cpp).
+  Positions rounded(const Positions& x) const {
+    Positions out(x.rows(), 3);
+    for (std::size_t v = 0; v < vertex_count_; ++v) {
+      const Eigen::Vector3d stored = local(x, v).cast<float>().cast<double>();
+      out.row(static_cast<Eigen::Index>(v)) =
+          (world_[soup_.sources[v].drawn] * stored.homogeneous()).head<3>().transpose();
+    }
+    return out;
+  }
+
  private:
   /// The file with positions x, its JSON `json` (the input's, or one with other image URIs).
   std::string text_with(const std::string& json, const Positions& x) const {
@@ -120,10 +151,7 @@ class GltfDocument final : public MeshDocument {
     tinygltf::Model m = model_;
     for (std::size_t v = 0; v < vertex_count_; ++v) {
       const auto& s = soup_.sources[v];
-      const Eigen::Vector4d l =
-          to_local_[s.drawn] * Eigen::Vector4d(x(static_cast<Eigen::Index>(v), 0),
-                                               x(static_cast<Eigen::Index>(v), 1),
-                                               x(static_cast<Eigen::Index>(v), 2), 1.0);
+      const Eigen::Vector3d l = local(x, v);
       put_floats(m, positions_[s.drawn].view, s.element, {l[0], l[1], l[2]});
     }
     write_normals(m, x);
@@ -138,6 +166,13 @@ class GltfDocument final : public MeshDocument {
     std::vector<int> bounded;
     for (const Written& w : positions_) bounded.push_back(w.accessor);
     return gltf::restore_input_json(json, out.str(), binary_, bounded);
+  }
+
+  /// Vertex v's position x in its primitive's node space, as text_with writes it.
+  Eigen::Vector3d local(const Positions& x, std::size_t v) const {
+    const auto i = static_cast<Eigen::Index>(v);
+    return (to_local_[soup_.sources[v].drawn] * Eigen::Vector4d(x(i, 0), x(i, 1), x(i, 2), 1.0))
+        .head<3>();
   }
 
   const tinygltf::Primitive& primitive(std::size_t d) const {
@@ -463,6 +498,16 @@ class GltfDocument final : public MeshDocument {
 std::unique_ptr<MeshDocument> parse_gltf_document(const std::string& name, const std::string& bytes,
                                                   bool binary) {
   return std::make_unique<GltfDocument>(name, bytes, binary);
+}
+
+std::optional<double> gltf_float32_spacing(const MeshDocument& doc, const Positions& x) {
+  const auto* gltf = dynamic_cast<const GltfDocument*>(&doc);
+  return gltf ? std::optional<double>(gltf->float32_spacing(x)) : std::nullopt;
+}
+
+std::optional<Positions> gltf_rounded(const MeshDocument& doc, const Positions& x) {
+  const auto* gltf = dynamic_cast<const GltfDocument*>(&doc);
+  return gltf ? std::optional<Positions>(gltf->rounded(x)) : std::nullopt;
 }
 
 }  // namespace shellcontract

@@ -1,15 +1,17 @@
 // A PLY file kept as a document (docs/design/attributes.md): its header and every
 // element come back byte for byte, but the vertices' x, y, z, which take the new positions in
 // their declared floating-point type (an integer type becomes double: a result's positions are
-// not integers) and the file's format (ascii text, or binary of either byte order), and
-// their nx, ny, nz if the file has them, which take the normals of the new shape (also as double
-// where the file's are integers: a unit normal is not an integer). Extra
-// vertex properties (texture coordinates, colours, weights, ...), face properties and other
-// elements are therefore kept. The header's `comment TextureFile` lines, with the faces'
-// `texnumber`, are its face materials (ply_textures.hpp). Its callers (the CLI's run, Python's
-// write_mesh(like=...)) read the same file with read_input_mesh first, so the bytes are ones
-// read_ply accepted: the header is read_ply's own (ply_header.hpp), the body's checks are short,
-// and any surprise is an InputError (the CLI then falls back to the plain writer).
+// not integers; text_keeping_gap makes a float one double too where 32-bit floats would undo the
+// run's contacts, float32_positions.hpp) and the file's format (ascii text, or binary of either
+// byte order), and their nx, ny, nz if the file has them, which take the normals of the new shape
+// (also as double where the file's are integers: a unit normal is not an integer). Extra vertex
+// properties (texture coordinates, colours, weights, ...), face properties and other elements are
+// therefore kept. The header's `comment TextureFile` lines, with the faces' `texnumber`, are its
+// face materials (ply_textures.hpp). Its callers (the CLI's run, Python's write_mesh(like=...))
+// read the same file with read_input_mesh first, so the bytes are ones read_ply accepted: the
+// header is read_ply's own (ply_header.hpp), the body's checks are short, and any surprise is an
+// InputError (the CLI then falls back to the plain writer).
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -22,18 +24,19 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Geometry>
-
-#include "mesh/file_safety.hpp"
 #include "core/decimal_text.hpp"
+#include "mesh/file_safety.hpp"
+#include "mesh/float32_positions.hpp"
 #include "mesh/normal_groups.hpp"
 #include "mesh/ply_header.hpp"
+#include "mesh/ply_slots.hpp"
 #include "mesh/ply_textures.hpp"
 #include "mesh/seam_weld.hpp"
 #include "shellcontract/error.hpp"
@@ -42,78 +45,8 @@
 namespace shellcontract {
 namespace {
 
-/// Where a vertex coordinate is in the file and how it is stored.
-struct Slot {
-  std::size_t begin = 0, end = 0;  ///< ascii: the token's span; binary: [offset, offset + size)
-  ply::Type type = ply::Type::Float32;  ///< as the file stores the value
-  bool set = false;
-  /// The value the file holds (for an integer normal that keeps the file's value: its bytes alone
-  /// no longer fit the double the header declares).
-  double original = 0.0;
-};
-
-/// The type a slot's new value is written in: an integer-typed x, y, z, nx, ny or nz becomes
-/// double, in the header too (see the constructor), since positions and unit normals are not
-/// integers.
-ply::Type written_type(const Slot& s) {
-  return ply::is_integer(s.type) ? ply::Type::Float64 : s.type;
-}
-
-/// Refuses positions that the file's float32 x, y, z cannot hold, which would otherwise be written
-/// wrong without a word: a coordinate beyond the float range (written as inf, a file no reader
-/// takes), and a mesh whose float32 coordinates are all below the smallest normal float
-/// (1.17549435e-38): stored, they would be zero or subnormal
-/// (a mesh of one point, or of a few bits of precision). A coordinate alone that is that small
-/// beside larger ones loses nothing that matters (at most the float rounding of the mesh's extent)
-/// and is written.
-/// @throws UsageError naming `name` (the document's file), the vertex, its axis and the value
-void require_representable(const std::string& name, const std::vector<Slot>& slots,
-                           const Positions& x) {
-  const auto refuse = [&](std::size_t k, const std::string& why) {
-    char v[64];  // the shortest text that reads back as the value
-    const auto end = std::to_chars(
-        v, v + sizeof v, x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3)));
-    throw UsageError("the positions do not fit " + name + "'s vertex types: vertex " +
-                     std::to_string(k / 3) + "'s " + "xyz"[k % 3] + " is " +
-                     std::string(v, end.ptr) + ", " + why);
-  };
-  double largest = 0.0;
-  std::size_t at = 0;
-  for (std::size_t k = 0; k < slots.size(); ++k) {
-    const double v = x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
-    if (written_type(slots[k]) == ply::Type::Float32) {
-      if (std::isinf(static_cast<float>(v)))
-        refuse(k, "beyond the largest 32-bit float (3.40282347e+38) that the file stores it as");
-      if (std::abs(v) > largest) largest = std::abs(v), at = k;
-    }
-  }
-  if (largest > 0.0 && largest < static_cast<double>(std::numeric_limits<float>::min()))
-    refuse(at,
-           "the largest float32 coordinate, below the smallest normal 32-bit float "
-           "(1.17549435e-38): stored as the file's floats, the positions would be zero or keep a "
-           "few bits");
-}
-
-/// A colour component on glTF's scale, 0 to 1: an integer type's value divided by the type's
-/// largest (uchar 255: 1), a float as the file has it.
-double colour_value(ply::Type t, double value) {
-  switch (t) {
-    case ply::Type::UInt8:
-      return value / 255.0;
-    case ply::Type::Int8:
-      return value / 127.0;
-    case ply::Type::UInt16:
-      return value / 65535.0;
-    case ply::Type::Int16:
-      return value / 32767.0;
-    case ply::Type::UInt32:
-      return value / 4294967295.0;
-    case ply::Type::Int32:
-      return value / 2147483647.0;
-    default:
-      return value;
-  }
-}
+using ply::Slot;
+using ply::written_type;
 
 bool is_space(char c) {
   return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f';
@@ -123,12 +56,35 @@ class PlyDocument final : public MeshDocument {
  public:
   PlyDocument(const std::string& name, std::string bytes);
   std::string format() const override { return "ply"; }
-  std::string text(const Positions& x) const override { return render(x, {}); }
+  std::string text(const Positions& x) const override { return render(x, {}, false); }
   /// text(x) with the header's TextureFile paths rewritten for a file in another folder, as an
   /// OBJ's mtllib lines are (ply_textures.hpp, texture_file_edits).
   std::string text_for(const std::string& output_path, const Positions& x,
                        std::vector<std::string>* warnings) const override {
-    return render(x, ply::texture_file_edits(bytes_, name_, output_path, warnings));
+    return render(x, ply::texture_file_edits(bytes_, name_, output_path, warnings), false);
+  }
+  /// text_for with the float32 x, y, z written as double where `widen` (float32_positions.hpp).
+  std::string text_widened(const std::string& output_path, const Positions& x, bool widen,
+                           std::vector<std::string>* warnings) const {
+    return render(x, ply::texture_file_edits(bytes_, name_, output_path, warnings), widen);
+  }
+  /// The float32 spacing at the largest |coordinate| of x that a float32 x, y or z holds (0: none).
+  double float32_spacing(const Positions& x) const {
+    double largest = -1.0;
+    for (std::size_t k = 0; k < slots_.size(); ++k)
+      if (slots_[k].type == ply::Type::Float32)
+        largest = std::max(largest, std::abs(x(static_cast<Eigen::Index>(k / 3),
+                                               static_cast<Eigen::Index>(k % 3))));
+    return largest < 0.0 ? 0.0 : shellcontract::float32_spacing(largest);
+  }
+  /// x with the values of the float32 x, y, z rounded to float32, as the file holds them.
+  Positions rounded(Positions x) const {
+    for (std::size_t k = 0; k < slots_.size(); ++k)
+      if (slots_[k].type == ply::Type::Float32) {
+        double& v = x(static_cast<Eigen::Index>(k / 3), static_cast<Eigen::Index>(k % 3));
+        v = static_cast<double>(static_cast<float>(v));
+      }
+    return x;
   }
 
  private:
@@ -137,9 +93,9 @@ class PlyDocument final : public MeshDocument {
   }
   /// The next value of type t in the body at pos_ (and its span).
   double next_value(ply::Type t, Slot& where);
-  /// The file with positions x, the header's type edits (type_edits_) and `header_edits` (spans
-  /// of the header in bytes_) applied.
-  std::string render(const Positions& x, std::vector<TextEdit> header_edits) const;
+  /// The file with positions x, the header's type edits (type_edits_, and float_edits_ where
+  /// `widen`) and `header_edits` (spans of the header in bytes_) applied.
+  std::string render(const Positions& x, std::vector<TextEdit> header_edits, bool widen) const;
 
   std::string name_, bytes_;
   bool ascii_ = true, big_endian_ = false;
@@ -147,6 +103,9 @@ class PlyDocument final : public MeshDocument {
   std::size_t body_ = 0;  ///< where the body starts in bytes_
   /// `double` in place of each integer type of the vertices' x, y, z (and nx, ny, nz when written)
   std::vector<TextEdit> type_edits_;
+  /// `double` in place of the float32 x, y, z types, for a result float32 cannot hold closely
+  /// enough (float32_positions.hpp, text_keeping_gap)
+  std::vector<TextEdit> float_edits_;
   std::vector<Slot> slots_;  ///< 3 per vertex: x, y, z
   /// 3 per vertex: nx, ny, nz; empty when a vertex lacks one (the file's normals are then kept)
   std::vector<Slot> normal_slots_;
@@ -270,6 +229,8 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
         // says double instead, the other properties keep theirs (output-safety.md).
         if (ply::is_integer(p.type))
           type_edits_.push_back(TextEdit{p.type_begin, p.type_end, "double"});
+        else if (p.type == ply::Type::Float32)
+          float_edits_.push_back(TextEdit{p.type_begin, p.type_end, "double"});
       }
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const ply::Property& p = e.properties[k];
@@ -324,7 +285,7 @@ PlyDocument::PlyDocument(const std::string& name, std::string bytes)
         if (!is_vertex) continue;
         const int kk = static_cast<int>(k);
         for (std::size_t c = 0; c < 4; ++c)
-          if (kk == colour_prop[c]) colours[i][c] = colour_value(p.type, value);
+          if (kk == colour_prop[c]) colours[i][c] = ply::colour_value(p.type, value);
         if (kk == axis_prop[0] || kk == axis_prop[1] || kk == axis_prop[2]) {
           slots_[3 * i + (kk == axis_prop[0] ? 0 : kk == axis_prop[1] ? 1 : 2)] = s;
         } else if (kk == normal_prop[0] || kk == normal_prop[1] || kk == normal_prop[2]) {
@@ -430,12 +391,14 @@ Positions PlyDocument::normals(const Positions& x) const {
   return n;
 }
 
-std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header_edits) const {
+std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header_edits,
+                                bool widen) const {
   if (static_cast<std::size_t>(x.rows()) != vertex_count_)
     throw std::invalid_argument("PlyDocument::text: " + std::to_string(x.rows()) +
                                 " positions for " + std::to_string(vertex_count_) + " vertices");
   if (!x.allFinite()) throw std::invalid_argument("PlyDocument::text: a position is not finite");
-  require_representable(name_, slots_, x);
+  // Widened, every x, y, z is a double: nothing for float32 to refuse.
+  if (!widen) ply::require_representable(name_, slots_, x);
   // Every value to write with its place: the positions, then the normals that have one.
   std::vector<std::pair<const Slot*, double>> values;
   values.reserve(slots_.size() + normal_slots_.size());
@@ -454,6 +417,7 @@ std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header
     }
   }
   header_edits.insert(header_edits.end(), type_edits_.begin(), type_edits_.end());
+  if (widen) header_edits.insert(header_edits.end(), float_edits_.begin(), float_edits_.end());
   std::sort(header_edits.begin(), header_edits.end(),
             [](const TextEdit& a, const TextEdit& b) { return a.begin < b.begin; });
   std::string out = apply_edits(bytes_.substr(0, body_), header_edits);
@@ -466,7 +430,8 @@ std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header
     const Slot& s = *slot;
     out.append(bytes_, at, s.begin - at);
     at = s.end;
-    const ply::Type type = written_type(s);
+    const bool position = &s >= slots_.data() && &s < slots_.data() + slots_.size();
+    const ply::Type type = widen && position ? ply::Type::Float64 : written_type(s);
     const int size = ply::size_of(type);  // 4 or 8: written_type is never an integer
     if (ascii_) {
       char buf[64];
@@ -495,6 +460,24 @@ std::string PlyDocument::render(const Positions& x, std::vector<TextEdit> header
 std::unique_ptr<MeshDocument> parse_ply_document(const std::string& name,
                                                  const std::string& bytes) {
   return std::make_unique<PlyDocument>(name, bytes);
+}
+
+std::optional<double> ply_float32_spacing(const MeshDocument& doc, const Positions& x) {
+  const auto* ply = dynamic_cast<const PlyDocument*>(&doc);
+  return ply ? std::optional<double>(ply->float32_spacing(x)) : std::nullopt;
+}
+
+std::optional<std::string> ply_text_for(const MeshDocument& doc, const std::string& output_path,
+                                        const Positions& x, bool widen,
+                                        std::vector<std::string>* warnings) {
+  const auto* ply = dynamic_cast<const PlyDocument*>(&doc);
+  if (!ply) return std::nullopt;
+  return ply->text_widened(output_path, x, widen, warnings);
+}
+
+std::optional<Positions> ply_rounded(const MeshDocument& doc, const Positions& x) {
+  const auto* ply = dynamic_cast<const PlyDocument*>(&doc);
+  return ply ? std::optional<Positions>(ply->rounded(x)) : std::nullopt;
 }
 
 }  // namespace shellcontract

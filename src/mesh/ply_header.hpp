@@ -16,6 +16,9 @@ enum class Type { Int8, UInt8, Int16, UInt16, Int32, UInt32, Float32, Float64 };
 int size_of(Type t);  ///< bytes in a binary file
 bool is_integer(Type t);
 bool is_signed(Type t);  ///< the signed integer types and both floating-point types
+/// A colour component on glTF's scale, 0 to 1: an integer type's value divided by the type's
+/// largest (uchar 255: 1), a float as the file has it.
+double colour_value(Type t, double value);
 
 struct Property {
   std::string name;

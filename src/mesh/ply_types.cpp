@@ -26,4 +26,23 @@ bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
 
 bool is_signed(Type t) { return t != Type::UInt8 && t != Type::UInt16 && t != Type::UInt32; }
 
+double colour_value(Type t, double value) {
+  switch (t) {
+    case Type::UInt8:
+      return value / 255.0;
+    case Type::Int8:
+      return value / 127.0;
+    case Type::UInt16:
+      return value / 65535.0;
+    case Type::Int16:
+      return value / 32767.0;
+    case Type::UInt32:
+      return value / 4294967295.0;
+    case Type::Int32:
+      return value / 2147483647.0;
+    default:
+      return value;
+  }
+}
+
 }  // namespace shellcontract::ply
