@@ -22,16 +22,15 @@ def test_a_stop_in_several_signals_stops_once_and_the_jobs_save(cli, mesh_dir, t
     path = write_sweep(tmp_path, mesh_dir, "long.json", LONG, meshes=("ico3.off",))
     out = tmp_path / "out"
     proc = subprocess.Popen([sys.executable, "-m", "shellcontract.sweep", str(path), "-o", str(out),
-                             "--workers", "2", "--checkpoint-every", "1000000"], env=sweep_env(cli),
+                             "--workers", "2", "--checkpoint-every", "1000"], env=sweep_env(cli),
                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    checkpoints = out / ".work" / "checkpoints"
     try:
-        # Both jobs running: their attempt folders exist (DIR/.work/<id>.<random>).
-        def both_running():
-            work = out / ".work"
-            return work.is_dir() and len([p for p in work.iterdir() if p.is_dir()
-                                          and p.name != "checkpoints"]) == 2
-        wait_until(both_running)
-        time.sleep(1.0)  # in their frames
+        # Both jobs in their frames: each has written its first checkpoint (frame 1000). A sleep
+        # after their attempt folders appeared was not enough on a loaded machine: a job stopped
+        # while its run is prepared has no state to save.
+        wait_until(lambda: len(list(checkpoints.glob("*.ckpt"))) == 2)
+        before = {p.name: p.read_bytes() for p in checkpoints.glob("*.ckpt")}
         for name in signals:
             os.kill(proc.pid, getattr(signal, name))
             time.sleep(0.001)
@@ -44,7 +43,8 @@ def test_a_stop_in_several_signals_stops_once_and_the_jobs_save(cli, mesh_dir, t
             proc.communicate()
     assert proc.returncode == 130, err
     assert "Traceback" not in err, err
-    # Each job saved its checkpoint on the way out (--checkpoint-every: only on a signal).
-    saved = sorted(p.name for p in (out / ".work" / "checkpoints").glob("*.ckpt"))
+    # Each job saved its checkpoint on the way out: a later state than the one seen before.
+    saved = sorted(p.name for p in checkpoints.glob("*.ckpt"))
     assert len(saved) == 2, (saved, err)
+    assert all((checkpoints / name).read_bytes() != before[name] for name in saved), err
     assert [r["status"] for r in results(out)] == ["pending", "pending"], err
