@@ -37,6 +37,16 @@ RestGapSurvey survey_rest_gaps(const CollisionTopology& topo, const Positions& r
     CcdStencil s0, s1;
     gather(rest, rest, stencil(kind, pair, topo), s0, s1);
     const bool vf = kind == CcdPrimitive::VertexFace;
+    // Apart beyond the larger reach: neither touching, nor within `inner`, nor near (the cull
+    // never culls a pair the interval search reports, ccd.hpp, and its gaps grow with the
+    // tolerance). Only its distance counts, for `smallest`; the interval search's setup is
+    // what the broad phase's many far pairs of long thin triangles cost.
+    if (separating_axis_culls(kind, s0, s1, std::max(reach, inner))) {
+      out.smallest =
+          std::min(out.smallest, vf ? point_triangle_distance(s0[0], s0[1], s0[2], s0[3])
+                                    : segment_segment_distance(s0[0], s0[1], s0[2], s0[3]));
+      return;
+    }
     if (primitive_ccd(kind, s0, s1, touch).hit) {
       ++(vf ? out.touching_vertex_face : out.touching_edge_edge);
       // A VF pair touches at its vertex; an EE pair somewhere on its edges, named by their ends

@@ -28,6 +28,9 @@ RestPairs::RestPairs(const Positions& rest, const CollisionTopology& topo,
     CcdStencil s0, s1;
     gather(rest, rest, stencil(kind, pair, topo), s0, s1);
     const bool vf = kind == CcdPrimitive::VertexFace;
+    // Apart beyond delta: neither touching nor near (the cull never culls a pair the interval
+    // search reports, ccd.hpp), without the interval search's setup.
+    if (separating_axis_culls(kind, s0, s1, options.delta)) return;
     if (primitive_ccd(kind, s0, s1, touch).hit)
       (vf ? excluded_vf_ : excluded_ee_).push_back(pair);
     else if (primitive_ccd(kind, s0, s1, near).hit)
