@@ -12,19 +12,16 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
-#include <map>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <stdexcept>
-#include <tuple>
-#include <utility>
 
 #include "core/classic_locale.hpp"
 #include "mesh/float32_positions.hpp"
 #include "mesh/gltf_instances.hpp"
 #include "mesh/gltf_json.hpp"
 #include "mesh/gltf_model.hpp"
+#include "mesh/gltf_written_bytes.hpp"
 #include "mesh/normal_groups.hpp"
 #include "mesh/seam_weld.hpp"
 #include "shellcontract/error.hpp"
@@ -32,12 +29,6 @@
 
 namespace shellcontract {
 namespace {
-
-/// An accessor whose elements the document rewrites, with the primitive it was read for.
-struct Written {
-  gltf::ElementView view;
-  int accessor = -1;
-};
 
 class GltfDocument final : public MeshDocument {
  public:
@@ -72,14 +63,14 @@ class GltfDocument final : public MeshDocument {
       texcoords_.push_back(
           float_attribute(path, p, "TEXCOORD_0", TINYGLTF_TYPE_VEC2, 8, name, count));
     }
-    check_written_bytes_alone(path);
+    gltf::check_written_bytes_alone(path, model_, soup_, positions_, normals_);
     read_texcoords();
     read_colours(path);
     read_normals();
     read_materials(path);
     // Each drawing of an instanced mesh holds its own moved copy (gltf_instances.hpp).
     std::vector<bool> written_normal;
-    for (const Written& n : normals_) written_normal.push_back(n.accessor >= 0);
+    for (const gltf::Written& n : normals_) written_normal.push_back(n.accessor >= 0);
     const auto written = gltf::realize_instances(path, model_, soup_, written_normal);
     for (std::size_t d = 0; d < written.size(); ++d) {
       const std::string name = "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " +
@@ -158,13 +149,13 @@ class GltfDocument final : public MeshDocument {
     // The images are written as the input's JSON has them (gltf_json.hpp): tinygltf's JSON of
     // them is not used, so it is not made (a data-URI image would be encoded again).
     m.images.clear();
-    for (const Written& w : positions_) update_bounds(m, w);
+    for (const gltf::Written& w : positions_) update_bounds(m, w);
     ClassicOStringStream out;
     tinygltf::TinyGLTF writer;
     if (!writer.WriteGltfSceneToStream(&m, out, !binary_, binary_))
       throw std::runtime_error("GltfDocument::text: tinygltf could not serialize the model");
     std::vector<int> bounded;
-    for (const Written& w : positions_) bounded.push_back(w.accessor);
+    for (const gltf::Written& w : positions_) bounded.push_back(w.accessor);
     return gltf::restore_input_json(json, out.str(), binary_, bounded);
   }
 
@@ -183,9 +174,9 @@ class GltfDocument final : public MeshDocument {
   /// one of another kind (a quantized normal or texture coordinate is kept as it is). One whose
   /// count is not POSITION's (the spec says they are equal) is refused: its elements are read
   /// and written by POSITION's element numbers.
-  Written float_attribute(const std::string& path, const tinygltf::Primitive& p, const char* name,
-                          int type, std::size_t size, const std::string& prim,
-                          std::size_t count) const {
+  gltf::Written float_attribute(const std::string& path, const tinygltf::Primitive& p,
+                                const char* name, int type, std::size_t size,
+                                const std::string& prim, std::size_t count) const {
     const auto it = p.attributes.find(name);
     if (it == p.attributes.end() || it->second < 0 ||
         static_cast<std::size_t>(it->second) >= model_.accessors.size())
@@ -202,122 +193,10 @@ class GltfDocument final : public MeshDocument {
     return {view, it->second};
   }
 
-  /// Refuses a file whose bytes that the document rewrites (its drawn primitives' POSITION and
-  /// float NORMAL elements) are also read as something else: a NORMAL that is the POSITION
-  /// accessor, or whose elements share bytes with POSITION's, would overwrite the new positions
-  /// with the new normals; another attribute, indices or a morph target there would change in
-  /// the result without a word. Two POSITION (or two NORMAL) accessors are not compared: their
-  /// copies at one position move together.
-  void check_written_bytes_alone(const std::string& path) const {
-    const auto name = [&](std::size_t d) {
-      return "mesh " + std::to_string(soup_.drawn[d].mesh) + " primitive " +
-             std::to_string(soup_.drawn[d].primitive);
-    };
-    const auto refuse = [&](const std::string& what) {
-      throw InputError(path + ": not writable with new positions: " + what);
-    };
-    std::map<int, std::size_t> position_of;  // a POSITION accessor, the first primitive drawing it
-    for (std::size_t d = 0; d < positions_.size(); ++d)
-      position_of.emplace(positions_[d].accessor, d);
-    for (std::size_t d = 0; d < normals_.size(); ++d) {
-      const auto it = position_of.find(normals_[d].accessor);
-      if (it != position_of.end())
-        refuse(name(d) + " NORMAL and " + name(it->second) + " POSITION share accessor " +
-               std::to_string(it->first));
-    }
-    struct Span {
-      std::size_t buffer, begin, end;
-      bool normal;
-      std::size_t drawn;
-    };
-    std::vector<Span> spans;
-    std::set<int> done;
-    for (std::size_t d = 0; d < positions_.size(); ++d)
-      for (const Written* w : {&positions_[d], &normals_[d]}) {
-        if (w->accessor < 0 || !done.insert(w->accessor).second) continue;
-        for (std::size_t e = 0; e < w->view.count; ++e) {
-          const std::size_t at = w->view.offset + e * w->view.stride;
-          spans.push_back({w->view.buffer, at, at + 12, w == &normals_[d], d});
-        }
-      }
-    std::sort(spans.begin(), spans.end(), [](const Span& a, const Span& b) {
-      return std::tie(a.buffer, a.begin, a.normal) < std::tie(b.buffer, b.begin, b.normal);
-    });
-    const auto shared = [&](const std::string& what, const Span& s, std::size_t at) {
-      const Written& w = s.normal ? normals_[s.drawn] : positions_[s.drawn];
-      refuse(what + " shares bytes with " + name(s.drawn) + (s.normal ? " NORMAL" : " POSITION") +
-             " (accessor " + std::to_string(w.accessor) + "; buffer " + std::to_string(s.buffer) +
-             " byte " + std::to_string(at) + ")");
-    };
-    // Each span against the furthest-reaching earlier span of the other kind in its buffer.
-    const Span* reach[2] = {nullptr, nullptr};
-    for (const Span& s : spans) {
-      for (const Span*& r : reach)
-        if (r && r->buffer != s.buffer) r = nullptr;
-      if (const Span* other = reach[!s.normal]; other && other->end > s.begin) {
-        const Written& w = s.normal ? normals_[s.drawn] : positions_[s.drawn];
-        shared(name(s.drawn) + (s.normal ? " NORMAL" : " POSITION") + " (accessor " +
-                   std::to_string(w.accessor) + ")",
-               *other, s.begin);
-      }
-      const Span*& mine = reach[s.normal];
-      if (!mine || s.end > mine->end) mine = &s;
-    }
-    // The first span that bytes [begin, end) of `buffer` meet: spans are 12 bytes, so only one
-    // starting at most 11 bytes before `begin` can reach it.
-    const auto meets = [&](std::size_t buffer, std::size_t begin, std::size_t end) -> const Span* {
-      const std::pair<std::size_t, std::size_t> from{buffer, begin < 11 ? 0 : begin - 11};
-      auto it =
-          std::lower_bound(spans.begin(), spans.end(), from, [](const Span& a, const auto& k) {
-            return std::tie(a.buffer, a.begin) < std::tie(k.first, k.second);
-          });
-      for (; it != spans.end() && it->buffer == buffer && it->begin < end; ++it)
-        if (it->end > begin) return &*it;
-      return nullptr;
-    };
-    // Every other accessor a drawn primitive reads, element by element where its extent meets a
-    // span (an interleaved buffer view).
-    std::set<int> checked;
-    for (std::size_t d = 0; d < soup_.drawn.size(); ++d) {
-      const tinygltf::Primitive& p = primitive(d);
-      std::vector<std::pair<std::string, int>> read = {{"indices", p.indices}};
-      for (const auto& [key, a] : p.attributes)
-        if (key != "POSITION" && (key != "NORMAL" || normals_[d].accessor < 0))
-          read.push_back({key, a});
-      for (std::size_t t = 0; t < p.targets.size(); ++t)
-        for (const auto& [key, a] : p.targets[t])
-          read.push_back({"morph target " + std::to_string(t) + " " + key, a});
-      for (const auto& [key, a] : read) {
-        if (a < 0 || static_cast<std::size_t>(a) >= model_.accessors.size() ||
-            !checked.insert(a).second)
-          continue;
-        const tinygltf::Accessor& acc = model_.accessors[static_cast<std::size_t>(a)];
-        const int size =
-            tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(acc.componentType)) *
-            tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(acc.type));
-        if (size <= 0 || acc.sparse.isSparse || acc.count == 0) continue;
-        const auto n = static_cast<std::size_t>(size);
-        gltf::ElementView v;
-        try {
-          v = gltf::element_view(path, model_, a, key, n);
-        } catch (const InputError&) {
-          continue;  // not read by the document, so not refused for it
-        }
-        if (!meets(v.buffer, v.offset, v.offset + (v.count - 1) * v.stride + n)) continue;
-        for (std::size_t e = 0; e < v.count; ++e) {
-          const std::size_t at = v.offset + e * v.stride;
-          if (const Span* s = meets(v.buffer, at, at + n))
-            shared(name(d) + " " + key + " (accessor " + std::to_string(a) + ")", *s,
-                   std::max(at, s->begin));
-        }
-      }
-    }
-  }
-
   /// Texture coordinates for the --gltf animation: one per vertex (its primitive's TEXCOORD_0),
   /// v flipped to the OBJ convention that CornerTexcoords holds (the exporter flips it back).
   void read_texcoords() {
-    for (const Written& t : texcoords_)
+    for (const gltf::Written& t : texcoords_)
       if (t.accessor < 0) return;  // a primitive without: none at all (MeshDocument::texcoords)
     uv_.resize(vertex_count_);
     for (std::size_t v = 0; v < vertex_count_; ++v) {
@@ -443,7 +322,7 @@ class GltfDocument final : public MeshDocument {
   /// transform by the inverse transpose).
   void write_normals(tinygltf::Model& m, const Positions& x) const {
     bool any = false;
-    for (const Written& n : normals_) any = any || n.accessor >= 0;
+    for (const gltf::Written& n : normals_) any = any || n.accessor >= 0;
     if (!any) return;
     const std::vector<std::size_t> group =
         soup::normal_groups(soup::first_at_same_position(x), input_normal_);
@@ -466,7 +345,7 @@ class GltfDocument final : public MeshDocument {
   }
 
   /// POSITION's min and max (the spec requires them) over all its elements, used or not.
-  static void update_bounds(tinygltf::Model& m, const Written& w) {
+  static void update_bounds(tinygltf::Model& m, const gltf::Written& w) {
     tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(w.accessor)];
     std::vector<double> lo(3, std::numeric_limits<double>::infinity()),
         hi(3, -std::numeric_limits<double>::infinity());
@@ -489,7 +368,7 @@ class GltfDocument final : public MeshDocument {
   GltfSoup soup_;
   std::vector<Eigen::Matrix4d> world_,
       to_local_;  ///< per drawn primitive: node space to world and back
-  std::vector<Written> positions_, normals_, texcoords_;  ///< per drawn primitive
+  std::vector<gltf::Written> positions_, normals_, texcoords_;  ///< per drawn primitive
   std::vector<Eigen::Vector3d> input_normal_;             ///< per vertex: read_normals
 };
 
