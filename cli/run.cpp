@@ -105,7 +105,8 @@ int command_run(int argc, char** argv) {
     const std::shared_ptr<const MeshDocument> document =
         run_input_document(request.input, request.output, !exports.gltf.empty(), mesh,
                            request.repair, input.report.triangulated_faces);
-    warn_float32_gltf(request.output, document.get(), mesh, request.options, notice);
+    const std::string float32_warning =
+        warn_float32_gltf(request.output, document.get(), mesh, request.options, notice);
     RunObservers observers(request, mesh, document, notice);
 
     trace.faces = std::to_string(mesh.number_of_faces()) + " faces";
@@ -114,6 +115,8 @@ int command_run(int argc, char** argv) {
     CliCheckpointer& checkpointer = *observers.checkpointer;
     RunResult r = run_contraction(mesh, request.options, &observers.list, &checkpointer);
     notice.end();  // a run cancelled in its preparation ends no stage itself
+    // Said before the run, it belongs with the run's warnings in the summary.
+    if (!float32_warning.empty()) r.warnings.insert(r.warnings.begin(), float32_warning);
     // Nothing is written: the run is not over (its state is in the checkpoint, if any).
     if (r.status == RunStatus::Cancelled && checkpointer.interrupted())
       return report_interrupted(r, checkpointer, request.output, exports,

@@ -28,10 +28,12 @@ namespace {
 /// setup's times, the repair, the exports) and how the other outputs went. An output that
 /// failed makes the process exit 1 (or the run's own failure code), and the summary says so.
 JsonObject run_summary(const RunRequest& request, const RunInputMesh& input, const RunResult& r,
-                       const RunObservers& observers, const OutputStatus& outputs) {
+                       const RunObservers& observers, const OutputWriter& writer) {
+  const OutputStatus& outputs = writer.outputs;
   JsonObject summary = summary_json(
       request.input, request.output, input.report, request.options, r,
-      outputs.failed() ? std::optional<int>(output_failure_exit_code(r)) : std::nullopt);
+      outputs.failed() ? std::optional<int>(output_failure_exit_code(r)) : std::nullopt,
+      writer.warnings());
   JsonObject setup;
   setup.add("read_and_check_seconds", input.read_seconds)
       .add("read_seconds", input.report.read_seconds)
@@ -79,7 +81,9 @@ void OutputWriter::attempt(const char* option, const std::string& path,
 }
 
 void OutputWriter::warn_once(const std::string& warning) {
-  if (warned_.insert(warning).second) std::cerr << "warning: " << warning << '\n';
+  if (!warned_.insert(warning).second) return;
+  std::cerr << "warning: " << warning << '\n';
+  said_.push_back(warning);
 }
 
 void write_run_outputs(OutputWriter& writer, const RunRequest& request, const RunInputMesh& input,
@@ -129,7 +133,7 @@ void write_run_outputs(OutputWriter& writer, const RunRequest& request, const Ru
   // stderr only).
   const std::string& summary_path = request.summary_path;
   if (!summary_path.empty()) {
-    const JsonObject summary = run_summary(request, input, r, observers, outputs);
+    const JsonObject summary = run_summary(request, input, r, observers, writer);
     writer.attempt("--summary", summary_path,
                    [&] { write_text_atomic(summary_path, summary.str() + "\n"); });
   }

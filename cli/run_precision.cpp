@@ -18,11 +18,11 @@ double contact_gap(double delta, double scale) {
   return collision_pipeline::RESPONSE_FACTOR * delta * scale;
 }
 
-void warn_float32_gltf(const std::string& output, const MeshDocument* document, const Mesh& mesh,
-                       const RunOptions& options, StageNotice& notice) {
+std::string warn_float32_gltf(const std::string& output, const MeshDocument* document,
+                              const Mesh& mesh, const RunOptions& options, StageNotice& notice) {
   if (!document || !options.sim.collisions ||
       !is_mesh_format(lower_extension(output), &MeshFormat::gltf))
-    return;
+    return {};
   const Positions x = positions_from_mesh(mesh);
   const double scale = compute_normalization(x).scale;
   double delta = options.sim.collision.delta;
@@ -30,16 +30,18 @@ void warn_float32_gltf(const std::string& output, const MeshDocument* document, 
     delta = std::min(delta, AUTO_DELTA_PER_MEAN_EDGE * mean_edge_length(mesh) / scale);
   const double gap = contact_gap(delta, scale);
   const double spacing = stored_float32_spacing(*document, input_positions(mesh, x));
-  if (!float32_too_coarse(spacing, gap)) return;
-  notice.line("warning: the ." + lower_extension(output) +
-              " result stores its positions as 32-bit floats, whose spacing at the input's "
-              "largest coordinate, " +
-              shortest_text(spacing) + ", is more than a quarter of the contact gap " +
-              shortest_text(gap) +
-              " that the run keeps between the surfaces (2 delta times the mesh's diagonal): "
-              "rounded so, the written result can pass through itself where surfaces touch; "
-              "move the mesh near the origin (into its node's translation), or write an "
-              "OBJ, OFF or PLY result");
+  if (!float32_too_coarse(spacing, gap)) return {};
+  const std::string w =
+      "the ." + lower_extension(output) +
+      " result stores its positions as 32-bit floats, whose spacing at the input's "
+      "largest coordinate, " +
+      shortest_text(spacing) + ", is more than a quarter of the contact gap " + shortest_text(gap) +
+      " that the run keeps between the surfaces (2 delta times the mesh's diagonal): "
+      "rounded so, the written result can pass through itself where surfaces touch; "
+      "move the mesh near the origin (into its node's translation), or write an "
+      "OBJ, OFF or PLY result";
+  notice.line("warning: " + w);
+  return w;
 }
 
 void validate_as_written(const std::string& output, const MeshDocument* document, const Mesh& mesh,
@@ -79,7 +81,11 @@ void validate_as_written(const std::string& output, const MeshDocument* document
   const long computed = r.new_intersections;
   if (found <= computed) return;
   r.new_intersections = found;
-  if (r.status == RunStatus::Completed || r.status == RunStatus::TargetNotReached) {
+  if (r.status == RunStatus::NewIntersections) {
+    // The run's own check found pairs already: its message gives the file's count as well.
+    r.message +=
+        "; " + std::to_string(found) + " as " + output + " stores the result (its 32-bit floats)";
+  } else if (r.status == RunStatus::Completed || r.status == RunStatus::TargetNotReached) {
     // As the run's own check: new pairs come before a target not reached, whose words stay.
     const std::string before = r.status == RunStatus::TargetNotReached ? "; " + r.message : "";
     r.status = RunStatus::NewIntersections;

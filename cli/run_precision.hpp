@@ -24,8 +24,8 @@ double contact_gap(double delta, double scale);
 /// coordinate is too coarse for the contact gap the run will keep (float32_too_coarse): the
 /// written result could pass through itself. The gap is estimated from `options` (--delta auto:
 /// the mean edge's share, which the run may lower further).
-void warn_float32_gltf(const std::string& output, const MeshDocument* document, const Mesh& mesh,
-                       const RunOptions& options, StageNotice& notice);
+std::string warn_float32_gltf(const std::string& output, const MeshDocument* document,
+                              const Mesh& mesh, const RunOptions& options, StageNotice& notice);
 
 /// After the run, with `validate`: when the -o file (`output`, written from `document`) stores
 /// the positions as float32 (a glTF, a float PLY not widened: text_keeping_gap), the result is

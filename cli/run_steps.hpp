@@ -121,6 +121,8 @@ class OutputWriter {
   void attempt(const char* option, const std::string& path, const std::function<void()>& write);
   /// Every file written from the document (frames, result) warns alike of the input: once a run.
   void warn_once(const std::string& warning);
+  /// What warn_once said, in order (the summary's `warnings` end with them).
+  const std::vector<std::string>& warnings() const { return said_; }
 
   OutputStatus outputs;
 
@@ -128,6 +130,7 @@ class OutputWriter {
   StageNotice& notice_;
   RunTrace& trace_;
   std::set<std::string> warned_;
+  std::vector<std::string> said_;
 };
 
 /// Writes every output of a finished run (the summary last, naming how the others went).

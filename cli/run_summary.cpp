@@ -16,7 +16,9 @@ namespace {
 /// The library's summary (write_run_summary) into a JSON object.
 class JsonSummary final : public SummaryWriter {
  public:
-  explicit JsonSummary(JsonObject& o) : o_(o) {}
+  /// @param more_warnings appended to `warnings` (not copied: it must outlive the writer)
+  explicit JsonSummary(JsonObject& o, const std::vector<std::string>* more_warnings = nullptr)
+      : o_(o), more_warnings_(more_warnings) {}
   void add_bool(const std::string& key, bool v) override { o_.add(key, v); }
   void add_null(const std::string& key) override { o_.add_raw(key, "null"); }
   void add_integer(const std::string& key, long long v) override {
@@ -25,7 +27,13 @@ class JsonSummary final : public SummaryWriter {
   void add_number(const std::string& key, double v) override { o_.add(key, v); }
   void add_text(const std::string& key, const std::string& v) override { o_.add(key, v); }
   void add_texts(const std::string& key, const std::vector<std::string>& v) override {
-    o_.add(key, v);
+    if (key != "warnings" || !more_warnings_ || more_warnings_->empty()) {
+      o_.add(key, v);
+      return;
+    }
+    std::vector<std::string> all = v;
+    all.insert(all.end(), more_warnings_->begin(), more_warnings_->end());
+    o_.add(key, all);
   }
   void add_numbers(const std::string& key, const std::vector<double>& v) override {
     std::string raw = "[";
@@ -42,6 +50,7 @@ class JsonSummary final : public SummaryWriter {
 
  private:
   JsonObject& o_;
+  const std::vector<std::string>* more_warnings_;  ///< the CLI's own, after the library's
 };
 
 }  // namespace
@@ -59,12 +68,12 @@ JsonObject export_json(const FrameExporter& e) {
   return o;
 }
 
-
 JsonObject summary_json(const std::string& input, const std::string& output,
                         const InputReport& report, const RunOptions& options, const RunResult& r,
-                        std::optional<int> exit_code) {
+                        std::optional<int> exit_code,
+                        const std::vector<std::string>& output_warnings) {
   JsonObject s;
-  JsonSummary w(s);
+  JsonSummary w(s, &output_warnings);
   const SummaryFiles files{input, output, exit_code};
   write_run_summary(w, report, options, r, OptionSpelling::Cli, &files);
   return s;

@@ -17,10 +17,12 @@ namespace shellcontract::cli {
 JsonObject export_json(const FrameExporter& e);
 
 /// The library's summary of a finished run, with the input and output files named, and the
-/// process's exit code where it is not the run's (exit_code).
+/// process's exit code where it is not the run's (exit_code). `output_warnings` (what writing
+/// the outputs warned of) follow the input's and the run's in `warnings`.
 JsonObject summary_json(const std::string& input, const std::string& output,
                         const InputReport& report, const RunOptions& options, const RunResult& r,
-                        std::optional<int> exit_code = std::nullopt);
+                        std::optional<int> exit_code = std::nullopt,
+                        const std::vector<std::string>& output_warnings = {});
 
 /// The process's peak resident memory so far, in MiB.
 double peak_memory_mb();

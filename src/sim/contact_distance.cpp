@@ -10,6 +10,7 @@
 #include "collision/topology.hpp"
 #include "core/cancellation.hpp"
 #include "core/plural.hpp"
+#include "fem/triangle_element.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/options.hpp"
@@ -40,11 +41,14 @@ double edge_based_choice(double mean_edge, double cap) {
 /// the result would be the input with status ok; the warning says so first.
 constexpr double MOSTLY_HELD_SHARE = 0.9;
 
+bool mostly_held(const RestGapSurvey& s, std::size_t vertices) {
+  return static_cast<double>(s.near_vertices) >= MOSTLY_HELD_SHARE * static_cast<double>(vertices);
+}
+
 std::string held_pairs_warning(const std::string& what, const RestGapSurvey& s, double delta,
                                std::size_t vertices) {
   const std::size_t pairs = s.near_pairs();
-  const bool mostly =
-      static_cast<double>(s.near_vertices) >= MOSTLY_HELD_SHARE * static_cast<double>(vertices);
+  const bool mostly = mostly_held(s, vertices);
   return (mostly ? "nothing can move (" + std::to_string(s.near_vertices) + " of the mesh's " +
                        counted(vertices, "vertex", "vertices") +
                        " are held: a flat or very thin shell), so the result would be the input: "
@@ -75,13 +79,37 @@ std::string pushed_apart_warning(const std::string& what, const RestGapSurvey& s
          ", beyond their rest gap, and a thin shell can swell instead of contracting; " + remedy;
 }
 
+/// Whether every touching vertex the survey found is a corner of a zero-area face: a vertex on
+/// another face's edge because a face between them has no area (a sliver left by a modeller), not
+/// two parts or sheets in contact. Only a complete sample can tell (touching_sample keeps a few).
+bool touching_only_at_zero_area_faces(const Mesh& mesh, const RestGapSurvey& s) {
+  if (s.touching_vertices == 0 || s.touching_vertices > s.touching_sample.size()) return false;
+  std::vector<char> corner(mesh.number_of_vertices(), 0);
+  const auto at = [&](VertexIndex v) {
+    const Point3& p = mesh.point(v);
+    return Vec3(p.x(), p.y(), p.z());
+  };
+  for (const auto f : mesh.faces()) {
+    const HalfedgeIndex h = mesh.halfedge(f);
+    const VertexIndex a = mesh.target(h), b = mesh.target(mesh.next(h)),
+                      c = mesh.target(mesh.next(mesh.next(h)));
+    // The rest state's rule (rest_state.cpp): such a face carries no membrane energy.
+    if (triangle_rest(at(a), at(b), at(c)).degenerate)
+      for (const VertexIndex v : {a, b, c}) corner[v.idx()] = 1;
+  }
+  return std::all_of(s.touching_sample.begin(), s.touching_sample.end(),
+                     [&](int v) { return corner[static_cast<std::size_t>(v)] != 0; });
+}
+
 /// The pairs that touch at rest: the collision step excludes them for the whole run (RestPairs:
 /// no response can keep a pair of distance 0 on a side it does not have), so parts pressed
 /// together there pass through each other, and `check --against` and `--validate` count no
 /// crossing of faces that already touched in the input. The vertices are named as the input
-/// numbers them (a welded vertex by its first copy).
+/// numbers them (a welded vertex by its first copy). Where they are all corners of zero-area
+/// faces the advice on parts does not apply and is not given.
 std::string touching_pairs_warning(const Mesh& mesh, const RestGapSurvey& s, double delta) {
   const std::size_t pairs = s.touching_pairs();
+  const bool at_zero_area = touching_only_at_zero_area_faces(mesh, s);
   std::vector<std::size_t> names(s.touching_sample.begin(), s.touching_sample.end());
   if (has_welded_seams(mesh)) {
     const std::vector<std::size_t> map = input_vertex_map(mesh);
@@ -92,12 +120,21 @@ std::string touching_pairs_warning(const Mesh& mesh, const RestGapSurvey& s, dou
   for (std::size_t i = 0; i < names.size(); ++i)
     listed += (i ? ", " : "") + std::to_string(names[i]);
   if (s.touching_vertices > names.size()) listed += ", ...";
-  return counted(pairs, "pair", "pairs") + " of primitives (" +
-         std::to_string(s.touching_vertex_face) + " vertex-face, " +
-         std::to_string(s.touching_edge_edge) + " edge-edge) " +
-         one_or_many(pairs, "touches", "touch") + " at rest, at or next to " +
-         counted(s.touching_vertices, "vertex", "vertices") + " (" + listed +
-         "): parts in contact, a surface that touches itself, or a zero-area face. The collision "
+  const std::string counted_pairs =
+      counted(pairs, "pair", "pairs") + " of primitives (" +
+      std::to_string(s.touching_vertex_face) + " vertex-face, " +
+      std::to_string(s.touching_edge_edge) + " edge-edge) " +
+      one_or_many(pairs, "touches", "touch") + " at rest, at or next to " +
+      counted(s.touching_vertices, "vertex", "vertices") + " (" + listed + ")";
+  if (at_zero_area)
+    return counted_pairs +
+           ", each a corner of a zero-area face (named with the input's checks): a vertex lying "
+           "on another face's edge. The collision step leaves those pairs out for the whole run "
+           "(a pair at distance 0 has no side to keep), so the surface is not kept from passing "
+           "through itself right there; removing the zero-area face from the input (merging its "
+           "corner into the edge it lies on) makes them ordinary neighbours";
+  return counted_pairs +
+         ": parts in contact, a surface that touches itself, or a zero-area face. The collision "
          "step cannot keep a touching pair on its sides and leaves it out for the whole run, so "
          "the parts can pass through each other there (`check --against` and `--validate` do not "
          "count it: those faces already touch in the input). Separate the parts by at least the "
@@ -155,6 +192,7 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
   if (!options.auto_delta) {
     const RestGapSurvey survey = survey_rest_gaps(topo, rest, out.delta, method);
     warn_touching(survey);
+    out.held_at_rest = mostly_held(survey, mesh.number_of_vertices());
     if (survey.near_pairs() > 0)
       out.warnings.push_back(held_pairs_warning(shortest_text(out.delta), survey, out.delta,
                                                 mesh.number_of_vertices()) +
@@ -180,6 +218,7 @@ ContactDistanceChoice choose_contact_distance(const Mesh& mesh, const SimOptions
     return out;
   }
   survey = survey_rest_gaps(topo, rest, out.delta, method);
+  out.held_at_rest = mostly_held(survey, mesh.number_of_vertices());
   const std::string lowest = "auto goes no lower: a smaller gap is a near-degenerate input";
   if (survey.near_pairs() > 0)
     out.warnings.push_back(

@@ -44,6 +44,10 @@ inline constexpr double AUTO_DELTA_FLOOR_SHARE = 1e-3;
 struct ContactDistanceChoice {
   double delta = 0.0;
   std::vector<std::string> warnings;
+  /// Nearly every vertex is held at rest by pairs closer than delta (a flat or very thin shell):
+  /// a warning says "nothing can move" and names the remedy, so the run's frozen-run warning,
+  /// whose remedies do not apply, is not given as well.
+  bool held_at_rest = false;
 };
 
 /// The contact distance for `mesh` (normalized units) with `options` (resolved): with auto_delta,

@@ -217,6 +217,7 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   r.regions = plan.regions;
   r.regions_seconds = plan.regions_seconds;
   for (const std::string& w : plan.warnings) warn(r, obs, w);
+  const bool held_at_rest = plan.sim.held_at_rest;
   using Clock = std::chrono::steady_clock;
   const auto prepare_start = Clock::now();
   // The result's storage, taken before the first step (see the end), holds the input's positions
@@ -425,8 +426,10 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   bool compressed = !has_target;
   for (int n = 0; compressed && n < r.frames_run; ++n) compressed = sim.pressure_at(n) > 0.0;
   for (const std::string& w : volume_warnings(history, compressed)) warn(r, obs, w);
+  // A shell held at rest by its near pairs was told "nothing can move" and its remedy at the
+  // start; the fail-safe's reverts are those pairs, and the frozen warning's remedies miss them.
   for (const auto& [name, total] : r.totals.per_step(r.frames_run))
-    if (name == "failsafe_vertices_total")
+    if (name == "failsafe_vertices_total" && !held_at_rest)
       if (const std::string w = frozen_warning(total, mesh.number_of_vertices(), r.frames_run);
           !w.empty())
         warn(r, obs, w);
@@ -439,6 +442,17 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   if (has_stop) {
     r.target_reached = sim.stop_volume_reached();
     if (r.target_reached) r.frame_target_reached = sim.frame();
+    // A free shell ends on E; where contacts held it the step's lift onto E was capped
+    // (simulator_volume.cpp) and it can end a whole step's change below E, which "reached"
+    // alone does not tell.
+    const double e = s.stop_volume_ratio;
+    if (r.target_reached && r.final_volume_ratio < e - target_volume_tolerance(e))
+      warn(r, obs,
+           "the run stopped at V/V0 " + volume_ratio_text(r.final_volume_ratio) +
+               ", below the stop ratio " + volume_ratio_text(e) +
+               ": the contacts held the shell, and the step that crossed it was lifted back "
+               "toward it only a limited distance per vertex; a smaller `dt` or a lower "
+               "`pressure` crosses it in smaller steps");
   } else if (has_target) {
     // A schedule's goal is its value at the last frame run (a key after it is never reached).
     const double goal =
@@ -455,8 +469,8 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
                         : s.target_volume_schedule.empty() ? s.target_volume
                                                            : sim.volume_target(sim.frame());
     // A target met and then lost: the shell's momentum carried it on (the volume constraint
-    // moves the vertices that contacts leave free a limited distance per step,
-    // volume_constraint.hpp), not a run too short to get there.
+    // moves each vertex a limited distance per step, volume_constraint.hpp), not a run too
+    // short to get there.
     const int met = has_target ? frame_goal_met(history, goal, settled) : -1;
     const std::string end = "V/V0 " + volume_ratio_text(r.final_volume_ratio) + " (frame " +
                             std::to_string(r.frames_run) + ")";
@@ -465,9 +479,9 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
         (!stalled.empty() ? stalled
          : met >= 0       ? "V/V0 came to it at frame " + std::to_string(met) +
                           " but did not stay there: " + end +
-                          "; the volume constraint moves the vertices that contacts leave free "
-                          "a limited distance per step, too little to hold the shell (more "
-                          "frames or a slower ramp let it)"
+                          "; the volume constraint moves each vertex a limited distance per "
+                          "step (less where contacts hold the shell), too little to stop the "
+                          "shell's momentum (more frames or a slower ramp let it)"
                     : "the frames ran out at " + end) +
         "; V/V0 ended " + miss_text(r.final_volume_ratio, goal, has_target);
   }

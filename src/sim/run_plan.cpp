@@ -332,6 +332,7 @@ SimPlan plan_simulation(Mesh mesh, SimOptions options) {
     ContactDistanceChoice delta = choose_contact_distance(mesh, options);
     options.collision.delta = delta.delta;
     plan.warnings = std::move(delta.warnings);
+    plan.held_at_rest = delta.held_at_rest;
     cancellation_point();
   }
   plan.mesh = std::move(mesh);

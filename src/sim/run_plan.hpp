@@ -30,6 +30,7 @@ struct SimPlan {
   /// What the user should know about the contact distance (choose_contact_distance); plan_run
   /// moves them to RunPlan::warnings.
   std::vector<std::string> warnings;
+  bool held_at_rest = false;  ///< ContactDistanceChoice::held_at_rest
 };
 
 /// Everything a run needs besides an observer: the simulation's plan and what the run reports

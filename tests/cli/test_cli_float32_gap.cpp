@@ -115,11 +115,14 @@ class CliFloat32Gap : public ::testing::Test {
 
 TEST_F(CliFloat32Gap, AFarOffFloatPlyResultIsWrittenAsDoubleAndPassesCheckAgainstItsInput) {
   const std::string in = write("far.ply", float_ply(two_sheet(10000.0)));
-  const RunResult run = press(in, file("out.ply"));
+  const RunResult run = press(in, file("out.ply"), {"--summary", file("s.json")});
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_NE(run.output.find("x, y, z are written as double, not as the input's 32-bit floats"),
             std::string::npos)
       << run.output;
+  // The summary's `warnings` are every warning, those of writing the outputs too.
+  EXPECT_NE(read_text(file("s.json")).find("x, y, z are written as double"), std::string::npos)
+      << read_text(file("s.json"));
   const std::string out = read_text(file("out.ply"));
   EXPECT_NE(out.find("property double x\nproperty double y\nproperty double z\nelement face"),
             std::string::npos)
@@ -161,6 +164,10 @@ TEST_F(CliFloat32Gap, AFarOffGltfIsWarnedOfAndValidatedAsTheFileStoresIt) {
   // the file's.
   EXPECT_EQ(run.exit_code, 4) << run.output;
   EXPECT_NE(read_text(file("s.json")).find("\"new_intersections\": " + std::to_string(written)),
+            std::string::npos)
+      << read_text(file("s.json"));
+  // The warning given before the run is in the summary's `warnings` too.
+  EXPECT_NE(read_text(file("s.json")).find("result stores its positions as 32-bit floats"),
             std::string::npos)
       << read_text(file("s.json"));
 }

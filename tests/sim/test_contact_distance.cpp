@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "shellcontract/error.hpp"
+#include "shellcontract/mesh_io.hpp"
 #include "shellcontract/run.hpp"
 #include "sim/contact_distance.hpp"
 #include "sim/run_plan.hpp"
@@ -18,6 +19,7 @@
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
 #include "support/thin_card.hpp"
+#include "test_paths.hpp"
 
 namespace shellcontract {
 namespace {
@@ -243,6 +245,22 @@ TEST(ContactDistance, PartsThatTouchAtRestAreNamedInAWarning) {
   const Mesh apart = to_surface_mesh(stacked_cubes(0.02));
   EXPECT_TRUE(plan_simulation(apart, o).warnings.empty());
   EXPECT_EQ(Simulator(apart, o).excluded_contact_pairs(), 0u);
+}
+
+TEST(ContactDistance, TouchingAtAZeroAreaFaceIsNotCalledParts) {
+  // zero_area_face.off is one closed cube whose face 13 (0, 2, 8) has its corners on one line:
+  // vertex 8 lies on the edge from 0 to 2, so it touches the face on the other side of that
+  // edge. The pairs are excluded as any touching pair, but there are no parts to separate or
+  // join: the warning says where they are and what removes them.
+  const Mesh mesh = read_input_mesh(std::string(test::MESH_DIR) + "/zero_area_face.off");
+  const SimPlan plan = plan_simulation(mesh, SimOptions{});
+  ASSERT_EQ(plan.warnings.size(), 1u);
+  const std::string& w = plan.warnings[0];
+  EXPECT_NE(w.find("touch at rest, at or next to 1 vertex (8), each a corner of a zero-area face"),
+            std::string::npos)
+      << w;
+  EXPECT_NE(w.find("removing the zero-area face"), std::string::npos) << w;
+  EXPECT_EQ(w.find("Separate the parts"), std::string::npos) << w;
 }
 
 }  // namespace

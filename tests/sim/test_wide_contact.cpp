@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "shellcontract/run.hpp"
+#include "sim/target_goal.hpp"
 #include "sim/volume_warnings.hpp"
 #include "support/cgal_mesh.hpp"
 #include "support/mesh_fixtures.hpp"
@@ -119,6 +120,51 @@ TEST(FrozenRun, NamedWhenTheFailSafeRevertsNearlyEveryVertexInNearlyEveryStep) {
   const RunResult moving = run_contraction(test::to_surface_mesh(slab16), pancake_run(0.0));
   for (const std::string& w : moving.warnings)
     EXPECT_EQ(w.find("fail-safe reverted"), std::string::npos) << w;
+}
+
+TEST(FrozenRun, NotNamedAgainWhereThePairsHeldAtRestWereNamed) {
+  // A card 5e-5 thick: its sheets lie closer than the contact distance, so nearly every vertex
+  // is held at rest and the plan says "nothing can move" with its remedy (`delta` auto). The
+  // fail-safe's reverts are those pairs; the frozen warning's remedies (more rounds, a smaller
+  // step) do not free them, and the run gave both warnings (review diffreview7 F1).
+  RunOptions o;
+  o.sim.frames = 30;
+  o.sim.solver.threads = 1;
+  const RunResult r = run_contraction(test::to_surface_mesh(slab(8, 5e-5)), o);
+  int held = 0, frozen = 0;
+  for (const std::string& w : r.warnings) {
+    held += w.rfind("nothing can move", 0) == 0;
+    frozen += w.find("fail-safe reverted") != std::string::npos;
+  }
+  EXPECT_EQ(held, 1) << "the premise: the plan names the pairs held at rest";
+  EXPECT_EQ(frozen, 0);
+}
+
+TEST(StopRatioInContact, AStopFarBelowTheRatioIsNamed) {
+  // The pancake under -p 200: its first steps cross 0.5 by far more than the capped lift can
+  // undo where the contacts hold the sheets, and the run stopped well below 0.5 as "reached"
+  // without a word (review diffreview7 F3). The warning gives the V/V0 it stopped at.
+  RunOptions o = pancake_run(0.5);
+  o.sim.pressure = 200.0;
+  const RunResult r = run_contraction(test::to_surface_mesh(slab(16, 0.002)), o);
+  ASSERT_TRUE(r.target_reached) << r.message;
+  ASSERT_LT(r.final_volume_ratio, 0.5 - target_volume_tolerance(0.5)) << "the premise";
+  int named = 0;
+  for (const std::string& w : r.warnings)
+    named += w.rfind("the run stopped at V/V0 " + volume_ratio_text(r.final_volume_ratio) +
+                         ", below the stop ratio 0.5",
+                     0) == 0;
+  EXPECT_EQ(named, 1);
+  // A free shell ends on the ratio: nothing to say.
+  RunOptions free_options;
+  free_options.sim.frames = 100;
+  free_options.sim.stop_volume_ratio = 0.8;
+  free_options.sim.solver.threads = 1;
+  const RunResult free_run =
+      run_contraction(test::to_surface_mesh(test::icosphere(2)), free_options);
+  ASSERT_TRUE(free_run.target_reached) << free_run.message;
+  for (const std::string& w : free_run.warnings)
+    EXPECT_EQ(w.find("below the stop ratio"), std::string::npos) << w;
 }
 
 }  // namespace
