@@ -19,6 +19,7 @@
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/file_safety.hpp"
 #include "shellcontract/error.hpp"
+#include "sim/air_step.hpp"
 #include "sim/checkpoint.hpp"
 #include "sim/simulator.hpp"
 #include "sim/target_goal.hpp"
@@ -253,10 +254,11 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
     warn(r, obs,
          std::to_string(rest.degenerate_faces) + " degenerate faces carry no membrane energy; " +
              std::to_string(rest.inactive_hinges) + " hinges touching them are inactive");
-  if (const std::string note =
-          mass_scaling_warning(sim.mass_scaling(), mesh.number_of_vertices(), s.dt);
-      !note.empty())
-    warn(r, obs, note);
+  // The masses the pressure needed, and the air's volume mode with them (air_step.hpp).
+  for (const std::string& note :
+       {mass_scaling_warning(sim.mass_scaling(), mesh.number_of_vertices(), s.dt),
+        air_step_warning(air_step(sim.rest_positions(), sim.faces(), sim.inv_masses(), s), s)})
+    if (!note.empty()) warn(r, obs, note);
   // math-spec 11: harmless under pbd, whose step does not see the stiffness.
   if (rest.sliver_faces > 0 && s.solver.kind == SolverKind::Xpbd)
     warn(r, obs,

@@ -78,6 +78,11 @@ class Simulator {
   /// What the explicit pressure's mass floor did: how many masses, by how much, and the step
   /// below which it would raise none (sim/mass_scaling.hpp).
   const MassScaling& mass_scaling() const { return mass_scaling_; }
+  /// The inverse vertex masses the steps use: area-lumped or unit, with the floors of
+  /// build_rest_state and the pressure's mass scaling (0: pinned).
+  const Eigen::VectorXd& inv_masses() const { return inv_mass_; }
+  /// The faces, row j = face j's vertices, counter-clockwise from outside.
+  const Faces& faces() const { return faces_; }
   const AnisotropyReport& anisotropy_report() const { return anisotropy_report_; }
   /// Number of regions in the rest mesh's "f:region" map, whether or not anything acts on them.
   std::size_t region_count() const { return region_count_; }

@@ -44,6 +44,41 @@ std::vector<std::string> drive_warnings(const SimOptions& s, bool regions_act) {
   return out;
 }
 
+int swing_reversals(const std::vector<double>& history, std::size_t from) {
+  int reversals = 0;
+  int direction = 0;  // 0 before the first move by SWING_SHARE, then +1 rising, -1 falling
+  double low = 0.0, high = 0.0, extreme = 0.0;
+  bool fresh = true;  // no positive value since the start or the last inside-out one
+  const double keep = 1.0 - SWING_SHARE;
+  for (std::size_t n = from; n < history.size(); ++n) {
+    const double b = history[n];
+    if (!(b > 0.0)) {  // inside out: named by the negative V/V0's own warning
+      direction = 0;
+      fresh = true;
+      continue;
+    }
+    if (fresh) {
+      low = high = b;
+      fresh = false;
+      continue;
+    }
+    if (direction == 0) {
+      low = std::min(low, b);
+      high = std::max(high, b);
+      if (keep * b >= low) direction = 1;  // rose from the lowest by a share of b
+      if (b <= keep * high) direction = -1;
+      if (direction != 0) extreme = b;
+    } else if (direction > 0 ? b > extreme : b < extreme) {
+      extreme = b;  // the move goes on
+    } else if (direction > 0 ? b <= keep * extreme : keep * b >= extreme) {
+      direction = -direction;
+      extreme = b;
+      ++reversals;
+    }
+  }
+  return reversals;
+}
+
 std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed) {
   std::vector<std::string> out;
   if (history.size() < 2) return out;
@@ -60,14 +95,21 @@ std::vector<std::string> volume_warnings(const std::vector<double>& history, boo
     rose = rose || b > SWING_FACTOR * a;
     fell = fell || a > SWING_FACTOR * b;
   }
-  if (rose && fell) {
+  const int reversals = swing_reversals(history, frames - frames / 2);
+  if ((rose && fell) || reversals >= SWING_REVERSALS) {
+    const std::string how = rose && fell
+                                ? "more than a factor " + ratio_text(SWING_FACTOR) + " up and down"
+                                : std::to_string(reversals) + " times up and down by " +
+                                      ratio_text(100.0 * SWING_SHARE) + " % or more";
     out.push_back("V/V0 swung between " + ratio_text(low) + " and " + ratio_text(high) +
-                  " from frame to frame in the second half of the run (more than a factor " +
-                  ratio_text(SWING_FACTOR) +
-                  " up and down), so its last value means little: the pressure is an explicit "
-                  "load, and on a very thin shell the air's (`air_balance`) overshoots every step; "
-                  "a smaller `dt` or `air_balance` 0 settles it");
-    return out;
+                  " from frame to frame in the second half of the run (" + how +
+                  "), so its last value means little: the pressure and the air (`air_balance`) "
+                  "are explicit loads, which overshoot every step where the step is too long for "
+                  "the shell's mass (a light `density`, a strong `pressure`, a very thin shell; "
+                  "said at the start if so); a smaller `dt`, or `air_balance` 0 on a very thin "
+                  "shell, settles it");
+    // A swing whose lowest value is above the rest volume grew all the same, wherever it ends.
+    if (!(low > GROWTH_WARNING_RATIO)) return out;
   }
   const double last = history.back();
   if (compressed && last > GROWTH_WARNING_RATIO)

@@ -4,6 +4,7 @@
 // (run_contraction).
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -31,9 +32,28 @@ inline constexpr double SWING_FACTOR = 2.0;
 /// Runs that something else might contract are left alone: only these sure cases are said.
 std::vector<std::string> drive_warnings(const SimOptions& s, bool regions_act);
 
+/// The share of V/V0 by which a sustained swing rises and falls: a reversal counts where V/V0
+/// has moved back from its last peak or trough by at least this share of the larger of the two.
+/// A V/V0 that still rises and falls by a tenth of itself late in a run has no end value to
+/// speak of, while a shell that settles, or rings down after a collapse, moves by far less.
+inline constexpr double SWING_SHARE = 0.1;
+
+/// The reversals (each by SWING_SHARE, see above) in the second half of a run that make a
+/// sustained swing: two whole periods after the first rise or fall, which neither a collapse, a
+/// single rebound (a pressure key that drops), nor a step to a new key makes.
+inline constexpr int SWING_REVERSALS = 4;
+
+/// The reversals of `history` from index `from` on: V/V0 turns back from its last peak (trough)
+/// by at least SWING_SHARE of the peak (of the value it rose to), after a first move by as
+/// much; a value not above 0 (inside out) starts the count of moves again.
+int swing_reversals(const std::vector<double>& history, std::size_t from);
+
 /// The warnings for a run whose V/V0 after each frame is `history` (frame 0, the rest state,
 /// first). `compressed`: every step had an outside pressure above 0 and no target volume drove the
-/// volume. A swing is named rather than a growth where both apply: its last V/V0 is either side.
+/// volume. A swing, in the second half of the frames, is a rise and a fall by more than
+/// SWING_FACTOR between two frames, or at least SWING_REVERSALS reversals (swing_reversals); it
+/// is named rather than a growth where both apply and it goes below GROWTH_WARNING_RATIO: its
+/// last V/V0 is then either side. A swing wholly above it is named with the growth.
 std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed);
 
 /// The share of all vertex moves (vertices x steps) the collision fail-safe may revert before a

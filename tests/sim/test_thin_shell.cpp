@@ -99,6 +99,9 @@ TEST(ThinShell, ASwingingVolumeIsNamed) {
   }
   EXPECT_EQ(has_warning(r, "from frame to frame in the second half of the run"), rose && fell);
   EXPECT_TRUE(rose && fell) << "the pillow no longer swings: the warning is untested here";
+  // Its sheets are so close that the air's spring is past the explicit step's bound at the
+  // default density (sim/air_step.hpp): the run said so before its first step.
+  EXPECT_TRUE(has_warning(r, "that the enclosed air is sure to take back in one step"));
 }
 
 TEST(ThinShell, VolumeWarningsFromAHistory) {
@@ -114,6 +117,64 @@ TEST(ThinShell, VolumeWarningsFromAHistory) {
   // A fall alone is a collapse, not a swing; so is a swing that ended in the first half.
   EXPECT_TRUE(volume_warnings({1.0, 0.9, 0.8, 0.3, 0.1}, true).empty());
   EXPECT_TRUE(volume_warnings({1.0, 0.3, 0.9, 0.3, 0.5, 0.5, 0.5, 0.5, 0.5}, true).empty());
+}
+
+// Before, only a rise and a fall by a factor 2 between two frames were a swing: a light `density`
+// (bumpy_sphere at 0.002) swung between about 0.3 and 0.6 for its whole run and ended "ok" with
+// no warning. A sustained swing is now also SWING_REVERSALS reversals by SWING_SHARE.
+
+/// 100 frames of a fall from 1 to `settle`, then `tail` (the second half, frames 101 to 200).
+std::vector<double> history(double settle, const std::vector<double>& tail) {
+  std::vector<double> h{1.0};
+  for (int n = 1; n <= 100; ++n) h.push_back(1.0 + (settle - 1.0) * n / 100.0);
+  h.insert(h.end(), tail.begin(), tail.end());
+  return h;
+}
+
+TEST(ThinShell, ASustainedSwingBelowAFactorTwoIsNamed) {
+  // 0.35, 0.6, 0.35, ... as a light shell's air overshoots every step: each rise a factor 1.7.
+  std::vector<double> tail;
+  for (int n = 0; n < 100; ++n) tail.push_back(n % 2 ? 0.6 : 0.35);
+  const std::vector<double> h = history(0.35, tail);
+  // The first rise (frame 102) starts the count; each of the 98 frames after it turns back.
+  EXPECT_EQ(swing_reversals(h, 100), 98);
+  const std::vector<std::string> w = volume_warnings(h, true);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_NE(w[0].find("swung between 0.35 and 0.6"), std::string::npos) << w[0];
+  EXPECT_NE(w[0].find("98 times up and down by 10 % or more"), std::string::npos) << w[0];
+  // A slower swing too: four frames up, four down, by a quarter.
+  tail.clear();
+  for (int n = 0; n < 100; ++n)
+    tail.push_back(n % 8 < 4 ? 0.4 + 0.05 * (n % 4) : 0.55 - 0.05 * (n % 4));
+  EXPECT_EQ(volume_warnings(history(0.4, tail), true).size(), 1u);
+  // A swing wholly above the rest volume under an outside pressure grew too (the thin card
+  // above swings between about 3.3 and 3.9): both are named.
+  tail.clear();
+  for (int n = 0; n < 100; ++n) tail.push_back(n % 2 ? 3.9 : 3.3);
+  const std::vector<std::string> grew = volume_warnings(history(3.3, tail), true);
+  ASSERT_EQ(grew.size(), 2u);
+  EXPECT_NE(grew[1].find("it grew"), std::string::npos) << grew[1];
+  EXPECT_EQ(volume_warnings(history(3.3, tail), false).size(), 1u);
+}
+
+TEST(ThinShell, ASettlingOrReboundingVolumeIsNoSwing) {
+  // Settling with noise of 2 % from frame to frame.
+  std::vector<double> tail;
+  for (int n = 0; n < 100; ++n) tail.push_back(0.5 * (1.0 + (n % 2 ? 0.02 : -0.02)));
+  EXPECT_EQ(swing_reversals(history(0.5, tail), 100), 0);
+  EXPECT_TRUE(volume_warnings(history(0.5, tail), true).empty());
+  // A rebound when a pressure key drops, with one overshoot: one reversal.
+  tail.clear();
+  for (int n = 0; n < 100; ++n) tail.push_back(n < 20 ? 0.5 : n < 30 ? 0.5 + 0.04 * (n - 20) : 0.8);
+  tail[30] = 0.95;
+  EXPECT_LT(swing_reversals(history(0.5, tail), 100), SWING_REVERSALS);
+  EXPECT_TRUE(volume_warnings(history(0.5, tail), false).empty());
+  // A swing of the first half alone, and an inside-out history, are not counted.
+  std::vector<double> early{1.0};
+  for (int n = 0; n < 100; ++n) early.push_back(n % 2 ? 0.6 : 0.35);
+  early.insert(early.end(), 100, 0.45);
+  EXPECT_TRUE(volume_warnings(early, true).empty());
+  EXPECT_EQ(swing_reversals({0.5, -0.5, 0.5, -0.5, 0.5}, 0), 0);
 }
 
 }  // namespace
