@@ -427,7 +427,8 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   // ends with a V/V0 that the load does not explain, and the run would say nothing of it.
   bool compressed = !has_target;
   for (int n = 0; compressed && n < r.frames_run; ++n) compressed = sim.pressure_at(n) > 0.0;
-  for (const std::string& w : volume_warnings(history, compressed)) warn(r, obs, w);
+  const bool scheduled = !s.target_volume_schedule.empty() || !s.pressure_schedule.empty();
+  for (const std::string& w : volume_warnings(history, compressed, scheduled)) warn(r, obs, w);
   // A shell held at rest by its near pairs was told "nothing can move" and its remedy at the
   // start; the fail-safe's reverts are those pairs, and the frozen warning's remedies miss them.
   for (const auto& [name, total] : r.totals.per_step(r.frames_run))

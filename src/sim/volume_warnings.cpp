@@ -79,7 +79,8 @@ int swing_reversals(const std::vector<double>& history, std::size_t from) {
   return reversals;
 }
 
-std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed) {
+std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed,
+                                         bool scheduled) {
   std::vector<std::string> out;
   if (history.size() < 2) return out;
   // The second half of the frames: the start of a run may fall fast (a collapse under a large
@@ -95,7 +96,7 @@ std::vector<std::string> volume_warnings(const std::vector<double>& history, boo
     rose = rose || b > SWING_FACTOR * a;
     fell = fell || a > SWING_FACTOR * b;
   }
-  const int reversals = swing_reversals(history, frames - frames / 2);
+  const int reversals = scheduled ? 0 : swing_reversals(history, frames - frames / 2);
   if ((rose && fell) || reversals >= SWING_REVERSALS) {
     const std::string how = rose && fell
                                 ? "more than a factor " + ratio_text(SWING_FACTOR) + " up and down"

@@ -54,7 +54,11 @@ int swing_reversals(const std::vector<double>& history, std::size_t from);
 /// SWING_FACTOR between two frames, or at least SWING_REVERSALS reversals (swing_reversals); it
 /// is named rather than a growth where both apply and it goes below GROWTH_WARNING_RATIO: its
 /// last V/V0 is then either side. A swing wholly above it is named with the growth.
-std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed);
+/// `scheduled`: keys drive the load (a keyed target volume or pressure), which may move V/V0 up
+/// and down on purpose (a breathing shell), so the reversals are not counted; the frame-to-frame
+/// factor still is.
+std::vector<std::string> volume_warnings(const std::vector<double>& history, bool compressed,
+                                         bool scheduled = false);
 
 /// The share of all vertex moves (vertices x steps) the collision fail-safe may revert before a
 /// run counts as frozen: nearly every vertex in nearly every step, so that the result is about
