@@ -18,13 +18,13 @@
 #include <utility>
 #include <vector>
 
+#include "check_against.hpp"
 #include "command_line.hpp"
 #include "commands.hpp"
 #include "core/classic_locale.hpp"
 #include "json_writer.hpp"
 #include "mesh/eigen_point_map.hpp"
 #include "mesh/formats.hpp"
-#include "mesh/read_polygon_soup.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
 #include "shellcontract/validation.hpp"
@@ -45,11 +45,14 @@ vertices, faces, edges, connected components, Euler characteristic and genus, cl
 enclosed volume, bounding-box diagonal, zero-area faces and self-intersecting face pairs.
 Polygons are triangulated and inside-out components flipped, as 'run' would (see the warnings;
 with --against, each warning names its file, MESH or INPUT).
-With --against, MESH is a result of 'run' on INPUT (same vertices and faces, moved): the face
-pairs that intersect in MESH but not in INPUT are counted (compared polygon by polygon, so a quad
-split along its other diagonal is the same quad). A pair that intersects or touches in INPUT is
-not new however far it crosses in MESH: parts touching in INPUT may pass through each other
-unseen ('run' warns of them).
+With --against, MESH is a result of 'run' on INPUT (same vertices and faces, moved): each polygon
+of MESH that is INPUT's polygon of the same index is split into the triangles INPUT's was split
+into, the ones 'run' simulated (not along the diagonal MESH's folded shape would choose; a warning
+says when they make no usable mesh and MESH's own split is checked), and the face pairs that
+intersect in MESH but not in INPUT are counted (compared polygon by polygon). A pair that
+intersects or touches in INPUT is not new however far it crosses in MESH: parts touching in INPUT
+may pass through each other unseen ('run' warns of them). Another tool may split a folded quad of
+MESH along its other diagonal.
 
 exit codes: 0 the mesh can be used (self-intersections already in the input are reported, not
             refused), 1 bad usage (also: MESH and INPUT do not have the same vertices and faces),
@@ -59,79 +62,6 @@ exit codes: 0 the mesh can be used (self-intersections already in the input are 
             (a thread, an open file), 130 interrupted (Ctrl-C, SIGTERM)
 
 options)";
-}
-
-/// A file's polygons (as its reader gives them) and, per face of the mesh read_input_mesh makes
-/// of it, the polygon that face comes from: face i < #polygons is polygon i's first triangle,
-/// the other triangles of split polygons follow in polygon order.
-struct Polygons {
-  std::vector<std::vector<std::size_t>> polygons;
-  std::vector<std::size_t> face_origin;
-};
-
-Polygons read_polygons(const std::string& path) {
-  Polygons p;
-  std::vector<Point3> points;
-  SourceLines lines;
-  read_polygon_soup(path, lower_extension(path), points, p.polygons, lines);
-  for (std::size_t i = 0; i < p.polygons.size(); ++i) p.face_origin.push_back(i);
-  for (std::size_t i = 0; i < p.polygons.size(); ++i)
-    for (std::size_t k = 3; k < p.polygons[i].size(); ++k) p.face_origin.push_back(i);
-  return p;
-}
-
-/// Which face pairs of `mesh` (read from `path`) are new: those whose polygons do not intersect
-/// in `input` (faces of `input_mesh`, read from input_path, with pairs input_pairs). A face of
-/// the result belongs to the input polygon that holds its three vertices.
-struct NewPairs {
-  std::vector<std::size_t> polygon;  // per result face
-  std::set<std::pair<std::size_t, std::size_t>> before;
-  bool operator()(const FacePair& q) const {
-    const std::size_t a = polygon[q.first.idx()], b = polygon[q.second.idx()];
-    return !before.count({std::min(a, b), std::max(a, b)});
-  }
-};
-
-/// @throws UsageError if the two files do not have the same vertices and polygons
-NewPairs new_pairs(const std::string& path, const Mesh& mesh, const std::string& input_path,
-                   const Mesh& input_mesh, const std::vector<FacePair>& input_pairs) {
-  const std::string not_same = path + " is not a result of " + input_path + ": ";
-  // Vertices as the files number them (a mesh welded along its seams too: mesh_io.hpp).
-  const std::size_t nv = input_vertex_count(mesh), input_nv = input_vertex_count(input_mesh);
-  if (nv != input_nv || mesh.number_of_faces() != input_mesh.number_of_faces())
-    throw UsageError(not_same + std::to_string(nv) + " vertices and " +
-                     std::to_string(mesh.number_of_faces()) + " faces against " +
-                     std::to_string(input_nv) + " and " +
-                     std::to_string(input_mesh.number_of_faces()));
-  const Polygons in = read_polygons(input_path);
-  std::vector<std::vector<std::size_t>> polygons_of(input_nv);
-  for (std::size_t p = 0; p < in.polygons.size(); ++p)
-    for (const std::size_t v : in.polygons[p]) polygons_of[v].push_back(p);
-  // The input polygon of each result face: the one polygon around its first vertex that holds
-  // all three of its vertices.
-  NewPairs out;
-  out.polygon.resize(mesh.number_of_faces());
-  const std::vector<std::array<std::size_t, 3>> corners = input_faces(mesh);
-  for (const FaceIndex f : mesh.faces()) {
-    const std::array<std::size_t, 3>& fv = corners[f.idx()];
-    bool found = false;
-    for (const std::size_t p : polygons_of[fv[0]]) {
-      const auto& poly = in.polygons[p];
-      if (std::find(poly.begin(), poly.end(), fv[1]) != poly.end() && std::find(poly.begin(), poly.end(), fv[2]) != poly.end()) {
-        out.polygon[f.idx()] = p;
-        found = true;
-        break;
-      }
-    }
-    if (!found)
-      throw UsageError(not_same + "its face " + std::to_string(f.idx()) + " (vertices " + std::to_string(fv[0]) + " " +
-                       std::to_string(fv[1]) + " " + std::to_string(fv[2]) + ") is in no face of the input");
-  }
-  for (const FacePair& q : input_pairs) {
-    const std::size_t a = in.face_origin[q.first.idx()], b = in.face_origin[q.second.idx()];
-    out.before.insert({std::min(a, b), std::max(a, b)});
-  }
-  return out;
 }
 
 /// Pairs as a JSON array text.
@@ -166,13 +96,13 @@ int command_check(int argc, char** argv) {
   std::string input, against;
   bool json = false, fail_on_intersections = false;
   po::options_description visible;
-  visible.add_options()
-      ("help,h", "show this help")
-      ("json", po::bool_switch(&json), "print the report as a JSON object on stdout")
-      ("against", po::value(&against)->value_name("INPUT"),
-       "MESH is a result of 'run' on INPUT: exit 4 if MESH has self-intersecting face pairs that INPUT lacks")
-      ("fail-on-self-intersections", po::bool_switch(&fail_on_intersections),
-       "exit 4 if MESH has any self-intersecting face pairs");
+  visible.add_options()("help,h", "show this help")("json", po::bool_switch(&json),
+                                                    "print the report as a JSON object on stdout")(
+      "against", po::value(&against)->value_name("INPUT"),
+      "MESH is a result of 'run' on INPUT, read along INPUT's triangles: exit 4 if MESH has "
+      "self-intersecting face pairs that INPUT lacks")(
+      "fail-on-self-intersections", po::bool_switch(&fail_on_intersections),
+      "exit 4 if MESH has any self-intersecting face pairs");
   try {
     const po::variables_map vm = parse_command_line(argc, argv, visible, input);
     if (vm.count("help")) {
@@ -188,8 +118,6 @@ int command_check(int argc, char** argv) {
 
   std::string stage = input;  // the file whose problem a JSON error reports
   try {
-    InputReport report;
-    const Mesh mesh = read_input_mesh(input, &report);
     // With --against two files are read, and a warning (a polygon split, a face of zero area)
     // is about one of them: it names its file.
     const auto print_warnings = [&against](const std::string& file, const InputReport& r) {
@@ -198,7 +126,22 @@ int command_check(int argc, char** argv) {
       for (const std::string& n : r.notes)
         std::cerr << "note: " << (against.empty() ? std::string() : file + ": ") << n << '\n';
     };
+    // With --against, INPUT is read first: MESH's polygons are split into the triangles `run`
+    // simulated, INPUT's (read_result_mesh), not along the diagonals MESH's folded shape prefers,
+    // which could cross a sheet the simulated pair kept apart.
+    InputReport report, against_report;
+    Mesh input_mesh;
+    Polygons in;
+    if (!against.empty()) {
+      stage = against;
+      input_mesh = read_input_mesh(against, &against_report);
+      in = read_polygons(against);
+      stage = input;
+    }
+    const Mesh mesh = against.empty() ? read_input_mesh(input, &report)
+                                      : read_result_mesh(input, against, input_mesh, in, &report);
     print_warnings(input, report);
+    if (!against.empty()) print_warnings(against, against_report);
     const Positions x = positions_from_mesh(mesh);
     // stableNorm: the squares of extents near 1e+-160 and beyond leave double's range, and
     // check reports on any mesh it can read, however far its scale is from the engine's.
@@ -208,12 +151,9 @@ int command_check(int argc, char** argv) {
 
     // A result judged against its input, or on its own (exit 4 when it fails).
     std::size_t input_pair_count = 0;
-    InputReport against_report;
     std::optional<NewPairs> is_new;
     if (!against.empty()) {
       stage = against;
-      const Mesh input_mesh = read_input_mesh(against, &against_report);
-      print_warnings(against, against_report);
       // INPUT's pairs are all kept, to tell MESH's new ones from them: bounded as run
       // --validate bounds its own (validation.hpp, baseline_pair_limit).
       const std::size_t limit = baseline_pair_limit(input_mesh.number_of_faces());
@@ -223,7 +163,7 @@ int command_check(int argc, char** argv) {
         throw InputError(too_many_own_pairs(against, limit) + "; check " + input +
                          " without --against");
       input_pair_count = own.count;
-      is_new = new_pairs(input, mesh, against, input_mesh, own.first);
+      is_new = new_pairs(input, mesh, against, input_mesh, in, own.first);
     }
     // MESH's pairs can number the square of its faces (parts that pass through each other):
     // they are counted, and the first CHECK_LISTED_PAIRS in face order listed (docs/cli.md,

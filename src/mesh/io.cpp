@@ -31,6 +31,7 @@
 #include "core/memory_error.hpp"
 #include "core/plural.hpp"
 #include "core/progress_stage.hpp"
+#include "mesh/followed_split.hpp"
 #include "mesh/formats.hpp"
 #include "mesh/polygon_split.hpp"
 #include "mesh/read_polygon_soup.hpp"
@@ -53,25 +54,38 @@ using soup::Polygon;
 
 /// The warning for the polygons split into triangles: how many each rule of split_polygon split,
 /// since a user who sees an odd fold there needs to know whether a fan, a diagonal or ear
-/// clipping made the triangles (docs/design/attributes.md).
-std::string split_warning(std::size_t split, std::size_t triangles, const std::array<std::size_t, soup::SPLIT_RULES>& by_rule,
-                          std::size_t polygons) {
+/// clipping made the triangles (docs/design/attributes.md); and, reading with another file's
+/// splits (read_input_mesh_following), how many were split as that file's polygon of the same
+/// index (`followed`) and how many are not that polygon, split by their own shape (`unfollowed`,
+/// counted by rule too), so that a user sees which triangles were checked.
+std::string split_warning(std::size_t split, std::size_t triangles,
+                          const std::array<std::size_t, soup::SPLIT_RULES>& by_rule,
+                          std::size_t polygons, const SplitsToFollow* follow, std::size_t followed,
+                          std::size_t unfollowed) {
   static const char* const HOW[soup::SPLIT_RULES] = {
       "by a fan from a corner", "by corner 0's fan (a flat polygon, no normal)",
       "along a folded quad's least folded diagonal", "by ear clipping",
       "by the fan that best follows the polygon's normal"};
   std::string how;
+  if (followed > 0)
+    how =
+        std::to_string(followed) + " as " + follow->file + " splits its polygon of the same index";
   for (std::size_t r = 0; r < by_rule.size(); ++r)
     if (by_rule[r] > 0) how += (how.empty() ? "" : ", ") + std::to_string(by_rule[r]) + " " + HOW[r];
+  if (unfollowed > 0)
+    how += " (" + std::to_string(unfollowed) + (unfollowed == 1 ? " is" : " are") +
+           " not the polygon of the same index in " + follow->file + ")";
   const bool one = split == 1;
   return std::to_string(split) + (one ? " polygon" : " polygons") + " with more than 3 vertices " + (one ? "was" : "were") +
          " split into " + std::to_string(triangles) + " triangles (" + how + "; the first triangle of each keeps the polygon's face index, the others are appended after face " +
          std::to_string(polygons - 1) + ")";
 }
 
-/// Checks the soup, triangulates and orients it, and builds the mesh (read_input_mesh's work).
+/// Checks the soup, triangulates and orients it, and builds the mesh (read_input_mesh's work);
+/// with `follow`, polygons are split as read_input_mesh_following says.
 Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Point3>& points,
-                const std::vector<Polygon>& polygons, const SourceLines& lines, InputReport* report) {
+                const std::vector<Polygon>& polygons, const SourceLines& lines, InputReport* report,
+                const SplitsToFollow* follow = nullptr) {
   if (points.empty() || polygons.empty())
     fail(path, "empty mesh", counted(points.size(), "vertex", "vertices") + " and " + counted(polygons.size(), "face", "faces"));
   Namer name;
@@ -108,7 +122,7 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   std::iota(origin.begin(), origin.end(), 0);
   std::vector<Polygon> extra;
   std::vector<std::size_t> extra_origin;
-  std::size_t split = 0;
+  std::size_t split = 0, followed = 0, unfollowed = 0;
   std::array<std::size_t, soup::SPLIT_RULES> by_rule{};  // polygons split by each soup::SplitRule, for the warning
 
   // Polygons above MAX_SPLIT_CORNERS are left to the loop's own message.
@@ -162,16 +176,26 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
       tris[i] = p;
       continue;
     }
-    soup::SplitRule rule = soup::SplitRule::fan;
-    std::vector<Polygon> t = soup::split_polygon(p, unit, &rule);
-    if (t.empty())
-      fail_faces(path, "non-convex polygon",
-                 name.polygon(i) + " has " + std::to_string(p.size()) +
-                     " vertices, and neither ear clipping nor a fan without a zero-area triangle splits it;"
-                     " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) before using the file",
-                 {i});
+    std::vector<Polygon> t;
+    if (follow != nullptr && i < follow->polygons.size() && i < follow->triangles.size())
+      t = soup::split_like(p, follow->polygons[i], follow->triangles[i]);
+    if (!t.empty()) {
+      ++followed;
+    } else {
+      soup::SplitRule rule = soup::SplitRule::fan;
+      t = soup::split_polygon(p, unit, &rule);
+      if (t.empty())
+        fail_faces(path, "non-convex polygon",
+                   name.polygon(i) + " has " + std::to_string(p.size()) +
+                       " vertices, and neither ear clipping nor a fan without a zero-area triangle "
+                       "splits it;"
+                       " triangulate it in your modelling tool (Blender: Face > Triangulate Faces) "
+                       "before using the file",
+                   {i});
+      ++by_rule[static_cast<std::size_t>(rule)];
+      if (follow != nullptr) ++unfollowed;
+    }
     ++split;
-    ++by_rule[static_cast<std::size_t>(rule)];
     tris[i] = t[0];
     for (std::size_t k = 1; k < t.size(); ++k) {
       extra.push_back(std::move(t[k]));
@@ -187,7 +211,8 @@ Mesh check_soup(const std::string& path, const std::string& ext, std::vector<Poi
   options.gltf = is_mesh_format(ext, &MeshFormat::gltf);
   options.triangulated = split;
   if (split > 0)
-    options.split_warning = split_warning(split, split + extra.size(), by_rule, polygons.size());
+    options.split_warning = split_warning(split, split + extra.size(), by_rule, polygons.size(),
+                                          follow, followed, unfollowed);
   return soup::accept_triangles(path, points, tris, normalized, name, options, report);
 }
 
@@ -201,7 +226,10 @@ Mesh check_input_soup(const std::string& name, std::vector<Point3> points,
 
 // ================================================================================== read_input_mesh
 
-Mesh read_input_mesh(const std::string& path, InputReport* report) {
+namespace {
+
+/// read_input_mesh, and read_input_mesh_following with `follow`.
+Mesh read_mesh(const std::string& path, InputReport* report, const SplitsToFollow* follow) {
   const std::string ext = lower_extension(path);
   std::vector<Point3> points;
   std::vector<Polygon> polygons;
@@ -220,7 +248,7 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
     progress_stage("checking " + path);
     Mesh mesh = [&] {
       try {
-        return check_soup(path, ext, points, polygons, lines, report);
+        return check_soup(path, ext, points, polygons, lines, report, follow);
       } catch (const FaceListError& e) {
         // Faces left unread (more than the header counts) open the mesh: the refusal says so.
         if (read_warnings.empty()) throw;
@@ -253,6 +281,17 @@ Mesh read_input_mesh(const std::string& path, InputReport* report) {
   } catch (const std::invalid_argument& e) {
     fail(path, "parse error", std::string("a value is not a number (") + e.what() + ")");
   }
+}
+
+}  // namespace
+
+Mesh read_input_mesh(const std::string& path, InputReport* report) {
+  return read_mesh(path, report, nullptr);
+}
+
+Mesh read_input_mesh_following(const std::string& path, const SplitsToFollow& follow,
+                               InputReport* report) {
+  return read_mesh(path, report, &follow);
 }
 
 }  // namespace shellcontract

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 
 #include "mesh/soup_geometry.hpp"
 
@@ -158,6 +159,41 @@ std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& 
   std::vector<Polygon> tris = ear_clip(p, pts, normal);
   if (!tris.empty()) return by(SplitRule::ear_clip, std::move(tris));
   return by(SplitRule::best_fan, best_fan(p, pts, normal));
+}
+
+std::vector<Polygon> split_like(const Polygon& p, const Polygon& like,
+                                const std::vector<Polygon>& triangles) {
+  const std::size_t n = p.size();
+  if (like.size() != n || n < 3 || triangles.size() != n - 2) return {};
+  const auto start = std::find(like.begin(), like.end(), p[0]);
+  if (start == like.end()) return {};
+  const std::size_t s = static_cast<std::size_t>(start - like.begin());
+  // The same cycle, forwards or backwards from p's first corner.
+  bool forwards = true, backwards = true;
+  for (std::size_t k = 0; k < n; ++k) {
+    forwards = forwards && like[(s + k) % n] == p[k];
+    backwards = backwards && like[(s + n - k) % n] == p[k];
+  }
+  if (!forwards && !backwards) return {};
+  // Corner positions in p (sorted by vertex: a polygon may have thousands of corners): a
+  // triangle a, b, c is wound like p when b comes before c walking round p from a.
+  std::vector<std::pair<std::size_t, std::size_t>> by_vertex;
+  for (std::size_t k = 0; k < n; ++k) by_vertex.emplace_back(p[k], k);
+  std::sort(by_vertex.begin(), by_vertex.end());
+  const auto position = [&](std::size_t v) {
+    const auto at =
+        std::lower_bound(by_vertex.begin(), by_vertex.end(), std::make_pair(v, std::size_t{0}));
+    return at != by_vertex.end() && at->first == v ? at->second : n;
+  };
+  std::vector<Polygon> out;
+  for (const Polygon& t : triangles) {
+    if (t.size() != 3) return {};
+    const std::size_t a = position(t[0]), b = position(t[1]), c = position(t[2]);
+    if (a == n || b == n || c == n || a == b || b == c || a == c) return {};
+    const bool wound = (b + n - a) % n < (c + n - a) % n;
+    out.push_back(wound ? Polygon{t[0], t[1], t[2]} : Polygon{t[0], t[2], t[1]});
+  }
+  return out;
 }
 
 }  // namespace shellcontract::soup

@@ -50,4 +50,12 @@ constexpr std::size_t SPLIT_RULES = 5;  ///< SplitRule's values, for counting by
 std::vector<Polygon> split_polygon(const Polygon& p, const std::vector<Point3>& pts,
                                    SplitRule* rule = nullptr);
 
+/// Polygon `p` split into the triangles another file's polygon `like` was split into (a result of
+/// `run` read as its input was: `check --against`), each wound like `p` and starting at the corner
+/// its triangle in `triangles` starts at; empty when `p` is not `like` (the same corners in the
+/// same cycle, from any corner and either way round) or `triangles` are not n - 2 triangles of
+/// `like`'s corners. No rule above is applied: the split is the one `like`'s was.
+std::vector<Polygon> split_like(const Polygon& p, const Polygon& like,
+                                const std::vector<Polygon>& triangles);
+
 }  // namespace shellcontract::soup

@@ -213,3 +213,37 @@ TEST(ReadInputMeshPolygons, APyramidOnAFoldedQuadIsRead) {
 }
 
 }  // namespace
+
+namespace {
+
+using shellcontract::soup::split_like;
+
+// `check --against` splits a result's polygon into its input's triangles (split_like): the same
+// triangles whichever corner the result's polygon starts at, wound like it.
+TEST(SplitLike, TheSameCycleFromAnyCornerEitherWayRoundGetsTheSameTriangles) {
+  const Polygon like = {10, 11, 12, 13, 14};
+  const std::vector<Polygon> tris = {{10, 11, 12}, {12, 13, 14}, {10, 12, 14}};  // an ear split
+  const std::vector<Polygon> same = split_like(like, like, tris);
+  EXPECT_EQ(same, tris);
+  // Rotated: the same corner triples, each starting where the given one starts.
+  EXPECT_EQ(split_like({12, 13, 14, 10, 11}, like, tris), tris);
+  // Reversed (a result whose polygon is wound the other way): each triangle wound the other way.
+  const std::vector<Polygon> reversed = split_like({14, 13, 12, 11, 10}, like, tris);
+  EXPECT_EQ(reversed, (std::vector<Polygon>{{10, 12, 11}, {12, 14, 13}, {10, 14, 12}}));
+  // A triangle given wound against the polygon (an inside-out input, flipped) is wound like it.
+  EXPECT_EQ(split_like(like, like, {{10, 12, 11}, {12, 13, 14}, {10, 12, 14}}), tris);
+}
+
+TEST(SplitLike, AnotherPolygonOrAnotherSplitGetsNone) {
+  const Polygon like = {0, 1, 2, 3};
+  const std::vector<Polygon> tris = {{0, 1, 2}, {0, 2, 3}};
+  EXPECT_TRUE(split_like({0, 2, 1, 3}, like, tris).empty());     // the same corners, another cycle
+  EXPECT_TRUE(split_like({0, 1, 2, 4}, like, tris).empty());     // another corner
+  EXPECT_TRUE(split_like({0, 1, 2, 3, 4}, like, tris).empty());  // more corners
+  EXPECT_TRUE(split_like(like, like, {{0, 1, 2}}).empty());      // too few triangles
+  EXPECT_TRUE(
+      split_like(like, like, {{0, 1, 2}, {0, 2, 4}}).empty());  // a corner not the polygon's
+  EXPECT_TRUE(split_like(like, like, {{0, 1, 1}, {0, 2, 3}}).empty());  // a repeated corner
+}
+
+}  // namespace
