@@ -1,5 +1,3 @@
-#include "shellcontract/options.hpp"
-
 #include <cmath>
 #include <set>
 #include <utility>
@@ -7,6 +5,8 @@
 #include "material/registry.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/material.hpp"
+#include "shellcontract/options.hpp"
+#include "sim/target_ramp.hpp"
 
 namespace shellcontract {
 
@@ -209,6 +209,20 @@ OptionReview review_options(const RunOptions& r) {
   check("target_ramp",
         !s.target_volume_schedule.empty() && !(regions && s.inward_term == InwardTerm::Volume),
         "the keys of `target_volume` set its timing");
+  // A ramp longer than half the frames is shortened to it (target_ramp.hpp), so a target meant
+  // for the last frame is reached half way; keys time it to the frame.
+  if (r.given.count("target_ramp") && s.target_ramp_frames > target_ramp_used(s) &&
+      ((s.target_volume > 0.0 && s.target_volume_schedule.empty()) ||
+       (regions && s.inward_term == InwardTerm::Volume)))
+    w.push_back("`target_ramp` " + std::to_string(s.target_ramp_frames) +
+                " is more than half of `frames` (" + std::to_string(s.frames) +
+                "): the run shortens it to " + std::to_string(target_ramp_used(s)) +
+                ", so the ramp ends there and its end value is held over the rest" +
+                (s.target_volume > 0.0
+                     ? "; to reach the target at the last frame, give it as keys (`target_volume` "
+                       "\"0:1, " +
+                           std::to_string(s.frames) + ":" + shortest_text(s.target_volume) + "\")"
+                     : std::string()));
   // A key after the last frame is never reached: the run ends part way to it.
   for (const auto& [name, keys] : {std::pair<const char*, const Schedule*>{
                                        "target_volume", &s.target_volume_schedule},

@@ -173,6 +173,35 @@ TEST(Schedule, OptionTableTakesANumberOrKeys) {
   }));
 }
 
+TEST(Schedule, ARampLongerThanHalfTheFramesIsNamedWithTheKeysThatTimeIt) {
+  // `--target-ramp 72 -n 72` was halved without a word, so a deflation meant to last the whole
+  // animation ended half way through it (review "tasks" F1).
+  RunOptions o;
+  o.sim.frames = 72;
+  o.sim.target_volume = 0.4;
+  o.sim.target_ramp_frames = 72;
+  o.given.insert("target_ramp");
+  const std::vector<std::string> w = ineffective_options(o);
+  EXPECT_EQ(std::count_if(w.begin(), w.end(),
+                          [](const std::string& s) {
+                            return s.rfind(
+                                       "`target_ramp` 72 is more than half of `frames` (72): "
+                                       "the run shortens it to 36",
+                                       0) == 0 &&
+                                   s.find("(`target_volume` \"0:1, 72:0.4\")") != std::string::npos;
+                          }),
+            1)
+      << (w.empty() ? "" : w.front());
+  // Within half the frames, or not given (the default ramp, shortened as documented): nothing.
+  o.sim.target_ramp_frames = 36;
+  for (const std::string& s : ineffective_options(o))
+    EXPECT_EQ(s.find("more than half of `frames`"), std::string::npos) << s;
+  o.sim.target_ramp_frames = 100;
+  o.given.clear();
+  for (const std::string& s : ineffective_options(o))
+    EXPECT_EQ(s.find("more than half of `frames`"), std::string::npos) << s;
+}
+
 double cgal_volume(const Mesh& mesh, const Positions& x) {
   Mesh m = mesh;
   for (VertexIndex v : m.vertices()) m.point(v) = Point3(x(v.idx(), 0), x(v.idx(), 1), x(v.idx(), 2));
