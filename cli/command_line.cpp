@@ -8,6 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "shellcontract/error.hpp"
+#include "shellcontract/options.hpp"
+
 namespace shellcontract::cli {
 
 namespace po = boost::program_options;
@@ -87,6 +90,16 @@ po::variables_map parse(int argc, char** argv, const po::options_description& vi
     parsed = po::command_line_parser(argc, argv).options(all).style(style).run();
   } catch (const po::unknown_option& e) {
     throw UsageError(std::string(e.what()) + option_suggestion(e.get_option_name(), visible));
+  } catch (const po::invalid_command_line_syntax& e) {
+    // A run option given without its value: the values it takes, as its help ends with them
+    // (OptionSpec::help), so that `--validate` alone does not read like a switch that failed.
+    std::string name = e.get_option_name();
+    name.erase(0, name.find_first_not_of('-'));
+    const OptionSpec* spec = find_run_option(name);
+    const std::size_t last = spec ? spec->help.rfind("; ") : std::string::npos;
+    if (e.kind() != po::invalid_syntax::missing_parameter || last == std::string::npos) throw;
+    throw UsageError(std::string(e.what()) + ": " + spec->value_name + " is " +
+                     spec->help.substr(last + 2));
   }
   assign_positional(parsed, input_name);
   po::variables_map vm;

@@ -141,6 +141,20 @@ TEST_F(CliParsing, OnOffOptionsTakeOnlyOnOrOff) {
   EXPECT_EQ(run({"--collisions", "on", "--warm-start", "off"}).exit_code, 0);
 }
 
+// `--validate` with no value read like a switch that failed: "the required argument for option
+// '--validate' is missing", without the values it takes (review "tasks" F8).
+TEST_F(CliParsing, AnOptionGivenWithoutItsValueListsTheValues) {
+  const auto validate = run({"--validate"});
+  EXPECT_EQ(validate.exit_code, 1) << validate.output;
+  EXPECT_TRUE(has(validate.output, "'--validate' is missing: NAME is off | end | every-frame"))
+      << validate.output;
+  const auto material = run({"--material"});
+  EXPECT_EQ(material.exit_code, 1) << material.output;
+  EXPECT_TRUE(has(material.output, "is missing: NAME is stvk | corotated | linear | mooney-rivlin"))
+      << material.output;
+  EXPECT_FALSE(fs::exists(path("o.off")));
+}
+
 // --gltf-fps was read by strtod: "0x10" was 16 fps, " 3" was 3.
 TEST_F(CliParsing, GltfFpsTakesOnlyADecimalNumber) {
   for (const char* fps : {"0x10", "0x1p3", " 3", "inf"}) {
