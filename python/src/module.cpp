@@ -212,11 +212,17 @@ py::tuple read_mesh(const py::handle& path_arg) {
   Positions x;
   // Reading and checking touch no Python object: other Python threads go on meanwhile (a
   // program reading several files in threads, a user interface).
+  InputReport report;
   without_gil([&] {
-    mesh = read_input_mesh(path);
+    mesh = read_input_mesh(path, &report);
     // The file's vertices, a mesh welded along its seams included: contract() welds them again.
     x = input_positions(mesh, positions_from_mesh(mesh));
   });
+  // What the reader changed or found (polygons split, an inside-out mesh flipped, zero-area
+  // faces): a UserWarning each, as the CLI's "warning:" lines.
+  for (const std::string& w : report.warnings)
+    py::module_::import("warnings")
+        .attr("warn")(w, py::module_::import("builtins").attr("UserWarning"), 2);
   return py::make_tuple(positions_to_numpy(x), faces_to_numpy(mesh));
 }
 
@@ -262,6 +268,16 @@ void write_mesh(const py::handle& path_arg, const py::handle& vertices, const py
       py::module_::import("warnings").attr("warn")(w, py::module_::import("builtins").attr("UserWarning"), 2);
     return;
   }
+  // A glTF holds a scene, which only the file read (like=) can give; the writers' own message
+  // ("unknown extension") would hide that it is written that way.
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".glb" || ext == ".gltf")
+    throw UsageError("write_mesh: cannot write '" + path + "': a " + ext +
+                     " is written only with like= (the glTF file read_mesh read these faces from: "
+                     "it keeps the scene, with these positions); without like=, write .off, .obj, "
+                     ".ply or .stl");
   // Only C++ objects from here: other Python threads go on while the file is written.
   without_gil([&] { write_mesh_atomic(path, mesh, x); });
 }

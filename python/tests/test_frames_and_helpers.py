@@ -156,6 +156,22 @@ def test_read_mesh_refuses_like_the_cli(mesh_dir):
         shellcontract.read_mesh(mesh_dir / "bad" / "nan.off")
 
 
+def test_read_mesh_warns_of_what_the_reader_changed(mesh_dir):
+    """Before, the reader's warnings (an inside-out mesh flipped, polygons split) were dropped:
+    the CLI said them, Python said nothing."""
+    with pytest.warns(UserWarning, match="inside.out"):
+        shellcontract.read_mesh(mesh_dir / "inside_out_sphere.off")
+
+
+def test_write_mesh_says_a_gltf_needs_like(tmp_path, ico2):
+    """Before: "unknown extension '.glb'", though a .glb is written with like=."""
+    v, f = ico2
+    for name in ("x.glb", "x.GLTF"):
+        with pytest.raises(ValueError, match=r"is written only with like="):
+            shellcontract.write_mesh(tmp_path / name, v, f)
+        assert not (tmp_path / name).exists()
+
+
 def test_a_file_without_extension_is_said_to_have_none(tmp_path):
     """Before: "unknown extension: '.'"."""
     plain = tmp_path / "mesh_without_extension"
