@@ -13,7 +13,7 @@ import time
 from . import sweep_file, sweep_job, sweep_output, sweep_progress
 
 RESULT_COLUMNS = ("status", "exit_code", "final_volume_ratio", "frames_run", "wall_seconds",
-                  "peak_memory_mb", "new_intersections", "output")
+                  "resumed", "peak_memory_mb", "new_intersections", "output")
 
 
 def columns(varying):

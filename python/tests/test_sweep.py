@@ -22,7 +22,7 @@ pytest.importorskip("distributed")
 
 TIMING_COLUMNS = {"step_ms", "solve_ms", "ccd_ms"}
 RESULT_COLUMNS = ["status", "exit_code", "final_volume_ratio", "frames_run", "wall_seconds",
-                  "peak_memory_mb", "new_intersections", "output"]
+                  "resumed", "peak_memory_mb", "new_intersections", "output"]
 
 
 def sweep_env(cli):
@@ -497,6 +497,8 @@ def test_ctrl_c_stops_cleanly_and_a_rerun_resumes_the_interrupted_job(cli, mesh_
     assert "1 done already" in again.stderr, again.stderr
     records = [json.loads(p.read_text()) for p in done_jobs(out)]
     assert sum(r["resumed"] for r in records) == 1  # the interrupted one, from its checkpoint
+    # The table says which row's wall_seconds is a last attempt's, not a whole run's.
+    assert sorted(row["resumed"] for row in results(out)) == ["off", "on"]
     assert_equals_serial(out, serial_reference(cli, path, tmp_path))
 
 
