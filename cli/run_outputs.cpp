@@ -166,9 +166,12 @@ int report_run_end(const RunRequest& request, const RunResult& r, const OutputSt
                 << r.final_volume_ratio << ") was written to " << output << '\n';
       break;
     default:
+      // A check that passed says so too: its verdict was in the exit code and the summary only.
       if (!request.quiet)
         std::cerr << "wrote " << output << ": " << r.frames_run
-                  << " frames, V/V0 = " << r.final_volume_ratio << '\n';
+                  << " frames, V/V0 = " << r.final_volume_ratio
+                  << (r.new_intersections == 0 ? ", no new self-intersections (--validate)" : "")
+                  << '\n';
   }
   return r.exit_code();
 }

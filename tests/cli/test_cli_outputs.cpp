@@ -60,6 +60,20 @@ TEST_F(CliOutputs, SummaryNumbersAreShortestAndTargetReachedIsNullWithoutATarget
   EXPECT_GT(numbers, 20);
 }
 
+TEST_F(CliOutputs, AValidationThatPassedSaysSo) {
+  // `--validate end` that found nothing said nothing: the verdict was only in the exit code and
+  // the summary (review tasks F6). Without the check the line does not claim one.
+  const auto checked =
+      run_cli({"run", mesh("ico2.off"), "-o", out("o.off"), "-n", "2", "--validate", "end"});
+  ASSERT_EQ(checked.exit_code, 0) << checked.output;
+  EXPECT_NE(checked.output.find("frames, V/V0 = "), std::string::npos) << checked.output;
+  EXPECT_NE(checked.output.find(", no new self-intersections (--validate)"), std::string::npos)
+      << checked.output;
+  const auto unchecked = run_cli({"run", mesh("ico2.off"), "-o", out("o.off"), "-n", "2"});
+  ASSERT_EQ(unchecked.exit_code, 0) << unchecked.output;
+  EXPECT_EQ(unchecked.output.find("self-intersections"), std::string::npos) << unchecked.output;
+}
+
 TEST_F(CliOutputs, BenchErrorCsvRecomputesAndPbdEnergyErrorIsNotMeaningful) {
   const auto r = run_cli({"bench", "error", mesh("ico2.off"), "-n", "10", "--iterations", "1,5",
                           "--substeps", "1", "--csv", out("be.csv"), "-q"});
