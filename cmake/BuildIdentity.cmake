@@ -5,6 +5,8 @@
 #   -DSOURCE_DIR=the checkout  -DOUT=the header  -DGIT=git executable (may be empty)
 #   -DNATIVE=the target's name of a SHELLCONTRACT_NATIVE build (cmake/NativeTarget.cmake), empty
 #   for the default build
+#   -DTOOLCHAIN=the compiler, its version, the build type and its flags (CMakeLists.txt), empty
+#   to leave it out
 set(commit "")
 set(dirty "")
 if(GIT AND EXISTS "${SOURCE_DIR}/.git")
@@ -27,6 +29,18 @@ endif()
 # ("g0123456789ab.native.1a2b3c4d", "native.1a2b3c4d" outside git): its results may differ from
 # the default build's of the same source, so its checkpoints and job ids must too.
 set(source "${commit}${dirty}")
+# The toolchain: one commit built by another compiler, version or build type may contract
+# multiply-adds otherwise (the batched kernels rely on the compiler's fusing) and round
+# differently, so its checkpoints and job ids must differ too ("tc.1a2b3c4d").
+if(TOOLCHAIN)
+  string(SHA256 toolchain_hash "${TOOLCHAIN}")
+  string(SUBSTRING "${toolchain_hash}" 0 8 toolchain_hash)
+  if(source STREQUAL "")
+    set(source "tc.${toolchain_hash}")
+  else()
+    set(source "${source}.tc.${toolchain_hash}")
+  endif()
+endif()
 if(NATIVE)
   if(source STREQUAL "")
     set(source "${NATIVE}")

@@ -53,9 +53,9 @@ MeshError = _core.MeshError
 # ValueError, as these errors were before. The subclasses stay in _core: bound here, their names
 # would hide the builtins from this module's own code.
 FileError = _core.FileError
-# The build, "0.2.0+g0123456789ab", and the kernels of this machine, "avx2" or "scalar": what
-# `shellcontract --version` prints and checkpoints name (docs/architecture.md, "Checkpoints and
-# the build").
+# The build, "0.2.0+g0123456789ab.tc.5e6f7a8b", and the kernels of this machine, "avx2" or
+# "scalar": what `shellcontract --version` prints and checkpoints name (docs/cli.md, on
+# `--version`).
 __version__ = _core.__version__
 kernels = _core.kernels
 

@@ -445,7 +445,7 @@ Checkpoint read_checkpoint(const std::string& path) {
   // version's here, before they are judged by this one's (as "edited or damaged").
   if (c.version != checkpoint_tool_version())
     throw InputError("checkpoint " + printable(path) + " written by shellcontract " +
-                     printable(c.version, 60) + ", this is " + checkpoint_tool_version() +
+                     printable(c.version, 120) + ", this is " + checkpoint_tool_version() +
                      ": resume it with that build and kernels");
   if (c.history_beside) p.history = read_history_beside(path, history);
   check_checkpoint_fields(c, path);

@@ -39,6 +39,39 @@ if(NOT native_no_git STREQUAL "native.1a2b3c4d")
   message(FATAL_ERROR "a native build outside git: '${native_no_git}', expected 'native.1a2b3c4d'")
 endif()
 
+# The toolchain (CMakeLists.txt's SHELLCONTRACT_TOOLCHAIN): a Debug build, or another compiler,
+# of one commit printed the same identity as the Release build although the batched kernels, which
+# rely on the compiler's fused multiply-adds, may round otherwise (review repro F3).
+function(toolchain_source toolchain native out)
+  set(header "${WORK}/build_source_tc.hpp")
+  file(REMOVE "${header}")
+  execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${SOURCE_DIR} -DOUT=${header} -DGIT=${GIT}
+                          -DNATIVE=${native} "-DTOOLCHAIN=${toolchain}"
+                          -P ${SOURCE_DIR}/cmake/BuildIdentity.cmake)
+  file(READ "${header}" text)
+  string(REGEX MATCH "SHELLCONTRACT_BUILD_SOURCE \"([^\"]*)\"" found "${text}")
+  set(${out} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+endfunction()
+toolchain_source("GNU 12.2.0 Release  -O3 -DNDEBUG" "" release)
+toolchain_source("GNU 12.2.0 Debug  -g" "" debug)
+toolchain_source("GNU 12.2.0 Release  -O3 -DNDEBUG" "native.1a2b3c4d" release_native)
+string(SHA256 release_hash "GNU 12.2.0 Release  -O3 -DNDEBUG")
+string(SUBSTRING "${release_hash}" 0 8 release_hash)
+if(plain STREQUAL "")
+  set(expected_release "tc.${release_hash}")
+else()
+  set(expected_release "${plain}.tc.${release_hash}")
+endif()
+if(NOT release STREQUAL expected_release)
+  message(FATAL_ERROR "a toolchain's source is '${release}', expected '${expected_release}'")
+endif()
+if(debug STREQUAL release)
+  message(FATAL_ERROR "a Debug and a Release build of one commit have one identity: '${debug}'")
+endif()
+if(NOT release_native STREQUAL "${expected_release}.native.1a2b3c4d")
+  message(FATAL_ERROR "a native build's toolchain: '${release_native}', expected '${expected_release}.native.1a2b3c4d'")
+endif()
+
 # The target's name: the hash of what -march=native picks, so two CPUs give two names; "native"
 # where the compiler does not say.
 include(${SOURCE_DIR}/cmake/NativeTarget.cmake)
