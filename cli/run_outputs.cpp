@@ -2,7 +2,10 @@
 // and the words and exit code the run ends with. A finished result is never thrown away: an
 // output that fails (a full disk) is reported and the others are still written
 // (output-safety.md).
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <optional>
 #include <stdexcept>
@@ -20,6 +23,7 @@
 #include "run_summary.hpp"
 #include "shellcontract/error.hpp"
 #include "shellcontract/mesh_io.hpp"
+#include "sim/checkpoint.hpp"
 
 namespace shellcontract::cli {
 namespace {
@@ -27,6 +31,35 @@ namespace {
 /// The --summary document: the library's summary of the run with what only the CLI knows (the
 /// setup's times, the repair, the exports) and how the other outputs went. An output that
 /// failed makes the process exit 1 (or the run's own failure code), and the summary says so.
+/// The input file's identity, so that a summary names the bytes it was run on, not only a path
+/// that may since hold another file: its absolute path, its size and its 64-bit FNV-1a (the
+/// checkpoint's fnv1a, sim/checkpoint.hpp, from the standard offset basis). Empty where it cannot
+/// be read again (it was read for the run).
+JsonObject input_identity(const std::string& path) {
+  JsonObject o;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return o;
+  // FNV-1a's published offset basis: the checkpoint's own default differs (a digit short), which
+  // is harmless for its checksums but would not be the hash a reader computes with another tool.
+  std::uint64_t hash = 14695981039346656037ull;
+  std::uint64_t bytes = 0;
+  std::vector<char> chunk(1 << 16);
+  while (in.read(chunk.data(), static_cast<std::streamsize>(chunk.size())) || in.gcount() > 0) {
+    const auto n = static_cast<std::size_t>(in.gcount());
+    hash = fnv1a(chunk.data(), n, hash);
+    bytes += n;
+  }
+  if (in.bad()) return o;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  std::error_code ec;
+  const std::filesystem::path absolute = std::filesystem::absolute(path, ec);
+  o.add("path", ec ? path : absolute.string())
+      .add("bytes", static_cast<std::size_t>(bytes))
+      .add("fnv1a64", std::string(hex));
+  return o;
+}
+
 JsonObject run_summary(const RunRequest& request, const RunInputMesh& input, const RunResult& r,
                        const RunObservers& observers, const OutputWriter& writer) {
   const OutputStatus& outputs = writer.outputs;
@@ -40,6 +73,7 @@ JsonObject run_summary(const RunRequest& request, const RunInputMesh& input, con
       .add("check_seconds", input.report.check_seconds)
       .add("regions_seconds", r.regions_seconds)
       .add("prepare_seconds", r.prepare_seconds);
+  summary.add("input_file", input_identity(request.input));
   summary.add("setup", setup).add("peak_memory_mb", peak_memory_mb());
   if (request.repair) {
     const RepairReport& repair = input.repair_report;

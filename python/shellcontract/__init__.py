@@ -71,9 +71,10 @@ class Result:
     log:      dict column -> array, one entry per step (frame 1 on): the CLI's --log CSV
               columns (docs/cli.md, "The log and the summary").
     summary:  dict, the CLI's --summary JSON with the options under their Python names
-              (target_volume), without the CLI's own keys "input", "output", "setup",
-              "peak_memory_mb", "outputs", "export" and "repair". summary["target_reached"]
-              is None when no target_volume or stop_volume_ratio was asked for.
+              (target_volume), without the CLI's own keys "input", "output", "input_file",
+              "setup", "peak_memory_mb", "outputs", "export" and "repair".
+              summary["target_reached"] is None when no target_volume or stop_volume_ratio
+              was asked for.
     status:   "ok", "target not reached", "failed", "new self-intersections" or "cancelled".
               "failed" (non-finite positions, a blow-up, or memory running out during the
               frames) keeps the last good state in vertices; summary["failure"] says which.

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -58,6 +60,32 @@ TEST_F(CliOutputs, SummaryNumbersAreShortestAndTargetReachedIsNullWithoutATarget
     ++numbers;
   }
   EXPECT_GT(numbers, 20);
+}
+
+TEST_F(CliOutputs, TheSummaryNamesTheInputFilesBytes) {
+  // The summary named the input by the path as typed only: a rerun could not tell whether the
+  // file there is the one the run read (review repro F2). Its size and FNV-1a, computed here
+  // from the file's bytes by the published definition (offset basis 14695981039346656037, prime
+  // 1099511628211), and its absolute path.
+  const std::string in = mesh("ico2.off");
+  const auto r =
+      run_cli({"run", in, "-o", out("o.off"), "-n", "1", "-q", "--summary", out("s.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string bytes = read(in);
+  std::uint64_t h = 14695981039346656037ull;
+  for (const char c : bytes) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 1099511628211ull;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  const std::string s = read(out("s.json"));
+  EXPECT_NE(s.find("\"input_file\": {"), std::string::npos) << s;
+  EXPECT_NE(s.find("\"path\": \"" + std::filesystem::absolute(in).string() + "\""),
+            std::string::npos)
+      << s;
+  EXPECT_NE(s.find("\"bytes\": " + std::to_string(bytes.size())), std::string::npos) << s;
+  EXPECT_NE(s.find("\"fnv1a64\": \"" + std::string(hex) + "\""), std::string::npos) << s;
 }
 
 TEST_F(CliOutputs, AValidationThatPassedSaysSo) {
