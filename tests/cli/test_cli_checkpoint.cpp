@@ -67,6 +67,7 @@ std::string summary_without_times(const std::string& json) {
         line.find("_s\"") == std::string::npos && line.find("memory") == std::string::npos &&
         line.find("\"output\"") == std::string::npos &&
         line.find("\"input\"") == std::string::npos &&
+        line.find("\"path\"") == std::string::npos &&  // input_file's: its bytes are compared
         line.find("\"threads") == std::string::npos)  // the option and the count the run had
       out += line + "\n";
   return out;
