@@ -417,12 +417,9 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
 
   r.frames_run = sim.frame();
   r.final_volume_ratio = sim.volume_ratio();
-  // A shell pushed through itself (`collisions` off) can end inside out: no face pair then
-  // intersects (the validation finds nothing), but the enclosed volume is negative.
-  if (r.frames_run > 0 && r.final_volume_ratio <= 0.0)
-    warn(r, obs, "V/V0 ended at " + shortest_text(r.final_volume_ratio) +
-                     ": the shell passed through itself and is inside out" +
-                     (s.collisions ? std::string() : " (`collisions` off)"));
+  if (const std::string w = inside_out_warning(r.final_volume_ratio, r.frames_run, s.collisions);
+      !w.empty())
+    warn(r, obs, w);
   // A shell that grew under an outside pressure, or whose volume swings from frame to frame,
   // ends with a V/V0 that the load does not explain, and the run would say nothing of it.
   bool compressed = !has_target;
@@ -445,17 +442,8 @@ RunResult run_planned(RunPlan plan, RunObserver* observer, RunCheckpointer* chec
   if (has_stop) {
     r.target_reached = sim.stop_volume_reached();
     if (r.target_reached) r.frame_target_reached = sim.frame();
-    // A free shell ends on E; where contacts held it the step's lift onto E was capped
-    // (simulator_volume.cpp) and it can end a whole step's change below E, which "reached"
-    // alone does not tell.
-    const double e = s.stop_volume_ratio;
-    if (r.target_reached && r.final_volume_ratio < e - target_volume_tolerance(e))
-      warn(r, obs,
-           "the run stopped at V/V0 " + volume_ratio_text(r.final_volume_ratio) +
-               ", below the stop ratio " + volume_ratio_text(e) +
-               ": the contacts held the shell, and the step that crossed it was lifted back "
-               "toward it only a limited distance per vertex; a smaller `dt` or a lower "
-               "`pressure` crosses it in smaller steps");
+    const std::string below = stop_below_warning(r.final_volume_ratio, s.stop_volume_ratio);
+    if (r.target_reached && !below.empty()) warn(r, obs, below);
   } else if (has_target) {
     // A schedule's goal is its value at the last frame run (a key after it is never reached).
     const double goal =

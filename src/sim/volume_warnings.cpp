@@ -5,6 +5,8 @@
 #include <cstddef>
 
 #include "core/decimal_text.hpp"
+#include "shellcontract/run.hpp"
+#include "sim/target_goal.hpp"
 
 namespace shellcontract {
 
@@ -130,6 +132,22 @@ std::string frozen_warning(double reverted, std::size_t vertices, int steps) {
          " % of the vertex moves (every vertex in nearly every step): the shell barely moved and "
          "the result is about the input; more `collision_rounds` (the response's rounds before "
          "the fail-safe) or a smaller `dt` let it move";
+}
+
+std::string stop_below_warning(double final_ratio, double stop) {
+  if (!(final_ratio < stop - target_volume_tolerance(stop))) return {};
+  return "the run stopped at V/V0 " + volume_ratio_text(final_ratio) + ", below the stop ratio " +
+         volume_ratio_text(stop) +
+         ": the contacts held the shell, and the step that crossed it was lifted back toward it "
+         "only a limited distance per vertex; a smaller `dt` or a lower `pressure` crosses it in "
+         "smaller steps";
+}
+
+std::string inside_out_warning(double final_ratio, int frames, bool collisions) {
+  if (!(frames > 0 && final_ratio <= 0.0)) return {};
+  return "V/V0 ended at " + shortest_text(final_ratio) +
+         ": the shell passed through itself and is inside out" +
+         (collisions ? std::string() : " (`collisions` off)");
 }
 
 }  // namespace shellcontract

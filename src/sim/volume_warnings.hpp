@@ -70,4 +70,15 @@ inline constexpr double FROZEN_SHARE = 0.9;
 /// `field`, spell_options); empty otherwise.
 std::string frozen_warning(double reverted, std::size_t vertices, int steps);
 
+/// For a run that reached its stop ratio `stop` and ended at `final_ratio`: a free shell ends on
+/// it, but where contacts held the shell the step's lift onto it was capped
+/// (simulator_volume.cpp) and it can end a whole step's change below, which "reached" alone
+/// does not tell. Empty unless final_ratio < stop - target_volume_tolerance(stop).
+std::string stop_below_warning(double final_ratio, double stop);
+
+/// A shell pushed through itself (`collisions` off) can end inside out: no face pair then
+/// intersects (the validation finds nothing), but the enclosed volume is negative. Empty unless
+/// frames > 0 and final_ratio <= 0.
+std::string inside_out_warning(double final_ratio, int frames, bool collisions);
+
 }  // namespace shellcontract
