@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include "core/decimal_text.hpp"
 
 namespace shellcontract {
 
@@ -49,6 +52,25 @@ MassScaling scale_masses_for_pressure(const Positions& x, const Faces& faces, do
     }
   }
   return result;
+}
+
+std::string mass_scaling_warning(const MassScaling& m, std::size_t vertices, double dt) {
+  if (vertices == 0 ||
+      !(static_cast<double>(m.raised) > MASS_SCALING_NOTE_SHARE * static_cast<double>(vertices)))
+    return {};
+  std::string text = std::to_string(m.raised) + " of " + std::to_string(vertices) + " vertices (" +
+                     general_text(100.0 * static_cast<double>(m.raised) / vertices, 2) +
+                     " %) are too light for the explicit pressure at `dt` " + general_text(dt, 6) +
+                     ": their masses were raised, up to " + general_text(m.largest_factor, 3) +
+                     " times (docs/design/defaults.md, \"Mass scaling\"), so the motion depends on "
+                     "`dt`.";
+  // Two significant digits, rounded down: at the value shown no vertex is raised.
+  if (std::isfinite(m.largest_unscaled_dt) && m.largest_unscaled_dt > 0.0) {
+    const double unit = std::pow(10.0, std::floor(std::log10(m.largest_unscaled_dt)) - 1.0);
+    text += " At `dt` " + general_text(std::floor(m.largest_unscaled_dt / unit) * unit, 2) +
+            " or less none is raised (with more `frames` for the same time);";
+  }
+  return text + " `pressure` 0 with `target_volume` contracts without the explicit load";
 }
 
 }  // namespace shellcontract

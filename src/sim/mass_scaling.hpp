@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <string>
 
 #include "shellcontract/types.hpp"
 
@@ -51,5 +52,10 @@ MassScaling scale_masses_for_pressure(const Positions& x, const Faces& faces, do
 /// A run reports its mass scaling (a warning) when it raised more than this share of the vertices:
 /// then the masses, and so the motion, are not the area-lumped ones of docs/math/spec.md 1.4.
 inline constexpr double MASS_SCALING_NOTE_SHARE = 0.05;
+
+/// What a run says of its mass scaling `m` when it raised more than MASS_SCALING_NOTE_SHARE of
+/// the `vertices`: the masses are then not the lumped ones the docs describe, and they, and so
+/// the motion, change with the step `dt`. Empty below that share (options named as `field`).
+std::string mass_scaling_warning(const MassScaling& m, std::size_t vertices, double dt);
 
 }  // namespace shellcontract

@@ -130,28 +130,6 @@ std::function<bool()> preparation_cancelled(RunObserver& obs, RunCheckpointer* c
   };
 }
 
-/// What a run says of its mass scaling (sim/mass_scaling.hpp) when it raised more than
-/// MASS_SCALING_NOTE_SHARE of the `vertices`: the masses are then not the lumped ones the docs
-/// describe, and they, and so the motion, change with the step. Empty below that share.
-std::string mass_scaling_warning(const MassScaling& m, std::size_t vertices, double dt) {
-  if (vertices == 0 ||
-      !(static_cast<double>(m.raised) > MASS_SCALING_NOTE_SHARE * static_cast<double>(vertices)))
-    return {};
-  std::string text = std::to_string(m.raised) + " of " + std::to_string(vertices) + " vertices (" +
-                     general_text(100.0 * static_cast<double>(m.raised) / vertices, 2) +
-                     " %) are too light for the explicit pressure at `dt` " + general_text(dt, 6) +
-                     ": their masses were raised, up to " + general_text(m.largest_factor, 3) +
-                     " times (docs/design/defaults.md, \"Mass scaling\"), so the motion depends on "
-                     "`dt`.";
-  // Two significant digits, rounded down: at the value shown no vertex is raised.
-  if (std::isfinite(m.largest_unscaled_dt) && m.largest_unscaled_dt > 0.0) {
-    const double unit = std::pow(10.0, std::floor(std::log10(m.largest_unscaled_dt)) - 1.0);
-    text += " At `dt` " + general_text(std::floor(m.largest_unscaled_dt / unit) * unit, 2) +
-            " or less none is raised (with more `frames` for the same time);";
-  }
-  return text + " `pressure` 0 with `target_volume` contracts without the explicit load";
-}
-
 /// The stages the preparation names (core/progress_stage.hpp), told to the observer.
 ProgressStageScope observer_stages(RunObserver& obs) {
   return ProgressStageScope([&obs](const std::string& what) { obs.stage(what); });

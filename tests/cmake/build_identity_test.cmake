@@ -7,12 +7,15 @@ cmake_minimum_required(VERSION 3.20)  # the policies of the project (CMP0054: qu
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 
-# The header BuildIdentity.cmake writes for NATIVE and GIT, as its SHELLCONTRACT_BUILD_SOURCE.
+# The header BuildIdentity.cmake writes for NATIVE and GIT (and TOOLCHAIN, a fourth argument),
+# as its SHELLCONTRACT_BUILD_SOURCE.
 function(build_source native git out)
+  set(toolchain "${ARGV3}")
   set(header "${WORK}/build_source.hpp")
   file(REMOVE "${header}")
   execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${SOURCE_DIR} -DOUT=${header} -DGIT=${git}
-                          -DNATIVE=${native} -P ${SOURCE_DIR}/cmake/BuildIdentity.cmake
+                          -DNATIVE=${native} "-DTOOLCHAIN=${toolchain}"
+                          -P ${SOURCE_DIR}/cmake/BuildIdentity.cmake
                   RESULT_VARIABLE rc)
   file(READ "${header}" text)
   if(NOT rc EQUAL 0 OR NOT text MATCHES "#define SHELLCONTRACT_BUILD_SOURCE \"([^\"]*)\"")
@@ -42,19 +45,9 @@ endif()
 # The toolchain (CMakeLists.txt's SHELLCONTRACT_TOOLCHAIN): a Debug build, or another compiler,
 # of one commit printed the same identity as the Release build although the batched kernels, which
 # rely on the compiler's fused multiply-adds, may round otherwise (review repro F3).
-function(toolchain_source toolchain native out)
-  set(header "${WORK}/build_source_tc.hpp")
-  file(REMOVE "${header}")
-  execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${SOURCE_DIR} -DOUT=${header} -DGIT=${GIT}
-                          -DNATIVE=${native} "-DTOOLCHAIN=${toolchain}"
-                          -P ${SOURCE_DIR}/cmake/BuildIdentity.cmake)
-  file(READ "${header}" text)
-  string(REGEX MATCH "SHELLCONTRACT_BUILD_SOURCE \"([^\"]*)\"" found "${text}")
-  set(${out} "${CMAKE_MATCH_1}" PARENT_SCOPE)
-endfunction()
-toolchain_source("GNU 12.2.0 Release  -O3 -DNDEBUG" "" release)
-toolchain_source("GNU 12.2.0 Debug  -g" "" debug)
-toolchain_source("GNU 12.2.0 Release  -O3 -DNDEBUG" "native.1a2b3c4d" release_native)
+build_source("" "${GIT}" release "GNU 12.2.0 Release  -O3 -DNDEBUG")
+build_source("" "${GIT}" debug "GNU 12.2.0 Debug  -g")
+build_source("native.1a2b3c4d" "${GIT}" release_native "GNU 12.2.0 Release  -O3 -DNDEBUG")
 string(SHA256 release_hash "GNU 12.2.0 Release  -O3 -DNDEBUG")
 string(SUBSTRING "${release_hash}" 0 8 release_hash)
 if(plain STREQUAL "")
